@@ -1,0 +1,317 @@
+//! CPU twin of `shaders/intersect.wgsl`: ray/primitive intersection, nearest hit and shadow
+//! transmittance.
+
+use glam::DVec3;
+
+use super::{Ray, TraceContext, v3};
+use crate::layout::{GpuTriangle, TRIANGLE_HAS_NORMALS, feature};
+
+pub const PRIM_SPHERE: u32 = 1;
+pub const PRIM_PLANE: u32 = 2;
+pub const PRIM_TRIANGLE: u32 = 3;
+
+/// |n·d| below this counts as parallel to a plane: no division by (almost) zero, on either
+/// tracer. A ray this close to parallel would hit the plane ~1e12 units away.
+pub const PLANE_PARALLEL_COS: f64 = 1e-12;
+
+/// Largest ray parameter; also the reach of shadow rays towards directional lights. Finite
+/// so that the f32 tracer never computes with infinities.
+pub const FAR: f64 = 1e30;
+
+/// The nearest intersection found so far.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Hit {
+    pub t: f64,
+    pub prim: u32,
+    pub index: u32,
+    /// Barycentric weights of v1 and v2 (triangles only).
+    pub b1: f64,
+    pub b2: f64,
+}
+
+/// Both roots t0 ≤ t1 of a ray/sphere intersection (`None` when it misses or both roots are
+/// behind an origin outside the sphere), after Haines et al., "Precision
+/// Improvements for Ray/Sphere Intersection" (Ray Tracing Gems, ch. 7): the discriminant from
+/// the perpendicular distance, and the smaller root from c/q so neither loses digits.
+pub fn sphere_roots(center: DVec3, radius: f64, ray: &Ray) -> Option<(f64, f64)> {
+    let f = ray.origin - center;
+    let a = ray.dir.dot(ray.dir);
+    let b = -f.dot(ray.dir);
+    let c = f.dot(f) - radius * radius;
+    if c > 0.0 && b < 0.0 {
+        // Origin outside and centre behind it: both roots are negative (product c/a > 0,
+        // sum 2b/a < 0), and so are their computed values. Cheaper than the square root.
+        return None;
+    }
+    let l = f + (b / a) * ray.dir;
+    let disc = radius * radius - l.dot(l);
+    if disc < 0.0 {
+        return None;
+    }
+    let q = b + if b >= 0.0 { 1.0 } else { -1.0 } * (a * disc).sqrt();
+    if q == 0.0 {
+        // Tangent at the origin: the double root is t = 0.
+        return Some((0.0, 0.0));
+    }
+    let t0 = c / q;
+    let t1 = q / a;
+    Some(if t0 <= t1 { (t0, t1) } else { (t1, t0) })
+}
+
+/// Nearest sphere root inside (t_min, t_max).
+pub fn intersect_sphere(center: DVec3, radius: f64, ray: &Ray, t_min: f64, t_max: f64) -> Option<f64> {
+    let (t0, t1) = sphere_roots(center, radius, ray)?;
+    if t0 > t_min && t0 < t_max {
+        Some(t0)
+    } else if t1 > t_min && t1 < t_max {
+        Some(t1)
+    } else {
+        None
+    }
+}
+
+/// The plane n·x = d; rays (almost) parallel to it miss.
+pub fn intersect_plane(n: DVec3, d: f64, ray: &Ray, t_min: f64, t_max: f64) -> Option<f64> {
+    let denom = n.dot(ray.dir);
+    if denom.abs() < PLANE_PARALLEL_COS {
+        return None;
+    }
+    let t = (d - n.dot(ray.origin)) / denom;
+    (t > t_min && t < t_max).then_some(t)
+}
+
+/// Per-ray set-up of the watertight triangle test: the axis permutation and shear that map
+/// the ray onto +z.
+#[derive(Clone, Copy, Debug)]
+pub struct RayShear {
+    pub kx: usize,
+    pub ky: usize,
+    pub kz: usize,
+    pub sx: f64,
+    pub sy: f64,
+    pub sz: f64,
+}
+
+pub fn ray_shear(dir: DVec3) -> RayShear {
+    let a = dir.abs();
+    let kz = if a.x >= a.y && a.x >= a.z {
+        0
+    } else if a.y >= a.z {
+        1
+    } else {
+        2
+    };
+    let mut kx = (kz + 1) % 3;
+    let mut ky = (kx + 1) % 3;
+    if dir[kz] < 0.0 {
+        std::mem::swap(&mut kx, &mut ky);
+    }
+    RayShear { kx, ky, kz, sx: dir[kx] / dir[kz], sy: dir[ky] / dir[kz], sz: 1.0 / dir[kz] }
+}
+
+/// Watertight ray/triangle test (Woop, Benthin & Wald, JCGT 2013): edges shared by two
+/// triangles are never missed by both. Returns (t, b1, b2); degenerate triangles never hit.
+pub fn intersect_triangle(
+    v0: DVec3,
+    v1: DVec3,
+    v2: DVec3,
+    ray: &Ray,
+    shear: &RayShear,
+    t_min: f64,
+    t_max: f64,
+) -> Option<(f64, f64, f64)> {
+    let RayShear { kx, ky, kz, sx, sy, sz } = *shear;
+    let a = v0 - ray.origin;
+    let b = v1 - ray.origin;
+    let c = v2 - ray.origin;
+    let ax = a[kx] - sx * a[kz];
+    let ay = a[ky] - sy * a[kz];
+    let bx = b[kx] - sx * b[kz];
+    let by = b[ky] - sy * b[kz];
+    let cx = c[kx] - sx * c[kz];
+    let cy = c[ky] - sy * c[kz];
+    let u = cx * by - cy * bx;
+    let v = ax * cy - ay * cx;
+    let w = bx * ay - by * ax;
+    if (u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0) {
+        return None;
+    }
+    let det = u + v + w;
+    if det == 0.0 {
+        return None;
+    }
+    let t_scaled = u * (sz * a[kz]) + v * (sz * b[kz]) + w * (sz * c[kz]);
+    let inv = 1.0 / det;
+    let t = t_scaled * inv;
+    (t > t_min && t < t_max).then_some((t, v * inv, w * inv))
+}
+
+fn triangle_vertices(tri: &GpuTriangle) -> (DVec3, DVec3, DVec3) {
+    (v3(tri.v0), v3(tri.v1), v3(tri.v2))
+}
+
+/// The nearest hit in (t_min, t_max). Ties go to the primitive tested first (spheres, planes,
+/// triangles, each in index order), the same on both tracers.
+pub fn closest_hit(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
+    let scene = ctx.scene;
+    let mut best: Option<Hit> = None;
+    let mut t_far = t_max;
+    if ctx.has(feature::SPHERES) {
+        for (i, s) in scene.spheres.iter().enumerate() {
+            let cr = s.center_radius;
+            if let Some(t) = intersect_sphere(v3(cr), f64::from(cr[3]), ray, t_min, t_far) {
+                t_far = t;
+                best = Some(Hit { t, prim: PRIM_SPHERE, index: i as u32, b1: 0.0, b2: 0.0 });
+            }
+        }
+    }
+    if ctx.has(feature::PLANES) {
+        for (i, p) in scene.planes.iter().enumerate() {
+            let no = p.normal_offset;
+            if let Some(t) = intersect_plane(v3(no), f64::from(no[3]), ray, t_min, t_far) {
+                t_far = t;
+                best = Some(Hit { t, prim: PRIM_PLANE, index: i as u32, b1: 0.0, b2: 0.0 });
+            }
+        }
+    }
+    if ctx.has(feature::TRIANGLES) && !scene.triangles.is_empty() {
+        let shear = ray_shear(ray.dir);
+        for (i, tri) in scene.triangles.iter().enumerate() {
+            let (v0, v1, v2) = triangle_vertices(tri);
+            if let Some((t, b1, b2)) = intersect_triangle(v0, v1, v2, ray, &shear, t_min, t_far) {
+                t_far = t;
+                best = Some(Hit { t, prim: PRIM_TRIANGLE, index: i as u32, b1, b2 });
+            }
+        }
+    }
+    best
+}
+
+/// Fraction of light that passes from the ray origin to t_max: 0 behind an opaque occluder,
+/// the product of k_t over every surface crossed otherwise (a glass sphere is crossed twice).
+pub fn shadow_transmittance(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f64) -> DVec3 {
+    let scene = ctx.scene;
+    let filtered = ctx.has(feature::FILTERED_SHADOWS);
+    let mut tr = DVec3::ONE;
+    // Multiplies in one crossing; false once nothing can pass any more.
+    let mut cross = |material: u32| -> bool {
+        if !filtered {
+            tr = DVec3::ZERO;
+            return false;
+        }
+        tr *= v3(scene.materials[material as usize].kt);
+        tr != DVec3::ZERO
+    };
+    if ctx.has(feature::SPHERES) {
+        for s in &scene.spheres {
+            let cr = s.center_radius;
+            if let Some((t0, t1)) = sphere_roots(v3(cr), f64::from(cr[3]), ray) {
+                for t in [t0, t1] {
+                    if t > t_min && t < t_max && !cross(s.material) {
+                        return DVec3::ZERO;
+                    }
+                }
+            }
+        }
+    }
+    if ctx.has(feature::PLANES) {
+        for p in &scene.planes {
+            let no = p.normal_offset;
+            if intersect_plane(v3(no), f64::from(no[3]), ray, t_min, t_max).is_some() && !cross(p.material) {
+                return DVec3::ZERO;
+            }
+        }
+    }
+    if ctx.has(feature::TRIANGLES) && !scene.triangles.is_empty() {
+        let shear = ray_shear(ray.dir);
+        for tri in &scene.triangles {
+            let (v0, v1, v2) = triangle_vertices(tri);
+            if intersect_triangle(v0, v1, v2, ray, &shear, t_min, t_max).is_some() && !cross(tri.material) {
+                return DVec3::ZERO;
+            }
+        }
+    }
+    tr
+}
+
+/// Unit shading normal of a triangle hit: interpolated vertex normals where the mesh has them
+/// (falling back to the geometric normal if they cancel), else the geometric normal.
+pub fn triangle_shading_normal(tri: &GpuTriangle, b1: f64, b2: f64, ng: DVec3) -> DVec3 {
+    if tri.flags & TRIANGLE_HAS_NORMALS == 0 {
+        return ng;
+    }
+    let n = (1.0 - b1 - b2) * v3(tri.n0) + b1 * v3(tri.n1) + b2 * v3(tri.n2);
+    let len = n.length();
+    if len > 0.0 { n / len } else { ng }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn ray(o: [f64; 3], d: [f64; 3]) -> Ray {
+        Ray { origin: DVec3::from(o), dir: DVec3::from(d).normalize() }
+    }
+
+    #[test]
+    fn unit_sphere_a_million_units_away_is_found() {
+        let r = ray([0.0, 0.0, 0.0], [0.0, 0.0, 1.0]);
+        let t = intersect_sphere(DVec3::new(0.0, 0.0, 1e6), 1.0, &r, 0.0, FAR).unwrap();
+        assert_eq!(t, 1e6 - 1.0);
+    }
+
+    #[test]
+    fn sphere_behind_the_ray_and_from_inside() {
+        let r = ray([0.0, 0.0, 0.0], [0.0, 0.0, 1.0]);
+        assert!(intersect_sphere(DVec3::new(0.0, 0.0, -5.0), 1.0, &r, 0.0, FAR).is_none());
+        let t = intersect_sphere(DVec3::ZERO, 2.0, &r, 0.0, FAR).unwrap();
+        assert!((t - 2.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn plane_parallel_ray_misses_without_dividing() {
+        let r = ray([0.0, 1.0, 0.0], [1.0, 0.0, 0.0]);
+        assert!(intersect_plane(DVec3::Y, 0.0, &r, 0.0, FAR).is_none());
+        let down = ray([0.0, 1.0, 0.0], [0.0, -1.0, 0.0]);
+        assert_eq!(intersect_plane(DVec3::Y, 0.0, &down, 0.0, FAR), Some(1.0));
+    }
+
+    #[test]
+    fn triangle_barycentrics_and_shared_edge() {
+        let (a, b, c, d) = (
+            DVec3::new(-1.0, -1.0, 0.0),
+            DVec3::new(1.0, -1.0, 0.0),
+            DVec3::new(1.0, 1.0, 0.0),
+            DVec3::new(-1.0, 1.0, 0.0),
+        );
+        // A ray exactly through the shared diagonal a–c must hit at least one of the two.
+        for k in 0..=20 {
+            let s = -1.0 + 0.1 * f64::from(k);
+            let r = ray([s, s, -1.0], [0.0, 0.0, 1.0]);
+            let sh = ray_shear(r.dir);
+            let h1 = intersect_triangle(a, b, c, &r, &sh, 0.0, FAR);
+            let h2 = intersect_triangle(a, c, d, &r, &sh, 0.0, FAR);
+            assert!(h1.is_some() || h2.is_some(), "hole at s = {s}");
+        }
+        let r = ray([0.5, -0.5, -1.0], [0.0, 0.0, 1.0]);
+        let (t, b1, b2) = intersect_triangle(a, b, c, &r, &ray_shear(r.dir), 0.0, FAR).unwrap();
+        assert_eq!(t, 1.0);
+        let p = (1.0 - b1 - b2) * a + b1 * b + b2 * c;
+        assert!((p - DVec3::new(0.5, -0.5, 0.0)).length() < 1e-15);
+    }
+
+    #[test]
+    fn degenerate_triangles_never_hit() {
+        let r = ray([0.0, 0.0, -1.0], [0.0, 0.0, 1.0]);
+        let sh = ray_shear(r.dir);
+        let p = DVec3::ZERO;
+        let cases = [
+            (p, p, p),
+            (DVec3::new(-1.0, 0.0, 0.0), DVec3::ZERO, DVec3::new(1.0, 0.0, 0.0)),
+            (DVec3::new(-1.0, 0.0, 0.0), DVec3::new(-1.0, 0.0, 0.0), DVec3::new(1.0, 0.0, 0.0)),
+        ];
+        for (a, b, c) in cases {
+            assert!(intersect_triangle(a, b, c, &r, &sh, 0.0, FAR).is_none());
+        }
+    }
+}

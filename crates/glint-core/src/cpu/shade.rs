@@ -1,0 +1,191 @@
+//! CPU twin of `shaders/shade.wgsl`: the local Phong/Blinn model of the seed,
+//!
+//! I_local = E_m + I_a·k_a + Σ_j f_att,j·S_j·[ I_a,j·k_a + V_j·( I_d,j·k_d·max(N·L,0) + I_s,j·k_s·spec_j ) ]
+
+use glam::DVec3;
+
+use super::intersect::{FAR, shadow_transmittance};
+use super::offset::{shadow_t_max, spawn_ray};
+use super::probe::{Breakdown, LightTerm};
+use super::trace::Surface;
+use super::{Ray, RayCounts, TraceContext, v3};
+use crate::layout::{
+    GpuLight, GpuMaterial, LIGHT_CASTS_SHADOWS, LIGHT_DIRECTIONAL, LIGHT_SPOT, MATERIAL_CHECKER, MATERIAL_PHONG,
+    feature,
+};
+
+/// A light closer than this to the shaded point gives no direct term (its direction is
+/// undefined); it still gives its ambient term.
+pub const MIN_LIGHT_DISTANCE: f64 = 1e-20;
+
+/// Below this |L + V| the half vector is undefined (L = −V) and the Blinn term is 0.
+pub const MIN_HALF_LENGTH: f64 = 1e-12;
+
+/// x^n with the conventions the model needs and `pow` does not guarantee on the GPU:
+/// x^0 = 1 (also for x = 0), and 0 for x ≤ 0 otherwise.
+pub fn safe_pow(x: f64, n: f64) -> f64 {
+    if n == 0.0 {
+        1.0
+    } else if x <= 0.0 {
+        0.0
+    } else {
+        x.powf(n)
+    }
+}
+
+/// f_att = 1 / (c + l·d + q·d²).
+pub fn attenuation_factor(att: [f32; 4], d: f64) -> f64 {
+    1.0 / (f64::from(att[0]) + f64::from(att[1]) * d + f64::from(att[2]) * d * d)
+}
+
+/// S = max(L_N·(−L), 0)^s inside the cone, 0 outside.
+pub fn spot_factor(light: &GpuLight, l: DVec3) -> f64 {
+    let cos_angle = v3(light.direction).dot(-l);
+    if cos_angle < f64::from(light.spot_cos_cutoff) {
+        return 0.0;
+    }
+    safe_pow(cos_angle.max(0.0), f64::from(light.spot_exponent))
+}
+
+/// Direction and distance to a light from `p`, with its attenuation and spot factors.
+#[derive(Clone, Copy, Debug)]
+pub struct LightSample {
+    /// Unit vector from p towards the light.
+    pub l: DVec3,
+    pub dist: f64,
+    pub f_att: f64,
+    pub spot: f64,
+}
+
+pub fn light_sample(ctx: &TraceContext, light: &GpuLight, p: DVec3) -> LightSample {
+    if light.kind == LIGHT_DIRECTIONAL {
+        return LightSample { l: -v3(light.direction), dist: FAR, f_att: 1.0, spot: 1.0 };
+    }
+    let to_light = v3(light.position) - p;
+    let dist = to_light.length();
+    let l = if dist >= MIN_LIGHT_DISTANCE { to_light / dist } else { DVec3::ZERO };
+    let f_att = if ctx.has(feature::ATTENUATION) { attenuation_factor(light.attenuation, dist) } else { 1.0 };
+    let spot = if ctx.has(feature::SPOT_LIGHTS) && light.kind == LIGHT_SPOT { spot_factor(light, l) } else { 1.0 };
+    LightSample { l, dist, f_att, spot }
+}
+
+/// The specular lobe: max(N·H, 0)^n (Blinn) or max(R·V, 0)^n (Phong); 0 where N·L ≤ 0.
+pub fn specular_term(ctx: &TraceContext, mat: &GpuMaterial, n: DVec3, l: DVec3, v: DVec3, n_dot_l: f64) -> f64 {
+    let shininess = f64::from(mat.shininess);
+    if ctx.has(feature::PHONG) && mat.flags & MATERIAL_PHONG != 0 {
+        let r = 2.0 * n_dot_l * n - l;
+        return safe_pow(r.dot(v).max(0.0), shininess);
+    }
+    let h = l + v;
+    let len = h.length();
+    if len < MIN_HALF_LENGTH {
+        return 0.0;
+    }
+    safe_pow((n.dot(h) / len).max(0.0), shininess)
+}
+
+/// The diffuse colour at `p`: k_d, or the checker of k_d and `checker_kd`. The checker uses the
+/// two coordinates across the dominant axis of the geometric normal, so a floor at y = 0 does
+/// not flicker with the sign of rounding errors in y.
+pub fn diffuse_colour(ctx: &TraceContext, mat: &GpuMaterial, p: DVec3, ng: DVec3) -> DVec3 {
+    if !ctx.has(feature::CHECKER) || mat.flags & MATERIAL_CHECKER == 0 {
+        return v3(mat.kd);
+    }
+    let a = ng.abs();
+    let (u, w) = if a.x >= a.y && a.x >= a.z {
+        (p.y, p.z)
+    } else if a.y >= a.z {
+        (p.x, p.z)
+    } else {
+        (p.x, p.y)
+    };
+    let inv = 1.0 / f64::from(mat.checker_size);
+    // Saturating casts: squares beyond ±2^63 are far outside any valid scene.
+    let parity = ((u * inv).floor() as i64).wrapping_add((w * inv).floor() as i64) & 1;
+    if parity == 0 { v3(mat.kd) } else { v3(mat.checker_kd) }
+}
+
+/// Visibility V_j of a light from the hit: 1 unobstructed, 0 behind an opaque occluder, the
+/// product of crossed k_t behind transmissive ones.
+pub fn light_visibility(
+    ctx: &TraceContext,
+    light: &GpuLight,
+    s: &Surface,
+    ng: DVec3,
+    ls: &LightSample,
+    counts: &mut RayCounts,
+) -> DVec3 {
+    let n_side = if ng.dot(ls.l) >= 0.0 { ng } else { -ng };
+    let (origin, t_min) = spawn_ray(ctx, s.p, s.p_surface, n_side, ls.l);
+    let (dir, t_max) = if light.kind == LIGHT_DIRECTIONAL {
+        (ls.l, FAR)
+    } else {
+        let to_light = v3(light.position) - origin;
+        let dist = to_light.length();
+        if dist < MIN_LIGHT_DISTANCE {
+            return DVec3::ONE;
+        }
+        (to_light / dist, shadow_t_max(ctx, dist))
+    };
+    if t_max <= t_min {
+        return DVec3::ONE;
+    }
+    counts.shadow += 1;
+    shadow_transmittance(ctx, &Ray { origin, dir }, t_min, t_max)
+}
+
+/// The local model at a hit. `n` is the shading normal and `ng` the geometric normal, both
+/// turned towards the incoming ray; `v` points back along it.
+pub fn shade_local(
+    ctx: &TraceContext,
+    s: &Surface,
+    n: DVec3,
+    ng: DVec3,
+    v: DVec3,
+    counts: &mut RayCounts,
+    mut probe: Option<&mut Breakdown>,
+) -> DVec3 {
+    let scene = ctx.scene;
+    let p = s.p;
+    let mat = &scene.materials[s.material as usize];
+    let ka = v3(mat.ka);
+    let emission = if ctx.has(feature::EMISSION) { v3(mat.emission) } else { DVec3::ZERO };
+    let ambient = v3(scene.header.ambient) * ka;
+    let kd = diffuse_colour(ctx, mat, p, ng);
+    let ks = v3(mat.ks);
+    let mut sum = DVec3::ZERO;
+    for (j, light) in scene.lights.iter().enumerate() {
+        let ls = light_sample(ctx, light, p);
+        let scale = ls.f_att * ls.spot;
+        let mut term = LightTerm { light: j as u32, f_att: ls.f_att, spot: ls.spot, ..LightTerm::default() };
+        if scale != 0.0 {
+            if ctx.has(feature::LIGHT_AMBIENT) {
+                term.ambient = v3(light.ambient) * ka;
+            }
+            let n_dot_l = n.dot(ls.l);
+            if n_dot_l > 0.0 {
+                term.visibility = if ctx.has(feature::SHADOWS) && light.flags & LIGHT_CASTS_SHADOWS != 0 {
+                    light_visibility(ctx, light, s, ng, &ls, counts)
+                } else {
+                    DVec3::ONE
+                };
+                if term.visibility != DVec3::ZERO {
+                    term.diffuse = v3(light.diffuse) * kd * n_dot_l;
+                    if ctx.has(feature::SPECULAR) && ks != DVec3::ZERO {
+                        term.specular = v3(light.specular) * ks * specular_term(ctx, mat, n, ls.l, v, n_dot_l);
+                    }
+                }
+            }
+            term.contribution = scale * (term.ambient + term.visibility * (term.diffuse + term.specular));
+            sum += term.contribution;
+        }
+        if let Some(b) = probe.as_deref_mut() {
+            b.lights.push(term);
+        }
+    }
+    if let Some(b) = probe {
+        b.emission = emission;
+        b.ambient = ambient;
+    }
+    emission + ambient + sum
+}

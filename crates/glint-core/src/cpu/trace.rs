@@ -1,0 +1,216 @@
+//! CPU twin of `shaders/trace.wgsl`: the Whitted ray tree and the pixel loop.
+//!
+//! The CPU recurses; the GPU walks the same tree with an explicit stack. Both add
+//! k_r·I_r and k_t·I_t with the same path weights and the same bailout decisions, so only the
+//! order of summation differs.
+
+use glam::DVec3;
+
+use super::camera::{camera_ray, sample_offset};
+use super::intersect::{FAR, Hit, PRIM_PLANE, PRIM_SPHERE, closest_hit, triangle_shading_normal};
+use super::offset::spawn_ray;
+use super::probe::Breakdown;
+use super::shade::shade_local;
+use super::{Ray, RayCounts, TraceContext, v3};
+use crate::layout::{EPS_ROBUST, NO_HIT, feature};
+
+/// Geometry at a hit: point, unit geometric and shading normals as stored (not yet turned
+/// towards the ray), material and object.
+#[derive(Clone, Copy, Debug)]
+pub struct Surface {
+    /// o + t·d, where shading happens.
+    pub p: DVec3,
+    /// The hit point recomputed from the surface itself (robust epsilon mode only, else p):
+    /// its error does not grow with the distance the ray travelled, as o + t·d's does.
+    pub p_surface: DVec3,
+    pub ng: DVec3,
+    pub ns: DVec3,
+    pub material: u32,
+    pub object_id: u32,
+}
+
+pub fn surface_at(ctx: &TraceContext, ray: &Ray, hit: &Hit) -> Surface {
+    let scene = ctx.scene;
+    let p = ray.origin + hit.t * ray.dir;
+    let robust = ctx.epsilon_mode == EPS_ROBUST;
+    match hit.prim {
+        PRIM_SPHERE => {
+            let s = &scene.spheres[hit.index as usize];
+            let c = v3(s.center_radius);
+            let ng = (p - c).normalize();
+            let p_surface = if robust { c + f64::from(s.center_radius[3]) * ng } else { p };
+            Surface { p, p_surface, ng, ns: ng, material: s.material, object_id: s.object_id }
+        }
+        PRIM_PLANE => {
+            let pl = &scene.planes[hit.index as usize];
+            let ng = v3(pl.normal_offset);
+            let p_surface = if robust { p - (ng.dot(p) - f64::from(pl.normal_offset[3])) * ng } else { p };
+            Surface { p, p_surface, ng, ns: ng, material: pl.material, object_id: pl.object_id }
+        }
+        _ => {
+            let tri = &scene.triangles[hit.index as usize];
+            let (v0, v1, v2) = (v3(tri.v0), v3(tri.v1), v3(tri.v2));
+            let ng = (v1 - v0).cross(v2 - v0).normalize();
+            let ns = triangle_shading_normal(tri, hit.b1, hit.b2, ng);
+            let p_surface = if robust { (1.0 - hit.b1 - hit.b2) * v0 + hit.b1 * v1 + hit.b2 * v2 } else { p };
+            Surface { p, p_surface, ng, ns, material: tri.material, object_id: tri.object_id }
+        }
+    }
+}
+
+/// Refraction direction by Snell's law for unit `d` and unit `n` facing the incoming ray,
+/// with η = n_from / n_to; `None` under total internal reflection.
+pub fn refract_dir(d: DVec3, n: DVec3, eta: f64) -> Option<DVec3> {
+    let cos_i = -d.dot(n);
+    let k = 1.0 - eta * eta * (1.0 - cos_i * cos_i);
+    if k < 0.0 {
+        return None;
+    }
+    Some((eta * d + (eta * cos_i - k.sqrt()) * n).normalize())
+}
+
+/// Mirror direction R = D − 2(D·N)N.
+pub fn reflect_dir(d: DVec3, n: DVec3) -> DVec3 {
+    (d - 2.0 * d.dot(n) * n).normalize()
+}
+
+fn max_channel(v: DVec3) -> f64 {
+    v.x.max(v.y).max(v.z)
+}
+
+/// Radiance along a ray: background on a miss, else the shaded hit.
+pub fn trace_ray(
+    ctx: &TraceContext,
+    ray: &Ray,
+    t_min: f64,
+    depth: u32,
+    weight: DVec3,
+    counts: &mut RayCounts,
+) -> DVec3 {
+    match closest_hit(ctx, ray, t_min, FAR) {
+        Some(hit) => shade_hit(ctx, ray, &hit, depth, weight, counts, None),
+        None => v3(ctx.scene.header.background),
+    }
+}
+
+/// Local model plus k_r·I_r + k_t·I_t at a hit. `weight` is the product of k along the path
+/// to this hit; a child whose path weight falls below the bailout is not traced.
+pub fn shade_hit(
+    ctx: &TraceContext,
+    ray: &Ray,
+    hit: &Hit,
+    depth: u32,
+    weight: DVec3,
+    counts: &mut RayCounts,
+    mut probe: Option<&mut Breakdown>,
+) -> DVec3 {
+    let s = surface_at(ctx, ray, hit);
+    // Two-sided shading: turn the normals to face the incoming ray; which side was hit
+    // (entering or leaving) is read from the geometric normal.
+    let front = ray.dir.dot(s.ng) < 0.0;
+    let (ng, ns) = if front { (s.ng, s.ns) } else { (-s.ng, -s.ns) };
+    let v = -ray.dir;
+    let mut radiance = shade_local(ctx, &s, ns, ng, v, counts, probe.as_deref_mut());
+    if let Some(b) = probe.as_deref_mut() {
+        b.object_id = s.object_id;
+        b.material = s.material;
+        b.t = hit.t;
+        b.point = s.p;
+        b.normal = ns;
+    }
+    if depth >= ctx.max_depth || !ctx.has(feature::REFLECTION | feature::TRANSMISSION) {
+        return radiance;
+    }
+    let mat = &ctx.scene.materials[s.material as usize];
+    let kr = v3(mat.kr);
+    let kt = v3(mat.kt);
+    // Under total internal reflection the k_t share follows the mirror direction.
+    let mut k_mirror = kr;
+    let mut refracted = None;
+    if ctx.has(feature::TRANSMISSION) && kt != DVec3::ZERO {
+        let ior = f64::from(mat.ior);
+        let eta = if front { 1.0 / ior } else { ior };
+        match refract_dir(ray.dir, ns, eta) {
+            Some(dir) => refracted = Some(dir),
+            None => k_mirror += kt,
+        }
+    }
+    if k_mirror != DVec3::ZERO {
+        let w = weight * k_mirror;
+        if max_channel(w) < ctx.bailout {
+            counts.bailout_saved += 1;
+        } else {
+            counts.reflection += 1;
+            let dir = reflect_dir(ray.dir, ns);
+            let (origin, t_min) = spawn_ray(ctx, s.p, s.p_surface, ng, dir);
+            let i_r = trace_ray(ctx, &Ray { origin, dir }, t_min, depth + 1, w, counts);
+            radiance += k_mirror * i_r;
+            if let Some(b) = probe.as_deref_mut() {
+                // One ray serves k_r and, under total internal reflection, k_t: list both.
+                b.reflected = kr * i_r;
+                if refracted.is_none() {
+                    b.transmitted = kt * i_r;
+                }
+            }
+        }
+    }
+    if let Some(dir) = refracted {
+        let w = weight * kt;
+        if max_channel(w) < ctx.bailout {
+            counts.bailout_saved += 1;
+        } else {
+            counts.refraction += 1;
+            let (origin, t_min) = spawn_ray(ctx, s.p, s.p_surface, -ng, dir);
+            let term = kt * trace_ray(ctx, &Ray { origin, dir }, t_min, depth + 1, w, counts);
+            radiance += term;
+            if let Some(b) = probe {
+                b.transmitted = term;
+            }
+        }
+    }
+    radiance
+}
+
+/// One camera sample: radiance and the id of the first object hit (`NO_HIT` for none).
+pub fn render_sample(
+    ctx: &TraceContext,
+    x: u32,
+    y: u32,
+    sample: u32,
+    counts: &mut RayCounts,
+    probe: Option<&mut Breakdown>,
+) -> (DVec3, u32) {
+    let h = &ctx.scene.header;
+    let pixel = y * h.width + x;
+    let (ox, oy) = sample_offset(pixel, sample, h.spp, h.seed, ctx.has(feature::JITTER));
+    let ray = camera_ray(&ctx.scene.camera, h.width, h.height, x, y, ox, oy);
+    counts.camera += 1;
+    match closest_hit(ctx, &ray, 0.0, FAR) {
+        Some(hit) => {
+            let object = ctx.object_id(&hit);
+            let mut probe = probe;
+            let radiance = shade_hit(ctx, &ray, &hit, 0, DVec3::ONE, counts, probe.as_deref_mut());
+            if let Some(b) = probe {
+                b.total = radiance;
+            }
+            (radiance, object)
+        }
+        None => {
+            let bg = v3(h.background);
+            if let Some(b) = probe {
+                *b = Breakdown { object_id: NO_HIT, total: bg, ..Breakdown::default() };
+            }
+            (bg, NO_HIT)
+        }
+    }
+}
+
+/// The mean over all samples of a pixel, and the first sample's first-hit object.
+pub fn render_pixel(ctx: &TraceContext, x: u32, y: u32, counts: &mut RayCounts) -> (DVec3, u32) {
+    let spp = ctx.scene.header.spp;
+    let (mut sum, first) = render_sample(ctx, x, y, 0, counts, None);
+    for s in 1..spp {
+        sum += render_sample(ctx, x, y, s, counts, None).0;
+    }
+    (sum / f64::from(spp), first)
+}

@@ -1,0 +1,295 @@
+//! Turning a validated scene description into the flat layout both tracers read.
+
+use glam::DVec3;
+
+use crate::layout::{
+    EPS_NUDGE_NORMAL, EPS_NUDGE_RAY, EPS_ROBUST, EPS_TMIN, GpuCamera, GpuLight, GpuMaterial, GpuPlane, GpuSphere,
+    GpuTriangle, LIGHT_CASTS_SHADOWS, LIGHT_DIRECTIONAL, LIGHT_POINT, LIGHT_SPOT, MATERIAL_CHECKER, MATERIAL_PHONG,
+    SceneHeader, TRIANGLE_HAS_NORMALS, feature,
+};
+use crate::scene::{EpsilonMode, LightKind, ObjectDesc, RenderSettings, Rgb, SceneDesc, SpecularModel};
+
+/// A scene in the GPU-ready layout, plus the names the UI and reports show.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FlatScene {
+    pub header: SceneHeader,
+    pub camera: GpuCamera,
+    pub materials: Vec<GpuMaterial>,
+    pub lights: Vec<GpuLight>,
+    pub spheres: Vec<GpuSphere>,
+    pub planes: Vec<GpuPlane>,
+    pub triangles: Vec<GpuTriangle>,
+    /// Object names by object id (scene order; unnamed objects get `kind #index`).
+    pub object_names: Vec<String>,
+    pub material_names: Vec<String>,
+}
+
+fn vec4(v: DVec3, w: f32) -> [f32; 4] {
+    [v.x as f32, v.y as f32, v.z as f32, w]
+}
+
+fn rgb4(c: Rgb) -> [f32; 4] {
+    [c.0[0] as f32, c.0[1] as f32, c.0[2] as f32, 0.0]
+}
+
+pub fn epsilon_mode_code(mode: EpsilonMode) -> u32 {
+    match mode {
+        EpsilonMode::Tmin => EPS_TMIN,
+        EpsilonMode::NudgeRay => EPS_NUDGE_RAY,
+        EpsilonMode::NudgeNormal => EPS_NUDGE_NORMAL,
+        EpsilonMode::Robust => EPS_ROBUST,
+    }
+}
+
+impl FlatScene {
+    /// Builds the flat layout. The scene must have passed validation (`scene::validate`);
+    /// settings are taken from `settings`, not from `desc.render`, so callers can override them.
+    pub fn build(desc: &SceneDesc, settings: &RenderSettings) -> Self {
+        let material_names: Vec<String> = desc.materials.keys().cloned().collect();
+        let materials = desc
+            .materials
+            .values()
+            .map(|m| {
+                let mut flags = 0;
+                if m.specular_model == SpecularModel::Phong {
+                    flags |= MATERIAL_PHONG;
+                }
+                let (checker_kd, checker_size) = match &m.checker {
+                    Some(c) => {
+                        flags |= MATERIAL_CHECKER;
+                        (rgb4(c.kd), c.size as f32)
+                    }
+                    None => ([0.0; 4], 1.0),
+                };
+                GpuMaterial {
+                    ka: rgb4(m.ka),
+                    kd: rgb4(m.kd),
+                    ks: rgb4(m.ks),
+                    kr: rgb4(m.kr),
+                    kt: rgb4(m.kt),
+                    emission: rgb4(m.emission),
+                    checker_kd,
+                    shininess: m.shininess as f32,
+                    ior: m.ior as f32,
+                    checker_size,
+                    flags,
+                }
+            })
+            .collect();
+        let lights = desc
+            .lights
+            .iter()
+            .map(|l| {
+                let kind = match l.kind {
+                    LightKind::Point => LIGHT_POINT,
+                    LightKind::Directional => LIGHT_DIRECTIONAL,
+                    LightKind::Spot => LIGHT_SPOT,
+                };
+                let position = l.position.map_or(DVec3::ZERO, DVec3::from);
+                let direction = l.direction.map_or(DVec3::ZERO, |d| DVec3::from(d).normalize());
+                let a = l.attenuation;
+                let cos_cutoff =
+                    if l.kind != LightKind::Spot || l.cutoff >= 180.0 { -1.0 } else { l.cutoff.to_radians().cos() };
+                GpuLight {
+                    position: vec4(position, 1.0),
+                    direction: vec4(direction, 0.0),
+                    diffuse: rgb4(l.diffuse),
+                    specular: rgb4(l.specular),
+                    ambient: rgb4(l.ambient),
+                    attenuation: [a.c as f32, a.l as f32, a.q as f32, 0.0],
+                    kind,
+                    flags: if l.casts_shadows { LIGHT_CASTS_SHADOWS } else { 0 },
+                    spot_exponent: if l.kind == LightKind::Spot { l.exponent as f32 } else { 0.0 },
+                    spot_cos_cutoff: cos_cutoff as f32,
+                }
+            })
+            .collect();
+
+        let material_index = |name: &str| material_names.iter().position(|m| m == name).unwrap_or(0) as u32;
+        let mut spheres = Vec::new();
+        let mut planes = Vec::new();
+        let mut triangles = Vec::new();
+        let mut object_names = Vec::new();
+        for (id, object) in desc.objects.iter().enumerate() {
+            let object_id = id as u32;
+            let material = material_index(object.material());
+            object_names.push(if object.name().is_empty() {
+                format!("{} #{id}", object.kind_name())
+            } else {
+                object.name().to_string()
+            });
+            match object {
+                ObjectDesc::Sphere { center, radius, .. } => spheres.push(GpuSphere {
+                    center_radius: vec4(DVec3::from(*center), *radius as f32),
+                    material,
+                    object_id,
+                    _pad: [0; 2],
+                }),
+                ObjectDesc::Plane { point, normal, .. } => {
+                    let n = DVec3::from(*normal).normalize();
+                    planes.push(GpuPlane {
+                        normal_offset: vec4(n, n.dot(DVec3::from(*point)) as f32),
+                        material,
+                        object_id,
+                        _pad: [0; 2],
+                    });
+                }
+                ObjectDesc::Mesh { vertices, triangles: tris, normals, .. } => {
+                    for t in tris {
+                        let [a, b, c] = t.map(|k| DVec3::from(vertices[k as usize]));
+                        let (ns, flags) = match normals {
+                            Some(n) => (t.map(|k| DVec3::from(n[k as usize]).normalize()), TRIANGLE_HAS_NORMALS),
+                            None => ([DVec3::ZERO; 3], 0),
+                        };
+                        triangles.push(GpuTriangle {
+                            v0: vec4(a, 1.0),
+                            v1: vec4(b, 1.0),
+                            v2: vec4(c, 1.0),
+                            n0: vec4(ns[0], 0.0),
+                            n1: vec4(ns[1], 0.0),
+                            n2: vec4(ns[2], 0.0),
+                            material,
+                            object_id,
+                            flags,
+                            _pad: 0,
+                        });
+                    }
+                }
+            }
+        }
+
+        let camera = build_camera(desc, settings);
+        let mut flat = Self {
+            header: SceneHeader {
+                width: settings.width,
+                height: settings.height,
+                spp: settings.spp,
+                max_depth: settings.max_depth,
+                sphere_count: spheres.len() as u32,
+                plane_count: planes.len() as u32,
+                triangle_count: triangles.len() as u32,
+                light_count: desc.lights.len() as u32,
+                material_count: material_names.len() as u32,
+                features: 0,
+                epsilon_mode: epsilon_mode_code(settings.epsilon_mode),
+                seed: settings.seed,
+                epsilon: settings.epsilon as f32,
+                bailout: settings.bailout as f32,
+                _pad0: 0,
+                _pad1: 0,
+                ambient: rgb4(desc.world.ambient),
+                background: rgb4(desc.world.background),
+            },
+            camera,
+            materials,
+            lights,
+            spheres,
+            planes,
+            triangles,
+            object_names,
+            material_names,
+        };
+        flat.header.features = flat.scene_features();
+        flat
+    }
+
+    /// The features this scene needs, from the flat data itself (only materials that some
+    /// object uses count).
+    pub fn scene_features(&self) -> u32 {
+        let mut f = 0;
+        let mut used = vec![false; self.materials.len()];
+        for m in self.spheres.iter().map(|s| s.material).chain(self.planes.iter().map(|p| p.material)) {
+            used[m as usize] = true;
+        }
+        for t in &self.triangles {
+            used[t.material as usize] = true;
+        }
+        let nonzero = |c: [f32; 4]| c[..3].iter().any(|&v| v != 0.0);
+        let any_geometry = !(self.spheres.is_empty() && self.planes.is_empty() && self.triangles.is_empty());
+        let mut any_specular_light = false;
+        for l in &self.lights {
+            f |= match l.kind {
+                LIGHT_POINT => feature::POINT_LIGHTS,
+                LIGHT_DIRECTIONAL => feature::DIRECTIONAL_LIGHTS,
+                _ => feature::SPOT_LIGHTS,
+            };
+            if l.kind != LIGHT_DIRECTIONAL && l.attenuation != [1.0, 0.0, 0.0, 0.0] {
+                f |= feature::ATTENUATION;
+            }
+            if l.flags & LIGHT_CASTS_SHADOWS != 0 && any_geometry {
+                f |= feature::SHADOWS;
+            }
+            if nonzero(l.ambient) {
+                f |= feature::LIGHT_AMBIENT;
+            }
+            any_specular_light |= nonzero(l.specular);
+        }
+        for (m, _) in self.materials.iter().zip(&used).filter(|(_, u)| **u) {
+            if nonzero(m.kr) {
+                f |= feature::REFLECTION;
+            }
+            if nonzero(m.kt) {
+                f |= feature::TRANSMISSION;
+            }
+            if nonzero(m.emission) {
+                f |= feature::EMISSION;
+            }
+            if m.flags & MATERIAL_CHECKER != 0 {
+                f |= feature::CHECKER;
+            }
+            if nonzero(m.ks) && any_specular_light {
+                f |= feature::SPECULAR;
+                f |= if m.flags & MATERIAL_PHONG != 0 { feature::PHONG } else { feature::BLINN };
+            }
+        }
+        if f & feature::TRANSMISSION != 0 && f & feature::SHADOWS != 0 {
+            f |= feature::FILTERED_SHADOWS;
+        }
+        if self.header.max_depth == 0 {
+            // No child rays: reflection and refraction code is not needed (k_t still filters
+            // shadows through FILTERED_SHADOWS).
+            f &= !(feature::REFLECTION | feature::TRANSMISSION);
+        }
+        if !self.spheres.is_empty() {
+            f |= feature::SPHERES;
+        }
+        if !self.planes.is_empty() {
+            f |= feature::PLANES;
+        }
+        if !self.triangles.is_empty() {
+            f |= feature::TRIANGLES;
+        }
+        if self.header.spp > 1 {
+            f |= feature::JITTER;
+        }
+        f
+    }
+
+    /// The same scene with every feature enabled: the unspecialised tracer.
+    pub fn unspecialised(&self) -> Self {
+        let mut s = self.clone();
+        s.header.features = feature::ALL;
+        s
+    }
+
+    pub fn pixel_count(&self) -> usize {
+        self.header.width as usize * self.header.height as usize
+    }
+}
+
+/// Ray-generation vectors of the pinhole camera, computed in f64 and stored once in f32.
+fn build_camera(desc: &SceneDesc, settings: &RenderSettings) -> GpuCamera {
+    let c = &desc.camera;
+    let pos = DVec3::from(c.position);
+    let forward = (DVec3::from(c.look_at) - pos).normalize();
+    let right = forward.cross(DVec3::from(c.up)).normalize();
+    let up = right.cross(forward);
+    let half_h = (c.fov_y.to_radians() * 0.5).tan();
+    let half_w = half_h * f64::from(settings.width) / f64::from(settings.height);
+    GpuCamera {
+        position: vec4(pos, 1.0),
+        forward: vec4(forward, 0.0),
+        right: vec4(right * half_w, 0.0),
+        up: vec4(up * half_h, 0.0),
+    }
+}

@@ -1,0 +1,165 @@
+//! Linear HDR images and their output (PNG with metadata, EXR), written atomically.
+
+use std::io::{BufWriter, Write};
+use std::path::{Path, PathBuf};
+
+use glam::DVec3;
+
+use crate::layout::NO_HIT;
+use crate::render::Tile;
+
+/// A linear-radiance image with the first-hit object of every pixel.
+#[derive(Clone, Debug, PartialEq)]
+pub struct HdrImage {
+    pub width: u32,
+    pub height: u32,
+    pub pixels: Vec<DVec3>,
+    /// Object id of the first hit of each pixel's first sample, `NO_HIT` for background.
+    pub first_hit: Vec<u32>,
+}
+
+impl HdrImage {
+    pub fn new(width: u32, height: u32) -> Self {
+        let n = width as usize * height as usize;
+        Self { width, height, pixels: vec![DVec3::ZERO; n], first_hit: vec![NO_HIT; n] }
+    }
+
+    pub fn get(&self, x: u32, y: u32) -> DVec3 {
+        self.pixels[(y * self.width + x) as usize]
+    }
+
+    pub fn blit(&mut self, tile: &Tile) {
+        for row in 0..tile.height {
+            let src = (row * tile.width) as usize..((row + 1) * tile.width) as usize;
+            let dst_start = ((tile.y0 + row) * self.width + tile.x0) as usize;
+            let dst = dst_start..dst_start + tile.width as usize;
+            self.pixels[dst.clone()].copy_from_slice(&tile.radiance[src.clone()]);
+            self.first_hit[dst].copy_from_slice(&tile.first_hit[src]);
+        }
+    }
+
+    /// Whether every channel of every pixel is a finite number.
+    pub fn all_finite(&self) -> bool {
+        self.pixels.iter().all(|p| p.is_finite())
+    }
+
+    /// 8-bit sRGB, clamped to [0, 1] first.
+    pub fn to_srgb8(&self) -> Vec<u8> {
+        self.pixels.iter().flat_map(|p| p.to_array().map(linear_to_srgb8)).collect()
+    }
+}
+
+/// The sRGB transfer function (IEC 61966-2-1) of a clamped linear value, rounded.
+pub fn linear_to_srgb8(v: f64) -> u8 {
+    let v = if v.is_nan() { 0.0 } else { v.clamp(0.0, 1.0) };
+    let s = if v <= 0.003_130_8 { 12.92 * v } else { 1.055 * v.powf(1.0 / 2.4) - 0.055 };
+    (s * 255.0 + 0.5) as u8
+}
+
+#[derive(Debug, thiserror::Error)]
+pub enum ImageWriteError {
+    #[error("{path}: {source}")]
+    Io {
+        path: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
+    #[error("{path}: PNG encoding failed: {message}")]
+    Png { path: PathBuf, message: String },
+    #[error("{path}: EXR encoding failed: {message}")]
+    Exr { path: PathBuf, message: String },
+    #[error("{path}: unsupported output format; use .png or .exr")]
+    Format { path: PathBuf },
+}
+
+/// Writes to a temporary file beside `path`, then renames it into place, so a reader never
+/// sees a half-written image and a failed write leaves no file behind.
+fn write_atomically(
+    path: &Path,
+    write: impl FnOnce(&Path) -> Result<(), ImageWriteError>,
+) -> Result<(), ImageWriteError> {
+    let file_name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_else(|| "image".into());
+    let tmp = path.with_file_name(format!(".{file_name}.tmp-{}", std::process::id()));
+    let result = write(&tmp).and_then(|()| {
+        std::fs::rename(&tmp, path).map_err(|source| ImageWriteError::Io { path: path.to_owned(), source })
+    });
+    if result.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    result
+}
+
+/// 8-bit sRGB PNG with `metadata` as tEXt chunks.
+pub fn write_png(path: &Path, image: &HdrImage, metadata: &[(String, String)]) -> Result<(), ImageWriteError> {
+    write_png_rgb8(path, image.width, image.height, &image.to_srgb8(), metadata)
+}
+
+/// An already encoded 8-bit RGB buffer as PNG with tEXt metadata.
+pub fn write_png_rgb8(
+    path: &Path,
+    width: u32,
+    height: u32,
+    rgb: &[u8],
+    metadata: &[(String, String)],
+) -> Result<(), ImageWriteError> {
+    write_atomically(path, |tmp| {
+        let io = |source| ImageWriteError::Io { path: path.to_owned(), source };
+        let png_err = |e: png::EncodingError| ImageWriteError::Png { path: path.to_owned(), message: e.to_string() };
+        let mut out = BufWriter::new(std::fs::File::create(tmp).map_err(io)?);
+        let mut encoder = png::Encoder::new(&mut out, width, height);
+        encoder.set_color(png::ColorType::Rgb);
+        encoder.set_depth(png::BitDepth::Eight);
+        encoder.set_source_srgb(png::SrgbRenderingIntent::Perceptual);
+        for (key, value) in metadata {
+            encoder.add_text_chunk(key.clone(), value.clone()).map_err(png_err)?;
+        }
+        let mut writer = encoder.write_header().map_err(png_err)?;
+        writer.write_image_data(rgb).map_err(png_err)?;
+        writer.finish().map_err(png_err)?;
+        out.flush().map_err(io)?;
+        out.get_ref().sync_all().map_err(io)
+    })
+}
+
+/// Linear f32 OpenEXR.
+pub fn write_exr(path: &Path, image: &HdrImage) -> Result<(), ImageWriteError> {
+    let data: Vec<f32> = image.pixels.iter().flat_map(|p| p.to_array().map(|v| v as f32)).collect();
+    let buffer = image::Rgb32FImage::from_raw(image.width, image.height, data)
+        .ok_or_else(|| ImageWriteError::Exr { path: path.to_owned(), message: "buffer size mismatch".into() })?;
+    write_atomically(path, |tmp| {
+        buffer
+            .save_with_format(tmp, image::ImageFormat::OpenExr)
+            .map_err(|e| ImageWriteError::Exr { path: path.to_owned(), message: e.to_string() })
+    })
+}
+
+/// PNG or EXR by the file extension.
+pub fn write_image(path: &Path, image: &HdrImage, metadata: &[(String, String)]) -> Result<(), ImageWriteError> {
+    match path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
+        Some("png") => write_png(path, image, metadata),
+        Some("exr") => write_exr(path, image),
+        _ => Err(ImageWriteError::Format { path: path.to_owned() }),
+    }
+}
+
+/// The tEXt chunks of a PNG file.
+pub fn read_png_text(path: &Path) -> Result<Vec<(String, String)>, std::io::Error> {
+    let decoder = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(path)?));
+    let reader = decoder.read_info().map_err(std::io::Error::other)?;
+    Ok(reader.info().uncompressed_latin1_text.iter().map(|t| (t.keyword.clone(), t.text.clone())).collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn srgb_transfer_endpoints_and_midpoint() {
+        assert_eq!(linear_to_srgb8(0.0), 0);
+        assert_eq!(linear_to_srgb8(1.0), 255);
+        assert_eq!(linear_to_srgb8(2.0), 255);
+        assert_eq!(linear_to_srgb8(-1.0), 0);
+        // 18 % grey is 118 in sRGB.
+        assert_eq!(linear_to_srgb8(0.18), 118);
+    }
+}

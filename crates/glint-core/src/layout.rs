@@ -1,0 +1,203 @@
+//! The flat, GPU-ready scene layout read by both tracers.
+//!
+//! Every struct is `#[repr(C)]` + `Pod` and has a WGSL twin in `shaders/layout.wgsl`; a naga
+//! reflection test compares offsets, sizes and the constants below, so nothing here is kept in
+//! sync by hand. Vectors are `[f32; 4]` (WGSL `vec4<f32>`) to avoid vec3 alignment padding.
+//!
+//! The scene is stored once in f32. The CPU reference widens those exact values to f64 and does
+//! all arithmetic in f64; the GPU uses them as they are. Both tracers therefore see bit-identical
+//! input and every difference between their images is arithmetic, never data.
+
+use bytemuck::{Pod, Zeroable};
+
+/// Light kinds (`GpuLight::kind`).
+pub const LIGHT_POINT: u32 = 0;
+pub const LIGHT_DIRECTIONAL: u32 = 1;
+pub const LIGHT_SPOT: u32 = 2;
+
+/// `GpuLight::flags` bits.
+pub const LIGHT_CASTS_SHADOWS: u32 = 1;
+
+/// `GpuMaterial::flags` bits.
+pub const MATERIAL_PHONG: u32 = 1;
+pub const MATERIAL_CHECKER: u32 = 2;
+
+/// `GpuTriangle::flags` bits.
+pub const TRIANGLE_HAS_NORMALS: u32 = 1;
+
+/// Epsilon strategies (`SceneHeader::epsilon_mode`).
+pub const EPS_TMIN: u32 = 0;
+pub const EPS_NUDGE_RAY: u32 = 1;
+pub const EPS_NUDGE_NORMAL: u32 = 2;
+pub const EPS_ROBUST: u32 = 3;
+
+/// Object id written for camera rays that hit nothing.
+pub const NO_HIT: u32 = u32::MAX;
+
+/// Feature bits (`SceneHeader::features`): what the scene uses. Both tracers skip the work of
+/// an absent feature, and the GPU tracer removes its code (see `features.rs`).
+pub mod feature {
+    pub const POINT_LIGHTS: u32 = 1 << 0;
+    pub const DIRECTIONAL_LIGHTS: u32 = 1 << 1;
+    pub const SPOT_LIGHTS: u32 = 1 << 2;
+    /// Some point or spot light has attenuation other than (1, 0, 0).
+    pub const ATTENUATION: u32 = 1 << 3;
+    /// Some light casts shadows (and there is geometry to cast them).
+    pub const SHADOWS: u32 = 1 << 4;
+    /// Some material has k_t > 0, so shadows are filtered rather than binary.
+    pub const FILTERED_SHADOWS: u32 = 1 << 5;
+    pub const REFLECTION: u32 = 1 << 6;
+    pub const TRANSMISSION: u32 = 1 << 7;
+    pub const SPHERES: u32 = 1 << 8;
+    pub const PLANES: u32 = 1 << 9;
+    pub const TRIANGLES: u32 = 1 << 10;
+    pub const CHECKER: u32 = 1 << 11;
+    pub const BLINN: u32 = 1 << 12;
+    pub const PHONG: u32 = 1 << 13;
+    /// Some light has a non-zero own ambient term I_a,j.
+    pub const LIGHT_AMBIENT: u32 = 1 << 14;
+    /// Some material emits (E_m ≠ 0).
+    pub const EMISSION: u32 = 1 << 15;
+    /// Some material has k_s > 0.
+    pub const SPECULAR: u32 = 1 << 16;
+    /// Stratified jitter (spp > 1).
+    pub const JITTER: u32 = 1 << 17;
+    /// Every feature: the unspecialised tracer.
+    pub const ALL: u32 = (1 << 18) - 1;
+
+    /// Names in bit order, for logs, cache keys and shader defs.
+    pub const NAMES: [&str; 18] = [
+        "POINT_LIGHTS",
+        "DIRECTIONAL_LIGHTS",
+        "SPOT_LIGHTS",
+        "ATTENUATION",
+        "SHADOWS",
+        "FILTERED_SHADOWS",
+        "REFLECTION",
+        "TRANSMISSION",
+        "SPHERES",
+        "PLANES",
+        "TRIANGLES",
+        "CHECKER",
+        "BLINN",
+        "PHONG",
+        "LIGHT_AMBIENT",
+        "EMISSION",
+        "SPECULAR",
+        "JITTER",
+    ];
+}
+
+/// Global parameters of one render.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct SceneHeader {
+    pub width: u32,
+    pub height: u32,
+    pub spp: u32,
+    /// Recursion depth actually used: `max_depth` from the settings, or 0 when nothing in the
+    /// scene reflects or transmits.
+    pub max_depth: u32,
+    pub sphere_count: u32,
+    pub plane_count: u32,
+    pub triangle_count: u32,
+    pub light_count: u32,
+    pub material_count: u32,
+    /// Feature bits of the scene (`feature::*`), possibly masked to all for an unspecialised run.
+    pub features: u32,
+    pub epsilon_mode: u32,
+    pub seed: u32,
+    pub epsilon: f32,
+    pub bailout: f32,
+    pub _pad0: u32,
+    pub _pad1: u32,
+    /// Global ambient I_a (rgb, w unused).
+    pub ambient: [f32; 4],
+    /// Radiance of missed rays (rgb, w unused).
+    pub background: [f32; 4],
+}
+
+/// Pinhole camera as ray-generation vectors: a pixel at normalised device coordinates (x, y)
+/// in [−1, 1]² looks along `forward + x·right + y·up` (right and up are pre-scaled by the
+/// field of view and aspect ratio).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct GpuCamera {
+    pub position: [f32; 4],
+    pub forward: [f32; 4],
+    pub right: [f32; 4],
+    pub up: [f32; 4],
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct GpuMaterial {
+    pub ka: [f32; 4],
+    pub kd: [f32; 4],
+    pub ks: [f32; 4],
+    pub kr: [f32; 4],
+    pub kt: [f32; 4],
+    pub emission: [f32; 4],
+    /// Second checker colour (used when `MATERIAL_CHECKER` is set).
+    pub checker_kd: [f32; 4],
+    pub shininess: f32,
+    pub ior: f32,
+    pub checker_size: f32,
+    pub flags: u32,
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct GpuLight {
+    /// Position (point, spot).
+    pub position: [f32; 4],
+    /// Unit direction of travel (directional) or unit spot axis L_N (spot).
+    pub direction: [f32; 4],
+    pub diffuse: [f32; 4],
+    pub specular: [f32; 4],
+    pub ambient: [f32; 4],
+    /// (c, l, q, unused).
+    pub attenuation: [f32; 4],
+    pub kind: u32,
+    pub flags: u32,
+    pub spot_exponent: f32,
+    /// cos(cutoff); −1 for cutoff 180 (no cone).
+    pub spot_cos_cutoff: f32,
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct GpuSphere {
+    /// (centre xyz, radius).
+    pub center_radius: [f32; 4],
+    pub material: u32,
+    pub object_id: u32,
+    pub _pad: [u32; 2],
+}
+
+/// The plane n·x = d with unit normal n.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct GpuPlane {
+    /// (n xyz, d).
+    pub normal_offset: [f32; 4],
+    pub material: u32,
+    pub object_id: u32,
+    pub _pad: [u32; 2],
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct GpuTriangle {
+    pub v0: [f32; 4],
+    pub v1: [f32; 4],
+    pub v2: [f32; 4],
+    /// Unit vertex normals (used when `TRIANGLE_HAS_NORMALS` is set).
+    pub n0: [f32; 4],
+    pub n1: [f32; 4],
+    pub n2: [f32; 4],
+    pub material: u32,
+    pub object_id: u32,
+    pub flags: u32,
+    pub _pad: u32,
+}

@@ -1,0 +1,13 @@
+//! Glint core: the scene model and its validation, the flat GPU-ready layout, and the exact
+//! f64 CPU reference tracer of the Phong/Whitted model. No GPU code lives here.
+
+pub mod cpu;
+pub mod flat;
+pub mod image;
+pub mod layout;
+pub mod render;
+pub mod scene;
+
+pub use flat::FlatScene;
+pub use image::HdrImage;
+pub use render::{CpuOptions, CpuRender, RenderControl, probe_pixel, render_cpu};

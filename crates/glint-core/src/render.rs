@@ -1,0 +1,154 @@
+//! The CPU render loop: tiles in parallel (rayon), deterministic for any thread count.
+
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::{Duration, Instant};
+
+use glam::DVec3;
+use rayon::prelude::*;
+
+use crate::cpu::probe::Breakdown;
+use crate::cpu::trace::{render_pixel, render_sample};
+use crate::cpu::{RayCounts, TraceContext};
+use crate::flat::FlatScene;
+use crate::image::HdrImage;
+
+/// Edge of a square tile in pixels.
+pub const TILE: u32 = 16;
+
+#[derive(Clone, Copy, Debug)]
+pub struct CpuOptions {
+    /// Worker threads; 0 = one per core.
+    pub threads: usize,
+    /// Skip the work of features the scene does not use (the default). Off, every feature
+    /// runs; the image is bit-identical either way.
+    pub specialise: bool,
+}
+
+impl Default for CpuOptions {
+    fn default() -> Self {
+        Self { threads: 0, specialise: true }
+    }
+}
+
+/// One finished tile, handed to the progress callback.
+#[derive(Clone, Debug)]
+pub struct Tile {
+    pub x0: u32,
+    pub y0: u32,
+    pub width: u32,
+    pub height: u32,
+    pub radiance: Vec<DVec3>,
+    pub first_hit: Vec<u32>,
+    pub counts: RayCounts,
+}
+
+/// Cancellation and progress hooks (the viewer and the CLI progress bar).
+#[derive(Clone, Copy, Default)]
+pub struct RenderControl<'a> {
+    pub cancel: Option<&'a AtomicBool>,
+    pub on_tile: Option<&'a (dyn Fn(&Tile) + Sync)>,
+}
+
+impl std::fmt::Debug for RenderControl<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("RenderControl").field("cancel", &self.cancel).finish_non_exhaustive()
+    }
+}
+
+#[derive(Clone, Debug)]
+pub struct CpuRender {
+    pub image: HdrImage,
+    pub counts: RayCounts,
+    /// Wall time of the render itself (thread-pool set-up excluded).
+    pub elapsed: Duration,
+    pub threads: usize,
+}
+
+#[derive(Debug, thiserror::Error)]
+pub enum CpuRenderError {
+    #[error("render cancelled")]
+    Cancelled,
+    #[error("could not start {threads} render threads: {message}")]
+    ThreadPool { threads: usize, message: String },
+}
+
+pub fn tile_count(width: u32, height: u32) -> usize {
+    (width.div_ceil(TILE) * height.div_ceil(TILE)) as usize
+}
+
+fn render_tile(ctx: &TraceContext, x0: u32, y0: u32, cancel: Option<&AtomicBool>) -> Option<Tile> {
+    let h = &ctx.scene.header;
+    let width = TILE.min(h.width - x0);
+    let height = TILE.min(h.height - y0);
+    if cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
+        return None;
+    }
+    let mut counts = RayCounts::default();
+    let n = (width * height) as usize;
+    let mut radiance = Vec::with_capacity(n);
+    let mut first_hit = Vec::with_capacity(n);
+    for y in y0..y0 + height {
+        for x in x0..x0 + width {
+            let (c, id) = render_pixel(ctx, x, y, &mut counts);
+            radiance.push(c);
+            first_hit.push(id);
+        }
+    }
+    Some(Tile { x0, y0, width, height, radiance, first_hit, counts })
+}
+
+/// Renders the whole image on the CPU.
+pub fn render_cpu(
+    scene: &FlatScene,
+    options: &CpuOptions,
+    control: RenderControl,
+) -> Result<CpuRender, CpuRenderError> {
+    let threads = if options.threads == 0 { rayon::current_num_threads().max(1) } else { options.threads };
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .thread_name(|i| format!("glint-cpu-{i}"))
+        .build()
+        .map_err(|e| CpuRenderError::ThreadPool { threads, message: e.to_string() })?;
+    let full;
+    let scene = if options.specialise {
+        scene
+    } else {
+        full = scene.unspecialised();
+        &full
+    };
+    let ctx = TraceContext::new(scene);
+    let (w, h) = (scene.header.width, scene.header.height);
+    let origins: Vec<(u32, u32)> =
+        (0..h.div_ceil(TILE)).flat_map(|ty| (0..w.div_ceil(TILE)).map(move |tx| (tx * TILE, ty * TILE))).collect();
+    let start = Instant::now();
+    let tiles: Vec<Option<Tile>> = pool.install(|| {
+        origins
+            .par_iter()
+            .map(|&(x0, y0)| {
+                let tile = render_tile(&ctx, x0, y0, control.cancel);
+                if let (Some(t), Some(cb)) = (&tile, control.on_tile) {
+                    cb(t);
+                }
+                tile
+            })
+            .collect()
+    });
+    let elapsed = start.elapsed();
+    let mut image = HdrImage::new(w, h);
+    let mut counts = RayCounts::default();
+    for tile in tiles {
+        let tile = tile.ok_or(CpuRenderError::Cancelled)?;
+        image.blit(&tile);
+        counts += tile.counts;
+    }
+    Ok(CpuRender { image, counts, elapsed, threads })
+}
+
+/// The breakdown of one camera sample of pixel (x, y) into the terms of the model.
+pub fn probe_pixel(scene: &FlatScene, x: u32, y: u32, sample: u32) -> Breakdown {
+    let ctx = TraceContext::new(scene);
+    let mut b = Breakdown::default();
+    let mut counts = RayCounts::default();
+    render_sample(&ctx, x, y, sample, &mut counts, Some(&mut b));
+    b
+}

@@ -1,0 +1,355 @@
+//! The human-editable scene description, exactly as a scene file spells it.
+//!
+//! Field names and defaults are documented in `docs/scene-format.md`; every struct rejects
+//! unknown fields so that a typo is an error instead of a silently ignored setting.
+
+use std::collections::BTreeMap;
+
+use serde::{Deserialize, Serialize};
+
+use super::rgb::Rgb;
+
+/// A whole scene file.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SceneDesc {
+    /// Free text shown by `glint render --list` and in the viewer.
+    #[serde(default)]
+    pub description: String,
+    /// Where the scene comes from (paper, figure, author).
+    #[serde(default)]
+    pub provenance: String,
+    #[serde(default)]
+    pub render: RenderSettings,
+    pub camera: CameraDesc,
+    #[serde(default)]
+    pub world: WorldDesc,
+    /// Named materials; objects refer to them by name.
+    #[serde(default)]
+    pub materials: BTreeMap<String, MaterialDesc>,
+    #[serde(default)]
+    pub lights: Vec<LightDesc>,
+    #[serde(default)]
+    pub objects: Vec<ObjectDesc>,
+}
+
+/// Render settings a scene suggests; command-line flags override each of them.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct RenderSettings {
+    pub width: u32,
+    pub height: u32,
+    pub spp: u32,
+    pub max_depth: u32,
+    pub bailout: f64,
+    pub epsilon: f64,
+    pub epsilon_mode: EpsilonMode,
+    pub seed: u32,
+}
+
+impl Default for RenderSettings {
+    fn default() -> Self {
+        Self {
+            width: 640,
+            height: 480,
+            spp: 1,
+            max_depth: 5,
+            bailout: 1.0 / 255.0,
+            epsilon: 1e-6,
+            epsilon_mode: EpsilonMode::Robust,
+            seed: 0,
+        }
+    }
+}
+
+/// How secondary rays avoid hitting the surface they start on (the seed lists three remedies;
+/// `robust` is the modern, scale-aware one).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum EpsilonMode {
+    /// Reject hits with t ≤ ε.
+    Tmin,
+    /// Move the origin by ε along the new ray's direction.
+    NudgeRay,
+    /// Move the origin by ε along the geometric normal, to the side the ray leaves into.
+    NudgeNormal,
+    /// Re-project the hit point onto the surface, offset it by a few ULPs along the normal
+    /// (Wächter & Binder, Ray Tracing Gems ch. 6), then by ε.
+    #[default]
+    Robust,
+}
+
+impl EpsilonMode {
+    pub const ALL: [Self; 4] = [Self::Tmin, Self::NudgeRay, Self::NudgeNormal, Self::Robust];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Tmin => "tmin",
+            Self::NudgeRay => "nudge_ray",
+            Self::NudgeNormal => "nudge_normal",
+            Self::Robust => "robust",
+        }
+    }
+
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|m| m.name() == name)
+    }
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CameraDesc {
+    pub position: [f64; 3],
+    pub look_at: [f64; 3],
+    #[serde(default = "default_up")]
+    pub up: [f64; 3],
+    /// Vertical field of view in degrees, in (0, 180).
+    #[serde(default = "default_fov")]
+    pub fov_y: f64,
+}
+
+fn default_up() -> [f64; 3] {
+    [0.0, 1.0, 0.0]
+}
+
+fn default_fov() -> f64 {
+    45.0
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct WorldDesc {
+    /// Global ambient intensity I_a.
+    pub ambient: Rgb,
+    /// Radiance of rays that miss everything.
+    pub background: Rgb,
+}
+
+impl Default for WorldDesc {
+    fn default() -> Self {
+        Self { ambient: Rgb::splat(0.1), background: Rgb::splat(0.0) }
+    }
+}
+
+/// Which specular lobe a material uses.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum SpecularModel {
+    /// max(N·H, 0)^n with the half vector H (Blinn 1977, the OpenGL form of the seed).
+    #[default]
+    Blinn,
+    /// max(R·V, 0)^n with the mirrored light direction R (Phong 1975).
+    Phong,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct MaterialDesc {
+    pub ka: Rgb,
+    pub kd: Rgb,
+    pub ks: Rgb,
+    /// Specular exponent n, in [0, 1e6].
+    pub shininess: f64,
+    pub specular_model: SpecularModel,
+    pub kr: Rgb,
+    pub kt: Rgb,
+    pub ior: f64,
+    pub emission: Rgb,
+    /// Replaces k_d by a two-colour checker (k_d and `checker.kd`).
+    pub checker: Option<CheckerDesc>,
+}
+
+impl Default for MaterialDesc {
+    fn default() -> Self {
+        Self {
+            ka: Rgb::splat(1.0),
+            kd: Rgb::splat(0.8),
+            ks: Rgb::splat(0.0),
+            shininess: 32.0,
+            specular_model: SpecularModel::Blinn,
+            kr: Rgb::splat(0.0),
+            kt: Rgb::splat(0.0),
+            ior: 1.5,
+            emission: Rgb::splat(0.0),
+            checker: None,
+        }
+    }
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CheckerDesc {
+    /// The second colour of the checker (the first is the material's k_d).
+    pub kd: Rgb,
+    /// Edge length of one square in scene units, > 0.
+    pub size: f64,
+}
+
+/// The kind of a light source.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum LightKind {
+    Point,
+    Directional,
+    Spot,
+}
+
+impl LightKind {
+    pub const ALL: [Self; 3] = [Self::Point, Self::Directional, Self::Spot];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Point => "point",
+            Self::Directional => "directional",
+            Self::Spot => "spot",
+        }
+    }
+}
+
+/// One light. A flat record rather than an enum so that a light can change its type in the
+/// viewer without losing its other settings; validation checks that each kind has the fields
+/// it needs.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LightDesc {
+    #[serde(rename = "type")]
+    pub kind: LightKind,
+    /// Position (point and spot lights).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub position: Option<[f64; 3]>,
+    /// Direction the light travels in: from the light into the scene (directional), or the
+    /// spot axis L_N (spot).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub direction: Option<[f64; 3]>,
+    /// I_d, the diffuse intensity.
+    #[serde(default = "Rgb::one")]
+    pub diffuse: Rgb,
+    /// I_s, the specular intensity.
+    #[serde(default = "Rgb::one")]
+    pub specular: Rgb,
+    /// I_a,j, the light's own ambient term (OpenGL style: attenuated, never shadowed).
+    #[serde(default)]
+    pub ambient: Rgb,
+    /// f_att = 1 / (c + l·d + q·d²) for point and spot lights.
+    #[serde(default)]
+    pub attenuation: Attenuation,
+    /// Spot exponent s of (L_N·(−L))^s, ≥ 0.
+    #[serde(default)]
+    pub exponent: f64,
+    /// Spot cone half-angle in degrees: [0, 90], or 180 for no cone (as OpenGL).
+    #[serde(default = "default_cutoff")]
+    pub cutoff: f64,
+    #[serde(default = "default_true")]
+    pub casts_shadows: bool,
+    /// Optional label shown in the viewer.
+    #[serde(default, skip_serializing_if = "String::is_empty")]
+    pub name: String,
+}
+
+impl LightDesc {
+    /// A light of `kind` with every optional field at its default.
+    pub fn new(kind: LightKind, position: [f64; 3], direction: [f64; 3]) -> Self {
+        Self {
+            kind,
+            position: (kind != LightKind::Directional).then_some(position),
+            direction: (kind != LightKind::Point).then_some(direction),
+            diffuse: Rgb::one(),
+            specular: Rgb::one(),
+            ambient: Rgb::zero(),
+            attenuation: Attenuation::default(),
+            exponent: 0.0,
+            cutoff: default_cutoff(),
+            casts_shadows: true,
+            name: String::new(),
+        }
+    }
+}
+
+fn default_cutoff() -> f64 {
+    180.0
+}
+
+fn default_true() -> bool {
+    true
+}
+
+/// f_att = 1 / (c + l·d + q·d²).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Attenuation {
+    pub c: f64,
+    #[serde(default)]
+    pub l: f64,
+    #[serde(default)]
+    pub q: f64,
+}
+
+impl Default for Attenuation {
+    fn default() -> Self {
+        Self { c: 1.0, l: 0.0, q: 0.0 }
+    }
+}
+
+impl Attenuation {
+    pub fn is_none(&self) -> bool {
+        *self == Self::default()
+    }
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+pub enum ObjectDesc {
+    Sphere {
+        center: [f64; 3],
+        radius: f64,
+        material: String,
+        #[serde(default)]
+        name: String,
+    },
+    /// The infinite plane through `point` with normal `normal`.
+    Plane {
+        point: [f64; 3],
+        normal: [f64; 3],
+        material: String,
+        #[serde(default)]
+        name: String,
+    },
+    /// An indexed triangle mesh, optionally with per-vertex shading normals.
+    Mesh {
+        vertices: Vec<[f64; 3]>,
+        triangles: Vec<[u32; 3]>,
+        #[serde(default)]
+        normals: Option<Vec<[f64; 3]>>,
+        material: String,
+        #[serde(default)]
+        name: String,
+    },
+}
+
+impl ObjectDesc {
+    pub fn material(&self) -> &str {
+        match self {
+            Self::Sphere { material, .. } | Self::Plane { material, .. } | Self::Mesh { material, .. } => material,
+        }
+    }
+
+    pub fn material_mut(&mut self) -> &mut String {
+        match self {
+            Self::Sphere { material, .. } | Self::Plane { material, .. } | Self::Mesh { material, .. } => material,
+        }
+    }
+
+    pub fn name(&self) -> &str {
+        match self {
+            Self::Sphere { name, .. } | Self::Plane { name, .. } | Self::Mesh { name, .. } => name,
+        }
+    }
+
+    pub fn kind_name(&self) -> &'static str {
+        match self {
+            Self::Sphere { .. } => "sphere",
+            Self::Plane { .. } => "plane",
+            Self::Mesh { .. } => "mesh",
+        }
+    }
+}

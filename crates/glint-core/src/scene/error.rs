@@ -1,0 +1,49 @@
+//! Errors and warnings of scene loading; every one names the file and the field.
+
+use std::fmt;
+use std::path::PathBuf;
+
+/// One problem with one field, e.g. `lights[1].cutoff: 120 is outside [0, 90] or 180`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FieldIssue {
+    /// Dotted path of the field, as written in the scene file (`objects[2].radius`).
+    pub field: String,
+    /// What is wrong and what is allowed.
+    pub problem: String,
+}
+
+impl fmt::Display for FieldIssue {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}: {}", self.field, self.problem)
+    }
+}
+
+#[derive(Debug, thiserror::Error)]
+pub enum SceneError {
+    #[error("{file}: cannot read the scene file: {source}")]
+    Io {
+        file: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
+    #[error("{file}: {message}")]
+    Parse { file: PathBuf, message: String },
+    #[error("{file}: invalid scene:\n{}", list(.issues))]
+    Invalid { file: PathBuf, issues: Vec<FieldIssue> },
+    #[error("unknown built-in scene '{name}' and no such file; built-in scenes: {available}")]
+    UnknownScene { name: String, available: String },
+}
+
+impl SceneError {
+    /// The field problems of a validation error (empty for other errors).
+    pub fn issues(&self) -> &[FieldIssue] {
+        match self {
+            Self::Invalid { issues, .. } => issues,
+            _ => &[],
+        }
+    }
+}
+
+fn list(issues: &[FieldIssue]) -> String {
+    issues.iter().map(|i| format!("  {i}")).collect::<Vec<_>>().join("\n")
+}

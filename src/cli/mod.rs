@@ -1,0 +1,25 @@
+//! Command-line definitions and dispatch.
+
+mod render;
+mod settings;
+
+use clap::{Parser, Subcommand};
+
+#[derive(Debug, Parser)]
+#[command(name = "glint", version, about = "Phong/Whitted ray-tracing lab: exact CPU reference tracer")]
+pub struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Render a scene to PNG (sRGB, with the settings as metadata) or EXR (linear f32).
+    Render(render::RenderArgs),
+}
+
+pub fn run(cli: Cli) -> anyhow::Result<()> {
+    match cli.command {
+        Command::Render(args) => render::run(&args),
+    }
+}

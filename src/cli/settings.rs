@@ -1,0 +1,100 @@
+//! Render-setting flags shared by the commands, applied on top of a scene's own settings.
+
+use anyhow::{Context, bail};
+use clap::Args;
+use glint_core::scene::{EpsilonMode, LoadedScene, RenderSettings, Report, load_scene, validate_settings};
+
+#[derive(Clone, Debug, Args)]
+pub struct SettingsArgs {
+    /// Image width in pixels [1, 16384] (default: the scene's)
+    #[arg(long)]
+    pub width: Option<u32>,
+    /// Image height in pixels [1, 16384]
+    #[arg(long)]
+    pub height: Option<u32>,
+    /// Samples per pixel [1, 4096]; more than one are stratified and jittered
+    #[arg(long)]
+    pub spp: Option<u32>,
+    /// Maximum recursion depth [0, 1024]; 0 = local shading only
+    #[arg(long)]
+    pub depth: Option<u32>,
+    /// Self-intersection epsilon in scene units [0, 1000]
+    #[arg(long)]
+    pub epsilon: Option<f64>,
+    /// How epsilon is applied: tmin, nudge_ray, nudge_normal or robust
+    #[arg(long, value_parser = parse_epsilon_mode)]
+    pub epsilon_mode: Option<EpsilonMode>,
+    /// Adaptive bailout: skip child rays whose path weight is below this [0, 1]; 0 disables
+    #[arg(long)]
+    pub bailout: Option<f64>,
+    /// Seed of the sample jitter
+    #[arg(long)]
+    pub seed: Option<u32>,
+}
+
+fn parse_epsilon_mode(s: &str) -> Result<EpsilonMode, String> {
+    EpsilonMode::from_name(s).ok_or_else(|| {
+        let names: Vec<&str> = EpsilonMode::ALL.iter().map(|m| m.name()).collect();
+        format!("unknown epsilon mode '{s}'; allowed: {}", names.join(", "))
+    })
+}
+
+impl SettingsArgs {
+    /// The scene's settings with these flags applied, validated.
+    pub fn apply(&self, base: &RenderSettings) -> anyhow::Result<RenderSettings> {
+        let mut s = base.clone();
+        if let Some(v) = self.width {
+            s.width = v;
+        }
+        if let Some(v) = self.height {
+            s.height = v;
+        }
+        if let Some(v) = self.spp {
+            s.spp = v;
+        }
+        if let Some(v) = self.depth {
+            s.max_depth = v;
+        }
+        if let Some(v) = self.epsilon {
+            s.epsilon = v;
+        }
+        if let Some(v) = self.epsilon_mode {
+            s.epsilon_mode = v;
+        }
+        if let Some(v) = self.bailout {
+            s.bailout = v;
+        }
+        if let Some(v) = self.seed {
+            s.seed = v;
+        }
+        let mut report = Report::default();
+        validate_settings(&s, &mut report);
+        if !report.errors.is_empty() {
+            let lines: Vec<String> =
+                report.errors.iter().map(|e| format!("  {} ({}): {}", e.field, flag_of(&e.field), e.problem)).collect();
+            bail!("invalid render settings:\n{}", lines.join("\n"));
+        }
+        Ok(s)
+    }
+}
+
+fn flag_of(field: &str) -> &'static str {
+    match field {
+        "render.width" => "--width",
+        "render.height" => "--height",
+        "render.spp" => "--spp",
+        "render.max_depth" => "--depth",
+        "render.epsilon" => "--epsilon",
+        "render.bailout" => "--bailout",
+        _ => "scene file",
+    }
+}
+
+/// Loads a scene file or built-in scene and prints its warnings.
+pub fn load(scene: &str) -> anyhow::Result<LoadedScene> {
+    let loaded = load_scene(scene).with_context(|| format!("cannot load scene '{scene}'"))?;
+    for w in &loaded.warnings {
+        eprintln!("warning: {}: {w}", loaded.source.display());
+    }
+    Ok(loaded)
+}
