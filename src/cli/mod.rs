@@ -1,12 +1,14 @@
 //! Command-line definitions and dispatch.
 
+mod backend;
+mod output;
 mod render;
 mod settings;
 
 use clap::{Parser, Subcommand};
 
 #[derive(Debug, Parser)]
-#[command(name = "glint", version, about = "Phong/Whitted ray-tracing lab: exact CPU reference tracer")]
+#[command(name = "glint", version, about = "Phong/Whitted ray-tracing lab: exact CPU reference and its GPU mirror")]
 pub struct Cli {
     #[command(subcommand)]
     command: Command,

@@ -1,17 +1,16 @@
-//! `glint render`: one scene to PNG/EXR, or a benchmark of the render.
+//! `glint render`: one scene on the CPU, the GPU or both, to PNG/EXR; or a benchmark.
 
-use std::path::PathBuf;
-use std::time::{Duration, Instant};
+use std::path::{Path, PathBuf};
 
-use anyhow::{Context, bail};
+use anyhow::bail;
 use clap::Args;
-use glint_core::cpu::RayCounts;
-use glint_core::image::write_image;
-use glint_core::render::tile_count;
-use glint_core::scene::{BUILTIN_SCENES, RenderSettings, parse_scene};
-use glint_core::{CpuOptions, CpuRender, FlatScene, RenderControl, render_cpu};
-use indicatif::{ProgressBar, ProgressStyle};
+use glint_core::compare::compare_images;
+use glint_core::scene::{BUILTIN_SCENES, parse_scene};
+use glint_core::{CpuOptions, FlatScene};
+use glint_gpu::GpuOptions;
 
+use super::backend::{Backend, Run, open_gpu, run_cpu, run_gpu};
+use super::output::{fmt_counts, metadata, ms, print_json, print_table, suffixed, write_diff, write_run};
 use super::settings::{SettingsArgs, load};
 
 #[derive(Debug, Args)]
@@ -19,17 +18,27 @@ pub struct RenderArgs {
     /// A scene file (.toml) or the name of a built-in scene (see --list)
     #[arg(default_value = "whitted")]
     pub scene: String,
-    /// Output image: .png (sRGB, settings in metadata) or .exr (linear f32). Default: SCENE.png
+    /// Output image: .png (sRGB, settings in metadata) or .exr (linear f32). Default: SCENE.png;
+    /// with --backend both, NAME-cpu, NAME-gpu and NAME-diff images
     #[arg(short, long)]
     pub output: Option<PathBuf>,
     #[command(flatten)]
     pub settings: SettingsArgs,
+    /// Which tracer renders: the CPU reference, the GPU mirror, or both (then compared)
+    #[arg(long, value_enum, default_value_t = Backend::Cpu)]
+    pub backend: Backend,
+    /// GPU adapter: a case-insensitive part of its name (default: WGPU_ADAPTER_NAME, else the best GPU)
+    #[arg(long)]
+    pub adapter: Option<String>,
     /// CPU worker threads; 0 = one per core
     #[arg(long, default_value_t = 0)]
     pub threads: usize,
-    /// Run every feature of the tracer even where the scene does not need it
+    /// Run every feature of both tracers even where the scene does not need it
     #[arg(long)]
     pub no_specialise: bool,
+    /// Print the results as JSON instead of a table
+    #[arg(long)]
+    pub json: bool,
     /// List the built-in scenes and exit
     #[arg(long)]
     pub list: bool,
@@ -47,7 +56,7 @@ pub struct RenderArgs {
 pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     if args.list {
         for b in BUILTIN_SCENES {
-            let (desc, _) = parse_scene(b.text, std::path::Path::new(b.name))?;
+            let (desc, _) = parse_scene(b.text, Path::new(b.name))?;
             println!("{:<12} {}", b.name, desc.description);
         }
         return Ok(());
@@ -55,38 +64,49 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     let loaded = load(&args.scene)?;
     let settings = args.settings.apply(&loaded.desc.render)?;
     let flat = FlatScene::build(&loaded.desc, &settings);
-    let options = CpuOptions { threads: args.threads, specialise: !args.no_specialise };
+    let specialise = !args.no_specialise;
+    let cpu_options = CpuOptions { threads: args.threads, specialise };
+    let gpu_options = GpuOptions { specialise, ..GpuOptions::default() };
     if args.bench {
-        return bench(&loaded.name, &flat, &options, args.runs);
+        return bench(args, &loaded.name, &flat, &cpu_options, &gpu_options);
     }
     let output = args.output.clone().unwrap_or_else(|| PathBuf::from(format!("{}.png", loaded.name)));
     check_output(&output)?;
 
-    let total_start = Instant::now();
-    let result = render_with_progress(&flat, &options, args.quiet)?;
-    let metadata = metadata(&loaded.name, &settings, &result, &options);
-    write_image(&output, &result.image, &metadata)?;
-    if !result.image.all_finite() {
-        bail!("internal error: the render produced non-finite pixels (written to {})", output.display());
+    let gpu = if args.backend == Backend::Cpu { None } else { Some(open_gpu(args.adapter.as_deref())?) };
+    let mut runs = Vec::new();
+    if args.backend != Backend::Gpu {
+        runs.push(run_cpu(&flat, &cpu_options, args.quiet || args.json)?);
     }
-    println!(
-        "{}: {}x{} {} spp depth {} in {} (total {}), {}, {:.2} Mrays/s, {} threads -> {}",
-        loaded.name,
-        settings.width,
-        settings.height,
-        settings.spp,
-        settings.max_depth,
-        fmt_ms(result.elapsed),
-        fmt_ms(total_start.elapsed()),
-        fmt_counts(&result.counts),
-        mrays(&result.counts, result.elapsed),
-        result.threads,
-        output.display()
-    );
+    if let Some(tracer) = &gpu {
+        runs.push(run_gpu(tracer, &flat, &gpu_options)?);
+    }
+    let mut outputs = Vec::new();
+    for run in &runs {
+        let path = if args.backend == Backend::Both { suffixed(&output, run.backend) } else { output.clone() };
+        write_run(&path, run, &metadata(&loaded.name, &settings, run, specialise))?;
+        outputs.push(path);
+    }
+    let errors = if let [cpu, gpu] = runs.as_slice() {
+        let diff = suffixed(&output, "diff").with_extension("png");
+        write_diff(&diff, cpu, gpu, metadata(&loaded.name, &settings, gpu, specialise))?;
+        outputs.push(diff);
+        Some(compare_images(&cpu.image, &gpu.image))
+    } else {
+        None
+    };
+    if args.json {
+        print_json(&loaded.name, &settings, &runs, errors.as_ref(), &outputs)?;
+    } else {
+        print_table(&loaded.name, &settings, &runs, errors.as_ref(), &outputs);
+    }
+    if let Some(bad) = runs.iter().find(|r| !r.image.all_finite()) {
+        bail!("the {} render produced non-finite pixels; this is a bug, please report it", bad.backend);
+    }
     Ok(())
 }
 
-fn check_output(path: &std::path::Path) -> anyhow::Result<()> {
+fn check_output(path: &Path) -> anyhow::Result<()> {
     match path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
         Some("png" | "exr") => {}
         _ => bail!("{}: unsupported output format; use a .png or .exr file name", path.display()),
@@ -97,93 +117,51 @@ fn check_output(path: &std::path::Path) -> anyhow::Result<()> {
     Ok(())
 }
 
-fn render_with_progress(flat: &FlatScene, options: &CpuOptions, quiet: bool) -> anyhow::Result<CpuRender> {
-    let tiles = tile_count(flat.header.width, flat.header.height) as u64;
-    let bar = if quiet || !std::io::IsTerminal::is_terminal(&std::io::stderr()) {
-        ProgressBar::hidden()
-    } else {
-        let bar = ProgressBar::new(tiles);
-        bar.set_style(
-            ProgressStyle::with_template("{spinner} rendering [{bar:40}] {percent:>3}% {elapsed_precise} eta {eta}")
-                .context("progress bar template")?
-                .progress_chars("=> "),
-        );
-        bar
-    };
-    let on_tile = |_: &glint_core::render::Tile| bar.inc(1);
-    let result = render_cpu(flat, options, RenderControl { cancel: None, on_tile: Some(&on_tile) })?;
-    bar.finish_and_clear();
-    Ok(result)
-}
-
-fn bench(name: &str, flat: &FlatScene, options: &CpuOptions, runs: u32) -> anyhow::Result<()> {
+fn bench(
+    args: &RenderArgs,
+    name: &str,
+    flat: &FlatScene,
+    cpu: &CpuOptions,
+    gpu_options: &GpuOptions,
+) -> anyhow::Result<()> {
     let h = &flat.header;
-    render_cpu(flat, options, RenderControl::default())?;
-    let mut times = Vec::new();
-    let mut counts = RayCounts::default();
-    let mut threads = 0;
-    for _ in 0..runs {
-        let r = render_cpu(flat, options, RenderControl::default())?;
-        times.push(r.elapsed);
-        counts = r.counts;
-        threads = r.threads;
+    let gpu = if args.backend == Backend::Cpu { None } else { Some(open_gpu(args.adapter.as_deref())?) };
+    let mut backends: Vec<Box<dyn Fn() -> anyhow::Result<Run>>> = Vec::new();
+    if args.backend != Backend::Gpu {
+        backends.push(Box::new(|| run_cpu(flat, cpu, true)));
     }
-    times.sort();
-    let median = times[times.len() / 2];
-    println!(
-        "bench {name}: {}x{} {} spp depth {} bailout {} cpu {} threads: median {} min {} over {runs} runs, {}, {:.2} Mrays/s (median)",
-        h.width,
-        h.height,
-        h.spp,
-        h.max_depth,
-        h.bailout,
-        threads,
-        fmt_ms(median),
-        fmt_ms(times[0]),
-        fmt_counts(&counts),
-        mrays(&counts, median)
-    );
+    if let Some(tracer) = &gpu {
+        backends.push(Box::new(move || run_gpu(tracer, flat, gpu_options)));
+    }
+    let mut medians = Vec::new();
+    for render in &backends {
+        let warm = render()?;
+        let mut times = Vec::new();
+        for _ in 0..args.runs {
+            times.push(render()?.render);
+        }
+        times.sort();
+        let median = times[times.len() / 2];
+        let mrays = warm.counts.total() as f64 / median.as_secs_f64().max(1e-9) / 1e6;
+        println!(
+            "bench {name} {}: {}x{} {} spp depth {} bailout {}, {}: median {:.1} ms, min {:.1} ms over {} runs, {:.2} Mrays/s; {}",
+            warm.backend,
+            h.width,
+            h.height,
+            h.spp,
+            h.max_depth,
+            h.bailout,
+            warm.device,
+            ms(median),
+            ms(times[0]),
+            args.runs,
+            mrays,
+            fmt_counts(&warm.counts)
+        );
+        medians.push((warm.backend, median));
+    }
+    if let [(_, cpu), (_, gpu)] = medians.as_slice() {
+        println!("bench {name}: gpu/cpu render time ratio {:.2}", gpu.as_secs_f64() / cpu.as_secs_f64());
+    }
     Ok(())
-}
-
-pub fn fmt_ms(d: Duration) -> String {
-    format!("{:.1} ms", d.as_secs_f64() * 1e3)
-}
-
-pub fn fmt_counts(c: &RayCounts) -> String {
-    format!(
-        "rays: {} camera, {} shadow, {} reflection, {} refraction ({} total), {} saved by bailout",
-        c.camera,
-        c.shadow,
-        c.reflection,
-        c.refraction,
-        c.total(),
-        c.bailout_saved
-    )
-}
-
-pub fn mrays(c: &RayCounts, d: Duration) -> f64 {
-    c.total() as f64 / d.as_secs_f64().max(1e-9) / 1e6
-}
-
-fn metadata(name: &str, s: &RenderSettings, r: &CpuRender, options: &CpuOptions) -> Vec<(String, String)> {
-    [
-        ("Software", format!("glint {}", env!("CARGO_PKG_VERSION"))),
-        ("glint:scene", name.to_string()),
-        ("glint:size", format!("{}x{}", s.width, s.height)),
-        ("glint:spp", s.spp.to_string()),
-        ("glint:depth", s.max_depth.to_string()),
-        ("glint:epsilon", s.epsilon.to_string()),
-        ("glint:epsilon_mode", s.epsilon_mode.name().to_string()),
-        ("glint:bailout", s.bailout.to_string()),
-        ("glint:seed", s.seed.to_string()),
-        ("glint:backend", "cpu".to_string()),
-        ("glint:specialised", options.specialise.to_string()),
-        ("glint:threads", r.threads.to_string()),
-        ("glint:time_ms", format!("{:.3}", r.elapsed.as_secs_f64() * 1e3)),
-        ("glint:rays", r.counts.total().to_string()),
-    ]
-    .into_iter()
-    .map(|(k, v)| (k.to_string(), v))
-    .collect()
 }

@@ -88,8 +88,14 @@ impl FlatScene {
                 let position = l.position.map_or(DVec3::ZERO, DVec3::from);
                 let direction = l.direction.map_or(DVec3::ZERO, |d| DVec3::from(d).normalize());
                 let a = l.attenuation;
-                let cos_cutoff =
-                    if l.kind != LightKind::Spot || l.cutoff >= 180.0 { -1.0 } else { l.cutoff.to_radians().cos() };
+                // cos(cutoff) as sin(90° − cutoff): exact at both ends of [0, 90] (1 and 0), where
+                // cos(90°.to_radians()) would be 6e-17 and leave a point exactly at 90° outside
+                // a closed cone.
+                let cos_cutoff = if l.kind != LightKind::Spot || l.cutoff >= 180.0 {
+                    -1.0
+                } else {
+                    (90.0 - l.cutoff).to_radians().sin()
+                };
                 GpuLight {
                     position: vec4(position, 1.0),
                     direction: vec4(direction, 0.0),
@@ -123,7 +129,7 @@ impl FlatScene {
                     center_radius: vec4(DVec3::from(*center), *radius as f32),
                     material,
                     object_id,
-                    _pad: [0; 2],
+                    pad: [0; 2],
                 }),
                 ObjectDesc::Plane { point, normal, .. } => {
                     let n = DVec3::from(*normal).normalize();
@@ -131,7 +137,7 @@ impl FlatScene {
                         normal_offset: vec4(n, n.dot(DVec3::from(*point)) as f32),
                         material,
                         object_id,
-                        _pad: [0; 2],
+                        pad: [0; 2],
                     });
                 }
                 ObjectDesc::Mesh { vertices, triangles: tris, normals, .. } => {
@@ -142,16 +148,16 @@ impl FlatScene {
                             None => ([DVec3::ZERO; 3], 0),
                         };
                         triangles.push(GpuTriangle {
-                            v0: vec4(a, 1.0),
-                            v1: vec4(b, 1.0),
-                            v2: vec4(c, 1.0),
-                            n0: vec4(ns[0], 0.0),
-                            n1: vec4(ns[1], 0.0),
-                            n2: vec4(ns[2], 0.0),
+                            a: vec4(a, 1.0),
+                            b: vec4(b, 1.0),
+                            c: vec4(c, 1.0),
+                            na: vec4(ns[0], 0.0),
+                            nb: vec4(ns[1], 0.0),
+                            nc: vec4(ns[2], 0.0),
                             material,
                             object_id,
                             flags,
-                            _pad: 0,
+                            pad: 0,
                         });
                     }
                 }
@@ -175,8 +181,8 @@ impl FlatScene {
                 seed: settings.seed,
                 epsilon: settings.epsilon as f32,
                 bailout: settings.bailout as f32,
-                _pad0: 0,
-                _pad1: 0,
+                pad_a: 0,
+                pad_b: 0,
                 ambient: rgb4(desc.world.ambient),
                 background: rgb4(desc.world.background),
             },

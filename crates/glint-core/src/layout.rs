@@ -34,6 +34,21 @@ pub const EPS_ROBUST: u32 = 3;
 /// Object id written for camera rays that hit nothing.
 pub const NO_HIT: u32 = u32::MAX;
 
+/// Bits of the per-image status word the GPU tracer raises (never silently).
+/// A tree walk reached its iteration bound (lavapipe cuts loops silently past 65,535).
+pub const STATUS_LOOP_LIMIT: u32 = 1;
+/// A ray tree branched deeper than the GPU stack holds; the deepest rays were dropped.
+pub const STATUS_STACK_OVERFLOW: u32 = 2;
+
+/// Layout of the GPU statistics buffer: (lo, hi) u32 pairs per ray kind, then the status word.
+pub const STAT_CAMERA: u32 = 0;
+pub const STAT_SHADOW: u32 = 2;
+pub const STAT_REFLECTION: u32 = 4;
+pub const STAT_REFRACTION: u32 = 6;
+pub const STAT_BAILOUT_SAVED: u32 = 8;
+pub const STAT_STATUS: u32 = 10;
+pub const STAT_WORDS: u32 = 12;
+
 /// Feature bits (`SceneHeader::features`): what the scene uses. Both tracers skip the work of
 /// an absent feature, and the GPU tracer removes its code (see `features.rs`).
 pub mod feature {
@@ -95,8 +110,8 @@ pub struct SceneHeader {
     pub width: u32,
     pub height: u32,
     pub spp: u32,
-    /// Recursion depth actually used: `max_depth` from the settings, or 0 when nothing in the
-    /// scene reflects or transmits.
+    /// Maximum recursion depth from the settings. (When nothing reflects or transmits, the
+    /// REFLECTION and TRANSMISSION feature bits are off and no child ray is traced.)
     pub max_depth: u32,
     pub sphere_count: u32,
     pub plane_count: u32,
@@ -109,8 +124,8 @@ pub struct SceneHeader {
     pub seed: u32,
     pub epsilon: f32,
     pub bailout: f32,
-    pub _pad0: u32,
-    pub _pad1: u32,
+    pub pad_a: u32,
+    pub pad_b: u32,
     /// Global ambient I_a (rgb, w unused).
     pub ambient: [f32; 4],
     /// Radiance of missed rays (rgb, w unused).
@@ -172,7 +187,7 @@ pub struct GpuSphere {
     pub center_radius: [f32; 4],
     pub material: u32,
     pub object_id: u32,
-    pub _pad: [u32; 2],
+    pub pad: [u32; 2],
 }
 
 /// The plane n·x = d with unit normal n.
@@ -183,21 +198,31 @@ pub struct GpuPlane {
     pub normal_offset: [f32; 4],
     pub material: u32,
     pub object_id: u32,
-    pub _pad: [u32; 2],
+    pub pad: [u32; 2],
 }
 
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
 pub struct GpuTriangle {
-    pub v0: [f32; 4],
-    pub v1: [f32; 4],
-    pub v2: [f32; 4],
+    pub a: [f32; 4],
+    pub b: [f32; 4],
+    pub c: [f32; 4],
     /// Unit vertex normals (used when `TRIANGLE_HAS_NORMALS` is set).
-    pub n0: [f32; 4],
-    pub n1: [f32; 4],
-    pub n2: [f32; 4],
+    pub na: [f32; 4],
+    pub nb: [f32; 4],
+    pub nc: [f32; 4],
     pub material: u32,
     pub object_id: u32,
     pub flags: u32,
-    pub _pad: u32,
+    pub pad: u32,
+}
+
+/// The pixel rectangle one GPU dispatch renders.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Pod, Zeroable)]
+pub struct TileParams {
+    pub origin_x: u32,
+    pub origin_y: u32,
+    pub width: u32,
+    pub height: u32,
 }

@@ -1,6 +1,7 @@
 //! Glint core: the scene model and its validation, the flat GPU-ready layout, and the exact
 //! f64 CPU reference tracer of the Phong/Whitted model. No GPU code lives here.
 
+pub mod compare;
 pub mod cpu;
 pub mod flat;
 pub mod image;
@@ -11,3 +12,6 @@ pub mod scene;
 pub use flat::FlatScene;
 pub use image::HdrImage;
 pub use render::{CpuOptions, CpuRender, RenderControl, probe_pixel, render_cpu};
+
+/// Re-exported so that the GPU tracer and the viewer use the same vector types.
+pub use glam;

@@ -6,26 +6,30 @@ use super::rng::{hash_to_unit, sample_hash};
 use super::{Ray, v3};
 use crate::layout::GpuCamera;
 
-/// Integer square root rounded up, the side of the stratification grid.
-pub fn strata_side(spp: u32) -> u32 {
-    let mut m = 1;
-    while m * m < spp {
-        m += 1;
+/// Rows of the stratification grid: the largest divisor of spp not above √spp, so that the
+/// nx × ny = spp cells tile the pixel and are as square as spp allows (2 → 2×1, 8 → 4×2,
+/// 16 → 4×4, a prime p → p×1). spp ≤ 4096 bounds the search at 64 steps.
+pub fn strata_rows(spp: u32) -> u32 {
+    let mut rows = 1;
+    for d in 1..=64 {
+        if d * d <= spp && spp.is_multiple_of(d) {
+            rows = d;
+        }
     }
-    m
+    rows
 }
 
 /// Position of a sample inside its pixel, in [0, 1)². One sample sits at the pixel centre;
-/// more samples are jittered inside the cells of an m×m grid (m = ⌈√spp⌉).
+/// more samples are jittered inside the cells of the stratification grid.
 pub fn sample_offset(pixel: u32, sample: u32, spp: u32, seed: u32, jitter: bool) -> (f64, f64) {
     if !jitter || spp <= 1 {
         return (0.5, 0.5);
     }
-    let m = strata_side(spp);
+    let rows = strata_rows(spp);
+    let cols = spp / rows;
     let jx = hash_to_unit(sample_hash(pixel, sample, 0, seed));
     let jy = hash_to_unit(sample_hash(pixel, sample, 1, seed));
-    let inv = 1.0 / f64::from(m);
-    ((f64::from(sample % m) + jx) * inv, (f64::from(sample / m) + jy) * inv)
+    ((f64::from(sample % cols) + jx) / f64::from(cols), (f64::from(sample / cols) + jy) / f64::from(rows))
 }
 
 /// The camera ray through image position (x + ox, y + oy), y downwards.
@@ -34,4 +38,23 @@ pub fn camera_ray(cam: &GpuCamera, width: u32, height: u32, x: u32, y: u32, ox: 
     let ndc_y = 1.0 - 2.0 * (f64::from(y) + oy) / f64::from(height);
     let dir: DVec3 = v3(cam.forward) + ndc_x * v3(cam.right) + ndc_y * v3(cam.up);
     Ray { origin: v3(cam.position), dir: dir.normalize() }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn strata_tile_the_pixel() {
+        for (spp, rows) in [(1, 1), (2, 1), (4, 2), (6, 2), (7, 1), (8, 2), (16, 4), (4096, 64)] {
+            assert_eq!(strata_rows(spp), rows, "spp {spp}");
+        }
+        // Every cell of a 4×2 grid gets exactly one of 8 samples.
+        let mut cells = [0; 8];
+        for s in 0..8 {
+            let (x, y) = sample_offset(17, s, 8, 3, true);
+            cells[(y * 2.0) as usize * 4 + (x * 4.0) as usize] += 1;
+        }
+        assert_eq!(cells, [1; 8]);
+    }
 }

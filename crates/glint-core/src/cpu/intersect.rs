@@ -24,9 +24,9 @@ pub struct Hit {
     pub t: f64,
     pub prim: u32,
     pub index: u32,
-    /// Barycentric weights of v1 and v2 (triangles only).
-    pub b1: f64,
-    pub b2: f64,
+    /// Barycentric weights of vertices b and c (triangles only).
+    pub bu: f64,
+    pub bv: f64,
 }
 
 /// Both roots t0 ≤ t1 of a ray/sphere intersection (`None` when it misses or both roots are
@@ -110,20 +110,20 @@ pub fn ray_shear(dir: DVec3) -> RayShear {
 }
 
 /// Watertight ray/triangle test (Woop, Benthin & Wald, JCGT 2013): edges shared by two
-/// triangles are never missed by both. Returns (t, b1, b2); degenerate triangles never hit.
+/// triangles are never missed by both. Returns (t, bu, bv); degenerate triangles never hit.
 pub fn intersect_triangle(
-    v0: DVec3,
-    v1: DVec3,
-    v2: DVec3,
+    va: DVec3,
+    vb: DVec3,
+    vc: DVec3,
     ray: &Ray,
     shear: &RayShear,
     t_min: f64,
     t_max: f64,
 ) -> Option<(f64, f64, f64)> {
     let RayShear { kx, ky, kz, sx, sy, sz } = *shear;
-    let a = v0 - ray.origin;
-    let b = v1 - ray.origin;
-    let c = v2 - ray.origin;
+    let a = va - ray.origin;
+    let b = vb - ray.origin;
+    let c = vc - ray.origin;
     let ax = a[kx] - sx * a[kz];
     let ay = a[ky] - sy * a[kz];
     let bx = b[kx] - sx * b[kz];
@@ -146,10 +146,6 @@ pub fn intersect_triangle(
     (t > t_min && t < t_max).then_some((t, v * inv, w * inv))
 }
 
-fn triangle_vertices(tri: &GpuTriangle) -> (DVec3, DVec3, DVec3) {
-    (v3(tri.v0), v3(tri.v1), v3(tri.v2))
-}
-
 /// The nearest hit in (t_min, t_max). Ties go to the primitive tested first (spheres, planes,
 /// triangles, each in index order), the same on both tracers.
 pub fn closest_hit(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
@@ -161,7 +157,7 @@ pub fn closest_hit(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f64) -> Opt
             let cr = s.center_radius;
             if let Some(t) = intersect_sphere(v3(cr), f64::from(cr[3]), ray, t_min, t_far) {
                 t_far = t;
-                best = Some(Hit { t, prim: PRIM_SPHERE, index: i as u32, b1: 0.0, b2: 0.0 });
+                best = Some(Hit { t, prim: PRIM_SPHERE, index: i as u32, bu: 0.0, bv: 0.0 });
             }
         }
     }
@@ -170,45 +166,48 @@ pub fn closest_hit(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f64) -> Opt
             let no = p.normal_offset;
             if let Some(t) = intersect_plane(v3(no), f64::from(no[3]), ray, t_min, t_far) {
                 t_far = t;
-                best = Some(Hit { t, prim: PRIM_PLANE, index: i as u32, b1: 0.0, b2: 0.0 });
+                best = Some(Hit { t, prim: PRIM_PLANE, index: i as u32, bu: 0.0, bv: 0.0 });
             }
         }
     }
     if ctx.has(feature::TRIANGLES) && !scene.triangles.is_empty() {
         let shear = ray_shear(ray.dir);
         for (i, tri) in scene.triangles.iter().enumerate() {
-            let (v0, v1, v2) = triangle_vertices(tri);
-            if let Some((t, b1, b2)) = intersect_triangle(v0, v1, v2, ray, &shear, t_min, t_far) {
+            if let Some((t, bu, bv)) = intersect_triangle(v3(tri.a), v3(tri.b), v3(tri.c), ray, &shear, t_min, t_far) {
                 t_far = t;
-                best = Some(Hit { t, prim: PRIM_TRIANGLE, index: i as u32, b1, b2 });
+                best = Some(Hit { t, prim: PRIM_TRIANGLE, index: i as u32, bu, bv });
             }
         }
     }
     best
 }
 
+/// Whether every channel is zero.
+pub fn all_zero(v: DVec3) -> bool {
+    v == DVec3::ZERO
+}
+
+/// Multiplies the transmittance by one crossed surface's k_t (or zeroes it when shadows are
+/// not filtered).
+pub fn cross_surface(ctx: &TraceContext, tr: DVec3, material: u32) -> DVec3 {
+    if ctx.has(feature::FILTERED_SHADOWS) { tr * v3(ctx.scene.materials[material as usize].kt) } else { DVec3::ZERO }
+}
+
 /// Fraction of light that passes from the ray origin to t_max: 0 behind an opaque occluder,
 /// the product of k_t over every surface crossed otherwise (a glass sphere is crossed twice).
 pub fn shadow_transmittance(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f64) -> DVec3 {
     let scene = ctx.scene;
-    let filtered = ctx.has(feature::FILTERED_SHADOWS);
     let mut tr = DVec3::ONE;
-    // Multiplies in one crossing; false once nothing can pass any more.
-    let mut cross = |material: u32| -> bool {
-        if !filtered {
-            tr = DVec3::ZERO;
-            return false;
-        }
-        tr *= v3(scene.materials[material as usize].kt);
-        tr != DVec3::ZERO
-    };
     if ctx.has(feature::SPHERES) {
         for s in &scene.spheres {
             let cr = s.center_radius;
             if let Some((t0, t1)) = sphere_roots(v3(cr), f64::from(cr[3]), ray) {
                 for t in [t0, t1] {
-                    if t > t_min && t < t_max && !cross(s.material) {
-                        return DVec3::ZERO;
+                    if t > t_min && t < t_max {
+                        tr = cross_surface(ctx, tr, s.material);
+                        if all_zero(tr) {
+                            return tr;
+                        }
                     }
                 }
             }
@@ -217,17 +216,22 @@ pub fn shadow_transmittance(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f6
     if ctx.has(feature::PLANES) {
         for p in &scene.planes {
             let no = p.normal_offset;
-            if intersect_plane(v3(no), f64::from(no[3]), ray, t_min, t_max).is_some() && !cross(p.material) {
-                return DVec3::ZERO;
+            if intersect_plane(v3(no), f64::from(no[3]), ray, t_min, t_max).is_some() {
+                tr = cross_surface(ctx, tr, p.material);
+                if all_zero(tr) {
+                    return tr;
+                }
             }
         }
     }
     if ctx.has(feature::TRIANGLES) && !scene.triangles.is_empty() {
         let shear = ray_shear(ray.dir);
         for tri in &scene.triangles {
-            let (v0, v1, v2) = triangle_vertices(tri);
-            if intersect_triangle(v0, v1, v2, ray, &shear, t_min, t_max).is_some() && !cross(tri.material) {
-                return DVec3::ZERO;
+            if intersect_triangle(v3(tri.a), v3(tri.b), v3(tri.c), ray, &shear, t_min, t_max).is_some() {
+                tr = cross_surface(ctx, tr, tri.material);
+                if all_zero(tr) {
+                    return tr;
+                }
             }
         }
     }
@@ -236,11 +240,11 @@ pub fn shadow_transmittance(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f6
 
 /// Unit shading normal of a triangle hit: interpolated vertex normals where the mesh has them
 /// (falling back to the geometric normal if they cancel), else the geometric normal.
-pub fn triangle_shading_normal(tri: &GpuTriangle, b1: f64, b2: f64, ng: DVec3) -> DVec3 {
+pub fn triangle_shading_normal(tri: &GpuTriangle, bu: f64, bv: f64, ng: DVec3) -> DVec3 {
     if tri.flags & TRIANGLE_HAS_NORMALS == 0 {
         return ng;
     }
-    let n = (1.0 - b1 - b2) * v3(tri.n0) + b1 * v3(tri.n1) + b2 * v3(tri.n2);
+    let n = (1.0 - bu - bv) * v3(tri.na) + bu * v3(tri.nb) + bv * v3(tri.nc);
     let len = n.length();
     if len > 0.0 { n / len } else { ng }
 }
@@ -294,9 +298,9 @@ mod tests {
             assert!(h1.is_some() || h2.is_some(), "hole at s = {s}");
         }
         let r = ray([0.5, -0.5, -1.0], [0.0, 0.0, 1.0]);
-        let (t, b1, b2) = intersect_triangle(a, b, c, &r, &ray_shear(r.dir), 0.0, FAR).unwrap();
+        let (t, bu, bv) = intersect_triangle(a, b, c, &r, &ray_shear(r.dir), 0.0, FAR).unwrap();
         assert_eq!(t, 1.0);
-        let p = (1.0 - b1 - b2) * a + b1 * b + b2 * c;
+        let p = (1.0 - bu - bv) * a + bu * b + bv * c;
         assert!((p - DVec3::new(0.5, -0.5, 0.0)).length() < 1e-15);
     }
 

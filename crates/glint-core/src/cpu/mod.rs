@@ -15,7 +15,6 @@ use glam::DVec3;
 
 use crate::flat::FlatScene;
 use crate::layout::feature;
-use intersect::{Hit, PRIM_PLANE, PRIM_SPHERE};
 
 /// A ray with a unit direction.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -85,15 +84,6 @@ impl<'a> TraceContext<'a> {
     #[inline]
     pub fn has(&self, bits: u32) -> bool {
         self.features & bits != 0
-    }
-
-    pub fn object_id(&self, hit: &Hit) -> u32 {
-        let s = self.scene;
-        match hit.prim {
-            PRIM_SPHERE => s.spheres[hit.index as usize].object_id,
-            PRIM_PLANE => s.planes[hit.index as usize].object_id,
-            _ => s.triangles[hit.index as usize].object_id,
-        }
     }
 }
 

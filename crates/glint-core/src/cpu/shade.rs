@@ -4,7 +4,7 @@
 
 use glam::DVec3;
 
-use super::intersect::{FAR, shadow_transmittance};
+use super::intersect::{FAR, all_zero, shadow_transmittance};
 use super::offset::{shadow_t_max, spawn_ray};
 use super::probe::{Breakdown, LightTerm};
 use super::trace::Surface;
@@ -38,8 +38,12 @@ pub fn attenuation_factor(att: [f32; 4], d: f64) -> f64 {
     1.0 / (f64::from(att[0]) + f64::from(att[1]) * d + f64::from(att[2]) * d * d)
 }
 
-/// S = max(L_N·(−L), 0)^s inside the cone, 0 outside.
+/// S = max(L_N·(−L), 0)^s inside the cone, 0 outside; 1 everywhere for cutoff 180 (stored as
+/// cos = −1), as OpenGL, so that such a spot equals a point light.
 pub fn spot_factor(light: &GpuLight, l: DVec3) -> f64 {
+    if light.spot_cos_cutoff <= -1.0 {
+        return 1.0;
+    }
     let cos_angle = v3(light.direction).dot(-l);
     if cos_angle < f64::from(light.spot_cos_cutoff) {
         return 0.0;
@@ -134,6 +138,45 @@ pub fn light_visibility(
     shadow_transmittance(ctx, &Ray { origin, dir }, t_min, t_max)
 }
 
+/// One light's terms at a hit, each factor kept apart (the pixel probe shows them).
+pub fn light_term(
+    ctx: &TraceContext,
+    light: &GpuLight,
+    mat: &GpuMaterial,
+    s: &Surface,
+    n: DVec3,
+    ng: DVec3,
+    v: DVec3,
+    kd: DVec3,
+    counts: &mut RayCounts,
+) -> LightTerm {
+    let ls = light_sample(ctx, light, s.p);
+    let scale = ls.f_att * ls.spot;
+    let mut term = LightTerm { f_att: ls.f_att, spot: ls.spot, ..LightTerm::default() };
+    if scale == 0.0 {
+        return term;
+    }
+    if ctx.has(feature::LIGHT_AMBIENT) {
+        term.ambient = v3(light.ambient) * v3(mat.ka);
+    }
+    let n_dot_l = n.dot(ls.l);
+    if n_dot_l > 0.0 {
+        term.visibility = if ctx.has(feature::SHADOWS) && light.flags & LIGHT_CASTS_SHADOWS != 0 {
+            light_visibility(ctx, light, s, ng, &ls, counts)
+        } else {
+            DVec3::ONE
+        };
+        if !all_zero(term.visibility) {
+            term.diffuse = v3(light.diffuse) * kd * n_dot_l;
+            if ctx.has(feature::SPECULAR) && !all_zero(v3(mat.ks)) {
+                term.specular = v3(light.specular) * v3(mat.ks) * specular_term(ctx, mat, n, ls.l, v, n_dot_l);
+            }
+        }
+    }
+    term.contribution = scale * (term.ambient + term.visibility * (term.diffuse + term.specular));
+    term
+}
+
 /// The local model at a hit. `n` is the shading normal and `ng` the geometric normal, both
 /// turned towards the incoming ray; `v` points back along it.
 pub fn shade_local(
@@ -146,41 +189,16 @@ pub fn shade_local(
     mut probe: Option<&mut Breakdown>,
 ) -> DVec3 {
     let scene = ctx.scene;
-    let p = s.p;
     let mat = &scene.materials[s.material as usize];
-    let ka = v3(mat.ka);
     let emission = if ctx.has(feature::EMISSION) { v3(mat.emission) } else { DVec3::ZERO };
-    let ambient = v3(scene.header.ambient) * ka;
-    let kd = diffuse_colour(ctx, mat, p, ng);
-    let ks = v3(mat.ks);
+    let ambient = v3(scene.header.ambient) * v3(mat.ka);
+    let kd = diffuse_colour(ctx, mat, s.p, ng);
     let mut sum = DVec3::ZERO;
     for (j, light) in scene.lights.iter().enumerate() {
-        let ls = light_sample(ctx, light, p);
-        let scale = ls.f_att * ls.spot;
-        let mut term = LightTerm { light: j as u32, f_att: ls.f_att, spot: ls.spot, ..LightTerm::default() };
-        if scale != 0.0 {
-            if ctx.has(feature::LIGHT_AMBIENT) {
-                term.ambient = v3(light.ambient) * ka;
-            }
-            let n_dot_l = n.dot(ls.l);
-            if n_dot_l > 0.0 {
-                term.visibility = if ctx.has(feature::SHADOWS) && light.flags & LIGHT_CASTS_SHADOWS != 0 {
-                    light_visibility(ctx, light, s, ng, &ls, counts)
-                } else {
-                    DVec3::ONE
-                };
-                if term.visibility != DVec3::ZERO {
-                    term.diffuse = v3(light.diffuse) * kd * n_dot_l;
-                    if ctx.has(feature::SPECULAR) && ks != DVec3::ZERO {
-                        term.specular = v3(light.specular) * ks * specular_term(ctx, mat, n, ls.l, v, n_dot_l);
-                    }
-                }
-            }
-            term.contribution = scale * (term.ambient + term.visibility * (term.diffuse + term.specular));
-            sum += term.contribution;
-        }
+        let term = light_term(ctx, light, mat, s, n, ng, v, kd, counts);
+        sum += term.contribution;
         if let Some(b) = probe.as_deref_mut() {
-            b.lights.push(term);
+            b.lights.push(LightTerm { light: j as u32, ..term });
         }
     }
     if let Some(b) = probe {

@@ -7,7 +7,7 @@
 use glam::DVec3;
 
 use super::camera::{camera_ray, sample_offset};
-use super::intersect::{FAR, Hit, PRIM_PLANE, PRIM_SPHERE, closest_hit, triangle_shading_normal};
+use super::intersect::{FAR, Hit, PRIM_PLANE, PRIM_SPHERE, all_zero, closest_hit, triangle_shading_normal};
 use super::offset::spawn_ray;
 use super::probe::Breakdown;
 use super::shade::shade_local;
@@ -49,10 +49,10 @@ pub fn surface_at(ctx: &TraceContext, ray: &Ray, hit: &Hit) -> Surface {
         }
         _ => {
             let tri = &scene.triangles[hit.index as usize];
-            let (v0, v1, v2) = (v3(tri.v0), v3(tri.v1), v3(tri.v2));
+            let (v0, v1, v2) = (v3(tri.a), v3(tri.b), v3(tri.c));
             let ng = (v1 - v0).cross(v2 - v0).normalize();
-            let ns = triangle_shading_normal(tri, hit.b1, hit.b2, ng);
-            let p_surface = if robust { (1.0 - hit.b1 - hit.b2) * v0 + hit.b1 * v1 + hit.b2 * v2 } else { p };
+            let ns = triangle_shading_normal(tri, hit.bu, hit.bv, ng);
+            let p_surface = if robust { (1.0 - hit.bu - hit.bv) * v0 + hit.bu * v1 + hit.bv * v2 } else { p };
             Surface { p, p_surface, ng, ns, material: tri.material, object_id: tri.object_id }
         }
     }
@@ -127,7 +127,7 @@ pub fn shade_hit(
     // Under total internal reflection the k_t share follows the mirror direction.
     let mut k_mirror = kr;
     let mut refracted = None;
-    if ctx.has(feature::TRANSMISSION) && kt != DVec3::ZERO {
+    if ctx.has(feature::TRANSMISSION) && !all_zero(kt) {
         let ior = f64::from(mat.ior);
         let eta = if front { 1.0 / ior } else { ior };
         match refract_dir(ray.dir, ns, eta) {
@@ -135,7 +135,7 @@ pub fn shade_hit(
             None => k_mirror += kt,
         }
     }
-    if k_mirror != DVec3::ZERO {
+    if !all_zero(k_mirror) {
         let w = weight * k_mirror;
         if max_channel(w) < ctx.bailout {
             counts.bailout_saved += 1;
@@ -171,6 +171,16 @@ pub fn shade_hit(
     radiance
 }
 
+/// The object id of a hit's primitive.
+pub fn object_id(ctx: &TraceContext, hit: &Hit) -> u32 {
+    let s = ctx.scene;
+    match hit.prim {
+        PRIM_SPHERE => s.spheres[hit.index as usize].object_id,
+        PRIM_PLANE => s.planes[hit.index as usize].object_id,
+        _ => s.triangles[hit.index as usize].object_id,
+    }
+}
+
 /// One camera sample: radiance and the id of the first object hit (`NO_HIT` for none).
 pub fn render_sample(
     ctx: &TraceContext,
@@ -187,7 +197,7 @@ pub fn render_sample(
     counts.camera += 1;
     match closest_hit(ctx, &ray, 0.0, FAR) {
         Some(hit) => {
-            let object = ctx.object_id(&hit);
+            let object = object_id(ctx, &hit);
             let mut probe = probe;
             let radiance = shade_hit(ctx, &ray, &hit, 0, DVec3::ONE, counts, probe.as_deref_mut());
             if let Some(b) = probe {

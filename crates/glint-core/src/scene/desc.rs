@@ -103,7 +103,7 @@ pub struct CameraDesc {
     pub look_at: [f64; 3],
     #[serde(default = "default_up")]
     pub up: [f64; 3],
-    /// Vertical field of view in degrees, in (0, 180).
+    /// Vertical field of view in degrees, in [1e-6, 179].
     #[serde(default = "default_fov")]
     pub fov_y: f64,
 }
@@ -265,6 +265,10 @@ impl LightDesc {
     }
 }
 
+fn one() -> f64 {
+    1.0
+}
+
 fn default_cutoff() -> f64 {
     180.0
 }
@@ -277,6 +281,7 @@ fn default_true() -> bool {
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Attenuation {
+    #[serde(default = "one")]
     pub c: f64,
     #[serde(default)]
     pub l: f64,

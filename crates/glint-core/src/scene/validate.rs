@@ -21,6 +21,21 @@ pub const MAX_SPP: u32 = 4096;
 pub const MAX_DEPTH: u32 = 1024;
 pub const MAX_EPSILON: f64 = 1e3;
 pub const MAX_IOR: f64 = 1e3;
+/// Smallest value c + l·d + q·d² may take: f_att = 1/(…) stays ≤ 1e6, so that radiance stays
+/// far from f32 overflow on the GPU.
+pub const MIN_ATTENUATION_DENOMINATOR: f64 = 1e-6;
+
+/// Six significant digits without trailing zeros, for messages about f32-rounded values.
+fn short(v: f64) -> String {
+    let s = format!("{v:.6}");
+    let s = if s.contains('.') { s.trim_end_matches('0').trim_end_matches('.') } else { &s };
+    s.to_string()
+}
+
+/// The value the tracers will see: both read the scene in f32.
+fn as_f32(v: f64) -> f64 {
+    f64::from(v as f32)
+}
 
 /// What validation found: hard errors and warnings (the scene still renders with warnings).
 #[derive(Debug, Default)]
@@ -153,12 +168,12 @@ fn validate_material(path: &str, m: &MaterialDesc, r: &mut Report) {
     }
     r.colour(&format!("{path}.emission"), m.emission, MAX_INTENSITY);
     r.finite_in(&format!("{path}.shininess"), m.shininess, 0.0, MAX_SHININESS);
-    if !m.ior.is_finite() || m.ior <= 0.0 || m.ior > MAX_IOR {
+    if !m.ior.is_finite() || as_f32(m.ior) <= 0.0 || m.ior > MAX_IOR {
         r.error(format!("{path}.ior"), format!("{} is outside the allowed range (0, {MAX_IOR}]", m.ior));
     }
     if let Some(ch) = &m.checker {
         r.colour(&format!("{path}.checker.kd"), ch.kd, MAX_INTENSITY);
-        if !ch.size.is_finite() || ch.size <= 0.0 || ch.size > MAX_COORD {
+        if !ch.size.is_finite() || as_f32(ch.size) <= 0.0 || ch.size > MAX_COORD {
             r.error(
                 format!("{path}.checker.size"),
                 format!("{} is outside the allowed range (0, {MAX_COORD:e}]", ch.size),
@@ -239,19 +254,25 @@ fn validate_attenuation(path: &str, a: Attenuation, r: &mut Report) {
     if !finite {
         return;
     }
-    let Attenuation { c, l, q } = a;
-    let problem = if c <= 0.0 {
-        Some("c + l·d + q·d² is c at d = 0, so c must be > 0".to_string())
+    // Judge the coefficients the tracers will use: rounded to f32.
+    let (c, l, q) = (as_f32(a.c), as_f32(a.l), as_f32(a.q));
+    let min = MIN_ATTENUATION_DENOMINATOR;
+    let problem = if c < min {
+        Some(format!("c + l·d + q·d² is c at d = 0, so c must be ≥ {min:e}"))
     } else if q < 0.0 || (q == 0.0 && l < 0.0) {
-        Some("c + l·d + q·d² reaches 0 at a large distance: l and q must not make it fall forever (q ≥ 0, and l ≥ 0 when q = 0)".to_string())
-    } else if l < 0.0 && c - l * l / (4.0 * q) <= 0.0 {
+        Some("c + l·d + q·d² falls below 0 at a large distance: it needs q ≥ 0, and l ≥ 0 when q = 0".to_string())
+    } else if l < 0.0 && c - l * l / (4.0 * q) < min {
         let d = -l / (2.0 * q);
-        Some(format!("c + l·d + q·d² reaches {} ≤ 0 at d = {d}; it must stay > 0 for all d ≥ 0", c - l * l / (4.0 * q)))
+        Some(format!(
+            "c + l·d + q·d² falls to {} at d = {}; it must stay ≥ {min:e} for all d ≥ 0",
+            short(c - l * l / (4.0 * q)),
+            short(d)
+        ))
     } else {
         None
     };
     if let Some(p) = problem {
-        r.error(path, format!("{p} (got c = {c}, l = {l}, q = {q})"));
+        r.error(path, format!("{p} (got c = {}, l = {}, q = {})", a.c, a.l, a.q));
     }
 }
 
@@ -266,7 +287,7 @@ fn validate_object(path: &str, o: &ObjectDesc, scene: &SceneDesc, r: &mut Report
     match o {
         ObjectDesc::Sphere { center, radius, .. } => {
             r.point(&format!("{path}.center"), *center);
-            if !radius.is_finite() || *radius <= 0.0 || *radius > MAX_COORD {
+            if !radius.is_finite() || as_f32(*radius) <= 0.0 || *radius > MAX_COORD {
                 r.error(format!("{path}.radius"), format!("{radius} is outside the allowed range (0, {MAX_COORD:e}]"));
             }
         }
@@ -299,6 +320,26 @@ fn validate_object(path: &str, o: &ObjectDesc, scene: &SceneDesc, r: &mut Report
                 }
                 for (i, v) in normals.iter().enumerate() {
                     r.direction(&format!("{path}.normals[{i}]"), *v);
+                }
+            }
+            if let Some(normals) = normals.as_ref().filter(|ns| ns.len() == n) {
+                let against = triangles
+                    .iter()
+                    .filter(|t| t.iter().all(|&k| (k as usize) < n))
+                    .filter(|t| {
+                        let [a, b, c] = t.map(|k| vertices[k as usize]);
+                        let ng = cross(sub(b, a), sub(c, a));
+                        t.iter().any(|&k| ng.dot(DVec3::from(normals[k as usize])) < 0.0)
+                    })
+                    .count();
+                if against > 0 {
+                    r.warn(
+                        format!("{path}.normals"),
+                        format!(
+                            "{against} triangles have a vertex normal pointing against their winding \
+                             (cross(b − a, c − a)); they shade as if lit from behind"
+                        ),
+                    );
                 }
             }
             let degenerate = triangles

@@ -1,0 +1,121 @@
+//! The wgpu device: chosen by name or kind like wgpu's own examples (`--adapter`,
+//! `WGPU_ADAPTER_NAME`, `WGPU_BACKEND`), or injected by a host that owns one (the viewer).
+
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use crate::error::GpuError;
+
+/// How to pick an adapter.
+#[derive(Clone, Debug, Default)]
+pub struct AdapterRequest {
+    /// Case-insensitive substring of the adapter name; `None` reads `WGPU_ADAPTER_NAME`.
+    pub name: Option<String>,
+    /// Prefer a CPU adapter (lavapipe) when no name is given: its arithmetic is the same on
+    /// every machine, which tests and reports want.
+    pub prefer_cpu: bool,
+}
+
+/// Adapter facts shown to users and stored in image metadata.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct AdapterSummary {
+    pub name: String,
+    pub backend: String,
+    pub device_type: String,
+    pub driver: String,
+}
+
+impl AdapterSummary {
+    pub fn from_info(info: &wgpu::AdapterInfo) -> Self {
+        Self {
+            name: info.name.clone(),
+            backend: format!("{:?}", info.backend),
+            device_type: format!("{:?}", info.device_type),
+            driver: format!("{} {}", info.driver, info.driver_info).trim().to_string(),
+        }
+    }
+}
+
+impl std::fmt::Display for AdapterSummary {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{} ({}, {})", self.name, self.backend, self.device_type)
+    }
+}
+
+/// A device and queue with what the tracer needs to know about them.
+#[derive(Clone, Debug)]
+pub struct GpuContext {
+    pub device: wgpu::Device,
+    pub queue: wgpu::Queue,
+    pub adapter: AdapterSummary,
+    pub limits: wgpu::Limits,
+    lost: Arc<AtomicBool>,
+}
+
+impl GpuContext {
+    /// Opens an adapter as `request` says and creates a device with its default limits.
+    pub fn new(request: &AdapterRequest) -> Result<Self, GpuError> {
+        let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+        let adapters = pollster::block_on(instance.enumerate_adapters(wgpu::Backends::all()));
+        let adapter = choose_adapter(adapters, request)?;
+        let info = adapter.get_info();
+        let limits = adapter.limits();
+        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+            label: Some("glint"),
+            required_features: wgpu::Features::empty(),
+            required_limits: limits.clone(),
+            ..Default::default()
+        }))
+        .map_err(|e| GpuError::Device { adapter: info.name.clone(), message: e.to_string() })?;
+        log::info!("GPU adapter: {} ({:?}, {:?})", info.name, info.backend, info.device_type);
+        Ok(Self::from_device(device, queue, &info))
+    }
+
+    /// Wraps a device someone else created (eframe's, in the viewer).
+    pub fn from_device(device: wgpu::Device, queue: wgpu::Queue, info: &wgpu::AdapterInfo) -> Self {
+        let lost = Arc::new(AtomicBool::new(false));
+        let flag = lost.clone();
+        device.set_device_lost_callback(move |reason, message| {
+            log::error!("GPU device lost ({reason:?}): {message}");
+            flag.store(true, Ordering::SeqCst);
+        });
+        let limits = device.limits();
+        Self { device, queue, adapter: AdapterSummary::from_info(info), limits, lost }
+    }
+
+    pub fn is_lost(&self) -> bool {
+        self.lost.load(Ordering::SeqCst)
+    }
+}
+
+fn choose_adapter(adapters: Vec<wgpu::Adapter>, request: &AdapterRequest) -> Result<wgpu::Adapter, GpuError> {
+    let listing = |adapters: &[wgpu::Adapter]| {
+        adapters.iter().map(|a| AdapterSummary::from_info(&a.get_info()).to_string()).collect::<Vec<_>>().join("; ")
+    };
+    if adapters.is_empty() {
+        return Err(GpuError::NoAdapter);
+    }
+    let name = request.name.clone().or_else(|| std::env::var("WGPU_ADAPTER_NAME").ok()).filter(|n| !n.is_empty());
+    if let Some(name) = name {
+        let wanted = name.to_lowercase();
+        let found = adapters.iter().position(|a| a.get_info().name.to_lowercase().contains(&wanted));
+        return match found {
+            Some(i) => Ok(adapters.into_iter().nth(i).expect("index from position")),
+            None => Err(GpuError::UnknownAdapter { name, available: listing(&adapters) }),
+        };
+    }
+    let rank = |a: &wgpu::Adapter| {
+        use wgpu::DeviceType as D;
+        let t = a.get_info().device_type;
+        match (request.prefer_cpu, t) {
+            (true, D::Cpu) => 0,
+            (false, D::DiscreteGpu) => 0,
+            (false, D::IntegratedGpu) => 1,
+            (_, D::DiscreteGpu | D::IntegratedGpu | D::VirtualGpu) => 2,
+            (_, D::Cpu) => 3,
+            (_, D::Other) => 4,
+        }
+    };
+    let best = adapters.iter().enumerate().min_by_key(|(_, a)| rank(a)).map(|(i, _)| i).unwrap_or(0);
+    Ok(adapters.into_iter().nth(best).expect("index from enumerate"))
+}

@@ -1,0 +1,33 @@
+//! GPU errors: each says what failed and what the user can do about it.
+
+#[derive(Debug, thiserror::Error)]
+pub enum GpuError {
+    #[error(
+        "no GPU adapter found. On Linux, install Mesa's Vulkan drivers (apt-get install mesa-vulkan-drivers) \
+         for the lavapipe CPU adapter; WGPU_BACKEND selects the backend"
+    )]
+    NoAdapter,
+    #[error("no GPU adapter matches '{name}'; adapters found: {available}")]
+    UnknownAdapter { name: String, available: String },
+    #[error("cannot open a device on adapter '{adapter}': {message}")]
+    Device { adapter: String, message: String },
+    #[error("shader composition failed:\n{0}")]
+    Compose(String),
+    #[error("shader validation failed:\n{0}")]
+    Validation(String),
+    #[error("{what} needs {needed} bytes, more than this GPU allows ({limit} bytes, limit {limit_name})")]
+    TooLarge { what: String, needed: u64, limit: u64, limit_name: &'static str },
+    #[error(
+        "the scene has {count} {what}; the GPU tracer walks primitives without an acceleration structure \
+         and is limited to {limit} of them (lavapipe cuts longer loops silently)"
+    )]
+    TooManyPrimitives { what: &'static str, count: u32, limit: u32 },
+    #[error("the GPU ran out of memory: {0}")]
+    OutOfMemory(String),
+    #[error("the GPU reported an error: {0}")]
+    Wgpu(String),
+    #[error("the GPU device was lost (driver reset or crash); restart to use the GPU again")]
+    DeviceLost,
+    #[error("reading the image back from the GPU failed: {0}")]
+    Readback(String),
+}

@@ -1,0 +1,18 @@
+//! Glint's GPU tracer: the WGSL twin of the CPU reference (`shaders/*.wgsl`), composed with
+//! naga_oil and specialised per scene, run with wgpu.
+
+pub mod context;
+pub mod error;
+pub mod pipeline;
+pub mod shaders;
+pub mod tracer;
+
+pub use context::{AdapterRequest, AdapterSummary, GpuContext};
+pub use error::GpuError;
+pub use shaders::{GPU_STACK_LIMIT, ShaderKey};
+pub use tracer::{GpuOptions, GpuRender, GpuTracer};
+
+#[cfg(test)]
+mod reflection_tests;
+#[cfg(test)]
+mod twin_tests;

@@ -1,0 +1,233 @@
+//! The one data layout, checked: every `#[repr(C)]` struct of `glint_core::layout` against its
+//! WGSL twin in `shaders/layout.wgsl` (member names, offsets, sizes, as naga's layouter sees
+//! them), and every shared constant against its Rust value. No "keep in sync" comments.
+
+use std::mem::{offset_of, size_of};
+
+use glint_core::cpu::{intersect, offset, shade};
+use glint_core::layout::*;
+use naga::proc::Layouter;
+use naga_oil::compose::Composer;
+
+use crate::shaders::ShaderKey;
+
+/// A Rust struct as (name, size, [(member, offset, size)]).
+type RustLayout = (&'static str, usize, Vec<(&'static str, usize, usize)>);
+
+macro_rules! rust_layout {
+    ($ty:ident { $($field:ident),* $(,)? }) => {{
+        let zero: $ty = bytemuck::Zeroable::zeroed();
+        let members = vec![$((stringify!($field), offset_of!($ty, $field), size_of_val(&zero.$field))),*];
+        (stringify!($ty), size_of::<$ty>(), members)
+    }};
+}
+
+fn rust_layouts() -> Vec<RustLayout> {
+    vec![
+        rust_layout!(SceneHeader {
+            width,
+            height,
+            spp,
+            max_depth,
+            sphere_count,
+            plane_count,
+            triangle_count,
+            light_count,
+            material_count,
+            features,
+            epsilon_mode,
+            seed,
+            epsilon,
+            bailout,
+            pad_a,
+            pad_b,
+            ambient,
+            background
+        }),
+        rust_layout!(GpuCamera { position, forward, right, up }),
+        rust_layout!(GpuMaterial { ka, kd, ks, kr, kt, emission, checker_kd, shininess, ior, checker_size, flags }),
+        rust_layout!(GpuLight {
+            position,
+            direction,
+            diffuse,
+            specular,
+            ambient,
+            attenuation,
+            kind,
+            flags,
+            spot_exponent,
+            spot_cos_cutoff
+        }),
+        rust_layout!(GpuSphere { center_radius, material, object_id, pad }),
+        rust_layout!(GpuPlane { normal_offset, material, object_id, pad }),
+        rust_layout!(GpuTriangle { a, b, c, na, nb, nc, material, object_id, flags, pad }),
+        rust_layout!(TileParams { origin_x, origin_y, width, height }),
+    ]
+}
+
+fn layout_module() -> naga::Module {
+    // The file is a naga_oil module; its only directive is the import path.
+    let source: String = include_str!("../../../shaders/layout.wgsl")
+        .lines()
+        .filter(|l| !l.trim_start().starts_with('#'))
+        .collect::<Vec<_>>()
+        .join("\n");
+    naga::front::wgsl::parse_str(&source).unwrap_or_else(|e| panic!("{}", e.emit_to_string(&source)))
+}
+
+#[test]
+fn every_rust_layout_struct_covers_its_bytes() {
+    // A field added in Rust but not listed above breaks this chain, so the list stays complete.
+    for (name, size, members) in rust_layouts() {
+        let mut end = 0;
+        for (field, offset, field_size) in &members {
+            assert_eq!(*offset, end, "{name}.{field} does not follow the previous member (unlisted field or padding?)");
+            end = offset + field_size;
+        }
+        assert_eq!(end, size, "{name}: listed members end at {end}, the struct has {size} bytes");
+    }
+}
+
+#[test]
+fn wgsl_structs_match_rust_offsets_and_sizes() {
+    let module = layout_module();
+    let mut layouter = Layouter::default();
+    layouter.update(module.to_ctx()).expect("layout.wgsl lays out");
+    let mut checked = 0;
+    for (name, size, members) in rust_layouts() {
+        let (handle, ty) = module
+            .types
+            .iter()
+            .find(|(_, t)| t.name.as_deref() == Some(name))
+            .unwrap_or_else(|| panic!("struct {name} is missing from shaders/layout.wgsl"));
+        let naga::TypeInner::Struct { members: wgsl, span } = &ty.inner else { panic!("{name} is not a struct") };
+        assert_eq!(*span as usize, size, "{name}: WGSL size {span} != Rust size {size}");
+        assert_eq!(layouter[handle].size as usize, size, "{name}: naga layouter size");
+        assert_eq!(wgsl.len(), members.len(), "{name}: member count differs");
+        for (w, (field, offset, _)) in wgsl.iter().zip(&members) {
+            assert_eq!(w.name.as_deref(), Some(*field), "{name}: member order/name differs");
+            assert_eq!(w.offset as usize, *offset, "{name}.{field}: WGSL offset {} != Rust {offset}", w.offset);
+        }
+        checked += 1;
+    }
+    let wgsl_structs = module.types.iter().filter(|(_, t)| matches!(t.inner, naga::TypeInner::Struct { .. })).count();
+    assert_eq!(wgsl_structs, checked, "layout.wgsl has a struct without a Rust twin in this test");
+}
+
+fn literal_value(module: &naga::Module, init: naga::Handle<naga::Expression>) -> f64 {
+    match module.global_expressions[init] {
+        naga::Expression::Literal(naga::Literal::U32(v)) => f64::from(v),
+        naga::Expression::Literal(naga::Literal::I32(v)) => f64::from(v),
+        naga::Expression::Literal(naga::Literal::F32(v)) => f64::from(v),
+        ref other => panic!("constant initialiser {other:?} is not a literal"),
+    }
+}
+
+#[test]
+fn wgsl_layout_constants_match_rust() {
+    let mut expected: Vec<(String, u32)> = vec![
+        ("LIGHT_POINT".into(), LIGHT_POINT),
+        ("LIGHT_DIRECTIONAL".into(), LIGHT_DIRECTIONAL),
+        ("LIGHT_SPOT".into(), LIGHT_SPOT),
+        ("LIGHT_CASTS_SHADOWS".into(), LIGHT_CASTS_SHADOWS),
+        ("MATERIAL_PHONG".into(), MATERIAL_PHONG),
+        ("MATERIAL_CHECKER".into(), MATERIAL_CHECKER),
+        ("TRIANGLE_HAS_NORMALS".into(), TRIANGLE_HAS_NORMALS),
+        ("EPS_TMIN".into(), EPS_TMIN),
+        ("EPS_NUDGE_RAY".into(), EPS_NUDGE_RAY),
+        ("EPS_NUDGE_NORMAL".into(), EPS_NUDGE_NORMAL),
+        ("EPS_ROBUST".into(), EPS_ROBUST),
+        ("NO_HIT".into(), NO_HIT),
+        ("STATUS_LOOP_LIMIT".into(), STATUS_LOOP_LIMIT),
+        ("STATUS_STACK_OVERFLOW".into(), STATUS_STACK_OVERFLOW),
+        ("STAT_CAMERA".into(), STAT_CAMERA),
+        ("STAT_SHADOW".into(), STAT_SHADOW),
+        ("STAT_REFLECTION".into(), STAT_REFLECTION),
+        ("STAT_REFRACTION".into(), STAT_REFRACTION),
+        ("STAT_BAILOUT_SAVED".into(), STAT_BAILOUT_SAVED),
+        ("STAT_STATUS".into(), STAT_STATUS),
+        ("STAT_WORDS".into(), STAT_WORDS),
+    ];
+    for (bit, name) in feature::NAMES.iter().enumerate() {
+        expected.push((format!("FEATURE_{name}"), 1 << bit));
+    }
+    let module = layout_module();
+    let wgsl: Vec<(String, f64)> = module
+        .constants
+        .iter()
+        .map(|(_, c)| (c.name.clone().expect("named constant"), literal_value(&module, c.init)))
+        .collect();
+    for (name, value) in &expected {
+        let found = wgsl.iter().find(|(n, _)| n == name).unwrap_or_else(|| panic!("{name} missing from layout.wgsl"));
+        assert_eq!(found.1, f64::from(*value), "{name}: WGSL {} != Rust {value}", found.1);
+    }
+    for (name, _) in &wgsl {
+        assert!(expected.iter().any(|(n, _)| n == name), "layout.wgsl constant {name} has no Rust twin in this test");
+    }
+}
+
+#[test]
+fn shared_tracer_constants_match_rust() {
+    // Constants the two tracers must share exactly. (offset.rs's FLOAT_SCALE and SHADOW_REL
+    // differ on purpose: each is scaled to its tracer's precision.) A probe module imports
+    // each one and stores it, so naga cannot fold it away before we read it.
+    let expected: [(&str, &str, f64); 10] = [
+        ("glint::intersect", "PRIM_SPHERE", f64::from(intersect::PRIM_SPHERE)),
+        ("glint::intersect", "PRIM_PLANE", f64::from(intersect::PRIM_PLANE)),
+        ("glint::intersect", "PRIM_TRIANGLE", f64::from(intersect::PRIM_TRIANGLE)),
+        ("glint::intersect", "PLANE_PARALLEL_COS", intersect::PLANE_PARALLEL_COS),
+        ("glint::intersect", "FAR", intersect::FAR),
+        ("glint::shade", "MIN_LIGHT_DISTANCE", shade::MIN_LIGHT_DISTANCE),
+        ("glint::shade", "MIN_HALF_LENGTH", shade::MIN_HALF_LENGTH),
+        ("glint::offset", "ORIGIN", offset::ORIGIN),
+        ("glint::offset", "INT_SCALE", offset::INT_SCALE),
+        ("glint::scene_data", "NO_HIT", f64::from(NO_HIT)),
+    ];
+    let mut probe = String::new();
+    for (path, name, _) in &expected {
+        probe.push_str(&format!("#import {path}::{{{name}}}\n"));
+    }
+    probe.push_str("@group(0) @binding(0) var<storage, read_write> probe_out: array<f32, 16>;\n");
+    probe.push_str("@compute @workgroup_size(1)\nfn main() {\n");
+    for (i, (_, name, _)) in expected.iter().enumerate() {
+        probe.push_str(&format!("    probe_out[{i}] = f32({name});\n"));
+    }
+    probe.push_str("}\n");
+    let module = compose_probe(&probe);
+    for (path, name, value) in expected {
+        let decorated = Composer::decorated_name(Some(path), name);
+        let c = module
+            .constants
+            .iter()
+            .find(|(_, c)| c.name.as_deref() == Some(decorated.as_str()))
+            .unwrap_or_else(|| panic!("{path}::{name} not found in the probe module"))
+            .1;
+        let wgsl = literal_value(&module, c.init);
+        // u32 constants must be equal; f32 ones equal to the Rust value rounded to f32.
+        assert!(wgsl == value || wgsl == f64::from(value as f32), "{path}::{name}: WGSL {wgsl} != Rust {value}");
+    }
+}
+
+fn compose_probe(source: &str) -> naga::Module {
+    use naga_oil::compose::{ComposableModuleDescriptor, NagaModuleDescriptor};
+    let mut composer = Composer::default();
+    for (path, file, text) in crate::shaders::SHADER_MODULES {
+        let added = composer.add_composable_module(ComposableModuleDescriptor {
+            source: text,
+            file_path: file,
+            as_name: Some(path.to_string()),
+            shader_defs: ShaderKey::full().shader_defs(),
+            ..Default::default()
+        });
+        if let Err(e) = added {
+            panic!("{}", e.emit_to_string(&composer));
+        }
+    }
+    let module = composer.make_naga_module(NagaModuleDescriptor {
+        source,
+        file_path: "probe.wgsl",
+        shader_defs: ShaderKey::full().shader_defs(),
+        ..Default::default()
+    });
+    module.unwrap_or_else(|e| panic!("{}", e.emit_to_string(&composer)))
+}

@@ -1,0 +1,259 @@
+//! Shader composition with naga_oil: the WGSL files of `shaders/` joined by `#import`, with
+//! `#ifdef` shader defs chosen from the scene's feature set, so that a specialised shader
+//! really lacks the code and bindings the scene does not need (WGSL `override` constants
+//! would leave them in).
+
+use std::collections::HashMap;
+
+use glint_core::FlatScene;
+use glint_core::layout::feature;
+use naga_oil::compose::{ComposableModuleDescriptor, Composer, NagaModuleDescriptor, ShaderDefValue};
+
+use crate::error::GpuError;
+
+/// Deepest ray tree the GPU stack holds when the shader is not specialised; deeper trees that
+/// branch raise `STATUS_STACK_OVERFLOW`.
+pub const GPU_STACK_LIMIT: u32 = 64;
+
+/// Most primitives of one kind the GPU walks per ray: lavapipe cuts loops silently after
+/// 65,535 iterations.
+pub const GPU_PRIMITIVE_LIMIT: u32 = 65_535;
+
+/// The modules in dependency order: (import path, file name, source).
+pub const SHADER_MODULES: [(&str, &str, &str); 8] = [
+    ("glint::scene_data", "layout.wgsl", include_str!("../../../shaders/layout.wgsl")),
+    ("glint::bindings", "bindings.wgsl", include_str!("../../../shaders/bindings.wgsl")),
+    ("glint::ray", "ray.wgsl", include_str!("../../../shaders/ray.wgsl")),
+    ("glint::rng", "rng.wgsl", include_str!("../../../shaders/rng.wgsl")),
+    ("glint::camera", "camera.wgsl", include_str!("../../../shaders/camera.wgsl")),
+    ("glint::intersect", "intersect.wgsl", include_str!("../../../shaders/intersect.wgsl")),
+    ("glint::offset", "offset.wgsl", include_str!("../../../shaders/offset.wgsl")),
+    ("glint::shade", "shade.wgsl", include_str!("../../../shaders/shade.wgsl")),
+];
+
+/// The entry module.
+pub const TRACE_WGSL: &str = include_str!("../../../shaders/trace.wgsl");
+
+/// Everything that selects a shader variant: the feature bits compiled in, and the stack size.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct ShaderKey {
+    pub features: u32,
+    pub stack_size: u32,
+}
+
+impl ShaderKey {
+    /// The variant for `scene`: exactly its features, or all of them when not specialising.
+    pub fn for_scene(scene: &FlatScene, specialise: bool) -> Self {
+        if specialise {
+            let features = scene.header.features;
+            let recursion = features & (feature::REFLECTION | feature::TRANSMISSION) != 0;
+            let depth = if recursion { scene.header.max_depth.min(GPU_STACK_LIMIT - 1) } else { 0 };
+            Self { features, stack_size: depth + 1 }
+        } else {
+            Self::full()
+        }
+    }
+
+    /// The unspecialised shader: every feature, the largest stack.
+    pub fn full() -> Self {
+        Self { features: feature::ALL, stack_size: GPU_STACK_LIMIT }
+    }
+
+    /// Whether the variant walks a ray tree at all.
+    pub fn recursion(&self) -> bool {
+        self.features & (feature::REFLECTION | feature::TRANSMISSION) != 0
+    }
+
+    /// naga_oil shader defs: one boolean per feature present, `RECURSION`, `STACK_SIZE`.
+    pub fn shader_defs(&self) -> HashMap<String, ShaderDefValue> {
+        let mut defs: HashMap<String, ShaderDefValue> = feature::NAMES
+            .iter()
+            .enumerate()
+            .filter(|(bit, _)| self.features & (1 << bit) != 0)
+            .map(|(_, name)| ((*name).to_string(), ShaderDefValue::Bool(true)))
+            .collect();
+        if self.recursion() {
+            defs.insert("RECURSION".into(), ShaderDefValue::Bool(true));
+        }
+        defs.insert("STACK_SIZE".into(), ShaderDefValue::UInt(self.stack_size));
+        defs
+    }
+
+    /// Short readable form for logs and reports, e.g. `SPHERES|PLANES|… stack 6`.
+    pub fn describe(&self) -> String {
+        let names: Vec<&str> = feature::NAMES
+            .iter()
+            .enumerate()
+            .filter(|(bit, _)| self.features & (1 << bit) != 0)
+            .map(|(_, n)| *n)
+            .collect();
+        format!("{} stack {}", names.join("|"), self.stack_size)
+    }
+}
+
+/// Composes and validates the tracer for `key`; errors carry naga's readable report.
+pub fn compose(key: &ShaderKey) -> Result<naga::Module, GpuError> {
+    let mut composer = Composer::default();
+    for (path, file, source) in SHADER_MODULES {
+        let added = composer.add_composable_module(ComposableModuleDescriptor {
+            source,
+            file_path: file,
+            as_name: Some(path.to_string()),
+            ..Default::default()
+        });
+        if let Err(e) = added {
+            return Err(GpuError::Compose(e.emit_to_string(&composer)));
+        }
+    }
+    let module = composer.make_naga_module(NagaModuleDescriptor {
+        source: TRACE_WGSL,
+        file_path: "trace.wgsl",
+        shader_defs: key.shader_defs(),
+        ..Default::default()
+    });
+    module.map_err(|e| GpuError::Compose(e.emit_to_string(&composer)))
+}
+
+/// Validates a composed module again with naga's validator (all checks), as a build step would.
+pub fn validate(module: &naga::Module) -> Result<naga::valid::ModuleInfo, GpuError> {
+    naga::valid::Validator::new(naga::valid::ValidationFlags::all(), naga::valid::Capabilities::default())
+        .validate(module)
+        .map_err(|e| GpuError::Validation(e.emit_to_string("")))
+}
+
+/// Size of a shader in naga IR: what specialisation removes.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ModuleStats {
+    pub functions: usize,
+    pub statements: usize,
+    pub expressions: usize,
+    pub bindings: usize,
+}
+
+pub fn module_stats(module: &naga::Module) -> ModuleStats {
+    fn count(block: &naga::Block) -> usize {
+        use naga::Statement as S;
+        block
+            .iter()
+            .map(|s| {
+                1 + match s {
+                    S::Block(b) => count(b),
+                    S::If { accept, reject, .. } => count(accept) + count(reject),
+                    S::Switch { cases, .. } => cases.iter().map(|c| count(&c.body)).sum(),
+                    S::Loop { body, continuing, .. } => count(body) + count(continuing),
+                    _ => 0,
+                }
+            })
+            .sum()
+    }
+    let functions = module.functions.iter().map(|(_, f)| f).chain(module.entry_points.iter().map(|e| &e.function));
+    let mut stats = ModuleStats {
+        functions: module.functions.len() + module.entry_points.len(),
+        bindings: module.global_variables.iter().filter(|(_, g)| g.binding.is_some()).count(),
+        ..Default::default()
+    };
+    for f in functions {
+        stats.statements += count(&f.body);
+        stats.expressions += f.expressions.len();
+    }
+    stats
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glint_core::scene::{BUILTIN_SCENES, parse_scene};
+
+    fn builtin_keys() -> Vec<(String, ShaderKey)> {
+        BUILTIN_SCENES
+            .iter()
+            .map(|b| {
+                let (desc, _) = parse_scene(b.text, std::path::Path::new(b.name)).expect("built-in scene parses");
+                let flat = FlatScene::build(&desc, &desc.render);
+                (b.name.to_string(), ShaderKey::for_scene(&flat, true))
+            })
+            .collect()
+    }
+
+    fn compose_or_report(key: &ShaderKey) -> naga::Module {
+        match compose(key).and_then(|m| validate(&m).map(|_| m)) {
+            Ok(m) => m,
+            Err(e) => panic!("shader variant [{}] is invalid:\n{e}", key.describe()),
+        }
+    }
+
+    #[test]
+    fn full_shader_and_every_builtin_variant_validate() {
+        compose_or_report(&ShaderKey::full());
+        for (name, key) in builtin_keys() {
+            eprintln!("{name}: {}", key.describe());
+            compose_or_report(&key);
+        }
+    }
+
+    #[test]
+    fn every_single_feature_and_its_absence_validate() {
+        // Each feature alone, and all features but one: catches an #ifdef block that only
+        // compiles next to some other feature.
+        for bit in 0..feature::NAMES.len() {
+            for features in [1u32 << bit, feature::ALL & !(1 << bit)] {
+                compose_or_report(&ShaderKey { features, stack_size: 4 });
+            }
+        }
+    }
+
+    /// Function names of a composed module without naga_oil's module decoration.
+    fn function_names(module: &naga::Module) -> Vec<String> {
+        module
+            .functions
+            .iter()
+            .filter_map(|(_, f)| f.name.as_deref())
+            .map(|n| n.split("X_naga_oil_mod_").next().unwrap_or(n).to_string())
+            .collect()
+    }
+
+    #[test]
+    fn specialised_module_lacks_what_the_scene_does_not_use() {
+        let text = "[render]\nwidth = 8\nheight = 8\nmax_depth = 5\n\
+            [camera]\nposition = [0.0, 0.0, -5.0]\nlook_at = [0.0, 0.0, 0.0]\n\
+            [materials.m]\nkd = 0.8\n\
+            [[lights]]\ntype = \"directional\"\ndirection = [0.0, -1.0, 1.0]\n\
+            [[objects]]\ntype = \"sphere\"\ncenter = [0.0, 0.0, 0.0]\nradius = 1.0\nmaterial = \"m\"\n";
+        let (desc, _) = parse_scene(text, std::path::Path::new("opaque.toml")).expect("scene parses");
+        let flat = FlatScene::build(&desc, &desc.render);
+        let key = ShaderKey::for_scene(&flat, true);
+        assert_eq!(key.stack_size, 1, "nothing reflects: no ray tree to walk");
+        let module = compose_or_report(&key);
+        let names = function_names(&module);
+        for absent in [
+            "intersect_triangle",
+            "ray_shear",
+            "triangle_shading_normal",
+            "intersect_plane",
+            "spot_factor",
+            "attenuation_factor",
+            "refract_dir",
+            "reflect_dir",
+            "push_ray",
+            "strata_rows",
+        ] {
+            assert!(!names.iter().any(|n| n == absent), "specialised module still has {absent}: {names:?}");
+        }
+        for present in ["intersect_sphere", "shade_local", "light_sample", "trace_ray"] {
+            assert!(names.iter().any(|n| n == present), "specialised module lacks {present}: {names:?}");
+        }
+        let bindings: Vec<u32> =
+            module.global_variables.iter().filter_map(|(_, g)| g.binding.as_ref().map(|b| b.binding)).collect();
+        for absent in [crate::pipeline::binding::PLANES, crate::pipeline::binding::TRIANGLES] {
+            assert!(!bindings.contains(&absent), "binding {absent} should be gone: {bindings:?}");
+        }
+        let full = compose_or_report(&ShaderKey::full());
+        let full_names = function_names(&full);
+        for f in ["intersect_triangle", "spot_factor", "refract_dir", "push_ray"] {
+            assert!(full_names.iter().any(|n| n == f), "the full shader should have {f}");
+        }
+        let (small, big) = (module_stats(&module), module_stats(&full));
+        eprintln!("opaque sphere scene: {} statements, full shader: {}", small.statements, big.statements);
+        assert!(small.statements * 10 < big.statements * 7, "specialisation removed less than 30 %");
+    }
+}

@@ -1,0 +1,18 @@
+// The scene buffers. Bindings the specialised shader does not use are dropped from the
+// composed module, and the host builds its bind group layout from what remains.
+#define_import_path glint::bindings
+
+#import glint::scene_data::{SceneHeader, GpuCamera, GpuMaterial, GpuLight, GpuSphere, GpuPlane, GpuTriangle, TileParams}
+
+@group(0) @binding(0) var<uniform> header: SceneHeader;
+@group(0) @binding(1) var<uniform> camera: GpuCamera;
+@group(0) @binding(2) var<uniform> tile: TileParams;
+@group(0) @binding(3) var<storage, read> materials: array<GpuMaterial>;
+@group(0) @binding(4) var<storage, read> lights: array<GpuLight>;
+@group(0) @binding(5) var<storage, read> spheres: array<GpuSphere>;
+@group(0) @binding(6) var<storage, read> planes: array<GpuPlane>;
+@group(0) @binding(7) var<storage, read> triangles: array<GpuTriangle>;
+// rgb radiance and, in w, the first-hit object id as f32 (exact below 2^24; −1 for none).
+@group(0) @binding(8) var<storage, read_write> output: array<vec4<f32>>;
+// Ray counts as (lo, hi) u32 pairs and the status word; see STAT_* in scene_data.
+@group(0) @binding(9) var<storage, read_write> stats: array<atomic<u32>>;

@@ -1,0 +1,268 @@
+// Twin of crates/glint-core/src/cpu/intersect.rs: ray/primitive intersection, nearest hit
+// and shadow transmittance.
+#define_import_path glint::intersect
+
+#import glint::scene_data::{GpuTriangle, TRIANGLE_HAS_NORMALS, FEATURE_SPHERES, FEATURE_PLANES, FEATURE_TRIANGLES, FEATURE_FILTERED_SHADOWS}
+#import glint::bindings::{header, materials, spheres, planes, triangles}
+#import glint::ray::{Ray, has}
+
+const PRIM_NONE: u32 = 0u;
+const PRIM_SPHERE: u32 = 1u;
+const PRIM_PLANE: u32 = 2u;
+const PRIM_TRIANGLE: u32 = 3u;
+const PLANE_PARALLEL_COS: f32 = 1e-12;
+const FAR: f32 = 1e30;
+
+struct Hit {
+    t: f32,
+    prim: u32,
+    index: u32,
+    bu: f32,
+    bv: f32,
+}
+
+// A root, or none (WGSL has no Option).
+struct MaybeT {
+    t: f32,
+    ok: bool,
+}
+
+struct SphereRoots {
+    t_near: f32,
+    t_far: f32,
+    ok: bool,
+}
+
+// Haines et al., Ray Tracing Gems ch. 7: discriminant from the perpendicular distance, the
+// smaller root from c/q.
+fn sphere_roots(center: vec3<f32>, radius: f32, ray: Ray) -> SphereRoots {
+    let f = ray.origin - center;
+    let a = dot(ray.dir, ray.dir);
+    let b = -dot(f, ray.dir);
+    let c = dot(f, f) - radius * radius;
+    if c > 0.0 && b < 0.0 {
+        return SphereRoots(0.0, 0.0, false);
+    }
+    let l = f + (b / a) * ray.dir;
+    let disc = radius * radius - dot(l, l);
+    if disc < 0.0 {
+        return SphereRoots(0.0, 0.0, false);
+    }
+    let q = b + select(-1.0, 1.0, b >= 0.0) * sqrt(a * disc);
+    if q == 0.0 {
+        return SphereRoots(0.0, 0.0, true);
+    }
+    let t_near = c / q;
+    let t_far = q / a;
+    return SphereRoots(min(t_near, t_far), max(t_near, t_far), true);
+}
+
+fn intersect_sphere(center: vec3<f32>, radius: f32, ray: Ray, t_min: f32, t_max: f32) -> MaybeT {
+    let r = sphere_roots(center, radius, ray);
+    if !r.ok {
+        return MaybeT(0.0, false);
+    }
+    if r.t_near > t_min && r.t_near < t_max {
+        return MaybeT(r.t_near, true);
+    }
+    if r.t_far > t_min && r.t_far < t_max {
+        return MaybeT(r.t_far, true);
+    }
+    return MaybeT(0.0, false);
+}
+
+fn intersect_plane(n: vec3<f32>, d: f32, ray: Ray, t_min: f32, t_max: f32) -> MaybeT {
+    let denom = dot(n, ray.dir);
+    if abs(denom) < PLANE_PARALLEL_COS {
+        return MaybeT(0.0, false);
+    }
+    let t = (d - dot(n, ray.origin)) / denom;
+    return MaybeT(t, t > t_min && t < t_max);
+}
+
+struct RayShear {
+    kx: u32,
+    ky: u32,
+    kz: u32,
+    s: vec3<f32>,
+}
+
+fn ray_shear(dir: vec3<f32>) -> RayShear {
+    let a = abs(dir);
+    var kz = 2u;
+    if a.x >= a.y && a.x >= a.z {
+        kz = 0u;
+    } else if a.y >= a.z {
+        kz = 1u;
+    }
+    var kx = (kz + 1u) % 3u;
+    var ky = (kx + 1u) % 3u;
+    if dir[kz] < 0.0 {
+        let tmp = kx;
+        kx = ky;
+        ky = tmp;
+    }
+    return RayShear(kx, ky, kz, vec3<f32>(dir[kx] / dir[kz], dir[ky] / dir[kz], 1.0 / dir[kz]));
+}
+
+struct TriangleHit {
+    t: f32,
+    bu: f32,
+    bv: f32,
+    ok: bool,
+}
+
+// Woop, Benthin & Wald, "Watertight Ray/Triangle Intersection", JCGT 2013 (without the
+// double-precision fallback, which WGSL cannot express; edges stay watertight).
+fn intersect_triangle(va: vec3<f32>, vb: vec3<f32>, vc: vec3<f32>, ray: Ray, sh: RayShear, t_min: f32, t_max: f32) -> TriangleHit {
+    let miss = TriangleHit(0.0, 0.0, 0.0, false);
+    let a = va - ray.origin;
+    let b = vb - ray.origin;
+    let c = vc - ray.origin;
+    let ax = a[sh.kx] - sh.s.x * a[sh.kz];
+    let ay = a[sh.ky] - sh.s.y * a[sh.kz];
+    let bx = b[sh.kx] - sh.s.x * b[sh.kz];
+    let by = b[sh.ky] - sh.s.y * b[sh.kz];
+    let cx = c[sh.kx] - sh.s.x * c[sh.kz];
+    let cy = c[sh.ky] - sh.s.y * c[sh.kz];
+    let u = cx * by - cy * bx;
+    let v = ax * cy - ay * cx;
+    let w = bx * ay - by * ax;
+    if (u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0) {
+        return miss;
+    }
+    let det = u + v + w;
+    if det == 0.0 {
+        return miss;
+    }
+    let t_scaled = u * (sh.s.z * a[sh.kz]) + v * (sh.s.z * b[sh.kz]) + w * (sh.s.z * c[sh.kz]);
+    let inv = 1.0 / det;
+    let t = t_scaled * inv;
+    if !(t > t_min && t < t_max) {
+        return miss;
+    }
+    return TriangleHit(t, v * inv, w * inv, true);
+}
+
+// Nearest hit in (t_min, t_max); ties go to the primitive tested first, as on the CPU.
+fn closest_hit(ray: Ray, t_min: f32, t_max: f32) -> Hit {
+    var best = Hit(t_max, PRIM_NONE, 0u, 0.0, 0.0);
+#ifdef SPHERES
+    if has(FEATURE_SPHERES) {
+        for (var i = 0u; i < header.sphere_count; i++) {
+            let cr = spheres[i].center_radius;
+            let h = intersect_sphere(cr.xyz, cr.w, ray, t_min, best.t);
+            if h.ok {
+                best = Hit(h.t, PRIM_SPHERE, i, 0.0, 0.0);
+            }
+        }
+    }
+#endif
+#ifdef PLANES
+    if has(FEATURE_PLANES) {
+        for (var i = 0u; i < header.plane_count; i++) {
+            let no = planes[i].normal_offset;
+            let h = intersect_plane(no.xyz, no.w, ray, t_min, best.t);
+            if h.ok {
+                best = Hit(h.t, PRIM_PLANE, i, 0.0, 0.0);
+            }
+        }
+    }
+#endif
+#ifdef TRIANGLES
+    if has(FEATURE_TRIANGLES) && header.triangle_count > 0u {
+        let sh = ray_shear(ray.dir);
+        for (var i = 0u; i < header.triangle_count; i++) {
+            let tri = triangles[i];
+            let h = intersect_triangle(tri.a.xyz, tri.b.xyz, tri.c.xyz, ray, sh, t_min, best.t);
+            if h.ok {
+                best = Hit(h.t, PRIM_TRIANGLE, i, h.bu, h.bv);
+            }
+        }
+    }
+#endif
+    return best;
+}
+
+// Multiplies the transmittance by one crossed surface's k_t (or zeroes it when shadows are
+// not filtered). Twin of the `cross` closure of the CPU's shadow_transmittance.
+fn cross_surface(tr: vec3<f32>, material: u32) -> vec3<f32> {
+#ifdef FILTERED_SHADOWS
+    if has(FEATURE_FILTERED_SHADOWS) {
+        return tr * materials[material].kt.xyz;
+    }
+#endif
+    return vec3<f32>(0.0);
+}
+
+fn all_zero(v: vec3<f32>) -> bool {
+    return v.x == 0.0 && v.y == 0.0 && v.z == 0.0;
+}
+
+// Light passing from the ray origin to t_max: 0 behind an opaque occluder, the product of
+// k_t over every surface crossed otherwise.
+fn shadow_transmittance(ray: Ray, t_min: f32, t_max: f32) -> vec3<f32> {
+    var tr = vec3<f32>(1.0);
+#ifdef SPHERES
+    if has(FEATURE_SPHERES) {
+        for (var i = 0u; i < header.sphere_count; i++) {
+            let cr = spheres[i].center_radius;
+            let r = sphere_roots(cr.xyz, cr.w, ray);
+            if r.ok {
+                if r.t_near > t_min && r.t_near < t_max {
+                    tr = cross_surface(tr, spheres[i].material);
+                    if all_zero(tr) {
+                        return tr;
+                    }
+                }
+                if r.t_far > t_min && r.t_far < t_max {
+                    tr = cross_surface(tr, spheres[i].material);
+                    if all_zero(tr) {
+                        return tr;
+                    }
+                }
+            }
+        }
+    }
+#endif
+#ifdef PLANES
+    if has(FEATURE_PLANES) {
+        for (var i = 0u; i < header.plane_count; i++) {
+            let no = planes[i].normal_offset;
+            if intersect_plane(no.xyz, no.w, ray, t_min, t_max).ok {
+                tr = cross_surface(tr, planes[i].material);
+                if all_zero(tr) {
+                    return tr;
+                }
+            }
+        }
+    }
+#endif
+#ifdef TRIANGLES
+    if has(FEATURE_TRIANGLES) && header.triangle_count > 0u {
+        let sh = ray_shear(ray.dir);
+        for (var i = 0u; i < header.triangle_count; i++) {
+            let tri = triangles[i];
+            if intersect_triangle(tri.a.xyz, tri.b.xyz, tri.c.xyz, ray, sh, t_min, t_max).ok {
+                tr = cross_surface(tr, tri.material);
+                if all_zero(tr) {
+                    return tr;
+                }
+            }
+        }
+    }
+#endif
+    return tr;
+}
+
+fn triangle_shading_normal(tri: GpuTriangle, bu: f32, bv: f32, ng: vec3<f32>) -> vec3<f32> {
+    if (tri.flags & TRIANGLE_HAS_NORMALS) == 0u {
+        return ng;
+    }
+    let n = (1.0 - bu - bv) * tri.na.xyz + bu * tri.nb.xyz + bv * tri.nc.xyz;
+    let len = length(n);
+    if len > 0.0 {
+        return n / len;
+    }
+    return ng;
+}

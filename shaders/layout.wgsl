@@ -1,0 +1,139 @@
+// Twin of crates/glint-core/src/layout.rs: the flat scene layout shared with the CPU tracer.
+// A naga reflection test checks every struct's offsets and size and every constant against
+// the Rust definitions, so this file cannot drift from them silently.
+#define_import_path glint::scene_data
+
+const LIGHT_POINT: u32 = 0u;
+const LIGHT_DIRECTIONAL: u32 = 1u;
+const LIGHT_SPOT: u32 = 2u;
+const LIGHT_CASTS_SHADOWS: u32 = 1u;
+const MATERIAL_PHONG: u32 = 1u;
+const MATERIAL_CHECKER: u32 = 2u;
+const TRIANGLE_HAS_NORMALS: u32 = 1u;
+const EPS_TMIN: u32 = 0u;
+const EPS_NUDGE_RAY: u32 = 1u;
+const EPS_NUDGE_NORMAL: u32 = 2u;
+const EPS_ROBUST: u32 = 3u;
+const NO_HIT: u32 = 0xffffffffu;
+
+const FEATURE_POINT_LIGHTS: u32 = 1u;
+const FEATURE_DIRECTIONAL_LIGHTS: u32 = 2u;
+const FEATURE_SPOT_LIGHTS: u32 = 4u;
+const FEATURE_ATTENUATION: u32 = 8u;
+const FEATURE_SHADOWS: u32 = 16u;
+const FEATURE_FILTERED_SHADOWS: u32 = 32u;
+const FEATURE_REFLECTION: u32 = 64u;
+const FEATURE_TRANSMISSION: u32 = 128u;
+const FEATURE_SPHERES: u32 = 256u;
+const FEATURE_PLANES: u32 = 512u;
+const FEATURE_TRIANGLES: u32 = 1024u;
+const FEATURE_CHECKER: u32 = 2048u;
+const FEATURE_BLINN: u32 = 4096u;
+const FEATURE_PHONG: u32 = 8192u;
+const FEATURE_LIGHT_AMBIENT: u32 = 16384u;
+const FEATURE_EMISSION: u32 = 32768u;
+const FEATURE_SPECULAR: u32 = 65536u;
+const FEATURE_JITTER: u32 = 131072u;
+
+// Bits of the per-image status word the shader raises and the host reports.
+const STATUS_LOOP_LIMIT: u32 = 1u;
+const STATUS_STACK_OVERFLOW: u32 = 2u;
+
+// Layout of the statistics buffer: (lo, hi) u32 pairs per ray kind, then the status word.
+const STAT_CAMERA: u32 = 0u;
+const STAT_SHADOW: u32 = 2u;
+const STAT_REFLECTION: u32 = 4u;
+const STAT_REFRACTION: u32 = 6u;
+const STAT_BAILOUT_SAVED: u32 = 8u;
+const STAT_STATUS: u32 = 10u;
+const STAT_WORDS: u32 = 12u;
+
+struct SceneHeader {
+    width: u32,
+    height: u32,
+    spp: u32,
+    max_depth: u32,
+    sphere_count: u32,
+    plane_count: u32,
+    triangle_count: u32,
+    light_count: u32,
+    material_count: u32,
+    features: u32,
+    epsilon_mode: u32,
+    seed: u32,
+    epsilon: f32,
+    bailout: f32,
+    pad_a: u32,
+    pad_b: u32,
+    ambient: vec4<f32>,
+    background: vec4<f32>,
+}
+
+struct GpuCamera {
+    position: vec4<f32>,
+    forward: vec4<f32>,
+    right: vec4<f32>,
+    up: vec4<f32>,
+}
+
+struct GpuMaterial {
+    ka: vec4<f32>,
+    kd: vec4<f32>,
+    ks: vec4<f32>,
+    kr: vec4<f32>,
+    kt: vec4<f32>,
+    emission: vec4<f32>,
+    checker_kd: vec4<f32>,
+    shininess: f32,
+    ior: f32,
+    checker_size: f32,
+    flags: u32,
+}
+
+struct GpuLight {
+    position: vec4<f32>,
+    direction: vec4<f32>,
+    diffuse: vec4<f32>,
+    specular: vec4<f32>,
+    ambient: vec4<f32>,
+    attenuation: vec4<f32>,
+    kind: u32,
+    flags: u32,
+    spot_exponent: f32,
+    spot_cos_cutoff: f32,
+}
+
+struct GpuSphere {
+    center_radius: vec4<f32>,
+    material: u32,
+    object_id: u32,
+    pad: vec2<u32>,
+}
+
+struct GpuPlane {
+    normal_offset: vec4<f32>,
+    material: u32,
+    object_id: u32,
+    pad: vec2<u32>,
+}
+
+struct GpuTriangle {
+    a: vec4<f32>,
+    b: vec4<f32>,
+    c: vec4<f32>,
+    na: vec4<f32>,
+    nb: vec4<f32>,
+    nc: vec4<f32>,
+    material: u32,
+    object_id: u32,
+    flags: u32,
+    pad: u32,
+}
+
+// The pixel rectangle one dispatch renders.
+struct TileParams {
+    origin_x: u32,
+    origin_y: u32,
+    width: u32,
+    height: u32,
+}

@@ -1,0 +1,49 @@
+// Twin of crates/glint-core/src/cpu/offset.rs: where secondary rays start.
+#define_import_path glint::offset
+
+#import glint::scene_data::{EPS_TMIN, EPS_NUDGE_RAY, EPS_NUDGE_NORMAL, EPS_ROBUST}
+#import glint::bindings::header
+
+// Wächter & Binder, Ray Tracing Gems ch. 6, with their f32 constants (the f64 twin scales
+// FLOAT_SCALE to its precision).
+const ORIGIN: f32 = 0.03125;
+const FLOAT_SCALE: f32 = 1.0 / 65536.0;
+const INT_SCALE: f32 = 256.0;
+// INT_SCALE ULPs, relative (f32 epsilon 2^-23).
+const SHADOW_REL: f32 = 256.0 * 1.1920929e-7;
+
+struct Spawn {
+    origin: vec3<f32>,
+    t_min: f32,
+}
+
+fn offset_ray(p: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
+    let of_i = vec3<i32>(INT_SCALE * n);
+    let p_i = bitcast<vec3<f32>>(bitcast<vec3<i32>>(p) + select(of_i, -of_i, p < vec3<f32>(0.0)));
+    return select(p_i, p + FLOAT_SCALE * n, abs(p) < vec3<f32>(ORIGIN));
+}
+
+fn spawn_ray(p: vec3<f32>, p_surface: vec3<f32>, n_side: vec3<f32>, dir: vec3<f32>) -> Spawn {
+    let eps = header.epsilon;
+    switch header.epsilon_mode {
+        case EPS_TMIN: {
+            return Spawn(p, eps);
+        }
+        case EPS_NUDGE_RAY: {
+            return Spawn(p + eps * dir, 0.0);
+        }
+        case EPS_NUDGE_NORMAL: {
+            return Spawn(p + eps * n_side, 0.0);
+        }
+        default: {
+            return Spawn(offset_ray(p_surface, n_side) + eps * n_side, 0.0);
+        }
+    }
+}
+
+fn shadow_t_max(dist: f32) -> f32 {
+    if header.epsilon_mode == EPS_ROBUST {
+        return dist * (1.0 - SHADOW_REL) - header.epsilon;
+    }
+    return dist - header.epsilon;
+}

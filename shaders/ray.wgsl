@@ -1,0 +1,31 @@
+// Twin of crates/glint-core/src/cpu/mod.rs: the ray, the per-invocation ray counts and the
+// feature test shared by all tracer modules.
+#define_import_path glint::ray
+
+#import glint::bindings::header
+
+struct Ray {
+    origin: vec3<f32>,
+    dir: vec3<f32>,
+}
+
+// Rays traced by this invocation, by kind, flushed to the statistics buffer once at the end
+// (twin of the CPU's RayCounts).
+struct RayCounts {
+    camera: u32,
+    shadow: u32,
+    reflection: u32,
+    refraction: u32,
+    bailout_saved: u32,
+}
+
+var<private> ray_counts: RayCounts;
+// Status bits (STATUS_*) raised by this invocation.
+var<private> status: u32;
+
+// Whether any of `bits` is in the scene's feature set. Features the shader was specialised
+// without are removed at compile time by #ifdef; this tests the rest at run time (all bits
+// are set for the unspecialised run, as on the CPU).
+fn has(bits: u32) -> bool {
+    return (header.features & bits) != 0u;
+}

@@ -1,0 +1,203 @@
+// Twin of crates/glint-core/src/cpu/shade.rs: the local model of the seed,
+// I_local = E_m + I_a·k_a + Σ_j f_att,j·S_j·[ I_a,j·k_a + V_j·( I_d,j·k_d·max(N·L,0) + I_s,j·k_s·spec_j ) ]
+#define_import_path glint::shade
+
+#import glint::scene_data::{GpuLight, GpuMaterial, LIGHT_CASTS_SHADOWS, LIGHT_DIRECTIONAL, LIGHT_SPOT, MATERIAL_CHECKER, MATERIAL_PHONG, FEATURE_ATTENUATION, FEATURE_SPOT_LIGHTS, FEATURE_PHONG, FEATURE_CHECKER, FEATURE_SHADOWS, FEATURE_LIGHT_AMBIENT, FEATURE_SPECULAR, FEATURE_EMISSION}
+#import glint::bindings::{header, materials, lights}
+#import glint::ray::{Ray, has, ray_counts}
+#import glint::intersect::{FAR, shadow_transmittance, all_zero}
+#import glint::offset::{spawn_ray, shadow_t_max}
+
+const MIN_LIGHT_DISTANCE: f32 = 1e-20;
+const MIN_HALF_LENGTH: f32 = 1e-12;
+
+// Geometry at a hit (twin of trace.rs's Surface, which lives here so shading can use it).
+struct Surface {
+    p: vec3<f32>,
+    p_surface: vec3<f32>,
+    ng: vec3<f32>,
+    ns: vec3<f32>,
+    material: u32,
+    object_id: u32,
+}
+
+// x^0 = 1 (also for x = 0) and 0 for x ≤ 0 otherwise: WGSL's pow is undefined there.
+fn safe_pow(x: f32, n: f32) -> f32 {
+    if n == 0.0 {
+        return 1.0;
+    }
+    if x <= 0.0 {
+        return 0.0;
+    }
+    return pow(x, n);
+}
+
+fn attenuation_factor(att: vec4<f32>, d: f32) -> f32 {
+    return 1.0 / (att.x + att.y * d + att.z * d * d);
+}
+
+// Cutoff 180 (cos = −1) means no cone and S = 1, as OpenGL.
+fn spot_factor(light: GpuLight, l: vec3<f32>) -> f32 {
+    if light.spot_cos_cutoff <= -1.0 {
+        return 1.0;
+    }
+    let cos_angle = dot(light.direction.xyz, -l);
+    if cos_angle < light.spot_cos_cutoff {
+        return 0.0;
+    }
+    return safe_pow(max(cos_angle, 0.0), light.spot_exponent);
+}
+
+struct LightSample {
+    l: vec3<f32>,
+    dist: f32,
+    f_att: f32,
+    spot: f32,
+}
+
+fn light_sample(light: GpuLight, p: vec3<f32>) -> LightSample {
+    if light.kind == LIGHT_DIRECTIONAL {
+        return LightSample(-light.direction.xyz, FAR, 1.0, 1.0);
+    }
+    let to_light = light.position.xyz - p;
+    let dist = length(to_light);
+    var l = vec3<f32>(0.0);
+    if dist >= MIN_LIGHT_DISTANCE {
+        l = to_light / dist;
+    }
+    var f_att = 1.0;
+#ifdef ATTENUATION
+    if has(FEATURE_ATTENUATION) {
+        f_att = attenuation_factor(light.attenuation, dist);
+    }
+#endif
+    var spot = 1.0;
+#ifdef SPOT_LIGHTS
+    if has(FEATURE_SPOT_LIGHTS) && light.kind == LIGHT_SPOT {
+        spot = spot_factor(light, l);
+    }
+#endif
+    return LightSample(l, dist, f_att, spot);
+}
+
+fn specular_term(mat: GpuMaterial, n: vec3<f32>, l: vec3<f32>, v: vec3<f32>, n_dot_l: f32) -> f32 {
+#ifdef PHONG
+    if has(FEATURE_PHONG) && (mat.flags & MATERIAL_PHONG) != 0u {
+        let r = 2.0 * n_dot_l * n - l;
+        return safe_pow(max(dot(r, v), 0.0), mat.shininess);
+    }
+#endif
+#ifdef BLINN
+    let h = l + v;
+    let len = length(h);
+    if len < MIN_HALF_LENGTH {
+        return 0.0;
+    }
+    return safe_pow(max(dot(n, h) / len, 0.0), mat.shininess);
+#else
+    return 0.0;
+#endif
+}
+
+fn diffuse_colour(mat: GpuMaterial, p: vec3<f32>, ng: vec3<f32>) -> vec3<f32> {
+#ifdef CHECKER
+    if has(FEATURE_CHECKER) && (mat.flags & MATERIAL_CHECKER) != 0u {
+        let a = abs(ng);
+        var uw = p.xy;
+        if a.x >= a.y && a.x >= a.z {
+            uw = p.yz;
+        } else if a.y >= a.z {
+            uw = p.xz;
+        }
+        let inv = 1.0 / mat.checker_size;
+        let parity = (i32(floor(uw.x * inv)) + i32(floor(uw.y * inv))) & 1;
+        if parity == 0 {
+            return mat.kd.xyz;
+        }
+        return mat.checker_kd.xyz;
+    }
+#endif
+    return mat.kd.xyz;
+}
+
+fn light_visibility(light: GpuLight, s: Surface, ng: vec3<f32>, ls: LightSample) -> vec3<f32> {
+    let n_side = select(-ng, ng, dot(ng, ls.l) >= 0.0);
+    let sp = spawn_ray(s.p, s.p_surface, n_side, ls.l);
+    var dir = ls.l;
+    var t_max = FAR;
+    if light.kind != LIGHT_DIRECTIONAL {
+        let to_light = light.position.xyz - sp.origin;
+        let dist = length(to_light);
+        if dist < MIN_LIGHT_DISTANCE {
+            return vec3<f32>(1.0);
+        }
+        dir = to_light / dist;
+        t_max = shadow_t_max(dist);
+    }
+    if t_max <= sp.t_min {
+        return vec3<f32>(1.0);
+    }
+    ray_counts.shadow += 1u;
+    return shadow_transmittance(Ray(sp.origin, dir), sp.t_min, t_max);
+}
+
+// One light's terms at a hit (the pixel probe reads them; shade_local sums them).
+struct LightTerm {
+    f_att: f32,
+    spot: f32,
+    visibility: vec3<f32>,
+    ambient: vec3<f32>,
+    diffuse: vec3<f32>,
+    specular: vec3<f32>,
+    contribution: vec3<f32>,
+}
+
+fn light_term(light: GpuLight, mat: GpuMaterial, s: Surface, n: vec3<f32>, ng: vec3<f32>, v: vec3<f32>, kd: vec3<f32>) -> LightTerm {
+    let ls = light_sample(light, s.p);
+    let scale = ls.f_att * ls.spot;
+    var term = LightTerm(ls.f_att, ls.spot, vec3<f32>(0.0), vec3<f32>(0.0), vec3<f32>(0.0), vec3<f32>(0.0), vec3<f32>(0.0));
+    if scale == 0.0 {
+        return term;
+    }
+#ifdef LIGHT_AMBIENT
+    if has(FEATURE_LIGHT_AMBIENT) {
+        term.ambient = light.ambient.xyz * mat.ka.xyz;
+    }
+#endif
+    let n_dot_l = dot(n, ls.l);
+    if n_dot_l > 0.0 {
+        term.visibility = vec3<f32>(1.0);
+#ifdef SHADOWS
+        if has(FEATURE_SHADOWS) && (light.flags & LIGHT_CASTS_SHADOWS) != 0u {
+            term.visibility = light_visibility(light, s, ng, ls);
+        }
+#endif
+        if !all_zero(term.visibility) {
+            term.diffuse = light.diffuse.xyz * kd * n_dot_l;
+#ifdef SPECULAR
+            if has(FEATURE_SPECULAR) && !all_zero(mat.ks.xyz) {
+                term.specular = light.specular.xyz * mat.ks.xyz * specular_term(mat, n, ls.l, v, n_dot_l);
+            }
+#endif
+        }
+    }
+    term.contribution = scale * (term.ambient + term.visibility * (term.diffuse + term.specular));
+    return term;
+}
+
+fn shade_local(s: Surface, n: vec3<f32>, ng: vec3<f32>, v: vec3<f32>) -> vec3<f32> {
+    let mat = materials[s.material];
+    var emission = vec3<f32>(0.0);
+#ifdef EMISSION
+    if has(FEATURE_EMISSION) {
+        emission = mat.emission.xyz;
+    }
+#endif
+    let ambient = header.ambient.xyz * mat.ka.xyz;
+    let kd = diffuse_colour(mat, s.p, ng);
+    var sum = vec3<f32>(0.0);
+    for (var j = 0u; j < header.light_count; j++) {
+        sum += light_term(lights[j], mat, s, n, ng, v, kd).contribution;
+    }
+    return emission + ambient + sum;
+}

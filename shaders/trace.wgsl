@@ -1,0 +1,269 @@
+// Twin of crates/glint-core/src/cpu/trace.rs: the Whitted ray tree and the pixel loop.
+//
+// WGSL has no recursion, so the tree is walked with an explicit stack of (ray, path weight,
+// depth). Each node adds weight × local shading, where the CPU adds k·I(child) on return:
+// the same terms with the same bailout decisions, summed in another order.
+#import glint::scene_data::{GpuSphere, GpuPlane, GpuTriangle, NO_HIT, EPS_ROBUST, FEATURE_REFLECTION, FEATURE_TRANSMISSION, FEATURE_JITTER, STATUS_LOOP_LIMIT, STATUS_STACK_OVERFLOW, STAT_STATUS, STAT_CAMERA, STAT_SHADOW, STAT_REFLECTION, STAT_REFRACTION, STAT_BAILOUT_SAVED}
+#import glint::bindings::{header, camera, tile, materials, spheres, planes, triangles, output, stats}
+#import glint::ray::{Ray, RayCounts, has, ray_counts, status}
+#import glint::camera::{camera_ray, sample_offset}
+#import glint::intersect::{Hit, FAR, PRIM_NONE, PRIM_SPHERE, PRIM_PLANE, closest_hit, triangle_shading_normal, all_zero}
+#import glint::offset::spawn_ray
+#import glint::shade::{Surface, shade_local}
+
+struct SampleResult {
+    radiance: vec3<f32>,
+    object: u32,
+}
+
+// Deferred rays the stack holds: a depth-first walk that follows one child at once defers
+// at most one ray per level, so max_depth entries suffice.
+const STACK_SIZE: u32 = #{STACK_SIZE}u;
+// Bound of the tree walk per sample; reaching it raises STATUS_LOOP_LIMIT. Below lavapipe's
+// silent cut-off of 65,535 loop iterations.
+const MAX_TREE_NODES: u32 = 65000u;
+
+struct StackEntry {
+    origin: vec3<f32>,
+    t_min: f32,
+    dir: vec3<f32>,
+    depth: u32,
+    weight: vec3<f32>,
+}
+
+var<private> stack: array<StackEntry, STACK_SIZE>;
+var<private> stack_top: u32;
+
+fn surface_at(ray: Ray, hit: Hit) -> Surface {
+    let p = ray.origin + hit.t * ray.dir;
+    let robust = header.epsilon_mode == EPS_ROBUST;
+#ifdef SPHERES
+    if hit.prim == PRIM_SPHERE {
+        let s = spheres[hit.index];
+        let c = s.center_radius.xyz;
+        let ng = normalize(p - c);
+        let p_surface = select(p, c + s.center_radius.w * ng, robust);
+        return Surface(p, p_surface, ng, ng, s.material, s.object_id);
+    }
+#endif
+#ifdef PLANES
+    if hit.prim == PRIM_PLANE {
+        let pl = planes[hit.index];
+        let ng = pl.normal_offset.xyz;
+        let p_surface = select(p, p - (dot(ng, p) - pl.normal_offset.w) * ng, robust);
+        return Surface(p, p_surface, ng, ng, pl.material, pl.object_id);
+    }
+#endif
+#ifdef TRIANGLES
+    let tri = triangles[hit.index];
+    let ng = normalize(cross(tri.b.xyz - tri.a.xyz, tri.c.xyz - tri.a.xyz));
+    let ns = triangle_shading_normal(tri, hit.bu, hit.bv, ng);
+    let p_surface = select(p, (1.0 - hit.bu - hit.bv) * tri.a.xyz + hit.bu * tri.b.xyz + hit.bv * tri.c.xyz, robust);
+    return Surface(p, p_surface, ng, ns, tri.material, tri.object_id);
+#else
+    return Surface(p, p, vec3<f32>(0.0, 1.0, 0.0), vec3<f32>(0.0, 1.0, 0.0), 0u, NO_HIT);
+#endif
+}
+
+#ifdef RECURSION
+#ifdef TRANSMISSION
+fn refract_dir(d: vec3<f32>, n: vec3<f32>, eta: f32) -> vec4<f32> {
+    // xyz: direction; w: 1 if refracted, 0 under total internal reflection.
+    let cos_i = -dot(d, n);
+    let k = 1.0 - eta * eta * (1.0 - cos_i * cos_i);
+    if k < 0.0 {
+        return vec4<f32>(0.0);
+    }
+    return vec4<f32>(normalize(eta * d + (eta * cos_i - sqrt(k)) * n), 1.0);
+}
+
+#endif
+
+fn reflect_dir(d: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
+    return normalize(d - 2.0 * dot(d, n) * n);
+}
+
+fn max_channel(v: vec3<f32>) -> f32 {
+    return max(max(v.x, v.y), v.z);
+}
+
+fn push_ray(entry: StackEntry) {
+    if stack_top >= STACK_SIZE {
+        status |= STATUS_STACK_OVERFLOW;
+        return;
+    }
+    stack[stack_top] = entry;
+    stack_top += 1u;
+}
+#endif
+
+// What shading a hit yields: its weighted local radiance and, when the ray tree goes on, the
+// next ray to follow (the other child, if any, waits on the stack).
+struct Shaded {
+    radiance: vec3<f32>,
+    next: StackEntry,
+    has_next: bool,
+}
+
+// weight × local shading at a hit, and the children whose path weight passes the bailout:
+// the mirror child continues at once, a refracted child is pushed (or continues, when there is
+// no mirror child). Keeping one child out of the stack spares most scratch-memory traffic.
+fn shade_hit(ray: Ray, hit: Hit, depth: u32, weight: vec3<f32>) -> Shaded {
+    let s = surface_at(ray, hit);
+    let front = dot(ray.dir, s.ng) < 0.0;
+    let ng = select(-s.ng, s.ng, front);
+    let ns = select(-s.ns, s.ns, front);
+    let v = -ray.dir;
+    var out = Shaded(weight * shade_local(s, ns, ng, v), StackEntry(vec3<f32>(0.0), 0.0, vec3<f32>(0.0), 0u, vec3<f32>(0.0)), false);
+#ifdef RECURSION
+    if depth >= header.max_depth || !has(FEATURE_REFLECTION | FEATURE_TRANSMISSION) {
+        return out;
+    }
+    let mat = materials[s.material];
+    let kr = mat.kr.xyz;
+    let kt = mat.kt.xyz;
+    var k_mirror = kr;
+    var refracted = vec4<f32>(0.0);
+#ifdef TRANSMISSION
+    if has(FEATURE_TRANSMISSION) && !all_zero(kt) {
+        let eta = select(mat.ior, 1.0 / mat.ior, front);
+        refracted = refract_dir(ray.dir, ns, eta);
+        if refracted.w == 0.0 {
+            k_mirror += kt;
+        }
+    }
+    if refracted.w != 0.0 {
+        let w = weight * kt;
+        if max_channel(w) < header.bailout {
+            ray_counts.bailout_saved += 1u;
+        } else {
+            ray_counts.refraction += 1u;
+            let sp = spawn_ray(s.p, s.p_surface, -ng, refracted.xyz);
+            out.next = StackEntry(sp.origin, sp.t_min, refracted.xyz, depth + 1u, w);
+            out.has_next = true;
+        }
+    }
+#endif
+    if !all_zero(k_mirror) {
+        let w = weight * k_mirror;
+        if max_channel(w) < header.bailout {
+            ray_counts.bailout_saved += 1u;
+        } else {
+            ray_counts.reflection += 1u;
+            let dir = reflect_dir(ray.dir, ns);
+            let sp = spawn_ray(s.p, s.p_surface, ng, dir);
+            if out.has_next {
+                push_ray(out.next);
+            }
+            out.next = StackEntry(sp.origin, sp.t_min, dir, depth + 1u, w);
+            out.has_next = true;
+        }
+    }
+#endif
+    return out;
+}
+
+// Radiance along a camera ray: its whole tree, walked depth first. Returns the radiance and
+// the id of the first object hit.
+fn trace_ray(ray: Ray) -> SampleResult {
+    var result = SampleResult(vec3<f32>(0.0), NO_HIT);
+    var e = StackEntry(ray.origin, 0.0, ray.dir, 0u, vec3<f32>(1.0));
+    stack_top = 0u;
+    for (var n = 0u; n < MAX_TREE_NODES; n++) {
+        let r = Ray(e.origin, e.dir);
+        let hit = closest_hit(r, e.t_min, FAR);
+        var has_next = false;
+        if hit.prim == PRIM_NONE {
+            result.radiance += e.weight * header.background.xyz;
+        } else {
+            if n == 0u {
+                result.object = object_id(hit);
+            }
+            let shaded = shade_hit(r, hit, e.depth, e.weight);
+            result.radiance += shaded.radiance;
+            e = shaded.next;
+            has_next = shaded.has_next;
+        }
+        if !has_next {
+            if stack_top == 0u {
+                return result;
+            }
+            stack_top -= 1u;
+            e = stack[stack_top];
+        }
+    }
+    status |= STATUS_LOOP_LIMIT;
+    return result;
+}
+
+fn object_id(hit: Hit) -> u32 {
+#ifdef SPHERES
+    if hit.prim == PRIM_SPHERE {
+        return spheres[hit.index].object_id;
+    }
+#endif
+#ifdef PLANES
+    if hit.prim == PRIM_PLANE {
+        return planes[hit.index].object_id;
+    }
+#endif
+#ifdef TRIANGLES
+    return triangles[hit.index].object_id;
+#else
+    return NO_HIT;
+#endif
+}
+
+fn render_sample(x: u32, y: u32, sample_index: u32) -> SampleResult {
+    let pixel = y * header.width + x;
+    let offset = sample_offset(pixel, sample_index, header.spp, header.seed, has(FEATURE_JITTER));
+    let ray = camera_ray(camera, header.width, header.height, x, y, offset);
+    ray_counts.camera += 1u;
+    return trace_ray(ray);
+}
+
+fn render_pixel(x: u32, y: u32) -> SampleResult {
+    let first = render_sample(x, y, 0u);
+    var sum = first.radiance;
+    for (var s = 1u; s < header.spp; s++) {
+        sum += render_sample(x, y, s).radiance;
+    }
+    return SampleResult(sum / f32(header.spp), first.object);
+}
+
+// Adds a count to a (lo, hi) pair of the statistics buffer with carry, so that counts past
+// 2^32 stay exact.
+fn add_stat(index: u32, value: u32) {
+    if value == 0u {
+        return;
+    }
+    let old = atomicAdd(&stats[index], value);
+    if old + value < old {
+        atomicAdd(&stats[index + 1u], 1u);
+    }
+}
+
+@compute @workgroup_size(8, 8, 1)
+fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
+    if gid.x >= tile.width || gid.y >= tile.height {
+        return;
+    }
+    let x = tile.origin_x + gid.x;
+    let y = tile.origin_y + gid.y;
+    ray_counts = RayCounts(0u, 0u, 0u, 0u, 0u);
+    status = 0u;
+    let result = render_pixel(x, y);
+    var id = -1.0;
+    if result.object != NO_HIT {
+        id = f32(result.object);
+    }
+    output[y * header.width + x] = vec4<f32>(result.radiance, id);
+    add_stat(STAT_CAMERA, ray_counts.camera);
+    add_stat(STAT_SHADOW, ray_counts.shadow);
+    add_stat(STAT_REFLECTION, ray_counts.reflection);
+    add_stat(STAT_REFRACTION, ray_counts.refraction);
+    add_stat(STAT_BAILOUT_SAVED, ray_counts.bailout_saved);
+    if status != 0u {
+        atomicOr(&stats[STAT_STATUS], status);
+    }
+}

@@ -1,0 +1,97 @@
+//! Running one render on either backend, with the timings the table reports.
+
+use std::time::{Duration, Instant};
+
+use anyhow::Context;
+use glint_core::cpu::RayCounts;
+use glint_core::layout::{STATUS_LOOP_LIMIT, STATUS_STACK_OVERFLOW};
+use glint_core::render::{Tile, tile_count};
+use glint_core::{CpuOptions, FlatScene, HdrImage, RenderControl, render_cpu};
+use glint_gpu::{AdapterRequest, GpuContext, GpuOptions, GpuTracer};
+use indicatif::{ProgressBar, ProgressStyle};
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum Backend {
+    Cpu,
+    Gpu,
+    Both,
+}
+
+/// One finished render.
+#[derive(Debug)]
+pub struct Run {
+    pub backend: &'static str,
+    pub image: HdrImage,
+    pub counts: RayCounts,
+    /// The render itself.
+    pub render: Duration,
+    /// Including set-up (thread pool or device, pipeline, upload, readback).
+    pub total: Duration,
+    /// Worker threads (CPU) or the adapter (GPU).
+    pub device: String,
+    pub gpu_status: u32,
+}
+
+impl Run {
+    pub fn mrays(&self) -> f64 {
+        self.counts.total() as f64 / self.render.as_secs_f64().max(1e-9) / 1e6
+    }
+}
+
+pub fn run_cpu(flat: &FlatScene, options: &CpuOptions, quiet: bool) -> anyhow::Result<Run> {
+    let start = Instant::now();
+    let tiles = tile_count(flat.header.width, flat.header.height) as u64;
+    let bar = if quiet || !std::io::IsTerminal::is_terminal(&std::io::stderr()) {
+        ProgressBar::hidden()
+    } else {
+        let bar = ProgressBar::new(tiles);
+        bar.set_style(
+            ProgressStyle::with_template("{spinner} cpu [{bar:40}] {percent:>3}% {elapsed_precise} eta {eta}")
+                .context("progress bar template")?
+                .progress_chars("=> "),
+        );
+        bar
+    };
+    let on_tile = |_: &Tile| bar.inc(1);
+    let r = render_cpu(flat, options, RenderControl { cancel: None, on_tile: Some(&on_tile) })?;
+    bar.finish_and_clear();
+    Ok(Run {
+        backend: "cpu",
+        image: r.image,
+        counts: r.counts,
+        render: r.elapsed,
+        total: start.elapsed(),
+        device: format!("{} threads", r.threads),
+        gpu_status: 0,
+    })
+}
+
+/// Opens the GPU named by `--adapter` (or `WGPU_ADAPTER_NAME`).
+pub fn open_gpu(adapter: Option<&str>) -> anyhow::Result<GpuTracer> {
+    let request = AdapterRequest { name: adapter.map(str::to_string), prefer_cpu: false };
+    let ctx = GpuContext::new(&request).context("cannot start the GPU tracer")?;
+    Ok(GpuTracer::new(ctx))
+}
+
+pub fn run_gpu(tracer: &GpuTracer, flat: &FlatScene, options: &GpuOptions) -> anyhow::Result<Run> {
+    let start = Instant::now();
+    let r = tracer.render(flat, options).context("GPU render failed")?;
+    if r.status & STATUS_LOOP_LIMIT != 0 {
+        eprintln!("warning: the GPU tracer hit its loop bound; some ray trees were cut (see docs/numerics.md)");
+    }
+    if r.status & STATUS_STACK_OVERFLOW != 0 {
+        eprintln!(
+            "warning: a ray tree branched deeper than the GPU stack ({} levels); its deepest rays were dropped",
+            r.key.stack_size
+        );
+    }
+    Ok(Run {
+        backend: "gpu",
+        image: r.image,
+        counts: r.counts,
+        render: r.render_time,
+        total: start.elapsed(),
+        device: tracer.context().adapter.to_string(),
+        gpu_status: r.status,
+    })
+}

@@ -1,0 +1,202 @@
+//! What `glint render` writes and prints: images with metadata, the timing/error table, JSON.
+
+use std::path::{Path, PathBuf};
+use std::time::Duration;
+
+use glint_core::compare::{HEATMAP_LOG10_MAX, HEATMAP_LOG10_MIN, ImageErrors, diff_heatmap};
+use glint_core::cpu::RayCounts;
+use glint_core::image::{write_image, write_png_rgb8};
+use glint_core::scene::RenderSettings;
+use serde::Serialize;
+
+use super::backend::Run;
+
+/// Render settings as PNG tEXt chunks (`glint:*` keys).
+pub fn metadata(scene: &str, s: &RenderSettings, run: &Run, specialised: bool) -> Vec<(String, String)> {
+    [
+        ("Software", format!("glint {}", env!("CARGO_PKG_VERSION"))),
+        ("glint:scene", scene.to_string()),
+        ("glint:size", format!("{}x{}", s.width, s.height)),
+        ("glint:spp", s.spp.to_string()),
+        ("glint:depth", s.max_depth.to_string()),
+        ("glint:epsilon", s.epsilon.to_string()),
+        ("glint:epsilon_mode", s.epsilon_mode.name().to_string()),
+        ("glint:bailout", s.bailout.to_string()),
+        ("glint:seed", s.seed.to_string()),
+        ("glint:backend", run.backend.to_string()),
+        ("glint:device", run.device.clone()),
+        ("glint:specialised", specialised.to_string()),
+        ("glint:time_ms", format!("{:.3}", run.render.as_secs_f64() * 1e3)),
+        ("glint:rays", run.counts.total().to_string()),
+    ]
+    .into_iter()
+    .map(|(k, v)| (k.to_string(), v))
+    .collect()
+}
+
+/// `out.png` → `out-cpu.png` (and so on) when several images come from one run.
+pub fn suffixed(path: &Path, suffix: &str) -> PathBuf {
+    let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+    let ext = path.extension().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "png".into());
+    path.with_file_name(format!("{stem}-{suffix}.{ext}"))
+}
+
+pub fn write_run(path: &Path, run: &Run, metadata: &[(String, String)]) -> anyhow::Result<()> {
+    write_image(path, &run.image, metadata)?;
+    Ok(())
+}
+
+/// The false-colour difference image, its scale in the metadata.
+pub fn write_diff(path: &Path, cpu: &Run, gpu: &Run, mut metadata: Vec<(String, String)>) -> anyhow::Result<()> {
+    metadata.retain(|(k, _)| k != "glint:backend" && k != "glint:time_ms" && k != "glint:rays" && k != "glint:device");
+    metadata.push(("glint:backend".into(), "diff gpu-cpu".into()));
+    metadata.push((
+        "glint:diff_scale".into(),
+        format!(
+            "per-pixel max-channel |gpu - cpu| of linear radiance; black = identical; magma colour map over \
+             log10 |diff| from {HEATMAP_LOG10_MIN} (dark) to {HEATMAP_LOG10_MAX} (bright)"
+        ),
+    ));
+    let rgb = diff_heatmap(&cpu.image, &gpu.image);
+    let png = path.with_extension("png");
+    write_png_rgb8(&png, cpu.image.width, cpu.image.height, &rgb, &metadata)?;
+    Ok(())
+}
+
+pub fn ms(d: Duration) -> f64 {
+    d.as_secs_f64() * 1e3
+}
+
+pub fn fmt_counts(c: &RayCounts) -> String {
+    format!(
+        "rays: {} camera, {} shadow, {} reflection, {} refraction ({} total), {} saved by bailout",
+        c.camera,
+        c.shadow,
+        c.reflection,
+        c.refraction,
+        c.total(),
+        c.bailout_saved
+    )
+}
+
+#[derive(Serialize)]
+struct JsonRun<'a> {
+    backend: &'a str,
+    device: &'a str,
+    render_ms: f64,
+    total_ms: f64,
+    mrays_per_s: f64,
+    rays: JsonCounts,
+    gpu_status: u32,
+}
+
+#[derive(Serialize)]
+struct JsonCounts {
+    camera: u64,
+    shadow: u64,
+    reflection: u64,
+    refraction: u64,
+    total: u64,
+    saved_by_bailout: u64,
+}
+
+#[derive(Serialize)]
+struct JsonErrors {
+    max_abs: f64,
+    mean_abs: f64,
+    rmse: f64,
+    rel_mse: f64,
+    /// null when the images are identical (infinite PSNR).
+    psnr_db: Option<f64>,
+    flip_mean: f64,
+    first_hit_mismatch_percent: f64,
+    p99_abs_same_hit: f64,
+    nonfinite_pixels: usize,
+}
+
+#[derive(Serialize)]
+struct JsonReport<'a> {
+    scene: &'a str,
+    width: u32,
+    height: u32,
+    spp: u32,
+    depth: u32,
+    runs: Vec<JsonRun<'a>>,
+    gpu_vs_cpu: Option<JsonErrors>,
+    outputs: Vec<String>,
+}
+
+pub fn print_json(
+    scene: &str,
+    s: &RenderSettings,
+    runs: &[Run],
+    errors: Option<&ImageErrors>,
+    outputs: &[PathBuf],
+) -> anyhow::Result<()> {
+    let report = JsonReport {
+        scene,
+        width: s.width,
+        height: s.height,
+        spp: s.spp,
+        depth: s.max_depth,
+        runs: runs
+            .iter()
+            .map(|r| JsonRun {
+                backend: r.backend,
+                device: &r.device,
+                render_ms: ms(r.render),
+                total_ms: ms(r.total),
+                mrays_per_s: r.mrays(),
+                rays: JsonCounts {
+                    camera: r.counts.camera,
+                    shadow: r.counts.shadow,
+                    reflection: r.counts.reflection,
+                    refraction: r.counts.refraction,
+                    total: r.counts.total(),
+                    saved_by_bailout: r.counts.bailout_saved,
+                },
+                gpu_status: r.gpu_status,
+            })
+            .collect(),
+        gpu_vs_cpu: errors.map(|e| JsonErrors {
+            max_abs: e.max_abs,
+            mean_abs: e.mean_abs,
+            rmse: e.rmse,
+            rel_mse: e.rel_mse,
+            psnr_db: e.psnr.is_finite().then_some(e.psnr),
+            flip_mean: e.flip_mean,
+            first_hit_mismatch_percent: 100.0 * e.first_hit_mismatch,
+            p99_abs_same_hit: e.p99_abs_same_hit,
+            nonfinite_pixels: e.nonfinite,
+        }),
+        outputs: outputs.iter().map(|p| p.display().to_string()).collect(),
+    };
+    println!("{}", serde_json::to_string_pretty(&report)?);
+    Ok(())
+}
+
+/// The human-readable table: one row per backend, then the errors of GPU against CPU.
+pub fn print_table(scene: &str, s: &RenderSettings, runs: &[Run], errors: Option<&ImageErrors>, outputs: &[PathBuf]) {
+    println!("{scene}: {}x{} {} spp depth {}", s.width, s.height, s.spp, s.max_depth);
+    println!("  {:<8} {:>12} {:>12} {:>9}  device", "backend", "render ms", "total ms", "Mrays/s");
+    for r in runs {
+        println!("  {:<8} {:>12.1} {:>12.1} {:>9.2}  {}", r.backend, ms(r.render), ms(r.total), r.mrays(), r.device);
+        println!("           {}", fmt_counts(&r.counts));
+    }
+    if let Some(e) = errors {
+        let psnr = if e.psnr.is_finite() { format!("{:.1} dB", e.psnr) } else { "inf (identical)".into() };
+        println!(
+            "  gpu vs cpu: max abs {:.3e}, mean abs {:.3e}, RMSE {:.3e}, PSNR {psnr}, FLIP mean {:.5},",
+            e.max_abs, e.mean_abs, e.rmse, e.flip_mean
+        );
+        println!(
+            "              first-hit mismatch {:.3} %, p99 |diff| on same-hit pixels {:.3e}, non-finite pixels {}",
+            100.0 * e.first_hit_mismatch,
+            e.p99_abs_same_hit,
+            e.nonfinite
+        );
+    }
+    for o in outputs {
+        println!("  wrote {}", o.display());
+    }
+}

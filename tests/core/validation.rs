@@ -1,0 +1,257 @@
+//! Scene validation: each invalid input is rejected with a message that names the file, the
+//! field (path) and the allowed range; valid boundary values pass; k_r + k_t > 1 only warns.
+
+use std::path::Path;
+
+use glint_core::scene::{SceneError, parse_scene};
+
+/// A valid scene using every kind of light and object. Cases below replace exactly one
+/// snippet of it (checked to occur exactly once).
+const BASE: &str = r#"
+[camera]
+position = [0.0, 1.0, -5.0]
+look_at = [0.0, 0.5, 0.0]
+
+[materials.red]
+ka = 0.1
+kd = [0.7, 0.1, 0.1]
+ks = 0.3
+shininess = 32.0
+
+[materials.glass]
+ka = 0.0
+kd = 0.0
+kr = 0.1
+kt = 0.8
+ior = 1.5
+
+[[lights]]
+type = "point"
+position = [2.0, 4.0, -2.0]
+attenuation = { c = 1.0, l = 0.1, q = 0.01 }
+
+[[lights]]
+type = "directional"
+direction = [0.3, -1.0, 0.2]
+
+[[lights]]
+type = "spot"
+position = [-2.0, 4.0, 0.0]
+direction = [0.5, -1.0, 0.0]
+exponent = 8.0
+cutoff = 30.0
+
+[[objects]]
+type = "sphere"
+center = [0.0, 1.0, 0.0]
+radius = 1.0
+material = "red"
+
+[[objects]]
+type = "plane"
+point = [0.0, 0.0, 0.0]
+normal = [0.0, 1.0, 0.0]
+material = "red"
+
+[[objects]]
+type = "mesh"
+vertices = [[-1.0, 0.0, 2.0], [1.0, 0.0, 2.0], [0.0, 2.0, 2.0]]
+triangles = [[0, 1, 2]]
+normals = [[0.0, 0.0, 1.0], [0.0, 0.0, 1.0], [0.0, 0.0, 1.0]]
+material = "glass"
+"#;
+
+const FILE: &str = "cases/bad-scene.toml";
+
+fn edited(from: &str, to: &str) -> String {
+    assert_eq!(BASE.matches(from).count(), 1, "snippet {from:?} must occur exactly once in BASE");
+    BASE.replacen(from, to, 1)
+}
+
+/// Parses `text` and expects a validation error for `field` whose message contains every
+/// `fragment` (the allowed range, as a reader would look for it).
+fn expect_invalid(text: &str, field: &str, fragments: &[&str]) {
+    let err = match parse_scene(text, Path::new(FILE)) {
+        Ok(_) => panic!("expected an error for {field}, but the scene was accepted:\n{text}"),
+        Err(e) => e,
+    };
+    let msg = err.to_string();
+    assert!(matches!(err, SceneError::Invalid { .. }), "{field}: not a validation error: {msg}");
+    assert!(msg.contains(FILE), "{field}: message does not name the file: {msg}");
+    let issue = err
+        .issues()
+        .iter()
+        .find(|i| i.field == field)
+        .unwrap_or_else(|| panic!("no issue for field {field}; got: {msg}"));
+    // Only the edited field is wrong (BASE is valid).
+    assert!(err.issues().iter().all(|i| i.field == field), "{field}: unrelated issues too: {msg}");
+    let line = issue.to_string();
+    assert!(line.starts_with(&format!("{field}: ")), "{field}: line does not start with the field: {line}");
+    assert!(msg.contains(&line), "{field}: the message does not show the issue line {line:?}: {msg}");
+    for f in fragments {
+        assert!(line.contains(f), "{field}: message {line:?} does not contain {f:?}");
+    }
+}
+
+fn expect_valid(text: &str, what: &str) -> Vec<String> {
+    match parse_scene(text, Path::new(FILE)) {
+        Ok((_, warnings)) => warnings.iter().map(ToString::to_string).collect(),
+        Err(e) => panic!("{what}: a valid scene was rejected: {e}"),
+    }
+}
+
+#[test]
+fn base_scene_is_valid_without_warnings() {
+    assert!(expect_valid(BASE, "BASE").is_empty());
+}
+
+#[test]
+fn non_finite_numbers() {
+    expect_invalid(&edited("radius = 1.0", "radius = nan"), "objects[0].radius", &["NaN", "1e9"]);
+    expect_invalid(&edited("radius = 1.0", "radius = inf"), "objects[0].radius", &["inf", "1e9"]);
+    expect_invalid(&edited("center = [0.0, 1.0, 0.0]", "center = [0.0, inf, 0.0]"), "objects[0].center", &["y", "1e9"]);
+    expect_invalid(&edited("kd = [0.7, 0.1, 0.1]", "kd = [0.7, nan, 0.1]"), "materials.red.kd", &["g", "NaN", "[0,"]);
+    expect_invalid(&edited("shininess = 32.0", "shininess = -inf"), "materials.red.shininess", &["[0, 1000000]"]);
+    expect_invalid(
+        &edited("position = [2.0, 4.0, -2.0]", "position = [nan, 4.0, -2.0]"),
+        "lights[0].position",
+        &["x", "1e9"],
+    );
+    expect_invalid(
+        &edited("position = [0.0, 1.0, -5.0]", "position = [0.0, 1.0, -inf]"),
+        "camera.position",
+        &["z", "1e9"],
+    );
+    expect_invalid(&edited("exponent = 8.0", "exponent = nan"), "lights[2].exponent", &["[0,"]);
+}
+
+#[test]
+fn radius_must_be_positive() {
+    expect_invalid(&edited("radius = 1.0", "radius = -1.0"), "objects[0].radius", &["-1", "(0, 1e9]"]);
+    expect_invalid(&edited("radius = 1.0", "radius = 0.0"), "objects[0].radius", &["(0, 1e9]"]);
+}
+
+#[test]
+fn zero_length_directions() {
+    expect_invalid(&edited("normal = [0.0, 1.0, 0.0]", "normal = [0.0, 0.0, 0.0]"), "objects[1].normal", &["length"]);
+    expect_invalid(
+        &edited("direction = [0.3, -1.0, 0.2]", "direction = [0.0, 0.0, 0.0]"),
+        "lights[1].direction",
+        &["length"],
+    );
+    expect_invalid(
+        &edited("direction = [0.5, -1.0, 0.0]", "direction = [0.0, 0.0, 0.0]"),
+        "lights[2].direction",
+        &["length"],
+    );
+    expect_invalid(
+        &edited("normals = [[0.0, 0.0, 1.0],", "normals = [[0.0, 0.0, 0.0],"),
+        "objects[2].normals[0]",
+        &["length"],
+    );
+}
+
+#[test]
+fn ior_must_be_positive() {
+    for bad in ["0.0", "-1.5"] {
+        expect_invalid(&edited("ior = 1.5", &format!("ior = {bad}")), "materials.glass.ior", &["(0, 1000]"]);
+    }
+    // Any positive ior is physical enough (ior < 1: a bubble).
+    expect_valid(&edited("ior = 1.5", "ior = 0.5"), "ior 0.5");
+}
+
+#[test]
+fn attenuation_that_can_reach_zero() {
+    let att = "attenuation = { c = 1.0, l = 0.1, q = 0.01 }";
+    let field = "lights[0].attenuation";
+    // c + l·d + q·d² at d = 0 is c.
+    expect_invalid(&edited(att, "attenuation = { c = 0.0, l = 0.1, q = 0.01 }"), field, &["c must be", "c = 0"]);
+    expect_invalid(&edited(att, "attenuation = { c = -1.0, l = 1.0, q = 1.0 }"), field, &["c must be", "c = -1"]);
+    // Falls forever: q < 0, or q = 0 and l < 0.
+    expect_invalid(&edited(att, "attenuation = { c = 1.0, l = 1.0, q = -0.01 }"), field, &["q ≥ 0"]);
+    expect_invalid(&edited(att, "attenuation = { c = 1.0, l = -0.1 }"), field, &["l ≥ 0"]);
+    // l < 0 with a small q: minimum 1 − 1/(4·0.1) = −1.5 at d = 5.
+    expect_invalid(&edited(att, "attenuation = { c = 1.0, l = -1.0, q = 0.1 }"), field, &["d = 5"]);
+    // Exactly zero at its minimum: 1 − 4/(4·1) = 0 at d = −l/(2q) = 1.
+    expect_invalid(&edited(att, "attenuation = { c = 1.0, l = -2.0, q = 1.0 }"), field, &["d = 1"]);
+    // The same on a spot light.
+    expect_invalid(
+        &edited("exponent = 8.0", "exponent = 8.0\nattenuation = { c = 0.0, q = 1.0 }"),
+        "lights[2].attenuation",
+        &["c must be", "c = 0"],
+    );
+    // l < 0 whose minimum stays positive is fine: 1 − 1/(4·1) = 0.75.
+    expect_valid(&edited(att, "attenuation = { c = 1.0, l = -1.0, q = 1.0 }"), "l < 0, positive minimum");
+    expect_valid(&edited(att, "attenuation = { c = 0.5 }"), "constant attenuation");
+}
+
+#[test]
+fn spot_cutoff_range() {
+    for bad in ["120.0", "-1.0", "90.5", "179.0", "180.5", "nan"] {
+        expect_invalid(&edited("cutoff = 30.0", &format!("cutoff = {bad}")), "lights[2].cutoff", &["[0, 90]", "180"]);
+    }
+    for good in ["0.0", "90.0", "180.0", "45.5"] {
+        expect_valid(&edited("cutoff = 30.0", &format!("cutoff = {good}")), &format!("cutoff {good}"));
+    }
+}
+
+#[test]
+fn negative_k_values() {
+    for (from, to, field, channel) in [
+        ("ka = 0.1", "ka = -0.1", "materials.red.ka", "r"),
+        ("kd = [0.7, 0.1, 0.1]", "kd = [0.7, -0.1, 0.1]", "materials.red.kd", "g"),
+        ("ks = 0.3", "ks = [0.3, 0.3, -1e-9]", "materials.red.ks", "b"),
+        ("kr = 0.1", "kr = -0.5", "materials.glass.kr", "r"),
+        ("kt = 0.8", "kt = [-0.8, 0.8, 0.8]", "materials.glass.kt", "r"),
+    ] {
+        expect_invalid(&edited(from, to), field, &[&format!("channel {channel}"), "[0, 1e9]"]);
+    }
+}
+
+#[test]
+fn unknown_material_reference() {
+    let text = edited("material = \"glass\"", "material = \"glas\"");
+    expect_invalid(&text, "objects[2].material", &["'glas'", "glass", "red"]);
+}
+
+#[test]
+fn mesh_index_out_of_range() {
+    expect_invalid(
+        &edited("triangles = [[0, 1, 2]]", "triangles = [[0, 1, 3]]"),
+        "objects[2].triangles[0]",
+        &["3", "[0, 2]"],
+    );
+}
+
+/// A syntax or schema error (serde) rather than a validation error: the message must still
+/// name the file and the offending key.
+fn expect_parse_error(text: &str, fragments: &[&str]) {
+    let err = parse_scene(text, Path::new(FILE)).err().unwrap_or_else(|| panic!("accepted:\n{text}"));
+    let msg = err.to_string();
+    assert!(matches!(err, SceneError::Parse { .. }), "not a parse error: {msg}");
+    assert!(msg.contains(FILE), "message does not name the file: {msg}");
+    for f in fragments {
+        assert!(msg.contains(f), "message does not contain {f:?}: {msg}");
+    }
+}
+
+#[test]
+fn unknown_fields_are_rejected() {
+    // A typo in a plain table, in a material, in a light, in an inline table and in an object
+    // (internally tagged): each is an error naming the unknown key, never silently ignored.
+    expect_parse_error(&edited("look_at = [0.0, 0.5, 0.0]", "look_at = [0.0, 0.5, 0.0]\nfov = 40.0"), &["fov"]);
+    expect_parse_error(&edited("shininess = 32.0", "shinyness = 32.0"), &["shinyness"]);
+    expect_parse_error(&edited("cutoff = 30.0", "cutoff = 30.0\ncuttoff = 20.0"), &["cuttoff"]);
+    expect_parse_error(&edited("{ c = 1.0, l = 0.1, q = 0.01 }", "{ c = 1.0, l = 0.1, qq = 0.01 }"), &["qq"]);
+    expect_parse_error(&edited("radius = 1.0", "raduis = 1.0"), &["raduis"]);
+    expect_parse_error(&edited("[camera]", "[render]\nwidht = 10\n\n[camera]"), &["widht"]);
+}
+
+#[test]
+fn kr_plus_kt_above_one_warns_but_loads() {
+    let warnings = expect_valid(&edited("kr = 0.1", "kr = 0.5"), "k_r + k_t = 1.3");
+    assert_eq!(warnings.len(), 1, "{warnings:?}");
+    assert!(warnings[0].contains("materials.glass") && warnings[0].contains("1.3"), "{warnings:?}");
+    // Exactly 1 is fine and silent.
+    assert!(expect_valid(&edited("kr = 0.1", "kr = 0.2"), "k_r + k_t = 1").is_empty());
+}
