@@ -2,7 +2,7 @@
 // composed module, and the host builds its bind group layout from what remains.
 #define_import_path glint::bindings
 
-#import glint::scene_data::{SceneHeader, GpuCamera, GpuMaterial, GpuLight, GpuSphere, GpuPlane, GpuTriangle, TileParams}
+#import glint::scene_data::{SceneHeader, GpuCamera, GpuMaterial, GpuLight, GpuSphere, GpuPlane, GpuTriangle, TileParams, ProbeRecord}
 
 @group(0) @binding(0) var<uniform> header: SceneHeader;
 @group(0) @binding(1) var<uniform> camera: GpuCamera;
@@ -16,3 +16,5 @@
 @group(0) @binding(8) var<storage, read_write> output: array<vec4<f32>>;
 // Ray counts as (lo, hi) u32 pairs and the status word; see STAT_* in scene_data.
 @group(0) @binding(9) var<storage, read_write> stats: array<atomic<u32>>;
+// The pixel probe's breakdown (only in the PROBE variant).
+@group(0) @binding(10) var<storage, read_write> probe_out: ProbeRecord;

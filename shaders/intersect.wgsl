@@ -112,6 +112,30 @@ struct TriangleHit {
     ok: bool,
 }
 
+// a + b + c, smallest magnitude first: independent of the order and common sign of the terms,
+// so a triangle and a copy with its vertices rotated or reversed get bit-identical t.
+fn sum_by_magnitude(a: f32, b: f32, c: f32) -> f32 {
+    var x = a;
+    var y = b;
+    var z = c;
+    if abs(x) > abs(y) {
+        let t = x;
+        x = y;
+        y = t;
+    }
+    if abs(y) > abs(z) {
+        let t = y;
+        y = z;
+        z = t;
+    }
+    if abs(x) > abs(y) {
+        let t = x;
+        x = y;
+        y = t;
+    }
+    return (x + y) + z;
+}
+
 // Woop, Benthin & Wald, "Watertight Ray/Triangle Intersection", JCGT 2013 (without the
 // double-precision fallback, which WGSL cannot express; edges stay watertight).
 fn intersect_triangle(va: vec3<f32>, vb: vec3<f32>, vc: vec3<f32>, ray: Ray, sh: RayShear, t_min: f32, t_max: f32) -> TriangleHit {
@@ -131,11 +155,11 @@ fn intersect_triangle(va: vec3<f32>, vb: vec3<f32>, vc: vec3<f32>, ray: Ray, sh:
     if (u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0) {
         return miss;
     }
-    let det = u + v + w;
+    let det = sum_by_magnitude(u, v, w);
     if det == 0.0 {
         return miss;
     }
-    let t_scaled = u * (sh.s.z * a[sh.kz]) + v * (sh.s.z * b[sh.kz]) + w * (sh.s.z * c[sh.kz]);
+    let t_scaled = sum_by_magnitude(u * (sh.s.z * a[sh.kz]), v * (sh.s.z * b[sh.kz]), w * (sh.s.z * c[sh.kz]));
     let inv = 1.0 / det;
     let t = t_scaled * inv;
     if !(t > t_min && t < t_max) {

@@ -137,3 +137,40 @@ struct TileParams {
     width: u32,
     height: u32,
 }
+
+const MAX_PROBE_LIGHTS: u32 = 16u;
+const PROBE_HIT: u32 = 1u;
+const PROBE_TIR: u32 = 2u;
+
+struct ProbeLight {
+    f_att: f32,
+    spot: f32,
+    pad_a: f32,
+    pad_b: f32,
+    visibility: vec4<f32>,
+    ambient: vec4<f32>,
+    diffuse: vec4<f32>,
+    specular: vec4<f32>,
+    contribution: vec4<f32>,
+}
+
+struct ProbeRecord {
+    object_id: u32,
+    material: u32,
+    light_count: u32,
+    flags: u32,
+    t: f32,
+    pad_a: f32,
+    pad_b: f32,
+    pad_c: f32,
+    point: vec4<f32>,
+    normal: vec4<f32>,
+    emission: vec4<f32>,
+    ambient: vec4<f32>,
+    kr: vec4<f32>,
+    kt: vec4<f32>,
+    mirror_sum: vec4<f32>,
+    refraction_sum: vec4<f32>,
+    total: vec4<f32>,
+    lights: array<ProbeLight, MAX_PROBE_LIGHTS>,
+}

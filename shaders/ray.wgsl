@@ -3,6 +3,7 @@
 #define_import_path glint::ray
 
 #import glint::bindings::header
+#import glint::scene_data::ProbeRecord
 
 struct Ray {
     origin: vec3<f32>,
@@ -29,3 +30,8 @@ var<private> status: u32;
 fn has(bits: u32) -> bool {
     return (header.features & bits) != 0u;
 }
+
+// The pixel probe (PROBE variant only): the breakdown being recorded, and whether the node
+// being shaded is the camera ray's first hit.
+var<private> probe: ProbeRecord;
+var<private> probe_active: bool;

@@ -2,9 +2,9 @@
 // I_local = E_m + I_a·k_a + Σ_j f_att,j·S_j·[ I_a,j·k_a + V_j·( I_d,j·k_d·max(N·L,0) + I_s,j·k_s·spec_j ) ]
 #define_import_path glint::shade
 
-#import glint::scene_data::{GpuLight, GpuMaterial, LIGHT_CASTS_SHADOWS, LIGHT_DIRECTIONAL, LIGHT_SPOT, MATERIAL_CHECKER, MATERIAL_PHONG, FEATURE_ATTENUATION, FEATURE_SPOT_LIGHTS, FEATURE_PHONG, FEATURE_CHECKER, FEATURE_SHADOWS, FEATURE_LIGHT_AMBIENT, FEATURE_SPECULAR, FEATURE_EMISSION}
+#import glint::scene_data::{ProbeLight, MAX_PROBE_LIGHTS, GpuLight, GpuMaterial, LIGHT_CASTS_SHADOWS, LIGHT_DIRECTIONAL, LIGHT_SPOT, MATERIAL_CHECKER, MATERIAL_PHONG, FEATURE_ATTENUATION, FEATURE_SPOT_LIGHTS, FEATURE_PHONG, FEATURE_CHECKER, FEATURE_SHADOWS, FEATURE_LIGHT_AMBIENT, FEATURE_SPECULAR, FEATURE_EMISSION}
 #import glint::bindings::{header, materials, lights}
-#import glint::ray::{Ray, has, ray_counts}
+#import glint::ray::{Ray, has, ray_counts, probe, probe_active}
 #import glint::intersect::{FAR, shadow_transmittance, all_zero}
 #import glint::offset::{spawn_ray, shadow_t_max}
 
@@ -88,10 +88,11 @@ fn specular_term(mat: GpuMaterial, n: vec3<f32>, l: vec3<f32>, v: vec3<f32>, n_d
     }
 #endif
 #ifdef BLINN
-    let h = l + v;
+    // L normalised as on the CPU (there a directional light's f32 direction is unit only to ~3e-8).
+    let h = normalize(l) + v;
     let len = length(h);
     if len < MIN_HALF_LENGTH {
-        return 0.0;
+        return safe_pow(0.0, mat.shininess);
     }
     return safe_pow(max(dot(n, h) / len, 0.0), mat.shininess);
 #else
@@ -197,7 +198,20 @@ fn shade_local(s: Surface, n: vec3<f32>, ng: vec3<f32>, v: vec3<f32>) -> vec3<f3
     let kd = diffuse_colour(mat, s.p, ng);
     var sum = vec3<f32>(0.0);
     for (var j = 0u; j < header.light_count; j++) {
-        sum += light_term(lights[j], mat, s, n, ng, v, kd).contribution;
+        let term = light_term(lights[j], mat, s, n, ng, v, kd);
+        sum += term.contribution;
+#ifdef PROBE
+        if probe_active && j < MAX_PROBE_LIGHTS {
+            probe.lights[j] = ProbeLight(term.f_att, term.spot, 0.0, 0.0, vec4<f32>(term.visibility, 0.0), vec4<f32>(term.ambient, 0.0), vec4<f32>(term.diffuse, 0.0), vec4<f32>(term.specular, 0.0), vec4<f32>(term.contribution, 0.0));
+        }
+#endif
     }
+#ifdef PROBE
+    if probe_active {
+        probe.light_count = min(header.light_count, MAX_PROBE_LIGHTS);
+        probe.emission = vec4<f32>(emission, 0.0);
+        probe.ambient = vec4<f32>(ambient, 0.0);
+    }
+#endif
     return emission + ambient + sum;
 }

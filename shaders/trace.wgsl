@@ -3,9 +3,9 @@
 // WGSL has no recursion, so the tree is walked with an explicit stack of (ray, path weight,
 // depth). Each node adds weight × local shading, where the CPU adds k·I(child) on return:
 // the same terms with the same bailout decisions, summed in another order.
-#import glint::scene_data::{GpuSphere, GpuPlane, GpuTriangle, NO_HIT, EPS_ROBUST, FEATURE_REFLECTION, FEATURE_TRANSMISSION, FEATURE_JITTER, STATUS_LOOP_LIMIT, STATUS_STACK_OVERFLOW, STAT_STATUS, STAT_CAMERA, STAT_SHADOW, STAT_REFLECTION, STAT_REFRACTION, STAT_BAILOUT_SAVED}
-#import glint::bindings::{header, camera, tile, materials, spheres, planes, triangles, output, stats}
-#import glint::ray::{Ray, RayCounts, has, ray_counts, status}
+#import glint::scene_data::{PROBE_HIT, PROBE_TIR, GpuSphere, GpuPlane, GpuTriangle, NO_HIT, EPS_ROBUST, FEATURE_REFLECTION, FEATURE_TRANSMISSION, FEATURE_JITTER, STATUS_LOOP_LIMIT, STATUS_STACK_OVERFLOW, STAT_STATUS, STAT_CAMERA, STAT_SHADOW, STAT_REFLECTION, STAT_REFRACTION, STAT_BAILOUT_SAVED}
+#import glint::bindings::{header, camera, tile, materials, spheres, planes, triangles, output, stats, probe_out}
+#import glint::ray::{Ray, RayCounts, has, ray_counts, status, probe, probe_active}
 #import glint::camera::{camera_ray, sample_offset}
 #import glint::intersect::{Hit, FAR, PRIM_NONE, PRIM_SPHERE, PRIM_PLANE, closest_hit, triangle_shading_normal, all_zero}
 #import glint::offset::spawn_ray
@@ -29,6 +29,9 @@ struct StackEntry {
     dir: vec3<f32>,
     depth: u32,
     weight: vec3<f32>,
+    // Which child of the camera ray's hit this ray descends from: 0 the camera ray itself,
+    // 1 the mirror child, 2 the refracted child (the pixel probe sums radiance by branch).
+    branch: u32,
 }
 
 var<private> stack: array<StackEntry, STACK_SIZE>;
@@ -108,13 +111,23 @@ struct Shaded {
 // weight × local shading at a hit, and the children whose path weight passes the bailout:
 // the mirror child continues at once, a refracted child is pushed (or continues, when there is
 // no mirror child). Keeping one child out of the stack spares most scratch-memory traffic.
-fn shade_hit(ray: Ray, hit: Hit, depth: u32, weight: vec3<f32>) -> Shaded {
+fn shade_hit(ray: Ray, hit: Hit, depth: u32, weight: vec3<f32>, branch: u32) -> Shaded {
     let s = surface_at(ray, hit);
     let front = dot(ray.dir, s.ng) < 0.0;
     let ng = select(-s.ng, s.ng, front);
     let ns = select(-s.ns, s.ns, front);
     let v = -ray.dir;
-    var out = Shaded(weight * shade_local(s, ns, ng, v), StackEntry(vec3<f32>(0.0), 0.0, vec3<f32>(0.0), 0u, vec3<f32>(0.0)), false);
+    var out = Shaded(weight * shade_local(s, ns, ng, v), StackEntry(vec3<f32>(0.0), 0.0, vec3<f32>(0.0), 0u, vec3<f32>(0.0), 0u), false);
+#ifdef PROBE
+    if probe_active {
+        probe.flags |= PROBE_HIT;
+        probe.object_id = s.object_id;
+        probe.material = s.material;
+        probe.t = hit.t;
+        probe.point = vec4<f32>(s.p, 1.0);
+        probe.normal = vec4<f32>(ns, 0.0);
+    }
+#endif
 #ifdef RECURSION
     if depth >= header.max_depth || !has(FEATURE_REFLECTION | FEATURE_TRANSMISSION) {
         return out;
@@ -130,8 +143,19 @@ fn shade_hit(ray: Ray, hit: Hit, depth: u32, weight: vec3<f32>) -> Shaded {
         refracted = refract_dir(ray.dir, ns, eta);
         if refracted.w == 0.0 {
             k_mirror += kt;
+#ifdef PROBE
+            if probe_active {
+                probe.flags |= PROBE_TIR;
+            }
+#endif
         }
     }
+#ifdef PROBE
+    if probe_active {
+        probe.kr = vec4<f32>(kr, 0.0);
+        probe.kt = vec4<f32>(kt, 0.0);
+    }
+#endif
     if refracted.w != 0.0 {
         let w = weight * kt;
         if max_channel(w) < header.bailout {
@@ -139,7 +163,7 @@ fn shade_hit(ray: Ray, hit: Hit, depth: u32, weight: vec3<f32>) -> Shaded {
         } else {
             ray_counts.refraction += 1u;
             let sp = spawn_ray(s.p, s.p_surface, -ng, refracted.xyz);
-            out.next = StackEntry(sp.origin, sp.t_min, refracted.xyz, depth + 1u, w);
+            out.next = StackEntry(sp.origin, sp.t_min, refracted.xyz, depth + 1u, w, select(branch, 2u, branch == 0u));
             out.has_next = true;
         }
     }
@@ -155,7 +179,7 @@ fn shade_hit(ray: Ray, hit: Hit, depth: u32, weight: vec3<f32>) -> Shaded {
             if out.has_next {
                 push_ray(out.next);
             }
-            out.next = StackEntry(sp.origin, sp.t_min, dir, depth + 1u, w);
+            out.next = StackEntry(sp.origin, sp.t_min, dir, depth + 1u, w, select(branch, 1u, branch == 0u));
             out.has_next = true;
         }
     }
@@ -167,23 +191,42 @@ fn shade_hit(ray: Ray, hit: Hit, depth: u32, weight: vec3<f32>) -> Shaded {
 // the id of the first object hit.
 fn trace_ray(ray: Ray) -> SampleResult {
     var result = SampleResult(vec3<f32>(0.0), NO_HIT);
-    var e = StackEntry(ray.origin, 0.0, ray.dir, 0u, vec3<f32>(1.0));
+    var e = StackEntry(ray.origin, 0.0, ray.dir, 0u, vec3<f32>(1.0), 0u);
     stack_top = 0u;
     for (var n = 0u; n < MAX_TREE_NODES; n++) {
         let r = Ray(e.origin, e.dir);
+        let branch_of_node = e.branch;
         let hit = closest_hit(r, e.t_min, FAR);
         var has_next = false;
+        var gathered = vec3<f32>(0.0);
         if hit.prim == PRIM_NONE {
-            result.radiance += e.weight * header.background.xyz;
+            gathered = e.weight * header.background.xyz;
         } else {
             if n == 0u {
                 result.object = object_id(hit);
             }
-            let shaded = shade_hit(r, hit, e.depth, e.weight);
-            result.radiance += shaded.radiance;
+#ifdef PROBE
+            probe_active = n == 0u;
+#endif
+            let shaded = shade_hit(r, hit, e.depth, e.weight, e.branch);
+#ifdef PROBE
+            probe_active = false;
+#endif
+            gathered = shaded.radiance;
             e = shaded.next;
             has_next = shaded.has_next;
         }
+#ifdef PROBE
+        if n > 0u {
+            // `e` may already be the next ray: the branch is that of the ray just shaded.
+            if branch_of_node == 1u {
+                probe.mirror_sum += vec4<f32>(gathered, 0.0);
+            } else if branch_of_node == 2u {
+                probe.refraction_sum += vec4<f32>(gathered, 0.0);
+            }
+        }
+#endif
+        result.radiance += gathered;
         if !has_next {
             if stack_top == 0u {
                 return result;
@@ -252,6 +295,19 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
     let y = tile.origin_y + gid.y;
     ray_counts = RayCounts(0u, 0u, 0u, 0u, 0u);
     status = 0u;
+#ifdef PROBE
+    // The probe variant renders one pixel's first sample and writes its breakdown.
+    let sampled = render_sample(x, y, 0u);
+    probe.total = vec4<f32>(sampled.radiance, 0.0);
+    if (probe.flags & PROBE_HIT) == 0u {
+        probe.object_id = NO_HIT;
+    }
+    probe_out = probe;
+    if status != 0u {
+        atomicOr(&stats[STAT_STATUS], status);
+    }
+    return;
+#endif
     let result = render_pixel(x, y);
     var id = -1.0;
     if result.object != NO_HIT {

@@ -3,6 +3,7 @@
 mod backend;
 mod output;
 mod render;
+mod report;
 mod settings;
 
 use clap::{Parser, Subcommand};
@@ -18,10 +19,13 @@ pub struct Cli {
 enum Command {
     /// Render a scene to PNG (sRGB, with the settings as metadata) or EXR (linear f32).
     Render(render::RenderArgs),
+    /// Sweep render configurations and report error against run time (CSV, Markdown, plots).
+    Report(report::ReportArgs),
 }
 
 pub fn run(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
         Command::Render(args) => render::run(&args),
+        Command::Report(args) => report::run(&args),
     }
 }

@@ -5,7 +5,7 @@ use std::time::Duration;
 
 use glint_core::compare::{HEATMAP_LOG10_MAX, HEATMAP_LOG10_MIN, ImageErrors, diff_heatmap};
 use glint_core::cpu::RayCounts;
-use glint_core::image::{write_image, write_png_rgb8};
+use glint_core::image::{RenderInfo, render_metadata, write_image, write_png_rgb8};
 use glint_core::scene::RenderSettings;
 use serde::Serialize;
 
@@ -13,25 +13,17 @@ use super::backend::Run;
 
 /// Render settings as PNG tEXt chunks (`glint:*` keys).
 pub fn metadata(scene: &str, s: &RenderSettings, run: &Run, specialised: bool) -> Vec<(String, String)> {
-    [
-        ("Software", format!("glint {}", env!("CARGO_PKG_VERSION"))),
-        ("glint:scene", scene.to_string()),
-        ("glint:size", format!("{}x{}", s.width, s.height)),
-        ("glint:spp", s.spp.to_string()),
-        ("glint:depth", s.max_depth.to_string()),
-        ("glint:epsilon", s.epsilon.to_string()),
-        ("glint:epsilon_mode", s.epsilon_mode.name().to_string()),
-        ("glint:bailout", s.bailout.to_string()),
-        ("glint:seed", s.seed.to_string()),
-        ("glint:backend", run.backend.to_string()),
-        ("glint:device", run.device.clone()),
-        ("glint:specialised", specialised.to_string()),
-        ("glint:time_ms", format!("{:.3}", run.render.as_secs_f64() * 1e3)),
-        ("glint:rays", run.counts.total().to_string()),
-    ]
-    .into_iter()
-    .map(|(k, v)| (k.to_string(), v))
-    .collect()
+    render_metadata(
+        s,
+        &RenderInfo {
+            scene,
+            backend: run.backend,
+            device: &run.device,
+            specialised,
+            time_ms: Some(run.render.as_secs_f64() * 1e3),
+            rays: Some(run.counts.total()),
+        },
+    )
 }
 
 /// `out.png` → `out-cpu.png` (and so on) when several images come from one run.

@@ -5,6 +5,8 @@ use std::ffi::OsString;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
+mod report;
+
 const BIN: &str = env!("CARGO_BIN_EXE_glint");
 
 /// The built-in scenes the issue asks for, spelled out here rather than read from the crate.

@@ -1,8 +1,18 @@
-//! Integration tests of the core: closed-form checks of the model, stiff numerical cases,
-//! determinism, and scene validation. One test binary, several modules.
+//! Integration tests of the core: closed-form checks of the model, determinism, and scene
+//! validation. One test binary, several modules. (The stiff and extreme cases, on both
+//! backends, are the `stiff` test binary.)
 
 mod closed_form;
 mod determinism;
-mod stiff;
 mod support;
 mod validation;
+
+#[path = "../common/reference.rs"]
+#[allow(dead_code, reason = "shared with the other test binaries, which use other parts of it")]
+mod reference;
+#[path = "../common/render.rs"]
+#[allow(dead_code, reason = "shared with the other test binaries, which use other parts of it")]
+mod render;
+#[path = "../common/scene.rs"]
+#[allow(dead_code, reason = "shared with the other test binaries, which use other parts of it")]
+mod scene;

@@ -143,6 +143,14 @@ impl FlatScene {
                 ObjectDesc::Mesh { vertices, triangles: tris, normals, .. } => {
                     for t in tris {
                         let [a, b, c] = t.map(|k| DVec3::from(vertices[k as usize]));
+                        // A triangle of zero area in the stored (f32) data is left out, so that
+                        // it is never hit, as validation promises: in the ray's sheared frame its
+                        // edge functions are rounding noise, and one on a line through the eye
+                        // would be "hit" by a quarter of all camera rays, with a 0/0 normal.
+                        let f = |v: DVec3| DVec3::from_array(v.to_array().map(|x| f64::from(x as f32)));
+                        if (f(b) - f(a)).cross(f(c) - f(a)) == DVec3::ZERO {
+                            continue;
+                        }
                         let (ns, flags) = match normals {
                             Some(n) => (t.map(|k| DVec3::from(n[k as usize]).normalize()), TRIANGLE_HAS_NORMALS),
                             None => ([DVec3::ZERO; 3], 0),
@@ -280,6 +288,54 @@ impl FlatScene {
 
     pub fn pixel_count(&self) -> usize {
         self.header.width as usize * self.header.height as usize
+    }
+
+    /// The first float field holding a NaN or an infinity (e.g. `spheres[0].center_radius`).
+    /// Validation keeps them out of scenes built from a description; the fields are public, so
+    /// the GPU tracer checks again before upload and never receives non-finite data.
+    pub fn first_non_finite(&self) -> Option<String> {
+        let bad = |v: &[f32]| v.iter().any(|x| !x.is_finite());
+        let h = &self.header;
+        for (name, v) in [
+            ("header.epsilon", &[h.epsilon][..]),
+            ("header.bailout", &[h.bailout]),
+            ("header.ambient", &h.ambient),
+            ("header.background", &h.background),
+        ] {
+            if bad(v) {
+                return Some(name.into());
+            }
+        }
+        let c = &self.camera;
+        if bad(&[c.position, c.forward, c.right, c.up].concat()) {
+            return Some("camera".into());
+        }
+        let m = self.materials.iter().map(|m| {
+            [
+                &[m.ka, m.kd, m.ks, m.kr, m.kt, m.emission, m.checker_kd].concat()[..],
+                &[m.shininess, m.ior, m.checker_size],
+            ]
+            .concat()
+        });
+        let l = self.lights.iter().map(|l| {
+            [
+                &[l.position, l.direction, l.diffuse, l.specular, l.ambient, l.attenuation].concat()[..],
+                &[l.spot_exponent, l.spot_cos_cutoff],
+            ]
+            .concat()
+        });
+        let s = self.spheres.iter().map(|s| s.center_radius.to_vec());
+        let p = self.planes.iter().map(|p| p.normal_offset.to_vec());
+        let t = self.triangles.iter().map(|t| [t.a, t.b, t.c, t.na, t.nb, t.nc].concat());
+        fn first_bad(kind: &str, items: impl Iterator<Item = Vec<f32>>) -> Option<String> {
+            let mut items = items;
+            items.position(|v| v.iter().any(|x| !x.is_finite())).map(|i| format!("{kind}[{i}]"))
+        }
+        first_bad("materials", m)
+            .or_else(|| first_bad("lights", l))
+            .or_else(|| first_bad("spheres", s))
+            .or_else(|| first_bad("planes", p))
+            .or_else(|| first_bad("triangles", t))
     }
 }
 

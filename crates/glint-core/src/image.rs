@@ -163,3 +163,43 @@ mod tests {
         assert_eq!(linear_to_srgb8(0.18), 118);
     }
 }
+
+/// What produced an image, for `render_metadata`.
+#[derive(Clone, Debug)]
+pub struct RenderInfo<'a> {
+    pub scene: &'a str,
+    pub backend: &'a str,
+    pub device: &'a str,
+    pub specialised: bool,
+    pub time_ms: Option<f64>,
+    pub rays: Option<u64>,
+}
+
+/// The render settings and provenance as PNG tEXt chunks (`glint:*` keys), the same for
+/// `glint render` and the viewer's "Save image".
+pub fn render_metadata(s: &crate::scene::RenderSettings, info: &RenderInfo) -> Vec<(String, String)> {
+    let mut m: Vec<(String, String)> = [
+        ("Software", format!("glint {}", env!("CARGO_PKG_VERSION"))),
+        ("glint:scene", info.scene.to_string()),
+        ("glint:size", format!("{}x{}", s.width, s.height)),
+        ("glint:spp", s.spp.to_string()),
+        ("glint:depth", s.max_depth.to_string()),
+        ("glint:epsilon", s.epsilon.to_string()),
+        ("glint:epsilon_mode", s.epsilon_mode.name().to_string()),
+        ("glint:bailout", s.bailout.to_string()),
+        ("glint:seed", s.seed.to_string()),
+        ("glint:backend", info.backend.to_string()),
+        ("glint:device", info.device.to_string()),
+        ("glint:specialised", info.specialised.to_string()),
+    ]
+    .into_iter()
+    .map(|(k, v)| (k.to_string(), v))
+    .collect();
+    if let Some(t) = info.time_ms {
+        m.push(("glint:time_ms".into(), format!("{t:.3}")));
+    }
+    if let Some(r) = info.rays {
+        m.push(("glint:rays".into(), r.to_string()));
+    }
+    m
+}

@@ -226,3 +226,53 @@ pub struct TileParams {
     pub width: u32,
     pub height: u32,
 }
+
+/// Lights whose terms the GPU pixel probe records (the CPU probe records all).
+pub const MAX_PROBE_LIGHTS: u32 = 16;
+
+/// `ProbeRecord::flags` bits.
+pub const PROBE_HIT: u32 = 1;
+/// The probed hit reflected totally: its k_t share followed the mirror ray.
+pub const PROBE_TIR: u32 = 2;
+
+/// One light's terms at the probed hit (GPU twin of `cpu::probe::LightTerm`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct ProbeLight {
+    pub f_att: f32,
+    pub spot: f32,
+    pub pad_a: f32,
+    pub pad_b: f32,
+    pub visibility: [f32; 4],
+    pub ambient: [f32; 4],
+    pub diffuse: [f32; 4],
+    pub specular: [f32; 4],
+    pub contribution: [f32; 4],
+}
+
+/// The breakdown of one camera sample, as the GPU probe writes it (twin of
+/// `cpu::probe::Breakdown`; the host splits the mirror subtree into k_r and k_t parts).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct ProbeRecord {
+    pub object_id: u32,
+    pub material: u32,
+    pub light_count: u32,
+    pub flags: u32,
+    pub t: f32,
+    pub pad_a: f32,
+    pub pad_b: f32,
+    pub pad_c: f32,
+    pub point: [f32; 4],
+    pub normal: [f32; 4],
+    pub emission: [f32; 4],
+    pub ambient: [f32; 4],
+    pub kr: [f32; 4],
+    pub kt: [f32; 4],
+    /// Radiance gathered by the mirror child's subtree (weights included).
+    pub mirror_sum: [f32; 4],
+    /// Radiance gathered by the refracted child's subtree.
+    pub refraction_sum: [f32; 4],
+    pub total: [f32; 4],
+    pub lights: [ProbeLight; MAX_PROBE_LIGHTS as usize],
+}

@@ -11,7 +11,7 @@ pub mod scene;
 
 pub use flat::FlatScene;
 pub use image::HdrImage;
-pub use render::{CpuOptions, CpuRender, RenderControl, probe_pixel, render_cpu};
+pub use render::{CpuOptions, CpuRender, RenderControl, pick_object, probe_pixel, render_cpu};
 
 /// Re-exported so that the GPU tracer and the viewer use the same vector types.
 pub use glam;

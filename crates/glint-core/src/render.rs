@@ -152,3 +152,15 @@ pub fn probe_pixel(scene: &FlatScene, x: u32, y: u32, sample: u32) -> Breakdown 
     render_sample(&ctx, x, y, sample, &mut counts, Some(&mut b));
     b
 }
+
+/// The object the camera ray through the centre of pixel (x, y) hits first (`NO_HIT` for
+/// none): picking in the viewer.
+pub fn pick_object(scene: &FlatScene, x: u32, y: u32) -> u32 {
+    let ctx = TraceContext::new(scene);
+    let h = &scene.header;
+    let ray = crate::cpu::camera::camera_ray(&scene.camera, h.width, h.height, x, y, 0.5, 0.5);
+    match crate::cpu::intersect::closest_hit(&ctx, &ray, 0.0, crate::cpu::intersect::FAR) {
+        Some(hit) => crate::cpu::trace::object_id(&ctx, &hit),
+        None => crate::layout::NO_HIT,
+    }
+}

@@ -22,6 +22,11 @@ pub enum GpuError {
          and is limited to {limit} of them (lavapipe cuts longer loops silently)"
     )]
     TooManyPrimitives { what: &'static str, count: u32, limit: u32 },
+    #[error(
+        "the scene holds a NaN or an infinity in {field}; the GPU tracer never uploads non-finite data \
+         (build scenes through validation)"
+    )]
+    NonFinite { field: String },
     #[error("the GPU ran out of memory: {0}")]
     OutOfMemory(String),
     #[error("the GPU reported an error: {0}")]

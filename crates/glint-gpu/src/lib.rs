@@ -4,13 +4,16 @@
 pub mod context;
 pub mod error;
 pub mod pipeline;
+pub mod present;
+pub mod probe;
 pub mod shaders;
 pub mod tracer;
 
 pub use context::{AdapterRequest, AdapterSummary, GpuContext};
 pub use error::GpuError;
+pub use present::Presenter;
 pub use shaders::{GPU_STACK_LIMIT, ShaderKey};
-pub use tracer::{GpuOptions, GpuRender, GpuTracer};
+pub use tracer::{GpuJob, GpuOptions, GpuRender, GpuTracer, JobReadback};
 
 #[cfg(test)]
 mod reflection_tests;

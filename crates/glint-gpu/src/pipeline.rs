@@ -20,6 +20,7 @@ pub mod binding {
     pub const TRIANGLES: u32 = 7;
     pub const OUTPUT: u32 = 8;
     pub const STATS: u32 = 9;
+    pub const PROBE: u32 = 10;
 }
 
 #[derive(Debug)]

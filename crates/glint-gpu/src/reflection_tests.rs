@@ -62,6 +62,27 @@ fn rust_layouts() -> Vec<RustLayout> {
         rust_layout!(GpuPlane { normal_offset, material, object_id, pad }),
         rust_layout!(GpuTriangle { a, b, c, na, nb, nc, material, object_id, flags, pad }),
         rust_layout!(TileParams { origin_x, origin_y, width, height }),
+        rust_layout!(ProbeLight { f_att, spot, pad_a, pad_b, visibility, ambient, diffuse, specular, contribution }),
+        rust_layout!(ProbeRecord {
+            object_id,
+            material,
+            light_count,
+            flags,
+            t,
+            pad_a,
+            pad_b,
+            pad_c,
+            point,
+            normal,
+            emission,
+            ambient,
+            kr,
+            kt,
+            mirror_sum,
+            refraction_sum,
+            total,
+            lights
+        }),
     ]
 }
 
@@ -147,6 +168,9 @@ fn wgsl_layout_constants_match_rust() {
         ("STAT_BAILOUT_SAVED".into(), STAT_BAILOUT_SAVED),
         ("STAT_STATUS".into(), STAT_STATUS),
         ("STAT_WORDS".into(), STAT_WORDS),
+        ("MAX_PROBE_LIGHTS".into(), MAX_PROBE_LIGHTS),
+        ("PROBE_HIT".into(), PROBE_HIT),
+        ("PROBE_TIR".into(), PROBE_TIR),
     ];
     for (bit, name) in feature::NAMES.iter().enumerate() {
         expected.push((format!("FEATURE_{name}"), 1 << bit));

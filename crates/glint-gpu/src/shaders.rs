@@ -39,6 +39,8 @@ pub const TRACE_WGSL: &str = include_str!("../../../shaders/trace.wgsl");
 pub struct ShaderKey {
     pub features: u32,
     pub stack_size: u32,
+    /// The pixel-probe variant: renders one sample and records its breakdown.
+    pub probe: bool,
 }
 
 impl ShaderKey {
@@ -48,7 +50,7 @@ impl ShaderKey {
             let features = scene.header.features;
             let recursion = features & (feature::REFLECTION | feature::TRANSMISSION) != 0;
             let depth = if recursion { scene.header.max_depth.min(GPU_STACK_LIMIT - 1) } else { 0 };
-            Self { features, stack_size: depth + 1 }
+            Self { features, stack_size: depth + 1, probe: false }
         } else {
             Self::full()
         }
@@ -56,7 +58,7 @@ impl ShaderKey {
 
     /// The unspecialised shader: every feature, the largest stack.
     pub fn full() -> Self {
-        Self { features: feature::ALL, stack_size: GPU_STACK_LIMIT }
+        Self { features: feature::ALL, stack_size: GPU_STACK_LIMIT, probe: false }
     }
 
     /// Whether the variant walks a ray tree at all.
@@ -76,6 +78,9 @@ impl ShaderKey {
             defs.insert("RECURSION".into(), ShaderDefValue::Bool(true));
         }
         defs.insert("STACK_SIZE".into(), ShaderDefValue::UInt(self.stack_size));
+        if self.probe {
+            defs.insert("PROBE".into(), ShaderDefValue::Bool(true));
+        }
         defs
     }
 
@@ -87,7 +92,7 @@ impl ShaderKey {
             .filter(|(bit, _)| self.features & (1 << bit) != 0)
             .map(|(_, n)| *n)
             .collect();
-        format!("{} stack {}", names.join("|"), self.stack_size)
+        format!("{} stack {}{}", names.join("|"), self.stack_size, if self.probe { " probe" } else { "" })
     }
 }
 
@@ -192,12 +197,20 @@ mod tests {
     }
 
     #[test]
+    fn probe_variants_validate() {
+        compose_or_report(&ShaderKey { probe: true, ..ShaderKey::full() });
+        for (_, key) in builtin_keys() {
+            compose_or_report(&ShaderKey { probe: true, ..key });
+        }
+    }
+
+    #[test]
     fn every_single_feature_and_its_absence_validate() {
         // Each feature alone, and all features but one: catches an #ifdef block that only
         // compiles next to some other feature.
         for bit in 0..feature::NAMES.len() {
             for features in [1u32 << bit, feature::ALL & !(1 << bit)] {
-                compose_or_report(&ShaderKey { features, stack_size: 4 });
+                compose_or_report(&ShaderKey { features, stack_size: 4, probe: false });
             }
         }
     }

@@ -10,8 +10,8 @@ use glint_core::HdrImage;
 use glint_core::cpu::RayCounts;
 use glint_core::glam::dvec3;
 use glint_core::layout::{
-    NO_HIT, STAT_BAILOUT_SAVED, STAT_CAMERA, STAT_REFLECTION, STAT_REFRACTION, STAT_SHADOW, STAT_STATUS, STAT_WORDS,
-    TileParams,
+    NO_HIT, ProbeRecord, STAT_BAILOUT_SAVED, STAT_CAMERA, STAT_REFLECTION, STAT_REFRACTION, STAT_SHADOW, STAT_STATUS,
+    STAT_WORDS, TileParams,
 };
 use wgpu::util::DeviceExt;
 
@@ -69,6 +69,7 @@ pub struct SceneBuffers {
     triangles: wgpu::Buffer,
     pub output: wgpu::Buffer,
     pub stats: wgpu::Buffer,
+    pub probe: wgpu::Buffer,
     pub width: u32,
     pub height: u32,
 }
@@ -100,8 +101,11 @@ fn uniform<T: Pod>(ctx: &GpuContext, label: &str, value: &T) -> wgpu::Buffer {
 }
 
 impl SceneBuffers {
-    /// Checks the scene against the device limits, then uploads it.
+    /// Checks the scene (every float finite) and the device limits, then uploads it.
     pub fn upload(ctx: &GpuContext, scene: &FlatScene) -> Result<Self, GpuError> {
+        if let Some(field) = scene.first_non_finite() {
+            return Err(GpuError::NonFinite { field });
+        }
         let h = &scene.header;
         for (what, count) in [("spheres", h.sphere_count), ("planes", h.plane_count), ("triangles", h.triangle_count)] {
             if count > GPU_PRIMITIVE_LIMIT {
@@ -152,6 +156,12 @@ impl SceneBuffers {
                 contents: bytemuck::cast_slice(&[0u32; STAT_WORDS as usize]),
                 usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
             }),
+            probe: ctx.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("glint probe"),
+                size: size_of::<ProbeRecord>() as u64,
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+                mapped_at_creation: false,
+            }),
             width: h.width,
             height: h.height,
         })
@@ -169,6 +179,7 @@ impl SceneBuffers {
             binding::PLANES => &self.planes,
             binding::TRIANGLES => &self.triangles,
             binding::OUTPUT => &self.output,
+            binding::PROBE => &self.probe,
             _ => &self.stats,
         };
         let entries: Vec<wgpu::BindGroupEntry> = pipeline
@@ -181,6 +192,18 @@ impl SceneBuffers {
             layout: &pipeline.bind_group_layout,
             entries: &entries,
         })
+    }
+
+    /// Renders the one pixel (x, y) with the probe variant.
+    pub fn dispatch_probe(
+        &self,
+        ctx: &GpuContext,
+        pipeline: &TracerPipeline,
+        bind_group: &wgpu::BindGroup,
+        x: u32,
+        y: u32,
+    ) {
+        self.dispatch_tile(ctx, pipeline, bind_group, TileParams { origin_x: x, origin_y: y, width: 1, height: 1 });
     }
 
     /// Renders one pixel and clears the statistics again (see `GpuTracer::render`).
@@ -240,32 +263,132 @@ impl SceneBuffers {
     }
 }
 
-/// Copies `source` to a mappable buffer and returns its bytes.
-pub fn read_buffer(ctx: &GpuContext, source: &wgpu::Buffer) -> Result<Vec<u8>, GpuError> {
-    let size = source.size();
-    let staging = ctx.device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("glint readback"),
-        size,
-        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    });
-    let mut encoder = ctx.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("readback") });
-    encoder.copy_buffer_to_buffer(source, 0, &staging, 0, size);
-    ctx.queue.submit([encoder.finish()]);
-    let (tx, rx) = std::sync::mpsc::channel();
-    staging.map_async(wgpu::MapMode::Read, .., move |r| {
-        let _ = tx.send(r);
-    });
-    ctx.device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| GpuError::Readback(e.to_string()))?;
-    if ctx.is_lost() {
-        return Err(GpuError::DeviceLost);
+/// A copy of a GPU buffer on its way to the host.
+#[derive(Debug)]
+pub struct PendingCopy {
+    staging: wgpu::Buffer,
+    result: Arc<Mutex<Option<Result<(), wgpu::BufferAsyncError>>>>,
+}
+
+impl PendingCopy {
+    /// Queues the copy of `source` and the mapping of its staging buffer.
+    pub fn start(ctx: &GpuContext, source: &wgpu::Buffer) -> Self {
+        let size = source.size();
+        let staging = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("glint readback"),
+            size,
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let mut encoder =
+            ctx.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("readback") });
+        encoder.copy_buffer_to_buffer(source, 0, &staging, 0, size);
+        ctx.queue.submit([encoder.finish()]);
+        let result = Arc::new(Mutex::new(None));
+        let slot = result.clone();
+        staging.map_async(wgpu::MapMode::Read, .., move |r| {
+            *slot.lock().unwrap_or_else(|e| e.into_inner()) = Some(r);
+        });
+        Self { staging, result }
     }
-    rx.recv().map_err(|e| GpuError::Readback(e.to_string()))?.map_err(|e| GpuError::Readback(e.to_string()))?;
-    let view = staging.get_mapped_range(..).map_err(|e| GpuError::Readback(e.to_string()))?;
-    let bytes = view.to_vec();
-    drop(view);
-    staging.unmap();
-    Ok(bytes)
+
+    /// The bytes, once the copy has landed (`None` while it is in flight).
+    pub fn try_take(&self) -> Option<Result<Vec<u8>, GpuError>> {
+        let state = self.result.lock().unwrap_or_else(|e| e.into_inner()).take()?;
+        Some(state.map_err(|e| GpuError::Readback(e.to_string())).and_then(|()| {
+            let view = self.staging.get_mapped_range(..).map_err(|e| GpuError::Readback(e.to_string()))?;
+            let bytes = view.to_vec();
+            drop(view);
+            self.staging.unmap();
+            Ok(bytes)
+        }))
+    }
+}
+
+/// Copies `source` to the host, waiting for it.
+pub fn read_buffer(ctx: &GpuContext, source: &wgpu::Buffer) -> Result<Vec<u8>, GpuError> {
+    let copy = PendingCopy::start(ctx, source);
+    let deadline = Instant::now() + Duration::from_secs(60);
+    loop {
+        ctx.device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| GpuError::Readback(e.to_string()))?;
+        if ctx.is_lost() {
+            return Err(GpuError::DeviceLost);
+        }
+        if let Some(result) = copy.try_take() {
+            return result;
+        }
+        // The copy is done, but when several threads share the device, another thread's poll
+        // may be running this mapping's callback right now: wait for it.
+        if Instant::now() > deadline {
+            return Err(GpuError::Readback("the mapping did not complete".into()));
+        }
+        std::thread::yield_now();
+    }
+}
+
+/// A render submitted to the GPU: its buffers stay alive until it is read back or dropped.
+#[derive(Debug)]
+pub struct GpuJob {
+    pub buffers: SceneBuffers,
+    pub key: ShaderKey,
+    pub statements: usize,
+    pub pipeline_time: Duration,
+    pub upload_time: Duration,
+    submitted: Instant,
+    done: Arc<Mutex<Option<Instant>>>,
+}
+
+impl GpuJob {
+    /// GPU time from submission to completion, once the GPU has finished.
+    pub fn gpu_time(&self) -> Option<Duration> {
+        self.done.lock().unwrap_or_else(|e| e.into_inner()).map(|t| t.duration_since(self.submitted))
+    }
+
+    /// Starts copying the image and the statistics to the host.
+    pub fn start_readback(&self, ctx: &GpuContext) -> JobReadback {
+        JobReadback {
+            image: PendingCopy::start(ctx, &self.buffers.output),
+            stats: PendingCopy::start(ctx, &self.buffers.stats),
+            width: self.buffers.width,
+            height: self.buffers.height,
+            image_bytes: None,
+        }
+    }
+}
+
+/// The image and statistics of a job, arriving without blocking the caller.
+#[derive(Debug)]
+pub struct JobReadback {
+    image: PendingCopy,
+    stats: PendingCopy,
+    width: u32,
+    height: u32,
+    image_bytes: Option<Vec<u8>>,
+}
+
+/// A finished readback: image, ray counts and the status word.
+pub type ReadbackResult = (HdrImage, RayCounts, u32);
+
+impl JobReadback {
+    /// Polls the device once; returns the result when both copies have landed.
+    pub fn poll(&mut self, ctx: &GpuContext) -> Option<Result<ReadbackResult, GpuError>> {
+        if let Err(e) = ctx.device.poll(wgpu::PollType::Poll) {
+            return Some(Err(GpuError::Wgpu(e.to_string())));
+        }
+        if self.image_bytes.is_none() {
+            match self.image.try_take()? {
+                Ok(bytes) => self.image_bytes = Some(bytes),
+                Err(e) => return Some(Err(e)),
+            }
+        }
+        let stats = match self.stats.try_take()? {
+            Ok(bytes) => bytes,
+            Err(e) => return Some(Err(e)),
+        };
+        let image = decode_output(self.width, self.height, self.image_bytes.as_deref().unwrap_or_default());
+        let (counts, status) = decode_stats(&stats);
+        Some(Ok((image, counts, status)))
+    }
 }
 
 impl GpuTracer {
@@ -288,8 +411,8 @@ impl GpuTracer {
         Ok((p, time))
     }
 
-    /// Renders `scene` and reads the image back.
-    pub fn render(&self, scene: &FlatScene, options: &GpuOptions) -> Result<GpuRender, GpuError> {
+    /// Uploads `scene` and dispatches every tile without waiting for the GPU.
+    pub fn submit(&self, scene: &FlatScene, options: &GpuOptions) -> Result<GpuJob, GpuError> {
         let key = ShaderKey::for_scene(scene, options.specialise);
         let full;
         let scene = if options.specialise {
@@ -311,31 +434,55 @@ impl GpuTracer {
             self.ctx.device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| GpuError::Wgpu(e.to_string()))?;
             pipeline_time += prime_start.elapsed();
         }
-
-        let start = Instant::now();
+        let submitted = Instant::now();
         with_error_scopes(&self.ctx, || buffers.dispatch(&self.ctx, &pipeline, &bind_group, options.tile))?;
+        let done = Arc::new(Mutex::new(None));
+        let slot = done.clone();
+        self.ctx.queue.on_submitted_work_done(move || {
+            *slot.lock().unwrap_or_else(|e| e.into_inner()) = Some(Instant::now());
+        });
+        Ok(GpuJob { buffers, key, statements: pipeline.stats.statements, pipeline_time, upload_time, submitted, done })
+    }
+
+    /// The breakdown of the first sample of pixel (x, y) into the terms of the model, computed
+    /// by the probe variant of the same shader (the GPU twin of `glint_core::probe_pixel`).
+    pub fn probe_pixel(&self, scene: &FlatScene, x: u32, y: u32) -> Result<(ProbeRecord, u32), GpuError> {
+        let key = ShaderKey { probe: true, ..ShaderKey::for_scene(scene, true) };
+        let (pipeline, _) = self.pipeline(key)?;
+        let mut one = scene.clone();
+        one.header.spp = 1;
+        let buffers = SceneBuffers::upload(&self.ctx, &one)?;
+        let bind_group = with_error_scopes(&self.ctx, || buffers.bind_group(&self.ctx, &pipeline))?;
+        with_error_scopes(&self.ctx, || buffers.dispatch_probe(&self.ctx, &pipeline, &bind_group, x, y))?;
+        let bytes = read_buffer(&self.ctx, &buffers.probe)?;
+        let stats = read_buffer(&self.ctx, &buffers.stats)?;
+        Ok((bytemuck::pod_read_unaligned(&bytes), decode_stats(&stats).1))
+    }
+
+    /// Renders `scene` and reads the image back, waiting for both.
+    pub fn render(&self, scene: &FlatScene, options: &GpuOptions) -> Result<GpuRender, GpuError> {
+        let job = self.submit(scene, options)?;
         self.ctx.device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| GpuError::Wgpu(e.to_string()))?;
         if self.ctx.is_lost() {
             return Err(GpuError::DeviceLost);
         }
-        let render_time = start.elapsed();
-
+        let render_time = job.submitted.elapsed();
         let readback_start = Instant::now();
-        let pixels = read_buffer(&self.ctx, &buffers.output)?;
-        let stats = read_buffer(&self.ctx, &buffers.stats)?;
+        let pixels = read_buffer(&self.ctx, &job.buffers.output)?;
+        let stats = read_buffer(&self.ctx, &job.buffers.stats)?;
         let readback_time = readback_start.elapsed();
-        let image = decode_output(scene.header.width, scene.header.height, &pixels);
+        let image = decode_output(job.buffers.width, job.buffers.height, &pixels);
         let (counts, status) = decode_stats(&stats);
         Ok(GpuRender {
             image,
             counts,
             status,
             render_time,
-            upload_time,
-            pipeline_time,
+            upload_time: job.upload_time,
+            pipeline_time: job.pipeline_time,
             readback_time,
-            key,
-            statements: pipeline.stats.statements,
+            key: job.key,
+            statements: job.statements,
         })
     }
 }

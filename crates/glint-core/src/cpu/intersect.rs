@@ -109,6 +109,23 @@ pub fn ray_shear(dir: DVec3) -> RayShear {
     RayShear { kx, ky, kz, sx: dir[kx] / dir[kz], sy: dir[ky] / dir[kz], sz: 1.0 / dir[kz] }
 }
 
+/// a + b + c, added smallest magnitude first. The sum then does not depend on the order of the
+/// terms or on their common sign, so a triangle and a copy of it with its vertices rotated or
+/// reversed get bit-identical t (coplanar duplicates tie, and the first one wins).
+pub fn sum_by_magnitude(a: f64, b: f64, c: f64) -> f64 {
+    let (mut x, mut y, mut z) = (a, b, c);
+    if x.abs() > y.abs() {
+        std::mem::swap(&mut x, &mut y);
+    }
+    if y.abs() > z.abs() {
+        std::mem::swap(&mut y, &mut z);
+    }
+    if x.abs() > y.abs() {
+        std::mem::swap(&mut x, &mut y);
+    }
+    (x + y) + z
+}
+
 /// Watertight ray/triangle test (Woop, Benthin & Wald, JCGT 2013): edges shared by two
 /// triangles are never missed by both. Returns (t, bu, bv); degenerate triangles never hit.
 pub fn intersect_triangle(
@@ -136,11 +153,11 @@ pub fn intersect_triangle(
     if (u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0) {
         return None;
     }
-    let det = u + v + w;
+    let det = sum_by_magnitude(u, v, w);
     if det == 0.0 {
         return None;
     }
-    let t_scaled = u * (sz * a[kz]) + v * (sz * b[kz]) + w * (sz * c[kz]);
+    let t_scaled = sum_by_magnitude(u * (sz * a[kz]), v * (sz * b[kz]), w * (sz * c[kz]));
     let inv = 1.0 / det;
     let t = t_scaled * inv;
     (t > t_min && t < t_max).then_some((t, v * inv, w * inv))

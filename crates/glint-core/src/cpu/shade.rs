@@ -18,7 +18,8 @@ use crate::layout::{
 /// undefined); it still gives its ambient term.
 pub const MIN_LIGHT_DISTANCE: f64 = 1e-20;
 
-/// Below this |L + V| the half vector is undefined (L = −V) and the Blinn term is 0.
+/// Below this |L + V| the half vector is undefined (L = −V) and the Blinn lobe takes its value
+/// at H·N = 0: 0, or 1 for n = 0 (x^0 = 1, as everywhere else).
 pub const MIN_HALF_LENGTH: f64 = 1e-12;
 
 /// x^n with the conventions the model needs and `pow` does not guarantee on the GPU:
@@ -80,10 +81,12 @@ pub fn specular_term(ctx: &TraceContext, mat: &GpuMaterial, n: DVec3, l: DVec3, 
         let r = 2.0 * n_dot_l * n - l;
         return safe_pow(r.dot(v).max(0.0), shininess);
     }
-    let h = l + v;
+    // L normalised here: a directional light's L is its stored f32 direction, unit only to
+    // ~3e-8, and where L ≈ −V that length error, not the direction, would set H's direction.
+    let h = l.normalize() + v;
     let len = h.length();
     if len < MIN_HALF_LENGTH {
-        return 0.0;
+        return safe_pow(0.0, shininess);
     }
     safe_pow((n.dot(h) / len).max(0.0), shininess)
 }

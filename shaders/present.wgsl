@@ -1,0 +1,25 @@
+// Twin of crates/glint-core/src/image.rs (linear_to_srgb8): turns the tracer's linear output
+// buffer into an 8-bit sRGB texture for display, on the GPU, without a round trip to the host.
+@group(0) @binding(0) var<storage, read> radiance: array<vec4<f32>>;
+@group(0) @binding(1) var target_image: texture_storage_2d<rgba8unorm, write>;
+@group(0) @binding(2) var<uniform> size: vec4<u32>;
+
+// The sRGB transfer function (IEC 61966-2-1) of a clamped linear value, as a value in [0, 1]
+// that the rgba8unorm store rounds to the same byte as the CPU's linear_to_srgb8.
+fn linear_to_srgb8(v: f32) -> f32 {
+    let c = clamp(v, 0.0, 1.0);
+    if c <= 0.0031308 {
+        return 12.92 * c;
+    }
+    return 1.055 * pow(c, 1.0 / 2.4) - 0.055;
+}
+
+@compute @workgroup_size(8, 8, 1)
+fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
+    if gid.x >= size.x || gid.y >= size.y {
+        return;
+    }
+    let p = radiance[gid.y * size.x + gid.x].xyz;
+    let srgb = vec3<f32>(linear_to_srgb8(p.x), linear_to_srgb8(p.y), linear_to_srgb8(p.z));
+    textureStore(target_image, vec2<i32>(gid.xy), vec4<f32>(srgb, 1.0));
+}

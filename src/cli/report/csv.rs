@@ -1,0 +1,129 @@
+//! `report.csv`: one row per configuration, units in the column names.
+//!
+//! Numbers are printed in Rust's shortest round-trip form; PSNR is `inf` for an image equal
+//! to the reference. Cells that do not apply (GPU-only figures on CPU rows) are empty.
+
+use super::plan::Backend;
+use super::sweep::{Row, SceneResult};
+
+pub const HEADER: &[&str] = &[
+    "scene",
+    "backend",
+    "device",
+    "groups",
+    "width_px",
+    "height_px",
+    "spp",
+    "max_depth",
+    "bailout",
+    "specialised",
+    "epsilon_mode",
+    "epsilon",
+    "timed_runs",
+    "render_ms_median",
+    "render_ms_min",
+    "render_ms_max",
+    "pipeline_ms",
+    "shader_statements",
+    "rays_total",
+    "camera_rays",
+    "rays_per_pixel",
+    "bailout_saved_rays",
+    "mrays_per_s",
+    "rmse",
+    "rel_mse",
+    "psnr_db",
+    "flip_mean",
+    "max_abs",
+    "first_hit_mismatch_pct",
+    "rmse_vs_cpu_twin",
+    "rays_vs_cpu_twin_pct",
+    "gpu_status",
+    "pareto_all",
+    "pareto_backend",
+];
+
+/// RFC 4180 quoting, only where needed (adapter names contain commas).
+fn field(s: &str) -> String {
+    if s.contains([',', '"', '\n', '\r']) { format!("\"{}\"", s.replace('"', "\"\"")) } else { s.to_string() }
+}
+
+fn ms(d: std::time::Duration) -> String {
+    format!("{:.4}", d.as_secs_f64() * 1e3)
+}
+
+/// Scientific notation keeps tiny errors short and exact ("1.234e-7"; 0 is "0e0").
+fn sci(v: f64) -> String {
+    format!("{v:e}")
+}
+
+fn row_fields(scene: &SceneResult, row: &Row, device: &str) -> Vec<String> {
+    let c = &row.config;
+    let s = &scene.settings;
+    let e = &row.errors;
+    let opt = |v: Option<String>| v.unwrap_or_default();
+    vec![
+        scene.name.clone(),
+        c.backend.name().into(),
+        device.into(),
+        row.groups.iter().map(|g| g.name()).collect::<Vec<_>>().join(";"),
+        s.width.to_string(),
+        s.height.to_string(),
+        c.spp.to_string(),
+        c.depth.to_string(),
+        c.bailout.value().to_string(),
+        c.specialise.to_string(),
+        c.epsilon_mode.name().into(),
+        s.epsilon.to_string(),
+        row.times.len().to_string(),
+        ms(row.median()),
+        ms(row.times[0]),
+        ms(row.times[row.times.len() - 1]),
+        opt(row.gpu.map(|g| ms(g.pipeline))),
+        opt(row.gpu.map(|g| g.statements.to_string())),
+        row.counts.total().to_string(),
+        row.counts.camera.to_string(),
+        format!("{:.4}", row.counts.total() as f64 / scene.pixels() as f64),
+        row.counts.bailout_saved.to_string(),
+        format!("{:.4}", row.mrays()),
+        sci(e.rmse),
+        sci(e.rel_mse),
+        e.psnr.to_string(),
+        sci(e.flip_mean),
+        sci(e.max_abs),
+        (100.0 * e.first_hit_mismatch).to_string(),
+        opt(row.twin_rmse.map(sci)),
+        opt(row.twin_rays_pct.map(|v| format!("{v:.6}"))),
+        opt(row.gpu.map(|g| g.status.to_string())),
+        row.pareto_all.to_string(),
+        row.pareto_backend.to_string(),
+    ]
+}
+
+/// The whole CSV: the header, then every scene's rows in sweep order.
+pub fn render_csv(scenes: &[SceneResult], cpu_device: &str, gpu_device: &str) -> String {
+    let mut out = HEADER.join(",");
+    out.push('\n');
+    for scene in scenes {
+        for row in &scene.rows {
+            let device = if row.config.backend == Backend::Cpu { cpu_device } else { gpu_device };
+            let fields: Vec<String> = row_fields(scene, row, device).iter().map(|f| field(f)).collect();
+            debug_assert_eq!(fields.len(), HEADER.len());
+            out.push_str(&fields.join(","));
+            out.push('\n');
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::field;
+
+    #[test]
+    fn quotes_only_what_needs_it() {
+        assert_eq!(field("llvmpipe"), "llvmpipe");
+        assert_eq!(field("llvmpipe (LLVM 15, 256 bits)"), "\"llvmpipe (LLVM 15, 256 bits)\"");
+        assert_eq!(field("a\"b"), "\"a\"\"b\"");
+    }
+}

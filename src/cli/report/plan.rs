@@ -1,0 +1,292 @@
+//! Which configurations a report measures: the reference, the main grid and the focused sweeps,
+//! deduplicated (a configuration that two sweeps share is measured once and tagged with both).
+
+use glint_core::scene::EpsilonMode;
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Backend {
+    Cpu,
+    Gpu,
+}
+
+impl Backend {
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Cpu => "cpu",
+            Self::Gpu => "gpu",
+        }
+    }
+}
+
+/// The bailout thresholds of the sweep, kept symbolic so that tables can print "1/255".
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Bailout {
+    Off,
+    Per255,
+    Per32,
+}
+
+impl Bailout {
+    pub fn value(self) -> f64 {
+        match self {
+            Self::Off => 0.0,
+            Self::Per255 => 1.0 / 255.0,
+            Self::Per32 => 1.0 / 32.0,
+        }
+    }
+
+    pub fn label(self) -> &'static str {
+        match self {
+            Self::Off => "0",
+            Self::Per255 => "1/255",
+            Self::Per32 => "1/32",
+        }
+    }
+}
+
+/// Why a configuration is in the report (it may be in several sweeps).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Group {
+    /// The reference settings: error 0 on the CPU by construction; on the GPU, the f32 floor.
+    Reference,
+    Grid,
+    Bailout,
+    Shader,
+    Epsilon,
+}
+
+impl Group {
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Reference => "reference",
+            Self::Grid => "grid",
+            Self::Bailout => "bailout",
+            Self::Shader => "shader",
+            Self::Epsilon => "epsilon",
+        }
+    }
+}
+
+/// One render configuration. Size, seed and epsilon value are the report's and the scene's.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Config {
+    pub backend: Backend,
+    pub spp: u32,
+    pub depth: u32,
+    pub bailout: Bailout,
+    pub specialise: bool,
+    pub epsilon_mode: EpsilonMode,
+}
+
+impl Config {
+    /// The same configuration on the other backend: its images differ only in arithmetic.
+    pub fn on(self, backend: Backend) -> Self {
+        Self { backend, ..self }
+    }
+
+    /// A short label for plots: "4spp d5", plus whatever differs from the grid's defaults.
+    pub fn short(&self) -> String {
+        let mut s = format!("{}spp d{}", self.spp, self.depth);
+        if self.bailout != Bailout::Per255 {
+            s.push_str(&format!(" b{}", self.bailout.label()));
+        }
+        if !self.specialise {
+            s.push_str(" full");
+        }
+        if self.epsilon_mode != EpsilonMode::Robust {
+            s.push_str(&format!(" {}", self.epsilon_mode.name()));
+        }
+        s
+    }
+
+    /// Everything but the backend, for tables: "4 spp, depth 5, bailout 1/255".
+    pub fn describe(&self) -> String {
+        let mut s = format!("{} spp, depth {}, bailout {}", self.spp, self.depth, self.bailout.label());
+        if !self.specialise {
+            s.push_str(", full shader");
+        }
+        if self.epsilon_mode != EpsilonMode::Robust {
+            s.push_str(&format!(", {}", self.epsilon_mode.name()));
+        }
+        s
+    }
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Planned {
+    pub config: Config,
+    pub groups: Vec<Group>,
+}
+
+/// The axes of the sweeps.
+#[derive(Clone, Debug)]
+pub struct Plan {
+    pub reference_spp: u32,
+    pub reference_depth: u32,
+    pub grid_spp: Vec<u32>,
+    pub grid_depth: Vec<u32>,
+    pub grid_bailout: Bailout,
+    pub bailouts: Vec<Bailout>,
+    pub bailout_spp: Vec<u32>,
+    pub bailout_depth: Vec<u32>,
+    pub shader_spp: Vec<u32>,
+    pub shader_depth: u32,
+    pub epsilon_modes: Vec<EpsilonMode>,
+    pub epsilon_spp: u32,
+    pub epsilon_depth: u32,
+}
+
+impl Plan {
+    /// The sweep the issue asks for.
+    pub fn full(reference_spp: u32) -> Self {
+        Self {
+            reference_spp,
+            reference_depth: 16,
+            grid_spp: vec![1, 4, 16],
+            grid_depth: vec![0, 1, 2, 3, 5, 8],
+            grid_bailout: Bailout::Per255,
+            bailouts: vec![Bailout::Off, Bailout::Per255, Bailout::Per32],
+            bailout_spp: vec![1, 4],
+            bailout_depth: vec![5, 8],
+            shader_spp: vec![1, 4],
+            shader_depth: 5,
+            epsilon_modes: EpsilonMode::ALL.to_vec(),
+            epsilon_spp: 1,
+            epsilon_depth: 5,
+        }
+    }
+
+    /// A reduced sweep for CI (`--quick`), fewer rows of each kind and no full-shader rows:
+    /// lavapipe takes most of a minute to compile the full shader.
+    pub fn quick(reference_spp: u32) -> Self {
+        Self {
+            grid_spp: vec![1, 4],
+            grid_depth: vec![0, 2, 5],
+            bailout_spp: vec![1],
+            bailout_depth: vec![5],
+            shader_spp: Vec::new(),
+            epsilon_modes: vec![EpsilonMode::Tmin, EpsilonMode::Robust],
+            ..Self::full(reference_spp)
+        }
+    }
+
+    /// The reference: CPU f64, many samples, deep, no bailout, robust offsets, specialised.
+    pub fn reference(&self) -> Config {
+        Config {
+            backend: Backend::Cpu,
+            spp: self.reference_spp,
+            depth: self.reference_depth,
+            bailout: Bailout::Off,
+            specialise: true,
+            epsilon_mode: EpsilonMode::Robust,
+        }
+    }
+
+    /// The sweeps in one line, for the report's header.
+    pub fn describe(&self) -> String {
+        let list = |v: &[u32]| v.iter().map(u32::to_string).collect::<Vec<_>>().join(", ");
+        let bailouts: Vec<&str> = self.bailouts.iter().map(|b| b.label()).collect();
+        let modes: Vec<&str> = self.epsilon_modes.iter().map(|m| m.name()).collect();
+        format!(
+            "grid: backend × spp {{{}}} × depth {{{}}} at bailout {}; bailout {{{}}} at spp {{{}}} × depth {{{}}}; \
+             {}; ε strategy {{{}}} at spp {}, depth {}; the reference settings on each backend; all at robust \
+             offsets, specialised and bailout {} unless varied",
+            list(&self.grid_spp),
+            list(&self.grid_depth),
+            self.grid_bailout.label(),
+            bailouts.join(", "),
+            list(&self.bailout_spp),
+            list(&self.bailout_depth),
+            if self.shader_spp.is_empty() {
+                "no full-shader rows".to_string()
+            } else {
+                format!("specialised vs full shader at spp {{{}}}, depth {}", list(&self.shader_spp), self.shader_depth)
+            },
+            modes.join(", "),
+            self.epsilon_spp,
+            self.epsilon_depth,
+            self.grid_bailout.label(),
+        )
+    }
+
+    /// Every configuration on `backends`, each once, in sweep order (CPU before GPU).
+    pub fn configs(&self, backends: &[Backend]) -> Vec<Planned> {
+        let mut out: Vec<Planned> = Vec::new();
+        let mut add = |config: Config, group: Group| match out.iter_mut().find(|p| p.config == config) {
+            Some(p) if !p.groups.contains(&group) => p.groups.push(group),
+            Some(_) => {}
+            None => out.push(Planned { config, groups: vec![group] }),
+        };
+        let base = Config {
+            backend: Backend::Cpu,
+            spp: 1,
+            depth: 0,
+            bailout: self.grid_bailout,
+            specialise: true,
+            epsilon_mode: EpsilonMode::Robust,
+        };
+        for &backend in backends {
+            let base = base.on(backend);
+            add(self.reference().on(backend), Group::Reference);
+            for &spp in &self.grid_spp {
+                for &depth in &self.grid_depth {
+                    add(Config { spp, depth, ..base }, Group::Grid);
+                }
+            }
+            for &spp in &self.bailout_spp {
+                for &depth in &self.bailout_depth {
+                    for &bailout in &self.bailouts {
+                        add(Config { spp, depth, bailout, ..base }, Group::Bailout);
+                    }
+                }
+            }
+            for &spp in &self.shader_spp {
+                for specialise in [true, false] {
+                    add(Config { spp, depth: self.shader_depth, specialise, ..base }, Group::Shader);
+                }
+            }
+            for &epsilon_mode in &self.epsilon_modes {
+                add(Config { spp: self.epsilon_spp, depth: self.epsilon_depth, epsilon_mode, ..base }, Group::Epsilon);
+            }
+        }
+        for p in &mut out {
+            p.groups.sort();
+        }
+        out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn full_plan_is_deduplicated_and_tags_shared_rows() {
+        let plan = Plan::full(64);
+        let cpu = plan.configs(&[Backend::Cpu]);
+        // 1 reference + 18 grid + 8 bailout (bailout 0 and 1/32; 1/255 is in the grid)
+        // + 2 full-shader + 3 epsilon (robust is in the grid).
+        assert_eq!(cpu.len(), 1 + 18 + 8 + 2 + 3);
+        let both = plan.configs(&[Backend::Cpu, Backend::Gpu]);
+        assert_eq!(both.len(), 2 * cpu.len());
+        let shared = cpu
+            .iter()
+            .find(|p| {
+                p.config.spp == 4 && p.config.depth == 5 && p.config.specialise && p.config.bailout == Bailout::Per255
+            })
+            .expect("grid row");
+        assert_eq!(shared.groups, vec![Group::Grid, Group::Bailout, Group::Shader]);
+        for (i, a) in both.iter().enumerate() {
+            assert!(both[i + 1..].iter().all(|b| b.config != a.config), "duplicate {a:?}");
+        }
+    }
+
+    #[test]
+    fn reference_is_a_row_of_its_own_group() {
+        let plan = Plan::quick(64);
+        let rows = plan.configs(&[Backend::Cpu]);
+        let r = rows.iter().find(|p| p.config == plan.reference()).expect("reference row");
+        assert_eq!(r.groups, vec![Group::Reference]);
+        assert_eq!((r.config.spp, r.config.depth, r.config.bailout), (64, 16, Bailout::Off));
+    }
+}

@@ -1,0 +1,217 @@
+//! `error_vs_time_SCENE.png`: RMSE against render time on log-log axes, one series per backend,
+//! the Pareto front as a staircase, and the GPU's f32 floor as a dashed line.
+
+use std::path::Path;
+use std::sync::OnceLock;
+
+use anyhow::anyhow;
+use glint_core::image::write_png_rgb8;
+use plotters::prelude::*;
+
+use super::plan::Backend;
+use super::sweep::{Row, SceneResult};
+
+/// Embedded so that plots render the same on a bare CI machine (no system fonts, no
+/// fontconfig); see assets/fonts/README.md for its provenance and licence.
+static FONT: &[u8] = include_bytes!("../../../assets/fonts/DejaVuSans.ttf");
+const FAMILY: &str = "sans-serif";
+
+const WIDTH: u32 = 960;
+const HEIGHT: u32 = 640;
+const CPU_COLOUR: RGBColor = RGBColor(31, 119, 180);
+const GPU_COLOUR: RGBColor = RGBColor(230, 110, 0);
+const FLOOR_COLOUR: RGBColor = RGBColor(200, 30, 40);
+
+fn register_font() -> anyhow::Result<()> {
+    static DONE: OnceLock<bool> = OnceLock::new();
+    let ok = *DONE.get_or_init(|| plotters::style::register_font(FAMILY, FontStyle::Normal, FONT).is_ok());
+    if ok { Ok(()) } else { Err(anyhow!("the embedded plot font could not be loaded")) }
+}
+
+fn ms(d: std::time::Duration) -> f64 {
+    d.as_secs_f64() * 1e3
+}
+
+/// Rows that a log axis can show: ranked (not the reference) and with a positive error.
+fn plotted(scene: &SceneResult) -> Vec<&Row> {
+    scene.rows.iter().filter(|r| !r.is_reference() && r.errors.rmse > 0.0).collect()
+}
+
+/// Log range covering `values`, padded by the factors `below` and `above`.
+fn log_range(values: impl Iterator<Item = f64>, below: f64, above: f64) -> (f64, f64) {
+    let (lo, hi) = values.fold((f64::INFINITY, 0.0f64), |(lo, hi), v| (lo.min(v), hi.max(v)));
+    if !(lo > 0.0 && hi.is_finite()) {
+        return (0.1, 10.0);
+    }
+    (lo / below, hi * above)
+}
+
+/// Ticks m × 10^k inside [lo, hi] for the mantissas `ms`: plotters' own log ticks leave
+/// short ranges unlabelled.
+fn ticks(lo: f64, hi: f64, ms: &[f64]) -> Vec<f64> {
+    let mut out = Vec::new();
+    let mut decade = 10f64.powi(lo.log10().floor() as i32);
+    while decade <= hi {
+        out.extend(ms.iter().map(|m| m * decade).filter(|v| *v >= lo && *v <= hi));
+        decade *= 10.0;
+    }
+    out
+}
+
+const ALL_MANTISSAS: [f64; 9] = [1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0];
+
+/// Labelled ticks: 1-2-5 per decade when the range is short, decades otherwise.
+fn bold_ticks(lo: f64, hi: f64) -> Vec<f64> {
+    if (hi / lo).log10() < 3.0 { ticks(lo, hi, &[1.0, 2.0, 5.0]) } else { ticks(lo, hi, &[1.0]) }
+}
+
+fn tick_label(v: f64) -> String {
+    if v >= 1.0 { format!("{v:.0}") } else { format!("{v}") }
+}
+
+/// Draws the plot of one scene into an RGB buffer.
+fn draw(scene: &SceneResult, runs: usize) -> anyhow::Result<Vec<u8>> {
+    register_font()?;
+    let rows = plotted(scene);
+    let gpu_reference = scene.rows.iter().find(|r| r.is_reference() && r.config.backend == Backend::Gpu);
+    let floor = gpu_reference.map(|r| r.errors.rmse);
+    // Where the GPU dropped rays at the reference settings its error there is not rounding.
+    let floor_label = if gpu_reference.is_some_and(Row::dropped_work) {
+        "it dropped rays: not an f32 floor"
+    } else {
+        "its f32 floor"
+    };
+    let (x0, x1) = log_range(rows.iter().flat_map(|r| [ms(r.times[0]), ms(r.times[r.times.len() - 1])]), 1.3, 1.3);
+    let errors = rows.iter().flat_map(|r| [Some(r.errors.rmse), r.twin_rmse]).flatten().chain(floor);
+    let (y0, y1) = log_range(errors.filter(|e| *e > 0.0), 1.6, 1.6);
+    // Head room above the data, a third of the height, keeps the legend off the points.
+    let y1 = y1 * (y1 / y0).powf(0.4);
+    let x_axis =
+        (x0..x1).log_scale().with_key_points(bold_ticks(x0, x1)).with_light_points(ticks(x0, x1, &ALL_MANTISSAS));
+    let y_axis =
+        (y0..y1).log_scale().with_key_points(bold_ticks(y0, y1)).with_light_points(ticks(y0, y1, &ALL_MANTISSAS));
+    let mut buf = vec![255u8; (WIDTH * HEIGHT * 3) as usize];
+    {
+        let root = BitMapBackend::with_buffer(&mut buf, (WIDTH, HEIGHT)).into_drawing_area();
+        root.fill(&WHITE)?;
+        let title = format!(
+            "{}: error against render time ({}×{}, reference CPU f64 {} spp)",
+            scene.name, scene.settings.width, scene.settings.height, scene.reference.spp
+        );
+        let mut chart = ChartBuilder::on(&root)
+            .caption(title, (FAMILY, 22))
+            .margin(16)
+            .x_label_area_size(52)
+            .y_label_area_size(80)
+            .build_cartesian_2d(x_axis, y_axis)?;
+        chart
+            .configure_mesh()
+            .x_desc(format!("render time, median of {runs} runs (ms, log)"))
+            .y_desc("RMSE against the reference (linear radiance, log)")
+            .axis_desc_style((FAMILY, 16))
+            .label_style((FAMILY, 14))
+            .x_label_formatter(&|v| tick_label(*v))
+            .y_label_formatter(&|v| format!("{v:.0e}"))
+            .light_line_style(RGBColor(235, 235, 235))
+            .bold_line_style(RGBColor(205, 205, 205))
+            .draw()?;
+
+        if let Some(f) = floor.filter(|f| *f > 0.0) {
+            chart
+                .draw_series(DashedLineSeries::new([(x0, f), (x1, f)], 8, 5, FLOOR_COLOUR.stroke_width(2)))?
+                .label(format!("GPU at the reference settings: RMSE {f:.1e} ({floor_label})"))
+                .legend(|(x, y)| PathElement::new([(x, y), (x + 24, y)], FLOOR_COLOUR.stroke_width(2)));
+        }
+        // Min–max of the timed runs: how much to trust a time difference.
+        for (backend, colour) in [(Backend::Cpu, CPU_COLOUR), (Backend::Gpu, GPU_COLOUR)] {
+            chart.draw_series(rows.iter().filter(|r| r.config.backend == backend).map(|r| {
+                let e = r.errors.rmse;
+                PathElement::new([(ms(r.times[0]), e), (ms(r.times[r.times.len() - 1]), e)], colour.mix(0.5))
+            }))?;
+        }
+        let cpu = rows.iter().filter(|r| r.config.backend == Backend::Cpu);
+        if cpu.clone().next().is_some() {
+            chart
+                .draw_series(cpu.map(|r| Circle::new((r.median_ms(), r.errors.rmse), 5, CPU_COLOUR.filled())))?
+                .label("CPU (f64)")
+                .legend(|(x, y)| Circle::new((x + 12, y), 5, CPU_COLOUR.filled()));
+        }
+        let gpu = rows.iter().filter(|r| r.config.backend == Backend::Gpu);
+        if gpu.clone().next().is_some() {
+            chart
+                .draw_series(gpu.map(|r| TriangleMarker::new((r.median_ms(), r.errors.rmse), 7, GPU_COLOUR.filled())))?
+                .label("GPU (f32)")
+                .legend(|(x, y)| TriangleMarker::new((x + 12, y), 7, GPU_COLOUR.filled()));
+        }
+
+        // The arithmetic error alone, at the same time: how far below the sampling and depth
+        // error the f32 floor lies at each configuration.
+        let twins: Vec<(f64, f64)> =
+            rows.iter().filter_map(|r| r.twin_rmse.filter(|e| *e > 0.0).map(|e| (r.median_ms(), e))).collect();
+        if !twins.is_empty() {
+            chart
+                .draw_series(twins.iter().map(|&at| Cross::new(at, 4, GPU_COLOUR.stroke_width(2))))?
+                .label("GPU against the CPU at the same settings (f32 error alone)")
+                .legend(|(x, y)| Cross::new((x + 12, y), 4, GPU_COLOUR.stroke_width(2)));
+        }
+
+        let mut front: Vec<&Row> = rows.iter().copied().filter(|r| r.pareto_all).collect();
+        front.sort_by_key(|r| r.median());
+        // A staircase: each front point holds its error until the next, faster-converging one.
+        let mut stairs = Vec::new();
+        for (i, r) in front.iter().enumerate() {
+            if i > 0 {
+                stairs.push((r.median_ms(), front[i - 1].errors.rmse));
+            }
+            stairs.push((r.median_ms(), r.errors.rmse));
+        }
+        if !stairs.is_empty() {
+            chart
+                .draw_series(LineSeries::new(stairs, BLACK.stroke_width(2)))?
+                .label("Pareto front (all configurations)")
+                .legend(|(x, y)| PathElement::new([(x, y), (x + 24, y)], BLACK.stroke_width(2)));
+        }
+        // Label the front's points where a label fits: clustered points keep the first one.
+        let (x_px, _) = chart.plotting_area().get_pixel_range();
+        let mut placed: Vec<(i32, i32, i32, i32)> = Vec::new();
+        let mut labels = Vec::new();
+        for r in &front {
+            let at = (r.median_ms(), r.errors.rmse);
+            let text = format!("{} {}", r.config.backend.name(), r.config.short());
+            let (px, py) = chart.backend_coord(&at);
+            let w = 8 * text.chars().count() as i32;
+            // Right of the point, where the staircase runs horizontally; left near the edge.
+            let dx = if px + 8 + w < x_px.end { 8 } else { -8 - w };
+            let rect = (px + dx, py + 2, px + dx + w, py + 18);
+            if placed.iter().any(|p| rect.0 < p.2 && p.0 < rect.2 && rect.1 < p.3 && p.1 < rect.3) {
+                continue;
+            }
+            placed.push(rect);
+            labels.push(EmptyElement::at(at) + Text::new(text, (dx, 3), (FAMILY, 13).into_font()));
+        }
+        chart.draw_series(labels)?;
+
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperRight)
+            .background_style(WHITE.mix(0.9))
+            .border_style(RGBColor(120, 120, 120))
+            .label_font((FAMILY, 14))
+            .draw()?;
+        root.present()?;
+    }
+    Ok(buf)
+}
+
+/// Writes `error_vs_time_SCENE.png` into `dir` (atomically, via glint-core's PNG writer).
+pub fn write_plot(dir: &Path, scene: &SceneResult, runs: usize) -> anyhow::Result<std::path::PathBuf> {
+    let rgb = draw(scene, runs)?;
+    let path = dir.join(format!("error_vs_time_{}.png", scene.name));
+    let metadata = vec![
+        ("Software".to_string(), format!("glint {}", env!("CARGO_PKG_VERSION"))),
+        ("Title".to_string(), format!("{}: RMSE against render time", scene.name)),
+        ("glint:scene".to_string(), scene.name.clone()),
+    ];
+    write_png_rgb8(&path, WIDTH, HEIGHT, &rgb, &metadata)?;
+    Ok(path)
+}

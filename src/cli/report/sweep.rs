@@ -1,0 +1,241 @@
+//! Runs the planned configurations of one scene: a warm-up and timed renders each, errors
+//! against the reference, and the GPU rows against their CPU twins.
+
+use std::collections::HashMap;
+use std::time::Duration;
+
+use anyhow::Context;
+use glint_core::compare::{ImageErrors, compare_images};
+use glint_core::cpu::RayCounts;
+use glint_core::scene::{LoadedScene, RenderSettings};
+use glint_core::{CpuOptions, FlatScene, HdrImage, RenderControl, render_cpu};
+use glint_gpu::{GpuOptions, GpuTracer, ShaderKey};
+use indicatif::ProgressBar;
+
+use super::plan::{Backend, Config, Group, Planned};
+
+/// What the sweep needs to render: CPU threads and, unless `--cpu-only`, one GPU tracer whose
+/// pipeline cache lives for the whole report.
+#[derive(Debug)]
+pub struct Engines {
+    pub threads: usize,
+    pub gpu: Option<GpuTracer>,
+    /// Creation time of every shader variant, measured once when it was first built.
+    pub pipelines: HashMap<ShaderKey, Duration>,
+}
+
+/// One render's image and what it cost.
+struct Sample {
+    image: HdrImage,
+    counts: RayCounts,
+    time: Duration,
+    gpu: Option<GpuExtra>,
+}
+
+#[derive(Clone, Copy, Debug)]
+pub struct GpuExtra {
+    /// Creation time of the row's shader variant (compiled once, then cached).
+    pub pipeline: Duration,
+    pub statements: usize,
+    pub status: u32,
+}
+
+/// A GPU row whose ray count differs from its CPU twin's by more than this (%) is flagged:
+/// f32 branching alone moves counts by a few in a million.
+pub const RAY_MISMATCH_PCT: f64 = 0.1;
+
+/// One measured configuration.
+#[derive(Clone, Debug)]
+pub struct Row {
+    pub config: Config,
+    pub groups: Vec<Group>,
+    /// Timed render times, sorted.
+    pub times: Vec<Duration>,
+    pub counts: RayCounts,
+    pub gpu: Option<GpuExtra>,
+    pub errors: ImageErrors,
+    /// GPU rows: RMSE against the CPU render of the same configuration (arithmetic alone).
+    pub twin_rmse: Option<f64>,
+    /// GPU rows: how many more rays (%) the GPU traced than its CPU twin. A few in a million
+    /// differ where f32 takes another branch (total internal reflection, a missed shadow
+    /// ray); more means the GPU cut ray trees or samples.
+    pub twin_rays_pct: Option<f64>,
+    /// One camera ray per sample: width × height × spp.
+    pub camera_expected: u64,
+    /// Whether the image equals, bit for bit, that of the same configuration specialised
+    /// (full-shader rows only).
+    pub same_as_specialised: Option<bool>,
+    pub pareto_all: bool,
+    pub pareto_backend: bool,
+}
+
+impl Row {
+    pub fn median(&self) -> Duration {
+        self.times[self.times.len() / 2]
+    }
+
+    pub fn median_ms(&self) -> f64 {
+        self.median().as_secs_f64() * 1e3
+    }
+
+    pub fn mrays(&self) -> f64 {
+        self.counts.total() as f64 / self.median().as_secs_f64().max(1e-9) / 1e6
+    }
+
+    /// Whether the render lost work: fewer camera rays than samples, or (GPU) noticeably more
+    /// or fewer rays than its CPU twin. Its error is then not that of its arithmetic.
+    pub fn dropped_work(&self) -> bool {
+        self.counts.camera != self.camera_expected || self.twin_rays_pct.is_some_and(|p| p.abs() > RAY_MISMATCH_PCT)
+    }
+
+    pub fn is_reference(&self) -> bool {
+        self.groups.contains(&Group::Reference)
+    }
+}
+
+/// All rows of one scene.
+#[derive(Clone, Debug)]
+pub struct SceneResult {
+    pub name: String,
+    pub description: String,
+    /// The scene's own settings with the report's size: epsilon value and seed come from here.
+    pub settings: RenderSettings,
+    pub reference: Config,
+    pub rows: Vec<Row>,
+}
+
+impl SceneResult {
+    /// Median render time of the reference configuration (its CPU row), ms.
+    pub fn reference_ms(&self) -> f64 {
+        self.rows.iter().find(|r| r.config == self.reference).map_or(f64::NAN, Row::median_ms)
+    }
+
+    pub fn pixels(&self) -> u64 {
+        u64::from(self.settings.width) * u64::from(self.settings.height)
+    }
+}
+
+/// The scene's settings for `config` at the report's size.
+fn settings_for(base: &RenderSettings, config: &Config) -> RenderSettings {
+    RenderSettings {
+        spp: config.spp,
+        max_depth: config.depth,
+        bailout: config.bailout.value(),
+        epsilon_mode: config.epsilon_mode,
+        ..base.clone()
+    }
+}
+
+fn render(engines: &mut Engines, flat: &FlatScene, config: &Config) -> anyhow::Result<Sample> {
+    match config.backend {
+        Backend::Cpu => {
+            let options = CpuOptions { threads: engines.threads, specialise: config.specialise };
+            let r = render_cpu(flat, &options, RenderControl::default())?;
+            Ok(Sample { image: r.image, counts: r.counts, time: r.elapsed, gpu: None })
+        }
+        Backend::Gpu => {
+            let tracer = engines.gpu.as_ref().context("no GPU tracer (this is a bug)")?;
+            let options = GpuOptions { specialise: config.specialise, ..GpuOptions::default() };
+            let r = tracer.render(flat, &options).context("GPU render failed")?;
+            // The tracer reports a creation time only when it built the variant; later rows
+            // that reuse it get the time it took then.
+            let pipeline = *engines.pipelines.entry(r.key).or_insert(r.pipeline_time);
+            let gpu = GpuExtra { pipeline, statements: r.statements, status: r.status };
+            Ok(Sample { image: r.image, counts: r.counts, time: r.render_time, gpu: Some(gpu) })
+        }
+    }
+}
+
+/// Renders the reference, then every planned configuration: first a warm-up pass over all of
+/// them (it builds the GPU pipelines and gives the images), then `runs` timed passes. Passes
+/// rather than back-to-back runs of one configuration, so that a load change on a shared
+/// machine spreads over every configuration instead of biasing the few measured during it.
+pub fn run_scene(
+    engines: &mut Engines,
+    loaded: &LoadedScene,
+    base: &RenderSettings,
+    reference: &Config,
+    planned: &[Planned],
+    runs: u32,
+    bar: &ProgressBar,
+) -> anyhow::Result<SceneResult> {
+    let name = &loaded.name;
+    bar.set_message(format!("{name}: reference ({} spp, depth {})", reference.spp, reference.depth));
+    let build = |c: &Config| FlatScene::build(&loaded.desc, &settings_for(base, c));
+    let reference_render = render(engines, &build(reference), reference)?;
+    bar.inc(1);
+    let ref_image = reference_render.image;
+    let scenes: Vec<FlatScene> = planned.iter().map(|p| build(&p.config)).collect();
+    let mut rows = Vec::with_capacity(planned.len());
+    let mut images = Vec::with_capacity(planned.len());
+    for (p, flat) in planned.iter().zip(&scenes) {
+        let c = &p.config;
+        bar.set_message(format!("{name}: warm-up: {} {}", c.backend.name(), c.describe()));
+        let warm = render(engines, flat, c).with_context(|| format!("{name}: {c:?}"))?;
+        let expected_camera = u64::from(base.width) * u64::from(base.height) * u64::from(c.spp);
+        if warm.counts.camera != expected_camera {
+            bar.suspend(|| {
+                eprintln!(
+                    "warning: {name}: the {} render of {} traced {} camera rays, not {expected_camera}: \
+                     samples were dropped",
+                    c.backend.name(),
+                    c.describe(),
+                    warm.counts.camera
+                );
+            });
+        }
+        if !warm.image.all_finite() {
+            anyhow::bail!("{name}: the {} render of {c:?} has non-finite pixels; this is a bug", c.backend.name());
+        }
+        rows.push(Row {
+            config: *c,
+            groups: p.groups.clone(),
+            times: Vec::with_capacity(runs as usize),
+            counts: warm.counts,
+            gpu: warm.gpu,
+            errors: compare_images(&ref_image, &warm.image),
+            twin_rmse: None,
+            twin_rays_pct: None,
+            camera_expected: expected_camera,
+            same_as_specialised: None,
+            pareto_all: false,
+            pareto_backend: false,
+        });
+        images.push(warm.image);
+        bar.inc(1);
+    }
+    for pass in 1..=runs {
+        for (row, flat) in rows.iter_mut().zip(&scenes) {
+            let c = row.config;
+            bar.set_message(format!("{name}: timed pass {pass}/{runs}: {} {}", c.backend.name(), c.describe()));
+            row.times.push(render(engines, flat, &c).with_context(|| format!("{name}: {c:?}"))?.time);
+            bar.inc(1);
+        }
+    }
+    for row in &mut rows {
+        row.times.sort();
+    }
+    let index: HashMap<Config, usize> = rows.iter().enumerate().map(|(i, r)| (r.config, i)).collect();
+    for i in 0..rows.len() {
+        let c = rows[i].config;
+        if c.backend == Backend::Gpu
+            && let Some(&j) = index.get(&c.on(Backend::Cpu))
+        {
+            rows[i].twin_rmse = Some(compare_images(&images[j], &images[i]).rmse);
+            let (gpu, cpu) = (rows[i].counts.total() as f64, rows[j].counts.total() as f64);
+            rows[i].twin_rays_pct = Some(100.0 * (gpu - cpu) / cpu.max(1.0));
+        }
+        if !c.specialise
+            && let Some(&j) = index.get(&Config { specialise: true, ..c })
+        {
+            rows[i].same_as_specialised = Some(images[j] == images[i]);
+        }
+    }
+    Ok(SceneResult {
+        name: name.clone(),
+        description: loaded.desc.description.clone(),
+        settings: base.clone(),
+        reference: *reference,
+        rows,
+    })
+}

@@ -1,0 +1,230 @@
+//! `glint report --quick`: the files it writes, and that its numbers are finite and consistent.
+//! It sweeps the GPU too and fails without an adapter unless `GLINT_SKIP_GPU=1`, which makes it
+//! sweep the CPU alone (`--cpu-only`).
+
+use std::collections::HashMap;
+use std::time::Instant;
+
+use super::{TempDir, glint, text};
+
+const HEADER: &str = "scene,backend,device,groups,width_px,height_px,spp,max_depth,bailout,specialised,\
+    epsilon_mode,epsilon,timed_runs,render_ms_median,render_ms_min,render_ms_max,pipeline_ms,shader_statements,\
+    rays_total,camera_rays,rays_per_pixel,bailout_saved_rays,mrays_per_s,rmse,rel_mse,psnr_db,flip_mean,max_abs,\
+    first_hit_mismatch_pct,rmse_vs_cpu_twin,rays_vs_cpu_twin_pct,gpu_status,pareto_all,pareto_backend";
+
+/// Columns that hold numbers.
+const NUMERIC: &[&str] = &[
+    "width_px",
+    "height_px",
+    "spp",
+    "max_depth",
+    "bailout",
+    "epsilon",
+    "timed_runs",
+    "render_ms_median",
+    "render_ms_min",
+    "render_ms_max",
+    "pipeline_ms",
+    "shader_statements",
+    "rays_total",
+    "camera_rays",
+    "rays_per_pixel",
+    "bailout_saved_rays",
+    "mrays_per_s",
+    "rmse",
+    "rel_mse",
+    "psnr_db",
+    "flip_mean",
+    "max_abs",
+    "first_hit_mismatch_pct",
+    "rmse_vs_cpu_twin",
+    "rays_vs_cpu_twin_pct",
+    "gpu_status",
+];
+
+/// Columns that only GPU rows fill.
+const GPU_ONLY: &[&str] =
+    &["pipeline_ms", "shader_statements", "rmse_vs_cpu_twin", "rays_vs_cpu_twin_pct", "gpu_status"];
+
+/// Columns that may be negative (a GPU row may trace fewer rays than its CPU twin).
+const SIGNED: &[&str] = &["rays_vs_cpu_twin_pct"];
+
+/// Splits one RFC 4180 line (quoted fields may hold commas and doubled quotes).
+fn split_csv(line: &str) -> Vec<String> {
+    let mut fields = vec![String::new()];
+    let mut quoted = false;
+    let mut chars = line.chars().peekable();
+    while let Some(c) = chars.next() {
+        match (c, quoted) {
+            ('"', true) if chars.peek() == Some(&'"') => {
+                chars.next();
+                fields.last_mut().unwrap().push('"');
+            }
+            ('"', _) => quoted = !quoted,
+            (',', false) => fields.push(String::new()),
+            (c, _) => fields.last_mut().unwrap().push(c),
+        }
+    }
+    assert!(!quoted, "unterminated quote in {line}");
+    fields
+}
+
+#[test]
+fn quick_report_writes_consistent_files() {
+    let skip_gpu = std::env::var("GLINT_SKIP_GPU").is_ok_and(|v| v == "1");
+    let dir = TempDir::new("report");
+    let out_dir = dir.path("out");
+    let mut args = vec!["report".into(), "--quick".into(), "--out".into(), out_dir.clone().into_os_string()];
+    if skip_gpu {
+        eprintln!("GLINT_SKIP_GPU=1: the report sweeps the CPU only");
+        args.push("--cpu-only".into());
+    }
+    let start = Instant::now();
+    let out = glint(&dir.0, &args);
+    let stderr = text(&out.stderr);
+    assert!(
+        out.status.success(),
+        "glint report --quick failed{}:\n{stderr}",
+        if stderr.contains("adapter") || stderr.contains("GPU") {
+            " (it needs a GPU adapter: install Mesa's lavapipe with `apt-get install mesa-vulkan-drivers`, \
+             or set GLINT_SKIP_GPU=1 to sweep the CPU alone)"
+        } else {
+            ""
+        }
+    );
+    eprintln!("glint report --quick took {:.1} s", start.elapsed().as_secs_f64());
+
+    // Exactly the promised files, no temporary ones left.
+    let mut listing: Vec<String> = std::fs::read_dir(&out_dir)
+        .expect("output folder")
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    listing.sort();
+    let scenes = ["highlights", "whitted"];
+    let mut expected: Vec<String> = scenes.iter().map(|s| format!("error_vs_time_{s}.png")).collect();
+    expected.extend(["report.csv".to_string(), "report.md".to_string()]);
+    assert_eq!(listing, expected);
+
+    for s in scenes {
+        let png = image::open(out_dir.join(format!("error_vs_time_{s}.png"))).expect("plot decodes").into_rgb8();
+        assert!(png.width() >= 400 && png.height() >= 300, "{s}: plot is {:?}", png.dimensions());
+        let first = *png.get_pixel(0, 0);
+        let drawn = png.pixels().filter(|p| **p != first).count();
+        assert!(drawn > 5_000, "{s}: the plot is nearly blank ({drawn} drawn pixels)");
+    }
+
+    let csv = std::fs::read_to_string(out_dir.join("report.csv")).expect("report.csv");
+    let mut lines = csv.lines();
+    assert_eq!(lines.next(), Some(HEADER), "CSV header");
+    let header: Vec<&str> = HEADER.split(',').collect();
+    let col = |name: &str| header.iter().position(|h| *h == name).unwrap_or_else(|| panic!("no column {name}"));
+    let rows: Vec<Vec<String>> = lines.map(split_csv).collect();
+    assert!(!rows.is_empty(), "no rows");
+    let mut seen = HashMap::new();
+    for (i, r) in rows.iter().enumerate() {
+        assert_eq!(r.len(), header.len(), "row {i}: {r:?}");
+        let num = |name: &str| -> f64 {
+            let cell = &r[col(name)];
+            cell.parse().unwrap_or_else(|_| panic!("row {i} {name}: {cell:?} is not a number"))
+        };
+        let backend = r[col("backend")].as_str();
+        assert!(backend == "cpu" || backend == "gpu", "row {i} backend {backend}");
+        for name in NUMERIC {
+            if backend == "cpu" && GPU_ONLY.contains(name) {
+                assert_eq!(r[col(name)], "", "row {i}: {name} on a CPU row");
+                continue;
+            }
+            let v = num(name);
+            if *name == "psnr_db" {
+                assert_eq!(v.is_infinite(), num("rmse") == 0.0, "row {i}: PSNR {v} with RMSE {}", num("rmse"));
+                assert!(!v.is_nan() && (v.is_finite() || r[col(name)] == "inf"), "row {i}: PSNR {v}");
+            } else {
+                assert!(v.is_finite() && (v >= 0.0 || SIGNED.contains(name)), "row {i}: {name} = {v}");
+            }
+        }
+        let (lo, mid, hi) = (num("render_ms_min"), num("render_ms_median"), num("render_ms_max"));
+        assert!(lo > 0.0 && lo <= mid && mid <= hi, "row {i}: times {lo} {mid} {hi}");
+        assert!(num("timed_runs") >= 3.0, "row {i}: fewer than 3 timed runs");
+        let samples = num("width_px") * num("height_px") * num("spp");
+        assert!(num("rays_total") >= num("camera_rays"), "row {i}: fewer rays than camera rays");
+        if backend == "cpu" {
+            assert_eq!(num("camera_rays"), samples, "row {i}: one camera ray per sample");
+        } else if num("camera_rays") != samples {
+            // The GPU suites own GPU correctness; the report flags it, and so does this test's log.
+            eprintln!("note: row {i} (gpu): {} camera rays for {samples} samples", num("camera_rays"));
+        }
+        assert_eq!((num("width_px"), num("height_px")), (96.0, 72.0), "row {i}: --quick size");
+        if backend == "gpu" {
+            assert!(num("pipeline_ms") > 0.0, "row {i}: no pipeline time");
+        }
+        for b in ["specialised", "pareto_all", "pareto_backend"] {
+            assert!(r[col(b)] == "true" || r[col(b)] == "false", "row {i}: {b} = {}", r[col(b)]);
+        }
+        let key: Vec<&str> = ["scene", "backend", "spp", "max_depth", "bailout", "specialised", "epsilon_mode"]
+            .iter()
+            .map(|c| r[col(c)].as_str())
+            .collect();
+        assert!(seen.insert(key.clone(), i).is_none(), "row {i} repeats a configuration: {key:?}");
+    }
+
+    for s in scenes {
+        let scene_rows: Vec<&Vec<String>> = rows.iter().filter(|r| r[col("scene")] == s).collect();
+        let reference: Vec<&&Vec<String>> = scene_rows
+            .iter()
+            .filter(|r| r[col("backend")] == "cpu" && r[col("groups")].split(';').any(|g| g == "reference"))
+            .collect();
+        assert_eq!(reference.len(), 1, "{s}: one CPU reference row");
+        let r = reference[0];
+        assert!(r[col("spp")].parse::<u32>().unwrap() >= 64, "{s}: reference spp");
+        assert_eq!((r[col("max_depth")].as_str(), r[col("bailout")].as_str()), ("16", "0"), "{s}: reference settings");
+        // Rendering the reference configuration again must reproduce it bit for bit.
+        for m in ["rmse", "rel_mse", "flip_mean", "max_abs", "first_hit_mismatch_pct"] {
+            assert_eq!(r[col(m)].parse::<f64>().unwrap(), 0.0, "{s}: reference row {m}");
+        }
+        assert_eq!(r[col("psnr_db")], "inf", "{s}: reference row PSNR");
+        assert!(scene_rows.iter().any(|r| r[col("pareto_all")] == "true"), "{s}: empty Pareto front");
+        let gpu_rows = scene_rows.iter().filter(|r| r[col("backend")] == "gpu").count();
+        if skip_gpu {
+            assert_eq!(gpu_rows, 0, "{s}: GPU rows with --cpu-only");
+        } else {
+            let cpu_rows = scene_rows.len() - gpu_rows;
+            assert_eq!(gpu_rows, cpu_rows, "{s}: every configuration on both backends");
+        }
+    }
+
+    let md = std::fs::read_to_string(out_dir.join("report.md")).expect("report.md");
+    for s in scenes {
+        assert!(md.contains(&format!("## {s}")), "report.md has no section for {s}");
+        assert!(md.contains(&format!("(error_vs_time_{s}.png)")), "report.md does not link the {s} plot");
+    }
+    let mut required =
+        vec!["Timings are noisy", "All configurations", "★", "What the bailout saves", "What specialisation buys"];
+    if !skip_gpu {
+        required.extend(["Equal time", "Equal error", "f32 floor", "llvmpipe"].iter().filter(|w| {
+            // The adapter's name is only known for lavapipe; other GPUs are fine too.
+            **w != "llvmpipe" || csv.contains("llvmpipe")
+        }));
+    }
+    for w in required {
+        assert!(md.contains(w), "report.md lacks {w:?}");
+    }
+}
+
+#[test]
+fn report_rejects_an_unknown_scene_before_writing_anything() {
+    let dir = TempDir::new("report-bad");
+    let out_dir = dir.path("out");
+    let out = glint(
+        &dir.0,
+        [
+            "report".into(),
+            "--scenes".into(),
+            "whitted,nosuchscene".into(),
+            "--out".into(),
+            out_dir.clone().into_os_string(),
+        ],
+    );
+    assert!(!out.status.success());
+    assert!(text(&out.stderr).contains("nosuchscene"), "{}", text(&out.stderr));
+    assert!(!out_dir.exists(), "the output folder was created for a failing report");
+}

@@ -1,0 +1,157 @@
+//! Scene text for tests: a TOML builder that goes through the real parser and validation, so
+//! that every test scene is a scene a user could write.
+//!
+//! Shared by the test binaries (`tests/core`, `tests/gpu`, `tests/stiff`); each includes it at
+//! its crate root as `#[path = "../common/scene.rs"] mod scene;`.
+
+use std::fmt::Write as _;
+use std::path::Path;
+
+use glam::DVec3;
+use glint_core::FlatScene;
+use glint_core::scene::{SceneDesc, parse_scene};
+
+/// Widens a stored `[f32; 4]` (xyz) exactly to f64.
+pub fn w3(a: [f32; 4]) -> DVec3 {
+    DVec3::new(f64::from(a[0]), f64::from(a[1]), f64::from(a[2]))
+}
+
+/// A TOML array `[x, y, z]` that round-trips the f64 values exactly (`{:?}` is the shortest
+/// representation that reads back to the same number, and always a TOML float).
+pub fn arr(v: [f64; 3]) -> String {
+    format!("[{:?}, {:?}, {:?}]", v[0], v[1], v[2])
+}
+
+/// A TOML float.
+pub fn num(v: f64) -> String {
+    format!("{v:?}")
+}
+
+/// Parses and validates scene text (panicking with the error and the text) and builds the flat
+/// scene with the scene's own render settings.
+pub fn flat_from_toml(text: &str) -> FlatScene {
+    let (desc, _) = parse_scene(text, Path::new("test.toml")).unwrap_or_else(|e| panic!("{e}\n{text}"));
+    FlatScene::build(&desc, &desc.render)
+}
+
+/// Incrementally written scene text.
+#[derive(Debug, Default, Clone)]
+pub struct SceneText {
+    pub text: String,
+}
+
+impl SceneText {
+    /// `[render]` with the image size and extra `key = value` lines, and `[camera]`.
+    pub fn new(
+        width: u32,
+        height: u32,
+        render_extra: &str,
+        position: [f64; 3],
+        look_at: [f64; 3],
+        up: [f64; 3],
+        fov: f64,
+    ) -> Self {
+        let mut text = String::new();
+        writeln!(text, "[render]\nwidth = {width}\nheight = {height}\n{render_extra}\n").unwrap();
+        writeln!(
+            text,
+            "[camera]\nposition = {}\nlook_at = {}\nup = {}\nfov_y = {}\n",
+            arr(position),
+            arr(look_at),
+            arr(up),
+            num(fov)
+        )
+        .unwrap();
+        Self { text }
+    }
+
+    /// A 1×1 image whose only (centre) pixel looks exactly along look_at − position.
+    pub fn pinhole(render_extra: &str, position: [f64; 3], look_at: [f64; 3], up: [f64; 3]) -> Self {
+        Self::new(1, 1, render_extra, position, look_at, up, 30.0)
+    }
+
+    pub fn world(mut self, ambient: [f64; 3], background: [f64; 3]) -> Self {
+        writeln!(self.text, "[world]\nambient = {}\nbackground = {}\n", arr(ambient), arr(background)).unwrap();
+        self
+    }
+
+    /// `[materials.NAME]` with the given `key = value` lines. Unlisted fields take the
+    /// scene-format defaults, so tests list every field they rely on.
+    pub fn material(mut self, name: &str, fields: &str) -> Self {
+        writeln!(self.text, "[materials.{name}]\n{fields}\n").unwrap();
+        self
+    }
+
+    pub fn light(mut self, kind: &str, fields: &str) -> Self {
+        writeln!(self.text, "[[lights]]\ntype = \"{kind}\"\n{fields}\n").unwrap();
+        self
+    }
+
+    pub fn sphere(mut self, center: [f64; 3], radius: f64, material: &str) -> Self {
+        writeln!(
+            self.text,
+            "[[objects]]\ntype = \"sphere\"\ncenter = {}\nradius = {}\nmaterial = \"{material}\"\n",
+            arr(center),
+            num(radius)
+        )
+        .unwrap();
+        self
+    }
+
+    pub fn plane(mut self, point: [f64; 3], normal: [f64; 3], material: &str) -> Self {
+        writeln!(
+            self.text,
+            "[[objects]]\ntype = \"plane\"\npoint = {}\nnormal = {}\nmaterial = \"{material}\"\n",
+            arr(point),
+            arr(normal)
+        )
+        .unwrap();
+        self
+    }
+
+    /// A mesh of the given triangles (each its own three vertices), optional vertex normals.
+    pub fn triangles(self, tris: &[[[f64; 3]; 3]], normals: Option<&[[f64; 3]]>, material: &str) -> Self {
+        let vertices: Vec<[f64; 3]> = tris.iter().flatten().copied().collect();
+        let indices: Vec<[u32; 3]> = (0..tris.len() as u32).map(|i| [3 * i, 3 * i + 1, 3 * i + 2]).collect();
+        self.mesh(&vertices, &indices, normals, material)
+    }
+
+    /// An indexed mesh: shared vertices are written once, as a modeller would export them.
+    pub fn mesh(
+        mut self,
+        vertices: &[[f64; 3]],
+        triangles: &[[u32; 3]],
+        normals: Option<&[[f64; 3]]>,
+        material: &str,
+    ) -> Self {
+        let vertices: Vec<String> = vertices.iter().map(|v| arr(*v)).collect();
+        let indices: Vec<String> = triangles.iter().map(|t| format!("[{}, {}, {}]", t[0], t[1], t[2])).collect();
+        writeln!(
+            self.text,
+            "[[objects]]\ntype = \"mesh\"\nvertices = [{}]\ntriangles = [{}]\nmaterial = \"{material}\"",
+            vertices.join(", "),
+            indices.join(", ")
+        )
+        .unwrap();
+        if let Some(n) = normals {
+            let n: Vec<String> = n.iter().map(|v| arr(*v)).collect();
+            writeln!(self.text, "normals = [{}]", n.join(", ")).unwrap();
+        }
+        self.text.push('\n');
+        self
+    }
+
+    /// Parses (through the real parser and validation) and panics with the error text.
+    pub fn desc(&self) -> SceneDesc {
+        match parse_scene(&self.text, Path::new("test-scene.toml")) {
+            Ok((desc, _warnings)) => desc,
+            Err(e) => panic!("test scene does not load: {e}\n--- scene ---\n{}", self.text),
+        }
+    }
+
+    /// The flat scene with the scene's own render settings.
+    pub fn flat(&self) -> FlatScene {
+        let desc = self.desc();
+        FlatScene::build(&desc, &desc.render)
+    }
+}
