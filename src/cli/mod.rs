@@ -5,14 +5,16 @@ mod output;
 mod render;
 mod report;
 mod settings;
+mod view;
 
 use clap::{Parser, Subcommand};
 
 #[derive(Debug, Parser)]
 #[command(name = "glint", version, about = "Phong/Whitted ray-tracing lab: exact CPU reference and its GPU mirror")]
 pub struct Cli {
+    /// Without a subcommand, `glint` opens the viewer on the built-in `whitted` scene.
     #[command(subcommand)]
-    command: Command,
+    command: Option<Command>,
 }
 
 #[derive(Debug, Subcommand)]
@@ -21,11 +23,15 @@ enum Command {
     Render(render::RenderArgs),
     /// Sweep render configurations and report error against run time (CSV, Markdown, plots).
     Report(report::ReportArgs),
+    /// Open the interactive viewer: GPU and CPU side by side, difference, pixel probe.
+    View(view::ViewArgs),
 }
 
 pub fn run(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
-        Command::Render(args) => render::run(&args),
-        Command::Report(args) => report::run(&args),
+        Some(Command::Render(args)) => render::run(&args),
+        Some(Command::Report(args)) => report::run(&args),
+        Some(Command::View(args)) => view::run(&args),
+        None => view::run(&view::ViewArgs::default()),
     }
 }

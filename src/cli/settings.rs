@@ -4,7 +4,7 @@ use anyhow::{Context, bail};
 use clap::Args;
 use glint_core::scene::{EpsilonMode, LoadedScene, RenderSettings, Report, load_scene, validate_settings};
 
-#[derive(Clone, Debug, Args)]
+#[derive(Clone, Debug, Default, Args)]
 pub struct SettingsArgs {
     /// Image width in pixels [1, 16384] (default: the scene's)
     #[arg(long)]

@@ -16,8 +16,11 @@ pub struct Presenter {
     layout: wgpu::BindGroupLayout,
     size: wgpu::Buffer,
     texture: wgpu::Texture,
-    /// The sRGB view to display.
+    /// The sRGB view to display: sampling decodes to linear.
     pub view: wgpu::TextureView,
+    /// The same sRGB bytes in a plain `Rgba8Unorm` view, for renderers that blend in gamma
+    /// space and expect gamma-encoded textures (egui-wgpu's native textures).
+    pub gamma_view: wgpu::TextureView,
     pub width: u32,
     pub height: u32,
 }
@@ -50,8 +53,18 @@ impl Presenter {
                 | wgpu::TextureUsages::COPY_SRC,
             view_formats: &[VIEW_FORMAT],
         });
-        let view =
-            texture.create_view(&wgpu::TextureViewDescriptor { format: Some(VIEW_FORMAT), ..Default::default() });
+        // The sRGB view is for sampling only: sRGB formats cannot be storage-bound, so the view
+        // must not inherit the texture's STORAGE_BINDING usage (wgpu rejects it otherwise).
+        let view = texture.create_view(&wgpu::TextureViewDescriptor {
+            format: Some(VIEW_FORMAT),
+            usage: Some(wgpu::TextureUsages::TEXTURE_BINDING),
+            ..Default::default()
+        });
+        let gamma_view = texture.create_view(&wgpu::TextureViewDescriptor {
+            format: Some(STORAGE_FORMAT),
+            usage: Some(wgpu::TextureUsages::TEXTURE_BINDING),
+            ..Default::default()
+        });
         let size = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("glint present size"),
             size: 16,
@@ -59,7 +72,7 @@ impl Presenter {
             mapped_at_creation: false,
         });
         ctx.queue.write_buffer(&size, 0, bytemuck::cast_slice(&[width, height, 0, 0]));
-        Self { pipeline, layout, size, texture, view, width, height }
+        Self { pipeline, layout, size, texture, view, gamma_view, width, height }
     }
 
     /// Encodes `radiance` (the tracer's output buffer, same size) into the texture.

@@ -1,0 +1,200 @@
+//! Scripted runs of the real window: `--screenshot` (render, save the window, close) and the
+//! drag benchmark (orbit for a while as a user would, then report the frame rates).
+
+use std::path::PathBuf;
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
+
+use glint_core::image::write_png_rgb8;
+
+use crate::camera_control;
+use crate::document::Document;
+
+/// A run gives up after this long (a render that never settles must not hang CI).
+const TIMEOUT: Duration = Duration::from_secs(300);
+
+/// How an automated run ended: a line to print, or an error.
+pub type Outcome = Arc<Mutex<Option<Result<String, String>>>>;
+
+#[derive(Debug, Default)]
+struct FrameLog {
+    intervals_ms: Vec<f64>,
+    ui_ms: Vec<f64>,
+}
+
+impl FrameLog {
+    fn summary(&self) -> String {
+        if self.intervals_ms.is_empty() {
+            return "no frames".into();
+        }
+        let mut iv = self.intervals_ms.clone();
+        iv.sort_by(f64::total_cmp);
+        let mean = iv.iter().sum::<f64>() / iv.len() as f64;
+        let p95 = iv[((iv.len() - 1) as f64 * 0.95).round() as usize];
+        let max_ui = self.ui_ms.iter().copied().fold(0.0, f64::max);
+        let mean_ui = self.ui_ms.iter().sum::<f64>() / self.ui_ms.len().max(1) as f64;
+        format!(
+            "{} frames, {:.1} fps, frame interval mean {mean:.1} ms, p95 {p95:.1} ms, max {:.1} ms; app logic mean {mean_ui:.1} ms, max {max_ui:.1} ms",
+            iv.len(),
+            1e3 / mean,
+            iv[iv.len() - 1]
+        )
+    }
+}
+
+#[derive(Debug)]
+enum Phase {
+    Idle,
+    /// Dragging until the deadline; GPU renders completed so far are counted.
+    Dragging {
+        until: Instant,
+        renders_at_start: usize,
+    },
+    /// The drag is over: the CPU reference renders while frames are logged.
+    CpuRender,
+    Screenshot,
+    Closing,
+}
+
+#[derive(Debug)]
+pub struct Automation {
+    screenshot: Option<PathBuf>,
+    drag_seconds: Option<f64>,
+    phase: Phase,
+    started: Instant,
+    drag_log: FrameLog,
+    cpu_log: FrameLog,
+    drag_report: Option<String>,
+    pub outcome: Outcome,
+}
+
+/// What the app tells the automation each frame.
+#[derive(Debug)]
+pub struct Frame<'a> {
+    pub settled: bool,
+    pub cpu_running: bool,
+    pub gpu_renders: usize,
+    pub metadata: &'a [(String, String)],
+}
+
+impl Automation {
+    pub fn new(screenshot: Option<PathBuf>, drag_seconds: Option<f64>) -> Self {
+        Self {
+            screenshot,
+            drag_seconds,
+            phase: Phase::Idle,
+            started: Instant::now(),
+            drag_log: FrameLog::default(),
+            cpu_log: FrameLog::default(),
+            drag_report: None,
+            outcome: Arc::new(Mutex::new(None)),
+        }
+    }
+
+    pub fn active(&self) -> bool {
+        self.screenshot.is_some() || self.drag_seconds.is_some()
+    }
+
+    /// During the drag benchmark, orbits the camera a little (as a drag would); returns whether
+    /// the view counts as being dragged (preview resolution).
+    pub fn drive(&mut self, doc: &mut Document, gpu_renders: usize, settled: bool) -> bool {
+        match self.phase {
+            Phase::Idle if self.drag_seconds.is_some() && settled => {
+                let secs = self.drag_seconds.unwrap_or(0.0);
+                self.phase = Phase::Dragging {
+                    until: Instant::now() + Duration::from_secs_f64(secs),
+                    renders_at_start: gpu_renders,
+                };
+                self.started = Instant::now();
+                true
+            }
+            Phase::Dragging { until, renders_at_start } => {
+                if Instant::now() >= until {
+                    let secs = self.started.elapsed().as_secs_f64();
+                    let renders = gpu_renders.saturating_sub(renders_at_start);
+                    self.drag_report = Some(format!(
+                        "drag: {renders} GPU preview renders in {secs:.1} s = {:.1} renders/s; UI {}",
+                        renders as f64 / secs,
+                        self.drag_log.summary()
+                    ));
+                    self.phase = Phase::CpuRender;
+                    return false;
+                }
+                camera_control::orbit(&mut doc.desc.camera, 4.0, 0.0);
+                doc.edited();
+                true
+            }
+            _ => false,
+        }
+    }
+
+    pub fn record_frame(&mut self, interval: Duration, ui_ms: f64) {
+        let log = match self.phase {
+            Phase::Dragging { .. } => &mut self.drag_log,
+            Phase::CpuRender => &mut self.cpu_log,
+            _ => return,
+        };
+        log.intervals_ms.push(interval.as_secs_f64() * 1e3);
+        log.ui_ms.push(ui_ms);
+    }
+
+    /// Takes the screenshot once everything is rendered, and closes the window when done.
+    pub fn step(&mut self, ctx: &egui::Context, frame: &Frame) {
+        if !self.active() {
+            return;
+        }
+        if self.started.elapsed() > TIMEOUT && !matches!(self.phase, Phase::Closing) {
+            self.finish(ctx, Err(format!("the render did not finish within {} s", TIMEOUT.as_secs())));
+            return;
+        }
+        match self.phase {
+            Phase::Idle if self.drag_seconds.is_none() && frame.settled => self.take_screenshot(ctx, frame.metadata),
+            Phase::CpuRender if frame.settled && !frame.cpu_running => {
+                let report = format!(
+                    "{}\nwhile the CPU reference rendered: UI {}",
+                    self.drag_report.take().unwrap_or_default(),
+                    self.cpu_log.summary()
+                );
+                if self.screenshot.is_some() {
+                    self.drag_report = Some(report);
+                    self.take_screenshot(ctx, frame.metadata);
+                } else {
+                    self.finish(ctx, Ok(report));
+                }
+            }
+            Phase::Screenshot => {
+                let done = self.outcome.lock().unwrap_or_else(|e| e.into_inner()).is_some();
+                if done {
+                    self.phase = Phase::Closing;
+                    ctx.send_viewport_cmd(egui::ViewportCommand::Close);
+                }
+            }
+            _ => {}
+        }
+    }
+
+    fn take_screenshot(&mut self, ctx: &egui::Context, metadata: &[(String, String)]) {
+        let Some(path) = self.screenshot.clone() else { return };
+        let slot = self.outcome.clone();
+        let repaint = ctx.clone();
+        let mut metadata = metadata.to_vec();
+        metadata.push(("glint:view".into(), "viewer window".into()));
+        let prefix = self.drag_report.take().map(|r| format!("{r}\n")).unwrap_or_default();
+        ctx.send_viewport_cmd(egui::ViewportCommand::Screenshot(egui::ScreenshotCallback::new(move |image| {
+            let [w, h] = image.size;
+            let rgb: Vec<u8> = image.pixels.iter().flat_map(|c| [c.r(), c.g(), c.b()]).collect();
+            let result = write_png_rgb8(&path, w as u32, h as u32, &rgb, &metadata)
+                .map(|()| format!("{prefix}saved the viewer window ({w}x{h}) to {}", path.display()))
+                .map_err(|e| e.to_string());
+            *slot.lock().unwrap_or_else(|e| e.into_inner()) = Some(result);
+            repaint.request_repaint();
+        })));
+        self.phase = Phase::Screenshot;
+    }
+
+    fn finish(&mut self, ctx: &egui::Context, result: Result<String, String>) {
+        *self.outcome.lock().unwrap_or_else(|e| e.into_inner()) = Some(result);
+        self.phase = Phase::Closing;
+        ctx.send_viewport_cmd(egui::ViewportCommand::Close);
+    }
+}

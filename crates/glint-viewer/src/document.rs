@@ -1,0 +1,120 @@
+//! The scene being edited: its description, where it came from, and a revision number that
+//! every edit bumps (renders are keyed by it, so a stale result is never shown as current).
+
+use std::path::{Path, PathBuf};
+
+use glint_core::FlatScene;
+use glint_core::scene::{CameraDesc, FieldIssue, LoadedScene, SceneDesc, load_scene, to_toml, validate};
+
+use crate::error::ViewerError;
+
+#[derive(Clone, Debug)]
+pub struct Document {
+    pub desc: SceneDesc,
+    /// Short name (file stem or built-in name), used in image metadata and file names.
+    pub name: String,
+    /// The file it was loaded from or last saved to; `None` for a built-in scene.
+    pub path: Option<PathBuf>,
+    /// Edited since it was loaded or saved.
+    pub dirty: bool,
+    pub revision: u64,
+    /// The camera as loaded, for "Reset camera".
+    pub initial_camera: CameraDesc,
+    /// Validation problems of the current description; while there are any, the last valid
+    /// scene stays on screen.
+    pub issues: Vec<FieldIssue>,
+}
+
+impl Document {
+    pub fn from_loaded(loaded: LoadedScene) -> Self {
+        let path = loaded.source.to_str().filter(|s| !s.starts_with("builtin:")).map(PathBuf::from);
+        Self {
+            initial_camera: loaded.desc.camera.clone(),
+            desc: loaded.desc,
+            name: loaded.name,
+            path,
+            dirty: false,
+            revision: 0,
+            issues: Vec::new(),
+        }
+    }
+
+    /// An empty scene: the last resort if even the built-in scene cannot be loaded.
+    pub fn empty() -> Self {
+        let desc = SceneDesc {
+            description: String::new(),
+            provenance: String::new(),
+            render: Default::default(),
+            camera: CameraDesc { position: [0.0, 0.0, -5.0], look_at: [0.0; 3], up: [0.0, 1.0, 0.0], fov_y: 45.0 },
+            world: Default::default(),
+            materials: Default::default(),
+            lights: Vec::new(),
+            objects: Vec::new(),
+        };
+        Self {
+            initial_camera: desc.camera.clone(),
+            desc,
+            name: "empty".into(),
+            path: None,
+            dirty: false,
+            revision: 0,
+            issues: Vec::new(),
+        }
+    }
+
+    /// Loads a scene file or a built-in scene by name.
+    pub fn load(arg: &str) -> Result<Self, ViewerError> {
+        Ok(Self::from_loaded(load_scene(arg)?))
+    }
+
+    /// Records an edit: bumps the revision and re-validates.
+    pub fn edited(&mut self) {
+        self.revision += 1;
+        self.dirty = true;
+        self.issues = validate(&self.desc).errors;
+    }
+
+    pub fn is_valid(&self) -> bool {
+        self.issues.is_empty()
+    }
+
+    /// The flat scene at full resolution, or at half width and height for previews while a
+    /// value is dragged. `None` while the description is invalid.
+    pub fn flat(&self, preview: bool) -> Option<FlatScene> {
+        if !self.is_valid() {
+            return None;
+        }
+        let mut settings = self.desc.render.clone();
+        if preview {
+            settings.width = settings.width.div_ceil(2);
+            settings.height = settings.height.div_ceil(2);
+            // A preview shows the picture, not the noise: one sample is enough while dragging.
+            settings.spp = 1;
+        }
+        Some(FlatScene::build(&self.desc, &settings))
+    }
+
+    /// Writes the scene in the format `glint render` reads.
+    pub fn save(&mut self, path: &Path) -> Result<(), ViewerError> {
+        let text = to_toml(&self.desc).map_err(|e| ViewerError::Serialise(e.to_string()))?;
+        std::fs::write(path, text).map_err(|source| ViewerError::SaveScene { path: path.to_owned(), source })?;
+        self.path = Some(path.to_owned());
+        self.name = path.file_stem().map_or_else(|| self.name.clone(), |s| s.to_string_lossy().into_owned());
+        self.dirty = false;
+        Ok(())
+    }
+
+    /// Index into `desc.objects` of an object id from a render (ids are scene order).
+    pub fn object_index(&self, id: u32) -> Option<usize> {
+        let i = id as usize;
+        (i < self.desc.objects.len()).then_some(i)
+    }
+
+    pub fn object_label(&self, index: usize) -> String {
+        match self.desc.objects.get(index) {
+            Some(o) if !o.name().is_empty() => o.name().to_string(),
+            Some(o) => format!("{} #{index}", o.kind_name()),
+            None => format!("object #{index}"),
+        }
+    }
+}

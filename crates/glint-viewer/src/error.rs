@@ -1,0 +1,30 @@
+//! Errors the viewer reports in its UI (never as a panic).
+
+use std::path::PathBuf;
+
+#[derive(Debug, thiserror::Error)]
+pub enum ViewerError {
+    #[error(transparent)]
+    Scene(#[from] glint_core::scene::SceneError),
+    #[error("{path}: cannot write the scene: {source}")]
+    SaveScene {
+        path: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
+    #[error("cannot serialise the scene: {0}")]
+    Serialise(String),
+    #[error(transparent)]
+    Image(#[from] glint_core::image::ImageWriteError),
+    #[error("nothing to save yet: {0}")]
+    NotReady(&'static str),
+    #[error(
+        "no display: the viewer needs a window (DISPLAY or WAYLAND_DISPLAY is not set). \
+         Render without a window with `glint render`"
+    )]
+    NoDisplay,
+    #[error("cannot open the viewer window ({0}). Render without a window with `glint render`")]
+    Window(String),
+    #[error("{0}")]
+    Automation(String),
+}

@@ -1,0 +1,112 @@
+//! Light gizmos: where each light is, projected with the scene camera, as polylines in
+//! image coordinates ([0, 1]², y down) for the view to draw over the GPU image.
+
+use egui::Color32;
+use glint_core::glam::DVec3;
+use glint_core::layout::GpuCamera;
+use glint_core::scene::{LightKind, SceneDesc};
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Gizmo {
+    pub colour: Color32,
+    /// Marker position of the light (point and spot lights).
+    pub marker: Option<(f32, f32)>,
+    /// Outline polylines (spot cone, direction arrows).
+    pub lines: Vec<Vec<(f32, f32)>>,
+    pub selected: bool,
+}
+
+fn v(a: [f32; 4]) -> DVec3 {
+    DVec3::new(f64::from(a[0]), f64::from(a[1]), f64::from(a[2]))
+}
+
+/// Image position of world point `p`, or `None` behind the camera. Inverts `camera_ray`:
+/// dir = forward + ndc_x·right + ndc_y·up with orthogonal right and up.
+pub fn project(cam: &GpuCamera, p: DVec3) -> Option<(f32, f32)> {
+    let (f, r, u) = (v(cam.forward), v(cam.right), v(cam.up));
+    let q = p - v(cam.position);
+    let depth = q.dot(f) / f.length_squared();
+    if depth <= 1e-6 {
+        return None;
+    }
+    let ndc_x = q.dot(r) / r.length_squared() / depth;
+    let ndc_y = q.dot(u) / u.length_squared() / depth;
+    Some((((ndc_x + 1.0) / 2.0) as f32, ((1.0 - ndc_y) / 2.0) as f32))
+}
+
+fn polyline(cam: &GpuCamera, points: impl IntoIterator<Item = DVec3>) -> Vec<(f32, f32)> {
+    points.into_iter().filter_map(|p| project(cam, p)).collect()
+}
+
+fn colour(rgb: [f64; 3]) -> Color32 {
+    let m = rgb.iter().copied().fold(1e-9, f64::max);
+    let c = rgb.map(|x| (255.0 * (x / m).clamp(0.0, 1.0)) as u8);
+    Color32::from_rgb(c[0].max(60), c[1].max(60), c[2].max(60))
+}
+
+pub fn gizmos(desc: &SceneDesc, cam: &GpuCamera, selected: usize) -> Vec<Gizmo> {
+    let look_at = DVec3::from_array(desc.camera.look_at);
+    let scale = (DVec3::from_array(desc.camera.position) - look_at).length() * 0.15;
+    desc.lights
+        .iter()
+        .enumerate()
+        .map(|(i, l)| {
+            let mut g = Gizmo { colour: colour(l.diffuse.0), marker: None, lines: Vec::new(), selected: i == selected };
+            let pos = l.position.map(DVec3::from_array);
+            let dir = l.direction.map(|d| DVec3::from_array(d).normalize_or_zero());
+            match (l.kind, pos, dir) {
+                (LightKind::Point, Some(p), _) => g.marker = project(cam, p),
+                (LightKind::Spot, Some(p), Some(d)) => {
+                    g.marker = project(cam, p);
+                    g.lines.push(polyline(cam, [p, p + d * scale * 2.0]));
+                    if l.cutoff < 90.0 {
+                        // The cone's rim at a fixed distance along the axis, and four edges.
+                        let (a, b) = d.any_orthonormal_pair();
+                        let rim_r = scale * l.cutoff.to_radians().tan().min(4.0);
+                        let centre = p + d * scale;
+                        let rim: Vec<DVec3> = (0..=32)
+                            .map(|k| {
+                                let t = f64::from(k) / 32.0 * std::f64::consts::TAU;
+                                centre + (a * t.cos() + b * t.sin()) * rim_r
+                            })
+                            .collect();
+                        for k in [0, 8, 16, 24] {
+                            g.lines.push(polyline(cam, [p, rim[k]]));
+                        }
+                        g.lines.push(polyline(cam, rim));
+                    }
+                }
+                (LightKind::Directional, _, Some(d)) => {
+                    // Parallel arrows falling onto the look-at point.
+                    let (a, _) = d.any_orthonormal_pair();
+                    for off in [-1.0, 0.0, 1.0] {
+                        let end = look_at + a * off * scale * 0.5;
+                        g.lines.push(polyline(cam, [end - d * scale * 2.0, end]));
+                    }
+                }
+                _ => {}
+            }
+            g
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_look_at_point_projects_to_the_centre() {
+        let cam = GpuCamera {
+            position: [0.0, 0.0, -5.0, 0.0],
+            forward: [0.0, 0.0, 1.0, 0.0],
+            right: [0.5, 0.0, 0.0, 0.0],
+            up: [0.0, 0.4, 0.0, 0.0],
+        };
+        let (x, y) = project(&cam, DVec3::ZERO).expect("in front");
+        assert!((x - 0.5).abs() < 1e-6 && (y - 0.5).abs() < 1e-6);
+        let (x, y) = project(&cam, DVec3::new(2.5, 2.0, 0.0)).expect("in front");
+        assert!((x - 1.0).abs() < 1e-6 && y.abs() < 1e-6, "{x} {y}");
+        assert!(project(&cam, DVec3::new(0.0, 0.0, -10.0)).is_none());
+    }
+}

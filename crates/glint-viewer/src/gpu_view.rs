@@ -1,0 +1,258 @@
+//! The GPU tracer on eframe's own wgpu device: each render is traced, then encoded into a
+//! texture by glint-gpu's `Presenter` and drawn by egui straight from GPU memory. Only full
+//! resolution renders are also read back (without blocking) for the comparison and export.
+
+use std::collections::VecDeque;
+use std::sync::Arc;
+use std::sync::mpsc::{Receiver, TryRecvError, channel};
+use std::time::{Duration, Instant};
+
+use glint_core::FlatScene;
+use glint_core::HdrImage;
+use glint_core::cpu::RayCounts;
+use glint_core::layout::{STATUS_LOOP_LIMIT, STATUS_STACK_OVERFLOW};
+use glint_gpu::{GpuContext, GpuError, GpuJob, GpuOptions, GpuTracer, JobReadback, Presenter};
+
+/// Where a render in flight is.
+#[derive(Debug)]
+enum Stage {
+    /// Being uploaded and dispatched on a helper thread: on lavapipe `submit` runs as long
+    /// as the render itself, and the UI must not wait for it.
+    Submitting(Receiver<Result<GpuJob, GpuError>>),
+    Running(Box<GpuJob>),
+}
+
+/// A render in flight.
+#[derive(Debug)]
+struct InFlight {
+    stage: Stage,
+    revision: u64,
+    preview: bool,
+    size: (u32, u32),
+}
+
+/// A full-resolution GPU image on the host.
+#[derive(Clone, Debug)]
+pub struct GpuImage {
+    pub revision: u64,
+    pub image: HdrImage,
+    pub counts: RayCounts,
+    pub status: u32,
+    pub gpu_ms: f64,
+}
+
+#[derive(Debug)]
+struct Display {
+    presenter: Presenter,
+    texture: egui::TextureId,
+}
+
+pub struct GpuView {
+    pub tracer: Arc<GpuTracer>,
+    renderer: Arc<egui::mutex::RwLock<egui_wgpu::Renderer>>,
+    displays: Vec<Display>,
+    in_flight: Option<InFlight>,
+    readback: Option<(JobReadback, u64, f64)>,
+    /// What is on screen: (revision, preview, size, texture).
+    pub shown: Option<(u64, bool, (u32, u32), egui::TextureId)>,
+    pub latest: Option<GpuImage>,
+    /// GPU time of the last render.
+    pub last_ms: Option<f64>,
+    /// Completion times of recent renders, for renders per second.
+    completions: VecDeque<Instant>,
+    pub error: Option<String>,
+    pub warning: Option<String>,
+    /// Renders completed since the start.
+    pub renders: usize,
+}
+
+impl std::fmt::Debug for GpuView {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("GpuView")
+            .field("adapter", &self.adapter_name())
+            .field("shown", &self.shown)
+            .finish_non_exhaustive()
+    }
+}
+
+impl GpuView {
+    /// Wraps eframe's device and queue (no second device, no copies between devices).
+    pub fn new(state: &egui_wgpu::RenderState) -> Self {
+        let info = state.adapter.get_info();
+        let ctx = GpuContext::from_device(state.device.clone(), state.queue.clone(), &info);
+        log::info!("viewer GPU: {}", ctx.adapter);
+        Self {
+            tracer: Arc::new(GpuTracer::new(ctx)),
+            renderer: state.renderer.clone(),
+            displays: Vec::new(),
+            in_flight: None,
+            readback: None,
+            shown: None,
+            latest: None,
+            last_ms: None,
+            completions: VecDeque::new(),
+            error: None,
+            warning: None,
+            renders: 0,
+        }
+    }
+
+    pub fn adapter_name(&self) -> String {
+        self.tracer.context().adapter.to_string()
+    }
+
+    pub fn is_busy(&self) -> bool {
+        self.in_flight.is_some() || self.readback.is_some()
+    }
+
+    pub fn in_flight(&self) -> Option<(u64, bool)> {
+        self.in_flight.as_ref().map(|f| (f.revision, f.preview))
+    }
+
+    /// Renders per second over the last two seconds.
+    pub fn renders_per_second(&self) -> Option<f64> {
+        let now = Instant::now();
+        let recent: Vec<_> = self.completions.iter().filter(|t| now - **t < Duration::from_secs(2)).collect();
+        if recent.len() < 2 {
+            return None;
+        }
+        let span = (*recent[recent.len() - 1] - *recent[0]).as_secs_f64();
+        (span > 0.0).then(|| (recent.len() - 1) as f64 / span)
+    }
+
+    /// Submits a render unless one is still running (the next frame submits the newest edit,
+    /// so renders never queue up behind each other).
+    pub fn submit(&mut self, scene: &FlatScene, revision: u64, preview: bool) -> bool {
+        if self.in_flight.is_some() {
+            return false;
+        }
+        let ctx = self.tracer.context().clone();
+        if ctx.is_lost() {
+            self.error = Some(GpuError::DeviceLost.to_string());
+            return false;
+        }
+        let (tx, rx) = channel();
+        let (tracer, scene) = (self.tracer.clone(), scene.clone());
+        let size = (scene.header.width, scene.header.height);
+        let spawned = std::thread::Builder::new().name("glint-gpu-submit".into()).spawn(move || {
+            let start = Instant::now();
+            let job = tracer.submit(&scene, &GpuOptions::default());
+            log::debug!("GPU submit took {:.1} ms", start.elapsed().as_secs_f64() * 1e3);
+            // The receiver is gone only when the viewer closed.
+            let _ = tx.send(job);
+        });
+        match spawned {
+            Ok(_) => {
+                self.in_flight = Some(InFlight { stage: Stage::Submitting(rx), revision, preview, size });
+                true
+            }
+            Err(e) => {
+                self.error = Some(format!("cannot start the GPU submission thread: {e}"));
+                false
+            }
+        }
+    }
+
+    fn display_for(&mut self, size: (u32, u32)) -> &Display {
+        let ctx = self.tracer.context().clone();
+        if let Some(i) = self.displays.iter().position(|d| (d.presenter.width, d.presenter.height) == size) {
+            return &self.displays[i];
+        }
+        // Keep at most two sizes (preview and full); free the texture of any other.
+        if self.displays.len() >= 2 {
+            let old = self.displays.remove(0);
+            self.renderer.write().free_texture(&old.texture);
+        }
+        let presenter = Presenter::new(&ctx, size.0, size.1);
+        let texture =
+            self.renderer.write().register_native_texture(&ctx.device, &presenter.gamma_view, wgpu::FilterMode::Linear);
+        self.displays.push(Display { presenter, texture });
+        self.displays.last().expect("just pushed")
+    }
+
+    /// Advances the render in flight and the readback; returns true when something changed.
+    pub fn poll(&mut self) -> bool {
+        let ctx = self.tracer.context().clone();
+        let mut changed = false;
+        if let Err(e) = ctx.device.poll(wgpu::PollType::Poll) {
+            self.error = Some(e.to_string());
+        }
+        if let Some(InFlight { stage: Stage::Submitting(rx), size, .. }) = &self.in_flight {
+            let size = *size;
+            match rx.try_recv() {
+                Ok(Ok(job)) => {
+                    // Queued after the tracer's dispatches, so it encodes the finished image.
+                    self.display_for(size).presenter.present(&ctx, &job.buffers.output);
+                    if let Some(f) = &mut self.in_flight {
+                        f.stage = Stage::Running(Box::new(job));
+                    }
+                    self.error = None;
+                }
+                Ok(Err(e)) => {
+                    self.error = Some(e.to_string());
+                    self.in_flight = None;
+                    changed = true;
+                }
+                Err(TryRecvError::Empty) => {}
+                Err(TryRecvError::Disconnected) => {
+                    self.error = Some("the GPU submission thread stopped".into());
+                    self.in_flight = None;
+                }
+            }
+        }
+        if let Some(InFlight { stage: Stage::Running(job), .. }) = &self.in_flight
+            && let Some(time) = job.gpu_time()
+        {
+            let f = self.in_flight.take().expect("checked above");
+            let Stage::Running(job) = f.stage else { return changed };
+            let ms = time.as_secs_f64() * 1e3;
+            log::debug!("GPU render {}x{} done in {ms:.1} ms", f.size.0, f.size.1);
+            self.last_ms = Some(ms);
+            self.completions.push_back(Instant::now());
+            self.renders += 1;
+            while self.completions.len() > 64 {
+                self.completions.pop_front();
+            }
+            let texture = self.displays.iter().find(|d| (d.presenter.width, d.presenter.height) == f.size);
+            if let Some(d) = texture {
+                self.shown = Some((f.revision, f.preview, f.size, d.texture));
+            }
+            if !f.preview {
+                self.readback = Some((job.start_readback(&ctx), f.revision, ms));
+            }
+            changed = true;
+        }
+        if let Some((rb, revision, ms)) = &mut self.readback
+            && let Some(result) = rb.poll(&ctx)
+        {
+            let (revision, ms) = (*revision, *ms);
+            self.readback = None;
+            match result {
+                Ok((image, counts, status)) => {
+                    self.warning = status_warning(status);
+                    self.latest = Some(GpuImage { revision, image, counts, status, gpu_ms: ms });
+                }
+                Err(e) => self.error = Some(e.to_string()),
+            }
+            changed = true;
+        }
+        changed
+    }
+}
+
+/// What a status word from the shader means for the user.
+pub fn status_warning(status: u32) -> Option<String> {
+    let mut parts = Vec::new();
+    if status & STATUS_LOOP_LIMIT != 0 {
+        parts.push("the GPU tracer hit its loop bound; some ray trees were cut");
+    }
+    if status & STATUS_STACK_OVERFLOW != 0 {
+        parts.push("a ray tree was deeper than the GPU stack; its deepest rays were dropped");
+    }
+    let other = status & !(STATUS_LOOP_LIMIT | STATUS_STACK_OVERFLOW);
+    let other_text = format!("the shader raised status 0x{other:x}; the image is missing work");
+    if other != 0 {
+        parts.push(&other_text);
+    }
+    (!parts.is_empty()).then(|| parts.join("; "))
+}

@@ -1,0 +1,109 @@
+//! Glint's viewer: an eframe/egui live editor that shows the GPU tracer (on eframe's own
+//! wgpu device, without a CPU round trip) beside the exact CPU reference, their difference,
+//! and a per-term pixel probe.
+
+mod app;
+mod automation;
+mod camera_control;
+mod comparison;
+mod cpu_worker;
+mod document;
+mod error;
+mod export;
+mod gizmos;
+mod gpu_view;
+mod images;
+mod panels;
+mod probe;
+mod recent;
+mod view;
+mod widgets;
+
+pub use app::{Tab, ViewerApp, ViewerOptions};
+pub use error::ViewerError;
+pub use export::ExportView;
+pub use probe::{GpuProbe, first_difference, terms};
+pub use view::ViewMode;
+
+/// Window size at start: room for the panels and two 480×270 previews side by side. Not
+/// larger: on a software rasterizer (lavapipe) every frame costs time per window pixel.
+pub const WINDOW_SIZE: [f32; 2] = [1200.0, 720.0];
+
+/// Whether a display server is reachable (X11 or Wayland; other systems always have one).
+pub fn has_display() -> bool {
+    if cfg!(any(target_os = "windows", target_os = "macos")) {
+        return true;
+    }
+    ["DISPLAY", "WAYLAND_DISPLAY"].iter().any(|v| std::env::var_os(v).is_some_and(|s| !s.is_empty()))
+}
+
+fn native_options(renderer: eframe::Renderer) -> eframe::NativeOptions {
+    eframe::NativeOptions {
+        renderer,
+        viewport: egui::ViewportBuilder::default()
+            .with_inner_size(WINDOW_SIZE)
+            .with_title("Glint viewer")
+            .with_drag_and_drop(true),
+        ..Default::default()
+    }
+}
+
+/// Opens the viewer window and runs it until it is closed. Returns the line an automated run
+/// (`--screenshot`, drag benchmark) reports.
+pub fn run(options: ViewerOptions) -> Result<Option<String>, ViewerError> {
+    if !has_display() {
+        return Err(ViewerError::NoDisplay);
+    }
+    match run_with(options.clone(), eframe::Renderer::Wgpu) {
+        Err(ViewerError::Window(reason)) => {
+            // No usable wgpu adapter: the viewer still runs, with the CPU reference alone.
+            log::warn!("wgpu window failed ({reason}); retrying with OpenGL and no GPU tracer");
+            let options = ViewerOptions { no_gpu_reason: Some(reason), ..options };
+            run_with(options, eframe::Renderer::Glow)
+        }
+        other => other,
+    }
+}
+
+fn run_with(options: ViewerOptions, renderer: eframe::Renderer) -> Result<Option<String>, ViewerError> {
+    let slot: automation::Outcome = Default::default();
+    let app_slot = slot.clone();
+    eframe::run_native(
+        "Glint viewer",
+        native_options(renderer),
+        Box::new(move |cc| {
+            let app = ViewerApp::new(cc, options);
+            let shared = app.automation.outcome.clone();
+            // An interactive run that ends by closing the window reports nothing; an automated
+            // one must have reported by then.
+            if !app.automation.active() {
+                *app_slot.lock().unwrap_or_else(|e| e.into_inner()) = Some(Ok(String::new()));
+            }
+            Ok(Box::new(OutcomeForwarder { app, shared, slot: app_slot }))
+        }),
+    )
+    .map_err(|e| ViewerError::Window(e.to_string()))?;
+    let result = slot.lock().unwrap_or_else(|e| e.into_inner()).take();
+    match result {
+        Some(Ok(line)) if line.is_empty() => Ok(None),
+        Some(Ok(line)) => Ok(Some(line)),
+        Some(Err(e)) => Err(ViewerError::Automation(e)),
+        None => Err(ViewerError::Automation("the window closed before the automated run finished".into())),
+    }
+}
+
+/// Copies an automated run's outcome out of the app when the window closes.
+struct OutcomeForwarder {
+    app: ViewerApp,
+    shared: automation::Outcome,
+    slot: automation::Outcome,
+}
+
+impl eframe::App for OutcomeForwarder {
+    fn ui(&mut self, ui: &mut egui::Ui, frame: &mut eframe::Frame) {
+        self.app.ui(ui, frame);
+        if let Some(r) = self.shared.lock().unwrap_or_else(|e| e.into_inner()).clone() {
+            *self.slot.lock().unwrap_or_else(|e| e.into_inner()) = Some(r);
+        }
+    }
+}

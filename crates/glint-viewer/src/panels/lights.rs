@@ -1,0 +1,90 @@
+//! Lights panel: the list with add, duplicate and remove, and the selected light's fields.
+
+use egui::Ui;
+use glint_core::scene::{LightDesc, LightKind, MAX_INTENSITY};
+
+use crate::document::Document;
+use crate::widgets::{choice, number, rgb_edit, slider, vec3_edit};
+
+pub fn ui(ui: &mut Ui, doc: &mut Document, selected: &mut usize) -> bool {
+    let mut changed = false;
+    let lights = &mut doc.desc.lights;
+    ui.horizontal_wrapped(|ui| {
+        for (i, l) in lights.iter().enumerate() {
+            let name = if l.name.is_empty() { format!("{} {i}", l.kind.name()) } else { l.name.clone() };
+            ui.selectable_value(selected, i, name);
+        }
+    });
+    ui.horizontal(|ui| {
+        if ui.button("Add light").clicked() {
+            lights.push(LightDesc::new(LightKind::Point, [0.0, 5.0, -3.0], [0.0, -1.0, 0.0]));
+            *selected = lights.len() - 1;
+            changed = true;
+        }
+        if ui.add_enabled(*selected < lights.len(), egui::Button::new("Duplicate")).clicked() {
+            let copy = lights[*selected].clone();
+            lights.push(copy);
+            *selected = lights.len() - 1;
+            changed = true;
+        }
+        if ui.add_enabled(*selected < lights.len(), egui::Button::new("Remove")).clicked() {
+            lights.remove(*selected);
+            *selected = selected.saturating_sub(1);
+            changed = true;
+        }
+    });
+    let Some(light) = lights.get_mut(*selected) else {
+        ui.weak("No light selected.");
+        return changed;
+    };
+    ui.separator();
+    let before = light.kind;
+    if choice(ui, "Type", &mut light.kind, &LightKind::ALL, LightKind::name) {
+        // Keep the fields of the old type and fill in what the new one needs, so switching
+        // back and forth loses nothing.
+        if light.kind != LightKind::Directional && light.position.is_none() {
+            light.position = Some([0.0, 5.0, -3.0]);
+        }
+        if light.kind != LightKind::Point && light.direction.is_none() {
+            light.direction = Some([0.0, -1.0, 0.0]);
+        }
+        if light.kind == LightKind::Spot && before != LightKind::Spot && light.cutoff >= 180.0 {
+            light.cutoff = 30.0;
+        }
+        changed = true;
+    }
+    if light.kind != LightKind::Directional {
+        let p = light.position.get_or_insert([0.0, 5.0, -3.0]);
+        changed |= vec3_edit(ui, "Position", p, 0.05);
+    }
+    if light.kind != LightKind::Point {
+        let label = if light.kind == LightKind::Spot { "Spot axis" } else { "Direction" };
+        let d = light.direction.get_or_insert([0.0, -1.0, 0.0]);
+        changed |= vec3_edit(ui, label, d, 0.01);
+    }
+    changed |= rgb_edit(ui, "I_d", &mut light.diffuse, MAX_INTENSITY);
+    changed |= rgb_edit(ui, "I_s", &mut light.specular, MAX_INTENSITY);
+    changed |= rgb_edit(ui, "I_a,j", &mut light.ambient, MAX_INTENSITY);
+    if light.kind != LightKind::Directional {
+        ui.label("Attenuation f_att = 1 / (c + l·d + q·d²)");
+        ui.horizontal(|ui| {
+            changed |= number(ui, "c", &mut light.attenuation.c, 0.01, 0.0..=1e6);
+            changed |= number(ui, "l", &mut light.attenuation.l, 0.01, 0.0..=1e6);
+            changed |= number(ui, "q", &mut light.attenuation.q, 0.01, 0.0..=1e6);
+        });
+    }
+    if light.kind == LightKind::Spot {
+        changed |= slider(ui, "Spot exponent", &mut light.exponent, 0.0..=256.0);
+        // 180° means no cone (as OpenGL); the slider covers the cones proper.
+        let mut no_cone = light.cutoff >= 180.0;
+        if ui.checkbox(&mut no_cone, "No cone (cutoff 180°)").changed() {
+            light.cutoff = if no_cone { 180.0 } else { 30.0 };
+            changed = true;
+        }
+        if !no_cone {
+            changed |= slider(ui, "Cutoff", &mut light.cutoff, 0.0..=90.0);
+        }
+    }
+    changed |= ui.checkbox(&mut light.casts_shadows, "Casts shadows").changed();
+    changed
+}

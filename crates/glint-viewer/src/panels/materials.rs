@@ -1,0 +1,69 @@
+//! Materials panel: the material of the picked object (or any material by name).
+
+use egui::Ui;
+use glint_core::scene::{CheckerDesc, MAX_IOR, MAX_SHININESS, Rgb, SpecularModel};
+
+use crate::document::Document;
+use crate::widgets::{choice, log_slider, rgb_edit, slider};
+
+/// Colours of a material are reflectances: at most 1 per channel for k_a, k_d, k_s, k_r, k_t
+/// (validation enforces physical limits; the editor keeps to the meaningful range).
+const MAX_COEFF: f64 = 1.0;
+
+pub fn ui(
+    ui: &mut Ui,
+    doc: &mut Document,
+    selected_object: Option<usize>,
+    selected_material: &mut Option<String>,
+) -> bool {
+    let mut changed = false;
+    if let Some(i) = selected_object {
+        let label = doc.object_label(i);
+        if let Some(o) = doc.desc.objects.get(i) {
+            ui.label(format!("Selected: {label} ({})", o.kind_name()));
+            *selected_material = Some(o.material().to_string());
+        }
+    } else {
+        ui.weak("Click an object in the view to select it.");
+    }
+    let names: Vec<String> = doc.desc.materials.keys().cloned().collect();
+    let current = selected_material.clone().filter(|n| doc.desc.materials.contains_key(n));
+    egui::ComboBox::from_label("Material").selected_text(current.clone().unwrap_or_else(|| "—".into())).show_ui(
+        ui,
+        |ui| {
+            for n in &names {
+                if ui.selectable_label(current.as_deref() == Some(n), n).clicked() {
+                    *selected_material = Some(n.clone());
+                }
+            }
+        },
+    );
+    let Some(name) = current else { return changed };
+    let users = doc.desc.objects.iter().filter(|o| o.material() == name).count();
+    if users > 1 {
+        ui.weak(format!("Shared by {users} objects."));
+    }
+    let Some(m) = doc.desc.materials.get_mut(&name) else { return changed };
+    changed |= rgb_edit(ui, "k_a", &mut m.ka, MAX_COEFF);
+    changed |= rgb_edit(ui, "k_d", &mut m.kd, MAX_COEFF);
+    changed |= rgb_edit(ui, "k_s", &mut m.ks, MAX_COEFF);
+    changed |= log_slider(ui, "Shininess n", &mut m.shininess, 0.0..=MAX_SHININESS);
+    changed |=
+        choice(ui, "Specular model", &mut m.specular_model, &[SpecularModel::Blinn, SpecularModel::Phong], |s| {
+            if s == SpecularModel::Blinn { "Blinn (N·H)" } else { "Phong (R·V)" }
+        });
+    changed |= rgb_edit(ui, "k_r", &mut m.kr, MAX_COEFF);
+    changed |= rgb_edit(ui, "k_t", &mut m.kt, MAX_COEFF);
+    changed |= slider(ui, "Index of refraction", &mut m.ior, 1.0..=3.0_f64.min(MAX_IOR));
+    changed |= rgb_edit(ui, "E_m", &mut m.emission, 1e3);
+    let mut has_checker = m.checker.is_some();
+    if ui.checkbox(&mut has_checker, "Checker").changed() {
+        m.checker = has_checker.then(|| CheckerDesc { kd: Rgb::splat(0.1), size: 1.0 });
+        changed = true;
+    }
+    if let Some(c) = &mut m.checker {
+        changed |= rgb_edit(ui, "Checker k_d", &mut c.kd, MAX_COEFF);
+        changed |= log_slider(ui, "Checker size", &mut c.size, 1e-3..=1e3);
+    }
+    changed
+}

@@ -1,0 +1,77 @@
+//! Pixel probe panel: CPU and GPU breakdowns side by side, the first difference highlighted.
+
+use egui::{Color32, RichText, Ui};
+use glint_core::glam::DVec3;
+use glint_core::layout::NO_HIT;
+
+use crate::document::Document;
+use crate::probe::{GpuProbe, ProbeState, first_difference, terms};
+
+fn fmt(v: DVec3) -> String {
+    if v.x == v.y && v.y == v.z { format!("{:.6}", v.x) } else { format!("{:.6} {:.6} {:.6}", v.x, v.y, v.z) }
+}
+
+pub fn ui(ui: &mut Ui, probe: Option<&ProbeState>, doc: &Document) {
+    let Some(p) = probe else {
+        ui.weak("Ctrl+click a pixel to see its radiance split into the terms of the model.");
+        return;
+    };
+    let hit = |id: u32| {
+        if id == NO_HIT { "background".to_string() } else { doc.object_label(id as usize) }
+    };
+    ui.label(format!("Pixel ({}, {}) — hit: {}", p.x, p.y, hit(p.cpu.object_id)));
+    let gpu = p.gpu_breakdown();
+    match &p.gpu {
+        GpuProbe::Pending(_) => {
+            ui.horizontal(|ui| {
+                ui.spinner();
+                ui.label("GPU probe running…");
+            });
+        }
+        GpuProbe::Done(Err(e)) | GpuProbe::Unavailable(e) => {
+            ui.colored_label(ui.visuals().warn_fg_color, format!("GPU probe: {e}"));
+        }
+        GpuProbe::Done(Ok(g)) if g.object_id != p.cpu.object_id => {
+            ui.colored_label(ui.visuals().error_fg_color, format!("GPU hit: {}", hit(g.object_id)));
+        }
+        GpuProbe::Done(Ok(_)) => {}
+    }
+    let rows = terms(&p.cpu, gpu);
+    let first = first_difference(&rows);
+    // One row per term, CPU above GPU: narrow enough for the side panel.
+    egui::Grid::new("probe terms").striped(true).num_columns(2).show(ui, |ui| {
+        ui.strong("term");
+        ui.strong("CPU (f64) / GPU (f32)");
+        ui.end_row();
+        for (i, t) in rows.iter().enumerate() {
+            let highlight = Some(i) == first;
+            let text = |s: String| {
+                let r = RichText::new(s).monospace();
+                if highlight { r.color(Color32::from_rgb(255, 120, 90)).strong() } else { r }
+            };
+            ui.label(text(t.name.clone()));
+            ui.vertical(|ui| {
+                ui.label(text(fmt(t.cpu)));
+                ui.label(text(t.gpu.map(fmt).unwrap_or_else(|| "—".into())));
+            });
+            ui.end_row();
+        }
+    });
+    let sum = p.cpu.sum_of_terms();
+    ui.label(format!("CPU: sum of terms − I = {:.2e}", (sum - p.cpu.total).abs().max_element()));
+    if let Some(g) = gpu {
+        ui.label(format!("GPU: sum of terms − I = {:.2e}", (g.sum_of_terms() - g.total).abs().max_element()));
+    }
+    match first {
+        Some(i) => {
+            ui.colored_label(
+                Color32::from_rgb(255, 120, 90),
+                format!("First difference beyond tolerance: {}", rows[i].name),
+            );
+        }
+        None if gpu.is_some() => {
+            ui.label("CPU and GPU agree on every term within tolerance.");
+        }
+        None => {}
+    }
+}

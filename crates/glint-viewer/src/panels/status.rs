@@ -1,0 +1,79 @@
+//! The status bar: device, timings, progress, and the errors of GPU against CPU.
+
+use egui::Ui;
+use glint_core::compare::ImageErrors;
+use glint_core::cpu::RayCounts;
+
+/// Everything the status bar shows, gathered by the app.
+#[derive(Clone, Debug, Default)]
+pub struct Status {
+    pub adapter: Option<String>,
+    pub gpu_ms: Option<f64>,
+    pub gpu_fps: Option<f64>,
+    pub ui_ms: f64,
+    pub cpu_progress: Option<(usize, usize, f64)>,
+    pub cpu_time: Option<f64>,
+    pub errors: Option<ImageErrors>,
+    pub comparing: bool,
+    pub gpu_counts: Option<RayCounts>,
+    pub cpu_counts: Option<RayCounts>,
+}
+
+fn counts(c: &RayCounts) -> String {
+    format!(
+        "{} camera, {} shadow, {} reflection, {} refraction; {} saved by bailout",
+        c.camera, c.shadow, c.reflection, c.refraction, c.bailout_saved
+    )
+}
+
+pub fn ui(ui: &mut Ui, s: &Status) {
+    ui.horizontal_wrapped(|ui| {
+        match &s.adapter {
+            Some(a) => ui.label(format!("GPU: {a}")),
+            None => ui.label("GPU: none"),
+        };
+        ui.separator();
+        if let Some(ms) = s.gpu_ms {
+            ui.label(format!("GPU {ms:.1} ms/frame"));
+        }
+        if let Some(fps) = s.gpu_fps {
+            ui.label(format!("{fps:.1} fps"));
+        }
+        ui.label(format!("UI {:.1} ms", s.ui_ms));
+        ui.separator();
+        match (s.cpu_progress, s.cpu_time) {
+            (Some((done, total, secs)), _) => {
+                let f = done as f32 / total.max(1) as f32;
+                ui.add(
+                    egui::ProgressBar::new(f).desired_width(120.0).text(format!("CPU {:.0} % {secs:.1} s", f * 100.0)),
+                );
+            }
+            (None, Some(t)) => {
+                ui.label(format!("CPU done in {:.0} ms", t * 1e3));
+            }
+            (None, None) => {}
+        }
+    });
+    ui.horizontal_wrapped(|ui| match (&s.errors, s.comparing) {
+        (Some(e), _) => {
+            ui.label(format!(
+                "GPU vs CPU: max abs {:.3e}, mean abs {:.3e}, PSNR {:.1} dB, FLIP mean {:.5}, first-hit mismatch {:.3} %",
+                e.max_abs,
+                e.mean_abs,
+                e.psnr,
+                e.flip_mean,
+                e.first_hit_mismatch * 100.0
+            ));
+        }
+        (None, true) => {
+            ui.spinner();
+            ui.label("comparing GPU and CPU…");
+        }
+        (None, false) => {
+            ui.weak("GPU vs CPU: waiting for both renders");
+        }
+    });
+    if let Some(c) = s.gpu_counts.as_ref().or(s.cpu_counts.as_ref()) {
+        ui.label(format!("Rays: {}", counts(c)));
+    }
+}

@@ -1,0 +1,192 @@
+//! The central view: GPU, CPU, side by side, split wipe or difference; and the pointer input
+//! on it (orbit, pan, zoom, pick, probe), mapped to pixels of the full-resolution image.
+
+use egui::{Color32, Pos2, Rect, Sense, Stroke, Ui, Vec2, pos2};
+
+use crate::gizmos::Gizmo;
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ViewMode {
+    Gpu,
+    Cpu,
+    SideBySide,
+    Wipe,
+    Difference,
+}
+
+impl ViewMode {
+    pub const ALL: [Self; 5] = [Self::Gpu, Self::Cpu, Self::SideBySide, Self::Wipe, Self::Difference];
+
+    pub fn label(self) -> &'static str {
+        match self {
+            Self::Gpu => "GPU",
+            Self::Cpu => "CPU reference",
+            Self::SideBySide => "Side by side",
+            Self::Wipe => "Split wipe",
+            Self::Difference => "Difference",
+        }
+    }
+}
+
+/// The textures to show (any may be missing: no GPU, CPU still rendering, no comparison).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Textures {
+    pub gpu: Option<egui::TextureId>,
+    pub cpu: Option<egui::TextureId>,
+    pub diff: Option<egui::TextureId>,
+}
+
+/// What the pointer did on the view this frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ViewAction {
+    Orbit(Vec2),
+    Pan(Vec2, f32),
+    Zoom(f32),
+    /// A plain click on pixel (x, y).
+    Pick(u32, u32),
+    /// A Ctrl/Cmd-click on pixel (x, y).
+    Probe(u32, u32),
+}
+
+/// The largest rect of aspect `w:h` centred in `area`.
+fn fit(area: Rect, w: u32, h: u32) -> Rect {
+    let aspect = w as f32 / h.max(1) as f32;
+    let size = if area.width() / area.height().max(1.0) > aspect {
+        Vec2::new(area.height() * aspect, area.height())
+    } else {
+        Vec2::new(area.width(), area.width() / aspect)
+    };
+    Rect::from_center_size(area.center(), size)
+}
+
+const UV: Rect = Rect::from_min_max(Pos2::ZERO, pos2(1.0, 1.0));
+
+fn image(ui: &Ui, rect: Rect, tex: Option<egui::TextureId>, uv: Rect, missing: &str) {
+    match tex {
+        Some(t) => {
+            ui.painter().image(t, rect, uv, Color32::WHITE);
+        }
+        None => {
+            ui.painter().rect_filled(rect, 0.0, Color32::from_gray(24));
+            ui.painter().text(
+                rect.center(),
+                egui::Align2::CENTER_CENTER,
+                missing,
+                egui::FontId::proportional(14.0),
+                Color32::GRAY,
+            );
+        }
+    }
+}
+
+fn draw_gizmos(ui: &Ui, rect: Rect, gizmos: &[Gizmo]) {
+    let to_screen = |(x, y): (f32, f32)| rect.min + Vec2::new(x * rect.width(), y * rect.height());
+    let painter = ui.painter().with_clip_rect(rect);
+    for g in gizmos {
+        let width = if g.selected { 2.0 } else { 1.2 };
+        for line in &g.lines {
+            let pts: Vec<Pos2> = line.iter().copied().map(to_screen).collect();
+            painter.add(egui::Shape::line(pts, Stroke::new(width, g.colour)));
+        }
+        if let Some(m) = g.marker {
+            let c = to_screen(m);
+            painter.circle(c, 5.0, g.colour, Stroke::new(width, Color32::BLACK));
+            if g.selected {
+                painter.circle_stroke(c, 9.0, Stroke::new(1.5, Color32::WHITE));
+            }
+        }
+    }
+}
+
+/// Draws the view in the available space; returns what the pointer did and where the images are.
+pub fn show(
+    ui: &mut Ui,
+    mode: ViewMode,
+    wipe: &mut f32,
+    tex: Textures,
+    (w, h): (u32, u32),
+    gizmos: &[Gizmo],
+    show_gizmos: bool,
+) -> (Vec<ViewAction>, Vec<Rect>) {
+    let area = ui.available_rect_before_wrap();
+    let response = ui.allocate_rect(area, Sense::click_and_drag());
+    let gpu_missing = "no GPU image";
+    let cpu_missing = "CPU reference rendering…";
+    let rects: Vec<Rect> = match mode {
+        ViewMode::SideBySide => {
+            let half = Rect::from_min_size(area.min, Vec2::new(area.width() / 2.0, area.height()));
+            let left = fit(half.shrink(4.0), w, h);
+            let right = fit(half.translate(Vec2::new(area.width() / 2.0, 0.0)).shrink(4.0), w, h);
+            image(ui, left, tex.gpu, UV, gpu_missing);
+            image(ui, right, tex.cpu, UV, cpu_missing);
+            let label = |r: Rect, t: &str| {
+                ui.painter().text(
+                    r.left_top() + Vec2::new(6.0, 4.0),
+                    egui::Align2::LEFT_TOP,
+                    t,
+                    egui::FontId::proportional(13.0),
+                    Color32::WHITE,
+                );
+            };
+            label(left, "GPU");
+            label(right, "CPU");
+            if show_gizmos {
+                draw_gizmos(ui, left, gizmos);
+            }
+            vec![left, right]
+        }
+        _ => {
+            let r = fit(area.shrink(4.0), w, h);
+            match mode {
+                ViewMode::Gpu => {
+                    image(ui, r, tex.gpu, UV, gpu_missing);
+                    if show_gizmos {
+                        draw_gizmos(ui, r, gizmos);
+                    }
+                }
+                ViewMode::Cpu => image(ui, r, tex.cpu, UV, cpu_missing),
+                ViewMode::Difference => image(ui, r, tex.diff, UV, "comparing GPU and CPU…"),
+                ViewMode::Wipe | ViewMode::SideBySide => {
+                    // GPU left of the wipe line, CPU right of it.
+                    let split = r.left() + *wipe * r.width();
+                    let left = Rect::from_min_max(r.min, pos2(split, r.bottom()));
+                    let right = Rect::from_min_max(pos2(split, r.top()), r.max);
+                    image(ui, left, tex.gpu, Rect::from_min_max(Pos2::ZERO, pos2(*wipe, 1.0)), gpu_missing);
+                    image(ui, right, tex.cpu, Rect::from_min_max(pos2(*wipe, 0.0), pos2(1.0, 1.0)), cpu_missing);
+                    ui.painter().vline(split, r.y_range(), Stroke::new(1.5, Color32::WHITE));
+                    if show_gizmos {
+                        draw_gizmos(ui, r, gizmos);
+                    }
+                }
+            }
+            vec![r]
+        }
+    };
+    let mut actions = Vec::new();
+    let to_pixel = |p: Pos2| {
+        rects.iter().find(|r| r.contains(p)).map(|r| {
+            let x = ((p.x - r.left()) / r.width() * w as f32).floor().clamp(0.0, w as f32 - 1.0) as u32;
+            let y = ((p.y - r.top()) / r.height() * h as f32).floor().clamp(0.0, h as f32 - 1.0) as u32;
+            (x, y)
+        })
+    };
+    let modifiers = ui.input(|i| i.modifiers);
+    if response.clicked()
+        && let Some((x, y)) = response.interact_pointer_pos().and_then(to_pixel)
+    {
+        actions.push(if modifiers.command { ViewAction::Probe(x, y) } else { ViewAction::Pick(x, y) });
+    }
+    let view_height = rects.first().map_or(area.height(), |r| r.height());
+    let delta = response.drag_delta();
+    if delta != Vec2::ZERO {
+        let pan = modifiers.shift || response.dragged_by(egui::PointerButton::Middle);
+        actions.push(if pan { ViewAction::Pan(delta, view_height) } else { ViewAction::Orbit(delta) });
+    }
+    if response.hovered() {
+        let scroll = ui.input(|i| i.smooth_scroll_delta.y);
+        if scroll != 0.0 {
+            actions.push(ViewAction::Zoom(scroll));
+        }
+    }
+    (actions, rects)
+}

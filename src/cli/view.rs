@@ -1,0 +1,62 @@
+//! `glint view`: the interactive viewer (also what `glint` with no subcommand opens).
+
+use std::path::PathBuf;
+
+use anyhow::bail;
+use clap::Args;
+use glint_core::scene::load_scene;
+use glint_viewer::{ViewerError, ViewerOptions};
+
+use super::settings::SettingsArgs;
+
+#[derive(Debug, Args)]
+pub struct ViewArgs {
+    /// A scene file (.toml) or the name of a built-in scene
+    #[arg(default_value = "whitted")]
+    pub scene: String,
+    #[command(flatten)]
+    pub settings: SettingsArgs,
+    /// Render, save a screenshot of the window (PNG with the settings embedded) and exit
+    #[arg(long, value_name = "PNG")]
+    pub screenshot: Option<PathBuf>,
+    /// Orbit the camera for SECONDS as a drag would, then print the frame rates and exit
+    #[arg(long, value_name = "SECONDS")]
+    pub benchmark_drag: Option<f64>,
+}
+
+impl Default for ViewArgs {
+    /// What `glint` without a subcommand opens: the built-in whitted scene as it is.
+    fn default() -> Self {
+        Self { scene: "whitted".into(), settings: SettingsArgs::default(), screenshot: None, benchmark_drag: None }
+    }
+}
+
+pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
+    if let Some(s) = args.benchmark_drag
+        && !(s.is_finite() && s > 0.0 && s <= 600.0)
+    {
+        bail!("--benchmark-drag takes a number of seconds in (0, 600], not {s}");
+    }
+    // A scene that does not load is reported in the viewer window; flags apply to one that does.
+    let settings = match load_scene(&args.scene) {
+        Ok(loaded) => Some(args.settings.apply(&loaded.desc.render)?),
+        Err(_) => None,
+    };
+    let options = ViewerOptions {
+        settings,
+        scene: args.scene.clone(),
+        screenshot: args.screenshot.clone(),
+        drag_benchmark: args.benchmark_drag,
+        ..ViewerOptions::default()
+    };
+    match glint_viewer::run(options) {
+        Ok(Some(report)) => {
+            println!("{report}");
+            Ok(())
+        }
+        Ok(None) => Ok(()),
+        // One line, no chain: the message already says what to do instead.
+        Err(e @ (ViewerError::NoDisplay | ViewerError::Window(_))) => bail!("{e}"),
+        Err(e) => Err(e.into()),
+    }
+}

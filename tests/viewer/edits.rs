@@ -1,0 +1,82 @@
+//! Edits made through the widgets, found by their labels, change the document, the GPU image
+//! and the statistics the way the model says they should.
+
+use egui::accesskit::Role;
+use egui_kittest::kittest::Queryable;
+use glint_core::scene::{LightKind, RenderSettings};
+
+use crate::support::{gpu_image, mean_abs_diff, settle, viewer};
+
+#[test]
+fn depth_and_epsilon_set_through_the_ui_change_the_gpu_image_and_the_statistics() {
+    let Some(mut h) = viewer("whitted", (1000.0, 640.0)) else { return };
+    let before = gpu_image(&h);
+    let counts_before = h.state().gpu.as_ref().and_then(|g| g.latest.as_ref()).map(|l| l.counts).expect("counts");
+    assert!(counts_before.reflection > 0 && counts_before.refraction > 0, "whitted has mirror and glass rays");
+
+    h.get_by_role_and_label(Role::Slider, "Max depth").set_value_accesskit(0.0);
+    settle(&mut h);
+    assert_eq!(h.state().doc.desc.render.max_depth, 0);
+    let depth0 = gpu_image(&h);
+    let counts = h.state().gpu.as_ref().and_then(|g| g.latest.as_ref()).map(|l| l.counts).expect("counts");
+    // Depth 0 is local shading only: no secondary rays, so the mirror and glass go dull.
+    assert_eq!((counts.reflection, counts.refraction), (0, 0), "{counts:?}");
+    assert!(mean_abs_diff(&before, &depth0) > 1e-3, "depth 0 must change the image");
+    // The statistics are of the new revision and still show agreement of GPU and CPU.
+    let errors = h.state().comparison.latest.as_ref().map(|c| (c.revision, c.errors)).expect("comparison");
+    assert_eq!(errors.0, h.state().doc.revision);
+    assert!(errors.1.psnr > 40.0, "GPU and CPU disagree at depth 0: {:?}", errors.1);
+
+    // A huge ε with t-min offsets lets shadow rays escape through nearby geometry.
+    h.get_by_role_and_label(Role::Slider, "Epsilon").set_value_accesskit(0.5);
+    settle(&mut h);
+    let RenderSettings { epsilon, .. } = h.state().doc.desc.render;
+    assert!((epsilon - 0.5).abs() < 1e-12, "epsilon {epsilon}");
+    assert!(mean_abs_diff(&depth0, &gpu_image(&h)) > 1e-4, "ε = 0.5 must change the image");
+}
+
+#[test]
+fn material_ks_and_light_type_set_through_the_ui_change_the_gpu_image() {
+    let Some(mut h) = viewer("whitted", (1000.0, 640.0)) else { return };
+    let before = gpu_image(&h);
+
+    h.get_by_label("Materials").click();
+    h.run_steps(2);
+    h.get_by_label("Material").click();
+    h.run_steps(2);
+    h.get_by_label("mirror").click();
+    h.run_steps(2);
+    for channel in ["k_s R", "k_s G", "k_s B"] {
+        h.get_by_label(channel).set_value_accesskit(0.0);
+        h.run_steps(1);
+    }
+    settle(&mut h);
+    assert_eq!(h.state().doc.desc.materials["mirror"].ks.0, [0.0; 3]);
+    let dull = gpu_image(&h);
+    // The mirror sphere loses its specular highlight (k_s·I_s·spec).
+    assert!(mean_abs_diff(&before, &dull) > 1e-6, "k_s = 0 must remove the mirror's highlight");
+
+    h.get_by_label("Lights").click();
+    h.run_steps(2);
+    h.get_by_label("Type").click();
+    h.run_steps(2);
+    h.get_by_label("spot").click();
+    settle(&mut h);
+    assert_eq!(h.state().doc.desc.lights[0].kind, LightKind::Spot);
+    // A 30° cone pointing straight down from the light leaves most of the floor unlit.
+    assert!(mean_abs_diff(&dull, &gpu_image(&h)) > 1e-3, "a spot light must change the image");
+}
+
+#[test]
+fn an_invalid_value_is_reported_in_the_ui_and_the_last_valid_image_stays() {
+    let Some(mut h) = viewer("whitted", (1000.0, 640.0)) else { return };
+    let revision = h.state().gpu.as_ref().and_then(|g| g.latest.as_ref()).map(|l| l.revision);
+    h.get_by_label("Lights").click();
+    h.run_steps(2);
+    // Attenuation with c = l = q = 0 divides by zero: validation must refuse it.
+    h.get_by_label("c").set_value_accesskit(0.0);
+    h.run_steps(3);
+    assert!(!h.state().doc.issues.is_empty(), "c = 0 must be reported");
+    assert!(h.query_all_by_label_contains("lights[0].attenuation").count() > 0, "the problem is shown in the UI");
+    assert_eq!(h.state().gpu.as_ref().and_then(|g| g.latest.as_ref()).map(|l| l.revision), revision);
+}

@@ -1,0 +1,77 @@
+//! Picking an object by clicking it, and the pixel probe's breakdown on both tracers.
+
+use egui::Modifiers;
+use egui_kittest::kittest::Queryable;
+use glint_core::layout::NO_HIT;
+use glint_viewer::{GpuProbe, Tab};
+
+use crate::support::{click, gpu_image, settle, viewer};
+
+/// A pixel whose first hit (on the CPU) is object `object`, near the middle of its area.
+fn pixel_of(h: &egui_kittest::Harness<'static, glint_viewer::ViewerApp>, object: u32) -> (u32, u32) {
+    let (_, cpu) = h.state().cpu.finished.as_ref().expect("a CPU render");
+    let img = &cpu.image;
+    let hits: Vec<(u32, u32)> = (0..img.height)
+        .flat_map(|y| (0..img.width).map(move |x| (x, y)))
+        .filter(|&(x, y)| img.first_hit[(y * img.width + x) as usize] == object)
+        .collect();
+    assert!(!hits.is_empty(), "object {object} is not visible");
+    hits[hits.len() / 2]
+}
+
+fn object_named(h: &egui_kittest::Harness<'static, glint_viewer::ViewerApp>, name: &str) -> u32 {
+    let doc = &h.state().doc;
+    (0..doc.desc.objects.len()).find(|&i| doc.object_label(i) == name).unwrap_or_else(|| panic!("no object {name}"))
+        as u32
+}
+
+#[test]
+fn clicking_an_object_selects_it_and_shows_its_material() {
+    let Some(mut h) = viewer("whitted", (1000.0, 640.0)) else { return };
+    let glass = object_named(&h, "glass sphere");
+    let (x, y) = pixel_of(&h, glass);
+    let pos = h.state().screen_pos_of_pixel(x, y).expect("the view is drawn");
+    click(&mut h, pos, Modifiers::NONE);
+    h.run_steps(2);
+    assert_eq!(h.state().selected_object, Some(glass as usize));
+    assert_eq!(h.state().tab, Tab::Materials);
+    assert_eq!(h.state().selected_material.as_deref(), Some("glass"));
+    // Clicking the sky selects nothing.
+    let pos = h.state().screen_pos_of_pixel(2, 2).expect("the view is drawn");
+    click(&mut h, pos, Modifiers::NONE);
+    assert_eq!(h.state().selected_object, None);
+}
+
+#[test]
+fn the_probe_breakdown_sums_to_the_pixel_radiance_on_both_tracers() {
+    let Some(mut h) = viewer("whitted", (1000.0, 640.0)) else { return };
+    let glass = object_named(&h, "glass sphere");
+    let (x, y) = pixel_of(&h, glass);
+    let pos = h.state().screen_pos_of_pixel(x, y).expect("the view is drawn");
+    click(&mut h, pos, Modifiers::COMMAND);
+    settle(&mut h);
+    let app = h.state();
+    assert_eq!(app.tab, Tab::Probe);
+    let probe = app.probe.as_ref().expect("a probe");
+    assert_eq!((probe.x, probe.y), (x, y));
+    let cpu = &probe.cpu;
+    assert_eq!(cpu.object_id, glass);
+    assert!(!cpu.lights.is_empty());
+    // CPU: the terms add up to the radiance, which is the pixel's value (1 spp: one sample).
+    let cpu_pixel = app.cpu.finished.as_ref().map(|(_, f)| f.image.get(x, y)).expect("CPU image");
+    assert!((cpu.sum_of_terms() - cpu.total).abs().max_element() < 1e-12, "{cpu:?}");
+    assert!((cpu.total - cpu_pixel).abs().max_element() < 1e-12, "probe {} vs pixel {cpu_pixel}", cpu.total);
+    // GPU: the same in f32 (sums in another order: a few ULPs of the largest term).
+    let GpuProbe::Done(Ok(gpu)) = &probe.gpu else { panic!("GPU probe: {:?}", probe.gpu) };
+    let gpu_pixel = gpu_image(&h).get(x, y);
+    assert_eq!(gpu.object_id, glass);
+    assert!((gpu.sum_of_terms() - gpu.total).abs().max_element() < 1e-5, "{gpu:?}");
+    assert!((gpu.total - gpu_pixel).abs().max_element() < 1e-6, "probe {} vs pixel {gpu_pixel}", gpu.total);
+    // And the two agree on the hit; the table marks the first term beyond tolerance, if any.
+    assert_ne!(gpu.object_id, NO_HIT);
+    let rows = glint_viewer::terms(cpu, Some(gpu));
+    assert!(rows.iter().all(|t| t.gpu.is_some()));
+    if let Some(i) = glint_viewer::first_difference(&rows) {
+        assert!(h.query_by_label(&rows[i].name).is_some(), "the differing term {} is listed", rows[i].name);
+    }
+}

@@ -1,0 +1,43 @@
+//! Snapshots of the main layouts (side by side, difference, probe panel), 800×500.
+//!
+//! Threshold: both images are rendered by lavapipe on the CPU, deterministically, so a
+//! re-run on the same Mesa matches exactly; a different Mesa or LLVM version may round a few
+//! texture-filtering and text-antialiasing pixels differently. The per-pixel threshold stays
+//! at kittest's default (0.6, far below any visible change) and up to 0.5 % of the pixels
+//! (2000 of 400 000) may differ: a broken layout, a missing image or a changed colour map
+//! moves far more. The status bar (timings vary run to run) is masked.
+
+use egui::Modifiers;
+use egui_kittest::SnapshotOptions;
+use egui_kittest::kittest::Queryable;
+
+use crate::support::{click, settle, viewer};
+
+fn options() -> SnapshotOptions {
+    SnapshotOptions::new()
+        .output_path(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/viewer/snapshots"))
+        .max_failed_pixels(2000)
+}
+
+fn snapshot(h: &mut egui_kittest::Harness<'static, glint_viewer::ViewerApp>, name: &str) {
+    let status = h.state().status_rect;
+    h.mask(status);
+    h.snapshot_options(name, &options());
+}
+
+#[test]
+fn main_layouts_match_their_snapshots() {
+    let Some(mut h) = viewer("whitted", (800.0, 500.0)) else { return };
+    snapshot(&mut h, "viewer_side_by_side");
+
+    h.get_by_label("Difference").click();
+    h.run_steps(3);
+    snapshot(&mut h, "viewer_difference");
+
+    h.get_by_label("GPU").click();
+    h.run_steps(2);
+    let pos = h.state().screen_pos_of_pixel(100, 70).expect("the view is drawn");
+    click(&mut h, pos, Modifiers::COMMAND);
+    settle(&mut h);
+    snapshot(&mut h, "viewer_probe");
+}
