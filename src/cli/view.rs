@@ -5,9 +5,30 @@ use std::path::PathBuf;
 use anyhow::bail;
 use clap::Args;
 use glint_core::scene::load_scene;
-use glint_viewer::{ViewerError, ViewerOptions};
+use glint_viewer::{ViewMode, ViewerError, ViewerOptions};
 
 use super::settings::SettingsArgs;
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum StartView {
+    Gpu,
+    Cpu,
+    SideBySide,
+    Wipe,
+    Difference,
+}
+
+impl From<StartView> for ViewMode {
+    fn from(v: StartView) -> Self {
+        match v {
+            StartView::Gpu => Self::Gpu,
+            StartView::Cpu => Self::Cpu,
+            StartView::SideBySide => Self::SideBySide,
+            StartView::Wipe => Self::Wipe,
+            StartView::Difference => Self::Difference,
+        }
+    }
+}
 
 #[derive(Debug, Args)]
 pub struct ViewArgs {
@@ -16,6 +37,9 @@ pub struct ViewArgs {
     pub scene: String,
     #[command(flatten)]
     pub settings: SettingsArgs,
+    /// The view to start in
+    #[arg(long, value_enum, default_value_t = StartView::SideBySide)]
+    pub view: StartView,
     /// Render, save a screenshot of the window (PNG with the settings embedded) and exit
     #[arg(long, value_name = "PNG")]
     pub screenshot: Option<PathBuf>,
@@ -27,7 +51,13 @@ pub struct ViewArgs {
 impl Default for ViewArgs {
     /// What `glint` without a subcommand opens: the built-in whitted scene as it is.
     fn default() -> Self {
-        Self { scene: "whitted".into(), settings: SettingsArgs::default(), screenshot: None, benchmark_drag: None }
+        Self {
+            scene: "whitted".into(),
+            settings: SettingsArgs::default(),
+            view: StartView::SideBySide,
+            screenshot: None,
+            benchmark_drag: None,
+        }
     }
 }
 
@@ -44,6 +74,7 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
     };
     let options = ViewerOptions {
         settings,
+        view: Some(args.view.into()),
         scene: args.scene.clone(),
         screenshot: args.screenshot.clone(),
         drag_benchmark: args.benchmark_drag,

@@ -32,6 +32,8 @@ pub struct ViewerOptions {
     pub scene: String,
     /// Render settings replacing the scene's own (command-line flags).
     pub settings: Option<glint_core::scene::RenderSettings>,
+    /// The view to start in (default: side by side, or the CPU view without a GPU).
+    pub view: Option<ViewMode>,
     /// Render, save a screenshot of the window here, and close.
     pub screenshot: Option<PathBuf>,
     /// Simulate an orbit drag for this many seconds, then report the frame rates and close.
@@ -86,6 +88,7 @@ pub struct ViewerApp {
     /// A scene file dropped on the window or chosen in a dialog, loaded next frame.
     pending_open: Option<PathBuf>,
     last_frame: Option<Instant>,
+    cpu_uploaded: Option<Instant>,
     /// Where the images were drawn last frame (screen points), for mapping pixels to clicks.
     pub view_rects: Vec<egui::Rect>,
     /// Where the status bar was drawn (its timings change from run to run).
@@ -114,7 +117,11 @@ impl ViewerApp {
         } else {
             None
         };
-        let mode = if gpu.is_some() { ViewMode::SideBySide } else { ViewMode::Cpu };
+        let mode = match (options.view, gpu.is_some()) {
+            (_, false) => ViewMode::Cpu,
+            (Some(v), true) => v,
+            (None, true) => ViewMode::SideBySide,
+        };
         Self {
             doc,
             gpu,
@@ -140,6 +147,7 @@ impl ViewerApp {
             automation: Automation::new(options.screenshot, options.drag_benchmark),
             pending_open: None,
             last_frame: None,
+            cpu_uploaded: None,
             view_rects: Vec::new(),
             status_rect: egui::Rect::NOTHING,
         }
@@ -223,8 +231,17 @@ impl ViewerApp {
     }
 
     fn poll_workers(&mut self, ctx: &egui::Context) {
-        if let Some((w, h, rgba)) = self.cpu.poll() {
+        // Progressive tiles are uploaded at most ten times a second: each upload converts and
+        // copies the whole image, which the UI thread should not do for every tile.
+        let due = self.cpu_uploaded.is_none_or(|t| t.elapsed() >= Duration::from_millis(100));
+        if (due || !self.cpu.is_running())
+            && let Some((w, h, rgba)) = self.cpu.poll()
+        {
             self.cpu_texture.set_rgba(ctx, "cpu reference", w, h, &rgba);
+            self.cpu_uploaded = Some(Instant::now());
+        }
+        if !due {
+            ctx.request_repaint_after(Duration::from_millis(100));
         }
         if let Some(g) = &mut self.gpu {
             g.poll();

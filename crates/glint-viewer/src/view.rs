@@ -154,6 +154,16 @@ pub fn show(
                     image(ui, left, tex.gpu, Rect::from_min_max(Pos2::ZERO, pos2(*wipe, 1.0)), gpu_missing);
                     image(ui, right, tex.cpu, Rect::from_min_max(pos2(*wipe, 0.0), pos2(1.0, 1.0)), cpu_missing);
                     ui.painter().vline(split, r.y_range(), Stroke::new(1.5, Color32::WHITE));
+                    let font = egui::FontId::proportional(13.0);
+                    let top = r.top() + 4.0;
+                    ui.painter().text(
+                        pos2(split - 6.0, top),
+                        egui::Align2::RIGHT_TOP,
+                        "GPU",
+                        font.clone(),
+                        Color32::WHITE,
+                    );
+                    ui.painter().text(pos2(split + 6.0, top), egui::Align2::LEFT_TOP, "CPU", font, Color32::WHITE);
                     if show_gizmos {
                         draw_gizmos(ui, r, gizmos);
                     }

@@ -10,13 +10,11 @@ pub fn ui(ui: &mut Ui, doc: &mut Document) -> bool {
     let mut changed = false;
     egui::CollapsingHeader::new("Camera").default_open(true).show(ui, |ui| {
         changed |= slider(ui, "Field of view", &mut doc.desc.camera.fov_y, 1.0..=179.0);
-        ui.horizontal(|ui| {
-            if ui.button("Reset camera").clicked() {
-                doc.desc.camera = doc.initial_camera.clone();
-                changed = true;
-            }
-            ui.weak("drag: orbit · shift/middle drag: pan · wheel: zoom");
-        });
+        if ui.button("Reset camera").clicked() {
+            doc.desc.camera = doc.initial_camera.clone();
+            changed = true;
+        }
+        ui.weak("In the view: drag to orbit, Shift+drag or middle drag to pan, wheel to zoom.");
     });
     egui::CollapsingHeader::new("World").default_open(true).show(ui, |ui| {
         changed |= rgb_edit(ui, "Ambient I_a", &mut doc.desc.world.ambient, MAX_INTENSITY);

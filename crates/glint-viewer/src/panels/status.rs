@@ -73,7 +73,9 @@ pub fn ui(ui: &mut Ui, s: &Status) {
             ui.weak("GPU vs CPU: waiting for both renders");
         }
     });
-    if let Some(c) = s.gpu_counts.as_ref().or(s.cpu_counts.as_ref()) {
-        ui.label(format!("Rays: {}", counts(c)));
-    }
+    match (&s.gpu_counts, &s.cpu_counts) {
+        (Some(g), _) => ui.label(format!("Rays (GPU): {}", counts(g))),
+        (None, Some(c)) => ui.label(format!("Rays (CPU): {}", counts(c))),
+        (None, None) => ui.weak("Rays: no render yet"),
+    };
 }
