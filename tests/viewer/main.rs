@@ -5,6 +5,7 @@
 
 mod edits;
 mod export;
+mod files;
 mod pick_and_probe;
 mod snapshots;
 mod support;

@@ -1,4 +1,4 @@
-//! Snapshots of the main layouts (side by side, difference, probe panel), 800×500.
+//! Snapshots of the main layouts (side by side, difference, probe and lights panels), 800×500.
 //!
 //! Threshold: both images are rendered by lavapipe on the CPU, deterministically, so a
 //! re-run on the same Mesa matches exactly; a different Mesa or LLVM version may round a few
@@ -40,4 +40,24 @@ fn main_layouts_match_their_snapshots() {
     click(&mut h, pos, Modifiers::COMMAND);
     settle(&mut h);
     snapshot(&mut h, "viewer_probe");
+}
+
+#[test]
+fn the_lights_panel_and_a_spot_gizmo_match_their_snapshot() {
+    let Some(mut h) = viewer("whitted", (800.0, 500.0)) else { return };
+    h.get_by_label("GPU").click();
+    h.get_by_label("Lights").click();
+    h.run_steps(2);
+    h.get_by_label("Type").click();
+    h.run_steps(2);
+    h.get_by_label("spot").click();
+    h.run_steps(2);
+    // Bring the light in front of the camera so that its dot and cone are in view.
+    for (axis, v) in [("Position x", -1.0), ("Position y", 2.5), ("Position z", 0.0)] {
+        h.get_by_label(axis).set_value_accesskit(v);
+        h.run_steps(1);
+    }
+    settle(&mut h);
+    assert_eq!(h.state().doc.desc.lights[0].position, Some([-1.0, 2.5, 0.0]));
+    snapshot(&mut h, "viewer_lights_spot");
 }

@@ -51,8 +51,12 @@ pub fn ui(ui: &mut Ui, probe: Option<&ProbeState>, doc: &Document) {
             };
             ui.label(text(t.name.clone()));
             ui.vertical(|ui| {
-                ui.label(text(fmt(t.cpu)));
-                ui.label(text(t.gpu.map(fmt).unwrap_or_else(|| "—".into())));
+                // Six decimals in the table; the exact values (shortest round-trip form) on hover.
+                ui.label(text(fmt(t.cpu))).on_hover_text(format!("CPU: {:?}", t.cpu.to_array()));
+                let gpu = ui.label(text(t.gpu.map(fmt).unwrap_or_else(|| "—".into())));
+                if let Some(g) = t.gpu {
+                    gpu.on_hover_text(format!("GPU: {:?}", g.to_array().map(|v| v as f32)));
+                }
             });
             ui.end_row();
         }

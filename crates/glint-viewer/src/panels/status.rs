@@ -69,6 +69,9 @@ pub fn ui(ui: &mut Ui, s: &Status) {
             ui.spinner();
             ui.label("comparing GPU and CPU…");
         }
+        (None, false) if s.adapter.is_none() => {
+            ui.weak("GPU vs CPU: no GPU to compare");
+        }
         (None, false) => {
             ui.weak("GPU vs CPU: waiting for both renders");
         }

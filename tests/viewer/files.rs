@@ -1,0 +1,70 @@
+//! Scene files and failures: save and reload, an unreadable scene, no GPU at all.
+
+use std::time::{Duration, Instant};
+
+use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
+use glint_core::scene::{load_scene, parse_scene};
+use glint_viewer::{ViewMode, ViewerApp, ViewerOptions};
+
+use crate::support::viewer;
+
+#[test]
+fn a_saved_scene_reads_back_as_the_edited_scene() {
+    let Some(mut h) = viewer("whitted", (1000.0, 640.0)) else { return };
+    let dir = std::env::temp_dir().join(format!("glint-viewer-test-save-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let path = dir.join("edited.toml");
+    h.state_mut().doc.desc.lights[0].diffuse.0 = [0.25, 0.5, 0.75];
+    h.state_mut().doc.edited();
+    h.state_mut().save_scene(&path);
+    assert!(!h.state().doc.dirty, "saving clears the edited mark");
+    let text = std::fs::read_to_string(&path).expect("the scene was written");
+    let (desc, _) = parse_scene(&text, &path).expect("glint render reads it");
+    assert_eq!(desc, h.state().doc.desc);
+    // And the viewer opens it again as a file, remembered among the recent scenes.
+    h.state_mut().open(&path.display().to_string());
+    assert_eq!(h.state().doc.desc, desc);
+    assert_eq!(h.state().recent.files.first(), Some(&path.canonicalize().expect("exists")));
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn an_unreadable_scene_is_a_message_not_a_crash() {
+    let Some(mut h) = viewer("whitted", (1000.0, 640.0)) else { return };
+    let before = h.state().doc.desc.clone();
+    h.state_mut().open("/nonexistent/scene.toml");
+    h.run_steps(2);
+    let message = h.state().message.clone().unwrap_or_default();
+    assert!(message.contains("/nonexistent/scene.toml"), "{message}");
+    assert!(h.query_by_label_contains("cannot read the scene file").is_some(), "the message is shown");
+    assert_eq!(h.state().doc.desc, before, "the open scene stays");
+}
+
+/// Without a wgpu renderer (no adapter) the viewer runs with the CPU view alone and says why.
+/// No GPU is needed for this test, so it also runs under GLINT_SKIP_GPU=1.
+#[test]
+fn without_a_gpu_the_viewer_shows_the_cpu_reference_and_says_why() {
+    let base = load_scene("whitted").expect("built-in").desc.render;
+    let settings = glint_core::scene::RenderSettings { width: 64, height: 48, ..base };
+    let options = ViewerOptions {
+        scene: "whitted".into(),
+        settings: Some(settings),
+        no_gpu_reason: Some("no adapter in this test".into()),
+        no_recent: true,
+        ..ViewerOptions::default()
+    };
+    let mut h = Harness::builder().with_size(egui::vec2(1000.0, 640.0)).build_eframe(|cc| ViewerApp::new(cc, options));
+    let deadline = Instant::now() + Duration::from_secs(60);
+    while !h.state().is_settled() {
+        assert!(Instant::now() < deadline, "the CPU reference did not finish");
+        h.step();
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    h.run_steps(2);
+    let app = h.state();
+    assert!(app.gpu.is_none());
+    assert_eq!(app.mode, ViewMode::Cpu);
+    assert!(app.cpu.finished.is_some(), "the CPU reference rendered");
+    assert!(h.query_by_label_contains("No GPU: no adapter in this test").is_some());
+}
