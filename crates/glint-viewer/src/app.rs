@@ -543,7 +543,7 @@ impl ViewerApp {
         let size = (self.doc.desc.render.width.max(1), self.doc.desc.render.height.max(1));
         let gizmos =
             self.doc.flat(false).map(|f| gizmos(&self.doc.desc, &f.camera, self.selected_light)).unwrap_or_default();
-        let show_gizmos = self.show_gizmos && self.tab == Tab::Lights;
+        let show_gizmos = self.show_gizmos;
         let (actions, rects) = view::show(ui, self.mode, &mut self.wipe, textures, size, &gizmos, show_gizmos);
         self.view_rects = rects;
         actions
