@@ -83,6 +83,7 @@ pub struct ViewerApp {
     diff_texture: CpuTexture,
     cpu_revision: Option<u64>,
     gpu_submitted: Option<(u64, bool)>,
+    gpu_full_revision: Option<u64>,
     export: ExportDialog,
     pub automation: Automation,
     /// A scene file dropped on the window or chosen in a dialog, loaded next frame.
@@ -143,6 +144,7 @@ impl ViewerApp {
             diff_texture: CpuTexture::default(),
             cpu_revision: None,
             gpu_submitted: None,
+            gpu_full_revision: None,
             export: ExportDialog { open: false, view: ExportView::All, path: String::new() },
             automation: Automation::new(options.screenshot, options.drag_benchmark),
             pending_open: None,
@@ -268,16 +270,29 @@ impl ViewerApp {
         }
         if let Some(g) = &mut self.gpu {
             let wanted = (rev, interacting);
-            if self.gpu_submitted != Some(wanted)
+            // A preview is only worth it for a new revision; a full render only once per revision
+            // (pressing a slider without moving it renders nothing new).
+            let needed = if interacting {
+                self.gpu_submitted.map(|s| s.0) != Some(rev)
+            } else {
+                self.gpu_full_revision != Some(rev)
+            };
+            if needed
                 && g.in_flight().is_none()
                 && let Some(flat) = self.doc.flat(interacting)
                 && g.submit(&flat, rev, interacting)
             {
                 self.gpu_submitted = Some(wanted);
+                if !interacting {
+                    self.gpu_full_revision = Some(rev);
+                }
             }
-            if g.error.is_some() && self.gpu_submitted != Some(wanted) {
+            if g.error.is_some() && needed {
                 // A GPU error (e.g. a scene the GPU cannot take) is shown; do not retry every frame.
                 self.gpu_submitted = Some(wanted);
+                if !interacting {
+                    self.gpu_full_revision = Some(rev);
+                }
             }
         }
         if !interacting

@@ -49,6 +49,9 @@ pub struct CpuWorker {
     pub error: Option<String>,
     /// Time the last complete render took, from start to the last tile.
     pub last_time: Option<Duration>,
+    /// The last pixels shown: a new render of the same size paints its tiles over them
+    /// instead of starting from black.
+    shown: Option<(u32, u32, Vec<u8>)>,
 }
 
 fn lock(p: &Mutex<Progress>) -> MutexGuard<'_, Progress> {
@@ -78,12 +81,11 @@ impl CpuWorker {
     pub fn start(&mut self, scene: FlatScene, revision: u64, repaint: impl Fn() + Send + Sync + 'static) {
         self.cancel();
         let (width, height) = (scene.header.width, scene.header.height);
-        let progress = Arc::new(Mutex::new(Progress {
-            rgba: vec![0; width as usize * height as usize * 4],
-            tiles_done: 0,
-            changed: true,
-            outcome: None,
-        }));
+        let rgba = match self.shown.take() {
+            Some((w, h, pixels)) if (w, h) == (width, height) => pixels,
+            _ => vec![0; width as usize * height as usize * 4],
+        };
+        let progress = Arc::new(Mutex::new(Progress { rgba, tiles_done: 0, changed: true, outcome: None }));
         let cancel = Arc::new(AtomicBool::new(false));
         let (p, c) = (progress.clone(), cancel.clone());
         let spawned = std::thread::Builder::new().name("glint-cpu-render".into()).spawn(move || {
@@ -151,6 +153,9 @@ impl CpuWorker {
                 self.job = None;
             }
             None => {}
+        }
+        if let Some(p) = &pixels {
+            self.shown = Some((w, h, p.clone()));
         }
         pixels.map(|p| (w, h, p))
     }
