@@ -118,3 +118,25 @@ impl Document {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn previews_are_half_size_with_one_sample_and_invalid_scenes_render_nothing() {
+        let mut doc = Document::load("whitted").expect("built-in scene");
+        doc.desc.render.spp = 4;
+        doc.edited();
+        let full = doc.flat(false).expect("valid");
+        let preview = doc.flat(true).expect("valid");
+        assert_eq!((full.header.width, full.header.height, full.header.spp), (640, 480, 4));
+        assert_eq!((preview.header.width, preview.header.height, preview.header.spp), (320, 240, 1));
+        let revision = doc.revision;
+        doc.desc.camera.fov_y = 0.0;
+        doc.edited();
+        assert!(doc.revision > revision && doc.dirty);
+        assert!(doc.issues.iter().any(|i| i.field.contains("fov_y")), "{:?}", doc.issues);
+        assert!(doc.flat(false).is_none());
+    }
+}
