@@ -329,7 +329,7 @@ impl ViewerApp {
         self.doc.flat(false)
     }
 
-    fn apply_view_actions(&mut self, actions: &[ViewAction]) {
+    fn apply_view_actions(&mut self, ctx: &egui::Context, actions: &[ViewAction]) {
         for a in actions {
             match *a {
                 ViewAction::Orbit(d) => {
@@ -345,7 +345,7 @@ impl ViewerApp {
                     self.doc.edited();
                 }
                 ViewAction::Pick(x, y) => self.pick(x, y),
-                ViewAction::Probe(x, y) => self.probe_at(x, y),
+                ViewAction::Probe(x, y) => self.probe_at(ctx, x, y),
             }
         }
     }
@@ -361,10 +361,12 @@ impl ViewerApp {
     }
 
     /// Probes pixel (x, y) on both tracers and shows the breakdown.
-    pub fn probe_at(&mut self, x: u32, y: u32) {
+    pub fn probe_at(&mut self, ctx: &egui::Context, x: u32, y: u32) {
         let Some(flat) = self.full_scene() else { return };
         let tracer = self.gpu.as_ref().map(|g| &g.tracer);
-        self.probe = Some(ProbeState::start(&flat, x, y, self.doc.revision, tracer));
+        let repaint = ctx.clone();
+        let probe = ProbeState::start(&flat, x, y, self.doc.revision, tracer, move || repaint.request_repaint());
+        self.probe = Some(probe);
         self.tab = Tab::Probe;
     }
 
@@ -607,7 +609,7 @@ impl eframe::App for ViewerApp {
         // costs a pass over its pixels on a software rasterizer).
         let frame = egui::Frame::central_panel(ui.style()).fill(egui::Color32::from_gray(12));
         let actions = egui::CentralPanel::default().frame(frame).show(ui, |ui| self.central(ui)).inner;
-        self.apply_view_actions(&actions);
+        self.apply_view_actions(&ctx, &actions);
         self.export_window(&ctx);
         let gpu_renders = self.gpu.as_ref().map_or(0, |g| g.renders);
         let settled = self.is_settled();

@@ -28,7 +28,15 @@ pub struct ProbeState {
 
 impl ProbeState {
     /// Probes pixel (x, y) of the full-resolution scene on both tracers.
-    pub fn start(scene: &FlatScene, x: u32, y: u32, revision: u64, gpu: Option<&Arc<GpuTracer>>) -> Self {
+    /// `repaint` is called when the GPU result arrives (the UI may be idle by then).
+    pub fn start(
+        scene: &FlatScene,
+        x: u32,
+        y: u32,
+        revision: u64,
+        gpu: Option<&Arc<GpuTracer>>,
+        repaint: impl Fn() + Send + 'static,
+    ) -> Self {
         let cpu = probe_pixel(scene, x, y, 0);
         let gpu = match gpu {
             None => GpuProbe::Unavailable("no GPU".into()),
@@ -41,6 +49,7 @@ impl ProbeState {
                         .map(|(record, _status)| glint_gpu::probe::breakdown(&record))
                         .map_err(|e| e.to_string());
                     let _ = tx.send(result);
+                    repaint();
                 });
                 match spawned {
                     Ok(_) => GpuProbe::Pending(rx),

@@ -49,11 +49,13 @@ pub fn ui(ui: &mut Ui, probe: Option<&ProbeState>, doc: &Document) {
                 let r = RichText::new(s).monospace();
                 if highlight { r.color(Color32::from_rgb(255, 120, 90)).strong() } else { r }
             };
-            ui.label(text(t.name.clone()));
+            ui.add(egui::Label::new(text(t.name.clone())).extend());
             ui.vertical(|ui| {
                 // Six decimals in the table; the exact values (shortest round-trip form) on hover.
-                ui.label(text(fmt(t.cpu))).on_hover_text(format!("CPU: {:?}", t.cpu.to_array()));
-                let gpu = ui.label(text(t.gpu.map(fmt).unwrap_or_else(|| "—".into())));
+                // Not wrapped: a vector stays on one line, the panel scrolls sideways instead.
+                ui.add(egui::Label::new(text(fmt(t.cpu))).extend())
+                    .on_hover_text(format!("CPU: {:?}", t.cpu.to_array()));
+                let gpu = ui.add(egui::Label::new(text(t.gpu.map(fmt).unwrap_or_else(|| "—".into()))).extend());
                 if let Some(g) = t.gpu {
                     gpu.on_hover_text(format!("GPU: {:?}", g.to_array().map(|v| v as f32)));
                 }
