@@ -604,7 +604,7 @@ impl eframe::App for ViewerApp {
             })
             .response
             .rect;
-        egui::Panel::left("panels").default_size(330.0).show(ui, |ui| self.side_panel(ui));
+        egui::Panel::left("panels").default_size(380.0).show(ui, |ui| self.side_panel(ui));
         // The view's dark background is the panel's own fill: no second full-area fill (each
         // costs a pass over its pixels on a software rasterizer).
         let frame = egui::Frame::central_panel(ui.style()).fill(egui::Color32::from_gray(12));
