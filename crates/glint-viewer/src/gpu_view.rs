@@ -164,8 +164,13 @@ impl GpuView {
             self.renderer.write().free_texture(&old.texture);
         }
         let presenter = Presenter::new(&ctx, size.0, size.1);
-        let texture =
-            self.renderer.write().register_native_texture(&ctx.device, &presenter.gamma_view, wgpu::FilterMode::Linear);
+        // Nearest, like the CPU view: magnified pixels stay pixels and the wipe compares like
+        // with like.
+        let texture = self.renderer.write().register_native_texture(
+            &ctx.device,
+            &presenter.gamma_view,
+            wgpu::FilterMode::Nearest,
+        );
         self.displays.push(Display { presenter, texture });
         self.displays.last().expect("just pushed")
     }
