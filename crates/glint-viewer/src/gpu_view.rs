@@ -3,8 +3,8 @@
 //! resolution renders are also read back (without blocking) for the comparison and export.
 
 use std::collections::VecDeque;
-use std::sync::Arc;
 use std::sync::mpsc::{Receiver, TryRecvError, channel};
+use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
 use glint_core::FlatScene;
@@ -64,6 +64,8 @@ pub struct GpuView {
     pub warning: Option<String>,
     /// Renders completed since the start.
     pub renders: usize,
+    /// A wgpu error no error scope caught (wgpu's default would abort the process).
+    uncaptured: Arc<Mutex<Option<String>>>,
 }
 
 impl std::fmt::Debug for GpuView {
@@ -80,6 +82,13 @@ impl GpuView {
     pub fn new(state: &egui_wgpu::RenderState) -> Self {
         let info = state.adapter.get_info();
         let ctx = GpuContext::from_device(state.device.clone(), state.queue.clone(), &info);
+        let uncaptured: Arc<Mutex<Option<String>>> = Arc::default();
+        let slot = uncaptured.clone();
+        // Shown in the UI instead of wgpu's default of panicking: no crash on a GPU error.
+        state.device.on_uncaptured_error(Arc::new(move |e: wgpu::Error| {
+            log::error!("GPU error: {e}");
+            *slot.lock().unwrap_or_else(|p| p.into_inner()) = Some(e.to_string());
+        }));
         log::info!("viewer GPU: {}", ctx.adapter);
         Self {
             tracer: Arc::new(GpuTracer::new(ctx)),
@@ -94,6 +103,7 @@ impl GpuView {
             error: None,
             warning: None,
             renders: 0,
+            uncaptured,
         }
     }
 
@@ -131,9 +141,17 @@ impl GpuView {
             self.error = Some(GpuError::DeviceLost.to_string());
             return false;
         }
+        let size = (scene.header.width, scene.header.height);
+        let max_side = ctx.limits.max_texture_dimension_2d;
+        if size.0 > max_side || size.1 > max_side {
+            self.error = Some(format!(
+                "{}×{} is larger than this GPU's textures ({max_side} pixels a side); the CPU view still renders it",
+                size.0, size.1
+            ));
+            return false;
+        }
         let (tx, rx) = channel();
         let (tracer, scene) = (self.tracer.clone(), scene.clone());
-        let size = (scene.header.width, scene.header.height);
         let spawned = std::thread::Builder::new().name("glint-gpu-submit".into()).spawn(move || {
             let start = Instant::now();
             let job = tracer.submit(&scene, &GpuOptions::default());
@@ -179,6 +197,10 @@ impl GpuView {
     pub fn poll(&mut self) -> bool {
         let ctx = self.tracer.context().clone();
         let mut changed = false;
+        if let Some(e) = self.uncaptured.lock().unwrap_or_else(|p| p.into_inner()).take() {
+            self.error = Some(e);
+            changed = true;
+        }
         if let Err(e) = ctx.device.poll(wgpu::PollType::Poll) {
             self.error = Some(e.to_string());
         }
