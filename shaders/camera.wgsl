@@ -9,8 +9,9 @@
 // Rows of the stratification grid: the largest divisor of spp not above √spp.
 fn strata_rows(spp: u32) -> u32 {
     var rows = 1u;
-    for (var d = 1u; d <= 64u; d++) {
-        if d * d <= spp && spp % d == 0u {
+    // Stops at √spp: every loop iteration counts against lavapipe's per-invocation budget.
+    for (var d = 1u; d <= 64u && d * d <= spp; d++) {
+        if spp % d == 0u {
             rows = d;
         }
     }

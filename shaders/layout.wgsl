@@ -38,6 +38,7 @@ const FEATURE_JITTER: u32 = 131072u;
 // Bits of the per-image status word the shader raises and the host reports.
 const STATUS_LOOP_LIMIT: u32 = 1u;
 const STATUS_STACK_OVERFLOW: u32 = 2u;
+const STATUS_DRIVER_LOOP_CUTOFF: u32 = 4u;
 
 // Layout of the statistics buffer: (lo, hi) u32 pairs per ray kind, then the status word.
 const STAT_CAMERA: u32 = 0u;
@@ -136,6 +137,10 @@ struct TileParams {
     origin_y: u32,
     width: u32,
     height: u32,
+    sample_index: u32,
+    canary_laps: u32,
+    pad_a: u32,
+    pad_b: u32,
 }
 
 const MAX_PROBE_LIGHTS: u32 = 16u;

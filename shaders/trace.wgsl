@@ -1,9 +1,9 @@
-// Twin of crates/glint-core/src/cpu/trace.rs: the Whitted ray tree and the pixel loop.
+// Twin of crates/glint-core/src/cpu/trace.rs: the Whitted ray tree and the pixel's samples.
 //
 // WGSL has no recursion, so the tree is walked with an explicit stack of (ray, path weight,
 // depth). Each node adds weight × local shading, where the CPU adds k·I(child) on return:
 // the same terms with the same bailout decisions, summed in another order.
-#import glint::scene_data::{PROBE_HIT, PROBE_TIR, GpuSphere, GpuPlane, GpuTriangle, NO_HIT, EPS_ROBUST, FEATURE_REFLECTION, FEATURE_TRANSMISSION, FEATURE_JITTER, STATUS_LOOP_LIMIT, STATUS_STACK_OVERFLOW, STAT_STATUS, STAT_CAMERA, STAT_SHADOW, STAT_REFLECTION, STAT_REFRACTION, STAT_BAILOUT_SAVED}
+#import glint::scene_data::{PROBE_HIT, PROBE_TIR, GpuSphere, GpuPlane, GpuTriangle, NO_HIT, EPS_ROBUST, FEATURE_REFLECTION, FEATURE_TRANSMISSION, FEATURE_JITTER, STATUS_LOOP_LIMIT, STATUS_STACK_OVERFLOW, STATUS_DRIVER_LOOP_CUTOFF, STAT_STATUS, STAT_CAMERA, STAT_SHADOW, STAT_REFLECTION, STAT_REFRACTION, STAT_BAILOUT_SAVED}
 #import glint::bindings::{header, camera, tile, materials, spheres, planes, triangles, output, stats, probe_out}
 #import glint::ray::{Ray, RayCounts, has, ray_counts, status, probe, probe_active}
 #import glint::camera::{camera_ray, sample_offset}
@@ -265,13 +265,37 @@ fn render_sample(x: u32, y: u32, sample_index: u32) -> SampleResult {
     return trace_ray(ray);
 }
 
-fn render_pixel(x: u32, y: u32) -> SampleResult {
-    let first = render_sample(x, y, 0u);
-    var sum = first.radiance;
-    for (var s = 1u; s < header.spp; s++) {
-        sum += render_sample(x, y, s).radiance;
+// Adds sample `tile.sample_index` of pixel (x, y) to the output. The samples of a pixel come in
+// separate dispatches, in order, so the sum is formed as the CPU forms it: s0 + s1 + … then / spp.
+fn accumulate_sample(x: u32, y: u32) {
+    let index = y * header.width + x;
+    let sample = render_sample(x, y, tile.sample_index);
+    if tile.sample_index == 0u {
+        var id = -1.0;
+        if sample.object != NO_HIT {
+            id = f32(sample.object);
+        }
+        output[index] = vec4<f32>(sample.radiance, id);
+    } else {
+        output[index] = vec4<f32>(output[index].xyz + sample.radiance, output[index].w);
     }
-    return SampleResult(sum / f32(header.spp), first.object);
+    if tile.sample_index + 1u == header.spp && header.spp > 1u {
+        output[index] = vec4<f32>(output[index].xyz / f32(header.spp), output[index].w);
+    }
+}
+
+// lavapipe ends every loop after its current iteration once the invocation group has run
+// 65,535 loop iterations in all, without any error. A loop of `tile.canary_laps` (2) laps
+// then stops after one: the only way to see that the work before it was cut short.
+fn driver_cut_loops() -> bool {
+    var laps = 0u;
+    loop {
+        laps += 1u;
+        if laps >= tile.canary_laps {
+            break;
+        }
+    }
+    return laps < tile.canary_laps;
 }
 
 // Adds a count to a (lo, hi) pair of the statistics buffer with carry, so that counts past
@@ -303,17 +327,18 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
         probe.object_id = NO_HIT;
     }
     probe_out = probe;
+    if driver_cut_loops() {
+        status |= STATUS_DRIVER_LOOP_CUTOFF;
+    }
     if status != 0u {
         atomicOr(&stats[STAT_STATUS], status);
     }
     return;
 #endif
-    let result = render_pixel(x, y);
-    var id = -1.0;
-    if result.object != NO_HIT {
-        id = f32(result.object);
+    accumulate_sample(x, y);
+    if driver_cut_loops() {
+        status |= STATUS_DRIVER_LOOP_CUTOFF;
     }
-    output[y * header.width + x] = vec4<f32>(result.radiance, id);
     add_stat(STAT_CAMERA, ray_counts.camera);
     add_stat(STAT_SHADOW, ray_counts.shadow);
     add_stat(STAT_REFLECTION, ray_counts.reflection);

@@ -39,6 +39,10 @@ pub const NO_HIT: u32 = u32::MAX;
 pub const STATUS_LOOP_LIMIT: u32 = 1;
 /// A ray tree branched deeper than the GPU stack holds; the deepest rays were dropped.
 pub const STATUS_STACK_OVERFLOW: u32 = 2;
+/// The driver cut the shader's loops short: lavapipe allows 65,535 loop iterations in all per
+/// invocation group and then ends every loop after its current iteration, silently. A canary
+/// loop at the end of the shader detects it; the image is then missing work.
+pub const STATUS_DRIVER_LOOP_CUTOFF: u32 = 4;
 
 /// Layout of the GPU statistics buffer: (lo, hi) u32 pairs per ray kind, then the status word.
 pub const STAT_CAMERA: u32 = 0;
@@ -225,6 +229,33 @@ pub struct TileParams {
     pub origin_y: u32,
     pub width: u32,
     pub height: u32,
+    /// The sample this dispatch adds: samples go in separate dispatches so that one
+    /// invocation's loop iterations stay within the driver's budget whatever the spp.
+    pub sample_index: u32,
+    /// Iterations of the canary loop (always `LOOP_CANARY_LAPS`; a uniform so that no
+    /// compiler can unroll it).
+    pub canary_laps: u32,
+    pub pad_a: u32,
+    pub pad_b: u32,
+}
+
+/// Laps of the canary loop that tells whether the driver's loop budget ran out.
+pub const LOOP_CANARY_LAPS: u32 = 2;
+
+impl TileParams {
+    /// The one pixel (x, y), first sample.
+    pub fn pixel(x: u32, y: u32) -> Self {
+        Self {
+            origin_x: x,
+            origin_y: y,
+            width: 1,
+            height: 1,
+            sample_index: 0,
+            canary_laps: LOOP_CANARY_LAPS,
+            pad_a: 0,
+            pad_b: 0,
+        }
+    }
 }
 
 /// Lights whose terms the GPU pixel probe records (the CPU probe records all).

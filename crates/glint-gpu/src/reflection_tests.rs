@@ -61,7 +61,7 @@ fn rust_layouts() -> Vec<RustLayout> {
         rust_layout!(GpuSphere { center_radius, material, object_id, pad }),
         rust_layout!(GpuPlane { normal_offset, material, object_id, pad }),
         rust_layout!(GpuTriangle { a, b, c, na, nb, nc, material, object_id, flags, pad }),
-        rust_layout!(TileParams { origin_x, origin_y, width, height }),
+        rust_layout!(TileParams { origin_x, origin_y, width, height, sample_index, canary_laps, pad_a, pad_b }),
         rust_layout!(ProbeLight { f_att, spot, pad_a, pad_b, visibility, ambient, diffuse, specular, contribution }),
         rust_layout!(ProbeRecord {
             object_id,
@@ -161,6 +161,7 @@ fn wgsl_layout_constants_match_rust() {
         ("NO_HIT".into(), NO_HIT),
         ("STATUS_LOOP_LIMIT".into(), STATUS_LOOP_LIMIT),
         ("STATUS_STACK_OVERFLOW".into(), STATUS_STACK_OVERFLOW),
+        ("STATUS_DRIVER_LOOP_CUTOFF".into(), STATUS_DRIVER_LOOP_CUTOFF),
         ("STAT_CAMERA".into(), STAT_CAMERA),
         ("STAT_SHADOW".into(), STAT_SHADOW),
         ("STAT_REFLECTION".into(), STAT_REFLECTION),

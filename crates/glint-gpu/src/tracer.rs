@@ -72,6 +72,7 @@ pub struct SceneBuffers {
     pub probe: wgpu::Buffer,
     pub width: u32,
     pub height: u32,
+    pub spp: u32,
 }
 
 /// The GPU tracer: a device and a cache of compiled shader variants.
@@ -139,7 +140,7 @@ impl SceneBuffers {
         with_error_scopes(ctx, || Self {
             header: uniform(ctx, "glint header", &scene.header),
             camera: uniform(ctx, "glint camera", &scene.camera),
-            tile: uniform(ctx, "glint tile", &TileParams { origin_x: 0, origin_y: 0, width: 0, height: 0 }),
+            tile: uniform(ctx, "glint tile", &TileParams::pixel(0, 0)),
             materials: storage(ctx, "glint materials", &scene.materials, bytemuck::Zeroable::zeroed()),
             lights: storage(ctx, "glint lights", &scene.lights, bytemuck::Zeroable::zeroed()),
             spheres: storage(ctx, "glint spheres", &scene.spheres, bytemuck::Zeroable::zeroed()),
@@ -164,6 +165,7 @@ impl SceneBuffers {
             }),
             width: h.width,
             height: h.height,
+            spp: h.spp.max(1),
         })
     }
 
@@ -203,12 +205,12 @@ impl SceneBuffers {
         x: u32,
         y: u32,
     ) {
-        self.dispatch_tile(ctx, pipeline, bind_group, TileParams { origin_x: x, origin_y: y, width: 1, height: 1 });
+        self.dispatch_tile(ctx, pipeline, bind_group, TileParams::pixel(x, y));
     }
 
     /// Renders one pixel and clears the statistics again (see `GpuTracer::render`).
     pub fn prime(&self, ctx: &GpuContext, pipeline: &TracerPipeline, bind_group: &wgpu::BindGroup) {
-        self.dispatch_tile(ctx, pipeline, bind_group, TileParams { origin_x: 0, origin_y: 0, width: 1, height: 1 });
+        self.dispatch_tile(ctx, pipeline, bind_group, TileParams::pixel(0, 0));
         ctx.queue.write_buffer(&self.stats, 0, bytemuck::cast_slice(&[0u32; STAT_WORDS as usize]));
     }
 
@@ -234,30 +236,24 @@ impl SceneBuffers {
         ctx.queue.submit([encoder.finish()]);
     }
 
-    /// Dispatches the whole image, one submission per tile.
+    /// Dispatches the whole image: one submission per tile and sample, so that no submission
+    /// runs long enough to trip a desktop GPU's watchdog and no invocation runs past lavapipe's
+    /// loop budget however many samples a pixel takes.
     pub fn dispatch(&self, ctx: &GpuContext, pipeline: &TracerPipeline, bind_group: &wgpu::BindGroup, tile: u32) {
         let tile = tile.max(WORKGROUP);
         for y0 in (0..self.height).step_by(tile as usize) {
             for x0 in (0..self.width).step_by(tile as usize) {
-                let params = TileParams {
-                    origin_x: x0,
-                    origin_y: y0,
-                    width: tile.min(self.width - x0),
-                    height: tile.min(self.height - y0),
-                };
-                ctx.queue.write_buffer(&self.tile, 0, bytemuck::bytes_of(&params));
-                let mut encoder =
-                    ctx.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("glint tile") });
-                {
-                    let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                        label: Some("glint trace"),
-                        timestamp_writes: None,
-                    });
-                    pass.set_pipeline(&pipeline.pipeline);
-                    pass.set_bind_group(0, bind_group, &[]);
-                    pass.dispatch_workgroups(params.width.div_ceil(WORKGROUP), params.height.div_ceil(WORKGROUP), 1);
+                for sample_index in 0..self.spp {
+                    let params = TileParams {
+                        origin_x: x0,
+                        origin_y: y0,
+                        width: tile.min(self.width - x0),
+                        height: tile.min(self.height - y0),
+                        sample_index,
+                        ..TileParams::pixel(0, 0)
+                    };
+                    self.dispatch_tile(ctx, pipeline, bind_group, params);
                 }
-                ctx.queue.submit([encoder.finish()]);
             }
         }
     }

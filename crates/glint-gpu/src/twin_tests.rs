@@ -50,15 +50,23 @@ const TWINS: [(&str, &str, &str, &str); 7] = [
 ];
 
 /// Functions only the GPU side has, and why.
-const GPU_ONLY: [(&str, &str, &str); 3] = [
+const GPU_ONLY: [(&str, &str, &str); 5] = [
     ("trace.wgsl", "push_ray", "the explicit ray stack: WGSL has no recursion"),
     ("trace.wgsl", "add_stat", "64-bit ray counters built from u32 atomics"),
     ("trace.wgsl", "main", "the compute entry point; the CPU's loop is render::render_cpu"),
+    (
+        "trace.wgsl",
+        "accumulate_sample",
+        "one sample per dispatch, summed in the output buffer in the order of the CPU's render_pixel",
+    ),
+    ("trace.wgsl", "driver_cut_loops", "detects lavapipe's silent loop cut-off, which the CPU does not have"),
 ];
 
 /// Functions only the CPU side has, and why.
-const CPU_ONLY: [(&str, &str, &str); 1] =
-    [("cpu/mod.rs", "*", "Rust plumbing: widening (v3), counters, the trace context")];
+const CPU_ONLY: [(&str, &str, &str); 2] = [
+    ("cpu/mod.rs", "*", "Rust plumbing: widening (v3), counters, the trace context"),
+    ("cpu/trace.rs", "render_pixel", "the GPU sums a pixel's samples across dispatches (accumulate_sample)"),
+];
 
 /// Names declared with `fn` in a source text, before its test module.
 fn functions(source: &str) -> BTreeSet<String> {

@@ -11,8 +11,8 @@ use crate::layout::GpuCamera;
 /// 16 → 4×4, a prime p → p×1). spp ≤ 4096 bounds the search at 64 steps.
 pub fn strata_rows(spp: u32) -> u32 {
     let mut rows = 1;
-    for d in 1..=64 {
-        if d * d <= spp && spp.is_multiple_of(d) {
+    for d in (1..=64).take_while(|d| d * d <= spp) {
+        if spp.is_multiple_of(d) {
             rows = d;
         }
     }
