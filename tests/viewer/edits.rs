@@ -36,7 +36,7 @@ fn depth_and_epsilon_set_through_the_ui_change_the_gpu_image_and_the_statistics(
 }
 
 #[test]
-fn material_ks_and_light_type_set_through_the_ui_change_the_gpu_image() {
+fn material_ks_and_light_type_set_through_the_ui_change_the_gpu_image_and_the_statistics() {
     let Some(mut h) = viewer("whitted", (1000.0, 640.0)) else { return };
     let before = gpu_image(&h);
 
@@ -55,6 +55,8 @@ fn material_ks_and_light_type_set_through_the_ui_change_the_gpu_image() {
     let dull = gpu_image(&h);
     // The mirror sphere loses its specular highlight (k_s·I_s·spec).
     assert!(mean_abs_diff(&before, &dull) > 1e-6, "k_s = 0 must remove the mirror's highlight");
+    let dull_counts = latest_counts(&h);
+    assert_current_agreement(&h);
 
     h.get_by_label("Lights").click();
     h.run_steps(2);
@@ -65,6 +67,22 @@ fn material_ks_and_light_type_set_through_the_ui_change_the_gpu_image() {
     assert_eq!(h.state().doc.desc.lights[0].kind, LightKind::Spot);
     // A 30° cone pointing straight down from the light leaves most of the floor unlit.
     assert!(mean_abs_diff(&dull, &gpu_image(&h)) > 1e-3, "a spot light must change the image");
+    // Outside the cone S = 0, and a light that cannot contribute casts no shadow ray.
+    let spot_counts = latest_counts(&h);
+    assert!(spot_counts.shadow < dull_counts.shadow, "spot {spot_counts:?} vs point {dull_counts:?}");
+    assert_eq!(spot_counts.camera, dull_counts.camera);
+    assert_current_agreement(&h);
+}
+
+fn latest_counts(h: &egui_kittest::Harness<'static, glint_viewer::ViewerApp>) -> glint_core::cpu::RayCounts {
+    h.state().gpu.as_ref().and_then(|g| g.latest.as_ref()).map(|l| l.counts).expect("GPU ray counts")
+}
+
+/// The error statistics shown are those of the current revision, and GPU and CPU agree.
+fn assert_current_agreement(h: &egui_kittest::Harness<'static, glint_viewer::ViewerApp>) {
+    let (revision, errors) = h.state().comparison.latest.as_ref().map(|c| (c.revision, c.errors)).expect("comparison");
+    assert_eq!(revision, h.state().doc.revision, "the statistics are of an older revision");
+    assert!(errors.psnr > 40.0, "GPU and CPU disagree: {errors:?}");
 }
 
 #[test]
