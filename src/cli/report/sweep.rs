@@ -40,8 +40,9 @@ pub struct GpuExtra {
     pub status: u32,
 }
 
-/// A GPU row whose ray count differs from its CPU twin's by more than this (%) is flagged:
-/// f32 branching alone moves counts by a few in a million.
+/// A GPU row whose ray count differs from its CPU twin's by more than this (%) is noted:
+/// f32 branching alone moves counts by a few in a million at robust offsets, while a small ε
+/// with `tmin` or `nudge_ray` offsets lets f32 self-hits spawn extra rays.
 pub const RAY_MISMATCH_PCT: f64 = 0.1;
 
 /// One measured configuration.
@@ -58,7 +59,7 @@ pub struct Row {
     pub twin_rmse: Option<f64>,
     /// GPU rows: how many more rays (%) the GPU traced than its CPU twin. A few in a million
     /// differ where f32 takes another branch (total internal reflection, a missed shadow
-    /// ray); more means the GPU cut ray trees or samples.
+    /// ray); more where f32 self-hits spawn rays the CPU's f64 does not (small ε).
     pub twin_rays_pct: Option<f64>,
     /// One camera ray per sample: width × height × spp.
     pub camera_expected: u64,
@@ -82,10 +83,16 @@ impl Row {
         self.counts.total() as f64 / self.median().as_secs_f64().max(1e-9) / 1e6
     }
 
-    /// Whether the render lost work: fewer camera rays than samples, or (GPU) noticeably more
-    /// or fewer rays than its CPU twin. Its error is then not that of its arithmetic.
+    /// Whether the render lost work: fewer camera rays than samples, or a GPU status flag (a
+    /// loop bound, the ray stack, or the driver's loop budget) raised. Its error is then not
+    /// that of its arithmetic.
     pub fn dropped_work(&self) -> bool {
-        self.counts.camera != self.camera_expected || self.twin_rays_pct.is_some_and(|p| p.abs() > RAY_MISMATCH_PCT)
+        self.counts.camera != self.camera_expected || self.gpu.is_some_and(|g| g.status != 0)
+    }
+
+    /// Whether a GPU row traced noticeably more or fewer rays than its CPU twin.
+    pub fn rays_diverge(&self) -> bool {
+        self.twin_rays_pct.is_some_and(|p| p.abs() > RAY_MISMATCH_PCT)
     }
 
     pub fn is_reference(&self) -> bool {

@@ -434,7 +434,9 @@ fn all_rows(md: &mut String, s: &SceneResult) {
          configurations; ☆ on its own backend's front only. On the front means: its RMSE is more than 1 % below \
          that of every faster configuration. Reference-settings rows are not ranked. \
          \"vs CPU twin\": RMSE of a GPU row against the CPU render of the same configuration; ⚠ where the \
-         GPU lost work: fewer camera rays than samples, or a ray count more than 0.1 % off the CPU's.\n"
+         GPU lost work: fewer camera rays than samples, or a status flag raised (a loop bound, the ray stack, \
+         the driver's loop budget). \"rays\" where its ray count is more than 0.1 % off the CPU's without lost \
+         work: f32 self-hits spawning extra rays at a small ε with `tmin` or `nudge_ray` offsets.\n"
     );
     let _ = writeln!(
         md,
@@ -476,11 +478,14 @@ fn all_rows(md: &mut String, s: &SceneResult) {
             pct(r.errors.first_hit_mismatch),
             r.twin_rmse.map_or(String::new(), |t| if r.dropped_work() {
                 format!(
-                    "{} ⚠ rays {:+.3} %, camera rays {:+}",
+                    "{} ⚠ rays {:+.3} %, camera rays {:+}, status {}",
                     sci(t),
                     r.twin_rays_pct.unwrap_or_default(),
-                    r.counts.camera as i64 - r.camera_expected as i64
+                    r.counts.camera as i64 - r.camera_expected as i64,
+                    r.gpu.map_or(0, |g| g.status)
                 )
+            } else if r.rays_diverge() {
+                format!("{} (rays {:+.3} %)", sci(t), r.twin_rays_pct.unwrap_or_default())
             } else {
                 sci(t)
             }),
