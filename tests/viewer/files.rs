@@ -29,6 +29,40 @@ fn a_saved_scene_reads_back_as_the_edited_scene() {
     let _ = std::fs::remove_dir_all(dir);
 }
 
+/// A file dropped on the window, as eframe's winit integration hands it over.
+#[derive(Debug)]
+struct DroppedPath(std::path::PathBuf);
+
+impl egui::DroppedFile for DroppedPath {
+    fn path(&self) -> &std::path::Path {
+        &self.0
+    }
+
+    fn bytes(&self) -> Result<Vec<u8>, String> {
+        std::fs::read(&self.0).map_err(|e| e.to_string())
+    }
+}
+
+#[test]
+fn a_scene_file_dropped_on_the_window_is_opened() {
+    let Some(mut h) = viewer("whitted", (1000.0, 640.0)) else { return };
+    let dir = std::env::temp_dir().join(format!("glint-viewer-test-drop-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let path = dir.join("dropped.toml");
+    h.state_mut().doc.desc.lights[0].diffuse.0 = [0.1, 0.2, 0.3];
+    h.state_mut().doc.edited();
+    h.state_mut().save_scene(&path);
+    let dropped = h.state().doc.desc.clone();
+    h.state_mut().open("whitted");
+    assert_ne!(h.state().doc.desc, dropped, "the built-in scene is open again");
+
+    h.input_mut().dropped_files.push(std::sync::Arc::new(DroppedPath(path.clone())));
+    h.run_steps(2);
+    assert_eq!(h.state().doc.desc, dropped, "the dropped file is the open scene");
+    assert_eq!(h.state().recent.files.first(), Some(&path.canonicalize().expect("exists")));
+    let _ = std::fs::remove_dir_all(dir);
+}
+
 #[test]
 fn an_unreadable_scene_is_a_message_not_a_crash() {
     let Some(mut h) = viewer("whitted", (1000.0, 640.0)) else { return };
