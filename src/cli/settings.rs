@@ -7,29 +7,39 @@ use glint_core::scene::{EpsilonMode, LoadedScene, RenderSettings, Report, load_s
 #[derive(Clone, Debug, Default, Args)]
 pub struct SettingsArgs {
     /// Image width in pixels [1, 16384] (default: the scene's)
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true, value_parser = parse_count)]
     pub width: Option<u32>,
     /// Image height in pixels [1, 16384]
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true, value_parser = parse_count)]
     pub height: Option<u32>,
     /// Samples per pixel [1, 4096]; more than one are stratified and jittered
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true, value_parser = parse_count)]
     pub spp: Option<u32>,
     /// Maximum recursion depth [0, 1024]; 0 = local shading only
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true, value_parser = parse_count)]
     pub depth: Option<u32>,
     /// Self-intersection epsilon in scene units [0, 1000]
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub epsilon: Option<f64>,
     /// How epsilon is applied: tmin, nudge_ray, nudge_normal or robust
     #[arg(long, value_parser = parse_epsilon_mode)]
     pub epsilon_mode: Option<EpsilonMode>,
     /// Adaptive bailout: skip child rays whose path weight is below this [0, 1]; 0 disables
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub bailout: Option<f64>,
     /// Seed of the sample jitter
     #[arg(long)]
     pub seed: Option<u32>,
+}
+
+/// A whole number; a negative one gets its own message instead of clap's "unexpected argument
+/// '-8'". The allowed range of each setting is checked with the others, by validation.
+fn parse_count(s: &str) -> Result<u32, String> {
+    match s.trim().parse::<i64>() {
+        Ok(v) if v < 0 => Err(format!("{v} is negative; a count of pixels, samples or levels is ≥ 0")),
+        Ok(v) => u32::try_from(v).map_err(|_| format!("{v} is larger than {}", u32::MAX)),
+        Err(_) => Err(format!("'{s}' is not a whole number")),
+    }
 }
 
 fn parse_epsilon_mode(s: &str) -> Result<EpsilonMode, String> {

@@ -245,6 +245,25 @@ fn bad_input_fails_cleanly() {
         &["nosuchscene", "whitted", "cornell", "spotlights", "highlights", "lights"],
         &[],
     );
+    // Negative numbers reach the flag's own message (not clap's "unexpected argument '-8'").
+    expect_failure(
+        "width-negative",
+        |d| os(&[&"render", &"whitted", &"-o", &d.path("out.png"), &"--width", &"-8"]),
+        &["--width", "-8 is negative"],
+        &[],
+    );
+    expect_failure(
+        "bailout-negative",
+        |d| os(&[&"render", &"whitted", &"-o", &d.path("out.png"), &"--bailout", &"-0.5"]),
+        &["--bailout", "[0, 1]"],
+        &[],
+    );
+    expect_failure(
+        "scene-is-a-folder",
+        |d| os(&[&"render", &d.0, &"-o", &d.path("out.png")]),
+        &["a folder, not a scene file"],
+        &[],
+    );
     expect_failure(
         "spp-zero",
         |d| os(&[&"render", &"whitted", &"-o", &d.path("out.png"), &"--spp", &"0"]),

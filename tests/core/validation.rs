@@ -149,6 +149,11 @@ fn zero_length_directions() {
         "objects[2].normals[0]",
         &["length"],
     );
+    expect_invalid(
+        &edited("look_at = [0.0, 0.5, 0.0]", "look_at = [0.0, 0.5, 0.0]\nup = [0.0, 0.0, 0.0]"),
+        "camera.up",
+        &["length"],
+    );
 }
 
 #[test]
@@ -245,6 +250,16 @@ fn unknown_fields_are_rejected() {
     expect_parse_error(&edited("{ c = 1.0, l = 0.1, q = 0.01 }", "{ c = 1.0, l = 0.1, qq = 0.01 }"), &["qq"]);
     expect_parse_error(&edited("radius = 1.0", "raduis = 1.0"), &["raduis"]);
     expect_parse_error(&edited("[camera]", "[render]\nwidht = 10\n\n[camera]"), &["widht"]);
+}
+
+#[test]
+fn wrong_types_and_missing_fields_of_objects_name_the_field() {
+    // An object's fields are read by its kind's own struct, so the message names the field
+    // and the line of the object (not only "expected f64").
+    expect_parse_error(&edited("radius = 1.0", "radius = \"x\""), &["radius", "expected f64"]);
+    expect_parse_error(&edited("center = [0.0, 1.0, 0.0]", "center = [0.0, 1.0]"), &["center", "length 3"]);
+    expect_parse_error(&edited("radius = 1.0\nmaterial = \"red\"", "radius = 1.0"), &["missing field `material`"]);
+    expect_parse_error(&edited("type = \"sphere\"", "type = \"cube\""), &["cube", "`sphere`, `plane`, `mesh`"]);
 }
 
 #[test]

@@ -7,7 +7,9 @@ use crate::layout::{
     GpuTriangle, LIGHT_CASTS_SHADOWS, LIGHT_DIRECTIONAL, LIGHT_POINT, LIGHT_SPOT, MATERIAL_CHECKER, MATERIAL_PHONG,
     SceneHeader, TRIANGLE_HAS_NORMALS, feature,
 };
-use crate::scene::{EpsilonMode, LightKind, ObjectDesc, RenderSettings, Rgb, SceneDesc, SpecularModel};
+use crate::scene::{
+    EpsilonMode, LightKind, MeshDesc, ObjectDesc, PlaneDesc, RenderSettings, Rgb, SceneDesc, SpecularModel, SphereDesc,
+};
 
 /// A scene in the GPU-ready layout, plus the names the UI and reports show.
 #[derive(Clone, Debug, PartialEq)]
@@ -125,13 +127,13 @@ impl FlatScene {
                 object.name().to_string()
             });
             match object {
-                ObjectDesc::Sphere { center, radius, .. } => spheres.push(GpuSphere {
+                ObjectDesc::Sphere(SphereDesc { center, radius, .. }) => spheres.push(GpuSphere {
                     center_radius: vec4(DVec3::from(*center), *radius as f32),
                     material,
                     object_id,
                     pad: [0; 2],
                 }),
-                ObjectDesc::Plane { point, normal, .. } => {
+                ObjectDesc::Plane(PlaneDesc { point, normal, .. }) => {
                     let n = DVec3::from(*normal).normalize();
                     planes.push(GpuPlane {
                         normal_offset: vec4(n, n.dot(DVec3::from(*point)) as f32),
@@ -140,7 +142,7 @@ impl FlatScene {
                         pad: [0; 2],
                     });
                 }
-                ObjectDesc::Mesh { vertices, triangles: tris, normals, .. } => {
+                ObjectDesc::Mesh(MeshDesc { vertices, triangles: tris, normals, .. }) => {
                     for t in tris {
                         let [a, b, c] = t.map(|k| DVec3::from(vertices[k as usize]));
                         // A triangle of zero area in the stored (f32) data is left out, so that

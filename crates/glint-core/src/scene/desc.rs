@@ -301,60 +301,106 @@ impl Attenuation {
     }
 }
 
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+/// An object: `type = "sphere" | "plane" | "mesh"` and that kind's fields.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(tag = "type", rename_all = "snake_case")]
 pub enum ObjectDesc {
-    Sphere {
-        center: [f64; 3],
-        radius: f64,
-        material: String,
-        #[serde(default)]
-        name: String,
-    },
-    /// The infinite plane through `point` with normal `normal`.
-    Plane {
-        point: [f64; 3],
-        normal: [f64; 3],
-        material: String,
-        #[serde(default)]
-        name: String,
-    },
-    /// An indexed triangle mesh, optionally with per-vertex shading normals.
-    Mesh {
-        vertices: Vec<[f64; 3]>,
-        triangles: Vec<[u32; 3]>,
-        #[serde(default)]
-        normals: Option<Vec<[f64; 3]>>,
-        material: String,
-        #[serde(default)]
-        name: String,
-    },
+    Sphere(SphereDesc),
+    Plane(PlaneDesc),
+    Mesh(MeshDesc),
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SphereDesc {
+    pub center: [f64; 3],
+    pub radius: f64,
+    pub material: String,
+    #[serde(default)]
+    pub name: String,
+}
+
+/// The infinite plane through `point` with normal `normal`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PlaneDesc {
+    pub point: [f64; 3],
+    pub normal: [f64; 3],
+    pub material: String,
+    #[serde(default)]
+    pub name: String,
+}
+
+/// An indexed triangle mesh, optionally with per-vertex shading normals.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MeshDesc {
+    pub vertices: Vec<[f64; 3]>,
+    pub triangles: Vec<[u32; 3]>,
+    #[serde(default)]
+    pub normals: Option<Vec<[f64; 3]>>,
+    pub material: String,
+    #[serde(default)]
+    pub name: String,
+}
+
+/// By hand rather than serde's internally tagged derive: that one buffers the object before
+/// choosing its kind, and its errors lose the field ("expected f64" without saying where).
+/// Here the kind's own struct reads the fields, and an error names the one at fault.
+impl<'de> Deserialize<'de> for ObjectDesc {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        use serde::de::Error;
+        const KINDS: &[&str] = &["sphere", "plane", "mesh"];
+        let mut table = toml::Table::deserialize(deserializer)?;
+        let kind = match table.remove("type") {
+            Some(toml::Value::String(kind)) => kind,
+            Some(other) => {
+                return Err(D::Error::custom(format!("`type` must be one of {KINDS:?}, not {other}")));
+            }
+            None => return Err(D::Error::missing_field("type")),
+        };
+        let fields = toml::Value::Table(table);
+        let object = match kind.as_str() {
+            "sphere" => fields.try_into().map(Self::Sphere),
+            "plane" => fields.try_into().map(Self::Plane),
+            "mesh" => fields.try_into().map(Self::Mesh),
+            other => return Err(D::Error::unknown_variant(other, KINDS)),
+        };
+        // toml puts the field on a line of its own ("…\nin `radius`"): one line reads better.
+        object.map_err(|e| D::Error::custom(format!("{kind}: {}", e.to_string().trim().replace('\n', " "))))
+    }
 }
 
 impl ObjectDesc {
     pub fn material(&self) -> &str {
         match self {
-            Self::Sphere { material, .. } | Self::Plane { material, .. } | Self::Mesh { material, .. } => material,
+            Self::Sphere(o) => &o.material,
+            Self::Plane(o) => &o.material,
+            Self::Mesh(o) => &o.material,
         }
     }
 
     pub fn material_mut(&mut self) -> &mut String {
         match self {
-            Self::Sphere { material, .. } | Self::Plane { material, .. } | Self::Mesh { material, .. } => material,
+            Self::Sphere(o) => &mut o.material,
+            Self::Plane(o) => &mut o.material,
+            Self::Mesh(o) => &mut o.material,
         }
     }
 
     pub fn name(&self) -> &str {
         match self {
-            Self::Sphere { name, .. } | Self::Plane { name, .. } | Self::Mesh { name, .. } => name,
+            Self::Sphere(o) => &o.name,
+            Self::Plane(o) => &o.name,
+            Self::Mesh(o) => &o.name,
         }
     }
 
     pub fn kind_name(&self) -> &'static str {
         match self {
-            Self::Sphere { .. } => "sphere",
-            Self::Plane { .. } => "plane",
-            Self::Mesh { .. } => "mesh",
+            Self::Sphere(_) => "sphere",
+            Self::Plane(_) => "plane",
+            Self::Mesh(_) => "mesh",
         }
     }
 }

@@ -15,8 +15,8 @@ use std::path::{Path, PathBuf};
 
 pub use builtin::{BUILTIN_SCENES, BuiltinScene, builtin};
 pub use desc::{
-    Attenuation, CameraDesc, CheckerDesc, EpsilonMode, LightDesc, LightKind, MaterialDesc, ObjectDesc, RenderSettings,
-    SceneDesc, SpecularModel, WorldDesc,
+    Attenuation, CameraDesc, CheckerDesc, EpsilonMode, LightDesc, LightKind, MaterialDesc, MeshDesc, ObjectDesc,
+    PlaneDesc, RenderSettings, SceneDesc, SpecularModel, SphereDesc, WorldDesc,
 };
 pub use error::{FieldIssue, SceneError};
 pub use rgb::Rgb;
@@ -51,6 +51,12 @@ pub fn parse_scene(text: &str, file: &Path) -> Result<(SceneDesc, Vec<FieldIssue
 /// Loads `arg`: a scene file if such a file exists, otherwise a built-in scene name.
 pub fn load_scene(arg: &str) -> Result<LoadedScene, SceneError> {
     let path = Path::new(arg);
+    if path.is_dir() {
+        return Err(SceneError::Io {
+            file: path.to_owned(),
+            source: std::io::Error::new(std::io::ErrorKind::IsADirectory, "a folder, not a scene file"),
+        });
+    }
     if path.is_file() {
         let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io { file: path.to_owned(), source })?;
         let (desc, warnings) = parse_scene(&text, path)?;

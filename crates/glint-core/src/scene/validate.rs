@@ -6,7 +6,10 @@
 
 use glam::DVec3;
 
-use super::desc::{Attenuation, LightDesc, LightKind, MaterialDesc, ObjectDesc, RenderSettings, SceneDesc};
+use super::desc::{
+    Attenuation, LightDesc, LightKind, MaterialDesc, MeshDesc, ObjectDesc, PlaneDesc, RenderSettings, SceneDesc,
+    SphereDesc,
+};
 use super::error::FieldIssue;
 use super::rgb::Rgb;
 
@@ -285,17 +288,17 @@ fn validate_object(path: &str, o: &ObjectDesc, scene: &SceneDesc, r: &mut Report
         );
     }
     match o {
-        ObjectDesc::Sphere { center, radius, .. } => {
+        ObjectDesc::Sphere(SphereDesc { center, radius, .. }) => {
             r.point(&format!("{path}.center"), *center);
             if !radius.is_finite() || as_f32(*radius) <= 0.0 || *radius > MAX_COORD {
                 r.error(format!("{path}.radius"), format!("{radius} is outside the allowed range (0, {MAX_COORD:e}]"));
             }
         }
-        ObjectDesc::Plane { point, normal, .. } => {
+        ObjectDesc::Plane(PlaneDesc { point, normal, .. }) => {
             r.point(&format!("{path}.point"), *point);
             r.direction(&format!("{path}.normal"), *normal);
         }
-        ObjectDesc::Mesh { vertices, triangles, normals, .. } => {
+        ObjectDesc::Mesh(MeshDesc { vertices, triangles, normals, .. }) => {
             if triangles.is_empty() {
                 r.error(format!("{path}.triangles"), "a mesh needs at least one triangle [i, j, k]");
             }
