@@ -38,14 +38,15 @@ fn gpu_probe_matches_cpu_probe_term_by_term() {
         ("lights", [(35, 60), (80, 60), (125, 60), (80, 20), (10, 100)]),
     ];
     let (mut reflected, mut transmitted) = (0, 0);
-    for (name, pixels) in cases {
-        let flat = builtin(name, 160, 120, 1, 5);
-        for (x, y) in pixels {
+    // At 4 spp both probe the same jittered first sample.
+    for ((name, pixels), spp) in cases.iter().flat_map(|c| [(c, 1), (c, 4)]) {
+        let flat = builtin(name, 160, 120, spp, 5);
+        for &(x, y) in pixels {
             let cpu = probe_pixel(&flat, x, y, 0);
             let (record, status) = tracer.probe_pixel(&flat, x, y).expect("GPU probe");
             assert_eq!(status, 0, "{name} ({x}, {y}): status {status}");
             let gpu = breakdown(&record);
-            let what = format!("{name} ({x}, {y})");
+            let what = format!("{name} ({x}, {y}) at {spp} spp");
             check_sum(&cpu, &format!("{what} CPU"));
             check_sum(&gpu, &format!("{what} GPU"));
             assert_eq!(cpu.object_id, gpu.object_id, "{what}: first hit differs");

@@ -55,8 +55,14 @@ pub struct GpuContext {
 impl GpuContext {
     /// Opens an adapter as `request` says and creates a device with its default limits.
     pub fn new(request: &AdapterRequest) -> Result<Self, GpuError> {
-        let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
-        let adapters = pollster::block_on(instance.enumerate_adapters(wgpu::Backends::all()));
+        let adapters = match requested_backends()? {
+            Some(backends) => enumerate(backends),
+            // OpenGL only when nothing else is there: initialising it probes the display
+            // server (and prints errors of its own where there is none).
+            None => Some(enumerate(wgpu::Backends::PRIMARY))
+                .filter(|a| !a.is_empty())
+                .unwrap_or_else(|| enumerate(wgpu::Backends::GL)),
+        };
         let adapter = choose_adapter(adapters, request)?;
         let info = adapter.get_info();
         let limits = adapter.limits();
@@ -86,6 +92,21 @@ impl GpuContext {
     pub fn is_lost(&self) -> bool {
         self.lost.load(Ordering::SeqCst)
     }
+}
+
+/// The backends `WGPU_BACKEND` asks for; an error when it names none.
+fn requested_backends() -> Result<Option<wgpu::Backends>, GpuError> {
+    let Some(value) = std::env::var("WGPU_BACKEND").ok().filter(|v| !v.trim().is_empty()) else {
+        return Ok(None);
+    };
+    let backends = wgpu::Backends::from_comma_list(&value);
+    if backends.is_empty() { Err(GpuError::UnknownBackend { value }) } else { Ok(Some(backends)) }
+}
+
+fn enumerate(backends: wgpu::Backends) -> Vec<wgpu::Adapter> {
+    let mut descriptor = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
+    descriptor.backends = backends;
+    pollster::block_on(wgpu::Instance::new(descriptor).enumerate_adapters(backends))
 }
 
 fn choose_adapter(adapters: Vec<wgpu::Adapter>, request: &AdapterRequest) -> Result<wgpu::Adapter, GpuError> {

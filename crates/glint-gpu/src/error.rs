@@ -7,6 +7,13 @@ pub enum GpuError {
          for the lavapipe CPU adapter; WGPU_BACKEND selects the backend"
     )]
     NoAdapter,
+    #[error(
+        "a {tile}-pixel tile needs {groups} workgroups a side, more than this GPU dispatches \
+         ({limit}, limit max_compute_workgroups_per_dimension)"
+    )]
+    TileTooLarge { tile: u32, groups: u32, limit: u32 },
+    #[error("WGPU_BACKEND='{value}' names no backend; allowed: vulkan, metal, dx12, gl (comma-separated)")]
+    UnknownBackend { value: String },
     #[error("no GPU adapter matches '{name}'; adapters found: {available}")]
     UnknownAdapter { name: String, available: String },
     #[error("cannot open a device on adapter '{adapter}': {message}")]

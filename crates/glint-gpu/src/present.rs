@@ -98,3 +98,17 @@ impl Presenter {
         ctx.queue.submit([encoder.finish()]);
     }
 }
+
+#[cfg(test)]
+mod tests {
+    /// The presenter's shader is not composed by naga_oil: parse and validate it here, so a
+    /// broken edit fails a test without a GPU instead of the viewer at run time.
+    #[test]
+    fn present_shader_validates() {
+        let source = include_str!("../../../shaders/present.wgsl");
+        let module = naga::front::wgsl::parse_str(source).unwrap_or_else(|e| panic!("{}", e.emit_to_string(source)));
+        if let Err(e) = crate::shaders::validate(&module) {
+            panic!("present.wgsl is invalid:\n{e}");
+        }
+    }
+}

@@ -409,6 +409,11 @@ impl GpuTracer {
 
     /// Uploads `scene` and dispatches every tile without waiting for the GPU.
     pub fn submit(&self, scene: &FlatScene, options: &GpuOptions) -> Result<GpuJob, GpuError> {
+        let groups = options.tile.max(WORKGROUP).div_ceil(WORKGROUP);
+        let group_limit = self.ctx.limits.max_compute_workgroups_per_dimension;
+        if groups > group_limit {
+            return Err(GpuError::TileTooLarge { tile: options.tile, groups, limit: group_limit });
+        }
         let key = ShaderKey::for_scene(scene, options.specialise);
         let full;
         let scene = if options.specialise {
@@ -445,9 +450,8 @@ impl GpuTracer {
     pub fn probe_pixel(&self, scene: &FlatScene, x: u32, y: u32) -> Result<(ProbeRecord, u32), GpuError> {
         let key = ShaderKey { probe: true, ..ShaderKey::for_scene(scene, true) };
         let (pipeline, _) = self.pipeline(key)?;
-        let mut one = scene.clone();
-        one.header.spp = 1;
-        let buffers = SceneBuffers::upload(&self.ctx, &one)?;
+        // The scene's own spp: sample 0 is then jittered in its stratum exactly as the CPU's.
+        let buffers = SceneBuffers::upload(&self.ctx, scene)?;
         let bind_group = with_error_scopes(&self.ctx, || buffers.bind_group(&self.ctx, &pipeline))?;
         with_error_scopes(&self.ctx, || buffers.dispatch_probe(&self.ctx, &pipeline, &bind_group, x, y))?;
         let bytes = read_buffer(&self.ctx, &buffers.probe)?;

@@ -4,7 +4,7 @@
 
 use std::collections::BTreeSet;
 
-const TWINS: [(&str, &str, &str, &str); 7] = [
+const TWINS: [(&str, &str, &str, &str); 8] = [
     (
         "rng.wgsl",
         include_str!("../../../shaders/rng.wgsl"),
@@ -47,10 +47,16 @@ const TWINS: [(&str, &str, &str, &str); 7] = [
         "cpu/mod.rs",
         include_str!("../../glint-core/src/cpu/mod.rs"),
     ),
+    (
+        "present.wgsl",
+        include_str!("../../../shaders/present.wgsl"),
+        "image.rs",
+        include_str!("../../glint-core/src/image.rs"),
+    ),
 ];
 
 /// Functions only the GPU side has, and why.
-const GPU_ONLY: [(&str, &str, &str); 5] = [
+const GPU_ONLY: [(&str, &str, &str); 6] = [
     ("trace.wgsl", "push_ray", "the explicit ray stack: WGSL has no recursion"),
     ("trace.wgsl", "add_stat", "64-bit ray counters built from u32 atomics"),
     ("trace.wgsl", "main", "the compute entry point; the CPU's loop is render::render_cpu"),
@@ -60,12 +66,14 @@ const GPU_ONLY: [(&str, &str, &str); 5] = [
         "one sample per dispatch, summed in the output buffer in the order of the CPU's render_pixel",
     ),
     ("trace.wgsl", "driver_cut_loops", "detects lavapipe's silent loop cut-off, which the CPU does not have"),
+    ("present.wgsl", "main", "the compute entry point; the CPU converts pixel by pixel where it writes a PNG"),
 ];
 
 /// Functions only the CPU side has, and why.
-const CPU_ONLY: [(&str, &str, &str); 2] = [
+const CPU_ONLY: [(&str, &str, &str); 3] = [
     ("cpu/mod.rs", "*", "Rust plumbing: widening (v3), counters, the trace context"),
     ("cpu/trace.rs", "render_pixel", "the GPU sums a pixel's samples across dispatches (accumulate_sample)"),
+    ("image.rs", "*", "file output (PNG, EXR, metadata) has no place on the GPU"),
 ];
 
 /// Names declared with `fn` in a source text, before its test module.
