@@ -2,6 +2,7 @@
 
 use egui::Modifiers;
 use egui_kittest::kittest::Queryable;
+use glint_core::glam::DVec3;
 use glint_core::layout::NO_HIT;
 use glint_viewer::{GpuProbe, Tab};
 
@@ -74,4 +75,19 @@ fn the_probe_breakdown_sums_to_the_pixel_radiance_on_both_tracers() {
     if let Some(i) = glint_viewer::first_difference(&rows) {
         assert!(h.query_by_label(&rows[i].name).is_some(), "the differing term {} is listed", rows[i].name);
     }
+
+    // The probe follows an edit: at depth 0 the glass has no k_r·I_r or k_t·I_t left.
+    h.state_mut().doc.desc.render.max_depth = 0;
+    h.state_mut().doc.edited();
+    settle(&mut h);
+    let app = h.state();
+    let probe = app.probe.as_ref().expect("the probe stays");
+    assert_eq!(probe.revision, app.doc.revision, "the probe is of the edited scene");
+    assert_eq!((probe.cpu.reflected, probe.cpu.transmitted), (DVec3::ZERO, DVec3::ZERO));
+    let cpu_pixel = app.cpu.finished.as_ref().map(|(_, f)| f.image.get(x, y)).expect("CPU image");
+    assert!(
+        (probe.cpu.total - cpu_pixel).abs().max_element() < 1e-12,
+        "probe {} vs pixel {cpu_pixel}",
+        probe.cpu.total
+    );
 }

@@ -303,6 +303,10 @@ impl ViewerApp {
             self.cpu.start(flat, rev, move || repaint.request_repaint());
             self.cpu_revision = Some(rev);
         }
+        // The probed pixel follows the edits (not while dragging: a probe per preview is waste).
+        if !interacting && let Some((x, y)) = self.probe.as_ref().filter(|p| p.revision != rev).map(|p| (p.x, p.y)) {
+            self.start_probe(ctx, x, y);
+        }
         let cpu = self.cpu.finished.as_ref().filter(|(r, _)| *r == rev).map(|(_, f)| &f.image);
         let gpu = self.gpu.as_ref().and_then(|g| g.latest.as_ref()).filter(|l| l.revision == rev).map(|l| &l.image);
         if let (Some(c), Some(g)) = (cpu, gpu) {
@@ -362,12 +366,21 @@ impl ViewerApp {
 
     /// Probes pixel (x, y) on both tracers and shows the breakdown.
     pub fn probe_at(&mut self, ctx: &egui::Context, x: u32, y: u32) {
+        self.start_probe(ctx, x, y);
+        self.tab = Tab::Probe;
+    }
+
+    fn start_probe(&mut self, ctx: &egui::Context, x: u32, y: u32) {
         let Some(flat) = self.full_scene() else { return };
+        if x >= flat.header.width || y >= flat.header.height {
+            // The image shrank past the probed pixel.
+            self.probe = None;
+            return;
+        }
         let tracer = self.gpu.as_ref().map(|g| &g.tracer);
         let repaint = ctx.clone();
         let probe = ProbeState::start(&flat, x, y, self.doc.revision, tracer, move || repaint.request_repaint());
         self.probe = Some(probe);
-        self.tab = Tab::Probe;
     }
 
     fn menu_bar(&mut self, ui: &mut Ui) {

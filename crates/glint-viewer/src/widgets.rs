@@ -17,6 +17,12 @@ pub fn log_slider(ui: &mut Ui, label: &str, value: &mut f64, range: std::ops::Ra
     .changed()
 }
 
+/// A logarithmic slider over whole numbers (recursion depth, samples): small values get most
+/// of its length, and the largest valid value can still be reached.
+pub fn int_log_slider(ui: &mut Ui, label: &str, value: &mut u32, range: std::ops::RangeInclusive<u32>) -> bool {
+    ui.add(Slider::new(value, range).logarithmic(true).clamping(SliderClamping::Edits).text(label)).changed()
+}
+
 /// A linear slider with a label.
 pub fn slider<N: egui::emath::Numeric>(
     ui: &mut Ui,

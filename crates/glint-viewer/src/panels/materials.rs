@@ -4,7 +4,7 @@ use egui::Ui;
 use glint_core::scene::{CheckerDesc, MAX_IOR, MAX_SHININESS, Rgb, SpecularModel};
 
 use crate::document::Document;
-use crate::widgets::{choice, log_slider, rgb_edit, slider};
+use crate::widgets::{choice, log_slider, rgb_edit};
 
 /// Colours of a material are reflectances: at most 1 per channel for k_a, k_d, k_s, k_r, k_t
 /// (validation enforces physical limits; the editor keeps to the meaningful range).
@@ -54,7 +54,8 @@ pub fn ui(
         });
     changed |= rgb_edit(ui, "k_r", &mut m.kr, MAX_COEFF);
     changed |= rgb_edit(ui, "k_t", &mut m.kt, MAX_COEFF);
-    changed |= slider(ui, "Index of refraction", &mut m.ior, 1.0..=3.0_f64.min(MAX_IOR));
+    // Logarithmic over the whole valid range: ior < 1 (a bubble) and 100 (stiff case 13) too.
+    changed |= log_slider(ui, "Index of refraction", &mut m.ior, 1e-3..=MAX_IOR);
     changed |= rgb_edit(ui, "E_m", &mut m.emission, 1e3);
     let mut has_checker = m.checker.is_some();
     if ui.checkbox(&mut has_checker, "Checker").changed() {

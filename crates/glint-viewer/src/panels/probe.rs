@@ -20,6 +20,11 @@ pub fn ui(ui: &mut Ui, probe: Option<&ProbeState>, doc: &Document) {
         if id == NO_HIT { "background".to_string() } else { doc.object_label(id as usize) }
     };
     ui.label(format!("Pixel ({}, {}) — hit: {}", p.x, p.y, hit(p.cpu.object_id)));
+    let spp = doc.desc.render.spp;
+    if spp > 1 {
+        // Both tracers probe the same jittered sample; the pixel shown is the mean of all.
+        ui.weak(format!("Sample 0 of {spp}: the pixel shown is the mean of {spp} samples."));
+    }
     let gpu = p.gpu_breakdown();
     match &p.gpu {
         GpuProbe::Pending(_) => {

@@ -1,10 +1,10 @@
 //! Scene panel: camera, world and render settings.
 
 use egui::Ui;
-use glint_core::scene::{EpsilonMode, MAX_INTENSITY, SpecularModel};
+use glint_core::scene::{EpsilonMode, MAX_DEPTH, MAX_INTENSITY, MAX_SPP, SpecularModel};
 
 use crate::document::Document;
-use crate::widgets::{choice, log_slider, rgb_edit, slider};
+use crate::widgets::{choice, int_log_slider, log_slider, rgb_edit, slider};
 
 pub fn ui(ui: &mut Ui, doc: &mut Document) -> bool {
     let mut changed = false;
@@ -22,11 +22,12 @@ pub fn ui(ui: &mut Ui, doc: &mut Document) -> bool {
     });
     egui::CollapsingHeader::new("Render").default_open(true).show(ui, |ui| {
         let r = &mut doc.desc.render;
-        changed |= slider(ui, "Max depth", &mut r.max_depth, 0..=32);
+        // The whole valid range: depths past the GPU's ray stack are for checking its report.
+        changed |= int_log_slider(ui, "Max depth", &mut r.max_depth, 0..=MAX_DEPTH);
         changed |= slider(ui, "Bailout", &mut r.bailout, 0.0..=0.25);
         changed |= log_slider(ui, "Epsilon", &mut r.epsilon, 1e-9..=1.0);
         changed |= choice(ui, "Epsilon strategy", &mut r.epsilon_mode, &EpsilonMode::ALL, EpsilonMode::name);
-        changed |= slider(ui, "Samples per pixel", &mut r.spp, 1..=64);
+        changed |= int_log_slider(ui, "Samples per pixel", &mut r.spp, 1..=MAX_SPP);
         changed |= slider(ui, "Width", &mut r.width, 16..=1920);
         changed |= slider(ui, "Height", &mut r.height, 16..=1080);
         ui.horizontal(|ui| {
