@@ -137,6 +137,11 @@ fn quick_report_writes_consistent_files() {
             let v = num(name);
             if *name == "psnr_db" {
                 assert_eq!(v.is_infinite(), num("rmse") == 0.0, "row {i}: PSNR {v} with RMSE {}", num("rmse"));
+                // PSNR with peak 1 is a function of the RMSE.
+                if v.is_finite() {
+                    let from_rmse = -20.0 * num("rmse").log10();
+                    assert!((v - from_rmse).abs() < 1e-6, "row {i}: PSNR {v} but RMSE gives {from_rmse}");
+                }
                 assert!(!v.is_nan() && (v.is_finite() || r[col(name)] == "inf"), "row {i}: PSNR {v}");
             } else {
                 assert!(v.is_finite() && (v >= 0.0 || SIGNED.contains(name)), "row {i}: {name} = {v}");
@@ -183,6 +188,7 @@ fn quick_report_writes_consistent_files() {
         }
         assert_eq!(r[col("psnr_db")], "inf", "{s}: reference row PSNR");
         assert!(scene_rows.iter().any(|r| r[col("pareto_all")] == "true"), "{s}: empty Pareto front");
+        check_pareto_front(s, &scene_rows, &col);
         let gpu_rows = scene_rows.iter().filter(|r| r[col("backend")] == "gpu").count();
         if skip_gpu {
             assert_eq!(gpu_rows, 0, "{s}: GPU rows with --cpu-only");
@@ -227,4 +233,33 @@ fn report_rejects_an_unknown_scene_before_writing_anything() {
     assert!(!out.status.success());
     assert!(text(&out.stderr).contains("nosuchscene"), "{}", text(&out.stderr));
     assert!(!out_dir.exists(), "the output folder was created for a failing report");
+}
+
+/// The rows marked `pareto_all` form the front the report's legend describes (time against
+/// RMSE, reference rows unranked, an RMSE must be 1 % lower to count): no front row is beaten
+/// by a strictly faster row that is at least as accurate, and every other row has a front row
+/// at least as fast whose RMSE is within 1 % of its own or lower.
+fn check_pareto_front(scene: &str, rows: &[&Vec<String>], col: &dyn Fn(&str) -> usize) {
+    let point = |r: &Vec<String>| -> (f64, f64) {
+        (r[col("render_ms_median")].parse().expect("time"), r[col("rmse")].parse().expect("rmse"))
+    };
+    let ranked: Vec<&Vec<String>> =
+        rows.iter().copied().filter(|r| !r[col("groups")].split(';').any(|g| g == "reference")).collect();
+    let (front, rest): (Vec<&Vec<String>>, Vec<&Vec<String>>) =
+        ranked.iter().copied().partition(|r| r[col("pareto_all")] == "true");
+    for p in &front {
+        let (tp, ep) = point(p);
+        for q in &ranked {
+            let (tq, eq) = point(q);
+            assert!(!(tq < tp && eq <= ep), "{scene}: front row ({tp} ms, {ep}) is beaten by ({tq} ms, {eq})");
+        }
+    }
+    for q in &rest {
+        let (tq, eq) = point(q);
+        let covered = front.iter().any(|p| {
+            let (tp, ep) = point(p);
+            tp <= tq && ep * 0.99 <= eq
+        });
+        assert!(covered, "{scene}: row ({tq} ms, {eq}) is off the front but nothing on it is as fast and as accurate");
+    }
 }
