@@ -90,4 +90,18 @@ fn the_probe_breakdown_sums_to_the_pixel_radiance_on_both_tracers() {
         "probe {} vs pixel {cpu_pixel}",
         probe.cpu.total
     );
+    assert!(h.query_by_label("CPU and GPU agree on every term within tolerance.").is_some());
+
+    // A GPU term off by 0.1 (as a shader bug would make it) is the one the panel points at.
+    let mut wrong = match &h.state().probe.as_ref().expect("probe").gpu {
+        GpuProbe::Done(Ok(g)) => g.clone(),
+        other => panic!("GPU probe: {other:?}"),
+    };
+    wrong.lights[0].diffuse += DVec3::splat(0.1);
+    h.state_mut().probe.as_mut().expect("probe").gpu = GpuProbe::Done(Ok(wrong));
+    h.run_steps(2);
+    assert!(
+        h.query_by_label("First difference beyond tolerance: light 0: diffuse").is_some(),
+        "the differing term is not pointed out"
+    );
 }
