@@ -33,6 +33,8 @@ fn depth_and_epsilon_set_through_the_ui_change_the_gpu_image_and_the_statistics(
     let RenderSettings { epsilon, .. } = h.state().doc.desc.render;
     assert!((epsilon - 0.5).abs() < 1e-12, "epsilon {epsilon}");
     assert!(mean_abs_diff(&depth0, &gpu_image(&h)) > 1e-4, "ε = 0.5 must change the image");
+    // The statistics follow: they are of the new revision, and both tracers offset alike.
+    assert_current_agreement(&h);
 }
 
 #[test]
