@@ -74,13 +74,13 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     check_output(&output)?;
 
     let gpu = if args.backend == Backend::Cpu { None } else { Some(open_gpu(args.adapter.as_deref())?) };
+    // The GPU renders first: a scene it cannot take (size, limits) fails before a long CPU render.
+    let gpu_run = gpu.as_ref().map(|tracer| run_gpu(tracer, &flat, &gpu_options)).transpose()?;
     let mut runs = Vec::new();
     if args.backend != Backend::Gpu {
         runs.push(run_cpu(&flat, &cpu_options, args.quiet || args.json)?);
     }
-    if let Some(tracer) = &gpu {
-        runs.push(run_gpu(tracer, &flat, &gpu_options)?);
-    }
+    runs.extend(gpu_run);
     let mut outputs = Vec::new();
     for run in &runs {
         let path = if args.backend == Backend::Both { suffixed(&output, run.backend) } else { output.clone() };
