@@ -58,12 +58,9 @@ pub fn linear_to_srgb8(v: f64) -> u8 {
 
 #[derive(Debug, thiserror::Error)]
 pub enum ImageWriteError {
-    #[error("{path}: {source}")]
-    Io {
-        path: PathBuf,
-        #[source]
-        source: std::io::Error,
-    },
+    /// The I/O error is part of the message, not a `source()`: see `SceneError::Io`.
+    #[error("{path}: {error}")]
+    Io { path: PathBuf, error: std::io::Error },
     #[error("{path}: PNG encoding failed: {message}")]
     Png { path: PathBuf, message: String },
     #[error("{path}: EXR encoding failed: {message}")]
@@ -81,7 +78,7 @@ fn write_atomically(
     let file_name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_else(|| "image".into());
     let tmp = path.with_file_name(format!(".{file_name}.tmp-{}", std::process::id()));
     let result = write(&tmp).and_then(|()| {
-        std::fs::rename(&tmp, path).map_err(|source| ImageWriteError::Io { path: path.to_owned(), source })
+        std::fs::rename(&tmp, path).map_err(|error| ImageWriteError::Io { path: path.to_owned(), error })
     });
     if result.is_err() {
         let _ = std::fs::remove_file(&tmp);
@@ -103,7 +100,7 @@ pub fn write_png_rgb8(
     metadata: &[(String, String)],
 ) -> Result<(), ImageWriteError> {
     write_atomically(path, |tmp| {
-        let io = |source| ImageWriteError::Io { path: path.to_owned(), source };
+        let io = |error| ImageWriteError::Io { path: path.to_owned(), error };
         let png_err = |e: png::EncodingError| ImageWriteError::Png { path: path.to_owned(), message: e.to_string() };
         let mut out = BufWriter::new(std::fs::File::create(tmp).map_err(io)?);
         let mut encoder = png::Encoder::new(&mut out, width, height);

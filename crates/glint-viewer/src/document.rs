@@ -97,7 +97,7 @@ impl Document {
     /// Writes the scene in the format `glint render` reads.
     pub fn save(&mut self, path: &Path) -> Result<(), ViewerError> {
         let text = to_toml(&self.desc).map_err(|e| ViewerError::Serialise(e.to_string()))?;
-        std::fs::write(path, text).map_err(|source| ViewerError::SaveScene { path: path.to_owned(), source })?;
+        std::fs::write(path, text).map_err(|error| ViewerError::SaveScene { path: path.to_owned(), error })?;
         self.path = Some(path.to_owned());
         self.name = path.file_stem().map_or_else(|| self.name.clone(), |s| s.to_string_lossy().into_owned());
         self.dirty = false;

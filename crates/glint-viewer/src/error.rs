@@ -6,12 +6,9 @@ use std::path::PathBuf;
 pub enum ViewerError {
     #[error(transparent)]
     Scene(#[from] glint_core::scene::SceneError),
-    #[error("{path}: cannot write the scene: {source}")]
-    SaveScene {
-        path: PathBuf,
-        #[source]
-        source: std::io::Error,
-    },
+    /// The I/O error is part of the message, not a `source()`: see `SceneError::Io`.
+    #[error("{path}: cannot write the scene: {error}")]
+    SaveScene { path: PathBuf, error: std::io::Error },
     #[error("cannot serialise the scene: {0}")]
     Serialise(String),
     #[error(transparent)]

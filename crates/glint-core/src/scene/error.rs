@@ -20,12 +20,10 @@ impl fmt::Display for FieldIssue {
 
 #[derive(Debug, thiserror::Error)]
 pub enum SceneError {
-    #[error("{file}: cannot read the scene file: {source}")]
-    Io {
-        file: PathBuf,
-        #[source]
-        source: std::io::Error,
-    },
+    /// The message carries the I/O error itself (not as `source()`): it is shown as one line,
+    /// in the viewer too, and a caller printing the chain would repeat it.
+    #[error("{file}: cannot read the scene file: {error}")]
+    Io { file: PathBuf, error: std::io::Error },
     #[error("{file}: {message}")]
     Parse { file: PathBuf, message: String },
     #[error("{file}: invalid scene:\n{}", list(.issues))]

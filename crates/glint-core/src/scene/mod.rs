@@ -54,11 +54,11 @@ pub fn load_scene(arg: &str) -> Result<LoadedScene, SceneError> {
     if path.is_dir() {
         return Err(SceneError::Io {
             file: path.to_owned(),
-            source: std::io::Error::new(std::io::ErrorKind::IsADirectory, "a folder, not a scene file"),
+            error: std::io::Error::new(std::io::ErrorKind::IsADirectory, "a folder, not a scene file"),
         });
     }
     if path.is_file() {
-        let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io { file: path.to_owned(), source })?;
+        let text = std::fs::read_to_string(path).map_err(|error| SceneError::Io { file: path.to_owned(), error })?;
         let (desc, warnings) = parse_scene(&text, path)?;
         let name = path.file_stem().map_or_else(|| "scene".into(), |s| s.to_string_lossy().into_owned());
         return Ok(LoadedScene { desc, source: path.to_owned(), name, warnings });
@@ -71,7 +71,7 @@ pub fn load_scene(arg: &str) -> Result<LoadedScene, SceneError> {
     if path.extension().is_some() || arg.contains(std::path::MAIN_SEPARATOR) {
         return Err(SceneError::Io {
             file: path.to_owned(),
-            source: std::io::Error::new(std::io::ErrorKind::NotFound, "no such file"),
+            error: std::io::Error::new(std::io::ErrorKind::NotFound, "no such file"),
         });
     }
     let available = BUILTIN_SCENES.iter().map(|b| b.name).collect::<Vec<_>>().join(", ");
