@@ -4,13 +4,7 @@ use egui::accesskit::Role;
 use egui_kittest::kittest::Queryable;
 use glint_core::image::read_png_text;
 
-use crate::support::{HEIGHT, WIDTH, viewer};
-
-fn temp_dir(name: &str) -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!("glint-viewer-test-{name}-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    dir
-}
+use crate::support::{HEIGHT, WIDTH, temp_dir, viewer};
 
 #[test]
 fn save_image_writes_a_png_with_the_render_settings() {

@@ -7,13 +7,12 @@ use egui_kittest::kittest::Queryable;
 use glint_core::scene::{load_scene, parse_scene};
 use glint_viewer::{ViewMode, ViewerApp, ViewerOptions};
 
-use crate::support::viewer;
+use crate::support::{temp_dir, viewer};
 
 #[test]
 fn a_saved_scene_reads_back_as_the_edited_scene() {
     let Some(mut h) = viewer("whitted", (1000.0, 640.0)) else { return };
-    let dir = std::env::temp_dir().join(format!("glint-viewer-test-save-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
+    let dir = temp_dir("save");
     let path = dir.join("edited.toml");
     h.state_mut().doc.desc.lights[0].diffuse.0 = [0.25, 0.5, 0.75];
     h.state_mut().doc.edited();
@@ -46,8 +45,7 @@ impl egui::DroppedFile for DroppedPath {
 #[test]
 fn a_scene_file_dropped_on_the_window_is_opened() {
     let Some(mut h) = viewer("whitted", (1000.0, 640.0)) else { return };
-    let dir = std::env::temp_dir().join(format!("glint-viewer-test-drop-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
+    let dir = temp_dir("drop");
     let path = dir.join("dropped.toml");
     h.state_mut().doc.desc.lights[0].diffuse.0 = [0.1, 0.2, 0.3];
     h.state_mut().doc.edited();
