@@ -243,18 +243,23 @@ pub struct TileParams {
 pub const LOOP_CANARY_LAPS: u32 = 2;
 
 impl TileParams {
-    /// The one pixel (x, y), first sample.
-    pub fn pixel(x: u32, y: u32) -> Self {
+    /// Sample `sample_index` of the `width`×`height` pixels from (x, y).
+    pub fn new(x: u32, y: u32, width: u32, height: u32, sample_index: u32) -> Self {
         Self {
             origin_x: x,
             origin_y: y,
-            width: 1,
-            height: 1,
-            sample_index: 0,
+            width,
+            height,
+            sample_index,
             canary_laps: LOOP_CANARY_LAPS,
             pad_a: 0,
             pad_b: 0,
         }
+    }
+
+    /// The one pixel (x, y), first sample.
+    pub fn pixel(x: u32, y: u32) -> Self {
+        Self::new(x, y, 1, 1, 0)
     }
 }
 

@@ -55,14 +55,13 @@ pub struct GpuContext {
 impl GpuContext {
     /// Opens an adapter as `request` says and creates a device with its default limits.
     pub fn new(request: &AdapterRequest) -> Result<Self, GpuError> {
-        let adapters = match requested_backends()? {
-            Some(backends) => enumerate(backends),
+        let requested = requested_backends()?;
+        let mut adapters = enumerate(requested.unwrap_or(wgpu::Backends::PRIMARY));
+        if adapters.is_empty() && requested.is_none() {
             // OpenGL only when nothing else is there: initialising it probes the display
             // server (and prints errors of its own where there is none).
-            None => Some(enumerate(wgpu::Backends::PRIMARY))
-                .filter(|a| !a.is_empty())
-                .unwrap_or_else(|| enumerate(wgpu::Backends::GL)),
-        };
+            adapters = enumerate(wgpu::Backends::GL);
+        }
         let adapter = choose_adapter(adapters, request)?;
         let info = adapter.get_info();
         let limits = adapter.limits();

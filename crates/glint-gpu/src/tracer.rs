@@ -243,15 +243,9 @@ impl SceneBuffers {
         let tile = tile.max(WORKGROUP);
         for y0 in (0..self.height).step_by(tile as usize) {
             for x0 in (0..self.width).step_by(tile as usize) {
+                let (width, height) = (tile.min(self.width - x0), tile.min(self.height - y0));
                 for sample_index in 0..self.spp {
-                    let params = TileParams {
-                        origin_x: x0,
-                        origin_y: y0,
-                        width: tile.min(self.width - x0),
-                        height: tile.min(self.height - y0),
-                        sample_index,
-                        ..TileParams::pixel(0, 0)
-                    };
+                    let params = TileParams::new(x0, y0, width, height, sample_index);
                     self.dispatch_tile(ctx, pipeline, bind_group, params);
                 }
             }
