@@ -29,6 +29,7 @@ pub fn render_cpu_checked(flat: &FlatScene, threads: usize, specialise: bool) ->
     let r = render_cpu(flat, &CpuOptions { threads, specialise }, RenderControl::default()).expect("CPU render");
     assert_eq!(r.image.pixels.len(), flat.pixel_count());
     assert_all_finite(&r.image, "CPU render");
+    crate::image_hash::check_render_hash(&r);
     r
 }
 

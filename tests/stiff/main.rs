@@ -45,6 +45,9 @@ mod case16_invalid_data;
 #[path = "../common/gpu.rs"]
 #[allow(dead_code, reason = "shared with the other test binaries, which use other parts of it")]
 mod gpu;
+#[path = "../common/image_hash.rs"]
+#[allow(dead_code, reason = "shared with the other test binaries, which use other parts of it")]
+mod image_hash;
 #[path = "../common/reference.rs"]
 #[allow(dead_code, reason = "shared with the other test binaries, which use other parts of it")]
 mod reference;

@@ -1,0 +1,28 @@
+//! Every built-in scene rendered on the CPU, specialised and not, each image compared bit for
+//! bit with the one recorded before a refactor (`tests/common/image_hash.rs`; the stiff,
+//! closed-form and GPU suites' CPU renders are checked the same way).
+
+use std::path::Path;
+
+use glint_core::FlatScene;
+use glint_core::scene::{BUILTIN_SCENES, EpsilonMode, parse_scene};
+
+use crate::render::render_cpu_checked;
+
+#[test]
+fn builtin_scenes_render_bit_identically() {
+    for b in BUILTIN_SCENES {
+        let (desc, _) = parse_scene(b.text, Path::new(b.name)).expect("built-in scene parses");
+        // Small, with the scene's own spp, depth and bailout, plus every ε strategy.
+        let mut settings = desc.render.clone();
+        settings.width = 96;
+        settings.height = 72;
+        for specialise in [true, false] {
+            render_cpu_checked(&FlatScene::build(&desc, &settings), 2, specialise);
+        }
+        for mode in EpsilonMode::ALL {
+            settings.epsilon_mode = mode;
+            render_cpu_checked(&FlatScene::build(&desc, &settings), 2, true);
+        }
+    }
+}
