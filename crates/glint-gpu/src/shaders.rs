@@ -48,8 +48,7 @@ impl ShaderKey {
     pub fn for_scene(scene: &FlatScene, specialise: bool) -> Self {
         if specialise {
             let features = scene.header.features;
-            let recursion = features & (feature::REFLECTION | feature::TRANSMISSION) != 0;
-            let depth = if recursion { scene.header.max_depth.min(GPU_STACK_LIMIT - 1) } else { 0 };
+            let depth = if feature::recurses(features) { scene.header.max_depth.min(GPU_STACK_LIMIT - 1) } else { 0 };
             Self { features, stack_size: depth + 1, probe: false }
         } else {
             Self::full()
@@ -61,12 +60,8 @@ impl ShaderKey {
         Self { features: feature::ALL, stack_size: GPU_STACK_LIMIT, probe: false }
     }
 
-    /// Whether the variant walks a ray tree at all.
-    pub fn recursion(&self) -> bool {
-        self.features & (feature::REFLECTION | feature::TRANSMISSION) != 0
-    }
-
-    /// naga_oil shader defs: one boolean per feature present, `RECURSION`, `STACK_SIZE`.
+    /// naga_oil shader defs: one boolean per feature present, `RECURSION` when the variant
+    /// walks a ray tree, `STACK_SIZE`, `PROBE`.
     pub fn shader_defs(&self) -> HashMap<String, ShaderDefValue> {
         let mut defs: HashMap<String, ShaderDefValue> = feature::NAMES
             .iter()
@@ -74,7 +69,7 @@ impl ShaderKey {
             .filter(|(bit, _)| self.features & (1 << bit) != 0)
             .map(|(_, name)| ((*name).to_string(), ShaderDefValue::Bool(true)))
             .collect();
-        if self.recursion() {
+        if feature::recurses(self.features) {
             defs.insert("RECURSION".into(), ShaderDefValue::Bool(true));
         }
         defs.insert("STACK_SIZE".into(), ShaderDefValue::UInt(self.stack_size));
