@@ -210,6 +210,25 @@ mod tests {
         }
     }
 
+    #[test]
+    fn every_ifdef_names_a_def_the_host_sets() {
+        // A misspelt #ifdef would compile its code out of every variant, silently.
+        let defs = ShaderKey { probe: true, ..ShaderKey::full() }.shader_defs();
+        let sources =
+            SHADER_MODULES.iter().map(|(_, file, source)| (*file, *source)).chain([("trace.wgsl", TRACE_WGSL)]);
+        let mut checked = 0;
+        for (file, source) in sources {
+            for line in source.lines() {
+                let t = line.trim_start();
+                if let Some(name) = t.strip_prefix("#ifdef ").or_else(|| t.strip_prefix("#ifndef ")) {
+                    assert!(defs.contains_key(name.trim()), "{file}: `{t}` names no shader def of ShaderKey");
+                    checked += 1;
+                }
+            }
+        }
+        assert!(checked > feature::NAMES.len(), "only {checked} #ifdef lines found");
+    }
+
     /// Function names of a composed module without naga_oil's module decoration.
     fn function_names(module: &naga::Module) -> Vec<String> {
         module

@@ -401,7 +401,8 @@ impl GpuTracer {
         Ok((p, time))
     }
 
-    /// Uploads `scene` and dispatches every tile without waiting for the GPU.
+    /// Uploads `scene` and dispatches every tile without waiting for the GPU. Unspecialised,
+    /// the full shader runs on the same buffers: it reads no feature bits from the scene.
     pub fn submit(&self, scene: &FlatScene, options: &GpuOptions) -> Result<GpuJob, GpuError> {
         let groups = options.tile.max(WORKGROUP).div_ceil(WORKGROUP);
         let group_limit = self.ctx.limits.max_compute_workgroups_per_dimension;
@@ -409,13 +410,6 @@ impl GpuTracer {
             return Err(GpuError::TileTooLarge { tile: options.tile, groups, limit: group_limit });
         }
         let key = ShaderKey::for_scene(scene, options.specialise);
-        let full;
-        let scene = if options.specialise {
-            scene
-        } else {
-            full = scene.unspecialised();
-            &full
-        };
         let (pipeline, mut pipeline_time) = self.pipeline(key)?;
         let upload_start = Instant::now();
         let buffers = SceneBuffers::upload(&self.ctx, scene)?;
