@@ -19,9 +19,9 @@ struct SampleResult {
 // Deferred rays the stack holds: a depth-first walk that follows one child at once defers
 // at most one ray per level, so max_depth entries suffice.
 const STACK_SIZE: u32 = #{STACK_SIZE}u;
-// Bound of the tree walk per sample; reaching it raises STATUS_LOOP_LIMIT. Below lavapipe's
-// silent cut-off of 65,535 loop iterations.
-const MAX_TREE_NODES: u32 = 65000u;
+// Bound of the tree walk per sample (glint_gpu::shaders::MAX_TREE_NODES, below lavapipe's loop
+// budget); reaching it raises STATUS_LOOP_LIMIT.
+const MAX_TREE_NODES: u32 = #{MAX_TREE_NODES}u;
 
 struct StackEntry {
     origin: vec3<f32>,
@@ -285,7 +285,8 @@ fn accumulate_sample(x: u32, y: u32) {
 }
 
 // lavapipe ends every loop after its current iteration once the invocation group has run
-// 65,535 loop iterations in all, without any error. A loop of `tile.canary_laps` (2) laps
+// its loop budget (glint_gpu::shaders::LAVAPIPE_LOOP_BUDGET iterations in all), without any
+// error. A loop of `tile.canary_laps` (2) laps
 // then stops after one: the only way to see that the work before it was cut short.
 fn driver_cut_loops() -> bool {
     var laps = 0u;

@@ -12,7 +12,7 @@ pub mod tracer;
 pub use context::{AdapterRequest, AdapterSummary, GpuContext};
 pub use error::GpuError;
 pub use present::Presenter;
-pub use shaders::{GPU_STACK_LIMIT, ShaderKey};
+pub use shaders::{GPU_STACK_LIMIT, LAVAPIPE_LOOP_BUDGET, ShaderKey};
 pub use tracer::{GpuJob, GpuOptions, GpuRender, GpuTracer, JobReadback};
 
 #[cfg(test)]

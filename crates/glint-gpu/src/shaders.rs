@@ -15,9 +15,18 @@ use crate::error::GpuError;
 /// branch raise `STATUS_STACK_OVERFLOW`.
 pub const GPU_STACK_LIMIT: u32 = 64;
 
-/// Most primitives of one kind the GPU walks per ray: lavapipe cuts loops silently after
-/// 65,535 iterations.
-pub const GPU_PRIMITIVE_LIMIT: u32 = 65_535;
+/// lavapipe's loop budget: once an invocation group has run this many loop iterations in all,
+/// it ends every loop after its current iteration, silently (docs/numerics.md, "GPU loop
+/// bounds"). The GPU tracer's own loop bounds derive from it.
+pub const LAVAPIPE_LOOP_BUDGET: u32 = 65_535;
+
+/// Most primitives of one kind the GPU walks per ray, checked on upload: one walk alone must
+/// fit in lavapipe's budget.
+pub const GPU_PRIMITIVE_LIMIT: u32 = LAVAPIPE_LOOP_BUDGET;
+
+/// Bound of the shader's ray-tree walk per sample (shader def `MAX_TREE_NODES`); reaching it
+/// raises `STATUS_LOOP_LIMIT`. The budget rounded down to thousands.
+pub const MAX_TREE_NODES: u32 = LAVAPIPE_LOOP_BUDGET / 1_000 * 1_000;
 
 /// The modules in dependency order: (import path, file name, source).
 pub const SHADER_MODULES: [(&str, &str, &str); 8] = [
@@ -61,7 +70,7 @@ impl ShaderKey {
     }
 
     /// naga_oil shader defs: one boolean per feature present, `RECURSION` when the variant
-    /// walks a ray tree, `STACK_SIZE`, `PROBE`.
+    /// walks a ray tree, `STACK_SIZE`, `MAX_TREE_NODES`, `PROBE`.
     pub fn shader_defs(&self) -> HashMap<String, ShaderDefValue> {
         let mut defs: HashMap<String, ShaderDefValue> = feature::NAMES
             .iter()
@@ -73,6 +82,7 @@ impl ShaderKey {
             defs.insert("RECURSION".into(), ShaderDefValue::Bool(true));
         }
         defs.insert("STACK_SIZE".into(), ShaderDefValue::UInt(self.stack_size));
+        defs.insert("MAX_TREE_NODES".into(), ShaderDefValue::UInt(MAX_TREE_NODES));
         if self.probe {
             defs.insert("PROBE".into(), ShaderDefValue::Bool(true));
         }
