@@ -1,6 +1,7 @@
 //! Glint's GPU tracer: the WGSL twin of the CPU reference (`shaders/*.wgsl`), composed with
 //! naga_oil and specialised per scene, run with wgpu.
 
+pub mod binding;
 pub mod context;
 pub mod error;
 pub mod pipeline;

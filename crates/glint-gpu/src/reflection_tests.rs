@@ -9,6 +9,7 @@ use glint_core::layout::*;
 use naga::proc::Layouter;
 use naga_oil::compose::Composer;
 
+use crate::binding::Binding;
 use crate::shaders::ShaderKey;
 
 /// A Rust struct as (name, size, [(member, offset, size)]).
@@ -86,14 +87,38 @@ fn rust_layouts() -> Vec<RustLayout> {
     ]
 }
 
-fn layout_module() -> naga::Module {
-    // The file is a naga_oil module; its only directive is the import path.
-    let source: String = include_str!("../../../shaders/layout.wgsl")
-        .lines()
+const LAYOUT_WGSL: &str = include_str!("../../../shaders/layout.wgsl");
+
+/// `sources` joined as one plain WGSL module: without naga_oil's directives (import path and
+/// imports), which only name what the files give each other.
+fn plain_module(sources: &[&str]) -> naga::Module {
+    let source: String = sources
+        .iter()
+        .flat_map(|s| s.lines())
         .filter(|l| !l.trim_start().starts_with('#'))
         .collect::<Vec<_>>()
         .join("\n");
     naga::front::wgsl::parse_str(&source).unwrap_or_else(|e| panic!("{}", e.emit_to_string(&source)))
+}
+
+fn layout_module() -> naga::Module {
+    plain_module(&[LAYOUT_WGSL])
+}
+
+#[test]
+fn binding_table_matches_bindings_wgsl_both_ways() {
+    let module = plain_module(&[LAYOUT_WGSL, include_str!("../../../shaders/bindings.wgsl")]);
+    let mut wgsl = Vec::new();
+    for (_, var) in module.global_variables.iter() {
+        let Some(rb) = &var.binding else { continue };
+        let name = var.name.as_deref().expect("bindings are named");
+        let found = Binding::of_global(rb.group, rb.binding, name).unwrap_or_else(|e| panic!("bindings.wgsl: {e}"));
+        wgsl.push(found);
+    }
+    for b in Binding::ALL {
+        assert!(wgsl.contains(&b), "{b:?} (@binding({}) {}) is not in bindings.wgsl", b.number(), b.wgsl_name());
+    }
+    assert_eq!(wgsl.len(), Binding::ALL.len(), "bindings.wgsl declares a binding twice: {wgsl:?}");
 }
 
 #[test]

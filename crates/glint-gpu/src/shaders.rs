@@ -101,8 +101,14 @@ impl ShaderKey {
     }
 }
 
-/// Composes and validates the tracer for `key`; errors carry naga's readable report.
+/// Composes the tracer for `key`; errors carry naga's readable report.
 pub fn compose(key: &ShaderKey) -> Result<naga::Module, GpuError> {
+    compose_entry(key, TRACE_WGSL)
+}
+
+/// Composes `entry` (the source of an entry module, as `trace.wgsl`) with the modules of
+/// `shaders/` for `key`.
+pub fn compose_entry(key: &ShaderKey, entry: &str) -> Result<naga::Module, GpuError> {
     let mut composer = Composer::default();
     for (path, file, source) in SHADER_MODULES {
         let added = composer.add_composable_module(ComposableModuleDescriptor {
@@ -116,12 +122,17 @@ pub fn compose(key: &ShaderKey) -> Result<naga::Module, GpuError> {
         }
     }
     let module = composer.make_naga_module(NagaModuleDescriptor {
-        source: TRACE_WGSL,
+        source: entry,
         file_path: "trace.wgsl",
         shader_defs: key.shader_defs(),
         ..Default::default()
     });
     module.map_err(|e| GpuError::Compose(e.emit_to_string(&composer)))
+}
+
+/// A name in a composed module without naga_oil's module decoration.
+pub fn undecorated(name: &str) -> &str {
+    name.split("X_naga_oil_mod_").next().unwrap_or(name)
 }
 
 /// Validates a composed module again with naga's validator (all checks), as a build step would.
@@ -172,6 +183,7 @@ pub fn module_stats(module: &naga::Module) -> ModuleStats {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::binding::Binding;
     use glint_core::scene::{BUILTIN_SCENES, parse_scene};
 
     fn builtin_keys() -> Vec<(String, ShaderKey)> {
@@ -241,12 +253,7 @@ mod tests {
 
     /// Function names of a composed module without naga_oil's module decoration.
     fn function_names(module: &naga::Module) -> Vec<String> {
-        module
-            .functions
-            .iter()
-            .filter_map(|(_, f)| f.name.as_deref())
-            .map(|n| n.split("X_naga_oil_mod_").next().unwrap_or(n).to_string())
-            .collect()
+        module.functions.iter().filter_map(|(_, f)| f.name.as_deref()).map(|n| undecorated(n).to_string()).collect()
     }
 
     #[test]
@@ -281,7 +288,7 @@ mod tests {
         }
         let bindings: Vec<u32> =
             module.global_variables.iter().filter_map(|(_, g)| g.binding.as_ref().map(|b| b.binding)).collect();
-        for absent in [crate::pipeline::binding::PLANES, crate::pipeline::binding::TRIANGLES] {
+        for absent in [Binding::Planes.number(), Binding::Triangles.number()] {
             assert!(!bindings.contains(&absent), "binding {absent} should be gone: {bindings:?}");
         }
         let full = compose_or_report(&ShaderKey::full());

@@ -17,7 +17,8 @@ use wgpu::util::DeviceExt;
 
 use crate::context::GpuContext;
 use crate::error::GpuError;
-use crate::pipeline::{TracerPipeline, binding, create_pipeline, with_error_scopes};
+use crate::binding::Binding;
+use crate::pipeline::{TracerPipeline, create_pipeline, with_error_scopes};
 use crate::shaders::{GPU_PRIMITIVE_LIMIT, ShaderKey};
 
 /// Tile edge in pixels: one submission renders at most this square, so no single submission
@@ -171,23 +172,23 @@ impl SceneBuffers {
 
     /// The bind group for `pipeline`, with exactly the bindings its module declares.
     pub fn bind_group(&self, ctx: &GpuContext, pipeline: &TracerPipeline) -> wgpu::BindGroup {
-        let buffer = |b: u32| match b {
-            binding::HEADER => &self.header,
-            binding::CAMERA => &self.camera,
-            binding::TILE => &self.tile,
-            binding::MATERIALS => &self.materials,
-            binding::LIGHTS => &self.lights,
-            binding::SPHERES => &self.spheres,
-            binding::PLANES => &self.planes,
-            binding::TRIANGLES => &self.triangles,
-            binding::OUTPUT => &self.output,
-            binding::PROBE => &self.probe,
-            _ => &self.stats,
+        let buffer = |b: Binding| match b {
+            Binding::Header => &self.header,
+            Binding::Camera => &self.camera,
+            Binding::Tile => &self.tile,
+            Binding::Materials => &self.materials,
+            Binding::Lights => &self.lights,
+            Binding::Spheres => &self.spheres,
+            Binding::Planes => &self.planes,
+            Binding::Triangles => &self.triangles,
+            Binding::Output => &self.output,
+            Binding::Stats => &self.stats,
+            Binding::Probe => &self.probe,
         };
         let entries: Vec<wgpu::BindGroupEntry> = pipeline
             .bindings
             .iter()
-            .map(|&b| wgpu::BindGroupEntry { binding: b, resource: buffer(b).as_entire_binding() })
+            .map(|&b| wgpu::BindGroupEntry { binding: b.number(), resource: buffer(b).as_entire_binding() })
             .collect();
         ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("glint scene"),
