@@ -2,19 +2,25 @@
 //! naga_oil and specialised per scene, run with wgpu.
 
 pub mod binding;
+pub mod buffers;
 pub mod context;
+pub mod dispatch;
 pub mod error;
+pub mod job;
 pub mod pipeline;
 pub mod present;
 pub mod probe;
+pub mod readback;
 pub mod shaders;
 pub mod tracer;
 
 pub use context::{AdapterRequest, AdapterSummary, GpuContext};
 pub use error::GpuError;
+pub use job::GpuJob;
 pub use present::Presenter;
+pub use readback::JobReadback;
 pub use shaders::{GPU_STACK_LIMIT, LAVAPIPE_LOOP_BUDGET, ShaderKey};
-pub use tracer::{GpuJob, GpuOptions, GpuRender, GpuTracer, JobReadback};
+pub use tracer::{GpuOptions, GpuRender, GpuTracer};
 
 #[cfg(test)]
 mod reflection_tests;
