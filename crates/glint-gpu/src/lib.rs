@@ -12,6 +12,7 @@ pub mod present;
 pub mod probe;
 pub mod readback;
 pub mod shaders;
+pub mod status;
 pub mod tracer;
 
 pub use context::{AdapterRequest, AdapterSummary, GpuContext};

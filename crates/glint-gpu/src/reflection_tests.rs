@@ -101,7 +101,7 @@ fn plain_module(sources: &[&str]) -> naga::Module {
     naga::front::wgsl::parse_str(&source).unwrap_or_else(|e| panic!("{}", e.emit_to_string(&source)))
 }
 
-fn layout_module() -> naga::Module {
+pub(crate) fn layout_module() -> naga::Module {
     plain_module(&[LAYOUT_WGSL])
 }
 
