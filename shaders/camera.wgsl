@@ -19,9 +19,10 @@ fn strata_rows(spp: u32) -> u32 {
 }
 #endif
 
-fn sample_offset(pixel: u32, sample_index: u32, spp: u32, seed: u32, jitter: bool) -> vec2<f32> {
+// Without JITTER (spp 1), the pixel centre; the CPU twin takes the feature as `jitter`.
+fn sample_offset(pixel: u32, sample_index: u32, spp: u32, seed: u32) -> vec2<f32> {
 #ifdef JITTER
-    if !jitter || spp <= 1u {
+    if spp <= 1u {
         return vec2<f32>(0.5, 0.5);
     }
     let rows = strata_rows(spp);

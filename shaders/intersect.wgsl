@@ -2,9 +2,9 @@
 // and shadow transmittance.
 #define_import_path glint::intersect
 
-#import glint::scene_data::{GpuTriangle, TRIANGLE_HAS_NORMALS, FEATURE_SPHERES, FEATURE_PLANES, FEATURE_TRIANGLES, FEATURE_FILTERED_SHADOWS}
+#import glint::scene_data::{GpuTriangle, TRIANGLE_HAS_NORMALS}
 #import glint::bindings::{header, materials, spheres, planes, triangles}
-#import glint::ray::{Ray, has}
+#import glint::ray::Ray
 
 const PRIM_NONE: u32 = 0u;
 const PRIM_SPHERE: u32 = 1u;
@@ -172,29 +172,25 @@ fn intersect_triangle(va: vec3<f32>, vb: vec3<f32>, vc: vec3<f32>, ray: Ray, sh:
 fn closest_hit(ray: Ray, t_min: f32, t_max: f32) -> Hit {
     var best = Hit(t_max, PRIM_NONE, 0u, 0.0, 0.0);
 #ifdef SPHERES
-    if has(FEATURE_SPHERES) {
-        for (var i = 0u; i < header.sphere_count; i++) {
-            let cr = spheres[i].center_radius;
-            let h = intersect_sphere(cr.xyz, cr.w, ray, t_min, best.t);
-            if h.ok {
-                best = Hit(h.t, PRIM_SPHERE, i, 0.0, 0.0);
-            }
+    for (var i = 0u; i < header.sphere_count; i++) {
+        let cr = spheres[i].center_radius;
+        let h = intersect_sphere(cr.xyz, cr.w, ray, t_min, best.t);
+        if h.ok {
+            best = Hit(h.t, PRIM_SPHERE, i, 0.0, 0.0);
         }
     }
 #endif
 #ifdef PLANES
-    if has(FEATURE_PLANES) {
-        for (var i = 0u; i < header.plane_count; i++) {
-            let no = planes[i].normal_offset;
-            let h = intersect_plane(no.xyz, no.w, ray, t_min, best.t);
-            if h.ok {
-                best = Hit(h.t, PRIM_PLANE, i, 0.0, 0.0);
-            }
+    for (var i = 0u; i < header.plane_count; i++) {
+        let no = planes[i].normal_offset;
+        let h = intersect_plane(no.xyz, no.w, ray, t_min, best.t);
+        if h.ok {
+            best = Hit(h.t, PRIM_PLANE, i, 0.0, 0.0);
         }
     }
 #endif
 #ifdef TRIANGLES
-    if has(FEATURE_TRIANGLES) && header.triangle_count > 0u {
+    if header.triangle_count > 0u {
         let sh = ray_shear(ray.dir);
         for (var i = 0u; i < header.triangle_count; i++) {
             let tri = triangles[i];
@@ -209,14 +205,13 @@ fn closest_hit(ray: Ray, t_min: f32, t_max: f32) -> Hit {
 }
 
 // Multiplies the transmittance by one crossed surface's k_t (or zeroes it when shadows are
-// not filtered). Twin of the `cross` closure of the CPU's shadow_transmittance.
+// not filtered).
 fn cross_surface(tr: vec3<f32>, material: u32) -> vec3<f32> {
 #ifdef FILTERED_SHADOWS
-    if has(FEATURE_FILTERED_SHADOWS) {
-        return tr * materials[material].kt.xyz;
-    }
-#endif
+    return tr * materials[material].kt.xyz;
+#else
     return vec3<f32>(0.0);
+#endif
 }
 
 fn all_zero(v: vec3<f32>) -> bool {
@@ -228,33 +223,18 @@ fn all_zero(v: vec3<f32>) -> bool {
 fn shadow_transmittance(ray: Ray, t_min: f32, t_max: f32) -> vec3<f32> {
     var tr = vec3<f32>(1.0);
 #ifdef SPHERES
-    if has(FEATURE_SPHERES) {
-        for (var i = 0u; i < header.sphere_count; i++) {
-            let cr = spheres[i].center_radius;
-            let r = sphere_roots(cr.xyz, cr.w, ray);
-            if r.ok {
-                if r.t_near > t_min && r.t_near < t_max {
-                    tr = cross_surface(tr, spheres[i].material);
-                    if all_zero(tr) {
-                        return tr;
-                    }
-                }
-                if r.t_far > t_min && r.t_far < t_max {
-                    tr = cross_surface(tr, spheres[i].material);
-                    if all_zero(tr) {
-                        return tr;
-                    }
+    for (var i = 0u; i < header.sphere_count; i++) {
+        let cr = spheres[i].center_radius;
+        let r = sphere_roots(cr.xyz, cr.w, ray);
+        if r.ok {
+            if r.t_near > t_min && r.t_near < t_max {
+                tr = cross_surface(tr, spheres[i].material);
+                if all_zero(tr) {
+                    return tr;
                 }
             }
-        }
-    }
-#endif
-#ifdef PLANES
-    if has(FEATURE_PLANES) {
-        for (var i = 0u; i < header.plane_count; i++) {
-            let no = planes[i].normal_offset;
-            if intersect_plane(no.xyz, no.w, ray, t_min, t_max).ok {
-                tr = cross_surface(tr, planes[i].material);
+            if r.t_far > t_min && r.t_far < t_max {
+                tr = cross_surface(tr, spheres[i].material);
                 if all_zero(tr) {
                     return tr;
                 }
@@ -262,8 +242,19 @@ fn shadow_transmittance(ray: Ray, t_min: f32, t_max: f32) -> vec3<f32> {
         }
     }
 #endif
+#ifdef PLANES
+    for (var i = 0u; i < header.plane_count; i++) {
+        let no = planes[i].normal_offset;
+        if intersect_plane(no.xyz, no.w, ray, t_min, t_max).ok {
+            tr = cross_surface(tr, planes[i].material);
+            if all_zero(tr) {
+                return tr;
+            }
+        }
+    }
+#endif
 #ifdef TRIANGLES
-    if has(FEATURE_TRIANGLES) && header.triangle_count > 0u {
+    if header.triangle_count > 0u {
         let sh = ray_shear(ray.dir);
         for (var i = 0u; i < header.triangle_count; i++) {
             let tri = triangles[i];

@@ -16,24 +16,8 @@ const EPS_NUDGE_NORMAL: u32 = 2u;
 const EPS_ROBUST: u32 = 3u;
 const NO_HIT: u32 = 0xffffffffu;
 
-const FEATURE_POINT_LIGHTS: u32 = 1u;
-const FEATURE_DIRECTIONAL_LIGHTS: u32 = 2u;
-const FEATURE_SPOT_LIGHTS: u32 = 4u;
-const FEATURE_ATTENUATION: u32 = 8u;
-const FEATURE_SHADOWS: u32 = 16u;
-const FEATURE_FILTERED_SHADOWS: u32 = 32u;
-const FEATURE_REFLECTION: u32 = 64u;
-const FEATURE_TRANSMISSION: u32 = 128u;
-const FEATURE_SPHERES: u32 = 256u;
-const FEATURE_PLANES: u32 = 512u;
-const FEATURE_TRIANGLES: u32 = 1024u;
-const FEATURE_CHECKER: u32 = 2048u;
-const FEATURE_BLINN: u32 = 4096u;
-const FEATURE_PHONG: u32 = 8192u;
-const FEATURE_LIGHT_AMBIENT: u32 = 16384u;
-const FEATURE_EMISSION: u32 = 32768u;
-const FEATURE_SPECULAR: u32 = 65536u;
-const FEATURE_JITTER: u32 = 131072u;
+// The feature bits (SceneHeader.features) are not read here: the host compiles each feature
+// in or out as an #ifdef shader def named as in glint_core::layout::feature::NAMES.
 
 // Bits of the per-image status word the shader raises and the host reports.
 const STATUS_LOOP_LIMIT: u32 = 1u;

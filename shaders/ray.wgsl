@@ -1,8 +1,7 @@
-// Twin of crates/glint-core/src/cpu/mod.rs: the ray, the per-invocation ray counts and the
-// feature test shared by all tracer modules.
+// Twin of crates/glint-core/src/cpu/mod.rs: the ray and the per-invocation ray counts shared
+// by all tracer modules.
 #define_import_path glint::ray
 
-#import glint::bindings::header
 #import glint::scene_data::ProbeRecord
 
 struct Ray {
@@ -23,13 +22,6 @@ struct RayCounts {
 var<private> ray_counts: RayCounts;
 // Status bits (STATUS_*) raised by this invocation.
 var<private> status: u32;
-
-// Whether any of `bits` is in the scene's feature set. Features the shader was specialised
-// without are removed at compile time by #ifdef; this tests the rest at run time (all bits
-// are set for the unspecialised run, as on the CPU).
-fn has(bits: u32) -> bool {
-    return (header.features & bits) != 0u;
-}
 
 // The pixel probe (PROBE variant only): the breakdown being recorded, and whether the node
 // being shaded is the camera ray's first hit.

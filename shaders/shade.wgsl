@@ -2,9 +2,9 @@
 // I_local = E_m + I_a·k_a + Σ_j f_att,j·S_j·[ I_a,j·k_a + V_j·( I_d,j·k_d·max(N·L,0) + I_s,j·k_s·spec_j ) ]
 #define_import_path glint::shade
 
-#import glint::scene_data::{ProbeLight, MAX_PROBE_LIGHTS, GpuLight, GpuMaterial, LIGHT_CASTS_SHADOWS, LIGHT_DIRECTIONAL, LIGHT_SPOT, MATERIAL_CHECKER, MATERIAL_PHONG, FEATURE_ATTENUATION, FEATURE_SPOT_LIGHTS, FEATURE_PHONG, FEATURE_CHECKER, FEATURE_SHADOWS, FEATURE_LIGHT_AMBIENT, FEATURE_SPECULAR, FEATURE_EMISSION}
+#import glint::scene_data::{ProbeLight, MAX_PROBE_LIGHTS, GpuLight, GpuMaterial, LIGHT_CASTS_SHADOWS, LIGHT_DIRECTIONAL, LIGHT_SPOT, MATERIAL_CHECKER, MATERIAL_PHONG}
 #import glint::bindings::{header, materials, lights}
-#import glint::ray::{Ray, has, ray_counts, probe, probe_active}
+#import glint::ray::{Ray, ray_counts, probe, probe_active}
 #import glint::intersect::{FAR, shadow_transmittance, all_zero}
 #import glint::offset::{spawn_ray, shadow_t_max}
 
@@ -67,13 +67,11 @@ fn light_sample(light: GpuLight, p: vec3<f32>) -> LightSample {
     }
     var f_att = 1.0;
 #ifdef ATTENUATION
-    if has(FEATURE_ATTENUATION) {
-        f_att = attenuation_factor(light.attenuation, dist);
-    }
+    f_att = attenuation_factor(light.attenuation, dist);
 #endif
     var spot = 1.0;
 #ifdef SPOT_LIGHTS
-    if has(FEATURE_SPOT_LIGHTS) && light.kind == LIGHT_SPOT {
+    if light.kind == LIGHT_SPOT {
         spot = spot_factor(light, l);
     }
 #endif
@@ -82,7 +80,7 @@ fn light_sample(light: GpuLight, p: vec3<f32>) -> LightSample {
 
 fn specular_term(mat: GpuMaterial, n: vec3<f32>, l: vec3<f32>, v: vec3<f32>, n_dot_l: f32) -> f32 {
 #ifdef PHONG
-    if has(FEATURE_PHONG) && (mat.flags & MATERIAL_PHONG) != 0u {
+    if (mat.flags & MATERIAL_PHONG) != 0u {
         let r = 2.0 * n_dot_l * n - l;
         return safe_pow(max(dot(r, v), 0.0), mat.shininess);
     }
@@ -102,7 +100,7 @@ fn specular_term(mat: GpuMaterial, n: vec3<f32>, l: vec3<f32>, v: vec3<f32>, n_d
 
 fn diffuse_colour(mat: GpuMaterial, p: vec3<f32>, ng: vec3<f32>) -> vec3<f32> {
 #ifdef CHECKER
-    if has(FEATURE_CHECKER) && (mat.flags & MATERIAL_CHECKER) != 0u {
+    if (mat.flags & MATERIAL_CHECKER) != 0u {
         let a = abs(ng);
         var uw = p.xy;
         if a.x >= a.y && a.x >= a.z {
@@ -161,22 +159,20 @@ fn light_term(light: GpuLight, mat: GpuMaterial, s: Surface, n: vec3<f32>, ng: v
         return term;
     }
 #ifdef LIGHT_AMBIENT
-    if has(FEATURE_LIGHT_AMBIENT) {
-        term.ambient = light.ambient.xyz * mat.ka.xyz;
-    }
+    term.ambient = light.ambient.xyz * mat.ka.xyz;
 #endif
     let n_dot_l = dot(n, ls.l);
     if n_dot_l > 0.0 {
         term.visibility = vec3<f32>(1.0);
 #ifdef SHADOWS
-        if has(FEATURE_SHADOWS) && (light.flags & LIGHT_CASTS_SHADOWS) != 0u {
+        if (light.flags & LIGHT_CASTS_SHADOWS) != 0u {
             term.visibility = light_visibility(light, s, ng, ls);
         }
 #endif
         if !all_zero(term.visibility) {
             term.diffuse = light.diffuse.xyz * kd * n_dot_l;
 #ifdef SPECULAR
-            if has(FEATURE_SPECULAR) && !all_zero(mat.ks.xyz) {
+            if !all_zero(mat.ks.xyz) {
                 term.specular = light.specular.xyz * mat.ks.xyz * specular_term(mat, n, ls.l, v, n_dot_l);
             }
 #endif
@@ -190,9 +186,7 @@ fn shade_local(s: Surface, n: vec3<f32>, ng: vec3<f32>, v: vec3<f32>) -> vec3<f3
     let mat = materials[s.material];
     var emission = vec3<f32>(0.0);
 #ifdef EMISSION
-    if has(FEATURE_EMISSION) {
-        emission = mat.emission.xyz;
-    }
+    emission = mat.emission.xyz;
 #endif
     let ambient = header.ambient.xyz * mat.ka.xyz;
     let kd = diffuse_colour(mat, s.p, ng);

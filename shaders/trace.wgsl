@@ -3,9 +3,9 @@
 // WGSL has no recursion, so the tree is walked with an explicit stack of (ray, path weight,
 // depth). Each node adds weight × local shading, where the CPU adds k·I(child) on return:
 // the same terms with the same bailout decisions, summed in another order.
-#import glint::scene_data::{PROBE_HIT, PROBE_TIR, GpuSphere, GpuPlane, GpuTriangle, NO_HIT, EPS_ROBUST, FEATURE_REFLECTION, FEATURE_TRANSMISSION, FEATURE_JITTER, STATUS_LOOP_LIMIT, STATUS_STACK_OVERFLOW, STATUS_DRIVER_LOOP_CUTOFF, STAT_STATUS, STAT_CAMERA, STAT_SHADOW, STAT_REFLECTION, STAT_REFRACTION, STAT_BAILOUT_SAVED}
+#import glint::scene_data::{PROBE_HIT, PROBE_TIR, GpuSphere, GpuPlane, GpuTriangle, NO_HIT, EPS_ROBUST, STATUS_LOOP_LIMIT, STATUS_STACK_OVERFLOW, STATUS_DRIVER_LOOP_CUTOFF, STAT_STATUS, STAT_CAMERA, STAT_SHADOW, STAT_REFLECTION, STAT_REFRACTION, STAT_BAILOUT_SAVED}
 #import glint::bindings::{header, camera, tile, materials, spheres, planes, triangles, output, stats, probe_out}
-#import glint::ray::{Ray, RayCounts, has, ray_counts, status, probe, probe_active}
+#import glint::ray::{Ray, RayCounts, ray_counts, status, probe, probe_active}
 #import glint::camera::{camera_ray, sample_offset}
 #import glint::intersect::{Hit, FAR, PRIM_NONE, PRIM_SPHERE, PRIM_PLANE, closest_hit, triangle_shading_normal, all_zero}
 #import glint::offset::spawn_ray
@@ -19,9 +19,9 @@ struct SampleResult {
 // Deferred rays the stack holds: a depth-first walk that follows one child at once defers
 // at most one ray per level, so max_depth entries suffice.
 const STACK_SIZE: u32 = #{STACK_SIZE}u;
-// Bound of the tree walk per sample; reaching it raises STATUS_LOOP_LIMIT. Below lavapipe's
-// silent cut-off of 65,535 loop iterations.
-const MAX_TREE_NODES: u32 = 65000u;
+// Bound of the tree walk per sample (glint_gpu::shaders::MAX_TREE_NODES, below lavapipe's loop
+// budget); reaching it raises STATUS_LOOP_LIMIT.
+const MAX_TREE_NODES: u32 = #{MAX_TREE_NODES}u;
 
 struct StackEntry {
     origin: vec3<f32>,
@@ -129,7 +129,7 @@ fn shade_hit(ray: Ray, hit: Hit, depth: u32, weight: vec3<f32>, branch: u32) -> 
     }
 #endif
 #ifdef RECURSION
-    if depth >= header.max_depth || !has(FEATURE_REFLECTION | FEATURE_TRANSMISSION) {
+    if depth >= header.max_depth {
         return out;
     }
     let mat = materials[s.material];
@@ -138,7 +138,7 @@ fn shade_hit(ray: Ray, hit: Hit, depth: u32, weight: vec3<f32>, branch: u32) -> 
     var k_mirror = kr;
     var refracted = vec4<f32>(0.0);
 #ifdef TRANSMISSION
-    if has(FEATURE_TRANSMISSION) && !all_zero(kt) {
+    if !all_zero(kt) {
         let eta = select(mat.ior, 1.0 / mat.ior, front);
         refracted = refract_dir(ray.dir, ns, eta);
         if refracted.w == 0.0 {
@@ -259,7 +259,7 @@ fn object_id(hit: Hit) -> u32 {
 
 fn render_sample(x: u32, y: u32, sample_index: u32) -> SampleResult {
     let pixel = y * header.width + x;
-    let offset = sample_offset(pixel, sample_index, header.spp, header.seed, has(FEATURE_JITTER));
+    let offset = sample_offset(pixel, sample_index, header.spp, header.seed);
     let ray = camera_ray(camera, header.width, header.height, x, y, offset);
     ray_counts.camera += 1u;
     return trace_ray(ray);
@@ -285,7 +285,8 @@ fn accumulate_sample(x: u32, y: u32) {
 }
 
 // lavapipe ends every loop after its current iteration once the invocation group has run
-// 65,535 loop iterations in all, without any error. A loop of `tile.canary_laps` (2) laps
+// its loop budget (glint_gpu::shaders::LAVAPIPE_LOOP_BUDGET iterations in all), without any
+// error. A loop of `tile.canary_laps` (2) laps
 // then stops after one: the only way to see that the work before it was cut short.
 fn driver_cut_loops() -> bool {
     var laps = 0u;

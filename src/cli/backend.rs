@@ -4,7 +4,6 @@ use std::time::{Duration, Instant};
 
 use anyhow::Context;
 use glint_core::cpu::RayCounts;
-use glint_core::layout::{STATUS_DRIVER_LOOP_CUTOFF, STATUS_LOOP_LIMIT, STATUS_STACK_OVERFLOW};
 use glint_core::render::{Tile, tile_count};
 use glint_core::{CpuOptions, FlatScene, HdrImage, RenderControl, render_cpu};
 use glint_gpu::{AdapterRequest, GpuContext, GpuOptions, GpuTracer};
@@ -76,20 +75,8 @@ pub fn open_gpu(adapter: Option<&str>) -> anyhow::Result<GpuTracer> {
 pub fn run_gpu(tracer: &GpuTracer, flat: &FlatScene, options: &GpuOptions) -> anyhow::Result<Run> {
     let start = Instant::now();
     let r = tracer.render(flat, options).context("GPU render failed")?;
-    if r.status & STATUS_LOOP_LIMIT != 0 {
-        eprintln!("warning: the GPU tracer hit its loop bound; some ray trees were cut (see docs/numerics.md)");
-    }
-    if r.status & STATUS_DRIVER_LOOP_CUTOFF != 0 {
-        eprintln!(
-            "warning: the GPU driver cut the shader's loops short (lavapipe allows 65,535 loop iterations \
-             per invocation group); this image is missing work: lower the depth, set a bailout or use the CPU"
-        );
-    }
-    if r.status & STATUS_STACK_OVERFLOW != 0 {
-        eprintln!(
-            "warning: a ray tree branched deeper than the GPU stack ({} levels); its deepest rays were dropped",
-            r.key.stack_size
-        );
+    for message in glint_gpu::status::messages(r.status, r.key.stack_size) {
+        eprintln!("warning: {message}");
     }
     Ok(Run {
         backend: "gpu",

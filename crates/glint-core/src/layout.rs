@@ -105,6 +105,12 @@ pub mod feature {
         "SPECULAR",
         "JITTER",
     ];
+
+    /// Whether a scene with `features` traces child rays: the one test of "needs a ray tree
+    /// (and, on the GPU, a stack)" that both tracers use.
+    pub const fn recurses(features: u32) -> bool {
+        features & (REFLECTION | TRANSMISSION) != 0
+    }
 }
 
 /// Global parameters of one render.

@@ -22,6 +22,11 @@ pub enum GpuError {
     Compose(String),
     #[error("shader validation failed:\n{0}")]
     Validation(String),
+    #[error(
+        "the shader declares `{name}` at @group({group}) @binding({binding}), which is not in the tracer's \
+         binding table (glint_gpu::binding::Binding)"
+    )]
+    UnknownBinding { group: u32, binding: u32, name: String },
     #[error("{what} needs {needed} bytes, more than this GPU allows ({limit} bytes, limit {limit_name})")]
     TooLarge { what: String, needed: u64, limit: u64, limit_name: &'static str },
     #[error(

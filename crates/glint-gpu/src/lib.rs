@@ -1,19 +1,27 @@
 //! Glint's GPU tracer: the WGSL twin of the CPU reference (`shaders/*.wgsl`), composed with
 //! naga_oil and specialised per scene, run with wgpu.
 
+pub mod binding;
+pub mod buffers;
 pub mod context;
+pub mod dispatch;
 pub mod error;
+pub mod job;
 pub mod pipeline;
 pub mod present;
 pub mod probe;
+pub mod readback;
 pub mod shaders;
+pub mod status;
 pub mod tracer;
 
 pub use context::{AdapterRequest, AdapterSummary, GpuContext};
 pub use error::GpuError;
+pub use job::GpuJob;
 pub use present::Presenter;
-pub use shaders::{GPU_STACK_LIMIT, ShaderKey};
-pub use tracer::{GpuJob, GpuOptions, GpuRender, GpuTracer, JobReadback};
+pub use readback::JobReadback;
+pub use shaders::{GPU_STACK_LIMIT, LAVAPIPE_LOOP_BUDGET, ShaderKey};
+pub use tracer::{GpuOptions, GpuRender, GpuTracer};
 
 #[cfg(test)]
 mod reflection_tests;

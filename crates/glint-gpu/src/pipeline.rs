@@ -4,24 +4,10 @@
 use std::borrow::Cow;
 use std::time::{Duration, Instant};
 
+use crate::binding::Binding;
 use crate::context::GpuContext;
 use crate::error::GpuError;
-use crate::shaders::{ModuleStats, ShaderKey, compose, module_stats, validate};
-
-/// Binding numbers of `shaders/bindings.wgsl`.
-pub mod binding {
-    pub const HEADER: u32 = 0;
-    pub const CAMERA: u32 = 1;
-    pub const TILE: u32 = 2;
-    pub const MATERIALS: u32 = 3;
-    pub const LIGHTS: u32 = 4;
-    pub const SPHERES: u32 = 5;
-    pub const PLANES: u32 = 6;
-    pub const TRIANGLES: u32 = 7;
-    pub const OUTPUT: u32 = 8;
-    pub const STATS: u32 = 9;
-    pub const PROBE: u32 = 10;
-}
+use crate::shaders::{ModuleStats, ShaderKey, compose, module_stats, undecorated, validate};
 
 #[derive(Debug)]
 pub struct TracerPipeline {
@@ -29,7 +15,7 @@ pub struct TracerPipeline {
     pub pipeline: wgpu::ComputePipeline,
     pub bind_group_layout: wgpu::BindGroupLayout,
     /// The bindings the module uses, ascending.
-    pub bindings: Vec<u32>,
+    pub bindings: Vec<Binding>,
     pub stats: ModuleStats,
     /// Composition, validation and pipeline creation.
     pub create_time: Duration,
@@ -55,30 +41,43 @@ pub(crate) fn with_error_scopes<T>(ctx: &GpuContext, f: impl FnOnce() -> T) -> R
     Ok(value)
 }
 
-pub fn create_pipeline(ctx: &GpuContext, key: ShaderKey) -> Result<TracerPipeline, GpuError> {
-    let start = Instant::now();
-    let module = compose(&key)?;
-    validate(&module)?;
-    let stats = module_stats(&module);
-    let mut entries = Vec::new();
+/// The bindings `module` declares, ascending, each with its buffer type; a binding that is not
+/// in the table is an error naming it.
+pub fn reflect_bindings(module: &naga::Module) -> Result<Vec<(Binding, wgpu::BufferBindingType)>, GpuError> {
+    let mut bindings = Vec::new();
     for (_, var) in module.global_variables.iter() {
         let Some(rb) = &var.binding else { continue };
+        let name = var.name.as_deref().map_or("(unnamed)", undecorated);
+        let binding = Binding::of_global(rb.group, rb.binding, name)?;
         let ty = match var.space {
             naga::AddressSpace::Uniform => wgpu::BufferBindingType::Uniform,
             naga::AddressSpace::Storage { access } => {
                 wgpu::BufferBindingType::Storage { read_only: !access.contains(naga::StorageAccess::STORE) }
             }
-            other => return Err(GpuError::Validation(format!("unexpected address space {other:?} of a binding"))),
+            other => return Err(GpuError::Validation(format!("unexpected address space {other:?} of `{name}`"))),
         };
-        entries.push(wgpu::BindGroupLayoutEntry {
-            binding: rb.binding,
+        bindings.push((binding, ty));
+    }
+    bindings.sort_by_key(|(b, _)| b.number());
+    Ok(bindings)
+}
+
+pub fn create_pipeline(ctx: &GpuContext, key: ShaderKey) -> Result<TracerPipeline, GpuError> {
+    let start = Instant::now();
+    let module = compose(&key)?;
+    validate(&module)?;
+    let stats = module_stats(&module);
+    let bindings = reflect_bindings(&module)?;
+    let entries: Vec<wgpu::BindGroupLayoutEntry> = bindings
+        .iter()
+        .map(|&(binding, ty)| wgpu::BindGroupLayoutEntry {
+            binding: binding.number(),
             visibility: wgpu::ShaderStages::COMPUTE,
             ty: wgpu::BindingType::Buffer { ty, has_dynamic_offset: false, min_binding_size: None },
             count: None,
-        });
-    }
-    entries.sort_by_key(|e| e.binding);
-    let bindings = entries.iter().map(|e| e.binding).collect();
+        })
+        .collect();
+    let bindings = bindings.into_iter().map(|(binding, _)| binding).collect();
     let label = format!("glint tracer [{}]", key.describe());
     let (pipeline, bind_group_layout) = with_error_scopes(ctx, || {
         let shader = ctx.device.create_shader_module(wgpu::ShaderModuleDescriptor {
@@ -106,4 +105,31 @@ pub fn create_pipeline(ctx: &GpuContext, key: ShaderKey) -> Result<TracerPipelin
     let create_time = start.elapsed();
     log::info!("created {label} in {:.1} ms ({} statements)", create_time.as_secs_f64() * 1e3, stats.statements);
     Ok(TracerPipeline { key, pipeline, bind_group_layout, bindings, stats, create_time })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::shaders::compose_entry;
+
+    #[test]
+    fn every_binding_of_the_full_probe_shader_is_in_the_table() {
+        let module = compose(&ShaderKey { probe: true, ..ShaderKey::full() }).expect("full probe shader composes");
+        let found: Vec<Binding> =
+            reflect_bindings(&module).expect("known bindings").into_iter().map(|(b, _)| b).collect();
+        assert_eq!(found, Binding::ALL, "the full probe shader uses every binding");
+    }
+
+    #[test]
+    fn an_unknown_binding_in_a_composed_module_is_an_error_naming_it() {
+        // An entry module using a binding of bindings.wgsl and one of its own.
+        let entry = "#import glint::bindings::header\n\
+            @group(0) @binding(42) var<storage, read_write> bogus: array<u32>;\n\
+            @compute @workgroup_size(1)\nfn main() {\n    bogus[0] = header.width;\n}\n";
+        let module = compose_entry(&ShaderKey::full(), entry).expect("the entry module composes");
+        match reflect_bindings(&module) {
+            Err(GpuError::UnknownBinding { group: 0, binding: 42, name }) => assert_eq!(name, "bogus"),
+            other => panic!("expected the unknown binding `bogus` to be an error, got {other:?}"),
+        }
+    }
 }

@@ -9,6 +9,7 @@ use glint_core::layout::*;
 use naga::proc::Layouter;
 use naga_oil::compose::Composer;
 
+use crate::binding::Binding;
 use crate::shaders::ShaderKey;
 
 /// A Rust struct as (name, size, [(member, offset, size)]).
@@ -86,14 +87,38 @@ fn rust_layouts() -> Vec<RustLayout> {
     ]
 }
 
-fn layout_module() -> naga::Module {
-    // The file is a naga_oil module; its only directive is the import path.
-    let source: String = include_str!("../../../shaders/layout.wgsl")
-        .lines()
+const LAYOUT_WGSL: &str = include_str!("../../../shaders/layout.wgsl");
+
+/// `sources` joined as one plain WGSL module: without naga_oil's directives (import path and
+/// imports), which only name what the files give each other.
+fn plain_module(sources: &[&str]) -> naga::Module {
+    let source: String = sources
+        .iter()
+        .flat_map(|s| s.lines())
         .filter(|l| !l.trim_start().starts_with('#'))
         .collect::<Vec<_>>()
         .join("\n");
     naga::front::wgsl::parse_str(&source).unwrap_or_else(|e| panic!("{}", e.emit_to_string(&source)))
+}
+
+pub(crate) fn layout_module() -> naga::Module {
+    plain_module(&[LAYOUT_WGSL])
+}
+
+#[test]
+fn binding_table_matches_bindings_wgsl_both_ways() {
+    let module = plain_module(&[LAYOUT_WGSL, include_str!("../../../shaders/bindings.wgsl")]);
+    let mut wgsl = Vec::new();
+    for (_, var) in module.global_variables.iter() {
+        let Some(rb) = &var.binding else { continue };
+        let name = var.name.as_deref().expect("bindings are named");
+        let found = Binding::of_global(rb.group, rb.binding, name).unwrap_or_else(|e| panic!("bindings.wgsl: {e}"));
+        wgsl.push(found);
+    }
+    for b in Binding::ALL {
+        assert!(wgsl.contains(&b), "{b:?} (@binding({}) {}) is not in bindings.wgsl", b.number(), b.wgsl_name());
+    }
+    assert_eq!(wgsl.len(), Binding::ALL.len(), "bindings.wgsl declares a binding twice: {wgsl:?}");
 }
 
 #[test]
@@ -146,7 +171,7 @@ fn literal_value(module: &naga::Module, init: naga::Handle<naga::Expression>) ->
 
 #[test]
 fn wgsl_layout_constants_match_rust() {
-    let mut expected: Vec<(String, u32)> = vec![
+    let expected: Vec<(String, u32)> = vec![
         ("LIGHT_POINT".into(), LIGHT_POINT),
         ("LIGHT_DIRECTIONAL".into(), LIGHT_DIRECTIONAL),
         ("LIGHT_SPOT".into(), LIGHT_SPOT),
@@ -173,9 +198,6 @@ fn wgsl_layout_constants_match_rust() {
         ("PROBE_HIT".into(), PROBE_HIT),
         ("PROBE_TIR".into(), PROBE_TIR),
     ];
-    for (bit, name) in feature::NAMES.iter().enumerate() {
-        expected.push((format!("FEATURE_{name}"), 1 << bit));
-    }
     let module = layout_module();
     let wgsl: Vec<(String, f64)> = module
         .constants

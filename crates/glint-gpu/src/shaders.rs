@@ -15,9 +15,18 @@ use crate::error::GpuError;
 /// branch raise `STATUS_STACK_OVERFLOW`.
 pub const GPU_STACK_LIMIT: u32 = 64;
 
-/// Most primitives of one kind the GPU walks per ray: lavapipe cuts loops silently after
-/// 65,535 iterations.
-pub const GPU_PRIMITIVE_LIMIT: u32 = 65_535;
+/// lavapipe's loop budget: once an invocation group has run this many loop iterations in all,
+/// it ends every loop after its current iteration, silently (docs/numerics.md, "GPU loop
+/// bounds"). The GPU tracer's own loop bounds derive from it.
+pub const LAVAPIPE_LOOP_BUDGET: u32 = 65_535;
+
+/// Most primitives of one kind the GPU walks per ray, checked on upload: one walk alone must
+/// fit in lavapipe's budget.
+pub const GPU_PRIMITIVE_LIMIT: u32 = LAVAPIPE_LOOP_BUDGET;
+
+/// Bound of the shader's ray-tree walk per sample (shader def `MAX_TREE_NODES`); reaching it
+/// raises `STATUS_LOOP_LIMIT`. The budget rounded down to thousands.
+pub const MAX_TREE_NODES: u32 = LAVAPIPE_LOOP_BUDGET / 1_000 * 1_000;
 
 /// The modules in dependency order: (import path, file name, source).
 pub const SHADER_MODULES: [(&str, &str, &str); 8] = [
@@ -48,8 +57,7 @@ impl ShaderKey {
     pub fn for_scene(scene: &FlatScene, specialise: bool) -> Self {
         if specialise {
             let features = scene.header.features;
-            let recursion = features & (feature::REFLECTION | feature::TRANSMISSION) != 0;
-            let depth = if recursion { scene.header.max_depth.min(GPU_STACK_LIMIT - 1) } else { 0 };
+            let depth = if feature::recurses(features) { scene.header.max_depth.min(GPU_STACK_LIMIT - 1) } else { 0 };
             Self { features, stack_size: depth + 1, probe: false }
         } else {
             Self::full()
@@ -61,12 +69,8 @@ impl ShaderKey {
         Self { features: feature::ALL, stack_size: GPU_STACK_LIMIT, probe: false }
     }
 
-    /// Whether the variant walks a ray tree at all.
-    pub fn recursion(&self) -> bool {
-        self.features & (feature::REFLECTION | feature::TRANSMISSION) != 0
-    }
-
-    /// naga_oil shader defs: one boolean per feature present, `RECURSION`, `STACK_SIZE`.
+    /// naga_oil shader defs: one boolean per feature present, `RECURSION` when the variant
+    /// walks a ray tree, `STACK_SIZE`, `MAX_TREE_NODES`, `PROBE`.
     pub fn shader_defs(&self) -> HashMap<String, ShaderDefValue> {
         let mut defs: HashMap<String, ShaderDefValue> = feature::NAMES
             .iter()
@@ -74,10 +78,11 @@ impl ShaderKey {
             .filter(|(bit, _)| self.features & (1 << bit) != 0)
             .map(|(_, name)| ((*name).to_string(), ShaderDefValue::Bool(true)))
             .collect();
-        if self.recursion() {
+        if feature::recurses(self.features) {
             defs.insert("RECURSION".into(), ShaderDefValue::Bool(true));
         }
         defs.insert("STACK_SIZE".into(), ShaderDefValue::UInt(self.stack_size));
+        defs.insert("MAX_TREE_NODES".into(), ShaderDefValue::UInt(MAX_TREE_NODES));
         if self.probe {
             defs.insert("PROBE".into(), ShaderDefValue::Bool(true));
         }
@@ -96,8 +101,14 @@ impl ShaderKey {
     }
 }
 
-/// Composes and validates the tracer for `key`; errors carry naga's readable report.
+/// Composes the tracer for `key`; errors carry naga's readable report.
 pub fn compose(key: &ShaderKey) -> Result<naga::Module, GpuError> {
+    compose_entry(key, TRACE_WGSL)
+}
+
+/// Composes `entry` (the source of an entry module, as `trace.wgsl`) with the modules of
+/// `shaders/` for `key`.
+pub fn compose_entry(key: &ShaderKey, entry: &str) -> Result<naga::Module, GpuError> {
     let mut composer = Composer::default();
     for (path, file, source) in SHADER_MODULES {
         let added = composer.add_composable_module(ComposableModuleDescriptor {
@@ -111,12 +122,17 @@ pub fn compose(key: &ShaderKey) -> Result<naga::Module, GpuError> {
         }
     }
     let module = composer.make_naga_module(NagaModuleDescriptor {
-        source: TRACE_WGSL,
+        source: entry,
         file_path: "trace.wgsl",
         shader_defs: key.shader_defs(),
         ..Default::default()
     });
     module.map_err(|e| GpuError::Compose(e.emit_to_string(&composer)))
+}
+
+/// A name in a composed module without naga_oil's module decoration.
+pub fn undecorated(name: &str) -> &str {
+    name.split("X_naga_oil_mod_").next().unwrap_or(name)
 }
 
 /// Validates a composed module again with naga's validator (all checks), as a build step would.
@@ -167,6 +183,7 @@ pub fn module_stats(module: &naga::Module) -> ModuleStats {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::binding::Binding;
     use glint_core::scene::{BUILTIN_SCENES, parse_scene};
 
     fn builtin_keys() -> Vec<(String, ShaderKey)> {
@@ -215,14 +232,28 @@ mod tests {
         }
     }
 
+    #[test]
+    fn every_ifdef_names_a_def_the_host_sets() {
+        // A misspelt #ifdef would compile its code out of every variant, silently.
+        let defs = ShaderKey { probe: true, ..ShaderKey::full() }.shader_defs();
+        let sources =
+            SHADER_MODULES.iter().map(|(_, file, source)| (*file, *source)).chain([("trace.wgsl", TRACE_WGSL)]);
+        let mut checked = 0;
+        for (file, source) in sources {
+            for line in source.lines() {
+                let t = line.trim_start();
+                if let Some(name) = t.strip_prefix("#ifdef ").or_else(|| t.strip_prefix("#ifndef ")) {
+                    assert!(defs.contains_key(name.trim()), "{file}: `{t}` names no shader def of ShaderKey");
+                    checked += 1;
+                }
+            }
+        }
+        assert!(checked > feature::NAMES.len(), "only {checked} #ifdef lines found");
+    }
+
     /// Function names of a composed module without naga_oil's module decoration.
     fn function_names(module: &naga::Module) -> Vec<String> {
-        module
-            .functions
-            .iter()
-            .filter_map(|(_, f)| f.name.as_deref())
-            .map(|n| n.split("X_naga_oil_mod_").next().unwrap_or(n).to_string())
-            .collect()
+        module.functions.iter().filter_map(|(_, f)| f.name.as_deref()).map(|n| undecorated(n).to_string()).collect()
     }
 
     #[test]
@@ -257,7 +288,7 @@ mod tests {
         }
         let bindings: Vec<u32> =
             module.global_variables.iter().filter_map(|(_, g)| g.binding.as_ref().map(|b| b.binding)).collect();
-        for absent in [crate::pipeline::binding::PLANES, crate::pipeline::binding::TRIANGLES] {
+        for absent in [Binding::Planes.number(), Binding::Triangles.number()] {
             assert!(!bindings.contains(&absent), "binding {absent} should be gone: {bindings:?}");
         }
         let full = compose_or_report(&ShaderKey::full());

@@ -96,7 +96,8 @@ fn every_shader_function_has_a_cpu_twin_and_back() {
     let mut problems = Vec::new();
     for (wgsl_file, wgsl, cpu_file, cpu) in TWINS {
         let (gpu_fns, cpu_fns) = (functions(wgsl), functions(cpu));
-        assert!(!gpu_fns.is_empty() && !cpu_fns.is_empty(), "no functions parsed from {wgsl_file} or {cpu_file}");
+        // One side may have none (ray.wgsl: only structs); the other's then lack twins below.
+        assert!(!gpu_fns.is_empty() || !cpu_fns.is_empty(), "no functions parsed from {wgsl_file} nor {cpu_file}");
         for f in gpu_fns.difference(&cpu_fns) {
             if !GPU_ONLY.iter().any(|(file, name, _)| *file == wgsl_file && name == f) {
                 problems.push(format!("{wgsl_file}: fn {f} has no twin in {cpu_file}"));

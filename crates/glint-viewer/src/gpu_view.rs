@@ -10,7 +10,6 @@ use std::time::{Duration, Instant};
 use glint_core::FlatScene;
 use glint_core::HdrImage;
 use glint_core::cpu::RayCounts;
-use glint_core::layout::{STATUS_LOOP_LIMIT, STATUS_STACK_OVERFLOW};
 use glint_gpu::{GpuContext, GpuError, GpuJob, GpuOptions, GpuTracer, JobReadback, Presenter};
 
 /// Tile sides of the viewer's renders. The window's frames queue behind the tracer's
@@ -269,11 +268,11 @@ impl GpuView {
         if let Some((rb, revision, ms)) = &mut self.readback
             && let Some(result) = rb.poll(&ctx)
         {
-            let (revision, ms) = (*revision, *ms);
+            let (revision, ms, stack_size) = (*revision, *ms, rb.key().stack_size);
             self.readback = None;
             match result {
                 Ok((image, counts, status)) => {
-                    self.warning = status_warning(status);
+                    self.warning = status_warning(status, stack_size);
                     self.latest = Some(GpuImage { revision, image, counts, status, gpu_ms: ms });
                 }
                 Err(e) => self.error = Some(e.to_string()),
@@ -285,18 +284,7 @@ impl GpuView {
 }
 
 /// What a status word from the shader means for the user.
-pub fn status_warning(status: u32) -> Option<String> {
-    let mut parts = Vec::new();
-    if status & STATUS_LOOP_LIMIT != 0 {
-        parts.push("the GPU tracer hit its loop bound; some ray trees were cut");
-    }
-    if status & STATUS_STACK_OVERFLOW != 0 {
-        parts.push("a ray tree was deeper than the GPU stack; its deepest rays were dropped");
-    }
-    let other = status & !(STATUS_LOOP_LIMIT | STATUS_STACK_OVERFLOW);
-    let other_text = format!("the shader raised status 0x{other:x}; the image is missing work");
-    if other != 0 {
-        parts.push(&other_text);
-    }
-    (!parts.is_empty()).then(|| parts.join("; "))
+pub fn status_warning(status: u32, stack_size: u32) -> Option<String> {
+    let messages = glint_gpu::status::messages(status, stack_size);
+    (!messages.is_empty()).then(|| messages.join("; "))
 }

@@ -1,0 +1,111 @@
+//! The tracer's bindings in one table: the number and WGSL name of every buffer that
+//! `shaders/bindings.wgsl` declares (a reflection test checks the table against that file,
+//! both ways). A binding outside the table is an error naming it, never a silent fallback.
+
+use crate::error::GpuError;
+
+/// The bind group every binding lives in.
+pub const GROUP: u32 = 0;
+
+/// One binding of `shaders/bindings.wgsl`; the discriminant is its `@binding` number.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[repr(u32)]
+pub enum Binding {
+    Header = 0,
+    Camera = 1,
+    Tile = 2,
+    Materials = 3,
+    Lights = 4,
+    Spheres = 5,
+    Planes = 6,
+    Triangles = 7,
+    Output = 8,
+    Stats = 9,
+    Probe = 10,
+}
+
+impl Binding {
+    /// Every binding, ascending.
+    pub const ALL: [Self; 11] = [
+        Self::Header,
+        Self::Camera,
+        Self::Tile,
+        Self::Materials,
+        Self::Lights,
+        Self::Spheres,
+        Self::Planes,
+        Self::Triangles,
+        Self::Output,
+        Self::Stats,
+        Self::Probe,
+    ];
+
+    /// Its `@binding` number.
+    pub const fn number(self) -> u32 {
+        self as u32
+    }
+
+    /// The name of its variable in `shaders/bindings.wgsl`.
+    pub const fn wgsl_name(self) -> &'static str {
+        match self {
+            Self::Header => "header",
+            Self::Camera => "camera",
+            Self::Tile => "tile",
+            Self::Materials => "materials",
+            Self::Lights => "lights",
+            Self::Spheres => "spheres",
+            Self::Planes => "planes",
+            Self::Triangles => "triangles",
+            Self::Output => "output",
+            Self::Stats => "stats",
+            Self::Probe => "probe_out",
+        }
+    }
+
+    /// The table entry of a binding a shader declares: group, number and (undecorated) name
+    /// must all match it.
+    pub fn of_global(group: u32, number: u32, name: &str) -> Result<Self, GpuError> {
+        Self::try_from(number)
+            .ok()
+            .filter(|b| group == GROUP && b.wgsl_name() == name)
+            .ok_or_else(|| GpuError::UnknownBinding { group, binding: number, name: name.to_string() })
+    }
+}
+
+impl TryFrom<u32> for Binding {
+    /// The number no binding has.
+    type Error = u32;
+
+    fn try_from(number: u32) -> Result<Self, u32> {
+        Self::ALL.into_iter().find(|b| b.number() == number).ok_or(number)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_are_the_table_order_and_round_trip() {
+        for (i, b) in Binding::ALL.into_iter().enumerate() {
+            assert_eq!(b.number() as usize, i, "{b:?} is out of order in Binding::ALL");
+            assert_eq!(Binding::try_from(b.number()), Ok(b));
+            assert_eq!(Binding::of_global(GROUP, b.number(), b.wgsl_name()).ok(), Some(b));
+        }
+        assert_eq!(Binding::try_from(Binding::ALL.len() as u32), Err(Binding::ALL.len() as u32));
+    }
+
+    #[test]
+    fn a_wrong_name_group_or_number_is_an_error_naming_it() {
+        for (group, number, name) in [(0, 3, "lights"), (1, 0, "header"), (0, 42, "bogus")] {
+            let error = Binding::of_global(group, number, name).expect_err("not in the table");
+            let text = error.to_string();
+            assert!(
+                text.contains(name)
+                    && text.contains(&format!("@binding({number})"))
+                    && text.contains(&group.to_string()),
+                "{text}"
+            );
+        }
+    }
+}

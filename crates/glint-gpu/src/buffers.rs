@@ -1,0 +1,154 @@
+//! Uploading a flat scene: the checks that it fits the device, its GPU buffers, and the bind
+//! group a pipeline variant needs from them.
+
+use bytemuck::Pod;
+use glint_core::FlatScene;
+use glint_core::layout::{ProbeRecord, STAT_WORDS, TileParams};
+use wgpu::util::DeviceExt;
+
+use crate::binding::Binding;
+use crate::context::GpuContext;
+use crate::error::GpuError;
+use crate::pipeline::{TracerPipeline, with_error_scopes};
+use crate::shaders::GPU_PRIMITIVE_LIMIT;
+
+/// The scene's buffers on the GPU.
+#[derive(Debug)]
+pub struct SceneBuffers {
+    header: wgpu::Buffer,
+    camera: wgpu::Buffer,
+    /// The tile and sample of the next dispatch (see `dispatch.rs`).
+    pub(crate) tile: wgpu::Buffer,
+    materials: wgpu::Buffer,
+    lights: wgpu::Buffer,
+    spheres: wgpu::Buffer,
+    planes: wgpu::Buffer,
+    triangles: wgpu::Buffer,
+    pub output: wgpu::Buffer,
+    pub stats: wgpu::Buffer,
+    pub probe: wgpu::Buffer,
+    pub width: u32,
+    pub height: u32,
+    pub spp: u32,
+}
+
+/// The zeroed statistics buffer: ray counts and the status word.
+pub(crate) const ZERO_STATS: [u32; STAT_WORDS as usize] = [0; STAT_WORDS as usize];
+
+fn storage<T: Pod>(ctx: &GpuContext, label: &str, items: &[T]) -> wgpu::Buffer {
+    // Storage buffers may not be empty: an absent kind gets one unused element.
+    let one = [bytemuck::Zeroable::zeroed()];
+    let data = if items.is_empty() { &one[..] } else { items };
+    ctx.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some(label),
+        contents: bytemuck::cast_slice(data),
+        usage: wgpu::BufferUsages::STORAGE,
+    })
+}
+
+fn uniform<T: Pod>(ctx: &GpuContext, label: &str, value: &T) -> wgpu::Buffer {
+    ctx.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some(label),
+        contents: bytemuck::bytes_of(value),
+        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+    })
+}
+
+/// Checks what the GPU tracer cannot take: non-finite data, more primitives of a kind than its
+/// loops walk, buffers larger than the device binds. Returns the output buffer's size.
+fn check_limits(ctx: &GpuContext, scene: &FlatScene) -> Result<u64, GpuError> {
+    if let Some(field) = scene.first_non_finite() {
+        return Err(GpuError::NonFinite { field });
+    }
+    let h = &scene.header;
+    for (what, count) in [("spheres", h.sphere_count), ("planes", h.plane_count), ("triangles", h.triangle_count)] {
+        if count > GPU_PRIMITIVE_LIMIT {
+            return Err(GpuError::TooManyPrimitives { what, count, limit: GPU_PRIMITIVE_LIMIT });
+        }
+    }
+    let output_size = scene.pixel_count() as u64 * 16;
+    let limits = &ctx.limits;
+    let check = |what: &str, needed: u64| -> Result<(), GpuError> {
+        for (limit, limit_name) in [
+            (limits.max_storage_buffer_binding_size, "max_storage_buffer_binding_size"),
+            (limits.max_buffer_size, "max_buffer_size"),
+        ] {
+            if needed > limit {
+                return Err(GpuError::TooLarge { what: what.into(), needed, limit, limit_name });
+            }
+        }
+        Ok(())
+    };
+    check(&format!("the {}x{} output image", h.width, h.height), output_size)?;
+    check("the triangle buffer", size_of_val(scene.triangles.as_slice()) as u64)?;
+    Ok(output_size)
+}
+
+impl SceneBuffers {
+    /// Checks the scene (every float finite) and the device limits, then uploads it.
+    pub fn upload(ctx: &GpuContext, scene: &FlatScene) -> Result<Self, GpuError> {
+        let output_size = check_limits(ctx, scene)?;
+        let h = &scene.header;
+        with_error_scopes(ctx, || Self {
+            header: uniform(ctx, "glint header", &scene.header),
+            camera: uniform(ctx, "glint camera", &scene.camera),
+            tile: uniform(ctx, "glint tile", &TileParams::pixel(0, 0)),
+            materials: storage(ctx, "glint materials", &scene.materials),
+            lights: storage(ctx, "glint lights", &scene.lights),
+            spheres: storage(ctx, "glint spheres", &scene.spheres),
+            planes: storage(ctx, "glint planes", &scene.planes),
+            triangles: storage(ctx, "glint triangles", &scene.triangles),
+            output: ctx.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("glint output"),
+                size: output_size,
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+                mapped_at_creation: false,
+            }),
+            stats: ctx.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("glint stats"),
+                contents: bytemuck::cast_slice(&ZERO_STATS),
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
+            }),
+            probe: ctx.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("glint probe"),
+                size: size_of::<ProbeRecord>() as u64,
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+                mapped_at_creation: false,
+            }),
+            width: h.width,
+            height: h.height,
+            spp: h.spp.max(1),
+        })
+    }
+
+    /// The buffer behind `binding`.
+    fn buffer(&self, binding: Binding) -> &wgpu::Buffer {
+        match binding {
+            Binding::Header => &self.header,
+            Binding::Camera => &self.camera,
+            Binding::Tile => &self.tile,
+            Binding::Materials => &self.materials,
+            Binding::Lights => &self.lights,
+            Binding::Spheres => &self.spheres,
+            Binding::Planes => &self.planes,
+            Binding::Triangles => &self.triangles,
+            Binding::Output => &self.output,
+            Binding::Stats => &self.stats,
+            Binding::Probe => &self.probe,
+        }
+    }
+
+    /// The bind group for `pipeline`, with exactly the bindings its module declares.
+    pub fn bind_group(&self, ctx: &GpuContext, pipeline: &TracerPipeline) -> wgpu::BindGroup {
+        let entries: Vec<wgpu::BindGroupEntry> = pipeline
+            .bindings
+            .iter()
+            .map(|&b| wgpu::BindGroupEntry { binding: b.number(), resource: self.buffer(b).as_entire_binding() })
+            .collect();
+        ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("glint scene"),
+            layout: &pipeline.bind_group_layout,
+            entries: &entries,
+        })
+    }
+}
