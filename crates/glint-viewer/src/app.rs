@@ -127,8 +127,8 @@ impl ViewerApp {
             doc,
             gpu,
             no_gpu_reason,
-            cpu: CpuWorker::default(),
-            comparison: Comparison::default(),
+            cpu: CpuWorker::new(cc.egui_ctx.clone()),
+            comparison: Comparison::new(cc.egui_ctx.clone()),
             mode,
             tab: Tab::Scene,
             wipe: 0.5,
@@ -299,8 +299,7 @@ impl ViewerApp {
             && self.cpu_revision != Some(rev)
             && let Some(flat) = self.doc.flat(false)
         {
-            let repaint = ctx.clone();
-            self.cpu.start(flat, rev, move || repaint.request_repaint());
+            self.cpu.start(flat, rev);
             self.cpu_revision = Some(rev);
         }
         // The probed pixel follows the edits (not while dragging: a probe per preview is waste).
@@ -310,8 +309,7 @@ impl ViewerApp {
         let cpu = self.cpu.finished.as_ref().filter(|(r, _)| *r == rev).map(|(_, f)| &f.image);
         let gpu = self.gpu.as_ref().and_then(|g| g.latest.as_ref()).filter(|l| l.revision == rev).map(|l| &l.image);
         if let (Some(c), Some(g)) = (cpu, gpu) {
-            let repaint = ctx.clone();
-            self.comparison.request(rev, c, g, move || repaint.request_repaint());
+            self.comparison.request(rev, c, g);
         }
     }
 
@@ -378,8 +376,7 @@ impl ViewerApp {
             return;
         }
         let tracer = self.gpu.as_ref().map(|g| &g.tracer);
-        let repaint = ctx.clone();
-        let probe = ProbeState::start(&flat, x, y, self.doc.revision, tracer, move || repaint.request_repaint());
+        let probe = ProbeState::start(&flat, x, y, self.doc.revision, tracer, ctx);
         self.probe = Some(probe);
     }
 

@@ -1,10 +1,10 @@
 //! GPU against CPU: the same error figures and heat map as `glint render --backend both`,
 //! computed on a background thread (FLIP takes a while at full resolution).
 
-use std::sync::mpsc::{Receiver, TryRecvError, channel};
-
 use glint_core::HdrImage;
 use glint_core::compare::{ImageErrors, compare_images, diff_heatmap};
+
+use crate::worker::Worker;
 
 #[derive(Clone, Debug)]
 pub struct Compared {
@@ -16,53 +16,52 @@ pub struct Compared {
     pub heatmap: Vec<u8>,
 }
 
-#[derive(Debug, Default)]
+#[derive(Debug)]
 pub struct Comparison {
-    pending: Option<(u64, Receiver<Compared>)>,
+    worker: Worker<Compared>,
     pub latest: Option<Compared>,
 }
 
 impl Comparison {
+    /// Comparisons that wake the UI of `repaint` when they are done.
+    pub fn new(repaint: egui::Context) -> Self {
+        Self { worker: Worker::new("glint-compare", "comparison", Some(repaint)), latest: None }
+    }
+
     /// Starts comparing the two renders of `revision` unless that is done or under way.
-    pub fn request(&mut self, revision: u64, cpu: &HdrImage, gpu: &HdrImage, repaint: impl Fn() + Send + 'static) {
+    pub fn request(&mut self, revision: u64, cpu: &HdrImage, gpu: &HdrImage) {
         let done = self.latest.as_ref().is_some_and(|c| c.revision == revision);
-        let running = self.pending.as_ref().is_some_and(|(r, _)| *r == revision);
+        let running = self.worker.running_revision() == Some(revision);
         if done || running || (cpu.width, cpu.height) != (gpu.width, gpu.height) {
             return;
         }
-        let (tx, rx) = channel();
         let (cpu, gpu) = (cpu.clone(), gpu.clone());
-        let spawned = std::thread::Builder::new().name("glint-compare".into()).spawn(move || {
+        let started = self.worker.start(revision, move |_| {
             let errors = compare_images(&cpu, &gpu);
             let heatmap = diff_heatmap(&cpu, &gpu);
-            // The receiver may be gone (a newer edit): nothing to do then.
-            let _ = tx.send(Compared { revision, errors, width: cpu.width, height: cpu.height, heatmap });
-            repaint();
+            Compared { revision, errors, width: cpu.width, height: cpu.height, heatmap }
         });
-        match spawned {
-            Ok(_) => self.pending = Some((revision, rx)),
-            Err(e) => log::error!("cannot start the comparison thread: {e}"),
+        if let Err(e) = started {
+            log::error!("{e}");
         }
     }
 
     /// Takes a finished comparison; true when a new one arrived.
     pub fn poll(&mut self) -> bool {
-        let Some((_, rx)) = &self.pending else { return false };
-        match rx.try_recv() {
-            Ok(c) => {
+        match self.worker.poll() {
+            Some((_, Ok(c))) => {
                 self.latest = Some(c);
-                self.pending = None;
                 true
             }
-            Err(TryRecvError::Empty) => false,
-            Err(TryRecvError::Disconnected) => {
-                self.pending = None;
+            Some((_, Err(e))) => {
+                log::error!("{e}");
                 false
             }
+            None => false,
         }
     }
 
     pub fn is_running(&self) -> bool {
-        self.pending.is_some()
+        self.worker.is_running()
     }
 }

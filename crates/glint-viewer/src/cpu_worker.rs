@@ -1,7 +1,6 @@
 //! The CPU reference render on a background thread: progressive tiles, cancelled by the next
 //! edit. The UI thread only copies finished pixels; it never waits for the tracer.
 
-use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex, MutexGuard};
 use std::time::{Duration, Instant};
 
@@ -10,14 +9,15 @@ use glint_core::image::linear_to_srgb8;
 use glint_core::render::{Tile, tile_count};
 use glint_core::{CpuOptions, FlatScene, HdrImage, RenderControl, render_cpu};
 
-/// What the worker has produced so far.
+use crate::worker::Worker;
+
+/// The tiles finished so far, shared with the render thread.
 #[derive(Debug)]
 struct Progress {
     /// sRGB RGBA8 of the tiles finished so far (converted on the worker, not the UI thread).
     rgba: Vec<u8>,
     tiles_done: usize,
     changed: bool,
-    outcome: Option<Result<Finished, String>>,
 }
 
 /// A complete CPU render.
@@ -29,20 +29,20 @@ pub struct Finished {
     pub threads: usize,
 }
 
+/// The render in progress (while the worker runs it).
 #[derive(Debug)]
 struct Job {
-    revision: u64,
     width: u32,
     height: u32,
     tiles_total: usize,
     started: Instant,
-    cancel: Arc<AtomicBool>,
     progress: Arc<Mutex<Progress>>,
 }
 
 /// One render at a time; starting another cancels the running one.
-#[derive(Debug, Default)]
+#[derive(Debug)]
 pub struct CpuWorker {
+    worker: Worker<Result<Finished, String>>,
     job: Option<Job>,
     /// The last complete render and the revision it belongs to.
     pub finished: Option<(u64, Finished)>,
@@ -64,31 +64,40 @@ fn worker_threads() -> usize {
 }
 
 impl CpuWorker {
+    /// A worker that wakes the UI of `repaint` after each tile, so that the UI shows it.
+    pub fn new(repaint: egui::Context) -> Self {
+        Self {
+            worker: Worker::new("glint-cpu-render", "CPU render", Some(repaint)),
+            job: None,
+            finished: None,
+            error: None,
+            last_time: None,
+            shown: None,
+        }
+    }
+
     /// Cancels the running render (its thread stops at its next tile).
     pub fn cancel(&mut self) {
-        if let Some(job) = self.job.take() {
-            job.cancel.store(true, Ordering::Relaxed);
-        }
+        self.worker.cancel();
+        self.job = None;
     }
 
     /// The revision being rendered, if any.
     pub fn running_revision(&self) -> Option<u64> {
-        self.job.as_ref().map(|j| j.revision)
+        self.worker.running_revision()
     }
 
-    /// Starts rendering `scene` for document revision `revision`; `repaint` is called after
-    /// each tile so the UI shows it.
-    pub fn start(&mut self, scene: FlatScene, revision: u64, repaint: impl Fn() + Send + Sync + 'static) {
+    /// Starts rendering `scene` for document revision `revision`.
+    pub fn start(&mut self, scene: FlatScene, revision: u64) {
         self.cancel();
         let (width, height) = (scene.header.width, scene.header.height);
         let rgba = match self.shown.take() {
             Some((w, h, pixels)) if (w, h) == (width, height) => pixels,
             _ => vec![0; width as usize * height as usize * 4],
         };
-        let progress = Arc::new(Mutex::new(Progress { rgba, tiles_done: 0, changed: true, outcome: None }));
-        let cancel = Arc::new(AtomicBool::new(false));
-        let (p, c) = (progress.clone(), cancel.clone());
-        let spawned = std::thread::Builder::new().name("glint-cpu-render".into()).spawn(move || {
+        let progress = Arc::new(Mutex::new(Progress { rgba, tiles_done: 0, changed: true }));
+        let p = progress.clone();
+        let started = self.worker.start(revision, move |job| {
             let on_tile = |tile: &Tile| {
                 let mut g = lock(&p);
                 for row in 0..tile.height {
@@ -102,29 +111,20 @@ impl CpuWorker {
                 g.tiles_done += 1;
                 g.changed = true;
                 drop(g);
-                repaint();
+                job.repaint();
             };
             let options = CpuOptions { threads: worker_threads(), specialise: true };
-            let result = render_cpu(&scene, &options, RenderControl { cancel: Some(&c), on_tile: Some(&on_tile) });
-            let outcome = result
+            let control = RenderControl { cancel: Some(job.cancel_flag()), on_tile: Some(&on_tile) };
+            render_cpu(&scene, &options, control)
                 .map(|r| Finished { image: r.image, counts: r.counts, elapsed: r.elapsed, threads: r.threads })
-                .map_err(|e| e.to_string());
-            lock(&p).outcome = Some(outcome);
-            repaint();
+                .map_err(|e| e.to_string())
         });
-        match spawned {
-            Ok(_) => {
-                self.job = Some(Job {
-                    revision,
-                    width,
-                    height,
-                    tiles_total: tile_count(width, height),
-                    started: Instant::now(),
-                    cancel,
-                    progress,
-                });
+        match started {
+            Ok(()) => {
+                let tiles_total = tile_count(width, height);
+                self.job = Some(Job { width, height, tiles_total, started: Instant::now(), progress });
             }
-            Err(e) => self.error = Some(format!("cannot start the CPU render thread: {e}")),
+            Err(e) => self.error = Some(e.to_string()),
         }
     }
 
@@ -132,24 +132,27 @@ impl CpuWorker {
     /// just finished. Cheap when nothing changed.
     pub fn poll(&mut self) -> Option<(u32, u32, Vec<u8>)> {
         let job = self.job.as_ref()?;
+        // The result before the pixels: it is sent after the last tile, so a finished render's
+        // pixels read below include every tile. (A cancelled render's result never arrives.)
+        let outcome = self.worker.poll();
         let mut g = lock(&job.progress);
         let pixels = g.changed.then(|| g.rgba.clone());
         g.changed = false;
-        let outcome = g.outcome.take();
         drop(g);
-        let (w, h, revision, started) = (job.width, job.height, job.revision, job.started);
+        let (w, h, started) = (job.width, job.height, job.started);
         match outcome {
-            Some(Ok(f)) => {
+            Some((revision, Ok(Ok(f)))) => {
                 self.last_time = Some(started.elapsed());
                 self.finished = Some((revision, f));
                 self.error = None;
                 self.job = None;
             }
-            Some(Err(e)) => {
-                // A cancelled job is replaced by the next one: not an error worth showing.
-                if !e.contains("cancelled") {
-                    self.error = Some(e);
-                }
+            Some((_, Ok(Err(e)))) => {
+                self.error = Some(e);
+                self.job = None;
+            }
+            Some((_, Err(e))) => {
+                self.error = Some(e.to_string());
                 self.job = None;
             }
             None => {}
@@ -168,12 +171,6 @@ impl CpuWorker {
     }
 
     pub fn is_running(&self) -> bool {
-        self.job.is_some()
-    }
-}
-
-impl Drop for CpuWorker {
-    fn drop(&mut self) {
-        self.cancel();
+        self.worker.is_running()
     }
 }

@@ -3,7 +3,6 @@
 //! resolution renders are also read back (without blocking) for the comparison and export.
 
 use std::collections::VecDeque;
-use std::sync::mpsc::{Receiver, TryRecvError, channel};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
@@ -11,6 +10,8 @@ use glint_core::FlatScene;
 use glint_core::HdrImage;
 use glint_core::cpu::RayCounts;
 use glint_gpu::{GpuContext, GpuError, GpuJob, GpuOptions, GpuTracer, JobReadback, Presenter};
+
+use crate::worker::Worker;
 
 /// Tile sides of the viewer's renders. The window's frames queue behind the tracer's
 /// submissions on the same device. On a CPU adapter (lavapipe) each submission also holds the
@@ -25,9 +26,9 @@ const PREVIEW_TILE: u32 = 512;
 /// Where a render in flight is.
 #[derive(Debug)]
 enum Stage {
-    /// Being uploaded and dispatched on a helper thread: on lavapipe `submit` runs as long
-    /// as the render itself, and the UI must not wait for it.
-    Submitting(Receiver<Result<GpuJob, GpuError>>),
+    /// Being uploaded and dispatched by the submitter: on lavapipe `submit` runs as long as
+    /// the render itself, and the UI must not wait for it.
+    Submitting,
     Running(Box<GpuJob>),
 }
 
@@ -60,6 +61,7 @@ pub struct GpuView {
     pub tracer: Arc<GpuTracer>,
     renderer: Arc<egui::mutex::RwLock<egui_wgpu::Renderer>>,
     displays: Vec<Display>,
+    submitter: Worker<Result<GpuJob, GpuError>>,
     in_flight: Option<InFlight>,
     readback: Option<(JobReadback, u64, f64)>,
     /// What is on screen: (revision, preview, size, texture).
@@ -104,6 +106,8 @@ impl GpuView {
             tracer: Arc::new(GpuTracer::new(ctx)),
             renderer: state.renderer.clone(),
             displays: Vec::new(),
+            // Not woken on completion: the UI polls every frame while a render is in flight.
+            submitter: Worker::new("glint-gpu-submit", "GPU submission", None),
             in_flight: None,
             readback: None,
             shown: None,
@@ -165,23 +169,21 @@ impl GpuView {
             ));
             return false;
         }
-        let (tx, rx) = channel();
         let (tracer, scene, full_tile) = (self.tracer.clone(), scene.clone(), self.full_tile);
-        let spawned = std::thread::Builder::new().name("glint-gpu-submit".into()).spawn(move || {
+        let started = self.submitter.start(revision, move |_| {
             let start = Instant::now();
             let options = GpuOptions { tile: if preview { PREVIEW_TILE } else { full_tile }, ..GpuOptions::default() };
             let job = tracer.submit(&scene, &options);
             log::debug!("GPU submit took {:.1} ms", start.elapsed().as_secs_f64() * 1e3);
-            // The receiver is gone only when the viewer closed.
-            let _ = tx.send(job);
+            job
         });
-        match spawned {
-            Ok(_) => {
-                self.in_flight = Some(InFlight { stage: Stage::Submitting(rx), revision, preview, size });
+        match started {
+            Ok(()) => {
+                self.in_flight = Some(InFlight { stage: Stage::Submitting, revision, preview, size });
                 true
             }
             Err(e) => {
-                self.error = Some(format!("cannot start the GPU submission thread: {e}"));
+                self.error = Some(e.to_string());
                 false
             }
         }
@@ -220,10 +222,10 @@ impl GpuView {
         if let Err(e) = ctx.device.poll(wgpu::PollType::Poll) {
             self.error = Some(e.to_string());
         }
-        if let Some(InFlight { stage: Stage::Submitting(rx), size, .. }) = &self.in_flight {
+        if let Some(InFlight { stage: Stage::Submitting, size, .. }) = &self.in_flight {
             let size = *size;
-            match rx.try_recv() {
-                Ok(Ok(job)) => {
+            match self.submitter.poll() {
+                Some((_, Ok(Ok(job)))) => {
                     // Queued after the tracer's dispatches, so it encodes the finished image.
                     self.display_for(size).presenter.present(&ctx, &job.buffers.output);
                     if let Some(f) = &mut self.in_flight {
@@ -231,16 +233,16 @@ impl GpuView {
                     }
                     self.error = None;
                 }
-                Ok(Err(e)) => {
+                Some((_, Ok(Err(e)))) => {
                     self.error = Some(e.to_string());
                     self.in_flight = None;
                     changed = true;
                 }
-                Err(TryRecvError::Empty) => {}
-                Err(TryRecvError::Disconnected) => {
-                    self.error = Some("the GPU submission thread stopped".into());
+                Some((_, Err(e))) => {
+                    self.error = Some(e.to_string());
                     self.in_flight = None;
                 }
+                None => {}
             }
         }
         if let Some(InFlight { stage: Stage::Running(job), .. }) = &self.in_flight

@@ -18,6 +18,7 @@ mod probe;
 mod recent;
 mod view;
 mod widgets;
+mod worker;
 
 pub use app::{Tab, ViewerApp, ViewerOptions};
 pub use error::ViewerError;

@@ -3,16 +3,17 @@
 //! that compiling the variant never stalls the UI).
 
 use std::sync::Arc;
-use std::sync::mpsc::{Receiver, TryRecvError, channel};
 
 use glint_core::cpu::probe::Breakdown;
 use glint_core::glam::DVec3;
 use glint_core::{FlatScene, probe_pixel};
 use glint_gpu::GpuTracer;
 
+use crate::worker::Worker;
+
 #[derive(Debug)]
 pub enum GpuProbe {
-    Pending(Receiver<Result<Breakdown, String>>),
+    Pending(Worker<Result<Breakdown, String>>),
     Done(Result<Breakdown, String>),
     Unavailable(String),
 }
@@ -27,33 +28,31 @@ pub struct ProbeState {
 }
 
 impl ProbeState {
-    /// Probes pixel (x, y) of the full-resolution scene on both tracers.
-    /// `repaint` is called when the GPU result arrives (the UI may be idle by then).
+    /// Probes pixel (x, y) of the full-resolution scene on both tracers. The UI of `repaint`
+    /// is woken when the GPU result arrives (it may be idle by then).
     pub fn start(
         scene: &FlatScene,
         x: u32,
         y: u32,
         revision: u64,
         gpu: Option<&Arc<GpuTracer>>,
-        repaint: impl Fn() + Send + 'static,
+        repaint: &egui::Context,
     ) -> Self {
         let cpu = probe_pixel(scene, x, y, 0);
         let gpu = match gpu {
             None => GpuProbe::Unavailable("no GPU".into()),
             Some(tracer) => {
-                let (tx, rx) = channel();
+                let mut worker = Worker::new("glint-probe", "probe", Some(repaint.clone()));
                 let (tracer, scene) = (tracer.clone(), scene.clone());
-                let spawned = std::thread::Builder::new().name("glint-probe".into()).spawn(move || {
-                    let result = tracer
+                let started = worker.start(revision, move |_| {
+                    tracer
                         .probe_pixel(&scene, x, y)
                         .map(|(record, _status)| glint_gpu::probe::breakdown(&record))
-                        .map_err(|e| e.to_string());
-                    let _ = tx.send(result);
-                    repaint();
+                        .map_err(|e| e.to_string())
                 });
-                match spawned {
-                    Ok(_) => GpuProbe::Pending(rx),
-                    Err(e) => GpuProbe::Unavailable(format!("cannot start the probe thread: {e}")),
+                match started {
+                    Ok(()) => GpuProbe::Pending(worker),
+                    Err(e) => GpuProbe::Unavailable(e.to_string()),
                 }
             }
         };
@@ -62,12 +61,9 @@ impl ProbeState {
 
     /// Collects the GPU result when it has arrived; true when it did.
     pub fn poll(&mut self) -> bool {
-        let GpuProbe::Pending(rx) = &self.gpu else { return false };
-        match rx.try_recv() {
-            Ok(r) => self.gpu = GpuProbe::Done(r),
-            Err(TryRecvError::Empty) => return false,
-            Err(TryRecvError::Disconnected) => self.gpu = GpuProbe::Done(Err("the GPU probe stopped".into())),
-        }
+        let GpuProbe::Pending(worker) = &mut self.gpu else { return false };
+        let Some((_, result)) = worker.poll() else { return false };
+        self.gpu = GpuProbe::Done(result.unwrap_or_else(|e| Err(e.to_string())));
         true
     }
 
