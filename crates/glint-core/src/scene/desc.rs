@@ -206,6 +206,10 @@ impl LightKind {
     }
 }
 
+/// The spot cutoff that means no cone at all (as in OpenGL): the light shines every way, and
+/// the cutoff every point and directional light has.
+pub const NO_CONE_CUTOFF: f64 = 180.0;
+
 /// One light. A flat record rather than an enum so that a light can change its type in the
 /// viewer without losing its other settings; validation checks that each kind has the fields
 /// it needs.
@@ -236,7 +240,7 @@ pub struct LightDesc {
     /// Spot exponent s of (L_N·(−L))^s, ≥ 0.
     #[serde(default)]
     pub exponent: f64,
-    /// Spot cone half-angle in degrees: [0, 90], or 180 for no cone (as OpenGL).
+    /// Spot cone half-angle in degrees: [0, 90], or `NO_CONE_CUTOFF` (180) for no cone.
     #[serde(default = "default_cutoff")]
     pub cutoff: f64,
     #[serde(default = "default_true")]
@@ -270,7 +274,7 @@ fn one() -> f64 {
 }
 
 fn default_cutoff() -> f64 {
-    180.0
+    NO_CONE_CUTOFF
 }
 
 fn default_true() -> bool {

@@ -15,8 +15,8 @@ use std::path::{Path, PathBuf};
 
 pub use builtin::{BUILTIN_SCENES, BuiltinScene, builtin};
 pub use desc::{
-    Attenuation, CameraDesc, CheckerDesc, EpsilonMode, LightDesc, LightKind, MaterialDesc, MeshDesc, ObjectDesc,
-    PlaneDesc, RenderSettings, SceneDesc, SpecularModel, SphereDesc, WorldDesc,
+    Attenuation, CameraDesc, CheckerDesc, EpsilonMode, LightDesc, LightKind, MaterialDesc, MeshDesc, NO_CONE_CUTOFF,
+    ObjectDesc, PlaneDesc, RenderSettings, SceneDesc, SpecularModel, SphereDesc, WorldDesc,
 };
 pub use error::{FieldIssue, SceneError};
 pub use rgb::Rgb;

@@ -7,8 +7,8 @@
 use glam::DVec3;
 
 use super::desc::{
-    Attenuation, LightDesc, LightKind, MaterialDesc, MeshDesc, ObjectDesc, PlaneDesc, RenderSettings, SceneDesc,
-    SphereDesc,
+    Attenuation, LightDesc, LightKind, MaterialDesc, MeshDesc, NO_CONE_CUTOFF, ObjectDesc, PlaneDesc, RenderSettings,
+    SceneDesc, SphereDesc,
 };
 use super::error::FieldIssue;
 use super::rgb::Rgb;
@@ -233,14 +233,17 @@ fn validate_light(path: &str, l: &LightDesc, r: &mut Report) {
     if l.kind == LightKind::Spot {
         r.finite_in(&format!("{path}.exponent"), l.exponent, 0.0, MAX_SPOT_EXPONENT);
         let c = l.cutoff;
-        if !(c.is_finite() && ((0.0..=90.0).contains(&c) || c == 180.0)) {
-            r.error(format!("{path}.cutoff"), format!("{c} is outside the allowed range [0, 90] or 180 (no cone)"));
+        if !(c.is_finite() && ((0.0..=90.0).contains(&c) || c == NO_CONE_CUTOFF)) {
+            r.error(
+                format!("{path}.cutoff"),
+                format!("{c} is outside the allowed range [0, 90] or {NO_CONE_CUTOFF} (no cone)"),
+            );
         }
     } else {
         if l.exponent != 0.0 {
             r.error(format!("{path}.exponent"), format!("only spot lights have an exponent (this is a {kind} light)"));
         }
-        if l.cutoff != 180.0 {
+        if l.cutoff != NO_CONE_CUTOFF {
             r.error(format!("{path}.cutoff"), format!("only spot lights have a cutoff (this is a {kind} light)"));
         }
     }

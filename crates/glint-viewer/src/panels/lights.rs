@@ -1,10 +1,13 @@
 //! Lights panel: the list with add, duplicate and remove, and the selected light's fields.
 
 use egui::Ui;
-use glint_core::scene::{LightDesc, LightKind, MAX_INTENSITY};
+use glint_core::scene::{LightDesc, LightKind, MAX_INTENSITY, NO_CONE_CUTOFF};
 
 use crate::document::Document;
 use crate::widgets::{choice, number, rgb_edit, slider, vec3_edit};
+
+/// The cone a light gets when it becomes a spot light or leaves "no cone".
+const NEW_CONE_CUTOFF: f64 = 30.0;
 
 pub fn ui(ui: &mut Ui, doc: &mut Document, selected: &mut usize) -> bool {
     let mut changed = false;
@@ -48,8 +51,8 @@ pub fn ui(ui: &mut Ui, doc: &mut Document, selected: &mut usize) -> bool {
         if light.kind != LightKind::Point && light.direction.is_none() {
             light.direction = Some([0.0, -1.0, 0.0]);
         }
-        if light.kind == LightKind::Spot && before != LightKind::Spot && light.cutoff >= 180.0 {
-            light.cutoff = 30.0;
+        if light.kind == LightKind::Spot && before != LightKind::Spot && light.cutoff >= NO_CONE_CUTOFF {
+            light.cutoff = NEW_CONE_CUTOFF;
         }
         changed = true;
     }
@@ -75,10 +78,10 @@ pub fn ui(ui: &mut Ui, doc: &mut Document, selected: &mut usize) -> bool {
     }
     if light.kind == LightKind::Spot {
         changed |= slider(ui, "Spot exponent", &mut light.exponent, 0.0..=256.0);
-        // 180° means no cone (as OpenGL); the slider covers the cones proper.
-        let mut no_cone = light.cutoff >= 180.0;
-        if ui.checkbox(&mut no_cone, "No cone (cutoff 180°)").changed() {
-            light.cutoff = if no_cone { 180.0 } else { 30.0 };
+        // The slider covers the cones proper; "no cone" is a value of its own.
+        let mut no_cone = light.cutoff >= NO_CONE_CUTOFF;
+        if ui.checkbox(&mut no_cone, format!("No cone (cutoff {NO_CONE_CUTOFF}°)")).changed() {
+            light.cutoff = if no_cone { NO_CONE_CUTOFF } else { NEW_CONE_CUTOFF };
             changed = true;
         }
         if !no_cone {
