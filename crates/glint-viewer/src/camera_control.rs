@@ -9,15 +9,11 @@ const ORBIT_SPEED: f64 = 0.008;
 /// Keeps the camera off the poles, where the up vector and the view direction align.
 const MAX_PITCH: f64 = 1.55;
 
-fn v(a: [f64; 3]) -> DVec3 {
-    DVec3::from_array(a)
-}
-
 /// Turns the camera around its look-at point by a drag of (dx, dy) points.
 pub fn orbit(cam: &mut CameraDesc, dx: f32, dy: f32) {
-    let up = v(cam.up).normalize_or(DVec3::Y);
-    let target = v(cam.look_at);
-    let offset = v(cam.position) - target;
+    let up = DVec3::from(cam.up).normalize_or(DVec3::Y);
+    let target = DVec3::from(cam.look_at);
+    let offset = DVec3::from(cam.position) - target;
     let radius = offset.length();
     if radius <= 0.0 || !radius.is_finite() {
         return;
@@ -38,10 +34,10 @@ pub fn orbit(cam: &mut CameraDesc, dx: f32, dy: f32) {
 /// Moves camera and look-at point sideways by a drag of (dx, dy) points in a view
 /// `view_height` points tall, so the scene follows the pointer at the look-at distance.
 pub fn pan(cam: &mut CameraDesc, dx: f32, dy: f32, view_height: f32) {
-    let pos = v(cam.position);
-    let target = v(cam.look_at);
+    let pos = DVec3::from(cam.position);
+    let target = DVec3::from(cam.look_at);
     let forward = (target - pos).normalize_or_zero();
-    let right = forward.cross(v(cam.up)).normalize_or_zero();
+    let right = forward.cross(DVec3::from(cam.up)).normalize_or_zero();
     let up = right.cross(forward);
     let distance = (target - pos).length();
     let per_point = 2.0 * distance * (cam.fov_y.to_radians() / 2.0).tan() / f64::from(view_height.max(1.0));
@@ -52,8 +48,8 @@ pub fn pan(cam: &mut CameraDesc, dx: f32, dy: f32, view_height: f32) {
 
 /// Moves the camera towards (scroll > 0) or away from its look-at point.
 pub fn zoom(cam: &mut CameraDesc, scroll: f32) {
-    let target = v(cam.look_at);
-    let offset = v(cam.position) - target;
+    let target = DVec3::from(cam.look_at);
+    let offset = DVec3::from(cam.position) - target;
     let factor = (-f64::from(scroll) * 0.002).exp();
     let new = offset * factor;
     // Never onto the look-at point itself (the view direction would vanish).
@@ -74,11 +70,11 @@ mod tests {
     fn orbit_keeps_the_distance_and_zoom_changes_it() {
         let mut c = cam();
         orbit(&mut c, 40.0, 15.0);
-        let d = (v(c.position) - v(c.look_at)).length();
+        let d = (DVec3::from(c.position) - DVec3::from(c.look_at)).length();
         assert!((d - 5.0).abs() < 1e-9, "{d}");
         assert_ne!(c.position, cam().position);
         zoom(&mut c, 100.0);
-        let d2 = (v(c.position) - v(c.look_at)).length();
+        let d2 = (DVec3::from(c.position) - DVec3::from(c.look_at)).length();
         assert!(d2 < d);
     }
 
@@ -86,8 +82,8 @@ mod tests {
     fn pan_moves_camera_and_target_together() {
         let mut c = cam();
         pan(&mut c, 10.0, 0.0, 300.0);
-        let before = v(cam().position) - v(cam().look_at);
-        let after = v(c.position) - v(c.look_at);
+        let before = DVec3::from(cam().position) - DVec3::from(cam().look_at);
+        let after = DVec3::from(c.position) - DVec3::from(c.look_at);
         assert!((before - after).length() < 1e-12);
         assert_ne!(c.look_at, cam().look_at);
     }

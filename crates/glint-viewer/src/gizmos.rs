@@ -2,6 +2,7 @@
 //! image coordinates ([0, 1]², y down) for the view to draw over the GPU image.
 
 use egui::Color32;
+use glint_core::cpu::v3;
 use glint_core::glam::DVec3;
 use glint_core::layout::GpuCamera;
 use glint_core::scene::{LightKind, SceneDesc};
@@ -16,15 +17,11 @@ pub struct Gizmo {
     pub selected: bool,
 }
 
-fn v(a: [f32; 4]) -> DVec3 {
-    DVec3::new(f64::from(a[0]), f64::from(a[1]), f64::from(a[2]))
-}
-
 /// Image position of world point `p`, or `None` behind the camera. Inverts `camera_ray`:
 /// dir = forward + ndc_x·right + ndc_y·up with orthogonal right and up.
 pub fn project(cam: &GpuCamera, p: DVec3) -> Option<(f32, f32)> {
-    let (f, r, u) = (v(cam.forward), v(cam.right), v(cam.up));
-    let q = p - v(cam.position);
+    let (f, r, u) = (v3(cam.forward), v3(cam.right), v3(cam.up));
+    let q = p - v3(cam.position);
     let depth = q.dot(f) / f.length_squared();
     if depth <= 1e-6 {
         return None;
