@@ -5,7 +5,7 @@ use egui::accesskit::Role;
 use egui_kittest::kittest::Queryable;
 use glint_core::scene::{LightKind, RenderSettings};
 
-use crate::support::{gpu_image, mean_abs_diff, settle, viewer};
+use crate::support::{choose, gpu_image, mean_abs_diff, settle, viewer};
 
 #[test]
 fn depth_and_epsilon_set_through_the_ui_change_the_gpu_image_and_the_statistics() {
@@ -42,12 +42,7 @@ fn material_ks_and_light_type_set_through_the_ui_change_the_gpu_image_and_the_st
     let Some(mut h) = viewer("whitted", (1000.0, 640.0)) else { return };
     let before = gpu_image(&h);
 
-    h.get_by_label("Materials").click();
-    h.run_steps(2);
-    h.get_by_label("Material").click();
-    h.run_steps(2);
-    h.get_by_label("mirror").click();
-    h.run_steps(2);
+    choose(&mut h, "Materials", "Material", "mirror");
     for channel in ["k_s R", "k_s G", "k_s B"] {
         h.get_by_label(channel).set_value_accesskit(0.0);
         h.run_steps(1);
@@ -60,11 +55,7 @@ fn material_ks_and_light_type_set_through_the_ui_change_the_gpu_image_and_the_st
     let dull_counts = latest_counts(&h);
     assert_current_agreement(&h);
 
-    h.get_by_label("Lights").click();
-    h.run_steps(2);
-    h.get_by_label("Type").click();
-    h.run_steps(2);
-    h.get_by_label("spot").click();
+    choose(&mut h, "Lights", "Type", "spot");
     settle(&mut h);
     assert_eq!(h.state().doc.desc.lights[0].kind, LightKind::Spot);
     // A 30° cone pointing straight down from the light leaves most of the floor unlit.

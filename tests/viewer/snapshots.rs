@@ -11,7 +11,7 @@ use egui::Modifiers;
 use egui_kittest::SnapshotOptions;
 use egui_kittest::kittest::Queryable;
 
-use crate::support::{click, settle, viewer};
+use crate::support::{choose, click, settle, viewer};
 
 fn options() -> SnapshotOptions {
     SnapshotOptions::new()
@@ -46,12 +46,7 @@ fn main_layouts_match_their_snapshots() {
 fn the_lights_panel_and_a_spot_gizmo_match_their_snapshot() {
     let Some(mut h) = viewer("whitted", (800.0, 500.0)) else { return };
     h.get_by_label("GPU").click();
-    h.get_by_label("Lights").click();
-    h.run_steps(2);
-    h.get_by_label("Type").click();
-    h.run_steps(2);
-    h.get_by_label("spot").click();
-    h.run_steps(2);
+    choose(&mut h, "Lights", "Type", "spot");
     // Bring the light in front of the camera so that its dot and cone are in view.
     for (axis, v) in [("Position x", -1.0), ("Position y", 2.5), ("Position z", 0.0)] {
         h.get_by_label(axis).set_value_accesskit(v);

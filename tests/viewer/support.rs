@@ -3,6 +3,7 @@
 use std::time::{Duration, Instant};
 
 use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
 use glint_core::scene::{RenderSettings, load_scene};
 use glint_viewer::{ViewerApp, ViewerOptions};
 
@@ -58,6 +59,15 @@ pub fn settle(harness: &mut Harness<'static, ViewerApp>) {
         }
         assert!(Instant::now() < deadline, "the viewer did not finish rendering within 120 s");
         std::thread::sleep(Duration::from_millis(5));
+    }
+}
+
+/// Clicks through to entry `item` of the combo box `combo` on the side panel's `tab`
+/// (e.g. Lights, Type, spot), letting the UI answer each click.
+pub fn choose(harness: &mut Harness<'static, ViewerApp>, tab: &str, combo: &str, item: &str) {
+    for label in [tab, combo, item] {
+        harness.get_by_label(label).click();
+        harness.run_steps(2);
     }
 }
 

@@ -1,55 +1,50 @@
 //! Small editing widgets shared by the panels. Each returns whether the value changed; every
 //! widget is labelled so that screen readers (and the UI tests, through AccessKit) find it.
+//! Ranges come from validation's table (`glint_core::scene::ranges`): an editor accepts every
+//! valid value, typed or dragged, and clamps only what validation would refuse anyway.
 
 use egui::{DragValue, Response, Slider, SliderClamping, Ui, WidgetInfo};
-use glint_core::scene::Rgb;
+use glint_core::scene::{Range, Rgb, ranges};
 
-/// A logarithmic slider for values spanning decades (ε, shininess).
-pub fn log_slider(ui: &mut Ui, label: &str, value: &mut f64, range: std::ops::RangeInclusive<f64>) -> bool {
-    ui.add(
-        Slider::new(value, range)
-            .logarithmic(true)
-            .clamping(SliderClamping::Edits)
-            .smallest_positive(1e-9)
-            .custom_formatter(|v, _| format!("{v:.3e}"))
-            .text(label),
-    )
-    .changed()
+/// The smallest positive value a logarithmic slider reaches by dragging (ε goes down to 1e-9);
+/// 0 itself sits at the left end and can be typed.
+const SMALLEST_POSITIVE: f64 = 1e-9;
+
+/// Values of a logarithmic slider: scientific, with exactly 0 written as such.
+fn scientific(v: f64) -> String {
+    if v == 0.0 { "0".into() } else { format!("{v:.3e}") }
 }
 
-/// A logarithmic slider over whole numbers (recursion depth, samples): small values get most
-/// of its length, and the largest valid value can still be reached.
-pub fn int_log_slider(ui: &mut Ui, label: &str, value: &mut u32, range: std::ops::RangeInclusive<u32>) -> bool {
-    ui.add(Slider::new(value, range).logarithmic(true).clamping(SliderClamping::Edits).text(label)).changed()
+/// A slider over `range`, logarithmic where the range spans decades (ε, shininess).
+pub fn slider(ui: &mut Ui, label: &str, value: &mut f64, range: Range<f64>) -> bool {
+    let slider = Slider::new(value, range.min..=range.max).clamping(SliderClamping::Edits).text(label);
+    let slider = if range.log {
+        slider.logarithmic(true).smallest_positive(SMALLEST_POSITIVE).custom_formatter(|v, _| scientific(v))
+    } else {
+        slider
+    };
+    ui.add(slider).changed()
 }
 
-/// A linear slider with a label.
-pub fn slider<N: egui::emath::Numeric>(
-    ui: &mut Ui,
-    label: &str,
-    value: &mut N,
-    range: std::ops::RangeInclusive<N>,
-) -> bool {
-    ui.add(Slider::new(value, range).clamping(SliderClamping::Edits).text(label)).changed()
+/// A slider over whole numbers (recursion depth, samples, image sides); on a logarithmic scale
+/// small values get most of its length, and the largest valid value can still be reached.
+pub fn int_slider(ui: &mut Ui, label: &str, value: &mut u32, range: Range<u32>) -> bool {
+    let slider = Slider::new(value, range.min..=range.max).logarithmic(range.log);
+    ui.add(slider.clamping(SliderClamping::Edits).text(label)).changed()
 }
 
 /// A drag value whose accessible label is `label`.
-fn labelled_drag(
-    ui: &mut Ui,
-    label: String,
-    value: &mut f64,
-    speed: f64,
-    range: std::ops::RangeInclusive<f64>,
-) -> Response {
-    let r = ui.add(DragValue::new(value).speed(speed).range(range).max_decimals(4));
+fn labelled_drag(ui: &mut Ui, label: String, value: &mut f64, speed: f64, range: Range<f64>) -> Response {
+    let r = ui.add(DragValue::new(value).speed(speed).range(range.min..=range.max).max_decimals(4));
     let v = *value;
     r.widget_info(|| WidgetInfo { label: Some(label.clone()), ..WidgetInfo::drag_value(true, v) });
     r
 }
 
 /// An RGB colour or intensity: a colour picker for values in [0, 1] and one drag value per
-/// channel (intensities may exceed 1). The channels are labelled "LABEL R/G/B".
-pub fn rgb_edit(ui: &mut Ui, label: &str, value: &mut Rgb, max: f64) -> bool {
+/// channel over the whole valid range (intensities may exceed 1). The channels are labelled
+/// "LABEL R/G/B".
+pub fn rgb_edit(ui: &mut Ui, label: &str, value: &mut Rgb) -> bool {
     let mut changed = false;
     ui.horizontal(|ui| {
         ui.label(label).on_hover_text(format!("{label}: red, green, blue"));
@@ -59,7 +54,8 @@ pub fn rgb_edit(ui: &mut Ui, label: &str, value: &mut Rgb, max: f64) -> bool {
             changed = true;
         }
         for (i, ch) in ["R", "G", "B"].iter().enumerate() {
-            changed |= labelled_drag(ui, format!("{label} {ch}"), &mut value.0[i], 0.005, 0.0..=max).changed();
+            let r = labelled_drag(ui, format!("{label} {ch}"), &mut value.0[i], 0.005, ranges::COLOUR);
+            changed |= r.changed();
         }
     });
     changed
@@ -71,7 +67,7 @@ pub fn vec3_edit(ui: &mut Ui, label: &str, value: &mut [f64; 3], speed: f64) -> 
     ui.horizontal(|ui| {
         ui.label(label);
         for (i, axis) in ["x", "y", "z"].iter().enumerate() {
-            let r = labelled_drag(ui, format!("{label} {axis}"), &mut value[i], speed, -1e6..=1e6);
+            let r = labelled_drag(ui, format!("{label} {axis}"), &mut value[i], speed, ranges::COORD);
             changed |= r.changed();
         }
     });
@@ -79,8 +75,10 @@ pub fn vec3_edit(ui: &mut Ui, label: &str, value: &mut [f64; 3], speed: f64) -> 
 }
 
 /// A labelled drag value for one number.
-pub fn number(ui: &mut Ui, label: &str, value: &mut f64, speed: f64, range: std::ops::RangeInclusive<f64>) -> bool {
-    let r = ui.add(DragValue::new(value).speed(speed).range(range).max_decimals(4).prefix(format!("{label} = ")));
+pub fn number(ui: &mut Ui, label: &str, value: &mut f64, speed: f64, range: Range<f64>) -> bool {
+    let r = ui.add(
+        DragValue::new(value).speed(speed).range(range.min..=range.max).max_decimals(4).prefix(format!("{label} = ")),
+    );
     let v = *value;
     r.widget_info(|| WidgetInfo { label: Some(label.to_string()), ..WidgetInfo::drag_value(true, v) });
     r.changed()

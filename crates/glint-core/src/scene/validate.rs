@@ -28,6 +28,80 @@ pub const MAX_IOR: f64 = 1e3;
 /// far from f32 overflow on the GPU.
 pub const MIN_ATTENUATION_DENOMINATOR: f64 = 1e-6;
 
+/// The values one number of a scene may take. Validation checks every number against its
+/// entry in [`ranges`], and the viewer's editors take their ranges from there too, so an
+/// editor neither clamps a valid value away nor offers an invalid one.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Range<T> {
+    pub min: T,
+    pub max: T,
+    /// (min, max] instead of [min, max], for what the tracers divide by (a size, an index of
+    /// refraction): the value must stay above `min` when rounded to f32, as both tracers read it.
+    pub min_excluded: bool,
+    /// The useful values span decades: an editor shows them on a logarithmic scale.
+    pub log: bool,
+}
+
+impl<T> Range<T> {
+    /// [min, max] on a linear scale.
+    pub const fn linear(min: T, max: T) -> Self {
+        Self { min, max, min_excluded: false, log: false }
+    }
+
+    /// [min, max] on a logarithmic scale.
+    pub const fn logarithmic(min: T, max: T) -> Self {
+        Self { min, max, min_excluded: false, log: true }
+    }
+
+    /// (min, max] on a logarithmic scale.
+    pub const fn logarithmic_above(min: T, max: T) -> Self {
+        Self { min, max, min_excluded: true, log: true }
+    }
+}
+
+impl Range<f64> {
+    /// Whether `v` is a finite number in the range.
+    pub fn contains(&self, v: f64) -> bool {
+        let above_min = if self.min_excluded { as_f32(v) > self.min } else { v >= self.min };
+        v.is_finite() && above_min && v <= self.max
+    }
+}
+
+impl Range<u32> {
+    pub fn contains(&self, v: u32) -> bool {
+        (self.min..=self.max).contains(&v)
+    }
+}
+
+/// The allowed range of every number a scene holds, one entry per kind of field.
+pub mod ranges {
+    use super::{
+        MAX_COORD, MAX_DEPTH, MAX_EPSILON, MAX_IMAGE_SIDE, MAX_INTENSITY, MAX_IOR, MAX_SHININESS, MAX_SPOT_EXPONENT,
+        MAX_SPP, Range,
+    };
+
+    pub const IMAGE_SIDE: Range<u32> = Range::logarithmic(1, MAX_IMAGE_SIDE);
+    pub const SPP: Range<u32> = Range::logarithmic(1, MAX_SPP);
+    /// Recursion depth: 0 is local shading only.
+    pub const DEPTH: Range<u32> = Range::logarithmic(0, MAX_DEPTH);
+    pub const BAILOUT: Range<f64> = Range::linear(0.0, 1.0);
+    pub const EPSILON: Range<f64> = Range::logarithmic(0.0, MAX_EPSILON);
+    pub const FOV_Y: Range<f64> = Range::linear(1e-6, 179.0);
+    /// Each component of a position or direction.
+    pub const COORD: Range<f64> = Range::linear(-MAX_COORD, MAX_COORD);
+    /// Each channel of a colour or intensity (reflectances, emission, light intensities).
+    pub const COLOUR: Range<f64> = Range::linear(0.0, MAX_INTENSITY);
+    pub const SHININESS: Range<f64> = Range::logarithmic(0.0, MAX_SHININESS);
+    pub const IOR: Range<f64> = Range::logarithmic_above(0.0, MAX_IOR);
+    /// A sphere's radius and a checker's square size.
+    pub const SIZE: Range<f64> = Range::logarithmic_above(0.0, MAX_COORD);
+    /// Each of the attenuation coefficients c, l, q (their sum has a rule of its own).
+    pub const ATTENUATION: Range<f64> = Range::linear(-MAX_INTENSITY, MAX_INTENSITY);
+    pub const SPOT_EXPONENT: Range<f64> = Range::logarithmic(0.0, MAX_SPOT_EXPONENT);
+    /// A spot cone's half-angle in degrees; `NO_CONE_CUTOFF` is allowed besides.
+    pub const CUTOFF: Range<f64> = Range::linear(0.0, 90.0);
+}
+
 /// Six significant digits without trailing zeros, for messages about f32-rounded values.
 fn short(v: f64) -> String {
     let s = format!("{v:.6}");
@@ -56,11 +130,12 @@ impl Report {
         self.warnings.push(FieldIssue { field: field.into(), problem: problem.into() });
     }
 
-    fn finite_in(&mut self, field: &str, v: f64, lo: f64, hi: f64) -> bool {
+    fn finite_in(&mut self, field: &str, v: f64, range: Range<f64>) -> bool {
+        let (lo, hi) = (range.min, range.max);
         if !v.is_finite() {
             self.error(field, format!("{v} is not a finite number; allowed: [{lo}, {hi}]"));
             false
-        } else if v < lo || v > hi {
+        } else if !range.contains(v) {
             self.error(field, format!("{v} is outside the allowed range [{lo}, {hi}]"));
             false
         } else {
@@ -70,12 +145,10 @@ impl Report {
 
     fn point(&mut self, field: &str, p: [f64; 3]) -> bool {
         let mut ok = true;
+        let (lo, hi) = (ranges::COORD.min, ranges::COORD.max);
         for (axis, v) in ["x", "y", "z"].iter().zip(p) {
-            if !v.is_finite() || v.abs() > MAX_COORD {
-                self.error(
-                    field,
-                    format!("component {axis} = {v} must be a finite number in [-{MAX_COORD:e}, {MAX_COORD:e}]"),
-                );
+            if !ranges::COORD.contains(v) {
+                self.error(field, format!("component {axis} = {v} must be a finite number in [{lo:e}, {hi:e}]"));
                 ok = false;
             }
         }
@@ -95,35 +168,40 @@ impl Report {
         true
     }
 
-    fn colour(&mut self, field: &str, c: Rgb, hi: f64) -> bool {
+    fn colour(&mut self, field: &str, c: Rgb) -> bool {
         let mut ok = true;
+        let (lo, hi) = (ranges::COLOUR.min, ranges::COLOUR.max);
         for (name, v) in ["r", "g", "b"].iter().zip(c.0) {
-            if !v.is_finite() || v < 0.0 || v > hi {
-                self.error(field, format!("channel {name} = {v} must be a finite number in [0, {hi:e}]"));
+            if !ranges::COLOUR.contains(v) {
+                self.error(field, format!("channel {name} = {v} must be a finite number in [{lo}, {hi:e}]"));
                 ok = false;
             }
         }
         ok
     }
+
+    /// A size in a range (min, max] (its maximum shown as 1e9 and the like).
+    fn size(&mut self, field: &str, v: f64, range: Range<f64>) {
+        if !range.contains(v) {
+            self.error(field, format!("{v} is outside the allowed range ({}, {:e}]", range.min, range.max));
+        }
+    }
+
+    fn count(&mut self, field: &str, v: u32, range: Range<u32>) {
+        if !range.contains(v) {
+            self.error(field, format!("{v} is outside the allowed range [{}, {}]", range.min, range.max));
+        }
+    }
 }
 
 /// Checks the render settings (also used for command-line overrides).
 pub fn validate_settings(s: &RenderSettings, report: &mut Report) {
-    let side = |r: &mut Report, name: &str, v: u32| {
-        if v == 0 || v > MAX_IMAGE_SIDE {
-            r.error(format!("render.{name}"), format!("{v} is outside the allowed range [1, {MAX_IMAGE_SIDE}]"));
-        }
-    };
-    side(report, "width", s.width);
-    side(report, "height", s.height);
-    if s.spp == 0 || s.spp > MAX_SPP {
-        report.error("render.spp", format!("{} is outside the allowed range [1, {MAX_SPP}]", s.spp));
-    }
-    if s.max_depth > MAX_DEPTH {
-        report.error("render.max_depth", format!("{} is outside the allowed range [0, {MAX_DEPTH}]", s.max_depth));
-    }
-    report.finite_in("render.bailout", s.bailout, 0.0, 1.0);
-    report.finite_in("render.epsilon", s.epsilon, 0.0, MAX_EPSILON);
+    report.count("render.width", s.width, ranges::IMAGE_SIDE);
+    report.count("render.height", s.height, ranges::IMAGE_SIDE);
+    report.count("render.spp", s.spp, ranges::SPP);
+    report.count("render.max_depth", s.max_depth, ranges::DEPTH);
+    report.finite_in("render.bailout", s.bailout, ranges::BAILOUT);
+    report.finite_in("render.epsilon", s.epsilon, ranges::EPSILON);
 }
 
 /// Validates a whole scene. Errors make the scene unusable; warnings are printed.
@@ -131,8 +209,8 @@ pub fn validate(scene: &SceneDesc) -> Report {
     let mut r = Report::default();
     validate_settings(&scene.render, &mut r);
     validate_camera(scene, &mut r);
-    r.colour("world.ambient", scene.world.ambient, MAX_INTENSITY);
-    r.colour("world.background", scene.world.background, MAX_INTENSITY);
+    r.colour("world.ambient", scene.world.ambient);
+    r.colour("world.background", scene.world.background);
     for (name, m) in &scene.materials {
         validate_material(&format!("materials.{name}"), m, &mut r);
     }
@@ -149,7 +227,7 @@ fn validate_camera(scene: &SceneDesc, r: &mut Report) {
     let c = &scene.camera;
     let ok = r.point("camera.position", c.position) & r.point("camera.look_at", c.look_at);
     let up_ok = r.direction("camera.up", c.up);
-    r.finite_in("camera.fov_y", c.fov_y, 1e-6, 179.0);
+    r.finite_in("camera.fov_y", c.fov_y, ranges::FOV_Y);
     if !(ok && up_ok) {
         return;
     }
@@ -167,21 +245,17 @@ fn validate_camera(scene: &SceneDesc, r: &mut Report) {
 
 fn validate_material(path: &str, m: &MaterialDesc, r: &mut Report) {
     for (field, v) in [("ka", m.ka), ("kd", m.kd), ("ks", m.ks), ("kr", m.kr), ("kt", m.kt)] {
-        r.colour(&format!("{path}.{field}"), v, MAX_INTENSITY);
+        r.colour(&format!("{path}.{field}"), v);
     }
-    r.colour(&format!("{path}.emission"), m.emission, MAX_INTENSITY);
-    r.finite_in(&format!("{path}.shininess"), m.shininess, 0.0, MAX_SHININESS);
-    if !m.ior.is_finite() || as_f32(m.ior) <= 0.0 || m.ior > MAX_IOR {
-        r.error(format!("{path}.ior"), format!("{} is outside the allowed range (0, {MAX_IOR}]", m.ior));
+    r.colour(&format!("{path}.emission"), m.emission);
+    r.finite_in(&format!("{path}.shininess"), m.shininess, ranges::SHININESS);
+    if !ranges::IOR.contains(m.ior) {
+        let (lo, hi) = (ranges::IOR.min, ranges::IOR.max);
+        r.error(format!("{path}.ior"), format!("{} is outside the allowed range ({lo}, {hi}]", m.ior));
     }
     if let Some(ch) = &m.checker {
-        r.colour(&format!("{path}.checker.kd"), ch.kd, MAX_INTENSITY);
-        if !ch.size.is_finite() || as_f32(ch.size) <= 0.0 || ch.size > MAX_COORD {
-            r.error(
-                format!("{path}.checker.size"),
-                format!("{} is outside the allowed range (0, {MAX_COORD:e}]", ch.size),
-            );
-        }
+        r.colour(&format!("{path}.checker.kd"), ch.kd);
+        r.size(&format!("{path}.checker.size"), ch.size, ranges::SIZE);
     }
     let sum = (0..3).map(|i| m.kr.0[i] + m.kt.0[i]).fold(0.0, f64::max);
     if sum > 1.0 {
@@ -220,9 +294,9 @@ fn validate_light(path: &str, l: &LightDesc, r: &mut Report) {
         }
         (_, None) => {}
     }
-    r.colour(&format!("{path}.diffuse"), l.diffuse, MAX_INTENSITY);
-    r.colour(&format!("{path}.specular"), l.specular, MAX_INTENSITY);
-    r.colour(&format!("{path}.ambient"), l.ambient, MAX_INTENSITY);
+    r.colour(&format!("{path}.diffuse"), l.diffuse);
+    r.colour(&format!("{path}.specular"), l.specular);
+    r.colour(&format!("{path}.ambient"), l.ambient);
     if l.kind == LightKind::Directional {
         if !l.attenuation.is_none() {
             r.error(format!("{path}.attenuation"), "a directional light is not attenuated (f_att = 1); remove it");
@@ -231,12 +305,13 @@ fn validate_light(path: &str, l: &LightDesc, r: &mut Report) {
         validate_attenuation(&format!("{path}.attenuation"), l.attenuation, r);
     }
     if l.kind == LightKind::Spot {
-        r.finite_in(&format!("{path}.exponent"), l.exponent, 0.0, MAX_SPOT_EXPONENT);
+        r.finite_in(&format!("{path}.exponent"), l.exponent, ranges::SPOT_EXPONENT);
         let c = l.cutoff;
-        if !(c.is_finite() && ((0.0..=90.0).contains(&c) || c == NO_CONE_CUTOFF)) {
+        if !(ranges::CUTOFF.contains(c) || c == NO_CONE_CUTOFF) {
+            let (lo, hi) = (ranges::CUTOFF.min, ranges::CUTOFF.max);
             r.error(
                 format!("{path}.cutoff"),
-                format!("{c} is outside the allowed range [0, 90] or {NO_CONE_CUTOFF} (no cone)"),
+                format!("{c} is outside the allowed range [{lo}, {hi}] or {NO_CONE_CUTOFF} (no cone)"),
             );
         }
     } else {
@@ -254,7 +329,7 @@ fn validate_attenuation(path: &str, a: Attenuation, r: &mut Report) {
     // Check all three (no short circuit) so that every bad coefficient is reported.
     let checks: Vec<bool> = [("c", a.c), ("l", a.l), ("q", a.q)]
         .into_iter()
-        .map(|(n, v)| r.finite_in(&format!("{path}.{n}"), v, -MAX_INTENSITY, MAX_INTENSITY))
+        .map(|(n, v)| r.finite_in(&format!("{path}.{n}"), v, ranges::ATTENUATION))
         .collect();
     let finite = checks.iter().all(|&ok| ok);
     if !finite {
@@ -293,9 +368,7 @@ fn validate_object(path: &str, o: &ObjectDesc, scene: &SceneDesc, r: &mut Report
     match o {
         ObjectDesc::Sphere(SphereDesc { center, radius, .. }) => {
             r.point(&format!("{path}.center"), *center);
-            if !radius.is_finite() || as_f32(*radius) <= 0.0 || *radius > MAX_COORD {
-                r.error(format!("{path}.radius"), format!("{radius} is outside the allowed range (0, {MAX_COORD:e}]"));
-            }
+            r.size(&format!("{path}.radius"), *radius, ranges::SIZE);
         }
         ObjectDesc::Plane(PlaneDesc { point, normal, .. }) => {
             r.point(&format!("{path}.point"), *point);

@@ -1,7 +1,7 @@
 //! Lights panel: the list with add, duplicate and remove, and the selected light's fields.
 
 use egui::Ui;
-use glint_core::scene::{LightDesc, LightKind, MAX_INTENSITY, NO_CONE_CUTOFF};
+use glint_core::scene::{LightDesc, LightKind, NO_CONE_CUTOFF, ranges};
 
 use crate::document::Document;
 use crate::widgets::{choice, number, rgb_edit, slider, vec3_edit};
@@ -65,19 +65,19 @@ pub fn ui(ui: &mut Ui, doc: &mut Document, selected: &mut usize) -> bool {
         let d = light.direction.get_or_insert([0.0, -1.0, 0.0]);
         changed |= vec3_edit(ui, label, d, 0.01);
     }
-    changed |= rgb_edit(ui, "I_d", &mut light.diffuse, MAX_INTENSITY);
-    changed |= rgb_edit(ui, "I_s", &mut light.specular, MAX_INTENSITY);
-    changed |= rgb_edit(ui, "I_a,j", &mut light.ambient, MAX_INTENSITY);
+    changed |= rgb_edit(ui, "I_d", &mut light.diffuse);
+    changed |= rgb_edit(ui, "I_s", &mut light.specular);
+    changed |= rgb_edit(ui, "I_a,j", &mut light.ambient);
     if light.kind != LightKind::Directional {
         ui.label("Attenuation f_att = 1 / (c + l·d + q·d²)");
         ui.horizontal(|ui| {
-            changed |= number(ui, "c", &mut light.attenuation.c, 0.01, 0.0..=1e6);
-            changed |= number(ui, "l", &mut light.attenuation.l, 0.01, 0.0..=1e6);
-            changed |= number(ui, "q", &mut light.attenuation.q, 0.01, 0.0..=1e6);
+            changed |= number(ui, "c", &mut light.attenuation.c, 0.01, ranges::ATTENUATION);
+            changed |= number(ui, "l", &mut light.attenuation.l, 0.01, ranges::ATTENUATION);
+            changed |= number(ui, "q", &mut light.attenuation.q, 0.01, ranges::ATTENUATION);
         });
     }
     if light.kind == LightKind::Spot {
-        changed |= slider(ui, "Spot exponent", &mut light.exponent, 0.0..=256.0);
+        changed |= slider(ui, "Spot exponent", &mut light.exponent, ranges::SPOT_EXPONENT);
         // The slider covers the cones proper; "no cone" is a value of its own.
         let mut no_cone = light.cutoff >= NO_CONE_CUTOFF;
         if ui.checkbox(&mut no_cone, format!("No cone (cutoff {NO_CONE_CUTOFF}°)")).changed() {
@@ -85,7 +85,7 @@ pub fn ui(ui: &mut Ui, doc: &mut Document, selected: &mut usize) -> bool {
             changed = true;
         }
         if !no_cone {
-            changed |= slider(ui, "Cutoff", &mut light.cutoff, 0.0..=90.0);
+            changed |= slider(ui, "Cutoff", &mut light.cutoff, ranges::CUTOFF);
         }
     }
     changed |= ui.checkbox(&mut light.casts_shadows, "Casts shadows").changed();

@@ -1,14 +1,10 @@
 //! Materials panel: the material of the picked object (or any material by name).
 
 use egui::Ui;
-use glint_core::scene::{CheckerDesc, MAX_IOR, MAX_SHININESS, Rgb, SpecularModel};
+use glint_core::scene::{CheckerDesc, Rgb, SpecularModel, ranges};
 
 use crate::document::Document;
-use crate::widgets::{choice, log_slider, rgb_edit};
-
-/// Colours of a material are reflectances: at most 1 per channel for k_a, k_d, k_s, k_r, k_t
-/// (validation enforces physical limits; the editor keeps to the meaningful range).
-const MAX_COEFF: f64 = 1.0;
+use crate::widgets::{choice, rgb_edit, slider};
 
 pub fn ui(
     ui: &mut Ui,
@@ -44,27 +40,27 @@ pub fn ui(
         ui.weak(format!("Shared by {users} objects."));
     }
     let Some(m) = doc.desc.materials.get_mut(&name) else { return changed };
-    changed |= rgb_edit(ui, "k_a", &mut m.ka, MAX_COEFF);
-    changed |= rgb_edit(ui, "k_d", &mut m.kd, MAX_COEFF);
-    changed |= rgb_edit(ui, "k_s", &mut m.ks, MAX_COEFF);
-    changed |= log_slider(ui, "Shininess n", &mut m.shininess, 0.0..=MAX_SHININESS);
+    changed |= rgb_edit(ui, "k_a", &mut m.ka);
+    changed |= rgb_edit(ui, "k_d", &mut m.kd);
+    changed |= rgb_edit(ui, "k_s", &mut m.ks);
+    changed |= slider(ui, "Shininess n", &mut m.shininess, ranges::SHININESS);
     changed |=
         choice(ui, "Specular model", &mut m.specular_model, &[SpecularModel::Blinn, SpecularModel::Phong], |s| {
             if s == SpecularModel::Blinn { "Blinn (N·H)" } else { "Phong (R·V)" }
         });
-    changed |= rgb_edit(ui, "k_r", &mut m.kr, MAX_COEFF);
-    changed |= rgb_edit(ui, "k_t", &mut m.kt, MAX_COEFF);
-    // Logarithmic over the whole valid range: ior < 1 (a bubble) and 100 (stiff case 13) too.
-    changed |= log_slider(ui, "Index of refraction", &mut m.ior, 1e-3..=MAX_IOR);
-    changed |= rgb_edit(ui, "E_m", &mut m.emission, 1e3);
+    changed |= rgb_edit(ui, "k_r", &mut m.kr);
+    changed |= rgb_edit(ui, "k_t", &mut m.kt);
+    // The whole valid range: ior < 1 (a bubble) and 100 (stiff case 13) too.
+    changed |= slider(ui, "Index of refraction", &mut m.ior, ranges::IOR);
+    changed |= rgb_edit(ui, "E_m", &mut m.emission);
     let mut has_checker = m.checker.is_some();
     if ui.checkbox(&mut has_checker, "Checker").changed() {
         m.checker = has_checker.then(|| CheckerDesc { kd: Rgb::splat(0.1), size: 1.0 });
         changed = true;
     }
     if let Some(c) = &mut m.checker {
-        changed |= rgb_edit(ui, "Checker k_d", &mut c.kd, MAX_COEFF);
-        changed |= log_slider(ui, "Checker size", &mut c.size, 1e-3..=1e3);
+        changed |= rgb_edit(ui, "Checker k_d", &mut c.kd);
+        changed |= slider(ui, "Checker size", &mut c.size, ranges::SIZE);
     }
     changed
 }

@@ -1,0 +1,97 @@
+//! Every slider and number field of the panels offers exactly the range validation allows
+//! (`glint_core::scene::ranges`), so no valid value is clamped away; and ε = 0, which validation
+//! allows, can be typed and reaches the document as 0.
+
+use egui::accesskit::Role;
+use egui_kittest::Harness;
+use egui_kittest::kittest::{NodeT, Queryable};
+use glint_core::scene::{LightKind, Range, ranges};
+use glint_viewer::ViewerApp;
+
+use crate::support::{choose, settle, viewer};
+
+/// Validation's range for the editor labelled `label`, as (min, max).
+fn validation_range(label: &str) -> Option<(f64, f64)> {
+    let real = |r: Range<f64>| Some((r.min, r.max));
+    let whole = |r: Range<u32>| Some((f64::from(r.min), f64::from(r.max)));
+    let channel = [" R", " G", " B"].iter().any(|c| label.ends_with(c));
+    let axis = [" x", " y", " z"].iter().any(|a| label.ends_with(a));
+    match label {
+        "Field of view" => real(ranges::FOV_Y),
+        "Max depth" => whole(ranges::DEPTH),
+        "Bailout" => real(ranges::BAILOUT),
+        "Epsilon" => real(ranges::EPSILON),
+        "Samples per pixel" => whole(ranges::SPP),
+        "Width" | "Height" => whole(ranges::IMAGE_SIDE),
+        "c" | "l" | "q" => real(ranges::ATTENUATION),
+        "Spot exponent" => real(ranges::SPOT_EXPONENT),
+        "Cutoff" => real(ranges::CUTOFF),
+        "Shininess n" => real(ranges::SHININESS),
+        "Index of refraction" => real(ranges::IOR),
+        "Checker size" => real(ranges::SIZE),
+        _ if channel => real(ranges::COLOUR),
+        _ if axis => real(ranges::COORD),
+        _ => None,
+    }
+}
+
+/// Checks every slider and number field on screen; returns their labels.
+fn check_editors(h: &Harness<'static, ViewerApp>, panel: &str) -> Vec<String> {
+    let mut labels = Vec::new();
+    for role in [Role::Slider, Role::SpinButton] {
+        for node in h.query_all_by_role(role) {
+            let node = node.accesskit_node();
+            let label = node.label().unwrap_or_default();
+            let Some((min, max)) = validation_range(&label) else {
+                panic!("{panel}: the editor {label:?} has no range in validation's table");
+            };
+            assert_eq!(
+                (node.min_numeric_value(), node.max_numeric_value()),
+                (Some(min), Some(max)),
+                "{panel}: the range of {label:?} is not validation's"
+            );
+            labels.push(label);
+        }
+    }
+    labels
+}
+
+#[test]
+fn every_editor_offers_the_range_validation_allows() {
+    let Some(mut h) = viewer("whitted", (1000.0, 900.0)) else { return };
+    let scene = check_editors(&h, "Scene");
+    for l in ["Field of view", "Max depth", "Bailout", "Epsilon", "Samples per pixel", "Width", "Background B"] {
+        assert!(scene.iter().any(|s| s == l), "Scene: no editor {l:?} among {scene:?}");
+    }
+
+    choose(&mut h, "Lights", "Type", "spot");
+    assert_eq!(h.state().doc.desc.lights[0].kind, LightKind::Spot);
+    let lights = check_editors(&h, "Lights");
+    for l in ["Position x", "Spot axis z", "I_d R", "c", "q", "Spot exponent", "Cutoff"] {
+        assert!(lights.iter().any(|s| s == l), "Lights: no editor {l:?} among {lights:?}");
+    }
+
+    choose(&mut h, "Materials", "Material", "floor");
+    let materials = check_editors(&h, "Materials");
+    for l in ["k_d G", "Shininess n", "Index of refraction", "E_m R", "Checker size", "Checker k_d B"] {
+        assert!(materials.iter().any(|s| s == l), "Materials: no editor {l:?} among {materials:?}");
+    }
+}
+
+#[test]
+fn epsilon_zero_typed_into_its_field_reaches_the_document() {
+    let Some(mut h) = viewer("whitted", (1000.0, 640.0)) else { return };
+    assert!(h.state().doc.desc.render.epsilon > 0.0);
+    // Click the value as a user would, select what it shows, type 0 and press Enter.
+    h.get_by_role_and_label(Role::SpinButton, "Epsilon").click();
+    h.run_steps(2);
+    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::A);
+    h.get_by_role_and_label(Role::SpinButton, "Epsilon").type_text("0");
+    h.run_steps(1);
+    h.key_press(egui::Key::Enter);
+    h.run_steps(2);
+    settle(&mut h);
+    let doc = &h.state().doc;
+    assert_eq!(doc.desc.render.epsilon, 0.0, "ε = 0 is valid and must not be clamped");
+    assert!(doc.issues.is_empty(), "{:?}", doc.issues);
+}
