@@ -11,19 +11,20 @@ use crate::support::{choose, gpu_image, mean_abs_diff, settle, viewer};
 fn depth_and_epsilon_set_through_the_ui_change_the_gpu_image_and_the_statistics() {
     let Some(mut h) = viewer("whitted", (1000.0, 640.0)) else { return };
     let before = gpu_image(&h);
-    let counts_before = h.state().gpu.as_ref().and_then(|g| g.latest.as_ref()).map(|l| l.counts).expect("counts");
+    let counts_before =
+        h.state().renders.gpu.as_ref().and_then(|g| g.latest.as_ref()).map(|l| l.counts).expect("counts");
     assert!(counts_before.reflection > 0 && counts_before.refraction > 0, "whitted has mirror and glass rays");
 
     h.get_by_role_and_label(Role::Slider, "Max depth").set_value_accesskit(0.0);
     settle(&mut h);
     assert_eq!(h.state().doc.desc.render.max_depth, 0);
     let depth0 = gpu_image(&h);
-    let counts = h.state().gpu.as_ref().and_then(|g| g.latest.as_ref()).map(|l| l.counts).expect("counts");
+    let counts = h.state().renders.gpu.as_ref().and_then(|g| g.latest.as_ref()).map(|l| l.counts).expect("counts");
     // Depth 0 is local shading only: no secondary rays, so the mirror and glass go dull.
     assert_eq!((counts.reflection, counts.refraction), (0, 0), "{counts:?}");
     assert!(mean_abs_diff(&before, &depth0) > 1e-3, "depth 0 must change the image");
     // The statistics are of the new revision and still show agreement of GPU and CPU.
-    let errors = h.state().comparison.latest.as_ref().map(|c| (c.revision, c.errors)).expect("comparison");
+    let errors = h.state().renders.comparison.latest.as_ref().map(|c| (c.revision, c.errors)).expect("comparison");
     assert_eq!(errors.0, h.state().doc.revision);
     assert!(errors.1.psnr > 40.0, "GPU and CPU disagree at depth 0: {:?}", errors.1);
 
@@ -68,12 +69,13 @@ fn material_ks_and_light_type_set_through_the_ui_change_the_gpu_image_and_the_st
 }
 
 fn latest_counts(h: &egui_kittest::Harness<'static, glint_viewer::ViewerApp>) -> glint_core::cpu::RayCounts {
-    h.state().gpu.as_ref().and_then(|g| g.latest.as_ref()).map(|l| l.counts).expect("GPU ray counts")
+    h.state().renders.gpu.as_ref().and_then(|g| g.latest.as_ref()).map(|l| l.counts).expect("GPU ray counts")
 }
 
 /// The error statistics shown are those of the current revision, and GPU and CPU agree.
 fn assert_current_agreement(h: &egui_kittest::Harness<'static, glint_viewer::ViewerApp>) {
-    let (revision, errors) = h.state().comparison.latest.as_ref().map(|c| (c.revision, c.errors)).expect("comparison");
+    let (revision, errors) =
+        h.state().renders.comparison.latest.as_ref().map(|c| (c.revision, c.errors)).expect("comparison");
     assert_eq!(revision, h.state().doc.revision, "the statistics are of an older revision");
     assert!(errors.psnr > 40.0, "GPU and CPU disagree: {errors:?}");
 }
@@ -81,7 +83,7 @@ fn assert_current_agreement(h: &egui_kittest::Harness<'static, glint_viewer::Vie
 #[test]
 fn an_invalid_value_is_reported_in_the_ui_and_the_last_valid_image_stays() {
     let Some(mut h) = viewer("whitted", (1000.0, 640.0)) else { return };
-    let revision = h.state().gpu.as_ref().and_then(|g| g.latest.as_ref()).map(|l| l.revision);
+    let revision = h.state().renders.gpu.as_ref().and_then(|g| g.latest.as_ref()).map(|l| l.revision);
     h.get_by_label("Lights").click();
     h.run_steps(2);
     // Attenuation with c = l = q = 0 divides by zero: validation must refuse it.
@@ -89,5 +91,5 @@ fn an_invalid_value_is_reported_in_the_ui_and_the_last_valid_image_stays() {
     h.run_steps(3);
     assert!(!h.state().doc.issues.is_empty(), "c = 0 must be reported");
     assert!(h.query_all_by_label_contains("lights[0].attenuation").count() > 0, "the problem is shown in the UI");
-    assert_eq!(h.state().gpu.as_ref().and_then(|g| g.latest.as_ref()).map(|l| l.revision), revision);
+    assert_eq!(h.state().renders.gpu.as_ref().and_then(|g| g.latest.as_ref()).map(|l| l.revision), revision);
 }

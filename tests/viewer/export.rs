@@ -40,7 +40,7 @@ fn save_image_writes_a_png_with_the_render_settings() {
     assert_eq!(get("glint:epsilon"), s.epsilon.to_string());
     assert_eq!(get("glint:epsilon_mode"), s.epsilon_mode.name());
     assert_eq!(get("glint:view"), "All three side by side");
-    let adapter = h.state().gpu.as_ref().map(|g| g.adapter_name()).expect("a GPU in this test");
+    let adapter = h.state().renders.gpu.as_ref().map(|g| g.adapter_name()).expect("a GPU in this test");
     assert_eq!(get("glint:device"), adapter);
     let _ = std::fs::remove_dir_all(dir);
 }

@@ -95,8 +95,8 @@ fn without_a_gpu_the_viewer_shows_the_cpu_reference_and_says_why() {
     }
     h.run_steps(2);
     let app = h.state();
-    assert!(app.gpu.is_none());
-    assert_eq!(app.mode, ViewMode::Cpu);
-    assert!(app.cpu.finished.is_some(), "the CPU reference rendered");
+    assert!(app.renders.gpu.is_none());
+    assert_eq!(app.layout.mode, ViewMode::Cpu);
+    assert!(app.renders.cpu.finished.is_some(), "the CPU reference rendered");
     assert!(h.query_by_label_contains("No GPU: no adapter in this test").is_some());
 }

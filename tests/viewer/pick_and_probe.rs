@@ -10,7 +10,7 @@ use crate::support::{click, gpu_image, settle, viewer};
 
 /// A pixel whose first hit (on the CPU) is object `object`, near the middle of its area.
 fn pixel_of(h: &egui_kittest::Harness<'static, glint_viewer::ViewerApp>, object: u32) -> (u32, u32) {
-    let (_, cpu) = h.state().cpu.finished.as_ref().expect("a CPU render");
+    let (_, cpu) = h.state().renders.cpu.finished.as_ref().expect("a CPU render");
     let img = &cpu.image;
     let hits: Vec<(u32, u32)> = (0..img.height)
         .flat_map(|y| (0..img.width).map(move |x| (x, y)))
@@ -34,13 +34,13 @@ fn clicking_an_object_selects_it_and_shows_its_material() {
     let pos = h.state().screen_pos_of_pixel(x, y).expect("the view is drawn");
     click(&mut h, pos, Modifiers::NONE);
     h.run_steps(2);
-    assert_eq!(h.state().selected_object, Some(glass as usize));
-    assert_eq!(h.state().tab, Tab::Materials);
-    assert_eq!(h.state().selected_material.as_deref(), Some("glass"));
+    assert_eq!(h.state().selection.object, Some(glass as usize));
+    assert_eq!(h.state().layout.tab, Tab::Materials);
+    assert_eq!(h.state().selection.material.as_deref(), Some("glass"));
     // Clicking the sky selects nothing.
     let pos = h.state().screen_pos_of_pixel(2, 2).expect("the view is drawn");
     click(&mut h, pos, Modifiers::NONE);
-    assert_eq!(h.state().selected_object, None);
+    assert_eq!(h.state().selection.object, None);
 }
 
 #[test]
@@ -52,14 +52,14 @@ fn the_probe_breakdown_sums_to_the_pixel_radiance_on_both_tracers() {
     click(&mut h, pos, Modifiers::COMMAND);
     settle(&mut h);
     let app = h.state();
-    assert_eq!(app.tab, Tab::Probe);
-    let probe = app.probe.as_ref().expect("a probe");
+    assert_eq!(app.layout.tab, Tab::Probe);
+    let probe = app.renders.probe.as_ref().expect("a probe");
     assert_eq!((probe.x, probe.y), (x, y));
     let cpu = &probe.cpu;
     assert_eq!(cpu.object_id, glass);
     assert!(!cpu.lights.is_empty());
     // CPU: the terms add up to the radiance, which is the pixel's value (1 spp: one sample).
-    let cpu_pixel = app.cpu.finished.as_ref().map(|(_, f)| f.image.get(x, y)).expect("CPU image");
+    let cpu_pixel = app.renders.cpu.finished.as_ref().map(|(_, f)| f.image.get(x, y)).expect("CPU image");
     assert!((cpu.sum_of_terms() - cpu.total).abs().max_element() < 1e-12, "{cpu:?}");
     assert!((cpu.total - cpu_pixel).abs().max_element() < 1e-12, "probe {} vs pixel {cpu_pixel}", cpu.total);
     // GPU: the same in f32 (sums in another order: a few ULPs of the largest term).
@@ -81,10 +81,10 @@ fn the_probe_breakdown_sums_to_the_pixel_radiance_on_both_tracers() {
     h.state_mut().doc.edited();
     settle(&mut h);
     let app = h.state();
-    let probe = app.probe.as_ref().expect("the probe stays");
+    let probe = app.renders.probe.as_ref().expect("the probe stays");
     assert_eq!(probe.revision, app.doc.revision, "the probe is of the edited scene");
     assert_eq!((probe.cpu.reflected, probe.cpu.transmitted), (DVec3::ZERO, DVec3::ZERO));
-    let cpu_pixel = app.cpu.finished.as_ref().map(|(_, f)| f.image.get(x, y)).expect("CPU image");
+    let cpu_pixel = app.renders.cpu.finished.as_ref().map(|(_, f)| f.image.get(x, y)).expect("CPU image");
     assert!(
         (probe.cpu.total - cpu_pixel).abs().max_element() < 1e-12,
         "probe {} vs pixel {cpu_pixel}",
@@ -93,12 +93,12 @@ fn the_probe_breakdown_sums_to_the_pixel_radiance_on_both_tracers() {
     assert!(h.query_by_label("CPU and GPU agree on every term within tolerance.").is_some());
 
     // A GPU term off by 0.1 (as a shader bug would make it) is the one the panel points at.
-    let mut wrong = match &h.state().probe.as_ref().expect("probe").gpu {
+    let mut wrong = match &h.state().renders.probe.as_ref().expect("probe").gpu {
         GpuProbe::Done(Ok(g)) => g.clone(),
         other => panic!("GPU probe: {other:?}"),
     };
     wrong.lights[0].diffuse += DVec3::splat(0.1);
-    h.state_mut().probe.as_mut().expect("probe").gpu = GpuProbe::Done(Ok(wrong));
+    h.state_mut().renders.probe.as_mut().expect("probe").gpu = GpuProbe::Done(Ok(wrong));
     h.run_steps(2);
     assert!(
         h.query_by_label("First difference beyond tolerance: light 0: diffuse").is_some(),

@@ -20,7 +20,7 @@ fn options() -> SnapshotOptions {
 }
 
 fn snapshot(h: &mut egui_kittest::Harness<'static, glint_viewer::ViewerApp>, name: &str) {
-    let status = h.state().status_rect;
+    let status = h.state().layout.status_rect;
     h.mask(status);
     h.snapshot_options(name, &options());
 }

@@ -87,7 +87,7 @@ pub fn click(harness: &mut Harness<'static, ViewerApp>, pos: egui::Pos2, modifie
 /// The current GPU image (read back for the comparison) of the current revision.
 pub fn gpu_image(harness: &Harness<'static, ViewerApp>) -> glint_core::HdrImage {
     let app = harness.state();
-    let latest = app.gpu.as_ref().and_then(|g| g.latest.as_ref()).expect("a GPU render");
+    let latest = app.renders.gpu.as_ref().and_then(|g| g.latest.as_ref()).expect("a GPU render");
     assert_eq!(latest.revision, app.doc.revision, "the GPU image is of an older revision");
     latest.image.clone()
 }

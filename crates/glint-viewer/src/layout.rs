@@ -1,0 +1,73 @@
+//! What the window shows and where: the view mode, the side panel's tab, the wipe, the light
+//! gizmos, and where the images and the status bar were drawn last frame.
+
+use egui::Ui;
+
+use crate::gizmos::Gizmo;
+use crate::view::{self, Textures, ViewAction, ViewMode};
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Tab {
+    Scene,
+    Lights,
+    Materials,
+    Probe,
+}
+
+#[derive(Debug)]
+pub struct Layout {
+    pub mode: ViewMode,
+    pub tab: Tab,
+    /// Where the split wipe divides GPU from CPU, in [0, 1] of the image width.
+    pub wipe: f32,
+    pub show_gizmos: bool,
+    /// Where the images were drawn last frame (screen points), for mapping pixels to clicks.
+    pub view_rects: Vec<egui::Rect>,
+    /// Where the status bar was drawn (its timings change from run to run).
+    pub status_rect: egui::Rect,
+}
+
+impl Layout {
+    pub fn new(mode: ViewMode) -> Self {
+        Self {
+            mode,
+            tab: Tab::Scene,
+            wipe: 0.5,
+            show_gizmos: true,
+            view_rects: Vec::new(),
+            status_rect: egui::Rect::NOTHING,
+        }
+    }
+
+    /// The central panel: the view modes (only the CPU one without a GPU) over the view of a
+    /// `size` image; returns what the pointer did on it.
+    pub fn central(
+        &mut self,
+        ui: &mut Ui,
+        has_gpu: bool,
+        textures: Textures,
+        size: (u32, u32),
+        gizmos: &[Gizmo],
+    ) -> Vec<ViewAction> {
+        ui.horizontal(|ui| {
+            for m in ViewMode::ALL {
+                let enabled = has_gpu || m == ViewMode::Cpu;
+                ui.add_enabled_ui(enabled, |ui| ui.selectable_value(&mut self.mode, m, m.label()));
+            }
+            if self.mode == ViewMode::Wipe {
+                ui.add(egui::Slider::new(&mut self.wipe, 0.0..=1.0).show_value(false).text("Wipe"));
+            }
+        });
+        let (actions, rects) = view::show(ui, self.mode, &mut self.wipe, textures, size, gizmos, self.show_gizmos);
+        self.view_rects = rects;
+        actions
+    }
+
+    /// The screen position of the centre of pixel (x, y) of a `size` image in the first image
+    /// of the view.
+    pub fn screen_pos_of_pixel(&self, x: u32, y: u32, size: (u32, u32)) -> Option<egui::Pos2> {
+        let r = self.view_rects.first()?;
+        let (w, h) = (size.0 as f32, size.1 as f32);
+        Some(r.min + egui::vec2((x as f32 + 0.5) / w * r.width(), (y as f32 + 0.5) / h * r.height()))
+    }
+}

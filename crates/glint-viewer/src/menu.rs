@@ -1,0 +1,79 @@
+//! The menu bar: files (open, recent, built-in, save, save as, save image, quit) and view.
+
+use std::path::PathBuf;
+
+use egui::Ui;
+use glint_core::scene::BUILTIN_SCENES;
+
+use crate::dialogs;
+use crate::document::Document;
+use crate::layout::Layout;
+use crate::recent::Recent;
+use crate::view::ViewMode;
+
+/// What a menu item asks the app to do (the view settings the menu changes itself).
+#[derive(Clone, Debug, PartialEq)]
+pub enum MenuAction {
+    /// Open this scene file next frame.
+    Open(PathBuf),
+    OpenBuiltin(&'static str),
+    Save(PathBuf),
+    SaveAs,
+    SaveImage,
+}
+
+pub fn bar(ui: &mut Ui, doc: &Document, recent: &Recent, layout: &mut Layout) -> Option<MenuAction> {
+    let mut action = None;
+    egui::MenuBar::new().ui(ui, |ui| {
+        ui.menu_button("File", |ui| {
+            if ui.button("Open scene…").clicked()
+                && let Some(p) = dialogs::pick_scene()
+            {
+                action = Some(MenuAction::Open(p));
+            }
+            ui.menu_button("Recent scenes", |ui| {
+                if recent.files.is_empty() {
+                    ui.weak("none yet");
+                }
+                for f in &recent.files {
+                    if ui.button(f.display().to_string()).clicked() {
+                        action = Some(MenuAction::Open(f.clone()));
+                    }
+                }
+            });
+            ui.menu_button("Built-in scenes", |ui| {
+                for b in BUILTIN_SCENES {
+                    if ui.button(b.name).clicked() {
+                        action = Some(MenuAction::OpenBuiltin(b.name));
+                    }
+                }
+            });
+            ui.separator();
+            if ui.add_enabled(doc.path.is_some(), egui::Button::new("Save scene")).clicked()
+                && let Some(p) = doc.path.clone()
+            {
+                action = Some(MenuAction::Save(p));
+            }
+            if ui.button("Save scene as…").clicked() {
+                action = Some(MenuAction::SaveAs);
+            }
+            if ui.button("Save image…  (Ctrl+S)").clicked() {
+                action = Some(MenuAction::SaveImage);
+            }
+            ui.separator();
+            if ui.button("Quit").clicked() {
+                ui.ctx().send_viewport_cmd(egui::ViewportCommand::Close);
+            }
+        });
+        ui.menu_button("View", |ui| {
+            for m in ViewMode::ALL {
+                ui.radio_value(&mut layout.mode, m, m.label());
+            }
+            ui.checkbox(&mut layout.show_gizmos, "Light gizmos");
+        });
+        ui.separator();
+        let dirty = if doc.dirty { " (edited)" } else { "" };
+        ui.label(format!("{}{dirty}", doc.name));
+    });
+    action
+}

@@ -1,0 +1,223 @@
+//! The render jobs of the document: the GPU view, the CPU reference, their comparison and the
+//! pixel probe; which of them the current revision still needs, and their results on screen.
+
+use std::time::{Duration, Instant};
+
+use crate::comparison::{Compared, Comparison};
+use crate::cpu_worker::{CpuWorker, Finished};
+use crate::document::Document;
+use crate::gpu_view::{GpuImage, GpuView};
+use crate::images::CpuTexture;
+use crate::panels::status::Status;
+use crate::probe::{GpuProbe, ProbeState};
+use crate::view::Textures;
+
+#[derive(Debug)]
+pub struct Renders {
+    pub gpu: Option<GpuView>,
+    /// Why there is no GPU view, when there is none.
+    pub no_gpu_reason: Option<String>,
+    pub cpu: CpuWorker,
+    pub comparison: Comparison,
+    pub probe: Option<ProbeState>,
+    cpu_texture: CpuTexture,
+    diff_texture: CpuTexture,
+    /// The revision the CPU reference was last started for.
+    cpu_revision: Option<u64>,
+    /// The revision (and whether as a preview) the GPU was last given.
+    gpu_submitted: Option<(u64, bool)>,
+    /// The revision the GPU last rendered at full resolution.
+    gpu_full_revision: Option<u64>,
+    cpu_uploaded: Option<Instant>,
+    repaint: egui::Context,
+}
+
+impl Renders {
+    pub fn new(cc: &eframe::CreationContext<'_>, no_gpu_reason: Option<String>) -> Self {
+        let gpu = cc.wgpu_render_state.as_ref().map(GpuView::new);
+        let no_gpu_reason =
+            gpu.is_none().then(|| no_gpu_reason.unwrap_or_else(|| "the window has no wgpu renderer".into()));
+        let repaint = cc.egui_ctx.clone();
+        Self {
+            gpu,
+            no_gpu_reason,
+            cpu: CpuWorker::new(repaint.clone()),
+            comparison: Comparison::new(repaint.clone()),
+            probe: None,
+            cpu_texture: CpuTexture::default(),
+            diff_texture: CpuTexture::default(),
+            cpu_revision: None,
+            gpu_submitted: None,
+            gpu_full_revision: None,
+            cpu_uploaded: None,
+            repaint,
+        }
+    }
+
+    /// The finished CPU render of `revision`.
+    pub fn cpu_of(&self, revision: u64) -> Option<&Finished> {
+        self.cpu.finished.as_ref().filter(|(r, _)| *r == revision).map(|(_, f)| f)
+    }
+
+    /// The GPU image of `revision` read back to the host.
+    pub fn gpu_of(&self, revision: u64) -> Option<&GpuImage> {
+        self.gpu.as_ref().and_then(|g| g.latest.as_ref()).filter(|l| l.revision == revision)
+    }
+
+    /// The comparison of the two renders of `revision`.
+    pub fn comparison_of(&self, revision: u64) -> Option<&Compared> {
+        self.comparison.latest.as_ref().filter(|c| c.revision == revision)
+    }
+
+    /// Whether every render of the document's revision is finished (GPU, CPU, comparison, probe).
+    pub fn is_settled(&self, doc: &Document) -> bool {
+        if !doc.is_valid() {
+            // Nothing renders an invalid revision; only a GPU probe may still be on its way.
+            return self.probe_settled();
+        }
+        let rev = doc.revision;
+        let gpu_failed = self.gpu.as_ref().is_none_or(|g| g.error.is_some());
+        let gpu_done =
+            self.gpu.as_ref().is_none_or(|g| g.error.is_some() || (self.gpu_of(rev).is_some() && !g.is_busy()));
+        self.cpu_of(rev).is_some()
+            && gpu_done
+            && (gpu_failed || self.comparison_of(rev).is_some())
+            && self.probe_settled()
+    }
+
+    fn probe_settled(&self) -> bool {
+        self.probe.as_ref().is_none_or(|p| !matches!(p.gpu, GpuProbe::Pending(_)))
+    }
+
+    /// Collects what the background jobs produced since the last frame.
+    pub fn poll(&mut self, ctx: &egui::Context) {
+        // Progressive tiles are uploaded at most ten times a second: each upload converts and
+        // copies the whole image, which the UI thread should not do for every tile.
+        let due = self.cpu_uploaded.is_none_or(|t| t.elapsed() >= Duration::from_millis(100));
+        if (due || !self.cpu.is_running())
+            && let Some((w, h, rgba)) = self.cpu.poll()
+        {
+            self.cpu_texture.set_rgba(ctx, "cpu reference", w, h, &rgba);
+            self.cpu_uploaded = Some(Instant::now());
+        }
+        if !due {
+            ctx.request_repaint_after(Duration::from_millis(100));
+        }
+        if let Some(g) = &mut self.gpu {
+            g.poll();
+        }
+        if self.comparison.poll()
+            && let Some(c) = &self.comparison.latest
+        {
+            self.diff_texture.set_rgb(ctx, "difference", c.width, c.height, &c.heatmap);
+        }
+        if let Some(p) = &mut self.probe {
+            p.poll();
+        }
+    }
+
+    /// Starts whatever the document's revision still needs; `interacting` (a value or the
+    /// view being dragged) asks for GPU previews only.
+    pub fn schedule(&mut self, doc: &Document, interacting: bool) {
+        let rev = doc.revision;
+        if self.cpu_revision != Some(rev) && self.cpu.running_revision() != Some(rev) {
+            // The next edit cancels the reference at once; it restarts when the edit is done.
+            self.cpu.cancel();
+        }
+        if !doc.is_valid() {
+            return;
+        }
+        if let Some(g) = &mut self.gpu {
+            let wanted = (rev, interacting);
+            // A preview is only worth it for a new revision; a full render only once per revision
+            // (pressing a slider without moving it renders nothing new).
+            let needed = if interacting {
+                self.gpu_submitted.map(|s| s.0) != Some(rev)
+            } else {
+                self.gpu_full_revision != Some(rev)
+            };
+            if needed
+                && g.in_flight().is_none()
+                && let Some(flat) = doc.flat(interacting)
+                && g.submit(&flat, rev, interacting)
+            {
+                self.gpu_submitted = Some(wanted);
+                if !interacting {
+                    self.gpu_full_revision = Some(rev);
+                }
+            }
+            if g.error.is_some() && needed {
+                // A GPU error (e.g. a scene the GPU cannot take) is shown; do not retry every frame.
+                self.gpu_submitted = Some(wanted);
+                if !interacting {
+                    self.gpu_full_revision = Some(rev);
+                }
+            }
+        }
+        if !interacting
+            && self.cpu_revision != Some(rev)
+            && let Some(flat) = doc.flat(false)
+        {
+            self.cpu.start(flat, rev);
+            self.cpu_revision = Some(rev);
+        }
+        // The probed pixel follows the edits (not while dragging: a probe per preview is waste).
+        if !interacting && let Some((x, y)) = self.probe.as_ref().filter(|p| p.revision != rev).map(|p| (p.x, p.y)) {
+            self.start_probe(doc, x, y);
+        }
+        // By field, not through `cpu_of`/`gpu_of`: the comparison is borrowed mutably beside them.
+        let cpu = self.cpu.finished.as_ref().filter(|(r, _)| *r == rev).map(|(_, f)| &f.image);
+        let gpu = self.gpu.as_ref().and_then(|g| g.latest.as_ref()).filter(|l| l.revision == rev).map(|l| &l.image);
+        if let (Some(c), Some(g)) = (cpu, gpu) {
+            self.comparison.request(rev, c, g);
+        }
+    }
+
+    /// Probes pixel (x, y) of the document on both tracers.
+    pub fn start_probe(&mut self, doc: &Document, x: u32, y: u32) {
+        let Some(flat) = doc.flat(false) else { return };
+        // None when the image shrank past the probed pixel.
+        self.probe = (x < flat.header.width && y < flat.header.height).then(|| {
+            let tracer = self.gpu.as_ref().map(|g| &g.tracer);
+            ProbeState::start(&flat, x, y, doc.revision, tracer, &self.repaint)
+        });
+    }
+
+    /// The textures of the view (the difference only while it is of `revision`).
+    pub fn textures(&self, revision: u64) -> Textures {
+        Textures {
+            gpu: self.gpu.as_ref().and_then(|g| g.shown).map(|s| s.3),
+            cpu: self.cpu_texture.id(),
+            diff: self.diff_texture.id().filter(|_| self.comparison_of(revision).is_some()),
+        }
+    }
+
+    /// What the status bar shows; `ui_ms` is the app's own time per frame.
+    pub fn status(&self, revision: u64, ui_ms: f64) -> Status {
+        Status {
+            adapter: self.gpu.as_ref().map(GpuView::adapter_name),
+            gpu_ms: self.gpu.as_ref().and_then(|g| g.last_ms),
+            gpu_fps: self.gpu.as_ref().and_then(GpuView::renders_per_second),
+            ui_ms,
+            cpu_progress: self.cpu.progress(),
+            cpu_time: self.cpu.finished.as_ref().map(|(_, f)| f.elapsed.as_secs_f64()),
+            errors: self.comparison_of(revision).map(|c| c.errors),
+            comparing: self.comparison.is_running(),
+            gpu_counts: self.gpu.as_ref().and_then(|g| g.latest.as_ref()).map(|l| l.counts),
+            cpu_counts: self.cpu.finished.as_ref().map(|(_, f)| f.counts),
+        }
+    }
+
+    /// Whether a job is under way that is polled rather than signalled (GPU, comparison).
+    pub fn is_busy(&self) -> bool {
+        self.gpu.as_ref().is_some_and(GpuView::is_busy) || self.comparison.is_running()
+    }
+
+    pub fn gpu_renders(&self) -> usize {
+        self.gpu.as_ref().map_or(0, |g| g.renders)
+    }
+
+    pub fn adapter_name(&self) -> Option<String> {
+        self.gpu.as_ref().map(GpuView::adapter_name)
+    }
+}
