@@ -5,7 +5,7 @@
 use std::sync::Arc;
 use std::sync::mpsc::{Receiver, TryRecvError, channel};
 
-use glint_core::cpu::probe::Breakdown;
+use glint_core::cpu::shade::Breakdown;
 use glint_core::glam::DVec3;
 use glint_core::{FlatScene, probe_pixel};
 use glint_gpu::GpuTracer;
