@@ -149,13 +149,6 @@ impl FlatScene {
         f
     }
 
-    /// The same scene with every feature enabled: the unspecialised tracer.
-    pub fn unspecialised(&self) -> Self {
-        let mut s = self.clone();
-        s.header.features = feature::ALL;
-        s
-    }
-
     pub fn pixel_count(&self) -> usize {
         self.header.width as usize * self.header.height as usize
     }

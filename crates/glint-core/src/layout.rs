@@ -184,7 +184,8 @@ pub struct SceneHeader {
     pub triangle_count: u32,
     pub light_count: u32,
     pub material_count: u32,
-    /// Feature bits of the scene (`feature::*`), possibly masked to all for an unspecialised run.
+    /// Feature bits of the scene (`feature::*`). An unspecialised run passes `feature::ALL`
+    /// beside the scene (CPU) or compiles every feature in (GPU); this field stays the scene's.
     pub features: u32,
     pub epsilon_mode: u32,
     pub seed: u32,

@@ -72,7 +72,12 @@ const GPU_ONLY: [(&str, &str, &str); 6] = [
 ];
 
 /// Functions only the CPU side has, and why.
-const CPU_ONLY: [(&str, &str, &str); 3] = [
+const CPU_ONLY: [(&str, &str, &str); 4] = [
+    (
+        "cpu/shade.rs",
+        "sum_of_terms",
+        "adds up a Breakdown, the host-side probe record (the GPU probe record becomes one too)",
+    ),
     ("cpu/mod.rs", "*", "Rust plumbing: widening (v3), counters, the trace context"),
     ("cpu/trace.rs", "render_pixel", "the GPU sums a pixel's samples across dispatches (accumulate_sample)"),
     ("image.rs", "*", "file output (PNG, EXR, metadata) has no place on the GPU"),
@@ -163,7 +168,7 @@ fn every_shader_struct_has_a_cpu_twin_with_the_same_fields_in_the_same_module() 
         }
     }
     assert!(problems.is_empty(), "CPU/WGSL struct twins differ:\n{}", problems.join("\n"));
-    assert!(compared >= 9, "only {compared} struct pairs compared: is the parser still reading both sides?");
+    assert!(compared >= 7, "only {compared} struct pairs compared: is the parser still reading both sides?");
 }
 
 #[test]
