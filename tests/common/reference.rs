@@ -6,7 +6,7 @@
 //! `#[path = "../common/reference.rs"] mod reference;`.
 
 use glam::DVec3;
-use glint_core::cpu::probe::Breakdown;
+use glint_core::cpu::shade::Breakdown;
 use glint_core::{FlatScene, probe_pixel};
 
 use crate::scene::w3;

@@ -1,7 +1,7 @@
 //! The pixel probe on both tracers: each breakdown sums to its pixel's radiance, and the GPU's
 //! terms match the CPU's term by term (f32 against f64).
 
-use glint_core::cpu::probe::Breakdown;
+use glint_core::cpu::shade::Breakdown;
 use glint_core::layout::NO_HIT;
 use glint_core::probe_pixel;
 use glint_gpu::probe::breakdown;
@@ -57,8 +57,8 @@ fn gpu_probe_matches_cpu_probe_term_by_term() {
             reflected += usize::from(cpu.reflected.max_element() > 1e-3);
             transmitted += usize::from(cpu.transmitted.max_element() > 1e-3);
             assert_eq!(cpu.lights.len(), gpu.lights.len(), "{what}: light count");
-            for (c, g) in cpu.lights.iter().zip(&gpu.lights) {
-                assert!(close(c.contribution, g.contribution, 1e-4), "{what} light {}: {c:?} vs {g:?}", c.light);
+            for (j, (c, g)) in cpu.lights.iter().zip(&gpu.lights).enumerate() {
+                assert!(close(c.contribution, g.contribution, 1e-4), "{what} light {j}: {c:?} vs {g:?}");
                 assert!((c.f_att - g.f_att).abs() <= 1e-5 * c.f_att.max(1.0), "{what}: f_att");
                 assert!((c.spot - g.spot).abs() <= 1e-5, "{what}: spot {} vs {}", c.spot, g.spot);
             }

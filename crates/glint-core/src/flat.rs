@@ -3,12 +3,12 @@
 use glam::DVec3;
 
 use crate::layout::{
-    EPS_NUDGE_NORMAL, EPS_NUDGE_RAY, EPS_ROBUST, EPS_TMIN, GpuCamera, GpuLight, GpuMaterial, GpuPlane, GpuSphere,
-    GpuTriangle, LIGHT_CASTS_SHADOWS, LIGHT_DIRECTIONAL, LIGHT_POINT, LIGHT_SPOT, MATERIAL_CHECKER, MATERIAL_PHONG,
+    GpuCamera, GpuLight, GpuMaterial, GpuPlane, GpuSphere, GpuTriangle, LIGHT_CASTS_SHADOWS, MATERIAL_CHECKER,
     SceneHeader, TRIANGLE_HAS_NORMALS, feature,
 };
 use crate::scene::{
-    EpsilonMode, LightKind, MeshDesc, ObjectDesc, PlaneDesc, RenderSettings, Rgb, SceneDesc, SpecularModel, SphereDesc,
+    LightDesc, LightKind, MaterialDesc, MeshDesc, ObjectDesc, PlaneDesc, RenderSettings, Rgb, SceneDesc, SpecularModel,
+    SphereDesc,
 };
 
 /// A scene in the GPU-ready layout, plus the names the UI and reports show.
@@ -34,184 +34,45 @@ fn rgb4(c: Rgb) -> [f32; 4] {
     [c.0[0] as f32, c.0[1] as f32, c.0[2] as f32, 0.0]
 }
 
-pub fn epsilon_mode_code(mode: EpsilonMode) -> u32 {
-    match mode {
-        EpsilonMode::Tmin => EPS_TMIN,
-        EpsilonMode::NudgeRay => EPS_NUDGE_RAY,
-        EpsilonMode::NudgeNormal => EPS_NUDGE_NORMAL,
-        EpsilonMode::Robust => EPS_ROBUST,
-    }
+/// The primitives of a scene by kind, with an object id and name per scene object.
+#[derive(Debug, Default)]
+struct Primitives {
+    spheres: Vec<GpuSphere>,
+    planes: Vec<GpuPlane>,
+    triangles: Vec<GpuTriangle>,
+    object_names: Vec<String>,
 }
 
 impl FlatScene {
     /// Builds the flat layout. The scene must have passed validation (`scene::validate`);
     /// settings are taken from `settings`, not from `desc.render`, so callers can override them.
+    ///
+    /// One step per part of the layout: materials, lights, primitives, camera, header, and last
+    /// the feature set, computed from the flat data itself.
     pub fn build(desc: &SceneDesc, settings: &RenderSettings) -> Self {
         let material_names: Vec<String> = desc.materials.keys().cloned().collect();
-        let materials = desc
-            .materials
-            .values()
-            .map(|m| {
-                let mut flags = 0;
-                if m.specular_model == SpecularModel::Phong {
-                    flags |= MATERIAL_PHONG;
-                }
-                let (checker_kd, checker_size) = match &m.checker {
-                    Some(c) => {
-                        flags |= MATERIAL_CHECKER;
-                        (rgb4(c.kd), c.size as f32)
-                    }
-                    None => ([0.0; 4], 1.0),
-                };
-                GpuMaterial {
-                    ka: rgb4(m.ka),
-                    kd: rgb4(m.kd),
-                    ks: rgb4(m.ks),
-                    kr: rgb4(m.kr),
-                    kt: rgb4(m.kt),
-                    emission: rgb4(m.emission),
-                    checker_kd,
-                    shininess: m.shininess as f32,
-                    ior: m.ior as f32,
-                    checker_size,
-                    flags,
-                }
-            })
-            .collect();
-        let lights = desc
-            .lights
-            .iter()
-            .map(|l| {
-                let kind = match l.kind {
-                    LightKind::Point => LIGHT_POINT,
-                    LightKind::Directional => LIGHT_DIRECTIONAL,
-                    LightKind::Spot => LIGHT_SPOT,
-                };
-                let position = l.position.map_or(DVec3::ZERO, DVec3::from);
-                let direction = l.direction.map_or(DVec3::ZERO, |d| DVec3::from(d).normalize());
-                let a = l.attenuation;
-                // cos(cutoff) as sin(90° − cutoff): exact at both ends of [0, 90] (1 and 0), where
-                // cos(90°.to_radians()) would be 6e-17 and leave a point exactly at 90° outside
-                // a closed cone.
-                let cos_cutoff = if l.kind != LightKind::Spot || l.cutoff >= 180.0 {
-                    -1.0
-                } else {
-                    (90.0 - l.cutoff).to_radians().sin()
-                };
-                GpuLight {
-                    position: vec4(position, 1.0),
-                    direction: vec4(direction, 0.0),
-                    diffuse: rgb4(l.diffuse),
-                    specular: rgb4(l.specular),
-                    ambient: rgb4(l.ambient),
-                    attenuation: [a.c as f32, a.l as f32, a.q as f32, 0.0],
-                    kind,
-                    flags: if l.casts_shadows { LIGHT_CASTS_SHADOWS } else { 0 },
-                    spot_exponent: if l.kind == LightKind::Spot { l.exponent as f32 } else { 0.0 },
-                    spot_cos_cutoff: cos_cutoff as f32,
-                }
-            })
-            .collect();
-
-        let material_index = |name: &str| material_names.iter().position(|m| m == name).unwrap_or(0) as u32;
-        let mut spheres = Vec::new();
-        let mut planes = Vec::new();
-        let mut triangles = Vec::new();
-        let mut object_names = Vec::new();
-        for (id, object) in desc.objects.iter().enumerate() {
-            let object_id = id as u32;
-            let material = material_index(object.material());
-            object_names.push(if object.name().is_empty() {
-                format!("{} #{id}", object.kind_name())
-            } else {
-                object.name().to_string()
-            });
-            match object {
-                ObjectDesc::Sphere(SphereDesc { center, radius, .. }) => spheres.push(GpuSphere {
-                    center_radius: vec4(DVec3::from(*center), *radius as f32),
-                    material,
-                    object_id,
-                    pad: [0; 2],
-                }),
-                ObjectDesc::Plane(PlaneDesc { point, normal, .. }) => {
-                    let n = DVec3::from(*normal).normalize();
-                    planes.push(GpuPlane {
-                        normal_offset: vec4(n, n.dot(DVec3::from(*point)) as f32),
-                        material,
-                        object_id,
-                        pad: [0; 2],
-                    });
-                }
-                ObjectDesc::Mesh(MeshDesc { vertices, triangles: tris, normals, .. }) => {
-                    for t in tris {
-                        let [a, b, c] = t.map(|k| DVec3::from(vertices[k as usize]));
-                        // A triangle of zero area in the stored (f32) data is left out, so that
-                        // it is never hit, as validation promises: in the ray's sheared frame its
-                        // edge functions are rounding noise, and one on a line through the eye
-                        // would be "hit" by a quarter of all camera rays, with a 0/0 normal.
-                        let f = |v: DVec3| DVec3::from_array(v.to_array().map(|x| f64::from(x as f32)));
-                        if (f(b) - f(a)).cross(f(c) - f(a)) == DVec3::ZERO {
-                            continue;
-                        }
-                        let (ns, flags) = match normals {
-                            Some(n) => (t.map(|k| DVec3::from(n[k as usize]).normalize()), TRIANGLE_HAS_NORMALS),
-                            None => ([DVec3::ZERO; 3], 0),
-                        };
-                        triangles.push(GpuTriangle {
-                            a: vec4(a, 1.0),
-                            b: vec4(b, 1.0),
-                            c: vec4(c, 1.0),
-                            na: vec4(ns[0], 0.0),
-                            nb: vec4(ns[1], 0.0),
-                            nc: vec4(ns[2], 0.0),
-                            material,
-                            object_id,
-                            flags,
-                            pad: 0,
-                        });
-                    }
-                }
-            }
-        }
-
-        let camera = build_camera(desc, settings);
+        let materials = desc.materials.values().map(flat_material).collect();
+        let lights = desc.lights.iter().map(flat_light).collect();
+        let primitives = flat_primitives(desc, &material_names);
         let mut flat = Self {
-            header: SceneHeader {
-                width: settings.width,
-                height: settings.height,
-                spp: settings.spp,
-                max_depth: settings.max_depth,
-                sphere_count: spheres.len() as u32,
-                plane_count: planes.len() as u32,
-                triangle_count: triangles.len() as u32,
-                light_count: desc.lights.len() as u32,
-                material_count: material_names.len() as u32,
-                features: 0,
-                epsilon_mode: epsilon_mode_code(settings.epsilon_mode),
-                seed: settings.seed,
-                epsilon: settings.epsilon as f32,
-                bailout: settings.bailout as f32,
-                pad_a: 0,
-                pad_b: 0,
-                ambient: rgb4(desc.world.ambient),
-                background: rgb4(desc.world.background),
-            },
-            camera,
+            header: flat_header(desc, settings, &primitives, material_names.len()),
+            camera: build_camera(desc, settings),
             materials,
             lights,
-            spheres,
-            planes,
-            triangles,
-            object_names,
+            spheres: primitives.spheres,
+            planes: primitives.planes,
+            triangles: primitives.triangles,
+            object_names: primitives.object_names,
             material_names,
         };
-        flat.header.features = flat.scene_features();
+        let light_kinds: Vec<LightKind> = desc.lights.iter().map(|l| l.kind).collect();
+        flat.header.features = flat.scene_features(&light_kinds);
         flat
     }
 
     /// The features this scene needs, from the flat data itself (only materials that some
-    /// object uses count).
-    pub fn scene_features(&self) -> u32 {
+    /// object uses count) and the kind of each light.
+    fn scene_features(&self, light_kinds: &[LightKind]) -> u32 {
         let mut f = 0;
         let mut used = vec![false; self.materials.len()];
         for m in self.spheres.iter().map(|s| s.material).chain(self.planes.iter().map(|p| p.material)) {
@@ -223,13 +84,17 @@ impl FlatScene {
         let nonzero = |c: [f32; 4]| c[..3].iter().any(|&v| v != 0.0);
         let any_geometry = !(self.spheres.is_empty() && self.planes.is_empty() && self.triangles.is_empty());
         let mut any_specular_light = false;
-        for l in &self.lights {
-            f |= match l.kind {
-                LIGHT_POINT => feature::POINT_LIGHTS,
-                LIGHT_DIRECTIONAL => feature::DIRECTIONAL_LIGHTS,
-                _ => feature::SPOT_LIGHTS,
+        for (l, &kind) in self.lights.iter().zip(light_kinds) {
+            f |= match kind {
+                LightKind::Point => feature::POINT_LIGHTS,
+                LightKind::Directional => feature::DIRECTIONAL_LIGHTS,
+                LightKind::Spot => feature::SPOT_LIGHTS,
             };
-            if l.kind != LIGHT_DIRECTIONAL && l.attenuation != [1.0, 0.0, 0.0, 0.0] {
+            let attenuated = match kind {
+                LightKind::Point | LightKind::Spot => l.attenuation != [1.0, 0.0, 0.0, 0.0],
+                LightKind::Directional => false,
+            };
+            if attenuated {
                 f |= feature::ATTENUATION;
             }
             if l.flags & LIGHT_CASTS_SHADOWS != 0 && any_geometry {
@@ -255,7 +120,10 @@ impl FlatScene {
             }
             if nonzero(m.ks) && any_specular_light {
                 f |= feature::SPECULAR;
-                f |= if m.flags & MATERIAL_PHONG != 0 { feature::PHONG } else { feature::BLINN };
+                f |= match SpecularModel::of_flags(m.flags) {
+                    SpecularModel::Blinn => feature::BLINN,
+                    SpecularModel::Phong => feature::PHONG,
+                };
             }
         }
         if f & feature::TRANSMISSION != 0 && f & feature::SHADOWS != 0 {
@@ -279,13 +147,6 @@ impl FlatScene {
             f |= feature::JITTER;
         }
         f
-    }
-
-    /// The same scene with every feature enabled: the unspecialised tracer.
-    pub fn unspecialised(&self) -> Self {
-        let mut s = self.clone();
-        s.header.features = feature::ALL;
-        s
     }
 
     pub fn pixel_count(&self) -> usize {
@@ -355,5 +216,143 @@ fn build_camera(desc: &SceneDesc, settings: &RenderSettings) -> GpuCamera {
         forward: vec4(forward, 0.0),
         right: vec4(right * half_w, 0.0),
         up: vec4(up * half_h, 0.0),
+    }
+}
+
+/// A material in the flat layout.
+fn flat_material(m: &MaterialDesc) -> GpuMaterial {
+    let (checker_kd, checker_size, checker_flag) = match &m.checker {
+        Some(c) => (rgb4(c.kd), c.size as f32, MATERIAL_CHECKER),
+        None => ([0.0; 4], 1.0, 0),
+    };
+    GpuMaterial {
+        ka: rgb4(m.ka),
+        kd: rgb4(m.kd),
+        ks: rgb4(m.ks),
+        kr: rgb4(m.kr),
+        kt: rgb4(m.kt),
+        emission: rgb4(m.emission),
+        checker_kd,
+        shininess: m.shininess as f32,
+        ior: m.ior as f32,
+        checker_size,
+        flags: m.specular_model.flags() | checker_flag,
+    }
+}
+
+/// A light in the flat layout: unit direction, the spot cone as a cosine.
+fn flat_light(l: &LightDesc) -> GpuLight {
+    let position = l.position.map_or(DVec3::ZERO, DVec3::from);
+    let direction = l.direction.map_or(DVec3::ZERO, |d| DVec3::from(d).normalize());
+    let a = l.attenuation;
+    let (spot_exponent, cos_cutoff) = match l.kind {
+        // cos(cutoff) as sin(90° − cutoff): exact at both ends of [0, 90] (1 and 0), where
+        // cos(90°.to_radians()) would be 6e-17 and leave a point exactly at 90° outside a
+        // closed cone.
+        LightKind::Spot if l.cutoff < 180.0 => (l.exponent as f32, (90.0 - l.cutoff).to_radians().sin()),
+        LightKind::Spot => (l.exponent as f32, -1.0),
+        LightKind::Point | LightKind::Directional => (0.0, -1.0),
+    };
+    GpuLight {
+        position: vec4(position, 1.0),
+        direction: vec4(direction, 0.0),
+        diffuse: rgb4(l.diffuse),
+        specular: rgb4(l.specular),
+        ambient: rgb4(l.ambient),
+        attenuation: [a.c as f32, a.l as f32, a.q as f32, 0.0],
+        kind: l.kind as u32,
+        flags: if l.casts_shadows { LIGHT_CASTS_SHADOWS } else { 0 },
+        spot_exponent,
+        spot_cos_cutoff: cos_cutoff as f32,
+    }
+}
+
+/// Every object's primitives, in scene order (the object id is the index in `desc.objects`).
+fn flat_primitives(desc: &SceneDesc, material_names: &[String]) -> Primitives {
+    let material_index = |name: &str| material_names.iter().position(|m| m == name).unwrap_or(0) as u32;
+    let mut out = Primitives::default();
+    for (id, object) in desc.objects.iter().enumerate() {
+        let object_id = id as u32;
+        let material = material_index(object.material());
+        out.object_names.push(if object.name().is_empty() {
+            format!("{} #{id}", object.kind_name())
+        } else {
+            object.name().to_string()
+        });
+        match object {
+            ObjectDesc::Sphere(SphereDesc { center, radius, .. }) => out.spheres.push(GpuSphere {
+                center_radius: vec4(DVec3::from(*center), *radius as f32),
+                material,
+                object_id,
+                pad: [0; 2],
+            }),
+            ObjectDesc::Plane(PlaneDesc { point, normal, .. }) => {
+                let n = DVec3::from(*normal).normalize();
+                out.planes.push(GpuPlane {
+                    normal_offset: vec4(n, n.dot(DVec3::from(*point)) as f32),
+                    material,
+                    object_id,
+                    pad: [0; 2],
+                });
+            }
+            ObjectDesc::Mesh(mesh) => mesh_triangles(mesh, material, object_id, &mut out.triangles),
+        }
+    }
+    out
+}
+
+/// A mesh's triangles, leaving out those of zero area in the stored (f32) data, so that they
+/// are never hit, as validation promises: in the ray's sheared frame their edge functions are
+/// rounding noise, and one on a line through the eye would be "hit" by a quarter of all camera
+/// rays, with a 0/0 normal.
+fn mesh_triangles(mesh: &MeshDesc, material: u32, object_id: u32, triangles: &mut Vec<GpuTriangle>) {
+    let MeshDesc { vertices, triangles: tris, normals, .. } = mesh;
+    for t in tris {
+        let [a, b, c] = t.map(|k| DVec3::from(vertices[k as usize]));
+        let f = |v: DVec3| DVec3::from_array(v.to_array().map(|x| f64::from(x as f32)));
+        if (f(b) - f(a)).cross(f(c) - f(a)) == DVec3::ZERO {
+            continue;
+        }
+        let (ns, flags) = match normals {
+            Some(n) => (t.map(|k| DVec3::from(n[k as usize]).normalize()), TRIANGLE_HAS_NORMALS),
+            None => ([DVec3::ZERO; 3], 0),
+        };
+        triangles.push(GpuTriangle {
+            a: vec4(a, 1.0),
+            b: vec4(b, 1.0),
+            c: vec4(c, 1.0),
+            na: vec4(ns[0], 0.0),
+            nb: vec4(ns[1], 0.0),
+            nc: vec4(ns[2], 0.0),
+            material,
+            object_id,
+            flags,
+            pad: 0,
+        });
+    }
+}
+
+/// The header: image and sampling settings, counts, and the world's ambient and background.
+/// (`features` is filled in last, from the finished layout.)
+fn flat_header(desc: &SceneDesc, settings: &RenderSettings, p: &Primitives, material_count: usize) -> SceneHeader {
+    SceneHeader {
+        width: settings.width,
+        height: settings.height,
+        spp: settings.spp,
+        max_depth: settings.max_depth,
+        sphere_count: p.spheres.len() as u32,
+        plane_count: p.planes.len() as u32,
+        triangle_count: p.triangles.len() as u32,
+        light_count: desc.lights.len() as u32,
+        material_count: material_count as u32,
+        features: 0,
+        epsilon_mode: settings.epsilon_mode as u32,
+        seed: settings.seed,
+        epsilon: settings.epsilon as f32,
+        bailout: settings.bailout as f32,
+        pad_a: 0,
+        pad_b: 0,
+        ambient: rgb4(desc.world.ambient),
+        background: rgb4(desc.world.background),
     }
 }

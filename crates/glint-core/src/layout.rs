@@ -10,6 +10,8 @@
 
 use bytemuck::{Pod, Zeroable};
 
+use crate::scene::{EpsilonMode, LightKind, SpecularModel};
+
 /// Light kinds (`GpuLight::kind`).
 pub const LIGHT_POINT: u32 = 0;
 pub const LIGHT_DIRECTIONAL: u32 = 1;
@@ -30,6 +32,59 @@ pub const EPS_TMIN: u32 = 0;
 pub const EPS_NUDGE_RAY: u32 = 1;
 pub const EPS_NUDGE_NORMAL: u32 = 2;
 pub const EPS_ROBUST: u32 = 3;
+
+/// A stored tag that no kind of the layout has: a flat scene not made by `FlatScene::build`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("{value} is not a valid {what}")]
+pub struct UnknownTag {
+    pub what: &'static str,
+    pub value: u32,
+}
+
+/// The tags both tracers switch on are Rust enums on the CPU (`#[repr(u32)]`, their
+/// discriminants the constants above, which the reflection test checks against WGSL): every
+/// `match` on them is exhaustive, so a new kind is a compile error wherever it is not handled.
+impl TryFrom<u32> for LightKind {
+    type Error = UnknownTag;
+
+    fn try_from(value: u32) -> Result<Self, UnknownTag> {
+        match value {
+            LIGHT_POINT => Ok(Self::Point),
+            LIGHT_DIRECTIONAL => Ok(Self::Directional),
+            LIGHT_SPOT => Ok(Self::Spot),
+            _ => Err(UnknownTag { what: "light kind", value }),
+        }
+    }
+}
+
+impl TryFrom<u32> for EpsilonMode {
+    type Error = UnknownTag;
+
+    fn try_from(value: u32) -> Result<Self, UnknownTag> {
+        match value {
+            EPS_TMIN => Ok(Self::Tmin),
+            EPS_NUDGE_RAY => Ok(Self::NudgeRay),
+            EPS_NUDGE_NORMAL => Ok(Self::NudgeNormal),
+            EPS_ROBUST => Ok(Self::Robust),
+            _ => Err(UnknownTag { what: "epsilon mode", value }),
+        }
+    }
+}
+
+impl SpecularModel {
+    /// The model a stored material uses (`GpuMaterial::flags`).
+    pub fn of_flags(flags: u32) -> Self {
+        if flags & MATERIAL_PHONG != 0 { Self::Phong } else { Self::Blinn }
+    }
+
+    /// The `GpuMaterial::flags` bits that store this model.
+    pub fn flags(self) -> u32 {
+        match self {
+            Self::Blinn => 0,
+            Self::Phong => MATERIAL_PHONG,
+        }
+    }
+}
 
 /// Object id written for camera rays that hit nothing.
 pub const NO_HIT: u32 = u32::MAX;
@@ -54,7 +109,8 @@ pub const STAT_STATUS: u32 = 10;
 pub const STAT_WORDS: u32 = 12;
 
 /// Feature bits (`SceneHeader::features`): what the scene uses. Both tracers skip the work of
-/// an absent feature, and the GPU tracer removes its code (see `features.rs`).
+/// an absent feature, and the GPU tracer removes its code (`#ifdef` shader defs named
+/// `NAMES`, chosen in glint-gpu's `shaders.rs`).
 pub mod feature {
     pub const POINT_LIGHTS: u32 = 1 << 0;
     pub const DIRECTIONAL_LIGHTS: u32 = 1 << 1;
@@ -128,7 +184,8 @@ pub struct SceneHeader {
     pub triangle_count: u32,
     pub light_count: u32,
     pub material_count: u32,
-    /// Feature bits of the scene (`feature::*`), possibly masked to all for an unspecialised run.
+    /// Feature bits of the scene (`feature::*`). An unspecialised run passes `feature::ALL`
+    /// beside the scene (CPU) or compiles every feature in (GPU); this field stays the scene's.
     pub features: u32,
     pub epsilon_mode: u32,
     pub seed: u32,
@@ -277,7 +334,7 @@ pub const PROBE_HIT: u32 = 1;
 /// The probed hit reflected totally: its k_t share followed the mirror ray.
 pub const PROBE_TIR: u32 = 2;
 
-/// One light's terms at the probed hit (GPU twin of `cpu::probe::LightTerm`).
+/// One light's terms at the probed hit (GPU twin of `cpu::shade::LightTerm`).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
 pub struct ProbeLight {
@@ -293,7 +350,7 @@ pub struct ProbeLight {
 }
 
 /// The breakdown of one camera sample, as the GPU probe writes it (twin of
-/// `cpu::probe::Breakdown`; the host splits the mirror subtree into k_r and k_t parts).
+/// `cpu::shade::Breakdown`; the host splits the mirror subtree into k_r and k_t parts).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
 pub struct ProbeRecord {
@@ -317,4 +374,24 @@ pub struct ProbeRecord {
     pub refraction_sum: [f32; 4],
     pub total: [f32; 4],
     pub lights: [ProbeLight; MAX_PROBE_LIGHTS as usize],
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tags_round_trip_and_unknown_values_are_errors() {
+        for kind in LightKind::ALL {
+            assert_eq!(LightKind::try_from(kind as u32), Ok(kind));
+        }
+        for mode in EpsilonMode::ALL {
+            assert_eq!(EpsilonMode::try_from(mode as u32), Ok(mode));
+        }
+        for model in [SpecularModel::Blinn, SpecularModel::Phong] {
+            assert_eq!(SpecularModel::of_flags(model.flags() | MATERIAL_CHECKER), model);
+        }
+        assert_eq!(LightKind::try_from(7).unwrap_err().to_string(), "7 is not a valid light kind");
+        assert_eq!(EpsilonMode::try_from(4).unwrap_err().to_string(), "4 is not a valid epsilon mode");
+    }
 }

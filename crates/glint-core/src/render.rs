@@ -6,11 +6,12 @@ use std::time::{Duration, Instant};
 use glam::DVec3;
 use rayon::prelude::*;
 
-use crate::cpu::probe::Breakdown;
+use crate::cpu::shade::Breakdown;
 use crate::cpu::trace::{render_pixel, render_sample};
 use crate::cpu::{RayCounts, TraceContext};
 use crate::flat::FlatScene;
 use crate::image::HdrImage;
+use crate::layout::{UnknownTag, feature};
 
 /// Edge of a square tile in pixels.
 pub const TILE: u32 = 16;
@@ -70,6 +71,8 @@ pub enum CpuRenderError {
     Cancelled,
     #[error("could not start {threads} render threads: {message}")]
     ThreadPool { threads: usize, message: String },
+    #[error("invalid flat scene: {0}")]
+    InvalidScene(#[from] UnknownTag),
 }
 
 pub fn tile_count(width: u32, height: u32) -> usize {
@@ -109,14 +112,8 @@ pub fn render_cpu(
         .thread_name(|i| format!("glint-cpu-{i}"))
         .build()
         .map_err(|e| CpuRenderError::ThreadPool { threads, message: e.to_string() })?;
-    let full;
-    let scene = if options.specialise {
-        scene
-    } else {
-        full = scene.unspecialised();
-        &full
-    };
-    let ctx = TraceContext::new(scene);
+    let features = if options.specialise { scene.header.features } else { feature::ALL };
+    let ctx = TraceContext::with_features(scene, features)?;
     let (w, h) = (scene.header.width, scene.header.height);
     let origins: Vec<(u32, u32)> =
         (0..h.div_ceil(TILE)).flat_map(|ty| (0..w.div_ceil(TILE)).map(move |tx| (tx * TILE, ty * TILE))).collect();
@@ -144,9 +141,17 @@ pub fn render_cpu(
     Ok(CpuRender { image, counts, elapsed, threads })
 }
 
+/// Trace context of a scene made by `FlatScene::build`, whose tags are valid by construction.
+fn built_scene_context(scene: &FlatScene) -> TraceContext<'_> {
+    TraceContext::new(scene).unwrap_or_else(|e| panic!("a flat scene from FlatScene::build has valid tags: {e}"))
+}
+
 /// The breakdown of one camera sample of pixel (x, y) into the terms of the model.
+///
+/// # Panics
+/// If the scene holds a tag no kind has (never for a scene from `FlatScene::build`).
 pub fn probe_pixel(scene: &FlatScene, x: u32, y: u32, sample: u32) -> Breakdown {
-    let ctx = TraceContext::new(scene);
+    let ctx = built_scene_context(scene);
     let mut b = Breakdown::default();
     let mut counts = RayCounts::default();
     render_sample(&ctx, x, y, sample, &mut counts, Some(&mut b));
@@ -155,12 +160,37 @@ pub fn probe_pixel(scene: &FlatScene, x: u32, y: u32, sample: u32) -> Breakdown 
 
 /// The object the camera ray through the centre of pixel (x, y) hits first (`NO_HIT` for
 /// none): picking in the viewer.
+///
+/// # Panics
+/// As `probe_pixel`.
 pub fn pick_object(scene: &FlatScene, x: u32, y: u32) -> u32 {
-    let ctx = TraceContext::new(scene);
+    let ctx = built_scene_context(scene);
     let h = &scene.header;
     let ray = crate::cpu::camera::camera_ray(&scene.camera, h.width, h.height, x, y, 0.5, 0.5);
     match crate::cpu::intersect::closest_hit(&ctx, &ray, 0.0, crate::cpu::intersect::FAR) {
         Some(hit) => crate::cpu::trace::object_id(&ctx, &hit),
         None => crate::layout::NO_HIT,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::{builtin, parse_scene};
+
+    #[test]
+    fn a_flat_scene_with_an_unknown_tag_is_refused_not_traced() {
+        let b = builtin("spotlights").expect("built-in scene");
+        let (desc, _) = parse_scene(b.text, std::path::Path::new(b.name)).expect("parses");
+        let mut settings = desc.render.clone();
+        (settings.width, settings.height) = (8, 8);
+        let mut flat = FlatScene::build(&desc, &settings);
+        flat.lights[0].kind = 9;
+        let err = render_cpu(&flat, &CpuOptions::default(), RenderControl::default()).unwrap_err();
+        assert_eq!(err.to_string(), "invalid flat scene: 9 is not a valid light kind");
+        let mut flat = FlatScene::build(&desc, &settings);
+        flat.header.epsilon_mode = 17;
+        let err = render_cpu(&flat, &CpuOptions::default(), RenderControl::default()).unwrap_err();
+        assert_eq!(err.to_string(), "invalid flat scene: 17 is not a valid epsilon mode");
     }
 }

@@ -1,13 +1,10 @@
 //! The GPU pixel probe's record, turned into the CPU's `Breakdown` so both can be shown and
 //! compared term by term.
 
-use glint_core::cpu::probe::{Breakdown, LightTerm};
+use glint_core::cpu::shade::{Breakdown, LightTerm};
+use glint_core::cpu::v3 as v;
 use glint_core::glam::DVec3;
 use glint_core::layout::{NO_HIT, PROBE_HIT, PROBE_TIR, ProbeRecord};
-
-fn v(a: [f32; 4]) -> DVec3 {
-    DVec3::new(f64::from(a[0]), f64::from(a[1]), f64::from(a[2]))
-}
 
 /// The breakdown a probe record describes. The mirror subtree's radiance already includes its
 /// weight; under total internal reflection it carried k_r + k_t and is split back per channel.
@@ -34,9 +31,7 @@ pub fn breakdown(r: &ProbeRecord) -> Breakdown {
         ambient: v(r.ambient),
         lights: r.lights[..r.light_count as usize]
             .iter()
-            .enumerate()
-            .map(|(j, l)| LightTerm {
-                light: j as u32,
+            .map(|l| LightTerm {
                 f_att: f64::from(l.f_att),
                 spot: f64::from(l.spot),
                 visibility: v(l.visibility),

@@ -1,8 +1,10 @@
-//! Each WGSL file has a CPU twin module with the same function names (vello's layout). This
-//! test reads both and fails when one side gains a function the other lacks, unless it is
-//! listed below with the reason it exists on one side only.
+//! Each WGSL file has a CPU twin module with the same function and struct names (vello's
+//! layout), and a struct both sides have has the same fields in the same order. These tests
+//! read both sides and fail when one gains a function or struct the other lacks (unless it is
+//! listed below with the reason it exists on one side only), when a struct's fields drift
+//! apart, or when a struct lives in another CPU module than its WGSL twin's.
 
-use std::collections::BTreeSet;
+use std::collections::{BTreeMap, BTreeSet};
 
 const TWINS: [(&str, &str, &str, &str); 8] = [
     (
@@ -70,11 +72,113 @@ const GPU_ONLY: [(&str, &str, &str); 6] = [
 ];
 
 /// Functions only the CPU side has, and why.
-const CPU_ONLY: [(&str, &str, &str); 3] = [
+const CPU_ONLY: [(&str, &str, &str); 4] = [
+    (
+        "cpu/shade.rs",
+        "sum_of_terms",
+        "adds up a Breakdown, the host-side probe record (the GPU probe record becomes one too)",
+    ),
     ("cpu/mod.rs", "*", "Rust plumbing: widening (v3), counters, the trace context"),
     ("cpu/trace.rs", "render_pixel", "the GPU sums a pixel's samples across dispatches (accumulate_sample)"),
     ("image.rs", "*", "file output (PNG, EXR, metadata) has no place on the GPU"),
 ];
+
+/// Structs only the GPU side has, and why.
+const GPU_ONLY_STRUCTS: [(&str, &str, &str); 7] = [
+    ("intersect.wgsl", "MaybeT", "WGSL has no Option: a flag beside the value"),
+    ("intersect.wgsl", "SphereRoots", "WGSL has no Option<(f64, f64)>: a flag beside the roots"),
+    ("intersect.wgsl", "TriangleHit", "WGSL has no Option<(t, bu, bv)>: a flag beside the hit"),
+    ("offset.wgsl", "Spawn", "the CPU returns the pair (origin, t_min)"),
+    ("trace.wgsl", "SampleResult", "the CPU returns the pair (radiance, object)"),
+    ("trace.wgsl", "StackEntry", "the explicit ray stack: WGSL has no recursion"),
+    ("trace.wgsl", "Shaded", "a hit's radiance and the next ray of the stack walk, kept in registers"),
+];
+
+/// Structs only the CPU side has, and why.
+const CPU_ONLY_STRUCTS: [(&str, &str, &str); 3] = [
+    ("cpu/mod.rs", "TraceContext", "the scene and its decoded header; WGSL reads them from bindings"),
+    ("cpu/shade.rs", "Breakdown", "the CPU probe's record; the GPU probe writes ProbeRecord (layout.rs)"),
+    ("image.rs", "*", "host images and their metadata have no place on the GPU"),
+];
+
+/// Structs declared in a source text before its test module, with their field names in order.
+/// WGSL fields are `name: type,`; Rust fields `pub name: Type,` (attributes and comments skipped;
+/// tuple and unit structs have no named fields).
+fn structs(source: &str) -> BTreeMap<String, Vec<String>> {
+    let code = source.split("#[cfg(test)]").next().unwrap_or(source);
+    let mut out = BTreeMap::new();
+    let mut current: Option<(String, Vec<String>)> = None;
+    for line in code.lines() {
+        let t = line.trim();
+        if let Some((name, fields)) = current.as_mut() {
+            if t.starts_with('}') {
+                out.insert(std::mem::take(name), std::mem::take(fields));
+                current = None;
+            } else if !(t.starts_with("//") || t.starts_with("#[") || t.is_empty()) {
+                let t = t.strip_prefix("pub ").unwrap_or(t);
+                let field: String = t.chars().take_while(|c| c.is_alphanumeric() || *c == '_').collect();
+                if t[field.len()..].trim_start().starts_with(':') {
+                    fields.push(field);
+                }
+            }
+            continue;
+        }
+        let t = t.strip_prefix("pub ").unwrap_or(t);
+        if let Some(rest) = t.strip_prefix("struct ")
+            && rest.trim_end().ends_with('{')
+        {
+            let name: String = rest.chars().take_while(|c| c.is_alphanumeric() || *c == '_').collect();
+            current = Some((name, Vec::new()));
+        }
+    }
+    out
+}
+
+#[test]
+fn every_shader_struct_has_a_cpu_twin_with_the_same_fields_in_the_same_module() {
+    let cpu_structs: Vec<(&str, BTreeMap<String, Vec<String>>)> =
+        TWINS.iter().map(|(_, _, cpu_file, cpu)| (*cpu_file, structs(cpu))).collect();
+    let mut problems = Vec::new();
+    let mut compared = 0;
+    for (wgsl_file, wgsl, cpu_file, cpu) in TWINS {
+        let (gpu_structs, own) = (structs(wgsl), structs(cpu));
+        for (name, gpu_fields) in &gpu_structs {
+            match own.get(name) {
+                Some(cpu_fields) if cpu_fields == gpu_fields => compared += 1,
+                Some(cpu_fields) => problems.push(format!(
+                    "struct {name}: fields differ, {wgsl_file} {gpu_fields:?} vs {cpu_file} {cpu_fields:?}"
+                )),
+                None => {
+                    if let Some((elsewhere, _)) = cpu_structs.iter().find(|(_, s)| s.contains_key(name)) {
+                        problems.push(format!(
+                            "struct {name} is in {elsewhere}, its WGSL twin in {wgsl_file}: move it to {cpu_file}"
+                        ));
+                    } else if !GPU_ONLY_STRUCTS.iter().any(|(file, n, _)| *file == wgsl_file && n == name) {
+                        problems.push(format!("{wgsl_file}: struct {name} has no twin in {cpu_file}"));
+                    }
+                }
+            }
+        }
+        for name in own.keys().filter(|n| !gpu_structs.contains_key(*n)) {
+            let in_some_wgsl = TWINS.iter().any(|(_, w, _, _)| structs(w).contains_key(name));
+            let listed = CPU_ONLY_STRUCTS.iter().any(|(file, n, _)| *file == cpu_file && (*n == "*" || n == name));
+            if !in_some_wgsl && !listed {
+                problems.push(format!("{cpu_file}: struct {name} has no twin in {wgsl_file}"));
+            }
+        }
+    }
+    assert!(problems.is_empty(), "CPU/WGSL struct twins differ:\n{}", problems.join("\n"));
+    assert!(compared >= 7, "only {compared} struct pairs compared: is the parser still reading both sides?");
+}
+
+#[test]
+fn struct_parser_reads_fields_of_both_languages() {
+    let wgsl = "struct A {\n    x: f32,\n    // c\n    y: vec3<f32>,\n}\n";
+    let rust = "/// d\n#[derive(Debug)]\npub struct A {\n    /// x\n    pub x: f64,\n    #[serde(skip)]\n    pub y: DVec3,\n}\npub struct T(u32);\n";
+    let want = BTreeMap::from([("A".to_string(), vec!["x".to_string(), "y".to_string()])]);
+    assert_eq!(structs(wgsl), want);
+    assert_eq!(structs(rust), want);
+}
 
 /// Names declared with `fn` in a source text, before its test module.
 fn functions(source: &str) -> BTreeSet<String> {

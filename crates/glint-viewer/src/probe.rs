@@ -4,7 +4,7 @@
 
 use std::sync::Arc;
 
-use glint_core::cpu::probe::Breakdown;
+use glint_core::cpu::shade::Breakdown;
 use glint_core::glam::DVec3;
 use glint_core::{FlatScene, probe_pixel};
 use glint_gpu::GpuTracer;

@@ -6,9 +6,19 @@ use glam::DVec3;
 use super::{Ray, TraceContext, v3};
 use crate::layout::{GpuTriangle, TRIANGLE_HAS_NORMALS, feature};
 
-pub const PRIM_SPHERE: u32 = 1;
-pub const PRIM_PLANE: u32 = 2;
-pub const PRIM_TRIANGLE: u32 = 3;
+/// The kind of primitive a hit is on. WGSL stores it as the `PRIM_*` constants (checked by the
+/// reflection test); the CPU matches on the enum, exhaustively.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(u32)]
+pub enum Prim {
+    Sphere = 1,
+    Plane = 2,
+    Triangle = 3,
+}
+
+pub const PRIM_SPHERE: u32 = Prim::Sphere as u32;
+pub const PRIM_PLANE: u32 = Prim::Plane as u32;
+pub const PRIM_TRIANGLE: u32 = Prim::Triangle as u32;
 
 /// |n·d| below this counts as parallel to a plane: no division by (almost) zero, on either
 /// tracer. A ray this close to parallel would hit the plane ~1e12 units away.
@@ -22,7 +32,7 @@ pub const FAR: f64 = 1e30;
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Hit {
     pub t: f64,
-    pub prim: u32,
+    pub prim: Prim,
     pub index: u32,
     /// Barycentric weights of vertices b and c (triangles only).
     pub bu: f64,
@@ -87,9 +97,8 @@ pub struct RayShear {
     pub kx: usize,
     pub ky: usize,
     pub kz: usize,
-    pub sx: f64,
-    pub sy: f64,
-    pub sz: f64,
+    /// (d_kx / d_kz, d_ky / d_kz, 1 / d_kz).
+    pub s: DVec3,
 }
 
 pub fn ray_shear(dir: DVec3) -> RayShear {
@@ -106,7 +115,7 @@ pub fn ray_shear(dir: DVec3) -> RayShear {
     if dir[kz] < 0.0 {
         std::mem::swap(&mut kx, &mut ky);
     }
-    RayShear { kx, ky, kz, sx: dir[kx] / dir[kz], sy: dir[ky] / dir[kz], sz: 1.0 / dir[kz] }
+    RayShear { kx, ky, kz, s: DVec3::new(dir[kx] / dir[kz], dir[ky] / dir[kz], 1.0 / dir[kz]) }
 }
 
 /// a + b + c, added smallest magnitude first. The sum then does not depend on the order of the
@@ -137,7 +146,8 @@ pub fn intersect_triangle(
     t_min: f64,
     t_max: f64,
 ) -> Option<(f64, f64, f64)> {
-    let RayShear { kx, ky, kz, sx, sy, sz } = *shear;
+    let RayShear { kx, ky, kz, s } = *shear;
+    let (sx, sy, sz) = (s.x, s.y, s.z);
     let a = va - ray.origin;
     let b = vb - ray.origin;
     let c = vc - ray.origin;
@@ -174,7 +184,7 @@ pub fn closest_hit(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f64) -> Opt
             let cr = s.center_radius;
             if let Some(t) = intersect_sphere(v3(cr), f64::from(cr[3]), ray, t_min, t_far) {
                 t_far = t;
-                best = Some(Hit { t, prim: PRIM_SPHERE, index: i as u32, bu: 0.0, bv: 0.0 });
+                best = Some(Hit { t, prim: Prim::Sphere, index: i as u32, bu: 0.0, bv: 0.0 });
             }
         }
     }
@@ -183,7 +193,7 @@ pub fn closest_hit(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f64) -> Opt
             let no = p.normal_offset;
             if let Some(t) = intersect_plane(v3(no), f64::from(no[3]), ray, t_min, t_far) {
                 t_far = t;
-                best = Some(Hit { t, prim: PRIM_PLANE, index: i as u32, bu: 0.0, bv: 0.0 });
+                best = Some(Hit { t, prim: Prim::Plane, index: i as u32, bu: 0.0, bv: 0.0 });
             }
         }
     }
@@ -192,7 +202,7 @@ pub fn closest_hit(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f64) -> Opt
         for (i, tri) in scene.triangles.iter().enumerate() {
             if let Some((t, bu, bv)) = intersect_triangle(v3(tri.a), v3(tri.b), v3(tri.c), ray, &shear, t_min, t_far) {
                 t_far = t;
-                best = Some(Hit { t, prim: PRIM_TRIANGLE, index: i as u32, bu, bv });
+                best = Some(Hit { t, prim: Prim::Triangle, index: i as u32, bu, bv });
             }
         }
     }

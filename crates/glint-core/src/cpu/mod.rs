@@ -4,7 +4,6 @@
 pub mod camera;
 pub mod intersect;
 pub mod offset;
-pub mod probe;
 pub mod rng;
 pub mod shade;
 pub mod trace;
@@ -14,7 +13,8 @@ use std::ops::AddAssign;
 use glam::DVec3;
 
 use crate::flat::FlatScene;
-use crate::layout::feature;
+use crate::layout::{UnknownTag, feature};
+use crate::scene::{EpsilonMode, LightKind};
 
 /// A ray with a unit direction.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -56,31 +56,44 @@ impl AddAssign for RayCounts {
     }
 }
 
-/// Everything the tracer functions read: the flat scene and its header widened once.
-#[derive(Clone, Copy, Debug)]
+/// Everything the tracer functions read: the flat scene, its header widened once, its tags
+/// decoded once, and the feature set whose work the tracer does.
+#[derive(Clone, Debug)]
 pub struct TraceContext<'a> {
     pub scene: &'a FlatScene,
+    /// The features the tracer runs: the scene's own (specialised, the default) or
+    /// `feature::ALL` (unspecialised). Passed beside the scene, never written into it.
     pub features: u32,
     pub max_depth: u32,
     pub epsilon: f64,
-    pub epsilon_mode: u32,
+    pub epsilon_mode: EpsilonMode,
     pub bailout: f64,
+    /// The kind of each light, in light order.
+    pub light_kinds: Vec<LightKind>,
 }
 
 impl<'a> TraceContext<'a> {
-    pub fn new(scene: &'a FlatScene) -> Self {
-        let h = &scene.header;
-        Self {
-            scene,
-            features: h.features,
-            max_depth: h.max_depth,
-            epsilon: f64::from(h.epsilon),
-            epsilon_mode: h.epsilon_mode,
-            bailout: f64::from(h.bailout),
-        }
+    /// The specialised tracer: exactly the scene's features.
+    pub fn new(scene: &'a FlatScene) -> Result<Self, UnknownTag> {
+        Self::with_features(scene, scene.header.features)
     }
 
-    /// Whether any of the `bits` is in the scene's feature set.
+    /// The tracer running `features` (the scene's own, or `feature::ALL` for every feature's
+    /// code path: the image is bit-identical either way).
+    pub fn with_features(scene: &'a FlatScene, features: u32) -> Result<Self, UnknownTag> {
+        let h = &scene.header;
+        Ok(Self {
+            scene,
+            features,
+            max_depth: h.max_depth,
+            epsilon: f64::from(h.epsilon),
+            epsilon_mode: EpsilonMode::try_from(h.epsilon_mode)?,
+            bailout: f64::from(h.bailout),
+            light_kinds: scene.lights.iter().map(|l| LightKind::try_from(l.kind)).collect::<Result<_, _>>()?,
+        })
+    }
+
+    /// Whether any of the `bits` is in the feature set.
     #[inline]
     pub fn has(&self, bits: u32) -> bool {
         self.features & bits != 0

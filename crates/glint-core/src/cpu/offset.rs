@@ -9,7 +9,7 @@
 use glam::DVec3;
 
 use super::TraceContext;
-use crate::layout::{EPS_NUDGE_NORMAL, EPS_NUDGE_RAY, EPS_ROBUST, EPS_TMIN};
+use crate::scene::EpsilonMode;
 
 /// Below this magnitude a coordinate gets a fixed offset (integer ULP steps are too small
 /// near zero). Same value as Wächter & Binder.
@@ -41,18 +41,20 @@ pub fn offset_ray(p: DVec3, n: DVec3) -> DVec3 {
 pub fn spawn_ray(ctx: &TraceContext, p: DVec3, p_surface: DVec3, n_side: DVec3, dir: DVec3) -> (DVec3, f64) {
     let eps = ctx.epsilon;
     match ctx.epsilon_mode {
-        EPS_TMIN => (p, eps),
-        EPS_NUDGE_RAY => (p + eps * dir, 0.0),
-        EPS_NUDGE_NORMAL => (p + eps * n_side, 0.0),
-        // EPS_ROBUST; the flat layout never holds another value.
-        _ => (offset_ray(p_surface, n_side) + eps * n_side, 0.0),
+        EpsilonMode::Tmin => (p, eps),
+        EpsilonMode::NudgeRay => (p + eps * dir, 0.0),
+        EpsilonMode::NudgeNormal => (p + eps * n_side, 0.0),
+        EpsilonMode::Robust => (offset_ray(p_surface, n_side) + eps * n_side, 0.0),
     }
 }
 
 /// How far a shadow ray of length `dist` may look for occluders: it stops short of the light
 /// by the same rule that moved its origin.
 pub fn shadow_t_max(ctx: &TraceContext, dist: f64) -> f64 {
-    if ctx.epsilon_mode == EPS_ROBUST { dist * (1.0 - SHADOW_REL) - ctx.epsilon } else { dist - ctx.epsilon }
+    match ctx.epsilon_mode {
+        EpsilonMode::Robust => dist * (1.0 - SHADOW_REL) - ctx.epsilon,
+        EpsilonMode::Tmin | EpsilonMode::NudgeRay | EpsilonMode::NudgeNormal => dist - ctx.epsilon,
+    }
 }
 
 #[cfg(test)]

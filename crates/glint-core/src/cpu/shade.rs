@@ -6,13 +6,24 @@ use glam::DVec3;
 
 use super::intersect::{FAR, all_zero, shadow_transmittance};
 use super::offset::{shadow_t_max, spawn_ray};
-use super::probe::{Breakdown, LightTerm};
-use super::trace::Surface;
 use super::{Ray, RayCounts, TraceContext, v3};
-use crate::layout::{
-    GpuLight, GpuMaterial, LIGHT_CASTS_SHADOWS, LIGHT_DIRECTIONAL, LIGHT_SPOT, MATERIAL_CHECKER, MATERIAL_PHONG,
-    feature,
-};
+use crate::layout::{GpuLight, GpuMaterial, LIGHT_CASTS_SHADOWS, MATERIAL_CHECKER, feature};
+use crate::scene::{LightKind, SpecularModel};
+
+/// Geometry at a hit: point, unit geometric and shading normals as stored (not yet turned
+/// towards the ray), material and object.
+#[derive(Clone, Copy, Debug)]
+pub struct Surface {
+    /// o + t·d, where shading happens.
+    pub p: DVec3,
+    /// The hit point recomputed from the surface itself (robust epsilon mode only, else p):
+    /// its error does not grow with the distance the ray travelled, as o + t·d's does.
+    pub p_surface: DVec3,
+    pub ng: DVec3,
+    pub ns: DVec3,
+    pub material: u32,
+    pub object_id: u32,
+}
 
 /// A light closer than this to the shaded point gives no direct term (its direction is
 /// undefined); it still gives its ambient term.
@@ -62,24 +73,29 @@ pub struct LightSample {
     pub spot: f64,
 }
 
-pub fn light_sample(ctx: &TraceContext, light: &GpuLight, p: DVec3) -> LightSample {
-    if light.kind == LIGHT_DIRECTIONAL {
-        return LightSample { l: -v3(light.direction), dist: FAR, f_att: 1.0, spot: 1.0 };
-    }
+pub fn light_sample(ctx: &TraceContext, light: &GpuLight, kind: LightKind, p: DVec3) -> LightSample {
+    let is_spot = match kind {
+        LightKind::Directional => return LightSample { l: -v3(light.direction), dist: FAR, f_att: 1.0, spot: 1.0 },
+        LightKind::Point => false,
+        LightKind::Spot => true,
+    };
     let to_light = v3(light.position) - p;
     let dist = to_light.length();
     let l = if dist >= MIN_LIGHT_DISTANCE { to_light / dist } else { DVec3::ZERO };
     let f_att = if ctx.has(feature::ATTENUATION) { attenuation_factor(light.attenuation, dist) } else { 1.0 };
-    let spot = if ctx.has(feature::SPOT_LIGHTS) && light.kind == LIGHT_SPOT { spot_factor(light, l) } else { 1.0 };
+    let spot = if ctx.has(feature::SPOT_LIGHTS) && is_spot { spot_factor(light, l) } else { 1.0 };
     LightSample { l, dist, f_att, spot }
 }
 
 /// The specular lobe: max(N·H, 0)^n (Blinn) or max(R·V, 0)^n (Phong); 0 where N·L ≤ 0.
 pub fn specular_term(ctx: &TraceContext, mat: &GpuMaterial, n: DVec3, l: DVec3, v: DVec3, n_dot_l: f64) -> f64 {
     let shininess = f64::from(mat.shininess);
-    if ctx.has(feature::PHONG) && mat.flags & MATERIAL_PHONG != 0 {
-        let r = 2.0 * n_dot_l * n - l;
-        return safe_pow(r.dot(v).max(0.0), shininess);
+    match SpecularModel::of_flags(mat.flags) {
+        SpecularModel::Phong if ctx.has(feature::PHONG) => {
+            let r = 2.0 * n_dot_l * n - l;
+            return safe_pow(r.dot(v).max(0.0), shininess);
+        }
+        SpecularModel::Phong | SpecularModel::Blinn => {}
     }
     // L normalised here: a directional light's L is its stored f32 direction, unit only to
     // ~3e-8, and where L ≈ −V that length error, not the direction, would set H's direction.
@@ -117,6 +133,7 @@ pub fn diffuse_colour(ctx: &TraceContext, mat: &GpuMaterial, p: DVec3, ng: DVec3
 pub fn light_visibility(
     ctx: &TraceContext,
     light: &GpuLight,
+    kind: LightKind,
     s: &Surface,
     ng: DVec3,
     ls: &LightSample,
@@ -124,15 +141,16 @@ pub fn light_visibility(
 ) -> DVec3 {
     let n_side = if ng.dot(ls.l) >= 0.0 { ng } else { -ng };
     let (origin, t_min) = spawn_ray(ctx, s.p, s.p_surface, n_side, ls.l);
-    let (dir, t_max) = if light.kind == LIGHT_DIRECTIONAL {
-        (ls.l, FAR)
-    } else {
-        let to_light = v3(light.position) - origin;
-        let dist = to_light.length();
-        if dist < MIN_LIGHT_DISTANCE {
-            return DVec3::ONE;
+    let (dir, t_max) = match kind {
+        LightKind::Directional => (ls.l, FAR),
+        LightKind::Point | LightKind::Spot => {
+            let to_light = v3(light.position) - origin;
+            let dist = to_light.length();
+            if dist < MIN_LIGHT_DISTANCE {
+                return DVec3::ONE;
+            }
+            (to_light / dist, shadow_t_max(ctx, dist))
         }
-        (to_light / dist, shadow_t_max(ctx, dist))
     };
     if t_max <= t_min {
         return DVec3::ONE;
@@ -141,10 +159,63 @@ pub fn light_visibility(
     shadow_transmittance(ctx, &Ray { origin, dir }, t_min, t_max)
 }
 
+/// One light's share at the probed hit, with every factor of the model kept apart.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct LightTerm {
+    pub f_att: f64,
+    pub spot: f64,
+    /// V_j per channel (filtered shadows).
+    pub visibility: DVec3,
+    /// I_a,j·k_a.
+    pub ambient: DVec3,
+    /// I_d,j·k_d·max(N·L, 0).
+    pub diffuse: DVec3,
+    /// I_s,j·k_s·spec_j.
+    pub specular: DVec3,
+    /// f_att·S·[ambient + V·(diffuse + specular)], what the light adds.
+    pub contribution: DVec3,
+}
+
+/// The radiance of a camera ray split into the terms of the model at its first hit.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Breakdown {
+    /// Object id of the first hit, `NO_HIT` for background.
+    pub object_id: u32,
+    pub material: u32,
+    pub t: f64,
+    pub point: DVec3,
+    /// Shading normal turned towards the viewer.
+    pub normal: DVec3,
+    /// E_m.
+    pub emission: DVec3,
+    /// I_a·k_a.
+    pub ambient: DVec3,
+    /// Every light's terms, in light order.
+    pub lights: Vec<LightTerm>,
+    /// k_r·I_r (including the k_t share under total internal reflection).
+    pub reflected: DVec3,
+    /// k_t·I_t.
+    pub transmitted: DVec3,
+    /// The pixel radiance: the sum of all the above (or the background).
+    pub total: DVec3,
+}
+
+impl Breakdown {
+    /// Sum of the listed terms, to check against `total`.
+    pub fn sum_of_terms(&self) -> DVec3 {
+        self.emission
+            + self.ambient
+            + self.lights.iter().map(|l| l.contribution).sum::<DVec3>()
+            + self.reflected
+            + self.transmitted
+    }
+}
+
 /// One light's terms at a hit, each factor kept apart (the pixel probe shows them).
 pub fn light_term(
     ctx: &TraceContext,
     light: &GpuLight,
+    kind: LightKind,
     mat: &GpuMaterial,
     s: &Surface,
     n: DVec3,
@@ -153,7 +224,7 @@ pub fn light_term(
     kd: DVec3,
     counts: &mut RayCounts,
 ) -> LightTerm {
-    let ls = light_sample(ctx, light, s.p);
+    let ls = light_sample(ctx, light, kind, s.p);
     let scale = ls.f_att * ls.spot;
     let mut term = LightTerm { f_att: ls.f_att, spot: ls.spot, ..LightTerm::default() };
     if scale == 0.0 {
@@ -165,7 +236,7 @@ pub fn light_term(
     let n_dot_l = n.dot(ls.l);
     if n_dot_l > 0.0 {
         term.visibility = if ctx.has(feature::SHADOWS) && light.flags & LIGHT_CASTS_SHADOWS != 0 {
-            light_visibility(ctx, light, s, ng, &ls, counts)
+            light_visibility(ctx, light, kind, s, ng, &ls, counts)
         } else {
             DVec3::ONE
         };
@@ -197,11 +268,11 @@ pub fn shade_local(
     let ambient = v3(scene.header.ambient) * v3(mat.ka);
     let kd = diffuse_colour(ctx, mat, s.p, ng);
     let mut sum = DVec3::ZERO;
-    for (j, light) in scene.lights.iter().enumerate() {
-        let term = light_term(ctx, light, mat, s, n, ng, v, kd, counts);
+    for (light, &kind) in scene.lights.iter().zip(&ctx.light_kinds) {
+        let term = light_term(ctx, light, kind, mat, s, n, ng, v, kd, counts);
         sum += term.contribution;
         if let Some(b) = probe.as_deref_mut() {
-            b.lights.push(LightTerm { light: j as u32, ..term });
+            b.lights.push(term);
         }
     }
     if let Some(b) = probe {

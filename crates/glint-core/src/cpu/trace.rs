@@ -7,47 +7,32 @@
 use glam::DVec3;
 
 use super::camera::{camera_ray, sample_offset};
-use super::intersect::{FAR, Hit, PRIM_PLANE, PRIM_SPHERE, all_zero, closest_hit, triangle_shading_normal};
+use super::intersect::{FAR, Hit, Prim, all_zero, closest_hit, triangle_shading_normal};
 use super::offset::spawn_ray;
-use super::probe::Breakdown;
-use super::shade::shade_local;
+use super::shade::{Breakdown, Surface, shade_local};
 use super::{Ray, RayCounts, TraceContext, v3};
-use crate::layout::{EPS_ROBUST, NO_HIT, feature};
-
-/// Geometry at a hit: point, unit geometric and shading normals as stored (not yet turned
-/// towards the ray), material and object.
-#[derive(Clone, Copy, Debug)]
-pub struct Surface {
-    /// o + t·d, where shading happens.
-    pub p: DVec3,
-    /// The hit point recomputed from the surface itself (robust epsilon mode only, else p):
-    /// its error does not grow with the distance the ray travelled, as o + t·d's does.
-    pub p_surface: DVec3,
-    pub ng: DVec3,
-    pub ns: DVec3,
-    pub material: u32,
-    pub object_id: u32,
-}
+use crate::layout::{NO_HIT, feature};
+use crate::scene::EpsilonMode;
 
 pub fn surface_at(ctx: &TraceContext, ray: &Ray, hit: &Hit) -> Surface {
     let scene = ctx.scene;
     let p = ray.origin + hit.t * ray.dir;
-    let robust = ctx.epsilon_mode == EPS_ROBUST;
+    let robust = ctx.epsilon_mode == EpsilonMode::Robust;
     match hit.prim {
-        PRIM_SPHERE => {
+        Prim::Sphere => {
             let s = &scene.spheres[hit.index as usize];
             let c = v3(s.center_radius);
             let ng = (p - c).normalize();
             let p_surface = if robust { c + f64::from(s.center_radius[3]) * ng } else { p };
             Surface { p, p_surface, ng, ns: ng, material: s.material, object_id: s.object_id }
         }
-        PRIM_PLANE => {
+        Prim::Plane => {
             let pl = &scene.planes[hit.index as usize];
             let ng = v3(pl.normal_offset);
             let p_surface = if robust { p - (ng.dot(p) - f64::from(pl.normal_offset[3])) * ng } else { p };
             Surface { p, p_surface, ng, ns: ng, material: pl.material, object_id: pl.object_id }
         }
-        _ => {
+        Prim::Triangle => {
             let tri = &scene.triangles[hit.index as usize];
             let (v0, v1, v2) = (v3(tri.a), v3(tri.b), v3(tri.c));
             let ng = (v1 - v0).cross(v2 - v0).normalize();
@@ -118,7 +103,7 @@ pub fn shade_hit(
         b.point = s.p;
         b.normal = ns;
     }
-    if depth >= ctx.max_depth || !ctx.has(feature::REFLECTION | feature::TRANSMISSION) {
+    if depth >= ctx.max_depth || !feature::recurses(ctx.features) {
         return radiance;
     }
     let mat = &ctx.scene.materials[s.material as usize];
@@ -175,9 +160,9 @@ pub fn shade_hit(
 pub fn object_id(ctx: &TraceContext, hit: &Hit) -> u32 {
     let s = ctx.scene;
     match hit.prim {
-        PRIM_SPHERE => s.spheres[hit.index as usize].object_id,
-        PRIM_PLANE => s.planes[hit.index as usize].object_id,
-        _ => s.triangles[hit.index as usize].object_id,
+        Prim::Sphere => s.spheres[hit.index as usize].object_id,
+        Prim::Plane => s.planes[hit.index as usize].object_id,
+        Prim::Triangle => s.triangles[hit.index as usize].object_id,
     }
 }
 

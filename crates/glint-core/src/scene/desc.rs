@@ -8,6 +8,7 @@ use std::collections::BTreeMap;
 use serde::{Deserialize, Serialize};
 
 use super::rgb::Rgb;
+use crate::layout;
 
 /// A whole scene file.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -66,17 +67,18 @@ impl Default for RenderSettings {
 /// `robust` is the modern, scale-aware one).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize, Default)]
 #[serde(rename_all = "snake_case")]
+#[repr(u32)]
 pub enum EpsilonMode {
     /// Reject hits with t ≤ ε.
-    Tmin,
+    Tmin = layout::EPS_TMIN,
     /// Move the origin by ε along the new ray's direction.
-    NudgeRay,
+    NudgeRay = layout::EPS_NUDGE_RAY,
     /// Move the origin by ε along the geometric normal, to the side the ray leaves into.
-    NudgeNormal,
+    NudgeNormal = layout::EPS_NUDGE_NORMAL,
     /// Re-project the hit point onto the surface, offset it by a few ULPs along the normal
     /// (Wächter & Binder, Ray Tracing Gems ch. 6), then by ε.
     #[default]
-    Robust,
+    Robust = layout::EPS_ROBUST,
 }
 
 impl EpsilonMode {
@@ -188,10 +190,11 @@ pub struct CheckerDesc {
 /// The kind of a light source.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
+#[repr(u32)]
 pub enum LightKind {
-    Point,
-    Directional,
-    Spot,
+    Point = layout::LIGHT_POINT,
+    Directional = layout::LIGHT_DIRECTIONAL,
+    Spot = layout::LIGHT_SPOT,
 }
 
 impl LightKind {
