@@ -7,8 +7,8 @@ use crate::layout::{
     SceneHeader, TRIANGLE_HAS_NORMALS, feature,
 };
 use crate::scene::{
-    LightDesc, LightKind, MaterialDesc, MeshDesc, ObjectDesc, PlaneDesc, RenderSettings, Rgb, SceneDesc, SpecularModel,
-    SphereDesc,
+    LightDesc, LightKind, MaterialDesc, MeshDesc, NO_CONE_CUTOFF, ObjectDesc, PlaneDesc, RenderSettings, Rgb,
+    SceneDesc, SpecularModel, SphereDesc,
 };
 
 /// A scene in the GPU-ready layout, plus the names the UI and reports show.
@@ -249,7 +249,7 @@ fn flat_light(l: &LightDesc) -> GpuLight {
         // cos(cutoff) as sin(90° − cutoff): exact at both ends of [0, 90] (1 and 0), where
         // cos(90°.to_radians()) would be 6e-17 and leave a point exactly at 90° outside a
         // closed cone.
-        LightKind::Spot if l.cutoff < 180.0 => (l.exponent as f32, (90.0 - l.cutoff).to_radians().sin()),
+        LightKind::Spot if l.cutoff < NO_CONE_CUTOFF => (l.exponent as f32, (90.0 - l.cutoff).to_radians().sin()),
         LightKind::Spot => (l.exponent as f32, -1.0),
         LightKind::Point | LightKind::Directional => (0.0, -1.0),
     };
