@@ -5,6 +5,7 @@ use std::path::{Path, PathBuf};
 
 use glam::DVec3;
 
+use crate::atomic::{AtomicWriteError, write_atomically};
 use crate::layout::NO_HIT;
 use crate::render::Tile;
 
@@ -69,21 +70,10 @@ pub enum ImageWriteError {
     Format { path: PathBuf },
 }
 
-/// Writes to a temporary file beside `path`, then renames it into place, so a reader never
-/// sees a half-written image and a failed write leaves no file behind.
-fn write_atomically(
-    path: &Path,
-    write: impl FnOnce(&Path) -> Result<(), ImageWriteError>,
-) -> Result<(), ImageWriteError> {
-    let file_name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_else(|| "image".into());
-    let tmp = path.with_file_name(format!(".{file_name}.tmp-{}", std::process::id()));
-    let result = write(&tmp).and_then(|()| {
-        std::fs::rename(&tmp, path).map_err(|error| ImageWriteError::Io { path: path.to_owned(), error })
-    });
-    if result.is_err() {
-        let _ = std::fs::remove_file(&tmp);
+impl From<AtomicWriteError> for ImageWriteError {
+    fn from(AtomicWriteError { path, error }: AtomicWriteError) -> Self {
+        Self::Io { path, error }
     }
-    result
 }
 
 /// 8-bit sRGB PNG with `metadata` as tEXt chunks.
@@ -99,10 +89,10 @@ pub fn write_png_rgb8(
     rgb: &[u8],
     metadata: &[(String, String)],
 ) -> Result<(), ImageWriteError> {
-    write_atomically(path, |tmp| {
+    write_atomically(path, |file| {
         let io = |error| ImageWriteError::Io { path: path.to_owned(), error };
         let png_err = |e: png::EncodingError| ImageWriteError::Png { path: path.to_owned(), message: e.to_string() };
-        let mut out = BufWriter::new(std::fs::File::create(tmp).map_err(io)?);
+        let mut out = BufWriter::new(file);
         let mut encoder = png::Encoder::new(&mut out, width, height);
         encoder.set_color(png::ColorType::Rgb);
         encoder.set_depth(png::BitDepth::Eight);
@@ -113,8 +103,7 @@ pub fn write_png_rgb8(
         let mut writer = encoder.write_header().map_err(png_err)?;
         writer.write_image_data(rgb).map_err(png_err)?;
         writer.finish().map_err(png_err)?;
-        out.flush().map_err(io)?;
-        out.get_ref().sync_all().map_err(io)
+        out.flush().map_err(io)
     })
 }
 
@@ -123,10 +112,12 @@ pub fn write_exr(path: &Path, image: &HdrImage) -> Result<(), ImageWriteError> {
     let data: Vec<f32> = image.pixels.iter().flat_map(|p| p.to_array().map(|v| v as f32)).collect();
     let buffer = image::Rgb32FImage::from_raw(image.width, image.height, data)
         .ok_or_else(|| ImageWriteError::Exr { path: path.to_owned(), message: "buffer size mismatch".into() })?;
-    write_atomically(path, |tmp| {
+    write_atomically(path, |file| {
+        let mut out = BufWriter::new(file);
         buffer
-            .save_with_format(tmp, image::ImageFormat::OpenExr)
-            .map_err(|e| ImageWriteError::Exr { path: path.to_owned(), message: e.to_string() })
+            .write_to(&mut out, image::ImageFormat::OpenExr)
+            .map_err(|e| ImageWriteError::Exr { path: path.to_owned(), message: e.to_string() })?;
+        out.flush().map_err(|error| ImageWriteError::Io { path: path.to_owned(), error })
     })
 }
 

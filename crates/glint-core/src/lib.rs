@@ -1,6 +1,7 @@
 //! Glint core: the scene model and its validation, the flat GPU-ready layout, and the exact
 //! f64 CPU reference tracer of the Phong/Whitted model. No GPU code lives here.
 
+pub mod atomic;
 pub mod compare;
 pub mod cpu;
 pub mod flat;

@@ -3,7 +3,6 @@
 //! reference, and writes report.csv, report.md and one log-log plot per scene.
 
 mod csv;
-mod files;
 mod machine;
 mod pareto;
 mod plan;
@@ -13,11 +12,12 @@ mod table;
 
 use std::collections::HashMap;
 use std::io::IsTerminal;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use anyhow::{Context, bail};
+use anyhow::{Context, anyhow, bail};
 use clap::Args;
+use glint_core::atomic::write_file_atomically;
 use glint_core::scene::RenderSettings;
 use indicatif::{ProgressBar, ProgressStyle};
 
@@ -136,9 +136,9 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
         plan: &plan,
     };
     let csv_path = args.out.join("report.csv");
-    files::write_atomically(&csv_path, &csv::render_csv(&results, &cpu_device, gpu_device.as_deref().unwrap_or("")))?;
+    write_report_file(&csv_path, &csv::render_csv(&results, &cpu_device, gpu_device.as_deref().unwrap_or("")))?;
     let md_path = args.out.join("report.md");
-    files::write_atomically(&md_path, &table::render_markdown(&setup, &results))?;
+    write_report_file(&md_path, &table::render_markdown(&setup, &results))?;
     println!(
         "report: {} scenes, {} configurations each, in {:.1} s; wrote {} and {}",
         results.len(),
@@ -148,6 +148,12 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
         csv_path.display()
     );
     Ok(())
+}
+
+/// Replaces `path` atomically: a reader (or a CI artefact upload) never sees a half-written report.
+fn write_report_file(path: &Path, text: &str) -> anyhow::Result<()> {
+    write_file_atomically(path, text.as_bytes())
+        .map_err(|e| anyhow!("cannot write {}: {}", e.path.display(), e.error))
 }
 
 /// The sweep's progress; hidden when stderr is not a terminal.
