@@ -7,7 +7,6 @@ use glam::DVec3;
 
 use crate::atomic::{AtomicWriteError, write_atomically};
 use crate::layout::NO_HIT;
-use crate::render::Tile;
 
 /// A linear-radiance image with the first-hit object of every pixel.
 #[derive(Clone, Debug, PartialEq)]
@@ -27,16 +26,6 @@ impl HdrImage {
 
     pub fn get(&self, x: u32, y: u32) -> DVec3 {
         self.pixels[(y * self.width + x) as usize]
-    }
-
-    pub fn blit(&mut self, tile: &Tile) {
-        for row in 0..tile.height {
-            let src = (row * tile.width) as usize..((row + 1) * tile.width) as usize;
-            let dst_start = ((tile.y0 + row) * self.width + tile.x0) as usize;
-            let dst = dst_start..dst_start + tile.width as usize;
-            self.pixels[dst.clone()].copy_from_slice(&tile.radiance[src.clone()]);
-            self.first_hit[dst].copy_from_slice(&tile.first_hit[src]);
-        }
     }
 
     /// Whether every channel of every pixel is a finite number.
