@@ -10,6 +10,7 @@
 
 use std::sync::OnceLock;
 
+pub use glint_core::Backend;
 use glint_core::{CpuRender, FlatScene, HdrImage};
 use glint_gpu::{AdapterRequest, GpuContext, GpuOptions, GpuRender, GpuTracer};
 
@@ -59,30 +60,6 @@ pub fn gpu_render(tracer: &GpuTracer, flat: &FlatScene, specialise: bool) -> Gpu
     let nonfinite = nonfinite_pixels(&r.image).len();
     assert_eq!(nonfinite, 0, "{nonfinite} GPU pixels are NaN or infinite");
     r
-}
-
-/// A backend, for per-backend tolerances.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Backend {
-    Cpu,
-    Gpu,
-}
-
-impl Backend {
-    pub fn name(self) -> &'static str {
-        match self {
-            Self::Cpu => "CPU",
-            Self::Gpu => "GPU",
-        }
-    }
-
-    /// `cpu` on the CPU, `gpu` on the GPU.
-    pub fn pick<T>(self, cpu: T, gpu: T) -> T {
-        match self {
-            Self::Cpu => cpu,
-            Self::Gpu => gpu,
-        }
-    }
 }
 
 /// How `render_both` runs the GPU.

@@ -2,6 +2,7 @@
 //! f64 CPU reference tracer of the Phong/Whitted model. No GPU code lives here.
 
 pub mod atomic;
+pub mod backend;
 pub mod compare;
 pub mod cpu;
 pub mod flat;
@@ -10,6 +11,7 @@ pub mod layout;
 pub mod render;
 pub mod scene;
 
+pub use backend::Backend;
 pub use flat::FlatScene;
 pub use image::HdrImage;
 pub use render::{CpuOptions, CpuRender, RenderControl, pick_object, probe_pixel, render_cpu};

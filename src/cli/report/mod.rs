@@ -17,11 +17,12 @@ use std::time::Instant;
 
 use anyhow::{Context, anyhow, bail};
 use clap::Args;
+use glint_core::Backend;
 use glint_core::atomic::write_file_atomically;
 use glint_core::scene::RenderSettings;
 use indicatif::{ProgressBar, ProgressStyle};
 
-use self::plan::{Backend, Plan};
+use self::plan::Plan;
 use self::sweep::Engines;
 use super::backend::open_gpu;
 use super::settings::load;
