@@ -4,11 +4,11 @@
 
 mod csv;
 mod machine;
+mod markdown;
 mod pareto;
 mod plan;
 mod plot;
 mod sweep;
-mod table;
 
 use std::collections::HashMap;
 use std::io::IsTerminal;
@@ -126,7 +126,7 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
     bar.finish_and_clear();
 
     let machine = machine::Machine::probe();
-    let setup = table::Setup {
+    let setup = markdown::Setup {
         machine: &machine,
         cpu_device: &cpu_device,
         gpu_device: gpu_device.as_deref(),
@@ -139,7 +139,7 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
     let csv_path = args.out.join("report.csv");
     write_report_file(&csv_path, &csv::render_csv(&results, &cpu_device, gpu_device.as_deref().unwrap_or("")))?;
     let md_path = args.out.join("report.md");
-    write_report_file(&md_path, &table::render_markdown(&setup, &results))?;
+    write_report_file(&md_path, &markdown::render_markdown(&setup, &results))?;
     println!(
         "report: {} scenes, {} configurations each, in {:.1} s; wrote {} and {}",
         results.len(),
@@ -153,8 +153,7 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
 
 /// Replaces `path` atomically: a reader (or a CI artefact upload) never sees a half-written report.
 fn write_report_file(path: &Path, text: &str) -> anyhow::Result<()> {
-    write_file_atomically(path, text.as_bytes())
-        .map_err(|e| anyhow!("cannot write {}: {}", e.path.display(), e.error))
+    write_file_atomically(path, text.as_bytes()).map_err(|e| anyhow!("cannot write {}: {}", e.path.display(), e.error))
 }
 
 /// The sweep's progress; hidden when stderr is not a terminal.
