@@ -47,14 +47,14 @@ fn split_csv(line: &str) -> Vec<String> {
 fn quick_report_writes_consistent_files() {
     let skip_gpu = std::env::var("GLINT_SKIP_GPU").is_ok_and(|v| v == "1");
     let dir = TempDir::new("report");
-    let out_dir = dir.path("out");
+    let out_dir = dir.join("out");
     let mut args = vec!["report".into(), "--quick".into(), "--out".into(), out_dir.clone().into_os_string()];
     if skip_gpu {
         eprintln!("GLINT_SKIP_GPU=1: the report sweeps the CPU only");
         args.push("--cpu-only".into());
     }
     let start = Instant::now();
-    let out = glint(&dir.0, &args);
+    let out = glint(&dir, &args);
     let stderr = text(&out.stderr);
     assert!(
         out.status.success(),
@@ -193,9 +193,9 @@ fn quick_report_writes_consistent_files() {
 #[test]
 fn report_rejects_an_unknown_scene_before_writing_anything() {
     let dir = TempDir::new("report-bad");
-    let out_dir = dir.path("out");
+    let out_dir = dir.join("out");
     let out = glint(
-        &dir.0,
+        &dir,
         [
             "report".into(),
             "--scenes".into(),

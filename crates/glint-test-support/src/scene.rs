@@ -1,8 +1,5 @@
 //! Scene text for tests: a TOML builder that goes through the real parser and validation, so
 //! that every test scene is a scene a user could write.
-//!
-//! Shared by the test binaries (`tests/core`, `tests/gpu`, `tests/stiff`); each includes it at
-//! its crate root as `#[path = "../common/scene.rs"] mod scene;`.
 
 use std::fmt::Write as _;
 use std::path::Path;
