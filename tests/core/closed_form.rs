@@ -341,28 +341,9 @@ fn perfect_mirror_returns_kr_times_the_wall() {
     assert!(render(&flat).image.pixels.iter().all(|p| *p == DVec3::ZERO));
 }
 
-/// A checkered floor, a red sphere, two lights and, optionally, a sphere of ideal glass of the
-/// given ior (k_t = 1, every other coefficient 0). ε = 0: the robust offset alone moves
-/// secondary origins (by a few hundred ULPs), so a straight-through ray continues on a line
-/// displaced by ~1e-13, far below the 1e-9 tolerance.
+/// The glass scene with both lights (glint_test_support::scene::glass_scene).
 fn glass_scene(glass_ior: Option<f64>) -> SceneText {
-    let s = SceneText::new(48, 36, "max_depth = 4\nepsilon = 0.0\nbailout = 0.0", [0.1, 1.2, -3.0], [0.1, 0.5, 1.0], Y, 50.0)
-        .world([0.125; 3], [0.25, 0.5, 0.75])
-        .material(
-            "floor",
-            "ka = 0.5\nkd = [0.75, 0.25, 0.25]\nks = 0.5\nshininess = 10.0\nchecker = { kd = [0.25, 0.75, 0.25], size = 0.5 }",
-        )
-        .material("red", "ka = 0.5\nkd = [0.8, 0.1, 0.1]\nks = 0.5\nshininess = 30.0")
-        .light("point", "position = [-2.0, 4.0, -1.0]\ndiffuse = 0.75\nspecular = 0.75")
-        .light("directional", "direction = [0.5, -1.0, 0.25]\ndiffuse = 0.25\nspecular = 0.25")
-        .plane([0.0; 3], Y, "floor")
-        .sphere([0.8, 0.5, 2.0], 0.5, "red");
-    match glass_ior {
-        Some(ior) => s
-            .material("glass", &format!("ka = 0.0\nkd = 0.0\nks = 0.0\nkr = 0.0\nkt = 1.0\nior = {}", num(ior)))
-            .sphere([-0.3, 0.6, 0.5], 0.6, "glass"),
-        None => s,
-    }
+    crate::scene::glass_scene(glass_ior, true)
 }
 
 #[test]

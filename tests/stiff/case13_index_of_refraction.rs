@@ -30,20 +30,9 @@ const IOR1_GPU: f64 = 1e-4;
 /// are dyadic). Allowed: 1e-5, a few f32 roundings of a sum of two products with margin.
 const TIR_GPU: f64 = 1e-5;
 
+/// The glass scene with its point light only (glint_test_support::scene::glass_scene).
 fn glass_scene(glass_ior: Option<f64>) -> SceneText {
-    let s = SceneText::new(48, 36, "max_depth = 4\nepsilon = 0.0\nbailout = 0.0", [0.1, 1.2, -3.0], [0.1, 0.5, 1.0], Y, 50.0)
-        .world([0.125; 3], [0.25, 0.5, 0.75])
-        .material("floor", "ka = 0.5\nkd = [0.75, 0.25, 0.25]\nks = 0.5\nshininess = 10.0\nchecker = { kd = [0.25, 0.75, 0.25], size = 0.5 }")
-        .material("red", "ka = 0.5\nkd = [0.8, 0.1, 0.1]\nks = 0.5\nshininess = 30.0")
-        .light("point", "position = [-2.0, 4.0, -1.0]\ndiffuse = 0.75\nspecular = 0.75")
-        .plane([0.0; 3], Y, "floor")
-        .sphere([0.8, 0.5, 2.0], 0.5, "red");
-    match glass_ior {
-        Some(ior) => s
-            .material("glass", &format!("ka = 0.0\nkd = 0.0\nks = 0.0\nkr = 0.0\nkt = 1.0\nior = {}", num(ior)))
-            .sphere([-0.3, 0.6, 0.5], 0.6, "glass"),
-        None => s,
-    }
+    crate::scene::glass_scene(glass_ior, false)
 }
 
 #[test]
