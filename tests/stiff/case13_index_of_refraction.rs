@@ -19,7 +19,7 @@ use glint_core::scene::parse_scene;
 
 use crate::gpu::render_both;
 use crate::reference::dv;
-use crate::scene::{SceneText, num, w3};
+use crate::scene::{SLAB_GROUND as GROUND, SLAB_KR as KR, SLAB_KT as KT, SLAB_SKY as SKY, SceneText, slab, w3};
 use crate::{Y, Z};
 
 /// Measured (lavapipe): with ior 1 the GPU image differs from the one without the sphere by at
@@ -56,26 +56,6 @@ fn glass_of_ior_one_is_invisible_on_both_backends() {
     }
     say!(out, "case 13: ior 1 glass sphere, worst relative change of a pixel, CPU / GPU: {}", worst.join(" / "));
     eprint!("{out}");
-}
-
-const SKY: [f64; 3] = [0.25, 0.5, 1.0];
-const GROUND: [f64; 3] = [1.0, 0.5, 0.125];
-const KR: f64 = 0.25;
-const KT: f64 = 0.5;
-
-fn slab(ior: f64, deg: f64) -> SceneText {
-    let a = deg.to_radians();
-    SceneText::pinhole("max_depth = 2\nbailout = 0.0", [0.0; 3], [a.sin(), a.cos(), 0.0], Z)
-        .world([0.5; 3], [0.0; 3])
-        .material(
-            "glass",
-            &format!("ka = 0.0\nkd = 0.0\nks = 0.0\nkr = {}\nkt = {}\nior = {}", num(KR), num(KT), num(ior)),
-        )
-        .material("sky", &format!("ka = 0.0\nkd = 0.0\nks = 0.0\nemission = {SKY:?}"))
-        .material("ground", &format!("ka = 0.0\nkd = 0.0\nks = 0.0\nemission = {GROUND:?}"))
-        .plane([0.0, 1.0, 0.0], Y, "glass")
-        .plane([0.0, 6.0, 0.0], [0.0, -1.0, 0.0], "sky")
-        .plane([0.0, -6.0, 0.0], Y, "ground")
 }
 
 #[test]

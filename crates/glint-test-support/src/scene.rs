@@ -59,6 +59,32 @@ pub fn glass_scene(glass_ior: Option<f64>, directional: bool) -> SceneText {
     }
 }
 
+/// The slab's emissive sky (above) and ground (below), and its glass's k_r and k_t.
+pub const SLAB_SKY: [f64; 3] = [0.25, 0.5, 1.0];
+pub const SLAB_GROUND: [f64; 3] = [1.0, 0.5, 0.125];
+pub const SLAB_KR: f64 = 0.25;
+pub const SLAB_KT: f64 = 0.5;
+
+/// The camera is inside glass of index `ior`: the half-space y < 1 below the plane y = 1
+/// (normal +y, so a ray going up leaves the glass). Above, an emissive sky (y = 6); below, an
+/// emissive ground (y = −6). The camera looks up at `deg` from the normal.
+pub fn slab(ior: f64, deg: f64) -> SceneText {
+    const Y: [f64; 3] = [0.0, 1.0, 0.0];
+    const Z: [f64; 3] = [0.0, 0.0, 1.0];
+    let a = deg.to_radians();
+    SceneText::pinhole("max_depth = 2\nbailout = 0.0", [0.0; 3], [a.sin(), a.cos(), 0.0], Z)
+        .world([0.5; 3], [0.0; 3])
+        .material(
+            "glass",
+            &format!("ka = 0.0\nkd = 0.0\nks = 0.0\nkr = {}\nkt = {}\nior = {}", num(SLAB_KR), num(SLAB_KT), num(ior)),
+        )
+        .material("sky", &format!("ka = 0.0\nkd = 0.0\nks = 0.0\nemission = {SLAB_SKY:?}"))
+        .material("ground", &format!("ka = 0.0\nkd = 0.0\nks = 0.0\nemission = {SLAB_GROUND:?}"))
+        .plane([0.0, 1.0, 0.0], Y, "glass")
+        .plane([0.0, 6.0, 0.0], [0.0, -1.0, 0.0], "sky")
+        .plane([0.0, -6.0, 0.0], Y, "ground")
+}
+
 /// Incrementally written scene text.
 #[derive(Debug, Default, Clone)]
 pub struct SceneText {
