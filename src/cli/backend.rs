@@ -5,21 +5,16 @@ use std::time::{Duration, Instant};
 use anyhow::Context;
 use glint_core::cpu::RayCounts;
 use glint_core::render::{Tile, tile_count};
-use glint_core::{CpuOptions, FlatScene, HdrImage, RenderControl, render_cpu};
+use glint_core::{Backend, CpuOptions, FlatScene, HdrImage, RenderControl, render_cpu};
 use glint_gpu::{AdapterRequest, GpuContext, GpuOptions, GpuTracer};
 use indicatif::{ProgressBar, ProgressStyle};
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
-pub enum Backend {
-    Cpu,
-    Gpu,
-    Both,
-}
+use super::units::mrays_per_s;
 
 /// One finished render.
 #[derive(Debug)]
 pub struct Run {
-    pub backend: &'static str,
+    pub backend: Backend,
     pub image: HdrImage,
     pub counts: RayCounts,
     /// The render itself.
@@ -33,7 +28,7 @@ pub struct Run {
 
 impl Run {
     pub fn mrays(&self) -> f64 {
-        self.counts.total() as f64 / self.render.as_secs_f64().max(1e-9) / 1e6
+        mrays_per_s(self.counts.total(), self.render)
     }
 }
 
@@ -55,7 +50,7 @@ pub fn run_cpu(flat: &FlatScene, options: &CpuOptions, quiet: bool) -> anyhow::R
     let r = render_cpu(flat, options, RenderControl { cancel: None, on_tile: Some(&on_tile) })?;
     bar.finish_and_clear();
     Ok(Run {
-        backend: "cpu",
+        backend: Backend::Cpu,
         image: r.image,
         counts: r.counts,
         render: r.elapsed,
@@ -79,7 +74,7 @@ pub fn run_gpu(tracer: &GpuTracer, flat: &FlatScene, options: &GpuOptions) -> an
         eprintln!("warning: {message}");
     }
     Ok(Run {
-        backend: "gpu",
+        backend: Backend::Gpu,
         image: r.image,
         counts: r.counts,
         render: r.render_time,

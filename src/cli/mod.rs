@@ -5,6 +5,7 @@ mod output;
 mod render;
 mod report;
 mod settings;
+mod units;
 mod view;
 
 use clap::{Parser, Subcommand};

@@ -1,7 +1,6 @@
 //! What `glint render` writes and prints: images with metadata, the timing/error table, JSON.
 
 use std::path::{Path, PathBuf};
-use std::time::Duration;
 
 use glint_core::compare::{HEATMAP_LOG10_MAX, HEATMAP_LOG10_MIN, ImageErrors, diff_heatmap};
 use glint_core::cpu::RayCounts;
@@ -10,6 +9,7 @@ use glint_core::scene::RenderSettings;
 use serde::Serialize;
 
 use super::backend::Run;
+use super::units::ms;
 
 /// Render settings as PNG tEXt chunks (`glint:*` keys).
 pub fn metadata(scene: &str, s: &RenderSettings, run: &Run, specialised: bool) -> Vec<(String, String)> {
@@ -17,10 +17,10 @@ pub fn metadata(scene: &str, s: &RenderSettings, run: &Run, specialised: bool) -
         s,
         &RenderInfo {
             scene,
-            backend: run.backend,
+            backend: run.backend.name(),
             device: &run.device,
             specialised,
-            time_ms: Some(run.render.as_secs_f64() * 1e3),
+            time_ms: Some(ms(run.render)),
             rays: Some(run.counts.total()),
         },
     )
@@ -53,10 +53,6 @@ pub fn write_diff(path: &Path, cpu: &Run, gpu: &Run, mut metadata: Vec<(String, 
     let png = path.with_extension("png");
     write_png_rgb8(&png, cpu.image.width, cpu.image.height, &rgb, &metadata)?;
     Ok(())
-}
-
-pub fn ms(d: Duration) -> f64 {
-    d.as_secs_f64() * 1e3
 }
 
 pub fn fmt_counts(c: &RayCounts) -> String {
@@ -134,7 +130,7 @@ pub fn print_json(
         runs: runs
             .iter()
             .map(|r| JsonRun {
-                backend: r.backend,
+                backend: r.backend.name(),
                 device: &r.device,
                 render_ms: ms(r.render),
                 total_ms: ms(r.total),
@@ -172,7 +168,14 @@ pub fn print_table(scene: &str, s: &RenderSettings, runs: &[Run], errors: Option
     println!("{scene}: {}x{} {} spp depth {}", s.width, s.height, s.spp, s.max_depth);
     println!("  {:<8} {:>12} {:>12} {:>9}  device", "backend", "render ms", "total ms", "Mrays/s");
     for r in runs {
-        println!("  {:<8} {:>12.1} {:>12.1} {:>9.2}  {}", r.backend, ms(r.render), ms(r.total), r.mrays(), r.device);
+        println!(
+            "  {:<8} {:>12.1} {:>12.1} {:>9.2}  {}",
+            r.backend.name(),
+            ms(r.render),
+            ms(r.total),
+            r.mrays(),
+            r.device
+        );
         println!("           {}", fmt_counts(&r.counts));
     }
     if let Some(e) = errors {

@@ -4,14 +4,16 @@ use std::path::{Path, PathBuf};
 
 use anyhow::bail;
 use clap::Args;
+use clap::builder::{PossibleValuesParser, TypedValueParser};
 use glint_core::compare::compare_images;
 use glint_core::scene::{BUILTIN_SCENES, parse_scene};
-use glint_core::{CpuOptions, FlatScene};
+use glint_core::{Backend, CpuOptions, FlatScene};
 use glint_gpu::GpuOptions;
 
-use super::backend::{Backend, Run, open_gpu, run_cpu, run_gpu};
-use super::output::{fmt_counts, metadata, ms, print_json, print_table, suffixed, write_diff, write_run};
+use super::backend::{Run, open_gpu, run_cpu, run_gpu};
+use super::output::{fmt_counts, metadata, print_json, print_table, suffixed, write_diff, write_run};
 use super::settings::{SettingsArgs, load};
+use super::units::{mrays_per_s, ms};
 
 #[derive(Debug, Args)]
 pub struct RenderArgs {
@@ -25,8 +27,8 @@ pub struct RenderArgs {
     #[command(flatten)]
     pub settings: SettingsArgs,
     /// Which tracer renders: the CPU reference, the GPU mirror, or both (then compared)
-    #[arg(long, value_enum, default_value_t = Backend::Cpu)]
-    pub backend: Backend,
+    #[arg(long, default_value = "cpu", value_parser = backends())]
+    pub backend: &'static [Backend],
     /// GPU adapter: a case-insensitive part of its name (default: WGPU_ADAPTER_NAME, else the best GPU)
     #[arg(long)]
     pub adapter: Option<String>,
@@ -53,6 +55,17 @@ pub struct RenderArgs {
     pub quiet: bool,
 }
 
+/// The choices of `--backend` and the tracers each runs, CPU first.
+const BACKEND_CHOICES: [(&str, &[Backend]); 3] =
+    [("cpu", &[Backend::Cpu]), ("gpu", &[Backend::Gpu]), ("both", &[Backend::Cpu, Backend::Gpu])];
+
+fn backends() -> impl TypedValueParser<Value = &'static [Backend]> {
+    PossibleValuesParser::new(BACKEND_CHOICES.map(|(name, _)| name)).map(|choice| {
+        let (_, backends) = BACKEND_CHOICES.iter().find(|(name, _)| *name == choice).expect("clap admits only these");
+        *backends
+    })
+}
+
 pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     if args.list {
         for b in BUILTIN_SCENES {
@@ -73,17 +86,17 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     let output = args.output.clone().unwrap_or_else(|| PathBuf::from(format!("{}.png", loaded.name)));
     check_output(&output)?;
 
-    let gpu = if args.backend == Backend::Cpu { None } else { Some(open_gpu(args.adapter.as_deref())?) };
+    let gpu = if args.backend.contains(&Backend::Gpu) { Some(open_gpu(args.adapter.as_deref())?) } else { None };
     // The GPU renders first: a scene it cannot take (size, limits) fails before a long CPU render.
     let gpu_run = gpu.as_ref().map(|tracer| run_gpu(tracer, &flat, &gpu_options)).transpose()?;
     let mut runs = Vec::new();
-    if args.backend != Backend::Gpu {
+    if args.backend.contains(&Backend::Cpu) {
         runs.push(run_cpu(&flat, &cpu_options, args.quiet || args.json)?);
     }
     runs.extend(gpu_run);
     let mut outputs = Vec::new();
     for run in &runs {
-        let path = if args.backend == Backend::Both { suffixed(&output, run.backend) } else { output.clone() };
+        let path = if args.backend.len() > 1 { suffixed(&output, run.backend.name()) } else { output.clone() };
         write_run(&path, run, &metadata(&loaded.name, &settings, run, specialise))?;
         outputs.push(path);
     }
@@ -101,7 +114,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         print_table(&loaded.name, &settings, &runs, errors.as_ref(), &outputs);
     }
     if let Some(bad) = runs.iter().find(|r| !r.image.all_finite()) {
-        bail!("the {} render produced non-finite pixels; this is a bug, please report it", bad.backend);
+        bail!("the {} render produced non-finite pixels; this is a bug, please report it", bad.backend.name());
     }
     Ok(())
 }
@@ -125,9 +138,9 @@ fn bench(
     gpu_options: &GpuOptions,
 ) -> anyhow::Result<()> {
     let h = &flat.header;
-    let gpu = if args.backend == Backend::Cpu { None } else { Some(open_gpu(args.adapter.as_deref())?) };
+    let gpu = if args.backend.contains(&Backend::Gpu) { Some(open_gpu(args.adapter.as_deref())?) } else { None };
     let mut backends: Vec<Box<dyn Fn() -> anyhow::Result<Run>>> = Vec::new();
-    if args.backend != Backend::Gpu {
+    if args.backend.contains(&Backend::Cpu) {
         backends.push(Box::new(|| run_cpu(flat, cpu, true)));
     }
     if let Some(tracer) = &gpu {
@@ -142,10 +155,10 @@ fn bench(
         }
         times.sort();
         let median = times[times.len() / 2];
-        let mrays = warm.counts.total() as f64 / median.as_secs_f64().max(1e-9) / 1e6;
+        let mrays = mrays_per_s(warm.counts.total(), median);
         println!(
             "bench {name} {}: {}x{} {} spp depth {} bailout {}, {}: median {:.1} ms, min {:.1} ms over {} runs, {:.2} Mrays/s; {}",
-            warm.backend,
+            warm.backend.name(),
             h.width,
             h.height,
             h.spp,

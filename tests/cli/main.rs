@@ -2,8 +2,10 @@
 //! metadata, `--list`, and clean failures (non-zero exit, a clear message, no file left).
 
 use std::ffi::OsString;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Output};
+
+use glint_test_support::TempDir;
 
 mod report;
 
@@ -11,39 +13,6 @@ const BIN: &str = env!("CARGO_BIN_EXE_glint");
 
 /// The built-in scenes the issue asks for, spelled out here rather than read from the crate.
 const BUILTINS: [&str; 5] = ["whitted", "cornell", "spotlights", "highlights", "lights"];
-
-/// A fresh, empty folder under the system temp dir, removed when dropped.
-#[derive(Debug)]
-struct TempDir(PathBuf);
-
-impl TempDir {
-    fn new(tag: &str) -> Self {
-        let dir = std::env::temp_dir().join(format!("glint-cli-test-{}-{tag}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).expect("create temp dir");
-        Self(dir)
-    }
-
-    fn path(&self, name: &str) -> PathBuf {
-        self.0.join(name)
-    }
-
-    /// File names in the folder, sorted.
-    fn listing(&self) -> Vec<String> {
-        let mut names: Vec<String> = std::fs::read_dir(&self.0)
-            .expect("read temp dir")
-            .map(|e| e.expect("dir entry").file_name().to_string_lossy().into_owned())
-            .collect();
-        names.sort();
-        names
-    }
-}
-
-impl Drop for TempDir {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
-}
 
 /// Runs `glint ARGS` with the working directory in `cwd` (so a default output name could
 /// never land in the source tree).
@@ -89,8 +58,8 @@ fn renders_every_builtin_scene_to_png_and_exr_with_metadata() {
     let dir = TempDir::new("render");
     let (w, h) = (40u32, 30u32);
     for name in BUILTINS {
-        let png_path = dir.path(&format!("{name}.png"));
-        let exr_path = dir.path(&format!("{name}.exr"));
+        let png_path = dir.join(format!("{name}.png"));
+        let exr_path = dir.join(format!("{name}.exr"));
         let settings = [
             "--width",
             "40",
@@ -115,7 +84,7 @@ fn renders_every_builtin_scene_to_png_and_exr_with_metadata() {
         for path in [&png_path, &exr_path] {
             let mut args: Vec<OsString> = vec!["render".into(), name.into(), "-o".into(), path.into()];
             args.extend(settings.iter().map(Into::into));
-            let out = glint(&dir.0, &args);
+            let out = glint(&dir, &args);
             assert!(out.status.success(), "{name} -> {}: {}", path.display(), text(&out.stderr));
             // One summary line: time, rays by kind, bailout savings, throughput.
             let stdout = text(&out.stdout);
@@ -171,7 +140,7 @@ fn scene_settings_are_used_when_no_flag_overrides_them() {
     // The metadata reports the scene file's own settings (and the defaults of the format)
     // where no flag is given.
     let dir = TempDir::new("defaults");
-    let scene = dir.path("own.toml");
+    let scene = dir.join("own.toml");
     std::fs::write(
         &scene,
         "[render]\nwidth = 24\nheight = 16\nspp = 3\nmax_depth = 4\nepsilon_mode = \"tmin\"\n\n\
@@ -181,8 +150,8 @@ fn scene_settings_are_used_when_no_flag_overrides_them() {
          [[objects]]\ntype = \"sphere\"\ncenter = [0.0, 0.5, 0.0]\nradius = 0.5\nmaterial = \"m\"\n",
     )
     .unwrap();
-    let out_path = dir.path("own.png");
-    let out = glint(&dir.0, ["render".as_ref(), scene.as_os_str(), "-o".as_ref(), out_path.as_os_str(), "-q".as_ref()]);
+    let out_path = dir.join("own.png");
+    let out = glint(&dir, ["render".as_ref(), scene.as_os_str(), "-o".as_ref(), out_path.as_os_str(), "-q".as_ref()]);
     assert!(out.status.success(), "{}", text(&out.stderr));
     let chunks = png_text_chunks(&out_path);
     assert_eq!(meta(&chunks, "glint:scene"), "own");
@@ -198,7 +167,7 @@ fn scene_settings_are_used_when_no_flag_overrides_them() {
 #[test]
 fn list_shows_the_five_builtin_scenes() {
     let dir = TempDir::new("list");
-    let out = glint(&dir.0, ["render", "--list"]);
+    let out = glint(&dir, ["render", "--list"]);
     assert!(out.status.success(), "{}", text(&out.stderr));
     let stdout = text(&out.stdout);
     let lines: Vec<&str> = stdout.lines().filter(|l| !l.trim().is_empty()).collect();
@@ -217,7 +186,7 @@ fn list_shows_the_five_builtin_scenes() {
 fn expect_failure(tag: &str, setup: impl FnOnce(&TempDir) -> Vec<OsString>, fragments: &[&str], keep: &[&str]) {
     let dir = TempDir::new(tag);
     let args = setup(&dir);
-    let out = glint(&dir.0, &args);
+    let out = glint(&dir, &args);
     let stderr = text(&out.stderr);
     assert!(!out.status.success(), "{tag}: glint {args:?} succeeded:\n{}", text(&out.stdout));
     assert!(out.status.code().is_some_and(|c| c != 0), "{tag}: no proper exit code: {:?}", out.status);
@@ -241,70 +210,70 @@ const BAD_SCENE: &str = "[camera]\nposition = [0.0, 1.0, -4.0]\nlook_at = [0.0, 
 fn bad_input_fails_cleanly() {
     expect_failure(
         "unknown-scene",
-        |d| os(&[&"render", &"nosuchscene", &"-o", &d.path("out.png")]),
+        |d| os(&[&"render", &"nosuchscene", &"-o", &d.join("out.png")]),
         &["nosuchscene", "whitted", "cornell", "spotlights", "highlights", "lights"],
         &[],
     );
     // Negative numbers reach the flag's own message (not clap's "unexpected argument '-8'").
     expect_failure(
         "width-negative",
-        |d| os(&[&"render", &"whitted", &"-o", &d.path("out.png"), &"--width", &"-8"]),
+        |d| os(&[&"render", &"whitted", &"-o", &d.join("out.png"), &"--width", &"-8"]),
         &["--width", "-8 is negative"],
         &[],
     );
     expect_failure(
         "bailout-negative",
-        |d| os(&[&"render", &"whitted", &"-o", &d.path("out.png"), &"--bailout", &"-0.5"]),
+        |d| os(&[&"render", &"whitted", &"-o", &d.join("out.png"), &"--bailout", &"-0.5"]),
         &["--bailout", "[0, 1]"],
         &[],
     );
     expect_failure(
         "scene-is-a-folder",
-        |d| os(&[&"render", &d.0, &"-o", &d.path("out.png")]),
+        |d| os(&[&"render", &d.as_os_str(), &"-o", &d.join("out.png")]),
         &["a folder, not a scene file"],
         &[],
     );
     expect_failure(
         "spp-zero",
-        |d| os(&[&"render", &"whitted", &"-o", &d.path("out.png"), &"--spp", &"0"]),
+        |d| os(&[&"render", &"whitted", &"-o", &d.join("out.png"), &"--spp", &"0"]),
         &["--spp", "[1, 4096]"],
         &[],
     );
     expect_failure(
         "bailout-range",
-        |d| os(&[&"render", &"whitted", &"-o", &d.path("out.png"), &"--bailout", &"2"]),
+        |d| os(&[&"render", &"whitted", &"-o", &d.join("out.png"), &"--bailout", &"2"]),
         &["--bailout", "[0, 1]"],
         &[],
     );
     expect_failure(
         "epsilon-mode",
-        |d| os(&[&"render", &"whitted", &"-o", &d.path("out.png"), &"--epsilon-mode", &"fuzzy"]),
+        |d| os(&[&"render", &"whitted", &"-o", &d.join("out.png"), &"--epsilon-mode", &"fuzzy"]),
         &["fuzzy", "robust"],
         &[],
     );
     expect_failure(
         "extension",
-        |d| os(&[&"render", &"whitted", &"-o", &d.path("out.bmp"), &"--width", &"8", &"--height", &"8"]),
+        |d| os(&[&"render", &"whitted", &"-o", &d.join("out.bmp"), &"--width", &"8", &"--height", &"8"]),
         &["out.bmp", "unsupported output format"],
         &[],
     );
     expect_failure(
         "no-extension",
-        |d| os(&[&"render", &"whitted", &"-o", &d.path("out"), &"--width", &"8", &"--height", &"8"]),
+        |d| os(&[&"render", &"whitted", &"-o", &d.join("out"), &"--width", &"8", &"--height", &"8"]),
         &["unsupported output format"],
         &[],
     );
     expect_failure(
         "missing-folder",
-        |d| os(&[&"render", &"whitted", &"-o", &d.path("missing/out.png"), &"--width", &"8", &"--height", &"8"]),
+        |d| os(&[&"render", &"whitted", &"-o", &d.join("missing/out.png"), &"--width", &"8", &"--height", &"8"]),
         &["missing", "does not exist"],
         &[],
     );
     expect_failure(
         "invalid-scene",
         |d| {
-            std::fs::write(d.path("bad.toml"), BAD_SCENE).unwrap();
-            os(&[&"render", &d.path("bad.toml"), &"-o", &d.path("out.png")])
+            std::fs::write(d.join("bad.toml"), BAD_SCENE).unwrap();
+            os(&[&"render", &d.join("bad.toml"), &"-o", &d.join("out.png")])
         },
         &["bad.toml", "objects[0].radius", "-0.5", "(0, 1e9]"],
         &["bad.toml"],
@@ -312,15 +281,15 @@ fn bad_input_fails_cleanly() {
     expect_failure(
         "typo-in-scene",
         |d| {
-            std::fs::write(d.path("typo.toml"), BAD_SCENE.replace("radius = -0.5", "raduis = 0.5")).unwrap();
-            os(&[&"render", &d.path("typo.toml"), &"-o", &d.path("out.exr")])
+            std::fs::write(d.join("typo.toml"), BAD_SCENE.replace("radius = -0.5", "raduis = 0.5")).unwrap();
+            os(&[&"render", &d.join("typo.toml"), &"-o", &d.join("out.exr")])
         },
         &["typo.toml", "raduis"],
         &["typo.toml"],
     );
     expect_failure(
         "missing-scene-file",
-        |d| os(&[&"render", &d.path("nothere.toml"), &"-o", &d.path("out.png")]),
+        |d| os(&[&"render", &d.join("nothere.toml"), &"-o", &d.join("out.png")]),
         &["nothere.toml"],
         &[],
     );

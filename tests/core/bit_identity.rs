@@ -1,5 +1,5 @@
 //! Every built-in scene rendered on the CPU, specialised and not, each image compared bit for
-//! bit with the one recorded before a refactor (`tests/common/image_hash.rs`; the stiff,
+//! bit with the one recorded before a refactor (`glint_test_support::image_hash`; the stiff,
 //! closed-form and GPU suites' CPU renders are checked the same way).
 
 use std::path::Path;

@@ -5,6 +5,8 @@
 use glam::DVec3;
 use glint_core::layout::NO_HIT;
 
+use crate::scene::{SLAB_GROUND, SLAB_KR, SLAB_KT, SLAB_SKY};
+
 use crate::support::{
     SceneText, assert_rel, blinn, dv, num, phong, plane_hit, pow0, primary_ray, probe, render, sphere_hit, w3,
 };
@@ -341,28 +343,9 @@ fn perfect_mirror_returns_kr_times_the_wall() {
     assert!(render(&flat).image.pixels.iter().all(|p| *p == DVec3::ZERO));
 }
 
-/// A checkered floor, a red sphere, two lights and, optionally, a sphere of ideal glass of the
-/// given ior (k_t = 1, every other coefficient 0). ε = 0: the robust offset alone moves
-/// secondary origins (by a few hundred ULPs), so a straight-through ray continues on a line
-/// displaced by ~1e-13, far below the 1e-9 tolerance.
+/// The glass scene with both lights (glint_test_support::scene::glass_scene).
 fn glass_scene(glass_ior: Option<f64>) -> SceneText {
-    let s = SceneText::new(48, 36, "max_depth = 4\nepsilon = 0.0\nbailout = 0.0", [0.1, 1.2, -3.0], [0.1, 0.5, 1.0], Y, 50.0)
-        .world([0.125; 3], [0.25, 0.5, 0.75])
-        .material(
-            "floor",
-            "ka = 0.5\nkd = [0.75, 0.25, 0.25]\nks = 0.5\nshininess = 10.0\nchecker = { kd = [0.25, 0.75, 0.25], size = 0.5 }",
-        )
-        .material("red", "ka = 0.5\nkd = [0.8, 0.1, 0.1]\nks = 0.5\nshininess = 30.0")
-        .light("point", "position = [-2.0, 4.0, -1.0]\ndiffuse = 0.75\nspecular = 0.75")
-        .light("directional", "direction = [0.5, -1.0, 0.25]\ndiffuse = 0.25\nspecular = 0.25")
-        .plane([0.0; 3], Y, "floor")
-        .sphere([0.8, 0.5, 2.0], 0.5, "red");
-    match glass_ior {
-        Some(ior) => s
-            .material("glass", &format!("ka = 0.0\nkd = 0.0\nks = 0.0\nkr = 0.0\nkt = 1.0\nior = {}", num(ior)))
-            .sphere([-0.3, 0.6, 0.5], 0.6, "glass"),
-        None => s,
-    }
+    crate::scene::glass_scene(glass_ior, true)
 }
 
 #[test]
@@ -381,22 +364,9 @@ fn glass_of_ior_one_is_invisible() {
     assert!(max_diff > 0.05, "ior 1.5 glass changes nothing (max diff {max_diff})");
 }
 
-const SKY: [f64; 3] = [0.25, 0.5, 1.0];
-const GROUND: [f64; 3] = [1.0, 0.5, 0.125];
-
-/// The camera is inside glass: the half-space y < 1 below the plane y = 1 (normal +y, so a ray
-/// going up leaves the glass). Above, an emissive sky (y = 6); below, an emissive ground
-/// (y = −6). The camera looks up at `deg` from the normal.
+/// The glass slab of ior 1.5 (glint_test_support::scene::slab).
 fn slab(deg: f64) -> SceneText {
-    let a = deg.to_radians();
-    SceneText::pinhole("max_depth = 2\nbailout = 0.0", [0.0; 3], [a.sin(), a.cos(), 0.0], Z)
-        .world([0.5; 3], [0.0; 3])
-        .material("glass", "ka = 0.0\nkd = 0.0\nks = 0.0\nkr = 0.25\nkt = 0.5\nior = 1.5")
-        .material("sky", &format!("ka = 0.0\nkd = 0.0\nks = 0.0\nemission = {SKY:?}"))
-        .material("ground", &format!("ka = 0.0\nkd = 0.0\nks = 0.0\nemission = {GROUND:?}"))
-        .plane([0.0, 1.0, 0.0], Y, "glass")
-        .plane([0.0, 6.0, 0.0], [0.0, -1.0, 0.0], "sky")
-        .plane([0.0, -6.0, 0.0], Y, "ground")
+    crate::scene::slab(1.5, deg)
 }
 
 #[test]
@@ -406,14 +376,14 @@ fn total_internal_reflection_in_a_slab() {
         let flat = slab(deg).flat();
         let r = render(&flat);
         let got = r.image.get(0, 0);
-        let (kr, kt) = (0.25, 0.5);
+        let (kr, kt) = (SLAB_KR, SLAB_KT);
         if deg < critical {
             // Leaving the glass: k_t·(sky, through the surface) + k_r·(ground, mirrored).
-            assert_rel(got, kt * dv(SKY) + kr * dv(GROUND), REL, &format!("{deg}° (below critical)"));
+            assert_rel(got, kt * dv(SLAB_SKY) + kr * dv(SLAB_GROUND), REL, &format!("{deg}° (below critical)"));
             assert_eq!((r.counts.reflection, r.counts.refraction), (1, 1), "{deg}°");
         } else {
             // Past the critical angle the k_t share follows the mirror ray too.
-            assert_rel(got, (kt + kr) * dv(GROUND), REL, &format!("{deg}° (total internal reflection)"));
+            assert_rel(got, (kt + kr) * dv(SLAB_GROUND), REL, &format!("{deg}° (total internal reflection)"));
             assert_eq!((r.counts.reflection, r.counts.refraction), (1, 0), "{deg}°");
         }
     }

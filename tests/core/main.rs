@@ -8,15 +8,4 @@ mod determinism;
 mod support;
 mod validation;
 
-#[path = "../common/image_hash.rs"]
-#[allow(dead_code, reason = "shared with the other test binaries, which use other parts of it")]
-mod image_hash;
-#[path = "../common/reference.rs"]
-#[allow(dead_code, reason = "shared with the other test binaries, which use other parts of it")]
-mod reference;
-#[path = "../common/render.rs"]
-#[allow(dead_code, reason = "shared with the other test binaries, which use other parts of it")]
-mod render;
-#[path = "../common/scene.rs"]
-#[allow(dead_code, reason = "shared with the other test binaries, which use other parts of it")]
-mod scene;
+use glint_test_support::{reference, render, scene};

@@ -1,5 +1,5 @@
 //! Helpers of the core tests. The scene builder, the independent re-derivation of the geometry
-//! and the NaN/Inf-checked render live in `tests/common/` (shared with the other test
+//! and the NaN/Inf-checked render live in glint-test-support (shared with the other test
 //! binaries); this module re-exports them under the names the core tests use.
 
 use glint_core::{CpuRender, FlatScene};

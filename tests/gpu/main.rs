@@ -9,12 +9,4 @@ mod probe;
 mod specialisation;
 mod support;
 
-#[path = "../common/gpu.rs"]
-#[allow(dead_code, reason = "shared with the other test binaries, which use other parts of it")]
-mod gpu;
-#[path = "../common/image_hash.rs"]
-#[allow(dead_code, reason = "shared with the other test binaries, which use other parts of it")]
-mod image_hash;
-#[path = "../common/render.rs"]
-#[allow(dead_code, reason = "shared with the other test binaries, which use other parts of it")]
-mod render;
+use glint_test_support::{gpu, render};

@@ -1,5 +1,5 @@
 //! Helpers of the GPU tests. The shared GPU (with the fail/skip policy), the NaN/Inf-checked
-//! renders and the failure images live in `tests/common/` (shared with the other test
+//! renders and the failure images live in glint-test-support (shared with the other test
 //! binaries); this module re-exports them under the names the GPU tests use.
 
 use std::path::PathBuf;
@@ -9,7 +9,7 @@ use glint_core::scene::load_scene;
 use glint_core::{CpuRender, FlatScene};
 use glint_gpu::GpuRender;
 
-pub(crate) use crate::gpu::gpu_or_skip;
+pub use crate::gpu::gpu_or_skip;
 pub use crate::gpu::gpu_render;
 
 /// A built-in scene at the given size, spp and depth.

@@ -19,7 +19,7 @@ use glint_core::scene::parse_scene;
 
 use crate::gpu::render_both;
 use crate::reference::dv;
-use crate::scene::{SceneText, num, w3};
+use crate::scene::{SLAB_GROUND as GROUND, SLAB_KR as KR, SLAB_KT as KT, SLAB_SKY as SKY, SceneText, slab, w3};
 use crate::{Y, Z};
 
 /// Measured (lavapipe): with ior 1 the GPU image differs from the one without the sphere by at
@@ -30,20 +30,9 @@ const IOR1_GPU: f64 = 1e-4;
 /// are dyadic). Allowed: 1e-5, a few f32 roundings of a sum of two products with margin.
 const TIR_GPU: f64 = 1e-5;
 
+/// The glass scene with its point light only (glint_test_support::scene::glass_scene).
 fn glass_scene(glass_ior: Option<f64>) -> SceneText {
-    let s = SceneText::new(48, 36, "max_depth = 4\nepsilon = 0.0\nbailout = 0.0", [0.1, 1.2, -3.0], [0.1, 0.5, 1.0], Y, 50.0)
-        .world([0.125; 3], [0.25, 0.5, 0.75])
-        .material("floor", "ka = 0.5\nkd = [0.75, 0.25, 0.25]\nks = 0.5\nshininess = 10.0\nchecker = { kd = [0.25, 0.75, 0.25], size = 0.5 }")
-        .material("red", "ka = 0.5\nkd = [0.8, 0.1, 0.1]\nks = 0.5\nshininess = 30.0")
-        .light("point", "position = [-2.0, 4.0, -1.0]\ndiffuse = 0.75\nspecular = 0.75")
-        .plane([0.0; 3], Y, "floor")
-        .sphere([0.8, 0.5, 2.0], 0.5, "red");
-    match glass_ior {
-        Some(ior) => s
-            .material("glass", &format!("ka = 0.0\nkd = 0.0\nks = 0.0\nkr = 0.0\nkt = 1.0\nior = {}", num(ior)))
-            .sphere([-0.3, 0.6, 0.5], 0.6, "glass"),
-        None => s,
-    }
+    crate::scene::glass_scene(glass_ior, false)
 }
 
 #[test]
@@ -67,26 +56,6 @@ fn glass_of_ior_one_is_invisible_on_both_backends() {
     }
     say!(out, "case 13: ior 1 glass sphere, worst relative change of a pixel, CPU / GPU: {}", worst.join(" / "));
     eprint!("{out}");
-}
-
-const SKY: [f64; 3] = [0.25, 0.5, 1.0];
-const GROUND: [f64; 3] = [1.0, 0.5, 0.125];
-const KR: f64 = 0.25;
-const KT: f64 = 0.5;
-
-fn slab(ior: f64, deg: f64) -> SceneText {
-    let a = deg.to_radians();
-    SceneText::pinhole("max_depth = 2\nbailout = 0.0", [0.0; 3], [a.sin(), a.cos(), 0.0], Z)
-        .world([0.5; 3], [0.0; 3])
-        .material(
-            "glass",
-            &format!("ka = 0.0\nkd = 0.0\nks = 0.0\nkr = {}\nkt = {}\nior = {}", num(KR), num(KT), num(ior)),
-        )
-        .material("sky", &format!("ka = 0.0\nkd = 0.0\nks = 0.0\nemission = {SKY:?}"))
-        .material("ground", &format!("ka = 0.0\nkd = 0.0\nks = 0.0\nemission = {GROUND:?}"))
-        .plane([0.0, 1.0, 0.0], Y, "glass")
-        .plane([0.0, 6.0, 0.0], [0.0, -1.0, 0.0], "sky")
-        .plane([0.0, -6.0, 0.0], Y, "ground")
 }
 
 #[test]

@@ -42,21 +42,7 @@ mod case14_energy_gain;
 mod case15_recursion_depth;
 mod case16_invalid_data;
 
-#[path = "../common/gpu.rs"]
-#[allow(dead_code, reason = "shared with the other test binaries, which use other parts of it")]
-mod gpu;
-#[path = "../common/image_hash.rs"]
-#[allow(dead_code, reason = "shared with the other test binaries, which use other parts of it")]
-mod image_hash;
-#[path = "../common/reference.rs"]
-#[allow(dead_code, reason = "shared with the other test binaries, which use other parts of it")]
-mod reference;
-#[path = "../common/render.rs"]
-#[allow(dead_code, reason = "shared with the other test binaries, which use other parts of it")]
-mod render;
-#[path = "../common/scene.rs"]
-#[allow(dead_code, reason = "shared with the other test binaries, which use other parts of it")]
-mod scene;
+use glint_test_support::{gpu, reference, render, scene};
 
 /// Axis vectors for camera ups and normals.
 const Y: [f64; 3] = [0.0, 1.0, 0.0];

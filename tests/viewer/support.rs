@@ -36,11 +36,9 @@ pub fn viewer(scene: &str, window: (f32, f32)) -> Option<Harness<'static, Viewer
     Some(harness)
 }
 
-/// A fresh folder for one test's files, named after the test and this process.
-pub fn temp_dir(name: &str) -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!("glint-viewer-test-{name}-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    dir
+/// A fresh folder for one test's files, removed when dropped.
+pub fn temp_dir(name: &str) -> glint_test_support::TempDir {
+    glint_test_support::TempDir::new(&format!("viewer-{name}"))
 }
 
 /// Steps the UI until every render of the current scene is done (GPU, CPU, comparison).

@@ -5,8 +5,8 @@ use std::path::{Path, PathBuf};
 
 use glam::DVec3;
 
+use crate::atomic::{AtomicWriteError, write_atomically};
 use crate::layout::NO_HIT;
-use crate::render::Tile;
 
 /// A linear-radiance image with the first-hit object of every pixel.
 #[derive(Clone, Debug, PartialEq)]
@@ -26,16 +26,6 @@ impl HdrImage {
 
     pub fn get(&self, x: u32, y: u32) -> DVec3 {
         self.pixels[(y * self.width + x) as usize]
-    }
-
-    pub fn blit(&mut self, tile: &Tile) {
-        for row in 0..tile.height {
-            let src = (row * tile.width) as usize..((row + 1) * tile.width) as usize;
-            let dst_start = ((tile.y0 + row) * self.width + tile.x0) as usize;
-            let dst = dst_start..dst_start + tile.width as usize;
-            self.pixels[dst.clone()].copy_from_slice(&tile.radiance[src.clone()]);
-            self.first_hit[dst].copy_from_slice(&tile.first_hit[src]);
-        }
     }
 
     /// Whether every channel of every pixel is a finite number.
@@ -69,21 +59,10 @@ pub enum ImageWriteError {
     Format { path: PathBuf },
 }
 
-/// Writes to a temporary file beside `path`, then renames it into place, so a reader never
-/// sees a half-written image and a failed write leaves no file behind.
-fn write_atomically(
-    path: &Path,
-    write: impl FnOnce(&Path) -> Result<(), ImageWriteError>,
-) -> Result<(), ImageWriteError> {
-    let file_name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_else(|| "image".into());
-    let tmp = path.with_file_name(format!(".{file_name}.tmp-{}", std::process::id()));
-    let result = write(&tmp).and_then(|()| {
-        std::fs::rename(&tmp, path).map_err(|error| ImageWriteError::Io { path: path.to_owned(), error })
-    });
-    if result.is_err() {
-        let _ = std::fs::remove_file(&tmp);
+impl From<AtomicWriteError> for ImageWriteError {
+    fn from(AtomicWriteError { path, error }: AtomicWriteError) -> Self {
+        Self::Io { path, error }
     }
-    result
 }
 
 /// 8-bit sRGB PNG with `metadata` as tEXt chunks.
@@ -99,10 +78,10 @@ pub fn write_png_rgb8(
     rgb: &[u8],
     metadata: &[(String, String)],
 ) -> Result<(), ImageWriteError> {
-    write_atomically(path, |tmp| {
+    write_atomically(path, |file| {
         let io = |error| ImageWriteError::Io { path: path.to_owned(), error };
         let png_err = |e: png::EncodingError| ImageWriteError::Png { path: path.to_owned(), message: e.to_string() };
-        let mut out = BufWriter::new(std::fs::File::create(tmp).map_err(io)?);
+        let mut out = BufWriter::new(file);
         let mut encoder = png::Encoder::new(&mut out, width, height);
         encoder.set_color(png::ColorType::Rgb);
         encoder.set_depth(png::BitDepth::Eight);
@@ -113,8 +92,7 @@ pub fn write_png_rgb8(
         let mut writer = encoder.write_header().map_err(png_err)?;
         writer.write_image_data(rgb).map_err(png_err)?;
         writer.finish().map_err(png_err)?;
-        out.flush().map_err(io)?;
-        out.get_ref().sync_all().map_err(io)
+        out.flush().map_err(io)
     })
 }
 
@@ -123,10 +101,12 @@ pub fn write_exr(path: &Path, image: &HdrImage) -> Result<(), ImageWriteError> {
     let data: Vec<f32> = image.pixels.iter().flat_map(|p| p.to_array().map(|v| v as f32)).collect();
     let buffer = image::Rgb32FImage::from_raw(image.width, image.height, data)
         .ok_or_else(|| ImageWriteError::Exr { path: path.to_owned(), message: "buffer size mismatch".into() })?;
-    write_atomically(path, |tmp| {
+    write_atomically(path, |file| {
+        let mut out = BufWriter::new(file);
         buffer
-            .save_with_format(tmp, image::ImageFormat::OpenExr)
-            .map_err(|e| ImageWriteError::Exr { path: path.to_owned(), message: e.to_string() })
+            .write_to(&mut out, image::ImageFormat::OpenExr)
+            .map_err(|e| ImageWriteError::Exr { path: path.to_owned(), message: e.to_string() })?;
+        out.flush().map_err(|error| ImageWriteError::Io { path: path.to_owned(), error })
     })
 }
 

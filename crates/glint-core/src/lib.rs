@@ -1,6 +1,8 @@
 //! Glint core: the scene model and its validation, the flat GPU-ready layout, and the exact
 //! f64 CPU reference tracer of the Phong/Whitted model. No GPU code lives here.
 
+pub mod atomic;
+pub mod backend;
 pub mod compare;
 pub mod cpu;
 pub mod flat;
@@ -9,6 +11,7 @@ pub mod layout;
 pub mod render;
 pub mod scene;
 
+pub use backend::Backend;
 pub use flat::FlatScene;
 pub use image::HdrImage;
 pub use render::{CpuOptions, CpuRender, RenderControl, pick_object, probe_pixel, render_cpu};

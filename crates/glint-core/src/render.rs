@@ -43,6 +43,19 @@ pub struct Tile {
     pub counts: RayCounts,
 }
 
+impl Tile {
+    /// Copies the tile's pixels and first hits into their place in `image`.
+    pub fn copy_into(&self, image: &mut HdrImage) {
+        for row in 0..self.height {
+            let src = (row * self.width) as usize..((row + 1) * self.width) as usize;
+            let dst_start = ((self.y0 + row) * image.width + self.x0) as usize;
+            let dst = dst_start..dst_start + self.width as usize;
+            image.pixels[dst.clone()].copy_from_slice(&self.radiance[src.clone()]);
+            image.first_hit[dst].copy_from_slice(&self.first_hit[src]);
+        }
+    }
+}
+
 /// Cancellation and progress hooks (the viewer and the CLI progress bar).
 #[derive(Clone, Copy, Default)]
 pub struct RenderControl<'a> {
@@ -135,7 +148,7 @@ pub fn render_cpu(
     let mut counts = RayCounts::default();
     for tile in tiles {
         let tile = tile.ok_or(CpuRenderError::Cancelled)?;
-        image.blit(&tile);
+        tile.copy_into(&mut image);
         counts += tile.counts;
     }
     Ok(CpuRender { image, counts, elapsed, threads })

@@ -4,6 +4,7 @@
 use std::path::{Path, PathBuf};
 
 use glint_core::FlatScene;
+use glint_core::atomic::{AtomicWriteError, write_file_atomically};
 use glint_core::scene::{CameraDesc, FieldIssue, LoadedScene, SceneDesc, load_scene, to_toml, validate};
 
 use crate::error::ViewerError;
@@ -97,7 +98,8 @@ impl Document {
     /// Writes the scene in the format `glint render` reads.
     pub fn save(&mut self, path: &Path) -> Result<(), ViewerError> {
         let text = to_toml(&self.desc).map_err(|e| ViewerError::Serialise(e.to_string()))?;
-        std::fs::write(path, text).map_err(|error| ViewerError::SaveScene { path: path.to_owned(), error })?;
+        write_file_atomically(path, text.as_bytes())
+            .map_err(|AtomicWriteError { path, error }| ViewerError::SaveScene { path, error })?;
         self.path = Some(path.to_owned());
         self.name = path.file_stem().map_or_else(|| self.name.clone(), |s| s.to_string_lossy().into_owned());
         self.dirty = false;

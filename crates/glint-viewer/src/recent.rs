@@ -2,6 +2,8 @@
 
 use std::path::{Path, PathBuf};
 
+use glint_core::atomic::write_file_atomically;
+
 const MAX_RECENT: usize = 8;
 
 #[derive(Clone, Debug, Default)]
@@ -41,8 +43,10 @@ impl Recent {
         self.files.truncate(MAX_RECENT);
         if let Some(store) = &self.store {
             let text: String = self.files.iter().map(|p| format!("{}\n", p.display())).collect();
-            let written =
-                store.parent().map_or(Ok(()), std::fs::create_dir_all).and_then(|()| std::fs::write(store, text));
+            let written = store
+                .parent()
+                .map_or(Ok(()), std::fs::create_dir_all)
+                .and_then(|()| write_file_atomically(store, text.as_bytes()).map_err(|e| e.error));
             // Losing the list of recent files is not worth interrupting the user for.
             if let Err(e) = written {
                 log::warn!("cannot save the recent scenes to {}: {e}", store.display());

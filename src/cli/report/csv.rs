@@ -3,8 +3,10 @@
 //! Numbers are printed in Rust's shortest round-trip form; PSNR is `inf` for an image equal
 //! to the reference. Cells that do not apply (GPU-only figures on CPU rows) are empty.
 
-use super::plan::Backend;
+use glint_core::Backend;
+
 use super::sweep::{Row, SceneResult};
+use crate::cli::units::ms_csv;
 
 pub const HEADER: &[&str] = &[
     "scene",
@@ -48,10 +50,6 @@ fn field(s: &str) -> String {
     if s.contains([',', '"', '\n', '\r']) { format!("\"{}\"", s.replace('"', "\"\"")) } else { s.to_string() }
 }
 
-fn ms(d: std::time::Duration) -> String {
-    format!("{:.4}", d.as_secs_f64() * 1e3)
-}
-
 /// Scientific notation keeps tiny errors short and exact ("1.234e-7"; 0 is "0e0").
 fn sci(v: f64) -> String {
     format!("{v:e}")
@@ -76,10 +74,10 @@ fn row_fields(scene: &SceneResult, row: &Row, device: &str) -> Vec<String> {
         c.epsilon_mode.name().into(),
         s.epsilon.to_string(),
         row.times.len().to_string(),
-        ms(row.median()),
-        ms(row.times[0]),
-        ms(row.times[row.times.len() - 1]),
-        opt(row.gpu.map(|g| ms(g.pipeline))),
+        ms_csv(row.median()),
+        ms_csv(row.times[0]),
+        ms_csv(row.times[row.times.len() - 1]),
+        opt(row.gpu.map(|g| ms_csv(g.pipeline))),
         opt(row.gpu.map(|g| g.statements.to_string())),
         row.counts.total().to_string(),
         row.counts.camera.to_string(),

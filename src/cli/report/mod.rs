@@ -3,25 +3,26 @@
 //! reference, and writes report.csv, report.md and one log-log plot per scene.
 
 mod csv;
-mod files;
 mod machine;
+mod markdown;
 mod pareto;
 mod plan;
 mod plot;
 mod sweep;
-mod table;
 
 use std::collections::HashMap;
 use std::io::IsTerminal;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use anyhow::{Context, bail};
+use anyhow::{Context, anyhow, bail};
 use clap::Args;
+use glint_core::Backend;
+use glint_core::atomic::write_file_atomically;
 use glint_core::scene::RenderSettings;
 use indicatif::{ProgressBar, ProgressStyle};
 
-use self::plan::{Backend, Plan};
+use self::plan::Plan;
 use self::sweep::Engines;
 use super::backend::open_gpu;
 use super::settings::load;
@@ -125,7 +126,7 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
     bar.finish_and_clear();
 
     let machine = machine::Machine::probe();
-    let setup = table::Setup {
+    let setup = markdown::Setup {
         machine: &machine,
         cpu_device: &cpu_device,
         gpu_device: gpu_device.as_deref(),
@@ -136,9 +137,9 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
         plan: &plan,
     };
     let csv_path = args.out.join("report.csv");
-    files::write_atomically(&csv_path, &csv::render_csv(&results, &cpu_device, gpu_device.as_deref().unwrap_or("")))?;
+    write_report_file(&csv_path, &csv::render_csv(&results, &cpu_device, gpu_device.as_deref().unwrap_or("")))?;
     let md_path = args.out.join("report.md");
-    files::write_atomically(&md_path, &table::render_markdown(&setup, &results))?;
+    write_report_file(&md_path, &markdown::render_markdown(&setup, &results))?;
     println!(
         "report: {} scenes, {} configurations each, in {:.1} s; wrote {} and {}",
         results.len(),
@@ -148,6 +149,11 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
         csv_path.display()
     );
     Ok(())
+}
+
+/// Replaces `path` atomically: a reader (or a CI artefact upload) never sees a half-written report.
+fn write_report_file(path: &Path, text: &str) -> anyhow::Result<()> {
+    write_file_atomically(path, text.as_bytes()).map_err(|e| anyhow!("cannot write {}: {}", e.path.display(), e.error))
 }
 
 /// The sweep's progress; hidden when stderr is not a terminal.

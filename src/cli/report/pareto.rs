@@ -4,7 +4,8 @@
 //! and strictly better in one of the two (here: with a 1 % tolerance on the error). Both
 //! coordinates are "lower is better".
 
-use super::plan::Backend;
+use glint_core::Backend;
+
 use super::sweep::Row;
 
 #[derive(Clone, Copy, Debug, PartialEq)]

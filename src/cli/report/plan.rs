@@ -1,22 +1,8 @@
 //! Which configurations a report measures: the reference, the main grid and the focused sweeps,
 //! deduplicated (a configuration that two sweeps share is measured once and tagged with both).
 
+use glint_core::Backend;
 use glint_core::scene::EpsilonMode;
-
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub enum Backend {
-    Cpu,
-    Gpu,
-}
-
-impl Backend {
-    pub fn name(self) -> &'static str {
-        match self {
-            Self::Cpu => "cpu",
-            Self::Gpu => "gpu",
-        }
-    }
-}
 
 /// The bailout thresholds of the sweep, kept symbolic so that tables can print "1/255".
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]

@@ -5,11 +5,12 @@ use std::path::Path;
 use std::sync::OnceLock;
 
 use anyhow::anyhow;
+use glint_core::Backend;
 use glint_core::image::write_png_rgb8;
 use plotters::prelude::*;
 
-use super::plan::Backend;
 use super::sweep::{Row, SceneResult};
+use crate::cli::units::ms;
 
 /// Embedded so that plots render the same on a bare CI machine (no system fonts, no
 /// fontconfig); see assets/fonts/README.md for its provenance and licence.
@@ -26,10 +27,6 @@ fn register_font() -> anyhow::Result<()> {
     static DONE: OnceLock<bool> = OnceLock::new();
     let ok = *DONE.get_or_init(|| plotters::style::register_font(FAMILY, FontStyle::Normal, FONT).is_ok());
     if ok { Ok(()) } else { Err(anyhow!("the embedded plot font could not be loaded")) }
-}
-
-fn ms(d: std::time::Duration) -> f64 {
-    d.as_secs_f64() * 1e3
 }
 
 /// Rows that a log axis can show: ranked (not the reference) and with a positive error.

@@ -8,11 +8,12 @@ use anyhow::Context;
 use glint_core::compare::{ImageErrors, compare_images};
 use glint_core::cpu::RayCounts;
 use glint_core::scene::{LoadedScene, RenderSettings};
-use glint_core::{CpuOptions, FlatScene, HdrImage, RenderControl, render_cpu};
+use glint_core::{Backend, CpuOptions, FlatScene, HdrImage, RenderControl, render_cpu};
 use glint_gpu::{GpuOptions, GpuTracer, ShaderKey};
 use indicatif::ProgressBar;
 
-use super::plan::{Backend, Config, Group, Planned};
+use super::plan::{Config, Group, Planned};
+use crate::cli::units::{mrays_per_s, ms};
 
 /// What the sweep needs to render: CPU threads and, unless `--cpu-only`, one GPU tracer whose
 /// pipeline cache lives for the whole report.
@@ -76,11 +77,11 @@ impl Row {
     }
 
     pub fn median_ms(&self) -> f64 {
-        self.median().as_secs_f64() * 1e3
+        ms(self.median())
     }
 
     pub fn mrays(&self) -> f64 {
-        self.counts.total() as f64 / self.median().as_secs_f64().max(1e-9) / 1e6
+        mrays_per_s(self.counts.total(), self.median())
     }
 
     /// Whether the render lost work: fewer camera rays than samples, or a GPU status flag (a

@@ -18,8 +18,21 @@ use glint_core::CpuRender;
 
 const ENV_RECORD: &str = "GLINT_RECORD_IMAGE_HASHES";
 
+/// In the workspace root's tests/, beside the test binaries' sources (this crate is
+/// crates/glint-test-support).
 fn golden_path() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/golden/cpu-images.txt")
+    PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../../tests/golden/cpu-images.txt"))
+}
+
+/// The running test binary's name (`core`, `stiff`, `gpu`): its file stem without cargo's
+/// `-HASH` suffix. `CARGO_CRATE_NAME` would name this crate, not the binary.
+fn binary_name() -> String {
+    let exe = std::env::current_exe().expect("the test binary's path");
+    let stem = exe.file_stem().expect("the test binary has a file name").to_string_lossy().into_owned();
+    match stem.rsplit_once('-') {
+        Some((name, hash)) if !hash.is_empty() && hash.bytes().all(|b| b.is_ascii_hexdigit()) => name.to_string(),
+        _ => stem,
+    }
 }
 
 /// FNV-1a, 64 bits: stable across Rust versions, unlike `DefaultHasher`.
@@ -85,7 +98,7 @@ pub fn check_render_hash(r: &CpuRender) {
         c.set(n + 1);
         n
     });
-    let key = format!("{}::{test}#{n}", env!("CARGO_CRATE_NAME"));
+    let key = format!("{}::{test}#{n}", binary_name());
     let hash = render_hash(r);
     if std::env::var(ENV_RECORD).is_ok_and(|v| v == "1") {
         let mut file = std::fs::OpenOptions::new()

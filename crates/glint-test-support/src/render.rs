@@ -1,7 +1,4 @@
 //! CPU renders checked for NaN/Inf, and the images a failing comparison leaves behind.
-//!
-//! Shared by the test binaries; each includes it at its crate root as
-//! `#[path = "../common/render.rs"] mod render;` (`gpu.rs` refers to it as `crate::render`).
 
 use std::path::{Path, PathBuf};
 
@@ -33,9 +30,13 @@ pub fn render_cpu_checked(flat: &FlatScene, threads: usize, specialise: bool) ->
     r
 }
 
-/// Where failing tests leave their images: `target/tmp/<group>` (created).
+/// Where failing tests leave their images: `target/tmp/<group>` (created). Cargo tells test
+/// binaries that folder (`CARGO_TARGET_TMPDIR`) but not this library, so it is found from the
+/// running test binary, `target/<profile>/deps/<binary>`.
 pub fn artefact_dir(group: &str) -> PathBuf {
-    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(group);
+    let exe = std::env::current_exe().expect("the test binary's path");
+    let target = exe.ancestors().nth(3).expect("the test binary lies in target/<profile>/deps");
+    let dir = target.join("tmp").join(group);
     std::fs::create_dir_all(&dir).expect("artefact folder");
     dir
 }

@@ -1,9 +1,6 @@
 //! An independent re-derivation of the geometry and the lobes (camera rays, sphere and plane
 //! hits, Blinn and Phong) in f64, so that expected values never come from the tracer itself;
 //! and comparisons with a relative tolerance.
-//!
-//! Shared by the test binaries; each includes it at its crate root as
-//! `#[path = "../common/reference.rs"] mod reference;`.
 
 use glam::DVec3;
 use glint_core::cpu::shade::Breakdown;

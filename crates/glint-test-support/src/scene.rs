@@ -1,8 +1,5 @@
 //! Scene text for tests: a TOML builder that goes through the real parser and validation, so
 //! that every test scene is a scene a user could write.
-//!
-//! Shared by the test binaries (`tests/core`, `tests/gpu`, `tests/stiff`); each includes it at
-//! its crate root as `#[path = "../common/scene.rs"] mod scene;`.
 
 use std::fmt::Write as _;
 use std::path::Path;
@@ -32,6 +29,60 @@ pub fn num(v: f64) -> String {
 pub fn flat_from_toml(text: &str) -> FlatScene {
     let (desc, _) = parse_scene(text, Path::new("test.toml")).unwrap_or_else(|e| panic!("{e}\n{text}"));
     FlatScene::build(&desc, &desc.render)
+}
+
+/// A checkered floor, a red sphere, a point light (and a directional one if `directional`)
+/// and, optionally, a sphere of ideal glass of the given ior (k_t = 1, every other coefficient
+/// 0). ε = 0: the robust offset alone moves secondary origins (by a few hundred ULPs), so a
+/// straight-through ray continues on a line displaced by ~1e-13, far below a 1e-9 tolerance.
+pub fn glass_scene(glass_ior: Option<f64>, directional: bool) -> SceneText {
+    const Y: [f64; 3] = [0.0, 1.0, 0.0];
+    let s = SceneText::new(48, 36, "max_depth = 4\nepsilon = 0.0\nbailout = 0.0", [0.1, 1.2, -3.0], [0.1, 0.5, 1.0], Y, 50.0)
+        .world([0.125; 3], [0.25, 0.5, 0.75])
+        .material(
+            "floor",
+            "ka = 0.5\nkd = [0.75, 0.25, 0.25]\nks = 0.5\nshininess = 10.0\nchecker = { kd = [0.25, 0.75, 0.25], size = 0.5 }",
+        )
+        .material("red", "ka = 0.5\nkd = [0.8, 0.1, 0.1]\nks = 0.5\nshininess = 30.0")
+        .light("point", "position = [-2.0, 4.0, -1.0]\ndiffuse = 0.75\nspecular = 0.75");
+    let s = if directional {
+        s.light("directional", "direction = [0.5, -1.0, 0.25]\ndiffuse = 0.25\nspecular = 0.25")
+    } else {
+        s
+    };
+    let s = s.plane([0.0; 3], Y, "floor").sphere([0.8, 0.5, 2.0], 0.5, "red");
+    match glass_ior {
+        Some(ior) => s
+            .material("glass", &format!("ka = 0.0\nkd = 0.0\nks = 0.0\nkr = 0.0\nkt = 1.0\nior = {}", num(ior)))
+            .sphere([-0.3, 0.6, 0.5], 0.6, "glass"),
+        None => s,
+    }
+}
+
+/// The slab's emissive sky (above) and ground (below), and its glass's k_r and k_t.
+pub const SLAB_SKY: [f64; 3] = [0.25, 0.5, 1.0];
+pub const SLAB_GROUND: [f64; 3] = [1.0, 0.5, 0.125];
+pub const SLAB_KR: f64 = 0.25;
+pub const SLAB_KT: f64 = 0.5;
+
+/// The camera is inside glass of index `ior`: the half-space y < 1 below the plane y = 1
+/// (normal +y, so a ray going up leaves the glass). Above, an emissive sky (y = 6); below, an
+/// emissive ground (y = −6). The camera looks up at `deg` from the normal.
+pub fn slab(ior: f64, deg: f64) -> SceneText {
+    const Y: [f64; 3] = [0.0, 1.0, 0.0];
+    const Z: [f64; 3] = [0.0, 0.0, 1.0];
+    let a = deg.to_radians();
+    SceneText::pinhole("max_depth = 2\nbailout = 0.0", [0.0; 3], [a.sin(), a.cos(), 0.0], Z)
+        .world([0.5; 3], [0.0; 3])
+        .material(
+            "glass",
+            &format!("ka = 0.0\nkd = 0.0\nks = 0.0\nkr = {}\nkt = {}\nior = {}", num(SLAB_KR), num(SLAB_KT), num(ior)),
+        )
+        .material("sky", &format!("ka = 0.0\nkd = 0.0\nks = 0.0\nemission = {SLAB_SKY:?}"))
+        .material("ground", &format!("ka = 0.0\nkd = 0.0\nks = 0.0\nemission = {SLAB_GROUND:?}"))
+        .plane([0.0, 1.0, 0.0], Y, "glass")
+        .plane([0.0, 6.0, 0.0], [0.0, -1.0, 0.0], "sky")
+        .plane([0.0, -6.0, 0.0], Y, "ground")
 }
 
 /// Incrementally written scene text.

@@ -1,15 +1,12 @@
 //! The GPU the tests share (with the fail/skip policy), GPU renders checked for NaN/Inf, and
 //! rendering one scene on both backends.
 //!
-//! Shared by the test binaries that touch the GPU; each includes it at its crate root as
-//! `#[path = "../common/gpu.rs"] mod gpu;` next to `#[path = "../common/render.rs"] mod render;`
-//! (`gpu_or_skip!` expands to `crate::gpu::gpu()`).
-//!
 //! Policy: without an adapter a GPU test fails with a clear message; `GLINT_SKIP_GPU=1` skips
 //! the GPU part on purpose (a test that renders on both backends then checks the CPU only).
 
 use std::sync::OnceLock;
 
+pub use glint_core::Backend;
 use glint_core::{CpuRender, FlatScene, HdrImage};
 use glint_gpu::{AdapterRequest, GpuContext, GpuOptions, GpuRender, GpuTracer};
 
@@ -43,15 +40,16 @@ pub fn gpu() -> Option<&'static GpuTracer> {
 }
 
 /// Returns early from a test when GPU tests are skipped on purpose.
+#[macro_export]
 macro_rules! gpu_or_skip {
     () => {
-        match crate::gpu::gpu() {
+        match $crate::gpu::gpu() {
             Some(g) => g,
             None => return,
         }
     };
 }
-pub(crate) use gpu_or_skip;
+pub use crate::gpu_or_skip;
 
 /// Renders on the GPU and asserts that no read-back pixel is NaN or infinite.
 pub fn gpu_render(tracer: &GpuTracer, flat: &FlatScene, specialise: bool) -> GpuRender {
@@ -59,30 +57,6 @@ pub fn gpu_render(tracer: &GpuTracer, flat: &FlatScene, specialise: bool) -> Gpu
     let nonfinite = nonfinite_pixels(&r.image).len();
     assert_eq!(nonfinite, 0, "{nonfinite} GPU pixels are NaN or infinite");
     r
-}
-
-/// A backend, for per-backend tolerances.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Backend {
-    Cpu,
-    Gpu,
-}
-
-impl Backend {
-    pub fn name(self) -> &'static str {
-        match self {
-            Self::Cpu => "CPU",
-            Self::Gpu => "GPU",
-        }
-    }
-
-    /// `cpu` on the CPU, `gpu` on the GPU.
-    pub fn pick<T>(self, cpu: T, gpu: T) -> T {
-        match self {
-            Self::Cpu => cpu,
-            Self::Gpu => gpu,
-        }
-    }
 }
 
 /// How `render_both` runs the GPU.

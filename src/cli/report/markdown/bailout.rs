@@ -1,0 +1,48 @@
+//! "What the bailout saves": rays, time and error at bailout 0, 1/255 and 1/32.
+
+use std::fmt::Write as _;
+
+use super::super::plan::{Bailout, Config, Group};
+use super::super::sweep::{Row, SceneResult};
+use super::cells::{sci, triple};
+use super::prose::{Block, prose};
+use super::{backends, find};
+use crate::cli::units::ms_cell;
+
+pub fn bailout_summary(md: &mut String, scenes: &[SceneResult]) {
+    // The deepest, most sampled configuration of the bailout sweep: where the bailout matters most.
+    let Some(base) = scenes
+        .iter()
+        .flat_map(|s| &s.rows)
+        .filter(|r| r.groups.contains(&Group::Bailout))
+        .map(|r| r.config)
+        .max_by_key(|c| (c.depth, c.spp))
+    else {
+        return;
+    };
+    md.push_str(&prose(Block::Bailout, &[("spp", &base.spp), ("depth", &base.depth)]));
+    let _ = writeln!(md, "| scene | backend | rays per pixel | render ms | RMSE |");
+    let _ = writeln!(md, "|---|---|--:|--:|--:|");
+    let px = |s: &SceneResult| s.pixels() as f64;
+    for s in scenes {
+        for b in backends(scenes) {
+            let rows: Vec<Option<&Row>> = [Bailout::Off, Bailout::Per255, Bailout::Per32]
+                .iter()
+                .map(|&bailout| find(s, &Config { bailout, backend: b, ..base }))
+                .collect();
+            if rows.iter().all(Option::is_none) {
+                continue;
+            }
+            let _ = writeln!(
+                md,
+                "| {} | {} | {} | {} | {} |",
+                s.name,
+                b.name(),
+                triple(&rows, |r| format!("{:.2}", r.counts.total() as f64 / px(s))),
+                triple(&rows, |r| ms_cell(r.median_ms())),
+                triple(&rows, |r| sci(r.errors.rmse))
+            );
+        }
+    }
+    let _ = writeln!(md);
+}

@@ -1,0 +1,27 @@
+//! How numbers are written in the report's tables (times: `units::ms_cell`).
+
+use super::super::sweep::Row;
+
+/// Errors in three significant digits; an exact 0 as "0".
+pub fn sci(v: f64) -> String {
+    if v == 0.0 { "0".into() } else { format!("{v:.2e}") }
+}
+
+pub fn psnr(v: f64) -> String {
+    if v.is_finite() { format!("{v:.1}") } else { "inf".into() }
+}
+
+/// ε as written in scene files: 1e-6, 0.001.
+pub fn eps(v: f64) -> String {
+    if v != 0.0 && v.abs() < 1e-3 { format!("{v:e}") } else { v.to_string() }
+}
+
+/// A fraction as a percentage with three decimals.
+pub fn pct(v: f64) -> String {
+    format!("{:.3}", 100.0 * v)
+}
+
+/// Three values of one sweep axis in a cell: "a · b · c".
+pub fn triple(rows: &[Option<&Row>], f: impl Fn(&Row) -> String) -> String {
+    rows.iter().map(|r| r.map_or("—".into(), &f)).collect::<Vec<_>>().join(" · ")
+}
