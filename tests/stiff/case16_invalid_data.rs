@@ -144,6 +144,17 @@ fn the_gpu_tracer_refuses_a_non_finite_flat_scene() {
         Err(glint_gpu::GpuError::NonFinite { .. })
     ));
     assert_eq!(good.first_non_finite(), None);
+    // A stored tag no kind has is refused by both tracers, never traced as another kind.
+    let mut bad = good.clone();
+    bad.lights[0].kind = 7;
+    match tracer.render(&bad, &glint_gpu::GpuOptions::default()) {
+        Err(e @ glint_gpu::GpuError::InvalidScene(_)) => {
+            assert_eq!(e.to_string(), "invalid flat scene: 7 is not a valid light kind");
+        }
+        other => panic!("a light of kind 7 reached the GPU: {:?}", other.map(|r| r.status)),
+    }
+    let cpu = glint_core::render_cpu(&bad, &glint_core::CpuOptions::default(), glint_core::RenderControl::default());
+    assert!(matches!(cpu, Err(glint_core::render::CpuRenderError::InvalidScene(_))), "{cpu:?}");
     // The valid scene renders, and its read-back is scanned for NaN and infinities.
     crate::gpu::gpu_render(tracer, &good, true);
 }

@@ -4,11 +4,11 @@ use glam::DVec3;
 
 use crate::layout::{
     GpuCamera, GpuLight, GpuMaterial, GpuPlane, GpuSphere, GpuTriangle, LIGHT_CASTS_SHADOWS, MATERIAL_CHECKER,
-    SceneHeader, TRIANGLE_HAS_NORMALS, feature,
+    SceneHeader, TRIANGLE_HAS_NORMALS, UnknownTag, feature,
 };
 use crate::scene::{
-    LightDesc, LightKind, MaterialDesc, MeshDesc, NO_CONE_CUTOFF, ObjectDesc, PlaneDesc, RenderSettings, Rgb,
-    SceneDesc, SpecularModel, SphereDesc,
+    EpsilonMode, LightDesc, LightKind, MaterialDesc, MeshDesc, NO_CONE_CUTOFF, ObjectDesc, PlaneDesc, RenderSettings,
+    Rgb, SceneDesc, SpecularModel, SphereDesc,
 };
 
 /// A scene in the GPU-ready layout, plus the names the UI and reports show.
@@ -151,6 +151,16 @@ impl FlatScene {
 
     pub fn pixel_count(&self) -> usize {
         self.header.width as usize * self.header.height as usize
+    }
+
+    /// Decodes every stored tag the tracers switch on (the ε strategy, each light's kind), so
+    /// that both refuse a scene holding a value no kind has instead of tracing it as another.
+    pub fn check_tags(&self) -> Result<(), UnknownTag> {
+        EpsilonMode::try_from(self.header.epsilon_mode)?;
+        for l in &self.lights {
+            LightKind::try_from(l.kind)?;
+        }
+        Ok(())
     }
 
     /// The first float field holding a NaN or an infinity (e.g. `spheres[0].center_radius`).

@@ -60,6 +60,7 @@ fn check_limits(ctx: &GpuContext, scene: &FlatScene) -> Result<u64, GpuError> {
     if let Some(field) = scene.first_non_finite() {
         return Err(GpuError::NonFinite { field });
     }
+    scene.check_tags()?;
     let h = &scene.header;
     for (what, count) in [("spheres", h.sphere_count), ("planes", h.plane_count), ("triangles", h.triangle_count)] {
         if count > GPU_PRIMITIVE_LIMIT {

@@ -39,6 +39,8 @@ pub enum GpuError {
          (build scenes through validation)"
     )]
     NonFinite { field: String },
+    #[error("invalid flat scene: {0}")]
+    InvalidScene(#[from] glint_core::layout::UnknownTag),
     #[error("the GPU ran out of memory: {0}")]
     OutOfMemory(String),
     #[error("the GPU reported an error: {0}")]
