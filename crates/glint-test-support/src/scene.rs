@@ -4,14 +4,12 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use glam::DVec3;
 use glint_core::FlatScene;
 use glint_core::scene::{SceneDesc, parse_scene};
 
-/// Widens a stored `[f32; 4]` (xyz) exactly to f64.
-pub fn w3(a: [f32; 4]) -> DVec3 {
-    DVec3::new(f64::from(a[0]), f64::from(a[1]), f64::from(a[2]))
-}
+/// Widens a stored `[f32; 4]` (xyz) exactly to f64: the tracer's own `v3`, under the name the
+/// tests use.
+pub use glint_core::cpu::v3 as w3;
 
 /// A TOML array `[x, y, z]` that round-trips the f64 values exactly (`{:?}` is the shortest
 /// representation that reads back to the same number, and always a TOML float).
