@@ -86,6 +86,10 @@ pub fn write_png_rgb8(
         encoder.set_color(png::ColorType::Rgb);
         encoder.set_depth(png::BitDepth::Eight);
         encoder.set_source_srgb(png::SrgbRenderingIntent::Perceptual);
+        // fdeflate's PNG-tuned fast mode. On the 1280×720 Whitted render it encodes in 10 ms
+        // instead of zlib's default level's 55 ms (5.4×), for a file a third larger (177 kB
+        // against 133 kB): the encoding was a fifth of the whole command's wall time.
+        encoder.set_compression(png::Compression::Fast);
         for (key, value) in metadata {
             encoder.add_text_chunk(key.clone(), value.clone()).map_err(png_err)?;
         }
