@@ -216,7 +216,7 @@ fn best_split(items: &[Item], cmin: &[f64; 3], cmax: &[f64; 3]) -> Option<(usize
     let mut best: Option<(f64, usize, usize)> = None;
     for axis in 0..3 {
         let extent = cmax[axis] - cmin[axis];
-        if !(extent > 0.0) {
+        if extent.is_nan() || extent <= 0.0 {
             continue;
         }
         let scale = BINS as f64 / extent;
