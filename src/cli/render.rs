@@ -7,7 +7,7 @@ use clap::Args;
 use clap::builder::{PossibleValuesParser, TypedValueParser};
 use glint_core::compare::compare_images;
 use glint_core::scene::{BUILTIN_SCENES, parse_scene};
-use glint_core::{Backend, CpuOptions, FlatScene};
+use glint_core::{Accel, Backend, CpuOptions, FlatScene};
 use glint_gpu::GpuOptions;
 
 use super::backend::{Run, open_gpu, run_cpu, run_gpu};
@@ -38,6 +38,9 @@ pub struct RenderArgs {
     /// Run every feature of both tracers even where the scene does not need it
     #[arg(long)]
     pub no_specialise: bool,
+    /// How the CPU tracer finds primitives: through the BVH, or brute force (none); the image is bit-identical either way
+    #[arg(long, default_value = "bvh", value_parser = accels())]
+    pub accel: Accel,
     /// Print the results as JSON instead of a table
     #[arg(long)]
     pub json: bool,
@@ -66,6 +69,13 @@ fn backends() -> impl TypedValueParser<Value = &'static [Backend]> {
     })
 }
 
+fn accels() -> impl TypedValueParser<Value = Accel> {
+    PossibleValuesParser::new(Accel::CHOICES.map(|(name, _)| name)).map(|choice| {
+        let (_, accel) = Accel::CHOICES.iter().find(|(name, _)| *name == choice).expect("clap admits only these");
+        *accel
+    })
+}
+
 pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     if args.list {
         for b in BUILTIN_SCENES {
@@ -78,7 +88,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     let settings = args.settings.apply(&loaded.desc.render)?;
     let flat = FlatScene::build(&loaded.desc, &settings);
     let specialise = !args.no_specialise;
-    let cpu_options = CpuOptions { threads: args.threads, specialise };
+    let cpu_options = CpuOptions { threads: args.threads, specialise, accel: args.accel };
     let gpu_options = GpuOptions { specialise, ..GpuOptions::default() };
     if args.bench {
         return bench(args, &loaded.name, &flat, &cpu_options, &gpu_options);

@@ -165,6 +165,38 @@ fn scene_settings_are_used_when_no_flag_overrides_them() {
 }
 
 #[test]
+fn accel_none_and_bvh_render_the_same_pixels() {
+    // `--accel none` is brute force, as before the BVH; `--accel bvh` (the default) must give
+    // the same image. EXR keeps the linear f32 values; a bad choice fails cleanly.
+    let dir = TempDir::new("accel");
+    let mut images = Vec::new();
+    for accel in ["none", "bvh"] {
+        let path = dir.join(format!("cornell-{accel}.exr"));
+        let args = os(&[
+            &"render",
+            &"cornell",
+            &"--width",
+            &"40",
+            &"--height",
+            &"30",
+            &"--accel",
+            &accel,
+            &"-q",
+            &"-o",
+            &path,
+        ]);
+        let out = glint(&dir, args);
+        assert!(out.status.success(), "--accel {accel}: {}", text(&out.stderr));
+        images.push(image::open(&path).expect("EXR decodes").into_rgb32f().into_raw());
+    }
+    let bits = |v: &[f32]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+    assert_eq!(bits(&images[0]), bits(&images[1]), "--accel none and --accel bvh differ");
+    let out = glint(&dir, ["render", "cornell", "--accel", "octree", "-q"]);
+    assert!(!out.status.success());
+    assert!(text(&out.stderr).contains("octree"), "{}", text(&out.stderr));
+}
+
+#[test]
 fn list_shows_the_five_builtin_scenes() {
     let dir = TempDir::new("list");
     let out = glint(&dir, ["render", "--list"]);

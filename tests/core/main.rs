@@ -3,6 +3,7 @@
 //! backends, are the `stiff` test binary.)
 
 mod bit_identity;
+mod bvh;
 mod closed_form;
 mod determinism;
 mod support;

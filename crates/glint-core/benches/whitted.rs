@@ -21,7 +21,7 @@ fn whitted(c: &mut Criterion) {
     settings.max_depth = 5;
     settings.bailout = 0.0;
     let flat = FlatScene::build(&loaded.desc, &settings);
-    let options = CpuOptions { threads: 2, specialise: true };
+    let options = CpuOptions { threads: 2, ..CpuOptions::default() };
 
     // The ray count is deterministic: take it from one render outside the timed loop.
     let counts = render_cpu(&flat, &options, RenderControl::default()).expect("render").counts;

@@ -2,6 +2,8 @@
 
 use glam::DVec3;
 
+use crate::bvh::{self, BvhNode};
+
 use crate::layout::{
     GpuCamera, GpuLight, GpuMaterial, GpuPlane, GpuSphere, GpuTriangle, LIGHT_CASTS_SHADOWS, MATERIAL_CHECKER,
     SceneHeader, TRIANGLE_HAS_NORMALS, UnknownTag, feature,
@@ -21,6 +23,11 @@ pub struct FlatScene {
     pub spheres: Vec<GpuSphere>,
     pub planes: Vec<GpuPlane>,
     pub triangles: Vec<GpuTriangle>,
+    /// The BVH over spheres and triangles (`bvh::build`; root first, empty without them). Not
+    /// uploaded to the GPU yet.
+    pub bvh_nodes: Vec<BvhNode>,
+    /// The primitive references its leaves point into (`bvh::PrimRef`).
+    pub bvh_prims: Vec<u32>,
     /// Object names by object id (scene order; unnamed objects get `kind #index`).
     pub object_names: Vec<String>,
     pub material_names: Vec<String>,
@@ -47,13 +54,14 @@ impl FlatScene {
     /// Builds the flat layout. The scene must have passed validation (`scene::validate`);
     /// settings are taken from `settings`, not from `desc.render`, so callers can override them.
     ///
-    /// One step per part of the layout: materials, lights, primitives, camera, header, and last
-    /// the feature set, computed from the flat data itself.
+    /// One step per part of the layout: materials, lights, primitives, the BVH over the bounded
+    /// primitives, camera, header, and last the feature set, computed from the flat data itself.
     pub fn build(desc: &SceneDesc, settings: &RenderSettings) -> Self {
         let material_names: Vec<String> = desc.materials.keys().cloned().collect();
         let materials = desc.materials.values().map(flat_material).collect();
         let lights = desc.lights.iter().map(flat_light).collect();
         let primitives = flat_primitives(desc, &material_names);
+        let bvh = bvh::build(&primitives.spheres, &primitives.triangles);
         let mut flat = Self {
             header: flat_header(desc, settings, &primitives, material_names.len()),
             camera: build_camera(desc, settings),
@@ -62,6 +70,8 @@ impl FlatScene {
             spheres: primitives.spheres,
             planes: primitives.planes,
             triangles: primitives.triangles,
+            bvh_nodes: bvh.nodes,
+            bvh_prims: bvh.prims,
             object_names: primitives.object_names,
             material_names,
         };

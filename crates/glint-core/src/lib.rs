@@ -3,6 +3,7 @@
 
 pub mod atomic;
 pub mod backend;
+pub mod bvh;
 pub mod compare;
 pub mod cpu;
 pub mod flat;
@@ -14,7 +15,7 @@ pub mod scene;
 pub use backend::Backend;
 pub use flat::FlatScene;
 pub use image::HdrImage;
-pub use render::{CpuOptions, CpuRender, RenderControl, pick_object, probe_pixel, render_cpu};
+pub use render::{Accel, CpuOptions, CpuRender, RenderControl, pick_object, probe_pixel, render_cpu};
 
 /// Re-exported so that the GPU tracer and the viewer use the same vector types.
 pub use glam;

@@ -6,6 +6,7 @@ use std::time::{Duration, Instant};
 use glam::DVec3;
 use rayon::prelude::*;
 
+pub use crate::cpu::Accel;
 use crate::cpu::shade::Breakdown;
 use crate::cpu::trace::{render_pixel, render_sample};
 use crate::cpu::{RayCounts, TraceContext};
@@ -23,11 +24,13 @@ pub struct CpuOptions {
     /// Skip the work of features the scene does not use (the default). Off, every feature
     /// runs; the image is bit-identical either way.
     pub specialise: bool,
+    /// How rays find primitives (the BVH by default); the image is bit-identical either way.
+    pub accel: Accel,
 }
 
 impl Default for CpuOptions {
     fn default() -> Self {
-        Self { threads: 0, specialise: true }
+        Self { threads: 0, specialise: true, accel: Accel::default() }
     }
 }
 
@@ -126,7 +129,7 @@ pub fn render_cpu(
         .build()
         .map_err(|e| CpuRenderError::ThreadPool { threads, message: e.to_string() })?;
     let features = if options.specialise { scene.header.features } else { feature::ALL };
-    let ctx = TraceContext::with_features(scene, features)?;
+    let ctx = TraceContext::with_features(scene, features)?.with_accel(options.accel);
     let (w, h) = (scene.header.width, scene.header.height);
     let origins: Vec<(u32, u32)> =
         (0..h.div_ceil(TILE)).flat_map(|ty| (0..w.div_ceil(TILE)).map(move |tx| (tx * TILE, ty * TILE))).collect();

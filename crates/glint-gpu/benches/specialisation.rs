@@ -28,7 +28,7 @@ fn gpu_times(flat: &FlatScene, specialise: bool) -> (f64, f64) {
 }
 
 fn cpu_time(flat: &FlatScene, specialise: bool) -> f64 {
-    let options = CpuOptions { threads: 0, specialise };
+    let options = CpuOptions { threads: 0, specialise, ..CpuOptions::default() };
     render_cpu(flat, &options, RenderControl::default()).expect("CPU render");
     median((0..RUNS).map(|_| render_cpu(flat, &options, RenderControl::default()).expect("CPU").elapsed).collect())
 }

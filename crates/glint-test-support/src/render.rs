@@ -23,7 +23,8 @@ pub fn assert_all_finite(image: &HdrImage, what: &str) {
 /// Renders with `threads` threads (0 = one per core) and asserts that no pixel is NaN or
 /// infinite.
 pub fn render_cpu_checked(flat: &FlatScene, threads: usize, specialise: bool) -> CpuRender {
-    let r = render_cpu(flat, &CpuOptions { threads, specialise }, RenderControl::default()).expect("CPU render");
+    let r = render_cpu(flat, &CpuOptions { threads, specialise, ..CpuOptions::default() }, RenderControl::default())
+        .expect("CPU render");
     assert_eq!(r.image.pixels.len(), flat.pixel_count());
     assert_all_finite(&r.image, "CPU render");
     crate::image_hash::check_render_hash(&r);

@@ -113,7 +113,7 @@ impl CpuWorker {
                 drop(g);
                 job.repaint();
             };
-            let options = CpuOptions { threads: worker_threads(), specialise: true };
+            let options = CpuOptions { threads: worker_threads(), ..CpuOptions::default() };
             let control = RenderControl { cancel: Some(job.cancel_flag()), on_tile: Some(&on_tile) };
             render_cpu(&scene, &options, control)
                 .map(|r| Finished { image: r.image, counts: r.counts, elapsed: r.elapsed, threads: r.threads })

@@ -137,7 +137,8 @@ fn settings_for(base: &RenderSettings, config: &Config) -> RenderSettings {
 fn render(engines: &mut Engines, flat: &FlatScene, config: &Config) -> anyhow::Result<Sample> {
     match config.backend {
         Backend::Cpu => {
-            let options = CpuOptions { threads: engines.threads, specialise: config.specialise };
+            let options =
+                CpuOptions { threads: engines.threads, specialise: config.specialise, ..CpuOptions::default() };
             let r = render_cpu(flat, &options, RenderControl::default())?;
             Ok(Sample { image: r.image, counts: r.counts, time: r.elapsed, gpu: None })
         }

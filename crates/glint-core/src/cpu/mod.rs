@@ -1,6 +1,7 @@
 //! The exact CPU reference tracer (f64). Each module is the twin of a WGSL file in `shaders/`
 //! with the same function names, as vello pairs `cpu/*.rs` with `shader/*.wgsl`.
 
+pub mod bvh;
 pub mod camera;
 pub mod intersect;
 pub mod offset;
@@ -56,6 +57,28 @@ impl AddAssign for RayCounts {
     }
 }
 
+/// How the CPU tracer finds the primitives a ray meets. The image is bit-identical either way.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Accel {
+    /// Through the scene's BVH (`FlatScene::bvh_nodes`), planes tested apart: the default.
+    #[default]
+    Bvh,
+    /// Every primitive against every ray (brute force).
+    None,
+}
+
+impl Accel {
+    /// Every choice with its `--accel` name.
+    pub const CHOICES: [(&'static str, Self); 2] = [("bvh", Self::Bvh), ("none", Self::None)];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Bvh => "bvh",
+            Self::None => "none",
+        }
+    }
+}
+
 /// Everything the tracer functions read: the flat scene, its header widened once, its tags
 /// decoded once, and the feature set whose work the tracer does.
 #[derive(Clone, Debug)]
@@ -64,6 +87,8 @@ pub struct TraceContext<'a> {
     /// The features the tracer runs: the scene's own (specialised, the default) or
     /// `feature::ALL` (unspecialised). Passed beside the scene, never written into it.
     pub features: u32,
+    /// The acceleration structure (`Accel::Bvh` unless set with `with_accel`).
+    pub accel: Accel,
     pub max_depth: u32,
     pub epsilon: f64,
     pub epsilon_mode: EpsilonMode,
@@ -85,12 +110,18 @@ impl<'a> TraceContext<'a> {
         Ok(Self {
             scene,
             features,
+            accel: Accel::default(),
             max_depth: h.max_depth,
             epsilon: f64::from(h.epsilon),
             epsilon_mode: EpsilonMode::try_from(h.epsilon_mode)?,
             bailout: f64::from(h.bailout),
             light_kinds: scene.lights.iter().map(|l| LightKind::try_from(l.kind)).collect::<Result<_, _>>()?,
         })
+    }
+
+    /// The same context, finding primitives with `accel`.
+    pub fn with_accel(self, accel: Accel) -> Self {
+        Self { accel, ..self }
     }
 
     /// Whether any of the `bits` is in the feature set.

@@ -1,0 +1,402 @@
+//! A flat bounding-volume hierarchy over the bounded primitives of a flat scene (spheres and
+//! triangles; infinite planes stay a separate list), built with a binned SAH.
+//!
+//! The primitive arrays keep their order: leaves point into `prims`, an array of primitive
+//! references (kind in the top bit, index below). Boxes are f32, rounded outward, so they
+//! contain the f32-stored primitives exactly. Traversal is in `cpu::bvh`.
+
+use bytemuck::{Pod, Zeroable};
+
+use crate::layout::{GpuSphere, GpuTriangle};
+
+/// One node: a leaf when `count > 0` (primitive references `left_first .. left_first +
+/// count`), else an interior node whose children are `left_first` and `left_first + 1`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+#[repr(C)]
+pub struct BvhNode {
+    pub min: [f32; 3],
+    pub left_first: u32,
+    pub max: [f32; 3],
+    pub count: u32,
+}
+
+const _: () = assert!(size_of::<BvhNode>() == 32);
+
+/// The top bit of a primitive reference: set for a triangle, clear for a sphere.
+pub const PRIM_REF_TRIANGLE: u32 = 1 << 31;
+/// The index bits of a primitive reference.
+pub const PRIM_REF_INDEX: u32 = PRIM_REF_TRIANGLE - 1;
+
+/// Most primitives in a leaf.
+pub const MAX_LEAF: usize = 4;
+/// SAH bins per axis.
+const BINS: usize = 16;
+/// Nodes with more primitives than this build their children in parallel.
+const PARALLEL_THRESHOLD: usize = 4096;
+
+/// A bounded primitive, decoded from its reference.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub enum PrimRef {
+    Sphere(u32),
+    Triangle(u32),
+}
+
+impl PrimRef {
+    pub fn decode(r: u32) -> Self {
+        if r & PRIM_REF_TRIANGLE != 0 { Self::Triangle(r & PRIM_REF_INDEX) } else { Self::Sphere(r) }
+    }
+
+    pub fn encode(self) -> u32 {
+        match self {
+            Self::Sphere(i) => i,
+            Self::Triangle(i) => i | PRIM_REF_TRIANGLE,
+        }
+    }
+}
+
+/// An axis-aligned box in f32.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Aabb {
+    pub min: [f32; 3],
+    pub max: [f32; 3],
+}
+
+impl Aabb {
+    pub const EMPTY: Self = Self { min: [f32::INFINITY; 3], max: [f32::NEG_INFINITY; 3] };
+
+    fn grow(&mut self, o: &Self) {
+        for k in 0..3 {
+            self.min[k] = self.min[k].min(o.min[k]);
+            self.max[k] = self.max[k].max(o.max[k]);
+        }
+    }
+
+    /// Half the surface area (in f64), 0 for an empty box.
+    fn half_area(&self) -> f64 {
+        let d: [f64; 3] = std::array::from_fn(|k| (f64::from(self.max[k]) - f64::from(self.min[k])).max(0.0));
+        d[0] * d[1] + d[1] * d[2] + d[2] * d[0]
+    }
+
+    pub fn contains(&self, o: &Self) -> bool {
+        (0..3).all(|k| self.min[k] <= o.min[k] && o.max[k] <= self.max[k])
+    }
+}
+
+/// x rounded down to an f32 (never above x).
+fn f32_down(x: f64) -> f32 {
+    let f = x as f32;
+    if f64::from(f) > x { f.next_down() } else { f }
+}
+
+/// x rounded up to an f32 (never below x).
+fn f32_up(x: f64) -> f32 {
+    let f = x as f32;
+    if f64::from(f) < x { f.next_up() } else { f }
+}
+
+/// The box of a sphere: centre ± radius, computed in f64 and rounded outward.
+pub fn sphere_box(s: &GpuSphere) -> Aabb {
+    let cr = s.center_radius;
+    let r = f64::from(cr[3]).abs();
+    Aabb {
+        min: std::array::from_fn(|k| f32_down(f64::from(cr[k]) - r)),
+        max: std::array::from_fn(|k| f32_up(f64::from(cr[k]) + r)),
+    }
+}
+
+/// The box of a triangle: the min and max of its (f32) vertices, exact.
+pub fn triangle_box(t: &GpuTriangle) -> Aabb {
+    Aabb {
+        min: std::array::from_fn(|k| t.a[k].min(t.b[k]).min(t.c[k])),
+        max: std::array::from_fn(|k| t.a[k].max(t.b[k]).max(t.c[k])),
+    }
+}
+
+/// The box of a primitive reference.
+pub fn prim_box(r: u32, spheres: &[GpuSphere], triangles: &[GpuTriangle]) -> Aabb {
+    match PrimRef::decode(r) {
+        PrimRef::Sphere(i) => sphere_box(&spheres[i as usize]),
+        PrimRef::Triangle(i) => triangle_box(&triangles[i as usize]),
+    }
+}
+
+/// A built hierarchy: nodes (root first; none for a scene without bounded primitives) and the
+/// primitive references the leaves point into.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Bvh {
+    pub nodes: Vec<BvhNode>,
+    pub prims: Vec<u32>,
+}
+
+/// A primitive during the build: its reference, box and centroid.
+#[derive(Clone, Copy, Debug)]
+struct Item {
+    r: u32,
+    bounds: Aabb,
+    centroid: [f64; 3],
+}
+
+/// Builds the hierarchy over every sphere and triangle.
+pub fn build(spheres: &[GpuSphere], triangles: &[GpuTriangle]) -> Bvh {
+    assert!(triangles.len() <= PRIM_REF_INDEX as usize, "too many triangles for a primitive reference");
+    let refs = (0..spheres.len() as u32)
+        .map(|i| PrimRef::Sphere(i).encode())
+        .chain((0..triangles.len() as u32).map(|i| PrimRef::Triangle(i).encode()));
+    let mut items: Vec<Item> = refs
+        .map(|r| {
+            let bounds = prim_box(r, spheres, triangles);
+            let centroid = std::array::from_fn(|k| 0.5 * (f64::from(bounds.min[k]) + f64::from(bounds.max[k])));
+            Item { r, bounds, centroid }
+        })
+        .collect();
+    if items.is_empty() {
+        return Bvh::default();
+    }
+    let nodes = build_node(&mut items, 0);
+    Bvh { nodes, prims: items.iter().map(|i| i.r).collect() }
+}
+
+/// The subtree over `items` (which start at `first` in the final reference array), root first,
+/// child indices local to the returned vector.
+fn build_node(items: &mut [Item], first: usize) -> Vec<BvhNode> {
+    let mut bounds = Aabb::EMPTY;
+    let mut cmin = [f64::INFINITY; 3];
+    let mut cmax = [f64::NEG_INFINITY; 3];
+    for it in items.iter() {
+        bounds.grow(&it.bounds);
+        for k in 0..3 {
+            cmin[k] = cmin[k].min(it.centroid[k]);
+            cmax[k] = cmax[k].max(it.centroid[k]);
+        }
+    }
+    let leaf = |bounds: Aabb| {
+        vec![BvhNode { min: bounds.min, left_first: first as u32, max: bounds.max, count: items.len() as u32 }]
+    };
+    let n = items.len();
+    if n <= MAX_LEAF {
+        return leaf(bounds);
+    }
+    let mid = match best_split(items, &cmin, &cmax) {
+        Some((axis, split)) => {
+            let scale = BINS as f64 / (cmax[axis] - cmin[axis]);
+            let bin = |c: f64| (((c - cmin[axis]) * scale) as usize).min(BINS - 1);
+            partition(items, |it| bin(it.centroid[axis]) < split)
+        }
+        None => n / 2,
+    };
+    let mid = if mid == 0 || mid == n { n / 2 } else { mid };
+    let (l, r) = items.split_at_mut(mid);
+    let (left, right) = if n > PARALLEL_THRESHOLD {
+        rayon::join(|| build_node(l, first), || build_node(r, first + mid))
+    } else {
+        (build_node(l, first), build_node(r, first + mid))
+    };
+    // Layout: this node, both children, the left child's descendants, the right child's.
+    let mut out = Vec::with_capacity(1 + left.len() + right.len());
+    out.push(BvhNode { min: bounds.min, left_first: 1, max: bounds.max, count: 0 });
+    let shift_left = 2u32;
+    let shift_right = left.len() as u32 + 1;
+    let fix = |mut node: BvhNode, shift: u32| {
+        if node.count == 0 {
+            node.left_first += shift;
+        }
+        node
+    };
+    out.push(fix(left[0], shift_left));
+    out.push(fix(right[0], shift_right));
+    out.extend(left[1..].iter().map(|&nd| fix(nd, shift_left)));
+    out.extend(right[1..].iter().map(|&nd| fix(nd, shift_right)));
+    out
+}
+
+/// The cheapest binned SAH split (axis, first bin of the right side), or `None` when every
+/// centroid coincides (the caller then splits at the median). A node of more than `MAX_LEAF`
+/// primitives is always split, so there is no leaf cost to compare with.
+fn best_split(items: &[Item], cmin: &[f64; 3], cmax: &[f64; 3]) -> Option<(usize, usize)> {
+    let mut best: Option<(f64, usize, usize)> = None;
+    for axis in 0..3 {
+        let extent = cmax[axis] - cmin[axis];
+        if extent.is_nan() || extent <= 0.0 {
+            continue;
+        }
+        let scale = BINS as f64 / extent;
+        let mut counts = [0usize; BINS];
+        let mut boxes = [Aabb::EMPTY; BINS];
+        for it in items {
+            let b = (((it.centroid[axis] - cmin[axis]) * scale) as usize).min(BINS - 1);
+            counts[b] += 1;
+            boxes[b].grow(&it.bounds);
+        }
+        // Right-side sweeps: cost of bins split..BINS.
+        let mut right_area = [0.0; BINS];
+        let mut right_count = [0usize; BINS];
+        let (mut acc, mut cnt) = (Aabb::EMPTY, 0);
+        for b in (1..BINS).rev() {
+            acc.grow(&boxes[b]);
+            cnt += counts[b];
+            right_area[b] = acc.half_area();
+            right_count[b] = cnt;
+        }
+        let (mut acc, mut cnt) = (Aabb::EMPTY, 0);
+        for split in 1..BINS {
+            acc.grow(&boxes[split - 1]);
+            cnt += counts[split - 1];
+            if cnt == 0 || right_count[split] == 0 {
+                continue;
+            }
+            let cost = acc.half_area() * cnt as f64 + right_area[split] * right_count[split] as f64;
+            if best.is_none_or(|(c, _, _)| cost < c) {
+                best = Some((cost, axis, split));
+            }
+        }
+    }
+    best.map(|(_, axis, split)| (axis, split))
+}
+
+/// Moves the items for which `left` holds to the front; returns how many there are.
+fn partition(items: &mut [Item], left: impl Fn(&Item) -> bool) -> usize {
+    let mut i = 0;
+    for j in 0..items.len() {
+        if left(&items[j]) {
+            items.swap(i, j);
+            i += 1;
+        }
+    }
+    i
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn tri(a: [f32; 3], b: [f32; 3], c: [f32; 3]) -> GpuTriangle {
+        let v = |p: [f32; 3]| [p[0], p[1], p[2], 1.0];
+        GpuTriangle {
+            a: v(a),
+            b: v(b),
+            c: v(c),
+            na: [0.0; 4],
+            nb: [0.0; 4],
+            nc: [0.0; 4],
+            material: 0,
+            object_id: 0,
+            flags: 0,
+            pad: 0,
+        }
+    }
+
+    fn sphere(c: [f32; 3], r: f32) -> GpuSphere {
+        GpuSphere { center_radius: [c[0], c[1], c[2], r], material: 0, object_id: 0, pad: [0; 2] }
+    }
+
+    /// A pseudo-random scene of spheres and triangles.
+    fn scene(n_spheres: usize, n_tris: usize) -> (Vec<GpuSphere>, Vec<GpuTriangle>) {
+        let mut state = 0x2545_f491_u32;
+        let mut rnd = move || {
+            state ^= state << 13;
+            state ^= state >> 17;
+            state ^= state << 5;
+            (state as f32 / u32::MAX as f32) * 20.0 - 10.0
+        };
+        let spheres = (0..n_spheres).map(|_| sphere([rnd(), rnd(), rnd()], 0.1 + rnd().abs() * 0.05)).collect();
+        let tris = (0..n_tris)
+            .map(|_| {
+                let a = [rnd(), rnd(), rnd()];
+                let d = |a: f32, r: f32| a + r * 0.05;
+                tri(a, [d(a[0], rnd()), d(a[1], rnd()), a[2]], [a[0], d(a[1], rnd()), d(a[2], rnd())])
+            })
+            .collect();
+        (spheres, tris)
+    }
+
+    /// Checks the invariants; returns the number of leaves.
+    fn check(bvh: &Bvh, spheres: &[GpuSphere], triangles: &[GpuTriangle]) -> usize {
+        let n = spheres.len() + triangles.len();
+        assert_eq!(bvh.prims.len(), n);
+        if n == 0 {
+            assert!(bvh.nodes.is_empty());
+            return 0;
+        }
+        assert!(bvh.nodes.len() < 2 * n, "{} nodes for {n} primitives", bvh.nodes.len());
+        let mut seen = vec![0u32; n];
+        let mut leaves = 0;
+        let mut visited = vec![false; bvh.nodes.len()];
+        let mut stack = vec![0usize];
+        while let Some(i) = stack.pop() {
+            assert!(!visited[i], "node {i} reached twice");
+            visited[i] = true;
+            let node = &bvh.nodes[i];
+            let b = Aabb { min: node.min, max: node.max };
+            if node.count > 0 {
+                leaves += 1;
+                assert!(node.count as usize <= MAX_LEAF);
+                for &r in &bvh.prims[node.left_first as usize..(node.left_first + node.count) as usize] {
+                    let slot = match PrimRef::decode(r) {
+                        PrimRef::Sphere(k) => k as usize,
+                        PrimRef::Triangle(k) => spheres.len() + k as usize,
+                    };
+                    seen[slot] += 1;
+                    assert!(b.contains(&prim_box(r, spheres, triangles)), "leaf {i} does not contain {r}");
+                }
+            } else {
+                for c in [node.left_first as usize, node.left_first as usize + 1] {
+                    let cn = &bvh.nodes[c];
+                    assert!(b.contains(&Aabb { min: cn.min, max: cn.max }), "child {c} outside parent {i}");
+                    stack.push(c);
+                }
+            }
+        }
+        assert!(visited.iter().all(|&v| v), "unreachable nodes");
+        assert!(seen.iter().all(|&k| k == 1), "a primitive not in exactly one leaf");
+        leaves
+    }
+
+    #[test]
+    fn node_is_32_bytes_and_pod() {
+        assert_eq!(size_of::<BvhNode>(), 32);
+        let n = BvhNode { min: [1.0, 2.0, 3.0], left_first: 4, max: [5.0, 6.0, 7.0], count: 2 };
+        assert_eq!(bytemuck::bytes_of(&n).len(), 32);
+    }
+
+    #[test]
+    fn invariants_on_a_random_scene() {
+        for (s, t) in [(1, 0), (0, 1), (3, 2), (20, 0), (0, 37), (50, 5000), (7, 12_000)] {
+            let (spheres, tris) = scene(s, t);
+            let bvh = build(&spheres, &tris);
+            check(&bvh, &spheres, &tris);
+        }
+    }
+
+    #[test]
+    fn empty_scene_has_no_nodes() {
+        let bvh = build(&[], &[]);
+        assert!(bvh.nodes.is_empty() && bvh.prims.is_empty());
+        check(&bvh, &[], &[]);
+    }
+
+    #[test]
+    fn all_primitives_at_one_point_split_at_the_median() {
+        let spheres: Vec<_> = (0..10).map(|_| sphere([1.0, 2.0, 3.0], 0.5)).collect();
+        let tris: Vec<_> = (0..101).map(|_| tri([1.0, 2.0, 3.0], [1.0, 2.0, 3.0], [1.0, 2.0, 3.0])).collect();
+        let bvh = build(&spheres, &tris);
+        let leaves = check(&bvh, &spheres, &tris);
+        assert!(leaves >= 111usize.div_ceil(MAX_LEAF));
+    }
+
+    #[test]
+    fn sphere_boxes_are_rounded_outward() {
+        let s = sphere([0.1, 1e7, -3.3], 0.3);
+        let b = sphere_box(&s);
+        for k in 0..3 {
+            let (c, r) = (f64::from(s.center_radius[k]), f64::from(s.center_radius[3]));
+            assert!(f64::from(b.min[k]) <= c - r && f64::from(b.max[k]) >= c + r);
+        }
+    }
+
+    #[test]
+    fn prim_refs_round_trip() {
+        for p in [PrimRef::Sphere(0), PrimRef::Sphere(77), PrimRef::Triangle(0), PrimRef::Triangle(PRIM_REF_INDEX)] {
+            assert_eq!(PrimRef::decode(p.encode()), p);
+        }
+    }
+}

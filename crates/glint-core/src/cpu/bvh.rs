@@ -1,0 +1,297 @@
+//! BVH traversal of the CPU tracer (`crate::bvh` builds the hierarchy): closest hit and shadow
+//! transmittance, bit-identical to the brute-force loops of `intersect.rs`.
+//!
+//! Why identical: the box test is conservative (it never rejects a box holding a primitive the
+//! primitive test would report), the primitive tests are the same functions with the same ray
+//! shear, and the result does not depend on the order primitives are visited in. Brute force
+//! keeps the first of equal t in the order spheres, planes, triangles (each by index); here a
+//! hit replaces the best one if its t is smaller, or equal with a smaller (kind, index) in that
+//! order. The shadow product's rounding depends on the order of its factors, so crossings are
+//! collected and multiplied in brute force's order.
+//!
+//! Not yet paired with a WGSL twin (issue 11's GPU part).
+
+use glam::DVec3;
+
+use super::intersect::{
+    Hit, Prim, RayShear, all_zero, cross_surface, intersect_plane, intersect_sphere, intersect_triangle, ray_shear,
+    sphere_roots,
+};
+use super::{Ray, TraceContext, v3};
+use crate::bvh::{BvhNode, PrimRef};
+use crate::layout::feature;
+
+/// Relative padding of a box in the slab test, against the scale of the box and the ray origin:
+/// many orders of magnitude above the f64 rounding error of the primitive tests and of the slab
+/// arithmetic, so a box is never rejected when a primitive inside it would be hit.
+const BOX_PAD: f64 = 1e-9;
+/// Absolute padding, for boxes and origins at 0.
+const BOX_PAD_ABS: f64 = 1e-280;
+/// pbrt's γ(3), by which the far slab distance is enlarged (Ize 2013).
+const GAMMA3: f64 = 3.0 * (f64::EPSILON * 0.5) / (1.0 - 3.0 * (f64::EPSILON * 0.5));
+/// Direction components below this count as zero in the slab test (their reciprocal would
+/// overflow); such a ray moves less than 1e-270 along that axis within `FAR`.
+const DIR_ZERO: f64 = 1e-300;
+
+/// The per-ray part of the slab test.
+#[derive(Clone, Copy, Debug)]
+struct SlabRay {
+    origin: [f64; 3],
+    inv: [f64; 3],
+    parallel: [bool; 3],
+    origin_scale: f64,
+}
+
+impl SlabRay {
+    fn new(ray: &Ray) -> Self {
+        let origin = ray.origin.to_array();
+        let d = ray.dir.to_array();
+        let parallel = d.map(|x| x.abs() < DIR_ZERO);
+        let inv = std::array::from_fn(|k| if parallel[k] { 0.0 } else { 1.0 / d[k] });
+        Self { origin, inv, parallel, origin_scale: origin.iter().fold(0.0, |m: f64, x| m.max(x.abs())) }
+    }
+
+    /// The entry distance of the ray into the (padded) box if it meets it within
+    /// [t_lo, t_hi], else `None`.
+    fn enter(&self, node: &BvhNode, t_lo: f64, t_hi: f64) -> Option<f64> {
+        let lo = node.min.map(f64::from);
+        let hi = node.max.map(f64::from);
+        let mut scale = self.origin_scale;
+        for k in 0..3 {
+            scale = scale.max(lo[k].abs()).max(hi[k].abs());
+        }
+        let pad = BOX_PAD * scale + BOX_PAD_ABS;
+        let mut t0 = f64::NEG_INFINITY;
+        let mut t1 = f64::INFINITY;
+        for k in 0..3 {
+            let (l, h) = (lo[k] - pad, hi[k] + pad);
+            if self.parallel[k] {
+                if self.origin[k] < l || self.origin[k] > h {
+                    return None;
+                }
+                continue;
+            }
+            let a = (l - self.origin[k]) * self.inv[k];
+            let b = (h - self.origin[k]) * self.inv[k];
+            let (near, far) = if a <= b { (a, b) } else { (b, a) };
+            t0 = t0.max(near);
+            t1 = t1.min(far * (1.0 + 2.0 * GAMMA3));
+        }
+        let slack = pad + GAMMA3 * t_hi.abs().min(1e300);
+        (t0 <= t1 && t0 <= t_hi + slack && t1 >= t_lo - slack).then_some(t0)
+    }
+}
+
+/// The rank of a kind in brute force's order.
+fn rank(prim: Prim) -> u32 {
+    match prim {
+        Prim::Sphere => 0,
+        Prim::Plane => 1,
+        Prim::Triangle => 2,
+    }
+}
+
+/// Whether a hit at t on (prim, index) replaces `best`: brute force's result is the smallest t,
+/// and of equal t the first in its order.
+fn replaces(t: f64, prim: Prim, index: u32, best: &Option<Hit>) -> bool {
+    match best {
+        None => true,
+        Some(b) => t < b.t || (t == b.t && (rank(prim), index) < (rank(b.prim), b.index)),
+    }
+}
+
+/// The bound passed to the primitive tests: `t_max` until a hit, then just above the best t,
+/// so that an equal t gets through their strict `t < t_max` and the tie rule decides.
+fn bound(best: &Option<Hit>, t_max: f64) -> f64 {
+    best.map_or(t_max, |b| b.t.next_up())
+}
+
+/// Calls `visit` on every primitive reference in a leaf whose box the ray meets within
+/// [t_min, `limit()`], nearer child first.
+fn traverse(
+    ctx: &TraceContext,
+    ray: &Ray,
+    t_min: f64,
+    mut limit: impl FnMut() -> f64,
+    mut visit: impl FnMut(u32) -> bool,
+) -> bool {
+    let nodes = &ctx.scene.bvh_nodes;
+    let prims = &ctx.scene.bvh_prims;
+    if nodes.is_empty() {
+        return true;
+    }
+    let slab = SlabRay::new(ray);
+    let mut stack: Vec<u32> = Vec::with_capacity(64);
+    if slab.enter(&nodes[0], t_min, limit()).is_none() {
+        return true;
+    }
+    stack.push(0);
+    while let Some(i) = stack.pop() {
+        let node = &nodes[i as usize];
+        if node.count > 0 {
+            for &r in &prims[node.left_first as usize..(node.left_first + node.count) as usize] {
+                if !visit(r) {
+                    return false;
+                }
+            }
+            continue;
+        }
+        let (l, r) = (node.left_first, node.left_first + 1);
+        let t_hi = limit();
+        let tl = slab.enter(&nodes[l as usize], t_min, t_hi);
+        let tr = slab.enter(&nodes[r as usize], t_min, t_hi);
+        match (tl, tr) {
+            (Some(a), Some(b)) => {
+                // The nearer child is popped first.
+                if a <= b {
+                    stack.extend([r, l]);
+                } else {
+                    stack.extend([l, r]);
+                }
+            }
+            (Some(_), None) => stack.push(l),
+            (None, Some(_)) => stack.push(r),
+            (None, None) => {}
+        }
+    }
+    true
+}
+
+/// `intersect::closest_hit` through the BVH: the same hit, bit for bit.
+pub fn closest_hit(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
+    let scene = ctx.scene;
+    let spheres_on = ctx.has(feature::SPHERES);
+    let triangles_on = ctx.has(feature::TRIANGLES);
+    let shear: RayShear = ray_shear(ray.dir);
+    let best = std::cell::Cell::new(None::<Hit>);
+    traverse(
+        ctx,
+        ray,
+        t_min,
+        || bound(&best.get(), t_max),
+        |r| {
+            let b = best.get();
+            let limit = bound(&b, t_max);
+            match PrimRef::decode(r) {
+                PrimRef::Sphere(i) if spheres_on => {
+                    let cr = scene.spheres[i as usize].center_radius;
+                    if let Some(t) = intersect_sphere(v3(cr), f64::from(cr[3]), ray, t_min, limit)
+                        && replaces(t, Prim::Sphere, i, &b)
+                    {
+                        best.set(Some(Hit { t, prim: Prim::Sphere, index: i, bu: 0.0, bv: 0.0 }));
+                    }
+                }
+                PrimRef::Triangle(i) if triangles_on => {
+                    let tri = &scene.triangles[i as usize];
+                    if let Some((t, bu, bv)) =
+                        intersect_triangle(v3(tri.a), v3(tri.b), v3(tri.c), ray, &shear, t_min, limit)
+                        && replaces(t, Prim::Triangle, i, &b)
+                    {
+                        best.set(Some(Hit { t, prim: Prim::Triangle, index: i, bu, bv }));
+                    }
+                }
+                PrimRef::Sphere(_) | PrimRef::Triangle(_) => {}
+            }
+            true
+        },
+    );
+    let mut best = best.get();
+    if ctx.has(feature::PLANES) {
+        for (i, p) in scene.planes.iter().enumerate() {
+            let no = p.normal_offset;
+            let i = i as u32;
+            if let Some(t) = intersect_plane(v3(no), f64::from(no[3]), ray, t_min, bound(&best, t_max))
+                && replaces(t, Prim::Plane, i, &best)
+            {
+                best = Some(Hit { t, prim: Prim::Plane, index: i, bu: 0.0, bv: 0.0 });
+            }
+        }
+    }
+    best
+}
+
+/// A surface a shadow ray crosses: its place in brute force's order (kind, index, root) and
+/// its material.
+#[derive(Clone, Copy, Debug)]
+struct Crossing {
+    key: (PrimRef, u32),
+    material: u32,
+}
+
+/// `intersect::shadow_transmittance` through the BVH: the same product, bit for bit.
+pub fn shadow_transmittance(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f64) -> DVec3 {
+    let scene = ctx.scene;
+    let spheres_on = ctx.has(feature::SPHERES);
+    let triangles_on = ctx.has(feature::TRIANGLES);
+    let shear = ray_shear(ray.dir);
+    // A surface whose k_t is zero (or any surface, without filtered shadows) makes the product
+    // zero whatever the order: return at once, as brute force would at the end.
+    let opaque = |material: u32| all_zero(cross_surface(ctx, DVec3::ONE, material));
+    let mut crossings: Vec<Crossing> = Vec::new();
+    let passed = traverse(
+        ctx,
+        ray,
+        t_min,
+        || t_max,
+        |r| {
+            let p = PrimRef::decode(r);
+            match p {
+                PrimRef::Sphere(i) if spheres_on => {
+                    let s = &scene.spheres[i as usize];
+                    let cr = s.center_radius;
+                    if let Some((t0, t1)) = sphere_roots(v3(cr), f64::from(cr[3]), ray) {
+                        for (root, t) in [t0, t1].into_iter().enumerate() {
+                            if t > t_min && t < t_max {
+                                if opaque(s.material) {
+                                    return false;
+                                }
+                                crossings.push(Crossing { key: (p, root as u32), material: s.material });
+                            }
+                        }
+                    }
+                }
+                PrimRef::Triangle(i) if triangles_on => {
+                    let tri = &scene.triangles[i as usize];
+                    if intersect_triangle(v3(tri.a), v3(tri.b), v3(tri.c), ray, &shear, t_min, t_max).is_some() {
+                        if opaque(tri.material) {
+                            return false;
+                        }
+                        crossings.push(Crossing { key: (p, 0), material: tri.material });
+                    }
+                }
+                PrimRef::Sphere(_) | PrimRef::Triangle(_) => {}
+            }
+            true
+        },
+    );
+    if !passed {
+        return DVec3::ZERO;
+    }
+    crossings.sort_unstable_by_key(|c| c.key);
+    let first_triangle = crossings.partition_point(|c| matches!(c.key.0, PrimRef::Sphere(_)));
+    let mut tr = DVec3::ONE;
+    for c in &crossings[..first_triangle] {
+        tr = cross_surface(ctx, tr, c.material);
+        if all_zero(tr) {
+            return tr;
+        }
+    }
+    if ctx.has(feature::PLANES) {
+        for p in &scene.planes {
+            let no = p.normal_offset;
+            if intersect_plane(v3(no), f64::from(no[3]), ray, t_min, t_max).is_some() {
+                tr = cross_surface(ctx, tr, p.material);
+                if all_zero(tr) {
+                    return tr;
+                }
+            }
+        }
+    }
+    for c in &crossings[first_triangle..] {
+        tr = cross_surface(ctx, tr, c.material);
+        if all_zero(tr) {
+            return tr;
+        }
+    }
+    tr
+}

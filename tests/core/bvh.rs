@@ -1,0 +1,265 @@
+//! The BVH (`Accel::Bvh`) against brute force (`Accel::None`): bit-identical CPU images
+//! (pixels' f64 bits, first hits, ray counts) for every built-in scene and for generated meshes
+//! — UV spheres of ~10k and ~100k triangles (the latter over 65,536), coplanar duplicates of
+//! different materials, needles, spheres tying with triangles at equal t, and a glass sphere
+//! in front of a transmissive mesh (filtered shadows) — plus random incoherent rays checked
+//! hit by hit and shadow product by shadow product.
+//!
+//! These renders call `render_cpu` directly (not the golden-hash hook): the hook's recorded
+//! hashes are brute force's, and every suite render it checks already runs with the default,
+//! the BVH.
+
+use std::f64::consts::PI;
+use std::path::Path;
+
+use glint_core::cpu::intersect::{FAR, closest_hit, shadow_transmittance};
+use glint_core::cpu::{Accel, Ray, TraceContext};
+use glint_core::glam::DVec3;
+use glint_core::scene::{BUILTIN_SCENES, parse_scene};
+use glint_core::{CpuOptions, CpuRender, FlatScene, RenderControl, render_cpu};
+
+use crate::support::SceneText;
+
+const Y: [f64; 3] = [0.0, 1.0, 0.0];
+
+fn render(flat: &FlatScene, accel: Accel) -> CpuRender {
+    let options = CpuOptions { threads: 2, accel, ..CpuOptions::default() };
+    render_cpu(flat, &options, RenderControl::default()).expect("CPU render")
+}
+
+/// Renders with both and asserts the images are bit-identical; returns the BVH render.
+fn assert_identical(what: &str, flat: &FlatScene) -> CpuRender {
+    let (bvh, none) = (render(flat, Accel::Bvh), render(flat, Accel::None));
+    assert_eq!(bvh.image.pixels.len(), none.image.pixels.len(), "{what}");
+    for (i, (p, q)) in bvh.image.pixels.iter().zip(&none.image.pixels).enumerate() {
+        let (pb, qb) = (p.to_array().map(f64::to_bits), q.to_array().map(f64::to_bits));
+        assert_eq!(pb, qb, "{what}: pixel {i} differs: BVH {p} vs brute force {q}");
+    }
+    assert_eq!(bvh.image.first_hit, none.image.first_hit, "{what}: first-hit ids");
+    assert_eq!(bvh.counts, none.counts, "{what}: ray counts");
+    bvh
+}
+
+/// A UV sphere of 4·n² triangles (rings θ = π·i/n, segments φ = 2π·k/(2n)), radius `r` around
+/// `c`, with a small bump so that not every triangle is a plain facet.
+fn uv_sphere(n: u32, c: [f64; 3], r: f64) -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
+    let m = 2 * n;
+    let mut v = Vec::new();
+    for i in 0..=n {
+        let th = PI * f64::from(i) / f64::from(n);
+        for k in 0..=m {
+            let ph = 2.0 * PI * f64::from(k) / f64::from(m);
+            let rr = r * (1.0 + 0.05 * (7.0 * th).sin() * (5.0 * ph).sin());
+            v.push([c[0] + rr * th.sin() * ph.cos(), c[1] + rr * th.cos(), c[2] + rr * th.sin() * ph.sin()]);
+        }
+    }
+    let mut t = Vec::new();
+    for i in 0..n {
+        for k in 0..m {
+            let a = i * (m + 1) + k;
+            let (b, cc) = (a + 1, a + m + 1);
+            t.push([a, cc, b]);
+            t.push([b, cc, cc + 1]);
+        }
+    }
+    (v, t)
+}
+
+/// A lit scene with a ground plane, a mirror sphere and one mesh.
+fn mesh_scene(w: u32, h: u32, mesh: (Vec<[f64; 3]>, Vec<[u32; 3]>)) -> SceneText {
+    SceneText::new(w, h, "max_depth = 2", [0.3, 1.1, -3.2], [0.0, 0.2, 0.0], Y, 45.0)
+        .world([0.1; 3], [0.2, 0.3, 0.4])
+        .material("ground", "ka = 0.2\nkd = 0.6\nks = 0.2\nchecker = { kd = [0.2, 0.2, 0.2], size = 0.5 }")
+        .material("clay", "ka = 0.2\nkd = [0.7, 0.5, 0.3]\nks = 0.4\nshininess = 20.0")
+        .material("mirror", "ka = 0.0\nkd = 0.1\nks = 0.3\nkr = 0.6")
+        .light("point", "position = [-2.0, 4.0, -3.0]\ndiffuse = 0.8\nspecular = 0.6")
+        .light("directional", "direction = [0.3, -1.0, 0.2]\ndiffuse = 0.3\nspecular = 0.2")
+        .plane([0.0, -1.2, 0.0], Y, "ground")
+        .sphere([1.3, -0.6, 0.6], 0.6, "mirror")
+        .mesh(&mesh.0, &mesh.1, None, "clay")
+}
+
+#[test]
+fn builtin_scenes_are_identical_with_and_without_the_bvh() {
+    for b in BUILTIN_SCENES {
+        let (desc, _) = parse_scene(b.text, Path::new(b.name)).expect("built-in scene parses");
+        let mut settings = desc.render.clone();
+        (settings.width, settings.height) = (64, 48);
+        assert_identical(b.name, &FlatScene::build(&desc, &settings));
+    }
+}
+
+#[test]
+fn uv_sphere_of_10k_triangles() {
+    let flat = mesh_scene(64, 48, uv_sphere(50, [0.0, 0.1, 0.0], 1.0)).flat();
+    // 4·50² triangles less the zero-area ones at the poles.
+    assert!(flat.triangles.len() > 9_800, "{} triangles", flat.triangles.len());
+    assert_identical("10k sphere", &flat);
+}
+
+#[test]
+fn uv_sphere_of_100k_triangles_beyond_65536() {
+    // Brute force over 100k triangles is slow: a small image.
+    let flat = mesh_scene(40, 30, uv_sphere(158, [0.0, 0.1, 0.0], 1.0)).flat();
+    assert!(flat.triangles.len() > 65_536, "{} triangles", flat.triangles.len());
+    assert!(flat.triangles.len() > 99_000);
+    assert_identical("100k sphere", &flat);
+}
+
+#[test]
+fn coplanar_overlapping_duplicates_of_different_materials() {
+    // A grid of quads in an oblique plane, three times: as is, with the vertices rotated and
+    // shifted by half a cell (overlapping, not coinciding), each with its own material.
+    let p = |x: f64, y: f64| [x, y, 1.3 + 0.2 * x - 0.1 * y];
+    let mut copies = Vec::new();
+    for (shift, rotate) in [(0.0, false), (0.0, true), (0.05, false)] {
+        let mut tris = Vec::new();
+        for j in 0..10 {
+            for i in 0..10 {
+                let (x, y) = (-1.0 + 0.2 * f64::from(i) + shift, -1.0 + 0.2 * f64::from(j) + shift);
+                let (a, b, c, d) = (p(x, y), p(x + 0.2, y), p(x + 0.2, y + 0.2), p(x, y + 0.2));
+                if rotate {
+                    tris.push([b, c, a]);
+                    tris.push([c, d, a]);
+                } else {
+                    tris.push([a, b, c]);
+                    tris.push([a, c, d]);
+                }
+            }
+        }
+        copies.push(tris);
+    }
+    let scene = SceneText::new(64, 48, "max_depth = 0", [0.31, 0.17, -1.0], [0.0, 0.0, 1.3], Y, 60.0)
+        .world([0.25; 3], [0.0; 3])
+        .material("first", "ka = [1.0, 0.0, 0.0]\nkd = 0.0")
+        .material("second", "ka = [0.0, 1.0, 0.0]\nkd = 0.0")
+        .material("third", "ka = [0.0, 0.0, 1.0]\nkd = 0.0")
+        .triangles(&copies[0], None, "first")
+        .triangles(&copies[1], None, "second")
+        .triangles(&copies[2], None, "third");
+    let r = assert_identical("coplanar duplicates", &scene.flat());
+    // The rotated copy ties with the first exactly (case 4 of the stiff suite) and never wins.
+    let won = |id: u32| r.image.first_hit.iter().filter(|&&h| h == id).count();
+    assert!(won(0) > 300 && won(1) == 0, "first {}, rotated copy {}", won(0), won(1));
+}
+
+#[test]
+fn needle_triangles() {
+    // Long, nearly zero-width triangles fanned around the view axis, and some along it.
+    let mut tris = Vec::new();
+    for k in 0..200 {
+        let a = 2.0 * PI * f64::from(k) / 200.0;
+        let (s, c) = a.sin_cos();
+        let w = 1e-4 * (1.0 + f64::from(k % 7));
+        tris.push([
+            [0.0, 0.0, 2.0],
+            [3.0 * c, 3.0 * s, 2.0 + 0.01 * f64::from(k)],
+            [3.0 * c - w * s, 3.0 * s + w * c, 2.0],
+        ]);
+        tris.push([[0.1 * c, 0.1 * s, 0.5], [0.1 * c, 0.1 * s + w, 0.5], [0.1 * c, 0.1 * s, 40.0]]);
+    }
+    let scene = SceneText::new(64, 48, "max_depth = 1", [0.0, 0.0, -1.0], [0.0, 0.0, 1.0], Y, 60.0)
+        .world([0.2; 3], [0.0, 0.0, 0.1])
+        .material("metal", "ka = 0.3\nkd = 0.5\nks = 0.5\nkr = 0.3")
+        .light("point", "position = [0.0, 2.0, -1.0]\ndiffuse = 0.8\nspecular = 0.5")
+        .triangles(&tris, None, "metal");
+    assert_identical("needles", &scene.flat());
+}
+
+#[test]
+fn spheres_and_triangles_tying_at_equal_t() {
+    // Along the axis the camera ray meets the sphere's pole, a triangle through it and a
+    // duplicate sphere at exactly the same t; duplicate spheres tie everywhere. The first in
+    // brute force's order (spheres by index, then triangles) must win on both.
+    let tri = [[-0.5, -0.5, 4.0], [0.5, -0.5, 4.0], [0.0, 0.7, 4.0]];
+    for (w, h) in [(1, 1), (33, 25)] {
+        let scene = SceneText::new(w, h, "max_depth = 0", [0.0, 0.0, 0.0], [0.0, 0.0, 1.0], Y, 40.0)
+            .world([0.25; 3], [0.0; 3])
+            .material("a", "ka = [1.0, 0.0, 0.0]\nkd = 0.0")
+            .material("b", "ka = [0.0, 1.0, 0.0]\nkd = 0.0")
+            .material("c", "ka = [0.0, 0.0, 1.0]\nkd = 0.0")
+            .triangles(&[tri], None, "c")
+            .sphere([0.0, 0.0, 5.0], 1.0, "a")
+            .sphere([0.0, 0.0, 5.0], 1.0, "b")
+            .triangles(&[tri], None, "b");
+        let r = assert_identical("equal t", &scene.flat());
+        if w == 1 {
+            // Object 1 is the first sphere: it beats the (earlier-listed) triangle at t = 4.
+            assert_eq!(r.image.first_hit, vec![1]);
+        }
+    }
+}
+
+#[test]
+fn glass_sphere_in_front_of_a_transmissive_mesh() {
+    // Shadow rays cross the glass twice and several transmissive triangles: the filtered
+    // product must be multiplied in brute force's order.
+    let scene = SceneText::new(64, 48, "max_depth = 3", [0.0, 0.5, -3.5], [0.0, 0.0, 0.0], Y, 50.0)
+        .world([0.1; 3], [0.1, 0.1, 0.2])
+        .material("ground", "ka = 0.2\nkd = 0.7\nks = 0.0")
+        .material("glass", "ka = 0.0\nkd = 0.0\nks = 0.3\nkr = 0.1\nkt = [0.9, 0.7, 0.8]\nior = 1.5")
+        .material("tinted", "ka = 0.1\nkd = 0.3\nks = 0.2\nkt = [0.3, 0.6, 0.9]\nior = 1.0")
+        .light("point", "position = [0.5, 4.0, -2.0]\ndiffuse = 0.9\nspecular = 0.5")
+        .light("spot", "position = [-1.0, 3.0, -1.0]\ndirection = [0.3, -1.0, 0.4]\ncutoff = 40.0\ndiffuse = 0.5")
+        .plane([0.0, -1.2, 0.0], Y, "ground")
+        .sphere([0.0, 0.2, -1.0], 0.7, "glass")
+        .sphere([0.2, 0.4, -0.8], 0.3, "glass")
+        .mesh(&uv_sphere(20, [0.3, 0.0, 1.0], 0.9).0, &uv_sphere(20, [0.3, 0.0, 1.0], 0.9).1, None, "tinted");
+    let flat = scene.flat();
+    assert_ne!(flat.header.features & glint_core::layout::feature::FILTERED_SHADOWS, 0);
+    assert_identical("glass in front of a mesh", &flat);
+}
+
+/// xorshift64*, uniform in [0, 1).
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> f64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        (self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    fn dir(&mut self) -> DVec3 {
+        loop {
+            let d = DVec3::new(2.0 * self.next() - 1.0, 2.0 * self.next() - 1.0, 2.0 * self.next() - 1.0);
+            let l = d.length();
+            if l > 1e-3 && l <= 1.0 {
+                return d / l;
+            }
+        }
+    }
+}
+
+#[test]
+fn incoherent_rays_find_the_same_hits_and_shadow_products() {
+    let scene = SceneText::new(8, 8, "max_depth = 1", [0.0, 0.5, -3.5], [0.0, 0.0, 0.0], Y, 50.0)
+        .material("glass", "ka = 0.0\nkd = 0.0\nkt = [0.9, 0.7, 0.8]\nior = 1.5")
+        .material("tinted", "ka = 0.1\nkd = 0.3\nkt = [0.3, 0.6, 0.9]")
+        .material("opaque", "ka = 0.1\nkd = 0.3")
+        .light("point", "position = [0.5, 4.0, -2.0]\ndiffuse = 0.9")
+        .plane([0.0, -1.2, 0.0], Y, "tinted")
+        .sphere([0.0, 0.2, -1.0], 0.7, "glass")
+        .sphere([0.0, 0.2, -1.0], 0.7, "tinted")
+        .sphere([0.5, 0.0, 0.5], 0.4, "opaque")
+        .mesh(&uv_sphere(30, [0.3, 0.0, 1.0], 0.9).0, &uv_sphere(30, [0.3, 0.0, 1.0], 0.9).1, None, "tinted")
+        .mesh(&uv_sphere(10, [-0.8, 0.3, 0.2], 0.5).0, &uv_sphere(10, [-0.8, 0.3, 0.2], 0.5).1, None, "opaque");
+    let flat = scene.flat();
+    let bvh = TraceContext::new(&flat).expect("valid tags").with_accel(Accel::Bvh);
+    let none = TraceContext::new(&flat).expect("valid tags").with_accel(Accel::None);
+    let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+    let mut hits = 0;
+    for i in 0..20_000 {
+        let origin = DVec3::new(4.0 * rng.next() - 2.0, 3.0 * rng.next() - 1.5, 4.0 * rng.next() - 2.0);
+        let ray = Ray { origin, dir: rng.dir() };
+        let t_min = if i % 3 == 0 { 0.0 } else { 1e-4 };
+        let (a, b) = (closest_hit(&bvh, &ray, t_min, FAR), closest_hit(&none, &ray, t_min, FAR));
+        assert_eq!(a, b, "ray {i}: {ray:?}");
+        hits += usize::from(a.is_some());
+        let t_max = 0.5 + 4.0 * rng.next();
+        let (a, b) = (shadow_transmittance(&bvh, &ray, t_min, t_max), shadow_transmittance(&none, &ray, t_min, t_max));
+        assert_eq!(a.to_array().map(f64::to_bits), b.to_array().map(f64::to_bits), "shadow ray {i}: {ray:?}");
+    }
+    assert!(hits > 5_000, "{hits} hits");
+}
