@@ -38,8 +38,8 @@ pub struct RenderArgs {
     /// Run every feature of both tracers even where the scene does not need it
     #[arg(long)]
     pub no_specialise: bool,
-    /// How the CPU tracer finds primitives: through the BVH, or brute force (none); the image is bit-identical either way
-    #[arg(long, default_value = "bvh", value_parser = accels())]
+    /// How the CPU tracer finds primitives: the BVH from 24 spheres and triangles on (auto), always the BVH, or brute force (none); the image is bit-identical either way
+    #[arg(long, default_value = "auto", value_parser = accels())]
     pub accel: Accel,
     /// Print the results as JSON instead of a table
     #[arg(long)]

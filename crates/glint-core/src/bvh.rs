@@ -29,6 +29,12 @@ pub const PRIM_REF_INDEX: u32 = PRIM_REF_TRIANGLE - 1;
 
 /// Most primitives in a leaf.
 pub const MAX_LEAF: usize = 4;
+
+/// From this many spheres and triangles on, `Accel::Auto` traces through the BVH; below, brute
+/// force is faster. Measured on the CPU tracer (2 threads, 320×240, depth 3, median of 5): with
+/// spheres, brute force against BVH 12.7 / 20.6 ms at 4, 16.7 / 20.4 ms at 16, 30.8 / 29.7 ms at
+/// 32, 41.6 / 30.6 ms at 64; with triangles 18.8 / 24.1 ms at 16 and 48.3 / 26.0 ms at 32.
+pub const AUTO_MIN_PRIMITIVES: usize = 24;
 /// SAH bins per axis.
 const BINS: usize = 16;
 /// Nodes with more primitives than this build their children in parallel.

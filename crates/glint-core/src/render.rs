@@ -195,6 +195,23 @@ mod tests {
     use crate::scene::{builtin, parse_scene};
 
     #[test]
+    fn auto_traces_small_scenes_by_brute_force_and_large_ones_through_the_bvh() {
+        use crate::bvh::AUTO_MIN_PRIMITIVES;
+        use crate::cpu::Traversal;
+        let b = builtin("whitted").expect("built-in scene");
+        let (desc, _) = parse_scene(b.text, std::path::Path::new(b.name)).expect("parses");
+        let mut flat = FlatScene::build(&desc, &desc.render);
+        assert!(flat.spheres.len() + flat.triangles.len() < AUTO_MIN_PRIMITIVES);
+        assert_eq!(Accel::Auto.traversal(&flat), Traversal::BruteForce);
+        assert_eq!(Accel::Bvh.traversal(&flat), Traversal::Bvh);
+        assert_eq!(Accel::None.traversal(&flat), Traversal::BruteForce);
+        let sphere = flat.spheres[0];
+        flat.spheres.resize(AUTO_MIN_PRIMITIVES - flat.triangles.len(), sphere);
+        assert_eq!(Accel::Auto.traversal(&flat), Traversal::Bvh);
+        assert_eq!(Accel::None.traversal(&flat), Traversal::BruteForce);
+    }
+
+    #[test]
     fn a_flat_scene_with_an_unknown_tag_is_refused_not_traced() {
         let b = builtin("spotlights").expect("built-in scene");
         let (desc, _) = parse_scene(b.text, std::path::Path::new(b.name)).expect("parses");

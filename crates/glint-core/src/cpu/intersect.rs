@@ -3,7 +3,7 @@
 
 use glam::DVec3;
 
-use super::{Accel, Ray, TraceContext, v3};
+use super::{Ray, TraceContext, Traversal, v3};
 use crate::layout::{GpuTriangle, TRIANGLE_HAS_NORMALS, feature};
 
 /// The kind of primitive a hit is on. WGSL stores it as the `PRIM_*` constants (checked by the
@@ -174,12 +174,12 @@ pub fn intersect_triangle(
 }
 
 /// The nearest hit in (t_min, t_max). Ties go to the primitive tested first (spheres, planes,
-/// triangles, each in index order), the same on both tracers. With `Accel::Bvh` the CPU finds
+/// triangles, each in index order), the same on both tracers. Through the BVH (`Traversal::Bvh`) the CPU finds
 /// the same hit through the BVH (`cpu::bvh`).
 pub fn closest_hit(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
-    match ctx.accel {
-        Accel::Bvh => return super::bvh::closest_hit(ctx, ray, t_min, t_max),
-        Accel::None => {}
+    match ctx.traversal {
+        Traversal::Bvh => return super::bvh::closest_hit(ctx, ray, t_min, t_max),
+        Traversal::BruteForce => {}
     }
     let scene = ctx.scene;
     let mut best: Option<Hit> = None;
@@ -227,11 +227,11 @@ pub fn cross_surface(ctx: &TraceContext, tr: DVec3, material: u32) -> DVec3 {
 
 /// Fraction of light that passes from the ray origin to t_max: 0 behind an opaque occluder,
 /// the product of k_t over every surface crossed otherwise (a glass sphere is crossed twice).
-/// With `Accel::Bvh` the CPU computes the same product through the BVH (`cpu::bvh`).
+/// Through the BVH (`Traversal::Bvh`) the CPU computes the same product through the BVH (`cpu::bvh`).
 pub fn shadow_transmittance(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f64) -> DVec3 {
-    match ctx.accel {
-        Accel::Bvh => return super::bvh::shadow_transmittance(ctx, ray, t_min, t_max),
-        Accel::None => {}
+    match ctx.traversal {
+        Traversal::Bvh => return super::bvh::shadow_transmittance(ctx, ray, t_min, t_max),
+        Traversal::BruteForce => {}
     }
     let scene = ctx.scene;
     let mut tr = DVec3::ONE;

@@ -57,11 +57,15 @@ impl AddAssign for RayCounts {
     }
 }
 
-/// How the CPU tracer finds the primitives a ray meets. The image is bit-identical either way.
+/// How the CPU tracer is asked to find the primitives a ray meets. The image is bit-identical
+/// whichever it uses.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Accel {
-    /// Through the scene's BVH (`FlatScene::bvh_nodes`), planes tested apart: the default.
+    /// The BVH for scenes with at least `bvh::AUTO_MIN_PRIMITIVES` spheres and triangles,
+    /// brute force below (where it is faster): the default.
     #[default]
+    Auto,
+    /// Always through the scene's BVH (`FlatScene::bvh_nodes`), planes tested apart.
     Bvh,
     /// Every primitive against every ray (brute force).
     None,
@@ -69,14 +73,33 @@ pub enum Accel {
 
 impl Accel {
     /// Every choice with its `--accel` name.
-    pub const CHOICES: [(&'static str, Self); 2] = [("bvh", Self::Bvh), ("none", Self::None)];
+    pub const CHOICES: [(&'static str, Self); 3] = [("auto", Self::Auto), ("bvh", Self::Bvh), ("none", Self::None)];
 
     pub fn name(self) -> &'static str {
         match self {
+            Self::Auto => "auto",
             Self::Bvh => "bvh",
             Self::None => "none",
         }
     }
+
+    /// How a ray of `scene` is traced under this choice.
+    pub fn traversal(self, scene: &FlatScene) -> Traversal {
+        match self {
+            Self::Auto if scene.spheres.len() + scene.triangles.len() >= crate::bvh::AUTO_MIN_PRIMITIVES => {
+                Traversal::Bvh
+            }
+            Self::Auto | Self::None => Traversal::BruteForce,
+            Self::Bvh => Traversal::Bvh,
+        }
+    }
+}
+
+/// How the tracer finds the primitives a ray meets, decided once per render (`Accel::traversal`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Traversal {
+    Bvh,
+    BruteForce,
 }
 
 /// Everything the tracer functions read: the flat scene, its header widened once, its tags
@@ -87,8 +110,8 @@ pub struct TraceContext<'a> {
     /// The features the tracer runs: the scene's own (specialised, the default) or
     /// `feature::ALL` (unspecialised). Passed beside the scene, never written into it.
     pub features: u32,
-    /// The acceleration structure (`Accel::Bvh` unless set with `with_accel`).
-    pub accel: Accel,
+    /// BVH or brute force (`Accel::Auto`'s choice unless set with `with_accel`).
+    pub traversal: Traversal,
     pub max_depth: u32,
     pub epsilon: f64,
     pub epsilon_mode: EpsilonMode,
@@ -110,7 +133,7 @@ impl<'a> TraceContext<'a> {
         Ok(Self {
             scene,
             features,
-            accel: Accel::default(),
+            traversal: Accel::default().traversal(scene),
             max_depth: h.max_depth,
             epsilon: f64::from(h.epsilon),
             epsilon_mode: EpsilonMode::try_from(h.epsilon_mode)?,
@@ -121,7 +144,7 @@ impl<'a> TraceContext<'a> {
 
     /// The same context, finding primitives with `accel`.
     pub fn with_accel(self, accel: Accel) -> Self {
-        Self { accel, ..self }
+        Self { traversal: accel.traversal(self.scene), ..self }
     }
 
     /// Whether any of the `bits` is in the feature set.
