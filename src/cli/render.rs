@@ -89,7 +89,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     let flat = FlatScene::build(&loaded.desc, &settings);
     let specialise = !args.no_specialise;
     let cpu_options = CpuOptions { threads: args.threads, specialise, accel: args.accel };
-    let gpu_options = GpuOptions { specialise, ..GpuOptions::default() };
+    let gpu_options = GpuOptions { specialise, accel: args.accel, ..GpuOptions::default() };
     if args.bench {
         return bench(args, &loaded.name, &flat, &cpu_options, &gpu_options);
     }

@@ -22,6 +22,7 @@
 use std::time::Instant;
 
 use glint_core::layout::{STATUS_DRIVER_LOOP_CUTOFF, STATUS_LOOP_LIMIT, STATUS_STACK_OVERFLOW};
+use glint_core::Accel;
 use glint_gpu::GPU_STACK_LIMIT;
 
 use crate::gpu::{BothOptions, render_both, render_both_with};
@@ -214,12 +215,13 @@ fn triangle_carpet(spp: u32) -> SceneText {
 
 #[test]
 fn the_driver_loop_budget_is_detected_never_silent() {
+    // Brute force on the GPU: every ray walks all 40,000 triangles, past lavapipe's budget.
     let flat = triangle_carpet(1).flat();
     assert_eq!(flat.header.triangle_count, 40_000);
     let Some(tracer) = crate::gpu::gpu() else { return };
     let lavapipe = tracer.context().adapter.name.contains("llvmpipe");
     let expect_status = if lavapipe { STATUS_DRIVER_LOOP_CUTOFF } else { 0 };
-    let options = BothOptions { expect_status, ..BothOptions::default() };
+    let options = BothOptions { expect_status, accel: Accel::None, ..BothOptions::default() };
     let both = render_both_with("stiff/case15", "driver-loop-cutoff", &flat, options);
     let g = both.gpu.as_ref().expect("the GPU ran");
     if !lavapipe {
@@ -228,6 +230,23 @@ fn the_driver_loop_budget_is_detected_never_silent() {
         both.ensure(worst <= 1e-5, || format!("without a loop budget the GPU differs by {worst:e}"));
     }
     eprintln!("case 15: 40,000 triangles on {}: GPU status {:#x}", tracer.context().adapter, g.status);
+}
+
+#[test]
+fn the_bvh_keeps_the_carpet_within_the_driver_loop_budget() {
+    // The same carpet through the BVH: about log N nodes per ray instead of N triangles, so
+    // the canary stays quiet (status 0) and the image matches the CPU.
+    let flat = triangle_carpet(1).flat();
+    let options = BothOptions { accel: Accel::Bvh, ..BothOptions::default() };
+    let both = render_both_with("stiff/case15", "carpet-bvh", &flat, options);
+    if let Some(g) = &both.gpu {
+        let diff = both.cpu.image.pixels.iter().zip(&g.image.pixels).map(|(a, b)| (*a - *b).abs().max_element());
+        let worst = diff.fold(0.0_f64, f64::max);
+        both.ensure(worst <= 1e-5, || format!("through the BVH the GPU differs by {worst:e}"));
+        both.ensure(g.counts.total() == both.cpu.counts.total(), || {
+            format!("GPU traced {} rays, CPU {}", g.counts.total(), both.cpu.counts.total())
+        });
+    }
 }
 
 #[test]
