@@ -6,11 +6,11 @@
 use std::f64::consts::PI;
 
 use glint_core::compare::compare_images;
-use glint_core::{Accel, FlatScene};
+use glint_core::{Accel, CpuOptions, FlatScene, RenderControl, render_cpu};
 use glint_gpu::GpuOptions;
 use glint_test_support::scene::SceneText;
 
-use super::support::{cpu, gpu_or_skip};
+use super::support::gpu_or_skip;
 use crate::gpu::gpu_render_with;
 
 const Y: [f64; 3] = [0.0, 1.0, 0.0];
@@ -90,7 +90,10 @@ fn bvh_matches_the_cpu_on_a_10k_triangle_mesh() {
     let tracer = gpu_or_skip!();
     let flat = mesh_scene(64, 48, uv_sphere(50, [0.0, 0.1, 0.0], 1.0)).flat();
     assert!(flat.triangles.len() > 9_800);
-    let c = cpu(&flat);
+    // Directly, not through the golden-hash hook: this scene is tests/core/bvh.rs's, whose CPU
+    // images (BVH = brute force, bit for bit) are checked there.
+    let c = render_cpu(&flat, &CpuOptions::default(), RenderControl::default()).expect("CPU render");
+    glint_test_support::render::assert_all_finite(&c.image, "CPU render");
     let g = render(tracer, &flat, Accel::Bvh);
     let e = compare_images(&c.image, &g.image);
     eprintln!(
