@@ -5,8 +5,8 @@
 
 use std::collections::HashMap;
 
-use glint_core::{Accel, FlatScene};
 use glint_core::layout::feature;
+use glint_core::{Accel, FlatScene};
 use naga_oil::compose::{ComposableModuleDescriptor, Composer, NagaModuleDescriptor, ShaderDefValue};
 
 use crate::error::GpuError;

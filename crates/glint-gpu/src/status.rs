@@ -1,7 +1,9 @@
 //! What the status word the shader raises (`STATUS_*` of `glint_core::layout`) means for the
 //! user: one message per bit, used by the CLI and the viewer alike.
 
-use glint_core::layout::{STATUS_BVH_STACK_OVERFLOW, STATUS_DRIVER_LOOP_CUTOFF, STATUS_LOOP_LIMIT, STATUS_STACK_OVERFLOW};
+use glint_core::layout::{
+    STATUS_BVH_STACK_OVERFLOW, STATUS_DRIVER_LOOP_CUTOFF, STATUS_LOOP_LIMIT, STATUS_STACK_OVERFLOW,
+};
 
 use crate::shaders::LAVAPIPE_LOOP_BUDGET;
 

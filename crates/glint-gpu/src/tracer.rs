@@ -5,10 +5,10 @@ use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
-use glint_core::{Accel, FlatScene};
 use glint_core::HdrImage;
 use glint_core::cpu::RayCounts;
 use glint_core::layout::ProbeRecord;
+use glint_core::{Accel, FlatScene};
 
 use crate::buffers::SceneBuffers;
 use crate::context::GpuContext;
