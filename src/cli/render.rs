@@ -38,7 +38,7 @@ pub struct RenderArgs {
     /// Run every feature of both tracers even where the scene does not need it
     #[arg(long)]
     pub no_specialise: bool,
-    /// How the CPU tracer finds primitives: through the BVH, or brute force (none); the image is bit-identical either way
+    /// How both tracers find primitives: through the BVH, or brute force (none); the CPU image is bit-identical either way, and on the GPU brute force is limited to 65,535 primitives of a kind
     #[arg(long, default_value = "bvh", value_parser = accels())]
     pub accel: Accel,
     /// Print the results as JSON instead of a table
