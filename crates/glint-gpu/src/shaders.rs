@@ -82,6 +82,21 @@ impl ShaderKey {
         Self { bvh: accel == Accel::Bvh && !scene.bvh_nodes.is_empty(), ..self }
     }
 
+    /// The storage buffers the variant binds (a test checks this against the composed module):
+    /// materials, lights, output and stats always, one per primitive kind compiled in, the
+    /// probe record, and the BVH's two.
+    pub fn storage_buffers(&self) -> u32 {
+        let kinds = [feature::SPHERES, feature::PLANES, feature::TRIANGLES].iter().filter(|&&f| self.features & f != 0);
+        4 + kinds.count() as u32 + u32::from(self.probe) + if self.bvh { 2 } else { 0 }
+    }
+
+    /// The same variant, with brute force instead of the BVH if the BVH's two extra storage
+    /// buffers would exceed `max_storage_buffers_per_shader_stage` (8 in wgpu's default limits,
+    /// which eframe's device has). Brute force keeps its primitive limit and the canary.
+    pub fn within_storage_limit(self, max_storage_buffers: u32) -> Self {
+        if self.bvh && self.storage_buffers() > max_storage_buffers { Self { bvh: false, ..self } } else { self }
+    }
+
     /// naga_oil shader defs: one boolean per feature present, `RECURSION` when the variant
     /// walks a ray tree, `STACK_SIZE`, `MAX_TREE_NODES`, `PROBE`, `BVH`.
     pub fn shader_defs(&self) -> HashMap<String, ShaderDefValue> {
@@ -252,6 +267,26 @@ mod tests {
                 for bvh in [false, true] {
                     compose_or_report(&ShaderKey { features, stack_size: 4, probe: false, bvh });
                 }
+            }
+        }
+    }
+
+    #[test]
+    fn storage_buffer_count_matches_the_composed_module() {
+        let mut keys = vec![ShaderKey::full(), ShaderKey { bvh: false, ..ShaderKey::full() }];
+        keys.extend(builtin_keys().into_iter().map(|(_, k)| k));
+        for key in keys {
+            for probe in [false, true] {
+                let key = ShaderKey { probe, ..key };
+                let module = compose_or_report(&key);
+                let storage = module
+                    .global_variables
+                    .iter()
+                    .filter(|(_, g)| g.binding.is_some() && matches!(g.space, naga::AddressSpace::Storage { .. }))
+                    .count();
+                assert_eq!(key.storage_buffers() as usize, storage, "[{}]", key.describe());
+                let fitted = key.within_storage_limit(8);
+                assert!(fitted.storage_buffers() <= 8 || !fitted.bvh, "[{}]", key.describe());
             }
         }
     }
