@@ -109,3 +109,22 @@ fn bvh_matches_the_cpu_on_a_10k_triangle_mesh() {
         "{e:?}"
     );
 }
+
+#[test]
+fn beyond_the_brute_force_limit_only_the_bvh_renders() {
+    let tracer = gpu_or_skip!();
+    let flat = mesh_scene(32, 24, uv_sphere(130, [0.0, 0.1, 0.0], 1.0)).flat();
+    assert!(flat.triangles.len() > 65_535, "{} triangles", flat.triangles.len());
+    let brute = tracer.render(&flat, &GpuOptions { accel: Accel::None, ..GpuOptions::default() });
+    let message = brute.expect_err("brute force is limited to 65,535 triangles").to_string();
+    assert!(message.contains("GPU_PRIMITIVE_LIMIT") && message.contains("--accel bvh"), "{message}");
+    let g = render(tracer, &flat, Accel::Bvh);
+    assert_eq!(g.status, 0, "status word");
+    let c = render_cpu(&flat, &CpuOptions::default(), RenderControl::default()).expect("CPU render");
+    let e = compare_images(&c.image, &g.image);
+    eprintln!("{} triangles through the BVH: {e:?}", flat.triangles.len());
+    assert!(
+        e.flip_mean <= FLIP_MEAN_MAX && e.p99_abs_same_hit <= P99_MAX && e.first_hit_mismatch <= MISMATCH_MAX,
+        "{e:?}"
+    );
+}
