@@ -2,7 +2,7 @@
 // composed module, and the host builds its bind group layout from what remains.
 #define_import_path glint::bindings
 
-#import glint::scene_data::{SceneHeader, GpuCamera, GpuMaterial, GpuLight, GpuSphere, GpuPlane, GpuTriangle, TileParams, ProbeRecord}
+#import glint::scene_data::{SceneHeader, GpuCamera, GpuMaterial, GpuLight, GpuSphere, GpuPlane, GpuTriangle, TileParams, ProbeRecord, BvhNode}
 
 @group(0) @binding(0) var<uniform> header: SceneHeader;
 @group(0) @binding(1) var<uniform> camera: GpuCamera;
@@ -18,3 +18,7 @@
 @group(0) @binding(9) var<storage, read_write> stats: array<atomic<u32>>;
 // The pixel probe's breakdown (only in the PROBE variant).
 @group(0) @binding(10) var<storage, read_write> probe_out: ProbeRecord;
+// The BVH over spheres and triangles (only with the BVH shader def): nodes, root first, and
+// the primitive references its leaves point into.
+@group(0) @binding(11) var<storage, read> bvh_nodes: array<BvhNode>;
+@group(0) @binding(12) var<storage, read> bvh_prims: array<u32>;

@@ -23,6 +23,11 @@ const NO_HIT: u32 = 0xffffffffu;
 const STATUS_LOOP_LIMIT: u32 = 1u;
 const STATUS_STACK_OVERFLOW: u32 = 2u;
 const STATUS_DRIVER_LOOP_CUTOFF: u32 = 4u;
+const STATUS_BVH_STACK_OVERFLOW: u32 = 8u;
+
+// Primitive references of the BVH (glint_core::bvh): the top bit marks a triangle.
+const PRIM_REF_TRIANGLE: u32 = 0x80000000u;
+const PRIM_REF_INDEX: u32 = 0x7fffffffu;
 
 // Layout of the statistics buffer: (lo, hi) u32 pairs per ray kind, then the status word.
 const STAT_CAMERA: u32 = 0u;
@@ -162,4 +167,13 @@ struct ProbeRecord {
     refraction_sum: vec4<f32>,
     total: vec4<f32>,
     lights: array<ProbeLight, MAX_PROBE_LIGHTS>,
+}
+
+// A BVH node (glint_core::bvh::BvhNode): a leaf when count > 0 (primitive references
+// left_first .. left_first + count), else children left_first and left_first + 1.
+struct BvhNode {
+    min: vec3<f32>,
+    left_first: u32,
+    max: vec3<f32>,
+    count: u32,
 }

@@ -5,7 +5,12 @@
 #import glint::scene_data::{ProbeLight, MAX_PROBE_LIGHTS, GpuLight, GpuMaterial, LIGHT_CASTS_SHADOWS, LIGHT_DIRECTIONAL, LIGHT_SPOT, MATERIAL_CHECKER, MATERIAL_PHONG}
 #import glint::bindings::{header, materials, lights}
 #import glint::ray::{Ray, ray_counts, probe, probe_active}
-#import glint::intersect::{FAR, shadow_transmittance, all_zero}
+#import glint::intersect::{FAR, all_zero}
+#ifdef BVH
+#import glint::bvh::shadow_transmittance
+#else
+#import glint::intersect::shadow_transmittance
+#endif
 #import glint::offset::{spawn_ray, shadow_t_max}
 
 const MIN_LIGHT_DISTANCE: f32 = 1e-20;

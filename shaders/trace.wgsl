@@ -7,7 +7,12 @@
 #import glint::bindings::{header, camera, tile, materials, spheres, planes, triangles, output, stats, probe_out}
 #import glint::ray::{Ray, RayCounts, ray_counts, status, probe, probe_active}
 #import glint::camera::{camera_ray, sample_offset}
-#import glint::intersect::{Hit, FAR, PRIM_NONE, PRIM_SPHERE, PRIM_PLANE, closest_hit, triangle_shading_normal, all_zero}
+#import glint::intersect::{Hit, FAR, PRIM_NONE, PRIM_SPHERE, PRIM_PLANE, triangle_shading_normal, all_zero}
+#ifdef BVH
+#import glint::bvh::closest_hit
+#else
+#import glint::intersect::closest_hit
+#endif
 #import glint::offset::spawn_ray
 #import glint::shade::{Surface, shade_local}
 

@@ -38,7 +38,7 @@ pub struct RenderArgs {
     /// Run every feature of both tracers even where the scene does not need it
     #[arg(long)]
     pub no_specialise: bool,
-    /// How the CPU tracer finds primitives: the BVH from 24 spheres and triangles on (auto), always the BVH, or brute force (none); the image is bit-identical either way
+    /// How both tracers find primitives: the BVH from 24 spheres and triangles on (auto), always the BVH, or brute force (none); the CPU image is bit-identical either way, and on the GPU brute force is limited to 65,535 primitives of a kind
     #[arg(long, default_value = "auto", value_parser = accels())]
     pub accel: Accel,
     /// Print the results as JSON instead of a table
@@ -89,7 +89,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     let flat = FlatScene::build(&loaded.desc, &settings);
     let specialise = !args.no_specialise;
     let cpu_options = CpuOptions { threads: args.threads, specialise, accel: args.accel };
-    let gpu_options = GpuOptions { specialise, ..GpuOptions::default() };
+    let gpu_options = GpuOptions { specialise, accel: args.accel, ..GpuOptions::default() };
     if args.bench {
         return bench(args, &loaded.name, &flat, &cpu_options, &gpu_options);
     }

@@ -4,6 +4,7 @@
 //! backends, are the `stiff` test binary.)
 
 mod adapter;
+mod bvh;
 mod parity;
 mod probe;
 mod specialisation;

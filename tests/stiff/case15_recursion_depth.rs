@@ -21,8 +21,9 @@
 
 use std::time::Instant;
 
+use glint_core::Accel;
 use glint_core::layout::{STATUS_DRIVER_LOOP_CUTOFF, STATUS_LOOP_LIMIT, STATUS_STACK_OVERFLOW};
-use glint_gpu::GPU_STACK_LIMIT;
+use glint_gpu::{GPU_STACK_LIMIT, GpuOptions};
 
 use crate::gpu::{BothOptions, render_both, render_both_with};
 use crate::scene::{SceneText, num};
@@ -214,12 +215,13 @@ fn triangle_carpet(spp: u32) -> SceneText {
 
 #[test]
 fn the_driver_loop_budget_is_detected_never_silent() {
+    // Brute force on the GPU: every ray walks all 40,000 triangles, past lavapipe's budget.
     let flat = triangle_carpet(1).flat();
     assert_eq!(flat.header.triangle_count, 40_000);
     let Some(tracer) = crate::gpu::gpu() else { return };
     let lavapipe = tracer.context().adapter.name.contains("llvmpipe");
     let expect_status = if lavapipe { STATUS_DRIVER_LOOP_CUTOFF } else { 0 };
-    let options = BothOptions { expect_status, ..BothOptions::default() };
+    let options = BothOptions { expect_status, accel: Accel::None, ..BothOptions::default() };
     let both = render_both_with("stiff/case15", "driver-loop-cutoff", &flat, options);
     let g = both.gpu.as_ref().expect("the GPU ran");
     if !lavapipe {
@@ -228,6 +230,25 @@ fn the_driver_loop_budget_is_detected_never_silent() {
         both.ensure(worst <= 1e-5, || format!("without a loop budget the GPU differs by {worst:e}"));
     }
     eprintln!("case 15: 40,000 triangles on {}: GPU status {:#x}", tracer.context().adapter, g.status);
+}
+
+#[test]
+fn the_bvh_keeps_the_carpet_within_the_driver_loop_budget() {
+    // The same carpet through the BVH: about log N nodes per ray instead of N triangles, so
+    // the canary stays quiet (status 0) and the image matches the CPU within parity.rs's
+    // thresholds. The CPU image is the one the test above renders (and hashes); here it is
+    // rendered directly, outside the golden-hash hook.
+    let flat = triangle_carpet(1).flat();
+    let Some(tracer) = crate::gpu::gpu() else { return };
+    let c = glint_core::render_cpu(&flat, &glint_core::CpuOptions::default(), glint_core::RenderControl::default())
+        .expect("CPU render");
+    let g = crate::gpu::gpu_render_with(tracer, &flat, &GpuOptions { accel: Accel::Bvh, ..GpuOptions::default() });
+    assert!(g.key.bvh, "the BVH variant ran");
+    assert_eq!(g.status, 0, "through the BVH the carpet stays within the loop budget");
+    let e = glint_core::compare::compare_images(&c.image, &g.image);
+    eprintln!("case 15: carpet through the BVH on {}: {e:?}", tracer.context().adapter);
+    assert!(e.flip_mean <= 0.005 && e.p99_abs_same_hit <= 1.0 / 255.0 && e.first_hit_mismatch <= 0.005, "{e:?}");
+    assert_eq!(g.counts.total(), c.counts.total(), "rays traced");
 }
 
 #[test]

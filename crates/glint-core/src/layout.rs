@@ -98,6 +98,9 @@ pub const STATUS_STACK_OVERFLOW: u32 = 2;
 /// invocation group and then ends every loop after its current iteration, silently. A canary
 /// loop at the end of the shader detects it; the image is then missing work.
 pub const STATUS_DRIVER_LOOP_CUTOFF: u32 = 4;
+/// A BVH traversal needed more than its fixed stack (`shaders/bvh.wgsl`); the deepest subtrees
+/// were not visited, so some hits may be missing.
+pub const STATUS_BVH_STACK_OVERFLOW: u32 = 8;
 
 /// Layout of the GPU statistics buffer: (lo, hi) u32 pairs per ray kind, then the status word.
 pub const STAT_CAMERA: u32 = 0;

@@ -22,11 +22,13 @@ pub enum Binding {
     Output = 8,
     Stats = 9,
     Probe = 10,
+    BvhNodes = 11,
+    BvhPrims = 12,
 }
 
 impl Binding {
     /// Every binding, ascending.
-    pub const ALL: [Self; 11] = [
+    pub const ALL: [Self; 13] = [
         Self::Header,
         Self::Camera,
         Self::Tile,
@@ -38,6 +40,8 @@ impl Binding {
         Self::Output,
         Self::Stats,
         Self::Probe,
+        Self::BvhNodes,
+        Self::BvhPrims,
     ];
 
     /// Its `@binding` number.
@@ -59,6 +63,8 @@ impl Binding {
             Self::Output => "output",
             Self::Stats => "stats",
             Self::Probe => "probe_out",
+            Self::BvhNodes => "bvh_nodes",
+            Self::BvhPrims => "bvh_prims",
         }
     }
 

@@ -24,6 +24,8 @@ pub struct SceneBuffers {
     spheres: wgpu::Buffer,
     planes: wgpu::Buffer,
     triangles: wgpu::Buffer,
+    bvh_nodes: wgpu::Buffer,
+    bvh_prims: wgpu::Buffer,
     pub output: wgpu::Buffer,
     pub stats: wgpu::Buffer,
     pub probe: wgpu::Buffer,
@@ -55,15 +57,16 @@ fn uniform<T: Pod>(ctx: &GpuContext, label: &str, value: &T) -> wgpu::Buffer {
 }
 
 /// Checks what the GPU tracer cannot take: non-finite data, more primitives of a kind than its
-/// loops walk, buffers larger than the device binds. Returns the output buffer's size.
-fn check_limits(ctx: &GpuContext, scene: &FlatScene) -> Result<u64, GpuError> {
+/// loops walk (with the BVH only planes are walked one by one), buffers larger than the device
+/// binds. Returns the output buffer's size.
+fn check_limits(ctx: &GpuContext, scene: &FlatScene, bvh: bool) -> Result<u64, GpuError> {
     if let Some(field) = scene.first_non_finite() {
         return Err(GpuError::NonFinite { field });
     }
     scene.check_tags()?;
     let h = &scene.header;
     for (what, count) in [("spheres", h.sphere_count), ("planes", h.plane_count), ("triangles", h.triangle_count)] {
-        if count > GPU_PRIMITIVE_LIMIT {
+        if count > GPU_PRIMITIVE_LIMIT && !(bvh && what != "planes") {
             return Err(GpuError::TooManyPrimitives { what, count, limit: GPU_PRIMITIVE_LIMIT });
         }
     }
@@ -82,13 +85,17 @@ fn check_limits(ctx: &GpuContext, scene: &FlatScene) -> Result<u64, GpuError> {
     };
     check(&format!("the {}x{} output image", h.width, h.height), output_size)?;
     check("the triangle buffer", size_of_val(scene.triangles.as_slice()) as u64)?;
+    check("the sphere buffer", size_of_val(scene.spheres.as_slice()) as u64)?;
+    check("the BVH node buffer", size_of_val(scene.bvh_nodes.as_slice()) as u64)?;
+    check("the BVH primitive buffer", size_of_val(scene.bvh_prims.as_slice()) as u64)?;
     Ok(output_size)
 }
 
 impl SceneBuffers {
-    /// Checks the scene (every float finite) and the device limits, then uploads it.
-    pub fn upload(ctx: &GpuContext, scene: &FlatScene) -> Result<Self, GpuError> {
-        let output_size = check_limits(ctx, scene)?;
+    /// Checks the scene (every float finite) and the device limits, for a shader that walks
+    /// the BVH (`bvh`) or every primitive, then uploads it.
+    pub fn upload(ctx: &GpuContext, scene: &FlatScene, bvh: bool) -> Result<Self, GpuError> {
+        let output_size = check_limits(ctx, scene, bvh)?;
         let h = &scene.header;
         with_error_scopes(ctx, || Self {
             header: uniform(ctx, "glint header", &scene.header),
@@ -99,6 +106,8 @@ impl SceneBuffers {
             spheres: storage(ctx, "glint spheres", &scene.spheres),
             planes: storage(ctx, "glint planes", &scene.planes),
             triangles: storage(ctx, "glint triangles", &scene.triangles),
+            bvh_nodes: storage(ctx, "glint BVH nodes", &scene.bvh_nodes),
+            bvh_prims: storage(ctx, "glint BVH primitives", &scene.bvh_prims),
             output: ctx.device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("glint output"),
                 size: output_size,
@@ -136,6 +145,8 @@ impl SceneBuffers {
             Binding::Output => &self.output,
             Binding::Stats => &self.stats,
             Binding::Probe => &self.probe,
+            Binding::BvhNodes => &self.bvh_nodes,
+            Binding::BvhPrims => &self.bvh_prims,
         }
     }
 

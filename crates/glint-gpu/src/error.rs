@@ -30,8 +30,9 @@ pub enum GpuError {
     #[error("{what} needs {needed} bytes, more than this GPU allows ({limit} bytes, limit {limit_name})")]
     TooLarge { what: String, needed: u64, limit: u64, limit_name: &'static str },
     #[error(
-        "the scene has {count} {what}; the GPU tracer walks primitives without an acceleration structure \
-         and is limited to {limit} of them (lavapipe cuts longer loops silently)"
+        "the scene has {count} {what}; without an acceleration structure the GPU tracer walks every \
+         primitive and is limited to {limit} of a kind (GPU_PRIMITIVE_LIMIT: lavapipe cuts longer loops \
+         silently); `--accel bvh` lifts the limit for spheres and triangles"
     )]
     TooManyPrimitives { what: &'static str, count: u32, limit: u32 },
     #[error(

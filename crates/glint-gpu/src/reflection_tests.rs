@@ -4,6 +4,7 @@
 
 use std::mem::{offset_of, size_of};
 
+use glint_core::bvh::{BvhNode, PRIM_REF_INDEX, PRIM_REF_TRIANGLE};
 use glint_core::cpu::{intersect, offset, shade};
 use glint_core::layout::*;
 use naga::proc::Layouter;
@@ -62,6 +63,7 @@ fn rust_layouts() -> Vec<RustLayout> {
         rust_layout!(GpuSphere { center_radius, material, object_id, pad }),
         rust_layout!(GpuPlane { normal_offset, material, object_id, pad }),
         rust_layout!(GpuTriangle { a, b, c, na, nb, nc, material, object_id, flags, pad }),
+        rust_layout!(BvhNode { min, left_first, max, count }),
         rust_layout!(TileParams { origin_x, origin_y, width, height, sample_index, canary_laps, pad_a, pad_b }),
         rust_layout!(ProbeLight { f_att, spot, pad_a, pad_b, visibility, ambient, diffuse, specular, contribution }),
         rust_layout!(ProbeRecord {
@@ -187,6 +189,9 @@ fn wgsl_layout_constants_match_rust() {
         ("STATUS_LOOP_LIMIT".into(), STATUS_LOOP_LIMIT),
         ("STATUS_STACK_OVERFLOW".into(), STATUS_STACK_OVERFLOW),
         ("STATUS_DRIVER_LOOP_CUTOFF".into(), STATUS_DRIVER_LOOP_CUTOFF),
+        ("STATUS_BVH_STACK_OVERFLOW".into(), STATUS_BVH_STACK_OVERFLOW),
+        ("PRIM_REF_TRIANGLE".into(), PRIM_REF_TRIANGLE),
+        ("PRIM_REF_INDEX".into(), PRIM_REF_INDEX),
         ("STAT_CAMERA".into(), STAT_CAMERA),
         ("STAT_SHADOW".into(), STAT_SHADOW),
         ("STAT_REFLECTION".into(), STAT_REFLECTION),
@@ -218,7 +223,7 @@ fn shared_tracer_constants_match_rust() {
     // Constants the two tracers must share exactly. (offset.rs's FLOAT_SCALE and SHADOW_REL
     // differ on purpose: each is scaled to its tracer's precision.) A probe module imports
     // each one and stores it, so naga cannot fold it away before we read it.
-    let expected: [(&str, &str, f64); 10] = [
+    let expected: [(&str, &str, f64); 11] = [
         ("glint::intersect", "PRIM_SPHERE", f64::from(intersect::PRIM_SPHERE)),
         ("glint::intersect", "PRIM_PLANE", f64::from(intersect::PRIM_PLANE)),
         ("glint::intersect", "PRIM_TRIANGLE", f64::from(intersect::PRIM_TRIANGLE)),
@@ -229,6 +234,7 @@ fn shared_tracer_constants_match_rust() {
         ("glint::offset", "ORIGIN", offset::ORIGIN),
         ("glint::offset", "INT_SCALE", offset::INT_SCALE),
         ("glint::scene_data", "NO_HIT", f64::from(NO_HIT)),
+        ("glint::bvh", "BVH_STACK_SIZE", f64::from(crate::shaders::BVH_STACK_SIZE)),
     ];
     let mut probe = String::new();
     for (path, name, _) in &expected {

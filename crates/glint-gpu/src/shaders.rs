@@ -5,8 +5,9 @@
 
 use std::collections::HashMap;
 
-use glint_core::FlatScene;
+use glint_core::cpu::Traversal;
 use glint_core::layout::feature;
+use glint_core::{Accel, FlatScene};
 use naga_oil::compose::{ComposableModuleDescriptor, Composer, NagaModuleDescriptor, ShaderDefValue};
 
 use crate::error::GpuError;
@@ -24,18 +25,23 @@ pub const LAVAPIPE_LOOP_BUDGET: u32 = 65_535;
 /// fit in lavapipe's budget.
 pub const GPU_PRIMITIVE_LIMIT: u32 = LAVAPIPE_LOOP_BUDGET;
 
+/// Entries of the BVH traversal stack (`BVH_STACK_SIZE` in `shaders/bvh.wgsl`); a traversal
+/// that needs more raises `STATUS_BVH_STACK_OVERFLOW`.
+pub const BVH_STACK_SIZE: u32 = 64;
+
 /// Bound of the shader's ray-tree walk per sample (shader def `MAX_TREE_NODES`); reaching it
 /// raises `STATUS_LOOP_LIMIT`. The budget rounded down to thousands.
 pub const MAX_TREE_NODES: u32 = LAVAPIPE_LOOP_BUDGET / 1_000 * 1_000;
 
 /// The modules in dependency order: (import path, file name, source).
-pub const SHADER_MODULES: [(&str, &str, &str); 8] = [
+pub const SHADER_MODULES: [(&str, &str, &str); 9] = [
     ("glint::scene_data", "layout.wgsl", include_str!("../../../shaders/layout.wgsl")),
     ("glint::bindings", "bindings.wgsl", include_str!("../../../shaders/bindings.wgsl")),
     ("glint::ray", "ray.wgsl", include_str!("../../../shaders/ray.wgsl")),
     ("glint::rng", "rng.wgsl", include_str!("../../../shaders/rng.wgsl")),
     ("glint::camera", "camera.wgsl", include_str!("../../../shaders/camera.wgsl")),
     ("glint::intersect", "intersect.wgsl", include_str!("../../../shaders/intersect.wgsl")),
+    ("glint::bvh", "bvh.wgsl", include_str!("../../../shaders/bvh.wgsl")),
     ("glint::offset", "offset.wgsl", include_str!("../../../shaders/offset.wgsl")),
     ("glint::shade", "shade.wgsl", include_str!("../../../shaders/shade.wgsl")),
 ];
@@ -50,6 +56,8 @@ pub struct ShaderKey {
     pub stack_size: u32,
     /// The pixel-probe variant: renders one sample and records its breakdown.
     pub probe: bool,
+    /// Find hits through the BVH (shader def `BVH`) instead of testing every primitive.
+    pub bvh: bool,
 }
 
 impl ShaderKey {
@@ -58,7 +66,7 @@ impl ShaderKey {
         if specialise {
             let features = scene.header.features;
             let depth = if feature::recurses(features) { scene.header.max_depth.min(GPU_STACK_LIMIT - 1) } else { 0 };
-            Self { features, stack_size: depth + 1, probe: false }
+            Self { features, stack_size: depth + 1, probe: false, bvh: true }
         } else {
             Self::full()
         }
@@ -66,11 +74,44 @@ impl ShaderKey {
 
     /// The unspecialised shader: every feature, the largest stack.
     pub fn full() -> Self {
-        Self { features: feature::ALL, stack_size: GPU_STACK_LIMIT, probe: false }
+        Self { features: feature::ALL, stack_size: GPU_STACK_LIMIT, probe: false, bvh: true }
+    }
+
+    /// The same variant with brute force or the BVH, as `accel` decides for this scene (the
+    /// CPU's rule, `Accel::traversal`); a scene without bounded primitives has no BVH to walk
+    /// and keeps brute force's (plane) loops.
+    pub fn with_accel(self, scene: &FlatScene, accel: Accel) -> Self {
+        let bvh = accel.traversal(scene) == Traversal::Bvh && !scene.bvh_nodes.is_empty();
+        Self { bvh, ..self }
+    }
+
+    /// The storage buffers the variant binds (a test checks this against the composed module):
+    /// materials, lights, output and stats always, one per primitive kind compiled in, the
+    /// probe record, and the BVH's two.
+    pub fn storage_buffers(&self) -> u32 {
+        let kinds = [feature::SPHERES, feature::PLANES, feature::TRIANGLES].iter().filter(|&&f| self.features & f != 0);
+        4 + kinds.count() as u32 + u32::from(self.probe) + if self.bvh { 2 } else { 0 }
+    }
+
+    /// The same variant, with brute force instead of the BVH if the BVH's two extra storage
+    /// buffers would exceed `max_storage_buffers_per_shader_stage` (8 in wgpu's default limits,
+    /// which eframe's device has). Brute force keeps its primitive limit and the canary.
+    pub fn within_storage_limit(self, max_storage_buffers: u32) -> Self {
+        if self.bvh && self.storage_buffers() > max_storage_buffers {
+            log::warn!(
+                "the BVH variant [{}] needs {} storage buffers, more than this device's \
+                 max_storage_buffers_per_shader_stage ({max_storage_buffers}): tracing by brute force",
+                self.describe(),
+                self.storage_buffers()
+            );
+            Self { bvh: false, ..self }
+        } else {
+            self
+        }
     }
 
     /// naga_oil shader defs: one boolean per feature present, `RECURSION` when the variant
-    /// walks a ray tree, `STACK_SIZE`, `MAX_TREE_NODES`, `PROBE`.
+    /// walks a ray tree, `STACK_SIZE`, `MAX_TREE_NODES`, `PROBE`, `BVH`.
     pub fn shader_defs(&self) -> HashMap<String, ShaderDefValue> {
         let mut defs: HashMap<String, ShaderDefValue> = feature::NAMES
             .iter()
@@ -86,6 +127,9 @@ impl ShaderKey {
         if self.probe {
             defs.insert("PROBE".into(), ShaderDefValue::Bool(true));
         }
+        if self.bvh {
+            defs.insert("BVH".into(), ShaderDefValue::Bool(true));
+        }
         defs
     }
 
@@ -97,7 +141,13 @@ impl ShaderKey {
             .filter(|(bit, _)| self.features & (1 << bit) != 0)
             .map(|(_, n)| *n)
             .collect();
-        format!("{} stack {}{}", names.join("|"), self.stack_size, if self.probe { " probe" } else { "" })
+        format!(
+            "{} stack {}{}{}",
+            names.join("|"),
+            self.stack_size,
+            if self.bvh { " bvh" } else { "" },
+            if self.probe { " probe" } else { "" }
+        )
     }
 }
 
@@ -227,7 +277,29 @@ mod tests {
         // compiles next to some other feature.
         for bit in 0..feature::NAMES.len() {
             for features in [1u32 << bit, feature::ALL & !(1 << bit)] {
-                compose_or_report(&ShaderKey { features, stack_size: 4, probe: false });
+                for bvh in [false, true] {
+                    compose_or_report(&ShaderKey { features, stack_size: 4, probe: false, bvh });
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn storage_buffer_count_matches_the_composed_module() {
+        let mut keys = vec![ShaderKey::full(), ShaderKey { bvh: false, ..ShaderKey::full() }];
+        keys.extend(builtin_keys().into_iter().map(|(_, k)| k));
+        for key in keys {
+            for probe in [false, true] {
+                let key = ShaderKey { probe, ..key };
+                let module = compose_or_report(&key);
+                let storage = module
+                    .global_variables
+                    .iter()
+                    .filter(|(_, g)| g.binding.is_some() && matches!(g.space, naga::AddressSpace::Storage { .. }))
+                    .count();
+                assert_eq!(key.storage_buffers() as usize, storage, "[{}]", key.describe());
+                let fitted = key.within_storage_limit(8);
+                assert!(fitted.storage_buffers() <= 8 || !fitted.bvh, "[{}]", key.describe());
             }
         }
     }
@@ -296,6 +368,13 @@ mod tests {
         for f in ["intersect_triangle", "spot_factor", "refract_dir", "push_ray"] {
             assert!(full_names.iter().any(|n| n == f), "the full shader should have {f}");
         }
+        assert!(full_names.iter().any(|n| n == "slab_ray"), "the full shader walks the BVH");
+        let brute = compose_or_report(&ShaderKey { bvh: false, ..ShaderKey::full() });
+        let brute_names = function_names(&brute);
+        assert!(!brute_names.iter().any(|n| n == "slab_ray"), "brute force has no BVH walk: {brute_names:?}");
+        let brute_bindings: Vec<u32> =
+            brute.global_variables.iter().filter_map(|(_, g)| g.binding.as_ref().map(|b| b.binding)).collect();
+        assert!(!brute_bindings.contains(&Binding::BvhNodes.number()), "brute force binds no BVH");
         let (small, big) = (module_stats(&module), module_stats(&full));
         eprintln!("opaque sphere scene: {} statements, full shader: {}", small.statements, big.statements);
         assert!(small.statements * 10 < big.statements * 7, "specialisation removed less than 30 %");

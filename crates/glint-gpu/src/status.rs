@@ -1,7 +1,9 @@
 //! What the status word the shader raises (`STATUS_*` of `glint_core::layout`) means for the
 //! user: one message per bit, used by the CLI and the viewer alike.
 
-use glint_core::layout::{STATUS_DRIVER_LOOP_CUTOFF, STATUS_LOOP_LIMIT, STATUS_STACK_OVERFLOW};
+use glint_core::layout::{
+    STATUS_BVH_STACK_OVERFLOW, STATUS_DRIVER_LOOP_CUTOFF, STATUS_LOOP_LIMIT, STATUS_STACK_OVERFLOW,
+};
 
 use crate::shaders::LAVAPIPE_LOOP_BUDGET;
 
@@ -12,11 +14,12 @@ pub enum StatusBit {
     LoopLimit = STATUS_LOOP_LIMIT,
     DriverLoopCutoff = STATUS_DRIVER_LOOP_CUTOFF,
     StackOverflow = STATUS_STACK_OVERFLOW,
+    BvhStackOverflow = STATUS_BVH_STACK_OVERFLOW,
 }
 
 impl StatusBit {
     /// Every bit, in the order their messages are reported.
-    pub const ALL: [Self; 3] = [Self::LoopLimit, Self::DriverLoopCutoff, Self::StackOverflow];
+    pub const ALL: [Self; 4] = [Self::LoopLimit, Self::DriverLoopCutoff, Self::StackOverflow, Self::BvhStackOverflow];
 
     /// The name of its constant in `glint_core::layout` and `shaders/layout.wgsl`.
     pub const fn constant_name(self) -> &'static str {
@@ -24,6 +27,7 @@ impl StatusBit {
             Self::LoopLimit => "STATUS_LOOP_LIMIT",
             Self::DriverLoopCutoff => "STATUS_DRIVER_LOOP_CUTOFF",
             Self::StackOverflow => "STATUS_STACK_OVERFLOW",
+            Self::BvhStackOverflow => "STATUS_BVH_STACK_OVERFLOW",
         }
     }
 
@@ -40,6 +44,11 @@ impl StatusBit {
             ),
             Self::StackOverflow => format!(
                 "a ray tree branched deeper than the GPU stack ({stack_size} levels); its deepest rays were dropped"
+            ),
+            Self::BvhStackOverflow => format!(
+                "a BVH traversal needed more than the GPU's {} stack entries; some subtrees were not visited \
+                 (use --accel none or the CPU)",
+                crate::shaders::BVH_STACK_SIZE
             ),
         }
     }

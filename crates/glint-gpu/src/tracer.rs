@@ -5,10 +5,10 @@ use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
-use glint_core::FlatScene;
 use glint_core::HdrImage;
 use glint_core::cpu::RayCounts;
 use glint_core::layout::ProbeRecord;
+use glint_core::{Accel, FlatScene};
 
 use crate::buffers::SceneBuffers;
 use crate::context::GpuContext;
@@ -24,11 +24,14 @@ pub struct GpuOptions {
     /// Compile only the features the scene needs (default); off, the full shader runs.
     pub specialise: bool,
     pub tile: u32,
+    /// How rays find primitives: through the BVH (default) or by testing every one, as the
+    /// CPU's `CpuOptions::accel`.
+    pub accel: Accel,
 }
 
 impl Default for GpuOptions {
     fn default() -> Self {
-        Self { specialise: true, tile: DEFAULT_TILE }
+        Self { specialise: true, tile: DEFAULT_TILE, accel: Accel::default() }
     }
 }
 
@@ -87,10 +90,12 @@ impl GpuTracer {
     /// the full shader runs on the same buffers: it reads no feature bits from the scene.
     pub fn submit(&self, scene: &FlatScene, options: &GpuOptions) -> Result<GpuJob, GpuError> {
         check_tile(&self.ctx, options.tile)?;
-        let key = ShaderKey::for_scene(scene, options.specialise);
+        let key = ShaderKey::for_scene(scene, options.specialise)
+            .with_accel(scene, options.accel)
+            .within_storage_limit(self.ctx.limits.max_storage_buffers_per_shader_stage);
         let (pipeline, mut pipeline_time) = self.pipeline(key)?;
         let upload_start = Instant::now();
-        let buffers = SceneBuffers::upload(&self.ctx, scene)?;
+        let buffers = SceneBuffers::upload(&self.ctx, scene, key.bvh)?;
         let bind_group = with_error_scopes(&self.ctx, || buffers.bind_group(&self.ctx, &pipeline))?;
         let upload_time = upload_start.elapsed();
         if !pipeline_time.is_zero() {
@@ -109,10 +114,11 @@ impl GpuTracer {
     /// The breakdown of the first sample of pixel (x, y) into the terms of the model, computed
     /// by the probe variant of the same shader (the GPU twin of `glint_core::probe_pixel`).
     pub fn probe_pixel(&self, scene: &FlatScene, x: u32, y: u32) -> Result<(ProbeRecord, u32), GpuError> {
-        let key = ShaderKey { probe: true, ..ShaderKey::for_scene(scene, true) };
+        let key = ShaderKey { probe: true, ..ShaderKey::for_scene(scene, true).with_accel(scene, Accel::default()) }
+            .within_storage_limit(self.ctx.limits.max_storage_buffers_per_shader_stage);
         let (pipeline, _) = self.pipeline(key)?;
         // The scene's own spp: sample 0 is then jittered in its stratum exactly as the CPU's.
-        let buffers = SceneBuffers::upload(&self.ctx, scene)?;
+        let buffers = SceneBuffers::upload(&self.ctx, scene, key.bvh)?;
         let bind_group = with_error_scopes(&self.ctx, || buffers.bind_group(&self.ctx, &pipeline))?;
         with_error_scopes(&self.ctx, || buffers.dispatch_probe(&self.ctx, &pipeline, &bind_group, x, y))?;
         let bytes = read_buffer(&self.ctx, &buffers.probe)?;

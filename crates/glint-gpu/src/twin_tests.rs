@@ -6,7 +6,7 @@
 
 use std::collections::{BTreeMap, BTreeSet};
 
-const TWINS: [(&str, &str, &str, &str); 8] = [
+const TWINS: [(&str, &str, &str, &str); 9] = [
     (
         "rng.wgsl",
         include_str!("../../../shaders/rng.wgsl"),
@@ -24,6 +24,12 @@ const TWINS: [(&str, &str, &str, &str); 8] = [
         include_str!("../../../shaders/intersect.wgsl"),
         "cpu/intersect.rs",
         include_str!("../../glint-core/src/cpu/intersect.rs"),
+    ),
+    (
+        "bvh.wgsl",
+        include_str!("../../../shaders/bvh.wgsl"),
+        "cpu/bvh.rs",
+        include_str!("../../glint-core/src/cpu/bvh.rs"),
     ),
     (
         "offset.wgsl",
@@ -58,7 +64,8 @@ const TWINS: [(&str, &str, &str, &str); 8] = [
 ];
 
 /// Functions only the GPU side has, and why.
-const GPU_ONLY: [(&str, &str, &str); 6] = [
+const GPU_ONLY: [(&str, &str, &str); 7] = [
+    ("bvh.wgsl", "slab_ray", "the CPU's SlabRay::new: WGSL has no methods"),
     ("trace.wgsl", "push_ray", "the explicit ray stack: WGSL has no recursion"),
     ("trace.wgsl", "add_stat", "64-bit ray counters built from u32 atomics"),
     ("trace.wgsl", "main", "the compute entry point; the CPU's loop is render::render_cpu"),
@@ -72,7 +79,14 @@ const GPU_ONLY: [(&str, &str, &str); 6] = [
 ];
 
 /// Functions only the CPU side has, and why.
-const CPU_ONLY: [(&str, &str, &str); 4] = [
+const CPU_ONLY: [(&str, &str, &str); 6] = [
+    ("cpu/bvh.rs", "new", "SlabRay::new; WGSL builds it in slab_ray (no methods)"),
+    (
+        "cpu/bvh.rs",
+        "traverse",
+        "the stack walk over a visitor closure: WGSL has no closures, so closest_hit and \
+         shadow_transmittance each hold the same walk",
+    ),
     (
         "cpu/shade.rs",
         "sum_of_terms",
@@ -95,7 +109,13 @@ const GPU_ONLY_STRUCTS: [(&str, &str, &str); 7] = [
 ];
 
 /// Structs only the CPU side has, and why.
-const CPU_ONLY_STRUCTS: [(&str, &str, &str); 3] = [
+const CPU_ONLY_STRUCTS: [(&str, &str, &str); 4] = [
+    (
+        "cpu/bvh.rs",
+        "Crossing",
+        "the CPU sorts shadow crossings into brute force's order to be bit-identical; the f32 GPU \
+         multiplies in visiting order",
+    ),
     ("cpu/mod.rs", "TraceContext", "the scene and its decoded header; WGSL reads them from bindings"),
     ("cpu/shade.rs", "Breakdown", "the CPU probe's record; the GPU probe writes ProbeRecord (layout.rs)"),
     ("image.rs", "*", "host images and their metadata have no place on the GPU"),

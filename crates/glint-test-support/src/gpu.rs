@@ -7,7 +7,7 @@
 use std::sync::OnceLock;
 
 pub use glint_core::Backend;
-use glint_core::{CpuRender, FlatScene, HdrImage};
+use glint_core::{Accel, CpuRender, FlatScene, HdrImage};
 use glint_gpu::{AdapterRequest, GpuContext, GpuOptions, GpuRender, GpuTracer};
 
 use crate::render::{artefact_dir, nonfinite_pixels, render_cpu_checked, write_failure_images};
@@ -53,7 +53,12 @@ pub use crate::gpu_or_skip;
 
 /// Renders on the GPU and asserts that no read-back pixel is NaN or infinite.
 pub fn gpu_render(tracer: &GpuTracer, flat: &FlatScene, specialise: bool) -> GpuRender {
-    let r = tracer.render(flat, &GpuOptions { specialise, ..GpuOptions::default() }).expect("GPU render");
+    gpu_render_with(tracer, flat, &GpuOptions { specialise, ..GpuOptions::default() })
+}
+
+/// `gpu_render` with every option.
+pub fn gpu_render_with(tracer: &GpuTracer, flat: &FlatScene, options: &GpuOptions) -> GpuRender {
+    let r = tracer.render(flat, options).expect("GPU render");
     let nonfinite = nonfinite_pixels(&r.image).len();
     assert_eq!(nonfinite, 0, "{nonfinite} GPU pixels are NaN or infinite");
     r
@@ -70,11 +75,14 @@ pub struct BothOptions {
     pub expect_status: u32,
     /// Bits the GPU may raise besides (a driver-dependent bound such as lavapipe's loop budget).
     pub allow_status: u32,
+    /// How the GPU finds primitives (the CPU reference always uses its default, the BVH, whose
+    /// images are bit-identical to brute force).
+    pub accel: Accel,
 }
 
 impl Default for BothOptions {
     fn default() -> Self {
-        Self { specialise: true, expect_status: 0, allow_status: 0 }
+        Self { specialise: true, expect_status: 0, allow_status: 0, accel: Accel::default() }
     }
 }
 
@@ -98,7 +106,7 @@ pub fn render_both_with(group: &str, name: &str, flat: &FlatScene, options: Both
     let cpu = render_cpu_checked(flat, 0, true);
     let gpu = gpu().map(|tracer| {
         tracer
-            .render(flat, &GpuOptions { specialise: options.specialise, ..GpuOptions::default() })
+            .render(flat, &GpuOptions { specialise: options.specialise, accel: options.accel, ..GpuOptions::default() })
             .expect("GPU render")
     });
     let both = Both { group: group.to_string(), name: name.to_string(), cpu, gpu };

@@ -9,7 +9,7 @@
 //! order. The shadow product's rounding depends on the order of its factors, so crossings are
 //! collected and multiplied in brute force's order.
 //!
-//! Not yet paired with a WGSL twin (issue 11's GPU part).
+//! The WGSL twin is `shaders/bvh.wgsl` (same functions, except the closure-driven `traverse`).
 
 use glam::DVec3;
 

@@ -1,0 +1,277 @@
+// Twin of crates/glint-core/src/cpu/bvh.rs: closest hit and shadow transmittance through the
+// BVH (built on the CPU, glint_core::bvh), used instead of intersect.wgsl's brute-force loops
+// under the BVH shader def (trace.wgsl and shade.wgsl import from here then: intersect.wgsl
+// cannot import this module, which imports its primitive tests).
+//
+// Never misses a hit brute force finds: the slab test pads each box by a relative margin far
+// above f32 rounding; of equal t the smaller (kind, index) in brute force's order wins, so the
+// result does not depend on the visiting order. The stack is fixed (BVH_STACK_SIZE); a
+// traversal that needs more raises STATUS_BVH_STACK_OVERFLOW, never silently. Shadow crossings
+// are multiplied in visiting order (the CPU sorts them to be bit-identical to its brute force;
+// the f32 GPU image is compared within the parity thresholds).
+#define_import_path glint::bvh
+
+#import glint::scene_data::{BvhNode, PRIM_REF_TRIANGLE, PRIM_REF_INDEX, STATUS_BVH_STACK_OVERFLOW}
+#import glint::bindings::{header, planes, spheres, triangles, bvh_nodes, bvh_prims}
+#import glint::ray::{Ray, status}
+#import glint::intersect::{Hit, MaybeT, PRIM_NONE, PRIM_SPHERE, PRIM_PLANE, PRIM_TRIANGLE, sphere_roots, intersect_sphere, intersect_plane, intersect_triangle, ray_shear, cross_surface, all_zero}
+
+// Entries of the traversal stack: deeper than any tree the builder makes for 2^31 primitives
+// with balanced splits; a degenerate deeper one raises STATUS_BVH_STACK_OVERFLOW.
+const BVH_STACK_SIZE: u32 = 64u;
+// Relative padding of a box against the scale of the box and the ray origin (f32 rounding is
+// ~6e-8), and the absolute padding for boxes and origins at 0.
+const BOX_PAD: f32 = 1e-5;
+const BOX_PAD_ABS: f32 = 1e-30;
+// Direction components below this count as zero in the slab test.
+const DIR_ZERO: f32 = 1e-30;
+// Stand-in for an infinite slab distance.
+const SLAB_INF: f32 = 3e38;
+
+struct SlabRay {
+    origin: vec3<f32>,
+    inv: vec3<f32>,
+    parallel: vec3<bool>,
+    origin_scale: f32,
+}
+
+// The CPU's SlabRay::new.
+fn slab_ray(ray: Ray) -> SlabRay {
+    let parallel = abs(ray.dir) < vec3<f32>(DIR_ZERO);
+    let inv = select(vec3<f32>(1.0) / ray.dir, vec3<f32>(0.0), parallel);
+    let o = abs(ray.origin);
+    return SlabRay(ray.origin, inv, parallel, max(o.x, max(o.y, o.z)));
+}
+
+// The entry distance into the padded box if the ray meets it within [t_lo, t_hi].
+fn enter(s: SlabRay, node: BvhNode, t_lo: f32, t_hi: f32) -> MaybeT {
+    let m = max(abs(node.min), abs(node.max));
+    let scale = max(s.origin_scale, max(m.x, max(m.y, m.z)));
+    let pad = BOX_PAD * scale + BOX_PAD_ABS;
+    let lo = node.min - vec3<f32>(pad);
+    let hi = node.max + vec3<f32>(pad);
+    if any(s.parallel & ((s.origin < lo) | (s.origin > hi))) {
+        return MaybeT(0.0, false);
+    }
+    let a = (lo - s.origin) * s.inv;
+    let b = (hi - s.origin) * s.inv;
+    let near = select(min(a, b), vec3<f32>(-SLAB_INF), s.parallel);
+    let far = select(max(a, b) * (1.0 + BOX_PAD), vec3<f32>(SLAB_INF), s.parallel);
+    let t0 = max(near.x, max(near.y, near.z));
+    let t1 = min(far.x, min(far.y, far.z));
+    let slack = pad + BOX_PAD * min(abs(t_hi), 1e30);
+    return MaybeT(t0, t0 <= t1 && t0 <= t_hi + slack && t1 >= t_lo - slack);
+}
+
+// The rank of a kind in brute force's order (spheres, planes, triangles).
+fn rank(prim: u32) -> u32 {
+    return select(select(2u, 1u, prim == PRIM_PLANE), 0u, prim == PRIM_SPHERE);
+}
+
+// Whether a hit at t on (prim, index) replaces `best`: the smallest t, and of equal t the
+// first in brute force's order.
+fn replaces(t: f32, prim: u32, index: u32, best: Hit) -> bool {
+    if best.prim == PRIM_NONE {
+        return true;
+    }
+    let r = rank(prim);
+    let br = rank(best.prim);
+    return t < best.t || (t == best.t && (r < br || (r == br && index < best.index)));
+}
+
+// The bound passed to the primitive tests: t_max until a hit, then just above the best t, so
+// that an equal t gets through their strict `t < t_max` and the tie rule decides.
+fn bound(best: Hit, t_max: f32) -> f32 {
+    if best.prim == PRIM_NONE {
+        return t_max;
+    }
+    // The next f32 up (t > 0 here: every test requires t > t_min >= 0).
+    return bitcast<f32>(bitcast<u32>(best.t) + 1u);
+}
+
+// intersect.wgsl's closest_hit through the BVH: the same hit (the tie rule makes it independent of the
+// visiting order).
+fn closest_hit(ray: Ray, t_min: f32, t_max: f32) -> Hit {
+    var best = Hit(t_max, PRIM_NONE, 0u, 0.0, 0.0);
+    let slab = slab_ray(ray);
+#ifdef TRIANGLES
+    let sh = ray_shear(ray.dir);
+#endif
+    var stack: array<u32, BVH_STACK_SIZE>;
+    var sp = 0u;
+    if enter(slab, bvh_nodes[0], t_min, t_max).ok {
+        stack[0] = 0u;
+        sp = 1u;
+    }
+    while sp > 0u {
+        sp -= 1u;
+        let node = bvh_nodes[stack[sp]];
+        if node.count > 0u {
+            for (var k = 0u; k < node.count; k++) {
+                let r = bvh_prims[node.left_first + k];
+                let i = r & PRIM_REF_INDEX;
+                if (r & PRIM_REF_TRIANGLE) != 0u {
+#ifdef TRIANGLES
+                    let tri = triangles[i];
+                    let h = intersect_triangle(tri.a.xyz, tri.b.xyz, tri.c.xyz, ray, sh, t_min, bound(best, t_max));
+                    if h.ok && replaces(h.t, PRIM_TRIANGLE, i, best) {
+                        best = Hit(h.t, PRIM_TRIANGLE, i, h.bu, h.bv);
+                    }
+#endif
+                } else {
+#ifdef SPHERES
+                    let cr = spheres[i].center_radius;
+                    let h = intersect_sphere(cr.xyz, cr.w, ray, t_min, bound(best, t_max));
+                    if h.ok && replaces(h.t, PRIM_SPHERE, i, best) {
+                        best = Hit(h.t, PRIM_SPHERE, i, 0.0, 0.0);
+                    }
+#endif
+                }
+            }
+            continue;
+        }
+        let t_hi = bound(best, t_max);
+        let l = node.left_first;
+        let tl = enter(slab, bvh_nodes[l], t_min, t_hi);
+        let tr_ = enter(slab, bvh_nodes[l + 1u], t_min, t_hi);
+        // Push the farther child first, so the nearer one is popped first.
+        var first = l + 1u;
+        var second = l;
+        var n = 0u;
+        if tl.ok && tr_.ok {
+            n = 2u;
+            if tl.t > tr_.t {
+                first = l;
+                second = l + 1u;
+            }
+        } else if tl.ok {
+            n = 1u;
+            second = l;
+        } else if tr_.ok {
+            n = 1u;
+            second = l + 1u;
+        }
+        if sp + n > BVH_STACK_SIZE {
+            status |= STATUS_BVH_STACK_OVERFLOW;
+            n = min(n, BVH_STACK_SIZE - sp);
+        }
+        if n == 2u {
+            stack[sp] = first;
+            stack[sp + 1u] = second;
+        } else if n == 1u {
+            stack[sp] = second;
+        }
+        sp += n;
+    }
+#ifdef PLANES
+    for (var i = 0u; i < header.plane_count; i++) {
+        let no = planes[i].normal_offset;
+        let h = intersect_plane(no.xyz, no.w, ray, t_min, bound(best, t_max));
+        if h.ok && replaces(h.t, PRIM_PLANE, i, best) {
+            best = Hit(h.t, PRIM_PLANE, i, 0.0, 0.0);
+        }
+    }
+#endif
+    return best;
+}
+
+// intersect.wgsl's shadow_transmittance through the BVH: 0 at the first opaque occluder, else
+// the product of k_t over every surface crossed (in visiting order).
+fn shadow_transmittance(ray: Ray, t_min: f32, t_max: f32) -> vec3<f32> {
+    var tr = vec3<f32>(1.0);
+    let slab = slab_ray(ray);
+#ifdef TRIANGLES
+    let sh = ray_shear(ray.dir);
+#endif
+    var stack: array<u32, BVH_STACK_SIZE>;
+    var sp = 0u;
+    if enter(slab, bvh_nodes[0], t_min, t_max).ok {
+        stack[0] = 0u;
+        sp = 1u;
+    }
+    while sp > 0u {
+        sp -= 1u;
+        let node = bvh_nodes[stack[sp]];
+        if node.count > 0u {
+            for (var k = 0u; k < node.count; k++) {
+                let r = bvh_prims[node.left_first + k];
+                let i = r & PRIM_REF_INDEX;
+                if (r & PRIM_REF_TRIANGLE) != 0u {
+#ifdef TRIANGLES
+                    let tri = triangles[i];
+                    if intersect_triangle(tri.a.xyz, tri.b.xyz, tri.c.xyz, ray, sh, t_min, t_max).ok {
+                        tr = cross_surface(tr, tri.material);
+                        if all_zero(tr) {
+                            return tr;
+                        }
+                    }
+#endif
+                } else {
+#ifdef SPHERES
+                    let cr = spheres[i].center_radius;
+                    let roots = sphere_roots(cr.xyz, cr.w, ray);
+                    if roots.ok {
+                        if roots.t_near > t_min && roots.t_near < t_max {
+                            tr = cross_surface(tr, spheres[i].material);
+                            if all_zero(tr) {
+                                return tr;
+                            }
+                        }
+                        if roots.t_far > t_min && roots.t_far < t_max {
+                            tr = cross_surface(tr, spheres[i].material);
+                            if all_zero(tr) {
+                                return tr;
+                            }
+                        }
+                    }
+#endif
+                }
+            }
+            continue;
+        }
+        let t_hi = t_max;
+        let l = node.left_first;
+        let tl = enter(slab, bvh_nodes[l], t_min, t_hi);
+        let tr_ = enter(slab, bvh_nodes[l + 1u], t_min, t_hi);
+        // Push the farther child first, so the nearer one is popped first.
+        var first = l + 1u;
+        var second = l;
+        var n = 0u;
+        if tl.ok && tr_.ok {
+            n = 2u;
+            if tl.t > tr_.t {
+                first = l;
+                second = l + 1u;
+            }
+        } else if tl.ok {
+            n = 1u;
+            second = l;
+        } else if tr_.ok {
+            n = 1u;
+            second = l + 1u;
+        }
+        if sp + n > BVH_STACK_SIZE {
+            status |= STATUS_BVH_STACK_OVERFLOW;
+            n = min(n, BVH_STACK_SIZE - sp);
+        }
+        if n == 2u {
+            stack[sp] = first;
+            stack[sp + 1u] = second;
+        } else if n == 1u {
+            stack[sp] = second;
+        }
+        sp += n;
+    }
+#ifdef PLANES
+    for (var i = 0u; i < header.plane_count; i++) {
+        let no = planes[i].normal_offset;
+        if intersect_plane(no.xyz, no.w, ray, t_min, t_max).ok {
+            tr = cross_surface(tr, planes[i].material);
+            if all_zero(tr) {
+                return tr;
+            }
+        }
+    }
+#endif
+    return tr;
+}
