@@ -98,12 +98,16 @@ impl ShaderKey {
     /// which eframe's device has). Brute force keeps its primitive limit and the canary.
     pub fn within_storage_limit(self, max_storage_buffers: u32) -> Self {
         if self.bvh && self.storage_buffers() > max_storage_buffers {
-            log::warn!(
-                "the BVH variant [{}] needs {} storage buffers, more than this device's \
-                 max_storage_buffers_per_shader_stage ({max_storage_buffers}): tracing by brute force",
-                self.describe(),
-                self.storage_buffers()
-            );
+            // Once per process: the viewer asks for a variant at every edit and drag.
+            static WARNED: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+            if !WARNED.swap(true, std::sync::atomic::Ordering::Relaxed) {
+                log::warn!(
+                    "the BVH variant [{}] needs {} storage buffers, more than this device's \
+                     max_storage_buffers_per_shader_stage ({max_storage_buffers}): tracing by brute force",
+                    self.describe(),
+                    self.storage_buffers()
+                );
+            }
             Self { bvh: false, ..self }
         } else {
             self
