@@ -89,6 +89,47 @@ fn bound(best: Hit, t_max: f32) -> f32 {
     return bitcast<f32>(bitcast<u32>(best.t) + 1u);
 }
 
+// Pushes the children at `l` and `l + 1` that the ray enters within [t_min, t_hi], the farther
+// first so that the nearer is popped first; a full stack raises STATUS_BVH_STACK_OVERFLOW.
+fn push_children(
+    stack: ptr<function, array<u32, BVH_STACK_SIZE>>,
+    sp: ptr<function, u32>,
+    slab: SlabRay,
+    l: u32,
+    t_min: f32,
+    t_hi: f32,
+) {
+    let tl = enter(slab, bvh_nodes[l], t_min, t_hi);
+    let tr_ = enter(slab, bvh_nodes[l + 1u], t_min, t_hi);
+    var first = l + 1u;
+    var second = l;
+    var n = 0u;
+    if tl.ok && tr_.ok {
+        n = 2u;
+        if tl.t > tr_.t {
+            first = l;
+            second = l + 1u;
+        }
+    } else if tl.ok {
+        n = 1u;
+        second = l;
+    } else if tr_.ok {
+        n = 1u;
+        second = l + 1u;
+    }
+    if *sp + n > BVH_STACK_SIZE {
+        status |= STATUS_BVH_STACK_OVERFLOW;
+        n = min(n, BVH_STACK_SIZE - *sp);
+    }
+    if n == 2u {
+        (*stack)[*sp] = first;
+        (*stack)[*sp + 1u] = second;
+    } else if n == 1u {
+        (*stack)[*sp] = second;
+    }
+    *sp += n;
+}
+
 // intersect.wgsl's closest_hit through the BVH: the same hit (the tie rule makes it independent of the
 // visiting order).
 fn closest_hit(ray: Ray, t_min: f32, t_max: f32) -> Hit {
@@ -130,38 +171,7 @@ fn closest_hit(ray: Ray, t_min: f32, t_max: f32) -> Hit {
             }
             continue;
         }
-        let t_hi = bound(best, t_max);
-        let l = node.left_first;
-        let tl = enter(slab, bvh_nodes[l], t_min, t_hi);
-        let tr_ = enter(slab, bvh_nodes[l + 1u], t_min, t_hi);
-        // Push the farther child first, so the nearer one is popped first.
-        var first = l + 1u;
-        var second = l;
-        var n = 0u;
-        if tl.ok && tr_.ok {
-            n = 2u;
-            if tl.t > tr_.t {
-                first = l;
-                second = l + 1u;
-            }
-        } else if tl.ok {
-            n = 1u;
-            second = l;
-        } else if tr_.ok {
-            n = 1u;
-            second = l + 1u;
-        }
-        if sp + n > BVH_STACK_SIZE {
-            status |= STATUS_BVH_STACK_OVERFLOW;
-            n = min(n, BVH_STACK_SIZE - sp);
-        }
-        if n == 2u {
-            stack[sp] = first;
-            stack[sp + 1u] = second;
-        } else if n == 1u {
-            stack[sp] = second;
-        }
-        sp += n;
+        push_children(&stack, &sp, slab, node.left_first, t_min, bound(best, t_max));
     }
 #ifdef PLANES
     for (var i = 0u; i < header.plane_count; i++) {
@@ -229,38 +239,7 @@ fn shadow_transmittance(ray: Ray, t_min: f32, t_max: f32) -> vec3<f32> {
             }
             continue;
         }
-        let t_hi = t_max;
-        let l = node.left_first;
-        let tl = enter(slab, bvh_nodes[l], t_min, t_hi);
-        let tr_ = enter(slab, bvh_nodes[l + 1u], t_min, t_hi);
-        // Push the farther child first, so the nearer one is popped first.
-        var first = l + 1u;
-        var second = l;
-        var n = 0u;
-        if tl.ok && tr_.ok {
-            n = 2u;
-            if tl.t > tr_.t {
-                first = l;
-                second = l + 1u;
-            }
-        } else if tl.ok {
-            n = 1u;
-            second = l;
-        } else if tr_.ok {
-            n = 1u;
-            second = l + 1u;
-        }
-        if sp + n > BVH_STACK_SIZE {
-            status |= STATUS_BVH_STACK_OVERFLOW;
-            n = min(n, BVH_STACK_SIZE - sp);
-        }
-        if n == 2u {
-            stack[sp] = first;
-            stack[sp + 1u] = second;
-        } else if n == 1u {
-            stack[sp] = second;
-        }
-        sp += n;
+        push_children(&stack, &sp, slab, node.left_first, t_min, t_max);
     }
 #ifdef PLANES
     for (var i = 0u; i < header.plane_count; i++) {

@@ -64,7 +64,8 @@ const TWINS: [(&str, &str, &str, &str); 9] = [
 ];
 
 /// Functions only the GPU side has, and why.
-const GPU_ONLY: [(&str, &str, &str); 7] = [
+const GPU_ONLY: [(&str, &str, &str); 8] = [
+    ("bvh.wgsl", "push_children", "the CPU pushes onto a Vec inside traverse; WGSL passes its fixed stack by pointer"),
     ("bvh.wgsl", "slab_ray", "the CPU's SlabRay::new: WGSL has no methods"),
     ("trace.wgsl", "push_ray", "the explicit ray stack: WGSL has no recursion"),
     ("trace.wgsl", "add_stat", "64-bit ray counters built from u32 atomics"),
