@@ -19,6 +19,7 @@ use glint_core::scene::{BUILTIN_SCENES, parse_scene};
 use glint_core::{CpuOptions, CpuRender, FlatScene, RenderControl, render_cpu};
 
 use crate::support::SceneText;
+use glint_test_support::scene::{mesh_scene, uv_sphere};
 
 const Y: [f64; 3] = [0.0, 1.0, 0.0];
 
@@ -38,45 +39,6 @@ fn assert_identical(what: &str, flat: &FlatScene) -> CpuRender {
     assert_eq!(bvh.image.first_hit, none.image.first_hit, "{what}: first-hit ids");
     assert_eq!(bvh.counts, none.counts, "{what}: ray counts");
     bvh
-}
-
-/// A UV sphere of 4·n² triangles (rings θ = π·i/n, segments φ = 2π·k/(2n)), radius `r` around
-/// `c`, with a small bump so that not every triangle is a plain facet.
-fn uv_sphere(n: u32, c: [f64; 3], r: f64) -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
-    let m = 2 * n;
-    let mut v = Vec::new();
-    for i in 0..=n {
-        let th = PI * f64::from(i) / f64::from(n);
-        for k in 0..=m {
-            let ph = 2.0 * PI * f64::from(k) / f64::from(m);
-            let rr = r * (1.0 + 0.05 * (7.0 * th).sin() * (5.0 * ph).sin());
-            v.push([c[0] + rr * th.sin() * ph.cos(), c[1] + rr * th.cos(), c[2] + rr * th.sin() * ph.sin()]);
-        }
-    }
-    let mut t = Vec::new();
-    for i in 0..n {
-        for k in 0..m {
-            let a = i * (m + 1) + k;
-            let (b, cc) = (a + 1, a + m + 1);
-            t.push([a, cc, b]);
-            t.push([b, cc, cc + 1]);
-        }
-    }
-    (v, t)
-}
-
-/// A lit scene with a ground plane, a mirror sphere and one mesh.
-fn mesh_scene(w: u32, h: u32, mesh: (Vec<[f64; 3]>, Vec<[u32; 3]>)) -> SceneText {
-    SceneText::new(w, h, "max_depth = 2", [0.3, 1.1, -3.2], [0.0, 0.2, 0.0], Y, 45.0)
-        .world([0.1; 3], [0.2, 0.3, 0.4])
-        .material("ground", "ka = 0.2\nkd = 0.6\nks = 0.2\nchecker = { kd = [0.2, 0.2, 0.2], size = 0.5 }")
-        .material("clay", "ka = 0.2\nkd = [0.7, 0.5, 0.3]\nks = 0.4\nshininess = 20.0")
-        .material("mirror", "ka = 0.0\nkd = 0.1\nks = 0.3\nkr = 0.6")
-        .light("point", "position = [-2.0, 4.0, -3.0]\ndiffuse = 0.8\nspecular = 0.6")
-        .light("directional", "direction = [0.3, -1.0, 0.2]\ndiffuse = 0.3\nspecular = 0.2")
-        .plane([0.0, -1.2, 0.0], Y, "ground")
-        .sphere([1.3, -0.6, 0.6], 0.6, "mirror")
-        .mesh(&mesh.0, &mesh.1, None, "clay")
 }
 
 #[test]
