@@ -14,7 +14,7 @@
 #import glint::scene_data::{BvhNode, PRIM_REF_TRIANGLE, PRIM_REF_INDEX, STATUS_BVH_STACK_OVERFLOW}
 #import glint::bindings::{header, planes, spheres, triangles, bvh_nodes, bvh_prims}
 #import glint::ray::{Ray, status}
-#import glint::intersect::{Hit, MaybeT, PRIM_NONE, PRIM_SPHERE, PRIM_PLANE, PRIM_TRIANGLE, sphere_roots, intersect_sphere, intersect_plane, intersect_triangle, ray_shear, cross_surface, all_zero}
+#import glint::intersect::{Hit, MaybeT, PRIM_NONE, PRIM_SPHERE, PRIM_PLANE, PRIM_TRIANGLE, sphere_roots, intersect_sphere, intersect_plane, intersect_triangle, ray_shear, cross_surface, all_zero, sphere_transmittance, planes_transmittance}
 
 // Entries of the traversal stack: deeper than any tree the builder makes for 2^31 primitives
 // with balanced splits; a degenerate deeper one raises STATUS_BVH_STACK_OVERFLOW.
@@ -218,21 +218,9 @@ fn shadow_transmittance(ray: Ray, t_min: f32, t_max: f32) -> vec3<f32> {
 #endif
                 } else {
 #ifdef SPHERES
-                    let cr = spheres[i].center_radius;
-                    let roots = sphere_roots(cr.xyz, cr.w, ray);
-                    if roots.ok {
-                        if roots.t_near > t_min && roots.t_near < t_max {
-                            tr = cross_surface(tr, spheres[i].material);
-                            if all_zero(tr) {
-                                return tr;
-                            }
-                        }
-                        if roots.t_far > t_min && roots.t_far < t_max {
-                            tr = cross_surface(tr, spheres[i].material);
-                            if all_zero(tr) {
-                                return tr;
-                            }
-                        }
+                    tr = sphere_transmittance(tr, i, ray, t_min, t_max);
+                    if all_zero(tr) {
+                        return tr;
                     }
 #endif
                 }
@@ -242,15 +230,7 @@ fn shadow_transmittance(ray: Ray, t_min: f32, t_max: f32) -> vec3<f32> {
         push_children(&stack, &sp, slab, node.left_first, t_min, t_max);
     }
 #ifdef PLANES
-    for (var i = 0u; i < header.plane_count; i++) {
-        let no = planes[i].normal_offset;
-        if intersect_plane(no.xyz, no.w, ray, t_min, t_max).ok {
-            tr = cross_surface(tr, planes[i].material);
-            if all_zero(tr) {
-                return tr;
-            }
-        }
-    }
+    tr = planes_transmittance(tr, ray, t_min, t_max);
 #endif
     return tr;
 }

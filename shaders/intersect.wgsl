@@ -218,31 +218,31 @@ fn all_zero(v: vec3<f32>) -> bool {
     return v.x == 0.0 && v.y == 0.0 && v.z == 0.0;
 }
 
-// Light passing from the ray origin to t_max: 0 behind an opaque occluder, the product of
-// k_t over every surface crossed otherwise.
-fn shadow_transmittance(ray: Ray, t_min: f32, t_max: f32) -> vec3<f32> {
-    var tr = vec3<f32>(1.0);
 #ifdef SPHERES
-    for (var i = 0u; i < header.sphere_count; i++) {
-        let cr = spheres[i].center_radius;
-        let r = sphere_roots(cr.xyz, cr.w, ray);
-        if r.ok {
-            if r.t_near > t_min && r.t_near < t_max {
-                tr = cross_surface(tr, spheres[i].material);
-                if all_zero(tr) {
-                    return tr;
-                }
-            }
-            if r.t_far > t_min && r.t_far < t_max {
-                tr = cross_surface(tr, spheres[i].material);
-                if all_zero(tr) {
-                    return tr;
-                }
+// `tr` times the k_t of each surface of sphere i (both roots) crossed in (t_min, t_max).
+fn sphere_transmittance(tr_in: vec3<f32>, i: u32, ray: Ray, t_min: f32, t_max: f32) -> vec3<f32> {
+    var tr = tr_in;
+    let cr = spheres[i].center_radius;
+    let r = sphere_roots(cr.xyz, cr.w, ray);
+    if r.ok {
+        if r.t_near > t_min && r.t_near < t_max {
+            tr = cross_surface(tr, spheres[i].material);
+            if all_zero(tr) {
+                return tr;
             }
         }
+        if r.t_far > t_min && r.t_far < t_max {
+            tr = cross_surface(tr, spheres[i].material);
+        }
     }
+    return tr;
+}
 #endif
+
 #ifdef PLANES
+// `tr` times the k_t of every plane crossed in (t_min, t_max), in index order.
+fn planes_transmittance(tr_in: vec3<f32>, ray: Ray, t_min: f32, t_max: f32) -> vec3<f32> {
+    var tr = tr_in;
     for (var i = 0u; i < header.plane_count; i++) {
         let no = planes[i].normal_offset;
         if intersect_plane(no.xyz, no.w, ray, t_min, t_max).ok {
@@ -251,6 +251,27 @@ fn shadow_transmittance(ray: Ray, t_min: f32, t_max: f32) -> vec3<f32> {
                 return tr;
             }
         }
+    }
+    return tr;
+}
+#endif
+
+// Light passing from the ray origin to t_max: 0 behind an opaque occluder, the product of
+// k_t over every surface crossed otherwise.
+fn shadow_transmittance(ray: Ray, t_min: f32, t_max: f32) -> vec3<f32> {
+    var tr = vec3<f32>(1.0);
+#ifdef SPHERES
+    for (var i = 0u; i < header.sphere_count; i++) {
+        tr = sphere_transmittance(tr, i, ray, t_min, t_max);
+        if all_zero(tr) {
+            return tr;
+        }
+    }
+#endif
+#ifdef PLANES
+    tr = planes_transmittance(tr, ray, t_min, t_max);
+    if all_zero(tr) {
+        return tr;
     }
 #endif
 #ifdef TRIANGLES

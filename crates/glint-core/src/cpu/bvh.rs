@@ -14,8 +14,8 @@
 use glam::DVec3;
 
 use super::intersect::{
-    Hit, Prim, RayShear, all_zero, cross_surface, intersect_plane, intersect_sphere, intersect_triangle, ray_shear,
-    sphere_roots,
+    Hit, Prim, RayShear, all_zero, cross_surface, intersect_plane, intersect_sphere, intersect_triangle,
+    planes_transmittance, ray_shear, sphere_roots,
 };
 use super::{Ray, TraceContext, v3};
 use crate::bvh::{BvhNode, PrimRef};
@@ -277,14 +277,9 @@ pub fn shadow_transmittance(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f6
         }
     }
     if ctx.has(feature::PLANES) {
-        for p in &scene.planes {
-            let no = p.normal_offset;
-            if intersect_plane(v3(no), f64::from(no[3]), ray, t_min, t_max).is_some() {
-                tr = cross_surface(ctx, tr, p.material);
-                if all_zero(tr) {
-                    return tr;
-                }
-            }
+        tr = planes_transmittance(ctx, tr, ray, t_min, t_max);
+        if all_zero(tr) {
+            return tr;
         }
     }
     for c in &crossings[first_triangle..] {

@@ -4,7 +4,7 @@
 use glam::DVec3;
 
 use super::{Ray, TraceContext, Traversal, v3};
-use crate::layout::{GpuTriangle, TRIANGLE_HAS_NORMALS, feature};
+use crate::layout::{GpuSphere, GpuTriangle, TRIANGLE_HAS_NORMALS, feature};
 
 /// The kind of primitive a hit is on. WGSL stores it as the `PRIM_*` constants (checked by the
 /// reflection test); the CPU matches on the enum, exhaustively.
@@ -225,6 +225,38 @@ pub fn cross_surface(ctx: &TraceContext, tr: DVec3, material: u32) -> DVec3 {
     if ctx.has(feature::FILTERED_SHADOWS) { tr * v3(ctx.scene.materials[material as usize].kt) } else { DVec3::ZERO }
 }
 
+/// `tr` times the k_t of each surface of sphere `s` (both roots) crossed in (t_min, t_max).
+pub fn sphere_transmittance(ctx: &TraceContext, tr: DVec3, s: &GpuSphere, ray: &Ray, t_min: f64, t_max: f64) -> DVec3 {
+    let cr = s.center_radius;
+    let mut tr = tr;
+    if let Some((t0, t1)) = sphere_roots(v3(cr), f64::from(cr[3]), ray) {
+        for t in [t0, t1] {
+            if t > t_min && t < t_max {
+                tr = cross_surface(ctx, tr, s.material);
+                if all_zero(tr) {
+                    return tr;
+                }
+            }
+        }
+    }
+    tr
+}
+
+/// `tr` times the k_t of every plane crossed in (t_min, t_max), in index order.
+pub fn planes_transmittance(ctx: &TraceContext, tr: DVec3, ray: &Ray, t_min: f64, t_max: f64) -> DVec3 {
+    let mut tr = tr;
+    for p in &ctx.scene.planes {
+        let no = p.normal_offset;
+        if intersect_plane(v3(no), f64::from(no[3]), ray, t_min, t_max).is_some() {
+            tr = cross_surface(ctx, tr, p.material);
+            if all_zero(tr) {
+                return tr;
+            }
+        }
+    }
+    tr
+}
+
 /// Fraction of light that passes from the ray origin to t_max: 0 behind an opaque occluder,
 /// the product of k_t over every surface crossed otherwise (a glass sphere is crossed twice).
 /// Through the BVH (`Traversal::Bvh`) the CPU computes the same product through the BVH (`cpu::bvh`).
@@ -237,28 +269,16 @@ pub fn shadow_transmittance(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f6
     let mut tr = DVec3::ONE;
     if ctx.has(feature::SPHERES) {
         for s in &scene.spheres {
-            let cr = s.center_radius;
-            if let Some((t0, t1)) = sphere_roots(v3(cr), f64::from(cr[3]), ray) {
-                for t in [t0, t1] {
-                    if t > t_min && t < t_max {
-                        tr = cross_surface(ctx, tr, s.material);
-                        if all_zero(tr) {
-                            return tr;
-                        }
-                    }
-                }
+            tr = sphere_transmittance(ctx, tr, s, ray, t_min, t_max);
+            if all_zero(tr) {
+                return tr;
             }
         }
     }
     if ctx.has(feature::PLANES) {
-        for p in &scene.planes {
-            let no = p.normal_offset;
-            if intersect_plane(v3(no), f64::from(no[3]), ray, t_min, t_max).is_some() {
-                tr = cross_surface(ctx, tr, p.material);
-                if all_zero(tr) {
-                    return tr;
-                }
-            }
+        tr = planes_transmittance(ctx, tr, ray, t_min, t_max);
+        if all_zero(tr) {
+            return tr;
         }
     }
     if ctx.has(feature::TRIANGLES) && !scene.triangles.is_empty() {
