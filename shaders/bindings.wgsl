@@ -2,7 +2,7 @@
 // composed module, and the host builds its bind group layout from what remains.
 #define_import_path glint::bindings
 
-#import glint::scene_data::{SceneHeader, GpuCamera, GpuMaterial, GpuLight, GpuSphere, GpuPlane, GpuTriangle, TileParams, ProbeRecord, BvhNode}
+#import glint::scene_data::{SceneHeader, GpuCamera, GpuMaterial, GpuLight, GpuSphere, GpuPlane, GpuTriangle, GpuMesh, TileParams, ProbeRecord, BvhNode}
 
 @group(0) @binding(0) var<uniform> header: SceneHeader;
 @group(0) @binding(1) var<uniform> camera: GpuCamera;
@@ -22,3 +22,8 @@
 // the primitive references its leaves point into.
 @group(0) @binding(11) var<storage, read> bvh_nodes: array<BvhNode>;
 @group(0) @binding(12) var<storage, read> bvh_prims: array<u32>;
+// Indexed meshes: vertex positions (w = 1), vertex normals beside them (w = 0; one unused
+// element when no mesh has normals), and what a mesh's triangles share.
+@group(0) @binding(13) var<storage, read> vertices: array<vec4<f32>>;
+@group(0) @binding(14) var<storage, read> normals: array<vec4<f32>>;
+@group(0) @binding(15) var<storage, read> meshes: array<GpuMesh>;

@@ -12,9 +12,9 @@
 #define_import_path glint::bvh
 
 #import glint::scene_data::{BvhNode, PRIM_REF_TRIANGLE, PRIM_REF_INDEX, STATUS_BVH_STACK_OVERFLOW}
-#import glint::bindings::{header, planes, spheres, triangles, bvh_nodes, bvh_prims}
+#import glint::bindings::{header, planes, spheres, triangles, meshes, bvh_nodes, bvh_prims}
 #import glint::ray::{Ray, status}
-#import glint::intersect::{Hit, MaybeT, PRIM_NONE, PRIM_SPHERE, PRIM_PLANE, PRIM_TRIANGLE, sphere_roots, intersect_sphere, intersect_plane, intersect_triangle, ray_shear, cross_surface, all_zero, sphere_transmittance, planes_transmittance}
+#import glint::intersect::{Hit, MaybeT, PRIM_NONE, PRIM_SPHERE, PRIM_PLANE, PRIM_TRIANGLE, sphere_roots, intersect_sphere, intersect_plane, intersect_triangle, ray_shear, cross_surface, all_zero, sphere_transmittance, planes_transmittance, triangle_corners, bound, replaces}
 
 // Entries of the traversal stack: deeper than any tree the builder makes for 2^31 primitives
 // with balanced splits; a degenerate deeper one raises STATUS_BVH_STACK_OVERFLOW.
@@ -61,32 +61,6 @@ fn enter(s: SlabRay, node: BvhNode, t_lo: f32, t_hi: f32) -> MaybeT {
     let t1 = min(far.x, min(far.y, far.z));
     let slack = pad + BOX_PAD * min(abs(t_hi), 1e30);
     return MaybeT(t0, t0 <= t1 && t0 <= t_hi + slack && t1 >= t_lo - slack);
-}
-
-// The rank of a kind in brute force's order (spheres, planes, triangles).
-fn rank(prim: u32) -> u32 {
-    return select(select(2u, 1u, prim == PRIM_PLANE), 0u, prim == PRIM_SPHERE);
-}
-
-// Whether a hit at t on (prim, index) replaces `best`: the smallest t, and of equal t the
-// first in brute force's order.
-fn replaces(t: f32, prim: u32, index: u32, best: Hit) -> bool {
-    if best.prim == PRIM_NONE {
-        return true;
-    }
-    let r = rank(prim);
-    let br = rank(best.prim);
-    return t < best.t || (t == best.t && (r < br || (r == br && index < best.index)));
-}
-
-// The bound passed to the primitive tests: t_max until a hit, then just above the best t, so
-// that an equal t gets through their strict `t < t_max` and the tie rule decides.
-fn bound(best: Hit, t_max: f32) -> f32 {
-    if best.prim == PRIM_NONE {
-        return t_max;
-    }
-    // The next f32 up (t > 0 here: every test requires t > t_min >= 0).
-    return bitcast<f32>(bitcast<u32>(best.t) + 1u);
 }
 
 // Pushes the children at `l` and `l + 1` that the ray enters within [t_min, t_hi], the farther
@@ -153,8 +127,8 @@ fn closest_hit(ray: Ray, t_min: f32, t_max: f32) -> Hit {
                 let i = r & PRIM_REF_INDEX;
                 if (r & PRIM_REF_TRIANGLE) != 0u {
 #ifdef TRIANGLES
-                    let tri = triangles[i];
-                    let h = intersect_triangle(tri.a.xyz, tri.b.xyz, tri.c.xyz, ray, sh, t_min, bound(best, t_max));
+                    let v = triangle_corners(triangles[i]);
+                    let h = intersect_triangle(v[0], v[1], v[2], ray, sh, t_min, bound(best, t_max));
                     if h.ok && replaces(h.t, PRIM_TRIANGLE, i, best) {
                         best = Hit(h.t, PRIM_TRIANGLE, i, h.bu, h.bv);
                     }
@@ -209,8 +183,9 @@ fn shadow_transmittance(ray: Ray, t_min: f32, t_max: f32) -> vec3<f32> {
                 if (r & PRIM_REF_TRIANGLE) != 0u {
 #ifdef TRIANGLES
                     let tri = triangles[i];
-                    if intersect_triangle(tri.a.xyz, tri.b.xyz, tri.c.xyz, ray, sh, t_min, t_max).ok {
-                        tr = cross_surface(tr, tri.material);
+                    let v = triangle_corners(tri);
+                    if intersect_triangle(v[0], v[1], v[2], ray, sh, t_min, t_max).ok {
+                        tr = cross_surface(tr, meshes[tri.mesh].material);
                         if all_zero(tr) {
                             return tr;
                         }

@@ -2,8 +2,8 @@
 // and shadow transmittance.
 #define_import_path glint::intersect
 
-#import glint::scene_data::{GpuTriangle, TRIANGLE_HAS_NORMALS}
-#import glint::bindings::{header, materials, spheres, planes, triangles}
+#import glint::scene_data::{GpuTriangle, MESH_HAS_NORMALS}
+#import glint::bindings::{header, materials, spheres, planes, triangles, vertices, normals, meshes}
 #import glint::ray::Ray
 
 const PRIM_NONE: u32 = 0u;
@@ -168,7 +168,47 @@ fn intersect_triangle(va: vec3<f32>, vb: vec3<f32>, vc: vec3<f32>, ray: Ray, sh:
     return TriangleHit(t, v * inv, w * inv, true);
 }
 
-// Nearest hit in (t_min, t_max); ties go to the primitive tested first, as on the CPU.
+// The rank of a kind in brute force's order (spheres, planes, triangles).
+fn rank(prim: u32) -> u32 {
+    return select(select(2u, 1u, prim == PRIM_PLANE), 0u, prim == PRIM_SPHERE);
+}
+
+// The place of a primitive in scene order among its kind: its index for spheres and planes,
+// its `order` for triangles (which the BVH stores in leaf order).
+fn tie_order(prim: u32, index: u32) -> u32 {
+#ifdef TRIANGLES
+    if prim == PRIM_TRIANGLE {
+        return triangles[index].order;
+    }
+#endif
+    return index;
+}
+
+// Whether a hit at t on (prim, index) replaces `best`: the smallest t, and of equal t the
+// first in scene order (spheres, planes, triangles, each in the order of the scene file).
+fn replaces(t: f32, prim: u32, index: u32, best: Hit) -> bool {
+    if best.prim == PRIM_NONE {
+        return true;
+    }
+    if t != best.t {
+        return t < best.t;
+    }
+    let r = rank(prim);
+    let br = rank(best.prim);
+    return r < br || (r == br && tie_order(prim, index) < tie_order(best.prim, best.index));
+}
+
+// The bound passed to the primitive tests: t_max until a hit, then just above the best t, so
+// that an equal t gets through their strict `t < t_max` and the tie rule decides.
+fn bound(best: Hit, t_max: f32) -> f32 {
+    if best.prim == PRIM_NONE {
+        return t_max;
+    }
+    // The next f32 up (t > 0 here: every test requires t > t_min >= 0).
+    return bitcast<f32>(bitcast<u32>(best.t) + 1u);
+}
+
+// Nearest hit in (t_min, t_max); ties go to the first in scene order (`replaces`), as on the CPU.
 fn closest_hit(ray: Ray, t_min: f32, t_max: f32) -> Hit {
     var best = Hit(t_max, PRIM_NONE, 0u, 0.0, 0.0);
 #ifdef SPHERES
@@ -193,9 +233,9 @@ fn closest_hit(ray: Ray, t_min: f32, t_max: f32) -> Hit {
     if header.triangle_count > 0u {
         let sh = ray_shear(ray.dir);
         for (var i = 0u; i < header.triangle_count; i++) {
-            let tri = triangles[i];
-            let h = intersect_triangle(tri.a.xyz, tri.b.xyz, tri.c.xyz, ray, sh, t_min, best.t);
-            if h.ok {
+            let v = triangle_corners(triangles[i]);
+            let h = intersect_triangle(v[0], v[1], v[2], ray, sh, t_min, bound(best, t_max));
+            if h.ok && replaces(h.t, PRIM_TRIANGLE, i, best) {
                 best = Hit(h.t, PRIM_TRIANGLE, i, h.bu, h.bv);
             }
         }
@@ -279,8 +319,9 @@ fn shadow_transmittance(ray: Ray, t_min: f32, t_max: f32) -> vec3<f32> {
         let sh = ray_shear(ray.dir);
         for (var i = 0u; i < header.triangle_count; i++) {
             let tri = triangles[i];
-            if intersect_triangle(tri.a.xyz, tri.b.xyz, tri.c.xyz, ray, sh, t_min, t_max).ok {
-                tr = cross_surface(tr, tri.material);
+            let v = triangle_corners(tri);
+            if intersect_triangle(v[0], v[1], v[2], ray, sh, t_min, t_max).ok {
+                tr = cross_surface(tr, meshes[tri.mesh].material);
                 if all_zero(tr) {
                     return tr;
                 }
@@ -291,14 +332,21 @@ fn shadow_transmittance(ray: Ray, t_min: f32, t_max: f32) -> vec3<f32> {
     return tr;
 }
 
+#ifdef TRIANGLES
+// A triangle's three vertex positions from the shared vertex buffer.
+fn triangle_corners(tri: GpuTriangle) -> array<vec3<f32>, 3> {
+    return array<vec3<f32>, 3>(vertices[tri.va].xyz, vertices[tri.vb].xyz, vertices[tri.vc].xyz);
+}
+
 fn triangle_shading_normal(tri: GpuTriangle, bu: f32, bv: f32, ng: vec3<f32>) -> vec3<f32> {
-    if (tri.flags & TRIANGLE_HAS_NORMALS) == 0u {
+    if (meshes[tri.mesh].flags & MESH_HAS_NORMALS) == 0u {
         return ng;
     }
-    let n = (1.0 - bu - bv) * tri.na.xyz + bu * tri.nb.xyz + bv * tri.nc.xyz;
+    let n = (1.0 - bu - bv) * normals[tri.va].xyz + bu * normals[tri.vb].xyz + bv * normals[tri.vc].xyz;
     let len = length(n);
     if len > 0.0 {
         return n / len;
     }
     return ng;
 }
+#endif

@@ -9,7 +9,7 @@ const LIGHT_SPOT: u32 = 2u;
 const LIGHT_CASTS_SHADOWS: u32 = 1u;
 const MATERIAL_PHONG: u32 = 1u;
 const MATERIAL_CHECKER: u32 = 2u;
-const TRIANGLE_HAS_NORMALS: u32 = 1u;
+const MESH_HAS_NORMALS: u32 = 1u;
 const EPS_TMIN: u32 = 0u;
 const EPS_NUDGE_RAY: u32 = 1u;
 const EPS_NUDGE_NORMAL: u32 = 2u;
@@ -53,8 +53,8 @@ struct SceneHeader {
     seed: u32,
     epsilon: f32,
     bailout: f32,
-    pad_a: u32,
-    pad_b: u32,
+    vertex_count: u32,
+    mesh_count: u32,
     ambient: vec4<f32>,
     background: vec4<f32>,
 }
@@ -108,12 +108,14 @@ struct GpuPlane {
 }
 
 struct GpuTriangle {
-    a: vec4<f32>,
-    b: vec4<f32>,
-    c: vec4<f32>,
-    na: vec4<f32>,
-    nb: vec4<f32>,
-    nc: vec4<f32>,
+    va: u32,
+    vb: u32,
+    vc: u32,
+    mesh: u32,
+    order: u32,
+}
+
+struct GpuMesh {
     material: u32,
     object_id: u32,
     flags: u32,

@@ -4,10 +4,10 @@
 // depth). Each node adds weight × local shading, where the CPU adds k·I(child) on return:
 // the same terms with the same bailout decisions, summed in another order.
 #import glint::scene_data::{PROBE_HIT, PROBE_TIR, GpuSphere, GpuPlane, GpuTriangle, NO_HIT, EPS_ROBUST, STATUS_LOOP_LIMIT, STATUS_STACK_OVERFLOW, STATUS_DRIVER_LOOP_CUTOFF, STAT_STATUS, STAT_CAMERA, STAT_SHADOW, STAT_REFLECTION, STAT_REFRACTION, STAT_BAILOUT_SAVED}
-#import glint::bindings::{header, camera, tile, materials, spheres, planes, triangles, output, stats, probe_out}
+#import glint::bindings::{header, camera, tile, materials, spheres, planes, triangles, meshes, output, stats, probe_out}
 #import glint::ray::{Ray, RayCounts, ray_counts, status, probe, probe_active}
 #import glint::camera::{camera_ray, sample_offset}
-#import glint::intersect::{Hit, FAR, PRIM_NONE, PRIM_SPHERE, PRIM_PLANE, triangle_shading_normal, all_zero}
+#import glint::intersect::{Hit, FAR, PRIM_NONE, PRIM_SPHERE, PRIM_PLANE, triangle_corners, triangle_shading_normal, all_zero}
 #ifdef BVH
 #import glint::bvh::closest_hit
 #else
@@ -64,10 +64,12 @@ fn surface_at(ray: Ray, hit: Hit) -> Surface {
 #endif
 #ifdef TRIANGLES
     let tri = triangles[hit.index];
-    let ng = normalize(cross(tri.b.xyz - tri.a.xyz, tri.c.xyz - tri.a.xyz));
+    let v = triangle_corners(tri);
+    let ng = normalize(cross(v[1] - v[0], v[2] - v[0]));
     let ns = triangle_shading_normal(tri, hit.bu, hit.bv, ng);
-    let p_surface = select(p, (1.0 - hit.bu - hit.bv) * tri.a.xyz + hit.bu * tri.b.xyz + hit.bv * tri.c.xyz, robust);
-    return Surface(p, p_surface, ng, ns, tri.material, tri.object_id);
+    let p_surface = select(p, (1.0 - hit.bu - hit.bv) * v[0] + hit.bu * v[1] + hit.bv * v[2], robust);
+    let mesh = meshes[tri.mesh];
+    return Surface(p, p_surface, ng, ns, mesh.material, mesh.object_id);
 #else
     return Surface(p, p, vec3<f32>(0.0, 1.0, 0.0), vec3<f32>(0.0, 1.0, 0.0), 0u, NO_HIT);
 #endif
@@ -256,7 +258,7 @@ fn object_id(hit: Hit) -> u32 {
     }
 #endif
 #ifdef TRIANGLES
-    return triangles[hit.index].object_id;
+    return meshes[triangles[hit.index].mesh].object_id;
 #else
     return NO_HIT;
 #endif

@@ -125,7 +125,8 @@ fn check(
     ensure: &dyn Fn(bool, String),
 ) -> Outcome {
     let tri = &flat.triangles;
-    let corners: Vec<DVec3> = tri.iter().flat_map(|t| [w3(t.a), w3(t.b), w3(t.c)]).collect();
+    let corners: Vec<DVec3> =
+        tri.iter().flat_map(|t| [t.va, t.vb, t.vc]).map(|i| w3(flat.vertices[i as usize])).collect();
     let lo = corners.iter().copied().reduce(DVec3::min).unwrap();
     let hi = corners.iter().copied().reduce(DVec3::max).unwrap();
     let light = w3(flat.lights[0].position);

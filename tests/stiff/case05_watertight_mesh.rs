@@ -53,7 +53,8 @@ fn moller_trumbore_f32_misses(flat: &FlatScene) -> usize {
     let cross = |a: V, b: V| [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
     let v = |a: [f32; 4]| [a[0], a[1], a[2]];
     let c = &flat.camera;
-    let tris: Vec<[V; 3]> = flat.triangles.iter().map(|t| [v(t.a), v(t.b), v(t.c)]).collect();
+    let at = |i: u32| v(flat.vertices[i as usize]);
+    let tris: Vec<[V; 3]> = flat.triangles.iter().map(|t| [at(t.va), at(t.vb), at(t.vc)]).collect();
     let mut misses = 0;
     for y in 0..N {
         for x in 0..N {

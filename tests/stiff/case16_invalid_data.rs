@@ -97,8 +97,11 @@ fn floats(flat: &glint_core::FlatScene) -> Vec<(String, f32)> {
     for (i, p) in flat.planes.iter().enumerate() {
         add(format!("planes[{i}]"), &p.normal_offset);
     }
-    for (i, t) in flat.triangles.iter().enumerate() {
-        add(format!("triangles[{i}]"), &[t.a, t.b, t.c, t.na, t.nb, t.nc].concat());
+    for (i, p) in flat.vertices.iter().enumerate() {
+        add(format!("vertices[{i}]"), p);
+    }
+    for (i, n) in flat.normals.iter().enumerate() {
+        add(format!("normals[{i}]"), n);
     }
     v
 }

@@ -30,7 +30,7 @@ pub fn viewer(scene: &str, window: (f32, f32)) -> Option<Harness<'static, Viewer
         ViewerOptions { scene: scene.into(), settings: Some(settings), no_recent: true, ..ViewerOptions::default() };
     let mut harness = Harness::builder()
         .with_size(egui::vec2(window.0, window.1))
-        .wgpu()
+        .wgpu_setup(glint_viewer::with_tracer_limits(egui_kittest::wgpu::default_wgpu_setup()))
         .build_eframe(move |cc| ViewerApp::new(cc, options));
     settle(&mut harness);
     Some(harness)

@@ -1,13 +1,23 @@
 //! A flat bounding-volume hierarchy over the bounded primitives of a flat scene (spheres and
 //! triangles; infinite planes stay a separate list), built with a binned SAH.
 //!
-//! The primitive arrays keep their order: leaves point into `prims`, an array of primitive
-//! references (kind in the top bit, index below). Boxes are f32, rounded outward, so they
+//! Leaves point into `prims`, an array of primitive references (kind in the top bit, index
+//! below). After the build, `reorder_triangles` puts the triangle array in leaf order, so that
+//! a leaf's triangles are neighbours in memory. Boxes are f32, rounded outward, so they
 //! contain the f32-stored primitives exactly. Traversal is in `cpu::bvh`.
 
 use bytemuck::{Pod, Zeroable};
 
 use crate::layout::{GpuSphere, GpuTriangle};
+
+/// The bounded primitives a hierarchy is built over, as the flat scene stores them.
+#[derive(Clone, Copy, Debug)]
+pub struct Bounded<'a> {
+    pub spheres: &'a [GpuSphere],
+    pub triangles: &'a [GpuTriangle],
+    /// The vertex positions the triangles index (xyz, w unused).
+    pub vertices: &'a [[f32; 4]],
+}
 
 /// One node: a leaf when `count > 0` (primitive references `left_first .. left_first +
 /// count`), else an interior node whose children are `left_first` and `left_first + 1`.
@@ -111,18 +121,21 @@ pub fn sphere_box(s: &GpuSphere) -> Aabb {
 }
 
 /// The box of a triangle: the min and max of its (f32) vertices, exact.
-pub fn triangle_box(t: &GpuTriangle) -> Aabb {
+pub fn triangle_box(t: &GpuTriangle, vertices: &[[f32; 4]]) -> Aabb {
+    let [a, b, c] = [t.va, t.vb, t.vc].map(|i| vertices[i as usize]);
     Aabb {
-        min: std::array::from_fn(|k| t.a[k].min(t.b[k]).min(t.c[k])),
-        max: std::array::from_fn(|k| t.a[k].max(t.b[k]).max(t.c[k])),
+        min: std::array::from_fn(|k| a[k].min(b[k]).min(c[k])),
+        max: std::array::from_fn(|k| a[k].max(b[k]).max(c[k])),
     }
 }
 
-/// The box of a primitive reference.
-pub fn prim_box(r: u32, spheres: &[GpuSphere], triangles: &[GpuTriangle]) -> Aabb {
-    match PrimRef::decode(r) {
-        PrimRef::Sphere(i) => sphere_box(&spheres[i as usize]),
-        PrimRef::Triangle(i) => triangle_box(&triangles[i as usize]),
+impl Bounded<'_> {
+    /// The box of a primitive reference.
+    pub fn prim_box(&self, r: u32) -> Aabb {
+        match PrimRef::decode(r) {
+            PrimRef::Sphere(i) => sphere_box(&self.spheres[i as usize]),
+            PrimRef::Triangle(i) => triangle_box(&self.triangles[i as usize], self.vertices),
+        }
     }
 }
 
@@ -143,14 +156,14 @@ struct Item {
 }
 
 /// Builds the hierarchy over every sphere and triangle.
-pub fn build(spheres: &[GpuSphere], triangles: &[GpuTriangle]) -> Bvh {
-    assert!(triangles.len() <= PRIM_REF_INDEX as usize, "too many triangles for a primitive reference");
-    let refs = (0..spheres.len() as u32)
+pub fn build(prims: &Bounded) -> Bvh {
+    assert!(prims.triangles.len() <= PRIM_REF_INDEX as usize, "too many triangles for a primitive reference");
+    let refs = (0..prims.spheres.len() as u32)
         .map(|i| PrimRef::Sphere(i).encode())
-        .chain((0..triangles.len() as u32).map(|i| PrimRef::Triangle(i).encode()));
+        .chain((0..prims.triangles.len() as u32).map(|i| PrimRef::Triangle(i).encode()));
     let mut items: Vec<Item> = refs
         .map(|r| {
-            let bounds = prim_box(r, spheres, triangles);
+            let bounds = prims.prim_box(r);
             let centroid = std::array::from_fn(|k| 0.5 * (f64::from(bounds.min[k]) + f64::from(bounds.max[k])));
             Item { r, bounds, centroid }
         })
@@ -160,6 +173,22 @@ pub fn build(spheres: &[GpuSphere], triangles: &[GpuTriangle]) -> Bvh {
     }
     let nodes = build_node(&mut items, 0);
     Bvh { nodes, prims: items.iter().map(|i| i.r).collect() }
+}
+
+/// Puts `triangles` in the order the leaves reference them and renumbers the references, so
+/// that the triangles of a leaf (and of neighbouring leaves) are neighbours in memory.
+pub fn reorder_triangles(bvh: &mut Bvh, triangles: &mut Vec<GpuTriangle>) {
+    let mut reordered = Vec::with_capacity(triangles.len());
+    for r in &mut bvh.prims {
+        match PrimRef::decode(*r) {
+            PrimRef::Triangle(i) => {
+                *r = PrimRef::Triangle(reordered.len() as u32).encode();
+                reordered.push(triangles[i as usize]);
+            }
+            PrimRef::Sphere(_) => {}
+        }
+    }
+    *triangles = reordered;
 }
 
 /// The subtree over `items` (which start at `first` in the final reference array), root first,
@@ -275,19 +304,29 @@ fn partition(items: &mut [Item], left: impl Fn(&Item) -> bool) -> usize {
 mod tests {
     use super::*;
 
-    fn tri(a: [f32; 3], b: [f32; 3], c: [f32; 3]) -> GpuTriangle {
-        let v = |p: [f32; 3]| [p[0], p[1], p[2], 1.0];
-        GpuTriangle {
-            a: v(a),
-            b: v(b),
-            c: v(c),
-            na: [0.0; 4],
-            nb: [0.0; 4],
-            nc: [0.0; 4],
-            material: 0,
-            object_id: 0,
-            flags: 0,
-            pad: 0,
+    /// Spheres, and triangles over their own vertex array.
+    #[derive(Default)]
+    struct Scene {
+        spheres: Vec<GpuSphere>,
+        triangles: Vec<GpuTriangle>,
+        vertices: Vec<[f32; 4]>,
+    }
+
+    impl Scene {
+        fn tri(&mut self, a: [f32; 3], b: [f32; 3], c: [f32; 3]) {
+            let va = self.vertices.len() as u32;
+            self.vertices.extend([a, b, c].map(|p| [p[0], p[1], p[2], 1.0]));
+            self.triangles.push(GpuTriangle {
+                va,
+                vb: va + 1,
+                vc: va + 2,
+                mesh: 0,
+                order: self.triangles.len() as u32,
+            });
+        }
+
+        fn bounded(&self) -> Bounded<'_> {
+            Bounded { spheres: &self.spheres, triangles: &self.triangles, vertices: &self.vertices }
         }
     }
 
@@ -296,7 +335,7 @@ mod tests {
     }
 
     /// A pseudo-random scene of spheres and triangles.
-    fn scene(n_spheres: usize, n_tris: usize) -> (Vec<GpuSphere>, Vec<GpuTriangle>) {
+    fn scene(n_spheres: usize, n_tris: usize) -> Scene {
         let mut state = 0x2545_f491_u32;
         let mut rnd = move || {
             state ^= state << 13;
@@ -305,18 +344,19 @@ mod tests {
             (state as f32 / u32::MAX as f32) * 20.0 - 10.0
         };
         let spheres = (0..n_spheres).map(|_| sphere([rnd(), rnd(), rnd()], 0.1 + rnd().abs() * 0.05)).collect();
-        let tris = (0..n_tris)
-            .map(|_| {
-                let a = [rnd(), rnd(), rnd()];
-                let d = |a: f32, r: f32| a + r * 0.05;
-                tri(a, [d(a[0], rnd()), d(a[1], rnd()), a[2]], [a[0], d(a[1], rnd()), d(a[2], rnd())])
-            })
-            .collect();
-        (spheres, tris)
+        let mut out = Scene { spheres, ..Scene::default() };
+        for _ in 0..n_tris {
+            let a = [rnd(), rnd(), rnd()];
+            let d = |a: f32, r: f32| a + r * 0.05;
+            let (b, c) = ([d(a[0], rnd()), d(a[1], rnd()), a[2]], [a[0], d(a[1], rnd()), d(a[2], rnd())]);
+            out.tri(a, b, c);
+        }
+        out
     }
 
     /// Checks the invariants; returns the number of leaves.
-    fn check(bvh: &Bvh, spheres: &[GpuSphere], triangles: &[GpuTriangle]) -> usize {
+    fn check(bvh: &Bvh, scene: &Bounded) -> usize {
+        let (spheres, triangles) = (scene.spheres, scene.triangles);
         let n = spheres.len() + triangles.len();
         assert_eq!(bvh.prims.len(), n);
         if n == 0 {
@@ -342,7 +382,7 @@ mod tests {
                         PrimRef::Triangle(k) => spheres.len() + k as usize,
                     };
                     seen[slot] += 1;
-                    assert!(b.contains(&prim_box(r, spheres, triangles)), "leaf {i} does not contain {r}");
+                    assert!(b.contains(&scene.prim_box(r)), "leaf {i} does not contain {r}");
                 }
             } else {
                 for c in [node.left_first as usize, node.left_first as usize + 1] {
@@ -367,25 +407,41 @@ mod tests {
     #[test]
     fn invariants_on_a_random_scene() {
         for (s, t) in [(1, 0), (0, 1), (3, 2), (20, 0), (0, 37), (50, 5000), (7, 12_000)] {
-            let (spheres, tris) = scene(s, t);
-            let bvh = build(&spheres, &tris);
-            check(&bvh, &spheres, &tris);
+            let mut sc = scene(s, t);
+            let mut bvh = build(&sc.bounded());
+            check(&bvh, &sc.bounded());
+            let before = sc.triangles.clone();
+            reorder_triangles(&mut bvh, &mut sc.triangles);
+            check(&bvh, &sc.bounded());
+            let sorted = |mut v: Vec<GpuTriangle>| {
+                v.sort_by_key(|t| t.order);
+                v
+            };
+            assert_eq!(sorted(before), sorted(sc.triangles.clone()), "reordering lost or added triangles");
+            let triangle_refs = bvh.prims.iter().filter_map(|&r| match PrimRef::decode(r) {
+                PrimRef::Triangle(k) => Some(k),
+                PrimRef::Sphere(_) => None,
+            });
+            assert!(triangle_refs.eq(0..t as u32), "leaves do not reference triangles in array order");
         }
     }
 
     #[test]
     fn empty_scene_has_no_nodes() {
-        let bvh = build(&[], &[]);
+        let sc = Scene::default();
+        let bvh = build(&sc.bounded());
         assert!(bvh.nodes.is_empty() && bvh.prims.is_empty());
-        check(&bvh, &[], &[]);
+        check(&bvh, &sc.bounded());
     }
 
     #[test]
     fn all_primitives_at_one_point_split_at_the_median() {
-        let spheres: Vec<_> = (0..10).map(|_| sphere([1.0, 2.0, 3.0], 0.5)).collect();
-        let tris: Vec<_> = (0..101).map(|_| tri([1.0, 2.0, 3.0], [1.0, 2.0, 3.0], [1.0, 2.0, 3.0])).collect();
-        let bvh = build(&spheres, &tris);
-        let leaves = check(&bvh, &spheres, &tris);
+        let mut sc = Scene { spheres: (0..10).map(|_| sphere([1.0, 2.0, 3.0], 0.5)).collect(), ..Scene::default() };
+        for _ in 0..101 {
+            sc.tri([1.0, 2.0, 3.0], [1.0, 2.0, 3.0], [1.0, 2.0, 3.0]);
+        }
+        let bvh = build(&sc.bounded());
+        let leaves = check(&bvh, &sc.bounded());
         assert!(leaves >= 111usize.div_ceil(MAX_LEAF));
     }
 

@@ -5,8 +5,8 @@ use glam::DVec3;
 use crate::bvh::{self, BvhNode};
 
 use crate::layout::{
-    GpuCamera, GpuLight, GpuMaterial, GpuPlane, GpuSphere, GpuTriangle, LIGHT_CASTS_SHADOWS, MATERIAL_CHECKER,
-    SceneHeader, TRIANGLE_HAS_NORMALS, UnknownTag, feature,
+    GpuCamera, GpuLight, GpuMaterial, GpuMesh, GpuPlane, GpuSphere, GpuTriangle, LIGHT_CASTS_SHADOWS, MATERIAL_CHECKER,
+    MESH_HAS_NORMALS, SceneHeader, UnknownTag, feature,
 };
 use crate::scene::{
     EpsilonMode, LightDesc, LightKind, MaterialDesc, MeshDesc, NO_CONE_CUTOFF, ObjectDesc, PlaneDesc, RenderSettings,
@@ -22,9 +22,15 @@ pub struct FlatScene {
     pub lights: Vec<GpuLight>,
     pub spheres: Vec<GpuSphere>,
     pub planes: Vec<GpuPlane>,
+    /// The triangles of every mesh, in the BVH's leaf order (`bvh::reorder_triangles`).
     pub triangles: Vec<GpuTriangle>,
-    /// The BVH over spheres and triangles (`bvh::build`; root first, empty without them). Not
-    /// uploaded to the GPU yet.
+    /// Vertex positions of every mesh (xyz, w = 1), indexed by the triangles.
+    pub vertices: Vec<[f32; 4]>,
+    /// Unit vertex normals beside `vertices` (w = 0; zero for a mesh without normals), or
+    /// empty when no mesh has them.
+    pub normals: Vec<[f32; 4]>,
+    pub meshes: Vec<GpuMesh>,
+    /// The BVH over spheres and triangles (`bvh::build`; root first, empty without them).
     pub bvh_nodes: Vec<BvhNode>,
     /// The primitive references its leaves point into (`bvh::PrimRef`).
     pub bvh_prims: Vec<u32>,
@@ -47,6 +53,9 @@ struct Primitives {
     spheres: Vec<GpuSphere>,
     planes: Vec<GpuPlane>,
     triangles: Vec<GpuTriangle>,
+    vertices: Vec<[f32; 4]>,
+    normals: Vec<[f32; 4]>,
+    meshes: Vec<GpuMesh>,
     object_names: Vec<String>,
 }
 
@@ -60,8 +69,13 @@ impl FlatScene {
         let material_names: Vec<String> = desc.materials.keys().cloned().collect();
         let materials = desc.materials.values().map(flat_material).collect();
         let lights = desc.lights.iter().map(flat_light).collect();
-        let primitives = flat_primitives(desc, &material_names);
-        let bvh = bvh::build(&primitives.spheres, &primitives.triangles);
+        let mut primitives = flat_primitives(desc, &material_names);
+        let mut bvh = bvh::build(&bvh::Bounded {
+            spheres: &primitives.spheres,
+            triangles: &primitives.triangles,
+            vertices: &primitives.vertices,
+        });
+        bvh::reorder_triangles(&mut bvh, &mut primitives.triangles);
         let mut flat = Self {
             header: flat_header(desc, settings, &primitives, material_names.len()),
             camera: build_camera(desc, settings),
@@ -70,6 +84,9 @@ impl FlatScene {
             spheres: primitives.spheres,
             planes: primitives.planes,
             triangles: primitives.triangles,
+            vertices: primitives.vertices,
+            normals: primitives.normals,
+            meshes: primitives.meshes,
             bvh_nodes: bvh.nodes,
             bvh_prims: bvh.prims,
             object_names: primitives.object_names,
@@ -88,8 +105,8 @@ impl FlatScene {
         for m in self.spheres.iter().map(|s| s.material).chain(self.planes.iter().map(|p| p.material)) {
             used[m as usize] = true;
         }
-        for t in &self.triangles {
-            used[t.material as usize] = true;
+        for m in &self.meshes {
+            used[m.material as usize] = true;
         }
         let nonzero = |c: [f32; 4]| c[..3].iter().any(|&v| v != 0.0);
         let any_geometry = !(self.spheres.is_empty() && self.planes.is_empty() && self.triangles.is_empty());
@@ -165,10 +182,27 @@ impl FlatScene {
 
     /// Decodes every stored tag the tracers switch on (the ε strategy, each light's kind), so
     /// that both refuse a scene holding a value no kind has instead of tracing it as another.
+    /// Also checks that every triangle's vertex and mesh indices are in range, which both
+    /// tracers then index without a check.
     pub fn check_tags(&self) -> Result<(), UnknownTag> {
         EpsilonMode::try_from(self.header.epsilon_mode)?;
         for l in &self.lights {
             LightKind::try_from(l.kind)?;
+        }
+        let (vertices, meshes) = (self.vertices.len(), self.meshes.len());
+        for t in &self.triangles {
+            for v in [t.va, t.vb, t.vc] {
+                if v as usize >= vertices {
+                    return Err(UnknownTag { what: "triangle vertex index", value: v });
+                }
+            }
+            if t.mesh as usize >= meshes {
+                return Err(UnknownTag { what: "triangle mesh index", value: t.mesh });
+            }
+        }
+        let normals = self.meshes.iter().any(|m| m.flags & MESH_HAS_NORMALS != 0);
+        if normals && self.normals.len() != vertices {
+            return Err(UnknownTag { what: "normal count (one per vertex)", value: self.normals.len() as u32 });
         }
         Ok(())
     }
@@ -209,7 +243,8 @@ impl FlatScene {
         });
         let s = self.spheres.iter().map(|s| s.center_radius.to_vec());
         let p = self.planes.iter().map(|p| p.normal_offset.to_vec());
-        let t = self.triangles.iter().map(|t| [t.a, t.b, t.c, t.na, t.nb, t.nc].concat());
+        let v = self.vertices.iter().map(|v| v.to_vec());
+        let n = self.normals.iter().map(|n| n.to_vec());
         fn first_bad(kind: &str, items: impl Iterator<Item = Vec<f32>>) -> Option<String> {
             let mut items = items;
             items.position(|v| v.iter().any(|x| !x.is_finite())).map(|i| format!("{kind}[{i}]"))
@@ -218,7 +253,8 @@ impl FlatScene {
             .or_else(|| first_bad("lights", l))
             .or_else(|| first_bad("spheres", s))
             .or_else(|| first_bad("planes", p))
-            .or_else(|| first_bad("triangles", t))
+            .or_else(|| first_bad("vertices", v))
+            .or_else(|| first_bad("normals", n))
     }
 }
 
@@ -315,8 +351,11 @@ fn flat_primitives(desc: &SceneDesc, material_names: &[String]) -> Primitives {
                     pad: [0; 2],
                 });
             }
-            ObjectDesc::Mesh(mesh) => mesh_triangles(mesh, material, object_id, &mut out.triangles),
+            ObjectDesc::Mesh(mesh) => mesh_triangles(mesh, material, object_id, &mut out),
         }
+    }
+    if out.meshes.iter().all(|m| m.flags & MESH_HAS_NORMALS == 0) {
+        out.normals = Vec::new();
     }
     out
 }
@@ -325,29 +364,35 @@ fn flat_primitives(desc: &SceneDesc, material_names: &[String]) -> Primitives {
 /// are never hit, as validation promises: in the ray's sheared frame their edge functions are
 /// rounding noise, and one on a line through the eye would be "hit" by a quarter of all camera
 /// rays, with a 0/0 normal.
-fn mesh_triangles(mesh: &MeshDesc, material: u32, object_id: u32, triangles: &mut Vec<GpuTriangle>) {
+fn mesh_triangles(mesh: &MeshDesc, material: u32, object_id: u32, out: &mut Primitives) {
     let MeshDesc { vertices, triangles: tris, normals, .. } = mesh;
+    let first = out.vertices.len() as u32;
+    out.vertices.extend(vertices.iter().map(|&v| vec4(DVec3::from(v), 1.0)));
+    // Every vertex gets a normal slot, so that one index reaches both; zero without normals.
+    match normals {
+        Some(n) => out.normals.extend(n.iter().map(|&n| vec4(DVec3::from(n).normalize(), 0.0))),
+        None => out.normals.extend(std::iter::repeat_n([0.0; 4], vertices.len())),
+    }
+    let mesh_index = out.meshes.len() as u32;
+    out.meshes.push(GpuMesh {
+        material,
+        object_id,
+        flags: if normals.is_some() { MESH_HAS_NORMALS } else { 0 },
+        pad: 0,
+    });
+    let stored = &out.vertices;
+    let at = |k: u32| DVec3::from_array([0, 1, 2].map(|c| f64::from(stored[(first + k) as usize][c])));
     for t in tris {
-        let [a, b, c] = t.map(|k| DVec3::from(vertices[k as usize]));
-        let f = |v: DVec3| DVec3::from_array(v.to_array().map(|x| f64::from(x as f32)));
-        if (f(b) - f(a)).cross(f(c) - f(a)) == DVec3::ZERO {
+        let [a, b, c] = t.map(at);
+        if (b - a).cross(c - a) == DVec3::ZERO {
             continue;
         }
-        let (ns, flags) = match normals {
-            Some(n) => (t.map(|k| DVec3::from(n[k as usize]).normalize()), TRIANGLE_HAS_NORMALS),
-            None => ([DVec3::ZERO; 3], 0),
-        };
-        triangles.push(GpuTriangle {
-            a: vec4(a, 1.0),
-            b: vec4(b, 1.0),
-            c: vec4(c, 1.0),
-            na: vec4(ns[0], 0.0),
-            nb: vec4(ns[1], 0.0),
-            nc: vec4(ns[2], 0.0),
-            material,
-            object_id,
-            flags,
-            pad: 0,
+        out.triangles.push(GpuTriangle {
+            va: first + t[0],
+            vb: first + t[1],
+            vc: first + t[2],
+            mesh: mesh_index,
+            order: out.triangles.len() as u32,
         });
     }
 }
@@ -363,6 +408,8 @@ fn flat_header(desc: &SceneDesc, settings: &RenderSettings, p: &Primitives, mate
         sphere_count: p.spheres.len() as u32,
         plane_count: p.planes.len() as u32,
         triangle_count: p.triangles.len() as u32,
+        vertex_count: p.vertices.len() as u32,
+        mesh_count: p.meshes.len() as u32,
         light_count: desc.lights.len() as u32,
         material_count: material_count as u32,
         features: 0,
@@ -370,8 +417,6 @@ fn flat_header(desc: &SceneDesc, settings: &RenderSettings, p: &Primitives, mate
         seed: settings.seed,
         epsilon: settings.epsilon as f32,
         bailout: settings.bailout as f32,
-        pad_a: 0,
-        pad_b: 0,
         ambient: rgb4(desc.world.ambient),
         background: rgb4(desc.world.background),
     }

@@ -24,8 +24,8 @@ pub const LIGHT_CASTS_SHADOWS: u32 = 1;
 pub const MATERIAL_PHONG: u32 = 1;
 pub const MATERIAL_CHECKER: u32 = 2;
 
-/// `GpuTriangle::flags` bits.
-pub const TRIANGLE_HAS_NORMALS: u32 = 1;
+/// `GpuMesh::flags` bits.
+pub const MESH_HAS_NORMALS: u32 = 1;
 
 /// Epsilon strategies (`SceneHeader::epsilon_mode`).
 pub const EPS_TMIN: u32 = 0;
@@ -194,8 +194,9 @@ pub struct SceneHeader {
     pub seed: u32,
     pub epsilon: f32,
     pub bailout: f32,
-    pub pad_a: u32,
-    pub pad_b: u32,
+    /// Entries of the vertex (and, where a mesh has them, normal) buffer.
+    pub vertex_count: u32,
+    pub mesh_count: u32,
     /// Global ambient I_a (rgb, w unused).
     pub ambient: [f32; 4],
     /// Radiance of missed rays (rgb, w unused).
@@ -271,16 +272,25 @@ pub struct GpuPlane {
     pub pad: [u32; 2],
 }
 
+/// One triangle of an indexed mesh: three indices into the vertex buffer (positions, and
+/// normals where its mesh has them), the index of its mesh, and its place in scene order.
+/// 20 bytes; the vertices are shared with the neighbouring triangles.
 #[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Pod, Zeroable)]
 pub struct GpuTriangle {
-    pub a: [f32; 4],
-    pub b: [f32; 4],
-    pub c: [f32; 4],
-    /// Unit vertex normals (used when `TRIANGLE_HAS_NORMALS` is set).
-    pub na: [f32; 4],
-    pub nb: [f32; 4],
-    pub nc: [f32; 4],
+    pub va: u32,
+    pub vb: u32,
+    pub vc: u32,
+    pub mesh: u32,
+    /// Its index among the scene's triangles before the BVH put them in leaf order: of two
+    /// hits at equal t the smaller wins, so the result does not depend on the stored order.
+    pub order: u32,
+}
+
+/// What the triangles of one mesh share: material, object and whether vertex normals exist.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Pod, Zeroable)]
+pub struct GpuMesh {
     pub material: u32,
     pub object_id: u32,
     pub flags: u32,

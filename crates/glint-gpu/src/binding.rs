@@ -24,11 +24,14 @@ pub enum Binding {
     Probe = 10,
     BvhNodes = 11,
     BvhPrims = 12,
+    Vertices = 13,
+    Normals = 14,
+    Meshes = 15,
 }
 
 impl Binding {
     /// Every binding, ascending.
-    pub const ALL: [Self; 13] = [
+    pub const ALL: [Self; 16] = [
         Self::Header,
         Self::Camera,
         Self::Tile,
@@ -42,6 +45,9 @@ impl Binding {
         Self::Probe,
         Self::BvhNodes,
         Self::BvhPrims,
+        Self::Vertices,
+        Self::Normals,
+        Self::Meshes,
     ];
 
     /// Its `@binding` number.
@@ -65,6 +71,9 @@ impl Binding {
             Self::Probe => "probe_out",
             Self::BvhNodes => "bvh_nodes",
             Self::BvhPrims => "bvh_prims",
+            Self::Vertices => "vertices",
+            Self::Normals => "normals",
+            Self::Meshes => "meshes",
         }
     }
 

@@ -26,6 +26,9 @@ pub struct SceneBuffers {
     triangles: wgpu::Buffer,
     bvh_nodes: wgpu::Buffer,
     bvh_prims: wgpu::Buffer,
+    vertices: wgpu::Buffer,
+    normals: wgpu::Buffer,
+    meshes: wgpu::Buffer,
     pub output: wgpu::Buffer,
     pub stats: wgpu::Buffer,
     pub probe: wgpu::Buffer,
@@ -85,6 +88,8 @@ fn check_limits(ctx: &GpuContext, scene: &FlatScene, bvh: bool) -> Result<u64, G
     };
     check(&format!("the {}x{} output image", h.width, h.height), output_size)?;
     check("the triangle buffer", size_of_val(scene.triangles.as_slice()) as u64)?;
+    check("the vertex buffer", size_of_val(scene.vertices.as_slice()) as u64)?;
+    check("the normal buffer", size_of_val(scene.normals.as_slice()) as u64)?;
     check("the sphere buffer", size_of_val(scene.spheres.as_slice()) as u64)?;
     check("the BVH node buffer", size_of_val(scene.bvh_nodes.as_slice()) as u64)?;
     check("the BVH primitive buffer", size_of_val(scene.bvh_prims.as_slice()) as u64)?;
@@ -108,6 +113,9 @@ impl SceneBuffers {
             triangles: storage(ctx, "glint triangles", &scene.triangles),
             bvh_nodes: storage(ctx, "glint BVH nodes", &scene.bvh_nodes),
             bvh_prims: storage(ctx, "glint BVH primitives", &scene.bvh_prims),
+            vertices: storage(ctx, "glint vertices", &scene.vertices),
+            normals: storage(ctx, "glint normals", &scene.normals),
+            meshes: storage(ctx, "glint meshes", &scene.meshes),
             output: ctx.device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("glint output"),
                 size: output_size,
@@ -147,6 +155,9 @@ impl SceneBuffers {
             Binding::Probe => &self.probe,
             Binding::BvhNodes => &self.bvh_nodes,
             Binding::BvhPrims => &self.bvh_prims,
+            Binding::Vertices => &self.vertices,
+            Binding::Normals => &self.normals,
+            Binding::Meshes => &self.meshes,
         }
     }
 

@@ -27,6 +27,11 @@ pub enum GpuError {
          binding table (glint_gpu::binding::Binding)"
     )]
     UnknownBinding { group: u32, binding: u32, name: String },
+    #[error(
+        "the shader variant [{variant}] binds {needed} storage buffers, more than this device's \
+         max_storage_buffers_per_shader_stage ({limit})"
+    )]
+    TooManyStorageBuffers { variant: String, needed: u32, limit: u32 },
     #[error("{what} needs {needed} bytes, more than this GPU allows ({limit} bytes, limit {limit_name})")]
     TooLarge { what: String, needed: u64, limit: u64, limit_name: &'static str },
     #[error(

@@ -86,32 +86,31 @@ impl ShaderKey {
     }
 
     /// The storage buffers the variant binds (a test checks this against the composed module):
-    /// materials, lights, output and stats always, one per primitive kind compiled in, the
-    /// probe record, and the BVH's two.
+    /// materials, lights, output and stats always, one per sphere or plane kind compiled in,
+    /// four for triangles (triangles, vertices, normals, meshes), the probe record, and the
+    /// BVH's two.
     pub fn storage_buffers(&self) -> u32 {
-        let kinds = [feature::SPHERES, feature::PLANES, feature::TRIANGLES].iter().filter(|&&f| self.features & f != 0);
-        4 + kinds.count() as u32 + u32::from(self.probe) + if self.bvh { 2 } else { 0 }
+        let on = |f: u32| u32::from(self.features & f != 0);
+        4 + on(feature::SPHERES)
+            + on(feature::PLANES)
+            + 4 * on(feature::TRIANGLES)
+            + u32::from(self.probe)
+            + if self.bvh { 2 } else { 0 }
     }
 
-    /// The same variant, with brute force instead of the BVH if the BVH's two extra storage
-    /// buffers would exceed `max_storage_buffers_per_shader_stage` (8 in wgpu's default limits,
-    /// which eframe's device has). Brute force keeps its primitive limit and the canary.
-    pub fn within_storage_limit(self, max_storage_buffers: u32) -> Self {
-        if self.bvh && self.storage_buffers() > max_storage_buffers {
-            // Once per process: the viewer asks for a variant at every edit and drag.
-            static WARNED: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
-            if !WARNED.swap(true, std::sync::atomic::Ordering::Relaxed) {
-                log::warn!(
-                    "the BVH variant [{}] needs {} storage buffers, more than this device's \
-                     max_storage_buffers_per_shader_stage ({max_storage_buffers}): tracing by brute force",
-                    self.describe(),
-                    self.storage_buffers()
-                );
-            }
-            Self { bvh: false, ..self }
-        } else {
-            self
+    /// The variant, if this device binds as many storage buffers per stage as it needs (wgpu's
+    /// default limit is 8; `context.rs` and the viewer ask for the adapter's own), else an
+    /// error naming the limit.
+    pub fn check_storage_limit(self, max_storage_buffers: u32) -> Result<Self, GpuError> {
+        let needed = self.storage_buffers();
+        if needed > max_storage_buffers {
+            return Err(GpuError::TooManyStorageBuffers {
+                variant: self.describe(),
+                needed,
+                limit: max_storage_buffers,
+            });
         }
+        Ok(self)
     }
 
     /// naga_oil shader defs: one boolean per feature present, `RECURSION` when the variant
@@ -302,8 +301,9 @@ mod tests {
                     .filter(|(_, g)| g.binding.is_some() && matches!(g.space, naga::AddressSpace::Storage { .. }))
                     .count();
                 assert_eq!(key.storage_buffers() as usize, storage, "[{}]", key.describe());
-                let fitted = key.within_storage_limit(8);
-                assert!(fitted.storage_buffers() <= 8 || !fitted.bvh, "[{}]", key.describe());
+                let error = key.check_storage_limit(storage as u32 - 1).expect_err("one buffer too many");
+                assert!(error.to_string().contains("max_storage_buffers_per_shader_stage"), "{error}");
+                assert_eq!(key.check_storage_limit(storage as u32).ok(), Some(key));
             }
         }
     }

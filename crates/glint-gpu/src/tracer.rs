@@ -92,7 +92,7 @@ impl GpuTracer {
         check_tile(&self.ctx, options.tile)?;
         let key = ShaderKey::for_scene(scene, options.specialise)
             .with_accel(scene, options.accel)
-            .within_storage_limit(self.ctx.limits.max_storage_buffers_per_shader_stage);
+            .check_storage_limit(self.ctx.limits.max_storage_buffers_per_shader_stage)?;
         let (pipeline, mut pipeline_time) = self.pipeline(key)?;
         let upload_start = Instant::now();
         let buffers = SceneBuffers::upload(&self.ctx, scene, key.bvh)?;
@@ -115,7 +115,7 @@ impl GpuTracer {
     /// by the probe variant of the same shader (the GPU twin of `glint_core::probe_pixel`).
     pub fn probe_pixel(&self, scene: &FlatScene, x: u32, y: u32) -> Result<(ProbeRecord, u32), GpuError> {
         let key = ShaderKey { probe: true, ..ShaderKey::for_scene(scene, true).with_accel(scene, Accel::default()) }
-            .within_storage_limit(self.ctx.limits.max_storage_buffers_per_shader_stage);
+            .check_storage_limit(self.ctx.limits.max_storage_buffers_per_shader_stage)?;
         let (pipeline, _) = self.pipeline(key)?;
         // The scene's own spp: sample 0 is then jittered in its stratum exactly as the CPU's.
         let buffers = SceneBuffers::upload(&self.ctx, scene, key.bvh)?;

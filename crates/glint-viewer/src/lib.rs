@@ -7,6 +7,7 @@ mod automation;
 mod camera_control;
 mod comparison;
 mod cpu_worker;
+mod device;
 mod dialogs;
 mod document;
 mod error;
@@ -27,6 +28,7 @@ mod widgets;
 mod worker;
 
 pub use app::{ViewerApp, ViewerOptions};
+pub use device::with_tracer_limits;
 pub use error::ViewerError;
 pub use export::ExportView;
 pub use layout::Tab;
@@ -52,6 +54,10 @@ fn native_options(renderer: eframe::Renderer) -> eframe::NativeOptions {
             .with_inner_size(WINDOW_SIZE)
             .with_title("Glint viewer")
             .with_drag_and_drop(true),
+        wgpu_options: egui_wgpu::WgpuConfiguration {
+            wgpu_setup: with_tracer_limits(egui_wgpu::WgpuConfiguration::default().wgpu_setup),
+            ..Default::default()
+        },
         ..Default::default()
     }
 }

@@ -14,8 +14,8 @@
 use glam::DVec3;
 
 use super::intersect::{
-    Hit, Prim, RayShear, all_zero, cross_surface, intersect_plane, intersect_sphere, intersect_triangle,
-    planes_transmittance, ray_shear, sphere_roots,
+    Hit, Prim, RayShear, all_zero, bound, cross_surface, intersect_plane, intersect_sphere, intersect_triangle,
+    planes_transmittance, ray_shear, replaces, sphere_roots, triangle_corners,
 };
 use super::{Ray, TraceContext, v3};
 use crate::bvh::{BvhNode, PrimRef};
@@ -80,30 +80,6 @@ impl SlabRay {
         let slack = pad + GAMMA3 * t_hi.abs().min(1e300);
         (t0 <= t1 && t0 <= t_hi + slack && t1 >= t_lo - slack).then_some(t0)
     }
-}
-
-/// The rank of a kind in brute force's order.
-fn rank(prim: Prim) -> u32 {
-    match prim {
-        Prim::Sphere => 0,
-        Prim::Plane => 1,
-        Prim::Triangle => 2,
-    }
-}
-
-/// Whether a hit at t on (prim, index) replaces `best`: brute force's result is the smallest t,
-/// and of equal t the first in its order.
-fn replaces(t: f64, prim: Prim, index: u32, best: &Option<Hit>) -> bool {
-    match best {
-        None => true,
-        Some(b) => t < b.t || (t == b.t && (rank(prim), index) < (rank(b.prim), b.index)),
-    }
-}
-
-/// The bound passed to the primitive tests: `t_max` until a hit, then just above the best t,
-/// so that an equal t gets through their strict `t < t_max` and the tie rule decides.
-fn bound(best: &Option<Hit>, t_max: f64) -> f64 {
-    best.map_or(t_max, |b| b.t.next_up())
 }
 
 /// Calls `visit` on every primitive reference in a leaf whose box the ray meets within
@@ -176,16 +152,15 @@ pub fn closest_hit(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f64) -> Opt
                 PrimRef::Sphere(i) if spheres_on => {
                     let cr = scene.spheres[i as usize].center_radius;
                     if let Some(t) = intersect_sphere(v3(cr), f64::from(cr[3]), ray, t_min, limit)
-                        && replaces(t, Prim::Sphere, i, &b)
+                        && replaces(scene, t, Prim::Sphere, i, &b)
                     {
                         best.set(Some(Hit { t, prim: Prim::Sphere, index: i, bu: 0.0, bv: 0.0 }));
                     }
                 }
                 PrimRef::Triangle(i) if triangles_on => {
-                    let tri = &scene.triangles[i as usize];
-                    if let Some((t, bu, bv)) =
-                        intersect_triangle(v3(tri.a), v3(tri.b), v3(tri.c), ray, &shear, t_min, limit)
-                        && replaces(t, Prim::Triangle, i, &b)
+                    let [a, b0, c] = triangle_corners(scene, &scene.triangles[i as usize]);
+                    if let Some((t, bu, bv)) = intersect_triangle(a, b0, c, ray, &shear, t_min, limit)
+                        && replaces(scene, t, Prim::Triangle, i, &b)
                     {
                         best.set(Some(Hit { t, prim: Prim::Triangle, index: i, bu, bv }));
                     }
@@ -201,7 +176,7 @@ pub fn closest_hit(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f64) -> Opt
             let no = p.normal_offset;
             let i = i as u32;
             if let Some(t) = intersect_plane(v3(no), f64::from(no[3]), ray, t_min, bound(&best, t_max))
-                && replaces(t, Prim::Plane, i, &best)
+                && replaces(scene, t, Prim::Plane, i, &best)
             {
                 best = Some(Hit { t, prim: Prim::Plane, index: i, bu: 0.0, bv: 0.0 });
             }
@@ -252,11 +227,13 @@ pub fn shadow_transmittance(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f6
                 }
                 PrimRef::Triangle(i) if triangles_on => {
                     let tri = &scene.triangles[i as usize];
-                    if intersect_triangle(v3(tri.a), v3(tri.b), v3(tri.c), ray, &shear, t_min, t_max).is_some() {
-                        if opaque(tri.material) {
+                    let [a, b, c] = triangle_corners(scene, tri);
+                    if intersect_triangle(a, b, c, ray, &shear, t_min, t_max).is_some() {
+                        let material = scene.meshes[tri.mesh as usize].material;
+                        if opaque(material) {
                             return false;
                         }
-                        crossings.push(Crossing { key: (p, 0), material: tri.material });
+                        crossings.push(Crossing { key: (p, 0), material });
                     }
                 }
                 PrimRef::Sphere(_) | PrimRef::Triangle(_) => {}

@@ -4,7 +4,8 @@
 use glam::DVec3;
 
 use super::{Ray, TraceContext, Traversal, v3};
-use crate::layout::{GpuSphere, GpuTriangle, TRIANGLE_HAS_NORMALS, feature};
+use crate::FlatScene;
+use crate::layout::{GpuSphere, GpuTriangle, MESH_HAS_NORMALS, feature};
 
 /// The kind of primitive a hit is on. WGSL stores it as the `PRIM_*` constants (checked by the
 /// reflection test); the CPU matches on the enum, exhaustively.
@@ -173,8 +174,46 @@ pub fn intersect_triangle(
     (t > t_min && t < t_max).then_some((t, v * inv, w * inv))
 }
 
-/// The nearest hit in (t_min, t_max). Ties go to the primitive tested first (spheres, planes,
-/// triangles, each in index order), the same on both tracers. Through the BVH (`Traversal::Bvh`) the CPU finds
+/// The rank of a kind in brute force's order.
+pub fn rank(prim: Prim) -> u32 {
+    match prim {
+        Prim::Sphere => 0,
+        Prim::Plane => 1,
+        Prim::Triangle => 2,
+    }
+}
+
+/// The place of a primitive in scene order among its kind: its index for spheres and planes,
+/// its `order` for triangles (which the BVH stores in leaf order).
+pub fn tie_order(scene: &FlatScene, prim: Prim, index: u32) -> u32 {
+    match prim {
+        Prim::Sphere | Prim::Plane => index,
+        Prim::Triangle => scene.triangles[index as usize].order,
+    }
+}
+
+/// Whether a hit at t on (prim, index) replaces `best`: the smallest t, and of equal t the
+/// first in scene order (spheres, planes, triangles, each in the order of the scene file).
+pub fn replaces(scene: &FlatScene, t: f64, prim: Prim, index: u32, best: &Option<Hit>) -> bool {
+    match best {
+        None => true,
+        Some(b) => {
+            t < b.t
+                || (t == b.t
+                    && (rank(prim), tie_order(scene, prim, index)) < (rank(b.prim), tie_order(scene, b.prim, b.index)))
+        }
+    }
+}
+
+/// The bound passed to the primitive tests: `t_max` until a hit, then just above the best t,
+/// so that an equal t gets through their strict `t < t_max` and the tie rule decides.
+pub fn bound(best: &Option<Hit>, t_max: f64) -> f64 {
+    best.map_or(t_max, |b| b.t.next_up())
+}
+
+/// The nearest hit in (t_min, t_max). Ties go to the first in scene order (`replaces`; spheres
+/// and planes are tested in that order, triangles are stored in the BVH's), the same on both
+/// tracers. Through the BVH (`Traversal::Bvh`) the CPU finds
 /// the same hit through the BVH (`cpu::bvh`).
 pub fn closest_hit(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
     match ctx.traversal {
@@ -205,9 +244,12 @@ pub fn closest_hit(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f64) -> Opt
     if ctx.has(feature::TRIANGLES) && !scene.triangles.is_empty() {
         let shear = ray_shear(ray.dir);
         for (i, tri) in scene.triangles.iter().enumerate() {
-            if let Some((t, bu, bv)) = intersect_triangle(v3(tri.a), v3(tri.b), v3(tri.c), ray, &shear, t_min, t_far) {
-                t_far = t;
-                best = Some(Hit { t, prim: Prim::Triangle, index: i as u32, bu, bv });
+            let [a, b, c] = triangle_corners(scene, tri);
+            let i = i as u32;
+            if let Some((t, bu, bv)) = intersect_triangle(a, b, c, ray, &shear, t_min, bound(&best, t_max))
+                && replaces(scene, t, Prim::Triangle, i, &best)
+            {
+                best = Some(Hit { t, prim: Prim::Triangle, index: i, bu, bv });
             }
         }
     }
@@ -284,8 +326,9 @@ pub fn shadow_transmittance(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f6
     if ctx.has(feature::TRIANGLES) && !scene.triangles.is_empty() {
         let shear = ray_shear(ray.dir);
         for tri in &scene.triangles {
-            if intersect_triangle(v3(tri.a), v3(tri.b), v3(tri.c), ray, &shear, t_min, t_max).is_some() {
-                tr = cross_surface(ctx, tr, tri.material);
+            let [a, b, c] = triangle_corners(scene, tri);
+            if intersect_triangle(a, b, c, ray, &shear, t_min, t_max).is_some() {
+                tr = cross_surface(ctx, tr, scene.meshes[tri.mesh as usize].material);
                 if all_zero(tr) {
                     return tr;
                 }
@@ -295,13 +338,19 @@ pub fn shadow_transmittance(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f6
     tr
 }
 
+/// A triangle's three vertex positions, widened from the shared f32 vertex buffer.
+pub fn triangle_corners(scene: &FlatScene, tri: &GpuTriangle) -> [DVec3; 3] {
+    [tri.va, tri.vb, tri.vc].map(|i| v3(scene.vertices[i as usize]))
+}
+
 /// Unit shading normal of a triangle hit: interpolated vertex normals where the mesh has them
 /// (falling back to the geometric normal if they cancel), else the geometric normal.
-pub fn triangle_shading_normal(tri: &GpuTriangle, bu: f64, bv: f64, ng: DVec3) -> DVec3 {
-    if tri.flags & TRIANGLE_HAS_NORMALS == 0 {
+pub fn triangle_shading_normal(scene: &FlatScene, tri: &GpuTriangle, bu: f64, bv: f64, ng: DVec3) -> DVec3 {
+    if scene.meshes[tri.mesh as usize].flags & MESH_HAS_NORMALS == 0 {
         return ng;
     }
-    let n = (1.0 - bu - bv) * v3(tri.na) + bu * v3(tri.nb) + bv * v3(tri.nc);
+    let [na, nb, nc] = [tri.va, tri.vb, tri.vc].map(|i| v3(scene.normals[i as usize]));
+    let n = (1.0 - bu - bv) * na + bu * nb + bv * nc;
     let len = n.length();
     if len > 0.0 { n / len } else { ng }
 }

@@ -7,7 +7,7 @@
 use glam::DVec3;
 
 use super::camera::{camera_ray, sample_offset};
-use super::intersect::{FAR, Hit, Prim, all_zero, closest_hit, triangle_shading_normal};
+use super::intersect::{FAR, Hit, Prim, all_zero, closest_hit, triangle_corners, triangle_shading_normal};
 use super::offset::spawn_ray;
 use super::shade::{Breakdown, Surface, shade_local};
 use super::{Ray, RayCounts, TraceContext, v3};
@@ -34,11 +34,12 @@ pub fn surface_at(ctx: &TraceContext, ray: &Ray, hit: &Hit) -> Surface {
         }
         Prim::Triangle => {
             let tri = &scene.triangles[hit.index as usize];
-            let (v0, v1, v2) = (v3(tri.a), v3(tri.b), v3(tri.c));
+            let [v0, v1, v2] = triangle_corners(scene, tri);
             let ng = (v1 - v0).cross(v2 - v0).normalize();
-            let ns = triangle_shading_normal(tri, hit.bu, hit.bv, ng);
+            let ns = triangle_shading_normal(scene, tri, hit.bu, hit.bv, ng);
             let p_surface = if robust { (1.0 - hit.bu - hit.bv) * v0 + hit.bu * v1 + hit.bv * v2 } else { p };
-            Surface { p, p_surface, ng, ns, material: tri.material, object_id: tri.object_id }
+            let mesh = &scene.meshes[tri.mesh as usize];
+            Surface { p, p_surface, ng, ns, material: mesh.material, object_id: mesh.object_id }
         }
     }
 }
@@ -162,7 +163,7 @@ pub fn object_id(ctx: &TraceContext, hit: &Hit) -> u32 {
     match hit.prim {
         Prim::Sphere => s.spheres[hit.index as usize].object_id,
         Prim::Plane => s.planes[hit.index as usize].object_id,
-        Prim::Triangle => s.triangles[hit.index as usize].object_id,
+        Prim::Triangle => s.meshes[s.triangles[hit.index as usize].mesh as usize].object_id,
     }
 }
 
