@@ -28,28 +28,40 @@ const DIR_ZERO: f32 = 1e-30;
 // Stand-in for an infinite slab distance.
 const SLAB_INF: f32 = 3e38;
 
+// The per-ray part of the slab test, with the padding relative to the larger of the origin's
+// and the whole scene's (the root box's) magnitude: at least what any box of the scene needs.
 struct SlabRay {
     origin: vec3<f32>,
     inv: vec3<f32>,
     parallel: vec3<bool>,
-    origin_scale: f32,
+    pad: f32,
+}
+
+// The largest magnitude of a box's coordinates.
+fn box_scale(node: BvhNode) -> f32 {
+    let m = max(abs(node.min), abs(node.max));
+    return max(m.x, max(m.y, m.z));
 }
 
 // The CPU's SlabRay::new.
-fn slab_ray(ray: Ray) -> SlabRay {
+fn slab_ray(ray: Ray, root: BvhNode) -> SlabRay {
     let parallel = abs(ray.dir) < vec3<f32>(DIR_ZERO);
     let inv = select(vec3<f32>(1.0) / ray.dir, vec3<f32>(0.0), parallel);
     let o = abs(ray.origin);
-    return SlabRay(ray.origin, inv, parallel, max(o.x, max(o.y, o.z)));
+    let scale = max(box_scale(root), max(o.x, max(o.y, o.z)));
+    return SlabRay(ray.origin, inv, parallel, BOX_PAD * scale + BOX_PAD_ABS);
+}
+
+// How far beyond t_hi a box may start and still be entered: the padding and the rounding of
+// the slab distances.
+fn slack(s: SlabRay, t_hi: f32) -> f32 {
+    return s.pad + BOX_PAD * min(abs(t_hi), 1e30);
 }
 
 // The entry distance into the padded box if the ray meets it within [t_lo, t_hi].
 fn enter(s: SlabRay, node: BvhNode, t_lo: f32, t_hi: f32) -> MaybeT {
-    let m = max(abs(node.min), abs(node.max));
-    let scale = max(s.origin_scale, max(m.x, max(m.y, m.z)));
-    let pad = BOX_PAD * scale + BOX_PAD_ABS;
-    let lo = node.min - vec3<f32>(pad);
-    let hi = node.max + vec3<f32>(pad);
+    let lo = node.min - vec3<f32>(s.pad);
+    let hi = node.max + vec3<f32>(s.pad);
     if any(s.parallel & ((s.origin < lo) | (s.origin > hi))) {
         return MaybeT(0.0, false);
     }
@@ -59,14 +71,15 @@ fn enter(s: SlabRay, node: BvhNode, t_lo: f32, t_hi: f32) -> MaybeT {
     let far = select(max(a, b) * (1.0 + BOX_PAD), vec3<f32>(SLAB_INF), s.parallel);
     let t0 = max(near.x, max(near.y, near.z));
     let t1 = min(far.x, min(far.y, far.z));
-    let slack = pad + BOX_PAD * min(abs(t_hi), 1e30);
-    return MaybeT(t0, t0 <= t1 && t0 <= t_hi + slack && t1 >= t_lo - slack);
+    let sl = slack(s, t_hi);
+    return MaybeT(t0, t0 <= t1 && t0 <= t_hi + sl && t1 >= t_lo - sl);
 }
 
 // Pushes the children at `l` and `l + 1` that the ray enters within [t_min, t_hi], the farther
 // first so that the nearer is popped first; a full stack raises STATUS_BVH_STACK_OVERFLOW.
 fn push_children(
     stack: ptr<function, array<u32, BVH_STACK_SIZE>>,
+    stack_t: ptr<function, array<f32, BVH_STACK_SIZE>>,
     sp: ptr<function, u32>,
     slab: SlabRay,
     l: u32,
@@ -76,20 +89,24 @@ fn push_children(
     let tl = enter(slab, bvh_nodes[l], t_min, t_hi);
     let tr_ = enter(slab, bvh_nodes[l + 1u], t_min, t_hi);
     var first = l + 1u;
+    var first_t = tr_.t;
     var second = l;
+    var second_t = tl.t;
     var n = 0u;
     if tl.ok && tr_.ok {
         n = 2u;
         if tl.t > tr_.t {
             first = l;
+            first_t = tl.t;
             second = l + 1u;
+            second_t = tr_.t;
         }
     } else if tl.ok {
         n = 1u;
-        second = l;
     } else if tr_.ok {
         n = 1u;
         second = l + 1u;
+        second_t = tr_.t;
     }
     if *sp + n > BVH_STACK_SIZE {
         status |= STATUS_BVH_STACK_OVERFLOW;
@@ -97,9 +114,12 @@ fn push_children(
     }
     if n == 2u {
         (*stack)[*sp] = first;
+        (*stack_t)[*sp] = first_t;
         (*stack)[*sp + 1u] = second;
+        (*stack_t)[*sp + 1u] = second_t;
     } else if n == 1u {
         (*stack)[*sp] = second;
+        (*stack_t)[*sp] = second_t;
     }
     *sp += n;
 }
@@ -108,18 +128,27 @@ fn push_children(
 // visiting order).
 fn closest_hit(ray: Ray, t_min: f32, t_max: f32) -> Hit {
     var best = Hit(t_max, PRIM_NONE, 0u, 0.0, 0.0);
-    let slab = slab_ray(ray);
+    let root = bvh_nodes[0];
+    let slab = slab_ray(ray, root);
 #ifdef TRIANGLES
     let sh = ray_shear(ray.dir);
 #endif
     var stack: array<u32, BVH_STACK_SIZE>;
+    var stack_t: array<f32, BVH_STACK_SIZE>;
     var sp = 0u;
-    if enter(slab, bvh_nodes[0], t_min, t_max).ok {
+    let root_t = enter(slab, root, t_min, t_max);
+    if root_t.ok {
         stack[0] = 0u;
+        stack_t[0] = root_t.t;
         sp = 1u;
     }
     while sp > 0u {
         sp -= 1u;
+        // A hit found since the node was pushed may now be nearer than the node's box.
+        let t_hi = bound(best, t_max);
+        if stack_t[sp] > t_hi + slack(slab, t_hi) {
+            continue;
+        }
         let node = bvh_nodes[stack[sp]];
         if node.count > 0u {
             for (var k = 0u; k < node.count; k++) {
@@ -145,7 +174,7 @@ fn closest_hit(ray: Ray, t_min: f32, t_max: f32) -> Hit {
             }
             continue;
         }
-        push_children(&stack, &sp, slab, node.left_first, t_min, bound(best, t_max));
+        push_children(&stack, &stack_t, &sp, slab, node.left_first, t_min, t_hi);
     }
 #ifdef PLANES
     for (var i = 0u; i < header.plane_count; i++) {
@@ -163,14 +192,18 @@ fn closest_hit(ray: Ray, t_min: f32, t_max: f32) -> Hit {
 // the product of k_t over every surface crossed (in visiting order).
 fn shadow_transmittance(ray: Ray, t_min: f32, t_max: f32) -> vec3<f32> {
     var tr = vec3<f32>(1.0);
-    let slab = slab_ray(ray);
+    let root = bvh_nodes[0];
+    let slab = slab_ray(ray, root);
 #ifdef TRIANGLES
     let sh = ray_shear(ray.dir);
 #endif
     var stack: array<u32, BVH_STACK_SIZE>;
+    var stack_t: array<f32, BVH_STACK_SIZE>;
     var sp = 0u;
-    if enter(slab, bvh_nodes[0], t_min, t_max).ok {
+    let root_t = enter(slab, root, t_min, t_max);
+    if root_t.ok {
         stack[0] = 0u;
+        stack_t[0] = root_t.t;
         sp = 1u;
     }
     while sp > 0u {
@@ -202,7 +235,7 @@ fn shadow_transmittance(ray: Ray, t_min: f32, t_max: f32) -> vec3<f32> {
             }
             continue;
         }
-        push_children(&stack, &sp, slab, node.left_first, t_min, t_max);
+        push_children(&stack, &stack_t, &sp, slab, node.left_first, t_min, t_max);
     }
 #ifdef PLANES
     tr = planes_transmittance(tr, ray, t_min, t_max);

@@ -65,7 +65,11 @@ const TWINS: [(&str, &str, &str, &str); 9] = [
 
 /// Functions only the GPU side has, and why.
 const GPU_ONLY: [(&str, &str, &str); 8] = [
-    ("bvh.wgsl", "push_children", "the CPU pushes onto a Vec inside traverse; WGSL passes its fixed stack by pointer"),
+    (
+        "bvh.wgsl",
+        "push_children",
+        "the CPU pushes onto a Vec inside walk; WGSL passes its fixed stacks (nodes, entry distances) by pointer",
+    ),
     ("bvh.wgsl", "slab_ray", "the CPU's SlabRay::new: WGSL has no methods"),
     ("trace.wgsl", "push_ray", "the explicit ray stack: WGSL has no recursion"),
     ("trace.wgsl", "add_stat", "64-bit ray counters built from u32 atomics"),
@@ -80,8 +84,9 @@ const GPU_ONLY: [(&str, &str, &str); 8] = [
 ];
 
 /// Functions only the CPU side has, and why.
-const CPU_ONLY: [(&str, &str, &str); 6] = [
+const CPU_ONLY: [(&str, &str, &str); 7] = [
     ("cpu/bvh.rs", "new", "SlabRay::new; WGSL builds it in slab_ray (no methods)"),
+    ("cpu/bvh.rs", "walk", "traverse's loop over its reused per-thread stack; WGSL's stack is a local array"),
     (
         "cpu/bvh.rs",
         "traverse",

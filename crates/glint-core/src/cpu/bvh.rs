@@ -9,7 +9,8 @@
 //! order. The shadow product's rounding depends on the order of its factors, so crossings are
 //! collected and multiplied in brute force's order.
 //!
-//! The WGSL twin is `shaders/bvh.wgsl` (same functions, except the closure-driven `traverse`).
+//! The WGSL twin is `shaders/bvh.wgsl` (same functions, except the closure-driven `traverse`
+//! and its loop `walk`).
 
 use glam::DVec3;
 
@@ -33,38 +34,46 @@ const GAMMA3: f64 = 3.0 * (f64::EPSILON * 0.5) / (1.0 - 3.0 * (f64::EPSILON * 0.
 /// overflow); such a ray moves less than 1e-270 along that axis within `FAR`.
 const DIR_ZERO: f64 = 1e-300;
 
-/// The per-ray part of the slab test.
+/// The per-ray part of the slab test, including the padding: relative to the larger of the
+/// origin's and the whole scene's (the root box's) magnitude, so at least the padding any box
+/// of the scene needs, computed once per ray instead of once per box.
 #[derive(Clone, Copy, Debug)]
 struct SlabRay {
     origin: [f64; 3],
     inv: [f64; 3],
     parallel: [bool; 3],
-    origin_scale: f64,
+    pad: f64,
+}
+
+/// The largest magnitude of a box's coordinates.
+fn box_scale(node: &BvhNode) -> f64 {
+    node.min.iter().chain(&node.max).fold(0.0, |m: f64, &x| m.max(f64::from(x).abs()))
 }
 
 impl SlabRay {
-    fn new(ray: &Ray) -> Self {
+    fn new(ray: &Ray, root: &BvhNode) -> Self {
         let origin = ray.origin.to_array();
         let d = ray.dir.to_array();
         let parallel = d.map(|x| x.abs() < DIR_ZERO);
         let inv = std::array::from_fn(|k| if parallel[k] { 0.0 } else { 1.0 / d[k] });
-        Self { origin, inv, parallel, origin_scale: origin.iter().fold(0.0, |m: f64, x| m.max(x.abs())) }
+        let scale = origin.iter().fold(box_scale(root), |m: f64, x| m.max(x.abs()));
+        Self { origin, inv, parallel, pad: BOX_PAD * scale + BOX_PAD_ABS }
+    }
+
+    /// How far beyond t_hi a box may start and still be entered: the padding and the
+    /// rounding of the slab distances.
+    fn slack(&self, t_hi: f64) -> f64 {
+        self.pad + GAMMA3 * t_hi.abs().min(1e300)
     }
 
     /// The entry distance of the ray into the (padded) box if it meets it within
     /// [t_lo, t_hi], else `None`.
+    #[inline]
     fn enter(&self, node: &BvhNode, t_lo: f64, t_hi: f64) -> Option<f64> {
-        let lo = node.min.map(f64::from);
-        let hi = node.max.map(f64::from);
-        let mut scale = self.origin_scale;
-        for k in 0..3 {
-            scale = scale.max(lo[k].abs()).max(hi[k].abs());
-        }
-        let pad = BOX_PAD * scale + BOX_PAD_ABS;
         let mut t0 = f64::NEG_INFINITY;
         let mut t1 = f64::INFINITY;
         for k in 0..3 {
-            let (l, h) = (lo[k] - pad, hi[k] + pad);
+            let (l, h) = (f64::from(node.min[k]) - self.pad, f64::from(node.max[k]) + self.pad);
             if self.parallel[k] {
                 if self.origin[k] < l || self.origin[k] > h {
                     return None;
@@ -73,13 +82,27 @@ impl SlabRay {
             }
             let a = (l - self.origin[k]) * self.inv[k];
             let b = (h - self.origin[k]) * self.inv[k];
-            let (near, far) = if a <= b { (a, b) } else { (b, a) };
-            t0 = t0.max(near);
-            t1 = t1.min(far * (1.0 + 2.0 * GAMMA3));
+            let (near, far) = if self.inv[k] >= 0.0 { (a, b) } else { (b, a) };
+            // Plain comparisons, not f64::max/min: the operands are never NaN here and the
+            // NaN-aware forms cost a third of the traversal.
+            if near > t0 {
+                t0 = near;
+            }
+            if far < t1 {
+                t1 = far;
+            }
         }
-        let slack = pad + GAMMA3 * t_hi.abs().min(1e300);
+        // Rounding is monotonic, so enlarging the minimum is enlarging every far distance.
+        let t1 = t1 * (1.0 + 2.0 * GAMMA3);
+        let slack = self.slack(t_hi);
         (t0 <= t1 && t0 <= t_hi + slack && t1 >= t_lo - slack).then_some(t0)
     }
+}
+
+thread_local! {
+    /// Each worker's traversal stack (nodes with the distance the ray enters them at), reused
+    /// from ray to ray instead of allocated for each.
+    static STACK: std::cell::Cell<Vec<(u32, f64)>> = const { std::cell::Cell::new(Vec::new()) };
 }
 
 /// Calls `visit` on every primitive reference in a leaf whose box the ray meets within
@@ -96,13 +119,35 @@ fn traverse(
     if nodes.is_empty() {
         return true;
     }
-    let slab = SlabRay::new(ray);
-    let mut stack: Vec<u32> = Vec::with_capacity(64);
-    if slab.enter(&nodes[0], t_min, limit()).is_none() {
+    let slab = SlabRay::new(ray, &nodes[0]);
+    let Some(t_root) = slab.enter(&nodes[0], t_min, limit()) else {
         return true;
-    }
-    stack.push(0);
-    while let Some(i) = stack.pop() {
+    };
+    // Taken, not borrowed: a traversal started inside `visit` gets a stack of its own.
+    let mut stack = STACK.take();
+    stack.clear();
+    stack.push((0, t_root));
+    let passed = walk(&slab, nodes, prims, &mut stack, t_min, &mut limit, &mut visit);
+    STACK.set(stack);
+    passed
+}
+
+/// The loop of `traverse`, over a stack holding the root.
+fn walk(
+    slab: &SlabRay,
+    nodes: &[BvhNode],
+    prims: &[u32],
+    stack: &mut Vec<(u32, f64)>,
+    t_min: f64,
+    limit: &mut impl FnMut() -> f64,
+    visit: &mut impl FnMut(u32) -> bool,
+) -> bool {
+    while let Some((i, t_enter)) = stack.pop() {
+        // A hit found since the node was pushed may now be nearer than the node's box.
+        let t_hi = limit();
+        if t_enter > t_hi + slab.slack(t_hi) {
+            continue;
+        }
         let node = &nodes[i as usize];
         if node.count > 0 {
             for &r in &prims[node.left_first as usize..(node.left_first + node.count) as usize] {
@@ -113,20 +158,21 @@ fn traverse(
             continue;
         }
         let (l, r) = (node.left_first, node.left_first + 1);
-        let t_hi = limit();
         let tl = slab.enter(&nodes[l as usize], t_min, t_hi);
         let tr = slab.enter(&nodes[r as usize], t_min, t_hi);
         match (tl, tr) {
             (Some(a), Some(b)) => {
                 // The nearer child is popped first.
                 if a <= b {
-                    stack.extend([r, l]);
+                    stack.push((r, b));
+                    stack.push((l, a));
                 } else {
-                    stack.extend([l, r]);
+                    stack.push((l, a));
+                    stack.push((r, b));
                 }
             }
-            (Some(_), None) => stack.push(l),
-            (None, Some(_)) => stack.push(r),
+            (Some(a), None) => stack.push((l, a)),
+            (None, Some(b)) => stack.push((r, b)),
             (None, None) => {}
         }
     }
