@@ -86,3 +86,55 @@ fn beyond_the_brute_force_limit_only_the_bvh_renders() {
         "{e:?}"
     );
 }
+
+/// wgpu's own limit on one storage binding, which lavapipe and typical GPUs also report.
+const BINDING_LIMIT: u64 = 128 << 20;
+
+#[test]
+fn four_million_triangles_fit_the_128_mib_binding_and_render() {
+    let tracer = gpu_or_skip!();
+    let desc = glint_test_support::scene::large_mesh_desc(16, 12, uv_sphere(1000, [0.0, 0.1, 0.0], 1.0));
+    let flat = FlatScene::build(&desc, &desc.render);
+    assert!(flat.triangles.len() >= 3_990_000, "{} triangles", flat.triangles.len());
+    let sizes = [
+        ("triangles", size_of_val(flat.triangles.as_slice())),
+        ("vertices", size_of_val(flat.vertices.as_slice())),
+        ("BVH nodes", size_of_val(flat.bvh_nodes.as_slice())),
+        ("BVH primitives", size_of_val(flat.bvh_prims.as_slice())),
+    ];
+    let per_triangle: usize = sizes.iter().map(|(_, b)| b).sum::<usize>() / flat.triangles.len();
+    eprintln!("{} triangles: {sizes:?} bytes, {per_triangle} bytes per triangle", flat.triangles.len());
+    for (what, bytes) in sizes {
+        assert!((bytes as u64) < BINDING_LIMIT, "{what}: {bytes} bytes do not fit one 128 MiB binding");
+    }
+    let g = render(tracer, &flat, Accel::Bvh);
+    assert_eq!(g.status, 0, "status word");
+    let c = render_cpu(&flat, &CpuOptions::default(), RenderControl::default()).expect("CPU render");
+    let e = compare_images(&c.image, &g.image);
+    eprintln!("4M triangles, GPU against CPU: {e:?}");
+    assert!(e.first_hit_mismatch <= 0.05 && e.flip_mean <= 0.02, "{e:?}");
+}
+
+#[test]
+fn a_buffer_beyond_the_binding_limit_is_an_error_naming_it() {
+    gpu_or_skip!();
+    // A device that binds at most 1 MiB per storage buffer, and 60,000 triangles (1.2 MB).
+    let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+    let adapter = pollster::block_on(
+        instance.request_adapter(&wgpu::RequestAdapterOptions { force_fallback_adapter: false, ..Default::default() }),
+    )
+    .expect("an adapter (the shared GPU tracer found one)");
+    let limits = wgpu::Limits { max_storage_buffer_binding_size: 1 << 20, ..adapter.limits() };
+    let (device, queue) = pollster::block_on(
+        adapter.request_device(&wgpu::DeviceDescriptor { required_limits: limits, ..Default::default() }),
+    )
+    .expect("a device with lower limits");
+    let tracer = glint_gpu::GpuTracer::new(glint_gpu::GpuContext::from_device(device, queue, &adapter.get_info()));
+    let flat = mesh_scene(8, 6, uv_sphere(123, [0.0, 0.1, 0.0], 1.0)).flat();
+    assert!(size_of_val(flat.triangles.as_slice()) > 1 << 20);
+    let message = tracer.render(&flat, &GpuOptions::default()).expect_err("does not fit").to_string();
+    assert!(
+        message.contains("the triangle buffer") && message.contains("max_storage_buffer_binding_size"),
+        "{message}"
+    );
+}

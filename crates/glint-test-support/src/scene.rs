@@ -5,7 +5,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use glint_core::FlatScene;
-use glint_core::scene::{SceneDesc, parse_scene};
+use glint_core::scene::{MeshDesc, ObjectDesc, SceneDesc, parse_scene};
 
 /// Widens a stored `[f32; 4]` (xyz) exactly to f64: the tracer's own `v3`, under the name the
 /// tests use.
@@ -203,6 +203,21 @@ impl SceneText {
         let desc = self.desc();
         FlatScene::build(&desc, &desc.render)
     }
+}
+
+/// `mesh_scene` for meshes too large to go through scene text: the same scene with the mesh
+/// appended to the parsed description (every index in range, as validation would require).
+pub fn large_mesh_desc(w: u32, h: u32, mesh: (Vec<[f64; 3]>, Vec<[u32; 3]>)) -> SceneDesc {
+    let mut desc = mesh_scene(w, h, (vec![[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]], vec![[0, 1, 2]])).desc();
+    let last = desc.objects.len() - 1;
+    desc.objects[last] = ObjectDesc::Mesh(MeshDesc {
+        vertices: mesh.0,
+        triangles: mesh.1,
+        normals: None,
+        material: "clay".into(),
+        name: "large mesh".into(),
+    });
+    desc
 }
 
 /// A UV sphere of 4·n² triangles (rings θ = π·i/n, segments φ = 2π·k/(2n)), radius `r` around
