@@ -22,3 +22,8 @@
 // the primitive references its leaves point into.
 @group(0) @binding(11) var<storage, read> bvh_nodes: array<BvhNode>;
 @group(0) @binding(12) var<storage, read> bvh_prims: array<u32>;
+// The ray-cast kernel's buffers (raycast.wgsl, `glint bench rays`; numbered from 20 apart from
+// the tracer's): two vec4<f32> per ray (origin, t_min; direction, t_max), and per ray its hit
+// as (prim, index, bitcast t, 0).
+@group(0) @binding(20) var<storage, read> rays_in: array<vec4<f32>>;
+@group(0) @binding(21) var<storage, read_write> hits_out: array<vec4<u32>>;

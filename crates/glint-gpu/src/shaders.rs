@@ -49,6 +49,11 @@ pub const SHADER_MODULES: [(&str, &str, &str); 9] = [
 /// The entry module.
 pub const TRACE_WGSL: &str = include_str!("../../../shaders/trace.wgsl");
 
+/// The ray-cast kernel's entry module (`glint bench rays`): bvh.wgsl's closest hit for a
+/// buffer of rays. An entry module as trace.wgsl, so not in `SHADER_MODULES`, which lists the
+/// modules entries import.
+pub const RAYCAST_WGSL: &str = include_str!("../../../shaders/raycast.wgsl");
+
 /// Everything that selects a shader variant: the feature bits compiled in, and the stack size.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct ShaderKey {
@@ -313,8 +318,10 @@ mod tests {
     fn every_ifdef_names_a_def_the_host_sets() {
         // A misspelt #ifdef would compile its code out of every variant, silently.
         let defs = ShaderKey { probe: true, ..ShaderKey::full() }.shader_defs();
-        let sources =
-            SHADER_MODULES.iter().map(|(_, file, source)| (*file, *source)).chain([("trace.wgsl", TRACE_WGSL)]);
+        let sources = SHADER_MODULES
+            .iter()
+            .map(|(_, file, source)| (*file, *source))
+            .chain([("trace.wgsl", TRACE_WGSL), ("raycast.wgsl", RAYCAST_WGSL)]);
         let mut checked = 0;
         for (file, source) in sources {
             for line in source.lines() {
