@@ -7,6 +7,7 @@ use std::process::{Command, Output};
 
 use glint_test_support::TempDir;
 
+mod bench;
 mod report;
 
 const BIN: &str = env!("CARGO_BIN_EXE_glint");
