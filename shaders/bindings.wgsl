@@ -27,3 +27,8 @@
 @group(0) @binding(13) var<storage, read> vertices: array<vec4<f32>>;
 @group(0) @binding(14) var<storage, read> normals: array<vec4<f32>>;
 @group(0) @binding(15) var<storage, read> meshes: array<GpuMesh>;
+// The ray-cast kernel's buffers (raycast.wgsl, `glint bench rays`; numbered from 20 apart from
+// the tracer's): two vec4<f32> per ray (origin, t_min; direction, t_max), and per ray its hit
+// as (prim, index, bitcast t, 0).
+@group(0) @binding(20) var<storage, read> rays_in: array<vec4<f32>>;
+@group(0) @binding(21) var<storage, read_write> hits_out: array<vec4<u32>>;

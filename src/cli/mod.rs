@@ -1,6 +1,7 @@
 //! Command-line definitions and dispatch.
 
 mod backend;
+mod bench;
 mod output;
 mod render;
 mod report;
@@ -26,6 +27,8 @@ enum Command {
     Report(report::ReportArgs),
     /// Open the interactive viewer: GPU and CPU side by side, difference, pixel probe.
     View(view::ViewArgs),
+    /// Benchmarks of parts of the tracer (`bench rays`: the BVH build and closest-hit throughput).
+    Bench(bench::BenchArgs),
 }
 
 pub fn run(cli: Cli) -> anyhow::Result<()> {
@@ -33,6 +36,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Some(Command::Render(args)) => render::run(&args),
         Some(Command::Report(args)) => report::run(&args),
         Some(Command::View(args)) => view::run(&args),
+        Some(Command::Bench(args)) => bench::run(&args),
         None => view::run(&view::ViewArgs::default()),
     }
 }

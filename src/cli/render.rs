@@ -6,13 +6,13 @@ use anyhow::bail;
 use clap::Args;
 use clap::builder::{PossibleValuesParser, TypedValueParser};
 use glint_core::compare::compare_images;
-use glint_core::scene::{BUILTIN_SCENES, parse_scene};
+use glint_core::scene::{BUILTIN_SCENES, RESOLUTIONS};
 use glint_core::{Accel, Backend, CpuOptions, FlatScene};
 use glint_gpu::GpuOptions;
 
 use super::backend::{Run, open_gpu, run_cpu, run_gpu};
 use super::output::{fmt_counts, metadata, print_json, print_table, suffixed, write_diff, write_run};
-use super::settings::{SettingsArgs, load};
+use super::settings::{ResolutionArg, SettingsArgs, load};
 use super::units::{mrays_per_s, ms};
 
 #[derive(Debug, Args)]
@@ -26,6 +26,8 @@ pub struct RenderArgs {
     pub output: Option<PathBuf>,
     #[command(flatten)]
     pub settings: SettingsArgs,
+    #[command(flatten)]
+    pub scene_size: ResolutionArg,
     /// Which tracer renders: the CPU reference, the GPU mirror, or both (then compared)
     #[arg(long, default_value = "cpu", value_parser = backends())]
     pub backend: &'static [Backend],
@@ -79,12 +81,13 @@ fn accels() -> impl TypedValueParser<Value = Accel> {
 pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     if args.list {
         for b in BUILTIN_SCENES {
-            let (desc, _) = parse_scene(b.text, Path::new(b.name))?;
+            // A generated scene is described at a small resolution: the text is the same.
+            let (desc, _) = b.load(b.is_generated().then_some(*RESOLUTIONS.start()))?;
             println!("{:<12} {}", b.name, desc.description);
         }
         return Ok(());
     }
-    let loaded = load(&args.scene)?;
+    let loaded = load(&args.scene, args.scene_size.resolution)?;
     let settings = args.settings.apply(&loaded.desc.render)?;
     let flat = FlatScene::build(&loaded.desc, &settings);
     let specialise = !args.no_specialise;

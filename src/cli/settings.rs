@@ -2,7 +2,9 @@
 
 use anyhow::{Context, bail};
 use clap::Args;
-use glint_core::scene::{EpsilonMode, LoadedScene, RenderSettings, Report, load_scene, validate_settings};
+use glint_core::scene::{
+    DEFAULT_RESOLUTION, EpsilonMode, LoadedScene, RESOLUTIONS, RenderSettings, Report, load_scene_at, validate_settings,
+};
 
 #[derive(Clone, Debug, Default, Args)]
 pub struct SettingsArgs {
@@ -30,6 +32,26 @@ pub struct SettingsArgs {
     /// Seed of the sample jitter
     #[arg(long)]
     pub seed: Option<u32>,
+}
+
+/// The size of a generated built-in scene, for the commands that load one.
+#[derive(Clone, Copy, Debug, Default, Args)]
+pub struct ResolutionArg {
+    /// Resolution N of a generated built-in scene (bumpy, bumpy-glass): 4·N² sphere triangles, N in [2, 1500], default 500; an error with any other scene
+    #[arg(long, value_name = "N", allow_negative_numbers = true, value_parser = parse_resolution)]
+    pub resolution: Option<u32>,
+}
+
+fn parse_resolution(s: &str) -> Result<u32, String> {
+    let (lo, hi) = (*RESOLUTIONS.start(), *RESOLUTIONS.end());
+    let out_of_range = || {
+        format!("--resolution takes a whole number N in [{lo}, {hi}] (4·N² triangles; default {DEFAULT_RESOLUTION})")
+    };
+    match s.trim().parse::<i64>() {
+        Ok(v) if (i64::from(lo)..=i64::from(hi)).contains(&v) => Ok(v as u32),
+        Ok(v) => Err(format!("{v} is outside [{lo}, {hi}]: {}", out_of_range())),
+        Err(_) => Err(format!("'{s}' is not a whole number: {}", out_of_range())),
+    }
 }
 
 /// A whole number; a negative one gets its own message instead of clap's "unexpected argument
@@ -100,9 +122,10 @@ fn flag_of(field: &str) -> &'static str {
     }
 }
 
-/// Loads a scene file or built-in scene and prints its warnings.
-pub fn load(scene: &str) -> anyhow::Result<LoadedScene> {
-    let loaded = load_scene(scene).with_context(|| format!("cannot load scene '{scene}'"))?;
+/// Loads a scene file or built-in scene (a generated one at `resolution`) and prints its
+/// warnings.
+pub fn load(scene: &str, resolution: Option<u32>) -> anyhow::Result<LoadedScene> {
+    let loaded = load_scene_at(scene, resolution).with_context(|| format!("cannot load scene '{scene}'"))?;
     for w in &loaded.warnings {
         eprintln!("warning: {}: {w}", loaded.source.display());
     }

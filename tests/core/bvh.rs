@@ -10,12 +10,11 @@
 //! the BVH.
 
 use std::f64::consts::PI;
-use std::path::Path;
 
 use glint_core::cpu::intersect::{FAR, closest_hit, shadow_transmittance};
 use glint_core::cpu::{Accel, Ray, TraceContext};
 use glint_core::glam::DVec3;
-use glint_core::scene::{BUILTIN_SCENES, parse_scene};
+use glint_core::scene::BUILTIN_SCENES;
 use glint_core::{CpuOptions, CpuRender, FlatScene, RenderControl, render_cpu};
 
 use crate::support::SceneText;
@@ -44,7 +43,8 @@ fn assert_identical(what: &str, flat: &FlatScene) -> CpuRender {
 #[test]
 fn builtin_scenes_are_identical_with_and_without_the_bvh() {
     for b in BUILTIN_SCENES {
-        let (desc, _) = parse_scene(b.text, Path::new(b.name)).expect("built-in scene parses");
+        // Generated scenes at a size brute force renders quickly (578 triangles).
+        let (desc, _) = b.load(b.is_generated().then_some(12)).expect("built-in scene loads");
         let mut settings = desc.render.clone();
         (settings.width, settings.height) = (64, 48);
         assert_identical(b.name, &FlatScene::build(&desc, &settings));

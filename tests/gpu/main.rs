@@ -7,6 +7,7 @@ mod adapter;
 mod bvh;
 mod parity;
 mod probe;
+mod raycast;
 mod specialisation;
 mod support;
 

@@ -176,6 +176,11 @@ impl FlatScene {
         f
     }
 
+    /// The bounded primitives the BVH is built over, as stored.
+    pub fn bounded(&self) -> bvh::Bounded<'_> {
+        bvh::Bounded { spheres: &self.spheres, triangles: &self.triangles, vertices: &self.vertices }
+    }
+
     pub fn pixel_count(&self) -> usize {
         self.header.width as usize * self.header.height as usize
     }

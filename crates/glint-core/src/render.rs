@@ -192,14 +192,14 @@ pub fn pick_object(scene: &FlatScene, x: u32, y: u32) -> u32 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::{builtin, parse_scene};
+    use crate::scene::builtin;
 
     #[test]
     fn auto_traces_small_scenes_by_brute_force_and_large_ones_through_the_bvh() {
         use crate::bvh::AUTO_MIN_PRIMITIVES;
         use crate::cpu::Traversal;
         let b = builtin("whitted").expect("built-in scene");
-        let (desc, _) = parse_scene(b.text, std::path::Path::new(b.name)).expect("parses");
+        let (desc, _) = b.load(None).expect("parses");
         let mut flat = FlatScene::build(&desc, &desc.render);
         assert!(flat.spheres.len() + flat.triangles.len() < AUTO_MIN_PRIMITIVES);
         assert_eq!(Accel::Auto.traversal(&flat), Traversal::BruteForce);
@@ -214,7 +214,7 @@ mod tests {
     #[test]
     fn a_flat_scene_with_an_unknown_tag_is_refused_not_traced() {
         let b = builtin("spotlights").expect("built-in scene");
-        let (desc, _) = parse_scene(b.text, std::path::Path::new(b.name)).expect("parses");
+        let (desc, _) = b.load(None).expect("parses");
         let mut settings = desc.render.clone();
         (settings.width, settings.height) = (8, 8);
         let mut flat = FlatScene::build(&desc, &settings);

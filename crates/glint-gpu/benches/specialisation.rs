@@ -42,7 +42,8 @@ fn main() {
         "scene", "stmts sp", "full", "pipe ms", "full", "gpu ms", "full", "gain", "cpu ms", "full", "gain"
     );
     let full_statements = module_stats(&compose(&ShaderKey::full()).expect("full shader")).statements;
-    for b in BUILTIN_SCENES {
+    // The scene files: the generated scenes measure the BVH (`glint bench rays`), not shading.
+    for b in BUILTIN_SCENES.iter().filter(|b| !b.is_generated()) {
         let loaded = load_scene(b.name).expect("built-in");
         let flat = FlatScene::build(&loaded.desc, &loaded.desc.render);
         let key = ShaderKey::for_scene(&flat, true);

@@ -27,11 +27,14 @@ pub enum Binding {
     Vertices = 13,
     Normals = 14,
     Meshes = 15,
+    /// The ray-cast kernel's rays and hits (raycast.wgsl; from 20 on, apart from the tracer's).
+    RaysIn = 20,
+    HitsOut = 21,
 }
 
 impl Binding {
     /// Every binding, ascending.
-    pub const ALL: [Self; 16] = [
+    pub const ALL: [Self; 18] = [
         Self::Header,
         Self::Camera,
         Self::Tile,
@@ -48,7 +51,13 @@ impl Binding {
         Self::Vertices,
         Self::Normals,
         Self::Meshes,
+        Self::RaysIn,
+        Self::HitsOut,
     ];
+
+    /// The bindings only the ray-cast kernel uses (bound by `raycast::RayCaster`, not by the
+    /// scene's buffers).
+    pub const RAYCAST: [Self; 2] = [Self::RaysIn, Self::HitsOut];
 
     /// Its `@binding` number.
     pub const fn number(self) -> u32 {
@@ -74,6 +83,8 @@ impl Binding {
             Self::Vertices => "vertices",
             Self::Normals => "normals",
             Self::Meshes => "meshes",
+            Self::RaysIn => "rays_in",
+            Self::HitsOut => "hits_out",
         }
     }
 
@@ -102,12 +113,23 @@ mod tests {
 
     #[test]
     fn numbers_are_the_table_order_and_round_trip() {
-        for (i, b) in Binding::ALL.into_iter().enumerate() {
+        // The tracer's bindings are 0, 1, 2, …; the ray-cast kernel's follow from 20.
+        let tracer = Binding::ALL.iter().filter(|b| !Binding::RAYCAST.contains(b));
+        for (i, b) in tracer.enumerate() {
             assert_eq!(b.number() as usize, i, "{b:?} is out of order in Binding::ALL");
+        }
+        for (i, b) in Binding::RAYCAST.into_iter().enumerate() {
+            assert_eq!(b.number() as usize, 20 + i, "{b:?} is out of order in Binding::RAYCAST");
+        }
+        for pair in Binding::ALL.windows(2) {
+            assert!(pair[0].number() < pair[1].number(), "{pair:?}: Binding::ALL is not ascending");
+        }
+        for b in Binding::ALL {
             assert_eq!(Binding::try_from(b.number()), Ok(b));
             assert_eq!(Binding::of_global(GROUP, b.number(), b.wgsl_name()).ok(), Some(b));
         }
-        assert_eq!(Binding::try_from(Binding::ALL.len() as u32), Err(Binding::ALL.len() as u32));
+        let unused = Binding::ALL.len() as u32 - Binding::RAYCAST.len() as u32;
+        assert_eq!(Binding::try_from(unused), Err(unused));
     }
 
     #[test]

@@ -139,9 +139,9 @@ impl SceneBuffers {
         })
     }
 
-    /// The buffer behind `binding`.
-    fn buffer(&self, binding: Binding) -> &wgpu::Buffer {
-        match binding {
+    /// The buffer behind `binding`; `None` for the ray-cast kernel's, which are not the scene's.
+    fn buffer(&self, binding: Binding) -> Option<&wgpu::Buffer> {
+        Some(match binding {
             Binding::Header => &self.header,
             Binding::Camera => &self.camera,
             Binding::Tile => &self.tile,
@@ -158,20 +158,37 @@ impl SceneBuffers {
             Binding::Vertices => &self.vertices,
             Binding::Normals => &self.normals,
             Binding::Meshes => &self.meshes,
-        }
+            Binding::RaysIn | Binding::HitsOut => return None,
+        })
     }
 
     /// The bind group for `pipeline`, with exactly the bindings its module declares.
-    pub fn bind_group(&self, ctx: &GpuContext, pipeline: &TracerPipeline) -> wgpu::BindGroup {
-        let entries: Vec<wgpu::BindGroupEntry> = pipeline
-            .bindings
-            .iter()
-            .map(|&b| wgpu::BindGroupEntry { binding: b.number(), resource: self.buffer(b).as_entire_binding() })
-            .collect();
-        ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
+    pub fn bind_group(&self, ctx: &GpuContext, pipeline: &TracerPipeline) -> Result<wgpu::BindGroup, GpuError> {
+        self.bind_group_with(ctx, pipeline, &[])
+    }
+
+    /// `bind_group`, with `extra` buffers for bindings that are not the scene's (the ray-cast
+    /// kernel's rays and hits); a binding neither provides is an error naming it.
+    pub fn bind_group_with(
+        &self,
+        ctx: &GpuContext,
+        pipeline: &TracerPipeline,
+        extra: &[(Binding, &wgpu::Buffer)],
+    ) -> Result<wgpu::BindGroup, GpuError> {
+        let mut entries = Vec::with_capacity(pipeline.bindings.len());
+        for &b in &pipeline.bindings {
+            let buffer = extra
+                .iter()
+                .find(|(e, _)| *e == b)
+                .map(|(_, buffer)| *buffer)
+                .or_else(|| self.buffer(b))
+                .ok_or(GpuError::Unbound { name: b.wgsl_name() })?;
+            entries.push(wgpu::BindGroupEntry { binding: b.number(), resource: buffer.as_entire_binding() });
+        }
+        Ok(ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("glint scene"),
             layout: &pipeline.bind_group_layout,
             entries: &entries,
-        })
+        }))
     }
 }

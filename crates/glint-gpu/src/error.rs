@@ -32,6 +32,14 @@ pub enum GpuError {
          max_storage_buffers_per_shader_stage ({limit})"
     )]
     TooManyStorageBuffers { variant: String, needed: u32, limit: u32 },
+    #[error(
+        "the shader uses `{name}`, which no buffer was given for (glint_gpu::buffers::SceneBuffers::bind_group_with)"
+    )]
+    Unbound { name: &'static str },
+    #[error(
+        "the ray-cast kernel raised status bits {status:#x}, so its hits are incomplete and its time means nothing: {messages}"
+    )]
+    RaycastStatus { status: u32, messages: String },
     #[error("{what} needs {needed} bytes, more than this GPU allows ({limit} bytes, limit {limit_name})")]
     TooLarge { what: String, needed: u64, limit: u64, limit_name: &'static str },
     #[error(

@@ -10,6 +10,7 @@ pub mod job;
 pub mod pipeline;
 pub mod present;
 pub mod probe;
+pub mod raycast;
 pub mod readback;
 pub mod shaders;
 pub mod status;

@@ -7,7 +7,7 @@ use std::time::{Duration, Instant};
 use crate::binding::Binding;
 use crate::context::GpuContext;
 use crate::error::GpuError;
-use crate::shaders::{ModuleStats, ShaderKey, compose, module_stats, undecorated, validate};
+use crate::shaders::{ModuleStats, ShaderKey, TRACE_WGSL, compose_entry, module_stats, undecorated, validate};
 
 #[derive(Debug)]
 pub struct TracerPipeline {
@@ -62,9 +62,21 @@ pub fn reflect_bindings(module: &naga::Module) -> Result<Vec<(Binding, wgpu::Buf
     Ok(bindings)
 }
 
+/// The tracer's pipeline (trace.wgsl) for `key`.
 pub fn create_pipeline(ctx: &GpuContext, key: ShaderKey) -> Result<TracerPipeline, GpuError> {
+    create_entry_pipeline(ctx, key, TRACE_WGSL, "tracer")
+}
+
+/// The pipeline of the entry module `entry` (trace.wgsl, raycast.wgsl) composed for `key`;
+/// `what` names it in labels and logs.
+pub fn create_entry_pipeline(
+    ctx: &GpuContext,
+    key: ShaderKey,
+    entry: &str,
+    what: &str,
+) -> Result<TracerPipeline, GpuError> {
     let start = Instant::now();
-    let module = compose(&key)?;
+    let module = compose_entry(&key, entry)?;
     validate(&module)?;
     let stats = module_stats(&module);
     let bindings = reflect_bindings(&module)?;
@@ -78,7 +90,7 @@ pub fn create_pipeline(ctx: &GpuContext, key: ShaderKey) -> Result<TracerPipelin
         })
         .collect();
     let bindings = bindings.into_iter().map(|(binding, _)| binding).collect();
-    let label = format!("glint tracer [{}]", key.describe());
+    let label = format!("glint {what} [{}]", key.describe());
     let (pipeline, bind_group_layout) = with_error_scopes(ctx, || {
         let shader = ctx.device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some(&label),
@@ -110,14 +122,15 @@ pub fn create_pipeline(ctx: &GpuContext, key: ShaderKey) -> Result<TracerPipelin
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::shaders::compose_entry;
+    use crate::shaders::compose;
 
     #[test]
     fn every_binding_of_the_full_probe_shader_is_in_the_table() {
         let module = compose(&ShaderKey { probe: true, ..ShaderKey::full() }).expect("full probe shader composes");
         let found: Vec<Binding> =
             reflect_bindings(&module).expect("known bindings").into_iter().map(|(b, _)| b).collect();
-        assert_eq!(found, Binding::ALL, "the full probe shader uses every binding");
+        let tracer: Vec<Binding> = Binding::ALL.into_iter().filter(|b| !Binding::RAYCAST.contains(b)).collect();
+        assert_eq!(found, tracer, "the full probe shader uses every binding but the ray-cast kernel's");
     }
 
     #[test]

@@ -49,6 +49,11 @@ pub const SHADER_MODULES: [(&str, &str, &str); 9] = [
 /// The entry module.
 pub const TRACE_WGSL: &str = include_str!("../../../shaders/trace.wgsl");
 
+/// The ray-cast kernel's entry module (`glint bench rays`): bvh.wgsl's closest hit for a
+/// buffer of rays. An entry module as trace.wgsl, so not in `SHADER_MODULES`, which lists the
+/// modules entries import.
+pub const RAYCAST_WGSL: &str = include_str!("../../../shaders/raycast.wgsl");
+
 /// Everything that selects a shader variant: the feature bits compiled in, and the stack size.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct ShaderKey {
@@ -243,7 +248,8 @@ mod tests {
         BUILTIN_SCENES
             .iter()
             .map(|b| {
-                let (desc, _) = parse_scene(b.text, std::path::Path::new(b.name)).expect("built-in scene parses");
+                // Generated scenes at a small resolution: the features, not the size, pick the variant.
+                let (desc, _) = b.load(b.is_generated().then_some(4)).expect("built-in scene loads");
                 let flat = FlatScene::build(&desc, &desc.render);
                 (b.name.to_string(), ShaderKey::for_scene(&flat, true))
             })
@@ -312,8 +318,10 @@ mod tests {
     fn every_ifdef_names_a_def_the_host_sets() {
         // A misspelt #ifdef would compile its code out of every variant, silently.
         let defs = ShaderKey { probe: true, ..ShaderKey::full() }.shader_defs();
-        let sources =
-            SHADER_MODULES.iter().map(|(_, file, source)| (*file, *source)).chain([("trace.wgsl", TRACE_WGSL)]);
+        let sources = SHADER_MODULES
+            .iter()
+            .map(|(_, file, source)| (*file, *source))
+            .chain([("trace.wgsl", TRACE_WGSL), ("raycast.wgsl", RAYCAST_WGSL)]);
         let mut checked = 0;
         for (file, source) in sources {
             for line in source.lines() {

@@ -96,7 +96,7 @@ impl GpuTracer {
         let (pipeline, mut pipeline_time) = self.pipeline(key)?;
         let upload_start = Instant::now();
         let buffers = SceneBuffers::upload(&self.ctx, scene, key.bvh)?;
-        let bind_group = with_error_scopes(&self.ctx, || buffers.bind_group(&self.ctx, &pipeline))?;
+        let bind_group = with_error_scopes(&self.ctx, || buffers.bind_group(&self.ctx, &pipeline))??;
         let upload_time = upload_start.elapsed();
         if !pipeline_time.is_zero() {
             // Drivers such as lavapipe compile the shader at its first dispatch: run one pixel
@@ -119,7 +119,7 @@ impl GpuTracer {
         let (pipeline, _) = self.pipeline(key)?;
         // The scene's own spp: sample 0 is then jittered in its stratum exactly as the CPU's.
         let buffers = SceneBuffers::upload(&self.ctx, scene, key.bvh)?;
-        let bind_group = with_error_scopes(&self.ctx, || buffers.bind_group(&self.ctx, &pipeline))?;
+        let bind_group = with_error_scopes(&self.ctx, || buffers.bind_group(&self.ctx, &pipeline))??;
         with_error_scopes(&self.ctx, || buffers.dispatch_probe(&self.ctx, &pipeline, &bind_group, x, y))?;
         let bytes = read_buffer(&self.ctx, &buffers.probe)?;
         let stats = read_buffer(&self.ctx, &buffers.stats)?;

@@ -6,7 +6,7 @@
 
 use std::collections::{BTreeMap, BTreeSet};
 
-const TWINS: [(&str, &str, &str, &str); 9] = [
+const TWINS: [(&str, &str, &str, &str); 10] = [
     (
         "rng.wgsl",
         include_str!("../../../shaders/rng.wgsl"),
@@ -50,6 +50,12 @@ const TWINS: [(&str, &str, &str, &str); 9] = [
         include_str!("../../glint-core/src/cpu/trace.rs"),
     ),
     (
+        "raycast.wgsl",
+        include_str!("../../../shaders/raycast.wgsl"),
+        "cpu/raycast.rs",
+        include_str!("../../glint-core/src/cpu/raycast.rs"),
+    ),
+    (
         "ray.wgsl",
         include_str!("../../../shaders/ray.wgsl"),
         "cpu/mod.rs",
@@ -64,7 +70,7 @@ const TWINS: [(&str, &str, &str, &str); 9] = [
 ];
 
 /// Functions only the GPU side has, and why.
-const GPU_ONLY: [(&str, &str, &str); 8] = [
+const GPU_ONLY: [(&str, &str, &str); 10] = [
     (
         "bvh.wgsl",
         "push_children",
@@ -81,10 +87,12 @@ const GPU_ONLY: [(&str, &str, &str); 8] = [
     ),
     ("trace.wgsl", "driver_cut_loops", "detects lavapipe's silent loop cut-off, which the CPU does not have"),
     ("present.wgsl", "main", "the compute entry point; the CPU converts pixel by pixel where it writes a PNG"),
+    ("raycast.wgsl", "main", "the compute entry point, one ray per invocation; the CPU's loop is cast_rays"),
+    ("raycast.wgsl", "driver_cut_loops", "trace.wgsl's canary: entry modules cannot import each other"),
 ];
 
 /// Functions only the CPU side has, and why.
-const CPU_ONLY: [(&str, &str, &str); 7] = [
+const CPU_ONLY: [(&str, &str, &str); 8] = [
     ("cpu/bvh.rs", "new", "SlabRay::new; WGSL builds it in slab_ray (no methods)"),
     ("cpu/bvh.rs", "walk", "traverse's loop over its reused per-thread stack; WGSL's stack is a local array"),
     (
@@ -99,6 +107,7 @@ const CPU_ONLY: [(&str, &str, &str); 7] = [
         "adds up a Breakdown, the host-side probe record (the GPU probe record becomes one too)",
     ),
     ("cpu/mod.rs", "*", "Rust plumbing: widening (v3), counters, the trace context"),
+    ("cpu/raycast.rs", "cast_rays", "the rayon loop over the buffer; the GPU's is the dispatch (main)"),
     ("cpu/trace.rs", "render_pixel", "the GPU sums a pixel's samples across dispatches (accumulate_sample)"),
     ("image.rs", "*", "file output (PNG, EXR, metadata) has no place on the GPU"),
 ];

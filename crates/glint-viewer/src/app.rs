@@ -30,6 +30,8 @@ use crate::view::{ViewAction, ViewMode};
 pub struct ViewerOptions {
     /// A scene file or a built-in scene name.
     pub scene: String,
+    /// The resolution of a generated built-in scene (`bumpy`); its default without one.
+    pub resolution: Option<u32>,
     /// Render settings replacing the scene's own (command-line flags).
     pub settings: Option<glint_core::scene::RenderSettings>,
     /// The view to start in (default: side by side, or the CPU view without a GPU).
@@ -61,7 +63,7 @@ pub struct ViewerApp {
 
 impl ViewerApp {
     pub fn new(cc: &eframe::CreationContext<'_>, options: ViewerOptions) -> Self {
-        let (doc, message) = match Document::load(&options.scene) {
+        let (doc, message) = match Document::load_at(&options.scene, options.resolution) {
             Ok(mut d) => {
                 if let Some(s) = &options.settings {
                     d.desc.render = s.clone();

@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use glint_core::FlatScene;
 use glint_core::atomic::{AtomicWriteError, write_file_atomically};
-use glint_core::scene::{CameraDesc, FieldIssue, LoadedScene, SceneDesc, load_scene, to_toml, validate};
+use glint_core::scene::{CameraDesc, FieldIssue, LoadedScene, SceneDesc, load_scene_at, to_toml, validate};
 
 use crate::error::ViewerError;
 
@@ -65,7 +65,12 @@ impl Document {
 
     /// Loads a scene file or a built-in scene by name.
     pub fn load(arg: &str) -> Result<Self, ViewerError> {
-        Ok(Self::from_loaded(load_scene(arg)?))
+        Self::load_at(arg, None)
+    }
+
+    /// `load`, a generated built-in scene at `resolution` (`--resolution`).
+    pub fn load_at(arg: &str, resolution: Option<u32>) -> Result<Self, ViewerError> {
+        Ok(Self::from_loaded(load_scene_at(arg, resolution)?))
     }
 
     /// Records an edit: bumps the revision and re-validates.

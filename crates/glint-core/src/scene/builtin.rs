@@ -1,20 +1,133 @@
-//! Built-in scenes, embedded in the binary so that they work from any folder.
+//! Built-in scenes, embedded in the binary so that they work from any folder: TOML text, or
+//! a generator that makes the scene in code at a resolution (`bumpy`: millions of triangles
+//! would be a file of hundreds of megabytes).
+
+use std::ops::RangeInclusive;
+use std::path::Path;
+
+use super::desc::SceneDesc;
+use super::error::{FieldIssue, SceneError};
+use super::{bumpy, parse_scene, validate};
+
+/// Resolutions N a generated scene accepts (4·N² triangles for `bumpy`: 16 to 9,000,000; the
+/// GPU buffer limits end lower, and say so).
+pub const RESOLUTIONS: RangeInclusive<u32> = 2..=1500;
+
+/// The resolution of a generated scene when none is asked for: 1,000,000 sphere triangles.
+pub const DEFAULT_RESOLUTION: u32 = 500;
+
+/// Where a built-in scene's description comes from.
+#[derive(Clone, Copy, Debug)]
+pub enum BuiltinSource {
+    /// Scene file text (`assets/scenes/NAME.toml`).
+    Toml(&'static str),
+    /// Made in code at a resolution in `RESOLUTIONS` (default `DEFAULT_RESOLUTION`).
+    Generated(fn(u32) -> SceneDesc),
+}
 
 #[derive(Clone, Copy, Debug)]
 pub struct BuiltinScene {
     pub name: &'static str,
-    pub text: &'static str,
+    pub source: BuiltinSource,
 }
 
 macro_rules! scene {
     ($name:literal) => {
-        BuiltinScene { name: $name, text: include_str!(concat!("../../../../assets/scenes/", $name, ".toml")) }
+        BuiltinScene {
+            name: $name,
+            source: BuiltinSource::Toml(include_str!(concat!("../../../../assets/scenes/", $name, ".toml"))),
+        }
     };
 }
 
-pub const BUILTIN_SCENES: &[BuiltinScene] =
-    &[scene!("whitted"), scene!("cornell"), scene!("spotlights"), scene!("highlights"), scene!("lights")];
+pub const BUILTIN_SCENES: &[BuiltinScene] = &[
+    scene!("whitted"),
+    scene!("cornell"),
+    scene!("spotlights"),
+    scene!("highlights"),
+    scene!("lights"),
+    BuiltinScene { name: "bumpy", source: BuiltinSource::Generated(bumpy::bumpy) },
+    BuiltinScene { name: "bumpy-glass", source: BuiltinSource::Generated(bumpy::bumpy_glass) },
+];
 
 pub fn builtin(name: &str) -> Option<&'static BuiltinScene> {
     BUILTIN_SCENES.iter().find(|b| b.name == name)
+}
+
+/// The names of the generated scenes, comma-separated (for messages).
+pub fn generated_names() -> String {
+    BUILTIN_SCENES.iter().filter(|b| b.is_generated()).map(|b| b.name).collect::<Vec<_>>().join(", ")
+}
+
+impl BuiltinScene {
+    /// The scene file text of a TOML scene (`None` for a generated one).
+    pub fn toml(&self) -> Option<&'static str> {
+        match self.source {
+            BuiltinSource::Toml(text) => Some(text),
+            BuiltinSource::Generated(_) => None,
+        }
+    }
+
+    pub fn is_generated(&self) -> bool {
+        matches!(self.source, BuiltinSource::Generated(_))
+    }
+
+    /// The validated description. `resolution` is for generated scenes only: asking a TOML
+    /// scene for one is an error rather than a silently ignored flag.
+    pub fn load(&self, resolution: Option<u32>) -> Result<(SceneDesc, Vec<FieldIssue>), SceneError> {
+        let source = format!("builtin:{}", self.name);
+        match self.source {
+            BuiltinSource::Toml(text) => match resolution {
+                Some(value) => Err(SceneError::NotGenerated { name: self.name.to_string(), value }),
+                None => parse_scene(text, Path::new(&source)),
+            },
+            BuiltinSource::Generated(generate) => {
+                let n = resolution.unwrap_or(DEFAULT_RESOLUTION);
+                if !RESOLUTIONS.contains(&n) {
+                    return Err(SceneError::Resolution {
+                        name: self.name.to_string(),
+                        value: n,
+                        min: *RESOLUTIONS.start(),
+                        max: *RESOLUTIONS.end(),
+                    });
+                }
+                let desc = generate(n);
+                let report = validate(&desc);
+                if report.errors.is_empty() {
+                    Ok((desc, report.warnings))
+                } else {
+                    Err(SceneError::Invalid { file: source.into(), issues: report.errors })
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_are_unique_and_generated_scenes_take_a_resolution() {
+        for (i, b) in BUILTIN_SCENES.iter().enumerate() {
+            assert!(BUILTIN_SCENES[..i].iter().all(|o| o.name != b.name), "{} twice", b.name);
+        }
+        let bumpy = builtin("bumpy").expect("bumpy is built in");
+        assert!(bumpy.is_generated() && bumpy.toml().is_none());
+        let (desc, _) = bumpy.load(Some(4)).expect("N = 4 loads");
+        assert!(desc.description.contains("4·N² triangles"), "{}", desc.description);
+        let mesh_triangles = |d: &SceneDesc| -> usize {
+            d.objects
+                .iter()
+                .map(|o| if let super::super::ObjectDesc::Mesh(m) = o { m.triangles.len() } else { 0 })
+                .sum()
+        };
+        assert_eq!(mesh_triangles(&desc), 4 * 4 * 4 + 2);
+        for bad in [0, 1, 1501] {
+            let e = bumpy.load(Some(bad)).expect_err("outside the range").to_string();
+            assert!(e.contains(&bad.to_string()) && e.contains("2..=1500"), "{e}");
+        }
+        let e = builtin("whitted").unwrap().load(Some(20)).expect_err("not generated").to_string();
+        assert!(e.contains("whitted") && e.contains("bumpy"), "{e}");
+    }
 }

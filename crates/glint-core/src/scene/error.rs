@@ -30,6 +30,14 @@ pub enum SceneError {
     Invalid { file: PathBuf, issues: Vec<FieldIssue> },
     #[error("unknown built-in scene '{name}' and no such file; built-in scenes: {available}")]
     UnknownScene { name: String, available: String },
+    #[error("resolution {value} of the generated scene '{name}' is outside {min}..={max}")]
+    Resolution { name: String, value: u32, min: u32, max: u32 },
+    #[error(
+        "'{name}' is not a generated scene: a resolution ({value}) applies only to the generated \
+         built-in scenes ({})",
+        super::builtin::generated_names()
+    )]
+    NotGenerated { name: String, value: u32 },
 }
 
 impl SceneError {

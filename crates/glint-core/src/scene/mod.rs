@@ -6,6 +6,7 @@
 //! key instead.
 
 mod builtin;
+pub mod bumpy;
 mod desc;
 mod error;
 mod rgb;
@@ -13,7 +14,7 @@ mod validate;
 
 use std::path::{Path, PathBuf};
 
-pub use builtin::{BUILTIN_SCENES, BuiltinScene, builtin};
+pub use builtin::{BUILTIN_SCENES, BuiltinScene, BuiltinSource, DEFAULT_RESOLUTION, RESOLUTIONS, builtin};
 pub use desc::{
     Attenuation, CameraDesc, CheckerDesc, EpsilonMode, LightDesc, LightKind, MaterialDesc, MeshDesc, NO_CONE_CUTOFF,
     ObjectDesc, PlaneDesc, RenderSettings, SceneDesc, SpecularModel, SphereDesc, WorldDesc,
@@ -50,6 +51,12 @@ pub fn parse_scene(text: &str, file: &Path) -> Result<(SceneDesc, Vec<FieldIssue
 
 /// Loads `arg`: a scene file if such a file exists, otherwise a built-in scene name.
 pub fn load_scene(arg: &str) -> Result<LoadedScene, SceneError> {
+    load_scene_at(arg, None)
+}
+
+/// `load_scene`, with the resolution of a generated built-in scene (`bumpy`; its default
+/// without one). A resolution for a scene file or a TOML built-in is an error, not ignored.
+pub fn load_scene_at(arg: &str, resolution: Option<u32>) -> Result<LoadedScene, SceneError> {
     let path = Path::new(arg);
     if path.is_dir() {
         return Err(SceneError::Io {
@@ -58,6 +65,9 @@ pub fn load_scene(arg: &str) -> Result<LoadedScene, SceneError> {
         });
     }
     if path.is_file() {
+        if let Some(value) = resolution {
+            return Err(SceneError::NotGenerated { name: arg.to_string(), value });
+        }
         let text = std::fs::read_to_string(path).map_err(|error| SceneError::Io { file: path.to_owned(), error })?;
         let (desc, warnings) = parse_scene(&text, path)?;
         let name = path.file_stem().map_or_else(|| "scene".into(), |s| s.to_string_lossy().into_owned());
@@ -65,7 +75,7 @@ pub fn load_scene(arg: &str) -> Result<LoadedScene, SceneError> {
     }
     if let Some(b) = builtin(arg) {
         let source = PathBuf::from(format!("builtin:{}", b.name));
-        let (desc, warnings) = parse_scene(b.text, &source)?;
+        let (desc, warnings) = b.load(resolution)?;
         return Ok(LoadedScene { desc, source, name: b.name.to_string(), warnings });
     }
     if path.extension().is_some() || arg.contains(std::path::MAIN_SEPARATOR) {

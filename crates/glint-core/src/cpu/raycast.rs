@@ -1,0 +1,53 @@
+//! CPU twin of `shaders/raycast.wgsl`: the closest hit of each ray of a buffer through the
+//! BVH, nothing else (no shading), for `glint bench rays`. The same `bvh::closest_hit` the
+//! tracer uses, so the figures are the tracer's traversal cost.
+
+use rayon::prelude::*;
+
+use super::{Ray, TraceContext, bvh, v3};
+use crate::rays::{HitRecord, RayRecord};
+
+/// Rays a rayon task takes at once: enough to amortise the task, few enough to balance
+/// incoherent rays whose cost varies a hundredfold.
+const RAYS_PER_TASK: usize = 256;
+
+/// The closest hit of one ray within its [t_min, t_max], through the BVH.
+pub fn cast_ray(ctx: &TraceContext, ray: &RayRecord) -> HitRecord {
+    let r = Ray { origin: v3(ray.origin_t_min), dir: v3(ray.dir_t_max) };
+    let (t_min, t_max) = (f64::from(ray.origin_t_min[3]), f64::from(ray.dir_t_max[3]));
+    HitRecord::from_hit(bvh::closest_hit(ctx, &r, t_min, t_max))
+}
+
+/// `cast_ray` for every ray, in parallel on the current rayon pool, in ray order.
+pub fn cast_rays(ctx: &TraceContext, rays: &[RayRecord]) -> Vec<HitRecord> {
+    rays.par_iter().with_min_len(RAYS_PER_TASK).map(|r| cast_ray(ctx, r)).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::FlatScene;
+    use crate::cpu::intersect;
+    use crate::rays::{PRIM_NONE, RaySet};
+    use crate::scene::bumpy::bumpy;
+
+    #[test]
+    fn bvh_hits_equal_brute_force_on_both_ray_sets() {
+        let desc = bumpy(6);
+        let flat = FlatScene::build(&desc, &desc.render);
+        let ctx = TraceContext::new(&flat).expect("valid scene");
+        for set in RaySet::ALL {
+            // Every 97th ray: brute force over 146 triangles is slow in a debug build.
+            let rays: Vec<RayRecord> = set.rays().into_iter().step_by(97).collect();
+            let hits = cast_rays(&ctx, &rays);
+            let mut hit = 0;
+            for (r, h) in rays.iter().zip(&hits) {
+                let ray = Ray { origin: v3(r.origin_t_min), dir: v3(r.dir_t_max) };
+                let brute = intersect::closest_hit(&ctx, &ray, 0.0, f64::from(r.dir_t_max[3]));
+                assert_eq!(*h, HitRecord::from_hit(brute), "{} ray {r:?}", set.name());
+                hit += usize::from(h.prim != PRIM_NONE);
+            }
+            assert!(hit > 0 && hit < rays.len(), "{}: {hit} of {} rays hit", set.name(), rays.len());
+        }
+    }
+}

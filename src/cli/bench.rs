@@ -1,0 +1,285 @@
+//! `glint bench rays`: the acceleration structure alone. The BVH build, then the closest hit
+//! of two fixed ray sets (`glint_core::rays`: primary rays of a 1280×720 pinhole, incoherent
+//! rays from a seeded splitmix64) on the CPU (rayon, T threads) and the GPU (raycast.wgsl, the
+//! tracer's own WGSL closest_hit), with the hit fraction and how often the two disagree.
+//!
+//! Every measurement is one warm-up run, then `--runs` timed runs; the table shows the median
+//! and the best, and throughputs are computed from the median.
+
+use std::time::{Duration, Instant};
+
+use anyhow::{Context, bail};
+use clap::{Args, Subcommand};
+use glint_core::cpu::TraceContext;
+use glint_core::cpu::raycast::cast_rays;
+use glint_core::rays::{HitAgreement, HitRecord, RaySet, compare_hits, hit_fraction};
+use glint_core::{Backend, FlatScene, bvh};
+use glint_gpu::GpuContext;
+use glint_gpu::raycast::RayCaster;
+use serde::Serialize;
+
+use super::backend::open_gpu;
+use super::settings::{ResolutionArg, load};
+use super::units::{mrays_per_s, ms};
+
+#[derive(Debug, Args)]
+pub struct BenchArgs {
+    #[command(subcommand)]
+    pub what: BenchCommand,
+}
+
+#[derive(Debug, Subcommand)]
+pub enum BenchCommand {
+    /// The BVH alone: build time, then closest-hit throughput of primary and incoherent rays
+    Rays(RaysArgs),
+}
+
+#[derive(Debug, Args)]
+pub struct RaysArgs {
+    /// A scene file (.toml) or the name of a built-in scene; `bumpy` is made for this
+    #[arg(default_value = "bumpy")]
+    pub scene: String,
+    #[command(flatten)]
+    pub scene_size: ResolutionArg,
+    /// CPU threads for the build and the casts [1, 1024]; default: the available parallelism
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024))]
+    pub threads: Option<u32>,
+    /// Which side casts the rays: the CPU (f64), the GPU (WGSL), or both (then their hits are compared)
+    #[arg(long, default_value = "cpu", value_parser = ["cpu", "gpu", "both"])]
+    pub backend: String,
+    /// GPU adapter: a case-insensitive part of its name (default: WGPU_ADAPTER_NAME, else the best GPU)
+    #[arg(long)]
+    pub adapter: Option<String>,
+    /// Timed runs after the warm-up run [1, 100]
+    #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u32).range(1..=100))]
+    pub runs: u32,
+    /// Print the results as JSON instead of a table
+    #[arg(long)]
+    pub json: bool,
+}
+
+pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
+    match &args.what {
+        BenchCommand::Rays(a) => rays(a),
+    }
+}
+
+/// The median and the best of the timed runs.
+#[derive(Clone, Copy, Debug, Serialize)]
+struct Timing {
+    median_ms: f64,
+    best_ms: f64,
+    runs: u32,
+}
+
+/// A warm-up call of `f`, then `runs` timed ones: the warm-up's value and the timing.
+fn measure<T>(runs: u32, mut f: impl FnMut() -> anyhow::Result<(T, Duration)>) -> anyhow::Result<(T, Timing)> {
+    let (value, _) = f()?;
+    let mut times = Vec::with_capacity(runs as usize);
+    for _ in 0..runs {
+        times.push(f()?.1);
+    }
+    times.sort();
+    Ok((value, Timing { median_ms: ms(times[times.len() / 2]), best_ms: ms(times[0]), runs }))
+}
+
+fn timed<T>(f: impl FnOnce() -> T) -> (T, Duration) {
+    let start = Instant::now();
+    let value = f();
+    (value, start.elapsed())
+}
+
+#[derive(Debug, Serialize)]
+struct BuildResult {
+    #[serde(flatten)]
+    timing: Timing,
+    primitives: usize,
+    mtris_per_s: f64,
+    nodes: usize,
+    /// The whole `FlatScene::build` once (layout flattening and the BVH).
+    flat_scene_ms: f64,
+}
+
+#[derive(Debug, Serialize)]
+struct CastResult {
+    set: &'static str,
+    backend: &'static str,
+    rays: usize,
+    #[serde(flatten)]
+    timing: Timing,
+    mrays_per_s: f64,
+    hit_fraction: f64,
+    #[serde(skip)]
+    hits: Vec<HitRecord>,
+}
+
+#[derive(Debug, Serialize)]
+struct Disagreement {
+    set: &'static str,
+    rays: usize,
+    differing_rays: usize,
+    differing_fraction: f64,
+    max_rel_t_difference: f64,
+}
+
+#[derive(Debug, Serialize)]
+struct Report {
+    scene: String,
+    resolution: Option<u32>,
+    triangles: usize,
+    spheres: usize,
+    planes: usize,
+    cpu_threads: u32,
+    gpu_adapter: Option<String>,
+    statistic: &'static str,
+    build: BuildResult,
+    casts: Vec<CastResult>,
+    gpu_vs_cpu: Vec<Disagreement>,
+}
+
+fn rays(args: &RaysArgs) -> anyhow::Result<()> {
+    let backends: &[Backend] = match args.backend.as_str() {
+        "cpu" => &[Backend::Cpu],
+        "gpu" => &[Backend::Gpu],
+        _ => &[Backend::Cpu, Backend::Gpu],
+    };
+    let threads = match args.threads {
+        Some(t) => t,
+        None => std::thread::available_parallelism().map_or(1, |n| n.get() as u32),
+    };
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads as usize)
+        .thread_name(|i| format!("glint-bench-{i}"))
+        .build()
+        .with_context(|| format!("cannot start {threads} threads (--threads)"))?;
+    // The GPU first: a device that cannot be opened fails before minutes of CPU work.
+    let gpu = if backends.contains(&Backend::Gpu) { Some(open_gpu(args.adapter.as_deref())?) } else { None };
+
+    let loaded = load(&args.scene, args.scene_size.resolution)?;
+    let (flat, flat_time) = pool.install(|| timed(|| FlatScene::build(&loaded.desc, &loaded.desc.render)));
+    if flat.bvh_nodes.is_empty() {
+        bail!("scene '{}' has no spheres or triangles: there is no BVH to measure", loaded.name);
+    }
+    // The BVH part of FlatScene::build, on the primitives it flattened.
+    let (built, build_timing) = measure(args.runs, || Ok(pool.install(|| timed(|| bvh::build(&flat.bounded())))))?;
+    if built.nodes != flat.bvh_nodes || built.prims != flat.bvh_prims {
+        bail!("the timed BVH build differs from the one FlatScene::build made; the build is not deterministic");
+    }
+    let primitives = flat.spheres.len() + flat.triangles.len();
+    let build = BuildResult {
+        mtris_per_s: primitives as f64 / (build_timing.median_ms * 1e3).max(1e-9),
+        timing: build_timing,
+        primitives,
+        nodes: flat.bvh_nodes.len(),
+        flat_scene_ms: ms(flat_time),
+    };
+
+    let sets: Vec<(RaySet, Vec<glint_core::rays::RayRecord>)> = RaySet::ALL.iter().map(|&s| (s, s.rays())).collect();
+    let mut casts = Vec::new();
+    if backends.contains(&Backend::Cpu) {
+        let ctx = TraceContext::new(&flat).context("invalid flat scene")?;
+        for (set, rays) in &sets {
+            let (hits, timing) = measure(args.runs, || Ok(pool.install(|| timed(|| cast_rays(&ctx, rays)))))?;
+            casts.push(cast_result(*set, Backend::Cpu, rays.len(), timing, hits));
+        }
+    }
+    if let Some(tracer) = &gpu {
+        let ctx: &GpuContext = tracer.context();
+        let caster = RayCaster::new(ctx, &flat).context("cannot set up the GPU ray-cast kernel")?;
+        for (set, rays) in &sets {
+            let batch = caster.upload(ctx, rays).context("cannot upload the rays")?;
+            let what = || format!("GPU ray cast of the {} rays", set.name());
+            let (_, timing) = measure(args.runs, || Ok(((), caster.cast(ctx, &batch).with_context(what)?)))?;
+            let hits = caster.hits(ctx, &batch).context("cannot read the hits back")?;
+            casts.push(cast_result(*set, Backend::Gpu, rays.len(), timing, hits));
+        }
+    }
+    let mut gpu_vs_cpu = Vec::new();
+    for (set, _) in &sets {
+        let of = |b: Backend| casts.iter().find(|c| c.set == set.name() && c.backend == b.name());
+        if let (Some(cpu), Some(gpu)) = (of(Backend::Cpu), of(Backend::Gpu)) {
+            let a: HitAgreement = compare_hits(&gpu.hits, &cpu.hits);
+            gpu_vs_cpu.push(Disagreement {
+                set: set.name(),
+                rays: a.rays,
+                differing_rays: a.differing,
+                differing_fraction: a.differing_fraction(),
+                max_rel_t_difference: a.max_t_rel,
+            });
+        }
+    }
+    let report = Report {
+        scene: loaded.name.clone(),
+        resolution: args.scene_size.resolution,
+        triangles: flat.triangles.len(),
+        spheres: flat.spheres.len(),
+        planes: flat.planes.len(),
+        cpu_threads: threads,
+        gpu_adapter: gpu.as_ref().map(|t| t.context().adapter.to_string()),
+        statistic: "one warm-up run, then the median and the best of `runs` timed runs; throughput from the median",
+        build,
+        casts,
+        gpu_vs_cpu,
+    };
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&report)?);
+    } else {
+        print_table(&report);
+    }
+    Ok(())
+}
+
+fn cast_result(set: RaySet, backend: Backend, rays: usize, timing: Timing, hits: Vec<HitRecord>) -> CastResult {
+    let median = Duration::from_secs_f64(timing.median_ms / 1e3);
+    CastResult {
+        set: set.name(),
+        backend: backend.name(),
+        rays,
+        mrays_per_s: mrays_per_s(rays as u64, median),
+        hit_fraction: hit_fraction(&hits),
+        timing,
+        hits,
+    }
+}
+
+fn print_table(r: &Report) {
+    let b = &r.build;
+    println!(
+        "{}: {} triangles, {} spheres, {} planes (walked apart); BVH of {} nodes; {} CPU threads",
+        r.scene, r.triangles, r.spheres, r.planes, b.nodes, r.cpu_threads
+    );
+    println!("  warm-up, then median and best of {} runs; Mrays/s and Mtris/s from the median", b.timing.runs);
+    println!(
+        "  BVH build    {:>10.1} ms median {:>10.1} ms best {:>9.2} Mtris/s  (whole FlatScene::build {:.1} ms)",
+        b.timing.median_ms, b.timing.best_ms, b.mtris_per_s, b.flat_scene_ms
+    );
+    println!(
+        "  {:<11} {:<8} {:>10} {:>12} {:>12} {:>9} {:>8}",
+        "rays", "backend", "count", "median ms", "best ms", "Mrays/s", "hit %"
+    );
+    for c in &r.casts {
+        println!(
+            "  {:<11} {:<8} {:>10} {:>12.1} {:>12.1} {:>9.2} {:>8.2}",
+            c.set,
+            c.backend,
+            c.rays,
+            c.timing.median_ms,
+            c.timing.best_ms,
+            c.mrays_per_s,
+            100.0 * c.hit_fraction
+        );
+    }
+    if let Some(adapter) = &r.gpu_adapter {
+        println!("  gpu: {adapter}");
+    }
+    for d in &r.gpu_vs_cpu {
+        println!(
+            "  gpu vs cpu, {}: {} of {} rays hit another primitive ({:.4} %), max relative t difference {:.2e}",
+            d.set,
+            d.differing_rays,
+            d.rays,
+            100.0 * d.differing_fraction,
+            d.max_rel_t_difference
+        );
+    }
+}
