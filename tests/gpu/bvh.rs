@@ -138,3 +138,23 @@ fn a_buffer_beyond_the_binding_limit_is_an_error_naming_it() {
         "{message}"
     );
 }
+
+#[test]
+fn whitted_bumpy_at_depth_5_raises_no_status_flag() {
+    let tracer = gpu_or_skip!();
+    // The full million triangles: the loop budget is per group of invocations, so a small
+    // image exercises it as much as 1280×720 does.
+    for name in ["bumpy", "bumpy-glass"] {
+        let loaded = glint_core::scene::load_scene_at(name, None).expect("built-in scene");
+        let mut settings = loaded.desc.render.clone();
+        (settings.width, settings.height, settings.max_depth, settings.bailout) = (96, 54, 5, 0.0);
+        let flat = FlatScene::build(&loaded.desc, &settings);
+        assert!(flat.triangles.len() > 990_000, "{name}: {} triangles", flat.triangles.len());
+        let g = render(tracer, &flat, Accel::Bvh);
+        assert_eq!(g.status, 0, "{name}: status word");
+        let c = render_cpu(&flat, &CpuOptions::default(), RenderControl::default()).expect("CPU render");
+        let e = compare_images(&c.image, &g.image);
+        eprintln!("{name}, depth 5: {e:?}");
+        assert!(e.flip_mean <= FLIP_MEAN_MAX && e.first_hit_mismatch <= MISMATCH_MAX, "{name}: {e:?}");
+    }
+}
