@@ -25,11 +25,11 @@ fn rays(c: &mut Criterion) {
     let ctx = TraceContext::new(&flat).expect("a valid flat scene");
 
     let mut group = c.benchmark_group(format!("bumpy{RESOLUTION}"));
-    // Each iteration takes 0.1–1 s: flat sampling keeps the whole run short.
+    // Each iteration takes 0.05–1 s: flat sampling and 10 samples keep the whole run near a minute.
     group.sampling_mode(SamplingMode::Flat);
     group.sample_size(10);
     group.warm_up_time(Duration::from_secs(1));
-    group.measurement_time(Duration::from_secs(5));
+    group.measurement_time(Duration::from_secs(12));
 
     group.throughput(Throughput::Elements((flat.spheres.len() + flat.triangles.len()) as u64));
     group.bench_function("bvh_build_2threads", |b| {
