@@ -21,8 +21,11 @@ pub struct Bounded<'a> {
 
 /// One node: a leaf when `count > 0` (primitive references `left_first .. left_first +
 /// count`), else an interior node whose children are `left_first` and `left_first + 1`.
+///
+/// Aligned to its size, and stored with an unused node after the root so that every pair of
+/// siblings starts at an even index: a pair is then one 64-byte cache line.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
-#[repr(C)]
+#[repr(C, align(32))]
 pub struct BvhNode {
     pub min: [f32; 3],
     pub left_first: u32,
@@ -171,7 +174,15 @@ pub fn build(prims: &Bounded) -> Bvh {
     if items.is_empty() {
         return Bvh::default();
     }
-    let nodes = build_node(&mut items, 0);
+    let mut nodes = build_node(&mut items, 0);
+    if nodes.len() > 1 {
+        for n in &mut nodes {
+            if n.count == 0 {
+                n.left_first += 1;
+            }
+        }
+        nodes.insert(1, BvhNode::default());
+    }
     Bvh { nodes, prims: items.iter().map(|i| i.r).collect() }
 }
 
@@ -363,7 +374,11 @@ mod tests {
             assert!(bvh.nodes.is_empty());
             return 0;
         }
-        assert!(bvh.nodes.len() < 2 * n, "{} nodes for {n} primitives", bvh.nodes.len());
+        assert!(bvh.nodes.len() <= 2 * n, "{} nodes for {n} primitives", bvh.nodes.len());
+        // Every sibling pair starts at an even index (one cache line each).
+        for node in bvh.nodes.iter().filter(|nd| nd.count == 0 && bvh.nodes.len() > 1) {
+            assert_eq!(node.left_first % 2, 0, "a sibling pair at an odd index");
+        }
         let mut seen = vec![0u32; n];
         let mut leaves = 0;
         let mut visited = vec![false; bvh.nodes.len()];
@@ -392,7 +407,8 @@ mod tests {
                 }
             }
         }
-        assert!(visited.iter().all(|&v| v), "unreachable nodes");
+        // Index 1 is the unused node that aligns the pairs.
+        assert!(visited.iter().enumerate().all(|(i, &v)| v || i == 1), "unreachable nodes");
         assert!(seen.iter().all(|&k| k == 1), "a primitive not in exactly one leaf");
         leaves
     }
