@@ -67,8 +67,6 @@ impl FlatScene {
     /// primitives, camera, header, and last the feature set, computed from the flat data itself.
     pub fn build(desc: &SceneDesc, settings: &RenderSettings) -> Self {
         let material_names: Vec<String> = desc.materials.keys().cloned().collect();
-        let materials = desc.materials.values().map(flat_material).collect();
-        let lights = desc.lights.iter().map(flat_light).collect();
         let mut primitives = flat_primitives(desc, &material_names);
         let mut bvh = bvh::build(&bvh::Bounded {
             spheres: &primitives.spheres,
@@ -76,9 +74,40 @@ impl FlatScene {
             vertices: &primitives.vertices,
         });
         bvh::reorder_triangles(&mut bvh, &mut primitives.triangles);
+        Self::assemble(desc, settings, material_names, primitives, bvh)
+    }
+
+    /// `build` for a description whose objects and material names are those this scene was
+    /// built from (only settings, camera, lights, world or material values differ): the
+    /// primitives and the BVH are copied instead of rebuilt — the viewer's case while the
+    /// camera or a light is dragged over a million triangles. Identical to `build`.
+    pub fn rebuild(&self, desc: &SceneDesc, settings: &RenderSettings) -> Self {
+        let primitives = Primitives {
+            spheres: self.spheres.clone(),
+            planes: self.planes.clone(),
+            triangles: self.triangles.clone(),
+            vertices: self.vertices.clone(),
+            normals: self.normals.clone(),
+            meshes: self.meshes.clone(),
+            object_names: self.object_names.clone(),
+        };
+        let bvh = bvh::Bvh { nodes: self.bvh_nodes.clone(), prims: self.bvh_prims.clone() };
+        Self::assemble(desc, settings, self.material_names.clone(), primitives, bvh)
+    }
+
+    /// Everything but the geometry, around it.
+    fn assemble(
+        desc: &SceneDesc,
+        settings: &RenderSettings,
+        material_names: Vec<String>,
+        primitives: Primitives,
+        bvh: bvh::Bvh,
+    ) -> Self {
+        let materials = desc.materials.values().map(flat_material).collect();
+        let lights = desc.lights.iter().map(flat_light).collect();
         let mut flat = Self {
             header: flat_header(desc, settings, &primitives, material_names.len()),
-            camera: build_camera(desc, settings),
+            camera: Self::camera_for(desc, settings),
             materials,
             lights,
             spheres: primitives.spheres,
@@ -263,20 +292,23 @@ impl FlatScene {
     }
 }
 
-/// Ray-generation vectors of the pinhole camera, computed in f64 and stored once in f32.
-fn build_camera(desc: &SceneDesc, settings: &RenderSettings) -> GpuCamera {
-    let c = &desc.camera;
-    let pos = DVec3::from(c.position);
-    let forward = (DVec3::from(c.look_at) - pos).normalize();
-    let right = forward.cross(DVec3::from(c.up)).normalize();
-    let up = right.cross(forward);
-    let half_h = (c.fov_y.to_radians() * 0.5).tan();
-    let half_w = half_h * f64::from(settings.width) / f64::from(settings.height);
-    GpuCamera {
-        position: vec4(pos, 1.0),
-        forward: vec4(forward, 0.0),
-        right: vec4(right * half_w, 0.0),
-        up: vec4(up * half_h, 0.0),
+impl FlatScene {
+    /// Ray-generation vectors of the pinhole camera, computed in f64 and stored once in f32
+    /// (what `build` stores; the viewer's light gizmos project with it).
+    pub fn camera_for(desc: &SceneDesc, settings: &RenderSettings) -> GpuCamera {
+        let c = &desc.camera;
+        let pos = DVec3::from(c.position);
+        let forward = (DVec3::from(c.look_at) - pos).normalize();
+        let right = forward.cross(DVec3::from(c.up)).normalize();
+        let up = right.cross(forward);
+        let half_h = (c.fov_y.to_radians() * 0.5).tan();
+        let half_w = half_h * f64::from(settings.width) / f64::from(settings.height);
+        GpuCamera {
+            position: vec4(pos, 1.0),
+            forward: vec4(forward, 0.0),
+            right: vec4(right * half_w, 0.0),
+            up: vec4(up * half_h, 0.0),
+        }
     }
 }
 
@@ -424,5 +456,28 @@ fn flat_header(desc: &SceneDesc, settings: &RenderSettings, p: &Primitives, mate
         bailout: settings.bailout as f32,
         ambient: rgb4(desc.world.ambient),
         background: rgb4(desc.world.background),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::builtin;
+
+    #[test]
+    fn rebuild_with_another_camera_light_and_material_value_equals_build() {
+        let (desc, _) = builtin("bumpy-glass").expect("built-in").load(Some(12)).expect("loads");
+        let old = FlatScene::build(&desc, &desc.render);
+        let mut edited = desc.clone();
+        edited.camera.position[0] += 0.5;
+        edited.lights[0].diffuse = Rgb([0.3, 0.2, 0.1]);
+        if let Some(m) = edited.materials.values_mut().next() {
+            m.shininess += 3.0;
+        }
+        let mut settings = edited.render.clone();
+        (settings.width, settings.height, settings.max_depth) = (33, 17, 2);
+        let rebuilt = old.rebuild(&edited, &settings);
+        assert_eq!(rebuilt, FlatScene::build(&edited, &settings));
+        assert_ne!(rebuilt.camera, old.camera);
     }
 }

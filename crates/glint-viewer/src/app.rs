@@ -6,6 +6,7 @@ use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 use egui::Ui;
+use glint_core::FlatScene;
 use glint_core::image::{RenderInfo, render_metadata};
 use glint_core::layout::NO_HIT;
 
@@ -220,8 +221,12 @@ impl ViewerApp {
     fn central(&mut self, ui: &mut Ui) -> Vec<ViewAction> {
         let textures = self.renders.textures(self.doc.revision);
         let size = (self.doc.desc.render.width.max(1), self.doc.desc.render.height.max(1));
-        let gizmos =
-            self.doc.flat(false).map(|f| gizmos(&self.doc.desc, &f.camera, self.selection.light)).unwrap_or_default();
+        let gizmos = if self.doc.is_valid() {
+            let camera = FlatScene::camera_for(&self.doc.desc, &self.doc.desc.render);
+            gizmos(&self.doc.desc, &camera, self.selection.light)
+        } else {
+            Vec::new()
+        };
         self.layout.central(ui, self.renders.gpu.is_some(), textures, size, &gizmos)
     }
 }

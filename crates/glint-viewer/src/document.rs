@@ -1,11 +1,12 @@
 //! The scene being edited: its description, where it came from, and a revision number that
 //! every edit bumps (renders are keyed by it, so a stale result is never shown as current).
 
+use std::cell::RefCell;
 use std::path::{Path, PathBuf};
 
 use glint_core::FlatScene;
 use glint_core::atomic::{AtomicWriteError, write_file_atomically};
-use glint_core::scene::{CameraDesc, FieldIssue, LoadedScene, SceneDesc, load_scene_at, to_toml, validate};
+use glint_core::scene::{CameraDesc, FieldIssue, LoadedScene, ObjectDesc, SceneDesc, load_scene_at, to_toml, validate};
 
 use crate::error::ViewerError;
 
@@ -24,6 +25,17 @@ pub struct Document {
     /// Validation problems of the current description; while there are any, the last valid
     /// scene stays on screen.
     pub issues: Vec<FieldIssue>,
+    /// The last flat scene built, with the objects and material names it was built from: while
+    /// those stay the same (a camera, light or material-value edit) its primitives and BVH
+    /// are reused instead of rebuilt (`FlatScene::rebuild`).
+    geometry: RefCell<Option<BuiltGeometry>>,
+}
+
+#[derive(Clone, Debug)]
+struct BuiltGeometry {
+    objects: Vec<ObjectDesc>,
+    material_names: Vec<String>,
+    flat: FlatScene,
 }
 
 impl Document {
@@ -37,6 +49,7 @@ impl Document {
             dirty: false,
             revision: 0,
             issues: Vec::new(),
+            geometry: RefCell::new(None),
         }
     }
 
@@ -60,6 +73,7 @@ impl Document {
             dirty: false,
             revision: 0,
             issues: Vec::new(),
+            geometry: RefCell::new(None),
         }
     }
 
@@ -97,7 +111,23 @@ impl Document {
             // A preview shows the picture, not the noise: one sample is enough while dragging.
             settings.spp = 1;
         }
-        Some(FlatScene::build(&self.desc, &settings))
+        let mut cache = self.geometry.borrow_mut();
+        let same = cache
+            .as_ref()
+            .is_some_and(|g| g.objects == self.desc.objects && g.material_names.iter().eq(self.desc.materials.keys()));
+        let flat = match cache.as_ref() {
+            Some(g) if same => g.flat.rebuild(&self.desc, &settings),
+            _ => {
+                let flat = FlatScene::build(&self.desc, &settings);
+                *cache = Some(BuiltGeometry {
+                    objects: self.desc.objects.clone(),
+                    material_names: self.desc.materials.keys().cloned().collect(),
+                    flat: flat.clone(),
+                });
+                flat
+            }
+        };
+        Some(flat)
     }
 
     /// Writes the scene in the format `glint render` reads.
