@@ -9,6 +9,7 @@ pub mod cpu;
 pub mod flat;
 pub mod image;
 pub mod layout;
+pub mod model;
 pub mod rays;
 pub mod render;
 pub mod scene;
