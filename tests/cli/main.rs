@@ -8,6 +8,7 @@ use std::process::{Command, Output};
 use glint_test_support::TempDir;
 
 mod bench;
+mod models;
 mod report;
 
 const BIN: &str = env!("CARGO_BIN_EXE_glint");

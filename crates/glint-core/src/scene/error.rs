@@ -38,6 +38,9 @@ pub enum SceneError {
         super::builtin::generated_names()
     )]
     NotGenerated { name: String, value: u32 },
+    /// A model file that did not import (the message names the file and what is wrong).
+    #[error("{message}")]
+    Model { message: String },
 }
 
 impl SceneError {

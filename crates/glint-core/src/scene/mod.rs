@@ -68,9 +68,13 @@ pub fn load_scene_at(arg: &str, resolution: Option<u32>) -> Result<LoadedScene, 
         if let Some(value) = resolution {
             return Err(SceneError::NotGenerated { name: arg.to_string(), value });
         }
+        let name = path.file_stem().map_or_else(|| "scene".into(), |s| s.to_string_lossy().into_owned());
+        if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("obj")) {
+            let (desc, warnings) = load_model(path)?;
+            return Ok(LoadedScene { desc, source: path.to_owned(), name, warnings });
+        }
         let text = std::fs::read_to_string(path).map_err(|error| SceneError::Io { file: path.to_owned(), error })?;
         let (desc, warnings) = parse_scene(&text, path)?;
-        let name = path.file_stem().map_or_else(|| "scene".into(), |s| s.to_string_lossy().into_owned());
         return Ok(LoadedScene { desc, source: path.to_owned(), name, warnings });
     }
     if let Some(b) = builtin(arg) {
@@ -86,6 +90,20 @@ pub fn load_scene_at(arg: &str, resolution: Option<u32>) -> Result<LoadedScene, 
     }
     let available = BUILTIN_SCENES.iter().map(|b| b.name).collect::<Vec<_>>().join(", ");
     Err(SceneError::UnknownScene { name: arg.to_string(), available })
+}
+
+/// An OBJ model in the lab scene `model::scene_around` makes for it, validated like a scene
+/// file; the importer's warnings come first.
+fn load_model(path: &Path) -> Result<(SceneDesc, Vec<FieldIssue>), SceneError> {
+    let model = crate::model::load_obj(path).map_err(|e| SceneError::Model { message: e.to_string() })?;
+    let mut warnings = model.warnings.clone();
+    let desc = crate::model::scene_around(model, format!("the model {}", path.display()));
+    let report = validate(&desc);
+    if !report.errors.is_empty() {
+        return Err(SceneError::Invalid { file: path.to_owned(), issues: report.errors });
+    }
+    warnings.extend(report.warnings);
+    Ok((desc, warnings))
 }
 
 /// Serialises a scene back to the file format (used by the viewer's "Save scene").

@@ -1,0 +1,243 @@
+//! Wavefront OBJ/MTL import (through `tobj`): meshes and the MTL materials, mapped onto the
+//! seed's model as `docs/models.md` tabulates. `mtllib` goes through `uri::resolve_uri` like
+//! every other reference, so an MTL outside the model's folder is refused.
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use super::uri::{MAX_RESOURCE_BYTES, UriError, resolve_uri};
+use crate::scene::{FieldIssue, MaterialDesc, MeshDesc, Rgb};
+
+/// Why an OBJ did not load.
+#[derive(Debug, thiserror::Error)]
+pub enum ObjError {
+    #[error("{file}: cannot read the model: {error}")]
+    Io { file: std::path::PathBuf, error: std::io::Error },
+    #[error("{file}: {error}")]
+    Uri { file: std::path::PathBuf, error: UriError },
+    #[error("{file}: invalid OBJ ({reason})")]
+    Parse { file: std::path::PathBuf, reason: String },
+    #[error("{file}: no triangles (points and lines are not traced)")]
+    Empty { file: std::path::PathBuf },
+}
+
+/// The meshes and materials of one OBJ file, and what was set aside with a warning.
+#[derive(Clone, Debug, Default)]
+pub struct ObjModel {
+    pub meshes: Vec<MeshDesc>,
+    pub materials: BTreeMap<String, MaterialDesc>,
+    pub warnings: Vec<FieldIssue>,
+}
+
+/// The material of faces that name none (MTL's defaults for Kd, no highlight).
+pub const DEFAULT_MATERIAL: &str = "obj-default";
+
+/// Loads `path`: faces triangulated (fans), one mesh per OBJ object or group and material.
+pub fn load_obj(path: &Path) -> Result<ObjModel, ObjError> {
+    let bytes = std::fs::read(path).map_err(|error| ObjError::Io { file: path.to_owned(), error })?;
+    let options = tobj::LoadOptions { triangulate: true, single_index: true, ..Default::default() };
+    let mtl_error = std::cell::RefCell::new(None);
+    let (models, materials) = tobj::load_obj_buf(&mut bytes.as_slice(), &options, |mtl| {
+        let uri = mtl.to_string_lossy();
+        match resolve_uri(path, &uri, MAX_RESOURCE_BYTES) {
+            Ok(text) => tobj::load_mtl_buf(&mut text.as_slice()),
+            Err(error) => {
+                *mtl_error.borrow_mut() = Some(error);
+                Err(tobj::LoadError::OpenFileFailed)
+            }
+        }
+    })
+    .map_err(|e| ObjError::Parse { file: path.to_owned(), reason: e.to_string() })?;
+    if let Some(error) = mtl_error.into_inner() {
+        return Err(ObjError::Uri { file: path.to_owned(), error });
+    }
+    let mut out = ObjModel::default();
+    let materials = match materials {
+        Ok(m) => m,
+        Err(e) => {
+            out.warnings.push(FieldIssue {
+                field: "mtllib".into(),
+                problem: format!("materials not loaded ({e}); faces use `{DEFAULT_MATERIAL}`"),
+            });
+            Vec::new()
+        }
+    };
+    let names: Vec<String> = materials.iter().map(|m| material_name(&m.name)).collect();
+    for (m, name) in materials.iter().zip(&names) {
+        out.materials.insert(name.clone(), map_material(m, name, &mut out.warnings));
+    }
+    for model in models {
+        let mesh = &model.mesh;
+        if mesh.indices.len() < 3 {
+            continue;
+        }
+        let vertices: Vec<[f64; 3]> =
+            mesh.positions.chunks_exact(3).map(|p| [f64::from(p[0]), f64::from(p[1]), f64::from(p[2])]).collect();
+        let count = vertices.len() as u32;
+        if let Some(&bad) = mesh.indices.iter().find(|&&i| i >= count) {
+            return Err(ObjError::Parse {
+                file: path.to_owned(),
+                reason: format!("object `{}`: vertex index {} beyond its {count} vertices", model.name, bad + 1),
+            });
+        }
+        let triangles = mesh.indices.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect();
+        let mut normals: Option<Vec<[f64; 3]>> = (mesh.normals.len() == mesh.positions.len()).then(|| {
+            mesh.normals.chunks_exact(3).map(|n| [f64::from(n[0]), f64::from(n[1]), f64::from(n[2])]).collect()
+        });
+        // A zero or non-finite normal cannot shade: the whole object is shaded faceted.
+        let unusable =
+            |n: &[f64; 3]| !(n.iter().all(|c| c.is_finite()) && n.iter().map(|c| c * c).sum::<f64>() > 1e-24);
+        if normals.as_ref().is_some_and(|ns| ns.iter().any(unusable)) {
+            out.warnings.push(FieldIssue {
+                field: format!("object `{}`", model.name),
+                problem: "has zero-length normals; shaded with its faces' geometric normals".into(),
+            });
+            normals = None;
+        }
+        let material = match mesh.material_id.and_then(|i| names.get(i)) {
+            Some(name) => name.clone(),
+            None => {
+                out.materials.entry(DEFAULT_MATERIAL.into()).or_insert_with(default_material);
+                DEFAULT_MATERIAL.into()
+            }
+        };
+        out.meshes.push(MeshDesc { vertices, triangles, normals, material, name: model.name.clone() });
+    }
+    if out.meshes.is_empty() {
+        return Err(ObjError::Empty { file: path.to_owned() });
+    }
+    Ok(out)
+}
+
+/// MTL names may hold any character; the scene format's keys are kept readable.
+fn material_name(mtl: &str) -> String {
+    let cleaned: String = mtl.chars().map(|c| if c.is_alphanumeric() || "-_.".contains(c) { c } else { '_' }).collect();
+    if cleaned.is_empty() { "unnamed".into() } else { cleaned }
+}
+
+fn default_material() -> MaterialDesc {
+    MaterialDesc { ka: Rgb::splat(0.8), kd: Rgb::splat(0.8), ks: Rgb::splat(0.0), ..MaterialDesc::default() }
+}
+
+/// tobj reads numbers as f32: the shortest decimal of that f32 is what the file wrote (to 7
+/// digits), so a material reads `Kd 0.1` as 0.1, as a scene file would, not 0.10000000149.
+fn widen(x: f32) -> f64 {
+    x.to_string().parse().unwrap_or(f64::from(x))
+}
+
+fn rgb(c: [f32; 3]) -> Rgb {
+    Rgb(c.map(widen))
+}
+
+/// The MTL fields onto the seed's coefficients (docs/models.md): Kd → k_d, Ka → k_a (k_d when
+/// absent), Ks → k_s from illum 2 on, Ns → n, Ke → E_m, Ni → ior; illum 3 and 5 trace
+/// reflection rays with k_r = Ks, illum 4, 6 and 7 also refraction rays with k_t = 1 − d.
+fn map_material(m: &tobj::Material, name: &str, warnings: &mut Vec<FieldIssue>) -> MaterialDesc {
+    let kd = m.diffuse.map_or(Rgb::splat(0.8), rgb);
+    let ks = m.specular.map_or(Rgb::splat(0.0), rgb);
+    let illum = m.illumination_model.unwrap_or(2);
+    let mut warn = |field: &str, problem: String| {
+        warnings.push(FieldIssue { field: format!("materials.{name}.{field}"), problem });
+    };
+    let transmission = Rgb::splat(1.0 - widen(m.dissolve.unwrap_or(1.0)).clamp(0.0, 1.0));
+    let (ks_local, kr, kt) = match illum {
+        0 | 1 => (Rgb::splat(0.0), Rgb::splat(0.0), Rgb::splat(0.0)),
+        2 => (ks, Rgb::splat(0.0), Rgb::splat(0.0)),
+        3 | 5 => (ks, ks, Rgb::splat(0.0)),
+        4 | 6 | 7 => (ks, ks, transmission),
+        8..=10 => {
+            warn("illum", format!("illum {illum} (no ray tracing) is traced as illum 2"));
+            (ks, Rgb::splat(0.0), Rgb::splat(0.0))
+        }
+        other => {
+            warn("illum", format!("illum {other} is outside 0..=10; traced as illum 2"));
+            (ks, Rgb::splat(0.0), Rgb::splat(0.0))
+        }
+    };
+    let ior = match m.optical_density.map(widen) {
+        Some(ni) if (1.0..=crate::scene::MAX_IOR).contains(&ni) => ni,
+        Some(ni) => {
+            warn("ior", format!("Ni {ni} is outside [1, {}]; using 1.5", crate::scene::MAX_IOR));
+            1.5
+        }
+        None => 1.5,
+    };
+    if m.diffuse_texture.is_some() {
+        warn("kd", "map_Kd textures are not supported yet; the constant Kd is used".into());
+    }
+    let shininess = widen(m.shininess.unwrap_or(0.0)).clamp(0.0, crate::scene::MAX_SHININESS);
+    MaterialDesc {
+        ka: m.ambient.map_or(kd, rgb),
+        kd,
+        ks: ks_local,
+        shininess,
+        kr,
+        kt,
+        ior,
+        emission: m.emissive.map_or(Rgb::splat(0.0), rgb),
+        ..MaterialDesc::default()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn write(dir: &Path, name: &str, text: &str) -> std::path::PathBuf {
+        let p = dir.join(name);
+        std::fs::write(&p, text).unwrap();
+        p
+    }
+
+    const QUAD: &str = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n";
+
+    #[test]
+    fn mtl_fields_map_onto_the_model_by_illum() {
+        let dir = tempfile::tempdir().unwrap();
+        write(
+            dir.path(),
+            "m.mtl",
+            "newmtl plastic\nKa 0.1 0.1 0.1\nKd 0.5 0.25 0.125\nKs 0.4 0.4 0.4\nNs 50\nillum 2\n\
+             newmtl glass\nKd 0.1 0.1 0.1\nKs 0.9 0.9 0.9\nNi 1.33\nd 0.25\nKe 0.5 0 0\nillum 4\n\
+             newmtl matte\nKd 0.7 0.7 0.7\nKs 1 1 1\nillum 1\n",
+        );
+        let obj = write(
+            dir.path(),
+            "m.obj",
+            &format!("mtllib m.mtl\n{QUAD}usemtl plastic\nf 1 2 3\nusemtl glass\nf 1 3 4\nusemtl matte\nf 2 3 4\n"),
+        );
+        let m = load_obj(&obj).expect("loads");
+        let (plastic, glass, matte) = (&m.materials["plastic"], &m.materials["glass"], &m.materials["matte"]);
+        assert_eq!((plastic.ka, plastic.kd, plastic.ks), (Rgb::splat(0.1), Rgb([0.5, 0.25, 0.125]), Rgb::splat(0.4)));
+        assert_eq!((plastic.shininess, plastic.kr, plastic.kt), (50.0, Rgb::splat(0.0), Rgb::splat(0.0)));
+        assert_eq!((glass.kr, glass.kt, glass.emission), (Rgb::splat(0.9), Rgb::splat(0.75), Rgb([0.5, 0.0, 0.0])));
+        assert!(glass.ior == 1.33 && glass.ka == glass.kd, "{glass:?}");
+        assert_eq!((matte.ks, matte.kr), (Rgb::splat(0.0), Rgb::splat(0.0)));
+        let used: Vec<&str> = m.meshes.iter().map(|x| x.material.as_str()).collect();
+        assert!(used.contains(&"plastic") && used.contains(&"glass") && used.contains(&"matte"), "{used:?}");
+    }
+
+    #[test]
+    fn an_mtllib_outside_the_folder_is_refused_naming_it() {
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::create_dir(dir.path().join("model")).unwrap();
+        write(dir.path(), "secret.mtl", "newmtl x\nKd 1 0 0\n");
+        let obj = write(&dir.path().join("model"), "m.obj", &format!("mtllib ../secret.mtl\n{QUAD}"));
+        let message = load_obj(&obj).unwrap_err().to_string();
+        assert!(message.contains("../secret.mtl") && message.contains("outside the model's folder"), "{message}");
+    }
+
+    #[test]
+    fn bad_indices_points_only_and_no_materials_are_clear() {
+        let dir = tempfile::tempdir().unwrap();
+        let bad = write(dir.path(), "bad.obj", "v 0 0 0\nv 1 0 0\nf 1 2 7\n");
+        let message = load_obj(&bad).unwrap_err().to_string();
+        assert!(message.contains("bad.obj") && message.contains("invalid OBJ"), "{message}");
+        let points = write(dir.path(), "p.obj", "v 0 0 0\nv 1 0 0\np 1 2\n");
+        assert!(load_obj(&points).unwrap_err().to_string().contains("no triangles"));
+        let plain = load_obj(&write(dir.path(), "q.obj", QUAD)).expect("loads");
+        assert_eq!(plain.meshes.len(), 1);
+        assert_eq!(plain.meshes[0].triangles.len(), 2, "a quad is two triangles");
+        assert_eq!(plain.meshes[0].material, DEFAULT_MATERIAL);
+    }
+}

@@ -1,0 +1,79 @@
+//! Real OBJ/MTL files from Debian's `assimp-testmodels` (under /usr/share/assimp/models) through
+//! `glint render`, on the CPU and the GPU. Without the package these tests fail with a clear
+//! message; `GLINT_SKIP_MODELS=1` skips them on purpose.
+
+use std::path::{Path, PathBuf};
+
+use super::{glint, text};
+use glint_test_support::TempDir;
+
+const MODELS: &str = "/usr/share/assimp/models";
+
+/// The model file, or `None` when `GLINT_SKIP_MODELS=1`; panics when the package is missing.
+fn model(relative: &str) -> Option<PathBuf> {
+    if std::env::var("GLINT_SKIP_MODELS").is_ok_and(|v| v == "1") {
+        eprintln!("GLINT_SKIP_MODELS=1: skipping the model tests");
+        return None;
+    }
+    let path = Path::new(MODELS).join(relative);
+    assert!(
+        path.is_file(),
+        "the model tests need {} from Debian's assimp-testmodels (apt-get install assimp-testmodels), \
+         or GLINT_SKIP_MODELS=1 to skip them",
+        path.display()
+    );
+    Some(path)
+}
+
+#[test]
+fn obj_models_render_on_both_backends_and_agree() {
+    let dir = TempDir::new("models");
+    // GLINT_SKIP_GPU=1 skips the GPU on purpose: the CPU side still runs.
+    let skip_gpu = std::env::var("GLINT_SKIP_GPU").is_ok_and(|v| v == "1");
+    let backend = if skip_gpu { "cpu" } else { "both" };
+    for name in ["OBJ/WusonOBJ.obj", "OBJ/spider.obj", "OBJ/cube_usemtl.obj"] {
+        let Some(path) = model(name) else { return };
+        let out = dir.join("m.png");
+        let run = glint(
+            &dir,
+            [
+                "render".into(),
+                path.clone().into_os_string(),
+                "--width".into(),
+                "64".into(),
+                "--height".into(),
+                "48".into(),
+                "--backend".into(),
+                backend.into(),
+                "--json".into(),
+                "-o".into(),
+                out.into_os_string(),
+            ],
+        );
+        let stdout = text(&run.stdout);
+        assert!(run.status.success(), "{name}: {}\n{stdout}", text(&run.stderr));
+        let v: serde_json::Value = serde_json::from_str(&stdout).expect("JSON");
+        for r in v["runs"].as_array().unwrap() {
+            assert!(r["rays"]["camera"].as_u64() == Some(64 * 48), "{name}: {r}");
+        }
+        if skip_gpu {
+            continue;
+        }
+        let cmp = &v["gpu_vs_cpu"];
+        let (flip, mismatch) =
+            (cmp["flip_mean"].as_f64().unwrap(), cmp["first_hit_mismatch_percent"].as_f64().unwrap());
+        assert!(flip < 0.01 && mismatch < 1.0, "{name}: FLIP {flip}, first-hit mismatch {mismatch} %");
+    }
+}
+
+#[test]
+fn a_model_with_points_only_or_unreadable_text_is_a_clear_error() {
+    let dir = TempDir::new("models-bad");
+    for (name, expected) in [("OBJ/point_cloud.obj", "no triangles"), ("OBJ/box_UTF16BE.obj", "invalid OBJ")] {
+        let Some(path) = model(name) else { return };
+        let run = glint(&dir, ["render".into(), path.into_os_string(), "-o".into(), dir.join("x.png").into()]);
+        let stderr = text(&run.stderr);
+        assert!(!run.status.success() && stderr.contains(expected) && stderr.contains(name), "{name}: {stderr}");
+        assert!(!dir.join("x.png").exists(), "{name}: an output file was left");
+    }
+}
