@@ -134,20 +134,26 @@ pub fn render_cpu(
     let origins: Vec<(u32, u32)> =
         (0..h.div_ceil(TILE)).flat_map(|ty| (0..w.div_ceil(TILE)).map(move |tx| (tx * TILE, ty * TILE))).collect();
     let start = Instant::now();
-    let tiles: Vec<Option<Tile>> = pool.install(|| {
-        origins
-            .par_iter()
-            .map(|&(x0, y0)| {
-                let tile = render_tile(&ctx, x0, y0, control.cancel);
-                if let (Some(t), Some(cb)) = (&tile, control.on_tile) {
-                    cb(t);
-                }
-                tile
-            })
-            .collect()
+    // The image (24 bytes a pixel, page-faulted in as it is zeroed) is allocated beside the
+    // render, not after it: at 1280×720 that is ~20 ms off the command's wall time.
+    let (mut image, tiles): (HdrImage, Vec<Option<Tile>>) = pool.install(|| {
+        rayon::join(
+            || HdrImage::new(w, h),
+            || {
+                origins
+                    .par_iter()
+                    .map(|&(x0, y0)| {
+                        let tile = render_tile(&ctx, x0, y0, control.cancel);
+                        if let (Some(t), Some(cb)) = (&tile, control.on_tile) {
+                            cb(t);
+                        }
+                        tile
+                    })
+                    .collect()
+            },
+        )
     });
     let elapsed = start.elapsed();
-    let mut image = HdrImage::new(w, h);
     let mut counts = RayCounts::default();
     for tile in tiles {
         let tile = tile.ok_or(CpuRenderError::Cancelled)?;
