@@ -134,31 +134,27 @@ pub fn render_cpu(
     let origins: Vec<(u32, u32)> =
         (0..h.div_ceil(TILE)).flat_map(|ty| (0..w.div_ceil(TILE)).map(move |tx| (tx * TILE, ty * TILE))).collect();
     let start = Instant::now();
-    // The image (24 bytes a pixel, page-faulted in as it is zeroed) is allocated beside the
-    // render, not after it: at 1280×720 that is ~20 ms off the command's wall time.
-    let (mut image, tiles): (HdrImage, Vec<Option<Tile>>) = pool.install(|| {
-        rayon::join(
-            || HdrImage::new(w, h),
-            || {
-                origins
-                    .par_iter()
-                    .map(|&(x0, y0)| {
-                        let tile = render_tile(&ctx, x0, y0, control.cancel);
-                        if let (Some(t), Some(cb)) = (&tile, control.on_tile) {
-                            cb(t);
-                        }
-                        tile
-                    })
-                    .collect()
-            },
-        )
+    // Each finished tile goes into the image at once and its buffers are freed: keeping all
+    // of them until the end grew the workers' heaps page by page (thousands of mprotect calls).
+    let image = std::sync::Mutex::new(HdrImage::new(w, h));
+    let tiles: Vec<Option<RayCounts>> = pool.install(|| {
+        origins
+            .par_iter()
+            .map(|&(x0, y0)| {
+                let tile = render_tile(&ctx, x0, y0, control.cancel)?;
+                if let Some(cb) = control.on_tile {
+                    cb(&tile);
+                }
+                tile.copy_into(&mut image.lock().unwrap_or_else(|e| e.into_inner()));
+                Some(tile.counts)
+            })
+            .collect()
     });
     let elapsed = start.elapsed();
+    let image = image.into_inner().unwrap_or_else(|e| e.into_inner());
     let mut counts = RayCounts::default();
-    for tile in tiles {
-        let tile = tile.ok_or(CpuRenderError::Cancelled)?;
-        tile.copy_into(&mut image);
-        counts += tile.counts;
+    for tile_counts in tiles {
+        counts += tile_counts.ok_or(CpuRenderError::Cancelled)?;
     }
     Ok(CpuRender { image, counts, elapsed, threads })
 }
