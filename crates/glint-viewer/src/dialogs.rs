@@ -41,7 +41,7 @@ impl Dialogs {
         self.export_open = false;
     }
 
-    /// Remembers a scene file dropped on the window, to be opened.
+    /// Remembers a scene or model file dropped on the window, to be opened.
     pub fn take_dropped_file(&mut self, ctx: &egui::Context) {
         let dropped = ctx.input(|i| {
             i.raw.dropped_files.iter().find_map(|f| {
@@ -88,9 +88,14 @@ impl Dialogs {
     }
 }
 
-/// The system's "open" dialog for a scene file.
+/// The system's "open" dialog for a scene file or a model (opened like a scene, see
+/// `scene::load_scene`).
 pub fn pick_scene() -> Option<PathBuf> {
-    rfd::FileDialog::new().add_filter("Glint scene", &["toml"]).pick_file()
+    rfd::FileDialog::new()
+        .add_filter("Scenes and models", &["toml", "obj"])
+        .add_filter("Glint scene", &["toml"])
+        .add_filter("Wavefront OBJ model", &["obj"])
+        .pick_file()
 }
 
 /// The system's "save" dialog for a scene file, suggesting one named after `scene`.
