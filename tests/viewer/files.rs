@@ -62,6 +62,23 @@ fn a_scene_file_dropped_on_the_window_is_opened() {
 }
 
 #[test]
+fn an_obj_model_dropped_on_the_window_is_opened_with_its_materials() {
+    let Some(mut h) = viewer("whitted", (1000.0, 640.0)) else { return };
+    let dir = temp_dir("drop-obj");
+    std::fs::write(dir.join("m.mtl"), "newmtl red\nKd 0.8 0.1 0.1\nKs 0.5 0.5 0.5\nNs 40\nillum 2\n").unwrap();
+    let path = dir.join("model.obj");
+    std::fs::write(&path, "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nusemtl red\nf 1 2 3 4\n").unwrap();
+    h.input_mut().dropped_files.push(std::sync::Arc::new(DroppedPath(path.clone())));
+    h.run_steps(2);
+    let doc = &h.state().doc;
+    assert_eq!(doc.name, "model", "the dropped model is the open document");
+    assert_eq!(doc.desc.materials["red"].kd.0, [0.8, 0.1, 0.1]);
+    assert!(doc.desc.objects.iter().any(|o| matches!(o, glint_core::scene::ObjectDesc::Mesh(_))), "its mesh");
+    assert!(h.state().message.is_none(), "no error: {:?}", h.state().message);
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
 fn an_unreadable_scene_is_a_message_not_a_crash() {
     let Some(mut h) = viewer("whitted", (1000.0, 640.0)) else { return };
     let before = h.state().doc.desc.clone();
