@@ -3,6 +3,7 @@
 #define_import_path glint::ray
 
 #import glint::scene_data::ProbeRecord
+#import glint::bindings::tile
 
 struct Ray {
     origin: vec3<f32>,
@@ -27,3 +28,19 @@ var<private> status: u32;
 // being shaded is the camera ray's first hit.
 var<private> probe: ProbeRecord;
 var<private> probe_active: bool;
+
+// lavapipe ends every loop after its current iteration once the invocation group has run
+// its loop budget (glint_gpu::shaders::LAVAPIPE_LOOP_BUDGET iterations in all), without any
+// error. A loop of `tile.canary_laps` (2) laps
+// then stops after one: the only way to see that the work before it was cut short. Every
+// entry point (trace.wgsl, raycast.wgsl) ends with it.
+fn driver_cut_loops() -> bool {
+    var laps = 0u;
+    loop {
+        laps += 1u;
+        if laps >= tile.canary_laps {
+            break;
+        }
+    }
+    return laps < tile.canary_laps;
+}

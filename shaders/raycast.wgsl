@@ -8,7 +8,7 @@
 // fails the benchmark instead of counting as a fast miss.
 #import glint::scene_data::{STATUS_DRIVER_LOOP_CUTOFF, STAT_STATUS}
 #import glint::bindings::{tile, stats, rays_in, hits_out}
-#import glint::ray::{Ray, status}
+#import glint::ray::{Ray, status, driver_cut_loops}
 #import glint::intersect::PRIM_NONE
 #import glint::bvh::closest_hit
 
@@ -21,19 +21,6 @@ fn cast_ray(origin_t_min: vec4<f32>, dir_t_max: vec4<f32>) -> vec4<u32> {
     // A miss has no t (the CPU's None); 0 rather than t_max, as the CPU's record.
     let t = select(h.t, 0.0, h.prim == PRIM_NONE);
     return vec4<u32>(h.prim, h.index, bitcast<u32>(t), 0u);
-}
-
-// trace.wgsl's canary (entry modules cannot import each other): a loop of `tile.canary_laps`
-// (2) laps that stops after one once lavapipe's loop budget ran out.
-fn driver_cut_loops() -> bool {
-    var laps = 0u;
-    loop {
-        laps += 1u;
-        if laps >= tile.canary_laps {
-            break;
-        }
-    }
-    return laps < tile.canary_laps;
 }
 
 @compute @workgroup_size(64, 1, 1)

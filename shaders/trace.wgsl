@@ -5,7 +5,7 @@
 // the same terms with the same bailout decisions, summed in another order.
 #import glint::scene_data::{PROBE_HIT, PROBE_TIR, GpuSphere, GpuPlane, GpuTriangle, NO_HIT, EPS_ROBUST, STATUS_LOOP_LIMIT, STATUS_STACK_OVERFLOW, STATUS_DRIVER_LOOP_CUTOFF, STAT_STATUS, STAT_CAMERA, STAT_SHADOW, STAT_REFLECTION, STAT_REFRACTION, STAT_BAILOUT_SAVED}
 #import glint::bindings::{header, camera, tile, materials, spheres, planes, triangles, meshes, output, stats, probe_out}
-#import glint::ray::{Ray, RayCounts, ray_counts, status, probe, probe_active}
+#import glint::ray::{Ray, RayCounts, ray_counts, status, probe, probe_active, driver_cut_loops}
 #import glint::camera::{camera_ray, sample_offset}
 #import glint::intersect::{Hit, FAR, PRIM_NONE, PRIM_SPHERE, PRIM_PLANE, triangle_corners, triangle_shading_normal, all_zero}
 #ifdef BVH
@@ -289,21 +289,6 @@ fn accumulate_sample(x: u32, y: u32) {
     if tile.sample_index + 1u == header.spp && header.spp > 1u {
         output[index] = vec4<f32>(output[index].xyz / f32(header.spp), output[index].w);
     }
-}
-
-// lavapipe ends every loop after its current iteration once the invocation group has run
-// its loop budget (glint_gpu::shaders::LAVAPIPE_LOOP_BUDGET iterations in all), without any
-// error. A loop of `tile.canary_laps` (2) laps
-// then stops after one: the only way to see that the work before it was cut short.
-fn driver_cut_loops() -> bool {
-    var laps = 0u;
-    loop {
-        laps += 1u;
-        if laps >= tile.canary_laps {
-            break;
-        }
-    }
-    return laps < tile.canary_laps;
 }
 
 // Adds a count to a (lo, hi) pair of the statistics buffer with carry, so that counts past

@@ -70,7 +70,7 @@ const TWINS: [(&str, &str, &str, &str); 10] = [
 ];
 
 /// Functions only the GPU side has, and why.
-const GPU_ONLY: [(&str, &str, &str); 10] = [
+const GPU_ONLY: [(&str, &str, &str); 9] = [
     (
         "bvh.wgsl",
         "push_children",
@@ -85,10 +85,9 @@ const GPU_ONLY: [(&str, &str, &str); 10] = [
         "accumulate_sample",
         "one sample per dispatch, summed in the output buffer in the order of the CPU's render_pixel",
     ),
-    ("trace.wgsl", "driver_cut_loops", "detects lavapipe's silent loop cut-off, which the CPU does not have"),
+    ("ray.wgsl", "driver_cut_loops", "detects lavapipe's silent loop cut-off, which the CPU does not have"),
     ("present.wgsl", "main", "the compute entry point; the CPU converts pixel by pixel where it writes a PNG"),
     ("raycast.wgsl", "main", "the compute entry point, one ray per invocation; the CPU's loop is cast_rays"),
-    ("raycast.wgsl", "driver_cut_loops", "trace.wgsl's canary: entry modules cannot import each other"),
 ];
 
 /// Functions only the CPU side has, and why.
