@@ -14,7 +14,7 @@
 #import glint::scene_data::{BvhNode, PRIM_REF_TRIANGLE, PRIM_REF_INDEX, STATUS_BVH_STACK_OVERFLOW}
 #import glint::bindings::{header, planes, spheres, triangles, meshes, bvh_nodes, bvh_prims}
 #import glint::ray::{Ray, status}
-#import glint::intersect::{Hit, MaybeT, PRIM_NONE, PRIM_SPHERE, PRIM_PLANE, PRIM_TRIANGLE, sphere_roots, intersect_sphere, intersect_plane, intersect_triangle, ray_shear, cross_surface, all_zero, sphere_transmittance, planes_transmittance, triangle_corners, bound, replaces}
+#import glint::intersect::{Hit, MaybeT, PRIM_NONE, PRIM_SPHERE, PRIM_PLANE, PRIM_TRIANGLE, sphere_roots, intersect_sphere, intersect_plane, intersect_triangle, ray_shear, cross_surface, all_zero, sphere_transmittance, planes_transmittance, triangle_transmittance, triangle_corners, bound, replaces}
 
 // Entries of the traversal stack: deeper than any tree the builder makes for 2^31 primitives
 // with balanced splits; a degenerate deeper one raises STATUS_BVH_STACK_OVERFLOW.
@@ -215,13 +215,9 @@ fn shadow_transmittance(ray: Ray, t_min: f32, t_max: f32) -> vec3<f32> {
                 let i = r & PRIM_REF_INDEX;
                 if (r & PRIM_REF_TRIANGLE) != 0u {
 #ifdef TRIANGLES
-                    let tri = triangles[i];
-                    let v = triangle_corners(tri);
-                    if intersect_triangle(v[0], v[1], v[2], ray, sh, t_min, t_max).ok {
-                        tr = cross_surface(tr, meshes[tri.mesh].material);
-                        if all_zero(tr) {
-                            return tr;
-                        }
+                    tr = triangle_transmittance(tr, i, ray, sh, t_min, t_max);
+                    if all_zero(tr) {
+                        return tr;
                     }
 #endif
                 } else {

@@ -279,6 +279,18 @@ fn sphere_transmittance(tr_in: vec3<f32>, i: u32, ray: Ray, t_min: f32, t_max: f
 }
 #endif
 
+#ifdef TRIANGLES
+// `tr` times triangle i's k_t if the ray crosses it in (t_min, t_max).
+fn triangle_transmittance(tr: vec3<f32>, i: u32, ray: Ray, sh: RayShear, t_min: f32, t_max: f32) -> vec3<f32> {
+    let tri = triangles[i];
+    let v = triangle_corners(tri);
+    if intersect_triangle(v[0], v[1], v[2], ray, sh, t_min, t_max).ok {
+        return cross_surface(tr, meshes[tri.mesh].material);
+    }
+    return tr;
+}
+#endif
+
 #ifdef PLANES
 // `tr` times the k_t of every plane crossed in (t_min, t_max), in index order.
 fn planes_transmittance(tr_in: vec3<f32>, ray: Ray, t_min: f32, t_max: f32) -> vec3<f32> {
@@ -318,13 +330,9 @@ fn shadow_transmittance(ray: Ray, t_min: f32, t_max: f32) -> vec3<f32> {
     if header.triangle_count > 0u {
         let sh = ray_shear(ray.dir);
         for (var i = 0u; i < header.triangle_count; i++) {
-            let tri = triangles[i];
-            let v = triangle_corners(tri);
-            if intersect_triangle(v[0], v[1], v[2], ray, sh, t_min, t_max).ok {
-                tr = cross_surface(tr, meshes[tri.mesh].material);
-                if all_zero(tr) {
-                    return tr;
-                }
+            tr = triangle_transmittance(tr, i, ray, sh, t_min, t_max);
+            if all_zero(tr) {
+                return tr;
             }
         }
     }

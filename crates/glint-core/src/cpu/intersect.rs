@@ -284,6 +284,23 @@ pub fn sphere_transmittance(ctx: &TraceContext, tr: DVec3, s: &GpuSphere, ray: &
     tr
 }
 
+/// `tr` times the triangle's k_t if the ray crosses it in (t_min, t_max).
+pub fn triangle_transmittance(
+    ctx: &TraceContext,
+    tr: DVec3,
+    tri: &GpuTriangle,
+    ray: &Ray,
+    shear: &RayShear,
+    t_min: f64,
+    t_max: f64,
+) -> DVec3 {
+    let [a, b, c] = triangle_corners(ctx.scene, tri);
+    match intersect_triangle(a, b, c, ray, shear, t_min, t_max) {
+        Some(_) => cross_surface(ctx, tr, ctx.scene.meshes[tri.mesh as usize].material),
+        None => tr,
+    }
+}
+
 /// `tr` times the k_t of every plane crossed in (t_min, t_max), in index order.
 pub fn planes_transmittance(ctx: &TraceContext, tr: DVec3, ray: &Ray, t_min: f64, t_max: f64) -> DVec3 {
     let mut tr = tr;
@@ -326,12 +343,9 @@ pub fn shadow_transmittance(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f6
     if ctx.has(feature::TRIANGLES) && !scene.triangles.is_empty() {
         let shear = ray_shear(ray.dir);
         for tri in &scene.triangles {
-            let [a, b, c] = triangle_corners(scene, tri);
-            if intersect_triangle(a, b, c, ray, &shear, t_min, t_max).is_some() {
-                tr = cross_surface(ctx, tr, scene.meshes[tri.mesh as usize].material);
-                if all_zero(tr) {
-                    return tr;
-                }
+            tr = triangle_transmittance(ctx, tr, tri, ray, &shear, t_min, t_max);
+            if all_zero(tr) {
+                return tr;
             }
         }
     }
