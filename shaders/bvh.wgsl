@@ -75,6 +75,24 @@ fn enter(s: SlabRay, node: BvhNode, t_lo: f32, t_hi: f32) -> MaybeT {
     return MaybeT(t0, t0 <= t1 && t0 <= t_hi + sl && t1 >= t_lo - sl);
 }
 
+// Pushes the root (node 0) if the ray enters its box within [t_min, t_max].
+fn push_root(
+    stack: ptr<function, array<u32, BVH_STACK_SIZE>>,
+    stack_t: ptr<function, array<f32, BVH_STACK_SIZE>>,
+    sp: ptr<function, u32>,
+    slab: SlabRay,
+    root: BvhNode,
+    t_min: f32,
+    t_max: f32,
+) {
+    let t = enter(slab, root, t_min, t_max);
+    if t.ok {
+        (*stack)[0] = 0u;
+        (*stack_t)[0] = t.t;
+        *sp = 1u;
+    }
+}
+
 // Pushes the children at `l` and `l + 1` that the ray enters within [t_min, t_hi], the farther
 // first so that the nearer is popped first; a full stack raises STATUS_BVH_STACK_OVERFLOW.
 fn push_children(
@@ -136,12 +154,7 @@ fn closest_hit(ray: Ray, t_min: f32, t_max: f32) -> Hit {
     var stack: array<u32, BVH_STACK_SIZE>;
     var stack_t: array<f32, BVH_STACK_SIZE>;
     var sp = 0u;
-    let root_t = enter(slab, root, t_min, t_max);
-    if root_t.ok {
-        stack[0] = 0u;
-        stack_t[0] = root_t.t;
-        sp = 1u;
-    }
+    push_root(&stack, &stack_t, &sp, slab, root, t_min, t_max);
     while sp > 0u {
         sp -= 1u;
         // A hit found since the node was pushed may now be nearer than the node's box.
@@ -200,12 +213,7 @@ fn shadow_transmittance(ray: Ray, t_min: f32, t_max: f32) -> vec3<f32> {
     var stack: array<u32, BVH_STACK_SIZE>;
     var stack_t: array<f32, BVH_STACK_SIZE>;
     var sp = 0u;
-    let root_t = enter(slab, root, t_min, t_max);
-    if root_t.ok {
-        stack[0] = 0u;
-        stack_t[0] = root_t.t;
-        sp = 1u;
-    }
+    push_root(&stack, &stack_t, &sp, slab, root, t_min, t_max);
     while sp > 0u {
         sp -= 1u;
         let node = bvh_nodes[stack[sp]];
