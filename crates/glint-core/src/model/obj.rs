@@ -73,13 +73,7 @@ pub fn load_obj(path: &Path) -> Result<ObjModel, ObjError> {
         }
         let vertices: Vec<[f64; 3]> =
             mesh.positions.chunks_exact(3).map(|p| [f64::from(p[0]), f64::from(p[1]), f64::from(p[2])]).collect();
-        let count = vertices.len() as u32;
-        if let Some(&bad) = mesh.indices.iter().find(|&&i| i >= count) {
-            return Err(ObjError::Parse {
-                file: path.to_owned(),
-                reason: format!("object `{}`: vertex index {} beyond its {count} vertices", model.name, bad + 1),
-            });
-        }
+        // tobj refuses face indices beyond the file's vertices, and validation checks again.
         let triangles = mesh.indices.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect();
         let mut normals: Option<Vec<[f64; 3]>> = (mesh.normals.len() == mesh.positions.len()).then(|| {
             mesh.normals.chunks_exact(3).map(|n| [f64::from(n[0]), f64::from(n[1]), f64::from(n[2])]).collect()

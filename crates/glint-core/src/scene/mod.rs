@@ -41,6 +41,11 @@ pub struct LoadedScene {
 pub fn parse_scene(text: &str, file: &Path) -> Result<(SceneDesc, Vec<FieldIssue>), SceneError> {
     let desc: SceneDesc =
         toml::from_str(text).map_err(|e| SceneError::Parse { file: file.to_owned(), message: e.to_string() })?;
+    validated(desc, file)
+}
+
+/// `desc` with its warnings if it passes validation, else the errors naming `file`.
+fn validated(desc: SceneDesc, file: &Path) -> Result<(SceneDesc, Vec<FieldIssue>), SceneError> {
     let report = validate(&desc);
     if report.errors.is_empty() {
         Ok((desc, report.warnings))
@@ -95,14 +100,11 @@ pub fn load_scene_at(arg: &str, resolution: Option<u32>) -> Result<LoadedScene, 
 /// An OBJ model in the lab scene `model::scene_around` makes for it, validated like a scene
 /// file; the importer's warnings come first.
 fn load_model(path: &Path) -> Result<(SceneDesc, Vec<FieldIssue>), SceneError> {
-    let model = crate::model::load_obj(path).map_err(|e| SceneError::Model { message: e.to_string() })?;
-    let mut warnings = model.warnings.clone();
-    let desc = crate::model::scene_around(model, format!("the model {}", path.display()));
-    let report = validate(&desc);
-    if !report.errors.is_empty() {
-        return Err(SceneError::Invalid { file: path.to_owned(), issues: report.errors });
-    }
-    warnings.extend(report.warnings);
+    let mut model = crate::model::load_obj(path).map_err(|e| SceneError::Model { message: e.to_string() })?;
+    let mut warnings = std::mem::take(&mut model.warnings);
+    let (desc, scene_warnings) =
+        validated(crate::model::scene_around(model, format!("the model {}", path.display())), path)?;
+    warnings.extend(scene_warnings);
     Ok((desc, warnings))
 }
 
