@@ -25,8 +25,8 @@ pub struct Document {
     /// Validation problems of the current description; while there are any, the last valid
     /// scene stays on screen.
     pub issues: Vec<FieldIssue>,
-    /// The last flat scene built, with the objects and material names it was built from: while
-    /// those stay the same (a camera, light or material-value edit) its primitives and BVH
+    /// The last flat scene built, with the objects it was built from: while those and the
+    /// material names stay the same (a camera, light or material-value edit) its primitives and BVH
     /// are reused instead of rebuilt (`FlatScene::rebuild`).
     geometry: RefCell<Option<BuiltGeometry>>,
 }
@@ -34,7 +34,6 @@ pub struct Document {
 #[derive(Clone, Debug)]
 struct BuiltGeometry {
     objects: Vec<ObjectDesc>,
-    material_names: Vec<String>,
     flat: FlatScene,
 }
 
@@ -112,21 +111,14 @@ impl Document {
             settings.spp = 1;
         }
         let mut cache = self.geometry.borrow_mut();
-        let same = cache
-            .as_ref()
-            .is_some_and(|g| g.objects == self.desc.objects && g.material_names.iter().eq(self.desc.materials.keys()));
-        let flat = match cache.as_ref() {
-            Some(g) if same => g.flat.rebuild(&self.desc, &settings),
-            _ => {
-                let flat = FlatScene::build(&self.desc, &settings);
-                *cache = Some(BuiltGeometry {
-                    objects: self.desc.objects.clone(),
-                    material_names: self.desc.materials.keys().cloned().collect(),
-                    flat: flat.clone(),
-                });
-                flat
-            }
+        let same_geometry = |g: &&BuiltGeometry| {
+            g.objects == self.desc.objects && g.flat.material_names.iter().eq(self.desc.materials.keys())
         };
+        if let Some(g) = cache.as_ref().filter(same_geometry) {
+            return Some(g.flat.rebuild(&self.desc, &settings));
+        }
+        let flat = FlatScene::build(&self.desc, &settings);
+        *cache = Some(BuiltGeometry { objects: self.desc.objects.clone(), flat: flat.clone() });
         Some(flat)
     }
 
