@@ -19,7 +19,7 @@ use glint_gpu::raycast::RayCaster;
 use serde::Serialize;
 
 use super::backend::open_gpu;
-use super::settings::{ResolutionArg, load};
+use super::settings::{LoadArgs, load};
 use super::units::{mrays_per_s, ms};
 
 #[derive(Debug, Args)]
@@ -40,7 +40,7 @@ pub struct RaysArgs {
     #[arg(default_value = "bumpy")]
     pub scene: String,
     #[command(flatten)]
-    pub scene_size: ResolutionArg,
+    pub scene_size: LoadArgs,
     /// CPU threads for the build and the casts [1, 1024]; default: the available parallelism
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024))]
     pub threads: Option<u32>,
@@ -155,7 +155,7 @@ fn rays(args: &RaysArgs) -> anyhow::Result<()> {
     // The GPU first: a device that cannot be opened fails before minutes of CPU work.
     let gpu = if backends.contains(&Backend::Gpu) { Some(open_gpu(args.adapter.as_deref())?) } else { None };
 
-    let loaded = load(&args.scene, args.scene_size.resolution)?;
+    let loaded = load(&args.scene, &args.scene_size.options())?;
     let (flat, flat_time) = pool.install(|| timed(|| FlatScene::build(&loaded.desc, &loaded.desc.render)));
     if flat.bvh_nodes.is_empty() {
         bail!("scene '{}' has no spheres or triangles: there is no BVH to measure", loaded.name);

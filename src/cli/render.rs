@@ -12,7 +12,7 @@ use glint_gpu::GpuOptions;
 
 use super::backend::{Run, open_gpu, run_cpu, run_gpu};
 use super::output::{fmt_counts, metadata, print_json, print_table, suffixed, write_diff, write_run};
-use super::settings::{ResolutionArg, SettingsArgs, load};
+use super::settings::{LoadArgs, SettingsArgs, load};
 use super::units::{mrays_per_s, ms};
 
 #[derive(Debug, Args)]
@@ -27,7 +27,7 @@ pub struct RenderArgs {
     #[command(flatten)]
     pub settings: SettingsArgs,
     #[command(flatten)]
-    pub scene_size: ResolutionArg,
+    pub scene_size: LoadArgs,
     /// Which tracer renders: the CPU reference, the GPU mirror, or both (then compared)
     #[arg(long, default_value = "cpu", value_parser = backends())]
     pub backend: &'static [Backend],
@@ -87,7 +87,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         }
         return Ok(());
     }
-    let loaded = load(&args.scene, args.scene_size.resolution)?;
+    let loaded = load(&args.scene, &args.scene_size.options())?;
     let settings = args.settings.apply(&loaded.desc.render)?;
     let flat = FlatScene::build(&loaded.desc, &settings);
     let specialise = !args.no_specialise;

@@ -2,8 +2,10 @@
 
 use anyhow::{Context, bail};
 use clap::Args;
+use glint_core::model::ImportOptions;
 use glint_core::scene::{
-    DEFAULT_RESOLUTION, EpsilonMode, LoadedScene, RESOLUTIONS, RenderSettings, Report, load_scene_at, validate_settings,
+    DEFAULT_RESOLUTION, EpsilonMode, LoadOptions, LoadedScene, RESOLUTIONS, RenderSettings, Report, load_scene_with,
+    validate_settings,
 };
 
 #[derive(Clone, Debug, Default, Args)]
@@ -34,12 +36,45 @@ pub struct SettingsArgs {
     pub seed: Option<u32>,
 }
 
-/// The size of a generated built-in scene, for the commands that load one.
+/// How the scene argument is opened: the size of a generated built-in scene, and the import
+/// choices of a model file. Each is an error with a scene it does not apply to.
 #[derive(Clone, Copy, Debug, Default, Args)]
-pub struct ResolutionArg {
+pub struct LoadArgs {
     /// Resolution N of a generated built-in scene (bumpy, bumpy-glass): 4·N² sphere triangles, N in [2, 1500], default 500; an error with any other scene
     #[arg(long, value_name = "N", allow_negative_numbers = true, value_parser = parse_resolution)]
     pub resolution: Option<u32>,
+    /// The glTF scene to open (0-based; default: the file's default scene, else its first)
+    #[arg(long, value_name = "N", value_parser = parse_index)]
+    pub scene_index: Option<usize>,
+    /// The model file's camera to look through (0-based; default: its first, or one framing the model)
+    #[arg(long, value_name = "N", value_parser = parse_index)]
+    pub camera: Option<usize>,
+    /// Scale of a model file's light intensities (candela, lux) into I_d and I_s, in (0, 1e6]; default 1
+    #[arg(long, value_name = "FACTOR", allow_negative_numbers = true, value_parser = parse_exposure)]
+    pub exposure: Option<f64>,
+}
+
+impl LoadArgs {
+    pub fn options(&self) -> LoadOptions {
+        let import = ImportOptions {
+            scene_index: self.scene_index,
+            camera: self.camera,
+            exposure: self.exposure.unwrap_or(ImportOptions::default().exposure),
+        };
+        LoadOptions { resolution: self.resolution, import }
+    }
+}
+
+fn parse_index(s: &str) -> Result<usize, String> {
+    s.trim().parse::<usize>().map_err(|_| format!("'{s}' is not an index (a whole number from 0)"))
+}
+
+fn parse_exposure(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(v) if v.is_finite() && v > 0.0 && v <= 1e6 => Ok(v),
+        Ok(v) => Err(format!("{v} is outside (0, 1e6]")),
+        Err(_) => Err(format!("'{s}' is not a number")),
+    }
 }
 
 fn parse_resolution(s: &str) -> Result<u32, String> {
@@ -122,10 +157,9 @@ fn flag_of(field: &str) -> &'static str {
     }
 }
 
-/// Loads a scene file or built-in scene (a generated one at `resolution`) and prints its
-/// warnings.
-pub fn load(scene: &str, resolution: Option<u32>) -> anyhow::Result<LoadedScene> {
-    let loaded = load_scene_at(scene, resolution).with_context(|| format!("cannot load scene '{scene}'"))?;
+/// Loads a scene file, model file or built-in scene with `options` and prints its warnings.
+pub fn load(scene: &str, options: &LoadOptions) -> anyhow::Result<LoadedScene> {
+    let loaded = load_scene_with(scene, options).with_context(|| format!("cannot load scene '{scene}'"))?;
     for w in &loaded.warnings {
         eprintln!("warning: {}: {w}", loaded.source.display());
     }

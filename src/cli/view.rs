@@ -4,10 +4,10 @@ use std::path::PathBuf;
 
 use anyhow::bail;
 use clap::Args;
-use glint_core::scene::load_scene_at;
+use glint_core::scene::load_scene_with;
 use glint_viewer::{ViewMode, ViewerError, ViewerOptions};
 
-use super::settings::{ResolutionArg, SettingsArgs};
+use super::settings::{LoadArgs, SettingsArgs};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 pub enum StartView {
@@ -38,7 +38,7 @@ pub struct ViewArgs {
     #[command(flatten)]
     pub settings: SettingsArgs,
     #[command(flatten)]
-    pub scene_size: ResolutionArg,
+    pub scene_size: LoadArgs,
     /// The view to start in
     #[arg(long, value_enum, default_value_t = StartView::SideBySide)]
     pub view: StartView,
@@ -56,7 +56,7 @@ impl Default for ViewArgs {
         Self {
             scene: "whitted".into(),
             settings: SettingsArgs::default(),
-            scene_size: ResolutionArg::default(),
+            scene_size: LoadArgs::default(),
             view: StartView::SideBySide,
             screenshot: None,
             benchmark_drag: None,
@@ -70,19 +70,20 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
     {
         bail!("--benchmark-drag takes a number of seconds in (0, 600], not {s}");
     }
-    let resolution = args.scene_size.resolution;
+    let load = args.scene_size.options();
     // A scene that does not load is reported in the viewer window; flags apply to one that does.
     // A resolution the scene cannot take is a flag error, before any window opens.
-    let settings = match load_scene_at(&args.scene, resolution) {
+    let settings = match load_scene_with(&args.scene, &load) {
         Ok(loaded) => Some(args.settings.apply(&loaded.desc.render)?),
         Err(e @ glint_core::scene::SceneError::NotGenerated { .. }) => bail!("--resolution: {e}"),
+        Err(e @ glint_core::scene::SceneError::NotAModel { .. }) => bail!("{e}"),
         Err(_) => None,
     };
     let options = ViewerOptions {
         settings,
         view: Some(args.view.into()),
         scene: args.scene.clone(),
-        resolution,
+        load,
         screenshot: args.screenshot.clone(),
         drag_benchmark: args.benchmark_drag,
         ..ViewerOptions::default()

@@ -77,3 +77,77 @@ fn a_model_with_points_only_or_unreadable_text_is_a_clear_error() {
         assert!(!dir.join("x.png").exists(), "{name}: an output file was left");
     }
 }
+
+/// Renders `path` at 64×48 with `extra` flags on both backends (the CPU alone with
+/// `GLINT_SKIP_GPU=1`), asserting success, every pixel traced and GPU–CPU parity.
+fn render_model(dir: &TempDir, name: &str, path: &Path, extra: &[&str]) -> serde_json::Value {
+    let skip_gpu = std::env::var("GLINT_SKIP_GPU").is_ok_and(|v| v == "1");
+    let out = dir.join("m.png");
+    let mut args: Vec<std::ffi::OsString> = vec!["render".into(), path.as_os_str().to_owned()];
+    for a in ["--width", "64", "--height", "48", "--json", "--backend", if skip_gpu { "cpu" } else { "both" }] {
+        args.push(a.into());
+    }
+    args.extend(extra.iter().map(Into::into));
+    args.extend(["-o".into(), out.into_os_string()]);
+    let run = glint(dir, args);
+    let stdout = text(&run.stdout);
+    assert!(run.status.success(), "{name}: {}\n{stdout}", text(&run.stderr));
+    let v: serde_json::Value = serde_json::from_str(&stdout).expect("JSON");
+    for r in v["runs"].as_array().unwrap() {
+        assert!(r["rays"]["camera"].as_u64() == Some(64 * 48), "{name}: {r}");
+    }
+    if !skip_gpu {
+        let cmp = &v["gpu_vs_cpu"];
+        let (flip, mismatch) =
+            (cmp["flip_mean"].as_f64().unwrap(), cmp["first_hit_mismatch_percent"].as_f64().unwrap());
+        assert!(flip < 0.01 && mismatch < 1.0, "{name}: FLIP {flip}, first-hit mismatch {mismatch} %");
+    }
+    v
+}
+
+#[test]
+fn gltf_models_render_on_both_backends_and_agree() {
+    let dir = TempDir::new("gltf-models");
+    for (name, extra) in [
+        ("glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb", &[][..]),
+        ("glTF2/BoxTextured-glTF/BoxTextured.gltf", &[]),
+        ("glTF2/BoxTextured-glTF-Binary/BoxTextured.glb", &[]),
+        ("glTF2/BoxTextured-glTF-Embedded/BoxTextured.gltf", &[]),
+        ("glTF2/BoxTextured-glTF-pbrSpecularGlossiness/BoxTextured.gltf", &[]),
+        ("glTF2/cameras/Cameras.gltf", &["--camera", "0"]),
+        ("glTF2/textureTransform/TextureTransformTest.gltf", &[]),
+    ] {
+        let Some(path) = model(name) else { return };
+        render_model(&dir, name, &path, extra);
+    }
+}
+
+#[test]
+fn broken_gltf_files_are_clear_errors_and_leave_no_file() {
+    let dir = TempDir::new("gltf-broken");
+    for (name, expected) in [
+        ("glTF2/IndexOutOfRange/IndexOutOfRange.gltf", "indices"),
+        ("glTF2/IndexOutOfRange/AllIndicesOutOfRange.gltf", "indices"),
+        ("glTF2/MissingBin/BoxTextured.gltf", "buffers[0].uri"),
+        ("glTF2/RecursiveNodes/RecursiveNodes.gltf", "reached twice"),
+        ("glTF2/BoxWithInfinites-glTF-Binary/BoxWithInfinites.glb", "finite"),
+        ("glTF2/draco/2CylinderEngine.gltf", "KHR_draco_mesh_compression"),
+        ("glTF2/wrongTypes/badArray.gltf", "not a valid glTF"),
+        ("glTF2/wrongTypes/badNumber.gltf", "not a valid glTF"),
+        ("glTF2/wrongTypes/badObject.gltf", "not a valid glTF"),
+        ("glTF2/wrongTypes/badString.gltf", "not a valid glTF"),
+        ("glTF2/wrongTypes/badUint.gltf", "not a valid glTF"),
+        ("glTF2/SchemaFailures/sceneWrongType.gltf", "not a valid glTF"),
+        ("glTF2/TestNoRootNode/NoScene.gltf", "scene"),
+        ("glTF2/TestNoRootNode/SceneWithoutNodes.gltf", "nodes"),
+    ] {
+        let Some(path) = model(name) else { return };
+        let run = glint(&dir, ["render".into(), path.into_os_string(), "-o".into(), dir.join("x.png").into()]);
+        let stderr = text(&run.stderr);
+        let file = Path::new(name).file_name().unwrap().to_str().unwrap();
+        assert!(!run.status.success(), "{name} rendered: {stderr}");
+        assert!(stderr.contains(expected) && stderr.contains(file), "{name}: wanted `{expected}`: {stderr}");
+        assert!(!stderr.contains("panicked"), "{name}: {stderr}");
+        assert!(!dir.join("x.png").exists(), "{name}: an output file was left");
+    }
+}

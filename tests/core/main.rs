@@ -6,6 +6,7 @@ mod bit_identity;
 mod bvh;
 mod closed_form;
 mod determinism;
+mod gltf;
 mod support;
 mod validation;
 

@@ -145,7 +145,7 @@ fn whitted_bumpy_at_depth_5_raises_no_status_flag() {
     // The full million triangles: the loop budget is per group of invocations, so a small
     // image exercises it as much as 1280×720 does.
     for name in ["bumpy", "bumpy-glass"] {
-        let loaded = glint_core::scene::load_scene_at(name, None).expect("built-in scene");
+        let loaded = glint_core::scene::load_scene(name).expect("built-in scene");
         let mut settings = loaded.desc.render.clone();
         (settings.width, settings.height, settings.max_depth, settings.bailout) = (96, 54, 5, 0.0);
         let flat = FlatScene::build(&loaded.desc, &settings);

@@ -16,7 +16,7 @@ use glint_core::cpu::TraceContext;
 use glint_core::cpu::raycast::cast_rays;
 use glint_core::layout::STATUS_DRIVER_LOOP_CUTOFF;
 use glint_core::rays::{HitRecord, RaySet, compare_hits, hit_fraction, primary_rays};
-use glint_core::scene::{MeshDesc, ObjectDesc, load_scene_at};
+use glint_core::scene::{LoadOptions, MeshDesc, ObjectDesc, load_scene_with};
 use glint_gpu::GpuError;
 use glint_gpu::raycast::RayCaster;
 
@@ -27,7 +27,8 @@ const T_REL_MAX: f64 = 1e-4;
 const T_NEAR: f32 = 1e-2;
 
 fn bumpy(n: u32) -> FlatScene {
-    let loaded = load_scene_at("bumpy", Some(n)).expect("bumpy loads");
+    let loaded =
+        load_scene_with("bumpy", &LoadOptions { resolution: Some(n), ..LoadOptions::default() }).expect("bumpy loads");
     FlatScene::build(&loaded.desc, &loaded.desc.render)
 }
 
@@ -83,7 +84,8 @@ fn a_traversal_cut_short_by_the_driver_is_an_error_not_a_fast_miss() {
     // 100,000 copies of one triangle: one BVH of coincident boxes, every leaf of which a ray
     // through the triangle visits (equal t: the tie rule keeps looking), about 150,000 loop
     // iterations against lavapipe's 65,535 per group of invocations.
-    let loaded = load_scene_at("bumpy", Some(2)).expect("bumpy loads");
+    let loaded =
+        load_scene_with("bumpy", &LoadOptions { resolution: Some(2), ..LoadOptions::default() }).expect("bumpy loads");
     let mut desc = loaded.desc;
     desc.objects = vec![ObjectDesc::Mesh(MeshDesc {
         vertices: vec![[-1.0, -1.0, 0.0], [1.0, -1.0, 0.0], [0.0, 1.0, 0.0]],

@@ -72,8 +72,12 @@ fn an_obj_model_dropped_on_the_window_is_opened_with_its_materials() {
     h.run_steps(2);
     let doc = &h.state().doc;
     assert_eq!(doc.name, "model", "the dropped model is the open document");
-    assert_eq!(doc.desc.materials["red"].kd.0, [0.8, 0.1, 0.1]);
-    assert!(doc.desc.objects.iter().any(|o| matches!(o, glint_core::scene::ObjectDesc::Mesh(_))), "its mesh");
+    assert_eq!(doc.desc.materials["model/red"].kd.0, [0.8, 0.1, 0.1]);
+    assert!(doc.desc.objects.iter().any(|o| matches!(o, glint_core::scene::ObjectDesc::Model(_))), "the model");
+    // Saving keeps the reference: the model's path, never its vertices or unchanged materials.
+    let saved = glint_core::scene::to_toml(&doc.desc).unwrap();
+    assert!(saved.contains("type = \"model\"") && saved.contains("model.obj"), "{saved}");
+    assert!(!saved.contains("vertices") && !saved.contains("model/red"), "{saved}");
     assert!(h.state().message.is_none(), "no error: {:?}", h.state().message);
     let _ = std::fs::remove_dir_all(dir);
 }

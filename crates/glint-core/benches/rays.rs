@@ -12,14 +12,15 @@ use criterion::{Criterion, SamplingMode, Throughput, criterion_group, criterion_
 use glint_core::cpu::TraceContext;
 use glint_core::cpu::raycast::cast_rays;
 use glint_core::rays::RaySet;
-use glint_core::scene::load_scene_at;
+use glint_core::scene::{LoadOptions, load_scene_with};
 use glint_core::{FlatScene, bvh};
 
 const RESOLUTION: u32 = 200;
 const THREADS: usize = 2;
 
 fn rays(c: &mut Criterion) {
-    let loaded = load_scene_at("bumpy", Some(RESOLUTION)).expect("the generated bumpy scene loads");
+    let loaded = load_scene_with("bumpy", &LoadOptions { resolution: Some(RESOLUTION), ..LoadOptions::default() })
+        .expect("the generated bumpy scene loads");
     let flat = FlatScene::build(&loaded.desc, &loaded.desc.render);
     let pool = rayon::ThreadPoolBuilder::new().num_threads(THREADS).build().expect("a thread pool");
     let ctx = TraceContext::new(&flat).expect("a valid flat scene");

@@ -389,6 +389,12 @@ fn flat_primitives(desc: &SceneDesc, material_names: &[String]) -> Primitives {
                 });
             }
             ObjectDesc::Mesh(mesh) => mesh_triangles(mesh, material, object_id, &mut out),
+            // One object, one mesh record per imported mesh (each with its own material).
+            ObjectDesc::Model(model) => {
+                for mesh in model.loaded.iter().flat_map(|m| &m.meshes) {
+                    mesh_triangles(mesh, material_index(&mesh.material), object_id, &mut out);
+                }
+            }
         }
     }
     if out.meshes.iter().all(|m| m.flags & MESH_HAS_NORMALS == 0) {

@@ -9,6 +9,7 @@ use egui::Ui;
 use glint_core::FlatScene;
 use glint_core::image::{RenderInfo, render_metadata};
 use glint_core::layout::NO_HIT;
+use glint_core::scene::LoadOptions;
 
 use crate::automation::{Automation, Frame};
 use crate::camera_control;
@@ -31,8 +32,8 @@ use crate::view::{ViewAction, ViewMode};
 pub struct ViewerOptions {
     /// A scene file or a built-in scene name.
     pub scene: String,
-    /// The resolution of a generated built-in scene (`bumpy`); its default without one.
-    pub resolution: Option<u32>,
+    /// How the scene is opened: a generated scene's resolution, a model file's import options.
+    pub load: LoadOptions,
     /// Render settings replacing the scene's own (command-line flags).
     pub settings: Option<glint_core::scene::RenderSettings>,
     /// The view to start in (default: side by side, or the CPU view without a GPU).
@@ -64,7 +65,7 @@ pub struct ViewerApp {
 
 impl ViewerApp {
     pub fn new(cc: &eframe::CreationContext<'_>, options: ViewerOptions) -> Self {
-        let (doc, message) = match Document::load_at(&options.scene, options.resolution) {
+        let (doc, message) = match Document::load_with(&options.scene, &options.load) {
             Ok(mut d) => {
                 if let Some(s) = &options.settings {
                     d.desc.render = s.clone();

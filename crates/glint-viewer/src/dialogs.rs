@@ -92,8 +92,9 @@ impl Dialogs {
 /// `scene::load_scene`).
 pub fn pick_scene() -> Option<PathBuf> {
     rfd::FileDialog::new()
-        .add_filter("Scenes and models", &["toml", "obj"])
+        .add_filter("Scenes and models", &["toml", "gltf", "glb", "obj"])
         .add_filter("Glint scene", &["toml"])
+        .add_filter("glTF 2.0 model", &["gltf", "glb"])
         .add_filter("Wavefront OBJ model", &["obj"])
         .pick_file()
 }

@@ -6,7 +6,9 @@ use std::path::{Path, PathBuf};
 
 use glint_core::FlatScene;
 use glint_core::atomic::{AtomicWriteError, write_file_atomically};
-use glint_core::scene::{CameraDesc, FieldIssue, LoadedScene, ObjectDesc, SceneDesc, load_scene_at, to_toml, validate};
+use glint_core::scene::{
+    CameraDesc, FieldIssue, LoadOptions, LoadedScene, ObjectDesc, SceneDesc, load_scene_with, to_toml, validate,
+};
 
 use crate::error::ViewerError;
 
@@ -78,12 +80,12 @@ impl Document {
 
     /// Loads a scene file or a built-in scene by name.
     pub fn load(arg: &str) -> Result<Self, ViewerError> {
-        Self::load_at(arg, None)
+        Self::load_with(arg, &LoadOptions::default())
     }
 
-    /// `load`, a generated built-in scene at `resolution` (`--resolution`).
-    pub fn load_at(arg: &str, resolution: Option<u32>) -> Result<Self, ViewerError> {
-        Ok(Self::from_loaded(load_scene_at(arg, resolution)?))
+    /// `load` with a generated scene's resolution or a model file's import options.
+    pub fn load_with(arg: &str, options: &LoadOptions) -> Result<Self, ViewerError> {
+        Ok(Self::from_loaded(load_scene_with(arg, options)?))
     }
 
     /// Records an edit: bumps the revision and re-validates.

@@ -78,7 +78,10 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
     } else {
         args.scenes.iter().map(|s| s.trim().to_string()).filter(|s| !s.is_empty()).collect()
     };
-    let scenes = names.iter().map(|n| load(n, None)).collect::<anyhow::Result<Vec<_>>>()?;
+    let scenes = names
+        .iter()
+        .map(|n| load(n, &glint_core::scene::LoadOptions::default()))
+        .collect::<anyhow::Result<Vec<_>>>()?;
     let mut seen = HashMap::new();
     for s in &scenes {
         if let Some(other) = seen.insert(s.name.clone(), s.source.clone()) {

@@ -1,22 +1,109 @@
 //! Model files (glTF 2.0, OBJ/MTL): their import, and the lab scene a model opens in.
 
+pub mod gltf;
 pub mod obj;
+mod transform;
 pub mod uri;
 
-pub use obj::{ObjError, ObjModel, load_obj};
+use std::collections::BTreeMap;
+use std::path::Path;
+
+pub use self::gltf::{GltfError, load_gltf};
+pub use obj::{ObjError, load_obj};
 pub use uri::{MAX_RESOURCE_BYTES, UriError, resolve_uri};
 
+pub(crate) use transform::Mat4;
+
 use crate::scene::{
-    CameraDesc, LightDesc, LightKind, MaterialDesc, ObjectDesc, PlaneDesc, RenderSettings, Rgb, SceneDesc, WorldDesc,
+    CameraDesc, FieldIssue, LightDesc, LightKind, LoadedModel, MaterialDesc, MeshDesc, ModelDesc, ObjectDesc,
+    PlaneDesc, RenderSettings, Rgb, SceneDesc, TransformDesc, WorldDesc,
 };
+
+/// What an importer read from a model file, in world space, and what it set aside with a
+/// warning.
+#[derive(Clone, Debug, Default)]
+pub struct Model {
+    pub meshes: Vec<MeshDesc>,
+    pub materials: BTreeMap<String, MaterialDesc>,
+    pub lights: Vec<LightDesc>,
+    pub cameras: Vec<ModelCamera>,
+    pub warnings: Vec<FieldIssue>,
+}
+
+/// A camera of the file (glTF perspective cameras).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ModelCamera {
+    pub name: String,
+    pub camera: CameraDesc,
+    /// The width/height ratio the camera was made for, if the file gives one.
+    pub aspect: Option<f64>,
+}
+
+/// Choices made when a model file is opened (`--scene-index`, `--camera`, `--exposure`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ImportOptions {
+    /// The glTF scene to load; the file's default scene (else its first) when `None`.
+    pub scene_index: Option<usize>,
+    /// The file's camera to look through; its first camera when `None`, or the lab camera
+    /// framing the model when the file has none.
+    pub camera: Option<usize>,
+    /// Scales the file's light intensities (candela, lux) into the model's I_d and I_s.
+    pub exposure: f64,
+}
+
+impl Default for ImportOptions {
+    fn default() -> Self {
+        Self { scene_index: None, camera: None, exposure: 1.0 }
+    }
+}
+
+impl ImportOptions {
+    pub fn is_default(&self) -> bool {
+        *self == Self::default()
+    }
+}
+
+/// Which importer reads a file, by its extension (case-insensitive).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ModelFormat {
+    Gltf,
+    Obj,
+}
+
+impl ModelFormat {
+    pub fn of(path: &Path) -> Option<Self> {
+        let ext = path.extension()?.to_str()?.to_ascii_lowercase();
+        match ext.as_str() {
+            "gltf" | "glb" => Some(Self::Gltf),
+            "obj" => Some(Self::Obj),
+            _ => None,
+        }
+    }
+}
+
+/// The model file at `path`, read by the importer of its format; the message of an error
+/// names the file and what is wrong.
+pub fn load_model_file(path: &Path, options: &ImportOptions) -> Result<Model, String> {
+    match ModelFormat::of(path) {
+        Some(ModelFormat::Gltf) => load_gltf(path, options).map_err(|e| e.to_string()),
+        Some(ModelFormat::Obj) => load_obj(path).map_err(|e| e.to_string()),
+        None => Err(format!("{}: not a model file (.gltf, .glb or .obj)", path.display())),
+    }
+}
 
 /// The material of the ground under an opened model.
 pub const GROUND_MATERIAL: &str = "glint-ground";
 
-/// A scene around an imported model (a file has no lab of its own): a camera that frames its
-/// bounding box from the front, above and to the right, a key light and a fill light, and a
-/// grey ground under it so that its shadows show.
-pub fn scene_around(model: ObjModel, description: String) -> SceneDesc {
+/// A lab scene around an imported model, with the importer's warnings: the file's camera
+/// (`options.camera`, else its first) or one that frames the model's bounding box from the
+/// front, above and to the right; the file's lights, or a key and a fill light (said in a
+/// warning); and a grey ground under the model so that its shadows show.
+pub fn scene_around(
+    mut model: Model,
+    path: &Path,
+    options: &ImportOptions,
+) -> Result<(SceneDesc, Vec<FieldIssue>), FieldIssue> {
+    let description = format!("the model {}", path.display());
     let mut lo = [f64::INFINITY; 3];
     let mut hi = [f64::NEG_INFINITY; 3];
     for v in model.meshes.iter().flat_map(|m| &m.vertices) {
@@ -28,34 +115,87 @@ pub fn scene_around(model: ObjModel, description: String) -> SceneDesc {
     let center: [f64; 3] = std::array::from_fn(|k| 0.5 * (lo[k] + hi[k]));
     let radius = (0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>().sqrt().max(1e-6) * 0.5;
     let at = |d: [f64; 3], s: f64| std::array::from_fn(|k| center[k] + d[k] * s * radius);
-    let mut materials = model.materials;
+    let mut render = RenderSettings::default();
+    let camera = match (options.camera, model.cameras.first()) {
+        (Some(i), _) => {
+            let count = model.cameras.len();
+            let chosen = model.cameras.get(i).ok_or_else(|| FieldIssue {
+                field: "--camera".into(),
+                problem: format!("{i} is not a camera of the file; it has {count} (0..{count})"),
+            })?;
+            chosen.clone()
+        }
+        (None, Some(first)) => first.clone(),
+        (None, None) => ModelCamera {
+            name: "framing the model".into(),
+            camera: CameraDesc {
+                position: at([0.45, 0.35, 0.82], 2.6),
+                look_at: center,
+                up: [0.0, 1.0, 0.0],
+                fov_y: 40.0,
+            },
+            aspect: None,
+        },
+    };
+    if let Some(aspect) = camera.aspect {
+        // Keep the height, give the width the camera's aspect (within the image limits).
+        let width = (f64::from(render.height) * aspect).round().clamp(1.0, f64::from(crate::scene::MAX_IMAGE_SIDE));
+        render.width = width as u32;
+    }
+    let lights = std::mem::take(&mut model.lights);
+    let mut warnings = std::mem::take(&mut model.warnings);
+    // The scene refers to the file (saved as a reference, never as vertices): an absolute
+    // path, since the scene may be saved anywhere.
+    let file = std::fs::canonicalize(path).unwrap_or_else(|_| path.to_owned());
+    let reference = ModelDesc {
+        path: file.to_string_lossy().into_owned(),
+        transform: TransformDesc::default(),
+        scene_index: options.scene_index,
+        name: String::new(),
+        loaded: None,
+    };
+    let loaded = LoadedModel::place(file, model, &reference.transform, &reference.prefix());
+    let mut materials = loaded.materials.clone();
     materials.insert(
         GROUND_MATERIAL.into(),
         MaterialDesc { ka: Rgb::splat(0.5), kd: Rgb::splat(0.5), ..MaterialDesc::default() },
     );
-    let mut objects: Vec<ObjectDesc> = model.meshes.into_iter().map(ObjectDesc::Mesh).collect();
+    let mut objects =
+        vec![ObjectDesc::Model(Box::new(ModelDesc { loaded: Some(std::sync::Arc::new(loaded)), ..reference }))];
     objects.push(ObjectDesc::Plane(PlaneDesc {
         point: [center[0], lo[1], center[2]],
         normal: [0.0, 1.0, 0.0],
         material: GROUND_MATERIAL.into(),
         name: "ground".into(),
     }));
-    let light = |kind, position, direction, intensity| LightDesc {
-        diffuse: Rgb::splat(intensity),
-        specular: Rgb::splat(intensity),
-        ..LightDesc::new(kind, position, direction)
-    };
-    SceneDesc {
-        description,
-        provenance: String::new(),
-        render: RenderSettings::default(),
-        camera: CameraDesc { position: at([0.45, 0.35, 0.82], 2.6), look_at: center, up: [0.0, 1.0, 0.0], fov_y: 40.0 },
-        world: WorldDesc { ambient: Rgb::splat(0.1), background: Rgb([0.2, 0.25, 0.3]) },
-        materials,
-        lights: vec![
+    let lights = if lights.is_empty() {
+        warnings.push(FieldIssue {
+            field: "lights".into(),
+            problem: "the model has none: lit by Glint's default rig (a point key light, a directional fill, \
+                      ambient 0.1)"
+                .into(),
+        });
+        let light = |kind, position, direction, intensity| LightDesc {
+            diffuse: Rgb::splat(intensity),
+            specular: Rgb::splat(intensity),
+            ..LightDesc::new(kind, position, direction)
+        };
+        vec![
             light(LightKind::Point, at([-0.8, 1.6, 1.2], 3.0), [0.0; 3], 0.8),
             light(LightKind::Directional, [0.0; 3], [0.4, -1.0, -0.3], 0.3),
-        ],
+        ]
+    } else {
+        lights
+    };
+    let desc = SceneDesc {
+        description,
+        provenance: String::new(),
+        render,
+        camera: camera.camera,
+        world: WorldDesc { ambient: Rgb::splat(0.1), background: Rgb([0.2, 0.25, 0.3]) },
+        materials,
+        lights,
         objects,
-    }
+    };
+    Ok((desc, warnings))
 }

@@ -2,9 +2,9 @@
 //! seed's model as `docs/models.md` tabulates. `mtllib` goes through `uri::resolve_uri` like
 //! every other reference, so an MTL outside the model's folder is refused.
 
-use std::collections::BTreeMap;
 use std::path::Path;
 
+use super::Model;
 use super::uri::{MAX_RESOURCE_BYTES, UriError, resolve_uri};
 use crate::scene::{FieldIssue, MaterialDesc, MeshDesc, Rgb};
 
@@ -15,25 +15,17 @@ pub enum ObjError {
     Io { file: std::path::PathBuf, error: std::io::Error },
     #[error("{file}: {error}")]
     Uri { file: std::path::PathBuf, error: UriError },
-    #[error("{file}: invalid OBJ ({reason})")]
-    Parse { file: std::path::PathBuf, reason: String },
+    #[error("{file}:{}: invalid OBJ ({reason})", line.map_or_else(|| "?".to_string(), |l| l.to_string()))]
+    Parse { file: std::path::PathBuf, line: Option<usize>, reason: String },
     #[error("{file}: no triangles (points and lines are not traced)")]
     Empty { file: std::path::PathBuf },
-}
-
-/// The meshes and materials of one OBJ file, and what was set aside with a warning.
-#[derive(Clone, Debug, Default)]
-pub struct ObjModel {
-    pub meshes: Vec<MeshDesc>,
-    pub materials: BTreeMap<String, MaterialDesc>,
-    pub warnings: Vec<FieldIssue>,
 }
 
 /// The material of faces that name none (MTL's defaults for Kd, no highlight).
 pub const DEFAULT_MATERIAL: &str = "obj-default";
 
 /// Loads `path`: faces triangulated (fans), one mesh per OBJ object or group and material.
-pub fn load_obj(path: &Path) -> Result<ObjModel, ObjError> {
+pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
     let bytes = std::fs::read(path).map_err(|error| ObjError::Io { file: path.to_owned(), error })?;
     let options = tobj::LoadOptions { triangulate: true, single_index: true, ..Default::default() };
     let mtl_error = std::cell::RefCell::new(None);
@@ -47,11 +39,15 @@ pub fn load_obj(path: &Path) -> Result<ObjModel, ObjError> {
             }
         }
     })
-    .map_err(|e| ObjError::Parse { file: path.to_owned(), reason: e.to_string() })?;
+    .map_err(|e| ObjError::Parse {
+        file: path.to_owned(),
+        line: failing_line(&bytes, &options),
+        reason: e.to_string(),
+    })?;
     if let Some(error) = mtl_error.into_inner() {
         return Err(ObjError::Uri { file: path.to_owned(), error });
     }
-    let mut out = ObjModel::default();
+    let mut out = Model::default();
     let materials = match materials {
         Ok(m) => m,
         Err(e) => {
@@ -101,6 +97,27 @@ pub fn load_obj(path: &Path) -> Result<ObjModel, ObjError> {
         return Err(ObjError::Empty { file: path.to_owned() });
     }
     Ok(out)
+}
+
+/// The line at which tobj's parse fails (tobj's errors carry none): the shortest prefix of
+/// the file that fails to parse, found by bisection over line counts (about log₂ n parses of
+/// prefixes, only on the error path). Materials are not read here: only the OBJ itself.
+fn failing_line(bytes: &[u8], options: &tobj::LoadOptions) -> Option<usize> {
+    let ends: Vec<usize> =
+        bytes.iter().enumerate().filter(|&(_, &b)| b == b'\n').map(|(i, _)| i + 1).chain([bytes.len()]).collect();
+    let fails = |lines: usize| {
+        let prefix = &bytes[..ends[lines - 1]];
+        tobj::load_obj_buf(&mut &prefix[..], options, |_| Err(tobj::LoadError::OpenFileFailed)).is_err()
+    };
+    let (mut lo, mut hi) = (1, ends.len());
+    if !fails(hi) {
+        return None;
+    }
+    while lo < hi {
+        let mid = lo + (hi - lo) / 2;
+        if fails(mid) { hi = mid } else { lo = mid + 1 }
+    }
+    Some(lo)
 }
 
 /// MTL names may hold any character; the scene format's keys are kept readable.
@@ -226,7 +243,7 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let bad = write(dir.path(), "bad.obj", "v 0 0 0\nv 1 0 0\nf 1 2 7\n");
         let message = load_obj(&bad).unwrap_err().to_string();
-        assert!(message.contains("bad.obj") && message.contains("invalid OBJ"), "{message}");
+        assert!(message.contains("bad.obj:3:") && message.contains("invalid OBJ"), "the face's line: {message}");
         let points = write(dir.path(), "p.obj", "v 0 0 0\nv 1 0 0\np 1 2\n");
         assert!(load_obj(&points).unwrap_err().to_string().contains("no triangles"));
         let plain = load_obj(&write(dir.path(), "q.obj", QUAD)).expect("loads");

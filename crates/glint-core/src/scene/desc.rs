@@ -7,6 +7,7 @@ use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
+use super::model_ref::ModelDesc;
 use super::rgb::Rgb;
 use crate::layout;
 
@@ -308,13 +309,15 @@ impl Attenuation {
     }
 }
 
-/// An object: `type = "sphere" | "plane" | "mesh"` and that kind's fields.
+/// An object: `type = "sphere" | "plane" | "mesh" | "model"` and that kind's fields.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 #[serde(tag = "type", rename_all = "snake_case")]
 pub enum ObjectDesc {
     Sphere(SphereDesc),
     Plane(PlaneDesc),
     Mesh(MeshDesc),
+    /// Boxed: a reference with its transform is three times the size of the other kinds.
+    Model(Box<ModelDesc>),
 }
 
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -357,7 +360,7 @@ pub struct MeshDesc {
 impl<'de> Deserialize<'de> for ObjectDesc {
     fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
         use serde::de::Error;
-        const KINDS: &[&str] = &["sphere", "plane", "mesh"];
+        const KINDS: &[&str] = &["sphere", "plane", "mesh", "model"];
         let mut table = toml::Table::deserialize(deserializer)?;
         let kind = match table.remove("type") {
             Some(toml::Value::String(kind)) => kind,
@@ -371,6 +374,7 @@ impl<'de> Deserialize<'de> for ObjectDesc {
             "sphere" => fields.try_into().map(Self::Sphere),
             "plane" => fields.try_into().map(Self::Plane),
             "mesh" => fields.try_into().map(Self::Mesh),
+            "model" => fields.try_into().map(|m| Self::Model(Box::new(m))),
             other => return Err(D::Error::unknown_variant(other, KINDS)),
         };
         // toml puts the field on a line of its own ("…\nin `radius`"): one line reads better.
@@ -379,19 +383,23 @@ impl<'de> Deserialize<'de> for ObjectDesc {
 }
 
 impl ObjectDesc {
+    /// The object's material; a model's first (it has one per mesh: `materials()`).
     pub fn material(&self) -> &str {
         match self {
             Self::Sphere(o) => &o.material,
             Self::Plane(o) => &o.material,
             Self::Mesh(o) => &o.material,
+            Self::Model(o) => o.loaded.as_ref().and_then(|m| m.meshes.first()).map_or("", |m| m.material.as_str()),
         }
     }
 
-    pub fn material_mut(&mut self) -> &mut String {
+    /// Every material the object uses, in the order of its meshes.
+    pub fn materials(&self) -> Vec<&str> {
         match self {
-            Self::Sphere(o) => &mut o.material,
-            Self::Plane(o) => &mut o.material,
-            Self::Mesh(o) => &mut o.material,
+            Self::Sphere(_) | Self::Plane(_) | Self::Mesh(_) => vec![self.material()],
+            Self::Model(o) => {
+                o.loaded.as_ref().map_or_else(Vec::new, |m| m.meshes.iter().map(|x| x.material.as_str()).collect())
+            }
         }
     }
 
@@ -400,6 +408,7 @@ impl ObjectDesc {
             Self::Sphere(o) => &o.name,
             Self::Plane(o) => &o.name,
             Self::Mesh(o) => &o.name,
+            Self::Model(o) => &o.name,
         }
     }
 
@@ -408,6 +417,7 @@ impl ObjectDesc {
             Self::Sphere(_) => "sphere",
             Self::Plane(_) => "plane",
             Self::Mesh(_) => "mesh",
+            Self::Model(_) => "model",
         }
     }
 }

@@ -38,6 +38,11 @@ pub enum SceneError {
         super::builtin::generated_names()
     )]
     NotGenerated { name: String, value: u32 },
+    #[error(
+        "'{name}' is not a model file: --scene-index, --camera and --exposure apply only to \
+         model files (.gltf, .glb, .obj)"
+    )]
+    NotAModel { name: String },
     /// A model file that did not import (the message names the file and what is wrong).
     #[error("{message}")]
     Model { message: String },

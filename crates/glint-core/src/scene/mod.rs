@@ -9,10 +9,13 @@ mod builtin;
 pub mod bumpy;
 mod desc;
 mod error;
+mod model_ref;
 mod rgb;
 mod validate;
 
 use std::path::{Path, PathBuf};
+
+use crate::model::{ImportOptions, ModelFormat};
 
 pub use builtin::{BUILTIN_SCENES, BuiltinScene, BuiltinSource, DEFAULT_RESOLUTION, RESOLUTIONS, builtin};
 pub use desc::{
@@ -20,6 +23,7 @@ pub use desc::{
     ObjectDesc, PlaneDesc, RenderSettings, SceneDesc, SpecularModel, SphereDesc, WorldDesc,
 };
 pub use error::{FieldIssue, SceneError};
+pub use model_ref::{LoadedModel, ModelDesc, Scale, TransformDesc, load_models, without_imported_materials};
 pub use rgb::Rgb;
 pub use validate::{
     MAX_COORD, MAX_DEPTH, MAX_EPSILON, MAX_IMAGE_SIDE, MAX_INTENSITY, MAX_IOR, MAX_SHININESS, MAX_SPOT_EXPONENT,
@@ -38,10 +42,16 @@ pub struct LoadedScene {
 }
 
 /// Parses and validates scene text; `file` is only used in messages.
+/// Model objects (`type = "model"`) are read relative to `file`'s folder.
 pub fn parse_scene(text: &str, file: &Path) -> Result<(SceneDesc, Vec<FieldIssue>), SceneError> {
-    let desc: SceneDesc =
+    let mut desc: SceneDesc =
         toml::from_str(text).map_err(|e| SceneError::Parse { file: file.to_owned(), message: e.to_string() })?;
-    validated(desc, file)
+    let folder = file.parent().unwrap_or(Path::new("."));
+    let mut warnings =
+        load_models(&mut desc, folder).map_err(|issues| SceneError::Invalid { file: file.to_owned(), issues })?;
+    let (desc, scene_warnings) = validated(desc, file)?;
+    warnings.extend(scene_warnings);
+    Ok((desc, warnings))
 }
 
 /// `desc` with its warnings if it passes validation, else the errors naming `file`.
@@ -54,15 +64,29 @@ fn validated(desc: SceneDesc, file: &Path) -> Result<(SceneDesc, Vec<FieldIssue>
     }
 }
 
-/// Loads `arg`: a scene file if such a file exists, otherwise a built-in scene name.
-pub fn load_scene(arg: &str) -> Result<LoadedScene, SceneError> {
-    load_scene_at(arg, None)
+/// How a scene argument is opened: the resolution of a generated built-in scene (`bumpy`),
+/// and the choices made when a model file is imported. Each applies only where it means
+/// something, and is an error elsewhere, never ignored.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct LoadOptions {
+    pub resolution: Option<u32>,
+    pub import: ImportOptions,
 }
 
-/// `load_scene`, with the resolution of a generated built-in scene (`bumpy`; its default
-/// without one). A resolution for a scene file or a TOML built-in is an error, not ignored.
-pub fn load_scene_at(arg: &str, resolution: Option<u32>) -> Result<LoadedScene, SceneError> {
+/// Loads `arg`: a scene or model file if such a file exists, otherwise a built-in scene name.
+pub fn load_scene(arg: &str) -> Result<LoadedScene, SceneError> {
+    load_scene_with(arg, &LoadOptions::default())
+}
+
+/// `load_scene` with `options`: the resolution of a generated built-in scene (its default
+/// without one), the import options of a model file (`.gltf`, `.glb`, `.obj`).
+pub fn load_scene_with(arg: &str, options: &LoadOptions) -> Result<LoadedScene, SceneError> {
+    let resolution = options.resolution;
     let path = Path::new(arg);
+    let is_model = ModelFormat::of(path).is_some();
+    if !(options.import.is_default() || is_model && path.is_file()) {
+        return Err(SceneError::NotAModel { name: arg.to_string() });
+    }
     if path.is_dir() {
         return Err(SceneError::Io {
             file: path.to_owned(),
@@ -74,8 +98,8 @@ pub fn load_scene_at(arg: &str, resolution: Option<u32>) -> Result<LoadedScene, 
             return Err(SceneError::NotGenerated { name: arg.to_string(), value });
         }
         let name = path.file_stem().map_or_else(|| "scene".into(), |s| s.to_string_lossy().into_owned());
-        if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("obj")) {
-            let (desc, warnings) = load_model(path)?;
+        if is_model {
+            let (desc, warnings) = load_model(path, &options.import)?;
             return Ok(LoadedScene { desc, source: path.to_owned(), name, warnings });
         }
         let text = std::fs::read_to_string(path).map_err(|error| SceneError::Io { file: path.to_owned(), error })?;
@@ -97,18 +121,19 @@ pub fn load_scene_at(arg: &str, resolution: Option<u32>) -> Result<LoadedScene, 
     Err(SceneError::UnknownScene { name: arg.to_string(), available })
 }
 
-/// An OBJ model in the lab scene `model::scene_around` makes for it, validated like a scene
+/// A model file in the lab scene `model::scene_around` makes for it, validated like a scene
 /// file; the importer's warnings come first.
-fn load_model(path: &Path) -> Result<(SceneDesc, Vec<FieldIssue>), SceneError> {
-    let mut model = crate::model::load_obj(path).map_err(|e| SceneError::Model { message: e.to_string() })?;
-    let mut warnings = std::mem::take(&mut model.warnings);
-    let (desc, scene_warnings) =
-        validated(crate::model::scene_around(model, format!("the model {}", path.display())), path)?;
+fn load_model(path: &Path, options: &ImportOptions) -> Result<(SceneDesc, Vec<FieldIssue>), SceneError> {
+    let model = crate::model::load_model_file(path, options).map_err(|message| SceneError::Model { message })?;
+    let (desc, mut warnings) = crate::model::scene_around(model, path, options)
+        .map_err(|issue| SceneError::Invalid { file: path.to_owned(), issues: vec![issue] })?;
+    let (desc, scene_warnings) = validated(desc, path)?;
     warnings.extend(scene_warnings);
     Ok((desc, warnings))
 }
 
 /// Serialises a scene back to the file format (used by the viewer's "Save scene").
+/// A model object is written as its reference, and its materials only where they were changed.
 pub fn to_toml(desc: &SceneDesc) -> Result<String, toml::ser::Error> {
-    toml::to_string_pretty(desc)
+    toml::to_string_pretty(&without_imported_materials(desc))
 }

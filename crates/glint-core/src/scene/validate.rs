@@ -358,12 +358,14 @@ fn validate_attenuation(path: &str, a: Attenuation, r: &mut Report) {
 }
 
 fn validate_object(path: &str, o: &ObjectDesc, scene: &SceneDesc, r: &mut Report) {
-    if !scene.materials.contains_key(o.material()) {
-        let known: Vec<&str> = scene.materials.keys().map(String::as_str).collect();
-        r.error(
-            format!("{path}.material"),
-            format!("unknown material '{}'; defined materials: [{}]", o.material(), known.join(", ")),
-        );
+    for material in o.materials() {
+        if !scene.materials.contains_key(material) {
+            let known: Vec<&str> = scene.materials.keys().map(String::as_str).collect();
+            r.error(
+                format!("{path}.material"),
+                format!("unknown material '{material}'; defined materials: [{}]", known.join(", ")),
+            );
+        }
     }
     match o {
         ObjectDesc::Sphere(SphereDesc { center, radius, .. }) => {
@@ -374,68 +376,100 @@ fn validate_object(path: &str, o: &ObjectDesc, scene: &SceneDesc, r: &mut Report
             r.point(&format!("{path}.point"), *point);
             r.direction(&format!("{path}.normal"), *normal);
         }
-        ObjectDesc::Mesh(MeshDesc { vertices, triangles, normals, .. }) => {
-            if triangles.is_empty() {
-                r.error(format!("{path}.triangles"), "a mesh needs at least one triangle [i, j, k]");
+        ObjectDesc::Mesh(mesh) => validate_mesh(path, mesh, r),
+        ObjectDesc::Model(model) => {
+            for (field, problem) in model.transform.problems() {
+                r.error(format!("{path}.transform.{field}"), problem);
             }
-            for (i, v) in vertices.iter().enumerate() {
-                r.point(&format!("{path}.vertices[{i}]"), *v);
-            }
-            let n = vertices.len();
-            for (i, t) in triangles.iter().enumerate() {
-                if let Some(bad) = t.iter().find(|&&k| k as usize >= n) {
-                    r.error(
-                        format!("{path}.triangles[{i}]"),
-                        format!("vertex index {bad} is out of range; allowed: [0, {}]", n.saturating_sub(1)),
-                    );
+            match &model.loaded {
+                // Named by the model's own mesh names (`PREFIX/NODE`), which say where to look.
+                Some(loaded) => {
+                    // Errors one by one; warnings of a kind once for the model (a CAD export
+                    // has degenerate triangles in a hundred meshes), with how many meshes share it.
+                    let mut meshes = Report::default();
+                    for (k, mesh) in loaded.meshes.iter().enumerate() {
+                        validate_mesh(&format!("{path} mesh {k} `{}`", mesh.name), mesh, &mut meshes);
+                    }
+                    r.errors.append(&mut meshes.errors);
+                    let mut kinds: Vec<(String, FieldIssue, usize)> = Vec::new();
+                    for w in meshes.warnings {
+                        let kind = w.field.rsplit('.').next().unwrap_or_default().to_string();
+                        match kinds.iter_mut().find(|(k, ..)| *k == kind) {
+                            Some((_, _, n)) => *n += 1,
+                            None => kinds.push((kind, w, 1)),
+                        }
+                    }
+                    for (_, first, n) in kinds {
+                        let more =
+                            if n > 1 { format!(" (and likewise in {} more meshes)", n - 1) } else { String::new() };
+                        r.warn(first.field, format!("{}{more}", first.problem));
+                    }
                 }
-            }
-            if let Some(normals) = normals {
-                if normals.len() != n {
-                    r.error(
-                        format!("{path}.normals"),
-                        format!("has {} entries; it needs one per vertex ({n})", normals.len()),
-                    );
-                }
-                for (i, v) in normals.iter().enumerate() {
-                    r.direction(&format!("{path}.normals[{i}]"), *v);
-                }
-            }
-            if let Some(normals) = normals.as_ref().filter(|ns| ns.len() == n) {
-                let against = triangles
-                    .iter()
-                    .filter(|t| t.iter().all(|&k| (k as usize) < n))
-                    .filter(|t| {
-                        let [a, b, c] = t.map(|k| vertices[k as usize]);
-                        let ng = cross(sub(b, a), sub(c, a));
-                        t.iter().any(|&k| ng.dot(DVec3::from(normals[k as usize])) < 0.0)
-                    })
-                    .count();
-                if against > 0 {
-                    r.warn(
-                        format!("{path}.normals"),
-                        format!(
-                            "{against} triangles have a vertex normal pointing against their winding \
-                             (cross(b − a, c − a)); they shade as if lit from behind"
-                        ),
-                    );
-                }
-            }
-            let degenerate = triangles
-                .iter()
-                .filter(|t| t.iter().all(|&k| (k as usize) < n))
-                .filter(|t| {
-                    let [a, b, c] = t.map(|k| vertices[k as usize]);
-                    norm(cross(sub(b, a), sub(c, a))) == 0.0
-                })
-                .count();
-            if degenerate > 0 {
-                r.warn(
-                    format!("{path}.triangles"),
-                    format!("{degenerate} degenerate (zero-area) triangles; they are never hit"),
-                );
+                None => r.error(format!("{path}.path"), format!("the model `{}` was not loaded", model.path)),
             }
         }
+    }
+}
+
+fn validate_mesh(path: &str, mesh: &MeshDesc, r: &mut Report) {
+    let MeshDesc { vertices, triangles, normals, .. } = mesh;
+
+    if triangles.is_empty() {
+        r.error(format!("{path}.triangles"), "a mesh needs at least one triangle [i, j, k]");
+    }
+    for (i, v) in vertices.iter().enumerate() {
+        r.point(&format!("{path}.vertices[{i}]"), *v);
+    }
+    let n = vertices.len();
+    for (i, t) in triangles.iter().enumerate() {
+        if let Some(bad) = t.iter().find(|&&k| k as usize >= n) {
+            r.error(
+                format!("{path}.triangles[{i}]"),
+                format!("vertex index {bad} is out of range; allowed: [0, {}]", n.saturating_sub(1)),
+            );
+        }
+    }
+    if let Some(normals) = normals {
+        if normals.len() != n {
+            r.error(format!("{path}.normals"), format!("has {} entries; it needs one per vertex ({n})", normals.len()));
+        }
+        for (i, v) in normals.iter().enumerate() {
+            r.direction(&format!("{path}.normals[{i}]"), *v);
+        }
+    }
+    if let Some(normals) = normals.as_ref().filter(|ns| ns.len() == n) {
+        let against = triangles
+            .iter()
+            .filter(|t| t.iter().all(|&k| (k as usize) < n))
+            .filter(|t| {
+                let [a, b, c] = t.map(|k| vertices[k as usize]);
+                let ng = cross(sub(b, a), sub(c, a));
+                t.iter().any(|&k| ng.dot(DVec3::from(normals[k as usize])) < 0.0)
+            })
+            .count();
+        if against > 0 {
+            r.warn(
+                format!("{path}.normals"),
+                format!(
+                    "{against} triangles have a vertex normal pointing against their winding \
+                         (cross(b − a, c − a)); they shade as if lit from behind"
+                ),
+            );
+        }
+    }
+    let degenerate = triangles
+        .iter()
+        .filter(|t| t.iter().all(|&k| (k as usize) < n))
+        .filter(|t| {
+            let [a, b, c] = t.map(|k| vertices[k as usize]);
+            norm(cross(sub(b, a), sub(c, a))) == 0.0
+        })
+        .count();
+    if degenerate > 0 {
+        r.warn(
+            format!("{path}.triangles"),
+            format!("{degenerate} degenerate (zero-area) triangles; they are never hit"),
+        );
     }
 }
 

@@ -1,0 +1,108 @@
+//! glTF materials (metallic-roughness, specular-glossiness and the KHR material extensions)
+//! mapped onto the seed's coefficients, as docs/models.md tabulates.
+
+use crate::scene::{FieldIssue, MAX_IOR, MAX_SHININESS, MaterialDesc, Rgb};
+
+/// Below this roughness a surface is treated as smooth enough to mirror: it traces
+/// reflection rays with k_r = its specular colour (F0). Rougher surfaces keep the highlight
+/// only: a Whitted tracer has no glossy reflection.
+pub const MIRROR_ROUGHNESS: f64 = 0.1;
+
+/// The normal-incidence reflectance of a dielectric (ior 1.5), glTF's F0 for metallic = 0.
+const DIELECTRIC_F0: f64 = 0.04;
+
+/// The Blinn exponent of a roughness: n = 2/α² − 2 with α = roughness² (Walter et al.'s
+/// Beckmann–Phong correspondence as glTF viewers use it), capped at `MAX_SHININESS`.
+pub fn blinn_exponent(roughness: f64) -> f64 {
+    let alpha = roughness.clamp(0.0, 1.0).powi(2);
+    if alpha <= 0.0 { MAX_SHININESS } else { (2.0 / (alpha * alpha) - 2.0).clamp(0.0, MAX_SHININESS) }
+}
+
+fn lerp(a: f64, b: f64, t: f64) -> f64 {
+    a + (b - a) * t
+}
+
+/// The f32 value as the file wrote it (shortest decimal), as the OBJ importer reads MTL numbers.
+fn widen(x: f32) -> f64 {
+    x.to_string().parse().unwrap_or(f64::from(x))
+}
+
+/// A material's coefficients, and what of it could not be mapped as warnings under `field`.
+pub(super) fn map_material(m: &::gltf::Material<'_>, field: &str, warnings: &mut Vec<FieldIssue>) -> MaterialDesc {
+    let mut warn = |problem: String| warnings.push(FieldIssue { field: field.to_string(), problem });
+    let (base, f0, roughness) = match m.pbr_specular_glossiness() {
+        Some(sg) => {
+            let d = sg.diffuse_factor();
+            let s = sg.specular_factor();
+            // Specular-glossiness gives k_d and F0 directly; roughness = 1 − glossiness.
+            (Rgb([d[0], d[1], d[2]].map(widen)), Rgb(s.map(widen)), 1.0 - widen(sg.glossiness_factor()))
+        }
+        None => {
+            let pbr = m.pbr_metallic_roughness();
+            let b = pbr.base_color_factor();
+            let base = Rgb([b[0], b[1], b[2]].map(widen));
+            let metallic = widen(pbr.metallic_factor()).clamp(0.0, 1.0);
+            // KHR_materials_specular scales the dielectric F0 (colour and strength).
+            let (strength, tint) = m
+                .specular()
+                .map_or((1.0, [1.0; 3]), |s| (widen(s.specular_factor()), s.specular_color_factor().map(widen)));
+            let f0 =
+                Rgb(std::array::from_fn(|k| lerp((DIELECTRIC_F0 * tint[k]).min(1.0) * strength, base.0[k], metallic)));
+            let diffuse = Rgb(base.0.map(|c| c * (1.0 - metallic)));
+            (diffuse, f0, widen(pbr.roughness_factor()))
+        }
+    };
+    let transmission = m.transmission().map_or(0.0, |t| widen(t.transmission_factor()).clamp(0.0, 1.0));
+    // Transmission replaces the diffuse part and is tinted by it (KHR_materials_transmission).
+    let kd = Rgb(base.0.map(|c| c * (1.0 - transmission)));
+    let kt = Rgb(base.0.map(|c| c * transmission));
+    let kr = if roughness < MIRROR_ROUGHNESS { f0 } else { Rgb::splat(0.0) };
+    let ior = match m.ior().map(widen) {
+        None => 1.5,
+        Some(ior) if (1.0..=MAX_IOR).contains(&ior) => ior,
+        Some(ior) => {
+            warn(format!("KHR_materials_ior ior {ior} is outside [1, {MAX_IOR}]; using 1.5"));
+            1.5
+        }
+    };
+    let strength = m.emissive_strength().map_or(1.0, widen);
+    let emission = Rgb(m.emissive_factor().map(|e| widen(e) * strength));
+    if m.alpha_mode() == ::gltf::material::AlphaMode::Blend {
+        warn("alphaMode BLEND is traced as opaque (use KHR_materials_transmission for glass)".into());
+    }
+    MaterialDesc {
+        ka: kd,
+        kd,
+        ks: f0,
+        shininess: blinn_exponent(roughness),
+        kr,
+        kt,
+        ior,
+        emission,
+        ..MaterialDesc::default()
+    }
+}
+
+/// The material of primitives that name none: a neutral grey plastic (glTF's own default is
+/// a rough white metal, which a Phong model renders as a flat specular glare).
+pub fn default_material() -> MaterialDesc {
+    MaterialDesc {
+        ka: Rgb::splat(0.8),
+        kd: Rgb::splat(0.8),
+        ks: Rgb::splat(DIELECTRIC_F0),
+        shininess: blinn_exponent(0.5),
+        ..MaterialDesc::default()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn roughness_maps_to_a_blinn_exponent() {
+        assert_eq!(blinn_exponent(0.0), MAX_SHININESS);
+        assert_eq!(blinn_exponent(1.0), 0.0);
+        assert!((blinn_exponent(0.5) - 30.0).abs() < 1e-12, "α = 0.25: 2/0.0625 − 2 = 30");
+    }
+}

@@ -1,0 +1,362 @@
+//! glTF 2.0 import (`.gltf` with external or `data:` buffers, `.glb`): the gltf crate parses
+//! and validates the JSON; every buffer URI goes through `uri::resolve_uri` (never the
+//! crate's importer, which reads any path a file names); accessors are read with their
+//! bounds checked (`accessor.rs`); the node hierarchy is composed in f64 (`transform.rs`)
+//! and the world-space vertices rounded once; materials, lights and cameras are mapped onto
+//! the seed's model (`material.rs`, `punctual.rs`). Every error names the file and the JSON
+//! path at fault.
+
+mod accessor;
+mod material;
+mod punctual;
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+use ::gltf::mesh::Mode;
+
+use self::accessor::Buffers;
+use super::Mat4;
+use super::uri::{MAX_RESOURCE_BYTES, UriError, resolve_uri};
+use super::{ImportOptions, Model};
+use crate::scene::{FieldIssue, MeshDesc};
+
+pub use self::material::{MIRROR_ROUGHNESS, blinn_exponent};
+
+/// The material of primitives that name none.
+pub const DEFAULT_MATERIAL: &str = "gltf-default";
+
+/// The extensions Glint reads; a file that requires any other is refused.
+pub const SUPPORTED_EXTENSIONS: &[&str] = &[
+    "KHR_lights_punctual",
+    "KHR_materials_emissive_strength",
+    "KHR_materials_ior",
+    "KHR_materials_pbrSpecularGlossiness",
+    "KHR_materials_specular",
+    "KHR_materials_transmission",
+];
+
+/// Why a glTF file did not load. Each names the file; `At` also the JSON path.
+#[derive(Debug, thiserror::Error)]
+pub enum GltfError {
+    #[error("{file}: cannot read the model: {error}")]
+    Io { file: PathBuf, error: std::io::Error },
+    #[error("{file}: not a valid glTF 2.0 file: {reason}")]
+    Parse { file: PathBuf, reason: String },
+    #[error(
+        "{file}: extensionsRequired[{index}] is `{extension}`, which Glint does not support \
+         (supported: {})", SUPPORTED_EXTENSIONS.join(", ")
+    )]
+    RequiredExtension { file: PathBuf, index: usize, extension: String },
+    #[error("{file}: {path}: {problem}")]
+    At { file: PathBuf, path: String, problem: String },
+    #[error("{file}: {path}: {error}")]
+    Uri { file: PathBuf, path: String, error: UriError },
+}
+
+/// Loads the glTF or GLB file at `path`: the scene `options.scene_index` names (else the
+/// file's default scene, else its first), with every mesh instance in world space.
+pub fn load_gltf(path: &Path, options: &ImportOptions) -> Result<Model, GltfError> {
+    let file = path.to_path_buf();
+    let at = |path: String, problem: String| GltfError::At { file: file.clone(), path, problem };
+    let bytes = read_capped(path).map_err(|error| GltfError::Io { file: file.clone(), error })?;
+    let gltf = ::gltf::Gltf::from_slice(&bytes).map_err(|e| parse_error(&file, e))?;
+    let mut model = Model::default();
+    for (index, extension) in gltf.extensions_required().enumerate() {
+        if !SUPPORTED_EXTENSIONS.contains(&extension) {
+            return Err(GltfError::RequiredExtension { file: file.clone(), index, extension: extension.to_string() });
+        }
+    }
+    for extension in gltf.extensions_used().filter(|e| !SUPPORTED_EXTENSIONS.contains(e)) {
+        model.warnings.push(FieldIssue {
+            field: "extensionsUsed".into(),
+            problem: format!("`{extension}` is not supported; the file is read without it"),
+        });
+    }
+    let buffers = load_buffers(&gltf, path)?;
+    let scene = match options.scene_index {
+        Some(i) => gltf.scenes().nth(i).ok_or_else(|| {
+            at(format!("scenes[{i}]"), format!("no such scene: the file has {} (--scene-index)", gltf.scenes().len()))
+        })?,
+        None => gltf
+            .default_scene()
+            .or_else(|| gltf.scenes().next())
+            .ok_or_else(|| at("scenes".into(), "the file has no scene to render".into()))?,
+    };
+    // The material table: names made readable and unique, mapped once each.
+    let mut names: Vec<String> = Vec::new();
+    for m in gltf.materials() {
+        let index = m.index().unwrap_or(names.len());
+        let mut name = readable(m.name().unwrap_or(""), index, "material");
+        if model.materials.contains_key(&name) {
+            name = format!("{name}-{index}");
+        }
+        let desc = material::map_material(&m, &format!("materials[{index}] ({name})"), &mut model.warnings);
+        model.materials.insert(name.clone(), desc);
+        names.push(name);
+    }
+    // Depth first from the scene's roots; a node reached twice is a cycle or a shared child,
+    // both outside glTF's "disjoint strict trees", and refused rather than walked forever.
+    let mut reached = vec![false; gltf.nodes().len()];
+    let mut stack: Vec<(::gltf::Node<'_>, Mat4)> = scene.nodes().map(|n| (n, Mat4::IDENTITY)).collect();
+    stack.reverse();
+    if stack.is_empty() {
+        return Err(at(format!("scenes[{}].nodes", scene.index()), "the scene has no nodes".into()));
+    }
+    let mut skipped_modes: BTreeMap<String, Vec<String>> = BTreeMap::new();
+    while let Some((node, parent)) = stack.pop() {
+        let i = node.index();
+        if std::mem::replace(&mut reached[i], true) {
+            return Err(at(
+                format!("nodes[{i}]"),
+                "is reached twice from the scene (a cycle or a shared child; glTF node hierarchies are trees)".into(),
+            ));
+        }
+        let local = Mat4::from_node(node.transform()).map_err(|p| at(format!("nodes[{i}]"), p))?;
+        let world = parent.mul(&local);
+        if let Some(mesh) = node.mesh() {
+            for primitive in mesh.primitives() {
+                let prim_path = format!("meshes[{}].primitives[{}]", mesh.index(), primitive.index());
+                match primitive.mode() {
+                    Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan => {}
+                    other @ (Mode::Points | Mode::Lines | Mode::LineLoop | Mode::LineStrip) => {
+                        skipped_modes
+                            .entry(format!("meshes[{}]", mesh.index()))
+                            .or_default()
+                            .push(format!("{other:?}"));
+                        continue;
+                    }
+                }
+                let material = match primitive.material().index() {
+                    Some(m) => names[m].clone(),
+                    None => {
+                        model.materials.entry(DEFAULT_MATERIAL.into()).or_insert_with(material::default_material);
+                        DEFAULT_MATERIAL.into()
+                    }
+                };
+                let name = readable(node.name().or(mesh.name()).unwrap_or(""), i, "node");
+                let desc = read_primitive(&primitive, &buffers, &world, &prim_path, material, name)
+                    .map_err(|(path, problem)| at(path, problem))?;
+                if let Some(desc) = desc {
+                    model.meshes.push(desc);
+                }
+            }
+        }
+        if let Some(light) = node.light()
+            && let Some(l) = punctual::map_light(&light, &world, options.exposure, i, &mut model.warnings)
+        {
+            model.lights.push(l);
+        }
+        if let Some(camera) = node.camera()
+            && let Some(c) = punctual::map_camera(&camera, &world, i, &mut model.warnings)
+        {
+            model.cameras.push(c);
+        }
+        stack.extend(node.children().map(|c| (c, world)).collect::<Vec<_>>().into_iter().rev());
+    }
+    for (mesh, modes) in skipped_modes {
+        model.warnings.push(FieldIssue {
+            field: mesh,
+            problem: format!(
+                "{} primitive(s) of mode {} skipped: only triangles are traced",
+                modes.len(),
+                modes.join(", ")
+            ),
+        });
+    }
+    if model.meshes.is_empty() {
+        return Err(at(
+            format!("scenes[{}]", scene.index()),
+            "no triangles to trace (points and lines are not traced)".into(),
+        ));
+    }
+    Ok(model)
+}
+
+/// The file's bytes, refused beyond `MAX_RESOURCE_BYTES` before they are read.
+fn read_capped(path: &Path) -> std::io::Result<Vec<u8>> {
+    let len = std::fs::metadata(path)?.len();
+    if len > MAX_RESOURCE_BYTES {
+        return Err(std::io::Error::new(
+            std::io::ErrorKind::InvalidData,
+            format!("{len} bytes, more than the {MAX_RESOURCE_BYTES} a model file may have"),
+        ));
+    }
+    std::fs::read(path)
+}
+
+/// The gltf crate's error with the JSON paths it names; an unsupported required extension
+/// (which its validation reports among the others) gets its own message.
+fn parse_error(file: &Path, e: ::gltf::Error) -> GltfError {
+    match e {
+        ::gltf::Error::Validation(errors) => {
+            for (path, error) in &errors {
+                let path = path.to_string();
+                if matches!(error, ::gltf::json::validation::Error::Unsupported)
+                    && let Some(rest) = path.strip_prefix("extensionsRequired[")
+                    && let Some((index, value)) = rest.split_once(']')
+                {
+                    return GltfError::RequiredExtension {
+                        file: file.to_owned(),
+                        index: index.parse().unwrap_or(0),
+                        extension: value.trim_start_matches([' ', '=']).trim_matches('"').to_string(),
+                    };
+                }
+            }
+            let shown: Vec<String> = errors.iter().take(8).map(|(p, e)| format!("{p}: {e}")).collect();
+            let more = errors.len().saturating_sub(shown.len());
+            let mut path = errors.first().map(|(p, _)| p.to_string()).unwrap_or_default();
+            if path.is_empty() {
+                path = "(root)".into();
+            }
+            GltfError::At {
+                file: file.to_owned(),
+                path,
+                problem: format!(
+                    "invalid glTF: {}{}",
+                    shown.join("; "),
+                    if more > 0 { format!("; and {more} more") } else { String::new() }
+                ),
+            }
+        }
+        other => GltfError::Parse { file: file.to_owned(), reason: other.to_string() },
+    }
+}
+
+/// Every buffer's bytes: the GLB's BIN chunk, or its URI through the one resolver. A buffer
+/// shorter than its declared `byteLength` is an error; a longer one is cut to it.
+fn load_buffers(gltf: &::gltf::Gltf, path: &Path) -> Result<Buffers, GltfError> {
+    let mut out = Vec::new();
+    for buffer in gltf.buffers() {
+        let field = format!("buffers[{}]", buffer.index());
+        let declared = buffer.length();
+        let mut data = match buffer.source() {
+            ::gltf::buffer::Source::Bin => gltf.blob.clone().ok_or_else(|| GltfError::At {
+                file: path.to_owned(),
+                path: field.clone(),
+                problem: "refers to the GLB's BIN chunk, which the file does not have".into(),
+            })?,
+            ::gltf::buffer::Source::Uri(uri) => {
+                // Not the declared length as the cap: a file may hold more (padding), and a
+                // base64 URI's size is only estimated before decoding.
+                resolve_uri(path, uri, MAX_RESOURCE_BYTES).map_err(|error| GltfError::Uri {
+                    file: path.to_owned(),
+                    path: format!("{field}.uri"),
+                    error,
+                })?
+            }
+        };
+        if data.len() < declared {
+            return Err(GltfError::At {
+                file: path.to_owned(),
+                path: format!("{field}.byteLength"),
+                problem: format!("declares {declared} bytes, but the data has {}", data.len()),
+            });
+        }
+        data.truncate(declared);
+        out.push(data);
+    }
+    Ok(Buffers(out))
+}
+
+/// Names as the scene format keeps them: readable characters, never empty.
+fn readable(name: &str, index: usize, kind: &str) -> String {
+    let cleaned: String =
+        name.chars().map(|c| if c.is_alphanumeric() || "-_. ".contains(c) { c } else { '_' }).collect();
+    let trimmed = cleaned.trim();
+    if trimmed.is_empty() { format!("{kind}{index}") } else { trimmed.to_string() }
+}
+
+/// One primitive as a world-space mesh: `Ok(None)` when it has no whole triangle. An error
+/// carries the JSON path at fault.
+fn read_primitive(
+    primitive: &::gltf::Primitive<'_>,
+    buffers: &Buffers,
+    world: &Mat4,
+    path: &str,
+    material: String,
+    name: String,
+) -> Result<Option<MeshDesc>, (String, String)> {
+    let attr = |a: &str| format!("{path}.attributes.{a}");
+    let position = primitive
+        .get(&::gltf::Semantic::Positions)
+        .ok_or_else(|| (attr("POSITION"), "missing: a primitive needs positions".to_string()))?;
+    let local = accessor::read_vec3(&position, buffers).map_err(|p| (attr("POSITION"), p))?;
+    let mut vertices = Vec::with_capacity(local.len());
+    for (k, p) in local.iter().enumerate() {
+        let w = world.point(*p);
+        if !w.iter().all(|c| c.is_finite()) {
+            return Err((
+                attr("POSITION"),
+                format!("vertex {k} is {p:?}, {w:?} in world space: positions must be finite"),
+            ));
+        }
+        vertices.push(w);
+    }
+    let normals = match primitive.get(&::gltf::Semantic::Normals) {
+        None => None,
+        Some(acc) => {
+            let n = accessor::read_vec3(&acc, buffers).map_err(|p| (attr("NORMAL"), p))?;
+            if n.len() != vertices.len() {
+                return Err((attr("NORMAL"), format!("has {} elements, POSITION {}", n.len(), vertices.len())));
+            }
+            // A zero or non-finite normal cannot shade: the primitive is shaded faceted, as the
+            // OBJ importer does (validation would refuse it).
+            let unit = |v: [f64; 3]| {
+                let len = v.iter().map(|c| c * c).sum::<f64>().sqrt();
+                (len.is_finite() && len > 1e-12).then(|| v.map(|c| c / len))
+            };
+            n.iter().map(|v| unit(world.normal(*v))).collect::<Option<Vec<_>>>()
+        }
+    };
+    let indices: Vec<u32> = match primitive.indices() {
+        Some(acc) => accessor::read_indices(&acc, buffers).map_err(|p| (format!("{path}.indices"), p))?,
+        None => (0..u32::try_from(vertices.len()).unwrap_or(u32::MAX)).collect(),
+    };
+    if let Some((k, &i)) = indices.iter().enumerate().find(|&(_, &i)| i as usize >= vertices.len()) {
+        return Err((
+            format!("{path}.indices"),
+            format!("index {i} (element {k}) is beyond the {} vertices of POSITION", vertices.len()),
+        ));
+    }
+    let mut triangles = triangulate(primitive.mode(), &indices);
+    if world.determinant3() < 0.0 {
+        // A mirroring node turns counter-clockwise faces clockwise: restore the winding.
+        for t in &mut triangles {
+            t.swap(1, 2);
+        }
+    }
+    if triangles.is_empty() {
+        return Ok(None);
+    }
+    Ok(Some(MeshDesc { vertices, triangles, normals, material, name }))
+}
+
+/// The triangles of a primitive's index list in its mode (glTF 2.0 §3.7.2.1: strips alternate
+/// winding so every triangle keeps the first one's orientation; fans share the first vertex).
+fn triangulate(mode: Mode, indices: &[u32]) -> Vec<[u32; 3]> {
+    match mode {
+        Mode::Triangles => indices.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect(),
+        Mode::TriangleStrip => (2..indices.len())
+            .map(|i| {
+                let (a, b, c) = (indices[i - 2], indices[i - 1], indices[i]);
+                if i % 2 == 0 { [a, b, c] } else { [b, a, c] }
+            })
+            .collect(),
+        Mode::TriangleFan => (2..indices.len()).map(|i| [indices[0], indices[i - 1], indices[i]]).collect(),
+        Mode::Points | Mode::Lines | Mode::LineLoop | Mode::LineStrip => Vec::new(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn strips_keep_the_first_triangles_orientation_and_fans_share_the_first_vertex() {
+        assert_eq!(triangulate(Mode::TriangleStrip, &[0, 1, 2, 3, 4]), vec![[0, 1, 2], [2, 1, 3], [2, 3, 4]]);
+        assert_eq!(triangulate(Mode::TriangleFan, &[0, 1, 2, 3]), vec![[0, 1, 2], [0, 2, 3]]);
+        assert_eq!(triangulate(Mode::Triangles, &[0, 1, 2, 3]), vec![[0, 1, 2]], "a partial triangle is dropped");
+        assert!(triangulate(Mode::TriangleStrip, &[0, 1]).is_empty());
+    }
+}

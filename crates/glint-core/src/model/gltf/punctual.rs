@@ -1,0 +1,93 @@
+//! KHR_lights_punctual lights and glTF cameras, placed by their node's world transform.
+
+use crate::model::Mat4;
+use crate::model::ModelCamera;
+use crate::scene::{Attenuation, CameraDesc, FieldIssue, LightDesc, LightKind, MIN_ATTENUATION_DENOMINATOR, Rgb};
+
+fn normalized(v: [f64; 3]) -> Option<[f64; 3]> {
+    let len = v.iter().map(|c| c * c).sum::<f64>().sqrt();
+    (len.is_finite() && len > 1e-300).then(|| v.map(|c| c / len))
+}
+
+/// glTF's distance falloff, 1/d², as the seed's f_att = 1/(c + l·d + q·d²) with q = 1 and the
+/// smallest c validation allows (so f_att stays finite on the light itself).
+fn inverse_square() -> Attenuation {
+    Attenuation { c: MIN_ATTENUATION_DENOMINATOR, l: 0.0, q: 1.0 }
+}
+
+/// The light of `node` (world transform `world`): colour × intensity × `exposure` as I_d and
+/// I_s (candela for point and spot lights, lux for directional ones), down the node's −Z.
+pub(super) fn map_light(
+    light: &::gltf::khr_lights_punctual::Light<'_>,
+    world: &Mat4,
+    exposure: f64,
+    node: usize,
+    warnings: &mut Vec<FieldIssue>,
+) -> Option<LightDesc> {
+    let field = format!("nodes[{node}].extensions.KHR_lights_punctual (lights[{}])", light.index());
+    let colour = light.color().map(|c| f64::from(c) * f64::from(light.intensity()) * exposure);
+    let position = world.point([0.0; 3]);
+    let Some(direction) = normalized(world.vector([0.0, 0.0, -1.0])) else {
+        warnings
+            .push(FieldIssue { field, problem: "the node's transform has no −Z direction; light skipped".into() });
+        return None;
+    };
+    let kind = match light.kind() {
+        ::gltf::khr_lights_punctual::Kind::Directional => LightKind::Directional,
+        ::gltf::khr_lights_punctual::Kind::Point => LightKind::Point,
+        ::gltf::khr_lights_punctual::Kind::Spot { .. } => LightKind::Spot,
+    };
+    let mut desc = LightDesc {
+        diffuse: Rgb(colour),
+        specular: Rgb(colour),
+        name: light.name().map_or_else(|| format!("light {}", light.index()), str::to_string),
+        ..LightDesc::new(kind, position, direction)
+    };
+    if kind != LightKind::Directional {
+        desc.attenuation = inverse_square();
+    }
+    if light.range().is_some() {
+        warnings.push(FieldIssue { field: field.clone(), problem: "range is not windowed yet: plain 1/d²".into() });
+    }
+    if let ::gltf::khr_lights_punctual::Kind::Spot { outer_cone_angle, .. } = light.kind() {
+        // Until the smooth cone exists: the outer cone as a hard cutoff.
+        desc.cutoff = f64::from(outer_cone_angle).to_degrees().clamp(0.0, 90.0);
+        warnings.push(FieldIssue {
+            field,
+            problem: "the inner cone is not modelled: hard cutoff at the outer cone".into(),
+        });
+    }
+    Some(desc)
+}
+
+/// A perspective camera at its node: the eye at the origin, looking down −Z with +Y up.
+/// Orthographic cameras are skipped with a warning (Glint's camera is a pinhole).
+pub(super) fn map_camera(
+    camera: &::gltf::Camera<'_>,
+    world: &Mat4,
+    node: usize,
+    warnings: &mut Vec<FieldIssue>,
+) -> Option<ModelCamera> {
+    let field = format!("nodes[{node}].camera (cameras[{}])", camera.index());
+    let ::gltf::camera::Projection::Perspective(p) = camera.projection() else {
+        warnings.push(FieldIssue { field, problem: "orthographic cameras are not supported; skipped".into() });
+        return None;
+    };
+    let position = world.point([0.0; 3]);
+    let (Some(forward), Some(up)) =
+        (normalized(world.vector([0.0, 0.0, -1.0])), normalized(world.vector([0.0, 1.0, 0.0])))
+    else {
+        warnings.push(FieldIssue { field, problem: "the node's transform is degenerate; camera skipped".into() });
+        return None;
+    };
+    let fov_y = f64::from(p.yfov()).to_degrees();
+    if !(fov_y.is_finite() && fov_y > 0.0 && fov_y < 180.0) {
+        warnings.push(FieldIssue { field, problem: format!("yfov {} is outside (0, π); camera skipped", p.yfov()) });
+        return None;
+    }
+    Some(ModelCamera {
+        name: camera.name().map_or_else(|| format!("camera {}", camera.index()), str::to_string),
+        camera: CameraDesc { position, look_at: std::array::from_fn(|k| position[k] + forward[k]), up, fov_y },
+        aspect: p.aspect_ratio().map(f64::from).filter(|a| a.is_finite() && *a > 0.0),
+    })
+}

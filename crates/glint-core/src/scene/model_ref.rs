@@ -1,0 +1,264 @@
+//! `[[objects]] type = "model"`: a glTF or OBJ file placed in a scene by reference. The file
+//! keeps the reference (path, transform, import choices); the imported meshes hang off it at
+//! run time, so saving a scene writes the reference again, never the vertices.
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use serde::{Deserialize, Serialize};
+
+use super::desc::{MaterialDesc, MeshDesc, ObjectDesc, SceneDesc};
+use super::error::FieldIssue;
+use crate::model::{ImportOptions, Model, load_model_file};
+
+/// A model file in a scene.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ModelDesc {
+    /// The model file (`.gltf`, `.glb`, `.obj`), relative to the scene file's folder.
+    pub path: String,
+    #[serde(default, skip_serializing_if = "TransformDesc::is_identity")]
+    pub transform: TransformDesc,
+    /// The glTF scene to place (default: the file's default scene, else its first).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub scene_index: Option<usize>,
+    #[serde(default, skip_serializing_if = "String::is_empty")]
+    pub name: String,
+    /// What the file held, once loaded (`SceneDesc::load_models`); never written back.
+    #[serde(skip)]
+    pub loaded: Option<Arc<LoadedModel>>,
+}
+
+/// Two references are equal when they say the same; the loaded data follows from that.
+impl PartialEq for ModelDesc {
+    fn eq(&self, other: &Self) -> bool {
+        self.path == other.path
+            && self.transform == other.transform
+            && self.scene_index == other.scene_index
+            && self.name == other.name
+    }
+}
+
+/// A model file as placed: meshes in scene space (the object's transform applied) whose
+/// materials are named `OBJECT/MATERIAL`, and those materials as the file gave them.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LoadedModel {
+    /// The file that was read (the reference resolved against the scene's folder).
+    pub file: PathBuf,
+    pub meshes: Vec<MeshDesc>,
+    pub materials: BTreeMap<String, MaterialDesc>,
+    pub warnings: Vec<FieldIssue>,
+}
+
+/// Placement of a model: scale, then rotate, then translate (or one matrix instead).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct TransformDesc {
+    pub translate: [f64; 3],
+    /// Degrees about x, then y, then z (each about the fixed scene axes).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rotate: Option<[f64; 3]>,
+    /// A rotation as a unit quaternion [x, y, z, w]; exclusive with `rotate`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub quaternion: Option<[f64; 4]>,
+    /// A uniform factor or one per axis.
+    pub scale: Scale,
+    /// A 4×4 matrix, column-major as glTF writes it; exclusive with the fields above.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub matrix: Option<[f64; 16]>,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum Scale {
+    Uniform(f64),
+    PerAxis([f64; 3]),
+}
+
+impl Default for TransformDesc {
+    fn default() -> Self {
+        Self { translate: [0.0; 3], rotate: None, quaternion: None, scale: Scale::Uniform(1.0), matrix: None }
+    }
+}
+
+impl TransformDesc {
+    pub fn is_identity(&self) -> bool {
+        *self == Self::default()
+    }
+
+    /// The transform's problems, as (field under `transform`, problem).
+    pub fn problems(&self) -> Vec<(String, String)> {
+        let mut out = Vec::new();
+        let finite = |v: &[f64]| v.iter().all(|c| c.is_finite());
+        if let Some(m) = &self.matrix {
+            let others = self.translate != [0.0; 3]
+                || self.rotate.is_some()
+                || self.quaternion.is_some()
+                || self.scale != Scale::Uniform(1.0);
+            if others {
+                out.push((
+                    "matrix".into(),
+                    "a matrix replaces translate, rotate, quaternion and scale: give one or the other".into(),
+                ));
+            }
+            if !finite(m) {
+                out.push(("matrix".into(), "every entry must be finite".into()));
+            }
+        }
+        if !finite(&self.translate) {
+            out.push(("translate".into(), "must be finite".into()));
+        }
+        if self.rotate.is_some() && self.quaternion.is_some() {
+            out.push(("quaternion".into(), "give rotate (degrees) or quaternion, not both".into()));
+        }
+        if self.rotate.is_some_and(|r| !finite(&r)) {
+            out.push(("rotate".into(), "must be finite (degrees)".into()));
+        }
+        if let Some(q) = self.quaternion {
+            let len = q.iter().map(|c| c * c).sum::<f64>().sqrt();
+            if !(len.is_finite() && (len - 1.0).abs() < 1e-3) {
+                out.push(("quaternion".into(), format!("must be a unit quaternion [x, y, z, w]; its length is {len}")));
+            }
+        }
+        let s = match self.scale {
+            Scale::Uniform(s) => [s; 3],
+            Scale::PerAxis(s) => s,
+        };
+        if !s.iter().all(|c| c.is_finite() && *c != 0.0) {
+            out.push(("scale".into(), "every factor must be finite and non-zero".into()));
+        }
+        if out.is_empty() && self.matrix().determinant3() == 0.0 {
+            out.push(("matrix".into(), "is singular (flattens the model)".into()));
+        }
+        out
+    }
+
+    /// The transform as a matrix (T·R·S); call after `problems()` came back empty.
+    pub(crate) fn matrix(&self) -> crate::model::Mat4 {
+        use crate::model::Mat4;
+        if let Some(m) = self.matrix {
+            return Mat4(std::array::from_fn(|c| std::array::from_fn(|r| m[4 * c + r])));
+        }
+        let [sx, sy, sz] = match self.scale {
+            Scale::Uniform(s) => [s; 3],
+            Scale::PerAxis(s) => s,
+        };
+        let scale = Mat4([[sx, 0.0, 0.0, 0.0], [0.0, sy, 0.0, 0.0], [0.0, 0.0, sz, 0.0], [0.0, 0.0, 0.0, 1.0]]);
+        let rotation = match (self.quaternion, self.rotate) {
+            (Some(q), _) => Mat4::from_quaternion(q),
+            (None, Some([x, y, z])) => {
+                let axis = |k: usize, degrees: f64| {
+                    let (s, c) = degrees.to_radians().sin_cos();
+                    let mut m = Mat4::IDENTITY;
+                    let (i, j) = ((k + 1) % 3, (k + 2) % 3);
+                    m.0[i][i] = c;
+                    m.0[i][j] = s;
+                    m.0[j][i] = -s;
+                    m.0[j][j] = c;
+                    m
+                };
+                axis(2, z).mul(&axis(1, y)).mul(&axis(0, x))
+            }
+            (None, None) => Mat4::IDENTITY,
+        };
+        let mut translation = Mat4::IDENTITY;
+        translation.0[3] = [self.translate[0], self.translate[1], self.translate[2], 1.0];
+        translation.mul(&rotation).mul(&scale)
+    }
+}
+
+impl ModelDesc {
+    /// Reads the file (relative to `folder`) and places it (`LoadedModel::place`).
+    pub fn load(&self, folder: &Path, prefix: &str) -> Result<LoadedModel, String> {
+        let file = folder.join(&self.path);
+        let options = ImportOptions { scene_index: self.scene_index, ..ImportOptions::default() };
+        let model = load_model_file(&file, &options)?;
+        Ok(LoadedModel::place(file, model, &self.transform, prefix))
+    }
+
+    /// The prefix of the model's material names: the object's name, else the file's stem.
+    pub fn prefix(&self) -> String {
+        if !self.name.is_empty() {
+            return self.name.clone();
+        }
+        Path::new(&self.path).file_stem().map_or_else(|| "model".into(), |s| s.to_string_lossy().into_owned())
+    }
+}
+
+impl LoadedModel {
+    /// An imported model placed by `transform` (meshes moved, normals by the inverse
+    /// transpose, winding flipped back under a mirror), its materials renamed `PREFIX/NAME`.
+    /// Call with a transform whose `problems()` came back empty.
+    pub fn place(file: PathBuf, model: Model, transform: &TransformDesc, prefix: &str) -> Self {
+        let m = transform.matrix();
+        let mirror = m.determinant3() < 0.0;
+        let rename = |name: &str| format!("{prefix}/{name}");
+        let meshes = model
+            .meshes
+            .into_iter()
+            .map(|mesh| MeshDesc {
+                vertices: mesh.vertices.iter().map(|v| m.point(*v)).collect(),
+                normals: mesh.normals.map(|ns| ns.iter().map(|n| m.normal(*n)).collect()),
+                triangles: if mirror {
+                    mesh.triangles.iter().map(|t| [t[0], t[2], t[1]]).collect()
+                } else {
+                    mesh.triangles
+                },
+                material: rename(&mesh.material),
+                name: rename(&mesh.name),
+            })
+            .collect();
+        let materials = model.materials.into_iter().map(|(name, mat)| (rename(&name), mat)).collect();
+        Self { file, meshes, materials, warnings: model.warnings }
+    }
+}
+
+/// Loads every `type = "model"` object of `desc` (paths relative to `folder`) and adds its
+/// materials to the scene's, except those the scene defines itself: a scene material named
+/// `OBJECT/MATERIAL` overrides the model's. Returns the models' warnings, or every error.
+pub fn load_models(desc: &mut SceneDesc, folder: &Path) -> Result<Vec<FieldIssue>, Vec<FieldIssue>> {
+    let (mut warnings, mut errors) = (Vec::new(), Vec::new());
+    for (i, object) in desc.objects.iter_mut().enumerate() {
+        let ObjectDesc::Model(model) = object else { continue };
+        let problems = model.transform.problems();
+        if !problems.is_empty() {
+            errors.extend(
+                problems
+                    .into_iter()
+                    .map(|(f, problem)| FieldIssue { field: format!("objects[{i}].transform.{f}"), problem }),
+            );
+            continue;
+        }
+        match model.load(folder, &model.prefix()) {
+            Ok(loaded) => {
+                warnings.extend(loaded.warnings.iter().map(|w| FieldIssue {
+                    field: format!("objects[{i}] ({}): {}", model.path, w.field),
+                    problem: w.problem.clone(),
+                }));
+                for (name, material) in &loaded.materials {
+                    desc.materials.entry(name.clone()).or_insert_with(|| material.clone());
+                }
+                model.loaded = Some(Arc::new(loaded));
+            }
+            Err(problem) => errors.push(FieldIssue { field: format!("objects[{i}].path"), problem }),
+        }
+    }
+    if errors.is_empty() { Ok(warnings) } else { Err(errors) }
+}
+
+/// `desc` as a file would hold it: materials a model brought in and nobody changed are left
+/// out (they come from the model again when the file is loaded).
+pub fn without_imported_materials(desc: &SceneDesc) -> SceneDesc {
+    let mut out = desc.clone();
+    for object in &desc.objects {
+        let ObjectDesc::Model(model) = object else { continue };
+        let Some(loaded) = &model.loaded else { continue };
+        for (name, imported) in &loaded.materials {
+            if out.materials.get(name) == Some(imported) {
+                out.materials.remove(name);
+            }
+        }
+    }
+    out
+}

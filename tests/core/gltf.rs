@@ -1,0 +1,358 @@
+//! glTF import on fixtures written by the test (glint_test_support::gltf): materials, lights,
+//! cameras, hierarchy, primitive modes, and hostile or broken files, each an error naming the
+//! file and the JSON path or URI, never a panic.
+
+use std::path::Path;
+
+use glint_core::model::{ImportOptions, Model, load_gltf};
+use glint_core::scene::{LightKind, LoadOptions, Rgb, load_scene_with};
+use glint_test_support::TempDir;
+use glint_test_support::gltf::{BufferAt, Fixture};
+use serde_json::json;
+
+fn load(path: &Path) -> Model {
+    load_gltf(path, &ImportOptions::default()).unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn error(path: &Path) -> String {
+    load_gltf(path, &ImportOptions::default()).expect_err("the file must be refused").to_string()
+}
+
+fn close(a: f64, b: f64) -> bool {
+    (a - b).abs() <= 1e-12 * a.abs().max(b.abs()).max(1.0)
+}
+
+#[test]
+fn a_quad_loads_from_a_data_uri_a_file_and_a_glb_alike() {
+    let dir = TempDir::new("gltf-quad");
+    let f = Fixture::quad();
+    let models = [
+        load(&f.write_gltf(&dir, "embedded", BufferAt::DataUri)),
+        load(&f.write_gltf(&dir, "external", BufferAt::File("quad.bin".into()))),
+        load(&f.write_glb(&dir, "binary")),
+    ];
+    for m in &models {
+        assert_eq!(m.meshes.len(), 1);
+        assert_eq!(m.meshes[0].vertices, models[0].meshes[0].vertices);
+        assert_eq!(m.meshes[0].triangles, vec![[0, 1, 2], [0, 2, 3]]);
+        assert_eq!(m.meshes[0].normals.as_ref().map(Vec::len), Some(4));
+        assert!(m.lights.is_empty() && m.cameras.is_empty());
+    }
+}
+
+#[test]
+fn metallic_roughness_transmission_ior_and_emissive_strength_map_as_documented() {
+    let dir = TempDir::new("gltf-materials");
+    let mut f = Fixture::quad();
+    f.json["extensionsUsed"] =
+        json!(["KHR_materials_transmission", "KHR_materials_ior", "KHR_materials_emissive_strength"]);
+    f.json["materials"] = json!([{
+        "name": "glassy gold",
+        "pbrMetallicRoughness": { "baseColorFactor": [1.0, 0.5, 0.25, 1.0], "metallicFactor": 0.5, "roughnessFactor": 0.25 },
+        "emissiveFactor": [0.5, 0.25, 0.0],
+        "extensions": {
+            "KHR_materials_transmission": { "transmissionFactor": 0.5 },
+            "KHR_materials_ior": { "ior": 1.33 },
+            "KHR_materials_emissive_strength": { "emissiveStrength": 4.0 }
+        }
+    }]);
+    let m = load(&f.write_gltf(&dir, "m", BufferAt::DataUri));
+    let mat = &m.materials["glassy gold"];
+    // k_d = base·(1 − metallic)·(1 − transmission); k_t = base·(1 − metallic)·transmission.
+    assert_eq!(mat.kd, Rgb([0.25, 0.125, 0.0625]));
+    assert_eq!(mat.kt, Rgb([0.25, 0.125, 0.0625]));
+    assert_eq!(mat.ka, mat.kd, "k_a = k_d");
+    // k_s = lerp(0.04, base, metallic).
+    for (k, base) in [1.0, 0.5, 0.25].into_iter().enumerate() {
+        assert!(close(mat.ks.0[k], 0.04 + (base - 0.04) * 0.5), "{:?}", mat.ks);
+    }
+    // α = 0.25² = 0.0625: n = 2/α² − 2 = 510.
+    assert!(close(mat.shininess, 510.0), "{}", mat.shininess);
+    assert_eq!(mat.kr, Rgb::splat(0.0), "roughness 0.25 is above the mirror threshold");
+    assert_eq!(mat.ior, 1.33);
+    assert_eq!(mat.emission, Rgb([2.0, 1.0, 0.0]));
+    // A smooth metal mirrors its specular colour.
+    f.json["materials"] = json!([{ "name": "chrome", "pbrMetallicRoughness": {
+        "baseColorFactor": [0.75, 0.75, 0.75, 1.0], "metallicFactor": 1.0, "roughnessFactor": 0.0 } }]);
+    let chrome = &load(&f.write_gltf(&dir, "chrome", BufferAt::DataUri)).materials["chrome"];
+    assert_eq!((chrome.kd, chrome.ks, chrome.kr), (Rgb::splat(0.0), Rgb::splat(0.75), Rgb::splat(0.75)));
+    assert_eq!(chrome.shininess, glint_core::scene::MAX_SHININESS);
+}
+
+#[test]
+fn punctual_lights_sit_at_their_nodes_and_scale_with_the_exposure() {
+    let dir = TempDir::new("gltf-lights");
+    let mut f = Fixture::quad();
+    f.json["extensionsUsed"] = json!(["KHR_lights_punctual"]);
+    f.json["extensions"] = json!({ "KHR_lights_punctual": { "lights": [
+        { "type": "point", "color": [1.0, 0.5, 0.25], "intensity": 8.0, "name": "bulb" },
+        { "type": "spot", "intensity": 2.0, "spot": { "innerConeAngle": 0.2, "outerConeAngle": 0.6 } },
+        { "type": "directional", "intensity": 3.0 }
+    ] } });
+    // A parent translated by (0, 2, 0) with the point light 1 unit up; the spot and the sun
+    // rotated −90° about x, so their −Z points down −Y.
+    let h = std::f64::consts::FRAC_1_SQRT_2;
+    f.json["scenes"] = json!([{ "nodes": [0, 1] }]);
+    f.json["nodes"] = json!([
+        { "mesh": 0 },
+        { "translation": [0.0, 2.0, 0.0], "children": [2, 3, 4] },
+        { "translation": [0.0, 1.0, 0.0], "extensions": { "KHR_lights_punctual": { "light": 0 } } },
+        { "rotation": [-h, 0.0, 0.0, h], "extensions": { "KHR_lights_punctual": { "light": 1 } } },
+        { "rotation": [-h, 0.0, 0.0, h], "extensions": { "KHR_lights_punctual": { "light": 2 } } }
+    ]);
+    let path = f.write_gltf(&dir, "lights", BufferAt::DataUri);
+    let m = load_gltf(&path, &ImportOptions { exposure: 0.5, ..ImportOptions::default() }).unwrap();
+    assert_eq!(m.lights.len(), 3);
+    let (point, spot, sun) = (&m.lights[0], &m.lights[1], &m.lights[2]);
+    assert_eq!((point.kind, point.name.as_str()), (LightKind::Point, "bulb"));
+    assert_eq!(point.position, Some([0.0, 3.0, 0.0]));
+    assert_eq!(point.diffuse, Rgb([4.0, 2.0, 1.0]), "colour × intensity × exposure");
+    assert_eq!(point.specular, point.diffuse);
+    assert_eq!(spot.kind, LightKind::Spot);
+    let d = spot.direction.unwrap();
+    assert!(close(d[0], 0.0) && close(d[1], -1.0) && d[2].abs() < 1e-12, "{d:?}");
+    assert_eq!(sun.kind, LightKind::Directional);
+    assert_eq!(sun.diffuse, Rgb::splat(1.5));
+    assert!(sun.position.is_none());
+}
+
+#[test]
+fn cameras_come_from_their_nodes_and_the_scene_uses_the_chosen_one() {
+    let dir = TempDir::new("gltf-cameras");
+    let mut f = Fixture::quad();
+    f.json["cameras"] = json!([
+        { "type": "perspective", "perspective": { "yfov": 0.5, "aspectRatio": 2.0, "znear": 0.1 } },
+        { "type": "orthographic", "orthographic": { "xmag": 1.0, "ymag": 1.0, "znear": 0.1, "zfar": 10.0 } },
+        { "type": "perspective", "name": "close", "perspective": { "yfov": 0.25, "znear": 0.1 } }
+    ]);
+    f.json["scenes"] = json!([{ "nodes": [0, 1, 2, 3] }]);
+    f.json["nodes"] = json!([
+        { "mesh": 0 },
+        { "translation": [0.5, 0.5, 4.0], "camera": 0 },
+        { "translation": [0.5, 0.5, 4.0], "camera": 1 },
+        { "translation": [0.5, 0.5, 2.0], "camera": 2 }
+    ]);
+    let path = f.write_gltf(&dir, "cams", BufferAt::DataUri);
+    let m = load(&path);
+    assert_eq!(m.cameras.len(), 2, "the orthographic camera is skipped");
+    assert!(m.warnings.iter().any(|w| w.problem.contains("orthographic")), "{:?}", m.warnings);
+    let c = &m.cameras[0].camera;
+    assert_eq!(c.position, [0.5, 0.5, 4.0]);
+    assert_eq!(c.look_at, [0.5, 0.5, 3.0], "down the node's −Z");
+    assert!(close(c.fov_y, 0.5f32.to_degrees().into()) || close(c.fov_y, f64::from(0.5f32).to_degrees()));
+    let arg = path.to_str().unwrap();
+    let first = load_scene_with(arg, &LoadOptions::default()).unwrap();
+    assert_eq!(first.desc.camera.position, [0.5, 0.5, 4.0]);
+    assert_eq!(first.desc.render.width, 2 * first.desc.render.height, "the camera's aspect ratio");
+    assert!(first.warnings.iter().any(|w| w.field == "lights"), "the default rig is said: {:?}", first.warnings);
+    let chosen =
+        LoadOptions { import: ImportOptions { camera: Some(1), ..ImportOptions::default() }, ..LoadOptions::default() };
+    assert_eq!(load_scene_with(arg, &chosen).unwrap().desc.camera.position, [0.5, 0.5, 2.0]);
+    let missing =
+        LoadOptions { import: ImportOptions { camera: Some(5), ..ImportOptions::default() }, ..LoadOptions::default() };
+    let message = load_scene_with(arg, &missing).unwrap_err().to_string();
+    assert!(message.contains("--camera") && message.contains("has 2"), "{message}");
+    let scene = LoadOptions {
+        import: ImportOptions { scene_index: Some(3), ..ImportOptions::default() },
+        ..LoadOptions::default()
+    };
+    let message = load_scene_with(arg, &scene).unwrap_err().to_string();
+    assert!(message.contains("scenes[3]") && message.contains("has 1"), "{message}");
+    let not_a_model = load_scene_with("whitted", &missing).unwrap_err().to_string();
+    assert!(not_a_model.contains("not a model file"), "{not_a_model}");
+}
+
+#[test]
+fn the_hierarchy_composes_in_f64_and_a_mirror_keeps_faces_outward() {
+    let dir = TempDir::new("gltf-hierarchy");
+    let mut f = Fixture::quad();
+    f.json["scenes"] = json!([{ "nodes": [0] }]);
+    f.json["nodes"] = json!([
+        { "scale": [2.0, 2.0, 2.0], "children": [1] },
+        { "translation": [1.0, 0.0, 0.0], "children": [2] },
+        { "matrix": [-1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0], "mesh": 0 }
+    ]);
+    let m = load(&f.write_gltf(&dir, "h", BufferAt::DataUri));
+    let mesh = &m.meshes[0];
+    // x → −x, then +1, then ×2: vertex (1, 0, 0) lands at (0, 0, 0), (0, 1, 0) at (2, 2, 0).
+    assert_eq!(mesh.vertices[1], [0.0, 0.0, 0.0]);
+    assert_eq!(mesh.vertices[3], [2.0, 2.0, 0.0]);
+    // The mirrored quad still faces +z: its triangles' geometric normal agrees with the normals.
+    let [a, b, c] = mesh.triangles[0].map(|i| mesh.vertices[i as usize]);
+    let (u, v) = ([b[0] - a[0], b[1] - a[1]], [c[0] - a[0], c[1] - a[1]]);
+    assert!(u[0] * v[1] - u[1] * v[0] > 0.0, "winding restored: {:?}", mesh.triangles);
+    assert_eq!(mesh.normals.as_ref().unwrap()[0], [0.0, 0.0, 1.0], "the normal still points +z, unit length");
+}
+
+#[test]
+fn strips_and_fans_are_traced_points_and_lines_skipped_with_a_warning() {
+    let dir = TempDir::new("gltf-modes");
+    let mut f = Fixture::quad();
+    let prim = |mode: u32| json!({ "attributes": { "POSITION": 0 }, "mode": mode });
+    f.json["meshes"] = json!([{ "primitives": [prim(5), prim(6), prim(0), prim(1)] }]);
+    let m = load(&f.write_gltf(&dir, "modes", BufferAt::DataUri));
+    assert_eq!(m.meshes.len(), 2, "strip and fan");
+    assert_eq!(m.meshes[0].triangles, vec![[0, 1, 2], [2, 1, 3]]);
+    assert_eq!(m.meshes[1].triangles, vec![[0, 1, 2], [0, 2, 3]]);
+    assert!(m.meshes[0].normals.is_none(), "no NORMAL: faceted");
+    assert!(m.warnings.iter().any(|w| w.field == "meshes[0]" && w.problem.contains("Points")), "{:?}", m.warnings);
+    f.json["meshes"] = json!([{ "primitives": [prim(0)] }]);
+    let message = error(&f.write_gltf(&dir, "points", BufferAt::DataUri));
+    assert!(message.contains("points.gltf") && message.contains("no triangles"), "{message}");
+}
+
+#[test]
+fn broken_files_are_errors_naming_the_json_path() {
+    let dir = TempDir::new("gltf-broken");
+    type Edit = Box<dyn Fn(&mut Fixture)>;
+    let cases: Vec<(&str, Edit, &[&str])> = vec![
+        (
+            "cycle",
+            Box::new(|f| f.json["nodes"] = json!([{ "children": [1] }, { "children": [0], "mesh": 0 }])),
+            &["nodes[0]", "reached twice"],
+        ),
+        (
+            "type",
+            Box::new(|f| f.json["accessors"][0]["type"] = json!("VEC2")),
+            &["attributes.POSITION", "VEC3 of FLOAT"],
+        ),
+        ("count", Box::new(|f| f.json["accessors"][0]["count"] = json!(400)), &["attributes.POSITION", "do not fit"]),
+        ("zero", Box::new(|f| f.json["accessors"][0]["count"] = json!(0)), &["accessors[0]"]),
+        ("view", Box::new(|f| f.json["bufferViews"][0]["byteLength"] = json!(4096)), &["bufferViews[0]"]),
+        (
+            "required",
+            Box::new(|f| f.json["extensionsRequired"] = json!(["KHR_draco_mesh_compression"])),
+            &["KHR_draco_mesh_compression", "extensionsRequired[0]"],
+        ),
+        ("noscene", Box::new(|f| f.json["scenes"] = json!([{ "nodes": [] }])), &["scenes[0].nodes"]),
+        ("badmaterial", Box::new(|f| f.json["meshes"][0]["primitives"][0]["material"] = json!(7)), &["material"]),
+    ];
+    for (name, edit, wanted) in cases {
+        let mut f = Fixture::quad();
+        edit(&mut f);
+        let path = f.write_gltf(&dir, name, BufferAt::DataUri);
+        let message = error(&path);
+        assert!(message.contains(&format!("{name}.gltf")), "{name}: {message}");
+        for w in wanted {
+            assert!(message.contains(w), "{name}: wanted `{w}` in: {message}");
+        }
+    }
+    // An index beyond the vertices.
+    let mut f = Fixture::quad();
+    let bad = f.push_u16(&[0, 1, 9, 0, 0, 0]);
+    f.json["accessors"][2]["bufferView"] = json!(bad);
+    let message = error(&f.write_gltf(&dir, "range", BufferAt::DataUri));
+    assert!(message.contains("meshes[0].primitives[0].indices") && message.contains("index 9"), "{message}");
+    // A non-finite position (JSON cannot write one, the buffer can).
+    let mut f = Fixture::quad();
+    let inf = f.push_f32(&[0., 0., 0., f32::INFINITY, 0., 0., 1., 1., 0., 0., 1., 0.]);
+    f.json["accessors"][0]["bufferView"] = json!(inf);
+    let message = error(&f.write_gltf(&dir, "inf", BufferAt::DataUri));
+    assert!(message.contains("attributes.POSITION") && message.contains("finite"), "{message}");
+}
+
+#[test]
+fn hostile_uris_are_refused_naming_them() {
+    let dir = TempDir::new("gltf-uris");
+    let model = dir.join("model");
+    std::fs::create_dir(&model).unwrap();
+    let f = Fixture::quad();
+    std::fs::write(dir.join("outside.bin"), &f.bin).unwrap();
+    #[cfg(unix)]
+    std::os::unix::fs::symlink(dir.join("outside.bin"), model.join("link.bin")).unwrap();
+    let mut uris =
+        vec!["../outside.bin".to_string(), "/etc/passwd".into(), "file:///etc/passwd".into(), "%FF.bin".into()];
+    uris.push("%2e%2e/outside.bin".into());
+    if cfg!(unix) {
+        uris.push("link.bin".into());
+    }
+    for (k, uri) in uris.iter().enumerate() {
+        let path = f.write_gltf(&model, &format!("u{k}"), BufferAt::Uri(uri.clone()));
+        let message = error(&path);
+        assert!(message.contains("buffers[0].uri") && message.contains(uri.as_str()), "{uri}: {message}");
+    }
+    // A buffer shorter than its declared byteLength.
+    let short = f.write_gltf(&model, "short", BufferAt::File("short.bin".into()));
+    std::fs::write(model.join("short.bin"), &f.bin[..f.bin.len() / 2]).unwrap();
+    let message = error(&short);
+    assert!(message.contains("buffers[0].byteLength") && message.contains("declares"), "{message}");
+    // A GLB without its BIN chunk.
+    let mut glb = f.clone();
+    glb.bin.clear();
+    let message = error(&glb.write_glb(&model, "nobin"));
+    assert!(message.contains("nobin.glb"), "{message}");
+}
+
+#[test]
+fn a_scene_file_places_a_model_by_reference_and_saves_the_reference() {
+    let dir = TempDir::new("gltf-in-scene");
+    Fixture::quad().write_glb(&dir, "quad");
+    let scene = dir.join("lab.toml");
+    std::fs::write(
+        &scene,
+        r#"
+[camera]
+position = [0, 0, 5]
+look_at = [0, 0, 0]
+
+[materials.red]
+kd = [0.8, 0.1, 0.1]
+
+# The scene's own material of this name overrides the model's.
+[materials."tile/white"]
+kd = [0.2, 0.3, 0.4]
+
+[[objects]]
+type = "sphere"
+center = [3, 0, 0]
+radius = 1
+material = "red"
+
+[[objects]]
+type = "model"
+path = "quad.glb"
+name = "tile"
+transform = { translate = [10, 0, 0], rotate = [0, 0, 90], scale = 2 }
+"#,
+    )
+    .unwrap();
+    let loaded = load_scene_with(scene.to_str().unwrap(), &LoadOptions::default()).unwrap_or_else(|e| panic!("{e}"));
+    let glint_core::scene::ObjectDesc::Model(model) = &loaded.desc.objects[1] else { panic!("a model object") };
+    let placed = &model.loaded.as_ref().expect("loaded").meshes[0];
+    // (1, 0, 0) scaled to (2, 0, 0), turned 90° about z to (0, 2, 0), moved to (10, 2, 0).
+    let v = placed.vertices[1];
+    assert!(close(v[0], 10.0) && close(v[1], 2.0) && v[2].abs() < 1e-12, "{v:?}");
+    assert_eq!(placed.material, "tile/white");
+    assert_eq!(loaded.desc.materials["tile/white"].kd, Rgb([0.2, 0.3, 0.4]), "the scene's override");
+    let flat = glint_core::FlatScene::build(&loaded.desc, &loaded.desc.render);
+    assert_eq!(flat.triangles.len(), 2);
+    // Saved: the reference and the override, no vertices; loading the saved file gives the same.
+    let text = glint_core::scene::to_toml(&loaded.desc).unwrap();
+    assert!(text.contains("quad.glb") && !text.contains("vertices"), "{text}");
+    let again = dir.join("again.toml");
+    std::fs::write(&again, &text).unwrap();
+    let reloaded = load_scene_with(again.to_str().unwrap(), &LoadOptions::default()).unwrap();
+    assert_eq!(reloaded.desc, loaded.desc);
+    // Bad references and transforms name the field.
+    for (edit, wanted) in [
+        ("path = \"missing.glb\"", "objects[1].path"),
+        ("path = \"quad.glb\"\ntransform = { scale = 0 }", "objects[1].transform.scale"),
+        (
+            "path = \"quad.glb\"\ntransform = { rotate = [0, 0, 1], quaternion = [0, 0, 0, 1] }",
+            "objects[1].transform.quaternion",
+        ),
+        (
+            "path = \"quad.glb\"\ntransform = { matrix = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1], translate = [1, 0, 0] }",
+            "objects[1].transform.matrix",
+        ),
+    ] {
+        let bad = dir.join("bad.toml");
+        std::fs::write(
+            &bad,
+            format!("[camera]\nposition = [0, 0, 5]\nlook_at = [0, 0, 0]\n[materials.m]\n[[objects]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nmaterial = \"m\"\n[[objects]]\ntype = \"model\"\n{edit}\n"),
+        )
+        .unwrap();
+        let message = load_scene_with(bad.to_str().unwrap(), &LoadOptions::default()).unwrap_err().to_string();
+        assert!(message.contains("bad.toml") && message.contains(wanted), "{edit}: {message}");
+    }
+}
