@@ -9,6 +9,8 @@ mod builtin;
 pub mod bumpy;
 mod desc;
 mod error;
+mod number;
+mod overflow;
 mod rgb;
 mod validate;
 
@@ -20,6 +22,8 @@ pub use desc::{
     ObjectDesc, PlaneDesc, RenderSettings, SceneDesc, SpecularModel, SphereDesc, WorldDesc,
 };
 pub use error::{FieldIssue, SceneError};
+pub use number::{format_number, shorten};
+pub use overflow::overflow_causes;
 pub use rgb::Rgb;
 pub use validate::{
     MAX_COORD, MAX_DEPTH, MAX_EPSILON, MAX_IMAGE_SIDE, MAX_INTENSITY, MAX_IOR, MAX_SHININESS, MAX_SPOT_EXPONENT,
@@ -39,8 +43,10 @@ pub struct LoadedScene {
 
 /// Parses and validates scene text; `file` is only used in messages.
 pub fn parse_scene(text: &str, file: &Path) -> Result<(SceneDesc, Vec<FieldIssue>), SceneError> {
-    let desc: SceneDesc =
-        toml::from_str(text).map_err(|e| SceneError::Parse { file: file.to_owned(), message: e.to_string() })?;
+    let desc: SceneDesc = toml::from_str(text).map_err(|e| SceneError::Parse {
+        file: file.to_owned(),
+        message: number::shorten_lines(&number::clarify_integer_overflow(&e.to_string())),
+    })?;
     validated(desc, file)
 }
 
@@ -78,8 +84,9 @@ pub fn load_scene_at(arg: &str, resolution: Option<u32>) -> Result<LoadedScene, 
             let (desc, warnings) = load_model(path)?;
             return Ok(LoadedScene { desc, source: path.to_owned(), name, warnings });
         }
-        let text = std::fs::read_to_string(path).map_err(|error| SceneError::Io { file: path.to_owned(), error })?;
-        let (desc, warnings) = parse_scene(&text, path)?;
+        let bytes = std::fs::read(path).map_err(|error| SceneError::Io { file: path.to_owned(), error })?;
+        let text = utf8(&bytes, path)?;
+        let (desc, warnings) = parse_scene(text, path)?;
         return Ok(LoadedScene { desc, source: path.to_owned(), name, warnings });
     }
     if let Some(b) = builtin(arg) {
@@ -95,6 +102,27 @@ pub fn load_scene_at(arg: &str, resolution: Option<u32>) -> Result<LoadedScene, 
     }
     let available = BUILTIN_SCENES.iter().map(|b| b.name).collect::<Vec<_>>().join(", ");
     Err(SceneError::UnknownScene { name: arg.to_string(), available })
+}
+
+/// The scene file's text, or an error giving the byte offset (and line and column) of the
+/// first byte that is not UTF-8, as a hex editor or `dd skip=` needs it.
+fn utf8<'a>(bytes: &'a [u8], file: &Path) -> Result<&'a str, SceneError> {
+    std::str::from_utf8(bytes).map_err(|e| {
+        let offset = e.valid_up_to();
+        let before = &bytes[..offset];
+        let line = before.iter().filter(|&&b| b == b'\n').count() + 1;
+        let line_start = before.iter().rposition(|&b| b == b'\n').map_or(0, |i| i + 1);
+        // The column in characters: the line up to here is valid UTF-8.
+        let column = std::str::from_utf8(&before[line_start..]).map_or(0, |s| s.chars().count()) + 1;
+        SceneError::Parse {
+            file: file.to_owned(),
+            message: format!(
+                "not UTF-8 text: byte 0x{:02x} at byte offset {offset} (line {line}, column {column}) is not valid \
+                 UTF-8; scene files are UTF-8",
+                bytes[offset]
+            ),
+        }
+    })
 }
 
 /// An OBJ model in the lab scene `model::scene_around` makes for it, validated like a scene
