@@ -6,7 +6,7 @@ use anyhow::bail;
 use clap::Args;
 use clap::builder::{PossibleValuesParser, TypedValueParser};
 use glint_core::compare::compare_images;
-use glint_core::scene::{BUILTIN_SCENES, RESOLUTIONS, overflow_causes};
+use glint_core::scene::{BUILTIN_SCENES, RESOLUTIONS, overflow_causes, unbounded_ray_tree};
 use glint_core::{Accel, Backend, CpuOptions, FlatScene};
 use glint_gpu::GpuOptions;
 
@@ -98,6 +98,12 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     }
     let loaded = load(&args.scene, args.scene_size.resolution)?;
     let settings = args.settings.apply(&loaded.desc.render)?;
+    // Loading warned about the scene's own settings; flags that change them are judged here.
+    if settings != loaded.desc.render
+        && let Some(warning) = unbounded_ray_tree(&loaded.desc, &settings)
+    {
+        eprintln!("warning: {warning}");
+    }
     let specialise = !args.no_specialise;
     let cpu_options = CpuOptions { threads: args.threads, specialise, accel: args.accel };
     let gpu_options = GpuOptions { specialise, accel: args.accel, ..GpuOptions::default() };

@@ -11,6 +11,7 @@ mod desc;
 mod error;
 mod number;
 mod overflow;
+mod ray_tree;
 mod rgb;
 mod validate;
 
@@ -24,6 +25,7 @@ pub use desc::{
 pub use error::{FieldIssue, SceneError};
 pub use number::{format_number, shorten};
 pub use overflow::overflow_causes;
+pub use ray_tree::{WARN_RAYS_PER_SAMPLE, reachable_depth, unbounded_ray_tree};
 pub use rgb::Rgb;
 pub use validate::{
     MAX_COORD, MAX_DEPTH, MAX_EPSILON, MAX_IMAGE_SIDE, MAX_INTENSITY, MAX_IOR, MAX_SHININESS, MAX_SPOT_EXPONENT,

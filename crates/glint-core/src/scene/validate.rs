@@ -222,6 +222,9 @@ pub fn validate(scene: &SceneDesc) -> Report {
     for (i, object) in scene.objects.iter().enumerate() {
         validate_object(&format!("objects[{i}]"), object, scene, &mut r);
     }
+    if let Some(warning) = super::ray_tree::unbounded_ray_tree(scene, &scene.render) {
+        r.warn("render.max_depth", warning);
+    }
     r
 }
 
