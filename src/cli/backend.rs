@@ -24,6 +24,8 @@ pub struct Run {
     /// Worker threads (CPU) or the adapter (GPU).
     pub device: String,
     pub gpu_status: u32,
+    /// What the raised status bits mean (`glint_gpu::status`); empty for a complete render.
+    pub incomplete: Vec<String>,
 }
 
 impl Run {
@@ -47,7 +49,9 @@ pub fn run_cpu(flat: &FlatScene, options: &CpuOptions, quiet: bool) -> anyhow::R
         bar
     };
     let on_tile = |_: &Tile| bar.inc(1);
-    let r = render_cpu(flat, options, RenderControl { cancel: None, on_tile: Some(&on_tile) })?;
+    // SIGINT/SIGTERM stop the render at the next tile (see `interrupt`).
+    let cancel = glint_core::interrupt::flag();
+    let r = render_cpu(flat, options, RenderControl { cancel: Some(&cancel), on_tile: Some(&on_tile) })?;
     bar.finish_and_clear();
     Ok(Run {
         backend: Backend::Cpu,
@@ -57,6 +61,7 @@ pub fn run_cpu(flat: &FlatScene, options: &CpuOptions, quiet: bool) -> anyhow::R
         total: start.elapsed(),
         device: format!("{} threads", r.threads),
         gpu_status: 0,
+        incomplete: Vec::new(),
     })
 }
 
@@ -70,9 +75,8 @@ pub fn open_gpu(adapter: Option<&str>) -> anyhow::Result<GpuTracer> {
 pub fn run_gpu(tracer: &GpuTracer, flat: &FlatScene, options: &GpuOptions) -> anyhow::Result<Run> {
     let start = Instant::now();
     let r = tracer.render(flat, options).context("GPU render failed")?;
-    for message in glint_gpu::status::messages(r.status, r.key.stack_size) {
-        eprintln!("warning: {message}");
-    }
+    // A dispatched render cannot be stopped: a signal that came during it stops here.
+    super::interrupt::check()?;
     Ok(Run {
         backend: Backend::Gpu,
         image: r.image,
@@ -81,5 +85,6 @@ pub fn run_gpu(tracer: &GpuTracer, flat: &FlatScene, options: &GpuOptions) -> an
         total: start.elapsed(),
         device: tracer.context().adapter.to_string(),
         gpu_status: r.status,
+        incomplete: glint_gpu::status::messages(r.status, r.key.stack_size),
     })
 }

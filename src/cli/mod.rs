@@ -2,7 +2,9 @@
 
 mod backend;
 mod bench;
+pub mod interrupt;
 mod output;
+mod output_path;
 mod render;
 mod report;
 mod settings;

@@ -13,7 +13,7 @@ use super::units::ms;
 
 /// Render settings as PNG tEXt chunks (`glint:*` keys).
 pub fn metadata(scene: &str, s: &RenderSettings, run: &Run, specialised: bool) -> Vec<(String, String)> {
-    render_metadata(
+    let mut m = render_metadata(
         s,
         &RenderInfo {
             scene,
@@ -23,7 +23,13 @@ pub fn metadata(scene: &str, s: &RenderSettings, run: &Run, specialised: bool) -
             time_ms: Some(ms(run.render)),
             rays: Some(run.counts.total()),
         },
-    )
+    );
+    // Written only with --allow-incomplete: the image is missing work, and says which.
+    if !run.incomplete.is_empty() {
+        m.push(("glint:gpu_status".into(), format!("{:#x}", run.gpu_status)));
+        m.push(("glint:incomplete".into(), run.incomplete.join("; ")));
+    }
+    m
 }
 
 /// `out.png` → `out-cpu.png` (and so on) when several images come from one run.
@@ -76,6 +82,8 @@ struct JsonRun<'a> {
     mrays_per_s: f64,
     rays: JsonCounts,
     gpu_status: u32,
+    /// What the raised status bits mean (only with --allow-incomplete; empty otherwise).
+    incomplete: &'a [String],
 }
 
 #[derive(Serialize)]
@@ -144,6 +152,7 @@ pub fn print_json(
                     saved_by_bailout: r.counts.bailout_saved,
                 },
                 gpu_status: r.gpu_status,
+                incomplete: &r.incomplete,
             })
             .collect(),
         gpu_vs_cpu: errors.map(|e| JsonErrors {

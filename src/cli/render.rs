@@ -1,18 +1,20 @@
 //! `glint render`: one scene on the CPU, the GPU or both, to PNG/EXR; or a benchmark.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use anyhow::bail;
 use clap::Args;
 use clap::builder::{PossibleValuesParser, TypedValueParser};
 use glint_core::compare::compare_images;
-use glint_core::scene::{BUILTIN_SCENES, RESOLUTIONS};
+use glint_core::scene::{BUILTIN_SCENES, RESOLUTIONS, overflow_causes, unbounded_ray_tree};
 use glint_core::{Accel, Backend, CpuOptions, FlatScene};
 use glint_gpu::GpuOptions;
 
 use super::backend::{Run, open_gpu, run_cpu, run_gpu};
+use super::interrupt;
 use super::output::{fmt_counts, metadata, print_json, print_table, suffixed, write_diff, write_run};
-use super::settings::{LoadArgs, SettingsArgs, load};
+use super::output_path::check_outputs;
+use super::settings::{LoadArgs, SettingsArgs, load, parse_threads};
 use super::units::{mrays_per_s, ms};
 
 #[derive(Debug, Args)]
@@ -34,8 +36,8 @@ pub struct RenderArgs {
     /// GPU adapter: a case-insensitive part of its name (default: WGPU_ADAPTER_NAME, else the best GPU)
     #[arg(long)]
     pub adapter: Option<String>,
-    /// CPU worker threads; 0 = one per core
-    #[arg(long, default_value_t = 0)]
+    /// CPU worker threads: 0 = one per core, at most 4 per core (and never more than 1024)
+    #[arg(long, default_value_t = 0, allow_negative_numbers = true, value_parser = parse_threads)]
     pub threads: usize,
     /// Run every feature of both tracers even where the scene does not need it
     #[arg(long)]
@@ -58,6 +60,13 @@ pub struct RenderArgs {
     /// No progress bar
     #[arg(short, long)]
     pub quiet: bool,
+    /// Replace an output file even if it is read-only
+    #[arg(long)]
+    pub force: bool,
+    /// Write a GPU image whose shader raised a status flag (a loop bound, the driver's loop
+    /// cut-off, a stack overflow: work is missing) instead of failing; its PNG metadata says so
+    #[arg(long)]
+    pub allow_incomplete: bool,
 }
 
 /// The choices of `--backend` and the tracers each runs, CPU first.
@@ -89,15 +98,32 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     }
     let loaded = load(&args.scene, &args.scene_size.options())?;
     let settings = args.settings.apply(&loaded.desc.render)?;
-    let flat = FlatScene::build(&loaded.desc, &settings);
+    // Loading warned about the scene's own settings; flags that change them are judged here.
+    if settings != loaded.desc.render
+        && let Some(warning) = unbounded_ray_tree(&loaded.desc, &settings)
+    {
+        eprintln!("warning: {warning}");
+    }
     let specialise = !args.no_specialise;
     let cpu_options = CpuOptions { threads: args.threads, specialise, accel: args.accel };
     let gpu_options = GpuOptions { specialise, accel: args.accel, ..GpuOptions::default() };
     if args.bench {
+        let flat = FlatScene::build(&loaded.desc, &settings);
         return bench(args, &loaded.name, &flat, &cpu_options, &gpu_options);
     }
     let output = args.output.clone().unwrap_or_else(|| PathBuf::from(format!("{}.png", loaded.name)));
-    check_output(&output)?;
+    let both = args.backend.len() > 1;
+    let image_path = |run: &Run| if both { suffixed(&output, run.backend.name()) } else { output.clone() };
+    let diff_path = suffixed(&output, "diff").with_extension("png");
+    let planned: Vec<PathBuf> = if both {
+        vec![suffixed(&output, "cpu"), suffixed(&output, "gpu"), diff_path.clone()]
+    } else {
+        vec![output.clone()]
+    };
+    check_outputs(&planned.iter().map(PathBuf::as_path).collect::<Vec<_>>(), &loaded.source, args.force)?;
+    interrupt::check()?;
+    let flat = FlatScene::build(&loaded.desc, &settings);
+    interrupt::check()?;
 
     let gpu = if args.backend.contains(&Backend::Gpu) { Some(open_gpu(args.adapter.as_deref())?) } else { None };
     // The GPU renders first: a scene it cannot take (size, limits) fails before a long CPU render.
@@ -107,16 +133,26 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         runs.push(run_cpu(&flat, &cpu_options, args.quiet || args.json)?);
     }
     runs.extend(gpu_run);
+    // Every image is checked before any is written: a failure leaves no file at all.
+    for run in &runs {
+        check_complete(run, args.allow_incomplete)?;
+        if let Some(found) = run.image.unrepresentable() {
+            bail!(
+                "the {} render is not a valid image: {found}; no image was written. In this scene: {}",
+                run.backend.name(),
+                overflow_causes(&loaded.desc, settings.max_depth)
+            );
+        }
+    }
     let mut outputs = Vec::new();
     for run in &runs {
-        let path = if args.backend.len() > 1 { suffixed(&output, run.backend.name()) } else { output.clone() };
+        let path = image_path(run);
         write_run(&path, run, &metadata(&loaded.name, &settings, run, specialise))?;
         outputs.push(path);
     }
     let errors = if let [cpu, gpu] = runs.as_slice() {
-        let diff = suffixed(&output, "diff").with_extension("png");
-        write_diff(&diff, cpu, gpu, metadata(&loaded.name, &settings, gpu, specialise))?;
-        outputs.push(diff);
+        write_diff(&diff_path, cpu, gpu, metadata(&loaded.name, &settings, gpu, specialise))?;
+        outputs.push(diff_path);
         Some(compare_images(&cpu.image, &gpu.image))
     } else {
         None
@@ -126,21 +162,28 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     } else {
         print_table(&loaded.name, &settings, &runs, errors.as_ref(), &outputs);
     }
-    if let Some(bad) = runs.iter().find(|r| !r.image.all_finite()) {
-        bail!("the {} render produced non-finite pixels; this is a bug, please report it", bad.backend.name());
-    }
     Ok(())
 }
 
-fn check_output(path: &Path) -> anyhow::Result<()> {
-    match path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
-        Some("png" | "exr") => {}
-        _ => bail!("{}: unsupported output format; use a .png or .exr file name", path.display()),
+/// A render whose shader raised a status flag is missing work: an error, or with
+/// `--allow-incomplete` a warning (and its PNG metadata says so: `output::metadata`).
+fn check_complete(run: &Run, allow_incomplete: bool) -> anyhow::Result<()> {
+    if run.incomplete.is_empty() {
+        return Ok(());
     }
-    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty() && !d.is_dir()) {
-        bail!("{}: the output folder {} does not exist", path.display(), dir.display());
+    if allow_incomplete {
+        for message in &run.incomplete {
+            eprintln!("warning: the {} image is incomplete: {message}", run.backend.name());
+        }
+        return Ok(());
     }
-    Ok(())
+    bail!(
+        "the {} render is incomplete (status {:#x}): {}; no image was written (pass --allow-incomplete to write it \
+         anyway, marked as incomplete in its metadata)",
+        run.backend.name(),
+        run.gpu_status,
+        run.incomplete.join("; ")
+    )
 }
 
 fn bench(
@@ -162,6 +205,9 @@ fn bench(
     let mut medians = Vec::new();
     for render in &backends {
         let warm = render()?;
+        for message in &warm.incomplete {
+            eprintln!("warning: the {} render is incomplete: {message}", warm.backend.name());
+        }
         let mut times = Vec::new();
         for _ in 0..args.runs {
             times.push(render()?.render);

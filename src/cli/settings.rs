@@ -99,6 +99,25 @@ fn parse_count(s: &str) -> Result<u32, String> {
     }
 }
 
+/// The most worker threads `--threads` takes, whatever the machine: more only adds memory
+/// (a stack each) and scheduling, never speed.
+pub const MAX_THREADS: usize = 1024;
+
+/// `--threads`: 0 (one per core) up to 4 per core, and never more than `MAX_THREADS`.
+pub fn thread_limit() -> usize {
+    (4 * std::thread::available_parallelism().map_or(1, std::num::NonZero::get)).min(MAX_THREADS)
+}
+
+pub fn parse_threads(s: &str) -> Result<usize, String> {
+    let max = thread_limit();
+    let allowed = || format!("--threads takes 0 (one per core) to {max} (4 per core, at most {MAX_THREADS})");
+    match s.trim().parse::<i128>() {
+        Ok(v) if (0..=max as i128).contains(&v) => Ok(v as usize),
+        Ok(v) => Err(format!("{v} is outside [0, {max}]: {}", allowed())),
+        Err(_) => Err(format!("'{s}' is not a whole number: {}", allowed())),
+    }
+}
+
 fn parse_epsilon_mode(s: &str) -> Result<EpsilonMode, String> {
     EpsilonMode::from_name(s).ok_or_else(|| {
         let names: Vec<&str> = EpsilonMode::ALL.iter().map(|m| m.name()).collect();

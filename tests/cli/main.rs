@@ -9,6 +9,7 @@ use glint_test_support::TempDir;
 
 mod bench;
 mod models;
+mod reliability;
 mod report;
 
 const BIN: &str = env!("CARGO_BIN_EXE_glint");

@@ -10,11 +10,20 @@ use super::{TempDir, glint, text};
 const HEADER: &str = "scene,backend,device,groups,width_px,height_px,spp,max_depth,bailout,specialised,\
     epsilon_mode,epsilon,timed_runs,render_ms_median,render_ms_min,render_ms_max,pipeline_ms,shader_statements,\
     rays_total,camera_rays,rays_per_pixel,bailout_saved_rays,mrays_per_s,rmse,rel_mse,psnr_db,flip_mean,max_abs,\
-    first_hit_mismatch_pct,rmse_vs_cpu_twin,rays_vs_cpu_twin_pct,gpu_status,pareto_all,pareto_backend";
+    first_hit_mismatch_pct,rmse_vs_cpu_twin,rays_vs_cpu_twin_pct,gpu_status,incomplete,pareto_all,pareto_backend";
 
 /// Columns that hold text; every other column holds a number.
-const TEXT: &[&str] =
-    &["scene", "backend", "device", "groups", "specialised", "epsilon_mode", "pareto_all", "pareto_backend"];
+const TEXT: &[&str] = &[
+    "scene",
+    "backend",
+    "device",
+    "groups",
+    "specialised",
+    "epsilon_mode",
+    "incomplete",
+    "pareto_all",
+    "pareto_backend",
+];
 
 /// Columns that only GPU rows fill.
 const GPU_ONLY: &[&str] =
@@ -136,7 +145,7 @@ fn quick_report_writes_consistent_files() {
         if backend == "gpu" {
             assert!(num("pipeline_ms") > 0.0, "row {i}: no pipeline time");
         }
-        for b in ["specialised", "pareto_all", "pareto_backend"] {
+        for b in ["specialised", "incomplete", "pareto_all", "pareto_backend"] {
             assert!(r[col(b)] == "true" || r[col(b)] == "false", "row {i}: {b} = {}", r[col(b)]);
         }
         let key: Vec<&str> = ["scene", "backend", "spp", "max_depth", "bailout", "specialised", "epsilon_mode"]
@@ -209,6 +218,26 @@ fn report_rejects_an_unknown_scene_before_writing_anything() {
     assert!(!out_dir.exists(), "the output folder was created for a failing report");
 }
 
+#[test]
+fn report_rejects_an_empty_scene_list_and_a_thread_count_out_of_range() {
+    let dir = TempDir::new("report-empty");
+    let out_dir = dir.join("out");
+    for (flag, value, fragments) in [
+        ("--scenes", "", &["--scenes names no scene"][..]),
+        ("--scenes", " , ", &["--scenes names no scene"][..]),
+        ("--threads", "100000", &["--threads", "100000 is outside [0, "][..]),
+    ] {
+        let args: [std::ffi::OsString; 6] =
+            ["report".into(), flag.into(), value.into(), "--cpu-only".into(), "--out".into(), out_dir.clone().into()];
+        let out = glint(&dir, args);
+        assert!(!out.status.success(), "{flag} {value:?} succeeded");
+        for f in fragments {
+            assert!(text(&out.stderr).contains(f), "{flag} {value:?}: {}", text(&out.stderr));
+        }
+        assert!(!out_dir.exists(), "the output folder was created for a failing report");
+    }
+}
+
 /// The rows marked `pareto_all` form the front the report's legend describes (time against
 /// RMSE, reference rows unranked, an RMSE must be 1 % lower to count): no front row is beaten
 /// by a strictly faster row that is at least as accurate, and every other row has a front row
@@ -217,8 +246,12 @@ fn check_pareto_front(scene: &str, rows: &[&Vec<String>], col: &dyn Fn(&str) -> 
     let point = |r: &Vec<String>| -> (f64, f64) {
         (r[col("render_ms_median")].parse().expect("time"), r[col("rmse")].parse().expect("rmse"))
     };
-    let ranked: Vec<&Vec<String>> =
-        rows.iter().copied().filter(|r| !r[col("groups")].split(';').any(|g| g == "reference")).collect();
+    // Reference rows and rows that lost work are not ranked.
+    let ranked: Vec<&Vec<String>> = rows
+        .iter()
+        .copied()
+        .filter(|r| !r[col("groups")].split(';').any(|g| g == "reference") && r[col("incomplete")] == "false")
+        .collect();
     let (front, rest): (Vec<&Vec<String>>, Vec<&Vec<String>>) =
         ranked.iter().copied().partition(|r| r[col("pareto_all")] == "true");
     for p in &front {

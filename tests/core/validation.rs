@@ -259,7 +259,80 @@ fn wrong_types_and_missing_fields_of_objects_name_the_field() {
     expect_parse_error(&edited("radius = 1.0", "radius = \"x\""), &["radius", "expected f64"]);
     expect_parse_error(&edited("center = [0.0, 1.0, 0.0]", "center = [0.0, 1.0]"), &["center", "length 3"]);
     expect_parse_error(&edited("radius = 1.0\nmaterial = \"red\"", "radius = 1.0"), &["missing field `material`"]);
-    expect_parse_error(&edited("type = \"sphere\"", "type = \"cube\""), &["cube", "`sphere`, `plane`, `mesh`"]);
+    expect_parse_error(
+        &edited("type = \"sphere\"", "type = \"cube\""),
+        &["objects[0].type: unknown object type \"cube\"; allowed: sphere, plane, mesh"],
+    );
+    expect_parse_error(&edited("radius = 1.0", "radius = \"x\""), &["objects[0] (sphere): ", "radius"]);
+}
+
+#[test]
+fn an_object_type_typo_names_the_field_with_its_index_and_the_allowed_values() {
+    // Before: the message pointed at the `[[objects]]` header and named neither.
+    let text = edited("type = \"mesh\"", "type = \"spehre\"");
+    expect_parse_error(&text, &["objects[2].type: unknown object type \"spehre\"; allowed: sphere, plane, mesh"]);
+    expect_parse_error(&edited("type = \"mesh\"", "type = 3"), &["objects[2].type: must be a string, one of: sphere"]);
+    expect_parse_error(&edited("type = \"mesh\"\n", ""), &["objects[2].type: missing", "sphere, plane, mesh"]);
+}
+
+#[test]
+fn long_echoed_values_are_shortened() {
+    // A 200 kB value was echoed in full, in the parser's message and in validation's.
+    let long = "x".repeat(200_000);
+    for (text, what) in [
+        (edited("type = \"mesh\"", &format!("type = \"{long}\"")), "object type"),
+        (edited("material = \"glass\"", &format!("material = \"{long}\"")), "material name"),
+        (edited("position = [2.0, 4.0, -2.0]", &format!("position = [2.0, 4.0, -2.0]\n{long} = 1")), "unknown key"),
+    ] {
+        let msg = parse_scene(&text, Path::new(FILE)).expect_err(what).to_string();
+        assert!(msg.len() < 2_000, "{what}: {} bytes of message: {}…", msg.len(), &msg[..300]);
+        assert!(msg.contains("more bytes)"), "{what}: does not say it was cut: {msg}");
+    }
+}
+
+#[test]
+fn an_empty_vertex_list_with_triangles_says_the_mesh_has_no_vertices() {
+    // Before: "vertex index 0 is out of range; allowed: [0, 0]".
+    let text = edited("vertices = [[-1.0, 0.0, 2.0], [1.0, 0.0, 2.0], [0.0, 2.0, 2.0]]", "vertices = []")
+        .replace("normals = [[0.0, 0.0, 1.0], [0.0, 0.0, 1.0], [0.0, 0.0, 1.0]]\n", "");
+    expect_invalid(&text, "objects[2].vertices", &["the mesh has no vertices, but its triangle index them"]);
+}
+
+#[test]
+fn extreme_numbers_are_printed_as_written_not_as_300_digit_decimals() {
+    expect_invalid(&edited("radius = 1.0", "radius = 1e300"), "objects[0].radius", &["1e300 is outside", "(0, 1e9]"]);
+    expect_invalid(&edited("radius = 1.0", "radius = 5e-324"), "objects[0].radius", &["5e-324 is outside"]);
+    expect_invalid(&edited("shininess = 32.0", "shininess = 1e300"), "materials.red.shininess", &["1e300 is outside"]);
+    expect_invalid(&edited("ior = 1.5", "ior = -1e300"), "materials.glass.ior", &["-1e300 is outside"]);
+    expect_invalid(
+        &edited("position = [2.0, 4.0, -2.0]", "position = [1e300, 4.0, -2.0]"),
+        "lights[0].position",
+        &["x = 1e300 must"],
+    );
+    let err = parse_scene(&edited("radius = 1.0", "radius = 1e300"), Path::new(FILE)).unwrap_err();
+    assert!(err.to_string().len() < 200, "{err}");
+}
+
+#[test]
+fn a_light_written_as_an_array_says_a_light_is_a_table() {
+    // Before: "wanted exactly 1 element, more than 1 element".
+    let camera = "[camera]\nposition = [0.0, 1.0, -5.0]\nlook_at = [0.0, 0.5, 0.0]\n";
+    let text = format!("lights = [[{{ type = \"point\", position = [0.0, 1.0, 0.0] }}]]\n{camera}");
+    expect_parse_error(
+        &text,
+        &["invalid type: sequence, expected a light: a table ([[lights]] or { type = \"point\", … })"],
+    );
+    let text = format!("objects = [[{{ type = \"sphere\" }}]]\n{camera}");
+    expect_parse_error(&text, &["objects[0]: an object is a table", "not an array"]);
+}
+
+#[test]
+fn a_light_error_keeps_the_position_of_its_field() {
+    // Lights are read by their derive, which keeps the parser's position of the bad value.
+    expect_parse_error(
+        &edited("type = \"spot\"", "type = \"spt\""),
+        &["line 29, column 8", "spt", "`point`, `directional`, `spot`"],
+    );
 }
 
 #[test]
@@ -269,4 +342,45 @@ fn kr_plus_kt_above_one_warns_but_loads() {
     assert!(warnings[0].contains("materials.glass") && warnings[0].contains("1.3"), "{warnings:?}");
     // Exactly 1 is fine and silent.
     assert!(expect_valid(&edited("kr = 0.1", "kr = 0.2"), "k_r + k_t = 1").is_empty());
+}
+
+#[test]
+fn invalid_utf8_gives_the_byte_offset_line_and_column() {
+    let dir = glint_test_support::TempDir::new("utf8");
+    let path = dir.join("latin1.toml");
+    // "José" in Latin-1 on line 2: é is the single byte 0xe9, at byte offset 18.
+    let mut bytes = b"# a scene\n# by Jos\xe9\n".to_vec();
+    bytes.extend_from_slice(BASE.as_bytes());
+    std::fs::write(&path, &bytes).unwrap();
+    let err = glint_core::scene::load_scene(path.to_str().unwrap()).expect_err("not UTF-8");
+    let msg = err.to_string();
+    assert!(msg.contains("latin1.toml"), "{msg}");
+    assert!(msg.contains("byte 0xe9 at byte offset 18 (line 2, column 9)"), "{msg}");
+}
+
+#[test]
+fn an_integer_beyond_64_bits_is_said_to_be_too_large() {
+    // Before: "invalid type: integer `…` as i128, expected any valid TOML value".
+    let text = edited("triangles = [[0, 1, 2]]", "triangles = [[0, 1, 99999999999999999999999]]");
+    expect_parse_error(
+        &text,
+        &["integer `99999999999999999999999` is beyond the 64-bit integers TOML allows (at most 9223372036854775807)"],
+    );
+    let err = parse_scene(&text, Path::new(FILE)).unwrap_err().to_string();
+    assert!(!err.contains("i128") && !err.contains("any valid TOML value"), "{err}");
+}
+
+#[test]
+fn a_ray_tree_the_bailout_cannot_stop_is_warned_about_with_its_worst_case() {
+    // Glass (k_r = 0.1, k_t = 0.8) branches at every hit; at depth 1024 without a bailout the
+    // tree can reach 2^1025 − 1 rays a sample. The default bailout stops it after 52 levels
+    // (0.9^52 ≥ 1/255), still far past the warning's 65,536.
+    let text = edited("[camera]", "[render]\nmax_depth = 1024\nbailout = 0.0\n\n[camera]");
+    let warnings = expect_valid(&text, "depth 1024");
+    assert_eq!(warnings.len(), 1, "{warnings:?}");
+    assert!(warnings[0].starts_with("render.max_depth: materials.glass reflects and refracts"), "{warnings:?}");
+    assert!(warnings[0].contains("up to 2^1025 − 1"), "{warnings:?}");
+    let text = edited("[camera]", "[render]\nmax_depth = 1024\n\n[camera]");
+    assert!(expect_valid(&text, "depth 1024, bailout 1/255")[0].contains("only after 52 levels"));
+    assert!(expect_valid(&edited("[camera]", "[render]\nmax_depth = 15\nbailout = 0.0\n\n[camera]"), "15").is_empty());
 }

@@ -9,4 +9,5 @@ mod files;
 mod pick_and_probe;
 mod ranges;
 mod snapshots;
+mod status;
 mod support;

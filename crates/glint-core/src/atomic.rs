@@ -1,10 +1,17 @@
 //! Atomic file output, the one implementation every writer uses (images, report files, the
 //! viewer's scene files and recent list): a reader never sees a half-written file, and a failed
-//! write leaves neither the target nor a temporary behind.
+//! or interrupted write leaves neither the target nor a temporary behind.
+//!
+//! The temporary is created beside the target (so the rename stays on one file system) with
+//! `O_CREAT | O_EXCL` under a short random name (tempfile): it never opens an existing file
+//! or follows a symbolic link planted in the folder, and its name fits beside any target name
+//! the file system allows.
 
 use std::fs::File;
-use std::io::Write;
+use std::io::{Seek, SeekFrom, Write};
 use std::path::{Path, PathBuf};
+
+use crate::interrupt::{self, Interrupted};
 
 /// A file-system failure of an atomic write, naming the target (not the temporary).
 /// The I/O error is part of the message, not a `source()`: see `SceneError::Io`.
@@ -15,33 +22,103 @@ pub struct AtomicWriteError {
     pub error: std::io::Error,
 }
 
-/// The temporary beside `path`: same folder (so the rename stays on one file system), hidden,
-/// and named after the target and this process.
-fn temporary_for(path: &Path) -> PathBuf {
-    let name = path.file_name().map_or_else(|| "file".into(), |n| n.to_string_lossy().into_owned());
-    path.with_file_name(format!(".{name}.tmp-{}", std::process::id()))
+impl AtomicWriteError {
+    /// Whether the write was stopped by `interrupt::requested`.
+    pub fn is_interrupted(&self) -> bool {
+        interrupt::is_interrupted(&self.error)
+    }
+}
+
+/// Random characters of a temporary's name: 62^10 names, so a guess is hopeless, and the
+/// whole name (`.glint-` + 10 + `.tmp`, 21 bytes) is far below the 255 bytes a name may have.
+const RANDOM_CHARS: usize = 10;
+
+/// A new, empty temporary in `folder`, created exclusively (`O_EXCL`: an existing file or
+/// link of that name is an error, and tempfile then draws another name). Readable as
+/// `File::create` would make it (0666 less the umask), not tempfile's private 0600.
+fn create_temporary(folder: &Path, random_chars: usize) -> std::io::Result<tempfile::NamedTempFile> {
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(".glint-").suffix(".tmp").rand_bytes(random_chars);
+    #[cfg(unix)]
+    builder.permissions(std::os::unix::fs::PermissionsExt::from_mode(0o666));
+    builder.tempfile_in(folder)
+}
+
+/// The temporary as the writer sees it: writes stop with `Interrupted` once a stop is
+/// requested, and the first file-system error is kept, so that an encoder that wraps it in
+/// its own error (the EXR encoder calls a full disk a format error) is not believed.
+#[derive(Debug)]
+pub struct TemporaryFile<'a> {
+    file: &'a mut File,
+    io_error: Option<std::io::Error>,
+}
+
+impl TemporaryFile<'_> {
+    fn check<T>(&mut self, result: std::io::Result<T>) -> std::io::Result<T> {
+        if let Err(e) = &result
+            && self.io_error.is_none()
+        {
+            self.io_error = Some(std::io::Error::new(e.kind(), e.to_string()));
+        }
+        result
+    }
+}
+
+impl Write for TemporaryFile<'_> {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        if interrupt::requested() {
+            return Err(std::io::Error::other(Interrupted));
+        }
+        let result = self.file.write(buf);
+        self.check(result)
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        let result = self.file.flush();
+        self.check(result)
+    }
+}
+
+impl Seek for TemporaryFile<'_> {
+    fn seek(&mut self, pos: SeekFrom) -> std::io::Result<u64> {
+        let result = self.file.seek(pos);
+        self.check(result)
+    }
 }
 
 /// Creates a temporary file beside `path`, lets `write` fill it, syncs it to disk and renames it
-/// over `path`. If any step fails the temporary is removed and `path` is left as it was.
-/// `write`'s own errors pass through; those of the file system become `E` by `From`.
+/// over `path`. If any step fails, or a stop is requested (`interrupt`), the temporary is
+/// removed and `path` is left as it was. `write`'s own errors pass through, except where the
+/// file system failed under it or a stop was requested: those, and the file system's own
+/// errors, become `E` by `From<AtomicWriteError>`.
 pub fn write_atomically<E: From<AtomicWriteError>>(
     path: &Path,
-    write: impl FnOnce(&mut File) -> Result<(), E>,
+    write: impl FnOnce(&mut TemporaryFile) -> Result<(), E>,
 ) -> Result<(), E> {
-    let tmp = temporary_for(path);
     let io = |error| E::from(AtomicWriteError { path: path.to_owned(), error });
-    let result = File::create(&tmp).map_err(io).and_then(|mut file| {
-        write(&mut file)?;
-        file.sync_all().map_err(io)?;
-        drop(file);
-        std::fs::rename(&tmp, path).map_err(io)
-    });
-    if result.is_err() {
-        // The temporary may not exist (its creation failed): nothing to report then.
-        let _ = std::fs::remove_file(&tmp);
+    let folder = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    };
+    // The temporary is removed when `tmp` drops, on every early return.
+    let mut tmp = create_temporary(folder, RANDOM_CHARS).map_err(io)?;
+    let mut file = TemporaryFile { file: tmp.as_file_mut(), io_error: None };
+    let written = write(&mut file);
+    let io_error = file.io_error.take();
+    if interrupt::requested() {
+        return Err(io(std::io::Error::other(Interrupted)));
     }
-    result
+    match (written, io_error) {
+        (Err(_), Some(error)) => return Err(io(error)),
+        (Err(e), None) => return Err(e),
+        (Ok(()), _) => {}
+    }
+    tmp.as_file().sync_all().map_err(io)?;
+    if interrupt::requested() {
+        return Err(io(std::io::Error::other(Interrupted)));
+    }
+    tmp.persist(path).map_err(|e| io(e.error))?;
+    Ok(())
 }
 
 /// `bytes` as the whole content of `path`, atomically.
@@ -108,6 +185,77 @@ mod tests {
         assert!(error.to_string().starts_with(&format!("{}: ", path.display())), "{error}");
         assert_eq!(listing(&dir), ["taken"]);
         assert_eq!(std::fs::read_to_string(path.join("inside")).unwrap(), "kept");
+        std::fs::remove_dir_all(dir).unwrap();
+    }
+
+    /// A victim file outside the folder and a symbolic link to it at `link`.
+    #[cfg(unix)]
+    fn plant_link(dir: &Path, link: &Path) -> PathBuf {
+        let victim = dir.with_extension("victim");
+        std::fs::write(&victim, "precious").unwrap();
+        std::os::unix::fs::symlink(&victim, link).unwrap();
+        victim
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_link_planted_at_the_old_predictable_temporary_name_is_not_followed() {
+        // Before: `.NAME.tmp-PID`, opened with File::create, which follows the link.
+        let dir = folder("old-name");
+        let path = dir.join("out.png");
+        let link = dir.join(format!(".out.png.tmp-{}", std::process::id()));
+        let victim = plant_link(&dir, &link);
+        write_file_atomically(&path, b"image").expect("write");
+        assert_eq!(std::fs::read_to_string(&victim).unwrap(), "precious");
+        assert_eq!(std::fs::read_to_string(&path).unwrap(), "image");
+        assert!(std::fs::symlink_metadata(&link).unwrap().file_type().is_symlink(), "the planted link is left alone");
+        std::fs::remove_dir_all(dir).unwrap();
+        std::fs::remove_file(victim).unwrap();
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_temporary_is_never_opened_through_a_link_at_a_guessed_name() {
+        // With no random characters the name is known in advance (`.glint-.tmp`): a link
+        // planted there makes the creation fail (O_EXCL) instead of writing through it. With
+        // them, tempfile draws another name on that failure.
+        let dir = folder("guessed");
+        let victim = plant_link(&dir, &dir.join(".glint-.tmp"));
+        let error = create_temporary(&dir, 0).expect_err("an existing name is never opened");
+        assert_eq!(error.kind(), std::io::ErrorKind::AlreadyExists);
+        assert_eq!(std::fs::read_to_string(&victim).unwrap(), "precious");
+        let mut tmp = create_temporary(&dir, RANDOM_CHARS).expect("another name");
+        tmp.write_all(b"data").unwrap();
+        let name = tmp.path().file_name().unwrap().to_string_lossy().into_owned();
+        assert!(name.starts_with(".glint-") && name.len() == ".glint-.tmp".len() + RANDOM_CHARS, "{name}");
+        drop(tmp);
+        assert_eq!(std::fs::read_to_string(&victim).unwrap(), "precious");
+        assert_eq!(listing(&dir), [".glint-.tmp"], "the temporary is removed, the planted link kept");
+        std::fs::remove_dir_all(dir).unwrap();
+        std::fs::remove_file(victim).unwrap();
+    }
+
+    #[test]
+    fn a_target_name_of_250_bytes_is_written() {
+        // 250 bytes is a legal name (the limit is 255); the temporary's name must not grow with it.
+        let dir = folder("long");
+        let name = format!("{}.png", "n".repeat(246));
+        assert_eq!(name.len(), 250);
+        write_file_atomically(&dir.join(&name), b"image").expect("write");
+        assert_eq!(listing(&dir), [name]);
+        std::fs::remove_dir_all(dir).unwrap();
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn the_output_is_readable_as_file_create_makes_it_not_private() {
+        use std::os::unix::fs::PermissionsExt;
+        let dir = folder("mode");
+        let path = dir.join("out.txt");
+        write_file_atomically(&path, b"new").expect("write");
+        std::fs::write(dir.join("reference.txt"), "x").unwrap();
+        let mode = |p: &Path| std::fs::metadata(p).unwrap().permissions().mode() & 0o777;
+        assert_eq!(mode(&path), mode(&dir.join("reference.txt")));
         std::fs::remove_dir_all(dir).unwrap();
     }
 

@@ -33,9 +33,43 @@ impl HdrImage {
         self.pixels.iter().all(|p| p.is_finite())
     }
 
+    /// The pixels an image file cannot hold as the numbers they are: NaN, infinite, or finite
+    /// in f64 but beyond f32's range (an EXR stores those as +inf, a PNG as white). `None` when
+    /// every pixel is representable.
+    pub fn unrepresentable(&self) -> Option<Unrepresentable> {
+        let bad = |p: &DVec3| !p.to_array().iter().all(|&v| (v as f32).is_finite());
+        let first = self.pixels.iter().position(bad)?;
+        let count = self.pixels.iter().filter(|p| bad(p)).count();
+        let largest = self.pixels.iter().filter(|p| bad(p)).map(|p| p.abs().max_element()).fold(0.0, f64::max);
+        let width = self.width.max(1) as usize;
+        Some(Unrepresentable { count, first: ((first % width) as u32, (first / width) as u32), largest })
+    }
+
     /// 8-bit sRGB, clamped to [0, 1] first.
     pub fn to_srgb8(&self) -> Vec<u8> {
         self.pixels.iter().flat_map(|p| p.to_array().map(linear_to_srgb8)).collect()
+    }
+}
+
+/// What `HdrImage::unrepresentable` found.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Unrepresentable {
+    pub count: usize,
+    /// (x, y) of the first such pixel in row order.
+    pub first: (u32, u32),
+    /// The largest magnitude among them (NaN compares as nothing, so a NaN image says 0).
+    pub largest: f64,
+}
+
+impl std::fmt::Display for Unrepresentable {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let (x, y) = self.first;
+        write!(
+            f,
+            "{} pixels have radiance that is not a finite f32 number (largest {}, first at pixel ({x}, {y}))",
+            self.count,
+            crate::scene::format_number(self.largest)
+        )
     }
 }
 
@@ -57,6 +91,9 @@ pub enum ImageWriteError {
     Exr { path: PathBuf, message: String },
     #[error("{path}: unsupported output format; use .png or .exr")]
     Format { path: PathBuf },
+    /// Never written: a non-finite pixel in a file is a wrong image that looks like a result.
+    #[error("{path}: not written: {found}")]
+    Unrepresentable { path: PathBuf, found: Unrepresentable },
 }
 
 impl From<AtomicWriteError> for ImageWriteError {
@@ -65,8 +102,17 @@ impl From<AtomicWriteError> for ImageWriteError {
     }
 }
 
+/// Refuses an image with pixels no file can hold as they are (see `HdrImage::unrepresentable`).
+fn check_representable(path: &Path, image: &HdrImage) -> Result<(), ImageWriteError> {
+    match image.unrepresentable() {
+        Some(found) => Err(ImageWriteError::Unrepresentable { path: path.to_owned(), found }),
+        None => Ok(()),
+    }
+}
+
 /// 8-bit sRGB PNG with `metadata` as tEXt chunks.
 pub fn write_png(path: &Path, image: &HdrImage, metadata: &[(String, String)]) -> Result<(), ImageWriteError> {
+    check_representable(path, image)?;
     write_png_rgb8(path, image.width, image.height, &image.to_srgb8(), metadata)
 }
 
@@ -102,6 +148,7 @@ pub fn write_png_rgb8(
 
 /// Linear f32 OpenEXR.
 pub fn write_exr(path: &Path, image: &HdrImage) -> Result<(), ImageWriteError> {
+    check_representable(path, image)?;
     let data: Vec<f32> = image.pixels.iter().flat_map(|p| p.to_array().map(|v| v as f32)).collect();
     let buffer = image::Rgb32FImage::from_raw(image.width, image.height, data)
         .ok_or_else(|| ImageWriteError::Exr { path: path.to_owned(), message: "buffer size mismatch".into() })?;
@@ -142,6 +189,35 @@ mod tests {
         assert_eq!(linear_to_srgb8(-1.0), 0);
         // 18 % grey is 118 in sRGB.
         assert_eq!(linear_to_srgb8(0.18), 118);
+    }
+
+    #[test]
+    fn radiance_beyond_f32_is_never_written() {
+        // Finite in f64, +inf once stored as f32: before, the EXR held +inf and the PNG white.
+        let dir = std::env::temp_dir().join(format!("glint-core-image-overflow-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let mut image = HdrImage::new(4, 2);
+        image.pixels[5] = DVec3::new(1.0, 1e45, 0.0);
+        image.pixels[7] = DVec3::splat(f64::NAN);
+        let found = image.unrepresentable().expect("two bad pixels");
+        assert_eq!(found, Unrepresentable { count: 2, first: (1, 1), largest: 1e45 });
+        for name in ["out.exr", "out.png"] {
+            let path = dir.join(name);
+            let error = write_image(&path, &image, &[]).expect_err("refused");
+            assert_eq!(
+                error.to_string(),
+                format!(
+                    "{}: not written: 2 pixels have radiance that is not a finite f32 number (largest 1e45, \
+                     first at pixel (1, 1))",
+                    path.display()
+                )
+            );
+        }
+        assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0, "nothing written");
+        image.pixels[5] = DVec3::splat(f64::from(f32::MAX));
+        image.pixels[7] = DVec3::ZERO;
+        assert_eq!(image.unrepresentable(), None, "f32::MAX itself is representable");
+        std::fs::remove_dir_all(dir).unwrap();
     }
 }
 

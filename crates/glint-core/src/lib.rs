@@ -8,6 +8,7 @@ pub mod compare;
 pub mod cpu;
 pub mod flat;
 pub mod image;
+pub mod interrupt;
 pub mod layout;
 pub mod model;
 pub mod rays;

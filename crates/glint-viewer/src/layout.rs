@@ -45,7 +45,7 @@ impl Layout {
         &mut self,
         ui: &mut Ui,
         has_gpu: bool,
-        textures: Textures,
+        textures: Textures<'_>,
         size: (u32, u32),
         gizmos: &[Gizmo],
     ) -> Vec<ViewAction> {

@@ -184,11 +184,12 @@ impl Renders {
     }
 
     /// The textures of the view (the difference only while it is of `revision`).
-    pub fn textures(&self, revision: u64) -> Textures {
+    pub fn textures(&self, revision: u64) -> Textures<'_> {
         Textures {
             gpu: self.gpu.as_ref().and_then(|g| g.shown).map(|s| s.3),
             cpu: self.cpu_texture.id(),
             diff: self.diff_texture.id().filter(|_| self.comparison_of(revision).is_some()),
+            gpu_incomplete: self.gpu.as_ref().and_then(|g| g.warning.as_deref()),
         }
     }
 

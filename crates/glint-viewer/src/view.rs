@@ -30,10 +30,12 @@ impl ViewMode {
 
 /// The textures to show (any may be missing: no GPU, CPU still rendering, no comparison).
 #[derive(Clone, Copy, Debug, Default)]
-pub struct Textures {
+pub struct Textures<'a> {
     pub gpu: Option<egui::TextureId>,
     pub cpu: Option<egui::TextureId>,
     pub diff: Option<egui::TextureId>,
+    /// Why the GPU image is missing work (a status flag its shader raised), shown over it.
+    pub gpu_incomplete: Option<&'a str>,
 }
 
 /// What the pointer did on the view this frame.
@@ -79,6 +81,17 @@ fn image(ui: &Ui, rect: Rect, tex: Option<egui::TextureId>, uv: Rect, missing: &
     }
 }
 
+/// A red banner across the top of a GPU image whose shader raised a status flag: the image is
+/// missing work and must not pass for a result. A label, so that the UI tests can find it.
+fn incomplete_banner(ui: &mut Ui, rect: Rect, why: Option<&str>) {
+    let Some(why) = why else { return };
+    let text = egui::RichText::new(format!("GPU image incomplete: {why}")).color(Color32::WHITE).strong();
+    let mut child = ui.new_child(egui::UiBuilder::new().max_rect(rect.shrink(4.0)));
+    egui::Frame::new().fill(Color32::from_rgb(170, 20, 20)).inner_margin(4.0).show(&mut child, |ui| {
+        ui.add(egui::Label::new(text).wrap());
+    });
+}
+
 fn draw_gizmos(ui: &Ui, rect: Rect, gizmos: &[Gizmo]) {
     let to_screen = |(x, y): (f32, f32)| rect.min + Vec2::new(x * rect.width(), y * rect.height());
     let painter = ui.painter().with_clip_rect(rect);
@@ -119,6 +132,7 @@ pub fn show(
             let right = fit(half.translate(Vec2::new(area.width() / 2.0, 0.0)).shrink(4.0), w, h);
             image(ui, left, tex.gpu, UV, gpu_missing);
             image(ui, right, tex.cpu, UV, cpu_missing);
+            incomplete_banner(ui, left, tex.gpu_incomplete);
             let label = |r: Rect, t: &str| {
                 ui.painter().text(
                     r.left_top() + Vec2::new(6.0, 4.0),
@@ -140,6 +154,7 @@ pub fn show(
             match mode {
                 ViewMode::Gpu => {
                     image(ui, r, tex.gpu, UV, gpu_missing);
+                    incomplete_banner(ui, r, tex.gpu_incomplete);
                     if show_gizmos {
                         draw_gizmos(ui, r, gizmos);
                     }
@@ -164,6 +179,7 @@ pub fn show(
                         Color32::WHITE,
                     );
                     ui.painter().text(pos2(split + 6.0, top), egui::Align2::LEFT_TOP, "CPU", font, Color32::WHITE);
+                    incomplete_banner(ui, r, tex.gpu_incomplete);
                     if show_gizmos {
                         draw_gizmos(ui, r, gizmos);
                     }

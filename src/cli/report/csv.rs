@@ -1,7 +1,8 @@
 //! `report.csv`: one row per configuration, units in the column names.
 //!
 //! Numbers are printed in Rust's shortest round-trip form; PSNR is `inf` for an image equal
-//! to the reference. Cells that do not apply (GPU-only figures on CPU rows) are empty.
+//! to the reference. `incomplete` is true for a row whose render lost work (a GPU status flag,
+//! or fewer camera rays than samples): its time and error are not its configuration's. Cells that do not apply (GPU-only figures on CPU rows) are empty.
 
 use glint_core::Backend;
 
@@ -41,6 +42,7 @@ pub const HEADER: &[&str] = &[
     "rmse_vs_cpu_twin",
     "rays_vs_cpu_twin_pct",
     "gpu_status",
+    "incomplete",
     "pareto_all",
     "pareto_backend",
 ];
@@ -93,6 +95,7 @@ fn row_fields(scene: &SceneResult, row: &Row, device: &str) -> Vec<String> {
         opt(row.twin_rmse.map(sci)),
         opt(row.twin_rays_pct.map(|v| format!("{v:.6}"))),
         opt(row.gpu.map(|g| g.status.to_string())),
+        row.dropped_work().to_string(),
         row.pareto_all.to_string(),
         row.pareto_backend.to_string(),
     ]

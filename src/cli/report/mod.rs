@@ -25,7 +25,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use self::plan::Plan;
 use self::sweep::Engines;
 use super::backend::open_gpu;
-use super::settings::load;
+use super::settings::{load, parse_threads};
 
 const DEFAULT_SCENES: &[&str] = &["whitted", "cornell", "spotlights", "highlights", "lights"];
 const QUICK_SCENES: &[&str] = &["whitted", "highlights"];
@@ -60,8 +60,8 @@ pub struct ReportArgs {
     /// Sweep the CPU tracer only (no GPU needed)
     #[arg(long)]
     pub cpu_only: bool,
-    /// CPU worker threads; 0 = one per core
-    #[arg(long, default_value_t = 0)]
+    /// CPU worker threads: 0 = one per core, at most 4 per core (and never more than 1024)
+    #[arg(long, default_value_t = 0, allow_negative_numbers = true, value_parser = parse_threads)]
     pub threads: usize,
     /// No progress bar
     #[arg(short, long)]
@@ -78,6 +78,11 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
     } else {
         args.scenes.iter().map(|s| s.trim().to_string()).filter(|s| !s.is_empty()).collect()
     };
+    if names.is_empty() {
+        bail!(
+            "--scenes names no scene; give built-in names or scene files, comma-separated (or leave it out for the default set)"
+        );
+    }
     let scenes = names
         .iter()
         .map(|n| load(n, &glint_core::scene::LoadOptions::default()))

@@ -21,9 +21,10 @@ impl Point {
 }
 
 /// A row as a point: median render time (ms) and RMSE. Reference rows are not ranked (NaN):
-/// the CPU one has error 0 by construction.
+/// the CPU one has error 0 by construction; nor are rows that lost work, whose time and
+/// error are not those of their configuration.
 pub fn point(row: &Row) -> Point {
-    let error = if row.is_reference() { f64::NAN } else { row.errors.rmse };
+    let error = if row.is_reference() || row.dropped_work() { f64::NAN } else { row.errors.rmse };
     Point { time: row.median_ms(), error }
 }
 

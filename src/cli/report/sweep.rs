@@ -7,7 +7,7 @@ use std::time::Duration;
 use anyhow::Context;
 use glint_core::compare::{ImageErrors, compare_images};
 use glint_core::cpu::RayCounts;
-use glint_core::scene::{LoadedScene, RenderSettings};
+use glint_core::scene::{LoadedScene, RenderSettings, overflow_causes};
 use glint_core::{Backend, CpuOptions, FlatScene, HdrImage, RenderControl, render_cpu};
 use glint_gpu::{GpuOptions, GpuTracer, ShaderKey};
 use indicatif::ProgressBar;
@@ -139,13 +139,16 @@ fn render(engines: &mut Engines, flat: &FlatScene, config: &Config) -> anyhow::R
         Backend::Cpu => {
             let options =
                 CpuOptions { threads: engines.threads, specialise: config.specialise, ..CpuOptions::default() };
-            let r = render_cpu(flat, &options, RenderControl::default())?;
+            // SIGINT/SIGTERM stop the sweep at the next tile (see `cli::interrupt`).
+            let cancel = glint_core::interrupt::flag();
+            let r = render_cpu(flat, &options, RenderControl { cancel: Some(&cancel), on_tile: None })?;
             Ok(Sample { image: r.image, counts: r.counts, time: r.elapsed, gpu: None })
         }
         Backend::Gpu => {
             let tracer = engines.gpu.as_ref().context("no GPU tracer (this is a bug)")?;
             let options = GpuOptions { specialise: config.specialise, ..GpuOptions::default() };
             let r = tracer.render(flat, &options).context("GPU render failed")?;
+            crate::cli::interrupt::check()?;
             // The tracer reports a creation time only when it built the variant; later rows
             // that reuse it get the time it took then.
             let pipeline = *engines.pipelines.entry(r.key).or_insert(r.pipeline_time);
@@ -172,6 +175,12 @@ pub fn run_scene(
     bar.set_message(format!("{name}: reference ({} spp, depth {})", reference.spp, reference.depth));
     let build = |c: &Config| FlatScene::build(&loaded.desc, &settings_for(base, c));
     let reference_render = render(engines, &build(reference), reference)?;
+    if let Some(found) = reference_render.image.unrepresentable() {
+        anyhow::bail!(
+            "{name}: the reference render is not a valid image: {found}. In this scene: {}",
+            overflow_causes(&loaded.desc, reference.depth)
+        );
+    }
     bar.inc(1);
     let ref_image = reference_render.image;
     let scenes: Vec<FlatScene> = planned.iter().map(|p| build(&p.config)).collect();
@@ -193,8 +202,13 @@ pub fn run_scene(
                 );
             });
         }
-        if !warm.image.all_finite() {
-            anyhow::bail!("{name}: the {} render of {c:?} has non-finite pixels; this is a bug", c.backend.name());
+        if let Some(found) = warm.image.unrepresentable() {
+            anyhow::bail!(
+                "{name}: the {} render of {} is not a valid image: {found}. In this scene: {}",
+                c.backend.name(),
+                c.describe(),
+                overflow_causes(&loaded.desc, c.depth)
+            );
         }
         rows.push(Row {
             config: *c,

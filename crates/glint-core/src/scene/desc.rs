@@ -8,6 +8,7 @@ use std::collections::BTreeMap;
 use serde::{Deserialize, Serialize};
 
 use super::model_ref::ModelDesc;
+use super::number::shorten;
 use super::rgb::Rgb;
 use crate::layout;
 
@@ -29,10 +30,64 @@ pub struct SceneDesc {
     /// Named materials; objects refer to them by name.
     #[serde(default)]
     pub materials: BTreeMap<String, MaterialDesc>,
-    #[serde(default)]
+    #[serde(default, deserialize_with = "lights_as_tables")]
     pub lights: Vec<LightDesc>,
-    #[serde(default)]
+    #[serde(default, deserialize_with = "objects_by_index")]
     pub objects: Vec<ObjectDesc>,
+}
+
+/// `lights`, each entry a table: an entry that is not (`lights = [[{ … }]]`) says that a light
+/// is a table, instead of serde's "wanted exactly 1 element" (a struct can be read from a
+/// sequence of its fields). A table is read by `LightDesc`'s derive as before, so an error in it
+/// keeps the parser's position of the field.
+fn lights_as_tables<'de, D: serde::Deserializer<'de>>(deserializer: D) -> Result<Vec<LightDesc>, D::Error> {
+    struct Entry(LightDesc);
+    impl<'de> Deserialize<'de> for Entry {
+        fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+            deserializer.deserialize_any(EntryVisitor)
+        }
+    }
+    struct EntryVisitor;
+    impl<'de> serde::de::Visitor<'de> for EntryVisitor {
+        type Value = Entry;
+        fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+            f.write_str("a light: a table ([[lights]] or { type = \"point\", … })")
+        }
+        fn visit_map<A: serde::de::MapAccess<'de>>(self, map: A) -> Result<Entry, A::Error> {
+            LightDesc::deserialize(serde::de::value::MapAccessDeserializer::new(map)).map(Entry)
+        }
+    }
+    Ok(Vec::<Entry>::deserialize(deserializer)?.into_iter().map(|e| e.0).collect())
+}
+
+/// `objects` one by one, so that an error names its index (`objects[2].type`), which the
+/// parser's own position cannot: an object is read as a table first (`ObjectDesc::from_table`).
+fn objects_by_index<'de, D: serde::Deserializer<'de>>(deserializer: D) -> Result<Vec<ObjectDesc>, D::Error> {
+    use serde::de::Error;
+    let entries = Vec::<toml::Value>::deserialize(deserializer)?;
+    entries
+        .into_iter()
+        .enumerate()
+        .map(|(i, entry)| match entry {
+            toml::Value::Table(table) => {
+                ObjectDesc::from_table(table).map_err(|e| D::Error::custom(format!("objects[{i}]{e}")))
+            }
+            other => Err(D::Error::custom(format!(
+                "objects[{i}]: an object is a table ([[objects]] or {{ type = \"sphere\", … }}), not {} {}",
+                article(other.type_str()),
+                other.type_str()
+            ))),
+        })
+        .collect()
+}
+
+fn article(noun: &str) -> &'static str {
+    if noun.starts_with(['a', 'e', 'i', 'o', 'u']) { "an" } else { "a" }
+}
+
+/// toml puts the field on a line of its own ("…\nin `radius`"): one line reads better.
+fn one_line(e: &impl std::fmt::Display) -> String {
+    e.to_string().trim().replace('\n', " ")
 }
 
 /// Render settings a scene suggests; command-line flags override each of them.
@@ -360,14 +415,25 @@ pub struct MeshDesc {
 impl<'de> Deserialize<'de> for ObjectDesc {
     fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
         use serde::de::Error;
-        const KINDS: &[&str] = &["sphere", "plane", "mesh", "model"];
-        let mut table = toml::Table::deserialize(deserializer)?;
+        let table = toml::Table::deserialize(deserializer)?;
+        Self::from_table(table).map_err(|e| D::Error::custom(e.trim_start_matches(['.', ' ']).to_string()))
+    }
+}
+
+impl ObjectDesc {
+    /// The kinds `type` takes.
+    pub const KINDS: [&str; 4] = ["sphere", "plane", "mesh", "model"];
+
+    /// The object a table describes; an error is the rest of a message after the object's own
+    /// path: `.type: …` for its kind, ` (sphere): …` for a field of that kind.
+    fn from_table(mut table: toml::Table) -> Result<Self, String> {
+        let allowed = Self::KINDS.join(", ");
         let kind = match table.remove("type") {
             Some(toml::Value::String(kind)) => kind,
             Some(other) => {
-                return Err(D::Error::custom(format!("`type` must be one of {KINDS:?}, not {other}")));
+                return Err(format!(".type: must be a string, one of: {allowed}; got {}", shorten(&other.to_string())));
             }
-            None => return Err(D::Error::missing_field("type")),
+            None => return Err(format!(".type: missing; an object needs a type, one of: {allowed}")),
         };
         let fields = toml::Value::Table(table);
         let object = match kind.as_str() {
@@ -375,10 +441,9 @@ impl<'de> Deserialize<'de> for ObjectDesc {
             "plane" => fields.try_into().map(Self::Plane),
             "mesh" => fields.try_into().map(Self::Mesh),
             "model" => fields.try_into().map(|m| Self::Model(Box::new(m))),
-            other => return Err(D::Error::unknown_variant(other, KINDS)),
+            other => return Err(format!(".type: unknown object type \"{}\"; allowed: {allowed}", shorten(other))),
         };
-        // toml puts the field on a line of its own ("…\nin `radius`"): one line reads better.
-        object.map_err(|e| D::Error::custom(format!("{kind}: {}", e.to_string().trim().replace('\n', " "))))
+        object.map_err(|e| format!(" ({kind}): {}", one_line(&e)))
     }
 }
 

@@ -10,6 +10,9 @@ pub mod bumpy;
 mod desc;
 mod error;
 mod model_ref;
+mod number;
+mod overflow;
+mod ray_tree;
 mod rgb;
 mod validate;
 
@@ -24,6 +27,9 @@ pub use desc::{
 };
 pub use error::{FieldIssue, SceneError};
 pub use model_ref::{LoadedModel, ModelDesc, Scale, TransformDesc, load_models, without_imported_materials};
+pub use number::{format_number, shorten};
+pub use overflow::overflow_causes;
+pub use ray_tree::{WARN_RAYS_PER_SAMPLE, reachable_depth, unbounded_ray_tree};
 pub use rgb::Rgb;
 pub use validate::{
     MAX_COORD, MAX_DEPTH, MAX_EPSILON, MAX_IMAGE_SIDE, MAX_INTENSITY, MAX_IOR, MAX_SHININESS, MAX_SPOT_EXPONENT,
@@ -44,8 +50,10 @@ pub struct LoadedScene {
 /// Parses and validates scene text; `file` is only used in messages.
 /// Model objects (`type = "model"`) are read relative to `file`'s folder.
 pub fn parse_scene(text: &str, file: &Path) -> Result<(SceneDesc, Vec<FieldIssue>), SceneError> {
-    let mut desc: SceneDesc =
-        toml::from_str(text).map_err(|e| SceneError::Parse { file: file.to_owned(), message: e.to_string() })?;
+    let mut desc: SceneDesc = toml::from_str(text).map_err(|e| SceneError::Parse {
+        file: file.to_owned(),
+        message: number::shorten_lines(&number::clarify_integer_overflow(&e.to_string())),
+    })?;
     let folder = file.parent().unwrap_or(Path::new("."));
     let mut warnings =
         load_models(&mut desc, folder).map_err(|issues| SceneError::Invalid { file: file.to_owned(), issues })?;
@@ -102,8 +110,9 @@ pub fn load_scene_with(arg: &str, options: &LoadOptions) -> Result<LoadedScene, 
             let (desc, warnings) = load_model(path, &options.import)?;
             return Ok(LoadedScene { desc, source: path.to_owned(), name, warnings });
         }
-        let text = std::fs::read_to_string(path).map_err(|error| SceneError::Io { file: path.to_owned(), error })?;
-        let (desc, warnings) = parse_scene(&text, path)?;
+        let bytes = std::fs::read(path).map_err(|error| SceneError::Io { file: path.to_owned(), error })?;
+        let text = utf8(&bytes, path)?;
+        let (desc, warnings) = parse_scene(text, path)?;
         return Ok(LoadedScene { desc, source: path.to_owned(), name, warnings });
     }
     if let Some(b) = builtin(arg) {
@@ -119,6 +128,27 @@ pub fn load_scene_with(arg: &str, options: &LoadOptions) -> Result<LoadedScene, 
     }
     let available = BUILTIN_SCENES.iter().map(|b| b.name).collect::<Vec<_>>().join(", ");
     Err(SceneError::UnknownScene { name: arg.to_string(), available })
+}
+
+/// The scene file's text, or an error giving the byte offset (and line and column) of the
+/// first byte that is not UTF-8, as a hex editor or `dd skip=` needs it.
+fn utf8<'a>(bytes: &'a [u8], file: &Path) -> Result<&'a str, SceneError> {
+    std::str::from_utf8(bytes).map_err(|e| {
+        let offset = e.valid_up_to();
+        let before = &bytes[..offset];
+        let line = before.iter().filter(|&&b| b == b'\n').count() + 1;
+        let line_start = before.iter().rposition(|&b| b == b'\n').map_or(0, |i| i + 1);
+        // The column in characters: the line up to here is valid UTF-8.
+        let column = std::str::from_utf8(&before[line_start..]).map_or(0, |s| s.chars().count()) + 1;
+        SceneError::Parse {
+            file: file.to_owned(),
+            message: format!(
+                "not UTF-8 text: byte 0x{:02x} at byte offset {offset} (line {line}, column {column}) is not valid \
+                 UTF-8; scene files are UTF-8",
+                bytes[offset]
+            ),
+        }
+    })
 }
 
 /// A model file in the lab scene `model::scene_around` makes for it, validated like a scene

@@ -11,6 +11,7 @@ use super::desc::{
     SceneDesc, SphereDesc,
 };
 use super::error::FieldIssue;
+use super::number::{format_number as num, shorten};
 use super::rgb::Rgb;
 
 /// Coordinates and sizes are limited so that squares and sums stay finite in f32
@@ -130,13 +131,14 @@ impl Report {
         self.warnings.push(FieldIssue { field: field.into(), problem: problem.into() });
     }
 
-    fn finite_in(&mut self, field: &str, v: f64, range: Range<f64>) -> bool {
-        let (lo, hi) = (range.min, range.max);
-        if !v.is_finite() {
-            self.error(field, format!("{v} is not a finite number; allowed: [{lo}, {hi}]"));
-            false
-        } else if !range.contains(v) {
-            self.error(field, format!("{v} is outside the allowed range [{lo}, {hi}]"));
+    fn finite_in(&mut self, field: &str, value: f64, range: Range<f64>) -> bool {
+        let (v, lo, hi) = (num(value), num(range.min), num(range.max));
+        if !range.contains(value) {
+            if !value.is_finite() {
+                self.error(field, format!("{v} is not a finite number; allowed: [{lo}, {hi}]"));
+            } else {
+                self.error(field, format!("{v} is outside the allowed range [{lo}, {hi}]"));
+            }
             false
         } else {
             true
@@ -148,7 +150,7 @@ impl Report {
         let (lo, hi) = (ranges::COORD.min, ranges::COORD.max);
         for (axis, v) in ["x", "y", "z"].iter().zip(p) {
             if !ranges::COORD.contains(v) {
-                self.error(field, format!("component {axis} = {v} must be a finite number in [{lo:e}, {hi:e}]"));
+                self.error(field, format!("component {axis} = {} must be a finite number in [{lo:e}, {hi:e}]", num(v)));
                 ok = false;
             }
         }
@@ -173,7 +175,7 @@ impl Report {
         let (lo, hi) = (ranges::COLOUR.min, ranges::COLOUR.max);
         for (name, v) in ["r", "g", "b"].iter().zip(c.0) {
             if !ranges::COLOUR.contains(v) {
-                self.error(field, format!("channel {name} = {v} must be a finite number in [{lo}, {hi:e}]"));
+                self.error(field, format!("channel {name} = {} must be a finite number in [{lo}, {hi:e}]", num(v)));
                 ok = false;
             }
         }
@@ -183,7 +185,7 @@ impl Report {
     /// A size in a range (min, max] (its maximum shown as 1e9 and the like).
     fn size(&mut self, field: &str, v: f64, range: Range<f64>) {
         if !range.contains(v) {
-            self.error(field, format!("{v} is outside the allowed range ({}, {:e}]", range.min, range.max));
+            self.error(field, format!("{} is outside the allowed range ({}, {:e}]", num(v), range.min, range.max));
         }
     }
 
@@ -220,6 +222,9 @@ pub fn validate(scene: &SceneDesc) -> Report {
     for (i, object) in scene.objects.iter().enumerate() {
         validate_object(&format!("objects[{i}]"), object, scene, &mut r);
     }
+    if let Some(warning) = super::ray_tree::unbounded_ray_tree(scene, &scene.render) {
+        r.warn("render.max_depth", warning);
+    }
     r
 }
 
@@ -251,7 +256,7 @@ fn validate_material(path: &str, m: &MaterialDesc, r: &mut Report) {
     r.finite_in(&format!("{path}.shininess"), m.shininess, ranges::SHININESS);
     if !ranges::IOR.contains(m.ior) {
         let (lo, hi) = (ranges::IOR.min, ranges::IOR.max);
-        r.error(format!("{path}.ior"), format!("{} is outside the allowed range ({lo}, {hi}]", m.ior));
+        r.error(format!("{path}.ior"), format!("{} is outside the allowed range ({lo}, {hi}]", num(m.ior)));
     }
     if let Some(ch) = &m.checker {
         r.colour(&format!("{path}.checker.kd"), ch.kd);
@@ -261,7 +266,7 @@ fn validate_material(path: &str, m: &MaterialDesc, r: &mut Report) {
     if sum > 1.0 {
         r.warn(
             format!("{path}.kr + kt"),
-            format!("k_r + k_t = {sum} > 1: the surface returns more light than it receives"),
+            format!("k_r + k_t = {} > 1: the surface returns more light than it receives", num(sum)),
         );
     }
 }
@@ -311,7 +316,7 @@ fn validate_light(path: &str, l: &LightDesc, r: &mut Report) {
             let (lo, hi) = (ranges::CUTOFF.min, ranges::CUTOFF.max);
             r.error(
                 format!("{path}.cutoff"),
-                format!("{c} is outside the allowed range [{lo}, {hi}] or {NO_CONE_CUTOFF} (no cone)"),
+                format!("{} is outside the allowed range [{lo}, {hi}] or {NO_CONE_CUTOFF} (no cone)", num(c)),
             );
         }
     } else {
@@ -353,7 +358,7 @@ fn validate_attenuation(path: &str, a: Attenuation, r: &mut Report) {
         None
     };
     if let Some(p) = problem {
-        r.error(path, format!("{p} (got c = {}, l = {}, q = {})", a.c, a.l, a.q));
+        r.error(path, format!("{p} (got c = {}, l = {}, q = {})", num(a.c), num(a.l), num(a.q)));
     }
 }
 
@@ -363,7 +368,11 @@ fn validate_object(path: &str, o: &ObjectDesc, scene: &SceneDesc, r: &mut Report
             let known: Vec<&str> = scene.materials.keys().map(String::as_str).collect();
             r.error(
                 format!("{path}.material"),
-                format!("unknown material '{material}'; defined materials: [{}]", known.join(", ")),
+                format!(
+                    "unknown material '{}'; defined materials: [{}]",
+                    shorten(material),
+                    shorten(&known.join(", "))
+                ),
             );
         }
     }
@@ -421,7 +430,16 @@ fn validate_mesh(path: &str, mesh: &MeshDesc, r: &mut Report) {
         r.point(&format!("{path}.vertices[{i}]"), *v);
     }
     let n = vertices.len();
-    for (i, t) in triangles.iter().enumerate() {
+    if n == 0 && !triangles.is_empty() {
+        r.error(
+            format!("{path}.vertices"),
+            format!(
+                "the mesh has no vertices, but its {} index them; give the vertex positions [x, y, z]",
+                if triangles.len() == 1 { "triangle".to_string() } else { format!("{} triangles", triangles.len()) }
+            ),
+        );
+    }
+    for (i, t) in triangles.iter().enumerate().filter(|_| n > 0) {
         if let Some(bad) = t.iter().find(|&&k| k as usize >= n) {
             r.error(
                 format!("{path}.triangles[{i}]"),

@@ -4,7 +4,7 @@
 use std::fmt::Write as _;
 
 use super::super::sweep::{Row, SceneResult};
-use super::cells::{pct, psnr, sci};
+use super::cells::{error, pct, psnr, sci};
 use super::prose::{Block, prose};
 use crate::cli::units::{ms, ms_cell};
 
@@ -20,12 +20,16 @@ pub fn all_rows(md: &mut String, s: &SceneResult) {
     rows.sort_by_key(|r| r.median());
     for r in rows {
         let c = &r.config;
-        let mark = if r.pareto_all {
+        let front = if r.pareto_all {
             "★"
         } else if r.pareto_backend {
             "☆"
         } else {
             ""
+        };
+        let mark = match flag(r) {
+            Some(why) => format!("{front} ⚠ {why}").trim_start().to_string(),
+            None => front.to_string(),
         };
         let _ = writeln!(
             md,
@@ -42,11 +46,11 @@ pub fn all_rows(md: &mut String, s: &SceneResult) {
             r.gpu.map_or(String::new(), |g| ms_cell(ms(g.pipeline))),
             r.mrays(),
             r.counts.total() as f64 / s.pixels() as f64,
-            sci(r.errors.rmse),
-            sci(r.errors.rel_mse),
+            error(r.errors.rmse),
+            error(r.errors.rel_mse),
             psnr(r.errors.psnr),
             r.errors.flip_mean,
-            sci(r.errors.max_abs),
+            error(r.errors.max_abs),
             pct(r.errors.first_hit_mismatch),
             r.twin_rmse.map_or(String::new(), |t| if r.dropped_work() {
                 format!(
@@ -65,4 +69,87 @@ pub fn all_rows(md: &mut String, s: &SceneResult) {
         );
     }
     let _ = writeln!(md);
+}
+
+/// Why a row is not a valid measurement, if it is not: it lost work (a GPU status flag, or
+/// fewer camera rays than samples), or its error is not a finite number.
+pub fn flag(r: &Row) -> Option<&'static str> {
+    if r.dropped_work() {
+        Some("incomplete")
+    } else if !(r.errors.rmse.is_finite() && r.errors.rel_mse.is_finite() && r.errors.max_abs.is_finite())
+        || r.errors.psnr.is_nan()
+        || r.errors.psnr == f64::NEG_INFINITY
+    {
+        Some("error not finite")
+    } else {
+        None
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::time::Duration;
+
+    use glint_core::Backend;
+    use glint_core::compare::ImageErrors;
+    use glint_core::cpu::RayCounts;
+    use glint_core::scene::{EpsilonMode, RenderSettings};
+
+    use super::super::super::plan::{Bailout, Config, Group};
+    use super::super::super::sweep::{GpuExtra, Row, SceneResult};
+    use super::*;
+
+    fn row(rmse: f64, psnr: f64, status: u32) -> Row {
+        let config = Config {
+            backend: Backend::Gpu,
+            spp: 1,
+            depth: 5,
+            bailout: Bailout::Per255,
+            specialise: true,
+            epsilon_mode: EpsilonMode::Robust,
+        };
+        let counts = RayCounts { camera: 4, ..RayCounts::default() };
+        let gpu = GpuExtra { pipeline: Duration::from_millis(1), statements: 1, status };
+        Row {
+            config,
+            groups: vec![Group::Grid],
+            times: vec![Duration::from_millis(2)],
+            counts,
+            gpu: Some(gpu),
+            errors: ImageErrors { rmse, psnr, ..ImageErrors::default() },
+            twin_rmse: None,
+            twin_rays_pct: None,
+            camera_expected: 4,
+            same_as_specialised: None,
+            pareto_all: false,
+            pareto_backend: false,
+        }
+    }
+
+    fn table(rows: Vec<Row>) -> String {
+        let settings = RenderSettings { width: 2, height: 2, ..RenderSettings::default() };
+        let reference = rows[0].config;
+        let scene = SceneResult { name: "s".into(), description: String::new(), settings, reference, rows };
+        let mut md = String::new();
+        all_rows(&mut md, &scene);
+        md
+    }
+
+    #[test]
+    fn incomplete_rows_and_errors_that_are_not_finite_are_flagged_never_tabulated_plainly() {
+        assert_eq!(flag(&row(0.1, 20.0, 0)), None);
+        assert_eq!(flag(&row(0.1, 20.0, glint_core::layout::STATUS_DRIVER_LOOP_CUTOFF)), Some("incomplete"));
+        assert_eq!(flag(&row(f64::INFINITY, f64::NEG_INFINITY, 0)), Some("error not finite"));
+        let md = table(vec![row(0.1, 20.0, 0), row(0.1, 20.0, 2), row(f64::INFINITY, f64::NEG_INFINITY, 0)]);
+        let lines: Vec<&str> = md.lines().filter(|l| l.starts_with("| ") && l.contains("| gpu |")).collect();
+        assert_eq!(lines.len(), 3, "{md}");
+        assert_eq!(lines.iter().filter(|l| l.starts_with("| ⚠ incomplete |")).count(), 1, "{md}");
+        let overflow = lines.iter().find(|l| l.starts_with("| ⚠ error not finite |")).expect("flagged");
+        assert!(overflow.contains("| ⚠ inf | ") && overflow.contains("| ⚠ -inf |"), "{overflow}");
+        // An image equal to the reference says so instead of a bare "inf".
+        assert_eq!(psnr(f64::INFINITY), "∞ (identical)");
+        assert_eq!(psnr(f64::NAN), "⚠ NaN");
+        assert_eq!(error(f64::NAN), "⚠ NaN");
+        assert_eq!(error(1.5e-3), "1.50e-3");
+    }
 }

@@ -7,8 +7,21 @@ pub fn sci(v: f64) -> String {
     if v == 0.0 { "0".into() } else { format!("{v:.2e}") }
 }
 
+/// PSNR in dB; an image equal to the reference (PSNR +∞) says so, and a PSNR that is not a
+/// number or −∞ (an error that overflowed) is flagged, never tabulated as a value.
 pub fn psnr(v: f64) -> String {
-    if v.is_finite() { format!("{v:.1}") } else { "inf".into() }
+    if v.is_finite() {
+        format!("{v:.1}")
+    } else if v == f64::INFINITY {
+        "∞ (identical)".into()
+    } else {
+        format!("⚠ {v}")
+    }
+}
+
+/// RMSE and the like, flagged when not finite (an error beyond f64: never a measurement).
+pub fn error(v: f64) -> String {
+    if v.is_finite() { sci(v) } else { format!("⚠ {v}") }
 }
 
 /// ε as written in scene files: 1e-6, 0.001.

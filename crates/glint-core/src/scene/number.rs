@@ -1,0 +1,92 @@
+//! Numbers and values in messages: as short as the value allows, never a 300-digit decimal or
+//! a 200 kB value echoed back in full.
+
+/// `v` in `%g` style with the shortest digits that read back to it: plain where that is short
+/// (0.5, 120, 1e-4 as 0.0001), scientific outside [1e-4, 1e15) (5e-324, 1e300, 1e16).
+pub fn format_number(v: f64) -> String {
+    let magnitude = v.abs();
+    if v == 0.0 || !v.is_finite() || (1e-4..1e15).contains(&magnitude) { v.to_string() } else { format!("{v:e}") }
+}
+
+/// Characters of an echoed value kept before it is cut.
+pub const ECHO_CHARS: usize = 120;
+
+/// Characters of one line of a message kept before it is cut: room for the message itself.
+pub const LINE_CHARS: usize = 400;
+
+/// `text` cut to `ECHO_CHARS` characters, saying how much was left out.
+pub fn shorten(text: &str) -> String {
+    cut(text, ECHO_CHARS)
+}
+
+fn cut(text: &str, chars: usize) -> String {
+    match text.char_indices().nth(chars) {
+        Some((at, _)) => format!("{}… ({} more bytes)", &text[..at], text.len() - at),
+        None => text.to_string(),
+    }
+}
+
+/// Every line of a multi-line message cut to `LINE_CHARS` (the TOML parser shows the offending
+/// line and a caret line under it, as long as the line is).
+pub fn shorten_lines(text: &str) -> String {
+    text.split('\n').map(|line| cut(line, LINE_CHARS)).collect::<Vec<_>>().join("\n")
+}
+
+/// serde's words for an integer TOML cannot hold (beyond i64; "as i128, expected any valid
+/// TOML value" read as if the value had the wrong type) said plainly.
+pub fn clarify_integer_overflow(message: &str) -> String {
+    const LIMIT: &str = "beyond the 64-bit integers TOML allows (at most 9223372036854775807)";
+    let mut out = message.to_string();
+    for wide in ["i128", "u128"] {
+        out = out
+            .replace(&format!(" as {wide}, expected any valid TOML value"), &format!(" is {LIMIT}"))
+            .replace(&format!(" as {wide}, expected "), &format!(" is {LIMIT}; expected "));
+    }
+    if out != message {
+        out = out.replace("invalid type: integer", "invalid value: integer");
+    }
+    out.replace("u64 value was too large", &format!("an integer {LIMIT}"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{clarify_integer_overflow, format_number, shorten, shorten_lines};
+
+    #[test]
+    fn integers_beyond_64_bits_are_said_to_be_too_large_not_of_the_wrong_type() {
+        assert_eq!(
+            clarify_integer_overflow(
+                "invalid type: integer `99999999999999999999` as i128, expected any valid TOML value"
+            ),
+            "invalid value: integer `99999999999999999999` is beyond the 64-bit integers TOML allows (at most \
+             9223372036854775807)"
+        );
+        assert_eq!(clarify_integer_overflow("expected f64"), "expected f64");
+    }
+
+    #[test]
+    fn long_values_are_cut_and_say_so() {
+        assert_eq!(shorten("short"), "short");
+        let long = "é".repeat(200);
+        let cut = shorten(&long);
+        assert!(cut.starts_with(&"é".repeat(120)) && cut.ends_with("… (160 more bytes)"), "{cut}");
+        assert_eq!(
+            shorten_lines(&format!("a\n{}\nb", "x".repeat(1000))),
+            format!("a\n{}… (600 more bytes)\nb", "x".repeat(400))
+        );
+    }
+
+    #[test]
+    fn extremes_are_scientific_and_everyday_numbers_plain() {
+        assert_eq!(format_number(5e-324), "5e-324");
+        assert_eq!(format_number(1e300), "1e300");
+        assert_eq!(format_number(-1.5e20), "-1.5e20");
+        assert_eq!(format_number(1e15), "1e15");
+        assert_eq!(format_number(0.5), "0.5");
+        assert_eq!(format_number(-120.0), "-120");
+        assert_eq!(format_number(1e-4), "0.0001");
+        assert_eq!(format_number(0.0), "0");
+        assert_eq!(format_number(f64::INFINITY), "inf");
+        assert_eq!(format_number(f64::NAN), "NaN");
+    }
+}

@@ -1,0 +1,116 @@
+//! What in a scene lets radiance leave the f32 range, for the error of a render that did
+//! (docs/numerics.md, "Non-finite images"). Validation bounds every number by 1e9, so a scene
+//! whose surfaces return no more light than they receive (k_r + k_t ≤ 1) stays far below f32's
+//! 3.4e38 at any depth; a surface with k_r + k_t = g > 1 multiplies radiance by up to g at
+//! every bounce, g^depth in all. The message names such materials first, then the brightest
+//! sources.
+
+use super::desc::SceneDesc;
+use super::number::format_number;
+
+/// The largest value f32 holds; radiance beyond it is stored as +inf.
+const F32_MAX: f64 = f32::MAX as f64;
+
+/// The fields of `desc` that can make radiance overflow f32 at `max_depth`, with the remedy.
+pub fn overflow_causes(desc: &SceneDesc, max_depth: u32) -> String {
+    let mut gains: Vec<(f64, String)> = desc
+        .materials
+        .iter()
+        .map(|(name, m)| {
+            let g = (0..3).map(|c| m.kr.0[c] + m.kt.0[c]).fold(0.0, f64::max);
+            (g, name.clone())
+        })
+        .filter(|(g, _)| *g > 1.0)
+        .collect();
+    gains.sort_by(|a, b| b.0.total_cmp(&a.0));
+    let mut causes: Vec<String> = gains
+        .iter()
+        .take(3)
+        .map(|(g, name)| {
+            let m = &desc.materials[name];
+            let growth = g.powf(f64::from(max_depth));
+            // Two digits: the factor is a bound, not a measurement.
+            let reach = match growth {
+                g if !g.is_finite() => "more than f64 holds".to_string(),
+                g if g > F32_MAX => format!("{g:.1e}, beyond f32's 3.4e38"),
+                g => format!("{g:.1e}"),
+            };
+            format!(
+                "materials.{name} returns k_r + k_t = {} times the light it receives (kr = {}, kt = {}): \
+                 up to {} bounces (render.max_depth) multiply radiance by up to {reach}",
+                format_number(*g),
+                format_number(m.kr.max_channel()),
+                format_number(m.kt.max_channel()),
+                max_depth
+            )
+        })
+        .collect();
+    let emission = desc
+        .materials
+        .iter()
+        .map(|(name, m)| (m.emission.max_channel(), format!("materials.{name}.emission")))
+        .max_by(|a, b| a.0.total_cmp(&b.0));
+    let light = desc
+        .lights
+        .iter()
+        .enumerate()
+        .flat_map(|(i, l)| {
+            [("diffuse", l.diffuse), ("specular", l.specular), ("ambient", l.ambient)]
+                .map(|(field, v)| (v.max_channel(), format!("lights[{i}].{field}")))
+        })
+        .max_by(|a, b| a.0.total_cmp(&b.0));
+    let sources: Vec<String> = [emission, light]
+        .into_iter()
+        .flatten()
+        .filter(|(v, _)| *v > 1.0)
+        .map(|(v, field)| format!("{field} = {}", format_number(v)))
+        .collect();
+    if !sources.is_empty() {
+        causes.push(format!("the brightest sources: {}", sources.join(", ")));
+    }
+    let remedy = if gains.is_empty() {
+        "lower the brightest sources"
+    } else {
+        "keep k_r + k_t ≤ 1, lower render.max_depth or the brightest sources"
+    };
+    if causes.is_empty() {
+        causes.push("no material amplifies light and no source is brighter than 1".into());
+    }
+    format!("{}; {remedy}", causes.join("; "))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scene(text: &str) -> SceneDesc {
+        let head = "[camera]\nposition = [0.0, 0.0, -4.0]\nlook_at = [0.0, 0.0, 0.0]\n";
+        toml::from_str(&format!("{head}{text}")).expect("scene parses")
+    }
+
+    #[test]
+    fn names_the_amplifying_material_and_the_brightest_sources() {
+        let desc = scene(
+            "[materials.dull]\nkd = 0.5\n[materials.mirror]\nkr = 1e9\nemission = 1e9\n\
+             [[lights]]\ntype = \"point\"\nposition = [0.0, 1.0, 0.0]\ndiffuse = 2.0\n",
+        );
+        let text = overflow_causes(&desc, 4);
+        assert!(text.starts_with("materials.mirror returns k_r + k_t = 1000000000 times"), "{text}");
+        assert!(text.contains("kr = 1000000000, kt = 0"), "{text}");
+        assert!(text.contains("up to 4 bounces (render.max_depth) multiply radiance by up to 1.0e36"), "{text}");
+        assert!(text.contains("materials.mirror.emission = 1000000000, lights[0].diffuse = 2"), "{text}");
+        assert!(text.ends_with("keep k_r + k_t ≤ 1, lower render.max_depth or the brightest sources"), "{text}");
+        assert!(!text.contains("dull"), "{text}");
+        assert!(overflow_causes(&desc, 30).contains("by up to 1.0e270, beyond f32's 3.4e38"));
+        assert!(overflow_causes(&desc, 40).contains("by up to more than f64 holds"));
+    }
+
+    #[test]
+    fn a_scene_without_gain_says_so() {
+        let desc = scene("[materials.dull]\nkd = 0.5\n");
+        assert_eq!(
+            overflow_causes(&desc, 4),
+            "no material amplifies light and no source is brighter than 1; lower the brightest sources"
+        );
+    }
+}

@@ -1,0 +1,102 @@
+//! How large a ray tree can grow (issue 13, point 8): a hit on a material with both k_r and k_t
+//! spawns two rays, so a tree can double at every level up to `max_depth`, unless the bailout
+//! stops it first. The path weight of a child is its parent's times k_r or k_t (k_r + k_t under
+//! total internal reflection), so after k levels it is at most g^k with g the largest
+//! max-channel k_r + k_t of any material: with g < 1 and a bailout b > 0 no ray deeper than
+//! ln b / ln g levels is traced. A scene whose worst case passes `WARN_RAYS_PER_SAMPLE` is
+//! warned about at load, with the bound and the remedy.
+
+use super::desc::{RenderSettings, SceneDesc};
+use super::number::format_number;
+
+/// Rays of one camera sample's tree beyond which a scene is warned about: the GPU's walk bound
+/// is about as many (65,000 nodes), and on the CPU a 640×480 image of such pixels is 2e10 rays.
+pub const WARN_RAYS_PER_SAMPLE: f64 = 65_536.0;
+
+/// The levels of the deepest ray a tree can reach: `max_depth`, or fewer where the bailout
+/// stops every path first.
+pub fn reachable_depth(desc: &SceneDesc, settings: &RenderSettings) -> u32 {
+    let gain =
+        desc.materials.values().map(|m| (0..3).map(|c| m.kr.0[c] + m.kt.0[c]).fold(0.0, f64::max)).fold(0.0, f64::max);
+    if settings.bailout > 0.0 && gain < 1.0 {
+        if gain <= 0.0 {
+            return 0;
+        }
+        // The largest k with gain^k ≥ bailout.
+        let levels = (settings.bailout.ln() / gain.ln()).floor();
+        return settings.max_depth.min(levels as u32);
+    }
+    settings.max_depth
+}
+
+/// The warning for a scene whose ray tree can grow past `WARN_RAYS_PER_SAMPLE` rays a camera
+/// sample, naming a branching material, the bound and the remedy; `None` for the others.
+pub fn unbounded_ray_tree(desc: &SceneDesc, settings: &RenderSettings) -> Option<String> {
+    let (name, m) = desc.materials.iter().find(|(_, m)| m.kr.max_channel() > 0.0 && m.kt.max_channel() > 0.0)?;
+    let depth = reachable_depth(desc, settings);
+    // A full binary tree of `depth` levels below the camera ray.
+    let rays = 2f64.powf(f64::from(depth) + 1.0) - 1.0;
+    if rays <= WARN_RAYS_PER_SAMPLE {
+        return None;
+    }
+    let stop = if depth < settings.max_depth {
+        format!("the bailout ({}) stops it only after {depth} levels", format_number(settings.bailout))
+    } else {
+        format!(
+            "the bailout ({}) cannot stop it before max_depth = {}",
+            format_number(settings.bailout),
+            settings.max_depth
+        )
+    };
+    Some(format!(
+        "materials.{name} reflects and refracts (k_r = {}, k_t = {}), so a ray tree can double at every level, and \
+         {stop}: up to 2^{} − 1{} rays per camera sample; set render.bailout (e.g. 1/255, with k_r + k_t < 1) \
+         or lower render.max_depth",
+        format_number(m.kr.max_channel()),
+        format_number(m.kt.max_channel()),
+        depth + 1,
+        if rays.is_finite() { format!(" ≈ {rays:.1e}") } else { String::new() }
+    ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scene(material: &str) -> SceneDesc {
+        let head = "[camera]\nposition = [0.0, 0.0, -4.0]\nlook_at = [0.0, 0.0, 0.0]\n";
+        toml::from_str(&format!("{head}[materials.glass]\n{material}\n")).expect("scene parses")
+    }
+
+    fn settings(max_depth: u32, bailout: f64) -> RenderSettings {
+        RenderSettings { max_depth, bailout, ..RenderSettings::default() }
+    }
+
+    #[test]
+    fn glass_between_mirrors_without_a_bailout_is_warned_about_with_its_bound() {
+        let glass = scene("kr = 0.5\nkt = 0.4");
+        let text = unbounded_ray_tree(&glass, &settings(1024, 0.0)).expect("a warning");
+        assert!(text.starts_with("materials.glass reflects and refracts (k_r = 0.5, k_t = 0.4)"), "{text}");
+        assert!(
+            text.contains("cannot stop it before max_depth = 1024: up to 2^1025 − 1 rays per camera sample"),
+            "{text}"
+        );
+        assert!(unbounded_ray_tree(&glass, &settings(20, 0.0)).unwrap().contains("up to 2^21 − 1 ≈ 2.1e6 rays"));
+        assert!(text.ends_with("or lower render.max_depth"), "{text}");
+        // 0.9^k ≥ 1/255 up to k = 52 levels: the bailout bounds it, but not below the threshold.
+        assert_eq!(reachable_depth(&glass, &settings(1024, 1.0 / 255.0)), 52);
+        assert!(unbounded_ray_tree(&glass, &settings(1024, 1.0 / 255.0)).unwrap().contains("only after 52 levels"));
+        // 0.9^k ≥ 1/32 up to 32 levels; 15 levels (65,535 rays) is the largest tree not warned about.
+        assert!(unbounded_ray_tree(&glass, &settings(15, 0.0)).is_none());
+        assert!(unbounded_ray_tree(&glass, &settings(16, 0.0)).is_some());
+    }
+
+    #[test]
+    fn a_gain_of_one_or_more_defeats_the_bailout_and_a_tree_without_branches_is_not_warned_about() {
+        let gain = scene("kr = 0.6\nkt = 0.6");
+        assert_eq!(reachable_depth(&gain, &settings(40, 0.5)), 40);
+        assert!(unbounded_ray_tree(&gain, &settings(40, 0.5)).is_some());
+        let mirror = scene("kr = 1.0");
+        assert!(unbounded_ray_tree(&mirror, &settings(1024, 0.0)).is_none(), "a chain, not a tree");
+    }
+}

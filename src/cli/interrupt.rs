@@ -1,0 +1,48 @@
+//! SIGINT and SIGTERM: the first raises `glint_core::interrupt`'s flag, which the CPU render
+//! loop and the atomic writer check (the render stops at the next tile, a write in progress
+//! stops and its temporary is removed); `main` then says "interrupted" and exits with
+//! 128 + the signal's number (130, 143), as shells report a process killed by it. A second
+//! signal ends the process at once, with the same code.
+
+use std::sync::Arc;
+use std::sync::OnceLock;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+use anyhow::Context;
+use signal_hook::consts::{SIGINT, SIGTERM};
+
+/// The number of the signal that raised the flag (0: none).
+static SIGNAL: OnceLock<Arc<AtomicUsize>> = OnceLock::new();
+
+/// Installs the handlers; call once, before any work.
+pub fn install() -> anyhow::Result<()> {
+    let flag = glint_core::interrupt::flag();
+    let signal = SIGNAL.get_or_init(Arc::default);
+    for number in [SIGINT, SIGTERM] {
+        let code = 128 + number;
+        // Registered before the flag is set, so it sees the flag of an earlier signal only.
+        signal_hook::flag::register_conditional_shutdown(number, code, flag.clone())
+            .and_then(|_| signal_hook::flag::register_usize(number, signal.clone(), number as usize))
+            .and_then(|_| signal_hook::flag::register(number, flag.clone()))
+            .with_context(|| format!("cannot install the handler of signal {number}"))?;
+    }
+    Ok(())
+}
+
+/// The exit code of an interrupted run (128 + the signal), if a signal interrupted it.
+pub fn exit_code() -> Option<u8> {
+    if !glint_core::interrupt::requested() {
+        return None;
+    }
+    let number = SIGNAL.get().map_or(0, |s| s.load(Ordering::Relaxed));
+    u8::try_from(128 + number).ok().filter(|_| number != 0).or(Some(130))
+}
+
+/// An error if a stop was requested: checked between the steps that do not check it themselves
+/// (loading, building, a GPU render, which cannot be stopped once dispatched).
+pub fn check() -> anyhow::Result<()> {
+    if glint_core::interrupt::requested() {
+        return Err(glint_core::interrupt::Interrupted.into());
+    }
+    Ok(())
+}

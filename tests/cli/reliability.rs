@@ -1,0 +1,237 @@
+//! What `glint render` refuses and how it stops (issue 13): interrupts, outputs that must not
+//! be replaced, images that are not results (non-finite pixels, GPU status flags), bounds on
+//! `--threads`, and file-system failures reported as such.
+
+use std::ffi::OsString;
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+use glint_test_support::TempDir;
+use glint_test_support::scene::SceneText;
+
+use super::{BIN, glint, os, png_text_chunks, text};
+
+fn skip_gpu() -> bool {
+    std::env::var("GLINT_SKIP_GPU").is_ok_and(|v| v == "1")
+}
+
+/// Sends `signal` (TERM, INT) to a running `glint render` and checks that it says
+/// "interrupted", exits with `code`, and leaves neither the output nor a temporary.
+fn interrupt_a_render(signal: &str, code: i32) {
+    let dir = TempDir::new(&format!("interrupt-{signal}"));
+    // 2048² pixels at 64 spp: minutes of work on 2 threads, 120 MB of image.
+    let child = Command::new(BIN)
+        .args(["render", "whitted", "--width", "2048", "--height", "2048", "--spp", "64", "--threads", "2", "-q"])
+        .args(["-o", "big.exr"])
+        .current_dir(&dir)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("start glint");
+    // Past start-up (the handler is installed before anything else), in the render.
+    std::thread::sleep(Duration::from_millis(1500));
+    let status = Command::new("kill").args([&format!("-{signal}"), &child.id().to_string()]).status().expect("kill");
+    assert!(status.success(), "kill -{signal} failed");
+    let start = Instant::now();
+    let out = child.wait_with_output().expect("wait for glint");
+    let stderr = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(code), "SIG{signal}: {:?}\n{stderr}", out.status);
+    assert!(stderr.contains("interrupted"), "SIG{signal}: {stderr}");
+    assert!(start.elapsed() < Duration::from_secs(20), "SIG{signal}: took {:?} to stop", start.elapsed());
+    assert!(dir.listing().is_empty(), "SIG{signal}: left behind {:?}", dir.listing());
+}
+
+#[test]
+fn sigterm_and_sigint_stop_a_render_with_130_or_143_and_leave_no_file() {
+    interrupt_a_render("TERM", 143);
+    interrupt_a_render("INT", 130);
+}
+
+const SCENE: &str = "[render]\nwidth = 8\nheight = 6\n\n[camera]\nposition = [0.0, 1.0, -4.0]\nlook_at = [0.0, 0.5, 0.0]\n\n\
+    [materials.m]\nkd = 0.5\n\n[[lights]]\ntype = \"point\"\nposition = [1.0, 3.0, -2.0]\n\n\
+    [[objects]]\ntype = \"sphere\"\ncenter = [0.0, 0.5, 0.0]\nradius = 0.5\nmaterial = \"m\"\n";
+
+#[cfg(unix)]
+#[test]
+fn a_read_only_output_is_kept_unless_forced() {
+    use std::os::unix::fs::PermissionsExt;
+    let dir = TempDir::new("read-only");
+    let out_path = dir.join("kept.png");
+    std::fs::write(&out_path, "old").unwrap();
+    std::fs::set_permissions(&out_path, std::fs::Permissions::from_mode(0o444)).unwrap();
+    let args = |force: bool| {
+        let mut a = os(&[&"render", &"whitted", &"--width", &"8", &"--height", &"6", &"-q", &"-o", &out_path]);
+        if force {
+            a.push("--force".into());
+        }
+        a
+    };
+    let out = glint(&dir, args(false));
+    assert!(!out.status.success());
+    let stderr = text(&out.stderr);
+    assert!(stderr.contains("kept.png") && stderr.contains("read-only") && stderr.contains("--force"), "{stderr}");
+    assert_eq!(std::fs::read_to_string(&out_path).unwrap(), "old");
+    assert_eq!(dir.listing(), ["kept.png"]);
+    let out = glint(&dir, args(true));
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    assert_eq!(image::open(&out_path).expect("a PNG now").into_rgb8().dimensions(), (8, 6));
+}
+
+#[cfg(unix)]
+#[test]
+fn the_input_scene_is_never_an_output_by_any_name() {
+    let dir = TempDir::new("same-file");
+    // A scene file named like an image: TOML whatever its extension.
+    std::fs::write(dir.join("scene.png"), SCENE).unwrap();
+    std::os::unix::fs::symlink(dir.join("scene.png"), dir.join("link.png")).unwrap();
+    std::fs::hard_link(dir.join("scene.png"), dir.join("hard.png")).unwrap();
+    for (scene, output) in [
+        ("scene.png", "scene.png"),
+        ("scene.png", "./scene.png"),
+        ("link.png", "scene.png"),
+        ("scene.png", "link.png"),
+        ("scene.png", "hard.png"),
+    ] {
+        for extra in [&[][..], &["--force"][..]] {
+            let mut args = os(&[&"render", &scene, &"-q", &"-o", &output]);
+            args.extend(extra.iter().map(OsString::from));
+            let out = glint(&dir, args);
+            let stderr = text(&out.stderr);
+            assert!(!out.status.success(), "{scene} -o {output} {extra:?} succeeded");
+            assert!(stderr.contains("is the input scene"), "{scene} -o {output}: {stderr}");
+            assert_eq!(std::fs::read_to_string(dir.join("scene.png")).unwrap(), SCENE, "{scene} -o {output}");
+        }
+    }
+    assert_eq!(dir.listing(), ["hard.png", "link.png", "scene.png"]);
+}
+
+/// Two facing mirror planes, the camera between them, radiance growing by k_r = 1e9 per bounce
+/// over an emission of 1e9: finite in f64 at depth 4, beyond f32 (1e45).
+fn overflowing_scene(depth: u32) -> String {
+    format!(
+        "[render]\nwidth = 4\nheight = 4\nmax_depth = {depth}\nbailout = 0.0\n\n\
+         [camera]\nposition = [0.0, 0.0, 1.0]\nlook_at = [0.0, 0.0, 2.0]\n\n\
+         [materials.mirror]\nkr = 1e9\nemission = 1e9\n\n\
+         [[objects]]\ntype = \"plane\"\npoint = [0.0, 0.0, 0.0]\nnormal = [0.0, 0.0, 1.0]\nmaterial = \"mirror\"\n\n\
+         [[objects]]\ntype = \"plane\"\npoint = [0.0, 0.0, 4.0]\nnormal = [0.0, 0.0, -1.0]\nmaterial = \"mirror\"\n"
+    )
+}
+
+#[test]
+fn radiance_beyond_f32_is_an_error_naming_its_cause_and_writes_nothing() {
+    let dir = TempDir::new("overflow");
+    let mut backends = vec!["cpu"];
+    if !skip_gpu() {
+        backends.extend(["gpu", "both"]);
+    }
+    for depth in [4, 40] {
+        std::fs::write(dir.join("gain.toml"), overflowing_scene(depth)).unwrap();
+        for backend in &backends {
+            for output in ["out.exr", "out.png"] {
+                let out = glint(&dir, ["render", "gain.toml", "--backend", backend, "-q", "-o", output]);
+                let stderr = text(&out.stderr);
+                let tag = format!("depth {depth}, {backend}, {output}");
+                assert!(!out.status.success(), "{tag}: succeeded");
+                for f in [
+                    "render is not a valid image",
+                    "not a finite f32 number",
+                    "no image was written",
+                    "materials.mirror returns k_r + k_t = 1000000000 times",
+                    &format!("up to {depth} bounces"),
+                    "materials.mirror.emission = 1000000000",
+                    "keep k_r + k_t ≤ 1",
+                ] {
+                    assert!(stderr.contains(f), "{tag}: no {f:?} in\n{stderr}");
+                }
+                assert!(!stderr.contains("this is a bug"), "{tag}: {stderr}");
+                assert_eq!(dir.listing(), ["gain.toml"], "{tag}: left behind");
+            }
+        }
+    }
+}
+
+/// The camera inside a glass slab, 10° off its normal, at depth 65: every hit defers a
+/// refracted ray, one more than the GPU's 64-entry stack holds (tests/stiff case 15).
+fn stack_overflow_scene() -> String {
+    let a = 10.0_f64.to_radians();
+    SceneText::pinhole("max_depth = 65\nbailout = 0.0", [0.0; 3], [a.sin(), a.cos(), 0.0], [0.0, 0.0, 1.0])
+        .world([0.0; 3], [0.25; 3])
+        .material("glass", "ka = 0.0\nkd = 0.0\nks = 0.0\nkr = 0.9\nkt = 0.5\nior = 1.5\nemission = 0.0625")
+        .plane([0.0, 1.0, 0.0], [0.0, 1.0, 0.0], "glass")
+        .plane([0.0, -1.0, 0.0], [0.0, -1.0, 0.0], "glass")
+        .text
+}
+
+#[test]
+fn a_gpu_status_flag_fails_the_render_unless_incomplete_images_are_allowed() {
+    if skip_gpu() {
+        eprintln!("GLINT_SKIP_GPU=1: no GPU render to raise a status flag");
+        return;
+    }
+    let dir = TempDir::new("status");
+    std::fs::write(dir.join("slab.toml"), stack_overflow_scene()).unwrap();
+    let out = glint(&dir, ["render", "slab.toml", "--backend", "gpu", "-q", "-o", "slab.png"]);
+    let stderr = text(&out.stderr);
+    assert!(!out.status.success(), "a stack overflow passed:\n{stderr}");
+    for f in ["the gpu render is incomplete (status 0x2)", "GPU stack", "--allow-incomplete", "no image was written"] {
+        assert!(stderr.contains(f), "no {f:?} in\n{stderr}");
+    }
+    assert_eq!(dir.listing(), ["slab.toml"]);
+
+    let out = glint(&dir, ["render", "slab.toml", "--backend", "gpu", "-q", "-o", "slab.png", "--allow-incomplete"]);
+    let stderr = text(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert!(stderr.contains("warning: the gpu image is incomplete"), "{stderr}");
+    let chunks = png_text_chunks(&dir.join("slab.png"));
+    let value = |key: &str| chunks.iter().find(|(k, _)| k == key).map(|(_, v)| v.clone());
+    assert_eq!(value("glint:gpu_status").as_deref(), Some("0x2"), "{chunks:?}");
+    assert!(value("glint:incomplete").is_some_and(|v| v.contains("GPU stack")), "{chunks:?}");
+}
+
+#[test]
+fn threads_are_bounded_and_the_error_names_the_flag_and_range() {
+    let dir = TempDir::new("threads");
+    for value in ["100000", "-1", "many"] {
+        let out = glint(
+            &dir,
+            ["render", "whitted", "--width", "8", "--height", "8", "-q", "-o", "x.png", "--threads", value],
+        );
+        let stderr = text(&out.stderr);
+        assert!(!out.status.success(), "--threads {value} succeeded");
+        assert!(stderr.contains("--threads") && stderr.contains("takes 0 (one per core) to "), "{value}: {stderr}");
+    }
+    let out =
+        glint(&dir, ["render", "whitted", "--width", "8", "--height", "8", "-q", "-o", "x.png", "--threads", "100000"]);
+    assert!(text(&out.stderr).contains("100000 is outside [0, "), "{}", text(&out.stderr));
+    assert!(dir.listing().is_empty());
+}
+
+#[cfg(unix)]
+#[test]
+fn a_file_system_failure_is_reported_as_one_not_as_a_format_error() {
+    // A file size limit of 8 kB (ulimit -f, SIGXFSZ ignored): the EXR write fails with EFBIG,
+    // as a full disk fails with ENOSPC.
+    let dir = TempDir::new("full");
+    let script = "ulimit -f 16; trap '' XFSZ; exec \"$0\" \"$@\"";
+    for output in ["out.exr", "out.png"] {
+        let out = Command::new("sh")
+            .args(["-c", script, BIN, "render", "whitted", "--width", "512", "--height", "512", "-q", "-o", output])
+            .current_dir(&dir)
+            .output()
+            .expect("run sh");
+        let stderr = text(&out.stderr);
+        assert!(!out.status.success(), "{output}: succeeded");
+        assert!(stderr.contains(output) && stderr.contains("File too large"), "{output}: {stderr}");
+        assert!(!stderr.contains("format error") && !stderr.contains("decoding"), "{output}: {stderr}");
+        assert!(dir.listing().is_empty(), "{output}: left {:?}", dir.listing());
+    }
+}
+
+#[test]
+fn a_legal_250_byte_output_name_is_written() {
+    let dir = TempDir::new("long-name");
+    let name = format!("{}.png", "n".repeat(246));
+    let out = glint(&dir, ["render", "whitted", "--width", "8", "--height", "6", "-q", "-o", &name]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    assert_eq!(dir.listing(), [name]);
+}
