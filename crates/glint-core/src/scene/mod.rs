@@ -10,6 +10,7 @@ pub mod bumpy;
 mod desc;
 mod error;
 mod rgb;
+mod texture;
 mod validate;
 
 use std::path::{Path, PathBuf};
@@ -21,6 +22,10 @@ pub use desc::{
 };
 pub use error::{FieldIssue, SceneError};
 pub use rgb::Rgb;
+pub use texture::{
+    ColorSpace, Filter, MAX_TEXTURE_SIDE, MAX_TEXTURE_TEXELS, TextureDesc, TextureError, TextureImage, UvTransform,
+    Wrap, load_textures, material_textures, srgb_to_linear,
+};
 pub use validate::{
     MAX_COORD, MAX_DEPTH, MAX_EPSILON, MAX_IMAGE_SIDE, MAX_INTENSITY, MAX_IOR, MAX_SHININESS, MAX_SPOT_EXPONENT,
     MAX_SPP, MIN_ATTENUATION_DENOMINATOR, Range, Report, ranges, validate, validate_settings,
@@ -37,10 +42,12 @@ pub struct LoadedScene {
     pub warnings: Vec<FieldIssue>,
 }
 
-/// Parses and validates scene text; `file` is only used in messages.
+/// Parses scene text, decodes its textures (paths relative to `file`, the scene file's path,
+/// also named in messages) and validates it.
 pub fn parse_scene(text: &str, file: &Path) -> Result<(SceneDesc, Vec<FieldIssue>), SceneError> {
-    let desc: SceneDesc =
+    let mut desc: SceneDesc =
         toml::from_str(text).map_err(|e| SceneError::Parse { file: file.to_owned(), message: e.to_string() })?;
+    load_textures(&mut desc, file)?;
     validated(desc, file)
 }
 
