@@ -8,8 +8,14 @@ const LIGHT_DIRECTIONAL: u32 = 1u;
 const LIGHT_SPOT: u32 = 2u;
 const LIGHT_CASTS_SHADOWS: u32 = 1u;
 const MATERIAL_PHONG: u32 = 1u;
-const MATERIAL_CHECKER: u32 = 2u;
 const MESH_HAS_NORMALS: u32 = 1u;
+const MESH_HAS_UVS: u32 = 2u;
+const NO_TEXTURE: u32 = 0xffffffffu;
+const WRAP_REPEAT: u32 = 0u;
+const WRAP_CLAMP_TO_EDGE: u32 = 1u;
+const WRAP_MIRRORED_REPEAT: u32 = 2u;
+const FILTER_NEAREST: u32 = 0u;
+const FILTER_BILINEAR: u32 = 1u;
 const EPS_TMIN: u32 = 0u;
 const EPS_NUDGE_RAY: u32 = 1u;
 const EPS_NUDGE_NORMAL: u32 = 2u;
@@ -73,11 +79,29 @@ struct GpuMaterial {
     kr: vec4<f32>,
     kt: vec4<f32>,
     emission: vec4<f32>,
-    checker_kd: vec4<f32>,
     shininess: f32,
     ior: f32,
-    checker_size: f32,
     flags: u32,
+    diffuse_texture: u32,
+    emission_texture: u32,
+    pad_a: u32,
+    pad_b: u32,
+    pad_c: u32,
+}
+
+// One entry of the texture table: texels offset .. offset + width·height of the texel buffer
+// (linear RGBA, rows from the top), its sampler, and the rows of its 2×3 UV transform.
+struct GpuTexture {
+    offset: u32,
+    width: u32,
+    height: u32,
+    wrap_s: u32,
+    wrap_t: u32,
+    filter_mode: u32,
+    pad_a: u32,
+    pad_b: u32,
+    transform_u: vec4<f32>,
+    transform_v: vec4<f32>,
 }
 
 struct GpuLight {
@@ -163,6 +187,8 @@ struct ProbeRecord {
     normal: vec4<f32>,
     emission: vec4<f32>,
     ambient: vec4<f32>,
+    ka: vec4<f32>,
+    kd: vec4<f32>,
     kr: vec4<f32>,
     kt: vec4<f32>,
     mirror_sum: vec4<f32>,

@@ -2,7 +2,7 @@
 // I_local = E_m + I_a·k_a + Σ_j f_att,j·S_j·[ I_a,j·k_a + V_j·( I_d,j·k_d·max(N·L,0) + I_s,j·k_s·spec_j ) ]
 #define_import_path glint::shade
 
-#import glint::scene_data::{ProbeLight, MAX_PROBE_LIGHTS, GpuLight, GpuMaterial, LIGHT_CASTS_SHADOWS, LIGHT_DIRECTIONAL, LIGHT_SPOT, MATERIAL_CHECKER, MATERIAL_PHONG}
+#import glint::scene_data::{ProbeLight, MAX_PROBE_LIGHTS, GpuLight, GpuMaterial, LIGHT_CASTS_SHADOWS, LIGHT_DIRECTIONAL, LIGHT_SPOT, MATERIAL_PHONG, NO_TEXTURE}
 #import glint::bindings::{header, materials, lights}
 #import glint::ray::{Ray, ray_counts, probe, probe_active}
 #import glint::intersect::{FAR, all_zero}
@@ -12,6 +12,9 @@
 #import glint::intersect::shadow_transmittance
 #endif
 #import glint::offset::{spawn_ray, shadow_t_max}
+#ifdef TEXTURES
+#import glint::texture::sample_texture
+#endif
 
 const MIN_LIGHT_DISTANCE: f32 = 1e-20;
 const MIN_HALF_LENGTH: f32 = 1e-12;
@@ -22,6 +25,7 @@ struct Surface {
     p_surface: vec3<f32>,
     ng: vec3<f32>,
     ns: vec3<f32>,
+    uv: vec2<f32>,
     material: u32,
     object_id: u32,
 }
@@ -103,25 +107,27 @@ fn specular_term(mat: GpuMaterial, n: vec3<f32>, l: vec3<f32>, v: vec3<f32>, n_d
 #endif
 }
 
-fn diffuse_colour(mat: GpuMaterial, p: vec3<f32>, ng: vec3<f32>) -> vec3<f32> {
-#ifdef CHECKER
-    if (mat.flags & MATERIAL_CHECKER) != 0u {
-        let a = abs(ng);
-        var uw = p.xy;
-        if a.x >= a.y && a.x >= a.z {
-            uw = p.yz;
-        } else if a.y >= a.z {
-            uw = p.xz;
-        }
-        let inv = 1.0 / mat.checker_size;
-        let parity = (i32(floor(uw.x * inv)) + i32(floor(uw.y * inv))) & 1;
-        if parity == 0 {
-            return mat.kd.xyz;
-        }
-        return mat.checker_kd.xyz;
+// The colours of the model at a hit, after the material's textures.
+struct MaterialColours {
+    ka: vec3<f32>,
+    kd: vec3<f32>,
+    emission: vec3<f32>,
+}
+
+// A diffuse texture's colour multiplies k_a and k_d, an emission texture's E_m.
+fn material_colours(mat: GpuMaterial, uv: vec2<f32>) -> MaterialColours {
+    var c = MaterialColours(mat.ka.xyz, mat.kd.xyz, mat.emission.xyz);
+#ifdef TEXTURES
+    if mat.diffuse_texture != NO_TEXTURE {
+        let t = sample_texture(mat.diffuse_texture, uv);
+        c.ka *= t;
+        c.kd *= t;
+    }
+    if mat.emission_texture != NO_TEXTURE {
+        c.emission *= sample_texture(mat.emission_texture, uv);
     }
 #endif
-    return mat.kd.xyz;
+    return c;
 }
 
 fn light_visibility(light: GpuLight, s: Surface, ng: vec3<f32>, ls: LightSample) -> vec3<f32> {
@@ -156,7 +162,7 @@ struct LightTerm {
     contribution: vec3<f32>,
 }
 
-fn light_term(light: GpuLight, mat: GpuMaterial, s: Surface, n: vec3<f32>, ng: vec3<f32>, v: vec3<f32>, kd: vec3<f32>) -> LightTerm {
+fn light_term(light: GpuLight, mat: GpuMaterial, s: Surface, n: vec3<f32>, ng: vec3<f32>, v: vec3<f32>, c: MaterialColours) -> LightTerm {
     let ls = light_sample(light, s.p);
     let scale = ls.f_att * ls.spot;
     var term = LightTerm(ls.f_att, ls.spot, vec3<f32>(0.0), vec3<f32>(0.0), vec3<f32>(0.0), vec3<f32>(0.0), vec3<f32>(0.0));
@@ -164,7 +170,7 @@ fn light_term(light: GpuLight, mat: GpuMaterial, s: Surface, n: vec3<f32>, ng: v
         return term;
     }
 #ifdef LIGHT_AMBIENT
-    term.ambient = light.ambient.xyz * mat.ka.xyz;
+    term.ambient = light.ambient.xyz * c.ka;
 #endif
     let n_dot_l = dot(n, ls.l);
     if n_dot_l > 0.0 {
@@ -175,7 +181,7 @@ fn light_term(light: GpuLight, mat: GpuMaterial, s: Surface, n: vec3<f32>, ng: v
         }
 #endif
         if !all_zero(term.visibility) {
-            term.diffuse = light.diffuse.xyz * kd * n_dot_l;
+            term.diffuse = light.diffuse.xyz * c.kd * n_dot_l;
 #ifdef SPECULAR
             if !all_zero(mat.ks.xyz) {
                 term.specular = light.specular.xyz * mat.ks.xyz * specular_term(mat, n, ls.l, v, n_dot_l);
@@ -189,15 +195,15 @@ fn light_term(light: GpuLight, mat: GpuMaterial, s: Surface, n: vec3<f32>, ng: v
 
 fn shade_local(s: Surface, n: vec3<f32>, ng: vec3<f32>, v: vec3<f32>) -> vec3<f32> {
     let mat = materials[s.material];
+    let c = material_colours(mat, s.uv);
     var emission = vec3<f32>(0.0);
 #ifdef EMISSION
-    emission = mat.emission.xyz;
+    emission = c.emission;
 #endif
-    let ambient = header.ambient.xyz * mat.ka.xyz;
-    let kd = diffuse_colour(mat, s.p, ng);
+    let ambient = header.ambient.xyz * c.ka;
     var sum = vec3<f32>(0.0);
     for (var j = 0u; j < header.light_count; j++) {
-        let term = light_term(lights[j], mat, s, n, ng, v, kd);
+        let term = light_term(lights[j], mat, s, n, ng, v, c);
         sum += term.contribution;
 #ifdef PROBE
         if probe_active && j < MAX_PROBE_LIGHTS {
@@ -210,6 +216,8 @@ fn shade_local(s: Surface, n: vec3<f32>, ng: vec3<f32>, v: vec3<f32>) -> vec3<f3
         probe.light_count = min(header.light_count, MAX_PROBE_LIGHTS);
         probe.emission = vec4<f32>(emission, 0.0);
         probe.ambient = vec4<f32>(ambient, 0.0);
+        probe.ka = vec4<f32>(c.ka, 0.0);
+        probe.kd = vec4<f32>(c.kd, 0.0);
     }
 #endif
     return emission + ambient + sum;

@@ -15,6 +15,12 @@
 #endif
 #import glint::offset::spawn_ray
 #import glint::shade::{Surface, shade_local}
+#ifdef TEXTURES
+#import glint::texture::planar_uv
+#ifdef TRIANGLES
+#import glint::texture::triangle_uv
+#endif
+#endif
 
 struct SampleResult {
     radiance: vec3<f32>,
@@ -51,7 +57,11 @@ fn surface_at(ray: Ray, hit: Hit) -> Surface {
         let c = s.center_radius.xyz;
         let ng = normalize(p - c);
         let p_surface = select(p, c + s.center_radius.w * ng, robust);
-        return Surface(p, p_surface, ng, ng, s.material, s.object_id);
+        var uv = vec2<f32>(0.0);
+#ifdef TEXTURES
+        uv = planar_uv(p, ng);
+#endif
+        return Surface(p, p_surface, ng, ng, uv, s.material, s.object_id);
     }
 #endif
 #ifdef PLANES
@@ -59,7 +69,11 @@ fn surface_at(ray: Ray, hit: Hit) -> Surface {
         let pl = planes[hit.index];
         let ng = pl.normal_offset.xyz;
         let p_surface = select(p, p - (dot(ng, p) - pl.normal_offset.w) * ng, robust);
-        return Surface(p, p_surface, ng, ng, pl.material, pl.object_id);
+        var uv = vec2<f32>(0.0);
+#ifdef TEXTURES
+        uv = planar_uv(p, ng);
+#endif
+        return Surface(p, p_surface, ng, ng, uv, pl.material, pl.object_id);
     }
 #endif
 #ifdef TRIANGLES
@@ -68,10 +82,14 @@ fn surface_at(ray: Ray, hit: Hit) -> Surface {
     let ng = normalize(cross(v[1] - v[0], v[2] - v[0]));
     let ns = triangle_shading_normal(tri, hit.bu, hit.bv, ng);
     let p_surface = select(p, (1.0 - hit.bu - hit.bv) * v[0] + hit.bu * v[1] + hit.bv * v[2], robust);
+    var uv = vec2<f32>(0.0);
+#ifdef TEXTURES
+    uv = triangle_uv(tri, hit.bu, hit.bv, p, ng);
+#endif
     let mesh = meshes[tri.mesh];
-    return Surface(p, p_surface, ng, ns, mesh.material, mesh.object_id);
+    return Surface(p, p_surface, ng, ns, uv, mesh.material, mesh.object_id);
 #else
-    return Surface(p, p, vec3<f32>(0.0, 1.0, 0.0), vec3<f32>(0.0, 1.0, 0.0), 0u, NO_HIT);
+    return Surface(p, p, vec3<f32>(0.0, 1.0, 0.0), vec3<f32>(0.0, 1.0, 0.0), vec2<f32>(0.0), 0u, NO_HIT);
 #endif
 }
 

@@ -151,3 +151,22 @@ fn broken_gltf_files_are_clear_errors_and_leave_no_file() {
         assert!(!dir.join("x.png").exists(), "{name}: an output file was left");
     }
 }
+
+#[test]
+fn spider_mtl_textures_are_decoded_with_their_texture_coordinates() {
+    // What obj_models_render_on_both_backends_and_agree then holds to the parity thresholds:
+    // spider.mtl's five `map_Kd .\NAME.jpg` (Windows separators), sampled on both tracers.
+    let Some(path) = model("OBJ/spider.obj") else { return };
+    let m = glint_core::model::load_obj(&path).expect("spider.obj loads");
+    let textured: Vec<(&String, u32, u32)> = m
+        .materials
+        .iter()
+        .filter_map(|(name, mat)| {
+            let image = mat.texture.as_ref()?.image.as_ref()?;
+            Some((name, image.width(), image.height()))
+        })
+        .collect();
+    assert_eq!(textured.len(), 5, "{textured:?}");
+    assert!(textured.iter().any(|&(_, w, h)| (w, h) == (768, 768)), "drkwood2.jpg: {textured:?}");
+    assert!(m.meshes.iter().all(|mesh| mesh.uvs.as_ref().is_some_and(|uv| uv.len() == mesh.vertices.len())));
+}

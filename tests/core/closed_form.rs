@@ -476,3 +476,60 @@ fn floor_hit_is_exact_in_the_single_pixel_setup() {
     assert_eq!(plane_hit(o, d, DVec3::Y, 0.0), Some(1.0));
     assert_eq!(probe(&flat, 0, 0).point, DVec3::ZERO);
 }
+
+// ---------------------------------------------------------------------------------------------
+// Textures: a texel's colour T multiplies k_a and k_d (the colour-material convention), so the
+// floor seen from above under a light straight down is I_a·k_a·T + I_d·k_d·T·(N·L).
+// ---------------------------------------------------------------------------------------------
+
+/// The linear value the decoder stores for an 8-bit sRGB channel (in f32, widened exactly).
+fn texel(srgb: u8) -> f64 {
+    f64::from(glint_core::scene::srgb_to_linear(f64::from(srgb) / 255.0) as f32)
+}
+
+#[test]
+fn a_textured_colour_multiplies_k_a_and_k_d() {
+    let dir = glint_test_support::TempDir::new("closed-form-texture");
+    // 2×1: the pixel looks at u = 0 … the plane's planar coordinates (x, z) at the origin, so
+    // the nearest texel is the first one, and bilinear at u = 0.5 (the transform's offset) is
+    // the mean of both.
+    glint_test_support::texture::write_png(&dir.join("t.png"), 2, 1, &[188, 64, 255, 255, 20, 200, 100, 255]);
+    let light = "direction = [0.0, -1.0, 0.0]\ndiffuse = [1.0, 0.5, 2.0]";
+    let i_d = dv([1.0, 0.5, 2.0]);
+    let floor = |texture: &str| {
+        SceneText::pinhole("", [0.0, 1.0, 0.0], [0.0; 3], Z)
+            .world(I_A, [0.0; 3])
+            .material(
+                "floor",
+                &format!("ka = 0.5\nkd = [0.5, 0.75, 1.0]\nks = 0.0\ntexture = {{ path = \"t.png\", {texture} }}"),
+            )
+            .light("directional", light)
+            .plane([0.0; 3], Y, "floor")
+            .flat_in(&dir)
+    };
+    let first = DVec3::new(texel(188), texel(64), texel(255));
+    let second = DVec3::new(texel(20), texel(200), texel(100));
+    let bilinear = 0.5 * first + 0.5 * second;
+    for (texture, t) in [
+        ("filter = \"nearest\"", first),
+        ("filter = \"nearest\", transform = { offset = [0.75, 0.0] }", second),
+        ("filter = \"bilinear\", transform = { offset = [0.5, 0.0] }", bilinear),
+    ] {
+        let flat = floor(texture);
+        let b = probe(&flat, 0, 0);
+        let (ka, kd) = (DVec3::splat(FLOOR_KA) * t, dv(FLOOR_KD) * t);
+        assert_eq!((b.ka, b.kd), (ka, kd), "{texture}: the probe's k_a, k_d");
+        let want = dv(I_A) * ka + i_d * kd;
+        let got = render(&flat).image.get(0, 0);
+        assert_rel(got, want, REL, texture);
+        assert_eq!(got, b.total, "{texture}: render and probe disagree");
+    }
+    // Without the texture, the same scene gives the material's own k_a and k_d.
+    let plain = SceneText::pinhole("", [0.0, 1.0, 0.0], [0.0; 3], Z)
+        .world(I_A, [0.0; 3])
+        .material("floor", "ka = 0.5\nkd = [0.5, 0.75, 1.0]\nks = 0.0")
+        .light("directional", light)
+        .plane([0.0; 3], Y, "floor")
+        .flat();
+    assert_rel(render(&plain).image.get(0, 0), dv(I_A) * FLOOR_KA + i_d * dv(FLOOR_KD), REL, "untextured");
+}

@@ -356,3 +356,48 @@ transform = { translate = [10, 0, 0], rotate = [0, 0, 90], scale = 2 }
         assert!(message.contains("bad.toml") && message.contains(wanted), "{edit}: {message}");
     }
 }
+
+#[test]
+fn base_colour_and_emissive_textures_keep_their_sampler_transform_and_texcoords() {
+    let dir = TempDir::new("gltf-textures");
+    glint_test_support::texture::write_png(&dir.join("tex.png"), 2, 1, &[255, 0, 0, 255, 0, 0, 255, 255]);
+    let mut f = Fixture::quad();
+    let uv = f.push_f32(&[0., 0., 1., 0., 1., 1., 0., 1.]);
+    f.json["accessors"]
+        .as_array_mut()
+        .unwrap()
+        .push(json!({ "bufferView": uv, "componentType": 5126, "count": 4, "type": "VEC2" }));
+    f.json["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] = json!(3);
+    f.json["extensionsUsed"] = json!(["KHR_texture_transform"]);
+    f.json["images"] = json!([{ "uri": "tex.png" }]);
+    f.json["samplers"] = json!([{ "magFilter": 9728, "wrapS": 33071, "wrapT": 33648 }]);
+    f.json["textures"] = json!([{ "source": 0, "sampler": 0 }]);
+    f.json["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"] = json!({ "index": 0,
+        "extensions": { "KHR_texture_transform": { "offset": [0.5, 0.0], "rotation": 0.25, "scale": [2.0, 1.0] } } });
+    f.json["materials"][0]["emissiveTexture"] = json!({ "index": 0 });
+    f.json["materials"][0]["emissiveFactor"] = json!([1.0, 1.0, 1.0]);
+    let m = load(&f.write_gltf(&dir, "textured", BufferAt::File("textured.bin".into())));
+    let mat = &m.materials["white"];
+    let t = mat.texture.as_ref().expect("a base-colour texture");
+    let image = t.image.as_ref().expect("decoded");
+    assert_eq!((image.width(), image.height(), t.path.as_str()), (2, 1, "tex.png"));
+    assert_eq!(
+        (t.wrap_s, t.wrap_t, t.filter),
+        (
+            glint_core::scene::Wrap::ClampToEdge,
+            glint_core::scene::Wrap::MirroredRepeat,
+            glint_core::scene::Filter::Nearest
+        )
+    );
+    let tr = t.transform.as_ref().expect("KHR_texture_transform");
+    assert_eq!((tr.offset, tr.rotation, tr.scale), ([0.5, 0.0], 0.25, [2.0, 1.0]));
+    let e = mat.emission_texture.as_ref().expect("an emission texture");
+    assert!(std::sync::Arc::ptr_eq(e.image.as_ref().unwrap(), image), "one image decoded once");
+    assert_eq!(m.meshes[0].uvs.as_deref(), Some(&[[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]][..]));
+    // A texture outside the model's folder is refused naming the image.
+    f.json["images"] = json!([{ "uri": "../tex.png" }]);
+    let sub = dir.join("sub");
+    std::fs::create_dir(&sub).unwrap();
+    let message = error(&f.write_gltf(&sub, "escape", BufferAt::DataUri));
+    assert!(message.contains("images[0].uri") && message.contains("../tex.png"), "{message}");
+}

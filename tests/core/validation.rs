@@ -384,3 +384,67 @@ fn a_ray_tree_the_bailout_cannot_stop_is_warned_about_with_its_worst_case() {
     assert!(expect_valid(&text, "depth 1024, bailout 1/255")[0].contains("only after 52 levels"));
     assert!(expect_valid(&edited("[camera]", "[render]\nmax_depth = 15\nbailout = 0.0\n\n[camera]"), "15").is_empty());
 }
+
+/// `BASE` with a texture on the red material, loaded from `scene.toml` in a folder holding
+/// `ok.png`, an `image.txt` that is not an image, and a sub-folder with the scene file, so that
+/// `../` escapes it.
+fn texture_error(texture: &str, field: &str, fragments: &[&str]) {
+    let dir = glint_test_support::TempDir::new("texture-validation");
+    let scenes = dir.join("scenes");
+    std::fs::create_dir(&scenes).unwrap();
+    glint_test_support::texture::write_png(&dir.join("outside.png"), 1, 1, &[255, 0, 0, 255]);
+    glint_test_support::texture::write_png(&scenes.join("ok.png"), 1, 1, &[255, 0, 0, 255]);
+    std::fs::write(scenes.join("image.txt"), "not an image").unwrap();
+    let file = scenes.join("scene.toml");
+    std::fs::write(&file, edited("shininess = 32.0", &format!("shininess = 32.0\n{texture}"))).unwrap();
+    let err = glint_core::scene::load_scene(&file.to_string_lossy()).expect_err("a bad texture is an error");
+    let msg = err.to_string();
+    assert!(matches!(err, SceneError::Invalid { .. }) && msg.contains("scene.toml"), "{field}: {msg}");
+    let issue = err.issues().iter().find(|i| i.field == field).unwrap_or_else(|| panic!("no issue for {field}: {msg}"));
+    for f in fragments {
+        assert!(issue.problem.contains(f), "{field}: {issue} does not contain {f:?}");
+    }
+}
+
+#[test]
+fn bad_texture_paths_name_the_file_field_and_reason() {
+    let field = "materials.red.texture.path";
+    texture_error("texture = { path = \"missing.png\" }", field, &["missing.png", "No such file"]);
+    texture_error("texture = { path = \"../outside.png\" }", field, &["../outside.png", "outside the model's folder"]);
+    texture_error("texture = { path = \"/etc/passwd\" }", field, &["/etc/passwd", "absolute path"]);
+    texture_error("texture = { path = \"file:///etc/passwd\" }", field, &["scheme `file:`"]);
+    texture_error("texture = { path = \"image.txt\" }", field, &["not a PNG or JPEG"]);
+    texture_error("emission_texture = { path = \"nope.jpg\" }", "materials.red.emission_texture.path", &["nope.jpg"]);
+    // The good image with a bad transform or alongside a checker: validation names those fields.
+    texture_error(
+        "texture = { path = \"ok.png\", transform = { scale = [1e12, 1.0] } }",
+        "materials.red.texture.transform.scale.u",
+        &["1000000000000", "[-1000000000, 1000000000]"],
+    );
+    texture_error(
+        "texture = { path = \"ok.png\" }\nchecker = { kd = 0.5, size = 1.0 }",
+        "materials.red.checker",
+        &["not both"],
+    );
+}
+
+#[test]
+fn a_texture_in_a_description_built_in_code_must_be_decoded() {
+    // parse_scene decodes relative to the file it names; a path that does not exist there is
+    // the same error as from a scene file.
+    let text = edited("shininess = 32.0", "shininess = 32.0\ntexture = { path = \"nowhere/t.png\" }");
+    let err = parse_scene(&text, Path::new(FILE)).expect_err("no such texture");
+    assert!(err.issues().iter().any(|i| i.field == "materials.red.texture.path"), "{err}");
+    // And a description whose texture was never decoded does not validate.
+    let (mut desc, _) = parse_scene(BASE, Path::new(FILE)).expect("BASE is valid");
+    desc.materials.get_mut("red").unwrap().texture = Some(glint_core::scene::TextureDesc {
+        path: "t.png".into(),
+        wrap_s: Default::default(),
+        wrap_t: Default::default(),
+        filter: Default::default(),
+        transform: None,
+        image: None,
+    });
+    let report = glint_core::scene::validate(&desc);
+    assert!(report.errors.iter().any(|i| i.field == "materials.red.texture.path" && i.problem.contains("not decoded")));
+}

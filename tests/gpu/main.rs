@@ -10,5 +10,6 @@ mod probe;
 mod raycast;
 mod specialisation;
 mod support;
+mod textures;
 
 use glint_test_support::{gpu, render};

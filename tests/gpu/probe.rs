@@ -63,6 +63,8 @@ fn gpu_probe_matches_cpu_probe_term_by_term() {
                 assert!((c.spot - g.spot).abs() <= 1e-5, "{what}: spot {} vs {}", c.spot, g.spot);
             }
             for (term, c, g) in [
+                ("k_a", cpu.ka, gpu.ka),
+                ("k_d", cpu.kd, gpu.kd),
                 ("emission", cpu.emission, gpu.emission),
                 ("ambient", cpu.ambient, gpu.ambient),
                 ("k_r·I_r", cpu.reflected, gpu.reflected),

@@ -81,8 +81,14 @@ fn floats(flat: &glint_core::FlatScene) -> Vec<(String, f32)> {
     let c = &flat.camera;
     add("camera".into(), &[c.position, c.forward, c.right, c.up].concat());
     for (i, m) in flat.materials.iter().enumerate() {
-        add(format!("materials[{i}]"), &[m.ka, m.kd, m.ks, m.kr, m.kt, m.emission, m.checker_kd].concat());
-        add(format!("materials[{i}]"), &[m.shininess, m.ior, m.checker_size]);
+        add(format!("materials[{i}]"), &[m.ka, m.kd, m.ks, m.kr, m.kt, m.emission].concat());
+        add(format!("materials[{i}]"), &[m.shininess, m.ior]);
+    }
+    for (i, t) in flat.textures.iter().enumerate() {
+        add(format!("textures[{i}]"), &[t.transform_u, t.transform_v].concat());
+    }
+    for (i, t) in flat.texels.iter().enumerate() {
+        add(format!("texels[{i}]"), t);
     }
     for (i, l) in flat.lights.iter().enumerate() {
         add(

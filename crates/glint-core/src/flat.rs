@@ -5,13 +5,14 @@ use glam::DVec3;
 use crate::bvh::{self, BvhNode};
 
 use crate::layout::{
-    GpuCamera, GpuLight, GpuMaterial, GpuMesh, GpuPlane, GpuSphere, GpuTriangle, LIGHT_CASTS_SHADOWS, MATERIAL_CHECKER,
-    MESH_HAS_NORMALS, SceneHeader, UnknownTag, feature,
+    GpuCamera, GpuLight, GpuMaterial, GpuMesh, GpuPlane, GpuSphere, GpuTexture, GpuTriangle, LIGHT_CASTS_SHADOWS,
+    MESH_HAS_NORMALS, MESH_HAS_UVS, NO_TEXTURE, SceneHeader, UnknownTag, feature,
 };
 use crate::scene::{
-    EpsilonMode, LightDesc, LightKind, MaterialDesc, MeshDesc, NO_CONE_CUTOFF, ObjectDesc, PlaneDesc, RenderSettings,
-    Rgb, SceneDesc, SpecularModel, SphereDesc,
+    EpsilonMode, Filter, LightDesc, LightKind, MaterialDesc, MeshDesc, NO_CONE_CUTOFF, ObjectDesc, PlaneDesc,
+    RenderSettings, Rgb, SceneDesc, SpecularModel, SphereDesc, Wrap,
 };
+use crate::texture_table::TextureTable;
 
 /// A scene in the GPU-ready layout, plus the names the UI and reports show.
 #[derive(Clone, Debug, PartialEq)]
@@ -29,7 +30,14 @@ pub struct FlatScene {
     /// Unit vertex normals beside `vertices` (w = 0; zero for a mesh without normals), or
     /// empty when no mesh has them.
     pub normals: Vec<[f32; 4]>,
+    /// Texture coordinates beside `vertices` (zero for a mesh without them), or empty when no
+    /// mesh has them.
+    pub uvs: Vec<[f32; 2]>,
     pub meshes: Vec<GpuMesh>,
+    /// The texture table the materials' texture indices point into.
+    pub textures: Vec<GpuTexture>,
+    /// Every texture's texels, linear RGBA, row by row from the top (`GpuTexture::offset`).
+    pub texels: Vec<[f32; 4]>,
     /// The BVH over spheres and triangles (`bvh::build`; root first, empty without them).
     pub bvh_nodes: Vec<BvhNode>,
     /// The primitive references its leaves point into (`bvh::PrimRef`).
@@ -55,6 +63,7 @@ struct Primitives {
     triangles: Vec<GpuTriangle>,
     vertices: Vec<[f32; 4]>,
     normals: Vec<[f32; 4]>,
+    uvs: Vec<[f32; 2]>,
     meshes: Vec<GpuMesh>,
     object_names: Vec<String>,
 }
@@ -88,6 +97,7 @@ impl FlatScene {
             triangles: self.triangles.clone(),
             vertices: self.vertices.clone(),
             normals: self.normals.clone(),
+            uvs: self.uvs.clone(),
             meshes: self.meshes.clone(),
             object_names: self.object_names.clone(),
         };
@@ -103,7 +113,8 @@ impl FlatScene {
         primitives: Primitives,
         bvh: bvh::Bvh,
     ) -> Self {
-        let materials = desc.materials.values().map(flat_material).collect();
+        let mut table = TextureTable::default();
+        let materials = desc.materials.values().map(|m| flat_material(m, &mut table)).collect();
         let lights = desc.lights.iter().map(flat_light).collect();
         let mut flat = Self {
             header: flat_header(desc, settings, &primitives, material_names.len()),
@@ -115,7 +126,10 @@ impl FlatScene {
             triangles: primitives.triangles,
             vertices: primitives.vertices,
             normals: primitives.normals,
+            uvs: primitives.uvs,
             meshes: primitives.meshes,
+            textures: table.textures,
+            texels: table.texels,
             bvh_nodes: bvh.nodes,
             bvh_prims: bvh.prims,
             object_names: primitives.object_names,
@@ -171,8 +185,8 @@ impl FlatScene {
             if nonzero(m.emission) {
                 f |= feature::EMISSION;
             }
-            if m.flags & MATERIAL_CHECKER != 0 {
-                f |= feature::CHECKER;
+            if m.diffuse_texture != NO_TEXTURE || m.emission_texture != NO_TEXTURE {
+                f |= feature::TEXTURES;
             }
             if nonzero(m.ks) && any_specular_light {
                 f |= feature::SPECULAR;
@@ -238,6 +252,26 @@ impl FlatScene {
         if normals && self.normals.len() != vertices {
             return Err(UnknownTag { what: "normal count (one per vertex)", value: self.normals.len() as u32 });
         }
+        let uvs = self.meshes.iter().any(|m| m.flags & MESH_HAS_UVS != 0);
+        if uvs && self.uvs.len() != vertices {
+            return Err(UnknownTag { what: "texture coordinate count (one per vertex)", value: self.uvs.len() as u32 });
+        }
+        for m in &self.materials {
+            for t in [m.diffuse_texture, m.emission_texture] {
+                if t != NO_TEXTURE && t as usize >= self.textures.len() {
+                    return Err(UnknownTag { what: "material texture index", value: t });
+                }
+            }
+        }
+        for t in &self.textures {
+            Wrap::try_from(t.wrap_s)?;
+            Wrap::try_from(t.wrap_t)?;
+            Filter::try_from(t.filter_mode)?;
+            let end = u64::from(t.offset) + u64::from(t.width) * u64::from(t.height);
+            if t.width == 0 || t.height == 0 || end > self.texels.len() as u64 {
+                return Err(UnknownTag { what: "texture texel range", value: t.offset });
+            }
+        }
         Ok(())
     }
 
@@ -261,13 +295,10 @@ impl FlatScene {
         if bad(&[c.position, c.forward, c.right, c.up].concat()) {
             return Some("camera".into());
         }
-        let m = self.materials.iter().map(|m| {
-            [
-                &[m.ka, m.kd, m.ks, m.kr, m.kt, m.emission, m.checker_kd].concat()[..],
-                &[m.shininess, m.ior, m.checker_size],
-            ]
-            .concat()
-        });
+        let m = self
+            .materials
+            .iter()
+            .map(|m| [&[m.ka, m.kd, m.ks, m.kr, m.kt, m.emission].concat()[..], &[m.shininess, m.ior]].concat());
         let l = self.lights.iter().map(|l| {
             [
                 &[l.position, l.direction, l.diffuse, l.specular, l.ambient, l.attenuation].concat()[..],
@@ -279,6 +310,9 @@ impl FlatScene {
         let p = self.planes.iter().map(|p| p.normal_offset.to_vec());
         let v = self.vertices.iter().map(|v| v.to_vec());
         let n = self.normals.iter().map(|n| n.to_vec());
+        let uv = self.uvs.iter().map(|uv| uv.to_vec());
+        let tx = self.textures.iter().map(|t| [t.transform_u, t.transform_v].concat());
+        let texels = self.texels.iter().map(|t| t.to_vec());
         fn first_bad(kind: &str, items: impl Iterator<Item = Vec<f32>>) -> Option<String> {
             let mut items = items;
             items.position(|v| v.iter().any(|x| !x.is_finite())).map(|i| format!("{kind}[{i}]"))
@@ -289,6 +323,9 @@ impl FlatScene {
             .or_else(|| first_bad("planes", p))
             .or_else(|| first_bad("vertices", v))
             .or_else(|| first_bad("normals", n))
+            .or_else(|| first_bad("uvs", uv))
+            .or_else(|| first_bad("textures", tx))
+            .or_else(|| first_bad("texels", texels))
     }
 }
 
@@ -312,24 +349,29 @@ impl FlatScene {
     }
 }
 
-/// A material in the flat layout.
-fn flat_material(m: &MaterialDesc) -> GpuMaterial {
-    let (checker_kd, checker_size, checker_flag) = match &m.checker {
-        Some(c) => (rgb4(c.kd), c.size as f32, MATERIAL_CHECKER),
-        None => ([0.0; 4], 1.0, 0),
+/// A material in the flat layout, its textures added to `table`. A checker is a texture of
+/// k_d and its second colour over a white k_d, so that k_d · texel is exactly either colour.
+fn flat_material(m: &MaterialDesc, table: &mut TextureTable) -> GpuMaterial {
+    let (kd, diffuse_texture) = match (&m.checker, &m.texture) {
+        (Some(c), _) => (rgb4(Rgb::one()), table.add_checker(m.kd, c)),
+        (None, Some(t)) => (rgb4(m.kd), table.add(t)),
+        (None, None) => (rgb4(m.kd), NO_TEXTURE),
     };
     GpuMaterial {
         ka: rgb4(m.ka),
-        kd: rgb4(m.kd),
+        kd,
         ks: rgb4(m.ks),
         kr: rgb4(m.kr),
         kt: rgb4(m.kt),
         emission: rgb4(m.emission),
-        checker_kd,
         shininess: m.shininess as f32,
         ior: m.ior as f32,
-        checker_size,
-        flags: m.specular_model.flags() | checker_flag,
+        flags: m.specular_model.flags(),
+        diffuse_texture,
+        emission_texture: m.emission_texture.as_ref().map_or(NO_TEXTURE, |t| table.add(t)),
+        pad_a: 0,
+        pad_b: 0,
+        pad_c: 0,
     }
 }
 
@@ -400,6 +442,9 @@ fn flat_primitives(desc: &SceneDesc, material_names: &[String]) -> Primitives {
     if out.meshes.iter().all(|m| m.flags & MESH_HAS_NORMALS == 0) {
         out.normals = Vec::new();
     }
+    if out.meshes.iter().all(|m| m.flags & MESH_HAS_UVS == 0) {
+        out.uvs = Vec::new();
+    }
     out
 }
 
@@ -408,7 +453,7 @@ fn flat_primitives(desc: &SceneDesc, material_names: &[String]) -> Primitives {
 /// rounding noise, and one on a line through the eye would be "hit" by a quarter of all camera
 /// rays, with a 0/0 normal.
 fn mesh_triangles(mesh: &MeshDesc, material: u32, object_id: u32, out: &mut Primitives) {
-    let MeshDesc { vertices, triangles: tris, normals, .. } = mesh;
+    let MeshDesc { vertices, triangles: tris, normals, uvs, .. } = mesh;
     let first = out.vertices.len() as u32;
     out.vertices.extend(vertices.iter().map(|&v| vec4(DVec3::from(v), 1.0)));
     // Every vertex gets a normal slot, so that one index reaches both; zero without normals.
@@ -416,11 +461,15 @@ fn mesh_triangles(mesh: &MeshDesc, material: u32, object_id: u32, out: &mut Prim
         Some(n) => out.normals.extend(n.iter().map(|&n| vec4(DVec3::from(n).normalize(), 0.0))),
         None => out.normals.extend(std::iter::repeat_n([0.0; 4], vertices.len())),
     }
+    match uvs {
+        Some(uv) => out.uvs.extend(uv.iter().map(|&[u, v]| [u as f32, v as f32])),
+        None => out.uvs.extend(std::iter::repeat_n([0.0; 2], vertices.len())),
+    }
     let mesh_index = out.meshes.len() as u32;
     out.meshes.push(GpuMesh {
         material,
         object_id,
-        flags: if normals.is_some() { MESH_HAS_NORMALS } else { 0 },
+        flags: if normals.is_some() { MESH_HAS_NORMALS } else { 0 } | if uvs.is_some() { MESH_HAS_UVS } else { 0 },
         pad: 0,
     });
     let stored = &out.vertices;

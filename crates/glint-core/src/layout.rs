@@ -10,7 +10,7 @@
 
 use bytemuck::{Pod, Zeroable};
 
-use crate::scene::{EpsilonMode, LightKind, SpecularModel};
+use crate::scene::{EpsilonMode, Filter, LightKind, SpecularModel, Wrap};
 
 /// Light kinds (`GpuLight::kind`).
 pub const LIGHT_POINT: u32 = 0;
@@ -22,10 +22,20 @@ pub const LIGHT_CASTS_SHADOWS: u32 = 1;
 
 /// `GpuMaterial::flags` bits.
 pub const MATERIAL_PHONG: u32 = 1;
-pub const MATERIAL_CHECKER: u32 = 2;
 
 /// `GpuMesh::flags` bits.
 pub const MESH_HAS_NORMALS: u32 = 1;
+pub const MESH_HAS_UVS: u32 = 2;
+
+/// `GpuMaterial::diffuse_texture` / `emission_texture` of a material without that texture.
+pub const NO_TEXTURE: u32 = u32::MAX;
+
+/// Wrap modes (`GpuTexture::wrap_s`, `wrap_t`) and filters (`GpuTexture::filter`).
+pub const WRAP_REPEAT: u32 = 0;
+pub const WRAP_CLAMP_TO_EDGE: u32 = 1;
+pub const WRAP_MIRRORED_REPEAT: u32 = 2;
+pub const FILTER_NEAREST: u32 = 0;
+pub const FILTER_BILINEAR: u32 = 1;
 
 /// Epsilon strategies (`SceneHeader::epsilon_mode`).
 pub const EPS_TMIN: u32 = 0;
@@ -67,6 +77,31 @@ impl TryFrom<u32> for EpsilonMode {
             EPS_NUDGE_NORMAL => Ok(Self::NudgeNormal),
             EPS_ROBUST => Ok(Self::Robust),
             _ => Err(UnknownTag { what: "epsilon mode", value }),
+        }
+    }
+}
+
+impl TryFrom<u32> for Wrap {
+    type Error = UnknownTag;
+
+    fn try_from(value: u32) -> Result<Self, UnknownTag> {
+        match value {
+            WRAP_REPEAT => Ok(Self::Repeat),
+            WRAP_CLAMP_TO_EDGE => Ok(Self::ClampToEdge),
+            WRAP_MIRRORED_REPEAT => Ok(Self::MirroredRepeat),
+            _ => Err(UnknownTag { what: "texture wrap mode", value }),
+        }
+    }
+}
+
+impl TryFrom<u32> for Filter {
+    type Error = UnknownTag;
+
+    fn try_from(value: u32) -> Result<Self, UnknownTag> {
+        match value {
+            FILTER_NEAREST => Ok(Self::Nearest),
+            FILTER_BILINEAR => Ok(Self::Bilinear),
+            _ => Err(UnknownTag { what: "texture filter", value }),
         }
     }
 }
@@ -129,7 +164,9 @@ pub mod feature {
     pub const SPHERES: u32 = 1 << 8;
     pub const PLANES: u32 = 1 << 9;
     pub const TRIANGLES: u32 = 1 << 10;
-    pub const CHECKER: u32 = 1 << 11;
+    /// Some material has a texture (an image, or the checker): texel buffer, texture table and
+    /// texture coordinates.
+    pub const TEXTURES: u32 = 1 << 11;
     pub const BLINN: u32 = 1 << 12;
     pub const PHONG: u32 = 1 << 13;
     /// Some light has a non-zero own ambient term I_a,j.
@@ -156,7 +193,7 @@ pub mod feature {
         "SPHERES",
         "PLANES",
         "TRIANGLES",
-        "CHECKER",
+        "TEXTURES",
         "BLINN",
         "PHONG",
         "LIGHT_AMBIENT",
@@ -224,12 +261,37 @@ pub struct GpuMaterial {
     pub kr: [f32; 4],
     pub kt: [f32; 4],
     pub emission: [f32; 4],
-    /// Second checker colour (used when `MATERIAL_CHECKER` is set).
-    pub checker_kd: [f32; 4],
     pub shininess: f32,
     pub ior: f32,
-    pub checker_size: f32,
     pub flags: u32,
+    /// Index into the texture table whose colour multiplies k_a and k_d, or `NO_TEXTURE`.
+    pub diffuse_texture: u32,
+    /// Index into the texture table whose colour multiplies E_m, or `NO_TEXTURE`.
+    pub emission_texture: u32,
+    pub pad_a: u32,
+    pub pad_b: u32,
+    pub pad_c: u32,
+}
+
+/// One texture of the texture table: where its texels start in the texel buffer (linear RGBA
+/// f32, row by row from the top), its size, its sampler, and its UV transform.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct GpuTexture {
+    pub offset: u32,
+    pub width: u32,
+    pub height: u32,
+    /// `WRAP_*` along u and along v.
+    pub wrap_s: u32,
+    pub wrap_t: u32,
+    /// `FILTER_*`.
+    pub filter_mode: u32,
+    pub pad_a: u32,
+    pub pad_b: u32,
+    /// Rows of the 2×3 UV transform: u' = transform_u · (u, v, 1), v' = transform_v · (u, v, 1)
+    /// (w unused).
+    pub transform_u: [f32; 4],
+    pub transform_v: [f32; 4],
 }
 
 #[repr(C)]
@@ -379,6 +441,9 @@ pub struct ProbeRecord {
     pub normal: [f32; 4],
     pub emission: [f32; 4],
     pub ambient: [f32; 4],
+    /// k_a and k_d at the hit, after the texture (the material's own without one).
+    pub ka: [f32; 4],
+    pub kd: [f32; 4],
     pub kr: [f32; 4],
     pub kt: [f32; 4],
     /// Radiance gathered by the mirror child's subtree (weights included).
@@ -402,8 +467,15 @@ mod tests {
             assert_eq!(EpsilonMode::try_from(mode as u32), Ok(mode));
         }
         for model in [SpecularModel::Blinn, SpecularModel::Phong] {
-            assert_eq!(SpecularModel::of_flags(model.flags() | MATERIAL_CHECKER), model);
+            assert_eq!(SpecularModel::of_flags(model.flags()), model);
         }
+        for wrap in [Wrap::Repeat, Wrap::ClampToEdge, Wrap::MirroredRepeat] {
+            assert_eq!(Wrap::try_from(wrap as u32), Ok(wrap));
+        }
+        for filter in [Filter::Nearest, Filter::Bilinear] {
+            assert_eq!(Filter::try_from(filter as u32), Ok(filter));
+        }
+        assert_eq!(Wrap::try_from(3).unwrap_err().to_string(), "3 is not a valid texture wrap mode");
         assert_eq!(LightKind::try_from(7).unwrap_err().to_string(), "7 is not a valid light kind");
         assert_eq!(EpsilonMode::try_from(4).unwrap_err().to_string(), "4 is not a valid epsilon mode");
     }

@@ -14,6 +14,7 @@ pub mod model;
 pub mod rays;
 pub mod render;
 pub mod scene;
+mod texture_table;
 
 pub use backend::Backend;
 pub use flat::FlatScene;

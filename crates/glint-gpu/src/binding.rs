@@ -27,6 +27,10 @@ pub enum Binding {
     Vertices = 13,
     Normals = 14,
     Meshes = 15,
+    /// Texture coordinates, texels and the texture table (under the TEXTURES shader def).
+    Uvs = 16,
+    Texels = 17,
+    Textures = 18,
     /// The ray-cast kernel's rays and hits (raycast.wgsl; from 20 on, apart from the tracer's).
     RaysIn = 20,
     HitsOut = 21,
@@ -34,7 +38,7 @@ pub enum Binding {
 
 impl Binding {
     /// Every binding, ascending.
-    pub const ALL: [Self; 18] = [
+    pub const ALL: [Self; 21] = [
         Self::Header,
         Self::Camera,
         Self::Tile,
@@ -51,6 +55,9 @@ impl Binding {
         Self::Vertices,
         Self::Normals,
         Self::Meshes,
+        Self::Uvs,
+        Self::Texels,
+        Self::Textures,
         Self::RaysIn,
         Self::HitsOut,
     ];
@@ -83,6 +90,9 @@ impl Binding {
             Self::Vertices => "vertices",
             Self::Normals => "normals",
             Self::Meshes => "meshes",
+            Self::Uvs => "uvs",
+            Self::Texels => "texels",
+            Self::Textures => "textures",
             Self::RaysIn => "rays_in",
             Self::HitsOut => "hits_out",
         }

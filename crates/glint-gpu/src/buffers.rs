@@ -29,6 +29,9 @@ pub struct SceneBuffers {
     vertices: wgpu::Buffer,
     normals: wgpu::Buffer,
     meshes: wgpu::Buffer,
+    uvs: wgpu::Buffer,
+    texels: wgpu::Buffer,
+    textures: wgpu::Buffer,
     pub output: wgpu::Buffer,
     pub stats: wgpu::Buffer,
     pub probe: wgpu::Buffer,
@@ -93,6 +96,9 @@ fn check_limits(ctx: &GpuContext, scene: &FlatScene, bvh: bool) -> Result<u64, G
     check("the sphere buffer", size_of_val(scene.spheres.as_slice()) as u64)?;
     check("the BVH node buffer", size_of_val(scene.bvh_nodes.as_slice()) as u64)?;
     check("the BVH primitive buffer", size_of_val(scene.bvh_prims.as_slice()) as u64)?;
+    check("the texture coordinate buffer", size_of_val(scene.uvs.as_slice()) as u64)?;
+    check("the texel buffer", size_of_val(scene.texels.as_slice()) as u64)?;
+    check("the texture table", size_of_val(scene.textures.as_slice()) as u64)?;
     Ok(output_size)
 }
 
@@ -116,6 +122,9 @@ impl SceneBuffers {
             vertices: storage(ctx, "glint vertices", &scene.vertices),
             normals: storage(ctx, "glint normals", &scene.normals),
             meshes: storage(ctx, "glint meshes", &scene.meshes),
+            uvs: storage(ctx, "glint texture coordinates", &scene.uvs),
+            texels: storage(ctx, "glint texels", &scene.texels),
+            textures: storage(ctx, "glint textures", &scene.textures),
             output: ctx.device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("glint output"),
                 size: output_size,
@@ -158,6 +167,9 @@ impl SceneBuffers {
             Binding::Vertices => &self.vertices,
             Binding::Normals => &self.normals,
             Binding::Meshes => &self.meshes,
+            Binding::Uvs => &self.uvs,
+            Binding::Texels => &self.texels,
+            Binding::Textures => &self.textures,
             Binding::RaysIn | Binding::HitsOut => return None,
         })
     }

@@ -29,6 +29,8 @@ pub fn breakdown(r: &ProbeRecord) -> Breakdown {
         normal: v(r.normal),
         emission: v(r.emission),
         ambient: v(r.ambient),
+        ka: v(r.ka),
+        kd: v(r.kd),
         lights: r.lights[..r.light_count as usize]
             .iter()
             .map(|l| LightTerm {

@@ -34,7 +34,7 @@ pub const BVH_STACK_SIZE: u32 = 64;
 pub const MAX_TREE_NODES: u32 = LAVAPIPE_LOOP_BUDGET / 1_000 * 1_000;
 
 /// The modules in dependency order: (import path, file name, source).
-pub const SHADER_MODULES: [(&str, &str, &str); 9] = [
+pub const SHADER_MODULES: [(&str, &str, &str); 10] = [
     ("glint::scene_data", "layout.wgsl", include_str!("../../../shaders/layout.wgsl")),
     ("glint::bindings", "bindings.wgsl", include_str!("../../../shaders/bindings.wgsl")),
     ("glint::ray", "ray.wgsl", include_str!("../../../shaders/ray.wgsl")),
@@ -43,6 +43,7 @@ pub const SHADER_MODULES: [(&str, &str, &str); 9] = [
     ("glint::intersect", "intersect.wgsl", include_str!("../../../shaders/intersect.wgsl")),
     ("glint::bvh", "bvh.wgsl", include_str!("../../../shaders/bvh.wgsl")),
     ("glint::offset", "offset.wgsl", include_str!("../../../shaders/offset.wgsl")),
+    ("glint::texture", "texture.wgsl", include_str!("../../../shaders/texture.wgsl")),
     ("glint::shade", "shade.wgsl", include_str!("../../../shaders/shade.wgsl")),
 ];
 
@@ -92,8 +93,9 @@ impl ShaderKey {
 
     /// The storage buffers the variant binds (a test checks this against the composed module):
     /// materials, lights, output and stats always, one per sphere or plane kind compiled in,
-    /// four for triangles (triangles, vertices, normals, meshes), the probe record, and the
-    /// BVH's two.
+    /// four for triangles (triangles, vertices, normals, meshes), the probe record, the
+    /// BVH's two, and for textures the texels and the table, with texture coordinates when
+    /// there are triangles.
     pub fn storage_buffers(&self) -> u32 {
         let on = |f: u32| u32::from(self.features & f != 0);
         4 + on(feature::SPHERES)
@@ -101,6 +103,8 @@ impl ShaderKey {
             + 4 * on(feature::TRIANGLES)
             + u32::from(self.probe)
             + if self.bvh { 2 } else { 0 }
+            + 2 * on(feature::TEXTURES)
+            + on(feature::TEXTURES) * on(feature::TRIANGLES)
     }
 
     /// The variant, if this device binds as many storage buffers per stage as it needs (wgpu's
@@ -364,6 +368,10 @@ mod tests {
             "reflect_dir",
             "push_ray",
             "strata_rows",
+            "sample_texture",
+            "planar_uv",
+            "triangle_uv",
+            "wrap_texel",
         ] {
             assert!(!names.iter().any(|n| n == absent), "specialised module still has {absent}: {names:?}");
         }
@@ -372,14 +380,27 @@ mod tests {
         }
         let bindings: Vec<u32> =
             module.global_variables.iter().filter_map(|(_, g)| g.binding.as_ref().map(|b| b.binding)).collect();
-        for absent in [Binding::Planes.number(), Binding::Triangles.number()] {
+        let untextured = [Binding::Uvs, Binding::Texels, Binding::Textures].map(Binding::number);
+        for absent in [Binding::Planes.number(), Binding::Triangles.number()].into_iter().chain(untextured) {
             assert!(!bindings.contains(&absent), "binding {absent} should be gone: {bindings:?}");
         }
         let full = compose_or_report(&ShaderKey::full());
         let full_names = function_names(&full);
-        for f in ["intersect_triangle", "spot_factor", "refract_dir", "push_ray"] {
+        for f in ["intersect_triangle", "spot_factor", "refract_dir", "push_ray", "sample_texture", "triangle_uv"] {
             assert!(full_names.iter().any(|n| n == f), "the full shader should have {f}");
         }
+        let full_bindings: Vec<u32> =
+            full.global_variables.iter().filter_map(|(_, g)| g.binding.as_ref().map(|b| b.binding)).collect();
+        assert!(untextured.iter().all(|b| full_bindings.contains(b)), "the full shader binds the textures");
+        // Textures on spheres and planes only: texels and table, no texture coordinates.
+        let planar =
+            ShaderKey { features: feature::TEXTURES | feature::SPHERES, stack_size: 1, probe: false, bvh: false };
+        let planar = compose_or_report(&planar);
+        let planar_bindings: Vec<u32> =
+            planar.global_variables.iter().filter_map(|(_, g)| g.binding.as_ref().map(|b| b.binding)).collect();
+        assert!(
+            planar_bindings.contains(&Binding::Texels.number()) && !planar_bindings.contains(&Binding::Uvs.number())
+        );
         assert!(full_names.iter().any(|n| n == "slab_ray"), "the full shader walks the BVH");
         let brute = compose_or_report(&ShaderKey { bvh: false, ..ShaderKey::full() });
         let brute_names = function_names(&brute);

@@ -6,7 +6,7 @@
 
 use std::collections::{BTreeMap, BTreeSet};
 
-const TWINS: [(&str, &str, &str, &str); 10] = [
+const TWINS: [(&str, &str, &str, &str); 11] = [
     (
         "rng.wgsl",
         include_str!("../../../shaders/rng.wgsl"),
@@ -36,6 +36,12 @@ const TWINS: [(&str, &str, &str, &str); 10] = [
         include_str!("../../../shaders/offset.wgsl"),
         "cpu/offset.rs",
         include_str!("../../glint-core/src/cpu/offset.rs"),
+    ),
+    (
+        "texture.wgsl",
+        include_str!("../../../shaders/texture.wgsl"),
+        "cpu/texture.rs",
+        include_str!("../../glint-core/src/cpu/texture.rs"),
     ),
     (
         "shade.wgsl",

@@ -12,5 +12,6 @@ pub mod reference;
 pub mod render;
 pub mod scene;
 pub mod temp;
+pub mod texture;
 
 pub use temp::TempDir;

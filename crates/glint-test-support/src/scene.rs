@@ -190,6 +190,38 @@ impl SceneText {
         self
     }
 
+    /// An indexed mesh with texture coordinates per vertex.
+    pub fn textured_mesh(
+        mut self,
+        vertices: &[[f64; 3]],
+        triangles: &[[u32; 3]],
+        uvs: &[[f64; 2]],
+        material: &str,
+    ) -> Self {
+        self = self.mesh(vertices, triangles, None, material);
+        self.text.pop();
+        let uvs: Vec<String> = uvs.iter().map(|uv| format!("[{:?}, {:?}]", uv[0], uv[1])).collect();
+        writeln!(self.text, "uvs = [{}]\n", uvs.join(", ")).unwrap();
+        self
+    }
+
+    /// Writes the scene as `dir/scene.toml` and loads it from there (texture paths are
+    /// relative to it), panicking with the error text.
+    pub fn desc_in(&self, dir: &Path) -> SceneDesc {
+        let file = dir.join("scene.toml");
+        std::fs::write(&file, &self.text).expect("scene file written");
+        match glint_core::scene::load_scene(&file.to_string_lossy()) {
+            Ok(loaded) => loaded.desc,
+            Err(e) => panic!("test scene does not load: {e}\n--- scene ---\n{}", self.text),
+        }
+    }
+
+    /// `desc_in`, as a flat scene with the scene's own render settings.
+    pub fn flat_in(&self, dir: &Path) -> FlatScene {
+        let desc = self.desc_in(dir);
+        FlatScene::build(&desc, &desc.render)
+    }
+
     /// Parses (through the real parser and validation) and panics with the error text.
     pub fn desc(&self) -> SceneDesc {
         match parse_scene(&self.text, Path::new("test-scene.toml")) {
@@ -214,6 +246,7 @@ pub fn large_mesh_desc(w: u32, h: u32, mesh: (Vec<[f64; 3]>, Vec<[u32; 3]>)) -> 
         vertices: mesh.0,
         triangles: mesh.1,
         normals: None,
+        uvs: None,
         material: "clay".into(),
         name: "large mesh".into(),
     });

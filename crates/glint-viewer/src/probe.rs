@@ -101,6 +101,10 @@ pub fn terms(cpu: &Breakdown, gpu: Option<&Breakdown>) -> Vec<Term> {
     let s = |v: f64| DVec3::splat(v);
     let mut out = Vec::new();
     let mut push = |name: String, c: DVec3, g: Option<DVec3>| out.push(Term { name, cpu: c, gpu: g });
+    // The colours after the textures first: where a texture is sampled differently, the terms
+    // it feeds differ too, and the first difference should name the cause.
+    push("k_a (textured)".into(), cpu.ka, gpu.map(|g| g.ka));
+    push("k_d (textured)".into(), cpu.kd, gpu.map(|g| g.kd));
     push("E_m".into(), cpu.emission, gpu.map(|g| g.emission));
     push("I_a·k_a".into(), cpu.ambient, gpu.map(|g| g.ambient));
     for (j, l) in cpu.lights.iter().enumerate() {
@@ -138,6 +142,8 @@ mod tests {
         gpu.emission += DVec3::splat(1e-9); // rounding: within tolerance
         assert_eq!(first_difference(&terms(&cpu, Some(&gpu))), None);
         gpu.ambient += DVec3::new(0.0, 0.01, 0.0);
+        assert_eq!(first_difference(&terms(&cpu, Some(&gpu))), Some(3));
+        gpu.kd += DVec3::new(0.0, 0.01, 0.0);
         assert_eq!(first_difference(&terms(&cpu, Some(&gpu))), Some(1));
     }
 }

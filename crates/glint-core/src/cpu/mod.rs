@@ -8,6 +8,7 @@ pub mod offset;
 pub mod raycast;
 pub mod rng;
 pub mod shade;
+pub mod texture;
 pub mod trace;
 
 use std::ops::AddAssign;
@@ -16,7 +17,7 @@ use glam::DVec3;
 
 use crate::flat::FlatScene;
 use crate::layout::{UnknownTag, feature};
-use crate::scene::{EpsilonMode, LightKind};
+use crate::scene::{EpsilonMode, Filter, LightKind, Wrap};
 
 /// A ray with a unit direction.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -119,6 +120,8 @@ pub struct TraceContext<'a> {
     pub bailout: f64,
     /// The kind of each light, in light order.
     pub light_kinds: Vec<LightKind>,
+    /// The wrap modes (u, v) and filter of each texture, in table order.
+    pub texture_modes: Vec<([Wrap; 2], Filter)>,
 }
 
 impl<'a> TraceContext<'a> {
@@ -140,6 +143,11 @@ impl<'a> TraceContext<'a> {
             epsilon_mode: EpsilonMode::try_from(h.epsilon_mode)?,
             bailout: f64::from(h.bailout),
             light_kinds: scene.lights.iter().map(|l| LightKind::try_from(l.kind)).collect::<Result<_, _>>()?,
+            texture_modes: scene
+                .textures
+                .iter()
+                .map(|t| Ok(([Wrap::try_from(t.wrap_s)?, Wrap::try_from(t.wrap_t)?], Filter::try_from(t.filter_mode)?)))
+                .collect::<Result<_, UnknownTag>>()?,
         })
     }
 

@@ -2,12 +2,13 @@
 //!
 //! I_local = E_m + I_a·k_a + Σ_j f_att,j·S_j·[ I_a,j·k_a + V_j·( I_d,j·k_d·max(N·L,0) + I_s,j·k_s·spec_j ) ]
 
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 
 use super::intersect::{FAR, all_zero, shadow_transmittance};
 use super::offset::{shadow_t_max, spawn_ray};
+use super::texture::sample_texture;
 use super::{Ray, RayCounts, TraceContext, v3};
-use crate::layout::{GpuLight, GpuMaterial, LIGHT_CASTS_SHADOWS, MATERIAL_CHECKER, feature};
+use crate::layout::{GpuLight, GpuMaterial, LIGHT_CASTS_SHADOWS, NO_TEXTURE, feature};
 use crate::scene::{LightKind, SpecularModel};
 
 /// Geometry at a hit: point, unit geometric and shading normals as stored (not yet turned
@@ -21,6 +22,8 @@ pub struct Surface {
     pub p_surface: DVec3,
     pub ng: DVec3,
     pub ns: DVec3,
+    /// Texture coordinates (zero when the scene has no textures).
+    pub uv: DVec2,
     pub material: u32,
     pub object_id: u32,
 }
@@ -107,25 +110,30 @@ pub fn specular_term(ctx: &TraceContext, mat: &GpuMaterial, n: DVec3, l: DVec3, 
     safe_pow((n.dot(h) / len).max(0.0), shininess)
 }
 
-/// The diffuse colour at `p`: k_d, or the checker of k_d and `checker_kd`. The checker uses the
-/// two coordinates across the dominant axis of the geometric normal, so a floor at y = 0 does
-/// not flicker with the sign of rounding errors in y.
-pub fn diffuse_colour(ctx: &TraceContext, mat: &GpuMaterial, p: DVec3, ng: DVec3) -> DVec3 {
-    if !ctx.has(feature::CHECKER) || mat.flags & MATERIAL_CHECKER == 0 {
-        return v3(mat.kd);
+/// The colours of the model at a hit, after the material's textures.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MaterialColours {
+    pub ka: DVec3,
+    pub kd: DVec3,
+    pub emission: DVec3,
+}
+
+/// k_a, k_d and E_m at texture coordinates `uv`: a diffuse texture's colour multiplies k_a and
+/// k_d (POV-Ray's pigment, OpenGL's ambient-and-diffuse colour material), an emission
+/// texture's multiplies E_m.
+pub fn material_colours(ctx: &TraceContext, mat: &GpuMaterial, uv: DVec2) -> MaterialColours {
+    let mut c = MaterialColours { ka: v3(mat.ka), kd: v3(mat.kd), emission: v3(mat.emission) };
+    if ctx.has(feature::TEXTURES) {
+        if mat.diffuse_texture != NO_TEXTURE {
+            let t = sample_texture(ctx, mat.diffuse_texture, uv);
+            c.ka *= t;
+            c.kd *= t;
+        }
+        if mat.emission_texture != NO_TEXTURE {
+            c.emission *= sample_texture(ctx, mat.emission_texture, uv);
+        }
     }
-    let a = ng.abs();
-    let (u, w) = if a.x >= a.y && a.x >= a.z {
-        (p.y, p.z)
-    } else if a.y >= a.z {
-        (p.x, p.z)
-    } else {
-        (p.x, p.y)
-    };
-    let inv = 1.0 / f64::from(mat.checker_size);
-    // Saturating casts: squares beyond ±2^63 are far outside any valid scene.
-    let parity = ((u * inv).floor() as i64).wrapping_add((w * inv).floor() as i64) & 1;
-    if parity == 0 { v3(mat.kd) } else { v3(mat.checker_kd) }
+    c
 }
 
 /// Visibility V_j of a light from the hit: 1 unobstructed, 0 behind an opaque occluder, the
@@ -190,6 +198,9 @@ pub struct Breakdown {
     pub emission: DVec3,
     /// I_a·k_a.
     pub ambient: DVec3,
+    /// k_a and k_d at the hit, after the texture (the material's own without one).
+    pub ka: DVec3,
+    pub kd: DVec3,
     /// Every light's terms, in light order.
     pub lights: Vec<LightTerm>,
     /// k_r·I_r (including the k_t share under total internal reflection).
@@ -221,7 +232,7 @@ pub fn light_term(
     n: DVec3,
     ng: DVec3,
     v: DVec3,
-    kd: DVec3,
+    c: &MaterialColours,
     counts: &mut RayCounts,
 ) -> LightTerm {
     let ls = light_sample(ctx, light, kind, s.p);
@@ -231,7 +242,7 @@ pub fn light_term(
         return term;
     }
     if ctx.has(feature::LIGHT_AMBIENT) {
-        term.ambient = v3(light.ambient) * v3(mat.ka);
+        term.ambient = v3(light.ambient) * c.ka;
     }
     let n_dot_l = n.dot(ls.l);
     if n_dot_l > 0.0 {
@@ -241,7 +252,7 @@ pub fn light_term(
             DVec3::ONE
         };
         if !all_zero(term.visibility) {
-            term.diffuse = v3(light.diffuse) * kd * n_dot_l;
+            term.diffuse = v3(light.diffuse) * c.kd * n_dot_l;
             if ctx.has(feature::SPECULAR) && !all_zero(v3(mat.ks)) {
                 term.specular = v3(light.specular) * v3(mat.ks) * specular_term(ctx, mat, n, ls.l, v, n_dot_l);
             }
@@ -264,12 +275,12 @@ pub fn shade_local(
 ) -> DVec3 {
     let scene = ctx.scene;
     let mat = &scene.materials[s.material as usize];
-    let emission = if ctx.has(feature::EMISSION) { v3(mat.emission) } else { DVec3::ZERO };
-    let ambient = v3(scene.header.ambient) * v3(mat.ka);
-    let kd = diffuse_colour(ctx, mat, s.p, ng);
+    let c = material_colours(ctx, mat, s.uv);
+    let emission = if ctx.has(feature::EMISSION) { c.emission } else { DVec3::ZERO };
+    let ambient = v3(scene.header.ambient) * c.ka;
     let mut sum = DVec3::ZERO;
     for (light, &kind) in scene.lights.iter().zip(&ctx.light_kinds) {
-        let term = light_term(ctx, light, kind, mat, s, n, ng, v, kd, counts);
+        let term = light_term(ctx, light, kind, mat, s, n, ng, v, &c, counts);
         sum += term.contribution;
         if let Some(b) = probe.as_deref_mut() {
             b.lights.push(term);
@@ -278,6 +289,8 @@ pub fn shade_local(
     if let Some(b) = probe {
         b.emission = emission;
         b.ambient = ambient;
+        b.ka = c.ka;
+        b.kd = c.kd;
     }
     emission + ambient + sum
 }

@@ -4,33 +4,39 @@
 //! k_r·I_r and k_t·I_t with the same path weights and the same bailout decisions, so only the
 //! order of summation differs.
 
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 
 use super::camera::{camera_ray, sample_offset};
 use super::intersect::{FAR, Hit, Prim, all_zero, closest_hit, triangle_corners, triangle_shading_normal};
 use super::offset::spawn_ray;
 use super::shade::{Breakdown, Surface, shade_local};
+use super::texture::{planar_uv, triangle_uv};
 use super::{Ray, RayCounts, TraceContext, v3};
 use crate::layout::{NO_HIT, feature};
 use crate::scene::EpsilonMode;
 
+/// The surface at a hit. Texture coordinates are computed only when some material has a
+/// texture (`feature::TEXTURES`), else they are zero.
 pub fn surface_at(ctx: &TraceContext, ray: &Ray, hit: &Hit) -> Surface {
     let scene = ctx.scene;
     let p = ray.origin + hit.t * ray.dir;
     let robust = ctx.epsilon_mode == EpsilonMode::Robust;
+    let textures = ctx.has(feature::TEXTURES);
     match hit.prim {
         Prim::Sphere => {
             let s = &scene.spheres[hit.index as usize];
             let c = v3(s.center_radius);
             let ng = (p - c).normalize();
             let p_surface = if robust { c + f64::from(s.center_radius[3]) * ng } else { p };
-            Surface { p, p_surface, ng, ns: ng, material: s.material, object_id: s.object_id }
+            let uv = if textures { planar_uv(p, ng) } else { DVec2::ZERO };
+            Surface { p, p_surface, ng, ns: ng, uv, material: s.material, object_id: s.object_id }
         }
         Prim::Plane => {
             let pl = &scene.planes[hit.index as usize];
             let ng = v3(pl.normal_offset);
             let p_surface = if robust { p - (ng.dot(p) - f64::from(pl.normal_offset[3])) * ng } else { p };
-            Surface { p, p_surface, ng, ns: ng, material: pl.material, object_id: pl.object_id }
+            let uv = if textures { planar_uv(p, ng) } else { DVec2::ZERO };
+            Surface { p, p_surface, ng, ns: ng, uv, material: pl.material, object_id: pl.object_id }
         }
         Prim::Triangle => {
             let tri = &scene.triangles[hit.index as usize];
@@ -38,8 +44,9 @@ pub fn surface_at(ctx: &TraceContext, ray: &Ray, hit: &Hit) -> Surface {
             let ng = (v1 - v0).cross(v2 - v0).normalize();
             let ns = triangle_shading_normal(scene, tri, hit.bu, hit.bv, ng);
             let p_surface = if robust { (1.0 - hit.bu - hit.bv) * v0 + hit.bu * v1 + hit.bv * v2 } else { p };
+            let uv = if textures { triangle_uv(scene, tri, hit.bu, hit.bv, p, ng) } else { DVec2::ZERO };
             let mesh = &scene.meshes[tri.mesh as usize];
-            Surface { p, p_surface, ng, ns, material: mesh.material, object_id: mesh.object_id }
+            Surface { p, p_surface, ng, ns, uv, material: mesh.material, object_id: mesh.object_id }
         }
     }
 }

@@ -1,12 +1,14 @@
 //! Wavefront OBJ/MTL import (through `tobj`): meshes and the MTL materials, mapped onto the
-//! seed's model as `docs/models.md` tabulates. `mtllib` goes through `uri::resolve_uri` like
-//! every other reference, so an MTL outside the model's folder is refused.
+//! seed's model as `docs/models.md` tabulates. `mtllib`, `map_Kd` and `map_Ke` go through
+//! `uri::resolve_uri` like every other reference, so a file outside the model's folder is
+//! refused.
 
 use std::path::Path;
+use std::sync::Arc;
 
 use super::Model;
 use super::uri::{MAX_RESOURCE_BYTES, UriError, resolve_uri};
-use crate::scene::{FieldIssue, MaterialDesc, MeshDesc, Rgb};
+use crate::scene::{ColorSpace, FieldIssue, MaterialDesc, MeshDesc, Rgb, TextureDesc, TextureImage};
 
 /// Why an OBJ did not load.
 #[derive(Debug, thiserror::Error)]
@@ -19,6 +21,8 @@ pub enum ObjError {
     Parse { file: std::path::PathBuf, line: Option<usize>, reason: String },
     #[error("{file}: no triangles (points and lines are not traced)")]
     Empty { file: std::path::PathBuf },
+    #[error("{file}: materials.{material}.{field} `{uri}`: {reason}")]
+    Texture { file: std::path::PathBuf, material: String, field: &'static str, uri: String, reason: String },
 }
 
 /// The material of faces that name none (MTL's defaults for Kd, no highlight).
@@ -59,8 +63,20 @@ pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
         }
     };
     let names: Vec<String> = materials.iter().map(|m| material_name(&m.name)).collect();
+    let mut images = Images::default();
     for (m, name) in materials.iter().zip(&names) {
-        out.materials.insert(name.clone(), map_material(m, name, &mut out.warnings));
+        let mut material = map_material(m, name, &mut out.warnings);
+        if let Some(map) = m.diffuse_texture.as_deref() {
+            material.texture = Some(images.texture(path, map, name, "texture", &mut out.warnings)?);
+        }
+        if let Some(map) = m.unknown_param.get("map_Ke") {
+            material.emission_texture = Some(images.texture(path, map, name, "emission_texture", &mut out.warnings)?);
+            // Ke multiplies map_Ke; without Ke the map alone is the emission.
+            if m.emissive.is_none() {
+                material.emission = Rgb::splat(1.0);
+            }
+        }
+        out.materials.insert(name.clone(), material);
     }
     for model in models {
         let mesh = &model.mesh;
@@ -84,6 +100,10 @@ pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
             });
             normals = None;
         }
+        // OBJ's v grows upwards from the image's bottom row; glTF's (and Glint's) downwards
+        // from the top row.
+        let uvs = (mesh.texcoords.len() / 2 == vertices.len() && !mesh.texcoords.is_empty())
+            .then(|| mesh.texcoords.chunks_exact(2).map(|t| [widen(t[0]), 1.0 - widen(t[1])]).collect::<Vec<_>>());
         let material = match mesh.material_id.and_then(|i| names.get(i)) {
             Some(name) => name.clone(),
             None => {
@@ -91,7 +111,7 @@ pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
                 DEFAULT_MATERIAL.into()
             }
         };
-        out.meshes.push(MeshDesc { vertices, triangles, normals, material, name: model.name.clone() });
+        out.meshes.push(MeshDesc { vertices, triangles, normals, uvs, material, name: model.name.clone() });
     }
     if out.meshes.is_empty() {
         return Err(ObjError::Empty { file: path.to_owned() });
@@ -118,6 +138,52 @@ fn failing_line(bytes: &[u8], options: &tobj::LoadOptions) -> Option<usize> {
         if fails(mid) { hi = mid } else { lo = mid + 1 }
     }
     Some(lo)
+}
+
+/// The images of one model, each decoded once however many materials name it.
+#[derive(Default)]
+struct Images {
+    decoded: Vec<(String, Arc<TextureImage>)>,
+}
+
+impl Images {
+    /// A `map_Kd`/`map_Ke` statement as a texture (repeat, bilinear, as MTL renderers sample).
+    /// Its options (`-s`, `-o`, `-clamp`, …) are not applied: a warning names them. Windows
+    /// separators, common in MTL files, are read as `/`.
+    fn texture(
+        &mut self,
+        obj: &Path,
+        statement: &str,
+        material: &str,
+        field: &'static str,
+        warnings: &mut Vec<FieldIssue>,
+    ) -> Result<TextureDesc, ObjError> {
+        let file = if statement.starts_with('-') {
+            warnings.push(FieldIssue {
+                field: format!("materials.{material}.{field}"),
+                problem: format!("options of `{statement}` are ignored; the image is sampled repeating and bilinear"),
+            });
+            statement.split_whitespace().last().unwrap_or(statement)
+        } else {
+            statement
+        };
+        let uri = file.replace('\\', "/");
+        let uri = uri.strip_prefix("./").unwrap_or(&uri).to_string();
+        if let Some((_, image)) = self.decoded.iter().find(|(u, _)| *u == uri) {
+            return Ok(TextureDesc::decoded(uri, Arc::clone(image)));
+        }
+        let error = |reason: String| ObjError::Texture {
+            file: obj.to_owned(),
+            material: material.to_string(),
+            field,
+            uri: uri.clone(),
+            reason,
+        };
+        let bytes = resolve_uri(obj, &uri, MAX_RESOURCE_BYTES).map_err(|e| error(e.to_string()))?;
+        let image = Arc::new(TextureImage::decode(&bytes, ColorSpace::Srgb).map_err(|e| error(e.to_string()))?);
+        self.decoded.push((uri.clone(), Arc::clone(&image)));
+        Ok(TextureDesc::decoded(uri, image))
+    }
 }
 
 /// MTL names may hold any character; the scene format's keys are kept readable.
@@ -173,9 +239,6 @@ fn map_material(m: &tobj::Material, name: &str, warnings: &mut Vec<FieldIssue>) 
         }
         None => 1.5,
     };
-    if m.diffuse_texture.is_some() {
-        warn("kd", "map_Kd textures are not supported yet; the constant Kd is used".into());
-    }
     let shininess = widen(m.shininess.unwrap_or(0.0)).clamp(0.0, crate::scene::MAX_SHININESS);
     MaterialDesc {
         ka: m.ambient.map_or(kd, rgb),
@@ -250,5 +313,63 @@ mod tests {
         assert_eq!(plain.meshes.len(), 1);
         assert_eq!(plain.meshes[0].triangles.len(), 2, "a quad is two triangles");
         assert_eq!(plain.meshes[0].material, DEFAULT_MATERIAL);
+    }
+
+    fn png(path: &Path) {
+        let mut out = Vec::new();
+        let mut encoder = png::Encoder::new(&mut out, 2, 1);
+        encoder.set_color(png::ColorType::Rgba);
+        encoder.write_header().unwrap().write_image_data(&[255, 0, 0, 255, 0, 0, 255, 255]).unwrap();
+        std::fs::write(path, out).unwrap();
+    }
+
+    #[test]
+    fn map_kd_map_ke_and_vt_become_textures_and_uvs() {
+        let dir = tempfile::tempdir().unwrap();
+        png(&dir.path().join("tex.png"));
+        write(
+            dir.path(),
+            "m.mtl",
+            "newmtl t\nKa 0.5 0.5 0.5\nKd 1 1 1\nmap_Kd -s 2 2 1 .\\tex.png\nnewmtl e\nmap_Ke tex.png\n",
+        );
+        let obj = write(
+            dir.path(),
+            "m.obj",
+            "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 0.25\nvt 0 1\n\
+             usemtl t\nf 1/1 2/2 3/3\nusemtl e\nf 1/1 3/3 4/4\n",
+        );
+        let m = load_obj(&obj).expect("loads");
+        let (t, e) = (&m.materials["t"], &m.materials["e"]);
+        let texture = t.texture.as_ref().expect("map_Kd is a texture");
+        assert_eq!(texture.path, "tex.png", "`.\\` read as the folder");
+        let image = texture.image.as_ref().expect("decoded");
+        assert_eq!((image.width(), image.height(), image.texels()[0]), (2, 1, [1.0, 0.0, 0.0, 1.0]));
+        assert!(m.warnings.iter().any(|w| w.field == "materials.t.texture" && w.problem.contains("ignored")));
+        let glow = e.emission_texture.as_ref().expect("map_Ke is an emission texture");
+        assert!(Arc::ptr_eq(glow.image.as_ref().unwrap(), image), "one decode per image file");
+        assert_eq!(e.emission, Rgb::splat(1.0), "map_Ke without Ke");
+        // OBJ's v is flipped into glTF's convention.
+        let uvs = m.meshes[0].uvs.as_ref().expect("vt read");
+        assert_eq!(&uvs[..3], &[[0.0, 1.0], [1.0, 1.0], [1.0, 0.75]]);
+    }
+
+    #[test]
+    fn a_map_kd_outside_the_folder_or_not_an_image_is_an_error_naming_it() {
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::create_dir(dir.path().join("model")).unwrap();
+        png(&dir.path().join("secret.png"));
+        write(&dir.path().join("model"), "bad.png", "not an image");
+        for (map, reason) in [("../secret.png", "outside the model's folder"), ("bad.png", "not a PNG or JPEG")] {
+            write(&dir.path().join("model"), "m.mtl", &format!("newmtl t\nmap_Kd {map}\n"));
+            let obj = write(&dir.path().join("model"), "m.obj", &format!("mtllib m.mtl\n{QUAD}usemtl t\nf 1 2 3\n"));
+            let message = load_obj(&obj).unwrap_err().to_string();
+            assert!(
+                message.contains("m.obj")
+                    && message.contains("materials.t.texture")
+                    && message.contains(map)
+                    && message.contains(reason),
+                "{message}"
+            );
+        }
     }
 }

@@ -81,6 +81,7 @@ fn mesh(mesh: (Vec<[f64; 3]>, Vec<[u32; 3]>), material: &str, name: &str) -> Obj
         vertices: mesh.0,
         triangles: mesh.1,
         normals: None,
+        uvs: None,
         material: material.into(),
         name: name.into(),
     })

@@ -10,6 +10,7 @@ use serde::{Deserialize, Serialize};
 use super::model_ref::ModelDesc;
 use super::number::shorten;
 use super::rgb::Rgb;
+use super::texture::TextureDesc;
 use crate::layout;
 
 /// A whole scene file.
@@ -213,8 +214,17 @@ pub struct MaterialDesc {
     pub kt: Rgb,
     pub ior: f64,
     pub emission: Rgb,
-    /// Replaces k_d by a two-colour checker (k_d and `checker.kd`).
+    /// A two-colour checker (k_d and `checker.kd`) in planar coordinates: stored as a 2×2
+    /// texture, so it colours k_a as well as k_d, as `texture` does.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub checker: Option<CheckerDesc>,
+    /// Base-colour texture: its colour multiplies k_a and k_d (POV-Ray's pigment, OpenGL's
+    /// ambient-and-diffuse colour material, glTF's base colour × factor).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub texture: Option<TextureDesc>,
+    /// Emission texture: its colour multiplies E_m.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub emission_texture: Option<TextureDesc>,
 }
 
 impl Default for MaterialDesc {
@@ -230,6 +240,8 @@ impl Default for MaterialDesc {
             ior: 1.5,
             emission: Rgb::splat(0.0),
             checker: None,
+            texture: None,
+            emission_texture: None,
         }
     }
 }
@@ -396,7 +408,8 @@ pub struct PlaneDesc {
     pub name: String,
 }
 
-/// An indexed triangle mesh, optionally with per-vertex shading normals.
+/// An indexed triangle mesh, optionally with per-vertex shading normals and texture
+/// coordinates.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct MeshDesc {
@@ -404,6 +417,10 @@ pub struct MeshDesc {
     pub triangles: Vec<[u32; 3]>,
     #[serde(default)]
     pub normals: Option<Vec<[f64; 3]>>,
+    /// Texture coordinates (u, v) per vertex, glTF's convention: (0, 0) is the image's
+    /// top-left corner. Without them a texture is mapped in planar coordinates.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub uvs: Option<Vec<[f64; 2]>>,
     pub material: String,
     #[serde(default)]
     pub name: String,

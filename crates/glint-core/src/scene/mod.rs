@@ -14,6 +14,7 @@ mod number;
 mod overflow;
 mod ray_tree;
 mod rgb;
+mod texture;
 mod validate;
 
 use std::path::{Path, PathBuf};
@@ -31,6 +32,10 @@ pub use number::{format_number, shorten};
 pub use overflow::overflow_causes;
 pub use ray_tree::{WARN_RAYS_PER_SAMPLE, reachable_depth, unbounded_ray_tree};
 pub use rgb::Rgb;
+pub use texture::{
+    ColorSpace, Filter, MAX_TEXTURE_SIDE, MAX_TEXTURE_TEXELS, TextureDesc, TextureError, TextureImage, UvTransform,
+    Wrap, load_textures, material_textures, srgb_to_linear,
+};
 pub use validate::{
     MAX_COORD, MAX_DEPTH, MAX_EPSILON, MAX_IMAGE_SIDE, MAX_INTENSITY, MAX_IOR, MAX_SHININESS, MAX_SPOT_EXPONENT,
     MAX_SPP, MIN_ATTENUATION_DENOMINATOR, Range, Report, ranges, validate, validate_settings,
@@ -47,8 +52,8 @@ pub struct LoadedScene {
     pub warnings: Vec<FieldIssue>,
 }
 
-/// Parses and validates scene text; `file` is only used in messages.
-/// Model objects (`type = "model"`) are read relative to `file`'s folder.
+/// Parses scene text, loads its model objects and decodes its textures (paths relative to
+/// `file`, the scene file's path, also named in messages), and validates it.
 pub fn parse_scene(text: &str, file: &Path) -> Result<(SceneDesc, Vec<FieldIssue>), SceneError> {
     let mut desc: SceneDesc = toml::from_str(text).map_err(|e| SceneError::Parse {
         file: file.to_owned(),
@@ -57,6 +62,7 @@ pub fn parse_scene(text: &str, file: &Path) -> Result<(SceneDesc, Vec<FieldIssue
     let folder = file.parent().unwrap_or(Path::new("."));
     let mut warnings =
         load_models(&mut desc, folder).map_err(|issues| SceneError::Invalid { file: file.to_owned(), issues })?;
+    load_textures(&mut desc, file)?;
     let (desc, scene_warnings) = validated(desc, file)?;
     warnings.extend(scene_warnings);
     Ok((desc, warnings))

@@ -200,6 +200,7 @@ impl LoadedModel {
             .map(|mesh| MeshDesc {
                 vertices: mesh.vertices.iter().map(|v| m.point(*v)).collect(),
                 normals: mesh.normals.map(|ns| ns.iter().map(|n| m.normal(*n)).collect()),
+                uvs: mesh.uvs,
                 triangles: if mirror {
                     mesh.triangles.iter().map(|t| [t[0], t[2], t[1]]).collect()
                 } else {

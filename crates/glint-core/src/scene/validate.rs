@@ -13,6 +13,7 @@ use super::desc::{
 use super::error::FieldIssue;
 use super::number::{format_number as num, shorten};
 use super::rgb::Rgb;
+use super::texture::{TextureDesc, material_textures};
 
 /// Coordinates and sizes are limited so that squares and sums stay finite in f32
 /// (the GPU tracer computes |o − c|² for spheres).
@@ -261,6 +262,14 @@ fn validate_material(path: &str, m: &MaterialDesc, r: &mut Report) {
     if let Some(ch) = &m.checker {
         r.colour(&format!("{path}.checker.kd"), ch.kd);
         r.size(&format!("{path}.checker.size"), ch.size, ranges::SIZE);
+        if m.texture.is_some() {
+            r.error(format!("{path}.checker"), "a material has a checker or a texture, not both");
+        }
+    }
+    for (field, texture) in material_textures(m) {
+        if let Some(t) = texture {
+            validate_texture(&format!("{path}.{field}"), t, r);
+        }
     }
     let sum = (0..3).map(|i| m.kr.0[i] + m.kt.0[i]).fold(0.0, f64::max);
     if sum > 1.0 {
@@ -268,6 +277,25 @@ fn validate_material(path: &str, m: &MaterialDesc, r: &mut Report) {
             format!("{path}.kr + kt"),
             format!("k_r + k_t = {} > 1: the surface returns more light than it receives", num(sum)),
         );
+    }
+}
+
+/// A texture's transform, and that its image was decoded (`load_textures`, or an importer).
+fn validate_texture(path: &str, t: &TextureDesc, r: &mut Report) {
+    if t.image.is_none() {
+        r.error(
+            format!("{path}.path"),
+            format!("`{}` was not decoded (scene descriptions built in code call scene::load_textures)", t.path),
+        );
+    }
+    if let Some(tr) = &t.transform {
+        for (axis, v) in ["u", "v"].iter().zip(tr.offset) {
+            r.finite_in(&format!("{path}.transform.offset.{axis}"), v, ranges::COORD);
+        }
+        for (axis, v) in ["u", "v"].iter().zip(tr.scale) {
+            r.finite_in(&format!("{path}.transform.scale.{axis}"), v, ranges::COORD);
+        }
+        r.finite_in(&format!("{path}.transform.rotation"), tr.rotation, ranges::COORD);
     }
 }
 
@@ -421,7 +449,7 @@ fn validate_object(path: &str, o: &ObjectDesc, scene: &SceneDesc, r: &mut Report
 }
 
 fn validate_mesh(path: &str, mesh: &MeshDesc, r: &mut Report) {
-    let MeshDesc { vertices, triangles, normals, .. } = mesh;
+    let MeshDesc { vertices, triangles, normals, uvs, .. } = mesh;
 
     if triangles.is_empty() {
         r.error(format!("{path}.triangles"), "a mesh needs at least one triangle [i, j, k]");
@@ -453,6 +481,16 @@ fn validate_mesh(path: &str, mesh: &MeshDesc, r: &mut Report) {
         }
         for (i, v) in normals.iter().enumerate() {
             r.direction(&format!("{path}.normals[{i}]"), *v);
+        }
+    }
+    if let Some(uvs) = uvs {
+        if uvs.len() != n {
+            r.error(format!("{path}.uvs"), format!("has {} entries; it needs one per vertex ({n})", uvs.len()));
+        }
+        for (i, uv) in uvs.iter().enumerate() {
+            for (axis, v) in ["u", "v"].iter().zip(uv) {
+                r.finite_in(&format!("{path}.uvs[{i}].{axis}"), *v, ranges::COORD);
+            }
         }
     }
     if let Some(normals) = normals.as_ref().filter(|ns| ns.len() == n) {

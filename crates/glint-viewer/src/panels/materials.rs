@@ -53,8 +53,18 @@ pub fn ui(
     // The whole valid range: ior < 1 (a bubble) and 100 (stiff case 13) too.
     changed |= slider(ui, "Index of refraction", &mut m.ior, ranges::IOR);
     changed |= rgb_edit(ui, "E_m", &mut m.emission);
+    // Image textures are shown, not edited (their file is the scene's); a checker and a base
+    // colour texture exclude each other.
+    for (label, texture) in [("Texture (× k_a, k_d)", &m.texture), ("Emission texture (× E_m)", &m.emission_texture)]
+    {
+        if let Some(t) = texture {
+            let size = t.image.as_ref().map_or_else(String::new, |i| format!(", {}×{}", i.width(), i.height()));
+            ui.label(format!("{label}: {}{size}", t.path));
+        }
+    }
     let mut has_checker = m.checker.is_some();
-    if ui.checkbox(&mut has_checker, "Checker").changed() {
+    let checker = ui.add_enabled(m.texture.is_none(), egui::Checkbox::new(&mut has_checker, "Checker"));
+    if checker.changed() {
         m.checker = has_checker.then(|| CheckerDesc { kd: Rgb::splat(0.1), size: 1.0 });
         changed = true;
     }

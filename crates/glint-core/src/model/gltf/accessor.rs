@@ -21,13 +21,19 @@ pub(super) enum Expect {
     Vec3F32,
     /// SCALAR of UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT (indices).
     Index,
+    /// VEC2 of FLOAT, or normalised UNSIGNED_BYTE / UNSIGNED_SHORT (TEXCOORD_n).
+    Vec2Uv,
 }
 
 impl Expect {
-    fn allows(self, dims: Dimensions, ty: DataType) -> bool {
+    fn allows(self, dims: Dimensions, ty: DataType, normalized: bool) -> bool {
         match self {
             Self::Vec3F32 => dims == Dimensions::Vec3 && ty == DataType::F32,
             Self::Index => dims == Dimensions::Scalar && matches!(ty, DataType::U8 | DataType::U16 | DataType::U32),
+            Self::Vec2Uv => {
+                dims == Dimensions::Vec2
+                    && (ty == DataType::F32 || (normalized && matches!(ty, DataType::U8 | DataType::U16)))
+            }
         }
     }
 
@@ -35,6 +41,7 @@ impl Expect {
         match self {
             Self::Vec3F32 => "VEC3 of FLOAT",
             Self::Index => "SCALAR of UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT",
+            Self::Vec2Uv => "VEC2 of FLOAT or normalized UNSIGNED_BYTE/UNSIGNED_SHORT",
         }
     }
 }
@@ -73,7 +80,7 @@ fn component(bytes: &[u8], ty: DataType, normalized: bool) -> f64 {
 }
 
 /// The bytes of `view` (a bufferView), checked against its buffer's real length.
-fn view_bytes<'b>(view: &::gltf::buffer::View<'_>, buffers: &'b Buffers) -> Result<&'b [u8], String> {
+pub(super) fn view_bytes<'b>(view: &::gltf::buffer::View<'_>, buffers: &'b Buffers) -> Result<&'b [u8], String> {
     let buffer = &buffers.0[view.buffer().index()];
     let end = view.offset().checked_add(view.length());
     end.and_then(|end| buffer.get(view.offset()..end)).ok_or_else(|| {
@@ -103,7 +110,7 @@ fn strided(data: &[u8], offset: usize, stride: usize, size: usize, count: usize)
 /// checking that the accessor is of the kind `expect` names and lies inside its buffers.
 fn read<const N: usize>(accessor: &Accessor<'_>, buffers: &Buffers, expect: Expect) -> Result<Vec<[f64; N]>, String> {
     let (dims, ty, normalized) = (accessor.dimensions(), accessor.data_type(), accessor.normalized());
-    if !expect.allows(dims, ty) || dimension_count(dims) != N {
+    if !expect.allows(dims, ty, normalized) || dimension_count(dims) != N {
         return Err(format!(
             "accessors[{}] holds {dims:?} of {ty:?}{}; wanted {}",
             accessor.index(),
@@ -181,6 +188,11 @@ fn read<const N: usize>(accessor: &Accessor<'_>, buffers: &Buffers, expect: Expe
 /// POSITION or NORMAL: VEC3 of FLOAT, widened exactly to f64.
 pub(super) fn read_vec3(accessor: &Accessor<'_>, buffers: &Buffers) -> Result<Vec<[f64; 3]>, String> {
     read::<3>(accessor, buffers, Expect::Vec3F32)
+}
+
+/// TEXCOORD_n: VEC2 of FLOAT or normalised integers (those mapped to [0, 1]).
+pub(super) fn read_uv(accessor: &Accessor<'_>, buffers: &Buffers) -> Result<Vec<[f64; 2]>, String> {
+    read::<2>(accessor, buffers, Expect::Vec2Uv)
 }
 
 /// Indices as u32.

@@ -9,6 +9,7 @@
 mod accessor;
 mod material;
 mod punctual;
+mod texture;
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -84,16 +85,40 @@ pub fn load_gltf(path: &Path, options: &ImportOptions) -> Result<Model, GltfErro
             .ok_or_else(|| at("scenes".into(), "the file has no scene to render".into()))?,
     };
     // The material table: names made readable and unique, mapped once each.
+    // Textured materials also note which TEXCOORD set their meshes must carry.
     let mut names: Vec<String> = Vec::new();
+    let mut uv_sets: Vec<Option<u32>> = Vec::new();
+    let mut images = texture::Images::default();
     for m in gltf.materials() {
         let index = m.index().unwrap_or(names.len());
         let mut name = readable(m.name().unwrap_or(""), index, "material");
         if model.materials.contains_key(&name) {
             name = format!("{name}-{index}");
         }
-        let desc = material::map_material(&m, &format!("materials[{index}] ({name})"), &mut model.warnings);
+        let mut desc = material::map_material(&m, &format!("materials[{index}] ({name})"), &mut model.warnings);
+        let base = m
+            .pbr_specular_glossiness()
+            .map_or_else(|| m.pbr_metallic_roughness().base_color_texture(), |sg| sg.diffuse_texture());
+        let mut uv_set = None;
+        if let Some(info) = base {
+            let (t, set) = texture::texture(&info, &buffers, path, &mut images).map_err(|(p, e)| at(p, e))?;
+            desc.texture = Some(t);
+            uv_set = Some(set);
+        }
+        if let Some(info) = m.emissive_texture() {
+            let (t, set) = texture::texture(&info, &buffers, path, &mut images).map_err(|(p, e)| at(p, e))?;
+            if uv_set.is_some_and(|s| s != set) {
+                model.warnings.push(FieldIssue {
+                    field: format!("materials[{index}].emissiveTexture"),
+                    problem: format!("reads TEXCOORD_{set}; the base colour's set is used for both"),
+                });
+            }
+            desc.emission_texture = Some(t);
+            uv_set = uv_set.or(Some(set));
+        }
         model.materials.insert(name.clone(), desc);
         names.push(name);
+        uv_sets.push(uv_set);
     }
     // Depth first from the scene's roots; a node reached twice is a cycle or a shared child,
     // both outside glTF's "disjoint strict trees", and refused rather than walked forever.
@@ -127,6 +152,7 @@ pub fn load_gltf(path: &Path, options: &ImportOptions) -> Result<Model, GltfErro
                         continue;
                     }
                 }
+                let uv_set = primitive.material().index().and_then(|m| uv_sets[m]);
                 let material = match primitive.material().index() {
                     Some(m) => names[m].clone(),
                     None => {
@@ -135,8 +161,15 @@ pub fn load_gltf(path: &Path, options: &ImportOptions) -> Result<Model, GltfErro
                     }
                 };
                 let name = readable(node.name().or(mesh.name()).unwrap_or(""), i, "node");
-                let desc = read_primitive(&primitive, &buffers, &world, &prim_path, material, name)
+                let desc = read_primitive(&primitive, &buffers, &world, &prim_path, uv_set, material, name)
                     .map_err(|(path, problem)| at(path, problem))?;
+                if uv_set.is_some() && desc.as_ref().is_some_and(|d| d.uvs.is_none()) {
+                    model.warnings.push(FieldIssue {
+                        field: prim_path.clone(),
+                        problem: "its material is textured but it has no texture coordinates: planar ones are used"
+                            .into(),
+                    });
+                }
                 if let Some(desc) = desc {
                     model.meshes.push(desc);
                 }
@@ -274,6 +307,7 @@ fn read_primitive(
     buffers: &Buffers,
     world: &Mat4,
     path: &str,
+    uv_set: Option<u32>,
     material: String,
     name: String,
 ) -> Result<Option<MeshDesc>, (String, String)> {
@@ -309,6 +343,17 @@ fn read_primitive(
             n.iter().map(|v| unit(world.normal(*v))).collect::<Option<Vec<_>>>()
         }
     };
+    let uvs = match uv_set.and_then(|set| primitive.get(&::gltf::Semantic::TexCoords(set)).map(|a| (set, a))) {
+        None => None,
+        Some((set, acc)) => {
+            let name = format!("TEXCOORD_{set}");
+            let uv = accessor::read_uv(&acc, buffers).map_err(|p| (attr(&name), p))?;
+            if uv.len() != vertices.len() {
+                return Err((attr(&name), format!("has {} elements, POSITION {}", uv.len(), vertices.len())));
+            }
+            Some(uv)
+        }
+    };
     let indices: Vec<u32> = match primitive.indices() {
         Some(acc) => accessor::read_indices(&acc, buffers).map_err(|p| (format!("{path}.indices"), p))?,
         None => (0..u32::try_from(vertices.len()).unwrap_or(u32::MAX)).collect(),
@@ -329,7 +374,7 @@ fn read_primitive(
     if triangles.is_empty() {
         return Ok(None);
     }
-    Ok(Some(MeshDesc { vertices, triangles, normals, material, name }))
+    Ok(Some(MeshDesc { vertices, triangles, normals, uvs, material, name }))
 }
 
 /// The triangles of a primitive's index list in its mode (glTF 2.0 §3.7.2.1: strips alternate

@@ -1,0 +1,363 @@
+//! Image textures of a scene description: where the image comes from and how it is sampled
+//! (the glTF sampler's wrap modes and filters, `KHR_texture_transform`'s UV transform), and the
+//! decoded image itself, which both tracers read from the flat layout's texel buffer.
+
+use std::fmt;
+use std::path::Path;
+use std::sync::Arc;
+
+use serde::{Deserialize, Serialize};
+
+use super::desc::SceneDesc;
+use super::error::{FieldIssue, SceneError};
+use crate::layout;
+use crate::model::uri::{MAX_RESOURCE_BYTES, resolve_uri};
+
+/// How a texture coordinate outside [0, 1] is folded back (glTF sampler `wrapS`/`wrapT`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+#[repr(u32)]
+pub enum Wrap {
+    /// The texture tiles (glTF REPEAT, 10497; the default).
+    #[default]
+    Repeat = layout::WRAP_REPEAT,
+    /// Texels beyond the edge are the edge texel (glTF CLAMP_TO_EDGE, 33071).
+    ClampToEdge = layout::WRAP_CLAMP_TO_EDGE,
+    /// The texture tiles, every other copy mirrored (glTF MIRRORED_REPEAT, 33648).
+    MirroredRepeat = layout::WRAP_MIRRORED_REPEAT,
+}
+
+/// How texels are combined at a texture coordinate (glTF `magFilter`; there are no mipmaps).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+#[repr(u32)]
+pub enum Filter {
+    /// The texel the coordinate falls in (glTF NEAREST, 9728).
+    Nearest = layout::FILTER_NEAREST,
+    /// The four nearest texel centres, weighted by distance (glTF LINEAR, 9729; the default).
+    #[default]
+    Bilinear = layout::FILTER_BILINEAR,
+}
+
+/// `KHR_texture_transform`: uv' = T(offset) · R(rotation) · S(scale) · uv, in that order.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct UvTransform {
+    pub offset: [f64; 2],
+    /// Radians, counter-clockwise in UV space, as `KHR_texture_transform` writes it.
+    pub rotation: f64,
+    pub scale: [f64; 2],
+}
+
+impl Default for UvTransform {
+    fn default() -> Self {
+        Self { offset: [0.0; 2], rotation: 0.0, scale: [1.0; 2] }
+    }
+}
+
+impl UvTransform {
+    /// The 2×3 matrix [T·R·S] as two rows (u' = row0 · (u, v, 1), v' = row1 · (u, v, 1)),
+    /// computed in f64 (KHR_texture_transform's rotation matrix is [cos sin; −sin cos]).
+    pub fn matrix(&self) -> [[f64; 3]; 2] {
+        let (s, c) = self.rotation.sin_cos();
+        let [sx, sy] = self.scale;
+        let [ox, oy] = self.offset;
+        [[c * sx, s * sy, ox], [-s * sx, c * sy, oy]]
+    }
+}
+
+/// An image texture: a file (relative to the scene file) and how it is sampled. Texture
+/// coordinates follow glTF: (0, 0) is the top-left corner of the image, v grows downwards.
+#[derive(Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TextureDesc {
+    /// A PNG or JPEG file, relative to the scene file and inside its folder (read through
+    /// `model::uri::resolve_uri`: absolute paths and escapes are refused).
+    pub path: String,
+    #[serde(default)]
+    pub wrap_s: Wrap,
+    #[serde(default)]
+    pub wrap_t: Wrap,
+    #[serde(default)]
+    pub filter: Filter,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub transform: Option<UvTransform>,
+    /// The decoded image: filled when a scene file is loaded (`load_textures`), or by an
+    /// importer that decoded it itself (`TextureImage::decode`); never written to a file.
+    #[serde(skip)]
+    pub image: Option<Arc<TextureImage>>,
+}
+
+impl TextureDesc {
+    /// A texture of an already decoded image with glTF's default sampler (repeat, bilinear)
+    /// and no transform; `path` is what a saved scene names.
+    pub fn decoded(path: impl Into<String>, image: Arc<TextureImage>) -> Self {
+        Self {
+            path: path.into(),
+            wrap_s: Wrap::Repeat,
+            wrap_t: Wrap::Repeat,
+            filter: Filter::Bilinear,
+            transform: None,
+            image: Some(image),
+        }
+    }
+}
+
+impl fmt::Debug for TextureDesc {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("TextureDesc")
+            .field("path", &self.path)
+            .field("wrap_s", &self.wrap_s)
+            .field("wrap_t", &self.wrap_t)
+            .field("filter", &self.filter)
+            .field("transform", &self.transform)
+            .field("image", &self.image)
+            .finish()
+    }
+}
+
+/// Equal when the sampling is equal and the images are the same (one shared decode, or equal
+/// texels).
+impl PartialEq for TextureDesc {
+    fn eq(&self, o: &Self) -> bool {
+        let same_image = match (&self.image, &o.image) {
+            (Some(a), Some(b)) => Arc::ptr_eq(a, b) || a == b,
+            (None, None) => true,
+            (Some(_), None) | (None, Some(_)) => false,
+        };
+        self.path == o.path
+            && self.wrap_s == o.wrap_s
+            && self.wrap_t == o.wrap_t
+            && self.filter == o.filter
+            && self.transform == o.transform
+            && same_image
+    }
+}
+
+/// How the bytes of an image encode colour.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ColorSpace {
+    /// sRGB-encoded (colour textures: glTF base colour and emissive, MTL map_Kd and map_Ke).
+    Srgb,
+    /// Linear values, used as they are.
+    Linear,
+}
+
+/// Largest texture side, in texels.
+pub const MAX_TEXTURE_SIDE: u32 = 16384;
+/// Most texels of one texture (4096²): 256 MiB as linear RGBA f32, twice the 128 MiB a storage
+/// buffer binding is guaranteed; larger images are refused before they are decoded.
+pub const MAX_TEXTURE_TEXELS: u64 = 1 << 24;
+
+/// Why an image did not become a texture.
+#[derive(Debug, thiserror::Error)]
+pub enum TextureError {
+    #[error("not a PNG or JPEG image (the formats Glint reads)")]
+    Format,
+    #[error(
+        "{width}x{height} texels is more than a texture may have ({MAX_TEXTURE_SIDE} per side, {MAX_TEXTURE_TEXELS} in all)"
+    )]
+    TooLarge { width: u32, height: u32 },
+    #[error("an image needs at least one texel")]
+    Empty,
+    #[error("{texels} texels given for a {width}x{height} image")]
+    Length { width: u32, height: u32, texels: usize },
+    #[error("cannot decode the image: {0}")]
+    Decode(String),
+}
+
+/// A decoded texture: linear RGBA (alpha as stored), row 0 the top row of the image, stored in
+/// f32 exactly as the GPU reads it.
+#[derive(Clone, PartialEq)]
+pub struct TextureImage {
+    width: u32,
+    height: u32,
+    texels: Vec<[f32; 4]>,
+}
+
+impl fmt::Debug for TextureImage {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "TextureImage({}x{})", self.width, self.height)
+    }
+}
+
+/// The sRGB transfer function's inverse (IEC 61966-2-1), in f64.
+pub fn srgb_to_linear(c: f64) -> f64 {
+    if c <= 0.04045 { c / 12.92 } else { ((c + 0.055) / 1.055).powf(2.4) }
+}
+
+fn check_size(width: u32, height: u32) -> Result<(), TextureError> {
+    if width == 0 || height == 0 {
+        return Err(TextureError::Empty);
+    }
+    if width > MAX_TEXTURE_SIDE
+        || height > MAX_TEXTURE_SIDE
+        || u64::from(width) * u64::from(height) > MAX_TEXTURE_TEXELS
+    {
+        return Err(TextureError::TooLarge { width, height });
+    }
+    Ok(())
+}
+
+impl TextureImage {
+    /// Decodes a PNG or JPEG file's bytes, converting sRGB colour channels to linear once
+    /// (alpha stays linear). The size is checked from the header, before decoding.
+    pub fn decode(bytes: &[u8], color: ColorSpace) -> Result<Self, TextureError> {
+        let reader = image::ImageReader::new(std::io::Cursor::new(bytes))
+            .with_guessed_format()
+            .map_err(|e| TextureError::Decode(e.to_string()))?;
+        match reader.format() {
+            Some(image::ImageFormat::Png | image::ImageFormat::Jpeg) => {}
+            _ => return Err(TextureError::Format),
+        }
+        let (width, height) = reader.into_dimensions().map_err(|e| TextureError::Decode(e.to_string()))?;
+        check_size(width, height)?;
+        let reader = image::ImageReader::new(std::io::Cursor::new(bytes))
+            .with_guessed_format()
+            .map_err(|e| TextureError::Decode(e.to_string()))?;
+        let decoded = reader.decode().map_err(|e| TextureError::Decode(e.to_string()))?;
+        // Channels as exact fractions of their 8- or 16-bit maximum, in f64, then linear.
+        let convert = |p: [f64; 4]| {
+            let colour = |c: f64| match color {
+                ColorSpace::Srgb => srgb_to_linear(c) as f32,
+                ColorSpace::Linear => c as f32,
+            };
+            [colour(p[0]), colour(p[1]), colour(p[2]), p[3] as f32]
+        };
+        let sixteen_bit = decoded.color().bytes_per_pixel() > decoded.color().channel_count();
+        let texels = if sixteen_bit {
+            decoded.into_rgba16().pixels().map(|p| convert(p.0.map(|c| f64::from(c) / 65535.0))).collect()
+        } else {
+            decoded.into_rgba8().pixels().map(|p| convert(p.0.map(|c| f64::from(c) / 255.0))).collect()
+        };
+        Self::from_linear_rgba(width, height, texels)
+    }
+
+    /// An image of linear RGBA texels, row by row from the top.
+    pub fn from_linear_rgba(width: u32, height: u32, texels: Vec<[f32; 4]>) -> Result<Self, TextureError> {
+        check_size(width, height)?;
+        if texels.len() as u64 != u64::from(width) * u64::from(height) {
+            return Err(TextureError::Length { width, height, texels: texels.len() });
+        }
+        if texels.iter().flatten().any(|c| !c.is_finite()) {
+            return Err(TextureError::Decode("a texel is not a finite number".into()));
+        }
+        Ok(Self { width, height, texels })
+    }
+
+    pub fn width(&self) -> u32 {
+        self.width
+    }
+
+    pub fn height(&self) -> u32 {
+        self.height
+    }
+
+    /// Linear RGBA texels, row by row from the top.
+    pub fn texels(&self) -> &[[f32; 4]] {
+        &self.texels
+    }
+}
+
+/// The textures of one material, with the field name each has in a scene file.
+pub fn material_textures(m: &super::desc::MaterialDesc) -> [(&'static str, Option<&TextureDesc>); 2] {
+    [("texture", m.texture.as_ref()), ("emission_texture", m.emission_texture.as_ref())]
+}
+
+/// Decodes every texture of `desc` whose image is not filled yet, reading its path relative to
+/// `file` (the scene file) through `resolve_uri`. Each image file is decoded once, however many
+/// textures name it. Every failure is reported, naming `materials.NAME.FIELD.path`.
+pub fn load_textures(desc: &mut SceneDesc, file: &Path) -> Result<(), SceneError> {
+    let mut decoded: Vec<(String, Arc<TextureImage>)> = Vec::new();
+    let mut issues = Vec::new();
+    for (name, m) in &mut desc.materials {
+        for (field, texture) in [("texture", &mut m.texture), ("emission_texture", &mut m.emission_texture)] {
+            let Some(t) = texture.as_mut().filter(|t| t.image.is_none()) else { continue };
+            if let Some((_, image)) = decoded.iter().find(|(p, _)| *p == t.path) {
+                t.image = Some(Arc::clone(image));
+                continue;
+            }
+            let image = resolve_uri(file, &t.path, MAX_RESOURCE_BYTES)
+                .map_err(|e| e.to_string())
+                .and_then(|bytes| TextureImage::decode(&bytes, ColorSpace::Srgb).map_err(|e| e.to_string()));
+            match image {
+                Ok(image) => {
+                    let image = Arc::new(image);
+                    decoded.push((t.path.clone(), Arc::clone(&image)));
+                    t.image = Some(image);
+                }
+                Err(problem) => {
+                    issues.push(FieldIssue { field: format!("materials.{name}.{field}.path"), problem });
+                }
+            }
+        }
+    }
+    if issues.is_empty() { Ok(()) } else { Err(SceneError::Invalid { file: file.to_owned(), issues }) }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn png(width: u32, height: u32, rgba: &[u8]) -> Vec<u8> {
+        let mut out = Vec::new();
+        let mut encoder = png::Encoder::new(&mut out, width, height);
+        encoder.set_color(png::ColorType::Rgba);
+        encoder.set_depth(png::BitDepth::Eight);
+        encoder.write_header().unwrap().write_image_data(rgba).unwrap();
+        out
+    }
+
+    #[test]
+    fn srgb_is_converted_once_and_alpha_stays() {
+        let bytes = png(2, 1, &[0, 128, 255, 128, 255, 255, 255, 0]);
+        let t = TextureImage::decode(&bytes, ColorSpace::Srgb).expect("decodes");
+        assert_eq!((t.width(), t.height()), (2, 1));
+        let want = srgb_to_linear(128.0 / 255.0) as f32;
+        assert_eq!(t.texels()[0], [0.0, want, 1.0, (128.0_f64 / 255.0) as f32]);
+        assert_eq!(t.texels()[1], [1.0, 1.0, 1.0, 0.0]);
+        let linear = TextureImage::decode(&bytes, ColorSpace::Linear).expect("decodes");
+        assert_eq!(linear.texels()[0][1], (128.0_f64 / 255.0) as f32);
+    }
+
+    #[test]
+    fn other_formats_garbage_and_huge_headers_are_clear_errors() {
+        assert!(matches!(TextureImage::decode(b"not an image", ColorSpace::Srgb), Err(TextureError::Format)));
+        let mut bytes = png(1, 1, &[0, 0, 0, 255]);
+        bytes.truncate(bytes.len() - 20);
+        assert!(TextureImage::decode(&bytes, ColorSpace::Srgb).is_err());
+        // A valid 1×1 PNG whose header claims 20000×20000 texels (CRC fixed): refused from
+        // the header, before anything is decoded.
+        let mut huge = png(1, 1, &[0, 0, 0, 255]);
+        huge[16..20].copy_from_slice(&20000u32.to_be_bytes());
+        huge[20..24].copy_from_slice(&20000u32.to_be_bytes());
+        let crc = crc32(&huge[12..29]);
+        huge[29..33].copy_from_slice(&crc.to_be_bytes());
+        let e = TextureImage::decode(&huge, ColorSpace::Srgb).unwrap_err();
+        assert!(matches!(e, TextureError::TooLarge { width: 20000, height: 20000 }), "{e}");
+        let e = TextureImage::from_linear_rgba(2, 2, vec![[0.0; 4]; 3]).unwrap_err();
+        assert_eq!(e.to_string(), "3 texels given for a 2x2 image");
+    }
+
+    /// PNG's chunk CRC (ISO 3309), bit by bit.
+    fn crc32(bytes: &[u8]) -> u32 {
+        let mut crc = u32::MAX;
+        for &b in bytes {
+            crc ^= u32::from(b);
+            for _ in 0..8 {
+                crc = if crc & 1 != 0 { (crc >> 1) ^ 0xEDB8_8320 } else { crc >> 1 };
+            }
+        }
+        !crc
+    }
+
+    #[test]
+    fn transform_is_translation_rotation_scale() {
+        let t = UvTransform { offset: [0.5, 0.25], rotation: std::f64::consts::FRAC_PI_2, scale: [2.0, 3.0] };
+        let m = t.matrix();
+        let apply = |u: f64, v: f64| [0, 1].map(|r| m[r][0] * u + m[r][1] * v + m[r][2]);
+        // S: (1, 0) → (2, 0); R(90°) with KHR's [cos sin; −sin cos]: → (0, −2); T: → (0.5, −1.75).
+        let [u, v] = apply(1.0, 0.0);
+        assert!((u - 0.5).abs() < 1e-15 && (v + 1.75).abs() < 1e-15, "{u} {v}");
+    }
+}
