@@ -6,6 +6,10 @@
 const LIGHT_POINT: u32 = 0u;
 const LIGHT_DIRECTIONAL: u32 = 1u;
 const LIGHT_SPOT: u32 = 2u;
+const ATTENUATION_POLYNOMIAL: u32 = 0u;
+const ATTENUATION_INVERSE_SQUARE: u32 = 1u;
+const SPOT_FALLOFF_POWER: u32 = 0u;
+const SPOT_FALLOFF_SMOOTH: u32 = 1u;
 const LIGHT_CASTS_SHADOWS: u32 = 1u;
 const MATERIAL_PHONG: u32 = 1u;
 const MESH_HAS_NORMALS: u32 = 1u;
@@ -115,6 +119,10 @@ struct GpuLight {
     flags: u32,
     spot_exponent: f32,
     spot_cos_cutoff: f32,
+    attenuation_model: u32,
+    spot_falloff: u32,
+    range: f32,
+    spot_cos_inner: f32,
 }
 
 struct GpuSphere {

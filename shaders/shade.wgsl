@@ -2,7 +2,7 @@
 // I_local = E_m + I_a·k_a + Σ_j f_att,j·S_j·[ I_a,j·k_a + V_j·( I_d,j·k_d·max(N·L,0) + I_s,j·k_s·spec_j ) ]
 #define_import_path glint::shade
 
-#import glint::scene_data::{ProbeLight, MAX_PROBE_LIGHTS, GpuLight, GpuMaterial, LIGHT_CASTS_SHADOWS, LIGHT_DIRECTIONAL, LIGHT_SPOT, MATERIAL_PHONG, NO_TEXTURE}
+#import glint::scene_data::{ProbeLight, MAX_PROBE_LIGHTS, GpuLight, GpuMaterial, LIGHT_CASTS_SHADOWS, LIGHT_DIRECTIONAL, LIGHT_SPOT, MATERIAL_PHONG, NO_TEXTURE, ATTENUATION_POLYNOMIAL, ATTENUATION_INVERSE_SQUARE, SPOT_FALLOFF_SMOOTH}
 #import glint::bindings::{header, materials, lights}
 #import glint::ray::{Ray, ray_counts, probe, probe_active}
 #import glint::intersect::{FAR, all_zero}
@@ -18,6 +18,7 @@
 
 const MIN_LIGHT_DISTANCE: f32 = 1e-20;
 const MIN_HALF_LENGTH: f32 = 1e-12;
+const MIN_ATTENUATION_DENOMINATOR: f32 = 1e-6;
 
 // Geometry at a hit (twin of trace.rs's Surface, which lives here so shading can use it).
 struct Surface {
@@ -43,6 +44,35 @@ fn safe_pow(x: f32, n: f32) -> f32 {
 
 fn attenuation_factor(att: vec4<f32>, d: f32) -> f32 {
     return 1.0 / (att.x + att.y * d + att.z * d * d);
+}
+
+// glTF's range window over 1/d² (range 0: none); d² bounded below as the polynomial's
+// denominator is, so f_att ≤ 1e6.
+fn inverse_square_factor(range: f32, d: f32) -> f32 {
+    var window = 1.0;
+    if range > 0.0 {
+        if d >= range {
+            window = 0.0;
+        } else {
+            let x = d / range;
+            let x2 = x * x;
+            window = 1.0 - x2 * x2;
+        }
+    }
+    return window / max(d * d, MIN_ATTENUATION_DENOMINATOR);
+}
+
+// glTF's cone: S = t², t from the outer to the inner cone's cosine; a step when they coincide.
+fn smooth_spot_factor(light: GpuLight, l: vec3<f32>) -> f32 {
+    let cos_angle = dot(light.direction.xyz, -l);
+    if cos_angle < light.spot_cos_cutoff {
+        return 0.0;
+    }
+    if cos_angle >= light.spot_cos_inner {
+        return 1.0;
+    }
+    let t = (cos_angle - light.spot_cos_cutoff) / (light.spot_cos_inner - light.spot_cos_cutoff);
+    return t * t;
 }
 
 // Cutoff 180 (cos = −1) means no cone and S = 1, as OpenGL.
@@ -76,12 +106,27 @@ fn light_sample(light: GpuLight, p: vec3<f32>) -> LightSample {
     }
     var f_att = 1.0;
 #ifdef ATTENUATION
-    f_att = attenuation_factor(light.attenuation, dist);
+    if light.attenuation_model == ATTENUATION_POLYNOMIAL {
+        f_att = attenuation_factor(light.attenuation, dist);
+    }
+#endif
+#ifdef INVERSE_SQUARE
+    if light.attenuation_model == ATTENUATION_INVERSE_SQUARE {
+        f_att = inverse_square_factor(light.range, dist);
+    }
 #endif
     var spot = 1.0;
 #ifdef SPOT_LIGHTS
     if light.kind == LIGHT_SPOT {
+#ifdef SMOOTH_SPOT
+        if light.spot_falloff == SPOT_FALLOFF_SMOOTH {
+            spot = smooth_spot_factor(light, l);
+        } else {
+            spot = spot_factor(light, l);
+        }
+#else
         spot = spot_factor(light, l);
+#endif
     }
 #endif
     return LightSample(l, dist, f_att, spot);

@@ -144,16 +144,17 @@ fn blinn_and_phong_differ() {
 // ---------------------------------------------------------------------------------------------
 
 /// A floor at y = 0, camera at (0, 1, 0) looking straight down at the origin.
-fn floor_scene(render_extra: &str, ambient: f64) -> SceneText {
+pub(crate) fn floor_scene(render_extra: &str, ambient: f64) -> SceneText {
     SceneText::pinhole(render_extra, [0.0, 1.0, 0.0], [0.0; 3], Z)
         .world([ambient; 3], [0.0; 3])
         .material("floor", "ka = 0.5\nkd = [0.5, 0.75, 1.0]\nks = 0.0")
 }
 
-const FLOOR_KA: f64 = 0.5;
-const FLOOR_KD: [f64; 3] = [0.5, 0.75, 1.0];
+pub(crate) const FLOOR_KA: f64 = 0.5;
+pub(crate) const FLOOR_KD: [f64; 3] = [0.5, 0.75, 1.0];
 
-fn centre(scene: &SceneText) -> DVec3 {
+/// The only pixel, rendered, after checking that the probe's total is that pixel.
+pub(crate) fn centre(scene: &SceneText) -> DVec3 {
     let flat = scene.flat();
     let b = probe(&flat, 0, 0);
     let px = render(&flat).image.get(0, 0);
@@ -245,7 +246,7 @@ fn spot_expected(s: f64) -> DVec3 {
     0.125 * FLOOR_KA * DVec3::ONE + s * (0.25 * FLOOR_KA * DVec3::ONE + dv([1.0, 0.5, 2.0]) * dv(FLOOR_KD))
 }
 
-fn axis_at(deg: f64) -> [f64; 3] {
+pub(crate) fn axis_at(deg: f64) -> [f64; 3] {
     let a = deg.to_radians();
     [a.sin(), -a.cos(), 0.0]
 }

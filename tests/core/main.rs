@@ -7,6 +7,7 @@ mod bvh;
 mod closed_form;
 mod determinism;
 mod gltf;
+mod gltf_lights;
 mod support;
 mod validation;
 

@@ -448,3 +448,105 @@ fn a_texture_in_a_description_built_in_code_must_be_decoded() {
     let report = glint_core::scene::validate(&desc);
     assert!(report.errors.iter().any(|i| i.field == "materials.red.texture.path" && i.problem.contains("not decoded")));
 }
+
+#[test]
+fn inverse_square_range_must_be_positive() {
+    let att = "{ c = 1.0, l = 0.1, q = 0.01 }";
+    for bad in ["0.0", "-5.0", "1e10", "1e-50"] {
+        expect_invalid(
+            &edited(att, &format!("{{ model = \"inverse_square\", range = {bad} }}")),
+            "lights[0].attenuation.range",
+            &["(0, 1e9]"],
+        );
+    }
+    expect_invalid(
+        &edited(att, "{ model = \"inverse_square\", range = nan }"),
+        "lights[0].attenuation.range",
+        &["NaN", "(0, 1e9]"],
+    );
+    for good in [
+        "{ model = \"inverse_square\" }",
+        "{ model = \"inverse_square\", range = 20 }",
+        "{ model = \"polynomial\", q = 1.0 }",
+    ] {
+        assert!(expect_valid(&edited(att, good), good).is_empty());
+    }
+    // A directional light is not attenuated, by either model.
+    expect_invalid(
+        &edited(
+            "direction = [0.3, -1.0, 0.2]",
+            "direction = [0.3, -1.0, 0.2]\nattenuation = { model = \"inverse_square\" }",
+        ),
+        "lights[1].attenuation",
+        &["not attenuated"],
+    );
+}
+
+#[test]
+fn attenuation_fields_of_the_other_model_are_errors() {
+    // Not silently ignored: the message names the field and the model it belongs to.
+    let att = "{ c = 1.0, l = 0.1, q = 0.01 }";
+    expect_parse_error(
+        &edited(att, "{ model = \"inverse_square\", q = 0.01 }"),
+        &["attenuation.q", "model = \"polynomial\"", "has only range"],
+    );
+    expect_parse_error(
+        &edited(att, "{ c = 1.0, range = 5.0 }"),
+        &["attenuation.range", "model = \"inverse_square\"", "has only c, l, q"],
+    );
+    expect_parse_error(&edited(att, "{ model = \"inverse_square\", rnage = 5.0 }"), &["attenuation.rnage", "range"]);
+    expect_parse_error(&edited(att, "{ model = \"cubic\" }"), &["cubic", "\"polynomial\" or \"inverse_square\""]);
+    expect_parse_error(&edited(att, "{ model = \"inverse_square\", range = \"far\" }"), &["range", "f64"]);
+}
+
+/// BASE's spot light with the smooth falloff and `cones` instead of its exponent and cutoff.
+fn smooth_spot(cones: &str) -> String {
+    edited("exponent = 8.0\ncutoff = 30.0", &format!("falloff = \"smooth\"\n{cones}"))
+}
+
+#[test]
+fn smooth_spot_cones_in_range_and_ordered() {
+    let range = "[0, 90]";
+    expect_invalid(&smooth_spot("inner_cone = -1.0\nouter_cone = 30.0"), "lights[2].inner_cone", &[range]);
+    expect_invalid(&smooth_spot("inner_cone = 10.0\nouter_cone = 91.0"), "lights[2].outer_cone", &[range]);
+    expect_invalid(&smooth_spot("outer_cone = nan"), "lights[2].outer_cone", &["NaN", range]);
+    expect_invalid(
+        &smooth_spot("inner_cone = 40.0\nouter_cone = 30.0"),
+        "lights[2].inner_cone",
+        &["40", "outer_cone = 30", "0 ≤ inner_cone ≤ outer_cone ≤ 90"],
+    );
+    // The default outer cone (45°) bounds an inner cone given alone.
+    expect_invalid(&smooth_spot("inner_cone = 50.0"), "lights[2].inner_cone", &["outer_cone = 45"]);
+    for good in [
+        "",
+        "inner_cone = 0.0\nouter_cone = 0.0",
+        "inner_cone = 90.0\nouter_cone = 90.0",
+        "inner_cone = 0\nouter_cone = 90",
+    ] {
+        assert!(expect_valid(&smooth_spot(good), good).is_empty());
+    }
+}
+
+#[test]
+fn spot_fields_of_the_other_falloff_are_errors() {
+    let smooth = "falloff = \"smooth\"";
+    expect_invalid(
+        &edited("cutoff = 30.0", &format!("cutoff = 180.0\n{smooth}")),
+        "lights[2].exponent",
+        &["falloff = \"power\""],
+    );
+    expect_invalid(&edited("exponent = 8.0", smooth), "lights[2].cutoff", &["falloff = \"power\"", "outer_cone"]);
+    expect_invalid(
+        &edited("cutoff = 30.0", "cutoff = 30.0\ninner_cone = 10.0"),
+        "lights[2].inner_cone",
+        &["falloff = \"smooth\""],
+    );
+    let point = "attenuation = { c = 1.0, l = 0.1, q = 0.01 }";
+    expect_invalid(&edited(point, &format!("{point}\n{smooth}")), "lights[0].falloff", &["only spot lights"]);
+    expect_invalid(
+        &edited(point, &format!("{point}\nouter_cone = 20.0")),
+        "lights[0].outer_cone",
+        &["only spot lights"],
+    );
+    expect_parse_error(&edited("cutoff = 30.0", "cutoff = 30.0\nfalloff = \"linear\""), &["linear", "smooth"]);
+}

@@ -13,9 +13,9 @@ use glint_core::scene::BUILTIN_SCENES;
 
 use super::support::{builtin, compare_and_keep, cpu, gpu_or_skip, gpu_render, write_failure_images};
 
-const FLIP_MEAN_MAX: f64 = 0.005;
-const P99_MAX: f64 = 1.0 / 255.0;
-const MISMATCH_MAX: f64 = 0.005;
+pub(crate) const FLIP_MEAN_MAX: f64 = 0.005;
+pub(crate) const P99_MAX: f64 = 1.0 / 255.0;
+pub(crate) const MISMATCH_MAX: f64 = 0.005;
 
 #[test]
 fn builtin_scenes_match_the_cpu_reference() {

@@ -3,14 +3,15 @@
 use glam::DVec3;
 
 use crate::bvh::{self, BvhNode};
+use crate::cpu::LightTags;
 
 use crate::layout::{
     GpuCamera, GpuLight, GpuMaterial, GpuMesh, GpuPlane, GpuSphere, GpuTexture, GpuTriangle, LIGHT_CASTS_SHADOWS,
     MESH_HAS_NORMALS, MESH_HAS_UVS, NO_TEXTURE, SceneHeader, UnknownTag, feature,
 };
 use crate::scene::{
-    EpsilonMode, Filter, LightDesc, LightKind, MaterialDesc, MeshDesc, NO_CONE_CUTOFF, ObjectDesc, PlaneDesc,
-    RenderSettings, Rgb, SceneDesc, SpecularModel, SphereDesc, Wrap,
+    Attenuation, AttenuationModel, EpsilonMode, Filter, LightDesc, LightKind, MaterialDesc, MeshDesc, NO_CONE_CUTOFF,
+    ObjectDesc, PlaneDesc, RenderSettings, Rgb, SceneDesc, SpecularModel, SphereDesc, SpotFalloff, Wrap,
 };
 use crate::texture_table::TextureTable;
 
@@ -135,14 +136,18 @@ impl FlatScene {
             object_names: primitives.object_names,
             material_names,
         };
-        let light_kinds: Vec<LightKind> = desc.lights.iter().map(|l| l.kind).collect();
-        flat.header.features = flat.scene_features(&light_kinds);
+        let light_tags: Vec<LightTags> = desc
+            .lights
+            .iter()
+            .map(|l| LightTags { kind: l.kind, attenuation: l.attenuation.model(), falloff: l.falloff })
+            .collect();
+        flat.header.features = flat.scene_features(&light_tags);
         flat
     }
 
     /// The features this scene needs, from the flat data itself (only materials that some
-    /// object uses count) and the kind of each light.
-    fn scene_features(&self, light_kinds: &[LightKind]) -> u32 {
+    /// object uses count) and the tags of each light.
+    fn scene_features(&self, light_tags: &[LightTags]) -> u32 {
         let mut f = 0;
         let mut used = vec![false; self.materials.len()];
         for m in self.spheres.iter().map(|s| s.material).chain(self.planes.iter().map(|p| p.material)) {
@@ -154,19 +159,23 @@ impl FlatScene {
         let nonzero = |c: [f32; 4]| c[..3].iter().any(|&v| v != 0.0);
         let any_geometry = !(self.spheres.is_empty() && self.planes.is_empty() && self.triangles.is_empty());
         let mut any_specular_light = false;
-        for (l, &kind) in self.lights.iter().zip(light_kinds) {
+        for (l, &LightTags { kind, attenuation: model, falloff }) in self.lights.iter().zip(light_tags) {
             f |= match kind {
                 LightKind::Point => feature::POINT_LIGHTS,
                 LightKind::Directional => feature::DIRECTIONAL_LIGHTS,
                 LightKind::Spot => feature::SPOT_LIGHTS,
             };
-            let attenuated = match kind {
-                LightKind::Point | LightKind::Spot => l.attenuation != [1.0, 0.0, 0.0, 0.0],
-                LightKind::Directional => false,
+            f |= match (kind, model) {
+                (LightKind::Point | LightKind::Spot, AttenuationModel::Polynomial) => {
+                    if l.attenuation != [1.0, 0.0, 0.0, 0.0] { feature::ATTENUATION } else { 0 }
+                }
+                (LightKind::Point | LightKind::Spot, AttenuationModel::InverseSquare) => feature::INVERSE_SQUARE,
+                (LightKind::Directional, _) => 0,
             };
-            if attenuated {
-                f |= feature::ATTENUATION;
-            }
+            f |= match (kind, falloff) {
+                (LightKind::Spot, SpotFalloff::Smooth) => feature::SMOOTH_SPOT,
+                (LightKind::Spot, SpotFalloff::Power) | (LightKind::Point | LightKind::Directional, _) => 0,
+            };
             if l.flags & LIGHT_CASTS_SHADOWS != 0 && any_geometry {
                 f |= feature::SHADOWS;
             }
@@ -228,14 +237,15 @@ impl FlatScene {
         self.header.width as usize * self.header.height as usize
     }
 
-    /// Decodes every stored tag the tracers switch on (the ε strategy, each light's kind), so
+    /// Decodes every stored tag the tracers switch on (the ε strategy, each light's kind,
+    /// attenuation model and spot falloff), so
     /// that both refuse a scene holding a value no kind has instead of tracing it as another.
     /// Also checks that every triangle's vertex and mesh indices are in range, which both
     /// tracers then index without a check.
     pub fn check_tags(&self) -> Result<(), UnknownTag> {
         EpsilonMode::try_from(self.header.epsilon_mode)?;
         for l in &self.lights {
-            LightKind::try_from(l.kind)?;
+            LightTags::decode(l)?;
         }
         let (vertices, meshes) = (self.vertices.len(), self.meshes.len());
         for t in &self.triangles {
@@ -302,7 +312,7 @@ impl FlatScene {
         let l = self.lights.iter().map(|l| {
             [
                 &[l.position, l.direction, l.diffuse, l.specular, l.ambient, l.attenuation].concat()[..],
-                &[l.spot_exponent, l.spot_cos_cutoff],
+                &[l.spot_exponent, l.spot_cos_cutoff, l.range, l.spot_cos_inner],
             ]
             .concat()
         });
@@ -375,18 +385,37 @@ fn flat_material(m: &MaterialDesc, table: &mut TextureTable) -> GpuMaterial {
     }
 }
 
-/// A light in the flat layout: unit direction, the spot cone as a cosine.
+/// cos(angle) of a cone half-angle in [0, 90] degrees, as sin(90° − angle): exact at both ends
+/// (1 and 0), where cos(90°.to_radians()) would be 6e-17 and leave a point exactly at 90°
+/// outside a closed cone.
+fn cone_cos(degrees: f64) -> f64 {
+    (90.0 - degrees).to_radians().sin()
+}
+
+/// A light in the flat layout: unit direction, the attenuation model with its parameters, the
+/// spot cone as cosines.
 fn flat_light(l: &LightDesc) -> GpuLight {
     let position = l.position.map_or(DVec3::ZERO, DVec3::from);
     let direction = l.direction.map_or(DVec3::ZERO, |d| DVec3::from(d).normalize());
-    let a = l.attenuation;
-    let (spot_exponent, cos_cutoff) = match l.kind {
-        // cos(cutoff) as sin(90° − cutoff): exact at both ends of [0, 90] (1 and 0), where
-        // cos(90°.to_radians()) would be 6e-17 and leave a point exactly at 90° outside a
-        // closed cone.
-        LightKind::Spot if l.cutoff < NO_CONE_CUTOFF => (l.exponent as f32, (90.0 - l.cutoff).to_radians().sin()),
-        LightKind::Spot => (l.exponent as f32, -1.0),
-        LightKind::Point | LightKind::Directional => (0.0, -1.0),
+    let (attenuation, range) = match l.attenuation {
+        Attenuation::Polynomial { c, l, q } => ([c as f32, l as f32, q as f32, 0.0], 0.0),
+        Attenuation::InverseSquare { range } => ([1.0, 0.0, 0.0, 0.0], range.map_or(0.0, |r| r as f32)),
+    };
+    // (s, cos cutoff or outer cone, cos inner cone)
+    let (spot_exponent, cos_cutoff, cos_inner) = match (l.kind, l.falloff) {
+        (LightKind::Spot, SpotFalloff::Power) if l.cutoff < NO_CONE_CUTOFF => {
+            (l.exponent as f32, cone_cos(l.cutoff), 1.0)
+        }
+        (LightKind::Spot, SpotFalloff::Power) => (l.exponent as f32, -1.0, 1.0),
+        (LightKind::Spot, SpotFalloff::Smooth) => {
+            let (inner, outer) = l.cone_angles();
+            (0.0, cone_cos(outer), cone_cos(inner))
+        }
+        (LightKind::Point | LightKind::Directional, _) => (0.0, -1.0, 1.0),
+    };
+    let spot_falloff = match l.kind {
+        LightKind::Spot => l.falloff,
+        LightKind::Point | LightKind::Directional => SpotFalloff::Power,
     };
     GpuLight {
         position: vec4(position, 1.0),
@@ -394,11 +423,15 @@ fn flat_light(l: &LightDesc) -> GpuLight {
         diffuse: rgb4(l.diffuse),
         specular: rgb4(l.specular),
         ambient: rgb4(l.ambient),
-        attenuation: [a.c as f32, a.l as f32, a.q as f32, 0.0],
+        attenuation,
         kind: l.kind as u32,
         flags: if l.casts_shadows { LIGHT_CASTS_SHADOWS } else { 0 },
         spot_exponent,
         spot_cos_cutoff: cos_cutoff as f32,
+        attenuation_model: l.attenuation.model() as u32,
+        spot_falloff: spot_falloff as u32,
+        range,
+        spot_cos_inner: cos_inner as f32,
     }
 }
 

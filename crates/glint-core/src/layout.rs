@@ -10,12 +10,24 @@
 
 use bytemuck::{Pod, Zeroable};
 
-use crate::scene::{EpsilonMode, Filter, LightKind, SpecularModel, Wrap};
+use crate::scene::{AttenuationModel, EpsilonMode, Filter, LightKind, SpecularModel, SpotFalloff, Wrap};
 
 /// Light kinds (`GpuLight::kind`).
 pub const LIGHT_POINT: u32 = 0;
 pub const LIGHT_DIRECTIONAL: u32 = 1;
 pub const LIGHT_SPOT: u32 = 2;
+
+/// Distance attenuation models (`GpuLight::attenuation_model`).
+/// f_att = 1 / (c + l·d + q·d²) (OpenGL's).
+pub const ATTENUATION_POLYNOMIAL: u32 = 0;
+/// f_att = window(d) / d², window 1 or glTF's range window (KHR_lights_punctual).
+pub const ATTENUATION_INVERSE_SQUARE: u32 = 1;
+
+/// Spot cone falloffs (`GpuLight::spot_falloff`).
+/// S = (L_N·(−L))^s inside a hard cutoff (OpenGL's).
+pub const SPOT_FALLOFF_POWER: u32 = 0;
+/// S = t², t the cone cosine's place between the outer and inner cone (glTF's).
+pub const SPOT_FALLOFF_SMOOTH: u32 = 1;
 
 /// `GpuLight::flags` bits.
 pub const LIGHT_CASTS_SHADOWS: u32 = 1;
@@ -63,6 +75,30 @@ impl TryFrom<u32> for LightKind {
             LIGHT_DIRECTIONAL => Ok(Self::Directional),
             LIGHT_SPOT => Ok(Self::Spot),
             _ => Err(UnknownTag { what: "light kind", value }),
+        }
+    }
+}
+
+impl TryFrom<u32> for AttenuationModel {
+    type Error = UnknownTag;
+
+    fn try_from(value: u32) -> Result<Self, UnknownTag> {
+        match value {
+            ATTENUATION_POLYNOMIAL => Ok(Self::Polynomial),
+            ATTENUATION_INVERSE_SQUARE => Ok(Self::InverseSquare),
+            _ => Err(UnknownTag { what: "attenuation model", value }),
+        }
+    }
+}
+
+impl TryFrom<u32> for SpotFalloff {
+    type Error = UnknownTag;
+
+    fn try_from(value: u32) -> Result<Self, UnknownTag> {
+        match value {
+            SPOT_FALLOFF_POWER => Ok(Self::Power),
+            SPOT_FALLOFF_SMOOTH => Ok(Self::Smooth),
+            _ => Err(UnknownTag { what: "spot falloff", value }),
         }
     }
 }
@@ -153,7 +189,7 @@ pub mod feature {
     pub const POINT_LIGHTS: u32 = 1 << 0;
     pub const DIRECTIONAL_LIGHTS: u32 = 1 << 1;
     pub const SPOT_LIGHTS: u32 = 1 << 2;
-    /// Some point or spot light has attenuation other than (1, 0, 0).
+    /// Some point or spot light has polynomial attenuation other than (1, 0, 0).
     pub const ATTENUATION: u32 = 1 << 3;
     /// Some light casts shadows (and there is geometry to cast them).
     pub const SHADOWS: u32 = 1 << 4;
@@ -177,11 +213,15 @@ pub mod feature {
     pub const SPECULAR: u32 = 1 << 16;
     /// Stratified jitter (spp > 1).
     pub const JITTER: u32 = 1 << 17;
+    /// Some point or spot light has inverse-square attenuation (with or without a range).
+    pub const INVERSE_SQUARE: u32 = 1 << 18;
+    /// Some spot light has the smooth (glTF) cone falloff.
+    pub const SMOOTH_SPOT: u32 = 1 << 19;
     /// Every feature: the unspecialised tracer.
-    pub const ALL: u32 = (1 << 18) - 1;
+    pub const ALL: u32 = (1 << 20) - 1;
 
     /// Names in bit order, for logs, cache keys and shader defs.
-    pub const NAMES: [&str; 18] = [
+    pub const NAMES: [&str; 20] = [
         "POINT_LIGHTS",
         "DIRECTIONAL_LIGHTS",
         "SPOT_LIGHTS",
@@ -200,6 +240,8 @@ pub mod feature {
         "EMISSION",
         "SPECULAR",
         "JITTER",
+        "INVERSE_SQUARE",
+        "SMOOTH_SPOT",
     ];
 
     /// Whether a scene with `features` traces child rays: the one test of "needs a ray tree
@@ -304,13 +346,23 @@ pub struct GpuLight {
     pub diffuse: [f32; 4],
     pub specular: [f32; 4],
     pub ambient: [f32; 4],
-    /// (c, l, q, unused).
+    /// (c, l, q, unused) of the polynomial model; (1, 0, 0, 0) otherwise.
     pub attenuation: [f32; 4],
     pub kind: u32,
     pub flags: u32,
+    /// s of the power falloff; 0 for the smooth one.
     pub spot_exponent: f32,
-    /// cos(cutoff); −1 for cutoff 180 (no cone).
+    /// cos(cutoff) of the power falloff, −1 for cutoff 180 (no cone); cos(outer cone) of the
+    /// smooth one.
     pub spot_cos_cutoff: f32,
+    /// `ATTENUATION_*`: which f_att the light has.
+    pub attenuation_model: u32,
+    /// `SPOT_FALLOFF_*`: which S a spot light has (power for the other kinds).
+    pub spot_falloff: u32,
+    /// The inverse-square model's range window; 0 for none (plain 1/d²) and other models.
+    pub range: f32,
+    /// cos(inner cone) of the smooth falloff; 1 otherwise.
+    pub spot_cos_inner: f32,
 }
 
 #[repr(C)]
@@ -466,6 +518,12 @@ mod tests {
         for mode in EpsilonMode::ALL {
             assert_eq!(EpsilonMode::try_from(mode as u32), Ok(mode));
         }
+        for model in AttenuationModel::ALL {
+            assert_eq!(AttenuationModel::try_from(model as u32), Ok(model));
+        }
+        for falloff in SpotFalloff::ALL {
+            assert_eq!(SpotFalloff::try_from(falloff as u32), Ok(falloff));
+        }
         for model in [SpecularModel::Blinn, SpecularModel::Phong] {
             assert_eq!(SpecularModel::of_flags(model.flags()), model);
         }
@@ -478,5 +536,7 @@ mod tests {
         assert_eq!(Wrap::try_from(3).unwrap_err().to_string(), "3 is not a valid texture wrap mode");
         assert_eq!(LightKind::try_from(7).unwrap_err().to_string(), "7 is not a valid light kind");
         assert_eq!(EpsilonMode::try_from(4).unwrap_err().to_string(), "4 is not a valid epsilon mode");
+        assert_eq!(AttenuationModel::try_from(2).unwrap_err().to_string(), "2 is not a valid attenuation model");
+        assert_eq!(SpotFalloff::try_from(2).unwrap_err().to_string(), "2 is not a valid spot falloff");
     }
 }

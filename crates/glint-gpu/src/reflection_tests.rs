@@ -85,7 +85,11 @@ fn rust_layouts() -> Vec<RustLayout> {
             kind,
             flags,
             spot_exponent,
-            spot_cos_cutoff
+            spot_cos_cutoff,
+            attenuation_model,
+            spot_falloff,
+            range,
+            spot_cos_inner
         }),
         rust_layout!(GpuSphere { center_radius, material, object_id, pad }),
         rust_layout!(GpuPlane { normal_offset, material, object_id, pad }),
@@ -207,6 +211,10 @@ fn wgsl_layout_constants_match_rust() {
         ("LIGHT_POINT".into(), LIGHT_POINT),
         ("LIGHT_DIRECTIONAL".into(), LIGHT_DIRECTIONAL),
         ("LIGHT_SPOT".into(), LIGHT_SPOT),
+        ("ATTENUATION_POLYNOMIAL".into(), ATTENUATION_POLYNOMIAL),
+        ("ATTENUATION_INVERSE_SQUARE".into(), ATTENUATION_INVERSE_SQUARE),
+        ("SPOT_FALLOFF_POWER".into(), SPOT_FALLOFF_POWER),
+        ("SPOT_FALLOFF_SMOOTH".into(), SPOT_FALLOFF_SMOOTH),
         ("LIGHT_CASTS_SHADOWS".into(), LIGHT_CASTS_SHADOWS),
         ("MATERIAL_PHONG".into(), MATERIAL_PHONG),
         ("MESH_HAS_NORMALS".into(), MESH_HAS_NORMALS),
@@ -259,7 +267,7 @@ fn shared_tracer_constants_match_rust() {
     // Constants the two tracers must share exactly. (offset.rs's FLOAT_SCALE and SHADOW_REL
     // differ on purpose: each is scaled to its tracer's precision.) A probe module imports
     // each one and stores it, so naga cannot fold it away before we read it.
-    let expected: [(&str, &str, f64); 11] = [
+    let expected: [(&str, &str, f64); 12] = [
         ("glint::intersect", "PRIM_SPHERE", f64::from(intersect::PRIM_SPHERE)),
         ("glint::intersect", "PRIM_PLANE", f64::from(intersect::PRIM_PLANE)),
         ("glint::intersect", "PRIM_TRIANGLE", f64::from(intersect::PRIM_TRIANGLE)),
@@ -267,6 +275,7 @@ fn shared_tracer_constants_match_rust() {
         ("glint::intersect", "FAR", intersect::FAR),
         ("glint::shade", "MIN_LIGHT_DISTANCE", shade::MIN_LIGHT_DISTANCE),
         ("glint::shade", "MIN_HALF_LENGTH", shade::MIN_HALF_LENGTH),
+        ("glint::shade", "MIN_ATTENUATION_DENOMINATOR", shade::MIN_ATTENUATION_DENOMINATOR),
         ("glint::offset", "ORIGIN", offset::ORIGIN),
         ("glint::offset", "INT_SCALE", offset::INT_SCALE),
         ("glint::scene_data", "NO_HIT", f64::from(NO_HIT)),

@@ -363,7 +363,9 @@ mod tests {
             "triangle_shading_normal",
             "intersect_plane",
             "spot_factor",
+            "smooth_spot_factor",
             "attenuation_factor",
+            "inverse_square_factor",
             "refract_dir",
             "reflect_dir",
             "push_ray",
@@ -386,7 +388,16 @@ mod tests {
         }
         let full = compose_or_report(&ShaderKey::full());
         let full_names = function_names(&full);
-        for f in ["intersect_triangle", "spot_factor", "refract_dir", "push_ray", "sample_texture", "triangle_uv"] {
+        for f in [
+            "intersect_triangle",
+            "spot_factor",
+            "smooth_spot_factor",
+            "inverse_square_factor",
+            "refract_dir",
+            "push_ray",
+            "sample_texture",
+            "triangle_uv",
+        ] {
             assert!(full_names.iter().any(|n| n == f), "the full shader should have {f}");
         }
         let full_bindings: Vec<u32> =
@@ -411,5 +422,44 @@ mod tests {
         let (small, big) = (module_stats(&module), module_stats(&full));
         eprintln!("opaque sphere scene: {} statements, full shader: {}", small.statements, big.statements);
         assert!(small.statements * 10 < big.statements * 7, "specialisation removed less than 30 %");
+    }
+
+    /// A sphere under one point and one spot light with the given extra fields.
+    fn lit_sphere_key(point: &str, spot: &str) -> ShaderKey {
+        let text = format!(
+            "[camera]\nposition = [0.0, 0.0, -5.0]\nlook_at = [0.0, 0.0, 0.0]\n\
+             [materials.m]\nkd = 0.8\n\
+             [[lights]]\ntype = \"point\"\nposition = [0.0, 3.0, -3.0]\n{point}\n\
+             [[lights]]\ntype = \"spot\"\nposition = [0.0, 3.0, 0.0]\ndirection = [0.0, -1.0, 0.0]\n{spot}\n\
+             [[objects]]\ntype = \"sphere\"\ncenter = [0.0, 0.0, 0.0]\nradius = 1.0\nmaterial = \"m\"\n"
+        );
+        let (desc, _) = parse_scene(&text, std::path::Path::new("lights.toml")).expect("scene parses");
+        ShaderKey::for_scene(&FlatScene::build(&desc, &desc.render), true)
+    }
+
+    #[test]
+    fn gltf_light_models_are_compiled_only_for_scenes_that_use_them() {
+        let opengl = lit_sphere_key("attenuation = { c = 1.0, q = 0.5 }", "exponent = 4.0\ncutoff = 30.0");
+        assert_eq!(opengl.features & (feature::INVERSE_SQUARE | feature::SMOOTH_SPOT), 0, "[{}]", opengl.describe());
+        let names = function_names(&compose_or_report(&opengl));
+        for present in ["attenuation_factor", "spot_factor"] {
+            assert!(names.iter().any(|n| n == present), "OpenGL lights need {present}: {names:?}");
+        }
+        for absent in ["inverse_square_factor", "smooth_spot_factor"] {
+            assert!(!names.iter().any(|n| n == absent), "no glTF light, yet the module has {absent}: {names:?}");
+        }
+
+        let gltf = lit_sphere_key(
+            "attenuation = { model = \"inverse_square\", range = 20.0 }",
+            "falloff = \"smooth\"\ninner_cone = 10.0\nouter_cone = 30.0",
+        );
+        let both = feature::INVERSE_SQUARE | feature::SMOOTH_SPOT;
+        assert_eq!(gltf.features & both, both, "[{}]", gltf.describe());
+        assert_eq!(gltf.features & feature::ATTENUATION, 0, "no polynomial attenuation: [{}]", gltf.describe());
+        let names = function_names(&compose_or_report(&gltf));
+        for present in ["inverse_square_factor", "smooth_spot_factor"] {
+            assert!(names.iter().any(|n| n == present), "glTF lights need {present}: {names:?}");
+        }
+        assert!(!names.iter().any(|n| n == "attenuation_factor"), "no polynomial attenuation to compute: {names:?}");
     }
 }

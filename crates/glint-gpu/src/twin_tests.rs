@@ -130,7 +130,7 @@ const GPU_ONLY_STRUCTS: [(&str, &str, &str); 7] = [
 ];
 
 /// Structs only the CPU side has, and why.
-const CPU_ONLY_STRUCTS: [(&str, &str, &str); 4] = [
+const CPU_ONLY_STRUCTS: [(&str, &str, &str); 5] = [
     (
         "cpu/bvh.rs",
         "Crossing",
@@ -138,6 +138,7 @@ const CPU_ONLY_STRUCTS: [(&str, &str, &str); 4] = [
          multiplies in visiting order",
     ),
     ("cpu/mod.rs", "TraceContext", "the scene and its decoded header; WGSL reads them from bindings"),
+    ("cpu/mod.rs", "LightTags", "a light's stored tags decoded into enums once; WGSL compares the u32 fields"),
     ("cpu/shade.rs", "Breakdown", "the CPU probe's record; the GPU probe writes ProbeRecord (layout.rs)"),
     ("image.rs", "*", "host images and their metadata have no place on the GPU"),
 ];

@@ -5,7 +5,7 @@ use egui::Color32;
 use glint_core::cpu::v3;
 use glint_core::glam::DVec3;
 use glint_core::layout::GpuCamera;
-use glint_core::scene::{LightKind, SceneDesc};
+use glint_core::scene::{LightKind, SceneDesc, SpotFalloff};
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct Gizmo {
@@ -56,10 +56,15 @@ pub fn gizmos(desc: &SceneDesc, cam: &GpuCamera, selected: usize) -> Vec<Gizmo> 
                 (LightKind::Spot, Some(p), Some(d)) => {
                     g.marker = project(cam, p);
                     g.lines.push(polyline(cam, [p, p + d * scale * 2.0]));
-                    if l.cutoff < 90.0 {
+                    // The cone's edge: the cutoff, or where the smooth falloff reaches 0.
+                    let edge = match l.falloff {
+                        SpotFalloff::Power => l.cutoff,
+                        SpotFalloff::Smooth => l.cone_angles().1,
+                    };
+                    if edge < 90.0 {
                         // The cone's rim at a fixed distance along the axis, and four edges.
                         let (a, b) = d.any_orthonormal_pair();
-                        let rim_r = scale * l.cutoff.to_radians().tan().min(4.0);
+                        let rim_r = scale * edge.to_radians().tan().min(4.0);
                         let centre = p + d * scale;
                         let rim: Vec<DVec3> = (0..=32)
                             .map(|k| {

@@ -16,8 +16,8 @@ use std::ops::AddAssign;
 use glam::DVec3;
 
 use crate::flat::FlatScene;
-use crate::layout::{UnknownTag, feature};
-use crate::scene::{EpsilonMode, Filter, LightKind, Wrap};
+use crate::layout::{GpuLight, UnknownTag, feature};
+use crate::scene::{AttenuationModel, EpsilonMode, Filter, LightKind, SpotFalloff, Wrap};
 
 /// A ray with a unit direction.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -56,6 +56,25 @@ impl AddAssign for RayCounts {
         self.reflection += o.reflection;
         self.refraction += o.refraction;
         self.bailout_saved += o.bailout_saved;
+    }
+}
+
+/// The tags of one light the tracers switch on, decoded from its stored values.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct LightTags {
+    pub kind: LightKind,
+    pub attenuation: AttenuationModel,
+    pub falloff: SpotFalloff,
+}
+
+impl LightTags {
+    /// The tags `light` stores, or the first one no kind has.
+    pub fn decode(light: &GpuLight) -> Result<Self, UnknownTag> {
+        Ok(Self {
+            kind: LightKind::try_from(light.kind)?,
+            attenuation: AttenuationModel::try_from(light.attenuation_model)?,
+            falloff: SpotFalloff::try_from(light.spot_falloff)?,
+        })
     }
 }
 
@@ -118,8 +137,8 @@ pub struct TraceContext<'a> {
     pub epsilon: f64,
     pub epsilon_mode: EpsilonMode,
     pub bailout: f64,
-    /// The kind of each light, in light order.
-    pub light_kinds: Vec<LightKind>,
+    /// The tags of each light, in light order.
+    pub light_tags: Vec<LightTags>,
     /// The wrap modes (u, v) and filter of each texture, in table order.
     pub texture_modes: Vec<([Wrap; 2], Filter)>,
 }
@@ -142,7 +161,7 @@ impl<'a> TraceContext<'a> {
             epsilon: f64::from(h.epsilon),
             epsilon_mode: EpsilonMode::try_from(h.epsilon_mode)?,
             bailout: f64::from(h.bailout),
-            light_kinds: scene.lights.iter().map(|l| LightKind::try_from(l.kind)).collect::<Result<_, _>>()?,
+            light_tags: scene.lights.iter().map(LightTags::decode).collect::<Result<_, _>>()?,
             texture_modes: scene
                 .textures
                 .iter()

@@ -7,9 +7,10 @@ use glam::{DVec2, DVec3};
 use super::intersect::{FAR, all_zero, shadow_transmittance};
 use super::offset::{shadow_t_max, spawn_ray};
 use super::texture::sample_texture;
-use super::{Ray, RayCounts, TraceContext, v3};
+use super::{LightTags, Ray, RayCounts, TraceContext, v3};
 use crate::layout::{GpuLight, GpuMaterial, LIGHT_CASTS_SHADOWS, NO_TEXTURE, feature};
-use crate::scene::{LightKind, SpecularModel};
+pub use crate::scene::MIN_ATTENUATION_DENOMINATOR;
+use crate::scene::{AttenuationModel, LightKind, SpecularModel, SpotFalloff};
 
 /// Geometry at a hit: point, unit geometric and shading normals as stored (not yet turned
 /// towards the ray), material and object.
@@ -53,6 +54,26 @@ pub fn attenuation_factor(att: [f32; 4], d: f64) -> f64 {
     1.0 / (f64::from(att[0]) + f64::from(att[1]) * d + f64::from(att[2]) * d * d)
 }
 
+/// The inverse-square model: f_att = w / max(d², MIN_ATTENUATION_DENOMINATOR) with the range
+/// window w = clamp(1 − (d/range)⁴, 0, 1) that KHR_lights_punctual recommends (not squared, as
+/// in the glTF text and Khronos' sample renderer), w = 1 for range 0 (none). The window is
+/// written as its two cases (0 from d = range on, 1 − x⁴ with x < 1 before), which is the
+/// clamp without one. The bound on d² caps f_att at 1e6, as validation caps the polynomial's.
+pub fn inverse_square_factor(range: f32, d: f64) -> f64 {
+    let range = f64::from(range);
+    let mut window = 1.0;
+    if range > 0.0 {
+        if d >= range {
+            window = 0.0;
+        } else {
+            let x = d / range;
+            let x2 = x * x;
+            window = 1.0 - x2 * x2;
+        }
+    }
+    window / (d * d).max(MIN_ATTENUATION_DENOMINATOR)
+}
+
 /// S = max(L_N·(−L), 0)^s inside the cone, 0 outside; 1 everywhere for cutoff 180 (stored as
 /// cos = −1), as OpenGL, so that such a spot equals a point light.
 pub fn spot_factor(light: &GpuLight, l: DVec3) -> f64 {
@@ -66,6 +87,25 @@ pub fn spot_factor(light: &GpuLight, l: DVec3) -> f64 {
     safe_pow(cos_angle.max(0.0), f64::from(light.spot_exponent))
 }
 
+/// The smooth (glTF) cone: S = t², t = saturate((cos θ − cos outer) / (cos inner − cos outer)),
+/// cos θ = L_N·(−L), the KHR_lights_punctual reference. Written as its three cases, so that it
+/// never divides by zero: 0 outside the outer cone, 1 inside the inner one (both closed), the
+/// ramp between. With inner = outer (equal stored cosines) it is the step the ramp tends to:
+/// 1 inside the closed cone, 0 outside.
+pub fn smooth_spot_factor(light: &GpuLight, l: DVec3) -> f64 {
+    let cos_angle = v3(light.direction).dot(-l);
+    let cos_outer = f64::from(light.spot_cos_cutoff);
+    let cos_inner = f64::from(light.spot_cos_inner);
+    if cos_angle < cos_outer {
+        return 0.0;
+    }
+    if cos_angle >= cos_inner {
+        return 1.0;
+    }
+    let t = (cos_angle - cos_outer) / (cos_inner - cos_outer);
+    t * t
+}
+
 /// Direction and distance to a light from `p`, with its attenuation and spot factors.
 #[derive(Clone, Copy, Debug)]
 pub struct LightSample {
@@ -76,8 +116,8 @@ pub struct LightSample {
     pub spot: f64,
 }
 
-pub fn light_sample(ctx: &TraceContext, light: &GpuLight, kind: LightKind, p: DVec3) -> LightSample {
-    let is_spot = match kind {
+pub fn light_sample(ctx: &TraceContext, light: &GpuLight, tags: LightTags, p: DVec3) -> LightSample {
+    let is_spot = match tags.kind {
         LightKind::Directional => return LightSample { l: -v3(light.direction), dist: FAR, f_att: 1.0, spot: 1.0 },
         LightKind::Point => false,
         LightKind::Spot => true,
@@ -85,8 +125,19 @@ pub fn light_sample(ctx: &TraceContext, light: &GpuLight, kind: LightKind, p: DV
     let to_light = v3(light.position) - p;
     let dist = to_light.length();
     let l = if dist >= MIN_LIGHT_DISTANCE { to_light / dist } else { DVec3::ZERO };
-    let f_att = if ctx.has(feature::ATTENUATION) { attenuation_factor(light.attenuation, dist) } else { 1.0 };
-    let spot = if ctx.has(feature::SPOT_LIGHTS) && is_spot { spot_factor(light, l) } else { 1.0 };
+    let f_att = match tags.attenuation {
+        AttenuationModel::Polynomial if ctx.has(feature::ATTENUATION) => attenuation_factor(light.attenuation, dist),
+        AttenuationModel::InverseSquare if ctx.has(feature::INVERSE_SQUARE) => inverse_square_factor(light.range, dist),
+        AttenuationModel::Polynomial | AttenuationModel::InverseSquare => 1.0,
+    };
+    let spot = if ctx.has(feature::SPOT_LIGHTS) && is_spot {
+        match tags.falloff {
+            SpotFalloff::Smooth if ctx.has(feature::SMOOTH_SPOT) => smooth_spot_factor(light, l),
+            SpotFalloff::Smooth | SpotFalloff::Power => spot_factor(light, l),
+        }
+    } else {
+        1.0
+    };
     LightSample { l, dist, f_att, spot }
 }
 
@@ -226,7 +277,7 @@ impl Breakdown {
 pub fn light_term(
     ctx: &TraceContext,
     light: &GpuLight,
-    kind: LightKind,
+    tags: LightTags,
     mat: &GpuMaterial,
     s: &Surface,
     n: DVec3,
@@ -235,7 +286,7 @@ pub fn light_term(
     c: &MaterialColours,
     counts: &mut RayCounts,
 ) -> LightTerm {
-    let ls = light_sample(ctx, light, kind, s.p);
+    let ls = light_sample(ctx, light, tags, s.p);
     let scale = ls.f_att * ls.spot;
     let mut term = LightTerm { f_att: ls.f_att, spot: ls.spot, ..LightTerm::default() };
     if scale == 0.0 {
@@ -247,7 +298,7 @@ pub fn light_term(
     let n_dot_l = n.dot(ls.l);
     if n_dot_l > 0.0 {
         term.visibility = if ctx.has(feature::SHADOWS) && light.flags & LIGHT_CASTS_SHADOWS != 0 {
-            light_visibility(ctx, light, kind, s, ng, &ls, counts)
+            light_visibility(ctx, light, tags.kind, s, ng, &ls, counts)
         } else {
             DVec3::ONE
         };
@@ -279,8 +330,8 @@ pub fn shade_local(
     let emission = if ctx.has(feature::EMISSION) { c.emission } else { DVec3::ZERO };
     let ambient = v3(scene.header.ambient) * c.ka;
     let mut sum = DVec3::ZERO;
-    for (light, &kind) in scene.lights.iter().zip(&ctx.light_kinds) {
-        let term = light_term(ctx, light, kind, mat, s, n, ng, v, &c, counts);
+    for (light, &tags) in scene.lights.iter().zip(&ctx.light_tags) {
+        let term = light_term(ctx, light, tags, mat, s, n, ng, v, &c, counts);
         sum += term.contribution;
         if let Some(b) = probe.as_deref_mut() {
             b.lights.push(term);

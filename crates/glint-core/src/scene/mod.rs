@@ -23,8 +23,9 @@ use crate::model::{ImportOptions, ModelFormat};
 
 pub use builtin::{BUILTIN_SCENES, BuiltinScene, BuiltinSource, DEFAULT_RESOLUTION, RESOLUTIONS, builtin};
 pub use desc::{
-    Attenuation, CameraDesc, CheckerDesc, EpsilonMode, LightDesc, LightKind, MaterialDesc, MeshDesc, NO_CONE_CUTOFF,
-    ObjectDesc, PlaneDesc, RenderSettings, SceneDesc, SpecularModel, SphereDesc, WorldDesc,
+    Attenuation, AttenuationModel, CameraDesc, CheckerDesc, DEFAULT_INNER_CONE, DEFAULT_OUTER_CONE, EpsilonMode,
+    LightDesc, LightKind, MaterialDesc, MeshDesc, NO_CONE_CUTOFF, ObjectDesc, PlaneDesc, RenderSettings, SceneDesc,
+    SpecularModel, SphereDesc, SpotFalloff, WorldDesc,
 };
 pub use error::{FieldIssue, SceneError};
 pub use model_ref::{LoadedModel, ModelDesc, Scale, TransformDesc, load_models, without_imported_materials};

@@ -8,7 +8,7 @@ use glam::DVec3;
 
 use super::desc::{
     Attenuation, LightDesc, LightKind, MaterialDesc, MeshDesc, NO_CONE_CUTOFF, ObjectDesc, PlaneDesc, RenderSettings,
-    SceneDesc, SphereDesc,
+    SceneDesc, SphereDesc, SpotFalloff,
 };
 use super::error::FieldIssue;
 use super::number::{format_number as num, shorten};
@@ -27,7 +27,8 @@ pub const MAX_DEPTH: u32 = 1024;
 pub const MAX_EPSILON: f64 = 1e3;
 pub const MAX_IOR: f64 = 1e3;
 /// Smallest value c + l·d + q·d² may take: f_att = 1/(…) stays ≤ 1e6, so that radiance stays
-/// far from f32 overflow on the GPU.
+/// far from f32 overflow on the GPU. The inverse-square model divides by max(d², this) for the
+/// same bound: a point within 1e-3 of its light gets f_att = 1e6 at most.
 pub const MIN_ATTENUATION_DENOMINATOR: f64 = 1e-6;
 
 /// The values one number of a scene may take. Validation checks every number against its
@@ -102,6 +103,10 @@ pub mod ranges {
     pub const SPOT_EXPONENT: Range<f64> = Range::logarithmic(0.0, MAX_SPOT_EXPONENT);
     /// A spot cone's half-angle in degrees; `NO_CONE_CUTOFF` is allowed besides.
     pub const CUTOFF: Range<f64> = Range::linear(0.0, 90.0);
+    /// The smooth falloff's inner and outer cone half-angles in degrees (inner ≤ outer besides).
+    pub const CONE: Range<f64> = Range::linear(0.0, 90.0);
+    /// The inverse-square model's range window, in scene units.
+    pub const LIGHT_RANGE: Range<f64> = Range::logarithmic_above(0.0, MAX_COORD);
 }
 
 /// Six significant digits without trailing zeros, for messages about f32-rounded values.
@@ -337,30 +342,96 @@ fn validate_light(path: &str, l: &LightDesc, r: &mut Report) {
     } else {
         validate_attenuation(&format!("{path}.attenuation"), l.attenuation, r);
     }
-    if l.kind == LightKind::Spot {
-        r.finite_in(&format!("{path}.exponent"), l.exponent, ranges::SPOT_EXPONENT);
-        let c = l.cutoff;
-        if !(ranges::CUTOFF.contains(c) || c == NO_CONE_CUTOFF) {
-            let (lo, hi) = (ranges::CUTOFF.min, ranges::CUTOFF.max);
-            r.error(
-                format!("{path}.cutoff"),
-                format!("{} is outside the allowed range [{lo}, {hi}] or {NO_CONE_CUTOFF} (no cone)", num(c)),
-            );
+    match (l.kind, l.falloff) {
+        (LightKind::Spot, SpotFalloff::Power) => {
+            validate_power_cone(path, l, r);
+            for (field, v) in [("inner_cone", l.inner_cone), ("outer_cone", l.outer_cone)] {
+                if v.is_some() {
+                    r.error(
+                        format!("{path}.{field}"),
+                        "belongs to falloff = \"smooth\"; this spot has the power falloff (exponent, cutoff)",
+                    );
+                }
+            }
         }
-    } else {
-        if l.exponent != 0.0 {
-            r.error(format!("{path}.exponent"), format!("only spot lights have an exponent (this is a {kind} light)"));
+        (LightKind::Spot, SpotFalloff::Smooth) => {
+            validate_smooth_cone(path, l, r);
+            if l.exponent != 0.0 {
+                r.error(
+                    format!("{path}.exponent"),
+                    "belongs to falloff = \"power\"; a smooth spot has inner_cone and outer_cone",
+                );
+            }
+            if l.cutoff != NO_CONE_CUTOFF {
+                r.error(
+                    format!("{path}.cutoff"),
+                    "belongs to falloff = \"power\"; a smooth spot's cone ends at outer_cone",
+                );
+            }
         }
-        if l.cutoff != NO_CONE_CUTOFF {
-            r.error(format!("{path}.cutoff"), format!("only spot lights have a cutoff (this is a {kind} light)"));
+        (LightKind::Point | LightKind::Directional, _) => {
+            let only_spots = [
+                ("exponent", l.exponent != 0.0, "an exponent"),
+                ("cutoff", l.cutoff != NO_CONE_CUTOFF, "a cutoff"),
+                ("falloff", !l.falloff.is_power(), "a falloff"),
+                ("inner_cone", l.inner_cone.is_some(), "an inner_cone"),
+                ("outer_cone", l.outer_cone.is_some(), "an outer_cone"),
+            ];
+            for (field, present, what) in only_spots {
+                if present {
+                    r.error(
+                        format!("{path}.{field}"),
+                        format!("only spot lights have {what} (this is a {kind} light)"),
+                    );
+                }
+            }
         }
     }
 }
 
-/// c + l·d + q·d² must stay positive for every distance d ≥ 0.
+/// The power falloff: exponent s and the hard cutoff.
+fn validate_power_cone(path: &str, l: &LightDesc, r: &mut Report) {
+    r.finite_in(&format!("{path}.exponent"), l.exponent, ranges::SPOT_EXPONENT);
+    let c = l.cutoff;
+    if !(ranges::CUTOFF.contains(c) || c == NO_CONE_CUTOFF) {
+        let (lo, hi) = (ranges::CUTOFF.min, ranges::CUTOFF.max);
+        r.error(
+            format!("{path}.cutoff"),
+            format!("{} is outside the allowed range [{lo}, {hi}] or {NO_CONE_CUTOFF} (no cone)", num(c)),
+        );
+    }
+}
+
+/// The smooth falloff: 0 ≤ inner ≤ outer ≤ 90 degrees.
+fn validate_smooth_cone(path: &str, l: &LightDesc, r: &mut Report) {
+    let (inner, outer) = l.cone_angles();
+    let inner_ok = r.finite_in(&format!("{path}.inner_cone"), inner, ranges::CONE);
+    let outer_ok = r.finite_in(&format!("{path}.outer_cone"), outer, ranges::CONE);
+    if inner_ok && outer_ok && inner > outer {
+        r.error(
+            format!("{path}.inner_cone"),
+            format!("{inner} is larger than outer_cone = {outer}; allowed: 0 ≤ inner_cone ≤ outer_cone ≤ 90"),
+        );
+    }
+}
+
 fn validate_attenuation(path: &str, a: Attenuation, r: &mut Report) {
+    match a {
+        Attenuation::Polynomial { c, l, q } => validate_polynomial(path, c, l, q, r),
+        Attenuation::InverseSquare { range: Some(range) } => {
+            if !ranges::LIGHT_RANGE.contains(range) {
+                let (lo, hi) = (ranges::LIGHT_RANGE.min, ranges::LIGHT_RANGE.max);
+                r.error(format!("{path}.range"), format!("{range} is outside the allowed range ({lo}, {hi:e}]"));
+            }
+        }
+        Attenuation::InverseSquare { range: None } => {}
+    }
+}
+
+/// c + l·d + q·d² must stay positive for every distance d ≥ 0.
+fn validate_polynomial(path: &str, c: f64, l: f64, q: f64, r: &mut Report) {
     // Check all three (no short circuit) so that every bad coefficient is reported.
-    let checks: Vec<bool> = [("c", a.c), ("l", a.l), ("q", a.q)]
+    let checks: Vec<bool> = [("c", c), ("l", l), ("q", q)]
         .into_iter()
         .map(|(n, v)| r.finite_in(&format!("{path}.{n}"), v, ranges::ATTENUATION))
         .collect();
@@ -369,7 +440,8 @@ fn validate_attenuation(path: &str, a: Attenuation, r: &mut Report) {
         return;
     }
     // Judge the coefficients the tracers will use: rounded to f32.
-    let (c, l, q) = (as_f32(a.c), as_f32(a.l), as_f32(a.q));
+    let (given_c, given_l, given_q) = (c, l, q);
+    let (c, l, q) = (as_f32(c), as_f32(l), as_f32(q));
     let min = MIN_ATTENUATION_DENOMINATOR;
     let problem = if c < min {
         Some(format!("c + l·d + q·d² is c at d = 0, so c must be ≥ {min:e}"))
@@ -386,7 +458,7 @@ fn validate_attenuation(path: &str, a: Attenuation, r: &mut Report) {
         None
     };
     if let Some(p) = problem {
-        r.error(path, format!("{p} (got c = {}, l = {}, q = {})", num(a.c), num(a.l), num(a.q)));
+        r.error(path, format!("{p} (got c = {}, l = {}, q = {})", num(given_c), num(given_l), num(given_q)));
     }
 }
 

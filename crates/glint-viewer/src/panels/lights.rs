@@ -1,13 +1,19 @@
 //! Lights panel: the list with add, duplicate and remove, and the selected light's fields.
 
 use egui::Ui;
-use glint_core::scene::{LightDesc, LightKind, NO_CONE_CUTOFF, ranges};
+use glint_core::scene::{
+    Attenuation, AttenuationModel, DEFAULT_INNER_CONE, DEFAULT_OUTER_CONE, LightDesc, LightKind, NO_CONE_CUTOFF,
+    SpotFalloff, ranges,
+};
 
 use crate::document::Document;
 use crate::widgets::{choice, number, rgb_edit, slider, vec3_edit};
 
 /// The cone a light gets when it becomes a spot light or leaves "no cone".
 const NEW_CONE_CUTOFF: f64 = 30.0;
+
+/// The range an inverse-square light gets when its range window is switched on.
+const NEW_RANGE: f64 = 10.0;
 
 pub fn ui(ui: &mut Ui, doc: &mut Document, selected: &mut usize) -> bool {
     let mut changed = false;
@@ -69,25 +75,101 @@ pub fn ui(ui: &mut Ui, doc: &mut Document, selected: &mut usize) -> bool {
     changed |= rgb_edit(ui, "I_s", &mut light.specular);
     changed |= rgb_edit(ui, "I_a,j", &mut light.ambient);
     if light.kind != LightKind::Directional {
-        ui.label("Attenuation f_att = 1 / (c + l·d + q·d²)");
-        ui.horizontal(|ui| {
-            changed |= number(ui, "c", &mut light.attenuation.c, 0.01, ranges::ATTENUATION);
-            changed |= number(ui, "l", &mut light.attenuation.l, 0.01, ranges::ATTENUATION);
-            changed |= number(ui, "q", &mut light.attenuation.q, 0.01, ranges::ATTENUATION);
-        });
+        changed |= attenuation_ui(ui, &mut light.attenuation);
     }
     if light.kind == LightKind::Spot {
-        changed |= slider(ui, "Spot exponent", &mut light.exponent, ranges::SPOT_EXPONENT);
-        // The slider covers the cones proper; "no cone" is a value of its own.
-        let mut no_cone = light.cutoff >= NO_CONE_CUTOFF;
-        if ui.checkbox(&mut no_cone, format!("No cone (cutoff {NO_CONE_CUTOFF}°)")).changed() {
-            light.cutoff = if no_cone { NO_CONE_CUTOFF } else { NEW_CONE_CUTOFF };
-            changed = true;
-        }
-        if !no_cone {
-            changed |= slider(ui, "Cutoff", &mut light.cutoff, ranges::CUTOFF);
-        }
+        changed |= spot_ui(ui, light);
     }
     changed |= ui.checkbox(&mut light.casts_shadows, "Casts shadows").changed();
+    changed
+}
+
+/// The attenuation model and its parameters. Changing the model starts from its neutral
+/// parameters (f_att = 1, or plain 1/d²).
+fn attenuation_ui(ui: &mut Ui, attenuation: &mut Attenuation) -> bool {
+    let mut model = attenuation.model();
+    let mut changed = false;
+    if choice(ui, "Attenuation", &mut model, &AttenuationModel::ALL, AttenuationModel::name) {
+        *attenuation = match model {
+            AttenuationModel::Polynomial => Attenuation::NONE,
+            AttenuationModel::InverseSquare => Attenuation::inverse_square(None),
+        };
+        changed = true;
+    }
+    match attenuation {
+        Attenuation::Polynomial { c, l, q } => {
+            ui.label("f_att = 1 / (c + l·d + q·d²)");
+            ui.horizontal(|ui| {
+                changed |= number(ui, "c", c, 0.01, ranges::ATTENUATION);
+                changed |= number(ui, "l", l, 0.01, ranges::ATTENUATION);
+                changed |= number(ui, "q", q, 0.01, ranges::ATTENUATION);
+            });
+        }
+        Attenuation::InverseSquare { range } => {
+            let mut windowed = range.is_some();
+            let text = if windowed { "f_att = clamp(1 − (d/range)⁴, 0, 1) / d²" } else { "f_att = 1 / d²" };
+            ui.label(text);
+            if ui.checkbox(&mut windowed, "Range window").changed() {
+                *range = windowed.then_some(NEW_RANGE);
+                changed = true;
+            }
+            if let Some(r) = range {
+                changed |= slider(ui, "Range", r, ranges::LIGHT_RANGE);
+            }
+        }
+    }
+    changed
+}
+
+/// A spot light's falloff and its cone. Changing the falloff gives the new one the old cone's
+/// size and clears the fields the new one does not have (validation refuses them).
+fn spot_ui(ui: &mut Ui, light: &mut LightDesc) -> bool {
+    let mut changed = false;
+    let before = light.falloff;
+    if choice(ui, "Falloff", &mut light.falloff, &SpotFalloff::ALL, SpotFalloff::name) && light.falloff != before {
+        match light.falloff {
+            SpotFalloff::Smooth => {
+                let outer = if light.cutoff < NO_CONE_CUTOFF { light.cutoff } else { DEFAULT_OUTER_CONE };
+                light.inner_cone = Some(DEFAULT_INNER_CONE);
+                light.outer_cone = Some(outer);
+                light.exponent = 0.0;
+                light.cutoff = NO_CONE_CUTOFF;
+            }
+            SpotFalloff::Power => {
+                light.cutoff = light.outer_cone.unwrap_or(NEW_CONE_CUTOFF);
+                light.inner_cone = None;
+                light.outer_cone = None;
+            }
+        }
+        changed = true;
+    }
+    match light.falloff {
+        SpotFalloff::Power => {
+            changed |= slider(ui, "Spot exponent", &mut light.exponent, ranges::SPOT_EXPONENT);
+            // The slider covers the cones proper; "no cone" is a value of its own.
+            let mut no_cone = light.cutoff >= NO_CONE_CUTOFF;
+            if ui.checkbox(&mut no_cone, format!("No cone (cutoff {NO_CONE_CUTOFF}°)")).changed() {
+                light.cutoff = if no_cone { NO_CONE_CUTOFF } else { NEW_CONE_CUTOFF };
+                changed = true;
+            }
+            if !no_cone {
+                changed |= slider(ui, "Cutoff", &mut light.cutoff, ranges::CUTOFF);
+            }
+        }
+        SpotFalloff::Smooth => {
+            ui.label("S = t², t = saturate((cos θ − cos outer) / (cos inner − cos outer))");
+            let (inner, outer) = light.cone_angles();
+            let (mut inner, mut outer) = (inner, outer);
+            let inner_changed = slider(ui, "Inner cone", &mut inner, ranges::CONE);
+            let outer_changed = slider(ui, "Outer cone", &mut outer, ranges::CONE);
+            if inner_changed {
+                light.inner_cone = Some(inner);
+            }
+            if outer_changed {
+                light.outer_cone = Some(outer);
+            }
+            changed |= inner_changed | outer_changed;
+        }
+    }
     changed
 }

@@ -2,17 +2,11 @@
 
 use crate::model::Mat4;
 use crate::model::ModelCamera;
-use crate::scene::{Attenuation, CameraDesc, FieldIssue, LightDesc, LightKind, MIN_ATTENUATION_DENOMINATOR, Rgb};
+use crate::scene::{Attenuation, CameraDesc, FieldIssue, LightDesc, LightKind, Rgb, SpotFalloff};
 
 fn normalized(v: [f64; 3]) -> Option<[f64; 3]> {
     let len = v.iter().map(|c| c * c).sum::<f64>().sqrt();
     (len.is_finite() && len > 1e-300).then(|| v.map(|c| c / len))
-}
-
-/// glTF's distance falloff, 1/d², as the seed's f_att = 1/(c + l·d + q·d²) with q = 1 and the
-/// smallest c validation allows (so f_att stays finite on the light itself).
-fn inverse_square() -> Attenuation {
-    Attenuation { c: MIN_ATTENUATION_DENOMINATOR, l: 0.0, q: 1.0 }
 }
 
 /// The light of `node` (world transform `world`): colour × intensity × `exposure` as I_d and
@@ -44,18 +38,16 @@ pub(super) fn map_light(
         ..LightDesc::new(kind, position, direction)
     };
     if kind != LightKind::Directional {
-        desc.attenuation = inverse_square();
+        // glTF's falloff: 1/d², windowed by `range` when the light has one.
+        desc.attenuation = Attenuation::inverse_square(light.range().map(f64::from));
     }
-    if light.range().is_some() {
-        warnings.push(FieldIssue { field: field.clone(), problem: "range is not windowed yet: plain 1/d²".into() });
-    }
-    if let ::gltf::khr_lights_punctual::Kind::Spot { outer_cone_angle, .. } = light.kind() {
-        // Until the smooth cone exists: the outer cone as a hard cutoff.
-        desc.cutoff = f64::from(outer_cone_angle).to_degrees().clamp(0.0, 90.0);
-        warnings.push(FieldIssue {
-            field,
-            problem: "the inner cone is not modelled: hard cutoff at the outer cone".into(),
-        });
+    if let ::gltf::khr_lights_punctual::Kind::Spot { inner_cone_angle, outer_cone_angle } = light.kind() {
+        // glTF's smooth cone; the angles in degrees, within the [0, 90] validation allows.
+        let degrees = |a: f32| f64::from(a).to_degrees().clamp(0.0, 90.0);
+        let outer = degrees(outer_cone_angle);
+        desc.falloff = SpotFalloff::Smooth;
+        desc.inner_cone = Some(degrees(inner_cone_angle).min(outer));
+        desc.outer_cone = Some(outer);
     }
     Some(desc)
 }
