@@ -26,6 +26,8 @@ fn validation_range(label: &str) -> Option<(f64, f64)> {
         "c" | "l" | "q" => real(ranges::ATTENUATION),
         "Spot exponent" => real(ranges::SPOT_EXPONENT),
         "Cutoff" => real(ranges::CUTOFF),
+        "Range" => real(ranges::LIGHT_RANGE),
+        "Inner cone" | "Outer cone" => real(ranges::CONE),
         "Shininess n" => real(ranges::SHININESS),
         "Index of refraction" => real(ranges::IOR),
         "Checker size" => real(ranges::SIZE),
@@ -69,6 +71,15 @@ fn every_editor_offers_the_range_validation_allows() {
     let lights = check_editors(&h, "Lights");
     for l in ["Position x", "Spot axis z", "I_d R", "c", "q", "Spot exponent", "Cutoff"] {
         assert!(lights.iter().any(|s| s == l), "Lights: no editor {l:?} among {lights:?}");
+    }
+    // The glTF options' editors: the range window and the smooth cone.
+    choose(&mut h, "Lights", "Attenuation", "inverse_square");
+    h.get_by_label("Range window").click();
+    h.run_steps(2);
+    choose(&mut h, "Lights", "Falloff", "smooth");
+    let gltf = check_editors(&h, "Lights (glTF options)");
+    for l in ["Range", "Inner cone", "Outer cone"] {
+        assert!(gltf.iter().any(|s| s == l), "Lights: no editor {l:?} among {gltf:?}");
     }
 
     choose(&mut h, "Materials", "Material", "floor");
