@@ -526,7 +526,10 @@ fn validate_mesh(path: &str, mesh: &MeshDesc, r: &mut Report) {
     if triangles.is_empty() {
         r.error(format!("{path}.triangles"), "a mesh needs at least one triangle [i, j, k]");
     }
-    for (i, v) in vertices.iter().enumerate() {
+    // Each field name is formatted only for a value at fault: a million vertices would
+    // otherwise cost a million strings on every edit in the viewer.
+    let in_range = |p: &[f64]| p.iter().all(|&c| ranges::COORD.contains(c));
+    for (i, v) in vertices.iter().enumerate().filter(|(_, v)| !in_range(&v[..])) {
         r.point(&format!("{path}.vertices[{i}]"), *v);
     }
     let n = vertices.len();
@@ -551,7 +554,8 @@ fn validate_mesh(path: &str, mesh: &MeshDesc, r: &mut Report) {
         if normals.len() != n {
             r.error(format!("{path}.normals"), format!("has {} entries; it needs one per vertex ({n})", normals.len()));
         }
-        for (i, v) in normals.iter().enumerate() {
+        let usable = |d: &[f64; 3]| in_range(&d[..]) && d.iter().map(|c| c * c).sum::<f64>().sqrt() >= 1e-12;
+        for (i, v) in normals.iter().enumerate().filter(|(_, v)| !usable(v)) {
             r.direction(&format!("{path}.normals[{i}]"), *v);
         }
     }
@@ -559,7 +563,7 @@ fn validate_mesh(path: &str, mesh: &MeshDesc, r: &mut Report) {
         if uvs.len() != n {
             r.error(format!("{path}.uvs"), format!("has {} entries; it needs one per vertex ({n})", uvs.len()));
         }
-        for (i, uv) in uvs.iter().enumerate() {
+        for (i, uv) in uvs.iter().enumerate().filter(|(_, uv)| !in_range(&uv[..])) {
             for (axis, v) in ["u", "v"].iter().zip(uv) {
                 r.finite_in(&format!("{path}.uvs[{i}].{axis}"), *v, ranges::COORD);
             }
