@@ -7,7 +7,7 @@ use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
 use glint_test_support::TempDir;
-use glint_test_support::scene::SceneText;
+use glint_test_support::scene::stack_overflow_slab;
 
 use super::{BIN, glint, os, png_text_chunks, text};
 
@@ -150,18 +150,6 @@ fn radiance_beyond_f32_is_an_error_naming_its_cause_and_writes_nothing() {
     }
 }
 
-/// The camera inside a glass slab, 10° off its normal, at depth 65: every hit defers a
-/// refracted ray, one more than the GPU's 64-entry stack holds (tests/stiff case 15).
-fn stack_overflow_scene() -> String {
-    let a = 10.0_f64.to_radians();
-    SceneText::pinhole("max_depth = 65\nbailout = 0.0", [0.0; 3], [a.sin(), a.cos(), 0.0], [0.0, 0.0, 1.0])
-        .world([0.0; 3], [0.25; 3])
-        .material("glass", "ka = 0.0\nkd = 0.0\nks = 0.0\nkr = 0.9\nkt = 0.5\nior = 1.5\nemission = 0.0625")
-        .plane([0.0, 1.0, 0.0], [0.0, 1.0, 0.0], "glass")
-        .plane([0.0, -1.0, 0.0], [0.0, -1.0, 0.0], "glass")
-        .text
-}
-
 #[test]
 fn a_gpu_status_flag_fails_the_render_unless_incomplete_images_are_allowed() {
     if skip_gpu() {
@@ -169,7 +157,7 @@ fn a_gpu_status_flag_fails_the_render_unless_incomplete_images_are_allowed() {
         return;
     }
     let dir = TempDir::new("status");
-    std::fs::write(dir.join("slab.toml"), stack_overflow_scene()).unwrap();
+    std::fs::write(dir.join("slab.toml"), stack_overflow_slab()).unwrap();
     let out = glint(&dir, ["render", "slab.toml", "--backend", "gpu", "-q", "-o", "slab.png"]);
     let stderr = text(&out.stderr);
     assert!(!out.status.success(), "a stack overflow passed:\n{stderr}");

@@ -8,12 +8,8 @@ use glint_core::{Accel, CpuOptions, FlatScene, RenderControl, render_cpu};
 use glint_gpu::GpuOptions;
 use glint_test_support::scene::{mesh_scene, uv_sphere};
 
-use super::support::gpu_or_skip;
+use super::support::{FLIP_MEAN_MAX, MISMATCH_MAX, P99_MAX, gpu_or_skip};
 use crate::gpu::gpu_render_with;
-
-const FLIP_MEAN_MAX: f64 = 0.005;
-const P99_MAX: f64 = 1.0 / 255.0;
-const MISMATCH_MAX: f64 = 0.005;
 
 fn render(tracer: &glint_gpu::GpuTracer, flat: &FlatScene, accel: Accel) -> glint_gpu::GpuRender {
     gpu_render_with(tracer, flat, &GpuOptions { accel, ..GpuOptions::default() })

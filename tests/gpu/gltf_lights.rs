@@ -9,8 +9,7 @@ use glint_core::probe_pixel;
 use glint_core::scene::parse_scene;
 use glint_gpu::probe::breakdown;
 
-use super::parity::{FLIP_MEAN_MAX, MISMATCH_MAX, P99_MAX};
-use super::support::{compare_and_keep, cpu, gpu_or_skip, gpu_render, write_failure_images};
+use super::support::{compare_and_keep, cpu, gpu_or_skip, gpu_render, log_errors, within_parity, write_failure_images};
 
 /// A floor, two spheres and a mirror lit by glTF-style lights beside OpenGL-style ones.
 const SCENE: &str = r#"
@@ -125,20 +124,8 @@ fn gltf_lights_match_the_cpu_reference() {
         let g = gpu_render(tracer, &flat, true);
         let name = format!("gltf-lights-spp{spp}");
         let (e, base) = compare_and_keep("parity", &name, &c, &g);
-        eprintln!(
-            "{name:<20} FLIP {:.5}  p99 {:.2e}  max {:.2e}  mismatch {:.3} %  PSNR {:.1} dB  status {}",
-            e.flip_mean,
-            e.p99_abs_same_hit,
-            e.max_abs,
-            100.0 * e.first_hit_mismatch,
-            e.psnr,
-            g.status
-        );
-        let ok = e.flip_mean <= FLIP_MEAN_MAX
-            && e.p99_abs_same_hit <= P99_MAX
-            && e.first_hit_mismatch <= MISMATCH_MAX
-            && g.status == 0
-            && e.nonfinite == 0;
+        log_errors(&name, &e, g.status);
+        let ok = within_parity(&e, g.status);
         if !ok {
             write_failure_images(&base, &c, &g);
         }

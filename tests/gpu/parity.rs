@@ -11,11 +11,9 @@
 
 use glint_core::scene::BUILTIN_SCENES;
 
-use super::support::{builtin, compare_and_keep, cpu, gpu_or_skip, gpu_render, write_failure_images};
-
-pub(crate) const FLIP_MEAN_MAX: f64 = 0.005;
-pub(crate) const P99_MAX: f64 = 1.0 / 255.0;
-pub(crate) const MISMATCH_MAX: f64 = 0.005;
+use super::support::{
+    builtin, compare_and_keep, cpu, gpu_or_skip, gpu_render, log_errors, within_parity, write_failure_images,
+};
 
 #[test]
 fn builtin_scenes_match_the_cpu_reference() {
@@ -29,25 +27,12 @@ fn builtin_scenes_match_the_cpu_reference() {
             let g = gpu_render(tracer, &flat, true);
             let name = format!("{}-spp{spp}", scene.name);
             let (e, base) = compare_and_keep("parity", &name, &c, &g);
-            eprintln!(
-                "{name:<16} FLIP {:.5}  p99 {:.2e}  max {:.2e}  mismatch {:.3} %  PSNR {:.1} dB  status {}",
-                e.flip_mean,
-                e.p99_abs_same_hit,
-                e.max_abs,
-                100.0 * e.first_hit_mismatch,
-                e.psnr,
-                g.status
-            );
+            log_errors(&name, &e, g.status);
             // The same ray tree, so the same rays (up to rare f32 decisions at a bailout or a
             // silhouette): within 0.1 %.
             let (rc, rg) = (c.counts.total() as f64, g.counts.total() as f64);
             let same_rays = (rc - rg).abs() <= 1e-3 * rc;
-            let ok = e.flip_mean <= FLIP_MEAN_MAX
-                && e.p99_abs_same_hit <= P99_MAX
-                && e.first_hit_mismatch <= MISMATCH_MAX
-                && g.status == 0
-                && e.nonfinite == 0
-                && same_rays;
+            let ok = within_parity(&e, g.status) && same_rays;
             if !ok {
                 write_failure_images(&base, &c, &g);
                 failures.push(format!("{name} (rays: CPU {rc}, GPU {rg})"));

@@ -36,6 +36,32 @@ pub fn compare_and_keep(group: &str, name: &str, cpu: &CpuRender, gpu: &GpuRende
     (errors, artefact_dir(group).join(name))
 }
 
+/// The parity thresholds, measured and justified in parity.rs's header.
+pub const FLIP_MEAN_MAX: f64 = 0.005;
+pub const P99_MAX: f64 = 1.0 / 255.0;
+pub const MISMATCH_MAX: f64 = 0.005;
+
+/// Whether a GPU image is within parity of the CPU reference and raised no status flag.
+pub fn within_parity(e: &ImageErrors, status: u32) -> bool {
+    e.flip_mean <= FLIP_MEAN_MAX
+        && e.p99_abs_same_hit <= P99_MAX
+        && e.first_hit_mismatch <= MISMATCH_MAX
+        && status == 0
+        && e.nonfinite == 0
+}
+
+/// One line of a GPU-against-CPU comparison on stderr.
+pub fn log_errors(name: &str, e: &ImageErrors, status: u32) {
+    eprintln!(
+        "{name:<20} FLIP {:.5}  p99 {:.2e}  max {:.2e}  mismatch {:.3} %  PSNR {:.1} dB  status {status}",
+        e.flip_mean,
+        e.p99_abs_same_hit,
+        e.max_abs,
+        100.0 * e.first_hit_mismatch,
+        e.psnr,
+    );
+}
+
 /// Writes NAME-cpu.png, NAME-gpu.png and NAME-diff.png.
 pub fn write_failure_images(base: &std::path::Path, cpu: &CpuRender, gpu: &GpuRender) {
     crate::render::write_failure_images(base, &cpu.image, Some(&gpu.image));

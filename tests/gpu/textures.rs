@@ -9,7 +9,7 @@ use glint_gpu::probe::breakdown;
 use glint_test_support::TempDir;
 use glint_test_support::texture::textured_scene;
 
-use super::support::{compare_and_keep, cpu, gpu_or_skip, gpu_render, write_failure_images};
+use super::support::{compare_and_keep, cpu, gpu_or_skip, gpu_render, log_errors, within_parity, write_failure_images};
 
 #[test]
 fn textured_scene_matches_the_cpu_reference() {
@@ -23,19 +23,8 @@ fn textured_scene_matches_the_cpu_reference() {
         let g = gpu_render(tracer, &flat, specialise);
         let name = format!("textured-specialised-{specialise}");
         let (e, base) = compare_and_keep("textures", &name, &c, &g);
-        eprintln!(
-            "{name}: FLIP {:.5}  p99 {:.2e}  max {:.2e}  mismatch {:.3} %  status {}",
-            e.flip_mean,
-            e.p99_abs_same_hit,
-            e.max_abs,
-            100.0 * e.first_hit_mismatch,
-            g.status
-        );
-        let ok = e.flip_mean <= 0.005
-            && e.p99_abs_same_hit <= 1.0 / 255.0
-            && e.first_hit_mismatch <= 0.005
-            && g.status == 0
-            && e.nonfinite == 0;
+        log_errors(&name, &e, g.status);
+        let ok = within_parity(&e, g.status);
         if !ok {
             write_failure_images(&base, &c, &g);
         }

@@ -83,6 +83,19 @@ pub fn slab(ior: f64, deg: f64) -> SceneText {
         .plane([0.0, -6.0, 0.0], Y, "ground")
 }
 
+/// The camera inside a glass slab, 10° off its normal, at depth 65: every hit defers a
+/// refracted ray, one more than the GPU's 64-entry stack holds (tests/stiff case 15), so a GPU
+/// render raises `STATUS_STACK_OVERFLOW`.
+pub fn stack_overflow_slab() -> String {
+    let a = 10.0_f64.to_radians();
+    SceneText::pinhole("max_depth = 65\nbailout = 0.0", [0.0; 3], [a.sin(), a.cos(), 0.0], [0.0, 0.0, 1.0])
+        .world([0.0; 3], [0.25; 3])
+        .material("glass", "ka = 0.0\nkd = 0.0\nks = 0.0\nkr = 0.9\nkt = 0.5\nior = 1.5\nemission = 0.0625")
+        .plane([0.0, 1.0, 0.0], [0.0, 1.0, 0.0], "glass")
+        .plane([0.0, -1.0, 0.0], [0.0, -1.0, 0.0], "glass")
+        .text
+}
+
 /// Incrementally written scene text.
 #[derive(Debug, Default, Clone)]
 pub struct SceneText {

@@ -63,6 +63,13 @@ impl ImportOptions {
     }
 }
 
+/// A number a model file stored as f32, as the file wrote it: the shortest decimal of that f32
+/// (to 7 digits), so `Kd 0.1` or `"roughnessFactor": 0.1` is 0.1 as in a scene file, not
+/// 0.10000000149.
+pub(crate) fn widen(x: f32) -> f64 {
+    x.to_string().parse().unwrap_or(f64::from(x))
+}
+
 /// Which importer reads a file, by its extension (case-insensitive).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ModelFormat {

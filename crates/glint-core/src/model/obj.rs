@@ -6,8 +6,8 @@
 use std::path::Path;
 use std::sync::Arc;
 
-use super::Model;
 use super::uri::{MAX_RESOURCE_BYTES, UriError, resolve_uri};
+use super::{Model, widen};
 use crate::scene::{ColorSpace, FieldIssue, MaterialDesc, MeshDesc, Rgb, TextureDesc, TextureImage};
 
 /// Why an OBJ did not load.
@@ -194,12 +194,6 @@ fn material_name(mtl: &str) -> String {
 
 fn default_material() -> MaterialDesc {
     MaterialDesc { ka: Rgb::splat(0.8), kd: Rgb::splat(0.8), ks: Rgb::splat(0.0), ..MaterialDesc::default() }
-}
-
-/// tobj reads numbers as f32: the shortest decimal of that f32 is what the file wrote (to 7
-/// digits), so a material reads `Kd 0.1` as 0.1, as a scene file would, not 0.10000000149.
-fn widen(x: f32) -> f64 {
-    x.to_string().parse().unwrap_or(f64::from(x))
 }
 
 fn rgb(c: [f32; 3]) -> Rgb {

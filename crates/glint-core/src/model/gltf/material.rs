@@ -1,6 +1,7 @@
 //! glTF materials (metallic-roughness, specular-glossiness and the KHR material extensions)
 //! mapped onto the seed's coefficients, as docs/models.md tabulates.
 
+use crate::model::widen;
 use crate::scene::{FieldIssue, MAX_IOR, MAX_SHININESS, MaterialDesc, Rgb};
 
 /// Below this roughness a surface is treated as smooth enough to mirror: it traces
@@ -20,11 +21,6 @@ pub fn blinn_exponent(roughness: f64) -> f64 {
 
 fn lerp(a: f64, b: f64, t: f64) -> f64 {
     a + (b - a) * t
-}
-
-/// The f32 value as the file wrote it (shortest decimal), as the OBJ importer reads MTL numbers.
-fn widen(x: f32) -> f64 {
-    x.to_string().parse().unwrap_or(f64::from(x))
 }
 
 /// A material's coefficients, and what of it could not be mapped as warnings under `field`.
