@@ -11,9 +11,9 @@ use std::collections::BTreeMap;
 use std::f64::consts::PI;
 
 use super::desc::{
-    CameraDesc, CheckerDesc, LightDesc, LightKind, MaterialDesc, MeshDesc, ObjectDesc, RenderSettings, SceneDesc,
-    SphereDesc, WorldDesc,
+    CameraDesc, CheckerDesc, MaterialDesc, MeshDesc, ObjectDesc, RenderSettings, SceneDesc, SphereDesc, WorldDesc,
 };
+use super::light::{LightDesc, LightKind};
 use super::rgb::Rgb;
 
 /// The sphere in the descriptions (`glint render --list`, the viewer).

@@ -9,6 +9,7 @@ mod builtin;
 pub mod bumpy;
 mod desc;
 mod error;
+mod light;
 mod model_ref;
 mod number;
 mod overflow;
@@ -23,11 +24,14 @@ use crate::model::{ImportOptions, ModelFormat};
 
 pub use builtin::{BUILTIN_SCENES, BuiltinScene, BuiltinSource, DEFAULT_RESOLUTION, RESOLUTIONS, builtin};
 pub use desc::{
-    Attenuation, AttenuationModel, CameraDesc, CheckerDesc, DEFAULT_INNER_CONE, DEFAULT_OUTER_CONE, EpsilonMode,
-    LightDesc, LightKind, MaterialDesc, MeshDesc, NO_CONE_CUTOFF, ObjectDesc, PlaneDesc, RenderSettings, SceneDesc,
-    SpecularModel, SphereDesc, SpotFalloff, WorldDesc,
+    CameraDesc, CheckerDesc, EpsilonMode, MaterialDesc, MeshDesc, ObjectDesc, PlaneDesc, RenderSettings, SceneDesc,
+    SpecularModel, SphereDesc, WorldDesc,
 };
 pub use error::{FieldIssue, SceneError};
+pub use light::{
+    Attenuation, AttenuationModel, DEFAULT_INNER_CONE, DEFAULT_OUTER_CONE, LightDesc, LightKind, NO_CONE_CUTOFF,
+    SpotFalloff,
+};
 pub use model_ref::{LoadedModel, ModelDesc, Scale, TransformDesc, load_models, without_imported_materials};
 pub use number::{format_number, shorten};
 pub use overflow::overflow_causes;

@@ -6,11 +6,9 @@
 
 use glam::DVec3;
 
-use super::desc::{
-    Attenuation, LightDesc, LightKind, MaterialDesc, MeshDesc, NO_CONE_CUTOFF, ObjectDesc, PlaneDesc, RenderSettings,
-    SceneDesc, SphereDesc, SpotFalloff,
-};
+use super::desc::{MaterialDesc, MeshDesc, ObjectDesc, PlaneDesc, RenderSettings, SceneDesc, SphereDesc};
 use super::error::FieldIssue;
+use super::light::{Attenuation, LightDesc, LightKind, NO_CONE_CUTOFF, SpotFalloff};
 use super::number::{format_number as num, shorten};
 use super::rgb::Rgb;
 use super::texture::{TextureDesc, material_textures};
