@@ -1,5 +1,6 @@
 //! Running one render on either backend, with the timings the table reports.
 
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::time::{Duration, Instant};
 
 use anyhow::Context;
@@ -42,7 +43,7 @@ pub fn run_cpu(flat: &FlatScene, options: &CpuOptions, quiet: bool) -> anyhow::R
     } else {
         let bar = ProgressBar::new(tiles);
         bar.set_style(
-            ProgressStyle::with_template("{spinner} cpu [{bar:40}] {percent:>3}% {elapsed_precise} eta {eta}")
+            ProgressStyle::with_template("{spinner} cpu [{bar:40}] {percent:>3}% {msg} {elapsed_precise} eta {eta}")
                 .context("progress bar template")?
                 .progress_chars("=> "),
         );
@@ -51,7 +52,23 @@ pub fn run_cpu(flat: &FlatScene, options: &CpuOptions, quiet: bool) -> anyhow::R
     let on_tile = |_: &Tile| bar.inc(1);
     // SIGINT/SIGTERM stop the render at the next tile (see `interrupt`).
     let cancel = glint_core::interrupt::flag();
-    let r = render_cpu(flat, options, RenderControl { cancel: Some(&cancel), on_tile: Some(&on_tile) })?;
+    let rays = AtomicU64::new(0);
+    let done = AtomicBool::new(false);
+    let control = RenderControl { cancel: Some(&cancel), on_tile: Some(&on_tile), rays: Some(&rays) };
+    let r = std::thread::scope(|scope| {
+        if !bar.is_hidden() {
+            // Rays traced so far, also while one long tile holds the bar still.
+            scope.spawn(|| {
+                while !done.load(Ordering::Relaxed) {
+                    bar.set_message(format!("{} rays", count(rays.load(Ordering::Relaxed))));
+                    std::thread::sleep(Duration::from_millis(200));
+                }
+            });
+        }
+        let r = render_cpu(flat, options, control);
+        done.store(true, Ordering::Relaxed);
+        r
+    })?;
     bar.finish_and_clear();
     Ok(Run {
         backend: Backend::Cpu,
@@ -63,6 +80,17 @@ pub fn run_cpu(flat: &FlatScene, options: &CpuOptions, quiet: bool) -> anyhow::R
         gpu_status: 0,
         incomplete: Vec::new(),
     })
+}
+
+/// A ray count as people read it: 950, 12.3 k, 4.56 M, 7.89 G.
+pub fn count(n: u64) -> String {
+    let n = n as f64;
+    match n {
+        n if n >= 1e9 => format!("{:.2} G", n / 1e9),
+        n if n >= 1e6 => format!("{:.2} M", n / 1e6),
+        n if n >= 1e3 => format!("{:.1} k", n / 1e3),
+        n => format!("{n}"),
+    }
 }
 
 /// Opens the GPU named by `--adapter` (or `WGPU_ADAPTER_NAME`).

@@ -6,6 +6,7 @@ use anyhow::bail;
 use clap::Args;
 use clap::builder::{PossibleValuesParser, TypedValueParser};
 use glint_core::compare::compare_images;
+use glint_core::cpu::DEFAULT_MAX_RAYS_PER_SAMPLE;
 use glint_core::scene::{BUILTIN_SCENES, RESOLUTIONS, overflow_causes, unbounded_ray_tree};
 use glint_core::{Accel, Backend, CpuOptions, FlatScene};
 use glint_gpu::GpuOptions;
@@ -14,7 +15,7 @@ use super::backend::{Run, open_gpu, run_cpu, run_gpu};
 use super::interrupt;
 use super::output::{fmt_counts, metadata, print_json, print_table, suffixed, write_diff, write_run};
 use super::output_path::check_outputs;
-use super::settings::{LoadArgs, SettingsArgs, load, parse_threads};
+use super::settings::{LoadArgs, SettingsArgs, load, parse_ray_cap, parse_threads};
 use super::units::{mrays_per_s, ms};
 
 #[derive(Debug, Args)]
@@ -39,6 +40,10 @@ pub struct RenderArgs {
     /// CPU worker threads: 0 = one per core, at most 4 per core (and never more than 1024)
     #[arg(long, default_value_t = 0, allow_negative_numbers = true, value_parser = parse_threads)]
     pub threads: usize,
+    /// The CPU's bound on one camera sample's ray tree [1, 2^40]: a pixel that reaches it is an
+    /// error naming the pixel, never a silently cut tree (default 2^22 = 4,194,304)
+    #[arg(long, value_name = "RAYS", default_value_t = DEFAULT_MAX_RAYS_PER_SAMPLE, allow_negative_numbers = true, value_parser = parse_ray_cap)]
+    pub max_rays_per_sample: u64,
     /// Run every feature of both tracers even where the scene does not need it
     #[arg(long)]
     pub no_specialise: bool,
@@ -105,7 +110,12 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         eprintln!("warning: {warning}");
     }
     let specialise = !args.no_specialise;
-    let cpu_options = CpuOptions { threads: args.threads, specialise, accel: args.accel };
+    let cpu_options = CpuOptions {
+        threads: args.threads,
+        specialise,
+        accel: args.accel,
+        max_rays_per_sample: args.max_rays_per_sample,
+    };
     let gpu_options = GpuOptions { specialise, accel: args.accel, ..GpuOptions::default() };
     if args.bench {
         let flat = FlatScene::build(&loaded.desc, &settings);

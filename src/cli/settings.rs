@@ -118,6 +118,17 @@ pub fn parse_threads(s: &str) -> Result<usize, String> {
     }
 }
 
+/// The largest `--max-rays-per-sample`: 2^40 rays is days of one core.
+const MAX_RAY_CAP: u64 = 1 << 40;
+
+pub fn parse_ray_cap(s: &str) -> Result<u64, String> {
+    match s.trim().parse::<i128>() {
+        Ok(v) if (1..=i128::from(MAX_RAY_CAP)).contains(&v) => Ok(v as u64),
+        Ok(v) => Err(format!("{v} is outside [1, {MAX_RAY_CAP}] (rays per camera sample)")),
+        Err(_) => Err(format!("'{s}' is not a whole number of rays in [1, {MAX_RAY_CAP}]")),
+    }
+}
+
 fn parse_epsilon_mode(s: &str) -> Result<EpsilonMode, String> {
     EpsilonMode::from_name(s).ok_or_else(|| {
         let names: Vec<&str> = EpsilonMode::ALL.iter().map(|m| m.name()).collect();

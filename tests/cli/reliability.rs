@@ -223,3 +223,43 @@ fn a_legal_250_byte_output_name_is_written() {
     assert!(out.status.success(), "{}", text(&out.stderr));
     assert_eq!(dir.listing(), [name]);
 }
+
+/// Glass between two facing mirrors with no bailout: every glass hit doubles the tree, to
+/// 2^1025 rays a camera sample at `max_depth = 1024`.
+const BRANCHING: &str = "[render]\nwidth = 4\nheight = 4\nmax_depth = 1024\nbailout = 0.0\n\n\
+    [camera]\nposition = [0.0, 0.0, 1.0]\nlook_at = [0.0, 0.0, 2.0]\n\n\
+    [materials.mirror]\nkr = 0.9\n\n[materials.glass]\nkr = 0.5\nkt = 0.5\nior = 1.5\n\n\
+    [[lights]]\ntype = \"point\"\nposition = [0.0, 1.0, 2.0]\n\n\
+    [[objects]]\ntype = \"plane\"\npoint = [0.0, 0.0, 0.0]\nnormal = [0.0, 0.0, 1.0]\nmaterial = \"mirror\"\n\n\
+    [[objects]]\ntype = \"plane\"\npoint = [0.0, 0.0, 4.0]\nnormal = [0.0, 0.0, -1.0]\nmaterial = \"mirror\"\n\n\
+    [[objects]]\ntype = \"sphere\"\ncenter = [0.0, 0.0, 2.5]\nradius = 1.0\nmaterial = \"glass\"\n";
+
+#[test]
+fn a_ray_tree_without_end_stops_at_the_cap_naming_the_pixel_and_the_remedy() {
+    let dir = TempDir::new("ray-cap");
+    std::fs::write(dir.join("tree.toml"), BRANCHING).unwrap();
+    // The default cap (2^22 rays a sample) and a small one both stop it, in well under the
+    // hours the whole tree would take.
+    for cap in [None, Some("5000")] {
+        let mut args = vec!["render", "tree.toml", "-q", "-o", "tree.exr"];
+        args.extend(cap.iter().flat_map(|c| ["--max-rays-per-sample", *c]));
+        let out = glint(&dir, args);
+        let stderr = text(&out.stderr);
+        assert!(!out.status.success(), "{cap:?}: a capped render succeeded");
+        let cap_text = format!("reached the cap of {} rays", cap.unwrap_or("4194304"));
+        for f in ["up to 2^1025 − 1", "pixel (", &cap_text, "set render.bailout", "--max-rays-per-sample"] {
+            assert!(stderr.contains(f), "{cap:?}: no {f:?} in\n{stderr}");
+        }
+        assert_eq!(dir.listing(), ["tree.toml"], "{cap:?}: left behind");
+    }
+    // With a bailout the same tree ends by itself, under the same cap.
+    let bounded = BRANCHING.replace("bailout = 0.0", "bailout = 0.004");
+    std::fs::write(dir.join("tree.toml"), bounded).unwrap();
+    let out = glint(&dir, ["render", "tree.toml", "-q", "-o", "tree.exr", "--max-rays-per-sample", "5000"]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    for bad in ["0", "-3", "1099511627777", "x"] {
+        let out = glint(&dir, ["render", "tree.toml", "-q", "-o", "bad.exr", "--max-rays-per-sample", bad]);
+        let stderr = text(&out.stderr);
+        assert!(!out.status.success() && stderr.contains("[1, 1099511627776]"), "{bad}: {stderr}");
+    }
+}

@@ -1,6 +1,6 @@
 //! The CPU render loop: tiles in parallel (rayon), deterministic for any thread count.
 
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::time::{Duration, Instant};
 
 use glam::DVec3;
@@ -9,7 +9,7 @@ use rayon::prelude::*;
 pub use crate::cpu::Accel;
 use crate::cpu::shade::Breakdown;
 use crate::cpu::trace::{render_pixel, render_sample};
-use crate::cpu::{RayCounts, TraceContext};
+use crate::cpu::{DEFAULT_MAX_RAYS_PER_SAMPLE, RayCounts, TraceContext};
 use crate::flat::FlatScene;
 use crate::image::HdrImage;
 use crate::layout::{UnknownTag, feature};
@@ -26,11 +26,14 @@ pub struct CpuOptions {
     pub specialise: bool,
     /// How rays find primitives (the BVH by default); the image is bit-identical either way.
     pub accel: Accel,
+    /// The bound on one camera sample's ray tree: a pixel whose tree reaches it stops the
+    /// render with `CpuRenderError::RayCap` (the reference is never silently truncated).
+    pub max_rays_per_sample: u64,
 }
 
 impl Default for CpuOptions {
     fn default() -> Self {
-        Self { threads: 0, specialise: true, accel: Accel::default() }
+        Self { threads: 0, specialise: true, accel: Accel::default(), max_rays_per_sample: DEFAULT_MAX_RAYS_PER_SAMPLE }
     }
 }
 
@@ -64,6 +67,8 @@ impl Tile {
 pub struct RenderControl<'a> {
     pub cancel: Option<&'a AtomicBool>,
     pub on_tile: Option<&'a (dyn Fn(&Tile) + Sync)>,
+    /// Rays traced so far, added after every pixel: progress inside a long tile.
+    pub rays: Option<&'a AtomicU64>,
 }
 
 impl std::fmt::Debug for RenderControl<'_> {
@@ -89,18 +94,30 @@ pub enum CpuRenderError {
     ThreadPool { threads: usize, message: String },
     #[error("invalid flat scene: {0}")]
     InvalidScene(#[from] UnknownTag),
+    #[error(
+        "pixel ({x}, {y}): a camera sample's ray tree reached the cap of {cap} rays, so the render stopped; the \
+         scene's reflection and refraction branch without end: set render.bailout (e.g. 1/255, with k_r + k_t < 1 \
+         in every material) or lower render.max_depth, or raise the cap (--max-rays-per-sample)"
+    )]
+    RayCap { x: u32, y: u32, cap: u64 },
+}
+
+/// Why a tile was not finished.
+enum TileStop {
+    Cancelled,
+    RayCap { x: u32, y: u32 },
 }
 
 pub fn tile_count(width: u32, height: u32) -> usize {
     (width.div_ceil(TILE) * height.div_ceil(TILE)) as usize
 }
 
-fn render_tile(ctx: &TraceContext, x0: u32, y0: u32, cancel: Option<&AtomicBool>) -> Option<Tile> {
+fn render_tile(ctx: &TraceContext, x0: u32, y0: u32, stop: &Stop) -> Result<Tile, TileStop> {
     let h = &ctx.scene.header;
     let width = TILE.min(h.width - x0);
     let height = TILE.min(h.height - y0);
-    if cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
-        return None;
+    if stop.requested() {
+        return Err(TileStop::Cancelled);
     }
     let mut counts = RayCounts::default();
     let n = (width * height) as usize;
@@ -108,12 +125,33 @@ fn render_tile(ctx: &TraceContext, x0: u32, y0: u32, cancel: Option<&AtomicBool>
     let mut first_hit = Vec::with_capacity(n);
     for y in y0..y0 + height {
         for x in x0..x0 + width {
+            let before = counts.total();
             let (c, id) = render_pixel(ctx, x, y, &mut counts);
+            if counts.capped_samples > 0 {
+                stop.capped.store(true, Ordering::Relaxed);
+                return Err(TileStop::RayCap { x, y });
+            }
+            if let Some(rays) = stop.rays {
+                rays.fetch_add(counts.total() - before, Ordering::Relaxed);
+            }
             radiance.push(c);
             first_hit.push(id);
         }
     }
-    Some(Tile { x0, y0, width, height, radiance, first_hit, counts })
+    Ok(Tile { x0, y0, width, height, radiance, first_hit, counts })
+}
+
+/// What stops the tiles not yet started: the caller's cancel flag, or a capped pixel.
+struct Stop<'a> {
+    cancel: Option<&'a AtomicBool>,
+    capped: AtomicBool,
+    rays: Option<&'a AtomicU64>,
+}
+
+impl Stop<'_> {
+    fn requested(&self) -> bool {
+        self.capped.load(Ordering::Relaxed) || self.cancel.is_some_and(|c| c.load(Ordering::Relaxed))
+    }
 }
 
 /// Renders the whole image on the CPU.
@@ -129,7 +167,10 @@ pub fn render_cpu(
         .build()
         .map_err(|e| CpuRenderError::ThreadPool { threads, message: e.to_string() })?;
     let features = if options.specialise { scene.header.features } else { feature::ALL };
-    let ctx = TraceContext::with_features(scene, features)?.with_accel(options.accel);
+    let ctx = TraceContext::with_features(scene, features)?
+        .with_accel(options.accel)
+        .with_ray_cap(options.max_rays_per_sample);
+    let stop = Stop { cancel: control.cancel, capped: AtomicBool::new(false), rays: control.rays };
     let (w, h) = (scene.header.width, scene.header.height);
     let origins: Vec<(u32, u32)> =
         (0..h.div_ceil(TILE)).flat_map(|ty| (0..w.div_ceil(TILE)).map(move |tx| (tx * TILE, ty * TILE))).collect();
@@ -137,24 +178,31 @@ pub fn render_cpu(
     // Each finished tile goes into the image at once and its buffers are freed: keeping all
     // of them until the end grew the workers' heaps page by page (thousands of mprotect calls).
     let image = std::sync::Mutex::new(HdrImage::new(w, h));
-    let tiles: Vec<Option<RayCounts>> = pool.install(|| {
+    let tiles: Vec<Result<RayCounts, TileStop>> = pool.install(|| {
         origins
             .par_iter()
             .map(|&(x0, y0)| {
-                let tile = render_tile(&ctx, x0, y0, control.cancel)?;
+                let tile = render_tile(&ctx, x0, y0, &stop)?;
                 if let Some(cb) = control.on_tile {
                     cb(&tile);
                 }
                 tile.copy_into(&mut image.lock().unwrap_or_else(|e| e.into_inner()));
-                Some(tile.counts)
+                Ok(tile.counts)
             })
             .collect()
     });
     let elapsed = start.elapsed();
+    // A capped pixel is the error to report even where other tiles then saw the stop.
+    if let Some((x, y)) = tiles.iter().find_map(|t| match t {
+        Err(TileStop::RayCap { x, y }) => Some((*x, *y)),
+        Ok(_) | Err(TileStop::Cancelled) => None,
+    }) {
+        return Err(CpuRenderError::RayCap { x, y, cap: options.max_rays_per_sample });
+    }
     let image = image.into_inner().unwrap_or_else(|e| e.into_inner());
     let mut counts = RayCounts::default();
     for tile_counts in tiles {
-        counts += tile_counts.ok_or(CpuRenderError::Cancelled)?;
+        counts += tile_counts.map_err(|_| CpuRenderError::Cancelled)?;
     }
     Ok(CpuRender { image, counts, elapsed, threads })
 }

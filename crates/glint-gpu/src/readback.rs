@@ -168,6 +168,8 @@ pub fn decode_stats(bytes: &[u8]) -> (RayCounts, u32) {
         reflection: pair(STAT_REFLECTION),
         refraction: pair(STAT_REFRACTION),
         bailout_saved: pair(STAT_BAILOUT_SAVED),
+        // The GPU bounds a tree by its walk stack instead: a status flag.
+        capped_samples: 0,
     };
     (counts, words[STAT_STATUS as usize])
 }

@@ -114,7 +114,7 @@ impl CpuWorker {
                 job.repaint();
             };
             let options = CpuOptions { threads: worker_threads(), ..CpuOptions::default() };
-            let control = RenderControl { cancel: Some(job.cancel_flag()), on_tile: Some(&on_tile) };
+            let control = RenderControl { cancel: Some(job.cancel_flag()), on_tile: Some(&on_tile), rays: None };
             render_cpu(&scene, &options, control)
                 .map(|r| Finished { image: r.image, counts: r.counts, elapsed: r.elapsed, threads: r.threads })
                 .map_err(|e| e.to_string())

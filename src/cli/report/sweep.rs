@@ -141,7 +141,7 @@ fn render(engines: &mut Engines, flat: &FlatScene, config: &Config) -> anyhow::R
                 CpuOptions { threads: engines.threads, specialise: config.specialise, ..CpuOptions::default() };
             // SIGINT/SIGTERM stop the sweep at the next tile (see `cli::interrupt`).
             let cancel = glint_core::interrupt::flag();
-            let r = render_cpu(flat, &options, RenderControl { cancel: Some(&cancel), on_tile: None })?;
+            let r = render_cpu(flat, &options, RenderControl { cancel: Some(&cancel), ..RenderControl::default() })?;
             Ok(Sample { image: r.image, counts: r.counts, time: r.elapsed, gpu: None })
         }
         Backend::Gpu => {

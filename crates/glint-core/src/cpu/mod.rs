@@ -19,6 +19,11 @@ use crate::flat::FlatScene;
 use crate::layout::{GpuLight, UnknownTag, feature};
 use crate::scene::{AttenuationModel, EpsilonMode, Filter, LightKind, SpotFalloff, Wrap};
 
+/// The default of `TraceContext::max_rays_per_sample`: 2^22 rays, about 3 s of one core. A
+/// depth-5 tree through glass (63 hits) with 10,000 lights traces 630,000 rays; a tree
+/// beyond 2^22 is one that doubles for more than 20 levels, which the bailout did not stop.
+pub const DEFAULT_MAX_RAYS_PER_SAMPLE: u64 = 1 << 22;
+
 /// A ray with a unit direction.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Ray {
@@ -41,6 +46,9 @@ pub struct RayCounts {
     pub refraction: u64,
     /// Child rays not traced because their path weight fell below the bailout.
     pub bailout_saved: u64,
+    /// Camera samples whose ray tree reached `TraceContext::max_rays_per_sample` (the CPU
+    /// stops the render at the first: `render::CpuRenderError::RayCap`).
+    pub capped_samples: u64,
 }
 
 impl RayCounts {
@@ -56,6 +64,7 @@ impl AddAssign for RayCounts {
         self.reflection += o.reflection;
         self.refraction += o.refraction;
         self.bailout_saved += o.bailout_saved;
+        self.capped_samples += o.capped_samples;
     }
 }
 
@@ -137,6 +146,10 @@ pub struct TraceContext<'a> {
     pub epsilon: f64,
     pub epsilon_mode: EpsilonMode,
     pub bailout: f64,
+    /// Rays one camera sample's tree may trace (camera, shadow, reflection, refraction rays)
+    /// before its remaining children are cut and the sample counted in
+    /// `RayCounts::capped_samples`: the bound on the work of a pixel.
+    pub max_rays_per_sample: u64,
     /// The tags of each light, in light order.
     pub light_tags: Vec<LightTags>,
     /// The wrap modes (u, v) and filter of each texture, in table order.
@@ -161,6 +174,7 @@ impl<'a> TraceContext<'a> {
             epsilon: f64::from(h.epsilon),
             epsilon_mode: EpsilonMode::try_from(h.epsilon_mode)?,
             bailout: f64::from(h.bailout),
+            max_rays_per_sample: DEFAULT_MAX_RAYS_PER_SAMPLE,
             light_tags: scene.lights.iter().map(LightTags::decode).collect::<Result<_, _>>()?,
             texture_modes: scene
                 .textures
@@ -173,6 +187,22 @@ impl<'a> TraceContext<'a> {
     /// The same context, finding primitives with `accel`.
     pub fn with_accel(self, accel: Accel) -> Self {
         Self { traversal: accel.traversal(self.scene), ..self }
+    }
+
+    /// The same context, cutting a camera sample's tree at `cap` rays.
+    pub fn with_ray_cap(self, cap: u64) -> Self {
+        Self { max_rays_per_sample: cap, ..self }
+    }
+
+    /// Whether a camera sample's tree, whose own rays are `counts`, has traced its
+    /// `max_rays_per_sample`: then no further child is traced and the sample is marked capped.
+    #[inline]
+    pub fn cap_reached(&self, counts: &mut RayCounts) -> bool {
+        let reached = counts.total() >= self.max_rays_per_sample;
+        if reached {
+            counts.capped_samples = 1;
+        }
+        reached
     }
 
     /// Whether any of the `bits` is in the feature set.

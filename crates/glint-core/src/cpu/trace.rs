@@ -130,6 +130,9 @@ pub fn shade_hit(
     }
     if !all_zero(k_mirror) {
         let w = weight * k_mirror;
+        if ctx.cap_reached(counts) {
+            return radiance;
+        }
         if max_channel(w) < ctx.bailout {
             counts.bailout_saved += 1;
         } else {
@@ -149,6 +152,9 @@ pub fn shade_hit(
     }
     if let Some(dir) = refracted {
         let w = weight * kt;
+        if ctx.cap_reached(counts) {
+            return radiance;
+        }
         if max_channel(w) < ctx.bailout {
             counts.bailout_saved += 1;
         } else {
@@ -175,6 +181,7 @@ pub fn object_id(ctx: &TraceContext, hit: &Hit) -> u32 {
 }
 
 /// One camera sample: radiance and the id of the first object hit (`NO_HIT` for none).
+/// Its rays are added to `counts`; a tree cut at `max_rays_per_sample` adds one capped sample.
 pub fn render_sample(
     ctx: &TraceContext,
     x: u32,
@@ -187,18 +194,21 @@ pub fn render_sample(
     let pixel = y * h.width + x;
     let (ox, oy) = sample_offset(pixel, sample, h.spp, h.seed, ctx.has(feature::JITTER));
     let ray = camera_ray(&ctx.scene.camera, h.width, h.height, x, y, ox, oy);
-    counts.camera += 1;
     match closest_hit(ctx, &ray, 0.0, FAR) {
         Some(hit) => {
             let object = object_id(ctx, &hit);
             let mut probe = probe;
-            let radiance = shade_hit(ctx, &ray, &hit, 0, DVec3::ONE, counts, probe.as_deref_mut());
+            // The tree's own counts: the cap bounds one tree, whatever the pixel traced before.
+            let mut own = RayCounts { camera: 1, ..RayCounts::default() };
+            let radiance = shade_hit(ctx, &ray, &hit, 0, DVec3::ONE, &mut own, probe.as_deref_mut());
+            *counts += own;
             if let Some(b) = probe {
                 b.total = radiance;
             }
             (radiance, object)
         }
         None => {
+            counts.camera += 1;
             let bg = v3(h.background);
             if let Some(b) = probe {
                 *b = Breakdown { object_id: NO_HIT, total: bg, ..Breakdown::default() };
