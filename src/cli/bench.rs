@@ -155,7 +155,7 @@ fn rays(args: &RaysArgs) -> anyhow::Result<()> {
     // The GPU first: a device that cannot be opened fails before minutes of CPU work.
     let gpu = if backends.contains(&Backend::Gpu) { Some(open_gpu(args.adapter.as_deref())?) } else { None };
 
-    let loaded = load(&args.scene, &args.scene_size.options())?;
+    let loaded = load(&args.scene, &args.scene_size.options(), args.scene_size.memory_limit)?;
     let (flat, flat_time) = pool.install(|| timed(|| FlatScene::build(&loaded.desc, &loaded.desc.render)));
     if flat.bvh_nodes.is_empty() {
         bail!("scene '{}' has no spheres or triangles: there is no BVH to measure", loaded.name);

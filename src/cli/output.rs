@@ -5,6 +5,7 @@ use std::path::{Path, PathBuf};
 use glint_core::compare::{HEATMAP_LOG10_MAX, HEATMAP_LOG10_MIN, ImageErrors, diff_heatmap};
 use glint_core::cpu::RayCounts;
 use glint_core::image::{RenderInfo, render_metadata, write_image, write_png_rgb8};
+use glint_core::memory::{self, MemoryEstimate, MemoryPart};
 use glint_core::scene::RenderSettings;
 use serde::Serialize;
 
@@ -120,6 +121,23 @@ struct JsonReport<'a> {
     runs: Vec<JsonRun<'a>>,
     gpu_vs_cpu: Option<JsonErrors>,
     outputs: Vec<String>,
+    memory: JsonMemory<'a>,
+}
+
+/// The memory estimated before the render (checked against the limit) and what the process
+/// peaked at, to hold one against the other.
+#[derive(Serialize)]
+struct JsonMemory<'a> {
+    /// Loading the file (null for a built-in scene), then rendering: each checked against
+    /// the limit before it started.
+    load_estimate_bytes: Option<u64>,
+    load_estimate: Option<&'a [MemoryPart]>,
+    render_estimate_bytes: u64,
+    render_estimate: &'a [MemoryPart],
+    /// The memory that was available when glint checked (null where it cannot be read).
+    available_bytes: Option<u64>,
+    /// Peak resident memory of the process at the end (Linux's VmHWM; null elsewhere).
+    peak_rss_bytes: Option<u64>,
 }
 
 pub fn print_json(
@@ -128,6 +146,8 @@ pub fn print_json(
     runs: &[Run],
     errors: Option<&ImageErrors>,
     outputs: &[PathBuf],
+    load_estimate: Option<&MemoryEstimate>,
+    render_estimate: &MemoryEstimate,
 ) -> anyhow::Result<()> {
     let report = JsonReport {
         scene,
@@ -167,6 +187,14 @@ pub fn print_json(
             nonfinite_pixels: e.nonfinite,
         }),
         outputs: outputs.iter().map(|p| p.display().to_string()).collect(),
+        memory: JsonMemory {
+            load_estimate_bytes: load_estimate.map(MemoryEstimate::total),
+            load_estimate: load_estimate.map(|e| e.parts.as_slice()),
+            render_estimate_bytes: render_estimate.total(),
+            render_estimate: &render_estimate.parts,
+            available_bytes: memory::available(),
+            peak_rss_bytes: memory::peak_rss(),
+        },
     };
     println!("{}", serde_json::to_string_pretty(&report)?);
     Ok(())

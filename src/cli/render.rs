@@ -7,6 +7,7 @@ use clap::Args;
 use clap::builder::{PossibleValuesParser, TypedValueParser};
 use glint_core::compare::compare_images;
 use glint_core::cpu::DEFAULT_MAX_RAYS_PER_SAMPLE;
+use glint_core::memory::{self, RenderPlan, render_estimate};
 use glint_core::scene::{BUILTIN_SCENES, RESOLUTIONS, overflow_causes, unbounded_ray_tree};
 use glint_core::{Accel, Backend, CpuOptions, FlatScene};
 use glint_gpu::GpuOptions;
@@ -15,7 +16,7 @@ use super::backend::{Run, open_gpu, run_cpu, run_gpu};
 use super::interrupt;
 use super::output::{fmt_counts, metadata, print_json, print_table, suffixed, write_diff, write_run};
 use super::output_path::check_outputs;
-use super::settings::{LoadArgs, SettingsArgs, load, parse_ray_cap, parse_threads};
+use super::settings::{LoadArgs, SettingsArgs, load_with_estimate, parse_ray_cap, parse_threads};
 use super::units::{mrays_per_s, ms};
 
 #[derive(Debug, Args)]
@@ -101,7 +102,8 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         }
         return Ok(());
     }
-    let loaded = load(&args.scene, &args.scene_size.options())?;
+    let (loaded, load_estimate) =
+        load_with_estimate(&args.scene, &args.scene_size.options(), args.scene_size.memory_limit)?;
     let settings = args.settings.apply(&loaded.desc.render)?;
     // Loading warned about the scene's own settings; flags that change them are judged here.
     if settings != loaded.desc.render
@@ -122,6 +124,18 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         return bench(args, &loaded.name, &flat, &cpu_options, &gpu_options);
     }
     let output = args.output.clone().unwrap_or_else(|| PathBuf::from(format!("{}.png", loaded.name)));
+    let plan = RenderPlan {
+        cpu: args.backend.contains(&Backend::Cpu),
+        gpu: args.backend.contains(&Backend::Gpu),
+        exr: output.extension().is_some_and(|e| e.eq_ignore_ascii_case("exr")),
+    };
+    let estimate = render_estimate(&loaded.desc, &settings, plan);
+    memory::check(
+        format!("rendering {} at {}x{}", loaded.name, settings.width, settings.height),
+        &estimate,
+        args.scene_size.memory_limit,
+        "lower --width and --height, render on one backend, or write a PNG instead of an EXR",
+    )?;
     let both = args.backend.len() > 1;
     let image_path = |run: &Run| if both { suffixed(&output, run.backend.name()) } else { output.clone() };
     let diff_path = suffixed(&output, "diff").with_extension("png");
@@ -168,7 +182,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         None
     };
     if args.json {
-        print_json(&loaded.name, &settings, &runs, errors.as_ref(), &outputs)?;
+        print_json(&loaded.name, &settings, &runs, errors.as_ref(), &outputs, load_estimate.as_ref(), &estimate)?;
     } else {
         print_table(&loaded.name, &settings, &runs, errors.as_ref(), &outputs);
     }

@@ -2,6 +2,7 @@
 
 use anyhow::{Context, bail};
 use clap::Args;
+use glint_core::memory::{self, MemoryEstimate, SourceKind};
 use glint_core::model::ImportOptions;
 use glint_core::scene::{
     DEFAULT_RESOLUTION, EpsilonMode, LoadOptions, LoadedScene, RESOLUTIONS, RenderSettings, Report, load_scene_with,
@@ -52,6 +53,10 @@ pub struct LoadArgs {
     /// Scale of a model file's light intensities (candela, lux) into I_d and I_s, in (0, 1e6]; default 1
     #[arg(long, value_name = "FACTOR", allow_negative_numbers = true, value_parser = parse_exposure)]
     pub exposure: Option<f64>,
+    /// Refuse a load or render estimated to need more memory than this (e.g. 512M, 8G;
+    /// default: the memory available)
+    #[arg(long, value_name = "SIZE", allow_hyphen_values = true, value_parser = parse_size)]
+    pub memory_limit: Option<u64>,
 }
 
 impl LoadArgs {
@@ -63,6 +68,10 @@ impl LoadArgs {
         };
         LoadOptions { resolution: self.resolution, import }
     }
+}
+
+fn parse_size(s: &str) -> Result<u64, String> {
+    memory::parse_size(s)
 }
 
 fn parse_index(s: &str) -> Result<usize, String> {
@@ -188,10 +197,42 @@ fn flag_of(field: &str) -> &'static str {
 }
 
 /// Loads a scene file, model file or built-in scene with `options` and prints its warnings.
-pub fn load(scene: &str, options: &LoadOptions) -> anyhow::Result<LoadedScene> {
+/// Loads a scene or model, first refusing a file whose load is estimated to need more memory
+/// than `memory_limit` (or than is available).
+pub fn load(scene: &str, options: &LoadOptions, memory_limit: Option<u64>) -> anyhow::Result<LoadedScene> {
+    Ok(load_with_estimate(scene, options, memory_limit)?.0)
+}
+
+/// `load`, with the estimate the file's load was checked against (`None` for a built-in).
+pub fn load_with_estimate(
+    scene: &str,
+    options: &LoadOptions,
+    memory_limit: Option<u64>,
+) -> anyhow::Result<(LoadedScene, Option<MemoryEstimate>)> {
+    let estimate = check_load_memory(scene, memory_limit)?;
     let loaded = load_scene_with(scene, options).with_context(|| format!("cannot load scene '{scene}'"))?;
     for w in &loaded.warnings {
         eprintln!("warning: {}: {w}", loaded.source.display());
     }
-    Ok(loaded)
+    Ok((loaded, estimate))
+}
+
+/// Refuses a scene or model file whose load is estimated to need more memory than
+/// `memory_limit` (or than is available), before it is read; the estimate of a file (`None`
+/// for a built-in scene).
+pub fn check_load_memory(scene: &str, memory_limit: Option<u64>) -> anyhow::Result<Option<MemoryEstimate>> {
+    let path = std::path::Path::new(scene);
+    if let Ok(meta) = std::fs::metadata(path)
+        && meta.is_file()
+    {
+        let estimate = memory::load_estimate(SourceKind::of(path), meta.len());
+        memory::check(
+            format!("loading {scene} ({})", memory::format_bytes(meta.len())),
+            &estimate,
+            memory_limit,
+            "split the scene, or load it on a machine with more memory",
+        )?;
+        return Ok(Some(estimate));
+    }
+    Ok(None)
 }

@@ -7,7 +7,7 @@ use clap::Args;
 use glint_core::scene::load_scene_with;
 use glint_viewer::{ViewMode, ViewerError, ViewerOptions};
 
-use super::settings::{LoadArgs, SettingsArgs};
+use super::settings::{LoadArgs, SettingsArgs, check_load_memory};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 pub enum StartView {
@@ -70,6 +70,7 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
     {
         bail!("--benchmark-drag takes a number of seconds in (0, 600], not {s}");
     }
+    check_load_memory(&args.scene, args.scene_size.memory_limit)?;
     let load = args.scene_size.options();
     // A scene that does not load is reported in the viewer window; flags apply to one that does.
     // A resolution the scene cannot take is a flag error, before any window opens.

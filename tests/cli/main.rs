@@ -8,6 +8,7 @@ use std::process::{Command, Output};
 use glint_test_support::TempDir;
 
 mod bench;
+mod memory;
 mod models;
 mod reliability;
 mod report;

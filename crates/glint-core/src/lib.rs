@@ -10,6 +10,7 @@ pub mod flat;
 pub mod image;
 pub mod interrupt;
 pub mod layout;
+pub mod memory;
 pub mod model;
 pub mod rays;
 pub mod render;

@@ -85,7 +85,7 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
     }
     let scenes = names
         .iter()
-        .map(|n| load(n, &glint_core::scene::LoadOptions::default()))
+        .map(|n| load(n, &glint_core::scene::LoadOptions::default(), None))
         .collect::<anyhow::Result<Vec<_>>>()?;
     let mut seen = HashMap::new();
     for s in &scenes {
