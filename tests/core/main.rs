@@ -6,6 +6,7 @@ mod bit_identity;
 mod bvh;
 mod closed_form;
 mod determinism;
+mod fuzz_replay;
 mod gltf;
 mod gltf_lights;
 mod support;

@@ -8,6 +8,7 @@ mod bvh;
 mod gltf_lights;
 mod parity;
 mod probe;
+mod properties;
 mod raycast;
 mod specialisation;
 mod support;

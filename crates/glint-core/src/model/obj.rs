@@ -33,10 +33,17 @@ pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
     let bytes = std::fs::read(path).map_err(|error| ObjError::Io { file: path.to_owned(), error })?;
     let options = tobj::LoadOptions { triangulate: true, single_index: true, ..Default::default() };
     let mtl_error = std::cell::RefCell::new(None);
+    let mtl_problem = std::cell::RefCell::new(None);
     let (models, materials) = tobj::load_obj_buf(&mut bytes.as_slice(), &options, |mtl| {
         let uri = mtl.to_string_lossy();
         match resolve_uri(path, &uri, MAX_RESOURCE_BYTES) {
-            Ok(text) => tobj::load_mtl_buf(&mut text.as_slice()),
+            Ok(text) => match expand_colours(&text) {
+                Ok(text) => tobj::load_mtl_buf(&mut text.as_slice()),
+                Err(problem) => {
+                    *mtl_problem.borrow_mut() = Some(format!("{uri}:{problem}"));
+                    Err(tobj::LoadError::MaterialParseError)
+                }
+            },
             Err(error) => {
                 *mtl_error.borrow_mut() = Some(error);
                 Err(tobj::LoadError::OpenFileFailed)
@@ -55,9 +62,10 @@ pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
     let materials = match materials {
         Ok(m) => m,
         Err(e) => {
+            let reason = mtl_problem.into_inner().unwrap_or_else(|| e.to_string());
             out.warnings.push(FieldIssue {
                 field: "mtllib".into(),
-                problem: format!("materials not loaded ({e}); faces use `{DEFAULT_MATERIAL}`"),
+                problem: format!("materials not loaded ({reason}); faces use `{DEFAULT_MATERIAL}`"),
             });
             Vec::new()
         }
@@ -115,6 +123,46 @@ pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
     }
     if out.meshes.is_empty() {
         return Err(ObjError::Empty { file: path.to_owned() });
+    }
+    Ok(out)
+}
+
+/// MTL text with every `Ka`/`Kd`/`Ks`/`Ke r` line written as `… r r r`: the MTL format lets g
+/// and b default to r, and tobj panics on fewer than three numbers. A colour line with none or
+/// two numbers is an error naming the line. tobj reads line by line, so the lines are checked
+/// one by one; a line that is not UTF-8 is kept for tobj to refuse.
+fn expand_colours(text: &[u8]) -> Result<Vec<u8>, String> {
+    let mut out = Vec::with_capacity(text.len() + 64);
+    for (n, raw) in text.split(|&b| b == b'\n').enumerate() {
+        if n > 0 {
+            out.push(b'\n');
+        }
+        let Ok(line) = std::str::from_utf8(raw) else {
+            out.extend_from_slice(raw);
+            continue;
+        };
+        let mut words = line.split_whitespace();
+        if let Some(key @ ("Ka" | "Kd" | "Ks" | "Ke")) = words.next() {
+            let values: Vec<&str> = words.collect();
+            // `Kd spectral …` and `Kd xyz …` start with a word: tobj refuses those itself.
+            if values.first().is_none_or(|v| v.parse::<f32>().is_ok()) {
+                match values.iter().take_while(|v| v.parse::<f32>().is_ok()).count() {
+                    1 if values.len() == 1 => {
+                        out.extend_from_slice(format!("{key} {0} {0} {0}", values[0]).as_bytes());
+                        continue;
+                    }
+                    3.. => {}
+                    _ => {
+                        return Err(format!(
+                            "{}: `{key}` takes r [g b] (one number, or three), not `{}`",
+                            n + 1,
+                            line.trim()
+                        ));
+                    }
+                }
+            }
+        }
+        out.extend_from_slice(raw);
     }
     Ok(out)
 }
@@ -283,6 +331,22 @@ mod tests {
         assert_eq!((matte.ks, matte.kr), (Rgb::splat(0.0), Rgb::splat(0.0)));
         let used: Vec<&str> = m.meshes.iter().map(|x| x.material.as_str()).collect();
         assert!(used.contains(&"plastic") && used.contains(&"glass") && used.contains(&"matte"), "{used:?}");
+    }
+
+    #[test]
+    fn a_colour_of_one_number_is_grey_and_one_of_none_or_two_is_a_warning_naming_the_line() {
+        // tobj panicked on `Kd 0.5` (found by the obj_model fuzz target).
+        let dir = tempfile::tempdir().unwrap();
+        write(dir.path(), "m.mtl", "newmtl grey\nKd 0.5\nKa 0.25 0.5 0.75 1\n");
+        let obj = write(dir.path(), "m.obj", &format!("mtllib m.mtl\n{QUAD}usemtl grey\nf 1 2 3\n"));
+        let m = load_obj(&obj).expect("loads");
+        assert_eq!((m.materials["grey"].kd, m.materials["grey"].ka), (Rgb::splat(0.5), Rgb([0.25, 0.5, 0.75])));
+        for bad in ["Kd", "Ks 0.5 0.25"] {
+            write(dir.path(), "m.mtl", &format!("newmtl grey\n{bad}\n"));
+            let m = load_obj(&obj).expect("loads without the materials");
+            let warning = m.warnings.iter().map(ToString::to_string).collect::<Vec<_>>().join("; ");
+            assert!(warning.contains("m.mtl:2: `") && warning.contains("takes r [g b]"), "{bad}: {warning}");
+        }
     }
 
     #[test]

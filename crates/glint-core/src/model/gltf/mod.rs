@@ -61,7 +61,7 @@ pub fn load_gltf(path: &Path, options: &ImportOptions) -> Result<Model, GltfErro
     let file = path.to_path_buf();
     let at = |path: String, problem: String| GltfError::At { file: file.clone(), path, problem };
     let bytes = read_capped(path).map_err(|error| GltfError::Io { file: file.clone(), error })?;
-    let gltf = ::gltf::Gltf::from_slice(&bytes).map_err(|e| parse_error(&file, e))?;
+    let gltf = parse(&bytes, &file)?;
     let mut model = Model::default();
     for (index, extension) in gltf.extensions_required().enumerate() {
         if !SUPPORTED_EXTENSIONS.contains(&extension) {
@@ -220,6 +220,37 @@ fn read_capped(path: &Path) -> std::io::Result<Vec<u8>> {
 
 /// The gltf crate's error with the JSON paths it names; an unsupported required extension
 /// (which its validation reports among the others) gets its own message.
+/// The file parsed and validated by the gltf crate, after the one check its validation
+/// assumes instead of making: that each primitive's POSITION accessor exists (it indexes the
+/// accessor array with it and panicked on a file without one, found by the gltf_model fuzz
+/// target).
+fn parse(bytes: &[u8], file: &Path) -> Result<::gltf::Gltf, GltfError> {
+    use ::gltf::json::mesh::Semantic;
+    use ::gltf::json::validation::Checked;
+    let ::gltf::Gltf { document, blob } =
+        ::gltf::Gltf::from_slice_without_validation(bytes).map_err(|e| parse_error(file, e))?;
+    let json = document.into_json();
+    for (m, mesh) in json.meshes.iter().enumerate() {
+        for (p, primitive) in mesh.primitives.iter().enumerate() {
+            if let Some(index) = primitive.attributes.get(&Checked::Valid(Semantic::Positions))
+                && index.value() >= json.accessors.len()
+            {
+                return Err(GltfError::At {
+                    file: file.to_owned(),
+                    path: format!("meshes[{m}].primitives[{p}].attributes.POSITION"),
+                    problem: format!(
+                        "invalid glTF: accessor {} does not exist (the file has {})",
+                        index.value(),
+                        json.accessors.len()
+                    ),
+                });
+            }
+        }
+    }
+    let document = ::gltf::Document::from_json(json).map_err(|e| parse_error(file, e))?;
+    Ok(::gltf::Gltf { document, blob })
+}
+
 fn parse_error(file: &Path, e: ::gltf::Error) -> GltfError {
     match e {
         ::gltf::Error::Validation(errors) => {
@@ -403,5 +434,14 @@ mod tests {
         assert_eq!(triangulate(Mode::TriangleFan, &[0, 1, 2, 3]), vec![[0, 1, 2], [0, 2, 3]]);
         assert_eq!(triangulate(Mode::Triangles, &[0, 1, 2, 3]), vec![[0, 1, 2]], "a partial triangle is dropped");
         assert!(triangulate(Mode::TriangleStrip, &[0, 1]).is_empty());
+    }
+
+    #[test]
+    fn a_position_accessor_that_does_not_exist_is_an_error_naming_it_not_a_panic() {
+        let json = br#"{"asset":{"version":"2.0"},"meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}]}"#;
+        let Err(err) = parse(json, Path::new("m.gltf")) else { panic!("a missing accessor was accepted") };
+        let err = err.to_string();
+        assert!(err.contains("meshes[0].primitives[0].attributes.POSITION"), "{err}");
+        assert!(err.contains("accessor 0 does not exist (the file has 0)"), "{err}");
     }
 }
