@@ -6,6 +6,7 @@
 mod edits;
 mod export;
 mod files;
+mod lights;
 mod pick_and_probe;
 mod ranges;
 mod snapshots;

@@ -11,6 +11,7 @@ use glint_core::scene::{
 };
 
 use crate::error::ViewerError;
+use crate::panels::lights::SetAside;
 
 #[derive(Clone, Debug)]
 pub struct Document {
@@ -27,6 +28,8 @@ pub struct Document {
     /// Validation problems of the current description; while there are any, the last valid
     /// scene stays on screen.
     pub issues: Vec<FieldIssue>,
+    /// Per light, the fields its type lacks that an earlier type had (`lights::switch_kind`).
+    pub light_set_aside: Vec<SetAside>,
     /// The last flat scene built, with the objects it was built from: while those and the
     /// material names stay the same (a camera, light or material-value edit) its primitives and BVH
     /// are reused instead of rebuilt (`FlatScene::rebuild`).
@@ -50,6 +53,7 @@ impl Document {
             dirty: false,
             revision: 0,
             issues: Vec::new(),
+            light_set_aside: Vec::new(),
             geometry: RefCell::new(None),
         }
     }
@@ -74,6 +78,7 @@ impl Document {
             dirty: false,
             revision: 0,
             issues: Vec::new(),
+            light_set_aside: Vec::new(),
             geometry: RefCell::new(None),
         }
     }
