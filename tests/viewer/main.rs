@@ -3,6 +3,7 @@
 //! ranges against validation's, and snapshots of the main layouts. Without an adapter they fail
 //! with a clear message; `GLINT_SKIP_GPU=1` skips them on purpose.
 
+mod camera;
 mod dialogs;
 mod edits;
 mod export;

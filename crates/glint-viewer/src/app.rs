@@ -275,9 +275,10 @@ impl ViewerApp {
     }
 
     fn apply_view_action(&mut self, action: ViewAction) {
+        let floor = camera_control::floor_height(&self.doc.desc);
         let camera = &mut self.doc.desc.camera;
         match action {
-            ViewAction::Orbit(d) => camera_control::orbit(camera, d.x, d.y),
+            ViewAction::Orbit(d, width) => camera_control::orbit(camera, d.x, d.y, width, floor),
             ViewAction::Pan(d, h) => camera_control::pan(camera, d.x, d.y, h),
             ViewAction::Zoom(s) => camera_control::zoom(camera, s),
             ViewAction::Pick(x, y) => return self.pick(x, y),

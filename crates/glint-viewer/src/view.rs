@@ -41,7 +41,8 @@ pub struct Textures<'a> {
 /// What the pointer did on the view this frame.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum ViewAction {
-    Orbit(Vec2),
+    /// A drag by this much over an image this many points wide.
+    Orbit(Vec2, f32),
     Pan(Vec2, f32),
     Zoom(f32),
     /// A plain click on pixel (x, y).
@@ -202,11 +203,11 @@ pub fn show(
     {
         actions.push(if modifiers.command { ViewAction::Probe(x, y) } else { ViewAction::Pick(x, y) });
     }
-    let view_height = rects.first().map_or(area.height(), |r| r.height());
+    let view_size = rects.first().map_or(area.size(), |r| r.size());
     let delta = response.drag_delta();
     if delta != Vec2::ZERO {
         let pan = modifiers.shift || response.dragged_by(egui::PointerButton::Middle);
-        actions.push(if pan { ViewAction::Pan(delta, view_height) } else { ViewAction::Orbit(delta) });
+        actions.push(if pan { ViewAction::Pan(delta, view_size.y) } else { ViewAction::Orbit(delta, view_size.x) });
     }
     if response.hovered() {
         let scroll = ui.input(|i| i.smooth_scroll_delta.y);
