@@ -14,3 +14,4 @@ mod ranges;
 mod snapshots;
 mod status;
 mod support;
+mod view;

@@ -311,7 +311,8 @@ impl ViewerApp {
         } else {
             Vec::new()
         };
-        self.layout.central(ui, self.renders.gpu.is_some(), textures, size, &gizmos)
+        let probed = self.renders.probe.as_ref().map(|p| (p.x, p.y));
+        self.layout.central(ui, self.renders.gpu.is_some(), textures, size, &gizmos, probed)
     }
 }
 
