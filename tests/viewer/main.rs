@@ -9,6 +9,7 @@ mod edits;
 mod export;
 mod files;
 mod lights;
+mod materials;
 mod pick_and_probe;
 mod ranges;
 mod snapshots;
