@@ -171,7 +171,7 @@ pub struct Dialogs {
     unsaved: Option<String>,
     /// Why the system's file dialogs cannot be used here (`None`: try them).
     system_unavailable: Option<String>,
-    /// A scene file dropped on the window or chosen in a dialog, loaded next frame.
+    /// A scene or model file dropped on the window, opened next frame.
     pub pending_open: Option<PathBuf>,
 }
 
