@@ -59,7 +59,7 @@ fn material_ks_and_light_type_set_through_the_ui_change_the_gpu_image_and_the_st
     choose(&mut h, "Lights", "Type", "spot");
     settle(&mut h);
     assert_eq!(h.state().doc.desc.lights[0].kind, LightKind::Spot);
-    // A 30° cone pointing straight down from the light leaves most of the floor unlit.
+    // A 30° cone aimed at the look-at point leaves most of the floor unlit.
     assert!(mean_abs_diff(&dull, &gpu_image(&h)) > 1e-3, "a spot light must change the image");
     // Outside the cone S = 0, and a light that cannot contribute casts no shadow ray.
     let spot_counts = latest_counts(&h);

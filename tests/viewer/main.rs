@@ -3,11 +3,16 @@
 //! ranges against validation's, and snapshots of the main layouts. Without an adapter they fail
 //! with a clear message; `GLINT_SKIP_GPU=1` skips them on purpose.
 
+mod camera;
+mod dialogs;
 mod edits;
 mod export;
 mod files;
+mod lights;
+mod materials;
 mod pick_and_probe;
 mod ranges;
 mod snapshots;
 mod status;
 mod support;
+mod view;

@@ -8,6 +8,7 @@
 //! moves far more. The status bar (timings vary run to run) is masked.
 
 use egui::Modifiers;
+use egui::accesskit::Role;
 use egui_kittest::SnapshotOptions;
 use egui_kittest::kittest::Queryable;
 
@@ -34,7 +35,7 @@ fn main_layouts_match_their_snapshots() {
     h.run_steps(3);
     snapshot(&mut h, "viewer_difference");
 
-    h.get_by_label("GPU").click();
+    h.get_by_role_and_label(Role::Button, "GPU").click();
     h.run_steps(2);
     let pos = h.state().screen_pos_of_pixel(100, 70).expect("the view is drawn");
     click(&mut h, pos, Modifiers::COMMAND);
@@ -45,14 +46,18 @@ fn main_layouts_match_their_snapshots() {
 #[test]
 fn the_lights_panel_and_a_spot_gizmo_match_their_snapshot() {
     let Some(mut h) = viewer("whitted", (800.0, 500.0)) else { return };
-    h.get_by_label("GPU").click();
+    h.get_by_role_and_label(Role::Button, "GPU").click();
     choose(&mut h, "Lights", "Type", "spot");
-    // Bring the light in front of the camera so that its dot and cone are in view.
-    for (axis, v) in [("Position x", -1.0), ("Position y", 2.5), ("Position z", 0.0)] {
+    // Bring the light in front of the camera so that its dot and cone are in view, pointing
+    // straight down (a new spot aims at the look-at point from where the light was).
+    let axes = [("Position x", -1.0), ("Position y", 2.5), ("Position z", 0.0)];
+    let spot_axis = [("Spot axis x", 0.0), ("Spot axis y", -1.0), ("Spot axis z", 0.0)];
+    for (axis, v) in axes.into_iter().chain(spot_axis) {
         h.get_by_label(axis).set_value_accesskit(v);
         h.run_steps(1);
     }
     settle(&mut h);
     assert_eq!(h.state().doc.desc.lights[0].position, Some([-1.0, 2.5, 0.0]));
+    assert_eq!(h.state().doc.desc.lights[0].direction, Some([0.0, -1.0, 0.0]));
     snapshot(&mut h, "viewer_lights_spot");
 }

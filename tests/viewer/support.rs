@@ -11,6 +11,9 @@ use glint_viewer::{ViewerApp, ViewerOptions};
 pub const WIDTH: u32 = 160;
 pub const HEIGHT: u32 = 120;
 
+/// Why the tests' viewers use no system file dialog (shown where a dialog would fail).
+pub const NO_DIALOGS: &str = "no file dialog in this test";
+
 /// The viewer on `scene` at WIDTH×HEIGHT in a `window`-sized harness, rendered with wgpu;
 /// `None` when `GLINT_SKIP_GPU=1`. Panics with a clear message when there is no adapter.
 pub fn viewer(scene: &str, window: (f32, f32)) -> Option<Harness<'static, ViewerApp>> {
@@ -26,8 +29,14 @@ pub fn viewer(scene: &str, window: (f32, f32)) -> Option<Harness<'static, Viewer
     }
     let base = load_scene(scene).expect("built-in scene").desc.render;
     let settings = RenderSettings { width: WIDTH, height: HEIGHT, ..base };
-    let options =
-        ViewerOptions { scene: scene.into(), settings: Some(settings), no_recent: true, ..ViewerOptions::default() };
+    // Never a real file dialog in a test: it would wait for a person.
+    let options = ViewerOptions {
+        scene: scene.into(),
+        settings: Some(settings),
+        no_recent: true,
+        no_file_dialogs: Some(NO_DIALOGS.into()),
+        ..ViewerOptions::default()
+    };
     let mut harness = Harness::builder()
         .with_size(egui::vec2(window.0, window.1))
         .wgpu_setup(glint_viewer::with_tracer_limits(egui_kittest::wgpu::default_wgpu_setup()))
@@ -94,4 +103,12 @@ pub fn gpu_image(harness: &Harness<'static, ViewerApp>) -> glint_core::HdrImage 
 pub fn mean_abs_diff(a: &glint_core::HdrImage, b: &glint_core::HdrImage) -> f64 {
     a.pixels.iter().zip(&b.pixels).map(|(x, y)| (*x - *y).abs().element_sum()).sum::<f64>()
         / (3 * a.pixels.len()) as f64
+}
+
+/// Clicks through the menu bar: `path` is the menu, any submenus and the item.
+pub fn menu(harness: &mut Harness<'static, ViewerApp>, path: &[&str]) {
+    for label in path {
+        harness.get_by_label(label).click();
+        harness.run_steps(2);
+    }
 }

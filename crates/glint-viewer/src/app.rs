@@ -13,7 +13,7 @@ use glint_core::scene::LoadOptions;
 
 use crate::automation::{Automation, Frame};
 use crate::camera_control;
-use crate::dialogs::{self, Dialogs};
+use crate::dialogs::{Dialogs, PathPurpose, Picked, Unsaved};
 use crate::document::Document;
 use crate::error::ViewerError;
 use crate::export::{ExportView, Sources, export};
@@ -46,6 +46,9 @@ pub struct ViewerOptions {
     pub no_gpu_reason: Option<String>,
     /// Do not read or write the list of recent files (tests).
     pub no_recent: bool,
+    /// Why the system's file dialogs must not be used: the typed path is asked for instead
+    /// (tests; otherwise the viewer finds out whether they can open).
+    pub no_file_dialogs: Option<String>,
 }
 
 /// The viewer. Public fields are read by the UI tests.
@@ -92,7 +95,7 @@ impl ViewerApp {
             selection: Selection::default(),
             renders,
             layout: Layout::new(mode),
-            dialogs: Dialogs::default(),
+            dialogs: Dialogs::new(options.no_file_dialogs.clone()),
             automation: Automation::new(options.screenshot, options.drag_benchmark),
             clock: FrameClock::default(),
         }
@@ -103,11 +106,21 @@ impl ViewerApp {
         self.renders.is_settled(&self.doc)
     }
 
-    /// Replaces the document (open file, built-in scene, drop).
+    /// Opens `arg` (a file or a built-in scene) in place of the document, asking first
+    /// (Save / Discard / Cancel) when the document has unsaved edits.
+    pub fn request_open(&mut self, arg: &str) {
+        if self.doc.dirty {
+            self.dialogs.confirm_unsaved(arg.to_string());
+        } else {
+            self.open(arg);
+        }
+    }
+
+    /// Replaces the document (open file, built-in scene, drop) without asking.
     pub fn open(&mut self, arg: &str) {
         match Document::load(arg) {
             Ok(mut d) => {
-                if let Some(p) = &d.path {
+                if let Some(p) = &d.source {
                     self.recent.add(p);
                 }
                 // A fresh revision number keeps old results of the previous scene from matching.
@@ -184,22 +197,88 @@ impl ViewerApp {
 
     fn apply_menu_action(&mut self, action: MenuAction) {
         match action {
-            MenuAction::Open(p) => self.dialogs.pending_open = Some(p),
-            MenuAction::OpenBuiltin(name) => self.open(name),
+            MenuAction::OpenDialog => self.open_dialog(),
+            MenuAction::Open(p) => self.request_open(&p.display().to_string()),
+            MenuAction::OpenBuiltin(name) => self.request_open(name),
             MenuAction::Save(p) => self.save_scene(&p),
-            MenuAction::SaveAs => {
-                if let Some(p) = dialogs::pick_scene_to_save(&self.doc.name) {
-                    self.save_scene(&p);
-                }
-            }
+            MenuAction::SaveAs => self.save_as(None),
             MenuAction::SaveImage => self.dialogs.open_export(),
         }
     }
 
+    /// "Open scene…": the system dialog, or a typed path (starting in the document's folder)
+    /// where it cannot open.
+    fn open_dialog(&mut self) {
+        match self.dialogs.pick_scene() {
+            Picked::File(p) => self.request_open(&p.display().to_string()),
+            Picked::Cancelled => {}
+            Picked::Failed(why) => {
+                let folder = self.doc.source.as_deref().and_then(Path::parent).filter(|p| !p.as_os_str().is_empty());
+                let start =
+                    folder.map_or_else(String::new, |f| format!("{}{}", f.display(), std::path::MAIN_SEPARATOR));
+                self.message = Some(why.clone());
+                self.dialogs.prompt_path(PathPurpose::OpenScene, start, why, None);
+            }
+        }
+    }
+
+    /// "Save scene as…": the system dialog, or a typed path where it cannot open; then opens
+    /// `then_open` if the scene was saved.
+    fn save_as(&mut self, then_open: Option<String>) {
+        match self.dialogs.pick_scene_to_save(&self.doc.name) {
+            Picked::File(p) => self.save_then_open(&p, then_open),
+            Picked::Cancelled => {}
+            Picked::Failed(why) => {
+                let suggestion = match &self.doc.path {
+                    Some(p) => p.display().to_string(),
+                    None => format!("{}.toml", self.doc.name),
+                };
+                self.message = Some(why.clone());
+                self.dialogs.prompt_path(PathPurpose::SaveSceneAs, suggestion, why, then_open);
+            }
+        }
+    }
+
+    fn save_then_open(&mut self, path: &Path, then_open: Option<String>) {
+        self.save_scene(path);
+        if !self.doc.dirty
+            && let Some(t) = then_open
+        {
+            self.open(&t);
+        }
+    }
+
+    /// The answer to "unsaved changes" before `target` is opened.
+    fn apply_unsaved(&mut self, answer: Unsaved, target: String) {
+        match answer {
+            Unsaved::Save => match self.doc.path.clone() {
+                Some(p) => self.save_then_open(&p, Some(target)),
+                None => self.save_as(Some(target)),
+            },
+            Unsaved::Discard => self.open(&target),
+            Unsaved::Cancel => {}
+        }
+    }
+
+    /// The windows of the app: "Save image", a typed path, "unsaved changes".
+    fn windows(&mut self, ctx: &egui::Context) {
+        self.export_window(ctx);
+        if let Some((purpose, path, then_open)) = self.dialogs.path_window(ctx) {
+            match purpose {
+                PathPurpose::OpenScene => self.request_open(&path.display().to_string()),
+                PathPurpose::SaveSceneAs => self.save_then_open(&path, then_open),
+            }
+        }
+        if let Some((answer, target)) = self.dialogs.unsaved_window(ctx, &self.doc.name) {
+            self.apply_unsaved(answer, target);
+        }
+    }
+
     fn apply_view_action(&mut self, action: ViewAction) {
+        let floor = camera_control::floor_height(&self.doc.desc);
         let camera = &mut self.doc.desc.camera;
         match action {
-            ViewAction::Orbit(d) => camera_control::orbit(camera, d.x, d.y),
+            ViewAction::Orbit(d, width) => camera_control::orbit(camera, d.x, d.y, width, floor),
             ViewAction::Pan(d, h) => camera_control::pan(camera, d.x, d.y, h),
             ViewAction::Zoom(s) => camera_control::zoom(camera, s),
             ViewAction::Pick(x, y) => return self.pick(x, y),
@@ -209,7 +288,11 @@ impl ViewerApp {
     }
 
     fn export_window(&mut self, ctx: &egui::Context) {
-        let Some((path, view)) = self.dialogs.export_window(ctx, &self.doc.name) else { return };
+        let (chosen, failed) = self.dialogs.export_window(ctx, &self.doc.name);
+        if let Some(why) = failed {
+            self.message = Some(why);
+        }
+        let Some((path, view)) = chosen else { return };
         match self.save_image(&path, view) {
             Ok(()) => {
                 self.message = Some(format!("Saved {}", path.display()));
@@ -228,7 +311,8 @@ impl ViewerApp {
         } else {
             Vec::new()
         };
-        self.layout.central(ui, self.renders.gpu.is_some(), textures, size, &gizmos)
+        let probed = self.renders.probe.as_ref().map(|p| (p.x, p.y));
+        self.layout.central(ui, self.renders.gpu.is_some(), textures, size, &gizmos, probed)
     }
 }
 
@@ -239,7 +323,7 @@ impl eframe::App for ViewerApp {
         self.renders.poll(&ctx);
         self.dialogs.take_dropped_file(&ctx);
         if let Some(p) = self.dialogs.pending_open.take() {
-            self.open(&p.display().to_string());
+            self.request_open(&p.display().to_string());
         }
         self.dialogs.export_shortcut(&ctx, &self.doc.name);
 
@@ -265,7 +349,7 @@ impl eframe::App for ViewerApp {
         for action in actions {
             self.apply_view_action(action);
         }
-        self.export_window(&ctx);
+        self.windows(&ctx);
 
         let gpu_renders = self.renders.gpu_renders();
         let settled = self.is_settled();

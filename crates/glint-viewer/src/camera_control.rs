@@ -2,15 +2,35 @@
 //! look-at point, keeping the scene's up vector.
 
 use glint_core::glam::DVec3;
-use glint_core::scene::CameraDesc;
+use glint_core::scene::{CameraDesc, ObjectDesc, SceneDesc};
 
-/// Radians per point of drag.
-const ORBIT_SPEED: f64 = 0.008;
 /// Keeps the camera off the poles, where the up vector and the view direction align.
 const MAX_PITCH: f64 = 1.55;
+/// How far above the floor the camera stays, as a fraction of its distance to the look-at point.
+const FLOOR_CLEARANCE: f64 = 0.02;
 
-/// Turns the camera around its look-at point by a drag of (dx, dy) points.
-pub fn orbit(cam: &mut CameraDesc, dx: f32, dy: f32) {
+/// The height (along the camera's up vector) of the floor: the highest plane facing up or down
+/// along `up` that lies below the look-at point. `None` when there is none (a model, say).
+pub fn floor_height(desc: &SceneDesc) -> Option<f64> {
+    let up = DVec3::from(desc.camera.up).normalize_or(DVec3::Y);
+    let target = DVec3::from(desc.camera.look_at).dot(up);
+    desc.objects
+        .iter()
+        .filter_map(|o| match o {
+            ObjectDesc::Plane(p) => Some(p),
+            _ => None,
+        })
+        .filter(|p| DVec3::from(p.normal).normalize_or_zero().dot(up).abs() > 0.99)
+        .map(|p| DVec3::from(p.point).dot(up))
+        .filter(|h| *h < target)
+        .reduce(f64::max)
+}
+
+/// Turns the camera around its look-at point by a drag of (dx, dy) points over a view
+/// `view_width` points wide: a drag across the whole width is half a turn, whatever the window
+/// size. The elevation stays off the poles and, when there is a `floor` (its height along the
+/// up vector), keeps the camera above it.
+pub fn orbit(cam: &mut CameraDesc, dx: f32, dy: f32, view_width: f32, floor: Option<f64>) {
     let up = DVec3::from(cam.up).normalize_or(DVec3::Y);
     let target = DVec3::from(cam.look_at);
     let offset = DVec3::from(cam.position) - target;
@@ -18,6 +38,7 @@ pub fn orbit(cam: &mut CameraDesc, dx: f32, dy: f32) {
     if radius <= 0.0 || !radius.is_finite() {
         return;
     }
+    let per_point = std::f64::consts::PI / f64::from(view_width.max(1.0));
     // Spherical coordinates about `up`.
     let reference = if up.dot(DVec3::Z).abs() < 0.9 { DVec3::Z } else { DVec3::X };
     let e1 = (reference - up * reference.dot(up)).normalize();
@@ -25,8 +46,14 @@ pub fn orbit(cam: &mut CameraDesc, dx: f32, dy: f32) {
     let dir = offset / radius;
     let pitch = dir.dot(up).clamp(-1.0, 1.0).asin();
     let yaw = dir.dot(e2).atan2(dir.dot(e1));
-    let yaw = yaw - f64::from(dx) * ORBIT_SPEED;
-    let pitch = (pitch + f64::from(dy) * ORBIT_SPEED).clamp(-MAX_PITCH, MAX_PITCH);
+    let mut lowest = -MAX_PITCH;
+    if let Some(floor) = floor {
+        let above = (floor - target.dot(up)) / radius + FLOOR_CLEARANCE;
+        // A camera that is already lower (as loaded) may stay there, but not go further down.
+        lowest = above.clamp(-1.0, 1.0).asin().clamp(-MAX_PITCH, MAX_PITCH).min(pitch);
+    }
+    let yaw = yaw - f64::from(dx) * per_point;
+    let pitch = (pitch + f64::from(dy) * per_point).clamp(lowest, MAX_PITCH.max(lowest));
     let new_dir = up * pitch.sin() + (e1 * yaw.cos() + e2 * yaw.sin()) * pitch.cos();
     cam.position = (target + new_dir * radius).to_array();
 }
@@ -69,13 +96,45 @@ mod tests {
     #[test]
     fn orbit_keeps_the_distance_and_zoom_changes_it() {
         let mut c = cam();
-        orbit(&mut c, 40.0, 15.0);
+        orbit(&mut c, 40.0, 15.0, 300.0, None);
         let d = (DVec3::from(c.position) - DVec3::from(c.look_at)).length();
         assert!((d - 5.0).abs() < 1e-9, "{d}");
         assert_ne!(c.position, cam().position);
         zoom(&mut c, 100.0);
         let d2 = (DVec3::from(c.position) - DVec3::from(c.look_at)).length();
         assert!(d2 < d);
+    }
+
+    /// The camera's angle around the up axis, and its height.
+    fn yaw_and_height(c: &CameraDesc) -> (f64, f64) {
+        let o = DVec3::from(c.position) - DVec3::from(c.look_at);
+        (o.x.atan2(o.z), c.position[1])
+    }
+
+    #[test]
+    fn a_drag_across_the_view_is_half_a_turn_and_the_camera_stays_above_the_floor_and_off_the_pole() {
+        for width in [300.0, 1200.0] {
+            let mut c = cam();
+            orbit(&mut c, width, 0.0, width, Some(0.0));
+            let (yaw, _) = yaw_and_height(&c);
+            let turned = (yaw - yaw_and_height(&cam()).0).abs();
+            assert!((turned - std::f64::consts::PI).abs() < 1e-9, "{turned}");
+        }
+        let mut c = cam();
+        for _ in 0..50 {
+            orbit(&mut c, 3.0, -10.0, 300.0, Some(0.0));
+            assert!(yaw_and_height(&c).1 > 0.0, "under the floor: {:?}", c.position);
+        }
+        for _ in 0..200 {
+            orbit(&mut c, 0.0, 10.0, 300.0, Some(0.0));
+        }
+        let o = (DVec3::from(c.position) - DVec3::from(c.look_at)).normalize();
+        assert!(o.y < MAX_PITCH.sin() + 1e-12, "over the pole: {o}");
+        // Without a floor the camera may look from below, still off the pole.
+        let mut c = cam();
+        orbit(&mut c, 0.0, -1000.0, 300.0, None);
+        let o = (DVec3::from(c.position) - DVec3::from(c.look_at)).normalize();
+        assert!((o.y + MAX_PITCH.sin()).abs() < 1e-9, "{o}");
     }
 
     #[test]

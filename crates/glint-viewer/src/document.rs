@@ -6,19 +6,24 @@ use std::path::{Path, PathBuf};
 
 use glint_core::FlatScene;
 use glint_core::atomic::{AtomicWriteError, write_file_atomically};
+use glint_core::model::ModelFormat;
 use glint_core::scene::{
     CameraDesc, FieldIssue, LoadOptions, LoadedScene, ObjectDesc, SceneDesc, load_scene_with, to_toml, validate,
 };
 
 use crate::error::ViewerError;
+use crate::panels::lights::SetAside;
 
 #[derive(Clone, Debug)]
 pub struct Document {
     pub desc: SceneDesc,
     /// Short name (file stem or built-in name), used in image metadata and file names.
     pub name: String,
-    /// The file it was loaded from or last saved to; `None` for a built-in scene.
+    /// The scene file it was loaded from or last saved to, where "Save scene" writes; `None`
+    /// for a built-in scene or a model (saving over a model file would destroy it).
     pub path: Option<PathBuf>,
+    /// The file it was opened from (a scene or a model), for the recent files.
+    pub source: Option<PathBuf>,
     /// Edited since it was loaded or saved.
     pub dirty: bool,
     pub revision: u64,
@@ -27,6 +32,8 @@ pub struct Document {
     /// Validation problems of the current description; while there are any, the last valid
     /// scene stays on screen.
     pub issues: Vec<FieldIssue>,
+    /// Per light, the fields its type lacks that an earlier type had (`lights::switch_kind`).
+    pub light_set_aside: Vec<SetAside>,
     /// The last flat scene built, with the objects it was built from: while those and the
     /// material names stay the same (a camera, light or material-value edit) its primitives and BVH
     /// are reused instead of rebuilt (`FlatScene::rebuild`).
@@ -41,8 +48,10 @@ struct BuiltGeometry {
 
 impl Document {
     pub fn from_loaded(loaded: LoadedScene) -> Self {
-        let path = loaded.source.to_str().filter(|s| !s.starts_with("builtin:")).map(PathBuf::from);
+        let source = loaded.source.to_str().filter(|s| !s.starts_with("builtin:")).map(PathBuf::from);
+        let path = source.clone().filter(|p| ModelFormat::of(p).is_none());
         Self {
+            source,
             initial_camera: loaded.desc.camera.clone(),
             desc: loaded.desc,
             name: loaded.name,
@@ -50,6 +59,7 @@ impl Document {
             dirty: false,
             revision: 0,
             issues: Vec::new(),
+            light_set_aside: Vec::new(),
             geometry: RefCell::new(None),
         }
     }
@@ -71,9 +81,11 @@ impl Document {
             desc,
             name: "empty".into(),
             path: None,
+            source: None,
             dirty: false,
             revision: 0,
             issues: Vec::new(),
+            light_set_aside: Vec::new(),
             geometry: RefCell::new(None),
         }
     }
@@ -130,6 +142,7 @@ impl Document {
         write_file_atomically(path, text.as_bytes())
             .map_err(|AtomicWriteError { path, error }| ViewerError::SaveScene { path, error })?;
         self.path = Some(path.to_owned());
+        self.source = Some(path.to_owned());
         self.name = path.file_stem().map_or_else(|| self.name.clone(), |s| s.to_string_lossy().into_owned());
         self.dirty = false;
         Ok(())

@@ -143,7 +143,9 @@ impl GpuView {
         let now = Instant::now();
         let recent: Vec<_> = self.completions.iter().filter(|t| now - **t < Duration::from_secs(2)).collect();
         if recent.len() < 2 {
-            return None;
+            // At the start and when idle: the rate the last render's GPU time allows, so the
+            // figure is there from the first frame, not only once renders follow each other.
+            return self.last_ms.filter(|ms| *ms > 0.0).map(|ms| 1e3 / ms);
         }
         let span = (*recent[recent.len() - 1] - *recent[0]).as_secs_f64();
         (span > 0.0).then(|| (recent.len() - 1) as f64 / span)

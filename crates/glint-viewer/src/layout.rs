@@ -40,7 +40,7 @@ impl Layout {
     }
 
     /// The central panel: the view modes (only the CPU one without a GPU) over the view of a
-    /// `size` image; returns what the pointer did on it.
+    /// `size` image, with the `probed` pixel marked; returns what the pointer did on it.
     pub fn central(
         &mut self,
         ui: &mut Ui,
@@ -48,6 +48,7 @@ impl Layout {
         textures: Textures<'_>,
         size: (u32, u32),
         gizmos: &[Gizmo],
+        probed: Option<(u32, u32)>,
     ) -> Vec<ViewAction> {
         ui.horizontal(|ui| {
             for m in ViewMode::ALL {
@@ -58,7 +59,8 @@ impl Layout {
                 ui.add(egui::Slider::new(&mut self.wipe, 0.0..=1.0).show_value(false).text("Wipe"));
             }
         });
-        let (actions, rects) = view::show(ui, self.mode, &mut self.wipe, textures, size, gizmos, self.show_gizmos);
+        let (actions, rects) =
+            view::show(ui, self.mode, &mut self.wipe, textures, size, gizmos, self.show_gizmos, probed);
         self.view_rects = rects;
         actions
     }

@@ -5,7 +5,6 @@ use std::path::PathBuf;
 use egui::Ui;
 use glint_core::scene::BUILTIN_SCENES;
 
-use crate::dialogs;
 use crate::document::Document;
 use crate::layout::Layout;
 use crate::recent::Recent;
@@ -14,7 +13,9 @@ use crate::view::ViewMode;
 /// What a menu item asks the app to do (the view settings the menu changes itself).
 #[derive(Clone, Debug, PartialEq)]
 pub enum MenuAction {
-    /// Open this scene file next frame.
+    /// The system's "open" dialog (or a typed path).
+    OpenDialog,
+    /// Open this scene or model file.
     Open(PathBuf),
     OpenBuiltin(&'static str),
     Save(PathBuf),
@@ -26,12 +27,10 @@ pub fn bar(ui: &mut Ui, doc: &Document, recent: &Recent, layout: &mut Layout) ->
     let mut action = None;
     egui::MenuBar::new().ui(ui, |ui| {
         ui.menu_button("File", |ui| {
-            if ui.button("Open scene…").clicked()
-                && let Some(p) = dialogs::pick_scene()
-            {
-                action = Some(MenuAction::Open(p));
+            if ui.button("Open scene…").clicked() {
+                action = Some(MenuAction::OpenDialog);
             }
-            ui.menu_button("Recent scenes", |ui| {
+            ui.menu_button("Recent files", |ui| {
                 if recent.files.is_empty() {
                     ui.weak("none yet");
                 }

@@ -41,7 +41,8 @@ pub struct Textures<'a> {
 /// What the pointer did on the view this frame.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum ViewAction {
-    Orbit(Vec2),
+    /// A drag by this much over an image this many points wide.
+    Orbit(Vec2, f32),
     Pan(Vec2, f32),
     Zoom(f32),
     /// A plain click on pixel (x, y).
@@ -92,6 +93,44 @@ fn incomplete_banner(ui: &mut Ui, rect: Rect, why: Option<&str>) {
     });
 }
 
+/// A white label over an image with its `anchor` corner at `pos`, shown only where it fits
+/// inside `image` (the wipe's labels at wipe 0 or 1 would stand outside it). A label widget,
+/// not painted text, so that the UI tests find it and its place.
+fn image_label(ui: &mut Ui, image: Rect, pos: Pos2, anchor: egui::Align2, text: &str) {
+    let text = egui::RichText::new(text).color(Color32::WHITE).size(13.0);
+    let galley = egui::WidgetText::from(text.clone()).into_galley(
+        ui,
+        Some(egui::TextWrapMode::Extend),
+        f32::INFINITY,
+        egui::TextStyle::Body,
+    );
+    let rect = anchor.anchor_size(pos, galley.size());
+    if !image.contains_rect(rect) {
+        return;
+    }
+    let mut child = ui.new_child(egui::UiBuilder::new().max_rect(rect));
+    child.add(egui::Label::new(text).selectable(false).extend());
+}
+
+/// Marks the probed pixel (x, y) of a `size` image in each of `rects`: a white square with a
+/// black rim around it (at least 9 points wide), labelled for screen readers and the tests.
+fn probe_marker(ui: &mut Ui, rects: &[Rect], size: (u32, u32), (x, y): (u32, u32)) {
+    for (i, r) in rects.iter().enumerate() {
+        let (w, h) = (size.0.max(1) as f32, size.1.max(1) as f32);
+        let pixel = Rect::from_min_max(
+            r.min + Vec2::new(x as f32 / w * r.width(), y as f32 / h * r.height()),
+            r.min + Vec2::new((x + 1) as f32 / w * r.width(), (y + 1) as f32 / h * r.height()),
+        );
+        let mark = Rect::from_center_size(pixel.center(), pixel.size().max(Vec2::splat(9.0)));
+        let painter = ui.painter().with_clip_rect(*r);
+        painter.rect_stroke(mark.expand(1.0), 0.0, Stroke::new(1.0, Color32::BLACK), egui::StrokeKind::Middle);
+        painter.rect_stroke(mark, 0.0, Stroke::new(1.5, Color32::WHITE), egui::StrokeKind::Middle);
+        let label = format!("Probed pixel ({x}, {y})");
+        let response = ui.interact(mark, ui.scope_id().with(("probe marker", i)), Sense::hover());
+        response.widget_info(|| egui::WidgetInfo::labeled(egui::Role::Image, true, &label));
+    }
+}
+
 fn draw_gizmos(ui: &Ui, rect: Rect, gizmos: &[Gizmo]) {
     let to_screen = |(x, y): (f32, f32)| rect.min + Vec2::new(x * rect.width(), y * rect.height());
     let painter = ui.painter().with_clip_rect(rect);
@@ -120,6 +159,7 @@ pub fn show(
     (w, h): (u32, u32),
     gizmos: &[Gizmo],
     show_gizmos: bool,
+    probed: Option<(u32, u32)>,
 ) -> (Vec<ViewAction>, Vec<Rect>) {
     let area = ui.available_rect_before_wrap();
     let response = ui.allocate_rect(area, Sense::click_and_drag());
@@ -133,17 +173,8 @@ pub fn show(
             image(ui, left, tex.gpu, UV, gpu_missing);
             image(ui, right, tex.cpu, UV, cpu_missing);
             incomplete_banner(ui, left, tex.gpu_incomplete);
-            let label = |r: Rect, t: &str| {
-                ui.painter().text(
-                    r.left_top() + Vec2::new(6.0, 4.0),
-                    egui::Align2::LEFT_TOP,
-                    t,
-                    egui::FontId::proportional(13.0),
-                    Color32::WHITE,
-                );
-            };
-            label(left, "GPU");
-            label(right, "CPU");
+            image_label(ui, left, left.left_top() + Vec2::new(6.0, 4.0), egui::Align2::LEFT_TOP, "GPU");
+            image_label(ui, right, right.left_top() + Vec2::new(6.0, 4.0), egui::Align2::LEFT_TOP, "CPU");
             if show_gizmos {
                 draw_gizmos(ui, left, gizmos);
             }
@@ -169,16 +200,9 @@ pub fn show(
                     image(ui, left, tex.gpu, Rect::from_min_max(Pos2::ZERO, pos2(*wipe, 1.0)), gpu_missing);
                     image(ui, right, tex.cpu, Rect::from_min_max(pos2(*wipe, 0.0), pos2(1.0, 1.0)), cpu_missing);
                     ui.painter().vline(split, r.y_range(), Stroke::new(1.5, Color32::WHITE));
-                    let font = egui::FontId::proportional(13.0);
                     let top = r.top() + 4.0;
-                    ui.painter().text(
-                        pos2(split - 6.0, top),
-                        egui::Align2::RIGHT_TOP,
-                        "GPU",
-                        font.clone(),
-                        Color32::WHITE,
-                    );
-                    ui.painter().text(pos2(split + 6.0, top), egui::Align2::LEFT_TOP, "CPU", font, Color32::WHITE);
+                    image_label(ui, r, pos2(split - 6.0, top), egui::Align2::RIGHT_TOP, "GPU");
+                    image_label(ui, r, pos2(split + 6.0, top), egui::Align2::LEFT_TOP, "CPU");
                     incomplete_banner(ui, r, tex.gpu_incomplete);
                     if show_gizmos {
                         draw_gizmos(ui, r, gizmos);
@@ -188,6 +212,9 @@ pub fn show(
             vec![r]
         }
     };
+    if let Some(p) = probed {
+        probe_marker(ui, &rects, (w, h), p);
+    }
     let mut actions = Vec::new();
     let to_pixel = |p: Pos2| {
         rects.iter().find(|r| r.contains(p)).map(|r| {
@@ -202,11 +229,11 @@ pub fn show(
     {
         actions.push(if modifiers.command { ViewAction::Probe(x, y) } else { ViewAction::Pick(x, y) });
     }
-    let view_height = rects.first().map_or(area.height(), |r| r.height());
+    let view_size = rects.first().map_or(area.size(), |r| r.size());
     let delta = response.drag_delta();
     if delta != Vec2::ZERO {
         let pan = modifiers.shift || response.dragged_by(egui::PointerButton::Middle);
-        actions.push(if pan { ViewAction::Pan(delta, view_height) } else { ViewAction::Orbit(delta) });
+        actions.push(if pan { ViewAction::Pan(delta, view_size.y) } else { ViewAction::Orbit(delta, view_size.x) });
     }
     if response.hovered() {
         let scroll = ui.input(|i| i.smooth_scroll_delta.y);

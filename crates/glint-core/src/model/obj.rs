@@ -7,7 +7,7 @@ use std::path::Path;
 use std::sync::Arc;
 
 use super::uri::{MAX_RESOURCE_BYTES, UriError, resolve_uri};
-use super::{Model, widen};
+use super::{MaterialSource, Model, widen};
 use crate::scene::{ColorSpace, FieldIssue, MaterialDesc, MeshDesc, Rgb, TextureDesc, TextureImage};
 
 /// Why an OBJ did not load.
@@ -85,6 +85,7 @@ pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
             }
         }
         out.materials.insert(name.clone(), material);
+        out.sources.insert(name.clone(), source(m));
     }
     for model in models {
         let mesh = &model.mesh;
@@ -248,6 +249,23 @@ fn rgb(c: [f32; 3]) -> Rgb {
     Rgb(c.map(widen))
 }
 
+/// The MTL statements `map_material` reads, as the file wrote them (absent ones left out).
+fn source(m: &tobj::Material) -> MaterialSource {
+    let colour = |c: Option<[f32; 3]>| c.map(|c| c.map(widen).to_vec());
+    let number = |x: Option<f32>| x.map(|x| vec![widen(x)]);
+    let fields = [
+        ("Ka", colour(m.ambient)),
+        ("Kd", colour(m.diffuse)),
+        ("Ks", colour(m.specular)),
+        ("Ke", colour(m.emissive)),
+        ("Ns", number(m.shininess)),
+        ("Ni", number(m.optical_density)),
+        ("d", number(m.dissolve)),
+        ("illum", m.illumination_model.map(|i| vec![f64::from(i)])),
+    ];
+    MaterialSource { format: "MTL", fields: fields.into_iter().filter_map(|(k, v)| Some((k, v?))).collect() }
+}
+
 /// The MTL fields onto the seed's coefficients (docs/models.md): Kd → k_d, Ka → k_a (k_d when
 /// absent), Ks → k_s from illum 2 on, Ns → n, Ke → E_m, Ni → ior; illum 3 and 5 trace
 /// reflection rays with k_r = Ks, illum 4, 6 and 7 also refraction rays with k_t = 1 − d.
@@ -329,6 +347,11 @@ mod tests {
         assert_eq!((glass.kr, glass.kt, glass.emission), (Rgb::splat(0.9), Rgb::splat(0.75), Rgb([0.5, 0.0, 0.0])));
         assert!(glass.ior == 1.33 && glass.ka == glass.kd, "{glass:?}");
         assert_eq!((matte.ks, matte.kr), (Rgb::splat(0.0), Rgb::splat(0.0)));
+        // What the file said is kept beside the mapping, in its own terms and order.
+        let source = &m.sources["glass"];
+        let names: Vec<&str> = source.fields.iter().map(|f| f.0).collect();
+        assert_eq!((source.format, names), ("MTL", vec!["Kd", "Ks", "Ke", "Ni", "d", "illum"]));
+        assert_eq!(source.fields[4].1, [0.25]);
         let used: Vec<&str> = m.meshes.iter().map(|x| x.material.as_str()).collect();
         assert!(used.contains(&"plastic") && used.contains(&"glass") && used.contains(&"matte"), "{used:?}");
     }

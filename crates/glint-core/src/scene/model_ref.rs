@@ -10,7 +10,7 @@ use serde::{Deserialize, Serialize};
 
 use super::desc::{MaterialDesc, MeshDesc, ObjectDesc, SceneDesc};
 use super::error::FieldIssue;
-use crate::model::{ImportOptions, Model, load_model_file};
+use crate::model::{ImportOptions, MaterialSource, Model, load_model_file};
 
 /// A model file in a scene.
 #[derive(Clone, Debug, Serialize, Deserialize)]
@@ -48,6 +48,8 @@ pub struct LoadedModel {
     pub file: PathBuf,
     pub meshes: Vec<MeshDesc>,
     pub materials: BTreeMap<String, MaterialDesc>,
+    /// What the file said of each material, by the same names.
+    pub sources: BTreeMap<String, MaterialSource>,
     pub warnings: Vec<FieldIssue>,
 }
 
@@ -211,7 +213,8 @@ impl LoadedModel {
             })
             .collect();
         let materials = model.materials.into_iter().map(|(name, mat)| (rename(&name), mat)).collect();
-        Self { file, meshes, materials, warnings: model.warnings }
+        let sources = model.sources.into_iter().map(|(name, source)| (rename(&name), source)).collect();
+        Self { file, meshes, materials, sources, warnings: model.warnings }
     }
 }
 

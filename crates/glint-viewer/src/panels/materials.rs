@@ -1,7 +1,7 @@
 //! Materials panel: the material of the picked object (or any material by name).
 
 use egui::Ui;
-use glint_core::scene::{CheckerDesc, Rgb, SpecularModel, ranges};
+use glint_core::scene::{CheckerDesc, ObjectDesc, Rgb, SpecularModel, format_number, ranges};
 
 use crate::document::Document;
 use crate::widgets::{choice, rgb_edit, slider};
@@ -39,6 +39,7 @@ pub fn ui(
     if users > 1 {
         ui.weak(format!("Shared by {users} objects."));
     }
+    imported_ui(ui, doc, &name);
     let Some(m) = doc.desc.materials.get_mut(&name) else { return changed };
     changed |= rgb_edit(ui, "k_a", &mut m.ka);
     changed |= rgb_edit(ui, "k_d", &mut m.kd);
@@ -73,4 +74,48 @@ pub fn ui(
         changed |= slider(ui, "Checker size", &mut c.size, ranges::SIZE);
     }
     changed
+}
+
+fn numbers(values: &[f64]) -> String {
+    values.iter().map(|v| format_number(*v)).collect::<Vec<_>>().join(" ")
+}
+
+/// For a material a model file brought in: what the file said (glTF factors, MTL statements)
+/// beside the seed's coefficients they were mapped to on import; the editors below hold the
+/// current values.
+fn imported_ui(ui: &mut Ui, doc: &Document, name: &str) {
+    let imported = doc.desc.objects.iter().find_map(|o| match o {
+        ObjectDesc::Model(m) => {
+            let loaded = m.loaded.as_ref()?;
+            Some((&loaded.file, loaded.sources.get(name)?, loaded.materials.get(name)?))
+        }
+        _ => None,
+    });
+    let Some((file, source, mapped)) = imported else { return };
+    let file = file.file_name().map_or_else(|| file.display().to_string(), |f| f.to_string_lossy().into_owned());
+    ui.separator();
+    ui.columns(2, |columns| {
+        columns[0].strong(format!("{} in {file}", source.format));
+        for (field, values) in &source.fields {
+            columns[0].label(format!("{field} = {}", numbers(values)));
+        }
+        columns[1].strong("Mapped on import");
+        let rgb = |r: &Rgb| numbers(&r.0);
+        for (label, value) in [
+            ("k_a", rgb(&mapped.ka)),
+            ("k_d", rgb(&mapped.kd)),
+            ("k_s", rgb(&mapped.ks)),
+            ("n", numbers(&[mapped.shininess])),
+            ("k_r", rgb(&mapped.kr)),
+            ("k_t", rgb(&mapped.kt)),
+            ("ior", numbers(&[mapped.ior])),
+            ("E_m", rgb(&mapped.emission)),
+        ] {
+            columns[1].label(format!("{label} = {value}"));
+        }
+    });
+    if doc.desc.materials.get(name) != Some(mapped) {
+        ui.weak("Edited since the import (the values below).");
+    }
+    ui.separator();
 }

@@ -1,7 +1,7 @@
 //! glTF materials (metallic-roughness, specular-glossiness and the KHR material extensions)
 //! mapped onto the seed's coefficients, as docs/models.md tabulates.
 
-use crate::model::widen;
+use crate::model::{MaterialSource, widen};
 use crate::scene::{FieldIssue, MAX_IOR, MAX_SHININESS, MaterialDesc, Rgb};
 
 /// Below this roughness a surface is treated as smooth enough to mirror: it traces
@@ -77,6 +77,43 @@ pub(super) fn map_material(m: &::gltf::Material<'_>, field: &str, warnings: &mut
         emission,
         ..MaterialDesc::default()
     }
+}
+
+/// The material as the file wrote it: the factors of its workflow and of the KHR extensions
+/// `map_material` reads (those the file leaves out are absent).
+pub(super) fn source(m: &::gltf::Material<'_>) -> MaterialSource {
+    let mut fields: Vec<(&'static str, Vec<f64>)> = Vec::new();
+    match m.pbr_specular_glossiness() {
+        Some(sg) => {
+            fields.push(("diffuseFactor", sg.diffuse_factor().map(widen).to_vec()));
+            fields.push(("specularFactor", sg.specular_factor().map(widen).to_vec()));
+            fields.push(("glossinessFactor", vec![widen(sg.glossiness_factor())]));
+        }
+        None => {
+            let pbr = m.pbr_metallic_roughness();
+            fields.push(("baseColorFactor", pbr.base_color_factor().map(widen).to_vec()));
+            fields.push(("metallicFactor", vec![widen(pbr.metallic_factor())]));
+            fields.push(("roughnessFactor", vec![widen(pbr.roughness_factor())]));
+            if let Some(s) = m.specular() {
+                fields.push(("specularFactor", vec![widen(s.specular_factor())]));
+                fields.push(("specularColorFactor", s.specular_color_factor().map(widen).to_vec()));
+            }
+        }
+    }
+    if let Some(ior) = m.ior() {
+        fields.push(("ior", vec![widen(ior)]));
+    }
+    if let Some(t) = m.transmission() {
+        fields.push(("transmissionFactor", vec![widen(t.transmission_factor())]));
+    }
+    let emissive = m.emissive_factor();
+    if emissive != [0.0; 3] {
+        fields.push(("emissiveFactor", emissive.map(widen).to_vec()));
+    }
+    if let Some(strength) = m.emissive_strength() {
+        fields.push(("emissiveStrength", vec![widen(strength)]));
+    }
+    MaterialSource { format: "glTF", fields }
 }
 
 /// The material of primitives that name none: a neutral grey plastic (glTF's own default is

@@ -117,6 +117,7 @@ pub fn load_gltf(path: &Path, options: &ImportOptions) -> Result<Model, GltfErro
             uv_set = uv_set.or(Some(set));
         }
         model.materials.insert(name.clone(), desc);
+        model.sources.insert(name.clone(), material::source(&m));
         names.push(name);
         uv_sets.push(uv_set);
     }

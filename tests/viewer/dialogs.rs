@@ -1,0 +1,136 @@
+//! Where no system file dialog can open: the reason shown in the UI and a typed path (with
+//! completion of the folder's scene and model files) for Open scene, Save scene as and
+//! "Save image" → Browse…; and "unsaved changes" before another scene replaces an edited one.
+
+use egui::accesskit::Role;
+use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
+use glint_viewer::ViewerApp;
+
+use crate::support::{NO_DIALOGS, menu, temp_dir, viewer};
+
+const OBJ: &str = "v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 3\n";
+
+/// Types `text` into the text field labelled `label`.
+fn type_path(h: &mut Harness<'static, ViewerApp>, label: &str, text: &str) {
+    let field = h.get_by_role_and_label(Role::TextInput, label);
+    field.focus();
+    field.set_text_value_accesskit(text);
+    h.run_steps(2);
+}
+
+#[test]
+fn open_scene_without_a_dialog_says_why_and_opens_a_typed_model_which_recent_files_open_again() {
+    let Some(mut h) = viewer("whitted", (1000.0, 640.0)) else { return };
+    let dir = temp_dir("typed-open");
+    std::fs::write(dir.join("model.obj"), OBJ).unwrap();
+    std::fs::write(dir.join("notes.txt"), "").unwrap();
+    std::fs::create_dir(dir.join("more")).unwrap();
+    menu(&mut h, &["File", "Open scene…"]);
+    assert!(h.query_all_by_label_contains(NO_DIALOGS).count() > 0, "the reason is shown");
+    assert_eq!(h.state().message.as_deref(), Some(NO_DIALOGS), "and in the messages panel");
+
+    let sep = std::path::MAIN_SEPARATOR;
+    let folder = format!("{}{sep}", dir.display());
+    type_path(&mut h, "Path", &folder);
+    let model = format!("{folder}model.obj");
+    assert!(h.query_by_label(&format!("{folder}more{sep}")).is_some(), "folders are completed");
+    assert!(h.query_by_label(&format!("{folder}notes.txt")).is_none(), "only scenes and models");
+    h.get_by_label(&model).click();
+    h.run_steps(2);
+    h.get_by_label("Open").click();
+    h.run_steps(2);
+    let doc = &h.state().doc;
+    assert_eq!(doc.name, "model", "message: {:?}", h.state().message);
+    assert_eq!(doc.path, None, "Save scene must not write over the model file");
+    let canonical = dir.join("model.obj").canonicalize().unwrap();
+    assert_eq!(h.state().recent.files.first(), Some(&canonical));
+
+    menu(&mut h, &["File", "Built-in scenes", "cornell"]);
+    assert_eq!(h.state().doc.name, "cornell");
+    menu(&mut h, &["File", "Recent files", &canonical.display().to_string()]);
+    assert_eq!(h.state().doc.name, "model", "the recent model opens again");
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn save_scene_as_and_browse_without_a_dialog_take_a_typed_path() {
+    let Some(mut h) = viewer("whitted", (1000.0, 640.0)) else { return };
+    let dir = temp_dir("typed-save");
+    std::fs::write(dir.join("old.png"), "").unwrap();
+    h.state_mut().doc.desc.render.max_depth = 2;
+    h.state_mut().doc.edited();
+    menu(&mut h, &["File", "Save scene as…"]);
+    let path = dir.join("saved.toml");
+    type_path(&mut h, "Path", &path.display().to_string());
+    h.get_by_label("Save").click();
+    h.run_steps(2);
+    assert!(path.is_file(), "message: {:?}", h.state().message);
+    assert_eq!(h.state().doc.path.as_deref(), Some(path.as_path()));
+    assert!(!h.state().doc.dirty);
+
+    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::S);
+    h.run_steps(2);
+    h.get_by_label("Browse…").click();
+    h.run_steps(2);
+    assert!(h.query_by_label(&format!("{NO_DIALOGS}: type the path above.")).is_some(), "said in the window");
+    assert_eq!(h.state().message.as_deref(), Some(NO_DIALOGS));
+    let folder = format!("{}{}", dir.display(), std::path::MAIN_SEPARATOR);
+    type_path(&mut h, "File", &folder);
+    assert!(h.query_by_label(&format!("{folder}old.png")).is_some(), "images in the folder are completed");
+    assert!(h.query_by_label(&format!("{folder}saved.toml")).is_none());
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn another_scene_over_unsaved_edits_asks_first_save_discard_or_cancel() {
+    let Some(mut h) = viewer("whitted", (1000.0, 640.0)) else { return };
+    let dir = temp_dir("unsaved");
+    h.state_mut().doc.desc.render.max_depth = 2;
+    h.state_mut().doc.edited();
+    let edited = h.state().doc.desc.clone();
+
+    // Cancel keeps the edits; so does Escape.
+    menu(&mut h, &["File", "Built-in scenes", "cornell"]);
+    assert!(h.query_by_label("Unsaved changes").is_some(), "asked first");
+    assert_eq!(h.state().doc.desc, edited, "nothing replaced while asking");
+    h.get_by_label("Cancel").click();
+    h.run_steps(2);
+    assert!(h.query_by_label("Unsaved changes").is_none());
+    assert_eq!((h.state().doc.name.as_str(), &h.state().doc.desc), ("whitted", &edited));
+
+    // Save, for a built-in scene, asks where (here: a typed path), saves, then opens.
+    h.state_mut().request_open("cornell");
+    h.run_steps(2);
+    h.get_by_label("Save").click();
+    // The typed-path window opens the frame after the answer, and shows one frame later.
+    h.run_steps(3);
+    let path = dir.join("whitted-edited.toml");
+    type_path(&mut h, "Path", &path.display().to_string());
+    h.get_by_label("Save").click();
+    h.run_steps(2);
+    assert!(path.is_file(), "message: {:?}", h.state().message);
+    assert_eq!(h.state().doc.name, "cornell", "opened after saving");
+
+    // Reopened and edited: Save writes to its own file, then opens the next scene.
+    h.state_mut().open(&path.display().to_string());
+    h.state_mut().doc.desc.render.max_depth = 3;
+    h.state_mut().doc.edited();
+    menu(&mut h, &["File", "Built-in scenes", "cornell"]);
+    h.get_by_label("Save").click();
+    h.run_steps(2);
+    assert_eq!(h.state().doc.name, "cornell");
+    let (saved, _) = glint_core::scene::parse_scene(&std::fs::read_to_string(&path).unwrap(), &path).unwrap();
+    assert_eq!(saved.render.max_depth, 3, "the edit was saved");
+
+    // Discard opens without saving.
+    h.state_mut().doc.desc.render.max_depth = 1;
+    h.state_mut().doc.edited();
+    h.state_mut().request_open("whitted");
+    h.run_steps(2);
+    h.get_by_label("Discard").click();
+    h.run_steps(2);
+    assert_eq!(h.state().doc.name, "whitted");
+    assert!(!h.state().doc.dirty);
+    let _ = std::fs::remove_dir_all(dir);
+}

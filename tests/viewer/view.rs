@@ -1,0 +1,62 @@
+//! Small things of the view: the wipe's labels inside the image, the probed pixel marked and
+//! its tab shown on Ctrl+click, the frame rate in the status bar from the first frame.
+
+use egui::Modifiers;
+use egui::accesskit::Role;
+use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
+use glint_viewer::{Tab, ViewerApp};
+
+use crate::support::{click, settle, viewer};
+
+/// Where the image labels `text` are drawn.
+fn label_rects(h: &Harness<'static, ViewerApp>, text: &str) -> Vec<egui::Rect> {
+    h.query_all_by_role_and_label(Role::Label, text).map(|n| n.rect()).collect()
+}
+
+#[test]
+fn the_wipe_labels_stay_inside_the_image_at_either_end() {
+    let Some(mut h) = viewer("whitted", (1000.0, 640.0)) else { return };
+    h.get_by_label("Split wipe").click();
+    h.run_steps(2);
+    for (wipe, shown) in [(0.0, vec!["CPU"]), (1.0, vec!["GPU"]), (0.5, vec!["GPU", "CPU"])] {
+        h.state_mut().layout.wipe = wipe;
+        h.run_steps(2);
+        let image = *h.state().layout.view_rects.first().expect("the view is drawn");
+        for text in ["GPU", "CPU"] {
+            let rects = label_rects(&h, text);
+            assert_eq!(rects.len(), usize::from(shown.contains(&text)), "{text} at wipe {wipe}: {rects:?}");
+            for r in rects {
+                assert!(image.contains_rect(r), "{text} at wipe {wipe}: {r:?} outside the image {image:?}");
+            }
+        }
+    }
+}
+
+#[test]
+fn ctrl_click_shows_the_probe_tab_and_marks_the_probed_pixel_in_every_image() {
+    let Some(mut h) = viewer("whitted", (1000.0, 640.0)) else { return };
+    h.get_by_label("Materials").click();
+    h.run_steps(2);
+    let (x, y) = (100, 70);
+    let pos = h.state().screen_pos_of_pixel(x, y).expect("the view is drawn");
+    click(&mut h, pos, Modifiers::COMMAND);
+    settle(&mut h);
+    assert_eq!(h.state().layout.tab, Tab::Probe, "the probe's tab is shown");
+    let marks: Vec<egui::Rect> = h.query_all_by_label(&format!("Probed pixel ({x}, {y})")).map(|n| n.rect()).collect();
+    // Side by side: one mark on the GPU image, one on the CPU image, each on the pixel.
+    let images = h.state().layout.view_rects.clone();
+    assert_eq!(marks.len(), images.len(), "{marks:?}");
+    for (mark, image) in marks.iter().zip(&images) {
+        let at = image.min + (pos - images[0].min);
+        assert!(mark.contains(at) && image.contains(mark.center()), "{mark:?} is not on the pixel at {at:?}");
+    }
+}
+
+#[test]
+fn the_frame_rate_shows_from_the_first_render() {
+    let Some(h) = viewer("whitted", (1000.0, 640.0)) else { return };
+    // One render since the start, no edit: the figure is there already.
+    assert_eq!(h.state().renders.gpu_renders(), 1);
+    assert!(h.query_by_label_contains(" fps").is_some(), "no frame rate in the status bar");
+}
