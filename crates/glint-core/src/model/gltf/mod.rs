@@ -219,18 +219,43 @@ fn read_capped(path: &Path) -> std::io::Result<Vec<u8>> {
     std::fs::read(path)
 }
 
-/// The gltf crate's error with the JSON paths it names; an unsupported required extension
-/// (which its validation reports among the others) gets its own message.
-/// The file parsed and validated by the gltf crate, after the one check its validation
-/// assumes instead of making: that each primitive's POSITION accessor exists (it indexes the
-/// accessor array with it and panicked on a file without one, found by the gltf_model fuzz
-/// target).
+/// The file parsed and validated by the gltf crate, after the checks its code assumes
+/// instead of making (each panicked on a file found by the gltf_model fuzz target): each
+/// primitive's POSITION accessor exists (validation indexes the accessors with it); an image
+/// has a URI or a buffer view, and a MIME type with a buffer view; a camera has the
+/// projection its type names (`Image::source` and `Camera::projection` unwrap them).
 fn parse(bytes: &[u8], file: &Path) -> Result<::gltf::Gltf, GltfError> {
+    use ::gltf::json::camera::Type as CameraType;
     use ::gltf::json::mesh::Semantic;
     use ::gltf::json::validation::Checked;
     let ::gltf::Gltf { document, blob } =
         ::gltf::Gltf::from_slice_without_validation(bytes).map_err(|e| parse_error(file, e))?;
     let json = document.into_json();
+    let invalid = |path: String, problem: &str| GltfError::At {
+        file: file.to_owned(),
+        path,
+        problem: format!("invalid glTF: {problem}"),
+    };
+    for (i, image) in json.images.iter().enumerate() {
+        match (&image.buffer_view, &image.uri, &image.mime_type) {
+            (Some(_), _, None) => {
+                return Err(invalid(format!("images[{i}].mimeType"), "an image in a buffer view needs its MIME type"));
+            }
+            (None, None, _) => return Err(invalid(format!("images[{i}]"), "an image needs a uri or a bufferView")),
+            _ => {}
+        }
+    }
+    for (i, camera) in json.cameras.iter().enumerate() {
+        let named = match camera.type_ {
+            Checked::Valid(CameraType::Perspective) => camera.perspective.is_some(),
+            Checked::Valid(CameraType::Orthographic) => camera.orthographic.is_some(),
+            // Validation names an unknown type.
+            Checked::Invalid => true,
+        };
+        if !named {
+            return Err(invalid(format!("cameras[{i}]"), "the camera lacks the projection its type names"));
+        }
+    }
     for (m, mesh) in json.meshes.iter().enumerate() {
         for (p, primitive) in mesh.primitives.iter().enumerate() {
             if let Some(index) = primitive.attributes.get(&Checked::Valid(Semantic::Positions))
@@ -252,6 +277,8 @@ fn parse(bytes: &[u8], file: &Path) -> Result<::gltf::Gltf, GltfError> {
     Ok(::gltf::Gltf { document, blob })
 }
 
+/// The gltf crate's error with the JSON paths it names; an unsupported required extension
+/// (which its validation reports among the others) gets its own message.
 fn parse_error(file: &Path, e: ::gltf::Error) -> GltfError {
     match e {
         ::gltf::Error::Validation(errors) => {
@@ -435,6 +462,23 @@ mod tests {
         assert_eq!(triangulate(Mode::TriangleFan, &[0, 1, 2, 3]), vec![[0, 1, 2], [0, 2, 3]]);
         assert_eq!(triangulate(Mode::Triangles, &[0, 1, 2, 3]), vec![[0, 1, 2]], "a partial triangle is dropped");
         assert!(triangulate(Mode::TriangleStrip, &[0, 1]).is_empty());
+    }
+
+    #[test]
+    fn an_image_without_a_source_or_mime_type_and_a_camera_without_its_projection_are_errors() {
+        let view = r#""bufferViews":[{"buffer":0,"byteLength":4}],"buffers":[{"byteLength":4}]"#;
+        let perspective_without_it =
+            r#""cameras":[{"type":"perspective","orthographic":{"xmag":1,"ymag":1,"zfar":2,"znear":1}}]"#;
+        for (json, path) in [
+            (format!(r#""images":[{{"bufferView":0}}],{view}"#), "images[0].mimeType"),
+            (r#""images":[{"name":"x"}]"#.to_string(), "images[0]"),
+            (perspective_without_it.to_string(), "cameras[0]"),
+        ] {
+            let text = format!(r#"{{"asset":{{"version":"2.0"}},{json}}}"#);
+            let Err(err) = parse(text.as_bytes(), Path::new("m.gltf")) else { panic!("{path}: accepted") };
+            let err = err.to_string();
+            assert!(err.contains(&format!("{path}: invalid glTF")), "{err}");
+        }
     }
 
     #[test]
