@@ -401,3 +401,41 @@ fn base_colour_and_emissive_textures_keep_their_sampler_transform_and_texcoords(
     let message = error(&f.write_gltf(&sub, "escape", BufferAt::DataUri));
     assert!(message.contains("images[0].uri") && message.contains("../tex.png"), "{message}");
 }
+
+#[test]
+fn a_saved_edit_of_a_textured_model_material_loads_again_with_the_models_images() {
+    let dir = TempDir::new("gltf-override-texture");
+    let models = dir.join("models");
+    std::fs::create_dir(&models).unwrap();
+    // One image inside the file (a data: URI, named `images[0]`), one beside it (`tex.png`,
+    // relative to the model's folder): neither can be read from the scene's folder.
+    glint_test_support::texture::write_png(&models.join("tex.png"), 2, 1, &[255, 0, 0, 255, 0, 0, 255, 255]);
+    let png = std::fs::read(models.join("tex.png")).unwrap();
+    let data = format!("data:image/png,{}", png.iter().map(|b| format!("%{b:02X}")).collect::<String>());
+    let mut f = Fixture::quad();
+    f.json["images"] = json!([{ "uri": data }, { "uri": "tex.png" }]);
+    f.json["textures"] = json!([{ "source": 0 }, { "source": 1 }]);
+    f.json["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"] = json!({ "index": 0 });
+    f.json["materials"][0]["emissiveTexture"] = json!({ "index": 1 });
+    f.json["materials"][0]["emissiveFactor"] = json!([1.0, 1.0, 1.0]);
+    f.write_glb(&models, "tile");
+    let scene = dir.join("lab.toml");
+    std::fs::write(
+        &scene,
+        "[camera]\nposition = [0, 0, 5]\nlook_at = [0, 0, 0]\n\n\
+         [[objects]]\ntype = \"model\"\npath = \"models/tile.glb\"\nname = \"tile\"\n",
+    )
+    .unwrap();
+    let mut desc = load_scene_with(scene.to_str().unwrap(), &LoadOptions::default()).unwrap().desc;
+    // The viewer's edit of the imported material, then its Save.
+    desc.materials.get_mut("tile/white").unwrap().kd = Rgb([0.1, 0.2, 0.3]);
+    let text = glint_core::scene::to_toml(&desc).unwrap();
+    assert!(text.contains("images[0]") && text.contains("tex.png"), "{text}");
+    std::fs::write(dir.join("saved.toml"), &text).unwrap();
+    let reloaded = load_scene_with(dir.join("saved.toml").to_str().unwrap(), &LoadOptions::default())
+        .unwrap_or_else(|e| panic!("the saved scene does not load: {e}\n{text}"));
+    let m = &reloaded.desc.materials["tile/white"];
+    assert_eq!(m.kd, Rgb([0.1, 0.2, 0.3]));
+    assert_eq!(m.texture.as_ref().and_then(|t| t.image.as_ref()).map(|i| i.width()), Some(2));
+    assert_eq!(reloaded.desc, desc);
+}

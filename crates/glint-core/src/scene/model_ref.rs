@@ -3,6 +3,7 @@
 //! run time, so saving a scene writes the reference again, never the vertices.
 
 use std::collections::BTreeMap;
+use std::collections::btree_map::Entry;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
@@ -241,7 +242,12 @@ pub fn load_models(desc: &mut SceneDesc, folder: &Path) -> Result<Vec<FieldIssue
                     problem: w.problem.clone(),
                 }));
                 for (name, material) in &loaded.materials {
-                    desc.materials.entry(name.clone()).or_insert_with(|| material.clone());
+                    match desc.materials.entry(name.clone()) {
+                        Entry::Vacant(e) => {
+                            e.insert(material.clone());
+                        }
+                        Entry::Occupied(mut e) => share_model_images(e.get_mut(), material),
+                    }
                 }
                 model.loaded = Some(Arc::new(loaded));
             }
@@ -249,6 +255,23 @@ pub fn load_models(desc: &mut SceneDesc, folder: &Path) -> Result<Vec<FieldIssue
         }
     }
     if errors.is_empty() { Ok(warnings) } else { Err(errors) }
+}
+
+/// A scene material that overrides an imported one keeps the model's decoded image where its
+/// texture names the same image: the name is the model's own (`images[0]` for an image inside
+/// the file, a URI relative to the model's folder), which cannot be read from the scene's
+/// folder. So a saved edit of a textured model material loads again.
+fn share_model_images(over: &mut MaterialDesc, imported: &MaterialDesc) {
+    for (mine, theirs) in
+        [(&mut over.texture, &imported.texture), (&mut over.emission_texture, &imported.emission_texture)]
+    {
+        if let (Some(mine), Some(theirs)) = (mine.as_mut(), theirs)
+            && mine.image.is_none()
+            && mine.path == theirs.path
+        {
+            mine.image.clone_from(&theirs.image);
+        }
+    }
 }
 
 /// `desc` as a file would hold it: materials a model brought in and nobody changed are left
