@@ -7,7 +7,7 @@ use egui_kittest::kittest::Queryable;
 use glint_core::scene::{load_scene, parse_scene};
 use glint_viewer::{ViewMode, ViewerApp, ViewerOptions};
 
-use crate::support::{temp_dir, viewer};
+use crate::support::{choose, settle, temp_dir, viewer};
 
 #[test]
 fn a_saved_scene_reads_back_as_the_edited_scene() {
@@ -120,4 +120,38 @@ fn without_a_gpu_the_viewer_shows_the_cpu_reference_and_says_why() {
     assert_eq!(app.layout.mode, ViewMode::Cpu);
     assert!(app.renders.cpu.finished.is_some(), "the CPU reference rendered");
     assert!(h.query_by_label_contains("No GPU: no adapter in this test").is_some());
+}
+
+#[test]
+fn the_cameras_of_a_gltf_file_can_be_looked_through_from_the_scene_panel() {
+    let Some(mut h) = viewer("whitted", (1000.0, 640.0)) else { return };
+    let dir = temp_dir("model-cameras");
+    let mut f = glint_test_support::gltf::Fixture::quad();
+    // Two cameras: in front of the quad, and above it looking down (−90° about x).
+    f.json["cameras"] = serde_json::json!([
+        { "type": "perspective", "name": "front", "perspective": { "yfov": 0.8, "znear": 0.1 } },
+        { "type": "perspective", "name": "top", "perspective": { "yfov": 0.6, "znear": 0.1 } }
+    ]);
+    let half = std::f64::consts::FRAC_1_SQRT_2;
+    f.json["nodes"] = serde_json::json!([
+        { "mesh": 0, "name": "quad" },
+        { "camera": 0, "translation": [0.5, 0.5, 3.0] },
+        { "camera": 1, "translation": [0.5, 3.0, 0.0], "rotation": [-half, 0.0, 0.0, half] }
+    ]);
+    f.json["scenes"] = serde_json::json!([{ "nodes": [0, 1, 2] }]);
+    let path = f.write_glb(&dir, "cams");
+    h.state_mut().open(path.to_str().unwrap());
+    settle(&mut h);
+    let front = h.state().doc.desc.camera.clone();
+    assert_eq!(front.position, [0.5, 0.5, 3.0], "the file's first camera, as --camera 0");
+    choose(&mut h, "Scene", "Model camera", "1: top");
+    settle(&mut h);
+    let top = &h.state().doc.desc.camera;
+    assert!((top.position[1] - 3.0).abs() < 1e-9 && top.look_at[1] < top.position[1], "{top:?}");
+    assert!((top.fov_y - 0.6f64.to_degrees()).abs() < 1e-5, "the file stores yfov as f32: {top:?}");
+    assert!(h.state().message.is_none(), "no error: {:?}", h.state().message);
+    // Back to the first, and the panel names it.
+    choose(&mut h, "Scene", "Model camera", "0: front");
+    settle(&mut h);
+    assert_eq!(h.state().doc.desc.camera, front);
 }

@@ -9,9 +9,9 @@ use std::sync::Arc;
 
 use serde::{Deserialize, Serialize};
 
-use super::desc::{MaterialDesc, MeshDesc, ObjectDesc, SceneDesc};
+use super::desc::{CameraDesc, MaterialDesc, MeshDesc, ObjectDesc, SceneDesc};
 use super::error::FieldIssue;
-use crate::model::{ImportOptions, MaterialSource, Model, load_model_file};
+use crate::model::{ImportOptions, MaterialSource, Model, ModelCamera, load_model_file};
 
 /// A model file in a scene.
 #[derive(Clone, Debug, Serialize, Deserialize)]
@@ -51,6 +51,8 @@ pub struct LoadedModel {
     pub materials: BTreeMap<String, MaterialDesc>,
     /// What the file said of each material, by the same names.
     pub sources: BTreeMap<String, MaterialSource>,
+    /// The file's cameras, placed with the model (the viewer offers to look through them).
+    pub cameras: Vec<ModelCamera>,
     pub warnings: Vec<FieldIssue>,
 }
 
@@ -215,7 +217,20 @@ impl LoadedModel {
             .collect();
         let materials = model.materials.into_iter().map(|(name, mat)| (rename(&name), mat)).collect();
         let sources = model.sources.into_iter().map(|(name, source)| (rename(&name), source)).collect();
-        Self { file, meshes, materials, sources, warnings: model.warnings }
+        let cameras = model
+            .cameras
+            .into_iter()
+            .map(|c| ModelCamera {
+                camera: CameraDesc {
+                    position: m.point(c.camera.position),
+                    look_at: m.point(c.camera.look_at),
+                    up: m.vector(c.camera.up),
+                    ..c.camera
+                },
+                ..c
+            })
+            .collect();
+        Self { file, meshes, materials, sources, cameras, warnings: model.warnings }
     }
 }
 

@@ -1,7 +1,7 @@
 //! Scene panel: camera, world and render settings.
 
 use egui::Ui;
-use glint_core::scene::{EpsilonMode, SpecularModel, ranges};
+use glint_core::scene::{CameraDesc, EpsilonMode, ObjectDesc, SpecularModel, ranges};
 
 use crate::document::Document;
 use crate::widgets::{choice, int_slider, rgb_edit, slider};
@@ -14,6 +14,7 @@ pub fn ui(ui: &mut Ui, doc: &mut Document) -> bool {
             doc.desc.camera = doc.initial_camera.clone();
             changed = true;
         }
+        changed |= model_cameras(ui, doc);
         ui.weak("In the view: drag to orbit, Shift+drag or middle drag to pan, wheel to zoom.");
     });
     egui::CollapsingHeader::new("World").default_open(true).show(ui, |ui| {
@@ -44,4 +45,42 @@ pub fn ui(ui: &mut Ui, doc: &mut Document) -> bool {
         });
     });
     changed
+}
+
+/// The cameras of the scene's model files (glTF perspective cameras, placed with the model):
+/// choosing one looks through it, as `--camera N` does on the command line.
+fn model_cameras(ui: &mut Ui, doc: &mut Document) -> bool {
+    let cameras: Vec<(String, CameraDesc)> = doc
+        .desc
+        .objects
+        .iter()
+        .filter_map(|o| match o {
+            ObjectDesc::Model(m) => m.loaded.as_ref(),
+            ObjectDesc::Sphere(_) | ObjectDesc::Plane(_) | ObjectDesc::Mesh(_) => None,
+        })
+        .flat_map(|loaded| loaded.cameras.iter().enumerate().map(|(i, c)| (camera_label(i, &c.name), c.camera.clone())))
+        .collect();
+    if cameras.is_empty() {
+        return false;
+    }
+    let current = cameras.iter().position(|(_, c)| *c == doc.desc.camera);
+    let mut chosen = current;
+    egui::ComboBox::from_label("Model camera")
+        .selected_text(current.map_or("(moved)", |i| cameras[i].0.as_str()))
+        .show_ui(ui, |ui| {
+            for (i, (label, _)) in cameras.iter().enumerate() {
+                ui.selectable_value(&mut chosen, Some(i), label);
+            }
+        });
+    match chosen {
+        Some(i) if chosen != current => {
+            doc.desc.camera = cameras[i].1.clone();
+            true
+        }
+        _ => false,
+    }
+}
+
+fn camera_label(index: usize, name: &str) -> String {
+    if name.is_empty() { format!("camera {index}") } else { format!("{index}: {name}") }
 }
