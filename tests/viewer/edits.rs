@@ -73,7 +73,7 @@ fn latest_counts(h: &egui_kittest::Harness<'static, glint_viewer::ViewerApp>) ->
 }
 
 /// The error statistics shown are those of the current revision, and GPU and CPU agree.
-fn assert_current_agreement(h: &egui_kittest::Harness<'static, glint_viewer::ViewerApp>) {
+pub fn assert_current_agreement(h: &egui_kittest::Harness<'static, glint_viewer::ViewerApp>) {
     let (revision, errors) =
         h.state().renders.comparison.latest.as_ref().map(|c| (c.revision, c.errors)).expect("comparison");
     assert_eq!(revision, h.state().doc.revision, "the statistics are of an older revision");

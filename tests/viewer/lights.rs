@@ -5,10 +5,11 @@ use egui::accesskit::Role;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use glint_core::glam::DVec3;
-use glint_core::scene::{Attenuation, LightKind};
+use glint_core::scene::{Attenuation, LightKind, SpotFalloff};
 use glint_viewer::ViewerApp;
 
-use crate::support::{choose, settle, viewer};
+use crate::edits::assert_current_agreement;
+use crate::support::{choose, gpu_image, mean_abs_diff, settle, viewer};
 
 #[test]
 fn switching_a_light_through_every_type_keeps_it_valid_and_restores_what_was_set_aside() {
@@ -52,4 +53,56 @@ fn check(h: &mut Harness<'static, ViewerApp>, kind: &str) {
     assert_eq!(doc.desc.lights[0].kind.name(), kind);
     assert!(doc.issues.is_empty(), "after switching to {kind}: {:?}", doc.issues);
     assert!(h.query_by_label_contains("Invalid values").is_none(), "after switching to {kind}");
+}
+
+/// The glTF light options edited in the Lights panel: the inverse-square model with its range
+/// window and the smooth spot cone reach the document, change the GPU image, keep GPU and CPU
+/// in agreement, and a bad cone order is reported in the UI.
+#[test]
+fn inverse_square_range_and_smooth_cone_edited_in_the_lights_panel() {
+    let Some(mut h) = viewer("whitted", (1000.0, 900.0)) else { return };
+    let before = gpu_image(&h);
+
+    // 1/d² at ~9.5 units from the light: much darker than f_att = 1.
+    choose(&mut h, "Lights", "Attenuation", "inverse_square");
+    settle(&mut h);
+    assert_eq!(h.state().doc.desc.lights[0].attenuation, Attenuation::InverseSquare { range: None });
+    let plain = gpu_image(&h);
+    assert!(mean_abs_diff(&before, &plain) > 1e-3, "inverse-square attenuation must change the image");
+    assert_current_agreement(&h);
+
+    // A range window that ends inside the scene: the far floor goes to ambient only.
+    h.get_by_label("Range window").click();
+    h.run_steps(2);
+    h.get_by_role_and_label(Role::Slider, "Range").set_value_accesskit(10.0);
+    settle(&mut h);
+    assert_eq!(h.state().doc.desc.lights[0].attenuation, Attenuation::InverseSquare { range: Some(10.0) });
+    let windowed = gpu_image(&h);
+    assert!(mean_abs_diff(&plain, &windowed) > 1e-5, "the range window must change the image");
+    assert_current_agreement(&h);
+
+    // A smooth spot with glTF's cones, under the polynomial f_att = 1 again: at ~9.5 units the
+    // inverse-square light is too dim (1/d² ≈ 0.01) for its cone to show in the mean.
+    choose(&mut h, "Lights", "Attenuation", "polynomial");
+    settle(&mut h);
+    let point_light = gpu_image(&h);
+    choose(&mut h, "Lights", "Type", "spot");
+    choose(&mut h, "Lights", "Falloff", "smooth");
+    h.get_by_role_and_label(Role::Slider, "Outer cone").set_value_accesskit(25.0);
+    h.run_steps(2);
+    h.get_by_role_and_label(Role::Slider, "Inner cone").set_value_accesskit(10.0);
+    settle(&mut h);
+    let light = &h.state().doc.desc.lights[0];
+    assert_eq!((light.kind, light.falloff), (LightKind::Spot, SpotFalloff::Smooth));
+    assert_eq!((light.inner_cone, light.outer_cone), (Some(10.0), Some(25.0)));
+    assert_eq!((light.exponent, light.cutoff), (0.0, glint_core::scene::NO_CONE_CUTOFF), "power fields cleared");
+    assert!(h.state().doc.issues.is_empty(), "{:?}", h.state().doc.issues);
+    assert!(mean_abs_diff(&point_light, &gpu_image(&h)) > 1e-3, "a smooth spot must change the image");
+    assert_current_agreement(&h);
+
+    // An inner cone wider than the outer one is refused, and said so in the UI.
+    h.get_by_role_and_label(Role::Slider, "Inner cone").set_value_accesskit(40.0);
+    h.run_steps(3);
+    assert!(!h.state().doc.issues.is_empty(), "inner > outer must be reported");
+    assert!(h.query_all_by_label_contains("lights[0].inner_cone").count() > 0, "the problem is shown in the UI");
 }
