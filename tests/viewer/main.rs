@@ -5,6 +5,7 @@
 
 mod camera;
 mod dialogs;
+mod differences;
 mod edits;
 mod export;
 mod files;

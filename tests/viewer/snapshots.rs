@@ -1,4 +1,4 @@
-//! Snapshots of the main layouts (side by side, difference, probe and lights panels), 800×500.
+//! Snapshots of the main layouts (side by side, difference, errors, probe and lights panels), 800×500.
 //!
 //! Threshold: both images are rendered by lavapipe on the CPU, deterministically, so a
 //! re-run on the same Mesa matches exactly; a different Mesa or LLVM version may round a few
@@ -34,6 +34,10 @@ fn main_layouts_match_their_snapshots() {
     h.get_by_label("Difference").click();
     h.run_steps(3);
     snapshot(&mut h, "viewer_difference");
+
+    h.get_by_label("Errors").click();
+    h.run_steps(3);
+    snapshot(&mut h, "viewer_errors");
 
     h.get_by_role_and_label(Role::Button, "GPU").click();
     h.run_steps(2);

@@ -87,11 +87,28 @@ pub fn flip_mean(reference: &HdrImage, test: &HdrImage) -> f64 {
     f64::from(nv_flip::FlipPool::from_image(&map).mean())
 }
 
+/// Where |difference| `d` falls on the heat map's scale, in [0, 1]: log10 d from
+/// `HEATMAP_LOG10_MIN` (0) to `HEATMAP_LOG10_MAX` (1), clamped; a non-finite `d` is 1.
+pub fn heatmap_position(d: f64) -> f64 {
+    if d.is_finite() {
+        ((d.log10() - HEATMAP_LOG10_MIN) / (HEATMAP_LOG10_MAX - HEATMAP_LOG10_MIN)).clamp(0.0, 1.0)
+    } else {
+        1.0
+    }
+}
+
+/// The heat map's colour at position `x` in [0, 1]: the magma colour map, starting a little
+/// above its black so that "tiny but not zero" stays visible against identical pixels.
+pub fn heatmap_colour(x: f64) -> [u8; 3] {
+    static LUT: std::sync::OnceLock<Vec<u8>> = std::sync::OnceLock::new();
+    let lut = LUT.get_or_init(|| nv_flip::magma_lut().to_vec());
+    let k = (24.0 + x.clamp(0.0, 1.0) * 231.0).round() as usize;
+    [lut[3 * k], lut[3 * k + 1], lut[3 * k + 2]]
+}
+
 /// The per-pixel max-channel |test − reference| as an 8-bit RGB heat map: black where the
-/// images are identical, then the magma colour map over log10 |difference| from
-/// `HEATMAP_LOG10_MIN` to `HEATMAP_LOG10_MAX`.
+/// images are identical, else `heatmap_colour(heatmap_position(d))`.
 pub fn diff_heatmap(reference: &HdrImage, test: &HdrImage) -> Vec<u8> {
-    let lut = nv_flip::magma_lut().to_vec();
     let mut out = Vec::with_capacity(reference.pixels.len() * 3);
     for (r, t) in reference.pixels.iter().zip(&test.pixels) {
         let d = (*t - *r).abs().max_element();
@@ -99,16 +116,120 @@ pub fn diff_heatmap(reference: &HdrImage, test: &HdrImage) -> Vec<u8> {
             out.extend_from_slice(&[0, 0, 0]);
             continue;
         }
-        let x = if d.is_finite() {
-            ((d.log10() - HEATMAP_LOG10_MIN) / (HEATMAP_LOG10_MAX - HEATMAP_LOG10_MIN)).clamp(0.0, 1.0)
-        } else {
-            1.0
-        };
-        // Start a little above the LUT's black so "tiny but not zero" stays visible.
-        let k = (24.0 + x * 231.0).round() as usize;
-        out.extend_from_slice(&lut[3 * k..3 * k + 3]);
+        out.extend_from_slice(&heatmap_colour(heatmap_position(d)));
     }
     out
+}
+
+/// The per-pixel differences of a test image against its reference: what the difference view
+/// reads under the cursor, bins into its histogram and searches for the worst pixel.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct PixelDiffs {
+    pub width: u32,
+    pub height: u32,
+    /// Max-channel |test − reference| per pixel (NaN where either is NaN), row by row.
+    pub abs: Vec<f64>,
+    /// Whether the first sample hit a different object (or one of them hit nothing).
+    pub hit_differs: Vec<bool>,
+}
+
+/// One bin of `PixelDiffs::histogram`: |difference| in [lo, hi) (`lo` = `hi` = 0 for identical
+/// pixels; `hi` infinite for the last bin, which also holds non-finite ones).
+#[derive(Clone, Debug, PartialEq)]
+pub struct DiffBin {
+    pub lo: f64,
+    pub hi: f64,
+    /// Pixels whose first hit agrees (shading differences).
+    pub same_hit: usize,
+    /// Pixels whose first hit differs (silhouettes, acne, missed objects).
+    pub hit_differs: usize,
+}
+
+impl DiffBin {
+    pub fn label(&self) -> String {
+        if self.hi == 0.0 {
+            "0".into()
+        } else if self.lo == 0.0 {
+            format!("< {:.0e}", self.hi)
+        } else if self.hi.is_infinite() {
+            format!("≥ {:.0e}", self.lo)
+        } else {
+            format!("{:.0e}", self.lo)
+        }
+    }
+}
+
+impl PixelDiffs {
+    /// `test` against `reference` (same size).
+    pub fn new(reference: &HdrImage, test: &HdrImage) -> Self {
+        let abs = reference
+            .pixels
+            .iter()
+            .zip(&test.pixels)
+            .map(|(r, t)| {
+                let d = (*t - *r).abs();
+                if d.is_nan() { f64::NAN } else { d.max_element() }
+            })
+            .collect();
+        let hit_differs = reference.first_hit.iter().zip(&test.first_hit).map(|(a, b)| a != b).collect();
+        Self { width: reference.width, height: reference.height, abs, hit_differs }
+    }
+
+    /// The difference and first-hit disagreement at pixel (x, y).
+    pub fn at(&self, x: u32, y: u32) -> Option<(f64, bool)> {
+        if x >= self.width || y >= self.height {
+            return None;
+        }
+        let i = (y * self.width + x) as usize;
+        Some((self.abs[i], self.hit_differs[i]))
+    }
+
+    /// The pixel of the largest difference (a NaN or infinite one first; ties to the first in
+    /// row order), or `None` when the images are identical.
+    pub fn worst(&self) -> Option<(u32, u32, f64)> {
+        let rank = |d: f64| if d.is_finite() { d } else { f64::INFINITY };
+        let (i, d) =
+            self.abs.iter().copied().enumerate().fold(None, |best: Option<(usize, f64)>, (i, d)| match best {
+                Some((_, b)) if rank(d) <= rank(b) => best,
+                _ => Some((i, d)),
+            })?;
+        if d == 0.0 {
+            return None;
+        }
+        let w = self.width.max(1) as usize;
+        Some(((i % w) as u32, (i / w) as u32, d))
+    }
+
+    /// The pixels by |difference|: identical, below 10^HEATMAP_LOG10_MIN, one bin per decade up
+    /// to 10^HEATMAP_LOG10_MAX, and at or above it (with the non-finite); each bin split into
+    /// pixels whose first hit agrees and those where it differs.
+    pub fn histogram(&self) -> Vec<DiffBin> {
+        let (min, max) = (HEATMAP_LOG10_MIN as i32, HEATMAP_LOG10_MAX as i32);
+        let mut bins = vec![DiffBin { lo: 0.0, hi: 0.0, same_hit: 0, hit_differs: 0 }];
+        bins.push(DiffBin { lo: 0.0, hi: 10f64.powi(min), same_hit: 0, hit_differs: 0 });
+        for e in min..max {
+            bins.push(DiffBin { lo: 10f64.powi(e), hi: 10f64.powi(e + 1), same_hit: 0, hit_differs: 0 });
+        }
+        bins.push(DiffBin { lo: 10f64.powi(max), hi: f64::INFINITY, same_hit: 0, hit_differs: 0 });
+        for (&d, &differs) in self.abs.iter().zip(&self.hit_differs) {
+            let bin = if d == 0.0 {
+                0
+            } else if !d.is_finite() || d >= 10f64.powi(max) {
+                bins.len() - 1
+            } else if d < 10f64.powi(min) {
+                1
+            } else {
+                // Decade e (bin 2 + e − min), by comparison rather than log10's rounding.
+                2 + (min..max).take_while(|&e| d >= 10f64.powi(e + 1)).count()
+            };
+            if differs {
+                bins[bin].hit_differs += 1;
+            } else {
+                bins[bin].same_hit += 1;
+            }
+        }
+        bins
+    }
 }
 
 /// An 8-bit sRGB encoding of an image (for side-by-side composites).
@@ -147,6 +268,30 @@ mod tests {
         assert!((e.rmse - (0.01f64 / 4.0).sqrt()).abs() < 1e-12);
         assert!((e.psnr - 10.0 * (4.0f64 / 0.01).log10()).abs() < 1e-9);
         assert!(e.flip_mean > 0.0);
+    }
+
+    #[test]
+    fn pixel_differences_bin_by_decade_split_by_first_hit_and_find_the_worst() {
+        let a = image(&[0.5, 0.5, 0.5, 0.5, 0.5, 0.5]);
+        let mut b = image(&[0.5, 0.5 + 3e-5, 0.5 + 1e-9, 0.75, 0.5 + 2e-5, f64::INFINITY]);
+        b.first_hit[3] = 7;
+        let d = PixelDiffs::new(&a, &b);
+        assert_eq!(d.at(1, 0).map(|(v, h)| ((v - 3e-5).abs() < 1e-12, h)), Some((true, false)));
+        assert_eq!(d.at(3, 0), Some((0.25, true)));
+        assert_eq!(d.at(6, 0), None);
+        assert_eq!(d.worst(), Some((5, 0, f64::INFINITY)), "a non-finite pixel is the worst");
+        let bins = d.histogram();
+        let labels: Vec<String> = bins.iter().map(DiffBin::label).collect();
+        assert_eq!(labels, ["0", "< 1e-7", "1e-7", "1e-6", "1e-5", "1e-4", "1e-3", "1e-2", "1e-1", "≥ 1e0"]);
+        let counts: Vec<(usize, usize)> = bins.iter().map(|b| (b.same_hit, b.hit_differs)).collect();
+        // 0; 1e-9; 2e-5 and 3e-5 in [1e-5, 1e-4); 0.25 (its hit differs); infinity.
+        assert_eq!(counts, [(1, 0), (1, 0), (0, 0), (0, 0), (2, 0), (0, 0), (0, 0), (0, 0), (0, 1), (1, 0)]);
+        assert_eq!(PixelDiffs::new(&a, &a).worst(), None);
+        // The heat map's colours are the scale's: its ends and a midpoint.
+        assert_eq!(heatmap_position(1e-7), 0.0);
+        assert_eq!(heatmap_position(1.0), 1.0);
+        assert!((heatmap_position(10f64.powf(-3.5)) - 0.5).abs() < 1e-12);
+        assert_eq!(&diff_heatmap(&a, &b)[3..6], &heatmap_colour(heatmap_position(3e-5)));
     }
 
     #[test]

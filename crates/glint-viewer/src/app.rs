@@ -16,6 +16,7 @@ use crate::camera_control;
 use crate::dialogs::{Dialogs, PathPurpose, Picked, Unsaved};
 use crate::document::Document;
 use crate::error::ViewerError;
+use crate::error_history::{Axis, ErrorHistory, ErrorPoint};
 use crate::export::{ExportView, Sources, export};
 use crate::frame_clock::FrameClock;
 use crate::gizmos::gizmos;
@@ -64,6 +65,9 @@ pub struct ViewerApp {
     dialogs: Dialogs,
     pub automation: Automation,
     clock: FrameClock,
+    /// The comparisons of the current scene, for the Errors panel's plot.
+    pub history: ErrorHistory,
+    error_axis: Axis,
 }
 
 impl ViewerApp {
@@ -98,6 +102,8 @@ impl ViewerApp {
             dialogs: Dialogs::new(options.no_file_dialogs.clone()),
             automation: Automation::new(options.screenshot, options.drag_benchmark),
             clock: FrameClock::default(),
+            history: ErrorHistory::default(),
+            error_axis: Axis::Samples,
         }
     }
 
@@ -128,6 +134,7 @@ impl ViewerApp {
                 self.doc = d;
                 self.selection = Selection::default();
                 self.renders.probe = None;
+                self.history.clear();
                 self.message = None;
             }
             Err(e) => self.message = Some(e.to_string()),
@@ -181,6 +188,24 @@ impl ViewerApp {
         if self.selection.object.is_some() {
             self.layout.tab = Tab::Materials;
         }
+    }
+
+    /// Adds the comparison of the current revision to the error history, once.
+    fn record_comparison(&mut self) {
+        let rev = self.doc.revision;
+        let (Some(c), Some(gpu), Some(cpu)) =
+            (self.renders.comparison_of(rev), self.renders.gpu_of(rev), self.renders.cpu_of(rev))
+        else {
+            return;
+        };
+        let point = ErrorPoint {
+            revision: rev,
+            settings: self.doc.desc.render.clone(),
+            errors: c.errors,
+            gpu_ms: gpu.gpu_ms,
+            cpu_ms: cpu.elapsed.as_secs_f64() * 1e3,
+        };
+        self.history.record(&self.doc.desc, point);
     }
 
     /// Probes pixel (x, y) on both tracers and shows the breakdown.
@@ -338,10 +363,19 @@ impl eframe::App for ViewerApp {
             })
             .response
             .rect;
-        egui::Panel::left("panels").default_size(380.0).show(ui, |ui| {
-            let probe = self.renders.probe.as_ref();
-            panels::side(ui, &mut self.layout.tab, &mut self.doc, &mut self.selection, probe);
+        self.record_comparison();
+        let side = egui::Panel::left("panels").default_size(380.0).show(ui, |ui| {
+            let inputs = panels::SideInputs {
+                probed: self.renders.probe.as_ref(),
+                compared: self.renders.comparison_of(self.doc.revision),
+                history: &self.history,
+                axis: &mut self.error_axis,
+            };
+            panels::side(ui, &mut self.layout.tab, &mut self.doc, &mut self.selection, inputs)
         });
+        if let Some((x, y)) = side.inner {
+            self.probe_at(x, y);
+        }
         // The view's dark background is the panel's own fill: no second full-area fill (each
         // costs a pass over its pixels on a software rasterizer).
         let frame = egui::Frame::central_panel(ui.style()).fill(egui::Color32::from_gray(12));

@@ -2,7 +2,7 @@
 //! computed on a background thread (FLIP takes a while at full resolution).
 
 use glint_core::HdrImage;
-use glint_core::compare::{ImageErrors, compare_images, diff_heatmap};
+use glint_core::compare::{DiffBin, ImageErrors, PixelDiffs, compare_images, diff_heatmap};
 
 use crate::worker::Worker;
 
@@ -14,6 +14,9 @@ pub struct Compared {
     pub height: u32,
     /// The heat map as 8-bit RGB.
     pub heatmap: Vec<u8>,
+    /// Per-pixel |GPU − CPU| and first-hit disagreement (read under the cursor, worst pixel).
+    pub diffs: PixelDiffs,
+    pub histogram: Vec<DiffBin>,
 }
 
 #[derive(Debug)]
@@ -39,7 +42,9 @@ impl Comparison {
         let started = self.worker.start(revision, move |_| {
             let errors = compare_images(&cpu, &gpu);
             let heatmap = diff_heatmap(&cpu, &gpu);
-            Compared { revision, errors, width: cpu.width, height: cpu.height, heatmap }
+            let diffs = PixelDiffs::new(&cpu, &gpu);
+            let histogram = diffs.histogram();
+            Compared { revision, errors, width: cpu.width, height: cpu.height, heatmap, diffs, histogram }
         });
         if let Err(e) = started {
             log::error!("{e}");

@@ -12,6 +12,7 @@ pub enum Tab {
     Lights,
     Materials,
     Probe,
+    Errors,
 }
 
 #[derive(Debug)]

@@ -11,6 +11,7 @@ mod device;
 mod dialogs;
 mod document;
 mod error;
+mod error_history;
 mod export;
 mod frame_clock;
 mod gizmos;

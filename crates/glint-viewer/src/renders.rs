@@ -190,6 +190,7 @@ impl Renders {
             cpu: self.cpu_texture.id(),
             diff: self.diff_texture.id().filter(|_| self.comparison_of(revision).is_some()),
             gpu_incomplete: self.gpu.as_ref().and_then(|g| g.warning.as_deref()),
+            diffs: self.comparison_of(revision).map(|c| &c.diffs),
         }
     }
 

@@ -3,6 +3,8 @@
 
 use egui::{Color32, Pos2, Rect, Sense, Stroke, Ui, Vec2, pos2};
 
+use glint_core::compare::{HEATMAP_LOG10_MAX, HEATMAP_LOG10_MIN, PixelDiffs, heatmap_colour};
+
 use crate::gizmos::Gizmo;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -36,6 +38,8 @@ pub struct Textures<'a> {
     pub diff: Option<egui::TextureId>,
     /// Why the GPU image is missing work (a status flag its shader raised), shown over it.
     pub gpu_incomplete: Option<&'a str>,
+    /// The per-pixel differences behind `diff`, read under the cursor.
+    pub diffs: Option<&'a PixelDiffs>,
 }
 
 /// What the pointer did on the view this frame.
@@ -131,6 +135,71 @@ fn probe_marker(ui: &mut Ui, rects: &[Rect], size: (u32, u32), (x, y): (u32, u32
     }
 }
 
+/// Points below the difference image for its colour bar, tick labels and the readout.
+const COLOUR_BAR_STRIP: f32 = 48.0;
+
+/// The heat map's scale under the difference image `r`: black for identical pixels, then the
+/// colour of each |GPU − CPU| from 10^HEATMAP_LOG10_MIN to 10^HEATMAP_LOG10_MAX (log10), a
+/// tick and a label per decade.
+fn colour_bar(ui: &mut Ui, r: Rect) {
+    let zero = Rect::from_min_size(pos2(r.left(), r.bottom() + 6.0), Vec2::new(14.0, 12.0));
+    let bar = Rect::from_min_max(pos2(zero.right() + 6.0, zero.top()), pos2(r.right(), zero.bottom()));
+    let painter = ui.painter().clone();
+    painter.rect_filled(zero, 0.0, Color32::BLACK);
+    painter.rect_stroke(zero, 0.0, Stroke::new(1.0, Color32::GRAY), egui::StrokeKind::Outside);
+    const STEPS: usize = 96;
+    for i in 0..STEPS {
+        let x0 = bar.left() + bar.width() * i as f32 / STEPS as f32;
+        let x1 = bar.left() + bar.width() * (i + 1) as f32 / STEPS as f32;
+        let [red, green, blue] = heatmap_colour((i as f64 + 0.5) / STEPS as f64);
+        painter.rect_filled(
+            Rect::from_min_max(pos2(x0, bar.top()), pos2(x1 + 0.5, bar.bottom())),
+            0.0,
+            Color32::from_rgb(red, green, blue),
+        );
+    }
+    let label_pos = |x: f32| pos2(x, bar.bottom() + 2.0);
+    image_label_at(ui, label_pos(zero.center().x), egui::Align2::CENTER_TOP, "0");
+    let decades = (HEATMAP_LOG10_MAX - HEATMAP_LOG10_MIN) as i32;
+    for k in 0..=decades {
+        let x = bar.left() + bar.width() * k as f32 / decades as f32;
+        painter.vline(x, bar.bottom()..=bar.bottom() + 2.0, Stroke::new(1.0, Color32::GRAY));
+        let exponent = HEATMAP_LOG10_MIN as i32 + k;
+        let anchor = match k {
+            0 => egui::Align2::LEFT_TOP,
+            k if k == decades => egui::Align2::RIGHT_TOP,
+            _ => egui::Align2::CENTER_TOP,
+        };
+        image_label_at(ui, label_pos(x), anchor, &format!("1e{exponent}"));
+    }
+}
+
+/// "|GPU − CPU| at (x, y)" under the colour bar for the pixel under the cursor.
+fn difference_readout(ui: &mut Ui, r: Rect, at: Option<((u32, u32), (f64, bool))>) {
+    let text = match at {
+        Some(((x, y), (d, differs))) => format!(
+            "({x}, {y}): |GPU − CPU| = {d:.3e}{}",
+            if differs { ", first hit differs" } else { ", same first hit" }
+        ),
+        None => "|GPU − CPU| (max channel, linear), log scale; point at a pixel for its value".into(),
+    };
+    image_label_at(ui, pos2(r.left(), r.bottom() + 34.0), egui::Align2::LEFT_TOP, &text);
+}
+
+/// A small grey label widget with its `anchor` at `pos` (findable by the UI tests).
+fn image_label_at(ui: &mut Ui, pos: Pos2, anchor: egui::Align2, text: &str) {
+    let text = egui::RichText::new(text).color(Color32::LIGHT_GRAY).size(11.0);
+    let galley = egui::WidgetText::from(text.clone()).into_galley(
+        ui,
+        Some(egui::TextWrapMode::Extend),
+        f32::INFINITY,
+        egui::TextStyle::Body,
+    );
+    let rect = anchor.anchor_size(pos, galley.size());
+    let mut child = ui.new_child(egui::UiBuilder::new().max_rect(rect));
+    child.add(egui::Label::new(text).selectable(false).extend());
+}
+
 fn draw_gizmos(ui: &Ui, rect: Rect, gizmos: &[Gizmo]) {
     let to_screen = |(x, y): (f32, f32)| rect.min + Vec2::new(x * rect.width(), y * rect.height());
     let painter = ui.painter().with_clip_rect(rect);
@@ -181,7 +250,13 @@ pub fn show(
             vec![left, right]
         }
         _ => {
-            let r = fit(area.shrink(4.0), w, h);
+            // The difference view keeps a strip below the image for its colour bar.
+            let image_area = if mode == ViewMode::Difference {
+                Rect::from_min_max(area.min, pos2(area.right(), area.bottom() - COLOUR_BAR_STRIP))
+            } else {
+                area
+            };
+            let r = fit(image_area.shrink(4.0), w, h);
             match mode {
                 ViewMode::Gpu => {
                     image(ui, r, tex.gpu, UV, gpu_missing);
@@ -191,7 +266,10 @@ pub fn show(
                     }
                 }
                 ViewMode::Cpu => image(ui, r, tex.cpu, UV, cpu_missing),
-                ViewMode::Difference => image(ui, r, tex.diff, UV, "comparing GPU and CPU…"),
+                ViewMode::Difference => {
+                    image(ui, r, tex.diff, UV, "comparing GPU and CPU…");
+                    colour_bar(ui, r);
+                }
                 ViewMode::Wipe | ViewMode::SideBySide => {
                     // GPU left of the wipe line, CPU right of it.
                     let split = r.left() + *wipe * r.width();
@@ -223,6 +301,12 @@ pub fn show(
             (x, y)
         })
     };
+    if mode == ViewMode::Difference
+        && let (Some(diffs), Some(r)) = (tex.diffs, rects.first())
+    {
+        let hovered = response.hover_pos().and_then(to_pixel);
+        difference_readout(ui, *r, hovered.and_then(|(x, y)| diffs.at(x, y).map(|d| ((x, y), d))));
+    }
     let modifiers = ui.input(|i| i.modifiers);
     if response.clicked()
         && let Some((x, y)) = response.interact_pointer_pos().and_then(to_pixel)

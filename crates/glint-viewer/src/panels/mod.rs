@@ -1,5 +1,6 @@
 //! The side panels: each edits one part of the document and says whether it changed it.
 
+pub mod errors;
 pub mod lights;
 pub mod materials;
 pub mod messages;
@@ -9,21 +10,41 @@ pub mod status;
 
 use egui::Ui;
 
+use crate::comparison::Compared;
 use crate::document::Document;
+use crate::error_history::{Axis, ErrorHistory};
 use crate::layout::Tab;
 use crate::probe::ProbeState;
 use crate::selection::Selection;
 
+/// What the side panel reads besides the document: the probe's result, the comparison of
+/// the current revision and the error history with its plot axis.
+pub struct SideInputs<'a> {
+    pub probed: Option<&'a ProbeState>,
+    pub compared: Option<&'a Compared>,
+    pub history: &'a ErrorHistory,
+    pub axis: &'a mut Axis,
+}
+
 /// The side panel: the tabs, the panel of the current one, and the document's validation
-/// problems. Records an edit in the document when a panel made one.
-pub fn side(ui: &mut Ui, tab: &mut Tab, doc: &mut Document, selection: &mut Selection, probed: Option<&ProbeState>) {
+/// problems. Records an edit in the document when a panel made one; returns a pixel to probe
+/// (the Errors panel's "Go to worst pixel").
+pub fn side(
+    ui: &mut Ui,
+    tab: &mut Tab,
+    doc: &mut Document,
+    selection: &mut Selection,
+    inputs: SideInputs<'_>,
+) -> Option<(u32, u32)> {
     ui.horizontal(|ui| {
         ui.selectable_value(tab, Tab::Scene, "Scene");
         ui.selectable_value(tab, Tab::Lights, "Lights");
         ui.selectable_value(tab, Tab::Materials, "Materials");
         ui.selectable_value(tab, Tab::Probe, "Probe");
+        ui.selectable_value(tab, Tab::Errors, "Errors");
     });
     ui.separator();
+    let mut probe = None;
     // Both directions: a wide probe table scrolls instead of widening the panel.
     egui::ScrollArea::both().show(ui, |ui| {
         let changed = match tab {
@@ -31,7 +52,11 @@ pub fn side(ui: &mut Ui, tab: &mut Tab, doc: &mut Document, selection: &mut Sele
             Tab::Lights => lights::ui(ui, doc, &mut selection.light),
             Tab::Materials => materials::ui(ui, doc, selection.object, &mut selection.material),
             Tab::Probe => {
-                probe::ui(ui, probed, doc);
+                probe::ui(ui, inputs.probed, doc);
+                false
+            }
+            Tab::Errors => {
+                probe = errors::ui(ui, inputs.compared, inputs.history, inputs.axis, &doc.desc.render);
                 false
             }
         };
@@ -46,4 +71,5 @@ pub fn side(ui: &mut Ui, tab: &mut Tab, doc: &mut Document, selection: &mut Sele
             }
         }
     });
+    probe
 }
