@@ -20,7 +20,7 @@ use crate::error_history::{Axis, ErrorHistory, ErrorPoint};
 use crate::export::{ExportView, Sources, export};
 use crate::frame_clock::FrameClock;
 use crate::gizmos::gizmos;
-use crate::layout::{Layout, Tab};
+use crate::layout::{Layout, SIDE_PANEL_DEFAULT, SIDE_PANEL_MIN, Tab, VIEW_MIN_WIDTH};
 use crate::menu::{self, MenuAction};
 use crate::panels;
 use crate::recent::Recent;
@@ -187,6 +187,7 @@ impl ViewerApp {
         self.selection.object = if id == NO_HIT { None } else { self.doc.object_index(id) };
         if self.selection.object.is_some() {
             self.layout.tab = Tab::Materials;
+            self.layout.show_side_panel = true;
         }
     }
 
@@ -212,6 +213,7 @@ impl ViewerApp {
     pub fn probe_at(&mut self, x: u32, y: u32) {
         self.renders.start_probe(&self.doc, x, y);
         self.layout.tab = Tab::Probe;
+        self.layout.show_side_panel = true;
     }
 
     /// The screen position of the centre of pixel (x, y) in the first image of the view.
@@ -364,17 +366,28 @@ impl eframe::App for ViewerApp {
             .response
             .rect;
         self.record_comparison();
-        let side = egui::Panel::left("panels").default_size(380.0).show(ui, |ui| {
-            let inputs = panels::SideInputs {
-                probed: self.renders.probe.as_ref(),
-                compared: self.renders.comparison_of(self.doc.revision),
-                history: &self.history,
-                axis: &mut self.error_axis,
-            };
-            panels::side(ui, &mut self.layout.tab, &mut self.doc, &mut self.selection, inputs)
-        });
-        if let Some((x, y)) = side.inner {
-            self.probe_at(x, y);
+        if ctx.input(|i| i.key_pressed(egui::Key::F9)) {
+            self.layout.show_side_panel = !self.layout.show_side_panel;
+        }
+        if self.layout.show_side_panel {
+            // Resizable, never so wide that the images get less than VIEW_MIN_WIDTH.
+            let widest = (ui.available_width() - VIEW_MIN_WIDTH).max(SIDE_PANEL_MIN);
+            let side = egui::Panel::left("panels")
+                .default_size(SIDE_PANEL_DEFAULT.min(widest))
+                .size_range(SIDE_PANEL_MIN..=widest)
+                .resizable(true)
+                .show(ui, |ui| {
+                    let inputs = panels::SideInputs {
+                        probed: self.renders.probe.as_ref(),
+                        compared: self.renders.comparison_of(self.doc.revision),
+                        history: &self.history,
+                        axis: &mut self.error_axis,
+                    };
+                    panels::side(ui, &mut self.layout.tab, &mut self.doc, &mut self.selection, inputs)
+                });
+            if let Some((x, y)) = side.inner {
+                self.probe_at(x, y);
+            }
         }
         // The view's dark background is the panel's own fill: no second full-area fill (each
         // costs a pass over its pixels on a software rasterizer).

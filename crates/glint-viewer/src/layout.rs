@@ -22,11 +22,19 @@ pub struct Layout {
     /// Where the split wipe divides GPU from CPU, in [0, 1] of the image width.
     pub wipe: f32,
     pub show_gizmos: bool,
+    /// The side panel with the tabs; hidden, the images get the whole window (F9 toggles).
+    pub show_side_panel: bool,
     /// Where the images were drawn last frame (screen points), for mapping pixels to clicks.
     pub view_rects: Vec<egui::Rect>,
     /// Where the status bar was drawn (its timings change from run to run).
     pub status_rect: egui::Rect,
 }
+
+/// The side panel's default width, and the width it always leaves to the images: at
+/// 1024×768 the panel takes 29 % of the window by default and at most what leaves 480 points.
+pub const SIDE_PANEL_DEFAULT: f32 = 300.0;
+pub const SIDE_PANEL_MIN: f32 = 220.0;
+pub const VIEW_MIN_WIDTH: f32 = 480.0;
 
 impl Layout {
     pub fn new(mode: ViewMode) -> Self {
@@ -35,6 +43,7 @@ impl Layout {
             tab: Tab::Scene,
             wipe: 0.5,
             show_gizmos: true,
+            show_side_panel: true,
             view_rects: Vec::new(),
             status_rect: egui::Rect::NOTHING,
         }
