@@ -8,7 +8,8 @@ use glint_core::FlatScene;
 use glint_core::atomic::{AtomicWriteError, write_file_atomically};
 use glint_core::model::ModelFormat;
 use glint_core::scene::{
-    CameraDesc, FieldIssue, LoadOptions, LoadedScene, ObjectDesc, SceneDesc, load_scene_with, to_toml, validate,
+    CameraDesc, FieldIssue, LoadOptions, LoadedScene, ObjectDesc, Report, SceneDesc, load_scene_with, to_toml,
+    validate, validate_objects, validate_with_objects,
 };
 
 use crate::error::ViewerError;
@@ -43,7 +44,16 @@ pub struct Document {
 #[derive(Clone, Debug)]
 struct BuiltGeometry {
     objects: Vec<ObjectDesc>,
+    /// Validation's verdict on those objects (`validate_objects`).
+    objects_report: Report,
     flat: FlatScene,
+}
+
+impl BuiltGeometry {
+    /// Whether `desc` has the objects and material names this was built from.
+    fn built_from(&self, desc: &SceneDesc) -> bool {
+        self.objects == desc.objects && self.flat.material_names.iter().eq(desc.materials.keys())
+    }
 }
 
 impl Document {
@@ -104,7 +114,15 @@ impl Document {
     pub fn edited(&mut self) {
         self.revision += 1;
         self.dirty = true;
-        self.issues = validate(&self.desc).errors;
+        let geometry = self.geometry.borrow();
+        // Objects and material names as last built: their part of validation stands (a camera
+        // drag over a million triangles re-validated every vertex each frame before).
+        let report = match geometry.as_ref().filter(|g| g.built_from(&self.desc)) {
+            Some(g) => validate_with_objects(&self.desc, &g.objects_report),
+            None => validate(&self.desc),
+        };
+        drop(geometry);
+        self.issues = report.errors;
     }
 
     pub fn is_valid(&self) -> bool {
@@ -125,14 +143,15 @@ impl Document {
             settings.spp = 1;
         }
         let mut cache = self.geometry.borrow_mut();
-        let same_geometry = |g: &&BuiltGeometry| {
-            g.objects == self.desc.objects && g.flat.material_names.iter().eq(self.desc.materials.keys())
-        };
-        if let Some(g) = cache.as_ref().filter(same_geometry) {
+        if let Some(g) = cache.as_ref().filter(|g| g.built_from(&self.desc)) {
             return Some(g.flat.rebuild(&self.desc, &settings));
         }
         let flat = FlatScene::build(&self.desc, &settings);
-        *cache = Some(BuiltGeometry { objects: self.desc.objects.clone(), flat: flat.clone() });
+        *cache = Some(BuiltGeometry {
+            objects: self.desc.objects.clone(),
+            objects_report: validate_objects(&self.desc),
+            flat: flat.clone(),
+        });
         Some(flat)
     }
 

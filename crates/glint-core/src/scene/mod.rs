@@ -43,7 +43,8 @@ pub use texture::{
 };
 pub use validate::{
     MAX_COORD, MAX_DEPTH, MAX_EPSILON, MAX_IMAGE_SIDE, MAX_INTENSITY, MAX_IOR, MAX_SHININESS, MAX_SPOT_EXPONENT,
-    MAX_SPP, MIN_ATTENUATION_DENOMINATOR, Range, Report, ranges, validate, validate_settings,
+    MAX_SPP, MIN_ATTENUATION_DENOMINATOR, Range, Report, ranges, validate, validate_objects, validate_settings,
+    validate_with_objects,
 };
 
 /// A parsed and validated scene with where it came from.

@@ -120,7 +120,7 @@ fn as_f32(v: f64) -> f64 {
 }
 
 /// What validation found: hard errors and warnings (the scene still renders with warnings).
-#[derive(Debug, Default)]
+#[derive(Clone, Debug, Default)]
 pub struct Report {
     pub errors: Vec<FieldIssue>,
     pub warnings: Vec<FieldIssue>,
@@ -212,6 +212,24 @@ pub fn validate_settings(s: &RenderSettings, report: &mut Report) {
 
 /// Validates a whole scene. Errors make the scene unusable; warnings are printed.
 pub fn validate(scene: &SceneDesc) -> Report {
+    validate_with_objects(scene, &validate_objects(scene))
+}
+
+/// The objects' part of `validate`. It reads nothing of the scene but the objects and the
+/// material names, so an editor may keep it while only the camera, lights, world, settings or
+/// material values change (a camera drag over a million triangles) and pass it to
+/// `validate_with_objects`.
+pub fn validate_objects(scene: &SceneDesc) -> Report {
+    let mut r = Report::default();
+    for (i, object) in scene.objects.iter().enumerate() {
+        validate_object(&format!("objects[{i}]"), object, scene, &mut r);
+    }
+    r
+}
+
+/// `validate`, with the objects' part already done (`validate_objects` of a scene with the
+/// same objects and material names); the same report.
+pub fn validate_with_objects(scene: &SceneDesc, objects: &Report) -> Report {
     let mut r = Report::default();
     validate_settings(&scene.render, &mut r);
     validate_camera(scene, &mut r);
@@ -223,9 +241,8 @@ pub fn validate(scene: &SceneDesc) -> Report {
     for (i, light) in scene.lights.iter().enumerate() {
         validate_light(&format!("lights[{i}]"), light, &mut r);
     }
-    for (i, object) in scene.objects.iter().enumerate() {
-        validate_object(&format!("objects[{i}]"), object, scene, &mut r);
-    }
+    r.errors.extend_from_slice(&objects.errors);
+    r.warnings.extend_from_slice(&objects.warnings);
     if let Some(warning) = super::ray_tree::unbounded_ray_tree(scene, &scene.render) {
         r.warn("render.max_depth", warning);
     }
