@@ -9,6 +9,7 @@ mod determinism;
 mod fuzz_replay;
 mod gltf;
 mod gltf_lights;
+mod skip_convex;
 mod support;
 mod validation;
 

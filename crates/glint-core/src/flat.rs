@@ -225,6 +225,13 @@ impl FlatScene {
         if self.header.spp > 1 {
             f |= feature::JITTER;
         }
+        // Only secondary rays leave a primitive: without shadow or child rays there is nothing
+        // to skip.
+        if self.header.epsilon_mode == crate::layout::EPS_SKIP_CONVEX
+            && (f & feature::SHADOWS != 0 || feature::recurses(f))
+        {
+            f |= feature::SKIP_CONVEX;
+        }
         f
     }
 

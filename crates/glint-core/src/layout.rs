@@ -54,6 +54,7 @@ pub const EPS_TMIN: u32 = 0;
 pub const EPS_NUDGE_RAY: u32 = 1;
 pub const EPS_NUDGE_NORMAL: u32 = 2;
 pub const EPS_ROBUST: u32 = 3;
+pub const EPS_SKIP_CONVEX: u32 = 4;
 
 /// A stored tag that no kind of the layout has: a flat scene not made by `FlatScene::build`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
@@ -112,6 +113,7 @@ impl TryFrom<u32> for EpsilonMode {
             EPS_NUDGE_RAY => Ok(Self::NudgeRay),
             EPS_NUDGE_NORMAL => Ok(Self::NudgeNormal),
             EPS_ROBUST => Ok(Self::Robust),
+            EPS_SKIP_CONVEX => Ok(Self::SkipConvex),
             _ => Err(UnknownTag { what: "epsilon mode", value }),
         }
     }
@@ -217,11 +219,14 @@ pub mod feature {
     pub const INVERSE_SQUARE: u32 = 1 << 18;
     /// Some spot light has the smooth (glTF) cone falloff.
     pub const SMOOTH_SPOT: u32 = 1 << 19;
+    /// The ε strategy is `skip_convex`: secondary rays carry the primitive they leave, which
+    /// the primitive loops skip (or, for a sphere the ray enters, test by its far root only).
+    pub const SKIP_CONVEX: u32 = 1 << 20;
     /// Every feature: the unspecialised tracer.
-    pub const ALL: u32 = (1 << 20) - 1;
+    pub const ALL: u32 = (1 << 21) - 1;
 
     /// Names in bit order, for logs, cache keys and shader defs.
-    pub const NAMES: [&str; 20] = [
+    pub const NAMES: [&str; 21] = [
         "POINT_LIGHTS",
         "DIRECTIONAL_LIGHTS",
         "SPOT_LIGHTS",
@@ -242,6 +247,7 @@ pub mod feature {
         "JITTER",
         "INVERSE_SQUARE",
         "SMOOTH_SPOT",
+        "SKIP_CONVEX",
     ];
 
     /// Whether a scene with `features` traces child rays: the one test of "needs a ray tree
@@ -535,7 +541,7 @@ mod tests {
         }
         assert_eq!(Wrap::try_from(3).unwrap_err().to_string(), "3 is not a valid texture wrap mode");
         assert_eq!(LightKind::try_from(7).unwrap_err().to_string(), "7 is not a valid light kind");
-        assert_eq!(EpsilonMode::try_from(4).unwrap_err().to_string(), "4 is not a valid epsilon mode");
+        assert_eq!(EpsilonMode::try_from(5).unwrap_err().to_string(), "5 is not a valid epsilon mode");
         assert_eq!(AttenuationModel::try_from(2).unwrap_err().to_string(), "2 is not a valid attenuation model");
         assert_eq!(SpotFalloff::try_from(2).unwrap_err().to_string(), "2 is not a valid spot falloff");
     }

@@ -137,10 +137,14 @@ pub enum EpsilonMode {
     /// (Wächter & Binder, Ray Tracing Gems ch. 6), then by ε.
     #[default]
     Robust = layout::EPS_ROBUST,
+    /// Start at the hit point and do not test the primitive the ray leaves (the seed's "convex
+    /// objects do not test intersection if the ray's prior intersection is with that object");
+    /// a ray into a sphere finds its far side. Hits with t ≤ ε are rejected as with `tmin`.
+    SkipConvex = layout::EPS_SKIP_CONVEX,
 }
 
 impl EpsilonMode {
-    pub const ALL: [Self; 4] = [Self::Tmin, Self::NudgeRay, Self::NudgeNormal, Self::Robust];
+    pub const ALL: [Self; 5] = [Self::Tmin, Self::NudgeRay, Self::NudgeNormal, Self::Robust, Self::SkipConvex];
 
     pub fn name(self) -> &'static str {
         match self {
@@ -148,6 +152,7 @@ impl EpsilonMode {
             Self::NudgeRay => "nudge_ray",
             Self::NudgeNormal => "nudge_normal",
             Self::Robust => "robust",
+            Self::SkipConvex => "skip_convex",
         }
     }
 
