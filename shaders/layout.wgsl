@@ -68,6 +68,7 @@ struct SceneHeader {
     mesh_count: u32,
     ambient: vec4<f32>,
     background: vec4<f32>,
+    global_attenuation: vec4<f32>,
 }
 
 struct GpuCamera {

@@ -15,6 +15,9 @@
 #endif
 #import glint::offset::{spawn_ray, leaving_surface}
 #import glint::shade::{Surface, shade_local}
+#ifdef GLOBAL_ATTENUATION
+#import glint::shade::attenuation_factor
+#endif
 #ifdef TEXTURES
 #import glint::texture::planar_uv
 #ifdef TRIANGLES
@@ -233,6 +236,13 @@ fn trace_ray(ray: Ray) -> SampleResult {
             if n == 0u {
                 result.object = object_id(hit);
             }
+#ifdef GLOBAL_ATTENUATION
+            // A child ray's whole share, and its children's path weight, times f_att(t) (the
+            // CPU's trace_ray); the camera ray (depth 0) and the background are not attenuated.
+            if e.depth > 0u {
+                e.weight *= attenuation_factor(header.global_attenuation, hit.t);
+            }
+#endif
 #ifdef PROBE
             probe_active = n == 0u;
 #endif

@@ -7,6 +7,7 @@ mod bvh;
 mod closed_form;
 mod determinism;
 mod fuzz_replay;
+mod global_attenuation;
 mod gltf;
 mod gltf_lights;
 mod skip_convex;

@@ -222,11 +222,13 @@ pub mod feature {
     /// The ε strategy is `skip_convex`: secondary rays carry the primitive they leave, which
     /// the primitive loops skip (or, for a sphere the ray enters, test by its far root only).
     pub const SKIP_CONVEX: u32 = 1 << 20;
+    /// The world's global attenuation is on (not (1, 0, 0)) and child rays are traced.
+    pub const GLOBAL_ATTENUATION: u32 = 1 << 21;
     /// Every feature: the unspecialised tracer.
-    pub const ALL: u32 = (1 << 21) - 1;
+    pub const ALL: u32 = (1 << 22) - 1;
 
     /// Names in bit order, for logs, cache keys and shader defs.
-    pub const NAMES: [&str; 21] = [
+    pub const NAMES: [&str; 22] = [
         "POINT_LIGHTS",
         "DIRECTIONAL_LIGHTS",
         "SPOT_LIGHTS",
@@ -248,6 +250,7 @@ pub mod feature {
         "INVERSE_SQUARE",
         "SMOOTH_SPOT",
         "SKIP_CONVEX",
+        "GLOBAL_ATTENUATION",
     ];
 
     /// Whether a scene with `features` traces child rays: the one test of "needs a ray tree
@@ -286,6 +289,9 @@ pub struct SceneHeader {
     pub ambient: [f32; 4],
     /// Radiance of missed rays (rgb, w unused).
     pub background: [f32; 4],
+    /// (c, l, q, unused) of the attenuation of reflected and transmitted terms by the distance
+    /// their ray travelled; (1, 0, 0, 0) when off.
+    pub global_attenuation: [f32; 4],
 }
 
 /// Pinhole camera as ray-generation vectors: a pixel at normalised device coordinates (x, y)

@@ -44,7 +44,8 @@ fn rust_layouts() -> Vec<RustLayout> {
             vertex_count,
             mesh_count,
             ambient,
-            background
+            background,
+            global_attenuation
         }),
         rust_layout!(GpuCamera { position, forward, right, up }),
         rust_layout!(GpuMaterial {

@@ -9,7 +9,7 @@ use glam::{DVec2, DVec3};
 use super::camera::{camera_ray, sample_offset};
 use super::intersect::{FAR, Hit, Leaving, Prim, all_zero, closest_hit, triangle_corners, triangle_shading_normal};
 use super::offset::{leaving_surface, spawn_ray};
-use super::shade::{Breakdown, Surface, shade_local};
+use super::shade::{Breakdown, Surface, attenuation_factor, shade_local};
 use super::texture::{planar_uv, triangle_uv};
 use super::{Ray, RayCounts, TraceContext, v3};
 use crate::layout::{NO_HIT, feature};
@@ -74,7 +74,10 @@ fn max_channel(v: DVec3) -> f64 {
     v.x.max(v.y).max(v.z)
 }
 
-/// Radiance along a ray: background on a miss, else the shaded hit.
+/// Radiance along a child ray: background on a miss, else the shaded hit — times the world's
+/// global attenuation f_att(t) when it is on: what the ray brings back, and the path weight its
+/// own children's bailout is judged by. The background, like a directional light, is not
+/// attenuated (it lies at no distance).
 pub fn trace_ray(
     ctx: &TraceContext,
     ray: &Ray,
@@ -85,6 +88,10 @@ pub fn trace_ray(
     counts: &mut RayCounts,
 ) -> DVec3 {
     match closest_hit(ctx, ray, t_min, FAR, leaving) {
+        Some(hit) if ctx.has(feature::GLOBAL_ATTENUATION) => {
+            let f = attenuation_factor(ctx.scene.header.global_attenuation, hit.t);
+            f * shade_hit(ctx, ray, &hit, depth, weight * f, counts, None)
+        }
         Some(hit) => shade_hit(ctx, ray, &hit, depth, weight, counts, None),
         None => v3(ctx.scene.header.background),
     }

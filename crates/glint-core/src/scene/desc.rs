@@ -188,11 +188,47 @@ pub struct WorldDesc {
     pub ambient: Rgb,
     /// Radiance of rays that miss everything.
     pub background: Rgb,
+    /// Attenuation of the reflected and transmitted terms by the distance their ray travelled
+    /// (the seed's "distance attenuation coefficients with k_rg and k_s"); (1, 0, 0) is off.
+    #[serde(skip_serializing_if = "GlobalAttenuation::is_none")]
+    pub global_attenuation: GlobalAttenuation,
 }
 
 impl Default for WorldDesc {
     fn default() -> Self {
-        Self { ambient: Rgb::splat(0.1), background: Rgb::splat(0.0) }
+        Self { ambient: Rgb::splat(0.1), background: Rgb::splat(0.0), global_attenuation: GlobalAttenuation::NONE }
+    }
+}
+
+/// f_att = 1 / (c + l·d + q·d²) of a child ray that travelled d before its hit, multiplying
+/// what it brings back (`world.global_attenuation = { c, l, q }`, validated as a light's).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GlobalAttenuation {
+    #[serde(default = "one")]
+    pub c: f64,
+    #[serde(default)]
+    pub l: f64,
+    #[serde(default)]
+    pub q: f64,
+}
+
+fn one() -> f64 {
+    1.0
+}
+
+impl GlobalAttenuation {
+    /// f_att = 1: no attenuation, the default.
+    pub const NONE: Self = Self { c: 1.0, l: 0.0, q: 0.0 };
+
+    pub fn is_none(&self) -> bool {
+        *self == Self::NONE
+    }
+}
+
+impl Default for GlobalAttenuation {
+    fn default() -> Self {
+        Self::NONE
     }
 }
 
