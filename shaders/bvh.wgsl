@@ -14,7 +14,10 @@
 #import glint::scene_data::{BvhNode, PRIM_REF_TRIANGLE, PRIM_REF_INDEX, STATUS_BVH_STACK_OVERFLOW}
 #import glint::bindings::{header, planes, spheres, triangles, meshes, bvh_nodes, bvh_prims}
 #import glint::ray::{Ray, status}
-#import glint::intersect::{Hit, MaybeT, PRIM_NONE, PRIM_SPHERE, PRIM_PLANE, PRIM_TRIANGLE, sphere_roots, intersect_sphere, intersect_plane, intersect_triangle, ray_shear, cross_surface, all_zero, sphere_transmittance, planes_transmittance, triangle_transmittance, triangle_corners, bound, replaces}
+#import glint::intersect::{Hit, Leaving, MaybeT, PRIM_NONE, PRIM_SPHERE, PRIM_PLANE, PRIM_TRIANGLE, sphere_roots, intersect_sphere_leaving, intersect_plane, intersect_triangle, ray_shear, cross_surface, all_zero, sphere_transmittance, planes_transmittance, triangle_transmittance, triangle_corners, bound, replaces}
+#ifdef SKIP_CONVEX
+#import glint::intersect::is_leaving
+#endif
 
 // Entries of the traversal stack: deeper than any tree the builder makes for 2^31 primitives
 // with balanced splits; a degenerate deeper one raises STATUS_BVH_STACK_OVERFLOW.
@@ -144,7 +147,7 @@ fn push_children(
 
 // intersect.wgsl's closest_hit through the BVH: the same hit (the tie rule makes it independent of the
 // visiting order).
-fn closest_hit(ray: Ray, t_min: f32, t_max: f32) -> Hit {
+fn closest_hit(ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> Hit {
     var best = Hit(t_max, PRIM_NONE, 0u, 0.0, 0.0);
     let root = bvh_nodes[0];
     let slab = slab_ray(ray, root);
@@ -169,6 +172,11 @@ fn closest_hit(ray: Ray, t_min: f32, t_max: f32) -> Hit {
                 let i = r & PRIM_REF_INDEX;
                 if (r & PRIM_REF_TRIANGLE) != 0u {
 #ifdef TRIANGLES
+#ifdef SKIP_CONVEX
+                    if is_leaving(leaving, PRIM_TRIANGLE, i) {
+                        continue;
+                    }
+#endif
                     let v = triangle_corners(triangles[i]);
                     let h = intersect_triangle(v[0], v[1], v[2], ray, sh, t_min, bound(best, t_max));
                     if h.ok && replaces(h.t, PRIM_TRIANGLE, i, best) {
@@ -178,7 +186,7 @@ fn closest_hit(ray: Ray, t_min: f32, t_max: f32) -> Hit {
                 } else {
 #ifdef SPHERES
                     let cr = spheres[i].center_radius;
-                    let h = intersect_sphere(cr.xyz, cr.w, ray, t_min, bound(best, t_max));
+                    let h = intersect_sphere_leaving(leaving, i, cr.xyz, cr.w, ray, t_min, bound(best, t_max));
                     if h.ok && replaces(h.t, PRIM_SPHERE, i, best) {
                         best = Hit(h.t, PRIM_SPHERE, i, 0.0, 0.0);
                     }
@@ -191,6 +199,11 @@ fn closest_hit(ray: Ray, t_min: f32, t_max: f32) -> Hit {
     }
 #ifdef PLANES
     for (var i = 0u; i < header.plane_count; i++) {
+#ifdef SKIP_CONVEX
+        if is_leaving(leaving, PRIM_PLANE, i) {
+            continue;
+        }
+#endif
         let no = planes[i].normal_offset;
         let h = intersect_plane(no.xyz, no.w, ray, t_min, bound(best, t_max));
         if h.ok && replaces(h.t, PRIM_PLANE, i, best) {
@@ -203,7 +216,7 @@ fn closest_hit(ray: Ray, t_min: f32, t_max: f32) -> Hit {
 
 // intersect.wgsl's shadow_transmittance through the BVH: 0 at the first opaque occluder, else
 // the product of k_t over every surface crossed (in visiting order).
-fn shadow_transmittance(ray: Ray, t_min: f32, t_max: f32) -> vec3<f32> {
+fn shadow_transmittance(ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> vec3<f32> {
     var tr = vec3<f32>(1.0);
     let root = bvh_nodes[0];
     let slab = slab_ray(ray, root);
@@ -223,6 +236,11 @@ fn shadow_transmittance(ray: Ray, t_min: f32, t_max: f32) -> vec3<f32> {
                 let i = r & PRIM_REF_INDEX;
                 if (r & PRIM_REF_TRIANGLE) != 0u {
 #ifdef TRIANGLES
+#ifdef SKIP_CONVEX
+                    if is_leaving(leaving, PRIM_TRIANGLE, i) {
+                        continue;
+                    }
+#endif
                     tr = triangle_transmittance(tr, i, ray, sh, t_min, t_max);
                     if all_zero(tr) {
                         return tr;
@@ -230,7 +248,7 @@ fn shadow_transmittance(ray: Ray, t_min: f32, t_max: f32) -> vec3<f32> {
 #endif
                 } else {
 #ifdef SPHERES
-                    tr = sphere_transmittance(tr, i, ray, t_min, t_max);
+                    tr = sphere_transmittance(tr, i, ray, t_min, t_max, leaving);
                     if all_zero(tr) {
                         return tr;
                     }
@@ -242,7 +260,7 @@ fn shadow_transmittance(ray: Ray, t_min: f32, t_max: f32) -> vec3<f32> {
         push_children(&stack, &stack_t, &sp, slab, node.left_first, t_min, t_max);
     }
 #ifdef PLANES
-    tr = planes_transmittance(tr, ray, t_min, t_max);
+    tr = planes_transmittance(tr, ray, t_min, t_max, leaving);
 #endif
     return tr;
 }

@@ -21,6 +21,14 @@ struct Hit {
     bv: f32,
 }
 
+// The primitive a secondary ray leaves under skip_convex (PRIM_NONE otherwise): not tested
+// again, but for a sphere the ray goes into, whose far root alone counts.
+struct Leaving {
+    prim: u32,
+    index: u32,
+    inside: bool,
+}
+
 // A root, or none (WGSL has no Option).
 struct MaybeT {
     t: f32,
@@ -69,6 +77,32 @@ fn intersect_sphere(center: vec3<f32>, radius: f32, ray: Ray, t_min: f32, t_max:
         return MaybeT(r.t_far, true);
     }
     return MaybeT(0.0, false);
+}
+
+#ifdef SKIP_CONVEX
+fn is_leaving(leaving: Leaving, prim: u32, index: u32) -> bool {
+    return leaving.prim == prim && leaving.index == index;
+}
+
+// Which roots of sphere `index` a ray leaving `leaving` may cross: both, none (the sphere it
+// leaves into the outside) or the far one (the sphere it enters).
+fn sphere_roots_counted(leaving: Leaving, index: u32) -> vec2<bool> {
+    if is_leaving(leaving, PRIM_SPHERE, index) {
+        return vec2<bool>(false, leaving.inside);
+    }
+    return vec2<bool>(true, true);
+}
+#endif
+
+// intersect_sphere for sphere `index` of a ray leaving `leaving` (the CPU's rule).
+fn intersect_sphere_leaving(leaving: Leaving, index: u32, center: vec3<f32>, radius: f32, ray: Ray, t_min: f32, t_max: f32) -> MaybeT {
+#ifdef SKIP_CONVEX
+    if is_leaving(leaving, PRIM_SPHERE, index) {
+        let r = sphere_roots(center, radius, ray);
+        return MaybeT(r.t_far, leaving.inside && r.ok && r.t_far > t_min && r.t_far < t_max);
+    }
+#endif
+    return intersect_sphere(center, radius, ray, t_min, t_max);
 }
 
 fn intersect_plane(n: vec3<f32>, d: f32, ray: Ray, t_min: f32, t_max: f32) -> MaybeT {
@@ -209,12 +243,12 @@ fn bound(best: Hit, t_max: f32) -> f32 {
 }
 
 // Nearest hit in (t_min, t_max); ties go to the first in scene order (`replaces`), as on the CPU.
-fn closest_hit(ray: Ray, t_min: f32, t_max: f32) -> Hit {
+fn closest_hit(ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> Hit {
     var best = Hit(t_max, PRIM_NONE, 0u, 0.0, 0.0);
 #ifdef SPHERES
     for (var i = 0u; i < header.sphere_count; i++) {
         let cr = spheres[i].center_radius;
-        let h = intersect_sphere(cr.xyz, cr.w, ray, t_min, best.t);
+        let h = intersect_sphere_leaving(leaving, i, cr.xyz, cr.w, ray, t_min, best.t);
         if h.ok {
             best = Hit(h.t, PRIM_SPHERE, i, 0.0, 0.0);
         }
@@ -222,6 +256,11 @@ fn closest_hit(ray: Ray, t_min: f32, t_max: f32) -> Hit {
 #endif
 #ifdef PLANES
     for (var i = 0u; i < header.plane_count; i++) {
+#ifdef SKIP_CONVEX
+        if is_leaving(leaving, PRIM_PLANE, i) {
+            continue;
+        }
+#endif
         let no = planes[i].normal_offset;
         let h = intersect_plane(no.xyz, no.w, ray, t_min, best.t);
         if h.ok {
@@ -233,6 +272,11 @@ fn closest_hit(ray: Ray, t_min: f32, t_max: f32) -> Hit {
     if header.triangle_count > 0u {
         let sh = ray_shear(ray.dir);
         for (var i = 0u; i < header.triangle_count; i++) {
+#ifdef SKIP_CONVEX
+            if is_leaving(leaving, PRIM_TRIANGLE, i) {
+                continue;
+            }
+#endif
             let v = triangle_corners(triangles[i]);
             let h = intersect_triangle(v[0], v[1], v[2], ray, sh, t_min, bound(best, t_max));
             if h.ok && replaces(h.t, PRIM_TRIANGLE, i, best) {
@@ -259,19 +303,24 @@ fn all_zero(v: vec3<f32>) -> bool {
 }
 
 #ifdef SPHERES
-// `tr` times the k_t of each surface of sphere i (both roots) crossed in (t_min, t_max).
-fn sphere_transmittance(tr_in: vec3<f32>, i: u32, ray: Ray, t_min: f32, t_max: f32) -> vec3<f32> {
+// `tr` times the k_t of each surface of sphere i (both roots, or those sphere_roots_counted
+// leaves) crossed in (t_min, t_max).
+fn sphere_transmittance(tr_in: vec3<f32>, i: u32, ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> vec3<f32> {
     var tr = tr_in;
     let cr = spheres[i].center_radius;
     let r = sphere_roots(cr.xyz, cr.w, ray);
+    var counted = vec2<bool>(true, true);
+#ifdef SKIP_CONVEX
+    counted = sphere_roots_counted(leaving, i);
+#endif
     if r.ok {
-        if r.t_near > t_min && r.t_near < t_max {
+        if counted.x && r.t_near > t_min && r.t_near < t_max {
             tr = cross_surface(tr, spheres[i].material);
             if all_zero(tr) {
                 return tr;
             }
         }
-        if r.t_far > t_min && r.t_far < t_max {
+        if counted.y && r.t_far > t_min && r.t_far < t_max {
             tr = cross_surface(tr, spheres[i].material);
         }
     }
@@ -292,10 +341,16 @@ fn triangle_transmittance(tr: vec3<f32>, i: u32, ray: Ray, sh: RayShear, t_min: 
 #endif
 
 #ifdef PLANES
-// `tr` times the k_t of every plane crossed in (t_min, t_max), in index order.
-fn planes_transmittance(tr_in: vec3<f32>, ray: Ray, t_min: f32, t_max: f32) -> vec3<f32> {
+// `tr` times the k_t of every plane crossed in (t_min, t_max), in index order, but the one the
+// ray leaves.
+fn planes_transmittance(tr_in: vec3<f32>, ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> vec3<f32> {
     var tr = tr_in;
     for (var i = 0u; i < header.plane_count; i++) {
+#ifdef SKIP_CONVEX
+        if is_leaving(leaving, PRIM_PLANE, i) {
+            continue;
+        }
+#endif
         let no = planes[i].normal_offset;
         if intersect_plane(no.xyz, no.w, ray, t_min, t_max).ok {
             tr = cross_surface(tr, planes[i].material);
@@ -310,18 +365,18 @@ fn planes_transmittance(tr_in: vec3<f32>, ray: Ray, t_min: f32, t_max: f32) -> v
 
 // Light passing from the ray origin to t_max: 0 behind an opaque occluder, the product of
 // k_t over every surface crossed otherwise.
-fn shadow_transmittance(ray: Ray, t_min: f32, t_max: f32) -> vec3<f32> {
+fn shadow_transmittance(ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> vec3<f32> {
     var tr = vec3<f32>(1.0);
 #ifdef SPHERES
     for (var i = 0u; i < header.sphere_count; i++) {
-        tr = sphere_transmittance(tr, i, ray, t_min, t_max);
+        tr = sphere_transmittance(tr, i, ray, t_min, t_max, leaving);
         if all_zero(tr) {
             return tr;
         }
     }
 #endif
 #ifdef PLANES
-    tr = planes_transmittance(tr, ray, t_min, t_max);
+    tr = planes_transmittance(tr, ray, t_min, t_max, leaving);
     if all_zero(tr) {
         return tr;
     }
@@ -330,6 +385,11 @@ fn shadow_transmittance(ray: Ray, t_min: f32, t_max: f32) -> vec3<f32> {
     if header.triangle_count > 0u {
         let sh = ray_shear(ray.dir);
         for (var i = 0u; i < header.triangle_count; i++) {
+#ifdef SKIP_CONVEX
+            if is_leaving(leaving, PRIM_TRIANGLE, i) {
+                continue;
+            }
+#endif
             tr = triangle_transmittance(tr, i, ray, sh, t_min, t_max);
             if all_zero(tr) {
                 return tr;

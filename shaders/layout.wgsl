@@ -24,6 +24,7 @@ const EPS_TMIN: u32 = 0u;
 const EPS_NUDGE_RAY: u32 = 1u;
 const EPS_NUDGE_NORMAL: u32 = 2u;
 const EPS_ROBUST: u32 = 3u;
+const EPS_SKIP_CONVEX: u32 = 4u;
 const NO_HIT: u32 = 0xffffffffu;
 
 // The feature bits (SceneHeader.features) are not read here: the host compiles each feature
@@ -67,6 +68,7 @@ struct SceneHeader {
     mesh_count: u32,
     ambient: vec4<f32>,
     background: vec4<f32>,
+    global_attenuation: vec4<f32>,
 }
 
 struct GpuCamera {

@@ -1,8 +1,9 @@
 // Twin of crates/glint-core/src/cpu/offset.rs: where secondary rays start.
 #define_import_path glint::offset
 
-#import glint::scene_data::{EPS_TMIN, EPS_NUDGE_RAY, EPS_NUDGE_NORMAL, EPS_ROBUST}
+#import glint::scene_data::{EPS_TMIN, EPS_NUDGE_RAY, EPS_NUDGE_NORMAL, EPS_ROBUST, EPS_SKIP_CONVEX}
 #import glint::bindings::header
+#import glint::intersect::{Leaving, PRIM_NONE, PRIM_SPHERE}
 
 // Wächter & Binder, Ray Tracing Gems ch. 6, with their f32 constants (the f64 twin scales
 // FLOAT_SCALE to its precision).
@@ -15,6 +16,7 @@ const SHADOW_REL: f32 = 256.0 * 1.1920929e-7;
 struct Spawn {
     origin: vec3<f32>,
     t_min: f32,
+    leaving: Leaving,
 }
 
 fn offset_ray(p: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
@@ -23,20 +25,31 @@ fn offset_ray(p: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
     return select(p_i, p + FLOAT_SCALE * n, abs(p) < vec3<f32>(ORIGIN));
 }
 
-fn spawn_ray(p: vec3<f32>, p_surface: vec3<f32>, n_side: vec3<f32>, dir: vec3<f32>) -> Spawn {
+// Primitive `index` of kind `prim` as a ray leaving it to the side of n_side sees it: into a
+// sphere's inside when n_side points against its outward normal ng.
+fn leaving_surface(prim: u32, index: u32, ng: vec3<f32>, n_side: vec3<f32>) -> Leaving {
+    return Leaving(prim, index, prim == PRIM_SPHERE && dot(n_side, ng) < 0.0);
+}
+
+fn spawn_ray(p: vec3<f32>, p_surface: vec3<f32>, n_side: vec3<f32>, dir: vec3<f32>, leaving: Leaving) -> Spawn {
     let eps = header.epsilon;
+    let none = Leaving(PRIM_NONE, 0u, false);
     switch header.epsilon_mode {
         case EPS_TMIN: {
-            return Spawn(p, eps);
+            return Spawn(p, eps, none);
         }
         case EPS_NUDGE_RAY: {
-            return Spawn(p + eps * dir, 0.0);
+            return Spawn(p + eps * dir, 0.0, none);
         }
         case EPS_NUDGE_NORMAL: {
-            return Spawn(p + eps * n_side, 0.0);
+            return Spawn(p + eps * n_side, 0.0, none);
         }
+        case EPS_SKIP_CONVEX: {
+            return Spawn(p, eps, leaving);
+        }
+        // EPS_ROBUST; the host refuses any other stored value (FlatScene::check_tags).
         default: {
-            return Spawn(offset_ray(p_surface, n_side) + eps * n_side, 0.0);
+            return Spawn(offset_ray(p_surface, n_side) + eps * n_side, 0.0, none);
         }
     }
 }

@@ -9,7 +9,7 @@
 #import glint::scene_data::{STATUS_DRIVER_LOOP_CUTOFF, STAT_STATUS}
 #import glint::bindings::{tile, stats, rays_in, hits_out}
 #import glint::ray::{Ray, status, driver_cut_loops}
-#import glint::intersect::PRIM_NONE
+#import glint::intersect::{Leaving, PRIM_NONE}
 #import glint::bvh::closest_hit
 
 // Invocations per workgroup (glint_gpu::raycast::WORKGROUP).
@@ -17,7 +17,7 @@ const WORKGROUP: u32 = 64u;
 
 // The closest hit of one ray within its [t_min, t_max], as (prim, index, t bits, 0).
 fn cast_ray(origin_t_min: vec4<f32>, dir_t_max: vec4<f32>) -> vec4<u32> {
-    let h = closest_hit(Ray(origin_t_min.xyz, dir_t_max.xyz), origin_t_min.w, dir_t_max.w);
+    let h = closest_hit(Ray(origin_t_min.xyz, dir_t_max.xyz), origin_t_min.w, dir_t_max.w, Leaving(PRIM_NONE, 0u, false));
     // A miss has no t (the CPU's None); 0 rather than t_max, as the CPU's record.
     let t = select(h.t, 0.0, h.prim == PRIM_NONE);
     return vec4<u32>(h.prim, h.index, bitcast<u32>(t), 0u);

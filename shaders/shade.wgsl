@@ -11,7 +11,7 @@
 #else
 #import glint::intersect::shadow_transmittance
 #endif
-#import glint::offset::{spawn_ray, shadow_t_max}
+#import glint::offset::{spawn_ray, shadow_t_max, leaving_surface}
 #ifdef TEXTURES
 #import glint::texture::sample_texture
 #endif
@@ -29,6 +29,8 @@ struct Surface {
     uv: vec2<f32>,
     material: u32,
     object_id: u32,
+    prim: u32,
+    index: u32,
 }
 
 // x^0 = 1 (also for x = 0) and 0 for x ≤ 0 otherwise: WGSL's pow is undefined there.
@@ -177,7 +179,7 @@ fn material_colours(mat: GpuMaterial, uv: vec2<f32>) -> MaterialColours {
 
 fn light_visibility(light: GpuLight, s: Surface, ng: vec3<f32>, ls: LightSample) -> vec3<f32> {
     let n_side = select(-ng, ng, dot(ng, ls.l) >= 0.0);
-    let sp = spawn_ray(s.p, s.p_surface, n_side, ls.l);
+    let sp = spawn_ray(s.p, s.p_surface, n_side, ls.l, leaving_surface(s.prim, s.index, s.ng, n_side));
     var dir = ls.l;
     var t_max = FAR;
     if light.kind != LIGHT_DIRECTIONAL {
@@ -193,7 +195,7 @@ fn light_visibility(light: GpuLight, s: Surface, ng: vec3<f32>, ls: LightSample)
         return vec3<f32>(1.0);
     }
     ray_counts.shadow += 1u;
-    return shadow_transmittance(Ray(sp.origin, dir), sp.t_min, t_max);
+    return shadow_transmittance(Ray(sp.origin, dir), sp.t_min, t_max, sp.leaving);
 }
 
 // One light's terms at a hit (the pixel probe reads them; shade_local sums them).

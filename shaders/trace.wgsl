@@ -7,14 +7,17 @@
 #import glint::bindings::{header, camera, tile, materials, spheres, planes, triangles, meshes, output, stats, probe_out}
 #import glint::ray::{Ray, RayCounts, ray_counts, status, probe, probe_active, driver_cut_loops}
 #import glint::camera::{camera_ray, sample_offset}
-#import glint::intersect::{Hit, FAR, PRIM_NONE, PRIM_SPHERE, PRIM_PLANE, triangle_corners, triangle_shading_normal, all_zero}
+#import glint::intersect::{Hit, Leaving, FAR, PRIM_NONE, PRIM_SPHERE, PRIM_PLANE, PRIM_TRIANGLE, triangle_corners, triangle_shading_normal, all_zero}
 #ifdef BVH
 #import glint::bvh::closest_hit
 #else
 #import glint::intersect::closest_hit
 #endif
-#import glint::offset::spawn_ray
+#import glint::offset::{spawn_ray, leaving_surface}
 #import glint::shade::{Surface, shade_local}
+#ifdef GLOBAL_ATTENUATION
+#import glint::shade::attenuation_factor
+#endif
 #ifdef TEXTURES
 #import glint::texture::planar_uv
 #ifdef TRIANGLES
@@ -40,6 +43,8 @@ struct StackEntry {
     dir: vec3<f32>,
     depth: u32,
     weight: vec3<f32>,
+    // The primitive the ray leaves (skip_convex only).
+    leaving: Leaving,
     // Which child of the camera ray's hit this ray descends from: 0 the camera ray itself,
     // 1 the mirror child, 2 the refracted child (the pixel probe sums radiance by branch).
     branch: u32,
@@ -61,7 +66,7 @@ fn surface_at(ray: Ray, hit: Hit) -> Surface {
 #ifdef TEXTURES
         uv = planar_uv(p, ng);
 #endif
-        return Surface(p, p_surface, ng, ng, uv, s.material, s.object_id);
+        return Surface(p, p_surface, ng, ng, uv, s.material, s.object_id, PRIM_SPHERE, hit.index);
     }
 #endif
 #ifdef PLANES
@@ -73,7 +78,7 @@ fn surface_at(ray: Ray, hit: Hit) -> Surface {
 #ifdef TEXTURES
         uv = planar_uv(p, ng);
 #endif
-        return Surface(p, p_surface, ng, ng, uv, pl.material, pl.object_id);
+        return Surface(p, p_surface, ng, ng, uv, pl.material, pl.object_id, PRIM_PLANE, hit.index);
     }
 #endif
 #ifdef TRIANGLES
@@ -87,9 +92,9 @@ fn surface_at(ray: Ray, hit: Hit) -> Surface {
     uv = triangle_uv(tri, hit.bu, hit.bv, p, ng);
 #endif
     let mesh = meshes[tri.mesh];
-    return Surface(p, p_surface, ng, ns, uv, mesh.material, mesh.object_id);
+    return Surface(p, p_surface, ng, ns, uv, mesh.material, mesh.object_id, PRIM_TRIANGLE, hit.index);
 #else
-    return Surface(p, p, vec3<f32>(0.0, 1.0, 0.0), vec3<f32>(0.0, 1.0, 0.0), vec2<f32>(0.0), 0u, NO_HIT);
+    return Surface(p, p, vec3<f32>(0.0, 1.0, 0.0), vec3<f32>(0.0, 1.0, 0.0), vec2<f32>(0.0), 0u, NO_HIT, PRIM_NONE, 0u);
 #endif
 }
 
@@ -142,7 +147,8 @@ fn shade_hit(ray: Ray, hit: Hit, depth: u32, weight: vec3<f32>, branch: u32) -> 
     let ng = select(-s.ng, s.ng, front);
     let ns = select(-s.ns, s.ns, front);
     let v = -ray.dir;
-    var out = Shaded(weight * shade_local(s, ns, ng, v), StackEntry(vec3<f32>(0.0), 0.0, vec3<f32>(0.0), 0u, vec3<f32>(0.0), 0u), false);
+    let no_ray = StackEntry(vec3<f32>(0.0), 0.0, vec3<f32>(0.0), 0u, vec3<f32>(0.0), Leaving(PRIM_NONE, 0u, false), 0u);
+    var out = Shaded(weight * shade_local(s, ns, ng, v), no_ray, false);
 #ifdef PROBE
     if probe_active {
         probe.flags |= PROBE_HIT;
@@ -187,8 +193,8 @@ fn shade_hit(ray: Ray, hit: Hit, depth: u32, weight: vec3<f32>, branch: u32) -> 
             ray_counts.bailout_saved += 1u;
         } else {
             ray_counts.refraction += 1u;
-            let sp = spawn_ray(s.p, s.p_surface, -ng, refracted.xyz);
-            out.next = StackEntry(sp.origin, sp.t_min, refracted.xyz, depth + 1u, w, select(branch, 2u, branch == 0u));
+            let sp = spawn_ray(s.p, s.p_surface, -ng, refracted.xyz, leaving_surface(s.prim, s.index, s.ng, -ng));
+            out.next = StackEntry(sp.origin, sp.t_min, refracted.xyz, depth + 1u, w, sp.leaving, select(branch, 2u, branch == 0u));
             out.has_next = true;
         }
     }
@@ -200,11 +206,11 @@ fn shade_hit(ray: Ray, hit: Hit, depth: u32, weight: vec3<f32>, branch: u32) -> 
         } else {
             ray_counts.reflection += 1u;
             let dir = reflect_dir(ray.dir, ns);
-            let sp = spawn_ray(s.p, s.p_surface, ng, dir);
+            let sp = spawn_ray(s.p, s.p_surface, ng, dir, leaving_surface(s.prim, s.index, s.ng, ng));
             if out.has_next {
                 push_ray(out.next);
             }
-            out.next = StackEntry(sp.origin, sp.t_min, dir, depth + 1u, w, select(branch, 1u, branch == 0u));
+            out.next = StackEntry(sp.origin, sp.t_min, dir, depth + 1u, w, sp.leaving, select(branch, 1u, branch == 0u));
             out.has_next = true;
         }
     }
@@ -216,12 +222,12 @@ fn shade_hit(ray: Ray, hit: Hit, depth: u32, weight: vec3<f32>, branch: u32) -> 
 // the id of the first object hit.
 fn trace_ray(ray: Ray) -> SampleResult {
     var result = SampleResult(vec3<f32>(0.0), NO_HIT);
-    var e = StackEntry(ray.origin, 0.0, ray.dir, 0u, vec3<f32>(1.0), 0u);
+    var e = StackEntry(ray.origin, 0.0, ray.dir, 0u, vec3<f32>(1.0), Leaving(PRIM_NONE, 0u, false), 0u);
     stack_top = 0u;
     for (var n = 0u; n < MAX_TREE_NODES; n++) {
         let r = Ray(e.origin, e.dir);
         let branch_of_node = e.branch;
-        let hit = closest_hit(r, e.t_min, FAR);
+        let hit = closest_hit(r, e.t_min, FAR, e.leaving);
         var has_next = false;
         var gathered = vec3<f32>(0.0);
         if hit.prim == PRIM_NONE {
@@ -230,6 +236,13 @@ fn trace_ray(ray: Ray) -> SampleResult {
             if n == 0u {
                 result.object = object_id(hit);
             }
+#ifdef GLOBAL_ATTENUATION
+            // A child ray's whole share, and its children's path weight, times f_att(t) (the
+            // CPU's trace_ray); the camera ray (depth 0) and the background are not attenuated.
+            if e.depth > 0u {
+                e.weight *= attenuation_factor(header.global_attenuation, hit.t);
+            }
+#endif
 #ifdef PROBE
             probe_active = n == 0u;
 #endif

@@ -26,7 +26,7 @@ pub struct SettingsArgs {
     /// Self-intersection epsilon in scene units [0, 1000]
     #[arg(long, allow_negative_numbers = true)]
     pub epsilon: Option<f64>,
-    /// How epsilon is applied: tmin, nudge_ray, nudge_normal or robust
+    /// How epsilon is applied: tmin, nudge_ray, nudge_normal, robust or skip_convex
     #[arg(long, value_parser = parse_epsilon_mode)]
     pub epsilon_mode: Option<EpsilonMode>,
     /// Adaptive bailout: skip child rays whose path weight is below this [0, 1]; 0 disables

@@ -11,9 +11,10 @@
 
 use std::f64::consts::PI;
 
-use glint_core::cpu::intersect::{FAR, closest_hit, shadow_transmittance};
+use glint_core::cpu::intersect::{FAR, Leaving, Prim, closest_hit, shadow_transmittance};
 use glint_core::cpu::{Accel, Ray, TraceContext};
 use glint_core::glam::DVec3;
+use glint_core::layout::feature;
 use glint_core::scene::BUILTIN_SCENES;
 use glint_core::{CpuOptions, CpuRender, FlatScene, RenderControl, render_cpu};
 
@@ -168,7 +169,7 @@ fn glass_sphere_in_front_of_a_transmissive_mesh() {
         .sphere([0.2, 0.4, -0.8], 0.3, "glass")
         .mesh(&uv_sphere(20, [0.3, 0.0, 1.0], 0.9).0, &uv_sphere(20, [0.3, 0.0, 1.0], 0.9).1, None, "tinted");
     let flat = scene.flat();
-    assert_ne!(flat.header.features & glint_core::layout::feature::FILTERED_SHADOWS, 0);
+    assert_ne!(flat.header.features & feature::FILTERED_SHADOWS, 0);
     assert_identical("glass in front of a mesh", &flat);
 }
 
@@ -216,12 +217,77 @@ fn incoherent_rays_find_the_same_hits_and_shadow_products() {
         let origin = DVec3::new(4.0 * rng.next() - 2.0, 3.0 * rng.next() - 1.5, 4.0 * rng.next() - 2.0);
         let ray = Ray { origin, dir: rng.dir() };
         let t_min = if i % 3 == 0 { 0.0 } else { 1e-4 };
-        let (a, b) = (closest_hit(&bvh, &ray, t_min, FAR), closest_hit(&none, &ray, t_min, FAR));
+        let none_left = Leaving::NONE;
+        let (a, b) =
+            (closest_hit(&bvh, &ray, t_min, FAR, &none_left), closest_hit(&none, &ray, t_min, FAR, &none_left));
         assert_eq!(a, b, "ray {i}: {ray:?}");
         hits += usize::from(a.is_some());
         let t_max = 0.5 + 4.0 * rng.next();
-        let (a, b) = (shadow_transmittance(&bvh, &ray, t_min, t_max), shadow_transmittance(&none, &ray, t_min, t_max));
+        let (a, b) = (
+            shadow_transmittance(&bvh, &ray, t_min, t_max, &none_left),
+            shadow_transmittance(&none, &ray, t_min, t_max, &none_left),
+        );
         assert_eq!(a.to_array().map(f64::to_bits), b.to_array().map(f64::to_bits), "shadow ray {i}: {ray:?}");
     }
     assert!(hits > 5_000, "{hits} hits");
+}
+
+/// `skip_convex`'s rule (the primitive a ray leaves is not tested, a sphere it enters only by
+/// its far root) through the BVH and brute force: the same hits and shadow products, for rays
+/// leaving each sphere (both ways), the plane and triangles of both meshes.
+#[test]
+fn rays_leaving_a_primitive_skip_it_alike_through_the_bvh_and_brute_force() {
+    let scene =
+        SceneText::new(8, 8, "max_depth = 1\nepsilon_mode = \"skip_convex\"", [0.0, 0.5, -3.5], [0.0; 3], Y, 50.0)
+            .material("glass", "ka = 0.0\nkd = 0.0\nkt = [0.9, 0.7, 0.8]\nior = 1.5")
+            .material("tinted", "ka = 0.1\nkd = 0.3\nkt = [0.3, 0.6, 0.9]")
+            .light("point", "position = [0.5, 4.0, -2.0]\ndiffuse = 0.9")
+            .plane([0.0, -1.2, 0.0], Y, "tinted")
+            .sphere([0.0, 0.2, -1.0], 0.7, "glass")
+            .sphere([0.5, 0.0, 0.5], 0.4, "tinted")
+            .mesh(&uv_sphere(12, [0.3, 0.0, 1.0], 0.9).0, &uv_sphere(12, [0.3, 0.0, 1.0], 0.9).1, None, "tinted");
+    let flat = scene.flat();
+    assert!(flat.header.features & feature::SKIP_CONVEX != 0);
+    let bvh = TraceContext::new(&flat).expect("valid tags").with_accel(Accel::Bvh);
+    let none = TraceContext::new(&flat).expect("valid tags").with_accel(Accel::None);
+    let mut rng = Rng(0x2545_f491_4f6c_dd1d);
+    let (mut hits, mut differs) = (0, 0);
+    for i in 0..20_000u32 {
+        let leaving = match i % 4 {
+            0 => Leaving { prim: Some(Prim::Sphere), index: (i / 4) % 2, inside: i % 8 < 4 },
+            1 => Leaving { prim: Some(Prim::Plane), index: 0, inside: false },
+            _ => Leaving { prim: Some(Prim::Triangle), index: (i * 7) % flat.triangles.len() as u32, inside: false },
+        };
+        // Start on the primitive left, so that skipping it matters.
+        let dir = rng.dir();
+        let origin = match leaving.prim {
+            Some(Prim::Sphere) => {
+                let cr = flat.spheres[leaving.index as usize].center_radius;
+                let c = DVec3::new(cr[0].into(), cr[1].into(), cr[2].into());
+                c + f64::from(cr[3]) * rng.dir()
+            }
+            Some(Prim::Plane) => DVec3::new(4.0 * rng.next() - 2.0, -1.2, 4.0 * rng.next() - 2.0),
+            _ => {
+                let tri = flat.triangles[leaving.index as usize];
+                let v = |k: u32| {
+                    let p = flat.vertices[k as usize];
+                    DVec3::new(p[0].into(), p[1].into(), p[2].into())
+                };
+                (v(tri.va) + v(tri.vb) + v(tri.vc)) / 3.0
+            }
+        };
+        let ray = Ray { origin, dir };
+        let (a, b) = (closest_hit(&bvh, &ray, 0.0, FAR, &leaving), closest_hit(&none, &ray, 0.0, FAR, &leaving));
+        assert_eq!(a, b, "ray {i} leaving {leaving:?}: {ray:?}");
+        hits += usize::from(a.is_some());
+        differs += usize::from(a != closest_hit(&none, &ray, 0.0, FAR, &Leaving::NONE));
+        let t_max = 0.5 + 4.0 * rng.next();
+        let (a, b) = (
+            shadow_transmittance(&bvh, &ray, 0.0, t_max, &leaving),
+            shadow_transmittance(&none, &ray, 0.0, t_max, &leaving),
+        );
+        assert_eq!(a.to_array().map(f64::to_bits), b.to_array().map(f64::to_bits), "shadow ray {i}: {ray:?}");
+    }
+    // The rule must actually change hits (else this test could not fail).
+    assert!(hits > 2_000 && differs > 1_000, "{hits} hits, {differs} changed by the skip");
 }

@@ -7,8 +7,10 @@ mod bvh;
 mod closed_form;
 mod determinism;
 mod fuzz_replay;
+mod global_attenuation;
 mod gltf;
 mod gltf_lights;
+mod skip_convex;
 mod support;
 mod validation;
 

@@ -191,6 +191,18 @@ fn attenuation_that_can_reach_zero() {
 }
 
 #[test]
+fn global_attenuation_is_validated_as_a_lights() {
+    let world = |att: &str| edited("[camera]", &format!("[world]\nglobal_attenuation = {att}\n\n[camera]"));
+    let field = "world.global_attenuation";
+    expect_valid(&world("{ c = 1.0, l = 0.1, q = 0.01 }"), "global attenuation");
+    expect_invalid(&world("{ c = 0.0, l = 0.1 }"), field, &["c must be", "c = 0"]);
+    expect_invalid(&world("{ c = 1.0, q = -0.01 }"), field, &["q ≥ 0"]);
+    expect_invalid(&world("{ c = 1.0, l = -1.0, q = 0.1 }"), field, &["d = 5"]);
+    expect_invalid(&world("{ c = 1.0, l = nan }"), "world.global_attenuation.l", &["not a finite number", "allowed"]);
+    expect_parse_error(&world("{ c = 1.0, k = 0.1 }"), &["k"]);
+}
+
+#[test]
 fn spot_cutoff_range() {
     for bad in ["120.0", "-1.0", "90.5", "179.0", "180.5", "nan"] {
         expect_invalid(&edited("cutoff = 30.0", &format!("cutoff = {bad}")), "lights[2].cutoff", &["[0, 90]", "180"]);

@@ -9,7 +9,8 @@
 //!   may differ; a systematic error (a wrong intersection) shows as a whole region.
 //! - the status word (loop bound, stack overflow) stays 0 on every built-in scene.
 
-use glint_core::scene::BUILTIN_SCENES;
+use glint_core::FlatScene;
+use glint_core::scene::{BUILTIN_SCENES, EpsilonMode, GlobalAttenuation, load_scene};
 
 use super::support::{
     builtin, compare_and_keep, cpu, gpu_or_skip, gpu_render, log_errors, within_parity, write_failure_images,
@@ -37,6 +38,57 @@ fn builtin_scenes_match_the_cpu_reference() {
                 write_failure_images(&base, &c, &g);
                 failures.push(format!("{name} (rays: CPU {rc}, GPU {rg})"));
             }
+        }
+    }
+    assert!(failures.is_empty(), "GPU/CPU parity failed for {failures:?} (images in target/tmp/gpu-tests/parity)");
+}
+
+/// `skip_convex` on the GPU against the CPU, every built-in scene (spheres seen and refracted
+/// through from both sides, planes, meshes): the same thresholds as the default strategy's.
+#[test]
+fn builtin_scenes_match_the_cpu_reference_under_skip_convex() {
+    let tracer = gpu_or_skip!();
+    let mut failures = Vec::new();
+    for scene in BUILTIN_SCENES.iter().filter(|b| !b.is_generated()) {
+        let loaded = load_scene(scene.name).expect("built-in scene");
+        let mut s = loaded.desc.render.clone();
+        (s.width, s.height, s.spp, s.max_depth, s.epsilon_mode) = (160, 120, 1, 5, EpsilonMode::SkipConvex);
+        let flat = FlatScene::build(&loaded.desc, &s);
+        let c = cpu(&flat);
+        let g = gpu_render(tracer, &flat, true);
+        let name = format!("{}-skip-convex", scene.name);
+        let (e, base) = compare_and_keep("parity", &name, &c, &g);
+        log_errors(&name, &e, g.status);
+        let (rc, rg) = (c.counts.total() as f64, g.counts.total() as f64);
+        if !(within_parity(&e, g.status) && (rc - rg).abs() <= 1e-3 * rc) {
+            write_failure_images(&base, &c, &g);
+            failures.push(format!("{name} (rays: CPU {rc}, GPU {rg})"));
+        }
+    }
+    assert!(failures.is_empty(), "GPU/CPU parity failed for {failures:?} (images in target/tmp/gpu-tests/parity)");
+}
+
+/// The world's global attenuation of reflected and transmitted terms, GPU against CPU on every
+/// built-in scene (mirrors and glass at several distances), at the default thresholds.
+#[test]
+fn builtin_scenes_match_the_cpu_reference_with_global_attenuation() {
+    let tracer = gpu_or_skip!();
+    let mut failures = Vec::new();
+    for scene in BUILTIN_SCENES.iter().filter(|b| !b.is_generated()) {
+        let mut loaded = load_scene(scene.name).expect("built-in scene");
+        loaded.desc.world.global_attenuation = GlobalAttenuation { c: 0.5, l: 0.1, q: 0.02 };
+        let mut s = loaded.desc.render.clone();
+        (s.width, s.height, s.spp, s.max_depth) = (160, 120, 1, 5);
+        let flat = FlatScene::build(&loaded.desc, &s);
+        let c = cpu(&flat);
+        let g = gpu_render(tracer, &flat, true);
+        let name = format!("{}-global-attenuation", scene.name);
+        let (e, base) = compare_and_keep("parity", &name, &c, &g);
+        log_errors(&name, &e, g.status);
+        let (rc, rg) = (c.counts.total() as f64, g.counts.total() as f64);
+        if !(within_parity(&e, g.status) && (rc - rg).abs() <= 1e-3 * rc) {
+            write_failure_images(&base, &c, &g);
+            failures.push(format!("{name} (rays: CPU {rc}, GPU {rg})"));
         }
     }
     assert!(failures.is_empty(), "GPU/CPU parity failed for {failures:?} (images in target/tmp/gpu-tests/parity)");

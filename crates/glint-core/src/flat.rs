@@ -225,6 +225,17 @@ impl FlatScene {
         if self.header.spp > 1 {
             f |= feature::JITTER;
         }
+        // Only secondary rays leave a primitive: without shadow or child rays there is nothing
+        // to skip.
+        // Only child rays are attenuated; the f32 coefficients decide, as the tracers read them.
+        if feature::recurses(f) && self.header.global_attenuation != [1.0, 0.0, 0.0, 0.0] {
+            f |= feature::GLOBAL_ATTENUATION;
+        }
+        if self.header.epsilon_mode == crate::layout::EPS_SKIP_CONVEX
+            && (f & feature::SHADOWS != 0 || feature::recurses(f))
+        {
+            f |= feature::SKIP_CONVEX;
+        }
         f
     }
 
@@ -296,6 +307,7 @@ impl FlatScene {
             ("header.bailout", &[h.bailout]),
             ("header.ambient", &h.ambient),
             ("header.background", &h.background),
+            ("header.global_attenuation", &h.global_attenuation),
         ] {
             if bad(v) {
                 return Some(name.into());
@@ -544,6 +556,10 @@ fn flat_header(desc: &SceneDesc, settings: &RenderSettings, p: &Primitives, mate
         bailout: settings.bailout as f32,
         ambient: rgb4(desc.world.ambient),
         background: rgb4(desc.world.background),
+        global_attenuation: {
+            let g = desc.world.global_attenuation;
+            [g.c as f32, g.l as f32, g.q as f32, 0.0]
+        },
     }
 }
 

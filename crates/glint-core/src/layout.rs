@@ -54,6 +54,7 @@ pub const EPS_TMIN: u32 = 0;
 pub const EPS_NUDGE_RAY: u32 = 1;
 pub const EPS_NUDGE_NORMAL: u32 = 2;
 pub const EPS_ROBUST: u32 = 3;
+pub const EPS_SKIP_CONVEX: u32 = 4;
 
 /// A stored tag that no kind of the layout has: a flat scene not made by `FlatScene::build`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
@@ -112,6 +113,7 @@ impl TryFrom<u32> for EpsilonMode {
             EPS_NUDGE_RAY => Ok(Self::NudgeRay),
             EPS_NUDGE_NORMAL => Ok(Self::NudgeNormal),
             EPS_ROBUST => Ok(Self::Robust),
+            EPS_SKIP_CONVEX => Ok(Self::SkipConvex),
             _ => Err(UnknownTag { what: "epsilon mode", value }),
         }
     }
@@ -217,11 +219,16 @@ pub mod feature {
     pub const INVERSE_SQUARE: u32 = 1 << 18;
     /// Some spot light has the smooth (glTF) cone falloff.
     pub const SMOOTH_SPOT: u32 = 1 << 19;
+    /// The ε strategy is `skip_convex`: secondary rays carry the primitive they leave, which
+    /// the primitive loops skip (or, for a sphere the ray enters, test by its far root only).
+    pub const SKIP_CONVEX: u32 = 1 << 20;
+    /// The world's global attenuation is on (not (1, 0, 0)) and child rays are traced.
+    pub const GLOBAL_ATTENUATION: u32 = 1 << 21;
     /// Every feature: the unspecialised tracer.
-    pub const ALL: u32 = (1 << 20) - 1;
+    pub const ALL: u32 = (1 << 22) - 1;
 
     /// Names in bit order, for logs, cache keys and shader defs.
-    pub const NAMES: [&str; 20] = [
+    pub const NAMES: [&str; 22] = [
         "POINT_LIGHTS",
         "DIRECTIONAL_LIGHTS",
         "SPOT_LIGHTS",
@@ -242,6 +249,8 @@ pub mod feature {
         "JITTER",
         "INVERSE_SQUARE",
         "SMOOTH_SPOT",
+        "SKIP_CONVEX",
+        "GLOBAL_ATTENUATION",
     ];
 
     /// Whether a scene with `features` traces child rays: the one test of "needs a ray tree
@@ -280,6 +289,9 @@ pub struct SceneHeader {
     pub ambient: [f32; 4],
     /// Radiance of missed rays (rgb, w unused).
     pub background: [f32; 4],
+    /// (c, l, q, unused) of the attenuation of reflected and transmitted terms by the distance
+    /// their ray travelled; (1, 0, 0, 0) when off.
+    pub global_attenuation: [f32; 4],
 }
 
 /// Pinhole camera as ray-generation vectors: a pixel at normalised device coordinates (x, y)
@@ -535,7 +547,7 @@ mod tests {
         }
         assert_eq!(Wrap::try_from(3).unwrap_err().to_string(), "3 is not a valid texture wrap mode");
         assert_eq!(LightKind::try_from(7).unwrap_err().to_string(), "7 is not a valid light kind");
-        assert_eq!(EpsilonMode::try_from(4).unwrap_err().to_string(), "4 is not a valid epsilon mode");
+        assert_eq!(EpsilonMode::try_from(5).unwrap_err().to_string(), "5 is not a valid epsilon mode");
         assert_eq!(AttenuationModel::try_from(2).unwrap_err().to_string(), "2 is not a valid attenuation model");
         assert_eq!(SpotFalloff::try_from(2).unwrap_err().to_string(), "2 is not a valid spot falloff");
     }

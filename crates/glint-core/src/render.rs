@@ -233,7 +233,13 @@ pub fn pick_object(scene: &FlatScene, x: u32, y: u32) -> u32 {
     let ctx = built_scene_context(scene);
     let h = &scene.header;
     let ray = crate::cpu::camera::camera_ray(&scene.camera, h.width, h.height, x, y, 0.5, 0.5);
-    match crate::cpu::intersect::closest_hit(&ctx, &ray, 0.0, crate::cpu::intersect::FAR) {
+    match crate::cpu::intersect::closest_hit(
+        &ctx,
+        &ray,
+        0.0,
+        crate::cpu::intersect::FAR,
+        &crate::cpu::intersect::Leaving::NONE,
+    ) {
         Some(hit) => crate::cpu::trace::object_id(&ctx, &hit),
         None => crate::layout::NO_HIT,
     }

@@ -44,7 +44,8 @@ fn rust_layouts() -> Vec<RustLayout> {
             vertex_count,
             mesh_count,
             ambient,
-            background
+            background,
+            global_attenuation
         }),
         rust_layout!(GpuCamera { position, forward, right, up }),
         rust_layout!(GpuMaterial {
@@ -229,6 +230,7 @@ fn wgsl_layout_constants_match_rust() {
         ("EPS_NUDGE_RAY".into(), EPS_NUDGE_RAY),
         ("EPS_NUDGE_NORMAL".into(), EPS_NUDGE_NORMAL),
         ("EPS_ROBUST".into(), EPS_ROBUST),
+        ("EPS_SKIP_CONVEX".into(), EPS_SKIP_CONVEX),
         ("NO_HIT".into(), NO_HIT),
         ("STATUS_LOOP_LIMIT".into(), STATUS_LOOP_LIMIT),
         ("STATUS_STACK_OVERFLOW".into(), STATUS_STACK_OVERFLOW),

@@ -119,11 +119,10 @@ const CPU_ONLY: [(&str, &str, &str); 8] = [
 ];
 
 /// Structs only the GPU side has, and why.
-const GPU_ONLY_STRUCTS: [(&str, &str, &str); 7] = [
+const GPU_ONLY_STRUCTS: [(&str, &str, &str); 6] = [
     ("intersect.wgsl", "MaybeT", "WGSL has no Option: a flag beside the value"),
     ("intersect.wgsl", "SphereRoots", "WGSL has no Option<(f64, f64)>: a flag beside the roots"),
     ("intersect.wgsl", "TriangleHit", "WGSL has no Option<(t, bu, bv)>: a flag beside the hit"),
-    ("offset.wgsl", "Spawn", "the CPU returns the pair (origin, t_min)"),
     ("trace.wgsl", "SampleResult", "the CPU returns the pair (radiance, object)"),
     ("trace.wgsl", "StackEntry", "the explicit ray stack: WGSL has no recursion"),
     ("trace.wgsl", "Shaded", "a hit's radiance and the next ray of the stack walk, kept in registers"),

@@ -137,6 +137,21 @@ impl SceneText {
         self
     }
 
+    /// `[world]` with the global attenuation (c, l, q) of reflected and transmitted terms.
+    pub fn world_attenuated(mut self, ambient: [f64; 3], background: [f64; 3], [c, l, q]: [f64; 3]) -> Self {
+        writeln!(
+            self.text,
+            "[world]\nambient = {}\nbackground = {}\nglobal_attenuation = {{ c = {}, l = {}, q = {} }}\n",
+            arr(ambient),
+            arr(background),
+            num(c),
+            num(l),
+            num(q)
+        )
+        .unwrap();
+        self
+    }
+
     /// `[materials.NAME]` with the given `key = value` lines. Unlisted fields take the
     /// scene-format defaults, so tests list every field they rely on.
     pub fn material(mut self, name: &str, fields: &str) -> Self {

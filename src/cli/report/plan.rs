@@ -151,7 +151,7 @@ impl Plan {
             bailout_spp: vec![1],
             bailout_depth: vec![5],
             shader_spp: Vec::new(),
-            epsilon_modes: vec![EpsilonMode::Tmin, EpsilonMode::Robust],
+            epsilon_modes: vec![EpsilonMode::Tmin, EpsilonMode::Robust, EpsilonMode::SkipConvex],
             ..Self::full(reference_spp)
         }
     }
@@ -251,8 +251,8 @@ mod tests {
         let plan = Plan::full(64);
         let cpu = plan.configs(&[Backend::Cpu]);
         // 1 reference + 18 grid + 8 bailout (bailout 0 and 1/32; 1/255 is in the grid)
-        // + 2 full-shader + 3 epsilon (robust is in the grid).
-        assert_eq!(cpu.len(), 1 + 18 + 8 + 2 + 3);
+        // + 2 full-shader + 4 epsilon (robust is in the grid).
+        assert_eq!(cpu.len(), 1 + 18 + 8 + 2 + 4);
         let both = plan.configs(&[Backend::Cpu, Backend::Gpu]);
         assert_eq!(both.len(), 2 * cpu.len());
         let shared = cpu

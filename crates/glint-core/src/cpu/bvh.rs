@@ -15,8 +15,9 @@
 use glam::DVec3;
 
 use super::intersect::{
-    Hit, Prim, RayShear, all_zero, bound, cross_surface, intersect_plane, intersect_sphere, intersect_triangle,
-    planes_transmittance, ray_shear, replaces, sphere_roots, triangle_corners,
+    Hit, Leaving, Prim, RayShear, all_zero, bound, cross_surface, intersect_plane, intersect_sphere_leaving,
+    intersect_triangle, is_leaving, planes_transmittance, ray_shear, replaces, sphere_roots, sphere_roots_counted,
+    triangle_corners,
 };
 use super::{Ray, TraceContext, v3};
 use crate::bvh::{BvhNode, PrimRef};
@@ -180,10 +181,11 @@ fn walk(
 }
 
 /// `intersect::closest_hit` through the BVH: the same hit, bit for bit.
-pub fn closest_hit(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
+pub fn closest_hit(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f64, leaving: &Leaving) -> Option<Hit> {
     let scene = ctx.scene;
     let spheres_on = ctx.has(feature::SPHERES);
     let triangles_on = ctx.has(feature::TRIANGLES);
+    let skip = ctx.has(feature::SKIP_CONVEX);
     let shear: RayShear = ray_shear(ray.dir);
     let best = std::cell::Cell::new(None::<Hit>);
     traverse(
@@ -197,13 +199,14 @@ pub fn closest_hit(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f64) -> Opt
             match PrimRef::decode(r) {
                 PrimRef::Sphere(i) if spheres_on => {
                     let cr = scene.spheres[i as usize].center_radius;
-                    if let Some(t) = intersect_sphere(v3(cr), f64::from(cr[3]), ray, t_min, limit)
+                    if let Some(t) =
+                        intersect_sphere_leaving(ctx, leaving, i, v3(cr), f64::from(cr[3]), ray, t_min, limit)
                         && replaces(scene, t, Prim::Sphere, i, &b)
                     {
                         best.set(Some(Hit { t, prim: Prim::Sphere, index: i, bu: 0.0, bv: 0.0 }));
                     }
                 }
-                PrimRef::Triangle(i) if triangles_on => {
+                PrimRef::Triangle(i) if triangles_on && !(skip && is_leaving(leaving, Prim::Triangle, i)) => {
                     let [a, b0, c] = triangle_corners(scene, &scene.triangles[i as usize]);
                     if let Some((t, bu, bv)) = intersect_triangle(a, b0, c, ray, &shear, t_min, limit)
                         && replaces(scene, t, Prim::Triangle, i, &b)
@@ -221,6 +224,9 @@ pub fn closest_hit(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f64) -> Opt
         for (i, p) in scene.planes.iter().enumerate() {
             let no = p.normal_offset;
             let i = i as u32;
+            if skip && is_leaving(leaving, Prim::Plane, i) {
+                continue;
+            }
             if let Some(t) = intersect_plane(v3(no), f64::from(no[3]), ray, t_min, bound(&best, t_max))
                 && replaces(scene, t, Prim::Plane, i, &best)
             {
@@ -240,10 +246,11 @@ struct Crossing {
 }
 
 /// `intersect::shadow_transmittance` through the BVH: the same product, bit for bit.
-pub fn shadow_transmittance(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f64) -> DVec3 {
+pub fn shadow_transmittance(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f64, leaving: &Leaving) -> DVec3 {
     let scene = ctx.scene;
     let spheres_on = ctx.has(feature::SPHERES);
     let triangles_on = ctx.has(feature::TRIANGLES);
+    let skip = ctx.has(feature::SKIP_CONVEX);
     let shear = ray_shear(ray.dir);
     // A surface whose k_t is zero (or any surface, without filtered shadows) makes the product
     // zero whatever the order: return at once, as brute force would at the end.
@@ -260,9 +267,10 @@ pub fn shadow_transmittance(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f6
                 PrimRef::Sphere(i) if spheres_on => {
                     let s = &scene.spheres[i as usize];
                     let cr = s.center_radius;
+                    let counted = sphere_roots_counted(ctx, leaving, i);
                     if let Some((t0, t1)) = sphere_roots(v3(cr), f64::from(cr[3]), ray) {
-                        for (root, t) in [t0, t1].into_iter().enumerate() {
-                            if t > t_min && t < t_max {
+                        for (root, (t, counted)) in [t0, t1].into_iter().zip(counted).enumerate() {
+                            if counted && t > t_min && t < t_max {
                                 if opaque(s.material) {
                                     return false;
                                 }
@@ -271,7 +279,7 @@ pub fn shadow_transmittance(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f6
                         }
                     }
                 }
-                PrimRef::Triangle(i) if triangles_on => {
+                PrimRef::Triangle(i) if triangles_on && !(skip && is_leaving(leaving, Prim::Triangle, i)) => {
                     let tri = &scene.triangles[i as usize];
                     let [a, b, c] = triangle_corners(scene, tri);
                     if intersect_triangle(a, b, c, ray, &shear, t_min, t_max).is_some() {
@@ -300,7 +308,7 @@ pub fn shadow_transmittance(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f6
         }
     }
     if ctx.has(feature::PLANES) {
-        tr = planes_transmittance(ctx, tr, ray, t_min, t_max);
+        tr = planes_transmittance(ctx, tr, ray, t_min, t_max, leaving);
         if all_zero(tr) {
             return tr;
         }

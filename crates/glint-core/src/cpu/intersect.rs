@@ -40,6 +40,31 @@ pub struct Hit {
     pub bv: f64,
 }
 
+/// The primitive a secondary ray leaves, under `EpsilonMode::SkipConvex` (the seed's "convex
+/// objects do not test intersection if the ray's prior intersection is with that object").
+/// A plane or triangle cannot be met again by a ray leaving it, nor a sphere by a ray leaving
+/// into its outside: those are not tested at all. A ray entering a sphere meets it once more,
+/// at its far side: of that sphere only the far root counts.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Leaving {
+    /// `None` for camera rays and under every other ε strategy.
+    pub prim: Option<Prim>,
+    pub index: u32,
+    /// The ray goes into the sphere it leaves.
+    pub inside: bool,
+}
+
+impl Leaving {
+    /// A ray that leaves no primitive (or whose strategy tests every one).
+    pub const NONE: Self = Self { prim: None, index: 0, inside: false };
+}
+
+/// Whether (prim, index) is the primitive the ray leaves (only ever under `skip_convex`).
+#[inline]
+pub fn is_leaving(leaving: &Leaving, prim: Prim, index: u32) -> bool {
+    leaving.prim == Some(prim) && leaving.index == index
+}
+
 /// Both roots t0 ≤ t1 of a ray/sphere intersection (`None` when it misses or both roots are
 /// behind an origin outside the sphere), after Haines et al., "Precision
 /// Improvements for Ray/Sphere Intersection" (Ray Tracing Gems, ch. 7): the discriminant from
@@ -79,6 +104,30 @@ pub fn intersect_sphere(center: DVec3, radius: f64, ray: &Ray, t_min: f64, t_max
     } else {
         None
     }
+}
+
+/// `intersect_sphere` for sphere `index` of a ray leaving `leaving`: the sphere it leaves into
+/// the outside is not tested, the one it enters only by its far root (its near root is the
+/// point the ray starts from).
+#[allow(clippy::too_many_arguments)]
+pub fn intersect_sphere_leaving(
+    ctx: &TraceContext,
+    leaving: &Leaving,
+    index: u32,
+    center: DVec3,
+    radius: f64,
+    ray: &Ray,
+    t_min: f64,
+    t_max: f64,
+) -> Option<f64> {
+    if ctx.has(feature::SKIP_CONVEX) && is_leaving(leaving, Prim::Sphere, index) {
+        if !leaving.inside {
+            return None;
+        }
+        let (_, t1) = sphere_roots(center, radius, ray)?;
+        return (t1 > t_min && t1 < t_max).then_some(t1);
+    }
+    intersect_sphere(center, radius, ray, t_min, t_max)
 }
 
 /// The plane n·x = d; rays (almost) parallel to it miss.
@@ -215,9 +264,9 @@ pub fn bound(best: &Option<Hit>, t_max: f64) -> f64 {
 /// and planes are tested in that order, triangles are stored in the BVH's), the same on both
 /// tracers. Through the BVH (`Traversal::Bvh`) the CPU finds
 /// the same hit through the BVH (`cpu::bvh`).
-pub fn closest_hit(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
+pub fn closest_hit(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f64, leaving: &Leaving) -> Option<Hit> {
     match ctx.traversal {
-        Traversal::Bvh => return super::bvh::closest_hit(ctx, ray, t_min, t_max),
+        Traversal::Bvh => return super::bvh::closest_hit(ctx, ray, t_min, t_max, leaving),
         Traversal::BruteForce => {}
     }
     let scene = ctx.scene;
@@ -226,26 +275,35 @@ pub fn closest_hit(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f64) -> Opt
     if ctx.has(feature::SPHERES) {
         for (i, s) in scene.spheres.iter().enumerate() {
             let cr = s.center_radius;
-            if let Some(t) = intersect_sphere(v3(cr), f64::from(cr[3]), ray, t_min, t_far) {
+            let i = i as u32;
+            if let Some(t) = intersect_sphere_leaving(ctx, leaving, i, v3(cr), f64::from(cr[3]), ray, t_min, t_far) {
                 t_far = t;
-                best = Some(Hit { t, prim: Prim::Sphere, index: i as u32, bu: 0.0, bv: 0.0 });
+                best = Some(Hit { t, prim: Prim::Sphere, index: i, bu: 0.0, bv: 0.0 });
             }
         }
     }
+    let skip = ctx.has(feature::SKIP_CONVEX);
     if ctx.has(feature::PLANES) {
         for (i, p) in scene.planes.iter().enumerate() {
             let no = p.normal_offset;
+            let i = i as u32;
+            if skip && is_leaving(leaving, Prim::Plane, i) {
+                continue;
+            }
             if let Some(t) = intersect_plane(v3(no), f64::from(no[3]), ray, t_min, t_far) {
                 t_far = t;
-                best = Some(Hit { t, prim: Prim::Plane, index: i as u32, bu: 0.0, bv: 0.0 });
+                best = Some(Hit { t, prim: Prim::Plane, index: i, bu: 0.0, bv: 0.0 });
             }
         }
     }
     if ctx.has(feature::TRIANGLES) && !scene.triangles.is_empty() {
         let shear = ray_shear(ray.dir);
         for (i, tri) in scene.triangles.iter().enumerate() {
-            let [a, b, c] = triangle_corners(scene, tri);
             let i = i as u32;
+            if skip && is_leaving(leaving, Prim::Triangle, i) {
+                continue;
+            }
+            let [a, b, c] = triangle_corners(scene, tri);
             if let Some((t, bu, bv)) = intersect_triangle(a, b, c, ray, &shear, t_min, bound(&best, t_max))
                 && replaces(scene, t, Prim::Triangle, i, &best)
             {
@@ -267,13 +325,35 @@ pub fn cross_surface(ctx: &TraceContext, tr: DVec3, material: u32) -> DVec3 {
     if ctx.has(feature::FILTERED_SHADOWS) { tr * v3(ctx.scene.materials[material as usize].kt) } else { DVec3::ZERO }
 }
 
-/// `tr` times the k_t of each surface of sphere `s` (both roots) crossed in (t_min, t_max).
-pub fn sphere_transmittance(ctx: &TraceContext, tr: DVec3, s: &GpuSphere, ray: &Ray, t_min: f64, t_max: f64) -> DVec3 {
+/// Which roots of sphere `index` a ray leaving `leaving` may cross: both, none (the sphere it
+/// leaves into the outside) or the far one (the sphere it enters).
+pub fn sphere_roots_counted(ctx: &TraceContext, leaving: &Leaving, index: u32) -> [bool; 2] {
+    if ctx.has(feature::SKIP_CONVEX) && is_leaving(leaving, Prim::Sphere, index) {
+        [false, leaving.inside]
+    } else {
+        [true, true]
+    }
+}
+
+/// `tr` times the k_t of each surface of sphere `index` (both roots, or those
+/// `sphere_roots_counted` leaves) crossed in (t_min, t_max).
+#[allow(clippy::too_many_arguments)]
+pub fn sphere_transmittance(
+    ctx: &TraceContext,
+    tr: DVec3,
+    index: u32,
+    s: &GpuSphere,
+    ray: &Ray,
+    t_min: f64,
+    t_max: f64,
+    leaving: &Leaving,
+) -> DVec3 {
     let cr = s.center_radius;
     let mut tr = tr;
+    let counted = sphere_roots_counted(ctx, leaving, index);
     if let Some((t0, t1)) = sphere_roots(v3(cr), f64::from(cr[3]), ray) {
-        for t in [t0, t1] {
-            if t > t_min && t < t_max {
+        for (t, counted) in [t0, t1].into_iter().zip(counted) {
+            if counted && t > t_min && t < t_max {
                 tr = cross_surface(ctx, tr, s.material);
                 if all_zero(tr) {
                     return tr;
@@ -301,10 +381,22 @@ pub fn triangle_transmittance(
     }
 }
 
-/// `tr` times the k_t of every plane crossed in (t_min, t_max), in index order.
-pub fn planes_transmittance(ctx: &TraceContext, tr: DVec3, ray: &Ray, t_min: f64, t_max: f64) -> DVec3 {
+/// `tr` times the k_t of every plane crossed in (t_min, t_max), in index order, but the one the
+/// ray leaves.
+pub fn planes_transmittance(
+    ctx: &TraceContext,
+    tr: DVec3,
+    ray: &Ray,
+    t_min: f64,
+    t_max: f64,
+    leaving: &Leaving,
+) -> DVec3 {
     let mut tr = tr;
-    for p in &ctx.scene.planes {
+    let skip = ctx.has(feature::SKIP_CONVEX);
+    for (i, p) in ctx.scene.planes.iter().enumerate() {
+        if skip && is_leaving(leaving, Prim::Plane, i as u32) {
+            continue;
+        }
         let no = p.normal_offset;
         if intersect_plane(v3(no), f64::from(no[3]), ray, t_min, t_max).is_some() {
             tr = cross_surface(ctx, tr, p.material);
@@ -319,30 +411,34 @@ pub fn planes_transmittance(ctx: &TraceContext, tr: DVec3, ray: &Ray, t_min: f64
 /// Fraction of light that passes from the ray origin to t_max: 0 behind an opaque occluder,
 /// the product of k_t over every surface crossed otherwise (a glass sphere is crossed twice).
 /// Through the BVH (`Traversal::Bvh`) the CPU computes the same product through the BVH (`cpu::bvh`).
-pub fn shadow_transmittance(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f64) -> DVec3 {
+pub fn shadow_transmittance(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f64, leaving: &Leaving) -> DVec3 {
     match ctx.traversal {
-        Traversal::Bvh => return super::bvh::shadow_transmittance(ctx, ray, t_min, t_max),
+        Traversal::Bvh => return super::bvh::shadow_transmittance(ctx, ray, t_min, t_max, leaving),
         Traversal::BruteForce => {}
     }
     let scene = ctx.scene;
     let mut tr = DVec3::ONE;
     if ctx.has(feature::SPHERES) {
-        for s in &scene.spheres {
-            tr = sphere_transmittance(ctx, tr, s, ray, t_min, t_max);
+        for (i, s) in scene.spheres.iter().enumerate() {
+            tr = sphere_transmittance(ctx, tr, i as u32, s, ray, t_min, t_max, leaving);
             if all_zero(tr) {
                 return tr;
             }
         }
     }
     if ctx.has(feature::PLANES) {
-        tr = planes_transmittance(ctx, tr, ray, t_min, t_max);
+        tr = planes_transmittance(ctx, tr, ray, t_min, t_max, leaving);
         if all_zero(tr) {
             return tr;
         }
     }
     if ctx.has(feature::TRIANGLES) && !scene.triangles.is_empty() {
         let shear = ray_shear(ray.dir);
-        for tri in &scene.triangles {
+        let skip = ctx.has(feature::SKIP_CONVEX);
+        for (i, tri) in scene.triangles.iter().enumerate() {
+            if skip && is_leaving(leaving, Prim::Triangle, i as u32) {
+                continue;
+            }
             tr = triangle_transmittance(ctx, tr, tri, ray, &shear, t_min, t_max);
             if all_zero(tr) {
                 return tr;

@@ -4,11 +4,13 @@
 //! The seed lists three remedies (reject small t, nudge along the ray, nudge off the surface);
 //! `robust` is the scale-aware offset of Wächter & Binder, "A Fast and Robust Method for
 //! Avoiding Self-Intersection" (Ray Tracing Gems, ch. 6), applied to the hit point after it is
-//! re-projected onto the surface.
+//! re-projected onto the surface. `skip_convex` is the seed's fourth remedy: the ray starts at
+//! the hit point and does not test the primitive it leaves (`intersect::Leaving`).
 
 use glam::DVec3;
 
 use super::TraceContext;
+use super::intersect::{Leaving, Prim};
 use crate::scene::EpsilonMode;
 
 /// Below this magnitude a coordinate gets a fixed offset (integer ULP steps are too small
@@ -35,17 +37,39 @@ pub fn offset_ray(p: DVec3, n: DVec3) -> DVec3 {
     DVec3::new(step(p.x, n.x), step(p.y, n.y), step(p.z, n.z))
 }
 
-/// Origin and t_min of a secondary ray leaving the hit at `p` in direction `dir`;
-/// `p_surface` is the hit point re-projected onto the surface (see `surface_at`), and `n_side`
-/// the unit geometric normal turned to the side `dir` goes to.
-pub fn spawn_ray(ctx: &TraceContext, p: DVec3, p_surface: DVec3, n_side: DVec3, dir: DVec3) -> (DVec3, f64) {
+/// Where a secondary ray starts, from which t it looks for hits, and the primitive it leaves
+/// (`Leaving::NONE` but under `skip_convex`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Spawn {
+    pub origin: DVec3,
+    pub t_min: f64,
+    pub leaving: Leaving,
+}
+
+/// Primitive `index` of kind `prim`, as a ray leaving it to the side of `n_side` sees it: into a
+/// sphere's inside when `n_side` points against the sphere's outward normal `ng` (as stored).
+pub fn leaving_surface(prim: Prim, index: u32, ng: DVec3, n_side: DVec3) -> Leaving {
+    let inside = match prim {
+        Prim::Sphere => n_side.dot(ng) < 0.0,
+        Prim::Plane | Prim::Triangle => false,
+    };
+    Leaving { prim: Some(prim), index, inside }
+}
+
+/// The secondary ray leaving the hit at `p` in direction `dir`; `p_surface` is the hit point
+/// re-projected onto the surface (see `surface_at`), `n_side` the unit geometric normal turned
+/// to the side `dir` goes to, and `leaving` the primitive hit (`leaving_surface`), which only
+/// `skip_convex` keeps.
+pub fn spawn_ray(ctx: &TraceContext, p: DVec3, p_surface: DVec3, n_side: DVec3, dir: DVec3, leaving: Leaving) -> Spawn {
     let eps = ctx.epsilon;
-    match ctx.epsilon_mode {
+    let (origin, t_min) = match ctx.epsilon_mode {
         EpsilonMode::Tmin => (p, eps),
         EpsilonMode::NudgeRay => (p + eps * dir, 0.0),
         EpsilonMode::NudgeNormal => (p + eps * n_side, 0.0),
         EpsilonMode::Robust => (offset_ray(p_surface, n_side) + eps * n_side, 0.0),
-    }
+        EpsilonMode::SkipConvex => return Spawn { origin: p, t_min: eps, leaving },
+    };
+    Spawn { origin, t_min, leaving: Leaving::NONE }
 }
 
 /// How far a shadow ray of length `dist` may look for occluders: it stops short of the light
@@ -53,7 +77,9 @@ pub fn spawn_ray(ctx: &TraceContext, p: DVec3, p_surface: DVec3, n_side: DVec3, 
 pub fn shadow_t_max(ctx: &TraceContext, dist: f64) -> f64 {
     match ctx.epsilon_mode {
         EpsilonMode::Robust => dist * (1.0 - SHADOW_REL) - ctx.epsilon,
-        EpsilonMode::Tmin | EpsilonMode::NudgeRay | EpsilonMode::NudgeNormal => dist - ctx.epsilon,
+        EpsilonMode::Tmin | EpsilonMode::NudgeRay | EpsilonMode::NudgeNormal | EpsilonMode::SkipConvex => {
+            dist - ctx.epsilon
+        }
     }
 }
 

@@ -4,6 +4,7 @@
 
 use rayon::prelude::*;
 
+use super::intersect::Leaving;
 use super::{Ray, TraceContext, bvh, v3};
 use crate::rays::{HitRecord, RayRecord};
 
@@ -15,7 +16,7 @@ const RAYS_PER_TASK: usize = 256;
 pub fn cast_ray(ctx: &TraceContext, ray: &RayRecord) -> HitRecord {
     let r = Ray { origin: v3(ray.origin_t_min), dir: v3(ray.dir_t_max) };
     let (t_min, t_max) = (f64::from(ray.origin_t_min[3]), f64::from(ray.dir_t_max[3]));
-    HitRecord::from_hit(bvh::closest_hit(ctx, &r, t_min, t_max))
+    HitRecord::from_hit(bvh::closest_hit(ctx, &r, t_min, t_max, &Leaving::NONE))
 }
 
 /// `cast_ray` for every ray, in parallel on the current rayon pool, in ray order.
@@ -43,7 +44,7 @@ mod tests {
             let mut hit = 0;
             for (r, h) in rays.iter().zip(&hits) {
                 let ray = Ray { origin: v3(r.origin_t_min), dir: v3(r.dir_t_max) };
-                let brute = intersect::closest_hit(&ctx, &ray, 0.0, f64::from(r.dir_t_max[3]));
+                let brute = intersect::closest_hit(&ctx, &ray, 0.0, f64::from(r.dir_t_max[3]), &Leaving::NONE);
                 assert_eq!(*h, HitRecord::from_hit(brute), "{} ray {r:?}", set.name());
                 hit += usize::from(h.prim != PRIM_NONE);
             }

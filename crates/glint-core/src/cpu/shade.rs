@@ -4,8 +4,8 @@
 
 use glam::{DVec2, DVec3};
 
-use super::intersect::{FAR, all_zero, shadow_transmittance};
-use super::offset::{shadow_t_max, spawn_ray};
+use super::intersect::{FAR, Prim, all_zero, shadow_transmittance};
+use super::offset::{leaving_surface, shadow_t_max, spawn_ray};
 use super::texture::sample_texture;
 use super::{LightTags, Ray, RayCounts, TraceContext, v3};
 use crate::layout::{GpuLight, GpuMaterial, LIGHT_CASTS_SHADOWS, NO_TEXTURE, feature};
@@ -27,6 +27,9 @@ pub struct Surface {
     pub uv: DVec2,
     pub material: u32,
     pub object_id: u32,
+    /// The primitive hit (`skip_convex` does not test it again from here).
+    pub prim: Prim,
+    pub index: u32,
 }
 
 /// A light closer than this to the shaded point gives no direct term (its direction is
@@ -199,7 +202,8 @@ pub fn light_visibility(
     counts: &mut RayCounts,
 ) -> DVec3 {
     let n_side = if ng.dot(ls.l) >= 0.0 { ng } else { -ng };
-    let (origin, t_min) = spawn_ray(ctx, s.p, s.p_surface, n_side, ls.l);
+    let sp = spawn_ray(ctx, s.p, s.p_surface, n_side, ls.l, leaving_surface(s.prim, s.index, s.ng, n_side));
+    let (origin, t_min) = (sp.origin, sp.t_min);
     let (dir, t_max) = match kind {
         LightKind::Directional => (ls.l, FAR),
         LightKind::Point | LightKind::Spot => {
@@ -215,7 +219,7 @@ pub fn light_visibility(
         return DVec3::ONE;
     }
     counts.shadow += 1;
-    shadow_transmittance(ctx, &Ray { origin, dir }, t_min, t_max)
+    shadow_transmittance(ctx, &Ray { origin, dir }, t_min, t_max, &sp.leaving)
 }
 
 /// One light's share at the probed hit, with every factor of the model kept apart.

@@ -7,9 +7,9 @@
 use glam::{DVec2, DVec3};
 
 use super::camera::{camera_ray, sample_offset};
-use super::intersect::{FAR, Hit, Prim, all_zero, closest_hit, triangle_corners, triangle_shading_normal};
-use super::offset::spawn_ray;
-use super::shade::{Breakdown, Surface, shade_local};
+use super::intersect::{FAR, Hit, Leaving, Prim, all_zero, closest_hit, triangle_corners, triangle_shading_normal};
+use super::offset::{leaving_surface, spawn_ray};
+use super::shade::{Breakdown, Surface, attenuation_factor, shade_local};
 use super::texture::{planar_uv, triangle_uv};
 use super::{Ray, RayCounts, TraceContext, v3};
 use crate::layout::{NO_HIT, feature};
@@ -29,14 +29,16 @@ pub fn surface_at(ctx: &TraceContext, ray: &Ray, hit: &Hit) -> Surface {
             let ng = (p - c).normalize();
             let p_surface = if robust { c + f64::from(s.center_radius[3]) * ng } else { p };
             let uv = if textures { planar_uv(p, ng) } else { DVec2::ZERO };
-            Surface { p, p_surface, ng, ns: ng, uv, material: s.material, object_id: s.object_id }
+            let (material, object_id) = (s.material, s.object_id);
+            Surface { p, p_surface, ng, ns: ng, uv, material, object_id, prim: hit.prim, index: hit.index }
         }
         Prim::Plane => {
             let pl = &scene.planes[hit.index as usize];
             let ng = v3(pl.normal_offset);
             let p_surface = if robust { p - (ng.dot(p) - f64::from(pl.normal_offset[3])) * ng } else { p };
             let uv = if textures { planar_uv(p, ng) } else { DVec2::ZERO };
-            Surface { p, p_surface, ng, ns: ng, uv, material: pl.material, object_id: pl.object_id }
+            let (material, object_id) = (pl.material, pl.object_id);
+            Surface { p, p_surface, ng, ns: ng, uv, material, object_id, prim: hit.prim, index: hit.index }
         }
         Prim::Triangle => {
             let tri = &scene.triangles[hit.index as usize];
@@ -46,7 +48,8 @@ pub fn surface_at(ctx: &TraceContext, ray: &Ray, hit: &Hit) -> Surface {
             let p_surface = if robust { (1.0 - hit.bu - hit.bv) * v0 + hit.bu * v1 + hit.bv * v2 } else { p };
             let uv = if textures { triangle_uv(scene, tri, hit.bu, hit.bv, p, ng) } else { DVec2::ZERO };
             let mesh = &scene.meshes[tri.mesh as usize];
-            Surface { p, p_surface, ng, ns, uv, material: mesh.material, object_id: mesh.object_id }
+            let (material, object_id) = (mesh.material, mesh.object_id);
+            Surface { p, p_surface, ng, ns, uv, material, object_id, prim: hit.prim, index: hit.index }
         }
     }
 }
@@ -71,16 +74,24 @@ fn max_channel(v: DVec3) -> f64 {
     v.x.max(v.y).max(v.z)
 }
 
-/// Radiance along a ray: background on a miss, else the shaded hit.
+/// Radiance along a child ray: background on a miss, else the shaded hit — times the world's
+/// global attenuation f_att(t) when it is on: what the ray brings back, and the path weight its
+/// own children's bailout is judged by. The background, like a directional light, is not
+/// attenuated (it lies at no distance).
 pub fn trace_ray(
     ctx: &TraceContext,
     ray: &Ray,
     t_min: f64,
+    leaving: &Leaving,
     depth: u32,
     weight: DVec3,
     counts: &mut RayCounts,
 ) -> DVec3 {
-    match closest_hit(ctx, ray, t_min, FAR) {
+    match closest_hit(ctx, ray, t_min, FAR, leaving) {
+        Some(hit) if ctx.has(feature::GLOBAL_ATTENUATION) => {
+            let f = attenuation_factor(ctx.scene.header.global_attenuation, hit.t);
+            f * shade_hit(ctx, ray, &hit, depth, weight * f, counts, None)
+        }
         Some(hit) => shade_hit(ctx, ray, &hit, depth, weight, counts, None),
         None => v3(ctx.scene.header.background),
     }
@@ -138,8 +149,8 @@ pub fn shade_hit(
         } else {
             counts.reflection += 1;
             let dir = reflect_dir(ray.dir, ns);
-            let (origin, t_min) = spawn_ray(ctx, s.p, s.p_surface, ng, dir);
-            let i_r = trace_ray(ctx, &Ray { origin, dir }, t_min, depth + 1, w, counts);
+            let sp = spawn_ray(ctx, s.p, s.p_surface, ng, dir, leaving_surface(s.prim, s.index, s.ng, ng));
+            let i_r = trace_ray(ctx, &Ray { origin: sp.origin, dir }, sp.t_min, &sp.leaving, depth + 1, w, counts);
             radiance += k_mirror * i_r;
             if let Some(b) = probe.as_deref_mut() {
                 // One ray serves k_r and, under total internal reflection, k_t: list both.
@@ -159,8 +170,9 @@ pub fn shade_hit(
             counts.bailout_saved += 1;
         } else {
             counts.refraction += 1;
-            let (origin, t_min) = spawn_ray(ctx, s.p, s.p_surface, -ng, dir);
-            let term = kt * trace_ray(ctx, &Ray { origin, dir }, t_min, depth + 1, w, counts);
+            let sp = spawn_ray(ctx, s.p, s.p_surface, -ng, dir, leaving_surface(s.prim, s.index, s.ng, -ng));
+            let ray = Ray { origin: sp.origin, dir };
+            let term = kt * trace_ray(ctx, &ray, sp.t_min, &sp.leaving, depth + 1, w, counts);
             radiance += term;
             if let Some(b) = probe {
                 b.transmitted = term;
@@ -194,7 +206,7 @@ pub fn render_sample(
     let pixel = y * h.width + x;
     let (ox, oy) = sample_offset(pixel, sample, h.spp, h.seed, ctx.has(feature::JITTER));
     let ray = camera_ray(&ctx.scene.camera, h.width, h.height, x, y, ox, oy);
-    match closest_hit(ctx, &ray, 0.0, FAR) {
+    match closest_hit(ctx, &ray, 0.0, FAR, &Leaving::NONE) {
         Some(hit) => {
             let object = object_id(ctx, &hit);
             let mut probe = probe;

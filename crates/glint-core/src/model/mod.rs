@@ -213,7 +213,7 @@ pub fn scene_around(
         provenance: String::new(),
         render,
         camera: camera.camera,
-        world: WorldDesc { ambient: Rgb::splat(0.1), background: Rgb([0.2, 0.25, 0.3]) },
+        world: WorldDesc { ambient: Rgb::splat(0.1), background: Rgb([0.2, 0.25, 0.3]), ..WorldDesc::default() },
         materials,
         lights,
         objects,

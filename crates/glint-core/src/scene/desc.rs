@@ -137,10 +137,14 @@ pub enum EpsilonMode {
     /// (Wächter & Binder, Ray Tracing Gems ch. 6), then by ε.
     #[default]
     Robust = layout::EPS_ROBUST,
+    /// Start at the hit point and do not test the primitive the ray leaves (the seed's "convex
+    /// objects do not test intersection if the ray's prior intersection is with that object");
+    /// a ray into a sphere finds its far side. Hits with t ≤ ε are rejected as with `tmin`.
+    SkipConvex = layout::EPS_SKIP_CONVEX,
 }
 
 impl EpsilonMode {
-    pub const ALL: [Self; 4] = [Self::Tmin, Self::NudgeRay, Self::NudgeNormal, Self::Robust];
+    pub const ALL: [Self; 5] = [Self::Tmin, Self::NudgeRay, Self::NudgeNormal, Self::Robust, Self::SkipConvex];
 
     pub fn name(self) -> &'static str {
         match self {
@@ -148,6 +152,7 @@ impl EpsilonMode {
             Self::NudgeRay => "nudge_ray",
             Self::NudgeNormal => "nudge_normal",
             Self::Robust => "robust",
+            Self::SkipConvex => "skip_convex",
         }
     }
 
@@ -183,11 +188,47 @@ pub struct WorldDesc {
     pub ambient: Rgb,
     /// Radiance of rays that miss everything.
     pub background: Rgb,
+    /// Attenuation of the reflected and transmitted terms by the distance their ray travelled
+    /// (the seed's "distance attenuation coefficients with k_rg and k_s"); (1, 0, 0) is off.
+    #[serde(skip_serializing_if = "GlobalAttenuation::is_none")]
+    pub global_attenuation: GlobalAttenuation,
 }
 
 impl Default for WorldDesc {
     fn default() -> Self {
-        Self { ambient: Rgb::splat(0.1), background: Rgb::splat(0.0) }
+        Self { ambient: Rgb::splat(0.1), background: Rgb::splat(0.0), global_attenuation: GlobalAttenuation::NONE }
+    }
+}
+
+/// f_att = 1 / (c + l·d + q·d²) of a child ray that travelled d before its hit, multiplying
+/// what it brings back (`world.global_attenuation = { c, l, q }`, validated as a light's).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GlobalAttenuation {
+    #[serde(default = "one")]
+    pub c: f64,
+    #[serde(default)]
+    pub l: f64,
+    #[serde(default)]
+    pub q: f64,
+}
+
+fn one() -> f64 {
+    1.0
+}
+
+impl GlobalAttenuation {
+    /// f_att = 1: no attenuation, the default.
+    pub const NONE: Self = Self { c: 1.0, l: 0.0, q: 0.0 };
+
+    pub fn is_none(&self) -> bool {
+        *self == Self::NONE
+    }
+}
+
+impl Default for GlobalAttenuation {
+    fn default() -> Self {
+        Self::NONE
     }
 }
 

@@ -24,8 +24,8 @@ use crate::model::{ImportOptions, ModelFormat};
 
 pub use builtin::{BUILTIN_SCENES, BuiltinScene, BuiltinSource, DEFAULT_RESOLUTION, RESOLUTIONS, builtin};
 pub use desc::{
-    CameraDesc, CheckerDesc, EpsilonMode, MaterialDesc, MeshDesc, ObjectDesc, PlaneDesc, RenderSettings, SceneDesc,
-    SpecularModel, SphereDesc, WorldDesc,
+    CameraDesc, CheckerDesc, EpsilonMode, GlobalAttenuation, MaterialDesc, MeshDesc, ObjectDesc, PlaneDesc,
+    RenderSettings, SceneDesc, SpecularModel, SphereDesc, WorldDesc,
 };
 pub use error::{FieldIssue, SceneError};
 pub use light::{

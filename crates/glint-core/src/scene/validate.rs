@@ -235,6 +235,8 @@ pub fn validate_with_objects(scene: &SceneDesc, objects: &Report) -> Report {
     validate_camera(scene, &mut r);
     r.colour("world.ambient", scene.world.ambient);
     r.colour("world.background", scene.world.background);
+    let g = scene.world.global_attenuation;
+    validate_polynomial("world.global_attenuation", g.c, g.l, g.q, &mut r);
     for (name, m) in &scene.materials {
         validate_material(&format!("materials.{name}"), m, &mut r);
     }
