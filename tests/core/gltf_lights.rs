@@ -195,3 +195,57 @@ fn smooth_spot_with_inverse_square_multiplies_both() {
     let b = probe(&flat, 0, 0);
     assert_rel(DVec3::new(b.lights[0].f_att, b.lights[0].spot, 0.0), DVec3::new(f_att, s, 0.0), REL, "probe");
 }
+
+#[test]
+fn a_model_objects_own_lights_shine_when_asked_placed_and_scaled_by_its_exposure() {
+    use glint_core::scene::{LoadOptions, load_scene_with};
+    use glint_test_support::gltf::Fixture;
+    use serde_json::json;
+    let dir = glint_test_support::TempDir::new("model-object-lights");
+    // A quad with a point light 2 units above the model's origin, 100 units to the side.
+    let mut f = Fixture::quad();
+    f.json["extensionsUsed"] = json!(["KHR_lights_punctual"]);
+    f.json["extensions"] = json!({ "KHR_lights_punctual": { "lights": [
+        { "type": "point", "color": I_D, "intensity": 4.0, "name": "bulb" }
+    ] } });
+    f.json["scenes"] = json!([{ "nodes": [0, 1] }]);
+    f.json["nodes"] = json!([
+        { "mesh": 0 },
+        { "translation": [-100.0, 2.0, 0.0], "extensions": { "KHR_lights_punctual": { "light": 0 } } }
+    ]);
+    f.write_glb(&dir, "lamp");
+    let scene = |extra: &str| {
+        let base = floor_scene("", 0.125).plane([0.0; 3], Y, "floor");
+        format!(
+            "{}[[objects]]\ntype = \"model\"\npath = \"lamp.glb\"\ntransform = {{ translate = [100.0, 0.0, 0.0] }}\n{extra}\n",
+            base.text
+        )
+    };
+    let load = |text: &str| {
+        let file = dir.join("lit.toml");
+        std::fs::write(&file, text).unwrap();
+        load_scene_with(file.to_str().unwrap(), &LoadOptions::default()).unwrap_or_else(|e| panic!("{e}")).desc
+    };
+    // Off by default: the lab scene brings its own lights (here none: ambient only).
+    let off = load(&scene(""));
+    assert_eq!(glint_core::FlatScene::build(&off, &off.render).lights.len(), 0);
+    // On, with an exposure: the light at the placed node, colour × intensity × exposure.
+    let on = load(&scene("lights = true\nexposure = 0.25"));
+    let flat = glint_core::FlatScene::build(&on, &on.render);
+    assert_eq!(flat.lights.len(), 1);
+    assert_eq!(w3(flat.lights[0].position), DVec3::new(0.0, 2.0, 0.0));
+    let lit = crate::support::render(&flat).image.get(0, 0);
+    // 1/d² at d = 2 straight above; glTF lights have no ambient term.
+    let want = 0.125 * FLOOR_KA * DVec3::ONE + 0.25 * dv(I_D) * dv(FLOOR_KD);
+    assert_rel(lit, want, REL, "the model's light on the floor");
+    // Saved, the reference keeps the choice and the lights stay in the file, not the scene.
+    let text = glint_core::scene::to_toml(&on).unwrap();
+    assert!(text.contains("lights = true") && text.contains("exposure = 0.25"), "{text}");
+    assert!(!text.contains("[[lights]]"), "{text}");
+    assert_eq!(load(&text), on);
+    // A bad exposure names the field and its range.
+    let file = dir.join("bad.toml");
+    std::fs::write(&file, scene("lights = true\nexposure = 0.0")).unwrap();
+    let err = load_scene_with(file.to_str().unwrap(), &LoadOptions::default()).unwrap_err().to_string();
+    assert!(err.contains("objects[1].exposure"), "{err}");
+}

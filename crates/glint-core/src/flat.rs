@@ -116,7 +116,7 @@ impl FlatScene {
     ) -> Self {
         let mut table = TextureTable::default();
         let materials = desc.materials.values().map(|m| flat_material(m, &mut table)).collect();
-        let lights = desc.lights.iter().map(flat_light).collect();
+        let lights = desc.traced_lights().map(flat_light).collect();
         let mut flat = Self {
             header: flat_header(desc, settings, &primitives, material_names.len()),
             camera: Self::camera_for(desc, settings),
@@ -137,8 +137,7 @@ impl FlatScene {
             material_names,
         };
         let light_tags: Vec<LightTags> = desc
-            .lights
-            .iter()
+            .traced_lights()
             .map(|l| LightTags { kind: l.kind, attenuation: l.attenuation.model(), falloff: l.falloff })
             .collect();
         flat.header.features = flat.scene_features(&light_tags);
@@ -547,7 +546,7 @@ fn flat_header(desc: &SceneDesc, settings: &RenderSettings, p: &Primitives, mate
         triangle_count: p.triangles.len() as u32,
         vertex_count: p.vertices.len() as u32,
         mesh_count: p.meshes.len() as u32,
-        light_count: desc.lights.len() as u32,
+        light_count: desc.traced_lights().count() as u32,
         material_count: material_count as u32,
         features: 0,
         epsilon_mode: settings.epsilon_mode as u32,

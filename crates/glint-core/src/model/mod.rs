@@ -173,6 +173,10 @@ pub fn scene_around(
         transform: TransformDesc::default(),
         scene_index: options.scene_index,
         name: String::new(),
+        // The file's lights (scaled by the exposure already) are the lab scene's own
+        // `[[lights]]`, editable and saved as such; the reference does not add them again.
+        lights: false,
+        exposure: None,
         loaded: None,
     };
     let loaded = LoadedModel::place(file, model, &reference.transform, &reference.prefix());

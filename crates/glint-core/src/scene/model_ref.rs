@@ -11,6 +11,7 @@ use serde::{Deserialize, Serialize};
 
 use super::desc::{CameraDesc, MaterialDesc, MeshDesc, ObjectDesc, SceneDesc};
 use super::error::FieldIssue;
+use super::light::LightDesc;
 use crate::model::{ImportOptions, MaterialSource, Model, ModelCamera, load_model_file};
 
 /// A model file in a scene.
@@ -26,6 +27,14 @@ pub struct ModelDesc {
     pub scene_index: Option<usize>,
     #[serde(default, skip_serializing_if = "String::is_empty")]
     pub name: String,
+    /// Light the scene with the file's own lights (glTF `KHR_lights_punctual`), placed with the
+    /// model, beside the scene's `[[lights]]`. Off by default: a lab scene brings its own.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub lights: bool,
+    /// The factor from the file's photometric intensities (candela, lux) to I_d and I_s, as
+    /// `--exposure` for an opened model file; (0, 1e6], default 1.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub exposure: Option<f64>,
     /// What the file held, once loaded (`SceneDesc::load_models`); never written back.
     #[serde(skip)]
     pub loaded: Option<Arc<LoadedModel>>,
@@ -38,6 +47,8 @@ impl PartialEq for ModelDesc {
             && self.transform == other.transform
             && self.scene_index == other.scene_index
             && self.name == other.name
+            && self.lights == other.lights
+            && self.exposure == other.exposure
     }
 }
 
@@ -53,6 +64,9 @@ pub struct LoadedModel {
     pub sources: BTreeMap<String, MaterialSource>,
     /// The file's cameras, placed with the model (the viewer offers to look through them).
     pub cameras: Vec<ModelCamera>,
+    /// The file's lights, placed with the model; they light the scene where the reference
+    /// says `lights = true` (`SceneDesc::traced_lights`).
+    pub lights: Vec<LightDesc>,
     pub warnings: Vec<FieldIssue>,
 }
 
@@ -177,7 +191,8 @@ impl ModelDesc {
     /// Reads the file (relative to `folder`) and places it (`LoadedModel::place`).
     pub fn load(&self, folder: &Path, prefix: &str) -> Result<LoadedModel, String> {
         let file = folder.join(&self.path);
-        let options = ImportOptions { scene_index: self.scene_index, ..ImportOptions::default() };
+        let exposure = self.exposure.unwrap_or(ImportOptions::default().exposure);
+        let options = ImportOptions { scene_index: self.scene_index, exposure, ..ImportOptions::default() };
         let model = load_model_file(&file, &options)?;
         Ok(LoadedModel::place(file, model, &self.transform, prefix))
     }
@@ -230,7 +245,36 @@ impl LoadedModel {
                 ..c
             })
             .collect();
-        Self { file, meshes, materials, sources, cameras, warnings: model.warnings }
+        // Directions by the linear part, renormalised; a spot's cone and a light's range stay
+        // as the file gave them (a non-uniform scale does not reshape them).
+        let direction = |d: [f64; 3]| {
+            let v = m.vector(d);
+            let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+            if n > 0.0 { [v[0] / n, v[1] / n, v[2] / n] } else { v }
+        };
+        let lights = model
+            .lights
+            .into_iter()
+            .map(|l| LightDesc {
+                position: l.position.map(|p| m.point(p)),
+                direction: l.direction.map(direction),
+                name: if l.name.is_empty() { l.name } else { rename(&l.name) },
+                ..l
+            })
+            .collect();
+        Self { file, meshes, materials, sources, cameras, lights, warnings: model.warnings }
+    }
+}
+
+impl SceneDesc {
+    /// Every light that shines on the scene, in the flat layout's order: the scene's
+    /// `[[lights]]`, then the lights of each model object that says `lights = true`.
+    pub fn traced_lights(&self) -> impl Iterator<Item = &LightDesc> {
+        let imported = self.objects.iter().flat_map(|o| match o {
+            ObjectDesc::Model(m) if m.lights => m.loaded.as_deref().map_or(&[][..], |l| l.lights.as_slice()),
+            ObjectDesc::Model(_) | ObjectDesc::Sphere(_) | ObjectDesc::Plane(_) | ObjectDesc::Mesh(_) => &[][..],
+        });
+        self.lights.iter().chain(imported)
     }
 }
 

@@ -99,6 +99,8 @@ pub mod ranges {
     /// Each of the attenuation coefficients c, l, q (their sum has a rule of its own).
     pub const ATTENUATION: Range<f64> = Range::linear(-MAX_INTENSITY, MAX_INTENSITY);
     pub const SPOT_EXPONENT: Range<f64> = Range::logarithmic(0.0, MAX_SPOT_EXPONENT);
+    /// A model's exposure (`--exposure`, `exposure` of a model object).
+    pub const EXPOSURE: Range<f64> = Range::logarithmic_above(0.0, 1e6);
     /// A spot cone's half-angle in degrees; `NO_CONE_CUTOFF` is allowed besides.
     pub const CUTOFF: Range<f64> = Range::linear(0.0, 90.0);
     /// The smooth falloff's inner and outer cone half-angles in degrees (inner ≤ outer besides).
@@ -506,6 +508,16 @@ fn validate_object(path: &str, o: &ObjectDesc, scene: &SceneDesc, r: &mut Report
         ObjectDesc::Model(model) => {
             for (field, problem) in model.transform.problems() {
                 r.error(format!("{path}.transform.{field}"), problem);
+            }
+            if let Some(exposure) = model.exposure {
+                r.size(&format!("{path}.exposure"), exposure, ranges::EXPOSURE);
+            }
+            if model.lights
+                && let Some(loaded) = &model.loaded
+            {
+                for (j, light) in loaded.lights.iter().enumerate() {
+                    validate_light(&format!("{path}.lights[{j}]"), light, r);
+                }
             }
             match &model.loaded {
                 // Named by the model's own mesh names (`PREFIX/NODE`), which say where to look.
