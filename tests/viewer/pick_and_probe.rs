@@ -105,3 +105,27 @@ fn the_probe_breakdown_sums_to_the_pixel_radiance_on_both_tracers() {
         "the differing term is not pointed out"
     );
 }
+
+#[test]
+fn the_probe_table_fits_the_default_side_panel() {
+    let Some(mut h) = viewer("whitted", (1024.0, 768.0)) else { return };
+    let before = h.state().layout.side_rect;
+    // A sphere's normal has three non-zero components: the widest row of the table.
+    let glass = object_named(&h, "glass sphere");
+    let (x, y) = pixel_of(&h, glass);
+    let pos = h.state().screen_pos_of_pixel(x, y).expect("the view is drawn");
+    click(&mut h, pos, Modifiers::COMMAND);
+    settle(&mut h);
+    let normal = h.state().renders.probe.as_ref().expect("a probe").cpu.normal;
+    assert!(normal.to_array().iter().all(|c| c.abs() > 1e-3), "pick a pixel with a slanted normal: {normal}");
+    let side = h.state().layout.side_rect;
+    // The table fits the panel as it was, rather than widening it.
+    assert_eq!(side, before, "the probe widened the side panel");
+    // The N row's values (CPU and GPU), whichever way they are laid out.
+    let first = format!("{:.6}", normal.x);
+    let values: Vec<egui::Rect> = h.query_all_by_label_contains(&first).map(|n| n.rect()).collect();
+    assert!(!values.is_empty(), "the N row is not shown");
+    for r in values {
+        assert!(r.right() <= side.right(), "a value of N ends at x = {} beyond the panel's {side:?}", r.right());
+    }
+}

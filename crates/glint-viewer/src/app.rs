@@ -369,6 +369,7 @@ impl eframe::App for ViewerApp {
         if ctx.input(|i| i.key_pressed(egui::Key::F9)) {
             self.layout.show_side_panel = !self.layout.show_side_panel;
         }
+        self.layout.side_rect = egui::Rect::NOTHING;
         if self.layout.show_side_panel {
             // Resizable, never so wide that the images get less than VIEW_MIN_WIDTH.
             let widest = (ui.available_width() - VIEW_MIN_WIDTH).max(SIDE_PANEL_MIN);
@@ -385,6 +386,7 @@ impl eframe::App for ViewerApp {
                     };
                     panels::side(ui, &mut self.layout.tab, &mut self.doc, &mut self.selection, inputs)
                 });
+            self.layout.side_rect = side.response.rect;
             if let Some((x, y)) = side.inner {
                 self.probe_at(x, y);
             }

@@ -28,6 +28,8 @@ pub struct Layout {
     pub view_rects: Vec<egui::Rect>,
     /// Where the status bar was drawn (its timings change from run to run).
     pub status_rect: egui::Rect,
+    /// Where the side panel was drawn (nothing when hidden), for checking what fits in it.
+    pub side_rect: egui::Rect,
 }
 
 /// The side panel's default width, and the width it always leaves to the images: at
@@ -46,6 +48,7 @@ impl Layout {
             show_side_panel: true,
             view_rects: Vec::new(),
             status_rect: egui::Rect::NOTHING,
+            side_rect: egui::Rect::NOTHING,
         }
     }
 
