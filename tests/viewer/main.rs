@@ -9,6 +9,7 @@ mod differences;
 mod edits;
 mod export;
 mod files;
+mod glyphs;
 mod lights;
 mod materials;
 mod pick_and_probe;

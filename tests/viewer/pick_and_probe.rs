@@ -105,3 +105,65 @@ fn the_probe_breakdown_sums_to_the_pixel_radiance_on_both_tracers() {
         "the differing term is not pointed out"
     );
 }
+
+#[test]
+fn the_probe_table_fits_the_default_side_panel() {
+    let Some(mut h) = viewer("whitted", (1024.0, 768.0)) else { return };
+    let before = h.state().layout.side_rect;
+    // A sphere's normal has three non-zero components: the widest row of the table.
+    let glass = object_named(&h, "glass sphere");
+    let (x, y) = pixel_of(&h, glass);
+    let pos = h.state().screen_pos_of_pixel(x, y).expect("the view is drawn");
+    click(&mut h, pos, Modifiers::COMMAND);
+    settle(&mut h);
+    let normal = h.state().renders.probe.as_ref().expect("a probe").cpu.normal;
+    assert!(normal.to_array().iter().all(|c| c.abs() > 1e-3), "pick a pixel with a slanted normal: {normal}");
+    let side = h.state().layout.side_rect;
+    // The table fits the panel as it was, rather than widening it.
+    assert_eq!(side, before, "the probe widened the side panel");
+    // The N row's values (CPU and GPU), whichever way they are laid out.
+    let first = format!("{:.6}", normal.x);
+    let values: Vec<egui::Rect> = h.query_all_by_label_contains(&first).map(|n| n.rect()).collect();
+    assert!(!values.is_empty(), "the N row is not shown");
+    for r in values {
+        assert!(r.right() <= side.right(), "a value of N ends at x = {} beyond the panel's {side:?}", r.right());
+    }
+}
+
+#[test]
+fn the_selected_object_is_outlined_on_both_images() {
+    let Some(mut h) = viewer("whitted", (1000.0, 640.0)) else { return };
+    let glass = object_named(&h, "glass sphere");
+    let (x, y) = pixel_of(&h, glass);
+    assert!(h.query_by_label("Selected: glass sphere").is_none(), "nothing is selected yet");
+    let pos = h.state().screen_pos_of_pixel(x, y).expect("the view is drawn");
+    click(&mut h, pos, Modifiers::NONE);
+    h.run_steps(2);
+    // The sphere's pixels (CPU first hits; the GPU's may differ at the rim by a pixel).
+    let (_, cpu) = h.state().renders.cpu.finished.as_ref().expect("a CPU render");
+    let img = &cpu.image;
+    let (mut lo, mut hi) = ((u32::MAX, u32::MAX), (0, 0));
+    for (i, _) in img.first_hit.iter().enumerate().filter(|(_, id)| **id == glass) {
+        let (px, py) = (i as u32 % img.width, i as u32 / img.width);
+        (lo, hi) = ((lo.0.min(px), lo.1.min(py)), (hi.0.max(px + 1), hi.1.max(py + 1)));
+    }
+    let (w, hgt) = (img.width as f32, img.height as f32);
+    let outlines: Vec<egui::Rect> = h.query_all_by_label("Selected: glass sphere").map(|n| n.rect()).collect();
+    let images = h.state().layout.view_rects.clone();
+    assert_eq!(outlines.len(), images.len(), "side by side: one outline on each image: {outlines:?}");
+    for image in &images {
+        let at = |(px, py): (u32, u32)| {
+            image.min + egui::vec2(px as f32 / w * image.width(), py as f32 / hgt * image.height())
+        };
+        let expected = egui::Rect::from_min_max(at(lo), at(hi));
+        let pixel = image.width() / w;
+        let outline = outlines.iter().find(|o| image.contains_rect(**o)).expect("an outline on this image");
+        for (a, b) in [(outline.min, expected.min), (outline.max, expected.max)] {
+            assert!((a - b).length() <= 1.5 * pixel, "outline {outline:?} vs the sphere's pixels {expected:?}");
+        }
+    }
+    // Clicking the sky selects nothing, and nothing is outlined.
+    let pos = h.state().screen_pos_of_pixel(2, 2).expect("the view is drawn");
+    click(&mut h, pos, Modifiers::NONE);
+    assert!(h.query_by_label("Selected: glass sphere").is_none(), "the outline stays after deselecting");
+}

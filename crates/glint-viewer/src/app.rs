@@ -339,7 +339,18 @@ impl ViewerApp {
             Vec::new()
         };
         let probed = self.renders.probe.as_ref().map(|p| (p.x, p.y));
-        self.layout.central(ui, self.renders.gpu.is_some(), textures, size, &gizmos, probed)
+        // The outline from the images of the revision shown (never of another camera): the
+        // GPU's first hits when read back, else the CPU's.
+        let rev = self.doc.revision;
+        let traced = match (self.renders.gpu_of(rev), self.renders.cpu_of(rev)) {
+            (Some(g), _) => Some((&g.image, true)),
+            (None, Some(c)) => Some((&c.image, false)),
+            (None, None) => None,
+        };
+        let name = self.selection.object.map(|i| self.doc.object_label(i));
+        let segments = self.selection.outline(rev, traced);
+        let selected = name.as_deref().map(|n| (n, segments));
+        self.layout.central(ui, self.renders.gpu.is_some(), textures, size, &gizmos, probed, selected)
     }
 }
 
@@ -369,6 +380,7 @@ impl eframe::App for ViewerApp {
         if ctx.input(|i| i.key_pressed(egui::Key::F9)) {
             self.layout.show_side_panel = !self.layout.show_side_panel;
         }
+        self.layout.side_rect = egui::Rect::NOTHING;
         if self.layout.show_side_panel {
             // Resizable, never so wide that the images get less than VIEW_MIN_WIDTH.
             let widest = (ui.available_width() - VIEW_MIN_WIDTH).max(SIDE_PANEL_MIN);
@@ -385,6 +397,7 @@ impl eframe::App for ViewerApp {
                     };
                     panels::side(ui, &mut self.layout.tab, &mut self.doc, &mut self.selection, inputs)
                 });
+            self.layout.side_rect = side.response.rect;
             if let Some((x, y)) = side.inner {
                 self.probe_at(x, y);
             }

@@ -39,6 +39,7 @@ struct InFlight {
     revision: u64,
     preview: bool,
     size: (u32, u32),
+    started: Instant,
 }
 
 /// A full-resolution GPU image on the host.
@@ -138,6 +139,12 @@ impl GpuView {
         self.in_flight.as_ref().map(|f| (f.revision, f.preview))
     }
 
+    /// How long the full-resolution render in flight has been running (none for a preview).
+    /// The tracer reports no progress until it is done, so the time is all there is to show.
+    pub fn full_render_time(&self) -> Option<Duration> {
+        self.in_flight.as_ref().filter(|f| !f.preview).map(|f| f.started.elapsed())
+    }
+
     /// Renders per second over the last two seconds.
     pub fn renders_per_second(&self) -> Option<f64> {
         let now = Instant::now();
@@ -181,7 +188,8 @@ impl GpuView {
         });
         match started {
             Ok(()) => {
-                self.in_flight = Some(InFlight { stage: Stage::Submitting, revision, preview, size });
+                self.in_flight =
+                    Some(InFlight { stage: Stage::Submitting, revision, preview, size, started: Instant::now() });
                 true
             }
             Err(e) => {

@@ -4,6 +4,7 @@
 use egui::Ui;
 
 use crate::gizmos::Gizmo;
+use crate::outline::Segment;
 use crate::view::{self, Textures, ViewAction, ViewMode};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -28,6 +29,8 @@ pub struct Layout {
     pub view_rects: Vec<egui::Rect>,
     /// Where the status bar was drawn (its timings change from run to run).
     pub status_rect: egui::Rect,
+    /// Where the side panel was drawn (nothing when hidden), for checking what fits in it.
+    pub side_rect: egui::Rect,
 }
 
 /// The side panel's default width, and the width it always leaves to the images: at
@@ -46,11 +49,12 @@ impl Layout {
             show_side_panel: true,
             view_rects: Vec::new(),
             status_rect: egui::Rect::NOTHING,
+            side_rect: egui::Rect::NOTHING,
         }
     }
 
     /// The central panel: the view modes (only the CPU one without a GPU) over the view of a
-    /// `size` image, with the `probed` pixel marked; returns what the pointer did on it.
+    /// `size` image, with the `probed` pixel marked and the `selected` object (name, outline) outlined; returns what the pointer did on it.
     pub fn central(
         &mut self,
         ui: &mut Ui,
@@ -59,6 +63,7 @@ impl Layout {
         size: (u32, u32),
         gizmos: &[Gizmo],
         probed: Option<(u32, u32)>,
+        selected: Option<(&str, &[Segment])>,
     ) -> Vec<ViewAction> {
         ui.horizontal(|ui| {
             for m in ViewMode::ALL {
@@ -70,7 +75,7 @@ impl Layout {
             }
         });
         let (actions, rects) =
-            view::show(ui, self.mode, &mut self.wipe, textures, size, gizmos, self.show_gizmos, probed);
+            view::show(ui, self.mode, &mut self.wipe, textures, size, gizmos, self.show_gizmos, probed, selected);
         self.view_rects = rects;
         actions
     }

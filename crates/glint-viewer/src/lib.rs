@@ -19,6 +19,7 @@ mod gpu_view;
 mod images;
 mod layout;
 mod menu;
+mod outline;
 mod panels;
 mod probe;
 mod recent;

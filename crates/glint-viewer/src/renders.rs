@@ -12,6 +12,9 @@ use crate::panels::status::Status;
 use crate::probe::{GpuProbe, ProbeState};
 use crate::view::Textures;
 
+/// How long a full-resolution GPU render runs before the status bar says it is rendering.
+const GPU_PROGRESS_AFTER: Duration = Duration::from_millis(500);
+
 #[derive(Debug)]
 pub struct Renders {
     pub gpu: Option<GpuView>,
@@ -199,6 +202,13 @@ impl Renders {
         Status {
             adapter: self.gpu.as_ref().map(GpuView::adapter_name),
             gpu_ms: self.gpu.as_ref().and_then(|g| g.last_ms),
+            // Said only once it is long enough to look like nothing is happening.
+            gpu_rendering: self
+                .gpu
+                .as_ref()
+                .and_then(GpuView::full_render_time)
+                .filter(|t| *t >= GPU_PROGRESS_AFTER)
+                .map(|t| t.as_secs_f64()),
             gpu_fps: self.gpu.as_ref().and_then(GpuView::renders_per_second),
             ui_ms,
             cpu_progress: self.cpu.progress(),

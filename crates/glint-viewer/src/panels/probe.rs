@@ -11,6 +11,19 @@ fn fmt(v: DVec3) -> String {
     if v.x == v.y && v.y == v.z { format!("{:.6}", v.x) } else { format!("{:.6} {:.6} {:.6}", v.x, v.y, v.z) }
 }
 
+/// Width of `text` in the table's monospace font.
+fn text_width(ui: &Ui, text: &str) -> f32 {
+    let font = egui::TextStyle::Monospace.resolve(ui.style());
+    ui.ctx().fonts_mut(|f| f.layout_no_wrap(text.to_string(), font, Color32::WHITE).size().x)
+}
+
+/// `v` on one line when that fits `width` points, else one component a line: a vector such
+/// as N (three signed components) is wider than the value column of a default-width panel.
+fn fmt_fitting(ui: &Ui, v: DVec3, width: f32) -> String {
+    let one = fmt(v);
+    if text_width(ui, &one) <= width { one } else { one.replace(' ', "\n") }
+}
+
 pub fn ui(ui: &mut Ui, probe: Option<&ProbeState>, doc: &Document) {
     let Some(p) = probe else {
         ui.weak("Ctrl+click a pixel to see its radiance split into the terms of the model.");
@@ -43,6 +56,9 @@ pub fn ui(ui: &mut Ui, probe: Option<&ProbeState>, doc: &Document) {
     }
     let rows = terms(&p.cpu, gpu);
     let first = first_difference(&rows);
+    // What the value column gets of the panel: the rest after the widest term name.
+    let names = rows.iter().map(|t| text_width(ui, &t.name)).fold(text_width(ui, "term"), f32::max);
+    let value_width = ui.available_width() - names - ui.spacing().item_spacing.x;
     // One row per term, CPU above GPU: narrow enough for the side panel.
     egui::Grid::new("probe terms").striped(true).num_columns(2).show(ui, |ui| {
         ui.strong("term");
@@ -57,10 +73,13 @@ pub fn ui(ui: &mut Ui, probe: Option<&ProbeState>, doc: &Document) {
             ui.add(egui::Label::new(text(t.name.clone())).extend());
             ui.vertical(|ui| {
                 // Six decimals in the table; the exact values (shortest round-trip form) on hover.
-                // Not wrapped: a vector stays on one line, the panel scrolls sideways instead.
-                ui.add(egui::Label::new(text(fmt(t.cpu))).extend())
-                    .on_hover_text(format!("CPU: {:?}", t.cpu.to_array()));
-                let gpu = ui.add(egui::Label::new(text(t.gpu.map(fmt).unwrap_or_else(|| "—".into()))).extend());
+                // Never wrapped by egui (which would break inside a number): a vector too wide for
+                // the column is laid out one component a line instead.
+                let fitting = |v: DVec3| fmt_fitting(ui, v, value_width);
+                let cpu = fitting(t.cpu);
+                let gpu = t.gpu.map(fitting).unwrap_or_else(|| "—".into());
+                ui.add(egui::Label::new(text(cpu)).extend()).on_hover_text(format!("CPU: {:?}", t.cpu.to_array()));
+                let gpu = ui.add(egui::Label::new(text(gpu)).extend());
                 if let Some(g) = t.gpu {
                     gpu.on_hover_text(format!("GPU: {:?}", g.to_array().map(|v| v as f32)));
                 }

@@ -9,6 +9,8 @@ use glint_core::cpu::RayCounts;
 pub struct Status {
     pub adapter: Option<String>,
     pub gpu_ms: Option<f64>,
+    /// Seconds the full-resolution GPU render in flight has run, once it runs long.
+    pub gpu_rendering: Option<f64>,
     pub gpu_fps: Option<f64>,
     pub ui_ms: f64,
     pub cpu_progress: Option<(usize, usize, f64)>,
@@ -33,6 +35,10 @@ pub fn ui(ui: &mut Ui, s: &Status) {
             None => ui.label("GPU: none"),
         };
         ui.separator();
+        if let Some(secs) = s.gpu_rendering {
+            ui.spinner();
+            ui.label(format!("GPU rendering… {secs:.0} s"));
+        }
         if let Some(ms) = s.gpu_ms {
             ui.label(format!("GPU {ms:.1} ms/frame"));
         }
