@@ -10,7 +10,7 @@ use glint_core::{Backend, CpuOptions, FlatScene, HdrImage, RenderControl, render
 use glint_gpu::{AdapterRequest, GpuContext, GpuOptions, GpuTracer};
 use indicatif::{ProgressBar, ProgressStyle};
 
-use super::units::mrays_per_s;
+use super::units::{count, mrays_per_s};
 
 /// One finished render.
 #[derive(Debug)]
@@ -80,17 +80,6 @@ pub fn run_cpu(flat: &FlatScene, options: &CpuOptions, quiet: bool) -> anyhow::R
         gpu_status: 0,
         incomplete: Vec::new(),
     })
-}
-
-/// A ray count as people read it: 950, 12.3 k, 4.56 M, 7.89 G.
-pub fn count(n: u64) -> String {
-    let n = n as f64;
-    match n {
-        n if n >= 1e9 => format!("{:.2} G", n / 1e9),
-        n if n >= 1e6 => format!("{:.2} M", n / 1e6),
-        n if n >= 1e3 => format!("{:.1} k", n / 1e3),
-        n => format!("{n}"),
-    }
 }
 
 /// Opens the GPU named by `--adapter` (or `WGPU_ADAPTER_NAME`).

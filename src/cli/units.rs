@@ -27,3 +27,14 @@ pub fn ms_cell(v: f64) -> String {
         format!("{v:.2}")
     }
 }
+
+/// A ray count as people read it: 950, 12.3 k, 4.56 M, 7.89 G.
+pub fn count(n: u64) -> String {
+    let n = n as f64;
+    match n {
+        n if n >= 1e9 => format!("{:.2} G", n / 1e9),
+        n if n >= 1e6 => format!("{:.2} M", n / 1e6),
+        n if n >= 1e3 => format!("{:.1} k", n / 1e3),
+        n => format!("{n}"),
+    }
+}

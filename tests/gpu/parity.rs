@@ -10,36 +10,47 @@
 //! - the status word (loop bound, stack overflow) stays 0 on every built-in scene.
 
 use glint_core::FlatScene;
-use glint_core::scene::{BUILTIN_SCENES, EpsilonMode, GlobalAttenuation, load_scene};
+use glint_core::scene::{BUILTIN_SCENES, EpsilonMode, GlobalAttenuation, RenderSettings, SceneDesc, load_scene};
 
-use super::support::{
-    builtin, compare_and_keep, cpu, gpu_or_skip, gpu_render, log_errors, within_parity, write_failure_images,
-};
+use super::support::{compare_and_keep, cpu, gpu_or_skip, gpu_render, log_errors, within_parity, write_failure_images};
 
-#[test]
-fn builtin_scenes_match_the_cpu_reference() {
-    let tracer = gpu_or_skip!();
+/// Renders every built-in scene file (a generated scene's hits are held against the CPU's by
+/// tests/gpu/raycast.rs) at 160×120, depth 5, with each of `spps`, on both tracers after `setup`
+/// changed its description and settings, and returns those outside parity. The same ray tree
+/// means the same rays, up to rare f32 decisions at a bailout or a silhouette: within 0.1 %.
+fn parity_failures(
+    tracer: &glint_gpu::GpuTracer,
+    label: &str,
+    spps: &[u32],
+    setup: impl Fn(&mut SceneDesc, &mut RenderSettings),
+) -> Vec<String> {
     let mut failures = Vec::new();
-    // The scene files; a generated scene's hits are held against the CPU's by tests/gpu/raycast.rs.
     for scene in BUILTIN_SCENES.iter().filter(|b| !b.is_generated()) {
-        for spp in [1, 4] {
-            let flat = builtin(scene.name, 160, 120, spp, 5);
+        for &spp in spps {
+            let mut desc = load_scene(scene.name).expect("built-in scene").desc;
+            let mut s = desc.render.clone();
+            (s.width, s.height, s.spp, s.max_depth) = (160, 120, spp, 5);
+            setup(&mut desc, &mut s);
+            let flat = FlatScene::build(&desc, &s);
             let c = cpu(&flat);
             let g = gpu_render(tracer, &flat, true);
-            let name = format!("{}-spp{spp}", scene.name);
+            let name = format!("{}-{label}{spp}", scene.name);
             let (e, base) = compare_and_keep("parity", &name, &c, &g);
             log_errors(&name, &e, g.status);
-            // The same ray tree, so the same rays (up to rare f32 decisions at a bailout or a
-            // silhouette): within 0.1 %.
             let (rc, rg) = (c.counts.total() as f64, g.counts.total() as f64);
-            let same_rays = (rc - rg).abs() <= 1e-3 * rc;
-            let ok = within_parity(&e, g.status) && same_rays;
-            if !ok {
+            if !(within_parity(&e, g.status) && (rc - rg).abs() <= 1e-3 * rc) {
                 write_failure_images(&base, &c, &g);
                 failures.push(format!("{name} (rays: CPU {rc}, GPU {rg})"));
             }
         }
     }
+    failures
+}
+
+#[test]
+fn builtin_scenes_match_the_cpu_reference() {
+    let tracer = gpu_or_skip!();
+    let failures = parity_failures(tracer, "spp", &[1, 4], |_, _| {});
     assert!(failures.is_empty(), "GPU/CPU parity failed for {failures:?} (images in target/tmp/gpu-tests/parity)");
 }
 
@@ -48,23 +59,7 @@ fn builtin_scenes_match_the_cpu_reference() {
 #[test]
 fn builtin_scenes_match_the_cpu_reference_under_skip_convex() {
     let tracer = gpu_or_skip!();
-    let mut failures = Vec::new();
-    for scene in BUILTIN_SCENES.iter().filter(|b| !b.is_generated()) {
-        let loaded = load_scene(scene.name).expect("built-in scene");
-        let mut s = loaded.desc.render.clone();
-        (s.width, s.height, s.spp, s.max_depth, s.epsilon_mode) = (160, 120, 1, 5, EpsilonMode::SkipConvex);
-        let flat = FlatScene::build(&loaded.desc, &s);
-        let c = cpu(&flat);
-        let g = gpu_render(tracer, &flat, true);
-        let name = format!("{}-skip-convex", scene.name);
-        let (e, base) = compare_and_keep("parity", &name, &c, &g);
-        log_errors(&name, &e, g.status);
-        let (rc, rg) = (c.counts.total() as f64, g.counts.total() as f64);
-        if !(within_parity(&e, g.status) && (rc - rg).abs() <= 1e-3 * rc) {
-            write_failure_images(&base, &c, &g);
-            failures.push(format!("{name} (rays: CPU {rc}, GPU {rg})"));
-        }
-    }
+    let failures = parity_failures(tracer, "skip-convex-spp", &[1], |_, s| s.epsilon_mode = EpsilonMode::SkipConvex);
     assert!(failures.is_empty(), "GPU/CPU parity failed for {failures:?} (images in target/tmp/gpu-tests/parity)");
 }
 
@@ -73,23 +68,8 @@ fn builtin_scenes_match_the_cpu_reference_under_skip_convex() {
 #[test]
 fn builtin_scenes_match_the_cpu_reference_with_global_attenuation() {
     let tracer = gpu_or_skip!();
-    let mut failures = Vec::new();
-    for scene in BUILTIN_SCENES.iter().filter(|b| !b.is_generated()) {
-        let mut loaded = load_scene(scene.name).expect("built-in scene");
-        loaded.desc.world.global_attenuation = GlobalAttenuation { c: 0.5, l: 0.1, q: 0.02 };
-        let mut s = loaded.desc.render.clone();
-        (s.width, s.height, s.spp, s.max_depth) = (160, 120, 1, 5);
-        let flat = FlatScene::build(&loaded.desc, &s);
-        let c = cpu(&flat);
-        let g = gpu_render(tracer, &flat, true);
-        let name = format!("{}-global-attenuation", scene.name);
-        let (e, base) = compare_and_keep("parity", &name, &c, &g);
-        log_errors(&name, &e, g.status);
-        let (rc, rg) = (c.counts.total() as f64, g.counts.total() as f64);
-        if !(within_parity(&e, g.status) && (rc - rg).abs() <= 1e-3 * rc) {
-            write_failure_images(&base, &c, &g);
-            failures.push(format!("{name} (rays: CPU {rc}, GPU {rg})"));
-        }
-    }
+    let failures = parity_failures(tracer, "global-attenuation-spp", &[1], |d, _| {
+        d.world.global_attenuation = GlobalAttenuation { c: 0.5, l: 0.1, q: 0.02 };
+    });
     assert!(failures.is_empty(), "GPU/CPU parity failed for {failures:?} (images in target/tmp/gpu-tests/parity)");
 }

@@ -99,10 +99,15 @@ fn incomplete_banner(ui: &mut Ui, rect: Rect, why: Option<&str>) {
 }
 
 /// A white label over an image with its `anchor` corner at `pos`, shown only where it fits
-/// inside `image` (the wipe's labels at wipe 0 or 1 would stand outside it). A label widget,
-/// not painted text, so that the UI tests find it and its place.
+/// inside `image` (the wipe's labels at wipe 0 or 1 would stand outside it).
 fn image_label(ui: &mut Ui, image: Rect, pos: Pos2, anchor: egui::Align2, text: &str) {
     let text = egui::RichText::new(text).color(Color32::WHITE).size(13.0);
+    anchored_label(ui, pos, anchor, text, Some(image));
+}
+
+/// A label widget with its `anchor` corner at `pos`, left out where it would stand outside
+/// `inside`. A widget, not painted text, so that the UI tests find it and its place.
+fn anchored_label(ui: &mut Ui, pos: Pos2, anchor: egui::Align2, text: egui::RichText, inside: Option<Rect>) {
     let galley = egui::WidgetText::from(text.clone()).into_galley(
         ui,
         Some(egui::TextWrapMode::Extend),
@@ -110,7 +115,7 @@ fn image_label(ui: &mut Ui, image: Rect, pos: Pos2, anchor: egui::Align2, text: 
         egui::TextStyle::Body,
     );
     let rect = anchor.anchor_size(pos, galley.size());
-    if !image.contains_rect(rect) {
+    if inside.is_some_and(|r| !r.contains_rect(rect)) {
         return;
     }
     let mut child = ui.new_child(egui::UiBuilder::new().max_rect(rect));
@@ -212,18 +217,9 @@ fn difference_readout(ui: &mut Ui, r: Rect, at: Option<((u32, u32), (f64, bool))
     image_label_at(ui, pos2(r.left(), r.bottom() + 34.0), egui::Align2::LEFT_TOP, &text);
 }
 
-/// A small grey label widget with its `anchor` at `pos` (findable by the UI tests).
+/// A small grey label of the colour bar with its `anchor` at `pos`.
 fn image_label_at(ui: &mut Ui, pos: Pos2, anchor: egui::Align2, text: &str) {
-    let text = egui::RichText::new(text).color(Color32::LIGHT_GRAY).size(11.0);
-    let galley = egui::WidgetText::from(text.clone()).into_galley(
-        ui,
-        Some(egui::TextWrapMode::Extend),
-        f32::INFINITY,
-        egui::TextStyle::Body,
-    );
-    let rect = anchor.anchor_size(pos, galley.size());
-    let mut child = ui.new_child(egui::UiBuilder::new().max_rect(rect));
-    child.add(egui::Label::new(text).selectable(false).extend());
+    anchored_label(ui, pos, anchor, egui::RichText::new(text).color(Color32::LIGHT_GRAY).size(11.0), None);
 }
 
 fn draw_gizmos(ui: &Ui, rect: Rect, gizmos: &[Gizmo]) {
