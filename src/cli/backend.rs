@@ -1,5 +1,6 @@
 //! Running one render on either backend, with the timings the table reports.
 
+use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::time::{Duration, Instant};
 
@@ -7,7 +8,7 @@ use anyhow::Context;
 use glint_core::cpu::RayCounts;
 use glint_core::render::{Tile, tile_count};
 use glint_core::{Backend, CpuOptions, FlatScene, HdrImage, RenderControl, render_cpu};
-use glint_gpu::{AdapterRequest, GpuContext, GpuOptions, GpuTracer};
+use glint_gpu::{AdapterRequest, DispatchControl, GpuContext, GpuError, GpuOptions, GpuTracer, SampleProgress};
 use indicatif::{ProgressBar, ProgressStyle};
 
 use super::units::{count, mrays_per_s};
@@ -35,20 +36,23 @@ impl Run {
     }
 }
 
+/// The progress bar of a render on stderr, hidden when quiet or when stderr is no terminal;
+/// `unit` follows the position (the CPU's tiles are shown as a percentage).
+fn progress_bar(quiet: bool, len: u64, backend: &str, unit: &str) -> anyhow::Result<ProgressBar> {
+    if quiet || !std::io::IsTerminal::is_terminal(&std::io::stderr()) {
+        return Ok(ProgressBar::hidden());
+    }
+    let done = if unit.is_empty() { "{percent:>3}%".to_string() } else { format!("{{pos}}/{{len}} {unit}") };
+    let template = format!("{{spinner}} {backend} [{{bar:40}}] {done} {{msg}} {{elapsed_precise}} eta {{eta}}");
+    let bar = ProgressBar::new(len);
+    bar.set_style(ProgressStyle::with_template(&template).context("progress bar template")?.progress_chars("=> "));
+    Ok(bar)
+}
+
 pub fn run_cpu(flat: &FlatScene, options: &CpuOptions, quiet: bool) -> anyhow::Result<Run> {
     let start = Instant::now();
     let tiles = tile_count(flat.header.width, flat.header.height) as u64;
-    let bar = if quiet || !std::io::IsTerminal::is_terminal(&std::io::stderr()) {
-        ProgressBar::hidden()
-    } else {
-        let bar = ProgressBar::new(tiles);
-        bar.set_style(
-            ProgressStyle::with_template("{spinner} cpu [{bar:40}] {percent:>3}% {msg} {elapsed_precise} eta {eta}")
-                .context("progress bar template")?
-                .progress_chars("=> "),
-        );
-        bar
-    };
+    let bar = progress_bar(quiet, tiles, "cpu", "")?;
     let on_tile = |_: &Tile| bar.inc(1);
     // SIGINT/SIGTERM stop the render at the next tile (see `interrupt`).
     let cancel = glint_core::interrupt::flag();
@@ -89,10 +93,32 @@ pub fn open_gpu(adapter: Option<&str>) -> anyhow::Result<GpuTracer> {
     Ok(GpuTracer::new(ctx))
 }
 
-pub fn run_gpu(tracer: &GpuTracer, flat: &FlatScene, options: &GpuOptions) -> anyhow::Result<Run> {
+pub fn run_gpu(tracer: &GpuTracer, flat: &FlatScene, options: &GpuOptions, quiet: bool) -> anyhow::Result<Run> {
     let start = Instant::now();
-    let r = tracer.render(flat, options).context("GPU render failed")?;
-    // A dispatched render cannot be stopped: a signal that came during it stops here.
+    let progress = Arc::new(SampleProgress::new(flat.header.spp.max(1)));
+    let bar = progress_bar(quiet, u64::from(flat.header.spp.max(1)), "gpu", "samples")?;
+    // SIGINT/SIGTERM stop the render between two submissions.
+    let cancel = glint_core::interrupt::flag();
+    let control = DispatchControl { cancel: Some(&cancel), progress: Some(&progress) };
+    let done = AtomicBool::new(false);
+    let r = std::thread::scope(|scope| {
+        if !bar.is_hidden() {
+            scope.spawn(|| {
+                while !done.load(Ordering::Relaxed) {
+                    bar.set_position(u64::from(progress.get().0));
+                    std::thread::sleep(Duration::from_millis(200));
+                }
+            });
+        }
+        let r = tracer.render_with(flat, options, control);
+        done.store(true, Ordering::Relaxed);
+        r
+    });
+    bar.finish_and_clear();
+    if matches!(r, Err(GpuError::Cancelled)) {
+        super::interrupt::check()?;
+    }
+    let r = r.context("GPU render failed")?;
     super::interrupt::check()?;
     Ok(Run {
         backend: Backend::Gpu,

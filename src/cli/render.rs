@@ -151,7 +151,8 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
 
     let gpu = if args.backend.contains(&Backend::Gpu) { Some(open_gpu(args.adapter.as_deref())?) } else { None };
     // The GPU renders first: a scene it cannot take (size, limits) fails before a long CPU render.
-    let gpu_run = gpu.as_ref().map(|tracer| run_gpu(tracer, &flat, &gpu_options)).transpose()?;
+    let gpu_run =
+        gpu.as_ref().map(|tracer| run_gpu(tracer, &flat, &gpu_options, args.quiet || args.json)).transpose()?;
     let mut runs = Vec::new();
     if args.backend.contains(&Backend::Cpu) {
         runs.push(run_cpu(&flat, &cpu_options, args.quiet || args.json)?);
@@ -224,7 +225,7 @@ fn bench(
         backends.push(Box::new(|| run_cpu(flat, cpu, true)));
     }
     if let Some(tracer) = &gpu {
-        backends.push(Box::new(move || run_gpu(tracer, flat, gpu_options)));
+        backends.push(Box::new(move || run_gpu(tracer, flat, gpu_options, true)));
     }
     let mut medians = Vec::new();
     for render in &backends {

@@ -15,21 +15,23 @@ fn skip_gpu() -> bool {
     std::env::var("GLINT_SKIP_GPU").is_ok_and(|v| v == "1")
 }
 
-/// Sends `signal` (TERM, INT) to a running `glint render` and checks that it says
+/// Sends `signal` (TERM, INT) to a running `glint render` on `backend` and checks that it says
 /// "interrupted", exits with `code`, and leaves neither the output nor a temporary.
-fn interrupt_a_render(signal: &str, code: i32) {
-    let dir = TempDir::new(&format!("interrupt-{signal}"));
-    // 2048² pixels at 64 spp: minutes of work on 2 threads, 120 MB of image.
+fn interrupt_a_render(signal: &str, code: i32, backend: &str) {
+    let dir = TempDir::new(&format!("interrupt-{signal}-{backend}"));
+    // 2048² pixels at 64 spp: minutes of work on 2 threads (or on lavapipe), 120 MB of image.
     let child = Command::new(BIN)
         .args(["render", "whitted", "--width", "2048", "--height", "2048", "--spp", "64", "--threads", "2", "-q"])
+        .args(["--backend", backend])
         .args(["-o", "big.exr"])
         .current_dir(&dir)
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
         .spawn()
         .expect("start glint");
-    // Past start-up (the handler is installed before anything else), in the render.
-    std::thread::sleep(Duration::from_millis(1500));
+    // Past start-up (the handler is installed before anything else), in the render; the GPU
+    // first compiles its shader.
+    std::thread::sleep(Duration::from_millis(if backend == "gpu" { 4000 } else { 1500 }));
     let status = Command::new("kill").args([&format!("-{signal}"), &child.id().to_string()]).status().expect("kill");
     assert!(status.success(), "kill -{signal} failed");
     let start = Instant::now();
@@ -43,8 +45,16 @@ fn interrupt_a_render(signal: &str, code: i32) {
 
 #[test]
 fn sigterm_and_sigint_stop_a_render_with_130_or_143_and_leave_no_file() {
-    interrupt_a_render("TERM", 143);
-    interrupt_a_render("INT", 130);
+    interrupt_a_render("TERM", 143, "cpu");
+    interrupt_a_render("INT", 130, "cpu");
+}
+
+#[test]
+fn a_gpu_render_stops_between_two_submissions_on_sigint() {
+    if skip_gpu() {
+        return;
+    }
+    interrupt_a_render("INT", 130, "gpu");
 }
 
 const SCENE: &str = "[render]\nwidth = 8\nheight = 6\n\n[camera]\nposition = [0.0, 1.0, -4.0]\nlook_at = [0.0, 0.5, 0.0]\n\n\

@@ -1,11 +1,14 @@
-//! Orbiting by dragging in the view: scaled by the view's size, never under the floor.
+//! Orbiting by dragging in the view: scaled by the view's size, never under the floor, and never
+//! leaving another camera's image on screen.
 
 use egui::{Event, PointerButton, Pos2, Vec2};
+use std::time::{Duration, Instant};
+
 use egui_kittest::Harness;
 use glint_core::glam::DVec3;
 use glint_viewer::ViewerApp;
 
-use crate::support::viewer;
+use crate::support::{settle, viewer};
 
 /// A primary-button drag from `from` by `by`, in `steps` moves, one frame each.
 fn drag(h: &mut Harness<'static, ViewerApp>, from: Pos2, by: Vec2, steps: usize) {
@@ -52,4 +55,70 @@ fn a_drag_across_the_image_turns_half_way_and_a_short_upward_drag_stays_above_th
     let turned = turned.rem_euclid(std::f64::consts::TAU);
     assert!((turned - std::f64::consts::PI).abs() < 0.05, "turned {turned} rad");
     assert!((after.y - before.y).abs() < 1e-9, "a level drag keeps the height");
+}
+
+#[test]
+fn a_drag_during_a_long_render_never_leaves_the_old_camera_on_screen() {
+    let Some(mut h) = viewer("whitted", (1000.0, 640.0)) else { return };
+    let image = *h.state().layout.view_rects.first().expect("the view is drawn");
+    // 16 samples at 640×480: seconds of GPU work on lavapipe, sample pass after sample pass.
+    let render = &mut h.state_mut().doc.desc.render;
+    (render.spp, render.width, render.height) = (16, 640, 480);
+    h.state_mut().doc.edited();
+    let before = h.state().doc.revision;
+    let deadline = Instant::now() + Duration::from_secs(60);
+    let gpu =
+        |h: &Harness<'static, ViewerApp>| h.state().renders.gpu.as_ref().map(|g| (g.shown_revision(), g.in_flight()));
+    while gpu(&h).and_then(|g| g.1) != Some((before, false)) {
+        assert!(Instant::now() < deadline, "the full render never started");
+        h.step();
+    }
+    drag(&mut h, image.center(), Vec2::new(80.0, 0.0), 4);
+    let after = h.state().doc.revision;
+    assert!(after > before, "the drag moved the camera");
+    // From the release on: the image on screen is never the old camera's full render (it was
+    // cancelled between passes), and this camera's preview arrives while its full render has
+    // not finished (it went first).
+    let mut preview_while_rendering = false;
+    loop {
+        h.step();
+        let (shown, in_flight) = gpu(&h).expect("a GPU");
+        assert_ne!(shown, Some(before), "the pre-drag camera's image came back after the drag");
+        if shown == Some(after) && in_flight.is_none_or(|f| f == (after, false)) && !h.state().is_settled() {
+            preview_while_rendering = true;
+        }
+        if h.state().is_settled() {
+            break;
+        }
+        assert!(Instant::now() < deadline + Duration::from_secs(60), "the render never finished");
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    assert!(preview_while_rendering, "no image of the new camera until its full render was done");
+    assert_eq!(gpu(&h).and_then(|g| g.0), Some(after));
+}
+
+#[test]
+fn a_camera_typed_in_shows_its_preview_before_its_long_render() {
+    let Some(mut h) = viewer("whitted", (1000.0, 640.0)) else { return };
+    let render = &mut h.state_mut().doc.desc.render;
+    (render.spp, render.width, render.height) = (16, 640, 480);
+    h.state_mut().doc.edited();
+    settle(&mut h);
+    // A new camera not by dragging (typed in a field, picked from a file's cameras): no preview
+    // came during an interaction, so one must come before the 16 passes.
+    h.state_mut().doc.desc.camera.position[0] += 1.0;
+    h.state_mut().doc.edited();
+    let moved = h.state().doc.revision;
+    let gpu =
+        |h: &Harness<'static, ViewerApp>| h.state().renders.gpu.as_ref().map(|g| (g.shown_revision(), g.in_flight()));
+    let deadline = Instant::now() + Duration::from_secs(120);
+    let mut preview_while_rendering = false;
+    while !h.state().is_settled() {
+        h.step();
+        let (shown, in_flight) = gpu(&h).expect("a GPU");
+        preview_while_rendering |= shown == Some(moved) && in_flight == Some((moved, false));
+        assert!(Instant::now() < deadline, "the render never finished");
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    assert!(preview_while_rendering, "the old camera stayed on screen until the full render was done");
 }

@@ -23,7 +23,7 @@ fn an_incomplete_gpu_image_is_marked_over_the_gpu_view() {
 }
 
 #[test]
-fn a_long_gpu_render_says_how_long_it_has_been_rendering() {
+fn a_long_gpu_render_says_how_far_it_is_and_how_long_it_has_been_rendering() {
     let Some(mut h) = viewer("whitted", (1000.0, 640.0)) else { return };
     assert!(h.query_by_label_contains("GPU rendering").is_none(), "nothing is rendering");
     // 16 samples at 640×480 take seconds on lavapipe.
@@ -31,14 +31,25 @@ fn a_long_gpu_render_says_how_long_it_has_been_rendering() {
     (render.spp, render.width, render.height) = (16, 640, 480);
     h.state_mut().doc.edited();
     let deadline = Instant::now() + Duration::from_secs(60);
-    let mut shown = None;
-    while shown.is_none() && Instant::now() < deadline && !h.state().is_settled() {
+    // "GPU rendering n/16 samples… t s": every n seen, in order.
+    let mut seen = Vec::new();
+    while Instant::now() < deadline && !h.state().is_settled() {
         h.step();
-        shown = h.query_by_label_contains("GPU rendering… ").and_then(|n| n.value());
+        if let Some(shown) = h.query_by_label_contains("GPU rendering ").and_then(|n| n.value()) {
+            let passes = shown.strip_prefix("GPU rendering ").and_then(|r| r.split_once(" samples… "));
+            let (done, secs) = passes.unwrap_or_else(|| panic!("{shown:?}"));
+            let (n, of) = done.split_once('/').unwrap_or_else(|| panic!("{shown:?}"));
+            assert_eq!(of, "16", "{shown:?}");
+            assert!(secs.ends_with(" s"), "{shown:?}");
+            let n: u32 = n.parse().unwrap_or_else(|_| panic!("{shown:?}"));
+            if seen.last() != Some(&n) {
+                seen.push(n);
+            }
+        }
         std::thread::sleep(Duration::from_millis(5));
     }
-    let shown = shown.expect("the status bar never said the GPU was rendering");
-    assert!(shown.ends_with(" s"), "{shown:?}");
+    assert!(seen.len() >= 2, "the status bar never showed the render advance: {seen:?}");
+    assert!(seen.windows(2).all(|w| w[0] < w[1]) && seen.iter().all(|n| *n < 16), "{seen:?}");
     settle(&mut h);
     assert!(h.query_by_label_contains("GPU rendering").is_none(), "the label stays after the render");
 }

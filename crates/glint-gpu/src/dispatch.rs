@@ -1,4 +1,8 @@
-//! Dispatching the tracer: one submission per tile and sample.
+//! Dispatching the tracer: one submission per tile and sample, sample by sample, so that a
+//! caller can follow the render and stop it between submissions.
+
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, AtomicU32, Ordering};
 
 use glint_core::layout::TileParams;
 
@@ -50,7 +54,7 @@ impl SceneBuffers {
         pipeline: &TracerPipeline,
         bind_group: &wgpu::BindGroup,
         params: TileParams,
-    ) {
+    ) -> wgpu::SubmissionIndex {
         ctx.queue.write_buffer(&self.tile, 0, bytemuck::bytes_of(&params));
         let mut encoder =
             ctx.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("glint tile") });
@@ -63,23 +67,89 @@ impl SceneBuffers {
             pass.set_bind_group(0, bind_group, &[]);
             pass.dispatch_workgroups(params.width.div_ceil(WORKGROUP), params.height.div_ceil(WORKGROUP), 1);
         }
-        ctx.queue.submit([encoder.finish()]);
+        ctx.queue.submit([encoder.finish()])
     }
 
     /// Dispatches the whole image: one submission per tile and sample, so that no submission
     /// runs long enough to trip a desktop GPU's watchdog and no invocation runs past lavapipe's
-    /// loop budget however many samples a pixel takes.
-    pub fn dispatch(&self, ctx: &GpuContext, pipeline: &TracerPipeline, bind_group: &wgpu::BindGroup, tile: u32) {
+    /// loop budget however many samples a pixel takes. Sample after sample over the whole image
+    /// (each pixel still adds its samples in order, so the image is the same as tile after
+    /// tile): the finished passes are the progress, and a cancel stops at the next submission.
+    /// At most one pass is queued ahead of the one running, so that a cancel takes effect
+    /// within about a pass on a GPU whose `submit` does not wait (lavapipe's does).
+    pub fn dispatch(
+        &self,
+        ctx: &GpuContext,
+        pipeline: &TracerPipeline,
+        bind_group: &wgpu::BindGroup,
+        tile: u32,
+        control: DispatchControl<'_>,
+    ) -> Result<(), GpuError> {
         let tile = tile.max(WORKGROUP);
-        for y0 in (0..self.height).step_by(tile as usize) {
-            for x0 in (0..self.width).step_by(tile as usize) {
-                let (width, height) = (tile.min(self.width - x0), tile.min(self.height - y0));
-                for sample_index in 0..self.spp {
+        if let Some(p) = control.progress {
+            p.start(self.spp);
+        }
+        let mut previous_pass = None;
+        for sample_index in 0..self.spp {
+            let mut last = None;
+            for y0 in (0..self.height).step_by(tile as usize) {
+                for x0 in (0..self.width).step_by(tile as usize) {
+                    if control.cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
+                        return Err(GpuError::Cancelled);
+                    }
+                    let (width, height) = (tile.min(self.width - x0), tile.min(self.height - y0));
                     let params = TileParams::new(x0, y0, width, height, sample_index);
-                    self.dispatch_tile(ctx, pipeline, bind_group, params);
+                    last = Some(self.dispatch_tile(ctx, pipeline, bind_group, params));
                 }
             }
+            if let Some(p) = control.progress {
+                let p = p.clone();
+                ctx.queue.on_submitted_work_done(move || p.finished(sample_index + 1));
+            }
+            if let Some(index) = previous_pass.replace(last) {
+                let wait = wgpu::PollType::Wait { submission_index: index, timeout: None };
+                ctx.device.poll(wait).map_err(|e| GpuError::Wgpu(e.to_string()))?;
+            }
         }
+        Ok(())
+    }
+}
+
+/// What the caller of a render may do while it is dispatched.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct DispatchControl<'a> {
+    /// Checked before every submission; once set, the render stops with `GpuError::Cancelled`.
+    pub cancel: Option<&'a AtomicBool>,
+    /// Sample passes the GPU has finished, of how many.
+    pub progress: Option<&'a Arc<SampleProgress>>,
+}
+
+/// How many of a render's sample passes the GPU has finished (each pass is the whole image at
+/// one sample), updated as the GPU reports submitted work done.
+#[derive(Debug, Default)]
+pub struct SampleProgress {
+    done: AtomicU32,
+    total: AtomicU32,
+}
+
+impl SampleProgress {
+    /// The progress of a render of `total` passes, none finished.
+    pub fn new(total: u32) -> Self {
+        Self { done: AtomicU32::new(0), total: AtomicU32::new(total) }
+    }
+
+    fn start(&self, total: u32) {
+        self.done.store(0, Ordering::Relaxed);
+        self.total.store(total, Ordering::Relaxed);
+    }
+
+    fn finished(&self, passes: u32) {
+        self.done.fetch_max(passes, Ordering::Relaxed);
+    }
+
+    /// (finished passes, all passes).
+    pub fn get(&self) -> (u32, u32) {
+        (self.done.load(Ordering::Relaxed), self.total.load(Ordering::Relaxed))
     }
 }
 

@@ -61,6 +61,8 @@ pub enum GpuError {
     Wgpu(String),
     #[error("the GPU device was lost (driver reset or crash); restart to use the GPU again")]
     DeviceLost,
+    #[error("the render was cancelled")]
+    Cancelled,
     #[error("reading the image back from the GPU failed: {0}")]
     Readback(String),
 }

@@ -17,6 +17,7 @@ pub mod status;
 pub mod tracer;
 
 pub use context::{AdapterRequest, AdapterSummary, GpuContext};
+pub use dispatch::{DispatchControl, SampleProgress};
 pub use error::GpuError;
 pub use job::GpuJob;
 pub use present::Presenter;

@@ -12,7 +12,7 @@ use glint_core::{Accel, FlatScene};
 
 use crate::buffers::SceneBuffers;
 use crate::context::GpuContext;
-use crate::dispatch::{DEFAULT_TILE, check_tile};
+use crate::dispatch::{DEFAULT_TILE, DispatchControl, check_tile};
 use crate::error::GpuError;
 use crate::job::GpuJob;
 use crate::pipeline::{TracerPipeline, create_pipeline, with_error_scopes};
@@ -86,9 +86,15 @@ impl GpuTracer {
         Ok((p, time))
     }
 
-    /// Uploads `scene` and dispatches every tile without waiting for the GPU. Unspecialised,
-    /// the full shader runs on the same buffers: it reads no feature bits from the scene.
-    pub fn submit(&self, scene: &FlatScene, options: &GpuOptions) -> Result<GpuJob, GpuError> {
+    /// Uploads `scene` and dispatches every tile and sample, returning once the last is
+    /// submitted (not finished). Unspecialised, the full shader runs on the same buffers: it
+    /// reads no feature bits from the scene.
+    pub fn submit(
+        &self,
+        scene: &FlatScene,
+        options: &GpuOptions,
+        control: DispatchControl<'_>,
+    ) -> Result<GpuJob, GpuError> {
         check_tile(&self.ctx, options.tile)?;
         let key = ShaderKey::for_scene(scene, options.specialise)
             .with_accel(scene, options.accel)
@@ -107,7 +113,7 @@ impl GpuTracer {
             pipeline_time += prime_start.elapsed();
         }
         let submitted = Instant::now();
-        with_error_scopes(&self.ctx, || buffers.dispatch(&self.ctx, &pipeline, &bind_group, options.tile))?;
+        with_error_scopes(&self.ctx, || buffers.dispatch(&self.ctx, &pipeline, &bind_group, options.tile, control))??;
         Ok(GpuJob::new(&self.ctx, buffers, &pipeline, pipeline_time, upload_time, submitted))
     }
 
@@ -129,7 +135,17 @@ impl GpuTracer {
     /// Renders `scene` and reads the image back, waiting for both: `submit`, then the job's
     /// readback as the viewer polls it, waited for.
     pub fn render(&self, scene: &FlatScene, options: &GpuOptions) -> Result<GpuRender, GpuError> {
-        let job = self.submit(scene, options)?;
+        self.render_with(scene, options, DispatchControl::default())
+    }
+
+    /// `render`, followed and stoppable through `control`.
+    pub fn render_with(
+        &self,
+        scene: &FlatScene,
+        options: &GpuOptions,
+        control: DispatchControl<'_>,
+    ) -> Result<GpuRender, GpuError> {
+        let job = self.submit(scene, options, control)?;
         wait_idle(&self.ctx)?;
         if self.ctx.is_lost() {
             return Err(GpuError::DeviceLost);

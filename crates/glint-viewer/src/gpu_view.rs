@@ -9,7 +9,9 @@ use std::time::{Duration, Instant};
 use glint_core::FlatScene;
 use glint_core::HdrImage;
 use glint_core::cpu::RayCounts;
-use glint_gpu::{GpuContext, GpuError, GpuJob, GpuOptions, GpuTracer, JobReadback, Presenter};
+use glint_gpu::{
+    DispatchControl, GpuContext, GpuError, GpuJob, GpuOptions, GpuTracer, JobReadback, Presenter, SampleProgress,
+};
 
 use crate::worker::Worker;
 
@@ -40,6 +42,8 @@ struct InFlight {
     preview: bool,
     size: (u32, u32),
     started: Instant,
+    /// Sample passes done, of how many (full-resolution renders go pass by pass).
+    progress: Arc<SampleProgress>,
 }
 
 /// A full-resolution GPU image on the host.
@@ -135,14 +139,32 @@ impl GpuView {
         self.in_flight.is_some() || self.readback.is_some()
     }
 
+    /// The revision of the image on screen.
+    pub fn shown_revision(&self) -> Option<u64> {
+        self.shown.map(|s| s.0)
+    }
+
     pub fn in_flight(&self) -> Option<(u64, bool)> {
         self.in_flight.as_ref().map(|f| (f.revision, f.preview))
     }
 
-    /// How long the full-resolution render in flight has been running (none for a preview).
-    /// The tracer reports no progress until it is done, so the time is all there is to show.
-    pub fn full_render_time(&self) -> Option<Duration> {
-        self.in_flight.as_ref().filter(|f| !f.preview).map(|f| f.started.elapsed())
+    /// How long the full-resolution render in flight has been running (none for a preview),
+    /// and how many of its sample passes the GPU has finished, of how many.
+    pub fn full_render_progress(&self) -> Option<(Duration, (u32, u32))> {
+        self.in_flight.as_ref().filter(|f| !f.preview).map(|f| (f.started.elapsed(), f.progress.get()))
+    }
+
+    /// Stops the full-resolution render in flight if it is of another revision than `current`
+    /// and still being dispatched: its remaining passes are not submitted, so a preview of the
+    /// new camera can go next instead of waiting seconds behind an image nobody will see.
+    pub fn cancel_full_render_unless(&mut self, current: u64) {
+        if let Some(InFlight { stage: Stage::Submitting, preview: false, revision, .. }) = &self.in_flight
+            && *revision != current
+        {
+            log::debug!("GPU render of revision {revision} cancelled for revision {current}");
+            self.submitter.cancel();
+            self.in_flight = None;
+        }
     }
 
     /// Renders per second over the last two seconds.
@@ -179,17 +201,26 @@ impl GpuView {
             return false;
         }
         let (tracer, scene, full_tile) = (self.tracer.clone(), scene.clone(), self.full_tile);
-        let started = self.submitter.start(revision, move |_| {
+        let progress = Arc::new(SampleProgress::new(scene.header.spp.max(1)));
+        let job_progress = progress.clone();
+        let started = self.submitter.start(revision, move |handle| {
             let start = Instant::now();
             let options = GpuOptions { tile: if preview { PREVIEW_TILE } else { full_tile }, ..GpuOptions::default() };
-            let job = tracer.submit(&scene, &options);
+            let control = DispatchControl { cancel: Some(handle.cancel_flag()), progress: Some(&job_progress) };
+            let job = tracer.submit(&scene, &options, control);
             log::debug!("GPU submit took {:.1} ms", start.elapsed().as_secs_f64() * 1e3);
             job
         });
         match started {
             Ok(()) => {
-                self.in_flight =
-                    Some(InFlight { stage: Stage::Submitting, revision, preview, size, started: Instant::now() });
+                self.in_flight = Some(InFlight {
+                    stage: Stage::Submitting,
+                    revision,
+                    preview,
+                    size,
+                    started: Instant::now(),
+                    progress,
+                });
                 true
             }
             Err(e) => {
@@ -269,7 +300,10 @@ impl GpuView {
                 self.completions.pop_front();
             }
             let texture = self.displays.iter().find(|d| (d.presenter.width, d.presenter.height) == f.size);
-            if let Some(d) = texture {
+            // Never an older camera over a newer one: a full render that finishes after a
+            // preview of a later edit (a drag began while it ran) is not shown.
+            let newer = self.shown.is_none_or(|s| s.0 <= f.revision);
+            if let Some(d) = texture.filter(|_| newer) {
                 self.shown = Some((f.revision, f.preview, f.size, d.texture));
             }
             if !f.preview {

@@ -131,28 +131,29 @@ impl Renders {
             return;
         }
         if let Some(g) = &mut self.gpu {
-            let wanted = (rev, interacting);
+            g.cancel_full_render_unless(rev);
+            // A full render of several samples takes many times a preview: when the image on
+            // screen is of another revision (the camera moved), a preview of this one goes
+            // first, so the screen never shows another camera for the seconds it takes.
+            let preview_first = !interacting
+                && doc.desc.render.spp > 1
+                && g.shown_revision() != Some(rev)
+                && self.gpu_submitted != Some((rev, true));
+            let preview = interacting || preview_first;
             // A preview is only worth it for a new revision; a full render only once per revision
             // (pressing a slider without moving it renders nothing new).
-            let needed = if interacting {
-                self.gpu_submitted.map(|s| s.0) != Some(rev)
+            let needed = if preview {
+                self.gpu_submitted.map(|s| s.0) != Some(rev) || preview_first
             } else {
                 self.gpu_full_revision != Some(rev)
             };
-            if needed
+            let submitted = needed
                 && g.in_flight().is_none()
-                && let Some(flat) = doc.flat(interacting)
-                && g.submit(&flat, rev, interacting)
-            {
-                self.gpu_submitted = Some(wanted);
-                if !interacting {
-                    self.gpu_full_revision = Some(rev);
-                }
-            }
-            if g.error.is_some() && needed {
-                // A GPU error (e.g. a scene the GPU cannot take) is shown; do not retry every frame.
-                self.gpu_submitted = Some(wanted);
-                if !interacting {
+                && doc.flat(preview).is_some_and(|flat| g.submit(&flat, rev, preview));
+            // A GPU error (e.g. a scene the GPU cannot take) is shown; do not retry every frame.
+            if submitted || (g.error.is_some() && needed) {
+                self.gpu_submitted = Some((rev, preview));
+                if !preview {
                     self.gpu_full_revision = Some(rev);
                 }
             }
@@ -206,9 +207,9 @@ impl Renders {
             gpu_rendering: self
                 .gpu
                 .as_ref()
-                .and_then(GpuView::full_render_time)
-                .filter(|t| *t >= GPU_PROGRESS_AFTER)
-                .map(|t| t.as_secs_f64()),
+                .and_then(GpuView::full_render_progress)
+                .filter(|(t, _)| *t >= GPU_PROGRESS_AFTER)
+                .map(|(t, passes)| (t.as_secs_f64(), passes)),
             gpu_fps: self.gpu.as_ref().and_then(GpuView::renders_per_second),
             ui_ms,
             cpu_progress: self.cpu.progress(),

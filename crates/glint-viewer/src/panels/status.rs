@@ -9,8 +9,9 @@ use glint_core::cpu::RayCounts;
 pub struct Status {
     pub adapter: Option<String>,
     pub gpu_ms: Option<f64>,
-    /// Seconds the full-resolution GPU render in flight has run, once it runs long.
-    pub gpu_rendering: Option<f64>,
+    /// Seconds the full-resolution GPU render in flight has run, once it runs long, and the
+    /// sample passes the GPU has finished of how many.
+    pub gpu_rendering: Option<(f64, (u32, u32))>,
     pub gpu_fps: Option<f64>,
     pub ui_ms: f64,
     pub cpu_progress: Option<(usize, usize, f64)>,
@@ -35,9 +36,9 @@ pub fn ui(ui: &mut Ui, s: &Status) {
             None => ui.label("GPU: none"),
         };
         ui.separator();
-        if let Some(secs) = s.gpu_rendering {
+        if let Some((secs, (done, total))) = s.gpu_rendering {
             ui.spinner();
-            ui.label(format!("GPU rendering… {secs:.0} s"));
+            ui.label(format!("GPU rendering {done}/{total} samples… {secs:.0} s"));
         }
         if let Some(ms) = s.gpu_ms {
             ui.label(format!("GPU {ms:.1} ms/frame"));
