@@ -93,10 +93,10 @@ fn four_million_triangles_fit_the_128_mib_binding_and_render() {
     let flat = FlatScene::build(&desc, &desc.render);
     assert!(flat.triangles.len() >= 3_990_000, "{} triangles", flat.triangles.len());
     let sizes = [
-        ("triangles", size_of_val(flat.triangles.as_slice())),
-        ("vertices", size_of_val(flat.vertices.as_slice())),
-        ("BVH nodes", size_of_val(flat.bvh_nodes.as_slice())),
-        ("BVH primitives", size_of_val(flat.bvh_prims.as_slice())),
+        ("triangles", size_of_val(&flat.triangles[..])),
+        ("vertices", size_of_val(&flat.vertices[..])),
+        ("BVH nodes", size_of_val(&flat.bvh_nodes[..])),
+        ("BVH primitives", size_of_val(&flat.bvh_prims[..])),
     ];
     let per_triangle: usize = sizes.iter().map(|(_, b)| b).sum::<usize>() / flat.triangles.len();
     eprintln!("{} triangles: {sizes:?} bytes, {per_triangle} bytes per triangle", flat.triangles.len());
@@ -127,7 +127,7 @@ fn a_buffer_beyond_the_binding_limit_is_an_error_naming_it() {
     .expect("a device with lower limits");
     let tracer = glint_gpu::GpuTracer::new(glint_gpu::GpuContext::from_device(device, queue, &adapter.get_info()));
     let flat = mesh_scene(8, 6, uv_sphere(123, [0.0, 0.1, 0.0], 1.0)).flat();
-    assert!(size_of_val(flat.triangles.as_slice()) > 1 << 20);
+    assert!(size_of_val(&flat.triangles[..]) > 1 << 20);
     let message = tracer.render(&flat, &GpuOptions::default()).expect_err("does not fit").to_string();
     assert!(
         message.contains("the triangle buffer") && message.contains("max_storage_buffer_binding_size"),

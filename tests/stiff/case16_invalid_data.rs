@@ -9,6 +9,7 @@
 //! field named.
 
 use std::path::Path;
+use std::sync::Arc;
 
 use glint_core::scene::parse_scene;
 
@@ -141,7 +142,7 @@ fn the_gpu_tracer_refuses_a_non_finite_flat_scene() {
     let tracer = gpu_or_skip!();
     let good = base().sphere([0.0; 3], 1.0, "m").flat();
     let mut bad = good.clone();
-    bad.spheres[0].center_radius[1] = f32::NAN;
+    Arc::make_mut(&mut bad.spheres)[0].center_radius[1] = f32::NAN;
     match tracer.render(&bad, &glint_gpu::GpuOptions::default()) {
         Err(glint_gpu::GpuError::NonFinite { field }) => assert!(field.contains("spheres[0]"), "{field}"),
         other => panic!("a NaN sphere centre reached the GPU: {:?}", other.map(|r| r.status)),

@@ -1,5 +1,7 @@
 //! Turning a validated scene description into the flat layout both tracers read.
 
+use std::sync::Arc;
+
 use glam::DVec3;
 
 use crate::bvh::{self, BvhNode};
@@ -15,36 +17,39 @@ use crate::scene::{
 };
 use crate::texture_table::TextureTable;
 
-/// A scene in the GPU-ready layout, plus the names the UI and reports show.
+/// A scene in the GPU-ready layout, plus the names the UI and reports show. The geometry (the
+/// primitives and the BVH) is shared, not copied, between scenes `rebuild` makes from one
+/// another: a clone costs nothing over a million triangles, and the GPU tracer keeps the
+/// buffers of geometry it has uploaded before (`Arc::ptr_eq`).
 #[derive(Clone, Debug, PartialEq)]
 pub struct FlatScene {
     pub header: SceneHeader,
     pub camera: GpuCamera,
     pub materials: Vec<GpuMaterial>,
     pub lights: Vec<GpuLight>,
-    pub spheres: Vec<GpuSphere>,
-    pub planes: Vec<GpuPlane>,
+    pub spheres: Arc<[GpuSphere]>,
+    pub planes: Arc<[GpuPlane]>,
     /// The triangles of every mesh, in the BVH's leaf order (`bvh::reorder_triangles`).
-    pub triangles: Vec<GpuTriangle>,
+    pub triangles: Arc<[GpuTriangle]>,
     /// Vertex positions of every mesh (xyz, w = 1), indexed by the triangles.
-    pub vertices: Vec<[f32; 4]>,
+    pub vertices: Arc<[[f32; 4]]>,
     /// Unit vertex normals beside `vertices` (w = 0; zero for a mesh without normals), or
     /// empty when no mesh has them.
-    pub normals: Vec<[f32; 4]>,
+    pub normals: Arc<[[f32; 4]]>,
     /// Texture coordinates beside `vertices` (zero for a mesh without them), or empty when no
     /// mesh has them.
-    pub uvs: Vec<[f32; 2]>,
-    pub meshes: Vec<GpuMesh>,
+    pub uvs: Arc<[[f32; 2]]>,
+    pub meshes: Arc<[GpuMesh]>,
     /// The texture table the materials' texture indices point into.
     pub textures: Vec<GpuTexture>,
     /// Every texture's texels, linear RGBA, row by row from the top (`GpuTexture::offset`).
     pub texels: Vec<[f32; 4]>,
     /// The BVH over spheres and triangles (`bvh::build`; root first, empty without them).
-    pub bvh_nodes: Vec<BvhNode>,
+    pub bvh_nodes: Arc<[BvhNode]>,
     /// The primitive references its leaves point into (`bvh::PrimRef`).
-    pub bvh_prims: Vec<u32>,
+    pub bvh_prims: Arc<[u32]>,
     /// Object names by object id (scene order; unnamed objects get `kind #index`).
-    pub object_names: Vec<String>,
+    pub object_names: Arc<[String]>,
     pub material_names: Vec<String>,
 }
 
@@ -69,6 +74,67 @@ struct Primitives {
     object_names: Vec<String>,
 }
 
+/// The geometry of a flat scene by identity: two are equal when they share the same data (a
+/// scene and the scenes `rebuild` made from it), never by comparing a million triangles. It
+/// holds the data alive, so an address cannot be reused by other data while it is kept.
+#[derive(Clone, Debug)]
+pub struct GeometryId {
+    spheres: Arc<[GpuSphere]>,
+    planes: Arc<[GpuPlane]>,
+    triangles: Arc<[GpuTriangle]>,
+    vertices: Arc<[[f32; 4]]>,
+    normals: Arc<[[f32; 4]]>,
+    uvs: Arc<[[f32; 2]]>,
+    meshes: Arc<[GpuMesh]>,
+    bvh_nodes: Arc<[BvhNode]>,
+    bvh_prims: Arc<[u32]>,
+}
+
+impl PartialEq for GeometryId {
+    fn eq(&self, o: &Self) -> bool {
+        Arc::ptr_eq(&self.spheres, &o.spheres)
+            && Arc::ptr_eq(&self.planes, &o.planes)
+            && Arc::ptr_eq(&self.triangles, &o.triangles)
+            && Arc::ptr_eq(&self.vertices, &o.vertices)
+            && Arc::ptr_eq(&self.normals, &o.normals)
+            && Arc::ptr_eq(&self.uvs, &o.uvs)
+            && Arc::ptr_eq(&self.meshes, &o.meshes)
+            && Arc::ptr_eq(&self.bvh_nodes, &o.bvh_nodes)
+            && Arc::ptr_eq(&self.bvh_prims, &o.bvh_prims)
+    }
+}
+
+/// The shared part of a flat scene: the primitives, their object names and the BVH.
+struct Geometry {
+    spheres: Arc<[GpuSphere]>,
+    planes: Arc<[GpuPlane]>,
+    triangles: Arc<[GpuTriangle]>,
+    vertices: Arc<[[f32; 4]]>,
+    normals: Arc<[[f32; 4]]>,
+    uvs: Arc<[[f32; 2]]>,
+    meshes: Arc<[GpuMesh]>,
+    object_names: Arc<[String]>,
+    bvh_nodes: Arc<[BvhNode]>,
+    bvh_prims: Arc<[u32]>,
+}
+
+impl Geometry {
+    fn new(p: Primitives, bvh: bvh::Bvh) -> Self {
+        Self {
+            spheres: p.spheres.into(),
+            planes: p.planes.into(),
+            triangles: p.triangles.into(),
+            vertices: p.vertices.into(),
+            normals: p.normals.into(),
+            uvs: p.uvs.into(),
+            meshes: p.meshes.into(),
+            object_names: p.object_names.into(),
+            bvh_nodes: bvh.nodes.into(),
+            bvh_prims: bvh.prims.into(),
+        }
+    }
+}
+
 impl FlatScene {
     /// Builds the flat layout. The scene must have passed validation (`scene::validate`);
     /// settings are taken from `settings`, not from `desc.render`, so callers can override them.
@@ -84,7 +150,7 @@ impl FlatScene {
             vertices: &primitives.vertices,
         });
         bvh::reorder_triangles(&mut bvh, &mut primitives.triangles);
-        Self::assemble(desc, settings, material_names, primitives, bvh)
+        Self::assemble(desc, settings, material_names, Geometry::new(primitives, bvh))
     }
 
     /// `build` for a description whose objects and material names are those this scene was
@@ -92,7 +158,7 @@ impl FlatScene {
     /// primitives and the BVH are copied instead of rebuilt — the viewer's case while the
     /// camera or a light is dragged over a million triangles. Identical to `build`.
     pub fn rebuild(&self, desc: &SceneDesc, settings: &RenderSettings) -> Self {
-        let primitives = Primitives {
+        let geometry = Geometry {
             spheres: self.spheres.clone(),
             planes: self.planes.clone(),
             triangles: self.triangles.clone(),
@@ -101,39 +167,49 @@ impl FlatScene {
             uvs: self.uvs.clone(),
             meshes: self.meshes.clone(),
             object_names: self.object_names.clone(),
+            bvh_nodes: self.bvh_nodes.clone(),
+            bvh_prims: self.bvh_prims.clone(),
         };
-        let bvh = bvh::Bvh { nodes: self.bvh_nodes.clone(), prims: self.bvh_prims.clone() };
-        Self::assemble(desc, settings, self.material_names.clone(), primitives, bvh)
+        Self::assemble(desc, settings, self.material_names.clone(), geometry)
+    }
+
+    /// The identity of this scene's geometry (see `GeometryId`).
+    pub fn geometry_id(&self) -> GeometryId {
+        GeometryId {
+            spheres: self.spheres.clone(),
+            planes: self.planes.clone(),
+            triangles: self.triangles.clone(),
+            vertices: self.vertices.clone(),
+            normals: self.normals.clone(),
+            uvs: self.uvs.clone(),
+            meshes: self.meshes.clone(),
+            bvh_nodes: self.bvh_nodes.clone(),
+            bvh_prims: self.bvh_prims.clone(),
+        }
     }
 
     /// Everything but the geometry, around it.
-    fn assemble(
-        desc: &SceneDesc,
-        settings: &RenderSettings,
-        material_names: Vec<String>,
-        primitives: Primitives,
-        bvh: bvh::Bvh,
-    ) -> Self {
+    fn assemble(desc: &SceneDesc, settings: &RenderSettings, material_names: Vec<String>, geometry: Geometry) -> Self {
         let mut table = TextureTable::default();
         let materials = desc.materials.values().map(|m| flat_material(m, &mut table)).collect();
         let lights = desc.traced_lights().map(flat_light).collect();
         let mut flat = Self {
-            header: flat_header(desc, settings, &primitives, material_names.len()),
+            header: flat_header(desc, settings, &geometry, material_names.len()),
             camera: Self::camera_for(desc, settings),
             materials,
             lights,
-            spheres: primitives.spheres,
-            planes: primitives.planes,
-            triangles: primitives.triangles,
-            vertices: primitives.vertices,
-            normals: primitives.normals,
-            uvs: primitives.uvs,
-            meshes: primitives.meshes,
+            spheres: geometry.spheres,
+            planes: geometry.planes,
+            triangles: geometry.triangles,
+            vertices: geometry.vertices,
+            normals: geometry.normals,
+            uvs: geometry.uvs,
+            meshes: geometry.meshes,
             textures: table.textures,
             texels: table.texels,
-            bvh_nodes: bvh.nodes,
-            bvh_prims: bvh.prims,
-            object_names: primitives.object_names,
+            bvh_nodes: geometry.bvh_nodes,
+            bvh_prims: geometry.bvh_prims,
+            object_names: geometry.object_names,
             material_names,
         };
         let light_tags: Vec<LightTags> = desc
@@ -152,7 +228,7 @@ impl FlatScene {
         for m in self.spheres.iter().map(|s| s.material).chain(self.planes.iter().map(|p| p.material)) {
             used[m as usize] = true;
         }
-        for m in &self.meshes {
+        for m in self.meshes.iter() {
             used[m.material as usize] = true;
         }
         let nonzero = |c: [f32; 4]| c[..3].iter().any(|&v| v != 0.0);
@@ -258,7 +334,7 @@ impl FlatScene {
             LightTags::decode(l)?;
         }
         let (vertices, meshes) = (self.vertices.len(), self.meshes.len());
-        for t in &self.triangles {
+        for t in self.triangles.iter() {
             for v in [t.va, t.vb, t.vc] {
                 if v as usize >= vertices {
                     return Err(UnknownTag { what: "triangle vertex index", value: v });
@@ -327,16 +403,17 @@ impl FlatScene {
             ]
             .concat()
         });
-        let s = self.spheres.iter().map(|s| s.center_radius.to_vec());
-        let p = self.planes.iter().map(|p| p.normal_offset.to_vec());
-        let v = self.vertices.iter().map(|v| v.to_vec());
-        let n = self.normals.iter().map(|n| n.to_vec());
-        let uv = self.uvs.iter().map(|uv| uv.to_vec());
+        let s = self.spheres.iter().map(|s| s.center_radius);
+        let p = self.planes.iter().map(|p| p.normal_offset);
+        let v = self.vertices.iter();
+        let n = self.normals.iter();
+        let uv = self.uvs.iter();
         let tx = self.textures.iter().map(|t| [t.transform_u, t.transform_v].concat());
-        let texels = self.texels.iter().map(|t| t.to_vec());
-        fn first_bad(kind: &str, items: impl Iterator<Item = Vec<f32>>) -> Option<String> {
+        let texels = self.texels.iter();
+        // Generic over the item so that the large arrays are scanned in place, not copied.
+        fn first_bad<V: AsRef<[f32]>>(kind: &str, items: impl Iterator<Item = V>) -> Option<String> {
             let mut items = items;
-            items.position(|v| v.iter().any(|x| !x.is_finite())).map(|i| format!("{kind}[{i}]"))
+            items.position(|v| v.as_ref().iter().any(|x| !x.is_finite())).map(|i| format!("{kind}[{i}]"))
         }
         first_bad("materials", m)
             .or_else(|| first_bad("lights", l))
@@ -535,7 +612,7 @@ fn mesh_triangles(mesh: &MeshDesc, material: u32, object_id: u32, out: &mut Prim
 
 /// The header: image and sampling settings, counts, and the world's ambient and background.
 /// (`features` is filled in last, from the finished layout.)
-fn flat_header(desc: &SceneDesc, settings: &RenderSettings, p: &Primitives, material_count: usize) -> SceneHeader {
+fn flat_header(desc: &SceneDesc, settings: &RenderSettings, p: &Geometry, material_count: usize) -> SceneHeader {
     SceneHeader {
         width: settings.width,
         height: settings.height,

@@ -262,7 +262,7 @@ mod tests {
         assert_eq!(Accel::Bvh.traversal(&flat), Traversal::Bvh);
         assert_eq!(Accel::None.traversal(&flat), Traversal::BruteForce);
         let sphere = flat.spheres[0];
-        flat.spheres.resize(AUTO_MIN_PRIMITIVES - flat.triangles.len(), sphere);
+        flat.spheres = vec![sphere; AUTO_MIN_PRIMITIVES - flat.triangles.len()].into();
         assert_eq!(Accel::Auto.traversal(&flat), Traversal::Bvh);
         assert_eq!(Accel::None.traversal(&flat), Traversal::BruteForce);
     }

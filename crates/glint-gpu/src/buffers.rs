@@ -1,8 +1,12 @@
 //! Uploading a flat scene: the checks that it fits the device, its GPU buffers, and the bind
 //! group a pipeline variant needs from them.
 
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicU64, Ordering};
+
 use bytemuck::Pod;
 use glint_core::FlatScene;
+use glint_core::flat::GeometryId;
 use glint_core::layout::{ProbeRecord, STAT_WORDS, TileParams};
 use wgpu::util::DeviceExt;
 
@@ -11,6 +15,70 @@ use crate::context::GpuContext;
 use crate::error::GpuError;
 use crate::pipeline::{TracerPipeline, with_error_scopes};
 use crate::shaders::GPU_PRIMITIVE_LIMIT;
+
+/// A scene's geometry on the GPU (primitives and BVH), for the geometry `id` names. The tracer
+/// keeps the last one and the next upload of the same geometry reuses it: the viewer's scenes
+/// after a camera or light edit share their geometry (`FlatScene::rebuild`), and uploading a
+/// million triangles again for every preview cost more than tracing the preview.
+#[derive(Clone, Debug)]
+pub struct GeometryBuffers {
+    id: GeometryId,
+    spheres: wgpu::Buffer,
+    planes: wgpu::Buffer,
+    triangles: wgpu::Buffer,
+    bvh_nodes: wgpu::Buffer,
+    bvh_prims: wgpu::Buffer,
+    vertices: wgpu::Buffer,
+    normals: wgpu::Buffer,
+    meshes: wgpu::Buffer,
+    uvs: wgpu::Buffer,
+}
+
+/// The last geometry uploaded, shared by the tracer's renders and probes.
+#[derive(Debug, Default)]
+pub struct GeometryCache {
+    last: Mutex<Option<GeometryBuffers>>,
+    /// Geometries uploaded so far (what a reuse saves is seen in it).
+    uploads: AtomicU64,
+}
+
+impl GeometryCache {
+    pub fn uploads(&self) -> u64 {
+        self.uploads.load(Ordering::Relaxed)
+    }
+}
+
+impl GeometryBuffers {
+    fn upload(ctx: &GpuContext, scene: &FlatScene) -> Self {
+        Self {
+            id: scene.geometry_id(),
+            spheres: storage(ctx, "glint spheres", &scene.spheres),
+            planes: storage(ctx, "glint planes", &scene.planes),
+            triangles: storage(ctx, "glint triangles", &scene.triangles),
+            bvh_nodes: storage(ctx, "glint BVH nodes", &scene.bvh_nodes),
+            bvh_prims: storage(ctx, "glint BVH primitives", &scene.bvh_prims),
+            vertices: storage(ctx, "glint vertices", &scene.vertices),
+            normals: storage(ctx, "glint normals", &scene.normals),
+            meshes: storage(ctx, "glint meshes", &scene.meshes),
+            uvs: storage(ctx, "glint texture coordinates", &scene.uvs),
+        }
+    }
+
+    /// The cached buffers when they hold `scene`'s geometry, else a new upload, then cached.
+    fn of(ctx: &GpuContext, scene: &FlatScene, cache: &GeometryCache) -> Self {
+        let mut cached = cache.last.lock().unwrap_or_else(|e| e.into_inner());
+        let id = scene.geometry_id();
+        if let Some(g) = cached.as_ref().filter(|g| g.id == id) {
+            return g.clone();
+        }
+        // Dropped first: two large geometries need not be on the GPU at once.
+        *cached = None;
+        let g = Self::upload(ctx, scene);
+        cache.uploads.fetch_add(1, Ordering::Relaxed);
+        *cached = Some(g.clone());
+        g
+    }
+}
 
 /// The scene's buffers on the GPU.
 #[derive(Debug)]
@@ -21,15 +89,7 @@ pub struct SceneBuffers {
     pub(crate) tile: wgpu::Buffer,
     materials: wgpu::Buffer,
     lights: wgpu::Buffer,
-    spheres: wgpu::Buffer,
-    planes: wgpu::Buffer,
-    triangles: wgpu::Buffer,
-    bvh_nodes: wgpu::Buffer,
-    bvh_prims: wgpu::Buffer,
-    vertices: wgpu::Buffer,
-    normals: wgpu::Buffer,
-    meshes: wgpu::Buffer,
-    uvs: wgpu::Buffer,
+    geometry: GeometryBuffers,
     texels: wgpu::Buffer,
     textures: wgpu::Buffer,
     pub output: wgpu::Buffer,
@@ -90,13 +150,13 @@ fn check_limits(ctx: &GpuContext, scene: &FlatScene, bvh: bool) -> Result<u64, G
         Ok(())
     };
     check(&format!("the {}x{} output image", h.width, h.height), output_size)?;
-    check("the triangle buffer", size_of_val(scene.triangles.as_slice()) as u64)?;
-    check("the vertex buffer", size_of_val(scene.vertices.as_slice()) as u64)?;
-    check("the normal buffer", size_of_val(scene.normals.as_slice()) as u64)?;
-    check("the sphere buffer", size_of_val(scene.spheres.as_slice()) as u64)?;
-    check("the BVH node buffer", size_of_val(scene.bvh_nodes.as_slice()) as u64)?;
-    check("the BVH primitive buffer", size_of_val(scene.bvh_prims.as_slice()) as u64)?;
-    check("the texture coordinate buffer", size_of_val(scene.uvs.as_slice()) as u64)?;
+    check("the triangle buffer", size_of_val(&scene.triangles[..]) as u64)?;
+    check("the vertex buffer", size_of_val(&scene.vertices[..]) as u64)?;
+    check("the normal buffer", size_of_val(&scene.normals[..]) as u64)?;
+    check("the sphere buffer", size_of_val(&scene.spheres[..]) as u64)?;
+    check("the BVH node buffer", size_of_val(&scene.bvh_nodes[..]) as u64)?;
+    check("the BVH primitive buffer", size_of_val(&scene.bvh_prims[..]) as u64)?;
+    check("the texture coordinate buffer", size_of_val(&scene.uvs[..]) as u64)?;
     check("the texel buffer", size_of_val(scene.texels.as_slice()) as u64)?;
     check("the texture table", size_of_val(scene.textures.as_slice()) as u64)?;
     Ok(output_size)
@@ -104,8 +164,9 @@ fn check_limits(ctx: &GpuContext, scene: &FlatScene, bvh: bool) -> Result<u64, G
 
 impl SceneBuffers {
     /// Checks the scene (every float finite) and the device limits, for a shader that walks
-    /// the BVH (`bvh`) or every primitive, then uploads it.
-    pub fn upload(ctx: &GpuContext, scene: &FlatScene, bvh: bool) -> Result<Self, GpuError> {
+    /// the BVH (`bvh`) or every primitive, then uploads it; its geometry only if `cache` does
+    /// not hold it already.
+    pub fn upload(ctx: &GpuContext, scene: &FlatScene, bvh: bool, cache: &GeometryCache) -> Result<Self, GpuError> {
         let output_size = check_limits(ctx, scene, bvh)?;
         let h = &scene.header;
         with_error_scopes(ctx, || Self {
@@ -114,15 +175,7 @@ impl SceneBuffers {
             tile: uniform(ctx, "glint tile", &TileParams::pixel(0, 0)),
             materials: storage(ctx, "glint materials", &scene.materials),
             lights: storage(ctx, "glint lights", &scene.lights),
-            spheres: storage(ctx, "glint spheres", &scene.spheres),
-            planes: storage(ctx, "glint planes", &scene.planes),
-            triangles: storage(ctx, "glint triangles", &scene.triangles),
-            bvh_nodes: storage(ctx, "glint BVH nodes", &scene.bvh_nodes),
-            bvh_prims: storage(ctx, "glint BVH primitives", &scene.bvh_prims),
-            vertices: storage(ctx, "glint vertices", &scene.vertices),
-            normals: storage(ctx, "glint normals", &scene.normals),
-            meshes: storage(ctx, "glint meshes", &scene.meshes),
-            uvs: storage(ctx, "glint texture coordinates", &scene.uvs),
+            geometry: GeometryBuffers::of(ctx, scene, cache),
             texels: storage(ctx, "glint texels", &scene.texels),
             textures: storage(ctx, "glint textures", &scene.textures),
             output: ctx.device.create_buffer(&wgpu::BufferDescriptor {
@@ -156,18 +209,18 @@ impl SceneBuffers {
             Binding::Tile => &self.tile,
             Binding::Materials => &self.materials,
             Binding::Lights => &self.lights,
-            Binding::Spheres => &self.spheres,
-            Binding::Planes => &self.planes,
-            Binding::Triangles => &self.triangles,
+            Binding::Spheres => &self.geometry.spheres,
+            Binding::Planes => &self.geometry.planes,
+            Binding::Triangles => &self.geometry.triangles,
             Binding::Output => &self.output,
             Binding::Stats => &self.stats,
             Binding::Probe => &self.probe,
-            Binding::BvhNodes => &self.bvh_nodes,
-            Binding::BvhPrims => &self.bvh_prims,
-            Binding::Vertices => &self.vertices,
-            Binding::Normals => &self.normals,
-            Binding::Meshes => &self.meshes,
-            Binding::Uvs => &self.uvs,
+            Binding::BvhNodes => &self.geometry.bvh_nodes,
+            Binding::BvhPrims => &self.geometry.bvh_prims,
+            Binding::Vertices => &self.geometry.vertices,
+            Binding::Normals => &self.geometry.normals,
+            Binding::Meshes => &self.geometry.meshes,
+            Binding::Uvs => &self.geometry.uvs,
             Binding::Texels => &self.texels,
             Binding::Textures => &self.textures,
             Binding::RaysIn | Binding::HitsOut => return None,

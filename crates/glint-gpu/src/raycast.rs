@@ -10,7 +10,7 @@ use glint_core::rays::{HitRecord, RayRecord};
 use wgpu::util::DeviceExt;
 
 use crate::binding::Binding;
-use crate::buffers::{SceneBuffers, ZERO_STATS};
+use crate::buffers::{GeometryCache, SceneBuffers, ZERO_STATS};
 use crate::context::GpuContext;
 use crate::error::GpuError;
 use crate::pipeline::{TracerPipeline, create_entry_pipeline, with_error_scopes};
@@ -46,7 +46,8 @@ impl RayCaster {
     /// Compiles the kernel for `scene` and uploads the scene (its BVH included).
     pub fn new(ctx: &GpuContext, scene: &FlatScene) -> Result<Self, GpuError> {
         let pipeline = create_entry_pipeline(ctx, raycast_key(scene), RAYCAST_WGSL, "ray cast")?;
-        let scene = SceneBuffers::upload(ctx, scene, true)?;
+        // A cache of its own: the kernel runs on one scene.
+        let scene = SceneBuffers::upload(ctx, scene, true, &GeometryCache::default())?;
         Ok(Self { pipeline, scene })
     }
 

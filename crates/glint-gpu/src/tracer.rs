@@ -10,7 +10,7 @@ use glint_core::cpu::RayCounts;
 use glint_core::layout::ProbeRecord;
 use glint_core::{Accel, FlatScene};
 
-use crate::buffers::SceneBuffers;
+use crate::buffers::{GeometryCache, SceneBuffers};
 use crate::context::GpuContext;
 use crate::dispatch::{DEFAULT_TILE, DispatchControl, check_tile};
 use crate::error::GpuError;
@@ -58,6 +58,7 @@ pub struct GpuRender {
 pub struct GpuTracer {
     ctx: GpuContext,
     cache: Mutex<HashMap<ShaderKey, Arc<TracerPipeline>>>,
+    geometry: GeometryCache,
 }
 
 /// Waits until the GPU has finished all submitted work.
@@ -68,11 +69,17 @@ fn wait_idle(ctx: &GpuContext) -> Result<(), GpuError> {
 
 impl GpuTracer {
     pub fn new(ctx: GpuContext) -> Self {
-        Self { ctx, cache: Mutex::new(HashMap::new()) }
+        Self { ctx, cache: Mutex::new(HashMap::new()), geometry: GeometryCache::default() }
     }
 
     pub fn context(&self) -> &GpuContext {
         &self.ctx
+    }
+
+    /// How many scene geometries this tracer has uploaded: a scene sharing the last one's
+    /// geometry (`FlatScene::rebuild`) reuses its buffers.
+    pub fn geometry_uploads(&self) -> u64 {
+        self.geometry.uploads()
     }
 
     /// The pipeline for `key`, from the cache or newly created (then with its creation time).
@@ -101,7 +108,7 @@ impl GpuTracer {
             .check_storage_limit(self.ctx.limits.max_storage_buffers_per_shader_stage)?;
         let (pipeline, mut pipeline_time) = self.pipeline(key)?;
         let upload_start = Instant::now();
-        let buffers = SceneBuffers::upload(&self.ctx, scene, key.bvh)?;
+        let buffers = SceneBuffers::upload(&self.ctx, scene, key.bvh, &self.geometry)?;
         let bind_group = with_error_scopes(&self.ctx, || buffers.bind_group(&self.ctx, &pipeline))??;
         let upload_time = upload_start.elapsed();
         if !pipeline_time.is_zero() {
@@ -124,7 +131,7 @@ impl GpuTracer {
             .check_storage_limit(self.ctx.limits.max_storage_buffers_per_shader_stage)?;
         let (pipeline, _) = self.pipeline(key)?;
         // The scene's own spp: sample 0 is then jittered in its stratum exactly as the CPU's.
-        let buffers = SceneBuffers::upload(&self.ctx, scene, key.bvh)?;
+        let buffers = SceneBuffers::upload(&self.ctx, scene, key.bvh, &self.geometry)?;
         let bind_group = with_error_scopes(&self.ctx, || buffers.bind_group(&self.ctx, &pipeline))??;
         with_error_scopes(&self.ctx, || buffers.dispatch_probe(&self.ctx, &pipeline, &bind_group, x, y))?;
         let bytes = read_buffer(&self.ctx, &buffers.probe)?;
