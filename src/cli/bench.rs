@@ -165,7 +165,7 @@ fn rays(args: &RaysArgs) -> anyhow::Result<()> {
     }
     // The BVH part of FlatScene::build, on the primitives it flattened.
     let (built, build_timing) = measure(args.runs, || Ok(pool.install(|| timed(|| bvh::build(&flat.bounded())))))?;
-    if *built.nodes != *flat.bvh_nodes || *built.prims != *flat.bvh_prims {
+    if built.nodes[..] != flat.bvh_nodes[..] || *built.prims != *flat.bvh_prims {
         bail!("the timed BVH build differs from the one FlatScene::build made; the build is not deterministic");
     }
     let primitives = flat.spheres.len() + flat.triangles.len();

@@ -6,6 +6,8 @@
 //! a leaf's triangles are neighbours in memory. Boxes are f32, rounded outward, so they
 //! contain the f32-stored primitives exactly. Traversal is in `cpu::bvh`.
 
+use std::sync::Arc;
+
 use bytemuck::{Pod, Zeroable};
 
 use crate::layout::{GpuSphere, GpuTriangle};
@@ -23,7 +25,7 @@ pub struct Bounded<'a> {
 /// count`), else an interior node whose children are `left_first` and `left_first + 1`.
 ///
 /// Aligned to its size, and stored with an unused node after the root so that every pair of
-/// siblings starts at an even index: a pair is then one 64-byte cache line.
+/// siblings starts at an even index: in `BvhNodes` a pair is then one 64-byte cache line.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 #[repr(C, align(32))]
 pub struct BvhNode {
@@ -34,6 +36,41 @@ pub struct BvhNode {
 }
 
 const _: () = assert!(size_of::<BvhNode>() == 32);
+
+/// Two nodes, aligned to a 64-byte cache line: the storage unit of `BvhNodes`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+#[repr(C, align(64))]
+pub struct NodePair([BvhNode; 2]);
+
+/// A flat scene's node array, shared between the scenes `FlatScene::rebuild` makes, and stored
+/// in cache-line-aligned pairs, so that the two children a traversal step tests are one line
+/// to fetch (an `Arc<[BvhNode]>`'s data sits 32 bytes into its allocation, which put every
+/// sibling pair across two lines). Reads as `[BvhNode]`.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct BvhNodes {
+    pairs: Arc<[NodePair]>,
+    len: usize,
+}
+
+impl BvhNodes {
+    pub fn new(nodes: &[BvhNode]) -> Self {
+        let pairs = nodes.chunks(2).map(|c| NodePair([c[0], c.get(1).copied().unwrap_or_default()])).collect();
+        Self { pairs, len: nodes.len() }
+    }
+
+    /// Whether both are the same array (not merely equal nodes).
+    pub fn ptr_eq(&self, other: &Self) -> bool {
+        Arc::ptr_eq(&self.pairs, &other.pairs)
+    }
+}
+
+impl std::ops::Deref for BvhNodes {
+    type Target = [BvhNode];
+
+    fn deref(&self) -> &[BvhNode] {
+        &bytemuck::cast_slice(&self.pairs)[..self.len]
+    }
+}
 
 /// The top bit of a primitive reference: set for a triangle, clear for a sphere.
 pub const PRIM_REF_TRIANGLE: u32 = 1 << 31;
@@ -418,6 +455,17 @@ mod tests {
         assert_eq!(size_of::<BvhNode>(), 32);
         let n = BvhNode { min: [1.0, 2.0, 3.0], left_first: 4, max: [5.0, 6.0, 7.0], count: 2 };
         assert_eq!(bytemuck::bytes_of(&n).len(), 32);
+    }
+
+    #[test]
+    fn stored_nodes_read_back_and_every_sibling_pair_is_one_cache_line() {
+        for count in [1, 2, 7, 1000] {
+            let nodes: Vec<BvhNode> = (0..count).map(|i| BvhNode { left_first: i, ..BvhNode::default() }).collect();
+            let stored = BvhNodes::new(&nodes);
+            assert_eq!(stored[..], nodes[..]);
+            assert_eq!(stored.as_ptr() as usize % 64, 0, "{count} nodes: pairs straddle cache lines");
+            assert!(stored.ptr_eq(&stored.clone()) && !stored.ptr_eq(&BvhNodes::new(&nodes)));
+        }
     }
 
     #[test]

@@ -4,7 +4,7 @@ use std::sync::Arc;
 
 use glam::DVec3;
 
-use crate::bvh::{self, BvhNode};
+use crate::bvh::{self, BvhNodes};
 use crate::cpu::LightTags;
 
 use crate::layout::{
@@ -45,7 +45,7 @@ pub struct FlatScene {
     /// Every texture's texels, linear RGBA, row by row from the top (`GpuTexture::offset`).
     pub texels: Vec<[f32; 4]>,
     /// The BVH over spheres and triangles (`bvh::build`; root first, empty without them).
-    pub bvh_nodes: Arc<[BvhNode]>,
+    pub bvh_nodes: BvhNodes,
     /// The primitive references its leaves point into (`bvh::PrimRef`).
     pub bvh_prims: Arc<[u32]>,
     /// Object names by object id (scene order; unnamed objects get `kind #index`).
@@ -86,7 +86,7 @@ pub struct GeometryId {
     normals: Arc<[[f32; 4]]>,
     uvs: Arc<[[f32; 2]]>,
     meshes: Arc<[GpuMesh]>,
-    bvh_nodes: Arc<[BvhNode]>,
+    bvh_nodes: BvhNodes,
     bvh_prims: Arc<[u32]>,
 }
 
@@ -99,7 +99,7 @@ impl PartialEq for GeometryId {
             && Arc::ptr_eq(&self.normals, &o.normals)
             && Arc::ptr_eq(&self.uvs, &o.uvs)
             && Arc::ptr_eq(&self.meshes, &o.meshes)
-            && Arc::ptr_eq(&self.bvh_nodes, &o.bvh_nodes)
+            && self.bvh_nodes.ptr_eq(&o.bvh_nodes)
             && Arc::ptr_eq(&self.bvh_prims, &o.bvh_prims)
     }
 }
@@ -114,7 +114,7 @@ struct Geometry {
     uvs: Arc<[[f32; 2]]>,
     meshes: Arc<[GpuMesh]>,
     object_names: Arc<[String]>,
-    bvh_nodes: Arc<[BvhNode]>,
+    bvh_nodes: BvhNodes,
     bvh_prims: Arc<[u32]>,
 }
 
@@ -129,7 +129,7 @@ impl Geometry {
             uvs: p.uvs.into(),
             meshes: p.meshes.into(),
             object_names: p.object_names.into(),
-            bvh_nodes: bvh.nodes.into(),
+            bvh_nodes: BvhNodes::new(&bvh.nodes),
             bvh_prims: bvh.prims.into(),
         }
     }
