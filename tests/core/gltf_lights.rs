@@ -238,6 +238,10 @@ fn a_model_objects_own_lights_shine_when_asked_placed_and_scaled_by_its_exposure
     // 1/d² at d = 2 straight above; glTF lights have no ambient term.
     let want = 0.125 * FLOOR_KA * DVec3::ONE + 0.25 * dv(I_D) * dv(FLOOR_KD);
     assert_rel(lit, want, REL, "the model's light on the floor");
+    // A bright imported light is named where an overflow error lists the brightest sources.
+    let bright = load(&scene("lights = true\nexposure = 1000"));
+    let causes = glint_core::scene::overflow_causes(&bright, 5);
+    assert!(causes.contains("the brightest sources: objects[1].lights[0].specular = 8000"), "{causes}");
     // Saved, the reference keeps the choice and the lights stay in the file, not the scene.
     let text = glint_core::scene::to_toml(&on).unwrap();
     assert!(text.contains("lights = true") && text.contains("exposure = 0.25"), "{text}");

@@ -5,7 +5,8 @@
 //! every bounce, g^depth in all. The message names such materials first, then the brightest
 //! sources.
 
-use super::desc::SceneDesc;
+use super::desc::{ObjectDesc, SceneDesc};
+use super::light::LightDesc;
 use super::number::format_number;
 
 /// The largest value f32 holds; radiance beyond it is stored as +inf.
@@ -50,13 +51,10 @@ pub fn overflow_causes(desc: &SceneDesc, max_depth: u32) -> String {
         .iter()
         .map(|(name, m)| (m.emission.max_channel(), format!("materials.{name}.emission")))
         .max_by(|a, b| a.0.total_cmp(&b.0));
-    let light = desc
-        .lights
-        .iter()
-        .enumerate()
-        .flat_map(|(i, l)| {
+    let light = named_traced_lights(desc)
+        .flat_map(|(name, l)| {
             [("diffuse", l.diffuse), ("specular", l.specular), ("ambient", l.ambient)]
-                .map(|(field, v)| (v.max_channel(), format!("lights[{i}].{field}")))
+                .map(|(field, v)| (v.max_channel(), format!("{name}.{field}")))
         })
         .max_by(|a, b| a.0.total_cmp(&b.0));
     let sources: Vec<String> = [emission, light]
@@ -77,6 +75,21 @@ pub fn overflow_causes(desc: &SceneDesc, max_depth: u32) -> String {
         causes.push("no material amplifies light and no source is brighter than 1".into());
     }
     format!("{}; {remedy}", causes.join("; "))
+}
+
+/// Every light the tracers see (`SceneDesc::traced_lights`, in its order) with the name a user
+/// finds it by: `lights[i]` in the scene file, `objects[k].lights[j]` for the j-th light a
+/// model object imported (after its exposure).
+fn named_traced_lights(desc: &SceneDesc) -> impl Iterator<Item = (String, &LightDesc)> {
+    let own = desc.lights.iter().enumerate().map(|(i, l)| (format!("lights[{i}]"), l));
+    let imported = desc.objects.iter().enumerate().flat_map(|(k, o)| {
+        let lights = match o {
+            ObjectDesc::Model(m) if m.lights => m.loaded.as_deref().map_or(&[][..], |l| l.lights.as_slice()),
+            ObjectDesc::Model(_) | ObjectDesc::Sphere(_) | ObjectDesc::Plane(_) | ObjectDesc::Mesh(_) => &[][..],
+        };
+        lights.iter().enumerate().map(move |(j, l)| (format!("objects[{k}].lights[{j}]"), l))
+    });
+    own.chain(imported)
 }
 
 #[cfg(test)]
