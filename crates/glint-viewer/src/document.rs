@@ -1,7 +1,7 @@
 //! The scene being edited: its description, where it came from, and a revision number that
 //! every edit bumps (renders are keyed by it, so a stale result is never shown as current).
 
-use std::cell::RefCell;
+use std::cell::{Cell, RefCell};
 use std::path::{Path, PathBuf};
 
 use glint_core::FlatScene;
@@ -39,6 +39,9 @@ pub struct Document {
     /// material names stay the same (a camera, light or material-value edit) its primitives and BVH
     /// are reused instead of rebuilt (`FlatScene::rebuild`).
     geometry: RefCell<Option<BuiltGeometry>>,
+    /// The revision `geometry` was last found to be built from the description at (`edited`
+    /// compares the objects once per edit; `flat` then need not compare them again).
+    geometry_checked: Cell<Option<u64>>,
 }
 
 #[derive(Clone, Debug)]
@@ -71,6 +74,7 @@ impl Document {
             issues: Vec::new(),
             light_set_aside: Vec::new(),
             geometry: RefCell::new(None),
+            geometry_checked: Cell::new(None),
         }
     }
 
@@ -97,6 +101,7 @@ impl Document {
             issues: Vec::new(),
             light_set_aside: Vec::new(),
             geometry: RefCell::new(None),
+            geometry_checked: Cell::new(None),
         }
     }
 
@@ -118,7 +123,10 @@ impl Document {
         // Objects and material names as last built: their part of validation stands (a camera
         // drag over a million triangles re-validated every vertex each frame before).
         let report = match geometry.as_ref().filter(|g| g.built_from(&self.desc)) {
-            Some(g) => validate_with_objects(&self.desc, &g.objects_report),
+            Some(g) => {
+                self.geometry_checked.set(Some(self.revision));
+                validate_with_objects(&self.desc, &g.objects_report)
+            }
             None => validate(&self.desc),
         };
         drop(geometry);
@@ -143,9 +151,12 @@ impl Document {
             settings.spp = 1;
         }
         let mut cache = self.geometry.borrow_mut();
-        if let Some(g) = cache.as_ref().filter(|g| g.built_from(&self.desc)) {
+        let checked = self.geometry_checked.get() == Some(self.revision);
+        if let Some(g) = cache.as_ref().filter(|g| checked || g.built_from(&self.desc)) {
+            self.geometry_checked.set(Some(self.revision));
             return Some(g.flat.rebuild(&self.desc, &settings));
         }
+        self.geometry_checked.set(Some(self.revision));
         let flat = FlatScene::build(&self.desc, &settings);
         *cache = Some(BuiltGeometry {
             objects: self.desc.objects.clone(),
