@@ -90,4 +90,4 @@ impl ProbeState {
     }
 }
 
-pub use glint_core::probe_terms::{first_difference, terms};
+pub use glint_core::probe_terms::{Term, first_difference, terms};
