@@ -2,7 +2,7 @@
 // composed module, and the host builds its bind group layout from what remains.
 #define_import_path glint::bindings
 
-#import glint::scene_data::{SceneHeader, GpuCamera, GpuMaterial, GpuLight, GpuSphere, GpuPlane, GpuTriangle, GpuMesh, GpuTexture, TileParams, ProbeRecord, BvhNode}
+#import glint::scene_data::{SceneHeader, GpuCamera, GpuMaterial, GpuLight, GpuSphere, GpuPlane, GpuTriangle, GpuMesh, GpuTexture, TileParams, ProbeRecord, ProbeTree, BvhNode}
 
 @group(0) @binding(0) var<uniform> header: SceneHeader;
 @group(0) @binding(1) var<uniform> camera: GpuCamera;
@@ -33,6 +33,8 @@
 @group(0) @binding(16) var<storage, read> uvs: array<vec2<f32>>;
 @group(0) @binding(17) var<storage, read> texels: array<vec4<f32>>;
 @group(0) @binding(18) var<storage, read> textures: array<GpuTexture>;
+// The pixel probe's ray tree (only in the PROBE variant).
+@group(0) @binding(19) var<storage, read_write> probe_tree: ProbeTree;
 // The ray-cast kernel's buffers (raycast.wgsl, `glint bench rays`; numbered from 20 apart from
 // the tracer's): two vec4<f32> per ray (origin, t_min; direction, t_max), and per ray its hit
 // as (prim, index, bitcast t, 0).

@@ -175,7 +175,7 @@ const PROBE_TIR: u32 = 2u;
 struct ProbeLight {
     f_att: f32,
     spot: f32,
-    pad_a: f32,
+    shadow_ray: u32,
     pad_b: f32,
     visibility: vec4<f32>,
     ambient: vec4<f32>,
@@ -205,6 +205,53 @@ struct ProbeRecord {
     refraction_sum: vec4<f32>,
     total: vec4<f32>,
     lights: array<ProbeLight, MAX_PROBE_LIGHTS>,
+}
+
+const MAX_PROBE_NODES: u32 = 256u;
+const RAY_CAMERA: u32 = 0u;
+const RAY_REFLECTION: u32 = 1u;
+const RAY_REFRACTION: u32 = 2u;
+const RAY_SHADOW: u32 = 3u;
+const NODE_HIT: u32 = 1u;
+const NODE_TIR: u32 = 2u;
+const NODE_CUT_BAILOUT: u32 = 4u;
+const NODE_CUT_DEPTH: u32 = 8u;
+const NO_PARENT: u32 = 0xffffffffu;
+const TREE_OVERFLOW: u32 = 1u;
+const TREE_LIGHTS_TRUNCATED: u32 = 2u;
+
+struct ProbeNode {
+    kind: u32,
+    flags: u32,
+    parent: u32,
+    depth: u32,
+    object_id: u32,
+    material: u32,
+    light: u32,
+    light_count: u32,
+    t: f32,
+    attenuation: f32,
+    pad_a: f32,
+    pad_b: f32,
+    origin: vec4<f32>,
+    dir: vec4<f32>,
+    weight: vec4<f32>,
+    factor: vec4<f32>,
+    point: vec4<f32>,
+    normal: vec4<f32>,
+    emission: vec4<f32>,
+    ambient: vec4<f32>,
+    ka: vec4<f32>,
+    kd: vec4<f32>,
+    lights: array<ProbeLight, MAX_PROBE_LIGHTS>,
+}
+
+struct ProbeTree {
+    node_count: u32,
+    flags: u32,
+    pad_a: u32,
+    pad_b: u32,
+    nodes: array<ProbeNode, MAX_PROBE_NODES>,
 }
 
 // A BVH node (glint_core::bvh::BvhNode): a leaf when count > 0 (primitive references

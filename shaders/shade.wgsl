@@ -250,11 +250,14 @@ fn shade_local(s: Surface, n: vec3<f32>, ng: vec3<f32>, v: vec3<f32>) -> vec3<f3
     let ambient = header.ambient.xyz * c.ka;
     var sum = vec3<f32>(0.0);
     for (var j = 0u; j < header.light_count; j++) {
+#ifdef PROBE
+        let shadow_rays = ray_counts.shadow;
+#endif
         let term = light_term(lights[j], mat, s, n, ng, v, c);
         sum += term.contribution;
 #ifdef PROBE
         if probe_active && j < MAX_PROBE_LIGHTS {
-            probe.lights[j] = ProbeLight(term.f_att, term.spot, 0.0, 0.0, vec4<f32>(term.visibility, 0.0), vec4<f32>(term.ambient, 0.0), vec4<f32>(term.diffuse, 0.0), vec4<f32>(term.specular, 0.0), vec4<f32>(term.contribution, 0.0));
+            probe.lights[j] = ProbeLight(term.f_att, term.spot, u32(ray_counts.shadow != shadow_rays), 0.0, vec4<f32>(term.visibility, 0.0), vec4<f32>(term.ambient, 0.0), vec4<f32>(term.diffuse, 0.0), vec4<f32>(term.specular, 0.0), vec4<f32>(term.contribution, 0.0));
         }
 #endif
     }

@@ -10,6 +10,7 @@ mod gltf_lights;
 mod parity;
 mod probe;
 mod properties;
+mod ray_tree;
 mod raycast;
 mod specialisation;
 mod support;

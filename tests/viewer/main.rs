@@ -14,6 +14,7 @@ mod lights;
 mod materials;
 mod pick_and_probe;
 mod ranges;
+mod ray_tree;
 mod snapshots;
 mod status;
 mod support;

@@ -47,6 +47,21 @@ fn main_layouts_match_their_snapshots() {
     snapshot(&mut h, "viewer_probe");
 }
 
+/// The ray tree of a glass sphere pixel over the GPU image (side panel hidden: the image gets
+/// the window). Also the README's docs/images/ray-tree.png.
+#[test]
+fn the_ray_tree_over_a_glass_sphere_matches_its_snapshot() {
+    let Some(mut h) = viewer("whitted", (800.0, 500.0)) else { return };
+    h.get_by_role_and_label(Role::Button, "GPU").click();
+    h.run_steps(2);
+    let pos = h.state().screen_pos_of_pixel(100, 70).expect("the view is drawn");
+    click(&mut h, pos, Modifiers::COMMAND);
+    settle(&mut h);
+    h.state_mut().layout.show_side_panel = false;
+    h.run_steps(3);
+    snapshot(&mut h, "viewer_ray_tree");
+}
+
 #[test]
 fn the_lights_panel_and_a_spot_gizmo_match_their_snapshot() {
     let Some(mut h) = viewer("whitted", (800.0, 500.0)) else { return };

@@ -479,7 +479,8 @@ pub const PROBE_TIR: u32 = 2;
 pub struct ProbeLight {
     pub f_att: f32,
     pub spot: f32,
-    pub pad_a: f32,
+    /// 1 when a shadow ray was traced towards the light, else 0.
+    pub shadow_ray: u32,
     pub pad_b: f32,
     pub visibility: [f32; 4],
     pub ambient: [f32; 4],
@@ -516,6 +517,83 @@ pub struct ProbeRecord {
     pub refraction_sum: [f32; 4],
     pub total: [f32; 4],
     pub lights: [ProbeLight; MAX_PROBE_LIGHTS as usize],
+}
+
+/// Nodes of the ray tree the GPU probe records (`ProbeTree`); a larger tree sets
+/// `TREE_OVERFLOW` and keeps its first nodes. A depth-5 tree through glass with shadow rays to
+/// three lights and the cut children of the last level has about 250.
+pub const MAX_PROBE_NODES: u32 = 256;
+
+/// `ProbeNode::kind`: the ray kinds of a Whitted tree (`ray_tree::RayKind`).
+pub const RAY_CAMERA: u32 = 0;
+pub const RAY_REFLECTION: u32 = 1;
+pub const RAY_REFRACTION: u32 = 2;
+pub const RAY_SHADOW: u32 = 3;
+
+/// `ProbeNode::flags` bits.
+pub const NODE_HIT: u32 = 1;
+/// A mirror ray that also carries the k_t share (total internal reflection at its parent).
+pub const NODE_TIR: u32 = 2;
+/// Not traced: its path weight fell below the bailout.
+pub const NODE_CUT_BAILOUT: u32 = 4;
+/// Not traced: its parent was at the maximum depth.
+pub const NODE_CUT_DEPTH: u32 = 8;
+/// `ProbeNode::parent` of the camera ray.
+pub const NO_PARENT: u32 = u32::MAX;
+
+/// `ProbeTree::flags` bits.
+/// The tree had more than `MAX_PROBE_NODES` nodes: only the first were recorded.
+pub const TREE_OVERFLOW: u32 = 1;
+/// The scene has more than `MAX_PROBE_LIGHTS` lights: the terms and shadow rays of the
+/// others are missing.
+pub const TREE_LIGHTS_TRUNCATED: u32 = 2;
+
+/// One ray of the tree the GPU probe records, in the CPU's depth-first order (twin of
+/// `ray_tree::RayNode`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct ProbeNode {
+    pub kind: u32,
+    pub flags: u32,
+    pub parent: u32,
+    pub depth: u32,
+    pub object_id: u32,
+    pub material: u32,
+    /// The light a shadow ray goes to.
+    pub light: u32,
+    pub light_count: u32,
+    /// Distance to the hit (to the light for a shadow ray).
+    pub t: f32,
+    /// The world's global attenuation f_att(t) at the hit (1 without it).
+    pub attenuation: f32,
+    pub pad_a: f32,
+    pub pad_b: f32,
+    pub origin: [f32; 4],
+    pub dir: [f32; 4],
+    /// The product of k along the path, this ray's own factor included.
+    pub weight: [f32; 4],
+    /// This ray's own factor: k_r, k_t, k_r + k_t under total internal reflection, V for a
+    /// shadow ray, 1 for the camera ray.
+    pub factor: [f32; 4],
+    pub point: [f32; 4],
+    pub normal: [f32; 4],
+    pub emission: [f32; 4],
+    pub ambient: [f32; 4],
+    pub ka: [f32; 4],
+    pub kd: [f32; 4],
+    pub lights: [ProbeLight; MAX_PROBE_LIGHTS as usize],
+}
+
+/// The GPU probe's ray tree: `node_count` nodes were met (more than were kept when
+/// `TREE_OVERFLOW` is set).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct ProbeTree {
+    pub node_count: u32,
+    pub flags: u32,
+    pub pad_a: u32,
+    pub pad_b: u32,
+    pub nodes: [ProbeNode; MAX_PROBE_NODES as usize],
 }
 
 #[cfg(test)]

@@ -12,6 +12,8 @@ pub mod interrupt;
 pub mod layout;
 pub mod memory;
 pub mod model;
+pub mod probe_terms;
+pub mod ray_tree;
 pub mod rays;
 pub mod render;
 pub mod scene;
@@ -20,7 +22,7 @@ mod texture_table;
 pub use backend::Backend;
 pub use flat::FlatScene;
 pub use image::HdrImage;
-pub use render::{Accel, CpuOptions, CpuRender, RenderControl, pick_object, probe_pixel, render_cpu};
+pub use render::{Accel, CpuOptions, CpuRender, RenderControl, pick_object, probe_pixel, probe_tree, render_cpu};
 
 /// Re-exported so that the GPU tracer and the viewer use the same vector types.
 pub use glam;

@@ -13,6 +13,7 @@ use crate::cpu::{DEFAULT_MAX_RAYS_PER_SAMPLE, RayCounts, TraceContext};
 use crate::flat::FlatScene;
 use crate::image::HdrImage;
 use crate::layout::{UnknownTag, feature};
+use crate::ray_tree::{NoTree, RayTree};
 
 /// Edge of a square tile in pixels.
 pub const TILE: u32 = 16;
@@ -220,8 +221,21 @@ pub fn probe_pixel(scene: &FlatScene, x: u32, y: u32, sample: u32) -> Breakdown 
     let ctx = built_scene_context(scene);
     let mut b = Breakdown::default();
     let mut counts = RayCounts::default();
-    render_sample(&ctx, x, y, sample, &mut counts, Some(&mut b));
+    render_sample(&ctx, x, y, sample, &mut counts, Some(&mut b), &mut NoTree);
     b
+}
+
+/// The whole ray tree of one camera sample of pixel (x, y), as the render traced it: node 0
+/// is the camera ray, its `radiance` the sample's radiance, bit for bit.
+///
+/// # Panics
+/// As `probe_pixel`.
+pub fn probe_tree(scene: &FlatScene, x: u32, y: u32, sample: u32) -> RayTree {
+    let ctx = built_scene_context(scene);
+    let mut tree = RayTree::default();
+    let mut counts = RayCounts::default();
+    render_sample(&ctx, x, y, sample, &mut counts, None, &mut tree);
+    tree
 }
 
 /// The object the camera ray through the centre of pixel (x, y) hits first (`NO_HIT` for

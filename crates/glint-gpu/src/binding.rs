@@ -31,6 +31,8 @@ pub enum Binding {
     Uvs = 16,
     Texels = 17,
     Textures = 18,
+    /// The pixel probe's ray tree (under the PROBE shader def).
+    ProbeTree = 19,
     /// The ray-cast kernel's rays and hits (raycast.wgsl; from 20 on, apart from the tracer's).
     RaysIn = 20,
     HitsOut = 21,
@@ -38,7 +40,7 @@ pub enum Binding {
 
 impl Binding {
     /// Every binding, ascending.
-    pub const ALL: [Self; 21] = [
+    pub const ALL: [Self; 22] = [
         Self::Header,
         Self::Camera,
         Self::Tile,
@@ -58,6 +60,7 @@ impl Binding {
         Self::Uvs,
         Self::Texels,
         Self::Textures,
+        Self::ProbeTree,
         Self::RaysIn,
         Self::HitsOut,
     ];
@@ -93,6 +96,7 @@ impl Binding {
             Self::Uvs => "uvs",
             Self::Texels => "texels",
             Self::Textures => "textures",
+            Self::ProbeTree => "probe_tree",
             Self::RaysIn => "rays_in",
             Self::HitsOut => "hits_out",
         }
@@ -138,8 +142,8 @@ mod tests {
             assert_eq!(Binding::try_from(b.number()), Ok(b));
             assert_eq!(Binding::of_global(GROUP, b.number(), b.wgsl_name()).ok(), Some(b));
         }
-        let unused = Binding::ALL.len() as u32 - Binding::RAYCAST.len() as u32;
-        assert_eq!(Binding::try_from(unused), Err(unused));
+        let past_the_last = Binding::HitsOut.number() + 1;
+        assert_eq!(Binding::try_from(past_the_last), Err(past_the_last));
     }
 
     #[test]

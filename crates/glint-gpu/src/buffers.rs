@@ -7,7 +7,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use bytemuck::Pod;
 use glint_core::FlatScene;
 use glint_core::flat::GeometryId;
-use glint_core::layout::{ProbeRecord, STAT_WORDS, TileParams};
+use glint_core::layout::{ProbeRecord, ProbeTree, STAT_WORDS, TileParams};
 use wgpu::util::DeviceExt;
 
 use crate::binding::Binding;
@@ -95,6 +95,7 @@ pub struct SceneBuffers {
     pub output: wgpu::Buffer,
     pub stats: wgpu::Buffer,
     pub probe: wgpu::Buffer,
+    pub probe_tree: wgpu::Buffer,
     pub width: u32,
     pub height: u32,
     pub spp: u32,
@@ -195,6 +196,12 @@ impl SceneBuffers {
                 usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
                 mapped_at_creation: false,
             }),
+            probe_tree: ctx.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("glint probe tree"),
+                size: size_of::<ProbeTree>() as u64,
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+                mapped_at_creation: false,
+            }),
             width: h.width,
             height: h.height,
             spp: h.spp.max(1),
@@ -215,6 +222,7 @@ impl SceneBuffers {
             Binding::Output => &self.output,
             Binding::Stats => &self.stats,
             Binding::Probe => &self.probe,
+            Binding::ProbeTree => &self.probe_tree,
             Binding::BvhNodes => &self.geometry.bvh_nodes,
             Binding::BvhPrims => &self.geometry.bvh_prims,
             Binding::Vertices => &self.geometry.vertices,

@@ -23,7 +23,7 @@ pub use job::GpuJob;
 pub use present::Presenter;
 pub use readback::JobReadback;
 pub use shaders::{GPU_STACK_LIMIT, LAVAPIPE_LOOP_BUDGET, ShaderKey};
-pub use tracer::{GpuOptions, GpuRender, GpuTracer};
+pub use tracer::{GpuOptions, GpuRender, GpuTracer, PixelProbe};
 
 #[cfg(test)]
 mod reflection_tests;

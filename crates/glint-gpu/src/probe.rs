@@ -1,10 +1,14 @@
-//! The GPU pixel probe's record, turned into the CPU's `Breakdown` so both can be shown and
-//! compared term by term.
+//! The GPU pixel probe's record and ray tree, turned into the CPU's `Breakdown` and `RayTree`
+//! so both can be shown and compared term by term and node by node.
 
 use glint_core::cpu::shade::{Breakdown, LightTerm};
 use glint_core::cpu::v3 as v;
 use glint_core::glam::DVec3;
-use glint_core::layout::{NO_HIT, PROBE_HIT, PROBE_TIR, ProbeRecord};
+use glint_core::layout::{
+    NO_HIT, NO_PARENT, NODE_CUT_BAILOUT, NODE_CUT_DEPTH, NODE_HIT, NODE_TIR, PROBE_HIT, PROBE_TIR, ProbeLight,
+    ProbeNode, ProbeRecord, ProbeTree, TREE_LIGHTS_TRUNCATED, TREE_OVERFLOW, UnknownTag,
+};
+use glint_core::ray_tree::{Cut, RayKind, RayNode, RayTree};
 
 /// The breakdown a probe record describes. The mirror subtree's radiance already includes its
 /// weight; under total internal reflection it carried k_r + k_t and is split back per channel.
@@ -31,20 +35,82 @@ pub fn breakdown(r: &ProbeRecord) -> Breakdown {
         ambient: v(r.ambient),
         ka: v(r.ka),
         kd: v(r.kd),
-        lights: r.lights[..r.light_count as usize]
-            .iter()
-            .map(|l| LightTerm {
-                f_att: f64::from(l.f_att),
-                spot: f64::from(l.spot),
-                visibility: v(l.visibility),
-                ambient: v(l.ambient),
-                diffuse: v(l.diffuse),
-                specular: v(l.specular),
-                contribution: v(l.contribution),
-            })
-            .collect(),
+        lights: r.lights[..r.light_count as usize].iter().map(light_term).collect(),
         reflected,
         transmitted,
         total: v(r.total),
     }
+}
+
+fn light_term(l: &ProbeLight) -> LightTerm {
+    LightTerm {
+        f_att: f64::from(l.f_att),
+        spot: f64::from(l.spot),
+        visibility: v(l.visibility),
+        ambient: v(l.ambient),
+        diffuse: v(l.diffuse),
+        specular: v(l.specular),
+        contribution: v(l.contribution),
+        shadow_ray: l.shadow_ray != 0,
+    }
+}
+
+/// The ray tree the probe variant wrote into `bytes` (a `ProbeTree` buffer): its first
+/// `min(node_count, MAX_PROBE_NODES)` nodes, with the overflow and light-truncation flags. A
+/// node of a kind no ray has is an error, never a guess.
+pub fn ray_tree(bytes: &[u8]) -> Result<RayTree, UnknownTag> {
+    let header = std::mem::offset_of!(ProbeTree, nodes);
+    let node_count: u32 = bytemuck::pod_read_unaligned(&bytes[0..4]);
+    let flags: u32 = bytemuck::pod_read_unaligned(&bytes[4..8]);
+    let size = size_of::<ProbeNode>();
+    let kept = (bytes.len() - header) / size;
+    let nodes = (0..(node_count as usize).min(kept))
+        .map(|i| ray_node(&bytemuck::pod_read_unaligned(&bytes[header + i * size..header + (i + 1) * size])))
+        .collect::<Result<_, _>>()?;
+    Ok(RayTree { nodes, overflow: flags & TREE_OVERFLOW != 0, lights_truncated: flags & TREE_LIGHTS_TRUNCATED != 0 })
+}
+
+fn ray_node(n: &ProbeNode) -> Result<RayNode, UnknownTag> {
+    let kind = RayKind::try_from(n.kind)?;
+    let hit = n.flags & NODE_HIT != 0;
+    let shadow = match kind {
+        RayKind::Shadow => true,
+        RayKind::Camera | RayKind::Reflection | RayKind::Refraction => false,
+    };
+    let cut = if n.flags & NODE_CUT_DEPTH != 0 {
+        Some(Cut::MaxDepth)
+    } else if n.flags & NODE_CUT_BAILOUT != 0 {
+        Some(Cut::Bailout)
+    } else {
+        None
+    };
+    let terms = hit.then(|| Breakdown {
+        object_id: n.object_id,
+        material: n.material,
+        t: f64::from(n.t),
+        point: v(n.point),
+        normal: v(n.normal),
+        emission: v(n.emission),
+        ambient: v(n.ambient),
+        ka: v(n.ka),
+        kd: v(n.kd),
+        lights: n.lights[..(n.light_count as usize).min(n.lights.len())].iter().map(light_term).collect(),
+        ..Breakdown::default()
+    });
+    Ok(RayNode {
+        kind,
+        parent: (n.parent != NO_PARENT).then_some(n.parent as usize),
+        depth: n.depth,
+        origin: v(n.origin),
+        dir: v(n.dir),
+        t: (hit || shadow).then_some(f64::from(n.t)),
+        factor: v(n.factor),
+        weight: v(n.weight),
+        attenuation: f64::from(n.attenuation),
+        tir: n.flags & NODE_TIR != 0,
+        cut,
+        light: shadow.then_some(n.light),
+        terms,
+        radiance: None,
+    })
 }

@@ -98,7 +98,17 @@ fn rust_layouts() -> Vec<RustLayout> {
         rust_layout!(GpuMesh { material, object_id, flags, pad }),
         rust_layout!(BvhNode { min, left_first, max, count }),
         rust_layout!(TileParams { origin_x, origin_y, width, height, sample_index, canary_laps, pad_a, pad_b }),
-        rust_layout!(ProbeLight { f_att, spot, pad_a, pad_b, visibility, ambient, diffuse, specular, contribution }),
+        rust_layout!(ProbeLight {
+            f_att,
+            spot,
+            shadow_ray,
+            pad_b,
+            visibility,
+            ambient,
+            diffuse,
+            specular,
+            contribution
+        }),
         rust_layout!(ProbeRecord {
             object_id,
             material,
@@ -121,6 +131,32 @@ fn rust_layouts() -> Vec<RustLayout> {
             total,
             lights
         }),
+        rust_layout!(ProbeNode {
+            kind,
+            flags,
+            parent,
+            depth,
+            object_id,
+            material,
+            light,
+            light_count,
+            t,
+            attenuation,
+            pad_a,
+            pad_b,
+            origin,
+            dir,
+            weight,
+            factor,
+            point,
+            normal,
+            emission,
+            ambient,
+            ka,
+            kd,
+            lights
+        }),
+        rust_layout!(ProbeTree { node_count, flags, pad_a, pad_b, nodes }),
     ]
 }
 
@@ -248,6 +284,18 @@ fn wgsl_layout_constants_match_rust() {
         ("MAX_PROBE_LIGHTS".into(), MAX_PROBE_LIGHTS),
         ("PROBE_HIT".into(), PROBE_HIT),
         ("PROBE_TIR".into(), PROBE_TIR),
+        ("MAX_PROBE_NODES".into(), MAX_PROBE_NODES),
+        ("RAY_CAMERA".into(), RAY_CAMERA),
+        ("RAY_REFLECTION".into(), RAY_REFLECTION),
+        ("RAY_REFRACTION".into(), RAY_REFRACTION),
+        ("RAY_SHADOW".into(), RAY_SHADOW),
+        ("NODE_HIT".into(), NODE_HIT),
+        ("NODE_TIR".into(), NODE_TIR),
+        ("NODE_CUT_BAILOUT".into(), NODE_CUT_BAILOUT),
+        ("NODE_CUT_DEPTH".into(), NODE_CUT_DEPTH),
+        ("NO_PARENT".into(), NO_PARENT),
+        ("TREE_OVERFLOW".into(), TREE_OVERFLOW),
+        ("TREE_LIGHTS_TRUNCATED".into(), TREE_LIGHTS_TRUNCATED),
     ];
     let module = layout_module();
     let wgsl: Vec<(String, f64)> = module

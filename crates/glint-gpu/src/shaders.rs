@@ -93,7 +93,7 @@ impl ShaderKey {
 
     /// The storage buffers the variant binds (a test checks this against the composed module):
     /// materials, lights, output and stats always, one per sphere or plane kind compiled in,
-    /// four for triangles (triangles, vertices, normals, meshes), the probe record, the
+    /// four for triangles (triangles, vertices, normals, meshes), the probe record and tree, the
     /// BVH's two, and for textures the texels and the table, with texture coordinates when
     /// there are triangles.
     pub fn storage_buffers(&self) -> u32 {
@@ -101,7 +101,7 @@ impl ShaderKey {
         4 + on(feature::SPHERES)
             + on(feature::PLANES)
             + 4 * on(feature::TRIANGLES)
-            + u32::from(self.probe)
+            + 2 * u32::from(self.probe)
             + if self.bvh { 2 } else { 0 }
             + 2 * on(feature::TEXTURES)
             + on(feature::TEXTURES) * on(feature::TRIANGLES)

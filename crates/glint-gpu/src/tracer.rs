@@ -8,6 +8,7 @@ use std::time::{Duration, Instant};
 use glint_core::HdrImage;
 use glint_core::cpu::RayCounts;
 use glint_core::layout::ProbeRecord;
+use glint_core::ray_tree::RayTree;
 use glint_core::{Accel, FlatScene};
 
 use crate::buffers::{GeometryCache, SceneBuffers};
@@ -51,6 +52,17 @@ pub struct GpuRender {
     pub readback_time: Duration,
     pub key: ShaderKey,
     pub statements: usize,
+}
+
+/// What the probe variant records for one pixel's first sample.
+#[derive(Clone, Debug)]
+pub struct PixelProbe {
+    /// The breakdown of the first hit.
+    pub record: ProbeRecord,
+    /// The whole ray tree, in the CPU's node order.
+    pub tree: RayTree,
+    /// The status word (`status::describe` turns it into messages).
+    pub status: u32,
 }
 
 /// The GPU tracer: a device and a cache of compiled shader variants.
@@ -127,6 +139,12 @@ impl GpuTracer {
     /// The breakdown of the first sample of pixel (x, y) into the terms of the model, computed
     /// by the probe variant of the same shader (the GPU twin of `glint_core::probe_pixel`).
     pub fn probe_pixel(&self, scene: &FlatScene, x: u32, y: u32) -> Result<(ProbeRecord, u32), GpuError> {
+        self.probe(scene, x, y).map(|p| (p.record, p.status))
+    }
+
+    /// The probe of pixel (x, y) with its whole ray tree, recorded by the same dispatch of the
+    /// probe variant (the GPU twin of `glint_core::probe_tree`).
+    pub fn probe(&self, scene: &FlatScene, x: u32, y: u32) -> Result<PixelProbe, GpuError> {
         let key = ShaderKey { probe: true, ..ShaderKey::for_scene(scene, true).with_accel(scene, Accel::default()) }
             .check_storage_limit(self.ctx.limits.max_storage_buffers_per_shader_stage)?;
         let (pipeline, _) = self.pipeline(key)?;
@@ -135,8 +153,13 @@ impl GpuTracer {
         let bind_group = with_error_scopes(&self.ctx, || buffers.bind_group(&self.ctx, &pipeline))??;
         with_error_scopes(&self.ctx, || buffers.dispatch_probe(&self.ctx, &pipeline, &bind_group, x, y))?;
         let bytes = read_buffer(&self.ctx, &buffers.probe)?;
+        let tree = read_buffer(&self.ctx, &buffers.probe_tree)?;
         let stats = read_buffer(&self.ctx, &buffers.stats)?;
-        Ok((bytemuck::pod_read_unaligned(&bytes), decode_stats(&stats).1))
+        Ok(PixelProbe {
+            record: bytemuck::pod_read_unaligned(&bytes),
+            tree: crate::probe::ray_tree(&tree)?,
+            status: decode_stats(&stats).1,
+        })
     }
 
     /// Renders `scene` and reads the image back, waiting for both: `submit`, then the job's

@@ -76,7 +76,7 @@ const TWINS: [(&str, &str, &str, &str); 11] = [
 ];
 
 /// Functions only the GPU side has, and why.
-const GPU_ONLY: [(&str, &str, &str); 10] = [
+const GPU_ONLY: [(&str, &str, &str); 16] = [
     ("bvh.wgsl", "push_root", "the CPU pushes the root onto its Vec in traverse; WGSL's stacks are passed by pointer"),
     (
         "bvh.wgsl",
@@ -86,6 +86,20 @@ const GPU_ONLY: [(&str, &str, &str); 10] = [
     ("bvh.wgsl", "slab_ray", "the CPU's SlabRay::new: WGSL has no methods"),
     ("trace.wgsl", "push_ray", "the explicit ray stack: WGSL has no recursion"),
     ("trace.wgsl", "add_stat", "64-bit ray counters built from u32 atomics"),
+    ("trace.wgsl", "probe_alloc", "the probe's fixed-capacity tree buffer; the CPU's RayTree is a Vec"),
+    ("trace.wgsl", "probe_clear", "resets a node of the probe's reused tree buffer; the CPU pushes fresh RayNodes"),
+    ("trace.wgsl", "probe_open", "the CPU's TreeRecorder::open (ray_tree.rs) on the probe's tree buffer"),
+    ("trace.wgsl", "probe_close", "the CPU's TreeRecorder::close (ray_tree.rs) on the probe's tree buffer"),
+    (
+        "trace.wgsl",
+        "record_shadow_rays",
+        "twin of ray_tree::record_shadow_rays, which lives beside the CPU's tree, not in cpu/trace.rs",
+    ),
+    (
+        "trace.wgsl",
+        "probe_cut",
+        "the probe's cut children go down the stack walk; the CPU records them where shade_hit decides",
+    ),
     ("trace.wgsl", "main", "the compute entry point; the CPU's loop is render::render_cpu"),
     (
         "trace.wgsl",
@@ -119,13 +133,14 @@ const CPU_ONLY: [(&str, &str, &str); 8] = [
 ];
 
 /// Structs only the GPU side has, and why.
-const GPU_ONLY_STRUCTS: [(&str, &str, &str); 6] = [
+const GPU_ONLY_STRUCTS: [(&str, &str, &str); 7] = [
     ("intersect.wgsl", "MaybeT", "WGSL has no Option: a flag beside the value"),
     ("intersect.wgsl", "SphereRoots", "WGSL has no Option<(f64, f64)>: a flag beside the roots"),
     ("intersect.wgsl", "TriangleHit", "WGSL has no Option<(t, bu, bv)>: a flag beside the hit"),
     ("trace.wgsl", "SampleResult", "the CPU returns the pair (radiance, object)"),
     ("trace.wgsl", "StackEntry", "the explicit ray stack: WGSL has no recursion"),
     ("trace.wgsl", "Shaded", "a hit's radiance and the next ray of the stack walk, kept in registers"),
+    ("trace.wgsl", "ProbeLink", "how a stacked ray joins the probe's tree; the CPU passes it down the recursion"),
 ];
 
 /// Structs only the CPU side has, and why.
@@ -143,12 +158,20 @@ const CPU_ONLY_STRUCTS: [(&str, &str, &str); 5] = [
 ];
 
 /// Fields only the CPU side of a twin struct has, and why (left out before the comparison).
-const CPU_ONLY_FIELDS: [(&str, &str, &str, &str); 1] = [(
-    "cpu/mod.rs",
-    "RayCounts",
-    "capped_samples",
-    "the CPU's per-sample ray cap (--max-rays-per-sample); the GPU's bound is its tree walk's, raised as a status bit",
-)];
+const CPU_ONLY_FIELDS: [(&str, &str, &str, &str); 2] = [
+    (
+        "cpu/mod.rs",
+        "RayCounts",
+        "capped_samples",
+        "the CPU's per-sample ray cap (--max-rays-per-sample); the GPU's bound is its tree walk's, raised as a status bit",
+    ),
+    (
+        "cpu/shade.rs",
+        "LightTerm",
+        "shadow_ray",
+        "set by the probe around light_term on both sides; the GPU probe stores it in ProbeLight::shadow_ray",
+    ),
+];
 
 /// Structs declared in a source text before its test module, with their field names in order.
 /// WGSL fields are `name: type,`; Rust fields `pub name: Type,` (attributes and comments skipped;

@@ -7,6 +7,7 @@ use std::time::{Duration, Instant};
 
 use egui::Ui;
 use glint_core::FlatScene;
+use glint_core::glam::DVec3;
 use glint_core::image::{RenderInfo, render_metadata};
 use glint_core::layout::NO_HIT;
 use glint_core::scene::LoadOptions;
@@ -23,6 +24,7 @@ use crate::gizmos::gizmos;
 use crate::layout::{Layout, SIDE_PANEL_DEFAULT, SIDE_PANEL_MIN, Tab, VIEW_MIN_WIDTH};
 use crate::menu::{self, MenuAction};
 use crate::panels;
+use crate::ray_tree_view;
 use crate::recent::Recent;
 use crate::renders::Renders;
 use crate::selection::Selection;
@@ -339,6 +341,7 @@ impl ViewerApp {
             Vec::new()
         };
         let probed = self.renders.probe.as_ref().map(|p| (p.x, p.y));
+        let tree = self.ray_tree_segments();
         // The outline from the images of the revision shown (never of another camera): the
         // GPU's first hits when read back, else the CPU's.
         let rev = self.doc.revision;
@@ -350,7 +353,22 @@ impl ViewerApp {
         let name = self.selection.object.map(|i| self.doc.object_label(i));
         let segments = self.selection.outline(rev, traced);
         let selected = name.as_deref().map(|n| (n, segments));
-        self.layout.central(ui, self.renders.gpu.is_some(), textures, size, &gizmos, probed, selected)
+        self.layout.central(ui, self.renders.gpu.is_some(), textures, size, &gizmos, probed, selected, &tree)
+    }
+
+    /// The probed pixel's CPU ray tree as segments seen through the current camera; none
+    /// while the probe is of another revision (another camera, perhaps).
+    fn ray_tree_segments(&self) -> Vec<ray_tree_view::TreeSegment> {
+        let Some(p) = self.renders.probe.as_ref().filter(|p| p.revision == self.doc.revision) else {
+            return Vec::new();
+        };
+        if !self.doc.is_valid() {
+            return Vec::new();
+        }
+        let camera = FlatScene::camera_for(&self.doc.desc, &self.doc.desc.render);
+        let c = &self.doc.desc.camera;
+        let reach = 2.0 * (DVec3::from_array(c.position) - DVec3::from_array(c.look_at)).length();
+        ray_tree_view::segments(&p.cpu_tree, &camera, reach)
     }
 }
 

@@ -5,6 +5,7 @@ use egui::Ui;
 
 use crate::gizmos::Gizmo;
 use crate::outline::Segment;
+use crate::ray_tree_view::TreeSegment;
 use crate::view::{self, Textures, ViewAction, ViewMode};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -23,6 +24,8 @@ pub struct Layout {
     /// Where the split wipe divides GPU from CPU, in [0, 1] of the image width.
     pub wipe: f32,
     pub show_gizmos: bool,
+    /// The probed pixel's ray tree drawn over the images (View → Ray tree overlay).
+    pub show_ray_tree: bool,
     /// The side panel with the tabs; hidden, the images get the whole window (F9 toggles).
     pub show_side_panel: bool,
     /// Where the images were drawn last frame (screen points), for mapping pixels to clicks.
@@ -46,6 +49,7 @@ impl Layout {
             tab: Tab::Scene,
             wipe: 0.5,
             show_gizmos: true,
+            show_ray_tree: true,
             show_side_panel: true,
             view_rects: Vec::new(),
             status_rect: egui::Rect::NOTHING,
@@ -64,6 +68,7 @@ impl Layout {
         gizmos: &[Gizmo],
         probed: Option<(u32, u32)>,
         selected: Option<(&str, &[Segment])>,
+        tree: &[TreeSegment],
     ) -> Vec<ViewAction> {
         ui.horizontal(|ui| {
             for m in ViewMode::ALL {
@@ -74,8 +79,9 @@ impl Layout {
                 ui.add(egui::Slider::new(&mut self.wipe, 0.0..=1.0).show_value(false).text("Wipe"));
             }
         });
+        let tree = if self.show_ray_tree { tree } else { &[] };
         let (actions, rects) =
-            view::show(ui, self.mode, &mut self.wipe, textures, size, gizmos, self.show_gizmos, probed, selected);
+            view::show(ui, self.mode, &mut self.wipe, textures, size, gizmos, self.show_gizmos, probed, selected, tree);
         self.view_rects = rects;
         actions
     }

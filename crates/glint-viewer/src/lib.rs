@@ -22,6 +22,7 @@ mod menu;
 mod outline;
 mod panels;
 mod probe;
+mod ray_tree_view;
 mod recent;
 mod renders;
 mod selection;

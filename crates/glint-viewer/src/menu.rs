@@ -69,6 +69,7 @@ pub fn bar(ui: &mut Ui, doc: &Document, recent: &Recent, layout: &mut Layout) ->
                 ui.radio_value(&mut layout.mode, m, m.label());
             }
             ui.checkbox(&mut layout.show_gizmos, "Light gizmos");
+            ui.checkbox(&mut layout.show_ray_tree, "Ray tree overlay");
             ui.checkbox(&mut layout.show_side_panel, "Side panel (F9)");
         });
         ui.separator();

@@ -7,6 +7,7 @@ use glint_core::compare::{HEATMAP_LOG10_MAX, HEATMAP_LOG10_MIN, PixelDiffs, heat
 
 use crate::gizmos::Gizmo;
 use crate::outline::Segment;
+use crate::ray_tree_view::{self, TreeSegment};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ViewMode {
@@ -252,6 +253,7 @@ pub fn show(
     show_gizmos: bool,
     probed: Option<(u32, u32)>,
     selected: Option<(&str, &[Segment])>,
+    tree: &[TreeSegment],
 ) -> (Vec<ViewAction>, Vec<Rect>) {
     let area = ui.available_rect_before_wrap();
     let response = ui.allocate_rect(area, Sense::click_and_drag());
@@ -316,6 +318,7 @@ pub fn show(
     if let Some((name, segments)) = selected {
         selection_outline(ui, &rects, (w, h), name, segments);
     }
+    ray_tree_view::draw(ui, &rects, tree);
     if let Some(p) = probed {
         probe_marker(ui, &rects, (w, h), p);
     }

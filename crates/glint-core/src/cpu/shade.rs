@@ -237,6 +237,8 @@ pub struct LightTerm {
     pub specular: DVec3,
     /// f_att·S·[ambient + V·(diffuse + specular)], what the light adds.
     pub contribution: DVec3,
+    /// Whether a shadow ray was traced to the light (V was not simply taken as 1 or left 0).
+    pub shadow_ray: bool,
 }
 
 /// The radiance of a camera ray split into the terms of the model at its first hit.
@@ -335,10 +337,11 @@ pub fn shade_local(
     let ambient = v3(scene.header.ambient) * c.ka;
     let mut sum = DVec3::ZERO;
     for (light, &tags) in scene.lights.iter().zip(&ctx.light_tags) {
+        let shadow_rays = counts.shadow;
         let term = light_term(ctx, light, tags, mat, s, n, ng, v, &c, counts);
         sum += term.contribution;
         if let Some(b) = probe.as_deref_mut() {
-            b.lights.push(term);
+            b.lights.push(LightTerm { shadow_ray: counts.shadow != shadow_rays, ..term });
         }
     }
     if let Some(b) = probe {

@@ -13,6 +13,7 @@ use super::shade::{Breakdown, Surface, attenuation_factor, shade_local};
 use super::texture::{planar_uv, triangle_uv};
 use super::{Ray, RayCounts, TraceContext, v3};
 use crate::layout::{NO_HIT, feature};
+use crate::ray_tree::{Cut, NoTree, RayKind, RayNode, TreeRecorder, record_shadow_rays};
 use crate::scene::EpsilonMode;
 
 /// The surface at a hit. Texture coordinates are computed only when some material has a
@@ -77,8 +78,9 @@ fn max_channel(v: DVec3) -> f64 {
 /// Radiance along a child ray: background on a miss, else the shaded hit — times the world's
 /// global attenuation f_att(t) when it is on: what the ray brings back, and the path weight its
 /// own children's bailout is judged by. The background, like a directional light, is not
-/// attenuated (it lies at no distance).
-pub fn trace_ray(
+/// attenuated (it lies at no distance). `node` is the ray's node in `rec`'s tree.
+#[allow(clippy::too_many_arguments)]
+pub fn trace_ray<R: TreeRecorder>(
     ctx: &TraceContext,
     ray: &Ray,
     t_min: f64,
@@ -86,20 +88,39 @@ pub fn trace_ray(
     depth: u32,
     weight: DVec3,
     counts: &mut RayCounts,
+    rec: &mut R,
+    node: usize,
 ) -> DVec3 {
-    match closest_hit(ctx, ray, t_min, FAR, leaving) {
+    let mut terms = Breakdown::default();
+    let probe = if R::RECORDS { Some(&mut terms) } else { None };
+    let (radiance, shaded, t, f) = match closest_hit(ctx, ray, t_min, FAR, leaving) {
         Some(hit) if ctx.has(feature::GLOBAL_ATTENUATION) => {
             let f = attenuation_factor(ctx.scene.header.global_attenuation, hit.t);
-            f * shade_hit(ctx, ray, &hit, depth, weight * f, counts, None)
+            let shaded = shade_hit(ctx, ray, &hit, depth, weight * f, counts, probe, rec, node);
+            (f * shaded, shaded, Some(hit.t), f)
         }
-        Some(hit) => shade_hit(ctx, ray, &hit, depth, weight, counts, None),
-        None => v3(ctx.scene.header.background),
+        Some(hit) => {
+            let shaded = shade_hit(ctx, ray, &hit, depth, weight, counts, probe, rec, node);
+            (shaded, shaded, Some(hit.t), 1.0)
+        }
+        None => {
+            let bg = v3(ctx.scene.header.background);
+            (bg, bg, None, 1.0)
+        }
+    };
+    if R::RECORDS {
+        terms.total = shaded;
+        rec.close(node, t, f, t.map(|_| terms), radiance);
     }
+    radiance
 }
 
 /// Local model plus k_r·I_r + k_t·I_t at a hit. `weight` is the product of k along the path
-/// to this hit; a child whose path weight falls below the bailout is not traced.
-pub fn shade_hit(
+/// to this hit; a child whose path weight falls below the bailout is not traced. A recording
+/// `rec` also gets the hit's shadow rays and the children the bailout, the depth limit or the
+/// ray cap cut, as children of `node`.
+#[allow(clippy::too_many_arguments)]
+pub fn shade_hit<R: TreeRecorder>(
     ctx: &TraceContext,
     ray: &Ray,
     hit: &Hit,
@@ -107,6 +128,8 @@ pub fn shade_hit(
     weight: DVec3,
     counts: &mut RayCounts,
     mut probe: Option<&mut Breakdown>,
+    rec: &mut R,
+    node: usize,
 ) -> DVec3 {
     let s = surface_at(ctx, ray, hit);
     // Two-sided shading: turn the normals to face the incoming ray; which side was hit
@@ -121,8 +144,13 @@ pub fn shade_hit(
         b.t = hit.t;
         b.point = s.p;
         b.normal = ns;
+        if R::RECORDS {
+            record_shadow_rays(ctx, rec, node, depth, weight, s.p, b);
+        }
     }
-    if depth >= ctx.max_depth || !feature::recurses(ctx.features) {
+    // A recording walks on past the depth limit only to record the children it cuts.
+    let depth_cut = depth >= ctx.max_depth;
+    if (depth_cut && !R::RECORDS) || !feature::recurses(ctx.features) {
         return radiance;
     }
     let mat = &ctx.scene.materials[s.material as usize];
@@ -131,26 +159,48 @@ pub fn shade_hit(
     // Under total internal reflection the k_t share follows the mirror direction.
     let mut k_mirror = kr;
     let mut refracted = None;
+    let mut tir = false;
     if ctx.has(feature::TRANSMISSION) && !all_zero(kt) {
         let ior = f64::from(mat.ior);
         let eta = if front { 1.0 / ior } else { ior };
         match refract_dir(ray.dir, ns, eta) {
             Some(dir) => refracted = Some(dir),
-            None => k_mirror += kt,
+            None => {
+                k_mirror += kt;
+                tir = true;
+            }
         }
     }
+    // A child that is not traced, as the tree records it: from the hit point, flagged cut.
+    let cut = |rec: &mut R, kind: RayKind, dir: DVec3, k: DVec3, why: Cut| {
+        let mut child = RayNode::new(kind, Some(node), depth + 1, &Ray { origin: s.p, dir }, k, weight * k);
+        child.cut = Some(why);
+        child.tir = tir && kind == RayKind::Reflection;
+        rec.open(child);
+    };
     if !all_zero(k_mirror) {
         let w = weight * k_mirror;
-        if ctx.cap_reached(counts) {
+        if R::RECORDS && depth_cut {
+            cut(rec, RayKind::Reflection, reflect_dir(ray.dir, ns), k_mirror, Cut::MaxDepth);
+        } else if ctx.cap_reached(counts) {
+            if R::RECORDS {
+                cut(rec, RayKind::Reflection, reflect_dir(ray.dir, ns), k_mirror, Cut::RayCap);
+            }
             return radiance;
-        }
-        if max_channel(w) < ctx.bailout {
+        } else if max_channel(w) < ctx.bailout {
             counts.bailout_saved += 1;
+            if R::RECORDS {
+                cut(rec, RayKind::Reflection, reflect_dir(ray.dir, ns), k_mirror, Cut::Bailout);
+            }
         } else {
             counts.reflection += 1;
             let dir = reflect_dir(ray.dir, ns);
             let sp = spawn_ray(ctx, s.p, s.p_surface, ng, dir, leaving_surface(s.prim, s.index, s.ng, ng));
-            let i_r = trace_ray(ctx, &Ray { origin: sp.origin, dir }, sp.t_min, &sp.leaving, depth + 1, w, counts);
+            let child_ray = Ray { origin: sp.origin, dir };
+            let mut child_node = RayNode::new(RayKind::Reflection, Some(node), depth + 1, &child_ray, k_mirror, w);
+            child_node.tir = tir;
+            let child = if R::RECORDS { rec.open(child_node) } else { 0 };
+            let i_r = trace_ray(ctx, &child_ray, sp.t_min, &sp.leaving, depth + 1, w, counts, rec, child);
             radiance += k_mirror * i_r;
             if let Some(b) = probe.as_deref_mut() {
                 // One ray serves k_r and, under total internal reflection, k_t: list both.
@@ -163,16 +213,31 @@ pub fn shade_hit(
     }
     if let Some(dir) = refracted {
         let w = weight * kt;
+        if R::RECORDS && depth_cut {
+            cut(rec, RayKind::Refraction, dir, kt, Cut::MaxDepth);
+            return radiance;
+        }
         if ctx.cap_reached(counts) {
+            if R::RECORDS {
+                cut(rec, RayKind::Refraction, dir, kt, Cut::RayCap);
+            }
             return radiance;
         }
         if max_channel(w) < ctx.bailout {
             counts.bailout_saved += 1;
+            if R::RECORDS {
+                cut(rec, RayKind::Refraction, dir, kt, Cut::Bailout);
+            }
         } else {
             counts.refraction += 1;
             let sp = spawn_ray(ctx, s.p, s.p_surface, -ng, dir, leaving_surface(s.prim, s.index, s.ng, -ng));
             let ray = Ray { origin: sp.origin, dir };
-            let term = kt * trace_ray(ctx, &ray, sp.t_min, &sp.leaving, depth + 1, w, counts);
+            let child = if R::RECORDS {
+                rec.open(RayNode::new(RayKind::Refraction, Some(node), depth + 1, &ray, kt, w))
+            } else {
+                0
+            };
+            let term = kt * trace_ray(ctx, &ray, sp.t_min, &sp.leaving, depth + 1, w, counts, rec, child);
             radiance += term;
             if let Some(b) = probe {
                 b.transmitted = term;
@@ -194,28 +259,40 @@ pub fn object_id(ctx: &TraceContext, hit: &Hit) -> u32 {
 
 /// One camera sample: radiance and the id of the first object hit (`NO_HIT` for none).
 /// Its rays are added to `counts`; a tree cut at `max_rays_per_sample` adds one capped sample.
-pub fn render_sample(
+/// A recording `rec` gets the sample's whole ray tree, the camera ray its node 0.
+pub fn render_sample<R: TreeRecorder>(
     ctx: &TraceContext,
     x: u32,
     y: u32,
     sample: u32,
     counts: &mut RayCounts,
     probe: Option<&mut Breakdown>,
+    rec: &mut R,
 ) -> (DVec3, u32) {
     let h = &ctx.scene.header;
     let pixel = y * h.width + x;
     let (ox, oy) = sample_offset(pixel, sample, h.spp, h.seed, ctx.has(feature::JITTER));
     let ray = camera_ray(&ctx.scene.camera, h.width, h.height, x, y, ox, oy);
+    let node =
+        if R::RECORDS { rec.open(RayNode::new(RayKind::Camera, None, 0, &ray, DVec3::ONE, DVec3::ONE)) } else { 0 };
     match closest_hit(ctx, &ray, 0.0, FAR, &Leaving::NONE) {
         Some(hit) => {
             let object = object_id(ctx, &hit);
-            let mut probe = probe;
+            let mut terms = Breakdown::default();
+            let mut probe = match probe {
+                Some(b) => Some(b),
+                None if R::RECORDS => Some(&mut terms),
+                None => None,
+            };
             // The tree's own counts: the cap bounds one tree, whatever the pixel traced before.
             let mut own = RayCounts { camera: 1, ..RayCounts::default() };
-            let radiance = shade_hit(ctx, &ray, &hit, 0, DVec3::ONE, &mut own, probe.as_deref_mut());
+            let radiance = shade_hit(ctx, &ray, &hit, 0, DVec3::ONE, &mut own, probe.as_deref_mut(), rec, node);
             *counts += own;
             if let Some(b) = probe {
                 b.total = radiance;
+                if R::RECORDS {
+                    rec.close(node, Some(hit.t), 1.0, Some(b.clone()), radiance);
+                }
             }
             (radiance, object)
         }
@@ -225,6 +302,9 @@ pub fn render_sample(
             if let Some(b) = probe {
                 *b = Breakdown { object_id: NO_HIT, total: bg, ..Breakdown::default() };
             }
+            if R::RECORDS {
+                rec.close(node, None, 1.0, None, bg);
+            }
             (bg, NO_HIT)
         }
     }
@@ -233,9 +313,9 @@ pub fn render_sample(
 /// The mean over all samples of a pixel, and the first sample's first-hit object.
 pub fn render_pixel(ctx: &TraceContext, x: u32, y: u32, counts: &mut RayCounts) -> (DVec3, u32) {
     let spp = ctx.scene.header.spp;
-    let (mut sum, first) = render_sample(ctx, x, y, 0, counts, None);
+    let (mut sum, first) = render_sample(ctx, x, y, 0, counts, None, &mut NoTree);
     for s in 1..spp {
-        sum += render_sample(ctx, x, y, s, counts, None).0;
+        sum += render_sample(ctx, x, y, s, counts, None, &mut NoTree).0;
     }
     (sum / f64::from(spp), first)
 }

@@ -5,6 +5,7 @@ pub mod lights;
 pub mod materials;
 pub mod messages;
 pub mod probe;
+pub mod ray_tree;
 pub mod scene;
 pub mod status;
 

@@ -5,7 +5,7 @@ use glint_core::glam::DVec3;
 use glint_core::layout::NO_HIT;
 
 use crate::document::Document;
-use crate::probe::{GpuProbe, ProbeState, first_difference, terms};
+use crate::probe::{GpuProbe, ProbeState, Term, first_difference, terms};
 
 fn fmt(v: DVec3) -> String {
     if v.x == v.y && v.y == v.z { format!("{:.6}", v.x) } else { format!("{:.6} {:.6} {:.6}", v.x, v.y, v.z) }
@@ -56,11 +56,37 @@ pub fn ui(ui: &mut Ui, probe: Option<&ProbeState>, doc: &Document) {
     }
     let rows = terms(&p.cpu, gpu);
     let first = first_difference(&rows);
+    term_grid(ui, "probe terms", &rows, first);
+    let sum = p.cpu.sum_of_terms();
+    ui.label(format!("CPU: sum of terms − I = {:.2e}", (sum - p.cpu.total).abs().max_element()));
+    if let Some(g) = gpu {
+        ui.label(format!("GPU: sum of terms − I = {:.2e}", (g.sum_of_terms() - g.total).abs().max_element()));
+    }
+    match first {
+        Some(i) => {
+            ui.colored_label(
+                Color32::from_rgb(255, 120, 90),
+                format!("First difference beyond tolerance: {}", rows[i].name),
+            );
+        }
+        None if gpu.is_some() => {
+            ui.label("CPU and GPU agree on every term within tolerance.");
+        }
+        None => {}
+    }
+    super::ray_tree::ui(ui, p, doc);
+}
+
+/// The colour of a highlighted (first differing) row or node.
+pub const HIGHLIGHT: Color32 = Color32::from_rgb(255, 120, 90);
+
+/// `rows` as a striped grid, one row per term with CPU above GPU (narrow enough for the side
+/// panel), row `first` highlighted.
+pub fn term_grid(ui: &mut Ui, id: impl std::hash::Hash + std::fmt::Debug, rows: &[Term], first: Option<usize>) {
     // What the value column gets of the panel: the rest after the widest term name.
     let names = rows.iter().map(|t| text_width(ui, &t.name)).fold(text_width(ui, "term"), f32::max);
     let value_width = ui.available_width() - names - ui.spacing().item_spacing.x;
-    // One row per term, CPU above GPU: narrow enough for the side panel.
-    egui::Grid::new("probe terms").striped(true).num_columns(2).show(ui, |ui| {
+    egui::Grid::new(id).striped(true).num_columns(2).show(ui, |ui| {
         ui.strong("term");
         ui.strong("CPU (f64) / GPU (f32)");
         ui.end_row();
@@ -68,7 +94,7 @@ pub fn ui(ui: &mut Ui, probe: Option<&ProbeState>, doc: &Document) {
             let highlight = Some(i) == first;
             let text = |s: String| {
                 let r = RichText::new(s).monospace();
-                if highlight { r.color(Color32::from_rgb(255, 120, 90)).strong() } else { r }
+                if highlight { r.color(HIGHLIGHT).strong() } else { r }
             };
             ui.add(egui::Label::new(text(t.name.clone())).extend());
             ui.vertical(|ui| {
@@ -87,21 +113,4 @@ pub fn ui(ui: &mut Ui, probe: Option<&ProbeState>, doc: &Document) {
             ui.end_row();
         }
     });
-    let sum = p.cpu.sum_of_terms();
-    ui.label(format!("CPU: sum of terms − I = {:.2e}", (sum - p.cpu.total).abs().max_element()));
-    if let Some(g) = gpu {
-        ui.label(format!("GPU: sum of terms − I = {:.2e}", (g.sum_of_terms() - g.total).abs().max_element()));
-    }
-    match first {
-        Some(i) => {
-            ui.colored_label(
-                Color32::from_rgb(255, 120, 90),
-                format!("First difference beyond tolerance: {}", rows[i].name),
-            );
-        }
-        None if gpu.is_some() => {
-            ui.label("CPU and GPU agree on every term within tolerance.");
-        }
-        None => {}
-    }
 }

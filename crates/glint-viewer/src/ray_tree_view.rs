@@ -1,0 +1,116 @@
+//! The probed pixel's ray tree drawn over the images: every ray a 3D segment projected with
+//! the scene camera, coloured by kind (camera white, reflection cyan, refraction orange, shadow
+//! yellow where the light is visible and grey where it is blocked), as thick as its path
+//! weight, the branches the bailout or the depth limit cut dashed.
+
+use egui::{Color32, Rect, Sense, Shape, Stroke, Ui, Vec2};
+use glint_core::cpu::v3;
+use glint_core::glam::DVec3;
+use glint_core::layout::GpuCamera;
+use glint_core::ray_tree::{RayKind, RayTree};
+
+/// One ray in image coordinates ([0, 1]², y down).
+#[derive(Clone, Debug, PartialEq)]
+pub struct TreeSegment {
+    pub from: (f32, f32),
+    pub to: (f32, f32),
+    pub colour: Color32,
+    pub width: f32,
+    pub dashed: bool,
+}
+
+pub const CAMERA: Color32 = Color32::WHITE;
+pub const REFLECTION: Color32 = Color32::from_rgb(60, 220, 255);
+pub const REFRACTION: Color32 = Color32::from_rgb(255, 150, 40);
+pub const SHADOW_LIT: Color32 = Color32::from_rgb(255, 230, 60);
+pub const SHADOW_BLOCKED: Color32 = Color32::from_gray(120);
+
+/// Depth along the camera's forward axis below which a point is not drawn (segments are cut
+/// there, so that a ray passing behind the camera is drawn up to it).
+const NEAR: f64 = 1e-3;
+
+/// Image position of `p` (depth already known to be ≥ NEAR); as `gizmos::project`.
+fn to_image(cam: &GpuCamera, p: DVec3) -> (f32, f32) {
+    let (f, r, u) = (v3(cam.forward), v3(cam.right), v3(cam.up));
+    let q = p - v3(cam.position);
+    let depth = q.dot(f) / f.length_squared();
+    let ndc_x = q.dot(r) / r.length_squared() / depth;
+    let ndc_y = q.dot(u) / u.length_squared() / depth;
+    (((ndc_x + 1.0) / 2.0) as f32, ((1.0 - ndc_y) / 2.0) as f32)
+}
+
+/// The part of segment a–b in front of the camera, projected.
+fn project_segment(cam: &GpuCamera, a: DVec3, b: DVec3) -> Option<((f32, f32), (f32, f32))> {
+    let f = v3(cam.forward);
+    let depth = |p: DVec3| (p - v3(cam.position)).dot(f) / f.length_squared();
+    let (da, db) = (depth(a), depth(b));
+    if da < NEAR && db < NEAR {
+        return None;
+    }
+    let clip =
+        |p: DVec3, dp: f64, q: DVec3, dq: f64| if dp >= NEAR { p } else { p + (q - p) * ((NEAR - dp) / (dq - dp)) };
+    Some((to_image(cam, clip(a, da, b, db)), to_image(cam, clip(b, db, a, da))))
+}
+
+/// The segments of `tree` seen through `cam`. A ray that ends nowhere (a miss) is drawn `reach`
+/// long, a shadow ray at most half that, a cut ray a quarter.
+pub fn segments(tree: &RayTree, cam: &GpuCamera, reach: f64) -> Vec<TreeSegment> {
+    tree.nodes
+        .iter()
+        .filter_map(|n| {
+            // Shadow rays point at their light but stop at half the reach: a distant light's
+            // would otherwise cross the whole image and hide the rest of the tree.
+            let length = match (n.cut, n.t, n.kind) {
+                (Some(_), _, _) => reach * 0.25,
+                (None, Some(t), RayKind::Shadow) => t.min(reach * 0.5),
+                (None, Some(t), _) => t.min(reach * 4.0),
+                (None, None, _) => reach,
+            };
+            let (from, to) = project_segment(cam, n.origin, n.origin + n.dir * length)?;
+            let colour = match n.kind {
+                RayKind::Camera => CAMERA,
+                RayKind::Reflection => REFLECTION,
+                RayKind::Refraction => REFRACTION,
+                RayKind::Shadow if n.factor.max_element() > 0.0 => SHADOW_LIT,
+                RayKind::Shadow => SHADOW_BLOCKED,
+            };
+            let width = 1.0 + 3.0 * n.weight.max_element().clamp(0.0, 1.0) as f32;
+            Some(TreeSegment { from, to, colour, width, dashed: n.cut.is_some() })
+        })
+        .collect()
+}
+
+/// Draws `segments` over each image of `rects`, on a dark rim so that they show on light and
+/// dark surfaces alike; each drawing is a widget labelled "Ray tree: N rays" (the tests find it).
+pub fn draw(ui: &mut Ui, rects: &[Rect], segments: &[TreeSegment]) {
+    if segments.is_empty() {
+        return;
+    }
+    for (i, r) in rects.iter().enumerate() {
+        let to_screen = |(x, y): (f32, f32)| r.min + Vec2::new(x * r.width(), y * r.height());
+        let painter = ui.painter().with_clip_rect(*r);
+        let mut bounds = Rect::NOTHING;
+        for rim in [true, false] {
+            for s in segments {
+                let (a, b) = (to_screen(s.from), to_screen(s.to));
+                bounds = bounds.union(Rect::from_two_pos(a, b));
+                let stroke = if rim {
+                    Stroke::new(s.width + 2.0, Color32::from_black_alpha(160))
+                } else {
+                    Stroke::new(s.width, s.colour)
+                };
+                if s.dashed {
+                    painter.extend(Shape::dashed_line(&[a, b], stroke, 6.0, 4.0));
+                } else {
+                    painter.line_segment([a, b], stroke);
+                }
+            }
+        }
+        let label = format!("Ray tree: {} rays", segments.len());
+        let area = bounds.expand(2.0).intersect(*r);
+        if area.is_positive() {
+            let response = ui.interact(area, ui.scope_id().with(("ray tree", i)), Sense::hover());
+            response.widget_info(|| egui::WidgetInfo::labeled(egui::Role::Image, true, &label));
+        }
+    }
+}

@@ -1,0 +1,91 @@
+//! The ray tree inspector: the probed pixel's whole Whitted tree in the Probe panel (CPU beside
+//! GPU, the first differing node pointed out) and drawn over the images.
+
+use egui::Modifiers;
+use egui_kittest::kittest::Queryable;
+use glint_core::ray_tree::{RayKind, RayTree};
+
+use crate::support::{click, menu, settle, viewer};
+
+/// The glass sphere of whitted at the tests' 160×120 (as the probe snapshot).
+const GLASS: (u32, u32) = (100, 70);
+
+fn probe_glass(h: &mut egui_kittest::Harness<'static, glint_viewer::ViewerApp>) {
+    let pos = h.state().screen_pos_of_pixel(GLASS.0, GLASS.1).expect("the view is drawn");
+    click(h, pos, Modifiers::COMMAND);
+    settle(h);
+}
+
+fn trees(h: &egui_kittest::Harness<'static, glint_viewer::ViewerApp>) -> (RayTree, RayTree) {
+    let probe = h.state().renders.probe.as_ref().expect("a probe");
+    (probe.cpu_tree.clone(), probe.gpu_tree.clone().expect("the GPU tree arrived"))
+}
+
+#[test]
+fn the_probe_panel_lists_the_glass_sphere_tree_on_both_tracers() {
+    let Some(mut h) = viewer("whitted", (1000.0, 700.0)) else { return };
+    probe_glass(&mut h);
+    let (cpu, gpu) = trees(&h);
+    // A camera ray into the glass, refracted through it and reflected off it, shadow rays to
+    // the lights, and branches the bailout cut.
+    assert_eq!(cpu.nodes[0].kind, RayKind::Camera);
+    assert!(cpu.nodes.len() >= 10, "{} nodes", cpu.nodes.len());
+    assert!(
+        cpu.count(RayKind::Refraction) >= 2 && cpu.count(RayKind::Reflection) >= 2 && cpu.count(RayKind::Shadow) >= 1
+    );
+    assert!(cpu.nodes.iter().any(|n| n.cut.is_some()));
+    assert_eq!(gpu.nodes.len(), cpu.nodes.len(), "the GPU recorded the same rays");
+    // Each ray's weight is the product of the k along its path.
+    for n in cpu.nodes.iter().filter(|n| n.kind != RayKind::Shadow) {
+        let mut product = n.factor;
+        let mut at = n.parent;
+        while let Some(p) = at {
+            product *= cpu.nodes[p].factor * cpu.nodes[p].attenuation;
+            at = cpu.nodes[p].parent;
+        }
+        assert!((product - n.weight).abs().max_element() < 1e-15, "{n:?}");
+    }
+    assert!(h.query_by_label("CPU and GPU trees agree node by node within tolerance.").is_some());
+    // The root is open: its own rows and its children's titles are listed.
+    assert!(h.query_by_label_contains("#0 camera: glass sphere").is_some(), "the root node is listed");
+    for child in cpu.children(0) {
+        let title = format!("#{child} {}", cpu.nodes[child].kind.name());
+        assert!(h.query_by_label_contains(&title).is_some(), "child {title} is listed");
+    }
+    assert!(h.query_by_label("weight (path product of k)").is_some());
+    let summary = format!("{} rays: ", cpu.nodes.len());
+    assert!(h.query_by_label_contains(&summary).is_some(), "the summary line");
+}
+
+#[test]
+fn a_perturbed_gpu_node_is_highlighted_and_its_path_opened() {
+    let Some(mut h) = viewer("whitted", (1000.0, 700.0)) else { return };
+    probe_glass(&mut h);
+    let (cpu, _) = trees(&h);
+    let deep = cpu
+        .nodes
+        .iter()
+        .position(|n| n.depth == 2 && n.kind == RayKind::Refraction)
+        .expect("a refraction ray at depth 2");
+    let probe = h.state_mut().renders.probe.as_mut().expect("a probe");
+    probe.gpu_tree.as_mut().expect("GPU tree").nodes[deep].weight *= 1.01;
+    h.run_steps(3);
+    let pointer = format!("First differing node: #{deep} (refraction): weight");
+    assert!(h.query_by_label(&pointer).is_some(), "the differing node is not pointed out");
+    // Its header is shown (the path to it opened) and its rows are listed.
+    assert!(h.query_by_label_contains(&format!("#{deep} refraction")).is_some(), "node {deep} is not shown");
+}
+
+#[test]
+fn the_tree_is_drawn_over_the_image_and_can_be_hidden() {
+    let Some(mut h) = viewer("whitted", (1000.0, 700.0)) else { return };
+    h.get_by_role_and_label(egui::accesskit::Role::Button, "GPU").click();
+    h.run_steps(2);
+    probe_glass(&mut h);
+    assert!(h.query_by_label_contains("Ray tree: ").is_some(), "the tree is not drawn");
+    menu(&mut h, &["View", "Ray tree overlay"]);
+    h.key_press(egui::Key::Escape);
+    h.run_steps(2);
+    assert!(!h.state().layout.show_ray_tree);
+    assert!(h.query_by_label_contains("Ray tree: ").is_none(), "the tree is still drawn");
+}
