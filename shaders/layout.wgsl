@@ -11,7 +11,11 @@ const ATTENUATION_INVERSE_SQUARE: u32 = 1u;
 const SPOT_FALLOFF_POWER: u32 = 0u;
 const SPOT_FALLOFF_SMOOTH: u32 = 1u;
 const LIGHT_CASTS_SHADOWS: u32 = 1u;
-const MATERIAL_PHONG: u32 = 1u;
+const SPECULAR_BLINN: u32 = 0u;
+const SPECULAR_PHONG: u32 = 1u;
+const SPECULAR_COOK_TORRANCE: u32 = 2u;
+const FRESNEL_EXACT: u32 = 0u;
+const FRESNEL_SCHLICK: u32 = 1u;
 const MESH_HAS_NORMALS: u32 = 1u;
 const MESH_HAS_UVS: u32 = 2u;
 const NO_TEXTURE: u32 = 0xffffffffu;
@@ -87,12 +91,12 @@ struct GpuMaterial {
     emission: vec4<f32>,
     shininess: f32,
     ior: f32,
-    flags: u32,
+    specular_model: u32,
     diffuse_texture: u32,
     emission_texture: u32,
-    pad_a: u32,
-    pad_b: u32,
-    pad_c: u32,
+    roughness: f32,
+    fresnel: u32,
+    pad: u32,
 }
 
 // One entry of the texture table: texels offset .. offset + width·height of the texel buffer

@@ -2,7 +2,7 @@
 // I_local = E_m + I_a·k_a + Σ_j f_att,j·S_j·[ I_a,j·k_a + V_j·( I_d,j·k_d·max(N·L,0) + I_s,j·k_s·spec_j ) ]
 #define_import_path glint::shade
 
-#import glint::scene_data::{ProbeLight, MAX_PROBE_LIGHTS, GpuLight, GpuMaterial, LIGHT_CASTS_SHADOWS, LIGHT_DIRECTIONAL, LIGHT_SPOT, MATERIAL_PHONG, NO_TEXTURE, ATTENUATION_POLYNOMIAL, ATTENUATION_INVERSE_SQUARE, SPOT_FALLOFF_SMOOTH}
+#import glint::scene_data::{ProbeLight, MAX_PROBE_LIGHTS, GpuLight, GpuMaterial, LIGHT_CASTS_SHADOWS, LIGHT_DIRECTIONAL, LIGHT_SPOT, SPECULAR_PHONG, SPECULAR_COOK_TORRANCE, FRESNEL_SCHLICK, NO_TEXTURE, ATTENUATION_POLYNOMIAL, ATTENUATION_INVERSE_SQUARE, SPOT_FALLOFF_SMOOTH}
 #import glint::bindings::{header, materials, lights}
 #import glint::ray::{Ray, ray_counts, probe, probe_active}
 #import glint::intersect::{FAR, all_zero}
@@ -19,6 +19,7 @@
 const MIN_LIGHT_DISTANCE: f32 = 1e-20;
 const MIN_HALF_LENGTH: f32 = 1e-12;
 const MIN_ATTENUATION_DENOMINATOR: f32 = 1e-6;
+const MIN_GRAZING_COS: f32 = 1e-6;
 
 // Geometry at a hit (twin of trace.rs's Surface, which lives here so shading can use it).
 struct Surface {
@@ -134,11 +135,75 @@ fn light_sample(light: GpuLight, p: vec3<f32>) -> LightSample {
     return LightSample(l, dist, f_att, spot);
 }
 
+#ifdef COOK_TORRANCE
+// Beckmann's D without its 1/π (it cancels the seed's π); sin²α = |N × H|² keeps its digits
+// near α = 0, where 1 − cos²α would lose them in f32.
+fn beckmann_distribution(m: f32, cos_alpha: f32, sin2_alpha: f32) -> f32 {
+    let m2 = m * m;
+    let cos2 = cos_alpha * cos_alpha;
+    return exp(-sin2_alpha / (cos2 * m2)) / (m2 * cos2 * cos2);
+}
+
+// The unpolarised dielectric Fresnel reflectance; 1 where g² ≤ 0 (total internal reflection).
+fn fresnel_exact(eta: f32, c: f32) -> f32 {
+    let g2 = eta * eta + c * c - 1.0;
+    if g2 <= 0.0 {
+        return 1.0;
+    }
+    let g = sqrt(g2);
+    let a = (g - c) / (g + c);
+    let b = (c * (g + c) - 1.0) / (c * (g - c) + 1.0);
+    return 0.5 * a * a * (1.0 + b * b);
+}
+
+fn fresnel_schlick(eta: f32, c: f32) -> f32 {
+    let r = (eta - 1.0) / (eta + 1.0);
+    let f0 = r * r;
+    let k = 1.0 - c;
+    let k2 = k * k;
+    return f0 + (1.0 - f0) * k2 * k2 * k;
+}
+
+// F·D·G / (N·V): π·(N·L) times Cook & Torrance's R_s; 0 at grazing N·V, N·H, V·H.
+fn cook_torrance_term(mat: GpuMaterial, n: vec3<f32>, l: vec3<f32>, v: vec3<f32>, n_dot_l: f32) -> f32 {
+    let n_dot_v = dot(n, v);
+    if n_dot_v < MIN_GRAZING_COS {
+        return 0.0;
+    }
+    let hv = normalize(l) + v;
+    let len = length(hv);
+    if len < MIN_HALF_LENGTH {
+        return 0.0;
+    }
+    let h = hv / len;
+    let n_dot_h = dot(n, h);
+    let v_dot_h = dot(v, h);
+    if n_dot_h < MIN_GRAZING_COS || v_dot_h < MIN_GRAZING_COS {
+        return 0.0;
+    }
+    let nxh = cross(n, h);
+    let d = beckmann_distribution(mat.roughness, n_dot_h, dot(nxh, nxh));
+    var f: f32;
+    if mat.fresnel == FRESNEL_SCHLICK {
+        f = fresnel_schlick(mat.ior, v_dot_h);
+    } else {
+        f = fresnel_exact(mat.ior, v_dot_h);
+    }
+    let g = min(min(2.0 * n_dot_h * n_dot_v / v_dot_h, 2.0 * n_dot_h * n_dot_l / v_dot_h), 1.0);
+    return f * d * g / n_dot_v;
+}
+#endif
+
 fn specular_term(mat: GpuMaterial, n: vec3<f32>, l: vec3<f32>, v: vec3<f32>, n_dot_l: f32) -> f32 {
 #ifdef PHONG
-    if (mat.flags & MATERIAL_PHONG) != 0u {
+    if mat.specular_model == SPECULAR_PHONG {
         let r = 2.0 * n_dot_l * n - l;
         return safe_pow(max(dot(r, v), 0.0), mat.shininess);
+    }
+#endif
+#ifdef COOK_TORRANCE
+    if mat.specular_model == SPECULAR_COOK_TORRANCE {
+        return cook_torrance_term(mat, n, l, v, n_dot_l);
     }
 #endif
 #ifdef BLINN

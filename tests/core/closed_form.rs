@@ -8,7 +8,8 @@ use glint_core::layout::NO_HIT;
 use crate::scene::{SLAB_GROUND, SLAB_KR, SLAB_KT, SLAB_SKY};
 
 use crate::support::{
-    SceneText, assert_rel, blinn, dv, num, phong, plane_hit, pow0, primary_ray, probe, render, sphere_hit, w3,
+    FresnelForm, SceneText, assert_rel, blinn, cook_torrance, dv, num, phong, plane_hit, pow0, primary_ray, probe,
+    render, sphere_hit, w3,
 };
 
 const REL: f64 = 1e-9;
@@ -35,12 +36,17 @@ const FRONT_LIGHT: [f64; 3] = [-1.0, -1.0, 1.0];
 const BACK_LIGHT: [f64; 3] = [-1.0, -0.3, -0.8];
 
 fn lit_sphere(model: &str, light: [f64; 3]) -> SceneText {
+    lit_sphere_with(&format!("specular_model = \"{model}\""), light)
+}
+
+/// The lit sphere whose material ends with `lobe` (its specular model and that model's fields).
+fn lit_sphere_with(lobe: &str, light: [f64; 3]) -> SceneText {
     SceneText::new(32, 32, "max_depth = 0", [0.0, 0.0, -5.0], [0.0; 3], Y, 30.0)
         .world(I_A, [0.0; 3])
         .material(
             "m",
             &format!(
-                "ka = {KA:?}\nkd = {KD:?}\nks = {KS:?}\nemission = {E_M:?}\nshininess = {}\nspecular_model = \"{model}\"",
+                "ka = {KA:?}\nkd = {KD:?}\nks = {KS:?}\nemission = {E_M:?}\nshininess = {}\n{lobe}",
                 num(SHININESS)
             ),
         )
@@ -54,7 +60,12 @@ fn lit_sphere(model: &str, light: [f64; 3]) -> SceneText {
 }
 
 fn check_lit_sphere(model: &str, light: [f64; 3], spec: fn(DVec3, DVec3, DVec3, f64) -> f64) {
-    let flat = lit_sphere(model, light).flat();
+    check_lit_sphere_with(&format!("specular_model = \"{model}\""), model, light, &|n, l, v| spec(n, l, v, SHININESS));
+}
+
+/// Every term at every pixel of the sphere whose material ends with `lobe`, against `spec`.
+fn check_lit_sphere_with(lobe: &str, model: &str, light: [f64; 3], spec: &dyn Fn(DVec3, DVec3, DVec3) -> f64) {
+    let flat = lit_sphere_with(lobe, light).flat();
     let img = render(&flat).image;
     // The light direction as stored (unit in f64, rounded to f32); L points to the light.
     let l = -w3(flat.lights[0].direction);
@@ -79,7 +90,7 @@ fn check_lit_sphere(model: &str, light: [f64; 3], spec: fn(DVec3, DVec3, DVec3, 
             if ndl.abs() < 1e-9 {
                 continue; // terminator: the specular term is discontinuous there
             }
-            let s = spec(n, l, v, SHININESS);
+            let s = spec(n, l, v);
             max_spec = max_spec.max(s);
             if ndl > 0.0 {
                 lit += 1
@@ -136,6 +147,53 @@ fn blinn_and_phong_differ() {
     let b = render(&lit_sphere("phong", FRONT_LIGHT).flat()).image;
     let max_diff = a.pixels.iter().zip(&b.pixels).map(|(p, q)| (*p - *q).abs().max_element()).fold(0.0, f64::max);
     assert!(max_diff > 0.05, "Blinn and Phong images are (nearly) identical: max diff {max_diff}");
+}
+
+/// Roughness and index of refraction of the Cook–Torrance sphere: a lobe about as wide as
+/// shininess 20's, and a dielectric (F0 = 0.04) whose F rises towards grazing V·H.
+const ROUGHNESS: f64 = 0.3;
+const CT_IOR: f64 = 1.5;
+
+/// m as the tracers read it (0.3 rounded to f32): away from the highlight the exponent
+/// tan²α/m² is ~17, so m's rounding (4e-8) alone would move D by 1.4e-6.
+fn stored_roughness() -> f64 {
+    f64::from(ROUGHNESS as f32)
+}
+
+fn cook_torrance_lobe(fresnel: &str) -> String {
+    format!(
+        "specular_model = \"cook_torrance\"\nroughness = {}\nior = {}\nfresnel = \"{fresnel}\"",
+        num(ROUGHNESS),
+        num(CT_IOR)
+    )
+}
+
+#[test]
+fn sphere_under_directional_light_cook_torrance_exact_fresnel() {
+    let spec = |n, l, v| cook_torrance(n, l, v, stored_roughness(), CT_IOR, FresnelForm::Exact);
+    check_lit_sphere_with(&cook_torrance_lobe("exact"), "cook_torrance exact", FRONT_LIGHT, &spec);
+    check_lit_sphere_with(&cook_torrance_lobe("exact"), "cook_torrance exact", BACK_LIGHT, &spec);
+}
+
+#[test]
+fn sphere_under_directional_light_cook_torrance_schlick_fresnel() {
+    let spec = |n, l, v| cook_torrance(n, l, v, stored_roughness(), CT_IOR, FresnelForm::Schlick);
+    check_lit_sphere_with(&cook_torrance_lobe("schlick"), "cook_torrance schlick", FRONT_LIGHT, &spec);
+    check_lit_sphere_with(&cook_torrance_lobe("schlick"), "cook_torrance schlick", BACK_LIGHT, &spec);
+}
+
+#[test]
+fn cook_torrance_differs_from_blinn_and_its_fresnel_forms_from_each_other() {
+    // Guards the tests above against a tracer that ignores the model or the Fresnel choice.
+    let max_diff = |a: &str, b: &str| {
+        let a = render(&lit_sphere_with(a, BACK_LIGHT).flat()).image;
+        let b = render(&lit_sphere_with(b, BACK_LIGHT).flat()).image;
+        a.pixels.iter().zip(&b.pixels).map(|(p, q)| (*p - *q).abs().max_element()).fold(0.0, f64::max)
+    };
+    let blinn = max_diff("specular_model = \"blinn\"", &cook_torrance_lobe("exact"));
+    assert!(blinn > 0.05, "Blinn and Cook–Torrance images are (nearly) identical: max diff {blinn}");
+    let fresnel = max_diff(&cook_torrance_lobe("exact"), &cook_torrance_lobe("schlick"));
+    assert!(fresnel > 1e-3, "exact and Schlick Fresnel images are (nearly) identical: max diff {fresnel}");
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -533,4 +591,80 @@ fn a_textured_colour_multiplies_k_a_and_k_d() {
         .plane([0.0; 3], Y, "floor")
         .flat();
     assert_rel(render(&plain).image.get(0, 0), dv(I_A) * FLOOR_KA + i_d * dv(FLOOR_KD), REL, "untextured");
+}
+
+// ---------------------------------------------------------------------------------------------
+// The Cook–Torrance lobe's factors at their limits, and its guards.
+// ---------------------------------------------------------------------------------------------
+
+#[test]
+fn fresnel_factors_at_their_limits() {
+    use glint_core::cpu::shade::{fresnel_exact, fresnel_schlick};
+    // Normal incidence: F0 = ((η − 1)/(η + 1))² from both forms.
+    for eta in [1.5_f64, 2.0, 0.5, 1e3] {
+        let f0 = ((eta - 1.0) / (eta + 1.0)).powi(2);
+        assert_rel(DVec3::splat(fresnel_exact(eta, 1.0)), DVec3::splat(f0), REL, &format!("exact F(c = 1), η {eta}"));
+        assert_eq!(fresnel_schlick(eta, 1.0), f0, "Schlick F(c = 1), η {eta}");
+        // Grazing: everything reflects (1 − F falls linearly with c: 2e-9 at c = 1e-12, η = 1e3).
+        assert_rel(DVec3::splat(fresnel_exact(eta, 1e-12)), DVec3::ONE, 1e-8, &format!("exact F(c → 0), η {eta}"));
+        assert_rel(DVec3::splat(fresnel_schlick(eta, 0.0)), DVec3::ONE, REL, &format!("Schlick F(0), η {eta}"));
+    }
+    // A matched index reflects nothing; below the critical angle of η < 1 everything.
+    assert!(fresnel_exact(1.0, 0.3) < 1e-30, "{}", fresnel_exact(1.0, 0.3));
+    assert_eq!(fresnel_exact(0.5, 0.5), 1.0);
+    // The two forms differ most at intermediate angles (Schlick's error), within a few percent.
+    let (e, s) = (fresnel_exact(1.5, 0.2), fresnel_schlick(1.5, 0.2));
+    assert!((e - s).abs() > 1e-3 && (e - s).abs() < 0.05, "exact {e}, Schlick {s}");
+}
+
+#[test]
+fn cook_torrance_lobe_is_finite_and_non_negative_at_grazing_and_extreme_inputs() {
+    use glint_core::cpu::shade::cook_torrance_term;
+    use glint_core::layout::GpuMaterial;
+    use glint_core::scene::Fresnel;
+    let n = DVec3::Y;
+    // Directions from the normal to exactly grazing and just below it, and L = −V.
+    let angles = [0.0, 0.3, 1.2, 1.57, std::f64::consts::FRAC_PI_2 - 1e-9, std::f64::consts::FRAC_PI_2, 1.6];
+    let dir = |theta: f64, phi: f64| DVec3::new(theta.sin() * phi.cos(), theta.cos(), theta.sin() * phi.sin());
+    let mut evaluated = 0;
+    for m in [1e-3_f32, 0.25, 1.0] {
+        for ior in [1e-6_f32, 1.0, 1.5, 1e3] {
+            for fresnel in Fresnel::ALL {
+                let mat = GpuMaterial {
+                    ka: [0.0; 4],
+                    kd: [0.0; 4],
+                    ks: [1.0; 4],
+                    kr: [0.0; 4],
+                    kt: [0.0; 4],
+                    emission: [0.0; 4],
+                    shininess: 0.0,
+                    ior,
+                    specular_model: glint_core::layout::SPECULAR_COOK_TORRANCE,
+                    diffuse_texture: 0,
+                    emission_texture: 0,
+                    roughness: m,
+                    fresnel: fresnel as u32,
+                    pad: 0,
+                };
+                for &tl in &angles {
+                    for &tv in &angles {
+                        for phi in [0.0, 1.0, std::f64::consts::PI] {
+                            let (l, v) = (dir(tl, 0.0), dir(tv, phi));
+                            let n_dot_l = n.dot(l);
+                            if n_dot_l <= 0.0 {
+                                continue; // the caller's condition
+                            }
+                            let s = cook_torrance_term(&mat, fresnel, n, l, v, n_dot_l);
+                            assert!(s.is_finite() && s >= 0.0, "m {m}, ior {ior}, {fresnel:?}, L {l}, V {v}: {s}");
+                            evaluated += 1;
+                        }
+                    }
+                }
+                let grazing = dir(std::f64::consts::FRAC_PI_2, 0.0);
+                let opposite = cook_torrance_term(&mat, fresnel, n, grazing, -grazing, grazing.y.max(1e-300));
+                assert_eq!(opposite, 0.0, "L = −V has no half vector");
+            }
+        }
+    }
+    assert!(evaluated > 1000, "{evaluated}");
 }

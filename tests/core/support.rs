@@ -4,7 +4,9 @@
 
 use glint_core::{CpuRender, FlatScene};
 
-pub use crate::reference::{assert_rel, blinn, dv, phong, plane_hit, pow0, primary_ray, probe, sphere_hit};
+pub use crate::reference::{
+    FresnelForm, assert_rel, blinn, cook_torrance, dv, phong, plane_hit, pow0, primary_ray, probe, sphere_hit,
+};
 pub use crate::scene::{SceneText, num, w3};
 
 /// Renders with `threads` threads and asserts that no pixel is NaN or infinite.

@@ -562,3 +562,18 @@ fn spot_fields_of_the_other_falloff_are_errors() {
     );
     expect_parse_error(&edited("cutoff = 30.0", "cutoff = 30.0\nfalloff = \"linear\""), &["linear", "smooth"]);
 }
+
+#[test]
+fn cook_torrance_roughness_in_range_and_fresnel_by_name() {
+    let ct = |fields: &str| edited("shininess = 32.0", &format!("specular_model = \"cook_torrance\"\n{fields}"));
+    for bad in ["0.0", "0.0009", "1.5", "-0.3", "nan", "inf"] {
+        expect_invalid(&ct(&format!("roughness = {bad}")), "materials.red.roughness", &["[0.001, 1]"]);
+    }
+    for good in ["0.001", "0.25", "1.0"] {
+        expect_valid(&ct(&format!("roughness = {good}\nfresnel = \"schlick\"")), good);
+    }
+    // The Fresnel choice is a name: a typo or a number says which names there are.
+    expect_parse_error(&ct("fresnel = \"shlick\""), &["shlick", "exact", "schlick"]);
+    expect_parse_error(&ct("fresnel = 1"), &["fresnel"]);
+    expect_parse_error(&edited("shininess = 32.0", "specular_model = \"cook-torrance\""), &["cook_torrance"]);
+}

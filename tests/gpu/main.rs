@@ -5,6 +5,7 @@
 
 mod adapter;
 mod bvh;
+mod cook_torrance;
 mod geometry_cache;
 mod gltf_lights;
 mod parity;

@@ -10,7 +10,9 @@
 //! - the status word (loop bound, stack overflow) stays 0 on every built-in scene.
 
 use glint_core::FlatScene;
-use glint_core::scene::{BUILTIN_SCENES, EpsilonMode, GlobalAttenuation, RenderSettings, SceneDesc, load_scene};
+use glint_core::scene::{
+    BUILTIN_SCENES, EpsilonMode, Fresnel, GlobalAttenuation, RenderSettings, SceneDesc, SpecularModel, load_scene,
+};
 
 use super::support::{compare_and_keep, cpu, gpu_or_skip, gpu_render, log_errors, within_parity, write_failure_images};
 
@@ -70,6 +72,21 @@ fn builtin_scenes_match_the_cpu_reference_with_global_attenuation() {
     let tracer = gpu_or_skip!();
     let failures = parity_failures(tracer, "global-attenuation-spp", &[1], |d, _| {
         d.world.global_attenuation = GlobalAttenuation { c: 0.5, l: 0.1, q: 0.02 };
+    });
+    assert!(failures.is_empty(), "GPU/CPU parity failed for {failures:?} (images in target/tmp/gpu-tests/parity)");
+}
+
+/// Every material of every built-in scene forced to Cook–Torrance (m = 0.2, the exact Fresnel
+/// factor on every other material and Schlick's on the rest), at the default thresholds.
+#[test]
+fn builtin_scenes_match_the_cpu_reference_with_cook_torrance() {
+    let tracer = gpu_or_skip!();
+    let failures = parity_failures(tracer, "cook-torrance-spp", &[1], |d, _| {
+        for (i, m) in d.materials.values_mut().enumerate() {
+            m.specular_model = SpecularModel::CookTorrance;
+            m.roughness = 0.2;
+            m.fresnel = Fresnel::ALL[i % 2];
+        }
     });
     assert!(failures.is_empty(), "GPU/CPU parity failed for {failures:?} (images in target/tmp/gpu-tests/parity)");
 }

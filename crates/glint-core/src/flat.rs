@@ -5,7 +5,7 @@ use std::sync::Arc;
 use glam::DVec3;
 
 use crate::bvh::{self, BvhNodes};
-use crate::cpu::LightTags;
+use crate::cpu::{LightTags, MaterialTags};
 
 use crate::layout::{
     GpuCamera, GpuLight, GpuMaterial, GpuMesh, GpuPlane, GpuSphere, GpuTexture, GpuTriangle, LIGHT_CASTS_SHADOWS,
@@ -216,13 +216,15 @@ impl FlatScene {
             .traced_lights()
             .map(|l| LightTags { kind: l.kind, attenuation: l.attenuation.model(), falloff: l.falloff })
             .collect();
-        flat.header.features = flat.scene_features(&light_tags);
+        let material_tags: Vec<MaterialTags> =
+            desc.materials.values().map(|m| MaterialTags { specular: m.specular_model, fresnel: m.fresnel }).collect();
+        flat.header.features = flat.scene_features(&light_tags, &material_tags);
         flat
     }
 
     /// The features this scene needs, from the flat data itself (only materials that some
-    /// object uses count) and the tags of each light.
-    fn scene_features(&self, light_tags: &[LightTags]) -> u32 {
+    /// object uses count) and the tags of each light and material.
+    fn scene_features(&self, light_tags: &[LightTags], material_tags: &[MaterialTags]) -> u32 {
         let mut f = 0;
         let mut used = vec![false; self.materials.len()];
         for m in self.spheres.iter().map(|s| s.material).chain(self.planes.iter().map(|p| p.material)) {
@@ -259,7 +261,7 @@ impl FlatScene {
             }
             any_specular_light |= nonzero(l.specular);
         }
-        for (m, _) in self.materials.iter().zip(&used).filter(|(_, u)| **u) {
+        for ((m, tags), _) in self.materials.iter().zip(material_tags).zip(&used).filter(|(_, u)| **u) {
             if nonzero(m.kr) {
                 f |= feature::REFLECTION;
             }
@@ -274,9 +276,10 @@ impl FlatScene {
             }
             if nonzero(m.ks) && any_specular_light {
                 f |= feature::SPECULAR;
-                f |= match SpecularModel::of_flags(m.flags) {
+                f |= match tags.specular {
                     SpecularModel::Blinn => feature::BLINN,
                     SpecularModel::Phong => feature::PHONG,
+                    SpecularModel::CookTorrance => feature::COOK_TORRANCE,
                 };
             }
         }
@@ -464,12 +467,12 @@ fn flat_material(m: &MaterialDesc, table: &mut TextureTable) -> GpuMaterial {
         emission: rgb4(m.emission),
         shininess: m.shininess as f32,
         ior: m.ior as f32,
-        flags: m.specular_model.flags(),
+        specular_model: m.specular_model as u32,
         diffuse_texture,
         emission_texture: m.emission_texture.as_ref().map_or(NO_TEXTURE, |t| table.add(t)),
-        pad_a: 0,
-        pad_b: 0,
-        pad_c: 0,
+        roughness: m.roughness as f32,
+        fresnel: m.fresnel as u32,
+        pad: 0,
     }
 }
 

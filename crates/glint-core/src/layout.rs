@@ -10,7 +10,7 @@
 
 use bytemuck::{Pod, Zeroable};
 
-use crate::scene::{AttenuationModel, EpsilonMode, Filter, LightKind, SpecularModel, SpotFalloff, Wrap};
+use crate::scene::{AttenuationModel, EpsilonMode, Filter, Fresnel, LightKind, SpecularModel, SpotFalloff, Wrap};
 
 /// Light kinds (`GpuLight::kind`).
 pub const LIGHT_POINT: u32 = 0;
@@ -32,8 +32,14 @@ pub const SPOT_FALLOFF_SMOOTH: u32 = 1;
 /// `GpuLight::flags` bits.
 pub const LIGHT_CASTS_SHADOWS: u32 = 1;
 
-/// `GpuMaterial::flags` bits.
-pub const MATERIAL_PHONG: u32 = 1;
+/// Specular models (`GpuMaterial::specular_model`).
+pub const SPECULAR_BLINN: u32 = 0;
+pub const SPECULAR_PHONG: u32 = 1;
+pub const SPECULAR_COOK_TORRANCE: u32 = 2;
+
+/// Fresnel factors of the Cook–Torrance lobe (`GpuMaterial::fresnel`).
+pub const FRESNEL_EXACT: u32 = 0;
+pub const FRESNEL_SCHLICK: u32 = 1;
 
 /// `GpuMesh::flags` bits.
 pub const MESH_HAS_NORMALS: u32 = 1;
@@ -144,17 +150,27 @@ impl TryFrom<u32> for Filter {
     }
 }
 
-impl SpecularModel {
-    /// The model a stored material uses (`GpuMaterial::flags`).
-    pub fn of_flags(flags: u32) -> Self {
-        if flags & MATERIAL_PHONG != 0 { Self::Phong } else { Self::Blinn }
-    }
+impl TryFrom<u32> for SpecularModel {
+    type Error = UnknownTag;
 
-    /// The `GpuMaterial::flags` bits that store this model.
-    pub fn flags(self) -> u32 {
-        match self {
-            Self::Blinn => 0,
-            Self::Phong => MATERIAL_PHONG,
+    fn try_from(value: u32) -> Result<Self, UnknownTag> {
+        match value {
+            SPECULAR_BLINN => Ok(Self::Blinn),
+            SPECULAR_PHONG => Ok(Self::Phong),
+            SPECULAR_COOK_TORRANCE => Ok(Self::CookTorrance),
+            _ => Err(UnknownTag { what: "specular model", value }),
+        }
+    }
+}
+
+impl TryFrom<u32> for Fresnel {
+    type Error = UnknownTag;
+
+    fn try_from(value: u32) -> Result<Self, UnknownTag> {
+        match value {
+            FRESNEL_EXACT => Ok(Self::Exact),
+            FRESNEL_SCHLICK => Ok(Self::Schlick),
+            _ => Err(UnknownTag { what: "Fresnel factor", value }),
         }
     }
 }
@@ -224,11 +240,13 @@ pub mod feature {
     pub const SKIP_CONVEX: u32 = 1 << 20;
     /// The world's global attenuation is on (not (1, 0, 0)) and child rays are traced.
     pub const GLOBAL_ATTENUATION: u32 = 1 << 21;
+    /// Some material with k_s > 0 has the Cook–Torrance lobe.
+    pub const COOK_TORRANCE: u32 = 1 << 22;
     /// Every feature: the unspecialised tracer.
-    pub const ALL: u32 = (1 << 22) - 1;
+    pub const ALL: u32 = (1 << 23) - 1;
 
     /// Names in bit order, for logs, cache keys and shader defs.
-    pub const NAMES: [&str; 22] = [
+    pub const NAMES: [&str; 23] = [
         "POINT_LIGHTS",
         "DIRECTIONAL_LIGHTS",
         "SPOT_LIGHTS",
@@ -251,6 +269,7 @@ pub mod feature {
         "SMOOTH_SPOT",
         "SKIP_CONVEX",
         "GLOBAL_ATTENUATION",
+        "COOK_TORRANCE",
     ];
 
     /// Whether a scene with `features` traces child rays: the one test of "needs a ray tree
@@ -317,14 +336,17 @@ pub struct GpuMaterial {
     pub emission: [f32; 4],
     pub shininess: f32,
     pub ior: f32,
-    pub flags: u32,
+    /// `SPECULAR_*`: which lobe spec_j is.
+    pub specular_model: u32,
     /// Index into the texture table whose colour multiplies k_a and k_d, or `NO_TEXTURE`.
     pub diffuse_texture: u32,
     /// Index into the texture table whose colour multiplies E_m, or `NO_TEXTURE`.
     pub emission_texture: u32,
-    pub pad_a: u32,
-    pub pad_b: u32,
-    pub pad_c: u32,
+    /// Beckmann roughness m of the Cook–Torrance lobe.
+    pub roughness: f32,
+    /// `FRESNEL_*`: the Cook–Torrance lobe's Fresnel factor.
+    pub fresnel: u32,
+    pub pad: u32,
 }
 
 /// One texture of the texture table: where its texels start in the texel buffer (linear RGBA
@@ -614,8 +636,11 @@ mod tests {
         for falloff in SpotFalloff::ALL {
             assert_eq!(SpotFalloff::try_from(falloff as u32), Ok(falloff));
         }
-        for model in [SpecularModel::Blinn, SpecularModel::Phong] {
-            assert_eq!(SpecularModel::of_flags(model.flags()), model);
+        for model in SpecularModel::ALL {
+            assert_eq!(SpecularModel::try_from(model as u32), Ok(model));
+        }
+        for fresnel in Fresnel::ALL {
+            assert_eq!(Fresnel::try_from(fresnel as u32), Ok(fresnel));
         }
         for wrap in [Wrap::Repeat, Wrap::ClampToEdge, Wrap::MirroredRepeat] {
             assert_eq!(Wrap::try_from(wrap as u32), Ok(wrap));
@@ -628,5 +653,7 @@ mod tests {
         assert_eq!(EpsilonMode::try_from(5).unwrap_err().to_string(), "5 is not a valid epsilon mode");
         assert_eq!(AttenuationModel::try_from(2).unwrap_err().to_string(), "2 is not a valid attenuation model");
         assert_eq!(SpotFalloff::try_from(2).unwrap_err().to_string(), "2 is not a valid spot falloff");
+        assert_eq!(SpecularModel::try_from(3).unwrap_err().to_string(), "3 is not a valid specular model");
+        assert_eq!(Fresnel::try_from(2).unwrap_err().to_string(), "2 is not a valid Fresnel factor");
     }
 }

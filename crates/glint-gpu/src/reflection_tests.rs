@@ -57,12 +57,12 @@ fn rust_layouts() -> Vec<RustLayout> {
             emission,
             shininess,
             ior,
-            flags,
+            specular_model,
             diffuse_texture,
             emission_texture,
-            pad_a,
-            pad_b,
-            pad_c
+            roughness,
+            fresnel,
+            pad
         }),
         rust_layout!(GpuTexture {
             offset,
@@ -253,7 +253,11 @@ fn wgsl_layout_constants_match_rust() {
         ("SPOT_FALLOFF_POWER".into(), SPOT_FALLOFF_POWER),
         ("SPOT_FALLOFF_SMOOTH".into(), SPOT_FALLOFF_SMOOTH),
         ("LIGHT_CASTS_SHADOWS".into(), LIGHT_CASTS_SHADOWS),
-        ("MATERIAL_PHONG".into(), MATERIAL_PHONG),
+        ("SPECULAR_BLINN".into(), SPECULAR_BLINN),
+        ("SPECULAR_PHONG".into(), SPECULAR_PHONG),
+        ("SPECULAR_COOK_TORRANCE".into(), SPECULAR_COOK_TORRANCE),
+        ("FRESNEL_EXACT".into(), FRESNEL_EXACT),
+        ("FRESNEL_SCHLICK".into(), FRESNEL_SCHLICK),
         ("MESH_HAS_NORMALS".into(), MESH_HAS_NORMALS),
         ("MESH_HAS_UVS".into(), MESH_HAS_UVS),
         ("NO_TEXTURE".into(), NO_TEXTURE),
@@ -317,7 +321,7 @@ fn shared_tracer_constants_match_rust() {
     // Constants the two tracers must share exactly. (offset.rs's FLOAT_SCALE and SHADOW_REL
     // differ on purpose: each is scaled to its tracer's precision.) A probe module imports
     // each one and stores it, so naga cannot fold it away before we read it.
-    let expected: [(&str, &str, f64); 12] = [
+    let expected: [(&str, &str, f64); 13] = [
         ("glint::intersect", "PRIM_SPHERE", f64::from(intersect::PRIM_SPHERE)),
         ("glint::intersect", "PRIM_PLANE", f64::from(intersect::PRIM_PLANE)),
         ("glint::intersect", "PRIM_TRIANGLE", f64::from(intersect::PRIM_TRIANGLE)),
@@ -326,6 +330,7 @@ fn shared_tracer_constants_match_rust() {
         ("glint::shade", "MIN_LIGHT_DISTANCE", shade::MIN_LIGHT_DISTANCE),
         ("glint::shade", "MIN_HALF_LENGTH", shade::MIN_HALF_LENGTH),
         ("glint::shade", "MIN_ATTENUATION_DENOMINATOR", shade::MIN_ATTENUATION_DENOMINATOR),
+        ("glint::shade", "MIN_GRAZING_COS", shade::MIN_GRAZING_COS),
         ("glint::offset", "ORIGIN", offset::ORIGIN),
         ("glint::offset", "INT_SCALE", offset::INT_SCALE),
         ("glint::scene_data", "NO_HIT", f64::from(NO_HIT)),

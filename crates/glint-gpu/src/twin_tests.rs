@@ -144,7 +144,7 @@ const GPU_ONLY_STRUCTS: [(&str, &str, &str); 7] = [
 ];
 
 /// Structs only the CPU side has, and why.
-const CPU_ONLY_STRUCTS: [(&str, &str, &str); 5] = [
+const CPU_ONLY_STRUCTS: [(&str, &str, &str); 6] = [
     (
         "cpu/bvh.rs",
         "Crossing",
@@ -153,6 +153,7 @@ const CPU_ONLY_STRUCTS: [(&str, &str, &str); 5] = [
     ),
     ("cpu/mod.rs", "TraceContext", "the scene and its decoded header; WGSL reads them from bindings"),
     ("cpu/mod.rs", "LightTags", "a light's stored tags decoded into enums once; WGSL compares the u32 fields"),
+    ("cpu/mod.rs", "MaterialTags", "a material's stored tags decoded into enums once; WGSL compares the u32 fields"),
     ("cpu/shade.rs", "Breakdown", "the CPU probe's record; the GPU probe writes ProbeRecord (layout.rs)"),
     ("image.rs", "*", "host images and their metadata have no place on the GPU"),
 ];

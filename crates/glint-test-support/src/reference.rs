@@ -1,5 +1,5 @@
 //! An independent re-derivation of the geometry and the lobes (camera rays, sphere and plane
-//! hits, Blinn and Phong) in f64, so that expected values never come from the tracer itself;
+//! hits, Blinn, Phong and Cook–Torrance) in f64, so that expected values never come from the tracer itself;
 //! and comparisons with a relative tolerance.
 
 use glam::DVec3;
@@ -66,6 +66,42 @@ pub fn phong(n: DVec3, l: DVec3, v: DVec3, shininess: f64) -> f64 {
     }
     let r = 2.0 * ndl * n - l;
     pow0(r.dot(v).max(0.0), shininess)
+}
+
+/// Which Fresnel factor `cook_torrance` uses.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FresnelForm {
+    Exact,
+    Schlick,
+}
+
+/// Cook & Torrance (1982) in the seed's place of (N·H)^n: π·(N·L)·R_s with the paper's
+/// R_s = F·D·G / (π (N·L)(N·V)), i.e. F·D·G/(N·V); the paper's D = exp(−(tan α / m)²) / (m² cos⁴ α)
+/// with α = acos(N·H); G = min(1, 2(N·H)(N·V)/(V·H), 2(N·H)(N·L)/(V·H)); F the paper's
+/// unpolarised Fresnel equation or Schlick's, at c = V·H. 0 where N·L ≤ 0. Written from the
+/// paper's formulas (angles through acos and tan), not from the tracer's.
+pub fn cook_torrance(n: DVec3, l: DVec3, v: DVec3, m: f64, eta: f64, fresnel: FresnelForm) -> f64 {
+    let ndl = n.dot(l);
+    if ndl <= 0.0 {
+        return 0.0;
+    }
+    let h = (l.normalize() + v).normalize();
+    let (ndh, ndv, vdh) = (n.dot(h), n.dot(v), v.dot(h));
+    let alpha = ndh.clamp(-1.0, 1.0).acos();
+    let d = (-(alpha.tan() / m).powi(2)).exp() / (m * m * ndh.powi(4));
+    let c = vdh;
+    let f = match fresnel {
+        FresnelForm::Exact => {
+            let g = (eta * eta + c * c - 1.0).sqrt();
+            0.5 * ((g - c) / (g + c)).powi(2) * (1.0 + ((c * (g + c) - 1.0) / (c * (g - c) + 1.0)).powi(2))
+        }
+        FresnelForm::Schlick => {
+            let f0 = ((eta - 1.0) / (eta + 1.0)).powi(2);
+            f0 + (1.0 - f0) * (1.0 - c).powi(5)
+        }
+    };
+    let g = 1.0_f64.min(2.0 * ndh * ndv / vdh).min(2.0 * ndh * ndl / vdh);
+    f * d * g / ndv
 }
 
 /// x^n with x^0 = 1 (also 0^0).

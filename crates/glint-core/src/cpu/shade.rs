@@ -1,4 +1,5 @@
-//! CPU twin of `shaders/shade.wgsl`: the local Phong/Blinn model of the seed,
+//! CPU twin of `shaders/shade.wgsl`: the local Phong/Blinn model of the seed (spec_j one of
+//! Blinn's, Phong's or Cook & Torrance's lobes),
 //!
 //! I_local = E_m + I_a·k_a + Σ_j f_att,j·S_j·[ I_a,j·k_a + V_j·( I_d,j·k_d·max(N·L,0) + I_s,j·k_s·spec_j ) ]
 
@@ -7,10 +8,10 @@ use glam::{DVec2, DVec3};
 use super::intersect::{FAR, Prim, all_zero, shadow_transmittance};
 use super::offset::{leaving_surface, shadow_t_max, spawn_ray};
 use super::texture::sample_texture;
-use super::{LightTags, Ray, RayCounts, TraceContext, v3};
+use super::{LightTags, MaterialTags, Ray, RayCounts, TraceContext, v3};
 use crate::layout::{GpuLight, GpuMaterial, LIGHT_CASTS_SHADOWS, NO_TEXTURE, feature};
 pub use crate::scene::MIN_ATTENUATION_DENOMINATOR;
-use crate::scene::{AttenuationModel, LightKind, SpecularModel, SpotFalloff};
+use crate::scene::{AttenuationModel, Fresnel, LightKind, SpecularModel, SpotFalloff};
 
 /// Geometry at a hit: point, unit geometric and shading normals as stored (not yet turned
 /// towards the ray), material and object.
@@ -144,15 +145,96 @@ pub fn light_sample(ctx: &TraceContext, light: &GpuLight, tags: LightTags, p: DV
     LightSample { l, dist, f_att, spot }
 }
 
-/// The specular lobe: max(N·H, 0)^n (Blinn) or max(R·V, 0)^n (Phong); 0 where N·L ≤ 0.
-pub fn specular_term(ctx: &TraceContext, mat: &GpuMaterial, n: DVec3, l: DVec3, v: DVec3, n_dot_l: f64) -> f64 {
+/// N·V, N·H and V·H below this give no Cook–Torrance lobe. Its limit at grazing angles is
+/// finite (G/(N·V) → 2(N·H)/(V·H)), but f32 would divide by numbers near 0 there; the band
+/// cut off is a millionth of a radian wide, and for N·H below it D is 0 in f32 and f64 alike.
+pub const MIN_GRAZING_COS: f64 = 1e-6;
+
+/// The Beckmann distribution of Cook & Torrance (1982), without the 1/π that normalises it
+/// (docs/scene-format.md: that π cancels the seed's): D = exp(−tan²α/m²) / (m²·cos⁴α), α the angle
+/// between N and H, given as cos α and sin²α = |N × H|² (which keeps its digits near α = 0,
+/// where 1 − cos²α would lose them in f32).
+pub fn beckmann_distribution(m: f64, cos_alpha: f64, sin2_alpha: f64) -> f64 {
+    let m2 = m * m;
+    let cos2 = cos_alpha * cos_alpha;
+    (-sin2_alpha / (cos2 * m2)).exp() / (m2 * cos2 * cos2)
+}
+
+/// The unpolarised dielectric Fresnel reflectance at c = V·H for the relative index η (Cook &
+/// Torrance's form): F = ½ (g−c)²/(g+c)² · [1 + (c(g+c)−1)²/(c(g−c)+1)²], g = √(η² + c² − 1),
+/// and 1 where η² + c² − 1 ≤ 0 (total internal reflection, for η < 1; the formula's own value
+/// at 0). With g > 0 and c > 0 neither denominator is 0.
+pub fn fresnel_exact(eta: f64, c: f64) -> f64 {
+    let g2 = eta * eta + c * c - 1.0;
+    if g2 <= 0.0 {
+        return 1.0;
+    }
+    let g = g2.sqrt();
+    let a = (g - c) / (g + c);
+    let b = (c * (g + c) - 1.0) / (c * (g - c) + 1.0);
+    0.5 * a * a * (1.0 + b * b)
+}
+
+/// Schlick's approximation of `fresnel_exact`: F0 + (1 − F0)(1 − c)⁵, F0 = ((η − 1)/(η + 1))².
+pub fn fresnel_schlick(eta: f64, c: f64) -> f64 {
+    let r = (eta - 1.0) / (eta + 1.0);
+    let f0 = r * r;
+    let k = 1.0 - c;
+    let k2 = k * k;
+    f0 + (1.0 - f0) * k2 * k2 * k
+}
+
+/// The Cook–Torrance lobe in the seed's place of (N·H)^n: spec = F·D·G / (N·V), which is π·(N·L)
+/// times the paper's R_s = F·D·G / (π (N·L)(N·V)) (docs/scene-format.md), with the V-groove term
+/// G = min(1, 2(N·H)(N·V)/(V·H), 2(N·H)(N·L)/(V·H)). 0 where N·V, N·H or V·H is below
+/// `MIN_GRAZING_COS`, or where the half vector is undefined.
+pub fn cook_torrance_term(mat: &GpuMaterial, fresnel: Fresnel, n: DVec3, l: DVec3, v: DVec3, n_dot_l: f64) -> f64 {
+    let n_dot_v = n.dot(v);
+    if n_dot_v < MIN_GRAZING_COS {
+        return 0.0;
+    }
+    let h = l.normalize() + v;
+    let len = h.length();
+    if len < MIN_HALF_LENGTH {
+        return 0.0;
+    }
+    let h = h / len;
+    let n_dot_h = n.dot(h);
+    let v_dot_h = v.dot(h);
+    if n_dot_h < MIN_GRAZING_COS || v_dot_h < MIN_GRAZING_COS {
+        return 0.0;
+    }
+    let d = beckmann_distribution(f64::from(mat.roughness), n_dot_h, n.cross(h).length_squared());
+    let eta = f64::from(mat.ior);
+    let f = match fresnel {
+        Fresnel::Exact => fresnel_exact(eta, v_dot_h),
+        Fresnel::Schlick => fresnel_schlick(eta, v_dot_h),
+    };
+    let g = (2.0 * n_dot_h * n_dot_v / v_dot_h).min(2.0 * n_dot_h * n_dot_l / v_dot_h).min(1.0);
+    f * d * g / n_dot_v
+}
+
+/// The specular lobe: max(N·H, 0)^n (Blinn), max(R·V, 0)^n (Phong) or Cook–Torrance's
+/// F·D·G/(N·V); 0 where N·L ≤ 0.
+pub fn specular_term(
+    ctx: &TraceContext,
+    mat: &GpuMaterial,
+    tags: MaterialTags,
+    n: DVec3,
+    l: DVec3,
+    v: DVec3,
+    n_dot_l: f64,
+) -> f64 {
     let shininess = f64::from(mat.shininess);
-    match SpecularModel::of_flags(mat.flags) {
+    match tags.specular {
         SpecularModel::Phong if ctx.has(feature::PHONG) => {
             let r = 2.0 * n_dot_l * n - l;
             return safe_pow(r.dot(v).max(0.0), shininess);
         }
-        SpecularModel::Phong | SpecularModel::Blinn => {}
+        SpecularModel::CookTorrance if ctx.has(feature::COOK_TORRANCE) => {
+            return cook_torrance_term(mat, tags.fresnel, n, l, v, n_dot_l);
+        }
+        SpecularModel::Phong | SpecularModel::CookTorrance | SpecularModel::Blinn => {}
     }
     // L normalised here: a directional light's L is its stored f32 direction, unit only to
     // ~3e-8, and where L ≈ −V that length error, not the direction, would set H's direction.
@@ -311,7 +393,8 @@ pub fn light_term(
         if !all_zero(term.visibility) {
             term.diffuse = v3(light.diffuse) * c.kd * n_dot_l;
             if ctx.has(feature::SPECULAR) && !all_zero(v3(mat.ks)) {
-                term.specular = v3(light.specular) * v3(mat.ks) * specular_term(ctx, mat, n, ls.l, v, n_dot_l);
+                let tags = ctx.material_tags[s.material as usize];
+                term.specular = v3(light.specular) * v3(mat.ks) * specular_term(ctx, mat, tags, n, ls.l, v, n_dot_l);
             }
         }
     }

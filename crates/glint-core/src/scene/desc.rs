@@ -232,15 +232,84 @@ impl Default for GlobalAttenuation {
     }
 }
 
-/// Which specular lobe a material uses.
+/// Which specular lobe a material uses (`GpuMaterial::specular_model`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize, Default)]
 #[serde(rename_all = "snake_case")]
+#[repr(u32)]
 pub enum SpecularModel {
     /// max(N·H, 0)^n with the half vector H (Blinn 1977, the OpenGL form of the seed).
     #[default]
-    Blinn,
+    Blinn = layout::SPECULAR_BLINN,
     /// max(R·V, 0)^n with the mirrored light direction R (Phong 1975).
-    Phong,
+    Phong = layout::SPECULAR_PHONG,
+    /// F·D·G / (N·V): Cook & Torrance (1982) with the Beckmann distribution D of roughness m,
+    /// the V-groove masking and shadowing G and the Fresnel factor F (docs/scene-format.md).
+    CookTorrance = layout::SPECULAR_COOK_TORRANCE,
+}
+
+impl SpecularModel {
+    pub const ALL: [Self; 3] = [Self::Blinn, Self::Phong, Self::CookTorrance];
+
+    /// The name a scene file uses.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Blinn => "blinn",
+            Self::Phong => "phong",
+            Self::CookTorrance => "cook_torrance",
+        }
+    }
+
+    /// A short label for tables and editors.
+    pub fn label(self) -> &'static str {
+        match self {
+            Self::Blinn => "Blinn",
+            Self::Phong => "Phong",
+            Self::CookTorrance => "Cook–Torrance",
+        }
+    }
+}
+
+/// The Fresnel factor F of the Cook–Torrance lobe (`GpuMaterial::fresnel`), from the material's
+/// ior, at c = V·H.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+#[repr(u32)]
+pub enum Fresnel {
+    /// The unpolarised dielectric Fresnel equation, as Cook & Torrance used it:
+    /// F = ½ (g−c)²/(g+c)² · [1 + (c(g+c)−1)²/(c(g−c)+1)²], g² = η² + c² − 1 (1 where g² < 0).
+    /// The default: Glint's CPU tracer is the reference, and the exact form costs a square root.
+    #[default]
+    Exact = layout::FRESNEL_EXACT,
+    /// Schlick's approximation F = F0 + (1 − F0)(1 − c)⁵, F0 = ((η − 1)/(η + 1))².
+    Schlick = layout::FRESNEL_SCHLICK,
+}
+
+impl Fresnel {
+    pub const ALL: [Self; 2] = [Self::Exact, Self::Schlick];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Exact => "exact",
+            Self::Schlick => "schlick",
+        }
+    }
+
+    fn is_default(&self) -> bool {
+        *self == Self::default()
+    }
+}
+
+/// The Beckmann roughness m of a material that does not set it: the lobe width of the default
+/// shininess 32, since (N·H)^n ≈ exp(−n·α²/2) and the Beckmann lobe ≈ exp(−α²/m²) near the
+/// peak give m = √(2/n) = 0.25.
+pub const DEFAULT_ROUGHNESS: f64 = 0.25;
+
+fn default_roughness() -> f64 {
+    DEFAULT_ROUGHNESS
+}
+
+fn is_default_roughness(m: &f64) -> bool {
+    *m == DEFAULT_ROUGHNESS
 }
 
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -252,6 +321,13 @@ pub struct MaterialDesc {
     /// Specular exponent n, in [0, 1e6].
     pub shininess: f64,
     pub specular_model: SpecularModel,
+    /// Beckmann roughness m (RMS slope of the microfacets) of the Cook–Torrance lobe, in
+    /// [1e-3, 1]; kept, unused, under the other models.
+    #[serde(default = "default_roughness", skip_serializing_if = "is_default_roughness")]
+    pub roughness: f64,
+    /// The Cook–Torrance lobe's Fresnel factor; kept, unused, under the other models.
+    #[serde(skip_serializing_if = "Fresnel::is_default")]
+    pub fresnel: Fresnel,
     pub kr: Rgb,
     pub kt: Rgb,
     pub ior: f64,
@@ -277,6 +353,8 @@ impl Default for MaterialDesc {
             ks: Rgb::splat(0.0),
             shininess: 32.0,
             specular_model: SpecularModel::Blinn,
+            roughness: DEFAULT_ROUGHNESS,
+            fresnel: Fresnel::Exact,
             kr: Rgb::splat(0.0),
             kt: Rgb::splat(0.0),
             ior: 1.5,

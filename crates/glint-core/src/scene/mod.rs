@@ -24,8 +24,8 @@ use crate::model::{ImportOptions, ModelFormat};
 
 pub use builtin::{BUILTIN_SCENES, BuiltinScene, BuiltinSource, DEFAULT_RESOLUTION, RESOLUTIONS, builtin};
 pub use desc::{
-    CameraDesc, CheckerDesc, EpsilonMode, GlobalAttenuation, MaterialDesc, MeshDesc, ObjectDesc, PlaneDesc,
-    RenderSettings, SceneDesc, SpecularModel, SphereDesc, WorldDesc,
+    CameraDesc, CheckerDesc, DEFAULT_ROUGHNESS, EpsilonMode, Fresnel, GlobalAttenuation, MaterialDesc, MeshDesc,
+    ObjectDesc, PlaneDesc, RenderSettings, SceneDesc, SpecularModel, SphereDesc, WorldDesc,
 };
 pub use error::{FieldIssue, SceneError};
 pub use light::{
@@ -42,9 +42,9 @@ pub use texture::{
     Wrap, load_textures, material_textures, srgb_to_linear,
 };
 pub use validate::{
-    MAX_COORD, MAX_DEPTH, MAX_EPSILON, MAX_IMAGE_SIDE, MAX_INTENSITY, MAX_IOR, MAX_SHININESS, MAX_SPOT_EXPONENT,
-    MAX_SPP, MIN_ATTENUATION_DENOMINATOR, Range, Report, ranges, validate, validate_objects, validate_settings,
-    validate_with_objects,
+    MAX_COORD, MAX_DEPTH, MAX_EPSILON, MAX_IMAGE_SIDE, MAX_INTENSITY, MAX_IOR, MAX_ROUGHNESS, MAX_SHININESS,
+    MAX_SPOT_EXPONENT, MAX_SPP, MIN_ATTENUATION_DENOMINATOR, MIN_ROUGHNESS, Range, Report, ranges, validate,
+    validate_objects, validate_settings, validate_with_objects,
 };
 
 /// A parsed and validated scene with where it came from.

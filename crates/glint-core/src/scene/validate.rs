@@ -24,6 +24,14 @@ pub const MAX_SPP: u32 = 4096;
 pub const MAX_DEPTH: u32 = 1024;
 pub const MAX_EPSILON: f64 = 1e3;
 pub const MAX_IOR: f64 = 1e3;
+/// The Beckmann roughness m (RMS microfacet slope) of the Cook–Torrance lobe lies in
+/// [MIN_ROUGHNESS, MAX_ROUGHNESS]. At m = 1 (a mean slope of 45°) the V-groove G and the
+/// Beckmann lobe are at the end of what they model (from m > 1/√2 on, D peaks away from the
+/// normal); a rougher surface is a diffuse one. At m = 1e-3 D peaks at 1/m² = 1e6, the bound
+/// validation puts on f_att too, and m² = 1e-6 and m²·cos⁴α stay normal f32 numbers on the GPU
+/// wherever the lobe is not cut off; a smoother surface is a mirror (k_r).
+pub const MIN_ROUGHNESS: f64 = 1e-3;
+pub const MAX_ROUGHNESS: f64 = 1.0;
 /// Smallest value c + l·d + q·d² may take: f_att = 1/(…) stays ≤ 1e6, so that radiance stays
 /// far from f32 overflow on the GPU. The inverse-square model divides by max(d², this) for the
 /// same bound: a point within 1e-3 of its light gets f_att = 1e6 at most.
@@ -77,8 +85,8 @@ impl Range<u32> {
 /// The allowed range of every number a scene holds, one entry per kind of field.
 pub mod ranges {
     use super::{
-        MAX_COORD, MAX_DEPTH, MAX_EPSILON, MAX_IMAGE_SIDE, MAX_INTENSITY, MAX_IOR, MAX_SHININESS, MAX_SPOT_EXPONENT,
-        MAX_SPP, Range,
+        MAX_COORD, MAX_DEPTH, MAX_EPSILON, MAX_IMAGE_SIDE, MAX_INTENSITY, MAX_IOR, MAX_ROUGHNESS, MAX_SHININESS,
+        MAX_SPOT_EXPONENT, MAX_SPP, MIN_ROUGHNESS, Range,
     };
 
     pub const IMAGE_SIDE: Range<u32> = Range::logarithmic(1, MAX_IMAGE_SIDE);
@@ -94,6 +102,8 @@ pub mod ranges {
     pub const COLOUR: Range<f64> = Range::linear(0.0, MAX_INTENSITY);
     pub const SHININESS: Range<f64> = Range::logarithmic(0.0, MAX_SHININESS);
     pub const IOR: Range<f64> = Range::logarithmic_above(0.0, MAX_IOR);
+    /// The Beckmann roughness m of the Cook–Torrance lobe.
+    pub const ROUGHNESS: Range<f64> = Range::logarithmic(MIN_ROUGHNESS, MAX_ROUGHNESS);
     /// A sphere's radius and a checker's square size.
     pub const SIZE: Range<f64> = Range::logarithmic_above(0.0, MAX_COORD);
     /// Each of the attenuation coefficients c, l, q (their sum has a rule of its own).
@@ -279,6 +289,7 @@ fn validate_material(path: &str, m: &MaterialDesc, r: &mut Report) {
     }
     r.colour(&format!("{path}.emission"), m.emission);
     r.finite_in(&format!("{path}.shininess"), m.shininess, ranges::SHININESS);
+    r.finite_in(&format!("{path}.roughness"), m.roughness, ranges::ROUGHNESS);
     if !ranges::IOR.contains(m.ior) {
         let (lo, hi) = (ranges::IOR.min, ranges::IOR.max);
         r.error(format!("{path}.ior"), format!("{} is outside the allowed range ({lo}, {hi}]", num(m.ior)));
