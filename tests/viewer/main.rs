@@ -19,3 +19,4 @@ mod snapshots;
 mod status;
 mod support;
 mod view;
+mod world;

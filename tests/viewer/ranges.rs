@@ -23,12 +23,13 @@ fn validation_range(label: &str) -> Option<(f64, f64)> {
         "Epsilon" => real(ranges::EPSILON),
         "Samples per pixel" => whole(ranges::SPP),
         "Width" | "Height" => whole(ranges::IMAGE_SIDE),
-        "c" | "l" | "q" => real(ranges::ATTENUATION),
+        "c" | "l" | "q" | "c_g" | "l_g" | "q_g" => real(ranges::ATTENUATION),
         "Spot exponent" => real(ranges::SPOT_EXPONENT),
         "Cutoff" => real(ranges::CUTOFF),
         "Range" => real(ranges::LIGHT_RANGE),
         "Inner cone" | "Outer cone" => real(ranges::CONE),
         "Shininess n" => real(ranges::SHININESS),
+        "Roughness m" => real(ranges::ROUGHNESS),
         "Index of refraction" => real(ranges::IOR),
         "Checker size" => real(ranges::SIZE),
         _ if channel => real(ranges::COLOUR),
@@ -65,6 +66,12 @@ fn every_editor_offers_the_range_validation_allows() {
     for l in ["Field of view", "Max depth", "Bailout", "Epsilon", "Samples per pixel", "Width", "Background B"] {
         assert!(scene.iter().any(|s| s == l), "Scene: no editor {l:?} among {scene:?}");
     }
+    h.get_by_label("Global attenuation of k_r·I_r, k_t·I_t").click();
+    h.run_steps(2);
+    let world = check_editors(&h, "Scene (global attenuation)");
+    for l in ["c_g", "l_g", "q_g"] {
+        assert!(world.iter().any(|s| s == l), "Scene: no editor {l:?} among {world:?}");
+    }
 
     choose(&mut h, "Lights", "Type", "spot");
     assert_eq!(h.state().doc.desc.lights[0].kind, LightKind::Spot);
@@ -87,6 +94,9 @@ fn every_editor_offers_the_range_validation_allows() {
     for l in ["k_d G", "Shininess n", "Index of refraction", "E_m R", "Checker size", "Checker k_d B"] {
         assert!(materials.iter().any(|s| s == l), "Materials: no editor {l:?} among {materials:?}");
     }
+    choose(&mut h, "Materials", "Specular model", "Cook–Torrance F·D·G/(N·V)");
+    let cook_torrance = check_editors(&h, "Materials (Cook–Torrance)");
+    assert!(cook_torrance.iter().any(|s| s == "Roughness m"), "Materials: no editor for m among {cook_torrance:?}");
 }
 
 #[test]

@@ -1,7 +1,7 @@
 //! Materials panel: the material of the picked object (or any material by name).
 
 use egui::Ui;
-use glint_core::scene::{CheckerDesc, ObjectDesc, Rgb, SpecularModel, format_number, ranges};
+use glint_core::scene::{CheckerDesc, Fresnel, ObjectDesc, Rgb, SpecularModel, format_number, ranges};
 
 use crate::document::Document;
 use crate::widgets::{choice, rgb_edit, slider};
@@ -44,11 +44,17 @@ pub fn ui(
     changed |= rgb_edit(ui, "k_a", &mut m.ka);
     changed |= rgb_edit(ui, "k_d", &mut m.kd);
     changed |= rgb_edit(ui, "k_s", &mut m.ks);
-    changed |= slider(ui, "Shininess n", &mut m.shininess, ranges::SHININESS);
-    changed |=
-        choice(ui, "Specular model", &mut m.specular_model, &[SpecularModel::Blinn, SpecularModel::Phong], |s| {
-            if s == SpecularModel::Blinn { "Blinn (N·H)" } else { "Phong (R·V)" }
-        });
+    changed |= choice(ui, "Specular model", &mut m.specular_model, &SpecularModel::ALL, model_label);
+    // Each model's own parameters; the others' stay in the material, unused.
+    match m.specular_model {
+        SpecularModel::Blinn | SpecularModel::Phong => {
+            changed |= slider(ui, "Shininess n", &mut m.shininess, ranges::SHININESS);
+        }
+        SpecularModel::CookTorrance => {
+            changed |= slider(ui, "Roughness m", &mut m.roughness, ranges::ROUGHNESS);
+            changed |= choice(ui, "Fresnel", &mut m.fresnel, &Fresnel::ALL, fresnel_label);
+        }
+    }
     changed |= rgb_edit(ui, "k_r", &mut m.kr);
     changed |= rgb_edit(ui, "k_t", &mut m.kt);
     // The whole valid range: ior < 1 (a bubble) and 100 (stiff case 13) too.
@@ -74,6 +80,21 @@ pub fn ui(
         changed |= slider(ui, "Checker size", &mut c.size, ranges::SIZE);
     }
     changed
+}
+
+fn model_label(model: SpecularModel) -> &'static str {
+    match model {
+        SpecularModel::Blinn => "Blinn (N·H)^n",
+        SpecularModel::Phong => "Phong (R·V)^n",
+        SpecularModel::CookTorrance => "Cook–Torrance F·D·G/(N·V)",
+    }
+}
+
+fn fresnel_label(fresnel: Fresnel) -> &'static str {
+    match fresnel {
+        Fresnel::Exact => "exact (from the ior)",
+        Fresnel::Schlick => "Schlick (from the ior)",
+    }
 }
 
 fn numbers(values: &[f64]) -> String {

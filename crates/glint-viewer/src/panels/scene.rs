@@ -1,10 +1,14 @@
 //! Scene panel: camera, world and render settings.
 
 use egui::Ui;
-use glint_core::scene::{CameraDesc, EpsilonMode, ObjectDesc, SpecularModel, ranges};
+use glint_core::scene::{CameraDesc, EpsilonMode, GlobalAttenuation, ObjectDesc, SpecularModel, ranges};
 
 use crate::document::Document;
-use crate::widgets::{choice, int_slider, rgb_edit, slider};
+use crate::widgets::{choice, int_slider, number, rgb_edit, slider};
+
+/// What switching the world's global attenuation on starts from: a gentle linear falloff (a
+/// child ray 10 units long brings back half), since (1, 0, 0) is "off".
+const NEW_GLOBAL_ATTENUATION: GlobalAttenuation = GlobalAttenuation { c: 1.0, l: 0.1, q: 0.0 };
 
 pub fn ui(ui: &mut Ui, doc: &mut Document) -> bool {
     let mut changed = false;
@@ -20,6 +24,7 @@ pub fn ui(ui: &mut Ui, doc: &mut Document) -> bool {
     egui::CollapsingHeader::new("World").default_open(true).show(ui, |ui| {
         changed |= rgb_edit(ui, "Ambient I_a", &mut doc.desc.world.ambient);
         changed |= rgb_edit(ui, "Background", &mut doc.desc.world.background);
+        changed |= global_attenuation_ui(ui, &mut doc.desc.world.global_attenuation);
     });
     egui::CollapsingHeader::new("Render").default_open(true).show(ui, |ui| {
         let r = &mut doc.desc.render;
@@ -33,8 +38,8 @@ pub fn ui(ui: &mut Ui, doc: &mut Document) -> bool {
         changed |= int_slider(ui, "Height", &mut r.height, ranges::IMAGE_SIDE);
         ui.horizontal(|ui| {
             ui.label("Specular model of all materials");
-            for model in [SpecularModel::Blinn, SpecularModel::Phong] {
-                let name = if model == SpecularModel::Blinn { "Blinn" } else { "Phong" };
+            for model in SpecularModel::ALL {
+                let name = model.label();
                 if ui.button(name).on_hover_text(format!("Set every material to {name}")).clicked() {
                     for m in doc.desc.materials.values_mut() {
                         m.specular_model = model;
@@ -44,6 +49,27 @@ pub fn ui(ui: &mut Ui, doc: &mut Document) -> bool {
             }
         });
     });
+    changed
+}
+
+/// The world's attenuation of reflected and transmitted terms by the distance their ray
+/// travelled: off is (1, 0, 0); the coefficients are checked as a light's (each in
+/// `ranges::ATTENUATION`, and validation refuses a polynomial that reaches 0).
+fn global_attenuation_ui(ui: &mut Ui, g: &mut GlobalAttenuation) -> bool {
+    let mut changed = false;
+    let mut on = !g.is_none();
+    if ui.checkbox(&mut on, "Global attenuation of k_r·I_r, k_t·I_t").changed() {
+        *g = if on { NEW_GLOBAL_ATTENUATION } else { GlobalAttenuation::NONE };
+        changed = true;
+    }
+    if on {
+        ui.label("f_g(d) = 1 / (c_g + l_g·d + q_g·d²), d the child ray's length");
+        ui.horizontal(|ui| {
+            changed |= number(ui, "c_g", &mut g.c, 0.01, ranges::ATTENUATION);
+            changed |= number(ui, "l_g", &mut g.l, 0.01, ranges::ATTENUATION);
+            changed |= number(ui, "q_g", &mut g.q, 0.01, ranges::ATTENUATION);
+        });
+    }
     changed
 }
 
