@@ -85,7 +85,7 @@ fn quick_report_writes_consistent_files() {
     listing.sort();
     let scenes = ["highlights", "whitted"];
     let mut expected: Vec<String> = scenes.iter().map(|s| format!("error_vs_time_{s}.png")).collect();
-    expected.extend(["report.csv".to_string(), "report.md".to_string()]);
+    expected.extend(["report.csv".to_string(), "report.md".to_string(), "specular.csv".to_string()]);
     assert_eq!(listing, expected);
 
     for s in scenes {
@@ -181,7 +181,11 @@ fn quick_report_writes_consistent_files() {
         }
     }
 
+    check_specular_csv(&std::fs::read_to_string(out_dir.join("specular.csv")).expect("specular.csv"), skip_gpu);
+
     let md = std::fs::read_to_string(out_dir.join("report.md")).expect("report.md");
+    assert!(md.contains("The seed's claim: what each specular model costs"), "report.md has no specular table");
+    assert!(!md.contains("| **no** |"), "a table row says the rays or the images differ");
     for s in scenes {
         assert!(md.contains(&format!("## {s}")), "report.md has no section for {s}");
         assert!(md.contains(&format!("(error_vs_time_{s}.png)")), "report.md does not link the {s} plot");
@@ -268,5 +272,31 @@ fn check_pareto_front(scene: &str, rows: &[&Vec<String>], col: &dyn Fn(&str) -> 
             tp <= tq && ep * 0.99 <= eq
         });
         assert!(covered, "{scene}: row ({tq} ms, {eq}) is off the front but nothing on it is as fast and as accurate");
+    }
+}
+
+/// specular.csv: each scene on each backend under every specular model, with equal ray counts
+/// (the lobe decides no ray) and positive times.
+fn check_specular_csv(csv: &str, skip_gpu: bool) {
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().expect("specular.csv header").split(',').collect();
+    let col = |name: &str| header.iter().position(|h| *h == name).unwrap_or_else(|| panic!("no column {name}"));
+    let rows: Vec<Vec<String>> = lines.map(split_csv).collect();
+    let backends = if skip_gpu { 1 } else { 2 };
+    assert_eq!(rows.len(), 2 * backends * 3, "two scenes × backends × three models: {rows:?}");
+    let mut rays: HashMap<(String, String), Vec<(String, String)>> = HashMap::new();
+    for r in &rows {
+        assert_eq!(r.len(), header.len(), "{r:?}");
+        let (lo, hi) =
+            (r[col("render_ms_min")].parse::<f64>().unwrap(), r[col("render_ms_max")].parse::<f64>().unwrap());
+        assert!(lo > 0.0 && lo <= hi, "{r:?}");
+        rays.entry((r[col("scene")].clone(), r[col("backend")].clone()))
+            .or_default()
+            .push((r[col("specular_model")].clone(), r[col("rays_total")].clone()));
+    }
+    for (key, models) in rays {
+        let names: Vec<&str> = models.iter().map(|(m, _)| m.as_str()).collect();
+        assert_eq!(names, ["blinn", "phong", "cook_torrance"], "{key:?}");
+        assert!(models.iter().all(|(_, n)| *n == models[0].1), "{key:?}: ray counts differ: {models:?}");
     }
 }

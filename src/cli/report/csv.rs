@@ -117,6 +117,60 @@ pub fn render_csv(scenes: &[SceneResult], cpu_device: &str, gpu_device: &str) ->
     out
 }
 
+pub const SPECULAR_HEADER: &[&str] = &[
+    "scene",
+    "backend",
+    "specular_model",
+    "width_px",
+    "height_px",
+    "spp",
+    "max_depth",
+    "timed_runs",
+    "render_ms_median",
+    "render_ms_min",
+    "render_ms_max",
+    "pipeline_ms",
+    "shader_statements",
+    "rays_total",
+    "camera_rays",
+    "shadow_rays",
+    "reflection_rays",
+    "refraction_rays",
+];
+
+/// `specular.csv`: the render time of each specular model, every material set to it.
+pub fn render_specular_csv(scenes: &[SceneResult]) -> String {
+    let mut out = SPECULAR_HEADER.join(",");
+    out.push('\n');
+    for s in scenes {
+        for r in &s.specular {
+            let fields = [
+                field(&s.name),
+                r.config.backend.name().to_string(),
+                r.model.name().to_string(),
+                s.settings.width.to_string(),
+                s.settings.height.to_string(),
+                r.config.spp.to_string(),
+                r.config.depth.to_string(),
+                r.times.len().to_string(),
+                ms_csv(r.times[r.times.len() / 2]),
+                ms_csv(r.times[0]),
+                ms_csv(r.times[r.times.len() - 1]),
+                r.gpu.map_or(String::new(), |g| ms_csv(g.pipeline)),
+                r.gpu.map_or(String::new(), |g| g.statements.to_string()),
+                r.counts.total().to_string(),
+                r.counts.camera.to_string(),
+                r.counts.shadow.to_string(),
+                r.counts.reflection.to_string(),
+                r.counts.refraction.to_string(),
+            ];
+            out.push_str(&fields.join(","));
+            out.push('\n');
+        }
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::field;

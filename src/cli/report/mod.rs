@@ -1,6 +1,7 @@
 //! `glint report`: error against run time. Sweeps render configurations per scene, times
 //! each (render only, median after a warm-up), measures its error against a CPU f64
-//! reference, and writes report.csv, report.md and one log-log plot per scene.
+//! reference, and writes report.csv, report.md and one log-log plot per scene; and measures
+//! the render time of each specular model (specular.csv).
 
 mod csv;
 mod machine;
@@ -8,6 +9,7 @@ mod markdown;
 mod pareto;
 mod plan;
 mod plot;
+mod specular;
 mod sweep;
 
 use std::collections::HashMap;
@@ -119,13 +121,16 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
 
     let planned = plan.configs(&backends);
     let reference = plan.reference();
-    // One tick per render: the reference, then each configuration's warm-up and timed runs.
-    let renders = scenes.len() * (1 + planned.len() * (1 + args.runs as usize));
+    // One tick per render: the reference, then each configuration's warm-up and timed runs,
+    // then each specular model's.
+    let renders =
+        scenes.len() * (1 + planned.len() * (1 + args.runs as usize) + specular::renders(&backends, args.runs));
     let bar = progress(args.quiet, renders as u64)?;
     let mut results = Vec::with_capacity(scenes.len());
     for loaded in &scenes {
         let base = RenderSettings { width, height, ..loaded.desc.render.clone() };
         let mut result = sweep::run_scene(&mut engines, loaded, &base, &reference, &planned, args.runs, &bar)?;
+        result.specular = specular::measure(&mut engines, loaded, &base, &backends, args.runs, &bar)?;
         pareto::mark_fronts(&mut result.rows);
         let path = plot::write_plot(&args.out, &result, args.runs as usize)?;
         bar.suspend(|| println!("{}: {} configurations, wrote {}", result.name, result.rows.len(), path.display()));
@@ -146,6 +151,7 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
     };
     let csv_path = args.out.join("report.csv");
     write_report_file(&csv_path, &csv::render_csv(&results, &cpu_device, gpu_device.as_deref().unwrap_or("")))?;
+    write_report_file(&args.out.join("specular.csv"), &csv::render_specular_csv(&results))?;
     let md_path = args.out.join("report.md");
     write_report_file(&md_path, &markdown::render_markdown(&setup, &results))?;
     println!(

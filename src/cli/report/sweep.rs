@@ -13,6 +13,7 @@ use glint_gpu::{GpuOptions, GpuTracer, ShaderKey};
 use indicatif::ProgressBar;
 
 use super::plan::{Config, Group, Planned};
+use super::specular::SpecularRow;
 use crate::cli::units::{mrays_per_s, ms};
 
 /// What the sweep needs to render: CPU threads and, unless `--cpu-only`, one GPU tracer whose
@@ -26,11 +27,11 @@ pub struct Engines {
 }
 
 /// One render's image and what it cost.
-struct Sample {
-    image: HdrImage,
-    counts: RayCounts,
-    time: Duration,
-    gpu: Option<GpuExtra>,
+pub struct Sample {
+    pub image: HdrImage,
+    pub counts: RayCounts,
+    pub time: Duration,
+    pub gpu: Option<GpuExtra>,
 }
 
 #[derive(Clone, Copy, Debug)]
@@ -110,6 +111,8 @@ pub struct SceneResult {
     pub settings: RenderSettings,
     pub reference: Config,
     pub rows: Vec<Row>,
+    /// The render time of each specular model on each backend (`specular::measure`).
+    pub specular: Vec<SpecularRow>,
 }
 
 impl SceneResult {
@@ -124,7 +127,7 @@ impl SceneResult {
 }
 
 /// The scene's settings for `config` at the report's size.
-fn settings_for(base: &RenderSettings, config: &Config) -> RenderSettings {
+pub fn settings_for(base: &RenderSettings, config: &Config) -> RenderSettings {
     RenderSettings {
         spp: config.spp,
         max_depth: config.depth,
@@ -134,7 +137,7 @@ fn settings_for(base: &RenderSettings, config: &Config) -> RenderSettings {
     }
 }
 
-fn render(engines: &mut Engines, flat: &FlatScene, config: &Config) -> anyhow::Result<Sample> {
+pub fn render(engines: &mut Engines, flat: &FlatScene, config: &Config) -> anyhow::Result<Sample> {
     match config.backend {
         Backend::Cpu => {
             let options =
@@ -260,5 +263,6 @@ pub fn run_scene(
         settings: base.clone(),
         reference: *reference,
         rows,
+        specular: Vec::new(),
     })
 }

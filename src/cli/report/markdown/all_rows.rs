@@ -129,7 +129,14 @@ mod tests {
     fn table(rows: Vec<Row>) -> String {
         let settings = RenderSettings { width: 2, height: 2, ..RenderSettings::default() };
         let reference = rows[0].config;
-        let scene = SceneResult { name: "s".into(), description: String::new(), settings, reference, rows };
+        let scene = SceneResult {
+            name: "s".into(),
+            description: String::new(),
+            settings,
+            reference,
+            rows,
+            specular: Vec::new(),
+        };
         let mut md = String::new();
         all_rows(&mut md, &scene);
         md

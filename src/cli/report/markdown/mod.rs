@@ -11,6 +11,7 @@ mod f32_floor;
 mod header;
 mod prose;
 mod specialisation;
+mod specular;
 
 use std::fmt::Write as _;
 
@@ -29,6 +30,7 @@ pub fn render_markdown(setup: &Setup, scenes: &[SceneResult]) -> String {
     bailout::bailout_summary(&mut md, scenes);
     specialisation::shader_summary(&mut md, scenes);
     epsilon::epsilon_summary(&mut md, scenes);
+    specular::specular_summary(&mut md, scenes);
     for scene in scenes {
         scene_section(&mut md, scene);
     }

@@ -15,6 +15,7 @@ pub enum Block {
     Specialisation,
     SpecialisationNotMeasured,
     Epsilon,
+    Specular,
     EqualTime,
     EqualError,
     AllConfigurations,
@@ -22,7 +23,7 @@ pub enum Block {
 
 impl Block {
     #[cfg(test)]
-    const ALL: [Self; 10] = [
+    const ALL: [Self; 11] = [
         Self::Setup,
         Self::F32Floor,
         Self::F32FloorDroppedWork,
@@ -30,6 +31,7 @@ impl Block {
         Self::Specialisation,
         Self::SpecialisationNotMeasured,
         Self::Epsilon,
+        Self::Specular,
         Self::EqualTime,
         Self::EqualError,
         Self::AllConfigurations,
@@ -44,6 +46,7 @@ impl Block {
             Self::Specialisation => "specialisation",
             Self::SpecialisationNotMeasured => "specialisation-not-measured",
             Self::Epsilon => "epsilon",
+            Self::Specular => "specular",
             Self::EqualTime => "equal-time",
             Self::EqualError => "equal-error",
             Self::AllConfigurations => "all-configurations",
@@ -68,7 +71,7 @@ impl Block {
                 "sweep",
             ],
             Self::F32FloorDroppedWork => &["scene", "rays", "camera_rays", "camera_expected", "status"],
-            Self::Bailout => &["spp", "depth"],
+            Self::Bailout | Self::Specular => &["spp", "depth"],
             Self::F32Floor
             | Self::Specialisation
             | Self::SpecialisationNotMeasured
