@@ -73,6 +73,7 @@ struct SceneHeader {
     ambient: vec4<f32>,
     background: vec4<f32>,
     global_attenuation: vec4<f32>,
+    frame: vec4<f32>,
 }
 
 struct GpuCamera {

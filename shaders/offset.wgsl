@@ -19,10 +19,11 @@ struct Spawn {
     leaving: Leaving,
 }
 
-fn offset_ray(p: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
+// `scale`: the length scale of the fixed offset near the origin (header.frame.w).
+fn offset_ray(p: vec3<f32>, n: vec3<f32>, scale: f32) -> vec3<f32> {
     let of_i = vec3<i32>(INT_SCALE * n);
     let p_i = bitcast<vec3<f32>>(bitcast<vec3<i32>>(p) + select(of_i, -of_i, p < vec3<f32>(0.0)));
-    return select(p_i, p + FLOAT_SCALE * n, abs(p) < vec3<f32>(ORIGIN));
+    return select(p_i, p + (FLOAT_SCALE * scale) * n, abs(p) < vec3<f32>(ORIGIN * scale));
 }
 
 // Primitive `index` of kind `prim` as a ray leaving it to the side of n_side sees it: into a
@@ -49,7 +50,7 @@ fn spawn_ray(p: vec3<f32>, p_surface: vec3<f32>, n_side: vec3<f32>, dir: vec3<f3
         }
         // EPS_ROBUST; the host refuses any other stored value (FlatScene::check_tags).
         default: {
-            return Spawn(offset_ray(p_surface, n_side) + eps * n_side, 0.0, none);
+            return Spawn(offset_ray(p_surface, n_side, header.frame.w) + eps * n_side, 0.0, none);
         }
     }
 }

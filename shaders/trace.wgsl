@@ -195,7 +195,7 @@ fn surface_at(ray: Ray, hit: Hit) -> Surface {
         let p_surface = select(p, c + s.center_radius.w * ng, robust);
         var uv = vec2<f32>(0.0);
 #ifdef TEXTURES
-        uv = planar_uv(p, ng);
+        uv = planar_uv(p + header.frame.xyz, ng);
 #endif
         return Surface(p, p_surface, ng, ng, uv, s.material, s.object_id, PRIM_SPHERE, hit.index);
     }
@@ -207,7 +207,7 @@ fn surface_at(ray: Ray, hit: Hit) -> Surface {
         let p_surface = select(p, p - (dot(ng, p) - pl.normal_offset.w) * ng, robust);
         var uv = vec2<f32>(0.0);
 #ifdef TEXTURES
-        uv = planar_uv(p, ng);
+        uv = planar_uv(p + header.frame.xyz, ng);
 #endif
         return Surface(p, p_surface, ng, ng, uv, pl.material, pl.object_id, PRIM_PLANE, hit.index);
     }
@@ -220,7 +220,7 @@ fn surface_at(ray: Ray, hit: Hit) -> Surface {
     let p_surface = select(p, (1.0 - hit.bu - hit.bv) * v[0] + hit.bu * v[1] + hit.bv * v[2], robust);
     var uv = vec2<f32>(0.0);
 #ifdef TEXTURES
-    uv = triangle_uv(tri, hit.bu, hit.bv, p, ng);
+    uv = triangle_uv(tri, hit.bu, hit.bv, p + header.frame.xyz, ng);
 #endif
     let mesh = meshes[tri.mesh];
     return Surface(p, p_surface, ng, ns, uv, mesh.material, mesh.object_id, PRIM_TRIANGLE, hit.index);

@@ -108,3 +108,48 @@ fn a_traversal_cut_short_by_the_driver_is_an_error_not_a_fast_miss() {
         other => panic!("expected the loop cut-off to be an error, got {other:?}"),
     }
 }
+
+#[test]
+fn the_ray_caster_works_in_world_space_away_from_the_origin() {
+    // The tracer rebases a scene on a frame near its camera; the ray caster's rays are
+    // world-space records, so it must not. The scene, its camera and the rays moved by 4096
+    // along x (exact in f32 for the ray origins; the vertices round the same way for both
+    // backends): the tracer's frame moves (checked), the caster's hits must not.
+    const SHIFT: f64 = 4096.0;
+    let tracer = gpu_or_skip!();
+    let ctx = tracer.context();
+    let loaded =
+        load_scene_with("bumpy", &LoadOptions { resolution: Some(8), ..LoadOptions::default() }).expect("bumpy loads");
+    let mut desc = loaded.desc;
+    for object in &mut desc.objects {
+        if let ObjectDesc::Mesh(mesh) = object {
+            for v in &mut mesh.vertices {
+                v[0] += SHIFT;
+            }
+        }
+    }
+    for light in &mut desc.lights {
+        if let Some(p) = &mut light.position {
+            p[0] += SHIFT;
+        }
+    }
+    desc.camera.position[0] += SHIFT;
+    desc.camera.look_at[0] += SHIFT;
+    let flat = FlatScene::build(&desc, &desc.render);
+    assert_ne!(glint_core::rebase::camera_frame(&flat), glint_core::rebase::WORLD_FRAME);
+    let caster = RayCaster::new(ctx, &flat).expect("the kernel compiles and the scene uploads");
+    let rays: Vec<_> = RaySet::Primary
+        .rays()
+        .into_iter()
+        .map(|mut r| {
+            r.origin_t_min[0] += SHIFT as f32;
+            r
+        })
+        .collect();
+    let cpu: Vec<HitRecord> = cast_rays(&TraceContext::new(&flat).expect("valid scene"), &rays);
+    let batch = caster.upload(ctx, &rays).expect("rays upload");
+    caster.cast(ctx, &batch).expect("no status bit raised");
+    let a = compare_hits(&caster.hits(ctx, &batch).expect("hits read back"), &cpu);
+    assert!(hit_fraction(&cpu) > 0.05, "the primary rays must hit the scene");
+    assert!(1.0 - a.differing_fraction() >= SAME_PRIMITIVE_MIN, "{a:?}");
+}

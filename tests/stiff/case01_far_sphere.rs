@@ -143,4 +143,5 @@ fn unit_sphere_far_away_is_a_disc_on_both_backends() {
         assert!(err < 1e-12, "D = {distance:e}: t = {} (relative error {err:e})", b.t);
     }
     eprint!("{out}");
+    crate::generated::section("case01-far-sphere", &out);
 }

@@ -184,4 +184,5 @@ fn grazing_point_light_acne_per_epsilon_strategy() {
     let tmin_eps0: usize = table[0][0].iter().map(|o| o[0].acne + o[1].acne).sum();
     assert!(tmin_eps0 > 0, "tmin with ε = 0 shows no acne: the scene is not stiff enough");
     eprint!("{out}");
+    crate::generated::section("case02-acne", &out);
 }

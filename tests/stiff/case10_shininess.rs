@@ -91,6 +91,7 @@ fn sharp_highlights_peak_on_the_same_pixel_within_the_pow_tolerance() {
         both.ensure(worst <= tol, || format!("n = {n:e}: relative error {worst:e} > {tol:e}"));
     }
     eprint!("{out}");
+    crate::generated::section("case10-shininess", &out);
 }
 
 /// A unit sphere seen from (0, 0, −5) under a directional light travelling along `direction`,

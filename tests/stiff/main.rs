@@ -41,6 +41,9 @@ mod case13_index_of_refraction;
 mod case14_energy_gain;
 mod case15_recursion_depth;
 mod case16_invalid_data;
+mod case17_translation_and_scale;
+mod generated;
+mod plot;
 
 use glint_test_support::{gpu, reference, render, scene};
 

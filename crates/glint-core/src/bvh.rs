@@ -64,6 +64,13 @@ impl BvhNodes {
     }
 }
 
+/// Nodes in order (rebasing maps every node of a stored BVH to a moved one).
+impl FromIterator<BvhNode> for BvhNodes {
+    fn from_iter<I: IntoIterator<Item = BvhNode>>(nodes: I) -> Self {
+        Self::new(&nodes.into_iter().collect::<Vec<_>>())
+    }
+}
+
 impl std::ops::Deref for BvhNodes {
     type Target = [BvhNode];
 

@@ -386,6 +386,7 @@ impl FlatScene {
             ("header.ambient", &h.ambient),
             ("header.background", &h.background),
             ("header.global_attenuation", &h.global_attenuation),
+            ("header.frame", &h.frame),
         ] {
             if bad(v) {
                 return Some(name.into());
@@ -639,6 +640,7 @@ fn flat_header(desc: &SceneDesc, settings: &RenderSettings, p: &Geometry, materi
             let g = desc.world.global_attenuation;
             [g.c as f32, g.l as f32, g.q as f32, 0.0]
         },
+        frame: crate::rebase::WORLD_FRAME,
     }
 }
 

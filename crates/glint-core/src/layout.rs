@@ -311,6 +311,12 @@ pub struct SceneHeader {
     /// (c, l, q, unused) of the attenuation of reflected and transmitted terms by the distance
     /// their ray travelled; (1, 0, 0, 0) when off.
     pub global_attenuation: [f32; 4],
+    /// The frame the coordinates are given in (`rebase.rs`): xyz the world point that is the
+    /// origin (0 for the world-space scene both tracers build; the eye where the GPU traces
+    /// camera-relative), w the length scale of the robust offset near the origin (1, or the
+    /// power of two nearest the scene's extent when rebased). Planar texture coordinates are
+    /// taken at world positions (xyz added back).
+    pub frame: [f32; 4],
 }
 
 /// Pinhole camera as ray-generation vectors: a pixel at normalised device coordinates (x, y)

@@ -15,6 +15,7 @@ pub mod model;
 pub mod probe_terms;
 pub mod ray_tree;
 pub mod rays;
+pub mod rebase;
 pub mod render;
 pub mod scene;
 mod texture_table;

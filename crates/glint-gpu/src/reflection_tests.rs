@@ -45,7 +45,8 @@ fn rust_layouts() -> Vec<RustLayout> {
             mesh_count,
             ambient,
             background,
-            global_attenuation
+            global_attenuation,
+            frame
         }),
         rust_layout!(GpuCamera { position, forward, right, up }),
         rust_layout!(GpuMaterial {

@@ -1,14 +1,16 @@
 //! The GPU tracer: a device and a cache of compiled shader variants; renders a flat scene by
 //! uploading it, dispatching it tile by tile and reading the image back.
 
+use std::borrow::Cow;
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
 use glint_core::HdrImage;
 use glint_core::cpu::RayCounts;
-use glint_core::layout::ProbeRecord;
+use glint_core::layout::{PROBE_HIT, ProbeRecord};
 use glint_core::ray_tree::RayTree;
+use glint_core::rebase::{Frame, rebased};
 use glint_core::{Accel, FlatScene};
 
 use crate::buffers::{GeometryCache, SceneBuffers};
@@ -28,12 +30,21 @@ pub struct GpuOptions {
     /// How rays find primitives: through the BVH (default) or by testing every one, as the
     /// CPU's `CpuOptions::accel`.
     pub accel: Accel,
+    /// Where the coordinates the GPU computes in have their origin: near the camera (default) or
+    /// world space (`glint_core::rebase`).
+    pub frame: Frame,
 }
 
 impl Default for GpuOptions {
     fn default() -> Self {
-        Self { specialise: true, tile: DEFAULT_TILE, accel: Accel::default() }
+        Self { specialise: true, tile: DEFAULT_TILE, accel: Accel::default(), frame: Frame::default() }
     }
+}
+
+/// `scene` in `frame`: a rebased copy unless that is the frame it is stored in.
+fn in_frame(scene: &FlatScene, frame: Frame) -> Cow<'_, FlatScene> {
+    let frame = frame.of(scene);
+    if frame == scene.header.frame { Cow::Borrowed(scene) } else { Cow::Owned(rebased(scene, frame)) }
 }
 
 #[derive(Clone, Debug)]
@@ -120,7 +131,8 @@ impl GpuTracer {
             .check_storage_limit(self.ctx.limits.max_storage_buffers_per_shader_stage)?;
         let (pipeline, mut pipeline_time) = self.pipeline(key)?;
         let upload_start = Instant::now();
-        let buffers = SceneBuffers::upload(&self.ctx, scene, key.bvh, &self.geometry)?;
+        let scene = in_frame(scene, options.frame);
+        let buffers = SceneBuffers::upload(&self.ctx, &scene, key.bvh, &self.geometry)?;
         let bind_group = with_error_scopes(&self.ctx, || buffers.bind_group(&self.ctx, &pipeline))??;
         let upload_time = upload_start.elapsed();
         if !pipeline_time.is_zero() {
@@ -137,7 +149,9 @@ impl GpuTracer {
     }
 
     /// The breakdown of the first sample of pixel (x, y) into the terms of the model, computed
-    /// by the probe variant of the same shader (the GPU twin of `glint_core::probe_pixel`).
+    /// by the probe variant of the same shader (the GPU twin of `glint_core::probe_pixel`), in
+    /// the default frame (near the camera) as `render`; the hit point is given back in world
+    /// space.
     pub fn probe_pixel(&self, scene: &FlatScene, x: u32, y: u32) -> Result<(ProbeRecord, u32), GpuError> {
         self.probe(scene, x, y).map(|p| (p.record, p.status))
     }
@@ -149,17 +163,29 @@ impl GpuTracer {
             .check_storage_limit(self.ctx.limits.max_storage_buffers_per_shader_stage)?;
         let (pipeline, _) = self.pipeline(key)?;
         // The scene's own spp: sample 0 is then jittered in its stratum exactly as the CPU's.
-        let buffers = SceneBuffers::upload(&self.ctx, scene, key.bvh, &self.geometry)?;
+        let scene = in_frame(scene, Frame::default());
+        let buffers = SceneBuffers::upload(&self.ctx, &scene, key.bvh, &self.geometry)?;
         let bind_group = with_error_scopes(&self.ctx, || buffers.bind_group(&self.ctx, &pipeline))??;
         with_error_scopes(&self.ctx, || buffers.dispatch_probe(&self.ctx, &pipeline, &bind_group, x, y))?;
         let bytes = read_buffer(&self.ctx, &buffers.probe)?;
         let tree = read_buffer(&self.ctx, &buffers.probe_tree)?;
         let stats = read_buffer(&self.ctx, &buffers.stats)?;
-        Ok(PixelProbe {
-            record: bytemuck::pod_read_unaligned(&bytes),
-            tree: crate::probe::ray_tree(&tree)?,
-            status: decode_stats(&stats).1,
-        })
+        let mut record: ProbeRecord = bytemuck::pod_read_unaligned(&bytes);
+        let mut tree = crate::probe::ray_tree(&tree)?;
+        // Points back in world space (in f64), as the CPU's probe reports them.
+        let origin = glint_core::cpu::v3(scene.header.frame);
+        if record.flags & PROBE_HIT != 0 {
+            for k in 0..3 {
+                record.point[k] = (f64::from(record.point[k]) + origin[k]) as f32;
+            }
+        }
+        for node in &mut tree.nodes {
+            node.origin += origin;
+            if let Some(terms) = &mut node.terms {
+                terms.point += origin;
+            }
+        }
+        Ok(PixelProbe { record, tree, status: decode_stats(&stats).1 })
     }
 
     /// Renders `scene` and reads the image back, waiting for both: `submit`, then the job's

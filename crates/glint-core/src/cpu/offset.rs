@@ -25,10 +25,13 @@ pub const INT_SCALE: f64 = 256.0;
 pub const SHADOW_REL: f64 = INT_SCALE * f64::EPSILON;
 
 /// Moves `p` off the surface along `n` (the normal on the side the new ray leaves into).
-pub fn offset_ray(p: DVec3, n: DVec3) -> DVec3 {
+/// `scale` is the length scale of the fixed offset near the origin (the header's `frame.w`: 1
+/// in world space, the scene's extent in a rebased frame, so that a small scene near the
+/// camera is not offset by W&B's unit-scene constants).
+pub fn offset_ray(p: DVec3, n: DVec3, scale: f64) -> DVec3 {
     let step = |x: f64, nc: f64| -> f64 {
-        if x.abs() < ORIGIN {
-            return x + FLOAT_SCALE * nc;
+        if x.abs() < ORIGIN * scale {
+            return x + (FLOAT_SCALE * scale) * nc;
         }
         let of_i = (INT_SCALE * nc) as i64;
         let bits = x.to_bits() as i64;
@@ -66,7 +69,9 @@ pub fn spawn_ray(ctx: &TraceContext, p: DVec3, p_surface: DVec3, n_side: DVec3, 
         EpsilonMode::Tmin => (p, eps),
         EpsilonMode::NudgeRay => (p + eps * dir, 0.0),
         EpsilonMode::NudgeNormal => (p + eps * n_side, 0.0),
-        EpsilonMode::Robust => (offset_ray(p_surface, n_side) + eps * n_side, 0.0),
+        EpsilonMode::Robust => {
+            (offset_ray(p_surface, n_side, f64::from(ctx.scene.header.frame[3])) + eps * n_side, 0.0)
+        }
         EpsilonMode::SkipConvex => return Spawn { origin: p, t_min: eps, leaving },
     };
     Spawn { origin, t_min, leaving: Leaving::NONE }
@@ -91,7 +96,7 @@ mod tests {
     fn offset_moves_every_coordinate_to_the_normal_side() {
         for p in [DVec3::new(1e6, -3.0, 0.0), DVec3::new(-1e-3, 5e3, -2.5)] {
             let n = DVec3::new(0.6, 0.0, 0.8);
-            let q = offset_ray(p, n);
+            let q = offset_ray(p, n, 1.0);
             assert!(q.x > p.x && q.z > p.z && q.y == p.y, "{p} -> {q}");
             // Scale-aware: the step is a few hundred ULPs of the coordinate, not a fixed size.
             assert!((q.x - p.x) / p.x.abs().max(ORIGIN) < 1e-12);

@@ -23,13 +23,15 @@ pub fn surface_at(ctx: &TraceContext, ray: &Ray, hit: &Hit) -> Surface {
     let p = ray.origin + hit.t * ray.dir;
     let robust = ctx.epsilon_mode == EpsilonMode::Robust;
     let textures = ctx.has(feature::TEXTURES);
+    // Texture coordinates are taken at world positions: the frame's origin added back.
+    let p_world = p + v3(scene.header.frame);
     match hit.prim {
         Prim::Sphere => {
             let s = &scene.spheres[hit.index as usize];
             let c = v3(s.center_radius);
             let ng = (p - c).normalize();
             let p_surface = if robust { c + f64::from(s.center_radius[3]) * ng } else { p };
-            let uv = if textures { planar_uv(p, ng) } else { DVec2::ZERO };
+            let uv = if textures { planar_uv(p_world, ng) } else { DVec2::ZERO };
             let (material, object_id) = (s.material, s.object_id);
             Surface { p, p_surface, ng, ns: ng, uv, material, object_id, prim: hit.prim, index: hit.index }
         }
@@ -37,7 +39,7 @@ pub fn surface_at(ctx: &TraceContext, ray: &Ray, hit: &Hit) -> Surface {
             let pl = &scene.planes[hit.index as usize];
             let ng = v3(pl.normal_offset);
             let p_surface = if robust { p - (ng.dot(p) - f64::from(pl.normal_offset[3])) * ng } else { p };
-            let uv = if textures { planar_uv(p, ng) } else { DVec2::ZERO };
+            let uv = if textures { planar_uv(p_world, ng) } else { DVec2::ZERO };
             let (material, object_id) = (pl.material, pl.object_id);
             Surface { p, p_surface, ng, ns: ng, uv, material, object_id, prim: hit.prim, index: hit.index }
         }
@@ -47,7 +49,7 @@ pub fn surface_at(ctx: &TraceContext, ray: &Ray, hit: &Hit) -> Surface {
             let ng = (v1 - v0).cross(v2 - v0).normalize();
             let ns = triangle_shading_normal(scene, tri, hit.bu, hit.bv, ng);
             let p_surface = if robust { (1.0 - hit.bu - hit.bv) * v0 + hit.bu * v1 + hit.bv * v2 } else { p };
-            let uv = if textures { triangle_uv(scene, tri, hit.bu, hit.bv, p, ng) } else { DVec2::ZERO };
+            let uv = if textures { triangle_uv(scene, tri, hit.bu, hit.bv, p_world, ng) } else { DVec2::ZERO };
             let mesh = &scene.meshes[tri.mesh as usize];
             let (material, object_id) = (mesh.material, mesh.object_id);
             Surface { p, p_surface, ng, ns, uv, material, object_id, prim: hit.prim, index: hit.index }

@@ -1,0 +1,278 @@
+//! Camera-relative coordinates for the f32 tracer. A scene stored in world space carries in
+//! every f32 hit point the error of its absolute position (ulp(1e6) = 0.0625): the GPU's error
+//! then depends on where the scene is. `rebased` moves the flat scene's origin to a point near
+//! the camera (`camera_frame`) — each stored position widened to f64, the origin subtracted in
+//! f64, and only then rounded to f32 — so that f32 carries the distances near the camera
+//! instead. The CPU reference
+//! keeps tracing the world-space scene (its f64 has the digits).
+//!
+//! What moves: vertex positions (one buffer, so a vertex shared by triangles maps to one value
+//! and watertightness holds), sphere centres, plane offsets d' = d − n·c, point and spot light
+//! positions, the camera position, BVH boxes (rounded outward, so traversal stays
+//! conservative) and the header's frame (the origin, added back for planar texture
+//! coordinates, and the offsets' length scale). Directions, normals, radii, texture
+//! coordinates and everything else are unchanged.
+
+use glam::DVec3;
+
+use crate::FlatScene;
+use crate::cpu::v3;
+use crate::layout::{GpuPlane, GpuSphere};
+use crate::scene::LightKind;
+
+/// The world frame of a scene as built: origin 0, offsets' length scale 1.
+pub const WORLD_FRAME: [f32; 4] = [0.0, 0.0, 0.0, 1.0];
+
+/// Where the GPU's coordinates have their origin.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum Frame {
+    /// Near the camera (the default): `camera_frame`.
+    #[default]
+    Camera,
+    /// World space, as stored: the GPU's error then grows with the distance from the world
+    /// origin (kept to measure exactly that).
+    World,
+}
+
+impl Frame {
+    /// The frame (`SceneHeader::frame`) this choice gives `scene`.
+    pub fn of(self, scene: &FlatScene) -> [f32; 4] {
+        match self {
+            Frame::Camera => camera_frame(scene),
+            Frame::World => scene.header.frame,
+        }
+    }
+}
+
+/// x rounded down to an f32 (never above x).
+fn f32_down(x: f64) -> f32 {
+    let f = x as f32;
+    if f64::from(f) > x { f.next_down() } else { f }
+}
+
+/// x rounded up to an f32 (never below x).
+fn f32_up(x: f64) -> f32 {
+    let f = x as f32;
+    if f64::from(f) < x { f.next_up() } else { f }
+}
+
+/// A stored point moved by −c: the difference in f64, rounded once.
+fn moved(p: [f32; 4], c: DVec3) -> [f32; 4] {
+    let q = v3(p) - c;
+    [q.x as f32, q.y as f32, q.z as f32, p[3]]
+}
+
+/// 2^k for the integer k nearest log2 x (x > 0 and finite).
+fn nearest_power_of_two(x: f64) -> f64 {
+    2f64.powi(x.log2().round().clamp(-1000.0, 1000.0) as i32)
+}
+
+/// How far the scene reaches from `eye` (its own coordinates): the farthest corner of the box
+/// around the bounded geometry, the farthest point or spot light, the farthest plane. 0 for a
+/// scene of directional lights and nothing else.
+pub fn reach(scene: &FlatScene, eye: DVec3) -> f64 {
+    let mut r = 0.0_f64;
+    if let Some(root) = scene.bvh_nodes.first() {
+        let lo = DVec3::from(root.min.map(f64::from)) - eye;
+        let hi = DVec3::from(root.max.map(f64::from)) - eye;
+        r = r.max(lo.abs().max(hi.abs()).length());
+    }
+    for l in &scene.lights {
+        match LightKind::try_from(l.kind) {
+            Ok(LightKind::Point | LightKind::Spot) => r = r.max((v3(l.position) - eye).length()),
+            Ok(LightKind::Directional) | Err(_) => {}
+        }
+    }
+    for p in scene.planes.iter() {
+        let no = p.normal_offset;
+        r = r.max((v3(no).dot(eye) - f64::from(no[3])).abs());
+    }
+    r
+}
+
+/// The frame the GPU traces `scene` in (world space as stored, origin 0): the eye snapped to a
+/// grid of spacing g = 2^k ≥ 4·R, R the scene's reach from the eye (`reach`), and the offsets'
+/// length scale min(1, the power of two nearest R).
+///
+/// Why snapped: the origin c is then within g/2 per axis of the eye, so every point of the scene
+/// has |p − c| ≤ R + √3·g/2 — its f32 error follows the scene's own size, not its distance from
+/// the world origin — and a scene around the world origin (|eye| ≤ g/4) keeps c = 0 exactly:
+/// it is traced as before, bit for bit, including a light 1e-9 above a floor that f32 could not
+/// tell from the floor at a distance of 1 from an origin at the eye (stiff case 11). It also
+/// moves rarely: only when the eye crosses a cell of a grid as coarse as the scene, so a camera
+/// orbiting a model changes the uploaded positions a few times an orbit, not every frame.
+///
+/// Why the length scale: W&B's fixed offset near the origin (FLOAT_SCALE·n below |x| < 1/32) is
+/// made for scenes of unit size; in a smaller scene it would move rays by a sizeable part of
+/// it. Never above 1, so larger scenes keep W&B's constants.
+pub fn camera_frame(scene: &FlatScene) -> [f32; 4] {
+    let eye = v3(scene.camera.position);
+    let r = reach(scene, eye);
+    if !(r.is_finite() && r > 0.0) {
+        return scene.header.frame;
+    }
+    let g = 2f64.powi((4.0 * r).log2().ceil().clamp(-1000.0, 1000.0) as i32);
+    let world = eye + v3(scene.header.frame);
+    let c = (world / g).round() * g;
+    let w = nearest_power_of_two(r).min(1.0);
+    [c.x as f32, c.y as f32, c.z as f32, w as f32]
+}
+
+/// `scene` in `frame` (see the module comment): positions moved by the difference between
+/// `frame`'s origin and the scene's own, in f64, rounded once; the header's frame set. The
+/// result renders the same scene on either tracer.
+pub fn rebased(scene: &FlatScene, frame: [f32; 4]) -> FlatScene {
+    let c = v3(frame) - v3(scene.header.frame);
+    let mut out = scene.clone();
+    out.header.frame = frame;
+    if c == DVec3::ZERO {
+        return out;
+    }
+    out.vertices = scene.vertices.iter().map(|v| moved(*v, c)).collect();
+    out.spheres = scene.spheres.iter().map(|s| GpuSphere { center_radius: moved(s.center_radius, c), ..*s }).collect();
+    out.planes = scene
+        .planes
+        .iter()
+        .map(|p| {
+            let no = p.normal_offset;
+            GpuPlane { normal_offset: [no[0], no[1], no[2], (f64::from(no[3]) - v3(no).dot(c)) as f32], ..*p }
+        })
+        .collect();
+    for l in &mut out.lights {
+        match LightKind::try_from(l.kind) {
+            Ok(LightKind::Point | LightKind::Spot) => l.position = moved(l.position, c),
+            // A directional light's position is unused; a tag no kind has is refused before
+            // upload (`FlatScene::check_tags`).
+            Ok(LightKind::Directional) | Err(_) => {}
+        }
+    }
+    out.bvh_nodes = scene
+        .bvh_nodes
+        .iter()
+        .map(|n| {
+            let mut n = *n;
+            for k in 0..3 {
+                n.min[k] = f32_down(f64::from(n.min[k]) - c[k]);
+                n.max[k] = f32_up(f64::from(n.max[k]) - c[k]);
+            }
+            n
+        })
+        .collect();
+    out.camera.position = moved(scene.camera.position, c);
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::bvh::BvhNode;
+    use crate::scene::parse_scene;
+
+    fn scene(offset: f64) -> FlatScene {
+        let text = format!(
+            r#"
+[render]
+width = 8
+height = 6
+[camera]
+position = [{o}, 1.0, -5.0]
+look_at = [{o}, 0.0, 0.0]
+[[lights]]
+type = "point"
+position = [{o}, 4.0, -2.0]
+[[lights]]
+type = "directional"
+direction = [0.0, -1.0, 0.0]
+[materials.m]
+kd = 0.5
+[[objects]]
+type = "sphere"
+center = [{o}, 0.5, 0.0]
+radius = 0.5
+material = "m"
+[[objects]]
+type = "plane"
+point = [0.0, 0.0, 0.0]
+normal = [0.0, 1.0, 0.0]
+material = "m"
+[[objects]]
+type = "mesh"
+vertices = [[{o}, 0.0, 1.0], [{p}, 0.0, 1.0], [{o}, 1.0, 1.0], [{p}, 1.0, 1.0]]
+triangles = [[0, 1, 2], [1, 3, 2]]
+material = "m"
+"#,
+            o = offset,
+            p = offset + 1.0
+        );
+        let (desc, _) = parse_scene(&text, std::path::Path::new("t.toml")).expect("scene");
+        FlatScene::build(&desc, &desc.render)
+    }
+
+    #[test]
+    fn rebasing_moves_positions_and_keeps_the_rest() {
+        let world = scene(1e6);
+        let frame = [1e6, 1.0, -5.0, 1.0];
+        let r = rebased(&world, frame);
+        assert_eq!(r.camera.position, [0.0, 0.0, 0.0, 1.0]);
+        assert_eq!(r.camera.forward, world.camera.forward);
+        assert_eq!(r.spheres[0].center_radius, [0.0, -0.5, 5.0, 0.5]);
+        // y = 0 moved by the eye's y = 1: n·x = d becomes n·x = d − n·c.
+        assert_eq!(r.planes[0].normal_offset, [0.0, 1.0, 0.0, -1.0]);
+        assert_eq!(r.lights[0].position[..3], [0.0, 3.0, 3.0]);
+        assert_eq!(r.lights[1].position, world.lights[1].position);
+        // Shared vertices are one entry each: the two triangles still share their edge.
+        assert_eq!(r.vertices.len(), 4);
+        assert_eq!(r.vertices[3], [1.0, 0.0, 6.0, 1.0]);
+        assert_eq!(r.header.frame, frame);
+        for (a, b) in r.bvh_nodes.iter().zip(world.bvh_nodes.iter()) {
+            for (k, &c) in frame[..3].iter().enumerate() {
+                let c = f64::from(c);
+                assert!(f64::from(a.min[k]) <= f64::from(b.min[k]) - c, "min[{k}] not rounded down");
+                assert!(f64::from(a.max[k]) >= f64::from(b.max[k]) - c, "max[{k}] not rounded up");
+            }
+        }
+        // Back to world space: the stored scene again.
+        let back = rebased(&r, WORLD_FRAME);
+        assert_eq!(back.spheres, world.spheres);
+        assert_eq!(back.vertices, world.vertices);
+    }
+
+    #[test]
+    fn the_camera_frame_is_the_eye_snapped_to_a_grid_as_coarse_as_the_scene() {
+        // Around the world origin the frame is the world's: such scenes are traced as stored.
+        let near = scene(0.0);
+        let r = reach(&near, v3(near.camera.position));
+        // The farthest of: the box's far corner, the light, the plane (1 below the eye).
+        assert!(r > 6.0 && r < 8.0, "{r}");
+        assert_eq!(camera_frame(&near), WORLD_FRAME);
+        // Far away the origin is within g/2 = 16 of the eye per axis (R ≈ 6.8: g = 32).
+        let far = scene(1e6);
+        let f = camera_frame(&far);
+        assert_eq!(f, [1e6, 0.0, 0.0, 1.0]);
+        let eye = far.camera.position;
+        assert!((0..3).all(|k| (f[k] - eye[k]).abs() <= 16.0));
+    }
+
+    #[test]
+    fn the_offsets_length_scale_follows_a_small_scene() {
+        assert_eq!(nearest_power_of_two(6.0), 8.0);
+        assert_eq!(nearest_power_of_two(5e-3), 1.0 / 256.0);
+        let mut small = scene(0.0);
+        let shrink = |a: [f32; 4]| [a[0] / 1024.0, a[1] / 1024.0, a[2] / 1024.0, a[3]];
+        small.vertices = small.vertices.iter().map(|v| shrink(*v)).collect();
+        small.camera.position = shrink(small.camera.position);
+        small.spheres = small
+            .spheres
+            .iter()
+            .map(|s| GpuSphere { center_radius: s.center_radius.map(|x| x / 1024.0), ..*s })
+            .collect();
+        small.lights[0].position = shrink(small.lights[0].position);
+        small.bvh_nodes = small
+            .bvh_nodes
+            .iter()
+            .map(|n| BvhNode { min: n.min.map(|x| x / 1024.0), max: n.max.map(|x| x / 1024.0), ..*n })
+            .collect();
+        // The plane y = 0 is 1/1024 below the eye; the reach ≈ 6.8/1024: scale 2^-7.
+        assert_eq!(camera_frame(&small)[3], 1.0 / 128.0);
+    }
+}
