@@ -186,7 +186,7 @@ fn closest_hit(ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> Hit {
                 } else {
 #ifdef SPHERES
                     let cr = spheres[i].center_radius;
-                    let h = intersect_sphere_leaving(leaving, i, cr.xyz, cr.w, ray, t_min, bound(best, t_max));
+                    let h = intersect_sphere_leaving(leaving, i, cr.xyz, cr.w, spheres[i].power, ray, t_min, bound(best, t_max));
                     if h.ok && replaces(h.t, PRIM_SPHERE, i, best) {
                         best = Hit(h.t, PRIM_SPHERE, i, 0.0, 0.0);
                     }

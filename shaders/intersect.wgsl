@@ -41,22 +41,49 @@ struct SphereRoots {
     ok: bool,
 }
 
+// How much better an alternative form's error bound must be before it replaces the usual one:
+// 16× (4 bits), so that only the cases where f32 cancels change, never ordinary scenes.
+const FORM_MARGIN: f32 = 16.0;
+
+// c = |o − C|² − r² (x) and its error bound (y). Directly it loses ≈ ε·(|f|² + r²): all of it
+// for an origin 1 above a sphere of radius 1e6 (c ≈ 2e6 against |f|² ≈ 1e12). power + o·(o − 2C)
+// is the same c and loses ≈ ε·(|power| + |o|·|o − 2C|): little for an origin near the frame's
+// origin. The form whose bound is FORM_MARGIN times smaller is taken.
+fn sphere_c(center: vec3<f32>, radius: f32, power: f32, origin: vec3<f32>, f: vec3<f32>) -> vec2<f32> {
+    let rr = radius * radius;
+    let ff = dot(f, f);
+    let o2c = origin - 2.0 * center;
+    let err_direct = ff + rr;
+    let err_power = abs(power) + dot(abs(origin), abs(o2c));
+    if FORM_MARGIN * err_power < err_direct {
+        return vec2<f32>(power + dot(origin, o2c), err_power);
+    }
+    return vec2<f32>(ff - rr, err_direct);
+}
+
 // Haines et al., Ray Tracing Gems ch. 7: discriminant from the perpendicular distance, the
-// smaller root from c/q.
-fn sphere_roots(center: vec3<f32>, radius: f32, ray: Ray) -> SphereRoots {
+// smaller root from c/q. Two more forms where f32 would cancel (docs/numerics.md,
+// "Cancellation in the f32 twins"); the f64 twin keeps the first forms, which do not lose what
+// f64 needs. `power` is the sphere's precomputed |C|² − r² (GpuSphere::power).
+fn sphere_roots(center: vec3<f32>, radius: f32, power: f32, ray: Ray) -> SphereRoots {
     let f = ray.origin - center;
     let a = dot(ray.dir, ray.dir);
     let b = -dot(f, ray.dir);
-    let c = dot(f, f) - radius * radius;
+    let rr = radius * radius;
+    let ce = sphere_c(center, radius, power, ray.origin, f);
+    let c = ce.x;
     if c > 0.0 && b < 0.0 {
         return SphereRoots(0.0, 0.0, false);
     }
+    // a·Δ as a·(r² − |l|²), which loses ≈ ε·a·r², or as b² − a·c, which loses ≈ ε·(b² + a·δc):
+    // the latter where the ray leaves a point near a huge sphere's surface steeply (b² ≪ r²).
     let l = f + (b / a) * ray.dir;
-    let disc = radius * radius - dot(l, l);
-    if disc < 0.0 {
+    let textbook = FORM_MARGIN * (b * b + a * ce.y) < a * rr;
+    let ad = select(a * (rr - dot(l, l)), b * b - a * c, textbook);
+    if ad < 0.0 {
         return SphereRoots(0.0, 0.0, false);
     }
-    let q = b + select(-1.0, 1.0, b >= 0.0) * sqrt(a * disc);
+    let q = b + select(-1.0, 1.0, b >= 0.0) * sqrt(ad);
     if q == 0.0 {
         return SphereRoots(0.0, 0.0, true);
     }
@@ -65,8 +92,8 @@ fn sphere_roots(center: vec3<f32>, radius: f32, ray: Ray) -> SphereRoots {
     return SphereRoots(min(t_near, t_far), max(t_near, t_far), true);
 }
 
-fn intersect_sphere(center: vec3<f32>, radius: f32, ray: Ray, t_min: f32, t_max: f32) -> MaybeT {
-    let r = sphere_roots(center, radius, ray);
+fn intersect_sphere(center: vec3<f32>, radius: f32, power: f32, ray: Ray, t_min: f32, t_max: f32) -> MaybeT {
+    let r = sphere_roots(center, radius, power, ray);
     if !r.ok {
         return MaybeT(0.0, false);
     }
@@ -77,6 +104,21 @@ fn intersect_sphere(center: vec3<f32>, radius: f32, ray: Ray, t_min: f32, t_max:
         return MaybeT(r.t_far, true);
     }
     return MaybeT(0.0, false);
+}
+
+// The hit point p moved onto the sphere for the robust offset. W&B's C + r·n carries the
+// rounding of |C| + r: ulp(1e6) = 0.06 on a sphere of radius 1e6, enough to start a shadow
+// ray below its surface. p − h·n with the height h = (power + p·(p − 2C)) / (|p − C| + r)
+// carries ≈ ε·(|p| + (|power| + |p|·|p − 2C|)/(2r)) instead: used where that is far smaller.
+fn sphere_surface_point(p: vec3<f32>, center: vec3<f32>, radius: f32, power: f32, ng: vec3<f32>) -> vec3<f32> {
+    let p2c = p - 2.0 * center;
+    let err_projection = length(center) + radius;
+    let err_height = length(p) + (abs(power) + dot(abs(p), abs(p2c))) / (2.0 * radius);
+    if FORM_MARGIN * err_height < err_projection {
+        let h = (power + dot(p, p2c)) / (length(p - center) + radius);
+        return p - h * ng;
+    }
+    return center + radius * ng;
 }
 
 #ifdef SKIP_CONVEX
@@ -95,14 +137,14 @@ fn sphere_roots_counted(leaving: Leaving, index: u32) -> vec2<bool> {
 #endif
 
 // intersect_sphere for sphere `index` of a ray leaving `leaving` (the CPU's rule).
-fn intersect_sphere_leaving(leaving: Leaving, index: u32, center: vec3<f32>, radius: f32, ray: Ray, t_min: f32, t_max: f32) -> MaybeT {
+fn intersect_sphere_leaving(leaving: Leaving, index: u32, center: vec3<f32>, radius: f32, power: f32, ray: Ray, t_min: f32, t_max: f32) -> MaybeT {
 #ifdef SKIP_CONVEX
     if is_leaving(leaving, PRIM_SPHERE, index) {
-        let r = sphere_roots(center, radius, ray);
+        let r = sphere_roots(center, radius, power, ray);
         return MaybeT(r.t_far, leaving.inside && r.ok && r.t_far > t_min && r.t_far < t_max);
     }
 #endif
-    return intersect_sphere(center, radius, ray, t_min, t_max);
+    return intersect_sphere(center, radius, power, ray, t_min, t_max);
 }
 
 fn intersect_plane(n: vec3<f32>, d: f32, ray: Ray, t_min: f32, t_max: f32) -> MaybeT {
@@ -248,7 +290,7 @@ fn closest_hit(ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> Hit {
 #ifdef SPHERES
     for (var i = 0u; i < header.sphere_count; i++) {
         let cr = spheres[i].center_radius;
-        let h = intersect_sphere_leaving(leaving, i, cr.xyz, cr.w, ray, t_min, best.t);
+        let h = intersect_sphere_leaving(leaving, i, cr.xyz, cr.w, spheres[i].power, ray, t_min, best.t);
         if h.ok {
             best = Hit(h.t, PRIM_SPHERE, i, 0.0, 0.0);
         }
@@ -308,7 +350,7 @@ fn all_zero(v: vec3<f32>) -> bool {
 fn sphere_transmittance(tr_in: vec3<f32>, i: u32, ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> vec3<f32> {
     var tr = tr_in;
     let cr = spheres[i].center_radius;
-    let r = sphere_roots(cr.xyz, cr.w, ray);
+    let r = sphere_roots(cr.xyz, cr.w, spheres[i].power, ray);
     var counted = vec2<bool>(true, true);
 #ifdef SKIP_CONVEX
     counted = sphere_roots_counted(leaving, i);

@@ -136,7 +136,8 @@ struct GpuSphere {
     center_radius: vec4<f32>,
     material: u32,
     object_id: u32,
-    pad: vec2<u32>,
+    power: f32,
+    pad: u32,
 }
 
 struct GpuPlane {

@@ -7,7 +7,7 @@
 #import glint::bindings::{header, camera, tile, materials, spheres, planes, triangles, meshes, output, stats, probe_out}
 #import glint::ray::{Ray, RayCounts, ray_counts, status, probe, probe_active, driver_cut_loops}
 #import glint::camera::{camera_ray, sample_offset}
-#import glint::intersect::{Hit, Leaving, FAR, PRIM_NONE, PRIM_SPHERE, PRIM_PLANE, PRIM_TRIANGLE, triangle_corners, triangle_shading_normal, all_zero}
+#import glint::intersect::{Hit, Leaving, FAR, PRIM_NONE, PRIM_SPHERE, PRIM_PLANE, PRIM_TRIANGLE, triangle_corners, triangle_shading_normal, all_zero, sphere_surface_point}
 #ifdef BVH
 #import glint::bvh::closest_hit
 #else
@@ -192,7 +192,7 @@ fn surface_at(ray: Ray, hit: Hit) -> Surface {
         let s = spheres[hit.index];
         let c = s.center_radius.xyz;
         let ng = normalize(p - c);
-        let p_surface = select(p, c + s.center_radius.w * ng, robust);
+        let p_surface = select(p, sphere_surface_point(p, c, s.center_radius.w, s.power, ng), robust);
         var uv = vec2<f32>(0.0);
 #ifdef TEXTURES
         uv = planar_uv(p + header.frame.xyz, ng);

@@ -42,6 +42,7 @@ mod case14_energy_gain;
 mod case15_recursion_depth;
 mod case16_invalid_data;
 mod case17_translation_and_scale;
+mod case18_huge_sphere;
 mod generated;
 mod plot;
 

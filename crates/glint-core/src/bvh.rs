@@ -386,7 +386,7 @@ mod tests {
     }
 
     fn sphere(c: [f32; 3], r: f32) -> GpuSphere {
-        GpuSphere { center_radius: [c[0], c[1], c[2], r], material: 0, object_id: 0, pad: [0; 2] }
+        GpuSphere { center_radius: [c[0], c[1], c[2], r], material: 0, object_id: 0, power: 0.0, pad: 0 }
     }
 
     /// A pseudo-random scene of spheres and triangles.

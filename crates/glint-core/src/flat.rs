@@ -9,7 +9,7 @@ use crate::cpu::{LightTags, MaterialTags};
 
 use crate::layout::{
     GpuCamera, GpuLight, GpuMaterial, GpuMesh, GpuPlane, GpuSphere, GpuTexture, GpuTriangle, LIGHT_CASTS_SHADOWS,
-    MESH_HAS_NORMALS, MESH_HAS_UVS, NO_TEXTURE, SceneHeader, UnknownTag, feature,
+    MESH_HAS_NORMALS, MESH_HAS_UVS, NO_TEXTURE, SceneHeader, UnknownTag, feature, origin_power,
 };
 use crate::scene::{
     Attenuation, AttenuationModel, EpsilonMode, Filter, LightDesc, LightKind, MaterialDesc, MeshDesc, NO_CONE_CUTOFF,
@@ -544,7 +544,8 @@ fn flat_primitives(desc: &SceneDesc, material_names: &[String]) -> Primitives {
                 center_radius: vec4(DVec3::from(*center), *radius as f32),
                 material,
                 object_id,
-                pad: [0; 2],
+                power: origin_power(vec4(DVec3::from(*center), *radius as f32)),
+                pad: 0,
             }),
             ObjectDesc::Plane(PlaneDesc { point, normal, .. }) => {
                 let n = DVec3::from(*normal).normalize();

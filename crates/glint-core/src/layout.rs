@@ -412,7 +412,18 @@ pub struct GpuSphere {
     pub center_radius: [f32; 4],
     pub material: u32,
     pub object_id: u32,
-    pub pad: [u32; 2],
+    /// The power of the frame's origin with respect to the sphere, |C|² − r², computed in f64
+    /// from the stored centre and radius and rounded once (`origin_power`). The f32 tracer
+    /// takes c = |o − C|² − r² for a ray origin o near the frame's origin as
+    /// power + o·(o − 2C) where that has fewer digits to lose (see docs/numerics.md).
+    pub power: f32,
+    pub pad: u32,
+}
+
+/// |C|² − r² of a stored (centre, radius) in f64 (the f32 squares are exact), rounded to f32.
+pub fn origin_power(center_radius: [f32; 4]) -> f32 {
+    let [x, y, z, r] = center_radius.map(f64::from);
+    ((x * x + y * y + z * z) - r * r) as f32
 }
 
 /// The plane n·x = d with unit normal n.

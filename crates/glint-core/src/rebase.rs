@@ -17,7 +17,7 @@ use glam::DVec3;
 
 use crate::FlatScene;
 use crate::cpu::v3;
-use crate::layout::{GpuPlane, GpuSphere};
+use crate::layout::{GpuPlane, GpuSphere, origin_power};
 use crate::scene::LightKind;
 
 /// The world frame of a scene as built: origin 0, offsets' length scale 1.
@@ -129,7 +129,14 @@ pub fn rebased(scene: &FlatScene, frame: [f32; 4]) -> FlatScene {
         return out;
     }
     out.vertices = scene.vertices.iter().map(|v| moved(*v, c)).collect();
-    out.spheres = scene.spheres.iter().map(|s| GpuSphere { center_radius: moved(s.center_radius, c), ..*s }).collect();
+    out.spheres = scene
+        .spheres
+        .iter()
+        .map(|s| {
+            let center_radius = moved(s.center_radius, c);
+            GpuSphere { center_radius, power: origin_power(center_radius), ..*s }
+        })
+        .collect();
     out.planes = scene
         .planes
         .iter()

@@ -93,7 +93,7 @@ fn rust_layouts() -> Vec<RustLayout> {
             range,
             spot_cos_inner
         }),
-        rust_layout!(GpuSphere { center_radius, material, object_id, pad }),
+        rust_layout!(GpuSphere { center_radius, material, object_id, power, pad }),
         rust_layout!(GpuPlane { normal_offset, material, object_id, pad }),
         rust_layout!(GpuTriangle { va, vb, vc, mesh, order }),
         rust_layout!(GpuMesh { material, object_id, flags, pad }),

@@ -68,12 +68,16 @@ pub fn is_leaving(leaving: &Leaving, prim: Prim, index: u32) -> bool {
 /// Both roots t0 ≤ t1 of a ray/sphere intersection (`None` when it misses or both roots are
 /// behind an origin outside the sphere), after Haines et al., "Precision
 /// Improvements for Ray/Sphere Intersection" (Ray Tracing Gems, ch. 7): the discriminant from
-/// the perpendicular distance, and the smaller root from c/q so neither loses digits.
+/// the perpendicular distance, and the smaller root from c/q so neither loses digits. And c
+/// itself as the power of the origin, |C|² − r² + o·(o − 2C), where |f|² − r² would lose far
+/// more (an origin near the surface of a sphere much larger than its distance to the origin:
+/// f64 rounds f = o − C to ulp(|C|), 1.2e-10 at 1e6, more than the robust offset near the
+/// origin, 2^-45 — shadow rays from a planet's ground started inside it, stiff case 18).
 pub fn sphere_roots(center: DVec3, radius: f64, ray: &Ray) -> Option<(f64, f64)> {
     let f = ray.origin - center;
     let a = ray.dir.dot(ray.dir);
     let b = -f.dot(ray.dir);
-    let c = f.dot(f) - radius * radius;
+    let c = sphere_c(center, radius, ray.origin, f);
     if c > 0.0 && b < 0.0 {
         // Origin outside and centre behind it: both roots are negative (product c/a > 0,
         // sum 2b/a < 0), and so are their computed values. Cheaper than the square root.
@@ -92,6 +96,39 @@ pub fn sphere_roots(center: DVec3, radius: f64, ray: &Ray) -> Option<(f64, f64)>
     let t0 = c / q;
     let t1 = q / a;
     Some(if t0 <= t1 { (t0, t1) } else { (t1, t0) })
+}
+
+/// |o − C|² − r² with the smaller error bound (twin of intersect.wgsl's, which also returns
+/// the bound for its choice of discriminant): directly, ≈ ε·(|f|² + r²), or as the power |C|² − r² (exact squares of the
+/// stored f32 values) plus o·(o − 2C), ≈ ε·(|power| + |o|·|o − 2C|), by FORM_MARGIN.
+pub fn sphere_c(center: DVec3, radius: f64, origin: DVec3, f: DVec3) -> f64 {
+    let rr = radius * radius;
+    let ff = f.dot(f);
+    let power = center.dot(center) - rr;
+    let o2c = origin - 2.0 * center;
+    if FORM_MARGIN * (power.abs() + origin.abs().dot(o2c.abs())) < ff + rr { power + origin.dot(o2c) } else { ff - rr }
+}
+
+/// How much better an alternative form's error bound must be before it replaces the usual one
+/// (twin of intersect.wgsl's): 16× (4 bits), so that ordinary scenes keep the usual form.
+pub const FORM_MARGIN: f64 = 16.0;
+
+/// The hit point `p` moved onto the sphere for the robust offset (twin of intersect.wgsl's):
+/// W&B's C + r·n carries the rounding of |C| + r (on a sphere of radius 1e6, 1.2e-10 in f64 —
+/// enough to start a shadow ray below the surface, where the offset near the origin is 2^-45);
+/// where p − h·n with h = (|C|² − r² + p·(p − 2C)) / (|p − C| + r) carries far less, that. The
+/// power |C|² − r² is computed here in f64 from the stored values (the f32 twin reads it
+/// precomputed, `GpuSphere::power`).
+pub fn sphere_surface_point(p: DVec3, center: DVec3, radius: f64, ng: DVec3) -> DVec3 {
+    let power = center.dot(center) - radius * radius;
+    let p2c = p - 2.0 * center;
+    let err_projection = center.length() + radius;
+    let err_height = p.length() + (power.abs() + p.abs().dot(p2c.abs())) / (2.0 * radius);
+    if FORM_MARGIN * err_height < err_projection {
+        let h = (power + p.dot(p2c)) / ((p - center).length() + radius);
+        return p - h * ng;
+    }
+    center + radius * ng
 }
 
 /// Nearest sphere root inside (t_min, t_max).

@@ -7,7 +7,9 @@
 use glam::{DVec2, DVec3};
 
 use super::camera::{camera_ray, sample_offset};
-use super::intersect::{FAR, Hit, Leaving, Prim, all_zero, closest_hit, triangle_corners, triangle_shading_normal};
+use super::intersect::{
+    FAR, Hit, Leaving, Prim, all_zero, closest_hit, sphere_surface_point, triangle_corners, triangle_shading_normal,
+};
 use super::offset::{leaving_surface, spawn_ray};
 use super::shade::{Breakdown, Surface, attenuation_factor, shade_local};
 use super::texture::{planar_uv, triangle_uv};
@@ -30,7 +32,7 @@ pub fn surface_at(ctx: &TraceContext, ray: &Ray, hit: &Hit) -> Surface {
             let s = &scene.spheres[hit.index as usize];
             let c = v3(s.center_radius);
             let ng = (p - c).normalize();
-            let p_surface = if robust { c + f64::from(s.center_radius[3]) * ng } else { p };
+            let p_surface = if robust { sphere_surface_point(p, c, f64::from(s.center_radius[3]), ng) } else { p };
             let uv = if textures { planar_uv(p_world, ng) } else { DVec2::ZERO };
             let (material, object_id) = (s.material, s.object_id);
             Surface { p, p_surface, ng, ns: ng, uv, material, object_id, prim: hit.prim, index: hit.index }
