@@ -40,3 +40,51 @@ fn a_rebuilt_scene_reuses_the_uploaded_geometry_and_renders_as_a_fresh_build() {
     assert_eq!(tracer.geometry_uploads(), 3);
     assert!(other.image.pixels != reused.image.pixels, "the moved sphere is not in the image");
 }
+
+#[test]
+fn a_scene_far_from_the_origin_reuses_its_rebased_geometry_while_the_camera_moves() {
+    // Whitted moved 1e5 along x: the GPU traces it in a frame near the camera (rebased
+    // positions). A small camera move keeps that frame (the eye snapped to a grid as coarse as
+    // the scene): the rebased geometry is reused and not uploaded again; a move across the
+    // scene changes the frame and uploads once more.
+    let tracer = GpuTracer::new(gpu_or_skip!().context().clone());
+    let options = GpuOptions::default();
+    let (mut desc, _) = builtin("whitted").expect("built-in").load(None).expect("loads");
+    let shift = |p: &mut [f64; 3], d: f64| p[0] += d;
+    for object in &mut desc.objects {
+        match object {
+            glint_core::scene::ObjectDesc::Sphere(s) => shift(&mut s.center, 1e5),
+            glint_core::scene::ObjectDesc::Plane(p) => shift(&mut p.point, 1e5),
+            _ => {}
+        }
+    }
+    for light in &mut desc.lights {
+        if let Some(p) = &mut light.position {
+            shift(p, 1e5);
+        }
+    }
+    shift(&mut desc.camera.position, 1e5);
+    shift(&mut desc.camera.look_at, 1e5);
+    let first = FlatScene::build(&desc, &desc.render);
+    let frame = glint_core::rebase::camera_frame(&first);
+    assert_ne!(frame, glint_core::rebase::WORLD_FRAME);
+    gpu_render_with(&tracer, &first, &options);
+    assert_eq!(tracer.geometry_uploads(), 1);
+
+    let mut moved = desc.clone();
+    moved.camera.position[1] += 0.25;
+    let rebuilt = first.rebuild(&moved, &moved.render);
+    assert_eq!(glint_core::rebase::camera_frame(&rebuilt), frame, "a small move keeps the frame");
+    let reused = gpu_render_with(&tracer, &rebuilt, &options);
+    assert_eq!(tracer.geometry_uploads(), 1, "the rebased geometry was uploaded again");
+    // The same image as a fresh tracer rebasing from scratch.
+    let fresh = gpu_render_with(&GpuTracer::new(tracer.context().clone()), &rebuilt, &options);
+    assert!(reused.image.pixels == fresh.image.pixels, "reused rebased geometry renders another image");
+
+    let mut far = desc.clone();
+    far.camera.position[0] += 400.0;
+    let rebuilt_far = first.rebuild(&far, &far.render);
+    assert_ne!(glint_core::rebase::camera_frame(&rebuilt_far), frame);
+    gpu_render_with(&tracer, &rebuilt_far, &options);
+    assert_eq!(tracer.geometry_uploads(), 2);
+}

@@ -124,49 +124,67 @@ pub fn camera_frame(scene: &FlatScene) -> [f32; 4] {
 pub fn rebased(scene: &FlatScene, frame: [f32; 4]) -> FlatScene {
     let c = v3(frame) - v3(scene.header.frame);
     let mut out = scene.clone();
-    out.header.frame = frame;
-    if c == DVec3::ZERO {
-        return out;
+    if c != DVec3::ZERO {
+        out.vertices = scene.vertices.iter().map(|v| moved(*v, c)).collect();
+        out.spheres = scene
+            .spheres
+            .iter()
+            .map(|s| {
+                let center_radius = moved(s.center_radius, c);
+                GpuSphere { center_radius, power: origin_power(center_radius), ..*s }
+            })
+            .collect();
+        out.planes = scene
+            .planes
+            .iter()
+            .map(|p| {
+                let no = p.normal_offset;
+                GpuPlane { normal_offset: [no[0], no[1], no[2], (f64::from(no[3]) - v3(no).dot(c)) as f32], ..*p }
+            })
+            .collect();
+        out.bvh_nodes = scene
+            .bvh_nodes
+            .iter()
+            .map(|n| {
+                let mut n = *n;
+                for k in 0..3 {
+                    n.min[k] = f32_down(f64::from(n.min[k]) - c[k]);
+                    n.max[k] = f32_up(f64::from(n.max[k]) - c[k]);
+                }
+                n
+            })
+            .collect();
     }
-    out.vertices = scene.vertices.iter().map(|v| moved(*v, c)).collect();
-    out.spheres = scene
-        .spheres
-        .iter()
-        .map(|s| {
-            let center_radius = moved(s.center_radius, c);
-            GpuSphere { center_radius, power: origin_power(center_radius), ..*s }
-        })
-        .collect();
-    out.planes = scene
-        .planes
-        .iter()
-        .map(|p| {
-            let no = p.normal_offset;
-            GpuPlane { normal_offset: [no[0], no[1], no[2], (f64::from(no[3]) - v3(no).dot(c)) as f32], ..*p }
-        })
-        .collect();
-    for l in &mut out.lights {
+    move_the_rest(&mut out, scene, frame);
+    out
+}
+
+/// `rebased`, its geometry taken from `geometry`, a scene `rebased` made of the same geometry
+/// in the same frame: only the camera, the lights and the header are moved, and the geometry
+/// stays the same data (`FlatScene::geometry_id`), which the GPU tracer does not upload again.
+pub fn rebased_with_geometry(scene: &FlatScene, frame: [f32; 4], geometry: &FlatScene) -> FlatScene {
+    let mut out = scene.clone();
+    out.vertices = geometry.vertices.clone();
+    out.spheres = geometry.spheres.clone();
+    out.planes = geometry.planes.clone();
+    out.bvh_nodes = geometry.bvh_nodes.clone();
+    move_the_rest(&mut out, scene, frame);
+    out
+}
+
+/// Moves `out`'s camera and point and spot lights (from `scene`'s) into `frame`, and sets it.
+fn move_the_rest(out: &mut FlatScene, scene: &FlatScene, frame: [f32; 4]) {
+    let c = v3(frame) - v3(scene.header.frame);
+    out.header.frame = frame;
+    out.camera.position = moved(scene.camera.position, c);
+    for (l, from) in out.lights.iter_mut().zip(&scene.lights) {
         match LightKind::try_from(l.kind) {
-            Ok(LightKind::Point | LightKind::Spot) => l.position = moved(l.position, c),
+            Ok(LightKind::Point | LightKind::Spot) => l.position = moved(from.position, c),
             // A directional light's position is unused; a tag no kind has is refused before
             // upload (`FlatScene::check_tags`).
             Ok(LightKind::Directional) | Err(_) => {}
         }
     }
-    out.bvh_nodes = scene
-        .bvh_nodes
-        .iter()
-        .map(|n| {
-            let mut n = *n;
-            for k in 0..3 {
-                n.min[k] = f32_down(f64::from(n.min[k]) - c[k]);
-                n.max[k] = f32_up(f64::from(n.max[k]) - c[k]);
-            }
-            n
-        })
-        .collect();
-    out.camera.position = moved(scene.camera.position, c);
-    out
 }
 
 #[cfg(test)]

@@ -8,9 +8,10 @@ use std::time::{Duration, Instant};
 
 use glint_core::HdrImage;
 use glint_core::cpu::RayCounts;
+use glint_core::flat::GeometryId;
 use glint_core::layout::{PROBE_HIT, ProbeRecord};
 use glint_core::ray_tree::RayTree;
-use glint_core::rebase::{Frame, rebased};
+use glint_core::rebase::{Frame, rebased, rebased_with_geometry};
 use glint_core::{Accel, FlatScene};
 
 use crate::buffers::{GeometryCache, SceneBuffers};
@@ -41,10 +42,34 @@ impl Default for GpuOptions {
     }
 }
 
-/// `scene` in `frame`: a rebased copy unless that is the frame it is stored in.
-fn in_frame(scene: &FlatScene, frame: Frame) -> Cow<'_, FlatScene> {
-    let frame = frame.of(scene);
-    if frame == scene.header.frame { Cow::Borrowed(scene) } else { Cow::Owned(rebased(scene, frame)) }
+/// The last geometry rebased: the source's identity, the frame, and the rebased scene whose
+/// geometry the next render of the same geometry in the same frame reuses — so that the
+/// viewer's camera and light edits (which share their geometry, `FlatScene::rebuild`, and
+/// rarely move the frame, `rebase::camera_frame`) neither rebase nor upload a mesh again.
+#[derive(Debug, Default)]
+struct RebasedCache {
+    last: Mutex<Option<(GeometryId, [f32; 4], FlatScene)>>,
+}
+
+impl RebasedCache {
+    /// `scene` in `frame`: itself when stored in that frame, else rebased, reusing the last
+    /// rebased geometry when it is this one's in this frame.
+    fn in_frame<'a>(&self, scene: &'a FlatScene, frame: Frame) -> Cow<'a, FlatScene> {
+        let frame = frame.of(scene);
+        if frame == scene.header.frame {
+            return Cow::Borrowed(scene);
+        }
+        let id = scene.geometry_id();
+        let mut last = self.last.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some((_, _, geometry)) = last.as_ref().filter(|(i, f, _)| *i == id && *f == frame) {
+            return Cow::Owned(rebased_with_geometry(scene, frame, geometry));
+        }
+        // Dropped first: two rebased copies of a large geometry need not be alive at once.
+        *last = None;
+        let r = rebased(scene, frame);
+        *last = Some((id, frame, r.clone()));
+        Cow::Owned(r)
+    }
 }
 
 #[derive(Clone, Debug)]
@@ -82,6 +107,7 @@ pub struct GpuTracer {
     ctx: GpuContext,
     cache: Mutex<HashMap<ShaderKey, Arc<TracerPipeline>>>,
     geometry: GeometryCache,
+    rebased: RebasedCache,
 }
 
 /// Waits until the GPU has finished all submitted work.
@@ -92,7 +118,12 @@ fn wait_idle(ctx: &GpuContext) -> Result<(), GpuError> {
 
 impl GpuTracer {
     pub fn new(ctx: GpuContext) -> Self {
-        Self { ctx, cache: Mutex::new(HashMap::new()), geometry: GeometryCache::default() }
+        Self {
+            ctx,
+            cache: Mutex::new(HashMap::new()),
+            geometry: GeometryCache::default(),
+            rebased: RebasedCache::default(),
+        }
     }
 
     pub fn context(&self) -> &GpuContext {
@@ -131,7 +162,7 @@ impl GpuTracer {
             .check_storage_limit(self.ctx.limits.max_storage_buffers_per_shader_stage)?;
         let (pipeline, mut pipeline_time) = self.pipeline(key)?;
         let upload_start = Instant::now();
-        let scene = in_frame(scene, options.frame);
+        let scene = self.rebased.in_frame(scene, options.frame);
         let buffers = SceneBuffers::upload(&self.ctx, &scene, key.bvh, &self.geometry)?;
         let bind_group = with_error_scopes(&self.ctx, || buffers.bind_group(&self.ctx, &pipeline))??;
         let upload_time = upload_start.elapsed();
@@ -163,7 +194,7 @@ impl GpuTracer {
             .check_storage_limit(self.ctx.limits.max_storage_buffers_per_shader_stage)?;
         let (pipeline, _) = self.pipeline(key)?;
         // The scene's own spp: sample 0 is then jittered in its stratum exactly as the CPU's.
-        let scene = in_frame(scene, Frame::default());
+        let scene = self.rebased.in_frame(scene, Frame::default());
         let buffers = SceneBuffers::upload(&self.ctx, &scene, key.bvh, &self.geometry)?;
         let bind_group = with_error_scopes(&self.ctx, || buffers.bind_group(&self.ctx, &pipeline))??;
         with_error_scopes(&self.ctx, || buffers.dispatch_probe(&self.ctx, &pipeline, &bind_group, x, y))?;
