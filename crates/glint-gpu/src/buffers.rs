@@ -14,7 +14,7 @@ use crate::binding::Binding;
 use crate::context::GpuContext;
 use crate::error::GpuError;
 use crate::pipeline::{TracerPipeline, with_error_scopes};
-use crate::shaders::GPU_PRIMITIVE_LIMIT;
+use crate::shaders::{GPU_PRIMITIVE_LIMIT, ShaderKey};
 
 /// A scene's geometry on the GPU (primitives and BVH), for the geometry `id` names. The tracer
 /// keeps the last one and the next upload of the same geometry reuses it: the viewer's scenes
@@ -164,11 +164,18 @@ fn check_limits(ctx: &GpuContext, scene: &FlatScene, bvh: bool) -> Result<u64, G
 }
 
 impl SceneBuffers {
-    /// Checks the scene (every float finite) and the device limits, for a shader that walks
-    /// the BVH (`bvh`) or every primitive, then uploads it; its geometry only if `cache` does
-    /// not hold it already.
-    pub fn upload(ctx: &GpuContext, scene: &FlatScene, bvh: bool, cache: &GeometryCache) -> Result<Self, GpuError> {
-        let output_size = check_limits(ctx, scene, bvh)?;
+    /// Checks the scene (every float finite) and the device limits, for the shader variant
+    /// `key` (walking the BVH or every primitive), then uploads it; its geometry only if
+    /// `cache` does not hold it already.
+    pub fn upload(
+        ctx: &GpuContext,
+        scene: &FlatScene,
+        key: ShaderKey,
+        cache: &GeometryCache,
+    ) -> Result<Self, GpuError> {
+        let output_size = check_limits(ctx, scene, key.bvh)?;
+        // Only the probe variant binds the ray tree (446 KB): other variants get a stand-in.
+        let tree_size = if key.probe { size_of::<ProbeTree>() as u64 } else { 16 };
         let h = &scene.header;
         with_error_scopes(ctx, || Self {
             header: uniform(ctx, "glint header", &scene.header),
@@ -198,7 +205,7 @@ impl SceneBuffers {
             }),
             probe_tree: ctx.device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("glint probe tree"),
-                size: size_of::<ProbeTree>() as u64,
+                size: tree_size,
                 usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
                 mapped_at_creation: false,
             }),

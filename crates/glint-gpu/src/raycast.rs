@@ -49,7 +49,7 @@ impl RayCaster {
     pub fn new(ctx: &GpuContext, scene: &FlatScene) -> Result<Self, GpuError> {
         let pipeline = create_entry_pipeline(ctx, raycast_key(scene), RAYCAST_WGSL, "ray cast")?;
         // A cache of its own: the kernel runs on one scene.
-        let scene = SceneBuffers::upload(ctx, scene, true, &GeometryCache::default())?;
+        let scene = SceneBuffers::upload(ctx, scene, raycast_key(scene), &GeometryCache::default())?;
         Ok(Self { pipeline, scene })
     }
 

@@ -163,7 +163,7 @@ impl GpuTracer {
         let (pipeline, mut pipeline_time) = self.pipeline(key)?;
         let upload_start = Instant::now();
         let scene = self.rebased.in_frame(scene, options.frame);
-        let buffers = SceneBuffers::upload(&self.ctx, &scene, key.bvh, &self.geometry)?;
+        let buffers = SceneBuffers::upload(&self.ctx, &scene, key, &self.geometry)?;
         let bind_group = with_error_scopes(&self.ctx, || buffers.bind_group(&self.ctx, &pipeline))??;
         let upload_time = upload_start.elapsed();
         if !pipeline_time.is_zero() {
@@ -195,7 +195,7 @@ impl GpuTracer {
         let (pipeline, _) = self.pipeline(key)?;
         // The scene's own spp: sample 0 is then jittered in its stratum exactly as the CPU's.
         let scene = self.rebased.in_frame(scene, Frame::default());
-        let buffers = SceneBuffers::upload(&self.ctx, &scene, key.bvh, &self.geometry)?;
+        let buffers = SceneBuffers::upload(&self.ctx, &scene, key, &self.geometry)?;
         let bind_group = with_error_scopes(&self.ctx, || buffers.bind_group(&self.ctx, &pipeline))??;
         with_error_scopes(&self.ctx, || buffers.dispatch_probe(&self.ctx, &pipeline, &bind_group, x, y))?;
         let bytes = read_buffer(&self.ctx, &buffers.probe)?;
