@@ -146,13 +146,13 @@ impl Aabb {
 }
 
 /// x rounded down to an f32 (never above x).
-fn f32_down(x: f64) -> f32 {
+pub(crate) fn f32_down(x: f64) -> f32 {
     let f = x as f32;
     if f64::from(f) > x { f.next_down() } else { f }
 }
 
 /// x rounded up to an f32 (never below x).
-fn f32_up(x: f64) -> f32 {
+pub(crate) fn f32_up(x: f64) -> f32 {
     let f = x as f32;
     if f64::from(f) < x { f.next_up() } else { f }
 }

@@ -78,33 +78,25 @@ struct Primitives {
 /// scene and the scenes `rebuild` made from it), never by comparing a million triangles. It
 /// holds the data alive, so an address cannot be reused by other data while it is kept.
 #[derive(Clone, Debug)]
-pub struct GeometryId {
-    spheres: Arc<[GpuSphere]>,
-    planes: Arc<[GpuPlane]>,
-    triangles: Arc<[GpuTriangle]>,
-    vertices: Arc<[[f32; 4]]>,
-    normals: Arc<[[f32; 4]]>,
-    uvs: Arc<[[f32; 2]]>,
-    meshes: Arc<[GpuMesh]>,
-    bvh_nodes: BvhNodes,
-    bvh_prims: Arc<[u32]>,
-}
+pub struct GeometryId(Geometry);
 
 impl PartialEq for GeometryId {
     fn eq(&self, o: &Self) -> bool {
-        Arc::ptr_eq(&self.spheres, &o.spheres)
-            && Arc::ptr_eq(&self.planes, &o.planes)
-            && Arc::ptr_eq(&self.triangles, &o.triangles)
-            && Arc::ptr_eq(&self.vertices, &o.vertices)
-            && Arc::ptr_eq(&self.normals, &o.normals)
-            && Arc::ptr_eq(&self.uvs, &o.uvs)
-            && Arc::ptr_eq(&self.meshes, &o.meshes)
-            && self.bvh_nodes.ptr_eq(&o.bvh_nodes)
-            && Arc::ptr_eq(&self.bvh_prims, &o.bvh_prims)
+        let (a, b) = (&self.0, &o.0);
+        Arc::ptr_eq(&a.spheres, &b.spheres)
+            && Arc::ptr_eq(&a.planes, &b.planes)
+            && Arc::ptr_eq(&a.triangles, &b.triangles)
+            && Arc::ptr_eq(&a.vertices, &b.vertices)
+            && Arc::ptr_eq(&a.normals, &b.normals)
+            && Arc::ptr_eq(&a.uvs, &b.uvs)
+            && Arc::ptr_eq(&a.meshes, &b.meshes)
+            && a.bvh_nodes.ptr_eq(&b.bvh_nodes)
+            && Arc::ptr_eq(&a.bvh_prims, &b.bvh_prims)
     }
 }
 
 /// The shared part of a flat scene: the primitives, their object names and the BVH.
+#[derive(Clone, Debug)]
 struct Geometry {
     spheres: Arc<[GpuSphere]>,
     planes: Arc<[GpuPlane]>,
@@ -158,7 +150,17 @@ impl FlatScene {
     /// primitives and the BVH are copied instead of rebuilt — the viewer's case while the
     /// camera or a light is dragged over a million triangles. Identical to `build`.
     pub fn rebuild(&self, desc: &SceneDesc, settings: &RenderSettings) -> Self {
-        let geometry = Geometry {
+        Self::assemble(desc, settings, self.material_names.clone(), self.geometry())
+    }
+
+    /// The identity of this scene's geometry (see `GeometryId`).
+    pub fn geometry_id(&self) -> GeometryId {
+        GeometryId(self.geometry())
+    }
+
+    /// The shared part, shared again (no data is copied).
+    fn geometry(&self) -> Geometry {
+        Geometry {
             spheres: self.spheres.clone(),
             planes: self.planes.clone(),
             triangles: self.triangles.clone(),
@@ -167,22 +169,6 @@ impl FlatScene {
             uvs: self.uvs.clone(),
             meshes: self.meshes.clone(),
             object_names: self.object_names.clone(),
-            bvh_nodes: self.bvh_nodes.clone(),
-            bvh_prims: self.bvh_prims.clone(),
-        };
-        Self::assemble(desc, settings, self.material_names.clone(), geometry)
-    }
-
-    /// The identity of this scene's geometry (see `GeometryId`).
-    pub fn geometry_id(&self) -> GeometryId {
-        GeometryId {
-            spheres: self.spheres.clone(),
-            planes: self.planes.clone(),
-            triangles: self.triangles.clone(),
-            vertices: self.vertices.clone(),
-            normals: self.normals.clone(),
-            uvs: self.uvs.clone(),
-            meshes: self.meshes.clone(),
             bvh_nodes: self.bvh_nodes.clone(),
             bvh_prims: self.bvh_prims.clone(),
         }

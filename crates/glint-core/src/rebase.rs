@@ -16,6 +16,7 @@
 use glam::DVec3;
 
 use crate::FlatScene;
+use crate::bvh::{f32_down, f32_up};
 use crate::cpu::v3;
 use crate::layout::{GpuPlane, GpuSphere, origin_power};
 use crate::scene::LightKind;
@@ -42,18 +43,6 @@ impl Frame {
             Frame::World => scene.header.frame,
         }
     }
-}
-
-/// x rounded down to an f32 (never above x).
-fn f32_down(x: f64) -> f32 {
-    let f = x as f32;
-    if f64::from(f) > x { f.next_down() } else { f }
-}
-
-/// x rounded up to an f32 (never below x).
-fn f32_up(x: f64) -> f32 {
-    let f = x as f32;
-    if f64::from(f) < x { f.next_up() } else { f }
 }
 
 /// A stored point moved by −c: the difference in f64, rounded once.
