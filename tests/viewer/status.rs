@@ -49,7 +49,8 @@ fn a_long_gpu_render_says_how_far_it_is_and_how_long_it_has_been_rendering() {
         std::thread::sleep(Duration::from_millis(5));
     }
     assert!(seen.len() >= 2, "the status bar never showed the render advance: {seen:?}");
-    assert!(seen.windows(2).all(|w| w[0] < w[1]) && seen.iter().all(|n| *n < 16), "{seen:?}");
+    // 16/16 may show while the last pass is read back; never more, never going down.
+    assert!(seen.windows(2).all(|w| w[0] < w[1]) && seen.iter().all(|n| *n <= 16), "{seen:?}");
     settle(&mut h);
     assert!(h.query_by_label_contains("GPU rendering").is_none(), "the label stays after the render");
 }
