@@ -10,6 +10,14 @@ use glint_gpu::{GpuOptions, GpuTracer};
 use super::support::gpu_or_skip;
 use crate::gpu::gpu_render_with;
 
+/// Moves the camera the fraction `f` of the way to what it looks at: the centre ray meets the
+/// same point, so the frame stays (`rebase::camera_frame`).
+fn dolly(camera: &mut glint_core::scene::CameraDesc, f: f64) {
+    for k in 0..3 {
+        camera.position[k] += f * (camera.look_at[k] - camera.position[k]);
+    }
+}
+
 #[test]
 fn a_rebuilt_scene_reuses_the_uploaded_geometry_and_renders_as_a_fresh_build() {
     // A tracer of its own on the shared device, so other tests' uploads do not count.
@@ -21,7 +29,7 @@ fn a_rebuilt_scene_reuses_the_uploaded_geometry_and_renders_as_a_fresh_build() {
     assert_eq!(tracer.geometry_uploads(), 1);
 
     let mut moved = desc.clone();
-    moved.camera.position[0] += 0.7;
+    dolly(&mut moved.camera, 0.05);
     if let Some(p) = &mut moved.lights[0].position {
         p[1] += 1.0;
     }
@@ -43,10 +51,10 @@ fn a_rebuilt_scene_reuses_the_uploaded_geometry_and_renders_as_a_fresh_build() {
 
 #[test]
 fn a_scene_far_from_the_origin_reuses_its_rebased_geometry_while_the_camera_moves() {
-    // Whitted moved 1e5 along x: the GPU traces it in a frame near the camera (rebased
-    // positions). A small camera move keeps that frame (the eye snapped to a grid as coarse as
-    // the scene): the rebased geometry is reused and not uploaded again; a move across the
-    // scene changes the frame and uploads once more.
+    // Whitted moved 1e5 along x: the GPU traces it in a frame where the camera looks (rebased
+    // positions). A camera move that keeps the centre ray on the same surface point keeps that
+    // frame: the rebased geometry is reused and not uploaded again; a pan across the scene
+    // changes the frame and uploads once more.
     let tracer = GpuTracer::new(gpu_or_skip!().context().clone());
     let options = GpuOptions::default();
     let (mut desc, _) = builtin("whitted").expect("built-in").load(None).expect("loads");
@@ -72,9 +80,9 @@ fn a_scene_far_from_the_origin_reuses_its_rebased_geometry_while_the_camera_move
     assert_eq!(tracer.geometry_uploads(), 1);
 
     let mut moved = desc.clone();
-    moved.camera.position[1] += 0.25;
+    dolly(&mut moved.camera, 0.05);
     let rebuilt = first.rebuild(&moved, &moved.render);
-    assert_eq!(glint_core::rebase::camera_frame(&rebuilt), frame, "a small move keeps the frame");
+    assert_eq!(glint_core::rebase::camera_frame(&rebuilt), frame, "a dolly keeps the frame");
     let reused = gpu_render_with(&tracer, &rebuilt, &options);
     assert_eq!(tracer.geometry_uploads(), 1, "the rebased geometry was uploaded again");
     // The same image as a fresh tracer rebasing from scratch.
@@ -83,6 +91,7 @@ fn a_scene_far_from_the_origin_reuses_its_rebased_geometry_while_the_camera_move
 
     let mut far = desc.clone();
     far.camera.position[0] += 400.0;
+    far.camera.look_at[0] += 400.0;
     let rebuilt_far = first.rebuild(&far, &far.render);
     assert_ne!(glint_core::rebase::camera_frame(&rebuilt_far), frame);
     gpu_render_with(&tracer, &rebuilt_far, &options);

@@ -232,4 +232,5 @@ fn cube_on_and_above_a_floor_leaks_no_light() {
     );
     say!(out, "          worst relative error of a lit pixel CPU {worst_rel_cpu:.1e}, GPU {worst_rel_gpu:.1e}");
     eprint!("{out}");
+    crate::generated::section("case03-cube-contact", &out);
 }

@@ -107,4 +107,5 @@ fn coplanar_duplicates_have_a_deterministic_winner_on_both_backends() {
         both.first_hit_mismatches().len()
     );
     eprint!("{out}");
+    crate::generated::section("case04-coplanar", &out);
 }

@@ -127,4 +127,5 @@ fn tessellated_plane_has_no_holes_where_rays_meet_shared_edges_and_vertices() {
         );
     }
     eprint!("{out}");
+    crate::generated::section("case05-watertight", &out);
 }

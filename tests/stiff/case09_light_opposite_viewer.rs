@@ -112,4 +112,5 @@ fn light_opposite_the_viewer_gives_no_specular_and_is_continuous() {
         say!(out, "  {theta:>8.0e}  {:>19}  {:>19}", cells[0], cells[1]);
     }
     eprint!("{out}");
+    crate::generated::section("case09-light-opposite", &out);
 }

@@ -148,4 +148,5 @@ fn light_inside_a_closed_sphere_leaves_the_outside_black() {
     }
     say!(out, "  (the GPU's shadow rays stop short of the light by 256 ulps = {REACH:.2e} of their length)");
     eprint!("{out}");
+    crate::generated::section("case11-light-in-sphere", &out);
 }

@@ -56,6 +56,7 @@ fn glass_of_ior_one_is_invisible_on_both_backends() {
     }
     say!(out, "case 13: ior 1 glass sphere, worst relative change of a pixel, CPU / GPU: {}", worst.join(" / "));
     eprint!("{out}");
+    crate::generated::section("case13-ior-one", &out);
 }
 
 #[test]
@@ -120,6 +121,7 @@ fn total_internal_reflection_through_the_critical_angle() {
     }
     say!(out, "  worst relative error against the closed form: CPU {:.1e}, GPU {:.1e}", worst[0], worst[1]);
     eprint!("{out}");
+    crate::generated::section("case13-critical-angle", &out);
 }
 
 #[test]

@@ -140,6 +140,7 @@ fn facing_mirrors_with_energy_gain_stay_finite_and_bounded() {
         worst[1]
     );
     eprint!("{out}");
+    crate::generated::section("case14-energy-gain", &out);
 }
 
 /// Two parallel plane mirrors (z = 0 and z = 4; k_r = 1 or 1/2, plus k_a = k_d = 1/2) with a

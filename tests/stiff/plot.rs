@@ -46,9 +46,10 @@ pub fn translation_plot(sweep: &Sweep) -> Option<Vec<u8>> {
             .bold_line_style(RGBColor(205, 205, 205))
             .draw()
             .ok()?;
-        for (series, colour, label) in
-            [(&world, WORLD, "world space (before rebasing)"), (&eye, EYE, "camera frame (rebased near the eye)")]
-        {
+        for (series, colour, label) in [
+            (&world, WORLD, "world space (before rebasing)"),
+            (&eye, EYE, "camera frame (rebased where the camera looks)"),
+        ] {
             chart.draw_series(LineSeries::new(series.iter().copied(), colour.stroke_width(2))).ok()?;
             chart
                 .draw_series(series.iter().map(|&p| Circle::new(p, 5, colour.filled())))

@@ -1,10 +1,10 @@
-//! Camera-relative coordinates for the f32 tracer. A scene stored in world space carries in
+//! View-relative coordinates for the f32 tracer. A scene stored in world space carries in
 //! every f32 hit point the error of its absolute position (ulp(1e6) = 0.0625): the GPU's error
-//! then depends on where the scene is. `rebased` moves the flat scene's origin to a point near
-//! the camera (`camera_frame`) — each stored position widened to f64, the origin subtracted in
-//! f64, and only then rounded to f32 — so that f32 carries the distances near the camera
-//! instead. The CPU reference
-//! keeps tracing the world-space scene (its f64 has the digits).
+//! then depends on where the scene is. `rebased` moves the flat scene's origin to where the
+//! camera's centre ray meets the scene (`camera_frame`) — each stored position widened to f64,
+//! the origin subtracted in f64, and only then rounded to f32 — so that f32 carries the
+//! distances within the scene instead. The CPU reference keeps tracing the world-space scene
+//! (its f64 has the digits).
 //!
 //! What moves: vertex positions (one buffer, so a vertex shared by triangles maps to one value
 //! and watertightness holds), sphere centres, plane offsets d' = d − n·c, point and spot light
@@ -17,7 +17,8 @@ use glam::DVec3;
 
 use crate::FlatScene;
 use crate::bvh::{f32_down, f32_up};
-use crate::cpu::v3;
+use crate::cpu::intersect::{FAR, Leaving, closest_hit};
+use crate::cpu::{Ray, TraceContext, v3};
 use crate::layout::{GpuPlane, GpuSphere, origin_power};
 use crate::scene::LightKind;
 
@@ -27,7 +28,7 @@ pub const WORLD_FRAME: [f32; 4] = [0.0, 0.0, 0.0, 1.0];
 /// Where the GPU's coordinates have their origin.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub enum Frame {
-    /// Near the camera (the default): `camera_frame`.
+    /// Where the camera looks (the default): `camera_frame`.
     #[default]
     Camera,
     /// World space, as stored: the GPU's error then grows with the distance from the world
@@ -79,17 +80,46 @@ pub fn reach(scene: &FlatScene, eye: DVec3) -> f64 {
     r
 }
 
-/// The frame the GPU traces `scene` in (world space as stored, origin 0): the eye snapped to a
-/// grid of spacing g = 2^k ≥ 4·R, R the scene's reach from the eye (`reach`), and the offsets'
-/// length scale min(1, the power of two nearest R).
+/// How much finer than the scene's reach the grid of frame origins is (a power of two).
+const GRID_DIVISIONS: f64 = 16.0;
+
+/// Where the f32 tracer's digits matter most: the first surface the ray through the image
+/// centre meets (found by the CPU reference); if it meets none, the centre of the bounded
+/// geometry; if there is none, the eye.
+pub fn focus(scene: &FlatScene) -> DVec3 {
+    let eye = v3(scene.camera.position);
+    let forward = v3(scene.camera.forward);
+    if let Ok(ctx) = TraceContext::new(scene)
+        && forward.length() > 0.0
+    {
+        let ray = Ray { origin: eye, dir: forward.normalize() };
+        if let Some(hit) = closest_hit(&ctx, &ray, 0.0, FAR, &Leaving::NONE) {
+            return eye + hit.t * ray.dir;
+        }
+    }
+    match scene.bvh_nodes.first() {
+        Some(root) => (DVec3::from(root.min.map(f64::from)) + DVec3::from(root.max.map(f64::from))) * 0.5,
+        None => eye,
+    }
+}
+
+/// The frame the GPU traces `scene` in (world space as stored, origin 0): the `focus` snapped to
+/// a grid of spacing g, the power of two nearest R/16 (R the scene's reach from the eye,
+/// `reach`), and the offsets' length scale min(1, the power of two nearest R).
 ///
-/// Why snapped: the origin c is then within g/2 per axis of the eye, so every point of the scene
-/// has |p − c| ≤ R + √3·g/2 — its f32 error follows the scene's own size, not its distance from
-/// the world origin — and a scene around the world origin (|eye| ≤ g/4) keeps c = 0 exactly:
-/// it is traced as before, bit for bit, including a light 1e-9 above a floor that f32 could not
-/// tell from the floor at a distance of 1 from an origin at the eye (stiff case 11). It also
-/// moves rarely: only when the eye crosses a cell of a grid as coarse as the scene, so a camera
-/// orbiting a model changes the uploaded positions a few times an orbit, not every frame.
+/// Why the focus: an f32 hit point p carries an error of ulp(|p − c|), so the origin belongs
+/// where the rays meet the scene — for a model seen from afar, the model; for the ground seen
+/// from just above it, the ground under the camera. Near the eye it would be as far from the
+/// model as the camera is, and coarser (measured on stiff case 17's scene: FLIP 7.1e-5 with the
+/// origin at the eye against 1.6e-5 with it at the world origin, next to the model).
+///
+/// Why a grid this fine: c is within √3·g/2 < R/13 of the focus, so f32 keeps all but a
+/// thirteenth of the range the focus itself would give; and c moves with the scene —
+/// translating the scene (camera included) by any multiple of g moves the focus and c by
+/// exactly as much, so the rebased scene, hence the GPU's image, is bit for bit the same for a
+/// scene stored exactly at both places. A camera orbiting a model keeps its focus on the model
+/// and moves c rarely, so the rebased geometry is rarely rebuilt (the GPU tracer keeps it
+/// until c moves).
 ///
 /// Why the length scale: W&B's fixed offset near the origin (FLOAT_SCALE·n below |x| < 1/32) is
 /// made for scenes of unit size; in a smaller scene it would move rays by a sizeable part of
@@ -97,11 +127,12 @@ pub fn reach(scene: &FlatScene, eye: DVec3) -> f64 {
 pub fn camera_frame(scene: &FlatScene) -> [f32; 4] {
     let eye = v3(scene.camera.position);
     let r = reach(scene, eye);
-    if !(r.is_finite() && r > 0.0) {
+    let focus = focus(scene);
+    if !(r.is_finite() && r > 0.0 && focus.is_finite()) {
         return scene.header.frame;
     }
-    let g = 2f64.powi((4.0 * r).log2().ceil().clamp(-1000.0, 1000.0) as i32);
-    let world = eye + v3(scene.header.frame);
+    let g = nearest_power_of_two(r / GRID_DIVISIONS);
+    let world = focus + v3(scene.header.frame);
     let c = (world / g).round() * g;
     let w = nearest_power_of_two(r).min(1.0);
     [c.x as f32, c.y as f32, c.z as f32, w as f32]
@@ -252,19 +283,49 @@ material = "m"
     }
 
     #[test]
-    fn the_camera_frame_is_the_eye_snapped_to_a_grid_as_coarse_as_the_scene() {
-        // Around the world origin the frame is the world's: such scenes are traced as stored.
+    fn the_frame_is_where_the_centre_ray_meets_the_scene_on_a_grid_that_moves_with_it() {
         let near = scene(0.0);
         let r = reach(&near, v3(near.camera.position));
         // The farthest of: the box's far corner, the light, the plane (1 below the eye).
         assert!(r > 6.0 && r < 8.0, "{r}");
-        assert_eq!(camera_frame(&near), WORLD_FRAME);
-        // Far away the origin is within g/2 = 16 of the eye per axis (R ≈ 6.8: g = 32).
+        // The centre ray (from (0, 1, −5) to the origin) meets the sphere of radius 0.5 at (0, 0.5, 0).
+        let f = focus(&near);
+        let d = f - DVec3::new(0.0, 0.5, 0.0);
+        assert!((d.length() - 0.5).abs() < 1e-9 && f.z < 0.0, "{f}");
+        // R ≈ 6.8: a grid of g = 0.5, the focus within g/2 of the origin per axis.
+        let c = camera_frame(&near);
+        for k in 0..3 {
+            assert_eq!((f64::from(c[k]) / 0.5).fract(), 0.0, "{c:?}");
+            assert!((f64::from(c[k]) - f[k]).abs() <= 0.25, "{c:?} {f}");
+        }
+        // Translated by a multiple of g: the frame moves as much, the rebased scene not at all.
         let far = scene(1e6);
-        let f = camera_frame(&far);
-        assert_eq!(f, [1e6, 0.0, 0.0, 1.0]);
-        let eye = far.camera.position;
-        assert!((0..3).all(|k| (f[k] - eye[k]).abs() <= 16.0));
+        let cf = camera_frame(&far);
+        assert_eq!(cf, [c[0] + 1e6, c[1], c[2], c[3]]);
+        let (a, b) = (rebased(&near, c), rebased(&far, cf));
+        assert_eq!(a.vertices, b.vertices);
+        assert_eq!(a.spheres, b.spheres);
+        assert_eq!(a.camera, b.camera);
+        assert_eq!(a.lights, b.lights);
+        assert!(a.bvh_nodes.iter().eq(b.bvh_nodes.iter()));
+        // Not by a multiple: rounded differently.
+        let off = scene(1e6 + 0.125);
+        assert_ne!(rebased(&off, camera_frame(&off)).vertices, a.vertices);
+    }
+
+    #[test]
+    fn a_centre_ray_meeting_nothing_falls_back_on_the_geometry_then_the_eye() {
+        let mut s = scene(0.0);
+        // Looking up: the ray misses everything; the focus is the centre of the bounded box.
+        s.camera.forward = [0.0, 1.0, 0.0, 0.0];
+        let root = s.bvh_nodes.first().copied().expect("a BVH");
+        let centre = (DVec3::from(root.min.map(f64::from)) + DVec3::from(root.max.map(f64::from))) * 0.5;
+        assert_eq!(focus(&s), centre);
+        s.bvh_nodes = crate::bvh::BvhNodes::new(&[]);
+        s.spheres = Vec::new().into();
+        s.vertices = Vec::new().into();
+        s.triangles = Vec::new().into();
+        assert_eq!(focus(&s), v3(s.camera.position));
     }
 
     #[test]

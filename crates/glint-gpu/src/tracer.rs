@@ -43,7 +43,8 @@ impl Default for GpuOptions {
 }
 
 /// The last geometry rebased: the source's identity, the frame, and the rebased scene whose
-/// geometry the next render of the same geometry in the same frame reuses — so that the
+/// geometry the next render of the same geometry with the same frame origin reuses (the
+/// length scale moves no position) — so that the
 /// viewer's camera and light edits (which share their geometry, `FlatScene::rebuild`, and
 /// rarely move the frame, `rebase::camera_frame`) neither rebase nor upload a mesh again.
 #[derive(Debug, Default)]
@@ -61,7 +62,7 @@ impl RebasedCache {
         }
         let id = scene.geometry_id();
         let mut last = self.last.lock().unwrap_or_else(|e| e.into_inner());
-        if let Some((_, _, geometry)) = last.as_ref().filter(|(i, f, _)| *i == id && *f == frame) {
+        if let Some((_, _, geometry)) = last.as_ref().filter(|(i, f, _)| *i == id && f[..3] == frame[..3]) {
             return Cow::Owned(rebased_with_geometry(scene, frame, geometry));
         }
         // Dropped first: two rebased copies of a large geometry need not be alive at once.
