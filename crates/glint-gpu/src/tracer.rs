@@ -67,7 +67,9 @@ impl RebasedCache {
         }
         // Dropped first: two rebased copies of a large geometry need not be alive at once.
         *last = None;
+        let start = Instant::now();
         let r = rebased(scene, frame);
+        log::debug!("geometry rebased to the frame {frame:?} in {:.1} ms", start.elapsed().as_secs_f64() * 1e3);
         *last = Some((id, frame, r.clone()));
         Cow::Owned(r)
     }
