@@ -76,14 +76,18 @@ fn a_drag_during_a_long_render_never_leaves_the_old_camera_on_screen() {
     drag(&mut h, image.center(), Vec2::new(80.0, 0.0), 4);
     let after = h.state().doc.revision;
     assert!(after > before, "the drag moved the camera");
-    // From the release on: the image on screen is never the old camera's full render (it was
-    // cancelled between passes), and this camera's preview arrives while its full render has
-    // not finished (it went first).
+    // From the release on: once an image of a later camera is on screen, the old camera's
+    // never comes back (its full render was cancelled between passes, or is dropped when it
+    // completes), and this camera's preview arrives while its full render has not finished (it
+    // went first). Until the first later image arrives the old one may stay: on a loaded
+    // machine no preview finishes during the four drag frames.
     let mut preview_while_rendering = false;
+    let mut later_shown = false;
     loop {
         h.step();
         let (shown, in_flight) = gpu(&h).expect("a GPU");
-        assert_ne!(shown, Some(before), "the pre-drag camera's image came back after the drag");
+        later_shown |= shown.is_some_and(|s| s > before);
+        assert!(!(later_shown && shown == Some(before)), "the pre-drag camera's image came back after the drag");
         if shown == Some(after) && in_flight.is_none_or(|f| f == (after, false)) && !h.state().is_settled() {
             preview_while_rendering = true;
         }

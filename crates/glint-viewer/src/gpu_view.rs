@@ -83,6 +83,10 @@ pub struct GpuView {
     /// A wgpu error no error scope caught (wgpu's default would abort the process).
     uncaptured: Arc<Mutex<Option<String>>>,
     full_tile: u32,
+    /// Full renders of revisions below this are of a camera or scene edited since: the one
+    /// still in flight when an edit arrived after its last submission is neither shown nor read
+    /// back when it completes.
+    superseded_below: u64,
 }
 
 impl std::fmt::Debug for GpuView {
@@ -123,6 +127,7 @@ impl GpuView {
             warning: None,
             renders: 0,
             uncaptured,
+            superseded_below: 0,
             full_tile: if info.device_type == wgpu::DeviceType::Cpu {
                 FULL_TILE_CPU_ADAPTER
             } else {
@@ -158,6 +163,7 @@ impl GpuView {
     /// and still being dispatched: its remaining passes are not submitted, so a preview of the
     /// new camera can go next instead of waiting seconds behind an image nobody will see.
     pub fn cancel_full_render_unless(&mut self, current: u64) {
+        self.superseded_below = self.superseded_below.max(current);
         if let Some(InFlight { stage: Stage::Submitting, preview: false, revision, .. }) = &self.in_flight
             && *revision != current
         {
@@ -302,11 +308,14 @@ impl GpuView {
             let texture = self.displays.iter().find(|d| (d.presenter.width, d.presenter.height) == f.size);
             // Never an older camera over a newer one: a full render that finishes after a
             // preview of a later edit (a drag began while it ran) is not shown.
-            let newer = self.shown.is_none_or(|s| s.0 <= f.revision);
+            // Nor a full render that finished after an edit it no longer shows (a drag began
+            // after its last pass was submitted, so it could not be cancelled).
+            let superseded = !f.preview && f.revision < self.superseded_below;
+            let newer = self.shown.is_none_or(|s| s.0 <= f.revision) && !superseded;
             if let Some(d) = texture.filter(|_| newer) {
                 self.shown = Some((f.revision, f.preview, f.size, d.texture));
             }
-            if !f.preview {
+            if !f.preview && !superseded {
                 self.readback = Some((job.start_readback(&ctx), f.revision, ms));
             }
             changed = true;
