@@ -125,11 +125,11 @@ struct GpuLight {
     kind: u32,
     flags: u32,
     spot_exponent: f32,
-    spot_cos_cutoff: f32,
+    spot_versin_cutoff: f32,
     attenuation_model: u32,
     spot_falloff: u32,
     range: f32,
-    spot_cos_inner: f32,
+    spot_versin_inner: f32,
 }
 
 struct GpuSphere {

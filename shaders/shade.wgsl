@@ -20,6 +20,7 @@ const MIN_LIGHT_DISTANCE: f32 = 1e-20;
 const MIN_HALF_LENGTH: f32 = 1e-12;
 const MIN_ATTENUATION_DENOMINATOR: f32 = 1e-6;
 const MIN_GRAZING_COS: f32 = 1e-6;
+const NO_CONE_VERSIN: f32 = 2.0;
 
 // Geometry at a hit (twin of trace.rs's Surface, which lives here so shading can use it).
 struct Surface {
@@ -65,29 +66,39 @@ fn inverse_square_factor(range: f32, d: f32) -> f32 {
     return window / max(d * d, MIN_ATTENUATION_DENOMINATOR);
 }
 
-// glTF's cone: S = t², t from the outer to the inner cone's cosine; a step when they coincide.
+// 1 − cos θ without its cancellation near θ = 0: sin²θ/(1 + cos θ) below 90°.
+fn spot_versin(stored_axis: vec3<f32>, l: vec3<f32>) -> f32 {
+    let axis = normalize(stored_axis);
+    let cos_angle = dot(axis, -l);
+    if cos_angle > 0.0 {
+        let s = cross(axis, l);
+        return dot(s, s) / (1.0 + cos_angle);
+    }
+    return 1.0 - cos_angle;
+}
+
+// glTF's cone: S = t², t from the outer to the inner cone, on versines; a step when they coincide.
 fn smooth_spot_factor(light: GpuLight, l: vec3<f32>) -> f32 {
-    let cos_angle = dot(light.direction.xyz, -l);
-    if cos_angle < light.spot_cos_cutoff {
+    let v = spot_versin(light.direction.xyz, l);
+    if v > light.spot_versin_cutoff {
         return 0.0;
     }
-    if cos_angle >= light.spot_cos_inner {
+    if v <= light.spot_versin_inner {
         return 1.0;
     }
-    let t = (cos_angle - light.spot_cos_cutoff) / (light.spot_cos_inner - light.spot_cos_cutoff);
+    let t = (light.spot_versin_cutoff - v) / (light.spot_versin_cutoff - light.spot_versin_inner);
     return t * t;
 }
 
-// Cutoff 180 (cos = −1) means no cone and S = 1, as OpenGL.
+// Cutoff 180 (versine 2) means no cone and S = 1, as OpenGL.
 fn spot_factor(light: GpuLight, l: vec3<f32>) -> f32 {
-    if light.spot_cos_cutoff <= -1.0 {
+    if light.spot_versin_cutoff >= NO_CONE_VERSIN {
         return 1.0;
     }
-    let cos_angle = dot(light.direction.xyz, -l);
-    if cos_angle < light.spot_cos_cutoff {
+    if spot_versin(light.direction.xyz, l) > light.spot_versin_cutoff {
         return 0.0;
     }
-    return safe_pow(max(cos_angle, 0.0), light.spot_exponent);
+    return safe_pow(max(dot(light.direction.xyz, -l), 0.0), light.spot_exponent);
 }
 
 struct LightSample {

@@ -105,12 +105,14 @@ fn smooth_spot_along(axis: [f64; 3], cones: &str) -> (DVec3, f64, f64, f64) {
         .plane([0.0; 3], Y, "floor");
     let flat = scene.flat();
     let l = &flat.lights[0];
-    let cos_axis = -w3(l.direction).y;
+    // The angle to the stored axis, normalised (as the tracers take it).
+    let cos_axis = -w3(l.direction).normalize().y;
     let b = probe(&flat, 0, 0);
     let got = centre(&scene);
     let s = b.lights[0].spot;
     assert_rel(got, lit_floor(s, 1.0), REL, &format!("axis {axis:?}: the pixel uses the reported S"));
-    (got, cos_axis, f64::from(l.spot_cos_inner), f64::from(l.spot_cos_cutoff))
+    // The cones are stored as versines 1 − cos.
+    (got, cos_axis, 1.0 - f64::from(l.spot_versin_inner), 1.0 - f64::from(l.spot_versin_cutoff))
 }
 
 /// glTF's smooth step: t = saturate((cos θ − cos outer) / (cos inner − cos outer)), S = t².
@@ -189,7 +191,11 @@ fn smooth_spot_with_inverse_square_multiplies_both() {
         .plane([0.0; 3], Y, "floor");
     let flat = scene.flat();
     let l = &flat.lights[0];
-    let s = gltf_smooth(-w3(l.direction).y, f64::from(l.spot_cos_inner), f64::from(l.spot_cos_cutoff));
+    let s = gltf_smooth(
+        -w3(l.direction).normalize().y,
+        1.0 - f64::from(l.spot_versin_inner),
+        1.0 - f64::from(l.spot_versin_cutoff),
+    );
     let f_att = (1.0 - 0.5_f64.powi(4)) / 4.0;
     assert_rel(centre(&scene), lit_floor(f_att * s, 1.0), REL, "f_att·S");
     let b = probe(&flat, 0, 0);

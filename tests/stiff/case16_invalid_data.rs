@@ -96,7 +96,7 @@ fn floats(flat: &glint_core::FlatScene) -> Vec<(String, f32)> {
             format!("lights[{i}]"),
             &[l.position, l.direction, l.diffuse, l.specular, l.ambient, l.attenuation].concat(),
         );
-        add(format!("lights[{i}]"), &[l.spot_exponent, l.spot_cos_cutoff, l.range, l.spot_cos_inner]);
+        add(format!("lights[{i}]"), &[l.spot_exponent, l.spot_versin_cutoff, l.range, l.spot_versin_inner]);
     }
     for (i, s) in flat.spheres.iter().enumerate() {
         add(format!("spheres[{i}]"), &s.center_radius);

@@ -5,7 +5,7 @@ use std::sync::Arc;
 use glam::DVec3;
 
 use crate::bvh::{self, BvhNodes};
-use crate::cpu::{LightTags, MaterialTags};
+use crate::cpu::{LightTags, MaterialTags, shade};
 
 use crate::layout::{
     GpuCamera, GpuLight, GpuMaterial, GpuMesh, GpuPlane, GpuSphere, GpuTexture, GpuTriangle, LIGHT_CASTS_SHADOWS,
@@ -389,7 +389,7 @@ impl FlatScene {
         let l = self.lights.iter().map(|l| {
             [
                 &[l.position, l.direction, l.diffuse, l.specular, l.ambient, l.attenuation].concat()[..],
-                &[l.spot_exponent, l.spot_cos_cutoff, l.range, l.spot_cos_inner],
+                &[l.spot_exponent, l.spot_versin_cutoff, l.range, l.spot_versin_inner],
             ]
             .concat()
         });
@@ -466,12 +466,15 @@ fn flat_material(m: &MaterialDesc, table: &mut TextureTable) -> GpuMaterial {
 /// cos(angle) of a cone half-angle in [0, 90] degrees, as sin(90° − angle): exact at both ends
 /// (1 and 0), where cos(90°.to_radians()) would be 6e-17 and leave a point exactly at 90°
 /// outside a closed cone.
-fn cone_cos(degrees: f64) -> f64 {
-    (90.0 - degrees).to_radians().sin()
+/// 1 − cos of a cone's half-angle, as 2·sin²(θ/2): no cancellation for small cones, and exact
+/// at 0° (0), 90° (1, where sin² 45° rounds to 1/2) and 180° (2).
+fn cone_versin(degrees: f64) -> f64 {
+    let s = (degrees / 2.0).to_radians().sin();
+    2.0 * s * s
 }
 
 /// A light in the flat layout: unit direction, the attenuation model with its parameters, the
-/// spot cone as cosines.
+/// spot cone as versines (1 − cos).
 fn flat_light(l: &LightDesc) -> GpuLight {
     let position = l.position.map_or(DVec3::ZERO, DVec3::from);
     let direction = l.direction.map_or(DVec3::ZERO, |d| DVec3::from(d).normalize());
@@ -479,17 +482,17 @@ fn flat_light(l: &LightDesc) -> GpuLight {
         Attenuation::Polynomial { c, l, q } => ([c as f32, l as f32, q as f32, 0.0], 0.0),
         Attenuation::InverseSquare { range } => ([1.0, 0.0, 0.0, 0.0], range.map_or(0.0, |r| r as f32)),
     };
-    // (s, cos cutoff or outer cone, cos inner cone)
-    let (spot_exponent, cos_cutoff, cos_inner) = match (l.kind, l.falloff) {
+    // (s, versine of the cutoff or outer cone, versine of the inner cone)
+    let (spot_exponent, versin_cutoff, versin_inner) = match (l.kind, l.falloff) {
         (LightKind::Spot, SpotFalloff::Power) if l.cutoff < NO_CONE_CUTOFF => {
-            (l.exponent as f32, cone_cos(l.cutoff), 1.0)
+            (l.exponent as f32, cone_versin(l.cutoff), 0.0)
         }
-        (LightKind::Spot, SpotFalloff::Power) => (l.exponent as f32, -1.0, 1.0),
+        (LightKind::Spot, SpotFalloff::Power) => (l.exponent as f32, shade::NO_CONE_VERSIN, 0.0),
         (LightKind::Spot, SpotFalloff::Smooth) => {
             let (inner, outer) = l.cone_angles();
-            (0.0, cone_cos(outer), cone_cos(inner))
+            (0.0, cone_versin(outer), cone_versin(inner))
         }
-        (LightKind::Point | LightKind::Directional, _) => (0.0, -1.0, 1.0),
+        (LightKind::Point | LightKind::Directional, _) => (0.0, shade::NO_CONE_VERSIN, 0.0),
     };
     let spot_falloff = match l.kind {
         LightKind::Spot => l.falloff,
@@ -505,11 +508,11 @@ fn flat_light(l: &LightDesc) -> GpuLight {
         kind: l.kind as u32,
         flags: if l.casts_shadows { LIGHT_CASTS_SHADOWS } else { 0 },
         spot_exponent,
-        spot_cos_cutoff: cos_cutoff as f32,
+        spot_versin_cutoff: versin_cutoff as f32,
         attenuation_model: l.attenuation.model() as u32,
         spot_falloff: spot_falloff as u32,
         range,
-        spot_cos_inner: cos_inner as f32,
+        spot_versin_inner: versin_inner as f32,
     }
 }
 

@@ -392,17 +392,18 @@ pub struct GpuLight {
     pub flags: u32,
     /// s of the power falloff; 0 for the smooth one.
     pub spot_exponent: f32,
-    /// cos(cutoff) of the power falloff, −1 for cutoff 180 (no cone); cos(outer cone) of the
-    /// smooth one.
-    pub spot_cos_cutoff: f32,
+    /// 1 − cos(cutoff) of the power falloff, 2 for cutoff 180 (no cone); 1 − cos(outer cone) of
+    /// the smooth one. Versines, not cosines: formed in f64 as 2·sin²(θ/2) and rounded once, so
+    /// a cone of a degree keeps f32's relative precision (its cosine would keep 4e-4 of it).
+    pub spot_versin_cutoff: f32,
     /// `ATTENUATION_*`: which f_att the light has.
     pub attenuation_model: u32,
     /// `SPOT_FALLOFF_*`: which S a spot light has (power for the other kinds).
     pub spot_falloff: u32,
     /// The inverse-square model's range window; 0 for none (plain 1/d²) and other models.
     pub range: f32,
-    /// cos(inner cone) of the smooth falloff; 1 otherwise.
-    pub spot_cos_inner: f32,
+    /// 1 − cos(inner cone) of the smooth falloff; 0 otherwise.
+    pub spot_versin_inner: f32,
 }
 
 #[repr(C)]

@@ -87,11 +87,11 @@ fn rust_layouts() -> Vec<RustLayout> {
             kind,
             flags,
             spot_exponent,
-            spot_cos_cutoff,
+            spot_versin_cutoff,
             attenuation_model,
             spot_falloff,
             range,
-            spot_cos_inner
+            spot_versin_inner
         }),
         rust_layout!(GpuSphere { center_radius, material, object_id, power, pad }),
         rust_layout!(GpuPlane { normal_offset, material, object_id, pad }),
@@ -322,7 +322,7 @@ fn shared_tracer_constants_match_rust() {
     // Constants the two tracers must share exactly. (offset.rs's FLOAT_SCALE and SHADOW_REL
     // differ on purpose: each is scaled to its tracer's precision.) A probe module imports
     // each one and stores it, so naga cannot fold it away before we read it.
-    let expected: [(&str, &str, f64); 13] = [
+    let expected: [(&str, &str, f64); 14] = [
         ("glint::intersect", "PRIM_SPHERE", f64::from(intersect::PRIM_SPHERE)),
         ("glint::intersect", "PRIM_PLANE", f64::from(intersect::PRIM_PLANE)),
         ("glint::intersect", "PRIM_TRIANGLE", f64::from(intersect::PRIM_TRIANGLE)),
@@ -332,6 +332,7 @@ fn shared_tracer_constants_match_rust() {
         ("glint::shade", "MIN_HALF_LENGTH", shade::MIN_HALF_LENGTH),
         ("glint::shade", "MIN_ATTENUATION_DENOMINATOR", shade::MIN_ATTENUATION_DENOMINATOR),
         ("glint::shade", "MIN_GRAZING_COS", shade::MIN_GRAZING_COS),
+        ("glint::shade", "NO_CONE_VERSIN", shade::NO_CONE_VERSIN),
         ("glint::offset", "ORIGIN", offset::ORIGIN),
         ("glint::offset", "INT_SCALE", offset::INT_SCALE),
         ("glint::scene_data", "NO_HIT", f64::from(NO_HIT)),

@@ -78,35 +78,51 @@ pub fn inverse_square_factor(range: f32, d: f64) -> f64 {
     window / (d * d).max(MIN_ATTENUATION_DENOMINATOR)
 }
 
+/// The versine of a light with no cone (cutoff 180°): 1 − cos 180°.
+pub const NO_CONE_VERSIN: f64 = 2.0;
+
+/// 1 − cos θ, θ the angle between the spot axis and −L, without forming 1 − cos θ: for a small
+/// cone cos θ ≈ 1 and the difference would keep only ulp(1)/(1 − cos θ) of its digits (4e-4 at
+/// 1° in f32). Below 90° it is sin²θ / (1 + cos θ), sin²θ = |axis × L|² (the vectors' lengths
+/// enter as relative errors only); past 90° 1 − cos θ has no cancellation. The stored axis is
+/// unit only to f32's 6e-8, which would enter v relatively: it is normalised first.
+pub fn spot_versin(axis: DVec3, l: DVec3) -> f64 {
+    let axis = axis.normalize();
+    let cos_angle = axis.dot(-l);
+    if cos_angle > 0.0 { axis.cross(l).length_squared() / (1.0 + cos_angle) } else { 1.0 - cos_angle }
+}
+
 /// S = max(L_N·(−L), 0)^s inside the cone, 0 outside; 1 everywhere for cutoff 180 (stored as
-/// cos = −1), as OpenGL, so that such a spot equals a point light.
+/// versine 2), as OpenGL, so that such a spot equals a point light. The cone is tested on
+/// versines (`spot_versin`), both formed without cancellation.
 pub fn spot_factor(light: &GpuLight, l: DVec3) -> f64 {
-    if light.spot_cos_cutoff <= -1.0 {
+    if f64::from(light.spot_versin_cutoff) >= NO_CONE_VERSIN {
         return 1.0;
     }
-    let cos_angle = v3(light.direction).dot(-l);
-    if cos_angle < f64::from(light.spot_cos_cutoff) {
+    let axis = v3(light.direction);
+    if spot_versin(axis, l) > f64::from(light.spot_versin_cutoff) {
         return 0.0;
     }
-    safe_pow(cos_angle.max(0.0), f64::from(light.spot_exponent))
+    safe_pow(axis.dot(-l).max(0.0), f64::from(light.spot_exponent))
 }
 
 /// The smooth (glTF) cone: S = t², t = saturate((cos θ − cos outer) / (cos inner − cos outer)),
-/// cos θ = L_N·(−L), the KHR_lights_punctual reference. Written as its three cases, so that it
-/// never divides by zero: 0 outside the outer cone, 1 inside the inner one (both closed), the
-/// ramp between. With inner = outer (equal stored cosines) it is the step the ramp tends to:
-/// 1 inside the closed cone, 0 outside.
+/// cos θ = L_N·(−L), the KHR_lights_punctual reference — formed on versines, (v_outer − v) /
+/// (v_outer − v_inner), the same ratio without the cancellation of cosines near 1. Written as
+/// its three cases, so that it never divides by zero: 0 outside the outer cone, 1 inside the
+/// inner one (both closed), the ramp between. With inner = outer it is the step the ramp tends
+/// to: 1 inside the closed cone, 0 outside.
 pub fn smooth_spot_factor(light: &GpuLight, l: DVec3) -> f64 {
-    let cos_angle = v3(light.direction).dot(-l);
-    let cos_outer = f64::from(light.spot_cos_cutoff);
-    let cos_inner = f64::from(light.spot_cos_inner);
-    if cos_angle < cos_outer {
+    let v = spot_versin(v3(light.direction), l);
+    let v_outer = f64::from(light.spot_versin_cutoff);
+    let v_inner = f64::from(light.spot_versin_inner);
+    if v > v_outer {
         return 0.0;
     }
-    if cos_angle >= cos_inner {
+    if v <= v_inner {
         return 1.0;
     }
-    let t = (cos_angle - cos_outer) / (cos_inner - cos_outer);
+    let t = (v_outer - v) / (v_outer - v_inner);
     t * t
 }
 
