@@ -1,0 +1,109 @@
+//! The bounds of every number a scene holds, and the range type the viewer's editors share.
+
+use super::as_f32;
+
+/// Coordinates and sizes are limited so that squares and sums stay finite in f32
+/// (the GPU tracer computes |o − c|² for spheres).
+pub const MAX_COORD: f64 = 1e9;
+pub const MAX_SHININESS: f64 = 1e6;
+pub const MAX_SPOT_EXPONENT: f64 = 1e6;
+pub const MAX_INTENSITY: f64 = 1e9;
+pub const MAX_IMAGE_SIDE: u32 = 16384;
+pub const MAX_SPP: u32 = 4096;
+pub const MAX_DEPTH: u32 = 1024;
+pub const MAX_EPSILON: f64 = 1e3;
+pub const MAX_IOR: f64 = 1e3;
+/// The Beckmann roughness m (RMS microfacet slope) of the Cook–Torrance lobe lies in
+/// [MIN_ROUGHNESS, MAX_ROUGHNESS]. At m = 1 (a mean slope of 45°) the V-groove G and the
+/// Beckmann lobe are at the end of what they model (from m > 1/√2 on, D peaks away from the
+/// normal); a rougher surface is a diffuse one. At m = 1e-3 D peaks at 1/m² = 1e6, the bound
+/// validation puts on f_att too, and m² = 1e-6 and m²·cos⁴α stay normal f32 numbers on the GPU
+/// wherever the lobe is not cut off; a smoother surface is a mirror (k_r).
+pub const MIN_ROUGHNESS: f64 = 1e-3;
+pub const MAX_ROUGHNESS: f64 = 1.0;
+/// Smallest value c + l·d + q·d² may take: f_att = 1/(…) stays ≤ 1e6, so that radiance stays
+/// far from f32 overflow on the GPU. The inverse-square model divides by max(d², this) for the
+/// same bound: a point within 1e-3 of its light gets f_att = 1e6 at most.
+pub const MIN_ATTENUATION_DENOMINATOR: f64 = 1e-6;
+
+/// The values one number of a scene may take. Validation checks every number against its
+/// entry in [`ranges`], and the viewer's editors take their ranges from there too, so an
+/// editor neither clamps a valid value away nor offers an invalid one.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Range<T> {
+    pub min: T,
+    pub max: T,
+    /// (min, max] instead of [min, max], for what the tracers divide by (a size, an index of
+    /// refraction): the value must stay above `min` when rounded to f32, as both tracers read it.
+    pub min_excluded: bool,
+    /// The useful values span decades: an editor shows them on a logarithmic scale.
+    pub log: bool,
+}
+
+impl<T> Range<T> {
+    /// [min, max] on a linear scale.
+    pub const fn linear(min: T, max: T) -> Self {
+        Self { min, max, min_excluded: false, log: false }
+    }
+
+    /// [min, max] on a logarithmic scale.
+    pub const fn logarithmic(min: T, max: T) -> Self {
+        Self { min, max, min_excluded: false, log: true }
+    }
+
+    /// (min, max] on a logarithmic scale.
+    pub const fn logarithmic_above(min: T, max: T) -> Self {
+        Self { min, max, min_excluded: true, log: true }
+    }
+}
+
+impl Range<f64> {
+    /// Whether `v` is a finite number in the range.
+    pub fn contains(&self, v: f64) -> bool {
+        let above_min = if self.min_excluded { as_f32(v) > self.min } else { v >= self.min };
+        v.is_finite() && above_min && v <= self.max
+    }
+}
+
+impl Range<u32> {
+    pub fn contains(&self, v: u32) -> bool {
+        (self.min..=self.max).contains(&v)
+    }
+}
+
+/// The allowed range of every number a scene holds, one entry per kind of field.
+pub mod ranges {
+    use super::{
+        MAX_COORD, MAX_DEPTH, MAX_EPSILON, MAX_IMAGE_SIDE, MAX_INTENSITY, MAX_IOR, MAX_ROUGHNESS, MAX_SHININESS,
+        MAX_SPOT_EXPONENT, MAX_SPP, MIN_ROUGHNESS, Range,
+    };
+
+    pub const IMAGE_SIDE: Range<u32> = Range::logarithmic(1, MAX_IMAGE_SIDE);
+    pub const SPP: Range<u32> = Range::logarithmic(1, MAX_SPP);
+    /// Recursion depth: 0 is local shading only.
+    pub const DEPTH: Range<u32> = Range::logarithmic(0, MAX_DEPTH);
+    pub const BAILOUT: Range<f64> = Range::linear(0.0, 1.0);
+    pub const EPSILON: Range<f64> = Range::logarithmic(0.0, MAX_EPSILON);
+    pub const FOV_Y: Range<f64> = Range::linear(1e-6, 179.0);
+    /// Each component of a position or direction.
+    pub const COORD: Range<f64> = Range::linear(-MAX_COORD, MAX_COORD);
+    /// Each channel of a colour or intensity (reflectances, emission, light intensities).
+    pub const COLOUR: Range<f64> = Range::linear(0.0, MAX_INTENSITY);
+    pub const SHININESS: Range<f64> = Range::logarithmic(0.0, MAX_SHININESS);
+    pub const IOR: Range<f64> = Range::logarithmic_above(0.0, MAX_IOR);
+    /// The Beckmann roughness m of the Cook–Torrance lobe.
+    pub const ROUGHNESS: Range<f64> = Range::logarithmic(MIN_ROUGHNESS, MAX_ROUGHNESS);
+    /// A sphere's radius and a checker's square size.
+    pub const SIZE: Range<f64> = Range::logarithmic_above(0.0, MAX_COORD);
+    /// Each of the attenuation coefficients c, l, q (their sum has a rule of its own).
+    pub const ATTENUATION: Range<f64> = Range::linear(-MAX_INTENSITY, MAX_INTENSITY);
+    pub const SPOT_EXPONENT: Range<f64> = Range::logarithmic(0.0, MAX_SPOT_EXPONENT);
+    /// A model's exposure (`--exposure`, `exposure` of a model object).
+    pub const EXPOSURE: Range<f64> = Range::logarithmic_above(0.0, 1e6);
+    /// A spot cone's half-angle in degrees; `NO_CONE_CUTOFF` is allowed besides.
+    pub const CUTOFF: Range<f64> = Range::linear(0.0, 90.0);
+    /// The smooth falloff's inner and outer cone half-angles in degrees (inner ≤ outer besides).
+    pub const CONE: Range<f64> = Range::linear(0.0, 90.0);
+    /// The inverse-square model's range window, in scene units.
+    pub const LIGHT_RANGE: Range<f64> = Range::logarithmic_above(0.0, MAX_COORD);
+}

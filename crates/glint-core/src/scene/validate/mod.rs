@@ -1,0 +1,200 @@
+//! Scene validation: every rule names the field and the allowed range.
+//!
+//! Validation is the only gate between user data and both tracers, so it also guarantees
+//! what the tracers rely on: every number finite and small enough to stay finite in f32,
+//! directions of non-zero length, attenuation that never divides by zero.
+
+use glam::DVec3;
+
+use super::desc::{MaterialDesc, MeshDesc, ObjectDesc, PlaneDesc, RenderSettings, SceneDesc, SphereDesc};
+use super::error::FieldIssue;
+use super::light::{Attenuation, LightDesc, LightKind, NO_CONE_CUTOFF, SpotFalloff};
+use super::number::{format_number as num, shorten};
+use super::rgb::Rgb;
+use super::texture::{TextureDesc, material_textures};
+
+mod lights;
+mod limits;
+mod materials;
+mod objects;
+
+use lights::{validate_light, validate_polynomial};
+pub use limits::*;
+use materials::validate_material;
+use objects::validate_object;
+
+/// Six significant digits without trailing zeros, for messages about f32-rounded values.
+fn short(v: f64) -> String {
+    let s = format!("{v:.6}");
+    let s = if s.contains('.') { s.trim_end_matches('0').trim_end_matches('.') } else { &s };
+    s.to_string()
+}
+
+/// The value the tracers will see: both read the scene in f32.
+fn as_f32(v: f64) -> f64 {
+    f64::from(v as f32)
+}
+
+/// What validation found: hard errors and warnings (the scene still renders with warnings).
+#[derive(Clone, Debug, Default)]
+pub struct Report {
+    pub errors: Vec<FieldIssue>,
+    pub warnings: Vec<FieldIssue>,
+}
+
+impl Report {
+    fn error(&mut self, field: impl Into<String>, problem: impl Into<String>) {
+        self.errors.push(FieldIssue { field: field.into(), problem: problem.into() });
+    }
+
+    fn warn(&mut self, field: impl Into<String>, problem: impl Into<String>) {
+        self.warnings.push(FieldIssue { field: field.into(), problem: problem.into() });
+    }
+
+    fn finite_in(&mut self, field: &str, value: f64, range: Range<f64>) -> bool {
+        let (v, lo, hi) = (num(value), num(range.min), num(range.max));
+        if !range.contains(value) {
+            if !value.is_finite() {
+                self.error(field, format!("{v} is not a finite number; allowed: [{lo}, {hi}]"));
+            } else {
+                self.error(field, format!("{v} is outside the allowed range [{lo}, {hi}]"));
+            }
+            false
+        } else {
+            true
+        }
+    }
+
+    fn point(&mut self, field: &str, p: [f64; 3]) -> bool {
+        let mut ok = true;
+        let (lo, hi) = (ranges::COORD.min, ranges::COORD.max);
+        for (axis, v) in ["x", "y", "z"].iter().zip(p) {
+            if !ranges::COORD.contains(v) {
+                self.error(field, format!("component {axis} = {} must be a finite number in [{lo:e}, {hi:e}]", num(v)));
+                ok = false;
+            }
+        }
+        ok
+    }
+
+    fn direction(&mut self, field: &str, d: [f64; 3]) -> bool {
+        if !self.point(field, d) {
+            return false;
+        }
+        let len2 = d.iter().map(|v| v * v).sum::<f64>();
+        // Must stay a usable direction after rounding to f32 and normalising there.
+        if len2.sqrt() < 1e-12 {
+            self.error(field, format!("{d:?} has (near) zero length; a direction needs length > 1e-12"));
+            return false;
+        }
+        true
+    }
+
+    fn colour(&mut self, field: &str, c: Rgb) -> bool {
+        let mut ok = true;
+        let (lo, hi) = (ranges::COLOUR.min, ranges::COLOUR.max);
+        for (name, v) in ["r", "g", "b"].iter().zip(c.0) {
+            if !ranges::COLOUR.contains(v) {
+                self.error(field, format!("channel {name} = {} must be a finite number in [{lo}, {hi:e}]", num(v)));
+                ok = false;
+            }
+        }
+        ok
+    }
+
+    /// A size in a range (min, max] (its maximum shown as 1e9 and the like).
+    fn size(&mut self, field: &str, v: f64, range: Range<f64>) {
+        if !range.contains(v) {
+            self.error(field, format!("{} is outside the allowed range ({}, {:e}]", num(v), range.min, range.max));
+        }
+    }
+
+    fn count(&mut self, field: &str, v: u32, range: Range<u32>) {
+        if !range.contains(v) {
+            self.error(field, format!("{v} is outside the allowed range [{}, {}]", range.min, range.max));
+        }
+    }
+}
+
+/// Checks the render settings (also used for command-line overrides).
+pub fn validate_settings(s: &RenderSettings, report: &mut Report) {
+    report.count("render.width", s.width, ranges::IMAGE_SIDE);
+    report.count("render.height", s.height, ranges::IMAGE_SIDE);
+    report.count("render.spp", s.spp, ranges::SPP);
+    report.count("render.max_depth", s.max_depth, ranges::DEPTH);
+    report.finite_in("render.bailout", s.bailout, ranges::BAILOUT);
+    report.finite_in("render.epsilon", s.epsilon, ranges::EPSILON);
+}
+
+/// Validates a whole scene. Errors make the scene unusable; warnings are printed.
+pub fn validate(scene: &SceneDesc) -> Report {
+    validate_with_objects(scene, &validate_objects(scene))
+}
+
+/// The objects' part of `validate`. It reads nothing of the scene but the objects and the
+/// material names, so an editor may keep it while only the camera, lights, world, settings or
+/// material values change (a camera drag over a million triangles) and pass it to
+/// `validate_with_objects`.
+pub fn validate_objects(scene: &SceneDesc) -> Report {
+    let mut r = Report::default();
+    for (i, object) in scene.objects.iter().enumerate() {
+        validate_object(&format!("objects[{i}]"), object, scene, &mut r);
+    }
+    r
+}
+
+/// `validate`, with the objects' part already done (`validate_objects` of a scene with the
+/// same objects and material names); the same report.
+pub fn validate_with_objects(scene: &SceneDesc, objects: &Report) -> Report {
+    let mut r = Report::default();
+    validate_settings(&scene.render, &mut r);
+    validate_camera(scene, &mut r);
+    r.colour("world.ambient", scene.world.ambient);
+    r.colour("world.background", scene.world.background);
+    let g = scene.world.global_attenuation;
+    validate_polynomial("world.global_attenuation", g.c, g.l, g.q, &mut r);
+    for (name, m) in &scene.materials {
+        validate_material(&format!("materials.{name}"), m, &mut r);
+    }
+    for (i, light) in scene.lights.iter().enumerate() {
+        validate_light(&format!("lights[{i}]"), light, &mut r);
+    }
+    r.errors.extend_from_slice(&objects.errors);
+    r.warnings.extend_from_slice(&objects.warnings);
+    if let Some(warning) = super::ray_tree::unbounded_ray_tree(scene, &scene.render) {
+        r.warn("render.max_depth", warning);
+    }
+    r
+}
+
+fn validate_camera(scene: &SceneDesc, r: &mut Report) {
+    let c = &scene.camera;
+    let ok = r.point("camera.position", c.position) & r.point("camera.look_at", c.look_at);
+    let up_ok = r.direction("camera.up", c.up);
+    r.finite_in("camera.fov_y", c.fov_y, ranges::FOV_Y);
+    if !(ok && up_ok) {
+        return;
+    }
+    let f = sub(c.look_at, c.position);
+    let flen = norm(f);
+    if flen < 1e-9 {
+        r.error("camera.look_at", "equals camera.position; the camera needs a viewing direction");
+        return;
+    }
+    let cr = cross(f, c.up);
+    if norm(cr) <= 1e-9 * flen * norm(c.up) {
+        r.error("camera.up", "is parallel to the viewing direction (look_at − position); choose another up vector");
+    }
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> DVec3 {
+    DVec3::from(a) - DVec3::from(b)
+}
+
+fn cross(a: DVec3, b: impl Into<DVec3>) -> DVec3 {
+    a.cross(b.into())
+}
+
+fn norm(a: impl Into<DVec3>) -> f64 {
+    a.into().length()
+}

@@ -1,0 +1,156 @@
+//! Objects: spheres, planes, meshes and models.
+
+use super::*;
+
+pub(super) fn validate_object(path: &str, o: &ObjectDesc, scene: &SceneDesc, r: &mut Report) {
+    for material in o.materials() {
+        if !scene.materials.contains_key(material) {
+            let known: Vec<&str> = scene.materials.keys().map(String::as_str).collect();
+            r.error(
+                format!("{path}.material"),
+                format!(
+                    "unknown material '{}'; defined materials: [{}]",
+                    shorten(material),
+                    shorten(&known.join(", "))
+                ),
+            );
+        }
+    }
+    match o {
+        ObjectDesc::Sphere(SphereDesc { center, radius, .. }) => {
+            r.point(&format!("{path}.center"), *center);
+            r.size(&format!("{path}.radius"), *radius, ranges::SIZE);
+        }
+        ObjectDesc::Plane(PlaneDesc { point, normal, .. }) => {
+            r.point(&format!("{path}.point"), *point);
+            r.direction(&format!("{path}.normal"), *normal);
+        }
+        ObjectDesc::Mesh(mesh) => validate_mesh(path, mesh, r),
+        ObjectDesc::Model(model) => {
+            for (field, problem) in model.transform.problems() {
+                r.error(format!("{path}.transform.{field}"), problem);
+            }
+            if let Some(exposure) = model.exposure {
+                r.size(&format!("{path}.exposure"), exposure, ranges::EXPOSURE);
+            }
+            if model.lights
+                && let Some(loaded) = &model.loaded
+            {
+                for (j, light) in loaded.lights.iter().enumerate() {
+                    validate_light(&format!("{path}.lights[{j}]"), light, r);
+                }
+            }
+            match &model.loaded {
+                // Named by the model's own mesh names (`PREFIX/NODE`), which say where to look.
+                Some(loaded) => {
+                    // Errors one by one; warnings of a kind once for the model (a CAD export
+                    // has degenerate triangles in a hundred meshes), with how many meshes share it.
+                    let mut meshes = Report::default();
+                    for (k, mesh) in loaded.meshes.iter().enumerate() {
+                        validate_mesh(&format!("{path} mesh {k} `{}`", mesh.name), mesh, &mut meshes);
+                    }
+                    r.errors.append(&mut meshes.errors);
+                    let mut kinds: Vec<(String, FieldIssue, usize)> = Vec::new();
+                    for w in meshes.warnings {
+                        let kind = w.field.rsplit('.').next().unwrap_or_default().to_string();
+                        match kinds.iter_mut().find(|(k, ..)| *k == kind) {
+                            Some((_, _, n)) => *n += 1,
+                            None => kinds.push((kind, w, 1)),
+                        }
+                    }
+                    for (_, first, n) in kinds {
+                        let more =
+                            if n > 1 { format!(" (and likewise in {} more meshes)", n - 1) } else { String::new() };
+                        r.warn(first.field, format!("{}{more}", first.problem));
+                    }
+                }
+                None => r.error(format!("{path}.path"), format!("the model `{}` was not loaded", model.path)),
+            }
+        }
+    }
+}
+
+fn validate_mesh(path: &str, mesh: &MeshDesc, r: &mut Report) {
+    let MeshDesc { vertices, triangles, normals, uvs, .. } = mesh;
+
+    if triangles.is_empty() {
+        r.error(format!("{path}.triangles"), "a mesh needs at least one triangle [i, j, k]");
+    }
+    // Each field name is formatted only for a value at fault: a million vertices would
+    // otherwise cost a million strings on every edit in the viewer.
+    let in_range = |p: &[f64]| p.iter().all(|&c| ranges::COORD.contains(c));
+    for (i, v) in vertices.iter().enumerate().filter(|(_, v)| !in_range(&v[..])) {
+        r.point(&format!("{path}.vertices[{i}]"), *v);
+    }
+    let n = vertices.len();
+    if n == 0 && !triangles.is_empty() {
+        r.error(
+            format!("{path}.vertices"),
+            format!(
+                "the mesh has no vertices, but its {} index them; give the vertex positions [x, y, z]",
+                if triangles.len() == 1 { "triangle".to_string() } else { format!("{} triangles", triangles.len()) }
+            ),
+        );
+    }
+    for (i, t) in triangles.iter().enumerate().filter(|_| n > 0) {
+        if let Some(bad) = t.iter().find(|&&k| k as usize >= n) {
+            r.error(
+                format!("{path}.triangles[{i}]"),
+                format!("vertex index {bad} is out of range; allowed: [0, {}]", n.saturating_sub(1)),
+            );
+        }
+    }
+    if let Some(normals) = normals {
+        if normals.len() != n {
+            r.error(format!("{path}.normals"), format!("has {} entries; it needs one per vertex ({n})", normals.len()));
+        }
+        let usable = |d: &[f64; 3]| in_range(&d[..]) && d.iter().map(|c| c * c).sum::<f64>().sqrt() >= 1e-12;
+        for (i, v) in normals.iter().enumerate().filter(|(_, v)| !usable(v)) {
+            r.direction(&format!("{path}.normals[{i}]"), *v);
+        }
+    }
+    if let Some(uvs) = uvs {
+        if uvs.len() != n {
+            r.error(format!("{path}.uvs"), format!("has {} entries; it needs one per vertex ({n})", uvs.len()));
+        }
+        for (i, uv) in uvs.iter().enumerate().filter(|(_, uv)| !in_range(&uv[..])) {
+            for (axis, v) in ["u", "v"].iter().zip(uv) {
+                r.finite_in(&format!("{path}.uvs[{i}].{axis}"), *v, ranges::COORD);
+            }
+        }
+    }
+    if let Some(normals) = normals.as_ref().filter(|ns| ns.len() == n) {
+        let against = triangles
+            .iter()
+            .filter(|t| t.iter().all(|&k| (k as usize) < n))
+            .filter(|t| {
+                let [a, b, c] = t.map(|k| vertices[k as usize]);
+                let ng = cross(sub(b, a), sub(c, a));
+                t.iter().any(|&k| ng.dot(DVec3::from(normals[k as usize])) < 0.0)
+            })
+            .count();
+        if against > 0 {
+            r.warn(
+                format!("{path}.normals"),
+                format!(
+                    "{against} triangles have a vertex normal pointing against their winding \
+                         (cross(b − a, c − a)); they shade as if lit from behind"
+                ),
+            );
+        }
+    }
+    let degenerate = triangles
+        .iter()
+        .filter(|t| t.iter().all(|&k| (k as usize) < n))
+        .filter(|t| {
+            let [a, b, c] = t.map(|k| vertices[k as usize]);
+            norm(cross(sub(b, a), sub(c, a))) == 0.0
+        })
+        .count();
+    if degenerate > 0 {
+        r.warn(
+            format!("{path}.triangles"),
+            format!("{degenerate} degenerate (zero-area) triangles; they are never hit"),
+        );
+    }
+}
