@@ -1,0 +1,157 @@
+//! The shared geometry of a flat scene: primitives by kind, and its identity.
+
+use super::*;
+
+/// The primitives of a scene by kind, with an object id and name per scene object.
+#[derive(Debug, Default)]
+pub(super) struct Primitives {
+    pub(super) spheres: Vec<GpuSphere>,
+    pub(super) planes: Vec<GpuPlane>,
+    pub(super) triangles: Vec<GpuTriangle>,
+    pub(super) vertices: Vec<[f32; 4]>,
+    pub(super) normals: Vec<[f32; 4]>,
+    pub(super) uvs: Vec<[f32; 2]>,
+    pub(super) meshes: Vec<GpuMesh>,
+    pub(super) object_names: Vec<String>,
+}
+
+/// The geometry of a flat scene by identity: two are equal when they share the same data (a
+/// scene and the scenes `rebuild` made from it), never by comparing a million triangles. It
+/// holds the data alive, so an address cannot be reused by other data while it is kept.
+#[derive(Clone, Debug)]
+pub struct GeometryId(pub(super) Geometry);
+
+impl PartialEq for GeometryId {
+    fn eq(&self, o: &Self) -> bool {
+        let (a, b) = (&self.0, &o.0);
+        Arc::ptr_eq(&a.spheres, &b.spheres)
+            && Arc::ptr_eq(&a.planes, &b.planes)
+            && Arc::ptr_eq(&a.triangles, &b.triangles)
+            && Arc::ptr_eq(&a.vertices, &b.vertices)
+            && Arc::ptr_eq(&a.normals, &b.normals)
+            && Arc::ptr_eq(&a.uvs, &b.uvs)
+            && Arc::ptr_eq(&a.meshes, &b.meshes)
+            && a.bvh_nodes.ptr_eq(&b.bvh_nodes)
+            && Arc::ptr_eq(&a.bvh_prims, &b.bvh_prims)
+    }
+}
+
+/// The shared part of a flat scene: the primitives, their object names and the BVH.
+#[derive(Clone, Debug)]
+pub(super) struct Geometry {
+    pub(super) spheres: Arc<[GpuSphere]>,
+    pub(super) planes: Arc<[GpuPlane]>,
+    pub(super) triangles: Arc<[GpuTriangle]>,
+    pub(super) vertices: Arc<[[f32; 4]]>,
+    pub(super) normals: Arc<[[f32; 4]]>,
+    pub(super) uvs: Arc<[[f32; 2]]>,
+    pub(super) meshes: Arc<[GpuMesh]>,
+    pub(super) object_names: Arc<[String]>,
+    pub(super) bvh_nodes: BvhNodes,
+    pub(super) bvh_prims: Arc<[u32]>,
+}
+
+impl Geometry {
+    pub(super) fn new(p: Primitives, bvh: bvh::Bvh) -> Self {
+        Self {
+            spheres: p.spheres.into(),
+            planes: p.planes.into(),
+            triangles: p.triangles.into(),
+            vertices: p.vertices.into(),
+            normals: p.normals.into(),
+            uvs: p.uvs.into(),
+            meshes: p.meshes.into(),
+            object_names: p.object_names.into(),
+            bvh_nodes: BvhNodes::new(&bvh.nodes),
+            bvh_prims: bvh.prims.into(),
+        }
+    }
+}
+
+/// Every object's primitives, in scene order (the object id is the index in `desc.objects`).
+pub(super) fn flat_primitives(desc: &SceneDesc, material_names: &[String]) -> Primitives {
+    let material_index = |name: &str| material_names.iter().position(|m| m == name).unwrap_or(0) as u32;
+    let mut out = Primitives::default();
+    for (id, object) in desc.objects.iter().enumerate() {
+        let object_id = id as u32;
+        let material = material_index(object.material());
+        out.object_names.push(if object.name().is_empty() {
+            format!("{} #{id}", object.kind_name())
+        } else {
+            object.name().to_string()
+        });
+        match object {
+            ObjectDesc::Sphere(SphereDesc { center, radius, .. }) => out.spheres.push(GpuSphere {
+                center_radius: vec4(DVec3::from(*center), *radius as f32),
+                material,
+                object_id,
+                power: origin_power(vec4(DVec3::from(*center), *radius as f32)),
+                pad: 0,
+            }),
+            ObjectDesc::Plane(PlaneDesc { point, normal, .. }) => {
+                let n = DVec3::from(*normal).normalize();
+                out.planes.push(GpuPlane {
+                    normal_offset: vec4(n, n.dot(DVec3::from(*point)) as f32),
+                    material,
+                    object_id,
+                    pad: [0; 2],
+                });
+            }
+            ObjectDesc::Mesh(mesh) => mesh_triangles(mesh, material, object_id, &mut out),
+            // One object, one mesh record per imported mesh (each with its own material).
+            ObjectDesc::Model(model) => {
+                for mesh in model.loaded.iter().flat_map(|m| &m.meshes) {
+                    mesh_triangles(mesh, material_index(&mesh.material), object_id, &mut out);
+                }
+            }
+        }
+    }
+    if out.meshes.iter().all(|m| m.flags & MESH_HAS_NORMALS == 0) {
+        out.normals = Vec::new();
+    }
+    if out.meshes.iter().all(|m| m.flags & MESH_HAS_UVS == 0) {
+        out.uvs = Vec::new();
+    }
+    out
+}
+
+/// A mesh's triangles, leaving out those of zero area in the stored (f32) data, so that they
+/// are never hit, as validation promises: in the ray's sheared frame their edge functions are
+/// rounding noise, and one on a line through the eye would be "hit" by a quarter of all camera
+/// rays, with a 0/0 normal.
+fn mesh_triangles(mesh: &MeshDesc, material: u32, object_id: u32, out: &mut Primitives) {
+    let MeshDesc { vertices, triangles: tris, normals, uvs, .. } = mesh;
+    let first = out.vertices.len() as u32;
+    out.vertices.extend(vertices.iter().map(|&v| vec4(DVec3::from(v), 1.0)));
+    // Every vertex gets a normal slot, so that one index reaches both; zero without normals.
+    match normals {
+        Some(n) => out.normals.extend(n.iter().map(|&n| vec4(DVec3::from(n).normalize(), 0.0))),
+        None => out.normals.extend(std::iter::repeat_n([0.0; 4], vertices.len())),
+    }
+    match uvs {
+        Some(uv) => out.uvs.extend(uv.iter().map(|&[u, v]| [u as f32, v as f32])),
+        None => out.uvs.extend(std::iter::repeat_n([0.0; 2], vertices.len())),
+    }
+    let mesh_index = out.meshes.len() as u32;
+    out.meshes.push(GpuMesh {
+        material,
+        object_id,
+        flags: if normals.is_some() { MESH_HAS_NORMALS } else { 0 } | if uvs.is_some() { MESH_HAS_UVS } else { 0 },
+        pad: 0,
+    });
+    let stored = &out.vertices;
+    let at = |k: u32| DVec3::from_array([0, 1, 2].map(|c| f64::from(stored[(first + k) as usize][c])));
+    for t in tris {
+        let [a, b, c] = t.map(at);
+        if (b - a).cross(c - a) == DVec3::ZERO {
+            continue;
+        }
+        out.triangles.push(GpuTriangle {
+            va: first + t[0],
+            vb: first + t[1],
+            vc: first + t[2],
+            mesh: mesh_index,
+            order: out.triangles.len() as u32,
+        });
+    }
+}

@@ -1,0 +1,329 @@
+//! Turning a validated scene description into the flat layout both tracers read.
+
+use std::sync::Arc;
+
+use glam::DVec3;
+
+use crate::bvh::{self, BvhNodes};
+use crate::cpu::{LightTags, MaterialTags, shade};
+
+use crate::layout::{
+    GpuCamera, GpuLight, GpuMaterial, GpuMesh, GpuPlane, GpuSphere, GpuTexture, GpuTriangle, LIGHT_CASTS_SHADOWS,
+    MESH_HAS_NORMALS, MESH_HAS_UVS, NO_TEXTURE, SceneHeader, UnknownTag, feature, origin_power,
+};
+use crate::scene::{
+    Attenuation, AttenuationModel, EpsilonMode, Filter, LightDesc, LightKind, MaterialDesc, MeshDesc, NO_CONE_CUTOFF,
+    ObjectDesc, PlaneDesc, RenderSettings, Rgb, SceneDesc, SpecularModel, SphereDesc, SpotFalloff, Wrap,
+};
+use crate::texture_table::TextureTable;
+
+/// A scene in the GPU-ready layout, plus the names the UI and reports show. The geometry (the
+/// primitives and the BVH) is shared, not copied, between scenes `rebuild` makes from one
+/// another: a clone costs nothing over a million triangles, and the GPU tracer keeps the
+/// buffers of geometry it has uploaded before (`Arc::ptr_eq`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct FlatScene {
+    pub header: SceneHeader,
+    pub camera: GpuCamera,
+    pub materials: Vec<GpuMaterial>,
+    pub lights: Vec<GpuLight>,
+    pub spheres: Arc<[GpuSphere]>,
+    pub planes: Arc<[GpuPlane]>,
+    /// The triangles of every mesh, in the BVH's leaf order (`bvh::reorder_triangles`).
+    pub triangles: Arc<[GpuTriangle]>,
+    /// Vertex positions of every mesh (xyz, w = 1), indexed by the triangles.
+    pub vertices: Arc<[[f32; 4]]>,
+    /// Unit vertex normals beside `vertices` (w = 0; zero for a mesh without normals), or
+    /// empty when no mesh has them.
+    pub normals: Arc<[[f32; 4]]>,
+    /// Texture coordinates beside `vertices` (zero for a mesh without them), or empty when no
+    /// mesh has them.
+    pub uvs: Arc<[[f32; 2]]>,
+    pub meshes: Arc<[GpuMesh]>,
+    /// The texture table the materials' texture indices point into.
+    pub textures: Vec<GpuTexture>,
+    /// Every texture's texels, linear RGBA, row by row from the top (`GpuTexture::offset`).
+    pub texels: Vec<[f32; 4]>,
+    /// The BVH over spheres and triangles (`bvh::build`; root first, empty without them).
+    pub bvh_nodes: BvhNodes,
+    /// The primitive references its leaves point into (`bvh::PrimRef`).
+    pub bvh_prims: Arc<[u32]>,
+    /// Object names by object id (scene order; unnamed objects get `kind #index`).
+    pub object_names: Arc<[String]>,
+    pub material_names: Vec<String>,
+}
+
+fn vec4(v: DVec3, w: f32) -> [f32; 4] {
+    [v.x as f32, v.y as f32, v.z as f32, w]
+}
+
+fn rgb4(c: Rgb) -> [f32; 4] {
+    [c.0[0] as f32, c.0[1] as f32, c.0[2] as f32, 0.0]
+}
+
+mod checks;
+mod geometry;
+mod lights_materials;
+
+pub use geometry::GeometryId;
+use geometry::{Geometry, flat_primitives};
+use lights_materials::{flat_light, flat_material};
+
+impl FlatScene {
+    /// Builds the flat layout. The scene must have passed validation (`scene::validate`);
+    /// settings are taken from `settings`, not from `desc.render`, so callers can override them.
+    ///
+    /// One step per part of the layout: materials, lights, primitives, the BVH over the bounded
+    /// primitives, camera, header, and last the feature set, computed from the flat data itself.
+    pub fn build(desc: &SceneDesc, settings: &RenderSettings) -> Self {
+        let material_names: Vec<String> = desc.materials.keys().cloned().collect();
+        let mut primitives = flat_primitives(desc, &material_names);
+        let mut bvh = bvh::build(&bvh::Bounded {
+            spheres: &primitives.spheres,
+            triangles: &primitives.triangles,
+            vertices: &primitives.vertices,
+        });
+        bvh::reorder_triangles(&mut bvh, &mut primitives.triangles);
+        Self::assemble(desc, settings, material_names, Geometry::new(primitives, bvh))
+    }
+
+    /// `build` for a description whose objects and material names are those this scene was
+    /// built from (only settings, camera, lights, world or material values differ): the
+    /// primitives and the BVH are copied instead of rebuilt — the viewer's case while the
+    /// camera or a light is dragged over a million triangles. Identical to `build`.
+    pub fn rebuild(&self, desc: &SceneDesc, settings: &RenderSettings) -> Self {
+        Self::assemble(desc, settings, self.material_names.clone(), self.geometry())
+    }
+
+    /// The identity of this scene's geometry (see `GeometryId`).
+    pub fn geometry_id(&self) -> GeometryId {
+        GeometryId(self.geometry())
+    }
+
+    /// The shared part, shared again (no data is copied).
+    fn geometry(&self) -> Geometry {
+        Geometry {
+            spheres: self.spheres.clone(),
+            planes: self.planes.clone(),
+            triangles: self.triangles.clone(),
+            vertices: self.vertices.clone(),
+            normals: self.normals.clone(),
+            uvs: self.uvs.clone(),
+            meshes: self.meshes.clone(),
+            object_names: self.object_names.clone(),
+            bvh_nodes: self.bvh_nodes.clone(),
+            bvh_prims: self.bvh_prims.clone(),
+        }
+    }
+
+    /// Everything but the geometry, around it.
+    fn assemble(desc: &SceneDesc, settings: &RenderSettings, material_names: Vec<String>, geometry: Geometry) -> Self {
+        let mut table = TextureTable::default();
+        let materials = desc.materials.values().map(|m| flat_material(m, &mut table)).collect();
+        let lights = desc.traced_lights().map(flat_light).collect();
+        let mut flat = Self {
+            header: flat_header(desc, settings, &geometry, material_names.len()),
+            camera: Self::camera_for(desc, settings),
+            materials,
+            lights,
+            spheres: geometry.spheres,
+            planes: geometry.planes,
+            triangles: geometry.triangles,
+            vertices: geometry.vertices,
+            normals: geometry.normals,
+            uvs: geometry.uvs,
+            meshes: geometry.meshes,
+            textures: table.textures,
+            texels: table.texels,
+            bvh_nodes: geometry.bvh_nodes,
+            bvh_prims: geometry.bvh_prims,
+            object_names: geometry.object_names,
+            material_names,
+        };
+        let light_tags: Vec<LightTags> = desc
+            .traced_lights()
+            .map(|l| LightTags { kind: l.kind, attenuation: l.attenuation.model(), falloff: l.falloff })
+            .collect();
+        let material_tags: Vec<MaterialTags> =
+            desc.materials.values().map(|m| MaterialTags { specular: m.specular_model, fresnel: m.fresnel }).collect();
+        flat.header.features = flat.scene_features(&light_tags, &material_tags);
+        flat
+    }
+
+    /// The features this scene needs, from the flat data itself (only materials that some
+    /// object uses count) and the tags of each light and material.
+    fn scene_features(&self, light_tags: &[LightTags], material_tags: &[MaterialTags]) -> u32 {
+        let mut f = 0;
+        let mut used = vec![false; self.materials.len()];
+        for m in self.spheres.iter().map(|s| s.material).chain(self.planes.iter().map(|p| p.material)) {
+            used[m as usize] = true;
+        }
+        for m in self.meshes.iter() {
+            used[m.material as usize] = true;
+        }
+        let nonzero = |c: [f32; 4]| c[..3].iter().any(|&v| v != 0.0);
+        let any_geometry = !(self.spheres.is_empty() && self.planes.is_empty() && self.triangles.is_empty());
+        let mut any_specular_light = false;
+        for (l, &LightTags { kind, attenuation: model, falloff }) in self.lights.iter().zip(light_tags) {
+            f |= match kind {
+                LightKind::Point => feature::POINT_LIGHTS,
+                LightKind::Directional => feature::DIRECTIONAL_LIGHTS,
+                LightKind::Spot => feature::SPOT_LIGHTS,
+            };
+            f |= match (kind, model) {
+                (LightKind::Point | LightKind::Spot, AttenuationModel::Polynomial) => {
+                    if l.attenuation != [1.0, 0.0, 0.0, 0.0] { feature::ATTENUATION } else { 0 }
+                }
+                (LightKind::Point | LightKind::Spot, AttenuationModel::InverseSquare) => feature::INVERSE_SQUARE,
+                (LightKind::Directional, _) => 0,
+            };
+            f |= match (kind, falloff) {
+                (LightKind::Spot, SpotFalloff::Smooth) => feature::SMOOTH_SPOT,
+                (LightKind::Spot, SpotFalloff::Power) | (LightKind::Point | LightKind::Directional, _) => 0,
+            };
+            if l.flags & LIGHT_CASTS_SHADOWS != 0 && any_geometry {
+                f |= feature::SHADOWS;
+            }
+            if nonzero(l.ambient) {
+                f |= feature::LIGHT_AMBIENT;
+            }
+            any_specular_light |= nonzero(l.specular);
+        }
+        for ((m, tags), _) in self.materials.iter().zip(material_tags).zip(&used).filter(|(_, u)| **u) {
+            if nonzero(m.kr) {
+                f |= feature::REFLECTION;
+            }
+            if nonzero(m.kt) {
+                f |= feature::TRANSMISSION;
+            }
+            if nonzero(m.emission) {
+                f |= feature::EMISSION;
+            }
+            if m.diffuse_texture != NO_TEXTURE || m.emission_texture != NO_TEXTURE {
+                f |= feature::TEXTURES;
+            }
+            if nonzero(m.ks) && any_specular_light {
+                f |= feature::SPECULAR;
+                f |= match tags.specular {
+                    SpecularModel::Blinn => feature::BLINN,
+                    SpecularModel::Phong => feature::PHONG,
+                    SpecularModel::CookTorrance => feature::COOK_TORRANCE,
+                };
+            }
+        }
+        if f & feature::TRANSMISSION != 0 && f & feature::SHADOWS != 0 {
+            f |= feature::FILTERED_SHADOWS;
+        }
+        if self.header.max_depth == 0 {
+            // No child rays: reflection and refraction code is not needed (k_t still filters
+            // shadows through FILTERED_SHADOWS).
+            f &= !(feature::REFLECTION | feature::TRANSMISSION);
+        }
+        if !self.spheres.is_empty() {
+            f |= feature::SPHERES;
+        }
+        if !self.planes.is_empty() {
+            f |= feature::PLANES;
+        }
+        if !self.triangles.is_empty() {
+            f |= feature::TRIANGLES;
+        }
+        if self.header.spp > 1 {
+            f |= feature::JITTER;
+        }
+        // Only secondary rays leave a primitive: without shadow or child rays there is nothing
+        // to skip.
+        // Only child rays are attenuated; the f32 coefficients decide, as the tracers read them.
+        if feature::recurses(f) && self.header.global_attenuation != [1.0, 0.0, 0.0, 0.0] {
+            f |= feature::GLOBAL_ATTENUATION;
+        }
+        if self.header.epsilon_mode == crate::layout::EPS_SKIP_CONVEX
+            && (f & feature::SHADOWS != 0 || feature::recurses(f))
+        {
+            f |= feature::SKIP_CONVEX;
+        }
+        f
+    }
+
+    /// The bounded primitives the BVH is built over, as stored.
+    pub fn bounded(&self) -> bvh::Bounded<'_> {
+        bvh::Bounded { spheres: &self.spheres, triangles: &self.triangles, vertices: &self.vertices }
+    }
+
+    pub fn pixel_count(&self) -> usize {
+        self.header.width as usize * self.header.height as usize
+    }
+}
+
+impl FlatScene {
+    /// Ray-generation vectors of the pinhole camera, computed in f64 and stored once in f32
+    /// (what `build` stores; the viewer's light gizmos project with it).
+    pub fn camera_for(desc: &SceneDesc, settings: &RenderSettings) -> GpuCamera {
+        let c = &desc.camera;
+        let pos = DVec3::from(c.position);
+        let forward = (DVec3::from(c.look_at) - pos).normalize();
+        let right = forward.cross(DVec3::from(c.up)).normalize();
+        let up = right.cross(forward);
+        let half_h = (c.fov_y.to_radians() * 0.5).tan();
+        let half_w = half_h * f64::from(settings.width) / f64::from(settings.height);
+        GpuCamera {
+            position: vec4(pos, 1.0),
+            forward: vec4(forward, 0.0),
+            right: vec4(right * half_w, 0.0),
+            up: vec4(up * half_h, 0.0),
+        }
+    }
+}
+
+/// The header: image and sampling settings, counts, and the world's ambient and background.
+/// (`features` is filled in last, from the finished layout.)
+fn flat_header(desc: &SceneDesc, settings: &RenderSettings, p: &Geometry, material_count: usize) -> SceneHeader {
+    SceneHeader {
+        width: settings.width,
+        height: settings.height,
+        spp: settings.spp,
+        max_depth: settings.max_depth,
+        sphere_count: p.spheres.len() as u32,
+        plane_count: p.planes.len() as u32,
+        triangle_count: p.triangles.len() as u32,
+        vertex_count: p.vertices.len() as u32,
+        mesh_count: p.meshes.len() as u32,
+        light_count: desc.traced_lights().count() as u32,
+        material_count: material_count as u32,
+        features: 0,
+        epsilon_mode: settings.epsilon_mode as u32,
+        seed: settings.seed,
+        epsilon: settings.epsilon as f32,
+        bailout: settings.bailout as f32,
+        ambient: rgb4(desc.world.ambient),
+        background: rgb4(desc.world.background),
+        global_attenuation: {
+            let g = desc.world.global_attenuation;
+            [g.c as f32, g.l as f32, g.q as f32, 0.0]
+        },
+        frame: crate::rebase::WORLD_FRAME,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::builtin;
+
+    #[test]
+    fn rebuild_with_another_camera_light_and_material_value_equals_build() {
+        let (desc, _) = builtin("bumpy-glass").expect("built-in").load(Some(12)).expect("loads");
+        let old = FlatScene::build(&desc, &desc.render);
+        let mut edited = desc.clone();
+        edited.camera.position[0] += 0.5;
+        edited.lights[0].diffuse = Rgb([0.3, 0.2, 0.1]);
+        if let Some(m) = edited.materials.values_mut().next() {
+            m.shininess += 3.0;
+        }
+        let mut settings = edited.render.clone();
+        (settings.width, settings.height, settings.max_depth) = (33, 17, 2);
+        let rebuilt = old.rebuild(&edited, &settings);
+        assert_eq!(rebuilt, FlatScene::build(&edited, &settings));
+        assert_ne!(rebuilt.camera, old.camera);
+    }
+}
