@@ -112,8 +112,14 @@ const GPU_ONLY: [(&str, &str, &str); 16] = [
 ];
 
 /// Functions only the CPU side has, and why.
-const CPU_ONLY: [(&str, &str, &str); 8] = [
+const CPU_ONLY: [(&str, &str, &str); 9] = [
     ("cpu/bvh.rs", "new", "SlabRay::new; WGSL builds it in slab_ray (no methods)"),
+    (
+        "cpu/bvh.rs",
+        "of",
+        "SlabPlanes::of: the CPU's scalar f64 slab test picks each axis's near and far plane once per ray; \
+         WGSL's enter takes min and max of whole vectors",
+    ),
     ("cpu/bvh.rs", "walk", "traverse's loop over its reused per-thread stack; WGSL's stack is a local array"),
     (
         "cpu/bvh.rs",
@@ -144,7 +150,13 @@ const GPU_ONLY_STRUCTS: [(&str, &str, &str); 7] = [
 ];
 
 /// Structs only the CPU side has, and why.
-const CPU_ONLY_STRUCTS: [(&str, &str, &str); 6] = [
+const CPU_ONLY_STRUCTS: [(&str, &str, &str); 7] = [
+    (
+        "cpu/bvh.rs",
+        "SlabPlanes",
+        "SlabRay with each axis's near and far plane chosen once per ray, for the CPU's scalar f64 loop; \
+         WGSL's enter works on whole vectors",
+    ),
     (
         "cpu/bvh.rs",
         "Crossing",

@@ -100,6 +100,60 @@ impl SlabRay {
     }
 }
 
+/// `SlabRay` in the form the inner loop wants, for a ray with no direction component below
+/// `DIR_ZERO` (almost every ray; the others take `SlabRay::enter`): per axis, which stored value
+/// of a node is the near and which the far plane (so no branch on the direction's sign per
+/// box), and the points the padded planes are measured from. fl(min − fl(o + pad)) differs
+/// from `enter`'s fl(fl(min − pad) − o) by one rounding of o + pad, ≤ ε·(|o| + pad), which
+/// the padding (1e-9 of the scale, > 10^6 ε) absorbs exactly as it absorbs `enter`'s rounding
+/// of min − pad; the subtraction and the product are the two roundings γ(3) covers in both.
+#[derive(Clone, Copy, Debug)]
+struct SlabPlanes {
+    /// Indices into a node read as eight f32 (`min` at 0..3, `max` at 4..7).
+    near: [usize; 3],
+    far: [usize; 3],
+    /// o + pad where the near (far) plane is a min plane, o − pad where it is a max plane.
+    o_near: [f64; 3],
+    o_far: [f64; 3],
+    inv: [f64; 3],
+}
+
+impl SlabPlanes {
+    fn of(slab: &SlabRay) -> Option<Self> {
+        if slab.parallel.iter().any(|&p| p) {
+            return None;
+        }
+        let forward = slab.inv.map(|i| i >= 0.0);
+        let (lo, hi) = (slab.origin.map(|o| o + slab.pad), slab.origin.map(|o| o - slab.pad));
+        Some(Self {
+            near: std::array::from_fn(|k| if forward[k] { k } else { k + 4 }),
+            far: std::array::from_fn(|k| if forward[k] { k + 4 } else { k }),
+            o_near: std::array::from_fn(|k| if forward[k] { lo[k] } else { hi[k] }),
+            o_far: std::array::from_fn(|k| if forward[k] { hi[k] } else { lo[k] }),
+            inv: slab.inv,
+        })
+    }
+
+    /// `SlabRay::enter` with its bounds already widened by the slack: the entry distance if
+    /// the ray meets the padded box with t0 ≤ `hi` and t1 ≥ `lo`.
+    #[inline(always)]
+    fn enter(&self, node: &BvhNode, lo: f64, hi: f64) -> Option<f64> {
+        let v: &[f32; 8] = bytemuck::cast_ref(node);
+        let near = |k: usize| (f64::from(v[self.near[k] & 7]) - self.o_near[k]) * self.inv[k];
+        let far = |k: usize| (f64::from(v[self.far[k] & 7]) - self.o_far[k]) * self.inv[k];
+        // Plain comparisons, not f64::max/min: the operands are never NaN (inv is finite
+        // and non-zero here) and the NaN-aware forms cost a third of the traversal.
+        let (n0, n1, n2) = (near(0), near(1), near(2));
+        let (f0, f1, f2) = (far(0), far(1), far(2));
+        let t0 = if n1 > n0 { n1 } else { n0 };
+        let t0 = if n2 > t0 { n2 } else { t0 };
+        let t1 = if f1 < f0 { f1 } else { f0 };
+        let t1 = if f2 < t1 { f2 } else { t1 };
+        let t1 = t1 * (1.0 + 2.0 * GAMMA3);
+        (t0 <= t1 && t0 <= hi && t1 >= lo).then_some(t0)
+    }
+}
+
 thread_local! {
     /// Each worker's traversal stack (nodes with the distance the ray enters them at), reused
     /// from ray to ray instead of allocated for each.
@@ -121,19 +175,20 @@ fn traverse(
         return true;
     }
     let slab = SlabRay::new(ray, &nodes[0]);
-    let Some(t_root) = slab.enter(&nodes[0], t_min, limit()) else {
+    if slab.enter(&nodes[0], t_min, limit()).is_none() {
         return true;
-    };
+    }
     // Taken, not borrowed: a traversal started inside `visit` gets a stack of its own.
     let mut stack = STACK.take();
     stack.clear();
-    stack.push((0, t_root));
     let passed = walk(&slab, nodes, prims, &mut stack, t_min, &mut limit, &mut visit);
     STACK.set(stack);
     passed
 }
 
-/// The loop of `traverse`, over a stack holding the root.
+/// The loop of `traverse`, from the root (which the ray enters). The nearer of two children
+/// entered is walked at once and the farther pushed; a node popped is skipped when a hit found
+/// since it was pushed is nearer than its box.
 fn walk(
     slab: &SlabRay,
     nodes: &[BvhNode],
@@ -143,41 +198,56 @@ fn walk(
     limit: &mut impl FnMut() -> f64,
     visit: &mut impl FnMut(u32) -> bool,
 ) -> bool {
-    while let Some((i, t_enter)) = stack.pop() {
-        // A hit found since the node was pushed may now be nearer than the node's box.
-        let t_hi = limit();
-        if t_enter > t_hi + slab.slack(t_hi) {
-            continue;
-        }
+    let planes = SlabPlanes::of(slab);
+    let mut current = Some(0u32);
+    loop {
+        let i = match current.take() {
+            Some(i) => i,
+            None => match stack.pop() {
+                Some((i, t_enter)) => {
+                    let t_hi = limit();
+                    if t_enter > t_hi + slab.slack(t_hi) {
+                        continue;
+                    }
+                    i
+                }
+                None => return true,
+            },
+        };
         let node = &nodes[i as usize];
+        let first = node.left_first as usize;
         if node.count > 0 {
-            for &r in &prims[node.left_first as usize..(node.left_first + node.count) as usize] {
+            for &r in &prims[first..first + node.count as usize] {
                 if !visit(r) {
                     return false;
                 }
             }
             continue;
         }
-        let (l, r) = (node.left_first, node.left_first + 1);
-        let tl = slab.enter(&nodes[l as usize], t_min, t_hi);
-        let tr = slab.enter(&nodes[r as usize], t_min, t_hi);
-        match (tl, tr) {
-            (Some(a), Some(b)) => {
-                // The nearer child is popped first.
-                if a <= b {
-                    stack.push((r, b));
-                    stack.push((l, a));
-                } else {
-                    stack.push((l, a));
-                    stack.push((r, b));
-                }
+        let t_hi = limit();
+        let slack = slab.slack(t_hi);
+        let (lo, hi) = (t_min - slack, t_hi + slack);
+        let [left, right] = [&nodes[first], &nodes[first + 1]];
+        let (tl, tr) = match &planes {
+            Some(p) => (p.enter(left, lo, hi), p.enter(right, lo, hi)),
+            None => (slab.enter(left, t_min, t_hi), slab.enter(right, t_min, t_hi)),
+        };
+        let (l, r) = (first as u32, first as u32 + 1);
+        current = match (tl, tr) {
+            // The nearer child is walked first.
+            (Some(a), Some(b)) if a <= b => {
+                stack.push((r, b));
+                Some(l)
             }
-            (Some(a), None) => stack.push((l, a)),
-            (None, Some(b)) => stack.push((r, b)),
-            (None, None) => {}
-        }
+            (Some(a), Some(_)) => {
+                stack.push((l, a));
+                Some(r)
+            }
+            (Some(_), None) => Some(l),
+            (None, Some(_)) => Some(r),
+            (None, None) => None,
+        };
     }
-    true
 }
 
 /// `intersect::closest_hit` through the BVH: the same hit, bit for bit.
