@@ -9,6 +9,7 @@
 use std::sync::Arc;
 
 use bytemuck::{Pod, Zeroable};
+use rayon::prelude::*;
 
 use crate::layout::{GpuSphere, GpuTriangle};
 
@@ -96,6 +97,9 @@ pub const AUTO_MIN_PRIMITIVES: usize = 24;
 const BINS: usize = 16;
 /// Nodes with more primitives than this build their children in parallel.
 const PARALLEL_THRESHOLD: usize = 4096;
+/// Nodes with more primitives than this also bin them in parallel, in chunks of this many
+/// (near the root, where there are fewer subtrees than threads).
+const PARALLEL_CHUNK: usize = 16384;
 
 /// A bounded primitive, decoded from its reference.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
@@ -205,11 +209,14 @@ struct Item {
 /// Builds the hierarchy over every sphere and triangle.
 pub fn build(prims: &Bounded) -> Bvh {
     assert!(prims.triangles.len() <= PRIM_REF_INDEX as usize, "too many triangles for a primitive reference");
-    let refs = (0..prims.spheres.len() as u32)
+    let refs: Vec<u32> = (0..prims.spheres.len() as u32)
         .map(|i| PrimRef::Sphere(i).encode())
-        .chain((0..prims.triangles.len() as u32).map(|i| PrimRef::Triangle(i).encode()));
+        .chain((0..prims.triangles.len() as u32).map(|i| PrimRef::Triangle(i).encode()))
+        .collect();
     let mut items: Vec<Item> = refs
-        .map(|r| {
+        .par_iter()
+        .with_min_len(PARALLEL_CHUNK)
+        .map(|&r| {
             let bounds = prims.prim_box(r);
             let centroid = std::array::from_fn(|k| 0.5 * (f64::from(bounds.min[k]) + f64::from(bounds.max[k])));
             Item { r, bounds, centroid }
@@ -218,15 +225,13 @@ pub fn build(prims: &Bounded) -> Bvh {
     if items.is_empty() {
         return Bvh::default();
     }
-    let mut nodes = build_node(&mut items, 0);
-    if nodes.len() > 1 {
-        for n in &mut nodes {
-            if n.count == 0 {
-                n.left_first += 1;
-            }
-        }
-        nodes.insert(1, BvhNode::default());
+    if items.len() <= MAX_LEAF {
+        let root = build_node(&mut items, 0, &mut Vec::new());
+        return Bvh { nodes: vec![root], prims: items.iter().map(|i| i.r).collect() };
     }
+    // The root, then an unused node, so that every sibling pair starts at an even index.
+    let mut nodes = vec![BvhNode::default(); 2];
+    nodes[0] = build_node(&mut items, 0, &mut nodes);
     Bvh { nodes, prims: items.iter().map(|i| i.r).collect() }
 }
 
@@ -246,25 +251,20 @@ pub fn reorder_triangles(bvh: &mut Bvh, triangles: &mut Vec<GpuTriangle>) {
     *triangles = reordered;
 }
 
-/// The subtree over `items` (which start at `first` in the final reference array), root first,
-/// child indices local to the returned vector.
-fn build_node(items: &mut [Item], first: usize) -> Vec<BvhNode> {
-    let mut bounds = Aabb::EMPTY;
-    let mut cmin = [f64::INFINITY; 3];
-    let mut cmax = [f64::NEG_INFINITY; 3];
-    for it in items.iter() {
-        bounds.grow(&it.bounds);
-        for k in 0..3 {
-            cmin[k] = cmin[k].min(it.centroid[k]);
-            cmax[k] = cmax[k].max(it.centroid[k]);
-        }
-    }
-    let leaf = |bounds: Aabb| {
-        vec![BvhNode { min: bounds.min, left_first: first as u32, max: bounds.max, count: items.len() as u32 }]
+/// The subtree over `items` (which start at `first` in the final reference array): returns its
+/// root and appends its descendants to `out` (child indices are indices of `out`). Layout:
+/// both children of a node, then the left child's descendants, then the right child's.
+/// Written in place rather than returned and copied by every ancestor (which moved each node
+/// once per level above it).
+fn build_node(items: &mut [Item], first: usize, out: &mut Vec<BvhNode>) -> BvhNode {
+    let Extent { bounds, cmin, cmax } = if items.len() > 2 * PARALLEL_CHUNK {
+        items.par_chunks(PARALLEL_CHUNK).map(Extent::of).reduce(Extent::default, Extent::merge)
+    } else {
+        Extent::of(items)
     };
     let n = items.len();
     if n <= MAX_LEAF {
-        return leaf(bounds);
+        return BvhNode { min: bounds.min, left_first: first as u32, max: bounds.max, count: n as u32 };
     }
     let mid = match best_split(items, &cmin, &cmax) {
         Some((axis, split)) => {
@@ -276,47 +276,129 @@ fn build_node(items: &mut [Item], first: usize) -> Vec<BvhNode> {
     };
     let mid = if mid == 0 || mid == n { n / 2 } else { mid };
     let (l, r) = items.split_at_mut(mid);
+    let pair = out.len();
+    out.extend([BvhNode::default(); 2]);
     let (left, right) = if n > PARALLEL_THRESHOLD {
-        rayon::join(|| build_node(l, first), || build_node(r, first + mid))
+        // The right subtree goes to a vector of its own, appended with its indices shifted.
+        let (left, (right, mut below)) = rayon::join(
+            || build_node(l, first, out),
+            || {
+                let mut below = Vec::new();
+                (build_node(r, first + mid, &mut below), below)
+            },
+        );
+        let shift = out.len() as u32;
+        let shifted = |mut node: BvhNode| {
+            if node.count == 0 {
+                node.left_first += shift;
+            }
+            node
+        };
+        below.iter_mut().for_each(|nd| *nd = shifted(*nd));
+        out.append(&mut below);
+        (left, shifted(right))
     } else {
-        (build_node(l, first), build_node(r, first + mid))
+        (build_node(l, first, out), build_node(r, first + mid, out))
     };
-    // Layout: this node, both children, the left child's descendants, the right child's.
-    let mut out = Vec::with_capacity(1 + left.len() + right.len());
-    out.push(BvhNode { min: bounds.min, left_first: 1, max: bounds.max, count: 0 });
-    let shift_left = 2u32;
-    let shift_right = left.len() as u32 + 1;
-    let fix = |mut node: BvhNode, shift: u32| {
-        if node.count == 0 {
-            node.left_first += shift;
+    out[pair] = left;
+    out[pair + 1] = right;
+    BvhNode { min: bounds.min, left_first: pair as u32, max: bounds.max, count: 0 }
+}
+
+/// The box of a set of items and the range of their centroids. Merging is exact (min and
+/// max), so chunks merged in any grouping give the same result.
+#[derive(Clone, Copy, Debug)]
+struct Extent {
+    bounds: Aabb,
+    cmin: [f64; 3],
+    cmax: [f64; 3],
+}
+
+impl Default for Extent {
+    fn default() -> Self {
+        Self { bounds: Aabb::EMPTY, cmin: [f64::INFINITY; 3], cmax: [f64::NEG_INFINITY; 3] }
+    }
+}
+
+impl Extent {
+    fn of(items: &[Item]) -> Self {
+        let mut e = Self::default();
+        for it in items {
+            e.bounds.grow(&it.bounds);
+            for k in 0..3 {
+                e.cmin[k] = e.cmin[k].min(it.centroid[k]);
+                e.cmax[k] = e.cmax[k].max(it.centroid[k]);
+            }
         }
-        node
-    };
-    out.push(fix(left[0], shift_left));
-    out.push(fix(right[0], shift_right));
-    out.extend(left[1..].iter().map(|&nd| fix(nd, shift_left)));
-    out.extend(right[1..].iter().map(|&nd| fix(nd, shift_right)));
-    out
+        e
+    }
+
+    fn merge(mut self, o: Self) -> Self {
+        self.bounds.grow(&o.bounds);
+        for k in 0..3 {
+            self.cmin[k] = self.cmin[k].min(o.cmin[k]);
+            self.cmax[k] = self.cmax[k].max(o.cmax[k]);
+        }
+        self
+    }
+}
+
+/// Per axis, the number of items and their box in each bin. Merging is exact (sums, min and
+/// max), so chunks binned in parallel give the same bins as one pass.
+#[derive(Clone, Copy, Debug)]
+struct Bins {
+    counts: [[usize; BINS]; 3],
+    boxes: [[Aabb; BINS]; 3],
+}
+
+impl Default for Bins {
+    fn default() -> Self {
+        Self { counts: [[0; BINS]; 3], boxes: [[Aabb::EMPTY; BINS]; 3] }
+    }
+}
+
+impl Bins {
+    fn merge(mut self, o: Self) -> Self {
+        for axis in 0..3 {
+            for b in 0..BINS {
+                self.counts[axis][b] += o.counts[axis][b];
+                self.boxes[axis][b].grow(&o.boxes[axis][b]);
+            }
+        }
+        self
+    }
 }
 
 /// The cheapest binned SAH split (axis, first bin of the right side), or `None` when every
 /// centroid coincides (the caller then splits at the median). A node of more than `MAX_LEAF`
 /// primitives is always split, so there is no leaf cost to compare with.
 fn best_split(items: &[Item], cmin: &[f64; 3], cmax: &[f64; 3]) -> Option<(usize, usize)> {
+    let extent: [f64; 3] = std::array::from_fn(|k| cmax[k] - cmin[k]);
+    let split_axis = extent.map(|e| !(e.is_nan() || e <= 0.0));
+    let scale = extent.map(|e| BINS as f64 / e);
+    // All three axes binned in one pass over the items (the items of a large node are far
+    // beyond the caches; three passes read them three times).
+    let bin = |chunk: &[Item]| {
+        let mut bins = Bins::default();
+        for it in chunk {
+            for axis in 0..3 {
+                if split_axis[axis] {
+                    let b = (((it.centroid[axis] - cmin[axis]) * scale[axis]) as usize).min(BINS - 1);
+                    bins.counts[axis][b] += 1;
+                    bins.boxes[axis][b].grow(&it.bounds);
+                }
+            }
+        }
+        bins
+    };
+    let Bins { counts, boxes } = if items.len() > 2 * PARALLEL_CHUNK {
+        items.par_chunks(PARALLEL_CHUNK).map(bin).reduce(Bins::default, Bins::merge)
+    } else {
+        bin(items)
+    };
     let mut best: Option<(f64, usize, usize)> = None;
-    for axis in 0..3 {
-        let extent = cmax[axis] - cmin[axis];
-        if extent.is_nan() || extent <= 0.0 {
-            continue;
-        }
-        let scale = BINS as f64 / extent;
-        let mut counts = [0usize; BINS];
-        let mut boxes = [Aabb::EMPTY; BINS];
-        for it in items {
-            let b = (((it.centroid[axis] - cmin[axis]) * scale) as usize).min(BINS - 1);
-            counts[b] += 1;
-            boxes[b].grow(&it.bounds);
-        }
+    for axis in (0..3).filter(|&a| split_axis[a]) {
+        let (counts, boxes) = (&counts[axis], &boxes[axis]);
         // Right-side sweeps: cost of bins split..BINS.
         let mut right_area = [0.0; BINS];
         let mut right_count = [0usize; BINS];
