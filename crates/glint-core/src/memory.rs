@@ -197,8 +197,6 @@ pub fn render_estimate(desc: &SceneDesc, settings: &RenderSettings, plan: Render
     let encoded = size(pixels, if plan.exr { 24 } else { 6 });
     if plan.cpu {
         e.add("CPU image", image);
-        // `TraceContext::leaf_corners`: nine f32 per triangle, in BVH reference order.
-        e.add("CPU leaf corners", size(c.triangles, 36));
     }
     if plan.gpu {
         e.add("GPU device", GPU_DEVICE_BYTES);

@@ -17,6 +17,7 @@ use glam::DVec3;
 use super::intersect::{
     Hit, Leaving, Prim, RayShear, all_zero, bound, cross_surface, intersect_plane, intersect_sphere_leaving,
     intersect_triangle, is_leaving, planes_transmittance, ray_shear, replaces, sphere_roots, sphere_roots_counted,
+    triangle_corners,
 };
 use super::{Ray, TraceContext, v3};
 use crate::bvh::{BvhNode, PrimRef};
@@ -160,13 +161,13 @@ thread_local! {
 }
 
 /// Calls `visit` on every primitive reference in a leaf whose box the ray meets within
-/// [t_min, `limit()`], nearer child first, with its position in `bvh_prims`.
+/// [t_min, `limit()`], nearer child first.
 fn traverse(
     ctx: &TraceContext,
     ray: &Ray,
     t_min: f64,
     mut limit: impl FnMut() -> f64,
-    mut visit: impl FnMut(usize, u32) -> bool,
+    mut visit: impl FnMut(u32) -> bool,
 ) -> bool {
     let nodes = &ctx.scene.bvh_nodes;
     let prims = &ctx.scene.bvh_prims;
@@ -195,7 +196,7 @@ fn walk(
     stack: &mut Vec<(u32, f64)>,
     t_min: f64,
     limit: &mut impl FnMut() -> f64,
-    visit: &mut impl FnMut(usize, u32) -> bool,
+    visit: &mut impl FnMut(u32) -> bool,
 ) -> bool {
     let planes = SlabPlanes::of(slab);
     let mut current = Some(0u32);
@@ -216,8 +217,8 @@ fn walk(
         let node = &nodes[i as usize];
         let first = node.left_first as usize;
         if node.count > 0 {
-            for (slot, &r) in prims[first..first + node.count as usize].iter().enumerate() {
-                if !visit(first + slot, r) {
+            for &r in &prims[first..first + node.count as usize] {
+                if !visit(r) {
                     return false;
                 }
             }
@@ -256,14 +257,13 @@ pub fn closest_hit(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f64, leavin
     let triangles_on = ctx.has(feature::TRIANGLES);
     let skip = ctx.has(feature::SKIP_CONVEX);
     let shear: RayShear = ray_shear(ray.dir);
-    let corners = if triangles_on { ctx.leaf_corners() } else { &[] };
     let best = std::cell::Cell::new(None::<Hit>);
     traverse(
         ctx,
         ray,
         t_min,
         || bound(&best.get(), t_max),
-        |slot, r| {
+        |r| {
             let b = best.get();
             let limit = bound(&b, t_max);
             match PrimRef::decode(r) {
@@ -277,7 +277,7 @@ pub fn closest_hit(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f64, leavin
                     }
                 }
                 PrimRef::Triangle(i) if triangles_on && !(skip && is_leaving(leaving, Prim::Triangle, i)) => {
-                    let [a, b0, c] = corners[slot].map(|p| glam::Vec3::from_array(p).as_dvec3());
+                    let [a, b0, c] = triangle_corners(scene, &scene.triangles[i as usize]);
                     if let Some((t, bu, bv)) = intersect_triangle(a, b0, c, ray, &shear, t_min, limit)
                         && replaces(scene, t, Prim::Triangle, i, &b)
                     {
@@ -325,14 +325,13 @@ pub fn shadow_transmittance(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f6
     // A surface whose k_t is zero (or any surface, without filtered shadows) makes the product
     // zero whatever the order: return at once, as brute force would at the end.
     let opaque = |material: u32| all_zero(cross_surface(ctx, DVec3::ONE, material));
-    let corners = if triangles_on { ctx.leaf_corners() } else { &[] };
     let mut crossings: Vec<Crossing> = Vec::new();
     let passed = traverse(
         ctx,
         ray,
         t_min,
         || t_max,
-        |slot, r| {
+        |r| {
             let p = PrimRef::decode(r);
             match p {
                 PrimRef::Sphere(i) if spheres_on => {
@@ -351,9 +350,9 @@ pub fn shadow_transmittance(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f6
                     }
                 }
                 PrimRef::Triangle(i) if triangles_on && !(skip && is_leaving(leaving, Prim::Triangle, i)) => {
-                    let [a, b, c] = corners[slot].map(|p| glam::Vec3::from_array(p).as_dvec3());
+                    let tri = &scene.triangles[i as usize];
+                    let [a, b, c] = triangle_corners(scene, tri);
                     if intersect_triangle(a, b, c, ray, &shear, t_min, t_max).is_some() {
-                        let tri = &scene.triangles[i as usize];
                         let material = scene.meshes[tri.mesh as usize].material;
                         if opaque(material) {
                             return false;

@@ -12,7 +12,6 @@ pub mod texture;
 pub mod trace;
 
 use std::ops::AddAssign;
-use std::sync::{Arc, OnceLock};
 
 use glam::DVec3;
 
@@ -174,8 +173,6 @@ pub struct TraceContext<'a> {
     pub material_tags: Vec<MaterialTags>,
     /// The wrap modes (u, v) and filter of each texture, in table order.
     pub texture_modes: Vec<([Wrap; 2], Filter)>,
-    /// Made on the first walk through the BVH (`leaf_corners`).
-    leaf_corners: Arc<OnceLock<Vec<[[f32; 3]; 3]>>>,
 }
 
 impl<'a> TraceContext<'a> {
@@ -204,31 +201,6 @@ impl<'a> TraceContext<'a> {
                 .iter()
                 .map(|t| Ok(([Wrap::try_from(t.wrap_s)?, Wrap::try_from(t.wrap_t)?], Filter::try_from(t.filter_mode)?)))
                 .collect::<Result<_, UnknownTag>>()?,
-            leaf_corners: Arc::default(),
-        })
-    }
-
-    /// The corners of each triangle the BVH's primitive references (`bvh_prims`) point to, in
-    /// the references' order (zeros for a sphere's): a leaf's triangles are then one
-    /// contiguous read for the CPU walk, not reference → triangle → three vertices, three
-    /// dependent cache misses on incoherent rays. The same f32 values (bit-identical hits);
-    /// 36 bytes per triangle, made once per context (and its clones), on first use.
-    pub fn leaf_corners(&self) -> &[[[f32; 3]; 3]] {
-        self.leaf_corners.get_or_init(|| {
-            let scene = self.scene;
-            let corners = |r: &u32| match crate::bvh::PrimRef::decode(*r) {
-                crate::bvh::PrimRef::Triangle(i) => {
-                    let t = &scene.triangles[i as usize];
-                    [t.va, t.vb, t.vc].map(|v| {
-                        let p = scene.vertices[v as usize];
-                        [p[0], p[1], p[2]]
-                    })
-                }
-                crate::bvh::PrimRef::Sphere(_) => [[0.0; 3]; 3],
-            };
-            // Not in parallel: the first walk asks from inside a rayon task, and a rayon join
-            // here could run another ray's walk on this thread, which would wait on this cell.
-            scene.bvh_prims.iter().map(corners).collect()
         })
     }
 
