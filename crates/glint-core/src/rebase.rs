@@ -17,7 +17,7 @@ use glam::DVec3;
 
 use crate::FlatScene;
 use crate::bvh::{f32_down, f32_up};
-use crate::cpu::intersect::{FAR, Leaving, closest_hit};
+use crate::cpu::intersect::{Leaving, closest_hit};
 use crate::cpu::{Ray, TraceContext, v3};
 use crate::layout::{GpuPlane, GpuSphere, origin_power};
 use crate::scene::LightKind;
@@ -84,16 +84,20 @@ pub fn reach(scene: &FlatScene, eye: DVec3) -> f64 {
 const GRID_DIVISIONS: f64 = 16.0;
 
 /// Where the f32 tracer's digits matter most: the first surface the ray through the image
-/// centre meets (found by the CPU reference); if it meets none, the centre of the bounded
-/// geometry; if there is none, the eye.
+/// centre meets within the scene's reach (found by the CPU reference); if it meets none there,
+/// the centre of the bounded geometry; if there is none, the eye. Within the reach: a ray
+/// grazing an infinite plane meets it arbitrarily far away (3e9 was seen orbiting a model over
+/// its floor), and an origin there would cost every point of the scene its digits.
 pub fn focus(scene: &FlatScene) -> DVec3 {
     let eye = v3(scene.camera.position);
     let forward = v3(scene.camera.forward);
+    let r = reach(scene, eye);
     if let Ok(ctx) = TraceContext::new(scene)
         && forward.length() > 0.0
+        && r.is_finite()
     {
         let ray = Ray { origin: eye, dir: forward.normalize() };
-        if let Some(hit) = closest_hit(&ctx, &ray, 0.0, FAR, &Leaving::NONE) {
+        if let Some(hit) = closest_hit(&ctx, &ray, 0.0, r, &Leaving::NONE) {
             return eye + hit.t * ray.dir;
         }
     }
@@ -311,6 +315,22 @@ material = "m"
         // Not by a multiple: rounded differently.
         let off = scene(1e6 + 0.125);
         assert_ne!(rebased(&off, camera_frame(&off)).vertices, a.vertices);
+    }
+
+    #[test]
+    fn a_plane_met_beyond_the_scenes_reach_is_not_the_focus() {
+        let mut s = scene(0.0);
+        // Looking almost level: the floor y = 0, 1 below the eye, is met ~1e4 away.
+        s.camera.forward = [0.0, -1e-4, 1.0, 0.0];
+        let f = focus(&s);
+        // It grazes the sphere's top (y = 1) 5 ahead instead.
+        assert!((f - v3(s.camera.position)).length() < 10.0, "{f}");
+        // Raised a little, it passes over everything but the floor: the geometry's centre.
+        s.camera.forward = [0.0, -1e-5, 1.0, 0.0];
+        s.camera.position[1] = 1.5;
+        let root = s.bvh_nodes.first().copied().expect("a BVH");
+        let centre = (DVec3::from(root.min.map(f64::from)) + DVec3::from(root.max.map(f64::from))) * 0.5;
+        assert_eq!(focus(&s), centre);
     }
 
     #[test]
