@@ -97,7 +97,8 @@ pub fn focus(scene: &FlatScene) -> DVec3 {
         && r.is_finite()
     {
         let ray = Ray { origin: eye, dir: forward.normalize() };
-        if let Some(hit) = closest_hit(&ctx, &ray, 0.0, r, &Leaving::NONE) {
+        // 2R: a surface at the reach itself (a floor straight below the eye) is met at t = R.
+        if let Some(hit) = closest_hit(&ctx, &ray, 0.0, 2.0 * r, &Leaving::NONE) {
             return eye + hit.t * ray.dir;
         }
     }
