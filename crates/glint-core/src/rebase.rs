@@ -90,8 +90,12 @@ const GRID_DIVISIONS: f64 = 16.0;
 /// its floor), and an origin there would cost every point of the scene its digits.
 pub fn focus(scene: &FlatScene) -> DVec3 {
     let eye = v3(scene.camera.position);
+    focus_within(scene, eye, reach(scene, eye))
+}
+
+/// `focus`, the scene's reach `r` from `eye` (the camera's position) given.
+fn focus_within(scene: &FlatScene, eye: DVec3, r: f64) -> DVec3 {
     let forward = v3(scene.camera.forward);
-    let r = reach(scene, eye);
     if let Ok(ctx) = TraceContext::new(scene)
         && forward.length() > 0.0
         && r.is_finite()
@@ -132,7 +136,7 @@ pub fn focus(scene: &FlatScene) -> DVec3 {
 pub fn camera_frame(scene: &FlatScene) -> [f32; 4] {
     let eye = v3(scene.camera.position);
     let r = reach(scene, eye);
-    let focus = focus(scene);
+    let focus = focus_within(scene, eye, r);
     if !(r.is_finite() && r > 0.0 && focus.is_finite()) {
         return scene.header.frame;
     }
