@@ -10,6 +10,7 @@ use std::fmt;
 use std::path::Path;
 
 use crate::bvh::BvhNode;
+use crate::flat::LeafCorners;
 use crate::layout::{GpuMesh, GpuPlane, GpuSphere, GpuTriangle};
 use crate::scene::{ObjectDesc, RenderSettings, SceneDesc};
 
@@ -175,7 +176,10 @@ pub fn render_estimate(desc: &SceneDesc, settings: &RenderSettings, plan: Render
         + if c.normals > 0 { size(c.vertices, 16) } else { 0 }
         + if c.uvs > 0 { size(c.vertices, 8) } else { 0 };
     let bounded = c.spheres + c.triangles;
-    let bvh = size(bounded, 2 * size_of::<BvhNode>() + 4) + size(bounded, BVH_BUILD_BYTES_PER_PRIM as usize);
+    // Nodes, references, the CPU walk's leaf-order corners, and the build's working set.
+    let bvh = size(bounded, 2 * size_of::<BvhNode>() + 4)
+        + bounded.saturating_mul(LeafCorners::BYTES_PER_PRIM)
+        + size(bounded, BVH_BUILD_BYTES_PER_PRIM as usize);
     let texels = size(c.texels, 16);
     let pixels = u64::from(settings.width) * u64::from(settings.height);
     // The description is already in memory; it is part of the estimate because it is part

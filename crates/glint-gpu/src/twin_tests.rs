@@ -112,13 +112,19 @@ const GPU_ONLY: [(&str, &str, &str); 16] = [
 ];
 
 /// Functions only the CPU side has, and why.
-const CPU_ONLY: [(&str, &str, &str); 9] = [
+const CPU_ONLY: [(&str, &str, &str); 10] = [
     ("cpu/bvh.rs", "new", "SlabRay::new; WGSL builds it in slab_ray (no methods)"),
     (
         "cpu/bvh.rs",
         "of",
         "SlabPlanes::of: the CPU's scalar f64 slab test picks each axis's near and far plane once per ray; \
          WGSL's enter takes min and max of whole vectors",
+    ),
+    (
+        "cpu/bvh.rs",
+        "get",
+        "TriangleCorners::get: the CPU walk reads a leaf's corners from FlatScene::leaf_corners (one \
+         contiguous read); the GPU reads the indexed mesh through triangle_corners",
     ),
     ("cpu/bvh.rs", "walk", "traverse's loop over its reused per-thread stack; WGSL's stack is a local array"),
     (

@@ -20,7 +20,9 @@ use super::intersect::{
     triangle_corners,
 };
 use super::{Ray, TraceContext, v3};
+use crate::FlatScene;
 use crate::bvh::{BvhNode, PrimRef};
+use crate::flat::Corners;
 use crate::layout::feature;
 
 /// Relative padding of a box in the slab test, against the scale of the box and the ray origin:
@@ -154,6 +156,32 @@ impl SlabPlanes {
     }
 }
 
+/// Where the walk reads a leaf's triangle corners: the scene's leaf-order copy when it was made
+/// from this scene's arrays, else the indexed mesh. The same f32 values either way.
+#[derive(Clone, Copy)]
+enum TriangleCorners<'a> {
+    Leaf(&'a [Corners]),
+    Indexed(&'a FlatScene),
+}
+
+impl<'a> TriangleCorners<'a> {
+    fn of(scene: &'a FlatScene) -> Self {
+        match scene.leaf_corners.for_arrays(&scene.vertices, &scene.triangles, &scene.bvh_prims) {
+            Some(c) => Self::Leaf(c),
+            None => Self::Indexed(scene),
+        }
+    }
+
+    /// The corners of triangle `index`, referenced at `slot`.
+    #[inline(always)]
+    fn get(self, slot: usize, index: u32) -> [DVec3; 3] {
+        match self {
+            Self::Leaf(c) => c[slot].map(|p| DVec3::new(f64::from(p[0]), f64::from(p[1]), f64::from(p[2]))),
+            Self::Indexed(scene) => triangle_corners(scene, &scene.triangles[index as usize]),
+        }
+    }
+}
+
 thread_local! {
     /// Each worker's traversal stack (nodes with the distance the ray enters them at), reused
     /// from ray to ray instead of allocated for each.
@@ -161,13 +189,13 @@ thread_local! {
 }
 
 /// Calls `visit` on every primitive reference in a leaf whose box the ray meets within
-/// [t_min, `limit()`], nearer child first.
+/// [t_min, `limit()`], nearer child first, with its slot in `bvh_prims`.
 fn traverse(
     ctx: &TraceContext,
     ray: &Ray,
     t_min: f64,
     mut limit: impl FnMut() -> f64,
-    mut visit: impl FnMut(u32) -> bool,
+    mut visit: impl FnMut(usize, u32) -> bool,
 ) -> bool {
     let nodes = &ctx.scene.bvh_nodes;
     let prims = &ctx.scene.bvh_prims;
@@ -196,7 +224,7 @@ fn walk(
     stack: &mut Vec<(u32, f64)>,
     t_min: f64,
     limit: &mut impl FnMut() -> f64,
-    visit: &mut impl FnMut(u32) -> bool,
+    visit: &mut impl FnMut(usize, u32) -> bool,
 ) -> bool {
     let planes = SlabPlanes::of(slab);
     let mut current = Some(0u32);
@@ -217,8 +245,8 @@ fn walk(
         let node = &nodes[i as usize];
         let first = node.left_first as usize;
         if node.count > 0 {
-            for &r in &prims[first..first + node.count as usize] {
-                if !visit(r) {
+            for (slot, &r) in (first..).zip(&prims[first..first + node.count as usize]) {
+                if !visit(slot, r) {
                     return false;
                 }
             }
@@ -257,13 +285,14 @@ pub fn closest_hit(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f64, leavin
     let triangles_on = ctx.has(feature::TRIANGLES);
     let skip = ctx.has(feature::SKIP_CONVEX);
     let shear: RayShear = ray_shear(ray.dir);
+    let corners = TriangleCorners::of(scene);
     let best = std::cell::Cell::new(None::<Hit>);
     traverse(
         ctx,
         ray,
         t_min,
         || bound(&best.get(), t_max),
-        |r| {
+        |slot, r| {
             let b = best.get();
             let limit = bound(&b, t_max);
             match PrimRef::decode(r) {
@@ -277,7 +306,7 @@ pub fn closest_hit(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f64, leavin
                     }
                 }
                 PrimRef::Triangle(i) if triangles_on && !(skip && is_leaving(leaving, Prim::Triangle, i)) => {
-                    let [a, b0, c] = triangle_corners(scene, &scene.triangles[i as usize]);
+                    let [a, b0, c] = corners.get(slot, i);
                     if let Some((t, bu, bv)) = intersect_triangle(a, b0, c, ray, &shear, t_min, limit)
                         && replaces(scene, t, Prim::Triangle, i, &b)
                     {
@@ -325,13 +354,14 @@ pub fn shadow_transmittance(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f6
     // A surface whose k_t is zero (or any surface, without filtered shadows) makes the product
     // zero whatever the order: return at once, as brute force would at the end.
     let opaque = |material: u32| all_zero(cross_surface(ctx, DVec3::ONE, material));
+    let corners = TriangleCorners::of(scene);
     let mut crossings: Vec<Crossing> = Vec::new();
     let passed = traverse(
         ctx,
         ray,
         t_min,
         || t_max,
-        |r| {
+        |slot, r| {
             let p = PrimRef::decode(r);
             match p {
                 PrimRef::Sphere(i) if spheres_on => {
@@ -350,9 +380,9 @@ pub fn shadow_transmittance(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f6
                     }
                 }
                 PrimRef::Triangle(i) if triangles_on && !(skip && is_leaving(leaving, Prim::Triangle, i)) => {
-                    let tri = &scene.triangles[i as usize];
-                    let [a, b, c] = triangle_corners(scene, tri);
+                    let [a, b, c] = corners.get(slot, i);
                     if intersect_triangle(a, b, c, ray, &shear, t_min, t_max).is_some() {
+                        let tri = &scene.triangles[i as usize];
                         let material = scene.meshes[tri.mesh as usize].material;
                         if opaque(material) {
                             return false;

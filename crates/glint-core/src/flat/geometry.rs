@@ -33,6 +33,7 @@ impl PartialEq for GeometryId {
             && Arc::ptr_eq(&a.meshes, &b.meshes)
             && a.bvh_nodes.ptr_eq(&b.bvh_nodes)
             && Arc::ptr_eq(&a.bvh_prims, &b.bvh_prims)
+            && a.leaf_corners.ptr_eq(&b.leaf_corners)
     }
 }
 
@@ -49,21 +50,27 @@ pub(super) struct Geometry {
     pub(super) object_names: Arc<[String]>,
     pub(super) bvh_nodes: BvhNodes,
     pub(super) bvh_prims: Arc<[u32]>,
+    pub(super) leaf_corners: LeafCorners,
 }
 
 impl Geometry {
     pub(super) fn new(p: Primitives, bvh: bvh::Bvh) -> Self {
+        let triangles: Arc<[GpuTriangle]> = p.triangles.into();
+        let vertices: Arc<[[f32; 4]]> = p.vertices.into();
+        let bvh_prims: Arc<[u32]> = bvh.prims.into();
+        let leaf_corners = LeafCorners::new(&vertices, &triangles, &bvh_prims);
         Self {
             spheres: p.spheres.into(),
             planes: p.planes.into(),
-            triangles: p.triangles.into(),
-            vertices: p.vertices.into(),
+            triangles,
+            vertices,
             normals: p.normals.into(),
             uvs: p.uvs.into(),
             meshes: p.meshes.into(),
             object_names: p.object_names.into(),
             bvh_nodes: BvhNodes::new(&bvh.nodes),
-            bvh_prims: bvh.prims.into(),
+            bvh_prims,
+            leaf_corners,
         }
     }
 }

@@ -48,6 +48,8 @@ pub struct FlatScene {
     pub bvh_nodes: BvhNodes,
     /// The primitive references its leaves point into (`bvh::PrimRef`).
     pub bvh_prims: Arc<[u32]>,
+    /// The referenced triangles' corners in reference order, for the CPU walk.
+    pub leaf_corners: LeafCorners,
     /// Object names by object id (scene order; unnamed objects get `kind #index`).
     pub object_names: Arc<[String]>,
     pub material_names: Vec<String>,
@@ -63,10 +65,12 @@ fn rgb4(c: Rgb) -> [f32; 4] {
 
 mod checks;
 mod geometry;
+mod leaf_corners;
 mod lights_materials;
 
 pub use geometry::GeometryId;
 use geometry::{Geometry, flat_primitives};
+pub use leaf_corners::{Corners, LeafCorners};
 use lights_materials::{flat_light, flat_material};
 
 impl FlatScene {
@@ -113,6 +117,7 @@ impl FlatScene {
             object_names: self.object_names.clone(),
             bvh_nodes: self.bvh_nodes.clone(),
             bvh_prims: self.bvh_prims.clone(),
+            leaf_corners: self.leaf_corners.clone(),
         }
     }
 
@@ -137,6 +142,7 @@ impl FlatScene {
             texels: table.texels,
             bvh_nodes: geometry.bvh_nodes,
             bvh_prims: geometry.bvh_prims,
+            leaf_corners: geometry.leaf_corners,
             object_names: geometry.object_names,
             material_names,
         };

@@ -1,0 +1,111 @@
+//! The corners of the BVH's triangles in leaf order, for the CPU walk: a leaf's triangles are
+//! then one contiguous read instead of reference → triangle → three vertices, three dependent
+//! cache misses per triangle on incoherent rays. CPU only (the GPU reads the indexed mesh).
+
+use std::sync::Arc;
+
+use rayon::prelude::*;
+
+use crate::bvh::PrimRef;
+use crate::layout::GpuTriangle;
+
+/// A triangle's three corners, as stored (f32): widened, they are the values the indexed
+/// mesh gives, so hits are bit-identical.
+pub type Corners = [[f32; 3]; 3];
+
+/// Made with the geometry and shared with it (`FlatScene::rebuild`, clones). Valid only for the
+/// vertex, triangle and reference arrays it was made from: a scene whose arrays were replaced
+/// (the GPU's rebased copy, a test's edit) reads the indexed mesh instead (`for_scene`).
+#[derive(Clone, Debug, Default)]
+pub struct LeafCorners {
+    /// One entry per BVH primitive reference (zeros for a sphere's).
+    corners: Arc<[Corners]>,
+    vertices: Arc<[[f32; 4]]>,
+    triangles: Arc<[GpuTriangle]>,
+    prims: Arc<[u32]>,
+}
+
+impl LeafCorners {
+    /// 36 bytes per primitive reference.
+    pub const BYTES_PER_PRIM: u64 = size_of::<Corners>() as u64;
+
+    pub fn new(vertices: &Arc<[[f32; 4]]>, triangles: &Arc<[GpuTriangle]>, prims: &Arc<[u32]>) -> Self {
+        let corners = prims
+            .par_iter()
+            .with_min_len(16384)
+            .map(|&r| match PrimRef::decode(r) {
+                PrimRef::Triangle(i) => {
+                    let t = &triangles[i as usize];
+                    [t.va, t.vb, t.vc].map(|v| {
+                        let p = vertices[v as usize];
+                        [p[0], p[1], p[2]]
+                    })
+                }
+                PrimRef::Sphere(_) => [[0.0; 3]; 3],
+            })
+            .collect();
+        Self { corners, vertices: vertices.clone(), triangles: triangles.clone(), prims: prims.clone() }
+    }
+
+    /// The corners by reference slot, if they were made from these arrays.
+    #[inline]
+    pub fn for_arrays(
+        &self,
+        vertices: &Arc<[[f32; 4]]>,
+        triangles: &Arc<[GpuTriangle]>,
+        prims: &Arc<[u32]>,
+    ) -> Option<&[Corners]> {
+        (Arc::ptr_eq(&self.vertices, vertices)
+            && Arc::ptr_eq(&self.triangles, triangles)
+            && Arc::ptr_eq(&self.prims, prims)
+            && self.corners.len() == prims.len())
+        .then_some(&self.corners[..])
+    }
+
+    pub fn ptr_eq(&self, other: &Self) -> bool {
+        Arc::ptr_eq(&self.corners, &other.corners)
+    }
+}
+
+/// Derived data: equal when made from equal arrays, which the scene's own fields compare.
+impl PartialEq for LeafCorners {
+    fn eq(&self, o: &Self) -> bool {
+        self.corners == o.corners
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::bvh::PRIM_REF_TRIANGLE;
+
+    type Arrays = (Arc<[[f32; 4]]>, Arc<[GpuTriangle]>, Arc<[u32]>);
+
+    fn arrays() -> Arrays {
+        let vertices: Arc<[[f32; 4]]> =
+            vec![[0.0, 0.0, 0.0, 1.0], [1.0, 0.0, 0.0, 1.0], [0.0, 1.0, 0.0, 1.0], [0.0, 0.0, 1.0, 1.0]].into();
+        let triangles: Arc<[GpuTriangle]> = vec![
+            GpuTriangle { va: 0, vb: 1, vc: 2, mesh: 0, order: 0 },
+            GpuTriangle { va: 3, vb: 2, vc: 1, mesh: 0, order: 1 },
+        ]
+        .into();
+        // A sphere's reference between the two triangles', the second triangle first.
+        let prims: Arc<[u32]> = vec![1 | PRIM_REF_TRIANGLE, 0, PRIM_REF_TRIANGLE].into();
+        (vertices, triangles, prims)
+    }
+
+    #[test]
+    fn corners_follow_the_references_and_only_for_the_arrays_they_came_from() {
+        let (vertices, triangles, prims) = arrays();
+        let leaf = LeafCorners::new(&vertices, &triangles, &prims);
+        let corners = leaf.for_arrays(&vertices, &triangles, &prims).expect("made from these arrays");
+        assert_eq!(corners[0], [[0.0, 0.0, 1.0], [0.0, 1.0, 0.0], [1.0, 0.0, 0.0]]);
+        assert_eq!(corners[1], [[0.0; 3]; 3]);
+        assert_eq!(corners[2], [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]);
+        // Equal contents in other arrays (a rebased copy, an edited scene): not used.
+        let (other_vertices, other_triangles, other_prims) = arrays();
+        assert!(leaf.for_arrays(&other_vertices, &triangles, &prims).is_none());
+        assert!(leaf.for_arrays(&vertices, &other_triangles, &prims).is_none());
+        assert!(leaf.for_arrays(&vertices, &triangles, &other_prims).is_none());
+    }
+}
