@@ -112,7 +112,7 @@ const GPU_ONLY: [(&str, &str, &str); 16] = [
 ];
 
 /// Functions only the CPU side has, and why.
-const CPU_ONLY: [(&str, &str, &str); 10] = [
+const CPU_ONLY: [(&str, &str, &str); 11] = [
     ("cpu/bvh.rs", "new", "SlabRay::new; WGSL builds it in slab_ray (no methods)"),
     (
         "cpu/bvh.rs",
@@ -126,6 +126,7 @@ const CPU_ONLY: [(&str, &str, &str); 10] = [
         "TriangleCorners::get: the CPU walk reads a leaf's corners from FlatScene::leaf_corners (one \
          contiguous read); the GPU reads the indexed mesh through triangle_corners",
     ),
+    ("cpu/bvh.rs", "prefetch_children", "a CPU cache hint for the walk's next node pairs; WGSL has none"),
     ("cpu/bvh.rs", "walk", "traverse's loop over its reused per-thread stack; WGSL's stack is a local array"),
     (
         "cpu/bvh.rs",
