@@ -39,7 +39,8 @@ impl HdrImage {
     /// every pixel is representable.
     pub fn unrepresentable(&self) -> Option<Unrepresentable> {
         let bad = |p: &DVec3| !p.to_array().iter().all(|&v| (v as f32).is_finite());
-        let first = self.pixels.iter().position(bad)?;
+        // In parallel: a whole image is read for the usual answer, none.
+        let first = self.pixels.par_iter().position_first(bad)?;
         let count = self.pixels.iter().filter(|p| bad(p)).count();
         let largest = self.pixels.iter().filter(|p| bad(p)).map(|p| p.abs().max_element()).fold(0.0, f64::max);
         let width = self.width.max(1) as usize;
