@@ -19,9 +19,10 @@
 #import glint::intersect::is_leaving
 #endif
 
-// Entries of the traversal stack: deeper than any tree the builder makes for 2^31 primitives
-// with balanced splits; a degenerate deeper one raises STATUS_BVH_STACK_OVERFLOW.
-const BVH_STACK_SIZE: u32 = 64u;
+// Entries of the traversal stack: the scene's tree depth + 1 (glint_gpu::shaders::
+// bvh_stack_size), at most 64, deeper than any tree the builder makes for 2^31 primitives with
+// balanced splits; a degenerate deeper one raises STATUS_BVH_STACK_OVERFLOW.
+const BVH_STACK_SIZE: u32 = #{BVH_STACK_SIZE}u;
 // Relative padding of a box against the scale of the box and the ray origin (f32 rounding is
 // ~6e-8), and the absolute padding for boxes and origins at 0.
 const BOX_PAD: f32 = 1e-5;

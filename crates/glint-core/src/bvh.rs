@@ -51,18 +51,51 @@ pub struct NodePair([BvhNode; 2]);
 pub struct BvhNodes {
     pairs: Arc<[NodePair]>,
     len: usize,
+    depth: u32,
 }
 
 impl BvhNodes {
     pub fn new(nodes: &[BvhNode]) -> Self {
         let pairs = nodes.chunks(2).map(|c| NodePair([c[0], c.get(1).copied().unwrap_or_default()])).collect();
-        Self { pairs, len: nodes.len() }
+        Self { pairs, len: nodes.len(), depth: tree_depth(nodes) }
+    }
+
+    /// Edges from the root to the deepest leaf (0 for a lone leaf or no tree): a walk that
+    /// pushes a node's children after popping it never holds more than `depth + 1` entries.
+    pub fn depth(&self) -> u32 {
+        self.depth
     }
 
     /// Whether both are the same array (not merely equal nodes).
     pub fn ptr_eq(&self, other: &Self) -> bool {
         Arc::ptr_eq(&self.pairs, &other.pairs)
     }
+}
+
+/// The depth of the tree rooted at node 0 (`BvhNodes::depth`). Total on any array (tests store
+/// arbitrary nodes): a child index outside it is not followed, and no more nodes are visited
+/// than there are, so a malformed array cannot make it loop.
+fn tree_depth(nodes: &[BvhNode]) -> u32 {
+    let mut deepest = 0;
+    let mut stack = Vec::new();
+    if !nodes.is_empty() {
+        stack.push((0usize, 0u32));
+    }
+    let mut visits = 0;
+    while let Some((i, d)) = stack.pop() {
+        let Some(node) = nodes.get(i) else { continue };
+        visits += 1;
+        if visits > nodes.len() {
+            break;
+        }
+        if node.count > 0 {
+            deepest = deepest.max(d);
+        } else {
+            let first = node.left_first as usize;
+            stack.extend([(first, d + 1), (first + 1, d + 1)]);
+        }
+    }
+    deepest
 }
 
 /// Nodes in order (rebasing maps every node of a stored BVH to a moved one).
@@ -555,6 +588,21 @@ mod tests {
             assert_eq!(stored.as_ptr() as usize % 64, 0, "{count} nodes: pairs straddle cache lines");
             assert!(stored.ptr_eq(&stored.clone()) && !stored.ptr_eq(&BvhNodes::new(&nodes)));
         }
+    }
+
+    #[test]
+    fn depth_is_the_longest_path_from_the_root_to_a_leaf() {
+        let leaf = BvhNode { count: 1, ..BvhNode::default() };
+        let inner = |first| BvhNode { left_first: first, count: 0, ..BvhNode::default() };
+        assert_eq!(BvhNodes::new(&[]).depth(), 0);
+        assert_eq!(BvhNodes::new(&[leaf]).depth(), 0);
+        // Root, the unused node, a leaf and an inner node over two leaves (right side deeper).
+        let tree = [inner(2), BvhNode::default(), leaf, inner(4), leaf, leaf];
+        assert_eq!(BvhNodes::new(&tree).depth(), 2);
+        let sc = scene(0, 5000);
+        let nodes = BvhNodes::new(&build(&sc.bounded()).nodes);
+        let leaves = nodes.iter().filter(|n| n.count > 0).count();
+        assert!(1 << nodes.depth() >= leaves && (nodes.depth() as usize) < leaves, "depth {}", nodes.depth());
     }
 
     #[test]

@@ -15,7 +15,7 @@ use crate::context::GpuContext;
 use crate::error::GpuError;
 use crate::pipeline::{TracerPipeline, create_entry_pipeline, with_error_scopes};
 use crate::readback::{decode_stats, read_buffer};
-use crate::shaders::{RAYCAST_WGSL, ShaderKey};
+use crate::shaders::{RAYCAST_WGSL, ShaderKey, bvh_stack_size};
 use crate::status::messages;
 
 /// Invocations per workgroup (`@workgroup_size(64, 1, 1)` of raycast.wgsl).
@@ -39,7 +39,13 @@ pub struct RayBatch {
 /// The shader variant: only the primitive kinds select code in `closest_hit`; the BVH always.
 pub fn raycast_key(scene: &FlatScene) -> ShaderKey {
     let kinds = feature::SPHERES | feature::PLANES | feature::TRIANGLES;
-    ShaderKey { features: scene.header.features & kinds, stack_size: 1, probe: false, bvh: true }
+    ShaderKey {
+        features: scene.header.features & kinds,
+        stack_size: 1,
+        probe: false,
+        bvh: true,
+        bvh_stack: bvh_stack_size(scene),
+    }
 }
 
 impl RayCaster {
@@ -160,7 +166,7 @@ mod tests {
         let kinds = [feature::SPHERES, feature::PLANES, feature::TRIANGLES];
         for mix in 1..8u32 {
             let features = (0..3).filter(|k| mix & (1 << k) != 0).fold(0, |f, k| f | kinds[k]);
-            let key = ShaderKey { features, stack_size: 1, probe: false, bvh: true };
+            let key = ShaderKey { features, stack_size: 1, probe: false, bvh: true, bvh_stack: 16 };
             let module = compose_entry(&key, RAYCAST_WGSL).expect("raycast.wgsl composes");
             validate(&module).unwrap_or_else(|e| panic!("[{}]: {e}", key.describe()));
             let main = module.entry_points.iter().find(|e| e.name == "main").expect("entry point main");

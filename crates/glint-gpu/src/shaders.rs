@@ -16,6 +16,18 @@ use crate::error::GpuError;
 /// branch raise `STATUS_STACK_OVERFLOW`.
 pub const GPU_STACK_LIMIT: u32 = 64;
 
+/// Entries of the BVH traversal stack when the shader is not specialised (bvh.wgsl's
+/// `BVH_STACK_SIZE`); a deeper tree that needs more raises `STATUS_BVH_STACK_OVERFLOW`.
+pub const BVH_STACK_LIMIT: u32 = 64;
+
+/// The BVH stack a scene's tree needs (`BvhNodes::depth` + 1 entries), in steps of 8 so that
+/// trees of similar depth share a variant, at most `BVH_STACK_LIMIT`. Sized to the tree
+/// rather than the limit because WGSL zero-fills a function's arrays on every call: on
+/// lavapipe the 64-entry stacks cost a seventh of bumpy's GPU render.
+pub fn bvh_stack_size(scene: &FlatScene) -> u32 {
+    (scene.bvh_nodes.depth() + 1).next_multiple_of(8).min(BVH_STACK_LIMIT)
+}
+
 /// lavapipe's loop budget: once an invocation group has run this many loop iterations in all,
 /// it ends every loop after its current iteration, silently (docs/numerics.md, "GPU loop
 /// bounds"). The GPU tracer's own loop bounds derive from it.
@@ -64,6 +76,8 @@ pub struct ShaderKey {
     pub probe: bool,
     /// Find hits through the BVH (shader def `BVH`) instead of testing every primitive.
     pub bvh: bool,
+    /// Entries of the BVH traversal stack (shader def `BVH_STACK_SIZE`).
+    pub bvh_stack: u32,
 }
 
 impl ShaderKey {
@@ -72,7 +86,7 @@ impl ShaderKey {
         if specialise {
             let features = scene.header.features;
             let depth = if feature::recurses(features) { scene.header.max_depth.min(GPU_STACK_LIMIT - 1) } else { 0 };
-            Self { features, stack_size: depth + 1, probe: false, bvh: true }
+            Self { features, stack_size: depth + 1, probe: false, bvh: true, bvh_stack: bvh_stack_size(scene) }
         } else {
             Self::full()
         }
@@ -80,7 +94,13 @@ impl ShaderKey {
 
     /// The unspecialised shader: every feature, the largest stack.
     pub fn full() -> Self {
-        Self { features: feature::ALL, stack_size: GPU_STACK_LIMIT, probe: false, bvh: true }
+        Self {
+            features: feature::ALL,
+            stack_size: GPU_STACK_LIMIT,
+            probe: false,
+            bvh: true,
+            bvh_stack: BVH_STACK_LIMIT,
+        }
     }
 
     /// The same variant with brute force or the BVH, as `accel` decides for this scene (the
@@ -136,6 +156,7 @@ impl ShaderKey {
         }
         defs.insert("STACK_SIZE".into(), ShaderDefValue::UInt(self.stack_size));
         defs.insert("MAX_TREE_NODES".into(), ShaderDefValue::UInt(MAX_TREE_NODES));
+        defs.insert("BVH_STACK_SIZE".into(), ShaderDefValue::UInt(self.bvh_stack.max(1)));
         if self.probe {
             defs.insert("PROBE".into(), ShaderDefValue::Bool(true));
         }
@@ -157,7 +178,7 @@ impl ShaderKey {
             "{} stack {}{}{}",
             names.join("|"),
             self.stack_size,
-            if self.bvh { " bvh" } else { "" },
+            if self.bvh { format!(" bvh {}", self.bvh_stack) } else { String::new() },
             if self.probe { " probe" } else { "" }
         )
     }
@@ -291,7 +312,7 @@ mod tests {
         for bit in 0..feature::NAMES.len() {
             for features in [1u32 << bit, feature::ALL & !(1 << bit)] {
                 for bvh in [false, true] {
-                    compose_or_report(&ShaderKey { features, stack_size: 4, probe: false, bvh });
+                    compose_or_report(&ShaderKey { features, stack_size: 4, probe: false, bvh, bvh_stack: 16 });
                 }
             }
         }
@@ -404,8 +425,13 @@ mod tests {
             full.global_variables.iter().filter_map(|(_, g)| g.binding.as_ref().map(|b| b.binding)).collect();
         assert!(untextured.iter().all(|b| full_bindings.contains(b)), "the full shader binds the textures");
         // Textures on spheres and planes only: texels and table, no texture coordinates.
-        let planar =
-            ShaderKey { features: feature::TEXTURES | feature::SPHERES, stack_size: 1, probe: false, bvh: false };
+        let planar = ShaderKey {
+            features: feature::TEXTURES | feature::SPHERES,
+            stack_size: 1,
+            probe: false,
+            bvh: false,
+            bvh_stack: 8,
+        };
         let planar = compose_or_report(&planar);
         let planar_bindings: Vec<u32> =
             planar.global_variables.iter().filter_map(|(_, g)| g.binding.as_ref().map(|b| b.binding)).collect();
