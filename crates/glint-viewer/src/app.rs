@@ -438,9 +438,14 @@ impl eframe::App for ViewerApp {
         let cpu_running = self.renders.cpu.is_running();
         let frame = Frame { settled: self.is_settled(), cpu_running, gpu_renders, metadata: &metadata };
         self.automation.step(&ctx, &frame);
-        if self.renders.is_busy() || self.automation.active() {
-            // GPU completion is polled, not signalled: look again next frame.
+        if self.renders.needs_polling() || automated_drag {
+            // A readback is polled, not signalled, and a drag paints every frame.
             ctx.request_repaint_after(Duration::from_millis(4));
+        } else if self.renders.is_busy() || self.automation.active() {
+            // Workers wake the UI when they finish; this only refreshes progress labels. A
+            // frame every few milliseconds would, on a CPU adapter, take the cores the
+            // renders need (a blank window of this size costs 65 ms of CPU a frame there).
+            ctx.request_repaint_after(Duration::from_millis(250));
         }
         if let Some(interval) = self.clock.end_frame(start) {
             self.automation.record_frame(interval, self.clock.ui_ms);

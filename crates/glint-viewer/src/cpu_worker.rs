@@ -11,6 +11,9 @@ use glint_core::{CpuOptions, FlatScene, HdrImage, RenderControl, render_cpu};
 
 use crate::worker::Worker;
 
+/// How often a running CPU render's finished tiles are shown (and uploaded) at most.
+pub const PROGRESS_INTERVAL: Duration = Duration::from_millis(100);
+
 /// The tiles finished so far, shared with the render thread.
 #[derive(Debug)]
 struct Progress {
@@ -111,7 +114,9 @@ impl CpuWorker {
                 g.tiles_done += 1;
                 g.changed = true;
                 drop(g);
-                job.repaint();
+                // Within the upload interval: a frame per tile would paint hundreds of frames a
+                // second, each one on a CPU adapter taking the cores the renders need.
+                job.repaint_within(PROGRESS_INTERVAL);
             };
             let options = CpuOptions { threads: worker_threads(), ..CpuOptions::default() };
             let control = RenderControl { cancel: Some(job.cancel_flag()), on_tile: Some(&on_tile), rays: None };

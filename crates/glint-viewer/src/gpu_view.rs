@@ -144,6 +144,12 @@ impl GpuView {
         self.in_flight.is_some() || self.readback.is_some()
     }
 
+    /// Whether the next step is found only by polling the device: a finished render's last
+    /// step and its readback (both short). A render still running wakes the UI itself.
+    pub fn needs_polling(&self) -> bool {
+        self.readback.is_some() || matches!(self.in_flight, Some(InFlight { stage: Stage::Running(_), .. }))
+    }
+
     /// The revision of the image on screen.
     pub fn shown_revision(&self) -> Option<u64> {
         self.shown.map(|s| s.0)
@@ -215,6 +221,14 @@ impl GpuView {
             let control = DispatchControl { cancel: Some(handle.cancel_flag()), progress: Some(&job_progress) };
             let job = tracer.submit(&scene, &options, control);
             log::debug!("GPU submit took {:.1} ms", start.elapsed().as_secs_f64() * 1e3);
+            // Waits here for the GPU to finish, so that the worker's wake-up after it sends the
+            // job tells the UI, rather than frames painted every few milliseconds to poll: on a
+            // CPU adapter each frame takes the cores the render needs.
+            if job.is_ok()
+                && let Err(e) = tracer.context().device.poll(wgpu::PollType::wait_indefinitely())
+            {
+                log::warn!("waiting for the GPU render: {e}");
+            }
             job
         });
         match started {

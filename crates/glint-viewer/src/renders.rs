@@ -4,7 +4,7 @@
 use std::time::{Duration, Instant};
 
 use crate::comparison::{Compared, Comparison};
-use crate::cpu_worker::{CpuWorker, Finished};
+use crate::cpu_worker::{CpuWorker, Finished, PROGRESS_INTERVAL};
 use crate::document::Document;
 use crate::gpu_view::{GpuImage, GpuView};
 use crate::images::CpuTexture;
@@ -96,7 +96,7 @@ impl Renders {
     pub fn poll(&mut self, ctx: &egui::Context) {
         // Progressive tiles are uploaded at most ten times a second: each upload converts and
         // copies the whole image, which the UI thread should not do for every tile.
-        let due = self.cpu_uploaded.is_none_or(|t| t.elapsed() >= Duration::from_millis(100));
+        let due = self.cpu_uploaded.is_none_or(|t| t.elapsed() >= PROGRESS_INTERVAL);
         if (due || !self.cpu.is_running())
             && let Some((w, h, rgba)) = self.cpu.poll()
         {
@@ -104,7 +104,7 @@ impl Renders {
             self.cpu_uploaded = Some(Instant::now());
         }
         if !due {
-            ctx.request_repaint_after(Duration::from_millis(100));
+            ctx.request_repaint_after(PROGRESS_INTERVAL);
         }
         if let Some(g) = &mut self.gpu {
             g.poll();
@@ -224,6 +224,11 @@ impl Renders {
     /// Whether a job is under way that is polled rather than signalled (GPU, comparison).
     pub fn is_busy(&self) -> bool {
         self.gpu.as_ref().is_some_and(GpuView::is_busy) || self.comparison.is_running()
+    }
+
+    /// Whether the UI must poll the GPU each frame (`GpuView::needs_polling`).
+    pub fn needs_polling(&self) -> bool {
+        self.gpu.as_ref().is_some_and(GpuView::needs_polling)
     }
 
     pub fn gpu_renders(&self) -> usize {

@@ -35,6 +35,14 @@ impl JobHandle {
             ctx.request_repaint();
         }
     }
+
+    /// Asks the UI for a frame within `delay`: partial results that arrive faster than the UI
+    /// shows them (tiles) then cost one frame per `delay`, not one each.
+    pub fn repaint_within(&self, delay: std::time::Duration) {
+        if let Some(ctx) = &self.repaint {
+            ctx.request_repaint_after(delay);
+        }
+    }
 }
 
 #[derive(Debug)]
