@@ -83,17 +83,12 @@ pub fn reach(scene: &FlatScene, eye: DVec3) -> f64 {
 /// How much finer than the scene's reach the grid of frame origins is (a power of two).
 const GRID_DIVISIONS: f64 = 16.0;
 
-/// Where the f32 tracer's digits matter most: the first surface the ray through the image
-/// centre meets within the scene's reach (found by the CPU reference); if it meets none there,
-/// the centre of the bounded geometry; if there is none, the eye. Within the reach: a ray
-/// grazing an infinite plane meets it arbitrarily far away (3e9 was seen orbiting a model over
-/// its floor), and an origin there would cost every point of the scene its digits.
-pub fn focus(scene: &FlatScene) -> DVec3 {
-    let eye = v3(scene.camera.position);
-    focus_within(scene, eye, reach(scene, eye))
-}
-
-/// `focus`, the scene's reach `r` from `eye` (the camera's position) given.
+/// Where the f32 tracer's digits matter most, for a camera at `eye` in a scene reaching `r`
+/// from it: the first surface the ray through the image centre meets within the reach (found
+/// by the CPU reference); if it meets none there, the centre of the bounded geometry; if there
+/// is none, the eye. Within the reach: a ray grazing an infinite plane meets it arbitrarily far
+/// away (3e9 was seen orbiting a model over its floor), and an origin there would cost every
+/// point of the scene its digits.
 fn focus_within(scene: &FlatScene, eye: DVec3, r: f64) -> DVec3 {
     let forward = v3(scene.camera.forward);
     if let Ok(ctx) = TraceContext::new(scene)
@@ -112,7 +107,7 @@ fn focus_within(scene: &FlatScene, eye: DVec3, r: f64) -> DVec3 {
     }
 }
 
-/// The frame the GPU traces `scene` in (world space as stored, origin 0): the `focus` snapped to
+/// The frame the GPU traces `scene` in (world space as stored, origin 0): the focus (`focus_within`) snapped to
 /// a grid of spacing g, the power of two nearest R/16 (R the scene's reach from the eye,
 /// `reach`), and the offsets' length scale min(1, the power of two nearest R).
 ///
@@ -171,18 +166,14 @@ pub fn rebased(scene: &FlatScene, frame: [f32; 4]) -> FlatScene {
                 GpuPlane { normal_offset: [no[0], no[1], no[2], (f64::from(no[3]) - v3(no).dot(c)) as f32], ..*p }
             })
             .collect();
-        out.bvh_nodes = scene
-            .bvh_nodes
-            .iter()
-            .map(|n| {
-                let mut n = *n;
-                for k in 0..3 {
-                    n.min[k] = f32_down(f64::from(n.min[k]) - c[k]);
-                    n.max[k] = f32_up(f64::from(n.max[k]) - c[k]);
-                }
-                n
-            })
-            .collect();
+        out.bvh_nodes = scene.bvh_nodes.map(|n| {
+            let mut n = *n;
+            for k in 0..3 {
+                n.min[k] = f32_down(f64::from(n.min[k]) - c[k]);
+                n.max[k] = f32_up(f64::from(n.max[k]) - c[k]);
+            }
+            n
+        });
     }
     move_the_rest(&mut out, scene, frame);
     out
@@ -219,6 +210,12 @@ fn move_the_rest(out: &mut FlatScene, scene: &FlatScene, frame: [f32; 4]) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The focus of the scene's own camera.
+    fn focus(scene: &FlatScene) -> DVec3 {
+        let eye = v3(scene.camera.position);
+        focus_within(scene, eye, reach(scene, eye))
+    }
     use crate::bvh::BvhNode;
     use crate::scene::parse_scene;
 
@@ -367,11 +364,8 @@ material = "m"
             .map(|s| GpuSphere { center_radius: s.center_radius.map(|x| x / 1024.0), ..*s })
             .collect();
         small.lights[0].position = shrink(small.lights[0].position);
-        small.bvh_nodes = small
-            .bvh_nodes
-            .iter()
-            .map(|n| BvhNode { min: n.min.map(|x| x / 1024.0), max: n.max.map(|x| x / 1024.0), ..*n })
-            .collect();
+        small.bvh_nodes =
+            small.bvh_nodes.map(|n| BvhNode { min: n.min.map(|x| x / 1024.0), max: n.max.map(|x| x / 1024.0), ..*n });
         // The plane y = 0 is 1/1024 below the eye; the reach ≈ 6.8/1024: scale 2^-7.
         assert_eq!(camera_frame(&small)[3], 1.0 / 128.0);
     }

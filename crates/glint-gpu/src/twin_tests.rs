@@ -122,9 +122,9 @@ const CPU_ONLY: [(&str, &str, &str); 11] = [
     ),
     (
         "cpu/bvh.rs",
-        "get",
-        "TriangleCorners::get: the CPU walk reads a leaf's corners from FlatScene::leaf_corners (one \
-         contiguous read); the GPU reads the indexed mesh through triangle_corners",
+        "leaf_triangle",
+        "the CPU walk reads a leaf's corners from FlatScene::leaf_corners (one contiguous read); \
+         the GPU reads the indexed mesh through triangle_corners",
     ),
     ("cpu/bvh.rs", "prefetch_children", "a CPU cache hint for the walk's next node pairs; WGSL has none"),
     ("cpu/bvh.rs", "walk", "traverse's loop over its reused per-thread stack; WGSL's stack is a local array"),

@@ -20,9 +20,7 @@ use super::intersect::{
     triangle_corners,
 };
 use super::{Ray, TraceContext, v3};
-use crate::FlatScene;
 use crate::bvh::{BvhNode, PrimRef};
-use crate::flat::Corners;
 use crate::layout::feature;
 
 /// Relative padding of a box in the slab test, against the scale of the box and the ray origin:
@@ -156,29 +154,14 @@ impl SlabPlanes {
     }
 }
 
-/// Where the walk reads a leaf's triangle corners: the scene's leaf-order copy when it was made
-/// from this scene's arrays, else the indexed mesh. The same f32 values either way.
-#[derive(Clone, Copy)]
-enum TriangleCorners<'a> {
-    Leaf(&'a [Corners]),
-    Indexed(&'a FlatScene),
-}
-
-impl<'a> TriangleCorners<'a> {
-    fn of(scene: &'a FlatScene) -> Self {
-        match scene.leaf_corners.for_arrays(&scene.vertices, &scene.triangles, &scene.bvh_prims) {
-            Some(c) => Self::Leaf(c),
-            None => Self::Indexed(scene),
-        }
-    }
-
-    /// The corners of triangle `index`, referenced at `slot`.
-    #[inline(always)]
-    fn get(self, slot: usize, index: u32) -> [DVec3; 3] {
-        match self {
-            Self::Leaf(c) => c[slot].map(|p| DVec3::new(f64::from(p[0]), f64::from(p[1]), f64::from(p[2]))),
-            Self::Indexed(scene) => triangle_corners(scene, &scene.triangles[index as usize]),
-        }
+/// The corners of triangle `index`, referenced at `slot` of `bvh_prims`: from the scene's
+/// leaf-order copy when the context has it, else from the indexed mesh. The same f32 values
+/// either way.
+#[inline(always)]
+fn leaf_triangle(ctx: &TraceContext, slot: usize, index: u32) -> [DVec3; 3] {
+    match ctx.leaf_corners {
+        Some(c) => c[slot].map(|p| glam::Vec3::from_array(p).as_dvec3()),
+        None => triangle_corners(ctx.scene, &ctx.scene.triangles[index as usize]),
     }
 }
 
@@ -303,7 +286,6 @@ pub fn closest_hit(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f64, leavin
     let triangles_on = ctx.has(feature::TRIANGLES);
     let skip = ctx.has(feature::SKIP_CONVEX);
     let shear: RayShear = ray_shear(ray.dir);
-    let corners = TriangleCorners::of(scene);
     let best = std::cell::Cell::new(None::<Hit>);
     traverse(
         ctx,
@@ -324,7 +306,7 @@ pub fn closest_hit(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f64, leavin
                     }
                 }
                 PrimRef::Triangle(i) if triangles_on && !(skip && is_leaving(leaving, Prim::Triangle, i)) => {
-                    let [a, b0, c] = corners.get(slot, i);
+                    let [a, b0, c] = leaf_triangle(ctx, slot, i);
                     if let Some((t, bu, bv)) = intersect_triangle(a, b0, c, ray, &shear, t_min, limit)
                         && replaces(scene, t, Prim::Triangle, i, &b)
                     {
@@ -372,7 +354,6 @@ pub fn shadow_transmittance(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f6
     // A surface whose k_t is zero (or any surface, without filtered shadows) makes the product
     // zero whatever the order: return at once, as brute force would at the end.
     let opaque = |material: u32| all_zero(cross_surface(ctx, DVec3::ONE, material));
-    let corners = TriangleCorners::of(scene);
     let mut crossings: Vec<Crossing> = Vec::new();
     let passed = traverse(
         ctx,
@@ -398,7 +379,7 @@ pub fn shadow_transmittance(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f6
                     }
                 }
                 PrimRef::Triangle(i) if triangles_on && !(skip && is_leaving(leaving, Prim::Triangle, i)) => {
-                    let [a, b, c] = corners.get(slot, i);
+                    let [a, b, c] = leaf_triangle(ctx, slot, i);
                     if intersect_triangle(a, b, c, ray, &shear, t_min, t_max).is_some() {
                         let tri = &scene.triangles[i as usize];
                         let material = scene.meshes[tri.mesh as usize].material;

@@ -15,7 +15,7 @@ use std::ops::AddAssign;
 
 use glam::DVec3;
 
-use crate::flat::FlatScene;
+use crate::flat::{Corners, FlatScene};
 use crate::layout::{GpuLight, GpuMaterial, UnknownTag, feature};
 use crate::scene::{AttenuationModel, EpsilonMode, Filter, Fresnel, LightKind, SpecularModel, SpotFalloff, Wrap};
 
@@ -173,6 +173,9 @@ pub struct TraceContext<'a> {
     pub material_tags: Vec<MaterialTags>,
     /// The wrap modes (u, v) and filter of each texture, in table order.
     pub texture_modes: Vec<([Wrap; 2], Filter)>,
+    /// The BVH walk's leaf-order triangle corners, if they were made from this scene's arrays
+    /// (`LeafCorners::for_arrays`; checked once here, not per ray).
+    pub leaf_corners: Option<&'a [Corners]>,
 }
 
 impl<'a> TraceContext<'a> {
@@ -201,6 +204,7 @@ impl<'a> TraceContext<'a> {
                 .iter()
                 .map(|t| Ok(([Wrap::try_from(t.wrap_s)?, Wrap::try_from(t.wrap_t)?], Filter::try_from(t.filter_mode)?)))
                 .collect::<Result<_, UnknownTag>>()?,
+            leaf_corners: scene.leaf_corners.for_arrays(&scene.vertices, &scene.triangles, &scene.bvh_prims),
         })
     }
 
