@@ -79,27 +79,18 @@ fn enter(s: SlabRay, node: BvhNode, t_lo: f32, t_hi: f32) -> MaybeT {
     return MaybeT(t0, t0 <= t1 && t0 <= t_hi + sl && t1 >= t_lo - sl);
 }
 
-// Pushes the root (node 0) if the ray enters its box within [t_min, t_max].
-fn push_root(
-    stack: ptr<function, array<u32, BVH_STACK_SIZE>>,
-    stack_t: ptr<function, array<f32, BVH_STACK_SIZE>>,
-    sp: ptr<function, u32>,
-    slab: SlabRay,
-    root: BvhNode,
-    t_min: f32,
-    t_max: f32,
-) {
-    let t = enter(slab, root, t_min, t_max);
-    if t.ok {
-        (*stack)[0] = 0u;
-        (*stack_t)[0] = t.t;
-        *sp = 1u;
-    }
+// No node: the walk pops the stack next.
+const NO_NODE: u32 = 0xffffffffu;
+
+// The root (node 0) if the ray enters its box within [t_min, t_max], else NO_NODE.
+fn root_node(slab: SlabRay, root: BvhNode, t_min: f32, t_max: f32) -> u32 {
+    return select(NO_NODE, 0u, enter(slab, root, t_min, t_max).ok);
 }
 
-// Pushes the children at `l` and `l + 1` that the ray enters within [t_min, t_hi], the farther
-// first so that the nearer is popped first; a full stack raises STATUS_BVH_STACK_OVERFLOW.
-fn push_children(
+// Of the children at `l` and `l + 1`, the one the ray enters first within [t_min, t_hi] (the
+// walk's next node, NO_NODE if neither); the farther of two is pushed, as the CPU's walk does.
+// A full stack raises STATUS_BVH_STACK_OVERFLOW.
+fn nearer_child(
     stack: ptr<function, array<u32, BVH_STACK_SIZE>>,
     stack_t: ptr<function, array<f32, BVH_STACK_SIZE>>,
     sp: ptr<function, u32>,
@@ -107,43 +98,24 @@ fn push_children(
     l: u32,
     t_min: f32,
     t_hi: f32,
-) {
+) -> u32 {
     let tl = enter(slab, bvh_nodes[l], t_min, t_hi);
     let tr_ = enter(slab, bvh_nodes[l + 1u], t_min, t_hi);
-    var first = l + 1u;
-    var first_t = tr_.t;
-    var second = l;
-    var second_t = tl.t;
-    var n = 0u;
     if tl.ok && tr_.ok {
-        n = 2u;
-        if tl.t > tr_.t {
-            first = l;
-            first_t = tl.t;
-            second = l + 1u;
-            second_t = tr_.t;
+        let left_first = tl.t <= tr_.t;
+        if *sp >= BVH_STACK_SIZE {
+            status |= STATUS_BVH_STACK_OVERFLOW;
+        } else {
+            (*stack)[*sp] = select(l, l + 1u, left_first);
+            (*stack_t)[*sp] = select(tl.t, tr_.t, left_first);
+            *sp += 1u;
         }
-    } else if tl.ok {
-        n = 1u;
-    } else if tr_.ok {
-        n = 1u;
-        second = l + 1u;
-        second_t = tr_.t;
+        return select(l + 1u, l, left_first);
     }
-    if *sp + n > BVH_STACK_SIZE {
-        status |= STATUS_BVH_STACK_OVERFLOW;
-        n = min(n, BVH_STACK_SIZE - *sp);
+    if tl.ok {
+        return l;
     }
-    if n == 2u {
-        (*stack)[*sp] = first;
-        (*stack_t)[*sp] = first_t;
-        (*stack)[*sp + 1u] = second;
-        (*stack_t)[*sp + 1u] = second_t;
-    } else if n == 1u {
-        (*stack)[*sp] = second;
-        (*stack_t)[*sp] = second_t;
-    }
-    *sp += n;
+    return select(NO_NODE, l + 1u, tr_.ok);
 }
 
 // intersect.wgsl's closest_hit through the BVH: the same hit (the tie rule makes it independent of the
@@ -158,15 +130,22 @@ fn closest_hit(ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> Hit {
     var stack: array<u32, BVH_STACK_SIZE>;
     var stack_t: array<f32, BVH_STACK_SIZE>;
     var sp = 0u;
-    push_root(&stack, &stack_t, &sp, slab, root, t_min, t_max);
-    while sp > 0u {
-        sp -= 1u;
-        // A hit found since the node was pushed may now be nearer than the node's box.
-        let t_hi = bound(best, t_max);
-        if stack_t[sp] > t_hi + slack(slab, t_hi) {
-            continue;
+    var current = root_node(slab, root, t_min, t_max);
+    loop {
+        if current == NO_NODE {
+            if sp == 0u {
+                break;
+            }
+            sp -= 1u;
+            // A hit found since the node was pushed may now be nearer than the node's box.
+            let t_hi = bound(best, t_max);
+            if stack_t[sp] > t_hi + slack(slab, t_hi) {
+                continue;
+            }
+            current = stack[sp];
         }
-        let node = bvh_nodes[stack[sp]];
+        let node = bvh_nodes[current];
+        current = NO_NODE;
         if node.count > 0u {
             for (var k = 0u; k < node.count; k++) {
                 let r = bvh_prims[node.left_first + k];
@@ -196,7 +175,7 @@ fn closest_hit(ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> Hit {
             }
             continue;
         }
-        push_children(&stack, &stack_t, &sp, slab, node.left_first, t_min, t_hi);
+        current = nearer_child(&stack, &stack_t, &sp, slab, node.left_first, t_min, bound(best, t_max));
     }
 #ifdef PLANES
     for (var i = 0u; i < header.plane_count; i++) {
@@ -227,10 +206,17 @@ fn shadow_transmittance(ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> v
     var stack: array<u32, BVH_STACK_SIZE>;
     var stack_t: array<f32, BVH_STACK_SIZE>;
     var sp = 0u;
-    push_root(&stack, &stack_t, &sp, slab, root, t_min, t_max);
-    while sp > 0u {
-        sp -= 1u;
-        let node = bvh_nodes[stack[sp]];
+    var current = root_node(slab, root, t_min, t_max);
+    loop {
+        if current == NO_NODE {
+            if sp == 0u {
+                break;
+            }
+            sp -= 1u;
+            current = stack[sp];
+        }
+        let node = bvh_nodes[current];
+        current = NO_NODE;
         if node.count > 0u {
             for (var k = 0u; k < node.count; k++) {
                 let r = bvh_prims[node.left_first + k];
@@ -258,7 +244,7 @@ fn shadow_transmittance(ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> v
             }
             continue;
         }
-        push_children(&stack, &stack_t, &sp, slab, node.left_first, t_min, t_max);
+        current = nearer_child(&stack, &stack_t, &sp, slab, node.left_first, t_min, t_max);
     }
 #ifdef PLANES
     tr = planes_transmittance(tr, ray, t_min, t_max, leaving);

@@ -77,11 +77,11 @@ const TWINS: [(&str, &str, &str, &str); 11] = [
 
 /// Functions only the GPU side has, and why.
 const GPU_ONLY: [(&str, &str, &str); 16] = [
-    ("bvh.wgsl", "push_root", "the CPU pushes the root onto its Vec in traverse; WGSL's stacks are passed by pointer"),
+    ("bvh.wgsl", "root_node", "the CPU tests the root in traverse before it calls walk"),
     (
         "bvh.wgsl",
-        "push_children",
-        "the CPU pushes onto a Vec inside walk; WGSL passes its fixed stacks (nodes, entry distances) by pointer",
+        "nearer_child",
+        "the CPU picks the nearer child and pushes the farther onto a Vec inside walk; WGSL passes its fixed stacks (nodes, entry distances) by pointer",
     ),
     ("bvh.wgsl", "slab_ray", "the CPU's SlabRay::new: WGSL has no methods"),
     ("trace.wgsl", "push_ray", "the explicit ray stack: WGSL has no recursion"),
