@@ -118,6 +118,19 @@ fn nearer_child(
     return select(NO_NODE, l + 1u, tr_.ok);
 }
 
+// The node on top of the stack, popped; NO_NODE when a hit found since it was pushed (t_hi) is
+// nearer than its box, as the CPU's walk skips it (the walk then pops again).
+fn pop_node(
+    stack: ptr<function, array<u32, BVH_STACK_SIZE>>,
+    stack_t: ptr<function, array<f32, BVH_STACK_SIZE>>,
+    sp: ptr<function, u32>,
+    slab: SlabRay,
+    t_hi: f32,
+) -> u32 {
+    *sp -= 1u;
+    return select(NO_NODE, (*stack)[*sp], (*stack_t)[*sp] <= t_hi + slack(slab, t_hi));
+}
+
 // intersect.wgsl's closest_hit through the BVH: the same hit (the tie rule makes it independent of the
 // visiting order).
 fn closest_hit(ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> Hit {
@@ -136,13 +149,10 @@ fn closest_hit(ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> Hit {
             if sp == 0u {
                 break;
             }
-            sp -= 1u;
-            // A hit found since the node was pushed may now be nearer than the node's box.
-            let t_hi = bound(best, t_max);
-            if stack_t[sp] > t_hi + slack(slab, t_hi) {
+            current = pop_node(&stack, &stack_t, &sp, slab, bound(best, t_max));
+            if current == NO_NODE {
                 continue;
             }
-            current = stack[sp];
         }
         let node = bvh_nodes[current];
         current = NO_NODE;
@@ -212,8 +222,10 @@ fn shadow_transmittance(ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> v
             if sp == 0u {
                 break;
             }
-            sp -= 1u;
-            current = stack[sp];
+            current = pop_node(&stack, &stack_t, &sp, slab, t_max);
+            if current == NO_NODE {
+                continue;
+            }
         }
         let node = bvh_nodes[current];
         current = NO_NODE;

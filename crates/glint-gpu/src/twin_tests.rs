@@ -76,12 +76,17 @@ const TWINS: [(&str, &str, &str, &str); 11] = [
 ];
 
 /// Functions only the GPU side has, and why.
-const GPU_ONLY: [(&str, &str, &str); 16] = [
+const GPU_ONLY: [(&str, &str, &str); 17] = [
     ("bvh.wgsl", "root_node", "the CPU tests the root in traverse before it calls walk"),
     (
         "bvh.wgsl",
         "nearer_child",
         "the CPU picks the nearer child and pushes the farther onto a Vec inside walk; WGSL passes its fixed stacks (nodes, entry distances) by pointer",
+    ),
+    (
+        "bvh.wgsl",
+        "pop_node",
+        "the CPU pops its Vec and skips a passed node inside walk; WGSL passes its fixed stacks by pointer",
     ),
     ("bvh.wgsl", "slab_ray", "the CPU's SlabRay::new: WGSL has no methods"),
     ("trace.wgsl", "push_ray", "the explicit ray stack: WGSL has no recursion"),
