@@ -56,10 +56,11 @@ fn slab_ray(ray: Ray, root: BvhNode) -> SlabRay {
     return SlabRay(ray.origin, inv, parallel, BOX_PAD * scale + BOX_PAD_ABS);
 }
 
-// How far beyond t_hi a box may start and still be entered: the padding and the rounding of
-// the slab distances.
-fn slack(s: SlabRay, t_hi: f32) -> f32 {
-    return s.pad + BOX_PAD * min(abs(t_hi), 1e30);
+// The margin by which a slab distance may pass the bound t and the box still be entered: the
+// padding and the rounding of distances up to |t|. Each end of [t_lo, t_hi] gets its own (the
+// CPU's SlabRay::slack says why).
+fn slack(s: SlabRay, t: f32) -> f32 {
+    return s.pad + BOX_PAD * min(abs(t), 1e30);
 }
 
 // The entry distance into the padded box if the ray meets it within [t_lo, t_hi].
@@ -75,8 +76,7 @@ fn enter(s: SlabRay, node: BvhNode, t_lo: f32, t_hi: f32) -> MaybeT {
     let far = select(max(a, b) * (1.0 + BOX_PAD), vec3<f32>(SLAB_INF), s.parallel);
     let t0 = max(near.x, max(near.y, near.z));
     let t1 = min(far.x, min(far.y, far.z));
-    let sl = slack(s, t_hi);
-    return MaybeT(t0, t0 <= t1 && t0 <= t_hi + sl && t1 >= t_lo - sl);
+    return MaybeT(t0, t0 <= t1 && t0 <= t_hi + slack(s, t_hi) && t1 >= t_lo - slack(s, t_lo));
 }
 
 // No node: the walk pops the stack next.

@@ -61,10 +61,12 @@ impl SlabRay {
         Self { origin, inv, parallel, pad: BOX_PAD * scale + BOX_PAD_ABS }
     }
 
-    /// How far beyond t_hi a box may start and still be entered: the padding and the
-    /// rounding of the slab distances.
-    fn slack(&self, t_hi: f64) -> f64 {
-        self.pad + GAMMA3 * t_hi.abs().min(1e300)
+    /// The margin by which a slab distance may pass the bound t and the box still be entered:
+    /// the padding and the rounding of distances up to |t|. Each end of [t_lo, t_hi] gets its
+    /// own: a margin taken from t_hi = `FAR` at the near end too would let every box behind the
+    /// origin through, and shadow rays to directional lights walk the whole line.
+    fn slack(&self, t: f64) -> f64 {
+        self.pad + GAMMA3 * t.abs().min(1e300)
     }
 
     /// The entry distance of the ray into the (padded) box if it meets it within
@@ -95,8 +97,7 @@ impl SlabRay {
         }
         // Rounding is monotonic, so enlarging the minimum is enlarging every far distance.
         let t1 = t1 * (1.0 + 2.0 * GAMMA3);
-        let slack = self.slack(t_hi);
-        (t0 <= t1 && t0 <= t_hi + slack && t1 >= t_lo - slack).then_some(t0)
+        (t0 <= t1 && t0 <= t_hi + self.slack(t_hi) && t1 >= t_lo - self.slack(t_lo)).then_some(t0)
     }
 }
 
@@ -210,6 +211,7 @@ fn walk(
     visit: &mut impl FnMut(usize, u32) -> bool,
 ) -> bool {
     let planes = SlabPlanes::of(slab);
+    let lo = t_min - slab.slack(t_min);
     let mut current = Some(0u32);
     loop {
         let i = match current.take() {
@@ -236,8 +238,7 @@ fn walk(
             continue;
         }
         let t_hi = limit();
-        let slack = slab.slack(t_hi);
-        let (lo, hi) = (t_min - slack, t_hi + slack);
+        let hi = t_hi + slab.slack(t_hi);
         let [left, right] = [&nodes[first], &nodes[first + 1]];
         prefetch_children(nodes, left);
         prefetch_children(nodes, right);
@@ -419,4 +420,37 @@ pub fn shadow_transmittance(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f6
         }
     }
     tr
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::cpu::intersect::FAR;
+
+    fn node(min: [f32; 3], max: [f32; 3]) -> BvhNode {
+        BvhNode { min, left_first: 0, max, count: 1 }
+    }
+
+    /// With t_hi = FAR (a shadow ray to a directional light, a ray before its first hit) a box
+    /// behind the origin is culled, one around or ahead of it entered, in both slab tests.
+    #[test]
+    fn a_box_behind_the_origin_is_culled_even_when_the_ray_reaches_far() {
+        let ray = Ray { origin: DVec3::new(0.0, 0.0, 0.0), dir: DVec3::new(0.48, 0.6, 0.64) };
+        let root = node([-10.0; 3], [10.0; 3]);
+        let slab = SlabRay::new(&ray, &root);
+        let planes = SlabPlanes::of(&slab).expect("no axis is parallel to the ray");
+        let behind = node([-2.0; 3], [-1.0; 3]);
+        let around = node([-1.0; 3], [1.0; 3]);
+        let ahead = node([1.0; 3], [2.0; 3]);
+        let t_min = 1e-9;
+        let (lo, hi) = (t_min - slab.slack(t_min), FAR + slab.slack(FAR));
+        for (name, box_, entered) in [("behind", behind, false), ("around", around, true), ("ahead", ahead, true)] {
+            assert_eq!(slab.enter(&box_, t_min, FAR).is_some(), entered, "{name}: SlabRay::enter");
+            assert_eq!(planes.enter(&box_, lo, hi).is_some(), entered, "{name}: SlabPlanes::enter");
+        }
+        // A box whose far face the ray leaves exactly at t_min is still entered (conservative).
+        let ends_at_origin = node([-1.0; 3], [0.0; 3]);
+        assert!(slab.enter(&ends_at_origin, 0.0, FAR).is_some());
+        assert!(planes.enter(&ends_at_origin, -slab.slack(0.0), hi).is_some());
+    }
 }
