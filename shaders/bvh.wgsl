@@ -131,6 +131,38 @@ fn pop_node(
     return select(NO_NODE, (*stack)[*sp], (*stack_t)[*sp] <= t_hi + slack(slab, t_hi));
 }
 
+// The walk's next leaf from `start` (NO_NODE: pop first), NO_NODE when the stack runs out:
+// interior nodes are passed by nearer_child and pop_node in the CPU's order. A loop of its own
+// ("while-while", Aila and Laine 2009): the lanes of a SIMD group reach their leaves at
+// different steps, and the leaf tests then run once for all the lanes that have one instead
+// of once per step for each lane that happens to be at a leaf.
+fn next_leaf(
+    stack: ptr<function, array<u32, BVH_STACK_SIZE>>,
+    stack_t: ptr<function, array<f32, BVH_STACK_SIZE>>,
+    sp: ptr<function, u32>,
+    slab: SlabRay,
+    start: u32,
+    t_min: f32,
+    t_hi: f32,
+) -> u32 {
+    var current = start;
+    loop {
+        if current == NO_NODE {
+            if *sp == 0u {
+                break;
+            }
+            current = pop_node(stack, stack_t, sp, slab, t_hi);
+            continue;
+        }
+        let node = bvh_nodes[current];
+        if node.count > 0u {
+            break;
+        }
+        current = nearer_child(stack, stack_t, sp, slab, node.left_first, t_min, t_hi);
+    }
+    return current;
+}
+
 // intersect.wgsl's closest_hit through the BVH: the same hit (the tie rule makes it independent of the
 // visiting order).
 fn closest_hit(ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> Hit {
@@ -143,20 +175,13 @@ fn closest_hit(ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> Hit {
     var stack: array<u32, BVH_STACK_SIZE>;
     var stack_t: array<f32, BVH_STACK_SIZE>;
     var sp = 0u;
-    var current = root_node(slab, root, t_min, t_max);
+    var leaf = next_leaf(&stack, &stack_t, &sp, slab, root_node(slab, root, t_min, t_max), t_min, t_max);
     loop {
-        if current == NO_NODE {
-            if sp == 0u {
-                break;
-            }
-            current = pop_node(&stack, &stack_t, &sp, slab, bound(best, t_max));
-            if current == NO_NODE {
-                continue;
-            }
+        if leaf == NO_NODE {
+            break;
         }
-        let node = bvh_nodes[current];
-        current = NO_NODE;
-        if node.count > 0u {
+        let node = bvh_nodes[leaf];
+        {
             for (var k = 0u; k < node.count; k++) {
                 let r = bvh_prims[node.left_first + k];
                 let i = r & PRIM_REF_INDEX;
@@ -183,9 +208,8 @@ fn closest_hit(ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> Hit {
 #endif
                 }
             }
-            continue;
         }
-        current = nearer_child(&stack, &stack_t, &sp, slab, node.left_first, t_min, bound(best, t_max));
+        leaf = next_leaf(&stack, &stack_t, &sp, slab, NO_NODE, t_min, bound(best, t_max));
     }
 #ifdef PLANES
     for (var i = 0u; i < header.plane_count; i++) {
@@ -216,20 +240,13 @@ fn shadow_transmittance(ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> v
     var stack: array<u32, BVH_STACK_SIZE>;
     var stack_t: array<f32, BVH_STACK_SIZE>;
     var sp = 0u;
-    var current = root_node(slab, root, t_min, t_max);
+    var leaf = next_leaf(&stack, &stack_t, &sp, slab, root_node(slab, root, t_min, t_max), t_min, t_max);
     loop {
-        if current == NO_NODE {
-            if sp == 0u {
-                break;
-            }
-            current = pop_node(&stack, &stack_t, &sp, slab, t_max);
-            if current == NO_NODE {
-                continue;
-            }
+        if leaf == NO_NODE {
+            break;
         }
-        let node = bvh_nodes[current];
-        current = NO_NODE;
-        if node.count > 0u {
+        let node = bvh_nodes[leaf];
+        {
             for (var k = 0u; k < node.count; k++) {
                 let r = bvh_prims[node.left_first + k];
                 let i = r & PRIM_REF_INDEX;
@@ -254,9 +271,8 @@ fn shadow_transmittance(ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> v
 #endif
                 }
             }
-            continue;
         }
-        current = nearer_child(&stack, &stack_t, &sp, slab, node.left_first, t_min, t_max);
+        leaf = next_leaf(&stack, &stack_t, &sp, slab, NO_NODE, t_min, t_max);
     }
 #ifdef PLANES
     tr = planes_transmittance(tr, ray, t_min, t_max, leaving);

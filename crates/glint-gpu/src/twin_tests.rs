@@ -76,7 +76,7 @@ const TWINS: [(&str, &str, &str, &str); 11] = [
 ];
 
 /// Functions only the GPU side has, and why.
-const GPU_ONLY: [(&str, &str, &str); 17] = [
+const GPU_ONLY: [(&str, &str, &str); 18] = [
     ("bvh.wgsl", "root_node", "the CPU tests the root in traverse before it calls walk"),
     (
         "bvh.wgsl",
@@ -87,6 +87,11 @@ const GPU_ONLY: [(&str, &str, &str); 17] = [
         "bvh.wgsl",
         "pop_node",
         "the CPU pops its Vec and skips a passed node inside walk; WGSL passes its fixed stacks by pointer",
+    ),
+    (
+        "bvh.wgsl",
+        "next_leaf",
+        "the interior steps of walk's loop in a loop of their own, so that a SIMD group's leaf tests run together; the CPU walks one ray at a time",
     ),
     ("bvh.wgsl", "slab_ray", "the CPU's SlabRay::new: WGSL has no methods"),
     ("trace.wgsl", "push_ray", "the explicit ray stack: WGSL has no recursion"),
