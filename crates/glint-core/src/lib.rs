@@ -7,6 +7,7 @@ pub mod bvh;
 pub mod compare;
 pub mod cpu;
 pub mod flat;
+pub mod huge_pages;
 pub mod image;
 pub mod interrupt;
 pub mod layout;

@@ -10,6 +10,7 @@ use std::sync::Arc;
 
 use bytemuck::{Pod, Zeroable};
 
+use crate::huge_pages::HugePaged;
 use crate::layout::{GpuSphere, GpuTriangle};
 
 mod build;
@@ -49,10 +50,10 @@ pub struct NodePair([BvhNode; 2]);
 /// A flat scene's node array, shared between the scenes `FlatScene::rebuild` makes, and stored
 /// in cache-line-aligned pairs, so that the two children a traversal step tests are one line
 /// to fetch (an `Arc<[BvhNode]>`'s data sits 32 bytes into its allocation, which put every
-/// sibling pair across two lines). Reads as `[BvhNode]`.
+/// sibling pair across two lines), in memory advised for huge pages. Reads as `[BvhNode]`.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct BvhNodes {
-    pairs: Arc<[NodePair]>,
+    pairs: Arc<HugePaged<NodePair>>,
     len: usize,
     depth: u32,
 }
@@ -63,8 +64,12 @@ impl BvhNodes {
     }
 
     fn with_depth(nodes: &[BvhNode], depth: u32) -> Self {
-        let pairs = nodes.chunks(2).map(|c| NodePair([c[0], c.get(1).copied().unwrap_or_default()])).collect();
-        Self { pairs, len: nodes.len(), depth }
+        let pairs = HugePaged::new(nodes.len().div_ceil(2), |pairs| {
+            for (pair, c) in pairs.iter_mut().zip(nodes.chunks(2)) {
+                *pair = NodePair([c[0], c.get(1).copied().unwrap_or_default()]);
+            }
+        });
+        Self { pairs: Arc::new(pairs), len: nodes.len(), depth }
     }
 
     /// Edges from the root to the deepest leaf (0 for a lone leaf or no tree): a walk that

@@ -1,12 +1,14 @@
 //! The corners of the BVH's triangles in leaf order, for the CPU walk: a leaf's triangles are
 //! then one contiguous read instead of reference → triangle → three vertices, three dependent
-//! cache misses per triangle on incoherent rays. CPU only (the GPU reads the indexed mesh).
+//! cache misses per triangle on incoherent rays, in memory advised for huge pages. CPU only
+//! (the GPU reads the indexed mesh).
 
 use std::sync::Arc;
 
 use rayon::prelude::*;
 
 use crate::bvh::PrimRef;
+use crate::huge_pages::HugePaged;
 use crate::layout::GpuTriangle;
 
 /// A triangle's three corners, as stored (f32): widened, they are the values the indexed
@@ -19,7 +21,7 @@ pub type Corners = [[f32; 3]; 3];
 #[derive(Clone, Debug, Default)]
 pub struct LeafCorners {
     /// One entry per BVH primitive reference (zeros for a sphere's).
-    corners: Arc<[Corners]>,
+    corners: Arc<HugePaged<Corners>>,
     vertices: Arc<[[f32; 4]]>,
     triangles: Arc<[GpuTriangle]>,
     prims: Arc<[u32]>,
@@ -30,21 +32,26 @@ impl LeafCorners {
     pub const BYTES_PER_PRIM: u64 = size_of::<Corners>() as u64;
 
     pub fn new(vertices: &Arc<[[f32; 4]]>, triangles: &Arc<[GpuTriangle]>, prims: &Arc<[u32]>) -> Self {
-        let corners = prims
-            .par_iter()
-            .with_min_len(16384)
-            .map(|&r| match PrimRef::decode(r) {
-                PrimRef::Triangle(i) => {
-                    let t = &triangles[i as usize];
-                    [t.va, t.vb, t.vc].map(|v| {
-                        let p = vertices[v as usize];
-                        [p[0], p[1], p[2]]
-                    })
+        let corners = HugePaged::new(prims.len(), |out| {
+            out.par_iter_mut().zip(&prims[..]).with_min_len(16384).for_each(|(out, &r)| {
+                *out = match PrimRef::decode(r) {
+                    PrimRef::Triangle(i) => {
+                        let t = &triangles[i as usize];
+                        [t.va, t.vb, t.vc].map(|v| {
+                            let p = vertices[v as usize];
+                            [p[0], p[1], p[2]]
+                        })
+                    }
+                    PrimRef::Sphere(_) => [[0.0; 3]; 3],
                 }
-                PrimRef::Sphere(_) => [[0.0; 3]; 3],
             })
-            .collect();
-        Self { corners, vertices: vertices.clone(), triangles: triangles.clone(), prims: prims.clone() }
+        });
+        Self {
+            corners: Arc::new(corners),
+            vertices: vertices.clone(),
+            triangles: triangles.clone(),
+            prims: prims.clone(),
+        }
     }
 
     /// The corners by reference slot, if they were made from these arrays.
