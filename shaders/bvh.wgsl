@@ -181,32 +181,30 @@ fn closest_hit(ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> Hit {
             break;
         }
         let node = bvh_nodes[leaf];
-        {
-            for (var k = 0u; k < node.count; k++) {
-                let r = bvh_prims[node.left_first + k];
-                let i = r & PRIM_REF_INDEX;
-                if (r & PRIM_REF_TRIANGLE) != 0u {
+        for (var k = 0u; k < node.count; k++) {
+            let r = bvh_prims[node.left_first + k];
+            let i = r & PRIM_REF_INDEX;
+            if (r & PRIM_REF_TRIANGLE) != 0u {
 #ifdef TRIANGLES
 #ifdef SKIP_CONVEX
-                    if is_leaving(leaving, PRIM_TRIANGLE, i) {
-                        continue;
-                    }
-#endif
-                    let v = triangle_corners(triangles[i]);
-                    let h = intersect_triangle(v[0], v[1], v[2], ray, sh, t_min, bound(best, t_max));
-                    if h.ok && replaces(h.t, PRIM_TRIANGLE, i, best) {
-                        best = Hit(h.t, PRIM_TRIANGLE, i, h.bu, h.bv);
-                    }
-#endif
-                } else {
-#ifdef SPHERES
-                    let cr = spheres[i].center_radius;
-                    let h = intersect_sphere_leaving(leaving, i, cr.xyz, cr.w, spheres[i].power, ray, t_min, bound(best, t_max));
-                    if h.ok && replaces(h.t, PRIM_SPHERE, i, best) {
-                        best = Hit(h.t, PRIM_SPHERE, i, 0.0, 0.0);
-                    }
-#endif
+                if is_leaving(leaving, PRIM_TRIANGLE, i) {
+                    continue;
                 }
+#endif
+                let v = triangle_corners(triangles[i]);
+                let h = intersect_triangle(v[0], v[1], v[2], ray, sh, t_min, bound(best, t_max));
+                if h.ok && replaces(h.t, PRIM_TRIANGLE, i, best) {
+                    best = Hit(h.t, PRIM_TRIANGLE, i, h.bu, h.bv);
+                }
+#endif
+            } else {
+#ifdef SPHERES
+                let cr = spheres[i].center_radius;
+                let h = intersect_sphere_leaving(leaving, i, cr.xyz, cr.w, spheres[i].power, ray, t_min, bound(best, t_max));
+                if h.ok && replaces(h.t, PRIM_SPHERE, i, best) {
+                    best = Hit(h.t, PRIM_SPHERE, i, 0.0, 0.0);
+                }
+#endif
             }
         }
         leaf = next_leaf(&stack, &stack_t, &sp, slab, NO_NODE, t_min, bound(best, t_max));
@@ -246,30 +244,28 @@ fn shadow_transmittance(ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> v
             break;
         }
         let node = bvh_nodes[leaf];
-        {
-            for (var k = 0u; k < node.count; k++) {
-                let r = bvh_prims[node.left_first + k];
-                let i = r & PRIM_REF_INDEX;
-                if (r & PRIM_REF_TRIANGLE) != 0u {
+        for (var k = 0u; k < node.count; k++) {
+            let r = bvh_prims[node.left_first + k];
+            let i = r & PRIM_REF_INDEX;
+            if (r & PRIM_REF_TRIANGLE) != 0u {
 #ifdef TRIANGLES
 #ifdef SKIP_CONVEX
-                    if is_leaving(leaving, PRIM_TRIANGLE, i) {
-                        continue;
-                    }
-#endif
-                    tr = triangle_transmittance(tr, i, ray, sh, t_min, t_max);
-                    if all_zero(tr) {
-                        return tr;
-                    }
-#endif
-                } else {
-#ifdef SPHERES
-                    tr = sphere_transmittance(tr, i, ray, t_min, t_max, leaving);
-                    if all_zero(tr) {
-                        return tr;
-                    }
-#endif
+                if is_leaving(leaving, PRIM_TRIANGLE, i) {
+                    continue;
                 }
+#endif
+                tr = triangle_transmittance(tr, i, ray, sh, t_min, t_max);
+                if all_zero(tr) {
+                    return tr;
+                }
+#endif
+            } else {
+#ifdef SPHERES
+                tr = sphere_transmittance(tr, i, ray, t_min, t_max, leaving);
+                if all_zero(tr) {
+                    return tr;
+                }
+#endif
             }
         }
         leaf = next_leaf(&stack, &stack_t, &sp, slab, NO_NODE, t_min, t_max);

@@ -7,7 +7,9 @@ use std::process::ExitCode;
 use clap::Parser;
 
 fn main() -> ExitCode {
-    env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("warn")).init();
+    env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("warn"))
+        .format_timestamp_millis()
+        .init();
     let args = cli::Cli::parse();
     let result = cli::interrupt::install().and_then(|()| cli::run(args));
     match (result, cli::interrupt::exit_code()) {
