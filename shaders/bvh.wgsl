@@ -67,16 +67,14 @@ fn slack(s: SlabRay, t: f32) -> f32 {
 fn enter(s: SlabRay, node: BvhNode, t_lo: f32, t_hi: f32) -> MaybeT {
     let lo = node.min - vec3<f32>(s.pad);
     let hi = node.max + vec3<f32>(s.pad);
-    if any(s.parallel & ((s.origin < lo) | (s.origin > hi))) {
-        return MaybeT(0.0, false);
-    }
+    let outside = any(s.parallel & ((s.origin < lo) | (s.origin > hi)));
     let a = (lo - s.origin) * s.inv;
     let b = (hi - s.origin) * s.inv;
     let near = select(min(a, b), vec3<f32>(-SLAB_INF), s.parallel);
     let far = select(max(a, b) * (1.0 + BOX_PAD), vec3<f32>(SLAB_INF), s.parallel);
     let t0 = max(near.x, max(near.y, near.z));
     let t1 = min(far.x, min(far.y, far.z));
-    return MaybeT(t0, t0 <= t1 && t0 <= t_hi + slack(s, t_hi) && t1 >= t_lo - slack(s, t_lo));
+    return MaybeT(t0, !outside && t0 <= t1 && t0 <= t_hi + slack(s, t_hi) && t1 >= t_lo - slack(s, t_lo));
 }
 
 // No node: the walk pops the stack next.
