@@ -136,7 +136,7 @@ const CPU_ONLY: [(&str, &str, &str); 11] = [
         "the CPU walk reads a leaf's corners from FlatScene::leaf_corners (one contiguous read); \
          the GPU reads the indexed mesh through triangle_corners",
     ),
-    ("cpu/bvh.rs", "prefetch_children", "a CPU cache hint for the walk's next node pairs and leaves; WGSL has none"),
+    ("cpu/bvh.rs", "prefetch_contents", "a CPU cache hint for the walk's next node pairs and leaves; WGSL has none"),
     ("cpu/bvh.rs", "walk", "traverse's loop over its reused per-thread stack; WGSL's stack is a local array"),
     (
         "cpu/bvh.rs",

@@ -242,8 +242,8 @@ fn walk(
         let t_hi = limit();
         let hi = t_hi + slab.slack(t_hi);
         let [left, right] = [&nodes[first], &nodes[first + 1]];
-        prefetch_children(nodes, prims, corners, left);
-        prefetch_children(nodes, prims, corners, right);
+        prefetch_contents(nodes, prims, corners, left);
+        prefetch_contents(nodes, prims, corners, right);
         let (tl, tr) = match &planes {
             Some(p) => (p.enter(left, lo, hi), p.enter(right, lo, hi)),
             None => (slab.enter(left, t_min, t_hi), slab.enter(right, t_min, t_hi)),
@@ -273,7 +273,7 @@ fn walk(
 /// no effect on results, and none at all off x86_64.
 #[inline(always)]
 #[allow(unsafe_code)] // reason: `_mm_prefetch` is `unsafe` only for its target-feature attribute.
-fn prefetch_children(nodes: &[BvhNode], prims: &[u32], corners: Option<&[Corners]>, node: &BvhNode) {
+fn prefetch_contents(nodes: &[BvhNode], prims: &[u32], corners: Option<&[Corners]>, node: &BvhNode) {
     #[cfg(target_arch = "x86_64")]
     {
         use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
