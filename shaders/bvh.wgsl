@@ -80,6 +80,14 @@ fn enter(s: SlabRay, node: BvhNode, t_lo: f32, t_hi: f32) -> MaybeT {
 // No node: the walk pops the stack next.
 const NO_NODE: u32 = 0xffffffffu;
 
+// The nodes a walk comes back to, each with the distance the ray enters it at, and how many
+// there are: the CPU walk's Vec<(u32, f64)>. Passed by pointer.
+struct NodeStack {
+    node: array<u32, BVH_STACK_SIZE>,
+    t: array<f32, BVH_STACK_SIZE>,
+    len: u32,
+}
+
 // The root (node 0) if the ray enters its box within [t_min, t_max], else NO_NODE.
 fn root_node(slab: SlabRay, root: BvhNode, t_min: f32, t_max: f32) -> u32 {
     return select(NO_NODE, 0u, enter(slab, root, t_min, t_max).ok);
@@ -89,9 +97,7 @@ fn root_node(slab: SlabRay, root: BvhNode, t_min: f32, t_max: f32) -> u32 {
 // walk's next node, NO_NODE if neither); the farther of two is pushed, as the CPU's walk does.
 // A full stack raises STATUS_BVH_STACK_OVERFLOW.
 fn nearer_child(
-    stack: ptr<function, array<u32, BVH_STACK_SIZE>>,
-    stack_t: ptr<function, array<f32, BVH_STACK_SIZE>>,
-    sp: ptr<function, u32>,
+    stack: ptr<function, NodeStack>,
     slab: SlabRay,
     l: u32,
     t_min: f32,
@@ -101,12 +107,13 @@ fn nearer_child(
     let tr_ = enter(slab, bvh_nodes[l + 1u], t_min, t_hi);
     if tl.ok && tr_.ok {
         let left_first = tl.t <= tr_.t;
-        if *sp >= BVH_STACK_SIZE {
+        let n = (*stack).len;
+        if n >= BVH_STACK_SIZE {
             status |= STATUS_BVH_STACK_OVERFLOW;
         } else {
-            (*stack)[*sp] = select(l, l + 1u, left_first);
-            (*stack_t)[*sp] = select(tl.t, tr_.t, left_first);
-            *sp += 1u;
+            (*stack).node[n] = select(l, l + 1u, left_first);
+            (*stack).t[n] = select(tl.t, tr_.t, left_first);
+            (*stack).len = n + 1u;
         }
         return select(l + 1u, l, left_first);
     }
@@ -119,14 +126,13 @@ fn nearer_child(
 // The node on top of the stack, popped; NO_NODE when a hit found since it was pushed (t_hi) is
 // nearer than its box, as the CPU's walk skips it (the walk then pops again).
 fn pop_node(
-    stack: ptr<function, array<u32, BVH_STACK_SIZE>>,
-    stack_t: ptr<function, array<f32, BVH_STACK_SIZE>>,
-    sp: ptr<function, u32>,
+    stack: ptr<function, NodeStack>,
     slab: SlabRay,
     t_hi: f32,
 ) -> u32 {
-    *sp -= 1u;
-    return select(NO_NODE, (*stack)[*sp], (*stack_t)[*sp] <= t_hi + slack(slab, t_hi));
+    let n = (*stack).len - 1u;
+    (*stack).len = n;
+    return select(NO_NODE, (*stack).node[n], (*stack).t[n] <= t_hi + slack(slab, t_hi));
 }
 
 // The walk's next leaf from `start` (NO_NODE: pop first), NO_NODE when the stack runs out:
@@ -135,9 +141,7 @@ fn pop_node(
 // different steps, and the leaf tests then run once for all the lanes that have one instead
 // of once per step for each lane that happens to be at a leaf.
 fn next_leaf(
-    stack: ptr<function, array<u32, BVH_STACK_SIZE>>,
-    stack_t: ptr<function, array<f32, BVH_STACK_SIZE>>,
-    sp: ptr<function, u32>,
+    stack: ptr<function, NodeStack>,
     slab: SlabRay,
     start: u32,
     t_min: f32,
@@ -146,17 +150,17 @@ fn next_leaf(
     var current = start;
     loop {
         if current == NO_NODE {
-            if *sp == 0u {
+            if (*stack).len == 0u {
                 break;
             }
-            current = pop_node(stack, stack_t, sp, slab, t_hi);
+            current = pop_node(stack, slab, t_hi);
             continue;
         }
         let node = bvh_nodes[current];
         if node.count > 0u {
             break;
         }
-        current = nearer_child(stack, stack_t, sp, slab, node.left_first, t_min, t_hi);
+        current = nearer_child(stack, slab, node.left_first, t_min, t_hi);
     }
     return current;
 }
@@ -170,10 +174,8 @@ fn closest_hit(ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> Hit {
 #ifdef TRIANGLES
     let sh = ray_shear(ray.dir);
 #endif
-    var stack: array<u32, BVH_STACK_SIZE>;
-    var stack_t: array<f32, BVH_STACK_SIZE>;
-    var sp = 0u;
-    var leaf = next_leaf(&stack, &stack_t, &sp, slab, root_node(slab, root, t_min, t_max), t_min, t_max);
+    var stack: NodeStack;
+    var leaf = next_leaf(&stack, slab, root_node(slab, root, t_min, t_max), t_min, t_max);
     loop {
         if leaf == NO_NODE {
             break;
@@ -205,7 +207,7 @@ fn closest_hit(ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> Hit {
 #endif
             }
         }
-        leaf = next_leaf(&stack, &stack_t, &sp, slab, NO_NODE, t_min, bound(best, t_max));
+        leaf = next_leaf(&stack, slab, NO_NODE, t_min, bound(best, t_max));
     }
 #ifdef PLANES
     for (var i = 0u; i < header.plane_count; i++) {
@@ -233,10 +235,8 @@ fn shadow_transmittance(ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> v
 #ifdef TRIANGLES
     let sh = ray_shear(ray.dir);
 #endif
-    var stack: array<u32, BVH_STACK_SIZE>;
-    var stack_t: array<f32, BVH_STACK_SIZE>;
-    var sp = 0u;
-    var leaf = next_leaf(&stack, &stack_t, &sp, slab, root_node(slab, root, t_min, t_max), t_min, t_max);
+    var stack: NodeStack;
+    var leaf = next_leaf(&stack, slab, root_node(slab, root, t_min, t_max), t_min, t_max);
     loop {
         if leaf == NO_NODE {
             break;
@@ -266,7 +266,7 @@ fn shadow_transmittance(ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> v
 #endif
             }
         }
-        leaf = next_leaf(&stack, &stack_t, &sp, slab, NO_NODE, t_min, t_max);
+        leaf = next_leaf(&stack, slab, NO_NODE, t_min, t_max);
     }
 #ifdef PLANES
     tr = planes_transmittance(tr, ray, t_min, t_max, leaving);

@@ -81,12 +81,12 @@ const GPU_ONLY: [(&str, &str, &str); 18] = [
     (
         "bvh.wgsl",
         "nearer_child",
-        "the CPU picks the nearer child and pushes the farther onto a Vec inside walk; WGSL passes its fixed stacks (nodes, entry distances) by pointer",
+        "the CPU picks the nearer child and pushes the farther onto a Vec inside walk; WGSL passes its NodeStack by pointer",
     ),
     (
         "bvh.wgsl",
         "pop_node",
-        "the CPU pops its Vec and skips a passed node inside walk; WGSL passes its fixed stacks by pointer",
+        "the CPU pops its Vec and skips a passed node inside walk; WGSL passes its NodeStack by pointer",
     ),
     (
         "bvh.wgsl",
@@ -156,7 +156,8 @@ const CPU_ONLY: [(&str, &str, &str); 11] = [
 ];
 
 /// Structs only the GPU side has, and why.
-const GPU_ONLY_STRUCTS: [(&str, &str, &str); 7] = [
+const GPU_ONLY_STRUCTS: [(&str, &str, &str); 8] = [
+    ("bvh.wgsl", "NodeStack", "the CPU walk's Vec<(u32, f64)>: WGSL has no Vec, so a fixed array with its length"),
     ("intersect.wgsl", "MaybeT", "WGSL has no Option: a flag beside the value"),
     ("intersect.wgsl", "SphereRoots", "WGSL has no Option<(f64, f64)>: a flag beside the roots"),
     ("intersect.wgsl", "TriangleHit", "WGSL has no Option<(t, bu, bv)>: a flag beside the hit"),
