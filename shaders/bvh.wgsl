@@ -176,10 +176,7 @@ fn closest_hit(ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> Hit {
 #endif
     var stack: NodeStack;
     var leaf = next_leaf(&stack, slab, root_node(slab, root, t_min, t_max), t_min, t_max);
-    loop {
-        if leaf == NO_NODE {
-            break;
-        }
+    while leaf != NO_NODE {
         let node = bvh_nodes[leaf];
         for (var k = 0u; k < node.count; k++) {
             let r = bvh_prims[node.left_first + k];
@@ -237,10 +234,7 @@ fn shadow_transmittance(ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> v
 #endif
     var stack: NodeStack;
     var leaf = next_leaf(&stack, slab, root_node(slab, root, t_min, t_max), t_min, t_max);
-    loop {
-        if leaf == NO_NODE {
-            break;
-        }
+    while leaf != NO_NODE {
         let node = bvh_nodes[leaf];
         for (var k = 0u; k < node.count; k++) {
             let r = bvh_prims[node.left_first + k];

@@ -9,15 +9,13 @@ use bytemuck::Pod;
 use memmap2::MmapMut;
 
 /// A fixed-length array of `T` in an anonymous mapping advised for huge pages, or on the heap
-/// where no mapping was had.
+/// where no mapping was had (or none is needed: no items).
 #[derive(Debug)]
-pub struct HugePaged<T> {
-    storage: Storage<T>,
-    len: usize,
-}
+pub struct HugePaged<T>(Storage<T>);
 
 #[derive(Debug)]
 enum Storage<T> {
+    /// Exactly the items' bytes.
     Mapped(MmapMut),
     Heap(Box<[T]>),
 }
@@ -26,24 +24,23 @@ impl<T: Pod> HugePaged<T> {
     /// `len` zeroed items, filled by `fill` in place.
     pub fn new(len: usize, fill: impl FnOnce(&mut [T])) -> Self {
         let bytes = len * size_of::<T>();
-        let storage = match (bytes > 0).then(|| MmapMut::map_anon(bytes)) {
-            Some(Ok(mut map)) => {
+        let mapped = (bytes > 0).then(|| MmapMut::map_anon(bytes)).and_then(|m| {
+            m.inspect_err(|e| log::debug!("no memory mapping for {len} walk items ({e}): on the heap")).ok()
+        });
+        match mapped {
+            Some(mut map) => {
                 advise_huge_pages(&map);
                 // An anonymous mapping is zero-filled and starts on a page boundary: aligned
                 // for any `T` of this crate.
                 fill(bytemuck::cast_slice_mut(&mut map[..]));
-                Storage::Mapped(map)
+                Self(Storage::Mapped(map))
             }
-            other => {
-                if let Some(Err(e)) = other {
-                    log::debug!("no memory mapping for {len} walk items ({e}): on the heap");
-                }
+            None => {
                 let mut items = vec![T::zeroed(); len].into_boxed_slice();
                 fill(&mut items);
-                Storage::Heap(items)
+                Self(Storage::Heap(items))
             }
-        };
-        Self { storage, len }
+        }
     }
 }
 
@@ -61,8 +58,8 @@ impl<T: Pod> std::ops::Deref for HugePaged<T> {
     type Target = [T];
 
     fn deref(&self) -> &[T] {
-        match &self.storage {
-            Storage::Mapped(map) => &bytemuck::cast_slice(&map[..])[..self.len],
+        match &self.0 {
+            Storage::Mapped(map) => bytemuck::cast_slice(&map[..]),
             Storage::Heap(items) => items,
         }
     }
