@@ -20,10 +20,14 @@ fn options() -> SnapshotOptions {
         .max_failed_pixels(2000)
 }
 
+/// The window as it shows: kittest clears to transparent, the window to the background colour
+/// the transparent panels let through (glint_viewer::background).
 fn snapshot(h: &mut egui_kittest::Harness<'static, glint_viewer::ViewerApp>, name: &str) {
     let status = h.state().layout.status_rect;
     h.mask(status);
-    h.snapshot_options(name, &options());
+    let mut image = h.render().expect("the harness renders");
+    glint_viewer::over_background(&mut image, glint_viewer::background(&h.ctx.global_style().visuals));
+    egui_kittest::image_snapshot_options(&image, name, &options());
 }
 
 #[test]

@@ -4,6 +4,7 @@
 
 mod app;
 mod automation;
+mod background;
 mod camera_control;
 mod comparison;
 mod cpu_worker;
@@ -31,6 +32,7 @@ mod widgets;
 mod worker;
 
 pub use app::{ViewerApp, ViewerOptions};
+pub use background::{background, over_background};
 pub use device::with_tracer_limits;
 pub use error::ViewerError;
 pub use export::ExportView;
@@ -117,6 +119,10 @@ struct OutcomeForwarder {
 }
 
 impl eframe::App for OutcomeForwarder {
+    fn clear_color(&self, visuals: &egui::Visuals) -> [f32; 4] {
+        background(visuals).to_normalized_gamma_f32()
+    }
+
     fn ui(&mut self, ui: &mut egui::Ui, frame: &mut eframe::Frame) {
         self.app.ui(ui, frame);
         if let Some(r) = self.shared.lock().unwrap_or_else(|e| e.into_inner()).clone() {
