@@ -2,7 +2,7 @@
 // composed module, and the host builds its bind group layout from what remains.
 #define_import_path glint::bindings
 
-#import glint::scene_data::{SceneHeader, GpuCamera, GpuMaterial, GpuLight, GpuSphere, GpuPlane, GpuTriangle, GpuMesh, GpuTexture, TileParams, ProbeRecord, ProbeTree, BvhNode}
+#import glint::scene_data::{SceneHeader, GpuCamera, GpuMaterial, GpuLight, GpuSphere, GpuPlane, GpuTriangle, GpuMesh, GpuTexture, TileParams, ProbeRecord, ProbeTree}
 
 @group(0) @binding(0) var<uniform> header: SceneHeader;
 @group(0) @binding(1) var<uniform> camera: GpuCamera;
@@ -20,7 +20,10 @@
 @group(0) @binding(10) var<storage, read_write> probe_out: ProbeRecord;
 // The BVH over spheres and triangles (only with the BVH shader def): nodes, root first, and
 // the primitive references its leaves point into.
-@group(0) @binding(11) var<storage, read> bvh_nodes: array<BvhNode>;
+// A node is read as its two 16-byte words (BvhNode's min, left_first and max, count; bvh.wgsl's
+// load_node): lavapipe fetches a storage buffer lane by lane once per load instruction, and
+// two vec4 loads are fewer than the fields' four.
+@group(0) @binding(11) var<storage, read> bvh_nodes: array<array<vec4<u32>, 2>>;
 @group(0) @binding(12) var<storage, read> bvh_prims: array<u32>;
 // Indexed meshes: vertex positions (w = 1), vertex normals beside them (w = 0; one unused
 // element when no mesh has normals), and what a mesh's triangles share.

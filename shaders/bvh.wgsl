@@ -11,7 +11,7 @@
 // the f32 GPU image is compared within the parity thresholds).
 #define_import_path glint::bvh
 
-#import glint::scene_data::{BvhNode, PRIM_REF_TRIANGLE, PRIM_REF_INDEX, STATUS_BVH_STACK_OVERFLOW}
+#import glint::scene_data::{BvhNode, PRIM_REF_TRIANGLE, PRIM_REF_INDEX, NODE_REF_COUNT_BITS, STATUS_BVH_STACK_OVERFLOW}
 #import glint::bindings::{header, planes, spheres, triangles, meshes, bvh_nodes, bvh_prims}
 #import glint::ray::{Ray, status}
 #import glint::intersect::{Hit, Leaving, MaybeT, PRIM_NONE, PRIM_SPHERE, PRIM_PLANE, PRIM_TRIANGLE, sphere_roots, intersect_sphere_leaving, intersect_plane, intersect_triangle, ray_shear, cross_surface, all_zero, sphere_transmittance, planes_transmittance, triangle_transmittance, triangle_corners, bound, replaces}
@@ -77,20 +77,43 @@ fn enter(s: SlabRay, node: BvhNode, t_lo: f32, t_hi: f32) -> MaybeT {
     return MaybeT(t0, !outside && t0 <= t1 && t0 <= t_hi + slack(s, t_hi) && t1 >= t_lo - slack(s, t_lo));
 }
 
-// No node: the walk pops the stack next.
+// No node: the walk pops the stack next. Never a node_ref (its count bits would be 7, above
+// MAX_LEAF).
 const NO_NODE: u32 = 0xffffffffu;
 
-// The nodes a walk comes back to, each with the distance the ray enters it at, and how many
-// there are: the CPU walk's Vec<(u32, f64)>. Passed by pointer.
+// The nodes a walk comes back to (as node_ref), each with the distance the ray enters it at,
+// and how many there are: the CPU walk's Vec<(u32, f64)>. Passed by pointer.
 struct NodeStack {
     node: array<u32, BVH_STACK_SIZE>,
     t: array<f32, BVH_STACK_SIZE>,
     len: u32,
 }
 
-// The root (node 0) if the ray enters its box within [t_min, t_max], else NO_NODE.
+// Node i, in two vec4 loads (bindings.wgsl says why).
+fn load_node(i: u32) -> BvhNode {
+    let w = bvh_nodes[i];
+    return BvhNode(bitcast<vec3<f32>>(w[0].xyz), w[0].w, bitcast<vec3<f32>>(w[1].xyz), w[1].w);
+}
+
+// A node as the walk carries it from the test of its box to its visit, so that it is not
+// loaded twice: left_first above the count's NODE_REF_COUNT_BITS (buffers.rs checks that
+// every index fits). A leaf when the count bits are not 0.
+fn node_ref(node: BvhNode) -> u32 {
+    return (node.left_first << NODE_REF_COUNT_BITS) | node.count;
+}
+
+// The count and the first child or primitive of a node reference.
+fn ref_count(r: u32) -> u32 {
+    return r & ((1u << NODE_REF_COUNT_BITS) - 1u);
+}
+
+fn ref_first(r: u32) -> u32 {
+    return r >> NODE_REF_COUNT_BITS;
+}
+
+// The root (node 0, as node_ref) if the ray enters its box within [t_min, t_max], else NO_NODE.
 fn root_node(slab: SlabRay, root: BvhNode, t_min: f32, t_max: f32) -> u32 {
-    return select(NO_NODE, 0u, enter(slab, root, t_min, t_max).ok);
+    return select(NO_NODE, node_ref(root), enter(slab, root, t_min, t_max).ok);
 }
 
 // Of the children at `l` and `l + 1`, the one the ray enters first within [t_min, t_hi] (the
@@ -103,24 +126,28 @@ fn nearer_child(
     t_min: f32,
     t_hi: f32,
 ) -> u32 {
-    let tl = enter(slab, bvh_nodes[l], t_min, t_hi);
-    let tr_ = enter(slab, bvh_nodes[l + 1u], t_min, t_hi);
+    let a = load_node(l);
+    let b = load_node(l + 1u);
+    let ra = node_ref(a);
+    let rb = node_ref(b);
+    let tl = enter(slab, a, t_min, t_hi);
+    let tr_ = enter(slab, b, t_min, t_hi);
     if tl.ok && tr_.ok {
         let left_first = tl.t <= tr_.t;
         let n = (*stack).len;
         if n >= BVH_STACK_SIZE {
             status |= STATUS_BVH_STACK_OVERFLOW;
         } else {
-            (*stack).node[n] = select(l, l + 1u, left_first);
+            (*stack).node[n] = select(ra, rb, left_first);
             (*stack).t[n] = select(tl.t, tr_.t, left_first);
             (*stack).len = n + 1u;
         }
-        return select(l + 1u, l, left_first);
+        return select(rb, ra, left_first);
     }
     if tl.ok {
-        return l;
+        return ra;
     }
-    return select(NO_NODE, l + 1u, tr_.ok);
+    return select(NO_NODE, rb, tr_.ok);
 }
 
 // The node on top of the stack, popped; NO_NODE when a hit found since it was pushed (t_hi) is
@@ -156,11 +183,10 @@ fn next_leaf(
             current = pop_node(stack, slab, t_hi);
             continue;
         }
-        let node = bvh_nodes[current];
-        if node.count > 0u {
+        if ref_count(current) > 0u {
             break;
         }
-        current = nearer_child(stack, slab, node.left_first, t_min, t_hi);
+        current = nearer_child(stack, slab, ref_first(current), t_min, t_hi);
     }
     return current;
 }
@@ -169,7 +195,7 @@ fn next_leaf(
 // visiting order).
 fn closest_hit(ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> Hit {
     var best = Hit(t_max, PRIM_NONE, 0u, 0.0, 0.0);
-    let root = bvh_nodes[0];
+    let root = load_node(0u);
     let slab = slab_ray(ray, root);
 #ifdef TRIANGLES
     let sh = ray_shear(ray.dir);
@@ -177,9 +203,10 @@ fn closest_hit(ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> Hit {
     var stack: NodeStack;
     var leaf = next_leaf(&stack, slab, root_node(slab, root, t_min, t_max), t_min, t_max);
     while leaf != NO_NODE {
-        let node = bvh_nodes[leaf];
-        for (var k = 0u; k < node.count; k++) {
-            let r = bvh_prims[node.left_first + k];
+        let count = ref_count(leaf);
+        let first = ref_first(leaf);
+        for (var k = 0u; k < count; k++) {
+            let r = bvh_prims[first + k];
             let i = r & PRIM_REF_INDEX;
             if (r & PRIM_REF_TRIANGLE) != 0u {
 #ifdef TRIANGLES
@@ -227,7 +254,7 @@ fn closest_hit(ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> Hit {
 // the product of k_t over every surface crossed (in visiting order).
 fn shadow_transmittance(ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> vec3<f32> {
     var tr = vec3<f32>(1.0);
-    let root = bvh_nodes[0];
+    let root = load_node(0u);
     let slab = slab_ray(ray, root);
 #ifdef TRIANGLES
     let sh = ray_shear(ray.dir);
@@ -235,9 +262,10 @@ fn shadow_transmittance(ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> v
     var stack: NodeStack;
     var leaf = next_leaf(&stack, slab, root_node(slab, root, t_min, t_max), t_min, t_max);
     while leaf != NO_NODE {
-        let node = bvh_nodes[leaf];
-        for (var k = 0u; k < node.count; k++) {
-            let r = bvh_prims[node.left_first + k];
+        let count = ref_count(leaf);
+        let first = ref_first(leaf);
+        for (var k = 0u; k < count; k++) {
+            let r = bvh_prims[first + k];
             let i = r & PRIM_REF_INDEX;
             if (r & PRIM_REF_TRIANGLE) != 0u {
 #ifdef TRIANGLES

@@ -43,6 +43,8 @@ const STATUS_BVH_STACK_OVERFLOW: u32 = 8u;
 // Primitive references of the BVH (glint_core::bvh): the top bit marks a triangle.
 const PRIM_REF_TRIANGLE: u32 = 0x80000000u;
 const PRIM_REF_INDEX: u32 = 0x7fffffffu;
+// The GPU walk carries a node as left_first << NODE_REF_COUNT_BITS | count (bvh.wgsl's node_ref).
+const NODE_REF_COUNT_BITS: u32 = 3u;
 
 // Layout of the statistics buffer: (lo, hi) u32 pairs per ray kind, then the status word.
 const STAT_CAMERA: u32 = 0u;

@@ -6,6 +6,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 
 use bytemuck::Pod;
 use glint_core::FlatScene;
+use glint_core::bvh::GPU_MAX_TREE_INDEX;
 use glint_core::flat::GeometryId;
 use glint_core::layout::{ProbeRecord, ProbeTree, STAT_WORDS, TileParams};
 use wgpu::util::DeviceExt;
@@ -137,6 +138,9 @@ fn check_limits(ctx: &GpuContext, scene: &FlatScene, bvh: bool) -> Result<u64, G
             return Err(GpuError::TooManyPrimitives { what, count, limit: GPU_PRIMITIVE_LIMIT });
         }
     }
+    if bvh {
+        check_tree_indices(scene.bvh_nodes.len(), scene.bvh_prims.len())?;
+    }
     let output_size = scene.pixel_count() as u64 * 16;
     let limits = &ctx.limits;
     let check = |what: &str, needed: u64| -> Result<(), GpuError> {
@@ -161,6 +165,16 @@ fn check_limits(ctx: &GpuContext, scene: &FlatScene, bvh: bool) -> Result<u64, G
     check("the texel buffer", size_of_val(scene.texels.as_slice()) as u64)?;
     check("the texture table", size_of_val(scene.textures.as_slice()) as u64)?;
     Ok(output_size)
+}
+
+/// Checks that every node and leaf reference of a tree fits the GPU walk's node reference.
+fn check_tree_indices(nodes: usize, prims: usize) -> Result<(), GpuError> {
+    for (what, count) in [("nodes", nodes as u64), ("leaf references", prims as u64)] {
+        if count > GPU_MAX_TREE_INDEX {
+            return Err(GpuError::TreeTooLarge { what, count, limit: GPU_MAX_TREE_INDEX });
+        }
+    }
+    Ok(())
 }
 
 impl SceneBuffers {
@@ -270,5 +284,18 @@ impl SceneBuffers {
             layout: &pipeline.bind_group_layout,
             entries: &entries,
         }))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_tree_is_refused_only_past_the_node_reference_bits() {
+        assert!(check_tree_indices(1 << 29, 1 << 29).is_ok());
+        let err = check_tree_indices(1 << 29, (1 << 29) + 1).expect_err("one leaf reference too many");
+        assert!(err.to_string().contains("536870913 leaf references"), "{err}");
+        assert!(matches!(check_tree_indices((1 << 29) + 1, 4), Err(GpuError::TreeTooLarge { what: "nodes", .. })));
     }
 }

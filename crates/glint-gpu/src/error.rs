@@ -40,6 +40,11 @@ pub enum GpuError {
         "the ray-cast kernel raised status bits {status:#x}, so its hits are incomplete and its time means nothing: {messages}"
     )]
     RaycastStatus { status: u32, messages: String },
+    #[error(
+        "the BVH has {count} {what}, more than the GPU walk indexes ({limit}: it carries a node's first child or \
+         primitive and its count in 32 bits, glint_core::bvh::GPU_MAX_TREE_INDEX)"
+    )]
+    TreeTooLarge { what: &'static str, count: u64, limit: u64 },
     #[error("{what} needs {needed} bytes, more than this GPU allows ({limit} bytes, limit {limit_name})")]
     TooLarge { what: String, needed: u64, limit: u64, limit_name: &'static str },
     #[error(

@@ -4,7 +4,7 @@
 
 use std::mem::{offset_of, size_of};
 
-use glint_core::bvh::{BvhNode, PRIM_REF_INDEX, PRIM_REF_TRIANGLE};
+use glint_core::bvh::{BvhNode, NODE_REF_COUNT_BITS, PRIM_REF_INDEX, PRIM_REF_TRIANGLE};
 use glint_core::cpu::{intersect, offset, shade};
 use glint_core::layout::*;
 use naga::proc::Layouter;
@@ -279,6 +279,7 @@ fn wgsl_layout_constants_match_rust() {
         ("STATUS_BVH_STACK_OVERFLOW".into(), STATUS_BVH_STACK_OVERFLOW),
         ("PRIM_REF_TRIANGLE".into(), PRIM_REF_TRIANGLE),
         ("PRIM_REF_INDEX".into(), PRIM_REF_INDEX),
+        ("NODE_REF_COUNT_BITS".into(), NODE_REF_COUNT_BITS),
         ("STAT_CAMERA".into(), STAT_CAMERA),
         ("STAT_SHADOW".into(), STAT_SHADOW),
         ("STAT_REFLECTION".into(), STAT_REFLECTION),

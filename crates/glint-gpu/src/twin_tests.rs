@@ -76,7 +76,15 @@ const TWINS: [(&str, &str, &str, &str); 11] = [
 ];
 
 /// Functions only the GPU side has, and why.
-const GPU_ONLY: [(&str, &str, &str); 18] = [
+const GPU_ONLY: [(&str, &str, &str); 22] = [
+    ("bvh.wgsl", "load_node", "a node in two vec4 loads; the CPU reads the shared BvhNode where it lies"),
+    (
+        "bvh.wgsl",
+        "node_ref",
+        "the GPU walk carries a tested child's first index and count in a register, not its index to load again",
+    ),
+    ("bvh.wgsl", "ref_count", "reads node_ref's count"),
+    ("bvh.wgsl", "ref_first", "reads node_ref's first child or primitive"),
     ("bvh.wgsl", "root_node", "the CPU tests the root in traverse before it calls walk"),
     (
         "bvh.wgsl",

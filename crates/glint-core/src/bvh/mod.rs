@@ -134,6 +134,14 @@ pub const PRIM_REF_INDEX: u32 = PRIM_REF_TRIANGLE - 1;
 /// Most primitives in a leaf.
 pub const MAX_LEAF: usize = 4;
 
+/// The GPU walk carries a node in one u32, its `left_first` shifted past its `count`
+/// (`node_ref` in shaders/bvh.wgsl), so that a child tested is not loaded again when walked.
+pub const NODE_REF_COUNT_BITS: u32 = 3;
+const _: () = assert!(MAX_LEAF < 1 << NODE_REF_COUNT_BITS, "a leaf's count must fit NODE_REF_COUNT_BITS");
+/// Nodes, and leaf references, a tree the GPU walks may have at most: `left_first` must fit
+/// the bits above the count.
+pub const GPU_MAX_TREE_INDEX: u64 = 1 << (32 - NODE_REF_COUNT_BITS);
+
 /// From this many spheres and triangles on, `Accel::Auto` traces through the BVH; below, brute
 /// force is faster. Measured on the CPU tracer (2 threads, 320×240, depth 3, median of 5): with
 /// spheres, brute force against BVH 12.7 / 20.6 ms at 4, 16.7 / 20.4 ms at 16, 30.8 / 29.7 ms at
