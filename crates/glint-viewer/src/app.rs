@@ -374,6 +374,11 @@ impl ViewerApp {
 }
 
 impl eframe::App for ViewerApp {
+    /// The background the transparent panels (`unfill_panels`, in `new`) let through.
+    fn clear_color(&self, visuals: &egui::Visuals) -> [f32; 4] {
+        crate::background::background(visuals).to_normalized_gamma_f32()
+    }
+
     fn ui(&mut self, ui: &mut Ui, _frame: &mut eframe::Frame) {
         let start = Instant::now();
         let ctx = ui.ctx().clone();

@@ -120,7 +120,7 @@ struct OutcomeForwarder {
 
 impl eframe::App for OutcomeForwarder {
     fn clear_color(&self, visuals: &egui::Visuals) -> [f32; 4] {
-        background(visuals).to_normalized_gamma_f32()
+        self.app.clear_color(visuals)
     }
 
     fn ui(&mut self, ui: &mut egui::Ui, frame: &mut eframe::Frame) {
