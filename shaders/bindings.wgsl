@@ -19,12 +19,16 @@
 // The pixel probe's breakdown (only in the PROBE variant).
 @group(0) @binding(10) var<storage, read_write> probe_out: ProbeRecord;
 // The BVH over spheres and triangles (only with the BVH shader def): nodes, root first, and
-// the primitive references its leaves point into.
+// what its leaves point into, per primitive reference in leaf order: its triangle's corners a
+// (the reference in w) and b, and in an array of its own corner c, so each binding of a
+// 4-million-triangle mesh fits 128 MiB (glint_core::flat::fill_gpu_leaves). Corners copied
+// into leaf order are three loads a triangle test instead of seven, dependent ones (reference,
+// triangle, vertices), which lavapipe makes lane by lane.
 // A node is read as its two 16-byte words (BvhNode's min, left_first and max, count; bvh.wgsl's
 // load_node): lavapipe fetches a storage buffer lane by lane once per load instruction, and
 // two vec4 loads are fewer than the fields' four.
 @group(0) @binding(11) var<storage, read> bvh_nodes: array<array<vec4<u32>, 2>>;
-@group(0) @binding(12) var<storage, read> bvh_prims: array<u32>;
+@group(0) @binding(12) var<storage, read> bvh_leaf_ab: array<array<vec4<u32>, 2>>;
 // Indexed meshes: vertex positions (w = 1), vertex normals beside them (w = 0; one unused
 // element when no mesh has normals), and what a mesh's triangles share.
 @group(0) @binding(13) var<storage, read> vertices: array<vec4<f32>>;
@@ -38,8 +42,9 @@
 @group(0) @binding(18) var<storage, read> textures: array<GpuTexture>;
 // The pixel probe's ray tree (only in the PROBE variant).
 @group(0) @binding(19) var<storage, read_write> probe_tree: ProbeTree;
-// The ray-cast kernel's buffers (raycast.wgsl, `glint bench rays`; numbered from 20 apart from
-// the tracer's): two vec4<f32> per ray (origin, t_min; direction, t_max), and per ray its hit
-// as (prim, index, bitcast t, 0).
-@group(0) @binding(20) var<storage, read> rays_in: array<vec4<f32>>;
-@group(0) @binding(21) var<storage, read_write> hits_out: array<vec4<u32>>;
+@group(0) @binding(20) var<storage, read> bvh_leaf_c: array<vec4<u32>>;
+// The ray-cast kernel's buffers (raycast.wgsl, `glint bench rays`; numbered after the
+// tracer's): two vec4<f32> per ray (origin, t_min; direction, t_max), and per ray its hit as
+// (prim, index, bitcast t, 0).
+@group(0) @binding(21) var<storage, read> rays_in: array<vec4<f32>>;
+@group(0) @binding(22) var<storage, read_write> hits_out: array<vec4<u32>>;

@@ -8,13 +8,14 @@
 // result does not depend on the visiting order. The stack is fixed (BVH_STACK_SIZE); a
 // traversal that needs more raises STATUS_BVH_STACK_OVERFLOW, never silently. Shadow crossings
 // are multiplied in visiting order (the CPU sorts them to be bit-identical to its brute force;
-// the f32 GPU image is compared within the parity thresholds).
+// the f32 GPU image is compared within the parity thresholds). A leaf's triangles are read from
+// their corners copied in leaf order (bindings.wgsl), as the CPU's are from its own copy.
 #define_import_path glint::bvh
 
 #import glint::scene_data::{BvhNode, PRIM_REF_TRIANGLE, PRIM_REF_INDEX, NODE_REF_COUNT_BITS, STATUS_BVH_STACK_OVERFLOW}
-#import glint::bindings::{header, planes, spheres, triangles, meshes, bvh_nodes, bvh_prims}
+#import glint::bindings::{header, planes, spheres, triangles, meshes, bvh_nodes, bvh_leaf_ab, bvh_leaf_c}
 #import glint::ray::{Ray, status}
-#import glint::intersect::{Hit, Leaving, MaybeT, PRIM_NONE, PRIM_SPHERE, PRIM_PLANE, PRIM_TRIANGLE, sphere_roots, intersect_sphere_leaving, intersect_plane, intersect_triangle, ray_shear, cross_surface, all_zero, sphere_transmittance, planes_transmittance, triangle_transmittance, triangle_corners, bound, replaces}
+#import glint::intersect::{Hit, Leaving, MaybeT, PRIM_NONE, PRIM_SPHERE, PRIM_PLANE, PRIM_TRIANGLE, sphere_roots, intersect_sphere_leaving, intersect_plane, intersect_triangle, ray_shear, cross_surface, all_zero, sphere_transmittance, planes_transmittance, bound, replaces}
 #ifdef SKIP_CONVEX
 #import glint::intersect::is_leaving
 #endif
@@ -191,6 +192,23 @@ fn next_leaf(
     return current;
 }
 
+// The first word of the leaf reference at `slot`: its triangle's corner a, the reference in w.
+fn leaf_head(slot: u32) -> vec4<u32> {
+    return bvh_leaf_ab[slot][0];
+}
+
+#ifdef TRIANGLES
+// The corners of the triangle referenced at `slot`, whose first word is `head`: from the
+// leaf-order copy (bindings.wgsl), the same f32 values as the indexed mesh.
+fn leaf_triangle(head: vec4<u32>, slot: u32) -> array<vec3<f32>, 3> {
+    return array<vec3<f32>, 3>(
+        bitcast<vec3<f32>>(head.xyz),
+        bitcast<vec3<f32>>(bvh_leaf_ab[slot][1].xyz),
+        bitcast<vec3<f32>>(bvh_leaf_c[slot].xyz),
+    );
+}
+#endif
+
 // intersect.wgsl's closest_hit through the BVH: the same hit (the tie rule makes it independent of the
 // visiting order).
 fn closest_hit(ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> Hit {
@@ -206,7 +224,9 @@ fn closest_hit(ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> Hit {
         let count = ref_count(leaf);
         let first = ref_first(leaf);
         for (var k = 0u; k < count; k++) {
-            let r = bvh_prims[first + k];
+            let slot = first + k;
+            let head = leaf_head(slot);
+            let r = head.w;
             let i = r & PRIM_REF_INDEX;
             if (r & PRIM_REF_TRIANGLE) != 0u {
 #ifdef TRIANGLES
@@ -215,7 +235,7 @@ fn closest_hit(ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> Hit {
                     continue;
                 }
 #endif
-                let v = triangle_corners(triangles[i]);
+                let v = leaf_triangle(head, slot);
                 let h = intersect_triangle(v[0], v[1], v[2], ray, sh, t_min, bound(best, t_max));
                 if h.ok && replaces(h.t, PRIM_TRIANGLE, i, best) {
                     best = Hit(h.t, PRIM_TRIANGLE, i, h.bu, h.bv);
@@ -265,7 +285,9 @@ fn shadow_transmittance(ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> v
         let count = ref_count(leaf);
         let first = ref_first(leaf);
         for (var k = 0u; k < count; k++) {
-            let r = bvh_prims[first + k];
+            let slot = first + k;
+            let head = leaf_head(slot);
+            let r = head.w;
             let i = r & PRIM_REF_INDEX;
             if (r & PRIM_REF_TRIANGLE) != 0u {
 #ifdef TRIANGLES
@@ -274,7 +296,10 @@ fn shadow_transmittance(ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> v
                     continue;
                 }
 #endif
-                tr = triangle_transmittance(tr, i, ray, sh, t_min, t_max);
+                let v = leaf_triangle(head, slot);
+                if intersect_triangle(v[0], v[1], v[2], ray, sh, t_min, t_max).ok {
+                    tr = cross_surface(tr, meshes[triangles[i].mesh].material);
+                }
                 if all_zero(tr) {
                     return tr;
                 }

@@ -10,7 +10,7 @@ use std::fmt;
 use std::path::Path;
 
 use crate::bvh::BvhNode;
-use crate::flat::LeafCorners;
+use crate::flat::{GPU_LEAF_BYTES_PER_PRIM, LeafCorners};
 use crate::layout::{GpuMesh, GpuPlane, GpuSphere, GpuTriangle};
 use crate::scene::{ObjectDesc, RenderSettings, SceneDesc};
 
@@ -204,9 +204,11 @@ pub fn render_estimate(desc: &SceneDesc, settings: &RenderSettings, plan: Render
     }
     if plan.gpu {
         e.add("GPU device", GPU_DEVICE_BYTES);
-        // The device's copy of the scene, the output, sample and readback buffers (vec4<f32>
-        // a pixel each), and the decoded image.
-        e.add("GPU scene buffers", geometry + texels + size(bounded, size_of::<BvhNode>() * 2 + 4));
+        // The device's copy of the scene (with the tree's nodes and its leaf-order corners,
+        // `fill_gpu_leaves`), the output, sample and readback buffers (vec4<f32> a pixel
+        // each), and the decoded image.
+        let tree = size(bounded, size_of::<BvhNode>() * 2) + bounded.saturating_mul(GPU_LEAF_BYTES_PER_PRIM);
+        e.add("GPU scene buffers", geometry + texels + tree);
         e.add("GPU images", size(pixels, 48) + image);
     }
     let outputs = u64::from(plan.cpu) + u64::from(plan.gpu);

@@ -23,7 +23,9 @@ pub enum Binding {
     Stats = 9,
     Probe = 10,
     BvhNodes = 11,
-    BvhPrims = 12,
+    /// The BVH leaves' triangle corners and primitive references (`glint_core::flat::
+    /// fill_gpu_leaves`), in two arrays.
+    BvhLeafAb = 12,
     Vertices = 13,
     Normals = 14,
     Meshes = 15,
@@ -33,14 +35,15 @@ pub enum Binding {
     Textures = 18,
     /// The pixel probe's ray tree (under the PROBE shader def).
     ProbeTree = 19,
-    /// The ray-cast kernel's rays and hits (raycast.wgsl; from 20 on, apart from the tracer's).
-    RaysIn = 20,
-    HitsOut = 21,
+    BvhLeafC = 20,
+    /// The ray-cast kernel's rays and hits (raycast.wgsl; after the tracer's).
+    RaysIn = 21,
+    HitsOut = 22,
 }
 
 impl Binding {
     /// Every binding, ascending.
-    pub const ALL: [Self; 22] = [
+    pub const ALL: [Self; 23] = [
         Self::Header,
         Self::Camera,
         Self::Tile,
@@ -53,7 +56,7 @@ impl Binding {
         Self::Stats,
         Self::Probe,
         Self::BvhNodes,
-        Self::BvhPrims,
+        Self::BvhLeafAb,
         Self::Vertices,
         Self::Normals,
         Self::Meshes,
@@ -61,6 +64,7 @@ impl Binding {
         Self::Texels,
         Self::Textures,
         Self::ProbeTree,
+        Self::BvhLeafC,
         Self::RaysIn,
         Self::HitsOut,
     ];
@@ -89,7 +93,7 @@ impl Binding {
             Self::Stats => "stats",
             Self::Probe => "probe_out",
             Self::BvhNodes => "bvh_nodes",
-            Self::BvhPrims => "bvh_prims",
+            Self::BvhLeafAb => "bvh_leaf_ab",
             Self::Vertices => "vertices",
             Self::Normals => "normals",
             Self::Meshes => "meshes",
@@ -97,6 +101,7 @@ impl Binding {
             Self::Texels => "texels",
             Self::Textures => "textures",
             Self::ProbeTree => "probe_tree",
+            Self::BvhLeafC => "bvh_leaf_c",
             Self::RaysIn => "rays_in",
             Self::HitsOut => "hits_out",
         }
@@ -127,13 +132,14 @@ mod tests {
 
     #[test]
     fn numbers_are_the_table_order_and_round_trip() {
-        // The tracer's bindings are 0, 1, 2, …; the ray-cast kernel's follow from 20.
+        // The tracer's bindings are 0, 1, 2, …; the ray-cast kernel's follow them.
         let tracer = Binding::ALL.iter().filter(|b| !Binding::RAYCAST.contains(b));
         for (i, b) in tracer.enumerate() {
             assert_eq!(b.number() as usize, i, "{b:?} is out of order in Binding::ALL");
         }
+        let tracer_count = Binding::ALL.len() - Binding::RAYCAST.len();
         for (i, b) in Binding::RAYCAST.into_iter().enumerate() {
-            assert_eq!(b.number() as usize, 20 + i, "{b:?} is out of order in Binding::RAYCAST");
+            assert_eq!(b.number() as usize, tracer_count + i, "{b:?} is out of order in Binding::RAYCAST");
         }
         for pair in Binding::ALL.windows(2) {
             assert!(pair[0].number() < pair[1].number(), "{pair:?}: Binding::ALL is not ascending");

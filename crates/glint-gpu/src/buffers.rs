@@ -7,7 +7,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use bytemuck::Pod;
 use glint_core::FlatScene;
 use glint_core::bvh::GPU_MAX_TREE_INDEX;
-use glint_core::flat::GeometryId;
+use glint_core::flat::{GeometryId, GpuLeafAb, GpuLeafC, fill_gpu_leaves};
 use glint_core::layout::{ProbeRecord, ProbeTree, STAT_WORDS, TileParams};
 use wgpu::util::DeviceExt;
 
@@ -28,7 +28,7 @@ pub struct GeometryBuffers {
     planes: wgpu::Buffer,
     triangles: wgpu::Buffer,
     bvh_nodes: wgpu::Buffer,
-    bvh_prims: wgpu::Buffer,
+    bvh_leaf: BvhLeafBuffers,
     vertices: wgpu::Buffer,
     normals: wgpu::Buffer,
     meshes: wgpu::Buffer,
@@ -49,6 +49,51 @@ impl GeometryCache {
     }
 }
 
+/// The BVH leaves' words (`glint_core::flat::fill_gpu_leaves`), written into the mapped
+/// buffers a chunk at a time: no host copy of all their 48 bytes a reference.
+#[derive(Clone, Debug)]
+struct BvhLeafBuffers {
+    ab: wgpu::Buffer,
+    c: wgpu::Buffer,
+}
+
+/// References filled per chunk (3 MiB of words).
+const LEAF_CHUNK: usize = 1 << 16;
+
+impl BvhLeafBuffers {
+    fn upload(ctx: &GpuContext, scene: &FlatScene) -> Self {
+        // Storage buffers may not be empty: a scene without a tree gets one unused reference.
+        let refs = scene.bvh_prims.len().max(1);
+        let mapped = |label: &str, item_size: usize| {
+            ctx.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: (refs * item_size) as u64,
+                usage: wgpu::BufferUsages::STORAGE,
+                mapped_at_creation: true,
+            })
+        };
+        let ab = mapped("glint BVH leaf corners a, b", size_of::<GpuLeafAb>());
+        let c = mapped("glint BVH leaf corners c", size_of::<GpuLeafC>());
+        {
+            let mut ab_view = ab.get_mapped_range_mut(..).expect("mapped at creation");
+            let mut c_view = c.get_mapped_range_mut(..).expect("mapped at creation");
+            let mut ab_words = vec![GpuLeafAb::default(); LEAF_CHUNK];
+            let mut c_words = vec![GpuLeafC::default(); LEAF_CHUNK];
+            for (k, prims) in scene.bvh_prims.chunks(LEAF_CHUNK).enumerate() {
+                let (ab_chunk, c_chunk) = (&mut ab_words[..prims.len()], &mut c_words[..prims.len()]);
+                fill_gpu_leaves(&scene.vertices, &scene.triangles, prims, ab_chunk, c_chunk);
+                let start = k * LEAF_CHUNK;
+                let bytes = |item: usize| start * item..(start + prims.len()) * item;
+                ab_view.slice(bytes(size_of::<GpuLeafAb>())).copy_from_slice(bytemuck::cast_slice(ab_chunk));
+                c_view.slice(bytes(size_of::<GpuLeafC>())).copy_from_slice(bytemuck::cast_slice(c_chunk));
+            }
+        }
+        ab.unmap();
+        c.unmap();
+        Self { ab, c }
+    }
+}
+
 impl GeometryBuffers {
     fn upload(ctx: &GpuContext, scene: &FlatScene) -> Self {
         Self {
@@ -57,7 +102,7 @@ impl GeometryBuffers {
             planes: storage(ctx, "glint planes", &scene.planes),
             triangles: storage(ctx, "glint triangles", &scene.triangles),
             bvh_nodes: storage(ctx, "glint BVH nodes", &scene.bvh_nodes),
-            bvh_prims: storage(ctx, "glint BVH primitives", &scene.bvh_prims),
+            bvh_leaf: BvhLeafBuffers::upload(ctx, scene),
             vertices: storage(ctx, "glint vertices", &scene.vertices),
             normals: storage(ctx, "glint normals", &scene.normals),
             meshes: storage(ctx, "glint meshes", &scene.meshes),
@@ -155,16 +200,28 @@ fn check_limits(ctx: &GpuContext, scene: &FlatScene, bvh: bool) -> Result<u64, G
         Ok(())
     };
     check(&format!("the {}x{} output image", h.width, h.height), output_size)?;
-    check("the triangle buffer", size_of_val(&scene.triangles[..]) as u64)?;
-    check("the vertex buffer", size_of_val(&scene.vertices[..]) as u64)?;
-    check("the normal buffer", size_of_val(&scene.normals[..]) as u64)?;
-    check("the sphere buffer", size_of_val(&scene.spheres[..]) as u64)?;
-    check("the BVH node buffer", size_of_val(&scene.bvh_nodes[..]) as u64)?;
-    check("the BVH primitive buffer", size_of_val(&scene.bvh_prims[..]) as u64)?;
-    check("the texture coordinate buffer", size_of_val(&scene.uvs[..]) as u64)?;
-    check("the texel buffer", size_of_val(scene.texels.as_slice()) as u64)?;
-    check("the texture table", size_of_val(scene.textures.as_slice()) as u64)?;
+    for (what, bytes) in storage_sizes(scene) {
+        check(what, bytes)?;
+    }
     Ok(output_size)
+}
+
+/// The bytes of each of a scene's storage buffers whose size grows with the scene, by name.
+pub fn storage_sizes(scene: &FlatScene) -> [(&'static str, u64); 10] {
+    let bytes = |n: usize, item: usize| (n * item) as u64;
+    let refs = scene.bvh_prims.len();
+    [
+        ("the triangle buffer", size_of_val(&scene.triangles[..]) as u64),
+        ("the vertex buffer", size_of_val(&scene.vertices[..]) as u64),
+        ("the normal buffer", size_of_val(&scene.normals[..]) as u64),
+        ("the sphere buffer", size_of_val(&scene.spheres[..]) as u64),
+        ("the BVH node buffer", size_of_val(&scene.bvh_nodes[..]) as u64),
+        ("the BVH leaf buffer of corners a and b", bytes(refs, size_of::<GpuLeafAb>())),
+        ("the BVH leaf buffer of corners c", bytes(refs, size_of::<GpuLeafC>())),
+        ("the texture coordinate buffer", size_of_val(&scene.uvs[..]) as u64),
+        ("the texel buffer", size_of_val(scene.texels.as_slice()) as u64),
+        ("the texture table", size_of_val(scene.textures.as_slice()) as u64),
+    ]
 }
 
 /// Checks that every node and leaf reference of a tree fits the GPU walk's node reference.
@@ -245,7 +302,8 @@ impl SceneBuffers {
             Binding::Probe => &self.probe,
             Binding::ProbeTree => &self.probe_tree,
             Binding::BvhNodes => &self.geometry.bvh_nodes,
-            Binding::BvhPrims => &self.geometry.bvh_prims,
+            Binding::BvhLeafAb => &self.geometry.bvh_leaf.ab,
+            Binding::BvhLeafC => &self.geometry.bvh_leaf.c,
             Binding::Vertices => &self.geometry.vertices,
             Binding::Normals => &self.geometry.normals,
             Binding::Meshes => &self.geometry.meshes,

@@ -176,9 +176,12 @@ mod tests {
                 .into_iter()
                 .map(|(b, _)| b)
                 .collect();
-            for b in Binding::RAYCAST.into_iter().chain([Binding::BvhNodes, Binding::BvhPrims, Binding::Stats]) {
+            for b in Binding::RAYCAST.into_iter().chain([Binding::BvhNodes, Binding::BvhLeafAb, Binding::Stats]) {
                 assert!(bindings.contains(&b), "[{}] lacks {b:?}: {bindings:?}", key.describe());
             }
+            // A triangle's third corner only where there are triangles.
+            let triangles = features & feature::TRIANGLES != 0;
+            assert_eq!(bindings.contains(&Binding::BvhLeafC), triangles, "[{}]: {bindings:?}", key.describe());
             // No shading: the kernel reads no materials, lights or camera.
             for b in [Binding::Materials, Binding::Lights, Binding::Camera, Binding::Output] {
                 assert!(!bindings.contains(&b), "[{}] binds {b:?}", key.describe());

@@ -114,7 +114,8 @@ impl ShaderKey {
     /// The storage buffers the variant binds (a test checks this against the composed module):
     /// materials, lights, output and stats always, one per sphere or plane kind compiled in,
     /// four for triangles (triangles, vertices, normals, meshes), the probe record and tree, the
-    /// BVH's two, and for textures the texels and the table, with texture coordinates when
+    /// BVH's nodes and leaf words (with triangles, a second array of them for the third corner),
+    /// and for textures the texels and the table, with texture coordinates when
     /// there are triangles.
     pub fn storage_buffers(&self) -> u32 {
         let on = |f: u32| u32::from(self.features & f != 0);
@@ -122,7 +123,7 @@ impl ShaderKey {
             + on(feature::PLANES)
             + 4 * on(feature::TRIANGLES)
             + 2 * u32::from(self.probe)
-            + if self.bvh { 2 } else { 0 }
+            + if self.bvh { 2 + on(feature::TRIANGLES) } else { 0 }
             + 2 * on(feature::TEXTURES)
             + on(feature::TEXTURES) * on(feature::TRIANGLES)
     }

@@ -76,8 +76,13 @@ const TWINS: [(&str, &str, &str, &str); 11] = [
 ];
 
 /// Functions only the GPU side has, and why.
-const GPU_ONLY: [(&str, &str, &str); 22] = [
+const GPU_ONLY: [(&str, &str, &str); 23] = [
     ("bvh.wgsl", "load_node", "a node in two vec4 loads; the CPU reads the shared BvhNode where it lies"),
+    (
+        "bvh.wgsl",
+        "leaf_head",
+        "a leaf reference and its triangle's first corner in one vec4 load; the CPU reads bvh_prims and leaf_triangle",
+    ),
     (
         "bvh.wgsl",
         "node_ref",
@@ -130,19 +135,13 @@ const GPU_ONLY: [(&str, &str, &str); 22] = [
 ];
 
 /// Functions only the CPU side has, and why.
-const CPU_ONLY: [(&str, &str, &str); 11] = [
+const CPU_ONLY: [(&str, &str, &str); 10] = [
     ("cpu/bvh.rs", "new", "SlabRay::new; WGSL builds it in slab_ray (no methods)"),
     (
         "cpu/bvh.rs",
         "of",
         "SlabPlanes::of: the CPU's scalar f64 slab test picks each axis's near and far plane once per ray; \
          WGSL's enter takes min and max of whole vectors",
-    ),
-    (
-        "cpu/bvh.rs",
-        "leaf_triangle",
-        "the CPU walk reads a leaf's corners from FlatScene::leaf_corners (one contiguous read); \
-         the GPU reads the indexed mesh through triangle_corners",
     ),
     ("cpu/bvh.rs", "prefetch_contents", "a CPU cache hint for the walk's next node pairs and leaves; WGSL has none"),
     ("cpu/bvh.rs", "walk", "traverse's loop over its reused per-thread stack; WGSL's stack is a local array"),

@@ -158,7 +158,7 @@ impl SlabPlanes {
 
 /// The corners of triangle `index`, referenced at `slot` of `bvh_prims`: from the scene's
 /// leaf-order copy when the context has it, else from the indexed mesh. The same f32 values
-/// either way.
+/// either way, and the same the GPU's twin reads from its own leaf-order copy.
 #[inline(always)]
 fn leaf_triangle(ctx: &TraceContext, slot: usize, index: u32) -> [DVec3; 3] {
     match ctx.leaf_corners {

@@ -1,7 +1,7 @@
 //! The corners of the BVH's triangles in leaf order, for the CPU walk: a leaf's triangles are
 //! then one contiguous read instead of reference → triangle → three vertices, three dependent
-//! cache misses per triangle on incoherent rays, in memory advised for huge pages. CPU only
-//! (the GPU reads the indexed mesh).
+//! cache misses per triangle on incoherent rays, in memory advised for huge pages. The GPU walk
+//! reads its own copy in leaf order (`fill_gpu_leaves`), laid out for its bindings.
 
 use std::sync::Arc;
 
@@ -74,6 +74,44 @@ impl LeafCorners {
     }
 }
 
+/// The GPU walk's words for one primitive reference (bindings.wgsl's `bvh_leaf_ab`, 32 bytes):
+/// corner a's bits with the reference in w, then corner b's (w 0). A sphere's reference has
+/// zeros beside it. u32 words, as `bvh_nodes`: the reference is read as an integer, never
+/// through a float register.
+pub type GpuLeafAb = [[u32; 4]; 2];
+
+/// Corner c of a reference's triangle (bindings.wgsl's `bvh_leaf_c`, 16 bytes), in an array of
+/// its own: 48 bytes a reference in one array would put a 4-million-triangle mesh (192 MB)
+/// past the 128 MiB a storage binding holds; split, the larger half holds 4,194,304.
+pub type GpuLeafC = [u32; 4];
+
+/// Bytes the GPU's leaf words take per primitive reference.
+pub const GPU_LEAF_BYTES_PER_PRIM: u64 = (size_of::<GpuLeafAb>() + size_of::<GpuLeafC>()) as u64;
+
+/// Fills the GPU walk's leaf words, one per slot of `prims`, from the indexed mesh: the same
+/// f32 corners the mesh and `LeafCorners` give, so both tracers test the same triangles.
+pub fn fill_gpu_leaves(
+    vertices: &[[f32; 4]],
+    triangles: &[GpuTriangle],
+    prims: &[u32],
+    ab: &mut [GpuLeafAb],
+    c: &mut [GpuLeafC],
+) {
+    let bits = |v: u32, w: u32| {
+        let p = vertices[v as usize];
+        [p[0].to_bits(), p[1].to_bits(), p[2].to_bits(), w]
+    };
+    ab.par_iter_mut().zip(c.par_iter_mut()).zip(prims).with_min_len(16384).for_each(|((ab, c), &r)| {
+        (*ab, *c) = match PrimRef::decode(r) {
+            PrimRef::Triangle(i) => {
+                let t = &triangles[i as usize];
+                ([bits(t.va, r), bits(t.vb, 0)], bits(t.vc, 0))
+            }
+            PrimRef::Sphere(_) => ([[0, 0, 0, r], [0; 4]], [0; 4]),
+        }
+    });
+}
+
 /// Derived data: equal when made from equal arrays, which the scene's own fields compare.
 impl PartialEq for LeafCorners {
     fn eq(&self, o: &Self) -> bool {
@@ -114,5 +152,21 @@ mod tests {
         assert!(leaf.for_arrays(&other_vertices, &triangles, &prims).is_none());
         assert!(leaf.for_arrays(&vertices, &other_triangles, &prims).is_none());
         assert!(leaf.for_arrays(&vertices, &triangles, &other_prims).is_none());
+    }
+
+    #[test]
+    fn gpu_leaves_hold_the_same_corners_and_the_reference_bits() {
+        let (vertices, triangles, prims) = arrays();
+        let corners = LeafCorners::new(&vertices, &triangles, &prims);
+        let corners = corners.for_arrays(&vertices, &triangles, &prims).expect("made from these arrays");
+        let (mut ab, mut c) = (vec![[[7; 4]; 2]; prims.len()], vec![[7; 4]; prims.len()]);
+        fill_gpu_leaves(&vertices, &triangles, &prims, &mut ab, &mut c);
+        for slot in 0..prims.len() {
+            assert_eq!(ab[slot][0][3], prims[slot], "slot {slot}: the reference");
+            assert_eq!([ab[slot][1][3], c[slot][3]], [0, 0], "slot {slot}: unused words");
+            let gpu = [ab[slot][0], ab[slot][1], c[slot]].map(|w| [0, 1, 2].map(|k| f32::from_bits(w[k])));
+            assert_eq!(gpu, corners[slot], "slot {slot}: the corners");
+        }
+        assert_eq!(GPU_LEAF_BYTES_PER_PRIM, 48);
     }
 }

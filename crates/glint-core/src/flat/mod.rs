@@ -70,7 +70,7 @@ mod lights_materials;
 
 pub use geometry::GeometryId;
 use geometry::{Geometry, flat_primitives};
-pub use leaf_corners::{Corners, LeafCorners};
+pub use leaf_corners::{Corners, GPU_LEAF_BYTES_PER_PRIM, GpuLeafAb, GpuLeafC, LeafCorners, fill_gpu_leaves};
 use lights_materials::{flat_light, flat_material};
 
 impl FlatScene {
