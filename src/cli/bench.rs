@@ -2,6 +2,7 @@
 //! of two fixed ray sets (`glint_core::rays`: primary rays of a 1280×720 pinhole, incoherent
 //! rays from a seeded splitmix64) on the CPU (rayon, T threads) and the GPU (raycast.wgsl, the
 //! tracer's own WGSL closest_hit), with the hit fraction and how often the two disagree.
+//! `--export` writes the mesh, rays and hits for an outside tracer (`bench_export.rs`).
 //!
 //! Every measurement is one warm-up run, then `--runs` timed runs; the table shows the median
 //! and the best, and throughputs are computed from the median.
@@ -56,6 +57,10 @@ pub struct RaysArgs {
     /// Print the results as JSON instead of a table
     #[arg(long)]
     pub json: bool,
+    /// Also write the mesh, both ray sets and the CPU's hits into this folder, for an outside
+    /// tracer (crates/glint-core/benches/embree_rays.cpp); triangles only
+    #[arg(long, value_name = "DIR")]
+    pub export: Option<std::path::PathBuf>,
 }
 
 pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
@@ -163,6 +168,9 @@ fn rays(args: &RaysArgs) -> anyhow::Result<()> {
     if flat.bvh_nodes.is_empty() {
         bail!("scene '{}' has no spheres or triangles: there is no BVH to measure", loaded.name);
     }
+    if args.export.is_some() {
+        super::bench_export::check_exportable(&flat)?;
+    }
     // The BVH part of FlatScene::build, on the primitives it flattened.
     let (built, build_timing) = measure(args.runs, || Ok(pool.install(|| timed(|| bvh::build(&flat.bounded())))))?;
     if built.nodes[..] != flat.bvh_nodes[..] || *built.prims != *flat.bvh_prims {
@@ -197,6 +205,19 @@ fn rays(args: &RaysArgs) -> anyhow::Result<()> {
             let hits = caster.hits(ctx, &batch).context("cannot read the hits back")?;
             casts.push(cast_result(*set, Backend::Gpu, rays.len(), timing, hits));
         }
+    }
+    if let Some(dir) = &args.export {
+        let ctx = TraceContext::new(&flat).context("invalid flat scene")?;
+        let cpu_hits: Vec<Vec<HitRecord>> = sets
+            .iter()
+            .map(|(set, rays)| match casts.iter().find(|c| c.set == set.name() && c.backend == Backend::Cpu.name()) {
+                Some(c) => c.hits.clone(),
+                None => pool.install(|| cast_rays(&ctx, rays)),
+            })
+            .collect();
+        let files: Vec<_> =
+            sets.iter().zip(&cpu_hits).map(|((set, rays), hits)| (*set, &rays[..], &hits[..])).collect();
+        super::bench_export::export(dir, &flat, &files)?;
     }
     let mut gpu_vs_cpu = Vec::new();
     for (set, _) in &sets {

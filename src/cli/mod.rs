@@ -2,6 +2,7 @@
 
 mod backend;
 mod bench;
+mod bench_export;
 pub mod interrupt;
 mod output;
 mod output_path;
