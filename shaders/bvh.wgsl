@@ -90,6 +90,11 @@ struct NodeStack {
     len: u32,
 }
 
+// The walk's stack, one per invocation for all its walks (they never nest): a function's
+// variables are zero-filled on every call (WGSL), a private one once, when the invocation
+// starts. Each walk starts by emptying it.
+var<private> node_stack: NodeStack;
+
 // Node i, in two vec4 loads (bindings.wgsl says why).
 fn load_node(i: u32) -> BvhNode {
     let w = bvh_nodes[i];
@@ -121,7 +126,7 @@ fn root_node(slab: SlabRay, root: BvhNode, t_min: f32, t_max: f32) -> u32 {
 // walk's next node, NO_NODE if neither); the farther of two is pushed, as the CPU's walk does.
 // A full stack raises STATUS_BVH_STACK_OVERFLOW.
 fn nearer_child(
-    stack: ptr<function, NodeStack>,
+    stack: ptr<private, NodeStack>,
     slab: SlabRay,
     l: u32,
     t_min: f32,
@@ -154,7 +159,7 @@ fn nearer_child(
 // The node on top of the stack, popped; NO_NODE when a hit found since it was pushed (t_hi) is
 // nearer than its box, as the CPU's walk skips it (the walk then pops again).
 fn pop_node(
-    stack: ptr<function, NodeStack>,
+    stack: ptr<private, NodeStack>,
     slab: SlabRay,
     t_hi: f32,
 ) -> u32 {
@@ -169,7 +174,7 @@ fn pop_node(
 // different steps, and the leaf tests then run once for all the lanes that have one instead
 // of once per step for each lane that happens to be at a leaf.
 fn next_leaf(
-    stack: ptr<function, NodeStack>,
+    stack: ptr<private, NodeStack>,
     slab: SlabRay,
     start: u32,
     t_min: f32,
@@ -218,8 +223,8 @@ fn closest_hit(ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> Hit {
 #ifdef TRIANGLES
     let sh = ray_shear(ray.dir);
 #endif
-    var stack: NodeStack;
-    var leaf = next_leaf(&stack, slab, root_node(slab, root, t_min, t_max), t_min, t_max);
+    node_stack.len = 0u;
+    var leaf = next_leaf(&node_stack, slab, root_node(slab, root, t_min, t_max), t_min, t_max);
     while leaf != NO_NODE {
         let count = ref_count(leaf);
         let first = ref_first(leaf);
@@ -251,7 +256,7 @@ fn closest_hit(ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> Hit {
 #endif
             }
         }
-        leaf = next_leaf(&stack, slab, NO_NODE, t_min, bound(best, t_max));
+        leaf = next_leaf(&node_stack, slab, NO_NODE, t_min, bound(best, t_max));
     }
 #ifdef PLANES
     for (var i = 0u; i < header.plane_count; i++) {
@@ -279,8 +284,8 @@ fn shadow_transmittance(ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> v
 #ifdef TRIANGLES
     let sh = ray_shear(ray.dir);
 #endif
-    var stack: NodeStack;
-    var leaf = next_leaf(&stack, slab, root_node(slab, root, t_min, t_max), t_min, t_max);
+    node_stack.len = 0u;
+    var leaf = next_leaf(&node_stack, slab, root_node(slab, root, t_min, t_max), t_min, t_max);
     while leaf != NO_NODE {
         let count = ref_count(leaf);
         let first = ref_first(leaf);
@@ -313,7 +318,7 @@ fn shadow_transmittance(ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> v
 #endif
             }
         }
-        leaf = next_leaf(&stack, slab, NO_NODE, t_min, t_max);
+        leaf = next_leaf(&node_stack, slab, NO_NODE, t_min, t_max);
     }
 #ifdef PLANES
     tr = planes_transmittance(tr, ray, t_min, t_max, leaving);
