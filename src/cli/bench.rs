@@ -168,8 +168,8 @@ fn rays(args: &RaysArgs) -> anyhow::Result<()> {
     if flat.bvh_nodes.is_empty() {
         bail!("scene '{}' has no spheres or triangles: there is no BVH to measure", loaded.name);
     }
-    if args.export.is_some() {
-        super::bench_export::check_exportable(&flat)?;
+    if let Some(dir) = &args.export {
+        super::bench_export::prepare(dir, &flat)?;
     }
     // The BVH part of FlatScene::build, on the primitives it flattened.
     let (built, build_timing) = measure(args.runs, || Ok(pool.install(|| timed(|| bvh::build(&flat.bounded())))))?;

@@ -17,8 +17,9 @@ use glint_core::FlatScene;
 use glint_core::atomic::write_file_atomically;
 use glint_core::rays::{HitRecord, RayRecord, RaySet};
 
-/// An error unless the exported mesh is the whole scene (checked before the benchmark runs).
-pub fn check_exportable(flat: &FlatScene) -> anyhow::Result<()> {
+/// Before the benchmark runs: an error unless the exported mesh is the whole scene, and
+/// `dir` made if missing (so a path that cannot be a folder fails before minutes of work).
+pub fn prepare(dir: &Path, flat: &FlatScene) -> anyhow::Result<()> {
     if !flat.spheres.is_empty() || !flat.planes.is_empty() {
         bail!(
             "--export: the scene has {} spheres and {} planes; the exported mesh holds triangles only, \
@@ -27,13 +28,11 @@ pub fn check_exportable(flat: &FlatScene) -> anyhow::Result<()> {
             flat.planes.len()
         );
     }
-    Ok(())
+    std::fs::create_dir_all(dir).with_context(|| format!("--export: cannot make the folder {}", dir.display()))
 }
 
-/// Writes the files above into `dir` (made if missing), each atomically.
+/// Writes the files above into `dir` (`prepare`d), each atomically.
 pub fn export(dir: &Path, flat: &FlatScene, sets: &[(RaySet, &[RayRecord], &[HitRecord])]) -> anyhow::Result<()> {
-    check_exportable(flat)?;
-    std::fs::create_dir_all(dir).with_context(|| format!("--export: cannot make the folder {}", dir.display()))?;
     let write = |name: &str, bytes: &[u8]| {
         let path = dir.join(name);
         write_file_atomically(&path, bytes).with_context(|| format!("--export: cannot write {}", path.display()))

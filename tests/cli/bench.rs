@@ -195,4 +195,24 @@ fn export_refuses_a_scene_an_outside_tracer_would_see_only_in_part() {
         &["--export", "spheres", "planes", "triangles only"],
         &[],
     );
+    // A folder that cannot be made: refused before the benchmark, naming it.
+    expect_failure(
+        "bench-export-file",
+        |d| {
+            std::fs::write(d.join("taken"), "a file").expect("write");
+            os(&[
+                &"bench",
+                &"rays",
+                &"bumpy",
+                &"--resolution",
+                &"8",
+                &"--runs",
+                &"1",
+                &"--export",
+                &d.join("taken/rays"),
+            ])
+        },
+        &["--export: cannot make the folder", "taken/rays"],
+        &["taken"],
+    );
 }
