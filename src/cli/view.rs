@@ -73,11 +73,15 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
     check_load_memory(&args.scene, args.scene_size.memory_limit)?;
     let load = args.scene_size.options();
     // A scene that does not load is reported in the viewer window; flags apply to one that does.
-    // A resolution the scene cannot take is a flag error, before any window opens.
+    // A resolution the scene cannot take is a flag error, before any window opens, and so is
+    // a scene the drag benchmark cannot load: it would measure the window's fallback instead.
     let settings = match load_scene_with(&args.scene, &load) {
         Ok(loaded) => Some(args.settings.apply(&loaded.desc.render)?),
         Err(e @ glint_core::scene::SceneError::NotGenerated { .. }) => bail!("--resolution: {e}"),
         Err(e @ glint_core::scene::SceneError::NotAModel { .. }) => bail!("{e}"),
+        Err(e) if args.benchmark_drag.is_some() => {
+            bail!("--benchmark-drag: cannot load scene '{}': {e}", args.scene)
+        }
         Err(_) => None,
     };
     let options = ViewerOptions {

@@ -253,6 +253,13 @@ fn bad_input_fails_cleanly() {
         &["nosuchscene", "whitted", "cornell", "spotlights", "highlights", "lights"],
         &[],
     );
+    // The drag benchmark measures the scene it names or none: never the window's fallback.
+    expect_failure(
+        "benchmark-missing-model",
+        |d| os(&[&"view", &d.join("missing.glb"), &"--benchmark-drag", &"1"]),
+        &["--benchmark-drag", "missing.glb", "no such file"],
+        &[],
+    );
     // Negative numbers reach the flag's own message (not clap's "unexpected argument '-8'").
     expect_failure(
         "width-negative",
