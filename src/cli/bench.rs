@@ -7,6 +7,7 @@
 //! Every measurement is one warm-up run, then `--runs` timed runs; the table shows the median
 //! and the best, and throughputs are computed from the median.
 
+use std::borrow::Cow;
 use std::time::{Duration, Instant};
 
 use anyhow::{Context, bail};
@@ -207,12 +208,13 @@ fn rays(args: &RaysArgs) -> anyhow::Result<()> {
         }
     }
     if let Some(dir) = &args.export {
+        // The CPU's hits of the timed casts, or cast once now when only the GPU was timed.
         let ctx = TraceContext::new(&flat).context("invalid flat scene")?;
-        let cpu_hits: Vec<Vec<HitRecord>> = sets
+        let cpu_hits: Vec<Cow<[HitRecord]>> = sets
             .iter()
             .map(|(set, rays)| match casts.iter().find(|c| c.set == set.name() && c.backend == Backend::Cpu.name()) {
-                Some(c) => c.hits.clone(),
-                None => pool.install(|| cast_rays(&ctx, rays)),
+                Some(c) => Cow::Borrowed(&c.hits[..]),
+                None => Cow::Owned(pool.install(|| cast_rays(&ctx, rays))),
             })
             .collect();
         let files: Vec<_> =

@@ -33,18 +33,10 @@ impl LeafCorners {
 
     pub fn new(vertices: &Arc<[[f32; 4]]>, triangles: &Arc<[GpuTriangle]>, prims: &Arc<[u32]>) -> Self {
         let corners = HugePaged::new(prims.len(), |out| {
-            out.par_iter_mut().zip(&prims[..]).with_min_len(16384).for_each(|(out, &r)| {
-                *out = match PrimRef::decode(r) {
-                    PrimRef::Triangle(i) => {
-                        let t = &triangles[i as usize];
-                        [t.va, t.vb, t.vc].map(|v| {
-                            let p = vertices[v as usize];
-                            [p[0], p[1], p[2]]
-                        })
-                    }
-                    PrimRef::Sphere(_) => [[0.0; 3]; 3],
-                }
-            })
+            out.par_iter_mut()
+                .zip(&prims[..])
+                .with_min_len(16384)
+                .for_each(|(out, &r)| *out = reference_corners(vertices, triangles, r))
         });
         Self {
             corners: Arc::new(corners),
@@ -74,6 +66,20 @@ impl LeafCorners {
     }
 }
 
+/// The corners of the triangle primitive reference `r` names, as stored; zeros for a sphere's.
+fn reference_corners(vertices: &[[f32; 4]], triangles: &[GpuTriangle], r: u32) -> Corners {
+    match PrimRef::decode(r) {
+        PrimRef::Triangle(i) => {
+            let t = &triangles[i as usize];
+            [t.va, t.vb, t.vc].map(|v| {
+                let p = vertices[v as usize];
+                [p[0], p[1], p[2]]
+            })
+        }
+        PrimRef::Sphere(_) => [[0.0; 3]; 3],
+    }
+}
+
 /// The GPU walk's words for one primitive reference (bindings.wgsl's `bvh_leaf_ab`, 32 bytes):
 /// corner a's bits with the reference in w, then corner b's (w 0). A sphere's reference has
 /// zeros beside it. u32 words, as `bvh_nodes`: the reference is read as an integer, never
@@ -97,18 +103,10 @@ pub fn fill_gpu_leaves(
     ab: &mut [GpuLeafAb],
     c: &mut [GpuLeafC],
 ) {
-    let bits = |v: u32, w: u32| {
-        let p = vertices[v as usize];
-        [p[0].to_bits(), p[1].to_bits(), p[2].to_bits(), w]
-    };
+    let bits = |p: [f32; 3], w: u32| [p[0].to_bits(), p[1].to_bits(), p[2].to_bits(), w];
     ab.par_iter_mut().zip(c.par_iter_mut()).zip(prims).with_min_len(16384).for_each(|((ab, c), &r)| {
-        (*ab, *c) = match PrimRef::decode(r) {
-            PrimRef::Triangle(i) => {
-                let t = &triangles[i as usize];
-                ([bits(t.va, r), bits(t.vb, 0)], bits(t.vc, 0))
-            }
-            PrimRef::Sphere(_) => ([[0, 0, 0, r], [0; 4]], [0; 4]),
-        }
+        let [pa, pb, pc] = reference_corners(vertices, triangles, r);
+        (*ab, *c) = ([bits(pa, r), bits(pb, 0)], bits(pc, 0));
     });
 }
 
