@@ -12,10 +12,11 @@ use std::time::{Duration, Instant};
 
 use anyhow::{Context, bail};
 use clap::{Args, Subcommand};
+use glint_core::bvh::{self, BvhNodes};
 use glint_core::cpu::TraceContext;
 use glint_core::cpu::raycast::cast_rays;
 use glint_core::rays::{HitAgreement, HitRecord, RaySet, compare_hits, hit_fraction};
-use glint_core::{Backend, FlatScene, bvh};
+use glint_core::{Backend, FlatScene};
 use glint_gpu::GpuContext;
 use glint_gpu::raycast::RayCaster;
 use serde::Serialize;
@@ -102,6 +103,8 @@ struct BuildResult {
     primitives: usize,
     mtris_per_s: f64,
     nodes: usize,
+    /// The CPU walk's nodes of `bvh::WIDTH` children (`BvhNodes::wide`).
+    wide_nodes: usize,
     /// The whole `FlatScene::build` once (layout flattening and the BVH).
     flat_scene_ms: f64,
     /// Loading the scene once: reading, parsing or importing, validation (a model's lab scene).
@@ -172,8 +175,18 @@ fn rays(args: &RaysArgs) -> anyhow::Result<()> {
     if let Some(dir) = &args.export {
         super::bench_export::prepare(dir, &flat)?;
     }
-    // The BVH part of FlatScene::build, on the primitives it flattened.
-    let (built, build_timing) = measure(args.runs, || Ok(pool.install(|| timed(|| bvh::build(&flat.bounded())))))?;
+    // The BVH part of FlatScene::build, on the primitives it flattened, and the CPU walk's
+    // wide nodes made from it (at the first CPU trace otherwise).
+    let (built, build_timing) = measure(args.runs, || {
+        Ok(pool.install(|| {
+            timed(|| {
+                let built = bvh::build(&flat.bounded());
+                let nodes = BvhNodes::new(&built.nodes);
+                nodes.wide();
+                built
+            })
+        }))
+    })?;
     if built.nodes[..] != flat.bvh_nodes[..] || *built.prims != *flat.bvh_prims {
         bail!("the timed BVH build differs from the one FlatScene::build made; the build is not deterministic");
     }
@@ -183,6 +196,7 @@ fn rays(args: &RaysArgs) -> anyhow::Result<()> {
         timing: build_timing,
         primitives,
         nodes: flat.bvh_nodes.len(),
+        wide_nodes: flat.bvh_nodes.wide().len(),
         flat_scene_ms: ms(flat_time),
         load_ms: ms(load_time),
     };
@@ -272,8 +286,15 @@ fn cast_result(set: RaySet, backend: Backend, rays: usize, timing: Timing, hits:
 fn print_table(r: &Report) {
     let b = &r.build;
     println!(
-        "{}: {} triangles, {} spheres, {} planes (walked apart); BVH of {} nodes; {} CPU threads",
-        r.scene, r.triangles, r.spheres, r.planes, b.nodes, r.cpu_threads
+        "{}: {} triangles, {} spheres, {} planes (walked apart); BVH of {} nodes ({} of {} children on the CPU); {} CPU threads",
+        r.scene,
+        r.triangles,
+        r.spheres,
+        r.planes,
+        b.nodes,
+        b.wide_nodes,
+        bvh::WIDTH,
+        r.cpu_threads
     );
     println!("  warm-up, then median and best of {} runs; Mrays/s and Mtris/s from the median", b.timing.runs);
     println!(

@@ -90,21 +90,22 @@ const GPU_ONLY: [(&str, &str, &str); 23] = [
     ),
     ("bvh.wgsl", "ref_count", "reads node_ref's count"),
     ("bvh.wgsl", "ref_first", "reads node_ref's first child or primitive"),
-    ("bvh.wgsl", "root_node", "the CPU tests the root in traverse before it calls walk"),
+    ("bvh.wgsl", "root_node", "the CPU tests the root in traverse before it runs the walk"),
     (
         "bvh.wgsl",
         "nearer_child",
-        "the CPU picks the nearer child and pushes the farther onto a Vec inside walk; WGSL passes its NodeStack by pointer",
+        "the CPU sorts a wide node's entered children and pushes all but the nearest inside Walk::run; WGSL passes \
+         its NodeStack by pointer",
     ),
     (
         "bvh.wgsl",
         "pop_node",
-        "the CPU pops its Vec and skips a passed node inside walk; WGSL passes its NodeStack by pointer",
+        "the CPU pops its Vec and skips a passed entry inside Walk::run; WGSL passes its NodeStack by pointer",
     ),
     (
         "bvh.wgsl",
         "next_leaf",
-        "the interior steps of walk's loop in a loop of their own, so that a SIMD group's leaf tests run together; the CPU walks one ray at a time",
+        "the interior steps of the walk in a loop of their own, so that a SIMD group's leaf tests run together; the CPU walks one ray at a time",
     ),
     ("bvh.wgsl", "slab_ray", "the CPU's SlabRay::new: WGSL has no methods"),
     ("trace.wgsl", "push_ray", "the explicit ray stack: WGSL has no recursion"),
@@ -135,16 +136,22 @@ const GPU_ONLY: [(&str, &str, &str); 23] = [
 ];
 
 /// Functions only the CPU side has, and why.
-const CPU_ONLY: [(&str, &str, &str); 10] = [
+const CPU_ONLY: [(&str, &str, &str); 11] = [
     ("cpu/bvh.rs", "new", "SlabRay::new; WGSL builds it in slab_ray (no methods)"),
     (
         "cpu/bvh.rs",
         "of",
-        "SlabPlanes::of: the CPU's scalar f64 slab test picks each axis's near and far plane once per ray; \
-         WGSL's enter takes min and max of whole vectors",
+        "SlabPlanes::of: the CPU's f64 slab test of four boxes picks each axis's near and far row once per \
+         ray; WGSL's enter takes min and max of whole vectors",
     ),
-    ("cpu/bvh.rs", "prefetch_contents", "a CPU cache hint for the walk's next node pairs and leaves; WGSL has none"),
-    ("cpu/bvh.rs", "walk", "traverse's loop over its reused per-thread stack; WGSL's stack is a local array"),
+    ("cpu/bvh.rs", "enter_scalar", "SlabPlanes::enter without SSE2, and its test reference; WGSL has one enter"),
+    ("cpu/bvh.rs", "prefetch", "a CPU cache hint for the nodes and leaves the walk takes next; WGSL has none"),
+    (
+        "cpu/bvh.rs",
+        "run",
+        "traverse's loop over the wide nodes (bvh::WideNode) with its reused per-thread stack; the GPU walks \
+         the binary nodes they are collapsed from, with its stack in a local array",
+    ),
     (
         "cpu/bvh.rs",
         "traverse",
@@ -164,7 +171,7 @@ const CPU_ONLY: [(&str, &str, &str); 10] = [
 
 /// Structs only the GPU side has, and why.
 const GPU_ONLY_STRUCTS: [(&str, &str, &str); 8] = [
-    ("bvh.wgsl", "NodeStack", "the CPU walk's Vec<(u32, f64)>: WGSL has no Vec, so a fixed array with its length"),
+    ("bvh.wgsl", "NodeStack", "the CPU walk's Vec<Pending>: WGSL has no Vec, so a fixed array with its length"),
     ("intersect.wgsl", "MaybeT", "WGSL has no Option: a flag beside the value"),
     ("intersect.wgsl", "SphereRoots", "WGSL has no Option<(f64, f64)>: a flag beside the roots"),
     ("intersect.wgsl", "TriangleHit", "WGSL has no Option<(t, bu, bv)>: a flag beside the hit"),
@@ -175,13 +182,19 @@ const GPU_ONLY_STRUCTS: [(&str, &str, &str); 8] = [
 ];
 
 /// Structs only the CPU side has, and why.
-const CPU_ONLY_STRUCTS: [(&str, &str, &str); 7] = [
+const CPU_ONLY_STRUCTS: [(&str, &str, &str); 9] = [
     (
         "cpu/bvh.rs",
         "SlabPlanes",
-        "SlabRay with each axis's near and far plane chosen once per ray, for the CPU's scalar f64 loop; \
-         WGSL's enter works on whole vectors",
+        "SlabRay with each axis's near and far row chosen once per ray, for the CPU's test of a wide node's \
+         four boxes; WGSL's enter works on whole vectors",
     ),
+    (
+        "cpu/bvh.rs",
+        "Pending",
+        "an entry of the CPU walk's stack, a wide node or a leaf with its entry distance; NodeStack's on the GPU",
+    ),
+    ("cpu/bvh.rs", "Walk", "what the CPU's loop over the wide nodes reads; WGSL reads bindings"),
     (
         "cpu/bvh.rs",
         "Crossing",

@@ -14,8 +14,10 @@ use crate::huge_pages::HugePaged;
 use crate::layout::{GpuSphere, GpuTriangle};
 
 mod build;
+mod wide;
 
 pub use build::build;
+pub use wide::{WIDTH, WideNode};
 
 /// The bounded primitives a hierarchy is built over, as the flat scene stores them.
 #[derive(Clone, Copy, Debug)]
@@ -51,11 +53,21 @@ pub struct NodePair([BvhNode; 2]);
 /// in cache-line-aligned pairs, so that the two children a traversal step tests are one line
 /// to fetch (an `Arc<[BvhNode]>`'s data sits 32 bytes into its allocation, which put every
 /// sibling pair across two lines), in memory advised for huge pages. Reads as `[BvhNode]`.
-#[derive(Clone, Debug, Default, PartialEq)]
+#[derive(Clone, Debug, Default)]
 pub struct BvhNodes {
     pairs: Arc<HugePaged<NodePair>>,
     len: usize,
     depth: u32,
+    /// The CPU walk's wide form, made at its first use (`wide`): a scene only the GPU traces
+    /// (the viewer's rebased copies) never pays for it.
+    wide: Arc<std::sync::OnceLock<HugePaged<WideNode>>>,
+}
+
+/// Derived data: equal when the binary nodes are.
+impl PartialEq for BvhNodes {
+    fn eq(&self, other: &Self) -> bool {
+        self.len == other.len && self.pairs == other.pairs && self.depth == other.depth
+    }
 }
 
 impl BvhNodes {
@@ -69,7 +81,12 @@ impl BvhNodes {
                 *pair = NodePair([c[0], c.get(1).copied().unwrap_or_default()]);
             }
         });
-        Self { pairs: Arc::new(pairs), len: nodes.len(), depth }
+        Self { pairs: Arc::new(pairs), len: nodes.len(), depth, wide: Arc::default() }
+    }
+
+    /// The tree collapsed into wide nodes (`wide::collapse`), made once and shared by clones.
+    pub fn wide(&self) -> &[WideNode] {
+        self.wide.get_or_init(|| wide::collapse(self))
     }
 
     /// Edges from the root to the deepest leaf (0 for a lone leaf or no tree): a walk that
@@ -313,6 +330,12 @@ mod tests {
             out.tri(a, b, c);
         }
         out
+    }
+
+    /// The binary nodes of a pseudo-random scene of about `n` primitives.
+    pub(crate) fn built_tree(n: usize) -> Vec<BvhNode> {
+        let sc = scene(n / 10, n - n / 10);
+        build(&sc.bounded()).nodes
     }
 
     /// Checks the invariants; returns the number of leaves.

@@ -235,6 +235,7 @@ pub fn sum_by_magnitude(a: f64, b: f64, c: f64) -> f64 {
 
 /// Watertight ray/triangle test (Woop, Benthin & Wald, JCGT 2013): edges shared by two
 /// triangles are never missed by both. Returns (t, bu, bv); degenerate triangles never hit.
+#[inline]
 pub fn intersect_triangle(
     va: DVec3,
     vb: DVec3,
