@@ -319,26 +319,38 @@ impl Walk<'_> {
                 Some(p) => p.enter(node, lo, t_hi + slab.slack(t_hi)),
                 None => std::array::from_fn(|l| slab.enter(node.child_box(l), t_min, t_hi).unwrap_or(f64::INFINITY)),
             };
-            // The entered columns, nearest first (an insertion sort of at most four).
-            let mut entered = [Pending { first: 0, count: 0, t: 0.0 }; WIDTH];
-            let mut n = 0;
-            for (l, &t) in t.iter().enumerate() {
-                if t == f64::INFINITY {
-                    continue;
+            // The entered columns as bits (no branch per column: which are entered is the
+            // least predictable thing in the walk), then the nearest taken and the others
+            // pushed, farthest first.
+            let entered = t.iter().enumerate().fold(0u32, |m, (l, &t)| m | (u32::from(t < f64::INFINITY) << l));
+            let pending = |l: usize| Pending { first: node.first[l], count: node.count[l], t: t[l] };
+            match entered.count_ones() {
+                0 => {}
+                1 => {
+                    let p = pending(entered.trailing_zeros() as usize);
+                    self.prefetch(&p);
+                    current = Some(p);
                 }
-                let p = Pending { first: node.first[l], count: node.count[l], t };
-                self.prefetch(&p);
-                let mut at = n;
-                while at > 0 && entered[at - 1].t > p.t {
-                    entered[at] = entered[at - 1];
-                    at -= 1;
+                _ => {
+                    // An insertion sort of at most four.
+                    let mut sorted = [Pending { first: 0, count: 0, t: 0.0 }; WIDTH];
+                    let mut n = 0;
+                    let mut bits = entered;
+                    while bits != 0 {
+                        let p = pending(bits.trailing_zeros() as usize);
+                        bits &= bits - 1;
+                        self.prefetch(&p);
+                        let mut at = n;
+                        while at > 0 && sorted[at - 1].t > p.t {
+                            sorted[at] = sorted[at - 1];
+                            at -= 1;
+                        }
+                        sorted[at] = p;
+                        n += 1;
+                    }
+                    stack.extend(sorted[1..n].iter().rev());
+                    current = Some(sorted[0]);
                 }
-                entered[at] = p;
-                n += 1;
-            }
-            if n > 0 {
-                stack.extend(entered[1..n].iter().rev());
-                current = Some(entered[0]);
             }
         }
     }

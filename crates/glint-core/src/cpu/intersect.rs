@@ -235,7 +235,7 @@ pub fn sum_by_magnitude(a: f64, b: f64, c: f64) -> f64 {
 
 /// Watertight ray/triangle test (Woop, Benthin & Wald, JCGT 2013): edges shared by two
 /// triangles are never missed by both. Returns (t, bu, bv); degenerate triangles never hit.
-#[inline]
+#[inline(always)]
 pub fn intersect_triangle(
     va: DVec3,
     vb: DVec3,
@@ -247,9 +247,10 @@ pub fn intersect_triangle(
 ) -> Option<(f64, f64, f64)> {
     let RayShear { kx, ky, kz, s } = *shear;
     let (sx, sy, sz) = (s.x, s.y, s.z);
-    let a = va - ray.origin;
-    let b = vb - ray.origin;
-    let c = vc - ray.origin;
+    // Arrays, not DVec3: indexing a DVec3 by a run-time axis is a branch per access.
+    let a = (va - ray.origin).to_array();
+    let b = (vb - ray.origin).to_array();
+    let c = (vc - ray.origin).to_array();
     let ax = a[kx] - sx * a[kz];
     let ay = a[ky] - sy * a[kz];
     let bx = b[kx] - sx * b[kz];
