@@ -201,9 +201,9 @@ pub fn render_estimate(desc: &SceneDesc, settings: &RenderSettings, plan: Render
     let encoded = size(pixels, if plan.exr { 24 } else { 6 });
     if plan.cpu {
         e.add("CPU image", image);
-        // The walk's wide nodes (`BvhNodes::wide`), made at the first CPU trace: 0.154 a
-        // triangle on `bumpy`; a quarter per primitive allows for leaves of fewer primitives.
-        e.add("CPU walk's wide nodes", size(bounded, size_of::<WideNode>() / 4));
+        // The walk's wide nodes (`BvhNodes::wide`), made at the first CPU trace: 0.103 a
+        // triangle on `bumpy`; an eighth per primitive allows for leaves of fewer primitives.
+        e.add("CPU walk's wide nodes", size(bounded, size_of::<WideNode>() / 8));
     }
     if plan.gpu {
         e.add("GPU device", GPU_DEVICE_BYTES);

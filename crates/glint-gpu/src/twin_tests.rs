@@ -141,7 +141,7 @@ const CPU_ONLY: [(&str, &str, &str); 11] = [
     (
         "cpu/bvh.rs",
         "of",
-        "SlabPlanes::of: the CPU's f64 slab test of four boxes picks each axis's near and far row once per \
+        "SlabPlanes::of: the CPU's f64 slab test of a wide node's boxes picks each axis's near and far row once per \
          ray; WGSL's enter takes min and max of whole vectors",
     ),
     ("cpu/bvh.rs", "enter_scalar", "SlabPlanes::enter without SSE2, and its test reference; WGSL has one enter"),
@@ -187,7 +187,7 @@ const CPU_ONLY_STRUCTS: [(&str, &str, &str); 9] = [
         "cpu/bvh.rs",
         "SlabPlanes",
         "SlabRay with each axis's near and far row chosen once per ray, for the CPU's test of a wide node's \
-         four boxes; WGSL's enter works on whole vectors",
+         boxes; WGSL's enter works on whole vectors",
     ),
     (
         "cpu/bvh.rs",

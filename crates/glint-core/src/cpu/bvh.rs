@@ -24,6 +24,10 @@ use crate::bvh::{BvhNode, PrimRef, WIDTH, WideNode};
 use crate::flat::Corners;
 use crate::layout::feature;
 
+/// Pairs of columns of a wide node: the f64 vectors of SSE2 hold two.
+const PAIRS: usize = WIDTH / 2;
+const _: () = assert!(WIDTH.is_multiple_of(4), "the vector slab test reads a row four columns at a time");
+
 /// Relative padding of a box in the slab test, against the scale of the box and the ray origin:
 /// many orders of magnitude above the f64 rounding error of the primitive tests and of the slab
 /// arithmetic, so a box is never rejected when a primitive inside it would be hit.
@@ -153,33 +157,37 @@ impl SlabPlanes {
         };
         // SAFETY: SSE2 is part of x86_64's baseline, and these intrinsics touch no memory.
         unsafe {
-            // The two halves (columns 0-1, 2-3) of a bounds row, widened to f64.
-            let row = |r: usize| -> [__m128d; 2] {
-                let v: __m128 = bytemuck::cast(node.bounds[r.min(5)]);
-                [_mm_cvtps_pd(v), _mm_cvtps_pd(_mm_movehl_ps(v, v))]
+            // A bounds row, widened to f64, two columns a vector.
+            let row = |r: usize| -> [__m128d; PAIRS] {
+                let row = &node.bounds[r.min(5)];
+                std::array::from_fn(|p| {
+                    let c = p / 2 * 4;
+                    let four: __m128 = bytemuck::cast([row[c], row[c + 1], row[c + 2], row[c + 3]]);
+                    if p % 2 == 0 { _mm_cvtps_pd(four) } else { _mm_cvtps_pd(_mm_movehl_ps(four, four)) }
+                })
             };
-            let mut t0 = [_mm_set1_pd(f64::NEG_INFINITY); 2];
-            let mut t1 = [_mm_set1_pd(f64::INFINITY); 2];
+            let mut t0 = [_mm_set1_pd(f64::NEG_INFINITY); PAIRS];
+            let mut t1 = [_mm_set1_pd(f64::INFINITY); PAIRS];
             for k in 0..3 {
                 let (near, far) = (row(self.near[k]), row(self.far[k]));
                 let (o_near, o_far, inv) =
                     (_mm_set1_pd(self.o_near[k]), _mm_set1_pd(self.o_far[k]), _mm_set1_pd(self.inv[k]));
-                for h in 0..2 {
-                    t0[h] = _mm_max_pd(t0[h], _mm_mul_pd(_mm_sub_pd(near[h], o_near), inv));
-                    t1[h] = _mm_min_pd(t1[h], _mm_mul_pd(_mm_sub_pd(far[h], o_far), inv));
+                for p in 0..PAIRS {
+                    t0[p] = _mm_max_pd(t0[p], _mm_mul_pd(_mm_sub_pd(near[p], o_near), inv));
+                    t1[p] = _mm_min_pd(t1[p], _mm_mul_pd(_mm_sub_pd(far[p], o_far), inv));
                 }
             }
             let (lo, hi, grow, none) =
                 (_mm_set1_pd(lo), _mm_set1_pd(hi), _mm_set1_pd(1.0 + 2.0 * GAMMA3), _mm_set1_pd(f64::INFINITY));
-            let half = |h: usize| {
-                let t1 = _mm_mul_pd(t1[h], grow);
+            let mut out = [f64::INFINITY; WIDTH];
+            for p in 0..PAIRS {
+                let t1 = _mm_mul_pd(t1[p], grow);
                 let entered =
-                    _mm_and_pd(_mm_and_pd(_mm_cmple_pd(t0[h], t1), _mm_cmple_pd(t0[h], hi)), _mm_cmple_pd(lo, t1));
-                let t = _mm_or_pd(_mm_and_pd(entered, t0[h]), _mm_andnot_pd(entered, none));
-                bytemuck::cast::<__m128d, [f64; 2]>(t)
-            };
-            let (a, b) = (half(0), half(1));
-            [a[0], a[1], b[0], b[1]]
+                    _mm_and_pd(_mm_and_pd(_mm_cmple_pd(t0[p], t1), _mm_cmple_pd(t0[p], hi)), _mm_cmple_pd(lo, t1));
+                let t = _mm_or_pd(_mm_and_pd(entered, t0[p]), _mm_andnot_pd(entered, none));
+                [out[2 * p], out[2 * p + 1]] = bytemuck::cast::<__m128d, [f64; 2]>(t);
+            }
+            out
         }
     }
 
@@ -332,7 +340,7 @@ impl Walk<'_> {
                     current = Some(p);
                 }
                 _ => {
-                    // An insertion sort of at most four.
+                    // An insertion sort of at most `WIDTH`.
                     let mut sorted = [Pending { first: 0, count: 0, t: 0.0 }; WIDTH];
                     let mut n = 0;
                     let mut bits = entered;
