@@ -8,6 +8,7 @@
 //! The GPU walks the binary nodes (`BvhNodes`), which this is made from.
 
 use bytemuck::{Pod, Zeroable};
+use rayon::prelude::*;
 
 use super::BvhNode;
 use crate::huge_pages::HugePaged;
@@ -73,15 +74,42 @@ impl WideNode {
 /// largest surface area while that keeps it within `WIDTH` (a large box is the one rays most
 /// often enter, so it is the step most worth saving). A root that is a leaf becomes a wide node
 /// holding that leaf. None for an empty tree. Children that are wide nodes are numbered in the
-/// order they are made, depth first, so a subtree's nodes are neighbours in memory.
+/// order they are made, depth first, so a subtree's nodes are neighbours in memory. The root's
+/// subtrees are collapsed in parallel, each into an array of its own, and appended in order.
 pub fn collapse(nodes: &[BvhNode]) -> HugePaged<WideNode> {
-    let mut out = Vec::with_capacity(nodes.len() / 3 + 1);
-    if let Some(root) = nodes.first() {
-        out.push(WideNode::EMPTY);
-        let children = if root.count > 0 { Children::one(*root) } else { adopted(nodes, root) };
-        fill(nodes, &children, 0, &mut out);
+    let Some(root) = nodes.first() else { return HugePaged::default() };
+    let children = if root.count > 0 { Children::one(*root) } else { adopted(nodes, root) };
+    let subtrees: Vec<Vec<WideNode>> = children
+        .as_slice()
+        .par_iter()
+        .filter(|c| c.count == 0)
+        .map(|c| {
+            let mut out = vec![WideNode::EMPTY];
+            fill(nodes, &adopted(nodes, c), 0, &mut out);
+            out
+        })
+        .collect();
+    let mut top = WideNode::over(children.as_slice());
+    let mut at = 1;
+    let inner = (0..children.len).filter(|&lane| children.nodes[lane].count == 0);
+    for (lane, subtree) in inner.zip(&subtrees) {
+        top.first[lane] = at as u32;
+        at += subtree.len();
     }
-    HugePaged::new(out.len(), |items| items.copy_from_slice(&out))
+    HugePaged::new(at, |out| {
+        out[0] = top;
+        let mut start = 1;
+        for subtree in &subtrees {
+            let shift = start as u32;
+            for (slot, node) in out[start..start + subtree.len()].iter_mut().zip(subtree) {
+                *slot = *node;
+                for lane in (0..WIDTH).filter(|&l| node.used(l) && node.count[l] == 0) {
+                    slot.first[lane] += shift;
+                }
+            }
+            start += subtree.len();
+        }
+    })
 }
 
 /// Up to `WIDTH` binary nodes, the children of a wide node (an array, not a `Vec`: one is made
