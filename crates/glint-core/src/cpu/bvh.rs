@@ -364,7 +364,7 @@ impl Walk<'_> {
     }
 
     /// Asks for what the walk reads when it takes `p`, while it still sorts and pushes the
-    /// other children: a wide node's two lines, or a leaf's references and triangle corners.
+    /// other children: a wide node's lines, or a leaf's references and triangle corners.
     /// Incoherent rays spend most of the walk waiting for memory, and this overlaps the wait
     /// with the work of a step. A hint only: no effect on results, and none at all off x86_64.
     #[inline(always)]
@@ -378,9 +378,11 @@ impl Walk<'_> {
             // program, whatever the address (here ones inside the arrays for a valid tree).
             let prefetch = |p: *const u8| unsafe { _mm_prefetch::<_MM_HINT_T0>(p.cast()) };
             if p.count == 0 {
+                // Every line of the node (aligned to them).
                 let node = self.nodes.as_ptr().wrapping_add(first).cast::<u8>();
-                prefetch(node);
-                prefetch(node.wrapping_add(64));
+                for offset in (0..size_of::<WideNode>()).step_by(64) {
+                    prefetch(node.wrapping_add(offset));
+                }
                 return;
             }
             prefetch(self.prims.as_ptr().wrapping_add(first).cast());
