@@ -134,9 +134,8 @@ impl Children {
 /// The binary nodes a wide node over interior node `node` holds.
 fn adopted(nodes: &[BvhNode], node: &BvhNode) -> Children {
     let pair = |n: &BvhNode| [nodes[n.left_first as usize], nodes[n.left_first as usize + 1]];
-    let mut children = Children::one(BvhNode::default());
+    let mut children = Children { nodes: [BvhNode::default(); WIDTH], len: 2 };
     [children.nodes[0], children.nodes[1]] = pair(node);
-    children.len = 2;
     while children.len < WIDTH {
         let widest = children
             .as_slice()
