@@ -182,7 +182,7 @@ const GPU_ONLY_STRUCTS: [(&str, &str, &str); 8] = [
 ];
 
 /// Structs only the CPU side has, and why.
-const CPU_ONLY_STRUCTS: [(&str, &str, &str); 9] = [
+const CPU_ONLY_STRUCTS: [(&str, &str, &str); 10] = [
     (
         "cpu/bvh.rs",
         "SlabPlanes",
@@ -195,6 +195,11 @@ const CPU_ONLY_STRUCTS: [(&str, &str, &str); 9] = [
         "an entry of the CPU walk's stack, a wide node or a leaf with its entry distance; NodeStack's on the GPU",
     ),
     ("cpu/bvh.rs", "Walk", "what the CPU's loop over the wide nodes reads; WGSL reads bindings"),
+    (
+        "cpu/bvh.rs",
+        "Entered",
+        "a wide node's eight entry distances with their mask; the GPU's binary walk has two MaybeT",
+    ),
     (
         "cpu/bvh.rs",
         "Crossing",

@@ -142,7 +142,8 @@ impl SlabPlanes {
 
     /// `SlabRay::enter` on every column of `node` at once, with its bounds already widened by
     /// the slack: per column, the entry distance if the ray meets the padded box with t0 ≤ `hi`
-    /// and t1 ≥ `lo`, else +∞ (an unused column's empty box is never met). The arithmetic of
+    /// and t1 ≥ `lo`, else +∞ (an unused column's empty box is never met), and the entered
+    /// columns as bits (read off the comparison, not the distances). The arithmetic of
     /// `enter` lane by lane; on x86_64 in SSE2 vectors (x86_64's baseline), which give the
     /// same values as the scalar form (`enter_scalar`, tested against it): the same IEEE
     /// operations per lane, and max/min that differ from the comparisons only in the sign of a
@@ -150,10 +151,10 @@ impl SlabPlanes {
     #[cfg(target_arch = "x86_64")]
     #[inline(always)]
     #[allow(unsafe_code)] // reason: SSE2 intrinsics are `unsafe` only for their target-feature attribute.
-    fn enter(&self, node: &WideNode, lo: f64, hi: f64) -> [f64; WIDTH] {
+    fn enter(&self, node: &WideNode, lo: f64, hi: f64) -> Entered {
         use std::arch::x86_64::{
             __m128, __m128d, _mm_and_pd, _mm_andnot_pd, _mm_cmple_pd, _mm_cvtps_pd, _mm_max_pd, _mm_min_pd,
-            _mm_movehl_ps, _mm_mul_pd, _mm_or_pd, _mm_set1_pd, _mm_sub_pd,
+            _mm_movehl_ps, _mm_movemask_pd, _mm_mul_pd, _mm_or_pd, _mm_set1_pd, _mm_sub_pd,
         };
         // SAFETY: SSE2 is part of x86_64's baseline, and these intrinsics touch no memory.
         unsafe {
@@ -179,13 +180,14 @@ impl SlabPlanes {
             }
             let (lo, hi, grow, none) =
                 (_mm_set1_pd(lo), _mm_set1_pd(hi), _mm_set1_pd(1.0 + 2.0 * GAMMA3), _mm_set1_pd(f64::INFINITY));
-            let mut out = [f64::INFINITY; WIDTH];
+            let mut out = Entered { t: [f64::INFINITY; WIDTH], mask: 0 };
             for p in 0..PAIRS {
                 let t1 = _mm_mul_pd(t1[p], grow);
                 let entered =
                     _mm_and_pd(_mm_and_pd(_mm_cmple_pd(t0[p], t1), _mm_cmple_pd(t0[p], hi)), _mm_cmple_pd(lo, t1));
                 let t = _mm_or_pd(_mm_and_pd(entered, t0[p]), _mm_andnot_pd(entered, none));
-                [out[2 * p], out[2 * p + 1]] = bytemuck::cast::<__m128d, [f64; 2]>(t);
+                [out.t[2 * p], out.t[2 * p + 1]] = bytemuck::cast::<__m128d, [f64; 2]>(t);
+                out.mask |= (_mm_movemask_pd(entered) as u32) << (2 * p);
             }
             out
         }
@@ -195,7 +197,7 @@ impl SlabPlanes {
     /// form is tested against.
     #[cfg_attr(target_arch = "x86_64", allow(dead_code, reason = "the x86_64 walk's test reference"))]
     #[inline(always)]
-    fn enter_scalar(&self, node: &WideNode, lo: f64, hi: f64) -> [f64; WIDTH] {
+    fn enter_scalar(&self, node: &WideNode, lo: f64, hi: f64) -> Entered {
         let mut t0 = [f64::NEG_INFINITY; WIDTH];
         let mut t1 = [f64::INFINITY; WIDTH];
         for k in 0..3 {
@@ -213,16 +215,34 @@ impl SlabPlanes {
                 }
             }
         }
-        std::array::from_fn(|l| {
+        Entered::of(std::array::from_fn(|l| {
             let t1 = t1[l] * (1.0 + 2.0 * GAMMA3);
             if t0[l] <= t1 && t0[l] <= hi && t1 >= lo { t0[l] } else { f64::INFINITY }
-        })
+        }))
     }
 
     #[cfg(not(target_arch = "x86_64"))]
     #[inline(always)]
-    fn enter(&self, node: &WideNode, lo: f64, hi: f64) -> [f64; WIDTH] {
+    fn enter(&self, node: &WideNode, lo: f64, hi: f64) -> Entered {
         self.enter_scalar(node, lo, hi)
+    }
+}
+
+/// What a step's slab test gives for the columns of a wide node: the entry distances (+∞ for
+/// a column not entered) and the entered columns as bits, the walk's least predictable value,
+/// so it branches on their number rather than column by column.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Entered {
+    t: [f64; WIDTH],
+    mask: u32,
+}
+
+impl Entered {
+    /// From the distances alone.
+    #[inline(always)]
+    fn of(t: [f64; WIDTH]) -> Self {
+        let mask = t.iter().enumerate().fold(0u32, |m, (l, &t)| m | (u32::from(t < f64::INFINITY) << l));
+        Self { t, mask }
     }
 }
 
@@ -263,13 +283,22 @@ fn traverse(
     let nodes = &ctx.scene.bvh_nodes;
     let Some(root) = nodes.first() else { return true };
     let slab = SlabRay::new(ray, root);
-    if slab.enter((root.min, root.max), t_min, limit()).is_none() {
+    let planes = SlabPlanes::of(&slab);
+    // The vector test of the wide root's children rejects a ray that misses the scene, so the
+    // root's own box is tested only where there is no vector test.
+    if planes.is_none() && slab.enter((root.min, root.max), t_min, limit()).is_none() {
         return true;
     }
     // Taken, not borrowed: a traversal started inside `visit` gets a stack of its own.
     let mut stack = STACK.take();
     stack.clear();
-    let walk = Walk { slab: &slab, nodes: nodes.wide(), prims: &ctx.scene.bvh_prims, corners: ctx.leaf_corners };
+    let walk = Walk {
+        slab: &slab,
+        planes: planes.as_ref(),
+        nodes: nodes.wide(),
+        prims: &ctx.scene.bvh_prims,
+        corners: ctx.leaf_corners,
+    };
     let passed = walk.run(&mut stack, t_min, &mut limit, &mut visit);
     STACK.set(stack);
     passed
@@ -278,13 +307,14 @@ fn traverse(
 /// What `traverse`'s loop reads.
 struct Walk<'a> {
     slab: &'a SlabRay,
+    planes: Option<&'a SlabPlanes>,
     nodes: &'a [WideNode],
     prims: &'a [u32],
     corners: Option<&'a [Corners]>,
 }
 
 impl Walk<'_> {
-    /// The loop of `traverse`, from the wide root (whose box the ray enters). Of the children
+    /// The loop of `traverse`, from the wide root. Of the children
     /// a step enters, the nearest is taken at once and the others pushed, farthest first; an
     /// entry popped is skipped when a hit found since it was pushed is nearer than its box.
     fn run(
@@ -295,7 +325,6 @@ impl Walk<'_> {
         visit: &mut impl FnMut(usize, u32) -> bool,
     ) -> bool {
         let slab = self.slab;
-        let planes = SlabPlanes::of(slab);
         let lo = t_min - slab.slack(t_min);
         let mut current = Some(Pending { first: 0, count: 0, t: 0.0 });
         loop {
@@ -323,43 +352,42 @@ impl Walk<'_> {
             }
             let node = &self.nodes[next.first as usize];
             let t_hi = limit();
-            let t = match &planes {
+            let Entered { t, mask: entered } = match self.planes {
                 Some(p) => p.enter(node, lo, t_hi + slab.slack(t_hi)),
-                None => std::array::from_fn(|l| slab.enter(node.child_box(l), t_min, t_hi).unwrap_or(f64::INFINITY)),
+                None => Entered::of(std::array::from_fn(|l| {
+                    slab.enter(node.child_box(l), t_min, t_hi).unwrap_or(f64::INFINITY)
+                })),
             };
-            // The entered columns as bits (no branch per column: which are entered is the
-            // least predictable thing in the walk), then the nearest taken and the others
-            // pushed, farthest first.
-            let entered = t.iter().enumerate().fold(0u32, |m, (l, &t)| m | (u32::from(t < f64::INFINITY) << l));
+            // The nearest entered child taken, the others pushed, farthest first. No, one or
+            // several children: bit tests, not `count_ones` (x86_64's baseline has no popcnt).
             let pending = |l: usize| Pending { first: node.first[l], count: node.count[l], t: t[l] };
-            match entered.count_ones() {
-                0 => {}
-                1 => {
-                    let p = pending(entered.trailing_zeros() as usize);
-                    self.prefetch(&p);
-                    current = Some(p);
-                }
-                _ => {
-                    // An insertion sort of at most `WIDTH`.
-                    let mut sorted = [Pending { first: 0, count: 0, t: 0.0 }; WIDTH];
-                    let mut n = 0;
-                    let mut bits = entered;
-                    while bits != 0 {
-                        let p = pending(bits.trailing_zeros() as usize);
-                        bits &= bits - 1;
-                        self.prefetch(&p);
-                        let mut at = n;
-                        while at > 0 && sorted[at - 1].t > p.t {
-                            sorted[at] = sorted[at - 1];
-                            at -= 1;
-                        }
-                        sorted[at] = p;
-                        n += 1;
-                    }
-                    stack.extend(sorted[1..n].iter().rev());
-                    current = Some(sorted[0]);
-                }
+            if entered == 0 {
+                continue;
             }
+            if entered & (entered - 1) == 0 {
+                let p = pending(entered.trailing_zeros() as usize);
+                self.prefetch(&p);
+                current = Some(p);
+                continue;
+            }
+            // An insertion sort of at most `WIDTH`.
+            let mut sorted = [Pending { first: 0, count: 0, t: 0.0 }; WIDTH];
+            let mut n = 0;
+            let mut bits = entered;
+            while bits != 0 {
+                let p = pending(bits.trailing_zeros() as usize);
+                bits &= bits - 1;
+                self.prefetch(&p);
+                let mut at = n;
+                while at > 0 && sorted[at - 1].t > p.t {
+                    sorted[at] = sorted[at - 1];
+                    at -= 1;
+                }
+                sorted[at] = p;
+                n += 1;
+            }
+            stack.extend(sorted[1..n].iter().rev());
+            current = Some(sorted[0]);
         }
     }
 
@@ -568,14 +596,16 @@ mod tests {
         let t = planes.enter(&wide, lo, hi);
         for (lane, (name, entered)) in [("behind", false), ("around", true), ("ahead", true)].into_iter().enumerate() {
             assert_eq!(slab.enter(wide.child_box(lane), t_min, FAR).is_some(), entered, "{name}: SlabRay::enter");
-            assert_eq!(t[lane] < f64::INFINITY, entered, "{name}: SlabPlanes::enter");
+            assert_eq!(t.t[lane] < f64::INFINITY, entered, "{name}: SlabPlanes::enter");
+            assert_eq!(t.mask & (1 << lane) != 0, entered, "{name}: SlabPlanes::enter's mask");
         }
-        assert_eq!(t[3], f64::INFINITY, "an unused column was entered");
+        assert_eq!(t.t[3], f64::INFINITY, "an unused column was entered");
+        assert_eq!(t.mask, 0b110, "the mask is not the entered columns");
         assert!(slab.enter(wide.child_box(3), t_min, FAR).is_none(), "an unused column was entered");
         // A box whose far face the ray leaves exactly at t_min is still entered (conservative).
         let ends_at_origin = node([-1.0; 3], [0.0; 3]);
         assert!(slab.enter((ends_at_origin.min, ends_at_origin.max), 0.0, FAR).is_some());
-        assert!(planes.enter(&WideNode::over(&[ends_at_origin]), -slab.slack(0.0), hi)[0] < f64::INFINITY);
+        assert_eq!(planes.enter(&WideNode::over(&[ends_at_origin]), -slab.slack(0.0), hi).mask, 1);
     }
 
     /// The vector slab test gives the scalar one's distances (equal as f64: a zero's sign may
@@ -618,7 +648,8 @@ mod tests {
                 let (lo, hi) = (t_min - slab.slack(t_min), t_hi + slab.slack(t_hi));
                 let (v, s) = (planes.enter(&wide, lo, hi), planes.enter_scalar(&wide, lo, hi));
                 assert_eq!(v, s, "ray {ray:?} boxes {boxes:?} [{t_min}, {t_hi}]");
-                entered += v.iter().filter(|t| **t < f64::INFINITY).count();
+                assert_eq!(v, Entered::of(v.t), "the mask is not the entered columns: {v:?}");
+                entered += v.t.iter().filter(|t| **t < f64::INFINITY).count();
                 checked += boxes.len();
             }
         }
