@@ -136,15 +136,8 @@ const GPU_ONLY: [(&str, &str, &str); 23] = [
 ];
 
 /// Functions only the CPU side has, and why.
-const CPU_ONLY: [(&str, &str, &str); 11] = [
+const CPU_ONLY: [(&str, &str, &str); 9] = [
     ("cpu/bvh.rs", "new", "SlabRay::new; WGSL builds it in slab_ray (no methods)"),
-    (
-        "cpu/bvh.rs",
-        "of",
-        "SlabPlanes::of: the CPU's f64 slab test of a wide node's boxes picks each axis's near and far row once per \
-         ray; WGSL's enter takes min and max of whole vectors",
-    ),
-    ("cpu/bvh.rs", "enter_scalar", "SlabPlanes::enter without SSE2, and its test reference; WGSL has one enter"),
     ("cpu/bvh.rs", "prefetch", "a CPU cache hint for the nodes and leaves the walk takes next; WGSL has none"),
     (
         "cpu/bvh.rs",
@@ -182,24 +175,13 @@ const GPU_ONLY_STRUCTS: [(&str, &str, &str); 8] = [
 ];
 
 /// Structs only the CPU side has, and why.
-const CPU_ONLY_STRUCTS: [(&str, &str, &str); 10] = [
-    (
-        "cpu/bvh.rs",
-        "SlabPlanes",
-        "SlabRay with each axis's near and far row chosen once per ray, for the CPU's test of a wide node's \
-         boxes; WGSL's enter works on whole vectors",
-    ),
+const CPU_ONLY_STRUCTS: [(&str, &str, &str); 8] = [
     (
         "cpu/bvh.rs",
         "Pending",
         "an entry of the CPU walk's stack, a wide node or a leaf with its entry distance; NodeStack's on the GPU",
     ),
     ("cpu/bvh.rs", "Walk", "what the CPU's loop over the wide nodes reads; WGSL reads bindings"),
-    (
-        "cpu/bvh.rs",
-        "Entered",
-        "a wide node's eight entry distances with their mask; the GPU's binary walk has two MaybeT",
-    ),
     (
         "cpu/bvh.rs",
         "Crossing",
@@ -243,7 +225,7 @@ fn structs(source: &str) -> BTreeMap<String, Vec<String>> {
                 out.insert(std::mem::take(name), std::mem::take(fields));
                 current = None;
             } else if !(t.starts_with("//") || t.starts_with("#[") || t.is_empty()) {
-                let t = t.strip_prefix("pub ").unwrap_or(t);
+                let t = without_visibility(t);
                 let field: String = t.chars().take_while(|c| c.is_alphanumeric() || *c == '_').collect();
                 if t[field.len()..].trim_start().starts_with(':') {
                     fields.push(field);
@@ -251,7 +233,7 @@ fn structs(source: &str) -> BTreeMap<String, Vec<String>> {
             }
             continue;
         }
-        let t = t.strip_prefix("pub ").unwrap_or(t);
+        let t = without_visibility(t);
         if let Some(rest) = t.strip_prefix("struct ")
             && rest.trim_end().ends_with('{')
         {
@@ -312,6 +294,13 @@ fn struct_parser_reads_fields_of_both_languages() {
     let want = BTreeMap::from([("A".to_string(), vec!["x".to_string(), "y".to_string()])]);
     assert_eq!(structs(wgsl), want);
     assert_eq!(structs(rust), want);
+    // Restricted visibility (a module's items shared with its siblings) reads the same.
+    assert_eq!(structs(&rust.replace("pub struct A", "pub(super) struct A").replace("pub y", "pub(crate) y")), want);
+}
+
+/// A Rust line without its leading visibility (`pub`, `pub(super)`, `pub(crate)`).
+fn without_visibility(t: &str) -> &str {
+    ["pub ", "pub(super) ", "pub(crate) "].iter().find_map(|p| t.strip_prefix(p)).unwrap_or(t)
 }
 
 /// Names declared with `fn` in a source text, before its test module.
@@ -320,7 +309,7 @@ fn functions(source: &str) -> BTreeSet<String> {
     let mut names = BTreeSet::new();
     for line in code.lines() {
         let t = line.trim_start();
-        let t = t.strip_prefix("pub ").unwrap_or(t);
+        let t = without_visibility(t);
         if let Some(rest) = t.strip_prefix("fn ") {
             let name: String = rest.chars().take_while(|c| c.is_alphanumeric() || *c == '_').collect();
             names.insert(name);

@@ -10,6 +10,7 @@ pub mod rng;
 pub mod shade;
 pub mod texture;
 pub mod trace;
+mod wide_slab;
 
 use std::ops::AddAssign;
 
