@@ -177,16 +177,8 @@ fn rays(args: &RaysArgs) -> anyhow::Result<()> {
     }
     // The BVH part of FlatScene::build, on the primitives it flattened, and the CPU walk's
     // wide nodes made from it (at the first CPU trace otherwise).
-    let (built, build_timing) = measure(args.runs, || {
-        Ok(pool.install(|| {
-            timed(|| {
-                let built = bvh::build(&flat.bounded());
-                let nodes = BvhNodes::new(&built.nodes);
-                nodes.wide();
-                built
-            })
-        }))
-    })?;
+    let (built, build_timing) =
+        measure(args.runs, || Ok(pool.install(|| timed(|| BvhNodes::build_for_cpu(&flat.bounded()).0))))?;
     if built.nodes[..] != flat.bvh_nodes[..] || *built.prims != *flat.bvh_prims {
         bail!("the timed BVH build differs from the one FlatScene::build made; the build is not deterministic");
     }

@@ -36,14 +36,7 @@ fn rays(c: &mut Criterion) {
     group.throughput(Throughput::Elements((flat.spheres.len() + flat.triangles.len()) as u64));
     // The build with the collapse into the CPU walk's wide nodes, as `glint bench rays` times it.
     group.bench_function("bvh_build_2threads", |b| {
-        b.iter(|| {
-            pool.install(|| {
-                let built = bvh::build(black_box(&flat.bounded()));
-                let nodes = bvh::BvhNodes::new(&built.nodes);
-                nodes.wide();
-                (built, nodes)
-            })
-        });
+        b.iter(|| pool.install(|| bvh::BvhNodes::build_for_cpu(black_box(&flat.bounded()))));
     });
     for set in RaySet::ALL {
         let rays = set.rays();

@@ -88,7 +88,7 @@ impl std::fmt::Display for Unrepresentable {
 
 /// The sRGB transfer function (IEC 61966-2-1) of a clamped linear value, rounded: the
 /// definition, with a `powf` per value. `linear_to_srgb8` gives the same codes from a table.
-pub fn linear_to_srgb8_by_powf(v: f64) -> u8 {
+fn linear_to_srgb8_by_powf(v: f64) -> u8 {
     let v = clamp_linear(v);
     let s = if v <= 0.003_130_8 { 12.92 * v } else { 1.055 * v.powf(1.0 / 2.4) - 0.055 };
     (s * 255.0 + 0.5) as u8

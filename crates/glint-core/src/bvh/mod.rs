@@ -84,6 +84,15 @@ impl BvhNodes {
         Self { pairs: Arc::new(pairs), len: nodes.len(), depth, wide: Arc::default() }
     }
 
+    /// `build`, stored, and collapsed for the CPU walk: all the hierarchy work a scene's first
+    /// CPU trace has done, as the benchmarks time it.
+    pub fn build_for_cpu(bounded: &Bounded) -> (Bvh, Self) {
+        let built = build(bounded);
+        let nodes = Self::new(&built.nodes);
+        nodes.wide();
+        (built, nodes)
+    }
+
     /// The tree collapsed into wide nodes (`wide::collapse`), made once and shared by clones.
     pub fn wide(&self) -> &[WideNode] {
         self.wide.get_or_init(|| wide::collapse(self))

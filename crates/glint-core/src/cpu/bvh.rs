@@ -123,6 +123,11 @@ struct Pending {
     t: f64,
 }
 
+impl Pending {
+    /// The wide root, where every walk starts (its distance is never read).
+    const ROOT: Self = Self { first: 0, count: 0, t: 0.0 };
+}
+
 thread_local! {
     /// Each worker's traversal stack, reused from ray to ray instead of allocated for each.
     static STACK: std::cell::Cell<Vec<Pending>> = const { std::cell::Cell::new(Vec::new()) };
@@ -171,9 +176,9 @@ struct Walk<'a> {
 }
 
 impl Walk<'_> {
-    /// The loop of `traverse`, from the wide root. Of the children
-    /// a step enters, the nearest is taken at once and the others pushed, farthest first; an
-    /// entry popped is skipped when a hit found since it was pushed is nearer than its box.
+    /// The loop of `traverse`, from the wide root. Of the children a step enters, the nearest
+    /// is taken at once and the others pushed, farthest first; an entry popped is skipped when
+    /// a hit found since it was pushed is nearer than its box.
     fn run(
         &self,
         stack: &mut Vec<Pending>,
@@ -183,7 +188,7 @@ impl Walk<'_> {
     ) -> bool {
         let slab = self.slab;
         let lo = t_min - slab.slack(t_min);
-        let mut current = Some(Pending { first: 0, count: 0, t: 0.0 });
+        let mut current = Some(Pending::ROOT);
         loop {
             let next = match current.take() {
                 Some(p) => p,
@@ -215,7 +220,7 @@ impl Walk<'_> {
                     slab.enter(node.child_box(l), t_min, t_hi).unwrap_or(f64::INFINITY)
                 })),
             };
-            // The nearest entered child taken, the others pushed, farthest first. No, one or
+            // The nearest entered child taken, the others pushed, farthest first. None, one or
             // several children: bit tests, not `count_ones` (x86_64's baseline has no popcnt).
             let pending = |l: usize| Pending { first: node.first[l], count: node.count[l], t: t[l] };
             if entered == 0 {
@@ -228,7 +233,7 @@ impl Walk<'_> {
                 continue;
             }
             // An insertion sort of at most `WIDTH`.
-            let mut sorted = [Pending { first: 0, count: 0, t: 0.0 }; WIDTH];
+            let mut sorted = [Pending::ROOT; WIDTH];
             let mut n = 0;
             let mut bits = entered;
             while bits != 0 {
