@@ -74,7 +74,7 @@ impl SlabRay {
     /// The entry distance of the ray into the (padded) box if it meets it within
     /// [t_lo, t_hi], else `None`.
     #[inline]
-    fn enter(&self, (min, max): ([f32; 3], [f32; 3]), t_lo: f64, t_hi: f64) -> Option<f64> {
+    pub(super) fn enter(&self, (min, max): ([f32; 3], [f32; 3]), t_lo: f64, t_hi: f64) -> Option<f64> {
         let mut t0 = f64::NEG_INFINITY;
         let mut t1 = f64::INFINITY;
         for k in 0..3 {
@@ -429,44 +429,4 @@ pub fn shadow_transmittance(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f6
         }
     }
     tr
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::cpu::intersect::FAR;
-
-    fn node(min: [f32; 3], max: [f32; 3]) -> BvhNode {
-        BvhNode { min, left_first: 0, max, count: 1 }
-    }
-
-    /// With t_hi = FAR (a shadow ray to a directional light, a ray before its first hit) a box
-    /// behind the origin is culled, one around or ahead of it entered, in both slab tests; an
-    /// unused column of a wide node is never entered.
-    #[test]
-    fn a_box_behind_the_origin_is_culled_even_when_the_ray_reaches_far() {
-        let ray = Ray { origin: DVec3::new(0.0, 0.0, 0.0), dir: DVec3::new(0.48, 0.6, 0.64) };
-        let root = node([-10.0; 3], [10.0; 3]);
-        let slab = SlabRay::new(&ray, &root);
-        let planes = SlabPlanes::of(&slab).expect("no axis is parallel to the ray");
-        let behind = node([-2.0; 3], [-1.0; 3]);
-        let around = node([-1.0; 3], [1.0; 3]);
-        let ahead = node([1.0; 3], [2.0; 3]);
-        let t_min = 1e-9;
-        let (lo, hi) = (t_min - slab.slack(t_min), FAR + slab.slack(FAR));
-        let wide = WideNode::over(&[behind, around, ahead]);
-        let t = planes.enter(&wide, lo, hi);
-        for (lane, (name, entered)) in [("behind", false), ("around", true), ("ahead", true)].into_iter().enumerate() {
-            assert_eq!(slab.enter(wide.child_box(lane), t_min, FAR).is_some(), entered, "{name}: SlabRay::enter");
-            assert_eq!(t.t[lane] < f64::INFINITY, entered, "{name}: SlabPlanes::enter");
-            assert_eq!(t.mask & (1 << lane) != 0, entered, "{name}: SlabPlanes::enter's mask");
-        }
-        assert_eq!(t.t[3], f64::INFINITY, "an unused column was entered");
-        assert_eq!(t.mask, 0b110, "the mask is not the entered columns");
-        assert!(slab.enter(wide.child_box(3), t_min, FAR).is_none(), "an unused column was entered");
-        // A box whose far face the ray leaves exactly at t_min is still entered (conservative).
-        let ends_at_origin = node([-1.0; 3], [0.0; 3]);
-        assert!(slab.enter((ends_at_origin.min, ends_at_origin.max), 0.0, FAR).is_some());
-        assert_eq!(planes.enter(&WideNode::over(&[ends_at_origin]), -slab.slack(0.0), hi).mask, 1);
-    }
 }
