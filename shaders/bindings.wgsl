@@ -18,15 +18,16 @@
 @group(0) @binding(9) var<storage, read_write> stats: array<atomic<u32>>;
 // The pixel probe's breakdown (only in the PROBE variant).
 @group(0) @binding(10) var<storage, read_write> probe_out: ProbeRecord;
-// The BVH over spheres and triangles (only with the BVH shader def): nodes, root first, and
+// The BVH over spheres and triangles (only with the BVH shader def): nodes, and
 // what its leaves point into, per primitive reference in leaf order: its triangle's corners a
 // (the reference in w) and b, and in an array of its own corner c, so each binding of a
 // 4-million-triangle mesh fits 128 MiB (glint_core::flat::fill_gpu_leaves). Corners copied
 // into leaf order are three loads a triangle test instead of seven, dependent ones (reference,
 // triangle, vertices), which lavapipe makes lane by lane.
-// A node is read as its two 16-byte words (BvhNode's min, left_first and max, count; bvh.wgsl's
-// load_node): lavapipe fetches a storage buffer lane by lane once per load instruction, and
-// two vec4 loads are fewer than the fields' four.
+// The nodes are the root (a BvhNode) and then one QuantizedPair per interior node, each read
+// as its two 16-byte words (bvh.wgsl's load_node and load_pair): lavapipe fetches a storage
+// buffer lane by lane once per load instruction, and two vec4 loads are fewer than the
+// fields' four or five.
 @group(0) @binding(11) var<storage, read> bvh_nodes: array<array<vec4<u32>, 2>>;
 @group(0) @binding(12) var<storage, read> bvh_leaf_ab: array<array<vec4<u32>, 2>>;
 // Indexed meshes: vertex positions (w = 1), vertex normals beside them (w = 0; one unused

@@ -5,14 +5,15 @@
 //
 // Never misses a hit brute force finds: the slab test pads each box by a relative margin far
 // above f32 rounding; of equal t the smaller (kind, index) in brute force's order wins, so the
-// result does not depend on the visiting order. The stack is fixed (BVH_STACK_SIZE); a
+// result does not depend on the visiting order. Below the root, a node's box is its parent's
+// quantized record of it (glint_core::bvh::QuantizedPair), which only ever holds more. The stack is fixed (BVH_STACK_SIZE); a
 // traversal that needs more raises STATUS_BVH_STACK_OVERFLOW, never silently. Shadow crossings
 // are multiplied in visiting order (the CPU sorts them to be bit-identical to its brute force;
 // the f32 GPU image is compared within the parity thresholds). A leaf's triangles are read from
 // their corners copied in leaf order (bindings.wgsl), as the CPU's are from its own copy.
 #define_import_path glint::bvh
 
-#import glint::scene_data::{BvhNode, PRIM_REF_TRIANGLE, PRIM_REF_INDEX, NODE_REF_COUNT_BITS, STATUS_BVH_STACK_OVERFLOW}
+#import glint::scene_data::{BvhNode, QuantizedPair, PRIM_REF_TRIANGLE, PRIM_REF_INDEX, NODE_REF_COUNT_BITS, PAIR_FIRST_SHIFT, STATUS_BVH_STACK_OVERFLOW}
 #import glint::bindings::{header, planes, spheres, triangles, meshes, bvh_nodes, bvh_leaf_ab, bvh_leaf_c}
 #import glint::ray::{Ray, status}
 #import glint::intersect::{Hit, Leaving, MaybeT, PRIM_NONE, PRIM_SPHERE, PRIM_PLANE, PRIM_TRIANGLE, sphere_roots, intersect_sphere_leaving, intersect_plane, intersect_triangle, ray_shear, cross_surface, all_zero, sphere_transmittance, planes_transmittance, bound, replaces}
@@ -64,10 +65,11 @@ fn slack(s: SlabRay, t: f32) -> f32 {
     return s.pad + BOX_PAD * min(abs(t), 1e30);
 }
 
-// The entry distance into the padded box if the ray meets it within [t_lo, t_hi].
-fn enter(s: SlabRay, node: BvhNode, t_lo: f32, t_hi: f32) -> MaybeT {
-    let lo = node.min - vec3<f32>(s.pad);
-    let hi = node.max + vec3<f32>(s.pad);
+// The entry distance into the padded box from lower to upper if the ray meets it within
+// [t_lo, t_hi].
+fn enter(s: SlabRay, lower: vec3<f32>, upper: vec3<f32>, t_lo: f32, t_hi: f32) -> MaybeT {
+    let lo = lower - vec3<f32>(s.pad);
+    let hi = upper + vec3<f32>(s.pad);
     let outside = any(s.parallel & ((s.origin < lo) | (s.origin > hi)));
     let a = (lo - s.origin) * s.inv;
     let b = (hi - s.origin) * s.inv;
@@ -95,15 +97,49 @@ struct NodeStack {
 // starts. Each walk starts by emptying it.
 var<private> node_stack: NodeStack;
 
-// Node i, in two vec4 loads (bindings.wgsl says why).
+// The root, record 0, in two vec4 loads (bindings.wgsl says why).
 fn load_node(i: u32) -> BvhNode {
     let w = bvh_nodes[i];
     return BvhNode(bitcast<vec3<f32>>(w[0].xyz), w[0].w, bitcast<vec3<f32>>(w[1].xyz), w[1].w);
 }
 
+// The children of an interior node, record i >= 1, in two vec4 loads.
+fn load_pair(i: u32) -> QuantizedPair {
+    let w = bvh_nodes[i];
+    return QuantizedPair(bitcast<vec3<f32>>(w[0].xyz), w[0].w, w[1].x, array<u32, 3>(w[1].y, w[1].z, w[1].w));
+}
+
+// The pair's boxes dequantized (QuantizedPair::boxes): the left child's min and max, then the
+// right's. Each q · 2^e is exact, so the sum's is the only rounding, as the builder assumed.
+fn pair_boxes(p: QuantizedPair) -> array<vec3<f32>, 4> {
+    let e = vec3<u32>(p.exponents, p.exponents >> 8u, p.exponents >> 16u) & vec3<u32>(0xffu);
+    let step = bitcast<vec3<f32>>(e << vec3<u32>(23u));
+    let q = vec3<u32>(p.planes[0], p.planes[1], p.planes[2]);
+    let byte = vec3<u32>(0xffu);
+    return array<vec3<f32>, 4>(
+        p.origin + vec3<f32>(q & byte) * step,
+        p.origin + vec3<f32>((q >> vec3<u32>(8u)) & byte) * step,
+        p.origin + vec3<f32>((q >> vec3<u32>(16u)) & byte) * step,
+        p.origin + vec3<f32>(q >> vec3<u32>(24u)) * step,
+    );
+}
+
+// The pair's children as node_refs, this being record i (QuantizedPair::refs; glint_core::bvh::
+// QuantizedPair says where each child is).
+fn pair_refs(p: QuantizedPair, i: u32) -> vec2<u32> {
+    let count_mask = (1u << NODE_REF_COUNT_BITS) - 1u;
+    let first = p.children >> PAIR_FIRST_SHIFT;
+    let left_count = (p.children >> NODE_REF_COUNT_BITS) & count_mask;
+    let right_count = p.children & count_mask;
+    let left = select(i + 1u, first, left_count > 0u);
+    let right = select(select(first, i + 1u, left_count > 0u), first + left_count, right_count > 0u);
+    return vec2<u32>((left << NODE_REF_COUNT_BITS) | left_count, (right << NODE_REF_COUNT_BITS) | right_count);
+}
+
 // A node as the walk carries it from the test of its box to its visit, so that it is not
-// loaded twice: left_first above the count's NODE_REF_COUNT_BITS (buffers.rs checks that
-// every index fits). A leaf when the count bits are not 0.
+// loaded twice: its child pair's record or first primitive reference above the count's
+// NODE_REF_COUNT_BITS (buffers.rs checks that every index fits). A leaf when the count bits
+// are not 0. Only the root is made here; pair_refs makes the others.
 fn node_ref(node: BvhNode) -> u32 {
     return (node.left_first << NODE_REF_COUNT_BITS) | node.count;
 }
@@ -119,10 +155,10 @@ fn ref_first(r: u32) -> u32 {
 
 // The root (node 0, as node_ref) if the ray enters its box within [t_min, t_max], else NO_NODE.
 fn root_node(slab: SlabRay, root: BvhNode, t_min: f32, t_max: f32) -> u32 {
-    return select(NO_NODE, node_ref(root), enter(slab, root, t_min, t_max).ok);
+    return select(NO_NODE, node_ref(root), enter(slab, root.min, root.max, t_min, t_max).ok);
 }
 
-// Of the children at `l` and `l + 1`, the one the ray enters first within [t_min, t_hi] (the
+// Of the children in record `l`, the one the ray enters first within [t_min, t_hi] (the
 // walk's next node, NO_NODE if neither); the farther of two is pushed, as the CPU's walk does.
 // A full stack raises STATUS_BVH_STACK_OVERFLOW.
 fn nearer_child(
@@ -132,12 +168,13 @@ fn nearer_child(
     t_min: f32,
     t_hi: f32,
 ) -> u32 {
-    let a = load_node(l);
-    let b = load_node(l + 1u);
-    let ra = node_ref(a);
-    let rb = node_ref(b);
-    let tl = enter(slab, a, t_min, t_hi);
-    let tr_ = enter(slab, b, t_min, t_hi);
+    let pair = load_pair(l);
+    let boxes = pair_boxes(pair);
+    let refs = pair_refs(pair, l);
+    let ra = refs.x;
+    let rb = refs.y;
+    let tl = enter(slab, boxes[0], boxes[1], t_min, t_hi);
+    let tr_ = enter(slab, boxes[2], boxes[3], t_min, t_hi);
     if tl.ok && tr_.ok {
         let left_first = tl.t <= tr_.t;
         let n = (*stack).len;

@@ -43,8 +43,11 @@ const STATUS_BVH_STACK_OVERFLOW: u32 = 8u;
 // Primitive references of the BVH (glint_core::bvh): the top bit marks a triangle.
 const PRIM_REF_TRIANGLE: u32 = 0x80000000u;
 const PRIM_REF_INDEX: u32 = 0x7fffffffu;
-// The GPU walk carries a node as left_first << NODE_REF_COUNT_BITS | count (bvh.wgsl's node_ref).
+// The GPU walk carries a node as its first child pair's record or first primitive reference
+// << NODE_REF_COUNT_BITS | its leaf count (bvh.wgsl's node_ref).
 const NODE_REF_COUNT_BITS: u32 = 3u;
+// Bits of QuantizedPair.children below its first index: the two children's leaf counts.
+const PAIR_FIRST_SHIFT: u32 = 6u;
 
 // Layout of the statistics buffer: (lo, hi) u32 pairs per ray kind, then the status word.
 const STAT_CAMERA: u32 = 0u;
@@ -263,10 +266,22 @@ struct ProbeTree {
 }
 
 // A BVH node (glint_core::bvh::BvhNode): a leaf when count > 0 (primitive references
-// left_first .. left_first + count), else children left_first and left_first + 1.
+// left_first .. left_first + count), else its children are the pair at record left_first.
+// Only the root is stored so, as record 0.
 struct BvhNode {
     min: vec3<f32>,
     left_first: u32,
     max: vec3<f32>,
     count: u32,
+}
+
+// The two children of an interior node (glint_core::bvh::QuantizedPair, which says how
+// children encodes where they are): each plane of a child's box is origin + q * 2^e on its
+// axis, q the byte of planes (left min, left max, right min, right max) and e the axis's byte
+// of exponents (biased as an f32's).
+struct QuantizedPair {
+    origin: vec3<f32>,
+    exponents: u32,
+    children: u32,
+    planes: array<u32, 3>,
 }

@@ -9,7 +9,7 @@
 use std::fmt;
 use std::path::Path;
 
-use crate::bvh::{BvhNode, WideNode};
+use crate::bvh::{BvhNode, QuantizedPair, WideNode};
 use crate::flat::{GPU_LEAF_BYTES_PER_PRIM, LeafCorners};
 use crate::layout::{GpuMesh, GpuPlane, GpuSphere, GpuTriangle};
 use crate::scene::{ObjectDesc, RenderSettings, SceneDesc};
@@ -207,10 +207,11 @@ pub fn render_estimate(desc: &SceneDesc, settings: &RenderSettings, plan: Render
     }
     if plan.gpu {
         e.add("GPU device", GPU_DEVICE_BYTES);
-        // The device's copy of the scene (with the tree's nodes and its leaf-order corners,
+        // The device's copy of the scene (with the tree's quantized form, kept on the host too,
+        // `BvhNodes::gpu`: fewer records than primitives, and its leaf-order corners,
         // `fill_gpu_leaves`), the output, sample and readback buffers (vec4<f32> a pixel
         // each), and the decoded image.
-        let tree = size(bounded, size_of::<BvhNode>() * 2) + bounded.saturating_mul(GPU_LEAF_BYTES_PER_PRIM);
+        let tree = size(bounded, size_of::<QuantizedPair>() * 2) + bounded.saturating_mul(GPU_LEAF_BYTES_PER_PRIM);
         e.add("GPU scene buffers", geometry + texels + tree);
         e.add("GPU images", size(pixels, 48) + image);
     }

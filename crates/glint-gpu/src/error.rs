@@ -41,10 +41,12 @@ pub enum GpuError {
     )]
     RaycastStatus { status: u32, messages: String },
     #[error(
-        "the BVH has {count} {what}, more than the GPU walk indexes ({limit}: it carries a node's first child or \
-         primitive and its count in 32 bits, glint_core::bvh::GPU_MAX_TREE_INDEX)"
+        "the BVH has {count} {what}, more than the GPU walk indexes ({limit}: a node record holds its \
+         children's first record or primitive and their counts in 32 bits, glint_core::bvh::GPU_MAX_TREE_INDEX)"
     )]
     TreeTooLarge { what: &'static str, count: u64, limit: u64 },
+    #[error("the scene's BVH has no GPU form: {0}")]
+    Tree(#[from] glint_core::bvh::QuantizeError),
     #[error("{what} needs {needed} bytes, more than this GPU allows ({limit} bytes, limit {limit_name})")]
     TooLarge { what: String, needed: u64, limit: u64, limit_name: &'static str },
     #[error(

@@ -4,7 +4,9 @@
 
 use std::mem::{offset_of, size_of};
 
-use glint_core::bvh::{BvhNode, NODE_REF_COUNT_BITS, PRIM_REF_INDEX, PRIM_REF_TRIANGLE};
+use glint_core::bvh::{
+    BvhNode, NODE_REF_COUNT_BITS, PAIR_FIRST_SHIFT, PRIM_REF_INDEX, PRIM_REF_TRIANGLE, QuantizedPair,
+};
 use glint_core::cpu::{intersect, offset, shade};
 use glint_core::layout::*;
 use naga::proc::Layouter;
@@ -98,6 +100,7 @@ fn rust_layouts() -> Vec<RustLayout> {
         rust_layout!(GpuTriangle { va, vb, vc, mesh, order }),
         rust_layout!(GpuMesh { material, object_id, flags, pad }),
         rust_layout!(BvhNode { min, left_first, max, count }),
+        rust_layout!(QuantizedPair { origin, exponents, children, planes }),
         rust_layout!(TileParams { origin_x, origin_y, width, height, sample_index, canary_laps, pad_a, pad_b }),
         rust_layout!(ProbeLight {
             f_att,
@@ -280,6 +283,7 @@ fn wgsl_layout_constants_match_rust() {
         ("PRIM_REF_TRIANGLE".into(), PRIM_REF_TRIANGLE),
         ("PRIM_REF_INDEX".into(), PRIM_REF_INDEX),
         ("NODE_REF_COUNT_BITS".into(), NODE_REF_COUNT_BITS),
+        ("PAIR_FIRST_SHIFT".into(), PAIR_FIRST_SHIFT),
         ("STAT_CAMERA".into(), STAT_CAMERA),
         ("STAT_SHADOW".into(), STAT_SHADOW),
         ("STAT_REFLECTION".into(), STAT_REFLECTION),

@@ -76,8 +76,15 @@ const TWINS: [(&str, &str, &str, &str); 11] = [
 ];
 
 /// Functions only the GPU side has, and why.
-const GPU_ONLY: [(&str, &str, &str); 23] = [
-    ("bvh.wgsl", "load_node", "a node in two vec4 loads; the CPU reads the shared BvhNode where it lies"),
+const GPU_ONLY: [(&str, &str, &str); 26] = [
+    ("bvh.wgsl", "load_node", "the root in two vec4 loads; the CPU reads the shared BvhNode where it lies"),
+    (
+        "bvh.wgsl",
+        "load_pair",
+        "a node's children in two vec4 loads; the CPU walks the wide nodes, not the GPU's quantized pairs",
+    ),
+    ("bvh.wgsl", "pair_boxes", "glint_core::bvh::QuantizedPair::boxes, which the GPU form's tests use"),
+    ("bvh.wgsl", "pair_refs", "glint_core::bvh::QuantizedPair::refs, which the GPU form's tests use"),
     (
         "bvh.wgsl",
         "leaf_head",

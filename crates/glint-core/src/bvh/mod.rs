@@ -14,9 +14,11 @@ use crate::huge_pages::HugePaged;
 use crate::layout::{GpuSphere, GpuTriangle};
 
 mod build;
+mod quantized;
 mod wide;
 
 pub use build::build;
+pub use quantized::{GPU_MAX_TREE_INDEX, PAIR_FIRST_SHIFT, QuantizeError, QuantizedPair};
 pub use wide::{WIDTH, WideNode};
 
 /// The bounded primitives a hierarchy is built over, as the flat scene stores them.
@@ -61,6 +63,9 @@ pub struct BvhNodes {
     /// The CPU walk's wide form, made at its first use (`wide`): a scene only the GPU traces
     /// (the viewer's rebased copies) never pays for it.
     wide: Arc<std::sync::OnceLock<HugePaged<WideNode>>>,
+    /// The GPU walk's quantized form, made at its first use (`gpu`): a scene only the CPU
+    /// traces never pays for it.
+    gpu: Arc<std::sync::OnceLock<Result<Vec<QuantizedPair>, QuantizeError>>>,
 }
 
 /// Derived data: equal when the binary nodes are.
@@ -81,7 +86,7 @@ impl BvhNodes {
                 *pair = NodePair([c[0], c.get(1).copied().unwrap_or_default()]);
             }
         });
-        Self { pairs: Arc::new(pairs), len: nodes.len(), depth, wide: Arc::default() }
+        Self { pairs: Arc::new(pairs), len: nodes.len(), depth, wide: Arc::default(), gpu: Arc::default() }
     }
 
     /// `build`, stored, and collapsed for the CPU walk: all the hierarchy work a scene's first
@@ -96,6 +101,11 @@ impl BvhNodes {
     /// The tree collapsed into wide nodes (`wide::collapse`), made once and shared by clones.
     pub fn wide(&self) -> &[WideNode] {
         self.wide.get_or_init(|| wide::collapse(self))
+    }
+
+    /// The tree in the GPU walk's form (`quantized::quantize`), made once and shared by clones.
+    pub fn gpu(&self) -> Result<&[QuantizedPair], QuantizeError> {
+        self.gpu.get_or_init(|| quantized::quantize(self)).as_deref().map_err(Clone::clone)
     }
 
     /// Edges from the root to the deepest leaf (0 for a lone leaf or no tree): a walk that
@@ -160,13 +170,11 @@ pub const PRIM_REF_INDEX: u32 = PRIM_REF_TRIANGLE - 1;
 /// Most primitives in a leaf.
 pub const MAX_LEAF: usize = 4;
 
-/// The GPU walk carries a node in one u32, its `left_first` shifted past its `count`
-/// (`node_ref` in shaders/bvh.wgsl), so that a child tested is not loaded again when walked.
+/// The GPU walk carries a node in one u32, its first child pair's record or first primitive
+/// reference shifted past its leaf count (`node_ref` in shaders/bvh.wgsl), so that a child
+/// tested is not loaded again when walked.
 pub const NODE_REF_COUNT_BITS: u32 = 3;
 const _: () = assert!(MAX_LEAF < 1 << NODE_REF_COUNT_BITS, "a leaf's count must fit NODE_REF_COUNT_BITS");
-/// Nodes, and leaf references, a tree the GPU walks may have at most: `left_first` must fit
-/// the bits above the count.
-pub const GPU_MAX_TREE_INDEX: u64 = 1 << (32 - NODE_REF_COUNT_BITS);
 
 /// From this many spheres and triangles on, `Accel::Auto` traces through the BVH; below, brute
 /// force is faster. Measured on the CPU tracer (2 threads, 320×240, depth 3, median of 5): with
