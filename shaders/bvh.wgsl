@@ -261,8 +261,15 @@ fn closest_hit(ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> Hit {
     let sh = ray_shear(ray.dir);
 #endif
     node_stack.len = 0u;
-    var leaf = next_leaf(&node_stack, slab, root_node(slab, root, t_min, t_max), t_min, t_max);
-    while leaf != NO_NODE {
+    // One call of next_leaf, so that the walk is compiled once (the first descent and the later
+    // ones share it).
+    var start = root_node(slab, root, t_min, t_max);
+    loop {
+        let leaf = next_leaf(&node_stack, slab, start, t_min, bound(best, t_max));
+        if leaf == NO_NODE {
+            break;
+        }
+        start = NO_NODE;
         let count = ref_count(leaf);
         let first = ref_first(leaf);
         for (var k = 0u; k < count; k++) {
@@ -293,7 +300,6 @@ fn closest_hit(ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> Hit {
 #endif
             }
         }
-        leaf = next_leaf(&node_stack, slab, NO_NODE, t_min, bound(best, t_max));
     }
 #ifdef PLANES
     for (var i = 0u; i < header.plane_count; i++) {
@@ -322,8 +328,15 @@ fn shadow_transmittance(ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> v
     let sh = ray_shear(ray.dir);
 #endif
     node_stack.len = 0u;
-    var leaf = next_leaf(&node_stack, slab, root_node(slab, root, t_min, t_max), t_min, t_max);
-    while leaf != NO_NODE {
+    // One call of next_leaf, so that the walk is compiled once (the first descent and the later
+    // ones share it).
+    var start = root_node(slab, root, t_min, t_max);
+    loop {
+        let leaf = next_leaf(&node_stack, slab, start, t_min, t_max);
+        if leaf == NO_NODE {
+            break;
+        }
+        start = NO_NODE;
         let count = ref_count(leaf);
         let first = ref_first(leaf);
         for (var k = 0u; k < count; k++) {
@@ -355,7 +368,6 @@ fn shadow_transmittance(ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> v
 #endif
             }
         }
-        leaf = next_leaf(&node_stack, slab, NO_NODE, t_min, t_max);
     }
 #ifdef PLANES
     tr = planes_transmittance(tr, ray, t_min, t_max, leaving);
