@@ -219,17 +219,19 @@ fn next_leaf(
 ) -> u32 {
     var current = start;
     loop {
+        if current != NO_NODE {
+            if ref_count(current) > 0u {
+                break;
+            }
+            current = nearer_child(stack, slab, ref_first(current), t_min, t_hi);
+        }
+        // A step that entered neither child pops in the same iteration.
         if current == NO_NODE {
             if (*stack).len == 0u {
                 break;
             }
             current = pop_node(stack, slab, t_hi);
-            continue;
         }
-        if ref_count(current) > 0u {
-            break;
-        }
-        current = nearer_child(stack, slab, ref_first(current), t_min, t_hi);
     }
     return current;
 }
