@@ -46,6 +46,13 @@ pub struct BvhNode {
 
 const _: () = assert!(size_of::<BvhNode>() == 32);
 
+impl BvhNode {
+    /// The node's box.
+    pub fn bounds(&self) -> Aabb {
+        Aabb { min: self.min, max: self.max }
+    }
+}
+
 /// Two nodes, aligned to a 64-byte cache line: the storage unit of `BvhNodes`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 #[repr(C, align(64))]
@@ -377,7 +384,7 @@ mod tests {
             assert!(!visited[i], "node {i} reached twice");
             visited[i] = true;
             let node = &bvh.nodes[i];
-            let b = Aabb { min: node.min, max: node.max };
+            let b = node.bounds();
             if node.count > 0 {
                 leaves += 1;
                 assert!(node.count as usize <= MAX_LEAF);
@@ -392,7 +399,7 @@ mod tests {
             } else {
                 for c in [node.left_first as usize, node.left_first as usize + 1] {
                     let cn = &bvh.nodes[c];
-                    assert!(b.contains(&Aabb { min: cn.min, max: cn.max }), "child {c} outside parent {i}");
+                    assert!(b.contains(&cn.bounds()), "child {c} outside parent {i}");
                     stack.push(c);
                 }
             }

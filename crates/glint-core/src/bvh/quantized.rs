@@ -103,7 +103,7 @@ pub fn quantize(nodes: &[BvhNode]) -> Result<Vec<QuantizedPair>, QuantizeError> 
                     _ => return Err(QuantizeError::LeavesApart { node: i }),
                 };
                 let counts = (left.count << NODE_REF_COUNT_BITS) | right.count;
-                let mut pair = QuantizedPair::of(i, box_of(left), box_of(right))?;
+                let mut pair = QuantizedPair::of(i, left.bounds(), right.bounds())?;
                 pair.children = with_first(i, first, counts)?;
                 out.push(pair);
                 if right.count == 0 {
@@ -126,10 +126,6 @@ pub fn quantize(nodes: &[BvhNode]) -> Result<Vec<QuantizedPair>, QuantizeError> 
         }
     }
     Ok(out)
-}
-
-fn box_of(n: &BvhNode) -> Aabb {
-    Aabb { min: n.min, max: n.max }
 }
 
 /// The children word: `first` above the counts, if it fits.
@@ -273,7 +269,7 @@ mod tests {
             for ((child, r), b) in
                 [&nodes[first], &nodes[first + 1]].into_iter().zip(pair.refs(record)).zip(pair.boxes())
             {
-                assert!(b.contains(&box_of(child)), "record {record}: {b:?} does not hold {child:?}");
+                assert!(b.contains(&child.bounds()), "record {record}: {b:?} does not hold {child:?}");
                 let (at, count) = (r >> NODE_REF_COUNT_BITS, r & ((1 << NODE_REF_COUNT_BITS) - 1));
                 assert_eq!(count, child.count);
                 if count > 0 {
