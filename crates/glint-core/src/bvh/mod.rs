@@ -112,7 +112,19 @@ impl BvhNodes {
 
     /// The tree in the GPU walk's form (`quantized::quantize`), made once and shared by clones.
     pub fn gpu(&self) -> Result<&[QuantizedPair], QuantizeError> {
-        self.gpu.get_or_init(|| quantized::quantize(self)).as_deref().map_err(Clone::clone)
+        self.gpu
+            .get_or_init(|| {
+                let start = std::time::Instant::now();
+                let records = quantized::quantize(self);
+                log::debug!(
+                    "quantized {} BVH nodes for the GPU in {:.1} ms",
+                    self.len,
+                    start.elapsed().as_secs_f64() * 1e3
+                );
+                records
+            })
+            .as_deref()
+            .map_err(Clone::clone)
     }
 
     /// Edges from the root to the deepest leaf (0 for a lone leaf or no tree): a walk that

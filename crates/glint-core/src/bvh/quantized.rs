@@ -71,7 +71,9 @@ pub enum QuantizeError {
 pub fn quantize(nodes: &[BvhNode]) -> Result<Vec<QuantizedPair>, QuantizeError> {
     let Some(root) = nodes.first() else { return Ok(Vec::new()) };
     let root_record = BvhNode { left_first: if root.count == 0 { 1 } else { root.left_first }, ..*root };
-    let mut out = vec![bytemuck::cast(root_record)];
+    // A binary tree has one interior node fewer than leaves: about half the nodes.
+    let mut out = Vec::with_capacity(nodes.len() / 2 + 1);
+    out.push(bytemuck::cast(root_record));
     if root.count > 0 {
         return Ok(out);
     }
@@ -141,14 +143,31 @@ fn step(e: i32) -> f32 {
     f32::from_bits(((e + 127) as u32) << 23)
 }
 
+/// The smallest e with 2^e ≥ x, for a finite x ≥ 0 (MIN_EXPONENT for 0 and subnormals): read
+/// off the f64's bits, as `log2().ceil()` would give it, several times faster.
+fn exponent_above(x: f64) -> i32 {
+    let bits = x.to_bits();
+    let biased = (bits >> 52) as i32 & 0x7ff;
+    if biased == 0 {
+        return MIN_EXPONENT;
+    }
+    biased - 1023 + i32::from(bits & ((1 << 52) - 1) != 0)
+}
+
 /// A plane at `origin + q · step`, as the shader computes it.
 fn plane(origin: f32, q: u32, step: f32) -> f32 {
     origin + q as f32 * step
 }
 
+/// (c − origin) / step, exactly (step is a power of two) but for the f64 subtraction's rounding:
+/// where the plane search starts.
+fn steps_to(origin: f32, c: f32, step: f32) -> f64 {
+    (f64::from(c) - f64::from(origin)) * f64::from(step.recip())
+}
+
 /// The largest q ≤ 255 whose plane is at or below `c` (0 always is: origin ≤ c).
 fn plane_below(origin: f32, c: f32, step: f32) -> u32 {
-    let guess = ((f64::from(c) - f64::from(origin)) / f64::from(step)).floor().clamp(0.0, 255.0) as u32;
+    let guess = steps_to(origin, c, step).floor().clamp(0.0, 255.0) as u32;
     let mut q = guess;
     while q > 0 && plane(origin, q, step) > c {
         q -= 1;
@@ -161,7 +180,7 @@ fn plane_below(origin: f32, c: f32, step: f32) -> u32 {
 
 /// The smallest q ≤ 255 whose plane is at or above `c`, if there is one.
 fn plane_above(origin: f32, c: f32, step: f32) -> Option<u32> {
-    let guess = ((f64::from(c) - f64::from(origin)) / f64::from(step)).ceil().clamp(0.0, 255.0) as u32;
+    let guess = steps_to(origin, c, step).ceil().clamp(0.0, 255.0) as u32;
     let mut q = guess;
     while q < 255 && plane(origin, q, step) < c {
         q += 1;
@@ -187,8 +206,7 @@ impl QuantizedPair {
                 return Err(too_wide());
             }
             // The smallest step whose 255 multiples span the box; one more if rounding says so.
-            let mut e = if extent > 0.0 { (extent / 255.0).log2().ceil() as i32 } else { MIN_EXPONENT };
-            e = e.clamp(MIN_EXPONENT, MAX_EXPONENT);
+            let mut e = exponent_above(extent / 255.0).clamp(MIN_EXPONENT, MAX_EXPONENT);
             let planes = loop {
                 let s = step(e);
                 let q = [left.min[k], left.max[k], right.min[k], right.max[k]];
@@ -335,6 +353,14 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn exponent_above_is_log2_rounded_up() {
+        for x in [1.0, 1.5, 2.0, 3.0, 255.0, 256.0, 1e-30, 3.7e-9, 1e30, 0.75, 2f64.powi(-1000)] {
+            assert_eq!(exponent_above(x).max(MIN_EXPONENT), (x.log2().ceil() as i32).max(MIN_EXPONENT), "{x}");
+        }
+        assert_eq!(exponent_above(0.0), MIN_EXPONENT);
     }
 
     #[test]
