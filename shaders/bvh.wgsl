@@ -6,8 +6,9 @@
 // Never misses a hit brute force finds: the slab test pads each box by a relative margin far
 // above f32 rounding; of equal t the smaller (kind, index) in brute force's order wins, so the
 // result does not depend on the visiting order. Below the root, a node's box is its parent's
-// quantized record of it (glint_core::bvh::QuantizedPair), which only ever holds more. The stack is fixed (BVH_STACK_SIZE); a
-// traversal that needs more raises STATUS_BVH_STACK_OVERFLOW, never silently. Shadow crossings
+// quantized record of it (glint_core::bvh::QuantizedPair), which only ever holds more. The
+// stack is fixed (BVH_STACK_SIZE); a traversal that needs more raises
+// STATUS_BVH_STACK_OVERFLOW, never silently. Shadow crossings
 // are multiplied in visiting order (the CPU sorts them to be bit-identical to its brute force;
 // the f32 GPU image is compared within the parity thresholds). A leaf's triangles are read from
 // their corners copied in leaf order (bindings.wgsl), as the CPU's are from its own copy.
