@@ -77,11 +77,12 @@ pub fn quantize(nodes: &[BvhNode]) -> Result<Vec<QuantizedPair>, QuantizeError> 
     if root.count > 0 {
         return Ok(out);
     }
-    // Depth first, left before right: a right child's record index is known once its left
-    // sibling's subtree is written, so its parent's `first` is patched then.
+    // Depth first, left before right. When both children are interior, the right one's record
+    // index is known once its left sibling's subtree is written, so its parent's `first` is
+    // patched then; a lone interior child's record is the next one.
     enum Task {
         Pair(usize),
-        Right { parent: usize, record: usize },
+        Right { parent: usize, node: usize },
     }
     let mut tasks = vec![Task::Pair(0)];
     while let Some(task) = tasks.pop() {
@@ -108,22 +109,17 @@ pub fn quantize(nodes: &[BvhNode]) -> Result<Vec<QuantizedPair>, QuantizeError> 
                 let mut pair = QuantizedPair::of(i, left.bounds(), right.bounds())?;
                 pair.children = with_first(i, first, counts)?;
                 out.push(pair);
-                if right.count == 0 {
-                    tasks.push(Task::Right { parent: record, record: r });
-                }
-                if left.count == 0 {
-                    tasks.push(Task::Pair(l));
+                match (left.count, right.count) {
+                    (0, 0) => tasks.extend([Task::Right { parent: record, node: r }, Task::Pair(l)]),
+                    (0, _) => tasks.push(Task::Pair(l)),
+                    (_, 0) => tasks.push(Task::Pair(r)),
+                    _ => {}
                 }
             }
-            Task::Right { parent, record } => {
-                // An interior right child of an interior left one is reached through `first`.
-                let next = out.len() as u32;
-                let pair = &mut out[parent];
-                if pair.children >> NODE_REF_COUNT_BITS & ((1 << NODE_REF_COUNT_BITS) - 1) == 0 {
-                    let counts = pair.children & ((1 << PAIR_FIRST_SHIFT) - 1);
-                    pair.children = with_first(record, next, counts)?;
-                }
-                tasks.push(Task::Pair(record));
+            Task::Right { parent, node } => {
+                let counts = out[parent].children & ((1 << PAIR_FIRST_SHIFT) - 1);
+                out[parent].children = with_first(node, out.len() as u32, counts)?;
+                tasks.push(Task::Pair(node));
             }
         }
     }
@@ -209,12 +205,11 @@ impl QuantizedPair {
             let mut e = exponent_above(extent / 255.0).clamp(MIN_EXPONENT, MAX_EXPONENT);
             let planes = loop {
                 let s = step(e);
-                let q = [left.min[k], left.max[k], right.min[k], right.max[k]];
                 let found = [
-                    Some(plane_below(origin, q[0], s)),
-                    plane_above(origin, q[1], s),
-                    Some(plane_below(origin, q[2], s)),
-                    plane_above(origin, q[3], s),
+                    Some(plane_below(origin, left.min[k], s)),
+                    plane_above(origin, left.max[k], s),
+                    Some(plane_below(origin, right.min[k], s)),
+                    plane_above(origin, right.max[k], s),
                 ];
                 if let [Some(a), Some(b), Some(c), Some(d)] = found {
                     break a | b << 8 | c << 16 | d << 24;
