@@ -3,7 +3,7 @@
 use anyhow::{Context, bail};
 use clap::Args;
 use glint_core::memory::{self, MemoryEstimate, SourceKind};
-use glint_core::model::ImportOptions;
+use glint_core::model::{Ground, ImportOptions};
 use glint_core::scene::{
     DEFAULT_RESOLUTION, EpsilonMode, LoadOptions, LoadedScene, RESOLUTIONS, RenderSettings, Report, load_scene_with,
     validate_settings,
@@ -53,6 +53,10 @@ pub struct LoadArgs {
     /// Scale of a model file's light intensities (candela, lux) into I_d and I_s, in (0, 1e6]; default 1
     #[arg(long, value_name = "FACTOR", allow_negative_numbers = true, value_parser = parse_exposure)]
     pub exposure: Option<f64>,
+    /// A grey ground under a model file: auto (unless the model has its own floor), on, off;
+    /// never coplanar with the model's faces
+    #[arg(long, value_name = "MODE", value_parser = parse_ground)]
+    pub ground: Option<Ground>,
     /// Refuse a load or render estimated to need more memory than this (e.g. 512M, 8G;
     /// default: the memory available)
     #[arg(long, value_name = "SIZE", allow_hyphen_values = true, value_parser = parse_size)]
@@ -65,6 +69,7 @@ impl LoadArgs {
             scene_index: self.scene_index,
             camera: self.camera,
             exposure: self.exposure.unwrap_or(ImportOptions::default().exposure),
+            ground: self.ground.unwrap_or_default(),
         };
         LoadOptions { resolution: self.resolution, import }
     }
@@ -76,6 +81,10 @@ fn parse_size(s: &str) -> Result<u64, String> {
 
 fn parse_index(s: &str) -> Result<usize, String> {
     s.trim().parse::<usize>().map_err(|_| format!("'{s}' is not an index (a whole number from 0)"))
+}
+
+fn parse_ground(s: &str) -> Result<Ground, String> {
+    s.parse()
 }
 
 fn parse_exposure(s: &str) -> Result<f64, String> {

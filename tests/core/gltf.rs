@@ -249,6 +249,14 @@ fn broken_files_are_errors_naming_the_json_path() {
     f.json["accessors"][0]["bufferView"] = json!(inf);
     let message = error(&f.write_gltf(&dir, "inf", BufferAt::DataUri));
     assert!(message.contains("attributes.POSITION") && message.contains("finite"), "{message}");
+    // A NaN is named at its accessor element and component, as the file stored it, before the
+    // node's transform spreads it to every component.
+    let mut f = Fixture::quad();
+    let nan = f.push_f32(&[0., 0., 0., 1., 0., 0., 1., f32::NAN, 0., 0., 1., 0.]);
+    f.json["accessors"][0]["bufferView"] = json!(nan);
+    f.json["nodes"][0]["rotation"] = json!([0.0, 0.382_683_43, 0.0, 0.923_879_5]);
+    let message = error(&f.write_gltf(&dir, "nan", BufferAt::DataUri));
+    assert!(message.contains("accessors[0] element 2: component y = NaN as stored in the file"), "{message}");
 }
 
 #[test]

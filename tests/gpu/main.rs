@@ -8,6 +8,7 @@ mod bvh;
 mod cook_torrance;
 mod geometry_cache;
 mod gltf_lights;
+mod ground;
 mod parity;
 mod probe;
 mod properties;

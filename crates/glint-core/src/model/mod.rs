@@ -1,6 +1,7 @@
 //! Model files (glTF 2.0, OBJ/MTL): their import, and the lab scene a model opens in.
 
 pub mod gltf;
+mod ground;
 pub mod obj;
 mod transform;
 pub mod uri;
@@ -9,6 +10,7 @@ use std::collections::BTreeMap;
 use std::path::Path;
 
 pub use self::gltf::{GltfError, load_gltf};
+pub use ground::{FLOOR_COVER, GROUND_GAP, Ground};
 pub use obj::{ObjError, load_obj};
 pub use uri::{MAX_RESOURCE_BYTES, UriError, resolve_uri};
 
@@ -53,7 +55,8 @@ pub struct ModelCamera {
     pub aspect: Option<f64>,
 }
 
-/// Choices made when a model file is opened (`--scene-index`, `--camera`, `--exposure`).
+/// Choices made when a model file is opened (`--scene-index`, `--camera`, `--exposure`,
+/// `--ground`).
 #[derive(Clone, Debug, PartialEq)]
 pub struct ImportOptions {
     /// The glTF scene to load; the file's default scene (else its first) when `None`.
@@ -63,11 +66,13 @@ pub struct ImportOptions {
     pub camera: Option<usize>,
     /// Scales the file's light intensities (candela, lux) into the model's I_d and I_s.
     pub exposure: f64,
+    /// Whether the lab scene puts a ground under the model.
+    pub ground: Ground,
 }
 
 impl Default for ImportOptions {
     fn default() -> Self {
-        Self { scene_index: None, camera: None, exposure: 1.0 }
+        Self { scene_index: None, camera: None, exposure: 1.0, ground: Ground::Auto }
     }
 }
 
@@ -118,7 +123,8 @@ pub const GROUND_MATERIAL: &str = "glint-ground";
 /// A lab scene around an imported model, with the importer's warnings: the file's camera
 /// (`options.camera`, else its first) or one that frames the model's bounding box from the
 /// front, above and to the right; the file's lights, or a key and a fill light (said in a
-/// warning); and a grey ground under the model so that its shadows show.
+/// warning); and a grey ground just below the model so that its shadows show (`options.ground`:
+/// never coplanar with the model's faces, and left out in `auto` where the model has a floor).
 pub fn scene_around(
     mut model: Model,
     path: &Path,
@@ -179,20 +185,24 @@ pub fn scene_around(
         exposure: None,
         loaded: None,
     };
+    let (ground, note) = ground::ground_height(&model.meshes, lo, hi, options.ground);
+    warnings.extend(note);
     let loaded = LoadedModel::place(file, model, &reference.transform, &reference.prefix());
     let mut materials = loaded.materials.clone();
-    materials.insert(
-        GROUND_MATERIAL.into(),
-        MaterialDesc { ka: Rgb::splat(0.5), kd: Rgb::splat(0.5), ..MaterialDesc::default() },
-    );
     let mut objects =
         vec![ObjectDesc::Model(Box::new(ModelDesc { loaded: Some(std::sync::Arc::new(loaded)), ..reference }))];
-    objects.push(ObjectDesc::Plane(PlaneDesc {
-        point: [center[0], lo[1], center[2]],
-        normal: [0.0, 1.0, 0.0],
-        material: GROUND_MATERIAL.into(),
-        name: "ground".into(),
-    }));
+    if let Some(y) = ground {
+        materials.insert(
+            GROUND_MATERIAL.into(),
+            MaterialDesc { ka: Rgb::splat(0.5), kd: Rgb::splat(0.5), ..MaterialDesc::default() },
+        );
+        objects.push(ObjectDesc::Plane(PlaneDesc {
+            point: [center[0], y, center[2]],
+            normal: [0.0, 1.0, 0.0],
+            material: GROUND_MATERIAL.into(),
+            name: "ground".into(),
+        }));
+    }
     let lights = if lights.is_empty() {
         warnings.push(FieldIssue {
             field: "lights".into(),

@@ -31,6 +31,11 @@ pub const DEFAULT_MATERIAL: &str = "obj-default";
 /// Loads `path`: faces triangulated (fans), one mesh per OBJ object or group and material.
 pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
     let bytes = std::fs::read(path).map_err(|error| ObjError::Io { file: path.to_owned(), error })?;
+    // Checked as the file wrote them: after a node transform one bad number spreads to every
+    // component, and the line is lost.
+    if let Some((line, reason)) = non_finite_number(&bytes) {
+        return Err(ObjError::Parse { file: path.to_owned(), line: Some(line), reason });
+    }
     let options = tobj::LoadOptions { triangulate: true, single_index: true, ..Default::default() };
     let mtl_error = std::cell::RefCell::new(None);
     let mtl_problem = std::cell::RefCell::new(None);
@@ -166,6 +171,35 @@ fn expand_colours(text: &[u8]) -> Result<Vec<u8>, String> {
         out.extend_from_slice(raw);
     }
     Ok(out)
+}
+
+/// The first `v`, `vt` or `vn` line (1-based) holding a number that is not a finite f32
+/// (`nan`, `inf`, or a decimal beyond f32's range, which tobj reads as infinite), and what is
+/// wrong with it. Words that are not numbers are left to tobj, which refuses them.
+fn non_finite_number(bytes: &[u8]) -> Option<(usize, String)> {
+    for (n, raw) in bytes.split(|&b| b == b'\n').enumerate() {
+        let Ok(line) = std::str::from_utf8(raw) else { continue };
+        let mut words = line.split_whitespace();
+        let (what, components): (&str, &[&str]) = match words.next() {
+            Some("v") => ("vertex position", &["x", "y", "z", "r", "g", "b"]),
+            Some("vt") => ("texture coordinate", &["u", "v", "w"]),
+            Some("vn") => ("normal", &["x", "y", "z"]),
+            _ => continue,
+        };
+        for (k, word) in words.enumerate() {
+            let Ok(value) = word.parse::<f32>() else { continue };
+            if !value.is_finite() {
+                let name = components.get(k).copied().unwrap_or("extra");
+                let problem = if word.parse::<f64>().is_ok_and(f64::is_finite) {
+                    format!("{word} is beyond f32's range (±{:e})", f32::MAX)
+                } else {
+                    format!("{word} is not a finite number")
+                };
+                return Some((n + 1, format!("`{}`: {what} component {name}: {problem}", line.trim())));
+            }
+        }
+    }
+    None
 }
 
 /// The line at which tobj's parse fails (tobj's errors carry none): the shortest prefix of
@@ -324,6 +358,31 @@ mod tests {
     }
 
     const QUAD: &str = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n";
+
+    #[test]
+    fn a_non_finite_number_is_reported_at_its_line_before_any_transform() {
+        let dir = tempfile::tempdir().unwrap();
+        for (text, expect) in [
+            (
+                "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n",
+                ":2: invalid OBJ (`v nan 0 0`: vertex position component x: nan is not a finite number)",
+            ),
+            (
+                "v 0 0 0\nv 1 0 0\nv 0 1e39 0\nf 1 2 3\n",
+                ":3: invalid OBJ (`v 0 1e39 0`: vertex position component y: 1e39 is beyond f32's range",
+            ),
+            (
+                "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 inf\nf 1 2 3\n",
+                ":4: invalid OBJ (`vt 0 inf`: texture coordinate component v: inf",
+            ),
+            ("v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 -NaN\nf 1 2 3\n", ":4: invalid OBJ (`vn 0 0 -NaN`: normal component z"),
+        ] {
+            let obj = write(dir.path(), "bad.obj", text);
+            let err = load_obj(&obj).expect_err("a non-finite number is refused").to_string();
+            assert!(err.contains(expect), "{err}");
+            assert_eq!(err.matches("component").count(), 1, "one report, for the component at fault: {err}");
+        }
+    }
 
     #[test]
     fn mtl_fields_map_onto_the_model_by_illum() {

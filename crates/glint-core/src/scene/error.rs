@@ -39,7 +39,7 @@ pub enum SceneError {
     )]
     NotGenerated { name: String, value: u32 },
     #[error(
-        "'{name}' is not a model file: --scene-index, --camera and --exposure apply only to \
+        "'{name}' is not a model file: --scene-index, --camera, --exposure and --ground apply only to \
          model files (.gltf, .glb, .obj)"
     )]
     NotAModel { name: String },

@@ -377,11 +377,28 @@ fn read_primitive(
     let local = accessor::read_vec3(&position, buffers).map_err(|p| (attr("POSITION"), p))?;
     let mut vertices = Vec::with_capacity(local.len());
     for (k, p) in local.iter().enumerate() {
+        // The file's own number first: after the node transforms one bad component spreads
+        // to all three.
+        if let Some(axis) = p.iter().position(|c| !c.is_finite()) {
+            return Err((
+                attr("POSITION"),
+                format!(
+                    "accessors[{}] element {k}: component {} = {} as stored in the file; positions must be finite",
+                    position.index(),
+                    ["x", "y", "z"][axis],
+                    p[axis]
+                ),
+            ));
+        }
         let w = world.point(*p);
         if !w.iter().all(|c| c.is_finite()) {
             return Err((
                 attr("POSITION"),
-                format!("vertex {k} is {p:?}, {w:?} in world space: positions must be finite"),
+                format!(
+                    "accessors[{}] element {k} is {p:?} in the file but {w:?} after the node transforms: positions \
+                     must stay finite",
+                    position.index()
+                ),
             ));
         }
         vertices.push(w);
@@ -407,6 +424,19 @@ fn read_primitive(
         Some((set, acc)) => {
             let name = format!("TEXCOORD_{set}");
             let uv = accessor::read_uv(&acc, buffers).map_err(|p| (attr(&name), p))?;
+            if let Some((k, axis)) =
+                uv.iter().enumerate().find_map(|(k, t)| t.iter().position(|c| !c.is_finite()).map(|a| (k, a)))
+            {
+                return Err((
+                    attr(&name),
+                    format!(
+                        "accessors[{}] element {k}: component {} = {}; texture coordinates must be finite",
+                        acc.index(),
+                        ["u", "v"][axis],
+                        uv[k][axis]
+                    ),
+                ));
+            }
             if uv.len() != vertices.len() {
                 return Err((attr(&name), format!("has {} elements, POSITION {}", uv.len(), vertices.len())));
             }

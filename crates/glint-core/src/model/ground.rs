@@ -1,0 +1,162 @@
+//! Where the ground under an opened model goes (`--ground`), so that it is never coplanar
+//! with the model's own faces: two coplanar surfaces z-fight, and each tracer picks its own
+//! winner pixel by pixel.
+
+use std::str::FromStr;
+
+use crate::scene::{FieldIssue, MeshDesc};
+
+/// Whether an opened model stands on a grey ground plane.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Ground {
+    /// A ground unless the model has its own floor (upward faces at its lowest y covering at
+    /// least `FLOOR_COVER` of its footprint).
+    #[default]
+    Auto,
+    On,
+    Off,
+}
+
+impl Ground {
+    pub const ALL: [Self; 3] = [Self::Auto, Self::On, Self::Off];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Auto => "auto",
+            Self::On => "on",
+            Self::Off => "off",
+        }
+    }
+}
+
+impl FromStr for Ground {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Self, String> {
+        Self::ALL.into_iter().find(|g| g.name() == s.trim()).ok_or_else(|| {
+            let names: Vec<_> = Self::ALL.iter().map(|g| g.name()).collect();
+            format!("'{s}' is not a ground mode: use one of {}", names.join(", "))
+        })
+    }
+}
+
+/// The gap between the model's lowest point and the ground, as a fraction of the model's
+/// bounding-box diagonal: far above f32 rounding and the tracers' ε, far below what an eye
+/// sees as a floating model.
+pub const GROUND_GAP: f64 = 1e-3;
+
+/// The least gap in f32 spacings at the model's magnitude: a model far from the origin
+/// would otherwise round its base and the ground to the same f32.
+const MIN_GAP_ULPS: f64 = 64.0;
+
+/// The share of the footprint that upward faces at the lowest y must cover to be a floor.
+pub const FLOOR_COVER: f64 = 0.5;
+
+/// The ground's height for a model with bounds `lo`..`hi` (`None`: no ground), and a note
+/// saying why when `Auto` left it out.
+pub fn ground_height(
+    meshes: &[MeshDesc],
+    lo: [f64; 3],
+    hi: [f64; 3],
+    mode: Ground,
+) -> (Option<f64>, Option<FieldIssue>) {
+    let diagonal = (0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>().sqrt();
+    let magnitude = lo.iter().chain(&hi).fold(0.0_f64, |m, c| m.max(c.abs()));
+    let spacing = f32_spacing(magnitude);
+    let below = lo[1] - (GROUND_GAP * diagonal).max(MIN_GAP_ULPS * spacing);
+    match mode {
+        Ground::Off => (None, None),
+        Ground::On => (Some(below), None),
+        Ground::Auto => {
+            let cover = floor_cover(meshes, lo, hi, 1e-6 * diagonal + 4.0 * spacing);
+            if cover >= FLOOR_COVER {
+                let note = FieldIssue {
+                    field: "--ground".into(),
+                    problem: format!(
+                        "the model has its own floor (upward faces at its lowest y cover {:.0} % of its footprint): \
+                         no ground added (`--ground on` adds one just below it)",
+                        100.0 * cover.min(1.0)
+                    ),
+                };
+                (None, Some(note))
+            } else {
+                (Some(below), None)
+            }
+        }
+    }
+}
+
+/// The distance between adjacent f32 values at `x` (at least the smallest normal's).
+fn f32_spacing(x: f64) -> f64 {
+    let exponent = (x.max(f64::from(f32::MIN_POSITIVE))).log2().floor();
+    2f64.powf(exponent - 23.0)
+}
+
+/// The share of the model's x–z footprint covered by triangles that lie at its lowest y
+/// (every corner within `tolerance`) and face up (counter-clockwise seen from above).
+fn floor_cover(meshes: &[MeshDesc], lo: [f64; 3], hi: [f64; 3], tolerance: f64) -> f64 {
+    let footprint = (hi[0] - lo[0]) * (hi[2] - lo[2]);
+    if footprint.is_nan() || footprint <= 0.0 {
+        return 0.0;
+    }
+    let mut area = 0.0;
+    for mesh in meshes {
+        for t in &mesh.triangles {
+            let Some(p) = t.map(|i| mesh.vertices.get(i as usize).copied()).into_iter().collect::<Option<Vec<_>>>()
+            else {
+                continue;
+            };
+            if p.iter().any(|v| v[1] - lo[1] > tolerance) {
+                continue;
+            }
+            // The y component of (b − a) × (c − a): twice the signed x–z area, positive for an
+            // upward face.
+            let (u, v) = ([p[1][0] - p[0][0], p[1][2] - p[0][2]], [p[2][0] - p[0][0], p[2][2] - p[0][2]]);
+            let up = u[1] * v[0] - u[0] * v[1];
+            if up > 0.0 {
+                area += 0.5 * up;
+            }
+        }
+    }
+    area / footprint
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn quad(y: f64, up: bool) -> MeshDesc {
+        let vertices = vec![[0.0, y, 0.0], [1.0, y, 0.0], [1.0, y, 1.0], [0.0, y, 1.0]];
+        let triangles = if up { vec![[0, 2, 1], [0, 3, 2]] } else { vec![[0, 1, 2], [0, 2, 3]] };
+        MeshDesc { vertices, triangles, normals: None, uvs: None, material: "m".into(), name: "quad".into() }
+    }
+
+    #[test]
+    fn an_upward_quad_at_the_bottom_is_a_floor_and_a_downward_one_is_not() {
+        let (lo, hi) = ([0.0, 0.0, 0.0], [1.0, 0.0, 1.0]);
+        let (height, note) = ground_height(&[quad(0.0, true)], lo, hi, Ground::Auto);
+        assert_eq!(height, None);
+        assert!(note.is_some_and(|n| n.problem.contains("100 %")));
+        let (height, note) = ground_height(&[quad(0.0, false)], lo, hi, Ground::Auto);
+        assert!(height.is_some_and(|h| h < 0.0) && note.is_none(), "{height:?}");
+    }
+
+    #[test]
+    fn the_ground_is_never_at_the_models_lowest_y_even_far_from_the_origin() {
+        for base in [0.0, 1e4, 1e6, -3e7] {
+            let (lo, hi) = ([0.0, base, 0.0], [1.0, base + 1.0, 1.0]);
+            let (height, _) = ground_height(&[], lo, hi, Ground::On);
+            let h = height.expect("on");
+            assert!((h as f32) < (base as f32), "ground {h} rounds onto the base {base} in f32");
+        }
+        assert_eq!(ground_height(&[quad(0.0, true)], [0.0; 3], [1.0, 0.0, 1.0], Ground::Off), (None, None));
+    }
+
+    #[test]
+    fn ground_modes_parse_by_name_and_refuse_others() {
+        for g in Ground::ALL {
+            assert_eq!(g.name().parse::<Ground>(), Ok(g));
+        }
+        assert!("yes".parse::<Ground>().unwrap_err().contains("auto, on, off"));
+    }
+}
