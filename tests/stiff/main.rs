@@ -1,4 +1,4 @@
-//! The stiff-and-extreme-cases suite (issue 5): sixteen small generated scenes, each rendered on
+//! The stiff-and-extreme-cases suite (issue 5): nineteen small generated scenes, each rendered on
 //! the CPU f64 reference and on the WGSL tracer, with the expected behaviour stated in a comment
 //! and checked automatically. Every read-back image is scanned for NaN and infinities (there
 //! must be none: `gpu::render_both` fails otherwise and leaves the images in target/tmp/stiff).
@@ -43,6 +43,7 @@ mod case15_recursion_depth;
 mod case16_invalid_data;
 mod case17_translation_and_scale;
 mod case18_huge_sphere;
+mod case19_coplanar_overlap;
 mod generated;
 mod plot;
 

@@ -13,6 +13,7 @@ use super::number::{format_number as num, shorten};
 use super::rgb::Rgb;
 use super::texture::{TextureDesc, material_textures};
 
+mod coplanar;
 mod lights;
 mod limits;
 mod materials;
@@ -131,14 +132,17 @@ pub fn validate(scene: &SceneDesc) -> Report {
     validate_with_objects(scene, &validate_objects(scene))
 }
 
-/// The objects' part of `validate`. It reads nothing of the scene but the objects and the
-/// material names, so an editor may keep it while only the camera, lights, world, settings or
+/// The objects' part of `validate`. It reads nothing of the scene but the objects, the
+/// material names and (for the coplanar-overlap warning only) `render.epsilon`, so an editor may keep it while only the camera, lights, world, settings or
 /// material values change (a camera drag over a million triangles) and pass it to
 /// `validate_with_objects`.
 pub fn validate_objects(scene: &SceneDesc) -> Report {
     let mut r = Report::default();
     for (i, object) in scene.objects.iter().enumerate() {
         validate_object(&format!("objects[{i}]"), object, scene, &mut r);
+    }
+    if r.errors.is_empty() {
+        r.warnings.extend(coplanar::coplanar_overlaps(scene));
     }
     r
 }
