@@ -273,3 +273,26 @@ fn a_ray_tree_without_end_stops_at_the_cap_naming_the_pixel_and_the_remedy() {
         assert!(!out.status.success() && stderr.contains("[1, 1099511627776]"), "{bad}: {stderr}");
     }
 }
+
+/// `DISPLAY` naming an X server that is not there: the error says so, not the retry's
+/// "EventLoop can't be recreated".
+#[test]
+fn a_display_without_a_server_is_named_as_the_cause() {
+    let dir = TempDir::new("no-x-server");
+    // A display number no test machine runs: its socket is absent.
+    let display = ":197";
+    assert!(!std::path::Path::new("/tmp/.X11-unix/X197").exists(), "a server runs on {display}");
+    let out = Command::new(BIN)
+        .args(["view", "whitted"])
+        .current_dir(&*dir)
+        .env("DISPLAY", display)
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .expect("run glint");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success(), "{stderr}");
+    let last = stderr.lines().rfind(|l| l.starts_with("error")).unwrap_or_else(|| panic!("no error line: {stderr}"));
+    assert!(!last.contains("can't be recreated"), "the retry's error hides the cause: {last}");
+    assert!(last.contains("X server") && last.contains("DISPLAY=:197"), "{last}");
+    assert!(!last.contains(".rs:"), "a source location is no cause: {last}");
+}

@@ -134,3 +134,41 @@ fn another_scene_over_unsaved_edits_asks_first_save_discard_or_cancel() {
     assert!(!h.state().doc.dirty);
     let _ = std::fs::remove_dir_all(dir);
 }
+
+/// Whether the app asked the window to close in its last frame.
+fn asked_to_close(h: &Harness<'static, ViewerApp>) -> bool {
+    h.output().viewport_output.values().any(|v| v.commands.contains(&egui::ViewportCommand::Close))
+}
+
+#[test]
+fn quitting_or_closing_the_window_over_unsaved_edits_asks_first() {
+    let Some(mut h) = viewer("whitted", (1000.0, 640.0)) else { return };
+    h.state_mut().doc.desc.render.max_depth = 2;
+    h.state_mut().doc.edited();
+
+    // File → Quit asks; Cancel keeps the window and the edits.
+    menu(&mut h, &["File", "Quit"]);
+    assert!(h.query_by_label_contains("before quitting").is_some(), "asked first");
+    assert!(!h.state().quitting && !asked_to_close(&h));
+    h.get_by_label("Cancel").click();
+    h.run_steps(2);
+    assert!(h.query_by_label("Unsaved changes").is_none());
+    assert!(!h.state().quitting && h.state().doc.dirty);
+
+    // The window's close button (or the window manager) asks the same; Discard quits.
+    h.input_mut().viewports.entry(egui::ViewportId::ROOT).or_default().events.push(egui::ViewportEvent::Close);
+    h.run_steps(2);
+    assert!(h.query_by_label_contains("before quitting").is_some(), "a close request asks first");
+    h.get_by_label("Discard").click();
+    h.run_steps(1);
+    assert!(h.state().quitting && asked_to_close(&h), "Discard quits");
+
+    // Without edits, Quit closes at once.
+    let Some(mut h) = viewer("whitted", (1000.0, 640.0)) else { return };
+    h.get_by_label("File").click();
+    h.run_steps(2);
+    h.get_by_label("Quit").click();
+    h.run_steps(1);
+    assert!(h.query_by_label("Unsaved changes").is_none());
+    assert!(h.state().quitting && asked_to_close(&h));
+}

@@ -10,10 +10,10 @@ use glint_viewer::ViewerApp;
 
 use crate::support::{choose, settle, viewer};
 
-/// Validation's range for the editor labelled `label`, as (min, max).
-fn validation_range(label: &str) -> Option<(f64, f64)> {
-    let real = |r: Range<f64>| Some((r.min, r.max));
-    let whole = |r: Range<u32>| Some((f64::from(r.min), f64::from(r.max)));
+/// Validation's range for the editor labelled `label`, as (min, max, logarithmic).
+fn validation_range(label: &str) -> Option<(f64, f64, bool)> {
+    let real = |r: Range<f64>| Some((r.min, r.max, r.log));
+    let whole = |r: Range<u32>| Some((f64::from(r.min), f64::from(r.max), false));
     let channel = [" R", " G", " B"].iter().any(|c| label.ends_with(c));
     let axis = [" x", " y", " z"].iter().any(|a| label.ends_with(a));
     match label {
@@ -45,14 +45,22 @@ fn check_editors(h: &Harness<'static, ViewerApp>, panel: &str) -> Vec<String> {
         for node in h.query_all_by_role(role) {
             let node = node.accesskit_node();
             let label = node.label().unwrap_or_default();
-            let Some((min, max)) = validation_range(&label) else {
+            let Some((min, max, log)) = validation_range(&label) else {
                 panic!("{panel}: the editor {label:?} has no range in validation's table");
             };
-            assert_eq!(
-                (node.min_numeric_value(), node.max_numeric_value()),
-                (Some(min), Some(max)),
-                "{panel}: the range of {label:?} is not validation's"
-            );
+            let shown = (node.min_numeric_value(), node.max_numeric_value());
+            if log {
+                // A logarithmic slider drags over the decades people use, and its field takes
+                // any typed value, clamped to validation's range
+                // (`a_40_point_drag_moves_shininess_about_a_decade_and_typed_values_beyond_the_span_are_kept`).
+                if let (Some(lo), Some(hi)) = shown {
+                    assert!(min <= lo && hi <= max, "{panel}: the span of {label:?} {shown:?} leaves [{min}, {max}]");
+                } else {
+                    assert_eq!((role, shown), (Role::SpinButton, (None, None)), "{panel}: {label:?}");
+                }
+            } else {
+                assert_eq!(shown, (Some(min), Some(max)), "{panel}: the range of {label:?} is not validation's");
+            }
             labels.push(label);
         }
     }
@@ -115,4 +123,50 @@ fn epsilon_zero_typed_into_its_field_reaches_the_document() {
     let doc = &h.state().doc;
     assert_eq!(doc.desc.render.epsilon, 0.0, "ε = 0 is valid and must not be clamped");
     assert!(doc.issues.is_empty(), "{:?}", doc.issues);
+}
+
+/// Types `text` into the number field labelled `label` and presses Enter.
+fn type_number(h: &mut Harness<'static, ViewerApp>, label: &str, text: &str) {
+    h.get_by_role_and_label(Role::SpinButton, label).click();
+    h.run_steps(2);
+    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::A);
+    h.get_by_role_and_label(Role::SpinButton, label).type_text(text);
+    h.run_steps(1);
+    h.key_press(egui::Key::Enter);
+    h.run_steps(2);
+}
+
+#[test]
+fn a_40_point_drag_moves_shininess_about_a_decade_and_typed_values_beyond_the_span_are_kept() {
+    let Some(mut h) = viewer("whitted", (1000.0, 900.0)) else { return };
+    choose(&mut h, "Materials", "Material", "floor");
+    let material = |h: &Harness<'static, ViewerApp>| h.state().doc.desc.materials["floor"].shininess;
+    type_number(&mut h, "Shininess n", "200");
+    assert_eq!(material(&h), 200.0);
+    // A 40-point drag from the handle, as the issue's (it took n from 200 to 3.0e-5).
+    let rect = h.get_by_role_and_label(Role::Slider, "Shininess n").rect();
+    let from = egui::pos2(rect.left() + rect.width() * (200f32.log10() / 3.0), rect.center().y);
+    h.hover_at(from);
+    h.step();
+    h.drag_at(from);
+    h.step();
+    // The press itself moves the handle to the pointer: count the drag from there.
+    let pressed = material(&h);
+    for k in 1..=8 {
+        h.hover_at(from - egui::vec2(5.0 * k as f32, 0.0));
+        h.step();
+    }
+    h.drop_at(from - egui::vec2(40.0, 0.0));
+    h.run_steps(2);
+    let n = material(&h);
+    let decades = (n / pressed).log10().abs();
+    assert!(n > 0.0 && decades <= 1.3, "a 40-point drag took n from {pressed} to {n} ({decades:.2} decades)");
+    assert!(decades >= 0.5, "the drag did not move the slider (n = {n})");
+    // Typed values are free within validation's range, beyond the slider's span.
+    for (typed, want) in [("1000000", 1e6), ("0", 0.0), ("0.25", 0.25)] {
+        type_number(&mut h, "Shininess n", typed);
+        assert_eq!(material(&h), want, "typed {typed}");
+    }
+    settle(&mut h);
+    assert!(h.state().doc.issues.is_empty(), "{:?}", h.state().doc.issues);
 }

@@ -83,9 +83,13 @@ fn the_tree_is_drawn_over_the_image_and_can_be_hidden() {
     h.run_steps(2);
     probe_glass(&mut h);
     assert!(h.query_by_label_contains("Ray tree: ").is_some(), "the tree is not drawn");
+    for (name, ..) in glint_viewer::RAY_TREE_LEGEND {
+        assert!(h.query_by_label(name).is_some(), "the legend does not say what {name} looks like");
+    }
     menu(&mut h, &["View", "Ray tree overlay"]);
     h.key_press(egui::Key::Escape);
     h.run_steps(2);
     assert!(!h.state().layout.show_ray_tree);
     assert!(h.query_by_label_contains("Ray tree: ").is_none(), "the tree is still drawn");
+    assert!(h.query_by_label("cut by bailout or depth").is_none(), "the legend stays without the tree");
 }

@@ -54,3 +54,12 @@ fn a_long_gpu_render_says_how_far_it_is_and_how_long_it_has_been_rendering() {
     settle(&mut h);
     assert!(h.query_by_label_contains("GPU rendering").is_none(), "the label stays after the render");
 }
+
+#[test]
+fn a_software_adapter_is_named_where_the_user_looks() {
+    let Some(h) = viewer("whitted", (1000.0, 640.0)) else { return };
+    let software = h.state().renders.gpu.as_ref().is_some_and(|g| g.is_software());
+    let said = h.query_by_label_contains(glint_viewer::SOFTWARE_ADAPTER).is_some();
+    assert!(software, "the viewer tests run on lavapipe, a software adapter");
+    assert!(said, "the status bar does not say that the GPU tracer runs on the CPU");
+}

@@ -79,3 +79,24 @@ fn at_1024_by_768_the_side_panel_leaves_the_images_room_and_f9_hides_it() {
     h.run_steps(3);
     assert!(h.state().layout.show_side_panel && h.query_by_label("Probe").is_some());
 }
+
+#[test]
+fn an_image_of_an_earlier_edit_is_marked_updating_and_keeps_its_aspect() {
+    let Some(mut h) = viewer("whitted", (1000.0, 640.0)) else { return };
+    assert!(h.query_by_label_contains("updating…").is_none(), "settled images are current");
+    // A wider image: the CPU pane keeps the old image, dimmed and marked, until the new one
+    // is done, and draws it at its own aspect, not stretched to the new frame.
+    let (w, h0) = (h.state().doc.desc.render.width, h.state().doc.desc.render.height);
+    h.state_mut().doc.desc.render.width = 2 * w;
+    h.state_mut().doc.edited();
+    h.step();
+    assert!(h.query_by_label("CPU: updating…").is_some(), "the CPU pane shows an older image unmarked");
+    let old = glint_viewer::view_placement(
+        egui::Rect::from_min_size(egui::Pos2::ZERO, egui::vec2(400.0, 100.0)),
+        (2 * w, h0),
+        (w, h0),
+    );
+    assert!((old.width() / old.height() - w as f32 / h0 as f32).abs() < 1e-3, "stretched: {old:?}");
+    settle(&mut h);
+    assert!(h.query_by_label_contains("updating…").is_none(), "marked after the new images arrived");
+}

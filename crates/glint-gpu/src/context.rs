@@ -36,6 +36,14 @@ impl AdapterSummary {
     }
 }
 
+impl AdapterSummary {
+    /// A software adapter (Mesa's lavapipe/llvmpipe, WARP, SwiftShader: wgpu's `Cpu` device
+    /// type): its "GPU" work runs on the CPU cores.
+    pub fn is_software(&self) -> bool {
+        self.device_type == format!("{:?}", wgpu::DeviceType::Cpu)
+    }
+}
+
 impl std::fmt::Display for AdapterSummary {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(f, "{} ({}, {})", self.name, self.backend, self.device_type)

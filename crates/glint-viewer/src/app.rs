@@ -14,7 +14,7 @@ use glint_core::scene::LoadOptions;
 
 use crate::automation::{Automation, Frame};
 use crate::camera_control;
-use crate::dialogs::{Dialogs, PathPurpose, Picked, Unsaved};
+use crate::dialogs::{Dialogs, PathPurpose, Picked, Then, Unsaved};
 use crate::document::Document;
 use crate::error::ViewerError;
 use crate::error_history::{Axis, ErrorHistory, ErrorPoint};
@@ -70,6 +70,10 @@ pub struct ViewerApp {
     /// The comparisons of the current scene, for the Errors panel's plot.
     pub history: ErrorHistory,
     error_axis: Axis,
+    /// The user chose to quit (or had nothing to save): the next close request goes through.
+    pub quitting: bool,
+    /// Close the window at the end of this frame (after "unsaved changes" was answered).
+    close_pending: bool,
 }
 
 impl ViewerApp {
@@ -107,6 +111,8 @@ impl ViewerApp {
             clock: FrameClock::default(),
             history: ErrorHistory::default(),
             error_axis: Axis::Samples,
+            quitting: false,
+            close_pending: false,
         }
     }
 
@@ -119,7 +125,7 @@ impl ViewerApp {
     /// (Save / Discard / Cancel) when the document has unsaved edits.
     pub fn request_open(&mut self, arg: &str) {
         if self.doc.dirty {
-            self.dialogs.confirm_unsaved(arg.to_string());
+            self.dialogs.confirm_unsaved(Then::Open(arg.to_string()));
         } else {
             self.open(arg);
         }
@@ -233,6 +239,7 @@ impl ViewerApp {
             MenuAction::Save(p) => self.save_scene(&p),
             MenuAction::SaveAs => self.save_as(None),
             MenuAction::SaveImage => self.dialogs.open_export(),
+            MenuAction::Quit => self.request_quit(),
         }
     }
 
@@ -254,7 +261,7 @@ impl ViewerApp {
 
     /// "Save scene as…": the system dialog, or a typed path where it cannot open; then opens
     /// `then_open` if the scene was saved.
-    fn save_as(&mut self, then_open: Option<String>) {
+    fn save_as(&mut self, then_open: Option<Then>) {
         match self.dialogs.pick_scene_to_save(&self.doc.name) {
             Picked::File(p) => self.save_then_open(&p, then_open),
             Picked::Cancelled => {}
@@ -269,29 +276,66 @@ impl ViewerApp {
         }
     }
 
-    fn save_then_open(&mut self, path: &Path, then_open: Option<String>) {
+    fn save_then_open(&mut self, path: &Path, then: Option<Then>) {
         self.save_scene(path);
         if !self.doc.dirty
-            && let Some(t) = then_open
+            && let Some(t) = then
         {
-            self.open(&t);
+            self.then(t);
         }
     }
 
-    /// The answer to "unsaved changes" before `target` is opened.
-    fn apply_unsaved(&mut self, answer: Unsaved, target: String) {
+    /// Opens the scene or quits, once "unsaved changes" was answered.
+    fn then(&mut self, then: Then) {
+        match then {
+            Then::Open(t) => self.open(&t),
+            Then::Quit => self.quit(),
+        }
+    }
+
+    /// Closes the window, without asking again.
+    fn quit(&mut self) {
+        self.quitting = true;
+        self.close_pending = true;
+    }
+
+    /// File → Quit: asks "unsaved changes" first while the scene has edits.
+    pub fn request_quit(&mut self) {
+        if self.doc.dirty {
+            self.dialogs.confirm_unsaved(Then::Quit);
+        } else {
+            self.quit();
+        }
+    }
+
+    /// The answer to "unsaved changes" before `target`.
+    fn apply_unsaved(&mut self, answer: Unsaved, target: Then) {
         match answer {
             Unsaved::Save => match self.doc.path.clone() {
                 Some(p) => self.save_then_open(&p, Some(target)),
                 None => self.save_as(Some(target)),
             },
-            Unsaved::Discard => self.open(&target),
+            Unsaved::Discard => self.then(target),
             Unsaved::Cancel => {}
+        }
+    }
+
+    /// A request to close the window (File → Quit, the window's close button, the window
+    /// manager): held back to ask "unsaved changes" while the scene has edits, unless a
+    /// scripted run (`--screenshot`, the drag benchmark) closes it.
+    fn hold_close_for_unsaved_edits(&mut self, ctx: &egui::Context) {
+        let requested = ctx.input(|i| i.viewport().close_requested());
+        if requested && self.doc.dirty && !self.quitting && !self.automation.active() {
+            ctx.send_viewport_cmd(egui::ViewportCommand::CancelClose);
+            if !self.dialogs.asking_unsaved() {
+                self.dialogs.confirm_unsaved(Then::Quit);
+            }
         }
     }
 
     /// The windows of the app: "Save image", a typed path, "unsaved changes".
     fn windows(&mut self, ctx: &egui::Context) {
+        crate::help::window(ctx, &mut self.layout.help);
         self.export_window(ctx);
         if let Some((purpose, path, then_open)) = self.dialogs.path_window(ctx) {
             match purpose {
@@ -382,6 +426,7 @@ impl eframe::App for ViewerApp {
     fn ui(&mut self, ui: &mut Ui, _frame: &mut eframe::Frame) {
         let start = Instant::now();
         let ctx = ui.ctx().clone();
+        self.hold_close_for_unsaved_edits(&ctx);
         self.renders.poll(&ctx);
         self.dialogs.take_dropped_file(&ctx);
         if let Some(p) = self.dialogs.pending_open.take() {
@@ -432,6 +477,9 @@ impl eframe::App for ViewerApp {
             self.apply_view_action(action);
         }
         self.windows(&ctx);
+        if std::mem::take(&mut self.close_pending) {
+            ctx.send_viewport_cmd(egui::ViewportCommand::Close);
+        }
 
         let gpu_renders = self.renders.gpu_renders();
         let settled = self.is_settled();

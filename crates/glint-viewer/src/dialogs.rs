@@ -67,8 +67,16 @@ struct PathPrompt {
     field: PathField,
     /// Why the system dialog is not used.
     why: String,
-    /// What to open once the scene is saved (Save of "unsaved changes").
-    then_open: Option<String>,
+    /// What to do once the scene is saved (Save of "unsaved changes").
+    then_open: Option<Then>,
+}
+
+/// What waits for the answer to "unsaved changes": another scene to open, or quitting.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Then {
+    /// A file or a built-in scene.
+    Open(String),
+    Quit,
 }
 
 /// The answer to "unsaved changes".
@@ -167,8 +175,8 @@ pub struct Dialogs {
     export_error: Option<String>,
     /// A typed path instead of a system dialog.
     path_prompt: Option<PathPrompt>,
-    /// The scene to open once the user answered "unsaved changes".
-    unsaved: Option<String>,
+    /// What to do once the user answered "unsaved changes".
+    unsaved: Option<Then>,
     /// Why the system's file dialogs cannot be used here (`None`: try them).
     system_unavailable: Option<String>,
     /// A scene or model file dropped on the window, opened next frame.
@@ -231,14 +239,14 @@ impl Dialogs {
 
     /// Asks for a path in a window of the app, saying why (`why`: the system dialog failed);
     /// `then_open`: what to open after saving.
-    pub fn prompt_path(&mut self, purpose: PathPurpose, suggestion: String, why: String, then_open: Option<String>) {
+    pub fn prompt_path(&mut self, purpose: PathPurpose, suggestion: String, why: String, then_open: Option<Then>) {
         let field = PathField { text: suggestion, ..PathField::default() };
         self.path_prompt = Some(PathPrompt { purpose, field, why, then_open });
     }
 
     /// The typed-path window (when open); returns the path when the user confirmed it, with
     /// what to open after saving.
-    pub fn path_window(&mut self, ctx: &egui::Context) -> Option<(PathPurpose, PathBuf, Option<String>)> {
+    pub fn path_window(&mut self, ctx: &egui::Context) -> Option<(PathPurpose, PathBuf, Option<Then>)> {
         let prompt = self.path_prompt.as_mut()?;
         let purpose = prompt.purpose;
         let mut open = true;
@@ -266,19 +274,28 @@ impl Dialogs {
         None
     }
 
-    /// Asks "unsaved changes" before `target` (a file or a built-in scene) is opened.
-    pub fn confirm_unsaved(&mut self, target: String) {
+    /// Asks "unsaved changes" before `target` (another scene, or quitting).
+    pub fn confirm_unsaved(&mut self, target: Then) {
         self.unsaved = Some(target);
     }
 
+    /// Whether "unsaved changes" is being asked.
+    pub fn asking_unsaved(&self) -> bool {
+        self.unsaved.is_some()
+    }
+
     /// The "unsaved changes" window (when asked) over the document `name`; returns the answer
-    /// with the scene to open.
-    pub fn unsaved_window(&mut self, ctx: &egui::Context, name: &str) -> Option<(Unsaved, String)> {
+    /// with what waited for it.
+    pub fn unsaved_window(&mut self, ctx: &egui::Context, name: &str) -> Option<(Unsaved, Then)> {
         let target = self.unsaved.as_ref()?;
         let mut answer = None;
         let modal = egui::Modal::new(egui::Id::unique("unsaved changes")).show(ctx, |ui| {
             ui.heading("Unsaved changes");
-            ui.label(format!("“{name}” has edits that are not saved. Save them before opening {target}?"));
+            let before = match target {
+                Then::Open(t) => format!("opening {t}"),
+                Then::Quit => "quitting".to_string(),
+            };
+            ui.label(format!("“{name}” has edits that are not saved. Save them before {before}?"));
             ui.horizontal(|ui| {
                 for (text, a) in [("Save", Unsaved::Save), ("Discard", Unsaved::Discard), ("Cancel", Unsaved::Cancel)] {
                     if ui.button(text).clicked() {

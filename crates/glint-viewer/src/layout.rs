@@ -8,7 +8,7 @@ use crate::outline::Segment;
 use crate::ray_tree_view::TreeSegment;
 use crate::view::{self, Textures, ViewAction, ViewMode};
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Tab {
     Scene,
     Lights,
@@ -34,6 +34,8 @@ pub struct Layout {
     pub status_rect: egui::Rect,
     /// Where the side panel was drawn (nothing when hidden), for checking what fits in it.
     pub side_rect: egui::Rect,
+    /// The Help window open (Help menu).
+    pub help: crate::help::HelpWindow,
 }
 
 /// The side panel's default width, and the width it always leaves to the images: at
@@ -54,6 +56,7 @@ impl Layout {
             view_rects: Vec::new(),
             status_rect: egui::Rect::NOTHING,
             side_rect: egui::Rect::NOTHING,
+            help: crate::help::HelpWindow::None,
         }
     }
 

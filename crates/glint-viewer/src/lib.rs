@@ -17,6 +17,7 @@ mod export;
 mod frame_clock;
 mod gizmos;
 mod gpu_view;
+pub mod help;
 mod images;
 mod layout;
 mod menu;
@@ -37,8 +38,11 @@ pub use device::with_tracer_limits;
 pub use error::ViewerError;
 pub use export::ExportView;
 pub use layout::Tab;
+pub use panels::probe::cell as probe_cell;
+pub use panels::status::SOFTWARE_ADAPTER;
 pub use probe::{GpuProbe, first_difference, terms};
-pub use view::ViewMode;
+pub use ray_tree_view::LEGEND as RAY_TREE_LEGEND;
+pub use view::{ViewMode, placement as view_placement};
 
 /// Window size at start: room for the panels and two 480×270 previews side by side. Not
 /// larger: on a software rasterizer (lavapipe) every frame costs time per window pixel.
@@ -74,13 +78,41 @@ pub fn run(options: ViewerOptions) -> Result<Option<String>, ViewerError> {
         return Err(ViewerError::NoDisplay);
     }
     match run_with(options.clone(), eframe::Renderer::Wgpu) {
+        // No event loop (no display server there, say): winit makes one per process, so an
+        // OpenGL retry could only fail with "EventLoop can't be recreated" and hide the cause.
+        Err(ViewerError::Window(reason)) if reason.contains("EventLoopError") => {
+            Err(ViewerError::Window(with_display(&reason)))
+        }
         Err(ViewerError::Window(reason)) => {
             // No usable wgpu adapter: the viewer still runs, with the CPU reference alone.
             log::warn!("wgpu window failed ({reason}); retrying with OpenGL and no GPU tracer");
-            let options = ViewerOptions { no_gpu_reason: Some(reason), ..options };
-            run_with(options, eframe::Renderer::Glow)
+            let options = ViewerOptions { no_gpu_reason: Some(reason.clone()), ..options };
+            match run_with(options, eframe::Renderer::Glow) {
+                // The retry cannot tell why: winit makes one event loop per process, so a
+                // window that failed for want of a display fails again with "EventLoop can't be
+                // recreated". The first failure is the cause.
+                Err(ViewerError::Window(_)) => Err(ViewerError::Window(with_display(&reason))),
+                other => other,
+            }
         }
         other => other,
+    }
+}
+
+/// `reason` without winit's source location, with the display it was tried on.
+fn with_display(reason: &str) -> String {
+    let mut reason = reason.to_string();
+    if let Some(at) = reason.find("os error at ")
+        && let Some(end) = reason[at..].find(": ")
+    {
+        reason.replace_range(at..at + end + 2, "");
+    }
+    let named = |v: &str| std::env::var(v).ok().filter(|s| !s.is_empty()).map(|s| format!("{v}={s}"));
+    let displays: Vec<String> = ["DISPLAY", "WAYLAND_DISPLAY"].into_iter().filter_map(named).collect();
+    if displays.is_empty() {
+        reason
+    } else {
+        format!("{reason}; on {}: is a display server running there?", displays.join(", "))
     }
 }
 

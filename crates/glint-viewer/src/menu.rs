@@ -1,4 +1,4 @@
-//! The menu bar: files (open, recent, built-in, save, save as, save image, quit) and view.
+//! The menu bar: files (open, recent, built-in, save, save as, save image, quit), view and help.
 
 use std::path::PathBuf;
 
@@ -21,6 +21,8 @@ pub enum MenuAction {
     Save(PathBuf),
     SaveAs,
     SaveImage,
+    /// Quit, asking first while the scene has unsaved edits.
+    Quit,
 }
 
 pub fn bar(ui: &mut Ui, doc: &Document, recent: &Recent, layout: &mut Layout) -> Option<MenuAction> {
@@ -61,7 +63,7 @@ pub fn bar(ui: &mut Ui, doc: &Document, recent: &Recent, layout: &mut Layout) ->
             }
             ui.separator();
             if ui.button("Quit").clicked() {
-                ui.ctx().send_viewport_cmd(egui::ViewportCommand::Close);
+                action = Some(MenuAction::Quit);
             }
         });
         ui.menu_button("View", |ui| {
@@ -72,6 +74,9 @@ pub fn bar(ui: &mut Ui, doc: &Document, recent: &Recent, layout: &mut Layout) ->
             ui.checkbox(&mut layout.show_ray_tree, "Ray tree overlay");
             ui.checkbox(&mut layout.show_side_panel, "Side panel (F9)");
         });
+        if let Some(window) = crate::help::menu(ui) {
+            layout.help = window;
+        }
         ui.separator();
         let dirty = if doc.dirty { " (edited)" } else { "" };
         ui.label(format!("{}{dirty}", doc.name));

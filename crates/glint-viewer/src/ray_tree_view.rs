@@ -106,6 +106,9 @@ pub fn draw(ui: &mut Ui, rects: &[Rect], segments: &[TreeSegment]) {
                 }
             }
         }
+        if i + 1 == rects.len() {
+            legend(ui, *r);
+        }
         let label = format!("Ray tree: {} rays", segments.len());
         let area = bounds.expand(2.0).intersect(*r);
         if area.is_positive() {
@@ -113,4 +116,46 @@ pub fn draw(ui: &mut Ui, rects: &[Rect], segments: &[TreeSegment]) {
             response.widget_info(|| egui::WidgetInfo::labeled(egui::Role::Image, true, &label));
         }
     }
+}
+
+/// What the overlay's colours and line styles mean: the kinds of ray, the cut branches
+/// (dashed) and the width (the path weight).
+pub const LEGEND: [(&str, Color32, bool); 6] = [
+    ("camera", CAMERA, false),
+    ("reflection", REFLECTION, false),
+    ("refraction", REFRACTION, false),
+    ("shadow, light reached", SHADOW_LIT, false),
+    ("shadow, blocked", SHADOW_BLOCKED, false),
+    ("cut by bailout or depth", Color32::LIGHT_GRAY, true),
+];
+
+/// The legend in the bottom-right corner of the image `r`, on a dark box.
+fn legend(ui: &mut Ui, r: Rect) {
+    let width = 172.0;
+    let height = 16.0 * (LEGEND.len() as f32 + 1.0) + 8.0;
+    let at = Rect::from_min_size(r.right_bottom() - Vec2::new(width + 6.0, height + 6.0), Vec2::new(width, height));
+    if !r.contains_rect(at) {
+        return;
+    }
+    let mut child = ui.new_child(egui::UiBuilder::new().max_rect(at));
+    egui::Frame::new().fill(Color32::from_black_alpha(170)).inner_margin(4.0).corner_radius(3.0).show(
+        &mut child,
+        |ui| {
+            ui.spacing_mut().item_spacing.y = 0.0;
+            for (name, colour, dashed) in LEGEND {
+                ui.horizontal(|ui| {
+                    let (line, _) = ui.allocate_exact_size(Vec2::new(22.0, 14.0), Sense::hover());
+                    let (a, b) = (line.left_center(), line.right_center());
+                    let stroke = Stroke::new(2.0, colour);
+                    if dashed {
+                        ui.painter().extend(Shape::dashed_line(&[a, b], stroke, 4.0, 3.0));
+                    } else {
+                        ui.painter().line_segment([a, b], stroke);
+                    }
+                    ui.label(egui::RichText::new(name).color(Color32::WHITE).size(11.0));
+                });
+            }
+            ui.label(egui::RichText::new("width: the ray's path weight").color(Color32::WHITE).size(11.0));
+        },
+    );
 }

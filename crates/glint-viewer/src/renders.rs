@@ -10,7 +10,7 @@ use crate::gpu_view::{GpuImage, GpuView};
 use crate::images::CpuTexture;
 use crate::panels::status::Status;
 use crate::probe::{GpuProbe, ProbeState};
-use crate::view::Textures;
+use crate::view::{Shown, Textures};
 
 /// How long a full-resolution GPU render runs before the status bar says it is rendering.
 const GPU_PROGRESS_AFTER: Duration = Duration::from_millis(500);
@@ -190,8 +190,12 @@ impl Renders {
     /// The textures of the view (the difference only while it is of `revision`).
     pub fn textures(&self, revision: u64) -> Textures<'_> {
         Textures {
-            gpu: self.gpu.as_ref().and_then(|g| g.shown).map(|s| s.3),
-            cpu: self.cpu_texture.id(),
+            gpu: self.gpu.as_ref().and_then(|g| g.shown).map(|s| Shown { id: s.3, size: s.2, stale: s.0 != revision }),
+            cpu: self.cpu_texture.id().map(|id| Shown {
+                id,
+                size: self.cpu_texture.size,
+                stale: self.cpu_of(revision).is_none(),
+            }),
             diff: self.diff_texture.id().filter(|_| self.comparison_of(revision).is_some()),
             gpu_incomplete: self.gpu.as_ref().and_then(|g| g.warning.as_deref()),
             diffs: self.comparison_of(revision).map(|c| &c.diffs),
@@ -202,6 +206,7 @@ impl Renders {
     pub fn status(&self, revision: u64, ui_ms: f64) -> Status {
         Status {
             adapter: self.gpu.as_ref().map(GpuView::adapter_name),
+            software: self.gpu.as_ref().is_some_and(GpuView::is_software),
             gpu_ms: self.gpu.as_ref().and_then(|g| g.last_ms),
             // Said only once it is long enough to look like nothing is happening.
             gpu_rendering: self

@@ -32,11 +32,20 @@ impl ViewMode {
     }
 }
 
+/// An image on screen: its texture, its size in pixels, and whether it is of an earlier
+/// revision than the document's (a drag or an edit since: dimmed and marked "updating…").
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Shown {
+    pub id: egui::TextureId,
+    pub size: (u32, u32),
+    pub stale: bool,
+}
+
 /// The textures to show (any may be missing: no GPU, CPU still rendering, no comparison).
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Textures<'a> {
-    pub gpu: Option<egui::TextureId>,
-    pub cpu: Option<egui::TextureId>,
+    pub gpu: Option<Shown>,
+    pub cpu: Option<Shown>,
     pub diff: Option<egui::TextureId>,
     /// Why the GPU image is missing work (a status flag its shader raised), shown over it.
     pub gpu_incomplete: Option<&'a str>,
@@ -70,10 +79,33 @@ fn fit(area: Rect, w: u32, h: u32) -> Rect {
 
 const UV: Rect = Rect::from_min_max(Pos2::ZERO, pos2(1.0, 1.0));
 
-fn image(ui: &Ui, rect: Rect, tex: Option<egui::TextureId>, uv: Rect, missing: &str) {
+/// Where an image of `texture` pixels goes in `rect`, laid out for the current frame: an image
+/// of another aspect (the previous scene's while a model loads, the previous size's) keeps its
+/// own, letterboxed, never stretched to the new frame.
+pub fn placement(rect: Rect, frame: (u32, u32), texture: (u32, u32)) -> Rect {
+    let aspect = |(w, h): (u32, u32)| w as f32 / h.max(1) as f32;
+    if (aspect(frame) / aspect(texture) - 1.0).abs() < 0.01 { rect } else { fit(rect, texture.0, texture.1) }
+}
+
+/// The tint of an image of an earlier revision.
+const STALE_TINT: Color32 = Color32::from_gray(120);
+
+/// Draws `tex` in `rect` (of a `frame` image): dimmed, marked "NAME: updating…", where it is of
+/// an earlier revision.
+fn image(ui: &mut Ui, rect: Rect, tex: Option<Shown>, uv: Rect, frame: (u32, u32), name: &str, missing: &str) {
     match tex {
         Some(t) => {
-            ui.painter().image(t, rect, uv, Color32::WHITE);
+            // The wipe shows part of each image: the halves must meet, so only whole images
+            // are letterboxed.
+            let at = if uv == UV { placement(rect, frame, t.size) } else { rect };
+            if at != rect {
+                ui.painter().rect_filled(rect, 0.0, Color32::from_gray(24));
+            }
+            ui.painter().image(t.id, at, uv, if t.stale { STALE_TINT } else { Color32::WHITE });
+            if t.stale {
+                let text = egui::RichText::new(format!("{name}: updating…")).color(Color32::WHITE).size(13.0);
+                anchored_label(ui, at.left_bottom() + Vec2::new(6.0, -4.0), egui::Align2::LEFT_BOTTOM, text, Some(at));
+            }
         }
         None => {
             ui.painter().rect_filled(rect, 0.0, Color32::from_gray(24));
@@ -264,8 +296,8 @@ pub fn show(
             let half = Rect::from_min_size(area.min, Vec2::new(area.width() / 2.0, area.height()));
             let left = fit(half.shrink(4.0), w, h);
             let right = fit(half.translate(Vec2::new(area.width() / 2.0, 0.0)).shrink(4.0), w, h);
-            image(ui, left, tex.gpu, UV, gpu_missing);
-            image(ui, right, tex.cpu, UV, cpu_missing);
+            image(ui, left, tex.gpu, UV, (w, h), "GPU", gpu_missing);
+            image(ui, right, tex.cpu, UV, (w, h), "CPU", cpu_missing);
             incomplete_banner(ui, left, tex.gpu_incomplete);
             image_label(ui, left, left.left_top() + Vec2::new(6.0, 4.0), egui::Align2::LEFT_TOP, "GPU");
             image_label(ui, right, right.left_top() + Vec2::new(6.0, 4.0), egui::Align2::LEFT_TOP, "CPU");
@@ -284,15 +316,16 @@ pub fn show(
             let r = fit(image_area.shrink(4.0), w, h);
             match mode {
                 ViewMode::Gpu => {
-                    image(ui, r, tex.gpu, UV, gpu_missing);
+                    image(ui, r, tex.gpu, UV, (w, h), "GPU", gpu_missing);
                     incomplete_banner(ui, r, tex.gpu_incomplete);
                     if show_gizmos {
                         draw_gizmos(ui, r, gizmos);
                     }
                 }
-                ViewMode::Cpu => image(ui, r, tex.cpu, UV, cpu_missing),
+                ViewMode::Cpu => image(ui, r, tex.cpu, UV, (w, h), "CPU", cpu_missing),
                 ViewMode::Difference => {
-                    image(ui, r, tex.diff, UV, "comparing GPU and CPU…");
+                    let diff = tex.diff.map(|id| Shown { id, size: (w, h), stale: false });
+                    image(ui, r, diff, UV, (w, h), "Difference", "comparing GPU and CPU…");
                     colour_bar(ui, r);
                 }
                 ViewMode::Wipe | ViewMode::SideBySide => {
@@ -300,8 +333,12 @@ pub fn show(
                     let split = r.left() + *wipe * r.width();
                     let left = Rect::from_min_max(r.min, pos2(split, r.bottom()));
                     let right = Rect::from_min_max(pos2(split, r.top()), r.max);
-                    image(ui, left, tex.gpu, Rect::from_min_max(Pos2::ZERO, pos2(*wipe, 1.0)), gpu_missing);
-                    image(ui, right, tex.cpu, Rect::from_min_max(pos2(*wipe, 0.0), pos2(1.0, 1.0)), cpu_missing);
+                    let (left_uv, right_uv) = (
+                        Rect::from_min_max(Pos2::ZERO, pos2(*wipe, 1.0)),
+                        Rect::from_min_max(pos2(*wipe, 0.0), pos2(1.0, 1.0)),
+                    );
+                    image(ui, left, tex.gpu, left_uv, (w, h), "GPU", gpu_missing);
+                    image(ui, right, tex.cpu, right_uv, (w, h), "CPU", cpu_missing);
                     ui.painter().vline(split, r.y_range(), Stroke::new(1.5, Color32::WHITE));
                     let top = r.top() + 4.0;
                     image_label(ui, r, pos2(split - 6.0, top), egui::Align2::RIGHT_TOP, "GPU");

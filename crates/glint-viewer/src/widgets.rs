@@ -4,6 +4,8 @@
 //! valid value, typed or dragged, and clamps only what validation would refuse anyway.
 
 use egui::{DragValue, Response, Slider, SliderClamping, Ui, WidgetInfo};
+
+use crate::help::hint;
 use glint_core::scene::{Range, Rgb, ranges};
 
 /// The smallest positive value a logarithmic slider reaches by dragging (ε goes down to 1e-9);
@@ -15,22 +17,90 @@ fn scientific(v: f64) -> String {
     if v == 0.0 { "0".into() } else { format!("{v:.3e}") }
 }
 
-/// A slider over `range`, logarithmic where the range spans decades (ε, shininess).
+/// A slider over `range` (linear; `log_slider` for what spans decades).
 pub fn slider(ui: &mut Ui, label: &str, value: &mut f64, range: Range<f64>) -> bool {
-    let slider = Slider::new(value, range.min..=range.max).clamping(SliderClamping::Edits).text(label);
-    let slider = if range.log {
-        slider.logarithmic(true).smallest_positive(SMALLEST_POSITIVE).custom_formatter(|v, _| scientific(v))
-    } else {
-        slider
+    let wanted = ui.spacing().slider_width;
+    fitted(ui, label, wanted, |ui, text| {
+        let slider = Slider::new(value, range.min..=range.max).clamping(SliderClamping::Edits).text(text);
+        labelled(hint(ui.add(slider), label), label, text).changed()
+    })
+}
+
+/// A slider's `response` labelled `label` for screen readers (and the UI tests) where the
+/// label stands above it (`text` empty) rather than in it.
+fn labelled(response: Response, label: &str, text: &str) -> Response {
+    if text.is_empty() {
+        response.widget_info(|| WidgetInfo::labeled(egui::Role::Slider, true, label));
+    }
+    response
+}
+
+/// Points of slider per decade of a logarithmic slider: a 40-point drag moves a value by about
+/// one decade (over the whole valid range of shininess, 15 decades in 100 points, it moved n
+/// from 200 to 3e-5).
+pub const POINTS_PER_DECADE: f32 = 40.0;
+
+/// The width of a slider's value field ("1.000e-6"), with its margins.
+const VALUE_FIELD_WIDTH: f32 = 78.0;
+
+/// The narrowest slider: at the side panel's minimum width a long label leaves this.
+const MIN_SLIDER_WIDTH: f32 = 36.0;
+
+/// What a row leaves a slider beside its value field and its label, which must not be cut off
+/// at the panel's width; `None` where not even the narrowest slider fits beside the label.
+fn slider_room(ui: &Ui, label: &str) -> Option<f32> {
+    let font = egui::TextStyle::Body.resolve(ui.style());
+    let label_width = ui.painter().layout_no_wrap(label.to_string(), font, egui::Color32::WHITE).size().x;
+    let room = ui.available_width() - label_width - VALUE_FIELD_WIDTH - 2.0 * ui.spacing().item_spacing.x;
+    (room >= MIN_SLIDER_WIDTH).then_some(room)
+}
+
+/// `add` with the slider `wanted` wide where the row has room, else with its label on a line
+/// of its own above a slider of the row's width (`add` gets the label to give the slider: the
+/// label, or none when it stands above).
+fn fitted<R>(ui: &mut Ui, label: &str, wanted: f32, add: impl FnOnce(&mut Ui, &str) -> R) -> R {
+    let (width, text) = match slider_room(ui, label) {
+        Some(room) => (wanted.min(room), label),
+        None => {
+            hint(ui.label(label), label);
+            ((ui.available_width() - VALUE_FIELD_WIDTH - ui.spacing().item_spacing.x).max(MIN_SLIDER_WIDTH), "")
+        }
     };
-    ui.add(slider).changed()
+    ui.scope(|ui| {
+        ui.spacing_mut().slider_width = width;
+        add(ui, text)
+    })
+    .inner
+}
+
+/// A logarithmic slider whose drag covers the decades people use, `span`; a value typed into
+/// its field may be anything in validation's `range` (outside `span` the handle rests at an
+/// end).
+pub fn log_slider(ui: &mut Ui, label: &str, value: &mut f64, range: Range<f64>, span: (f64, f64)) -> bool {
+    let decades = (span.1 / span.0.max(SMALLEST_POSITIVE)).log10() as f32;
+    let changed = fitted(ui, label, POINTS_PER_DECADE * decades, |ui, text| {
+        let slider = Slider::new(value, span.0..=span.1)
+            .clamping(SliderClamping::Never)
+            .text(text)
+            .logarithmic(true)
+            .smallest_positive(span.0.max(SMALLEST_POSITIVE))
+            .custom_formatter(|v, _| scientific(v));
+        labelled(hint(ui.add(slider), label), label, text).changed()
+    });
+    if changed {
+        *value = value.clamp(range.min, range.max);
+    }
+    changed
 }
 
 /// A slider over whole numbers (recursion depth, samples, image sides); on a logarithmic scale
 /// small values get most of its length, and the largest valid value can still be reached.
 pub fn int_slider(ui: &mut Ui, label: &str, value: &mut u32, range: Range<u32>) -> bool {
-    let slider = Slider::new(value, range.min..=range.max).logarithmic(range.log);
-    ui.add(slider.clamping(SliderClamping::Edits).text(label)).changed()
+    let wanted = ui.spacing().slider_width;
+    fitted(ui, label, wanted, |ui, text| {
+        let slider = Slider::new(value, range.min..=range.max).logarithmic(range.log);
+        labelled(hint(ui.add(slider.clamping(SliderClamping::Edits).text(text)), label), label, text).changed()
+    })
 }
 
 /// A drag value whose accessible label is `label`.
@@ -38,7 +108,7 @@ fn labelled_drag(ui: &mut Ui, label: String, value: &mut f64, speed: f64, range:
     let r = ui.add(DragValue::new(value).speed(speed).range(range.min..=range.max).max_decimals(4));
     let v = *value;
     r.widget_info(|| WidgetInfo { label: Some(label.clone()), ..WidgetInfo::drag_value(true, v) });
-    r
+    hint(r, &label)
 }
 
 /// An RGB colour or intensity: a colour picker for values in [0, 1] and one drag value per
@@ -46,8 +116,8 @@ fn labelled_drag(ui: &mut Ui, label: String, value: &mut f64, speed: f64, range:
 /// "LABEL R/G/B".
 pub fn rgb_edit(ui: &mut Ui, label: &str, value: &mut Rgb) -> bool {
     let mut changed = false;
-    ui.horizontal(|ui| {
-        ui.label(label).on_hover_text(format!("{label}: red, green, blue"));
+    ui.horizontal_wrapped(|ui| {
+        hint(ui.label(label), label);
         let mut c = value.0.map(|v| v.clamp(0.0, 1.0) as f32);
         if ui.color_edit_button_rgb(&mut c).changed() {
             value.0 = c.map(f64::from);
@@ -64,8 +134,8 @@ pub fn rgb_edit(ui: &mut Ui, label: &str, value: &mut Rgb) -> bool {
 /// A 3-vector (position or direction) as three labelled drag values.
 pub fn vec3_edit(ui: &mut Ui, label: &str, value: &mut [f64; 3], speed: f64) -> bool {
     let mut changed = false;
-    ui.horizontal(|ui| {
-        ui.label(label);
+    ui.horizontal_wrapped(|ui| {
+        hint(ui.label(label), label);
         for (i, axis) in ["x", "y", "z"].iter().enumerate() {
             let r = labelled_drag(ui, format!("{label} {axis}"), &mut value[i], speed, ranges::COORD);
             changed |= r.changed();
@@ -81,7 +151,7 @@ pub fn number(ui: &mut Ui, label: &str, value: &mut f64, speed: f64, range: Rang
     );
     let v = *value;
     r.widget_info(|| WidgetInfo { label: Some(label.to_string()), ..WidgetInfo::drag_value(true, v) });
-    r.changed()
+    hint(r, label).changed()
 }
 
 /// A combo box over `options`, shown by `name`.
@@ -93,10 +163,16 @@ pub fn choice<T: PartialEq + Copy>(
     name: impl Fn(T) -> &'static str,
 ) -> bool {
     let mut changed = false;
-    egui::ComboBox::from_label(label).selected_text(name(*value)).show_ui(ui, |ui| {
+    let combo = egui::ComboBox::from_label(label).selected_text(name(*value)).show_ui(ui, |ui| {
         for &o in options {
-            changed |= ui.selectable_value(value, o, name(o)).changed();
+            let r = ui.selectable_value(value, o, name(o));
+            let r = match crate::help::option_tooltip(label, name(o)) {
+                Some(text) => r.on_hover_text(text),
+                None => r,
+            };
+            changed |= r.changed();
         }
     });
+    hint(combo.response, label);
     changed
 }

@@ -88,7 +88,7 @@ fn histogram(ui: &mut Ui, c: &Compared) {
 }
 
 fn error_plot(ui: &mut Ui, history: &ErrorHistory, axis: &mut Axis, current: &RenderSettings) {
-    ui.horizontal(|ui| {
+    ui.horizontal_wrapped(|ui| {
         ui.label("Error against");
         for a in Axis::ALL {
             ui.selectable_value(axis, a, a.label());

@@ -8,7 +8,7 @@ use glint_core::scene::{
 };
 
 use crate::document::Document;
-use crate::widgets::{choice, number, rgb_edit, slider, vec3_edit};
+use crate::widgets::{choice, log_slider, number, rgb_edit, slider, vec3_edit};
 
 /// The cone a light gets when it becomes a spot light or leaves "no cone".
 const NEW_CONE_CUTOFF: f64 = 30.0;
@@ -127,7 +127,7 @@ pub fn ui(ui: &mut Ui, doc: &mut Document, selected: &mut usize) -> bool {
             ui.selectable_value(selected, i, name);
         }
     });
-    ui.horizontal(|ui| {
+    ui.horizontal_wrapped(|ui| {
         if ui.button("Add light").clicked() {
             lights.push(LightDesc::new(LightKind::Point, [0.0, 5.0, -3.0], [0.0, -1.0, 0.0]));
             set_aside.push(SetAside::default());
@@ -176,7 +176,7 @@ pub fn ui(ui: &mut Ui, doc: &mut Document, selected: &mut usize) -> bool {
     if light.kind == LightKind::Spot {
         changed |= spot_ui(ui, light);
     }
-    changed |= ui.checkbox(&mut light.casts_shadows, "Casts shadows").changed();
+    changed |= crate::help::hint(ui.checkbox(&mut light.casts_shadows, "Casts shadows"), "Casts shadows").changed();
     changed
 }
 
@@ -195,7 +195,7 @@ fn attenuation_ui(ui: &mut Ui, attenuation: &mut Attenuation) -> bool {
     match attenuation {
         Attenuation::Polynomial { c, l, q } => {
             ui.label("f_att = 1 / (c + l·d + q·d²)");
-            ui.horizontal(|ui| {
+            ui.horizontal_wrapped(|ui| {
                 changed |= number(ui, "c", c, 0.01, ranges::ATTENUATION);
                 changed |= number(ui, "l", l, 0.01, ranges::ATTENUATION);
                 changed |= number(ui, "q", q, 0.01, ranges::ATTENUATION);
@@ -205,12 +205,12 @@ fn attenuation_ui(ui: &mut Ui, attenuation: &mut Attenuation) -> bool {
             let mut windowed = range.is_some();
             let text = if windowed { "f_att = clamp(1 − (d/range)⁴, 0, 1) / d²" } else { "f_att = 1 / d²" };
             ui.label(text);
-            if ui.checkbox(&mut windowed, "Range window").changed() {
+            if crate::help::hint(ui.checkbox(&mut windowed, "Range window"), "Range window").changed() {
                 *range = windowed.then_some(NEW_RANGE);
                 changed = true;
             }
             if let Some(r) = range {
-                changed |= slider(ui, "Range", r, ranges::LIGHT_RANGE);
+                changed |= log_slider(ui, "Range", r, ranges::LIGHT_RANGE, (0.1, 1e3));
             }
         }
     }
@@ -241,10 +241,11 @@ fn spot_ui(ui: &mut Ui, light: &mut LightDesc) -> bool {
     }
     match light.falloff {
         SpotFalloff::Power => {
-            changed |= slider(ui, "Spot exponent", &mut light.exponent, ranges::SPOT_EXPONENT);
+            changed |= log_slider(ui, "Spot exponent", &mut light.exponent, ranges::SPOT_EXPONENT, (0.1, 1e3));
             // The slider covers the cones proper; "no cone" is a value of its own.
             let mut no_cone = light.cutoff >= NO_CONE_CUTOFF;
-            if ui.checkbox(&mut no_cone, format!("No cone (cutoff {NO_CONE_CUTOFF}°)")).changed() {
+            let label = format!("No cone (cutoff {NO_CONE_CUTOFF}°)");
+            if crate::help::hint(ui.checkbox(&mut no_cone, &label), &label).changed() {
                 light.cutoff = if no_cone { NO_CONE_CUTOFF } else { NEW_CONE_CUTOFF };
                 changed = true;
             }

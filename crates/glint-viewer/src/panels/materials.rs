@@ -4,7 +4,7 @@ use egui::Ui;
 use glint_core::scene::{CheckerDesc, Fresnel, ObjectDesc, Rgb, SpecularModel, format_number, ranges};
 
 use crate::document::Document;
-use crate::widgets::{choice, rgb_edit, slider};
+use crate::widgets::{choice, log_slider, rgb_edit};
 
 pub fn ui(
     ui: &mut Ui,
@@ -24,16 +24,16 @@ pub fn ui(
     }
     let names: Vec<String> = doc.desc.materials.keys().cloned().collect();
     let current = selected_material.clone().filter(|n| doc.desc.materials.contains_key(n));
-    egui::ComboBox::from_label("Material").selected_text(current.clone().unwrap_or_else(|| "—".into())).show_ui(
-        ui,
-        |ui| {
+    let combo = egui::ComboBox::from_label("Material")
+        .selected_text(current.clone().unwrap_or_else(|| "—".into()))
+        .show_ui(ui, |ui| {
             for n in &names {
                 if ui.selectable_label(current.as_deref() == Some(n), n).clicked() {
                     *selected_material = Some(n.clone());
                 }
             }
-        },
-    );
+        });
+    crate::help::hint(combo.response, "Material");
     let Some(name) = current else { return changed };
     let users = doc.desc.objects.iter().filter(|o| o.material() == name).count();
     if users > 1 {
@@ -48,17 +48,17 @@ pub fn ui(
     // Each model's own parameters; the others' stay in the material, unused.
     match m.specular_model {
         SpecularModel::Blinn | SpecularModel::Phong => {
-            changed |= slider(ui, "Shininess n", &mut m.shininess, ranges::SHININESS);
+            changed |= log_slider(ui, "Shininess n", &mut m.shininess, ranges::SHININESS, (1.0, 1e3));
         }
         SpecularModel::CookTorrance => {
-            changed |= slider(ui, "Roughness m", &mut m.roughness, ranges::ROUGHNESS);
+            changed |= log_slider(ui, "Roughness m", &mut m.roughness, ranges::ROUGHNESS, (1e-3, 1.0));
             changed |= choice(ui, "Fresnel", &mut m.fresnel, &Fresnel::ALL, fresnel_label);
         }
     }
     changed |= rgb_edit(ui, "k_r", &mut m.kr);
     changed |= rgb_edit(ui, "k_t", &mut m.kt);
     // The whole valid range: ior < 1 (a bubble) and 100 (stiff case 13) too.
-    changed |= slider(ui, "Index of refraction", &mut m.ior, ranges::IOR);
+    changed |= log_slider(ui, "Index of refraction", &mut m.ior, ranges::IOR, (0.5, 5.0));
     changed |= rgb_edit(ui, "E_m", &mut m.emission);
     // Image textures are shown, not edited (their file is the scene's); a checker and a base
     // colour texture exclude each other.
@@ -70,14 +70,17 @@ pub fn ui(
         }
     }
     let mut has_checker = m.checker.is_some();
-    let checker = ui.add_enabled(m.texture.is_none(), egui::Checkbox::new(&mut has_checker, "Checker"));
+    let checker = crate::help::hint(
+        ui.add_enabled(m.texture.is_none(), egui::Checkbox::new(&mut has_checker, "Checker")),
+        "Checker",
+    );
     if checker.changed() {
         m.checker = has_checker.then(|| CheckerDesc { kd: Rgb::splat(0.1), size: 1.0 });
         changed = true;
     }
     if let Some(c) = &mut m.checker {
         changed |= rgb_edit(ui, "Checker k_d", &mut c.kd);
-        changed |= slider(ui, "Checker size", &mut c.size, ranges::SIZE);
+        changed |= log_slider(ui, "Checker size", &mut c.size, ranges::SIZE, (0.01, 100.0));
     }
     changed
 }

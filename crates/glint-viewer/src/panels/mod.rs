@@ -37,7 +37,7 @@ pub fn side(
     selection: &mut Selection,
     inputs: SideInputs<'_>,
 ) -> Option<(u32, u32)> {
-    ui.horizontal(|ui| {
+    ui.horizontal_wrapped(|ui| {
         ui.selectable_value(tab, Tab::Scene, "Scene");
         ui.selectable_value(tab, Tab::Lights, "Lights");
         ui.selectable_value(tab, Tab::Materials, "Materials");
@@ -46,8 +46,9 @@ pub fn side(
     });
     ui.separator();
     let mut probe = None;
-    // Both directions: a wide probe table scrolls instead of widening the panel.
-    egui::ScrollArea::both().show(ui, |ui| {
+    // Vertical only, one scroll position per tab: every tab is laid out to the panel's width
+    // (rows wrap, grids have two columns), so nothing hides sideways or under a horizontal bar.
+    egui::ScrollArea::vertical().id_salt(("side panel", *tab)).auto_shrink([false, false]).show(ui, |ui| {
         let changed = match tab {
             Tab::Scene => scene::ui(ui, doc),
             Tab::Lights => lights::ui(ui, doc, &mut selection.light),

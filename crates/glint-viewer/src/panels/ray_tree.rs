@@ -30,10 +30,11 @@ fn target(n: &RayNode, doc: &Document) -> String {
     }
 }
 
-/// The node's title: index, kind, what it hit and its path weight.
+/// The node's title: index, kind and what it hit (its path weight is its second row: a
+/// title does not wrap, and the panel must not grow to hold it).
 pub fn title(i: usize, n: &RayNode, doc: &Document) -> String {
     let tir = if n.tir { " (TIR)" } else { "" };
-    format!("#{i} {}{tir}: {} (w {})", n.kind.name(), target(n, doc), short(n.weight))
+    format!("#{i} {}{tir}: {}", n.kind.name(), target(n, doc))
 }
 
 /// The rows of node `c` (and its GPU twin `g`): its own factor, path weight, distance and the

@@ -4,7 +4,7 @@ use egui::Ui;
 use glint_core::scene::{CameraDesc, EpsilonMode, GlobalAttenuation, ObjectDesc, SpecularModel, ranges};
 
 use crate::document::Document;
-use crate::widgets::{choice, int_slider, number, rgb_edit, slider};
+use crate::widgets::{choice, int_slider, log_slider, number, rgb_edit, slider};
 
 /// What switching the world's global attenuation on starts from: a gentle linear falloff (a
 /// child ray 10 units long brings back half), since (1, 0, 0) is "off".
@@ -31,12 +31,12 @@ pub fn ui(ui: &mut Ui, doc: &mut Document) -> bool {
         // The whole valid range: depths past the GPU's ray stack are for checking its report.
         changed |= int_slider(ui, "Max depth", &mut r.max_depth, ranges::DEPTH);
         changed |= slider(ui, "Bailout", &mut r.bailout, ranges::BAILOUT);
-        changed |= slider(ui, "Epsilon", &mut r.epsilon, ranges::EPSILON);
+        changed |= log_slider(ui, "Epsilon", &mut r.epsilon, ranges::EPSILON, (1e-9, 1e-1));
         changed |= choice(ui, "Epsilon strategy", &mut r.epsilon_mode, &EpsilonMode::ALL, EpsilonMode::name);
         changed |= int_slider(ui, "Samples per pixel", &mut r.spp, ranges::SPP);
         changed |= int_slider(ui, "Width", &mut r.width, ranges::IMAGE_SIDE);
         changed |= int_slider(ui, "Height", &mut r.height, ranges::IMAGE_SIDE);
-        ui.horizontal(|ui| {
+        ui.horizontal_wrapped(|ui| {
             ui.label("Specular model of all materials");
             for model in SpecularModel::ALL {
                 let name = model.label();
@@ -58,13 +58,18 @@ pub fn ui(ui: &mut Ui, doc: &mut Document) -> bool {
 fn global_attenuation_ui(ui: &mut Ui, g: &mut GlobalAttenuation) -> bool {
     let mut changed = false;
     let mut on = !g.is_none();
-    if ui.checkbox(&mut on, "Global attenuation of k_r·I_r, k_t·I_t").changed() {
+    if crate::help::hint(
+        ui.checkbox(&mut on, "Global attenuation of k_r·I_r, k_t·I_t"),
+        "Global attenuation of k_r·I_r, k_t·I_t",
+    )
+    .changed()
+    {
         *g = if on { NEW_GLOBAL_ATTENUATION } else { GlobalAttenuation::NONE };
         changed = true;
     }
     if on {
         ui.label("f_g(d) = 1 / (c_g + l_g·d + q_g·d²), d the child ray's length");
-        ui.horizontal(|ui| {
+        ui.horizontal_wrapped(|ui| {
             changed |= number(ui, "c_g", &mut g.c, 0.01, ranges::ATTENUATION);
             changed |= number(ui, "l_g", &mut g.l, 0.01, ranges::ATTENUATION);
             changed |= number(ui, "q_g", &mut g.q, 0.01, ranges::ATTENUATION);

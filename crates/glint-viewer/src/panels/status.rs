@@ -4,10 +4,15 @@ use egui::Ui;
 use glint_core::compare::ImageErrors;
 use glint_core::cpu::RayCounts;
 
+/// What the status bar says on a software adapter.
+pub const SOFTWARE_ADAPTER: &str = "software Vulkan (lavapipe): the GPU tracer runs on the CPU";
+
 /// Everything the status bar shows, gathered by the app.
 #[derive(Clone, Debug, Default)]
 pub struct Status {
     pub adapter: Option<String>,
+    /// The adapter is a software one: the GPU tracer shares the CPU with the reference.
+    pub software: bool,
     pub gpu_ms: Option<f64>,
     /// Seconds the full-resolution GPU render in flight has run, once it runs long, and the
     /// sample passes the GPU has finished of how many.
@@ -35,6 +40,13 @@ pub fn ui(ui: &mut Ui, s: &Status) {
             Some(a) => ui.label(format!("GPU: {a}")),
             None => ui.label("GPU: none"),
         };
+        if s.software {
+            ui.colored_label(ui.visuals().warn_fg_color, SOFTWARE_ADAPTER).on_hover_text(
+                "A software Vulkan driver (Mesa's lavapipe here) runs the WGSL tracer on the CPU cores, \
+                 beside the CPU reference: expect it to be several times slower than the reference. \
+                 A hardware GPU runs it on the GPU.",
+            );
+        }
         ui.separator();
         if let Some((secs, (done, total))) = s.gpu_rendering {
             ui.spinner();
