@@ -48,6 +48,11 @@ pub struct ViewArgs {
     /// Orbit the camera for SECONDS as a drag would, then print the frame rates and exit
     #[arg(long, value_name = "SECONDS")]
     pub benchmark_drag: Option<f64>,
+    /// Use each feature that needs a shader variant of its own (more samples, depth 0, a spot
+    /// light, Phong, Cook–Torrance) for the first time, print the longest frame interval while
+    /// each rendered, and exit
+    #[arg(long)]
+    pub benchmark_features: bool,
 }
 
 impl Default for ViewArgs {
@@ -60,6 +65,7 @@ impl Default for ViewArgs {
             view: StartView::SideBySide,
             screenshot: None,
             benchmark_drag: None,
+            benchmark_features: false,
         }
     }
 }
@@ -79,8 +85,8 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
         Ok(loaded) => Some(args.settings.apply(&loaded.desc.render)?),
         Err(e @ glint_core::scene::SceneError::NotGenerated { .. }) => bail!("--resolution: {e}"),
         Err(e @ glint_core::scene::SceneError::NotAModel { .. }) => bail!("{e}"),
-        Err(e) if args.benchmark_drag.is_some() => {
-            bail!("--benchmark-drag: cannot load scene '{}': {e}", args.scene)
+        Err(e) if args.benchmark_drag.is_some() || args.benchmark_features => {
+            bail!("cannot benchmark: cannot load scene '{}': {e}", args.scene)
         }
         Err(_) => None,
     };
@@ -91,6 +97,7 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
         load,
         screenshot: args.screenshot.clone(),
         drag_benchmark: args.benchmark_drag,
+        features_benchmark: args.benchmark_features,
         ..ViewerOptions::default()
     };
     match glint_viewer::run(options) {

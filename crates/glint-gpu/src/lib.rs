@@ -20,7 +20,7 @@ pub use context::{AdapterRequest, AdapterSummary, GpuContext};
 pub use dispatch::{DispatchControl, SampleProgress};
 pub use error::GpuError;
 pub use job::GpuJob;
-pub use present::Presenter;
+pub use present::{PendingPixels, Presenter};
 pub use readback::JobReadback;
 pub use shaders::{GPU_STACK_LIMIT, LAVAPIPE_LOOP_BUDGET, ShaderKey};
 pub use tracer::{GpuOptions, GpuRender, GpuTracer, PixelProbe};

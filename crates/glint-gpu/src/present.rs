@@ -1,26 +1,18 @@
-//! Display of a GPU render: a compute pass encodes the linear output buffer as sRGB into an
-//! rgba8 texture that a UI (the viewer, through egui-wgpu) samples directly.
+//! Display of a GPU render: a compute pass encodes the linear output buffer as 8-bit sRGB
+//! RGBA pixels, which a UI reads back (a quarter of the radiance's bytes) and draws.
 
 use std::borrow::Cow;
 
 use crate::context::GpuContext;
-
-/// Format the texture is written in (storage textures cannot be sRGB)…
-pub const STORAGE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
-/// …and the format of the view for display, so that samplers decode the sRGB bytes.
-pub const VIEW_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
+use crate::readback::PendingCopy;
 
 #[derive(Debug)]
 pub struct Presenter {
     pipeline: wgpu::ComputePipeline,
     layout: wgpu::BindGroupLayout,
     size: wgpu::Buffer,
-    texture: wgpu::Texture,
-    /// The sRGB view to display: sampling decodes to linear.
-    pub view: wgpu::TextureView,
-    /// The same sRGB bytes in a plain `Rgba8Unorm` view, for renderers that blend in gamma
-    /// space and expect gamma-encoded textures (egui-wgpu's native textures).
-    pub gamma_view: wgpu::TextureView,
+    /// One u32 a pixel: bytes R, G, B, A (sRGB), rows top to bottom.
+    pixels: wgpu::Buffer,
     pub width: u32,
     pub height: u32,
 }
@@ -41,49 +33,32 @@ impl Presenter {
             cache: None,
         });
         let layout = pipeline.get_bind_group_layout(0);
-        let texture = device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("glint display"),
-            size: wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: STORAGE_FORMAT,
-            usage: wgpu::TextureUsages::STORAGE_BINDING
-                | wgpu::TextureUsages::TEXTURE_BINDING
-                | wgpu::TextureUsages::COPY_SRC,
-            view_formats: &[VIEW_FORMAT],
-        });
-        // The sRGB view is for sampling only: sRGB formats cannot be storage-bound, so the view
-        // must not inherit the texture's STORAGE_BINDING usage (wgpu rejects it otherwise).
-        let view = texture.create_view(&wgpu::TextureViewDescriptor {
-            format: Some(VIEW_FORMAT),
-            usage: Some(wgpu::TextureUsages::TEXTURE_BINDING),
-            ..Default::default()
-        });
-        let gamma_view = texture.create_view(&wgpu::TextureViewDescriptor {
-            format: Some(STORAGE_FORMAT),
-            usage: Some(wgpu::TextureUsages::TEXTURE_BINDING),
-            ..Default::default()
+        let pixels = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("glint display pixels"),
+            size: (u64::from(width) * u64::from(height) * 4).max(4),
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
         });
         let size = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("glint present size"),
+            label: Some("glint display size"),
             size: 16,
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        ctx.queue.write_buffer(&size, 0, bytemuck::cast_slice(&[width, height, 0, 0]));
-        Self { pipeline, layout, size, texture, view, gamma_view, width, height }
+        ctx.queue.write_buffer(&size, 0, bytemuck::cast_slice(&[width, height, 0u32, 0u32]));
+        Self { pipeline, layout, size, pixels, width, height }
     }
 
-    /// Encodes `radiance` (the tracer's output buffer, same size) into the texture.
-    pub fn present(&self, ctx: &GpuContext, radiance: &wgpu::Buffer) {
-        let storage_view = self.texture.create_view(&wgpu::TextureViewDescriptor::default());
+    /// Encodes `radiance` (the tracer's output buffer, same size) as sRGB pixels and starts
+    /// copying them to the host; queued after what was submitted before, so a finished render's
+    /// image is what arrives.
+    pub fn present(&self, ctx: &GpuContext, radiance: &wgpu::Buffer) -> PendingPixels {
         let bind_group = ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("glint present"),
             layout: &self.layout,
             entries: &[
                 wgpu::BindGroupEntry { binding: 0, resource: radiance.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::TextureView(&storage_view) },
+                wgpu::BindGroupEntry { binding: 1, resource: self.pixels.as_entire_binding() },
                 wgpu::BindGroupEntry { binding: 2, resource: self.size.as_entire_binding() },
             ],
         });
@@ -96,6 +71,30 @@ impl Presenter {
             pass.dispatch_workgroups(self.width.div_ceil(8), self.height.div_ceil(8), 1);
         }
         ctx.queue.submit([encoder.finish()]);
+        PendingPixels { copy: PendingCopy::start(ctx, &self.pixels), width: self.width, height: self.height }
+    }
+}
+
+/// A presented image on its way to the host.
+#[derive(Debug)]
+pub struct PendingPixels {
+    copy: PendingCopy,
+    pub width: u32,
+    pub height: u32,
+}
+
+impl PendingPixels {
+    /// The RGBA8 (sRGB) bytes once they have landed; polls the device once.
+    pub fn poll(&self, ctx: &GpuContext) -> Option<Result<Vec<u8>, crate::GpuError>> {
+        if let Err(e) = ctx.device.poll(wgpu::PollType::Poll) {
+            return Some(Err(crate::GpuError::Wgpu(e.to_string())));
+        }
+        self.copy.try_take().map(|r| {
+            r.map(|mut bytes| {
+                bytes.truncate(self.width as usize * self.height as usize * 4);
+                bytes
+            })
+        })
     }
 }
 

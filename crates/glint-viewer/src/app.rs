@@ -45,6 +45,9 @@ pub struct ViewerOptions {
     pub screenshot: Option<PathBuf>,
     /// Simulate an orbit drag for this many seconds, then report the frame rates and close.
     pub drag_benchmark: Option<f64>,
+    /// Use each feature that needs a shader variant of its own for the first time, then report
+    /// the longest frame interval while each rendered, and close.
+    pub features_benchmark: bool,
     /// Why there is no GPU, when the window was opened without one.
     pub no_gpu_reason: Option<String>,
     /// Do not read or write the list of recent files (tests).
@@ -107,7 +110,7 @@ impl ViewerApp {
             renders,
             layout: Layout::new(mode),
             dialogs: Dialogs::new(options.no_file_dialogs.clone()),
-            automation: Automation::new(options.screenshot, options.drag_benchmark),
+            automation: Automation::new(options.screenshot, options.drag_benchmark, options.features_benchmark),
             clock: FrameClock::default(),
             history: ErrorHistory::default(),
             error_axis: Axis::Samples,
@@ -490,7 +493,7 @@ impl eframe::App for ViewerApp {
         let cpu_running = self.renders.cpu.is_running();
         let frame = Frame { settled: self.is_settled(), cpu_running, gpu_renders, metadata: &metadata };
         self.automation.step(&ctx, &frame);
-        if self.renders.needs_polling() || automated_drag {
+        if self.renders.needs_polling() || automated_drag || self.automation.paints_every_frame() {
             // A readback is polled, not signalled, and a drag paints every frame.
             ctx.request_repaint_after(Duration::from_millis(4));
         } else if self.renders.is_busy() || self.automation.active() {

@@ -1,5 +1,7 @@
-//! Scripted runs of the real window: `--screenshot` (render, save the window, close) and the
-//! drag benchmark (orbit for a while as a user would, then report the frame rates).
+//! Scripted runs of the real window: `--screenshot` (render, save the window, close), the
+//! drag benchmark (orbit for a while as a user would, then report the frame rates) and the
+//! features benchmark (use each feature that needs a shader variant of its own for the first
+//! time, and report the longest frame interval while its renders ran).
 
 use std::path::PathBuf;
 use std::sync::{Arc, Mutex};
@@ -52,6 +54,8 @@ enum Phase {
     },
     /// The drag is over: the CPU reference renders while frames are logged.
     CpuRender,
+    /// Feature `k` of `FEATURE_EDITS` was applied; its renders run while frames are logged.
+    Feature(usize),
     Screenshot,
     Closing,
 }
@@ -60,6 +64,9 @@ enum Phase {
 pub struct Automation {
     screenshot: Option<PathBuf>,
     drag_seconds: Option<f64>,
+    features: bool,
+    /// The longest frame interval (ms) while each feature's renders ran.
+    feature_longest: Vec<f64>,
     phase: Phase,
     started: Instant,
     drag_log: FrameLog,
@@ -78,10 +85,12 @@ pub struct Frame<'a> {
 }
 
 impl Automation {
-    pub fn new(screenshot: Option<PathBuf>, drag_seconds: Option<f64>) -> Self {
+    pub fn new(screenshot: Option<PathBuf>, drag_seconds: Option<f64>, features: bool) -> Self {
         Self {
             screenshot,
             drag_seconds,
+            features,
+            feature_longest: Vec::new(),
             phase: Phase::Idle,
             started: Instant::now(),
             drag_log: FrameLog::default(),
@@ -91,14 +100,22 @@ impl Automation {
         }
     }
 
+    /// Whether every frame is painted (a drag, or the features benchmark measuring frame
+    /// intervals: an idle window paints only every 250 ms, which is no stall).
+    pub fn paints_every_frame(&self) -> bool {
+        matches!(self.phase, Phase::Dragging { .. } | Phase::Feature(_))
+    }
+
     pub fn active(&self) -> bool {
-        self.screenshot.is_some() || self.drag_seconds.is_some()
+        self.screenshot.is_some() || self.drag_seconds.is_some() || self.features
     }
 
     /// During the drag benchmark, orbits the camera a little (as a drag would); returns whether
     /// the view counts as being dragged (preview resolution).
     pub fn drive(&mut self, doc: &mut Document, gpu_renders: usize, settled: bool) -> bool {
         match self.phase {
+            Phase::Idle if self.features && settled => self.next_feature(doc, 0),
+            Phase::Feature(k) if settled => self.next_feature(doc, k + 1),
             Phase::Idle if self.drag_seconds.is_some() && settled => {
                 let secs = self.drag_seconds.unwrap_or(0.0);
                 self.phase = Phase::Dragging {
@@ -129,7 +146,41 @@ impl Automation {
         }
     }
 
+    /// Applies feature `k` (none past the last: the benchmark is over).
+    fn next_feature(&mut self, doc: &mut Document, k: usize) -> bool {
+        match FEATURE_EDITS.get(k) {
+            Some((_, edit)) => {
+                edit(&mut doc.desc);
+                doc.edited();
+                self.feature_longest.push(0.0);
+                self.phase = Phase::Feature(k);
+            }
+            None => self.phase = Phase::CpuRender,
+        }
+        false
+    }
+
+    /// The features benchmark's report: each feature's longest frame interval.
+    fn features_report(&self) -> String {
+        let each: Vec<String> = FEATURE_EDITS
+            .iter()
+            .zip(&self.feature_longest)
+            .map(|((what, _), ms)| format!("{what} {ms:.0} ms"))
+            .collect();
+        let worst = self.feature_longest.iter().copied().fold(0.0, f64::max);
+        format!(
+            "first use of each feature, longest frame interval while it rendered: {}; worst {worst:.0} ms",
+            each.join(", ")
+        )
+    }
+
     pub fn record_frame(&mut self, interval: Duration, ui_ms: f64) {
+        if let Phase::Feature(k) = self.phase
+            && let Some(longest) = self.feature_longest.get_mut(k)
+        {
+            *longest = longest.max(interval.as_secs_f64() * 1e3);
+            return;
+        }
         let log = match self.phase {
             Phase::Dragging { .. } => &mut self.drag_log,
             Phase::CpuRender => &mut self.cpu_log,
@@ -149,7 +200,13 @@ impl Automation {
             return;
         }
         match self.phase {
-            Phase::Idle if self.drag_seconds.is_none() && frame.settled => self.take_screenshot(ctx, frame.metadata),
+            Phase::Idle if self.drag_seconds.is_none() && !self.features && frame.settled => {
+                self.take_screenshot(ctx, frame.metadata);
+            }
+            Phase::CpuRender if self.features && frame.settled => {
+                let report = self.features_report();
+                self.finish(ctx, Ok(report));
+            }
             Phase::CpuRender if frame.settled && !frame.cpu_running => {
                 let report = format!(
                     "{}\nwhile the CPU reference rendered: UI {}",
@@ -199,3 +256,24 @@ impl Automation {
         ctx.send_viewport_cmd(egui::ViewportCommand::Close);
     }
 }
+
+/// An edit of the scene.
+pub type SceneEdit = fn(&mut glint_core::scene::SceneDesc);
+
+/// Edits that each need a shader variant of their own (a feature the scene did not use), in
+/// the order the features benchmark applies them.
+pub const FEATURE_EDITS: [(&str, SceneEdit); 5] = [
+    ("4 samples per pixel", |d| d.render.spp = 4),
+    ("max depth 0", |d| d.render.max_depth = 0),
+    ("a spot light", |d| {
+        if let Some(l) = d.lights.first_mut() {
+            l.kind = glint_core::scene::LightKind::Spot;
+            l.direction = Some([0.0, -1.0, 0.0]);
+            l.position.get_or_insert([0.0, 5.0, 0.0]);
+        }
+    }),
+    ("Phong", |d| d.materials.values_mut().for_each(|m| m.specular_model = glint_core::scene::SpecularModel::Phong)),
+    ("Cook–Torrance", |d| {
+        d.materials.values_mut().for_each(|m| m.specular_model = glint_core::scene::SpecularModel::CookTorrance)
+    }),
+];

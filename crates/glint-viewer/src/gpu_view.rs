@@ -1,6 +1,11 @@
-//! The GPU tracer on eframe's own wgpu device: each render is traced, then encoded into a
-//! texture by glint-gpu's `Presenter` and drawn by egui straight from GPU memory. Only full
-//! resolution renders are also read back (without blocking) for the comparison and export.
+//! The GPU tracer on a wgpu device of its own, on the window's adapter: each render is traced,
+//! encoded as sRGB pixels by glint-gpu's `Presenter`, read back without blocking and drawn by
+//! egui. Full-resolution renders are also read back whole for the comparison and export.
+//!
+//! Not eframe's device: the window's frames would queue behind the tracer's submissions on the
+//! one queue. On lavapipe that queue also compiles a new shader variant at its first dispatch,
+//! and the window froze for as long (10–15 s on a slow 2-core machine; 0.8–1.1 s a variant
+//! here, `glint view --benchmark-features`).
 
 use std::collections::VecDeque;
 use std::sync::{Arc, Mutex};
@@ -10,13 +15,13 @@ use glint_core::FlatScene;
 use glint_core::HdrImage;
 use glint_core::cpu::RayCounts;
 use glint_gpu::{
-    DispatchControl, GpuContext, GpuError, GpuJob, GpuOptions, GpuTracer, JobReadback, Presenter, SampleProgress,
+    AdapterRequest, DispatchControl, GpuContext, GpuError, GpuJob, GpuOptions, GpuTracer, JobReadback, PendingPixels,
+    Presenter, SampleProgress,
 };
 
 use crate::worker::Worker;
 
-/// Tile sides of the viewer's renders. The window's frames queue behind the tracer's
-/// submissions on the same device. On a CPU adapter (lavapipe) each submission also holds the
+/// Tile sides of the viewer's renders. On a CPU adapter (lavapipe) each submission holds the
 /// cores the UI needs, so full-resolution renders go in short ones. Measured with whitted at
 /// 960×540, 16 spp, while the CPU reference renders: mean frame interval 77 ms with 256-pixel
 /// tiles, 42 ms with 64 (the GPU image takes about twice as long), 37 ms with 32 (but five
@@ -56,16 +61,25 @@ pub struct GpuImage {
     pub gpu_ms: f64,
 }
 
+/// A finished render's pixels on their way to the screen.
 #[derive(Debug)]
-struct Display {
-    presenter: Presenter,
-    texture: egui::TextureId,
+struct Arriving {
+    pixels: PendingPixels,
+    revision: u64,
+    preview: bool,
 }
 
 pub struct GpuView {
     pub tracer: Arc<GpuTracer>,
-    renderer: Arc<egui::mutex::RwLock<egui_wgpu::Renderer>>,
-    displays: Vec<Display>,
+    /// The UI, to draw the pixels with.
+    egui: egui::Context,
+    /// One per image size (preview and full), at most two.
+    presenters: Vec<Presenter>,
+    /// The pixels of the render in flight, presented after its last dispatch.
+    presenting: Option<PendingPixels>,
+    /// The pixels of the latest finished render to show, landing.
+    arriving: Option<Arriving>,
+    texture: Option<egui::TextureHandle>,
     submitter: Worker<Result<GpuJob, GpuError>>,
     in_flight: Option<InFlight>,
     readback: Option<(JobReadback, u64, f64)>,
@@ -99,22 +113,31 @@ impl std::fmt::Debug for GpuView {
 }
 
 impl GpuView {
-    /// Wraps eframe's device and queue (no second device, no copies between devices).
-    pub fn new(state: &egui_wgpu::RenderState) -> Self {
+    /// A device of its own on the window's adapter (eframe's device where a second one cannot
+    /// be had: then the window's frames may wait for the tracer's).
+    pub fn new(state: &egui_wgpu::RenderState, egui: &egui::Context) -> Self {
         let info = state.adapter.get_info();
-        let ctx = GpuContext::from_device(state.device.clone(), state.queue.clone(), &info);
+        let request =
+            AdapterRequest { name: Some(info.name.clone()), prefer_cpu: info.device_type == wgpu::DeviceType::Cpu };
+        let ctx = GpuContext::new(&request).unwrap_or_else(|e| {
+            log::warn!("no second device on {} ({e}); the tracer shares the window's", info.name);
+            GpuContext::from_device(state.device.clone(), state.queue.clone(), &info)
+        });
         let uncaptured: Arc<Mutex<Option<String>>> = Arc::default();
         let slot = uncaptured.clone();
         // Shown in the UI instead of wgpu's default of panicking: no crash on a GPU error.
-        state.device.on_uncaptured_error(Arc::new(move |e: wgpu::Error| {
+        ctx.device.on_uncaptured_error(Arc::new(move |e: wgpu::Error| {
             log::error!("GPU error: {e}");
             *slot.lock().unwrap_or_else(|p| p.into_inner()) = Some(e.to_string());
         }));
         log::info!("viewer GPU: {}", ctx.adapter);
         Self {
             tracer: Arc::new(GpuTracer::new(ctx)),
-            renderer: state.renderer.clone(),
-            displays: Vec::new(),
+            egui: egui.clone(),
+            presenters: Vec::new(),
+            presenting: None,
+            arriving: None,
+            texture: None,
             // Not woken on completion: the UI polls every frame while a render is in flight.
             submitter: Worker::new("glint-gpu-submit", "GPU submission", None),
             in_flight: None,
@@ -141,13 +164,15 @@ impl GpuView {
     }
 
     pub fn is_busy(&self) -> bool {
-        self.in_flight.is_some() || self.readback.is_some()
+        self.in_flight.is_some() || self.readback.is_some() || self.arriving.is_some()
     }
 
     /// Whether the next step is found only by polling the device: a finished render's last
-    /// step and its readback (both short). A render still running wakes the UI itself.
+    /// step and its readbacks (all short). A render still running wakes the UI itself.
     pub fn needs_polling(&self) -> bool {
-        self.readback.is_some() || matches!(self.in_flight, Some(InFlight { stage: Stage::Running(_), .. }))
+        self.readback.is_some()
+            || self.arriving.is_some()
+            || matches!(self.in_flight, Some(InFlight { stage: Stage::Running(_), .. }))
     }
 
     /// The revision of the image on screen.
@@ -249,26 +274,16 @@ impl GpuView {
         }
     }
 
-    fn display_for(&mut self, size: (u32, u32)) -> &Display {
-        let ctx = self.tracer.context().clone();
-        if let Some(i) = self.displays.iter().position(|d| (d.presenter.width, d.presenter.height) == size) {
-            return &self.displays[i];
+    fn presenter_for(&mut self, size: (u32, u32)) -> &Presenter {
+        if let Some(i) = self.presenters.iter().position(|p| (p.width, p.height) == size) {
+            return &self.presenters[i];
         }
-        // Keep at most two sizes (preview and full); free the texture of any other.
-        if self.displays.len() >= 2 {
-            let old = self.displays.remove(0);
-            self.renderer.write().free_texture(&old.texture);
+        // Keep at most two sizes (preview and full).
+        if self.presenters.len() >= 2 {
+            self.presenters.remove(0);
         }
-        let presenter = Presenter::new(&ctx, size.0, size.1);
-        // Nearest, like the CPU view: magnified pixels stay pixels and the wipe compares like
-        // with like.
-        let texture = self.renderer.write().register_native_texture(
-            &ctx.device,
-            &presenter.gamma_view,
-            wgpu::FilterMode::Nearest,
-        );
-        self.displays.push(Display { presenter, texture });
-        self.displays.last().expect("just pushed")
+        self.presenters.push(Presenter::new(self.tracer.context(), size.0, size.1));
+        self.presenters.last().expect("just pushed")
     }
 
     /// Advances the render in flight and the readback; returns true when something changed.
@@ -287,7 +302,7 @@ impl GpuView {
             match self.submitter.poll() {
                 Some((_, Ok(Ok(job)))) => {
                     // Queued after the tracer's dispatches, so it encodes the finished image.
-                    self.display_for(size).presenter.present(&ctx, &job.buffers.output);
+                    self.presenting = Some(self.presenter_for(size).present(&ctx, &job.buffers.output));
                     if let Some(f) = &mut self.in_flight {
                         f.stage = Stage::Running(Box::new(job));
                     }
@@ -318,18 +333,27 @@ impl GpuView {
             while self.completions.len() > 64 {
                 self.completions.pop_front();
             }
-            let texture = self.displays.iter().find(|d| (d.presenter.width, d.presenter.height) == f.size);
             // Never an older camera over a newer one: a full render that finishes after a
             // preview of a later edit (a drag began while it ran) is not shown.
             // Nor a full render that finished after an edit it no longer shows (a drag began
             // after its last pass was submitted, so it could not be cancelled).
             let superseded = !f.preview && f.revision < self.superseded_below;
             let newer = self.shown.is_none_or(|s| s.0 <= f.revision) && !superseded;
-            if let Some(d) = texture.filter(|_| newer) {
-                self.shown = Some((f.revision, f.preview, f.size, d.texture));
+            if let Some(pixels) = self.presenting.take().filter(|_| newer) {
+                self.arriving = Some(Arriving { pixels, revision: f.revision, preview: f.preview });
             }
             if !f.preview && !superseded {
                 self.readback = Some((job.start_readback(&ctx), f.revision, ms));
+            }
+            changed = true;
+        }
+        if let Some(a) = &self.arriving
+            && let Some(result) = a.pixels.poll(&ctx)
+        {
+            let a = self.arriving.take().expect("checked above");
+            match result {
+                Ok(rgba) => self.show(a, &rgba),
+                Err(e) => self.error = Some(e.to_string()),
             }
             changed = true;
         }
@@ -348,6 +372,28 @@ impl GpuView {
             changed = true;
         }
         changed
+    }
+}
+
+impl GpuView {
+    /// Puts a render's landed pixels on screen, unless a newer render's are there already.
+    fn show(&mut self, a: Arriving, rgba: &[u8]) {
+        if self.shown.is_some_and(|s| s.0 > a.revision) {
+            return;
+        }
+        let size = (a.pixels.width, a.pixels.height);
+        let image = egui::ColorImage::from_rgba_unmultiplied([size.0 as usize, size.1 as usize], rgba);
+        // Nearest, like the CPU view: magnified pixels stay pixels and the wipe compares like
+        // with like.
+        let options = egui::TextureOptions::NEAREST;
+        let texture = match &mut self.texture {
+            Some(t) => {
+                t.set(image, options);
+                t
+            }
+            None => self.texture.insert(self.egui.load_texture("gpu render", image, options)),
+        };
+        self.shown = Some((a.revision, a.preview, size, texture.id()));
     }
 }
 

@@ -33,6 +33,7 @@ mod widgets;
 mod worker;
 
 pub use app::{ViewerApp, ViewerOptions};
+pub use automation::FEATURE_EDITS;
 pub use background::{background, over_background};
 pub use device::with_tracer_limits;
 pub use error::ViewerError;

@@ -37,7 +37,7 @@ pub struct Renders {
 
 impl Renders {
     pub fn new(cc: &eframe::CreationContext<'_>, no_gpu_reason: Option<String>) -> Self {
-        let gpu = cc.wgpu_render_state.as_ref().map(GpuView::new);
+        let gpu = cc.wgpu_render_state.as_ref().map(|state| GpuView::new(state, &cc.egui_ctx));
         let no_gpu_reason =
             gpu.is_none().then(|| no_gpu_reason.unwrap_or_else(|| "the window has no wgpu renderer".into()));
         let repaint = cc.egui_ctx.clone();
