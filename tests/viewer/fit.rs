@@ -74,4 +74,3 @@ fn every_tab_fits_the_minimum_width_of_the_side_panel() {
     let found = every_tab((700.0, 900.0));
     assert!(found.is_empty(), "clipped at the minimum width:\n{}", found.join("\n"));
 }
-
