@@ -29,6 +29,11 @@ const EPS_NUDGE_RAY: u32 = 1u;
 const EPS_NUDGE_NORMAL: u32 = 2u;
 const EPS_ROBUST: u32 = 3u;
 const EPS_SKIP_CONVEX: u32 = 4u;
+// Where texture coordinates come from (Surface.uv_origin).
+const UV_MESH: u32 = 0u;
+const UV_ACROSS_X: u32 = 1u;
+const UV_ACROSS_Y: u32 = 2u;
+const UV_ACROSS_Z: u32 = 3u;
 const NO_HIT: u32 = 0xffffffffu;
 
 // The feature bits (SceneHeader.features) are not read here: the host compiles each feature
@@ -118,6 +123,8 @@ struct GpuTexture {
     pad_b: u32,
     transform_u: vec4<f32>,
     transform_v: vec4<f32>,
+    planar_u: vec4<f32>,
+    planar_v: vec4<f32>,
 }
 
 struct GpuLight {

@@ -29,6 +29,8 @@ struct Surface {
     ng: vec3<f32>,
     ns: vec3<f32>,
     uv: vec2<f32>,
+    // UV_MESH, or the axis planar coordinates are taken across (relative to the frame).
+    uv_origin: u32,
     material: u32,
     object_id: u32,
     prim: u32,
@@ -238,16 +240,16 @@ struct MaterialColours {
 }
 
 // A diffuse texture's colour multiplies k_a and k_d, an emission texture's E_m.
-fn material_colours(mat: GpuMaterial, uv: vec2<f32>) -> MaterialColours {
+fn material_colours(mat: GpuMaterial, uv: vec2<f32>, uv_origin: u32) -> MaterialColours {
     var c = MaterialColours(mat.ka.xyz, mat.kd.xyz, mat.emission.xyz);
 #ifdef TEXTURES
     if mat.diffuse_texture != NO_TEXTURE {
-        let t = sample_texture(mat.diffuse_texture, uv);
+        let t = sample_texture(mat.diffuse_texture, uv, uv_origin);
         c.ka *= t;
         c.kd *= t;
     }
     if mat.emission_texture != NO_TEXTURE {
-        c.emission *= sample_texture(mat.emission_texture, uv);
+        c.emission *= sample_texture(mat.emission_texture, uv, uv_origin);
     }
 #endif
     return c;
@@ -318,7 +320,7 @@ fn light_term(light: GpuLight, mat: GpuMaterial, s: Surface, n: vec3<f32>, ng: v
 
 fn shade_local(s: Surface, n: vec3<f32>, ng: vec3<f32>, v: vec3<f32>) -> vec3<f32> {
     let mat = materials[s.material];
-    let c = material_colours(mat, s.uv);
+    let c = material_colours(mat, s.uv, s.uv_origin);
     var emission = vec3<f32>(0.0);
 #ifdef EMISSION
     emission = c.emission;

@@ -4,11 +4,24 @@
 // the texel indices stay within [−1, 2n + 1]; the indices are then wrapped as integers.
 #define_import_path glint::texture
 
-#import glint::scene_data::{GpuTexture, GpuTriangle, MESH_HAS_UVS, WRAP_CLAMP_TO_EDGE, WRAP_MIRRORED_REPEAT, FILTER_NEAREST}
+#import glint::scene_data::{GpuTexture, GpuTriangle, MESH_HAS_UVS, WRAP_CLAMP_TO_EDGE, WRAP_MIRRORED_REPEAT, FILTER_NEAREST, UV_MESH, UV_ACROSS_X, UV_ACROSS_Y, UV_ACROSS_Z}
 #import glint::bindings::{texels, textures, uvs, meshes}
 
 #ifdef TEXTURES
-// The two coordinates across the dominant axis of the geometric normal.
+// The axis planar coordinates are taken across: the geometric normal's dominant one.
+fn planar_axis(ng: vec3<f32>) -> u32 {
+    let a = abs(ng);
+    if a.x >= a.y && a.x >= a.z {
+        return UV_ACROSS_X;
+    }
+    if a.y >= a.z {
+        return UV_ACROSS_Y;
+    }
+    return UV_ACROSS_Z;
+}
+
+// The two coordinates across the dominant axis of the geometric normal, of a point relative
+// to the frame's origin (its own coordinates are in the texture's planar_u/v).
 fn planar_uv(p: vec3<f32>, ng: vec3<f32>) -> vec2<f32> {
     let a = abs(ng);
     if a.x >= a.y && a.x >= a.z {
@@ -21,6 +34,14 @@ fn planar_uv(p: vec3<f32>, ng: vec3<f32>) -> vec2<f32> {
 }
 
 #ifdef TRIANGLES
+// Where a triangle's texture coordinates come from: its mesh's UVs, or planar ones.
+fn triangle_uv_origin(tri: GpuTriangle, ng: vec3<f32>) -> u32 {
+    if (meshes[tri.mesh].flags & MESH_HAS_UVS) == 0u {
+        return planar_axis(ng);
+    }
+    return UV_MESH;
+}
+
 // Interpolated with the barycentrics of the shading normal; planar without vertex UVs.
 fn triangle_uv(tri: GpuTriangle, bu: f32, bv: f32, p: vec3<f32>, ng: vec3<f32>) -> vec2<f32> {
     if (meshes[tri.mesh].flags & MESH_HAS_UVS) == 0u {
@@ -30,10 +51,26 @@ fn triangle_uv(tri: GpuTriangle, bu: f32, bv: f32, p: vec3<f32>, ng: vec3<f32>) 
 }
 #endif
 
-fn transform_uv(tex: GpuTexture, uv: vec2<f32>) -> vec2<f32> {
+// The transformed coordinates of the coordinates' origin: the transform's offset for a mesh's
+// UVs, the frame origin's for planar ones.
+fn uv_origin_of(tex: GpuTexture, origin: u32) -> vec2<f32> {
+    if origin == UV_ACROSS_X {
+        return vec2<f32>(tex.planar_u.x, tex.planar_v.x);
+    }
+    if origin == UV_ACROSS_Y {
+        return vec2<f32>(tex.planar_u.y, tex.planar_v.y);
+    }
+    if origin == UV_ACROSS_Z {
+        return vec2<f32>(tex.planar_u.z, tex.planar_v.z);
+    }
+    return vec2<f32>(tex.transform_u.z, tex.transform_v.z);
+}
+
+fn transform_uv(tex: GpuTexture, uv: vec2<f32>, origin: u32) -> vec2<f32> {
     let r = tex.transform_u;
     let s = tex.transform_v;
-    return vec2<f32>(r.x * uv.x + r.y * uv.y + r.z, s.x * uv.x + s.y * uv.y + s.z);
+    let o = uv_origin_of(tex, origin);
+    return vec2<f32>(r.x * uv.x + r.y * uv.y + o.x, s.x * uv.x + s.y * uv.y + o.y);
 }
 
 // [0, 1] for repeat and clamp to edge, [0, 2] for mirrored repeat.
@@ -62,9 +99,9 @@ fn fetch_texel(tex: GpuTexture, x: i32, y: i32) -> vec3<f32> {
     return texels[tex.offset + u32(y) * tex.width + u32(x)].xyz;
 }
 
-fn sample_texture(index: u32, uv: vec2<f32>) -> vec3<f32> {
+fn sample_texture(index: u32, uv: vec2<f32>, origin: u32) -> vec3<f32> {
     let tex = textures[index];
-    let st = transform_uv(tex, uv);
+    let st = transform_uv(tex, uv, origin);
     let w = i32(tex.width);
     let h = i32(tex.height);
     let x = wrap_period(st.x, tex.wrap_s) * f32(tex.width);

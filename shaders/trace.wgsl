@@ -3,7 +3,7 @@
 // WGSL has no recursion, so the tree is walked with an explicit stack of (ray, path weight,
 // depth). Each node adds weight × local shading, where the CPU adds k·I(child) on return:
 // the same terms with the same bailout decisions, summed in another order.
-#import glint::scene_data::{PROBE_HIT, PROBE_TIR, GpuSphere, GpuPlane, GpuTriangle, NO_HIT, EPS_ROBUST, STATUS_LOOP_LIMIT, STATUS_STACK_OVERFLOW, STATUS_DRIVER_LOOP_CUTOFF, STAT_STATUS, STAT_CAMERA, STAT_SHADOW, STAT_REFLECTION, STAT_REFRACTION, STAT_BAILOUT_SAVED}
+#import glint::scene_data::{PROBE_HIT, PROBE_TIR, GpuSphere, GpuPlane, GpuTriangle, NO_HIT, EPS_ROBUST, UV_MESH, STATUS_LOOP_LIMIT, STATUS_STACK_OVERFLOW, STATUS_DRIVER_LOOP_CUTOFF, STAT_STATUS, STAT_CAMERA, STAT_SHADOW, STAT_REFLECTION, STAT_REFRACTION, STAT_BAILOUT_SAVED}
 #import glint::bindings::{header, camera, tile, materials, spheres, planes, triangles, meshes, output, stats, probe_out}
 #import glint::ray::{Ray, RayCounts, ray_counts, status, probe, probe_active, driver_cut_loops}
 #import glint::camera::{camera_ray, sample_offset}
@@ -24,9 +24,9 @@
 #import glint::shade::attenuation_factor
 #endif
 #ifdef TEXTURES
-#import glint::texture::planar_uv
+#import glint::texture::{planar_axis, planar_uv}
 #ifdef TRIANGLES
-#import glint::texture::triangle_uv
+#import glint::texture::{triangle_uv, triangle_uv_origin}
 #endif
 #endif
 
@@ -194,10 +194,12 @@ fn surface_at(ray: Ray, hit: Hit) -> Surface {
         let ng = normalize(p - c);
         let p_surface = select(p, sphere_surface_point(p, c, s.center_radius.w, s.power, ng), robust);
         var uv = vec2<f32>(0.0);
+        var uv_origin = UV_MESH;
 #ifdef TEXTURES
-        uv = planar_uv(p + header.frame.xyz, ng);
+        uv = planar_uv(p, ng);
+        uv_origin = planar_axis(ng);
 #endif
-        return Surface(p, p_surface, ng, ng, uv, s.material, s.object_id, PRIM_SPHERE, hit.index);
+        return Surface(p, p_surface, ng, ng, uv, uv_origin, s.material, s.object_id, PRIM_SPHERE, hit.index);
     }
 #endif
 #ifdef PLANES
@@ -206,10 +208,12 @@ fn surface_at(ray: Ray, hit: Hit) -> Surface {
         let ng = pl.normal_offset.xyz;
         let p_surface = select(p, p - (dot(ng, p) - pl.normal_offset.w) * ng, robust);
         var uv = vec2<f32>(0.0);
+        var uv_origin = UV_MESH;
 #ifdef TEXTURES
-        uv = planar_uv(p + header.frame.xyz, ng);
+        uv = planar_uv(p, ng);
+        uv_origin = planar_axis(ng);
 #endif
-        return Surface(p, p_surface, ng, ng, uv, pl.material, pl.object_id, PRIM_PLANE, hit.index);
+        return Surface(p, p_surface, ng, ng, uv, uv_origin, pl.material, pl.object_id, PRIM_PLANE, hit.index);
     }
 #endif
 #ifdef TRIANGLES
@@ -219,13 +223,15 @@ fn surface_at(ray: Ray, hit: Hit) -> Surface {
     let ns = triangle_shading_normal(tri, hit.bu, hit.bv, ng);
     let p_surface = select(p, (1.0 - hit.bu - hit.bv) * v[0] + hit.bu * v[1] + hit.bv * v[2], robust);
     var uv = vec2<f32>(0.0);
+    var uv_origin = UV_MESH;
 #ifdef TEXTURES
-    uv = triangle_uv(tri, hit.bu, hit.bv, p + header.frame.xyz, ng);
+    uv = triangle_uv(tri, hit.bu, hit.bv, p, ng);
+    uv_origin = triangle_uv_origin(tri, ng);
 #endif
     let mesh = meshes[tri.mesh];
-    return Surface(p, p_surface, ng, ns, uv, mesh.material, mesh.object_id, PRIM_TRIANGLE, hit.index);
+    return Surface(p, p_surface, ng, ns, uv, uv_origin, mesh.material, mesh.object_id, PRIM_TRIANGLE, hit.index);
 #else
-    return Surface(p, p, vec3<f32>(0.0, 1.0, 0.0), vec3<f32>(0.0, 1.0, 0.0), vec2<f32>(0.0), 0u, NO_HIT, PRIM_NONE, 0u);
+    return Surface(p, p, vec3<f32>(0.0, 1.0, 0.0), vec3<f32>(0.0, 1.0, 0.0), vec2<f32>(0.0), UV_MESH, 0u, NO_HIT, PRIM_NONE, 0u);
 #endif
 }
 

@@ -1,4 +1,4 @@
-//! The stiff-and-extreme-cases suite (issue 5): nineteen small generated scenes, each rendered on
+//! The stiff-and-extreme-cases suite (issue 5): twenty small generated scenes, each rendered on
 //! the CPU f64 reference and on the WGSL tracer, with the expected behaviour stated in a comment
 //! and checked automatically. Every read-back image is scanned for NaN and infinities (there
 //! must be none: `gpu::render_both` fails otherwise and leaves the images in target/tmp/stiff).
@@ -44,10 +44,14 @@ mod case16_invalid_data;
 mod case17_translation_and_scale;
 mod case18_huge_sphere;
 mod case19_coplanar_overlap;
+mod case20_translated_textures;
 mod generated;
 mod plot;
 
 use glint_test_support::{gpu, reference, render, scene};
+
+/// Translations of case 20 (textures far from the origin).
+const TRANSLATED_TEXTURES: [f64; 5] = [1e2, 1e3, 1e4, 1e5, 1e6];
 
 /// Axis vectors for camera ups and normals.
 const Y: [f64; 3] = [0.0, 1.0, 0.0];

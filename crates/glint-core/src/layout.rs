@@ -374,7 +374,22 @@ pub struct GpuTexture {
     /// (w unused).
     pub transform_u: [f32; 4],
     pub transform_v: [f32; 4],
+    /// The transformed planar coordinates of the frame's origin, for planar coordinates taken
+    /// across the x, y and z axis (`UV_ACROSS_X` …; w unused): u' = transform_u.xy · uv +
+    /// planar_u[axis], with uv relative to the frame. Computed in f64 and folded into the wrap
+    /// mode's period by `rebase`, so that a scene far from the world origin keeps its texel
+    /// edges on the GPU; in world space (frame origin 0) they are transform_u.z and
+    /// transform_v.z.
+    pub planar_u: [f32; 4],
+    pub planar_v: [f32; 4],
 }
+
+/// Where texture coordinates come from (`Surface::uv_origin`): a mesh's own UVs, or planar
+/// coordinates across the geometric normal's dominant axis, relative to the frame's origin.
+pub const UV_MESH: u32 = 0;
+pub const UV_ACROSS_X: u32 = 1;
+pub const UV_ACROSS_Y: u32 = 2;
+pub const UV_ACROSS_Z: u32 = 3;
 
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]

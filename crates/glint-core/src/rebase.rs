@@ -20,7 +20,7 @@ use crate::bvh::{f32_down, f32_up};
 use crate::cpu::intersect::{Leaving, closest_hit};
 use crate::cpu::{Ray, TraceContext, v3};
 use crate::layout::{GpuPlane, GpuSphere, origin_power};
-use crate::scene::LightKind;
+use crate::scene::{LightKind, Wrap};
 
 /// The world frame of a scene as built: origin 0, offsets' length scale 1.
 pub const WORLD_FRAME: [f32; 4] = [0.0, 0.0, 0.0, 1.0];
@@ -192,10 +192,12 @@ pub fn rebased_with_geometry(scene: &FlatScene, frame: [f32; 4], geometry: &Flat
     out
 }
 
-/// Moves `out`'s camera and point and spot lights (from `scene`'s) into `frame`, and sets it.
+/// Moves `out`'s camera and point and spot lights (from `scene`'s) into `frame`, sets it, and
+/// places the textures' planar origins there.
 fn move_the_rest(out: &mut FlatScene, scene: &FlatScene, frame: [f32; 4]) {
     let c = v3(frame) - v3(scene.header.frame);
     out.header.frame = frame;
+    place_texture_origins(out, frame);
     out.camera.position = moved(scene.camera.position, c);
     for (l, from) in out.lights.iter_mut().zip(&scene.lights) {
         match LightKind::try_from(l.kind) {
@@ -204,6 +206,36 @@ fn move_the_rest(out: &mut FlatScene, scene: &FlatScene, frame: [f32; 4]) {
             // upload (`FlatScene::check_tags`).
             Ok(LightKind::Directional) | Err(_) => {}
         }
+    }
+}
+
+/// Each texture's planar origins (`GpuTexture::planar_u`, `planar_v`) for `frame`: the
+/// transformed planar coordinates of the frame's origin, across each axis, in f64, folded into
+/// the wrap mode's period. Planar coordinates are then taken relative to the frame, small,
+/// and a texel edge 1e6 units from the world origin stays where it is on the GPU (its f32
+/// world coordinate was off by 1/16 there). At the world origin they are the offsets, exact.
+fn place_texture_origins(out: &mut FlatScene, frame: [f32; 4]) {
+    let f = v3(frame);
+    let across = [(f.y, f.z), (f.x, f.z), (f.x, f.y)];
+    for tex in &mut out.textures {
+        for (k, &(a, b)) in across.iter().enumerate() {
+            let at = |row: [f32; 4], wrap: u32| {
+                let u = f64::from(row[0]) * a + f64::from(row[1]) * b + f64::from(row[2]);
+                if f == DVec3::ZERO { row[2] } else { fold(u, wrap) as f32 }
+            };
+            tex.planar_u[k] = at(tex.transform_u, tex.wrap_s);
+            tex.planar_v[k] = at(tex.transform_v, tex.wrap_t);
+        }
+    }
+}
+
+/// `u` less a whole number of its wrap mode's periods, into [0, period): the same texel, a
+/// small number. Clamped coordinates have no period and stay.
+fn fold(u: f64, wrap: u32) -> f64 {
+    match Wrap::try_from(wrap) {
+        Ok(Wrap::Repeat) => u - u.floor(),
+        Ok(Wrap::MirroredRepeat) => u - 2.0 * (u * 0.5).floor(),
+        Ok(Wrap::ClampToEdge) | Err(_) => u,
     }
 }
 

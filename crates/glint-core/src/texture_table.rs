@@ -62,6 +62,9 @@ impl TextureTable {
             pad_b: 0,
             transform_u: row(u),
             transform_v: row(v),
+            // In world space (frame origin 0) the origin's coordinates are the offsets.
+            planar_u: [row(u)[2]; 4],
+            planar_v: [row(v)[2]; 4],
         });
         self.textures.len() as u32 - 1
     }

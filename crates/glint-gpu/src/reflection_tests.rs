@@ -77,7 +77,9 @@ fn rust_layouts() -> Vec<RustLayout> {
             pad_a,
             pad_b,
             transform_u,
-            transform_v
+            transform_v,
+            planar_u,
+            planar_v
         }),
         rust_layout!(GpuLight {
             position,
@@ -275,6 +277,10 @@ fn wgsl_layout_constants_match_rust() {
         ("EPS_NUDGE_NORMAL".into(), EPS_NUDGE_NORMAL),
         ("EPS_ROBUST".into(), EPS_ROBUST),
         ("EPS_SKIP_CONVEX".into(), EPS_SKIP_CONVEX),
+        ("UV_MESH".into(), UV_MESH),
+        ("UV_ACROSS_X".into(), UV_ACROSS_X),
+        ("UV_ACROSS_Y".into(), UV_ACROSS_Y),
+        ("UV_ACROSS_Z".into(), UV_ACROSS_Z),
         ("NO_HIT".into(), NO_HIT),
         ("STATUS_LOOP_LIMIT".into(), STATUS_LOOP_LIMIT),
         ("STATUS_STACK_OVERFLOW".into(), STATUS_STACK_OVERFLOW),

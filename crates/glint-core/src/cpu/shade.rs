@@ -26,6 +26,8 @@ pub struct Surface {
     pub ns: DVec3,
     /// Texture coordinates (zero when the scene has no textures).
     pub uv: DVec2,
+    /// `UV_MESH`, or the axis planar coordinates are taken across (relative to the frame).
+    pub uv_origin: u32,
     pub material: u32,
     pub object_id: u32,
     /// The primitive hit (`skip_convex` does not test it again from here).
@@ -273,16 +275,16 @@ pub struct MaterialColours {
 /// k_a, k_d and E_m at texture coordinates `uv`: a diffuse texture's colour multiplies k_a and
 /// k_d (POV-Ray's pigment, OpenGL's ambient-and-diffuse colour material), an emission
 /// texture's multiplies E_m.
-pub fn material_colours(ctx: &TraceContext, mat: &GpuMaterial, uv: DVec2) -> MaterialColours {
+pub fn material_colours(ctx: &TraceContext, mat: &GpuMaterial, uv: DVec2, uv_origin: u32) -> MaterialColours {
     let mut c = MaterialColours { ka: v3(mat.ka), kd: v3(mat.kd), emission: v3(mat.emission) };
     if ctx.has(feature::TEXTURES) {
         if mat.diffuse_texture != NO_TEXTURE {
-            let t = sample_texture(ctx, mat.diffuse_texture, uv);
+            let t = sample_texture(ctx, mat.diffuse_texture, uv, uv_origin);
             c.ka *= t;
             c.kd *= t;
         }
         if mat.emission_texture != NO_TEXTURE {
-            c.emission *= sample_texture(ctx, mat.emission_texture, uv);
+            c.emission *= sample_texture(ctx, mat.emission_texture, uv, uv_origin);
         }
     }
     c
@@ -431,7 +433,7 @@ pub fn shade_local(
 ) -> DVec3 {
     let scene = ctx.scene;
     let mat = &scene.materials[s.material as usize];
-    let c = material_colours(ctx, mat, s.uv);
+    let c = material_colours(ctx, mat, s.uv, s.uv_origin);
     let emission = if ctx.has(feature::EMISSION) { c.emission } else { DVec3::ZERO };
     let ambient = v3(scene.header.ambient) * c.ka;
     let mut sum = DVec3::ZERO;

@@ -10,12 +10,26 @@ use glam::{DVec2, DVec3};
 
 use super::{TraceContext, v3};
 use crate::flat::FlatScene;
-use crate::layout::{GpuTexture, GpuTriangle, MESH_HAS_UVS};
+use crate::layout::{GpuTexture, GpuTriangle, MESH_HAS_UVS, UV_ACROSS_X, UV_ACROSS_Y, UV_ACROSS_Z, UV_MESH};
 use crate::scene::{Filter, Wrap};
 
-/// Planar texture coordinates at `p`: the two coordinates across the dominant axis of the
-/// geometric normal (y and z for x, x and z for y, x and y for z), so that a floor at y = 0 does
-/// not flicker with the sign of rounding errors in y. One scene unit is one unit of UV.
+/// The axis planar coordinates are taken across: the geometric normal's dominant one.
+pub fn planar_axis(ng: DVec3) -> u32 {
+    let a = ng.abs();
+    if a.x >= a.y && a.x >= a.z {
+        UV_ACROSS_X
+    } else if a.y >= a.z {
+        UV_ACROSS_Y
+    } else {
+        UV_ACROSS_Z
+    }
+}
+
+/// Planar texture coordinates at `p`, relative to the frame's origin (whose own coordinates
+/// are in the texture's `planar_u`/`planar_v`): the two coordinates across the dominant axis
+/// of the geometric normal (y and z for x, x and z for y, x and y for z), so that a floor at
+/// y = 0 does not flicker with the sign of rounding errors in y. One scene unit is one unit of
+/// UV.
 pub fn planar_uv(p: DVec3, ng: DVec3) -> DVec2 {
     let a = ng.abs();
     if a.x >= a.y && a.x >= a.z {
@@ -25,6 +39,14 @@ pub fn planar_uv(p: DVec3, ng: DVec3) -> DVec2 {
     } else {
         DVec2::new(p.x, p.y)
     }
+}
+
+/// Where a triangle's texture coordinates come from: its mesh's UVs, or planar ones.
+pub fn triangle_uv_origin(scene: &FlatScene, tri: &GpuTriangle, ng: DVec3) -> u32 {
+    if scene.meshes[tri.mesh as usize].flags & MESH_HAS_UVS == 0 {
+        return planar_axis(ng);
+    }
+    UV_MESH
 }
 
 /// Texture coordinates of a triangle hit: the vertices' interpolated with the barycentrics the
@@ -40,10 +62,27 @@ pub fn triangle_uv(scene: &FlatScene, tri: &GpuTriangle, bu: f64, bv: f64, p: DV
     (1.0 - bu - bv) * a + bu * b + bv * c
 }
 
-/// The texture's UV transform (KHR_texture_transform's T · R · S, stored as two rows).
-pub fn transform_uv(tex: &GpuTexture, uv: DVec2) -> DVec2 {
-    let row = |r: [f32; 4]| f64::from(r[0]) * uv.x + f64::from(r[1]) * uv.y + f64::from(r[2]);
-    DVec2::new(row(tex.transform_u), row(tex.transform_v))
+/// The transformed coordinates of the coordinates' origin: the transform's offset for a mesh's
+/// UVs, the frame origin's for planar ones.
+pub fn uv_origin_of(tex: &GpuTexture, origin: u32) -> DVec2 {
+    let (u, v) = if origin == UV_ACROSS_X {
+        (tex.planar_u[0], tex.planar_v[0])
+    } else if origin == UV_ACROSS_Y {
+        (tex.planar_u[1], tex.planar_v[1])
+    } else if origin == UV_ACROSS_Z {
+        (tex.planar_u[2], tex.planar_v[2])
+    } else {
+        (tex.transform_u[2], tex.transform_v[2])
+    };
+    DVec2::new(f64::from(u), f64::from(v))
+}
+
+/// The texture's UV transform (KHR_texture_transform's T · R · S, stored as two rows), about
+/// the coordinates' origin.
+pub fn transform_uv(tex: &GpuTexture, uv: DVec2, origin: u32) -> DVec2 {
+    let o = uv_origin_of(tex, origin);
+    let row = |r: [f32; 4], o: f64| f64::from(r[0]) * uv.x + f64::from(r[1]) * uv.y + o;
+    DVec2::new(row(tex.transform_u, o.x), row(tex.transform_v, o.y))
 }
 
 /// A coordinate folded into its wrap mode's base period: [0, 1] (repeat, clamp to edge) or
@@ -75,11 +114,11 @@ pub fn fetch_texel(scene: &FlatScene, tex: &GpuTexture, x: i32, y: i32) -> DVec3
 
 /// The colour of texture `index` at `uv`: transformed, wrapped, then the nearest texel or the
 /// bilinear blend of the four around the coordinate (texel centres at half-integers).
-pub fn sample_texture(ctx: &TraceContext, index: u32, uv: DVec2) -> DVec3 {
+pub fn sample_texture(ctx: &TraceContext, index: u32, uv: DVec2, origin: u32) -> DVec3 {
     let scene = ctx.scene;
     let tex = &scene.textures[index as usize];
     let ([wrap_s, wrap_t], filter) = ctx.texture_modes[index as usize];
-    let st = transform_uv(tex, uv);
+    let st = transform_uv(tex, uv, origin);
     let (w, h) = (tex.width as i32, tex.height as i32);
     let x = wrap_period(st.x, wrap_s) * f64::from(tex.width);
     let y = wrap_period(st.y, wrap_t) * f64::from(tex.height);
@@ -143,13 +182,15 @@ mod tests {
             pad_b: 0,
             transform_u,
             transform_v: [0.0, 1.0, 0.0, 0.0],
+            planar_u: [transform_u[2]; 4],
+            planar_v: [0.0; 4],
         }];
         s
     }
 
     fn sample(scene: &FlatScene, u: f64, v: f64) -> DVec3 {
         let ctx = TraceContext::new(scene).expect("tags decode");
-        sample_texture(&ctx, 0, DVec2::new(u, v))
+        sample_texture(&ctx, 0, DVec2::new(u, v), UV_MESH)
     }
 
     const IDENTITY_U: [f32; 4] = [1.0, 0.0, 0.0, 0.0];

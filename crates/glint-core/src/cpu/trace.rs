@@ -12,9 +12,9 @@ use super::intersect::{
 };
 use super::offset::{leaving_surface, spawn_ray};
 use super::shade::{Breakdown, Surface, attenuation_factor, shade_local};
-use super::texture::{planar_uv, triangle_uv};
+use super::texture::{planar_axis, planar_uv, triangle_uv, triangle_uv_origin};
 use super::{Ray, RayCounts, TraceContext, v3};
-use crate::layout::{NO_HIT, feature};
+use crate::layout::{NO_HIT, UV_MESH, feature};
 use crate::ray_tree::{Cut, NoTree, RayKind, RayNode, TreeRecorder, record_shadow_rays};
 use crate::scene::EpsilonMode;
 
@@ -25,25 +25,26 @@ pub fn surface_at(ctx: &TraceContext, ray: &Ray, hit: &Hit) -> Surface {
     let p = ray.origin + hit.t * ray.dir;
     let robust = ctx.epsilon_mode == EpsilonMode::Robust;
     let textures = ctx.has(feature::TEXTURES);
-    // Texture coordinates are taken at world positions: the frame's origin added back.
-    let p_world = p + v3(scene.header.frame);
+    // Planar texture coordinates relative to the frame's origin, whose own are each
+    // texture's `planar_u`/`planar_v` (computed once in f64 by `rebase`).
+    let uv_origin_at = |ng: DVec3| if textures { planar_axis(ng) } else { UV_MESH };
     match hit.prim {
         Prim::Sphere => {
             let s = &scene.spheres[hit.index as usize];
             let c = v3(s.center_radius);
             let ng = (p - c).normalize();
             let p_surface = if robust { sphere_surface_point(p, c, f64::from(s.center_radius[3]), ng) } else { p };
-            let uv = if textures { planar_uv(p_world, ng) } else { DVec2::ZERO };
-            let (material, object_id) = (s.material, s.object_id);
-            Surface { p, p_surface, ng, ns: ng, uv, material, object_id, prim: hit.prim, index: hit.index }
+            let uv = if textures { planar_uv(p, ng) } else { DVec2::ZERO };
+            let (material, object_id, uv_origin) = (s.material, s.object_id, uv_origin_at(ng));
+            Surface { p, p_surface, ng, ns: ng, uv, uv_origin, material, object_id, prim: hit.prim, index: hit.index }
         }
         Prim::Plane => {
             let pl = &scene.planes[hit.index as usize];
             let ng = v3(pl.normal_offset);
             let p_surface = if robust { p - (ng.dot(p) - f64::from(pl.normal_offset[3])) * ng } else { p };
-            let uv = if textures { planar_uv(p_world, ng) } else { DVec2::ZERO };
-            let (material, object_id) = (pl.material, pl.object_id);
-            Surface { p, p_surface, ng, ns: ng, uv, material, object_id, prim: hit.prim, index: hit.index }
+            let uv = if textures { planar_uv(p, ng) } else { DVec2::ZERO };
+            let (material, object_id, uv_origin) = (pl.material, pl.object_id, uv_origin_at(ng));
+            Surface { p, p_surface, ng, ns: ng, uv, uv_origin, material, object_id, prim: hit.prim, index: hit.index }
         }
         Prim::Triangle => {
             let tri = &scene.triangles[hit.index as usize];
@@ -51,10 +52,11 @@ pub fn surface_at(ctx: &TraceContext, ray: &Ray, hit: &Hit) -> Surface {
             let ng = (v1 - v0).cross(v2 - v0).normalize();
             let ns = triangle_shading_normal(scene, tri, hit.bu, hit.bv, ng);
             let p_surface = if robust { (1.0 - hit.bu - hit.bv) * v0 + hit.bu * v1 + hit.bv * v2 } else { p };
-            let uv = if textures { triangle_uv(scene, tri, hit.bu, hit.bv, p_world, ng) } else { DVec2::ZERO };
+            let uv = if textures { triangle_uv(scene, tri, hit.bu, hit.bv, p, ng) } else { DVec2::ZERO };
+            let uv_origin = if textures { triangle_uv_origin(scene, tri, ng) } else { UV_MESH };
             let mesh = &scene.meshes[tri.mesh as usize];
             let (material, object_id) = (mesh.material, mesh.object_id);
-            Surface { p, p_surface, ng, ns, uv, material, object_id, prim: hit.prim, index: hit.index }
+            Surface { p, p_surface, ng, ns, uv, uv_origin, material, object_id, prim: hit.prim, index: hit.index }
         }
     }
 }
