@@ -10,6 +10,7 @@ mod fuzz_replay;
 mod global_attenuation;
 mod gltf;
 mod gltf_lights;
+mod module_cycles;
 mod ray_tree;
 mod skip_convex;
 mod support;

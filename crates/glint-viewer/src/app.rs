@@ -443,7 +443,7 @@ impl eframe::App for ViewerApp {
         }
         self.layout.status_rect = egui::Panel::bottom("status")
             .show(ui, |ui| {
-                panels::messages::ui(ui, &self.renders, self.message.as_deref());
+                panels::messages::ui(ui, self.renders.messages(), self.message.as_deref());
                 panels::status::ui(ui, &self.renders.status(self.doc.revision, self.clock.ui_ms));
             })
             .response

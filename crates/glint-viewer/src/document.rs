@@ -13,7 +13,7 @@ use glint_core::scene::{
 };
 
 use crate::error::ViewerError;
-use crate::panels::lights::SetAside;
+use crate::light_kind::SetAside;
 
 #[derive(Clone, Debug)]
 pub struct Document {
@@ -33,7 +33,7 @@ pub struct Document {
     /// Validation problems of the current description; while there are any, the last valid
     /// scene stays on screen.
     pub issues: Vec<FieldIssue>,
-    /// Per light, the fields its type lacks that an earlier type had (`lights::switch_kind`).
+    /// Per light, the fields its type lacks that an earlier type had (`light_kind::switch_kind`).
     pub light_set_aside: Vec<SetAside>,
     /// The last flat scene built, with the objects it was built from: while those and the
     /// material names stay the same (a camera, light or material-value edit) its primitives and BVH

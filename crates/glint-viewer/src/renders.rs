@@ -8,6 +8,7 @@ use crate::cpu_worker::{CpuWorker, Finished, PROGRESS_INTERVAL};
 use crate::document::Document;
 use crate::gpu_view::{GpuImage, GpuView};
 use crate::images::CpuTexture;
+use crate::panels::messages::RenderMessages;
 use crate::panels::status::Status;
 use crate::probe::{GpuProbe, ProbeState};
 use crate::view::{Shown, Textures};
@@ -199,6 +200,16 @@ impl Renders {
             diff: self.diff_texture.id().filter(|_| self.comparison_of(revision).is_some()),
             gpu_incomplete: self.gpu.as_ref().and_then(|g| g.warning.as_deref()),
             diffs: self.comparison_of(revision).map(|c| &c.diffs),
+        }
+    }
+
+    /// What the messages above the status bar say of the renders.
+    pub fn messages(&self) -> RenderMessages<'_> {
+        RenderMessages {
+            no_gpu_reason: self.no_gpu_reason.as_deref(),
+            gpu_error: self.gpu.as_ref().and_then(|g| g.error.as_deref()),
+            gpu_warning: self.gpu.as_ref().and_then(|g| g.warning.as_deref()),
+            cpu_error: self.cpu.error.as_deref(),
         }
     }
 

@@ -1,6 +1,7 @@
 //! What the tracers rely on in a flat scene: known tags, indices in range, finite numbers.
 
-use super::*;
+// What the parent module declares for its children.
+use super::{EpsilonMode, Filter, FlatScene, LightTags, MESH_HAS_NORMALS, MESH_HAS_UVS, NO_TEXTURE, UnknownTag, Wrap};
 
 impl FlatScene {
     /// Decodes every stored tag the tracers switch on (the ε strategy, each light's kind,

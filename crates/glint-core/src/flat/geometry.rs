@@ -1,6 +1,10 @@
 //! The shared geometry of a flat scene: primitives by kind, and its identity.
 
-use super::*;
+// What the parent module declares for its children.
+use super::{
+    Arc, BvhNodes, DVec3, GpuMesh, GpuPlane, GpuSphere, GpuTriangle, LeafCorners, MESH_HAS_NORMALS, MESH_HAS_UVS,
+    MeshDesc, ObjectDesc, PlaneDesc, SceneDesc, SphereDesc, bvh, origin_power, vec4,
+};
 
 /// The primitives of a scene by kind, with an object id and name per scene object.
 #[derive(Debug, Default)]

@@ -1,6 +1,10 @@
 //! Materials and lights in the flat layout.
 
-use super::*;
+// What the parent module declares for its children.
+use super::{
+    Attenuation, DVec3, GpuLight, GpuMaterial, LIGHT_CASTS_SHADOWS, LightDesc, LightKind, MaterialDesc, NO_CONE_CUTOFF,
+    NO_TEXTURE, Rgb, SpotFalloff, TextureTable, rgb4, shade, vec4,
+};
 
 /// A material in the flat layout, its textures added to `table`. A checker is a texture of
 /// k_d and its second colour over a white k_d, so that k_d · texel is exactly either colour.

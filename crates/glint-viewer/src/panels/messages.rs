@@ -3,23 +3,28 @@
 
 use egui::Ui;
 
-use crate::renders::Renders;
+/// What the renders have to say, gathered by the app (`Renders::messages`).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct RenderMessages<'a> {
+    pub no_gpu_reason: Option<&'a str>,
+    pub gpu_error: Option<&'a str>,
+    pub gpu_warning: Option<&'a str>,
+    pub cpu_error: Option<&'a str>,
+}
 
-pub fn ui(ui: &mut Ui, renders: &Renders, message: Option<&str>) {
+pub fn ui(ui: &mut Ui, renders: RenderMessages<'_>, message: Option<&str>) {
     let warn = ui.visuals().warn_fg_color;
     let err = ui.visuals().error_fg_color;
-    if let Some(r) = &renders.no_gpu_reason {
+    if let Some(r) = renders.no_gpu_reason {
         ui.colored_label(warn, format!("No GPU: {r}. Showing the CPU reference only."));
     }
-    if let Some(g) = &renders.gpu {
-        if let Some(e) = &g.error {
-            ui.colored_label(err, format!("GPU: {e}"));
-        }
-        if let Some(w) = &g.warning {
-            ui.colored_label(warn, format!("GPU: {w}"));
-        }
+    if let Some(e) = renders.gpu_error {
+        ui.colored_label(err, format!("GPU: {e}"));
     }
-    if let Some(e) = &renders.cpu.error {
+    if let Some(w) = renders.gpu_warning {
+        ui.colored_label(warn, format!("GPU: {w}"));
+    }
+    if let Some(e) = renders.cpu_error {
         ui.colored_label(err, format!("CPU: {e}"));
     }
     if let Some(m) = message {

@@ -8,6 +8,7 @@ pub mod probe;
 pub mod ray_tree;
 pub mod scene;
 pub mod status;
+pub mod term_table;
 
 use egui::Ui;
 

@@ -9,7 +9,7 @@ use glint_core::layout::MAX_PROBE_NODES;
 use glint_core::probe_terms::{Term, first_difference, local_terms};
 use glint_core::ray_tree::{RayKind, RayNode, RayTree};
 
-use super::probe::{HIGHLIGHT, term_grid};
+use super::term_table::{HIGHLIGHT, term_grid};
 use crate::document::Document;
 use crate::probe::{GpuProbe, ProbeState};
 

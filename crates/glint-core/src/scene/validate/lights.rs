@@ -1,6 +1,10 @@
 //! Lights: kinds, cones, attenuation.
 
-use super::*;
+// What the parent module declares for its children.
+use super::{
+    Attenuation, LightDesc, LightKind, MIN_ATTENUATION_DENOMINATOR, NO_CONE_CUTOFF, Report, SpotFalloff, as_f32, num,
+    ranges, short,
+};
 
 pub(super) fn validate_light(path: &str, l: &LightDesc, r: &mut Report) {
     let kind = l.kind.name();

@@ -1,6 +1,7 @@
 //! Materials and their textures.
 
-use super::*;
+// What the parent module declares for its children.
+use super::{MaterialDesc, Report, TextureDesc, material_textures, num, ranges};
 
 pub(super) fn validate_material(path: &str, m: &MaterialDesc, r: &mut Report) {
     for (field, v) in [("ka", m.ka), ("kd", m.kd), ("ks", m.ks), ("kr", m.kr), ("kt", m.kt)] {

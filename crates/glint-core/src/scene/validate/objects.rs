@@ -1,6 +1,10 @@
 //! Objects: spheres, planes, meshes and models.
 
-use super::*;
+// What the parent module declares for its children.
+use super::{
+    DVec3, FieldIssue, MeshDesc, ObjectDesc, PlaneDesc, Report, SceneDesc, SphereDesc, cross, norm, ranges, shorten,
+    sub, validate_light,
+};
 
 pub(super) fn validate_object(path: &str, o: &ObjectDesc, scene: &SceneDesc, r: &mut Report) {
     for material in o.materials() {

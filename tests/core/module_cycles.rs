@@ -1,0 +1,211 @@
+//! No module imports one that imports it back: the `use` lines and the `crate::`/`super::`
+//! paths of every crate's sources, as edges between the two sibling modules that hold each end
+//! (`crate::cpu::trace` using `crate::flat` is cpu → flat), and the strongly connected sets of
+//! siblings that form circles. Circles that the house issue lists and that are still to be
+//! taken apart are named in `KNOWN`; a new one fails, and so does a known one that is gone
+//! (then delete its line). Test modules (`#[cfg(test)]`, to the end of the file) are left out.
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::{Path, PathBuf};
+
+/// Circles still in the house (issue 36), each as the crate and its sorted sibling modules:
+/// inside `scene` (description, loading and validation in one module), inside `cpu` (the
+/// brute-force and BVH walks), across the core (the tracer, the flat layout and rebasing), and
+/// in the report.
+const KNOWN: &[(&str, &[&str])] = &[
+    ("glint", &["specular", "sweep"]),
+    ("glint_core", &["builtin", "bumpy", "desc", "error", "model_ref", "ray_tree", "texture", "validate"]),
+    ("glint_core", &["bvh", "intersect", "wide_slab"]),
+    ("glint_core", &["cpu", "flat", "probe_terms", "ray_tree", "rays", "rebase"]),
+    ("glint_core", &["layout", "model", "scene"]),
+];
+
+/// The crates and their source roots, from the workspace root.
+const CRATES: [(&str, &str); 5] = [
+    ("glint_core", "crates/glint-core/src"),
+    ("glint_gpu", "crates/glint-gpu/src"),
+    ("glint_viewer", "crates/glint-viewer/src"),
+    ("glint_test_support", "crates/glint-test-support/src"),
+    ("glint", "src"),
+];
+
+/// `file`'s module path inside its crate (`cpu/trace.rs` → `[cpu, trace]`).
+fn module_of(root: &Path, file: &Path) -> Vec<String> {
+    let rel = file.strip_prefix(root).expect("under the root").with_extension("");
+    let mut parts: Vec<String> = rel.iter().map(|p| p.to_string_lossy().into_owned()).collect();
+    if matches!(parts.last().map(String::as_str), Some("mod" | "lib" | "main")) {
+        parts.pop();
+    }
+    parts
+}
+
+fn files(dir: &Path, out: &mut Vec<PathBuf>) {
+    for entry in std::fs::read_dir(dir).expect("read the source folder") {
+        let path = entry.expect("a folder entry").path();
+        if path.is_dir() {
+            files(&path, out);
+        } else if path.extension().is_some_and(|e| e == "rs") {
+            out.push(path);
+        }
+    }
+}
+
+/// Every path in `text` that starts at `crate::`, `super::` or `self::`, with `use` trees
+/// expanded (`crate::a::{b, c::d}` → `crate::a::b`, `crate::a::c::d`).
+fn paths(text: &str) -> Vec<Vec<String>> {
+    let mut out = Vec::new();
+    let bytes: Vec<char> = text.chars().collect();
+    let mut i = 0;
+    while i < bytes.len() {
+        let rest: String = bytes[i..bytes.len().min(i + 7)].iter().collect();
+        let starts = ["crate::", "super::", "self::"].iter().any(|r| rest.starts_with(r));
+        let boundary = i == 0 || !(bytes[i - 1].is_alphanumeric() || bytes[i - 1] == '_' || bytes[i - 1] == ':');
+        if starts && boundary {
+            let mut j = i;
+            let mut depth = 0;
+            while j < bytes.len() {
+                let c = bytes[j];
+                if c == '{' {
+                    depth += 1;
+                } else if c == '}' {
+                    if depth == 0 {
+                        break;
+                    }
+                    depth -= 1;
+                } else if depth == 0 && !(c.is_alphanumeric() || c == '_' || c == ':') {
+                    break;
+                }
+                j += 1;
+            }
+            let tree: String = bytes[i..j].iter().collect();
+            expand("", &tree.replace(char::is_whitespace, ""), &mut out);
+            i = j;
+        } else {
+            i += 1;
+        }
+    }
+    out
+}
+
+/// The paths of the use tree `tree` under `prefix`.
+fn expand(prefix: &str, tree: &str, out: &mut Vec<Vec<String>>) {
+    match tree.find('{') {
+        None => {
+            let full = format!("{prefix}{tree}");
+            out.push(full.split("::").filter(|s| !s.is_empty()).map(str::to_string).collect());
+        }
+        Some(open) => {
+            let (head, body) = (&tree[..open], &tree[open + 1..tree.rfind('}').unwrap_or(tree.len())]);
+            let mut depth = 0;
+            let mut start = 0;
+            for (k, c) in body.char_indices() {
+                match c {
+                    '{' => depth += 1,
+                    '}' => depth -= 1,
+                    ',' if depth == 0 => {
+                        expand(&format!("{prefix}{head}"), &body[start..k], out);
+                        start = k + 1;
+                    }
+                    _ => {}
+                }
+            }
+            if start < body.len() {
+                expand(&format!("{prefix}{head}"), &body[start..], out);
+            }
+        }
+    }
+}
+
+/// The module `path` names, from module `at`, cut to the longest known module.
+fn target(at: &[String], path: &[String], known: &BTreeSet<Vec<String>>) -> Option<Vec<String>> {
+    let mut module: Vec<String> = match path.first()?.as_str() {
+        "crate" => Vec::new(),
+        "self" => at.to_vec(),
+        "super" => at[..at.len().checked_sub(1)?].to_vec(),
+        _ => return None,
+    };
+    let mut rest = &path[1..];
+    while rest.first().is_some_and(|s| s == "super") {
+        module.pop();
+        rest = &rest[1..];
+    }
+    for part in rest {
+        let mut next = module.clone();
+        next.push(part.clone());
+        if !known.contains(&next) {
+            break;
+        }
+        module = next;
+    }
+    Some(module)
+}
+
+/// The sibling circles of `edges`: strongly connected sets of more than one module.
+fn circles(edges: &BTreeMap<String, BTreeSet<String>>) -> Vec<Vec<String>> {
+    let nodes: BTreeSet<&String> = edges.keys().chain(edges.values().flatten()).collect();
+    let reach = |from: &String| {
+        let mut seen = BTreeSet::new();
+        let mut stack = vec![from.clone()];
+        while let Some(n) = stack.pop() {
+            for m in edges.get(&n).into_iter().flatten() {
+                if seen.insert(m.clone()) {
+                    stack.push(m.clone());
+                }
+            }
+        }
+        seen
+    };
+    let reached: BTreeMap<&String, BTreeSet<String>> = nodes.iter().map(|n| (*n, reach(n))).collect();
+    let mut out: BTreeSet<Vec<String>> = BTreeSet::new();
+    for n in &nodes {
+        let set: Vec<String> = nodes
+            .iter()
+            .filter(|m| reached[*n].contains(**m) && reached[*m].contains(*n))
+            .map(|m| (*m).clone())
+            .collect();
+        if set.len() > 1 {
+            out.insert(set);
+        }
+    }
+    out.into_iter().collect()
+}
+
+#[test]
+fn no_module_imports_one_that_imports_it_back() {
+    let workspace = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut found: BTreeSet<(String, Vec<String>)> = BTreeSet::new();
+    for (name, dir) in CRATES {
+        let root = workspace.join(dir);
+        let mut sources = Vec::new();
+        files(&root, &mut sources);
+        let known: BTreeSet<Vec<String>> = sources.iter().map(|f| module_of(&root, f)).collect();
+        // Edges between siblings, by their parent module.
+        let mut graph: BTreeMap<Vec<String>, BTreeMap<String, BTreeSet<String>>> = BTreeMap::new();
+        for file in &sources {
+            let at = module_of(&root, file);
+            let text = std::fs::read_to_string(file).expect("read a source file");
+            let code = text.split("#[cfg(test)]").next().unwrap_or_default();
+            for path in paths(code) {
+                let Some(to) = target(&at, &path, &known) else { continue };
+                let common = at.iter().zip(&to).take_while(|(a, b)| a == b).count();
+                // A module and its own ancestors or descendants are one subtree.
+                if common == at.len() || common == to.len() {
+                    continue;
+                }
+                let parent = at[..common].to_vec();
+                graph.entry(parent).or_default().entry(at[common].clone()).or_default().insert(to[common].clone());
+            }
+        }
+        for edges in graph.values() {
+            for circle in circles(edges) {
+                found.insert((name.to_string(), circle));
+            }
+        }
+    }
+    let known: BTreeSet<(String, Vec<String>)> =
+        KNOWN.iter().map(|(c, m)| (c.to_string(), m.iter().map(|s| s.to_string()).collect())).collect();
+    let new: Vec<_> = found.difference(&known).collect();
+    let gone: Vec<_> = known.difference(&found).collect();
+    assert!(new.is_empty(), "modules that import each other back (take the circle apart): {new:?}");
+    assert!(gone.is_empty(), "circles taken apart: delete them from KNOWN in tests/core/module_cycles.rs: {gone:?}");
+}
