@@ -11,12 +11,13 @@ use std::collections::VecDeque;
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
+use glint_core::Accel;
 use glint_core::FlatScene;
 use glint_core::HdrImage;
 use glint_core::cpu::RayCounts;
 use glint_gpu::{
     AdapterRequest, DispatchControl, GpuContext, GpuError, GpuJob, GpuOptions, GpuTracer, JobReadback, PendingPixels,
-    Presenter, SampleProgress,
+    Presenter, SampleProgress, ShaderKey,
 };
 
 use crate::worker::Worker;
@@ -49,6 +50,9 @@ struct InFlight {
     started: Instant,
     /// Sample passes done, of how many (full-resolution renders go pass by pass).
     progress: Arc<SampleProgress>,
+    /// What the render's shader variant compiles in that no earlier render's did: its first
+    /// dispatch waits for the compiler (seconds on lavapipe).
+    new_variant: Option<String>,
 }
 
 /// A full-resolution GPU image on the host.
@@ -80,6 +84,9 @@ pub struct GpuView {
     /// The pixels of the latest finished render to show, landing.
     arriving: Option<Arriving>,
     texture: Option<egui::TextureHandle>,
+    /// The shader variants rendered with so far, and the last one.
+    variants: std::collections::HashSet<ShaderKey>,
+    last_variant: Option<ShaderKey>,
     submitter: Worker<Result<GpuJob, GpuError>>,
     in_flight: Option<InFlight>,
     readback: Option<(JobReadback, u64, f64)>,
@@ -138,6 +145,8 @@ impl GpuView {
             presenting: None,
             arriving: None,
             texture: None,
+            variants: std::collections::HashSet::new(),
+            last_variant: None,
             // Not woken on completion: the UI polls every frame while a render is in flight.
             submitter: Worker::new("glint-gpu-submit", "GPU submission", None),
             in_flight: None,
@@ -186,6 +195,14 @@ impl GpuView {
 
     /// How long the full-resolution render in flight has been running (none for a preview),
     /// and how many of its sample passes the GPU has finished, of how many.
+    /// What the shader of the render in flight compiles in for the first time, while its first
+    /// dispatch may still wait for the compiler, and for how long it has run.
+    pub fn compiling(&self) -> Option<(Duration, &str)> {
+        let f = self.in_flight.as_ref()?;
+        let what = f.new_variant.as_deref()?;
+        matches!(f.stage, Stage::Submitting).then(|| (f.started.elapsed(), what))
+    }
+
     pub fn full_render_progress(&self) -> Option<(Duration, (u32, u32))> {
         self.in_flight.as_ref().filter(|f| !f.preview).map(|f| (f.started.elapsed(), f.progress.get()))
     }
@@ -236,6 +253,9 @@ impl GpuView {
             ));
             return false;
         }
+        let key = ShaderKey::for_scene(scene, GpuOptions::default().specialise).with_accel(scene, Accel::default());
+        let new_variant = self.variants.insert(key).then(|| new_in(key, self.last_variant));
+        self.last_variant = Some(key);
         let (tracer, scene, full_tile) = (self.tracer.clone(), scene.clone(), self.full_tile);
         let progress = Arc::new(SampleProgress::new(scene.header.spp.max(1)));
         let job_progress = progress.clone();
@@ -264,6 +284,7 @@ impl GpuView {
                     size,
                     started: Instant::now(),
                     progress,
+                    new_variant,
                 });
                 true
             }
@@ -397,6 +418,19 @@ impl GpuView {
     }
 }
 
+/// What `key` compiles in that `last` did not, in words ("spot lights, phong"), or what else
+/// makes it new.
+fn new_in(key: ShaderKey, last: Option<ShaderKey>) -> String {
+    let before = last.map_or(0, |l| l.features);
+    let added: Vec<String> = glint_core::layout::feature::NAMES
+        .iter()
+        .enumerate()
+        .filter(|(bit, _)| key.features & !before & (1 << bit) != 0)
+        .map(|(_, n)| n.to_lowercase().replace('_', " "))
+        .collect();
+    if added.is_empty() { "this scene's features".into() } else { added.join(", ") }
+}
+
 /// What a status word from the shader means for the user.
 pub fn status_warning(status: u32, stack_size: u32) -> Option<String> {
     let messages = glint_gpu::status::messages(status, stack_size);
@@ -430,6 +464,16 @@ fn renders_per_second(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_new_variant_is_named_by_what_it_adds() {
+        use glint_core::layout::feature;
+        let key = |features| ShaderKey { features, ..ShaderKey::full() };
+        let before = key(feature::SPHERES | feature::POINT_LIGHTS);
+        let after = key(feature::SPHERES | feature::POINT_LIGHTS | feature::SPOT_LIGHTS);
+        assert_eq!(new_in(after, Some(before)), "spot lights");
+        assert_eq!(new_in(before, Some(after)), "this scene's features");
+    }
 
     #[test]
     fn a_long_render_brings_the_rate_down_instead_of_keeping_the_last_one() {

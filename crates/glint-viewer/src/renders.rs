@@ -16,6 +16,9 @@ use crate::view::{Shown, Textures};
 /// How long a full-resolution GPU render runs before the status bar says it is rendering.
 const GPU_PROGRESS_AFTER: Duration = Duration::from_millis(500);
 
+/// How long a render of a new shader variant runs before the status bar says it is compiling.
+const COMPILING_AFTER: Duration = Duration::from_millis(300);
+
 #[derive(Debug)]
 pub struct Renders {
     pub gpu: Option<GpuView>,
@@ -220,6 +223,12 @@ impl Renders {
             software: self.gpu.as_ref().is_some_and(GpuView::is_software),
             gpu_ms: self.gpu.as_ref().and_then(|g| g.last_ms),
             // Said only once it is long enough to look like nothing is happening.
+            gpu_compiling: self
+                .gpu
+                .as_ref()
+                .and_then(GpuView::compiling)
+                .filter(|(t, _)| *t >= COMPILING_AFTER)
+                .map(|(t, what)| (what.to_string(), t.as_secs_f64())),
             gpu_rendering: self
                 .gpu
                 .as_ref()

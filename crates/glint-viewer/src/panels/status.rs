@@ -17,6 +17,8 @@ pub struct Status {
     /// Seconds the full-resolution GPU render in flight has run, once it runs long, and the
     /// sample passes the GPU has finished of how many.
     pub gpu_rendering: Option<(f64, (u32, u32))>,
+    /// A render whose shader variant is new, waiting for its compile: what it adds, and seconds.
+    pub gpu_compiling: Option<(String, f64)>,
     pub gpu_fps: Option<f64>,
     pub ui_ms: f64,
     pub cpu_progress: Option<(usize, usize, f64)>,
@@ -48,6 +50,10 @@ pub fn ui(ui: &mut Ui, s: &Status) {
             );
         }
         ui.separator();
+        if let Some((what, secs)) = &s.gpu_compiling {
+            ui.spinner();
+            ui.label(format!("compiling the shader for {what}… {secs:.0} s (the last image stays)"));
+        }
         if let Some((secs, (done, total))) = s.gpu_rendering {
             ui.spinner();
             ui.label(format!("GPU rendering {done}/{total} samples… {secs:.0} s"));
