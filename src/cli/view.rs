@@ -86,7 +86,8 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
         Err(e @ glint_core::scene::SceneError::NotGenerated { .. }) => bail!("--resolution: {e}"),
         Err(e @ glint_core::scene::SceneError::NotAModel { .. }) => bail!("{e}"),
         Err(e) if args.benchmark_drag.is_some() || args.benchmark_features => {
-            bail!("cannot benchmark: cannot load scene '{}': {e}", args.scene)
+            let flag = if args.benchmark_features { "--benchmark-features" } else { "--benchmark-drag" };
+            bail!("{flag}: cannot load scene '{}': {e}", args.scene)
         }
         Err(_) => None,
     };

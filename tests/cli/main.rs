@@ -260,6 +260,12 @@ fn bad_input_fails_cleanly() {
         &["--benchmark-drag", "missing.glb", "no such file"],
         &[],
     );
+    expect_failure(
+        "features-benchmark-missing-model",
+        |d| os(&[&"view", &d.join("missing.glb"), &"--benchmark-features"]),
+        &["--benchmark-features", "missing.glb", "no such file"],
+        &[],
+    );
     // Negative numbers reach the flag's own message (not clap's "unexpected argument '-8'").
     expect_failure(
         "width-negative",
