@@ -63,3 +63,29 @@ fn a_software_adapter_is_named_where_the_user_looks() {
     assert!(software, "the viewer tests run on lavapipe, a software adapter");
     assert!(said, "the status bar does not say that the GPU tracer runs on the CPU");
 }
+
+#[test]
+fn the_variants_an_edit_is_likely_to_need_are_compiled_ahead_while_idle() {
+    let Some(mut h) = viewer("whitted", (1000.0, 640.0)) else { return };
+    settle(&mut h);
+    let deadline = Instant::now() + Duration::from_secs(120);
+    while h.state().renders.gpu.as_ref().is_some_and(|g| g.to_prewarm() > 0) {
+        assert!(Instant::now() < deadline, "the likely variants were never compiled ahead");
+        h.step();
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    // Four samples and one Phong material: both compiled ahead, so no render says it compiles.
+    h.state_mut().doc.desc.render.spp = 4;
+    if let Some(m) = h.state_mut().doc.desc.materials.values_mut().next() {
+        m.specular_model = glint_core::scene::SpecularModel::Phong;
+    }
+    h.state_mut().doc.edited();
+    let deadline = Instant::now() + Duration::from_secs(120);
+    while !h.state().is_settled() {
+        assert!(Instant::now() < deadline, "the edit never settled");
+        h.step();
+        let compiling = h.state().renders.gpu.as_ref().and_then(|g| g.compiling().map(|(_, w)| w.to_string()));
+        assert_eq!(compiling, None, "a prewarmed variant was compiled again");
+        std::thread::sleep(Duration::from_millis(5));
+    }
+}

@@ -53,6 +53,9 @@ struct InFlight {
     /// What the render's shader variant compiles in that no earlier render's did: its first
     /// dispatch waits for the compiler (seconds on lavapipe).
     new_variant: Option<String>,
+    /// A 1×1 render of a variant an edit is likely to need next, only to compile it: not
+    /// shown, not counted.
+    prewarm: bool,
 }
 
 /// A full-resolution GPU image on the host.
@@ -87,6 +90,8 @@ pub struct GpuView {
     /// The shader variants rendered with so far, and the last one.
     variants: std::collections::HashSet<ShaderKey>,
     last_variant: Option<ShaderKey>,
+    /// The last scene rendered, whose likely next variants `prewarm` compiles.
+    last_scene: Option<FlatScene>,
     submitter: Worker<Result<GpuJob, GpuError>>,
     in_flight: Option<InFlight>,
     readback: Option<(JobReadback, u64, f64)>,
@@ -147,6 +152,7 @@ impl GpuView {
             texture: None,
             variants: std::collections::HashSet::new(),
             last_variant: None,
+            last_scene: None,
             // Not woken on completion: the UI polls every frame while a render is in flight.
             submitter: Worker::new("glint-gpu-submit", "GPU submission", None),
             in_flight: None,
@@ -172,8 +178,9 @@ impl GpuView {
         self.tracer.context().adapter.to_string()
     }
 
+    /// Whether a render of the document is under way (a prewarm is not).
     pub fn is_busy(&self) -> bool {
-        self.in_flight.is_some() || self.readback.is_some() || self.arriving.is_some()
+        self.in_flight.as_ref().is_some_and(|f| !f.prewarm) || self.readback.is_some() || self.arriving.is_some()
     }
 
     /// Whether the next step is found only by polling the device: a finished render's last
@@ -197,6 +204,13 @@ impl GpuView {
     /// and how many of its sample passes the GPU has finished, of how many.
     /// What the shader of the render in flight compiles in for the first time, while its first
     /// dispatch may still wait for the compiler, and for how long it has run.
+    /// How many of the variants an edit of the last scene is likely to need next are still to
+    /// be compiled (`prewarm`).
+    pub fn to_prewarm(&self) -> usize {
+        let Some(scene) = &self.last_scene else { return 0 };
+        likely_next(scene).iter().filter(|s| !self.variants.contains(&variant_of(s))).count()
+    }
+
     pub fn compiling(&self) -> Option<(Duration, &str)> {
         let f = self.in_flight.as_ref()?;
         let what = f.new_variant.as_deref()?;
@@ -236,6 +250,32 @@ impl GpuView {
     /// Submits a render unless one is still running (the next frame submits the newest edit,
     /// so renders never queue up behind each other).
     pub fn submit(&mut self, scene: &FlatScene, revision: u64, preview: bool) -> bool {
+        if !preview {
+            self.last_scene = Some(scene.clone());
+        }
+        self.start(scene, revision, preview, false)
+    }
+
+    /// When idle, compiles the next shader variant an edit is likely to need (more samples,
+    /// depth 0, a spot light, Phong, Cook–Torrance, added to what the scene uses) by a 1×1
+    /// render nobody sees: lavapipe compiles a variant at its first dispatch, seconds on a slow
+    /// machine, and the edit's own render then starts at once. One at a time; an edit that
+    /// arrives meanwhile waits for it, never the window.
+    pub fn prewarm(&mut self) {
+        if self.in_flight.is_some() || self.arriving.is_some() || self.readback.is_some() {
+            return;
+        }
+        let Some(scene) = &self.last_scene else { return };
+        let next =
+            likely_next(scene).into_iter().map(|s| (variant_of(&s), s)).find(|(k, _)| !self.variants.contains(k));
+        if let Some((key, scene)) = next {
+            self.variants.insert(key);
+            log::debug!("prewarming the GPU variant {}", key.describe());
+            self.start(&scene, 0, true, true);
+        }
+    }
+
+    fn start(&mut self, scene: &FlatScene, revision: u64, preview: bool, prewarm: bool) -> bool {
         if self.in_flight.is_some() {
             return false;
         }
@@ -253,9 +293,11 @@ impl GpuView {
             ));
             return false;
         }
-        let key = ShaderKey::for_scene(scene, GpuOptions::default().specialise).with_accel(scene, Accel::default());
-        let new_variant = self.variants.insert(key).then(|| new_in(key, self.last_variant));
-        self.last_variant = Some(key);
+        let key = variant_of(scene);
+        let new_variant = (self.variants.insert(key) && !prewarm).then(|| new_in(key, self.last_variant));
+        if !prewarm {
+            self.last_variant = Some(key);
+        }
         let (tracer, scene, full_tile) = (self.tracer.clone(), scene.clone(), self.full_tile);
         let progress = Arc::new(SampleProgress::new(scene.header.spp.max(1)));
         let job_progress = progress.clone();
@@ -285,6 +327,7 @@ impl GpuView {
                     started: Instant::now(),
                     progress,
                     new_variant,
+                    prewarm,
                 });
                 true
             }
@@ -318,9 +361,13 @@ impl GpuView {
         if let Err(e) = ctx.device.poll(wgpu::PollType::Poll) {
             self.error = Some(e.to_string());
         }
-        if let Some(InFlight { stage: Stage::Submitting, size, .. }) = &self.in_flight {
-            let size = *size;
+        if let Some(InFlight { stage: Stage::Submitting, size, prewarm, .. }) = &self.in_flight {
+            let (size, prewarm) = (*size, *prewarm);
             match self.submitter.poll() {
+                Some((_, Ok(Ok(_)))) if prewarm => {
+                    log::debug!("GPU variant prewarmed");
+                    self.in_flight = None;
+                }
                 Some((_, Ok(Ok(job)))) => {
                     // Queued after the tracer's dispatches, so it encodes the finished image.
                     self.presenting = Some(self.presenter_for(size).present(&ctx, &job.buffers.output));
@@ -416,6 +463,36 @@ impl GpuView {
         };
         self.shown = Some((a.revision, a.preview, size, texture.id()));
     }
+}
+
+/// The variant the viewer's renders of `scene` use (`GpuOptions::default()`).
+fn variant_of(scene: &FlatScene) -> ShaderKey {
+    ShaderKey::for_scene(scene, GpuOptions::default().specialise).with_accel(scene, Accel::default())
+}
+
+/// 1×1 copies of `scene` with what an edit is likely to add next: more samples, depth 0, a spot
+/// light, a Phong or a Cook–Torrance material (the features the first use of which froze the
+/// window before the tracer had a device of its own).
+fn likely_next(scene: &FlatScene) -> Vec<FlatScene> {
+    use glint_core::layout::feature;
+    let tiny = |change: &dyn Fn(&mut FlatScene)| {
+        let mut s = scene.clone();
+        (s.header.width, s.header.height) = (1, 1);
+        change(&mut s);
+        s
+    };
+    vec![
+        tiny(&|s| {
+            s.header.spp = s.header.spp.max(4);
+            s.header.features |= feature::JITTER;
+        }),
+        tiny(&|s| s.header.max_depth = 0),
+        tiny(&|s| s.header.features |= feature::SPOT_LIGHTS),
+        // The only point light switched to a spot: no point light is left.
+        tiny(&|s| s.header.features = (s.header.features & !feature::POINT_LIGHTS) | feature::SPOT_LIGHTS),
+        tiny(&|s| s.header.features |= feature::PHONG),
+        tiny(&|s| s.header.features |= feature::COOK_TORRANCE),
+    ]
 }
 
 /// What `key` compiles in that `last` did not, in words ("spot lights, phong"), or what else

@@ -162,6 +162,13 @@ impl Renders {
                 }
             }
         }
+        // Idle, everything of this revision done: compile what an edit is likely to need next.
+        if !interacting
+            && self.is_settled(doc)
+            && let Some(g) = &mut self.gpu
+        {
+            g.prewarm();
+        }
         if !interacting
             && self.cpu_revision != Some(rev)
             && let Some(flat) = doc.flat(false)
