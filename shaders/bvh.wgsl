@@ -17,9 +17,12 @@
 #import glint::scene_data::{BvhNode, QuantizedPair, PRIM_REF_TRIANGLE, PRIM_REF_INDEX, NODE_REF_COUNT_BITS, PAIR_FIRST_SHIFT, STATUS_BVH_STACK_OVERFLOW}
 #import glint::bindings::{header, planes, spheres, triangles, meshes, bvh_nodes, bvh_leaf_ab, bvh_leaf_c}
 #import glint::ray::{Ray, status}
-#import glint::intersect::{Hit, Leaving, MaybeT, PRIM_NONE, PRIM_SPHERE, PRIM_PLANE, PRIM_TRIANGLE, sphere_roots, intersect_sphere_leaving, intersect_plane, intersect_triangle, ray_shear, cross_surface, all_zero, sphere_transmittance, planes_transmittance, bound, replaces}
+#import glint::intersect::{Hit, Leaving, MaybeT, PRIM_NONE, PRIM_SPHERE, PRIM_PLANE, PRIM_TRIANGLE, sphere_roots, intersect_sphere_leaving, intersect_triangle, ray_shear, cross_surface, all_zero, sphere_transmittance, planes_transmittance, bound, replaces}
 #ifdef SKIP_CONVEX
 #import glint::intersect::is_leaving
+#endif
+#ifdef PLANES
+#import glint::intersect::closest_plane
 #endif
 
 // Entries of the traversal stack: the scene's tree depth + 1 (glint_gpu::shaders::
@@ -305,18 +308,7 @@ fn closest_hit(ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> Hit {
         }
     }
 #ifdef PLANES
-    for (var i = 0u; i < header.plane_count; i++) {
-#ifdef SKIP_CONVEX
-        if is_leaving(leaving, PRIM_PLANE, i) {
-            continue;
-        }
-#endif
-        let no = planes[i].normal_offset;
-        let h = intersect_plane(no.xyz, no.w, ray, t_min, bound(best, t_max));
-        if h.ok && replaces(h.t, PRIM_PLANE, i, best) {
-            best = Hit(h.t, PRIM_PLANE, i, 0.0, 0.0);
-        }
-    }
+    best = closest_plane(ray, t_min, t_max, leaving, best);
 #endif
     return best;
 }

@@ -284,6 +284,27 @@ fn bound(best: Hit, t_max: f32) -> f32 {
     return bitcast<f32>(bitcast<u32>(best.t) + 1u);
 }
 
+#ifdef PLANES
+// The nearest plane hit in (t_min, t_max) that replaces `best` (the tie rule), or `best`: the
+// planes' loop of both walks (planes are unbounded, so the BVH holds none).
+fn closest_plane(ray: Ray, t_min: f32, t_max: f32, leaving: Leaving, best_so_far: Hit) -> Hit {
+    var best = best_so_far;
+    for (var i = 0u; i < header.plane_count; i++) {
+#ifdef SKIP_CONVEX
+        if is_leaving(leaving, PRIM_PLANE, i) {
+            continue;
+        }
+#endif
+        let no = planes[i].normal_offset;
+        let h = intersect_plane(no.xyz, no.w, ray, t_min, bound(best, t_max));
+        if h.ok && replaces(h.t, PRIM_PLANE, i, best) {
+            best = Hit(h.t, PRIM_PLANE, i, 0.0, 0.0);
+        }
+    }
+    return best;
+}
+#endif
+
 // Nearest hit in (t_min, t_max); ties go to the first in scene order (`replaces`), as on the CPU.
 fn closest_hit(ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> Hit {
     var best = Hit(t_max, PRIM_NONE, 0u, 0.0, 0.0);
@@ -297,18 +318,7 @@ fn closest_hit(ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> Hit {
     }
 #endif
 #ifdef PLANES
-    for (var i = 0u; i < header.plane_count; i++) {
-#ifdef SKIP_CONVEX
-        if is_leaving(leaving, PRIM_PLANE, i) {
-            continue;
-        }
-#endif
-        let no = planes[i].normal_offset;
-        let h = intersect_plane(no.xyz, no.w, ray, t_min, best.t);
-        if h.ok {
-            best = Hit(h.t, PRIM_PLANE, i, 0.0, 0.0);
-        }
-    }
+    best = closest_plane(ray, t_min, t_max, leaving, best);
 #endif
 #ifdef TRIANGLES
     if header.triangle_count > 0u {

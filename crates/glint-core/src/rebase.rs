@@ -17,7 +17,8 @@ use glam::DVec3;
 
 use crate::FlatScene;
 use crate::bvh::{f32_down, f32_up};
-use crate::cpu::intersect::{Leaving, closest_hit};
+use crate::cpu::intersect::Leaving;
+use crate::cpu::walk::closest_hit;
 use crate::cpu::{Ray, TraceContext, v3};
 use crate::layout::{GpuPlane, GpuSphere, origin_power};
 use crate::scene::{LightKind, Wrap};

@@ -247,7 +247,7 @@ pub fn pick_object(scene: &FlatScene, x: u32, y: u32) -> u32 {
     let ctx = built_scene_context(scene);
     let h = &scene.header;
     let ray = crate::cpu::camera::camera_ray(&scene.camera, h.width, h.height, x, y, 0.5, 0.5);
-    match crate::cpu::intersect::closest_hit(
+    match crate::cpu::walk::closest_hit(
         &ctx,
         &ray,
         0.0,

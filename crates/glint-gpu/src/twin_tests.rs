@@ -29,7 +29,7 @@ const TWINS: [(&str, &str, &str, &str); 11] = [
         "bvh.wgsl",
         include_str!("../../../shaders/bvh.wgsl"),
         "cpu/bvh.rs",
-        include_str!("../../glint-core/src/cpu/bvh.rs"),
+        include_str!("../../glint-core/src/cpu/bvh/mod.rs"),
     ),
     (
         "offset.wgsl",

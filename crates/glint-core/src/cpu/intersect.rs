@@ -3,7 +3,7 @@
 
 use glam::DVec3;
 
-use super::{Ray, TraceContext, Traversal, v3};
+use super::{Ray, TraceContext, v3};
 use crate::FlatScene;
 use crate::layout::{GpuSphere, GpuTriangle, MESH_HAS_NORMALS, feature};
 
@@ -310,15 +310,39 @@ pub fn bound(best: &Option<Hit>, t_max: f64) -> f64 {
     best.map_or(t_max, |b| b.t.next_up())
 }
 
-/// The nearest hit in (t_min, t_max). Ties go to the first in scene order (`replaces`; spheres
-/// and planes are tested in that order, triangles are stored in the BVH's), the same on both
-/// tracers. Through the BVH (`Traversal::Bvh`) the CPU finds
-/// the same hit through the BVH (`cpu::bvh`).
-pub fn closest_hit(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f64, leaving: &Leaving) -> Option<Hit> {
-    match ctx.traversal {
-        Traversal::Bvh => return super::bvh::closest_hit(ctx, ray, t_min, t_max, leaving),
-        Traversal::BruteForce => {}
+/// The nearest plane hit in (t_min, t_max) that replaces `best` (the tie rule), or `best`:
+/// the planes' loop of both walks (planes are unbounded, so the BVH holds none).
+pub fn closest_plane(
+    ctx: &TraceContext,
+    ray: &Ray,
+    t_min: f64,
+    t_max: f64,
+    leaving: &Leaving,
+    best: Option<Hit>,
+) -> Option<Hit> {
+    let scene = ctx.scene;
+    let skip = ctx.has(feature::SKIP_CONVEX);
+    let mut best = best;
+    for (i, p) in scene.planes.iter().enumerate() {
+        let no = p.normal_offset;
+        let i = i as u32;
+        if skip && is_leaving(leaving, Prim::Plane, i) {
+            continue;
+        }
+        if let Some(t) = intersect_plane(v3(no), f64::from(no[3]), ray, t_min, bound(&best, t_max))
+            && replaces(scene, t, Prim::Plane, i, &best)
+        {
+            best = Some(Hit { t, prim: Prim::Plane, index: i, bu: 0.0, bv: 0.0 });
+        }
     }
+    best
+}
+
+/// The nearest hit in (t_min, t_max), testing every primitive. Ties go to the first in scene
+/// order (`replaces`; spheres and planes are tested in that order, triangles are stored in the
+/// BVH's), the same on both tracers. `cpu::bvh::closest_hit` finds the same hit through the
+/// BVH; `cpu::walk` chooses.
+pub fn closest_hit(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f64, leaving: &Leaving) -> Option<Hit> {
     let scene = ctx.scene;
     let mut best: Option<Hit> = None;
     let mut t_far = t_max;
@@ -334,17 +358,7 @@ pub fn closest_hit(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f64, leavin
     }
     let skip = ctx.has(feature::SKIP_CONVEX);
     if ctx.has(feature::PLANES) {
-        for (i, p) in scene.planes.iter().enumerate() {
-            let no = p.normal_offset;
-            let i = i as u32;
-            if skip && is_leaving(leaving, Prim::Plane, i) {
-                continue;
-            }
-            if let Some(t) = intersect_plane(v3(no), f64::from(no[3]), ray, t_min, t_far) {
-                t_far = t;
-                best = Some(Hit { t, prim: Prim::Plane, index: i, bu: 0.0, bv: 0.0 });
-            }
-        }
+        best = closest_plane(ctx, ray, t_min, t_max, leaving, best);
     }
     if ctx.has(feature::TRIANGLES) && !scene.triangles.is_empty() {
         let shear = ray_shear(ray.dir);
@@ -459,13 +473,10 @@ pub fn planes_transmittance(
 }
 
 /// Fraction of light that passes from the ray origin to t_max: 0 behind an opaque occluder,
-/// the product of k_t over every surface crossed otherwise (a glass sphere is crossed twice).
-/// Through the BVH (`Traversal::Bvh`) the CPU computes the same product through the BVH (`cpu::bvh`).
+/// the product of k_t over every surface crossed otherwise (a glass sphere is crossed twice),
+/// testing every primitive. `cpu::bvh::shadow_transmittance` computes the same product through
+/// the BVH; `cpu::walk` chooses.
 pub fn shadow_transmittance(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f64, leaving: &Leaving) -> DVec3 {
-    match ctx.traversal {
-        Traversal::Bvh => return super::bvh::shadow_transmittance(ctx, ray, t_min, t_max, leaving),
-        Traversal::BruteForce => {}
-    }
     let scene = ctx.scene;
     let mut tr = DVec3::ONE;
     if ctx.has(feature::SPHERES) {

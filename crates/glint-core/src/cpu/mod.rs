@@ -10,7 +10,7 @@ pub mod rng;
 pub mod shade;
 pub mod texture;
 pub mod trace;
-mod wide_slab;
+pub mod walk;
 
 use std::ops::AddAssign;
 

@@ -5,9 +5,10 @@
 
 use glam::{DVec2, DVec3};
 
-use super::intersect::{FAR, Prim, all_zero, shadow_transmittance};
+use super::intersect::{FAR, Prim, all_zero};
 use super::offset::{leaving_surface, shadow_t_max, spawn_ray};
 use super::texture::sample_texture;
+use super::walk::shadow_transmittance;
 use super::{LightTags, MaterialTags, Ray, RayCounts, TraceContext, v3};
 use crate::layout::{GpuLight, GpuMaterial, LIGHT_CASTS_SHADOWS, NO_TEXTURE, feature};
 pub use crate::scene::MIN_ATTENUATION_DENOMINATOR;

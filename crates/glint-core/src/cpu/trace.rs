@@ -8,11 +8,12 @@ use glam::{DVec2, DVec3};
 
 use super::camera::{camera_ray, sample_offset};
 use super::intersect::{
-    FAR, Hit, Leaving, Prim, all_zero, closest_hit, sphere_surface_point, triangle_corners, triangle_shading_normal,
+    FAR, Hit, Leaving, Prim, all_zero, sphere_surface_point, triangle_corners, triangle_shading_normal,
 };
 use super::offset::{leaving_surface, spawn_ray};
 use super::shade::{Breakdown, Surface, attenuation_factor, shade_local};
 use super::texture::{planar_axis, planar_uv, triangle_uv, triangle_uv_origin};
+use super::walk::closest_hit;
 use super::{Ray, RayCounts, TraceContext, v3};
 use crate::layout::{NO_HIT, UV_MESH, feature};
 use crate::ray_tree::{Cut, NoTree, RayKind, RayNode, TreeRecorder, record_shadow_rays};

@@ -12,14 +12,16 @@
 //! The WGSL twin is `shaders/bvh.wgsl` (same functions, except the closure-driven `traverse`
 //! and its loop `walk`).
 
+mod wide_slab;
+
 use glam::DVec3;
 
+use self::wide_slab::{Entered, SlabPlanes};
 use super::intersect::{
-    Hit, Leaving, Prim, RayShear, all_zero, bound, cross_surface, intersect_plane, intersect_sphere_leaving,
+    Hit, Leaving, Prim, RayShear, all_zero, bound, closest_plane, cross_surface, intersect_sphere_leaving,
     intersect_triangle, is_leaving, planes_transmittance, ray_shear, replaces, sphere_roots, sphere_roots_counted,
     triangle_corners,
 };
-use super::wide_slab::{Entered, SlabPlanes};
 use super::{Ray, TraceContext, v3};
 use crate::bvh::{BvhNode, PrimRef, WIDTH, WideNode};
 use crate::flat::Corners;
@@ -328,20 +330,9 @@ pub fn closest_hit(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f64, leavin
             true
         },
     );
-    let mut best = best.get();
+    let best = best.get();
     if ctx.has(feature::PLANES) {
-        for (i, p) in scene.planes.iter().enumerate() {
-            let no = p.normal_offset;
-            let i = i as u32;
-            if skip && is_leaving(leaving, Prim::Plane, i) {
-                continue;
-            }
-            if let Some(t) = intersect_plane(v3(no), f64::from(no[3]), ray, t_min, bound(&best, t_max))
-                && replaces(scene, t, Prim::Plane, i, &best)
-            {
-                best = Some(Hit { t, prim: Prim::Plane, index: i, bu: 0.0, bv: 0.0 });
-            }
-        }
+        return closest_plane(ctx, ray, t_min, t_max, leaving, best);
     }
     best
 }

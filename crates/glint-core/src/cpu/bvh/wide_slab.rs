@@ -2,7 +2,7 @@
 //! f64 arithmetic on all `WIDTH` columns at once, in SSE2 on x86_64, with the scalar form as
 //! its reference. CPU only: the GPU walks the binary nodes, one `enter` per box.
 
-use super::bvh::{GAMMA3, SlabRay};
+use super::{GAMMA3, SlabRay};
 use crate::bvh::{WIDTH, WideNode};
 
 /// Pairs of columns of a wide node: the f64 vectors of SSE2 hold two.
