@@ -9,10 +9,9 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
 /// Circles still in the house (issue 36), each as the crate and its sorted sibling modules:
-/// inside `scene` (description, loading and validation in one module), across the core (the
-/// tracer, the flat layout and rebasing; the scene and the layout's tags), and in the report.
+/// inside `scene` (description, loading and validation in one module), and across the core
+/// (the tracer, the flat layout and rebasing; the scene and the layout's tags).
 const KNOWN: &[(&str, &[&str])] = &[
-    ("glint", &["specular", "sweep"]),
     ("glint_core", &["builtin", "bumpy", "desc", "error", "model_ref", "ray_tree", "texture", "validate"]),
     ("glint_core", &["cpu", "flat", "probe_terms", "ray_tree", "rays", "rebase"]),
     ("glint_core", &["layout", "model", "scene"]),

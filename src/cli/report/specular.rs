@@ -5,39 +5,18 @@
 //! specular lobe decides no ray), so any difference in time is the lobe's arithmetic and, on
 //! the GPU, the specialised shader of the model.
 
-use std::time::Duration;
-
 use anyhow::Context;
-use glint_core::cpu::RayCounts;
 use glint_core::scene::{EpsilonMode, LoadedScene, RenderSettings, SpecularModel};
 use glint_core::{Backend, FlatScene};
 use indicatif::ProgressBar;
 
 use super::plan::{Bailout, Config};
-use super::sweep::{Engines, GpuExtra, render, settings_for};
-use crate::cli::units::ms;
+use super::sweep::{Engines, SpecularRow, render, settings_for};
 
 /// Samples per pixel and depth of the measurement: enough work per render (16 samples of a
 /// depth-5 tree per pixel) that the timer's resolution and a frame's fixed costs do not count.
 pub const SPP: u32 = 16;
 pub const DEPTH: u32 = 5;
-
-/// One model on one backend.
-#[derive(Clone, Debug)]
-pub struct SpecularRow {
-    pub model: SpecularModel,
-    pub config: Config,
-    /// Timed render times, sorted.
-    pub times: Vec<Duration>,
-    pub counts: RayCounts,
-    pub gpu: Option<GpuExtra>,
-}
-
-impl SpecularRow {
-    pub fn median_ms(&self) -> f64 {
-        ms(self.times[self.times.len() / 2])
-    }
-}
 
 /// The configuration every model is rendered with on `backend`.
 pub fn config(backend: Backend) -> Config {

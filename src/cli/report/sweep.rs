@@ -7,13 +7,12 @@ use std::time::Duration;
 use anyhow::Context;
 use glint_core::compare::{ImageErrors, compare_images};
 use glint_core::cpu::RayCounts;
-use glint_core::scene::{LoadedScene, RenderSettings, overflow_causes};
+use glint_core::scene::{LoadedScene, RenderSettings, SpecularModel, overflow_causes};
 use glint_core::{Backend, CpuOptions, FlatScene, HdrImage, RenderControl, render_cpu};
 use glint_gpu::{GpuOptions, GpuTracer, ShaderKey};
 use indicatif::ProgressBar;
 
 use super::plan::{Config, Group, Planned};
-use super::specular::SpecularRow;
 use crate::cli::units::{mrays_per_s, ms};
 
 /// What the sweep needs to render: CPU threads and, unless `--cpu-only`, one GPU tracer whose
@@ -99,6 +98,23 @@ impl Row {
 
     pub fn is_reference(&self) -> bool {
         self.groups.contains(&Group::Reference)
+    }
+}
+
+/// One specular model on one backend (`specular::measure`).
+#[derive(Clone, Debug)]
+pub struct SpecularRow {
+    pub model: SpecularModel,
+    pub config: Config,
+    /// Timed render times, sorted.
+    pub times: Vec<Duration>,
+    pub counts: RayCounts,
+    pub gpu: Option<GpuExtra>,
+}
+
+impl SpecularRow {
+    pub fn median_ms(&self) -> f64 {
+        ms(self.times[self.times.len() / 2])
     }
 }
 

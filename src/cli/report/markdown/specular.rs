@@ -5,8 +5,9 @@ use std::fmt::Write as _;
 
 use glint_core::scene::SpecularModel;
 
-use super::super::specular::{DEPTH, SPP, SpecularRow};
+use super::super::specular::{DEPTH, SPP};
 use super::super::sweep::SceneResult;
+use super::super::sweep::SpecularRow;
 use super::backends;
 use super::prose::{Block, prose};
 use crate::cli::units::{count, ms, ms_cell};
