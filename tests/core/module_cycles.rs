@@ -10,11 +10,11 @@ use std::path::{Path, PathBuf};
 
 /// Circles still in the house (issue 36), each as the crate and its sorted sibling modules:
 /// inside `scene` (description, loading and validation in one module), and across the core
-/// (the tracer, the flat layout and rebasing; the scene and the layout's tags).
+/// (the tracer, the flat layout and rebasing; the scene description and the model importers).
 const KNOWN: &[(&str, &[&str])] = &[
     ("glint_core", &["builtin", "bumpy", "desc", "error", "model_ref", "ray_tree", "texture", "validate"]),
     ("glint_core", &["cpu", "flat", "probe_terms", "ray_tree", "rays", "rebase"]),
-    ("glint_core", &["layout", "model", "scene"]),
+    ("glint_core", &["model", "scene"]),
 ];
 
 /// The crates and their source roots, from the workspace root.

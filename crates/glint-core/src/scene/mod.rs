@@ -15,6 +15,7 @@ mod number;
 mod overflow;
 mod ray_tree;
 mod rgb;
+mod tags;
 mod texture;
 mod validate;
 
