@@ -24,10 +24,17 @@ pub fn write_fixture_textures(dir: &Path) {
 
 /// The textured scene (its textures written into `dir`, where its scene file must be).
 pub fn textured_scene(dir: &Path, width: u32, height: u32) -> SceneText {
+    textured_scene_moved(dir, width, height, 2, [0.0; 3])
+}
+
+/// `textured_scene` moved by `o`, rendered to `max_depth`.
+pub fn textured_scene_moved(dir: &Path, width: u32, height: u32, max_depth: u32, o: [f64; 3]) -> SceneText {
     write_fixture_textures(dir);
-    let quad = [[-1.5, -0.2, 1.0], [1.5, -0.2, 1.0], [1.5, 2.2, 1.0], [-1.5, 2.2, 1.0]];
+    let p = |v: [f64; 3]| [v[0] + o[0], v[1] + o[1], v[2] + o[2]];
+    let quad = [p([-1.5, -0.2, 1.0]), p([1.5, -0.2, 1.0]), p([1.5, 2.2, 1.0]), p([-1.5, 2.2, 1.0])];
     let uvs = [[0.0, 2.0], [3.0, 2.0], [3.0, -0.5], [0.0, -0.5]];
-    SceneText::new(width, height, "max_depth = 2", [0.3, 1.2, -3.5], [0.0, 0.6, 0.0], [0.0, 1.0, 0.0], 50.0)
+    let render = format!("max_depth = {max_depth}");
+    SceneText::new(width, height, &render, p([0.3, 1.2, -3.5]), p([0.0, 0.6, 0.0]), [0.0, 1.0, 0.0], 50.0)
         .world([0.2; 3], [0.1, 0.1, 0.15])
         .material(
             "poster",
@@ -43,8 +50,8 @@ pub fn textured_scene(dir: &Path, width: u32, height: u32) -> SceneText {
              emission_texture = { path = \"glow.png\", filter = \"nearest\" }",
         )
         .material("floor", "ka = 0.3\nkd = [0.7, 0.6, 0.5]\nkr = 0.2\nchecker = { kd = [0.2, 0.25, 0.3], size = 0.5 }")
-        .light("point", "position = [-2.0, 4.0, -3.0]\ndiffuse = 0.8\nspecular = 0.6")
-        .plane([0.0, -0.2, 0.0], [0.0, 1.0, 0.0], "floor")
-        .sphere([0.9, 0.35, 0.2], 0.55, "ball")
+        .light("point", &format!("position = {}\ndiffuse = 0.8\nspecular = 0.6", crate::scene::arr(p([-2.0, 4.0, -3.0]))))
+        .plane(p([0.0, -0.2, 0.0]), [0.0, 1.0, 0.0], "floor")
+        .sphere(p([0.9, 0.35, 0.2]), 0.55, "ball")
         .textured_mesh(&quad, &[[0, 1, 2], [0, 2, 3]], &uvs, "poster")
 }
