@@ -329,6 +329,13 @@ pub struct GpuSphere {
     pub pad: u32,
 }
 
+/// The distance between adjacent f32 values at |x| (at least the smallest normal's): how
+/// finely the layout stores a coordinate of that size.
+pub fn f32_spacing(x: f64) -> f64 {
+    let exponent = ((x.abs() as f32).max(f32::MIN_POSITIVE).to_bits() >> 23) as i32 - 127;
+    2f64.powi(exponent - 23)
+}
+
 /// |C|² − r² of a stored (centre, radius) in f64 (the f32 squares are exact), rounded to f32.
 pub fn origin_power(center_radius: [f32; 4]) -> f32 {
     let [x, y, z, r] = center_radius.map(f64::from);

@@ -218,11 +218,14 @@ fn move_the_rest(out: &mut FlatScene, scene: &FlatScene, frame: [f32; 4]) {
 fn place_texture_origins(out: &mut FlatScene, frame: [f32; 4]) {
     let f = v3(frame);
     let across = [(f.y, f.z), (f.x, f.z), (f.x, f.y)];
+    let at_world_origin = f == DVec3::ZERO;
     for tex in &mut out.textures {
         for (k, &(a, b)) in across.iter().enumerate() {
             let at = |row: [f32; 4], wrap: u32| {
-                let u = f64::from(row[0]) * a + f64::from(row[1]) * b + f64::from(row[2]);
-                if f == DVec3::ZERO { row[2] } else { fold(u, wrap) as f32 }
+                if at_world_origin {
+                    return row[2];
+                }
+                fold(f64::from(row[0]) * a + f64::from(row[1]) * b + f64::from(row[2]), wrap) as f32
             };
             tex.planar_u[k] = at(tex.transform_u, tex.wrap_s);
             tex.planar_v[k] = at(tex.transform_v, tex.wrap_t);

@@ -90,8 +90,11 @@ pub struct GpuView {
     /// The shader variants rendered with so far, and the last one.
     variants: std::collections::HashSet<ShaderKey>,
     last_variant: Option<ShaderKey>,
-    /// The last scene rendered, whose likely next variants `prewarm` compiles.
+    /// The last scene rendered in full, whose likely next variants `prewarm` compiles.
     last_scene: Option<FlatScene>,
+    /// Those variants' 1×1 scenes still to compile, derived once per full render when the GPU
+    /// is first idle after it (`None` until then).
+    prewarm_queue: Option<Vec<FlatScene>>,
     submitter: Worker<Result<GpuJob, GpuError>>,
     in_flight: Option<InFlight>,
     readback: Option<(JobReadback, u64, f64)>,
@@ -153,6 +156,7 @@ impl GpuView {
             variants: std::collections::HashSet::new(),
             last_variant: None,
             last_scene: None,
+            prewarm_queue: None,
             // Not woken on completion: the UI polls every frame while a render is in flight.
             submitter: Worker::new("glint-gpu-submit", "GPU submission", None),
             in_flight: None,
@@ -200,23 +204,26 @@ impl GpuView {
         self.in_flight.as_ref().map(|f| (f.revision, f.preview))
     }
 
-    /// How long the full-resolution render in flight has been running (none for a preview),
-    /// and how many of its sample passes the GPU has finished, of how many.
-    /// What the shader of the render in flight compiles in for the first time, while its first
-    /// dispatch may still wait for the compiler, and for how long it has run.
     /// How many of the variants an edit of the last scene is likely to need next are still to
-    /// be compiled (`prewarm`).
+    /// be compiled (`prewarm`); one while they are not derived yet.
     pub fn to_prewarm(&self) -> usize {
-        let Some(scene) = &self.last_scene else { return 0 };
-        likely_next(scene).iter().filter(|s| !self.variants.contains(&variant_of(s))).count()
+        match (&self.prewarm_queue, &self.last_scene) {
+            (Some(queue), _) => queue.iter().filter(|s| !self.variants.contains(&variant_of(s))).count(),
+            (None, Some(_)) => 1,
+            (None, None) => 0,
+        }
     }
 
+    /// What the shader of the render in flight compiles in for the first time, while its first
+    /// dispatch may still wait for the compiler, and for how long it has run.
     pub fn compiling(&self) -> Option<(Duration, &str)> {
         let f = self.in_flight.as_ref()?;
         let what = f.new_variant.as_deref()?;
         matches!(f.stage, Stage::Submitting).then(|| (f.started.elapsed(), what))
     }
 
+    /// How long the full-resolution render in flight has been running (none for a preview),
+    /// and how many of its sample passes the GPU has finished, of how many.
     pub fn full_render_progress(&self) -> Option<(Duration, (u32, u32))> {
         self.in_flight.as_ref().filter(|f| !f.preview).map(|f| (f.started.elapsed(), f.progress.get()))
     }
@@ -252,6 +259,7 @@ impl GpuView {
     pub fn submit(&mut self, scene: &FlatScene, revision: u64, preview: bool) -> bool {
         if !preview {
             self.last_scene = Some(scene.clone());
+            self.prewarm_queue = None;
         }
         self.start(scene, revision, preview, false)
     }
@@ -266,13 +274,17 @@ impl GpuView {
             return;
         }
         let Some(scene) = &self.last_scene else { return };
-        let next =
-            likely_next(scene).into_iter().map(|s| (variant_of(&s), s)).find(|(k, _)| !self.variants.contains(k));
-        if let Some((key, scene)) = next {
-            self.variants.insert(key);
-            log::debug!("prewarming the GPU variant {}", key.describe());
-            self.start(&scene, 0, true, true);
+        // Taken out while a render starts from it; the most likely first.
+        let mut queue = self.prewarm_queue.take().unwrap_or_else(|| likely_next(scene).into_iter().rev().collect());
+        while let Some(next) = queue.pop() {
+            let key = variant_of(&next);
+            if self.variants.insert(key) {
+                log::debug!("prewarming the GPU variant {}", key.describe());
+                self.start(&next, 0, true, true);
+                break;
+            }
         }
+        self.prewarm_queue = Some(queue);
     }
 
     fn start(&mut self, scene: &FlatScene, revision: u64, preview: bool, prewarm: bool) -> bool {

@@ -100,7 +100,12 @@ fn strip_part(label: &str) -> Option<&str> {
 
 /// `response` with the tooltip of `label`, where it has one.
 pub fn hint(response: egui::Response, label: &str) -> egui::Response {
-    match tooltip(label) {
+    with_tooltip(response, tooltip(label))
+}
+
+/// `response` with `text` on hover, where there is one.
+pub fn with_tooltip(response: egui::Response, text: Option<&str>) -> egui::Response {
+    match text {
         Some(text) => response.on_hover_text(text),
         None => response,
     }

@@ -5,7 +5,7 @@
 
 use egui::{DragValue, Response, Slider, SliderClamping, Ui, WidgetInfo};
 
-use crate::help::hint;
+use crate::help::{hint, option_tooltip, with_tooltip};
 use glint_core::scene::{Range, Rgb, ranges};
 
 /// The smallest positive value a logarithmic slider reaches by dragging (ε goes down to 1e-9);
@@ -166,11 +166,7 @@ pub fn choice<T: PartialEq + Copy>(
     let combo = egui::ComboBox::from_label(label).selected_text(name(*value)).show_ui(ui, |ui| {
         for &o in options {
             let r = ui.selectable_value(value, o, name(o));
-            let r = match crate::help::option_tooltip(label, name(o)) {
-                Some(text) => r.on_hover_text(text),
-                None => r,
-            };
-            changed |= r.changed();
+            changed |= with_tooltip(r, option_tooltip(label, name(o))).changed();
         }
     });
     hint(combo.response, label);

@@ -4,6 +4,7 @@
 
 use std::str::FromStr;
 
+use crate::layout::f32_spacing;
 use crate::scene::{FieldIssue, MeshDesc};
 
 /// Whether an opened model stands on a grey ground plane.
@@ -84,12 +85,6 @@ pub fn ground_height(
             }
         }
     }
-}
-
-/// The distance between adjacent f32 values at `x` (at least the smallest normal's).
-fn f32_spacing(x: f64) -> f64 {
-    let exponent = (x.max(f64::from(f32::MIN_POSITIVE))).log2().floor();
-    2f64.powf(exponent - 23.0)
 }
 
 /// The share of the model's x–z footprint covered by triangles that lie at its lowest y

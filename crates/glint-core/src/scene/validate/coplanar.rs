@@ -16,6 +16,7 @@ use rayon::prelude::*;
 
 use super::super::desc::{MeshDesc, ObjectDesc, SceneDesc};
 use super::super::error::FieldIssue;
+use crate::layout::f32_spacing;
 
 /// Normal cells per unit of each component.
 const CELLS: f64 = 1024.0;
@@ -110,13 +111,6 @@ fn first_shared_cell(a: DVec3, b: DVec3) -> Option<u64> {
 fn oriented(normal: DVec3) -> Option<DVec3> {
     let n = normal.try_normalize()?;
     Some(if n[n.abs().max_position()] < 0.0 { -n } else { n })
-}
-
-/// The distance between adjacent f32 values at `x` (read off the f32's exponent bits: this
-/// runs once per triangle).
-fn f32_spacing(x: f64) -> f64 {
-    let exponent = ((x.abs() as f32).max(f32::MIN_POSITIVE).to_bits() >> 23) as i32 - 127;
-    2f64.powi(exponent - 23)
 }
 
 /// What one pair of objects shares.
