@@ -11,6 +11,8 @@ const ATTENUATION_INVERSE_SQUARE: u32 = 1u;
 const SPOT_FALLOFF_POWER: u32 = 0u;
 const SPOT_FALLOFF_SMOOTH: u32 = 1u;
 const LIGHT_CASTS_SHADOWS: u32 = 1u;
+// GpuLight::spot_versin_cutoff of a light with no cone (cutoff 180°): 1 − cos 180°.
+const NO_CONE_VERSIN: f32 = 2.0;
 const SPECULAR_BLINN: u32 = 0u;
 const SPECULAR_PHONG: u32 = 1u;
 const SPECULAR_COOK_TORRANCE: u32 = 2u;

@@ -2,7 +2,7 @@
 // I_local = E_m + I_a·k_a + Σ_j f_att,j·S_j·[ I_a,j·k_a + V_j·( I_d,j·k_d·max(N·L,0) + I_s,j·k_s·spec_j ) ]
 #define_import_path glint::shade
 
-#import glint::scene_data::{ProbeLight, MAX_PROBE_LIGHTS, GpuLight, GpuMaterial, LIGHT_CASTS_SHADOWS, LIGHT_DIRECTIONAL, LIGHT_SPOT, SPECULAR_PHONG, SPECULAR_COOK_TORRANCE, FRESNEL_SCHLICK, NO_TEXTURE, ATTENUATION_POLYNOMIAL, ATTENUATION_INVERSE_SQUARE, SPOT_FALLOFF_SMOOTH}
+#import glint::scene_data::{NO_CONE_VERSIN, ProbeLight, MAX_PROBE_LIGHTS, GpuLight, GpuMaterial, LIGHT_CASTS_SHADOWS, LIGHT_DIRECTIONAL, LIGHT_SPOT, SPECULAR_PHONG, SPECULAR_COOK_TORRANCE, FRESNEL_SCHLICK, NO_TEXTURE, ATTENUATION_POLYNOMIAL, ATTENUATION_INVERSE_SQUARE, SPOT_FALLOFF_SMOOTH}
 #import glint::bindings::{header, materials, lights}
 #import glint::ray::{Ray, ray_counts, probe, probe_active}
 #import glint::intersect::{FAR, all_zero}
@@ -20,7 +20,6 @@ const MIN_LIGHT_DISTANCE: f32 = 1e-20;
 const MIN_HALF_LENGTH: f32 = 1e-12;
 const MIN_ATTENUATION_DENOMINATOR: f32 = 1e-6;
 const MIN_GRAZING_COS: f32 = 1e-6;
-const NO_CONE_VERSIN: f32 = 2.0;
 
 // Geometry at a hit (twin of trace.rs's Surface, which lives here so shading can use it).
 struct Surface {

@@ -3,7 +3,7 @@
 //! taken from the tracer.
 
 use glam::DVec3;
-use glint_core::layout::NO_HIT;
+use glint_types::layout::NO_HIT;
 
 use crate::scene::{SLAB_GROUND, SLAB_KR, SLAB_KT, SLAB_SKY};
 
@@ -620,8 +620,8 @@ fn fresnel_factors_at_their_limits() {
 #[test]
 fn cook_torrance_lobe_is_finite_and_non_negative_at_grazing_and_extreme_inputs() {
     use glint_core::cpu::shade::cook_torrance_term;
-    use glint_core::layout::GpuMaterial;
     use glint_core::scene::Fresnel;
+    use glint_types::layout::GpuMaterial;
     let n = DVec3::Y;
     // Directions from the normal to exactly grazing and just below it, and L = −V.
     let angles = [0.0, 0.3, 1.2, 1.57, std::f64::consts::FRAC_PI_2 - 1e-9, std::f64::consts::FRAC_PI_2, 1.6];
@@ -639,7 +639,7 @@ fn cook_torrance_lobe_is_finite_and_non_negative_at_grazing_and_extreme_inputs()
                     emission: [0.0; 4],
                     shininess: 0.0,
                     ior,
-                    specular_model: glint_core::layout::SPECULAR_COOK_TORRANCE,
+                    specular_model: glint_types::layout::SPECULAR_COOK_TORRANCE,
                     diffuse_texture: 0,
                     emission_texture: 0,
                     roughness: m,

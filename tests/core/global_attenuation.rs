@@ -6,7 +6,7 @@
 
 use glam::DVec3;
 use glint_core::FlatScene;
-use glint_core::layout::feature;
+use glint_types::layout::feature;
 
 use crate::support::{SceneText, assert_rel, dv, plane_hit, primary_ray, render, w3};
 

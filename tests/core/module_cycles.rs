@@ -18,7 +18,8 @@ const KNOWN: &[(&str, &[&str])] = &[
 ];
 
 /// The crates and their source roots, from the workspace root.
-const CRATES: [(&str, &str); 5] = [
+const CRATES: [(&str, &str); 6] = [
+    ("glint_types", "crates/glint-types/src"),
     ("glint_core", "crates/glint-core/src"),
     ("glint_gpu", "crates/glint-gpu/src"),
     ("glint_viewer", "crates/glint-viewer/src"),

@@ -5,9 +5,10 @@
 use glint_core::cpu::TraceContext;
 use glint_core::cpu::trace::render_pixel;
 use glint_core::glam::DVec3;
-use glint_core::ray_tree::{Cut, RayKind, RayTree};
+use glint_core::ray_tree::{Cut, RayTree};
 use glint_core::scene::load_scene;
 use glint_core::{FlatScene, probe_tree};
+use glint_types::RayKind;
 
 use super::support::SceneText;
 
@@ -67,7 +68,7 @@ fn the_tree_recomputes_pixels_under_global_attenuation_bit_for_bit() {
     .plane([0.0; 3], [0.0, 1.0, 0.0], "floor")
     .light("point", "position = [2.0, 4.0, -2.0]\ndiffuse = 1.0\nspecular = 1.0")
     .flat();
-    assert!(flat.header.features & glint_core::layout::feature::GLOBAL_ATTENUATION != 0);
+    assert!(flat.header.features & glint_types::layout::feature::GLOBAL_ATTENUATION != 0);
     check_totals(&flat, 1);
     let tree = probe_tree(&flat, 12, 8, 0);
     assert!(tree.nodes.iter().any(|n| n.kind != RayKind::Camera && n.hit() && n.attenuation < 1.0), "{tree:#?}");

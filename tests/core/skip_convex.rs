@@ -5,8 +5,8 @@
 //! in acne.
 
 use glint_core::FlatScene;
-use glint_core::layout::feature;
 use glint_core::scene::EpsilonMode;
+use glint_types::layout::feature;
 
 use crate::support::{SceneText, render};
 

@@ -2,9 +2,9 @@
 //! terms match the CPU's term by term (f32 against f64).
 
 use glint_core::cpu::shade::Breakdown;
-use glint_core::layout::NO_HIT;
 use glint_core::probe_pixel;
 use glint_gpu::probe::breakdown;
+use glint_types::layout::NO_HIT;
 
 use super::support::{builtin, gpu_or_skip};
 

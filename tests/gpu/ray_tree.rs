@@ -4,7 +4,8 @@
 //! so.
 
 use glint_core::probe_tree;
-use glint_core::ray_tree::{Cut, RayKind, RayTree, first_difference};
+use glint_core::ray_tree::{Cut, RayTree, first_difference};
+use glint_types::RayKind;
 
 use glint_test_support::scene::{SceneText, slab};
 
@@ -110,7 +111,7 @@ fn a_tree_past_the_buffer_overflows_with_a_flag_and_keeps_its_first_nodes() {
     let tracer = gpu_or_skip!();
     let flat = crowded_scene();
     let cpu = probe_tree(&flat, 12, 8, 0);
-    let capacity = glint_core::layout::MAX_PROBE_NODES as usize;
+    let capacity = glint_types::layout::MAX_PROBE_NODES as usize;
     assert!(cpu.nodes.len() > capacity, "the CPU tree has only {} nodes", cpu.nodes.len());
     let gpu = tracer.probe(&flat, 12, 8).expect("GPU probe");
     assert!(gpu.tree.overflow, "no overflow flag with {} nodes", cpu.nodes.len());

@@ -3,11 +3,11 @@
 //! texture on a sphere; the checker floor) against the CPU reference, with the parity
 //! thresholds of `parity.rs`, and the probe's textured k_a and k_d term by term.
 
-use glint_core::layout::feature;
 use glint_core::probe_pixel;
 use glint_gpu::probe::breakdown;
 use glint_test_support::TempDir;
 use glint_test_support::texture::textured_scene;
+use glint_types::layout::feature;
 
 use super::support::{compare_and_keep, cpu, gpu_or_skip, gpu_render, log_errors, within_parity, write_failure_images};
 

@@ -12,7 +12,7 @@
 //! b² and c are ≈ D², so their difference (≤ r² = 1) drowns in their rounding once
 //! ulp(D²) ≈ D²·6e-8 reaches 1, at D ≈ 4.1e3.
 
-use glint_core::layout::NO_HIT;
+use glint_types::layout::NO_HIT;
 
 use crate::gpu::{Backend, render_both};
 use crate::reference::probe;

@@ -15,8 +15,8 @@
 //! p.y = 0 exactly and hides the problem).
 
 use glam::DVec3;
-use glint_core::layout::NO_HIT;
 use glint_core::scene::EpsilonMode;
+use glint_types::layout::NO_HIT;
 
 use crate::gpu::{Backend, render_both};
 use crate::reference::{plane_hit, primary_ray};

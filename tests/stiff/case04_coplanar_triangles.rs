@@ -13,7 +13,7 @@
 //! by different formulas, so which one wins is a matter of rounding ("z-fighting"); it is only
 //! required to be deterministic.
 
-use glint_core::layout::NO_HIT;
+use glint_types::layout::NO_HIT;
 
 use crate::Y;
 use crate::gpu::render_both;

@@ -14,7 +14,7 @@
 //! GPU's precision) would miss on the same rays.
 
 use glint_core::FlatScene;
-use glint_core::layout::NO_HIT;
+use glint_types::layout::NO_HIT;
 
 use crate::gpu::render_both;
 use crate::scene::SceneText;

@@ -15,7 +15,7 @@
 //! never the totally reflected ones (weights S^k ≥ 1).
 
 use glam::DVec3;
-use glint_core::layout::NO_HIT;
+use glint_types::layout::NO_HIT;
 
 use crate::gpu::render_both;
 use crate::reference::primary_ray;

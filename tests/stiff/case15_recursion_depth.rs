@@ -22,8 +22,8 @@
 use std::time::Instant;
 
 use glint_core::Accel;
-use glint_core::layout::{STATUS_DRIVER_LOOP_CUTOFF, STATUS_LOOP_LIMIT, STATUS_STACK_OVERFLOW};
 use glint_gpu::{GPU_STACK_LIMIT, GpuOptions};
+use glint_types::layout::{STATUS_DRIVER_LOOP_CUTOFF, STATUS_LOOP_LIMIT, STATUS_STACK_OVERFLOW};
 
 use crate::gpu::{BothOptions, render_both, render_both_with};
 use crate::scene::{SceneText, num};

@@ -11,7 +11,7 @@
 //! units of error, enough to start a shadow ray below the ground. The remedy is in
 //! docs/numerics.md ("Cancellation in the f32 twins").
 
-use glint_core::layout::NO_HIT;
+use glint_types::layout::NO_HIT;
 
 use crate::gpu::render_both;
 use crate::reference::primary_ray;

@@ -3,7 +3,7 @@
 use egui::Modifiers;
 use egui_kittest::kittest::Queryable;
 use glint_core::glam::DVec3;
-use glint_core::layout::NO_HIT;
+use glint_types::layout::NO_HIT;
 use glint_viewer::{GpuProbe, Tab};
 
 use crate::support::{click, gpu_image, settle, viewer};

@@ -7,7 +7,7 @@ use glam::DVec3;
 use rayon::prelude::*;
 
 use crate::atomic::{AtomicWriteError, write_atomically};
-use crate::layout::NO_HIT;
+use glint_types::layout::NO_HIT;
 
 /// A linear-radiance image with the first-hit object of every pixel.
 #[derive(Clone, Debug, PartialEq)]

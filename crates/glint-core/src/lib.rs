@@ -10,7 +10,6 @@ pub mod flat;
 pub mod huge_pages;
 pub mod image;
 pub mod interrupt;
-pub mod layout;
 pub mod memory;
 pub mod model;
 pub mod probe_terms;

@@ -11,8 +11,8 @@ use std::path::Path;
 
 use crate::bvh::{BvhNode, QuantizedPair, WideNode};
 use crate::flat::{GPU_LEAF_BYTES_PER_PRIM, LeafCorners};
-use crate::layout::{GpuMesh, GpuPlane, GpuSphere, GpuTriangle};
 use crate::scene::{ObjectDesc, RenderSettings, SceneDesc};
+use glint_types::layout::{GpuMesh, GpuPlane, GpuSphere, GpuTriangle};
 
 /// Peak memory of a TOML scene while it is parsed and checked, per byte of the file: the text,
 /// toml's tables and the typed description (a 10.9 MB file of 100,000 triangles peaked at

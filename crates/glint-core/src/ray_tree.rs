@@ -8,41 +8,7 @@ use glam::DVec3;
 
 use crate::cpu::shade::{Breakdown, light_sample};
 use crate::cpu::{Ray, TraceContext};
-use crate::layout::{RAY_CAMERA, RAY_REFLECTION, RAY_REFRACTION, RAY_SHADOW, UnknownTag};
-
-/// The kind of a ray of the tree.
-#[repr(u32)]
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum RayKind {
-    Camera = RAY_CAMERA,
-    Reflection = RAY_REFLECTION,
-    Refraction = RAY_REFRACTION,
-    Shadow = RAY_SHADOW,
-}
-
-impl RayKind {
-    pub fn name(self) -> &'static str {
-        match self {
-            Self::Camera => "camera",
-            Self::Reflection => "reflection",
-            Self::Refraction => "refraction",
-            Self::Shadow => "shadow",
-        }
-    }
-}
-
-impl TryFrom<u32> for RayKind {
-    type Error = UnknownTag;
-    fn try_from(v: u32) -> Result<Self, UnknownTag> {
-        match v {
-            RAY_CAMERA => Ok(Self::Camera),
-            RAY_REFLECTION => Ok(Self::Reflection),
-            RAY_REFRACTION => Ok(Self::Refraction),
-            RAY_SHADOW => Ok(Self::Shadow),
-            _ => Err(UnknownTag { what: "ray kind", value: v }),
-        }
-    }
-}
+use glint_types::RayKind;
 
 /// Why a child ray was not traced.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

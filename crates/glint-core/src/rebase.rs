@@ -20,8 +20,8 @@ use crate::bvh::{f32_down, f32_up};
 use crate::cpu::intersect::Leaving;
 use crate::cpu::walk::closest_hit;
 use crate::cpu::{Ray, TraceContext, v3};
-use crate::layout::{GpuPlane, GpuSphere, origin_power};
 use crate::scene::{LightKind, Wrap};
+use glint_types::layout::{GpuPlane, GpuSphere, origin_power};
 
 /// The world frame of a scene as built: origin 0, offsets' length scale 1.
 pub const WORLD_FRAME: [f32; 4] = [0.0, 0.0, 0.0, 1.0];

@@ -12,8 +12,8 @@ use crate::cpu::trace::{render_pixel, render_sample};
 use crate::cpu::{DEFAULT_MAX_RAYS_PER_SAMPLE, RayCounts, TraceContext};
 use crate::flat::FlatScene;
 use crate::image::HdrImage;
-use crate::layout::{UnknownTag, feature};
 use crate::ray_tree::{NoTree, RayTree};
+use glint_types::layout::{UnknownTag, feature};
 
 /// Edge of a square tile in pixels.
 pub const TILE: u32 = 16;
@@ -255,7 +255,7 @@ pub fn pick_object(scene: &FlatScene, x: u32, y: u32) -> u32 {
         &crate::cpu::intersect::Leaving::NONE,
     ) {
         Some(hit) => crate::cpu::trace::object_id(&ctx, &hit),
-        None => crate::layout::NO_HIT,
+        None => glint_types::layout::NO_HIT,
     }
 }
 

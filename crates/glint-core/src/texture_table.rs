@@ -4,8 +4,8 @@
 
 use std::sync::Arc;
 
-use crate::layout::{GpuTexture, NO_TEXTURE};
 use crate::scene::{CheckerDesc, Filter, Rgb, TextureDesc, TextureImage, UvTransform, Wrap};
+use glint_types::layout::{GpuTexture, NO_TEXTURE};
 
 /// The texture table and texel buffer under construction.
 #[derive(Debug, Default)]

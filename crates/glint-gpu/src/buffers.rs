@@ -8,7 +8,7 @@ use bytemuck::Pod;
 use glint_core::FlatScene;
 use glint_core::bvh::GPU_MAX_TREE_INDEX;
 use glint_core::flat::{GeometryId, GpuLeafAb, GpuLeafC, fill_gpu_leaves};
-use glint_core::layout::{ProbeRecord, ProbeTree, STAT_WORDS, TileParams};
+use glint_types::layout::{ProbeRecord, ProbeTree, STAT_WORDS, TileParams};
 use wgpu::util::DeviceExt;
 
 use crate::binding::Binding;

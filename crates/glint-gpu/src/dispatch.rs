@@ -4,7 +4,7 @@
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, AtomicU32, Ordering};
 
-use glint_core::layout::TileParams;
+use glint_types::layout::TileParams;
 
 use crate::buffers::{SceneBuffers, ZERO_STATS};
 use crate::context::GpuContext;

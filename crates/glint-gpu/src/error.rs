@@ -61,7 +61,7 @@ pub enum GpuError {
     )]
     NonFinite { field: String },
     #[error("invalid flat scene: {0}")]
-    InvalidScene(#[from] glint_core::layout::UnknownTag),
+    InvalidScene(#[from] glint_types::layout::UnknownTag),
     #[error("the GPU ran out of memory: {0}")]
     OutOfMemory(String),
     #[error("the GPU reported an error: {0}")]

@@ -4,11 +4,12 @@
 use glint_core::cpu::shade::{Breakdown, LightTerm};
 use glint_core::cpu::v3 as v;
 use glint_core::glam::DVec3;
-use glint_core::layout::{
+use glint_core::ray_tree::{Cut, RayNode, RayTree};
+use glint_types::RayKind;
+use glint_types::layout::{
     NO_HIT, NO_PARENT, NODE_CUT_BAILOUT, NODE_CUT_DEPTH, NODE_HIT, NODE_TIR, PROBE_HIT, PROBE_TIR, ProbeLight,
     ProbeNode, ProbeRecord, ProbeTree, TREE_LIGHTS_TRUNCATED, TREE_OVERFLOW, UnknownTag,
 };
-use glint_core::ray_tree::{Cut, RayKind, RayNode, RayTree};
 
 /// The breakdown a probe record describes. The mirror subtree's radiance already includes its
 /// weight; under total internal reflection it carried k_r + k_t and is split back per channel.

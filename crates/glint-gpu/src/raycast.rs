@@ -5,8 +5,8 @@
 use std::time::{Duration, Instant};
 
 use glint_core::FlatScene;
-use glint_core::layout::feature;
 use glint_core::rays::{HitRecord, RayRecord};
+use glint_types::layout::feature;
 use wgpu::util::DeviceExt;
 
 use crate::binding::Binding;

@@ -7,7 +7,7 @@ use std::time::{Duration, Instant};
 use glint_core::HdrImage;
 use glint_core::cpu::RayCounts;
 use glint_core::glam::dvec3;
-use glint_core::layout::{
+use glint_types::layout::{
     NO_HIT, STAT_BAILOUT_SAVED, STAT_CAMERA, STAT_REFLECTION, STAT_REFRACTION, STAT_SHADOW, STAT_STATUS,
 };
 

@@ -1,6 +1,6 @@
-//! The one data layout, checked: every `#[repr(C)]` struct of `glint_core::layout` against its
-//! WGSL twin in `shaders/layout.wgsl` (member names, offsets, sizes, as naga's layouter sees
-//! them), and every shared constant against its Rust value. No "keep in sync" comments.
+//! What the GPU tracer shares with glint-core beyond the vocabulary (glint-types checks its own
+//! layout against `shaders/layout.wgsl`): the BVH's records and constants, the binding table,
+//! and the constants the two tracers' functions share. No "keep in sync" comments.
 
 use std::mem::{offset_of, size_of};
 
@@ -8,7 +8,7 @@ use glint_core::bvh::{
     BvhNode, NODE_REF_COUNT_BITS, PAIR_FIRST_SHIFT, PRIM_REF_INDEX, PRIM_REF_TRIANGLE, QuantizedPair,
 };
 use glint_core::cpu::{intersect, offset, shade};
-use glint_core::layout::*;
+use glint_types::layout::NO_HIT;
 use naga::proc::Layouter;
 use naga_oil::compose::Composer;
 
@@ -28,141 +28,8 @@ macro_rules! rust_layout {
 
 fn rust_layouts() -> Vec<RustLayout> {
     vec![
-        rust_layout!(SceneHeader {
-            width,
-            height,
-            spp,
-            max_depth,
-            sphere_count,
-            plane_count,
-            triangle_count,
-            light_count,
-            material_count,
-            features,
-            epsilon_mode,
-            seed,
-            epsilon,
-            bailout,
-            vertex_count,
-            mesh_count,
-            ambient,
-            background,
-            global_attenuation,
-            frame
-        }),
-        rust_layout!(GpuCamera { position, forward, right, up }),
-        rust_layout!(GpuMaterial {
-            ka,
-            kd,
-            ks,
-            kr,
-            kt,
-            emission,
-            shininess,
-            ior,
-            specular_model,
-            diffuse_texture,
-            emission_texture,
-            roughness,
-            fresnel,
-            pad
-        }),
-        rust_layout!(GpuTexture {
-            offset,
-            width,
-            height,
-            wrap_s,
-            wrap_t,
-            filter_mode,
-            pad_a,
-            pad_b,
-            transform_u,
-            transform_v,
-            planar_u,
-            planar_v
-        }),
-        rust_layout!(GpuLight {
-            position,
-            direction,
-            diffuse,
-            specular,
-            ambient,
-            attenuation,
-            kind,
-            flags,
-            spot_exponent,
-            spot_versin_cutoff,
-            attenuation_model,
-            spot_falloff,
-            range,
-            spot_versin_inner
-        }),
-        rust_layout!(GpuSphere { center_radius, material, object_id, power, pad }),
-        rust_layout!(GpuPlane { normal_offset, material, object_id, pad }),
-        rust_layout!(GpuTriangle { va, vb, vc, mesh, order }),
-        rust_layout!(GpuMesh { material, object_id, flags, pad }),
         rust_layout!(BvhNode { min, left_first, max, count }),
         rust_layout!(QuantizedPair { origin, exponents, children, planes }),
-        rust_layout!(TileParams { origin_x, origin_y, width, height, sample_index, canary_laps, pad_a, pad_b }),
-        rust_layout!(ProbeLight {
-            f_att,
-            spot,
-            shadow_ray,
-            pad_b,
-            visibility,
-            ambient,
-            diffuse,
-            specular,
-            contribution
-        }),
-        rust_layout!(ProbeRecord {
-            object_id,
-            material,
-            light_count,
-            flags,
-            t,
-            pad_a,
-            pad_b,
-            pad_c,
-            point,
-            normal,
-            emission,
-            ambient,
-            ka,
-            kd,
-            kr,
-            kt,
-            mirror_sum,
-            refraction_sum,
-            total,
-            lights
-        }),
-        rust_layout!(ProbeNode {
-            kind,
-            flags,
-            parent,
-            depth,
-            object_id,
-            material,
-            light,
-            light_count,
-            t,
-            attenuation,
-            pad_a,
-            pad_b,
-            origin,
-            dir,
-            weight,
-            factor,
-            point,
-            normal,
-            emission,
-            ambient,
-            ka,
-            kd,
-            lights
-        }),
-        rust_layout!(ProbeTree { node_count, flags, pad_a, pad_b, nodes }),
     ]
 }
 
@@ -214,7 +81,7 @@ fn every_rust_layout_struct_covers_its_bytes() {
 }
 
 #[test]
-fn wgsl_structs_match_rust_offsets_and_sizes() {
+fn wgsl_bvh_records_match_rust_offsets_and_sizes() {
     let module = layout_module();
     let mut layouter = Layouter::default();
     layouter.update(module.to_ctx()).expect("layout.wgsl lays out");
@@ -235,8 +102,7 @@ fn wgsl_structs_match_rust_offsets_and_sizes() {
         }
         checked += 1;
     }
-    let wgsl_structs = module.types.iter().filter(|(_, t)| matches!(t.inner, naga::TypeInner::Struct { .. })).count();
-    assert_eq!(wgsl_structs, checked, "layout.wgsl has a struct without a Rust twin in this test");
+    assert_eq!(checked, 2, "both BVH records checked");
 }
 
 fn literal_value(module: &naga::Module, init: naga::Handle<naga::Expression>) -> f64 {
@@ -249,82 +115,21 @@ fn literal_value(module: &naga::Module, init: naga::Handle<naga::Expression>) ->
 }
 
 #[test]
-fn wgsl_layout_constants_match_rust() {
-    let expected: Vec<(String, u32)> = vec![
-        ("LIGHT_POINT".into(), LIGHT_POINT),
-        ("LIGHT_DIRECTIONAL".into(), LIGHT_DIRECTIONAL),
-        ("LIGHT_SPOT".into(), LIGHT_SPOT),
-        ("ATTENUATION_POLYNOMIAL".into(), ATTENUATION_POLYNOMIAL),
-        ("ATTENUATION_INVERSE_SQUARE".into(), ATTENUATION_INVERSE_SQUARE),
-        ("SPOT_FALLOFF_POWER".into(), SPOT_FALLOFF_POWER),
-        ("SPOT_FALLOFF_SMOOTH".into(), SPOT_FALLOFF_SMOOTH),
-        ("LIGHT_CASTS_SHADOWS".into(), LIGHT_CASTS_SHADOWS),
-        ("SPECULAR_BLINN".into(), SPECULAR_BLINN),
-        ("SPECULAR_PHONG".into(), SPECULAR_PHONG),
-        ("SPECULAR_COOK_TORRANCE".into(), SPECULAR_COOK_TORRANCE),
-        ("FRESNEL_EXACT".into(), FRESNEL_EXACT),
-        ("FRESNEL_SCHLICK".into(), FRESNEL_SCHLICK),
-        ("MESH_HAS_NORMALS".into(), MESH_HAS_NORMALS),
-        ("MESH_HAS_UVS".into(), MESH_HAS_UVS),
-        ("NO_TEXTURE".into(), NO_TEXTURE),
-        ("WRAP_REPEAT".into(), WRAP_REPEAT),
-        ("WRAP_CLAMP_TO_EDGE".into(), WRAP_CLAMP_TO_EDGE),
-        ("WRAP_MIRRORED_REPEAT".into(), WRAP_MIRRORED_REPEAT),
-        ("FILTER_NEAREST".into(), FILTER_NEAREST),
-        ("FILTER_BILINEAR".into(), FILTER_BILINEAR),
-        ("EPS_TMIN".into(), EPS_TMIN),
-        ("EPS_NUDGE_RAY".into(), EPS_NUDGE_RAY),
-        ("EPS_NUDGE_NORMAL".into(), EPS_NUDGE_NORMAL),
-        ("EPS_ROBUST".into(), EPS_ROBUST),
-        ("EPS_SKIP_CONVEX".into(), EPS_SKIP_CONVEX),
-        ("UV_MESH".into(), UV_MESH),
-        ("UV_ACROSS_X".into(), UV_ACROSS_X),
-        ("UV_ACROSS_Y".into(), UV_ACROSS_Y),
-        ("UV_ACROSS_Z".into(), UV_ACROSS_Z),
-        ("NO_HIT".into(), NO_HIT),
-        ("STATUS_LOOP_LIMIT".into(), STATUS_LOOP_LIMIT),
-        ("STATUS_STACK_OVERFLOW".into(), STATUS_STACK_OVERFLOW),
-        ("STATUS_DRIVER_LOOP_CUTOFF".into(), STATUS_DRIVER_LOOP_CUTOFF),
-        ("STATUS_BVH_STACK_OVERFLOW".into(), STATUS_BVH_STACK_OVERFLOW),
-        ("PRIM_REF_TRIANGLE".into(), PRIM_REF_TRIANGLE),
-        ("PRIM_REF_INDEX".into(), PRIM_REF_INDEX),
-        ("NODE_REF_COUNT_BITS".into(), NODE_REF_COUNT_BITS),
-        ("PAIR_FIRST_SHIFT".into(), PAIR_FIRST_SHIFT),
-        ("STAT_CAMERA".into(), STAT_CAMERA),
-        ("STAT_SHADOW".into(), STAT_SHADOW),
-        ("STAT_REFLECTION".into(), STAT_REFLECTION),
-        ("STAT_REFRACTION".into(), STAT_REFRACTION),
-        ("STAT_BAILOUT_SAVED".into(), STAT_BAILOUT_SAVED),
-        ("STAT_STATUS".into(), STAT_STATUS),
-        ("STAT_WORDS".into(), STAT_WORDS),
-        ("MAX_PROBE_LIGHTS".into(), MAX_PROBE_LIGHTS),
-        ("PROBE_HIT".into(), PROBE_HIT),
-        ("PROBE_TIR".into(), PROBE_TIR),
-        ("MAX_PROBE_NODES".into(), MAX_PROBE_NODES),
-        ("RAY_CAMERA".into(), RAY_CAMERA),
-        ("RAY_REFLECTION".into(), RAY_REFLECTION),
-        ("RAY_REFRACTION".into(), RAY_REFRACTION),
-        ("RAY_SHADOW".into(), RAY_SHADOW),
-        ("NODE_HIT".into(), NODE_HIT),
-        ("NODE_TIR".into(), NODE_TIR),
-        ("NODE_CUT_BAILOUT".into(), NODE_CUT_BAILOUT),
-        ("NODE_CUT_DEPTH".into(), NODE_CUT_DEPTH),
-        ("NO_PARENT".into(), NO_PARENT),
-        ("TREE_OVERFLOW".into(), TREE_OVERFLOW),
-        ("TREE_LIGHTS_TRUNCATED".into(), TREE_LIGHTS_TRUNCATED),
+fn wgsl_bvh_constants_match_rust() {
+    let expected = [
+        ("PRIM_REF_TRIANGLE", PRIM_REF_TRIANGLE),
+        ("PRIM_REF_INDEX", PRIM_REF_INDEX),
+        ("NODE_REF_COUNT_BITS", NODE_REF_COUNT_BITS),
+        ("PAIR_FIRST_SHIFT", PAIR_FIRST_SHIFT),
     ];
     let module = layout_module();
-    let wgsl: Vec<(String, f64)> = module
-        .constants
-        .iter()
-        .map(|(_, c)| (c.name.clone().expect("named constant"), literal_value(&module, c.init)))
-        .collect();
-    for (name, value) in &expected {
-        let found = wgsl.iter().find(|(n, _)| n == name).unwrap_or_else(|| panic!("{name} missing from layout.wgsl"));
-        assert_eq!(found.1, f64::from(*value), "{name}: WGSL {} != Rust {value}", found.1);
-    }
-    for (name, _) in &wgsl {
-        assert!(expected.iter().any(|(n, _)| n == name), "layout.wgsl constant {name} has no Rust twin in this test");
+    for (name, value) in expected {
+        let (_, c) = module
+            .constants
+            .iter()
+            .find(|(_, c)| c.name.as_deref() == Some(name))
+            .unwrap_or_else(|| panic!("{name} missing from layout.wgsl"));
+        assert_eq!(literal_value(&module, c.init), f64::from(value), "{name}: WGSL and Rust differ");
     }
 }
 
@@ -333,7 +138,7 @@ fn shared_tracer_constants_match_rust() {
     // Constants the two tracers must share exactly. (offset.rs's FLOAT_SCALE and SHADOW_REL
     // differ on purpose: each is scaled to its tracer's precision.) A probe module imports
     // each one and stores it, so naga cannot fold it away before we read it.
-    let expected: [(&str, &str, f64); 14] = [
+    let expected: [(&str, &str, f64); 13] = [
         ("glint::intersect", "PRIM_SPHERE", f64::from(intersect::PRIM_SPHERE)),
         ("glint::intersect", "PRIM_PLANE", f64::from(intersect::PRIM_PLANE)),
         ("glint::intersect", "PRIM_TRIANGLE", f64::from(intersect::PRIM_TRIANGLE)),
@@ -343,7 +148,6 @@ fn shared_tracer_constants_match_rust() {
         ("glint::shade", "MIN_HALF_LENGTH", shade::MIN_HALF_LENGTH),
         ("glint::shade", "MIN_ATTENUATION_DENOMINATOR", shade::MIN_ATTENUATION_DENOMINATOR),
         ("glint::shade", "MIN_GRAZING_COS", shade::MIN_GRAZING_COS),
-        ("glint::shade", "NO_CONE_VERSIN", shade::NO_CONE_VERSIN),
         ("glint::offset", "ORIGIN", offset::ORIGIN),
         ("glint::offset", "INT_SCALE", offset::INT_SCALE),
         ("glint::scene_data", "NO_HIT", f64::from(NO_HIT)),

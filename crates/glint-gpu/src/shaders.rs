@@ -6,8 +6,8 @@
 use std::collections::HashMap;
 
 use glint_core::cpu::Traversal;
-use glint_core::layout::feature;
 use glint_core::{Accel, FlatScene};
+use glint_types::layout::feature;
 use naga_oil::compose::{ComposableModuleDescriptor, Composer, NagaModuleDescriptor, ShaderDefValue};
 
 use crate::error::GpuError;

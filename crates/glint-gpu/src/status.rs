@@ -1,7 +1,7 @@
-//! What the status word the shader raises (`STATUS_*` of `glint_core::layout`) means for the
+//! What the status word the shader raises (`STATUS_*` of `glint_types::layout`) means for the
 //! user: one message per bit, used by the CLI and the viewer alike.
 
-use glint_core::layout::{
+use glint_types::layout::{
     STATUS_BVH_STACK_OVERFLOW, STATUS_DRIVER_LOOP_CUTOFF, STATUS_LOOP_LIMIT, STATUS_STACK_OVERFLOW,
 };
 
@@ -21,7 +21,7 @@ impl StatusBit {
     /// Every bit, in the order their messages are reported.
     pub const ALL: [Self; 4] = [Self::LoopLimit, Self::DriverLoopCutoff, Self::StackOverflow, Self::BvhStackOverflow];
 
-    /// The name of its constant in `glint_core::layout` and `shaders/layout.wgsl`.
+    /// The name of its constant in `glint_types::layout` and `shaders/layout.wgsl`.
     pub const fn constant_name(self) -> &'static str {
         match self {
             Self::LoopLimit => "STATUS_LOOP_LIMIT",

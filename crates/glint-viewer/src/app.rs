@@ -9,8 +9,8 @@ use egui::Ui;
 use glint_core::FlatScene;
 use glint_core::glam::DVec3;
 use glint_core::image::{RenderInfo, render_metadata};
-use glint_core::layout::NO_HIT;
 use glint_core::scene::LoadOptions;
+use glint_types::layout::NO_HIT;
 
 use crate::automation::{Automation, Frame};
 use crate::camera_control;

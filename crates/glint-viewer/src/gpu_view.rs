@@ -486,7 +486,7 @@ fn variant_of(scene: &FlatScene) -> ShaderKey {
 /// light, a Phong or a Cook–Torrance material (the features the first use of which froze the
 /// window before the tracer had a device of its own).
 fn likely_next(scene: &FlatScene) -> Vec<FlatScene> {
-    use glint_core::layout::feature;
+    use glint_types::layout::feature;
     let tiny = |change: &dyn Fn(&mut FlatScene)| {
         let mut s = scene.clone();
         (s.header.width, s.header.height) = (1, 1);
@@ -511,7 +511,7 @@ fn likely_next(scene: &FlatScene) -> Vec<FlatScene> {
 /// makes it new.
 fn new_in(key: ShaderKey, last: Option<ShaderKey>) -> String {
     let before = last.map_or(0, |l| l.features);
-    let added: Vec<String> = glint_core::layout::feature::NAMES
+    let added: Vec<String> = glint_types::layout::feature::NAMES
         .iter()
         .enumerate()
         .filter(|(bit, _)| key.features & !before & (1 << bit) != 0)
@@ -556,7 +556,7 @@ mod tests {
 
     #[test]
     fn a_new_variant_is_named_by_what_it_adds() {
-        use glint_core::layout::feature;
+        use glint_types::layout::feature;
         let key = |features| ShaderKey { features, ..ShaderKey::full() };
         let before = key(feature::SPHERES | feature::POINT_LIGHTS);
         let after = key(feature::SPHERES | feature::POINT_LIGHTS | feature::SPOT_LIGHTS);

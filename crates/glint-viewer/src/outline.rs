@@ -42,7 +42,7 @@ fn runs(n: i64, edge: impl Fn(i64) -> bool, mut emit: impl FnMut(u32, u32)) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use glint_core::layout::NO_HIT;
+    use glint_types::layout::NO_HIT;
 
     fn image(w: u32, h: u32, hits: &[u32]) -> HdrImage {
         let mut img = HdrImage::new(w, h);

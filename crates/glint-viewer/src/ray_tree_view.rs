@@ -6,8 +6,9 @@
 use egui::{Color32, Rect, Sense, Shape, Stroke, Ui, Vec2};
 use glint_core::cpu::v3;
 use glint_core::glam::DVec3;
-use glint_core::layout::GpuCamera;
-use glint_core::ray_tree::{RayKind, RayTree};
+use glint_core::ray_tree::RayTree;
+use glint_types::RayKind;
+use glint_types::layout::GpuCamera;
 
 /// One ray in image coordinates ([0, 1]², y down).
 #[derive(Clone, Debug, PartialEq)]

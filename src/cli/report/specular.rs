@@ -98,7 +98,7 @@ mod tests {
 
     #[test]
     fn every_model_is_forced_on_every_material_and_decides_the_feature_bits() {
-        use glint_core::layout::feature;
+        use glint_types::layout::feature;
         let loaded = glint_core::scene::load_scene("highlights").expect("built-in scene");
         let settings = settings_for(&loaded.desc.render, &config(Backend::Cpu));
         for (model, bit) in [

@@ -11,7 +11,7 @@ use std::sync::Arc;
 use bytemuck::{Pod, Zeroable};
 
 use crate::huge_pages::HugePaged;
-use crate::layout::{GpuSphere, GpuTriangle};
+use glint_types::layout::{GpuSphere, GpuTriangle};
 
 mod build;
 mod quantized;

@@ -4,7 +4,7 @@ use glam::DVec3;
 
 use super::rng::{hash_to_unit, sample_hash};
 use super::{Ray, v3};
-use crate::layout::GpuCamera;
+use glint_types::layout::GpuCamera;
 
 /// Rows of the stratification grid: the largest divisor of spp not above √spp, so that the
 /// nx × ny = spp cells tile the pixel and are as square as spp allows (2 → 2×1, 8 → 4×2,

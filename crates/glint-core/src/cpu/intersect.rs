@@ -5,7 +5,7 @@ use glam::DVec3;
 
 use super::{Ray, TraceContext, v3};
 use crate::FlatScene;
-use crate::layout::{GpuSphere, GpuTriangle, MESH_HAS_NORMALS, feature};
+use glint_types::layout::{GpuSphere, GpuTriangle, MESH_HAS_NORMALS, feature};
 
 /// The kind of primitive a hit is on. WGSL stores it as the `PRIM_*` constants (checked by the
 /// reflection test); the CPU matches on the enum, exhaustively.

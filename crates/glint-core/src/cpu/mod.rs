@@ -15,10 +15,11 @@ pub mod walk;
 use std::ops::AddAssign;
 
 use glam::DVec3;
+use glint_types::{LightTags, MaterialTags};
 
 use crate::flat::{Corners, FlatScene};
-use crate::layout::{GpuLight, GpuMaterial, UnknownTag, feature};
-use crate::scene::{AttenuationModel, EpsilonMode, Filter, Fresnel, LightKind, SpecularModel, SpotFalloff, Wrap};
+use crate::scene::{EpsilonMode, Filter, Wrap};
+use glint_types::layout::{UnknownTag, feature};
 
 /// The default of `TraceContext::max_rays_per_sample`: 2^22 rays, about 3 s of one core. A
 /// depth-5 tree through glass (63 hits) with 10,000 lights traces 630,000 rays; a tree
@@ -66,42 +67,6 @@ impl AddAssign for RayCounts {
         self.refraction += o.refraction;
         self.bailout_saved += o.bailout_saved;
         self.capped_samples += o.capped_samples;
-    }
-}
-
-/// The tags of one light the tracers switch on, decoded from its stored values.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct LightTags {
-    pub kind: LightKind,
-    pub attenuation: AttenuationModel,
-    pub falloff: SpotFalloff,
-}
-
-impl LightTags {
-    /// The tags `light` stores, or the first one no kind has.
-    pub fn decode(light: &GpuLight) -> Result<Self, UnknownTag> {
-        Ok(Self {
-            kind: LightKind::try_from(light.kind)?,
-            attenuation: AttenuationModel::try_from(light.attenuation_model)?,
-            falloff: SpotFalloff::try_from(light.spot_falloff)?,
-        })
-    }
-}
-
-/// The tags of one material the tracers switch on, decoded from its stored values.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct MaterialTags {
-    pub specular: SpecularModel,
-    pub fresnel: Fresnel,
-}
-
-impl MaterialTags {
-    /// The tags `material` stores, or the first one no kind has.
-    pub fn decode(material: &GpuMaterial) -> Result<Self, UnknownTag> {
-        Ok(Self {
-            specular: SpecularModel::try_from(material.specular_model)?,
-            fresnel: Fresnel::try_from(material.fresnel)?,
-        })
     }
 }
 

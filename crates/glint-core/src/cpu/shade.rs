@@ -9,10 +9,12 @@ use super::intersect::{FAR, Prim, all_zero};
 use super::offset::{leaving_surface, shadow_t_max, spawn_ray};
 use super::texture::sample_texture;
 use super::walk::shadow_transmittance;
-use super::{LightTags, MaterialTags, Ray, RayCounts, TraceContext, v3};
-use crate::layout::{GpuLight, GpuMaterial, LIGHT_CASTS_SHADOWS, NO_TEXTURE, feature};
+use super::{Ray, RayCounts, TraceContext, v3};
 pub use crate::scene::MIN_ATTENUATION_DENOMINATOR;
 use crate::scene::{AttenuationModel, Fresnel, LightKind, SpecularModel, SpotFalloff};
+use glint_types::layout::NO_CONE_VERSIN;
+use glint_types::layout::{GpuLight, GpuMaterial, LIGHT_CASTS_SHADOWS, NO_TEXTURE, feature};
+use glint_types::{LightTags, MaterialTags};
 
 /// Geometry at a hit: point, unit geometric and shading normals as stored (not yet turned
 /// towards the ray), material and object.
@@ -81,9 +83,6 @@ pub fn inverse_square_factor(range: f32, d: f64) -> f64 {
     window / (d * d).max(MIN_ATTENUATION_DENOMINATOR)
 }
 
-/// The versine of a light with no cone (cutoff 180°): 1 − cos 180°.
-pub const NO_CONE_VERSIN: f64 = 2.0;
-
 /// 1 − cos θ, θ the angle between the spot axis and −L, without forming 1 − cos θ: for a small
 /// cone cos θ ≈ 1 and the difference would keep only ulp(1)/(1 − cos θ) of its digits (4e-4 at
 /// 1° in f32). Below 90° it is sin²θ / (1 + cos θ), sin²θ = |axis × L|² (the vectors' lengths
@@ -99,7 +98,7 @@ pub fn spot_versin(axis: DVec3, l: DVec3) -> f64 {
 /// versine 2), as OpenGL, so that such a spot equals a point light. The cone is tested on
 /// versines (`spot_versin`), both formed without cancellation.
 pub fn spot_factor(light: &GpuLight, l: DVec3) -> f64 {
-    if f64::from(light.spot_versin_cutoff) >= NO_CONE_VERSIN {
+    if light.spot_versin_cutoff >= NO_CONE_VERSIN {
         return 1.0;
     }
     let axis = v3(light.direction);

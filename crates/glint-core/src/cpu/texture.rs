@@ -10,8 +10,8 @@ use glam::{DVec2, DVec3};
 
 use super::{TraceContext, v3};
 use crate::flat::FlatScene;
-use crate::layout::{GpuTexture, GpuTriangle, MESH_HAS_UVS, UV_ACROSS_X, UV_ACROSS_Y, UV_ACROSS_Z, UV_MESH};
 use crate::scene::{Filter, Wrap};
+use glint_types::layout::{GpuTexture, GpuTriangle, MESH_HAS_UVS, UV_ACROSS_X, UV_ACROSS_Y, UV_ACROSS_Z, UV_MESH};
 
 /// The axis planar coordinates are taken across: the geometric normal's dominant one.
 pub fn planar_axis(ng: DVec3) -> u32 {
@@ -144,7 +144,7 @@ pub fn sample_texture(ctx: &TraceContext, index: u32, uv: DVec2, origin: u32) ->
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::layout::{FILTER_BILINEAR, FILTER_NEAREST, WRAP_CLAMP_TO_EDGE, WRAP_MIRRORED_REPEAT, WRAP_REPEAT};
+    use glint_types::layout::{FILTER_BILINEAR, FILTER_NEAREST, WRAP_CLAMP_TO_EDGE, WRAP_MIRRORED_REPEAT, WRAP_REPEAT};
 
     #[test]
     fn wrap_texel_folds_indices_as_opengl() {

@@ -15,9 +15,10 @@ use super::shade::{Breakdown, Surface, attenuation_factor, shade_local};
 use super::texture::{planar_axis, planar_uv, triangle_uv, triangle_uv_origin};
 use super::walk::closest_hit;
 use super::{Ray, RayCounts, TraceContext, v3};
-use crate::layout::{NO_HIT, UV_MESH, feature};
-use crate::ray_tree::{Cut, NoTree, RayKind, RayNode, TreeRecorder, record_shadow_rays};
+use crate::ray_tree::{Cut, NoTree, RayNode, TreeRecorder, record_shadow_rays};
 use crate::scene::EpsilonMode;
+use glint_types::RayKind;
+use glint_types::layout::{NO_HIT, UV_MESH, feature};
 
 /// The surface at a hit. Texture coordinates are computed only when some material has a
 /// texture (`feature::TEXTURES`), else they are zero.

@@ -9,7 +9,7 @@ use rayon::prelude::*;
 
 use crate::bvh::PrimRef;
 use crate::huge_pages::HugePaged;
-use crate::layout::GpuTriangle;
+use glint_types::layout::GpuTriangle;
 
 /// A triangle's three corners, as stored (f32): widened, they are the values the indexed
 /// mesh gives, so hits are bit-identical.

@@ -3,7 +3,7 @@
 // What the parent module declares for its children.
 use super::{
     Attenuation, DVec3, GpuLight, GpuMaterial, LIGHT_CASTS_SHADOWS, LightDesc, LightKind, MaterialDesc, NO_CONE_CUTOFF,
-    NO_TEXTURE, Rgb, SpotFalloff, TextureTable, rgb4, shade, vec4,
+    NO_CONE_VERSIN, NO_TEXTURE, Rgb, SpotFalloff, TextureTable, rgb4, vec4,
 };
 
 /// A material in the flat layout, its textures added to `table`. A checker is a texture of
@@ -56,12 +56,12 @@ pub(super) fn flat_light(l: &LightDesc) -> GpuLight {
         (LightKind::Spot, SpotFalloff::Power) if l.cutoff < NO_CONE_CUTOFF => {
             (l.exponent as f32, cone_versin(l.cutoff), 0.0)
         }
-        (LightKind::Spot, SpotFalloff::Power) => (l.exponent as f32, shade::NO_CONE_VERSIN, 0.0),
+        (LightKind::Spot, SpotFalloff::Power) => (l.exponent as f32, f64::from(NO_CONE_VERSIN), 0.0),
         (LightKind::Spot, SpotFalloff::Smooth) => {
             let (inner, outer) = l.cone_angles();
             (0.0, cone_versin(outer), cone_versin(inner))
         }
-        (LightKind::Point | LightKind::Directional, _) => (0.0, shade::NO_CONE_VERSIN, 0.0),
+        (LightKind::Point | LightKind::Directional, _) => (0.0, f64::from(NO_CONE_VERSIN), 0.0),
     };
     let spot_falloff = match l.kind {
         LightKind::Spot => l.falloff,

@@ -5,17 +5,17 @@ use std::sync::Arc;
 use glam::DVec3;
 
 use crate::bvh::{self, BvhNodes};
-use crate::cpu::{LightTags, MaterialTags, shade};
+use glint_types::{LightTags, MaterialTags};
 
-use crate::layout::{
-    GpuCamera, GpuLight, GpuMaterial, GpuMesh, GpuPlane, GpuSphere, GpuTexture, GpuTriangle, LIGHT_CASTS_SHADOWS,
-    MESH_HAS_NORMALS, MESH_HAS_UVS, NO_TEXTURE, SceneHeader, UnknownTag, feature, origin_power,
-};
 use crate::scene::{
     Attenuation, AttenuationModel, EpsilonMode, Filter, LightDesc, LightKind, MaterialDesc, MeshDesc, NO_CONE_CUTOFF,
     ObjectDesc, PlaneDesc, RenderSettings, Rgb, SceneDesc, SpecularModel, SphereDesc, SpotFalloff, Wrap,
 };
 use crate::texture_table::TextureTable;
+use glint_types::layout::{
+    GpuCamera, GpuLight, GpuMaterial, GpuMesh, GpuPlane, GpuSphere, GpuTexture, GpuTriangle, LIGHT_CASTS_SHADOWS,
+    MESH_HAS_NORMALS, MESH_HAS_UVS, NO_CONE_VERSIN, NO_TEXTURE, SceneHeader, UnknownTag, feature, origin_power,
+};
 
 /// A scene in the GPU-ready layout, plus the names the UI and reports show. The geometry (the
 /// primitives and the BVH) is shared, not copied, between scenes `rebuild` makes from one
@@ -243,7 +243,7 @@ impl FlatScene {
         if feature::recurses(f) && self.header.global_attenuation != [1.0, 0.0, 0.0, 0.0] {
             f |= feature::GLOBAL_ATTENUATION;
         }
-        if self.header.epsilon_mode == crate::layout::EPS_SKIP_CONVEX
+        if self.header.epsilon_mode == glint_types::layout::EPS_SKIP_CONVEX
             && (f & feature::SHADOWS != 0 || feature::recurses(f))
         {
             f |= feature::SKIP_CONVEX;

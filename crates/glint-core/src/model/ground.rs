@@ -4,8 +4,8 @@
 
 use std::str::FromStr;
 
-use crate::layout::f32_spacing;
 use crate::scene::{FieldIssue, MeshDesc};
+use glint_types::layout::f32_spacing;
 
 /// Whether an opened model stands on a grey ground plane.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

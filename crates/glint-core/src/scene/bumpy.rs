@@ -13,8 +13,9 @@ use std::f64::consts::PI;
 use super::desc::{
     CameraDesc, CheckerDesc, MaterialDesc, MeshDesc, ObjectDesc, RenderSettings, SceneDesc, SphereDesc, WorldDesc,
 };
-use super::light::{LightDesc, LightKind};
+use super::light::LightDesc;
 use super::rgb::Rgb;
+use glint_types::LightKind;
 
 /// The sphere in the descriptions (`glint render --list`, the viewer).
 const SPHERE: &str = "displaced UV sphere of 4·N² triangles (--resolution N, default 500)";

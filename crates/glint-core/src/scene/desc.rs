@@ -5,6 +5,7 @@
 
 use std::collections::BTreeMap;
 
+use glint_types::{EpsilonMode, Fresnel, SpecularModel};
 use serde::{Deserialize, Serialize};
 
 use super::light::LightDesc;
@@ -12,7 +13,6 @@ use super::model_ref::ModelDesc;
 use super::number::shorten;
 use super::rgb::Rgb;
 use super::texture::TextureDesc;
-use crate::layout;
 
 /// A whole scene file.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -121,46 +121,6 @@ impl Default for RenderSettings {
     }
 }
 
-/// How secondary rays avoid hitting the surface they start on (the seed lists three remedies;
-/// `robust` is the modern, scale-aware one).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize, Default)]
-#[serde(rename_all = "snake_case")]
-#[repr(u32)]
-pub enum EpsilonMode {
-    /// Reject hits with t ≤ ε.
-    Tmin = layout::EPS_TMIN,
-    /// Move the origin by ε along the new ray's direction.
-    NudgeRay = layout::EPS_NUDGE_RAY,
-    /// Move the origin by ε along the geometric normal, to the side the ray leaves into.
-    NudgeNormal = layout::EPS_NUDGE_NORMAL,
-    /// Re-project the hit point onto the surface, offset it by a few ULPs along the normal
-    /// (Wächter & Binder, Ray Tracing Gems ch. 6), then by ε.
-    #[default]
-    Robust = layout::EPS_ROBUST,
-    /// Start at the hit point and do not test the primitive the ray leaves (the seed's "convex
-    /// objects do not test intersection if the ray's prior intersection is with that object");
-    /// a ray into a sphere finds its far side. Hits with t ≤ ε are rejected as with `tmin`.
-    SkipConvex = layout::EPS_SKIP_CONVEX,
-}
-
-impl EpsilonMode {
-    pub const ALL: [Self; 5] = [Self::Tmin, Self::NudgeRay, Self::NudgeNormal, Self::Robust, Self::SkipConvex];
-
-    pub fn name(self) -> &'static str {
-        match self {
-            Self::Tmin => "tmin",
-            Self::NudgeRay => "nudge_ray",
-            Self::NudgeNormal => "nudge_normal",
-            Self::Robust => "robust",
-            Self::SkipConvex => "skip_convex",
-        }
-    }
-
-    pub fn from_name(name: &str) -> Option<Self> {
-        Self::ALL.into_iter().find(|m| m.name() == name)
-    }
-}
-
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct CameraDesc {
@@ -232,73 +192,6 @@ impl Default for GlobalAttenuation {
     }
 }
 
-/// Which specular lobe a material uses (`GpuMaterial::specular_model`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize, Default)]
-#[serde(rename_all = "snake_case")]
-#[repr(u32)]
-pub enum SpecularModel {
-    /// max(N·H, 0)^n with the half vector H (Blinn 1977, the OpenGL form of the seed).
-    #[default]
-    Blinn = layout::SPECULAR_BLINN,
-    /// max(R·V, 0)^n with the mirrored light direction R (Phong 1975).
-    Phong = layout::SPECULAR_PHONG,
-    /// F·D·G / (N·V): Cook & Torrance (1982) with the Beckmann distribution D of roughness m,
-    /// the V-groove masking and shadowing G and the Fresnel factor F (docs/scene-format.md).
-    CookTorrance = layout::SPECULAR_COOK_TORRANCE,
-}
-
-impl SpecularModel {
-    pub const ALL: [Self; 3] = [Self::Blinn, Self::Phong, Self::CookTorrance];
-
-    /// The name a scene file uses.
-    pub fn name(self) -> &'static str {
-        match self {
-            Self::Blinn => "blinn",
-            Self::Phong => "phong",
-            Self::CookTorrance => "cook_torrance",
-        }
-    }
-
-    /// A short label for tables and editors.
-    pub fn label(self) -> &'static str {
-        match self {
-            Self::Blinn => "Blinn",
-            Self::Phong => "Phong",
-            Self::CookTorrance => "Cook–Torrance",
-        }
-    }
-}
-
-/// The Fresnel factor F of the Cook–Torrance lobe (`GpuMaterial::fresnel`), from the material's
-/// ior, at c = V·H.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize, Default)]
-#[serde(rename_all = "snake_case")]
-#[repr(u32)]
-pub enum Fresnel {
-    /// The unpolarised dielectric Fresnel equation, as Cook & Torrance used it:
-    /// F = ½ (g−c)²/(g+c)² · [1 + (c(g+c)−1)²/(c(g−c)+1)²], g² = η² + c² − 1 (1 where g² < 0).
-    /// The default: Glint's CPU tracer is the reference, and the exact form costs a square root.
-    #[default]
-    Exact = layout::FRESNEL_EXACT,
-    /// Schlick's approximation F = F0 + (1 − F0)(1 − c)⁵, F0 = ((η − 1)/(η + 1))².
-    Schlick = layout::FRESNEL_SCHLICK,
-}
-
-impl Fresnel {
-    pub const ALL: [Self; 2] = [Self::Exact, Self::Schlick];
-
-    pub fn name(self) -> &'static str {
-        match self {
-            Self::Exact => "exact",
-            Self::Schlick => "schlick",
-        }
-    }
-
-    fn is_default(&self) -> bool {
-        *self == Self::default()
-    }
-}
-
 /// The Beckmann roughness m of a material that does not set it: the lobe width of the default
 /// shininess 32, since (N·H)^n ≈ exp(−n·α²/2) and the Beckmann lobe ≈ exp(−α²/m²) near the
 /// peak give m = √(2/n) = 0.25.
@@ -306,6 +199,10 @@ pub const DEFAULT_ROUGHNESS: f64 = 0.25;
 
 fn default_roughness() -> f64 {
     DEFAULT_ROUGHNESS
+}
+
+fn is_default_fresnel(f: &Fresnel) -> bool {
+    *f == Fresnel::default()
 }
 
 fn is_default_roughness(m: &f64) -> bool {
@@ -326,7 +223,7 @@ pub struct MaterialDesc {
     #[serde(default = "default_roughness", skip_serializing_if = "is_default_roughness")]
     pub roughness: f64,
     /// The Cook–Torrance lobe's Fresnel factor; kept, unused, under the other models.
-    #[serde(skip_serializing_if = "Fresnel::is_default")]
+    #[serde(skip_serializing_if = "is_default_fresnel")]
     pub fresnel: Fresnel,
     pub kr: Rgb,
     pub kt: Rgb,

@@ -2,60 +2,10 @@
 //! (OpenGL's polynomial or glTF's inverse square) and spot cone S_j (the power falloff or
 //! glTF's smooth one).
 
+use glint_types::{AttenuationModel, LightKind, SpotFalloff};
 use serde::{Deserialize, Serialize};
 
 use super::rgb::Rgb;
-use crate::layout;
-
-/// The kind of a light source.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-#[repr(u32)]
-pub enum LightKind {
-    Point = layout::LIGHT_POINT,
-    Directional = layout::LIGHT_DIRECTIONAL,
-    Spot = layout::LIGHT_SPOT,
-}
-
-impl LightKind {
-    pub const ALL: [Self; 3] = [Self::Point, Self::Directional, Self::Spot];
-
-    pub fn name(self) -> &'static str {
-        match self {
-            Self::Point => "point",
-            Self::Directional => "directional",
-            Self::Spot => "spot",
-        }
-    }
-}
-
-/// How a spot light's S falls off towards the edge of its cone (`falloff`; stored as
-/// `GpuLight::spot_falloff`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize, Default)]
-#[serde(rename_all = "snake_case")]
-#[repr(u32)]
-pub enum SpotFalloff {
-    /// S = max(L_N·(−L), 0)^exponent inside `cutoff`, 0 outside (OpenGL's).
-    #[default]
-    Power = layout::SPOT_FALLOFF_POWER,
-    /// S = t², t = saturate((cos θ − cos outer) / (cos inner − cos outer)) (glTF's).
-    Smooth = layout::SPOT_FALLOFF_SMOOTH,
-}
-
-impl SpotFalloff {
-    pub const ALL: [Self; 2] = [Self::Power, Self::Smooth];
-
-    pub fn name(self) -> &'static str {
-        match self {
-            Self::Power => "power",
-            Self::Smooth => "smooth",
-        }
-    }
-
-    pub fn is_power(&self) -> bool {
-        *self == Self::Power
-    }
-}
 
 /// The smooth falloff's cone half-angles in degrees when a scene leaves them out: glTF's
 /// defaults (innerConeAngle 0, outerConeAngle π/4).
@@ -156,37 +106,6 @@ fn default_cutoff() -> f64 {
 
 fn default_true() -> bool {
     true
-}
-
-/// Which distance attenuation a light has (`attenuation.model`; stored as
-/// `GpuLight::attenuation_model`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
-#[repr(u32)]
-pub enum AttenuationModel {
-    /// f_att = 1 / (c + l·d + q·d²), OpenGL's.
-    #[default]
-    Polynomial = layout::ATTENUATION_POLYNOMIAL,
-    /// f_att = 1/d², windowed by an optional range (glTF's KHR_lights_punctual).
-    InverseSquare = layout::ATTENUATION_INVERSE_SQUARE,
-}
-
-impl AttenuationModel {
-    pub const ALL: [Self; 2] = [Self::Polynomial, Self::InverseSquare];
-
-    pub fn name(self) -> &'static str {
-        match self {
-            Self::Polynomial => "polynomial",
-            Self::InverseSquare => "inverse_square",
-        }
-    }
-
-    /// The fields of `attenuation = { … }` this model has (besides `model`).
-    pub fn fields(self) -> &'static [&'static str] {
-        match self {
-            Self::Polynomial => &["c", "l", "q"],
-            Self::InverseSquare => &["range"],
-        }
-    }
 }
 
 /// A point or spot light's distance attenuation f_att (d: distance from the shaded point to

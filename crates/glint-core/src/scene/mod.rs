@@ -15,7 +15,6 @@ mod number;
 mod overflow;
 mod ray_tree;
 mod rgb;
-mod tags;
 mod texture;
 mod validate;
 
@@ -25,22 +24,23 @@ use crate::model::{ImportOptions, ModelFormat};
 
 pub use builtin::{BUILTIN_SCENES, BuiltinScene, BuiltinSource, DEFAULT_RESOLUTION, RESOLUTIONS, builtin};
 pub use desc::{
-    CameraDesc, CheckerDesc, DEFAULT_ROUGHNESS, EpsilonMode, Fresnel, GlobalAttenuation, MaterialDesc, MeshDesc,
-    ObjectDesc, PlaneDesc, RenderSettings, SceneDesc, SpecularModel, SphereDesc, WorldDesc,
+    CameraDesc, CheckerDesc, DEFAULT_ROUGHNESS, GlobalAttenuation, MaterialDesc, MeshDesc, ObjectDesc, PlaneDesc,
+    RenderSettings, SceneDesc, SphereDesc, WorldDesc,
 };
 pub use error::{FieldIssue, SceneError};
-pub use light::{
-    Attenuation, AttenuationModel, DEFAULT_INNER_CONE, DEFAULT_OUTER_CONE, LightDesc, LightKind, NO_CONE_CUTOFF,
-    SpotFalloff,
+/// The tags a scene file names (light kinds, models, modes), from the shared vocabulary.
+pub use glint_types::tags::{
+    AttenuationModel, EpsilonMode, Filter, Fresnel, LightKind, SpecularModel, SpotFalloff, Wrap,
 };
+pub use light::{Attenuation, DEFAULT_INNER_CONE, DEFAULT_OUTER_CONE, LightDesc, NO_CONE_CUTOFF};
 pub use model_ref::{LoadedModel, ModelDesc, Scale, TransformDesc, load_models, without_imported_materials};
 pub use number::{format_number, shorten};
 pub use overflow::overflow_causes;
 pub use ray_tree::{WARN_RAYS_PER_SAMPLE, reachable_depth, unbounded_ray_tree};
 pub use rgb::Rgb;
 pub use texture::{
-    ColorSpace, Filter, MAX_TEXTURE_SIDE, MAX_TEXTURE_TEXELS, TextureDesc, TextureError, TextureImage, UvTransform,
-    Wrap, load_textures, material_textures, srgb_to_linear,
+    ColorSpace, MAX_TEXTURE_SIDE, MAX_TEXTURE_TEXELS, TextureDesc, TextureError, TextureImage, UvTransform,
+    load_textures, material_textures, srgb_to_linear,
 };
 pub use validate::{
     MAX_COORD, MAX_DEPTH, MAX_EPSILON, MAX_IMAGE_SIDE, MAX_INTENSITY, MAX_IOR, MAX_ROUGHNESS, MAX_SHININESS,

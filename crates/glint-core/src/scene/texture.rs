@@ -6,38 +6,12 @@ use std::fmt;
 use std::path::Path;
 use std::sync::Arc;
 
+use glint_types::{Filter, Wrap};
 use serde::{Deserialize, Serialize};
 
 use super::desc::SceneDesc;
 use super::error::{FieldIssue, SceneError};
-use crate::layout;
 use crate::model::uri::{MAX_RESOURCE_BYTES, resolve_uri};
-
-/// How a texture coordinate outside [0, 1] is folded back (glTF sampler `wrapS`/`wrapT`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize, Default)]
-#[serde(rename_all = "snake_case")]
-#[repr(u32)]
-pub enum Wrap {
-    /// The texture tiles (glTF REPEAT, 10497; the default).
-    #[default]
-    Repeat = layout::WRAP_REPEAT,
-    /// Texels beyond the edge are the edge texel (glTF CLAMP_TO_EDGE, 33071).
-    ClampToEdge = layout::WRAP_CLAMP_TO_EDGE,
-    /// The texture tiles, every other copy mirrored (glTF MIRRORED_REPEAT, 33648).
-    MirroredRepeat = layout::WRAP_MIRRORED_REPEAT,
-}
-
-/// How texels are combined at a texture coordinate (glTF `magFilter`; there are no mipmaps).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize, Default)]
-#[serde(rename_all = "snake_case")]
-#[repr(u32)]
-pub enum Filter {
-    /// The texel the coordinate falls in (glTF NEAREST, 9728).
-    Nearest = layout::FILTER_NEAREST,
-    /// The four nearest texel centres, weighted by distance (glTF LINEAR, 9729; the default).
-    #[default]
-    Bilinear = layout::FILTER_BILINEAR,
-}
 
 /// `KHR_texture_transform`: uv' = T(offset) · R(rotation) · S(scale) · uv, in that order.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]

@@ -2,7 +2,7 @@
 //! difference by channel, the first difference highlighted.
 
 use egui::Ui;
-use glint_core::layout::NO_HIT;
+use glint_types::layout::NO_HIT;
 
 use super::term_table::{HIGHLIGHT, term_grid};
 use crate::document::Document;

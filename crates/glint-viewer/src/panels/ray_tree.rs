@@ -5,9 +5,10 @@
 
 use egui::{Color32, RichText, Ui};
 use glint_core::glam::DVec3;
-use glint_core::layout::MAX_PROBE_NODES;
 use glint_core::probe_terms::{Term, first_difference, local_terms};
-use glint_core::ray_tree::{RayKind, RayNode, RayTree};
+use glint_core::ray_tree::{RayNode, RayTree};
+use glint_types::RayKind;
+use glint_types::layout::MAX_PROBE_NODES;
 
 use super::term_table::{HIGHLIGHT, term_grid};
 use crate::document::Document;

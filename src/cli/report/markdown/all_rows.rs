@@ -145,7 +145,7 @@ mod tests {
     #[test]
     fn incomplete_rows_and_errors_that_are_not_finite_are_flagged_never_tabulated_plainly() {
         assert_eq!(flag(&row(0.1, 20.0, 0)), None);
-        assert_eq!(flag(&row(0.1, 20.0, glint_core::layout::STATUS_DRIVER_LOOP_CUTOFF)), Some("incomplete"));
+        assert_eq!(flag(&row(0.1, 20.0, glint_types::layout::STATUS_DRIVER_LOOP_CUTOFF)), Some("incomplete"));
         assert_eq!(flag(&row(f64::INFINITY, f64::NEG_INFINITY, 0)), Some("error not finite"));
         let md = table(vec![row(0.1, 20.0, 0), row(0.1, 20.0, 2), row(f64::INFINITY, f64::NEG_INFINITY, 0)]);
         let lines: Vec<&str> = md.lines().filter(|l| l.starts_with("| ") && l.contains("| gpu |")).collect();

@@ -25,7 +25,7 @@ use super::intersect::{
 use super::{Ray, TraceContext, v3};
 use crate::bvh::{BvhNode, PrimRef, WIDTH, WideNode};
 use crate::flat::Corners;
-use crate::layout::feature;
+use glint_types::layout::feature;
 
 /// Relative padding of a box in the slab test, against the scale of the box and the ray origin:
 /// many orders of magnitude above the f64 rounding error of the primitive tests and of the slab

@@ -16,7 +16,7 @@ use rayon::prelude::*;
 
 use super::super::desc::{MeshDesc, ObjectDesc, SceneDesc};
 use super::super::error::FieldIssue;
-use crate::layout::f32_spacing;
+use glint_types::layout::f32_spacing;
 
 /// Normal cells per unit of each component.
 const CELLS: f64 = 1024.0;

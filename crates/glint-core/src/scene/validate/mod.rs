@@ -8,10 +8,11 @@ use glam::DVec3;
 
 use super::desc::{MaterialDesc, MeshDesc, ObjectDesc, PlaneDesc, RenderSettings, SceneDesc, SphereDesc};
 use super::error::FieldIssue;
-use super::light::{Attenuation, LightDesc, LightKind, NO_CONE_CUTOFF, SpotFalloff};
+use super::light::{Attenuation, LightDesc, NO_CONE_CUTOFF};
 use super::number::{format_number as num, shorten};
 use super::rgb::Rgb;
 use super::texture::{TextureDesc, material_textures};
+use glint_types::{LightKind, SpotFalloff};
 
 mod coplanar;
 mod lights;

@@ -30,6 +30,9 @@ pub const SPOT_FALLOFF_SMOOTH: u32 = 1;
 /// `GpuLight::flags` bits.
 pub const LIGHT_CASTS_SHADOWS: u32 = 1;
 
+/// `GpuLight::spot_versin_cutoff` of a light with no cone (cutoff 180°): 1 − cos 180°.
+pub const NO_CONE_VERSIN: f32 = 2.0;
+
 /// Specular models (`GpuMaterial::specular_model`).
 pub const SPECULAR_BLINN: u32 = 0;
 pub const SPECULAR_PHONG: u32 = 1;

@@ -1,0 +1,312 @@
+//! The one data layout, checked: every `#[repr(C)]` struct of [`crate::layout`] against its
+//! WGSL twin in `shaders/layout.wgsl` (member names, offsets, sizes, as naga's layouter sees
+//! them), and every shared constant against its Rust value. No "keep in sync" comments. The
+//! BVH's records (`BvhNode`, `QuantizedPair`) and their constants belong to glint-core, which
+//! builds them; glint-gpu's reflection tests check those.
+
+use std::mem::{offset_of, size_of};
+
+use naga::proc::Layouter;
+
+use crate::layout::*;
+
+/// The structs and constants of layout.wgsl that the BVH (glint-core) owns.
+const BVH_STRUCTS: [&str; 2] = ["BvhNode", "QuantizedPair"];
+const BVH_CONSTANTS: [&str; 4] = ["PRIM_REF_TRIANGLE", "PRIM_REF_INDEX", "NODE_REF_COUNT_BITS", "PAIR_FIRST_SHIFT"];
+
+/// A Rust struct as (name, size, [(member, offset, size)]).
+type RustLayout = (&'static str, usize, Vec<(&'static str, usize, usize)>);
+
+macro_rules! rust_layout {
+    ($ty:ident { $($field:ident),* $(,)? }) => {{
+        let zero: $ty = bytemuck::Zeroable::zeroed();
+        let members = vec![$((stringify!($field), offset_of!($ty, $field), size_of_val(&zero.$field))),*];
+        (stringify!($ty), size_of::<$ty>(), members)
+    }};
+}
+
+fn rust_layouts() -> Vec<RustLayout> {
+    vec![
+        rust_layout!(SceneHeader {
+            width,
+            height,
+            spp,
+            max_depth,
+            sphere_count,
+            plane_count,
+            triangle_count,
+            light_count,
+            material_count,
+            features,
+            epsilon_mode,
+            seed,
+            epsilon,
+            bailout,
+            vertex_count,
+            mesh_count,
+            ambient,
+            background,
+            global_attenuation,
+            frame
+        }),
+        rust_layout!(GpuCamera { position, forward, right, up }),
+        rust_layout!(GpuMaterial {
+            ka,
+            kd,
+            ks,
+            kr,
+            kt,
+            emission,
+            shininess,
+            ior,
+            specular_model,
+            diffuse_texture,
+            emission_texture,
+            roughness,
+            fresnel,
+            pad
+        }),
+        rust_layout!(GpuTexture {
+            offset,
+            width,
+            height,
+            wrap_s,
+            wrap_t,
+            filter_mode,
+            pad_a,
+            pad_b,
+            transform_u,
+            transform_v,
+            planar_u,
+            planar_v
+        }),
+        rust_layout!(GpuLight {
+            position,
+            direction,
+            diffuse,
+            specular,
+            ambient,
+            attenuation,
+            kind,
+            flags,
+            spot_exponent,
+            spot_versin_cutoff,
+            attenuation_model,
+            spot_falloff,
+            range,
+            spot_versin_inner
+        }),
+        rust_layout!(GpuSphere { center_radius, material, object_id, power, pad }),
+        rust_layout!(GpuPlane { normal_offset, material, object_id, pad }),
+        rust_layout!(GpuTriangle { va, vb, vc, mesh, order }),
+        rust_layout!(GpuMesh { material, object_id, flags, pad }),
+        rust_layout!(TileParams { origin_x, origin_y, width, height, sample_index, canary_laps, pad_a, pad_b }),
+        rust_layout!(ProbeLight {
+            f_att,
+            spot,
+            shadow_ray,
+            pad_b,
+            visibility,
+            ambient,
+            diffuse,
+            specular,
+            contribution
+        }),
+        rust_layout!(ProbeRecord {
+            object_id,
+            material,
+            light_count,
+            flags,
+            t,
+            pad_a,
+            pad_b,
+            pad_c,
+            point,
+            normal,
+            emission,
+            ambient,
+            ka,
+            kd,
+            kr,
+            kt,
+            mirror_sum,
+            refraction_sum,
+            total,
+            lights
+        }),
+        rust_layout!(ProbeNode {
+            kind,
+            flags,
+            parent,
+            depth,
+            object_id,
+            material,
+            light,
+            light_count,
+            t,
+            attenuation,
+            pad_a,
+            pad_b,
+            origin,
+            dir,
+            weight,
+            factor,
+            point,
+            normal,
+            emission,
+            ambient,
+            ka,
+            kd,
+            lights
+        }),
+        rust_layout!(ProbeTree { node_count, flags, pad_a, pad_b, nodes }),
+    ]
+}
+
+const LAYOUT_WGSL: &str = include_str!("../../../shaders/layout.wgsl");
+
+/// layout.wgsl as one plain WGSL module: without naga_oil's directives (import path), which
+/// only name what the files give each other.
+pub fn layout_module() -> naga::Module {
+    let source: String =
+        LAYOUT_WGSL.lines().filter(|l| !l.trim_start().starts_with('#')).collect::<Vec<_>>().join("\n");
+    naga::front::wgsl::parse_str(&source).unwrap_or_else(|e| panic!("{}", e.emit_to_string(&source)))
+}
+
+#[test]
+fn every_rust_layout_struct_covers_its_bytes() {
+    // A field added in Rust but not listed above breaks this chain, so the list stays complete.
+    for (name, size, members) in rust_layouts() {
+        let mut end = 0;
+        for (field, offset, field_size) in &members {
+            assert_eq!(*offset, end, "{name}.{field} does not follow the previous member (unlisted field or padding?)");
+            end = offset + field_size;
+        }
+        assert_eq!(end, size, "{name}: listed members end at {end}, the struct has {size} bytes");
+    }
+}
+
+#[test]
+fn wgsl_structs_match_rust_offsets_and_sizes() {
+    let module = layout_module();
+    let mut layouter = Layouter::default();
+    layouter.update(module.to_ctx()).expect("layout.wgsl lays out");
+    let mut checked = 0;
+    for (name, size, members) in rust_layouts() {
+        let (handle, ty) = module
+            .types
+            .iter()
+            .find(|(_, t)| t.name.as_deref() == Some(name))
+            .unwrap_or_else(|| panic!("struct {name} is missing from shaders/layout.wgsl"));
+        let naga::TypeInner::Struct { members: wgsl, span } = &ty.inner else { panic!("{name} is not a struct") };
+        assert_eq!(*span as usize, size, "{name}: WGSL size {span} != Rust size {size}");
+        assert_eq!(layouter[handle].size as usize, size, "{name}: naga layouter size");
+        assert_eq!(wgsl.len(), members.len(), "{name}: member count differs");
+        for (w, (field, offset, _)) in wgsl.iter().zip(&members) {
+            assert_eq!(w.name.as_deref(), Some(*field), "{name}: member order/name differs");
+            assert_eq!(w.offset as usize, *offset, "{name}.{field}: WGSL offset {} != Rust {offset}", w.offset);
+        }
+        checked += 1;
+    }
+    let wgsl_structs = module
+        .types
+        .iter()
+        .filter(|(_, t)| matches!(t.inner, naga::TypeInner::Struct { .. }))
+        .filter(|(_, t)| !BVH_STRUCTS.contains(&t.name.as_deref().unwrap_or_default()))
+        .count();
+    assert_eq!(wgsl_structs, checked, "layout.wgsl has a struct without a Rust twin in this test");
+}
+
+fn literal_value(module: &naga::Module, init: naga::Handle<naga::Expression>) -> f64 {
+    match module.global_expressions[init] {
+        naga::Expression::Literal(naga::Literal::U32(v)) => f64::from(v),
+        naga::Expression::Literal(naga::Literal::I32(v)) => f64::from(v),
+        naga::Expression::Literal(naga::Literal::F32(v)) => f64::from(v),
+        ref other => panic!("constant initialiser {other:?} is not a literal"),
+    }
+}
+
+#[test]
+fn wgsl_layout_constants_match_rust() {
+    let expected: Vec<(String, u32)> = vec![
+        ("LIGHT_POINT".into(), LIGHT_POINT),
+        ("LIGHT_DIRECTIONAL".into(), LIGHT_DIRECTIONAL),
+        ("LIGHT_SPOT".into(), LIGHT_SPOT),
+        ("ATTENUATION_POLYNOMIAL".into(), ATTENUATION_POLYNOMIAL),
+        ("ATTENUATION_INVERSE_SQUARE".into(), ATTENUATION_INVERSE_SQUARE),
+        ("SPOT_FALLOFF_POWER".into(), SPOT_FALLOFF_POWER),
+        ("SPOT_FALLOFF_SMOOTH".into(), SPOT_FALLOFF_SMOOTH),
+        ("LIGHT_CASTS_SHADOWS".into(), LIGHT_CASTS_SHADOWS),
+        ("SPECULAR_BLINN".into(), SPECULAR_BLINN),
+        ("SPECULAR_PHONG".into(), SPECULAR_PHONG),
+        ("SPECULAR_COOK_TORRANCE".into(), SPECULAR_COOK_TORRANCE),
+        ("FRESNEL_EXACT".into(), FRESNEL_EXACT),
+        ("FRESNEL_SCHLICK".into(), FRESNEL_SCHLICK),
+        ("MESH_HAS_NORMALS".into(), MESH_HAS_NORMALS),
+        ("MESH_HAS_UVS".into(), MESH_HAS_UVS),
+        ("NO_TEXTURE".into(), NO_TEXTURE),
+        ("WRAP_REPEAT".into(), WRAP_REPEAT),
+        ("WRAP_CLAMP_TO_EDGE".into(), WRAP_CLAMP_TO_EDGE),
+        ("WRAP_MIRRORED_REPEAT".into(), WRAP_MIRRORED_REPEAT),
+        ("FILTER_NEAREST".into(), FILTER_NEAREST),
+        ("FILTER_BILINEAR".into(), FILTER_BILINEAR),
+        ("EPS_TMIN".into(), EPS_TMIN),
+        ("EPS_NUDGE_RAY".into(), EPS_NUDGE_RAY),
+        ("EPS_NUDGE_NORMAL".into(), EPS_NUDGE_NORMAL),
+        ("EPS_ROBUST".into(), EPS_ROBUST),
+        ("EPS_SKIP_CONVEX".into(), EPS_SKIP_CONVEX),
+        ("UV_MESH".into(), UV_MESH),
+        ("UV_ACROSS_X".into(), UV_ACROSS_X),
+        ("UV_ACROSS_Y".into(), UV_ACROSS_Y),
+        ("UV_ACROSS_Z".into(), UV_ACROSS_Z),
+        ("NO_HIT".into(), NO_HIT),
+        ("STATUS_LOOP_LIMIT".into(), STATUS_LOOP_LIMIT),
+        ("STATUS_STACK_OVERFLOW".into(), STATUS_STACK_OVERFLOW),
+        ("STATUS_DRIVER_LOOP_CUTOFF".into(), STATUS_DRIVER_LOOP_CUTOFF),
+        ("STATUS_BVH_STACK_OVERFLOW".into(), STATUS_BVH_STACK_OVERFLOW),
+        ("STAT_CAMERA".into(), STAT_CAMERA),
+        ("STAT_SHADOW".into(), STAT_SHADOW),
+        ("STAT_REFLECTION".into(), STAT_REFLECTION),
+        ("STAT_REFRACTION".into(), STAT_REFRACTION),
+        ("STAT_BAILOUT_SAVED".into(), STAT_BAILOUT_SAVED),
+        ("STAT_STATUS".into(), STAT_STATUS),
+        ("STAT_WORDS".into(), STAT_WORDS),
+        ("MAX_PROBE_LIGHTS".into(), MAX_PROBE_LIGHTS),
+        ("PROBE_HIT".into(), PROBE_HIT),
+        ("PROBE_TIR".into(), PROBE_TIR),
+        ("MAX_PROBE_NODES".into(), MAX_PROBE_NODES),
+        ("RAY_CAMERA".into(), RAY_CAMERA),
+        ("RAY_REFLECTION".into(), RAY_REFLECTION),
+        ("RAY_REFRACTION".into(), RAY_REFRACTION),
+        ("RAY_SHADOW".into(), RAY_SHADOW),
+        ("NODE_HIT".into(), NODE_HIT),
+        ("NODE_TIR".into(), NODE_TIR),
+        ("NODE_CUT_BAILOUT".into(), NODE_CUT_BAILOUT),
+        ("NODE_CUT_DEPTH".into(), NODE_CUT_DEPTH),
+        ("NO_PARENT".into(), NO_PARENT),
+        ("TREE_OVERFLOW".into(), TREE_OVERFLOW),
+        ("TREE_LIGHTS_TRUNCATED".into(), TREE_LIGHTS_TRUNCATED),
+    ];
+    let module = layout_module();
+    let wgsl: Vec<(String, f64)> = module
+        .constants
+        .iter()
+        .map(|(_, c)| (c.name.clone().expect("named constant"), literal_value(&module, c.init)))
+        .collect();
+    let expected: Vec<(String, f64)> = expected
+        .into_iter()
+        .map(|(n, v)| (n, f64::from(v)))
+        .chain([("NO_CONE_VERSIN".to_string(), f64::from(NO_CONE_VERSIN))])
+        .collect();
+    for (name, value) in &expected {
+        let found = wgsl.iter().find(|(n, _)| n == name).unwrap_or_else(|| panic!("{name} missing from layout.wgsl"));
+        assert_eq!(found.1, *value, "{name}: WGSL {} != Rust {value}", found.1);
+    }
+    for (name, _) in &wgsl {
+        let owned_here = expected.iter().any(|(n, _)| n == name);
+        assert!(
+            owned_here || BVH_CONSTANTS.contains(&name.as_str()),
+            "layout.wgsl constant {name} has no Rust twin in this test"
+        );
+    }
+}
