@@ -55,7 +55,7 @@ pub fn run_cpu(flat: &FlatScene, options: &CpuOptions, quiet: bool) -> anyhow::R
     let bar = progress_bar(quiet, tiles, "cpu", "")?;
     let on_tile = |_: &Tile| bar.inc(1);
     // SIGINT/SIGTERM stop the render at the next tile (see `interrupt`).
-    let cancel = glint_core::interrupt::flag();
+    let cancel = glint_io::interrupt::flag();
     let rays = AtomicU64::new(0);
     let done = AtomicBool::new(false);
     let control = RenderControl { cancel: Some(&cancel), on_tile: Some(&on_tile), rays: Some(&rays) };
@@ -98,7 +98,7 @@ pub fn run_gpu(tracer: &GpuTracer, flat: &FlatScene, options: &GpuOptions, quiet
     let progress = Arc::new(SampleProgress::new(flat.header.spp.max(1)));
     let bar = progress_bar(quiet, u64::from(flat.header.spp.max(1)), "gpu", "samples")?;
     // SIGINT/SIGTERM stop the render between two submissions.
-    let cancel = glint_core::interrupt::flag();
+    let cancel = glint_io::interrupt::flag();
     let control = DispatchControl { cancel: Some(&cancel), progress: Some(&progress) };
     let done = AtomicBool::new(false);
     let r = std::thread::scope(|scope| {

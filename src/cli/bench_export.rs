@@ -14,8 +14,8 @@ use std::path::Path;
 
 use anyhow::{Context, bail};
 use glint_core::FlatScene;
-use glint_core::atomic::write_file_atomically;
 use glint_core::rays::{HitRecord, RayRecord, RaySet};
+use glint_io::atomic::write_file_atomically;
 
 /// Before the benchmark runs: an error unless the exported mesh is the whole scene, and
 /// `dir` made if missing (so a path that cannot be a folder fails before minutes of work).

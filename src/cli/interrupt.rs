@@ -1,4 +1,4 @@
-//! SIGINT and SIGTERM: the first raises `glint_core::interrupt`'s flag, which the CPU render
+//! SIGINT and SIGTERM: the first raises `glint_io::interrupt`'s flag, which the CPU render
 //! loop and the atomic writer check (the render stops at the next tile, a write in progress
 //! stops and its temporary is removed); `main` then says "interrupted" and exits with
 //! 128 + the signal's number (130, 143), as shells report a process killed by it. A second
@@ -16,7 +16,7 @@ static SIGNAL: OnceLock<Arc<AtomicUsize>> = OnceLock::new();
 
 /// Installs the handlers; call once, before any work.
 pub fn install() -> anyhow::Result<()> {
-    let flag = glint_core::interrupt::flag();
+    let flag = glint_io::interrupt::flag();
     let signal = SIGNAL.get_or_init(Arc::default);
     for number in [SIGINT, SIGTERM] {
         let code = 128 + number;
@@ -31,7 +31,7 @@ pub fn install() -> anyhow::Result<()> {
 
 /// The exit code of an interrupted run (128 + the signal), if a signal interrupted it.
 pub fn exit_code() -> Option<u8> {
-    if !glint_core::interrupt::requested() {
+    if !glint_io::interrupt::requested() {
         return None;
     }
     let number = SIGNAL.get().map_or(0, |s| s.load(Ordering::Relaxed));
@@ -41,8 +41,8 @@ pub fn exit_code() -> Option<u8> {
 /// An error if a stop was requested: checked between the steps that do not check it themselves
 /// (loading, building, a GPU render, which cannot be stopped once dispatched).
 pub fn check() -> anyhow::Result<()> {
-    if glint_core::interrupt::requested() {
-        return Err(glint_core::interrupt::Interrupted.into());
+    if glint_io::interrupt::requested() {
+        return Err(glint_io::interrupt::Interrupted.into());
     }
     Ok(())
 }

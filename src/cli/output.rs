@@ -4,9 +4,10 @@ use std::path::{Path, PathBuf};
 
 use glint_core::compare::{HEATMAP_LOG10_MAX, HEATMAP_LOG10_MIN, ImageErrors, diff_heatmap};
 use glint_core::cpu::RayCounts;
-use glint_core::image::{RenderInfo, render_metadata, write_image, write_png_rgb8};
+use glint_core::image::{RenderInfo, render_metadata};
 use glint_core::memory::{self, MemoryEstimate, MemoryPart};
-use glint_core::scene::RenderSettings;
+use glint_io::image_file::{write_image, write_png_rgb8};
+use glint_scene::RenderSettings;
 use serde::Serialize;
 
 use super::backend::Run;

@@ -8,9 +8,10 @@ use clap::builder::{PossibleValuesParser, TypedValueParser};
 use glint_core::compare::compare_images;
 use glint_core::cpu::DEFAULT_MAX_RAYS_PER_SAMPLE;
 use glint_core::memory::{self, RenderPlan, render_estimate};
-use glint_core::scene::{BUILTIN_SCENES, RESOLUTIONS, overflow_causes, unbounded_ray_tree};
 use glint_core::{Accel, Backend, CpuOptions, FlatScene};
 use glint_gpu::GpuOptions;
+use glint_io::{BUILTIN_SCENES, RESOLUTIONS};
+use glint_scene::{overflow_causes, unbounded_ray_tree};
 
 use super::backend::{Run, open_gpu, run_cpu, run_gpu};
 use super::interrupt;

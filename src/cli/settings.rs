@@ -3,11 +3,10 @@
 use anyhow::{Context, bail};
 use clap::Args;
 use glint_core::memory::{self, MemoryEstimate, SourceKind};
-use glint_core::model::{Ground, ImportOptions};
-use glint_core::scene::{
-    DEFAULT_RESOLUTION, EpsilonMode, LoadOptions, LoadedScene, RESOLUTIONS, RenderSettings, Report, load_scene_with,
-    validate_settings,
-};
+use glint_io::ImportOptions;
+use glint_io::model::Ground;
+use glint_io::{DEFAULT_RESOLUTION, LoadOptions, LoadedScene, RESOLUTIONS, load_scene_with};
+use glint_scene::{EpsilonMode, RenderSettings, Report, validate_settings};
 
 #[derive(Clone, Debug, Default, Args)]
 pub struct SettingsArgs {

@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use anyhow::bail;
 use clap::Args;
-use glint_core::scene::load_scene_with;
+use glint_io::load_scene_with;
 use glint_viewer::{ViewMode, ViewerError, ViewerOptions};
 
 use super::settings::{LoadArgs, SettingsArgs, check_load_memory};
@@ -83,8 +83,8 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
     // a scene the drag benchmark cannot load: it would measure the window's fallback instead.
     let settings = match load_scene_with(&args.scene, &load) {
         Ok(loaded) => Some(args.settings.apply(&loaded.desc.render)?),
-        Err(e @ glint_core::scene::SceneError::NotGenerated { .. }) => bail!("--resolution: {e}"),
-        Err(e @ glint_core::scene::SceneError::NotAModel { .. }) => bail!("{e}"),
+        Err(e @ glint_io::SceneError::NotGenerated { .. }) => bail!("--resolution: {e}"),
+        Err(e @ glint_io::SceneError::NotAModel { .. }) => bail!("{e}"),
         Err(e) if args.benchmark_drag.is_some() || args.benchmark_features => {
             let flag = if args.benchmark_features { "--benchmark-features" } else { "--benchmark-drag" };
             bail!("{flag}: cannot load scene '{}': {e}", args.scene)

@@ -124,7 +124,7 @@ fn spider_mtl_textures_are_decoded_with_their_texture_coordinates() {
     // What obj_models_render_on_both_backends_and_agree then holds to the parity thresholds:
     // spider.mtl's five `map_Kd .\NAME.jpg` (Windows separators), sampled on both tracers.
     let Some(path) = model("OBJ/spider.obj") else { return };
-    let m = glint_core::model::load_obj(&path).expect("spider.obj loads");
+    let m = glint_io::model::load_obj(&path).expect("spider.obj loads");
     let textured: Vec<(&String, u32, u32)> = m
         .materials
         .iter()

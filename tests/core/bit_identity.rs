@@ -5,7 +5,8 @@
 use std::path::Path;
 
 use glint_core::FlatScene;
-use glint_core::scene::{BUILTIN_SCENES, EpsilonMode, parse_scene};
+use glint_io::{BUILTIN_SCENES, parse_scene};
+use glint_scene::EpsilonMode;
 
 use crate::render::render_cpu_checked;
 

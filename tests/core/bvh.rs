@@ -15,8 +15,8 @@ use glint_core::cpu::intersect::{FAR, Leaving, Prim};
 use glint_core::cpu::walk::{closest_hit, shadow_transmittance};
 use glint_core::cpu::{Accel, Ray, TraceContext};
 use glint_core::glam::DVec3;
-use glint_core::scene::BUILTIN_SCENES;
 use glint_core::{CpuOptions, CpuRender, FlatScene, RenderControl, render_cpu};
+use glint_io::BUILTIN_SCENES;
 use glint_types::layout::feature;
 
 use crate::support::SceneText;

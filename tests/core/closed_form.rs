@@ -543,7 +543,7 @@ fn floor_hit_is_exact_in_the_single_pixel_setup() {
 
 /// The linear value the decoder stores for an 8-bit sRGB channel (in f32, widened exactly).
 fn texel(srgb: u8) -> f64 {
-    f64::from(glint_core::scene::srgb_to_linear(f64::from(srgb) / 255.0) as f32)
+    f64::from(glint_scene::srgb_to_linear(f64::from(srgb) / 255.0) as f32)
 }
 
 #[test]
@@ -620,7 +620,7 @@ fn fresnel_factors_at_their_limits() {
 #[test]
 fn cook_torrance_lobe_is_finite_and_non_negative_at_grazing_and_extreme_inputs() {
     use glint_core::cpu::shade::cook_torrance_term;
-    use glint_core::scene::Fresnel;
+    use glint_scene::Fresnel;
     use glint_types::layout::GpuMaterial;
     let n = DVec3::Y;
     // Directions from the normal to exactly grazing and just below it, and L = −V.

@@ -2,8 +2,8 @@
 
 use std::path::Path;
 
-use glint_core::scene::{BUILTIN_SCENES, parse_scene};
 use glint_core::{CpuRender, FlatScene};
+use glint_io::{BUILTIN_SCENES, parse_scene};
 
 use crate::support::render_with;
 

@@ -4,8 +4,11 @@
 
 use std::path::Path;
 
-use glint_core::model::{ImportOptions, Model, load_gltf};
-use glint_core::scene::{LightKind, LoadOptions, Rgb, load_scene_with};
+use glint_io::ImportOptions;
+use glint_io::model::load_gltf;
+use glint_io::{LoadOptions, load_scene_with};
+use glint_scene::Model;
+use glint_scene::{LightKind, Rgb};
 use glint_test_support::TempDir;
 use glint_test_support::gltf::{BufferAt, Fixture};
 use serde_json::json;
@@ -76,7 +79,7 @@ fn metallic_roughness_transmission_ior_and_emissive_strength_map_as_documented()
         "baseColorFactor": [0.75, 0.75, 0.75, 1.0], "metallicFactor": 1.0, "roughnessFactor": 0.0 } }]);
     let chrome = &load(&f.write_gltf(&dir, "chrome", BufferAt::DataUri)).materials["chrome"];
     assert_eq!((chrome.kd, chrome.ks, chrome.kr), (Rgb::splat(0.0), Rgb::splat(0.75), Rgb::splat(0.75)));
-    assert_eq!(chrome.shininess, glint_core::scene::MAX_SHININESS);
+    assert_eq!(chrome.shininess, glint_scene::MAX_SHININESS);
 }
 
 #[test]
@@ -325,7 +328,7 @@ transform = { translate = [10, 0, 0], rotate = [0, 0, 90], scale = 2 }
     )
     .unwrap();
     let loaded = load_scene_with(scene.to_str().unwrap(), &LoadOptions::default()).unwrap_or_else(|e| panic!("{e}"));
-    let glint_core::scene::ObjectDesc::Model(model) = &loaded.desc.objects[1] else { panic!("a model object") };
+    let glint_scene::ObjectDesc::Model(model) = &loaded.desc.objects[1] else { panic!("a model object") };
     let placed = &model.loaded.as_ref().expect("loaded").meshes[0];
     // (1, 0, 0) scaled to (2, 0, 0), turned 90° about z to (0, 2, 0), moved to (10, 2, 0).
     let v = placed.vertices[1];
@@ -335,7 +338,7 @@ transform = { translate = [10, 0, 0], rotate = [0, 0, 90], scale = 2 }
     let flat = glint_core::FlatScene::build(&loaded.desc, &loaded.desc.render);
     assert_eq!(flat.triangles.len(), 2);
     // Saved: the reference and the override, no vertices; loading the saved file gives the same.
-    let text = glint_core::scene::to_toml(&loaded.desc).unwrap();
+    let text = glint_io::to_toml(&loaded.desc).unwrap();
     assert!(text.contains("quad.glb") && !text.contains("vertices"), "{text}");
     let again = dir.join("again.toml");
     std::fs::write(&again, &text).unwrap();
@@ -391,11 +394,7 @@ fn base_colour_and_emissive_textures_keep_their_sampler_transform_and_texcoords(
     assert_eq!((image.width(), image.height(), t.path.as_str()), (2, 1, "tex.png"));
     assert_eq!(
         (t.wrap_s, t.wrap_t, t.filter),
-        (
-            glint_core::scene::Wrap::ClampToEdge,
-            glint_core::scene::Wrap::MirroredRepeat,
-            glint_core::scene::Filter::Nearest
-        )
+        (glint_scene::Wrap::ClampToEdge, glint_scene::Wrap::MirroredRepeat, glint_scene::Filter::Nearest)
     );
     let tr = t.transform.as_ref().expect("KHR_texture_transform");
     assert_eq!((tr.offset, tr.rotation, tr.scale), ([0.5, 0.0], 0.25, [2.0, 1.0]));
@@ -437,7 +436,7 @@ fn a_saved_edit_of_a_textured_model_material_loads_again_with_the_models_images(
     let mut desc = load_scene_with(scene.to_str().unwrap(), &LoadOptions::default()).unwrap().desc;
     // The viewer's edit of the imported material, then its Save.
     desc.materials.get_mut("tile/white").unwrap().kd = Rgb([0.1, 0.2, 0.3]);
-    let text = glint_core::scene::to_toml(&desc).unwrap();
+    let text = glint_io::to_toml(&desc).unwrap();
     assert!(text.contains("images[0]") && text.contains("tex.png"), "{text}");
     std::fs::write(dir.join("saved.toml"), &text).unwrap();
     let reloaded = load_scene_with(dir.join("saved.toml").to_str().unwrap(), &LoadOptions::default())

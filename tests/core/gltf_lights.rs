@@ -4,7 +4,7 @@
 //! docs/scene-format.md and the stored (f32) scene inputs, never from the tracer.
 
 use glam::DVec3;
-use glint_core::scene::MIN_ATTENUATION_DENOMINATOR;
+use glint_scene::MIN_ATTENUATION_DENOMINATOR;
 
 use crate::closed_form::{FLOOR_KA, FLOOR_KD, axis_at, centre, floor_scene};
 use crate::support::{SceneText, assert_rel, dv, num, probe, w3};
@@ -204,7 +204,7 @@ fn smooth_spot_with_inverse_square_multiplies_both() {
 
 #[test]
 fn a_model_objects_own_lights_shine_when_asked_placed_and_scaled_by_its_exposure() {
-    use glint_core::scene::{LoadOptions, load_scene_with};
+    use glint_io::{LoadOptions, load_scene_with};
     use glint_test_support::gltf::Fixture;
     use serde_json::json;
     let dir = glint_test_support::TempDir::new("model-object-lights");
@@ -246,10 +246,10 @@ fn a_model_objects_own_lights_shine_when_asked_placed_and_scaled_by_its_exposure
     assert_rel(lit, want, REL, "the model's light on the floor");
     // A bright imported light is named where an overflow error lists the brightest sources.
     let bright = load(&scene("lights = true\nexposure = 1000"));
-    let causes = glint_core::scene::overflow_causes(&bright, 5);
+    let causes = glint_scene::overflow_causes(&bright, 5);
     assert!(causes.contains("the brightest sources: objects[1].lights[0].specular = 8000"), "{causes}");
     // Saved, the reference keeps the choice and the lights stay in the file, not the scene.
-    let text = glint_core::scene::to_toml(&on).unwrap();
+    let text = glint_io::to_toml(&on).unwrap();
     assert!(text.contains("lights = true") && text.contains("exposure = 0.25"), "{text}");
     assert!(!text.contains("[[lights]]"), "{text}");
     assert_eq!(load(&text), on);

@@ -6,8 +6,8 @@ use glint_core::cpu::TraceContext;
 use glint_core::cpu::trace::render_pixel;
 use glint_core::glam::DVec3;
 use glint_core::ray_tree::{Cut, RayTree};
-use glint_core::scene::load_scene;
 use glint_core::{FlatScene, probe_tree};
+use glint_io::load_scene;
 use glint_types::RayKind;
 
 use super::support::SceneText;

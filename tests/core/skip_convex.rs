@@ -5,7 +5,7 @@
 //! in acne.
 
 use glint_core::FlatScene;
-use glint_core::scene::EpsilonMode;
+use glint_scene::EpsilonMode;
 use glint_types::layout::feature;
 
 use crate::support::{SceneText, render};

@@ -3,7 +3,7 @@
 
 use std::path::Path;
 
-use glint_core::scene::{SceneError, parse_scene};
+use glint_io::{SceneError, parse_scene};
 
 /// A valid scene using every kind of light and object. Cases below replace exactly one
 /// snippet of it (checked to occur exactly once).
@@ -364,7 +364,7 @@ fn invalid_utf8_gives_the_byte_offset_line_and_column() {
     let mut bytes = b"# a scene\n# by Jos\xe9\n".to_vec();
     bytes.extend_from_slice(BASE.as_bytes());
     std::fs::write(&path, &bytes).unwrap();
-    let err = glint_core::scene::load_scene(path.to_str().unwrap()).expect_err("not UTF-8");
+    let err = glint_io::load_scene(path.to_str().unwrap()).expect_err("not UTF-8");
     let msg = err.to_string();
     assert!(msg.contains("latin1.toml"), "{msg}");
     assert!(msg.contains("byte 0xe9 at byte offset 18 (line 2, column 9)"), "{msg}");
@@ -409,7 +409,7 @@ fn texture_error(texture: &str, field: &str, fragments: &[&str]) {
     std::fs::write(scenes.join("image.txt"), "not an image").unwrap();
     let file = scenes.join("scene.toml");
     std::fs::write(&file, edited("shininess = 32.0", &format!("shininess = 32.0\n{texture}"))).unwrap();
-    let err = glint_core::scene::load_scene(&file.to_string_lossy()).expect_err("a bad texture is an error");
+    let err = glint_io::load_scene(&file.to_string_lossy()).expect_err("a bad texture is an error");
     let msg = err.to_string();
     assert!(matches!(err, SceneError::Invalid { .. }) && msg.contains("scene.toml"), "{field}: {msg}");
     let issue = err.issues().iter().find(|i| i.field == field).unwrap_or_else(|| panic!("no issue for {field}: {msg}"));
@@ -449,7 +449,7 @@ fn a_texture_in_a_description_built_in_code_must_be_decoded() {
     assert!(err.issues().iter().any(|i| i.field == "materials.red.texture.path"), "{err}");
     // And a description whose texture was never decoded does not validate.
     let (mut desc, _) = parse_scene(BASE, Path::new(FILE)).expect("BASE is valid");
-    desc.materials.get_mut("red").unwrap().texture = Some(glint_core::scene::TextureDesc {
+    desc.materials.get_mut("red").unwrap().texture = Some(glint_scene::TextureDesc {
         path: "t.png".into(),
         wrap_s: Default::default(),
         wrap_t: Default::default(),
@@ -457,7 +457,7 @@ fn a_texture_in_a_description_built_in_code_must_be_decoded() {
         transform: None,
         image: None,
     });
-    let report = glint_core::scene::validate(&desc);
+    let report = glint_scene::validate(&desc);
     assert!(report.errors.iter().any(|i| i.field == "materials.red.texture.path" && i.problem.contains("not decoded")));
 }
 

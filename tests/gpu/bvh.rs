@@ -138,7 +138,7 @@ fn whitted_bumpy_at_depth_5_raises_no_status_flag() {
     // image exercises it (neighbouring pixels of a smaller image are farther apart, and their
     // lanes' walks share less).
     for name in ["bumpy", "bumpy-glass"] {
-        let loaded = glint_core::scene::load_scene(name).expect("built-in scene");
+        let loaded = glint_io::load_scene(name).expect("built-in scene");
         let mut settings = loaded.desc.render.clone();
         (settings.width, settings.height, settings.max_depth, settings.bailout) = (96, 54, 5, 0.0);
         let flat = FlatScene::build(&loaded.desc, &settings);
@@ -159,7 +159,7 @@ fn whitted_bumpy_at_depth_5_raises_no_status_flag() {
 #[test]
 fn bumpy_glass_at_its_own_depth_stays_within_the_loop_budget() {
     let tracer = gpu_or_skip!();
-    let loaded = glint_core::scene::load_scene("bumpy-glass").expect("built-in scene");
+    let loaded = glint_io::load_scene("bumpy-glass").expect("built-in scene");
     let mut settings = loaded.desc.render.clone();
     assert_eq!(settings.max_depth, 6, "the scene's own depth");
     (settings.width, settings.height) = (320, 180);

@@ -4,15 +4,15 @@
 use std::sync::Arc;
 
 use glint_core::FlatScene;
-use glint_core::scene::builtin;
 use glint_gpu::{GpuOptions, GpuTracer};
+use glint_io::builtin;
 
 use super::support::gpu_or_skip;
 use crate::gpu::gpu_render_with;
 
 /// Moves the camera the fraction `f` of the way to what it looks at: the centre ray meets the
 /// same point, so the frame stays (`rebase::camera_frame`).
-fn dolly(camera: &mut glint_core::scene::CameraDesc, f: f64) {
+fn dolly(camera: &mut glint_scene::CameraDesc, f: f64) {
     for k in 0..3 {
         camera.position[k] += f * (camera.look_at[k] - camera.position[k]);
     }
@@ -61,8 +61,8 @@ fn a_scene_far_from_the_origin_reuses_its_rebased_geometry_while_the_camera_move
     let shift = |p: &mut [f64; 3], d: f64| p[0] += d;
     for object in &mut desc.objects {
         match object {
-            glint_core::scene::ObjectDesc::Sphere(s) => shift(&mut s.center, 1e5),
-            glint_core::scene::ObjectDesc::Plane(p) => shift(&mut p.point, 1e5),
+            glint_scene::ObjectDesc::Sphere(s) => shift(&mut s.center, 1e5),
+            glint_scene::ObjectDesc::Plane(p) => shift(&mut p.point, 1e5),
             _ => {}
         }
     }

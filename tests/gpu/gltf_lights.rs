@@ -5,8 +5,8 @@
 
 use glint_core::FlatScene;
 use glint_core::probe_pixel;
-use glint_core::scene::parse_scene;
 use glint_gpu::probe::breakdown;
+use glint_io::parse_scene;
 use glint_types::layout::{NO_HIT, feature};
 
 use super::support::{compare_and_keep, cpu, gpu_or_skip, gpu_render, log_errors, within_parity, write_failure_images};

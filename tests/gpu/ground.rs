@@ -4,8 +4,10 @@
 //! tracer picked its own winner pixel by pixel (21 % first-hit mismatch, FLIP 0.12).
 
 use glint_core::FlatScene;
-use glint_core::model::{Ground, ImportOptions};
-use glint_core::scene::{LoadOptions, ObjectDesc, load_scene_with};
+use glint_io::ImportOptions;
+use glint_io::model::Ground;
+use glint_io::{LoadOptions, load_scene_with};
+use glint_scene::ObjectDesc;
 use glint_test_support::TempDir;
 
 use super::support::{compare_and_keep, cpu, gpu_or_skip, gpu_render, log_errors, within_parity, write_failure_images};

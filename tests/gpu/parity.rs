@@ -10,9 +10,8 @@
 //! - the status word (loop bound, stack overflow) stays 0 on every built-in scene.
 
 use glint_core::FlatScene;
-use glint_core::scene::{
-    BUILTIN_SCENES, EpsilonMode, Fresnel, GlobalAttenuation, RenderSettings, SceneDesc, SpecularModel, load_scene,
-};
+use glint_io::{BUILTIN_SCENES, load_scene};
+use glint_scene::{EpsilonMode, Fresnel, GlobalAttenuation, RenderSettings, SceneDesc, SpecularModel};
 
 use super::support::{compare_and_keep, cpu, gpu_or_skip, gpu_render, log_errors, within_parity, write_failure_images};
 

@@ -15,9 +15,10 @@ use glint_core::FlatScene;
 use glint_core::cpu::TraceContext;
 use glint_core::cpu::raycast::cast_rays;
 use glint_core::rays::{HitRecord, RaySet, compare_hits, hit_fraction, primary_rays};
-use glint_core::scene::{LoadOptions, MeshDesc, ObjectDesc, load_scene_with};
 use glint_gpu::GpuError;
 use glint_gpu::raycast::RayCaster;
+use glint_io::{LoadOptions, load_scene_with};
+use glint_scene::{MeshDesc, ObjectDesc};
 use glint_types::layout::STATUS_DRIVER_LOOP_CUTOFF;
 
 use super::support::gpu_or_skip;

@@ -2,7 +2,7 @@
 //! the full shader give the same image. (The CPU side of this is in tests/core/determinism.rs;
 //! what the specialised module lacks is checked in glint-gpu's shader tests.)
 
-use glint_core::scene::BUILTIN_SCENES;
+use glint_io::BUILTIN_SCENES;
 
 use super::support::{builtin, gpu_or_skip, gpu_render};
 

@@ -5,9 +5,9 @@
 use std::path::PathBuf;
 
 use glint_core::compare::{ImageErrors, compare_images};
-use glint_core::scene::load_scene;
 use glint_core::{CpuRender, FlatScene};
 use glint_gpu::GpuRender;
+use glint_io::load_scene;
 
 pub use crate::gpu::gpu_or_skip;
 pub use crate::gpu::gpu_render;

@@ -15,7 +15,7 @@
 //! p.y = 0 exactly and hides the problem).
 
 use glam::DVec3;
-use glint_core::scene::EpsilonMode;
+use glint_scene::EpsilonMode;
 use glint_types::layout::NO_HIT;
 
 use crate::gpu::{Backend, render_both};

@@ -12,7 +12,7 @@
 
 use glam::DVec3;
 use glint_core::FlatScene;
-use glint_core::scene::EpsilonMode;
+use glint_scene::EpsilonMode;
 
 use crate::Y;
 use crate::gpu::{Backend, render_both};

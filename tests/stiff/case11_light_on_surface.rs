@@ -16,7 +16,7 @@
 //! the GPU black except where a shadow ray crosses the sphere within that reach of the light.
 
 use glam::DVec3;
-use glint_core::scene::EpsilonMode;
+use glint_scene::EpsilonMode;
 
 use crate::gpu::{Backend, render_both};
 use crate::reference::{assert_rel, plane_hit, primary_ray, sphere_hit};

@@ -15,7 +15,7 @@
 use std::path::Path;
 
 use glam::DVec3;
-use glint_core::scene::parse_scene;
+use glint_io::parse_scene;
 
 use crate::gpu::render_both;
 use crate::reference::dv;

@@ -255,7 +255,7 @@ fn the_bvh_keeps_the_carpet_within_the_driver_loop_budget() {
 fn many_samples_stay_within_the_driver_loop_budget() {
     // The whitted scene at 64 spp, depth 16, no bailout: before samples went in separate
     // dispatches, lavapipe dropped 0.3 % of its camera rays here without a word.
-    let loaded = glint_core::scene::load_scene("whitted").expect("built-in scene");
+    let loaded = glint_io::load_scene("whitted").expect("built-in scene");
     let mut settings = loaded.desc.render.clone();
     (settings.width, settings.height, settings.spp, settings.max_depth, settings.bailout) = (32, 18, 64, 16, 0.0);
     let flat = glint_core::FlatScene::build(&loaded.desc, &settings);

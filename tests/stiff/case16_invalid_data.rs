@@ -11,7 +11,7 @@
 use std::path::Path;
 use std::sync::Arc;
 
-use glint_core::scene::parse_scene;
+use glint_io::parse_scene;
 
 use crate::Y;
 use crate::gpu::{gpu_or_skip, render_both};

@@ -9,7 +9,7 @@
 //! the scene says so: validation warns at load, naming both objects and the overlap's area,
 //! and both tracers stay deterministic. The pixels each surface wins are printed.
 
-use glint_core::scene::parse_scene;
+use glint_io::parse_scene;
 
 use crate::Y;
 use crate::gpu::render_both;

@@ -2,7 +2,7 @@
 //! translated away from the origin, traced camera-relative (the default) and in world space (as
 //! before rebasing), on log-log axes. Written with the tables (`generated.rs`).
 
-use glint_core::image::write_png_rgb8;
+use glint_io::image_file::write_png_rgb8;
 use plotters::prelude::*;
 
 use crate::case17_translation_and_scale::Sweep;

@@ -120,7 +120,7 @@ fn another_scene_over_unsaved_edits_asks_first_save_discard_or_cancel() {
     h.get_by_label("Save").click();
     h.run_steps(2);
     assert_eq!(h.state().doc.name, "cornell");
-    let (saved, _) = glint_core::scene::parse_scene(&std::fs::read_to_string(&path).unwrap(), &path).unwrap();
+    let (saved, _) = glint_io::parse_scene(&std::fs::read_to_string(&path).unwrap(), &path).unwrap();
     assert_eq!(saved.render.max_depth, 3, "the edit was saved");
 
     // Discard opens without saving.

@@ -52,7 +52,7 @@ fn the_errors_panel_goes_to_the_worst_pixel_and_plots_error_against_samples() {
     assert_eq!(h.state().history.len(), 3);
     assert!(h.query_by_label("3 comparisons of this scene; log10 of the error").is_some(), "the plot's caption");
     // A material edit is another scene: the plot starts over.
-    h.state_mut().doc.desc.world.ambient = glint_core::scene::Rgb::splat(0.3);
+    h.state_mut().doc.desc.world.ambient = glint_scene::Rgb::splat(0.3);
     h.state_mut().doc.edited();
     settle(&mut h);
     assert_eq!(h.state().history.len(), 1);

@@ -3,7 +3,7 @@
 
 use egui::accesskit::Role;
 use egui_kittest::kittest::Queryable;
-use glint_core::scene::{LightKind, RenderSettings};
+use glint_scene::{LightKind, RenderSettings};
 
 use crate::support::{choose, gpu_image, mean_abs_diff, settle, viewer};
 

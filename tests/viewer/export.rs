@@ -2,7 +2,7 @@
 
 use egui::accesskit::Role;
 use egui_kittest::kittest::Queryable;
-use glint_core::image::read_png_text;
+use glint_io::image_file::read_png_text;
 
 use crate::support::{HEIGHT, WIDTH, temp_dir, viewer};
 

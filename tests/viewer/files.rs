@@ -4,7 +4,7 @@ use std::time::{Duration, Instant};
 
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
-use glint_core::scene::{load_scene, parse_scene};
+use glint_io::{load_scene, parse_scene};
 use glint_viewer::{ViewMode, ViewerApp, ViewerOptions};
 
 use crate::support::{choose, settle, temp_dir, viewer};
@@ -73,9 +73,9 @@ fn an_obj_model_dropped_on_the_window_is_opened_with_its_materials() {
     let doc = &h.state().doc;
     assert_eq!(doc.name, "model", "the dropped model is the open document");
     assert_eq!(doc.desc.materials["model/red"].kd.0, [0.8, 0.1, 0.1]);
-    assert!(doc.desc.objects.iter().any(|o| matches!(o, glint_core::scene::ObjectDesc::Model(_))), "the model");
+    assert!(doc.desc.objects.iter().any(|o| matches!(o, glint_scene::ObjectDesc::Model(_))), "the model");
     // Saving keeps the reference: the model's path, never its vertices or unchanged materials.
-    let saved = glint_core::scene::to_toml(&doc.desc).unwrap();
+    let saved = glint_io::to_toml(&doc.desc).unwrap();
     assert!(saved.contains("type = \"model\"") && saved.contains("model.obj"), "{saved}");
     assert!(!saved.contains("vertices") && !saved.contains("model/red"), "{saved}");
     assert!(h.state().message.is_none(), "no error: {:?}", h.state().message);
@@ -99,7 +99,7 @@ fn an_unreadable_scene_is_a_message_not_a_crash() {
 #[test]
 fn without_a_gpu_the_viewer_shows_the_cpu_reference_and_says_why() {
     let base = load_scene("whitted").expect("built-in").desc.render;
-    let settings = glint_core::scene::RenderSettings { width: 64, height: 48, ..base };
+    let settings = glint_scene::RenderSettings { width: 64, height: 48, ..base };
     let options = ViewerOptions {
         scene: "whitted".into(),
         settings: Some(settings),

@@ -5,7 +5,7 @@ use egui::accesskit::Role;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use glint_core::glam::DVec3;
-use glint_core::scene::{Attenuation, LightKind, SpotFalloff};
+use glint_scene::{Attenuation, LightKind, SpotFalloff};
 use glint_viewer::ViewerApp;
 
 use crate::edits::assert_current_agreement;
@@ -95,7 +95,7 @@ fn inverse_square_range_and_smooth_cone_edited_in_the_lights_panel() {
     let light = &h.state().doc.desc.lights[0];
     assert_eq!((light.kind, light.falloff), (LightKind::Spot, SpotFalloff::Smooth));
     assert_eq!((light.inner_cone, light.outer_cone), (Some(10.0), Some(25.0)));
-    assert_eq!((light.exponent, light.cutoff), (0.0, glint_core::scene::NO_CONE_CUTOFF), "power fields cleared");
+    assert_eq!((light.exponent, light.cutoff), (0.0, glint_scene::NO_CONE_CUTOFF), "power fields cleared");
     assert!(h.state().doc.issues.is_empty(), "{:?}", h.state().doc.issues);
     assert!(mean_abs_diff(&point_light, &gpu_image(&h)) > 1e-3, "a smooth spot must change the image");
     assert_current_agreement(&h);

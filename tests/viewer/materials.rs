@@ -5,7 +5,7 @@
 use egui::accesskit::Role;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
-use glint_core::scene::{Fresnel, SpecularModel};
+use glint_scene::{Fresnel, SpecularModel};
 use glint_test_support::gltf::{BufferAt, Fixture};
 use glint_viewer::ViewerApp;
 use serde_json::json;

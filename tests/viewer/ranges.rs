@@ -1,11 +1,11 @@
 //! Every slider and number field of the panels offers exactly the range validation allows
-//! (`glint_core::scene::ranges`), so no valid value is clamped away; and ε = 0, which validation
+//! (`glint_scene::ranges`), so no valid value is clamped away; and ε = 0, which validation
 //! allows, can be typed and reaches the document as 0.
 
 use egui::accesskit::Role;
 use egui_kittest::Harness;
 use egui_kittest::kittest::{NodeT, Queryable};
-use glint_core::scene::{LightKind, Range, ranges};
+use glint_scene::{LightKind, Range, ranges};
 use glint_viewer::ViewerApp;
 
 use crate::support::{choose, settle, viewer};

@@ -77,7 +77,7 @@ fn the_variants_an_edit_is_likely_to_need_are_compiled_ahead_while_idle() {
     // Four samples and one Phong material: both compiled ahead, so no render says it compiles.
     h.state_mut().doc.desc.render.spp = 4;
     if let Some(m) = h.state_mut().doc.desc.materials.values_mut().next() {
-        m.specular_model = glint_core::scene::SpecularModel::Phong;
+        m.specular_model = glint_scene::SpecularModel::Phong;
     }
     h.state_mut().doc.edited();
     let deadline = Instant::now() + Duration::from_secs(120);

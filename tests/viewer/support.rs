@@ -4,7 +4,8 @@ use std::time::{Duration, Instant};
 
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
-use glint_core::scene::{RenderSettings, load_scene};
+use glint_io::load_scene;
+use glint_scene::RenderSettings;
 use glint_viewer::{ViewerApp, ViewerOptions};
 
 /// Small renders keep the CPU reference and lavapipe quick (a whole test under seconds).

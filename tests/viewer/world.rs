@@ -4,7 +4,7 @@
 //! the last valid image stays), and switched off again.
 
 use egui_kittest::kittest::Queryable;
-use glint_core::scene::GlobalAttenuation;
+use glint_scene::GlobalAttenuation;
 
 use crate::edits::assert_current_agreement;
 use crate::support::{gpu_image, mean_abs_diff, settle, viewer};

@@ -13,8 +13,8 @@ use criterion::{Criterion, SamplingMode, Throughput, criterion_group, criterion_
 use glint_core::cpu::TraceContext;
 use glint_core::cpu::raycast::cast_rays;
 use glint_core::rays::RaySet;
-use glint_core::scene::{LoadOptions, load_scene_with};
 use glint_core::{FlatScene, bvh};
+use glint_io::{LoadOptions, load_scene_with};
 
 const RESOLUTION: u32 = 200;
 const THREADS: usize = 2;

@@ -9,8 +9,8 @@ use std::hint::black_box;
 use std::time::Duration;
 
 use criterion::{Criterion, SamplingMode, Throughput, criterion_group, criterion_main};
-use glint_core::scene::load_scene;
 use glint_core::{CpuOptions, FlatScene, RenderControl, render_cpu};
+use glint_io::load_scene;
 
 fn whitted(c: &mut Criterion) {
     let loaded = load_scene("whitted").expect("the built-in whitted scene loads");

@@ -1,12 +1,8 @@
 //! Linear HDR images and their output (PNG with metadata, EXR), written atomically.
 
-use std::io::{BufWriter, Write};
-use std::path::{Path, PathBuf};
-
 use glam::DVec3;
 use rayon::prelude::*;
 
-use crate::atomic::{AtomicWriteError, write_atomically};
 use glint_types::layout::NO_HIT;
 
 /// A linear-radiance image with the first-hit object of every pixel.
@@ -81,7 +77,7 @@ impl std::fmt::Display for Unrepresentable {
             f,
             "{} pixels have radiance that is not a finite f32 number (largest {}, first at pixel ({x}, {y}))",
             self.count,
-            crate::scene::format_number(self.largest)
+            glint_scene::format_number(self.largest)
         )
     }
 }
@@ -153,103 +149,6 @@ static SRGB8_TABLE: std::sync::LazyLock<Srgb8Table> = std::sync::LazyLock::new(|
     Srgb8Table { thresholds, start }
 });
 
-#[derive(Debug, thiserror::Error)]
-pub enum ImageWriteError {
-    /// The I/O error is part of the message, not a `source()`: see `SceneError::Io`.
-    #[error("{path}: {error}")]
-    Io { path: PathBuf, error: std::io::Error },
-    #[error("{path}: PNG encoding failed: {message}")]
-    Png { path: PathBuf, message: String },
-    #[error("{path}: EXR encoding failed: {message}")]
-    Exr { path: PathBuf, message: String },
-    #[error("{path}: unsupported output format; use .png or .exr")]
-    Format { path: PathBuf },
-    /// Never written: a non-finite pixel in a file is a wrong image that looks like a result.
-    #[error("{path}: not written: {found}")]
-    Unrepresentable { path: PathBuf, found: Unrepresentable },
-}
-
-impl From<AtomicWriteError> for ImageWriteError {
-    fn from(AtomicWriteError { path, error }: AtomicWriteError) -> Self {
-        Self::Io { path, error }
-    }
-}
-
-/// Refuses an image with pixels no file can hold as they are (see `HdrImage::unrepresentable`).
-fn check_representable(path: &Path, image: &HdrImage) -> Result<(), ImageWriteError> {
-    match image.unrepresentable() {
-        Some(found) => Err(ImageWriteError::Unrepresentable { path: path.to_owned(), found }),
-        None => Ok(()),
-    }
-}
-
-/// 8-bit sRGB PNG with `metadata` as tEXt chunks.
-pub fn write_png(path: &Path, image: &HdrImage, metadata: &[(String, String)]) -> Result<(), ImageWriteError> {
-    check_representable(path, image)?;
-    write_png_rgb8(path, image.width, image.height, &image.to_srgb8(), metadata)
-}
-
-/// An already encoded 8-bit RGB buffer as PNG with tEXt metadata.
-pub fn write_png_rgb8(
-    path: &Path,
-    width: u32,
-    height: u32,
-    rgb: &[u8],
-    metadata: &[(String, String)],
-) -> Result<(), ImageWriteError> {
-    write_atomically(path, |file| {
-        let io = |error| ImageWriteError::Io { path: path.to_owned(), error };
-        let png_err = |e: png::EncodingError| ImageWriteError::Png { path: path.to_owned(), message: e.to_string() };
-        let mut out = BufWriter::new(file);
-        let mut encoder = png::Encoder::new(&mut out, width, height);
-        encoder.set_color(png::ColorType::Rgb);
-        encoder.set_depth(png::BitDepth::Eight);
-        encoder.set_source_srgb(png::SrgbRenderingIntent::Perceptual);
-        // fdeflate's PNG-tuned fast mode. On the 1280×720 Whitted render it encodes in 10 ms
-        // instead of zlib's default level's 55 ms (5.4×), for a file a third larger (177 kB
-        // against 133 kB): the encoding was a fifth of the whole command's wall time.
-        encoder.set_compression(png::Compression::Fast);
-        for (key, value) in metadata {
-            encoder.add_text_chunk(key.clone(), value.clone()).map_err(png_err)?;
-        }
-        let mut writer = encoder.write_header().map_err(png_err)?;
-        writer.write_image_data(rgb).map_err(png_err)?;
-        writer.finish().map_err(png_err)?;
-        out.flush().map_err(io)
-    })
-}
-
-/// Linear f32 OpenEXR.
-pub fn write_exr(path: &Path, image: &HdrImage) -> Result<(), ImageWriteError> {
-    check_representable(path, image)?;
-    let data: Vec<f32> = image.pixels.iter().flat_map(|p| p.to_array().map(|v| v as f32)).collect();
-    let buffer = image::Rgb32FImage::from_raw(image.width, image.height, data)
-        .ok_or_else(|| ImageWriteError::Exr { path: path.to_owned(), message: "buffer size mismatch".into() })?;
-    write_atomically(path, |file| {
-        let mut out = BufWriter::new(file);
-        buffer
-            .write_to(&mut out, image::ImageFormat::OpenExr)
-            .map_err(|e| ImageWriteError::Exr { path: path.to_owned(), message: e.to_string() })?;
-        out.flush().map_err(|error| ImageWriteError::Io { path: path.to_owned(), error })
-    })
-}
-
-/// PNG or EXR by the file extension.
-pub fn write_image(path: &Path, image: &HdrImage, metadata: &[(String, String)]) -> Result<(), ImageWriteError> {
-    match path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
-        Some("png") => write_png(path, image, metadata),
-        Some("exr") => write_exr(path, image),
-        _ => Err(ImageWriteError::Format { path: path.to_owned() }),
-    }
-}
-
-/// The tEXt chunks of a PNG file.
-pub fn read_png_text(path: &Path) -> Result<Vec<(String, String)>, std::io::Error> {
-    let decoder = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(path)?));
-    let reader = decoder.read_info().map_err(std::io::Error::other)?;
-    Ok(reader.info().uncompressed_latin1_text.iter().map(|t| (t.keyword.clone(), t.text.clone())).collect())
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -291,35 +190,6 @@ mod tests {
             assert_eq!((linear_to_srgb8_by_powf(t), linear_to_srgb8_by_powf(t.next_down())), (k, k - 1));
         }
     }
-
-    #[test]
-    fn radiance_beyond_f32_is_never_written() {
-        // Finite in f64, +inf once stored as f32: before, the EXR held +inf and the PNG white.
-        let dir = std::env::temp_dir().join(format!("glint-core-image-overflow-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        let mut image = HdrImage::new(4, 2);
-        image.pixels[5] = DVec3::new(1.0, 1e45, 0.0);
-        image.pixels[7] = DVec3::splat(f64::NAN);
-        let found = image.unrepresentable().expect("two bad pixels");
-        assert_eq!(found, Unrepresentable { count: 2, first: (1, 1), largest: 1e45 });
-        for name in ["out.exr", "out.png"] {
-            let path = dir.join(name);
-            let error = write_image(&path, &image, &[]).expect_err("refused");
-            assert_eq!(
-                error.to_string(),
-                format!(
-                    "{}: not written: 2 pixels have radiance that is not a finite f32 number (largest 1e45, \
-                     first at pixel (1, 1))",
-                    path.display()
-                )
-            );
-        }
-        assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0, "nothing written");
-        image.pixels[5] = DVec3::splat(f64::from(f32::MAX));
-        image.pixels[7] = DVec3::ZERO;
-        assert_eq!(image.unrepresentable(), None, "f32::MAX itself is representable");
-        std::fs::remove_dir_all(dir).unwrap();
-    }
 }
 
 /// What produced an image, for `render_metadata`.
@@ -335,7 +205,7 @@ pub struct RenderInfo<'a> {
 
 /// The render settings and provenance as PNG tEXt chunks (`glint:*` keys), the same for
 /// `glint render` and the viewer's "Save image".
-pub fn render_metadata(s: &crate::scene::RenderSettings, info: &RenderInfo) -> Vec<(String, String)> {
+pub fn render_metadata(s: &glint_scene::RenderSettings, info: &RenderInfo) -> Vec<(String, String)> {
     let mut m: Vec<(String, String)> = [
         ("Software", format!("glint {}", env!("CARGO_PKG_VERSION"))),
         ("glint:scene", info.scene.to_string()),

@@ -1,7 +1,6 @@
 //! Glint core: the scene model and its validation, the flat GPU-ready layout, and the exact
 //! f64 CPU reference tracer of the Phong/Whitted model. No GPU code lives here.
 
-pub mod atomic;
 pub mod backend;
 pub mod bvh;
 pub mod compare;
@@ -9,15 +8,12 @@ pub mod cpu;
 pub mod flat;
 pub mod huge_pages;
 pub mod image;
-pub mod interrupt;
 pub mod memory;
-pub mod model;
 pub mod probe_terms;
 pub mod ray_tree;
 pub mod rays;
 pub mod rebase;
 pub mod render;
-pub mod scene;
 mod texture_table;
 
 pub use backend::Backend;

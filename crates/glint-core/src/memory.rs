@@ -11,7 +11,7 @@ use std::path::Path;
 
 use crate::bvh::{BvhNode, QuantizedPair, WideNode};
 use crate::flat::{GPU_LEAF_BYTES_PER_PRIM, LeafCorners};
-use crate::scene::{ObjectDesc, RenderSettings, SceneDesc};
+use glint_scene::{ObjectDesc, RenderSettings, SceneDesc};
 use glint_types::layout::{GpuMesh, GpuPlane, GpuSphere, GpuTriangle};
 
 /// Peak memory of a TOML scene while it is parsed and checked, per byte of the file: the text,
@@ -124,7 +124,7 @@ struct Counts {
 
 fn counts(desc: &SceneDesc) -> Counts {
     let mut c = Counts::default();
-    let mesh = |m: &crate::scene::MeshDesc, c: &mut Counts| {
+    let mesh = |m: &glint_scene::MeshDesc, c: &mut Counts| {
         c.meshes += 1;
         c.triangles += m.triangles.len() as u64;
         c.vertices += m.vertices.len() as u64;
@@ -329,7 +329,7 @@ mod tests {
 
     #[test]
     fn a_render_estimate_grows_with_pixels_and_backends() {
-        let b = crate::scene::builtin("whitted").expect("built-in");
+        let b = glint_io::builtin("whitted").expect("built-in");
         let (desc, _) = b.load(None).expect("loads");
         let mut settings = desc.render.clone();
         (settings.width, settings.height) = (1000, 1000);

@@ -20,7 +20,7 @@ use crate::bvh::{f32_down, f32_up};
 use crate::cpu::intersect::Leaving;
 use crate::cpu::walk::closest_hit;
 use crate::cpu::{Ray, TraceContext, v3};
-use crate::scene::{LightKind, Wrap};
+use glint_scene::{LightKind, Wrap};
 use glint_types::layout::{GpuPlane, GpuSphere, origin_power};
 
 /// The world frame of a scene as built: origin 0, offsets' length scale 1.
@@ -253,7 +253,7 @@ mod tests {
         focus_within(scene, eye, reach(scene, eye))
     }
     use crate::bvh::BvhNode;
-    use crate::scene::parse_scene;
+    use glint_io::parse_scene;
 
     fn scene(offset: f64) -> FlatScene {
         let text = format!(

@@ -262,7 +262,7 @@ pub fn pick_object(scene: &FlatScene, x: u32, y: u32) -> u32 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::builtin;
+    use glint_io::builtin;
 
     #[test]
     fn auto_traces_small_scenes_by_brute_force_and_large_ones_through_the_bvh() {

@@ -4,7 +4,7 @@
 
 use std::sync::Arc;
 
-use crate::scene::{CheckerDesc, Filter, Rgb, TextureDesc, TextureImage, UvTransform, Wrap};
+use glint_scene::{CheckerDesc, Filter, Rgb, TextureDesc, TextureImage, UvTransform, Wrap};
 use glint_types::layout::{GpuTexture, NO_TEXTURE};
 
 /// The texture table and texel buffer under construction.

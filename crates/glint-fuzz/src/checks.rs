@@ -5,8 +5,9 @@ use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
 use glint_core::render::{CpuOptions, CpuRenderError, RenderControl, render_cpu};
-use glint_core::scene::{LoadOptions, SceneDesc, load_scene_with, parse_scene};
 use glint_core::{Accel, FlatScene};
+use glint_io::{LoadOptions, load_scene_with, parse_scene};
+use glint_scene::SceneDesc;
 
 /// The fuzz targets, by the name of their corpus folder.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -5,10 +5,10 @@
 
 use std::time::Duration;
 
-use glint_core::scene::{BUILTIN_SCENES, load_scene};
 use glint_core::{CpuOptions, FlatScene, RenderControl, render_cpu};
 use glint_gpu::shaders::{ShaderKey, compose, module_stats};
 use glint_gpu::{AdapterRequest, GpuContext, GpuOptions, GpuTracer};
+use glint_io::{BUILTIN_SCENES, load_scene};
 
 const RUNS: usize = 3;
 

@@ -268,7 +268,7 @@ pub fn module_stats(module: &naga::Module) -> ModuleStats {
 mod tests {
     use super::*;
     use crate::binding::Binding;
-    use glint_core::scene::{BUILTIN_SCENES, parse_scene};
+    use glint_io::{BUILTIN_SCENES, parse_scene};
 
     fn builtin_keys() -> Vec<(String, ShaderKey)> {
         BUILTIN_SCENES

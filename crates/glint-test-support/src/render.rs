@@ -3,8 +3,8 @@
 use std::path::{Path, PathBuf};
 
 use glint_core::compare::diff_heatmap;
-use glint_core::image::{write_png, write_png_rgb8};
 use glint_core::{CpuOptions, CpuRender, FlatScene, HdrImage, RenderControl, render_cpu};
+use glint_io::image_file::{write_png, write_png_rgb8};
 
 /// Indices of the pixels with a NaN or infinite channel.
 pub fn nonfinite_pixels(image: &HdrImage) -> Vec<usize> {

@@ -5,7 +5,8 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use glint_core::FlatScene;
-use glint_core::scene::{MeshDesc, ObjectDesc, SceneDesc, parse_scene};
+use glint_io::parse_scene;
+use glint_scene::{MeshDesc, ObjectDesc, SceneDesc};
 
 /// Widens a stored `[f32; 4]` (xyz) exactly to f64: the tracer's own `v3`, under the name the
 /// tests use.
@@ -238,7 +239,7 @@ impl SceneText {
     pub fn desc_in(&self, dir: &Path) -> SceneDesc {
         let file = dir.join("scene.toml");
         std::fs::write(&file, &self.text).expect("scene file written");
-        match glint_core::scene::load_scene(&file.to_string_lossy()) {
+        match glint_io::load_scene(&file.to_string_lossy()) {
             Ok(loaded) => loaded.desc,
             Err(e) => panic!("test scene does not load: {e}\n--- scene ---\n{}", self.text),
         }

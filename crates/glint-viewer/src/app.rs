@@ -9,7 +9,7 @@ use egui::Ui;
 use glint_core::FlatScene;
 use glint_core::glam::DVec3;
 use glint_core::image::{RenderInfo, render_metadata};
-use glint_core::scene::LoadOptions;
+use glint_io::LoadOptions;
 use glint_types::layout::NO_HIT;
 
 use crate::automation::{Automation, Frame};
@@ -38,7 +38,7 @@ pub struct ViewerOptions {
     /// How the scene is opened: a generated scene's resolution, a model file's import options.
     pub load: LoadOptions,
     /// Render settings replacing the scene's own (command-line flags).
-    pub settings: Option<glint_core::scene::RenderSettings>,
+    pub settings: Option<glint_scene::RenderSettings>,
     /// The view to start in (default: side by side, or the CPU view without a GPU).
     pub view: Option<ViewMode>,
     /// Render, save a screenshot of the window here, and close.

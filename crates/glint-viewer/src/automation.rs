@@ -7,7 +7,7 @@ use std::path::PathBuf;
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
-use glint_core::image::write_png_rgb8;
+use glint_io::image_file::write_png_rgb8;
 
 use crate::camera_control;
 use crate::document::Document;
@@ -258,7 +258,7 @@ impl Automation {
 }
 
 /// An edit of the scene.
-pub type SceneEdit = fn(&mut glint_core::scene::SceneDesc);
+pub type SceneEdit = fn(&mut glint_scene::SceneDesc);
 
 /// Edits that each need a shader variant of their own (a feature the scene did not use), in
 /// the order the features benchmark applies them.
@@ -267,13 +267,13 @@ pub const FEATURE_EDITS: [(&str, SceneEdit); 5] = [
     ("max depth 0", |d| d.render.max_depth = 0),
     ("a spot light", |d| {
         if let Some(l) = d.lights.first_mut() {
-            l.kind = glint_core::scene::LightKind::Spot;
+            l.kind = glint_scene::LightKind::Spot;
             l.direction = Some([0.0, -1.0, 0.0]);
             l.position.get_or_insert([0.0, 5.0, 0.0]);
         }
     }),
-    ("Phong", |d| d.materials.values_mut().for_each(|m| m.specular_model = glint_core::scene::SpecularModel::Phong)),
+    ("Phong", |d| d.materials.values_mut().for_each(|m| m.specular_model = glint_scene::SpecularModel::Phong)),
     ("Cook–Torrance", |d| {
-        d.materials.values_mut().for_each(|m| m.specular_model = glint_core::scene::SpecularModel::CookTorrance)
+        d.materials.values_mut().for_each(|m| m.specular_model = glint_scene::SpecularModel::CookTorrance)
     }),
 ];

@@ -2,7 +2,7 @@
 //! look-at point, keeping the scene's up vector.
 
 use glint_core::glam::DVec3;
-use glint_core::scene::{CameraDesc, ObjectDesc, SceneDesc};
+use glint_scene::{CameraDesc, ObjectDesc, SceneDesc};
 
 /// Keeps the camera off the poles, where the up vector and the view direction align.
 const MAX_PITCH: f64 = 1.55;

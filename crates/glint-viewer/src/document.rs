@@ -5,11 +5,11 @@ use std::cell::{Cell, RefCell};
 use std::path::{Path, PathBuf};
 
 use glint_core::FlatScene;
-use glint_core::atomic::{AtomicWriteError, write_file_atomically};
-use glint_core::model::ModelFormat;
-use glint_core::scene::{
-    CameraDesc, FieldIssue, LoadOptions, LoadedScene, ObjectDesc, Report, SceneDesc, load_scene_with, to_toml,
-    validate, validate_objects, validate_with_objects,
+use glint_io::ModelFormat;
+use glint_io::atomic::{AtomicWriteError, write_file_atomically};
+use glint_io::{LoadOptions, LoadedScene, load_scene_with, to_toml};
+use glint_scene::{
+    CameraDesc, FieldIssue, ObjectDesc, Report, SceneDesc, validate, validate_objects, validate_with_objects,
 };
 
 use crate::error::ViewerError;

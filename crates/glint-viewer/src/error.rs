@@ -5,14 +5,14 @@ use std::path::PathBuf;
 #[derive(Debug, thiserror::Error)]
 pub enum ViewerError {
     #[error(transparent)]
-    Scene(#[from] glint_core::scene::SceneError),
+    Scene(#[from] glint_io::SceneError),
     /// The I/O error is part of the message, not a `source()`: see `SceneError::Io`.
     #[error("{path}: cannot write the scene: {error}")]
     SaveScene { path: PathBuf, error: std::io::Error },
     #[error("cannot serialise the scene: {0}")]
     Serialise(String),
     #[error(transparent)]
-    Image(#[from] glint_core::image::ImageWriteError),
+    Image(#[from] glint_io::image_file::ImageWriteError),
     #[error("nothing to save yet: {0}")]
     NotReady(&'static str),
     #[error(

@@ -3,7 +3,7 @@
 //! Points belong to one scene: an edit of anything but the render settings starts over.
 
 use glint_core::compare::ImageErrors;
-use glint_core::scene::{CameraDesc, LightDesc, MaterialDesc, RenderSettings, SceneDesc, WorldDesc};
+use glint_scene::{CameraDesc, LightDesc, MaterialDesc, RenderSettings, SceneDesc, WorldDesc};
 
 /// One finished comparison.
 #[derive(Clone, Debug, PartialEq)]
@@ -136,7 +136,7 @@ mod tests {
 
     #[test]
     fn points_of_one_scene_line_up_along_each_axis_and_another_scene_starts_over() {
-        let (desc, _) = glint_core::scene::builtin("whitted").expect("built-in").load(None).expect("loads");
+        let (desc, _) = glint_io::builtin("whitted").expect("built-in").load(None).expect("loads");
         let mut h = ErrorHistory::default();
         for (rev, spp, depth) in [(1, 4, 5), (2, 1, 5), (3, 1, 2), (4, 16, 5)] {
             h.record(&desc, point(rev, spp, depth, 1.0 / f64::from(spp)));
@@ -153,7 +153,7 @@ mod tests {
         h.record(&desc, point(5, 4, 5, 0.5));
         assert_eq!(h.len(), 4);
         let mut other = desc.clone();
-        other.world.ambient = glint_core::scene::Rgb::splat(0.5);
+        other.world.ambient = glint_scene::Rgb::splat(0.5);
         h.record(&other, point(6, 1, 5, 0.1));
         assert_eq!(h.len(), 1, "another scene starts a new history");
     }

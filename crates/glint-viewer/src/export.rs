@@ -4,8 +4,9 @@
 
 use std::path::Path;
 
-use glint_core::image::{RenderInfo, render_metadata, write_exr, write_png_rgb8};
-use glint_core::scene::RenderSettings;
+use glint_core::image::{RenderInfo, render_metadata};
+use glint_io::image_file::{write_exr, write_png_rgb8};
+use glint_scene::RenderSettings;
 
 use crate::comparison::Compared;
 use crate::cpu_worker::Finished;

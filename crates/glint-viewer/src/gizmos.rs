@@ -4,7 +4,7 @@
 use egui::Color32;
 use glint_core::cpu::v3;
 use glint_core::glam::DVec3;
-use glint_core::scene::{LightKind, SceneDesc, SpotFalloff};
+use glint_scene::{LightKind, SceneDesc, SpotFalloff};
 use glint_types::layout::GpuCamera;
 
 #[derive(Clone, Debug, PartialEq)]

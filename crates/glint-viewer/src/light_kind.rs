@@ -3,7 +3,7 @@
 //! of types loses nothing. Domain logic of the document, used by the Lights panel.
 
 use glint_core::glam::DVec3;
-use glint_core::scene::{Attenuation, LightDesc, LightKind, NO_CONE_CUTOFF, SpotFalloff};
+use glint_scene::{Attenuation, LightDesc, LightKind, NO_CONE_CUTOFF, SpotFalloff};
 
 /// The cone a light gets when it becomes a spot light or leaves "no cone".
 pub const NEW_CONE_CUTOFF: f64 = 30.0;
@@ -106,7 +106,7 @@ pub fn switch_kind(light: &mut LightDesc, kind: LightKind, aside: &mut SetAside,
 
 #[cfg(test)]
 mod tests {
-    use glint_core::scene::{SceneDesc, validate};
+    use glint_scene::{SceneDesc, validate};
 
     use super::*;
     use crate::document::Document;

@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 
 use egui::Ui;
-use glint_core::scene::BUILTIN_SCENES;
+use glint_io::BUILTIN_SCENES;
 
 use crate::document::Document;
 use crate::layout::Layout;

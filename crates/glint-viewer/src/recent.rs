@@ -2,7 +2,7 @@
 
 use std::path::{Path, PathBuf};
 
-use glint_core::atomic::write_file_atomically;
+use glint_io::atomic::write_file_atomically;
 
 const MAX_RECENT: usize = 8;
 

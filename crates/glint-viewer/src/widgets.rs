@@ -1,12 +1,12 @@
 //! Small editing widgets shared by the panels. Each returns whether the value changed; every
 //! widget is labelled so that screen readers (and the UI tests, through AccessKit) find it.
-//! Ranges come from validation's table (`glint_core::scene::ranges`): an editor accepts every
+//! Ranges come from validation's table (`glint_scene::ranges`): an editor accepts every
 //! valid value, typed or dragged, and clamps only what validation would refuse anyway.
 
 use egui::{DragValue, Response, Slider, SliderClamping, Ui, WidgetInfo};
 
 use crate::help::{hint, option_tooltip, with_tooltip};
-use glint_core::scene::{Range, Rgb, ranges};
+use glint_scene::{Range, Rgb, ranges};
 
 /// The smallest positive value a logarithmic slider reaches by dragging (ε goes down to 1e-9);
 /// 0 itself sits at the left end and can be typed.

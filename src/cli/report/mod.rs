@@ -20,8 +20,8 @@ use std::time::Instant;
 use anyhow::{Context, anyhow, bail};
 use clap::Args;
 use glint_core::Backend;
-use glint_core::atomic::write_file_atomically;
-use glint_core::scene::RenderSettings;
+use glint_io::atomic::write_file_atomically;
+use glint_scene::RenderSettings;
 use indicatif::{ProgressBar, ProgressStyle};
 
 use self::plan::Plan;
@@ -85,10 +85,8 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
             "--scenes names no scene; give built-in names or scene files, comma-separated (or leave it out for the default set)"
         );
     }
-    let scenes = names
-        .iter()
-        .map(|n| load(n, &glint_core::scene::LoadOptions::default(), None))
-        .collect::<anyhow::Result<Vec<_>>>()?;
+    let scenes =
+        names.iter().map(|n| load(n, &glint_io::LoadOptions::default(), None)).collect::<anyhow::Result<Vec<_>>>()?;
     let mut seen = HashMap::new();
     for s in &scenes {
         if let Some(other) = seen.insert(s.name.clone(), s.source.clone()) {

@@ -2,7 +2,7 @@
 //! deduplicated (a configuration that two sweeps share is measured once and tagged with both).
 
 use glint_core::Backend;
-use glint_core::scene::EpsilonMode;
+use glint_scene::EpsilonMode;
 
 /// The bailout thresholds of the sweep, kept symbolic so that tables can print "1/255".
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]

@@ -6,7 +6,7 @@ use std::sync::OnceLock;
 
 use anyhow::anyhow;
 use glint_core::Backend;
-use glint_core::image::write_png_rgb8;
+use glint_io::image_file::write_png_rgb8;
 use plotters::prelude::*;
 
 use super::sweep::{Row, SceneResult};

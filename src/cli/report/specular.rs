@@ -6,8 +6,9 @@
 //! the GPU, the specialised shader of the model.
 
 use anyhow::Context;
-use glint_core::scene::{EpsilonMode, LoadedScene, RenderSettings, SpecularModel};
 use glint_core::{Backend, FlatScene};
+use glint_io::LoadedScene;
+use glint_scene::{EpsilonMode, RenderSettings, SpecularModel};
 use indicatif::ProgressBar;
 
 use super::plan::{Bailout, Config};
@@ -36,7 +37,7 @@ pub fn renders(backends: &[Backend], runs: u32) -> usize {
 }
 
 /// `desc` with every material's specular model set to `model`.
-fn forced(loaded: &LoadedScene, model: SpecularModel) -> glint_core::scene::SceneDesc {
+fn forced(loaded: &LoadedScene, model: SpecularModel) -> glint_scene::SceneDesc {
     let mut desc = loaded.desc.clone();
     for m in desc.materials.values_mut() {
         m.specular_model = model;
@@ -99,7 +100,7 @@ mod tests {
     #[test]
     fn every_model_is_forced_on_every_material_and_decides_the_feature_bits() {
         use glint_types::layout::feature;
-        let loaded = glint_core::scene::load_scene("highlights").expect("built-in scene");
+        let loaded = glint_io::load_scene("highlights").expect("built-in scene");
         let settings = settings_for(&loaded.desc.render, &config(Backend::Cpu));
         for (model, bit) in [
             (SpecularModel::Blinn, feature::BLINN),

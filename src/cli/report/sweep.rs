@@ -7,9 +7,10 @@ use std::time::Duration;
 use anyhow::Context;
 use glint_core::compare::{ImageErrors, compare_images};
 use glint_core::cpu::RayCounts;
-use glint_core::scene::{LoadedScene, RenderSettings, SpecularModel, overflow_causes};
 use glint_core::{Backend, CpuOptions, FlatScene, HdrImage, RenderControl, render_cpu};
 use glint_gpu::{GpuOptions, GpuTracer, ShaderKey};
+use glint_io::LoadedScene;
+use glint_scene::{RenderSettings, SpecularModel, overflow_causes};
 use indicatif::ProgressBar;
 
 use super::plan::{Config, Group, Planned};
@@ -159,7 +160,7 @@ pub fn render(engines: &mut Engines, flat: &FlatScene, config: &Config) -> anyho
             let options =
                 CpuOptions { threads: engines.threads, specialise: config.specialise, ..CpuOptions::default() };
             // SIGINT/SIGTERM stop the sweep at the next tile (see `cli::interrupt`).
-            let cancel = glint_core::interrupt::flag();
+            let cancel = glint_io::interrupt::flag();
             let r = render_cpu(flat, &options, RenderControl { cancel: Some(&cancel), ..RenderControl::default() })?;
             Ok(Sample { image: r.image, counts: r.counts, time: r.elapsed, gpu: None })
         }

@@ -18,7 +18,7 @@ use glam::DVec3;
 use glint_types::{LightTags, MaterialTags};
 
 use crate::flat::{Corners, FlatScene};
-use crate::scene::{EpsilonMode, Filter, Wrap};
+use glint_scene::{EpsilonMode, Filter, Wrap};
 use glint_types::layout::{UnknownTag, feature};
 
 /// The default of `TraceContext::max_rays_per_sample`: 2^22 rays, about 3 s of one core. A

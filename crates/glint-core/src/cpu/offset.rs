@@ -11,7 +11,7 @@ use glam::DVec3;
 
 use super::TraceContext;
 use super::intersect::{Leaving, Prim};
-use crate::scene::EpsilonMode;
+use glint_scene::EpsilonMode;
 
 /// Below this magnitude a coordinate gets a fixed offset (integer ULP steps are too small
 /// near zero). Same value as Wächter & Binder.

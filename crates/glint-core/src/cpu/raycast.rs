@@ -30,7 +30,7 @@ mod tests {
     use crate::FlatScene;
     use crate::cpu::intersect;
     use crate::rays::{PRIM_NONE, RaySet};
-    use crate::scene::bumpy::bumpy;
+    use glint_scene::bumpy::bumpy;
 
     #[test]
     fn bvh_hits_equal_brute_force_on_both_ray_sets() {

@@ -10,7 +10,7 @@ use glam::{DVec2, DVec3};
 
 use super::{TraceContext, v3};
 use crate::flat::FlatScene;
-use crate::scene::{Filter, Wrap};
+use glint_scene::{Filter, Wrap};
 use glint_types::layout::{GpuTexture, GpuTriangle, MESH_HAS_UVS, UV_ACROSS_X, UV_ACROSS_Y, UV_ACROSS_Z, UV_MESH};
 
 /// The axis planar coordinates are taken across: the geometric normal's dominant one.
@@ -168,7 +168,7 @@ mod tests {
 
     /// A 4×2 texture of distinct texels: red = x / 4, green = y / 2 (exact in f32), blue 1.
     fn scene_with(wrap: u32, filter: u32, transform_u: [f32; 4]) -> FlatScene {
-        let (desc, _) = crate::scene::builtin("bumpy").expect("built-in").load(Some(4)).expect("loads");
+        let (desc, _) = glint_io::builtin("bumpy").expect("built-in").load(Some(4)).expect("loads");
         let mut s = FlatScene::build(&desc, &desc.render);
         s.texels = (0..2).flat_map(|y| (0..4).map(move |x| [x as f32 / 4.0, y as f32 / 2.0, 1.0, 1.0])).collect();
         s.textures = vec![GpuTexture {

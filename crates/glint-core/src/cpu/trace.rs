@@ -16,7 +16,7 @@ use super::texture::{planar_axis, planar_uv, triangle_uv, triangle_uv_origin};
 use super::walk::closest_hit;
 use super::{Ray, RayCounts, TraceContext, v3};
 use crate::ray_tree::{Cut, NoTree, RayNode, TreeRecorder, record_shadow_rays};
-use crate::scene::EpsilonMode;
+use glint_scene::EpsilonMode;
 use glint_types::RayKind;
 use glint_types::layout::{NO_HIT, UV_MESH, feature};
 

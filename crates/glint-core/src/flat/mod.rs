@@ -7,11 +7,11 @@ use glam::DVec3;
 use crate::bvh::{self, BvhNodes};
 use glint_types::{LightTags, MaterialTags};
 
-use crate::scene::{
+use crate::texture_table::TextureTable;
+use glint_scene::{
     Attenuation, AttenuationModel, EpsilonMode, Filter, LightDesc, LightKind, MaterialDesc, MeshDesc, NO_CONE_CUTOFF,
     ObjectDesc, PlaneDesc, RenderSettings, Rgb, SceneDesc, SpecularModel, SphereDesc, SpotFalloff, Wrap,
 };
-use crate::texture_table::TextureTable;
 use glint_types::layout::{
     GpuCamera, GpuLight, GpuMaterial, GpuMesh, GpuPlane, GpuSphere, GpuTexture, GpuTriangle, LIGHT_CASTS_SHADOWS,
     MESH_HAS_NORMALS, MESH_HAS_UVS, NO_CONE_VERSIN, NO_TEXTURE, SceneHeader, UnknownTag, feature, origin_power,
@@ -314,7 +314,7 @@ fn flat_header(desc: &SceneDesc, settings: &RenderSettings, p: &Geometry, materi
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::builtin;
+    use glint_io::builtin;
 
     #[test]
     fn rebuild_with_another_camera_light_and_material_value_equals_build() {

@@ -4,7 +4,7 @@
 
 use egui::{Color32, Ui};
 use egui_plot::{Bar, BarChart, Legend, Line, Plot, PlotPoints, Points, uniform_grid_spacer};
-use glint_core::scene::RenderSettings;
+use glint_scene::RenderSettings;
 
 use crate::comparison::Compared;
 use crate::error_history::{Axis, ErrorHistory};

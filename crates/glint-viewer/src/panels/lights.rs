@@ -2,7 +2,7 @@
 
 use egui::Ui;
 use glint_core::glam::DVec3;
-use glint_core::scene::{
+use glint_scene::{
     Attenuation, AttenuationModel, DEFAULT_INNER_CONE, DEFAULT_OUTER_CONE, LightDesc, LightKind, NO_CONE_CUTOFF,
     SpotFalloff, ranges,
 };

@@ -1,7 +1,7 @@
 //! Materials panel: the material of the picked object (or any material by name).
 
 use egui::Ui;
-use glint_core::scene::{CheckerDesc, Fresnel, ObjectDesc, Rgb, SpecularModel, format_number, ranges};
+use glint_scene::{CheckerDesc, Fresnel, ObjectDesc, Rgb, SpecularModel, format_number, ranges};
 
 use crate::document::Document;
 use crate::widgets::{choice, log_slider, rgb_edit};

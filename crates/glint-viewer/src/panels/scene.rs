@@ -1,7 +1,7 @@
 //! Scene panel: camera, world and render settings.
 
 use egui::Ui;
-use glint_core::scene::{CameraDesc, EpsilonMode, GlobalAttenuation, ObjectDesc, SpecularModel, ranges};
+use glint_scene::{CameraDesc, EpsilonMode, GlobalAttenuation, ObjectDesc, SpecularModel, ranges};
 
 use crate::document::Document;
 use crate::widgets::{choice, int_slider, log_slider, number, rgb_edit, slider};

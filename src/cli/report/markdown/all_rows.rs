@@ -93,7 +93,7 @@ mod tests {
     use glint_core::Backend;
     use glint_core::compare::ImageErrors;
     use glint_core::cpu::RayCounts;
-    use glint_core::scene::{EpsilonMode, RenderSettings};
+    use glint_scene::{EpsilonMode, RenderSettings};
 
     use super::super::super::plan::{Bailout, Config, Group};
     use super::super::super::sweep::{GpuExtra, Row, SceneResult};

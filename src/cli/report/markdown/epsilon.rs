@@ -2,7 +2,7 @@
 
 use std::fmt::Write as _;
 
-use glint_core::scene::EpsilonMode;
+use glint_scene::EpsilonMode;
 
 use super::super::plan::{Config, Group};
 use super::super::sweep::{Row, SceneResult};

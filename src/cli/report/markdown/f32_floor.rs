@@ -4,7 +4,7 @@
 use std::fmt::Write as _;
 
 use glint_core::Backend;
-use glint_core::scene::EpsilonMode;
+use glint_scene::EpsilonMode;
 
 use super::super::sweep::SceneResult;
 use super::cells::{psnr, sci};

@@ -3,7 +3,7 @@
 
 use std::fmt::Write as _;
 
-use glint_core::scene::SpecularModel;
+use glint_scene::SpecularModel;
 
 use super::super::specular::{DEPTH, SPP};
 use super::super::sweep::SceneResult;

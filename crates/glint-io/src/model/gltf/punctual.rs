@@ -1,8 +1,7 @@
 //! KHR_lights_punctual lights and glTF cameras, placed by their node's world transform.
 
-use crate::model::Mat4;
-use crate::model::ModelCamera;
-use crate::scene::{Attenuation, CameraDesc, FieldIssue, LightDesc, LightKind, Rgb, SpotFalloff};
+use glint_scene::{Attenuation, CameraDesc, FieldIssue, LightDesc, LightKind, Rgb, SpotFalloff};
+use glint_scene::{Mat4, ModelCamera};
 
 fn normalized(v: [f64; 3]) -> Option<[f64; 3]> {
     let len = v.iter().map(|c| c * c).sum::<f64>().sqrt();

@@ -1,22 +1,8 @@
-//! Errors and warnings of scene loading; every one names the file and the field.
+//! Errors of scene loading; every one names the file (and, through `FieldIssue`, the field).
 
-use std::fmt;
 use std::path::PathBuf;
 
-/// One problem with one field, e.g. `lights[1].cutoff: 120 is outside [0, 90] or 180`.
-#[derive(Clone, Debug, PartialEq)]
-pub struct FieldIssue {
-    /// Dotted path of the field, as written in the scene file (`objects[2].radius`).
-    pub field: String,
-    /// What is wrong and what is allowed.
-    pub problem: String,
-}
-
-impl fmt::Display for FieldIssue {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}: {}", self.field, self.problem)
-    }
-}
+use glint_scene::FieldIssue;
 
 #[derive(Debug, thiserror::Error)]
 pub enum SceneError {
@@ -34,10 +20,9 @@ pub enum SceneError {
     Resolution { name: String, value: u32, min: u32, max: u32 },
     #[error(
         "'{name}' is not a generated scene: a resolution ({value}) applies only to the generated \
-         built-in scenes ({})",
-        super::builtin::generated_names()
+         built-in scenes ({generated})"
     )]
-    NotGenerated { name: String, value: u32 },
+    NotGenerated { name: String, value: u32, generated: String },
     #[error(
         "'{name}' is not a model file: --scene-index, --camera, --exposure and --ground apply only to \
          model files (.gltf, .glb, .obj)"

@@ -3,15 +3,10 @@
 //! decoded image itself, which both tracers read from the flat layout's texel buffer.
 
 use std::fmt;
-use std::path::Path;
 use std::sync::Arc;
 
 use glint_types::{Filter, Wrap};
 use serde::{Deserialize, Serialize};
-
-use super::desc::SceneDesc;
-use super::error::{FieldIssue, SceneError};
-use crate::model::uri::{MAX_RESOURCE_BYTES, resolve_uri};
 
 /// `KHR_texture_transform`: uv' = T(offset) · R(rotation) · S(scale) · uv, in that order.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -160,7 +155,7 @@ pub fn srgb_to_linear(c: f64) -> f64 {
     if c <= 0.04045 { c / 12.92 } else { ((c + 0.055) / 1.055).powf(2.4) }
 }
 
-fn check_size(width: u32, height: u32) -> Result<(), TextureError> {
+pub fn check_size(width: u32, height: u32) -> Result<(), TextureError> {
     if width == 0 || height == 0 {
         return Err(TextureError::Empty);
     }
@@ -174,39 +169,6 @@ fn check_size(width: u32, height: u32) -> Result<(), TextureError> {
 }
 
 impl TextureImage {
-    /// Decodes a PNG or JPEG file's bytes, converting sRGB colour channels to linear once
-    /// (alpha stays linear). The size is checked from the header, before decoding.
-    pub fn decode(bytes: &[u8], color: ColorSpace) -> Result<Self, TextureError> {
-        let reader = image::ImageReader::new(std::io::Cursor::new(bytes))
-            .with_guessed_format()
-            .map_err(|e| TextureError::Decode(e.to_string()))?;
-        match reader.format() {
-            Some(image::ImageFormat::Png | image::ImageFormat::Jpeg) => {}
-            _ => return Err(TextureError::Format),
-        }
-        let (width, height) = reader.into_dimensions().map_err(|e| TextureError::Decode(e.to_string()))?;
-        check_size(width, height)?;
-        let reader = image::ImageReader::new(std::io::Cursor::new(bytes))
-            .with_guessed_format()
-            .map_err(|e| TextureError::Decode(e.to_string()))?;
-        let decoded = reader.decode().map_err(|e| TextureError::Decode(e.to_string()))?;
-        // Channels as exact fractions of their 8- or 16-bit maximum, in f64, then linear.
-        let convert = |p: [f64; 4]| {
-            let colour = |c: f64| match color {
-                ColorSpace::Srgb => srgb_to_linear(c) as f32,
-                ColorSpace::Linear => c as f32,
-            };
-            [colour(p[0]), colour(p[1]), colour(p[2]), p[3] as f32]
-        };
-        let sixteen_bit = decoded.color().bytes_per_pixel() > decoded.color().channel_count();
-        let texels = if sixteen_bit {
-            decoded.into_rgba16().pixels().map(|p| convert(p.0.map(|c| f64::from(c) / 65535.0))).collect()
-        } else {
-            decoded.into_rgba8().pixels().map(|p| convert(p.0.map(|c| f64::from(c) / 255.0))).collect()
-        };
-        Self::from_linear_rgba(width, height, texels)
-    }
-
     /// An image of linear RGBA texels, row by row from the top.
     pub fn from_linear_rgba(width: u32, height: u32, texels: Vec<[f32; 4]>) -> Result<Self, TextureError> {
         check_size(width, height)?;
@@ -233,97 +195,9 @@ impl TextureImage {
     }
 }
 
-/// The textures of one material, with the field name each has in a scene file.
-pub fn material_textures(m: &super::desc::MaterialDesc) -> [(&'static str, Option<&TextureDesc>); 2] {
-    [("texture", m.texture.as_ref()), ("emission_texture", m.emission_texture.as_ref())]
-}
-
-/// Decodes every texture of `desc` whose image is not filled yet, reading its path relative to
-/// `file` (the scene file) through `resolve_uri`. Each image file is decoded once, however many
-/// textures name it. Every failure is reported, naming `materials.NAME.FIELD.path`.
-pub fn load_textures(desc: &mut SceneDesc, file: &Path) -> Result<(), SceneError> {
-    let mut decoded: Vec<(String, Arc<TextureImage>)> = Vec::new();
-    let mut issues = Vec::new();
-    for (name, m) in &mut desc.materials {
-        for (field, texture) in [("texture", &mut m.texture), ("emission_texture", &mut m.emission_texture)] {
-            let Some(t) = texture.as_mut().filter(|t| t.image.is_none()) else { continue };
-            if let Some((_, image)) = decoded.iter().find(|(p, _)| *p == t.path) {
-                t.image = Some(Arc::clone(image));
-                continue;
-            }
-            let image = resolve_uri(file, &t.path, MAX_RESOURCE_BYTES)
-                .map_err(|e| e.to_string())
-                .and_then(|bytes| TextureImage::decode(&bytes, ColorSpace::Srgb).map_err(|e| e.to_string()));
-            match image {
-                Ok(image) => {
-                    let image = Arc::new(image);
-                    decoded.push((t.path.clone(), Arc::clone(&image)));
-                    t.image = Some(image);
-                }
-                Err(problem) => {
-                    issues.push(FieldIssue { field: format!("materials.{name}.{field}.path"), problem });
-                }
-            }
-        }
-    }
-    if issues.is_empty() { Ok(()) } else { Err(SceneError::Invalid { file: file.to_owned(), issues }) }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn png(width: u32, height: u32, rgba: &[u8]) -> Vec<u8> {
-        let mut out = Vec::new();
-        let mut encoder = png::Encoder::new(&mut out, width, height);
-        encoder.set_color(png::ColorType::Rgba);
-        encoder.set_depth(png::BitDepth::Eight);
-        encoder.write_header().unwrap().write_image_data(rgba).unwrap();
-        out
-    }
-
-    #[test]
-    fn srgb_is_converted_once_and_alpha_stays() {
-        let bytes = png(2, 1, &[0, 128, 255, 128, 255, 255, 255, 0]);
-        let t = TextureImage::decode(&bytes, ColorSpace::Srgb).expect("decodes");
-        assert_eq!((t.width(), t.height()), (2, 1));
-        let want = srgb_to_linear(128.0 / 255.0) as f32;
-        assert_eq!(t.texels()[0], [0.0, want, 1.0, (128.0_f64 / 255.0) as f32]);
-        assert_eq!(t.texels()[1], [1.0, 1.0, 1.0, 0.0]);
-        let linear = TextureImage::decode(&bytes, ColorSpace::Linear).expect("decodes");
-        assert_eq!(linear.texels()[0][1], (128.0_f64 / 255.0) as f32);
-    }
-
-    #[test]
-    fn other_formats_garbage_and_huge_headers_are_clear_errors() {
-        assert!(matches!(TextureImage::decode(b"not an image", ColorSpace::Srgb), Err(TextureError::Format)));
-        let mut bytes = png(1, 1, &[0, 0, 0, 255]);
-        bytes.truncate(bytes.len() - 20);
-        assert!(TextureImage::decode(&bytes, ColorSpace::Srgb).is_err());
-        // A valid 1×1 PNG whose header claims 20000×20000 texels (CRC fixed): refused from
-        // the header, before anything is decoded.
-        let mut huge = png(1, 1, &[0, 0, 0, 255]);
-        huge[16..20].copy_from_slice(&20000u32.to_be_bytes());
-        huge[20..24].copy_from_slice(&20000u32.to_be_bytes());
-        let crc = crc32(&huge[12..29]);
-        huge[29..33].copy_from_slice(&crc.to_be_bytes());
-        let e = TextureImage::decode(&huge, ColorSpace::Srgb).unwrap_err();
-        assert!(matches!(e, TextureError::TooLarge { width: 20000, height: 20000 }), "{e}");
-        let e = TextureImage::from_linear_rgba(2, 2, vec![[0.0; 4]; 3]).unwrap_err();
-        assert_eq!(e.to_string(), "3 texels given for a 2x2 image");
-    }
-
-    /// PNG's chunk CRC (ISO 3309), bit by bit.
-    fn crc32(bytes: &[u8]) -> u32 {
-        let mut crc = u32::MAX;
-        for &b in bytes {
-            crc ^= u32::from(b);
-            for _ in 0..8 {
-                crc = if crc & 1 != 0 { (crc >> 1) ^ 0xEDB8_8320 } else { crc >> 1 };
-            }
-        }
-        !crc
-    }
 
     #[test]
     fn transform_is_translation_rotation_scale() {

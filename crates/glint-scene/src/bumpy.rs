@@ -10,10 +10,11 @@
 use std::collections::BTreeMap;
 use std::f64::consts::PI;
 
-use super::desc::{
-    CameraDesc, CheckerDesc, MaterialDesc, MeshDesc, ObjectDesc, RenderSettings, SceneDesc, SphereDesc, WorldDesc,
-};
+use super::camera::CameraDesc;
+use super::desc::{ObjectDesc, RenderSettings, SceneDesc, SphereDesc, WorldDesc};
 use super::light::LightDesc;
+use super::material::{CheckerDesc, MaterialDesc};
+use super::mesh::MeshDesc;
 use super::rgb::Rgb;
 use glint_types::LightKind;
 
@@ -172,7 +173,7 @@ pub fn bumpy_glass(n: u32) -> SceneDesc {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::validate;
+    use crate::validate;
 
     fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
         [a[0] - b[0], a[1] - b[1], a[2] - b[2]]

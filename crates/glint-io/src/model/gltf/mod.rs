@@ -17,10 +17,10 @@ use std::path::{Path, PathBuf};
 use ::gltf::mesh::Mode;
 
 use self::accessor::Buffers;
-use super::Mat4;
-use super::uri::{MAX_RESOURCE_BYTES, UriError, resolve_uri};
-use super::{ImportOptions, Model};
-use crate::scene::{FieldIssue, MeshDesc};
+use super::ImportOptions;
+use crate::uri::{MAX_RESOURCE_BYTES, UriError, resolve_uri};
+use glint_scene::{FieldIssue, MeshDesc};
+use glint_scene::{Mat4, Model};
 
 pub use self::material::{MIRROR_ROUGHNESS, blinn_exponent};
 
@@ -138,7 +138,7 @@ pub fn load_gltf(path: &Path, options: &ImportOptions) -> Result<Model, GltfErro
                 "is reached twice from the scene (a cycle or a shared child; glTF node hierarchies are trees)".into(),
             ));
         }
-        let local = Mat4::from_node(node.transform()).map_err(|p| at(format!("nodes[{i}]"), p))?;
+        let local = node_matrix(node.transform()).map_err(|p| at(format!("nodes[{i}]"), p))?;
         let world = parent.mul(&local);
         if let Some(mesh) = node.mesh() {
             for primitive in mesh.primitives() {
@@ -482,9 +482,51 @@ fn triangulate(mode: Mode, indices: &[u32]) -> Vec<[u32; 3]> {
     }
 }
 
+/// A node's local transform: its matrix, or T·R·S from translation, rotation (a unit
+/// quaternion x, y, z, w; normalised here, as glTF requires it to be unit already) and scale.
+fn node_matrix(transform: ::gltf::scene::Transform) -> Result<Mat4, String> {
+    match transform {
+        ::gltf::scene::Transform::Matrix { matrix } => Ok(Mat4(matrix.map(|c| c.map(f64::from)))),
+        ::gltf::scene::Transform::Decomposed { translation, rotation, scale } => {
+            let q = rotation.map(f64::from);
+            let len = q.iter().map(|c| c * c).sum::<f64>().sqrt();
+            if !(len.is_finite() && len > 1e-12) {
+                return Err(format!("rotation {rotation:?} is not a unit quaternion"));
+            }
+            let mut m = Mat4::from_quaternion(q);
+            // Columns of R scaled by S, then the translation.
+            for (column, s) in m.0.iter_mut().zip(scale) {
+                for c in column.iter_mut().take(3) {
+                    *c *= f64::from(s);
+                }
+            }
+            m.0[3] = [f64::from(translation[0]), f64::from(translation[1]), f64::from(translation[2]), 1.0];
+            Ok(m)
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn close(a: [f64; 3], b: [f64; 3]) -> bool {
+        a.iter().zip(b).all(|(x, y)| (x - y).abs() < 1e-12)
+    }
+
+    #[test]
+    fn trs_rotates_scales_then_translates() {
+        let h = std::f32::consts::FRAC_1_SQRT_2;
+        // 90° about +y: +x goes to −z.
+        let m = node_matrix(::gltf::scene::Transform::Decomposed {
+            translation: [1.0, 2.0, 3.0],
+            rotation: [0.0, h, 0.0, h],
+            scale: [2.0, 1.0, 1.0],
+        })
+        .unwrap();
+        assert!(close(m.point([1.0, 0.0, 0.0]), [1.0, 2.0, 1.0]), "{:?}", m.point([1.0, 0.0, 0.0]));
+        assert!(m.determinant3() > 0.0);
+    }
 
     #[test]
     fn strips_keep_the_first_triangles_orientation_and_fans_share_the_first_vertex() {

@@ -14,8 +14,9 @@ use std::collections::BTreeMap;
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 
-use super::super::desc::{MeshDesc, ObjectDesc, SceneDesc};
+use super::super::desc::{ObjectDesc, SceneDesc};
 use super::super::error::FieldIssue;
+use super::super::mesh::MeshDesc;
 use glint_types::layout::f32_spacing;
 
 /// Normal cells per unit of each component.
@@ -389,7 +390,7 @@ fn clip(subject: &[DVec2], clipper: &[DVec2]) -> Vec<DVec2> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::{CameraDesc, MeshDesc, PlaneDesc, RenderSettings, WorldDesc};
+    use crate::{CameraDesc, MeshDesc, PlaneDesc, RenderSettings, WorldDesc};
 
     fn mesh(vertices: Vec<[f64; 3]>, triangles: Vec<[u32; 3]>, name: &str) -> ObjectDesc {
         ObjectDesc::Mesh(MeshDesc {
@@ -465,13 +466,13 @@ mod tests {
 #[cfg(test)]
 mod bumpy {
     use super::*;
-    use crate::scene::load_scene;
 
     /// The bumpy sphere folds slivers at its poles within an f32 step of each other's plane:
     /// overlaps of 9e-8 on a sphere 2.9 units across, which no pixel shows.
     #[test]
     fn the_bumpy_spheres_pole_is_not_warned() {
-        let desc = load_scene("bumpy").expect("built-in").desc;
+        // The built-in scene's default resolution (glint-io's `DEFAULT_RESOLUTION`).
+        let desc = crate::bumpy::bumpy(500);
         assert!(coplanar_overlaps(&desc).is_empty());
     }
 }

@@ -5,14 +5,17 @@
 
 use std::collections::BTreeMap;
 
-use glint_types::{EpsilonMode, Fresnel, SpecularModel};
+use glint_types::EpsilonMode;
 use serde::{Deserialize, Serialize};
 
+use super::buffered::Content;
+use super::camera::CameraDesc;
 use super::light::LightDesc;
+use super::material::MaterialDesc;
+use super::mesh::MeshDesc;
 use super::model_ref::ModelDesc;
 use super::number::shorten;
 use super::rgb::Rgb;
-use super::texture::TextureDesc;
 
 /// A whole scene file.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -66,12 +69,12 @@ fn lights_as_tables<'de, D: serde::Deserializer<'de>>(deserializer: D) -> Result
 /// parser's own position cannot: an object is read as a table first (`ObjectDesc::from_table`).
 fn objects_by_index<'de, D: serde::Deserializer<'de>>(deserializer: D) -> Result<Vec<ObjectDesc>, D::Error> {
     use serde::de::Error;
-    let entries = Vec::<toml::Value>::deserialize(deserializer)?;
+    let entries = Vec::<Content>::deserialize(deserializer)?;
     entries
         .into_iter()
         .enumerate()
         .map(|(i, entry)| match entry {
-            toml::Value::Table(table) => {
+            Content::Map(table) => {
                 ObjectDesc::from_table(table).map_err(|e| D::Error::custom(format!("objects[{i}]{e}")))
             }
             other => Err(D::Error::custom(format!(
@@ -87,7 +90,7 @@ fn article(noun: &str) -> &'static str {
     if noun.starts_with(['a', 'e', 'i', 'o', 'u']) { "an" } else { "a" }
 }
 
-/// toml puts the field on a line of its own ("…\nin `radius`"): one line reads better.
+/// An error on one line, however its format wrote it.
 fn one_line(e: &impl std::fmt::Display) -> String {
     e.to_string().trim().replace('\n', " ")
 }
@@ -119,26 +122,6 @@ impl Default for RenderSettings {
             seed: 0,
         }
     }
-}
-
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct CameraDesc {
-    pub position: [f64; 3],
-    pub look_at: [f64; 3],
-    #[serde(default = "default_up")]
-    pub up: [f64; 3],
-    /// Vertical field of view in degrees, in [1e-6, 179].
-    #[serde(default = "default_fov")]
-    pub fov_y: f64,
-}
-
-fn default_up() -> [f64; 3] {
-    [0.0, 1.0, 0.0]
-}
-
-fn default_fov() -> f64 {
-    45.0
 }
 
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -192,86 +175,6 @@ impl Default for GlobalAttenuation {
     }
 }
 
-/// The Beckmann roughness m of a material that does not set it: the lobe width of the default
-/// shininess 32, since (N·H)^n ≈ exp(−n·α²/2) and the Beckmann lobe ≈ exp(−α²/m²) near the
-/// peak give m = √(2/n) = 0.25.
-pub const DEFAULT_ROUGHNESS: f64 = 0.25;
-
-fn default_roughness() -> f64 {
-    DEFAULT_ROUGHNESS
-}
-
-fn is_default_fresnel(f: &Fresnel) -> bool {
-    *f == Fresnel::default()
-}
-
-fn is_default_roughness(m: &f64) -> bool {
-    *m == DEFAULT_ROUGHNESS
-}
-
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct MaterialDesc {
-    pub ka: Rgb,
-    pub kd: Rgb,
-    pub ks: Rgb,
-    /// Specular exponent n, in [0, 1e6].
-    pub shininess: f64,
-    pub specular_model: SpecularModel,
-    /// Beckmann roughness m (RMS slope of the microfacets) of the Cook–Torrance lobe, in
-    /// [1e-3, 1]; kept, unused, under the other models.
-    #[serde(default = "default_roughness", skip_serializing_if = "is_default_roughness")]
-    pub roughness: f64,
-    /// The Cook–Torrance lobe's Fresnel factor; kept, unused, under the other models.
-    #[serde(skip_serializing_if = "is_default_fresnel")]
-    pub fresnel: Fresnel,
-    pub kr: Rgb,
-    pub kt: Rgb,
-    pub ior: f64,
-    pub emission: Rgb,
-    /// A two-colour checker (k_d and `checker.kd`) in planar coordinates: stored as a 2×2
-    /// texture, so it colours k_a as well as k_d, as `texture` does.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub checker: Option<CheckerDesc>,
-    /// Base-colour texture: its colour multiplies k_a and k_d (POV-Ray's pigment, OpenGL's
-    /// ambient-and-diffuse colour material, glTF's base colour × factor).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub texture: Option<TextureDesc>,
-    /// Emission texture: its colour multiplies E_m.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub emission_texture: Option<TextureDesc>,
-}
-
-impl Default for MaterialDesc {
-    fn default() -> Self {
-        Self {
-            ka: Rgb::splat(1.0),
-            kd: Rgb::splat(0.8),
-            ks: Rgb::splat(0.0),
-            shininess: 32.0,
-            specular_model: SpecularModel::Blinn,
-            roughness: DEFAULT_ROUGHNESS,
-            fresnel: Fresnel::Exact,
-            kr: Rgb::splat(0.0),
-            kt: Rgb::splat(0.0),
-            ior: 1.5,
-            emission: Rgb::splat(0.0),
-            checker: None,
-            texture: None,
-            emission_texture: None,
-        }
-    }
-}
-
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct CheckerDesc {
-    /// The second colour of the checker (the first is the material's k_d).
-    pub kd: Rgb,
-    /// Edge length of one square in scene units, > 0.
-    pub size: f64,
-}
-
 /// An object: `type = "sphere" | "plane" | "mesh" | "model"` and that kind's fields.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 #[serde(tag = "type", rename_all = "snake_case")]
@@ -304,31 +207,16 @@ pub struct PlaneDesc {
     pub name: String,
 }
 
-/// An indexed triangle mesh, optionally with per-vertex shading normals and texture
-/// coordinates.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct MeshDesc {
-    pub vertices: Vec<[f64; 3]>,
-    pub triangles: Vec<[u32; 3]>,
-    #[serde(default)]
-    pub normals: Option<Vec<[f64; 3]>>,
-    /// Texture coordinates (u, v) per vertex, glTF's convention: (0, 0) is the image's
-    /// top-left corner. Without them a texture is mapped in planar coordinates.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub uvs: Option<Vec<[f64; 2]>>,
-    pub material: String,
-    #[serde(default)]
-    pub name: String,
-}
-
 /// By hand rather than serde's internally tagged derive: that one buffers the object before
 /// choosing its kind, and its errors lose the field ("expected f64" without saying where).
 /// Here the kind's own struct reads the fields, and an error names the one at fault.
 impl<'de> Deserialize<'de> for ObjectDesc {
     fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
         use serde::de::Error;
-        let table = toml::Table::deserialize(deserializer)?;
+        let table = match Content::deserialize(deserializer)? {
+            Content::Map(table) => table,
+            other => return Err(D::Error::custom(format!("an object is a table, not {}", other.type_str()))),
+        };
         Self::from_table(table).map_err(|e| D::Error::custom(e.trim_start_matches(['.', ' ']).to_string()))
     }
 }
@@ -339,21 +227,21 @@ impl ObjectDesc {
 
     /// The object a table describes; an error is the rest of a message after the object's own
     /// path: `.type: …` for its kind, ` (sphere): …` for a field of that kind.
-    fn from_table(mut table: toml::Table) -> Result<Self, String> {
+    fn from_table(mut table: Vec<(String, Content)>) -> Result<Self, String> {
         let allowed = Self::KINDS.join(", ");
-        let kind = match table.remove("type") {
-            Some(toml::Value::String(kind)) => kind,
+        let kind = match table.iter().position(|(k, _)| k == "type").map(|i| table.remove(i).1) {
+            Some(Content::Str(kind)) => kind,
             Some(other) => {
                 return Err(format!(".type: must be a string, one of: {allowed}; got {}", shorten(&other.to_string())));
             }
             None => return Err(format!(".type: missing; an object needs a type, one of: {allowed}")),
         };
-        let fields = toml::Value::Table(table);
+        let fields = Content::Map(table);
         let object = match kind.as_str() {
-            "sphere" => fields.try_into().map(Self::Sphere),
-            "plane" => fields.try_into().map(Self::Plane),
-            "mesh" => fields.try_into().map(Self::Mesh),
-            "model" => fields.try_into().map(|m| Self::Model(Box::new(m))),
+            "sphere" => fields.into_value().map(Self::Sphere),
+            "plane" => fields.into_value().map(Self::Plane),
+            "mesh" => fields.into_value().map(Self::Mesh),
+            "model" => fields.into_value().map(|m| Self::Model(Box::new(m))),
             other => return Err(format!(".type: unknown object type \"{}\"; allowed: {allowed}", shorten(other))),
         };
         object.map_err(|e| format!(" ({kind}): {}", one_line(&e)))
@@ -398,4 +286,32 @@ impl ObjectDesc {
             Self::Model(_) => "model",
         }
     }
+}
+
+impl SceneDesc {
+    /// Every light that shines on the scene, in the flat layout's order: the scene's
+    /// `[[lights]]`, then the lights of each model object that says `lights = true`.
+    pub fn traced_lights(&self) -> impl Iterator<Item = &LightDesc> {
+        let imported = self.objects.iter().flat_map(|o| match o {
+            ObjectDesc::Model(m) if m.lights => m.loaded.as_deref().map_or(&[][..], |l| l.lights.as_slice()),
+            ObjectDesc::Model(_) | ObjectDesc::Sphere(_) | ObjectDesc::Plane(_) | ObjectDesc::Mesh(_) => &[][..],
+        });
+        self.lights.iter().chain(imported)
+    }
+}
+
+/// `desc` as a file would hold it: materials a model brought in and nobody changed are left
+/// out (they come from the model again when the file is loaded).
+pub fn without_imported_materials(desc: &SceneDesc) -> SceneDesc {
+    let mut out = desc.clone();
+    for object in &desc.objects {
+        let ObjectDesc::Model(model) = object else { continue };
+        let Some(loaded) = &model.loaded else { continue };
+        for (name, imported) in &loaded.materials {
+            if out.materials.get(name) == Some(imported) {
+                out.materials.remove(name);
+            }
+        }
+    }
+    out
 }

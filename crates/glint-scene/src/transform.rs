@@ -4,35 +4,11 @@
 
 /// A 4×4 affine matrix, column-major as glTF writes it: `m[column][row]`.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct Mat4(pub [[f64; 4]; 4]);
+pub struct Mat4(pub [[f64; 4]; 4]);
 
 impl Mat4 {
     pub const IDENTITY: Self =
         Self([[1.0, 0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0], [0.0, 0.0, 0.0, 1.0]]);
-
-    /// A node's local transform: its matrix, or T·R·S from translation, rotation (a unit
-    /// quaternion x, y, z, w; normalised here, as glTF requires it to be unit already) and scale.
-    pub fn from_node(transform: ::gltf::scene::Transform) -> Result<Self, String> {
-        match transform {
-            ::gltf::scene::Transform::Matrix { matrix } => Ok(Self(matrix.map(|c| c.map(f64::from)))),
-            ::gltf::scene::Transform::Decomposed { translation, rotation, scale } => {
-                let q = rotation.map(f64::from);
-                let len = q.iter().map(|c| c * c).sum::<f64>().sqrt();
-                if !(len.is_finite() && len > 1e-12) {
-                    return Err(format!("rotation {rotation:?} is not a unit quaternion"));
-                }
-                let mut m = Self::from_quaternion(q);
-                // Columns of R scaled by S, then the translation.
-                for (column, s) in m.0.iter_mut().zip(scale) {
-                    for c in column.iter_mut().take(3) {
-                        *c *= f64::from(s);
-                    }
-                }
-                m.0[3] = [f64::from(translation[0]), f64::from(translation[1]), f64::from(translation[2]), 1.0];
-                Ok(m)
-            }
-        }
-    }
 
     /// The rotation of the quaternion [x, y, z, w] (normalised here first).
     pub fn from_quaternion(q: [f64; 4]) -> Self {
@@ -88,20 +64,6 @@ mod tests {
 
     fn close(a: [f64; 3], b: [f64; 3]) -> bool {
         a.iter().zip(b).all(|(x, y)| (x - y).abs() < 1e-12)
-    }
-
-    #[test]
-    fn trs_rotates_scales_then_translates() {
-        let h = std::f32::consts::FRAC_1_SQRT_2;
-        // 90° about +y: +x goes to −z.
-        let m = Mat4::from_node(::gltf::scene::Transform::Decomposed {
-            translation: [1.0, 2.0, 3.0],
-            rotation: [0.0, h, 0.0, h],
-            scale: [2.0, 1.0, 1.0],
-        })
-        .unwrap();
-        assert!(close(m.point([1.0, 0.0, 0.0]), [1.0, 2.0, 1.0]), "{:?}", m.point([1.0, 0.0, 0.0]));
-        assert!(m.determinant3() > 0.0);
     }
 
     #[test]

@@ -1,59 +1,20 @@
-//! Model files (glTF 2.0, OBJ/MTL): their import, and the lab scene a model opens in.
+//! Model files (glTF 2.0, OBJ/MTL): their import into glint-scene's `Model`, and the lab
+//! scene a model opens in.
 
 pub mod gltf;
 mod ground;
 pub mod obj;
-mod transform;
-pub mod uri;
 
-use std::collections::BTreeMap;
 use std::path::Path;
 
 pub use self::gltf::{GltfError, load_gltf};
 pub use ground::{FLOOR_COVER, GROUND_GAP, Ground};
 pub use obj::{ObjError, load_obj};
-pub use uri::{MAX_RESOURCE_BYTES, UriError, resolve_uri};
 
-pub(crate) use transform::Mat4;
-
-use crate::scene::{
-    CameraDesc, FieldIssue, LightDesc, LightKind, LoadedModel, MaterialDesc, MeshDesc, ModelDesc, ObjectDesc,
-    PlaneDesc, RenderSettings, Rgb, SceneDesc, TransformDesc, WorldDesc,
+use glint_scene::{
+    CameraDesc, FieldIssue, LightDesc, LightKind, LoadedModel, MAX_IMAGE_SIDE, MaterialDesc, Model, ModelCamera,
+    ModelDesc, ObjectDesc, PlaneDesc, RenderSettings, Rgb, SceneDesc, TransformDesc, WorldDesc,
 };
-
-/// What an importer read from a model file, in world space, and what it set aside with a
-/// warning.
-#[derive(Clone, Debug, Default)]
-pub struct Model {
-    pub meshes: Vec<MeshDesc>,
-    pub materials: BTreeMap<String, MaterialDesc>,
-    /// What the file said of each material, by the same names (shown beside the mapping).
-    pub sources: BTreeMap<String, MaterialSource>,
-    pub lights: Vec<LightDesc>,
-    pub cameras: Vec<ModelCamera>,
-    pub warnings: Vec<FieldIssue>,
-}
-
-/// A material as the model file wrote it, before `map_material` turned it into the seed's
-/// coefficients: kept so that the mapping can be shown and checked (the viewer's Materials
-/// panel), never written to a scene file.
-#[derive(Clone, Debug, PartialEq)]
-pub struct MaterialSource {
-    /// "glTF" or "MTL".
-    pub format: &'static str,
-    /// The fields the file gave, in its own terms (`baseColorFactor`, `Kd`, `illum`, …) and
-    /// order, with their values (one to four numbers); fields the file left out are absent.
-    pub fields: Vec<(&'static str, Vec<f64>)>,
-}
-
-/// A camera of the file (glTF perspective cameras).
-#[derive(Clone, Debug, PartialEq)]
-pub struct ModelCamera {
-    pub name: String,
-    pub camera: CameraDesc,
-    /// The width/height ratio the camera was made for, if the file gives one.
-    pub aspect: Option<f64>,
-}
 
 /// Choices made when a model file is opened (`--scene-index`, `--camera`, `--exposure`,
 /// `--ground`).
@@ -166,7 +127,7 @@ pub fn scene_around(
     };
     if let Some(aspect) = camera.aspect {
         // Keep the height, give the width the camera's aspect (within the image limits).
-        let width = (f64::from(render.height) * aspect).round().clamp(1.0, f64::from(crate::scene::MAX_IMAGE_SIDE));
+        let width = (f64::from(render.height) * aspect).round().clamp(1.0, f64::from(MAX_IMAGE_SIDE));
         render.width = width as u32;
     }
     let lights = std::mem::take(&mut model.lights);

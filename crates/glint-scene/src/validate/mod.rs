@@ -6,12 +6,15 @@
 
 use glam::DVec3;
 
-use super::desc::{MaterialDesc, MeshDesc, ObjectDesc, PlaneDesc, RenderSettings, SceneDesc, SphereDesc};
+use super::desc::{ObjectDesc, PlaneDesc, RenderSettings, SceneDesc, SphereDesc};
 use super::error::FieldIssue;
 use super::light::{Attenuation, LightDesc, NO_CONE_CUTOFF};
+use super::material::MaterialDesc;
+use super::material::material_textures;
+use super::mesh::MeshDesc;
 use super::number::{format_number as num, shorten};
 use super::rgb::Rgb;
-use super::texture::{TextureDesc, material_textures};
+use super::texture::TextureDesc;
 use glint_types::{LightKind, SpotFalloff};
 
 mod coplanar;

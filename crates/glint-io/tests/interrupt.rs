@@ -5,7 +5,7 @@
 use std::io::Write;
 use std::sync::atomic::Ordering;
 
-use glint_core::atomic::{write_atomically, write_file_atomically};
+use glint_io::atomic::{write_atomically, write_file_atomically};
 
 #[test]
 fn a_requested_stop_ends_the_write_and_leaves_neither_output_nor_temporary() {
@@ -14,9 +14,9 @@ fn a_requested_stop_ends_the_write_and_leaves_neither_output_nor_temporary() {
     std::fs::write(&path, "previous").unwrap();
     // The stop arrives in the middle of the write: the writer's next write fails.
     let result = write_atomically(&path, |file| {
-        let io = |error| glint_core::atomic::AtomicWriteError { path: path.clone(), error };
+        let io = |error| glint_io::atomic::AtomicWriteError { path: path.clone(), error };
         file.write_all(&[0; 4096]).map_err(io)?;
-        glint_core::interrupt::flag().store(true, Ordering::Relaxed);
+        glint_io::interrupt::flag().store(true, Ordering::Relaxed);
         file.write_all(&[0; 4096]).map_err(io)
     });
     let error = result.expect_err("interrupted");
@@ -27,7 +27,7 @@ fn a_requested_stop_ends_the_write_and_leaves_neither_output_nor_temporary() {
     let other = dir.path().join("other.png");
     let error = write_atomically(&other, |file| {
         let _ = file.write_all(b"ignored");
-        Ok::<(), glint_core::atomic::AtomicWriteError>(())
+        Ok::<(), glint_io::atomic::AtomicWriteError>(())
     })
     .expect_err("interrupted");
     assert!(error.is_interrupted());

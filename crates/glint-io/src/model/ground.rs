@@ -4,7 +4,7 @@
 
 use std::str::FromStr;
 
-use crate::scene::{FieldIssue, MeshDesc};
+use glint_scene::{FieldIssue, MeshDesc};
 use glint_types::layout::f32_spacing;
 
 /// Whether an opened model stands on a grey ground plane.

@@ -3,16 +3,18 @@
 //! run time, so saving a scene writes the reference again, never the vertices.
 
 use std::collections::BTreeMap;
-use std::collections::btree_map::Entry;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use serde::{Deserialize, Serialize};
 
-use super::desc::{CameraDesc, MaterialDesc, MeshDesc, ObjectDesc, SceneDesc};
 use super::error::FieldIssue;
 use super::light::LightDesc;
-use crate::model::{ImportOptions, MaterialSource, Model, ModelCamera, load_model_file};
+use crate::camera::CameraDesc;
+use crate::material::MaterialDesc;
+use crate::mesh::MeshDesc;
+use crate::model::{MaterialSource, Model, ModelCamera};
+use crate::transform::Mat4;
 
 /// A model file in a scene.
 #[derive(Clone, Debug, Serialize, Deserialize)]
@@ -154,8 +156,7 @@ impl TransformDesc {
     }
 
     /// The transform as a matrix (T·R·S); call after `problems()` came back empty.
-    pub(crate) fn matrix(&self) -> crate::model::Mat4 {
-        use crate::model::Mat4;
+    pub(crate) fn matrix(&self) -> Mat4 {
         if let Some(m) = self.matrix {
             return Mat4(std::array::from_fn(|c| std::array::from_fn(|r| m[4 * c + r])));
         }
@@ -188,15 +189,6 @@ impl TransformDesc {
 }
 
 impl ModelDesc {
-    /// Reads the file (relative to `folder`) and places it (`LoadedModel::place`).
-    pub fn load(&self, folder: &Path, prefix: &str) -> Result<LoadedModel, String> {
-        let file = folder.join(&self.path);
-        let exposure = self.exposure.unwrap_or(ImportOptions::default().exposure);
-        let options = ImportOptions { scene_index: self.scene_index, exposure, ..ImportOptions::default() };
-        let model = load_model_file(&file, &options)?;
-        Ok(LoadedModel::place(file, model, &self.transform, prefix))
-    }
-
     /// The prefix of the model's material names: the object's name, else the file's stem.
     pub fn prefix(&self) -> String {
         if !self.name.is_empty() {
@@ -264,87 +256,4 @@ impl LoadedModel {
             .collect();
         Self { file, meshes, materials, sources, cameras, lights, warnings: model.warnings }
     }
-}
-
-impl SceneDesc {
-    /// Every light that shines on the scene, in the flat layout's order: the scene's
-    /// `[[lights]]`, then the lights of each model object that says `lights = true`.
-    pub fn traced_lights(&self) -> impl Iterator<Item = &LightDesc> {
-        let imported = self.objects.iter().flat_map(|o| match o {
-            ObjectDesc::Model(m) if m.lights => m.loaded.as_deref().map_or(&[][..], |l| l.lights.as_slice()),
-            ObjectDesc::Model(_) | ObjectDesc::Sphere(_) | ObjectDesc::Plane(_) | ObjectDesc::Mesh(_) => &[][..],
-        });
-        self.lights.iter().chain(imported)
-    }
-}
-
-/// Loads every `type = "model"` object of `desc` (paths relative to `folder`) and adds its
-/// materials to the scene's, except those the scene defines itself: a scene material named
-/// `OBJECT/MATERIAL` overrides the model's. Returns the models' warnings, or every error.
-pub fn load_models(desc: &mut SceneDesc, folder: &Path) -> Result<Vec<FieldIssue>, Vec<FieldIssue>> {
-    let (mut warnings, mut errors) = (Vec::new(), Vec::new());
-    for (i, object) in desc.objects.iter_mut().enumerate() {
-        let ObjectDesc::Model(model) = object else { continue };
-        let problems = model.transform.problems();
-        if !problems.is_empty() {
-            errors.extend(
-                problems
-                    .into_iter()
-                    .map(|(f, problem)| FieldIssue { field: format!("objects[{i}].transform.{f}"), problem }),
-            );
-            continue;
-        }
-        match model.load(folder, &model.prefix()) {
-            Ok(loaded) => {
-                warnings.extend(loaded.warnings.iter().map(|w| FieldIssue {
-                    field: format!("objects[{i}] ({}): {}", model.path, w.field),
-                    problem: w.problem.clone(),
-                }));
-                for (name, material) in &loaded.materials {
-                    match desc.materials.entry(name.clone()) {
-                        Entry::Vacant(e) => {
-                            e.insert(material.clone());
-                        }
-                        Entry::Occupied(mut e) => share_model_images(e.get_mut(), material),
-                    }
-                }
-                model.loaded = Some(Arc::new(loaded));
-            }
-            Err(problem) => errors.push(FieldIssue { field: format!("objects[{i}].path"), problem }),
-        }
-    }
-    if errors.is_empty() { Ok(warnings) } else { Err(errors) }
-}
-
-/// A scene material that overrides an imported one keeps the model's decoded image where its
-/// texture names the same image: the name is the model's own (`images[0]` for an image inside
-/// the file, a URI relative to the model's folder), which cannot be read from the scene's
-/// folder. So a saved edit of a textured model material loads again.
-fn share_model_images(over: &mut MaterialDesc, imported: &MaterialDesc) {
-    for (mine, theirs) in
-        [(&mut over.texture, &imported.texture), (&mut over.emission_texture, &imported.emission_texture)]
-    {
-        if let (Some(mine), Some(theirs)) = (mine.as_mut(), theirs)
-            && mine.image.is_none()
-            && mine.path == theirs.path
-        {
-            mine.image.clone_from(&theirs.image);
-        }
-    }
-}
-
-/// `desc` as a file would hold it: materials a model brought in and nobody changed are left
-/// out (they come from the model again when the file is loaded).
-pub fn without_imported_materials(desc: &SceneDesc) -> SceneDesc {
-    let mut out = desc.clone();
-    for object in &desc.objects {
-        let ObjectDesc::Model(model) = object else { continue };
-        let Some(loaded) = &model.loaded else { continue };
-        for (name, imported) in &loaded.materials {
-            if out.materials.get(name) == Some(imported) {
-                out.materials.remove(name);
-            }
-        }
-    }
-    out
 }

@@ -5,9 +5,10 @@
 use std::ops::RangeInclusive;
 use std::path::Path;
 
-use super::desc::SceneDesc;
-use super::error::{FieldIssue, SceneError};
-use super::{bumpy, parse_scene, validate};
+use glint_scene::{FieldIssue, SceneDesc, bumpy, validate};
+
+use crate::error::SceneError;
+use crate::parse_scene;
 
 /// Resolutions N a generated scene accepts (4·N² triangles for `bumpy`: 16 to 9,000,000; the
 /// GPU buffer limits end lower, and say so).
@@ -35,7 +36,7 @@ macro_rules! scene {
     ($name:literal) => {
         BuiltinScene {
             name: $name,
-            source: BuiltinSource::Toml(include_str!(concat!("../../../../assets/scenes/", $name, ".toml"))),
+            source: BuiltinSource::Toml(include_str!(concat!("../../../assets/scenes/", $name, ".toml"))),
         }
     };
 }
@@ -78,7 +79,9 @@ impl BuiltinScene {
         let source = format!("builtin:{}", self.name);
         match self.source {
             BuiltinSource::Toml(text) => match resolution {
-                Some(value) => Err(SceneError::NotGenerated { name: self.name.to_string(), value }),
+                Some(value) => {
+                    Err(SceneError::NotGenerated { name: self.name.to_string(), value, generated: generated_names() })
+                }
                 None => parse_scene(text, Path::new(&source)),
             },
             BuiltinSource::Generated(generate) => {
@@ -117,10 +120,7 @@ mod tests {
         let (desc, _) = bumpy.load(Some(4)).expect("N = 4 loads");
         assert!(desc.description.contains("4·N² triangles"), "{}", desc.description);
         let mesh_triangles = |d: &SceneDesc| -> usize {
-            d.objects
-                .iter()
-                .map(|o| if let super::super::ObjectDesc::Mesh(m) = o { m.triangles.len() } else { 0 })
-                .sum()
+            d.objects.iter().map(|o| if let glint_scene::ObjectDesc::Mesh(m) = o { m.triangles.len() } else { 0 }).sum()
         };
         assert_eq!(mesh_triangles(&desc), 4 * 4 * 4 + 2);
         for bad in [0, 1, 1501] {

@@ -1,8 +1,9 @@
 //! glTF materials (metallic-roughness, specular-glossiness and the KHR material extensions)
 //! mapped onto the seed's coefficients, as docs/models.md tabulates.
 
-use crate::model::{MaterialSource, widen};
-use crate::scene::{FieldIssue, MAX_IOR, MAX_SHININESS, MaterialDesc, Rgb};
+use crate::model::widen;
+use glint_scene::MaterialSource;
+use glint_scene::{FieldIssue, MAX_IOR, MAX_SHININESS, MaterialDesc, Rgb};
 
 /// Below this roughness a surface is treated as smooth enough to mirror: it traces
 /// reflection rays with k_r = its specular colour (F0). Rougher surfaces keep the highlight

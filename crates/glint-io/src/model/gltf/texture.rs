@@ -1,14 +1,15 @@
 //! glTF textures: the image (a bufferView, or a URI through the one resolver) decoded once
 //! however many materials use it, its sampler's wrap and filter, and KHR_texture_transform.
 
+use crate::texture::decode_texture;
 use std::path::Path;
 use std::sync::Arc;
 
 use ::gltf::texture::{MagFilter, WrappingMode};
 
 use super::accessor::{Buffers, view_bytes};
-use crate::model::uri::{MAX_RESOURCE_BYTES, resolve_uri};
-use crate::scene::{ColorSpace, Filter, TextureDesc, TextureImage, UvTransform, Wrap};
+use crate::uri::{MAX_RESOURCE_BYTES, resolve_uri};
+use glint_scene::{ColorSpace, Filter, TextureDesc, TextureImage, UvTransform, Wrap};
 
 /// Decoded images by glTF image index.
 #[derive(Debug, Default)]
@@ -48,8 +49,7 @@ pub(super) fn texture(
                     resolve_uri(file, uri, MAX_RESOURCE_BYTES).map_err(|e| (format!("{field}.uri"), e.to_string()))?
                 }
             };
-            let image =
-                Arc::new(TextureImage::decode(&bytes, ColorSpace::Srgb).map_err(|e| (field.clone(), e.to_string()))?);
+            let image = Arc::new(decode_texture(&bytes, ColorSpace::Srgb).map_err(|e| (field.clone(), e.to_string()))?);
             images.0[index] = Some(Arc::clone(&image));
             (source_name(&source, index), image)
         }

@@ -3,12 +3,14 @@
 //! `uri::resolve_uri` like every other reference, so a file outside the model's folder is
 //! refused.
 
+use crate::texture::decode_texture;
 use std::path::Path;
 use std::sync::Arc;
 
-use super::uri::{MAX_RESOURCE_BYTES, UriError, resolve_uri};
-use super::{MaterialSource, Model, widen};
-use crate::scene::{ColorSpace, FieldIssue, MaterialDesc, MeshDesc, Rgb, TextureDesc, TextureImage};
+use super::widen;
+use crate::uri::{MAX_RESOURCE_BYTES, UriError, resolve_uri};
+use glint_scene::{ColorSpace, FieldIssue, MaterialDesc, MeshDesc, Rgb, TextureDesc, TextureImage};
+use glint_scene::{MaterialSource, Model};
 
 /// Why an OBJ did not load.
 #[derive(Debug, thiserror::Error)]
@@ -263,7 +265,7 @@ impl Images {
             reason,
         };
         let bytes = resolve_uri(obj, &uri, MAX_RESOURCE_BYTES).map_err(|e| error(e.to_string()))?;
-        let image = Arc::new(TextureImage::decode(&bytes, ColorSpace::Srgb).map_err(|e| error(e.to_string()))?);
+        let image = Arc::new(decode_texture(&bytes, ColorSpace::Srgb).map_err(|e| error(e.to_string()))?);
         self.decoded.push((uri.clone(), Arc::clone(&image)));
         Ok(TextureDesc::decoded(uri, image))
     }
@@ -326,14 +328,14 @@ fn map_material(m: &tobj::Material, name: &str, warnings: &mut Vec<FieldIssue>) 
         }
     };
     let ior = match m.optical_density.map(widen) {
-        Some(ni) if (1.0..=crate::scene::MAX_IOR).contains(&ni) => ni,
+        Some(ni) if (1.0..=glint_scene::MAX_IOR).contains(&ni) => ni,
         Some(ni) => {
-            warn("ior", format!("Ni {ni} is outside [1, {}]; using 1.5", crate::scene::MAX_IOR));
+            warn("ior", format!("Ni {ni} is outside [1, {}]; using 1.5", glint_scene::MAX_IOR));
             1.5
         }
         None => 1.5,
     };
-    let shininess = widen(m.shininess.unwrap_or(0.0)).clamp(0.0, crate::scene::MAX_SHININESS);
+    let shininess = widen(m.shininess.unwrap_or(0.0)).clamp(0.0, glint_scene::MAX_SHININESS);
     MaterialDesc {
         ka: m.ambient.map_or(kd, rgb),
         kd,

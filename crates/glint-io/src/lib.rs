@@ -1,52 +1,33 @@
-//! Scene files: the serde description, validation and the built-in scenes.
+//! Glint's loaders: scene files (TOML), the built-in scenes, model files (glTF 2.0, OBJ/MTL)
+//! and the images they name, read into glint-scene's description and validated. Every path a
+//! file names is resolved and contained by `model::uri`.
 //!
 //! The format is TOML: it has comments (scenes carry their provenance), it is the format Rust
 //! users already edit every day (Cargo.toml), and its parser reports line and column. RON reads
 //! enums more naturally but is little known outside Rust; lights and objects here use a `type`
 //! key instead.
 
+pub mod atomic;
 mod builtin;
-pub mod bumpy;
-mod desc;
 mod error;
-mod light;
+pub mod image_file;
+pub mod interrupt;
+pub mod model;
 mod model_ref;
-mod number;
-mod overflow;
-mod ray_tree;
-mod rgb;
 mod texture;
-mod validate;
+pub mod uri;
 
 use std::path::{Path, PathBuf};
 
-use crate::model::{ImportOptions, ModelFormat};
+use glint_scene::{
+    FieldIssue, SceneDesc, clarify_integer_overflow, shorten_lines, validate, without_imported_materials,
+};
 
 pub use builtin::{BUILTIN_SCENES, BuiltinScene, BuiltinSource, DEFAULT_RESOLUTION, RESOLUTIONS, builtin};
-pub use desc::{
-    CameraDesc, CheckerDesc, DEFAULT_ROUGHNESS, GlobalAttenuation, MaterialDesc, MeshDesc, ObjectDesc, PlaneDesc,
-    RenderSettings, SceneDesc, SphereDesc, WorldDesc,
-};
-pub use error::{FieldIssue, SceneError};
-/// The tags a scene file names (light kinds, models, modes), from the shared vocabulary.
-pub use glint_types::tags::{
-    AttenuationModel, EpsilonMode, Filter, Fresnel, LightKind, SpecularModel, SpotFalloff, Wrap,
-};
-pub use light::{Attenuation, DEFAULT_INNER_CONE, DEFAULT_OUTER_CONE, LightDesc, NO_CONE_CUTOFF};
-pub use model_ref::{LoadedModel, ModelDesc, Scale, TransformDesc, load_models, without_imported_materials};
-pub use number::{format_number, shorten};
-pub use overflow::overflow_causes;
-pub use ray_tree::{WARN_RAYS_PER_SAMPLE, reachable_depth, unbounded_ray_tree};
-pub use rgb::Rgb;
-pub use texture::{
-    ColorSpace, MAX_TEXTURE_SIDE, MAX_TEXTURE_TEXELS, TextureDesc, TextureError, TextureImage, UvTransform,
-    load_textures, material_textures, srgb_to_linear,
-};
-pub use validate::{
-    MAX_COORD, MAX_DEPTH, MAX_EPSILON, MAX_IMAGE_SIDE, MAX_INTENSITY, MAX_IOR, MAX_ROUGHNESS, MAX_SHININESS,
-    MAX_SPOT_EXPONENT, MAX_SPP, MIN_ATTENUATION_DENOMINATOR, MIN_ROUGHNESS, Range, Report, ranges, validate,
-    validate_objects, validate_settings, validate_with_objects,
-};
+pub use error::SceneError;
+pub use model::{ImportOptions, ModelFormat};
+pub use model_ref::{load_model_ref, load_models};
+pub use texture::{decode_texture, load_textures};
 
 /// A parsed and validated scene with where it came from.
 #[derive(Clone, Debug)]
@@ -64,7 +45,7 @@ pub struct LoadedScene {
 pub fn parse_scene(text: &str, file: &Path) -> Result<(SceneDesc, Vec<FieldIssue>), SceneError> {
     let mut desc: SceneDesc = toml::from_str(text).map_err(|e| SceneError::Parse {
         file: file.to_owned(),
-        message: number::shorten_lines(&number::clarify_integer_overflow(&e.to_string())),
+        message: shorten_lines(&clarify_integer_overflow(&e.to_string())),
     })?;
     let folder = file.parent().unwrap_or(Path::new("."));
     let mut warnings =
@@ -76,7 +57,7 @@ pub fn parse_scene(text: &str, file: &Path) -> Result<(SceneDesc, Vec<FieldIssue
 }
 
 /// `desc` with its warnings if it passes validation, else the errors naming `file`.
-fn validated(desc: SceneDesc, file: &Path) -> Result<(SceneDesc, Vec<FieldIssue>), SceneError> {
+pub fn validated(desc: SceneDesc, file: &Path) -> Result<(SceneDesc, Vec<FieldIssue>), SceneError> {
     let report = validate(&desc);
     if report.errors.is_empty() {
         Ok((desc, report.warnings))
@@ -116,7 +97,11 @@ pub fn load_scene_with(arg: &str, options: &LoadOptions) -> Result<LoadedScene, 
     }
     if path.is_file() {
         if let Some(value) = resolution {
-            return Err(SceneError::NotGenerated { name: arg.to_string(), value });
+            return Err(SceneError::NotGenerated {
+                name: arg.to_string(),
+                value,
+                generated: builtin::generated_names(),
+            });
         }
         let name = path.file_stem().map_or_else(|| "scene".into(), |s| s.to_string_lossy().into_owned());
         if is_model {
@@ -167,8 +152,8 @@ fn utf8<'a>(bytes: &'a [u8], file: &Path) -> Result<&'a str, SceneError> {
 /// A model file in the lab scene `model::scene_around` makes for it, validated like a scene
 /// file; the importer's warnings come first.
 fn load_model(path: &Path, options: &ImportOptions) -> Result<(SceneDesc, Vec<FieldIssue>), SceneError> {
-    let model = crate::model::load_model_file(path, options).map_err(|message| SceneError::Model { message })?;
-    let (desc, mut warnings) = crate::model::scene_around(model, path, options)
+    let model = model::load_model_file(path, options).map_err(|message| SceneError::Model { message })?;
+    let (desc, mut warnings) = model::scene_around(model, path, options)
         .map_err(|issue| SceneError::Invalid { file: path.to_owned(), issues: vec![issue] })?;
     let (desc, scene_warnings) = validated(desc, path)?;
     warnings.extend(scene_warnings);

@@ -5,6 +5,7 @@
 use glint_types::{AttenuationModel, LightKind, SpotFalloff};
 use serde::{Deserialize, Serialize};
 
+use super::buffered::{Content, ContentError};
 use super::rgb::Rgb;
 
 /// The smooth falloff's cone half-angles in degrees when a scene leaves them out: glTF's
@@ -193,8 +194,16 @@ impl Serialize for Attenuation {
 impl<'de> Deserialize<'de> for Attenuation {
     fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
         use serde::de::Error;
-        let mut table = toml::Table::deserialize(deserializer)?;
-        let model = match table.remove("model") {
+        let mut table = match Content::deserialize(deserializer)? {
+            Content::Map(table) => table,
+            other => {
+                return Err(D::Error::custom(format!(
+                    "attenuation is a table ({{ c, l, q }} or {{ model = \"inverse_square\", range }}), not {} {other}",
+                    other.type_str()
+                )));
+            }
+        };
+        let model = match table.iter().position(|(k, _)| k == "model").map(|i| table.remove(i).1) {
             None => AttenuationModel::Polynomial,
             Some(value) => {
                 AttenuationModel::ALL.into_iter().find(|m| value.as_str() == Some(m.name())).ok_or_else(|| {
@@ -204,7 +213,7 @@ impl<'de> Deserialize<'de> for Attenuation {
                 })?
             }
         };
-        for key in table.keys() {
+        for key in table.iter().map(|(k, _)| k) {
             if model.fields().contains(&key.as_str()) {
                 continue;
             }
@@ -222,16 +231,15 @@ impl<'de> Deserialize<'de> for Attenuation {
             };
             return Err(D::Error::custom(message));
         }
-        let fields = toml::Value::Table(table);
-        let one_line =
-            |e: toml::de::Error| D::Error::custom(format!("attenuation: {}", e.to_string().trim().replace('\n', " ")));
+        let fields = Content::Map(table);
+        let one_line = |e: ContentError| D::Error::custom(format!("attenuation: {e}"));
         match model {
             AttenuationModel::Polynomial => {
-                let PolynomialFields { c, l, q } = fields.try_into().map_err(one_line)?;
+                let PolynomialFields { c, l, q } = fields.into_value().map_err(one_line)?;
                 Ok(Self::Polynomial { c, l, q })
             }
             AttenuationModel::InverseSquare => {
-                let InverseSquareFields { range } = fields.try_into().map_err(one_line)?;
+                let InverseSquareFields { range } = fields.into_value().map_err(one_line)?;
                 Ok(Self::InverseSquare { range })
             }
         }

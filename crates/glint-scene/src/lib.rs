@@ -1,0 +1,53 @@
+//! Glint's scene description: the plain types a scene is made of (camera, world, materials,
+//! lights, objects, and the already-decoded meshes, materials and texels of a model or an
+//! image), its validation against the ranges both tracers accept, and the scenes made in code
+//! (`bumpy`). Nothing here reads a file: the TOML format, the model importers and image
+//! decoding are glint-io's, above this crate.
+
+mod buffered;
+pub mod bumpy;
+mod camera;
+mod desc;
+mod error;
+mod light;
+mod material;
+mod mesh;
+mod model;
+mod model_ref;
+mod number;
+mod overflow;
+mod ray_tree;
+mod rgb;
+mod texture;
+mod transform;
+mod validate;
+
+pub use camera::CameraDesc;
+pub use desc::{
+    GlobalAttenuation, ObjectDesc, PlaneDesc, RenderSettings, SceneDesc, SphereDesc, WorldDesc,
+    without_imported_materials,
+};
+pub use error::FieldIssue;
+/// The tags a scene file names (light kinds, models, modes), from the shared vocabulary.
+pub use glint_types::tags::{
+    AttenuationModel, EpsilonMode, Filter, Fresnel, LightKind, SpecularModel, SpotFalloff, Wrap,
+};
+pub use light::{Attenuation, DEFAULT_INNER_CONE, DEFAULT_OUTER_CONE, LightDesc, NO_CONE_CUTOFF};
+pub use material::{CheckerDesc, DEFAULT_ROUGHNESS, MaterialDesc, material_textures};
+pub use mesh::MeshDesc;
+pub use model::{MaterialSource, Model, ModelCamera};
+pub use model_ref::{LoadedModel, ModelDesc, Scale, TransformDesc};
+pub use number::{clarify_integer_overflow, format_number, shorten, shorten_lines};
+pub use overflow::overflow_causes;
+pub use ray_tree::{WARN_RAYS_PER_SAMPLE, reachable_depth, unbounded_ray_tree};
+pub use rgb::Rgb;
+pub use texture::{
+    ColorSpace, MAX_TEXTURE_SIDE, MAX_TEXTURE_TEXELS, TextureDesc, TextureError, TextureImage, UvTransform, check_size,
+    srgb_to_linear,
+};
+pub use transform::Mat4;
+pub use validate::{
+    MAX_COORD, MAX_DEPTH, MAX_EPSILON, MAX_IMAGE_SIDE, MAX_INTENSITY, MAX_IOR, MAX_ROUGHNESS, MAX_SHININESS,
+    MAX_SPOT_EXPONENT, MAX_SPP, MIN_ATTENUATION_DENOMINATOR, MIN_ROUGHNESS, Range, Report, ranges, validate,
+    validate_objects, validate_settings, validate_with_objects,
+};
