@@ -3,9 +3,9 @@
 // WGSL has no recursion, so the tree is walked with an explicit stack of (ray, path weight,
 // depth). Each node adds weight × local shading, where the CPU adds k·I(child) on return:
 // the same terms with the same bailout decisions, summed in another order.
-#import glint::scene_data::{PROBE_HIT, PROBE_TIR, GpuSphere, GpuPlane, GpuTriangle, NO_HIT, EPS_ROBUST, UV_MESH, STATUS_LOOP_LIMIT, STATUS_STACK_OVERFLOW, STATUS_DRIVER_LOOP_CUTOFF, STAT_STATUS, STAT_CAMERA, STAT_SHADOW, STAT_REFLECTION, STAT_REFRACTION, STAT_BAILOUT_SAVED}
-#import glint::bindings::{header, camera, tile, materials, spheres, planes, triangles, meshes, output, stats, probe_out}
-#import glint::ray::{Ray, RayCounts, ray_counts, status, probe, probe_active, driver_cut_loops}
+#import glint::scene_data::{GpuSphere, GpuPlane, GpuTriangle, NO_HIT, EPS_ROBUST, UV_MESH, STATUS_LOOP_LIMIT, STATUS_STACK_OVERFLOW, STATUS_DRIVER_LOOP_CUTOFF, STAT_STATUS, STAT_CAMERA, STAT_SHADOW, STAT_REFLECTION, STAT_REFRACTION, STAT_BAILOUT_SAVED}
+#import glint::bindings::{header, camera, tile, materials, spheres, planes, triangles, meshes, output, stats}
+#import glint::ray::{Ray, RayCounts, ray_counts, status, driver_cut_loops}
 #import glint::camera::{camera_ray, sample_offset}
 #import glint::intersect::{Hit, Leaving, FAR, PRIM_NONE, PRIM_SPHERE, PRIM_PLANE, PRIM_TRIANGLE, triangle_corners, triangle_shading_normal, all_zero, sphere_surface_point}
 #ifdef BVH
@@ -16,9 +16,8 @@
 #import glint::offset::{spawn_ray, leaving_surface}
 #import glint::shade::{Surface, shade_local}
 #ifdef PROBE
-#import glint::scene_data::{ProbeRecord, ProbeNode, MAX_PROBE_NODES, MAX_PROBE_LIGHTS, RAY_CAMERA, RAY_REFLECTION, RAY_REFRACTION, RAY_SHADOW, NODE_HIT, NODE_TIR, NODE_CUT_BAILOUT, NODE_CUT_DEPTH, NO_PARENT, TREE_OVERFLOW, TREE_LIGHTS_TRUNCATED}
-#import glint::bindings::{probe_tree, lights}
-#import glint::shade::light_sample
+#import glint::scene_data::{RAY_REFLECTION, RAY_REFRACTION}
+#import glint::probe::{probe_start, probe_root, probe_enter, probe_attenuation, probe_shade_begin, probe_shade_end, probe_hit, probe_factors, probe_cut, probe_child, probe_push, probe_pop, probe_gathered, probe_finish}
 #endif
 #ifdef GLOBAL_ATTENUATION
 #import glint::shade::attenuation_factor
@@ -57,132 +56,6 @@ struct StackEntry {
 
 var<private> stack: array<StackEntry, STACK_SIZE>;
 var<private> stack_top: u32;
-
-#ifdef PROBE
-// How a ray of the walk joins the probe's ray tree (twin of the CPU's RayNode::new arguments):
-// the node whose hit spawned it, its kind, NODE_* flags (a cut ray is recorded, not traced)
-// and its own factor k.
-struct ProbeLink {
-    parent: u32,
-    kind: u32,
-    flags: u32,
-    factor: vec3<f32>,
-}
-
-// The links beside the stack's rays, and that of the ray shade_hit hands back as `next`.
-var<private> link_stack: array<ProbeLink, STACK_SIZE>;
-var<private> next_link: ProbeLink;
-// The tree node being shaded.
-var<private> probe_node: u32;
-// The first hit's breakdown (ProbeRecord), kept while the later nodes record theirs in `probe`.
-var<private> probe_first: ProbeRecord;
-
-// The index of a new tree node; past the buffer's capacity the tree is marked overflowed and
-// the node is not written (every writer checks the index).
-fn probe_alloc() -> u32 {
-    let i = probe_tree.node_count;
-    probe_tree.node_count = i + 1u;
-    if i >= MAX_PROBE_NODES {
-        probe_tree.flags |= TREE_OVERFLOW;
-    }
-    return i;
-}
-
-// Node i with no hit, no terms and no light: a node's fields one by one, never the whole
-// struct (with its light array), which lavapipe compiles into thousands of stores.
-fn probe_clear(i: u32) {
-    probe_tree.nodes[i].object_id = 0u;
-    probe_tree.nodes[i].material = 0u;
-    probe_tree.nodes[i].light = 0u;
-    probe_tree.nodes[i].light_count = 0u;
-    probe_tree.nodes[i].t = 0.0;
-    probe_tree.nodes[i].attenuation = 1.0;
-    probe_tree.nodes[i].point = vec4<f32>(0.0);
-    probe_tree.nodes[i].normal = vec4<f32>(0.0);
-    probe_tree.nodes[i].emission = vec4<f32>(0.0);
-    probe_tree.nodes[i].ambient = vec4<f32>(0.0);
-    probe_tree.nodes[i].ka = vec4<f32>(0.0);
-    probe_tree.nodes[i].kd = vec4<f32>(0.0);
-}
-
-// A node for the ray `e` joined to the tree by `link`, before its hit is known.
-fn probe_open(link: ProbeLink, e: StackEntry) -> u32 {
-    let i = probe_alloc();
-    if i < MAX_PROBE_NODES {
-        probe_clear(i);
-        probe_tree.nodes[i].kind = link.kind;
-        probe_tree.nodes[i].flags = link.flags;
-        probe_tree.nodes[i].parent = link.parent;
-        probe_tree.nodes[i].depth = e.depth;
-        probe_tree.nodes[i].origin = vec4<f32>(e.origin, e.t_min);
-        probe_tree.nodes[i].dir = vec4<f32>(e.dir, 0.0);
-        probe_tree.nodes[i].weight = vec4<f32>(e.weight, 0.0);
-        probe_tree.nodes[i].factor = vec4<f32>(link.factor, 0.0);
-    }
-    return i;
-}
-
-// The hit of node i and the local terms shade_local recorded in `probe`.
-fn probe_close(i: u32, t: f32) {
-    if i >= MAX_PROBE_NODES {
-        return;
-    }
-    probe_tree.nodes[i].flags |= NODE_HIT;
-    probe_tree.nodes[i].t = t;
-    probe_tree.nodes[i].object_id = probe.object_id;
-    probe_tree.nodes[i].material = probe.material;
-    probe_tree.nodes[i].light_count = probe.light_count;
-    probe_tree.nodes[i].point = probe.point;
-    probe_tree.nodes[i].normal = probe.normal;
-    probe_tree.nodes[i].emission = probe.emission;
-    probe_tree.nodes[i].ambient = probe.ambient;
-    probe_tree.nodes[i].ka = probe.ka;
-    probe_tree.nodes[i].kd = probe.kd;
-    for (var j = 0u; j < probe.light_count; j++) {
-        probe_tree.nodes[i].lights[j] = probe.lights[j];
-    }
-}
-
-// The shadow rays of the node being shaded, from its recorded light terms (twin of
-// glint_core::ray_tree::record_shadow_rays): one node per light a shadow ray was traced to,
-// from p along the light sample's L, its factor V_j.
-fn record_shadow_rays(p: vec3<f32>, depth: u32, weight: vec3<f32>) {
-    for (var j = 0u; j < min(header.light_count, MAX_PROBE_LIGHTS); j++) {
-        if probe.lights[j].shadow_ray == 0u {
-            continue;
-        }
-        let ls = light_sample(lights[j], p);
-        let i = probe_alloc();
-        if i < MAX_PROBE_NODES {
-            probe_clear(i);
-            probe_tree.nodes[i].kind = RAY_SHADOW;
-            probe_tree.nodes[i].parent = probe_node;
-            probe_tree.nodes[i].depth = depth + 1u;
-            probe_tree.nodes[i].light = j;
-            probe_tree.nodes[i].t = ls.dist;
-            probe_tree.nodes[i].origin = vec4<f32>(p, 0.0);
-            probe_tree.nodes[i].dir = vec4<f32>(ls.l, 0.0);
-            probe_tree.nodes[i].weight = vec4<f32>(weight, 0.0);
-            probe_tree.nodes[i].factor = probe.lights[j].visibility;
-        }
-    }
-}
-
-#ifdef RECURSION
-// Whether a child of path weight w at `depth` is cut (NODE_CUT_*), counting bailouts as the
-// tracer does; 0 when it is traced.
-fn probe_cut(depth: u32, w: vec3<f32>) -> u32 {
-    if depth >= header.max_depth {
-        return NODE_CUT_DEPTH;
-    }
-    if max_channel(w) < header.bailout {
-        ray_counts.bailout_saved += 1u;
-        return NODE_CUT_BAILOUT;
-    }
-    return 0u;
-}
-#endif
-#endif
 
 fn surface_at(ray: Ray, hit: Hit) -> Surface {
     let p = ray.origin + hit.t * ray.dir;
@@ -264,7 +137,7 @@ fn push_ray(entry: StackEntry) {
     }
     stack[stack_top] = entry;
 #ifdef PROBE
-    link_stack[stack_top] = next_link;
+    probe_push(stack_top);
 #endif
     stack_top += 1u;
 }
@@ -290,15 +163,7 @@ fn shade_hit(ray: Ray, hit: Hit, depth: u32, weight: vec3<f32>, branch: u32) -> 
     let no_ray = StackEntry(vec3<f32>(0.0), 0.0, vec3<f32>(0.0), 0u, vec3<f32>(0.0), Leaving(PRIM_NONE, 0u, false), 0u);
     var out = Shaded(weight * shade_local(s, ns, ng, v), no_ray, false);
 #ifdef PROBE
-    if probe_active {
-        probe.flags |= PROBE_HIT;
-        probe.object_id = s.object_id;
-        probe.material = s.material;
-        probe.t = hit.t;
-        probe.point = vec4<f32>(s.p, 1.0);
-        probe.normal = vec4<f32>(ns, 0.0);
-        record_shadow_rays(s.p, depth, weight);
-    }
+    probe_hit(s, ns, hit.t, depth, weight);
 #endif
 #ifdef RECURSION
 #ifndef PROBE
@@ -312,38 +177,25 @@ fn shade_hit(ray: Ray, hit: Hit, depth: u32, weight: vec3<f32>, branch: u32) -> 
     let kt = mat.kt.xyz;
     var k_mirror = kr;
     var refracted = vec4<f32>(0.0);
-#ifdef PROBE
-    var tir = 0u;
-#endif
 #ifdef TRANSMISSION
     if !all_zero(kt) {
         let eta = select(mat.ior, 1.0 / mat.ior, front);
         refracted = refract_dir(ray.dir, ns, eta);
         if refracted.w == 0.0 {
             k_mirror += kt;
-#ifdef PROBE
-            if probe_active {
-                probe.flags |= PROBE_TIR;
-            }
-            tir = NODE_TIR;
-#endif
         }
     }
 #ifdef PROBE
-    if probe_active {
-        probe.kr = vec4<f32>(kr, 0.0);
-        probe.kt = vec4<f32>(kt, 0.0);
-    }
+    probe_factors(kr, kt, !all_zero(kt) && refracted.w == 0.0);
 #endif
     if refracted.w != 0.0 {
         let w = weight * kt;
 #ifdef PROBE
         // A cut child goes down the walk like a traced one, so that it is recorded in the
         // CPU's order (after the mirror child's subtree), but is not traced.
-        let cut = probe_cut(depth, w);
+        let cut = probe_cut(depth, max_channel(w));
         if cut != 0u {
             out.next = StackEntry(s.p, 0.0, refracted.xyz, depth + 1u, w, no_ray.leaving, branch);
-            next_link = ProbeLink(probe_node, RAY_REFRACTION, cut, kt);
             out.has_next = true;
         } else {
 #else
@@ -355,22 +207,21 @@ fn shade_hit(ray: Ray, hit: Hit, depth: u32, weight: vec3<f32>, branch: u32) -> 
             let sp = spawn_ray(s.p, s.p_surface, -ng, refracted.xyz, leaving_surface(s.prim, s.index, s.ng, -ng));
             out.next = StackEntry(sp.origin, sp.t_min, refracted.xyz, depth + 1u, w, sp.leaving, select(branch, 2u, branch == 0u));
             out.has_next = true;
-#ifdef PROBE
-            next_link = ProbeLink(probe_node, RAY_REFRACTION, 0u, kt);
-#endif
         }
+#ifdef PROBE
+        probe_child(RAY_REFRACTION, cut, kt);
+#endif
     }
 #endif
     if !all_zero(k_mirror) {
         let w = weight * k_mirror;
 #ifdef PROBE
-        let cut = probe_cut(depth, w);
+        let cut = probe_cut(depth, max_channel(w));
         if cut != 0u {
             if out.has_next {
                 push_ray(out.next);
             }
             out.next = StackEntry(s.p, 0.0, reflect_dir(ray.dir, ns), depth + 1u, w, no_ray.leaving, branch);
-            next_link = ProbeLink(probe_node, RAY_REFLECTION, cut | tir, k_mirror);
             out.has_next = true;
         } else {
 #else
@@ -386,10 +237,10 @@ fn shade_hit(ray: Ray, hit: Hit, depth: u32, weight: vec3<f32>, branch: u32) -> 
             }
             out.next = StackEntry(sp.origin, sp.t_min, dir, depth + 1u, w, sp.leaving, select(branch, 1u, branch == 0u));
             out.has_next = true;
-#ifdef PROBE
-            next_link = ProbeLink(probe_node, RAY_REFLECTION, tir, k_mirror);
-#endif
         }
+#ifdef PROBE
+        probe_child(RAY_REFLECTION, cut, k_mirror);
+#endif
     }
 #endif
     return out;
@@ -402,22 +253,20 @@ fn trace_ray(ray: Ray) -> SampleResult {
     var e = StackEntry(ray.origin, 0.0, ray.dir, 0u, vec3<f32>(1.0), Leaving(PRIM_NONE, 0u, false), 0u);
     stack_top = 0u;
 #ifdef PROBE
-    next_link = ProbeLink(NO_PARENT, RAY_CAMERA, 0u, vec3<f32>(1.0));
+    probe_root();
 #endif
     for (var n = 0u; n < MAX_TREE_NODES; n++) {
         let r = Ray(e.origin, e.dir);
         let branch_of_node = e.branch;
 #ifdef PROBE
-        let link = next_link;
-        probe_node = probe_open(link, e);
-        if (link.flags & (NODE_CUT_BAILOUT | NODE_CUT_DEPTH)) != 0u {
+        if probe_enter(r, e.t_min, e.depth, e.weight) {
             // Recorded, not traced.
             if stack_top == 0u {
                 return result;
             }
             stack_top -= 1u;
             e = stack[stack_top];
-            next_link = link_stack[stack_top];
+            probe_pop(stack_top);
             continue;
         }
 #endif
@@ -437,39 +286,24 @@ fn trace_ray(ray: Ray) -> SampleResult {
                 let f = attenuation_factor(header.global_attenuation, hit.t);
                 e.weight *= f;
 #ifdef PROBE
-                if probe_node < MAX_PROBE_NODES {
-                    probe_tree.nodes[probe_node].attenuation = f;
-                }
+                probe_attenuation(f);
 #endif
             }
 #endif
 #ifdef PROBE
-            // Every hit records its terms in `probe` (each writes every field it reads back, but
-            // the flags it ORs); the first hit's are kept as the breakdown.
-            probe.flags = 0u;
-            probe_active = true;
+            probe_shade_begin();
 #endif
             let shaded = shade_hit(r, hit, e.depth, e.weight, e.branch);
 #ifdef PROBE
-            probe_active = false;
-            probe_close(probe_node, hit.t);
-            if n == 0u {
-                probe_first = probe;
-            }
+            probe_shade_end(hit.t, n == 0u);
 #endif
             gathered = shaded.radiance;
             e = shaded.next;
             has_next = shaded.has_next;
         }
 #ifdef PROBE
-        if n > 0u {
-            // `e` may already be the next ray: the branch is that of the ray just shaded.
-            if branch_of_node == 1u {
-                probe_first.mirror_sum += vec4<f32>(gathered, 0.0);
-            } else if branch_of_node == 2u {
-                probe_first.refraction_sum += vec4<f32>(gathered, 0.0);
-            }
-        }
+        // `e` may already be the next ray: the branch is that of the ray just shaded.
+        probe_gathered(branch_of_node, gathered);
 #endif
         result.radiance += gathered;
         if !has_next {
@@ -479,7 +313,7 @@ fn trace_ray(ray: Ray) -> SampleResult {
             stack_top -= 1u;
             e = stack[stack_top];
 #ifdef PROBE
-            next_link = link_stack[stack_top];
+            probe_pop(stack_top);
 #endif
         }
     }
@@ -556,14 +390,8 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
 #ifdef PROBE
     // The probe variant renders one pixel's first sample and writes its breakdown and its
     // ray tree.
-    probe_tree.node_count = 0u;
-    probe_tree.flags = select(0u, TREE_LIGHTS_TRUNCATED, header.light_count > MAX_PROBE_LIGHTS);
-    let sampled = render_sample(x, y, 0u);
-    probe_first.total = vec4<f32>(sampled.radiance, 0.0);
-    if (probe_first.flags & PROBE_HIT) == 0u {
-        probe_first.object_id = NO_HIT;
-    }
-    probe_out = probe_first;
+    probe_start();
+    probe_finish(render_sample(x, y, 0u).radiance);
     if driver_cut_loops() {
         status |= STATUS_DRIVER_LOOP_CUTOFF;
     }

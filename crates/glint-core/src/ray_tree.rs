@@ -2,7 +2,8 @@
 //! reflection, refraction, shadow) with its path weight and own factor, its hit and the local
 //! terms there, and the children the bailout or the depth limit cut. The CPU tracer records it
 //! through `TreeRecorder` (`probe_tree`); the GPU probe variant writes the same nodes in the
-//! same depth-first order (`layout::ProbeTree`), so the two line up by index.
+//! same depth-first order (`shaders/probe.wgsl`, this module's twin, into `layout::ProbeTree`),
+//! so the two line up by index.
 
 use glam::DVec3;
 

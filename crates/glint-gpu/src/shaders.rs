@@ -46,7 +46,7 @@ pub const BVH_STACK_SIZE: u32 = 64;
 pub const MAX_TREE_NODES: u32 = LAVAPIPE_LOOP_BUDGET / 1_000 * 1_000;
 
 /// The modules in dependency order: (import path, file name, source).
-pub const SHADER_MODULES: [(&str, &str, &str); 10] = [
+pub const SHADER_MODULES: [(&str, &str, &str); 11] = [
     ("glint::scene_data", "layout.wgsl", include_str!("../../../shaders/layout.wgsl")),
     ("glint::bindings", "bindings.wgsl", include_str!("../../../shaders/bindings.wgsl")),
     ("glint::ray", "ray.wgsl", include_str!("../../../shaders/ray.wgsl")),
@@ -57,6 +57,7 @@ pub const SHADER_MODULES: [(&str, &str, &str); 10] = [
     ("glint::offset", "offset.wgsl", include_str!("../../../shaders/offset.wgsl")),
     ("glint::texture", "texture.wgsl", include_str!("../../../shaders/texture.wgsl")),
     ("glint::shade", "shade.wgsl", include_str!("../../../shaders/shade.wgsl")),
+    ("glint::probe", "probe.wgsl", include_str!("../../../shaders/probe.wgsl")),
 ];
 
 /// The entry module.

@@ -6,7 +6,7 @@
 
 use std::collections::{BTreeMap, BTreeSet};
 
-const TWINS: [(&str, &str, &str, &str); 11] = [
+const TWINS: [(&str, &str, &str, &str); 12] = [
     (
         "rng.wgsl",
         include_str!("../../../shaders/rng.wgsl"),
@@ -56,6 +56,12 @@ const TWINS: [(&str, &str, &str, &str); 11] = [
         include_str!("../../glint-core/src/cpu/trace.rs"),
     ),
     (
+        "probe.wgsl",
+        include_str!("../../../shaders/probe.wgsl"),
+        "ray_tree.rs",
+        include_str!("../../glint-core/src/ray_tree.rs"),
+    ),
+    (
         "raycast.wgsl",
         include_str!("../../../shaders/raycast.wgsl"),
         "cpu/raycast.rs",
@@ -76,7 +82,7 @@ const TWINS: [(&str, &str, &str, &str); 11] = [
 ];
 
 /// Functions only the GPU side has, and why.
-const GPU_ONLY: [(&str, &str, &str); 26] = [
+const GPU_ONLY: [(&str, &str, &str); 36] = [
     ("bvh.wgsl", "load_node", "the root in two vec4 loads; the CPU reads the shared BvhNode where it lies"),
     (
         "bvh.wgsl",
@@ -117,33 +123,69 @@ const GPU_ONLY: [(&str, &str, &str); 26] = [
     ("bvh.wgsl", "slab_ray", "the CPU's SlabRay::new: WGSL has no methods"),
     ("trace.wgsl", "push_ray", "the explicit ray stack: WGSL has no recursion"),
     ("trace.wgsl", "add_stat", "64-bit ray counters built from u32 atomics"),
-    ("trace.wgsl", "probe_alloc", "the probe's fixed-capacity tree buffer; the CPU's RayTree is a Vec"),
-    ("trace.wgsl", "probe_clear", "resets a node of the probe's reused tree buffer; the CPU pushes fresh RayNodes"),
-    ("trace.wgsl", "probe_open", "the CPU's TreeRecorder::open (ray_tree.rs) on the probe's tree buffer"),
-    ("trace.wgsl", "probe_close", "the CPU's TreeRecorder::close (ray_tree.rs) on the probe's tree buffer"),
-    (
-        "trace.wgsl",
-        "record_shadow_rays",
-        "twin of ray_tree::record_shadow_rays, which lives beside the CPU's tree, not in cpu/trace.rs",
-    ),
-    (
-        "trace.wgsl",
-        "probe_cut",
-        "the probe's cut children go down the stack walk; the CPU records them where shade_hit decides",
-    ),
     ("trace.wgsl", "main", "the compute entry point; the CPU's loop is render::render_cpu"),
     (
         "trace.wgsl",
         "accumulate_sample",
         "one sample per dispatch, summed in the output buffer in the order of the CPU's render_pixel",
     ),
+    ("probe.wgsl", "probe_alloc", "the probe's fixed-capacity tree buffer; the CPU's RayTree is a Vec"),
+    ("probe.wgsl", "probe_clear", "resets a node of the probe's reused tree buffer; the CPU pushes fresh RayNodes"),
+    (
+        "probe.wgsl",
+        "probe_cut",
+        "the probe's cut children go down the stack walk; the CPU records them where shade_hit decides",
+    ),
+    // The hooks of trace.wgsl's walk: cpu/trace.rs calls the recorder inline instead.
+    ("probe.wgsl", "probe_start", "empties the reused tree buffer; the CPU's probe_tree starts a RayTree::default()"),
+    ("probe.wgsl", "probe_root", "the camera ray's link; the CPU's render_sample opens the camera node itself"),
+    (
+        "probe.wgsl",
+        "probe_enter",
+        "opens the node of each ray the stack walk takes up, a cut one too; the CPU opens a child where shade_hit \
+         spawns or cuts it",
+    ),
+    (
+        "probe.wgsl",
+        "probe_attenuation",
+        "f_att at a node's hit, known before its shading; the CPU's trace_ray passes it to close",
+    ),
+    (
+        "probe.wgsl",
+        "probe_shade_begin",
+        "switches ray.wgsl's breakdown record on for shade_hit; the CPU passes shade_hit a Breakdown",
+    ),
+    (
+        "probe.wgsl",
+        "probe_shade_end",
+        "closes the shaded node and keeps the first hit's breakdown; the CPU's trace_ray and render_sample call close",
+    ),
+    (
+        "probe.wgsl",
+        "probe_hit",
+        "the hit's breakdown fields and its shadow rays; the CPU's shade_hit fills its Breakdown inline",
+    ),
+    ("probe.wgsl", "probe_factors", "k_r, k_t and total internal reflection into the breakdown; the CPU's shade_hit"),
+    (
+        "probe.wgsl",
+        "probe_child",
+        "the link of the child the walk follows next; the CPU's shade_hit builds the child's RayNode where it recurses",
+    ),
+    ("probe.wgsl", "probe_push", "the links beside the explicit ray stack: WGSL has no recursion"),
+    ("probe.wgsl", "probe_pop", "the links beside the explicit ray stack: WGSL has no recursion"),
+    (
+        "probe.wgsl",
+        "probe_gathered",
+        "sums the walk's weighted terms by the camera hit's branch; the CPU's shade_hit takes I_r and I_t on return",
+    ),
+    ("probe.wgsl", "probe_finish", "writes the first hit's breakdown to probe_out; the CPU returns its Breakdown"),
     ("ray.wgsl", "driver_cut_loops", "detects lavapipe's silent loop cut-off, which the CPU does not have"),
     ("present.wgsl", "main", "the compute entry point; the CPU converts pixel by pixel where it writes a PNG"),
     ("raycast.wgsl", "main", "the compute entry point, one ray per invocation; the CPU's loop is cast_rays"),
 ];
 
 /// Functions only the CPU side has, and why.
-const CPU_ONLY: [(&str, &str, &str); 9] = [
+const CPU_ONLY: [(&str, &str, &str); 18] = [
     ("cpu/bvh.rs", "new", "SlabRay::new; WGSL builds it in slab_ray (no methods)"),
     ("cpu/bvh.rs", "prefetch", "a CPU cache hint for the nodes and leaves the walk takes next; WGSL has none"),
     (
@@ -167,6 +209,15 @@ const CPU_ONLY: [(&str, &str, &str); 9] = [
     ("cpu/raycast.rs", "cast_rays", "the rayon loop over the buffer; the GPU's is the dispatch (main)"),
     ("cpu/trace.rs", "render_pixel", "the GPU sums a pixel's samples across dispatches (accumulate_sample)"),
     ("image.rs", "*", "file output (PNG, EXR, metadata) has no place on the GPU"),
+    ("ray_tree.rs", "new", "RayNode::new; WGSL has no methods: probe.wgsl's open writes the node's fields"),
+    ("ray_tree.rs", "name", "RayKind's and Cut's names in the host's reports"),
+    ("ray_tree.rs", "try_from", "the RayKind of a GPU node's u32 kind, decoded on the host (glint_gpu::probe)"),
+    ("ray_tree.rs", "hit", "RayNode::hit reads t on the host; the GPU flags NODE_HIT in close"),
+    ("ray_tree.rs", "children", "a recorded tree read on the host (reports and tests)"),
+    ("ray_tree.rs", "radiance_of", "a recorded tree read on the host: its radiance recomputed from the nodes"),
+    ("ray_tree.rs", "count", "a recorded tree read on the host (reports and tests)"),
+    ("ray_tree.rs", "depth_widening", "the host's comparison of a CPU and a GPU tree (first_difference)"),
+    ("ray_tree.rs", "first_difference", "the host's comparison of a CPU and a GPU tree, node by node"),
 ];
 
 /// Structs only the GPU side has, and why.
@@ -178,11 +229,11 @@ const GPU_ONLY_STRUCTS: [(&str, &str, &str); 8] = [
     ("trace.wgsl", "SampleResult", "the CPU returns the pair (radiance, object)"),
     ("trace.wgsl", "StackEntry", "the explicit ray stack: WGSL has no recursion"),
     ("trace.wgsl", "Shaded", "a hit's radiance and the next ray of the stack walk, kept in registers"),
-    ("trace.wgsl", "ProbeLink", "how a stacked ray joins the probe's tree; the CPU passes it down the recursion"),
+    ("probe.wgsl", "ProbeLink", "how a stacked ray joins the probe's tree; the CPU passes it down the recursion"),
 ];
 
 /// Structs only the CPU side has, and why.
-const CPU_ONLY_STRUCTS: [(&str, &str, &str); 8] = [
+const CPU_ONLY_STRUCTS: [(&str, &str, &str); 11] = [
     (
         "cpu/bvh.rs",
         "Pending",
@@ -200,6 +251,9 @@ const CPU_ONLY_STRUCTS: [(&str, &str, &str); 8] = [
     ("cpu/mod.rs", "MaterialTags", "a material's stored tags decoded into enums once; WGSL compares the u32 fields"),
     ("cpu/shade.rs", "Breakdown", "the CPU probe's record; the GPU probe writes ProbeRecord (layout.rs)"),
     ("image.rs", "*", "host images and their metadata have no place on the GPU"),
+    ("ray_tree.rs", "RayNode", "the host's node; the GPU writes a ProbeNode (layout.rs), decoded into one"),
+    ("ray_tree.rs", "RayTree", "the host's tree, a Vec of nodes; the GPU writes a ProbeTree (layout.rs)"),
+    ("ray_tree.rs", "NodeDifference", "where a CPU and a GPU tree part, found on the host"),
 ];
 
 /// Fields only the CPU side of a twin struct has, and why (left out before the comparison).
