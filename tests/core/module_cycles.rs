@@ -10,9 +10,7 @@ use std::path::{Path, PathBuf};
 
 /// Circles still in the house (issue 36), each as the crate and its sorted sibling modules:
 /// across the core (the tracer, the flat layout, rebasing and the ray trees).
-const KNOWN: &[(&str, &[&str])] = &[
-    ("glint_core", &["cpu", "flat", "probe_terms", "ray_tree", "rays", "rebase"]),
-];
+const KNOWN: &[(&str, &[&str])] = &[("glint_core", &["cpu", "flat", "probe_terms", "ray_tree", "rays", "rebase"])];
 
 /// The crates and their source roots, from the workspace root.
 const CRATES: [(&str, &str); 8] = [

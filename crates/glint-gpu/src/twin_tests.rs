@@ -185,7 +185,7 @@ const GPU_ONLY: [(&str, &str, &str); 36] = [
 ];
 
 /// Functions only the CPU side has, and why.
-const CPU_ONLY: [(&str, &str, &str); 18] = [
+const CPU_ONLY: [(&str, &str, &str); 17] = [
     ("cpu/bvh.rs", "new", "SlabRay::new; WGSL builds it in slab_ray (no methods)"),
     ("cpu/bvh.rs", "prefetch", "a CPU cache hint for the nodes and leaves the walk takes next; WGSL has none"),
     (
@@ -208,10 +208,9 @@ const CPU_ONLY: [(&str, &str, &str); 18] = [
     ("cpu/mod.rs", "*", "Rust plumbing: widening (v3), counters, the trace context"),
     ("cpu/raycast.rs", "cast_rays", "the rayon loop over the buffer; the GPU's is the dispatch (main)"),
     ("cpu/trace.rs", "render_pixel", "the GPU sums a pixel's samples across dispatches (accumulate_sample)"),
-    ("image.rs", "*", "file output (PNG, EXR, metadata) has no place on the GPU"),
+    ("image.rs", "*", "the HDR image, its sRGB encoding and metadata: host output, no place on the GPU"),
     ("ray_tree.rs", "new", "RayNode::new; WGSL has no methods: probe.wgsl's open writes the node's fields"),
-    ("ray_tree.rs", "name", "RayKind's and Cut's names in the host's reports"),
-    ("ray_tree.rs", "try_from", "the RayKind of a GPU node's u32 kind, decoded on the host (glint_gpu::probe)"),
+    ("ray_tree.rs", "name", "Cut's names in the host's reports"),
     ("ray_tree.rs", "hit", "RayNode::hit reads t on the host; the GPU flags NODE_HIT in close"),
     ("ray_tree.rs", "children", "a recorded tree read on the host (reports and tests)"),
     ("ray_tree.rs", "radiance_of", "a recorded tree read on the host: its radiance recomputed from the nodes"),
