@@ -26,6 +26,10 @@ pub use shaders::{GPU_STACK_LIMIT, LAVAPIPE_LOOP_BUDGET, ShaderKey};
 pub use tracer::{GpuOptions, GpuRender, GpuTracer, PixelProbe};
 
 #[cfg(test)]
+#[path = "../../glint-types/src/layout_check.rs"]
+#[macro_use]
+mod layout_check;
+#[cfg(test)]
 mod reflection_tests;
 #[cfg(test)]
 mod twin_tests;

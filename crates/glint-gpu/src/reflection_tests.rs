@@ -2,29 +2,16 @@
 //! layout against `shaders/layout.wgsl`): the BVH's records and constants, the binding table,
 //! and the constants the two tracers' functions share. No "keep in sync" comments.
 
-use std::mem::{offset_of, size_of};
-
 use glint_core::bvh::{
     BvhNode, NODE_REF_COUNT_BITS, PAIR_FIRST_SHIFT, PRIM_REF_INDEX, PRIM_REF_TRIANGLE, QuantizedPair,
 };
 use glint_core::cpu::{intersect, offset, shade};
 use glint_types::layout::NO_HIT;
-use naga::proc::Layouter;
 use naga_oil::compose::Composer;
 
 use crate::binding::Binding;
+use crate::layout_check::{RustLayout, assert_matches_wgsl, assert_members_cover_bytes, literal_value};
 use crate::shaders::ShaderKey;
-
-/// A Rust struct as (name, size, [(member, offset, size)]).
-type RustLayout = (&'static str, usize, Vec<(&'static str, usize, usize)>);
-
-macro_rules! rust_layout {
-    ($ty:ident { $($field:ident),* $(,)? }) => {{
-        let zero: $ty = bytemuck::Zeroable::zeroed();
-        let members = vec![$((stringify!($field), offset_of!($ty, $field), size_of_val(&zero.$field))),*];
-        (stringify!($ty), size_of::<$ty>(), members)
-    }};
-}
 
 fn rust_layouts() -> Vec<RustLayout> {
     vec![
@@ -69,49 +56,12 @@ fn binding_table_matches_bindings_wgsl_both_ways() {
 
 #[test]
 fn every_rust_layout_struct_covers_its_bytes() {
-    // A field added in Rust but not listed above breaks this chain, so the list stays complete.
-    for (name, size, members) in rust_layouts() {
-        let mut end = 0;
-        for (field, offset, field_size) in &members {
-            assert_eq!(*offset, end, "{name}.{field} does not follow the previous member (unlisted field or padding?)");
-            end = offset + field_size;
-        }
-        assert_eq!(end, size, "{name}: listed members end at {end}, the struct has {size} bytes");
-    }
+    assert_members_cover_bytes(&rust_layouts());
 }
 
 #[test]
 fn wgsl_bvh_records_match_rust_offsets_and_sizes() {
-    let module = layout_module();
-    let mut layouter = Layouter::default();
-    layouter.update(module.to_ctx()).expect("layout.wgsl lays out");
-    let mut checked = 0;
-    for (name, size, members) in rust_layouts() {
-        let (handle, ty) = module
-            .types
-            .iter()
-            .find(|(_, t)| t.name.as_deref() == Some(name))
-            .unwrap_or_else(|| panic!("struct {name} is missing from shaders/layout.wgsl"));
-        let naga::TypeInner::Struct { members: wgsl, span } = &ty.inner else { panic!("{name} is not a struct") };
-        assert_eq!(*span as usize, size, "{name}: WGSL size {span} != Rust size {size}");
-        assert_eq!(layouter[handle].size as usize, size, "{name}: naga layouter size");
-        assert_eq!(wgsl.len(), members.len(), "{name}: member count differs");
-        for (w, (field, offset, _)) in wgsl.iter().zip(&members) {
-            assert_eq!(w.name.as_deref(), Some(*field), "{name}: member order/name differs");
-            assert_eq!(w.offset as usize, *offset, "{name}.{field}: WGSL offset {} != Rust {offset}", w.offset);
-        }
-        checked += 1;
-    }
-    assert_eq!(checked, 2, "both BVH records checked");
-}
-
-fn literal_value(module: &naga::Module, init: naga::Handle<naga::Expression>) -> f64 {
-    match module.global_expressions[init] {
-        naga::Expression::Literal(naga::Literal::U32(v)) => f64::from(v),
-        naga::Expression::Literal(naga::Literal::I32(v)) => f64::from(v),
-        naga::Expression::Literal(naga::Literal::F32(v)) => f64::from(v),
-        ref other => panic!("constant initialiser {other:?} is not a literal"),
-    }
+    assert_matches_wgsl(&layout_module(), &rust_layouts());
 }
 
 #[test]

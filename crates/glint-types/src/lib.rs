@@ -13,4 +13,7 @@ pub use tags::{
 };
 
 #[cfg(test)]
+#[macro_use]
+mod layout_check;
+#[cfg(test)]
 mod reflection_tests;

@@ -4,26 +4,12 @@
 //! BVH's records (`BvhNode`, `QuantizedPair`) and their constants belong to glint-core, which
 //! builds them; glint-gpu's reflection tests check those.
 
-use std::mem::{offset_of, size_of};
-
-use naga::proc::Layouter;
-
 use crate::layout::*;
+use crate::layout_check::{RustLayout, assert_matches_wgsl, assert_members_cover_bytes, literal_value};
 
 /// The structs and constants of layout.wgsl that the BVH (glint-core) owns.
 const BVH_STRUCTS: [&str; 2] = ["BvhNode", "QuantizedPair"];
 const BVH_CONSTANTS: [&str; 4] = ["PRIM_REF_TRIANGLE", "PRIM_REF_INDEX", "NODE_REF_COUNT_BITS", "PAIR_FIRST_SHIFT"];
-
-/// A Rust struct as (name, size, [(member, offset, size)]).
-type RustLayout = (&'static str, usize, Vec<(&'static str, usize, usize)>);
-
-macro_rules! rust_layout {
-    ($ty:ident { $($field:ident),* $(,)? }) => {{
-        let zero: $ty = bytemuck::Zeroable::zeroed();
-        let members = vec![$((stringify!($field), offset_of!($ty, $field), size_of_val(&zero.$field))),*];
-        (stringify!($ty), size_of::<$ty>(), members)
-    }};
-}
 
 fn rust_layouts() -> Vec<RustLayout> {
     vec![
@@ -175,55 +161,21 @@ pub fn layout_module() -> naga::Module {
 
 #[test]
 fn every_rust_layout_struct_covers_its_bytes() {
-    // A field added in Rust but not listed above breaks this chain, so the list stays complete.
-    for (name, size, members) in rust_layouts() {
-        let mut end = 0;
-        for (field, offset, field_size) in &members {
-            assert_eq!(*offset, end, "{name}.{field} does not follow the previous member (unlisted field or padding?)");
-            end = offset + field_size;
-        }
-        assert_eq!(end, size, "{name}: listed members end at {end}, the struct has {size} bytes");
-    }
+    assert_members_cover_bytes(&rust_layouts());
 }
 
 #[test]
 fn wgsl_structs_match_rust_offsets_and_sizes() {
     let module = layout_module();
-    let mut layouter = Layouter::default();
-    layouter.update(module.to_ctx()).expect("layout.wgsl lays out");
-    let mut checked = 0;
-    for (name, size, members) in rust_layouts() {
-        let (handle, ty) = module
-            .types
-            .iter()
-            .find(|(_, t)| t.name.as_deref() == Some(name))
-            .unwrap_or_else(|| panic!("struct {name} is missing from shaders/layout.wgsl"));
-        let naga::TypeInner::Struct { members: wgsl, span } = &ty.inner else { panic!("{name} is not a struct") };
-        assert_eq!(*span as usize, size, "{name}: WGSL size {span} != Rust size {size}");
-        assert_eq!(layouter[handle].size as usize, size, "{name}: naga layouter size");
-        assert_eq!(wgsl.len(), members.len(), "{name}: member count differs");
-        for (w, (field, offset, _)) in wgsl.iter().zip(&members) {
-            assert_eq!(w.name.as_deref(), Some(*field), "{name}: member order/name differs");
-            assert_eq!(w.offset as usize, *offset, "{name}.{field}: WGSL offset {} != Rust {offset}", w.offset);
-        }
-        checked += 1;
-    }
+    let layouts = rust_layouts();
+    assert_matches_wgsl(&module, &layouts);
     let wgsl_structs = module
         .types
         .iter()
         .filter(|(_, t)| matches!(t.inner, naga::TypeInner::Struct { .. }))
         .filter(|(_, t)| !BVH_STRUCTS.contains(&t.name.as_deref().unwrap_or_default()))
         .count();
-    assert_eq!(wgsl_structs, checked, "layout.wgsl has a struct without a Rust twin in this test");
-}
-
-fn literal_value(module: &naga::Module, init: naga::Handle<naga::Expression>) -> f64 {
-    match module.global_expressions[init] {
-        naga::Expression::Literal(naga::Literal::U32(v)) => f64::from(v),
-        naga::Expression::Literal(naga::Literal::I32(v)) => f64::from(v),
-        naga::Expression::Literal(naga::Literal::F32(v)) => f64::from(v),
-        ref other => panic!("constant initialiser {other:?} is not a literal"),
-    }
+    assert_eq!(wgsl_structs, layouts.len(), "layout.wgsl has a struct without a Rust twin in this test");
 }
 
 #[test]
