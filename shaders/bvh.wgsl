@@ -6,7 +6,7 @@
 // Never misses a hit brute force finds: the slab test pads each box by a relative margin far
 // above f32 rounding; of equal t the smaller (kind, index) in brute force's order wins, so the
 // result does not depend on the visiting order. Below the root, a node's box is its parent's
-// quantized record of it (glint_core::bvh::QuantizedPair), which only ever holds more. The
+// quantized record of it (glint_types::layout::QuantizedPair), which only ever holds more. The
 // stack is fixed (BVH_STACK_SIZE); a traversal that needs more raises
 // STATUS_BVH_STACK_OVERFLOW, never silently. Shadow crossings
 // are multiplied in visiting order (the CPU sorts them to be bit-identical to its brute force;
@@ -113,7 +113,7 @@ fn load_pair(i: u32) -> QuantizedPair {
     return QuantizedPair(bitcast<vec3<f32>>(w[0].xyz), w[0].w, w[1].x, array<u32, 3>(w[1].y, w[1].z, w[1].w));
 }
 
-// The pair's boxes dequantized (QuantizedPair::boxes): the left child's min and max, then the
+// The pair's boxes dequantized (glint_core::bvh::pair_boxes): the left child's min and max, then the
 // right's. Each q · 2^e is exact, so the sum's is the only rounding, as the builder assumed.
 fn pair_boxes(p: QuantizedPair) -> array<vec3<f32>, 4> {
     let e = vec3<u32>(p.exponents, p.exponents >> 8u, p.exponents >> 16u) & vec3<u32>(0xffu);
@@ -128,8 +128,8 @@ fn pair_boxes(p: QuantizedPair) -> array<vec3<f32>, 4> {
     );
 }
 
-// The pair's children as node_refs, this being record i (QuantizedPair::refs; glint_core::bvh::
-// QuantizedPair says where each child is).
+// The pair's children as node_refs, this being record i (glint_core::bvh::pair_refs;
+// glint_types::layout::QuantizedPair says where each child is).
 fn pair_refs(p: QuantizedPair, i: u32) -> vec2<u32> {
     let count_mask = (1u << NODE_REF_COUNT_BITS) - 1u;
     let first = p.children >> PAIR_FIRST_SHIFT;

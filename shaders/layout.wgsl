@@ -39,7 +39,7 @@ const UV_ACROSS_Z: u32 = 3u;
 const NO_HIT: u32 = 0xffffffffu;
 
 // The feature bits (SceneHeader.features) are not read here: the host compiles each feature
-// in or out as an #ifdef shader def named as in glint_core::layout::feature::NAMES.
+// in or out as an #ifdef shader def named as in glint_types::layout::feature::NAMES.
 
 // Bits of the per-image status word the shader raises and the host reports.
 const STATUS_LOOP_LIMIT: u32 = 1u;
@@ -47,7 +47,8 @@ const STATUS_STACK_OVERFLOW: u32 = 2u;
 const STATUS_DRIVER_LOOP_CUTOFF: u32 = 4u;
 const STATUS_BVH_STACK_OVERFLOW: u32 = 8u;
 
-// Primitive references of the BVH (glint_core::bvh): the top bit marks a triangle.
+// Primitive references of the BVH (glint_types::layout; glint_core::bvh builds them): the top
+// bit marks a triangle.
 const PRIM_REF_TRIANGLE: u32 = 0x80000000u;
 const PRIM_REF_INDEX: u32 = 0x7fffffffu;
 // The GPU walk carries a node as its first child pair's record or first primitive reference
@@ -274,7 +275,7 @@ struct ProbeTree {
     nodes: array<ProbeNode, MAX_PROBE_NODES>,
 }
 
-// A BVH node (glint_core::bvh::BvhNode): a leaf when count > 0 (primitive references
+// A BVH node (glint_types::layout::BvhNode): a leaf when count > 0 (primitive references
 // left_first .. left_first + count), else its children are the pair at record left_first.
 // Only the root is stored so, as record 0.
 struct BvhNode {
@@ -284,7 +285,7 @@ struct BvhNode {
     count: u32,
 }
 
-// The two children of an interior node (glint_core::bvh::QuantizedPair, which says how
+// The two children of an interior node (glint_types::layout::QuantizedPair, which says how
 // children encodes where they are): each plane of a child's box is origin + q * 2^e on its
 // axis, q the byte of planes (left min, left max, right min, right max) and e the axis's byte
 // of exponents (biased as an f32's).

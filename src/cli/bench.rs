@@ -15,7 +15,8 @@ use clap::{Args, Subcommand};
 use glint_core::bvh::{self, BvhNodes};
 use glint_core::cpu::TraceContext;
 use glint_core::cpu::raycast::cast_rays;
-use glint_core::rays::{HitAgreement, HitRecord, RaySet, compare_hits, hit_fraction};
+use glint_core::cpu::raycast::{HitRecord, RayRecord};
+use glint_core::rays::{HitAgreement, RaySet, compare_hits, hit_fraction};
 use glint_core::{Backend, FlatScene};
 use glint_gpu::GpuContext;
 use glint_gpu::raycast::RayCaster;
@@ -193,7 +194,7 @@ fn rays(args: &RaysArgs) -> anyhow::Result<()> {
         load_ms: ms(load_time),
     };
 
-    let sets: Vec<(RaySet, Vec<glint_core::rays::RayRecord>)> = RaySet::ALL.iter().map(|&s| (s, s.rays())).collect();
+    let sets: Vec<(RaySet, Vec<RayRecord>)> = RaySet::ALL.iter().map(|&s| (s, s.rays())).collect();
     let mut casts = Vec::new();
     if backends.contains(&Backend::Cpu) {
         let ctx = TraceContext::new(&flat).context("invalid flat scene")?;

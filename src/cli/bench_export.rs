@@ -14,7 +14,8 @@ use std::path::Path;
 
 use anyhow::{Context, bail};
 use glint_core::FlatScene;
-use glint_core::rays::{HitRecord, RayRecord, RaySet};
+use glint_core::cpu::raycast::{HitRecord, RayRecord};
+use glint_core::rays::RaySet;
 use glint_io::atomic::write_file_atomically;
 
 /// Before the benchmark runs: an error unless the exported mesh is the whole scene, and

@@ -1,16 +1,11 @@
 //! No module imports one that imports it back: the `use` lines and the `crate::`/`super::`
 //! paths of every crate's sources, as edges between the two sibling modules that hold each end
 //! (`crate::cpu::trace` using `crate::flat` is cpu → flat), and the strongly connected sets of
-//! siblings that form circles. Circles that the house issue lists and that are still to be
-//! taken apart are named in `KNOWN`; a new one fails, and so does a known one that is gone
-//! (then delete its line). Test modules (`#[cfg(test)]`, to the end of the file) are left out.
+//! siblings that form circles: there must be none. Test modules (`#[cfg(test)]`, to the end of
+//! the file) are left out.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
-
-/// Circles still in the house (issue 36), each as the crate and its sorted sibling modules:
-/// across the core (the tracer, the flat layout, rebasing and the ray trees).
-const KNOWN: &[(&str, &[&str])] = &[("glint_core", &["cpu", "flat", "probe_terms", "ray_tree", "rays", "rebase"])];
 
 /// The crates and their source roots, from the workspace root.
 const CRATES: [(&str, &str); 8] = [
@@ -197,10 +192,5 @@ fn no_module_imports_one_that_imports_it_back() {
             }
         }
     }
-    let known: BTreeSet<(String, Vec<String>)> =
-        KNOWN.iter().map(|(c, m)| (c.to_string(), m.iter().map(|s| s.to_string()).collect())).collect();
-    let new: Vec<_> = found.difference(&known).collect();
-    let gone: Vec<_> = known.difference(&found).collect();
-    assert!(new.is_empty(), "modules that import each other back (take the circle apart): {new:?}");
-    assert!(gone.is_empty(), "circles taken apart: delete them from KNOWN in tests/core/module_cycles.rs: {gone:?}");
+    assert!(found.is_empty(), "modules that import each other back (take the circle apart): {found:?}");
 }

@@ -3,9 +3,9 @@
 //! shape follows the model (k products along the path, bailout and depth cuts).
 
 use glint_core::cpu::TraceContext;
+use glint_core::cpu::ray_tree::{Cut, RayTree};
 use glint_core::cpu::trace::render_pixel;
 use glint_core::glam::DVec3;
-use glint_core::ray_tree::{Cut, RayTree};
 use glint_core::{FlatScene, probe_tree};
 use glint_io::load_scene;
 use glint_types::RayKind;

@@ -75,7 +75,7 @@ fn a_scene_far_from_the_origin_reuses_its_rebased_geometry_while_the_camera_move
     shift(&mut desc.camera.look_at, 1e5);
     let first = FlatScene::build(&desc, &desc.render);
     let frame = glint_core::rebase::camera_frame(&first);
-    assert_ne!(frame, glint_core::rebase::WORLD_FRAME);
+    assert_ne!(frame, glint_types::layout::WORLD_FRAME);
     gpu_render_with(&tracer, &first, &options);
     assert_eq!(tracer.geometry_uploads(), 1);
 

@@ -3,8 +3,9 @@
 //! f32-against-f64 tolerance; a perturbed node is found; a tree past the buffer's capacity says
 //! so.
 
+use glint_core::cpu::ray_tree::{Cut, RayTree};
+use glint_core::probe_terms::first_tree_difference as first_difference;
 use glint_core::probe_tree;
-use glint_core::ray_tree::{Cut, RayTree, first_difference};
 use glint_types::RayKind;
 
 use glint_test_support::scene::{SceneText, slab};

@@ -13,8 +13,9 @@
 
 use glint_core::FlatScene;
 use glint_core::cpu::TraceContext;
+use glint_core::cpu::raycast::HitRecord;
 use glint_core::cpu::raycast::cast_rays;
-use glint_core::rays::{HitRecord, RaySet, compare_hits, hit_fraction, primary_rays};
+use glint_core::rays::{RaySet, compare_hits, hit_fraction, primary_rays};
 use glint_gpu::GpuError;
 use glint_gpu::raycast::RayCaster;
 use glint_io::{LoadOptions, load_scene_with};
@@ -137,7 +138,7 @@ fn the_ray_caster_works_in_world_space_away_from_the_origin() {
     desc.camera.position[0] += SHIFT;
     desc.camera.look_at[0] += SHIFT;
     let flat = FlatScene::build(&desc, &desc.render);
-    assert_ne!(glint_core::rebase::camera_frame(&flat), glint_core::rebase::WORLD_FRAME);
+    assert_ne!(glint_core::rebase::camera_frame(&flat), glint_types::layout::WORLD_FRAME);
     let caster = RayCaster::new(ctx, &flat).expect("the kernel compiles and the scene uploads");
     let rays: Vec<_> = RaySet::Primary
         .rays()

@@ -3,7 +3,7 @@
 
 use egui::Modifiers;
 use egui_kittest::kittest::Queryable;
-use glint_core::ray_tree::RayTree;
+use glint_core::cpu::ray_tree::RayTree;
 use glint_types::RayKind;
 
 use crate::support::{click, menu, settle, viewer};

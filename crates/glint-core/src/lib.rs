@@ -1,5 +1,6 @@
-//! Glint core: the scene model and its validation, the flat GPU-ready layout, and the exact
-//! f64 CPU reference tracer of the Phong/Whitted model. No GPU code lives here.
+//! Glint core: the flat GPU-ready layout built from a scene description, the BVH, and the
+//! exact f64 CPU reference tracer of the Phong/Whitted model (with its ray trees, rebasing,
+//! rendering and image comparison). It reads no file and holds no GPU code.
 
 pub mod backend;
 pub mod bvh;
@@ -10,7 +11,6 @@ pub mod huge_pages;
 pub mod image;
 pub mod memory;
 pub mod probe_terms;
-pub mod ray_tree;
 pub mod rays;
 pub mod rebase;
 pub mod render;

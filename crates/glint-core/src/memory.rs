@@ -9,9 +9,10 @@
 use std::fmt;
 use std::path::Path;
 
-use crate::bvh::{BvhNode, QuantizedPair, WideNode};
+use crate::bvh::WideNode;
 use crate::flat::{GPU_LEAF_BYTES_PER_PRIM, LeafCorners};
 use glint_scene::{ObjectDesc, RenderSettings, SceneDesc};
+use glint_types::layout::{BvhNode, QuantizedPair};
 use glint_types::layout::{GpuMesh, GpuPlane, GpuSphere, GpuTriangle};
 
 /// Peak memory of a TOML scene while it is parsed and checked, per byte of the file: the text,

@@ -4,6 +4,7 @@
 
 use glam::DVec3;
 
+use crate::cpu::ray_tree::RayTree;
 use crate::cpu::shade::Breakdown;
 
 /// One row of the probe table.
@@ -78,6 +79,74 @@ pub fn first_difference(terms: &[Term]) -> Option<usize> {
 /// `first_difference` with the tolerances times `widen`.
 pub fn first_difference_within(terms: &[Term], widen: f64) -> Option<usize> {
     terms.iter().position(|t| t.gpu.is_some_and(|g| differs_within(t.cpu, g, widen)))
+}
+
+/// How much wider than at the first hit the f32-against-f64 tolerance is at `depth`: doubled
+/// per level. Each bounce starts from an f32 point and direction that already carry the
+/// rounding of the bounces before; through glass the direction error grows about twofold a
+/// level (measured: 1e-4 relative at depth 4 through whitted's sphere, within 2^4 × 1e-4),
+/// while a real divergence (another branch, another object) changes the tree's shape.
+pub fn depth_widening(depth: u32) -> f64 {
+    f64::from(1u32 << depth.min(20))
+}
+
+/// Where two trees of the same pixel (CPU f64, GPU f32) first part: the node and what differs.
+#[derive(Clone, Debug, PartialEq)]
+pub struct NodeDifference {
+    pub node: usize,
+    pub what: String,
+}
+
+/// The first node, in depth-first order, where `gpu` differs from `cpu`: in its shape (kind,
+/// parent, cut, total internal reflection, light, hit or miss, object hit) exactly, in its
+/// values (weight, factor, t, origin, direction, then the local terms) beyond the probe's
+/// f32-against-f64 tolerance (`differs`) widened by `depth_widening(depth)`. A
+/// tree with fewer nodes differs at the first node it lacks; an overflowed GPU tree is
+/// compared over the nodes it kept.
+pub fn first_tree_difference(cpu: &RayTree, gpu: &RayTree) -> Option<NodeDifference> {
+    let s = DVec3::splat;
+    let kept = if gpu.overflow { gpu.nodes.len().min(cpu.nodes.len()) } else { cpu.nodes.len().max(gpu.nodes.len()) };
+    for i in 0..kept {
+        let differ = |what: String| Some(NodeDifference { node: i, what });
+        let (Some(c), Some(g)) = (cpu.nodes.get(i), gpu.nodes.get(i)) else {
+            return differ(format!("{} nodes on the CPU, {} on the GPU", cpu.nodes.len(), gpu.nodes.len()));
+        };
+        let shape = [
+            ("kind", c.kind != g.kind),
+            ("parent", c.parent != g.parent),
+            ("cut", c.cut != g.cut),
+            ("total internal reflection", c.tir != g.tir),
+            ("light", c.light != g.light),
+            ("hit or miss", c.t.is_some() != g.t.is_some()),
+            ("object hit", c.terms.as_ref().map(|t| t.object_id) != g.terms.as_ref().map(|t| t.object_id)),
+        ];
+        if let Some((what, _)) = shape.iter().find(|(_, d)| *d) {
+            return differ(what.to_string());
+        }
+        let values = [
+            ("weight", c.weight, g.weight),
+            ("factor", c.factor, g.factor),
+            ("t", s(c.t.unwrap_or(0.0)), s(g.t.unwrap_or(0.0))),
+            ("attenuation", s(c.attenuation), s(g.attenuation)),
+            ("origin", c.origin, g.origin),
+            ("direction", c.dir, g.dir),
+        ];
+        let widen = depth_widening(c.depth);
+        let differs = |a: DVec3, b: DVec3| differs_within(a, b, widen);
+        if let Some((what, ..)) = values.iter().find(|(_, a, b)| differs(*a, *b)) {
+            return differ(what.to_string());
+        }
+        if let (Some(ct), Some(gt)) = (&c.terms, &g.terms) {
+            let rows = local_terms(ct, Some(gt));
+            if let Some(r) = first_difference_within(&rows, widen) {
+                return differ(rows[r].name.clone());
+            }
+            if differs(ct.normal, gt.normal) {
+                return differ("N".into());
+            }
+        }
+    }
+    None
 }
 
 #[cfg(test)]

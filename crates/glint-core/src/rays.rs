@@ -4,9 +4,8 @@
 //! Rays are stored in f32, as the GPU reads them; the CPU widens those exact values (as it does
 //! the scene), so both tracers cast bit-identical rays.
 
-use bytemuck::{Pod, Zeroable};
-
-use crate::cpu::intersect::{FAR, Hit};
+use crate::cpu::intersect::FAR;
+use crate::cpu::raycast::{HitRecord, RayRecord};
 
 /// Width and height of both ray sets: one 720p frame.
 pub const RAYS_WIDTH: u32 = 1280;
@@ -22,42 +21,6 @@ pub const INCOHERENT_MIN: [f64; 3] = [-2.0, -1.0, -2.0];
 pub const INCOHERENT_MAX: [f64; 3] = [2.0, 2.0, 2.0];
 /// The fixed seed of the incoherent rays.
 pub const INCOHERENT_SEED: u64 = 0x5eed_91a7_2026_1201;
-
-/// One ray as the GPU reads it: origin and t_min, unit direction and t_max.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
-#[repr(C)]
-pub struct RayRecord {
-    pub origin_t_min: [f32; 4],
-    pub dir_t_max: [f32; 4],
-}
-
-/// The closest hit of one ray as the GPU writes it: the kind (`cpu::intersect::Prim` as u32,
-/// `PRIM_NONE` = 0 for a miss), the index in that kind's array, and t.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
-#[repr(C)]
-pub struct HitRecord {
-    pub prim: u32,
-    pub index: u32,
-    pub t: f32,
-    pub pad: u32,
-}
-
-/// The kind of a miss in `HitRecord::prim` (`PRIM_NONE` of intersect.wgsl).
-pub const PRIM_NONE: u32 = 0;
-
-impl HitRecord {
-    /// The record of a CPU hit (t rounded to f32).
-    pub fn from_hit(hit: Option<Hit>) -> Self {
-        match hit {
-            Some(h) => Self { prim: h.prim as u32, index: h.index, t: h.t as f32, pad: 0 },
-            None => Self { prim: PRIM_NONE, index: 0, t: 0.0, pad: 0 },
-        }
-    }
-
-    pub fn is_hit(&self) -> bool {
-        self.prim != PRIM_NONE
-    }
-}
 
 /// Which ray set.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

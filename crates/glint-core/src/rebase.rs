@@ -23,9 +23,6 @@ use crate::cpu::{Ray, TraceContext, v3};
 use glint_scene::{LightKind, Wrap};
 use glint_types::layout::{GpuPlane, GpuSphere, origin_power};
 
-/// The world frame of a scene as built: origin 0, offsets' length scale 1.
-pub const WORLD_FRAME: [f32; 4] = [0.0, 0.0, 0.0, 1.0];
-
 /// Where the GPU's coordinates have their origin.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub enum Frame {
@@ -252,8 +249,8 @@ mod tests {
         let eye = v3(scene.camera.position);
         focus_within(scene, eye, reach(scene, eye))
     }
-    use crate::bvh::BvhNode;
     use glint_io::parse_scene;
+    use glint_types::layout::{BvhNode, WORLD_FRAME};
 
     fn scene(offset: f64) -> FlatScene {
         let text = format!(

@@ -7,12 +7,12 @@ use glam::DVec3;
 use rayon::prelude::*;
 
 pub use crate::cpu::Accel;
+use crate::cpu::ray_tree::{NoTree, RayTree};
 use crate::cpu::shade::Breakdown;
 use crate::cpu::trace::{render_pixel, render_sample};
 use crate::cpu::{DEFAULT_MAX_RAYS_PER_SAMPLE, RayCounts, TraceContext};
 use crate::flat::FlatScene;
 use crate::image::HdrImage;
-use crate::ray_tree::{NoTree, RayTree};
 use glint_types::layout::{UnknownTag, feature};
 
 /// Edge of a square tile in pixels.

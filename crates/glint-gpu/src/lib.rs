@@ -27,7 +27,11 @@ pub use tracer::{GpuOptions, GpuRender, GpuTracer, PixelProbe};
 
 #[cfg(test)]
 #[path = "../../glint-types/src/layout_check.rs"]
-#[macro_use]
+#[allow(
+    dead_code,
+    unused_macros,
+    reason = "glint-types' reflection harness, of which these tests read only literal values"
+)]
 mod layout_check;
 #[cfg(test)]
 mod reflection_tests;

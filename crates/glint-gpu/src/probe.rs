@@ -1,10 +1,10 @@
 //! The GPU pixel probe's record and ray tree, turned into the CPU's `Breakdown` and `RayTree`
 //! so both can be shown and compared term by term and node by node.
 
+use glint_core::cpu::ray_tree::{Cut, RayNode, RayTree};
 use glint_core::cpu::shade::{Breakdown, LightTerm};
 use glint_core::cpu::v3 as v;
 use glint_core::glam::DVec3;
-use glint_core::ray_tree::{Cut, RayNode, RayTree};
 use glint_types::RayKind;
 use glint_types::layout::{
     NO_HIT, NO_PARENT, NODE_CUT_BAILOUT, NODE_CUT_DEPTH, NODE_HIT, NODE_TIR, PROBE_HIT, PROBE_TIR, ProbeLight,

@@ -5,7 +5,7 @@
 use std::time::{Duration, Instant};
 
 use glint_core::FlatScene;
-use glint_core::rays::{HitRecord, RayRecord};
+use glint_core::cpu::raycast::{HitRecord, RayRecord};
 use glint_types::layout::feature;
 use wgpu::util::DeviceExt;
 

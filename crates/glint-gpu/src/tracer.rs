@@ -8,8 +8,8 @@ use std::time::{Duration, Instant};
 
 use glint_core::HdrImage;
 use glint_core::cpu::RayCounts;
+use glint_core::cpu::ray_tree::RayTree;
 use glint_core::flat::GeometryId;
-use glint_core::ray_tree::RayTree;
 use glint_core::rebase::{Frame, rebased, rebased_with_geometry};
 use glint_core::{Accel, FlatScene};
 use glint_types::layout::{PROBE_HIT, ProbeRecord};

@@ -58,8 +58,8 @@ const TWINS: [(&str, &str, &str, &str); 12] = [
     (
         "probe.wgsl",
         include_str!("../../../shaders/probe.wgsl"),
-        "ray_tree.rs",
-        include_str!("../../glint-core/src/ray_tree.rs"),
+        "cpu/ray_tree.rs",
+        include_str!("../../glint-core/src/cpu/ray_tree.rs"),
     ),
     (
         "raycast.wgsl",
@@ -89,8 +89,8 @@ const GPU_ONLY: [(&str, &str, &str); 36] = [
         "load_pair",
         "a node's children in two vec4 loads; the CPU walks the wide nodes, not the GPU's quantized pairs",
     ),
-    ("bvh.wgsl", "pair_boxes", "glint_core::bvh::QuantizedPair::boxes, which the GPU form's tests use"),
-    ("bvh.wgsl", "pair_refs", "glint_core::bvh::QuantizedPair::refs, which the GPU form's tests use"),
+    ("bvh.wgsl", "pair_boxes", "glint_core::bvh::pair_boxes, beside the builder of the GPU form, whose tests use it"),
+    ("bvh.wgsl", "pair_refs", "glint_core::bvh::pair_refs, beside the builder of the GPU form, whose tests use it"),
     (
         "bvh.wgsl",
         "leaf_head",
@@ -186,6 +186,8 @@ const GPU_ONLY: [(&str, &str, &str); 36] = [
 
 /// Functions only the CPU side has, and why.
 const CPU_ONLY: [(&str, &str, &str); 17] = [
+    ("cpu/raycast.rs", "from_hit", "HitRecord from the CPU's Option<Hit>; cast_ray writes the vec4 in place"),
+    ("cpu/raycast.rs", "is_hit", "a record read on the host (the benchmark's hit counts)"),
     ("cpu/bvh.rs", "new", "SlabRay::new; WGSL builds it in slab_ray (no methods)"),
     ("cpu/bvh.rs", "prefetch", "a CPU cache hint for the nodes and leaves the walk takes next; WGSL has none"),
     (
@@ -209,14 +211,12 @@ const CPU_ONLY: [(&str, &str, &str); 17] = [
     ("cpu/raycast.rs", "cast_rays", "the rayon loop over the buffer; the GPU's is the dispatch (main)"),
     ("cpu/trace.rs", "render_pixel", "the GPU sums a pixel's samples across dispatches (accumulate_sample)"),
     ("image.rs", "*", "the HDR image, its sRGB encoding and metadata: host output, no place on the GPU"),
-    ("ray_tree.rs", "new", "RayNode::new; WGSL has no methods: probe.wgsl's open writes the node's fields"),
-    ("ray_tree.rs", "name", "Cut's names in the host's reports"),
-    ("ray_tree.rs", "hit", "RayNode::hit reads t on the host; the GPU flags NODE_HIT in close"),
-    ("ray_tree.rs", "children", "a recorded tree read on the host (reports and tests)"),
-    ("ray_tree.rs", "radiance_of", "a recorded tree read on the host: its radiance recomputed from the nodes"),
-    ("ray_tree.rs", "count", "a recorded tree read on the host (reports and tests)"),
-    ("ray_tree.rs", "depth_widening", "the host's comparison of a CPU and a GPU tree (first_difference)"),
-    ("ray_tree.rs", "first_difference", "the host's comparison of a CPU and a GPU tree, node by node"),
+    ("cpu/ray_tree.rs", "new", "RayNode::new; WGSL has no methods: probe.wgsl's open writes the node's fields"),
+    ("cpu/ray_tree.rs", "name", "Cut's names in the host's reports"),
+    ("cpu/ray_tree.rs", "hit", "RayNode::hit reads t on the host; the GPU flags NODE_HIT in close"),
+    ("cpu/ray_tree.rs", "children", "a recorded tree read on the host (reports and tests)"),
+    ("cpu/ray_tree.rs", "radiance_of", "a recorded tree read on the host: its radiance recomputed from the nodes"),
+    ("cpu/ray_tree.rs", "count", "a recorded tree read on the host (reports and tests)"),
 ];
 
 /// Structs only the GPU side has, and why.
@@ -232,7 +232,9 @@ const GPU_ONLY_STRUCTS: [(&str, &str, &str); 8] = [
 ];
 
 /// Structs only the CPU side has, and why.
-const CPU_ONLY_STRUCTS: [(&str, &str, &str); 11] = [
+const CPU_ONLY_STRUCTS: [(&str, &str, &str); 12] = [
+    ("cpu/raycast.rs", "RayRecord", "a ray of the buffer as the host writes it; WGSL reads two vec4<f32>"),
+    ("cpu/raycast.rs", "HitRecord", "a hit of the buffer as the host reads it; WGSL writes one vec4<u32>"),
     (
         "cpu/bvh.rs",
         "Pending",
@@ -250,9 +252,8 @@ const CPU_ONLY_STRUCTS: [(&str, &str, &str); 11] = [
     ("cpu/mod.rs", "MaterialTags", "a material's stored tags decoded into enums once; WGSL compares the u32 fields"),
     ("cpu/shade.rs", "Breakdown", "the CPU probe's record; the GPU probe writes ProbeRecord (layout.rs)"),
     ("image.rs", "*", "host images and their metadata have no place on the GPU"),
-    ("ray_tree.rs", "RayNode", "the host's node; the GPU writes a ProbeNode (layout.rs), decoded into one"),
-    ("ray_tree.rs", "RayTree", "the host's tree, a Vec of nodes; the GPU writes a ProbeTree (layout.rs)"),
-    ("ray_tree.rs", "NodeDifference", "where a CPU and a GPU tree part, found on the host"),
+    ("cpu/ray_tree.rs", "RayNode", "the host's node; the GPU writes a ProbeNode (layout.rs), decoded into one"),
+    ("cpu/ray_tree.rs", "RayTree", "the host's tree, a Vec of nodes; the GPU writes a ProbeTree (layout.rs)"),
 ];
 
 /// Fields only the CPU side of a twin struct has, and why (left out before the comparison).

@@ -87,6 +87,21 @@ pub const STATUS_DRIVER_LOOP_CUTOFF: u32 = 4;
 /// were not visited, so some hits may be missing.
 pub const STATUS_BVH_STACK_OVERFLOW: u32 = 8;
 
+/// The top bit of a BVH primitive reference: set for a triangle, clear for a sphere.
+pub const PRIM_REF_TRIANGLE: u32 = 1 << 31;
+/// The index bits of a primitive reference.
+pub const PRIM_REF_INDEX: u32 = PRIM_REF_TRIANGLE - 1;
+/// The GPU walk carries a node in one u32, its first child pair's record or first primitive
+/// reference shifted past its leaf count (`node_ref` in shaders/bvh.wgsl), so that a child
+/// tested is not loaded again when walked.
+pub const NODE_REF_COUNT_BITS: u32 = 3;
+/// Bits of `QuantizedPair::children` below `first`: both children's leaf counts.
+pub const PAIR_FIRST_SHIFT: u32 = 2 * NODE_REF_COUNT_BITS;
+
+/// The frame of a scene that is not rebased: origin at the world's, scale 1
+/// (`SceneHeader::frame`).
+pub const WORLD_FRAME: [f32; 4] = [0.0, 0.0, 0.0, 1.0];
+
 /// Layout of the GPU statistics buffer: (lo, hi) u32 pairs per ray kind, then the status word.
 pub const STAT_CAMERA: u32 = 0;
 pub const STAT_SHADOW: u32 = 2;
@@ -553,3 +568,45 @@ pub struct ProbeTree {
     pub pad_b: u32,
     pub nodes: [ProbeNode; MAX_PROBE_NODES as usize],
 }
+
+/// One BVH node (glint-core builds them): a leaf when `count > 0` (primitive references
+/// `left_first .. left_first + count`), else an interior node whose children are `left_first`
+/// and `left_first + 1`. The GPU reads only the root so, as record 0 of its node buffer.
+///
+/// Aligned to its size, so that a pair of siblings stored from an even index is one 64-byte
+/// cache line.
+#[repr(C, align(32))]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct BvhNode {
+    pub min: [f32; 3],
+    pub left_first: u32,
+    pub max: [f32; 3],
+    pub count: u32,
+}
+
+const _: () = assert!(size_of::<BvhNode>() == 32);
+
+/// The children of one interior node, as the GPU walks them (glint-core's `bvh::quantized`
+/// builds and reads them). Each plane of a child's box is `origin + q · 2^e` on its axis, for
+/// an 8-bit q and the axis's e: the product is exact in f32, so the one rounding is the sum's,
+/// and a fused multiply-add gives the same value.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct QuantizedPair {
+    /// The lower corner of the pair's box.
+    pub origin: [f32; 3],
+    /// The biased f32 exponent of each axis's step 2^e, in bytes 0, 1, 2 (byte 3 is 0).
+    pub exponents: u32,
+    /// Where the children are: `first` above PAIR_FIRST_SHIFT, then the left and the right
+    /// child's leaf counts (NODE_REF_COUNT_BITS each; 0 for an interior node). A leaf left
+    /// child holds references `first ..`, and a leaf right child follows it (or starts at
+    /// `first` when the left child is interior); an interior left child's pair is the next
+    /// record, and an interior right child's is the next record if the left child is a leaf,
+    /// else `first`.
+    pub children: u32,
+    /// Per axis, the q of the left child's lower and upper plane, then the right child's, in
+    /// bytes 0 to 3.
+    pub planes: [u32; 3],
+}
+
+const _: () = assert!(size_of::<QuantizedPair>() == size_of::<BvhNode>());

@@ -1,15 +1,9 @@
 //! The one data layout, checked: every `#[repr(C)]` struct of [`crate::layout`] against its
 //! WGSL twin in `shaders/layout.wgsl` (member names, offsets, sizes, as naga's layouter sees
-//! them), and every shared constant against its Rust value. No "keep in sync" comments. The
-//! BVH's records (`BvhNode`, `QuantizedPair`) and their constants belong to glint-core, which
-//! builds them; glint-gpu's reflection tests check those.
+//! them), and every shared constant against its Rust value. No "keep in sync" comments.
 
 use crate::layout::*;
 use crate::layout_check::{RustLayout, assert_matches_wgsl, assert_members_cover_bytes, literal_value};
-
-/// The structs and constants of layout.wgsl that the BVH (glint-core) owns.
-const BVH_STRUCTS: [&str; 2] = ["BvhNode", "QuantizedPair"];
-const BVH_CONSTANTS: [&str; 4] = ["PRIM_REF_TRIANGLE", "PRIM_REF_INDEX", "NODE_REF_COUNT_BITS", "PAIR_FIRST_SHIFT"];
 
 fn rust_layouts() -> Vec<RustLayout> {
     vec![
@@ -146,6 +140,8 @@ fn rust_layouts() -> Vec<RustLayout> {
             lights
         }),
         rust_layout!(ProbeTree { node_count, flags, pad_a, pad_b, nodes }),
+        rust_layout!(BvhNode { min, left_first, max, count }),
+        rust_layout!(QuantizedPair { origin, exponents, children, planes }),
     ]
 }
 
@@ -169,12 +165,7 @@ fn wgsl_structs_match_rust_offsets_and_sizes() {
     let module = layout_module();
     let layouts = rust_layouts();
     assert_matches_wgsl(&module, &layouts);
-    let wgsl_structs = module
-        .types
-        .iter()
-        .filter(|(_, t)| matches!(t.inner, naga::TypeInner::Struct { .. }))
-        .filter(|(_, t)| !BVH_STRUCTS.contains(&t.name.as_deref().unwrap_or_default()))
-        .count();
+    let wgsl_structs = module.types.iter().filter(|(_, t)| matches!(t.inner, naga::TypeInner::Struct { .. })).count();
     assert_eq!(wgsl_structs, layouts.len(), "layout.wgsl has a struct without a Rust twin in this test");
 }
 
@@ -216,6 +207,10 @@ fn wgsl_layout_constants_match_rust() {
         ("STATUS_STACK_OVERFLOW".into(), STATUS_STACK_OVERFLOW),
         ("STATUS_DRIVER_LOOP_CUTOFF".into(), STATUS_DRIVER_LOOP_CUTOFF),
         ("STATUS_BVH_STACK_OVERFLOW".into(), STATUS_BVH_STACK_OVERFLOW),
+        ("PRIM_REF_TRIANGLE".into(), PRIM_REF_TRIANGLE),
+        ("PRIM_REF_INDEX".into(), PRIM_REF_INDEX),
+        ("NODE_REF_COUNT_BITS".into(), NODE_REF_COUNT_BITS),
+        ("PAIR_FIRST_SHIFT".into(), PAIR_FIRST_SHIFT),
         ("STAT_CAMERA".into(), STAT_CAMERA),
         ("STAT_SHADOW".into(), STAT_SHADOW),
         ("STAT_REFLECTION".into(), STAT_REFLECTION),
@@ -255,10 +250,6 @@ fn wgsl_layout_constants_match_rust() {
         assert_eq!(found.1, *value, "{name}: WGSL {} != Rust {value}", found.1);
     }
     for (name, _) in &wgsl {
-        let owned_here = expected.iter().any(|(n, _)| n == name);
-        assert!(
-            owned_here || BVH_CONSTANTS.contains(&name.as_str()),
-            "layout.wgsl constant {name} has no Rust twin in this test"
-        );
+        assert!(expected.iter().any(|(n, _)| n == name), "layout.wgsl constant {name} has no Rust twin in this test");
     }
 }

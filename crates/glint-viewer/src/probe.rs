@@ -4,8 +4,9 @@
 
 use std::sync::Arc;
 
+use glint_core::cpu::ray_tree::RayTree;
 use glint_core::cpu::shade::Breakdown;
-use glint_core::ray_tree::{NodeDifference, RayTree, first_difference as first_node_difference};
+use glint_core::probe_terms::{NodeDifference, first_tree_difference as first_node_difference};
 use glint_core::{FlatScene, probe_pixel, probe_tree};
 use glint_gpu::GpuTracer;
 

@@ -4,9 +4,9 @@
 //! weight, the branches the bailout or the depth limit cut dashed.
 
 use egui::{Color32, Rect, Sense, Shape, Stroke, Ui, Vec2};
+use glint_core::cpu::ray_tree::RayTree;
 use glint_core::cpu::v3;
 use glint_core::glam::DVec3;
-use glint_core::ray_tree::RayTree;
 use glint_types::RayKind;
 use glint_types::layout::GpuCamera;
 

@@ -2,7 +2,8 @@
 
 use rayon::prelude::*;
 
-use super::{Aabb, Bounded, Bvh, BvhNode, MAX_LEAF, PRIM_REF_INDEX, PrimRef};
+use super::{Aabb, Bounded, Bvh, MAX_LEAF, PrimRef};
+use glint_types::layout::{BvhNode, PRIM_REF_INDEX};
 
 /// SAH bins per axis.
 const BINS: usize = 16;

@@ -11,14 +11,16 @@ use std::sync::Arc;
 use bytemuck::{Pod, Zeroable};
 
 use crate::huge_pages::HugePaged;
-use glint_types::layout::{GpuSphere, GpuTriangle};
+use glint_types::layout::{
+    BvhNode, GpuSphere, GpuTriangle, NODE_REF_COUNT_BITS, PRIM_REF_INDEX, PRIM_REF_TRIANGLE, QuantizedPair,
+};
 
 mod build;
 mod quantized;
 mod wide;
 
 pub use build::build;
-pub use quantized::{GPU_MAX_TREE_INDEX, PAIR_FIRST_SHIFT, QuantizeError, QuantizedPair};
+pub use quantized::{GPU_MAX_TREE_INDEX, QuantizeError, pair_boxes, pair_refs};
 pub use wide::{WIDTH, WideNode};
 
 /// The bounded primitives a hierarchy is built over, as the flat scene stores them.
@@ -28,29 +30,6 @@ pub struct Bounded<'a> {
     pub triangles: &'a [GpuTriangle],
     /// The vertex positions the triangles index (xyz, w unused).
     pub vertices: &'a [[f32; 4]],
-}
-
-/// One node: a leaf when `count > 0` (primitive references `left_first .. left_first +
-/// count`), else an interior node whose children are `left_first` and `left_first + 1`.
-///
-/// Aligned to its size, and stored with an unused node after the root so that every pair of
-/// siblings starts at an even index: in `BvhNodes` a pair is then one 64-byte cache line.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
-#[repr(C, align(32))]
-pub struct BvhNode {
-    pub min: [f32; 3],
-    pub left_first: u32,
-    pub max: [f32; 3],
-    pub count: u32,
-}
-
-const _: () = assert!(size_of::<BvhNode>() == 32);
-
-impl BvhNode {
-    /// The node's box.
-    pub fn bounds(&self) -> Aabb {
-        Aabb { min: self.min, max: self.max }
-    }
 }
 
 /// Two nodes, aligned to a 64-byte cache line: the storage unit of `BvhNodes`.
@@ -181,18 +160,9 @@ impl std::ops::Deref for BvhNodes {
     }
 }
 
-/// The top bit of a primitive reference: set for a triangle, clear for a sphere.
-pub const PRIM_REF_TRIANGLE: u32 = 1 << 31;
-/// The index bits of a primitive reference.
-pub const PRIM_REF_INDEX: u32 = PRIM_REF_TRIANGLE - 1;
-
 /// Most primitives in a leaf.
 pub const MAX_LEAF: usize = 4;
 
-/// The GPU walk carries a node in one u32, its first child pair's record or first primitive
-/// reference shifted past its leaf count (`node_ref` in shaders/bvh.wgsl), so that a child
-/// tested is not loaded again when walked.
-pub const NODE_REF_COUNT_BITS: u32 = 3;
 const _: () = assert!(MAX_LEAF < 1 << NODE_REF_COUNT_BITS, "a leaf's count must fit NODE_REF_COUNT_BITS");
 
 /// From this many spheres and triangles on, `Accel::Auto` traces through the BVH; below, brute
@@ -230,6 +200,11 @@ pub struct Aabb {
 
 impl Aabb {
     pub const EMPTY: Self = Self { min: [f32::INFINITY; 3], max: [f32::NEG_INFINITY; 3] };
+
+    /// A node's box.
+    pub fn of_node(node: &BvhNode) -> Self {
+        Self { min: node.min, max: node.max }
+    }
 
     fn grow(&mut self, o: &Self) {
         for k in 0..3 {
@@ -396,7 +371,7 @@ mod tests {
             assert!(!visited[i], "node {i} reached twice");
             visited[i] = true;
             let node = &bvh.nodes[i];
-            let b = node.bounds();
+            let b = Aabb::of_node(node);
             if node.count > 0 {
                 leaves += 1;
                 assert!(node.count as usize <= MAX_LEAF);
@@ -411,7 +386,7 @@ mod tests {
             } else {
                 for c in [node.left_first as usize, node.left_first as usize + 1] {
                     let cn = &bvh.nodes[c];
-                    assert!(b.contains(&cn.bounds()), "child {c} outside parent {i}");
+                    assert!(b.contains(&Aabb::of_node(cn)), "child {c} outside parent {i}");
                     stack.push(c);
                 }
             }

@@ -10,12 +10,9 @@
 //! is rounded outward by construction (`plane_below`, `plane_above`), computed in f32 exactly
 //! as the shader does, so the walk still never misses a hit brute force finds.
 
-use bytemuck::{Pod, Zeroable};
+use super::Aabb;
+use glint_types::layout::{BvhNode, NODE_REF_COUNT_BITS, PAIR_FIRST_SHIFT, QuantizedPair};
 
-use super::{Aabb, BvhNode, NODE_REF_COUNT_BITS};
-
-/// Bits of `QuantizedPair::children` below `first`: both children's leaf counts.
-pub const PAIR_FIRST_SHIFT: u32 = 2 * NODE_REF_COUNT_BITS;
 /// Records and leaf references a tree the GPU walks may have at most: `first` must fit the
 /// bits above the two counts.
 pub const GPU_MAX_TREE_INDEX: u64 = 1 << (32 - PAIR_FIRST_SHIFT);
@@ -25,30 +22,6 @@ pub const GPU_MAX_TREE_INDEX: u64 = 1 << (32 - PAIR_FIRST_SHIFT);
 /// 1e9, far below either bound).
 const MIN_EXPONENT: i32 = -126;
 const MAX_EXPONENT: i32 = 119;
-
-/// The children of one interior node. Each plane of a child's box is `origin + q · 2^e` on
-/// its axis, for an 8-bit q and the axis's e: the product is exact in f32, so the one rounding
-/// is the sum's, and a fused multiply-add gives the same value.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
-#[repr(C)]
-pub struct QuantizedPair {
-    /// The lower corner of the pair's box.
-    pub origin: [f32; 3],
-    /// The biased f32 exponent of each axis's step 2^e, in bytes 0, 1, 2 (byte 3 is 0).
-    pub exponents: u32,
-    /// Where the children are: `first` above PAIR_FIRST_SHIFT, then the left and the right
-    /// child's leaf counts (NODE_REF_COUNT_BITS each; 0 for an interior node). A leaf left
-    /// child holds references `first ..`, and a leaf right child follows it (or starts at
-    /// `first` when the left child is interior); an interior left child's pair is the next
-    /// record, and an interior right child's is the next record if the left child is a leaf,
-    /// else `first`.
-    pub children: u32,
-    /// Per axis, the q of the left child's lower and upper plane, then the right child's, in
-    /// bytes 0 to 3.
-    pub planes: [u32; 3],
-}
-
-const _: () = assert!(size_of::<QuantizedPair>() == size_of::<BvhNode>());
 
 /// Why a node array has no GPU form.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
@@ -106,7 +79,7 @@ pub fn quantize(nodes: &[BvhNode]) -> Result<Vec<QuantizedPair>, QuantizeError> 
                     _ => return Err(QuantizeError::LeavesApart { node: i }),
                 };
                 let counts = (left.count << NODE_REF_COUNT_BITS) | right.count;
-                let mut pair = QuantizedPair::of(i, left.bounds(), right.bounds())?;
+                let mut pair = quantized_pair(i, Aabb::of_node(left), Aabb::of_node(right))?;
                 pair.children = with_first(i, first, counts)?;
                 out.push(pair);
                 match (left.count, right.count) {
@@ -187,72 +160,69 @@ fn plane_above(origin: f32, c: f32, step: f32) -> Option<u32> {
     (plane(origin, q, step) >= c).then_some(q)
 }
 
-impl QuantizedPair {
-    /// The pair of boxes `left` and `right` (children of node `node`), each quantized outward;
-    /// `children` is left 0.
-    fn of(node: usize, left: Aabb, right: Aabb) -> Result<Self, QuantizeError> {
-        let mut pair = Self::default();
-        for k in 0..3 {
-            let origin = left.min[k].min(right.min[k]);
-            let top = left.max[k].max(right.max[k]);
-            let extent = f64::from(top) - f64::from(origin);
-            let too_wide =
-                || QuantizeError::TooWide { node, axis: k, extent, max: 255.0 * f64::from(step(MAX_EXPONENT)) };
-            if !extent.is_finite() {
+/// The pair of boxes `left` and `right` (children of node `node`), each quantized outward;
+/// `children` is left 0.
+fn quantized_pair(node: usize, left: Aabb, right: Aabb) -> Result<QuantizedPair, QuantizeError> {
+    let mut pair = QuantizedPair::default();
+    for k in 0..3 {
+        let origin = left.min[k].min(right.min[k]);
+        let top = left.max[k].max(right.max[k]);
+        let extent = f64::from(top) - f64::from(origin);
+        let too_wide = || QuantizeError::TooWide { node, axis: k, extent, max: 255.0 * f64::from(step(MAX_EXPONENT)) };
+        if !extent.is_finite() {
+            return Err(too_wide());
+        }
+        // The smallest step whose 255 multiples span the box; one more if rounding says so.
+        let mut e = exponent_above(extent / 255.0).clamp(MIN_EXPONENT, MAX_EXPONENT);
+        let planes = loop {
+            let s = step(e);
+            let found = [
+                Some(plane_below(origin, left.min[k], s)),
+                plane_above(origin, left.max[k], s),
+                Some(plane_below(origin, right.min[k], s)),
+                plane_above(origin, right.max[k], s),
+            ];
+            if let [Some(a), Some(b), Some(c), Some(d)] = found {
+                break a | b << 8 | c << 16 | d << 24;
+            }
+            if e == MAX_EXPONENT {
                 return Err(too_wide());
             }
-            // The smallest step whose 255 multiples span the box; one more if rounding says so.
-            let mut e = exponent_above(extent / 255.0).clamp(MIN_EXPONENT, MAX_EXPONENT);
-            let planes = loop {
-                let s = step(e);
-                let found = [
-                    Some(plane_below(origin, left.min[k], s)),
-                    plane_above(origin, left.max[k], s),
-                    Some(plane_below(origin, right.min[k], s)),
-                    plane_above(origin, right.max[k], s),
-                ];
-                if let [Some(a), Some(b), Some(c), Some(d)] = found {
-                    break a | b << 8 | c << 16 | d << 24;
-                }
-                if e == MAX_EXPONENT {
-                    return Err(too_wide());
-                }
-                e += 1;
-            };
-            pair.origin[k] = origin;
-            pair.exponents |= ((e + 127) as u32) << (8 * k);
-            pair.planes[k] = planes;
-        }
-        Ok(pair)
-    }
-
-    /// The two children's boxes, dequantized as the shader does (bvh.wgsl's `pair_boxes`).
-    pub fn boxes(&self) -> [Aabb; 2] {
-        let plane_of = |k: usize, byte: u32| {
-            let e = (self.exponents >> (8 * k) & 0xff) as i32 - 127;
-            plane(self.origin[k], self.planes[k] >> (8 * byte) & 0xff, step(e))
+            e += 1;
         };
-        [0, 2].map(|b| Aabb {
-            min: std::array::from_fn(|k| plane_of(k, b)),
-            max: std::array::from_fn(|k| plane_of(k, b + 1)),
-        })
+        pair.origin[k] = origin;
+        pair.exponents |= ((e + 127) as u32) << (8 * k);
+        pair.planes[k] = planes;
     }
+    Ok(pair)
+}
 
-    /// The two children as the GPU walk carries them (`first << NODE_REF_COUNT_BITS | count`,
-    /// count 0 for a pair's record index), this being record `index` (bvh.wgsl's `pair_refs`).
-    pub fn refs(&self, index: u32) -> [u32; 2] {
-        let count_mask = (1 << NODE_REF_COUNT_BITS) - 1;
-        let first = self.children >> PAIR_FIRST_SHIFT;
-        let left_count = self.children >> NODE_REF_COUNT_BITS & count_mask;
-        let right_count = self.children & count_mask;
-        let left = if left_count > 0 { first } else { index + 1 };
-        let right = match (left_count, right_count) {
-            (_, 1..) => first + left_count,
-            (1.., 0) => index + 1,
-            (0, 0) => first,
-        };
-        [left << NODE_REF_COUNT_BITS | left_count, right << NODE_REF_COUNT_BITS | right_count]
-    }
+/// The two children's boxes, dequantized as the shader does (bvh.wgsl's `pair_boxes`).
+pub fn pair_boxes(pair: &QuantizedPair) -> [Aabb; 2] {
+    let plane_of = |k: usize, byte: u32| {
+        let e = (pair.exponents >> (8 * k) & 0xff) as i32 - 127;
+        plane(pair.origin[k], pair.planes[k] >> (8 * byte) & 0xff, step(e))
+    };
+    [0, 2].map(|b| Aabb {
+        min: std::array::from_fn(|k| plane_of(k, b)),
+        max: std::array::from_fn(|k| plane_of(k, b + 1)),
+    })
+}
+
+/// The two children as the GPU walk carries them (`first << NODE_REF_COUNT_BITS | count`,
+/// count 0 for a pair's record index), this being record `index` (bvh.wgsl's `pair_refs`).
+pub fn pair_refs(pair: &QuantizedPair, index: u32) -> [u32; 2] {
+    let count_mask = (1 << NODE_REF_COUNT_BITS) - 1;
+    let first = pair.children >> PAIR_FIRST_SHIFT;
+    let left_count = pair.children >> NODE_REF_COUNT_BITS & count_mask;
+    let right_count = pair.children & count_mask;
+    let left = if left_count > 0 { first } else { index + 1 };
+    let right = match (left_count, right_count) {
+        (_, 1..) => first + left_count,
+        (1.., 0) => index + 1,
+        (0, 0) => first,
+    };
+    [left << NODE_REF_COUNT_BITS | left_count, right << NODE_REF_COUNT_BITS | right_count]
 }
 
 #[cfg(test)]
@@ -280,9 +250,9 @@ mod tests {
             let pair = records[record as usize];
             let first = nodes[node].left_first as usize;
             for ((child, r), b) in
-                [&nodes[first], &nodes[first + 1]].into_iter().zip(pair.refs(record)).zip(pair.boxes())
+                [&nodes[first], &nodes[first + 1]].into_iter().zip(pair_refs(&pair, record)).zip(pair_boxes(&pair))
             {
-                assert!(b.contains(&child.bounds()), "record {record}: {b:?} does not hold {child:?}");
+                assert!(b.contains(&Aabb::of_node(child)), "record {record}: {b:?} does not hold {child:?}");
                 let (at, count) = (r >> NODE_REF_COUNT_BITS, r & ((1 << NODE_REF_COUNT_BITS) - 1));
                 assert_eq!(count, child.count);
                 if count > 0 {
@@ -361,7 +331,7 @@ mod tests {
     #[test]
     fn a_pair_too_wide_for_the_largest_step_is_an_error() {
         let wide = Aabb { min: [-3e38; 3], max: [3e38; 3] };
-        let err = QuantizedPair::of(7, wide, wide).expect_err("beyond 255 · 2^119");
+        let err = quantized_pair(7, wide, wide).expect_err("beyond 255 · 2^119");
         assert!(err.to_string().contains("BVH node 7's box spans"), "{err}");
     }
 }

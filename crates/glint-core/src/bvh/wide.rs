@@ -10,8 +10,8 @@
 use bytemuck::{Pod, Zeroable};
 use rayon::prelude::*;
 
-use super::BvhNode;
 use crate::huge_pages::HugePaged;
+use glint_types::layout::BvhNode;
 
 /// Children of a wide node.
 pub const WIDTH: usize = 8;

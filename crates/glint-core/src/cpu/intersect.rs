@@ -17,6 +17,8 @@ pub enum Prim {
     Triangle = 3,
 }
 
+/// No primitive: a miss (the GPU's `Hit::prim`, the ray cast's `HitRecord::prim`).
+pub const PRIM_NONE: u32 = 0;
 pub const PRIM_SPHERE: u32 = Prim::Sphere as u32;
 pub const PRIM_PLANE: u32 = Prim::Plane as u32;
 pub const PRIM_TRIANGLE: u32 = Prim::Triangle as u32;

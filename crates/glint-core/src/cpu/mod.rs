@@ -5,6 +5,7 @@ pub mod bvh;
 pub mod camera;
 pub mod intersect;
 pub mod offset;
+pub mod ray_tree;
 pub mod raycast;
 pub mod rng;
 pub mod shade;

@@ -4,13 +4,47 @@
 
 use rayon::prelude::*;
 
-use super::intersect::Leaving;
+use bytemuck::{Pod, Zeroable};
+
+use super::intersect::{Hit, Leaving, PRIM_NONE};
 use super::{Ray, TraceContext, bvh, v3};
-use crate::rays::{HitRecord, RayRecord};
 
 /// Rays a rayon task takes at once: enough to amortise the task, few enough to balance
 /// incoherent rays whose cost varies a hundredfold.
 const RAYS_PER_TASK: usize = 256;
+
+/// One ray as the GPU reads it: origin and t_min, unit direction and t_max.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+#[repr(C)]
+pub struct RayRecord {
+    pub origin_t_min: [f32; 4],
+    pub dir_t_max: [f32; 4],
+}
+
+/// The closest hit of one ray as the GPU writes it: the kind (`intersect::Prim` as u32,
+/// `PRIM_NONE` = 0 for a miss), the index in that kind's array, and t.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+#[repr(C)]
+pub struct HitRecord {
+    pub prim: u32,
+    pub index: u32,
+    pub t: f32,
+    pub pad: u32,
+}
+
+impl HitRecord {
+    /// The record of a CPU hit (t rounded to f32).
+    pub fn from_hit(hit: Option<Hit>) -> Self {
+        match hit {
+            Some(h) => Self { prim: h.prim as u32, index: h.index, t: h.t as f32, pad: 0 },
+            None => Self { prim: PRIM_NONE, index: 0, t: 0.0, pad: 0 },
+        }
+    }
+
+    pub fn is_hit(&self) -> bool {
+        self.prim != PRIM_NONE
+    }
+}
 
 /// The closest hit of one ray within its [t_min, t_max], through the BVH.
 pub fn cast_ray(ctx: &TraceContext, ray: &RayRecord) -> HitRecord {
@@ -29,7 +63,7 @@ mod tests {
     use super::*;
     use crate::FlatScene;
     use crate::cpu::intersect;
-    use crate::rays::{PRIM_NONE, RaySet};
+    use crate::rays::RaySet;
     use glint_scene::bumpy::bumpy;
 
     #[test]

@@ -11,11 +11,11 @@ use super::intersect::{
     FAR, Hit, Leaving, Prim, all_zero, sphere_surface_point, triangle_corners, triangle_shading_normal,
 };
 use super::offset::{leaving_surface, spawn_ray};
+use super::ray_tree::{Cut, NoTree, RayNode, TreeRecorder, record_shadow_rays};
 use super::shade::{Breakdown, Surface, attenuation_factor, shade_local};
 use super::texture::{planar_axis, planar_uv, triangle_uv, triangle_uv_origin};
 use super::walk::closest_hit;
 use super::{Ray, RayCounts, TraceContext, v3};
-use crate::ray_tree::{Cut, NoTree, RayNode, TreeRecorder, record_shadow_rays};
 use glint_scene::EpsilonMode;
 use glint_types::RayKind;
 use glint_types::layout::{NO_HIT, UV_MESH, feature};

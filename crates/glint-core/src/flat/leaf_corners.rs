@@ -120,7 +120,7 @@ impl PartialEq for LeafCorners {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::bvh::PRIM_REF_TRIANGLE;
+    use glint_types::layout::PRIM_REF_TRIANGLE;
 
     type Arrays = (Arc<[[f32; 4]]>, Arc<[GpuTriangle]>, Arc<[u32]>);
 

@@ -14,7 +14,8 @@ use glint_scene::{
 };
 use glint_types::layout::{
     GpuCamera, GpuLight, GpuMaterial, GpuMesh, GpuPlane, GpuSphere, GpuTexture, GpuTriangle, LIGHT_CASTS_SHADOWS,
-    MESH_HAS_NORMALS, MESH_HAS_UVS, NO_CONE_VERSIN, NO_TEXTURE, SceneHeader, UnknownTag, feature, origin_power,
+    MESH_HAS_NORMALS, MESH_HAS_UVS, NO_CONE_VERSIN, NO_TEXTURE, SceneHeader, UnknownTag, WORLD_FRAME, feature,
+    origin_power,
 };
 
 /// A scene in the GPU-ready layout, plus the names the UI and reports show. The geometry (the
@@ -307,7 +308,7 @@ fn flat_header(desc: &SceneDesc, settings: &RenderSettings, p: &Geometry, materi
             let g = desc.world.global_attenuation;
             [g.c as f32, g.l as f32, g.q as f32, 0.0]
         },
-        frame: crate::rebase::WORLD_FRAME,
+        frame: WORLD_FRAME,
     }
 }
 

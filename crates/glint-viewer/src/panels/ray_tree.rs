@@ -4,9 +4,9 @@
 //! first node where the two trees differ highlighted and opened.
 
 use egui::{Color32, RichText, Ui};
+use glint_core::cpu::ray_tree::{RayNode, RayTree};
 use glint_core::glam::DVec3;
 use glint_core::probe_terms::{Term, first_difference, local_terms};
-use glint_core::ray_tree::{RayNode, RayTree};
 use glint_types::RayKind;
 use glint_types::layout::MAX_PROBE_NODES;
 

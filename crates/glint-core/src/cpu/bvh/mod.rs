@@ -23,8 +23,9 @@ use super::intersect::{
     triangle_corners,
 };
 use super::{Ray, TraceContext, v3};
-use crate::bvh::{BvhNode, PrimRef, WIDTH, WideNode};
+use crate::bvh::{PrimRef, WIDTH, WideNode};
 use crate::flat::Corners;
+use glint_types::layout::BvhNode;
 use glint_types::layout::feature;
 
 /// Relative padding of a box in the slab test, against the scale of the box and the ray origin:

@@ -154,9 +154,9 @@ mod tests {
     use glam::DVec3;
 
     use super::*;
-    use crate::bvh::BvhNode;
     use crate::cpu::Ray;
     use crate::cpu::intersect::FAR;
+    use glint_types::layout::BvhNode;
 
     fn node(min: [f32; 3], max: [f32; 3]) -> BvhNode {
         BvhNode { min, left_first: 0, max, count: 1 }
