@@ -12,6 +12,7 @@ mod gltf;
 mod gltf_lights;
 mod module_cycles;
 mod ray_tree;
+mod sampling;
 mod skip_convex;
 mod support;
 mod validation;

@@ -5,6 +5,7 @@
 //! A binary names the modules at its root (`use glint_test_support::{gpu, render, scene};`),
 //! so its tests refer to them as `crate::gpu::…` and so on.
 
+pub mod chi2;
 pub mod gltf;
 pub mod gpu;
 pub mod image_hash;

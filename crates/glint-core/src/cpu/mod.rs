@@ -8,6 +8,7 @@ pub mod offset;
 pub mod ray_tree;
 pub mod raycast;
 pub mod rng;
+pub mod sample;
 pub mod shade;
 pub mod texture;
 pub mod trace;
