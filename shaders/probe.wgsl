@@ -1,4 +1,4 @@
-// Twin of crates/glint-core/src/ray_tree.rs: the pixel probe's ray tree (PROBE variant only).
+// Twin of crates/glint-core/src/cpu/ray_tree.rs: the pixel probe's ray tree (PROBE variant only).
 // trace.wgsl's walk calls one probe_* hook where the CPU's trace.rs calls its TreeRecorder,
 // and the nodes come out in the CPU's depth-first order.
 #define_import_path glint::probe

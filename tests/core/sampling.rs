@@ -1,10 +1,13 @@
-//! χ² tests of every sampling routine of `glint_core::cpu::sample` against the density it
-//! claims (Nori's warp tests): 10⁶ samples each into a grid over the unit square. The family of
+//! χ² tests of every sampling routine of `glint_core::cpu::sample` and of the lobes of
+//! `glint_core::cpu::bsdf` against the density it claims (Nori's warp tests): 10⁶ samples each into a grid over the unit square. The family of
 //! the module's χ² runs rejects a correct routine with probability 0.01 (Šidák's correction, as
 //! Nori's warp test: each run passes at p > 1 − 0.99^(1/RUNS)). A test of the test: a routine
 //! held against a slightly wrong density fails by far.
 
 use glam::{DVec2, DVec3};
+use glint_core::cpu::bsdf::{
+    blinn_pdf, cook_torrance_pdf, phong_pdf, sample_blinn, sample_cook_torrance, sample_phong,
+};
 use glint_core::cpu::sample::*;
 use glint_test_support::chi2::{Chi2, chi2_test, ln_gamma, sphere_to_square, square_density, upper_gamma_regularized};
 
@@ -17,7 +20,7 @@ fn directions(seed: u32, sample: impl Fn(DVec2) -> DVec3, pdf: impl Fn(DVec3) ->
 }
 
 /// The χ² runs of this module that must pass: cosine, three power cosines, Phong, Blinn–Phong,
-/// two Beckmann, the cone, the sphere and the triangle.
+/// two Cook–Torrance, the cone, the sphere and the triangle.
 const RUNS: i32 = 11;
 
 fn assert_passes(name: &str, r: Chi2) {
@@ -70,40 +73,23 @@ fn power_cosine_follows_its_density() {
 }
 
 #[test]
-fn phong_lobe_about_the_mirror_direction_follows_its_density() {
-    let n = 20.0;
-    let r = reflect_about(outgoing(), DVec3::Z);
-    let result = directions(5, |u| to_world(r, power_cosine(u, n)), |d| power_cosine_pdf(r.dot(d), n));
-    assert_passes("Phong lobe", result);
-}
-
-/// A lobe that reflects the outgoing direction about a sampled half vector.
-fn reflected(seed: u32, half: impl Fn(DVec2) -> DVec3, half_pdf: impl Fn(f64) -> f64) -> Chi2 {
-    let o = outgoing();
-    directions(
-        seed,
-        |u| reflect_about(o, half(u)),
-        |d| {
-            let h = (o + d).normalize();
-            if !h.is_finite() {
-                return 0.0;
-            }
-            reflected_pdf(half_pdf(h.z), o.dot(h))
-        },
-    )
+fn phong_lobe_follows_its_density() {
+    let (o, n) = (outgoing(), 20.0);
+    assert_passes("Phong lobe", directions(5, |u| sample_phong(o, u, n), |d| phong_pdf(o, d, n)));
 }
 
 #[test]
 fn blinn_phong_lobe_follows_its_density() {
-    let n = 20.0;
-    assert_passes("Blinn–Phong lobe", reflected(6, |u| power_cosine(u, n), |c| power_cosine_pdf(c, n)));
+    let (o, n) = (outgoing(), 20.0);
+    assert_passes("Blinn–Phong lobe", directions(6, |u| sample_blinn(o, u, n), |d| blinn_pdf(o, d, n)));
 }
 
 #[test]
-fn beckmann_lobe_follows_its_density() {
+fn cook_torrance_lobe_follows_its_density() {
+    let o = outgoing();
     for (seed, m) in [(7, 0.15), (8, 0.3)] {
-        let r = reflected(seed, |u| beckmann_normal(u, m), |c| beckmann_normal_pdf(c, m));
-        assert_passes(&format!("Beckmann lobe m = {m}"), r);
+        let r = directions(seed, |u| sample_cook_torrance(o, u, m), |d| cook_torrance_pdf(o, d, m));
+        assert_passes(&format!("Cook–Torrance lobe m = {m}"), r);
     }
 }
 

@@ -46,7 +46,7 @@ pub const BVH_STACK_SIZE: u32 = 64;
 pub const MAX_TREE_NODES: u32 = LAVAPIPE_LOOP_BUDGET / 1_000 * 1_000;
 
 /// The modules in dependency order: (import path, file name, source).
-pub const SHADER_MODULES: [(&str, &str, &str); 11] = [
+pub const SHADER_MODULES: [(&str, &str, &str); 13] = [
     ("glint::scene_data", "layout.wgsl", include_str!("../../../shaders/layout.wgsl")),
     ("glint::bindings", "bindings.wgsl", include_str!("../../../shaders/bindings.wgsl")),
     ("glint::ray", "ray.wgsl", include_str!("../../../shaders/ray.wgsl")),
@@ -58,6 +58,9 @@ pub const SHADER_MODULES: [(&str, &str, &str); 11] = [
     ("glint::texture", "texture.wgsl", include_str!("../../../shaders/texture.wgsl")),
     ("glint::shade", "shade.wgsl", include_str!("../../../shaders/shade.wgsl")),
     ("glint::probe", "probe.wgsl", include_str!("../../../shaders/probe.wgsl")),
+    // The path tracer's warps and BRDFs (issue 32); no kernel imports them yet.
+    ("glint::sample", "sample.wgsl", include_str!("../../../shaders/sample.wgsl")),
+    ("glint::bsdf", "bsdf.wgsl", include_str!("../../../shaders/bsdf.wgsl")),
 ];
 
 /// The entry module.
@@ -338,6 +341,38 @@ mod tests {
                 assert!(error.to_string().contains("max_storage_buffers_per_shader_stage"), "{error}");
                 assert_eq!(key.check_storage_limit(storage as u32).ok(), Some(key));
             }
+        }
+    }
+
+    /// sample.wgsl and bsdf.wgsl, with every function called once from an entry point, compose
+    /// and validate: no kernel imports them yet, so nothing else would.
+    #[test]
+    fn the_path_tracers_modules_validate_with_every_function_called() {
+        let entry = "\
+#import glint::sample::{frame_x, frame_y, to_world, spherical_direction, concentric_disk, cosine_hemisphere, cosine_hemisphere_pdf, power_cosine, power_cosine_pdf, beckmann_normal, beckmann_normal_pdf, reflect_about, reflected_pdf, cone_versin, uniform_cone, uniform_cone_pdf, uniform_sphere, uniform_sphere_pdf, uniform_triangle, area_to_solid_angle, power_heuristic}
+#import glint::bsdf::{lambert_brdf, blinn_normalisation, blinn_brdf, phong_brdf, cook_torrance_brdf, sample_blinn, blinn_pdf, sample_phong, phong_pdf, sample_cook_torrance, cook_torrance_pdf}
+@group(3) @binding(0) var<storage, read_write> io: array<f32, 8>;
+@compute @workgroup_size(1)
+fn main() {
+    let u = vec2<f32>(io[0], io[1]);
+    let n = normalize(vec3<f32>(io[2], io[3], 1.0));
+    let v = vec3<f32>(0.0, 0.0, 1.0);
+    var s = frame_x(n).x + frame_y(n).y + to_world(n, v).z + spherical_direction(0.5, 0.5, io[4]).x;
+    s += concentric_disk(u).x + cosine_hemisphere(u).z + cosine_hemisphere_pdf(n.z);
+    s += power_cosine(u, 8.0).z + power_cosine_pdf(n.z, 8.0) + beckmann_normal(u, 0.3).z + beckmann_normal_pdf(n.z, 0.3);
+    s += reflect_about(v, n).x + reflected_pdf(1.0, n.z) + uniform_cone(u, cone_versin(0.1)).z + uniform_cone_pdf(0.1);
+    s += uniform_sphere(u).z + uniform_sphere_pdf() + uniform_triangle(u).x + area_to_solid_angle(1.0, 2.0, n.z) + power_heuristic(1.0, 2.0);
+    s += lambert_brdf(v, n) + blinn_normalisation(2.0) + blinn_brdf(v, n, 8.0) + phong_brdf(v, n, 8.0) + cook_torrance_brdf(v, n, 0.3, 1.5, 0u);
+    s += sample_blinn(v, u, 8.0).z + blinn_pdf(v, n, 8.0) + sample_phong(v, u, 8.0).z + phong_pdf(v, n, 8.0);
+    s += sample_cook_torrance(v, u, 0.3).z + cook_torrance_pdf(v, n, 0.3);
+    io[5] = s;
+}
+";
+        let module = compose_entry(&ShaderKey::full(), entry).unwrap_or_else(|e| panic!("{e}"));
+        validate(&module).unwrap_or_else(|e| panic!("{e}"));
+        let names = function_names(&module);
+        for f in ["power_heuristic", "uniform_triangle", "cook_torrance_brdf", "sample_phong", "half_vector"] {
+            assert!(names.iter().any(|n| n == f), "{f} is not in the composed module: {names:?}");
         }
     }
 

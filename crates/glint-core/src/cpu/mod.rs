@@ -1,6 +1,7 @@
 //! The exact CPU reference tracer (f64). Each module is the twin of a WGSL file in `shaders/`
 //! with the same function names, as vello pairs `cpu/*.rs` with `shader/*.wgsl`.
 
+pub mod bsdf;
 pub mod bvh;
 pub mod camera;
 pub mod intersect;
