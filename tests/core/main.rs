@@ -11,6 +11,7 @@ mod global_attenuation;
 mod gltf;
 mod gltf_lights;
 mod module_cycles;
+mod path;
 mod ray_tree;
 mod sampling;
 mod skip_convex;

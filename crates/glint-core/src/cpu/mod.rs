@@ -1,11 +1,13 @@
 //! The exact CPU reference tracer (f64). Each module is the twin of a WGSL file in `shaders/`
-//! with the same function names, as vello pairs `cpu/*.rs` with `shader/*.wgsl`.
+//! with the same function names, as vello pairs `cpu/*.rs` with `shader/*.wgsl` — all but
+//! `path.rs`, the path tracer, whose twin is still to be written (issue 32).
 
 pub mod bsdf;
 pub mod bvh;
 pub mod camera;
 pub mod intersect;
 pub mod offset;
+pub mod path;
 pub mod ray_tree;
 pub mod raycast;
 pub mod rng;

@@ -1,0 +1,162 @@
+//! The CPU path tracer (`glint_core::cpu::path`) against what is known in closed form: the white
+//! furnaces, and Whitted's direct light where the two integrators compute the same thing.
+
+use glam::DVec3;
+use glint_core::cpu::path::path_pixel;
+use glint_core::cpu::{RayCounts, TraceContext};
+
+use crate::reference::{primary_ray, sphere_hit};
+use crate::scene::SceneText;
+use crate::support::render;
+
+const Y: [f64; 3] = [0.0, 1.0, 0.0];
+
+#[test]
+fn a_convex_diffuse_object_under_a_uniform_sky_has_its_albedo() {
+    // Radiance 1 from every direction, no light: each path leaves the sphere after one bounce,
+    // and the cosine-sampled Lambertian lobe weighs it by exactly ρ.
+    let rho = 0.625;
+    let flat = SceneText::new(24, 24, "max_depth = 8", [0.0, 0.0, -4.0], [0.0; 3], Y, 40.0)
+        .world([0.0; 3], [1.0; 3])
+        .material("white", &format!("ka = [0.0, 0.0, 0.0]\nkd = [{rho}, {rho}, {rho}]\nks = [0.0, 0.0, 0.0]"))
+        .sphere([0.0; 3], 1.0, "white")
+        .flat();
+    let ctx = TraceContext::new(&flat).expect("valid scene");
+    let mut counts = RayCounts::default();
+    let (mut on_sphere, mut sky) = (0, 0);
+    for y in 0..24 {
+        for x in 0..24 {
+            let v = path_pixel(&ctx, x, y, 4, &mut counts);
+            let (o, d) = primary_ray(&flat, x, y);
+            let expected = if sphere_hit(o, d, DVec3::ZERO, 1.0).is_some() { rho } else { 1.0 };
+            // Jittered samples of pixels at the silhouette mix the two: leave those out.
+            if (o.cross(d).length() - 1.0).abs() < 0.15 {
+                continue;
+            }
+            assert!((v - DVec3::splat(expected)).abs().max_element() < 1e-12, "({x}, {y}) = {v}, not {expected}");
+            if expected == rho { on_sphere += 1 } else { sky += 1 }
+        }
+    }
+    assert!(on_sphere > 50 && sky > 50, "{on_sphere} sphere and {sky} sky pixels checked");
+}
+
+/// A closed box [−1, 1]³ of triangles wound inwards, so that their front faces (which emit)
+/// face the camera inside.
+fn inward_box(scene: SceneText, material: &str) -> SceneText {
+    let mut tris = Vec::new();
+    for axis in 0..3 {
+        for sign in [-1.0, 1.0] {
+            let (u, v) = ((axis + 1) % 3, (axis + 2) % 3);
+            let corner = |a: f64, b: f64| {
+                let mut p = [0.0; 3];
+                (p[axis], p[u], p[v]) = (sign, a, b);
+                p
+            };
+            let (p00, p10, p11, p01) = (corner(-1.0, -1.0), corner(1.0, -1.0), corner(1.0, 1.0), corner(-1.0, 1.0));
+            let n = (DVec3::from(p10) - DVec3::from(p00)).cross(DVec3::from(p11) - DVec3::from(p00));
+            // The winding's normal must point into the box, against the face's own axis.
+            if n[axis] * sign > 0.0 {
+                tris.extend([[p00, p11, p10], [p00, p01, p11]]);
+            } else {
+                tris.extend([[p00, p10, p11], [p00, p11, p01]]);
+            }
+        }
+    }
+    scene.triangles(&tris, None, material)
+}
+
+#[test]
+fn inside_a_closed_diffuse_emitter_every_pixel_converges_to_e_over_one_minus_rho() {
+    let (rho, e) = (0.5, 0.75);
+    let flat = inward_box(
+        SceneText::new(16, 16, "max_depth = 1024", [0.1, -0.2, 0.05], [0.5, 0.3, 1.0], Y, 90.0)
+            .world([0.0; 3], [0.0; 3])
+            .material(
+                "wall",
+                &format!(
+                    "ka = [0.0, 0.0, 0.0]\nkd = [{rho}, {rho}, {rho}]\nks = [0.0, 0.0, 0.0]\nemission = [{e}, {e}, {e}]"
+                ),
+            ),
+        "wall",
+    )
+    .flat();
+    let ctx = TraceContext::new(&flat).expect("valid scene");
+    let mut counts = RayCounts::default();
+    // Every sample of every pixel, for the mean and its standard error.
+    let spp = 64;
+    let (mut n, mut sum, mut sum2) = (0.0, 0.0, 0.0);
+    for y in 0..16 {
+        for x in 0..16 {
+            for s in 0..spp {
+                let v = glint_core::cpu::path::path_sample(&ctx, x, y, s, &mut counts).x;
+                (n, sum, sum2) = (n + 1.0, sum + v, sum2 + v * v);
+            }
+        }
+    }
+    let mean = sum / n;
+    let error = ((sum2 / n - mean * mean) / n).sqrt();
+    let expected = e / (1.0 - rho);
+    assert!(error < 0.01 * expected, "standard error {error}: too few samples to judge");
+    assert!((mean - expected).abs() < 4.0 * error, "mean {mean} ± {error}, not {expected}");
+}
+
+#[test]
+fn direct_light_is_whitteds_where_both_compute_it() {
+    // Depth 0, no ambient, no glossy lobe: the path adds E_m and each light's I_d·k_d·(N·L)
+    // with its factors, exactly Whitted's local model.
+    let flat = SceneText::new(32, 32, "max_depth = 0", [0.0, 0.0, -5.0], [0.0; 3], Y, 30.0)
+        .world([0.0; 3], [0.25, 0.5, 0.125])
+        .material(
+            "m",
+            "ka = [0.0, 0.0, 0.0]\nkd = [0.5, 0.75, 0.25]\nks = [0.0, 0.0, 0.0]\nemission = [0.0625, 0.0, 0.125]",
+        )
+        .light("directional", "direction = [-1.0, -1.0, 1.0]\ndiffuse = [1.0, 0.5, 2.0]\nspecular = [0.0, 0.0, 0.0]")
+        .light("point", "position = [2.0, 1.0, -3.0]\ndiffuse = [0.5, 1.0, 0.25]\nspecular = [0.0, 0.0, 0.0]")
+        .sphere([0.0; 3], 1.0, "m")
+        .plane([0.0, -1.0, 0.0], [0.0, 1.0, 0.0], "m")
+        .flat();
+    let whitted = render(&flat);
+    let ctx = TraceContext::new(&flat).expect("valid scene");
+    let mut counts = RayCounts::default();
+    for y in 0..32 {
+        for x in 0..32 {
+            let path = path_pixel(&ctx, x, y, 1, &mut counts);
+            let w = whitted.image.get(x, y);
+            assert!(
+                (path - w).abs().max_element() <= 1e-12 * w.max_element().max(1.0),
+                "({x}, {y}): path {path}, Whitted {w}"
+            );
+        }
+    }
+}
+
+#[test]
+fn lambert_phong_and_mirror_lobes_together_reflect_their_albedos_under_a_uniform_sky() {
+    // At normal incidence each lobe's albedo is exactly its k: Lambert's, the normalised Phong
+    // lobe's (Lafortune and Willems) and the mirror's. Under a sky of radiance 1 the centre
+    // pixel of a convex sphere is their sum, whichever lobe each path takes.
+    let (kd, ks, kr) = (0.3, 0.5, 0.1);
+    let flat = SceneText::new(25, 25, "max_depth = 8", [0.0, 0.0, -4.0], [0.0; 3], Y, 40.0)
+        .world([0.0; 3], [1.0; 3])
+        .material(
+            "m",
+            &format!(
+                "ka = [0.0, 0.0, 0.0]\nkd = [{kd}, {kd}, {kd}]\nks = [{ks}, {ks}, {ks}]\nkr = [{kr}, {kr}, {kr}]\n\
+                 specular_model = \"phong\"\nshininess = 10.0"
+            ),
+        )
+        .sphere([0.0; 3], 1.0, "m")
+        .flat();
+    let ctx = TraceContext::new(&flat).expect("valid scene");
+    let mut counts = RayCounts::default();
+    let (mut n, mut sum, mut sum2) = (0.0, 0.0, 0.0);
+    for s in 0..40_000 {
+        let v = glint_core::cpu::path::path_sample(&ctx, 12, 12, s, &mut counts).x;
+        (n, sum, sum2) = (n + 1.0, sum + v, sum2 + v * v);
+    }
+    let mean = sum / n;
+    let error = ((sum2 / n - mean * mean) / n).sqrt();
+    let expected = kd + ks + kr;
+    assert!(error < 0.005, "standard error {error}");
+    assert!((mean - expected).abs() < 4.0 * error, "mean {mean} ± {error}, not {expected}");
+}
