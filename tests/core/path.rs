@@ -2,7 +2,7 @@
 //! furnaces, and Whitted's direct light where the two integrators compute the same thing.
 
 use glam::DVec3;
-use glint_core::cpu::path::path_pixel;
+use glint_core::cpu::path::{Emitters, path_pixel};
 use glint_core::cpu::{RayCounts, TraceContext};
 
 use crate::reference::{primary_ray, sphere_hit};
@@ -22,11 +22,12 @@ fn a_convex_diffuse_object_under_a_uniform_sky_has_its_albedo() {
         .sphere([0.0; 3], 1.0, "white")
         .flat();
     let ctx = TraceContext::new(&flat).expect("valid scene");
+    let emitters = Emitters::of(&ctx);
     let mut counts = RayCounts::default();
     let (mut on_sphere, mut sky) = (0, 0);
     for y in 0..24 {
         for x in 0..24 {
-            let v = path_pixel(&ctx, x, y, 4, &mut counts);
+            let v = path_pixel(&ctx, &emitters, x, y, 4, &mut counts);
             let (o, d) = primary_ray(&flat, x, y);
             let expected = if sphere_hit(o, d, DVec3::ZERO, 1.0).is_some() { rho } else { 1.0 };
             // Jittered samples of pixels at the silhouette mix the two: leave those out.
@@ -81,6 +82,7 @@ fn inside_a_closed_diffuse_emitter_every_pixel_converges_to_e_over_one_minus_rho
     )
     .flat();
     let ctx = TraceContext::new(&flat).expect("valid scene");
+    let emitters = Emitters::of(&ctx);
     let mut counts = RayCounts::default();
     // Every sample of every pixel, for the mean and its standard error.
     let spp = 64;
@@ -88,7 +90,7 @@ fn inside_a_closed_diffuse_emitter_every_pixel_converges_to_e_over_one_minus_rho
     for y in 0..16 {
         for x in 0..16 {
             for s in 0..spp {
-                let v = glint_core::cpu::path::path_sample(&ctx, x, y, s, &mut counts).x;
+                let v = glint_core::cpu::path::path_sample(&ctx, &emitters, x, y, s, &mut counts).x;
                 (n, sum, sum2) = (n + 1.0, sum + v, sum2 + v * v);
             }
         }
@@ -102,25 +104,29 @@ fn inside_a_closed_diffuse_emitter_every_pixel_converges_to_e_over_one_minus_rho
 
 #[test]
 fn direct_light_is_whitteds_where_both_compute_it() {
-    // Depth 0, no ambient, no glossy lobe: the path adds E_m and each light's I_d·k_d·(N·L)
-    // with its factors, exactly Whitted's local model.
+    // Depth 0, no ambient, no glossy lobe, no sampled emitter: the path adds E_m and each
+    // light's I_d·k_d·(N·L) with its factors, exactly Whitted's local model.
     let flat = SceneText::new(32, 32, "max_depth = 0", [0.0, 0.0, -5.0], [0.0; 3], Y, 30.0)
         .world([0.0; 3], [0.25, 0.5, 0.125])
+        .material("m", "ka = [0.0, 0.0, 0.0]\nkd = [0.5, 0.75, 0.25]\nks = [0.0, 0.0, 0.0]")
+        // The emitting ground is a plane, which is not sampled as an emitter: at depth 0 it
+        // lights nothing, as in Whitted's model.
         .material(
-            "m",
+            "ground",
             "ka = [0.0, 0.0, 0.0]\nkd = [0.5, 0.75, 0.25]\nks = [0.0, 0.0, 0.0]\nemission = [0.0625, 0.0, 0.125]",
         )
         .light("directional", "direction = [-1.0, -1.0, 1.0]\ndiffuse = [1.0, 0.5, 2.0]\nspecular = [0.0, 0.0, 0.0]")
         .light("point", "position = [2.0, 1.0, -3.0]\ndiffuse = [0.5, 1.0, 0.25]\nspecular = [0.0, 0.0, 0.0]")
         .sphere([0.0; 3], 1.0, "m")
-        .plane([0.0, -1.0, 0.0], [0.0, 1.0, 0.0], "m")
+        .plane([0.0, -1.0, 0.0], [0.0, 1.0, 0.0], "ground")
         .flat();
     let whitted = render(&flat);
     let ctx = TraceContext::new(&flat).expect("valid scene");
+    let emitters = Emitters::of(&ctx);
     let mut counts = RayCounts::default();
     for y in 0..32 {
         for x in 0..32 {
-            let path = path_pixel(&ctx, x, y, 1, &mut counts);
+            let path = path_pixel(&ctx, &emitters, x, y, 1, &mut counts);
             let w = whitted.image.get(x, y);
             assert!(
                 (path - w).abs().max_element() <= 1e-12 * w.max_element().max(1.0),
@@ -148,10 +154,11 @@ fn lambert_phong_and_mirror_lobes_together_reflect_their_albedos_under_a_uniform
         .sphere([0.0; 3], 1.0, "m")
         .flat();
     let ctx = TraceContext::new(&flat).expect("valid scene");
+    let emitters = Emitters::of(&ctx);
     let mut counts = RayCounts::default();
     let (mut n, mut sum, mut sum2) = (0.0, 0.0, 0.0);
     for s in 0..40_000 {
-        let v = glint_core::cpu::path::path_sample(&ctx, 12, 12, s, &mut counts).x;
+        let v = glint_core::cpu::path::path_sample(&ctx, &emitters, 12, 12, s, &mut counts).x;
         (n, sum, sum2) = (n + 1.0, sum + v, sum2 + v * v);
     }
     let mean = sum / n;
@@ -159,4 +166,56 @@ fn lambert_phong_and_mirror_lobes_together_reflect_their_albedos_under_a_uniform
     let expected = kd + ks + kr;
     assert!(error < 0.005, "standard error {error}");
     assert!((mean - expected).abs() < 4.0 * error, "mean {mean} ± {error}, not {expected}");
+}
+
+#[test]
+fn a_spherical_emitter_lights_a_plane_as_its_closed_form_says() {
+    // A black sphere of radiance L_e above a Lambertian plane: where the whole sphere is above
+    // the horizon, the plane's irradiance is π·L_e·sin²θ·cos θ_c (θ the sphere's angular
+    // radius, θ_c the angle of its centre from the normal), so its radiance is ρ·L_e·sin²θ·cos θ_c.
+    // Depth 0 counts the light samples alone; depth 3 weighs them against the paths that meet
+    // the sphere (MIS), and the paths that leave find only a black sky.
+    let (rho, le, centre, radius) = (0.5, 4.0, DVec3::new(0.0, 2.0, 0.0), 0.5);
+    for depth in [0, 3] {
+        let flat = SceneText::new(16, 16, &format!("max_depth = {depth}"), [0.0, 3.0, -6.0], [0.0, 0.0, 1.0], Y, 50.0)
+            .world([0.0; 3], [0.0; 3])
+            .material("ground", &format!("ka = [0.0, 0.0, 0.0]\nkd = [{rho}, {rho}, {rho}]\nks = [0.0, 0.0, 0.0]"))
+            .material(
+                "lamp",
+                &format!(
+                    "ka = [0.0, 0.0, 0.0]\nkd = [0.0, 0.0, 0.0]\nks = [0.0, 0.0, 0.0]\nemission = [{le}, {le}, {le}]"
+                ),
+            )
+            .plane([0.0; 3], [0.0, 1.0, 0.0], "ground")
+            .sphere(centre.to_array(), radius, "lamp")
+            .flat();
+        let ctx = TraceContext::new(&flat).expect("valid scene");
+        let emitters = Emitters::of(&ctx);
+        let mut counts = RayCounts::default();
+        let mut checked = 0;
+        for (x, y) in [(3, 12), (8, 13), (12, 10), (5, 15), (10, 14), (14, 12)] {
+            let (o, d) = primary_ray(&flat, x, y);
+            if d.y >= 0.0 || sphere_hit(o, d, centre, radius).is_some() {
+                continue;
+            }
+            let p = o + d * (-o.y / d.y);
+            let to_c = centre - p;
+            let sin2 = radius * radius / to_c.length_squared();
+            let expected = rho * le * sin2 * to_c.normalize().y;
+            let (mut n, mut sum, mut sum2) = (0.0, 0.0, 0.0);
+            for s in 0..4096 {
+                let v = glint_core::cpu::path::path_sample(&ctx, &emitters, x, y, s, &mut counts).x;
+                (n, sum, sum2) = (n + 1.0, sum + v, sum2 + v * v);
+            }
+            let mean = sum / n;
+            let error = ((sum2 / n - mean * mean) / n).sqrt().max(1e-12 * expected);
+            assert!(error < 0.02 * expected, "depth {depth}, ({x}, {y}): standard error {error} of {expected}");
+            assert!(
+                (mean - expected).abs() < 4.0 * error,
+                "depth {depth}, ({x}, {y}): {mean} ± {error}, not {expected}"
+            );
+            checked += 1;
+        }
+        assert!(checked >= 4, "only {checked} pixels see the lit ground");
+    }
 }

@@ -3,6 +3,9 @@
 //! at each hit adds:
 //!
 //! - E_m, when the path meets an emitter's front face (as pbrt-v4 and Mitsuba 3 emit);
+//! - every emissive sphere and triangle by next-event estimation (one chosen uniformly, a point
+//!   in the cone it fills or on its area), weighed against the paths that meet it by multiple
+//!   importance sampling (the power heuristic);
 //! - every point, spot and directional light by next-event estimation, with Whitted's own
 //!   factors (f_att, the spot factor, S_j as the shadow ray's transmittance): the diffuse part
 //!   is exactly Whitted's I_d·k_d·(N·L), the glossy part π·I_s·k_s·f_s·(N·L) with the lobe's
@@ -22,8 +25,7 @@
 //! out what Whitted does not compute (a glossy lobe in a scene without specular lights, k_r and
 //! k_t at depth 0); the geometry, textures, lights' factors and shadows keep their features.
 //!
-//! Not yet (issue 32): next-event estimation to emissive spheres and triangles with multiple
-//! importance sampling, the WGSL twin, its own specialisation, and the `integrator` setting of
+//! Not yet (issue 32): the WGSL twin, its own specialisation, and the `integrator` setting of
 //! scenes and commands.
 
 use std::f64::consts::PI;
@@ -35,10 +37,13 @@ use super::bsdf::{
     sample_cook_torrance, sample_phong,
 };
 use super::camera::{camera_ray, sample_offset};
-use super::intersect::{FAR, Leaving};
+use super::intersect::{FAR, Hit, Leaving, Prim, triangle_corners};
 use super::offset::{leaving_surface, spawn_ray};
 use super::rng::{hash_to_unit, sample_hash};
-use super::sample::{cosine_hemisphere, cosine_hemisphere_pdf, frame_x, frame_y, to_world};
+use super::sample::{
+    area_to_solid_angle, cone_versin, cosine_hemisphere, cosine_hemisphere_pdf, frame_x, frame_y, power_heuristic,
+    to_world, uniform_cone, uniform_cone_pdf, uniform_triangle,
+};
 use super::shade::{attenuation_factor, light_sample, light_visibility, material_colours};
 use super::trace::{reflect_dir, refract_dir, surface_at};
 use super::walk::closest_hit;
@@ -47,9 +52,9 @@ use glint_scene::SpecularModel;
 use glint_types::MaterialTags;
 use glint_types::layout::{GpuMaterial, LIGHT_CASTS_SHADOWS, feature};
 
-/// Random dimensions per bounce: the lobe, the direction's two, Russian roulette. The camera's
-/// jitter takes dimensions 0 and 1.
-const DIMS_PER_BOUNCE: u32 = 4;
+/// Random dimensions per bounce: the lobe, the direction's two, Russian roulette, the emitter
+/// and the point on it (two), one spare. The camera's jitter takes dimensions 0 and 1.
+const DIMS_PER_BOUNCE: u32 = 8;
 const FIRST_PATH_DIM: u32 = 2;
 
 /// Bounces traced in full before Russian roulette may end a path.
@@ -93,8 +98,99 @@ pub fn glossy_pdf(mat: &GpuMaterial, tags: MaterialTags, wo: DVec3, wi: DVec3) -
     }
 }
 
+/// A primitive that emits: what next-event estimation samples.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Emitter {
+    Sphere(u32),
+    Triangle(u32),
+}
+
+/// The emissive spheres and triangles of a scene. Planes emit to the paths that meet them but
+/// are not sampled: they have no finite area.
+#[derive(Clone, Debug, Default)]
+pub struct Emitters {
+    pub list: Vec<Emitter>,
+}
+
+impl Emitters {
+    pub fn of(ctx: &TraceContext) -> Self {
+        let scene = ctx.scene;
+        let emits = |material: u32| scene.materials[material as usize].emission[..3].iter().any(|&e| e > 0.0);
+        let spheres = (0..scene.spheres.len() as u32).filter(|&i| emits(scene.spheres[i as usize].material));
+        let triangles = (0..scene.triangles.len() as u32)
+            .filter(|&i| emits(scene.meshes[scene.triangles[i as usize].mesh as usize].material));
+        Self { list: spheres.map(Emitter::Sphere).chain(triangles.map(Emitter::Triangle)).collect() }
+    }
+
+    /// Which emitter, if any, a hit is on.
+    fn of_hit(&self, hit: &Hit) -> Option<Emitter> {
+        let e = match hit.prim {
+            Prim::Sphere => Emitter::Sphere(hit.index),
+            Prim::Triangle => Emitter::Triangle(hit.index),
+            Prim::Plane => return None,
+        };
+        self.list.contains(&e).then_some(e)
+    }
+}
+
+/// The density, per unit solid angle at `p`, with which next-event estimation picks the point
+/// `q` (geometric normal `ng_q`) of `emitter`: the choice of one of `count`, times the cone's or
+/// the area's density. 0 where `p` is inside a sphere (it sees the back faces, which do not emit).
+fn emitter_pdf(ctx: &TraceContext, emitter: Emitter, count: usize, p: DVec3, q: DVec3, ng_q: DVec3) -> f64 {
+    let scene = ctx.scene;
+    let pick = 1.0 / count as f64;
+    match emitter {
+        Emitter::Sphere(i) => {
+            let cr = scene.spheres[i as usize].center_radius;
+            let (c, r) = (v3(cr), f64::from(cr[3]));
+            let d2 = (c - p).length_squared();
+            if d2 <= r * r {
+                return 0.0;
+            }
+            pick * uniform_cone_pdf(cone_versin(r * r / d2))
+        }
+        Emitter::Triangle(i) => {
+            let [a, b, c] = triangle_corners(scene, &scene.triangles[i as usize]);
+            let area = 0.5 * (b - a).cross(c - a).length();
+            let to_q = q - p;
+            let dist = to_q.length();
+            pick * area_to_solid_angle(1.0 / area, dist, ng_q.dot(to_q / dist))
+        }
+    }
+}
+
+/// A direction from `p` towards a point of `emitter`, drawn as `emitter_pdf` says.
+fn sample_emitter(ctx: &TraceContext, emitter: Emitter, p: DVec3, u: DVec2) -> Option<DVec3> {
+    let scene = ctx.scene;
+    match emitter {
+        Emitter::Sphere(i) => {
+            let cr = scene.spheres[i as usize].center_radius;
+            let (c, r) = (v3(cr), f64::from(cr[3]));
+            let to_c = c - p;
+            let d2 = to_c.length_squared();
+            if d2 <= r * r {
+                return None;
+            }
+            Some(to_world(to_c / d2.sqrt(), uniform_cone(u, cone_versin(r * r / d2))))
+        }
+        Emitter::Triangle(i) => {
+            let [a, b, c] = triangle_corners(scene, &scene.triangles[i as usize]);
+            let bary = uniform_triangle(u);
+            let q = a + bary.x * (b - a) + bary.y * (c - a);
+            (q - p).try_normalize()
+        }
+    }
+}
+
 /// The radiance one camera sample of pixel (x, y) brings back along its path.
-pub fn path_sample(ctx: &TraceContext, x: u32, y: u32, sample: u32, counts: &mut RayCounts) -> DVec3 {
+pub fn path_sample(
+    ctx: &TraceContext,
+    emitters: &Emitters,
+    x: u32,
+    y: u32,
+    sample: u32,
+    counts: &mut RayCounts,
+) -> DVec3 {
     let scene = ctx.scene;
     let h = &scene.header;
     let pixel = y * h.width + x;
@@ -104,6 +200,9 @@ pub fn path_sample(ctx: &TraceContext, x: u32, y: u32, sample: u32, counts: &mut
     counts.camera += 1;
     let (mut t_min, mut leaving) = (0.0, Leaving::NONE);
     let (mut beta, mut radiance) = (DVec3::ONE, DVec3::ZERO);
+    // Where the path last scattered off a non-delta lobe, and the density it drew the direction
+    // with: what an emitter it meets is weighed by. None after the camera and delta lobes.
+    let mut scattered: Option<(DVec3, f64)> = None;
     for depth in 0..=ctx.max_depth {
         let Some(hit) = closest_hit(ctx, &ray, t_min, FAR, &leaving) else {
             radiance += beta * v3(h.background);
@@ -119,8 +218,14 @@ pub fn path_sample(ctx: &TraceContext, x: u32, y: u32, sample: u32, counts: &mut
         let mat = &scene.materials[s.material as usize];
         let tags = ctx.material_tags[s.material as usize];
         let c = material_colours(ctx, mat, s.uv, s.uv_origin);
-        if front {
-            radiance += beta * c.emission;
+        if front && c.emission != DVec3::ZERO {
+            let weight = match (scattered, emitters.of_hit(&hit)) {
+                (Some((from, bsdf_pdf)), Some(e)) => {
+                    power_heuristic(bsdf_pdf, emitter_pdf(ctx, e, emitters.list.len(), from, s.p, s.ng))
+                }
+                _ => 1.0,
+            };
+            radiance += beta * c.emission * weight;
         }
         let (fx, fy) = (frame_x(ns), frame_y(ns));
         let to_local = |d: DVec3| DVec3::new(d.dot(fx), d.dot(fy), d.dot(ns));
@@ -148,17 +253,45 @@ pub fn path_sample(ctx: &TraceContext, x: u32, y: u32, sample: u32, counts: &mut
             radiance += beta * scale * (visibility * (diffuse + glossy));
         }
 
-        if depth == ctx.max_depth {
-            break;
-        }
         let kr = v3(mat.kr);
         let kt = v3(mat.kt);
         let weights = [max_channel(c.kd), max_channel(ks), max_channel(kr), max_channel(kt)];
         let total: f64 = weights.iter().sum();
-        if total <= 0.0 {
+        let dim = FIRST_PATH_DIM + depth * DIMS_PER_BOUNCE;
+        // The density with which the non-delta lobes draw `wi`, as the path's own choice does.
+        let bsdf_pdf =
+            |wi: DVec3| (weights[0] * cosine_hemisphere_pdf(wi.z) + weights[1] * glossy_pdf(mat, tags, wo, wi)) / total;
+
+        if !emitters.list.is_empty() && weights[0] + weights[1] > 0.0 {
+            let pick = ((uniform(dim + 4) * emitters.list.len() as f64) as usize).min(emitters.list.len() - 1);
+            let e = emitters.list[pick];
+            let u = DVec2::new(uniform(dim + 5), uniform(dim + 6));
+            if let Some(dir) = sample_emitter(ctx, e, s.p, u) {
+                // At the last bounce no path goes on to meet the emitter: its light sample alone
+                // counts it, unweighted.
+                let mis = depth < ctx.max_depth;
+                radiance += beta
+                    * emitter_light(
+                        ctx,
+                        emitters,
+                        e,
+                        &s,
+                        ng,
+                        dir,
+                        mis,
+                        |wi| {
+                            let f = c.kd * lambert_brdf(wo, wi) + ks * glossy_brdf(mat, tags, wo, wi);
+                            (f, bsdf_pdf(wi))
+                        },
+                        &to_local,
+                        counts,
+                    );
+            }
+        }
+
+        if depth == ctx.max_depth || total <= 0.0 {
             break;
         }
-        let dim = FIRST_PATH_DIM + depth * DIMS_PER_BOUNCE;
         let pick = uniform(dim) * total;
         let u = DVec2::new(uniform(dim + 1), uniform(dim + 2));
         let (dir, transmitted) = if pick < weights[0] + weights[1] {
@@ -168,20 +301,23 @@ pub fn path_sample(ctx: &TraceContext, x: u32, y: u32, sample: u32, counts: &mut
             if wi.z <= 0.0 {
                 break;
             }
-            let pdf = (weights[0] * cosine_hemisphere_pdf(wi.z) + weights[1] * glossy_pdf(mat, tags, wo, wi)) / total;
+            let pdf = bsdf_pdf(wi);
             if pdf <= 0.0 {
                 break;
             }
             let f = c.kd * lambert_brdf(wo, wi) + ks * glossy_brdf(mat, tags, wo, wi);
             beta *= f * (wi.z / pdf);
             counts.reflection += 1;
+            scattered = Some((s.p, pdf));
             (to_world(ns, wi), false)
         } else if pick < weights[0] + weights[1] + weights[2] {
             beta *= kr * (total / weights[2]);
             counts.reflection += 1;
+            scattered = None;
             (reflect_dir(ray.dir, ns), false)
         } else {
             beta *= kt * (total / weights[3]);
+            scattered = None;
             let ior = f64::from(mat.ior);
             let eta = if front { 1.0 / ior } else { ior };
             match refract_dir(ray.dir, ns, eta) {
@@ -216,11 +352,56 @@ pub fn path_sample(ctx: &TraceContext, x: u32, y: u32, sample: u32, counts: &mut
     radiance
 }
 
+/// What an emitter sends back along `dir` from the surface `s` (its normal `ng` turned to the
+/// incoming ray), drawn by next-event estimation: E_m over the density the point was drawn with,
+/// times the BRDF and cosine, weighed against the paths' own chance to meet it. `scatter` gives
+/// the BRDF (per channel) and the non-delta lobes' density at a local direction; without `mis`
+/// the light sample is the only way the emitter is counted from here.
+#[allow(clippy::too_many_arguments)]
+fn emitter_light(
+    ctx: &TraceContext,
+    emitters: &Emitters,
+    e: Emitter,
+    s: &super::shade::Surface,
+    ng: DVec3,
+    dir: DVec3,
+    mis: bool,
+    scatter: impl Fn(DVec3) -> (DVec3, f64),
+    to_local: &impl Fn(DVec3) -> DVec3,
+    counts: &mut RayCounts,
+) -> DVec3 {
+    let wi = to_local(dir);
+    if wi.z <= 0.0 || dir.dot(ng) <= 0.0 {
+        return DVec3::ZERO;
+    }
+    let sp = spawn_ray(ctx, s.p, s.p_surface, ng, dir, leaving_surface(s.prim, s.index, s.ng, ng));
+    let shadow = Ray { origin: sp.origin, dir };
+    counts.shadow += 1;
+    // The emitter is seen if it is what the ray meets first, on its front face.
+    let Some(hit) = closest_hit(ctx, &shadow, sp.t_min, FAR, &sp.leaving) else { return DVec3::ZERO };
+    if emitters.of_hit(&hit) != Some(e) {
+        return DVec3::ZERO;
+    }
+    let q = surface_at(ctx, &shadow, &hit);
+    let light_pdf = emitter_pdf(ctx, e, emitters.list.len(), s.p, q.p, q.ng);
+    if dir.dot(q.ng) >= 0.0 || light_pdf <= 0.0 {
+        return DVec3::ZERO;
+    }
+    let mut emission = material_colours(ctx, &ctx.scene.materials[q.material as usize], q.uv, q.uv_origin).emission;
+    // As the paths that meet it: f_att(t) over the segment.
+    if ctx.has(feature::GLOBAL_ATTENUATION) {
+        emission *= attenuation_factor(ctx.scene.header.global_attenuation, hit.t);
+    }
+    let (f, bsdf_pdf) = scatter(wi);
+    let weight = if mis { power_heuristic(light_pdf, bsdf_pdf) } else { 1.0 };
+    f * emission * (wi.z * weight / light_pdf)
+}
+
 /// The mean of `spp` path samples of pixel (x, y).
-pub fn path_pixel(ctx: &TraceContext, x: u32, y: u32, spp: u32, counts: &mut RayCounts) -> DVec3 {
+pub fn path_pixel(ctx: &TraceContext, emitters: &Emitters, x: u32, y: u32, spp: u32, counts: &mut RayCounts) -> DVec3 {
     let mut sum = DVec3::ZERO;
     for sample in 0..spp {
-        sum += path_sample(ctx, x, y, sample, counts);
+        sum += path_sample(ctx, emitters, x, y, sample, counts);
     }
     sum / f64::from(spp.max(1))
 }
