@@ -118,6 +118,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         specialise,
         accel: args.accel,
         max_rays_per_sample: args.max_rays_per_sample,
+        ..CpuOptions::default()
     };
     let gpu_options = GpuOptions { specialise, accel: args.accel, ..GpuOptions::default() };
     if args.bench {

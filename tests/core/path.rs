@@ -4,6 +4,8 @@
 use glam::DVec3;
 use glint_core::cpu::path::{Emitters, path_pixel};
 use glint_core::cpu::{RayCounts, TraceContext};
+use glint_core::{CpuOptions, RenderControl};
+use glint_scene::Integrator;
 
 use crate::reference::{primary_ray, sphere_hit};
 use crate::scene::SceneText;
@@ -27,7 +29,7 @@ fn a_convex_diffuse_object_under_a_uniform_sky_has_its_albedo() {
     let (mut on_sphere, mut sky) = (0, 0);
     for y in 0..24 {
         for x in 0..24 {
-            let v = path_pixel(&ctx, &emitters, x, y, 4, &mut counts);
+            let v = path_pixel(&ctx, &emitters, x, y, 4, &mut counts).0;
             let (o, d) = primary_ray(&flat, x, y);
             let expected = if sphere_hit(o, d, DVec3::ZERO, 1.0).is_some() { rho } else { 1.0 };
             // Jittered samples of pixels at the silhouette mix the two: leave those out.
@@ -90,7 +92,7 @@ fn inside_a_closed_diffuse_emitter_every_pixel_converges_to_e_over_one_minus_rho
     for y in 0..16 {
         for x in 0..16 {
             for s in 0..spp {
-                let v = glint_core::cpu::path::path_sample(&ctx, &emitters, x, y, s, &mut counts).x;
+                let v = glint_core::cpu::path::path_sample(&ctx, &emitters, x, y, s, &mut counts).0.x;
                 (n, sum, sum2) = (n + 1.0, sum + v, sum2 + v * v);
             }
         }
@@ -126,7 +128,7 @@ fn direct_light_is_whitteds_where_both_compute_it() {
     let mut counts = RayCounts::default();
     for y in 0..32 {
         for x in 0..32 {
-            let path = path_pixel(&ctx, &emitters, x, y, 1, &mut counts);
+            let path = path_pixel(&ctx, &emitters, x, y, 1, &mut counts).0;
             let w = whitted.image.get(x, y);
             assert!(
                 (path - w).abs().max_element() <= 1e-12 * w.max_element().max(1.0),
@@ -158,7 +160,7 @@ fn lambert_phong_and_mirror_lobes_together_reflect_their_albedos_under_a_uniform
     let mut counts = RayCounts::default();
     let (mut n, mut sum, mut sum2) = (0.0, 0.0, 0.0);
     for s in 0..40_000 {
-        let v = glint_core::cpu::path::path_sample(&ctx, &emitters, 12, 12, s, &mut counts).x;
+        let v = glint_core::cpu::path::path_sample(&ctx, &emitters, 12, 12, s, &mut counts).0.x;
         (n, sum, sum2) = (n + 1.0, sum + v, sum2 + v * v);
     }
     let mean = sum / n;
@@ -204,7 +206,7 @@ fn a_spherical_emitter_lights_a_plane_as_its_closed_form_says() {
             let expected = rho * le * sin2 * to_c.normalize().y;
             let (mut n, mut sum, mut sum2) = (0.0, 0.0, 0.0);
             for s in 0..4096 {
-                let v = glint_core::cpu::path::path_sample(&ctx, &emitters, x, y, s, &mut counts).x;
+                let v = glint_core::cpu::path::path_sample(&ctx, &emitters, x, y, s, &mut counts).0.x;
                 (n, sum, sum2) = (n + 1.0, sum + v, sum2 + v * v);
             }
             let mean = sum / n;
@@ -218,4 +220,38 @@ fn a_spherical_emitter_lights_a_plane_as_its_closed_form_says() {
         }
         assert!(checked >= 4, "only {checked} pixels see the lit ground");
     }
+}
+
+#[test]
+fn a_path_traced_image_is_the_same_bits_for_any_thread_count() {
+    // Every random number hashes the pixel, the sample and its dimension: no thread, tile or
+    // order can change a pixel. The image is also pinned by the golden hashes.
+    let flat = SceneText::new(24, 16, "max_depth = 6\nspp = 4", [0.0, 1.5, -5.0], [0.0, 0.5, 0.0], Y, 50.0)
+        .world([0.0; 3], [0.05, 0.1, 0.2])
+        .material("ground", "ka = [0.0, 0.0, 0.0]\nkd = [0.6, 0.5, 0.4]\nks = [0.0, 0.0, 0.0]")
+        .material("lamp", "ka = [0.0, 0.0, 0.0]\nkd = [0.0, 0.0, 0.0]\nks = [0.0, 0.0, 0.0]\nemission = [6.0, 5.0, 4.0]")
+        .material("glass", "ka = [0.0, 0.0, 0.0]\nkd = [0.0, 0.0, 0.0]\nks = [0.0, 0.0, 0.0]\nkr = [0.05, 0.05, 0.05]\nkt = [0.9, 0.9, 0.9]\nior = 1.5")
+        .material(
+            "gloss",
+            "ka = [0.0, 0.0, 0.0]\nkd = [0.2, 0.3, 0.5]\nks = [0.4, 0.4, 0.4]\nspecular_model = \"cook_torrance\"\nroughness = 0.2",
+        )
+        .light("point", "position = [-2.0, 3.0, -2.0]\ndiffuse = [0.5, 0.5, 0.5]\nspecular = [0.5, 0.5, 0.5]")
+        .plane([0.0; 3], [0.0, 1.0, 0.0], "ground")
+        .sphere([1.2, 2.2, 0.5], 0.4, "lamp")
+        .sphere([-0.6, 0.6, 0.0], 0.6, "glass")
+        .sphere([0.8, 0.5, -0.3], 0.5, "gloss")
+        .flat();
+    let render = |threads| {
+        let options = CpuOptions { threads, integrator: Integrator::Path, ..CpuOptions::default() };
+        glint_core::render_cpu(&flat, &options, RenderControl::default()).expect("path render")
+    };
+    let (one, two) = (render(1), render(2));
+    let bits = |r: &glint_core::CpuRender| {
+        r.image.pixels.iter().flat_map(|p| p.to_array()).map(f64::to_bits).collect::<Vec<_>>()
+    };
+    assert_eq!(bits(&one), bits(&two), "1 and 2 threads give other bits");
+    assert_eq!(one.image.first_hit, two.image.first_hit);
+    assert!(one.image.pixels.iter().all(|p| p.is_finite() && p.min_element() >= 0.0), "a pixel not finite or negative");
+    assert!(one.counts.shadow > 0 && one.counts.refraction > 0, "{:?}", one.counts);
+    glint_test_support::image_hash::check_render_hash(&one);
 }

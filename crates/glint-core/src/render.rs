@@ -7,12 +7,14 @@ use glam::DVec3;
 use rayon::prelude::*;
 
 pub use crate::cpu::Accel;
+use crate::cpu::path::{Emitters, path_pixel};
 use crate::cpu::ray_tree::{NoTree, RayTree};
 use crate::cpu::shade::Breakdown;
 use crate::cpu::trace::{render_pixel, render_sample};
 use crate::cpu::{DEFAULT_MAX_RAYS_PER_SAMPLE, RayCounts, TraceContext};
 use crate::flat::FlatScene;
 use crate::image::HdrImage;
+use glint_scene::Integrator;
 use glint_types::layout::{UnknownTag, feature};
 
 /// Edge of a square tile in pixels.
@@ -30,11 +32,19 @@ pub struct CpuOptions {
     /// The bound on one camera sample's ray tree: a pixel whose tree reaches it stops the
     /// render with `CpuRenderError::RayCap` (the reference is never silently truncated).
     pub max_rays_per_sample: u64,
+    /// Whitted's ray tree (the default) or Monte Carlo paths (`cpu::path`).
+    pub integrator: Integrator,
 }
 
 impl Default for CpuOptions {
     fn default() -> Self {
-        Self { threads: 0, specialise: true, accel: Accel::default(), max_rays_per_sample: DEFAULT_MAX_RAYS_PER_SAMPLE }
+        Self {
+            threads: 0,
+            specialise: true,
+            accel: Accel::default(),
+            max_rays_per_sample: DEFAULT_MAX_RAYS_PER_SAMPLE,
+            integrator: Integrator::Whitted,
+        }
     }
 }
 
@@ -113,7 +123,13 @@ pub fn tile_count(width: u32, height: u32) -> usize {
     (width.div_ceil(TILE) * height.div_ceil(TILE)) as usize
 }
 
-fn render_tile(ctx: &TraceContext, x0: u32, y0: u32, stop: &Stop) -> Result<Tile, TileStop> {
+/// What a tile's pixels are computed by.
+enum Shading {
+    Whitted,
+    Path(Emitters),
+}
+
+fn render_tile(ctx: &TraceContext, shading: &Shading, x0: u32, y0: u32, stop: &Stop) -> Result<Tile, TileStop> {
     let h = &ctx.scene.header;
     let width = TILE.min(h.width - x0);
     let height = TILE.min(h.height - y0);
@@ -127,7 +143,10 @@ fn render_tile(ctx: &TraceContext, x0: u32, y0: u32, stop: &Stop) -> Result<Tile
     for y in y0..y0 + height {
         for x in x0..x0 + width {
             let before = counts.total();
-            let (c, id) = render_pixel(ctx, x, y, &mut counts);
+            let (c, id) = match shading {
+                Shading::Whitted => render_pixel(ctx, x, y, &mut counts),
+                Shading::Path(emitters) => path_pixel(ctx, emitters, x, y, h.spp, &mut counts),
+            };
             if counts.capped_samples > 0 {
                 stop.capped.store(true, Ordering::Relaxed);
                 return Err(TileStop::RayCap { x, y });
@@ -171,6 +190,10 @@ pub fn render_cpu(
     let ctx = TraceContext::with_features(scene, features)?
         .with_accel(options.accel)
         .with_ray_cap(options.max_rays_per_sample);
+    let shading = match options.integrator {
+        Integrator::Whitted => Shading::Whitted,
+        Integrator::Path => Shading::Path(Emitters::of(&ctx)),
+    };
     let stop = Stop { cancel: control.cancel, capped: AtomicBool::new(false), rays: control.rays };
     let (w, h) = (scene.header.width, scene.header.height);
     let origins: Vec<(u32, u32)> =
@@ -183,7 +206,7 @@ pub fn render_cpu(
         origins
             .par_iter()
             .map(|&(x0, y0)| {
-                let tile = render_tile(&ctx, x0, y0, &stop)?;
+                let tile = render_tile(&ctx, &shading, x0, y0, &stop)?;
                 if let Some(cb) = control.on_tile {
                     cb(&tile);
                 }

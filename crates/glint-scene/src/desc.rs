@@ -95,6 +95,27 @@ fn one_line(e: &impl std::fmt::Display) -> String {
     e.to_string().trim().replace('\n', " ")
 }
 
+/// How light is carried: the seed's Whitted ray tree, or Monte Carlo paths (global
+/// illumination, the reference the Whitted image is held against).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Integrator {
+    #[default]
+    Whitted,
+    Path,
+}
+
+impl Integrator {
+    pub const ALL: [Self; 2] = [Self::Whitted, Self::Path];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Whitted => "whitted",
+            Self::Path => "path",
+        }
+    }
+}
+
 /// Render settings a scene suggests; command-line flags override each of them.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]

@@ -24,7 +24,7 @@ mod validate;
 
 pub use camera::CameraDesc;
 pub use desc::{
-    GlobalAttenuation, ObjectDesc, PlaneDesc, RenderSettings, SceneDesc, SphereDesc, WorldDesc,
+    GlobalAttenuation, Integrator, ObjectDesc, PlaneDesc, RenderSettings, SceneDesc, SphereDesc, WorldDesc,
     without_imported_materials,
 };
 pub use error::FieldIssue;

@@ -50,7 +50,7 @@ use super::walk::closest_hit;
 use super::{Ray, RayCounts, TraceContext, v3};
 use glint_scene::SpecularModel;
 use glint_types::MaterialTags;
-use glint_types::layout::{GpuMaterial, LIGHT_CASTS_SHADOWS, feature};
+use glint_types::layout::{GpuMaterial, LIGHT_CASTS_SHADOWS, NO_HIT, feature};
 
 /// Random dimensions per bounce: the lobe, the direction's two, Russian roulette, the emitter
 /// and the point on it (two), one spare. The camera's jitter takes dimensions 0 and 1.
@@ -182,7 +182,8 @@ fn sample_emitter(ctx: &TraceContext, emitter: Emitter, p: DVec3, u: DVec2) -> O
     }
 }
 
-/// The radiance one camera sample of pixel (x, y) brings back along its path.
+/// The radiance one camera sample of pixel (x, y) brings back along its path, and the id of
+/// the first object hit (`NO_HIT` for none), as Whitted's `render_sample` gives them.
 pub fn path_sample(
     ctx: &TraceContext,
     emitters: &Emitters,
@@ -190,7 +191,7 @@ pub fn path_sample(
     y: u32,
     sample: u32,
     counts: &mut RayCounts,
-) -> DVec3 {
+) -> (DVec3, u32) {
     let scene = ctx.scene;
     let h = &scene.header;
     let pixel = y * h.width + x;
@@ -203,6 +204,7 @@ pub fn path_sample(
     // Where the path last scattered off a non-delta lobe, and the density it drew the direction
     // with: what an emitter it meets is weighed by. None after the camera and delta lobes.
     let mut scattered: Option<(DVec3, f64)> = None;
+    let mut first_object = NO_HIT;
     for depth in 0..=ctx.max_depth {
         let Some(hit) = closest_hit(ctx, &ray, t_min, FAR, &leaving) else {
             radiance += beta * v3(h.background);
@@ -213,6 +215,9 @@ pub fn path_sample(
             beta *= attenuation_factor(h.global_attenuation, hit.t);
         }
         let s = surface_at(ctx, &ray, &hit);
+        if depth == 0 {
+            first_object = s.object_id;
+        }
         let front = ray.dir.dot(s.ng) < 0.0;
         let (ng, ns) = if front { (s.ng, s.ns) } else { (-s.ng, -s.ns) };
         let mat = &scene.materials[s.material as usize];
@@ -349,7 +354,7 @@ pub fn path_sample(
         ray = Ray { origin: sp.origin, dir };
         (t_min, leaving) = (sp.t_min, sp.leaving);
     }
-    radiance
+    (radiance, first_object)
 }
 
 /// What an emitter sends back along `dir` from the surface `s` (its normal `ng` turned to the
@@ -397,11 +402,18 @@ fn emitter_light(
     f * emission * (wi.z * weight / light_pdf)
 }
 
-/// The mean of `spp` path samples of pixel (x, y).
-pub fn path_pixel(ctx: &TraceContext, emitters: &Emitters, x: u32, y: u32, spp: u32, counts: &mut RayCounts) -> DVec3 {
-    let mut sum = DVec3::ZERO;
-    for sample in 0..spp {
-        sum += path_sample(ctx, emitters, x, y, sample, counts);
+/// The mean of `spp` path samples of pixel (x, y), and the first sample's first-hit object.
+pub fn path_pixel(
+    ctx: &TraceContext,
+    emitters: &Emitters,
+    x: u32,
+    y: u32,
+    spp: u32,
+    counts: &mut RayCounts,
+) -> (DVec3, u32) {
+    let (mut sum, first) = path_sample(ctx, emitters, x, y, 0, counts);
+    for sample in 1..spp {
+        sum += path_sample(ctx, emitters, x, y, sample, counts).0;
     }
-    sum / f64::from(spp.max(1))
+    (sum / f64::from(spp.max(1)), first)
 }
