@@ -11,7 +11,7 @@ use glint_core::memory::{self, RenderPlan, render_estimate};
 use glint_core::{Accel, Backend, CpuOptions, FlatScene};
 use glint_gpu::GpuOptions;
 use glint_io::{BUILTIN_SCENES, RESOLUTIONS};
-use glint_scene::{overflow_causes, unbounded_ray_tree};
+use glint_scene::{Integrator, SceneDesc, overflow_causes, unbounded_ray_tree};
 
 use super::backend::{Run, open_gpu, run_cpu, run_gpu};
 use super::interrupt;
@@ -52,6 +52,11 @@ pub struct RenderArgs {
     /// How both tracers find primitives: the BVH from 24 spheres and triangles on (auto), always the BVH, or brute force (none); the CPU image is bit-identical either way, and on the GPU brute force is limited to 65,535 primitives of a kind
     #[arg(long, default_value = "auto", value_parser = accels())]
     pub accel: Accel,
+    /// How light is carried: Whitted's ray tree, or Monte Carlo paths (global illumination: area
+    /// lights, colour bleeding, caustics; --spp paths per pixel, --depth bounces at most). The
+    /// path tracer runs on the CPU only so far
+    #[arg(long, default_value = "whitted", value_parser = integrators())]
+    pub integrator: Integrator,
     /// Print the results as JSON instead of a table
     #[arg(long)]
     pub json: bool,
@@ -87,6 +92,11 @@ fn backends() -> impl TypedValueParser<Value = &'static [Backend]> {
     })
 }
 
+fn integrators() -> impl TypedValueParser<Value = Integrator> {
+    PossibleValuesParser::new(Integrator::ALL.map(Integrator::name))
+        .map(|choice| *Integrator::ALL.iter().find(|i| i.name() == choice).expect("clap admits only these"))
+}
+
 fn accels() -> impl TypedValueParser<Value = Accel> {
     PossibleValuesParser::new(Accel::CHOICES.map(|(name, _)| name)).map(|choice| {
         let (_, accel) = Accel::CHOICES.iter().find(|(name, _)| *name == choice).expect("clap admits only these");
@@ -112,13 +122,24 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     {
         eprintln!("warning: {warning}");
     }
+    if args.integrator == Integrator::Path {
+        if args.backend.contains(&Backend::Gpu) {
+            bail!(
+                "--integrator path runs on the CPU only so far (the GPU path tracer is not written yet): \
+                 use --backend cpu"
+            );
+        }
+        for warning in path_warnings(&loaded.desc) {
+            eprintln!("warning: {warning}");
+        }
+    }
     let specialise = !args.no_specialise;
     let cpu_options = CpuOptions {
         threads: args.threads,
         specialise,
         accel: args.accel,
         max_rays_per_sample: args.max_rays_per_sample,
-        ..CpuOptions::default()
+        integrator: args.integrator,
     };
     let gpu_options = GpuOptions { specialise, accel: args.accel, ..GpuOptions::default() };
     if args.bench {
@@ -174,7 +195,9 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     let mut outputs = Vec::new();
     for run in &runs {
         let path = image_path(run);
-        write_run(&path, run, &metadata(&loaded.name, &settings, run, specialise))?;
+        let mut tags = metadata(&loaded.name, &settings, run, specialise);
+        tags.push(("glint:integrator".into(), args.integrator.name().into()));
+        write_run(&path, run, &tags)?;
         outputs.push(path);
     }
     let errors = if let [cpu, gpu] = runs.as_slice() {
@@ -188,8 +211,39 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         print_json(&loaded.name, &settings, &runs, errors.as_ref(), &outputs, load_estimate.as_ref(), &estimate)?;
     } else {
         print_table(&loaded.name, &settings, &runs, errors.as_ref(), &outputs);
+        if args.integrator == Integrator::Path {
+            println!(
+                "  path tracer: {} paths a pixel, at most {} bounces; no ambient term (I_a·k_a and the \
+                 lights' I_a,j stand in for the indirect light the paths compute)",
+                settings.spp, settings.max_depth
+            );
+        }
     }
     Ok(())
+}
+
+/// What a scene sets that the path tracer does not use, or lacks that it needs.
+fn path_warnings(desc: &SceneDesc) -> Vec<String> {
+    let mut out = Vec::new();
+    let nonzero = |c: [f64; 3]| c.iter().any(|&v| v != 0.0);
+    if nonzero(desc.world.ambient.0) {
+        out.push(
+            "world.ambient is not used by the path tracer: the indirect light it stands in for is computed".into(),
+        );
+    }
+    for light in &desc.lights {
+        if nonzero(light.ambient.0) {
+            out.push(format!(
+                "lights.{}.ambient is not used by the path tracer: the indirect light it stands in for is computed",
+                light.name
+            ));
+        }
+    }
+    let emits = desc.materials.values().any(|m| nonzero(m.emission.0));
+    if desc.lights.is_empty() && !emits && !nonzero(desc.world.background.0) {
+        out.push("no light, no emitting material and a black background: the path-traced image will be black".into());
+    }
+    out
 }
 
 /// A render whose shader raised a status flag is missing work: an error, or with
