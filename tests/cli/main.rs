@@ -9,6 +9,7 @@ use glint_test_support::TempDir;
 
 mod bench;
 mod memory;
+mod mitsuba;
 mod models;
 mod reliability;
 mod report;
