@@ -2,7 +2,7 @@
 //! furnaces, and Whitted's direct light where the two integrators compute the same thing.
 
 use glam::DVec3;
-use glint_core::cpu::path::{Emitters, path_pixel};
+use glint_core::cpu::path::{Emitters, path_pixel, path_sample};
 use glint_core::cpu::{RayCounts, TraceContext};
 use glint_core::{CpuOptions, RenderControl};
 use glint_scene::Integrator;
@@ -12,6 +12,16 @@ use crate::scene::SceneText;
 use crate::support::render;
 
 const Y: [f64; 3] = [0.0, 1.0, 0.0];
+
+/// The mean of `values` and its standard error.
+fn mean_and_error(values: impl Iterator<Item = f64>) -> (f64, f64) {
+    let (mut n, mut sum, mut sum2) = (0.0, 0.0, 0.0);
+    for v in values {
+        (n, sum, sum2) = (n + 1.0, sum + v, sum2 + v * v);
+    }
+    let mean = sum / n;
+    (mean, ((sum2 / n - mean * mean) / n).sqrt())
+}
 
 #[test]
 fn a_convex_diffuse_object_under_a_uniform_sky_has_its_albedo() {
@@ -87,18 +97,9 @@ fn inside_a_closed_diffuse_emitter_every_pixel_converges_to_e_over_one_minus_rho
     let emitters = Emitters::of(&ctx);
     let mut counts = RayCounts::default();
     // Every sample of every pixel, for the mean and its standard error.
-    let spp = 64;
-    let (mut n, mut sum, mut sum2) = (0.0, 0.0, 0.0);
-    for y in 0..16 {
-        for x in 0..16 {
-            for s in 0..spp {
-                let v = glint_core::cpu::path::path_sample(&ctx, &emitters, x, y, s, &mut counts).0.x;
-                (n, sum, sum2) = (n + 1.0, sum + v, sum2 + v * v);
-            }
-        }
-    }
-    let mean = sum / n;
-    let error = ((sum2 / n - mean * mean) / n).sqrt();
+    let pixels = (0..16).flat_map(|y| (0..16).map(move |x| (x, y)));
+    let samples = pixels.flat_map(|(x, y)| (0..64).map(move |s| (x, y, s)));
+    let (mean, error) = mean_and_error(samples.map(|(x, y, s)| path_sample(&ctx, &emitters, x, y, s, &mut counts).0.x));
     let expected = e / (1.0 - rho);
     assert!(error < 0.01 * expected, "standard error {error}: too few samples to judge");
     assert!((mean - expected).abs() < 4.0 * error, "mean {mean} ± {error}, not {expected}");
@@ -158,13 +159,7 @@ fn lambert_phong_and_mirror_lobes_together_reflect_their_albedos_under_a_uniform
     let ctx = TraceContext::new(&flat).expect("valid scene");
     let emitters = Emitters::of(&ctx);
     let mut counts = RayCounts::default();
-    let (mut n, mut sum, mut sum2) = (0.0, 0.0, 0.0);
-    for s in 0..40_000 {
-        let v = glint_core::cpu::path::path_sample(&ctx, &emitters, 12, 12, s, &mut counts).0.x;
-        (n, sum, sum2) = (n + 1.0, sum + v, sum2 + v * v);
-    }
-    let mean = sum / n;
-    let error = ((sum2 / n - mean * mean) / n).sqrt();
+    let (mean, error) = mean_and_error((0..40_000).map(|s| path_sample(&ctx, &emitters, 12, 12, s, &mut counts).0.x));
     let expected = kd + ks + kr;
     assert!(error < 0.005, "standard error {error}");
     assert!((mean - expected).abs() < 4.0 * error, "mean {mean} ± {error}, not {expected}");
@@ -204,13 +199,9 @@ fn a_spherical_emitter_lights_a_plane_as_its_closed_form_says() {
             let to_c = centre - p;
             let sin2 = radius * radius / to_c.length_squared();
             let expected = rho * le * sin2 * to_c.normalize().y;
-            let (mut n, mut sum, mut sum2) = (0.0, 0.0, 0.0);
-            for s in 0..4096 {
-                let v = glint_core::cpu::path::path_sample(&ctx, &emitters, x, y, s, &mut counts).0.x;
-                (n, sum, sum2) = (n + 1.0, sum + v, sum2 + v * v);
-            }
-            let mean = sum / n;
-            let error = ((sum2 / n - mean * mean) / n).sqrt().max(1e-12 * expected);
+            let (mean, error) =
+                mean_and_error((0..4096).map(|s| path_sample(&ctx, &emitters, x, y, s, &mut counts).0.x));
+            let error = error.max(1e-12 * expected);
             assert!(error < 0.02 * expected, "depth {depth}, ({x}, {y}): standard error {error} of {expected}");
             assert!(
                 (mean - expected).abs() < 4.0 * error,
