@@ -236,6 +236,10 @@ pub fn path_sample(
         let to_local = |d: DVec3| DVec3::new(d.dot(fx), d.dot(fy), d.dot(ns));
         let wo = to_local(-ray.dir);
         let ks = v3(mat.ks);
+        // The glossy lobe's BRDF and density, skipped where k_s is 0 (a pow and an exp2 a call).
+        let has_glossy = ks != DVec3::ZERO;
+        let glossy_f = |wi| if has_glossy { ks * glossy_brdf(mat, tags, wo, wi) } else { DVec3::ZERO };
+        let glossy_p = |wi| if has_glossy { glossy_pdf(mat, tags, wo, wi) } else { 0.0 };
 
         for (light, &light_tags) in scene.lights.iter().zip(&ctx.light_tags) {
             let ls = light_sample(ctx, light, light_tags, s.p);
@@ -264,8 +268,7 @@ pub fn path_sample(
         let total: f64 = weights.iter().sum();
         let dim = FIRST_PATH_DIM + depth * DIMS_PER_BOUNCE;
         // The density with which the non-delta lobes draw `wi`, as the path's own choice does.
-        let bsdf_pdf =
-            |wi: DVec3| (weights[0] * cosine_hemisphere_pdf(wi.z) + weights[1] * glossy_pdf(mat, tags, wo, wi)) / total;
+        let bsdf_pdf = |wi: DVec3| (weights[0] * cosine_hemisphere_pdf(wi.z) + weights[1] * glossy_p(wi)) / total;
 
         if !emitters.list.is_empty() && weights[0] + weights[1] > 0.0 {
             let pick = ((uniform(dim + 4) * emitters.list.len() as f64) as usize).min(emitters.list.len() - 1);
@@ -285,7 +288,7 @@ pub fn path_sample(
                         dir,
                         mis,
                         |wi| {
-                            let f = c.kd * lambert_brdf(wo, wi) + ks * glossy_brdf(mat, tags, wo, wi);
+                            let f = c.kd * lambert_brdf(wo, wi) + glossy_f(wi);
                             (f, bsdf_pdf(wi))
                         },
                         &to_local,
@@ -310,7 +313,7 @@ pub fn path_sample(
             if pdf <= 0.0 {
                 break;
             }
-            let f = c.kd * lambert_brdf(wo, wi) + ks * glossy_brdf(mat, tags, wo, wi);
+            let f = c.kd * lambert_brdf(wo, wi) + glossy_f(wi);
             beta *= f * (wi.z / pdf);
             counts.reflection += 1;
             scattered = Some((s.p, pdf));
