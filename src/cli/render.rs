@@ -296,14 +296,18 @@ fn bench(
         times.sort();
         let median = times[times.len() / 2];
         let mrays = mrays_per_s(warm.counts.total(), median);
+        // The bailout is Whitted's; a path render says what it is instead.
+        let mode = match args.integrator {
+            Integrator::Whitted => format!("bailout {}", h.bailout),
+            Integrator::Path => "path tracer".to_string(),
+        };
         println!(
-            "bench {name} {}: {}x{} {} spp depth {} bailout {}, {}: median {:.1} ms, min {:.1} ms over {} runs, {:.2} Mrays/s; {}",
+            "bench {name} {}: {}x{} {} spp depth {} {mode}, {}: median {:.1} ms, min {:.1} ms over {} runs, {:.2} Mrays/s; {}",
             warm.backend.name(),
             h.width,
             h.height,
             h.spp,
             h.max_depth,
-            h.bailout,
             warm.device,
             ms(median),
             ms(times[0]),
