@@ -225,22 +225,21 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
 /// What a scene sets that the path tracer does not use, or lacks that it needs.
 fn path_warnings(desc: &SceneDesc) -> Vec<String> {
     let mut out = Vec::new();
-    let nonzero = |c: [f64; 3]| c.iter().any(|&v| v != 0.0);
-    if nonzero(desc.world.ambient.0) {
+    if !desc.world.ambient.is_zero() {
         out.push(
             "world.ambient is not used by the path tracer: the indirect light it stands in for is computed".into(),
         );
     }
     for light in &desc.lights {
-        if nonzero(light.ambient.0) {
+        if !light.ambient.is_zero() {
             out.push(format!(
                 "lights.{}.ambient is not used by the path tracer: the indirect light it stands in for is computed",
                 light.name
             ));
         }
     }
-    let emits = desc.materials.values().any(|m| nonzero(m.emission.0));
-    if desc.lights.is_empty() && !emits && !nonzero(desc.world.background.0) {
+    let emits = desc.materials.values().any(|m| !m.emission.is_zero());
+    if desc.lights.is_empty() && !emits && desc.world.background.is_zero() {
         out.push("no light, no emitting material and a black background: the path-traced image will be black".into());
     }
     out

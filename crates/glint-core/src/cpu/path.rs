@@ -105,6 +105,18 @@ pub enum Emitter {
     Triangle(u32),
 }
 
+impl Emitter {
+    /// The primitive a hit is on, as an emitter if its material emits (every emissive sphere
+    /// and triangle is in `Emitters`, so no list needs searching); planes are never sampled.
+    fn of_hit(hit: &Hit) -> Option<Self> {
+        match hit.prim {
+            Prim::Sphere => Some(Self::Sphere(hit.index)),
+            Prim::Triangle => Some(Self::Triangle(hit.index)),
+            Prim::Plane => None,
+        }
+    }
+}
+
 /// The emissive spheres and triangles of a scene. Planes emit to the paths that meet them but
 /// are not sampled: they have no finite area.
 #[derive(Clone, Debug, Default)]
@@ -120,16 +132,6 @@ impl Emitters {
         let triangles = (0..scene.triangles.len() as u32)
             .filter(|&i| emits(scene.meshes[scene.triangles[i as usize].mesh as usize].material));
         Self { list: spheres.map(Emitter::Sphere).chain(triangles.map(Emitter::Triangle)).collect() }
-    }
-
-    /// Which emitter, if any, a hit is on.
-    fn of_hit(&self, hit: &Hit) -> Option<Emitter> {
-        let e = match hit.prim {
-            Prim::Sphere => Emitter::Sphere(hit.index),
-            Prim::Triangle => Emitter::Triangle(hit.index),
-            Prim::Plane => return None,
-        };
-        self.list.contains(&e).then_some(e)
     }
 }
 
@@ -223,8 +225,9 @@ pub fn path_sample(
         let mat = &scene.materials[s.material as usize];
         let tags = ctx.material_tags[s.material as usize];
         let c = material_colours(ctx, mat, s.uv, s.uv_origin);
+        // Emission here means the material emits, so a sphere or triangle is in `emitters`.
         if front && c.emission != DVec3::ZERO {
-            let weight = match (scattered, emitters.of_hit(&hit)) {
+            let weight = match (scattered, Emitter::of_hit(&hit)) {
                 (Some((from, bsdf_pdf)), Some(e)) => {
                     power_heuristic(bsdf_pdf, emitter_pdf(ctx, e, emitters.list.len(), from, s.p, s.ng))
                 }
@@ -365,7 +368,6 @@ pub fn path_sample(
 /// times the BRDF and cosine, weighed against the paths' own chance to meet it. `scatter` gives
 /// the BRDF (per channel) and the non-delta lobes' density at a local direction; without `mis`
 /// the light sample is the only way the emitter is counted from here.
-#[allow(clippy::too_many_arguments)]
 fn emitter_light(
     ctx: &TraceContext,
     emitters: &Emitters,
@@ -387,7 +389,7 @@ fn emitter_light(
     counts.shadow += 1;
     // The emitter is seen if it is what the ray meets first, on its front face.
     let Some(hit) = closest_hit(ctx, &shadow, sp.t_min, FAR, &sp.leaving) else { return DVec3::ZERO };
-    if emitters.of_hit(&hit) != Some(e) {
+    if Emitter::of_hit(&hit) != Some(e) {
         return DVec3::ZERO;
     }
     let q = surface_at(ctx, &shadow, &hit);
