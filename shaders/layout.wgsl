@@ -31,6 +31,8 @@ const EPS_NUDGE_RAY: u32 = 1u;
 const EPS_NUDGE_NORMAL: u32 = 2u;
 const EPS_ROBUST: u32 = 3u;
 const EPS_SKIP_CONVEX: u32 = 4u;
+const INTEGRATOR_WHITTED: u32 = 0u;
+const INTEGRATOR_PATH: u32 = 1u;
 // Where texture coordinates come from (Surface.uv_origin).
 const UV_MESH: u32 = 0u;
 const UV_ACROSS_X: u32 = 1u;
@@ -83,6 +85,10 @@ struct SceneHeader {
     bailout: f32,
     vertex_count: u32,
     mesh_count: u32,
+    integrator: u32,
+    indirect: u32,
+    pad_a: u32,
+    pad_b: u32,
     ambient: vec4<f32>,
     background: vec4<f32>,
     global_attenuation: vec4<f32>,

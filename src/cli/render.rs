@@ -11,7 +11,7 @@ use glint_core::memory::{self, RenderPlan, render_estimate};
 use glint_core::{Accel, Backend, CpuOptions, FlatScene};
 use glint_gpu::GpuOptions;
 use glint_io::{BUILTIN_SCENES, RESOLUTIONS};
-use glint_scene::{Integrator, SceneDesc, overflow_causes, unbounded_ray_tree};
+use glint_scene::{Integrator, integrator_warnings, overflow_causes, unbounded_ray_tree};
 
 use super::backend::{Run, open_gpu, run_cpu, run_gpu};
 use super::interrupt;
@@ -52,11 +52,6 @@ pub struct RenderArgs {
     /// How both tracers find primitives: the BVH from 24 spheres and triangles on (auto), always the BVH, or brute force (none); the CPU image is bit-identical either way, and on the GPU brute force is limited to 65,535 primitives of a kind
     #[arg(long, default_value = "auto", value_parser = accels())]
     pub accel: Accel,
-    /// How light is carried: Whitted's ray tree, or Monte Carlo paths (global illumination: area
-    /// lights, colour bleeding, caustics; --spp paths per pixel, --depth bounces at most). The
-    /// path tracer runs on the CPU only so far
-    #[arg(long, default_value = "whitted", value_parser = integrators())]
-    pub integrator: Integrator,
     /// Print the results as JSON instead of a table
     #[arg(long)]
     pub json: bool,
@@ -92,11 +87,6 @@ fn backends() -> impl TypedValueParser<Value = &'static [Backend]> {
     })
 }
 
-fn integrators() -> impl TypedValueParser<Value = Integrator> {
-    PossibleValuesParser::new(Integrator::ALL.map(Integrator::name))
-        .map(|choice| *Integrator::ALL.iter().find(|i| i.name() == choice).expect("clap admits only these"))
-}
-
 fn accels() -> impl TypedValueParser<Value = Accel> {
     PossibleValuesParser::new(Accel::CHOICES.map(|(name, _)| name)).map(|choice| {
         let (_, accel) = Accel::CHOICES.iter().find(|(name, _)| *name == choice).expect("clap admits only these");
@@ -122,15 +112,10 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     {
         eprintln!("warning: {warning}");
     }
-    if args.integrator == Integrator::Path {
-        if args.backend.contains(&Backend::Gpu) {
-            bail!(
-                "--integrator path runs on the CPU only so far (the GPU path tracer is not written yet): \
-                 use --backend cpu"
-            );
-        }
-        for warning in path_warnings(&loaded.desc) {
-            eprintln!("warning: {warning}");
+    // The scene's own integrator was judged at load; one a flag chose is judged here.
+    if settings.integrator != loaded.desc.render.integrator {
+        for w in integrator_warnings(&loaded.desc, &settings) {
+            eprintln!("warning: {}: {}", w.field, w.problem);
         }
     }
     let specialise = !args.no_specialise;
@@ -139,7 +124,6 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         specialise,
         accel: args.accel,
         max_rays_per_sample: args.max_rays_per_sample,
-        integrator: args.integrator,
     };
     let gpu_options = GpuOptions { specialise, accel: args.accel, ..GpuOptions::default() };
     if args.bench {
@@ -196,7 +180,10 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     for run in &runs {
         let path = image_path(run);
         let mut tags = metadata(&loaded.name, &settings, run, specialise);
-        tags.push(("glint:integrator".into(), args.integrator.name().into()));
+        tags.push(("glint:integrator".into(), settings.integrator.name().into()));
+        if settings.integrator == Integrator::Path {
+            tags.push(("glint:indirect".into(), if settings.indirect { "on" } else { "off" }.into()));
+        }
         write_run(&path, run, &tags)?;
         outputs.push(path);
     }
@@ -211,38 +198,20 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         print_json(&loaded.name, &settings, &runs, errors.as_ref(), &outputs, load_estimate.as_ref(), &estimate)?;
     } else {
         print_table(&loaded.name, &settings, &runs, errors.as_ref(), &outputs);
-        if args.integrator == Integrator::Path {
+        if settings.integrator == Integrator::Path {
+            let transport = if settings.indirect {
+                "every lobe"
+            } else {
+                "only k_r and k_t with direct light (--indirect off: Whitted's transport)"
+            };
             println!(
-                "  path tracer: {} paths a pixel, at most {} bounces; no ambient term (I_a·k_a and the \
-                 lights' I_a,j stand in for the indirect light the paths compute)",
+                "  path tracer: {} paths a pixel, at most {} bounces, {transport}; no ambient term (I_a·k_a and \
+                 the lights' I_a,j stand in for the indirect light the paths compute)",
                 settings.spp, settings.max_depth
             );
         }
     }
     Ok(())
-}
-
-/// What a scene sets that the path tracer does not use, or lacks that it needs.
-fn path_warnings(desc: &SceneDesc) -> Vec<String> {
-    let mut out = Vec::new();
-    if !desc.world.ambient.is_zero() {
-        out.push(
-            "world.ambient is not used by the path tracer: the indirect light it stands in for is computed".into(),
-        );
-    }
-    for light in &desc.lights {
-        if !light.ambient.is_zero() {
-            out.push(format!(
-                "lights.{}.ambient is not used by the path tracer: the indirect light it stands in for is computed",
-                light.name
-            ));
-        }
-    }
-    let emits = desc.materials.values().any(|m| !m.emission.is_zero());
-    if desc.lights.is_empty() && !emits && desc.world.background.is_zero() {
-        out.push("no light, no emitting material and a black background: the path-traced image will be black".into());
-    }
-    out
 }
 
 /// A render whose shader raised a status flag is missing work: an error, or with
@@ -296,7 +265,7 @@ fn bench(
         let median = times[times.len() / 2];
         let mrays = mrays_per_s(warm.counts.total(), median);
         // The bailout is Whitted's; a path render says what it is instead.
-        let mode = match args.integrator {
+        let mode = match Integrator::try_from(h.integrator)? {
             Integrator::Whitted => format!("bailout {}", h.bailout),
             Integrator::Path => "path tracer".to_string(),
         };

@@ -6,7 +6,7 @@ use glint_core::memory::{self, MemoryEstimate, SourceKind};
 use glint_io::ImportOptions;
 use glint_io::model::Ground;
 use glint_io::{DEFAULT_RESOLUTION, LoadOptions, LoadedScene, RESOLUTIONS, load_scene_with};
-use glint_scene::{EpsilonMode, RenderSettings, Report, validate_settings};
+use glint_scene::{EpsilonMode, Integrator, RenderSettings, Report, validate_settings};
 
 #[derive(Clone, Debug, Default, Args)]
 pub struct SettingsArgs {
@@ -31,9 +31,18 @@ pub struct SettingsArgs {
     /// Adaptive bailout: skip child rays whose path weight is below this [0, 1]; 0 disables
     #[arg(long, allow_negative_numbers = true)]
     pub bailout: Option<f64>,
-    /// Seed of the sample jitter
+    /// Seed of the sample jitter and of the paths' random numbers
     #[arg(long)]
     pub seed: Option<u32>,
+    /// How light is carried: whitted (the seed's ray tree) or path (Monte Carlo paths: global
+    /// illumination with area lights, colour bleeding and caustics; --spp paths a pixel, --depth
+    /// bounces at most). Default: the scene's render.integrator, else whitted
+    #[arg(long, value_parser = parse_integrator)]
+    pub integrator: Option<Integrator>,
+    /// Path tracing: on (default) follows every lobe; off follows only k_r and k_t with direct
+    /// light, the transport Whitted computes, so that the difference is the indirect light
+    #[arg(long, value_parser = parse_on_off)]
+    pub indirect: Option<bool>,
 }
 
 /// How the scene argument is opened: the size of a generated built-in scene, and the import
@@ -146,6 +155,21 @@ pub fn parse_ray_cap(s: &str) -> Result<u64, String> {
     }
 }
 
+fn parse_integrator(s: &str) -> Result<Integrator, String> {
+    Integrator::from_name(s).ok_or_else(|| {
+        let names: Vec<&str> = Integrator::ALL.iter().map(|m| m.name()).collect();
+        format!("unknown integrator '{s}'; allowed: {}", names.join(", "))
+    })
+}
+
+fn parse_on_off(s: &str) -> Result<bool, String> {
+    match s {
+        "on" => Ok(true),
+        "off" => Ok(false),
+        _ => Err(format!("'{s}' is neither on nor off")),
+    }
+}
+
 fn parse_epsilon_mode(s: &str) -> Result<EpsilonMode, String> {
     EpsilonMode::from_name(s).ok_or_else(|| {
         let names: Vec<&str> = EpsilonMode::ALL.iter().map(|m| m.name()).collect();
@@ -181,6 +205,12 @@ impl SettingsArgs {
         if let Some(v) = self.seed {
             s.seed = v;
         }
+        if let Some(v) = self.integrator {
+            s.integrator = v;
+        }
+        if let Some(v) = self.indirect {
+            s.indirect = v;
+        }
         let mut report = Report::default();
         validate_settings(&s, &mut report);
         if !report.errors.is_empty() {
@@ -200,6 +230,8 @@ fn flag_of(field: &str) -> &'static str {
         "render.max_depth" => "--depth",
         "render.epsilon" => "--epsilon",
         "render.bailout" => "--bailout",
+        "render.integrator" => "--integrator",
+        "render.indirect" => "--indirect",
         _ => "scene file",
     }
 }

@@ -5,7 +5,6 @@ use glam::DVec3;
 use glint_core::cpu::path::{Emitters, path_pixel, path_sample};
 use glint_core::cpu::{RayCounts, TraceContext};
 use glint_core::{CpuOptions, RenderControl};
-use glint_scene::Integrator;
 
 use crate::reference::{primary_ray, sphere_hit};
 use crate::scene::SceneText;
@@ -28,7 +27,7 @@ fn a_convex_diffuse_object_under_a_uniform_sky_has_its_albedo() {
     // Radiance 1 from every direction, no light: each path leaves the sphere after one bounce,
     // and the cosine-sampled Lambertian lobe weighs it by exactly ρ.
     let rho = 0.625;
-    let flat = SceneText::new(24, 24, "max_depth = 8", [0.0, 0.0, -4.0], [0.0; 3], Y, 40.0)
+    let flat = SceneText::new(24, 24, "integrator = \"path\"\nmax_depth = 8", [0.0, 0.0, -4.0], [0.0; 3], Y, 40.0)
         .world([0.0; 3], [1.0; 3])
         .material("white", &format!("ka = [0.0, 0.0, 0.0]\nkd = [{rho}, {rho}, {rho}]\nks = [0.0, 0.0, 0.0]"))
         .sphere([0.0; 3], 1.0, "white")
@@ -82,7 +81,7 @@ fn inward_box(scene: SceneText, material: &str) -> SceneText {
 fn inside_a_closed_diffuse_emitter_every_pixel_converges_to_e_over_one_minus_rho() {
     let (rho, e) = (0.5, 0.75);
     let flat = inward_box(
-        SceneText::new(16, 16, "max_depth = 1024", [0.1, -0.2, 0.05], [0.5, 0.3, 1.0], Y, 90.0)
+        SceneText::new(16, 16, "integrator = \"path\"\nmax_depth = 1024", [0.1, -0.2, 0.05], [0.5, 0.3, 1.0], Y, 90.0)
             .world([0.0; 3], [0.0; 3])
             .material(
                 "wall",
@@ -109,7 +108,16 @@ fn inside_a_closed_diffuse_emitter_every_pixel_converges_to_e_over_one_minus_rho
 fn direct_light_is_whitteds_where_both_compute_it() {
     // Depth 0, no ambient, no glossy lobe, no sampled emitter: the path adds E_m and each
     // light's I_d·k_d·(N·L) with its factors, exactly Whitted's local model.
-    let flat = SceneText::new(32, 32, "max_depth = 0", [0.0, 0.0, -5.0], [0.0; 3], Y, 30.0)
+    let scene = |integrator: &str| {
+        SceneText::new(
+            32,
+            32,
+            &format!("integrator = \"{integrator}\"\nmax_depth = 0"),
+            [0.0, 0.0, -5.0],
+            [0.0; 3],
+            Y,
+            30.0,
+        )
         .world([0.0; 3], [0.25, 0.5, 0.125])
         .material("m", "ka = [0.0, 0.0, 0.0]\nkd = [0.5, 0.75, 0.25]\nks = [0.0, 0.0, 0.0]")
         // The emitting ground is a plane, which is not sampled as an emitter: at depth 0 it
@@ -122,8 +130,10 @@ fn direct_light_is_whitteds_where_both_compute_it() {
         .light("point", "position = [2.0, 1.0, -3.0]\ndiffuse = [0.5, 1.0, 0.25]\nspecular = [0.0, 0.0, 0.0]")
         .sphere([0.0; 3], 1.0, "m")
         .plane([0.0, -1.0, 0.0], [0.0, 1.0, 0.0], "ground")
-        .flat();
-    let whitted = render(&flat);
+        .flat()
+    };
+    let flat = scene("path");
+    let whitted = render(&scene("whitted"));
     let ctx = TraceContext::new(&flat).expect("valid scene");
     let emitters = Emitters::of(&ctx);
     let mut counts = RayCounts::default();
@@ -145,7 +155,7 @@ fn lambert_phong_and_mirror_lobes_together_reflect_their_albedos_under_a_uniform
     // lobe's (Lafortune and Willems) and the mirror's. Under a sky of radiance 1 the centre
     // pixel of a convex sphere is their sum, whichever lobe each path takes.
     let (kd, ks, kr) = (0.3, 0.5, 0.1);
-    let flat = SceneText::new(25, 25, "max_depth = 8", [0.0, 0.0, -4.0], [0.0; 3], Y, 40.0)
+    let flat = SceneText::new(25, 25, "integrator = \"path\"\nmax_depth = 8", [0.0, 0.0, -4.0], [0.0; 3], Y, 40.0)
         .world([0.0; 3], [1.0; 3])
         .material(
             "m",
@@ -174,18 +184,24 @@ fn a_spherical_emitter_lights_a_plane_as_its_closed_form_says() {
     // the sphere (MIS), and the paths that leave find only a black sky.
     let (rho, le, centre, radius) = (0.5, 4.0, DVec3::new(0.0, 2.0, 0.0), 0.5);
     for depth in [0, 3] {
-        let flat = SceneText::new(16, 16, &format!("max_depth = {depth}"), [0.0, 3.0, -6.0], [0.0, 0.0, 1.0], Y, 50.0)
-            .world([0.0; 3], [0.0; 3])
-            .material("ground", &format!("ka = [0.0, 0.0, 0.0]\nkd = [{rho}, {rho}, {rho}]\nks = [0.0, 0.0, 0.0]"))
-            .material(
-                "lamp",
-                &format!(
-                    "ka = [0.0, 0.0, 0.0]\nkd = [0.0, 0.0, 0.0]\nks = [0.0, 0.0, 0.0]\nemission = [{le}, {le}, {le}]"
-                ),
-            )
-            .plane([0.0; 3], [0.0, 1.0, 0.0], "ground")
-            .sphere(centre.to_array(), radius, "lamp")
-            .flat();
+        let flat = SceneText::new(
+            16,
+            16,
+            &format!("integrator = \"path\"\nmax_depth = {depth}"),
+            [0.0, 3.0, -6.0],
+            [0.0, 0.0, 1.0],
+            Y,
+            50.0,
+        )
+        .world([0.0; 3], [0.0; 3])
+        .material("ground", &format!("ka = [0.0, 0.0, 0.0]\nkd = [{rho}, {rho}, {rho}]\nks = [0.0, 0.0, 0.0]"))
+        .material(
+            "lamp",
+            &format!("ka = [0.0, 0.0, 0.0]\nkd = [0.0, 0.0, 0.0]\nks = [0.0, 0.0, 0.0]\nemission = [{le}, {le}, {le}]"),
+        )
+        .plane([0.0; 3], [0.0, 1.0, 0.0], "ground")
+        .sphere(centre.to_array(), radius, "lamp")
+        .flat();
         let ctx = TraceContext::new(&flat).expect("valid scene");
         let emitters = Emitters::of(&ctx);
         let mut counts = RayCounts::default();
@@ -217,7 +233,7 @@ fn a_spherical_emitter_lights_a_plane_as_its_closed_form_says() {
 fn a_path_traced_image_is_the_same_bits_for_any_thread_count() {
     // Every random number hashes the pixel, the sample and its dimension: no thread, tile or
     // order can change a pixel. The image is also pinned by the golden hashes.
-    let flat = SceneText::new(24, 16, "max_depth = 6\nspp = 4", [0.0, 1.5, -5.0], [0.0, 0.5, 0.0], Y, 50.0)
+    let flat = SceneText::new(24, 16, "integrator = \"path\"\nmax_depth = 6\nspp = 4", [0.0, 1.5, -5.0], [0.0, 0.5, 0.0], Y, 50.0)
         .world([0.0; 3], [0.05, 0.1, 0.2])
         .material("ground", "ka = [0.0, 0.0, 0.0]\nkd = [0.6, 0.5, 0.4]\nks = [0.0, 0.0, 0.0]")
         .material("lamp", "ka = [0.0, 0.0, 0.0]\nkd = [0.0, 0.0, 0.0]\nks = [0.0, 0.0, 0.0]\nemission = [6.0, 5.0, 4.0]")
@@ -233,7 +249,7 @@ fn a_path_traced_image_is_the_same_bits_for_any_thread_count() {
         .sphere([0.8, 0.5, -0.3], 0.5, "gloss")
         .flat();
     let render = |threads| {
-        let options = CpuOptions { threads, integrator: Integrator::Path, ..CpuOptions::default() };
+        let options = CpuOptions { threads, ..CpuOptions::default() };
         glint_core::render_cpu(&flat, &options, RenderControl::default()).expect("path render")
     };
     let (one, two) = (render(1), render(2));
@@ -245,4 +261,54 @@ fn a_path_traced_image_is_the_same_bits_for_any_thread_count() {
     assert!(one.image.pixels.iter().all(|p| p.is_finite() && p.min_element() >= 0.0), "a pixel not finite or negative");
     assert!(one.counts.shadow > 0 && one.counts.refraction > 0, "{:?}", one.counts);
     glint_test_support::image_hash::check_render_hash(&one);
+}
+
+#[test]
+fn without_indirect_light_paths_compute_whitteds_image() {
+    // `indirect = false` follows only k_r and k_t, with each light's direct light: Whitted's
+    // transport. With no ambient, no glossy lobe, one delta lobe a material (so no choice is
+    // random), no bailout and no Russian roulette (depth 2), one path is Whitted's whole tree.
+    let scene = |render: &str| {
+        SceneText::new(
+            32,
+            24,
+            &format!("{render}\nmax_depth = 2\nbailout = 0.0"),
+            [0.0, 1.0, -6.0],
+            [0.0, 0.5, 0.0],
+            Y,
+            45.0,
+        )
+        .world([0.0; 3], [0.2, 0.3, 0.5])
+        .material("ground", "ka = [0.0, 0.0, 0.0]\nkd = [0.6, 0.5, 0.4]\nks = [0.0, 0.0, 0.0]")
+        .material("mirror", "ka = [0.0, 0.0, 0.0]\nkd = [0.1, 0.1, 0.1]\nks = [0.0, 0.0, 0.0]\nkr = [0.8, 0.7, 0.6]")
+        .material(
+            "glass",
+            "ka = [0.0, 0.0, 0.0]\nkd = [0.0, 0.0, 0.0]\nks = [0.0, 0.0, 0.0]\nkt = [0.9, 0.9, 0.9]\nior = 1.5",
+        )
+        .light("point", "position = [-2.0, 4.0, -3.0]\ndiffuse = [0.9, 0.9, 0.9]\nspecular = [0.0, 0.0, 0.0]")
+        .plane([0.0; 3], [0.0, 1.0, 0.0], "ground")
+        .sphere([-0.9, 0.8, 0.0], 0.8, "mirror")
+        .sphere([0.9, 0.7, -0.5], 0.7, "glass")
+        .flat()
+    };
+    let whitted = render(&scene(""));
+    let paths = glint_core::render_cpu(
+        &scene("integrator = \"path\"\nindirect = false"),
+        &CpuOptions::default(),
+        RenderControl::default(),
+    )
+    .expect("path render");
+    assert!(paths.counts.reflection > 0 && paths.counts.refraction > 0, "{:?}", paths.counts);
+    for (i, (p, w)) in paths.image.pixels.iter().zip(&whitted.image.pixels).enumerate() {
+        assert!((*p - *w).abs().max_element() <= 1e-9 * w.max_element().max(1.0), "pixel {i}: path {p}, Whitted {w}");
+    }
+    // With the indirect light on, the same scene is brighter where the ground sees the spheres.
+    let gi = glint_core::render_cpu(
+        &scene("integrator = \"path\"\nspp = 16"),
+        &CpuOptions::default(),
+        RenderControl::default(),
+    )
+    .expect("path render");
+    let mean = |pixels: &[DVec3]| pixels.iter().map(|p| p.x + p.y + p.z).sum::<f64>() / pixels.len() as f64;
+    assert!(mean(&gi.image.pixels) > 1.02 * mean(&whitted.image.pixels), "indirect light adds nothing");
 }

@@ -32,19 +32,11 @@ pub struct CpuOptions {
     /// The bound on one camera sample's ray tree: a pixel whose tree reaches it stops the
     /// render with `CpuRenderError::RayCap` (the reference is never silently truncated).
     pub max_rays_per_sample: u64,
-    /// Whitted's ray tree (the default) or Monte Carlo paths (`cpu::path`).
-    pub integrator: Integrator,
 }
 
 impl Default for CpuOptions {
     fn default() -> Self {
-        Self {
-            threads: 0,
-            specialise: true,
-            accel: Accel::default(),
-            max_rays_per_sample: DEFAULT_MAX_RAYS_PER_SAMPLE,
-            integrator: Integrator::Whitted,
-        }
+        Self { threads: 0, specialise: true, accel: Accel::default(), max_rays_per_sample: DEFAULT_MAX_RAYS_PER_SAMPLE }
     }
 }
 
@@ -190,7 +182,8 @@ pub fn render_cpu(
     let ctx = TraceContext::with_features(scene, features)?
         .with_accel(options.accel)
         .with_ray_cap(options.max_rays_per_sample);
-    let shading = match options.integrator {
+    // What the scene asks for: its header says which integrator, and its features are that one's.
+    let shading = match ctx.integrator {
         Integrator::Whitted => Shading::Whitted,
         Integrator::Path => Shading::Path(Emitters::of(&ctx)),
     };

@@ -12,7 +12,7 @@ use glint_core::cpu::ray_tree::RayTree;
 use glint_core::flat::GeometryId;
 use glint_core::rebase::{Frame, rebased, rebased_with_geometry};
 use glint_core::{Accel, FlatScene};
-use glint_types::layout::{PROBE_HIT, ProbeRecord};
+use glint_types::layout::{INTEGRATOR_WHITTED, PROBE_HIT, ProbeRecord};
 
 use crate::buffers::{GeometryCache, SceneBuffers};
 use crate::context::GpuContext;
@@ -160,6 +160,9 @@ impl GpuTracer {
         control: DispatchControl<'_>,
     ) -> Result<GpuJob, GpuError> {
         check_tile(&self.ctx, options.tile)?;
+        if scene.header.integrator != INTEGRATOR_WHITTED {
+            return Err(GpuError::PathTracerNotOnGpu);
+        }
         let key = ShaderKey::for_scene(scene, options.specialise)
             .with_accel(scene, options.accel)
             .check_storage_limit(self.ctx.limits.max_storage_buffers_per_shader_stage)?;

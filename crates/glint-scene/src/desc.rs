@@ -5,7 +5,7 @@
 
 use std::collections::BTreeMap;
 
-use glint_types::EpsilonMode;
+use glint_types::{EpsilonMode, Integrator};
 use serde::{Deserialize, Serialize};
 
 use super::buffered::Content;
@@ -95,27 +95,6 @@ fn one_line(e: &impl std::fmt::Display) -> String {
     e.to_string().trim().replace('\n', " ")
 }
 
-/// How light is carried: the seed's Whitted ray tree, or Monte Carlo paths (global
-/// illumination, the reference the Whitted image is held against).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Integrator {
-    #[default]
-    Whitted,
-    Path,
-}
-
-impl Integrator {
-    pub const ALL: [Self; 2] = [Self::Whitted, Self::Path];
-
-    pub fn name(self) -> &'static str {
-        match self {
-            Self::Whitted => "whitted",
-            Self::Path => "path",
-        }
-    }
-}
-
 /// Render settings a scene suggests; command-line flags override each of them.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -128,6 +107,17 @@ pub struct RenderSettings {
     pub epsilon: f64,
     pub epsilon_mode: EpsilonMode,
     pub seed: u32,
+    /// What the render computes; Whitted's ray tree unless a scene asks for paths.
+    #[serde(skip_serializing_if = "Integrator::is_whitted")]
+    pub integrator: Integrator,
+    /// Path tracing only: follow the diffuse and glossy lobes (global illumination), or only
+    /// k_r and k_t with direct light, the transport Whitted computes (`false`).
+    #[serde(skip_serializing_if = "is_true")]
+    pub indirect: bool,
+}
+
+fn is_true(b: &bool) -> bool {
+    *b
 }
 
 impl Default for RenderSettings {
@@ -141,6 +131,8 @@ impl Default for RenderSettings {
             epsilon: 1e-6,
             epsilon_mode: EpsilonMode::Robust,
             seed: 0,
+            integrator: Integrator::Whitted,
+            indirect: true,
         }
     }
 }

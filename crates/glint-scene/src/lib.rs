@@ -24,13 +24,13 @@ mod validate;
 
 pub use camera::CameraDesc;
 pub use desc::{
-    GlobalAttenuation, Integrator, ObjectDesc, PlaneDesc, RenderSettings, SceneDesc, SphereDesc, WorldDesc,
+    GlobalAttenuation, ObjectDesc, PlaneDesc, RenderSettings, SceneDesc, SphereDesc, WorldDesc,
     without_imported_materials,
 };
 pub use error::FieldIssue;
 /// The tags a scene file names (light kinds, models, modes), from the shared vocabulary.
 pub use glint_types::tags::{
-    AttenuationModel, EpsilonMode, Filter, Fresnel, LightKind, SpecularModel, SpotFalloff, Wrap,
+    AttenuationModel, EpsilonMode, Filter, Fresnel, Integrator, LightKind, SpecularModel, SpotFalloff, Wrap,
 };
 pub use light::{Attenuation, DEFAULT_INNER_CONE, DEFAULT_OUTER_CONE, LightDesc, NO_CONE_CUTOFF};
 pub use material::{CheckerDesc, DEFAULT_ROUGHNESS, MaterialDesc, material_textures};
@@ -48,6 +48,6 @@ pub use texture::{
 pub use transform::Mat4;
 pub use validate::{
     MAX_COORD, MAX_DEPTH, MAX_EPSILON, MAX_IMAGE_SIDE, MAX_INTENSITY, MAX_IOR, MAX_ROUGHNESS, MAX_SHININESS,
-    MAX_SPOT_EXPONENT, MAX_SPP, MIN_ATTENUATION_DENOMINATOR, MIN_ROUGHNESS, Range, Report, ranges, validate,
-    validate_objects, validate_settings, validate_with_objects,
+    MAX_SPOT_EXPONENT, MAX_SPP, MIN_ATTENUATION_DENOMINATOR, MIN_ROUGHNESS, Range, Report, integrator_warnings, ranges,
+    validate, validate_objects, validate_settings, validate_with_objects,
 };

@@ -32,6 +32,10 @@ pub fn reachable_depth(desc: &SceneDesc, settings: &RenderSettings) -> u32 {
 /// The warning for a scene whose ray tree can grow past `WARN_RAYS_PER_SAMPLE` rays a camera
 /// sample, naming a branching material, the bound and the remedy; `None` for the others.
 pub fn unbounded_ray_tree(desc: &SceneDesc, settings: &RenderSettings) -> Option<String> {
+    // A path follows one lobe a bounce: it never branches.
+    if settings.integrator == glint_types::Integrator::Path {
+        return None;
+    }
     let (name, m) = desc.materials.iter().find(|(_, m)| m.kr.max_channel() > 0.0 && m.kt.max_channel() > 0.0)?;
     let depth = reachable_depth(desc, settings);
     // A full binary tree of `depth` levels below the camera ray.

@@ -63,6 +63,10 @@ pub const EPS_NUDGE_NORMAL: u32 = 2;
 pub const EPS_ROBUST: u32 = 3;
 pub const EPS_SKIP_CONVEX: u32 = 4;
 
+/// `SceneHeader::integrator`: Whitted's ray tree, or Monte Carlo paths.
+pub const INTEGRATOR_WHITTED: u32 = 0;
+pub const INTEGRATOR_PATH: u32 = 1;
+
 /// A stored tag that no kind of the layout has: a flat scene not made by `FlatScene::build`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
 #[error("{value} is not a valid {what}")]
@@ -215,6 +219,13 @@ pub struct SceneHeader {
     /// Entries of the vertex (and, where a mesh has them, normal) buffer.
     pub vertex_count: u32,
     pub mesh_count: u32,
+    /// `INTEGRATOR_*`: what the tracers compute. The feature bits are the ones it needs.
+    pub integrator: u32,
+    /// Paths follow the non-delta lobes too (1), or only k_r and k_t (0: the transport Whitted
+    /// computes, with direct light by next-event estimation). Whitted's tracer does not read it.
+    pub indirect: u32,
+    pub pad_a: u32,
+    pub pad_b: u32,
     /// Global ambient I_a (rgb, w unused).
     pub ambient: [f32; 4],
     /// Radiance of missed rays (rgb, w unused).

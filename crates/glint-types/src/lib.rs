@@ -8,8 +8,8 @@ pub mod layout;
 pub mod tags;
 
 pub use tags::{
-    AttenuationModel, EpsilonMode, Filter, Fresnel, LightKind, LightTags, MaterialTags, RayKind, SpecularModel,
-    SpotFalloff, Wrap,
+    AttenuationModel, EpsilonMode, Filter, Fresnel, Integrator, LightKind, LightTags, MaterialTags, RayKind,
+    SpecularModel, SpotFalloff, Wrap,
 };
 
 #[cfg(test)]

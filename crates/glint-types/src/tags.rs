@@ -9,10 +9,10 @@ use serde::{Deserialize, Serialize};
 
 use crate::layout::{
     ATTENUATION_INVERSE_SQUARE, ATTENUATION_POLYNOMIAL, EPS_NUDGE_NORMAL, EPS_NUDGE_RAY, EPS_ROBUST, EPS_SKIP_CONVEX,
-    EPS_TMIN, FILTER_BILINEAR, FILTER_NEAREST, FRESNEL_EXACT, FRESNEL_SCHLICK, GpuLight, GpuMaterial,
-    LIGHT_DIRECTIONAL, LIGHT_POINT, LIGHT_SPOT, RAY_CAMERA, RAY_REFLECTION, RAY_REFRACTION, RAY_SHADOW, SPECULAR_BLINN,
-    SPECULAR_COOK_TORRANCE, SPECULAR_PHONG, SPOT_FALLOFF_POWER, SPOT_FALLOFF_SMOOTH, UnknownTag, WRAP_CLAMP_TO_EDGE,
-    WRAP_MIRRORED_REPEAT, WRAP_REPEAT,
+    EPS_TMIN, FILTER_BILINEAR, FILTER_NEAREST, FRESNEL_EXACT, FRESNEL_SCHLICK, GpuLight, GpuMaterial, INTEGRATOR_PATH,
+    INTEGRATOR_WHITTED, LIGHT_DIRECTIONAL, LIGHT_POINT, LIGHT_SPOT, RAY_CAMERA, RAY_REFLECTION, RAY_REFRACTION,
+    RAY_SHADOW, SPECULAR_BLINN, SPECULAR_COOK_TORRANCE, SPECULAR_PHONG, SPOT_FALLOFF_POWER, SPOT_FALLOFF_SMOOTH,
+    UnknownTag, WRAP_CLAMP_TO_EDGE, WRAP_MIRRORED_REPEAT, WRAP_REPEAT,
 };
 
 /// One tag enum: `Variant = STORED_VALUE => "scene_file_name"` per variant, and what a stored
@@ -115,6 +115,26 @@ impl AttenuationModel {
             Self::Polynomial => &["c", "l", "q"],
             Self::InverseSquare => &["range"],
         }
+    }
+}
+
+tags! {
+    /// What a render computes (`[render] integrator`; stored as `SceneHeader::integrator`):
+    /// the seed's ray tree, or the light transport it approximates.
+    #[derive(Default)]
+    pub enum Integrator ("integrator") {
+        /// Whitted's ray tree: local Phong terms, mirror and refracted rays, the ambient term.
+        #[default]
+        Whitted = INTEGRATOR_WHITTED => "whitted",
+        /// A unidirectional Monte Carlo path tracer (global illumination, the reference the
+        /// Whitted image is held against).
+        Path = INTEGRATOR_PATH => "path",
+    }
+}
+
+impl Integrator {
+    pub fn is_whitted(&self) -> bool {
+        *self == Self::Whitted
     }
 }
 

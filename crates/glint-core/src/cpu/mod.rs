@@ -23,7 +23,7 @@ use glam::DVec3;
 use glint_types::{LightTags, MaterialTags};
 
 use crate::flat::{Corners, FlatScene};
-use glint_scene::{EpsilonMode, Filter, Wrap};
+use glint_scene::{EpsilonMode, Filter, Integrator, Wrap};
 use glint_types::layout::{UnknownTag, feature};
 
 /// The default of `TraceContext::max_rays_per_sample`: 2^22 rays, about 3 s of one core. A
@@ -131,6 +131,10 @@ pub struct TraceContext<'a> {
     /// BVH or brute force (`Accel::Auto`'s choice unless set with `with_accel`).
     pub traversal: Traversal,
     pub max_depth: u32,
+    /// Whitted's ray tree or Monte Carlo paths (`SceneHeader::integrator`).
+    pub integrator: Integrator,
+    /// Paths follow the non-delta lobes (`SceneHeader::indirect`); paths only.
+    pub indirect: bool,
     pub epsilon: f64,
     pub epsilon_mode: EpsilonMode,
     pub bailout: f64,
@@ -164,6 +168,8 @@ impl<'a> TraceContext<'a> {
             features,
             traversal: Accel::default().traversal(scene),
             max_depth: h.max_depth,
+            integrator: Integrator::try_from(h.integrator)?,
+            indirect: h.indirect != 0,
             epsilon: f64::from(h.epsilon),
             epsilon_mode: EpsilonMode::try_from(h.epsilon_mode)?,
             bailout: f64::from(h.bailout),

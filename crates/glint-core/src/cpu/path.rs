@@ -30,7 +30,7 @@
 
 use std::f64::consts::PI;
 
-use glam::{DVec2, DVec3};
+use glam::{DVec2, DVec3, DVec4};
 
 use super::bsdf::{
     blinn_brdf, blinn_pdf, cook_torrance_brdf, cook_torrance_pdf, lambert_brdf, phong_brdf, phong_pdf, sample_blinn,
@@ -184,6 +184,274 @@ fn sample_emitter(ctx: &TraceContext, emitter: Emitter, p: DVec3, u: DVec2) -> O
     }
 }
 
+/// A path between bounces: the ray it follows next and what it carries. The GPU keeps one per
+/// pixel in a buffer between its per-bounce dispatches (`GpuPathState`, path.wgsl's
+/// `load_path` and `store_path`).
+#[derive(Clone, Copy, Debug)]
+pub struct PathState {
+    pub ray: Ray,
+    pub t_min: f64,
+    /// The primitive the ray leaves (skip_convex only).
+    pub leaving: Leaving,
+    /// The throughput: the product of BRDF·cos/pdf, lobe weights, f_att and 1/survival so far.
+    pub beta: DVec3,
+    pub radiance: DVec3,
+    /// Where the path last scattered off a non-delta lobe, and the density it drew the
+    /// direction with (0 after the camera and delta lobes): what an emitter it meets is weighed by.
+    pub scattered_from: DVec3,
+    pub scattered_pdf: f64,
+    /// Bounces so far: 0 for the camera ray.
+    pub depth: u32,
+    /// The first object hit (`NO_HIT` for none).
+    pub first_object: u32,
+    pub pixel: u32,
+    pub sample: u32,
+}
+
+/// The path's random number in dimension `dim`: a hash of its pixel, sample, `dim` and the seed.
+pub fn path_uniform(ctx: &TraceContext, path: &PathState, dim: u32) -> f64 {
+    hash_to_unit(sample_hash(path.pixel, path.sample, dim, ctx.scene.header.seed))
+}
+
+/// The lobes of a surface a path scatters off, in its shading frame (`fx`, `fy`, `ns`), seen
+/// from `wo` (local): Lambert's `kd` and the glossy lobe's `ks` give the BRDF; `weights` are
+/// the max channels of k_d, k_s, k_r, k_t, which a bounce chooses a lobe by.
+#[derive(Clone, Copy, Debug)]
+pub struct Lobes {
+    pub fx: DVec3,
+    pub fy: DVec3,
+    pub ns: DVec3,
+    pub wo: DVec3,
+    pub kd: DVec3,
+    pub ks: DVec3,
+    pub weights: DVec4,
+    pub material: u32,
+}
+
+/// `d` in the lobes' shading frame.
+pub fn to_local(l: &Lobes, d: DVec3) -> DVec3 {
+    DVec3::new(d.dot(l.fx), d.dot(l.fy), d.dot(l.ns))
+}
+
+/// The BRDF of Lambert's and the glossy lobe at the local direction `wi` (the glossy lobe's
+/// pow and exp2 skipped where k_s is 0).
+pub fn lobes_brdf(ctx: &TraceContext, l: &Lobes, wi: DVec3) -> DVec3 {
+    let glossy = if l.ks == DVec3::ZERO {
+        DVec3::ZERO
+    } else {
+        let m = l.material as usize;
+        l.ks * glossy_brdf(&ctx.scene.materials[m], ctx.material_tags[m], l.wo, wi)
+    };
+    l.kd * lambert_brdf(l.wo, wi) + glossy
+}
+
+/// The density with which the non-delta lobes draw `wi`, as a bounce's own choice does.
+pub fn lobes_pdf(ctx: &TraceContext, l: &Lobes, wi: DVec3) -> f64 {
+    let glossy = if l.ks == DVec3::ZERO {
+        0.0
+    } else {
+        let m = l.material as usize;
+        glossy_pdf(&ctx.scene.materials[m], ctx.material_tags[m], l.wo, wi)
+    };
+    let w = l.weights;
+    (w.x * cosine_hemisphere_pdf(wi.z) + w.y * glossy) / (w.x + w.y + w.z + w.w)
+}
+
+/// A path from the camera through pixel (x, y), for its sample `sample`.
+pub fn start_path(ctx: &TraceContext, x: u32, y: u32, sample: u32, counts: &mut RayCounts) -> PathState {
+    let h = &ctx.scene.header;
+    let pixel = y * h.width + x;
+    let (ox, oy) = sample_offset(pixel, sample, h.spp, h.seed, ctx.has(feature::JITTER));
+    counts.camera += 1;
+    PathState {
+        ray: camera_ray(&ctx.scene.camera, h.width, h.height, x, y, ox, oy),
+        t_min: 0.0,
+        leaving: Leaving::NONE,
+        beta: DVec3::ONE,
+        radiance: DVec3::ZERO,
+        scattered_from: DVec3::ZERO,
+        scattered_pdf: 0.0,
+        depth: 0,
+        first_object: NO_HIT,
+        pixel,
+        sample,
+    }
+}
+
+/// One bounce of `path`: what its ray meets adds its emission, the lights' and one emitter's
+/// direct light; then the path goes on along one lobe (true) or ends (false).
+pub fn path_bounce(ctx: &TraceContext, emitters: &Emitters, path: &mut PathState, counts: &mut RayCounts) -> bool {
+    let scene = ctx.scene;
+    let h = &scene.header;
+    let depth = path.depth;
+    let Some(hit) = closest_hit(ctx, &path.ray, path.t_min, FAR, &path.leaving) else {
+        path.radiance += path.beta * v3(h.background);
+        return false;
+    };
+    // As Whitted's child rays: a bounce's share times f_att(t); the camera ray's is not.
+    if depth > 0 && ctx.has(feature::GLOBAL_ATTENUATION) {
+        path.beta *= attenuation_factor(h.global_attenuation, hit.t);
+    }
+    let ray = path.ray;
+    let s = surface_at(ctx, &ray, &hit);
+    if depth == 0 {
+        path.first_object = s.object_id;
+    }
+    let front = ray.dir.dot(s.ng) < 0.0;
+    let (ng, ns) = if front { (s.ng, s.ns) } else { (-s.ng, -s.ns) };
+    let mat = &scene.materials[s.material as usize];
+    let c = material_colours(ctx, mat, s.uv, s.uv_origin);
+    // Emission here means the material emits, so a sphere or triangle is in `emitters`.
+    if front && c.emission != DVec3::ZERO {
+        let weight = match Emitter::of_hit(&hit) {
+            Some(e) if path.scattered_pdf > 0.0 => power_heuristic(
+                path.scattered_pdf,
+                emitter_pdf(ctx, e, emitters.list.len(), path.scattered_from, s.p, s.ng),
+            ),
+            _ => 1.0,
+        };
+        path.radiance += path.beta * c.emission * weight;
+    }
+    let (fx, fy) = (frame_x(ns), frame_y(ns));
+    let ks = v3(mat.ks);
+    let (kr, kt) = (v3(mat.kr), v3(mat.kt));
+    let l = Lobes {
+        fx,
+        fy,
+        ns,
+        wo: DVec3::new((-ray.dir).dot(fx), (-ray.dir).dot(fy), (-ray.dir).dot(ns)),
+        kd: c.kd,
+        ks,
+        weights: DVec4::new(max_channel(c.kd), max_channel(ks), max_channel(kr), max_channel(kt)),
+        material: s.material,
+    };
+    path.radiance = lights_light(ctx, &l, &s, ng, path.beta, path.radiance, counts);
+
+    let weights = l.weights;
+    let dim = FIRST_PATH_DIM + depth * DIMS_PER_BOUNCE;
+    if !emitters.list.is_empty() && weights.x + weights.y > 0.0 {
+        let pick =
+            ((path_uniform(ctx, path, dim + 4) * emitters.list.len() as f64) as usize).min(emitters.list.len() - 1);
+        let e = emitters.list[pick];
+        let u = DVec2::new(path_uniform(ctx, path, dim + 5), path_uniform(ctx, path, dim + 6));
+        if let Some(dir) = sample_emitter(ctx, e, s.p, u) {
+            // At the last bounce no path goes on to meet the emitter: its light sample alone
+            // counts it, unweighted.
+            let mis = depth < ctx.max_depth;
+            path.radiance += path.beta * emitter_light(ctx, emitters, e, &l, &s, ng, dir, mis, counts);
+        }
+    }
+
+    // Without indirect light only k_r and k_t go on: Whitted's transport.
+    let choice = if ctx.indirect { weights } else { DVec4::new(0.0, 0.0, weights.z, weights.w) };
+    let total = choice.x + choice.y + choice.z + choice.w;
+    if depth == ctx.max_depth || total <= 0.0 {
+        return false;
+    }
+    let pick = path_uniform(ctx, path, dim) * total;
+    let u = DVec2::new(path_uniform(ctx, path, dim + 1), path_uniform(ctx, path, dim + 2));
+    let (dir, transmitted) = if pick < choice.x + choice.y {
+        // Lambert's and the glossy lobe as one mixture: the direction's density is the
+        // mixture's, whichever lobe drew it.
+        let wi = if pick < choice.x {
+            cosine_hemisphere(u)
+        } else {
+            sample_glossy(mat, ctx.material_tags[s.material as usize], l.wo, u)
+        };
+        if wi.z <= 0.0 {
+            return false;
+        }
+        let pdf = lobes_pdf(ctx, &l, wi);
+        if pdf <= 0.0 {
+            return false;
+        }
+        path.beta *= lobes_brdf(ctx, &l, wi) * (wi.z / pdf);
+        counts.reflection += 1;
+        (path.scattered_from, path.scattered_pdf) = (s.p, pdf);
+        (to_world(ns, wi), false)
+    } else if pick < choice.x + choice.y + choice.z {
+        path.beta *= kr * (total / choice.z);
+        counts.reflection += 1;
+        path.scattered_pdf = 0.0;
+        (reflect_dir(ray.dir, ns), false)
+    } else {
+        path.beta *= kt * (total / choice.w);
+        path.scattered_pdf = 0.0;
+        let ior = f64::from(mat.ior);
+        let eta = if front { 1.0 / ior } else { ior };
+        match refract_dir(ray.dir, ns, eta) {
+            Some(d) => {
+                counts.refraction += 1;
+                (d, true)
+            }
+            // Total internal reflection: k_t's share follows the mirror direction.
+            None => {
+                counts.reflection += 1;
+                (reflect_dir(ray.dir, ns), false)
+            }
+        }
+    };
+    // Leave on the side the lobe sends the path to; a shading normal can point a drawn
+    // direction into the surface, where the path ends rather than leak.
+    let side = if transmitted { -ng } else { ng };
+    if dir.dot(side) <= 0.0 {
+        return false;
+    }
+    if depth + 1 >= ROULETTE_FROM {
+        let survival = max_channel(path.beta).min(MAX_SURVIVAL);
+        if path_uniform(ctx, path, dim + 3) >= survival {
+            return false;
+        }
+        path.beta /= survival;
+    }
+    let sp = spawn_ray(ctx, s.p, s.p_surface, side, dir, leaving_surface(s.prim, s.index, s.ng, side));
+    path.ray = Ray { origin: sp.origin, dir };
+    (path.t_min, path.leaving) = (sp.t_min, sp.leaving);
+    path.depth += 1;
+    true
+}
+
+/// `radiance` plus `beta` times the direct light of every point, spot and directional light at
+/// `s` (normal `ng` turned to the incoming ray), by Whitted's factors: the diffuse part exactly
+/// Whitted's I_d·k_d·(N·L), the glossy part π·I_s·k_s·f_s·(N·L). Added light by light.
+pub fn lights_light(
+    ctx: &TraceContext,
+    l: &Lobes,
+    s: &super::shade::Surface,
+    ng: DVec3,
+    beta: DVec3,
+    radiance: DVec3,
+    counts: &mut RayCounts,
+) -> DVec3 {
+    let scene = ctx.scene;
+    let mut sum = radiance;
+    for (light, &light_tags) in scene.lights.iter().zip(&ctx.light_tags) {
+        let ls = light_sample(ctx, light, light_tags, s.p);
+        let scale = ls.f_att * ls.spot;
+        let n_dot_l = l.ns.dot(ls.l);
+        if scale == 0.0 || n_dot_l <= 0.0 {
+            continue;
+        }
+        let visibility = if ctx.has(feature::SHADOWS) && light.flags & LIGHT_CASTS_SHADOWS != 0 {
+            light_visibility(ctx, light, light_tags.kind, s, ng, &ls, counts)
+        } else {
+            DVec3::ONE
+        };
+        let diffuse = v3(light.diffuse) * l.kd * n_dot_l;
+        let glossy = if l.ks == DVec3::ZERO {
+            DVec3::ZERO
+        } else {
+            let m = l.material as usize;
+            PI * v3(light.specular)
+                * l.ks
+                * glossy_brdf(&scene.materials[m], ctx.material_tags[m], l.wo, to_local(l, ls.l))
+                * n_dot_l
+        };
+        sum += beta * scale * (visibility * (diffuse + glossy));
+    }
+    sum
+}
+
 /// The radiance one camera sample of pixel (x, y) brings back along its path, and the id of
 /// the first object hit (`NO_HIT` for none), as Whitted's `render_sample` gives them.
 pub fn path_sample(
@@ -194,193 +462,27 @@ pub fn path_sample(
     sample: u32,
     counts: &mut RayCounts,
 ) -> (DVec3, u32) {
-    let scene = ctx.scene;
-    let h = &scene.header;
-    let pixel = y * h.width + x;
-    let uniform = |dim: u32| hash_to_unit(sample_hash(pixel, sample, dim, h.seed));
-    let (ox, oy) = sample_offset(pixel, sample, h.spp, h.seed, ctx.has(feature::JITTER));
-    let mut ray = camera_ray(&scene.camera, h.width, h.height, x, y, ox, oy);
-    counts.camera += 1;
-    let (mut t_min, mut leaving) = (0.0, Leaving::NONE);
-    let (mut beta, mut radiance) = (DVec3::ONE, DVec3::ZERO);
-    // Where the path last scattered off a non-delta lobe, and the density it drew the direction
-    // with: what an emitter it meets is weighed by. None after the camera and delta lobes.
-    let mut scattered: Option<(DVec3, f64)> = None;
-    let mut first_object = NO_HIT;
-    for depth in 0..=ctx.max_depth {
-        let Some(hit) = closest_hit(ctx, &ray, t_min, FAR, &leaving) else {
-            radiance += beta * v3(h.background);
-            break;
-        };
-        // As Whitted's child rays: a bounce's share times f_att(t); the camera ray's is not.
-        if depth > 0 && ctx.has(feature::GLOBAL_ATTENUATION) {
-            beta *= attenuation_factor(h.global_attenuation, hit.t);
-        }
-        let s = surface_at(ctx, &ray, &hit);
-        if depth == 0 {
-            first_object = s.object_id;
-        }
-        let front = ray.dir.dot(s.ng) < 0.0;
-        let (ng, ns) = if front { (s.ng, s.ns) } else { (-s.ng, -s.ns) };
-        let mat = &scene.materials[s.material as usize];
-        let tags = ctx.material_tags[s.material as usize];
-        let c = material_colours(ctx, mat, s.uv, s.uv_origin);
-        // Emission here means the material emits, so a sphere or triangle is in `emitters`.
-        if front && c.emission != DVec3::ZERO {
-            let weight = match (scattered, Emitter::of_hit(&hit)) {
-                (Some((from, bsdf_pdf)), Some(e)) => {
-                    power_heuristic(bsdf_pdf, emitter_pdf(ctx, e, emitters.list.len(), from, s.p, s.ng))
-                }
-                _ => 1.0,
-            };
-            radiance += beta * c.emission * weight;
-        }
-        let (fx, fy) = (frame_x(ns), frame_y(ns));
-        let to_local = |d: DVec3| DVec3::new(d.dot(fx), d.dot(fy), d.dot(ns));
-        let wo = to_local(-ray.dir);
-        let ks = v3(mat.ks);
-        // The glossy lobe's BRDF and density, skipped where k_s is 0 (a pow and an exp2 a call).
-        let has_glossy = ks != DVec3::ZERO;
-        let glossy_f = |wi| if has_glossy { ks * glossy_brdf(mat, tags, wo, wi) } else { DVec3::ZERO };
-        let glossy_p = |wi| if has_glossy { glossy_pdf(mat, tags, wo, wi) } else { 0.0 };
-
-        for (light, &light_tags) in scene.lights.iter().zip(&ctx.light_tags) {
-            let ls = light_sample(ctx, light, light_tags, s.p);
-            let scale = ls.f_att * ls.spot;
-            let n_dot_l = ns.dot(ls.l);
-            if scale == 0.0 || n_dot_l <= 0.0 {
-                continue;
-            }
-            let visibility = if ctx.has(feature::SHADOWS) && light.flags & LIGHT_CASTS_SHADOWS != 0 {
-                light_visibility(ctx, light, light_tags.kind, &s, ng, &ls, counts)
-            } else {
-                DVec3::ONE
-            };
-            let diffuse = v3(light.diffuse) * c.kd * n_dot_l;
-            let glossy = if ks == DVec3::ZERO {
-                DVec3::ZERO
-            } else {
-                PI * v3(light.specular) * ks * glossy_brdf(mat, tags, wo, to_local(ls.l)) * n_dot_l
-            };
-            radiance += beta * scale * (visibility * (diffuse + glossy));
-        }
-
-        let kr = v3(mat.kr);
-        let kt = v3(mat.kt);
-        let weights = [max_channel(c.kd), max_channel(ks), max_channel(kr), max_channel(kt)];
-        let total: f64 = weights.iter().sum();
-        let dim = FIRST_PATH_DIM + depth * DIMS_PER_BOUNCE;
-        // The density with which the non-delta lobes draw `wi`, as the path's own choice does.
-        let bsdf_pdf = |wi: DVec3| (weights[0] * cosine_hemisphere_pdf(wi.z) + weights[1] * glossy_p(wi)) / total;
-
-        if !emitters.list.is_empty() && weights[0] + weights[1] > 0.0 {
-            let pick = ((uniform(dim + 4) * emitters.list.len() as f64) as usize).min(emitters.list.len() - 1);
-            let e = emitters.list[pick];
-            let u = DVec2::new(uniform(dim + 5), uniform(dim + 6));
-            if let Some(dir) = sample_emitter(ctx, e, s.p, u) {
-                // At the last bounce no path goes on to meet the emitter: its light sample alone
-                // counts it, unweighted.
-                let mis = depth < ctx.max_depth;
-                radiance += beta
-                    * emitter_light(
-                        ctx,
-                        emitters,
-                        e,
-                        &s,
-                        ng,
-                        dir,
-                        mis,
-                        |wi| {
-                            let f = c.kd * lambert_brdf(wo, wi) + glossy_f(wi);
-                            (f, bsdf_pdf(wi))
-                        },
-                        &to_local,
-                        counts,
-                    );
-            }
-        }
-
-        if depth == ctx.max_depth || total <= 0.0 {
-            break;
-        }
-        let pick = uniform(dim) * total;
-        let u = DVec2::new(uniform(dim + 1), uniform(dim + 2));
-        let (dir, transmitted) = if pick < weights[0] + weights[1] {
-            // Lambert's and the glossy lobe as one mixture: the direction's density is the
-            // mixture's, whichever lobe drew it.
-            let wi = if pick < weights[0] { cosine_hemisphere(u) } else { sample_glossy(mat, tags, wo, u) };
-            if wi.z <= 0.0 {
-                break;
-            }
-            let pdf = bsdf_pdf(wi);
-            if pdf <= 0.0 {
-                break;
-            }
-            let f = c.kd * lambert_brdf(wo, wi) + glossy_f(wi);
-            beta *= f * (wi.z / pdf);
-            counts.reflection += 1;
-            scattered = Some((s.p, pdf));
-            (to_world(ns, wi), false)
-        } else if pick < weights[0] + weights[1] + weights[2] {
-            beta *= kr * (total / weights[2]);
-            counts.reflection += 1;
-            scattered = None;
-            (reflect_dir(ray.dir, ns), false)
-        } else {
-            beta *= kt * (total / weights[3]);
-            scattered = None;
-            let ior = f64::from(mat.ior);
-            let eta = if front { 1.0 / ior } else { ior };
-            match refract_dir(ray.dir, ns, eta) {
-                Some(d) => {
-                    counts.refraction += 1;
-                    (d, true)
-                }
-                // Total internal reflection: k_t's share follows the mirror direction.
-                None => {
-                    counts.reflection += 1;
-                    (reflect_dir(ray.dir, ns), false)
-                }
-            }
-        };
-        // Leave on the side the lobe sends the path to; a shading normal can point a drawn
-        // direction into the surface, where the path ends rather than leak.
-        let side = if transmitted { -ng } else { ng };
-        if dir.dot(side) <= 0.0 {
-            break;
-        }
-        if depth + 1 >= ROULETTE_FROM {
-            let survival = max_channel(beta).min(MAX_SURVIVAL);
-            if uniform(dim + 3) >= survival {
-                break;
-            }
-            beta /= survival;
-        }
-        let sp = spawn_ray(ctx, s.p, s.p_surface, side, dir, leaving_surface(s.prim, s.index, s.ng, side));
-        ray = Ray { origin: sp.origin, dir };
-        (t_min, leaving) = (sp.t_min, sp.leaving);
-    }
-    (radiance, first_object)
+    let mut path = start_path(ctx, x, y, sample, counts);
+    while path_bounce(ctx, emitters, &mut path, counts) {}
+    (path.radiance, path.first_object)
 }
 
 /// What an emitter sends back along `dir` from the surface `s` (its normal `ng` turned to the
 /// incoming ray), drawn by next-event estimation: E_m over the density the point was drawn with,
-/// times the BRDF and cosine, weighed against the paths' own chance to meet it. `scatter` gives
-/// the BRDF (per channel) and the non-delta lobes' density at a local direction; without `mis`
-/// the light sample is the only way the emitter is counted from here.
-fn emitter_light(
+/// times the lobes' BRDF and cosine, weighed against the paths' own chance to meet it; without
+/// `mis` the light sample is the only way the emitter is counted from here.
+pub fn emitter_light(
     ctx: &TraceContext,
     emitters: &Emitters,
     e: Emitter,
+    l: &Lobes,
     s: &super::shade::Surface,
     ng: DVec3,
     dir: DVec3,
     mis: bool,
-    scatter: impl Fn(DVec3) -> (DVec3, f64),
-    to_local: &impl Fn(DVec3) -> DVec3,
     counts: &mut RayCounts,
 ) -> DVec3 {
-    let wi = to_local(dir);
+    let wi = to_local(l, dir);
     if wi.z <= 0.0 || dir.dot(ng) <= 0.0 {
         return DVec3::ZERO;
     }
@@ -402,7 +504,7 @@ fn emitter_light(
     if ctx.has(feature::GLOBAL_ATTENUATION) {
         emission *= attenuation_factor(ctx.scene.header.global_attenuation, hit.t);
     }
-    let (f, bsdf_pdf) = scatter(wi);
+    let (f, bsdf_pdf) = (lobes_brdf(ctx, l, wi), lobes_pdf(ctx, l, wi));
     let weight = if mis { power_heuristic(light_pdf, bsdf_pdf) } else { 1.0 };
     f * emission * (wi.z * weight / light_pdf)
 }

@@ -13,9 +13,9 @@ use glint_scene::{
     ObjectDesc, PlaneDesc, RenderSettings, Rgb, SceneDesc, SpecularModel, SphereDesc, SpotFalloff, Wrap,
 };
 use glint_types::layout::{
-    GpuCamera, GpuLight, GpuMaterial, GpuMesh, GpuPlane, GpuSphere, GpuTexture, GpuTriangle, LIGHT_CASTS_SHADOWS,
-    MESH_HAS_NORMALS, MESH_HAS_UVS, NO_CONE_VERSIN, NO_TEXTURE, SceneHeader, UnknownTag, WORLD_FRAME, feature,
-    origin_power,
+    GpuCamera, GpuLight, GpuMaterial, GpuMesh, GpuPlane, GpuSphere, GpuTexture, GpuTriangle, INTEGRATOR_PATH,
+    LIGHT_CASTS_SHADOWS, MESH_HAS_NORMALS, MESH_HAS_UVS, NO_CONE_VERSIN, NO_TEXTURE, SceneHeader, UnknownTag,
+    WORLD_FRAME, feature, origin_power,
 };
 
 /// A scene in the GPU-ready layout, plus the names the UI and reports show. The geometry (the
@@ -157,10 +157,14 @@ impl FlatScene {
         flat
     }
 
-    /// The features this scene needs, from the flat data itself (only materials that some
-    /// object uses count) and the tags of each light and material.
+    /// The features this scene needs under its integrator, from the flat data itself (only
+    /// materials that some object uses count) and the tags of each light and material. Paths
+    /// differ from Whitted's tree in four: no ambient term; a glossy lobe reflects light from
+    /// every direction, not only specular lights; f_att(t) weighs emitters' light at every
+    /// bounce, and every path leaves surfaces (ε's primitive skip).
     fn scene_features(&self, light_tags: &[LightTags], material_tags: &[MaterialTags]) -> u32 {
         let mut f = 0;
+        let path = self.header.integrator == INTEGRATOR_PATH;
         let mut used = vec![false; self.materials.len()];
         for m in self.spheres.iter().map(|s| s.material).chain(self.planes.iter().map(|p| p.material)) {
             used[m as usize] = true;
@@ -191,7 +195,7 @@ impl FlatScene {
             if l.flags & LIGHT_CASTS_SHADOWS != 0 && any_geometry {
                 f |= feature::SHADOWS;
             }
-            if nonzero(l.ambient) {
+            if nonzero(l.ambient) && !path {
                 f |= feature::LIGHT_AMBIENT;
             }
             any_specular_light |= nonzero(l.specular);
@@ -209,7 +213,7 @@ impl FlatScene {
             if m.diffuse_texture != NO_TEXTURE || m.emission_texture != NO_TEXTURE {
                 f |= feature::TEXTURES;
             }
-            if nonzero(m.ks) && any_specular_light {
+            if nonzero(m.ks) && (any_specular_light || path) {
                 f |= feature::SPECULAR;
                 f |= match tags.specular {
                     SpecularModel::Blinn => feature::BLINN,
@@ -241,11 +245,11 @@ impl FlatScene {
         // Only secondary rays leave a primitive: without shadow or child rays there is nothing
         // to skip.
         // Only child rays are attenuated; the f32 coefficients decide, as the tracers read them.
-        if feature::recurses(f) && self.header.global_attenuation != [1.0, 0.0, 0.0, 0.0] {
+        if (feature::recurses(f) || path) && self.header.global_attenuation != [1.0, 0.0, 0.0, 0.0] {
             f |= feature::GLOBAL_ATTENUATION;
         }
         if self.header.epsilon_mode == glint_types::layout::EPS_SKIP_CONVEX
-            && (f & feature::SHADOWS != 0 || feature::recurses(f))
+            && (f & feature::SHADOWS != 0 || feature::recurses(f) || path)
         {
             f |= feature::SKIP_CONVEX;
         }
@@ -302,6 +306,10 @@ fn flat_header(desc: &SceneDesc, settings: &RenderSettings, p: &Geometry, materi
         seed: settings.seed,
         epsilon: settings.epsilon as f32,
         bailout: settings.bailout as f32,
+        integrator: settings.integrator.into(),
+        indirect: u32::from(settings.indirect),
+        pad_a: 0,
+        pad_b: 0,
         ambient: rgb4(desc.world.ambient),
         background: rgb4(desc.world.background),
         global_attenuation: {

@@ -15,14 +15,16 @@ use super::mesh::MeshDesc;
 use super::number::{format_number as num, shorten};
 use super::rgb::Rgb;
 use super::texture::TextureDesc;
-use glint_types::{LightKind, SpotFalloff};
+use glint_types::{Integrator, LightKind, SpotFalloff};
 
 mod coplanar;
+mod integrator;
 mod lights;
 mod limits;
 mod materials;
 mod objects;
 
+pub use integrator::integrator_warnings;
 use lights::{validate_light, validate_polynomial};
 pub use limits::*;
 use materials::validate_material;
@@ -129,6 +131,13 @@ pub fn validate_settings(s: &RenderSettings, report: &mut Report) {
     report.count("render.max_depth", s.max_depth, ranges::DEPTH);
     report.finite_in("render.bailout", s.bailout, ranges::BAILOUT);
     report.finite_in("render.epsilon", s.epsilon, ranges::EPSILON);
+    if !s.indirect && s.integrator == Integrator::Whitted {
+        report.error(
+            "render.indirect",
+            "= false is a path-tracing setting (paths that follow only k_r and k_t), and Whitted's ray tree never \
+             follows anything else: set render.integrator = \"path\" or leave render.indirect out",
+        );
+    }
 }
 
 /// Validates a whole scene. Errors make the scene unusable; warnings are printed.
@@ -172,6 +181,7 @@ pub fn validate_with_objects(scene: &SceneDesc, objects: &Report) -> Report {
     if let Some(warning) = super::ray_tree::unbounded_ray_tree(scene, &scene.render) {
         r.warn("render.max_depth", warning);
     }
+    r.warnings.extend(integrator_warnings(scene, &scene.render));
     r
 }
 
