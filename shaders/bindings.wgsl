@@ -2,7 +2,7 @@
 // composed module, and the host builds its bind group layout from what remains.
 #define_import_path glint::bindings
 
-#import glint::scene_data::{SceneHeader, GpuCamera, GpuMaterial, GpuLight, GpuSphere, GpuPlane, GpuTriangle, GpuMesh, GpuTexture, TileParams, ProbeRecord, ProbeTree}
+#import glint::scene_data::{SceneHeader, GpuCamera, GpuMaterial, GpuLight, GpuSphere, GpuPlane, GpuTriangle, GpuMesh, GpuTexture, TileParams, ProbeRecord, ProbeTree, GpuPathState}
 
 @group(0) @binding(0) var<uniform> header: SceneHeader;
 @group(0) @binding(1) var<uniform> camera: GpuCamera;
@@ -49,3 +49,8 @@
 // (prim, index, bitcast t, 0).
 @group(0) @binding(21) var<storage, read> rays_in: array<vec4<f32>>;
 @group(0) @binding(22) var<storage, read_write> hits_out: array<vec4<u32>>;
+// The path tracer's buffers (path.wgsl; numbered after the ray-cast kernel's): a path per pixel
+// of the tile between the bounce dispatches, and what next-event estimation samples: the
+// emitters' count, then each emissive sphere's index or triangle's PRIM_REF_TRIANGLE | index.
+@group(0) @binding(23) var<storage, read_write> path_states: array<GpuPathState>;
+@group(0) @binding(24) var<storage, read> emitters: array<u32>;

@@ -183,6 +183,28 @@ struct GpuMesh {
     pad: u32,
 }
 
+// A path between the path tracer's per-bounce dispatches (glint_types::layout::GpuPathState).
+struct GpuPathState {
+    origin: vec3<f32>,
+    t_min: f32,
+    dir: vec3<f32>,
+    depth: u32,
+    beta: vec3<f32>,
+    scattered_pdf: f32,
+    radiance: vec3<f32>,
+    first_object: u32,
+    scattered_from: vec3<f32>,
+    alive: u32,
+    leaving_prim: u32,
+    leaving_index: u32,
+    leaving_inside: u32,
+    pixel: u32,
+    sample: u32,
+    pad_a: u32,
+    pad_b: u32,
+    pad_c: u32,
+}
+
 // The pixel rectangle one dispatch renders.
 struct TileParams {
     origin_x: u32,

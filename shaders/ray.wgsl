@@ -2,8 +2,8 @@
 // by all tracer modules.
 #define_import_path glint::ray
 
-#import glint::scene_data::ProbeRecord
-#import glint::bindings::tile
+#import glint::scene_data::{ProbeRecord, STAT_STATUS, STAT_CAMERA, STAT_SHADOW, STAT_REFLECTION, STAT_REFRACTION, STAT_BAILOUT_SAVED}
+#import glint::bindings::{tile, stats}
 
 struct Ray {
     origin: vec3<f32>,
@@ -43,4 +43,28 @@ fn driver_cut_loops() -> bool {
         }
     }
     return laps < tile.canary_laps;
+}
+
+// Adds a count to a (lo, hi) pair of the statistics buffer with carry, so that counts past
+// 2^32 stay exact.
+fn add_stat(index: u32, value: u32) {
+    if value == 0u {
+        return;
+    }
+    let old = atomicAdd(&stats[index], value);
+    if old + value < old {
+        atomicAdd(&stats[index + 1u], 1u);
+    }
+}
+
+// This invocation's ray counts and status bits into the statistics buffer, once at its end.
+fn flush_counts() {
+    add_stat(STAT_CAMERA, ray_counts.camera);
+    add_stat(STAT_SHADOW, ray_counts.shadow);
+    add_stat(STAT_REFLECTION, ray_counts.reflection);
+    add_stat(STAT_REFRACTION, ray_counts.refraction);
+    add_stat(STAT_BAILOUT_SAVED, ray_counts.bailout_saved);
+    if status != 0u {
+        atomicOr(&stats[STAT_STATUS], status);
+    }
 }

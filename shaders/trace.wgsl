@@ -3,30 +3,28 @@
 // WGSL has no recursion, so the tree is walked with an explicit stack of (ray, path weight,
 // depth). Each node adds weight × local shading, where the CPU adds k·I(child) on return:
 // the same terms with the same bailout decisions, summed in another order.
-#import glint::scene_data::{GpuSphere, GpuPlane, GpuTriangle, NO_HIT, EPS_ROBUST, UV_MESH, STATUS_LOOP_LIMIT, STATUS_STACK_OVERFLOW, STATUS_DRIVER_LOOP_CUTOFF, STAT_STATUS, STAT_CAMERA, STAT_SHADOW, STAT_REFLECTION, STAT_REFRACTION, STAT_BAILOUT_SAVED}
+#import glint::scene_data::{NO_HIT, STATUS_LOOP_LIMIT, STATUS_STACK_OVERFLOW, STATUS_DRIVER_LOOP_CUTOFF, STAT_STATUS}
 #import glint::bindings::{header, camera, tile, materials, spheres, planes, triangles, meshes, output, stats}
-#import glint::ray::{Ray, RayCounts, ray_counts, status, driver_cut_loops}
+#import glint::ray::{Ray, RayCounts, ray_counts, status, driver_cut_loops, flush_counts}
 #import glint::camera::{camera_ray, sample_offset}
-#import glint::intersect::{Hit, Leaving, FAR, PRIM_NONE, PRIM_SPHERE, PRIM_PLANE, PRIM_TRIANGLE, triangle_corners, triangle_shading_normal, all_zero, sphere_surface_point}
+#import glint::intersect::{Hit, Leaving, FAR, PRIM_NONE, PRIM_SPHERE, PRIM_PLANE, all_zero}
 #ifdef BVH
 #import glint::bvh::closest_hit
 #else
 #import glint::intersect::closest_hit
 #endif
 #import glint::offset::{spawn_ray, leaving_surface}
-#import glint::shade::{Surface, shade_local}
+#import glint::shade::shade_local
+#import glint::surface::{surface_at, reflect_dir}
+#ifdef TRANSMISSION
+#import glint::surface::refract_dir
+#endif
 #ifdef PROBE
 #import glint::scene_data::{RAY_REFLECTION, RAY_REFRACTION}
 #import glint::probe::{probe_start, probe_root, probe_enter, probe_attenuation, probe_shade_begin, probe_shade_end, probe_hit, probe_factors, probe_cut, probe_child, probe_push, probe_pop, probe_gathered, probe_finish}
 #endif
 #ifdef GLOBAL_ATTENUATION
 #import glint::shade::attenuation_factor
-#endif
-#ifdef TEXTURES
-#import glint::texture::{planar_axis, planar_uv}
-#ifdef TRIANGLES
-#import glint::texture::{triangle_uv, triangle_uv_origin}
-#endif
 #endif
 
 struct SampleResult {
@@ -57,75 +55,7 @@ struct StackEntry {
 var<private> stack: array<StackEntry, STACK_SIZE>;
 var<private> stack_top: u32;
 
-fn surface_at(ray: Ray, hit: Hit) -> Surface {
-    let p = ray.origin + hit.t * ray.dir;
-    let robust = header.epsilon_mode == EPS_ROBUST;
-#ifdef SPHERES
-    if hit.prim == PRIM_SPHERE {
-        let s = spheres[hit.index];
-        let c = s.center_radius.xyz;
-        let ng = normalize(p - c);
-        let p_surface = select(p, sphere_surface_point(p, c, s.center_radius.w, s.power, ng), robust);
-        var uv = vec2<f32>(0.0);
-        var uv_origin = UV_MESH;
-#ifdef TEXTURES
-        uv = planar_uv(p, ng);
-        uv_origin = planar_axis(ng);
-#endif
-        return Surface(p, p_surface, ng, ng, uv, uv_origin, s.material, s.object_id, PRIM_SPHERE, hit.index);
-    }
-#endif
-#ifdef PLANES
-    if hit.prim == PRIM_PLANE {
-        let pl = planes[hit.index];
-        let ng = pl.normal_offset.xyz;
-        let p_surface = select(p, p - (dot(ng, p) - pl.normal_offset.w) * ng, robust);
-        var uv = vec2<f32>(0.0);
-        var uv_origin = UV_MESH;
-#ifdef TEXTURES
-        uv = planar_uv(p, ng);
-        uv_origin = planar_axis(ng);
-#endif
-        return Surface(p, p_surface, ng, ng, uv, uv_origin, pl.material, pl.object_id, PRIM_PLANE, hit.index);
-    }
-#endif
-#ifdef TRIANGLES
-    let tri = triangles[hit.index];
-    let v = triangle_corners(tri);
-    let ng = normalize(cross(v[1] - v[0], v[2] - v[0]));
-    let ns = triangle_shading_normal(tri, hit.bu, hit.bv, ng);
-    let p_surface = select(p, (1.0 - hit.bu - hit.bv) * v[0] + hit.bu * v[1] + hit.bv * v[2], robust);
-    var uv = vec2<f32>(0.0);
-    var uv_origin = UV_MESH;
-#ifdef TEXTURES
-    uv = triangle_uv(tri, hit.bu, hit.bv, p, ng);
-    uv_origin = triangle_uv_origin(tri, ng);
-#endif
-    let mesh = meshes[tri.mesh];
-    return Surface(p, p_surface, ng, ns, uv, uv_origin, mesh.material, mesh.object_id, PRIM_TRIANGLE, hit.index);
-#else
-    return Surface(p, p, vec3<f32>(0.0, 1.0, 0.0), vec3<f32>(0.0, 1.0, 0.0), vec2<f32>(0.0), UV_MESH, 0u, NO_HIT, PRIM_NONE, 0u);
-#endif
-}
-
 #ifdef RECURSION
-#ifdef TRANSMISSION
-fn refract_dir(d: vec3<f32>, n: vec3<f32>, eta: f32) -> vec4<f32> {
-    // xyz: direction; w: 1 if refracted, 0 under total internal reflection.
-    let cos_i = -dot(d, n);
-    let k = 1.0 - eta * eta * (1.0 - cos_i * cos_i);
-    if k < 0.0 {
-        return vec4<f32>(0.0);
-    }
-    return vec4<f32>(normalize(eta * d + (eta * cos_i - sqrt(k)) * n), 1.0);
-}
-
-#endif
-
-fn reflect_dir(d: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
-    return normalize(d - 2.0 * dot(d, n) * n);
-}
-
 fn max_channel(v: vec3<f32>) -> f32 {
     return max(max(v.x, v.y), v.z);
 }
@@ -366,18 +296,6 @@ fn accumulate_sample(x: u32, y: u32) {
     }
 }
 
-// Adds a count to a (lo, hi) pair of the statistics buffer with carry, so that counts past
-// 2^32 stay exact.
-fn add_stat(index: u32, value: u32) {
-    if value == 0u {
-        return;
-    }
-    let old = atomicAdd(&stats[index], value);
-    if old + value < old {
-        atomicAdd(&stats[index + 1u], 1u);
-    }
-}
-
 @compute @workgroup_size(8, 8, 1)
 fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
     if gid.x >= tile.width || gid.y >= tile.height {
@@ -404,12 +322,5 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
     if driver_cut_loops() {
         status |= STATUS_DRIVER_LOOP_CUTOFF;
     }
-    add_stat(STAT_CAMERA, ray_counts.camera);
-    add_stat(STAT_SHADOW, ray_counts.shadow);
-    add_stat(STAT_REFLECTION, ray_counts.reflection);
-    add_stat(STAT_REFRACTION, ray_counts.refraction);
-    add_stat(STAT_BAILOUT_SAVED, ray_counts.bailout_saved);
-    if status != 0u {
-        atomicOr(&stats[STAT_STATUS], status);
-    }
+    flush_counts();
 }

@@ -17,7 +17,7 @@ mod report;
 const BIN: &str = env!("CARGO_BIN_EXE_glint");
 
 /// The built-in scenes the issue asks for, spelled out here rather than read from the crate.
-const BUILTINS: [&str; 5] = ["whitted", "cornell", "spotlights", "highlights", "lights"];
+const BUILTINS: [&str; 6] = ["whitted", "cornell", "cornell-gi", "spotlights", "highlights", "lights"];
 
 /// The generated built-in scenes (made in code at `--resolution N`).
 const GENERATED: [&str; 2] = ["bumpy", "bumpy-glass"];
@@ -349,7 +349,7 @@ fn bad_input_fails_cleanly() {
 }
 
 #[test]
-fn the_path_tracer_renders_on_the_cpu_and_is_refused_on_the_gpu() {
+fn the_path_tracer_renders_on_both_tracers_from_a_flag_or_the_scene() {
     let dir = TempDir::new("path");
     let png = dir.join("cornell.png");
     let args = ["render", "cornell", "--integrator", "path", "--width", "24", "--height", "24", "--spp", "4", "-o"];
@@ -358,16 +358,41 @@ fn the_path_tracer_renders_on_the_cpu_and_is_refused_on_the_gpu() {
     assert!(text(&out.stdout).contains("path tracer: 4 paths a pixel"), "{}", text(&out.stdout));
     assert!(text(&out.stderr).contains("world.ambient: is not used by the path tracer"), "{}", text(&out.stderr));
     assert_eq!(meta(&png_text_chunks(&png), "glint:integrator"), "path");
+    assert_eq!(meta(&png_text_chunks(&png), "glint:indirect"), "on");
 
-    let gpu = dir.join("gpu.png");
+    // cornell-gi asks for paths itself; both tracers render it, and --indirect off is said.
+    let both = dir.join("gi.png");
     let out = glint(
         &dir,
-        ["render", "cornell", "--integrator", "path", "--backend", "gpu", "-o"]
-            .iter()
-            .map(OsString::from)
-            .chain([gpu.clone().into_os_string()]),
+        [
+            "render",
+            "cornell-gi",
+            "--backend",
+            "both",
+            "--width",
+            "24",
+            "--height",
+            "24",
+            "--spp",
+            "2",
+            "--indirect",
+            "off",
+            "-o",
+        ]
+        .iter()
+        .map(OsString::from)
+        .chain([both.clone().into_os_string()]),
     );
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    assert!(text(&out.stdout).contains("only k_r and k_t with direct light"), "{}", text(&out.stdout));
+    for backend in ["cpu", "gpu"] {
+        let png = dir.join(format!("gi-{backend}.png"));
+        assert_eq!(meta(&png_text_chunks(&png), "glint:integrator"), "path", "{backend}");
+        assert_eq!(meta(&png_text_chunks(&png), "glint:indirect"), "off", "{backend}");
+    }
+
+    // A path-only setting on a Whitted render is an error naming the field and the flag.
+    let out = glint(&dir, ["render", "whitted", "--indirect", "off", "-q"]);
     assert!(!out.status.success());
-    assert!(text(&out.stderr).contains("runs on the CPU only so far"), "{}", text(&out.stderr));
-    assert!(!gpu.exists(), "a refused render wrote {}", gpu.display());
+    assert!(text(&out.stderr).contains("render.indirect (--indirect)"), "{}", text(&out.stderr));
 }

@@ -4,6 +4,7 @@ use std::path::Path;
 
 use glint_core::{CpuRender, FlatScene};
 use glint_io::{BUILTIN_SCENES, parse_scene};
+use glint_scene::{Integrator, SceneDesc};
 
 use crate::support::render_with;
 
@@ -17,33 +18,52 @@ fn identical(a: &CpuRender, b: &CpuRender, what: &str) {
     assert_eq!(a.counts, b.counts, "{what}: ray counts");
 }
 
+/// One scene at `spp` under `integrator` (paths at depth 6 at most): the same bits for 1, 2
+/// and 3 threads, specialised or not, and twice.
+fn check_scene(name: &str, desc: &SceneDesc, spp: u32, integrator: Integrator) {
+    let mut settings = desc.render.clone();
+    // 96×72: six by five tiles of 16×16, the last row and column partial.
+    settings.width = 96;
+    settings.height = 72;
+    settings.spp = spp;
+    settings.integrator = integrator;
+    if integrator == Integrator::Path {
+        settings.max_depth = settings.max_depth.min(6);
+    }
+    let flat = FlatScene::build(desc, &settings);
+    let what = |s: &str| format!("{name} ({}) at spp {spp}: {s}", integrator.name());
+    let one = render_with(&flat, 1, true);
+    assert_eq!(one.threads, 1);
+    assert!(one.counts.camera == 96 * 72 * u64::from(spp), "{}", what("camera rays"));
+    // Not a constant image: the comparison below would be vacuous.
+    let first = one.image.pixels[0];
+    assert!(one.image.pixels.iter().any(|p| *p != first), "{}", what("constant image"));
+    for threads in [2, 3] {
+        identical(&one, &render_with(&flat, threads, true), &what(&format!("1 vs {threads} threads")));
+    }
+    identical(&one, &render_with(&flat, 2, false), &what("specialised vs unspecialised"));
+    // The same render twice.
+    identical(&one, &render_with(&flat, 1, true), &what("repeat"));
+}
+
 #[test]
 fn builtin_scenes_are_bit_identical_across_threads_and_specialisation() {
     // The scene files; the generated scenes are tested by their generator and `glint bench rays`.
-    let files: Vec<_> = BUILTIN_SCENES.iter().filter_map(|b| Some((b, b.toml()?))).collect();
-    assert_eq!(files.len(), 5);
-    for (scene, text) in files {
-        let (desc, _) = parse_scene(text, Path::new(scene.name)).expect("built-in scene loads");
+    let files: Vec<_> = BUILTIN_SCENES
+        .iter()
+        .filter_map(|b| Some((b.name, parse_scene(b.toml()?, Path::new(b.name)).expect("built-in scene loads").0)))
+        .collect();
+    assert_eq!(files.len(), 6);
+    // Whitted's renders first, in the order first recorded (their index keys their hash), then
+    // every scene with the path tracer.
+    for (name, desc) in &files {
         for spp in [1, 4] {
-            let mut settings = desc.render.clone();
-            // 96×72: six by five tiles of 16×16, the last row and column partial.
-            settings.width = 96;
-            settings.height = 72;
-            settings.spp = spp;
-            let flat = FlatScene::build(&desc, &settings);
-            let what = |s: &str| format!("{} at spp {spp}: {s}", scene.name);
-            let one = render_with(&flat, 1, true);
-            assert_eq!(one.threads, 1);
-            assert!(one.counts.camera == 96 * 72 * u64::from(spp), "{}", what("camera rays"));
-            // Not a constant image: the comparison below would be vacuous.
-            let first = one.image.pixels[0];
-            assert!(one.image.pixels.iter().any(|p| *p != first), "{}", what("constant image"));
-            for threads in [2, 3] {
-                identical(&one, &render_with(&flat, threads, true), &what(&format!("1 vs {threads} threads")));
-            }
-            identical(&one, &render_with(&flat, 2, false), &what("specialised vs unspecialised"));
-            // The same render twice.
-            identical(&one, &render_with(&flat, 1, true), &what("repeat"));
+            check_scene(name, desc, spp, Integrator::Whitted);
+        }
+    }
+    for (name, desc) in &files {
+        for spp in [1, 4] {
+            check_scene(name, desc, spp, Integrator::Path);
         }
     }
 }

@@ -39,11 +39,15 @@ pub enum Binding {
     /// The ray-cast kernel's rays and hits (raycast.wgsl; after the tracer's).
     RaysIn = 21,
     HitsOut = 22,
+    /// The path tracer's paths between bounces and its emitters (path.wgsl; after the
+    /// ray-cast kernel's).
+    PathStates = 23,
+    Emitters = 24,
 }
 
 impl Binding {
     /// Every binding, ascending.
-    pub const ALL: [Self; 23] = [
+    pub const ALL: [Self; 25] = [
         Self::Header,
         Self::Camera,
         Self::Tile,
@@ -67,11 +71,21 @@ impl Binding {
         Self::BvhLeafC,
         Self::RaysIn,
         Self::HitsOut,
+        Self::PathStates,
+        Self::Emitters,
     ];
 
     /// The bindings only the ray-cast kernel uses (bound by `raycast::RayCaster`, not by the
     /// scene's buffers).
     pub const RAYCAST: [Self; 2] = [Self::RaysIn, Self::HitsOut];
+
+    /// The bindings only the path tracer uses (`SceneBuffers::with_paths`).
+    pub const PATH: [Self; 2] = [Self::PathStates, Self::Emitters];
+
+    /// Whether the Whitted tracer's module may declare it (not the other kernels' own).
+    pub fn is_tracers(self) -> bool {
+        !Self::RAYCAST.contains(&self) && !Self::PATH.contains(&self)
+    }
 
     /// Its `@binding` number.
     pub const fn number(self) -> u32 {
@@ -104,6 +118,8 @@ impl Binding {
             Self::BvhLeafC => "bvh_leaf_c",
             Self::RaysIn => "rays_in",
             Self::HitsOut => "hits_out",
+            Self::PathStates => "path_states",
+            Self::Emitters => "emitters",
         }
     }
 
@@ -132,14 +148,15 @@ mod tests {
 
     #[test]
     fn numbers_are_the_table_order_and_round_trip() {
-        // The tracer's bindings are 0, 1, 2, …; the ray-cast kernel's follow them.
-        let tracer = Binding::ALL.iter().filter(|b| !Binding::RAYCAST.contains(b));
+        // The tracer's bindings are 0, 1, 2, …; the ray-cast kernel's follow them, then the
+        // path tracer's.
+        let tracer = Binding::ALL.iter().filter(|b| b.is_tracers());
         for (i, b) in tracer.enumerate() {
             assert_eq!(b.number() as usize, i, "{b:?} is out of order in Binding::ALL");
         }
-        let tracer_count = Binding::ALL.len() - Binding::RAYCAST.len();
-        for (i, b) in Binding::RAYCAST.into_iter().enumerate() {
-            assert_eq!(b.number() as usize, tracer_count + i, "{b:?} is out of order in Binding::RAYCAST");
+        let tracer_count = Binding::ALL.len() - Binding::RAYCAST.len() - Binding::PATH.len();
+        for (i, b) in Binding::RAYCAST.into_iter().chain(Binding::PATH).enumerate() {
+            assert_eq!(b.number() as usize, tracer_count + i, "{b:?} is out of order in Binding::RAYCAST/PATH");
         }
         for pair in Binding::ALL.windows(2) {
             assert!(pair[0].number() < pair[1].number(), "{pair:?}: Binding::ALL is not ascending");
@@ -148,7 +165,7 @@ mod tests {
             assert_eq!(Binding::try_from(b.number()), Ok(b));
             assert_eq!(Binding::of_global(GROUP, b.number(), b.wgsl_name()).ok(), Some(b));
         }
-        let past_the_last = Binding::HitsOut.number() + 1;
+        let past_the_last = Binding::Emitters.number() + 1;
         assert_eq!(Binding::try_from(past_the_last), Err(past_the_last));
     }
 

@@ -7,8 +7,9 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use bytemuck::Pod;
 use glint_core::FlatScene;
 use glint_core::bvh::GPU_MAX_TREE_INDEX;
+use glint_core::cpu::path::Emitters;
 use glint_core::flat::{GeometryId, GpuLeafAb, GpuLeafC, fill_gpu_leaves};
-use glint_types::layout::{ProbeRecord, ProbeTree, STAT_WORDS, TileParams};
+use glint_types::layout::{GpuPathState, ProbeRecord, ProbeTree, STAT_WORDS, TileParams};
 use wgpu::util::DeviceExt;
 
 use crate::binding::Binding;
@@ -143,9 +144,13 @@ pub struct SceneBuffers {
     pub stats: wgpu::Buffer,
     pub probe: wgpu::Buffer,
     pub probe_tree: wgpu::Buffer,
+    /// The path tracer's paths (one a pixel of a tile) and emitters (`with_paths`).
+    path_states: Option<wgpu::Buffer>,
+    emitters: Option<wgpu::Buffer>,
     pub width: u32,
     pub height: u32,
     pub spp: u32,
+    pub max_depth: u32,
 }
 
 /// The zeroed statistics buffer: ray counts and the status word.
@@ -282,10 +287,39 @@ impl SceneBuffers {
                 usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
                 mapped_at_creation: false,
             }),
+            path_states: None,
+            emitters: None,
             width: h.width,
             height: h.height,
             spp: h.spp.max(1),
+            max_depth: h.max_depth,
         })
+    }
+
+    /// The path tracer's buffers beside the scene's: a path for each pixel of a `tile`-pixel
+    /// square (the most one dispatch covers) and the scene's emitters.
+    pub fn with_paths(mut self, ctx: &GpuContext, scene: &FlatScene, tile: u32) -> Result<Self, GpuError> {
+        let slots = u64::from(tile.min(self.width)) * u64::from(tile.min(self.height));
+        let needed = slots * size_of::<GpuPathState>() as u64;
+        if needed > ctx.limits.max_storage_buffer_binding_size {
+            return Err(GpuError::TooLarge {
+                what: format!("the paths of a {tile}-pixel tile"),
+                needed,
+                limit: ctx.limits.max_storage_buffer_binding_size,
+                limit_name: "max_storage_buffer_binding_size",
+            });
+        }
+        let words = Emitters::of_scene(scene).gpu_words();
+        with_error_scopes(ctx, || {
+            self.path_states = Some(ctx.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("glint paths"),
+                size: needed,
+                usage: wgpu::BufferUsages::STORAGE,
+                mapped_at_creation: false,
+            }));
+            self.emitters = Some(storage(ctx, "glint emitters", &words));
+        })?;
+        Ok(self)
     }
 
     /// The buffer behind `binding`; `None` for the ray-cast kernel's, which are not the scene's.
@@ -312,6 +346,8 @@ impl SceneBuffers {
             Binding::Uvs => &self.geometry.uvs,
             Binding::Texels => &self.texels,
             Binding::Textures => &self.textures,
+            Binding::PathStates => return self.path_states.as_ref(),
+            Binding::Emitters => return self.emitters.as_ref(),
             Binding::RaysIn | Binding::HitsOut => return None,
         })
     }

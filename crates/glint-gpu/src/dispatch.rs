@@ -48,6 +48,9 @@ impl SceneBuffers {
         ctx.queue.write_buffer(&self.stats, 0, bytemuck::cast_slice(&ZERO_STATS));
     }
 
+    /// One sample of one tile: Whitted's kernel once, or the path tracer's `start` and then
+    /// its bounce kernel max_depth + 1 times (a path ends at the latest at max_depth), all in
+    /// one submission: wgpu orders the dispatches of a pass, each bounce seeing the last's paths.
     fn dispatch_tile(
         &self,
         ctx: &GpuContext,
@@ -63,9 +66,20 @@ impl SceneBuffers {
                 label: Some("glint trace"),
                 timestamp_writes: None,
             });
-            pass.set_pipeline(&pipeline.pipeline);
             pass.set_bind_group(0, bind_group, &[]);
-            pass.dispatch_workgroups(params.width.div_ceil(WORKGROUP), params.height.div_ceil(WORKGROUP), 1);
+            let groups = (params.width.div_ceil(WORKGROUP), params.height.div_ceil(WORKGROUP));
+            let bounces = match &pipeline.start {
+                Some(start) => {
+                    pass.set_pipeline(start);
+                    pass.dispatch_workgroups(groups.0, groups.1, 1);
+                    self.max_depth + 1
+                }
+                None => 1,
+            };
+            pass.set_pipeline(&pipeline.pipeline);
+            for _ in 0..bounces {
+                pass.dispatch_workgroups(groups.0, groups.1, 1);
+            }
         }
         ctx.queue.submit([encoder.finish()])
     }

@@ -68,11 +68,6 @@ pub enum GpuError {
     Wgpu(String),
     #[error("the GPU device was lost (driver reset or crash); restart to use the GPU again")]
     DeviceLost,
-    #[error(
-        "the scene asks for the path tracer (render.integrator = \"path\"), which runs on the CPU only so far: \
-         render it with the CPU backend"
-    )]
-    PathTracerNotOnGpu,
     #[error("the render was cancelled")]
     Cancelled,
     #[error("reading the image back from the GPU failed: {0}")]

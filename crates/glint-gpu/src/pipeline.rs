@@ -7,12 +7,17 @@ use std::time::{Duration, Instant};
 use crate::binding::Binding;
 use crate::context::GpuContext;
 use crate::error::GpuError;
-use crate::shaders::{ModuleStats, ShaderKey, TRACE_WGSL, compose_entry, module_stats, undecorated, validate};
+use crate::shaders::{
+    ModuleStats, PATH_WGSL, ShaderKey, TRACE_WGSL, compose_entry, module_stats, undecorated, validate,
+};
 
 #[derive(Debug)]
 pub struct TracerPipeline {
     pub key: ShaderKey,
     pub pipeline: wgpu::ComputePipeline,
+    /// The kernel that starts the paths, in the path tracer's module (its entry point `start`;
+    /// `pipeline` is then the bounce).
+    pub start: Option<wgpu::ComputePipeline>,
     pub bind_group_layout: wgpu::BindGroupLayout,
     /// The bindings the module uses, ascending.
     pub bindings: Vec<Binding>,
@@ -62,9 +67,13 @@ pub fn reflect_bindings(module: &naga::Module) -> Result<Vec<(Binding, wgpu::Buf
     Ok(bindings)
 }
 
-/// The tracer's pipeline (trace.wgsl) for `key`.
+/// The tracer's pipeline for `key`: Whitted's (trace.wgsl) or the path tracer's (path.wgsl).
 pub fn create_pipeline(ctx: &GpuContext, key: ShaderKey) -> Result<TracerPipeline, GpuError> {
-    create_entry_pipeline(ctx, key, TRACE_WGSL, "tracer")
+    if key.path {
+        create_entry_pipeline(ctx, key, PATH_WGSL, "path tracer")
+    } else {
+        create_entry_pipeline(ctx, key, TRACE_WGSL, "tracer")
+    }
 }
 
 /// The pipeline of the entry module `entry` (trace.wgsl, raycast.wgsl) composed for `key`;
@@ -91,7 +100,8 @@ pub fn create_entry_pipeline(
         .collect();
     let bindings = bindings.into_iter().map(|(binding, _)| binding).collect();
     let label = format!("glint {what} [{}]", key.describe());
-    let (pipeline, bind_group_layout) = with_error_scopes(ctx, || {
+    let has_start = module.entry_points.iter().any(|e| e.name == "start");
+    let (pipeline, start_kernel, bind_group_layout) = with_error_scopes(ctx, || {
         let shader = ctx.device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some(&label),
             source: wgpu::ShaderSource::Naga(Cow::Owned(module)),
@@ -104,19 +114,21 @@ pub fn create_entry_pipeline(
             bind_group_layouts: &[Some(&bind_group_layout)],
             immediate_size: 0,
         });
-        let pipeline = ctx.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some(&label),
-            layout: Some(&layout),
-            module: &shader,
-            entry_point: Some("main"),
-            compilation_options: Default::default(),
-            cache: None,
-        });
-        (pipeline, bind_group_layout)
+        let entry = |name: &str| {
+            ctx.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some(&label),
+                layout: Some(&layout),
+                module: &shader,
+                entry_point: Some(name),
+                compilation_options: Default::default(),
+                cache: None,
+            })
+        };
+        (entry("main"), has_start.then(|| entry("start")), bind_group_layout)
     })?;
     let create_time = start.elapsed();
     log::info!("created {label} in {:.1} ms ({} statements)", create_time.as_secs_f64() * 1e3, stats.statements);
-    Ok(TracerPipeline { key, pipeline, bind_group_layout, bindings, stats, create_time })
+    Ok(TracerPipeline { key, pipeline, start: start_kernel, bind_group_layout, bindings, stats, create_time })
 }
 
 #[cfg(test)]
@@ -129,7 +141,7 @@ mod tests {
         let module = compose(&ShaderKey { probe: true, ..ShaderKey::full() }).expect("full probe shader composes");
         let found: Vec<Binding> =
             reflect_bindings(&module).expect("known bindings").into_iter().map(|(b, _)| b).collect();
-        let tracer: Vec<Binding> = Binding::ALL.into_iter().filter(|b| !Binding::RAYCAST.contains(b)).collect();
+        let tracer: Vec<Binding> = Binding::ALL.into_iter().filter(|b| b.is_tracers()).collect();
         assert_eq!(found, tracer, "the full probe shader uses every binding but the ray-cast kernel's");
     }
 

@@ -7,7 +7,7 @@ use std::collections::HashMap;
 
 use glint_core::cpu::Traversal;
 use glint_core::{Accel, FlatScene};
-use glint_types::layout::feature;
+use glint_types::layout::{INTEGRATOR_PATH, feature};
 use naga_oil::compose::{ComposableModuleDescriptor, Composer, NagaModuleDescriptor, ShaderDefValue};
 
 use crate::error::GpuError;
@@ -46,7 +46,7 @@ pub const BVH_STACK_SIZE: u32 = 64;
 pub const MAX_TREE_NODES: u32 = LAVAPIPE_LOOP_BUDGET / 1_000 * 1_000;
 
 /// The modules in dependency order: (import path, file name, source).
-pub const SHADER_MODULES: [(&str, &str, &str); 13] = [
+pub const SHADER_MODULES: [(&str, &str, &str); 14] = [
     ("glint::scene_data", "layout.wgsl", include_str!("../../../shaders/layout.wgsl")),
     ("glint::bindings", "bindings.wgsl", include_str!("../../../shaders/bindings.wgsl")),
     ("glint::ray", "ray.wgsl", include_str!("../../../shaders/ray.wgsl")),
@@ -57,11 +57,15 @@ pub const SHADER_MODULES: [(&str, &str, &str); 13] = [
     ("glint::offset", "offset.wgsl", include_str!("../../../shaders/offset.wgsl")),
     ("glint::texture", "texture.wgsl", include_str!("../../../shaders/texture.wgsl")),
     ("glint::shade", "shade.wgsl", include_str!("../../../shaders/shade.wgsl")),
+    ("glint::surface", "surface.wgsl", include_str!("../../../shaders/surface.wgsl")),
     ("glint::probe", "probe.wgsl", include_str!("../../../shaders/probe.wgsl")),
     // The path tracer's warps and BRDFs (issue 32); no kernel imports them yet.
     ("glint::sample", "sample.wgsl", include_str!("../../../shaders/sample.wgsl")),
     ("glint::bsdf", "bsdf.wgsl", include_str!("../../../shaders/bsdf.wgsl")),
 ];
+
+/// The path tracer's entry module (its `start` and bounce `main` kernels).
+pub const PATH_WGSL: &str = include_str!("../../../shaders/path.wgsl");
 
 /// The entry module.
 pub const TRACE_WGSL: &str = include_str!("../../../shaders/trace.wgsl");
@@ -82,17 +86,22 @@ pub struct ShaderKey {
     pub bvh: bool,
     /// Entries of the BVH traversal stack (shader def `BVH_STACK_SIZE`).
     pub bvh_stack: u32,
+    /// The path tracer (path.wgsl) instead of Whitted's (trace.wgsl), as the scene's header says.
+    pub path: bool,
 }
 
 impl ShaderKey {
     /// The variant for `scene`: exactly its features, or all of them when not specialising.
     pub fn for_scene(scene: &FlatScene, specialise: bool) -> Self {
+        let path = scene.header.integrator == INTEGRATOR_PATH;
         if specialise {
             let features = scene.header.features;
-            let depth = if feature::recurses(features) { scene.header.max_depth.min(GPU_STACK_LIMIT - 1) } else { 0 };
-            Self { features, stack_size: depth + 1, probe: false, bvh: true, bvh_stack: bvh_stack_size(scene) }
+            // Paths keep no stack: each bounce is a dispatch.
+            let depth =
+                if feature::recurses(features) && !path { scene.header.max_depth.min(GPU_STACK_LIMIT - 1) } else { 0 };
+            Self { features, stack_size: depth + 1, probe: false, bvh: true, bvh_stack: bvh_stack_size(scene), path }
         } else {
-            Self::full()
+            Self { path, ..Self::full() }
         }
     }
 
@@ -104,6 +113,7 @@ impl ShaderKey {
             probe: false,
             bvh: true,
             bvh_stack: BVH_STACK_LIMIT,
+            path: false,
         }
     }
 
@@ -120,10 +130,11 @@ impl ShaderKey {
     /// four for triangles (triangles, vertices, normals, meshes), the probe record and tree, the
     /// BVH's nodes and leaf words (with triangles, a second array of them for the third corner),
     /// and for textures the texels and the table, with texture coordinates when
-    /// there are triangles.
+    /// there are triangles; the path tracer's paths, and its emitters where a material emits.
     pub fn storage_buffers(&self) -> u32 {
         let on = |f: u32| u32::from(self.features & f != 0);
-        4 + on(feature::SPHERES)
+        4 + u32::from(self.path) * (1 + on(feature::EMISSION))
+            + on(feature::SPHERES)
             + on(feature::PLANES)
             + 4 * on(feature::TRIANGLES)
             + 2 * u32::from(self.probe)
@@ -180,7 +191,8 @@ impl ShaderKey {
             .map(|(_, n)| *n)
             .collect();
         format!(
-            "{} stack {}{}{}",
+            "{}{} stack {}{}{}",
+            if self.path { "path: " } else { "" },
             names.join("|"),
             self.stack_size,
             if self.bvh { format!(" bvh {}", self.bvh_stack) } else { String::new() },
@@ -189,9 +201,10 @@ impl ShaderKey {
     }
 }
 
-/// Composes the tracer for `key`; errors carry naga's readable report.
+/// Composes the tracer for `key` (Whitted's or the path tracer); errors carry naga's readable
+/// report.
 pub fn compose(key: &ShaderKey) -> Result<naga::Module, GpuError> {
-    compose_entry(key, TRACE_WGSL)
+    compose_entry(key, if key.path { PATH_WGSL } else { TRACE_WGSL })
 }
 
 /// Composes `entry` (the source of an entry module, as `trace.wgsl`) with the modules of
@@ -211,7 +224,7 @@ pub fn compose_entry(key: &ShaderKey, entry: &str) -> Result<naga::Module, GpuEr
     }
     let module = composer.make_naga_module(NagaModuleDescriptor {
         source: entry,
-        file_path: "trace.wgsl",
+        file_path: if entry == PATH_WGSL { "path.wgsl" } else { "trace.wgsl" },
         shader_defs: key.shader_defs(),
         ..Default::default()
     });
@@ -274,14 +287,18 @@ mod tests {
     use crate::binding::Binding;
     use glint_io::{BUILTIN_SCENES, parse_scene};
 
+    /// Every built-in scene's variant under each integrator.
     fn builtin_keys() -> Vec<(String, ShaderKey)> {
         BUILTIN_SCENES
             .iter()
-            .map(|b| {
+            .flat_map(|b| {
                 // Generated scenes at a small resolution: the features, not the size, pick the variant.
                 let (desc, _) = b.load(b.is_generated().then_some(4)).expect("built-in scene loads");
-                let flat = FlatScene::build(&desc, &desc.render);
-                (b.name.to_string(), ShaderKey::for_scene(&flat, true))
+                glint_scene::Integrator::ALL.map(|integrator| {
+                    let settings = glint_scene::RenderSettings { integrator, ..desc.render.clone() };
+                    let flat = FlatScene::build(&desc, &settings);
+                    (format!("{} ({})", b.name, integrator.name()), ShaderKey::for_scene(&flat, true))
+                })
             })
             .collect()
     }
@@ -296,6 +313,7 @@ mod tests {
     #[test]
     fn full_shader_and_every_builtin_variant_validate() {
         compose_or_report(&ShaderKey::full());
+        compose_or_report(&ShaderKey { path: true, ..ShaderKey::full() });
         for (name, key) in builtin_keys() {
             eprintln!("{name}: {}", key.describe());
             compose_or_report(&key);
@@ -306,7 +324,7 @@ mod tests {
     fn probe_variants_validate() {
         compose_or_report(&ShaderKey { probe: true, ..ShaderKey::full() });
         for (_, key) in builtin_keys() {
-            compose_or_report(&ShaderKey { probe: true, ..key });
+            compose_or_report(&ShaderKey { probe: true, path: false, ..key });
         }
     }
 
@@ -316,8 +334,8 @@ mod tests {
         // compiles next to some other feature.
         for bit in 0..feature::NAMES.len() {
             for features in [1u32 << bit, feature::ALL & !(1 << bit)] {
-                for bvh in [false, true] {
-                    compose_or_report(&ShaderKey { features, stack_size: 4, probe: false, bvh, bvh_stack: 16 });
+                for (bvh, path) in [(false, false), (true, false), (false, true), (true, true)] {
+                    compose_or_report(&ShaderKey { features, stack_size: 4, probe: false, bvh, bvh_stack: 16, path });
                 }
             }
         }
@@ -326,9 +344,12 @@ mod tests {
     #[test]
     fn storage_buffer_count_matches_the_composed_module() {
         let mut keys = vec![ShaderKey::full(), ShaderKey { bvh: false, ..ShaderKey::full() }];
+        keys.push(ShaderKey { path: true, ..ShaderKey::full() });
         keys.extend(builtin_keys().into_iter().map(|(_, k)| k));
         for key in keys {
-            for probe in [false, true] {
+            // The probe records Whitted's tree only (GpuTracer::probe).
+            for probe in if key.path { &[false][..] } else { &[false, true][..] } {
+                let probe = *probe;
                 let key = ShaderKey { probe, ..key };
                 let module = compose_or_report(&key);
                 let storage = module
@@ -468,6 +489,7 @@ fn main() {
             probe: false,
             bvh: false,
             bvh_stack: 8,
+            path: false,
         };
         let planar = compose_or_report(&planar);
         let planar_bindings: Vec<u32> =

@@ -12,7 +12,7 @@ use glint_core::cpu::ray_tree::RayTree;
 use glint_core::flat::GeometryId;
 use glint_core::rebase::{Frame, rebased, rebased_with_geometry};
 use glint_core::{Accel, FlatScene};
-use glint_types::layout::{INTEGRATOR_WHITTED, PROBE_HIT, ProbeRecord};
+use glint_types::layout::{PROBE_HIT, ProbeRecord};
 
 use crate::buffers::{GeometryCache, SceneBuffers};
 use crate::context::GpuContext;
@@ -160,16 +160,16 @@ impl GpuTracer {
         control: DispatchControl<'_>,
     ) -> Result<GpuJob, GpuError> {
         check_tile(&self.ctx, options.tile)?;
-        if scene.header.integrator != INTEGRATOR_WHITTED {
-            return Err(GpuError::PathTracerNotOnGpu);
-        }
         let key = ShaderKey::for_scene(scene, options.specialise)
             .with_accel(scene, options.accel)
             .check_storage_limit(self.ctx.limits.max_storage_buffers_per_shader_stage)?;
         let (pipeline, mut pipeline_time) = self.pipeline(key)?;
         let upload_start = Instant::now();
         let scene = self.rebased.in_frame(scene, options.frame);
-        let buffers = SceneBuffers::upload(&self.ctx, &scene, key, &self.geometry)?;
+        let mut buffers = SceneBuffers::upload(&self.ctx, &scene, key, &self.geometry)?;
+        if key.path {
+            buffers = buffers.with_paths(&self.ctx, &scene, options.tile.max(crate::dispatch::WORKGROUP))?;
+        }
         let bind_group = with_error_scopes(&self.ctx, || buffers.bind_group(&self.ctx, &pipeline))??;
         let upload_time = upload_start.elapsed();
         if !pipeline_time.is_zero() {
@@ -196,8 +196,13 @@ impl GpuTracer {
     /// The probe of pixel (x, y) with its whole ray tree, recorded by the same dispatch of the
     /// probe variant (the GPU twin of `glint_core::probe_tree`).
     pub fn probe(&self, scene: &FlatScene, x: u32, y: u32) -> Result<PixelProbe, GpuError> {
-        let key = ShaderKey { probe: true, ..ShaderKey::for_scene(scene, true).with_accel(scene, Accel::default()) }
-            .check_storage_limit(self.ctx.limits.max_storage_buffers_per_shader_stage)?;
+        // The probe records Whitted's terms, whatever the scene's integrator.
+        let key = ShaderKey {
+            probe: true,
+            path: false,
+            ..ShaderKey::for_scene(scene, true).with_accel(scene, Accel::default())
+        }
+        .check_storage_limit(self.ctx.limits.max_storage_buffers_per_shader_stage)?;
         let (pipeline, _) = self.pipeline(key)?;
         // The scene's own spp: sample 0 is then jittered in its stratum exactly as the CPU's.
         let scene = self.rebased.in_frame(scene, Frame::default());

@@ -6,7 +6,7 @@
 
 use std::collections::{BTreeMap, BTreeSet};
 
-const TWINS: [(&str, &str, &str, &str); 14] = [
+const TWINS: [(&str, &str, &str, &str); 16] = [
     (
         "bsdf.wgsl",
         include_str!("../../../shaders/bsdf.wgsl"),
@@ -62,6 +62,18 @@ const TWINS: [(&str, &str, &str, &str); 14] = [
         include_str!("../../glint-core/src/cpu/shade.rs"),
     ),
     (
+        "path.wgsl",
+        include_str!("../../../shaders/path.wgsl"),
+        "cpu/path.rs",
+        include_str!("../../glint-core/src/cpu/path.rs"),
+    ),
+    (
+        "surface.wgsl",
+        include_str!("../../../shaders/surface.wgsl"),
+        "cpu/surface.rs",
+        include_str!("../../glint-core/src/cpu/surface.rs"),
+    ),
+    (
         "trace.wgsl",
         include_str!("../../../shaders/trace.wgsl"),
         "cpu/trace.rs",
@@ -94,7 +106,7 @@ const TWINS: [(&str, &str, &str, &str); 14] = [
 ];
 
 /// Functions only the GPU side has, and why.
-const GPU_ONLY: [(&str, &str, &str); 36] = [
+const GPU_ONLY: [(&str, &str, &str); 42] = [
     ("bvh.wgsl", "load_node", "the root in two vec4 loads; the CPU reads the shared BvhNode where it lies"),
     (
         "bvh.wgsl",
@@ -134,7 +146,8 @@ const GPU_ONLY: [(&str, &str, &str); 36] = [
     ),
     ("bvh.wgsl", "slab_ray", "the CPU's SlabRay::new: WGSL has no methods"),
     ("trace.wgsl", "push_ray", "the explicit ray stack: WGSL has no recursion"),
-    ("trace.wgsl", "add_stat", "64-bit ray counters built from u32 atomics"),
+    ("ray.wgsl", "add_stat", "64-bit ray counters built from u32 atomics"),
+    ("ray.wgsl", "flush_counts", "an invocation's counters into the statistics buffer; the CPU adds RayCounts"),
     ("trace.wgsl", "main", "the compute entry point; the CPU's loop is render::render_cpu"),
     (
         "trace.wgsl",
@@ -194,10 +207,19 @@ const GPU_ONLY: [(&str, &str, &str); 36] = [
     ("ray.wgsl", "driver_cut_loops", "detects lavapipe's silent loop cut-off, which the CPU does not have"),
     ("present.wgsl", "main", "the compute entry point; the CPU converts pixel by pixel where it writes a PNG"),
     ("raycast.wgsl", "main", "the compute entry point, one ray per invocation; the CPU's loop is cast_rays"),
+    ("path.wgsl", "start", "the entry point that starts a tile's paths; the CPU's path_sample calls start_path"),
+    ("path.wgsl", "main", "the entry point of one bounce over a tile's paths; the CPU's path_sample loops path_bounce"),
+    ("path.wgsl", "load_path", "a path from the buffer between dispatches (GpuPathState); the CPU keeps it in a local"),
+    (
+        "path.wgsl",
+        "store_path",
+        "a path into the buffer between dispatches (GpuPathState); the CPU keeps it in a local",
+    ),
+    ("path.wgsl", "finish_path", "an ended path into the output, sample by sample as the CPU's path_pixel sums them"),
 ];
 
 /// Functions only the CPU side has, and why.
-const CPU_ONLY: [(&str, &str, &str); 17] = [
+const CPU_ONLY: [(&str, &str, &str); 22] = [
     ("cpu/raycast.rs", "from_hit", "HitRecord from the CPU's Option<Hit>; cast_ray writes the vec4 in place"),
     ("cpu/raycast.rs", "is_hit", "a record read on the host (the benchmark's hit counts)"),
     ("cpu/bvh.rs", "new", "SlabRay::new; WGSL builds it in slab_ray (no methods)"),
@@ -229,6 +251,15 @@ const CPU_ONLY: [(&str, &str, &str); 17] = [
     ("cpu/ray_tree.rs", "children", "a recorded tree read on the host (reports and tests)"),
     ("cpu/ray_tree.rs", "radiance_of", "a recorded tree read on the host: its radiance recomputed from the nodes"),
     ("cpu/ray_tree.rs", "count", "a recorded tree read on the host (reports and tests)"),
+    (
+        "cpu/path.rs",
+        "path_sample",
+        "a path's bounces in a loop; the GPU dispatches its bounce kernel (main) per bounce",
+    ),
+    ("cpu/path.rs", "path_pixel", "the GPU sums a pixel's samples across dispatches (finish_path)"),
+    ("cpu/path.rs", "of", "Emitters::of, the host's list; the GPU reads the emitter buffer it makes"),
+    ("cpu/path.rs", "of_scene", "Emitters::of_scene, the host's list; the GPU reads the emitter buffer it makes"),
+    ("cpu/path.rs", "gpu_words", "the emitter buffer the host uploads"),
 ];
 
 /// Structs only the GPU side has, and why.
@@ -244,7 +275,7 @@ const GPU_ONLY_STRUCTS: [(&str, &str, &str); 8] = [
 ];
 
 /// Structs only the CPU side has, and why.
-const CPU_ONLY_STRUCTS: [(&str, &str, &str); 12] = [
+const CPU_ONLY_STRUCTS: [(&str, &str, &str); 13] = [
     ("cpu/raycast.rs", "RayRecord", "a ray of the buffer as the host writes it; WGSL reads two vec4<f32>"),
     ("cpu/raycast.rs", "HitRecord", "a hit of the buffer as the host reads it; WGSL writes one vec4<u32>"),
     (
@@ -260,6 +291,7 @@ const CPU_ONLY_STRUCTS: [(&str, &str, &str); 12] = [
          multiplies in visiting order",
     ),
     ("cpu/mod.rs", "TraceContext", "the scene and its decoded header; WGSL reads them from bindings"),
+    ("cpu/path.rs", "Emitters", "the host's emitter list; the GPU reads the buffer of its gpu_words"),
     ("cpu/mod.rs", "LightTags", "a light's stored tags decoded into enums once; WGSL compares the u32 fields"),
     ("cpu/mod.rs", "MaterialTags", "a material's stored tags decoded into enums once; WGSL compares the u32 fields"),
     ("cpu/shade.rs", "Breakdown", "the CPU probe's record; the GPU probe writes ProbeRecord (layout.rs)"),

@@ -49,6 +49,8 @@ pub const BUILTIN_SCENES: &[BuiltinScene] = &[
     scene!("lights"),
     BuiltinScene { name: "bumpy", source: BuiltinSource::Generated(bumpy::bumpy) },
     BuiltinScene { name: "bumpy-glass", source: BuiltinSource::Generated(bumpy::bumpy_glass) },
+    // Last: test suites key their recorded images by the order they render the scenes in.
+    scene!("cornell-gi"),
 ];
 
 pub fn builtin(name: &str) -> Option<&'static BuiltinScene> {

@@ -449,6 +449,33 @@ impl TileParams {
     }
 }
 
+/// A path between the GPU path tracer's per-bounce dispatches (path.wgsl's `load_path` and
+/// `store_path`; the f32 form of `cpu::path::PathState`), one per pixel of a tile.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuPathState {
+    pub origin: [f32; 3],
+    pub t_min: f32,
+    pub dir: [f32; 3],
+    pub depth: u32,
+    pub beta: [f32; 3],
+    pub scattered_pdf: f32,
+    pub radiance: [f32; 3],
+    pub first_object: u32,
+    pub scattered_from: [f32; 3],
+    /// 1 while the path goes on; the bounce dispatches pass over the others.
+    pub alive: u32,
+    /// The primitive the ray leaves (`Leaving`, whose bool WGSL cannot store).
+    pub leaving_prim: u32,
+    pub leaving_index: u32,
+    pub leaving_inside: u32,
+    pub pixel: u32,
+    pub sample: u32,
+    pub pad_a: u32,
+    pub pad_b: u32,
+    pub pad_c: u32,
+}
+
 /// Lights whose terms the GPU pixel probe records (the CPU probe records all).
 pub const MAX_PROBE_LIGHTS: u32 = 16;
 

@@ -1,6 +1,5 @@
 //! The exact CPU reference tracer (f64). Each module is the twin of a WGSL file in `shaders/`
-//! with the same function names, as vello pairs `cpu/*.rs` with `shader/*.wgsl` — all but
-//! `path.rs`, the path tracer, whose twin is still to be written (issue 32).
+//! with the same function names, as vello pairs `cpu/*.rs` with `shader/*.wgsl`.
 
 pub mod bsdf;
 pub mod bvh;
@@ -13,6 +12,7 @@ pub mod raycast;
 pub mod rng;
 pub mod sample;
 pub mod shade;
+pub mod surface;
 pub mod texture;
 pub mod trace;
 pub mod walk;

@@ -25,8 +25,10 @@
 //! out what Whitted does not compute (a glossy lobe in a scene without specular lights, k_r and
 //! k_t at depth 0); the geometry, textures, lights' factors and shadows keep their features.
 //!
-//! Not yet (issue 32): the WGSL twin, its own specialisation, and the `integrator` setting of
-//! scenes and commands.
+//! Its twin is `shaders/path.wgsl`, which runs `path_bounce` once a dispatch over a tile's
+//! paths (`PathState` kept between dispatches as `GpuPathState`). The scene's features are the
+//! path tracer's own (`FlatScene::scene_features`), so that both compile out what a scene's
+//! paths do not meet.
 
 use std::f64::consts::PI;
 
@@ -45,12 +47,13 @@ use super::sample::{
     to_world, uniform_cone, uniform_cone_pdf, uniform_triangle,
 };
 use super::shade::{attenuation_factor, light_sample, light_visibility, material_colours};
-use super::trace::{reflect_dir, refract_dir, surface_at};
+use super::surface::{reflect_dir, refract_dir, surface_at};
 use super::walk::closest_hit;
 use super::{Ray, RayCounts, TraceContext, v3};
+use crate::flat::FlatScene;
 use glint_scene::SpecularModel;
 use glint_types::MaterialTags;
-use glint_types::layout::{GpuMaterial, LIGHT_CASTS_SHADOWS, NO_HIT, feature};
+use glint_types::layout::{GpuMaterial, LIGHT_CASTS_SHADOWS, NO_HIT, PRIM_REF_TRIANGLE, feature};
 
 /// Random dimensions per bounce: the lobe, the direction's two, Russian roulette, the emitter
 /// and the point on it (two), one spare. The camera's jitter takes dimensions 0 and 1.
@@ -126,12 +129,25 @@ pub struct Emitters {
 
 impl Emitters {
     pub fn of(ctx: &TraceContext) -> Self {
-        let scene = ctx.scene;
+        Self::of_scene(ctx.scene)
+    }
+
+    pub fn of_scene(scene: &FlatScene) -> Self {
         let emits = |material: u32| scene.materials[material as usize].emission[..3].iter().any(|&e| e > 0.0);
         let spheres = (0..scene.spheres.len() as u32).filter(|&i| emits(scene.spheres[i as usize].material));
         let triangles = (0..scene.triangles.len() as u32)
             .filter(|&i| emits(scene.meshes[scene.triangles[i as usize].mesh as usize].material));
         Self { list: spheres.map(Emitter::Sphere).chain(triangles.map(Emitter::Triangle)).collect() }
+    }
+
+    /// The GPU's emitter buffer (path.wgsl): the count, then each sphere's index and each
+    /// triangle's `PRIM_REF_TRIANGLE | index`.
+    pub fn gpu_words(&self) -> Vec<u32> {
+        let refs = self.list.iter().map(|e| match *e {
+            Emitter::Sphere(i) => i,
+            Emitter::Triangle(i) => PRIM_REF_TRIANGLE | i,
+        });
+        std::iter::once(self.list.len() as u32).chain(refs).collect()
     }
 }
 

@@ -4,80 +4,18 @@
 //! k_r·I_r and k_t·I_t with the same path weights and the same bailout decisions, so only the
 //! order of summation differs.
 
-use glam::{DVec2, DVec3};
+use glam::DVec3;
 
 use super::camera::{camera_ray, sample_offset};
-use super::intersect::{
-    FAR, Hit, Leaving, Prim, all_zero, sphere_surface_point, triangle_corners, triangle_shading_normal,
-};
+use super::intersect::{FAR, Hit, Leaving, Prim, all_zero};
 use super::offset::{leaving_surface, spawn_ray};
 use super::ray_tree::{Cut, NoTree, RayNode, TreeRecorder, record_shadow_rays};
-use super::shade::{Breakdown, Surface, attenuation_factor, shade_local};
-use super::texture::{planar_axis, planar_uv, triangle_uv, triangle_uv_origin};
+use super::shade::{Breakdown, attenuation_factor, shade_local};
+use super::surface::{reflect_dir, refract_dir, surface_at};
 use super::walk::closest_hit;
 use super::{Ray, RayCounts, TraceContext, v3};
-use glint_scene::EpsilonMode;
 use glint_types::RayKind;
-use glint_types::layout::{NO_HIT, UV_MESH, feature};
-
-/// The surface at a hit. Texture coordinates are computed only when some material has a
-/// texture (`feature::TEXTURES`), else they are zero.
-pub fn surface_at(ctx: &TraceContext, ray: &Ray, hit: &Hit) -> Surface {
-    let scene = ctx.scene;
-    let p = ray.origin + hit.t * ray.dir;
-    let robust = ctx.epsilon_mode == EpsilonMode::Robust;
-    let textures = ctx.has(feature::TEXTURES);
-    // Planar texture coordinates relative to the frame's origin, whose own are each
-    // texture's `planar_u`/`planar_v` (computed once in f64 by `rebase`).
-    let uv_origin_at = |ng: DVec3| if textures { planar_axis(ng) } else { UV_MESH };
-    match hit.prim {
-        Prim::Sphere => {
-            let s = &scene.spheres[hit.index as usize];
-            let c = v3(s.center_radius);
-            let ng = (p - c).normalize();
-            let p_surface = if robust { sphere_surface_point(p, c, f64::from(s.center_radius[3]), ng) } else { p };
-            let uv = if textures { planar_uv(p, ng) } else { DVec2::ZERO };
-            let (material, object_id, uv_origin) = (s.material, s.object_id, uv_origin_at(ng));
-            Surface { p, p_surface, ng, ns: ng, uv, uv_origin, material, object_id, prim: hit.prim, index: hit.index }
-        }
-        Prim::Plane => {
-            let pl = &scene.planes[hit.index as usize];
-            let ng = v3(pl.normal_offset);
-            let p_surface = if robust { p - (ng.dot(p) - f64::from(pl.normal_offset[3])) * ng } else { p };
-            let uv = if textures { planar_uv(p, ng) } else { DVec2::ZERO };
-            let (material, object_id, uv_origin) = (pl.material, pl.object_id, uv_origin_at(ng));
-            Surface { p, p_surface, ng, ns: ng, uv, uv_origin, material, object_id, prim: hit.prim, index: hit.index }
-        }
-        Prim::Triangle => {
-            let tri = &scene.triangles[hit.index as usize];
-            let [v0, v1, v2] = triangle_corners(scene, tri);
-            let ng = (v1 - v0).cross(v2 - v0).normalize();
-            let ns = triangle_shading_normal(scene, tri, hit.bu, hit.bv, ng);
-            let p_surface = if robust { (1.0 - hit.bu - hit.bv) * v0 + hit.bu * v1 + hit.bv * v2 } else { p };
-            let uv = if textures { triangle_uv(scene, tri, hit.bu, hit.bv, p, ng) } else { DVec2::ZERO };
-            let uv_origin = if textures { triangle_uv_origin(scene, tri, ng) } else { UV_MESH };
-            let mesh = &scene.meshes[tri.mesh as usize];
-            let (material, object_id) = (mesh.material, mesh.object_id);
-            Surface { p, p_surface, ng, ns, uv, uv_origin, material, object_id, prim: hit.prim, index: hit.index }
-        }
-    }
-}
-
-/// Refraction direction by Snell's law for unit `d` and unit `n` facing the incoming ray,
-/// with η = n_from / n_to; `None` under total internal reflection.
-pub fn refract_dir(d: DVec3, n: DVec3, eta: f64) -> Option<DVec3> {
-    let cos_i = -d.dot(n);
-    let k = 1.0 - eta * eta * (1.0 - cos_i * cos_i);
-    if k < 0.0 {
-        return None;
-    }
-    Some((eta * d + (eta * cos_i - k.sqrt()) * n).normalize())
-}
-
-/// Mirror direction R = D − 2(D·N)N.
-pub fn reflect_dir(d: DVec3, n: DVec3) -> DVec3 {
-    (d - 2.0 * d.dot(n) * n).normalize()
-}
+use glint_types::layout::{NO_HIT, feature};
 
 fn max_channel(v: DVec3) -> f64 {
     v.x.max(v.y).max(v.z)

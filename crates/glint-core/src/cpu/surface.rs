@@ -1,0 +1,71 @@
+//! CPU twin of `shaders/surface.wgsl`: the surface a ray hits, and the directions a mirror and
+//! a refracting surface send it on in. Whitted's tree (`trace.rs`) and the paths (`path.rs`)
+//! share them.
+
+use glam::{DVec2, DVec3};
+
+use super::intersect::{Hit, Prim, sphere_surface_point, triangle_corners, triangle_shading_normal};
+use super::shade::Surface;
+use super::texture::{planar_axis, planar_uv, triangle_uv, triangle_uv_origin};
+use super::{Ray, TraceContext, v3};
+use glint_scene::EpsilonMode;
+use glint_types::layout::{UV_MESH, feature};
+
+/// The surface at a hit. Texture coordinates are computed only when some material has a
+/// texture (`feature::TEXTURES`), else they are zero.
+pub fn surface_at(ctx: &TraceContext, ray: &Ray, hit: &Hit) -> Surface {
+    let scene = ctx.scene;
+    let p = ray.origin + hit.t * ray.dir;
+    let robust = ctx.epsilon_mode == EpsilonMode::Robust;
+    let textures = ctx.has(feature::TEXTURES);
+    // Planar texture coordinates relative to the frame's origin, whose own are each
+    // texture's `planar_u`/`planar_v` (computed once in f64 by `rebase`).
+    let uv_origin_at = |ng: DVec3| if textures { planar_axis(ng) } else { UV_MESH };
+    match hit.prim {
+        Prim::Sphere => {
+            let s = &scene.spheres[hit.index as usize];
+            let c = v3(s.center_radius);
+            let ng = (p - c).normalize();
+            let p_surface = if robust { sphere_surface_point(p, c, f64::from(s.center_radius[3]), ng) } else { p };
+            let uv = if textures { planar_uv(p, ng) } else { DVec2::ZERO };
+            let (material, object_id, uv_origin) = (s.material, s.object_id, uv_origin_at(ng));
+            Surface { p, p_surface, ng, ns: ng, uv, uv_origin, material, object_id, prim: hit.prim, index: hit.index }
+        }
+        Prim::Plane => {
+            let pl = &scene.planes[hit.index as usize];
+            let ng = v3(pl.normal_offset);
+            let p_surface = if robust { p - (ng.dot(p) - f64::from(pl.normal_offset[3])) * ng } else { p };
+            let uv = if textures { planar_uv(p, ng) } else { DVec2::ZERO };
+            let (material, object_id, uv_origin) = (pl.material, pl.object_id, uv_origin_at(ng));
+            Surface { p, p_surface, ng, ns: ng, uv, uv_origin, material, object_id, prim: hit.prim, index: hit.index }
+        }
+        Prim::Triangle => {
+            let tri = &scene.triangles[hit.index as usize];
+            let [v0, v1, v2] = triangle_corners(scene, tri);
+            let ng = (v1 - v0).cross(v2 - v0).normalize();
+            let ns = triangle_shading_normal(scene, tri, hit.bu, hit.bv, ng);
+            let p_surface = if robust { (1.0 - hit.bu - hit.bv) * v0 + hit.bu * v1 + hit.bv * v2 } else { p };
+            let uv = if textures { triangle_uv(scene, tri, hit.bu, hit.bv, p, ng) } else { DVec2::ZERO };
+            let uv_origin = if textures { triangle_uv_origin(scene, tri, ng) } else { UV_MESH };
+            let mesh = &scene.meshes[tri.mesh as usize];
+            let (material, object_id) = (mesh.material, mesh.object_id);
+            Surface { p, p_surface, ng, ns, uv, uv_origin, material, object_id, prim: hit.prim, index: hit.index }
+        }
+    }
+}
+
+/// Refraction direction by Snell's law for unit `d` and unit `n` facing the incoming ray,
+/// with η = n_from / n_to; `None` under total internal reflection.
+pub fn refract_dir(d: DVec3, n: DVec3, eta: f64) -> Option<DVec3> {
+    let cos_i = -d.dot(n);
+    let k = 1.0 - eta * eta * (1.0 - cos_i * cos_i);
+    if k < 0.0 {
+        return None;
+    }
+    Some((eta * d + (eta * cos_i - k.sqrt()) * n).normalize())
+}
+
+/// Mirror direction R = D − 2(D·N)N.
+pub fn reflect_dir(d: DVec3, n: DVec3) -> DVec3 {
+    (d - 2.0 * d.dot(n) * n).normalize()
+}

@@ -1,0 +1,551 @@
+// Twin of crates/glint-core/src/cpu/path.rs: the Monte Carlo path tracer, in f32, one bounce a
+// dispatch over the tile's paths (a wavefront). `start` makes each pixel's camera path for the
+// sample `tile.sample_index`; `main` then runs max_depth + 1 times, each invocation taking its
+// pixel's path one bounce on. No invocation loops over a path's bounces, so lavapipe's loop
+// budget holds at any depth: a bounce's loops are one ray's walk, the lights and a shadow ray
+// each. A path that ends adds its radiance to the output as accumulate_sample does (samples
+// in order, divided by spp at the last).
+#import glint::scene_data::{GpuMaterial, GpuPathState, NO_HIT, LIGHT_CASTS_SHADOWS, PRIM_REF_TRIANGLE, PRIM_REF_INDEX, SPECULAR_PHONG, SPECULAR_COOK_TORRANCE, STATUS_DRIVER_LOOP_CUTOFF}
+#import glint::bindings::{header, camera, tile, materials, lights, spheres, triangles, output, path_states, emitters}
+#import glint::ray::{Ray, RayCounts, ray_counts, status, driver_cut_loops, flush_counts}
+#import glint::rng::{sample_hash, hash_to_unit}
+#import glint::camera::{camera_ray, sample_offset}
+#import glint::intersect::{Hit, Leaving, FAR, PRIM_NONE, PRIM_SPHERE, PRIM_TRIANGLE, triangle_corners, all_zero}
+#ifdef BVH
+#import glint::bvh::closest_hit
+#else
+#import glint::intersect::closest_hit
+#endif
+#import glint::offset::{spawn_ray, leaving_surface}
+#import glint::shade::{Surface, light_sample, material_colours}
+#ifdef SHADOWS
+#import glint::shade::light_visibility
+#endif
+#ifdef GLOBAL_ATTENUATION
+#import glint::shade::attenuation_factor
+#endif
+#import glint::surface::{surface_at, reflect_dir}
+#ifdef TRANSMISSION
+#import glint::surface::refract_dir
+#endif
+#import glint::sample::{PI, frame_x, frame_y, to_world, cosine_hemisphere, cosine_hemisphere_pdf, cone_versin, uniform_cone, uniform_cone_pdf, uniform_triangle, area_to_solid_angle, power_heuristic}
+#import glint::bsdf::lambert_brdf
+#ifdef BLINN
+#import glint::bsdf::{blinn_brdf, blinn_pdf, sample_blinn}
+#endif
+#ifdef PHONG
+#import glint::bsdf::{phong_brdf, phong_pdf, sample_phong}
+#endif
+#ifdef COOK_TORRANCE
+#import glint::bsdf::{cook_torrance_brdf, cook_torrance_pdf, sample_cook_torrance}
+#endif
+
+// Random dimensions per bounce, and the camera's two before them (cpu::path's).
+const DIMS_PER_BOUNCE: u32 = 8u;
+const FIRST_PATH_DIM: u32 = 2u;
+// Bounces traced in full before Russian roulette, and the most a path survives it with.
+const ROULETTE_FROM: u32 = 3u;
+const MAX_SURVIVAL: f32 = 0.95;
+// What of_hit gives for a plane or a miss: nothing next-event estimation samples.
+const NO_EMITTER: u32 = 0xffffffffu;
+
+// A path between bounces (cpu::path::PathState); GpuPathState is its stored form.
+struct PathState {
+    ray: Ray,
+    t_min: f32,
+    leaving: Leaving,
+    beta: vec3<f32>,
+    radiance: vec3<f32>,
+    scattered_from: vec3<f32>,
+    scattered_pdf: f32,
+    depth: u32,
+    first_object: u32,
+    pixel: u32,
+    sample: u32,
+}
+
+// The lobes of a surface in its shading frame, seen from wo (local).
+struct Lobes {
+    fx: vec3<f32>,
+    fy: vec3<f32>,
+    ns: vec3<f32>,
+    wo: vec3<f32>,
+    kd: vec3<f32>,
+    ks: vec3<f32>,
+    weights: vec4<f32>,
+    material: u32,
+}
+
+fn max_channel(v: vec3<f32>) -> f32 {
+    return max(max(v.x, v.y), v.z);
+}
+
+#ifdef SPECULAR
+// The glossy lobe's BRDF per unit k_s, for the material's specular model.
+fn glossy_brdf(mat: GpuMaterial, wo: vec3<f32>, wi: vec3<f32>) -> f32 {
+#ifdef PHONG
+    if mat.specular_model == SPECULAR_PHONG {
+        return phong_brdf(wo, wi, mat.shininess);
+    }
+#endif
+#ifdef COOK_TORRANCE
+    if mat.specular_model == SPECULAR_COOK_TORRANCE {
+        return cook_torrance_brdf(wo, wi, mat.roughness, mat.ior, mat.fresnel);
+    }
+#endif
+#ifdef BLINN
+    return blinn_brdf(wo, wi, mat.shininess);
+#else
+    return 0.0;
+#endif
+}
+
+fn sample_glossy(mat: GpuMaterial, wo: vec3<f32>, u: vec2<f32>) -> vec3<f32> {
+#ifdef PHONG
+    if mat.specular_model == SPECULAR_PHONG {
+        return sample_phong(wo, u, mat.shininess);
+    }
+#endif
+#ifdef COOK_TORRANCE
+    if mat.specular_model == SPECULAR_COOK_TORRANCE {
+        return sample_cook_torrance(wo, u, mat.roughness);
+    }
+#endif
+#ifdef BLINN
+    return sample_blinn(wo, u, mat.shininess);
+#else
+    return vec3<f32>(0.0);
+#endif
+}
+
+fn glossy_pdf(mat: GpuMaterial, wo: vec3<f32>, wi: vec3<f32>) -> f32 {
+#ifdef PHONG
+    if mat.specular_model == SPECULAR_PHONG {
+        return phong_pdf(wo, wi, mat.shininess);
+    }
+#endif
+#ifdef COOK_TORRANCE
+    if mat.specular_model == SPECULAR_COOK_TORRANCE {
+        return cook_torrance_pdf(wo, wi, mat.roughness);
+    }
+#endif
+#ifdef BLINN
+    return blinn_pdf(wo, wi, mat.shininess);
+#else
+    return 0.0;
+#endif
+}
+#endif
+
+// The emitter a hit is on (a sphere's index, or PRIM_REF_TRIANGLE | a triangle's), if its
+// material emits; NO_EMITTER for planes, which are not sampled, and misses.
+fn of_hit(hit: Hit) -> u32 {
+    if hit.prim == PRIM_SPHERE {
+        return hit.index;
+    }
+    if hit.prim == PRIM_TRIANGLE {
+        return PRIM_REF_TRIANGLE | hit.index;
+    }
+    return NO_EMITTER;
+}
+
+// The density per unit solid angle at p with which next-event estimation picks the point q
+// (geometric normal ng_q) of emitter e, one of count.
+fn emitter_pdf(e: u32, count: u32, p: vec3<f32>, q: vec3<f32>, ng_q: vec3<f32>) -> f32 {
+    let pick = 1.0 / f32(count);
+#ifdef SPHERES
+    if (e & PRIM_REF_TRIANGLE) == 0u {
+        let cr = spheres[e].center_radius;
+        let to_c = cr.xyz - p;
+        let d2 = dot(to_c, to_c);
+        if d2 <= cr.w * cr.w {
+            return 0.0;
+        }
+        return pick * uniform_cone_pdf(cone_versin(cr.w * cr.w / d2));
+    }
+#endif
+#ifdef TRIANGLES
+    let v = triangle_corners(triangles[e & PRIM_REF_INDEX]);
+    let area = 0.5 * length(cross(v[1] - v[0], v[2] - v[0]));
+    let to_q = q - p;
+    let dist = length(to_q);
+    return pick * area_to_solid_angle(1.0 / area, dist, dot(ng_q, to_q / dist));
+#else
+    return 0.0;
+#endif
+}
+
+// A direction from p towards a point of emitter e (xyz), drawn as emitter_pdf says; w is 0
+// where there is none (p inside the sphere, or on the triangle's point).
+fn sample_emitter(e: u32, p: vec3<f32>, u: vec2<f32>) -> vec4<f32> {
+#ifdef SPHERES
+    if (e & PRIM_REF_TRIANGLE) == 0u {
+        let cr = spheres[e].center_radius;
+        let to_c = cr.xyz - p;
+        let d2 = dot(to_c, to_c);
+        if d2 <= cr.w * cr.w {
+            return vec4<f32>(0.0);
+        }
+        return vec4<f32>(to_world(to_c / sqrt(d2), uniform_cone(u, cone_versin(cr.w * cr.w / d2))), 1.0);
+    }
+#endif
+#ifdef TRIANGLES
+    let v = triangle_corners(triangles[e & PRIM_REF_INDEX]);
+    let bary = uniform_triangle(u);
+    let q = v[0] + bary.x * (v[1] - v[0]) + bary.y * (v[2] - v[0]);
+    let len = length(q - p);
+    if len > 0.0 {
+        return vec4<f32>((q - p) / len, 1.0);
+    }
+#endif
+    return vec4<f32>(0.0);
+}
+
+// The path's random number in dimension dim.
+fn path_uniform(path: PathState, dim: u32) -> f32 {
+    return hash_to_unit(sample_hash(path.pixel, path.sample, dim, header.seed));
+}
+
+fn to_local(l: Lobes, d: vec3<f32>) -> vec3<f32> {
+    return vec3<f32>(dot(d, l.fx), dot(d, l.fy), dot(d, l.ns));
+}
+
+// The BRDF of Lambert's and the glossy lobe at the local direction wi.
+fn lobes_brdf(l: Lobes, wi: vec3<f32>) -> vec3<f32> {
+    var glossy = vec3<f32>(0.0);
+#ifdef SPECULAR
+    if !all_zero(l.ks) {
+        glossy = l.ks * glossy_brdf(materials[l.material], l.wo, wi);
+    }
+#endif
+    return l.kd * lambert_brdf(l.wo, wi) + glossy;
+}
+
+// The density with which the non-delta lobes draw wi, as a bounce's own choice does.
+fn lobes_pdf(l: Lobes, wi: vec3<f32>) -> f32 {
+    var glossy = 0.0;
+#ifdef SPECULAR
+    if !all_zero(l.ks) {
+        glossy = glossy_pdf(materials[l.material], l.wo, wi);
+    }
+#endif
+    let w = l.weights;
+    return (w.x * cosine_hemisphere_pdf(wi.z) + w.y * glossy) / (w.x + w.y + w.z + w.w);
+}
+
+fn start_path(x: u32, y: u32, sample_index: u32) -> PathState {
+    let pixel = y * header.width + x;
+    let offset = sample_offset(pixel, sample_index, header.spp, header.seed);
+    ray_counts.camera += 1u;
+    let zero = vec3<f32>(0.0);
+    return PathState(
+        camera_ray(camera, header.width, header.height, x, y, offset),
+        0.0,
+        Leaving(PRIM_NONE, 0u, false),
+        vec3<f32>(1.0),
+        zero,
+        zero,
+        0.0,
+        0u,
+        NO_HIT,
+        pixel,
+        sample_index,
+    );
+}
+
+// radiance plus beta times every point, spot and directional light's direct light at s, by
+// Whitted's factors, light by light.
+fn lights_light(l: Lobes, s: Surface, ng: vec3<f32>, beta: vec3<f32>, radiance: vec3<f32>) -> vec3<f32> {
+    var sum = radiance;
+    for (var i = 0u; i < header.light_count; i++) {
+        let light = lights[i];
+        let ls = light_sample(light, s.p);
+        let scale = ls.f_att * ls.spot;
+        let n_dot_l = dot(l.ns, ls.l);
+        if scale == 0.0 || n_dot_l <= 0.0 {
+            continue;
+        }
+        var visibility = vec3<f32>(1.0);
+#ifdef SHADOWS
+        if (light.flags & LIGHT_CASTS_SHADOWS) != 0u {
+            visibility = light_visibility(light, s, ng, ls);
+        }
+#endif
+        let diffuse = light.diffuse.xyz * l.kd * n_dot_l;
+        var glossy = vec3<f32>(0.0);
+#ifdef SPECULAR
+        if !all_zero(l.ks) {
+            glossy = PI * light.specular.xyz * l.ks * glossy_brdf(materials[l.material], l.wo, to_local(l, ls.l)) * n_dot_l;
+        }
+#endif
+        sum += beta * scale * (visibility * (diffuse + glossy));
+    }
+    return sum;
+}
+
+#ifdef EMISSION
+// What emitter e sends back along dir from s, drawn by next-event estimation and weighed
+// against the paths that meet it (mis), or alone.
+fn emitter_light(e: u32, count: u32, l: Lobes, s: Surface, ng: vec3<f32>, dir: vec3<f32>, mis: bool) -> vec3<f32> {
+    let wi = to_local(l, dir);
+    if wi.z <= 0.0 || dot(dir, ng) <= 0.0 {
+        return vec3<f32>(0.0);
+    }
+    let sp = spawn_ray(s.p, s.p_surface, ng, dir, leaving_surface(s.prim, s.index, s.ng, ng));
+    let shadow = Ray(sp.origin, dir);
+    ray_counts.shadow += 1u;
+    // Seen if it is what the ray meets first, on its front face.
+    let hit = closest_hit(shadow, sp.t_min, FAR, sp.leaving);
+    if hit.prim == PRIM_NONE || of_hit(hit) != e {
+        return vec3<f32>(0.0);
+    }
+    let q = surface_at(shadow, hit);
+    let light_pdf = emitter_pdf(e, count, s.p, q.p, q.ng);
+    if dot(dir, q.ng) >= 0.0 || light_pdf <= 0.0 {
+        return vec3<f32>(0.0);
+    }
+    var emission = material_colours(materials[q.material], q.uv, q.uv_origin).emission;
+#ifdef GLOBAL_ATTENUATION
+    emission *= attenuation_factor(header.global_attenuation, hit.t);
+#endif
+    let f = lobes_brdf(l, wi);
+    var weight = 1.0;
+    if mis {
+        weight = power_heuristic(light_pdf, lobes_pdf(l, wi));
+    }
+    return f * emission * (wi.z * weight / light_pdf);
+}
+#endif
+
+// One bounce of the path: what its ray meets adds its emission, the lights' and one emitter's
+// direct light; then the path goes on along one lobe (true) or ends (false).
+fn path_bounce(path: ptr<function, PathState>) -> bool {
+    let depth = (*path).depth;
+    let ray = (*path).ray;
+    let hit = closest_hit(ray, (*path).t_min, FAR, (*path).leaving);
+    if hit.prim == PRIM_NONE {
+        (*path).radiance += (*path).beta * header.background.xyz;
+        return false;
+    }
+#ifdef GLOBAL_ATTENUATION
+    if depth > 0u {
+        (*path).beta *= attenuation_factor(header.global_attenuation, hit.t);
+    }
+#endif
+    let s = surface_at(ray, hit);
+    if depth == 0u {
+        (*path).first_object = s.object_id;
+    }
+    let front = dot(ray.dir, s.ng) < 0.0;
+    let ng = select(-s.ng, s.ng, front);
+    let ns = select(-s.ns, s.ns, front);
+    let mat = materials[s.material];
+    let c = material_colours(mat, s.uv, s.uv_origin);
+#ifdef EMISSION
+    if front && !all_zero(c.emission) {
+        var weight = 1.0;
+        let e = of_hit(hit);
+        if e != NO_EMITTER && (*path).scattered_pdf > 0.0 {
+            weight = power_heuristic((*path).scattered_pdf, emitter_pdf(e, emitters[0], (*path).scattered_from, s.p, s.ng));
+        }
+        (*path).radiance += (*path).beta * c.emission * weight;
+    }
+#endif
+    let fx = frame_x(ns);
+    let fy = frame_y(ns);
+    var ks = vec3<f32>(0.0);
+#ifdef SPECULAR
+    ks = mat.ks.xyz;
+#endif
+    var kr = vec3<f32>(0.0);
+#ifdef REFLECTION
+    kr = mat.kr.xyz;
+#endif
+    var kt = vec3<f32>(0.0);
+#ifdef TRANSMISSION
+    kt = mat.kt.xyz;
+#endif
+    let l = Lobes(
+        fx,
+        fy,
+        ns,
+        vec3<f32>(dot(-ray.dir, fx), dot(-ray.dir, fy), dot(-ray.dir, ns)),
+        c.kd,
+        ks,
+        vec4<f32>(max_channel(c.kd), max_channel(ks), max_channel(kr), max_channel(kt)),
+        s.material,
+    );
+    (*path).radiance = lights_light(l, s, ng, (*path).beta, (*path).radiance);
+
+    let weights = l.weights;
+    let dim = FIRST_PATH_DIM + depth * DIMS_PER_BOUNCE;
+#ifdef EMISSION
+    let count = emitters[0];
+    if count > 0u && weights.x + weights.y > 0.0 {
+        let pick = min(u32(path_uniform(*path, dim + 4u) * f32(count)), count - 1u);
+        let e = emitters[1u + pick];
+        let u = vec2<f32>(path_uniform(*path, dim + 5u), path_uniform(*path, dim + 6u));
+        let dir = sample_emitter(e, s.p, u);
+        if dir.w != 0.0 {
+            // At the last bounce no path goes on to meet the emitter: its light sample alone
+            // counts it, unweighted.
+            (*path).radiance += (*path).beta * emitter_light(e, count, l, s, ng, dir.xyz, depth < header.max_depth);
+        }
+    }
+#endif
+
+    // Without indirect light only k_r and k_t go on: Whitted's transport.
+    let choice = select(vec4<f32>(0.0, 0.0, weights.z, weights.w), weights, header.indirect != 0u);
+    let total = choice.x + choice.y + choice.z + choice.w;
+    if depth == header.max_depth || total <= 0.0 {
+        return false;
+    }
+    let pick = path_uniform(*path, dim) * total;
+    let u = vec2<f32>(path_uniform(*path, dim + 1u), path_uniform(*path, dim + 2u));
+    var dir = vec3<f32>(0.0);
+    var transmitted = false;
+    if pick < choice.x + choice.y {
+        // Lambert's and the glossy lobe as one mixture.
+        var wi = cosine_hemisphere(u);
+#ifdef SPECULAR
+        if pick >= choice.x {
+            wi = sample_glossy(mat, l.wo, u);
+        }
+#endif
+        if wi.z <= 0.0 {
+            return false;
+        }
+        let pdf = lobes_pdf(l, wi);
+        if pdf <= 0.0 {
+            return false;
+        }
+        (*path).beta *= lobes_brdf(l, wi) * (wi.z / pdf);
+        ray_counts.reflection += 1u;
+        (*path).scattered_from = s.p;
+        (*path).scattered_pdf = pdf;
+        dir = to_world(ns, wi);
+    } else if pick < choice.x + choice.y + choice.z {
+        (*path).beta *= kr * (total / choice.z);
+        ray_counts.reflection += 1u;
+        (*path).scattered_pdf = 0.0;
+        dir = reflect_dir(ray.dir, ns);
+    } else {
+#ifdef TRANSMISSION
+        (*path).beta *= kt * (total / choice.w);
+        (*path).scattered_pdf = 0.0;
+        let eta = select(mat.ior, 1.0 / mat.ior, front);
+        let refracted = refract_dir(ray.dir, ns, eta);
+        if refracted.w != 0.0 {
+            ray_counts.refraction += 1u;
+            dir = refracted.xyz;
+            transmitted = true;
+        } else {
+            // Total internal reflection: k_t's share follows the mirror direction.
+            ray_counts.reflection += 1u;
+            dir = reflect_dir(ray.dir, ns);
+        }
+#else
+        return false;
+#endif
+    }
+    // Leave on the side the lobe sends the path to; a drawn direction into the surface ends it.
+    let side = select(ng, -ng, transmitted);
+    if dot(dir, side) <= 0.0 {
+        return false;
+    }
+    if depth + 1u >= ROULETTE_FROM {
+        let survival = min(max_channel((*path).beta), MAX_SURVIVAL);
+        if path_uniform(*path, dim + 3u) >= survival {
+            return false;
+        }
+        (*path).beta /= survival;
+    }
+    let sp = spawn_ray(s.p, s.p_surface, side, dir, leaving_surface(s.prim, s.index, s.ng, side));
+    (*path).ray = Ray(sp.origin, dir);
+    (*path).t_min = sp.t_min;
+    (*path).leaving = sp.leaving;
+    (*path).depth += 1u;
+    return true;
+}
+
+fn load_path(slot: u32) -> PathState {
+    let g = path_states[slot];
+    let leaving = Leaving(g.leaving_prim, g.leaving_index, g.leaving_inside != 0u);
+    return PathState(Ray(g.origin, g.dir), g.t_min, leaving, g.beta, g.radiance, g.scattered_from, g.scattered_pdf, g.depth, g.first_object, g.pixel, g.sample);
+}
+
+fn store_path(slot: u32, p: PathState, alive: bool) {
+    path_states[slot] = GpuPathState(
+        p.ray.origin,
+        p.t_min,
+        p.ray.dir,
+        p.depth,
+        p.beta,
+        p.scattered_pdf,
+        p.radiance,
+        p.first_object,
+        p.scattered_from,
+        u32(alive),
+        p.leaving.prim,
+        p.leaving.index,
+        u32(p.leaving.inside),
+        p.pixel,
+        p.sample,
+        0u,
+        0u,
+        0u,
+    );
+}
+
+// The ended path's radiance into its pixel: sample 0 writes it (with the first hit), later
+// samples add theirs, the last divides by spp.
+fn finish_path(p: PathState) {
+    let index = p.pixel;
+    if tile.sample_index == 0u {
+        output[index] = vec4<f32>(p.radiance, select(f32(p.first_object), -1.0, p.first_object == NO_HIT));
+    } else {
+        output[index] = vec4<f32>(output[index].xyz + p.radiance, output[index].w);
+    }
+    if tile.sample_index + 1u == header.spp && header.spp > 1u {
+        output[index] = vec4<f32>(output[index].xyz / f32(header.spp), output[index].w);
+    }
+}
+
+@compute @workgroup_size(8, 8, 1)
+fn start(@builtin(global_invocation_id) gid: vec3<u32>) {
+    if gid.x >= tile.width || gid.y >= tile.height {
+        return;
+    }
+    ray_counts = RayCounts(0u, 0u, 0u, 0u, 0u);
+    status = 0u;
+    let path = start_path(tile.origin_x + gid.x, tile.origin_y + gid.y, tile.sample_index);
+    store_path(gid.y * tile.width + gid.x, path, true);
+    if driver_cut_loops() {
+        status |= STATUS_DRIVER_LOOP_CUTOFF;
+    }
+    flush_counts();
+}
+
+@compute @workgroup_size(8, 8, 1)
+fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
+    if gid.x >= tile.width || gid.y >= tile.height {
+        return;
+    }
+    let slot = gid.y * tile.width + gid.x;
+    if path_states[slot].alive == 0u {
+        return;
+    }
+    ray_counts = RayCounts(0u, 0u, 0u, 0u, 0u);
+    status = 0u;
+    var path = load_path(slot);
+    if path_bounce(&path) {
+        store_path(slot, path, true);
+    } else {
+        path_states[slot].alive = 0u;
+        finish_path(path);
+    }
+    if driver_cut_loops() {
+        status |= STATUS_DRIVER_LOOP_CUTOFF;
+    }
+    flush_counts();
+}
