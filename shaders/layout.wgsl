@@ -66,7 +66,8 @@ const STAT_REFLECTION: u32 = 4u;
 const STAT_REFRACTION: u32 = 6u;
 const STAT_BAILOUT_SAVED: u32 = 8u;
 const STAT_STATUS: u32 = 10u;
-const STAT_WORDS: u32 = 12u;
+const STAT_PIXELS_DONE: u32 = 12u;
+const STAT_WORDS: u32 = 14u;
 
 struct SceneHeader {
     width: u32,
@@ -183,26 +184,16 @@ struct GpuMesh {
     pad: u32,
 }
 
-// A path between the path tracer's per-bounce dispatches (glint_types::layout::GpuPathState).
+// A path between the path tracer's per-bounce dispatches (glint_types::layout::GpuPathState):
+// seven vector words, u32 fields as the bits of a w.
 struct GpuPathState {
-    origin: vec3<f32>,
-    t_min: f32,
-    dir: vec3<f32>,
-    depth: u32,
-    beta: vec3<f32>,
-    scattered_pdf: f32,
-    radiance: vec3<f32>,
-    first_object: u32,
-    scattered_from: vec3<f32>,
-    alive: u32,
-    leaving_prim: u32,
-    leaving_index: u32,
-    leaving_inside: u32,
-    pixel: u32,
-    sample: u32,
-    pad_a: u32,
-    pad_b: u32,
-    pad_c: u32,
+    origin: vec4<f32>,
+    dir: vec4<f32>,
+    beta: vec4<f32>,
+    radiance: vec4<f32>,
+    scattered_from: vec4<f32>,
+    leaving_pixel: vec4<u32>,
+    sample: vec4<u32>,
 }
 
 // The pixel rectangle one dispatch renders.
@@ -213,7 +204,7 @@ struct TileParams {
     height: u32,
     sample_index: u32,
     canary_laps: u32,
-    pad_a: u32,
+    sample_end: u32,
     pad_b: u32,
 }
 

@@ -1,12 +1,15 @@
 // Twin of crates/glint-core/src/cpu/path.rs: the Monte Carlo path tracer, in f32, one bounce a
 // dispatch over the tile's paths (a wavefront). `start` makes each pixel's camera path for the
-// sample `tile.sample_index`; `main` then runs max_depth + 1 times, each invocation taking its
-// pixel's path one bounce on. No invocation loops over a path's bounces, so lavapipe's loop
-// budget holds at any depth: a bounce's loops are one ray's walk, the lights and a shadow ray
-// each. A path that ends adds its radiance to the output as accumulate_sample does (samples
-// in order, divided by spp at the last).
-#import glint::scene_data::{GpuMaterial, GpuPathState, NO_HIT, LIGHT_CASTS_SHADOWS, PRIM_REF_TRIANGLE, PRIM_REF_INDEX, SPECULAR_PHONG, SPECULAR_COOK_TORRANCE, STATUS_DRIVER_LOOP_CUTOFF}
-#import glint::bindings::{header, camera, tile, materials, lights, spheres, triangles, output, path_states, emitters}
+// sample `tile.sample_index`; `main` then runs until every pixel has run its samples up to
+// `tile.sample_end`, each invocation taking its pixel's path one bounce on. No invocation loops
+// over a path's bounces, so lavapipe's loop budget holds at any depth: a bounce's loops are one
+// ray's walk, the lights and a shadow ray each. A path that ends adds its radiance to the
+// output as accumulate_sample does (samples in order, divided by spp at the last), and its
+// pixel's next sample starts in its place at once (path regeneration, Novák et al. 2010), so
+// that the lanes of a workgroup stay busy while their paths' lengths differ. A pixel done with
+// the batch counts itself in STAT_PIXELS_DONE, which the host reads to know when to stop.
+#import glint::scene_data::{GpuMaterial, GpuPathState, NO_HIT, LIGHT_CASTS_SHADOWS, PRIM_REF_TRIANGLE, PRIM_REF_INDEX, SPECULAR_PHONG, SPECULAR_COOK_TORRANCE, STATUS_DRIVER_LOOP_CUTOFF, STAT_PIXELS_DONE}
+#import glint::bindings::{header, camera, tile, materials, lights, spheres, triangles, output, stats, path_states, emitters}
 #import glint::ray::{Ray, RayCounts, ray_counts, status, driver_cut_loops, flush_counts}
 #import glint::rng::{sample_hash, hash_to_unit}
 #import glint::camera::{camera_ray, sample_offset}
@@ -470,43 +473,49 @@ fn path_bounce(path: ptr<function, PathState>) -> bool {
 
 fn load_path(slot: u32) -> PathState {
     let g = path_states[slot];
-    let leaving = Leaving(g.leaving_prim, g.leaving_index, g.leaving_inside != 0u);
-    return PathState(Ray(g.origin, g.dir), g.t_min, leaving, g.beta, g.radiance, g.scattered_from, g.scattered_pdf, g.depth, g.first_object, g.pixel, g.sample);
+    let leaving = Leaving(g.leaving_pixel.x, g.leaving_pixel.y, g.leaving_pixel.z != 0u);
+    return PathState(
+        Ray(g.origin.xyz, g.dir.xyz),
+        g.origin.w,
+        leaving,
+        g.beta.xyz,
+        g.radiance.xyz,
+        g.scattered_from.xyz,
+        g.beta.w,
+        bitcast<u32>(g.dir.w),
+        bitcast<u32>(g.radiance.w),
+        g.leaving_pixel.w,
+        g.sample.x,
+    );
 }
 
 fn store_path(slot: u32, p: PathState, alive: bool) {
     path_states[slot] = GpuPathState(
-        p.ray.origin,
-        p.t_min,
-        p.ray.dir,
-        p.depth,
-        p.beta,
-        p.scattered_pdf,
-        p.radiance,
-        p.first_object,
-        p.scattered_from,
-        u32(alive),
-        p.leaving.prim,
-        p.leaving.index,
-        u32(p.leaving.inside),
-        p.pixel,
-        p.sample,
-        0u,
-        0u,
-        0u,
+        vec4<f32>(p.ray.origin, p.t_min),
+        vec4<f32>(p.ray.dir, bitcast<f32>(p.depth)),
+        vec4<f32>(p.beta, p.scattered_pdf),
+        vec4<f32>(p.radiance, bitcast<f32>(p.first_object)),
+        vec4<f32>(p.scattered_from, bitcast<f32>(u32(alive))),
+        vec4<u32>(p.leaving.prim, p.leaving.index, u32(p.leaving.inside), p.pixel),
+        vec4<u32>(p.sample, 0u, 0u, 0u),
     );
+}
+
+// Whether the path in `slot` goes on (its pixel's batch not done).
+fn path_alive(slot: u32) -> bool {
+    return bitcast<u32>(path_states[slot].scattered_from.w) != 0u;
 }
 
 // The ended path's radiance into its pixel: sample 0 writes it (with the first hit), later
 // samples add theirs, the last divides by spp.
 fn finish_path(p: PathState) {
     let index = p.pixel;
-    if tile.sample_index == 0u {
+    if p.sample == 0u {
         output[index] = vec4<f32>(p.radiance, select(f32(p.first_object), -1.0, p.first_object == NO_HIT));
     } else {
         output[index] = vec4<f32>(output[index].xyz + p.radiance, output[index].w);
     }
-    if tile.sample_index + 1u == header.spp && header.spp > 1u {
+    if p.sample + 1u == header.spp && header.spp > 1u {
         output[index] = vec4<f32>(output[index].xyz / f32(header.spp), output[index].w);
     }
 }
@@ -532,7 +541,7 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
         return;
     }
     let slot = gid.y * tile.width + gid.x;
-    if path_states[slot].alive == 0u {
+    if !path_alive(slot) {
         return;
     }
     ray_counts = RayCounts(0u, 0u, 0u, 0u, 0u);
@@ -541,8 +550,13 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
     if path_bounce(&path) {
         store_path(slot, path, true);
     } else {
-        path_states[slot].alive = 0u;
         finish_path(path);
+        if path.sample + 1u < tile.sample_end {
+            store_path(slot, start_path(tile.origin_x + gid.x, tile.origin_y + gid.y, path.sample + 1u), true);
+        } else {
+            path_states[slot].scattered_from.w = bitcast<f32>(0u);
+            atomicAdd(&stats[STAT_PIXELS_DONE], 1u);
+        }
     }
     if driver_cut_loops() {
         status |= STATUS_DRIVER_LOOP_CUTOFF;

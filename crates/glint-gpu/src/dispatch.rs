@@ -4,19 +4,27 @@
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, AtomicU32, Ordering};
 
-use glint_types::layout::TileParams;
+use glint_types::layout::{STAT_PIXELS_DONE, TileParams};
 
 use crate::buffers::{SceneBuffers, ZERO_STATS};
 use crate::context::GpuContext;
 use crate::error::GpuError;
 use crate::pipeline::TracerPipeline;
+use crate::readback::read_buffer;
 
 /// Tile edge in pixels: one submission renders at most this square, so no single submission
 /// runs long enough to trip a desktop GPU's watchdog.
 pub const DEFAULT_TILE: u32 = 256;
 
-/// Edge of the shader's workgroup (`@workgroup_size(8, 8, 1)` of trace.wgsl).
+/// Edge of the shader's workgroup (`@workgroup_size(8, 8, 1)` of trace.wgsl and path.wgsl).
 pub const WORKGROUP: u32 = 8;
+
+/// Samples of a pixel the path tracer runs in one batch over a tile: long enough that a
+/// workgroup's lanes stay busy while their paths' lengths differ, short enough to show progress.
+pub const PATH_BATCH: u32 = 64;
+
+/// Bounce dispatches between two reads of the finished-pixel count.
+const PATH_CHUNK: u32 = 8;
 
 /// Checks that a tile of `tile` pixels a side needs no more workgroups than the device
 /// dispatches.
@@ -48,9 +56,9 @@ impl SceneBuffers {
         ctx.queue.write_buffer(&self.stats, 0, bytemuck::cast_slice(&ZERO_STATS));
     }
 
-    /// One sample of one tile: Whitted's kernel once, or the path tracer's `start` and then
-    /// its bounce kernel max_depth + 1 times (a path ends at the latest at max_depth), all in
-    /// one submission: wgpu orders the dispatches of a pass, each bounce seeing the last's paths.
+    /// One sample of one tile: Whitted's kernel once, or the path tracer's `start` and then its
+    /// bounce kernel max_depth + 1 times, by which every path has ended (the probe and the
+    /// pipeline's priming render one pixel this way).
     fn dispatch_tile(
         &self,
         ctx: &GpuContext,
@@ -59,6 +67,24 @@ impl SceneBuffers {
         params: TileParams,
     ) -> wgpu::SubmissionIndex {
         ctx.queue.write_buffer(&self.tile, 0, bytemuck::bytes_of(&params));
+        let groups = (params.width.div_ceil(WORKGROUP), params.height.div_ceil(WORKGROUP));
+        match &pipeline.start {
+            Some(start) => {
+                self.encode(ctx, bind_group, groups, &[(start, 1), (&pipeline.pipeline, self.max_depth + 1)])
+            }
+            None => self.encode(ctx, bind_group, groups, &[(&pipeline.pipeline, 1)]),
+        }
+    }
+
+    /// One submission of `steps` (each kernel dispatched so many times, in order, over `groups`
+    /// workgroups): wgpu orders the dispatches of a pass, each seeing what the last wrote.
+    fn encode(
+        &self,
+        ctx: &GpuContext,
+        bind_group: &wgpu::BindGroup,
+        groups: (u32, u32),
+        steps: &[(&wgpu::ComputePipeline, u32)],
+    ) -> wgpu::SubmissionIndex {
         let mut encoder =
             ctx.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("glint tile") });
         {
@@ -67,21 +93,72 @@ impl SceneBuffers {
                 timestamp_writes: None,
             });
             pass.set_bind_group(0, bind_group, &[]);
-            let groups = (params.width.div_ceil(WORKGROUP), params.height.div_ceil(WORKGROUP));
-            let bounces = match &pipeline.start {
-                Some(start) => {
-                    pass.set_pipeline(start);
+            for &(kernel, times) in steps {
+                pass.set_pipeline(kernel);
+                for _ in 0..times {
                     pass.dispatch_workgroups(groups.0, groups.1, 1);
-                    self.max_depth + 1
                 }
-                None => 1,
-            };
-            pass.set_pipeline(&pipeline.pipeline);
-            for _ in 0..bounces {
-                pass.dispatch_workgroups(groups.0, groups.1, 1);
             }
         }
         ctx.queue.submit([encoder.finish()])
+    }
+
+    /// The path tracer's image: batches of `PATH_BATCH` samples, each over every tile. A tile's
+    /// pixels each run the batch's samples one after the other (path.wgsl); the bounce kernel
+    /// is dispatched in chunks until the finished-pixel count says all are done, which takes
+    /// at most (samples × (max_depth + 1)) dispatches. A cancel stops between chunks; the
+    /// progress counts the batches' samples.
+    fn dispatch_paths(
+        &self,
+        ctx: &GpuContext,
+        pipeline: &TracerPipeline,
+        start: &wgpu::ComputePipeline,
+        bind_group: &wgpu::BindGroup,
+        tile: u32,
+        control: DispatchControl<'_>,
+    ) -> Result<(), GpuError> {
+        let cancelled = || control.cancel.is_some_and(|c| c.load(Ordering::Relaxed));
+        if let Some(p) = control.progress {
+            p.start(self.spp);
+        }
+        for first in (0..self.spp).step_by(PATH_BATCH as usize) {
+            let end = (first + PATH_BATCH).min(self.spp);
+            // Every path ends within max_depth + 1 bounces; every sample takes at least one.
+            let most = (end - first) * (self.max_depth + 1);
+            for y0 in (0..self.height).step_by(tile as usize) {
+                for x0 in (0..self.width).step_by(tile as usize) {
+                    if cancelled() {
+                        return Err(GpuError::Cancelled);
+                    }
+                    let (width, height) = (tile.min(self.width - x0), tile.min(self.height - y0));
+                    let params = TileParams { sample_end: end, ..TileParams::new(x0, y0, width, height, first) };
+                    ctx.queue.write_buffer(&self.tile, 0, bytemuck::bytes_of(&params));
+                    let done_word = u64::from(STAT_PIXELS_DONE) * 4;
+                    ctx.queue.write_buffer(&self.stats, done_word, bytemuck::bytes_of(&0u32));
+                    let groups = (width.div_ceil(WORKGROUP), height.div_ceil(WORKGROUP));
+                    let mut dispatched = (end - first).max(PATH_CHUNK).min(most);
+                    self.encode(ctx, bind_group, groups, &[(start, 1), (&pipeline.pipeline, dispatched)]);
+                    while self.pixels_done(ctx)? < width * height && dispatched < most {
+                        if cancelled() {
+                            return Err(GpuError::Cancelled);
+                        }
+                        let chunk = PATH_CHUNK.min(most - dispatched);
+                        self.encode(ctx, bind_group, groups, &[(&pipeline.pipeline, chunk)]);
+                        dispatched += chunk;
+                    }
+                }
+            }
+            if let Some(p) = control.progress {
+                p.finished(end);
+            }
+        }
+        Ok(())
+    }
+
+    /// How many pixels of the tile have finished their batch (waits for the GPU).
+    fn pixels_done(&self, ctx: &GpuContext) -> Result<u32, GpuError> {
+        let words = read_buffer(ctx, &self.stats)?;
+        Ok(bytemuck::cast_slice::<u8, u32>(&words)[STAT_PIXELS_DONE as usize])
     }
 
     /// Dispatches the whole image: one submission per tile and sample, so that no submission
@@ -100,6 +177,9 @@ impl SceneBuffers {
         control: DispatchControl<'_>,
     ) -> Result<(), GpuError> {
         let tile = tile.max(WORKGROUP);
+        if let Some(start) = &pipeline.start {
+            return self.dispatch_paths(ctx, pipeline, start, bind_group, tile, control);
+        }
         if let Some(p) = control.progress {
             p.start(self.spp);
         }

@@ -106,7 +106,7 @@ const TWINS: [(&str, &str, &str, &str); 16] = [
 ];
 
 /// Functions only the GPU side has, and why.
-const GPU_ONLY: [(&str, &str, &str); 42] = [
+const GPU_ONLY: [(&str, &str, &str); 43] = [
     ("bvh.wgsl", "load_node", "the root in two vec4 loads; the CPU reads the shared BvhNode where it lies"),
     (
         "bvh.wgsl",
@@ -215,6 +215,7 @@ const GPU_ONLY: [(&str, &str, &str); 42] = [
         "store_path",
         "a path into the buffer between dispatches (GpuPathState); the CPU keeps it in a local",
     ),
+    ("path.wgsl", "path_alive", "reads the stored path's flag; the CPU's path_sample loops while path_bounce says so"),
     ("path.wgsl", "finish_path", "an ended path into the output, sample by sample as the CPU's path_pixel sums them"),
 ];
 

@@ -106,14 +106,16 @@ pub const PAIR_FIRST_SHIFT: u32 = 2 * NODE_REF_COUNT_BITS;
 /// (`SceneHeader::frame`).
 pub const WORLD_FRAME: [f32; 4] = [0.0, 0.0, 0.0, 1.0];
 
-/// Layout of the GPU statistics buffer: (lo, hi) u32 pairs per ray kind, then the status word.
+/// Layout of the GPU statistics buffer: (lo, hi) u32 pairs per ray kind, the status word, and
+/// the path tracer's count of a tile's pixels that finished their batch of samples.
 pub const STAT_CAMERA: u32 = 0;
 pub const STAT_SHADOW: u32 = 2;
 pub const STAT_REFLECTION: u32 = 4;
 pub const STAT_REFRACTION: u32 = 6;
 pub const STAT_BAILOUT_SAVED: u32 = 8;
 pub const STAT_STATUS: u32 = 10;
-pub const STAT_WORDS: u32 = 12;
+pub const STAT_PIXELS_DONE: u32 = 12;
+pub const STAT_WORDS: u32 = 14;
 
 /// Feature bits (`SceneHeader::features`): what the scene uses. Both tracers skip the work of
 /// an absent feature, and the GPU tracer removes its code (`#ifdef` shader defs named
@@ -421,7 +423,9 @@ pub struct TileParams {
     /// Iterations of the canary loop (always `LOOP_CANARY_LAPS`; a uniform so that no
     /// compiler can unroll it).
     pub canary_laps: u32,
-    pub pad_a: u32,
+    /// The path tracer's batch ends before this sample: each pixel runs its samples from
+    /// `sample_index` up to it, one after the other (`sample_index + 1` for Whitted's).
+    pub sample_end: u32,
     pub pad_b: u32,
 }
 
@@ -438,7 +442,7 @@ impl TileParams {
             height,
             sample_index,
             canary_laps: LOOP_CANARY_LAPS,
-            pad_a: 0,
+            sample_end: sample_index + 1,
             pad_b: 0,
         }
     }
@@ -450,30 +454,27 @@ impl TileParams {
 }
 
 /// A path between the GPU path tracer's per-bounce dispatches (path.wgsl's `load_path` and
-/// `store_path`; the f32 form of `cpu::path::PathState`), one per pixel of a tile.
+/// `store_path`; the f32 form of `cpu::path::PathState`), one per pixel of a tile. Seven
+/// 16-byte words, u32 fields as their bits in a w: lavapipe loads a storage buffer lane by lane
+/// once per load instruction, and seven vector loads are fewer than eighteen scalar ones.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuPathState {
-    pub origin: [f32; 3],
-    pub t_min: f32,
-    pub dir: [f32; 3],
-    pub depth: u32,
-    pub beta: [f32; 3],
-    pub scattered_pdf: f32,
-    pub radiance: [f32; 3],
-    pub first_object: u32,
-    pub scattered_from: [f32; 3],
-    /// 1 while the path goes on; the bounce dispatches pass over the others.
-    pub alive: u32,
-    /// The primitive the ray leaves (`Leaving`, whose bool WGSL cannot store).
-    pub leaving_prim: u32,
-    pub leaving_index: u32,
-    pub leaving_inside: u32,
-    pub pixel: u32,
-    pub sample: u32,
-    pub pad_a: u32,
-    pub pad_b: u32,
-    pub pad_c: u32,
+    /// xyz the ray's origin, w its t_min.
+    pub origin: [f32; 4],
+    /// xyz the ray's direction, w the bounces so far (a u32's bits).
+    pub dir: [f32; 4],
+    /// xyz the throughput, w the density of the last non-delta scatter (0 after a delta lobe).
+    pub beta: [f32; 4],
+    /// xyz the radiance so far, w the first object hit (a u32's bits).
+    pub radiance: [f32; 4],
+    /// xyz where the path last scattered off a non-delta lobe, w 1 while the path goes on and
+    /// 0 once its pixel's batch is done (a u32's bits).
+    pub scattered_from: [f32; 4],
+    /// The primitive the ray leaves (`Leaving`: prim, index, inside as 0 or 1) and the pixel.
+    pub leaving_pixel: [u32; 4],
+    /// x the sample; y, z, w unused.
+    pub sample: [u32; 4],
 }
 
 /// Lights whose terms the GPU pixel probe records (the CPU probe records all).
