@@ -10,6 +10,7 @@ mod geometry_cache;
 mod gltf_lights;
 mod ground;
 mod parity;
+mod path;
 mod present;
 mod probe;
 mod properties;
