@@ -155,7 +155,7 @@ pub fn parse_ray_cap(s: &str) -> Result<u64, String> {
     }
 }
 
-fn parse_integrator(s: &str) -> Result<Integrator, String> {
+pub fn parse_integrator(s: &str) -> Result<Integrator, String> {
     Integrator::from_name(s).ok_or_else(|| {
         let names: Vec<&str> = Integrator::ALL.iter().map(|m| m.name()).collect();
         format!("unknown integrator '{s}'; allowed: {}", names.join(", "))

@@ -300,3 +300,41 @@ fn check_specular_csv(csv: &str, skip_gpu: bool) {
         assert!(models.iter().all(|(_, n)| *n == models[0].1), "{key:?}: ray counts differ: {models:?}");
     }
 }
+
+#[test]
+fn report_renders_every_scene_with_the_integrator_it_is_given() {
+    // The CPU alone, one small scene: the sweep's rows, not their speed, are checked here.
+    let dir = TempDir::new("report-integrator");
+    let out_dir = dir.join("out");
+    let out = glint(
+        &dir,
+        [
+            "report".as_ref(),
+            "--quick".as_ref(),
+            "--cpu-only".as_ref(),
+            "--scenes".as_ref(),
+            "lights".as_ref(),
+            "--width".as_ref(),
+            "24".as_ref(),
+            "--height".as_ref(),
+            "18".as_ref(),
+            "--integrator".as_ref(),
+            "path".as_ref(),
+            "--out".as_ref(),
+            out_dir.as_os_str(),
+        ],
+    );
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let md = std::fs::read_to_string(out_dir.join("report.md")).expect("report.md");
+    assert!(md.contains("Integrator: every scene with `--integrator path`"), "{md}");
+    let csv = std::fs::read_to_string(out_dir.join("report.csv")).expect("report.csv");
+    assert!(csv.lines().count() > 2, "{csv}");
+
+    let out = glint(&dir, ["report", "--quick", "--cpu-only", "--integrator", "radiosity"]);
+    assert!(!out.status.success());
+    assert!(
+        text(&out.stderr).contains("unknown integrator 'radiosity'; allowed: whitted, path"),
+        "{}",
+        text(&out.stderr)
+    );
+}

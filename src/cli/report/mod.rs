@@ -21,13 +21,13 @@ use anyhow::{Context, anyhow, bail};
 use clap::Args;
 use glint_core::Backend;
 use glint_io::atomic::write_file_atomically;
-use glint_scene::RenderSettings;
+use glint_scene::{Integrator, RenderSettings};
 use indicatif::{ProgressBar, ProgressStyle};
 
 use self::plan::Plan;
 use self::sweep::Engines;
 use super::backend::open_gpu;
-use super::settings::{load, parse_threads};
+use super::settings::{load, parse_integrator, parse_threads};
 
 const DEFAULT_SCENES: &[&str] = &["whitted", "cornell", "spotlights", "highlights", "lights"];
 const QUICK_SCENES: &[&str] = &["whitted", "highlights"];
@@ -65,6 +65,11 @@ pub struct ReportArgs {
     /// CPU worker threads: 0 = one per core, at most 4 per core (and never more than 1024)
     #[arg(long, default_value_t = 0, allow_negative_numbers = true, value_parser = parse_threads)]
     pub threads: usize,
+    /// Render every scene with this integrator: whitted or path (default: each scene's own
+    /// render.integrator). A path-traced reference is itself a Monte Carlo estimate at
+    /// --reference-spp
+    #[arg(long, value_parser = parse_integrator)]
+    pub integrator: Option<Integrator>,
     /// No progress bar
     #[arg(short, long)]
     pub quiet: bool,
@@ -126,7 +131,9 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
     let bar = progress(args.quiet, renders as u64)?;
     let mut results = Vec::with_capacity(scenes.len());
     for loaded in &scenes {
-        let base = RenderSettings { width, height, ..loaded.desc.render.clone() };
+        let scene = &loaded.desc.render;
+        let base =
+            RenderSettings { width, height, integrator: args.integrator.unwrap_or(scene.integrator), ..scene.clone() };
         let mut result = sweep::run_scene(&mut engines, loaded, &base, &reference, &planned, args.runs, &bar)?;
         result.specular = specular::measure(&mut engines, loaded, &base, &backends, args.runs, &bar)?;
         pareto::mark_fronts(&mut result.rows);
@@ -146,6 +153,7 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
         runs: args.runs,
         quick: args.quick,
         plan: &plan,
+        integrator: args.integrator,
     };
     let csv_path = args.out.join("report.csv");
     write_report_file(&csv_path, &csv::render_csv(&results, &cpu_device, gpu_device.as_deref().unwrap_or("")))?;

@@ -3,6 +3,7 @@
 use std::fmt::Write as _;
 
 use glint_core::compare::REL_MSE_EPSILON;
+use glint_scene::Integrator;
 
 use super::super::machine::Machine;
 use super::super::plan::Plan;
@@ -21,6 +22,8 @@ pub struct Setup<'a> {
     pub runs: u32,
     pub quick: bool,
     pub plan: &'a Plan,
+    /// `--integrator`, or `None` for each scene's own.
+    pub integrator: Option<Integrator>,
 }
 
 pub fn header(md: &mut String, setup: &Setup, scenes: &[SceneResult]) {
@@ -54,4 +57,18 @@ pub fn header(md: &mut String, setup: &Setup, scenes: &[SceneResult]) {
             ("sweep", &setup.plan.describe()),
         ],
     ));
+    let integrators = match setup.integrator {
+        Some(i) => format!("every scene with `--integrator {}`", i.name()),
+        None => {
+            let own: Vec<String> =
+                scenes.iter().map(|s| format!("{} {}", s.name, s.settings.integrator.name())).collect();
+            format!("each scene with its own `render.integrator` ({})", own.join(", "))
+        }
+    };
+    let _ = writeln!(
+        md,
+        "Integrator: {integrators}. A path-traced scene's reference is a Monte Carlo estimate itself, with \
+         the noise of its {} samples a pixel.\n",
+        reference.spp
+    );
 }
