@@ -25,6 +25,12 @@ pub fn integrator_warnings(desc: &SceneDesc, settings: &RenderSettings) -> Vec<F
             });
         }
     }
+    if settings.bailout != RenderSettings::default().bailout {
+        out.push(FieldIssue {
+            field: "render.bailout".into(),
+            problem: "is not used by the path tracer: Russian roulette ends its paths, without bias".into(),
+        });
+    }
     let emits = desc.materials.values().any(|m| !m.emission.is_zero());
     if desc.lights.is_empty() && !emits && desc.world.background.is_zero() {
         out.push(FieldIssue {
@@ -34,4 +40,25 @@ pub fn integrator_warnings(desc: &SceneDesc, settings: &RenderSettings) -> Vec<F
         });
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::rgb::Rgb;
+
+    #[test]
+    fn a_path_render_is_warned_of_what_it_leaves_out_and_of_a_black_image() {
+        // A bumpy scene without its light, under an ambient sky.
+        let mut desc = crate::bumpy::bumpy(2);
+        desc.lights.clear();
+        desc.world.ambient = Rgb([0.1; 3]);
+        desc.world.background = Rgb([0.0; 3]);
+        let mut settings = RenderSettings { integrator: Integrator::Path, bailout: 0.01, ..RenderSettings::default() };
+        let fields =
+            |s: &RenderSettings| integrator_warnings(&desc, s).into_iter().map(|w| w.field).collect::<Vec<_>>();
+        assert_eq!(fields(&settings), ["world.ambient", "render.bailout", "render.integrator"]);
+        settings.integrator = Integrator::Whitted;
+        assert!(fields(&settings).is_empty(), "Whitted's render uses all of it");
+    }
 }
