@@ -264,10 +264,13 @@ fn bench(
         times.sort();
         let median = times[times.len() / 2];
         let mrays = mrays_per_s(warm.counts.total(), median);
-        // The bailout is Whitted's; a path render says what it is instead.
+        // The bailout is Whitted's; a path render gives its samples per second instead.
         let mode = match Integrator::try_from(h.integrator)? {
             Integrator::Whitted => format!("bailout {}", h.bailout),
-            Integrator::Path => "path tracer".to_string(),
+            Integrator::Path => {
+                let samples = f64::from(h.width) * f64::from(h.height) * f64::from(h.spp);
+                format!("path tracer, {:.3} Msamples/s", samples / median.as_secs_f64() / 1e6)
+            }
         };
         println!(
             "bench {name} {}: {}x{} {} spp depth {} {mode}, {}: median {:.1} ms, min {:.1} ms over {} runs, {:.2} Mrays/s; {}",
