@@ -51,7 +51,8 @@ fn progress_bar(quiet: bool, len: u64, backend: &str, unit: &str) -> anyhow::Res
 
 pub fn run_cpu(flat: &FlatScene, options: &CpuOptions, quiet: bool) -> anyhow::Result<Run> {
     let start = Instant::now();
-    let tiles = tile_count(flat.header.width, flat.header.height) as u64;
+    let (w, h) = options.region.map_or((flat.header.width, flat.header.height), |r| (r.width, r.height));
+    let tiles = tile_count(w, h) as u64;
     let bar = progress_bar(quiet, tiles, "cpu", "")?;
     let on_tile = |_: &Tile| bar.inc(1);
     // SIGINT/SIGTERM stop the render at the next tile (see `interrupt`).

@@ -4,11 +4,13 @@ mod backend;
 mod bench;
 mod bench_export;
 pub mod interrupt;
+mod merge;
 mod output;
 mod output_path;
 mod render;
 mod report;
 mod settings;
+mod tile;
 mod units;
 mod view;
 
@@ -32,6 +34,9 @@ enum Command {
     View(view::ViewArgs),
     /// Benchmarks of parts of the tracer (`bench rays`: the BVH build and closest-hit throughput).
     Bench(bench::BenchArgs),
+    /// Join the EXR tiles of `glint render --tile` into one image (.exr or .png), after checking
+    /// that they are one render's and that none is missing or given twice.
+    Merge(merge::MergeArgs),
 }
 
 pub fn run(cli: Cli) -> anyhow::Result<()> {
@@ -40,6 +45,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Some(Command::Report(args)) => report::run(&args),
         Some(Command::View(args)) => view::run(&args),
         Some(Command::Bench(args)) => bench::run(&args),
+        Some(Command::Merge(args)) => merge::run(&args),
         None => view::run(&view::ViewArgs::default()),
     }
 }

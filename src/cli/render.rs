@@ -18,6 +18,7 @@ use super::interrupt;
 use super::output::{fmt_counts, metadata, print_json, print_table, suffixed, write_diff, write_run};
 use super::output_path::check_outputs;
 use super::settings::{LoadArgs, SettingsArgs, load_with_estimate, parse_ray_cap, parse_threads};
+use super::tile::{TileJob, TileSpec, parse_tile, render_tile};
 use super::units::{mrays_per_s, ms};
 
 #[derive(Debug, Args)]
@@ -52,6 +53,12 @@ pub struct RenderArgs {
     /// How both tracers find primitives: the BVH from 24 spheres and triangles on (auto), always the BVH, or brute force (none); the CPU image is bit-identical either way, and on the GPU brute force is limited to 65,535 primitives of a kind
     #[arg(long, default_value = "auto", value_parser = accels())]
     pub accel: Accel,
+    /// Render one block of a fixed grid of the image for a scheduler's array task: I/N (tile I
+    /// of N, from 0), or N to take I from SLURM_ARRAY_TASK_ID, JOB_COMPLETION_INDEX or
+    /// AWS_BATCH_JOB_ARRAY_INDEX. Writes an EXR whose data window is the tile (default
+    /// SCENE-tile-I.exr); `glint merge` joins the tiles
+    #[arg(long, value_name = "I/N|N", value_parser = parse_tile)]
+    pub tile: Option<TileSpec>,
     /// Print the results as JSON instead of a table
     #[arg(long)]
     pub json: bool,
@@ -124,8 +131,30 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         specialise,
         accel: args.accel,
         max_rays_per_sample: args.max_rays_per_sample,
+        region: None,
     };
     let gpu_options = GpuOptions { specialise, accel: args.accel, ..GpuOptions::default() };
+    if let Some(spec) = args.tile {
+        let [backend] = args.backend else {
+            bail!("--tile renders on one backend: give --backend cpu or --backend gpu");
+        };
+        if args.bench || args.json {
+            bail!("--tile writes one tile; it has no --bench or --json");
+        }
+        return render_tile(TileJob {
+            loaded: &loaded,
+            settings: &settings,
+            spec,
+            backend: *backend,
+            output: args.output.clone(),
+            cpu: cpu_options,
+            gpu: gpu_options,
+            adapter: args.adapter.as_deref(),
+            specialise,
+            force: args.force,
+            quiet: args.quiet,
+        });
+    }
     if args.bench {
         let flat = FlatScene::build(&loaded.desc, &settings);
         return bench(args, &loaded.name, &flat, &cpu_options, &gpu_options);
@@ -179,11 +208,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     let mut outputs = Vec::new();
     for run in &runs {
         let path = image_path(run);
-        let mut tags = metadata(&loaded.name, &settings, run, specialise);
-        tags.push(("glint:integrator".into(), settings.integrator.name().into()));
-        if settings.integrator == Integrator::Path {
-            tags.push(("glint:indirect".into(), if settings.indirect { "on" } else { "off" }.into()));
-        }
+        let tags = metadata(&loaded.name, &settings, run, specialise);
         write_run(&path, run, &tags)?;
         outputs.push(path);
     }

@@ -46,14 +46,28 @@ impl HdrImage {
         Some(Unrepresentable { count, first: ((first % width) as u32, (first / width) as u32), largest })
     }
 
-    /// 8-bit sRGB, clamped to [0, 1] first. In parallel chunks: even without a `powf` per
-    /// channel (`linear_to_srgb8`), a 720p image is millions of channels.
+    /// The pixels of `r`, an image of its size.
+    pub fn cropped(&self, r: crate::tiles::PixelRect) -> Self {
+        let mut out = Self::new(r.width, r.height);
+        for row in 0..r.height as usize {
+            let src = (r.y0 as usize + row) * self.width as usize + r.x0 as usize;
+            let dst = row * r.width as usize;
+            out.pixels[dst..dst + r.width as usize].copy_from_slice(&self.pixels[src..src + r.width as usize]);
+            out.first_hit[dst..dst + r.width as usize].copy_from_slice(&self.first_hit[src..src + r.width as usize]);
+        }
+        out
+    }
+
+    /// 8-bit sRGB, clamped to [0, 1] first, of each channel's f32 value (as an EXR stores it,
+    /// so that a PNG made from EXR tiles, `glint merge`, is the same bytes as one rendered
+    /// whole). In parallel chunks: even without a `powf` per channel (`linear_to_srgb8`), a 720p
+    /// image is millions of channels.
     pub fn to_srgb8(&self) -> Vec<u8> {
         const CHUNK: usize = 4096;
         let mut out = vec![0; self.pixels.len() * 3];
         out.par_chunks_mut(3 * CHUNK).zip(self.pixels.par_chunks(CHUNK)).for_each(|(bytes, pixels)| {
             for (b, p) in bytes.chunks_exact_mut(3).zip(pixels) {
-                b.copy_from_slice(&p.to_array().map(linear_to_srgb8));
+                b.copy_from_slice(&p.to_array().map(|v| linear_f32_to_srgb8(v as f32)));
             }
         });
         out
@@ -110,6 +124,11 @@ pub fn linear_to_srgb8(v: f64) -> u8 {
         code += 1;
     }
     code
+}
+
+/// `linear_to_srgb8` of a stored f32 channel.
+pub fn linear_f32_to_srgb8(v: f32) -> u8 {
+    linear_to_srgb8(f64::from(v))
 }
 
 /// Buckets of [0, 1] in `Srgb8Table::start`: at most two codes begin in one (the curve is
@@ -216,6 +235,7 @@ pub fn render_metadata(s: &glint_scene::RenderSettings, info: &RenderInfo) -> Ve
         ("glint:epsilon_mode", s.epsilon_mode.name().to_string()),
         ("glint:bailout", s.bailout.to_string()),
         ("glint:seed", s.seed.to_string()),
+        ("glint:integrator", s.integrator.name().to_string()),
         ("glint:backend", info.backend.to_string()),
         ("glint:device", info.device.to_string()),
         ("glint:specialised", info.specialised.to_string()),
@@ -223,6 +243,9 @@ pub fn render_metadata(s: &glint_scene::RenderSettings, info: &RenderInfo) -> Ve
     .into_iter()
     .map(|(k, v)| (k.to_string(), v))
     .collect();
+    if s.integrator == glint_scene::Integrator::Path {
+        m.push(("glint:indirect".into(), if s.indirect { "on" } else { "off" }.into()));
+    }
     if let Some(t) = info.time_ms {
         m.push(("glint:time_ms".into(), format!("{t:.3}")));
     }

@@ -15,11 +15,13 @@ pub mod rays;
 pub mod rebase;
 pub mod render;
 mod texture_table;
+pub mod tiles;
 
 pub use backend::Backend;
 pub use flat::FlatScene;
 pub use image::HdrImage;
 pub use render::{Accel, CpuOptions, CpuRender, RenderControl, pick_object, probe_pixel, probe_tree, render_cpu};
+pub use tiles::{PixelRect, TileGrid};
 
 /// Re-exported so that the GPU tracer and the viewer use the same vector types.
 pub use glam;

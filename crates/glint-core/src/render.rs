@@ -14,6 +14,7 @@ use crate::cpu::trace::{render_pixel, render_sample};
 use crate::cpu::{DEFAULT_MAX_RAYS_PER_SAMPLE, RayCounts, TraceContext};
 use crate::flat::FlatScene;
 use crate::image::HdrImage;
+use crate::tiles::PixelRect;
 use glint_scene::Integrator;
 use glint_types::layout::{UnknownTag, feature};
 
@@ -32,11 +33,21 @@ pub struct CpuOptions {
     /// The bound on one camera sample's ray tree: a pixel whose tree reaches it stops the
     /// render with `CpuRenderError::RayCap` (the reference is never silently truncated).
     pub max_rays_per_sample: u64,
+    /// The pixels to render (the whole image by default), into an image of the rectangle's
+    /// size: the same bits as those pixels of the whole image, since a pixel depends on its
+    /// coordinates only (a tile of a render spread over machines, `glint render --tile`).
+    pub region: Option<PixelRect>,
 }
 
 impl Default for CpuOptions {
     fn default() -> Self {
-        Self { threads: 0, specialise: true, accel: Accel::default(), max_rays_per_sample: DEFAULT_MAX_RAYS_PER_SAMPLE }
+        Self {
+            threads: 0,
+            specialise: true,
+            accel: Accel::default(),
+            max_rays_per_sample: DEFAULT_MAX_RAYS_PER_SAMPLE,
+            region: None,
+        }
     }
 }
 
@@ -53,11 +64,12 @@ pub struct Tile {
 }
 
 impl Tile {
-    /// Copies the tile's pixels and first hits into their place in `image`.
-    pub fn copy_into(&self, image: &mut HdrImage) {
+    /// Copies the tile's pixels and first hits into their place in `image`, which holds the
+    /// pixels of `region`.
+    pub fn copy_into(&self, image: &mut HdrImage, region: PixelRect) {
         for row in 0..self.height {
             let src = (row * self.width) as usize..((row + 1) * self.width) as usize;
-            let dst_start = ((self.y0 + row) * image.width + self.x0) as usize;
+            let dst_start = ((self.y0 - region.y0 + row) * image.width + self.x0 - region.x0) as usize;
             let dst = dst_start..dst_start + self.width as usize;
             image.pixels[dst.clone()].copy_from_slice(&self.radiance[src.clone()]);
             image.first_hit[dst].copy_from_slice(&self.first_hit[src]);
@@ -97,6 +109,8 @@ pub enum CpuRenderError {
     ThreadPool { threads: usize, message: String },
     #[error("invalid flat scene: {0}")]
     InvalidScene(#[from] UnknownTag),
+    #[error("the region {region} is not inside the {width}x{height} image, or has no pixel")]
+    Region { region: PixelRect, width: u32, height: u32 },
     #[error(
         "pixel ({x}, {y}): a camera sample's ray tree reached the cap of {cap} rays, so the render stopped; the \
          scene's reflection and refraction branch without end: set render.bailout (e.g. 1/255, with k_r + k_t < 1 \
@@ -121,10 +135,17 @@ enum Shading {
     Path(Emitters),
 }
 
-fn render_tile(ctx: &TraceContext, shading: &Shading, x0: u32, y0: u32, stop: &Stop) -> Result<Tile, TileStop> {
+fn render_tile(
+    ctx: &TraceContext,
+    shading: &Shading,
+    region: PixelRect,
+    x0: u32,
+    y0: u32,
+    stop: &Stop,
+) -> Result<Tile, TileStop> {
     let h = &ctx.scene.header;
-    let width = TILE.min(h.width - x0);
-    let height = TILE.min(h.height - y0);
+    let width = TILE.min(region.x0 + region.width - x0);
+    let height = TILE.min(region.y0 + region.height - y0);
     if stop.requested() {
         return Err(TileStop::Cancelled);
     }
@@ -166,12 +187,17 @@ impl Stop<'_> {
     }
 }
 
-/// Renders the whole image on the CPU.
+/// Renders the image, or `options.region` of it, on the CPU.
 pub fn render_cpu(
     scene: &FlatScene,
     options: &CpuOptions,
     control: RenderControl,
 ) -> Result<CpuRender, CpuRenderError> {
+    let (w, h) = (scene.header.width, scene.header.height);
+    let region = options.region.unwrap_or(PixelRect::full(w, h));
+    if region.pixel_count() == 0 || region.x0 + region.width > w || region.y0 + region.height > h {
+        return Err(CpuRenderError::Region { region, width: w, height: h });
+    }
     let threads = if options.threads == 0 { rayon::current_num_threads().max(1) } else { options.threads };
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
@@ -188,9 +214,10 @@ pub fn render_cpu(
         Integrator::Path => Shading::Path(Emitters::of(&ctx)),
     };
     let stop = Stop { cancel: control.cancel, capped: AtomicBool::new(false), rays: control.rays };
-    let (w, h) = (scene.header.width, scene.header.height);
-    let origins: Vec<(u32, u32)> =
-        (0..h.div_ceil(TILE)).flat_map(|ty| (0..w.div_ceil(TILE)).map(move |tx| (tx * TILE, ty * TILE))).collect();
+    let (w, h) = (region.width, region.height);
+    let origins: Vec<(u32, u32)> = (0..h.div_ceil(TILE))
+        .flat_map(|ty| (0..w.div_ceil(TILE)).map(move |tx| (region.x0 + tx * TILE, region.y0 + ty * TILE)))
+        .collect();
     let start = Instant::now();
     // Each finished tile goes into the image at once and its buffers are freed: keeping all
     // of them until the end grew the workers' heaps page by page (thousands of mprotect calls).
@@ -199,11 +226,11 @@ pub fn render_cpu(
         origins
             .par_iter()
             .map(|&(x0, y0)| {
-                let tile = render_tile(&ctx, &shading, x0, y0, &stop)?;
+                let tile = render_tile(&ctx, &shading, region, x0, y0, &stop)?;
                 if let Some(cb) = control.on_tile {
                     cb(&tile);
                 }
-                tile.copy_into(&mut image.lock().unwrap_or_else(|e| e.into_inner()));
+                tile.copy_into(&mut image.lock().unwrap_or_else(|e| e.into_inner()), region);
                 Ok(tile.counts)
             })
             .collect()

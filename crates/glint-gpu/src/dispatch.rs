@@ -4,6 +4,7 @@
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, AtomicU32, Ordering};
 
+use glint_core::PixelRect;
 use glint_types::layout::{STAT_PIXELS_DONE, TileParams};
 
 use crate::buffers::{SceneBuffers, ZERO_STATS};
@@ -115,6 +116,7 @@ impl SceneBuffers {
         start: &wgpu::ComputePipeline,
         bind_group: &wgpu::BindGroup,
         tile: u32,
+        region: PixelRect,
         control: DispatchControl<'_>,
     ) -> Result<(), GpuError> {
         let cancelled = || control.cancel.is_some_and(|c| c.load(Ordering::Relaxed));
@@ -125,12 +127,11 @@ impl SceneBuffers {
             let end = (first + PATH_BATCH).min(self.spp);
             // Every path ends within max_depth + 1 bounces; every sample takes at least one.
             let most = (end - first) * (self.max_depth + 1);
-            for y0 in (0..self.height).step_by(tile as usize) {
-                for x0 in (0..self.width).step_by(tile as usize) {
+            for (x0, y0, width, height) in tiles_of(region, tile) {
+                {
                     if cancelled() {
                         return Err(GpuError::Cancelled);
                     }
-                    let (width, height) = (tile.min(self.width - x0), tile.min(self.height - y0));
                     let params = TileParams { sample_end: end, ..TileParams::new(x0, y0, width, height, first) };
                     ctx.queue.write_buffer(&self.tile, 0, bytemuck::bytes_of(&params));
                     let done_word = u64::from(STAT_PIXELS_DONE) * 4;
@@ -174,11 +175,12 @@ impl SceneBuffers {
         pipeline: &TracerPipeline,
         bind_group: &wgpu::BindGroup,
         tile: u32,
+        region: PixelRect,
         control: DispatchControl<'_>,
     ) -> Result<(), GpuError> {
         let tile = tile.max(WORKGROUP);
         if let Some(start) = &pipeline.start {
-            return self.dispatch_paths(ctx, pipeline, start, bind_group, tile, control);
+            return self.dispatch_paths(ctx, pipeline, start, bind_group, tile, region, control);
         }
         if let Some(p) = control.progress {
             p.start(self.spp);
@@ -186,12 +188,11 @@ impl SceneBuffers {
         let mut previous_pass = None;
         for sample_index in 0..self.spp {
             let mut last = None;
-            for y0 in (0..self.height).step_by(tile as usize) {
-                for x0 in (0..self.width).step_by(tile as usize) {
+            for (x0, y0, width, height) in tiles_of(region, tile) {
+                {
                     if control.cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
                         return Err(GpuError::Cancelled);
                     }
-                    let (width, height) = (tile.min(self.width - x0), tile.min(self.height - y0));
                     let params = TileParams::new(x0, y0, width, height, sample_index);
                     last = Some(self.dispatch_tile(ctx, pipeline, bind_group, params));
                 }
@@ -207,6 +208,14 @@ impl SceneBuffers {
         }
         Ok(())
     }
+}
+
+/// The `tile`-pixel squares of `region` as (x0, y0, width, height), row by row.
+fn tiles_of(region: PixelRect, tile: u32) -> impl Iterator<Item = (u32, u32, u32, u32)> {
+    let (x_end, y_end) = (region.x0 + region.width, region.y0 + region.height);
+    (region.y0..y_end).step_by(tile as usize).flat_map(move |y0| {
+        (region.x0..x_end).step_by(tile as usize).map(move |x0| (x0, y0, tile.min(x_end - x0), tile.min(y_end - y0)))
+    })
 }
 
 /// What the caller of a render may do while it is dispatched.

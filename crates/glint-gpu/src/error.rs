@@ -68,6 +68,8 @@ pub enum GpuError {
     Wgpu(String),
     #[error("the GPU device was lost (driver reset or crash); restart to use the GPU again")]
     DeviceLost,
+    #[error("the region {region} is not inside the {width}x{height} image, or has no pixel")]
+    Region { region: String, width: u32, height: u32 },
     #[error("the render was cancelled")]
     Cancelled,
     #[error("reading the image back from the GPU failed: {0}")]

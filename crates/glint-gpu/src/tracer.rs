@@ -11,7 +11,7 @@ use glint_core::cpu::RayCounts;
 use glint_core::cpu::ray_tree::RayTree;
 use glint_core::flat::GeometryId;
 use glint_core::rebase::{Frame, rebased, rebased_with_geometry};
-use glint_core::{Accel, FlatScene};
+use glint_core::{Accel, FlatScene, PixelRect};
 use glint_types::layout::{PROBE_HIT, ProbeRecord};
 
 use crate::buffers::{GeometryCache, SceneBuffers};
@@ -34,11 +34,14 @@ pub struct GpuOptions {
     /// Where the coordinates the GPU computes in have their origin: near the camera (default) or
     /// world space (`glint_core::rebase`).
     pub frame: Frame,
+    /// The pixels to render (the whole image by default); `render` gives back an image of
+    /// this rectangle only, as `glint_core::render_cpu_region` does.
+    pub region: Option<PixelRect>,
 }
 
 impl Default for GpuOptions {
     fn default() -> Self {
-        Self { specialise: true, tile: DEFAULT_TILE, accel: Accel::default(), frame: Frame::default() }
+        Self { specialise: true, tile: DEFAULT_TILE, accel: Accel::default(), frame: Frame::default(), region: None }
     }
 }
 
@@ -181,7 +184,20 @@ impl GpuTracer {
             pipeline_time += prime_start.elapsed();
         }
         let submitted = Instant::now();
-        with_error_scopes(&self.ctx, || buffers.dispatch(&self.ctx, &pipeline, &bind_group, options.tile, control))??;
+        let region = options.region.unwrap_or(PixelRect::full(scene.header.width, scene.header.height));
+        if region.pixel_count() == 0
+            || region.x0 + region.width > scene.header.width
+            || region.y0 + region.height > scene.header.height
+        {
+            return Err(GpuError::Region {
+                region: region.to_string(),
+                width: scene.header.width,
+                height: scene.header.height,
+            });
+        }
+        with_error_scopes(&self.ctx, || {
+            buffers.dispatch(&self.ctx, &pipeline, &bind_group, options.tile, region, control)
+        })??;
         Ok(GpuJob::new(&self.ctx, buffers, &pipeline, pipeline_time, upload_time, submitted))
     }
 
@@ -251,6 +267,10 @@ impl GpuTracer {
         let render_time = job.submitted.elapsed();
         let readback_start = Instant::now();
         let (image, counts, status) = job.start_readback(&self.ctx).wait(&self.ctx)?;
+        let image = match options.region {
+            Some(r) => image.cropped(r),
+            None => image,
+        };
         let readback_time = readback_start.elapsed();
         Ok(GpuRender {
             image,

@@ -7,6 +7,7 @@ use std::path::{Path, PathBuf};
 use glint_core::image::{HdrImage, Unrepresentable};
 
 use crate::atomic::{AtomicWriteError, write_atomically};
+use crate::exr_file::write_exr_region;
 
 #[derive(Debug, thiserror::Error)]
 pub enum ImageWriteError {
@@ -74,26 +75,19 @@ pub fn write_png_rgb8(
     })
 }
 
-/// Linear f32 OpenEXR.
-pub fn write_exr(path: &Path, image: &HdrImage) -> Result<(), ImageWriteError> {
+/// Linear f32 OpenEXR with `metadata` as text attributes (the values a PNG's text chunks hold).
+pub fn write_exr(path: &Path, image: &HdrImage, metadata: &[(String, String)]) -> Result<(), ImageWriteError> {
     check_representable(path, image)?;
-    let data: Vec<f32> = image.pixels.iter().flat_map(|p| p.to_array().map(|v| v as f32)).collect();
-    let buffer = image::Rgb32FImage::from_raw(image.width, image.height, data)
-        .ok_or_else(|| ImageWriteError::Exr { path: path.to_owned(), message: "buffer size mismatch".into() })?;
-    write_atomically(path, |file| {
-        let mut out = BufWriter::new(file);
-        buffer
-            .write_to(&mut out, image::ImageFormat::OpenExr)
-            .map_err(|e| ImageWriteError::Exr { path: path.to_owned(), message: e.to_string() })?;
-        out.flush().map_err(|error| ImageWriteError::Io { path: path.to_owned(), error })
-    })
+    let size = (image.width, image.height);
+    let pixel = |x: usize, y: usize| image.pixels[y * image.width as usize + x].to_array().map(|v| v as f32);
+    write_exr_region(path, size, (0, 0), size, pixel, metadata)
 }
 
 /// PNG or EXR by the file extension.
 pub fn write_image(path: &Path, image: &HdrImage, metadata: &[(String, String)]) -> Result<(), ImageWriteError> {
     match path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
         Some("png") => write_png(path, image, metadata),
-        Some("exr") => write_exr(path, image),
+        Some("exr") => write_exr(path, image, metadata),
         _ => Err(ImageWriteError::Format { path: path.to_owned() }),
     }
 }

@@ -10,6 +10,7 @@
 pub mod atomic;
 mod builtin;
 mod error;
+pub mod exr_file;
 pub mod image_file;
 pub mod interrupt;
 pub mod model;

@@ -67,37 +67,6 @@ pub fn export(path: &Path, view: ExportView, s: &Sources) -> Result<(), ViewerEr
     if need_gpu && gpu.is_none() {
         return Err(ViewerError::NotReady("there is no finished GPU render of this scene"));
     }
-    if is_exr {
-        let image = match (view, cpu, gpu) {
-            (ExportView::Cpu, Some(c), _) => c.image.clone(),
-            (ExportView::Gpu, _, Some(g)) => g.image.clone(),
-            (ExportView::Difference, Some(c), Some(g)) => abs_difference(&c.image, &g.image),
-            (ExportView::All, Some(c), Some(g)) => {
-                side_by_side_hdr(&[&c.image, &g.image, &abs_difference(&c.image, &g.image)])
-            }
-            _ => return Err(ViewerError::NotReady("the renders are not ready")),
-        };
-        return Ok(write_exr(path, &image)?);
-    }
-    let heatmap = || s.diff.ok_or(ViewerError::NotReady("the comparison of GPU and CPU is still running"));
-    let (width, height, rgb) = match (view, cpu, gpu) {
-        (ExportView::Cpu, Some(c), _) => (c.image.width, c.image.height, srgb(&c.image)),
-        (ExportView::Gpu, _, Some(g)) => (g.image.width, g.image.height, srgb(&g.image)),
-        (ExportView::Difference, _, _) => {
-            let d = heatmap()?;
-            (d.width, d.height, d.heatmap.clone())
-        }
-        (ExportView::All, Some(c), Some(g)) => {
-            let d = heatmap()?;
-            let (cs, gs) = (srgb(&c.image), srgb(&g.image));
-            side_by_side(&[
-                (c.image.width, c.image.height, &cs),
-                (g.image.width, g.image.height, &gs),
-                (d.width, d.height, &d.heatmap),
-            ])
-        }
-        _ => return Err(ViewerError::NotReady("the renders are not ready")),
-    };
     let device = match view {
         ExportView::Cpu => cpu.map(|c| format!("{} threads", c.threads)).unwrap_or_default(),
         _ => s.adapter.to_string(),
@@ -124,5 +93,36 @@ pub fn export(path: &Path, view: ExportView, s: &Sources) -> Result<(), ViewerEr
         metadata.push(("glint:diff_scale".into(), "magma over log10 |gpu-cpu| from -7 to 0".into()));
         metadata.push(("glint:psnr_db".into(), format!("{:.2}", d.errors.psnr)));
     }
+    if is_exr {
+        let image = match (view, cpu, gpu) {
+            (ExportView::Cpu, Some(c), _) => c.image.clone(),
+            (ExportView::Gpu, _, Some(g)) => g.image.clone(),
+            (ExportView::Difference, Some(c), Some(g)) => abs_difference(&c.image, &g.image),
+            (ExportView::All, Some(c), Some(g)) => {
+                side_by_side_hdr(&[&c.image, &g.image, &abs_difference(&c.image, &g.image)])
+            }
+            _ => return Err(ViewerError::NotReady("the renders are not ready")),
+        };
+        return Ok(write_exr(path, &image, &metadata)?);
+    }
+    let heatmap = || s.diff.ok_or(ViewerError::NotReady("the comparison of GPU and CPU is still running"));
+    let (width, height, rgb) = match (view, cpu, gpu) {
+        (ExportView::Cpu, Some(c), _) => (c.image.width, c.image.height, srgb(&c.image)),
+        (ExportView::Gpu, _, Some(g)) => (g.image.width, g.image.height, srgb(&g.image)),
+        (ExportView::Difference, _, _) => {
+            let d = heatmap()?;
+            (d.width, d.height, d.heatmap.clone())
+        }
+        (ExportView::All, Some(c), Some(g)) => {
+            let d = heatmap()?;
+            let (cs, gs) = (srgb(&c.image), srgb(&g.image));
+            side_by_side(&[
+                (c.image.width, c.image.height, &cs),
+                (g.image.width, g.image.height, &gs),
+                (d.width, d.height, &d.heatmap),
+            ])
+        }
+        _ => return Err(ViewerError::NotReady("the renders are not ready")),
+    };
     Ok(write_png_rgb8(path, width, height, &rgb, &metadata)?)
 }

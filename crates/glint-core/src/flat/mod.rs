@@ -65,6 +65,7 @@ fn rgb4(c: Rgb) -> [f32; 4] {
 }
 
 mod checks;
+mod content_hash;
 mod geometry;
 mod leaf_corners;
 mod lights_materials;

@@ -1,0 +1,164 @@
+//! Linear f32 OpenEXR files with Glint's metadata as header attributes, written and read with
+//! the `exr` crate: a whole image, or one tile of it whose data window is the tile and whose
+//! display window is the whole image (the OpenEXR convention for a part of a picture, as
+//! pbrt-v4's `--pixelbounds` writes it), so that `glint merge` can place it.
+
+use std::io::BufWriter;
+use std::path::{Path, PathBuf};
+
+use exr::meta::attribute::{AttributeValue, Text};
+use exr::prelude::{
+    Encoding, Image, IntegerBounds, Layer, LayerAttributes, ReadChannels, ReadLayers, SpecificChannels, Vec2,
+    WritableImage,
+};
+
+use crate::atomic::write_atomically;
+use crate::image_file::ImageWriteError;
+
+/// Where an EXR file's pixels lie in the whole image, and its text attributes.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ExrHeader {
+    /// The whole image's size (the display window).
+    pub display: (u32, u32),
+    /// The data window's top-left corner in the whole image.
+    pub origin: (u32, u32),
+    pub width: u32,
+    pub height: u32,
+    /// The text attributes of the header, in name order.
+    pub attributes: Vec<(String, String)>,
+}
+
+impl ExrHeader {
+    /// The text attribute `name`, if the file has it.
+    pub fn attribute(&self, name: &str) -> Option<&str> {
+        self.attributes.iter().find(|(k, _)| k == name).map(|(_, v)| v.as_str())
+    }
+}
+
+/// The pixels an EXR file holds, with its header.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ExrPixels {
+    pub header: ExrHeader,
+    /// Linear RGB, row by row over the data window.
+    pub rgb: Vec<[f32; 3]>,
+}
+
+#[derive(Debug, thiserror::Error)]
+pub enum ExrReadError {
+    #[error("{path}: not a readable RGB OpenEXR file: {message}")]
+    Decode { path: PathBuf, message: String },
+    #[error("{path}: its data window {window} does not lie inside its display window ({width}x{height} at the origin)")]
+    Window { path: PathBuf, window: String, width: i64, height: i64 },
+}
+
+/// An attribute value as EXR text holds it: Latin-1 bytes, so any other character becomes '?'.
+fn exr_text(value: &str) -> Text {
+    let latin1: String = value.chars().map(|c| if u32::from(c) < 256 { c } else { '?' }).collect();
+    Text::new_or_none(latin1).unwrap_or_else(|| Text::from("?"))
+}
+
+/// Writes the `width`×`height` pixels `pixel(x, y)` (coordinates within the data window) as
+/// the data window at `origin` of a `display`-sized image, with `metadata` as text attributes,
+/// atomically. The pixels are generated as they are written, never held twice.
+pub fn write_exr_region(
+    path: &Path,
+    display: (u32, u32),
+    origin: (u32, u32),
+    size: (u32, u32),
+    pixel: impl Fn(usize, usize) -> [f32; 3] + Sync,
+    metadata: &[(String, String)],
+) -> Result<(), ImageWriteError> {
+    let exr_error = |message: String| ImageWriteError::Exr { path: path.to_owned(), message };
+    let attributes =
+        LayerAttributes { layer_position: Vec2(origin.0 as i32, origin.1 as i32), ..LayerAttributes::default() };
+    let layer = Layer::new(
+        (size.0 as usize, size.1 as usize),
+        attributes,
+        Encoding::SMALL_LOSSLESS,
+        SpecificChannels::rgb(|p: Vec2<usize>| {
+            let [r, g, b] = pixel(p.x(), p.y());
+            (r, g, b)
+        }),
+    );
+    let mut image = Image::from_layer(layer);
+    image.attributes.display_window = IntegerBounds::new((0, 0), (display.0 as usize, display.1 as usize));
+    for (key, value) in metadata {
+        image.attributes.other.insert(exr_text(key), AttributeValue::Text(exr_text(value)));
+    }
+    write_atomically(path, |file| image.write().to_buffered(BufWriter::new(file)).map_err(|e| exr_error(e.to_string())))
+}
+
+/// The header of an EXR file alone, without its pixels: where its data window lies in the
+/// display window, and its text attributes.
+pub fn read_exr_header(path: &Path) -> Result<ExrHeader, ExrReadError> {
+    let meta = exr::meta::MetaData::read_from_file(path, false)
+        .map_err(|e| ExrReadError::Decode { path: path.to_owned(), message: e.to_string() })?;
+    let header = meta
+        .headers
+        .first()
+        .ok_or_else(|| ExrReadError::Decode { path: path.to_owned(), message: "the file has no layer".into() })?;
+    let other = header.shared_attributes.other.iter().chain(&header.own_attributes.other);
+    exr_header(
+        path,
+        header.shared_attributes.display_window,
+        header.own_attributes.layer_position,
+        header.layer_size,
+        other,
+    )
+}
+
+fn exr_header<'a>(
+    path: &Path,
+    display: IntegerBounds,
+    position: Vec2<i32>,
+    size: Vec2<usize>,
+    other: impl Iterator<Item = (&'a Text, &'a AttributeValue)>,
+) -> Result<ExrHeader, ExrReadError> {
+    let (x0, y0) = (i64::from(position.x()), i64::from(position.y()));
+    let (w, h) = (size.width() as i64, size.height() as i64);
+    let (dx, dy) = (i64::from(display.position.x()), i64::from(display.position.y()));
+    let (dw, dh) = (display.size.width() as i64, display.size.height() as i64);
+    if dx != 0 || dy != 0 || x0 < 0 || y0 < 0 || x0 + w > dw || y0 + h > dh {
+        return Err(ExrReadError::Window {
+            path: path.to_owned(),
+            window: format!("{w}x{h} at ({x0}, {y0})"),
+            width: dw,
+            height: dh,
+        });
+    }
+    let mut attributes: Vec<(String, String)> = other
+        .filter_map(|(k, v)| match v {
+            AttributeValue::Text(t) => Some((k.to_string(), t.to_string())),
+            _ => None,
+        })
+        .collect();
+    attributes.sort();
+    Ok(ExrHeader {
+        display: (dw as u32, dh as u32),
+        origin: (x0 as u32, y0 as u32),
+        width: w as u32,
+        height: h as u32,
+        attributes,
+    })
+}
+
+/// Reads an RGB OpenEXR file: its data window's pixels (as f32) and its header.
+pub fn read_exr(path: &Path) -> Result<ExrPixels, ExrReadError> {
+    let image = exr::prelude::read()
+        .no_deep_data()
+        .largest_resolution_level()
+        .rgb_channels(
+            |size: Vec2<usize>, _| (size.width(), vec![[0f32; 3]; size.width() * size.height()]),
+            |(width, pixels): &mut (usize, Vec<[f32; 3]>), p: Vec2<usize>, (r, g, b): (f32, f32, f32)| {
+                pixels[p.y() * *width + p.x()] = [r, g, b];
+            },
+        )
+        .first_valid_layer()
+        .all_attributes()
+        .from_file(path)
+        .map_err(|e| ExrReadError::Decode { path: path.to_owned(), message: e.to_string() })?;
+    let layer = image.layer_data;
+    let other = image.attributes.other.iter().chain(&layer.attributes.other);
+    let header = exr_header(path, image.attributes.display_window, layer.attributes.layer_position, layer.size, other)?;
+    Ok(ExrPixels { header, rgb: layer.channel_data.pixels.1 })
+}

@@ -1,0 +1,167 @@
+//! `glint merge TILE.exr… -o OUT.exr|OUT.png`: the tiles of `glint render --tile` joined into
+//! the whole image. Every tile's header is read first (no pixels): they must be one render's
+//! (the same scene hash, settings, backend, version and grid), each tile's data window must be
+//! its grid block, none may come twice, and every missing one is named; only then are the
+//! pixels read, one tile at a time, into one f32 image, and the output written atomically.
+//! Nothing is written on any error. At most the output image and one tile are in memory.
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context, bail};
+use clap::Args;
+use glint_core::TileGrid;
+use glint_core::image::linear_f32_to_srgb8;
+use glint_io::exr_file::{ExrHeader, read_exr, read_exr_header, write_exr_region};
+use glint_io::image_file::write_png_rgb8;
+
+use super::output_path::check_outputs;
+
+#[derive(Debug, Args)]
+pub struct MergeArgs {
+    /// The tiles: EXR files written by `glint render --tile`
+    #[arg(required = true, value_name = "TILE.exr")]
+    pub tiles: Vec<PathBuf>,
+    /// The whole image: .exr (linear f32) or .png (sRGB, the settings in its metadata)
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// Replace an output file even if it is read-only
+    #[arg(long)]
+    pub force: bool,
+}
+
+/// The attributes every tile of one render shares (its settings, scene and grid), compared in
+/// this order so that a differing setting is named before the scene hash it also changes; the
+/// rest (the tile's index, time, rays, device) is the tile's own.
+const SHARED: [&str; 15] = [
+    "Software",
+    "glint:scene",
+    "glint:size",
+    "glint:spp",
+    "glint:depth",
+    "glint:epsilon",
+    "glint:epsilon_mode",
+    "glint:bailout",
+    "glint:seed",
+    "glint:integrator",
+    "glint:indirect",
+    "glint:backend",
+    "glint:specialised",
+    "glint:grid",
+    "glint:scene_hash",
+];
+
+/// A tile's place: its index and count from `glint:tile`.
+fn tile_index(path: &Path, header: &ExrHeader) -> anyhow::Result<(u32, u32)> {
+    let value = header.attribute("glint:tile").with_context(|| {
+        format!("{}: not a tile of `glint render --tile` (it has no glint:tile attribute)", path.display())
+    })?;
+    let parsed = value.split_once('/').and_then(|(i, n)| Some((i.parse().ok()?, n.parse().ok()?)));
+    parsed.with_context(|| format!("{}: glint:tile is '{value}', not I/N", path.display()))
+}
+
+pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
+    let ext = args.output.extension().map(|e| e.to_string_lossy().to_ascii_lowercase());
+    let png = match ext.as_deref() {
+        Some("png") => true,
+        Some("exr") => false,
+        _ => bail!("{}: the merged image is written as .exr or .png", args.output.display()),
+    };
+    // Headers first: every check before any pixel is read or anything is written.
+    let headers: Vec<ExrHeader> =
+        args.tiles.iter().map(|p| read_exr_header(p).map_err(anyhow::Error::from)).collect::<anyhow::Result<_>>()?;
+    let first = (&args.tiles[0], &headers[0]);
+    let shared = |h: &ExrHeader| SHARED.map(|k| h.attribute(k).map(str::to_string));
+    let (_, count) = tile_index(first.0, first.1)?;
+    let (width, height) = first.1.display;
+    let grid = TileGrid::new(count, width, height).with_context(|| format!("{}", first.0.display()))?;
+    let mut by_index: BTreeMap<u32, &Path> = BTreeMap::new();
+    for (path, header) in args.tiles.iter().zip(&headers) {
+        let (index, n) = tile_index(path, header)?;
+        let (ours, theirs) = (shared(header), shared(first.1));
+        if let Some(k) = (0..SHARED.len()).find(|&k| ours[k] != theirs[k]) {
+            bail!(
+                "{} is not a tile of the same render as {}: {} is {} there and {} here; nothing was written",
+                path.display(),
+                first.0.display(),
+                SHARED[k],
+                theirs[k].as_deref().unwrap_or("absent"),
+                ours[k].as_deref().unwrap_or("absent"),
+            );
+        }
+        if n != count || header.display != (width, height) {
+            bail!(
+                "{} is tile {index} of {n} of a {}x{} image, {} of {count} of {width}x{height}; nothing was written",
+                path.display(),
+                header.display.0,
+                header.display.1,
+                first.0.display()
+            );
+        }
+        let rect = grid.rect(index).with_context(|| path.display().to_string())?;
+        if header.origin != (rect.x0, rect.y0) || (header.width, header.height) != (rect.width, rect.height) {
+            bail!(
+                "{}: its data window {}x{} at ({}, {}) is not tile {index}'s block of the {} grid ({rect}); \
+                 nothing was written",
+                path.display(),
+                header.width,
+                header.height,
+                header.origin.0,
+                header.origin.1,
+                grid.describe()
+            );
+        }
+        if let Some(other) = by_index.insert(index, path) {
+            bail!(
+                "tile {index} is given twice, {} and {}: tiles must not overlap; nothing was written",
+                other.display(),
+                path.display()
+            );
+        }
+    }
+    let missing: Vec<String> = (0..count).filter(|i| !by_index.contains_key(i)).map(|i| i.to_string()).collect();
+    if !missing.is_empty() {
+        bail!(
+            "{} of {count} tiles are missing: {} (render them with --tile I/{count}); nothing was written",
+            missing.len(),
+            missing.join(", ")
+        );
+    }
+    let sources: Vec<&Path> = args.tiles.iter().map(PathBuf::as_path).collect();
+    check_outputs(&[args.output.as_path()], sources[0], args.force)?;
+    if sources.iter().any(|s| same_file(s, &args.output)) {
+        bail!("{}: the output would replace one of the tiles", args.output.display());
+    }
+
+    let mut image = vec![[0f32; 3]; width as usize * height as usize];
+    for (&index, path) in &by_index {
+        let tile = read_exr(path)?;
+        let rect = grid.rect(index)?;
+        for row in 0..rect.height as usize {
+            let src = &tile.rgb[row * rect.width as usize..(row + 1) * rect.width as usize];
+            let start = (rect.y0 as usize + row) * width as usize + rect.x0 as usize;
+            image[start..start + rect.width as usize].copy_from_slice(src);
+        }
+        super::interrupt::check()?;
+    }
+    let mut metadata: Vec<(String, String)> =
+        SHARED.iter().filter_map(|k| Some((k.to_string(), first.1.attribute(k)?.to_string()))).collect();
+    metadata.push(("glint:merged_tiles".into(), count.to_string()));
+    if png {
+        let rgb: Vec<u8> = image.iter().flat_map(|p| p.map(linear_f32_to_srgb8)).collect();
+        write_png_rgb8(&args.output, width, height, &rgb, &metadata)?;
+    } else {
+        let pixel = |x: usize, y: usize| image[y * width as usize + x];
+        write_exr_region(&args.output, (width, height), (0, 0), (width, height), pixel, &metadata)?;
+    }
+    println!("merged {count} tiles ({} grid) into {width}x{height}: wrote {}", grid.describe(), args.output.display());
+    Ok(())
+}
+
+/// Whether the two paths name one file (the output may not exist yet).
+fn same_file(a: &Path, b: &Path) -> bool {
+    match (a.canonicalize(), b.canonicalize()) {
+        (Ok(x), Ok(y)) => x == y,
+        _ => false,
+    }
+}

@@ -1,0 +1,171 @@
+//! `glint render --tile I/N`: one block of a fixed grid of the image, for renders spread over a
+//! scheduler's array of tasks (Slurm, Kubernetes Indexed Jobs, AWS Batch), written as an EXR
+//! whose data window is the block and whose display window the whole image, with what
+//! `glint merge` checks before it joins the blocks: the scene's content hash, the settings, the
+//! grid, the backend and the version.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context, bail};
+use glint_core::{Backend, CpuOptions, FlatScene, TileGrid};
+use glint_gpu::GpuOptions;
+use glint_io::LoadedScene;
+use glint_io::exr_file::write_exr_region;
+use glint_scene::{RenderSettings, overflow_causes};
+
+use super::backend::{Run, open_gpu, run_cpu, run_gpu};
+use super::interrupt;
+use super::output::metadata;
+use super::output_path::check_outputs;
+
+/// The array-index variables of the schedulers, in the order they are looked for.
+pub const INDEX_VARIABLES: [(&str, &str); 3] = [
+    ("SLURM_ARRAY_TASK_ID", "Slurm job arrays"),
+    ("JOB_COMPLETION_INDEX", "Kubernetes Indexed Jobs"),
+    ("AWS_BATCH_JOB_ARRAY_INDEX", "AWS Batch array jobs"),
+];
+
+/// `--tile I/N`, or `--tile N` with I from the scheduler.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TileSpec {
+    pub index: Option<u32>,
+    pub count: u32,
+}
+
+pub fn parse_tile(s: &str) -> Result<TileSpec, String> {
+    let number = |t: &str, what: &str| {
+        t.trim().parse::<u32>().map_err(|_| format!("'{t}' is not a whole number ({what}); use I/N or N"))
+    };
+    match s.split_once('/') {
+        Some((i, n)) => {
+            Ok(TileSpec { index: Some(number(i, "the tile's index")?), count: number(n, "the tile count")? })
+        }
+        None => Ok(TileSpec { index: None, count: number(s, "the tile count")? }),
+    }
+}
+
+/// The tile's index, and where it came from (the flag, or a scheduler's variable).
+fn resolve_index(spec: TileSpec) -> anyhow::Result<(u32, String)> {
+    if let Some(i) = spec.index {
+        return Ok((i, "--tile".into()));
+    }
+    for (name, scheduler) in INDEX_VARIABLES {
+        if let Ok(value) = std::env::var(name) {
+            let i = value.trim().parse::<u32>().with_context(|| {
+                format!("{name}='{value}' ({scheduler}) is not a whole number, so it names no tile")
+            })?;
+            return Ok((i, format!("{name} ({scheduler})")));
+        }
+    }
+    let names: Vec<&str> = INDEX_VARIABLES.iter().map(|(n, _)| *n).collect();
+    bail!(
+        "--tile {} takes the tile's index from the scheduler, but none of {} is set; give it as --tile I/{}",
+        spec.count,
+        names.join(", "),
+        spec.count
+    )
+}
+
+/// What `glint render --tile` needs of the render's arguments.
+pub struct TileJob<'a> {
+    pub loaded: &'a LoadedScene,
+    pub settings: &'a RenderSettings,
+    pub spec: TileSpec,
+    pub backend: Backend,
+    pub output: Option<PathBuf>,
+    pub cpu: CpuOptions,
+    pub gpu: GpuOptions,
+    pub adapter: Option<&'a str>,
+    pub specialise: bool,
+    pub force: bool,
+    pub quiet: bool,
+}
+
+pub fn render_tile(job: TileJob) -> anyhow::Result<()> {
+    let (index, source) = resolve_index(job.spec)?;
+    let (w, h) = (job.settings.width, job.settings.height);
+    let grid = TileGrid::new(job.spec.count, w, h).context("--tile")?;
+    let rect = grid.rect(index).context("--tile")?;
+    let output = job.output.unwrap_or_else(|| PathBuf::from(format!("{}-tile-{index}.exr", job.loaded.name)));
+    if !output.extension().is_some_and(|e| e.eq_ignore_ascii_case("exr")) {
+        bail!(
+            "{}: a tile is written as OpenEXR (its data window is the tile, its display window the image); \
+             name the output .exr, and let `glint merge` write the PNG",
+            output.display()
+        );
+    }
+    check_outputs(&[output.as_path()], &job.loaded.source, job.force)?;
+    println!("tile {index}/{} (index from {source}) of a {} grid over {w}x{h}: {rect}", grid.count(), grid.describe());
+    interrupt::check()?;
+    let flat = FlatScene::build(&job.loaded.desc, job.settings);
+    let hash = flat.content_hash();
+    interrupt::check()?;
+    let run = match job.backend {
+        Backend::Cpu => run_cpu(&flat, &CpuOptions { region: Some(rect), ..job.cpu }, job.quiet)?,
+        Backend::Gpu => {
+            let tracer = open_gpu(job.adapter)?;
+            run_gpu(&tracer, &flat, &GpuOptions { region: Some(rect), ..job.gpu }, job.quiet)?
+        }
+    };
+    check_run(&run, job.loaded, job.settings)?;
+    let mut tags = metadata(&job.loaded.name, job.settings, &run, job.specialise);
+    tags.extend([
+        ("glint:scene_hash".to_string(), hash),
+        ("glint:grid".to_string(), grid.describe()),
+        ("glint:tile".to_string(), format!("{index}/{}", grid.count())),
+    ]);
+    write_tile(&output, &run, (w, h), (rect.x0, rect.y0), &tags)?;
+    println!(
+        "  {} {:.1} ms, {} rays; wrote {}",
+        run.backend.name(),
+        run.render.as_secs_f64() * 1e3,
+        run.counts.total(),
+        output.display()
+    );
+    Ok(())
+}
+
+/// A tile whose GPU shader raised a status flag, or whose pixels no file holds, is not written.
+fn check_run(run: &Run, loaded: &LoadedScene, settings: &RenderSettings) -> anyhow::Result<()> {
+    if !run.incomplete.is_empty() {
+        bail!(
+            "the {} render of the tile is incomplete (status {:#x}): {}; no tile was written",
+            run.backend.name(),
+            run.gpu_status,
+            run.incomplete.join("; ")
+        );
+    }
+    if let Some(found) = run.image.unrepresentable() {
+        bail!(
+            "the tile is not a valid image: {found}; no tile was written. In this scene: {}",
+            overflow_causes(&loaded.desc, settings.max_depth)
+        );
+    }
+    Ok(())
+}
+
+fn write_tile(
+    path: &Path,
+    run: &Run,
+    display: (u32, u32),
+    origin: (u32, u32),
+    tags: &[(String, String)],
+) -> anyhow::Result<()> {
+    let image = &run.image;
+    let pixel = |x: usize, y: usize| image.pixels[y * image.width as usize + x].to_array().map(|v| v as f32);
+    write_exr_region(path, display, origin, (image.width, image.height), pixel, tags)?;
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tile_specs_parse_or_say_what_is_wrong() {
+        assert_eq!(parse_tile("3/8"), Ok(TileSpec { index: Some(3), count: 8 }));
+        assert_eq!(parse_tile("8"), Ok(TileSpec { index: None, count: 8 }));
+        assert!(parse_tile("a/8").unwrap_err().contains("'a' is not a whole number (the tile's index)"));
+        assert!(parse_tile("3/-1").unwrap_err().contains("the tile count"));
+    }
+}

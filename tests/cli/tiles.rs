@@ -1,0 +1,208 @@
+//! `glint render --tile` and `glint merge`: a render split into tiles and merged again is the
+//! single render, bit for bit, on the CPU (Whitted's tree and the path tracer alike) and on the
+//! GPU; and every way tiles can fail to belong together is an error that names the tile and
+//! writes nothing.
+
+use std::ffi::OsString;
+use std::path::{Path, PathBuf};
+
+use glint_io::exr_file::read_exr;
+
+use super::{TempDir, glint, text};
+
+/// `glint render SCENE ARGS… -o OUT`, asserting success.
+fn render(dir: &Path, scene: &str, args: &[&str], out: &Path) {
+    let head = ["render", scene];
+    let all = head.iter().chain(args).map(OsString::from).chain(["-q".into(), "-o".into(), out.into()]);
+    let done = glint(dir, all);
+    assert!(done.status.success(), "render {scene} {args:?}: {}", text(&done.stderr));
+}
+
+/// `glint merge TILES… -o OUT`.
+fn merge(dir: &Path, tiles: &[PathBuf], out: &Path) -> std::process::Output {
+    let args = ["merge".into()].into_iter().chain(tiles.iter().map(OsString::from)).chain(["-o".into(), out.into()]);
+    glint(dir, args.collect::<Vec<OsString>>())
+}
+
+fn bits(path: &Path) -> Vec<u32> {
+    let exr = read_exr(path).unwrap_or_else(|e| panic!("{e}"));
+    exr.rgb.iter().flatten().map(|v| v.to_bits()).collect()
+}
+
+fn png_pixels(path: &Path) -> Vec<u8> {
+    image::open(path).unwrap_or_else(|e| panic!("{}: {e}", path.display())).into_rgb8().into_raw()
+}
+
+/// Renders `scene` whole and in `count` tiles on `backend`, merges the tiles into an EXR and a
+/// PNG, and asserts both hold the single render's pixels exactly.
+fn split_and_merge(dir: &Path, scene: &str, settings: &[&str], backend: &str, count: u32) {
+    let label = format!("{scene}-{backend}-{count}");
+    let mut args = settings.to_vec();
+    args.extend(["--backend", backend]);
+    let (whole_exr, whole_png) = (dir.join(format!("{label}.exr")), dir.join(format!("{label}.png")));
+    render(dir, scene, &args, &whole_exr);
+    render(dir, scene, &args, &whole_png);
+    let tiles: Vec<PathBuf> = (0..count)
+        .map(|i| {
+            let tile = dir.join(format!("{label}-tile-{i}.exr"));
+            let spec = format!("{i}/{count}");
+            let mut tile_args = args.clone();
+            tile_args.extend(["--tile", &spec]);
+            render(dir, scene, &tile_args, &tile);
+            tile
+        })
+        .collect();
+    let (merged_exr, merged_png) = (dir.join(format!("{label}-merged.exr")), dir.join(format!("{label}-merged.png")));
+    for out in [&merged_exr, &merged_png] {
+        let done = merge(dir, &tiles, out);
+        assert!(done.status.success(), "{label}: {}", text(&done.stderr));
+    }
+    assert_eq!(bits(&merged_exr), bits(&whole_exr), "{label}: the merged EXR differs from the single render");
+    assert_eq!(png_pixels(&merged_png), png_pixels(&whole_png), "{label}: the merged PNG differs");
+    let header = read_exr(&merged_exr).expect("merged").header;
+    assert_eq!(header.attribute("glint:merged_tiles"), Some(count.to_string().as_str()));
+    assert_eq!(header.attribute("glint:scene"), Some(scene));
+}
+
+#[test]
+fn tiles_merged_are_the_single_render_bit_for_bit_on_the_cpu() {
+    let dir = TempDir::new("tiles-cpu");
+    let size = ["--width", "50", "--height", "38"];
+    // Whitted's tree in a 2×2 grid, the path tracer (4 paths a pixel) in 5 bands.
+    split_and_merge(&dir, "whitted", &[&size[..], &["--spp", "2"]].concat(), "cpu", 4);
+    split_and_merge(&dir, "cornell-gi", &[&size[..], &["--spp", "4", "--depth", "6"]].concat(), "cpu", 5);
+}
+
+#[test]
+fn tiles_merged_are_the_single_render_bit_for_bit_on_the_gpu() {
+    if std::env::var("GLINT_SKIP_GPU").is_ok_and(|v| v == "1") {
+        eprintln!("GLINT_SKIP_GPU=1: no GPU tiles");
+        return;
+    }
+    let dir = TempDir::new("tiles-gpu");
+    let size = ["--width", "40", "--height", "30"];
+    split_and_merge(&dir, "whitted", &size, "gpu", 3);
+    split_and_merge(&dir, "cornell-gi", &[&size[..], &["--spp", "4", "--depth", "6"]].concat(), "gpu", 4);
+}
+
+#[test]
+fn tiles_that_do_not_belong_together_are_refused_by_name_and_nothing_is_written() {
+    let dir = TempDir::new("tiles-refused");
+    let size = ["--width", "24", "--height", "16"];
+    let tile = |scene: &str, spec: &str, name: &str| {
+        let path = dir.join(name);
+        render(&dir, scene, &[&size[..], &["--tile", spec]].concat(), &path);
+        path
+    };
+    let t: Vec<PathBuf> = (0..3).map(|i| tile("whitted", &format!("{i}/3"), &format!("t{i}.exr"))).collect();
+    let out = dir.join("out.exr");
+    let refused = |tiles: &[PathBuf], wanted: &str| {
+        let done = merge(&dir, tiles, &out);
+        assert!(!done.status.success(), "merged {tiles:?}");
+        assert!(text(&done.stderr).contains(wanted), "{}", text(&done.stderr));
+        assert!(!out.exists(), "a refused merge wrote {}", out.display());
+    };
+    refused(&[t[0].clone(), t[2].clone()], "1 of 3 tiles are missing: 1");
+    refused(&[t[0].clone(), t[1].clone(), t[1].clone(), t[2].clone()], "tile 1 is given twice");
+    let other_scene = tile("cornell", "1/3", "c1.exr");
+    refused(&[t[0].clone(), other_scene, t[2].clone()], "c1.exr is not a tile of the same render as");
+    let other_grid = tile("whitted", "1/4", "g1.exr");
+    refused(&[t[0].clone(), other_grid, t[2].clone()], "glint:grid is 3x1 there and 2x2 here");
+    let seeded = dir.join("s1.exr");
+    render(&dir, "whitted", &[&size[..], &["--tile", "1/3", "--seed", "7"]].concat(), &seeded);
+    refused(&[t[0].clone(), seeded, t[2].clone()], "glint:seed is 0 there and 7 here");
+    let whole = dir.join("whole.exr");
+    render(&dir, "whitted", &size, &whole);
+    refused(&[t[0].clone(), whole, t[2].clone()], "not a tile of `glint render --tile`");
+}
+
+#[test]
+fn the_tile_index_comes_from_the_flag_or_a_schedulers_variable() {
+    let dir = TempDir::new("tiles-index");
+    let size = ["--width", "24", "--height", "16"];
+    for (variable, value) in
+        [("SLURM_ARRAY_TASK_ID", "2"), ("JOB_COMPLETION_INDEX", "0"), ("AWS_BATCH_JOB_ARRAY_INDEX", "1")]
+    {
+        let out = dir.join(format!("{variable}.exr"));
+        let args =
+            ["render", "whitted", "--tile", "3", "-o"].map(OsString::from).into_iter().chain([out.clone().into()]);
+        let done = std::process::Command::new(env!("CARGO_BIN_EXE_glint"))
+            .args(args.chain(size.map(OsString::from)))
+            .current_dir(&*dir)
+            .env_remove("SLURM_ARRAY_TASK_ID")
+            .env_remove("JOB_COMPLETION_INDEX")
+            .env_remove("AWS_BATCH_JOB_ARRAY_INDEX")
+            .env(variable, value)
+            .output()
+            .expect("run glint");
+        assert!(done.status.success(), "{}", text(&done.stderr));
+        assert!(
+            text(&done.stdout).contains(&format!("tile {value}/3 (index from {variable}")),
+            "{}",
+            text(&done.stdout)
+        );
+        assert_eq!(read_exr(&out).expect("tile").header.attribute("glint:tile"), Some(format!("{value}/3").as_str()));
+    }
+    let done = std::process::Command::new(env!("CARGO_BIN_EXE_glint"))
+        .args(["render", "whitted", "--tile", "3", "-q"])
+        .current_dir(&*dir)
+        .env_remove("SLURM_ARRAY_TASK_ID")
+        .env_remove("JOB_COMPLETION_INDEX")
+        .env_remove("AWS_BATCH_JOB_ARRAY_INDEX")
+        .output()
+        .expect("run glint");
+    assert!(!done.status.success());
+    let stderr = text(&done.stderr);
+    for name in ["SLURM_ARRAY_TASK_ID", "JOB_COMPLETION_INDEX", "AWS_BATCH_JOB_ARRAY_INDEX", "--tile I/3"] {
+        assert!(stderr.contains(name), "{stderr}");
+    }
+    for (args, wanted) in [
+        (&["--tile", "3/3"][..], "tiles are numbered 0 to 2"),
+        (&["--tile", "1/3", "--backend", "both"][..], "--tile renders on one backend"),
+        (&["--tile", "1/3", "-o", "t.png"][..], "a tile is written as OpenEXR"),
+        (&["--tile", "0/500"][..], "500 tiles of a 24x16 image"),
+    ] {
+        let done = glint(&dir, ["render", "whitted"].iter().chain(&size).chain(args));
+        assert!(!done.status.success(), "{args:?}");
+        assert!(text(&done.stderr).contains(wanted), "{args:?}: {}", text(&done.stderr));
+    }
+}
+
+#[test]
+fn the_scene_hash_follows_what_is_rendered_not_how_the_file_is_written() {
+    // Three scene files called w.toml: the built-in text, the same with a comment (the same
+    // scene: its tiles merge with the first's), and one material changed (another scene).
+    let dir = TempDir::new("tiles-hash");
+    let source = glint_io::builtin("whitted").and_then(|b| b.toml()).expect("built-in whitted");
+    assert!(source.contains("kd = [0.9, 0.1, 0.1]"));
+    let variants = [
+        source.to_string(),
+        format!("{source}\n# the same scene\n"),
+        source.replace("kd = [0.9, 0.1, 0.1]", "kd = [0.8, 0.1, 0.1]"),
+    ];
+    let size = ["--width", "24", "--height", "16"];
+    let tiles: Vec<PathBuf> = variants
+        .iter()
+        .enumerate()
+        .map(|(k, body)| {
+            let folder = dir.join(format!("v{k}"));
+            std::fs::create_dir_all(&folder).expect("folder");
+            std::fs::write(folder.join("w.toml"), body).expect("scene");
+            let tile = dir.join(format!("v{k}.exr"));
+            let scene = folder.join("w.toml");
+            render(
+                &dir,
+                scene.to_str().expect("utf-8"),
+                &[&size[..], &["--tile", &format!("{}/2", k.min(1))]].concat(),
+                &tile,
+            );
+            tile
+        })
+        .collect();
+    let out = dir.join("out.exr");
+    let done = merge(&dir, &[tiles[0].clone(), tiles[1].clone()], &out);
+    assert!(done.status.success(), "a comment changed the scene hash: {}", text(&done.stderr));
+    let done = merge(&dir, &[tiles[0].clone(), tiles[2].clone()], &dir.join("other.exr"));
+    assert!(!done.status.success());
+    assert!(text(&done.stderr).contains("glint:scene_hash is"), "{}", text(&done.stderr));
+}
