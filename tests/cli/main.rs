@@ -13,6 +13,7 @@ mod mitsuba;
 mod models;
 mod reliability;
 mod report;
+mod slurm;
 mod tiles;
 
 const BIN: &str = env!("CARGO_BIN_EXE_glint");
