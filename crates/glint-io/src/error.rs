@@ -2,7 +2,11 @@
 
 use std::path::PathBuf;
 
+use glint_core::image::Unrepresentable;
+
 use glint_scene::FieldIssue;
+
+use crate::atomic::AtomicWriteError;
 
 #[derive(Debug, thiserror::Error)]
 pub enum SceneError {
@@ -45,4 +49,27 @@ impl SceneError {
 
 fn list(issues: &[FieldIssue]) -> String {
     issues.iter().map(|i| format!("  {i}")).collect::<Vec<_>>().join("\n")
+}
+
+/// Why a rendered image was not written.
+#[derive(Debug, thiserror::Error)]
+pub enum ImageWriteError {
+    /// The I/O error is part of the message, not a `source()`: see `SceneError::Io`.
+    #[error("{path}: {error}")]
+    Io { path: PathBuf, error: std::io::Error },
+    #[error("{path}: PNG encoding failed: {message}")]
+    Png { path: PathBuf, message: String },
+    #[error("{path}: EXR encoding failed: {message}")]
+    Exr { path: PathBuf, message: String },
+    #[error("{path}: unsupported output format; use .png or .exr")]
+    Format { path: PathBuf },
+    /// Never written: a non-finite pixel in a file is a wrong image that looks like a result.
+    #[error("{path}: not written: {found}")]
+    Unrepresentable { path: PathBuf, found: Unrepresentable },
+}
+
+impl From<AtomicWriteError> for ImageWriteError {
+    fn from(AtomicWriteError { path, error }: AtomicWriteError) -> Self {
+        Self::Io { path, error }
+    }
 }

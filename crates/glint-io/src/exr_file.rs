@@ -13,7 +13,7 @@ use exr::prelude::{
 };
 
 use crate::atomic::write_atomically;
-use crate::image_file::ImageWriteError;
+use crate::error::ImageWriteError;
 
 /// Where an EXR file's pixels lie in the whole image, and its text attributes.
 #[derive(Clone, Debug, PartialEq)]

@@ -2,34 +2,14 @@
 //! atomically, and the metadata read back from a PNG.
 
 use std::io::{BufWriter, Write};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-use glint_core::image::{HdrImage, Unrepresentable};
+use glint_core::image::HdrImage;
 
-use crate::atomic::{AtomicWriteError, write_atomically};
+use crate::atomic::write_atomically;
 use crate::exr_file::write_exr_region;
 
-#[derive(Debug, thiserror::Error)]
-pub enum ImageWriteError {
-    /// The I/O error is part of the message, not a `source()`: see `SceneError::Io`.
-    #[error("{path}: {error}")]
-    Io { path: PathBuf, error: std::io::Error },
-    #[error("{path}: PNG encoding failed: {message}")]
-    Png { path: PathBuf, message: String },
-    #[error("{path}: EXR encoding failed: {message}")]
-    Exr { path: PathBuf, message: String },
-    #[error("{path}: unsupported output format; use .png or .exr")]
-    Format { path: PathBuf },
-    /// Never written: a non-finite pixel in a file is a wrong image that looks like a result.
-    #[error("{path}: not written: {found}")]
-    Unrepresentable { path: PathBuf, found: Unrepresentable },
-}
-
-impl From<AtomicWriteError> for ImageWriteError {
-    fn from(AtomicWriteError { path, error }: AtomicWriteError) -> Self {
-        Self::Io { path, error }
-    }
-}
+pub use crate::error::ImageWriteError;
 
 /// Refuses an image with pixels no file can hold as they are (see `HdrImage::unrepresentable`).
 fn check_representable(path: &Path, image: &HdrImage) -> Result<(), ImageWriteError> {
@@ -102,6 +82,7 @@ pub fn read_png_text(path: &Path) -> Result<Vec<(String, String)>, std::io::Erro
 #[cfg(test)]
 mod tests {
     use glint_core::glam::DVec3;
+    use glint_core::image::Unrepresentable;
 
     use super::*;
 
