@@ -10,7 +10,7 @@ use super::{TempDir, glint, text};
 const HEADER: &str = "scene,backend,device,groups,width_px,height_px,spp,max_depth,bailout,specialised,\
     epsilon_mode,epsilon,timed_runs,render_ms_median,render_ms_min,render_ms_max,pipeline_ms,shader_statements,\
     rays_total,camera_rays,rays_per_pixel,bailout_saved_rays,mrays_per_s,rmse,rel_mse,psnr_db,flip_mean,max_abs,\
-    first_hit_mismatch_pct,rmse_vs_cpu_twin,rays_vs_cpu_twin_pct,gpu_status,incomplete,pareto_all,pareto_backend";
+    first_hit_mismatch_pct,rmse_vs_cpu_twin,rays_vs_cpu_twin_pct,gpu_status,incomplete,pareto_all,pareto_backend,shard";
 
 /// Columns that hold text; every other column holds a number.
 const TEXT: &[&str] = &[
@@ -23,6 +23,8 @@ const TEXT: &[&str] = &[
     "incomplete",
     "pareto_all",
     "pareto_backend",
+    // The shard's index in a merged report, empty in a one-machine run.
+    "shard",
 ];
 
 /// Columns that only GPU rows fill.
@@ -337,4 +339,69 @@ fn report_renders_every_scene_with_the_integrator_it_is_given() {
         "{}",
         text(&out.stderr)
     );
+}
+
+#[test]
+fn report_shards_merge_into_the_one_machine_report_and_missing_ones_are_named() {
+    let dir = TempDir::new("report-shards");
+    let sweep = ["report", "--quick", "--cpu-only", "--width", "24", "--height", "18", "-q", "--out"];
+    let run = |out: &str, extra: &[&str]| {
+        let args = sweep.iter().copied().chain([out]).chain(extra.iter().copied());
+        let done = glint(&dir, args);
+        assert!(done.status.success(), "{}", text(&done.stderr));
+    };
+    run("one", &[]);
+    for i in 0..3 {
+        run(&format!("s{i}"), &["--shard", &format!("{i}/3")]);
+    }
+    let merge = |dirs: &str, out: &str| glint(&dir, ["report", "--merge", dirs, "--out", out]);
+    let done = merge("s0,s1,s2", "merged");
+    assert!(done.status.success(), "{}", text(&done.stderr));
+    let read = |p: &str| std::fs::read_to_string(dir.join(p)).unwrap_or_else(|e| panic!("{p}: {e}"));
+    let (one, merged) = (read("one/report.csv"), read("merged/report.csv"));
+    let header = split_csv(one.lines().next().expect("header"));
+    let col = |name: &str| header.iter().position(|h| h == name).unwrap_or_else(|| panic!("no column {name}"));
+    // What a shard measures is the same sweep: every row's configuration, rays and errors.
+    let same = [
+        "scene",
+        "backend",
+        "groups",
+        "spp",
+        "max_depth",
+        "bailout",
+        "specialised",
+        "epsilon_mode",
+        "rays_total",
+        "rmse",
+        "rel_mse",
+        "psnr_db",
+        "flip_mean",
+        "max_abs",
+    ];
+    let (a, b): (Vec<_>, Vec<_>) =
+        (one.lines().skip(1).map(split_csv).collect(), merged.lines().skip(1).map(split_csv).collect());
+    assert_eq!(a.len(), b.len(), "the merged report has other rows");
+    let mut shards = std::collections::BTreeSet::new();
+    for (x, y) in a.iter().zip(&b) {
+        for name in same {
+            assert_eq!(x[col(name)], y[col(name)], "{name} differs: {x:?} against {y:?}");
+        }
+        assert_eq!(x[col("shard")], "", "a one-machine row says a shard");
+        shards.insert(y[col("shard")].clone());
+    }
+    assert_eq!(shards.len(), 3, "the rows come from every shard: {shards:?}");
+    assert!(read("merged/report.md").contains("## Shards"), "the report says it was measured in shards");
+    assert!(dir.join("merged/error_vs_time_whitted.png").exists());
+
+    let done = merge("s0,s2", "partial");
+    assert!(!done.status.success());
+    assert!(text(&done.stderr).contains("1 of 3 shards are missing: 1"), "{}", text(&done.stderr));
+    assert!(!dir.join("partial/report.csv").exists(), "a refused merge wrote a report");
+    let done = merge("s0,s1,s1,s2", "twice");
+    assert!(!done.status.success());
+    assert!(text(&done.stderr).contains("shard 1 is given twice"), "{}", text(&done.stderr));
+    run("other", &["--shard", "1/3", "--runs", "4"]);
+    let done = merge("s0,other,s2", "mixed");
+    assert!(!done.status.success());
+    assert!(text(&done.stderr).contains("its timed runs is 4, not 3"), "{}", text(&done.stderr));
 }

@@ -1,7 +1,7 @@
 //! The two tracers, as the CLI, the report and the test suites name them: the CPU f64
 //! reference (this crate) and its GPU f32 mirror (glint-gpu).
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, serde::Serialize, serde::Deserialize)]
 pub enum Backend {
     Cpu,
     Gpu,

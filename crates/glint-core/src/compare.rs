@@ -14,7 +14,7 @@ pub const HEATMAP_LOG10_MAX: f64 = 0.0;
 /// The ε of relMSE = mean((x − r)² / (r² + ε)), as in pbrt's and Mitsuba's reports.
 pub const REL_MSE_EPSILON: f64 = 1e-2;
 
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct ImageErrors {
     pub max_abs: f64,
     pub mean_abs: f64,

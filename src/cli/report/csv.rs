@@ -45,6 +45,7 @@ pub const HEADER: &[&str] = &[
     "incomplete",
     "pareto_all",
     "pareto_backend",
+    "shard",
 ];
 
 /// RFC 4180 quoting, only where needed (adapter names contain commas).
@@ -98,15 +99,19 @@ fn row_fields(scene: &SceneResult, row: &Row, device: &str) -> Vec<String> {
         row.dropped_work().to_string(),
         row.pareto_all.to_string(),
         row.pareto_backend.to_string(),
+        opt(row.shard.map(|s| s.to_string())),
     ]
 }
 
-/// The whole CSV: the header, then every scene's rows in sweep order.
-pub fn render_csv(scenes: &[SceneResult], cpu_device: &str, gpu_device: &str) -> String {
+/// The whole CSV: the header, then every scene's rows in sweep order. `devices` are the CPU's
+/// and the GPU's names on each machine: one pair for a one-machine run, one a shard for a
+/// merged one (a row's `shard` picks its pair).
+pub fn render_csv(scenes: &[SceneResult], devices: &[(String, String)]) -> String {
     let mut out = HEADER.join(",");
     out.push('\n');
     for scene in scenes {
         for row in &scene.rows {
+            let (cpu_device, gpu_device) = &devices[row.shard.unwrap_or(0) as usize];
             let device = if row.config.backend == Backend::Cpu { cpu_device } else { gpu_device };
             let fields: Vec<String> = row_fields(scene, row, device).iter().map(|f| field(f)).collect();
             debug_assert_eq!(fields.len(), HEADER.len());

@@ -9,6 +9,7 @@ mod markdown;
 mod pareto;
 mod plan;
 mod plot;
+mod shard;
 mod specular;
 mod sweep;
 
@@ -24,7 +25,7 @@ use glint_io::atomic::write_file_atomically;
 use glint_scene::{Integrator, RenderSettings};
 use indicatif::{ProgressBar, ProgressStyle};
 
-use self::plan::Plan;
+use self::plan::{Plan, Planned};
 use self::sweep::Engines;
 use super::backend::open_gpu;
 use super::settings::{load, parse_integrator, parse_threads};
@@ -70,6 +71,14 @@ pub struct ReportArgs {
     /// --reference-spp
     #[arg(long, value_parser = parse_integrator)]
     pub integrator: Option<Integrator>,
+    /// Run shard I of N of the sweep (I from 0): the configurations the shards' fixed split by
+    /// expected cost gives it; writes DIR/shard-I-of-N.toml for --merge
+    #[arg(long, value_name = "I/N", value_parser = shard::parse_shard)]
+    pub shard: Option<shard::ShardSpec>,
+    /// Merge the shards' files found in these folders (comma-separated) into the report a
+    /// one-machine run writes, in --out; names every missing shard
+    #[arg(long, value_delimiter = ',', value_name = "DIR", conflicts_with_all = ["shard", "scenes", "quick"])]
+    pub merge: Vec<PathBuf>,
     /// No progress bar
     #[arg(short, long)]
     pub quiet: bool,
@@ -77,6 +86,9 @@ pub struct ReportArgs {
 
 pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
     let started = Instant::now();
+    if !args.merge.is_empty() {
+        return merge(args, started);
+    }
     let plan = if args.quick { Plan::quick(args.reference_spp) } else { Plan::full(args.reference_spp) };
     let (width, height) = if args.quick { (96, 72) } else { (320, 240) };
     let (width, height) = (args.width.unwrap_or(width), args.height.unwrap_or(height));
@@ -124,26 +136,91 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
 
     let planned = plan.configs(&backends);
     let reference = plan.reference();
+    // With --shard, which shard times each (scene, configuration); specular models go with the
+    // shard of a scene's first configuration.
+    let owners = args
+        .shard
+        .map(|s| shard::assign(scenes.len(), &planned, u64::from(width) * u64::from(height), args.runs, s.count));
+    let mine = |scene: usize, config: usize| match (&owners, args.shard) {
+        (Some(o), Some(s)) => o[scene][config] == s.index,
+        _ => true,
+    };
     // One tick per render: the reference, then each configuration's warm-up and timed runs,
     // then each specular model's.
-    let renders =
-        scenes.len() * (1 + planned.len() * (1 + args.runs as usize) + specular::renders(&backends, args.runs));
+    let renders: usize = (0..scenes.len())
+        .map(|si| {
+            let configs = (0..planned.len()).filter(|&ci| mine(si, ci)).count();
+            let specular = if mine(si, 0) { specular::renders(&backends, args.runs) } else { 0 };
+            if configs == 0 { specular } else { 1 + configs * (1 + args.runs as usize) + specular }
+        })
+        .sum();
     let bar = progress(args.quiet, renders as u64)?;
     let mut results = Vec::with_capacity(scenes.len());
-    for loaded in &scenes {
+    for (si, loaded) in scenes.iter().enumerate() {
         let scene = &loaded.desc.render;
         let base =
             RenderSettings { width, height, integrator: args.integrator.unwrap_or(scene.integrator), ..scene.clone() };
-        let mut result = sweep::run_scene(&mut engines, loaded, &base, &reference, &planned, args.runs, &bar)?;
-        result.specular = specular::measure(&mut engines, loaded, &base, &backends, args.runs, &bar)?;
-        pareto::mark_fronts(&mut result.rows);
-        let path = plot::write_plot(&args.out, &result, args.runs as usize)?;
-        bar.suspend(|| println!("{}: {} configurations, wrote {}", result.name, result.rows.len(), path.display()));
+        let ours: Vec<Planned> =
+            planned.iter().enumerate().filter(|(ci, _)| mine(si, *ci)).map(|(_, p)| p.clone()).collect();
+        let mut result = if ours.is_empty() {
+            sweep::SceneResult {
+                name: loaded.name.clone(),
+                description: loaded.desc.description.clone(),
+                settings: base.clone(),
+                reference,
+                rows: Vec::new(),
+                specular: Vec::new(),
+            }
+        } else {
+            sweep::run_scene(&mut engines, loaded, &base, &reference, &ours, args.runs, &bar)?
+        };
+        if mine(si, 0) {
+            result.specular = specular::measure(&mut engines, loaded, &base, &backends, args.runs, &bar)?;
+        }
+        if let Some(s) = args.shard {
+            for row in &mut result.rows {
+                row.shard = Some(s.index);
+            }
+        } else {
+            pareto::mark_fronts(&mut result.rows);
+            let path = plot::write_plot(&args.out, &result, args.runs as usize)?;
+            bar.suspend(|| println!("{}: {} configurations, wrote {}", result.name, result.rows.len(), path.display()));
+        }
         results.push(result);
     }
     bar.finish_and_clear();
 
     let machine = machine::Machine::probe();
+    if let Some(spec) = args.shard {
+        let file = shard::ShardFile {
+            glint: env!("CARGO_PKG_VERSION").to_string(),
+            shard: spec.index,
+            count: spec.count,
+            width,
+            height,
+            runs: args.runs,
+            quick: args.quick,
+            reference_spp: args.reference_spp,
+            integrator: args.integrator,
+            scenes: scenes.iter().map(|s| s.name.clone()).collect(),
+            backends,
+            cpu_device,
+            gpu_device,
+            machine,
+            results,
+        };
+        let rows: usize = file.results.iter().map(|r| r.rows.len()).sum();
+        let path = shard::write(&args.out, spec, &file)?;
+        println!(
+            "report shard {}/{}: {rows} of {} configurations in {:.1} s; wrote {} (merge the shards with --merge)",
+            spec.index,
+            spec.count,
+            scenes.len() * planned.len(),
+            started.elapsed().as_secs_f64(),
+            path.display()
+        );
+        return Ok(());
+    }
     let setup = markdown::Setup {
         machine: &machine,
         cpu_device: &cpu_device,
@@ -155,20 +232,100 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
         plan: &plan,
         integrator: args.integrator,
     };
-    let csv_path = args.out.join("report.csv");
-    write_report_file(&csv_path, &csv::render_csv(&results, &cpu_device, gpu_device.as_deref().unwrap_or("")))?;
-    write_report_file(&args.out.join("specular.csv"), &csv::render_specular_csv(&results))?;
-    let md_path = args.out.join("report.md");
-    write_report_file(&md_path, &markdown::render_markdown(&setup, &results))?;
+    let devices = [(cpu_device.clone(), gpu_device.clone().unwrap_or_default())];
+    write_outputs(&args.out, &setup, &results, &devices, &[])?;
     println!(
         "report: {} scenes, {} configurations each, in {:.1} s; wrote {} and {}",
         results.len(),
         planned.len(),
         started.elapsed().as_secs_f64(),
-        md_path.display(),
-        csv_path.display()
+        args.out.join("report.md").display(),
+        args.out.join("report.csv").display()
     );
     Ok(())
+}
+
+/// `--merge DIR…`: the shards' rows joined into the files a one-machine run writes.
+fn merge(args: &ReportArgs, started: Instant) -> anyhow::Result<()> {
+    let mut files = shard::read_all(&args.merge)?;
+    let first = &files[0];
+    let plan = if first.quick { Plan::quick(first.reference_spp) } else { Plan::full(first.reference_spp) };
+    let planned = plan.configs(&first.backends);
+    let (machine, width, height, runs, quick, integrator) =
+        (first.machine.clone(), first.width, first.height, first.runs, first.quick, first.integrator);
+    let devices: Vec<(String, String)> =
+        files.iter().map(|f| (f.cpu_device.clone(), f.gpu_device.clone().unwrap_or_default())).collect();
+    let machines: Vec<String> = files
+        .iter()
+        .map(|f| {
+            let m = &f.machine;
+            format!(
+                "shard {}: {}, {} logical cores, {}; {}{}",
+                f.shard,
+                m.cpu_model,
+                m.logical_cores,
+                m.date,
+                f.cpu_device,
+                f.gpu_device.as_deref().map_or(String::new(), |g| format!(", GPU {g}"))
+            )
+        })
+        .collect();
+    let gpu_device = files[0].gpu_device.clone();
+    let mut results = shard::join(&mut files, &planned);
+    std::fs::create_dir_all(&args.out).with_context(|| format!("cannot create {}", args.out.display()))?;
+    for result in &mut results {
+        pareto::mark_fronts(&mut result.rows);
+        let path = plot::write_plot(&args.out, result, runs as usize)?;
+        println!("{}: {} configurations, wrote {}", result.name, result.rows.len(), path.display());
+    }
+    let setup = markdown::Setup {
+        machine: &machine,
+        cpu_device: &devices[0].0,
+        gpu_device: gpu_device.as_deref(),
+        width,
+        height,
+        runs,
+        quick,
+        plan: &plan,
+        integrator,
+    };
+    write_outputs(&args.out, &setup, &results, &devices, &machines)?;
+    println!(
+        "report: {} shards merged, {} scenes, {} configurations each, in {:.1} s; wrote {} and {}",
+        devices.len(),
+        results.len(),
+        planned.len(),
+        started.elapsed().as_secs_f64(),
+        args.out.join("report.md").display(),
+        args.out.join("report.csv").display()
+    );
+    Ok(())
+}
+
+/// report.csv, specular.csv and report.md; `machines` lists a merged report's shards.
+fn write_outputs(
+    out: &Path,
+    setup: &markdown::Setup,
+    results: &[sweep::SceneResult],
+    devices: &[(String, String)],
+    machines: &[String],
+) -> anyhow::Result<()> {
+    write_report_file(&out.join("report.csv"), &csv::render_csv(results, devices))?;
+    write_report_file(&out.join("specular.csv"), &csv::render_specular_csv(results))?;
+    let mut md = markdown::render_markdown(setup, results);
+    if !machines.is_empty() {
+        md.push_str(&format!(
+            "\n## Shards\n\nThis report was measured in {} shards (`glint report --shard I/N`, merged by \
+             `--merge`). Every row's timing comes from the machine of its shard (report.csv's `shard` column); \
+             the header's machine is shard 0's. Errors are measured against each shard's own CPU reference, \
+             which is the same image on every machine.\n\n",
+            machines.len()
+        ));
+        for m in machines {
+            md.push_str(&format!("- {m}\n"));
+        }
+    }
+    write_report_file(&out.join("report.md"), &md)
 }
 
 /// Replaces `path` atomically: a reader (or a CI artefact upload) never sees a half-written report.

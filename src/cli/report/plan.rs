@@ -3,9 +3,10 @@
 
 use glint_core::Backend;
 use glint_scene::EpsilonMode;
+use serde::{Deserialize, Serialize};
 
 /// The bailout thresholds of the sweep, kept symbolic so that tables can print "1/255".
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
 pub enum Bailout {
     Off,
     Per255,
@@ -31,7 +32,7 @@ impl Bailout {
 }
 
 /// Why a configuration is in the report (it may be in several sweeps).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
 pub enum Group {
     /// The reference settings: error 0 on the CPU by construction; on the GPU, the f32 floor.
     Reference,
@@ -54,7 +55,7 @@ impl Group {
 }
 
 /// One render configuration. Size, seed and epsilon value are the report's and the scene's.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 pub struct Config {
     pub backend: Backend,
     pub spp: u32,

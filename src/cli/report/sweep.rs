@@ -12,6 +12,7 @@ use glint_gpu::{GpuOptions, GpuTracer, ShaderKey};
 use glint_io::LoadedScene;
 use glint_scene::{RenderSettings, SpecularModel, overflow_causes};
 use indicatif::ProgressBar;
+use serde::{Deserialize, Serialize};
 
 use super::plan::{Config, Group, Planned};
 use crate::cli::units::{mrays_per_s, ms};
@@ -34,7 +35,7 @@ pub struct Sample {
     pub gpu: Option<GpuExtra>,
 }
 
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, Serialize, Deserialize)]
 pub struct GpuExtra {
     /// Creation time of the row's shader variant (compiled once, then cached).
     pub pipeline: Duration,
@@ -48,7 +49,7 @@ pub struct GpuExtra {
 pub const RAY_MISMATCH_PCT: f64 = 0.1;
 
 /// One measured configuration.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct Row {
     pub config: Config,
     pub groups: Vec<Group>,
@@ -70,6 +71,8 @@ pub struct Row {
     pub same_as_specialised: Option<bool>,
     pub pareto_all: bool,
     pub pareto_backend: bool,
+    /// The shard of `glint report --shard` that timed it (`None` in a one-machine run).
+    pub shard: Option<u32>,
 }
 
 impl Row {
@@ -103,7 +106,7 @@ impl Row {
 }
 
 /// One specular model on one backend (`specular::measure`).
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct SpecularRow {
     pub model: SpecularModel,
     pub config: Config,
@@ -120,7 +123,7 @@ impl SpecularRow {
 }
 
 /// All rows of one scene.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct SceneResult {
     pub name: String,
     pub description: String,
@@ -243,6 +246,7 @@ pub fn run_scene(
             same_as_specialised: None,
             pareto_all: false,
             pareto_backend: false,
+            shard: None,
         });
         images.push(warm.image);
         bar.inc(1);

@@ -123,6 +123,7 @@ mod tests {
             same_as_specialised: None,
             pareto_all: false,
             pareto_backend: false,
+            shard: None,
         }
     }
 

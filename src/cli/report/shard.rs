@@ -1,0 +1,263 @@
+//! `glint report --shard I/N` and `glint report --merge DIR…`: a sweep split over machines.
+//!
+//! The work is cut into families: one scene's configurations that differ only in backend and
+//! specialisation (so that a GPU row and its CPU twin, a full shader and its specialised one,
+//! are timed and compared on one machine). Families are dealt to the N shards by expected cost
+//! (pixels × samples × (depth + 1) × (runs + 1), the largest first to the least loaded shard),
+//! the same way on every machine. A shard renders the CPU reference of each scene it has a
+//! family of (deterministic, so every shard's errors are the ones a one-machine run measures),
+//! and writes its rows to `shard-I-of-N.toml`. The merge reads every shard's file, checks that
+//! they are one sweep's and that none is missing, puts the rows back in the sweep's order and
+//! writes the CSV, Markdown and plots a one-machine run writes; each row keeps its shard's
+//! timing and says which shard (and so which machine) it comes from.
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context, bail};
+use glint_core::Backend;
+use glint_scene::Integrator;
+use serde::{Deserialize, Serialize};
+
+use super::machine::Machine;
+use super::plan::{Config, Planned};
+use super::sweep::SceneResult;
+
+/// `--shard I/N`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ShardSpec {
+    pub index: u32,
+    pub count: u32,
+}
+
+pub fn parse_shard(s: &str) -> Result<ShardSpec, String> {
+    let (i, n) = s.split_once('/').ok_or_else(|| format!("'{s}' is not I/N (shard I of N, I from 0)"))?;
+    let number = |t: &str| t.trim().parse::<u32>().map_err(|_| format!("'{t}' in '{s}' is not a whole number"));
+    let (index, count) = (number(i)?, number(n)?);
+    if count == 0 || index >= count {
+        return Err(format!("shard {index} of {count}: shards are numbered 0 to N-1, N at least 1"));
+    }
+    Ok(ShardSpec { index, count })
+}
+
+/// A family: the configurations of one scene that differ only in backend and specialisation.
+fn family(config: &Config) -> (u32, u32, super::plan::Bailout, glint_scene::EpsilonMode) {
+    (config.spp, config.depth, config.bailout, config.epsilon_mode)
+}
+
+/// Which shard times each (scene, planned configuration): `shards[scene][config]`.
+pub fn assign(scenes: usize, planned: &[Planned], pixels: u64, runs: u32, count: u32) -> Vec<Vec<u32>> {
+    let mut families: BTreeMap<(usize, usize), f64> = BTreeMap::new();
+    for scene in 0..scenes {
+        for (i, p) in planned.iter().enumerate() {
+            // Keyed by the family's first configuration, in plan order.
+            let first = planned.iter().position(|q| family(&q.config) == family(&p.config)).unwrap_or(i);
+            let c = &p.config;
+            let cost = pixels as f64 * f64::from(c.spp) * f64::from(c.depth + 1) * f64::from(runs + 1);
+            *families.entry((scene, first)).or_default() += cost;
+        }
+    }
+    let mut order: Vec<((usize, usize), f64)> = families.into_iter().collect();
+    // The largest first; equal costs in plan order, so every machine deals the same.
+    order.sort_by(|a, b| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0)));
+    let mut load = vec![0.0f64; count as usize];
+    let mut owner: BTreeMap<(usize, usize), u32> = BTreeMap::new();
+    for (key, cost) in order {
+        let shard = (0..count as usize).min_by(|&a, &b| load[a].total_cmp(&load[b]).then(a.cmp(&b))).unwrap_or(0);
+        load[shard] += cost;
+        owner.insert(key, shard as u32);
+    }
+    (0..scenes)
+        .map(|scene| {
+            planned
+                .iter()
+                .enumerate()
+                .map(|(i, p)| {
+                    let first = planned.iter().position(|q| family(&q.config) == family(&p.config)).unwrap_or(i);
+                    owner[&(scene, first)]
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// What a shard writes: the sweep it is part of, its machine, and its rows.
+#[derive(Debug, Serialize, Deserialize)]
+pub struct ShardFile {
+    pub glint: String,
+    pub shard: u32,
+    pub count: u32,
+    pub width: u32,
+    pub height: u32,
+    pub runs: u32,
+    pub quick: bool,
+    pub reference_spp: u32,
+    pub integrator: Option<Integrator>,
+    /// Every scene of the sweep, in its order.
+    pub scenes: Vec<String>,
+    pub backends: Vec<Backend>,
+    pub cpu_device: String,
+    pub gpu_device: Option<String>,
+    pub machine: Machine,
+    pub results: Vec<SceneResult>,
+}
+
+impl ShardFile {
+    /// What must be equal in every shard of one sweep, as text for the message.
+    fn sweep(&self) -> [(&'static str, String); 8] {
+        [
+            ("glint version", self.glint.clone()),
+            ("shard count", self.count.to_string()),
+            ("size", format!("{}x{}", self.width, self.height)),
+            ("timed runs", self.runs.to_string()),
+            ("--quick", self.quick.to_string()),
+            ("reference spp", self.reference_spp.to_string()),
+            ("integrator", self.integrator.map_or("each scene's own".into(), |i| i.name().into())),
+            ("scenes", self.scenes.join(",")),
+        ]
+    }
+}
+
+pub fn file_name(spec: ShardSpec) -> String {
+    format!("shard-{}-of-{}.toml", spec.index, spec.count)
+}
+
+pub fn write(dir: &Path, spec: ShardSpec, file: &ShardFile) -> anyhow::Result<PathBuf> {
+    let path = dir.join(file_name(spec));
+    let text = toml::to_string(file).context("the shard's results as TOML")?;
+    glint_io::atomic::write_file_atomically(&path, text.as_bytes())
+        .map_err(|e| anyhow::anyhow!("cannot write {}: {}", e.path.display(), e.error))?;
+    Ok(path)
+}
+
+/// Every shard file in `dirs`, checked to be one whole sweep, in shard order.
+pub fn read_all(dirs: &[PathBuf]) -> anyhow::Result<Vec<ShardFile>> {
+    let mut found: Vec<(PathBuf, ShardFile)> = Vec::new();
+    for dir in dirs {
+        let entries = std::fs::read_dir(dir).with_context(|| format!("cannot read the folder {}", dir.display()))?;
+        let mut names: Vec<PathBuf> = entries
+            .filter_map(Result::ok)
+            .map(|e| e.path())
+            .filter(|p| p.file_name().is_some_and(|n| n.to_string_lossy().starts_with("shard-")))
+            .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+            .collect();
+        names.sort();
+        for path in names {
+            let text = std::fs::read_to_string(&path).with_context(|| format!("cannot read {}", path.display()))?;
+            let file: ShardFile = toml::from_str(&text)
+                .with_context(|| format!("{}: not a shard of `glint report --shard`", path.display()))?;
+            found.push((path, file));
+        }
+    }
+    let Some((first_path, first)) = found.first() else {
+        let list: Vec<String> = dirs.iter().map(|d| d.display().to_string()).collect();
+        bail!("no shard-I-of-N.toml in {}: run `glint report --shard I/N --out DIR` first", list.join(", "));
+    };
+    let expected = first.sweep();
+    let mut by_index: BTreeMap<u32, &Path> = BTreeMap::new();
+    for (path, file) in &found {
+        if let Some(((what, theirs), (_, ours))) = expected.iter().zip(file.sweep()).find(|((_, a), (_, b))| a != b) {
+            bail!(
+                "{} is not a shard of the same sweep as {}: its {what} is {ours}, not {theirs}; nothing was written",
+                path.display(),
+                first_path.display()
+            );
+        }
+        if let Some(other) = by_index.insert(file.shard, path) {
+            bail!(
+                "shard {} is given twice, {} and {}; nothing was written",
+                file.shard,
+                other.display(),
+                path.display()
+            );
+        }
+    }
+    let missing: Vec<String> = (0..first.count).filter(|i| !by_index.contains_key(i)).map(|i| i.to_string()).collect();
+    if !missing.is_empty() {
+        bail!(
+            "{} of {} shards are missing: {} (run them with --shard I/{}); nothing was written",
+            missing.len(),
+            first.count,
+            missing.join(", "),
+            first.count
+        );
+    }
+    let mut files: Vec<ShardFile> = found.into_iter().map(|(_, f)| f).collect();
+    files.sort_by_key(|f| f.shard);
+    Ok(files)
+}
+
+/// The shards' rows joined per scene, in the sweep's order of scenes and of configurations.
+pub fn join(files: &mut [ShardFile], planned: &[Planned]) -> Vec<SceneResult> {
+    let position = |c: &Config| planned.iter().position(|p| p.config == *c).unwrap_or(usize::MAX);
+    let names = files[0].scenes.clone();
+    let mut out = Vec::new();
+    for name in names {
+        let mut joined: Option<SceneResult> = None;
+        for file in files.iter_mut() {
+            for part in file.results.iter_mut().filter(|r| r.name == name) {
+                let part = std::mem::replace(part, empty_like(part));
+                match &mut joined {
+                    None => joined = Some(part),
+                    Some(j) => {
+                        j.rows.extend(part.rows);
+                        j.specular.extend(part.specular);
+                    }
+                }
+            }
+        }
+        if let Some(mut j) = joined {
+            j.rows.sort_by_key(|r| position(&r.config));
+            out.push(j);
+        }
+    }
+    out
+}
+
+fn empty_like(r: &SceneResult) -> SceneResult {
+    SceneResult {
+        name: String::new(),
+        description: String::new(),
+        settings: r.settings.clone(),
+        reference: r.reference,
+        rows: Vec::new(),
+        specular: Vec::new(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::cli::report::plan::Plan;
+
+    #[test]
+    fn every_family_goes_to_one_shard_and_the_loads_balance() {
+        let planned = Plan::full(64).configs(&[Backend::Cpu, Backend::Gpu]);
+        for count in [1, 2, 3, 7] {
+            let shards = assign(5, &planned, 320 * 240, 3, count);
+            let mut load = vec![0.0; count as usize];
+            for scene in &shards {
+                for (i, p) in planned.iter().enumerate() {
+                    for (j, q) in planned.iter().enumerate() {
+                        if family(&p.config) == family(&q.config) {
+                            assert_eq!(scene[i], scene[j], "a family split over shards");
+                        }
+                    }
+                    let c = &p.config;
+                    load[scene[i] as usize] += f64::from(c.spp) * f64::from(c.depth + 1);
+                }
+            }
+            let (most, least) =
+                (load.iter().copied().fold(0.0, f64::max), load.iter().copied().fold(f64::MAX, f64::min));
+            assert!(least > 0.0 && most <= 2.0 * least, "{count} shards: loads {load:?}");
+            assert_eq!(shards, assign(5, &planned, 320 * 240, 3, count), "not the same on every machine");
+        }
+    }
+
+    #[test]
+    fn shard_specs_parse_or_say_what_is_wrong() {
+        assert_eq!(parse_shard("1/4"), Ok(ShardSpec { index: 1, count: 4 }));
+        assert!(parse_shard("4/4").unwrap_err().contains("numbered 0 to N-1"));
+        assert!(parse_shard("4").unwrap_err().contains("is not I/N"));
+    }
+}
