@@ -2,6 +2,7 @@
 //! validation. One test binary, several modules. (The stiff and extreme cases, on both
 //! backends, are the `stiff` test binary.)
 
+mod ambient_fit;
 mod bit_identity;
 mod bvh;
 mod closed_form;

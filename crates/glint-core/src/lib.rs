@@ -2,6 +2,7 @@
 //! exact f64 CPU reference tracer of the Phong/Whitted model (with its ray trees, rebasing,
 //! rendering and image comparison). It reads no file and holds no GPU code.
 
+pub mod ambient_fit;
 pub mod backend;
 pub mod bvh;
 pub mod compare;

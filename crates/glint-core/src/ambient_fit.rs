@@ -1,0 +1,69 @@
+//! The ambient term judged (issue 33): the global ambient I_a, per channel, that brings a
+//! Whitted image closest to a path-traced one of the same scene and view.
+//!
+//! Whitted's image is affine in I_a, channel by channel: I_a enters as I_a·k_a at every node of
+//! the tree, weighed by the path weights k_r, k_t and f_att, none of which depends on I_a (nor
+//! do the bailout's decisions). So with W₀ the image at I_a = 0 and A the image at I_a = 1
+//! less W₀, the image at I_a is W₀ + I_a·A, and the I_a that minimises the squared error
+//! against a reference P is, per channel c, Σ A_c (P_c − W₀_c) / Σ A_c², at least 0. Two
+//! renders give it exactly; no search.
+
+use glam::DVec3;
+use glint_scene::{RenderSettings, Rgb, SceneDesc};
+
+use crate::flat::FlatScene;
+use crate::image::HdrImage;
+use crate::render::{CpuOptions, CpuRenderError, RenderControl, render_cpu};
+
+/// What fitting I_a gives: the fitted value and the RMSE against the reference of Whitted's
+/// image with I_a as the scene writes it, without it, and fitted.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AmbientFit {
+    pub ambient: [f64; 3],
+    pub rmse_as_written: f64,
+    pub rmse_without: f64,
+    pub rmse_fitted: f64,
+}
+
+fn rmse(a: &[DVec3], b: &[DVec3]) -> f64 {
+    let sum: f64 = a.iter().zip(b).map(|(p, q)| (*p - *q).length_squared()).sum();
+    (sum / (3 * a.len().max(1)) as f64).sqrt()
+}
+
+/// Fits the global ambient of `desc` rendered by Whitted's tree with `settings` (its integrator
+/// set to Whitted's) to `reference`, an image of the same size (a converged path-traced render).
+pub fn fit_ambient(
+    desc: &SceneDesc,
+    settings: &RenderSettings,
+    reference: &HdrImage,
+    options: &CpuOptions,
+) -> Result<AmbientFit, CpuRenderError> {
+    let settings = RenderSettings { integrator: glint_scene::Integrator::Whitted, ..settings.clone() };
+    let render = |ambient: Rgb| -> Result<Vec<DVec3>, CpuRenderError> {
+        let mut d = desc.clone();
+        d.world.ambient = ambient;
+        Ok(render_cpu(&FlatScene::build(&d, &settings), options, RenderControl::default())?.image.pixels)
+    };
+    let without = render(Rgb([0.0; 3]))?;
+    let unit = render(Rgb([1.0; 3]))?;
+    let as_written = render(desc.world.ambient)?;
+    let p = &reference.pixels;
+    let mut ambient = [0.0; 3];
+    for (c, a) in ambient.iter_mut().enumerate() {
+        let (mut num, mut den) = (0.0, 0.0);
+        for ((w0, w1), r) in without.iter().zip(&unit).zip(p) {
+            let response = w1[c] - w0[c];
+            num += response * (r[c] - w0[c]);
+            den += response * response;
+        }
+        *a = if den > 0.0 { (num / den).max(0.0) } else { 0.0 };
+    }
+    let fitted: Vec<DVec3> =
+        without.iter().zip(&unit).map(|(w0, w1)| *w0 + DVec3::from(ambient) * (*w1 - *w0)).collect();
+    Ok(AmbientFit {
+        ambient,
+        rmse_as_written: rmse(&as_written, p),
+        rmse_without: rmse(&without, p),
+        rmse_fitted: rmse(&fitted, p),
+    })
+}
