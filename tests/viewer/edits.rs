@@ -93,3 +93,32 @@ fn an_invalid_value_is_reported_in_the_ui_and_the_last_valid_image_stays() {
     assert!(h.query_all_by_label_contains("lights[0].attenuation").count() > 0, "the problem is shown in the UI");
     assert_eq!(h.state().renders.gpu.as_ref().and_then(|g| g.latest.as_ref()).map(|l| l.revision), revision);
 }
+
+#[test]
+fn the_integrator_switch_renders_paths_on_both_tracers_and_back() {
+    // A small window and image: paths cost more than Whitted's tree on lavapipe.
+    let Some(mut h) = viewer("cornell-gi", (1000.0, 640.0)) else { return };
+    assert_eq!(h.state().doc.desc.render.integrator, glint_scene::Integrator::Path, "cornell-gi asks for paths");
+    let paths = gpu_image(&h);
+    choose(&mut h, "Scene", "Integrator", "whitted");
+    settle(&mut h);
+    assert_eq!(h.state().doc.desc.render.integrator, glint_scene::Integrator::Whitted);
+    assert!(h.query_by_label("Indirect light").is_none(), "Whitted's tree has no indirect-light switch");
+    let whitted = gpu_image(&h);
+    // cornell-gi has no point light and no ambient term: Whitted sees the lamp (and its images in
+    // the mirror and the glass) and little else; the paths light the whole box.
+    let lit = |i: &glint_core::HdrImage| {
+        i.pixels.iter().filter(|p| p.max_element() > 0.01).count() as f64 / i.pixels.len() as f64
+    };
+    assert!(lit(&whitted) < 0.1 && lit(&paths) > 0.7, "lit: Whitted {}, paths {}", lit(&whitted), lit(&paths));
+    let mean = |i: &glint_core::HdrImage| i.pixels.iter().map(|p| p.x + p.y + p.z).sum::<f64>() / i.pixels.len() as f64;
+    assert_current_agreement(&h);
+    choose(&mut h, "Scene", "Integrator", "path");
+    settle(&mut h);
+    h.get_by_label("Indirect light").click();
+    settle(&mut h);
+    assert!(!h.state().doc.desc.render.indirect, "the switch sets render.indirect");
+    let direct = gpu_image(&h);
+    assert!(mean(&direct) < mean(&paths), "without indirect light the box is darker");
+    assert_current_agreement(&h);
+}

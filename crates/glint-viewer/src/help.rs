@@ -31,6 +31,14 @@ pub fn tooltip(label: &str) -> Option<&'static str> {
              surface shadow itself (acne). Too small: speckles; too large: shadows detach (peter-panning)."
         }
         "Epsilon strategy" => "How ε is applied to secondary rays (the seed's remedies for self-intersection).",
+        "Integrator" => {
+            "What both tracers compute: Whitted's ray tree (the seed's model), or Monte Carlo paths, the light \
+             transport the model approximates (global illumination)."
+        }
+        "Indirect light" => {
+            "Paths follow every lobe (on), or only k_r and k_t with direct light (off): Whitted's transport, \
+             so that the difference is the indirect light."
+        }
         "Samples per pixel" => {
             "Rays per pixel, jittered inside it and averaged: anti-aliasing of edges. Time grows in proportion."
         }
@@ -114,6 +122,12 @@ pub fn with_tooltip(response: egui::Response, text: Option<&str>) -> egui::Respo
 /// The tooltip of one option of the combo box labelled `control`.
 pub fn option_tooltip(control: &str, option: &str) -> Option<&'static str> {
     Some(match (control, option) {
+        ("Integrator", "whitted") => {
+            "The seed's model: local Phong terms, mirror and refracted rays, the ambient term."
+        }
+        ("Integrator", "path") => {
+            "Paths with area lights, colour bleeding and caustics; no ambient term. Samples per pixel are paths."
+        }
         ("Epsilon strategy", "tmin") => "Ignore hits closer than ε along the secondary ray (the seed's first remedy).",
         ("Epsilon strategy", "nudge_ray") => "Start the secondary ray ε along its own direction.",
         ("Epsilon strategy", "nudge_normal") => "Start the secondary ray ε off the surface, along the normal.",

@@ -1,7 +1,7 @@
 //! Scene panel: camera, world and render settings.
 
 use egui::Ui;
-use glint_scene::{CameraDesc, EpsilonMode, GlobalAttenuation, ObjectDesc, SpecularModel, ranges};
+use glint_scene::{CameraDesc, EpsilonMode, GlobalAttenuation, Integrator, ObjectDesc, SpecularModel, ranges};
 
 use crate::document::Document;
 use crate::widgets::{choice, int_slider, log_slider, number, rgb_edit, slider};
@@ -28,6 +28,14 @@ pub fn ui(ui: &mut Ui, doc: &mut Document) -> bool {
     });
     egui::CollapsingHeader::new("Render").default_open(true).show(ui, |ui| {
         let r = &mut doc.desc.render;
+        changed |= choice(ui, "Integrator", &mut r.integrator, &Integrator::ALL, Integrator::name);
+        if r.integrator == Integrator::Path {
+            changed |= crate::help::hint(ui.checkbox(&mut r.indirect, "Indirect light"), "Indirect light").changed();
+        } else if !r.indirect {
+            // Whitted's tree has no such setting: a scene switched back is valid again.
+            r.indirect = true;
+            changed = true;
+        }
         // The whole valid range: depths past the GPU's ray stack are for checking its report.
         changed |= int_slider(ui, "Max depth", &mut r.max_depth, ranges::DEPTH);
         changed |= slider(ui, "Bailout", &mut r.bailout, ranges::BAILOUT);
