@@ -87,8 +87,32 @@ fn quick_report_writes_consistent_files() {
     listing.sort();
     let scenes = ["highlights", "whitted"];
     let mut expected: Vec<String> = scenes.iter().map(|s| format!("error_vs_time_{s}.png")).collect();
-    expected.extend(["report.csv".to_string(), "report.md".to_string(), "specular.csv".to_string()]);
+    expected.extend(["gi.csv", "report.csv", "report.md", "specular.csv"].map(String::from));
+    expected.sort();
     assert_eq!(listing, expected);
+
+    // Whitted against the path-traced reference: every scene's rows on each backend, finite
+    // errors, a fitted ambient and the path tracer's slope in the Markdown.
+    let gi = std::fs::read_to_string(out_dir.join("gi.csv")).expect("gi.csv");
+    let mut gi_lines = gi.lines();
+    assert_eq!(
+        gi_lines.next(),
+        Some(
+            "scene,integrator,backend,spp,max_depth,ambient,render_ms_median,rmse_vs_path_reference,reference_spp,reference_noise_rmse"
+        )
+    );
+    let gi_rows: Vec<Vec<String>> = gi_lines.map(split_csv).collect();
+    for scene in scenes {
+        for integrator in ["whitted", "path"] {
+            assert!(gi_rows.iter().any(|r| r[0] == scene && r[1] == integrator), "gi.csv lacks {scene} {integrator}");
+        }
+    }
+    for r in &gi_rows {
+        let rmse: f64 = r[7].parse().unwrap_or_else(|_| panic!("rmse '{}'", r[7]));
+        assert!(rmse.is_finite() && rmse > 0.0, "{r:?}");
+    }
+    let md = std::fs::read_to_string(out_dir.join("report.md")).expect("report.md");
+    assert!(md.contains("## Whitted against global illumination") && md.contains("slope"), "the GI section");
 
     for s in scenes {
         let png = image::open(out_dir.join(format!("error_vs_time_{s}.png"))).expect("plot decodes").into_rgb8();

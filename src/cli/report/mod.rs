@@ -4,6 +4,7 @@
 //! the render time of each specular model (specular.csv).
 
 mod csv;
+mod gi;
 mod machine;
 mod markdown;
 mod pareto;
@@ -151,11 +152,13 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
         .map(|si| {
             let configs = (0..planned.len()).filter(|&ci| mine(si, ci)).count();
             let specular = if mine(si, 0) { specular::renders(&backends, args.runs) } else { 0 };
-            if configs == 0 { specular } else { 1 + configs * (1 + args.runs as usize) + specular }
+            let gi = if args.shard.is_none() { gi::renders(&backends, args.runs, args.quick) } else { 0 };
+            if configs == 0 { specular + gi } else { 1 + configs * (1 + args.runs as usize) + specular + gi }
         })
         .sum();
     let bar = progress(args.quiet, renders as u64)?;
     let mut results = Vec::with_capacity(scenes.len());
+    let mut gi_results = Vec::new();
     for (si, loaded) in scenes.iter().enumerate() {
         let scene = &loaded.desc.render;
         let base =
@@ -182,6 +185,8 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
                 row.shard = Some(s.index);
             }
         } else {
+            // Whitted against a path-traced reference: one-machine runs only, so far.
+            gi_results.push(gi::measure(&mut engines, loaded, &base, &backends, args.runs, args.quick, &bar)?);
             pareto::mark_fronts(&mut result.rows);
             let path = plot::write_plot(&args.out, &result, args.runs as usize)?;
             bar.suspend(|| println!("{}: {} configurations, wrote {}", result.name, result.rows.len(), path.display()));
@@ -233,7 +238,8 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
         integrator: args.integrator,
     };
     let devices = [(cpu_device.clone(), gpu_device.clone().unwrap_or_default())];
-    write_outputs(&args.out, &setup, &results, &devices, &[])?;
+    write_report_file(&args.out.join("gi.csv"), &gi::render_csv(&gi_results))?;
+    write_outputs(&args.out, &setup, &results, &devices, &[], &gi::render_markdown(&gi_results))?;
     println!(
         "report: {} scenes, {} configurations each, in {:.1} s; wrote {} and {}",
         results.len(),
@@ -289,7 +295,7 @@ fn merge(args: &ReportArgs, started: Instant) -> anyhow::Result<()> {
         plan: &plan,
         integrator,
     };
-    write_outputs(&args.out, &setup, &results, &devices, &machines)?;
+    write_outputs(&args.out, &setup, &results, &devices, &machines, "")?;
     println!(
         "report: {} shards merged, {} scenes, {} configurations each, in {:.1} s; wrote {} and {}",
         devices.len(),
@@ -302,17 +308,20 @@ fn merge(args: &ReportArgs, started: Instant) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// report.csv, specular.csv and report.md; `machines` lists a merged report's shards.
+/// report.csv, specular.csv and report.md (ending with `gi_md`, the Whitted-against-paths
+/// section); `machines` lists a merged report's shards.
 fn write_outputs(
     out: &Path,
     setup: &markdown::Setup,
     results: &[sweep::SceneResult],
     devices: &[(String, String)],
     machines: &[String],
+    gi_md: &str,
 ) -> anyhow::Result<()> {
     write_report_file(&out.join("report.csv"), &csv::render_csv(results, devices))?;
     write_report_file(&out.join("specular.csv"), &csv::render_specular_csv(results))?;
     let mut md = markdown::render_markdown(setup, results);
+    md.push_str(gi_md);
     if !machines.is_empty() {
         md.push_str(&format!(
             "\n## Shards\n\nThis report was measured in {} shards (`glint report --shard I/N`, merged by \

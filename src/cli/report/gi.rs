@@ -1,0 +1,337 @@
+//! Whitted against global illumination (issue 33's report part, first slice): for each scene,
+//! the error against a path-traced reference of Whitted's images (depths, samples, and the
+//! ambient term as written, without it and fitted to the reference) and of the path tracer's at
+//! increasing samples, on each backend, against render time. The reference is two CPU path
+//! renders with different seeds, averaged; half the RMSE between them estimates its own noise.
+//! The path tracer's log-log slope of error against time is measured (−1/2 while noise
+//! dominates), and so is the time from which its error falls below Whitted's best.
+
+use std::fmt::Write as _;
+use std::time::Duration;
+
+use anyhow::Context;
+use glint_core::ambient_fit::fit_ambient;
+use glint_core::compare::compare_images;
+use glint_core::{Backend, CpuOptions, FlatScene, HdrImage};
+use glint_io::LoadedScene;
+use glint_scene::{Integrator, RenderSettings, Rgb};
+use indicatif::ProgressBar;
+
+use super::plan::{Bailout, Config};
+use super::sweep::{Engines, render};
+use crate::cli::units::ms;
+
+/// How a Whitted row's ambient term was set.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Ambient {
+    AsWritten,
+    Without,
+    Fitted,
+}
+
+impl Ambient {
+    fn name(self) -> &'static str {
+        match self {
+            Self::AsWritten => "as written",
+            Self::Without => "none",
+            Self::Fitted => "fitted",
+        }
+    }
+}
+
+#[derive(Clone, Debug)]
+pub struct GiRow {
+    pub integrator: Integrator,
+    pub backend: Backend,
+    pub spp: u32,
+    pub depth: u32,
+    /// Whitted's rows only.
+    pub ambient: Option<Ambient>,
+    pub median: Duration,
+    pub rmse: f64,
+}
+
+#[derive(Clone, Debug)]
+pub struct GiResult {
+    pub scene: String,
+    pub reference_spp: u32,
+    pub reference_depth: u32,
+    /// Half the RMSE between the reference's two halves: the error of the reference itself.
+    pub reference_noise: f64,
+    pub fitted: [f64; 3],
+    pub written: [f64; 3],
+    pub rows: Vec<GiRow>,
+}
+
+/// The sweep's axes: (reference spp, path depth, Whitted depths, Whitted spp, path spp).
+fn axes(quick: bool) -> (u32, u32, &'static [u32], &'static [u32], &'static [u32]) {
+    if quick { (64, 8, &[5], &[1], &[1, 4, 16]) } else { (1024, 16, &[2, 5], &[1, 4], &[1, 4, 16, 64]) }
+}
+
+/// Renders per scene, for the progress bar: the reference halves, then each row's warm-up and runs.
+pub fn renders(backends: &[Backend], runs: u32, quick: bool) -> usize {
+    let (_, _, depths, spps, path_spps) = axes(quick);
+    2 + backends.len() * (depths.len() * spps.len() * 3 + path_spps.len()) * (1 + runs as usize)
+}
+
+pub fn measure(
+    engines: &mut Engines,
+    loaded: &LoadedScene,
+    base: &RenderSettings,
+    backends: &[Backend],
+    runs: u32,
+    quick: bool,
+    bar: &ProgressBar,
+) -> anyhow::Result<GiResult> {
+    let name = &loaded.name;
+    let (reference_spp, path_depth, depths, spps, path_spps) = axes(quick);
+    let paths = RenderSettings { integrator: Integrator::Path, indirect: true, max_depth: path_depth, ..base.clone() };
+    bar.set_message(format!("{name}: path-traced reference ({reference_spp} spp)"));
+    let options = CpuOptions { threads: engines.threads, ..CpuOptions::default() };
+    let half = |seed: u32| -> anyhow::Result<HdrImage> {
+        let s = RenderSettings { spp: reference_spp / 2, seed, ..paths.clone() };
+        let r = glint_core::render_cpu(&FlatScene::build(&loaded.desc, &s), &options, Default::default())
+            .with_context(|| format!("{name}: the path-traced reference"))?;
+        bar.inc(1);
+        Ok(r.image)
+    };
+    let (a, b) = (half(base.seed)?, half(base.seed.wrapping_add(1))?);
+    let reference_noise = compare_images(&a, &b).rmse / 2.0;
+    let mut reference = a.clone();
+    for (p, q) in reference.pixels.iter_mut().zip(&b.pixels) {
+        *p = (*p + *q) / 2.0;
+    }
+    let whitted = RenderSettings { integrator: Integrator::Whitted, indirect: true, ..base.clone() };
+    let fit = fit_ambient(&loaded.desc, &whitted, &reference, &options)
+        .with_context(|| format!("{name}: fitting the ambient term"))?;
+
+    let mut planned: Vec<(GiRow, FlatScene)> = Vec::new();
+    for &backend in backends {
+        for &depth in depths {
+            for &spp in spps {
+                for ambient in [Ambient::AsWritten, Ambient::Without, Ambient::Fitted] {
+                    let mut desc = loaded.desc.clone();
+                    desc.world.ambient = match ambient {
+                        Ambient::AsWritten => desc.world.ambient,
+                        Ambient::Without => Rgb([0.0; 3]),
+                        Ambient::Fitted => Rgb(fit.ambient),
+                    };
+                    let s = RenderSettings { spp, max_depth: depth, ..whitted.clone() };
+                    let row = GiRow {
+                        integrator: Integrator::Whitted,
+                        backend,
+                        spp,
+                        depth,
+                        ambient: Some(ambient),
+                        median: Duration::ZERO,
+                        rmse: 0.0,
+                    };
+                    planned.push((row, FlatScene::build(&desc, &s)));
+                }
+            }
+        }
+        for &spp in path_spps {
+            let s = RenderSettings { spp, ..paths.clone() };
+            let row = GiRow {
+                integrator: Integrator::Path,
+                backend,
+                spp,
+                depth: path_depth,
+                ambient: None,
+                median: Duration::ZERO,
+                rmse: 0.0,
+            };
+            planned.push((row, FlatScene::build(&loaded.desc, &s)));
+        }
+    }
+    let config = |row: &GiRow| Config {
+        backend: row.backend,
+        spp: row.spp,
+        depth: row.depth,
+        bailout: Bailout::Per255,
+        specialise: true,
+        epsilon_mode: base.epsilon_mode,
+    };
+    // A warm-up pass (the images), then timed passes over every row, as the main sweep does.
+    let mut times: Vec<Vec<Duration>> = vec![Vec::new(); planned.len()];
+    for (row, flat) in &mut planned {
+        bar.set_message(format!(
+            "{name}: GI warm-up: {} {} {} spp",
+            row.backend.name(),
+            row.integrator.name(),
+            row.spp
+        ));
+        let warm = render(engines, flat, &config(row)).with_context(|| format!("{name}: {row:?}"))?;
+        row.rmse = compare_images(&reference, &warm.image).rmse;
+        bar.inc(1);
+    }
+    for pass in 1..=runs {
+        for ((row, flat), t) in planned.iter().zip(&mut times) {
+            bar.set_message(format!("{name}: GI timed pass {pass}/{runs}"));
+            t.push(render(engines, flat, &config(row)).with_context(|| format!("{name}: {row:?}"))?.time);
+            bar.inc(1);
+        }
+    }
+    let rows = planned
+        .into_iter()
+        .zip(times)
+        .map(|((mut row, _), mut t)| {
+            t.sort();
+            row.median = t[t.len() / 2];
+            row
+        })
+        .collect();
+    Ok(GiResult {
+        scene: name.clone(),
+        reference_spp,
+        reference_depth: path_depth,
+        reference_noise,
+        fitted: fit.ambient,
+        written: loaded.desc.world.ambient.0,
+        rows,
+    })
+}
+
+/// The least-squares slope of log(error) against log(time) of the path tracer's rows on
+/// `backend`; `None` with fewer than two.
+pub fn path_slope(result: &GiResult, backend: Backend) -> Option<f64> {
+    let points: Vec<(f64, f64)> = result
+        .rows
+        .iter()
+        .filter(|r| r.integrator == Integrator::Path && r.backend == backend && r.rmse > 0.0)
+        .map(|r| (ms(r.median).max(1e-6).ln(), r.rmse.ln()))
+        .collect();
+    if points.len() < 2 {
+        return None;
+    }
+    let n = points.len() as f64;
+    let (mx, my) = (points.iter().map(|p| p.0).sum::<f64>() / n, points.iter().map(|p| p.1).sum::<f64>() / n);
+    let sxx: f64 = points.iter().map(|p| (p.0 - mx).powi(2)).sum();
+    let sxy: f64 = points.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
+    (sxx > 0.0).then(|| sxy / sxx)
+}
+
+/// The fastest path row whose error is below Whitted's best, and Whitted's best.
+pub fn crossover(result: &GiResult) -> (Option<&GiRow>, Option<&GiRow>) {
+    let best_whitted =
+        result.rows.iter().filter(|r| r.integrator == Integrator::Whitted).min_by(|a, b| a.rmse.total_cmp(&b.rmse));
+    let first_path = best_whitted.and_then(|w| {
+        result
+            .rows
+            .iter()
+            .filter(|r| r.integrator == Integrator::Path && r.rmse < w.rmse)
+            .min_by(|a, b| a.median.cmp(&b.median))
+    });
+    (first_path, best_whitted)
+}
+
+pub const HEADER: &[&str] = &[
+    "scene",
+    "integrator",
+    "backend",
+    "spp",
+    "max_depth",
+    "ambient",
+    "render_ms_median",
+    "rmse_vs_path_reference",
+    "reference_spp",
+    "reference_noise_rmse",
+];
+
+pub fn render_csv(results: &[GiResult]) -> String {
+    let mut out = HEADER.join(",");
+    out.push('\n');
+    for g in results {
+        for r in &g.rows {
+            let _ = writeln!(
+                out,
+                "{},{},{},{},{},{},{},{:e},{},{:e}",
+                g.scene,
+                r.integrator.name(),
+                r.backend.name(),
+                r.spp,
+                r.depth,
+                r.ambient.map_or("", Ambient::name),
+                crate::cli::units::ms_csv(r.median),
+                r.rmse,
+                g.reference_spp,
+                g.reference_noise
+            );
+        }
+    }
+    out
+}
+
+/// The report's section: per scene, the fitted ambient, the path tracer's slope and the time
+/// its error falls below Whitted's best, and the table.
+pub fn render_markdown(results: &[GiResult]) -> String {
+    let mut md = String::from(
+        "\n## Whitted against global illumination\n\nEach scene's Whitted images and path-traced images are \
+         held against a path-traced reference (two CPU renders with different seeds, averaged; half the RMSE \
+         between them is the reference's own noise, the floor no row can go below). Whitted's rows come with the \
+         ambient term as the scene writes it, without it, and fitted to the reference (the I_a per channel that \
+         minimises Whitted's error, `glint_core::ambient_fit`). gi.csv has every row.\n",
+    );
+    let fmt3 = |v: [f64; 3]| format!("({:.3}, {:.3}, {:.3})", v[0], v[1], v[2]);
+    for g in results {
+        let _ = writeln!(
+            md,
+            "\n### {}\n\nReference: {} paths a pixel, depth {}, its noise {:.2e} RMSE. Ambient as written {}, fitted {}.",
+            g.scene,
+            g.reference_spp,
+            g.reference_depth,
+            g.reference_noise,
+            fmt3(g.written),
+            fmt3(g.fitted)
+        );
+        for backend in [Backend::Cpu, Backend::Gpu] {
+            if let Some(slope) = path_slope(g, backend) {
+                let _ = writeln!(
+                    md,
+                    "The path tracer's error against time on the {}: slope {slope:.2} in log-log (−0.5 where noise \
+                     dominates; flatter as it nears the reference's noise).",
+                    backend.name()
+                );
+            }
+        }
+        let (first, best) = crossover(g);
+        match (first, best) {
+            (Some(p), Some(w)) => {
+                let _ = writeln!(
+                    md,
+                    "Paths beat Whitted's best ({} {} spp depth {}, ambient {}: RMSE {:.3e} in {:.1} ms) from {} {} spp \
+                     (RMSE {:.3e} in {:.1} ms).",
+                    w.backend.name(),
+                    w.spp,
+                    w.depth,
+                    w.ambient.map_or("", Ambient::name),
+                    w.rmse,
+                    ms(w.median),
+                    p.backend.name(),
+                    p.spp,
+                    p.rmse,
+                    ms(p.median)
+                );
+            }
+            (None, Some(w)) => {
+                let _ = writeln!(md, "Paths do not beat Whitted's best (RMSE {:.3e}) within the sweep.", w.rmse);
+            }
+            _ => {}
+        }
+        md.push_str("\n| integrator | backend | spp | depth | ambient | ms (median) | RMSE vs reference |\n|---|---|---|---|---|---|---|\n");
+        for r in &g.rows {
+            let _ = writeln!(
+                md,
+                "| {} | {} | {} | {} | {} | {:.2} | {:.3e} |",
+                r.integrator.name(),
+                r.backend.name(),
+                r.spp,
+                r.depth,
+                r.ambient.map_or("—", Ambient::name),
+                ms(r.median),
+                r.rmse
+            );
+        }
+    }
+    md
+}
