@@ -87,6 +87,7 @@ fn quick_report_writes_consistent_files() {
     listing.sort();
     let scenes = ["highlights", "whitted"];
     let mut expected: Vec<String> = scenes.iter().map(|s| format!("error_vs_time_{s}.png")).collect();
+    expected.extend(scenes.iter().map(|s| format!("gi_vs_time_{s}.png")));
     expected.extend(["gi.csv", "report.csv", "report.md", "specular.csv"].map(String::from));
     expected.sort();
     assert_eq!(listing, expected);
@@ -114,8 +115,8 @@ fn quick_report_writes_consistent_files() {
     let md = std::fs::read_to_string(out_dir.join("report.md")).expect("report.md");
     assert!(md.contains("## Whitted against global illumination") && md.contains("slope"), "the GI section");
 
-    for s in scenes {
-        let png = image::open(out_dir.join(format!("error_vs_time_{s}.png"))).expect("plot decodes").into_rgb8();
+    for s in scenes.iter().flat_map(|s| [format!("error_vs_time_{s}"), format!("gi_vs_time_{s}")]) {
+        let png = image::open(out_dir.join(format!("{s}.png"))).expect("plot decodes").into_rgb8();
         assert!(png.width() >= 400 && png.height() >= 300, "{s}: plot is {:?}", png.dimensions());
         let first = *png.get_pixel(0, 0);
         let drawn = png.pixels().filter(|p| **p != first).count();

@@ -5,6 +5,7 @@
 
 mod csv;
 mod gi;
+mod gi_plot;
 mod machine;
 mod markdown;
 mod pareto;
@@ -186,7 +187,9 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
             }
         } else {
             // Whitted against a path-traced reference: one-machine runs only, so far.
-            gi_results.push(gi::measure(&mut engines, loaded, &base, &backends, args.runs, args.quick, &bar)?);
+            let gi = gi::measure(&mut engines, loaded, &base, &backends, args.runs, args.quick, &bar)?;
+            gi_plot::write_gi_plot(&args.out, &gi, args.runs as usize)?;
+            gi_results.push(gi);
             pareto::mark_fronts(&mut result.rows);
             let path = plot::write_plot(&args.out, &result, args.runs as usize)?;
             bar.suspend(|| println!("{}: {} configurations, wrote {}", result.name, result.rows.len(), path.display()));

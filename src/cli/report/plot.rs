@@ -15,15 +15,15 @@ use crate::cli::units::ms;
 /// Embedded so that plots render the same on a bare CI machine (no system fonts, no
 /// fontconfig); see assets/fonts/README.md for its provenance and licence.
 static FONT: &[u8] = include_bytes!("../../../assets/fonts/DejaVuSans.ttf");
-const FAMILY: &str = "sans-serif";
+pub(super) const FAMILY: &str = "sans-serif";
 
-const WIDTH: u32 = 960;
-const HEIGHT: u32 = 640;
-const CPU_COLOUR: RGBColor = RGBColor(31, 119, 180);
-const GPU_COLOUR: RGBColor = RGBColor(230, 110, 0);
-const FLOOR_COLOUR: RGBColor = RGBColor(200, 30, 40);
+pub(super) const WIDTH: u32 = 960;
+pub(super) const HEIGHT: u32 = 640;
+pub(super) const CPU_COLOUR: RGBColor = RGBColor(31, 119, 180);
+pub(super) const GPU_COLOUR: RGBColor = RGBColor(230, 110, 0);
+pub(super) const FLOOR_COLOUR: RGBColor = RGBColor(200, 30, 40);
 
-fn register_font() -> anyhow::Result<()> {
+pub(super) fn register_font() -> anyhow::Result<()> {
     static DONE: OnceLock<bool> = OnceLock::new();
     let ok = *DONE.get_or_init(|| plotters::style::register_font(FAMILY, FontStyle::Normal, FONT).is_ok());
     if ok { Ok(()) } else { Err(anyhow!("the embedded plot font could not be loaded")) }
@@ -35,7 +35,7 @@ fn plotted(scene: &SceneResult) -> Vec<&Row> {
 }
 
 /// Log range covering `values`, padded by the factors `below` and `above`.
-fn log_range(values: impl Iterator<Item = f64>, below: f64, above: f64) -> (f64, f64) {
+pub(super) fn log_range(values: impl Iterator<Item = f64>, below: f64, above: f64) -> (f64, f64) {
     let (lo, hi) = values.fold((f64::INFINITY, 0.0f64), |(lo, hi), v| (lo.min(v), hi.max(v)));
     if !(lo > 0.0 && hi.is_finite()) {
         return (0.1, 10.0);
@@ -45,7 +45,7 @@ fn log_range(values: impl Iterator<Item = f64>, below: f64, above: f64) -> (f64,
 
 /// Ticks m × 10^k inside [lo, hi] for the mantissas `ms`: plotters' own log ticks leave
 /// short ranges unlabelled.
-fn ticks(lo: f64, hi: f64, ms: &[f64]) -> Vec<f64> {
+pub(super) fn ticks(lo: f64, hi: f64, ms: &[f64]) -> Vec<f64> {
     let mut out = Vec::new();
     let mut decade = 10f64.powi(lo.log10().floor() as i32);
     while decade <= hi {
@@ -55,14 +55,14 @@ fn ticks(lo: f64, hi: f64, ms: &[f64]) -> Vec<f64> {
     out
 }
 
-const ALL_MANTISSAS: [f64; 9] = [1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0];
+pub(super) const ALL_MANTISSAS: [f64; 9] = [1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0];
 
 /// Labelled ticks: 1-2-5 per decade when the range is short, decades otherwise.
-fn bold_ticks(lo: f64, hi: f64) -> Vec<f64> {
+pub(super) fn bold_ticks(lo: f64, hi: f64) -> Vec<f64> {
     if (hi / lo).log10() < 3.0 { ticks(lo, hi, &[1.0, 2.0, 5.0]) } else { ticks(lo, hi, &[1.0]) }
 }
 
-fn tick_label(v: f64) -> String {
+pub(super) fn tick_label(v: f64) -> String {
     if v >= 1.0 { format!("{v:.0}") } else { format!("{v}") }
 }
 

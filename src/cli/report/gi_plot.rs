@@ -1,0 +1,137 @@
+//! `gi_vs_time_SCENE.png`: Whitted's images and the path tracer's against the path-traced
+//! reference on one log-log chart of error against render time, colour by integrator and
+//! marker by backend, the paths joined in order of samples (their slope is the convergence
+//! rate), the Pareto front over both families as a staircase, and the reference's own noise
+//! as a dashed floor.
+
+use std::path::{Path, PathBuf};
+
+use glint_core::Backend;
+use glint_io::image_file::write_png_rgb8;
+use glint_scene::Integrator;
+use plotters::prelude::*;
+
+use super::gi::{GiResult, GiRow};
+use super::plot::{
+    ALL_MANTISSAS, FAMILY, FLOOR_COLOUR, HEIGHT, WIDTH, bold_ticks, log_range, register_font, tick_label, ticks,
+};
+use crate::cli::units::ms;
+
+const WHITTED_COLOUR: RGBColor = RGBColor(120, 60, 170);
+const PATH_COLOUR: RGBColor = RGBColor(30, 140, 70);
+
+fn draw(g: &GiResult, runs: usize) -> anyhow::Result<Vec<u8>> {
+    register_font()?;
+    let rows: Vec<&GiRow> = g.rows.iter().filter(|r| r.rmse > 0.0).collect();
+    let at = |r: &GiRow| (ms(r.median).max(1e-3), r.rmse);
+    let (x0, x1) = log_range(rows.iter().map(|r| at(r).0), 1.3, 1.3);
+    let floor = Some(g.reference_noise).filter(|n| *n > 0.0);
+    let (y0, y1) = log_range(rows.iter().map(|r| r.rmse).chain(floor), 1.6, 1.6);
+    let y1 = y1 * (y1 / y0).powf(0.4);
+    let x_axis =
+        (x0..x1).log_scale().with_key_points(bold_ticks(x0, x1)).with_light_points(ticks(x0, x1, &ALL_MANTISSAS));
+    let y_axis =
+        (y0..y1).log_scale().with_key_points(bold_ticks(y0, y1)).with_light_points(ticks(y0, y1, &ALL_MANTISSAS));
+    let mut buf = vec![255u8; (WIDTH * HEIGHT * 3) as usize];
+    {
+        let root = BitMapBackend::with_buffer(&mut buf, (WIDTH, HEIGHT)).into_drawing_area();
+        root.fill(&WHITE)?;
+        let title = format!(
+            "{}: Whitted and paths against a path-traced reference ({} spp, depth {})",
+            g.scene, g.reference_spp, g.reference_depth
+        );
+        let mut chart = ChartBuilder::on(&root)
+            .caption(title, (FAMILY, 20))
+            .margin(16)
+            .x_label_area_size(52)
+            .y_label_area_size(80)
+            .build_cartesian_2d(x_axis, y_axis)?;
+        chart
+            .configure_mesh()
+            .x_desc(format!("render time, median of {runs} runs (ms, log)"))
+            .y_desc("RMSE against the path-traced reference (log)")
+            .axis_desc_style((FAMILY, 16))
+            .label_style((FAMILY, 14))
+            .x_label_formatter(&|v| tick_label(*v))
+            .y_label_formatter(&|v| format!("{v:.0e}"))
+            .light_line_style(RGBColor(235, 235, 235))
+            .bold_line_style(RGBColor(205, 205, 205))
+            .draw()?;
+        if let Some(f) = floor {
+            chart
+                .draw_series(DashedLineSeries::new([(x0, f), (x1, f)], 8, 5, FLOOR_COLOUR.stroke_width(2)))?
+                .label(format!("the reference's own noise: RMSE {f:.1e}"))
+                .legend(|(x, y)| PathElement::new([(x, y), (x + 24, y)], FLOOR_COLOUR.stroke_width(2)));
+        }
+        for backend in [Backend::Cpu, Backend::Gpu] {
+            let mut paths: Vec<&&GiRow> =
+                rows.iter().filter(|r| r.integrator == Integrator::Path && r.backend == backend).collect();
+            paths.sort_by_key(|r| r.spp);
+            chart.draw_series(LineSeries::new(paths.iter().map(|r| at(r)), PATH_COLOUR.mix(0.5)))?;
+        }
+        for (integrator, colour) in [(Integrator::Whitted, WHITTED_COLOUR), (Integrator::Path, PATH_COLOUR)] {
+            for backend in [Backend::Cpu, Backend::Gpu] {
+                let points: Vec<(f64, f64)> =
+                    rows.iter().filter(|r| r.integrator == integrator && r.backend == backend).map(|r| at(r)).collect();
+                if points.is_empty() {
+                    continue;
+                }
+                let label = format!("{} on the {}", integrator.name(), backend.name());
+                match backend {
+                    Backend::Cpu => {
+                        chart
+                            .draw_series(points.iter().map(|&p| Circle::new(p, 5, colour.filled())))?
+                            .label(label)
+                            .legend(move |(x, y)| Circle::new((x + 12, y), 5, colour.filled()));
+                    }
+                    Backend::Gpu => {
+                        chart
+                            .draw_series(points.iter().map(|&p| TriangleMarker::new(p, 7, colour.filled())))?
+                            .label(label)
+                            .legend(move |(x, y)| TriangleMarker::new((x + 12, y), 7, colour.filled()));
+                    }
+                }
+            }
+        }
+        // The Pareto front over both families: the least error reached by each time.
+        let mut by_time: Vec<(f64, f64)> = rows.iter().map(|r| at(r)).collect();
+        by_time.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let mut stairs: Vec<(f64, f64)> = Vec::new();
+        for (t, e) in by_time {
+            if stairs.last().is_none_or(|&(_, best)| e < best) {
+                if let Some(&(_, best)) = stairs.last() {
+                    stairs.push((t, best));
+                }
+                stairs.push((t, e));
+            }
+        }
+        if !stairs.is_empty() {
+            chart
+                .draw_series(LineSeries::new(stairs, BLACK.stroke_width(2)))?
+                .label("Pareto front (both integrators)")
+                .legend(|(x, y)| PathElement::new([(x, y), (x + 24, y)], BLACK.stroke_width(2)));
+        }
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperRight)
+            .background_style(WHITE.mix(0.9))
+            .border_style(RGBColor(120, 120, 120))
+            .label_font((FAMILY, 14))
+            .draw()?;
+        root.present()?;
+    }
+    Ok(buf)
+}
+
+/// Writes `gi_vs_time_SCENE.png` into `dir`.
+pub fn write_gi_plot(dir: &Path, g: &GiResult, runs: usize) -> anyhow::Result<PathBuf> {
+    let rgb = draw(g, runs)?;
+    let path = dir.join(format!("gi_vs_time_{}.png", g.scene));
+    let metadata = vec![
+        ("Software".to_string(), format!("glint {}", env!("CARGO_PKG_VERSION"))),
+        ("Title".to_string(), format!("{}: Whitted and paths against a path-traced reference", g.scene)),
+        ("glint:scene".to_string(), g.scene.clone()),
+    ];
+    write_png_rgb8(&path, WIDTH, HEIGHT, &rgb, &metadata)?;
+    Ok(path)
+}
