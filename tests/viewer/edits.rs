@@ -121,4 +121,14 @@ fn the_integrator_switch_renders_paths_on_both_tracers_and_back() {
     let direct = gpu_image(&h);
     assert!(mean(&direct) < mean(&paths), "without indirect light the box is darker");
     assert_current_agreement(&h);
+
+    // The toolbar's switch does the same, from any panel; back to Whitted resets render.indirect.
+    h.get_by_label("Whitted").click();
+    settle(&mut h);
+    let r = &h.state().doc.desc.render;
+    assert_eq!((r.integrator, r.indirect), (glint_scene::Integrator::Whitted, true));
+    h.get_by_label("Paths").click();
+    settle(&mut h);
+    assert_eq!(h.state().doc.desc.render.integrator, glint_scene::Integrator::Path);
+    assert_current_agreement(&h);
 }

@@ -360,6 +360,12 @@ impl ViewerApp {
             ViewAction::Zoom(s) => camera_control::zoom(camera, s),
             ViewAction::Pick(x, y) => return self.pick(x, y),
             ViewAction::Probe(x, y) => return self.probe_at(x, y),
+            ViewAction::Integrator(i) => {
+                let r = &mut self.doc.desc.render;
+                r.integrator = i;
+                // Whitted's tree has no indirect-light setting.
+                r.indirect |= i == glint_scene::Integrator::Whitted;
+            }
         }
         self.doc.edited();
     }
@@ -401,7 +407,18 @@ impl ViewerApp {
         let name = self.selection.object.map(|i| self.doc.object_label(i));
         let segments = self.selection.outline(rev, traced);
         let selected = name.as_deref().map(|n| (n, segments));
-        self.layout.central(ui, self.renders.gpu.is_some(), textures, size, &gizmos, probed, selected, &tree)
+        let integrator = self.doc.desc.render.integrator;
+        self.layout.central(
+            ui,
+            self.renders.gpu.is_some(),
+            textures,
+            size,
+            &gizmos,
+            probed,
+            selected,
+            &tree,
+            integrator,
+        )
     }
 
     /// The probed pixel's CPU ray tree as segments seen through the current camera; none

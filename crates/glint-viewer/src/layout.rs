@@ -72,20 +72,32 @@ impl Layout {
         probed: Option<(u32, u32)>,
         selected: Option<(&str, &[Segment])>,
         tree: &[TreeSegment],
+        integrator: glint_scene::Integrator,
     ) -> Vec<ViewAction> {
-        ui.horizontal(|ui| {
+        let mut chosen = integrator;
+        // Wrapped: in a narrow window the integrator switch goes to a second row, not off screen.
+        ui.horizontal_wrapped(|ui| {
             for m in ViewMode::ALL {
                 let enabled = has_gpu || m == ViewMode::Cpu;
                 ui.add_enabled_ui(enabled, |ui| ui.selectable_value(&mut self.mode, m, m.label()));
+            }
+            ui.separator();
+            // What both tracers compute, as the Scene panel's Integrator choice.
+            for (i, label) in [(glint_scene::Integrator::Whitted, "Whitted"), (glint_scene::Integrator::Path, "Paths")]
+            {
+                crate::help::hint(ui.selectable_value(&mut chosen, i, label), "Integrator");
             }
             if self.mode == ViewMode::Wipe {
                 ui.add(egui::Slider::new(&mut self.wipe, 0.0..=1.0).show_value(false).text("Wipe"));
             }
         });
         let tree = if self.show_ray_tree { tree } else { &[] };
-        let (actions, rects) =
+        let (mut actions, rects) =
             view::show(ui, self.mode, &mut self.wipe, textures, size, gizmos, self.show_gizmos, probed, selected, tree);
         self.view_rects = rects;
+        if chosen != integrator {
+            actions.push(ViewAction::Integrator(chosen));
+        }
         actions
     }
 

@@ -64,6 +64,8 @@ pub enum ViewAction {
     Pick(u32, u32),
     /// A Ctrl/Cmd-click on pixel (x, y).
     Probe(u32, u32),
+    /// The toolbar's integrator switch.
+    Integrator(glint_scene::Integrator),
 }
 
 /// The largest rect of aspect `w:h` centred in `area`.
