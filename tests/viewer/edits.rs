@@ -132,3 +132,28 @@ fn the_integrator_switch_renders_paths_on_both_tracers_and_back() {
     assert_eq!(h.state().doc.desc.render.integrator, glint_scene::Integrator::Path);
     assert_current_agreement(&h);
 }
+
+#[test]
+fn fit_ambient_lowers_whitteds_error_against_the_paths_and_applies_on_click() {
+    let Some(mut h) = viewer("cornell-gi", (1000.0, 640.0)) else { return };
+    // A small image: the fit renders paths on the CPU.
+    h.get_by_role_and_label(Role::Slider, "Width").set_value_accesskit(48.0);
+    h.get_by_role_and_label(Role::Slider, "Height").set_value_accesskit(36.0);
+    settle(&mut h);
+    h.get_by_label("Fit ambient to paths").click();
+    let start = std::time::Instant::now();
+    while h.state().fitter.result.is_none() {
+        assert!(h.state().fitter.error.is_none(), "{:?}", h.state().fitter.error);
+        assert!(start.elapsed().as_secs() < 120, "no fit after two minutes");
+        std::thread::sleep(std::time::Duration::from_millis(50));
+        h.run_steps(1);
+    }
+    let (_, fit) = h.state().fitter.result.expect("a fit");
+    assert!(fit.ambient.iter().all(|a| *a > 0.0), "{fit:?}");
+    assert!(fit.rmse_fitted < fit.rmse_without, "{fit:?}");
+    h.run_steps(2);
+    assert!(h.query_by_label_contains("Fitted I_a = (").is_some(), "the fit is shown");
+    h.get_by_label("Apply the fitted I_a").click();
+    settle(&mut h);
+    assert_eq!(h.state().doc.desc.world.ambient.0, fit.ambient, "Apply sets the world's ambient");
+}

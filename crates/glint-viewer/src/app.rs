@@ -12,6 +12,7 @@ use glint_core::image::{RenderInfo, render_metadata};
 use glint_io::LoadOptions;
 use glint_types::layout::NO_HIT;
 
+use crate::ambient_fit::AmbientFitter;
 use crate::automation::{Automation, Frame};
 use crate::camera_control;
 use crate::dialogs::{Dialogs, PathPurpose, Picked, Then, Unsaved};
@@ -73,6 +74,8 @@ pub struct ViewerApp {
     /// The comparisons of the current scene, for the Errors panel's plot.
     pub history: ErrorHistory,
     error_axis: Axis,
+    /// The Scene panel's Fit ambient job and its last result.
+    pub fitter: AmbientFitter,
     /// The user chose to quit (or had nothing to save): the next close request goes through.
     pub quitting: bool,
     /// Close the window at the end of this frame (after "unsaved changes" was answered).
@@ -114,6 +117,7 @@ impl ViewerApp {
             clock: FrameClock::default(),
             history: ErrorHistory::default(),
             error_axis: Axis::Samples,
+            fitter: AmbientFitter::new(Some(cc.egui_ctx.clone())),
             quitting: false,
             close_pending: false,
         }
@@ -483,6 +487,7 @@ impl eframe::App for ViewerApp {
                         compared: self.renders.comparison_of(self.doc.revision),
                         history: &self.history,
                         axis: &mut self.error_axis,
+                        fitter: &mut self.fitter,
                     };
                     panels::side(ui, &mut self.layout.tab, &mut self.doc, &mut self.selection, inputs)
                 });

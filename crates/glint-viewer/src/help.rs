@@ -31,6 +31,10 @@ pub fn tooltip(label: &str) -> Option<&'static str> {
              surface shadow itself (acne). Too small: speckles; too large: shadows detach (peter-panning)."
         }
         "Epsilon strategy" => "How ε is applied to secondary rays (the seed's remedies for self-intersection).",
+        "Fit ambient to paths" => {
+            "Renders the scene with paths (at least 64 a pixel) and finds the global I_a, per channel, that \
+             brings Whitted's image closest to it: what the ambient term stands in for, measured."
+        }
         "Integrator" => {
             "What both tracers compute: Whitted's ray tree (the seed's model), or Monte Carlo paths, the light \
              transport the model approximates (global illumination)."

@@ -2,6 +2,7 @@
 //! wgpu device, without a CPU round trip) beside the exact CPU reference, their difference,
 //! and a per-term pixel probe.
 
+mod ambient_fit;
 mod app;
 mod automation;
 mod background;

@@ -12,6 +12,7 @@ pub mod term_table;
 
 use egui::Ui;
 
+use crate::ambient_fit::AmbientFitter;
 use crate::comparison::Compared;
 use crate::document::Document;
 use crate::error_history::{Axis, ErrorHistory};
@@ -26,6 +27,8 @@ pub struct SideInputs<'a> {
     pub compared: Option<&'a Compared>,
     pub history: &'a ErrorHistory,
     pub axis: &'a mut Axis,
+    /// The Scene panel's Fit ambient job.
+    pub fitter: &'a mut AmbientFitter,
 }
 
 /// The side panel: the tabs, the panel of the current one, and the document's validation
@@ -51,7 +54,7 @@ pub fn side(
     // (rows wrap, grids have two columns), so nothing hides sideways or under a horizontal bar.
     egui::ScrollArea::vertical().id_salt(("side panel", *tab)).auto_shrink([false, false]).show(ui, |ui| {
         let changed = match tab {
-            Tab::Scene => scene::ui(ui, doc),
+            Tab::Scene => scene::ui(ui, doc, inputs.fitter),
             Tab::Lights => lights::ui(ui, doc, &mut selection.light),
             Tab::Materials => materials::ui(ui, doc, selection.object, &mut selection.material),
             Tab::Probe => {

@@ -3,6 +3,7 @@
 use egui::Ui;
 use glint_scene::{CameraDesc, EpsilonMode, GlobalAttenuation, Integrator, ObjectDesc, SpecularModel, ranges};
 
+use crate::ambient_fit::AmbientFitter;
 use crate::document::Document;
 use crate::widgets::{choice, int_slider, log_slider, number, rgb_edit, slider};
 
@@ -10,7 +11,7 @@ use crate::widgets::{choice, int_slider, log_slider, number, rgb_edit, slider};
 /// child ray 10 units long brings back half), since (1, 0, 0) is "off".
 const NEW_GLOBAL_ATTENUATION: GlobalAttenuation = GlobalAttenuation { c: 1.0, l: 0.1, q: 0.0 };
 
-pub fn ui(ui: &mut Ui, doc: &mut Document) -> bool {
+pub fn ui(ui: &mut Ui, doc: &mut Document, fitter: &mut AmbientFitter) -> bool {
     let mut changed = false;
     egui::CollapsingHeader::new("Camera").default_open(true).show(ui, |ui| {
         changed |= slider(ui, "Field of view", &mut doc.desc.camera.fov_y, ranges::FOV_Y);
@@ -23,6 +24,7 @@ pub fn ui(ui: &mut Ui, doc: &mut Document) -> bool {
     });
     egui::CollapsingHeader::new("World").default_open(true).show(ui, |ui| {
         changed |= rgb_edit(ui, "Ambient I_a", &mut doc.desc.world.ambient);
+        changed |= crate::ambient_fit::ui(ui, doc, fitter);
         changed |= rgb_edit(ui, "Background", &mut doc.desc.world.background);
         changed |= global_attenuation_ui(ui, &mut doc.desc.world.global_attenuation);
     });
