@@ -99,7 +99,8 @@ fn quick_report_writes_consistent_files() {
     assert_eq!(
         gi_lines.next(),
         Some(
-            "scene,integrator,backend,spp,max_depth,ambient,render_ms_median,rmse_vs_path_reference,reference_spp,reference_noise_rmse"
+            "scene,integrator,backend,spp,max_depth,ambient,render_ms_median,rmse_vs_path_reference,reference_spp,\
+             reference_noise_rmse,shard"
         )
     );
     let gi_rows: Vec<Vec<String>> = gi_lines.map(split_csv).collect();
@@ -416,7 +417,19 @@ fn report_shards_merge_into_the_one_machine_report_and_missing_ones_are_named() 
     }
     assert_eq!(shards.len(), 3, "the rows come from every shard: {shards:?}");
     assert!(read("merged/report.md").contains("## Shards"), "the report says it was measured in shards");
-    assert!(dir.join("merged/error_vs_time_whitted.png").exists());
+    assert!(read("merged/report.md").contains("## Whitted against global illumination"));
+    for file in ["error_vs_time_whitted.png", "gi_vs_time_whitted.png", "gi_vs_time_highlights.png"] {
+        assert!(dir.join("merged").join(file).exists(), "{file}");
+    }
+    // Whitted against the path-traced reference: the same rows and errors, each from a shard.
+    let (one_gi, merged_gi) = (read("one/gi.csv"), read("merged/gi.csv"));
+    let rows = |text: &str| text.lines().skip(1).map(split_csv).collect::<Vec<_>>();
+    let (x, y) = (rows(&one_gi), rows(&merged_gi));
+    assert_eq!(x.len(), y.len(), "gi.csv rows");
+    for (a, b) in x.iter().zip(&y) {
+        assert_eq!((&a[..6], &a[7]), (&b[..6], &b[7]), "gi.csv: {a:?} against {b:?}");
+        assert!(a[10].is_empty() && !b[10].is_empty(), "the shard column: {a:?}, {b:?}");
+    }
 
     let done = merge("s0,s2", "partial");
     assert!(!done.status.success());

@@ -16,13 +16,14 @@ use glint_core::{Backend, CpuOptions, FlatScene, HdrImage};
 use glint_io::LoadedScene;
 use glint_scene::{Integrator, RenderSettings, Rgb};
 use indicatif::ProgressBar;
+use serde::{Deserialize, Serialize};
 
 use super::plan::{Bailout, Config};
 use super::sweep::{Engines, render};
 use crate::cli::units::ms;
 
 /// How a Whitted row's ambient term was set.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub enum Ambient {
     AsWritten,
     Without,
@@ -39,7 +40,7 @@ impl Ambient {
     }
 }
 
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct GiRow {
     pub integrator: Integrator,
     pub backend: Backend,
@@ -51,7 +52,7 @@ pub struct GiRow {
     pub rmse: f64,
 }
 
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct GiResult {
     pub scene: String,
     pub reference_spp: u32,
@@ -61,6 +62,8 @@ pub struct GiResult {
     pub fitted: [f64; 3],
     pub written: [f64; 3],
     pub rows: Vec<GiRow>,
+    /// The shard of `glint report --shard` that measured it (`None` in a one-machine run).
+    pub shard: Option<u32>,
 }
 
 /// The sweep's axes: (reference spp, path depth, Whitted depths, Whitted spp, path spp).
@@ -189,6 +192,7 @@ pub fn measure(
         fitted: fit.ambient,
         written: loaded.desc.world.ambient.0,
         rows,
+        shard: None,
     })
 }
 
@@ -236,6 +240,7 @@ pub const HEADER: &[&str] = &[
     "rmse_vs_path_reference",
     "reference_spp",
     "reference_noise_rmse",
+    "shard",
 ];
 
 pub fn render_csv(results: &[GiResult]) -> String {
@@ -245,7 +250,7 @@ pub fn render_csv(results: &[GiResult]) -> String {
         for r in &g.rows {
             let _ = writeln!(
                 out,
-                "{},{},{},{},{},{},{},{:e},{},{:e}",
+                "{},{},{},{},{},{},{},{:e},{},{:e},{}",
                 g.scene,
                 r.integrator.name(),
                 r.backend.name(),
@@ -255,7 +260,8 @@ pub fn render_csv(results: &[GiResult]) -> String {
                 crate::cli::units::ms_csv(r.median),
                 r.rmse,
                 g.reference_spp,
-                g.reference_noise
+                g.reference_noise,
+                g.shard.map_or(String::new(), |s| s.to_string())
             );
         }
     }

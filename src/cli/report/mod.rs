@@ -153,7 +153,7 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
         .map(|si| {
             let configs = (0..planned.len()).filter(|&ci| mine(si, ci)).count();
             let specular = if mine(si, 0) { specular::renders(&backends, args.runs) } else { 0 };
-            let gi = if args.shard.is_none() { gi::renders(&backends, args.runs, args.quick) } else { 0 };
+            let gi = if mine(si, 0) { gi::renders(&backends, args.runs, args.quick) } else { 0 };
             if configs == 0 { specular + gi } else { 1 + configs * (1 + args.runs as usize) + specular + gi }
         })
         .sum();
@@ -180,16 +180,19 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
         };
         if mine(si, 0) {
             result.specular = specular::measure(&mut engines, loaded, &base, &backends, args.runs, &bar)?;
+            // Whitted against a path-traced reference: on the shard that measures the specular models.
+            let mut gi = gi::measure(&mut engines, loaded, &base, &backends, args.runs, args.quick, &bar)?;
+            gi.shard = args.shard.map(|s| s.index);
+            if args.shard.is_none() {
+                gi_plot::write_gi_plot(&args.out, &gi, args.runs as usize)?;
+            }
+            gi_results.push(gi);
         }
         if let Some(s) = args.shard {
             for row in &mut result.rows {
                 row.shard = Some(s.index);
             }
         } else {
-            // Whitted against a path-traced reference: one-machine runs only, so far.
-            let gi = gi::measure(&mut engines, loaded, &base, &backends, args.runs, args.quick, &bar)?;
-            gi_plot::write_gi_plot(&args.out, &gi, args.runs as usize)?;
-            gi_results.push(gi);
             pareto::mark_fronts(&mut result.rows);
             let path = plot::write_plot(&args.out, &result, args.runs as usize)?;
             bar.suspend(|| println!("{}: {} configurations, wrote {}", result.name, result.rows.len(), path.display()));
@@ -216,6 +219,7 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
             gpu_device,
             machine,
             results,
+            gi: gi_results,
         };
         let rows: usize = file.results.iter().map(|r| r.rows.len()).sum();
         let path = shard::write(&args.out, spec, &file)?;
@@ -280,6 +284,7 @@ fn merge(args: &ReportArgs, started: Instant) -> anyhow::Result<()> {
         })
         .collect();
     let gpu_device = files[0].gpu_device.clone();
+    let gi_results = shard::join_gi(&mut files);
     let mut results = shard::join(&mut files, &planned);
     std::fs::create_dir_all(&args.out).with_context(|| format!("cannot create {}", args.out.display()))?;
     for result in &mut results {
@@ -287,6 +292,10 @@ fn merge(args: &ReportArgs, started: Instant) -> anyhow::Result<()> {
         let path = plot::write_plot(&args.out, result, runs as usize)?;
         println!("{}: {} configurations, wrote {}", result.name, result.rows.len(), path.display());
     }
+    for gi in &gi_results {
+        gi_plot::write_gi_plot(&args.out, gi, runs as usize)?;
+    }
+    write_report_file(&args.out.join("gi.csv"), &gi::render_csv(&gi_results))?;
     let setup = markdown::Setup {
         machine: &machine,
         cpu_device: &devices[0].0,
@@ -298,7 +307,7 @@ fn merge(args: &ReportArgs, started: Instant) -> anyhow::Result<()> {
         plan: &plan,
         integrator,
     };
-    write_outputs(&args.out, &setup, &results, &devices, &machines, "")?;
+    write_outputs(&args.out, &setup, &results, &devices, &machines, &gi::render_markdown(&gi_results))?;
     println!(
         "report: {} shards merged, {} scenes, {} configurations each, in {:.1} s; wrote {} and {}",
         devices.len(),

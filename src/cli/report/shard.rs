@@ -100,6 +100,10 @@ pub struct ShardFile {
     pub gpu_device: Option<String>,
     pub machine: Machine,
     pub results: Vec<SceneResult>,
+    /// Whitted against the path-traced reference, for the scenes whose first configuration
+    /// this shard has.
+    #[serde(default)]
+    pub gi: Vec<super::gi::GiResult>,
 }
 
 impl ShardFile {
@@ -185,6 +189,14 @@ pub fn read_all(dirs: &[PathBuf]) -> anyhow::Result<Vec<ShardFile>> {
     let mut files: Vec<ShardFile> = found.into_iter().map(|(_, f)| f).collect();
     files.sort_by_key(|f| f.shard);
     Ok(files)
+}
+
+/// The shards' Whitted-against-paths results, in the sweep's order of scenes.
+pub fn join_gi(files: &mut [ShardFile]) -> Vec<super::gi::GiResult> {
+    let names = files[0].scenes.clone();
+    let mut all: Vec<super::gi::GiResult> = files.iter_mut().flat_map(|f| std::mem::take(&mut f.gi)).collect();
+    all.sort_by_key(|g| names.iter().position(|n| *n == g.scene).unwrap_or(usize::MAX));
+    all
 }
 
 /// The shards' rows joined per scene, in the sweep's order of scenes and of configurations.
