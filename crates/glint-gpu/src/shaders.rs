@@ -59,7 +59,7 @@ pub const SHADER_MODULES: [(&str, &str, &str); 14] = [
     ("glint::shade", "shade.wgsl", include_str!("../../../shaders/shade.wgsl")),
     ("glint::surface", "surface.wgsl", include_str!("../../../shaders/surface.wgsl")),
     ("glint::probe", "probe.wgsl", include_str!("../../../shaders/probe.wgsl")),
-    // The path tracer's warps and BRDFs (issue 32); no kernel imports them yet.
+    // The path tracer's warps and BRDFs (path.wgsl imports them).
     ("glint::sample", "sample.wgsl", include_str!("../../../shaders/sample.wgsl")),
     ("glint::bsdf", "bsdf.wgsl", include_str!("../../../shaders/bsdf.wgsl")),
 ];
@@ -366,7 +366,8 @@ mod tests {
     }
 
     /// sample.wgsl and bsdf.wgsl, with every function called once from an entry point, compose
-    /// and validate: no kernel imports them yet, so nothing else would.
+    /// and validate: path.wgsl calls only the warps and lobes a scene's features compile in, so
+    /// this is where the others are validated.
     #[test]
     fn the_path_tracers_modules_validate_with_every_function_called() {
         let entry = "\
