@@ -17,6 +17,7 @@ mod ray_tree;
 mod sampling;
 mod skip_convex;
 mod support;
+mod tour;
 mod validation;
 
 use glint_test_support::{reference, render, scene};

@@ -180,8 +180,9 @@ pub fn menu(ui: &mut egui::Ui) -> Option<HelpWindow> {
 }
 
 /// The documentation the Help menu links to, in the source tree.
-pub const DOCS: [(&str, &str); 6] = [
+pub const DOCS: [(&str, &str); 7] = [
     ("The viewer (docs/viewer.md)", "docs/viewer.md"),
+    ("What the Whitted model leaves out: a tour (docs/tour.md)", "docs/tour.md"),
     ("Scene format (docs/scene-format.md)", "docs/scene-format.md"),
     ("Models (docs/models.md)", "docs/models.md"),
     ("Numerics and stiff cases (docs/numerics.md)", "docs/numerics.md"),
