@@ -15,7 +15,7 @@ use glint_core::image::linear_f32_to_srgb8;
 use glint_io::exr_file::{ExrHeader, read_exr, read_exr_header, write_exr_region};
 use glint_io::image_file::write_png_rgb8;
 
-use super::output_path::check_outputs;
+use super::output_path::{check_outputs, is_same_file};
 
 #[derive(Debug, Args)]
 pub struct MergeArgs {
@@ -129,7 +129,7 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
     }
     let sources: Vec<&Path> = args.tiles.iter().map(PathBuf::as_path).collect();
     check_outputs(&[args.output.as_path()], sources[0], args.force)?;
-    if sources.iter().any(|s| same_file(s, &args.output)) {
+    if sources.iter().any(|s| is_same_file(s, &args.output)) {
         bail!("{}: the output would replace one of the tiles", args.output.display());
     }
 
@@ -156,12 +156,4 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
     }
     println!("merged {count} tiles ({} grid) into {width}x{height}: wrote {}", grid.describe(), args.output.display());
     Ok(())
-}
-
-/// Whether the two paths name one file (the output may not exist yet).
-fn same_file(a: &Path, b: &Path) -> bool {
-    match (a.canonicalize(), b.canonicalize()) {
-        (Ok(x), Ok(y)) => x == y,
-        _ => false,
-    }
 }

@@ -2,12 +2,13 @@
 
 use std::path::{Path, PathBuf};
 
+use anyhow::bail;
 use glint_core::compare::{HEATMAP_LOG10_MAX, HEATMAP_LOG10_MIN, ImageErrors, diff_heatmap};
 use glint_core::cpu::RayCounts;
 use glint_core::image::{RenderInfo, render_metadata};
 use glint_core::memory::{self, MemoryEstimate, MemoryPart};
 use glint_io::image_file::{write_image, write_png_rgb8};
-use glint_scene::RenderSettings;
+use glint_scene::{RenderSettings, SceneDesc, overflow_causes};
 use serde::Serialize;
 
 use super::backend::Run;
@@ -232,4 +233,40 @@ pub fn print_table(scene: &str, s: &RenderSettings, runs: &[Run], errors: Option
     for o in outputs {
         println!("  wrote {}", o.display());
     }
+}
+
+/// Whether a run may be written: its pixels must all fit a file (`HdrImage::unrepresentable`,
+/// an error naming what in the scene overflows), and a GPU render whose shader raised a status
+/// flag is missing work (`check_complete`).
+pub fn check_writable(run: &Run, desc: &SceneDesc, max_depth: u32, allow_incomplete: bool) -> anyhow::Result<()> {
+    check_complete(run, allow_incomplete)?;
+    if let Some(found) = run.image.unrepresentable() {
+        bail!(
+            "the {} render is not a valid image: {found}; no image was written. In this scene: {}",
+            run.backend.name(),
+            overflow_causes(desc, max_depth)
+        );
+    }
+    Ok(())
+}
+
+/// A render whose shader raised a status flag is missing work: an error, or with
+/// `--allow-incomplete` a warning (and its PNG metadata says so: `output::metadata`).
+fn check_complete(run: &Run, allow_incomplete: bool) -> anyhow::Result<()> {
+    if run.incomplete.is_empty() {
+        return Ok(());
+    }
+    if allow_incomplete {
+        for message in &run.incomplete {
+            eprintln!("warning: the {} image is incomplete: {message}", run.backend.name());
+        }
+        return Ok(());
+    }
+    bail!(
+        "the {} render is incomplete (status {:#x}): {}; no image was written (pass --allow-incomplete to write it \
+         anyway, marked as incomplete in its metadata)",
+        run.backend.name(),
+        run.gpu_status,
+        run.incomplete.join("; ")
+    )
 }

@@ -38,7 +38,7 @@ fn check_format_and_folder(path: &Path) -> anyhow::Result<()> {
 
 /// Whether both paths name one existing file: the same device and inode on Unix (hard links
 /// and symbolic links included), the same canonical path elsewhere.
-fn is_same_file(a: &Path, b: &Path) -> bool {
+pub fn is_same_file(a: &Path, b: &Path) -> bool {
     #[cfg(unix)]
     {
         use std::os::unix::fs::MetadataExt;

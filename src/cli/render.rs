@@ -11,11 +11,11 @@ use glint_core::memory::{self, RenderPlan, render_estimate};
 use glint_core::{Accel, Backend, CpuOptions, FlatScene};
 use glint_gpu::GpuOptions;
 use glint_io::{BUILTIN_SCENES, RESOLUTIONS};
-use glint_scene::{Integrator, integrator_warnings, overflow_causes, unbounded_ray_tree};
+use glint_scene::{Integrator, integrator_warnings, unbounded_ray_tree};
 
 use super::backend::{Run, open_gpu, run_cpu, run_gpu};
 use super::interrupt;
-use super::output::{fmt_counts, metadata, print_json, print_table, suffixed, write_diff, write_run};
+use super::output::{check_writable, fmt_counts, metadata, print_json, print_table, suffixed, write_diff, write_run};
 use super::output_path::check_outputs;
 use super::settings::{LoadArgs, SettingsArgs, load_with_estimate, parse_ray_cap, parse_threads};
 use super::tile::{TileJob, TileSpec, parse_tile, render_tile};
@@ -196,14 +196,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     runs.extend(gpu_run);
     // Every image is checked before any is written: a failure leaves no file at all.
     for run in &runs {
-        check_complete(run, args.allow_incomplete)?;
-        if let Some(found) = run.image.unrepresentable() {
-            bail!(
-                "the {} render is not a valid image: {found}; no image was written. In this scene: {}",
-                run.backend.name(),
-                overflow_causes(&loaded.desc, settings.max_depth)
-            );
-        }
+        check_writable(run, &loaded.desc, settings.max_depth, args.allow_incomplete)?;
     }
     let mut outputs = Vec::new();
     for run in &runs {
@@ -237,27 +230,6 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         }
     }
     Ok(())
-}
-
-/// A render whose shader raised a status flag is missing work: an error, or with
-/// `--allow-incomplete` a warning (and its PNG metadata says so: `output::metadata`).
-fn check_complete(run: &Run, allow_incomplete: bool) -> anyhow::Result<()> {
-    if run.incomplete.is_empty() {
-        return Ok(());
-    }
-    if allow_incomplete {
-        for message in &run.incomplete {
-            eprintln!("warning: the {} image is incomplete: {message}", run.backend.name());
-        }
-        return Ok(());
-    }
-    bail!(
-        "the {} render is incomplete (status {:#x}): {}; no image was written (pass --allow-incomplete to write it \
-         anyway, marked as incomplete in its metadata)",
-        run.backend.name(),
-        run.gpu_status,
-        run.incomplete.join("; ")
-    )
 }
 
 fn bench(

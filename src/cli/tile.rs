@@ -4,18 +4,18 @@
 //! `glint merge` checks before it joins the blocks: the scene's content hash, the settings, the
 //! grid, the backend and the version.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use anyhow::{Context, bail};
 use glint_core::{Backend, CpuOptions, FlatScene, TileGrid};
 use glint_gpu::GpuOptions;
 use glint_io::LoadedScene;
-use glint_io::exr_file::write_exr_region;
-use glint_scene::{RenderSettings, overflow_causes};
+use glint_io::image_file::write_exr_tile;
+use glint_scene::RenderSettings;
 
-use super::backend::{Run, open_gpu, run_cpu, run_gpu};
+use super::backend::{open_gpu, run_cpu, run_gpu};
 use super::interrupt;
-use super::output::metadata;
+use super::output::{check_writable, metadata};
 use super::output_path::check_outputs;
 
 /// The array-index variables of the schedulers, in the order they are looked for.
@@ -107,14 +107,15 @@ pub fn render_tile(job: TileJob) -> anyhow::Result<()> {
             run_gpu(&tracer, &flat, &GpuOptions { region: Some(rect), ..job.gpu }, job.quiet)?
         }
     };
-    check_run(&run, job.loaded, job.settings)?;
+    // An incomplete tile is never written: a merge would hide which tile lost work.
+    check_writable(&run, &job.loaded.desc, job.settings.max_depth, false)?;
     let mut tags = metadata(&job.loaded.name, job.settings, &run, job.specialise);
     tags.extend([
         ("glint:scene_hash".to_string(), hash),
         ("glint:grid".to_string(), grid.describe()),
         ("glint:tile".to_string(), format!("{index}/{}", grid.count())),
     ]);
-    write_tile(&output, &run, (w, h), (rect.x0, rect.y0), &tags)?;
+    write_exr_tile(&output, &run.image, (w, h), (rect.x0, rect.y0), &tags)?;
     println!(
         "  {} {:.1} ms, {} rays; wrote {}",
         run.backend.name(),
@@ -122,38 +123,6 @@ pub fn render_tile(job: TileJob) -> anyhow::Result<()> {
         run.counts.total(),
         output.display()
     );
-    Ok(())
-}
-
-/// A tile whose GPU shader raised a status flag, or whose pixels no file holds, is not written.
-fn check_run(run: &Run, loaded: &LoadedScene, settings: &RenderSettings) -> anyhow::Result<()> {
-    if !run.incomplete.is_empty() {
-        bail!(
-            "the {} render of the tile is incomplete (status {:#x}): {}; no tile was written",
-            run.backend.name(),
-            run.gpu_status,
-            run.incomplete.join("; ")
-        );
-    }
-    if let Some(found) = run.image.unrepresentable() {
-        bail!(
-            "the tile is not a valid image: {found}; no tile was written. In this scene: {}",
-            overflow_causes(&loaded.desc, settings.max_depth)
-        );
-    }
-    Ok(())
-}
-
-fn write_tile(
-    path: &Path,
-    run: &Run,
-    display: (u32, u32),
-    origin: (u32, u32),
-    tags: &[(String, String)],
-) -> anyhow::Result<()> {
-    let image = &run.image;
-    let pixel = |x: usize, y: usize| image.pixels[y * image.width as usize + x].to_array().map(|v| v as f32);
-    write_exr_region(path, display, origin, (image.width, image.height), pixel, tags)?;
     Ok(())
 }
 

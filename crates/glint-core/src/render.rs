@@ -195,7 +195,7 @@ pub fn render_cpu(
 ) -> Result<CpuRender, CpuRenderError> {
     let (w, h) = (scene.header.width, scene.header.height);
     let region = options.region.unwrap_or(PixelRect::full(w, h));
-    if region.pixel_count() == 0 || region.x0 + region.width > w || region.y0 + region.height > h {
+    if !region.within(w, h) {
         return Err(CpuRenderError::Region { region, width: w, height: h });
     }
     let threads = if options.threads == 0 { rayon::current_num_threads().max(1) } else { options.threads };

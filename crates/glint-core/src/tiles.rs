@@ -22,12 +22,12 @@ impl PixelRect {
         self.width as usize * self.height as usize
     }
 
-    /// Whether the two share a pixel.
-    pub fn overlaps(&self, other: &Self) -> bool {
-        self.x0 < other.x0 + other.width
-            && other.x0 < self.x0 + self.width
-            && self.y0 < other.y0 + other.height
-            && other.y0 < self.y0 + self.height
+    /// Whether it has a pixel and lies inside a `width`×`height` image (what both tracers check
+    /// before rendering a region).
+    pub fn within(&self, width: u32, height: u32) -> bool {
+        self.pixel_count() > 0
+            && u64::from(self.x0) + u64::from(self.width) <= u64::from(width)
+            && u64::from(self.y0) + u64::from(self.height) <= u64::from(height)
     }
 }
 

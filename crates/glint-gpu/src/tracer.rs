@@ -163,6 +163,15 @@ impl GpuTracer {
         control: DispatchControl<'_>,
     ) -> Result<GpuJob, GpuError> {
         check_tile(&self.ctx, options.tile)?;
+        // Checked before any upload or compilation.
+        let region = options.region.unwrap_or(PixelRect::full(scene.header.width, scene.header.height));
+        if !region.within(scene.header.width, scene.header.height) {
+            return Err(GpuError::Region {
+                region: region.to_string(),
+                width: scene.header.width,
+                height: scene.header.height,
+            });
+        }
         let key = ShaderKey::for_scene(scene, options.specialise)
             .with_accel(scene, options.accel)
             .check_storage_limit(self.ctx.limits.max_storage_buffers_per_shader_stage)?;
@@ -184,17 +193,6 @@ impl GpuTracer {
             pipeline_time += prime_start.elapsed();
         }
         let submitted = Instant::now();
-        let region = options.region.unwrap_or(PixelRect::full(scene.header.width, scene.header.height));
-        if region.pixel_count() == 0
-            || region.x0 + region.width > scene.header.width
-            || region.y0 + region.height > scene.header.height
-        {
-            return Err(GpuError::Region {
-                region: region.to_string(),
-                width: scene.header.width,
-                height: scene.header.height,
-            });
-        }
         with_error_scopes(&self.ctx, || {
             buffers.dispatch(&self.ctx, &pipeline, &bind_group, options.tile, region, control)
         })??;

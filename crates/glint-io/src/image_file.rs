@@ -57,10 +57,21 @@ pub fn write_png_rgb8(
 
 /// Linear f32 OpenEXR with `metadata` as text attributes (the values a PNG's text chunks hold).
 pub fn write_exr(path: &Path, image: &HdrImage, metadata: &[(String, String)]) -> Result<(), ImageWriteError> {
+    write_exr_tile(path, image, (image.width, image.height), (0, 0), metadata)
+}
+
+/// `write_exr` of `image` as the data window at `origin` of a `display`-sized image (a tile of
+/// `glint render --tile`).
+pub fn write_exr_tile(
+    path: &Path,
+    image: &HdrImage,
+    display: (u32, u32),
+    origin: (u32, u32),
+    metadata: &[(String, String)],
+) -> Result<(), ImageWriteError> {
     check_representable(path, image)?;
-    let size = (image.width, image.height);
     let pixel = |x: usize, y: usize| image.pixels[y * image.width as usize + x].to_array().map(|v| v as f32);
-    write_exr_region(path, size, (0, 0), size, pixel, metadata)
+    write_exr_region(path, display, origin, (image.width, image.height), pixel, metadata)
 }
 
 /// PNG or EXR by the file extension.

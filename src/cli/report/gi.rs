@@ -98,9 +98,8 @@ pub fn measure(
         bar.inc(1);
         Ok(r.image)
     };
-    let (a, b) = (half(base.seed)?, half(base.seed.wrapping_add(1))?);
-    let reference_noise = compare_images(&a, &b).rmse / 2.0;
-    let mut reference = a.clone();
+    let (mut reference, b) = (half(base.seed)?, half(base.seed.wrapping_add(1))?);
+    let reference_noise = compare_images(&reference, &b).rmse / 2.0;
     for (p, q) in reference.pixels.iter_mut().zip(&b.pixels) {
         *p = (*p + *q) / 2.0;
     }

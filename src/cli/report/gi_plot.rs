@@ -12,9 +12,7 @@ use glint_scene::Integrator;
 use plotters::prelude::*;
 
 use super::gi::{GiResult, GiRow};
-use super::plot::{
-    ALL_MANTISSAS, FAMILY, FLOOR_COLOUR, HEIGHT, WIDTH, bold_ticks, log_range, register_font, tick_label, ticks,
-};
+use super::plot::{FLOOR_COLOUR, HEIGHT, WIDTH, draw_legend, log_log_chart, log_range, register_font};
 use crate::cli::units::ms;
 
 const WHITTED_COLOUR: RGBColor = RGBColor(120, 60, 170);
@@ -28,10 +26,6 @@ fn draw(g: &GiResult, runs: usize) -> anyhow::Result<Vec<u8>> {
     let floor = Some(g.reference_noise).filter(|n| *n > 0.0);
     let (y0, y1) = log_range(rows.iter().map(|r| r.rmse).chain(floor), 1.6, 1.6);
     let y1 = y1 * (y1 / y0).powf(0.4);
-    let x_axis =
-        (x0..x1).log_scale().with_key_points(bold_ticks(x0, x1)).with_light_points(ticks(x0, x1, &ALL_MANTISSAS));
-    let y_axis =
-        (y0..y1).log_scale().with_key_points(bold_ticks(y0, y1)).with_light_points(ticks(y0, y1, &ALL_MANTISSAS));
     let mut buf = vec![255u8; (WIDTH * HEIGHT * 3) as usize];
     {
         let root = BitMapBackend::with_buffer(&mut buf, (WIDTH, HEIGHT)).into_drawing_area();
@@ -40,23 +34,9 @@ fn draw(g: &GiResult, runs: usize) -> anyhow::Result<Vec<u8>> {
             "{}: Whitted and paths against a path-traced reference ({} spp, depth {})",
             g.scene, g.reference_spp, g.reference_depth
         );
-        let mut chart = ChartBuilder::on(&root)
-            .caption(title, (FAMILY, 20))
-            .margin(16)
-            .x_label_area_size(52)
-            .y_label_area_size(80)
-            .build_cartesian_2d(x_axis, y_axis)?;
-        chart
-            .configure_mesh()
-            .x_desc(format!("render time, median of {runs} runs (ms, log)"))
-            .y_desc("RMSE against the path-traced reference (log)")
-            .axis_desc_style((FAMILY, 16))
-            .label_style((FAMILY, 14))
-            .x_label_formatter(&|v| tick_label(*v))
-            .y_label_formatter(&|v| format!("{v:.0e}"))
-            .light_line_style(RGBColor(235, 235, 235))
-            .bold_line_style(RGBColor(205, 205, 205))
-            .draw()?;
+        let x_desc = format!("render time, median of {runs} runs (ms, log)");
+        let y_desc = "RMSE against the path-traced reference (log)";
+        let mut chart = log_log_chart(&root, title, 20, (x0, x1), (y0, y1), x_desc, y_desc)?;
         if let Some(f) = floor {
             chart
                 .draw_series(DashedLineSeries::new([(x0, f), (x1, f)], 8, 5, FLOOR_COLOUR.stroke_width(2)))?
@@ -111,13 +91,7 @@ fn draw(g: &GiResult, runs: usize) -> anyhow::Result<Vec<u8>> {
                 .label("Pareto front (both integrators)")
                 .legend(|(x, y)| PathElement::new([(x, y), (x + 24, y)], BLACK.stroke_width(2)));
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .background_style(WHITE.mix(0.9))
-            .border_style(RGBColor(120, 120, 120))
-            .label_font((FAMILY, 14))
-            .draw()?;
+        draw_legend(&mut chart)?;
         root.present()?;
     }
     Ok(buf)

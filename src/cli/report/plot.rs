@@ -7,6 +7,8 @@ use std::sync::OnceLock;
 use anyhow::anyhow;
 use glint_core::Backend;
 use glint_io::image_file::write_png_rgb8;
+use plotters::coord::Shift;
+use plotters::coord::combinators::{LogCoord, WithKeyPoints};
 use plotters::prelude::*;
 
 use super::sweep::{Row, SceneResult};
@@ -66,6 +68,56 @@ pub(super) fn tick_label(v: f64) -> String {
     if v >= 1.0 { format!("{v:.0}") } else { format!("{v}") }
 }
 
+/// The report's log-log charts: both axes logarithmic over the given ranges, 1-2-5 or decade
+/// ticks labelled, the lighter mantissas as grid lines.
+pub(super) type LogLog = Cartesian2d<WithKeyPoints<LogCoord<f64>>, WithKeyPoints<LogCoord<f64>>>;
+
+/// A log-log chart on `root` with the report's title, mesh and axis descriptions.
+pub(super) fn log_log_chart<'a, 'b>(
+    root: &'a DrawingArea<BitMapBackend<'b>, Shift>,
+    title: String,
+    title_size: u32,
+    (x0, x1): (f64, f64),
+    (y0, y1): (f64, f64),
+    x_desc: String,
+    y_desc: &str,
+) -> anyhow::Result<ChartContext<'a, BitMapBackend<'b>, LogLog>> {
+    let x_axis =
+        (x0..x1).log_scale().with_key_points(bold_ticks(x0, x1)).with_light_points(ticks(x0, x1, &ALL_MANTISSAS));
+    let y_axis =
+        (y0..y1).log_scale().with_key_points(bold_ticks(y0, y1)).with_light_points(ticks(y0, y1, &ALL_MANTISSAS));
+    let mut chart = ChartBuilder::on(root)
+        .caption(title, (FAMILY, title_size))
+        .margin(16)
+        .x_label_area_size(52)
+        .y_label_area_size(80)
+        .build_cartesian_2d(x_axis, y_axis)?;
+    chart
+        .configure_mesh()
+        .x_desc(x_desc)
+        .y_desc(y_desc)
+        .axis_desc_style((FAMILY, 16))
+        .label_style((FAMILY, 14))
+        .x_label_formatter(&|v| tick_label(*v))
+        .y_label_formatter(&|v| format!("{v:.0e}"))
+        .light_line_style(RGBColor(235, 235, 235))
+        .bold_line_style(RGBColor(205, 205, 205))
+        .draw()?;
+    Ok(chart)
+}
+
+/// The series' legend in the upper right corner, over a nearly opaque white.
+pub(super) fn draw_legend<'a, 'b: 'a>(chart: &mut ChartContext<'a, BitMapBackend<'b>, LogLog>) -> anyhow::Result<()> {
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::UpperRight)
+        .background_style(WHITE.mix(0.9))
+        .border_style(RGBColor(120, 120, 120))
+        .label_font((FAMILY, 14))
+        .draw()?;
+    Ok(())
+}
+
 /// Draws the plot of one scene into an RGB buffer.
 fn draw(scene: &SceneResult, runs: usize) -> anyhow::Result<Vec<u8>> {
     register_font()?;
@@ -83,10 +135,6 @@ fn draw(scene: &SceneResult, runs: usize) -> anyhow::Result<Vec<u8>> {
     let (y0, y1) = log_range(errors.filter(|e| *e > 0.0), 1.6, 1.6);
     // Head room above the data, a third of the height, keeps the legend off the points.
     let y1 = y1 * (y1 / y0).powf(0.4);
-    let x_axis =
-        (x0..x1).log_scale().with_key_points(bold_ticks(x0, x1)).with_light_points(ticks(x0, x1, &ALL_MANTISSAS));
-    let y_axis =
-        (y0..y1).log_scale().with_key_points(bold_ticks(y0, y1)).with_light_points(ticks(y0, y1, &ALL_MANTISSAS));
     let mut buf = vec![255u8; (WIDTH * HEIGHT * 3) as usize];
     {
         let root = BitMapBackend::with_buffer(&mut buf, (WIDTH, HEIGHT)).into_drawing_area();
@@ -95,24 +143,16 @@ fn draw(scene: &SceneResult, runs: usize) -> anyhow::Result<Vec<u8>> {
             "{}: error against render time ({}×{}, reference CPU f64 {} spp)",
             scene.name, scene.settings.width, scene.settings.height, scene.reference.spp
         );
-        let mut chart = ChartBuilder::on(&root)
-            .caption(title, (FAMILY, 22))
-            .margin(16)
-            .x_label_area_size(52)
-            .y_label_area_size(80)
-            .build_cartesian_2d(x_axis, y_axis)?;
-        chart
-            .configure_mesh()
-            .x_desc(format!("render time, median of {runs} runs (ms, log)"))
-            .y_desc("RMSE against the reference (linear radiance, log)")
-            .axis_desc_style((FAMILY, 16))
-            .label_style((FAMILY, 14))
-            .x_label_formatter(&|v| tick_label(*v))
-            .y_label_formatter(&|v| format!("{v:.0e}"))
-            .light_line_style(RGBColor(235, 235, 235))
-            .bold_line_style(RGBColor(205, 205, 205))
-            .draw()?;
-
+        let x_desc = format!("render time, median of {runs} runs (ms, log)");
+        let mut chart = log_log_chart(
+            &root,
+            title,
+            22,
+            (x0, x1),
+            (y0, y1),
+            x_desc,
+            "RMSE against the reference (linear radiance, log)",
+        )?;
         if let Some(f) = floor.filter(|f| *f > 0.0) {
             chart
                 .draw_series(DashedLineSeries::new([(x0, f), (x1, f)], 8, 5, FLOOR_COLOUR.stroke_width(2)))?
@@ -188,13 +228,7 @@ fn draw(scene: &SceneResult, runs: usize) -> anyhow::Result<Vec<u8>> {
         }
         chart.draw_series(labels)?;
 
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .background_style(WHITE.mix(0.9))
-            .border_style(RGBColor(120, 120, 120))
-            .label_font((FAMILY, 14))
-            .draw()?;
+        draw_legend(&mut chart)?;
         root.present()?;
     }
     Ok(buf)

@@ -203,38 +203,22 @@ pub fn join_gi(files: &mut [ShardFile]) -> Vec<super::gi::GiResult> {
 pub fn join(files: &mut [ShardFile], planned: &[Planned]) -> Vec<SceneResult> {
     let position = |c: &Config| planned.iter().position(|p| p.config == *c).unwrap_or(usize::MAX);
     let names = files[0].scenes.clone();
-    let mut out = Vec::new();
-    for name in names {
-        let mut joined: Option<SceneResult> = None;
-        for file in files.iter_mut() {
-            for part in file.results.iter_mut().filter(|r| r.name == name) {
-                let part = std::mem::replace(part, empty_like(part));
-                match &mut joined {
-                    None => joined = Some(part),
-                    Some(j) => {
-                        j.rows.extend(part.rows);
-                        j.specular.extend(part.specular);
-                    }
-                }
+    let parts: Vec<SceneResult> = files.iter_mut().flat_map(|f| std::mem::take(&mut f.results)).collect();
+    let mut out: Vec<SceneResult> = Vec::new();
+    for part in parts {
+        match out.iter_mut().find(|j| j.name == part.name) {
+            Some(j) => {
+                j.rows.extend(part.rows);
+                j.specular.extend(part.specular);
             }
+            None => out.push(part),
         }
-        if let Some(mut j) = joined {
-            j.rows.sort_by_key(|r| position(&r.config));
-            out.push(j);
-        }
+    }
+    out.sort_by_key(|j| names.iter().position(|n| *n == j.name).unwrap_or(usize::MAX));
+    for j in &mut out {
+        j.rows.sort_by_key(|r| position(&r.config));
     }
     out
-}
-
-fn empty_like(r: &SceneResult) -> SceneResult {
-    SceneResult {
-        name: String::new(),
-        description: String::new(),
-        settings: r.settings.clone(),
-        reference: r.reference,
-        rows: Vec::new(),
-        specular: Vec::new(),
-    }
 }
 
 #[cfg(test)]
