@@ -33,6 +33,13 @@ const EPS_ROBUST: u32 = 3u;
 const EPS_SKIP_CONVEX: u32 = 4u;
 const INTEGRATOR_WHITTED: u32 = 0u;
 const INTEGRATOR_PATH: u32 = 1u;
+// Kinds of light a path brings back (SceneHeader.omit_kinds) and a path's history bits.
+const PATH_DIRECT: u32 = 1u;
+const PATH_INDIRECT: u32 = 2u;
+const PATH_CAUSTIC: u32 = 4u;
+const PATH_REST: u32 = 8u;
+const HISTORY_NON_DELTA: u32 = 3u;
+const HISTORY_DELTA_AFTER: u32 = 4u;
 // Where texture coordinates come from (Surface.uv_origin).
 const UV_MESH: u32 = 0u;
 const UV_ACROSS_X: u32 = 1u;
@@ -88,7 +95,7 @@ struct SceneHeader {
     mesh_count: u32,
     integrator: u32,
     indirect: u32,
-    pad_a: u32,
+    omit_kinds: u32,
     pad_b: u32,
     ambient: vec4<f32>,
     background: vec4<f32>,

@@ -8,7 +8,7 @@
 // pixel's next sample starts in its place at once (path regeneration, Novák et al. 2010), so
 // that the lanes of a workgroup stay busy while their paths' lengths differ. A pixel done with
 // the batch counts itself in STAT_PIXELS_DONE, which the host reads to know when to stop.
-#import glint::scene_data::{GpuMaterial, GpuPathState, NO_HIT, LIGHT_CASTS_SHADOWS, PRIM_REF_TRIANGLE, PRIM_REF_INDEX, SPECULAR_PHONG, SPECULAR_COOK_TORRANCE, STATUS_DRIVER_LOOP_CUTOFF, STAT_PIXELS_DONE}
+#import glint::scene_data::{GpuMaterial, GpuPathState, NO_HIT, PATH_DIRECT, PATH_INDIRECT, PATH_CAUSTIC, PATH_REST, HISTORY_NON_DELTA, HISTORY_DELTA_AFTER, LIGHT_CASTS_SHADOWS, PRIM_REF_TRIANGLE, PRIM_REF_INDEX, SPECULAR_PHONG, SPECULAR_COOK_TORRANCE, STATUS_DRIVER_LOOP_CUTOFF, STAT_PIXELS_DONE}
 #import glint::bindings::{header, camera, tile, materials, lights, spheres, triangles, output, stats, path_states, emitters}
 #import glint::ray::{Ray, RayCounts, ray_counts, status, driver_cut_loops, flush_counts}
 #import glint::rng::{sample_hash, hash_to_unit}
@@ -65,6 +65,40 @@ struct PathState {
     first_object: u32,
     pixel: u32,
     sample: u32,
+    history: u32,
+}
+
+// The history of a path after it scatters off a delta lobe (k_r, k_t) or a non-delta one.
+fn scattered(history: u32, delta: bool) -> u32 {
+    let non_delta = history & HISTORY_NON_DELTA;
+    if delta {
+        return select(history, history | HISTORY_DELTA_AFTER, non_delta > 0u);
+    }
+    return (history & HISTORY_DELTA_AFTER) | min(non_delta + 1u, 2u);
+}
+
+// The kind (PATH_*) of the light a path of `history` meets: an emitter or the background.
+fn met_kind(history: u32) -> u32 {
+    let non_delta = history & HISTORY_NON_DELTA;
+    let delta_after = (history & HISTORY_DELTA_AFTER) != 0u;
+    if non_delta == 0u || (non_delta == 1u && !delta_after) {
+        return PATH_DIRECT;
+    } else if non_delta == 1u {
+        return PATH_CAUSTIC;
+    } else if !delta_after {
+        return PATH_INDIRECT;
+    }
+    return PATH_REST;
+}
+
+// The kind of the light next-event estimation draws at a hit of a path of `history`.
+fn sampled_kind(history: u32) -> u32 {
+    return met_kind(scattered(history, false));
+}
+
+// Whether the image counts light of `kind` (header.omit_kinds).
+fn counts_kind(kind: u32) -> bool {
+    return (header.omit_kinds & kind) == 0u;
 }
 
 // The lobes of a surface in its shading frame, seen from wo (local).
@@ -253,6 +287,7 @@ fn start_path(x: u32, y: u32, sample_index: u32) -> PathState {
         NO_HIT,
         pixel,
         sample_index,
+        0u,
     );
 }
 
@@ -327,7 +362,9 @@ fn path_bounce(path: ptr<function, PathState>) -> bool {
     let ray = (*path).ray;
     let hit = closest_hit(ray, (*path).t_min, FAR, (*path).leaving);
     if hit.prim == PRIM_NONE {
-        (*path).radiance += (*path).beta * header.background.xyz;
+        if counts_kind(met_kind((*path).history)) {
+            (*path).radiance += (*path).beta * header.background.xyz;
+        }
         return false;
     }
 #ifdef GLOBAL_ATTENUATION
@@ -345,7 +382,7 @@ fn path_bounce(path: ptr<function, PathState>) -> bool {
     let mat = materials[s.material];
     let c = material_colours(mat, s.uv, s.uv_origin);
 #ifdef EMISSION
-    if front && !all_zero(c.emission) {
+    if front && !all_zero(c.emission) && counts_kind(met_kind((*path).history)) {
         var weight = 1.0;
         let e = of_hit(hit);
         if e != NO_EMITTER && (*path).scattered_pdf > 0.0 {
@@ -378,13 +415,16 @@ fn path_bounce(path: ptr<function, PathState>) -> bool {
         vec4<f32>(max_channel(c.kd), max_channel(ks), max_channel(kr), max_channel(kt)),
         s.material,
     );
-    (*path).radiance = lights_light(l, s, ng, (*path).beta, (*path).radiance);
+    let sampled = counts_kind(sampled_kind((*path).history));
+    if sampled {
+        (*path).radiance = lights_light(l, s, ng, (*path).beta, (*path).radiance);
+    }
 
     let weights = l.weights;
     let dim = FIRST_PATH_DIM + depth * DIMS_PER_BOUNCE;
 #ifdef EMISSION
     let count = emitters[0];
-    if count > 0u && weights.x + weights.y > 0.0 {
+    if sampled && count > 0u && weights.x + weights.y > 0.0 {
         let pick = min(u32(path_uniform(*path, dim + 4u) * f32(count)), count - 1u);
         let e = emitters[1u + pick];
         let u = vec2<f32>(path_uniform(*path, dim + 5u), path_uniform(*path, dim + 6u));
@@ -426,16 +466,19 @@ fn path_bounce(path: ptr<function, PathState>) -> bool {
         ray_counts.reflection += 1u;
         (*path).scattered_from = s.p;
         (*path).scattered_pdf = pdf;
+        (*path).history = scattered((*path).history, false);
         dir = to_world(ns, wi);
     } else if pick < choice.x + choice.y + choice.z {
         (*path).beta *= kr * (total / choice.z);
         ray_counts.reflection += 1u;
         (*path).scattered_pdf = 0.0;
+        (*path).history = scattered((*path).history, true);
         dir = reflect_dir(ray.dir, ns);
     } else {
 #ifdef TRANSMISSION
         (*path).beta *= kt * (total / choice.w);
         (*path).scattered_pdf = 0.0;
+        (*path).history = scattered((*path).history, true);
         let eta = select(mat.ior, 1.0 / mat.ior, front);
         let refracted = refract_dir(ray.dir, ns, eta);
         if refracted.w != 0.0 {
@@ -486,6 +529,7 @@ fn load_path(slot: u32) -> PathState {
         bitcast<u32>(g.radiance.w),
         g.leaving_pixel.w,
         g.sample.x,
+        g.sample.y,
     );
 }
 
@@ -497,7 +541,7 @@ fn store_path(slot: u32, p: PathState, alive: bool) {
         vec4<f32>(p.radiance, bitcast<f32>(p.first_object)),
         vec4<f32>(p.scattered_from, bitcast<f32>(u32(alive))),
         vec4<u32>(p.leaving.prim, p.leaving.index, u32(p.leaving.inside), p.pixel),
-        vec4<u32>(p.sample, 0u, 0u, 0u),
+        vec4<u32>(p.sample, p.history, 0u, 0u),
     );
 }
 

@@ -4,7 +4,7 @@
 use glam::DVec3;
 use glint_core::cpu::path::{Emitters, path_pixel, path_sample};
 use glint_core::cpu::{RayCounts, TraceContext};
-use glint_core::{CpuOptions, RenderControl};
+use glint_core::{CpuOptions, FlatScene, RenderControl};
 
 use crate::reference::{primary_ray, sphere_hit};
 use crate::scene::SceneText;
@@ -311,4 +311,67 @@ fn without_indirect_light_paths_compute_whitteds_image() {
     .expect("path render");
     let mean = |pixels: &[DVec3]| pixels.iter().map(|p| p.x + p.y + p.z).sum::<f64>() / pixels.len() as f64;
     assert!(mean(&gi.image.pixels) > 1.02 * mean(&whitted.image.pixels), "indirect light adds nothing");
+}
+
+#[test]
+fn a_paths_kind_follows_heckberts_notation() {
+    use glint_core::cpu::path::{met_kind, sampled_kind, scattered};
+    use glint_types::layout::{PATH_CAUSTIC, PATH_DIRECT, PATH_INDIRECT, PATH_REST};
+    // The scatters from the camera, S a delta lobe and D a non-delta one, then the light met.
+    let history = |scatters: &str| scatters.chars().fold(0, |h, c| scattered(h, c == 'S'));
+    let cases = [
+        ("", PATH_DIRECT),
+        ("SS", PATH_DIRECT),
+        ("SD", PATH_DIRECT),
+        ("DS", PATH_CAUSTIC),
+        ("SDSS", PATH_CAUSTIC),
+        ("DD", PATH_INDIRECT),
+        ("SDDD", PATH_INDIRECT),
+        ("DSD", PATH_REST),
+        ("DDS", PATH_REST),
+    ];
+    for (scatters, kind) in cases {
+        assert_eq!(met_kind(history(scatters)), kind, "E {scatters} L");
+    }
+    // Next-event estimation at a hit is the light met after one more non-delta scatter there.
+    for scatters in ["", "S", "D", "DS", "DD", "DSD"] {
+        assert_eq!(sampled_kind(history(scatters)), met_kind(history(&format!("{scatters}D"))), "E {scatters} D L");
+    }
+}
+
+#[test]
+fn the_images_of_each_kind_of_light_add_up_to_the_path_image() {
+    use glint_core::path_kinds::{kind_alone, probe_paths};
+    use glint_scene::PathKind;
+    let mut loaded = glint_io::load_scene("cornell-gi").expect("built-in scene");
+    (loaded.desc.render.width, loaded.desc.render.height, loaded.desc.render.spp) = (48, 48, 8);
+    let flat = FlatScene::build(&loaded.desc, &loaded.desc.render);
+    let whole = render(&flat);
+    let parts: Vec<_> = PathKind::ALL.iter().map(|&k| render(&kind_alone(&flat, k))).collect();
+    let mean = |pixels: &[DVec3]| pixels.iter().map(|p| p.x + p.y + p.z).sum::<f64>() / pixels.len() as f64;
+    for (i, w) in whole.image.pixels.iter().enumerate() {
+        let sum: DVec3 = parts.iter().map(|p| p.image.pixels[i]).sum();
+        assert!(
+            (sum - *w).abs().max_element() <= 1e-12 * w.max_element().max(1.0),
+            "pixel {i}: kinds {sum}, image {w}"
+        );
+    }
+    let share: Vec<f64> = parts.iter().map(|p| mean(&p.image.pixels) / mean(&whole.image.pixels)).collect();
+    eprintln!("cornell-gi's light by kind (direct, indirect, caustic, rest): {share:.3?}");
+    // The box's walls light each other, and the glass sphere focuses the lamp on the floor.
+    assert!(share[0] > 0.4 && share[1] > 0.1 && share[2] > 0.005, "{share:?}");
+    // The probe of a pixel is the image's own samples, split the same way.
+    let ctx = TraceContext::new(&flat).expect("valid scene");
+    let (x, y) = (24, 40);
+    let probe = probe_paths(&ctx, x, y, 8);
+    let pixel = whole.image.pixels[(y * 48 + x) as usize];
+    assert!(
+        (probe.total() - pixel).abs().max_element() <= 1e-12 * pixel.max_element().max(1.0),
+        "{probe:?} against {pixel}"
+    );
+    for (k, part) in probe.by_kind().iter().zip(&parts) {
+        let p = part.image.pixels[(y * 48 + x) as usize];
+        assert!((*k - p).abs().max_element() <= 1e-12 * p.max_element().max(1.0), "{k} against {p}");
+    }
+    assert!(probe.by_bounce.len() > 2, "{probe:?}");
 }

@@ -87,3 +87,27 @@ fn gpu_paths_agree_with_the_cpus_within_their_noise_on_every_builtin_scene() {
     }
     assert!(failures.is_empty(), "GPU paths outside the CPU's noise: {failures:?}");
 }
+
+#[test]
+fn the_gpus_images_of_each_kind_of_light_add_up_to_its_path_image() {
+    use glint_core::path_kinds::kind_alone;
+    use glint_scene::PathKind;
+    let tracer = gpu_or_skip!();
+    let mut desc = load_scene("cornell-gi").expect("built-in scene").desc;
+    (desc.render.width, desc.render.height, desc.render.spp) = (32, 32, 8);
+    let flat = FlatScene::build(&desc, &desc.render);
+    let whole = gpu_render(tracer, &flat, true);
+    let parts: Vec<_> = PathKind::ALL.iter().map(|&k| gpu_render(tracer, &kind_alone(&flat, k), true)).collect();
+    let mut worst = 0.0f64;
+    for (i, w) in whole.image.pixels.iter().enumerate() {
+        let sum: DVec3 = parts.iter().map(|p| p.image.pixels[i]).sum();
+        // Each image sums its samples in f32 and divides by spp: the same paths, rounded apart.
+        worst = worst.max(((sum - *w).abs() / (w.abs() + DVec3::splat(1e-3))).max_element());
+    }
+    eprintln!("GPU kinds against the whole image: worst relative difference {worst:.2e}");
+    assert!(worst < 1e-5, "the kinds' sum differs from the image by {worst:.2e} relative");
+    // The glass sphere focuses the lamp on the floor on the GPU too.
+    let mean = |pixels: &[DVec3]| pixels.iter().map(|p| p.x + p.y + p.z).sum::<f64>() / pixels.len() as f64;
+    let caustic = mean(&parts[2].image.pixels) / mean(&whole.image.pixels);
+    assert!(caustic > 0.005, "no caustic on the GPU ({caustic})");
+}

@@ -11,6 +11,7 @@ pub mod flat;
 pub mod huge_pages;
 pub mod image;
 pub mod memory;
+pub mod path_kinds;
 pub mod probe_terms;
 pub mod rays;
 pub mod rebase;

@@ -30,7 +30,7 @@ pub use desc::{
 pub use error::FieldIssue;
 /// The tags a scene file names (light kinds, models, modes), from the shared vocabulary.
 pub use glint_types::tags::{
-    AttenuationModel, EpsilonMode, Filter, Fresnel, Integrator, LightKind, SpecularModel, SpotFalloff, Wrap,
+    AttenuationModel, EpsilonMode, Filter, Fresnel, Integrator, LightKind, PathKind, SpecularModel, SpotFalloff, Wrap,
 };
 pub use light::{Attenuation, DEFAULT_INNER_CONE, DEFAULT_OUTER_CONE, LightDesc, NO_CONE_CUTOFF};
 pub use material::{CheckerDesc, DEFAULT_ROUGHNESS, MaterialDesc, material_textures};

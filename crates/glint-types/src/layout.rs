@@ -67,6 +67,21 @@ pub const EPS_SKIP_CONVEX: u32 = 4;
 pub const INTEGRATOR_WHITTED: u32 = 0;
 pub const INTEGRATOR_PATH: u32 = 1;
 
+/// The kinds of light a path brings back (`SceneHeader::omit_kinds` bits), by its scatters
+/// from the camera in Heckbert's notation, S a delta lobe (k_r, k_t) and D a non-delta one:
+/// direct E S* D? L (what Whitted computes, less its ambient), indirect diffuse E S* D D+ L
+/// (colour bleeding), caustics E S* D S+ L (light that reached a diffuse surface through a
+/// mirror or glass), and the rest (a delta scatter between two non-delta ones).
+pub const PATH_DIRECT: u32 = 1;
+pub const PATH_INDIRECT: u32 = 2;
+pub const PATH_CAUSTIC: u32 = 4;
+pub const PATH_REST: u32 = 8;
+
+/// A path's history (`PathState::history`): its non-delta scatters so far in the low bits
+/// (saturating at 2), and whether a delta scatter came after the first of them.
+pub const HISTORY_NON_DELTA: u32 = 3;
+pub const HISTORY_DELTA_AFTER: u32 = 4;
+
 /// A stored tag that no kind of the layout has: a flat scene not made by `FlatScene::build`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
 #[error("{value} is not a valid {what}")]
@@ -226,7 +241,9 @@ pub struct SceneHeader {
     /// Paths follow the non-delta lobes too (1), or only k_r and k_t (0: the transport Whitted
     /// computes, with direct light by next-event estimation). Whitted's tracer does not read it.
     pub indirect: u32,
-    pub pad_a: u32,
+    /// The kinds of light (`PATH_*` bits) a path-traced image leaves out: 0 for the whole
+    /// image; one kind alone is every other bit. Whitted's tracer does not read it.
+    pub omit_kinds: u32,
     pub pad_b: u32,
     /// Global ambient I_a (rgb, w unused).
     pub ambient: [f32; 4],
@@ -473,7 +490,7 @@ pub struct GpuPathState {
     pub scattered_from: [f32; 4],
     /// The primitive the ray leaves (`Leaving`: prim, index, inside as 0 or 1) and the pixel.
     pub leaving_pixel: [u32; 4],
-    /// x the sample; y, z, w unused.
+    /// x the sample, y the history (`HISTORY_*`); z, w unused.
     pub sample: [u32; 4],
 }
 

@@ -8,7 +8,7 @@ pub mod layout;
 pub mod tags;
 
 pub use tags::{
-    AttenuationModel, EpsilonMode, Filter, Fresnel, Integrator, LightKind, LightTags, MaterialTags, RayKind,
+    AttenuationModel, EpsilonMode, Filter, Fresnel, Integrator, LightKind, LightTags, MaterialTags, PathKind, RayKind,
     SpecularModel, SpotFalloff, Wrap,
 };
 

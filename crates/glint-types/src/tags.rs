@@ -10,9 +10,10 @@ use serde::{Deserialize, Serialize};
 use crate::layout::{
     ATTENUATION_INVERSE_SQUARE, ATTENUATION_POLYNOMIAL, EPS_NUDGE_NORMAL, EPS_NUDGE_RAY, EPS_ROBUST, EPS_SKIP_CONVEX,
     EPS_TMIN, FILTER_BILINEAR, FILTER_NEAREST, FRESNEL_EXACT, FRESNEL_SCHLICK, GpuLight, GpuMaterial, INTEGRATOR_PATH,
-    INTEGRATOR_WHITTED, LIGHT_DIRECTIONAL, LIGHT_POINT, LIGHT_SPOT, RAY_CAMERA, RAY_REFLECTION, RAY_REFRACTION,
-    RAY_SHADOW, SPECULAR_BLINN, SPECULAR_COOK_TORRANCE, SPECULAR_PHONG, SPOT_FALLOFF_POWER, SPOT_FALLOFF_SMOOTH,
-    UnknownTag, WRAP_CLAMP_TO_EDGE, WRAP_MIRRORED_REPEAT, WRAP_REPEAT,
+    INTEGRATOR_WHITTED, LIGHT_DIRECTIONAL, LIGHT_POINT, LIGHT_SPOT, PATH_CAUSTIC, PATH_DIRECT, PATH_INDIRECT,
+    PATH_REST, RAY_CAMERA, RAY_REFLECTION, RAY_REFRACTION, RAY_SHADOW, SPECULAR_BLINN, SPECULAR_COOK_TORRANCE,
+    SPECULAR_PHONG, SPOT_FALLOFF_POWER, SPOT_FALLOFF_SMOOTH, UnknownTag, WRAP_CLAMP_TO_EDGE, WRAP_MIRRORED_REPEAT,
+    WRAP_REPEAT,
 };
 
 /// One tag enum: `Variant = STORED_VALUE => "scene_file_name"` per variant, and what a stored
@@ -135,6 +136,38 @@ tags! {
 impl Integrator {
     pub fn is_whitted(&self) -> bool {
         *self == Self::Whitted
+    }
+}
+
+tags! {
+    /// A kind of light a path brings back, by its scatters (`PATH_*`, a bit each; the image
+    /// keeps or leaves out each by `SceneHeader::omit_kinds`). The four add up to the image.
+    pub enum PathKind ("kind of light path") {
+        /// Light met directly or through mirrors and glass: what Whitted's local terms compute.
+        Direct = PATH_DIRECT => "direct",
+        /// Light between diffuse surfaces (colour bleeding), which Whitted's ambient stands in for.
+        Indirect = PATH_INDIRECT => "indirect",
+        /// Light that reached a diffuse surface through a mirror or glass.
+        Caustic = PATH_CAUSTIC => "caustic",
+        /// Everything else: a mirror or glass between two diffuse scatters.
+        Rest = PATH_REST => "rest",
+    }
+}
+
+impl PathKind {
+    /// What the kind is called on a label.
+    pub const fn label(self) -> &'static str {
+        match self {
+            Self::Direct => "Direct light",
+            Self::Indirect => "Indirect diffuse",
+            Self::Caustic => "Caustics",
+            Self::Rest => "The rest",
+        }
+    }
+
+    /// `SceneHeader::omit_kinds` for an image of this kind alone.
+    pub fn alone(self) -> u32 {
+        Self::ALL.iter().map(|&k| u32::from(k)).filter(|&bit| bit != u32::from(self)).fold(0, |a, b| a | b)
     }
 }
 

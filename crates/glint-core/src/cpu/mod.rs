@@ -135,6 +135,8 @@ pub struct TraceContext<'a> {
     pub integrator: Integrator,
     /// Paths follow the non-delta lobes (`SceneHeader::indirect`); paths only.
     pub indirect: bool,
+    /// The kinds of light paths leave out (`SceneHeader::omit_kinds`); paths only.
+    pub omit_kinds: u32,
     pub epsilon: f64,
     pub epsilon_mode: EpsilonMode,
     pub bailout: f64,
@@ -170,6 +172,7 @@ impl<'a> TraceContext<'a> {
             max_depth: h.max_depth,
             integrator: Integrator::try_from(h.integrator)?,
             indirect: h.indirect != 0,
+            omit_kinds: h.omit_kinds,
             epsilon: f64::from(h.epsilon),
             epsilon_mode: EpsilonMode::try_from(h.epsilon_mode)?,
             bailout: f64::from(h.bailout),

@@ -53,7 +53,10 @@ use super::{Ray, RayCounts, TraceContext, v3};
 use crate::flat::FlatScene;
 use glint_scene::SpecularModel;
 use glint_types::MaterialTags;
-use glint_types::layout::{GpuMaterial, LIGHT_CASTS_SHADOWS, NO_HIT, PRIM_REF_TRIANGLE, feature};
+use glint_types::layout::{
+    GpuMaterial, HISTORY_DELTA_AFTER, HISTORY_NON_DELTA, LIGHT_CASTS_SHADOWS, NO_HIT, PATH_CAUSTIC, PATH_DIRECT,
+    PATH_INDIRECT, PATH_REST, PRIM_REF_TRIANGLE, feature,
+};
 
 /// Random dimensions per bounce: the lobe, the direction's two, Russian roulette, the emitter
 /// and the point on it (two), one spare. The camera's jitter takes dimensions 0 and 1.
@@ -222,6 +225,44 @@ pub struct PathState {
     pub first_object: u32,
     pub pixel: u32,
     pub sample: u32,
+    /// Its scatters so far, as the kind of light it brings back needs them (`HISTORY_*`).
+    pub history: u32,
+}
+
+/// The history of a path after it scatters off a delta lobe (k_r, k_t) or a non-delta one.
+pub fn scattered(history: u32, delta: bool) -> u32 {
+    let non_delta = history & HISTORY_NON_DELTA;
+    if delta {
+        if non_delta > 0 { history | HISTORY_DELTA_AFTER } else { history }
+    } else {
+        (history & HISTORY_DELTA_AFTER) | (non_delta + 1).min(2)
+    }
+}
+
+/// The kind (`PATH_*`) of the light a path of `history` meets: an emitter or the background.
+pub fn met_kind(history: u32) -> u32 {
+    let non_delta = history & HISTORY_NON_DELTA;
+    let delta_after = history & HISTORY_DELTA_AFTER != 0;
+    if non_delta == 0 || (non_delta == 1 && !delta_after) {
+        PATH_DIRECT
+    } else if non_delta == 1 {
+        PATH_CAUSTIC
+    } else if !delta_after {
+        PATH_INDIRECT
+    } else {
+        PATH_REST
+    }
+}
+
+/// The kind of the light next-event estimation draws at a hit of a path of `history`: what
+/// the path would meet after scattering there off a non-delta lobe.
+pub fn sampled_kind(history: u32) -> u32 {
+    met_kind(scattered(history, false))
+}
+
+/// Whether the image counts light of `kind` (`TraceContext::omit_kinds`).
+pub fn counts_kind(ctx: &TraceContext, kind: u32) -> bool {
+    ctx.omit_kinds & kind == 0
 }
 
 /// The path's random number in dimension `dim`: a hash of its pixel, sample, `dim` and the seed.
@@ -291,6 +332,7 @@ pub fn start_path(ctx: &TraceContext, x: u32, y: u32, sample: u32, counts: &mut 
         first_object: NO_HIT,
         pixel,
         sample,
+        history: 0,
     }
 }
 
@@ -301,7 +343,9 @@ pub fn path_bounce(ctx: &TraceContext, emitters: &Emitters, path: &mut PathState
     let h = &scene.header;
     let depth = path.depth;
     let Some(hit) = closest_hit(ctx, &path.ray, path.t_min, FAR, &path.leaving) else {
-        path.radiance += path.beta * v3(h.background);
+        if counts_kind(ctx, met_kind(path.history)) {
+            path.radiance += path.beta * v3(h.background);
+        }
         return false;
     };
     // As Whitted's child rays: a bounce's share times f_att(t); the camera ray's is not.
@@ -318,7 +362,7 @@ pub fn path_bounce(ctx: &TraceContext, emitters: &Emitters, path: &mut PathState
     let mat = &scene.materials[s.material as usize];
     let c = material_colours(ctx, mat, s.uv, s.uv_origin);
     // Emission here means the material emits, so a sphere or triangle is in `emitters`.
-    if front && c.emission != DVec3::ZERO {
+    if front && c.emission != DVec3::ZERO && counts_kind(ctx, met_kind(path.history)) {
         let weight = match Emitter::of_hit(&hit) {
             Some(e) if path.scattered_pdf > 0.0 => power_heuristic(
                 path.scattered_pdf,
@@ -341,11 +385,14 @@ pub fn path_bounce(ctx: &TraceContext, emitters: &Emitters, path: &mut PathState
         weights: DVec4::new(max_channel(c.kd), max_channel(ks), max_channel(kr), max_channel(kt)),
         material: s.material,
     };
-    path.radiance = lights_light(ctx, &l, &s, ng, path.beta, path.radiance, counts);
+    let sampled = counts_kind(ctx, sampled_kind(path.history));
+    if sampled {
+        path.radiance = lights_light(ctx, &l, &s, ng, path.beta, path.radiance, counts);
+    }
 
     let weights = l.weights;
     let dim = FIRST_PATH_DIM + depth * DIMS_PER_BOUNCE;
-    if !emitters.list.is_empty() && weights.x + weights.y > 0.0 {
+    if sampled && !emitters.list.is_empty() && weights.x + weights.y > 0.0 {
         let pick =
             ((path_uniform(ctx, path, dim + 4) * emitters.list.len() as f64) as usize).min(emitters.list.len() - 1);
         let e = emitters.list[pick];
@@ -384,15 +431,18 @@ pub fn path_bounce(ctx: &TraceContext, emitters: &Emitters, path: &mut PathState
         path.beta *= lobes_brdf(ctx, &l, wi) * (wi.z / pdf);
         counts.reflection += 1;
         (path.scattered_from, path.scattered_pdf) = (s.p, pdf);
+        path.history = scattered(path.history, false);
         (to_world(ns, wi), false)
     } else if pick < choice.x + choice.y + choice.z {
         path.beta *= kr * (total / choice.z);
         counts.reflection += 1;
         path.scattered_pdf = 0.0;
+        path.history = scattered(path.history, true);
         (reflect_dir(ray.dir, ns), false)
     } else {
         path.beta *= kt * (total / choice.w);
         path.scattered_pdf = 0.0;
+        path.history = scattered(path.history, true);
         let ior = f64::from(mat.ior);
         let eta = if front { 1.0 / ior } else { ior };
         match refract_dir(ray.dir, ns, eta) {

@@ -309,7 +309,7 @@ fn flat_header(desc: &SceneDesc, settings: &RenderSettings, p: &Geometry, materi
         bailout: settings.bailout as f32,
         integrator: settings.integrator.into(),
         indirect: u32::from(settings.indirect),
-        pad_a: 0,
+        omit_kinds: 0,
         pad_b: 0,
         ambient: rgb4(desc.world.ambient),
         background: rgb4(desc.world.background),
