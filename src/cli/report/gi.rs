@@ -4,7 +4,10 @@
 //! increasing samples, on each backend, against render time. The reference is two CPU path
 //! renders with different seeds, averaged; half the RMSE between them estimates its own noise.
 //! The path tracer's log-log slope of error against time is measured (−1/2 while noise
-//! dominates), and so is the time from which its error falls below Whitted's best.
+//! dominates), and so is the time from which its error falls below Whitted's best. What
+//! Whitted's error is made of comes from the reference's paths split by kind
+//! (`glint_core::path_kinds`): the light Whitted has no term for, its direct light against the
+//! paths', and what its ambient adds.
 
 use std::fmt::Write as _;
 use std::time::Duration;
@@ -12,9 +15,10 @@ use std::time::Duration;
 use anyhow::Context;
 use glint_core::ambient_fit::fit_ambient;
 use glint_core::compare::compare_images;
+use glint_core::path_kinds::kind_alone;
 use glint_core::{Backend, CpuOptions, FlatScene, HdrImage};
 use glint_io::LoadedScene;
-use glint_scene::{Integrator, RenderSettings, Rgb};
+use glint_scene::{Integrator, PathKind, RenderSettings, Rgb};
 use indicatif::ProgressBar;
 use serde::{Deserialize, Serialize};
 
@@ -64,6 +68,44 @@ pub struct GiResult {
     pub rows: Vec<GiRow>,
     /// The shard of `glint report --shard` that measured it (`None` in a one-machine run).
     pub shard: Option<u32>,
+    pub kinds: KindSplit,
+}
+
+/// What Whitted's error is made of: the reference's light by kind (`PathKind::ALL` order),
+/// from a path render of `spp` samples with the reference's seed split four ways, against
+/// Whitted's CPU image at the sweep's deepest, most sampled setting.
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
+pub struct KindSplit {
+    pub spp: u32,
+    /// Each kind's share of the paths' mean.
+    pub share: [f64; 4],
+    /// Each kind's root mean square over the pixels and channels: the error of an image that
+    /// lacks it.
+    pub rms: [f64; 4],
+    /// The RMS difference of Whitted's image without its ambient from the paths' direct light
+    /// (point lights against area lights' soft shadows, the glossy lobe against k_s·(H·N)^n).
+    pub direct_rmse: f64,
+    /// What the ambient as written adds, as a share of the paths' mean.
+    pub ambient_share: f64,
+    /// Whitted's RMSE with the ambient as written, for scale.
+    pub whitted_rmse: f64,
+}
+
+/// The mean over the pixels and channels, and the root mean square, of `image`.
+fn mean_and_rms(image: &HdrImage) -> (f64, f64) {
+    let n = (3 * image.pixels.len().max(1)) as f64;
+    let sum: f64 = image.pixels.iter().map(|p| p.element_sum()).sum();
+    let sq: f64 = image.pixels.iter().map(|p| p.length_squared()).sum();
+    (sum / n, (sq / n).sqrt())
+}
+
+/// `a − b`, pixel by pixel.
+fn minus(a: &HdrImage, b: &HdrImage) -> HdrImage {
+    let mut d = a.clone();
+    for (p, q) in d.pixels.iter_mut().zip(&b.pixels) {
+        *p -= *q;
+    }
+    d
 }
 
 /// The sweep's axes: (reference spp, path depth, Whitted depths, Whitted spp, path spp).
@@ -71,10 +113,13 @@ fn axes(quick: bool) -> (u32, u32, &'static [u32], &'static [u32], &'static [u32
     if quick { (64, 8, &[5], &[1], &[1, 4, 16]) } else { (1024, 16, &[2, 5], &[1, 4], &[1, 4, 16, 64]) }
 }
 
-/// Renders per scene, for the progress bar: the reference halves, then each row's warm-up and runs.
+/// Renders per scene, for the progress bar: the reference halves, the kinds and the two
+/// Whitted images they are held against, then each row's warm-up and runs.
 pub fn renders(backends: &[Backend], runs: u32, quick: bool) -> usize {
     let (_, _, depths, spps, path_spps) = axes(quick);
-    2 + backends.len() * (depths.len() * spps.len() * 3 + path_spps.len()) * (1 + runs as usize)
+    2 + PathKind::ALL.len()
+        + 2
+        + backends.len() * (depths.len() * spps.len() * 3 + path_spps.len()) * (1 + runs as usize)
 }
 
 pub fn measure(
@@ -106,6 +151,12 @@ pub fn measure(
     let whitted = RenderSettings { integrator: Integrator::Whitted, indirect: true, ..base.clone() };
     let fit = fit_ambient(&loaded.desc, &whitted, &reference, &options)
         .with_context(|| format!("{name}: fitting the ambient term"))?;
+    let deepest = RenderSettings {
+        spp: *spps.last().expect("Whitted spp"),
+        max_depth: *depths.last().expect("Whitted depths"),
+        ..whitted.clone()
+    };
+    let kinds = split_by_kind(loaded, &paths, &deepest, &reference, reference_spp / 4, &options, bar)?;
 
     let mut planned: Vec<(GiRow, FlatScene)> = Vec::new();
     for &backend in backends {
@@ -192,7 +243,82 @@ pub fn measure(
         written: loaded.desc.world.ambient.0,
         rows,
         shard: None,
+        kinds,
     })
+}
+
+/// The reference's light by kind against Whitted's image at `whitted`'s settings, with the
+/// ambient as written and without.
+fn split_by_kind(
+    loaded: &LoadedScene,
+    paths: &RenderSettings,
+    whitted: &RenderSettings,
+    reference: &HdrImage,
+    spp: u32,
+    options: &CpuOptions,
+    bar: &ProgressBar,
+) -> anyhow::Result<KindSplit> {
+    let name = &loaded.name;
+    let cpu = |flat: &FlatScene, what: &str| -> anyhow::Result<HdrImage> {
+        bar.set_message(format!("{name}: {what}"));
+        let r = glint_core::render_cpu(flat, options, Default::default()).with_context(|| format!("{name}: {what}"))?;
+        bar.inc(1);
+        Ok(r.image)
+    };
+    let flat = FlatScene::build(&loaded.desc, &RenderSettings { spp, ..paths.clone() });
+    let mut split = KindSplit { spp, ..KindSplit::default() };
+    let mut direct = None;
+    let (paths_mean, _) = mean_and_rms(reference);
+    for (i, kind) in PathKind::ALL.into_iter().enumerate() {
+        let image = cpu(&kind_alone(&flat, kind), &format!("{} alone ({spp} spp)", kind.label()))?;
+        let (mean, rms) = mean_and_rms(&image);
+        (split.share[i], split.rms[i]) = (mean / paths_mean.max(f64::MIN_POSITIVE), rms);
+        if kind == PathKind::Direct {
+            direct = Some(image);
+        }
+    }
+    let written = cpu(&FlatScene::build(&loaded.desc, whitted), "Whitted, ambient as written")?;
+    let mut dark = loaded.desc.clone();
+    dark.world.ambient = Rgb([0.0; 3]);
+    let without = cpu(&FlatScene::build(&dark, whitted), "Whitted without ambient")?;
+    split.direct_rmse = mean_and_rms(&minus(&without, &direct.expect("the direct kind is rendered"))).1;
+    split.ambient_share = mean_and_rms(&minus(&written, &without)).0 / paths_mean.max(f64::MIN_POSITIVE);
+    split.whitted_rmse = compare_images(reference, &written).rmse;
+    Ok(split)
+}
+
+/// A sentence on what Whitted's remaining error is made of.
+pub fn kinds_sentence(g: &GiResult) -> String {
+    let k = &g.kinds;
+    let pct = |v: f64| format!("{:.0} %", 100.0 * v);
+    let parts = [
+        (
+            "its direct light differing from the paths' (an emitter lights nothing in Whitted's model, a point light casts hard shadows)",
+            k.direct_rmse,
+        ),
+        ("the indirect diffuse light it has no term for", k.rms[1]),
+        ("the caustics it has no term for", k.rms[2]),
+        ("the rest of the light it has no term for (a mirror or glass between two diffuse bounces)", k.rms[3]),
+    ];
+    let (largest, _) = parts.into_iter().max_by(|a, b| a.1.total_cmp(&b.1)).expect("four parts");
+    format!(
+        "Whitted's error (RMSE {:.3e}, ambient as written) is mostly {largest}: its direct light differs from the \
+         paths' by RMS {:.3e}, and it lacks indirect diffuse light (RMS {:.3e}), caustics ({:.3e}) and the rest \
+         ({:.3e}). The paths' light is {} direct, {} indirect diffuse, {} caustics and {} the rest (a {}-sample \
+         split); the ambient as written adds {} of the paths' light where the indirect kinds bring {}.",
+        k.whitted_rmse,
+        k.direct_rmse,
+        k.rms[1],
+        k.rms[2],
+        k.rms[3],
+        pct(k.share[0]),
+        pct(k.share[1]),
+        pct(k.share[2]),
+        pct(k.share[3]),
+        k.spp,
+        pct(k.ambient_share),
+        pct(k.share[1] + k.share[2] + k.share[3]),
+    )
 }
 
 /// The least-squares slope of log(error) against log(time) of the path tracer's rows on
@@ -299,6 +425,7 @@ pub fn render_markdown(results: &[GiResult]) -> String {
                 );
             }
         }
+        let _ = writeln!(md, "{}", kinds_sentence(g));
         let (first, best) = crossover(g);
         match (first, best) {
             (Some(p), Some(w)) => {
