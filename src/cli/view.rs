@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use anyhow::bail;
 use clap::Args;
 use glint_io::load_scene_with;
-use glint_viewer::{ViewMode, ViewerError, ViewerOptions};
+use glint_viewer::{GiView, ViewMode, ViewerError, ViewerOptions};
 
 use super::settings::{LoadArgs, SettingsArgs, check_load_memory};
 
@@ -16,16 +16,26 @@ pub enum StartView {
     SideBySide,
     Wipe,
     Difference,
+    /// Whitted's image beside the path-traced one (the scene is switched to paths)
+    WhittedVsGi,
+    /// Whitted's image wiped against the path-traced one
+    WhittedWipeGi,
+    /// Whitted − paths on a diverging colour map
+    WhittedMinusGi,
 }
 
-impl From<StartView> for ViewMode {
-    fn from(v: StartView) -> Self {
-        match v {
-            StartView::Gpu => Self::Gpu,
-            StartView::Cpu => Self::Cpu,
-            StartView::SideBySide => Self::SideBySide,
-            StartView::Wipe => Self::Wipe,
-            StartView::Difference => Self::Difference,
+impl StartView {
+    /// The viewer's mode, and how Whitted vs GI shows its two images.
+    fn modes(self) -> (ViewMode, GiView) {
+        match self {
+            Self::Gpu => (ViewMode::Gpu, GiView::SideBySide),
+            Self::Cpu => (ViewMode::Cpu, GiView::SideBySide),
+            Self::SideBySide => (ViewMode::SideBySide, GiView::SideBySide),
+            Self::Wipe => (ViewMode::Wipe, GiView::SideBySide),
+            Self::Difference => (ViewMode::Difference, GiView::SideBySide),
+            Self::WhittedVsGi => (ViewMode::WhittedVsGi, GiView::SideBySide),
+            Self::WhittedWipeGi => (ViewMode::WhittedVsGi, GiView::Wipe),
+            Self::WhittedMinusGi => (ViewMode::WhittedVsGi, GiView::Difference),
         }
     }
 }
@@ -53,6 +63,10 @@ pub struct ViewArgs {
     /// each rendered, and exit
     #[arg(long)]
     pub benchmark_features: bool,
+    /// Render the scene with paths and let the GPU add samples for SECONDS, then print the
+    /// samples reached, their rate and the frame intervals meanwhile, and exit
+    #[arg(long, value_name = "SECONDS")]
+    pub benchmark_paths: Option<f64>,
 }
 
 impl Default for ViewArgs {
@@ -66,15 +80,18 @@ impl Default for ViewArgs {
             screenshot: None,
             benchmark_drag: None,
             benchmark_features: false,
+            benchmark_paths: None,
         }
     }
 }
 
 pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
-    if let Some(s) = args.benchmark_drag
-        && !(s.is_finite() && s > 0.0 && s <= 600.0)
-    {
-        bail!("--benchmark-drag takes a number of seconds in (0, 600], not {s}");
+    for (flag, value) in [("--benchmark-drag", args.benchmark_drag), ("--benchmark-paths", args.benchmark_paths)] {
+        if let Some(s) = value
+            && !(s.is_finite() && s > 0.0 && s <= 600.0)
+        {
+            bail!("{flag} takes a number of seconds in (0, 600], not {s}");
+        }
     }
     check_load_memory(&args.scene, args.scene_size.memory_limit)?;
     let load = args.scene_size.options();
@@ -85,15 +102,24 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
         Ok(loaded) => Some(args.settings.apply(&loaded.desc.render)?),
         Err(e @ glint_io::SceneError::NotGenerated { .. }) => bail!("--resolution: {e}"),
         Err(e @ glint_io::SceneError::NotAModel { .. }) => bail!("{e}"),
-        Err(e) if args.benchmark_drag.is_some() || args.benchmark_features => {
-            let flag = if args.benchmark_features { "--benchmark-features" } else { "--benchmark-drag" };
+        Err(e) if args.benchmark_drag.is_some() || args.benchmark_features || args.benchmark_paths.is_some() => {
+            let flag = if args.benchmark_features {
+                "--benchmark-features"
+            } else if args.benchmark_paths.is_some() {
+                "--benchmark-paths"
+            } else {
+                "--benchmark-drag"
+            };
             bail!("{flag}: cannot load scene '{}': {e}", args.scene)
         }
         Err(_) => None,
     };
+    let (view, gi_view) = args.view.modes();
     let options = ViewerOptions {
         settings,
-        view: Some(args.view.into()),
+        view: Some(view),
+        gi_view,
+        paths_benchmark: args.benchmark_paths,
         scene: args.scene.clone(),
         load,
         screenshot: args.screenshot.clone(),

@@ -10,6 +10,7 @@ mod edits;
 mod export;
 mod files;
 mod fit;
+mod gi;
 mod glyphs;
 mod help;
 mod lights;

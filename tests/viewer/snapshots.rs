@@ -22,7 +22,7 @@ fn options() -> SnapshotOptions {
 
 /// The window as it shows: kittest clears to transparent, the window to the background colour
 /// the transparent panels let through (glint_viewer::background).
-fn snapshot(h: &mut egui_kittest::Harness<'static, glint_viewer::ViewerApp>, name: &str) {
+pub fn snapshot(h: &mut egui_kittest::Harness<'static, glint_viewer::ViewerApp>, name: &str) {
     let status = h.state().layout.status_rect;
     h.mask(status);
     let mut image = h.render().expect("the harness renders");

@@ -18,6 +18,15 @@ pub const NO_DIALOGS: &str = "no file dialog in this test";
 /// The viewer on `scene` at WIDTH×HEIGHT in a `window`-sized harness, rendered with wgpu;
 /// `None` when `GLINT_SKIP_GPU=1`. Panics with a clear message when there is no adapter.
 pub fn viewer(scene: &str, window: (f32, f32)) -> Option<Harness<'static, ViewerApp>> {
+    viewer_with(scene, window, |_| {})
+}
+
+/// `viewer` with its options changed by `change` (a start view, paused path batches).
+pub fn viewer_with(
+    scene: &str,
+    window: (f32, f32),
+    change: impl FnOnce(&mut ViewerOptions),
+) -> Option<Harness<'static, ViewerApp>> {
     if std::env::var("GLINT_SKIP_GPU").is_ok_and(|v| v == "1") {
         eprintln!("GLINT_SKIP_GPU=1: skipping the viewer UI tests");
         return None;
@@ -31,13 +40,14 @@ pub fn viewer(scene: &str, window: (f32, f32)) -> Option<Harness<'static, Viewer
     let base = load_scene(scene).expect("built-in scene").desc.render;
     let settings = RenderSettings { width: WIDTH, height: HEIGHT, ..base };
     // Never a real file dialog in a test: it would wait for a person.
-    let options = ViewerOptions {
+    let mut options = ViewerOptions {
         scene: scene.into(),
         settings: Some(settings),
         no_recent: true,
         no_file_dialogs: Some(NO_DIALOGS.into()),
         ..ViewerOptions::default()
     };
+    change(&mut options);
     let mut harness = Harness::builder()
         .with_size(egui::vec2(window.0, window.1))
         .wgpu_setup(glint_viewer::with_tracer_limits(egui_kittest::wgpu::default_wgpu_setup()))

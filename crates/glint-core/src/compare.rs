@@ -4,6 +4,8 @@
 //! white); FLIP (Andersson et al. 2020, the nv-flip crate) compares the sRGB-encoded images as
 //! a viewer would see them.
 
+use glam::DVec3;
+
 use crate::HdrImage;
 use crate::image::linear_to_srgb8;
 
@@ -104,6 +106,59 @@ pub fn heatmap_colour(x: f64) -> [u8; 3] {
     let lut = LUT.get_or_init(|| nv_flip::magma_lut().to_vec());
     let k = (24.0 + x.clamp(0.0, 1.0) * 231.0).round() as usize;
     [lut[3 * k], lut[3 * k + 1], lut[3 * k + 2]]
+}
+
+/// A diverging colour at `t` in [−1, 1] (ColorBrewer's RdBu, reversed): blue below 0, near
+/// white at 0, red above; for signed differences such as Whitted − GI.
+pub fn diverging_colour(t: f64) -> [u8; 3] {
+    const STOPS: [[f64; 3]; 5] =
+        [[5.0, 48.0, 97.0], [67.0, 147.0, 195.0], [247.0, 247.0, 247.0], [214.0, 96.0, 77.0], [103.0, 0.0, 31.0]];
+    let x = (t.clamp(-1.0, 1.0) + 1.0) * 2.0;
+    let i = (x.floor() as usize).min(3);
+    let f = x - i as f64;
+    let (a, b) = (STOPS[i], STOPS[i + 1]);
+    [0, 1, 2].map(|c| (a[c] + (b[c] - a[c]) * f).round() as u8)
+}
+
+/// A signed difference of two images (`a − b`, per pixel the mean of the channels) on a
+/// symmetric scale: what a diverging colour map shows.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SignedDifference {
+    pub width: u32,
+    pub height: u32,
+    /// `a − b` per pixel and channel.
+    pub pixels: Vec<DVec3>,
+    /// The colour map's ends are ±scale: the 99th percentile of |mean difference|, rounded up
+    /// to 1, 2 or 5 times a power of ten, so that a few fireflies do not wash the rest out.
+    pub scale: f64,
+    /// 8-bit RGB of `diverging_colour(mean / scale)`.
+    pub rgb: Vec<u8>,
+}
+
+impl SignedDifference {
+    pub fn new(a: &HdrImage, b: &HdrImage) -> Self {
+        assert_eq!((a.width, a.height), (b.width, b.height), "images of different sizes");
+        let pixels: Vec<DVec3> = a.pixels.iter().zip(&b.pixels).map(|(x, y)| *x - *y).collect();
+        let mean = |d: &DVec3| d.element_sum() / 3.0;
+        let mut magnitudes: Vec<f64> = pixels.iter().map(|d| mean(d).abs()).filter(|m| m.is_finite()).collect();
+        magnitudes.sort_by(f64::total_cmp);
+        let p99 =
+            magnitudes.get((magnitudes.len().saturating_sub(1) as f64 * 0.99).ceil() as usize).copied().unwrap_or(0.0);
+        let scale = nice_ceiling(p99.max(1e-6));
+        let rgb = pixels.iter().flat_map(|d| diverging_colour(mean(d) / scale)).collect();
+        Self { width: a.width, height: a.height, pixels, scale, rgb }
+    }
+
+    /// `a − b` at pixel (x, y).
+    pub fn at(&self, x: u32, y: u32) -> Option<DVec3> {
+        (x < self.width && y < self.height).then(|| self.pixels[(y * self.width + x) as usize])
+    }
+}
+
+/// The least of 1, 2 and 5 times a power of ten that is at least `v` (> 0).
+fn nice_ceiling(v: f64) -> f64 {
+    let p = 10f64.powf(v.log10().floor());
+    [1.0, 2.0, 5.0, 10.0].into_iter().map(|m| m * p).find(|c| *c >= v * (1.0 - 1e-12)).unwrap_or(10.0 * p)
 }
 
 /// The per-pixel max-channel |test − reference| as an 8-bit RGB heat map: black where the
@@ -301,5 +356,24 @@ mod tests {
         let h = diff_heatmap(&a, &b);
         assert_eq!(&h[..3], &[0, 0, 0]);
         assert_ne!(&h[3..], &[0, 0, 0]);
+    }
+
+    #[test]
+    fn a_signed_difference_keeps_its_sign_and_a_round_scale() {
+        let mut a = HdrImage::new(2, 1);
+        let b = HdrImage::new(2, 1);
+        a.pixels[0] = DVec3::splat(0.3);
+        a.pixels[1] = DVec3::splat(-0.03);
+        let d = SignedDifference::new(&a, &b);
+        assert_eq!(d.scale, 0.5);
+        assert_eq!(d.at(1, 0), Some(DVec3::splat(-0.03)));
+        assert_eq!(d.at(2, 0), None);
+        // Positive is red, negative blue, zero near white.
+        assert!(d.rgb[0] > d.rgb[2] && d.rgb[5] > d.rgb[3], "{:?}", d.rgb);
+        assert_eq!(diverging_colour(0.0), [247, 247, 247]);
+        assert_eq!(diverging_colour(-2.0), [5, 48, 97]);
+        assert_eq!(nice_ceiling(0.3), 0.5);
+        assert_eq!(nice_ceiling(0.02), 0.02);
+        assert_eq!(nice_ceiling(7.0), 10.0);
     }
 }

@@ -29,7 +29,7 @@ use crate::ray_tree_view;
 use crate::recent::Recent;
 use crate::renders::Renders;
 use crate::selection::Selection;
-use crate::view::{ViewAction, ViewMode};
+use crate::view::{GiView, ViewAction, ViewMode};
 
 /// How the viewer starts.
 #[derive(Clone, Debug, Default)]
@@ -42,6 +42,14 @@ pub struct ViewerOptions {
     pub settings: Option<glint_scene::RenderSettings>,
     /// The view to start in (default: side by side, or the CPU view without a GPU).
     pub view: Option<ViewMode>,
+    /// How Whitted vs GI starts holding its two images against each other.
+    pub gi_view: GiView,
+    /// Render with paths, let the GPU add samples for this many seconds, then report the
+    /// samples, their rate and the frame intervals, and close.
+    pub paths_benchmark: Option<f64>,
+    /// Start with the GPU's path batches paused: each revision's path image is its first
+    /// render alone (tests that need the same image every run).
+    pub paused: bool,
     /// Render, save a screenshot of the window here, and close.
     pub screenshot: Option<PathBuf>,
     /// Simulate an orbit drag for this many seconds, then report the frame rates and close.
@@ -91,6 +99,13 @@ impl ViewerApp {
                     d.edited();
                     d.dirty = false;
                 }
+                // Whitted against GI, and the paths benchmark, need the paths.
+                if (options.view == Some(ViewMode::WhittedVsGi) || options.paths_benchmark.is_some())
+                    && d.desc.render.integrator.is_whitted()
+                {
+                    d.desc.render.integrator = glint_scene::Integrator::Path;
+                    d.view_changed();
+                }
                 (d, None)
             }
             Err(e) => {
@@ -99,7 +114,8 @@ impl ViewerApp {
             }
         };
         crate::background::unfill_panels(&cc.egui_ctx);
-        let renders = Renders::new(cc, options.no_gpu_reason.clone());
+        let mut renders = Renders::new(cc, options.no_gpu_reason.clone());
+        renders.paused = options.paused;
         let mode = match (options.view, renders.gpu.is_some()) {
             (_, false) => ViewMode::Cpu,
             (Some(v), true) => v,
@@ -111,9 +127,14 @@ impl ViewerApp {
             message,
             selection: Selection::default(),
             renders,
-            layout: Layout::new(mode),
+            layout: Layout { gi_view: options.gi_view, ..Layout::new(mode) },
             dialogs: Dialogs::new(options.no_file_dialogs.clone()),
-            automation: Automation::new(options.screenshot, options.drag_benchmark, options.features_benchmark),
+            automation: Automation::new(
+                options.screenshot,
+                options.drag_benchmark,
+                options.features_benchmark,
+                options.paths_benchmark,
+            ),
             clock: FrameClock::default(),
             history: ErrorHistory::default(),
             error_axis: Axis::Samples,
@@ -125,7 +146,12 @@ impl ViewerApp {
 
     /// Whether every render of the current revision is finished (GPU, CPU and comparison).
     pub fn is_settled(&self) -> bool {
-        self.renders.is_settled(&self.doc)
+        let rev = self.doc.revision;
+        let gi_done = self.layout.mode != ViewMode::WhittedVsGi
+            || !self.doc.is_valid()
+            || self.renders.gi.difference_of(rev).is_some()
+            || self.renders.gi.error.is_some();
+        self.renders.is_settled(&self.doc) && gi_done
     }
 
     /// Opens `arg` (a file or a built-in scene) in place of the document, asking first
@@ -364,6 +390,10 @@ impl ViewerApp {
             ViewAction::Zoom(s) => camera_control::zoom(camera, s),
             ViewAction::Pick(x, y) => return self.pick(x, y),
             ViewAction::Probe(x, y) => return self.probe_at(x, y),
+            ViewAction::Pause(p) => {
+                self.renders.paused = p;
+                return;
+            }
             ViewAction::Integrator(i) => {
                 let r = &mut self.doc.desc.render;
                 r.integrator = i;
@@ -422,6 +452,7 @@ impl ViewerApp {
             selected,
             &tree,
             integrator,
+            self.renders.paused,
         )
     }
 
@@ -465,7 +496,12 @@ impl eframe::App for ViewerApp {
         self.layout.status_rect = egui::Panel::bottom("status")
             .show(ui, |ui| {
                 panels::messages::ui(ui, self.renders.messages(), self.message.as_deref());
-                panels::status::ui(ui, &self.renders.status(self.doc.revision, self.clock.ui_ms));
+                let mut status = self.renders.status(self.doc.revision, self.clock.ui_ms);
+                let r = &self.doc.desc.render;
+                if r.integrator == glint_scene::Integrator::Path {
+                    status.samples = Some(self.renders.samples(self.doc.revision, r.spp));
+                }
+                panels::status::ui(ui, &status);
             })
             .response
             .rect;
@@ -511,9 +547,13 @@ impl eframe::App for ViewerApp {
         let automated_drag = self.automation.drive(&mut self.doc, gpu_renders, settled);
         let interacting = automated_drag || ctx.dragged_id().is_some();
         self.renders.schedule(&self.doc, interacting);
+        if self.layout.mode == ViewMode::WhittedVsGi && !interacting {
+            self.renders.schedule_gi(&self.doc);
+        }
         let metadata = self.window_metadata();
         let cpu_running = self.renders.cpu.is_running();
-        let frame = Frame { settled: self.is_settled(), cpu_running, gpu_renders, metadata: &metadata };
+        let gpu_samples = self.renders.samples(self.doc.revision, self.doc.desc.render.spp).gpu;
+        let frame = Frame { settled: self.is_settled(), cpu_running, gpu_renders, gpu_samples, metadata: &metadata };
         self.automation.step(&ctx, &frame);
         if self.renders.needs_polling() || automated_drag || self.automation.paints_every_frame() {
             // A readback is polled, not signalled, and a drag paints every frame.

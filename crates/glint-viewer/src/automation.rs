@@ -54,6 +54,10 @@ enum Phase {
     },
     /// The drag is over: the CPU reference renders while frames are logged.
     CpuRender,
+    /// The paths benchmark: the GPU adds samples until the deadline while frames are logged.
+    Accumulating {
+        until: Instant,
+    },
     /// Feature `k` of `FEATURE_EDITS` was applied; its renders run while frames are logged.
     Feature(usize),
     Screenshot,
@@ -65,6 +69,10 @@ pub struct Automation {
     screenshot: Option<PathBuf>,
     drag_seconds: Option<f64>,
     features: bool,
+    paths_seconds: Option<f64>,
+    /// The GPU's samples a pixel when the paths benchmark began.
+    samples_at_start: Option<u32>,
+    paths_log: FrameLog,
     /// The longest frame interval (ms) while each feature's renders ran.
     feature_longest: Vec<f64>,
     phase: Phase,
@@ -81,15 +89,25 @@ pub struct Frame<'a> {
     pub settled: bool,
     pub cpu_running: bool,
     pub gpu_renders: usize,
+    /// Samples a pixel of the GPU's path image (path mode).
+    pub gpu_samples: Option<u32>,
     pub metadata: &'a [(String, String)],
 }
 
 impl Automation {
-    pub fn new(screenshot: Option<PathBuf>, drag_seconds: Option<f64>, features: bool) -> Self {
+    pub fn new(
+        screenshot: Option<PathBuf>,
+        drag_seconds: Option<f64>,
+        features: bool,
+        paths_seconds: Option<f64>,
+    ) -> Self {
         Self {
             screenshot,
             drag_seconds,
             features,
+            paths_seconds,
+            samples_at_start: None,
+            paths_log: FrameLog::default(),
             feature_longest: Vec::new(),
             phase: Phase::Idle,
             started: Instant::now(),
@@ -103,11 +121,11 @@ impl Automation {
     /// Whether every frame is painted (a drag, or the features benchmark measuring frame
     /// intervals: an idle window paints only every 250 ms, which is no stall).
     pub fn paints_every_frame(&self) -> bool {
-        matches!(self.phase, Phase::Dragging { .. } | Phase::Feature(_))
+        matches!(self.phase, Phase::Dragging { .. } | Phase::Feature(_) | Phase::Accumulating { .. })
     }
 
     pub fn active(&self) -> bool {
-        self.screenshot.is_some() || self.drag_seconds.is_some() || self.features
+        self.screenshot.is_some() || self.drag_seconds.is_some() || self.features || self.paths_seconds.is_some()
     }
 
     /// During the drag benchmark, orbits the camera a little (as a drag would); returns whether
@@ -160,6 +178,17 @@ impl Automation {
         false
     }
 
+    /// The paths benchmark's report: the samples the GPU added and the frames meanwhile.
+    fn paths_report(&self, samples: Option<u32>) -> String {
+        let secs = self.started.elapsed().as_secs_f64();
+        let (from, to) = (self.samples_at_start.unwrap_or(0), samples.unwrap_or(0));
+        format!(
+            "paths: the GPU image went from {from} to {to} samples a pixel in {secs:.1} s ({:.1} samples/s); UI {}",
+            f64::from(to.saturating_sub(from)) / secs,
+            self.paths_log.summary()
+        )
+    }
+
     /// The features benchmark's report: each feature's longest frame interval.
     fn features_report(&self) -> String {
         let each: Vec<String> = FEATURE_EDITS
@@ -184,6 +213,7 @@ impl Automation {
         let log = match self.phase {
             Phase::Dragging { .. } => &mut self.drag_log,
             Phase::CpuRender => &mut self.cpu_log,
+            Phase::Accumulating { .. } => &mut self.paths_log,
             _ => return,
         };
         log.intervals_ms.push(interval.as_secs_f64() * 1e3);
@@ -200,6 +230,16 @@ impl Automation {
             return;
         }
         match self.phase {
+            Phase::Idle if self.paths_seconds.is_some() && frame.settled => {
+                let secs = self.paths_seconds.unwrap_or(0.0);
+                self.phase = Phase::Accumulating { until: Instant::now() + Duration::from_secs_f64(secs) };
+                self.samples_at_start = frame.gpu_samples;
+                self.started = Instant::now();
+            }
+            Phase::Accumulating { until } if Instant::now() >= until => {
+                let report = self.paths_report(frame.gpu_samples);
+                self.finish(ctx, Ok(report));
+            }
             Phase::Idle if self.drag_seconds.is_none() && !self.features && frame.settled => {
                 self.take_screenshot(ctx, frame.metadata);
             }

@@ -35,6 +35,9 @@ pub struct Document {
     pub issues: Vec<FieldIssue>,
     /// Per light, the fields its type lacks that an earlier type had (`light_kind::switch_kind`).
     pub light_set_aside: Vec<SetAside>,
+    /// The kinds of path-traced light the view leaves out (`SceneHeader::omit_kinds`): a way of
+    /// looking at the scene, not part of it, so never saved.
+    pub omit_kinds: u32,
     /// The last flat scene built, with the objects it was built from: while those and the
     /// material names stay the same (a camera, light or material-value edit) its primitives and BVH
     /// are reused instead of rebuilt (`FlatScene::rebuild`).
@@ -75,6 +78,7 @@ impl Document {
             light_set_aside: Vec::new(),
             geometry: RefCell::new(None),
             geometry_checked: Cell::new(None),
+            omit_kinds: 0,
         }
     }
 
@@ -102,6 +106,7 @@ impl Document {
             light_set_aside: Vec::new(),
             geometry: RefCell::new(None),
             geometry_checked: Cell::new(None),
+            omit_kinds: 0,
         }
     }
 
@@ -116,6 +121,14 @@ impl Document {
     }
 
     /// Records an edit: bumps the revision and re-validates.
+    /// A change of how the scene is looked at (not of the scene): renders again, unsaved
+    /// changes stay as they were.
+    pub fn view_changed(&mut self) {
+        let dirty = self.dirty;
+        self.edited();
+        self.dirty = dirty;
+    }
+
     pub fn edited(&mut self) {
         self.revision += 1;
         self.dirty = true;
@@ -140,9 +153,6 @@ impl Document {
     /// The flat scene at full resolution, or at half width and height for previews while a
     /// value is dragged. `None` while the description is invalid.
     pub fn flat(&self, preview: bool) -> Option<FlatScene> {
-        if !self.is_valid() {
-            return None;
-        }
         let mut settings = self.desc.render.clone();
         if preview {
             settings.width = settings.width.div_ceil(2);
@@ -150,14 +160,24 @@ impl Document {
             // A preview shows the picture, not the noise: one sample is enough while dragging.
             settings.spp = 1;
         }
+        let mut flat = self.flat_with(&settings)?;
+        flat.header.omit_kinds = self.omit_kinds;
+        Some(flat)
+    }
+
+    /// The scene with `settings` in place of its own (the Whitted image beside the paths').
+    pub fn flat_with(&self, settings: &glint_scene::RenderSettings) -> Option<FlatScene> {
+        if !self.is_valid() {
+            return None;
+        }
         let mut cache = self.geometry.borrow_mut();
         let checked = self.geometry_checked.get() == Some(self.revision);
         if let Some(g) = cache.as_ref().filter(|g| checked || g.built_from(&self.desc)) {
             self.geometry_checked.set(Some(self.revision));
-            return Some(g.flat.rebuild(&self.desc, &settings));
+            return Some(g.flat.rebuild(&self.desc, settings));
         }
         self.geometry_checked.set(Some(self.revision));
-        let flat = FlatScene::build(&self.desc, &settings);
+        let flat = FlatScene::build(&self.desc, settings);
         *cache = Some(BuiltGeometry {
             objects: self.desc.objects.clone(),
             objects_report: validate_objects(&self.desc),

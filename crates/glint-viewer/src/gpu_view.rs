@@ -20,6 +20,7 @@ use glint_gpu::{
     Presenter, SampleProgress, ShaderKey,
 };
 
+use crate::accumulation::Accumulation;
 use crate::worker::Worker;
 
 /// Tile sides of the viewer's renders. On a CPU adapter (lavapipe) each submission holds the
@@ -56,6 +57,10 @@ struct InFlight {
     /// A 1×1 render of a variant an edit is likely to need next, only to compile it: not
     /// shown, not counted.
     prewarm: bool,
+    /// Which batch of its revision's paths it is (`accumulation`): 0 for a first render,
+    /// which is shown as it lands; later ones only through the mean.
+    batch: u32,
+    spp: u32,
 }
 
 /// A full-resolution GPU image on the host.
@@ -66,6 +71,8 @@ pub struct GpuImage {
     pub counts: RayCounts,
     pub status: u32,
     pub gpu_ms: f64,
+    /// Samples a pixel: the render's own, or in path mode those of every batch so far.
+    pub samples: u32,
 }
 
 /// A finished render's pixels on their way to the screen.
@@ -97,7 +104,10 @@ pub struct GpuView {
     prewarm_queue: Option<Vec<FlatScene>>,
     submitter: Worker<Result<GpuJob, GpuError>>,
     in_flight: Option<InFlight>,
-    readback: Option<(JobReadback, u64, f64)>,
+    /// The readback of a full render: its job's, with the revision, GPU time, batch and spp.
+    readback: Option<(JobReadback, u64, f64, u32, u32)>,
+    /// The path batches of the revision on screen, added up (path mode only).
+    pub accumulation: Option<Accumulation>,
     /// What is on screen: (revision, preview, size, texture).
     pub shown: Option<(u64, bool, (u32, u32), egui::TextureId)>,
     pub latest: Option<GpuImage>,
@@ -161,6 +171,7 @@ impl GpuView {
             submitter: Worker::new("glint-gpu-submit", "GPU submission", None),
             in_flight: None,
             readback: None,
+            accumulation: None,
             shown: None,
             latest: None,
             last_ms: None,
@@ -183,8 +194,16 @@ impl GpuView {
     }
 
     /// Whether a render of the document is under way (a prewarm is not).
+    /// Later path batches refine an image already there and do not count.
     pub fn is_busy(&self) -> bool {
-        self.in_flight.as_ref().is_some_and(|f| !f.prewarm) || self.readback.is_some() || self.arriving.is_some()
+        self.in_flight.as_ref().is_some_and(|f| !f.prewarm && f.batch == 0)
+            || self.readback.as_ref().is_some_and(|r| r.3 == 0)
+            || self.arriving.is_some()
+    }
+
+    /// Whether a later path batch is being rendered or read back.
+    pub fn is_accumulating(&self) -> bool {
+        self.in_flight.as_ref().is_some_and(|f| f.batch > 0) || self.readback.as_ref().is_some_and(|r| r.3 > 0)
     }
 
     /// Whether the next step is found only by polling the device: a finished render's last
@@ -261,7 +280,13 @@ impl GpuView {
             self.last_scene = Some(scene.clone());
             self.prewarm_queue = None;
         }
-        self.start(scene, revision, preview, false)
+        self.start(scene, revision, preview, false, 0)
+    }
+
+    /// Submits batch `batch` (from 1) of the paths of `revision`, whose full render is on
+    /// screen: `scene` with that batch's seed (`accumulation::batch_seed`).
+    pub fn submit_batch(&mut self, scene: &FlatScene, revision: u64, batch: u32) -> bool {
+        self.start(scene, revision, false, false, batch)
     }
 
     /// When idle, compiles the next shader variant an edit is likely to need (more samples,
@@ -280,14 +305,14 @@ impl GpuView {
             let key = variant_of(&next);
             if self.variants.insert(key) {
                 log::debug!("prewarming the GPU variant {}", key.describe());
-                self.start(&next, 0, true, true);
+                self.start(&next, 0, true, true, 0);
                 break;
             }
         }
         self.prewarm_queue = Some(queue);
     }
 
-    fn start(&mut self, scene: &FlatScene, revision: u64, preview: bool, prewarm: bool) -> bool {
+    fn start(&mut self, scene: &FlatScene, revision: u64, preview: bool, prewarm: bool, batch: u32) -> bool {
         if self.in_flight.is_some() {
             return false;
         }
@@ -310,6 +335,7 @@ impl GpuView {
         if !prewarm {
             self.last_variant = Some(key);
         }
+        let spp = scene.header.spp.max(1);
         let (tracer, scene, full_tile) = (self.tracer.clone(), scene.clone(), self.full_tile);
         let progress = Arc::new(SampleProgress::new(scene.header.spp.max(1)));
         let job_progress = progress.clone();
@@ -340,6 +366,8 @@ impl GpuView {
                     progress,
                     new_variant,
                     prewarm,
+                    batch,
+                    spp,
                 });
                 true
             }
@@ -419,11 +447,12 @@ impl GpuView {
             // after its last pass was submitted, so it could not be cancelled).
             let superseded = !f.preview && f.revision < self.superseded_below;
             let newer = self.shown.is_none_or(|s| s.0 <= f.revision) && !superseded;
-            if let Some(pixels) = self.presenting.take().filter(|_| newer) {
+            // A later batch is shown through the mean, once read back.
+            if let Some(pixels) = self.presenting.take().filter(|_| newer && f.batch == 0) {
                 self.arriving = Some(Arriving { pixels, revision: f.revision, preview: f.preview });
             }
             if !f.preview && !superseded {
-                self.readback = Some((job.start_readback(&ctx), f.revision, ms));
+                self.readback = Some((job.start_readback(&ctx), f.revision, ms, f.batch, f.spp));
             }
             changed = true;
         }
@@ -437,21 +466,67 @@ impl GpuView {
             }
             changed = true;
         }
-        if let Some((rb, revision, ms)) = &mut self.readback
+        if let Some((rb, revision, ms, batch, spp)) = &mut self.readback
             && let Some(result) = rb.poll(&ctx)
         {
-            let (revision, ms, stack_size) = (*revision, *ms, rb.key().stack_size);
+            let (revision, ms, batch, spp, stack_size) = (*revision, *ms, *batch, *spp, rb.key().stack_size);
+            let paths = rb.key().path;
             self.readback = None;
             match result {
-                Ok((image, counts, status)) => {
+                Ok((image, counts, status)) if status != 0 || !paths => {
                     self.warning = status_warning(status, stack_size);
-                    self.latest = Some(GpuImage { revision, image, counts, status, gpu_ms: ms });
+                    self.accumulation = None;
+                    self.latest = Some(GpuImage { revision, image, counts, status, gpu_ms: ms, samples: spp });
                 }
+                Ok((image, counts, status)) => self.accumulate(revision, batch, image, spp, ms, counts, status),
                 Err(e) => self.error = Some(e.to_string()),
             }
             changed = true;
         }
         changed
+    }
+
+    /// Adds a path render's batch to its revision's mean, and shows the mean of more than one.
+    #[allow(clippy::too_many_arguments, reason = "one readback's fields, taken apart once")]
+    fn accumulate(
+        &mut self,
+        revision: u64,
+        batch: u32,
+        image: HdrImage,
+        spp: u32,
+        ms: f64,
+        counts: RayCounts,
+        status: u32,
+    ) {
+        self.warning = None;
+        if batch == 0 {
+            self.accumulation = Some(Accumulation::new(revision, image, spp, ms, counts));
+        } else if !self.accumulation.as_mut().is_some_and(|a| a.add(revision, batch, &image, spp, ms, counts)) {
+            // A batch of an edited revision, finished after the edit: dropped.
+            return;
+        }
+        let Some(a) = &self.accumulation else { return };
+        self.latest = Some(GpuImage {
+            revision,
+            image: a.mean.clone(),
+            counts: a.counts,
+            status,
+            gpu_ms: a.gpu_time.as_secs_f64() * 1e3,
+            samples: a.samples,
+        });
+        if batch > 0 && self.shown.is_none_or(|s| s.0 <= revision) {
+            let rgba: Vec<u8> =
+                glint_core::compare::srgb8(&a.mean).chunks_exact(3).flat_map(|p| [p[0], p[1], p[2], 255]).collect();
+            let size = (a.mean.width, a.mean.height);
+            self.show_rgba(revision, false, size, &rgba);
+        }
+    }
+
+    /// The path batches still to come for `revision`, none while one is in flight: the next
+    /// batch's index, once the mean of the earlier ones is in (path mode, not full).
+    pub fn next_batch(&self, revision: u64) -> Option<u32> {
+        let a = self.accumulation.as_ref().filter(|a| a.revision == revision && !a.is_full())?;
+        (self.in_flight.is_none() && self.readback.is_none() && self.arriving.is_none()).then_some(a.batches)
     }
 }
 
@@ -461,7 +536,11 @@ impl GpuView {
         if self.shown.is_some_and(|s| s.0 > a.revision) {
             return;
         }
-        let size = (a.pixels.width, a.pixels.height);
+        self.show_rgba(a.revision, a.preview, (a.pixels.width, a.pixels.height), rgba);
+    }
+
+    /// Puts sRGB pixels of `revision` on screen.
+    fn show_rgba(&mut self, revision: u64, preview: bool, size: (u32, u32), rgba: &[u8]) {
         let image = egui::ColorImage::from_rgba_unmultiplied([size.0 as usize, size.1 as usize], rgba);
         // Nearest, like the CPU view: magnified pixels stay pixels and the wipe compares like
         // with like.
@@ -473,7 +552,7 @@ impl GpuView {
             }
             None => self.texture.insert(self.egui.load_texture("gpu render", image, options)),
         };
-        self.shown = Some((a.revision, a.preview, size, texture.id()));
+        self.shown = Some((revision, preview, size, texture.id()));
     }
 }
 

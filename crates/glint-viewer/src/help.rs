@@ -43,6 +43,11 @@ pub fn tooltip(label: &str) -> Option<&'static str> {
             "Paths follow every lobe (on), or only k_r and k_t with direct light (off): Whitted's transport, \
              so that the difference is the indirect light."
         }
+        "Light shown" => {
+            "The path-traced image, or one kind of its light alone: direct (what Whitted computes), indirect \
+             diffuse (colour bleeding), caustics (through a mirror or glass onto a diffuse surface) or the rest. \
+             The four add up to the whole image. Not saved with the scene."
+        }
         "Samples per pixel" => {
             "Rays per pixel, jittered inside it and averaged: anti-aliasing of edges. Time grows in proportion."
         }

@@ -6,7 +6,7 @@ use egui::Ui;
 use crate::gizmos::Gizmo;
 use crate::outline::Segment;
 use crate::ray_tree_view::TreeSegment;
-use crate::view::{self, Textures, ViewAction, ViewMode};
+use crate::view::{self, GiView, Textures, ViewAction, ViewMode};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Tab {
@@ -20,6 +20,8 @@ pub enum Tab {
 #[derive(Debug)]
 pub struct Layout {
     pub mode: ViewMode,
+    /// How Whitted vs GI holds the two images against each other.
+    pub gi_view: GiView,
     pub tab: Tab,
     /// Where the split wipe divides GPU from CPU, in [0, 1] of the image width.
     pub wipe: f32,
@@ -48,6 +50,7 @@ impl Layout {
     pub fn new(mode: ViewMode) -> Self {
         Self {
             mode,
+            gi_view: GiView::SideBySide,
             tab: Tab::Scene,
             wipe: 0.5,
             show_gizmos: true,
@@ -73,8 +76,11 @@ impl Layout {
         selected: Option<(&str, &[Segment])>,
         tree: &[TreeSegment],
         integrator: glint_scene::Integrator,
+        paused: bool,
     ) -> Vec<ViewAction> {
         let mut chosen = integrator;
+        let mut pause = paused;
+        let before = self.mode;
         // Wrapped: in a narrow window the integrator switch goes to a second row, not off screen.
         ui.horizontal_wrapped(|ui| {
             for m in ViewMode::ALL {
@@ -87,16 +93,51 @@ impl Layout {
             {
                 crate::help::hint(ui.selectable_value(&mut chosen, i, label), "Integrator");
             }
-            if self.mode == ViewMode::Wipe {
+            if integrator == glint_scene::Integrator::Path {
+                let label = if paused { "Continue" } else { "Pause" };
+                let tip = if paused {
+                    "Go on adding path samples to the GPU image"
+                } else {
+                    "Stop adding path samples to the GPU image (an edit still renders)"
+                };
+                if ui.button(label).on_hover_text(tip).clicked() {
+                    pause = !paused;
+                }
+            }
+            if self.mode == ViewMode::WhittedVsGi {
+                ui.separator();
+                for v in GiView::ALL {
+                    ui.selectable_value(&mut self.gi_view, v, v.label());
+                }
+            }
+            if self.mode == ViewMode::Wipe || (self.mode == ViewMode::WhittedVsGi && self.gi_view == GiView::Wipe) {
                 ui.add(egui::Slider::new(&mut self.wipe, 0.0..=1.0).show_value(false).text("Wipe"));
             }
         });
+        // Whitted against GI needs the paths: choosing it switches a Whitted scene to them.
+        if self.mode == ViewMode::WhittedVsGi && before != ViewMode::WhittedVsGi {
+            chosen = glint_scene::Integrator::Path;
+        }
         let tree = if self.show_ray_tree { tree } else { &[] };
-        let (mut actions, rects) =
-            view::show(ui, self.mode, &mut self.wipe, textures, size, gizmos, self.show_gizmos, probed, selected, tree);
+        let (mut actions, rects) = view::show(
+            ui,
+            self.mode,
+            self.gi_view,
+            &mut self.wipe,
+            textures,
+            size,
+            gizmos,
+            self.show_gizmos,
+            probed,
+            selected,
+            tree,
+        );
         self.view_rects = rects;
         if chosen != integrator {
             actions.push(ViewAction::Integrator(chosen));
+        }
+        if pause != paused {
+            actions.push(ViewAction::Pause(pause));
         }
         actions
     }

@@ -2,6 +2,7 @@
 //! wgpu device, without a CPU round trip) beside the exact CPU reference, their difference,
 //! and a per-term pixel probe.
 
+mod accumulation;
 mod ambient_fit;
 mod app;
 mod automation;
@@ -31,6 +32,7 @@ mod recent;
 mod renders;
 mod selection;
 mod view;
+mod whitted_vs_gi;
 mod widgets;
 mod worker;
 
@@ -45,7 +47,7 @@ pub use panels::status::SOFTWARE_ADAPTER;
 pub use panels::term_table::cell as probe_cell;
 pub use probe::{GpuProbe, first_difference, terms};
 pub use ray_tree_view::LEGEND as RAY_TREE_LEGEND;
-pub use view::{ViewMode, placement as view_placement};
+pub use view::{GiView, ViewMode, placement as view_placement};
 
 /// Window size at start: room for the panels and two 480×270 previews side by side. Not
 /// larger: on a software rasterizer (lavapipe) every frame costs time per window pixel.

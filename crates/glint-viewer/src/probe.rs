@@ -6,6 +6,7 @@ use std::sync::Arc;
 
 use glint_core::cpu::ray_tree::RayTree;
 use glint_core::cpu::shade::Breakdown;
+use glint_core::path_kinds::{PathProbe, probe_paths};
 use glint_core::probe_terms::{NodeDifference, first_tree_difference as first_node_difference};
 use glint_core::{FlatScene, probe_pixel, probe_tree};
 use glint_gpu::GpuTracer;
@@ -31,13 +32,18 @@ pub struct ProbeState {
     pub cpu_tree: RayTree,
     /// The GPU's, once its probe has arrived.
     pub gpu_tree: Option<RayTree>,
+    /// In path mode, the pixel's path-traced radiance by bounce and kind of light (CPU).
+    pub paths: Option<PathProbe>,
 }
 
 impl ProbeState {
-    /// Probes pixel (x, y) of the full-resolution scene on both tracers. The UI of `repaint`
-    /// is woken when the GPU result arrives (it may be idle by then).
+    /// Probes pixel (x, y) of the full-resolution scene on both tracers: Whitted's terms and ray
+    /// tree of `scene` (the scene with Whitted's integrator), and where `paths` is given (the
+    /// scene as path-traced) the paths' radiance by bounce and kind. The UI of `repaint` is
+    /// woken when the GPU result arrives (it may be idle by then).
     pub fn start(
         scene: &FlatScene,
+        paths: Option<&FlatScene>,
         x: u32,
         y: u32,
         revision: u64,
@@ -63,7 +69,11 @@ impl ProbeState {
                 }
             }
         };
-        Self { x, y, revision, cpu, gpu, cpu_tree, gpu_tree: None }
+        let paths = paths.and_then(|p| {
+            let ctx = glint_core::cpu::TraceContext::new(p).ok()?;
+            Some(probe_paths(&ctx, x, y, p.header.spp))
+        });
+        Self { x, y, revision, cpu, gpu, cpu_tree, gpu_tree: None, paths }
     }
 
     /// Collects the GPU result when it has arrived; true when it did.

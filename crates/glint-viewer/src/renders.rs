@@ -3,15 +3,19 @@
 
 use std::time::{Duration, Instant};
 
+use glint_scene::RenderSettings;
+
+use crate::accumulation::batch_seed;
 use crate::comparison::{Compared, Comparison};
 use crate::cpu_worker::{CpuWorker, Finished, PROGRESS_INTERVAL};
 use crate::document::Document;
 use crate::gpu_view::{GpuImage, GpuView};
 use crate::images::CpuTexture;
 use crate::panels::messages::RenderMessages;
-use crate::panels::status::Status;
+use crate::panels::status::{Samples, Status};
 use crate::probe::{GpuProbe, ProbeState};
 use crate::view::{Shown, Textures};
+use crate::whitted_vs_gi::WhittedVsGi;
 
 /// How long a full-resolution GPU render runs before the status bar says it is rendering.
 const GPU_PROGRESS_AFTER: Duration = Duration::from_millis(500);
@@ -26,6 +30,8 @@ pub struct Renders {
     pub no_gpu_reason: Option<String>,
     pub cpu: CpuWorker,
     pub comparison: Comparison,
+    /// Whitted's image and its difference from the paths, while the Whitted vs GI view is on.
+    pub gi: WhittedVsGi,
     pub probe: Option<ProbeState>,
     cpu_texture: CpuTexture,
     diff_texture: CpuTexture,
@@ -37,6 +43,8 @@ pub struct Renders {
     gpu_full_revision: Option<u64>,
     cpu_uploaded: Option<Instant>,
     repaint: egui::Context,
+    /// In path mode, the GPU stops adding batches (the toolbar's Pause); an edit still renders.
+    pub paused: bool,
 }
 
 impl Renders {
@@ -50,6 +58,7 @@ impl Renders {
             no_gpu_reason,
             cpu: CpuWorker::new(repaint.clone()),
             comparison: Comparison::new(repaint.clone()),
+            gi: WhittedVsGi::new(repaint.clone()),
             probe: None,
             cpu_texture: CpuTexture::default(),
             diff_texture: CpuTexture::default(),
@@ -58,6 +67,7 @@ impl Renders {
             gpu_full_revision: None,
             cpu_uploaded: None,
             repaint,
+            paused: false,
         }
     }
 
@@ -121,6 +131,19 @@ impl Renders {
         if let Some(p) = &mut self.probe {
             p.poll();
         }
+        self.gi.poll(ctx);
+    }
+
+    /// Renders what the Whitted vs GI view of the document needs: its Whitted image, then the
+    /// difference from the paths (the GPU's mean over its batches, else the CPU's) as they
+    /// converge.
+    pub fn schedule_gi(&mut self, doc: &Document) {
+        let rev = doc.revision;
+        let scene = if self.gi.whitted_of(rev).is_none() { doc.flat_with(&whitted_settings(doc)) } else { None };
+        // By field, as in `schedule`: `gi` is borrowed mutably beside the images.
+        let gpu = self.gpu.as_ref().and_then(|g| g.latest.as_ref()).filter(|l| l.revision == rev);
+        let cpu = self.cpu.finished.as_ref().filter(|(r, _)| *r == rev).map(|(_, f)| (&f.image, doc.desc.render.spp));
+        self.gi.request(rev, scene, gpu.map(|l| (&l.image, l.samples)).or(cpu));
     }
 
     /// Starts whatever the document's revision still needs; `interacting` (a value or the
@@ -162,6 +185,20 @@ impl Renders {
                 }
             }
         }
+        // Paths: the next batch once the last is in, while not paused or dragged.
+        if !interacting
+            && !self.paused
+            && doc.desc.render.integrator == glint_scene::Integrator::Path
+            && let Some(g) = &mut self.gpu
+            && g.error.is_none()
+            && let Some(batch) = g.next_batch(rev)
+            && let Some(mut flat) = doc.flat(false)
+        {
+            flat.header.seed = batch_seed(flat.header.seed, batch);
+            let rate = g.accumulation.as_ref().and_then(|a| a.rate());
+            flat.header.spp = batch_spp(flat.header.spp, rate);
+            g.submit_batch(&flat, rev, batch);
+        }
         // Idle, everything of this revision done: compile what an edit is likely to need next.
         if !interacting
             && self.is_settled(doc)
@@ -182,7 +219,12 @@ impl Renders {
         }
         // By field, not through `cpu_of`/`gpu_of`: the comparison is borrowed mutably beside them.
         let cpu = self.cpu.finished.as_ref().filter(|(r, _)| *r == rev).map(|(_, f)| &f.image);
-        let gpu = self.gpu.as_ref().and_then(|g| g.latest.as_ref()).filter(|l| l.revision == rev).map(|l| &l.image);
+        // In path mode the GPU's first batch: the CPU reference's own paths, which a mirror
+        // must match; the later batches are other paths.
+        let gpu = self.gpu.as_ref().and_then(|g| match &g.accumulation {
+            Some(a) if a.revision == rev => Some(&a.first),
+            _ => g.latest.as_ref().filter(|l| l.revision == rev).map(|l| &l.image),
+        });
         if let (Some(c), Some(g)) = (cpu, gpu) {
             self.comparison.request(rev, c, g);
         }
@@ -191,17 +233,24 @@ impl Renders {
     /// Probes pixel (x, y) of the document on both tracers.
     pub fn start_probe(&mut self, doc: &Document, x: u32, y: u32) {
         let Some(flat) = doc.flat(false) else { return };
+        // Whitted's terms in either mode; in path mode beside the paths' split.
+        let (whitted, paths) = if doc.desc.render.integrator.is_whitted() {
+            (flat, None)
+        } else {
+            let Some(w) = doc.flat_with(&whitted_settings(doc)) else { return };
+            (w, Some(flat))
+        };
         // None when the image shrank past the probed pixel.
-        self.probe = (x < flat.header.width && y < flat.header.height).then(|| {
+        self.probe = (x < whitted.header.width && y < whitted.header.height).then(|| {
             let tracer = self.gpu.as_ref().map(|g| &g.tracer);
-            ProbeState::start(&flat, x, y, doc.revision, tracer, &self.repaint)
+            ProbeState::start(&whitted, paths.as_ref(), x, y, doc.revision, tracer, &self.repaint)
         });
     }
 
     /// The textures of the view (the difference only while it is of `revision`).
     pub fn textures(&self, revision: u64) -> Textures<'_> {
         Textures {
-            gpu: self.gpu.as_ref().and_then(|g| g.shown).map(|s| Shown { id: s.3, size: s.2, stale: s.0 != revision }),
+            gpu: self.textures_gpu(revision),
             cpu: self.cpu_texture.id().map(|id| Shown {
                 id,
                 size: self.cpu_texture.size,
@@ -210,7 +259,27 @@ impl Renders {
             diff: self.diff_texture.id().filter(|_| self.comparison_of(revision).is_some()),
             gpu_incomplete: self.gpu.as_ref().and_then(|g| g.warning.as_deref()),
             diffs: self.comparison_of(revision).map(|c| &c.diffs),
+            whitted: self.gi.whitted_texture.id().map(|id| Shown {
+                id,
+                size: self.gi.whitted_texture.size,
+                stale: self.gi.whitted_of(revision).is_none(),
+            }),
+            gi: match &self.gpu {
+                Some(_) => self.textures_gpu(revision),
+                None => self.cpu_texture.id().map(|id| Shown {
+                    id,
+                    size: self.cpu_texture.size,
+                    stale: self.cpu_of(revision).is_none(),
+                }),
+            },
+            gi_diff: self.gi.diff_texture.id().filter(|_| self.gi.difference_of(revision).is_some()),
+            gi_signed: self.gi.difference_of(revision).map(|d| &d.diff),
+            gi_samples: self.gi.difference_of(revision).map(|d| d.samples),
         }
+    }
+
+    fn textures_gpu(&self, revision: u64) -> Option<Shown> {
+        self.gpu.as_ref().and_then(|g| g.shown).map(|s| Shown { id: s.3, size: s.2, stale: s.0 != revision })
     }
 
     /// What the messages above the status bar say of the renders.
@@ -250,6 +319,20 @@ impl Renders {
             comparing: self.comparison.is_running(),
             gpu_counts: self.gpu.as_ref().and_then(|g| g.latest.as_ref()).map(|l| l.counts),
             cpu_counts: self.cpu.finished.as_ref().map(|(_, f)| f.counts),
+            samples: None,
+        }
+    }
+
+    /// Path mode's samples for the status bar: the GPU's mean of `revision` and the CPU's.
+    pub fn samples(&self, revision: u64, spp: u32) -> Samples {
+        let a = self.gpu.as_ref().and_then(|g| g.accumulation.as_ref()).filter(|a| a.revision == revision);
+        Samples {
+            gpu: a.map(|a| a.samples),
+            gpu_rate: a.and_then(|a| a.rate()),
+            accumulating: self.gpu.as_ref().is_some_and(GpuView::is_accumulating),
+            paused: self.paused,
+            full: a.is_some_and(|a| a.is_full()),
+            cpu: self.cpu_of(revision).map(|_| spp),
         }
     }
 
@@ -270,4 +353,19 @@ impl Renders {
     pub fn adapter_name(&self) -> Option<String> {
         self.gpu.as_ref().map(GpuView::adapter_name)
     }
+}
+
+/// GPU time a later path batch aims at: short enough that the image and its sample count move
+/// on visibly, long enough that a batch's readback and upload stay a small part of it.
+const BATCH_SECONDS: f64 = 0.5;
+
+/// Samples a pixel of a later path batch: what `rate` (samples a pixel per second so far) does
+/// in `BATCH_SECONDS`, at least 1 and at most the scene's own `spp`.
+fn batch_spp(spp: u32, rate: Option<f64>) -> u32 {
+    rate.map_or(spp, |r| (r * BATCH_SECONDS).floor().clamp(1.0, f64::from(spp.max(1))) as u32)
+}
+
+/// The document's render settings with Whitted's integrator.
+fn whitted_settings(doc: &Document) -> RenderSettings {
+    RenderSettings { integrator: glint_scene::Integrator::Whitted, indirect: true, ..doc.desc.render.clone() }
 }

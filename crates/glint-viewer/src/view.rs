@@ -2,8 +2,11 @@
 //! on it (orbit, pan, zoom, pick, probe), mapped to pixels of the full-resolution image.
 
 use egui::{Color32, Pos2, Rect, Sense, Stroke, Ui, Vec2, pos2};
+use glint_core::glam::DVec3;
 
-use glint_core::compare::{HEATMAP_LOG10_MAX, HEATMAP_LOG10_MIN, PixelDiffs, heatmap_colour};
+use glint_core::compare::{
+    HEATMAP_LOG10_MAX, HEATMAP_LOG10_MIN, PixelDiffs, SignedDifference, diverging_colour, heatmap_colour,
+};
 
 use crate::gizmos::Gizmo;
 use crate::outline::Segment;
@@ -16,10 +19,13 @@ pub enum ViewMode {
     SideBySide,
     Wipe,
     Difference,
+    /// Whitted's image against the path-traced one (`GiView` says how).
+    WhittedVsGi,
 }
 
 impl ViewMode {
-    pub const ALL: [Self; 5] = [Self::Gpu, Self::Cpu, Self::SideBySide, Self::Wipe, Self::Difference];
+    pub const ALL: [Self; 6] =
+        [Self::Gpu, Self::Cpu, Self::SideBySide, Self::Wipe, Self::Difference, Self::WhittedVsGi];
 
     pub fn label(self) -> &'static str {
         match self {
@@ -28,6 +34,29 @@ impl ViewMode {
             Self::SideBySide => "Side by side",
             Self::Wipe => "Split wipe",
             Self::Difference => "Difference",
+            Self::WhittedVsGi => "Whitted vs GI",
+        }
+    }
+}
+
+/// How the Whitted vs GI view holds the two images against each other.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum GiView {
+    #[default]
+    SideBySide,
+    Wipe,
+    /// Whitted − paths on a diverging colour map.
+    Difference,
+}
+
+impl GiView {
+    pub const ALL: [Self; 3] = [Self::SideBySide, Self::Wipe, Self::Difference];
+
+    pub fn label(self) -> &'static str {
+        match self {
+            Self::SideBySide => "Whitted beside GI",
+            Self::Wipe => "Whitted wipe GI",
+            Self::Difference => "Whitted − GI",
         }
     }
 }
@@ -51,6 +80,13 @@ pub struct Textures<'a> {
     pub gpu_incomplete: Option<&'a str>,
     /// The per-pixel differences behind `diff`, read under the cursor.
     pub diffs: Option<&'a PixelDiffs>,
+    /// Whitted's image, the path-traced one (the GPU's mean, else the CPU's), and Whitted − GI.
+    pub whitted: Option<Shown>,
+    pub gi: Option<Shown>,
+    pub gi_diff: Option<egui::TextureId>,
+    pub gi_signed: Option<&'a SignedDifference>,
+    /// Samples a pixel of the path-traced image the difference was made with.
+    pub gi_samples: Option<u32>,
 }
 
 /// What the pointer did on the view this frame.
@@ -66,6 +102,8 @@ pub enum ViewAction {
     Probe(u32, u32),
     /// The toolbar's integrator switch.
     Integrator(glint_scene::Integrator),
+    /// The toolbar's Pause (true) or Continue of the GPU's path batches.
+    Pause(bool),
 }
 
 /// The largest rect of aspect `w:h` centred in `area`.
@@ -252,6 +290,47 @@ fn difference_readout(ui: &mut Ui, r: Rect, at: Option<((u32, u32), (f64, bool))
     image_label_at(ui, pos2(r.left(), r.bottom() + 34.0), egui::Align2::LEFT_TOP, &text);
 }
 
+/// The diverging scale under the Whitted − GI image `r`: −scale (blue, Whitted too dark) through
+/// 0 (white) to +scale (red, too bright).
+fn signed_colour_bar(ui: &mut Ui, r: Rect, scale: f64) {
+    let bar = Rect::from_min_max(pos2(r.left(), r.bottom() + 6.0), pos2(r.right(), r.bottom() + 18.0));
+    let painter = ui.painter().clone();
+    const STEPS: usize = 96;
+    for i in 0..STEPS {
+        let x0 = bar.left() + bar.width() * i as f32 / STEPS as f32;
+        let x1 = bar.left() + bar.width() * (i + 1) as f32 / STEPS as f32;
+        let [red, green, blue] = diverging_colour(2.0 * (i as f64 + 0.5) / STEPS as f64 - 1.0);
+        painter.rect_filled(
+            Rect::from_min_max(pos2(x0, bar.top()), pos2(x1 + 0.5, bar.bottom())),
+            0.0,
+            Color32::from_rgb(red, green, blue),
+        );
+    }
+    let label_pos = |x: f32| pos2(x, bar.bottom() + 2.0);
+    image_label_at(ui, label_pos(bar.left()), egui::Align2::LEFT_TOP, &format!("−{scale} Whitted too dark"));
+    image_label_at(ui, label_pos(bar.center().x), egui::Align2::CENTER_TOP, "0");
+    image_label_at(ui, label_pos(bar.right()), egui::Align2::RIGHT_TOP, &format!("too bright +{scale}"));
+}
+
+/// "Whitted − GI at (x, y)" under the diverging bar for the pixel under the cursor.
+fn signed_readout(ui: &mut Ui, r: Rect, at: Option<((u32, u32), DVec3)>, samples: Option<u32>) {
+    let text = match at {
+        Some(((x, y), d)) => format!(
+            "({x}, {y}): Whitted − GI = {:+.3e} (R {:+.3e}, G {:+.3e}, B {:+.3e}){}",
+            d.element_sum() / 3.0,
+            d.x,
+            d.y,
+            d.z,
+            if d.element_sum() < 0.0 { ": too dark" } else { ": too bright" }
+        ),
+        None => format!(
+            "Whitted − GI, mean of R, G, B; paths of {} samples. Point at a pixel.",
+            samples.map_or("?".into(), |n| n.to_string())
+        ),
+    };
+    image_label_at(ui, pos2(r.left(), r.bottom() + 34.0), egui::Align2::LEFT_TOP, &text);
+}
+
 /// A small grey label of the colour bar with its `anchor` at `pos`.
 fn image_label_at(ui: &mut Ui, pos: Pos2, anchor: egui::Align2, text: &str) {
     anchored_label(ui, pos, anchor, egui::RichText::new(text).color(Color32::LIGHT_GRAY).size(11.0), None);
@@ -280,6 +359,7 @@ fn draw_gizmos(ui: &Ui, rect: Rect, gizmos: &[Gizmo]) {
 pub fn show(
     ui: &mut Ui,
     mode: ViewMode,
+    gi_view: GiView,
     wipe: &mut f32,
     tex: Textures,
     (w, h): (u32, u32),
@@ -291,18 +371,29 @@ pub fn show(
 ) -> (Vec<ViewAction>, Vec<Rect>) {
     let area = ui.available_rect_before_wrap();
     let response = ui.allocate_rect(area, Sense::click_and_drag());
-    let gpu_missing = "no GPU image";
-    let cpu_missing = "CPU reference rendering…";
+    // The two images a view holds against each other: GPU and CPU, or Whitted and the paths.
+    let gi = mode == ViewMode::WhittedVsGi;
+    let (left_tex, right_tex, left_name, right_name, left_missing, right_missing) = if gi {
+        (tex.whitted, tex.gi, "Whitted", "GI (paths)", "Whitted rendering…", "paths rendering…")
+    } else {
+        (tex.gpu, tex.cpu, "GPU", "CPU", "no GPU image", "CPU reference rendering…")
+    };
+    let incomplete = if gi { None } else { tex.gpu_incomplete };
+    let mode = match (mode, gi_view) {
+        (ViewMode::WhittedVsGi, GiView::SideBySide) => ViewMode::SideBySide,
+        (ViewMode::WhittedVsGi, GiView::Wipe) => ViewMode::Wipe,
+        (m, _) => m,
+    };
     let rects: Vec<Rect> = match mode {
         ViewMode::SideBySide => {
             let half = Rect::from_min_size(area.min, Vec2::new(area.width() / 2.0, area.height()));
             let left = fit(half.shrink(4.0), w, h);
             let right = fit(half.translate(Vec2::new(area.width() / 2.0, 0.0)).shrink(4.0), w, h);
-            image(ui, left, tex.gpu, UV, (w, h), "GPU", gpu_missing);
-            image(ui, right, tex.cpu, UV, (w, h), "CPU", cpu_missing);
-            incomplete_banner(ui, left, tex.gpu_incomplete);
-            image_label(ui, left, left.left_top() + Vec2::new(6.0, 4.0), egui::Align2::LEFT_TOP, "GPU");
-            image_label(ui, right, right.left_top() + Vec2::new(6.0, 4.0), egui::Align2::LEFT_TOP, "CPU");
+            image(ui, left, left_tex, UV, (w, h), left_name, left_missing);
+            image(ui, right, right_tex, UV, (w, h), right_name, right_missing);
+            incomplete_banner(ui, left, incomplete);
+            image_label(ui, left, left.left_top() + Vec2::new(6.0, 4.0), egui::Align2::LEFT_TOP, left_name);
+            image_label(ui, right, right.left_top() + Vec2::new(6.0, 4.0), egui::Align2::LEFT_TOP, right_name);
             if show_gizmos {
                 draw_gizmos(ui, left, gizmos);
             }
@@ -310,7 +401,7 @@ pub fn show(
         }
         _ => {
             // The difference view keeps a strip below the image for its colour bar.
-            let image_area = if mode == ViewMode::Difference {
+            let image_area = if matches!(mode, ViewMode::Difference | ViewMode::WhittedVsGi) {
                 Rect::from_min_max(area.min, pos2(area.right(), area.bottom() - COLOUR_BAR_STRIP))
             } else {
                 area
@@ -318,20 +409,27 @@ pub fn show(
             let r = fit(image_area.shrink(4.0), w, h);
             match mode {
                 ViewMode::Gpu => {
-                    image(ui, r, tex.gpu, UV, (w, h), "GPU", gpu_missing);
+                    image(ui, r, tex.gpu, UV, (w, h), "GPU", left_missing);
                     incomplete_banner(ui, r, tex.gpu_incomplete);
                     if show_gizmos {
                         draw_gizmos(ui, r, gizmos);
                     }
                 }
-                ViewMode::Cpu => image(ui, r, tex.cpu, UV, (w, h), "CPU", cpu_missing),
+                ViewMode::Cpu => image(ui, r, tex.cpu, UV, (w, h), "CPU", right_missing),
                 ViewMode::Difference => {
                     let diff = tex.diff.map(|id| Shown { id, size: (w, h), stale: false });
                     image(ui, r, diff, UV, (w, h), "Difference", "comparing GPU and CPU…");
                     colour_bar(ui, r);
                 }
+                ViewMode::WhittedVsGi => {
+                    let diff = tex.gi_diff.map(|id| Shown { id, size: (w, h), stale: false });
+                    image(ui, r, diff, UV, (w, h), "Whitted − GI", "rendering Whitted and the paths…");
+                    if let Some(d) = tex.gi_signed {
+                        signed_colour_bar(ui, r, d.scale);
+                    }
+                }
                 ViewMode::Wipe | ViewMode::SideBySide => {
-                    // GPU left of the wipe line, CPU right of it.
+                    // The first image left of the wipe line, the second right of it.
                     let split = r.left() + *wipe * r.width();
                     let left = Rect::from_min_max(r.min, pos2(split, r.bottom()));
                     let right = Rect::from_min_max(pos2(split, r.top()), r.max);
@@ -339,13 +437,13 @@ pub fn show(
                         Rect::from_min_max(Pos2::ZERO, pos2(*wipe, 1.0)),
                         Rect::from_min_max(pos2(*wipe, 0.0), pos2(1.0, 1.0)),
                     );
-                    image(ui, left, tex.gpu, left_uv, (w, h), "GPU", gpu_missing);
-                    image(ui, right, tex.cpu, right_uv, (w, h), "CPU", cpu_missing);
+                    image(ui, left, left_tex, left_uv, (w, h), left_name, left_missing);
+                    image(ui, right, right_tex, right_uv, (w, h), right_name, right_missing);
                     ui.painter().vline(split, r.y_range(), Stroke::new(1.5, Color32::WHITE));
                     let top = r.top() + 4.0;
-                    image_label(ui, r, pos2(split - 6.0, top), egui::Align2::RIGHT_TOP, "GPU");
-                    image_label(ui, r, pos2(split + 6.0, top), egui::Align2::LEFT_TOP, "CPU");
-                    incomplete_banner(ui, r, tex.gpu_incomplete);
+                    image_label(ui, r, pos2(split - 6.0, top), egui::Align2::RIGHT_TOP, left_name);
+                    image_label(ui, r, pos2(split + 6.0, top), egui::Align2::LEFT_TOP, right_name);
+                    incomplete_banner(ui, r, incomplete);
                     if show_gizmos {
                         draw_gizmos(ui, r, gizmos);
                     }
@@ -374,6 +472,13 @@ pub fn show(
     {
         let hovered = response.hover_pos().and_then(to_pixel);
         difference_readout(ui, *r, hovered.and_then(|(x, y)| diffs.at(x, y).map(|d| ((x, y), d))));
+    }
+    if mode == ViewMode::WhittedVsGi
+        && let Some(r) = rects.first()
+    {
+        let hovered = response.hover_pos().and_then(to_pixel);
+        let at = hovered.and_then(|(x, y)| tex.gi_signed.and_then(|d| d.at(x, y)).map(|d| ((x, y), d)));
+        signed_readout(ui, *r, at, tex.gi_samples);
     }
     let modifiers = ui.input(|i| i.modifiers);
     if response.clicked()

@@ -4,7 +4,11 @@
 use egui::Ui;
 use glint_types::layout::NO_HIT;
 
-use super::term_table::{HIGHLIGHT, term_grid};
+use glint_core::glam::DVec3;
+use glint_core::path_kinds::PathProbe;
+use glint_scene::PathKind;
+
+use super::term_table::{HIGHLIGHT, cell, term_grid};
 use crate::document::Document;
 use crate::probe::{GpuProbe, ProbeState, first_difference, terms};
 
@@ -55,5 +59,47 @@ pub fn ui(ui: &mut Ui, probe: Option<&ProbeState>, doc: &Document) {
         }
         None => {}
     }
+    if let Some(paths) = &p.paths {
+        path_split(ui, paths);
+    }
     super::ray_tree::ui(ui, p, doc);
+}
+
+/// The pixel's path-traced radiance by bounce (rows) and kind of light (columns), as the mean
+/// of R, G and B, with each kind's total: what the terms above, Whitted's, leave out.
+fn path_split(ui: &mut Ui, p: &PathProbe) {
+    ui.separator();
+    ui.strong(format!("Paths: the pixel's light by bounce and kind ({} samples)", p.spp));
+    ui.weak("Mean of R, G, B. Bounce 0 is the first hit; Whitted's terms above are its direct light and ambient.");
+    let mean = |v: DVec3| v.element_sum() / 3.0;
+    egui::Grid::new("path split").striped(true).show(ui, |ui| {
+        ui.label("bounce");
+        for k in PathKind::ALL {
+            ui.label(k.name());
+        }
+        ui.end_row();
+        for (depth, row) in p.by_bounce.iter().enumerate() {
+            if row.iter().all(|v| *v == DVec3::ZERO) {
+                continue;
+            }
+            ui.label(depth.to_string());
+            for v in row {
+                ui.label(cell(mean(*v)));
+            }
+            ui.end_row();
+        }
+        ui.strong("sum");
+        for v in p.by_kind() {
+            ui.strong(cell(mean(v)));
+        }
+        ui.end_row();
+    });
+    let total = p.total();
+    ui.label(format!(
+        "The paths' pixel: {} (R {}, G {}, B {})",
+        cell(mean(total)),
+        cell(total.x),
+        cell(total.y),
+        cell(total.z)
+    ));
 }

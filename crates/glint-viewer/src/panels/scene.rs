@@ -1,7 +1,9 @@
 //! Scene panel: camera, world and render settings.
 
 use egui::Ui;
-use glint_scene::{CameraDesc, EpsilonMode, GlobalAttenuation, Integrator, ObjectDesc, SpecularModel, ranges};
+use glint_scene::{
+    CameraDesc, EpsilonMode, GlobalAttenuation, Integrator, ObjectDesc, PathKind, SpecularModel, ranges,
+};
 
 use crate::ambient_fit::AmbientFitter;
 use crate::document::Document;
@@ -28,11 +30,20 @@ pub fn ui(ui: &mut Ui, doc: &mut Document, fitter: &mut AmbientFitter) -> bool {
         changed |= rgb_edit(ui, "Background", &mut doc.desc.world.background);
         changed |= global_attenuation_ui(ui, &mut doc.desc.world.global_attenuation);
     });
+    let mut view_changed = false;
     egui::CollapsingHeader::new("Render").default_open(true).show(ui, |ui| {
         let r = &mut doc.desc.render;
         changed |= choice(ui, "Integrator", &mut r.integrator, &Integrator::ALL, Integrator::name);
         if r.integrator == Integrator::Path {
             changed |= crate::help::hint(ui.checkbox(&mut r.indirect, "Indirect light"), "Indirect light").changed();
+            // Each kind of light alone: a way of looking, not an edit of the scene.
+            let mut shown = PathKind::ALL.into_iter().find(|k| k.alone() == doc.omit_kinds);
+            let name = |k: Option<PathKind>| k.map_or("All light", PathKind::label);
+            let options: Vec<Option<PathKind>> = std::iter::once(None).chain(PathKind::ALL.map(Some)).collect();
+            if choice(ui, "Light shown", &mut shown, &options, name) {
+                doc.omit_kinds = shown.map_or(0, PathKind::alone);
+                view_changed = true;
+            }
         } else if !r.indirect {
             // Whitted's tree has no such setting: a scene switched back is valid again.
             r.indirect = true;
@@ -59,6 +70,9 @@ pub fn ui(ui: &mut Ui, doc: &mut Document, fitter: &mut AmbientFitter) -> bool {
             }
         });
     });
+    if view_changed {
+        doc.view_changed();
+    }
     changed
 }
 

@@ -27,6 +27,40 @@ pub struct Status {
     pub comparing: bool,
     pub gpu_counts: Option<RayCounts>,
     pub cpu_counts: Option<RayCounts>,
+    /// Path mode: the samples a pixel of each tracer's image has.
+    pub samples: Option<Samples>,
+}
+
+/// Path mode's samples: the GPU's mean over its batches, and the CPU reference's.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Samples {
+    pub gpu: Option<u32>,
+    /// GPU samples a pixel per second of GPU time.
+    pub gpu_rate: Option<f64>,
+    pub accumulating: bool,
+    pub paused: bool,
+    pub full: bool,
+    pub cpu: Option<u32>,
+}
+
+/// "GPU 192 samples (48/s), adding…; CPU 64 samples".
+pub fn samples_text(s: &Samples) -> String {
+    let gpu = match (s.gpu, s.gpu_rate) {
+        (Some(n), Some(rate)) => format!("GPU {n} samples ({rate:.0}/s)"),
+        (Some(n), None) => format!("GPU {n} samples"),
+        (None, _) => "GPU no samples yet".into(),
+    };
+    let state = if s.full {
+        ", the most it adds"
+    } else if s.paused {
+        ", paused"
+    } else if s.accumulating {
+        ", adding…"
+    } else {
+        ""
+    };
+    let cpu = s.cpu.map_or("CPU rendering…".to_string(), |n| format!("CPU {n} samples"));
+    format!("{gpu}{state}; {cpu}")
 }
 
 fn counts(c: &RayCounts) -> String {
@@ -66,6 +100,10 @@ pub fn ui(ui: &mut Ui, s: &Status) {
         }
         ui.label(format!("UI {:.1} ms", s.ui_ms));
         ui.separator();
+        if let Some(samples) = &s.samples {
+            ui.label(samples_text(samples));
+            ui.separator();
+        }
         match (s.cpu_progress, s.cpu_time) {
             (Some((done, total, secs)), _) => {
                 let f = done as f32 / total.max(1) as f32;

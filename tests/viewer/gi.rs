@@ -1,0 +1,142 @@
+//! Whitted against global illumination in the viewer (issue 33): the GPU adds path samples
+//! progressively (pause, continue, restart on an edit), the Whitted vs GI view (beside, wipe,
+//! the signed difference with its readout), each kind of light alone, and the probe's split by
+//! bounce and kind.
+
+use std::time::{Duration, Instant};
+
+use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
+use glint_core::glam::DVec3;
+use glint_viewer::ViewerApp;
+
+use crate::support::{choose, settle, viewer, viewer_with};
+
+/// The GPU's path samples a pixel of the current revision (0 before its first render is in).
+fn gpu_samples(h: &Harness<'static, ViewerApp>) -> u32 {
+    let rev = h.state().doc.revision;
+    let a = h.state().renders.gpu.as_ref().and_then(|g| g.accumulation.as_ref());
+    a.filter(|a| a.revision == rev).map_or(0, |a| a.samples)
+}
+
+/// Steps the UI until `done` holds, failing after `secs` with `what`.
+fn step_until(
+    h: &mut Harness<'static, ViewerApp>,
+    secs: u64,
+    what: &str,
+    done: impl Fn(&Harness<'static, ViewerApp>) -> bool,
+) {
+    let deadline = Instant::now() + Duration::from_secs(secs);
+    while !done(h) {
+        assert!(Instant::now() < deadline, "{what} within {secs} s");
+        h.step();
+        std::thread::sleep(Duration::from_millis(5));
+    }
+}
+
+#[test]
+fn the_gpu_adds_path_samples_until_paused_and_starts_over_on_an_edit() {
+    let Some(mut h) = viewer("cornell-gi", (1000.0, 640.0)) else { return };
+    let spp = h.state().doc.desc.render.spp;
+    assert!(gpu_samples(&h) >= spp, "the first render has the scene's {spp} samples");
+    step_until(&mut h, 120, "the GPU adds samples", |h| gpu_samples(h) > spp);
+    assert!(h.query_by_label_contains("samples (").is_some(), "the status bar gives the samples and their rate");
+
+    h.get_by_label("Pause").click();
+    // The batch in flight when paused still lands; then nothing more.
+    step_until(&mut h, 120, "the last batch lands", |h| {
+        !h.state().renders.gpu.as_ref().is_some_and(|g| g.is_accumulating())
+    });
+    let paused = gpu_samples(&h);
+    for _ in 0..40 {
+        h.step();
+        std::thread::sleep(Duration::from_millis(10));
+    }
+    assert_eq!(gpu_samples(&h), paused, "no samples are added while paused");
+    assert!(h.query_by_label_contains(", paused").is_some(), "the status bar says it is paused");
+
+    h.get_by_label("Continue").click();
+    step_until(&mut h, 120, "the GPU adds samples again", |h| gpu_samples(h) > paused);
+
+    // An edit starts over from the new revision's first render.
+    h.get_by_label("Pause").click();
+    h.state_mut().doc.desc.camera.fov_y += 5.0;
+    h.state_mut().doc.edited();
+    settle(&mut h);
+    assert_eq!(gpu_samples(&h), spp, "an edit starts the samples over");
+}
+
+#[test]
+fn whitted_against_gi_shows_beside_wiped_and_as_a_signed_difference() {
+    let Some(mut h) = viewer_with("cornell-gi", (800.0, 500.0), |o| o.paused = true) else { return };
+    h.get_by_label("Whitted vs GI").click();
+    h.run_steps(2);
+    settle(&mut h);
+    let rev = h.state().doc.revision;
+    let gi = &h.state().renders.gi;
+    let whitted = gi.whitted_of(rev).expect("Whitted's image of the revision").clone();
+    let d = gi.difference_of(rev).expect("the difference").diff.clone();
+    let paths = crate::support::gpu_image(&h);
+    // The signed difference is Whitted's image less the paths', pixel for pixel.
+    for (i, v) in d.pixels.iter().enumerate() {
+        assert_eq!(*v, whitted.pixels[i] - paths.pixels[i], "pixel {i}");
+    }
+    // cornell-gi has no point light: Whitted is darker nearly everywhere but on the lamp.
+    let darker = d.pixels.iter().filter(|v| v.element_sum() < 0.0).count() as f64 / d.pixels.len() as f64;
+    assert!(darker > 0.8, "Whitted darker on {:.0} % of the pixels", 100.0 * darker);
+    crate::snapshots::snapshot(&mut h, "viewer_whitted_vs_gi");
+
+    h.get_by_label("Whitted wipe GI").click();
+    h.run_steps(3);
+    assert!(h.query_by_label("Wipe").is_some(), "the wipe has its slider");
+    crate::snapshots::snapshot(&mut h, "viewer_whitted_wipe_gi");
+
+    h.get_by_label("Whitted − GI").click();
+    h.run_steps(3);
+    assert!(h.query_by_label_contains("Whitted too dark").is_some(), "the colour bar has its legend");
+    // The value under the cursor, at a pixel of the floor.
+    let (x, y) = (80, 100);
+    let pos = h.state().screen_pos_of_pixel(x, y).expect("the view is drawn");
+    h.hover_at(pos);
+    h.run_steps(2);
+    let v = d.at(x, y).expect("a pixel of the image");
+    let text = format!("({x}, {y}): Whitted − GI = {:+.3e}", v.element_sum() / 3.0);
+    assert!(h.query_by_label_contains(&text).is_some(), "the readout says {text}");
+    h.hover_at(egui::pos2(1.0, 1.0));
+    h.run_steps(2);
+    crate::snapshots::snapshot(&mut h, "viewer_whitted_minus_gi");
+}
+
+#[test]
+fn each_kind_of_light_alone_adds_up_to_the_path_image_and_the_probe_splits_a_pixel() {
+    let Some(mut h) = viewer_with("cornell-gi", (1000.0, 640.0), |o| o.paused = true) else { return };
+    let whole = crate::support::gpu_image(&h);
+    let mut sum = vec![DVec3::ZERO; whole.pixels.len()];
+    for kind in ["Direct light", "Indirect diffuse", "Caustics", "The rest"] {
+        choose(&mut h, "Scene", "Light shown", kind);
+        settle(&mut h);
+        assert!(!h.state().doc.dirty, "showing a kind of light is not an edit of the scene");
+        for (s, p) in sum.iter_mut().zip(&crate::support::gpu_image(&h).pixels) {
+            *s += *p;
+        }
+    }
+    let worst = sum
+        .iter()
+        .zip(&whole.pixels)
+        .map(|(s, w)| ((*s - *w).abs() / (w.abs() + DVec3::splat(1e-3))).max_element())
+        .fold(0.0, f64::max);
+    assert!(worst < 1e-5, "the four kinds add up to the path image to {worst:.1e}, not f32's precision");
+    choose(&mut h, "Scene", "Light shown", "All light");
+    settle(&mut h);
+
+    // The probe: the paths' pixel by bounce and kind is the CPU image's pixel.
+    let (x, y) = (80, 100);
+    h.state_mut().probe_at(x, y);
+    settle(&mut h);
+    let rev = h.state().doc.revision;
+    let cpu = h.state().renders.cpu_of(rev).expect("the CPU image").image.get(x, y);
+    let probe = h.state().renders.probe.as_ref().and_then(|p| p.paths.clone()).expect("the paths' split");
+    assert!((probe.total() - cpu).abs().max_element() < 1e-9, "{} against {cpu}", probe.total());
+    assert!(probe.by_kind()[1].max_element() > 0.0, "the floor has indirect light");
+    assert!(h.query_by_label_contains("by bounce and kind").is_some(), "the probe panel shows the split");
+}
