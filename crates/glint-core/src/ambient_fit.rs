@@ -23,6 +23,15 @@ pub struct AmbientFit {
     pub rmse_as_written: f64,
     pub rmse_without: f64,
     pub rmse_fitted: f64,
+    /// What I_a·k_a adds to the image's mean (over pixels and channels), as written and fitted:
+    /// to be held against the indirect light it stands in for.
+    pub adds_as_written: f64,
+    pub adds_fitted: f64,
+}
+
+/// The mean of `a − b` over the pixels and channels.
+fn mean_difference(a: &[DVec3], b: &[DVec3]) -> f64 {
+    a.iter().zip(b).map(|(p, q)| (*p - *q).element_sum()).sum::<f64>() / (3 * a.len().max(1)) as f64
 }
 
 fn rmse(a: &[DVec3], b: &[DVec3]) -> f64 {
@@ -65,5 +74,7 @@ pub fn fit_ambient(
         rmse_as_written: rmse(&as_written, p),
         rmse_without: rmse(&without, p),
         rmse_fitted: rmse(&fitted, p),
+        adds_as_written: mean_difference(&as_written, &without),
+        adds_fitted: mean_difference(&fitted, &without),
     })
 }

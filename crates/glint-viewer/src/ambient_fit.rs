@@ -14,9 +14,10 @@ pub const MIN_REFERENCE_SPP: u32 = 64;
 
 #[derive(Debug)]
 pub struct AmbientFitter {
-    worker: Worker<Result<AmbientFit, String>>,
-    /// The last fit and the revision it was made for.
-    pub result: Option<(u64, AmbientFit)>,
+    worker: Worker<Result<(AmbientFit, f64), String>>,
+    /// The last fit, with the paths' indirect light (their mean less that of their direct
+    /// light), and the revision it was made for.
+    pub result: Option<(u64, AmbientFit, f64)>,
     pub error: Option<String>,
 }
 
@@ -45,7 +46,19 @@ impl AmbientFitter {
             let reference = render_cpu(&FlatScene::build(&desc, &paths), &options, control)
                 .map_err(|e| format!("the path-traced image: {e}"))?
                 .image;
-            fit_ambient(&desc, &settings, &reference, &options).map_err(|e| format!("Whitted's images: {e}"))
+            // Paths without indirect light follow only k_r and k_t: their expectation is the
+            // direct kind of light (E S* D? L), at a fraction of the cost.
+            let direct = RenderSettings { indirect: false, ..paths };
+            let control = RenderControl { cancel: Some(handle.cancel_flag()), ..RenderControl::default() };
+            let direct = render_cpu(&FlatScene::build(&desc, &direct), &options, control)
+                .map_err(|e| format!("the paths' direct light: {e}"))?
+                .image;
+            let mean = |i: &glint_core::HdrImage| {
+                i.pixels.iter().map(|p| p.element_sum()).sum::<f64>() / (3 * i.pixels.len().max(1)) as f64
+            };
+            let fit =
+                fit_ambient(&desc, &settings, &reference, &options).map_err(|e| format!("Whitted's images: {e}"))?;
+            Ok((fit, mean(&reference) - mean(&direct)))
         });
         if let Err(e) = started {
             self.error = Some(e.to_string());
@@ -56,7 +69,7 @@ impl AmbientFitter {
     pub fn poll(&mut self) {
         if let Some((revision, result)) = self.worker.poll() {
             match result.map_err(|e| e.to_string()).and_then(|r| r) {
-                Ok(fit) => (self.result, self.error) = (Some((revision, fit)), None),
+                Ok((fit, indirect)) => (self.result, self.error) = (Some((revision, fit, indirect)), None),
                 Err(e) => self.error = Some(e),
             }
         }
@@ -80,12 +93,17 @@ pub fn ui(ui: &mut egui::Ui, doc: &mut Document, fitter: &mut AmbientFitter) -> 
     if let Some(e) = &fitter.error {
         ui.colored_label(ui.visuals().warn_fg_color, e);
     }
-    if let Some((revision, fit)) = fitter.result {
+    if let Some((revision, fit, indirect)) = fitter.result {
         let [r, g, b] = fit.ambient;
         ui.label(format!("Fitted I_a = ({r:.3}, {g:.3}, {b:.3})"));
         ui.label(format!(
             "RMSE against the paths: {:.4} as written, {:.4} without, {:.4} fitted",
             fit.rmse_as_written, fit.rmse_without, fit.rmse_fitted
+        ));
+        ui.label(format!(
+            "I_a·k_a adds {:.4} to the mean as written, {:.4} fitted; the indirect light it stands in for \
+             (the paths' less their direct light) is {indirect:.4}",
+            fit.adds_as_written, fit.adds_fitted
         ));
         if revision != doc.revision {
             ui.weak("(fitted to an earlier edit of the scene)");
