@@ -1,5 +1,6 @@
 //! Command-line definitions and dispatch.
 
+mod adapters;
 mod backend;
 mod bench;
 mod bench_export;
@@ -37,6 +38,8 @@ enum Command {
     /// Join the EXR tiles of `glint render --tile` into one image (.exr or .png), after checking
     /// that they are one render's and that none is missing or given twice.
     Merge(merge::MergeArgs),
+    /// List the GPU adapters a render can choose from (name, backend, type, driver).
+    Adapters(adapters::AdaptersArgs),
 }
 
 pub fn run(cli: Cli) -> anyhow::Result<()> {
@@ -46,6 +49,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Some(Command::View(args)) => view::run(&args),
         Some(Command::Bench(args)) => bench::run(&args),
         Some(Command::Merge(args)) => merge::run(&args),
+        Some(Command::Adapters(args)) => adapters::run(&args),
         None => view::run(&view::ViewArgs::default()),
     }
 }

@@ -8,6 +8,7 @@ use std::process::{Command, Output};
 use glint_test_support::TempDir;
 
 mod bench;
+mod device;
 mod memory;
 mod mitsuba;
 mod models;

@@ -60,17 +60,27 @@ pub struct GpuContext {
     lost: Arc<AtomicBool>,
 }
 
+/// The adapters a render can choose from, as `GpuContext::new` finds them (`WGPU_BACKEND`, else
+/// the primary backends, else OpenGL).
+pub fn list_adapters() -> Result<Vec<AdapterSummary>, GpuError> {
+    Ok(find_adapters()?.iter().map(|a| AdapterSummary::from_info(&a.get_info())).collect())
+}
+
+fn find_adapters() -> Result<Vec<wgpu::Adapter>, GpuError> {
+    let requested = requested_backends()?;
+    let mut adapters = enumerate(requested.unwrap_or(wgpu::Backends::PRIMARY));
+    if adapters.is_empty() && requested.is_none() {
+        // OpenGL only when nothing else is there: initialising it probes the display
+        // server (and prints errors of its own where there is none).
+        adapters = enumerate(wgpu::Backends::GL);
+    }
+    Ok(adapters)
+}
+
 impl GpuContext {
     /// Opens an adapter as `request` says and creates a device with its default limits.
     pub fn new(request: &AdapterRequest) -> Result<Self, GpuError> {
-        let requested = requested_backends()?;
-        let mut adapters = enumerate(requested.unwrap_or(wgpu::Backends::PRIMARY));
-        if adapters.is_empty() && requested.is_none() {
-            // OpenGL only when nothing else is there: initialising it probes the display
-            // server (and prints errors of its own where there is none).
-            adapters = enumerate(wgpu::Backends::GL);
-        }
-        let adapter = choose_adapter(adapters, request)?;
+        let adapter = choose_adapter(find_adapters()?, request)?;
         let info = adapter.get_info();
         let limits = adapter.limits();
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {

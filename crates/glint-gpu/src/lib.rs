@@ -16,7 +16,7 @@ pub mod shaders;
 pub mod status;
 pub mod tracer;
 
-pub use context::{AdapterRequest, AdapterSummary, GpuContext};
+pub use context::{AdapterRequest, AdapterSummary, GpuContext, list_adapters};
 pub use dispatch::{DispatchControl, SampleProgress};
 pub use error::GpuError;
 pub use job::GpuJob;

@@ -3,6 +3,8 @@
 //!
 //! Policy: without an adapter a GPU test fails with a clear message; `GLINT_SKIP_GPU=1` skips
 //! the GPU part on purpose (a test that renders on both backends then checks the CPU only).
+//! `WGPU_ADAPTER_NAME` picks the adapter by name; `GLINT_REQUIRE_HARDWARE_GPU=1` (the device
+//! suite's) makes a software adapter such as lavapipe a failure, never a silent stand-in.
 
 use std::sync::OnceLock;
 
@@ -27,6 +29,13 @@ pub fn gpu() -> Option<&'static GpuTracer> {
             match GpuContext::new(&request) {
                 Ok(ctx) => {
                     eprintln!("GPU tests run on {}", ctx.adapter);
+                    let hardware_only = std::env::var("GLINT_REQUIRE_HARDWARE_GPU").is_ok_and(|v| v == "1");
+                    assert!(
+                        !(hardware_only && ctx.adapter.is_software()),
+                        "GLINT_REQUIRE_HARDWARE_GPU=1, but the adapter is {}, a software one: install the GPU's \
+                         Vulkan driver (and the Vulkan loader), or name the adapter with WGPU_ADAPTER_NAME",
+                        ctx.adapter
+                    );
                     Some(GpuTracer::new(ctx))
                 }
                 Err(e) => panic!(
