@@ -139,4 +139,6 @@ fn each_kind_of_light_alone_adds_up_to_the_path_image_and_the_probe_splits_a_pix
     assert!((probe.total() - cpu).abs().max_element() < 1e-9, "{} against {cpu}", probe.total());
     assert!(probe.by_kind()[1].max_element() > 0.0, "the floor has indirect light");
     assert!(h.query_by_label_contains("by bounce and kind").is_some(), "the probe panel shows the split");
+    h.run_steps(2);
+    crate::snapshots::snapshot(&mut h, "viewer_probe_paths");
 }

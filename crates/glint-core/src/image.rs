@@ -26,6 +26,11 @@ impl HdrImage {
     }
 
     /// Whether every channel of every pixel is a finite number.
+    /// The mean over every pixel and channel.
+    pub fn mean(&self) -> f64 {
+        self.pixels.iter().map(|p| p.element_sum()).sum::<f64>() / (3 * self.pixels.len().max(1)) as f64
+    }
+
     pub fn all_finite(&self) -> bool {
         self.pixels.iter().all(|p| p.is_finite())
     }

@@ -53,12 +53,9 @@ impl AmbientFitter {
             let direct = render_cpu(&FlatScene::build(&desc, &direct), &options, control)
                 .map_err(|e| format!("the paths' direct light: {e}"))?
                 .image;
-            let mean = |i: &glint_core::HdrImage| {
-                i.pixels.iter().map(|p| p.element_sum()).sum::<f64>() / (3 * i.pixels.len().max(1)) as f64
-            };
             let fit =
                 fit_ambient(&desc, &settings, &reference, &options).map_err(|e| format!("Whitted's images: {e}"))?;
-            Ok((fit, mean(&reference) - mean(&direct)))
+            Ok((fit, reference.mean() - direct.mean()))
         });
         if let Err(e) = started {
             self.error = Some(e.to_string());

@@ -91,12 +91,10 @@ pub struct KindSplit {
     pub whitted_rmse: f64,
 }
 
-/// The mean over the pixels and channels, and the root mean square, of `image`.
-fn mean_and_rms(image: &HdrImage) -> (f64, f64) {
-    let n = (3 * image.pixels.len().max(1)) as f64;
-    let sum: f64 = image.pixels.iter().map(|p| p.element_sum()).sum();
+/// The root mean square of `image` over its pixels and channels.
+fn rms(image: &HdrImage) -> f64 {
     let sq: f64 = image.pixels.iter().map(|p| p.length_squared()).sum();
-    (sum / n, (sq / n).sqrt())
+    (sq / (3 * image.pixels.len().max(1)) as f64).sqrt()
 }
 
 /// `a − b`, pixel by pixel.
@@ -268,11 +266,10 @@ fn split_by_kind(
     let flat = FlatScene::build(&loaded.desc, &RenderSettings { spp, ..paths.clone() });
     let mut split = KindSplit { spp, ..KindSplit::default() };
     let mut direct = None;
-    let (paths_mean, _) = mean_and_rms(reference);
+    let paths_mean = reference.mean();
     for (i, kind) in PathKind::ALL.into_iter().enumerate() {
         let image = cpu(&kind_alone(&flat, kind), &format!("{} alone ({spp} spp)", kind.label()))?;
-        let (mean, rms) = mean_and_rms(&image);
-        (split.share[i], split.rms[i]) = (mean / paths_mean.max(f64::MIN_POSITIVE), rms);
+        (split.share[i], split.rms[i]) = (image.mean() / paths_mean.max(f64::MIN_POSITIVE), rms(&image));
         if kind == PathKind::Direct {
             direct = Some(image);
         }
@@ -281,8 +278,8 @@ fn split_by_kind(
     let mut dark = loaded.desc.clone();
     dark.world.ambient = Rgb([0.0; 3]);
     let without = cpu(&FlatScene::build(&dark, whitted), "Whitted without ambient")?;
-    split.direct_rmse = mean_and_rms(&minus(&without, &direct.expect("the direct kind is rendered"))).1;
-    split.ambient_share = mean_and_rms(&minus(&written, &without)).0 / paths_mean.max(f64::MIN_POSITIVE);
+    split.direct_rmse = rms(&minus(&without, &direct.expect("the direct kind is rendered")));
+    split.ambient_share = minus(&written, &without).mean() / paths_mean.max(f64::MIN_POSITIVE);
     split.whitted_rmse = compare_images(reference, &written).rmse;
     Ok(split)
 }

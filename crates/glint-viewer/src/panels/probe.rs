@@ -26,6 +26,12 @@ pub fn ui(ui: &mut Ui, probe: Option<&ProbeState>, doc: &Document) {
         // Both tracers probe the same jittered sample; the pixel shown is the mean of all.
         ui.weak(format!("Sample 0 of {spp}: the pixel shown is the mean of {spp} samples."));
     }
+    // With paths, their light first: what Whitted's terms below leave out.
+    if let Some(paths) = &p.paths {
+        path_split(ui, paths);
+        ui.separator();
+        ui.strong("Whitted's terms at this pixel");
+    }
     let gpu = p.gpu_breakdown();
     match &p.gpu {
         GpuProbe::Pending(_) => {
@@ -59,18 +65,14 @@ pub fn ui(ui: &mut Ui, probe: Option<&ProbeState>, doc: &Document) {
         }
         None => {}
     }
-    if let Some(paths) = &p.paths {
-        path_split(ui, paths);
-    }
     super::ray_tree::ui(ui, p, doc);
 }
 
 /// The pixel's path-traced radiance by bounce (rows) and kind of light (columns), as the mean
 /// of R, G and B, with each kind's total: what the terms above, Whitted's, leave out.
 fn path_split(ui: &mut Ui, p: &PathProbe) {
-    ui.separator();
     ui.strong(format!("Paths: the pixel's light by bounce and kind ({} samples)", p.spp));
-    ui.weak("Mean of R, G, B. Bounce 0 is the first hit; Whitted's terms above are its direct light and ambient.");
+    ui.weak("Mean of R, G, B. Bounce 0 is the first hit; Whitted's terms below are its direct light and ambient.");
     let mean = |v: DVec3| v.element_sum() / 3.0;
     egui::Grid::new("path split").striped(true).show(ui, |ui| {
         ui.label("bounce");
