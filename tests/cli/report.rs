@@ -115,6 +115,10 @@ fn quick_report_writes_consistent_files() {
     }
     let md = std::fs::read_to_string(out_dir.join("report.md")).expect("report.md");
     assert!(md.contains("## Whitted against global illumination") && md.contains("slope"), "the GI section");
+    // A sentence per scene on what Whitted's error is made of, from the paths split by kind.
+    let sentences = md.matches("Whitted's error (RMSE ").count();
+    assert_eq!(sentences, scenes.len(), "one sentence on Whitted's error per scene");
+    assert!(md.contains("indirect diffuse") && md.contains("caustics"), "the kinds are named");
 
     for s in scenes.iter().flat_map(|s| [format!("error_vs_time_{s}"), format!("gi_vs_time_{s}")]) {
         let png = image::open(out_dir.join(format!("{s}.png"))).expect("plot decodes").into_rgb8();
