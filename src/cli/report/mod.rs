@@ -32,13 +32,13 @@ use self::sweep::Engines;
 use super::backend::open_gpu;
 use super::settings::{load, parse_integrator, parse_threads};
 
-const DEFAULT_SCENES: &[&str] = &["whitted", "cornell", "spotlights", "highlights", "lights"];
+const DEFAULT_SCENES: &[&str] = &["whitted", "cornell", "spotlights", "highlights", "lights", "cornell-gi"];
 const QUICK_SCENES: &[&str] = &["whitted", "highlights"];
 
 #[derive(Debug, Args)]
 pub struct ReportArgs {
-    /// Scenes to sweep, comma-separated: built-in names or scene files (default: every built-in;
-    /// with --quick: whitted,highlights)
+    /// Scenes to sweep, comma-separated: built-in names or scene files (default: every built-in
+    /// but the generated ones; with --quick: whitted,highlights)
     #[arg(long, value_delimiter = ',')]
     pub scenes: Vec<String>,
     /// Folder for report.csv, report.md and the plots (created if missing)
