@@ -139,7 +139,8 @@ impl Renders {
     /// converge.
     pub fn schedule_gi(&mut self, doc: &Document) {
         let rev = doc.revision;
-        let scene = if self.gi.whitted_of(rev).is_none() { doc.flat_with(&whitted_settings(doc)) } else { None };
+        // Built only when its render is to start, not every frame while it runs.
+        let scene = if self.gi.needs_whitted(rev) { doc.flat_with(&whitted_settings(doc)) } else { None };
         // By field, as in `schedule`: `gi` is borrowed mutably beside the images.
         let gpu = self.gpu.as_ref().and_then(|g| g.latest.as_ref()).filter(|l| l.revision == rev);
         let cpu = self.cpu.finished.as_ref().filter(|(r, _)| *r == rev).map(|(_, f)| (&f.image, doc.desc.render.spp));

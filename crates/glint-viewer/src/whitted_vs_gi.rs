@@ -46,6 +46,11 @@ impl WhittedVsGi {
         self.whitted.as_ref().filter(|(r, _)| *r == revision).map(|(_, i)| i)
     }
 
+    /// Whether `revision`'s Whitted image is neither there nor being rendered.
+    pub fn needs_whitted(&self, revision: u64) -> bool {
+        self.whitted_of(revision).is_none() && self.whitted_worker.running_revision() != Some(revision)
+    }
+
     pub fn difference_of(&self, revision: u64) -> Option<&GiDifference> {
         self.difference.as_ref().filter(|d| d.revision == revision)
     }
@@ -54,8 +59,7 @@ impl WhittedVsGi {
     /// Whitted's integrator), then the difference from `gi` (the paths of `samples` a pixel),
     /// again each time the paths have twice the samples of the last difference.
     pub fn request(&mut self, revision: u64, whitted: Option<FlatScene>, gi: Option<(&HdrImage, u32)>) {
-        let have = self.whitted_of(revision).is_some();
-        if !have && self.whitted_worker.running_revision() != Some(revision) {
+        if self.needs_whitted(revision) {
             let Some(scene) = whitted else { return };
             let started = self.whitted_worker.start(revision, move |handle| {
                 let control = RenderControl { cancel: Some(handle.cancel_flag()), ..RenderControl::default() };
@@ -68,6 +72,7 @@ impl WhittedVsGi {
             }
             return;
         }
+        // Still rendering: nothing to hold against the paths yet.
         let (Some(w), Some((gi, samples))) = (self.whitted_of(revision), gi) else { return };
         let current = self.difference_of(revision).map(|d| d.samples);
         let due = current.is_none_or(|n| samples >= 2 * n);
