@@ -75,6 +75,16 @@ pub struct GpuImage {
     pub samples: u32,
 }
 
+/// What a full render's readback is of.
+#[derive(Clone, Copy, Debug)]
+struct Finished {
+    revision: u64,
+    gpu_ms: f64,
+    /// Its batch of the revision's paths (0 for a first render) and its samples a pixel.
+    batch: u32,
+    spp: u32,
+}
+
 /// A finished render's pixels on their way to the screen.
 #[derive(Debug)]
 struct Arriving {
@@ -104,8 +114,8 @@ pub struct GpuView {
     prewarm_queue: Option<Vec<FlatScene>>,
     submitter: Worker<Result<GpuJob, GpuError>>,
     in_flight: Option<InFlight>,
-    /// The readback of a full render: its job's, with the revision, GPU time, batch and spp.
-    readback: Option<(JobReadback, u64, f64, u32, u32)>,
+    /// The readback of a full render, and what it is of.
+    readback: Option<(JobReadback, Finished)>,
     /// The path batches of the revision on screen, added up (path mode only).
     pub accumulation: Option<Accumulation>,
     /// What is on screen: (revision, preview, size, texture).
@@ -197,13 +207,13 @@ impl GpuView {
     /// Later path batches refine an image already there and do not count.
     pub fn is_busy(&self) -> bool {
         self.in_flight.as_ref().is_some_and(|f| !f.prewarm && f.batch == 0)
-            || self.readback.as_ref().is_some_and(|r| r.3 == 0)
+            || self.readback.as_ref().is_some_and(|r| r.1.batch == 0)
             || self.arriving.is_some()
     }
 
     /// Whether a later path batch is being rendered or read back.
     pub fn is_accumulating(&self) -> bool {
-        self.in_flight.as_ref().is_some_and(|f| f.batch > 0) || self.readback.as_ref().is_some_and(|r| r.3 > 0)
+        self.in_flight.as_ref().is_some_and(|f| f.batch > 0) || self.readback.as_ref().is_some_and(|r| r.1.batch > 0)
     }
 
     /// Whether the next step is found only by polling the device: a finished render's last
@@ -452,7 +462,8 @@ impl GpuView {
                 self.arriving = Some(Arriving { pixels, revision: f.revision, preview: f.preview });
             }
             if !f.preview && !superseded {
-                self.readback = Some((job.start_readback(&ctx), f.revision, ms, f.batch, f.spp));
+                let finished = Finished { revision: f.revision, gpu_ms: ms, batch: f.batch, spp: f.spp };
+                self.readback = Some((job.start_readback(&ctx), finished));
             }
             changed = true;
         }
@@ -466,19 +477,19 @@ impl GpuView {
             }
             changed = true;
         }
-        if let Some((rb, revision, ms, batch, spp)) = &mut self.readback
+        if let Some((rb, f)) = &mut self.readback
             && let Some(result) = rb.poll(&ctx)
         {
-            let (revision, ms, batch, spp, stack_size) = (*revision, *ms, *batch, *spp, rb.key().stack_size);
-            let paths = rb.key().path;
+            let (f, stack_size, paths) = (*f, rb.key().stack_size, rb.key().path);
             self.readback = None;
             match result {
                 Ok((image, counts, status)) if status != 0 || !paths => {
                     self.warning = status_warning(status, stack_size);
                     self.accumulation = None;
-                    self.latest = Some(GpuImage { revision, image, counts, status, gpu_ms: ms, samples: spp });
+                    let (revision, gpu_ms, samples) = (f.revision, f.gpu_ms, f.spp);
+                    self.latest = Some(GpuImage { revision, image, counts, status, gpu_ms, samples });
                 }
-                Ok((image, counts, status)) => self.accumulate(revision, batch, image, spp, ms, counts, status),
+                Ok((image, counts, status)) => self.accumulate(f, image, counts, status),
                 Err(e) => self.error = Some(e.to_string()),
             }
             changed = true;
@@ -487,21 +498,12 @@ impl GpuView {
     }
 
     /// Adds a path render's batch to its revision's mean, and shows the mean of more than one.
-    #[allow(clippy::too_many_arguments, reason = "one readback's fields, taken apart once")]
-    fn accumulate(
-        &mut self,
-        revision: u64,
-        batch: u32,
-        image: HdrImage,
-        spp: u32,
-        ms: f64,
-        counts: RayCounts,
-        status: u32,
-    ) {
+    fn accumulate(&mut self, f: Finished, image: HdrImage, counts: RayCounts, status: u32) {
+        let Finished { revision, gpu_ms, batch, spp } = f;
         self.warning = None;
         if batch == 0 {
-            self.accumulation = Some(Accumulation::new(revision, image, spp, ms, counts));
-        } else if !self.accumulation.as_mut().is_some_and(|a| a.add(revision, batch, &image, spp, ms, counts)) {
+            self.accumulation = Some(Accumulation::new(revision, image, spp, gpu_ms, counts));
+        } else if !self.accumulation.as_mut().is_some_and(|a| a.add(revision, batch, &image, spp, gpu_ms, counts)) {
             // A batch of an edited revision, finished after the edit: dropped.
             return;
         }
@@ -515,10 +517,9 @@ impl GpuView {
             samples: a.samples,
         });
         if batch > 0 && self.shown.is_none_or(|s| s.0 <= revision) {
-            let rgba: Vec<u8> =
-                glint_core::compare::srgb8(&a.mean).chunks_exact(3).flat_map(|p| [p[0], p[1], p[2], 255]).collect();
             let size = (a.mean.width, a.mean.height);
-            self.show_rgba(revision, false, size, &rgba);
+            let pixels = egui::ColorImage::from_rgb([size.0 as usize, size.1 as usize], &a.mean.to_srgb8());
+            self.show_image(revision, false, size, pixels);
         }
     }
 
@@ -536,12 +537,13 @@ impl GpuView {
         if self.shown.is_some_and(|s| s.0 > a.revision) {
             return;
         }
-        self.show_rgba(a.revision, a.preview, (a.pixels.width, a.pixels.height), rgba);
+        let size = (a.pixels.width, a.pixels.height);
+        let image = egui::ColorImage::from_rgba_unmultiplied([size.0 as usize, size.1 as usize], rgba);
+        self.show_image(a.revision, a.preview, size, image);
     }
 
     /// Puts sRGB pixels of `revision` on screen.
-    fn show_rgba(&mut self, revision: u64, preview: bool, size: (u32, u32), rgba: &[u8]) {
-        let image = egui::ColorImage::from_rgba_unmultiplied([size.0 as usize, size.1 as usize], rgba);
+    fn show_image(&mut self, revision: u64, preview: bool, size: (u32, u32), image: egui::ColorImage) {
         // Nearest, like the CPU view: magnified pixels stay pixels and the wipe compares like
         // with like.
         let options = egui::TextureOptions::NEAREST;

@@ -23,7 +23,7 @@ use indicatif::ProgressBar;
 use serde::{Deserialize, Serialize};
 
 use super::plan::{Bailout, Config};
-use super::sweep::{Engines, render};
+use super::sweep::{Engines, render, timed_passes};
 use crate::cli::units::ms;
 
 /// How a Whitted row's ambient term was set.
@@ -111,13 +111,11 @@ fn axes(quick: bool) -> (u32, u32, &'static [u32], &'static [u32], &'static [u32
     if quick { (64, 8, &[5], &[1], &[1, 4, 16]) } else { (1024, 16, &[2, 5], &[1, 4], &[1, 4, 16, 64]) }
 }
 
-/// Renders per scene, for the progress bar: the reference halves, the kinds and the two
-/// Whitted images they are held against, then each row's warm-up and runs.
+/// Renders per scene, for the progress bar: the reference halves, each row's warm-up and
+/// runs, and the kinds.
 pub fn renders(backends: &[Backend], runs: u32, quick: bool) -> usize {
     let (_, _, depths, spps, path_spps) = axes(quick);
-    2 + PathKind::ALL.len()
-        + 2
-        + backends.len() * (depths.len() * spps.len() * 3 + path_spps.len()) * (1 + runs as usize)
+    2 + PathKind::ALL.len() + backends.len() * (depths.len() * spps.len() * 3 + path_spps.len()) * (1 + runs as usize)
 }
 
 pub fn measure(
@@ -149,12 +147,10 @@ pub fn measure(
     let whitted = RenderSettings { integrator: Integrator::Whitted, indirect: true, ..base.clone() };
     let fit = fit_ambient(&loaded.desc, &whitted, &reference, &options)
         .with_context(|| format!("{name}: fitting the ambient term"))?;
-    let deepest = RenderSettings {
-        spp: *spps.last().expect("Whitted spp"),
-        max_depth: *depths.last().expect("Whitted depths"),
-        ..whitted.clone()
-    };
-    let kinds = split_by_kind(loaded, &paths, &deepest, &reference, reference_spp / 4, &options, bar)?;
+    // The CPU's Whitted images at the deepest, most sampled setting, as written and without the
+    // ambient, are what the split by kind holds the paths' kinds against (kept from the warm-up).
+    let deepest = (*depths.last().expect("Whitted depths"), *spps.last().expect("Whitted spp"));
+    let (mut written, mut without) = (None, None);
 
     let mut planned: Vec<(GiRow, FlatScene)> = Vec::new();
     for &backend in backends {
@@ -204,7 +200,6 @@ pub fn measure(
         epsilon_mode: base.epsilon_mode,
     };
     // A warm-up pass (the images), then timed passes over every row, as the main sweep does.
-    let mut times: Vec<Vec<Duration>> = vec![Vec::new(); planned.len()];
     for (row, flat) in &mut planned {
         bar.set_message(format!(
             "{name}: GI warm-up: {} {} {} spp",
@@ -215,19 +210,24 @@ pub fn measure(
         let warm = render(engines, flat, &config(row)).with_context(|| format!("{name}: {row:?}"))?;
         row.rmse = compare_images(&reference, &warm.image).rmse;
         bar.inc(1);
-    }
-    for pass in 1..=runs {
-        for ((row, flat), t) in planned.iter().zip(&mut times) {
-            bar.set_message(format!("{name}: GI timed pass {pass}/{runs}"));
-            t.push(render(engines, flat, &config(row)).with_context(|| format!("{name}: {row:?}"))?.time);
-            bar.inc(1);
+        if row.backend == Backend::Cpu && (row.depth, row.spp) == deepest {
+            match row.ambient {
+                Some(Ambient::AsWritten) => written = Some(warm.image),
+                Some(Ambient::Without) => without = Some(warm.image),
+                Some(Ambient::Fitted) | None => {}
+            }
         }
     }
+    let (Some(written), Some(without)) = (written, without) else {
+        anyhow::bail!("{name}: the Whitted against GI sweep has no CPU row at depth {}, {} spp", deepest.0, deepest.1)
+    };
+    let kinds = split_by_kind(loaded, &paths, [&written, &without], &reference, reference_spp / 4, &options, bar)?;
+    let jobs: Vec<(&FlatScene, Config)> = planned.iter().map(|(row, flat)| (flat, config(row))).collect();
+    let times = timed_passes(engines, &jobs, runs, bar, &format!("{name}: GI"))?;
     let rows = planned
         .into_iter()
         .zip(times)
-        .map(|((mut row, _), mut t)| {
-            t.sort();
+        .map(|((mut row, _), t)| {
             row.median = t[t.len() / 2];
             row
         })
@@ -245,12 +245,12 @@ pub fn measure(
     })
 }
 
-/// The reference's light by kind against Whitted's image at `whitted`'s settings, with the
-/// ambient as written and without.
+/// The reference's light by kind against Whitted's CPU images `written` (the ambient as
+/// written) and `without` (none).
 fn split_by_kind(
     loaded: &LoadedScene,
     paths: &RenderSettings,
-    whitted: &RenderSettings,
+    [written, without]: [&HdrImage; 2],
     reference: &HdrImage,
     spp: u32,
     options: &CpuOptions,
@@ -274,13 +274,9 @@ fn split_by_kind(
             direct = Some(image);
         }
     }
-    let written = cpu(&FlatScene::build(&loaded.desc, whitted), "Whitted, ambient as written")?;
-    let mut dark = loaded.desc.clone();
-    dark.world.ambient = Rgb([0.0; 3]);
-    let without = cpu(&FlatScene::build(&dark, whitted), "Whitted without ambient")?;
-    split.direct_rmse = rms(&minus(&without, &direct.expect("the direct kind is rendered")));
-    split.ambient_share = minus(&written, &without).mean() / paths_mean.max(f64::MIN_POSITIVE);
-    split.whitted_rmse = compare_images(reference, &written).rmse;
+    split.direct_rmse = rms(&minus(without, &direct.expect("the direct kind is rendered")));
+    split.ambient_share = minus(written, without).mean() / paths_mean.max(f64::MIN_POSITIVE);
+    split.whitted_rmse = compare_images(reference, written).rmse;
     Ok(split)
 }
 

@@ -12,7 +12,7 @@ use glint_scene::{EpsilonMode, RenderSettings, SpecularModel};
 use indicatif::ProgressBar;
 
 use super::plan::{Bailout, Config};
-use super::sweep::{Engines, SpecularRow, render, settings_for};
+use super::sweep::{Engines, SpecularRow, render, settings_for, timed_passes};
 
 /// Samples per pixel and depth of the measurement: enough work per render (16 samples of a
 /// depth-5 tree per pixel) that the timer's resolution and a frame's fixed costs do not count.
@@ -70,25 +70,16 @@ pub fn measure(
         rows.push(SpecularRow {
             model: *model,
             config: *config,
-            times: Vec::with_capacity(runs as usize),
+            times: Vec::new(),
             counts: warm.counts,
             gpu: warm.gpu,
         });
         bar.inc(1);
     }
-    for pass in 1..=runs {
-        for (row, (model, config, flat)) in rows.iter_mut().zip(&jobs) {
-            bar.set_message(format!(
-                "{name}: specular models: timed pass {pass}/{runs}: {} {}",
-                config.backend.name(),
-                model.label()
-            ));
-            row.times.push(render(engines, flat, config).with_context(|| format!("{name}: {config:?}"))?.time);
-            bar.inc(1);
-        }
-    }
-    for row in &mut rows {
-        row.times.sort();
+    let timed: Vec<(&FlatScene, Config)> = jobs.iter().map(|(_, c, f)| (f, *c)).collect();
+    let what = format!("{name}: specular models");
+    for (row, times) in rows.iter_mut().zip(timed_passes(engines, &timed, runs, bar, &what)?) {
+        row.times = times;
     }
     Ok(rows)
 }

@@ -181,6 +181,30 @@ pub fn render(engines: &mut Engines, flat: &FlatScene, config: &Config) -> anyho
     }
 }
 
+/// `runs` timed passes over `jobs` (scenes with their configurations), each job once a pass so
+/// that a load change hits every job alike, after their warm-up; each job's times, sorted. The
+/// progress bar says `what` and the job.
+pub fn timed_passes(
+    engines: &mut Engines,
+    jobs: &[(&FlatScene, Config)],
+    runs: u32,
+    bar: &ProgressBar,
+    what: &str,
+) -> anyhow::Result<Vec<Vec<Duration>>> {
+    let mut times = vec![Vec::with_capacity(runs as usize); jobs.len()];
+    for pass in 1..=runs {
+        for ((flat, c), t) in jobs.iter().zip(&mut times) {
+            bar.set_message(format!("{what}: timed pass {pass}/{runs}: {} {}", c.backend.name(), c.describe()));
+            t.push(render(engines, flat, c).with_context(|| format!("{what}: {c:?}"))?.time);
+            bar.inc(1);
+        }
+    }
+    for t in &mut times {
+        t.sort();
+    }
+    Ok(times)
+}
+
 /// Renders the reference, then every planned configuration: first a warm-up pass over all of
 /// them (it builds the GPU pipelines and gives the images), then `runs` timed passes. Passes
 /// rather than back-to-back runs of one configuration, so that a load change on a shared
@@ -236,7 +260,7 @@ pub fn run_scene(
         rows.push(Row {
             config: *c,
             groups: p.groups.clone(),
-            times: Vec::with_capacity(runs as usize),
+            times: Vec::new(),
             counts: warm.counts,
             gpu: warm.gpu,
             errors: compare_images(&ref_image, &warm.image),
@@ -251,16 +275,9 @@ pub fn run_scene(
         images.push(warm.image);
         bar.inc(1);
     }
-    for pass in 1..=runs {
-        for (row, flat) in rows.iter_mut().zip(&scenes) {
-            let c = row.config;
-            bar.set_message(format!("{name}: timed pass {pass}/{runs}: {} {}", c.backend.name(), c.describe()));
-            row.times.push(render(engines, flat, &c).with_context(|| format!("{name}: {c:?}"))?.time);
-            bar.inc(1);
-        }
-    }
-    for row in &mut rows {
-        row.times.sort();
+    let jobs: Vec<(&FlatScene, Config)> = scenes.iter().zip(&rows).map(|(f, r)| (f, r.config)).collect();
+    for (row, times) in rows.iter_mut().zip(timed_passes(engines, &jobs, runs, bar, name)?) {
+        row.times = times;
     }
     let index: HashMap<Config, usize> = rows.iter().enumerate().map(|(i, r)| (r.config, i)).collect();
     for i in 0..rows.len() {
