@@ -25,19 +25,34 @@ fn model(relative: &str) -> Option<PathBuf> {
     Some(path)
 }
 
+/// With the encodings and the slips of real exporters: UTF-16 (box_UTF16BE), Windows-1252
+/// material names (regr01), Blender's nameless material (empty_mat), a missing MTL
+/// (cube_mtllib_after_g names `.mat`).
 #[test]
 fn obj_models_render_on_both_backends_and_agree() {
     let dir = TempDir::new("models");
-    for name in ["OBJ/WusonOBJ.obj", "OBJ/spider.obj", "OBJ/cube_usemtl.obj"] {
+    for name in [
+        "OBJ/WusonOBJ.obj",
+        "OBJ/spider.obj",
+        "OBJ/cube_usemtl.obj",
+        "OBJ/box_UTF16BE.obj",
+        "OBJ/regr01.obj",
+        "OBJ/empty_mat.obj",
+        "OBJ/cube_mtllib_after_g.obj",
+    ] {
         let Some(path) = model(name) else { return };
         render_model(&dir, name, &path, &[]);
     }
 }
 
 #[test]
-fn a_model_with_points_only_or_unreadable_text_is_a_clear_error() {
+fn a_model_with_points_only_or_of_gltf_1_is_a_clear_error() {
     let dir = TempDir::new("models-bad");
-    for (name, expected) in [("OBJ/point_cloud.obj", "no triangles"), ("OBJ/box_UTF16BE.obj", "invalid OBJ")] {
+    for (name, expected) in [
+        ("OBJ/point_cloud.obj", "no triangles"),
+        ("glTF/TwoBoxes/TwoBoxes.gltf", "asset.version is `1.0`: Glint reads glTF 2.0 only"),
+        ("glTF/BoxTextured-glTF-Binary/BoxTextured.glb", "the GLB header's version is 1"),
+    ] {
         let Some(path) = model(name) else { return };
         let run = glint(&dir, ["render".into(), path.into_os_string(), "-o".into(), dir.join("x.png").into()]);
         let stderr = text(&run.stderr);

@@ -4,6 +4,7 @@
 pub mod gltf;
 mod ground;
 pub mod obj;
+mod obj_text;
 
 use std::path::Path;
 

@@ -7,6 +7,7 @@ use crate::texture::decode_texture;
 use std::path::Path;
 use std::sync::Arc;
 
+use super::obj_text;
 use super::widen;
 use crate::uri::{MAX_RESOURCE_BYTES, UriError, resolve_uri};
 use glint_scene::{ColorSpace, FieldIssue, MaterialDesc, MeshDesc, Rgb, TextureDesc, TextureImage};
@@ -32,42 +33,64 @@ pub const DEFAULT_MATERIAL: &str = "obj-default";
 
 /// Loads `path`: faces triangulated (fans), one mesh per OBJ object or group and material.
 pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
-    let bytes = std::fs::read(path).map_err(|error| ObjError::Io { file: path.to_owned(), error })?;
+    let raw = std::fs::read(path).map_err(|error| ObjError::Io { file: path.to_owned(), error })?;
+    let parse_error = |line, reason| ObjError::Parse { file: path.to_owned(), line, reason };
+    let mut out = Model::default();
+    let (bytes, encoding) = obj_text::decode(&raw).map_err(|reason| parse_error(None, reason))?;
+    out.warnings.extend(encoding.map(|e| encoding_warning("encoding".into(), e)));
+    let uses = obj_text::material_uses(&bytes);
+    let bytes = obj_text::name_the_nameless(&bytes, "usemtl");
     // Checked as the file wrote them: after a node transform one bad number spreads to every
     // component, and the line is lost.
     if let Some((line, reason)) = non_finite_number(&bytes) {
-        return Err(ObjError::Parse { file: path.to_owned(), line: Some(line), reason });
+        return Err(parse_error(Some(line), reason));
     }
     let options = tobj::LoadOptions { triangulate: true, single_index: true, ..Default::default() };
     let mtl_error = std::cell::RefCell::new(None);
     let mtl_problem = std::cell::RefCell::new(None);
-    let (models, materials) = tobj::load_obj_buf(&mut bytes.as_slice(), &options, |mtl| {
+    let mtl_warnings = std::cell::RefCell::new(Vec::new());
+    let (models, materials) = tobj::load_obj_buf(&mut bytes.as_ref(), &options, |mtl| {
         let uri = mtl.to_string_lossy();
-        match resolve_uri(path, &uri, MAX_RESOURCE_BYTES) {
-            Ok(text) => match expand_colours(&text) {
-                Ok(text) => tobj::load_mtl_buf(&mut text.as_slice()),
-                Err(problem) => {
-                    *mtl_problem.borrow_mut() = Some(format!("{uri}:{problem}"));
-                    Err(tobj::LoadError::MaterialParseError)
-                }
-            },
+        let text = match resolve_uri(path, &uri, MAX_RESOURCE_BYTES) {
+            Ok(text) => text,
             Err(error) => {
                 *mtl_error.borrow_mut() = Some(error);
-                Err(tobj::LoadError::OpenFileFailed)
+                return Err(tobj::LoadError::OpenFileFailed);
             }
-        }
+        };
+        let decoded = match obj_text::decode(&text) {
+            Ok((text, encoding)) => {
+                mtl_warnings.borrow_mut().extend(encoding.map(|e| encoding_warning(format!("mtllib `{uri}`"), e)));
+                expand_colours(&obj_text::name_the_nameless(&text, "newmtl"))
+            }
+            Err(problem) => Err(problem),
+        };
+        decoded.map_or_else(
+            |problem| {
+                *mtl_problem.borrow_mut() = Some(format!("{uri}:{problem}"));
+                Err(tobj::LoadError::MaterialParseError)
+            },
+            |text| tobj::load_mtl_buf(&mut text.as_slice()),
+        )
     })
-    .map_err(|e| ObjError::Parse {
-        file: path.to_owned(),
-        line: failing_line(&bytes, &options),
-        reason: e.to_string(),
-    })?;
-    if let Some(error) = mtl_error.into_inner() {
-        return Err(ObjError::Uri { file: path.to_owned(), error });
-    }
-    let mut out = Model::default();
+    .map_err(|e| parse_error(failing_line(&bytes, &options), e.to_string()))?;
+    out.warnings.extend(mtl_warnings.into_inner());
+    let missing_mtl = match mtl_error.into_inner() {
+        // A missing MTL leaves the geometry readable, as in Assimp and Blender; a reference
+        // outside the model's folder or too large stays an error.
+        Some(UriError::Io { uri, path: mtl, error }) if error.kind() == std::io::ErrorKind::NotFound => {
+            out.warnings.push(FieldIssue {
+                field: "mtllib".into(),
+                problem: format!("`{uri}` ({}) does not exist; faces use `{DEFAULT_MATERIAL}`", mtl.display()),
+            });
+            true
+        }
+        Some(error) => return Err(ObjError::Uri { file: path.to_owned(), error }),
+        None => false,
+    };
     let materials = match materials {
         Ok(m) => m,
+        Err(_) if missing_mtl => Vec::new(),
         Err(e) => {
             let reason = mtl_problem.into_inner().unwrap_or_else(|| e.to_string());
             out.warnings.push(FieldIssue {
@@ -77,7 +100,11 @@ pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
             Vec::new()
         }
     };
-    let names: Vec<String> = materials.iter().map(|m| material_name(&m.name)).collect();
+    if !missing_mtl {
+        out.warnings.extend(unknown_materials(&uses, &materials));
+    }
+    let names: Vec<String> =
+        materials.iter().map(|m| material_name(if m.name == obj_text::NAMELESS { "" } else { &m.name })).collect();
     let mut images = Images::default();
     for (m, name) in materials.iter().zip(&names) {
         let mut material = map_material(m, name, &mut out.warnings);
@@ -133,6 +160,32 @@ pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
         return Err(ObjError::Empty { file: path.to_owned() });
     }
     Ok(out)
+}
+
+/// The warning that a file was read from another encoding than UTF-8.
+fn encoding_warning(field: String, encoding: &str) -> FieldIssue {
+    FieldIssue { field, problem: format!("not UTF-8: read as {encoding}") }
+}
+
+/// One warning per `usemtl` that names no material of the MTL (its faces take the default),
+/// at the first line naming it.
+fn unknown_materials(uses: &[obj_text::UseMaterial], materials: &[tobj::Material]) -> Vec<FieldIssue> {
+    let mut warned: Vec<&str> = Vec::new();
+    let mut out = Vec::new();
+    for used in uses {
+        let name = if used.name.is_empty() { obj_text::NAMELESS } else { &used.name };
+        if warned.contains(&name) || materials.iter().any(|m| m.name == name) {
+            continue;
+        }
+        warned.push(name);
+        let problem = if used.name.is_empty() {
+            format!("names no material and no MTL file has a nameless one; its faces use `{DEFAULT_MATERIAL}`")
+        } else {
+            format!("`{}` is in no MTL file; its faces use `{DEFAULT_MATERIAL}`", used.name)
+        };
+        out.push(FieldIssue { field: format!("line {}: usemtl", used.line), problem });
+    }
+    out
 }
 
 /// MTL text with every `Ka`/`Kd`/`Ks`/`Ke r` line written as `… r r r`: the MTL format lets g
@@ -455,6 +508,44 @@ mod tests {
         assert_eq!(plain.meshes.len(), 1);
         assert_eq!(plain.meshes[0].triangles.len(), 2, "a quad is two triangles");
         assert_eq!(plain.meshes[0].material, DEFAULT_MATERIAL);
+    }
+
+    #[test]
+    fn a_missing_mtl_an_unknown_or_empty_usemtl_and_windows_1252_names_load_with_warnings() {
+        let dir = tempfile::tempdir().unwrap();
+        let warnings = |m: &Model| m.warnings.iter().map(|w| format!("{}: {}", w.field, w.problem)).collect::<Vec<_>>();
+        let missing = write(dir.path(), "a.obj", &format!("mtllib gone.mtl\n{QUAD}usemtl red\nf 1 2 3\n"));
+        let model = load_obj(&missing).expect("the geometry loads without its MTL");
+        assert_eq!(model.meshes.len(), 1, "one material throughout: one mesh");
+        assert_eq!(model.meshes[0].material, DEFAULT_MATERIAL);
+        assert_eq!(model.meshes[0].triangles.len(), 3);
+        assert_eq!(warnings(&model).len(), 1, "{:?}", warnings(&model));
+        assert!(warnings(&model)[0].contains("mtllib: `gone.mtl`") && warnings(&model)[0].contains("does not exist"));
+
+        // Terraindæk in Windows-1252 in both files (Assimp's regr01.obj), and Blender's
+        // nameless material: a bare newmtl and usemtl (its empty_mat.obj).
+        std::fs::write(dir.path().join("w.mtl"), b"newmtl Terraind\xe6k\nKd 1 0 0\nnewmtl \nKd 0 1 0\n").unwrap();
+        let mut obj = format!("mtllib w.mtl\n{QUAD}").into_bytes();
+        obj.extend_from_slice(b"usemtl Terraind\xe6k\nf 1 2 3\nusemtl \nf 1 3 4\nusemtl blue\nf 2 3 4\n");
+        std::fs::write(dir.path().join("w.obj"), obj).unwrap();
+        let model = load_obj(&dir.path().join("w.obj")).expect("loads");
+        let materials: Vec<&str> = model.meshes.iter().map(|m| m.material.as_str()).collect();
+        assert_eq!(materials, [DEFAULT_MATERIAL, "Terraindæk", "unnamed", DEFAULT_MATERIAL]);
+        assert_eq!(model.materials["Terraindæk"].kd, Rgb([1.0, 0.0, 0.0]));
+        assert_eq!(model.materials["unnamed"].kd, Rgb([0.0, 1.0, 0.0]));
+        assert_eq!(
+            warnings(&model),
+            [
+                "encoding: not UTF-8: read as windows-1252",
+                "mtllib `w.mtl`: not UTF-8: read as windows-1252",
+                "line 11: usemtl: `blue` is in no MTL file; its faces use `obj-default`",
+            ]
+        );
+        let bare = write(dir.path(), "b.obj", &format!("{QUAD}usemtl\nf 1 2 3\n"));
+        assert_eq!(
+            warnings(&load_obj(&bare).expect("loads")),
+            ["line 6: usemtl: names no material and no MTL file has a nameless one; its faces use `obj-default`"]
+        );
     }
 
     fn png(path: &Path) {

@@ -45,6 +45,11 @@ pub enum GltfError {
     #[error("{file}: not a valid glTF 2.0 file: {reason}")]
     Parse { file: PathBuf, reason: String },
     #[error(
+        "{file}: {where_} is {version}: Glint reads glTF 2.0 only (convert the file first, \
+         e.g. with Blender's importer and exporter)"
+    )]
+    Version { file: PathBuf, where_: &'static str, version: String },
+    #[error(
         "{file}: extensionsRequired[{index}] is `{extension}`, which Glint does not support \
          (supported: {})", SUPPORTED_EXTENSIONS.join(", ")
     )]
@@ -228,8 +233,8 @@ fn parse(bytes: &[u8], file: &Path) -> Result<::gltf::Gltf, GltfError> {
     use ::gltf::json::camera::Type as CameraType;
     use ::gltf::json::mesh::Semantic;
     use ::gltf::json::validation::Checked;
-    let ::gltf::Gltf { document, blob } =
-        ::gltf::Gltf::from_slice_without_validation(bytes).map_err(|e| parse_error(file, e))?;
+    let ::gltf::Gltf { document, blob } = ::gltf::Gltf::from_slice_without_validation(bytes)
+        .map_err(|e| other_version(bytes, file).unwrap_or_else(|| parse_error(file, e)))?;
     let json = document.into_json();
     let invalid = |path: String, problem: &str| GltfError::At {
         file: file.to_owned(),
@@ -275,6 +280,25 @@ fn parse(bytes: &[u8], file: &Path) -> Result<::gltf::Gltf, GltfError> {
     }
     let document = ::gltf::Document::from_json(json).map_err(|e| parse_error(file, e))?;
     Ok(::gltf::Gltf { document, blob })
+}
+
+/// A file the glTF 2.0 parser refused that says it is another version of glTF (a GLB header's
+/// version, or the JSON's `asset.version`, a string in 2.0 and sometimes a number in 1.0):
+/// glTF 1.0 keeps its collections in objects keyed by id, which the parser reports only as
+/// "expected a sequence".
+fn other_version(bytes: &[u8], file: &Path) -> Option<GltfError> {
+    let error = |where_, version: String| Some(GltfError::Version { file: file.to_owned(), where_, version });
+    if let Some(header) = bytes.strip_prefix(b"glTF") {
+        let version = u32::from_le_bytes(header.get(..4)?.try_into().ok()?);
+        return if version == 2 { None } else { error("the GLB header's version", version.to_string()) };
+    }
+    let json: serde_json::Value = serde_json::from_slice(bytes).ok()?;
+    let version = match &json["asset"]["version"] {
+        serde_json::Value::String(v) => v.clone(),
+        serde_json::Value::Number(v) => v.to_string(),
+        _ => return None,
+    };
+    if version.starts_with("2.") { None } else { error("asset.version", format!("`{version}`")) }
 }
 
 /// The gltf crate's error with the JSON paths it names; an unsupported required extension
@@ -512,6 +536,24 @@ mod tests {
 
     fn close(a: [f64; 3], b: [f64; 3]) -> bool {
         a.iter().zip(b).all(|(x, y)| (x - y).abs() < 1e-12)
+    }
+
+    #[test]
+    fn a_gltf_1_file_is_refused_naming_its_version() {
+        let file = Path::new("old.gltf");
+        for (text, expected) in [
+            (r#"{"asset": {"version": "1.0"}, "accessors": {"a": {}}}"#, "asset.version is `1.0`"),
+            (r#"{"asset": {"version": 1}, "meshes": {"m": {}}}"#, "asset.version is `1`"),
+        ] {
+            let message = parse(text.as_bytes(), file).unwrap_err().to_string();
+            assert!(message.contains(expected) && message.contains("glTF 2.0 only"), "{message}");
+        }
+        let glb = [b"glTF".as_slice(), &1u32.to_le_bytes(), &20u32.to_le_bytes(), &[0; 8]].concat();
+        let message = parse(&glb, file).unwrap_err().to_string();
+        assert!(message.contains("the GLB header's version is 1"), "{message}");
+        let broken = r#"{"asset": {"version": "2.0"}, "accessors": {"a": {}}}"#;
+        let message = parse(broken.as_bytes(), file).unwrap_err().to_string();
+        assert!(message.contains("not a valid glTF 2.0 file"), "a 2.0 file's own error: {message}");
     }
 
     #[test]

@@ -1,0 +1,122 @@
+//! OBJ and MTL files as the UTF-8 text `tobj` reads. Real files come in the encoding of the
+//! tool that wrote them: UTF-16 with a byte order mark, or a Windows code page with accented
+//! material names (ISO-8859-1 is its subset). Assimp and Blender read those; so does Glint,
+//! saying which encoding it took. Every line keeps its number, so errors still name lines.
+
+use std::borrow::Cow;
+
+/// `bytes` as UTF-8 text, and the encoding it was read from when that was not UTF-8 (for a
+/// warning). A byte order mark decides (UTF-8, UTF-16LE or UTF-16BE, the mark removed);
+/// without one, text that is not UTF-8 is read as Windows-1252, which decodes every byte.
+/// Malformed UTF-16 is an error.
+pub(super) fn decode(bytes: &[u8]) -> Result<(Cow<'_, [u8]>, Option<&'static str>), String> {
+    if let Some((encoding, mark)) = encoding_rs::Encoding::for_bom(bytes) {
+        let body = &bytes[mark..];
+        if encoding == encoding_rs::UTF_8 {
+            return Ok((Cow::Borrowed(body), None));
+        }
+        let (text, malformed) = encoding.decode_without_bom_handling(body);
+        if malformed {
+            return Err(format!("malformed {} text (its byte order mark says {0})", encoding.name()));
+        }
+        return Ok((Cow::Owned(text.into_owned().into_bytes()), Some(encoding.name())));
+    }
+    if std::str::from_utf8(bytes).is_ok() {
+        return Ok((Cow::Borrowed(bytes), None));
+    }
+    let encoding = encoding_rs::WINDOWS_1252;
+    let (text, _) = encoding.decode_without_bom_handling(bytes);
+    Ok((Cow::Owned(text.into_owned().into_bytes()), Some(encoding.name())))
+}
+
+/// The name Glint gives a material that `newmtl` and `usemtl` leave nameless (Blender writes
+/// both for an unnamed material); tobj refuses the bare statements, Assimp pairs them.
+pub(super) const NAMELESS: &str = "\u{0}nameless";
+
+/// A `usemtl` statement as the file wrote it: its line (1-based) and the name it gives, empty
+/// when it names none.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub(super) struct UseMaterial {
+    pub line: usize,
+    pub name: String,
+}
+
+/// Every `usemtl` statement of OBJ text, for the warnings about names the MTL lacks.
+pub(super) fn material_uses(text: &[u8]) -> Vec<UseMaterial> {
+    let lines = text.split(|&b| b == b'\n').enumerate();
+    lines.filter_map(|(n, raw)| statement_name(raw, "usemtl").map(|name| UseMaterial { line: n + 1, name })).collect()
+}
+
+/// OBJ or MTL text with every `keyword` statement (`usemtl`, `newmtl`) that names nothing
+/// written as naming [`NAMELESS`].
+pub(super) fn name_the_nameless<'a>(text: &'a [u8], keyword: &str) -> Cow<'a, [u8]> {
+    let bare = |raw: &[u8]| statement_name(raw, keyword).is_some_and(|name| name.is_empty());
+    if !text.split(|&b| b == b'\n').any(bare) {
+        return Cow::Borrowed(text);
+    }
+    let mut out = Vec::with_capacity(text.len() + 64);
+    for (n, raw) in text.split(|&b| b == b'\n').enumerate() {
+        if n > 0 {
+            out.push(b'\n');
+        }
+        if bare(raw) {
+            out.extend_from_slice(format!("{keyword} {NAMELESS}").as_bytes());
+        } else {
+            out.extend_from_slice(raw);
+        }
+    }
+    Cow::Owned(out)
+}
+
+/// The name a `keyword` line gives as tobj reads it (the rest of the line, trimmed), else
+/// `None`.
+fn statement_name(raw: &[u8], keyword: &str) -> Option<String> {
+    let line = std::str::from_utf8(raw).ok()?.trim();
+    let rest = line.strip_prefix(keyword)?;
+    (rest.is_empty() || rest.starts_with(char::is_whitespace)).then(|| rest.trim().to_string())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn utf16_with_a_byte_order_mark_is_decoded_and_named() {
+        let text = "v 0 0 0\nusemtl Terraindæk\n";
+        for (mark, encode, name) in [
+            (vec![0xFF, 0xFE], u16::to_le_bytes as fn(u16) -> [u8; 2], "UTF-16LE"),
+            (vec![0xFE, 0xFF], u16::to_be_bytes, "UTF-16BE"),
+        ] {
+            let bytes: Vec<u8> = mark.into_iter().chain(text.encode_utf16().flat_map(encode)).collect();
+            let (decoded, encoding) = decode(&bytes).unwrap();
+            assert_eq!((decoded.as_ref(), encoding), (text.as_bytes(), Some(name)));
+        }
+        let odd = [0xFE, 0xFF, 0xD8, 0x00, 0x00, 0x41];
+        assert!(decode(&odd).unwrap_err().contains("malformed UTF-16BE"), "an unpaired surrogate");
+    }
+
+    #[test]
+    fn utf8_is_kept_its_mark_dropped_and_other_bytes_read_as_windows_1252() {
+        let plain = "usemtl Terraindæk\n".as_bytes();
+        assert!(matches!(decode(plain).unwrap(), (Cow::Borrowed(b), None) if b == plain));
+        let marked: Vec<u8> = [0xEF, 0xBB, 0xBF].iter().chain(plain).copied().collect();
+        assert_eq!(decode(&marked).unwrap(), (Cow::Borrowed(plain), None));
+        let latin = b"usemtl Terraind\xe6k \x80\n";
+        let (decoded, encoding) = decode(latin).unwrap();
+        assert_eq!((decoded.as_ref(), encoding), ("usemtl Terraindæk €\n".as_bytes(), Some("windows-1252")));
+    }
+
+    #[test]
+    fn statements_naming_nothing_name_the_nameless_material_and_every_usemtl_is_listed() {
+        let text = b"v 0 0 0\nusemtl \nf 1 1 1\nusemtl  red \nusemtlx\nusemtl\n";
+        let out = name_the_nameless(text, "usemtl");
+        let expected = format!("v 0 0 0\nusemtl {NAMELESS}\nf 1 1 1\nusemtl  red \nusemtlx\nusemtl {NAMELESS}\n");
+        assert_eq!(std::str::from_utf8(&out).unwrap(), expected);
+        let listed: Vec<(usize, String)> = material_uses(text).into_iter().map(|u| (u.line, u.name)).collect();
+        assert_eq!(listed, [(2, String::new()), (4, "red".into()), (6, String::new())]);
+        let mtl = name_the_nameless(b"newmtl \nKd 1 1 1\n", "newmtl");
+        assert_eq!(std::str::from_utf8(&mtl).unwrap(), format!("newmtl {NAMELESS}\nKd 1 1 1\n"));
+        let named = b"usemtl red\nf 1 2 3\n";
+        assert!(matches!(name_the_nameless(named, "usemtl"), Cow::Borrowed(_)), "nothing to rewrite");
+    }
+}
