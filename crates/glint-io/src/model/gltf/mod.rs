@@ -66,8 +66,8 @@ pub fn load_gltf(path: &Path, options: &ImportOptions) -> Result<Model, GltfErro
     let file = path.to_path_buf();
     let at = |path: String, problem: String| GltfError::At { file: file.clone(), path, problem };
     let bytes = read_capped(path).map_err(|error| GltfError::Io { file: file.clone(), error })?;
-    let gltf = parse(&bytes, &file)?;
     let mut model = Model::default();
+    let gltf = parse(&bytes, &file, &mut model.warnings)?;
     for (index, extension) in gltf.extensions_required().enumerate() {
         if !SUPPORTED_EXTENSIONS.contains(&extension) {
             return Err(GltfError::RequiredExtension { file: file.clone(), index, extension: extension.to_string() });
@@ -229,13 +229,17 @@ fn read_capped(path: &Path) -> std::io::Result<Vec<u8>> {
 /// primitive's POSITION accessor exists (validation indexes the accessors with it); an image
 /// has a URI or a buffer view, and a MIME type with a buffer view; a camera has the
 /// projection its type names (`Image::source` and `Camera::projection` unwrap them).
-fn parse(bytes: &[u8], file: &Path) -> Result<::gltf::Gltf, GltfError> {
+///
+/// A POSITION accessor without the `min` and `max` the specification requires is read, with a
+/// warning, as three.js, Blender and Assimp read it: Glint bounds geometry from the positions
+/// themselves and never reads those two.
+fn parse(bytes: &[u8], file: &Path, warnings: &mut Vec<FieldIssue>) -> Result<::gltf::Gltf, GltfError> {
     use ::gltf::json::camera::Type as CameraType;
     use ::gltf::json::mesh::Semantic;
     use ::gltf::json::validation::Checked;
     let ::gltf::Gltf { document, blob } = ::gltf::Gltf::from_slice_without_validation(bytes)
         .map_err(|e| other_version(bytes, file).unwrap_or_else(|| parse_error(file, e)))?;
-    let json = document.into_json();
+    let mut json = document.into_json();
     let invalid = |path: String, problem: &str| GltfError::At {
         file: file.to_owned(),
         path,
@@ -276,6 +280,28 @@ fn parse(bytes: &[u8], file: &Path) -> Result<::gltf::Gltf, GltfError> {
                     ),
                 });
             }
+        }
+    }
+    let positions: std::collections::BTreeSet<usize> = json
+        .meshes
+        .iter()
+        .flat_map(|mesh| &mesh.primitives)
+        .filter_map(|primitive| primitive.attributes.get(&Checked::Valid(Semantic::Positions)))
+        .map(|index| index.value())
+        .collect();
+    for index in positions {
+        let accessor = &mut json.accessors[index];
+        if accessor.min.is_none() || accessor.max.is_none() {
+            warnings.push(FieldIssue {
+                field: format!("accessors[{index}]"),
+                problem: "a POSITION accessor without min and max (glTF requires them): bounds taken from \
+                          the positions"
+                    .into(),
+            });
+            // Only validation reads them; it needs three numbers each.
+            let unread = || Some(::gltf::json::Value::from(vec![0.0; 3]));
+            accessor.min = accessor.min.take().or_else(unread);
+            accessor.max = accessor.max.take().or_else(unread);
         }
     }
     let document = ::gltf::Document::from_json(json).map_err(|e| parse_error(file, e))?;
@@ -545,14 +571,14 @@ mod tests {
             (r#"{"asset": {"version": "1.0"}, "accessors": {"a": {}}}"#, "asset.version is `1.0`"),
             (r#"{"asset": {"version": 1}, "meshes": {"m": {}}}"#, "asset.version is `1`"),
         ] {
-            let message = parse(text.as_bytes(), file).unwrap_err().to_string();
+            let message = parse(text.as_bytes(), file, &mut Vec::new()).unwrap_err().to_string();
             assert!(message.contains(expected) && message.contains("glTF 2.0 only"), "{message}");
         }
         let glb = [b"glTF".as_slice(), &1u32.to_le_bytes(), &20u32.to_le_bytes(), &[0; 8]].concat();
-        let message = parse(&glb, file).unwrap_err().to_string();
+        let message = parse(&glb, file, &mut Vec::new()).unwrap_err().to_string();
         assert!(message.contains("the GLB header's version is 1"), "{message}");
         let broken = r#"{"asset": {"version": "2.0"}, "accessors": {"a": {}}}"#;
-        let message = parse(broken.as_bytes(), file).unwrap_err().to_string();
+        let message = parse(broken.as_bytes(), file, &mut Vec::new()).unwrap_err().to_string();
         assert!(message.contains("not a valid glTF 2.0 file"), "a 2.0 file's own error: {message}");
     }
 
@@ -589,7 +615,9 @@ mod tests {
             (perspective_without_it.to_string(), "cameras[0]"),
         ] {
             let text = format!(r#"{{"asset":{{"version":"2.0"}},{json}}}"#);
-            let Err(err) = parse(text.as_bytes(), Path::new("m.gltf")) else { panic!("{path}: accepted") };
+            let Err(err) = parse(text.as_bytes(), Path::new("m.gltf"), &mut Vec::new()) else {
+                panic!("{path}: accepted")
+            };
             let err = err.to_string();
             assert!(err.contains(&format!("{path}: invalid glTF")), "{err}");
         }
@@ -598,9 +626,25 @@ mod tests {
     #[test]
     fn a_position_accessor_that_does_not_exist_is_an_error_naming_it_not_a_panic() {
         let json = br#"{"asset":{"version":"2.0"},"meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}]}"#;
-        let Err(err) = parse(json, Path::new("m.gltf")) else { panic!("a missing accessor was accepted") };
+        let Err(err) = parse(json, Path::new("m.gltf"), &mut Vec::new()) else {
+            panic!("a missing accessor was accepted")
+        };
         let err = err.to_string();
         assert!(err.contains("meshes[0].primitives[0].attributes.POSITION"), "{err}");
         assert!(err.contains("accessor 0 does not exist (the file has 0)"), "{err}");
+    }
+
+    #[test]
+    fn a_position_accessor_without_min_and_max_is_read_with_a_warning() {
+        let json = br#"{"asset":{"version":"2.0"},"buffers":[{"byteLength":36}],
+            "bufferViews":[{"buffer":0,"byteLength":36}],
+            "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","max":[1,1,0]}],
+            "meshes":[{"primitives":[{"attributes":{"POSITION":0}},{"attributes":{"POSITION":0}}]}]}"#;
+        let mut warnings = Vec::new();
+        let gltf = parse(json, Path::new("m.gltf"), &mut warnings).expect("read");
+        assert_eq!(warnings.len(), 1, "one warning for the accessor both primitives share: {warnings:?}");
+        assert_eq!(warnings[0].field, "accessors[0]");
+        let max = gltf.accessors().next().unwrap().max();
+        assert_eq!(max, Some(::gltf::json::Value::from(vec![1, 1, 0])), "the file's max is kept");
     }
 }
