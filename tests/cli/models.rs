@@ -46,9 +46,10 @@ fn obj_models_render_on_both_backends_and_agree() {
 }
 
 #[test]
-fn an_obj_with_points_only_is_a_clear_error() {
+fn an_obj_with_points_or_lines_only_is_a_clear_error() {
     let dir = TempDir::new("models-bad");
-    for (name, expected) in [("OBJ/point_cloud.obj", "no triangles"), ("OBJ/testpoints.obj", "no triangles")] {
+    for name in ["OBJ/point_cloud.obj", "OBJ/testpoints.obj", "OBJ/testline.obj"] {
+        let expected = "no triangles (points and lines are not traced)";
         let Some(path) = model(name) else { return };
         let run = glint(&dir, ["render".into(), path.into_os_string(), "-o".into(), dir.join("x.png").into()]);
         let stderr = text(&run.stderr);
@@ -57,9 +58,28 @@ fn an_obj_with_points_only_is_a_clear_error() {
     }
 }
 
+/// Faces that are concave polygons (a ring cut open, 66 vertices) and a box drawn three ways
+/// (`l` polylines, `p` points, `f` faces): a fan overlapped the ring with itself, and tobj read
+/// each polyline as a filled face, doubling the box. Neither overlaps itself now.
+#[test]
+fn concave_faces_are_cut_into_ears_and_polylines_are_not_faces() {
+    let dir = TempDir::new("models-polygons");
+    for name in ["OBJ/concave_polygon.obj", "OBJ/testmixed.obj"] {
+        let Some(path) = model(name) else { return };
+        let stderr = render_model(&dir, name, &path, &[]);
+        assert!(!stderr.contains("overlaps itself"), "{name}: {stderr}");
+    }
+    let Some(path) = model("OBJ/testmixed.obj") else { return };
+    let m = glint_io::model::load_obj(&path).expect("testmixed.obj loads");
+    let triangles: usize = m.meshes.iter().map(|mesh| mesh.triangles.len()).sum();
+    assert_eq!(triangles, 12, "six quads; the six polylines and seven points are left out");
+    assert!(m.warnings.iter().any(|w| w.problem.contains("6 polyline statement(s) left out")), "{:?}", m.warnings);
+}
+
 /// Renders `path` at 64×48 with `extra` flags on both backends (the CPU alone with
-/// `GLINT_SKIP_GPU=1`), asserting success, every pixel traced and GPU–CPU parity.
-fn render_model(dir: &TempDir, name: &str, path: &Path, extra: &[&str]) {
+/// `GLINT_SKIP_GPU=1`), asserting success, every pixel traced and GPU–CPU parity; returns
+/// what it wrote to stderr (the warnings).
+fn render_model(dir: &TempDir, name: &str, path: &Path, extra: &[&str]) -> String {
     let skip_gpu = std::env::var("GLINT_SKIP_GPU").is_ok_and(|v| v == "1");
     let out = dir.join("m.png");
     let mut args: Vec<std::ffi::OsString> = vec!["render".into(), path.as_os_str().to_owned()];
@@ -81,6 +101,7 @@ fn render_model(dir: &TempDir, name: &str, path: &Path, extra: &[&str]) {
             (cmp["flip_mean"].as_f64().unwrap(), cmp["first_hit_mismatch_percent"].as_f64().unwrap());
         assert!(flip < 0.01 && mismatch < 1.0, "{name}: FLIP {flip}, first-hit mismatch {mismatch} %");
     }
+    text(&run.stderr)
 }
 
 #[test]

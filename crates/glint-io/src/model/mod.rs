@@ -5,6 +5,7 @@ pub mod gltf;
 mod ground;
 pub mod obj;
 mod obj_text;
+mod polygon;
 
 use std::path::Path;
 

@@ -7,8 +7,8 @@ use crate::texture::decode_texture;
 use std::path::Path;
 use std::sync::Arc;
 
-use super::obj_text;
 use super::widen;
+use super::{obj_text, polygon};
 use crate::uri::{MAX_RESOURCE_BYTES, UriError, resolve_uri};
 use glint_scene::{ColorSpace, FieldIssue, MaterialDesc, MeshDesc, Rgb, TextureDesc, TextureImage};
 use glint_scene::{MaterialSource, Model};
@@ -40,12 +40,20 @@ pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
     out.warnings.extend(encoding.map(|e| encoding_warning("encoding".into(), e)));
     let uses = obj_text::material_uses(&bytes);
     let bytes = obj_text::name_the_nameless(&bytes, "usemtl");
+    let (bytes, polylines) = obj_text::without_polylines(&bytes);
+    if polylines > 0 {
+        out.warnings.push(FieldIssue {
+            field: "l".into(),
+            problem: format!("{polylines} polyline statement(s) left out: lines are not traced"),
+        });
+    }
     // Checked as the file wrote them: after a node transform one bad number spreads to every
     // component, and the line is lost.
     if let Some((line, reason)) = non_finite_number(&bytes) {
         return Err(parse_error(Some(line), reason));
     }
-    let options = tobj::LoadOptions { triangulate: true, single_index: true, ..Default::default() };
+    // Polygons come whole: `polygon::triangulate` cuts them (tobj's fans overlap on concave ones).
+    let options = tobj::LoadOptions { triangulate: false, single_index: true, ..Default::default() };
     let mtl_error = std::cell::RefCell::new(None);
     let mtl_problem = std::cell::RefCell::new(None);
     let mtl_warnings = std::cell::RefCell::new(Vec::new());
@@ -123,13 +131,13 @@ pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
     }
     for model in models {
         let mesh = &model.mesh;
-        if mesh.indices.len() < 3 {
-            continue;
-        }
         let vertices: Vec<[f64; 3]> =
             mesh.positions.chunks_exact(3).map(|p| [f64::from(p[0]), f64::from(p[1]), f64::from(p[2])]).collect();
         // tobj refuses face indices beyond the file's vertices, and validation checks again.
-        let triangles = mesh.indices.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect();
+        let triangles = triangles(&vertices, mesh, &model.name, &mut out.warnings);
+        if triangles.is_empty() {
+            continue;
+        }
         let mut normals: Option<Vec<[f64; 3]>> = (mesh.normals.len() == mesh.positions.len()).then(|| {
             mesh.normals.chunks_exact(3).map(|n| [f64::from(n[0]), f64::from(n[1]), f64::from(n[2])]).collect()
         });
@@ -160,6 +168,33 @@ pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
         return Err(ObjError::Empty { file: path.to_owned() });
     }
     Ok(out)
+}
+
+/// The mesh's faces as triangles: polygons cut by `polygon::triangulate`, points and lines
+/// left out. A polygon whose edges cross is warned once per object.
+fn triangles(vertices: &[[f64; 3]], mesh: &tobj::Mesh, object: &str, warnings: &mut Vec<FieldIssue>) -> Vec<[u32; 3]> {
+    // tobj lists no arities when every face is a triangle.
+    let arities: Vec<usize> = if mesh.face_arities.is_empty() {
+        vec![3; mesh.indices.len() / 3]
+    } else {
+        mesh.face_arities.iter().map(|&n| n as usize).collect()
+    };
+    let mut out = Vec::with_capacity(mesh.indices.len() / 3);
+    let (mut start, mut crossing) = (0, None);
+    for (face, n) in arities.into_iter().enumerate() {
+        let polygon = &mesh.indices[start..start + n];
+        start += n;
+        if n >= 3 && polygon::triangulate(vertices, polygon, &mut out) == polygon::Cut::SelfIntersecting {
+            crossing.get_or_insert((face, n));
+        }
+    }
+    if let Some((face, n)) = crossing {
+        warnings.push(FieldIssue {
+            field: format!("object `{object}`"),
+            problem: format!("face {face} (of {n} vertices) crosses itself; cut into the triangles its outline allows"),
+        });
+    }
+    out
 }
 
 /// The warning that a file was read from another encoding than UTF-8.

@@ -68,6 +68,27 @@ pub(super) fn name_the_nameless<'a>(text: &'a [u8], keyword: &str) -> Cow<'a, [u
     Cow::Owned(out)
 }
 
+/// OBJ text with its polyline statements (`l`) blanked, and how many there were: tobj reads
+/// `l a b c …` as a filled polygon (a wireframe box became a solid one), and Glint traces no
+/// lines. The lines stay, empty, so that errors still name the file's line numbers.
+pub(super) fn without_polylines(text: &[u8]) -> (Cow<'_, [u8]>, usize) {
+    let polyline = |raw: &[u8]| statement_name(raw, "l").is_some();
+    let count = text.split(|&b| b == b'\n').filter(|raw| polyline(raw)).count();
+    if count == 0 {
+        return (Cow::Borrowed(text), 0);
+    }
+    let mut out = Vec::with_capacity(text.len());
+    for (n, raw) in text.split(|&b| b == b'\n').enumerate() {
+        if n > 0 {
+            out.push(b'\n');
+        }
+        if !polyline(raw) {
+            out.extend_from_slice(raw);
+        }
+    }
+    (Cow::Owned(out), count)
+}
+
 /// The name a `keyword` line gives as tobj reads it (the rest of the line, trimmed), else
 /// `None`.
 fn statement_name(raw: &[u8], keyword: &str) -> Option<String> {
@@ -118,5 +139,12 @@ mod tests {
         assert_eq!(std::str::from_utf8(&mtl).unwrap(), format!("newmtl {NAMELESS}\nKd 1 1 1\n"));
         let named = b"usemtl red\nf 1 2 3\n";
         assert!(matches!(name_the_nameless(named, "usemtl"), Cow::Borrowed(_)), "nothing to rewrite");
+    }
+
+    #[test]
+    fn polylines_are_blanked_keeping_the_line_numbers() {
+        let (out, count) = without_polylines(b"v 0 0 0\nl 1 2 3 4\nlx 1\nf 1 2 3\r\n  l 2 3\n");
+        assert_eq!((std::str::from_utf8(&out).unwrap(), count), ("v 0 0 0\n\nlx 1\nf 1 2 3\r\n\n", 2));
+        assert!(matches!(without_polylines(b"f 1 2 3\n"), (Cow::Borrowed(_), 0)));
     }
 }
