@@ -76,6 +76,34 @@ fn concave_faces_are_cut_into_ears_and_polylines_are_not_faces() {
     assert!(m.warnings.iter().any(|w| w.problem.contains("6 polyline statement(s) left out")), "{:?}", m.warnings);
 }
 
+/// Wuson moved far from the origin: the OBJ's decimals are read as f64, and the triangles that
+/// lose their area once stored as f32 (as both tracers store vertices) are counted in a warning
+/// that names the f32 step there.
+#[test]
+fn a_model_far_from_the_origin_is_warned_of_the_triangles_f32_loses() {
+    let dir = TempDir::new("models-far");
+    let Some(path) = model("OBJ/WusonOBJ.obj") else { return };
+    let text = std::fs::read_to_string(&path).unwrap();
+    for (offset, lost) in [(1e2, false), (1e6, true)] {
+        let moved: String = text
+            .lines()
+            .map(|line| match line.strip_prefix("v ") {
+                Some(xyz) => {
+                    let p: Vec<f64> = xyz.split_whitespace().map(|c| c.parse().unwrap()).collect();
+                    format!("v {} {} {}\n", p[0] + offset, p[1] + offset, p[2] - offset)
+                }
+                None => format!("{line}\n"),
+            })
+            .collect();
+        let file = dir.join("far.obj");
+        std::fs::write(&file, moved).unwrap();
+        let stderr = render_model(&dir, "far.obj", &file, &[]);
+        let warned = stderr.contains("triangles have no area once their vertices are stored as f32");
+        assert_eq!(warned, lost, "{offset:e}: {stderr}");
+        assert!(!lost || stderr.contains("where f32 steps are 6.250e-2"), "{stderr}");
+    }
+}
+
 /// Renders `path` at 64×48 with `extra` flags on both backends (the CPU alone with
 /// `GLINT_SKIP_GPU=1`), asserting success, every pixel traced and GPU–CPU parity; returns
 /// what it wrote to stderr (the warnings).

@@ -7,7 +7,6 @@ use crate::texture::decode_texture;
 use std::path::Path;
 use std::sync::Arc;
 
-use super::widen;
 use super::{obj_text, polygon};
 use crate::uri::{MAX_RESOURCE_BYTES, UriError, resolve_uri};
 use glint_scene::{ColorSpace, FieldIssue, MaterialDesc, MeshDesc, Rgb, TextureDesc, TextureImage};
@@ -131,16 +130,14 @@ pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
     }
     for model in models {
         let mesh = &model.mesh;
-        let vertices: Vec<[f64; 3]> =
-            mesh.positions.chunks_exact(3).map(|p| [f64::from(p[0]), f64::from(p[1]), f64::from(p[2])]).collect();
+        let vertices: Vec<[f64; 3]> = mesh.positions.chunks_exact(3).map(|p| [p[0], p[1], p[2]]).collect();
         // tobj refuses face indices beyond the file's vertices, and validation checks again.
         let triangles = triangles(&vertices, mesh, &model.name, &mut out.warnings);
         if triangles.is_empty() {
             continue;
         }
-        let mut normals: Option<Vec<[f64; 3]>> = (mesh.normals.len() == mesh.positions.len()).then(|| {
-            mesh.normals.chunks_exact(3).map(|n| [f64::from(n[0]), f64::from(n[1]), f64::from(n[2])]).collect()
-        });
+        let mut normals: Option<Vec<[f64; 3]>> = (mesh.normals.len() == mesh.positions.len())
+            .then(|| mesh.normals.chunks_exact(3).map(|n| [n[0], n[1], n[2]]).collect());
         // A zero or non-finite normal cannot shade: the whole object is shaded faceted.
         let unusable =
             |n: &[f64; 3]| !(n.iter().all(|c| c.is_finite()) && n.iter().map(|c| c * c).sum::<f64>() > 1e-24);
@@ -154,7 +151,7 @@ pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
         // OBJ's v grows upwards from the image's bottom row; glTF's (and Glint's) downwards
         // from the top row.
         let uvs = (mesh.texcoords.len() / 2 == vertices.len() && !mesh.texcoords.is_empty())
-            .then(|| mesh.texcoords.chunks_exact(2).map(|t| [widen(t[0]), 1.0 - widen(t[1])]).collect::<Vec<_>>());
+            .then(|| mesh.texcoords.chunks_exact(2).map(|t| [t[0], 1.0 - t[1]]).collect::<Vec<_>>());
         let material = match mesh.material_id.and_then(|i| names.get(i)) {
             Some(name) => name.clone(),
             None => {
@@ -264,8 +261,9 @@ fn expand_colours(text: &[u8]) -> Result<Vec<u8>, String> {
 }
 
 /// The first `v`, `vt` or `vn` line (1-based) holding a number that is not a finite f32
-/// (`nan`, `inf`, or a decimal beyond f32's range, which tobj reads as infinite), and what is
-/// wrong with it. Words that are not numbers are left to tobj, which refuses them.
+/// (`nan`, `inf`, or a decimal beyond f32's range, which the GPU tracer cannot hold even after
+/// rebasing), and what is wrong with it. Words that are not numbers are left to tobj, which
+/// refuses them.
 fn non_finite_number(bytes: &[u8]) -> Option<(usize, String)> {
     for (n, raw) in bytes.split(|&b| b == b'\n').enumerate() {
         let Ok(line) = std::str::from_utf8(raw) else { continue };
@@ -369,14 +367,14 @@ fn default_material() -> MaterialDesc {
     MaterialDesc { ka: Rgb::splat(0.8), kd: Rgb::splat(0.8), ks: Rgb::splat(0.0), ..MaterialDesc::default() }
 }
 
-fn rgb(c: [f32; 3]) -> Rgb {
-    Rgb(c.map(widen))
+fn rgb(c: [f64; 3]) -> Rgb {
+    Rgb(c)
 }
 
 /// The MTL statements `map_material` reads, as the file wrote them (absent ones left out).
 fn source(m: &tobj::Material) -> MaterialSource {
-    let colour = |c: Option<[f32; 3]>| c.map(|c| c.map(widen).to_vec());
-    let number = |x: Option<f32>| x.map(|x| vec![widen(x)]);
+    let colour = |c: Option<[f64; 3]>| c.map(|c| c.to_vec());
+    let number = |x: Option<f64>| x.map(|x| vec![x]);
     let fields = [
         ("Ka", colour(m.ambient)),
         ("Kd", colour(m.diffuse)),
@@ -400,7 +398,7 @@ fn map_material(m: &tobj::Material, name: &str, warnings: &mut Vec<FieldIssue>) 
     let mut warn = |field: &str, problem: String| {
         warnings.push(FieldIssue { field: format!("materials.{name}.{field}"), problem });
     };
-    let transmission = Rgb::splat(1.0 - widen(m.dissolve.unwrap_or(1.0)).clamp(0.0, 1.0));
+    let transmission = Rgb::splat(1.0 - m.dissolve.unwrap_or(1.0).clamp(0.0, 1.0));
     let (ks_local, kr, kt) = match illum {
         0 | 1 => (Rgb::splat(0.0), Rgb::splat(0.0), Rgb::splat(0.0)),
         2 => (ks, Rgb::splat(0.0), Rgb::splat(0.0)),
@@ -415,7 +413,7 @@ fn map_material(m: &tobj::Material, name: &str, warnings: &mut Vec<FieldIssue>) 
             (ks, Rgb::splat(0.0), Rgb::splat(0.0))
         }
     };
-    let ior = match m.optical_density.map(widen) {
+    let ior = match m.optical_density {
         Some(ni) if (1.0..=glint_scene::MAX_IOR).contains(&ni) => ni,
         Some(ni) => {
             warn("ior", format!("Ni {ni} is outside [1, {}]; using 1.5", glint_scene::MAX_IOR));
@@ -423,7 +421,7 @@ fn map_material(m: &tobj::Material, name: &str, warnings: &mut Vec<FieldIssue>) 
         }
         None => 1.5,
     };
-    let shininess = widen(m.shininess.unwrap_or(0.0)).clamp(0.0, glint_scene::MAX_SHININESS);
+    let shininess = m.shininess.unwrap_or(0.0).clamp(0.0, glint_scene::MAX_SHININESS);
     MaterialDesc {
         ka: m.ambient.map_or(kd, rgb),
         kd,

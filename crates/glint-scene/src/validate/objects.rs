@@ -143,18 +143,72 @@ fn validate_mesh(path: &str, mesh: &MeshDesc, r: &mut Report) {
             );
         }
     }
-    let degenerate = triangles
-        .iter()
-        .filter(|t| t.iter().all(|&k| (k as usize) < n))
-        .filter(|t| {
-            let [a, b, c] = t.map(|k| vertices[k as usize]);
-            norm(cross(sub(b, a), sub(c, a))) == 0.0
-        })
-        .count();
+    // Both tracers store vertices as f32: far from the origin, where f32 steps grow past a
+    // model's triangles, a triangle with area in the file has none as stored.
+    let stored = |p: [f64; 3]| p.map(|c| f64::from(c as f32));
+    let area = |[a, b, c]: [[f64; 3]; 3]| norm(cross(sub(b, a), sub(c, a)));
+    let (mut degenerate, mut rounded_flat) = (0, 0);
+    for t in triangles.iter().filter(|t| t.iter().all(|&k| (k as usize) < n)) {
+        let corners = t.map(|k| vertices[k as usize]);
+        if area(corners) == 0.0 {
+            degenerate += 1;
+        } else if area(corners.map(stored)) == 0.0 {
+            rounded_flat += 1;
+        }
+    }
     if degenerate > 0 {
         r.warn(
             format!("{path}.triangles"),
             format!("{degenerate} degenerate (zero-area) triangles; they are never hit"),
+        );
+    }
+    if rounded_flat > 0 {
+        let reach = vertices.iter().flatten().fold(0.0f64, |m, c| m.max(c.abs()));
+        let step = f64::from((reach as f32).next_up()) - f64::from(reach as f32);
+        r.warn(
+            format!("{path}.vertices"),
+            format!(
+                "{rounded_flat} triangles have no area once their vertices are stored as f32, as both \
+                 tracers store them (coordinates reach {reach:.3e}, where f32 steps are {step:.3e}): they \
+                 are never hit; move the geometry nearer the origin"
+            ),
+        );
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn warnings(offset: f64) -> Vec<String> {
+        // A triangle of 1e-3 sides, and one of zero area.
+        let vertices = [[0.0, 0.0, 0.0], [1e-3, 0.0, 0.0], [0.0, 1e-3, 0.0], [2e-3, 0.0, 0.0]]
+            .map(|v| v.map(|c| c + offset))
+            .to_vec();
+        let mesh = MeshDesc {
+            vertices,
+            triangles: vec![[0, 1, 2], [0, 1, 3]],
+            normals: None,
+            uvs: None,
+            material: "m".into(),
+            name: String::new(),
+        };
+        let mut report = Report::default();
+        validate_mesh("m", &mesh, &mut report);
+        assert!(report.errors.is_empty(), "{:?}", report.errors);
+        report.warnings.into_iter().map(|w| format!("{}: {}", w.field, w.problem)).collect()
+    }
+
+    #[test]
+    fn a_triangle_that_loses_its_area_in_f32_is_warned_with_the_cause() {
+        assert_eq!(warnings(0.0), ["m.triangles: 1 degenerate (zero-area) triangles; they are never hit"]);
+        // At 1e5 an f32 step is 7.8e-3, more than the triangle's sides.
+        let far = warnings(1e5);
+        assert_eq!(far.len(), 2, "{far:?}");
+        assert!(
+            far[1].starts_with("m.vertices: 1 triangles have no area once their vertices are stored as f32")
+                && far[1].contains("coordinates reach 1.000e5, where f32 steps are 7.812e-3"),
+            "{far:?}"
         );
     }
 }
