@@ -7,6 +7,7 @@ use std::process::ExitCode;
 use clap::Parser;
 
 fn main() -> ExitCode {
+    quiet_device_select_without_a_session();
     env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("warn"))
         .format_timestamp_millis()
         .init();
@@ -23,5 +24,22 @@ fn main() -> ExitCode {
             eprintln!("error: {e:#}");
             ExitCode::FAILURE
         }
+    }
+}
+
+/// Mesa's device-select layer (an implicit Vulkan layer) connects to a Wayland display to rank
+/// the GPUs. Without `XDG_RUNTIME_DIR` (a headless server, a batch job, a Slurm array task)
+/// libwayland then prints "error: XDG_RUNTIME_DIR is invalid or not set" twice for every render,
+/// though nothing failed. Glint picks its adapter itself (`--adapter`), so there the layer is
+/// turned off, unless the user asks for it (`MESA_VK_DEVICE_SELECT`) or has decided already.
+fn quiet_device_select_without_a_session() {
+    let set = |name| std::env::var_os(name).is_some_and(|v| !v.is_empty());
+    if set("XDG_RUNTIME_DIR") || set("MESA_VK_DEVICE_SELECT") || std::env::var_os("NODEVICE_SELECT").is_some() {
+        return;
+    }
+    #[allow(unsafe_code, reason = "the first statement of main: no other thread reads the environment yet")]
+    // SAFETY: single-threaded here (see the allowance's reason).
+    unsafe {
+        std::env::set_var("NODEVICE_SELECT", "1");
     }
 }

@@ -1,5 +1,6 @@
-//! The device suite's scripts (issue 31) where no hardware GPU is: the bundle's size check, and
-//! the suite refusing a software adapter instead of passing lavapipe off as the hardware.
+//! The device suite's scripts (issue 31) where no hardware GPU is: the bundle's size check, the
+//! suite refusing a software adapter instead of passing lavapipe off as the hardware, and the
+//! adapter listing it reads, quiet on a headless machine.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -70,4 +71,36 @@ fn the_device_suite_refuses_a_software_adapter_without_the_rehearsal_flag() {
     assert_eq!(adapter.expect("the adapter check")["status"], "fail");
     let md = std::fs::read_to_string(out.join("device-suite.md")).expect("the Markdown summary");
     assert!(md.contains("| hardware adapter | fail |"), "{md}");
+}
+
+/// `glint adapters --json` is what the suite reads; a headless machine (no desktop session, so
+/// no `XDG_RUNTIME_DIR`: a GPU server, a batch job) lists it without the "error: XDG_RUNTIME_DIR
+/// is invalid" lines Mesa's device-select layer made libwayland print on every run.
+#[test]
+fn adapters_are_listed_as_json_without_display_errors_on_a_headless_machine() {
+    if std::env::var("GLINT_SKIP_GPU").is_ok_and(|v| v == "1") {
+        eprintln!("GLINT_SKIP_GPU=1: skipping the adapter listing");
+        return;
+    }
+    let dir = TempDir::new("adapters-headless");
+    for args in [&["adapters", "--json"][..], &["render", "--backend", "gpu", "--width", "8", "--height", "6", "-q"]] {
+        let o = Command::new(BIN)
+            .args(args)
+            .current_dir(&dir)
+            .env_remove("XDG_RUNTIME_DIR")
+            .env_remove("WAYLAND_DISPLAY")
+            .env_remove("NODEVICE_SELECT")
+            .output()
+            .expect("run glint");
+        assert!(o.status.success(), "glint {args:?}: {}", text(&o));
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert!(!stderr.contains("XDG_RUNTIME_DIR") && !stderr.contains("error"), "glint {args:?}: {stderr}");
+        if args[0] == "adapters" {
+            let adapters: serde_json::Value = serde_json::from_slice(&o.stdout).expect("JSON");
+            let first = &adapters.as_array().expect("a list")[0];
+            for key in ["name", "backend", "device_type", "driver", "software"] {
+                assert!(!first[key].is_null(), "{key} missing: {first}");
+            }
+        }
+    }
 }
