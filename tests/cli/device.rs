@@ -71,6 +71,11 @@ fn the_device_suite_refuses_a_software_adapter_without_the_rehearsal_flag() {
     assert_eq!(adapter.expect("the adapter check")["status"], "fail");
     let md = std::fs::read_to_string(out.join("device-suite.md")).expect("the Markdown summary");
     assert!(md.contains("| hardware adapter | fail |"), "{md}");
+    // Why, for the next attempt: this machine has no NVIDIA GPU at all.
+    assert!(md.contains("No NVIDIA GPU is visible") && md.contains("- Driver: no nvidia-smi listing"), "{md}");
+    assert!(summary["driver"]["vulkan_manifests"].as_array().is_some_and(|m| !m.is_empty()), "{summary}");
+    let log = std::fs::read_to_string(out.join("device-suite.log")).expect("the log");
+    assert!(log.contains("the Vulkan loader's report"), "{log}");
 }
 
 /// `glint adapters --json` is what the suite reads; a headless machine (no desktop session, so
