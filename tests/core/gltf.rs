@@ -187,6 +187,75 @@ fn the_hierarchy_composes_in_f64_and_a_mirror_keeps_faces_outward() {
     assert_eq!(mesh.normals.as_ref().unwrap()[0], [0.0, 0.0, 1.0], "the normal still points +z, unit length");
 }
 
+/// Morph targets blend by the node's weights, else the mesh's (glTF 2.0 §3.7.2.2); without
+/// weights, or at zero, the base shape stands.
+#[test]
+fn morph_targets_take_the_node_weights_else_the_meshes() {
+    let dir = TempDir::new("gltf-morph");
+    let mut f = Fixture::quad();
+    // Target 0 lifts every vertex by 1 along z and tilts the normals to +x; target 1 moves x.
+    let lift = f.push_f32(&[0., 0., 1., 0., 0., 1., 0., 0., 1., 0., 0., 1.]);
+    let tilt = f.push_f32(&[1., 0., -1., 1., 0., -1., 1., 0., -1., 1., 0., -1.]);
+    let slide = f.push_f32(&[1., 0., 0., 1., 0., 0., 1., 0., 0., 1., 0., 0.]);
+    let accessors = f.json["accessors"].as_array_mut().unwrap();
+    for view in [lift, tilt, slide] {
+        accessors.push(json!({ "bufferView": view, "componentType": 5126, "count": 4, "type": "VEC3",
+                               "min": [0.0, 0.0, -1.0], "max": [1.0, 0.0, 1.0] }));
+    }
+    f.json["meshes"][0]["primitives"][0]["targets"] = json!([{ "POSITION": 3, "NORMAL": 4 }, { "POSITION": 5 }]);
+    f.json["meshes"][0]["weights"] = json!([0.5, 0.0]);
+    let m = load(&f.write_gltf(&dir, "mesh-weights", BufferAt::DataUri));
+    assert_eq!(m.meshes[0].vertices[2], [1.0, 1.0, 0.5], "lifted by half");
+    let n = m.meshes[0].normals.as_ref().unwrap()[0];
+    let h = std::f64::consts::FRAC_1_SQRT_2;
+    assert!(close(n[0], h) && close(n[2], h), "(0, 0, 1) + ½(1, 0, −1), normalised: {n:?}");
+    f.json["nodes"][0]["weights"] = json!([0.25, 2.0]);
+    let m = load(&f.write_gltf(&dir, "node-weights", BufferAt::DataUri));
+    assert_eq!(m.meshes[0].vertices[2], [3.0, 1.0, 0.25], "the node's weights win");
+    f.json["nodes"][0]["weights"] = json!([0.0, 0.0]);
+    assert_eq!(load(&f.write_gltf(&dir, "zero", BufferAt::DataUri)).meshes[0].vertices[2], [1.0, 1.0, 0.0]);
+}
+
+/// A skin is posed by its joints' node transforms times their inverse bind matrices, blended by
+/// each vertex's weights; the skinned node's own transform is ignored (glTF 2.0 §3.7.3.3).
+#[test]
+fn a_skin_is_posed_by_its_joints_and_ignores_its_nodes_transform() {
+    let dir = TempDir::new("gltf-skin");
+    let mut f = Fixture::quad();
+    // Vertices 0 and 1 follow joint 0, vertex 2 joint 1, vertex 3 half of each.
+    let joints = f.push_u16(&[0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0]);
+    let weights = f.push_f32(&[1., 0., 0., 0., 1., 0., 0., 0., 1., 0., 0., 0., 0.5, 0.5, 0., 0.]);
+    // Joint 1's inverse bind matrix undoes a bind pose 1 along x.
+    let ibm = f.push_f32(&[
+        1., 0., 0., 0., 0., 1., 0., 0., 0., 0., 1., 0., 0., 0., 0., 1., //
+        1., 0., 0., 0., 0., 1., 0., 0., 0., 0., 1., 0., -1., 0., 0., 1.,
+    ]);
+    let accessors = f.json["accessors"].as_array_mut().unwrap();
+    accessors.push(json!({ "bufferView": joints, "componentType": 5123, "count": 4, "type": "VEC4" }));
+    accessors.push(json!({ "bufferView": weights, "componentType": 5126, "count": 4, "type": "VEC4" }));
+    accessors.push(json!({ "bufferView": ibm, "componentType": 5126, "count": 2, "type": "MAT4" }));
+    f.json["meshes"][0]["primitives"][0]["attributes"]["JOINTS_0"] = json!(3);
+    f.json["meshes"][0]["primitives"][0]["attributes"]["WEIGHTS_0"] = json!(4);
+    f.json["skins"] = json!([{ "joints": [1, 2], "inverseBindMatrices": 5 }]);
+    f.json["scenes"] = json!([{ "nodes": [0, 1] }]);
+    f.json["nodes"] = json!([
+        { "mesh": 0, "skin": 0, "translation": [5.0, 5.0, 5.0] },
+        { "translation": [0.0, 0.0, 1.0], "children": [2] },
+        { "translation": [1.0, 0.0, 2.0] }
+    ]);
+    let m = load(&f.write_gltf(&dir, "skin", BufferAt::DataUri));
+    let v = &m.meshes[0].vertices;
+    // Joint 0 at z = 1; joint 1 at (1, 0, 3) in the world, bound at x = 1: x + 0, z + 3.
+    assert_eq!(v[0], [0.0, 0.0, 1.0], "joint 0, not the node's (5, 5, 5)");
+    assert_eq!(v[1], [1.0, 0.0, 1.0]);
+    assert_eq!(v[2], [1.0, 1.0, 3.0], "joint 1");
+    assert_eq!(v[3], [0.0, 1.0, 2.0], "half of each");
+    // A joint outside the rendered scene cannot pose it.
+    f.json["scenes"] = json!([{ "nodes": [0] }]);
+    let message = error(&f.write_gltf(&dir, "outside", BufferAt::DataUri));
+    assert!(message.contains("skins[0].joints[0]") && message.contains("not in the rendered scene"), "{message}");
+}
+
 #[test]
 fn strips_and_fans_are_traced_points_and_lines_skipped_with_a_warning() {
     let dir = TempDir::new("gltf-modes");

@@ -23,6 +23,12 @@ pub(super) enum Expect {
     Index,
     /// VEC2 of FLOAT, or normalised UNSIGNED_BYTE / UNSIGNED_SHORT (TEXCOORD_n).
     Vec2Uv,
+    /// MAT4 of FLOAT (a skin's inverseBindMatrices).
+    Mat4F32,
+    /// VEC4 of UNSIGNED_BYTE or UNSIGNED_SHORT (JOINTS_n).
+    Joints,
+    /// VEC4 of FLOAT, or normalised UNSIGNED_BYTE / UNSIGNED_SHORT (WEIGHTS_n).
+    Weights,
 }
 
 impl Expect {
@@ -34,6 +40,12 @@ impl Expect {
                 dims == Dimensions::Vec2
                     && (ty == DataType::F32 || (normalized && matches!(ty, DataType::U8 | DataType::U16)))
             }
+            Self::Mat4F32 => dims == Dimensions::Mat4 && ty == DataType::F32,
+            Self::Joints => dims == Dimensions::Vec4 && !normalized && matches!(ty, DataType::U8 | DataType::U16),
+            Self::Weights => {
+                dims == Dimensions::Vec4
+                    && (ty == DataType::F32 || (normalized && matches!(ty, DataType::U8 | DataType::U16)))
+            }
         }
     }
 
@@ -42,6 +54,9 @@ impl Expect {
             Self::Vec3F32 => "VEC3 of FLOAT",
             Self::Index => "SCALAR of UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT",
             Self::Vec2Uv => "VEC2 of FLOAT or normalized UNSIGNED_BYTE/UNSIGNED_SHORT",
+            Self::Mat4F32 => "MAT4 of FLOAT",
+            Self::Joints => "VEC4 of UNSIGNED_BYTE or UNSIGNED_SHORT",
+            Self::Weights => "VEC4 of FLOAT or normalized UNSIGNED_BYTE/UNSIGNED_SHORT",
         }
     }
 }
@@ -193,6 +208,26 @@ pub(super) fn read_vec3(accessor: &Accessor<'_>, buffers: &Buffers) -> Result<Ve
 /// TEXCOORD_n: VEC2 of FLOAT or normalised integers (those mapped to [0, 1]).
 pub(super) fn read_uv(accessor: &Accessor<'_>, buffers: &Buffers) -> Result<Vec<[f64; 2]>, String> {
     read::<2>(accessor, buffers, Expect::Vec2Uv)
+}
+
+/// A skin's inverseBindMatrices: MAT4 of FLOAT, column-major as glTF stores them.
+pub(super) fn read_mat4(accessor: &Accessor<'_>, buffers: &Buffers) -> Result<Vec<glint_scene::Mat4>, String> {
+    let matrices = read::<16>(accessor, buffers, Expect::Mat4F32)?;
+    Ok(matrices
+        .into_iter()
+        .map(|m| glint_scene::Mat4(std::array::from_fn(|c| std::array::from_fn(|r| m[4 * c + r]))))
+        .collect())
+}
+
+/// JOINTS_n: four joint indices a vertex.
+pub(super) fn read_joints(accessor: &Accessor<'_>, buffers: &Buffers) -> Result<Vec<[u32; 4]>, String> {
+    // Exact: unsigned integers of at most 16 bits.
+    Ok(read::<4>(accessor, buffers, Expect::Joints)?.into_iter().map(|j| j.map(|v| v as u32)).collect())
+}
+
+/// WEIGHTS_n: four joint weights a vertex (normalised integers mapped to [0, 1]).
+pub(super) fn read_weights(accessor: &Accessor<'_>, buffers: &Buffers) -> Result<Vec<[f64; 4]>, String> {
+    read::<4>(accessor, buffers, Expect::Weights)
 }
 
 /// Indices as u32.

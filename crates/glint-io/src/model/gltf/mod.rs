@@ -7,6 +7,7 @@
 //! path at fault.
 
 mod accessor;
+mod deform;
 mod material;
 mod punctual;
 mod texture;
@@ -126,6 +127,17 @@ pub fn load_gltf(path: &Path, options: &ImportOptions) -> Result<Model, GltfErro
         names.push(name);
         uv_sets.push(uv_set);
     }
+    if gltf.animations().len() > 0 {
+        model.warnings.push(FieldIssue {
+            field: "animations".into(),
+            problem: format!(
+                "{} animation(s) not played: the scene is traced as its nodes, weights and skins stand",
+                gltf.animations().len()
+            ),
+        });
+    }
+    // Skins are posed by joints anywhere in the scene, walked before or after their mesh.
+    let world_of = if gltf.skins().len() > 0 { world_transforms(&scene, gltf.nodes().len()) } else { Vec::new() };
     // Depth first from the scene's roots; a node reached twice is a cycle or a shared child,
     // both outside glTF's "disjoint strict trees", and refused rather than walked forever.
     let mut reached = vec![false; gltf.nodes().len()];
@@ -146,6 +158,15 @@ pub fn load_gltf(path: &Path, options: &ImportOptions) -> Result<Model, GltfErro
         let local = node_matrix(node.transform()).map_err(|p| at(format!("nodes[{i}]"), p))?;
         let world = parent.mul(&local);
         if let Some(mesh) = node.mesh() {
+            let placement = match node.skin() {
+                Some(skin) => deform::Placement::Skinned(
+                    deform::joint_matrices(&skin, &world_of, &buffers).map_err(|(path, problem)| at(path, problem))?,
+                ),
+                None => deform::Placement::Rigid(world),
+            };
+            // The node's morph weights, else the mesh's.
+            let weights: Vec<f64> =
+                node.weights().or(mesh.weights()).unwrap_or_default().iter().map(|&w| f64::from(w)).collect();
             for primitive in mesh.primitives() {
                 let prim_path = format!("meshes[{}].primitives[{}]", mesh.index(), primitive.index());
                 match primitive.mode() {
@@ -167,7 +188,8 @@ pub fn load_gltf(path: &Path, options: &ImportOptions) -> Result<Model, GltfErro
                     }
                 };
                 let name = readable(node.name().or(mesh.name()).unwrap_or(""), i, "node");
-                let desc = read_primitive(&primitive, &buffers, &world, &prim_path, uv_set, material, name)
+                let place = Place { placement: &placement, weights: &weights };
+                let desc = read_primitive(&primitive, &buffers, &place, &prim_path, uv_set, material, name)
                     .map_err(|(path, problem)| at(path, problem))?;
                 if uv_set.is_some() && desc.as_ref().is_some_and(|d| d.uvs.is_none()) {
                     model.warnings.push(FieldIssue {
@@ -409,12 +431,35 @@ fn readable(name: &str, index: usize, kind: &str) -> String {
     if trimmed.is_empty() { format!("{kind}{index}") } else { trimmed.to_string() }
 }
 
+/// Where a primitive goes: its node's placement (rigid or skinned) and morph weights.
+struct Place<'a> {
+    placement: &'a deform::Placement,
+    weights: &'a [f64],
+}
+
+/// Every node's world transform in `scene` (`None` for a node outside it); a node reached twice
+/// keeps its first (the walk in `load_gltf` refuses such a file).
+fn world_transforms(scene: &::gltf::Scene<'_>, nodes: usize) -> Vec<Option<Mat4>> {
+    let mut world = vec![None; nodes];
+    let mut stack: Vec<(::gltf::Node<'_>, Mat4)> = scene.nodes().map(|n| (n, Mat4::IDENTITY)).collect();
+    while let Some((node, parent)) = stack.pop() {
+        let Ok(local) = node_matrix(node.transform()) else { continue };
+        if world[node.index()].is_some() {
+            continue;
+        }
+        let w = parent.mul(&local);
+        world[node.index()] = Some(w);
+        stack.extend(node.children().map(|c| (c, w)));
+    }
+    world
+}
+
 /// One primitive as a world-space mesh: `Ok(None)` when it has no whole triangle. An error
 /// carries the JSON path at fault.
 fn read_primitive(
     primitive: &::gltf::Primitive<'_>,
     buffers: &Buffers,
-    world: &Mat4,
+    place: &Place<'_>,
     path: &str,
     uv_set: Option<u32>,
     material: String,
@@ -424,8 +469,7 @@ fn read_primitive(
     let position = primitive
         .get(&::gltf::Semantic::Positions)
         .ok_or_else(|| (attr("POSITION"), "missing: a primitive needs positions".to_string()))?;
-    let local = accessor::read_vec3(&position, buffers).map_err(|p| (attr("POSITION"), p))?;
-    let mut vertices = Vec::with_capacity(local.len());
+    let mut local = accessor::read_vec3(&position, buffers).map_err(|p| (attr("POSITION"), p))?;
     for (k, p) in local.iter().enumerate() {
         // The file's own number first: after the node transforms one bad component spreads
         // to all three.
@@ -440,7 +484,22 @@ fn read_primitive(
                 ),
             ));
         }
-        let w = world.point(*p);
+    }
+    let mut local_normals = match primitive.get(&::gltf::Semantic::Normals) {
+        None => None,
+        Some(acc) => {
+            let n = accessor::read_vec3(&acc, buffers).map_err(|p| (attr("NORMAL"), p))?;
+            if n.len() != local.len() {
+                return Err((attr("NORMAL"), format!("has {} elements, POSITION {}", n.len(), local.len())));
+            }
+            Some(n)
+        }
+    };
+    deform::morph(primitive, place.weights, &mut local, local_normals.as_mut(), buffers, path)?;
+    let matrices = deform::vertex_matrices(primitive, place.placement, local.len(), buffers, path)?;
+    let mut vertices = Vec::with_capacity(local.len());
+    for (k, (p, m)) in local.iter().zip(&matrices).enumerate() {
+        let w = m.point(*p);
         if !w.iter().all(|c| c.is_finite()) {
             return Err((
                 attr("POSITION"),
@@ -453,22 +512,14 @@ fn read_primitive(
         }
         vertices.push(w);
     }
-    let normals = match primitive.get(&::gltf::Semantic::Normals) {
-        None => None,
-        Some(acc) => {
-            let n = accessor::read_vec3(&acc, buffers).map_err(|p| (attr("NORMAL"), p))?;
-            if n.len() != vertices.len() {
-                return Err((attr("NORMAL"), format!("has {} elements, POSITION {}", n.len(), vertices.len())));
-            }
-            // A zero or non-finite normal cannot shade: the primitive is shaded faceted, as the
-            // OBJ importer does (validation would refuse it).
-            let unit = |v: [f64; 3]| {
-                let len = v.iter().map(|c| c * c).sum::<f64>().sqrt();
-                (len.is_finite() && len > 1e-12).then(|| v.map(|c| c / len))
-            };
-            n.iter().map(|v| unit(world.normal(*v))).collect::<Option<Vec<_>>>()
-        }
+    // A zero or non-finite normal cannot shade: the primitive is shaded faceted, as the OBJ
+    // importer does (validation would refuse it).
+    let unit = |v: [f64; 3]| {
+        let len = v.iter().map(|c| c * c).sum::<f64>().sqrt();
+        (len.is_finite() && len > 1e-12).then(|| v.map(|c| c / len))
     };
+    let normals = local_normals
+        .and_then(|n| n.iter().zip(&matrices).map(|(v, m)| unit(m.normal(*v))).collect::<Option<Vec<_>>>());
     let uvs = match uv_set.and_then(|set| primitive.get(&::gltf::Semantic::TexCoords(set)).map(|a| (set, a))) {
         None => None,
         Some((set, acc)) => {
@@ -504,11 +555,9 @@ fn read_primitive(
         ));
     }
     let mut triangles = triangulate(primitive.mode(), &indices);
-    if world.determinant3() < 0.0 {
-        // A mirroring node turns counter-clockwise faces clockwise: restore the winding.
-        for t in &mut triangles {
-            t.swap(1, 2);
-        }
+    // A mirroring node (or joint) turns counter-clockwise faces clockwise: restore the winding.
+    for t in triangles.iter_mut().filter(|t| matrices[t[0] as usize].determinant3() < 0.0) {
+        t.swap(1, 2);
     }
     if triangles.is_empty() {
         return Ok(None);

@@ -1,0 +1,156 @@
+//! A primitive's shape as the scene stands: morph targets blended by the node's (else the
+//! mesh's) default weights, and skins posed by their joints' current node transforms (glTF 2.0
+//! §3.7.3, §3.7.4). Animations are not played: a file's still pose is what it shows without
+//! them, as three.js, Blender and Assimp show it.
+
+use ::gltf::Primitive;
+use glint_scene::Mat4;
+
+use super::accessor::{self, Buffers};
+
+/// How a primitive's vertices reach world space.
+#[derive(Clone, Debug)]
+pub(super) enum Placement {
+    /// One matrix: the node's world transform.
+    Rigid(Mat4),
+    /// A skin: per joint, the joint node's world transform times its inverse bind matrix. The
+    /// skinned node's own transform is ignored, as the specification requires.
+    Skinned(Vec<Mat4>),
+}
+
+/// The joint matrices of `skin`, from each joint node's world transform (`world[node]`, `None`
+/// for a node outside the rendered scene) and the skin's inverse bind matrices (identity
+/// where it has none). An error carries the JSON path at fault.
+pub(super) fn joint_matrices(
+    skin: &::gltf::Skin<'_>,
+    world: &[Option<Mat4>],
+    buffers: &Buffers,
+) -> Result<Vec<Mat4>, (String, String)> {
+    let path = format!("skins[{}]", skin.index());
+    let inverse_bind = match skin.inverse_bind_matrices() {
+        Some(acc) => accessor::read_mat4(&acc, buffers).map_err(|p| (format!("{path}.inverseBindMatrices"), p))?,
+        None => vec![Mat4::IDENTITY; skin.joints().len()],
+    };
+    if inverse_bind.len() < skin.joints().len() {
+        return Err((
+            format!("{path}.inverseBindMatrices"),
+            format!("has {} matrices for {} joints", inverse_bind.len(), skin.joints().len()),
+        ));
+    }
+    skin.joints()
+        .zip(inverse_bind)
+        .enumerate()
+        .map(|(j, (joint, ibm))| match world[joint.index()] {
+            Some(w) => Ok(w.mul(&ibm)),
+            None => Err((
+                format!("{path}.joints[{j}]"),
+                format!("node {} is not in the rendered scene, so it cannot pose the skin", joint.index()),
+            )),
+        })
+        .collect()
+}
+
+/// Adds the morph targets' POSITION (and NORMAL) displacements times `weights` to the
+/// primitive's own; a target without an attribute leaves it as it is.
+pub(super) fn morph(
+    primitive: &Primitive<'_>,
+    weights: &[f64],
+    positions: &mut [[f64; 3]],
+    normals: Option<&mut Vec<[f64; 3]>>,
+    buffers: &Buffers,
+    path: &str,
+) -> Result<(), (String, String)> {
+    let mut normals = normals;
+    for (t, target) in primitive.morph_targets().enumerate() {
+        let w = weights.get(t).copied().unwrap_or(0.0);
+        if w == 0.0 {
+            continue;
+        }
+        let attribute = |name: &str| format!("{path}.targets[{t}].{name}");
+        let add = |acc: Option<::gltf::Accessor<'_>>, name: &str, into: &mut [[f64; 3]]| {
+            let Some(acc) = acc else { return Ok(()) };
+            let deltas = accessor::read_vec3(&acc, buffers).map_err(|p| (attribute(name), p))?;
+            if deltas.len() != into.len() {
+                return Err((attribute(name), format!("has {} elements, POSITION {}", deltas.len(), into.len())));
+            }
+            for (v, d) in into.iter_mut().zip(deltas) {
+                for k in 0..3 {
+                    v[k] += w * d[k];
+                }
+            }
+            Ok(())
+        };
+        add(target.positions(), "POSITION", positions)?;
+        if let Some(n) = normals.as_deref_mut() {
+            add(target.normals(), "NORMAL", n)?;
+        }
+    }
+    Ok(())
+}
+
+/// Each vertex's matrix under `placement`: the rigid one, or the joints' matrices blended by
+/// the vertex's JOINTS_0 and WEIGHTS_0 (weights as stored; the specification has them sum to 1).
+pub(super) fn vertex_matrices(
+    primitive: &Primitive<'_>,
+    placement: &Placement,
+    count: usize,
+    buffers: &Buffers,
+    path: &str,
+) -> Result<Vec<Mat4>, (String, String)> {
+    let joints = match placement {
+        Placement::Rigid(m) => return Ok(vec![*m; count]),
+        Placement::Skinned(joints) => joints,
+    };
+    let attribute = |name: &str| format!("{path}.attributes.{name}");
+    let read = |semantic: ::gltf::Semantic, name: &str| {
+        primitive.get(&semantic).ok_or_else(|| (attribute(name), "missing: a skinned primitive needs it".to_string()))
+    };
+    let indices = accessor::read_joints(&read(::gltf::Semantic::Joints(0), "JOINTS_0")?, buffers)
+        .map_err(|p| (attribute("JOINTS_0"), p))?;
+    let weights = accessor::read_weights(&read(::gltf::Semantic::Weights(0), "WEIGHTS_0")?, buffers)
+        .map_err(|p| (attribute("WEIGHTS_0"), p))?;
+    for (name, len) in [("JOINTS_0", indices.len()), ("WEIGHTS_0", weights.len())] {
+        if len != count {
+            return Err((attribute(name), format!("has {len} elements, POSITION {count}")));
+        }
+    }
+    indices
+        .iter()
+        .zip(&weights)
+        .enumerate()
+        .map(|(v, (js, ws))| {
+            let mut blended = Mat4([[0.0; 4]; 4]);
+            for (&j, &w) in js.iter().zip(ws).filter(|&(_, &w)| w != 0.0) {
+                let m = joints.get(j as usize).ok_or_else(|| {
+                    (
+                        attribute("JOINTS_0"),
+                        format!("element {v} names joint {j}; the skin has {} joints", joints.len()),
+                    )
+                })?;
+                for (column, joint_column) in blended.0.iter_mut().zip(&m.0) {
+                    for (c, jc) in column.iter_mut().zip(joint_column) {
+                        *c += w * jc;
+                    }
+                }
+            }
+            Ok(blended)
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_rigid_placement_gives_every_vertex_its_matrix() {
+        let json = br#"{"asset":{"version":"2.0"},"meshes":[{"primitives":[{"attributes":{}}]}]}"#;
+        let gltf = ::gltf::Gltf::from_slice_without_validation(json).unwrap();
+        let primitive = gltf.meshes().next().unwrap().primitives().next().unwrap();
+        let mut m = Mat4::IDENTITY;
+        m.0[3] = [1.0, 2.0, 3.0, 1.0];
+        let matrices = vertex_matrices(&primitive, &Placement::Rigid(m), 2, &Buffers(Vec::new()), "p").unwrap();
+        assert_eq!(matrices.len(), 2);
+        assert_eq!(matrices[1].point([0.0; 3]), [1.0, 2.0, 3.0]);
+    }
+}
