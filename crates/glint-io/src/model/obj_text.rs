@@ -50,22 +50,8 @@ pub(super) fn material_uses(text: &[u8]) -> Vec<UseMaterial> {
 /// OBJ or MTL text with every `keyword` statement (`usemtl`, `newmtl`) that names nothing
 /// written as naming [`NAMELESS`].
 pub(super) fn name_the_nameless<'a>(text: &'a [u8], keyword: &str) -> Cow<'a, [u8]> {
-    let bare = |raw: &[u8]| statement_name(raw, keyword).is_some_and(|name| name.is_empty());
-    if !text.split(|&b| b == b'\n').any(bare) {
-        return Cow::Borrowed(text);
-    }
-    let mut out = Vec::with_capacity(text.len() + 64);
-    for (n, raw) in text.split(|&b| b == b'\n').enumerate() {
-        if n > 0 {
-            out.push(b'\n');
-        }
-        if bare(raw) {
-            out.extend_from_slice(format!("{keyword} {NAMELESS}").as_bytes());
-        } else {
-            out.extend_from_slice(raw);
-        }
-    }
-    Cow::Owned(out)
+    let named = format!("{keyword} {NAMELESS}").into_bytes();
+    rewrite_lines(text, |raw| statement_name(raw, keyword).is_some_and(|name| name.is_empty()).then(|| named.clone()))
 }
 
 /// OBJ text with its polyline statements (`l`) blanked, and how many there were: tobj reads
@@ -74,19 +60,26 @@ pub(super) fn name_the_nameless<'a>(text: &'a [u8], keyword: &str) -> Cow<'a, [u
 pub(super) fn without_polylines(text: &[u8]) -> (Cow<'_, [u8]>, usize) {
     let polyline = |raw: &[u8]| statement_name(raw, "l").is_some();
     let count = text.split(|&b| b == b'\n').filter(|raw| polyline(raw)).count();
-    if count == 0 {
-        return (Cow::Borrowed(text), 0);
+    (rewrite_lines(text, |raw| polyline(raw).then(Vec::new)), count)
+}
+
+/// `text` with the lines `replace` gives a replacement for replaced (the line breaks kept, so
+/// every line keeps its number); borrowed as it is when there are none.
+fn rewrite_lines(text: &[u8], replace: impl Fn(&[u8]) -> Option<Vec<u8>>) -> Cow<'_, [u8]> {
+    if !text.split(|&b| b == b'\n').any(|raw| replace(raw).is_some()) {
+        return Cow::Borrowed(text);
     }
-    let mut out = Vec::with_capacity(text.len());
+    let mut out = Vec::with_capacity(text.len() + 64);
     for (n, raw) in text.split(|&b| b == b'\n').enumerate() {
         if n > 0 {
             out.push(b'\n');
         }
-        if !polyline(raw) {
-            out.extend_from_slice(raw);
+        match replace(raw) {
+            Some(line) => out.extend_from_slice(&line),
+            None => out.extend_from_slice(raw),
         }
     }
-    (Cow::Owned(out), count)
+    Cow::Owned(out)
 }
 
 /// The name a `keyword` line gives as tobj reads it (the rest of the line, trimmed), else
