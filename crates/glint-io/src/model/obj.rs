@@ -383,6 +383,7 @@ fn source(m: &tobj::Material) -> MaterialSource {
         ("Ns", number(m.shininess)),
         ("Ni", number(m.optical_density)),
         ("d", number(m.dissolve)),
+        ("Tr", number(m.unknown_param.get("Tr").and_then(|t| t.trim().parse().ok()))),
         ("illum", m.illumination_model.map(|i| vec![f64::from(i)])),
     ];
     MaterialSource { format: "MTL", fields: fields.into_iter().filter_map(|(k, v)| Some((k, v?))).collect() }
@@ -391,6 +392,21 @@ fn source(m: &tobj::Material) -> MaterialSource {
 /// The MTL fields onto the seed's coefficients (docs/models.md): Kd → k_d, Ka → k_a (k_d when
 /// absent), Ks → k_s from illum 2 on, Ns → n, Ke → E_m, Ni → ior; illum 3 and 5 trace
 /// reflection rays with k_r = Ks, illum 4, 6 and 7 also refraction rays with k_t = 1 − d.
+/// MTL's opacity: `d`, else 1 − `Tr` (the transparency many exporters write instead), else 1.
+fn dissolve(m: &tobj::Material, warn: &mut impl FnMut(&str, String)) -> f64 {
+    match (m.dissolve, m.unknown_param.get("Tr")) {
+        (Some(d), _) => d,
+        (None, Some(tr)) => match tr.trim().parse::<f64>() {
+            Ok(t) if t.is_finite() => 1.0 - t,
+            _ => {
+                warn("Tr", format!("`Tr {tr}` is not a number; the material is opaque"));
+                1.0
+            }
+        },
+        (None, None) => 1.0,
+    }
+}
+
 fn map_material(m: &tobj::Material, name: &str, warnings: &mut Vec<FieldIssue>) -> MaterialDesc {
     let kd = m.diffuse.map_or(Rgb::splat(0.8), rgb);
     let ks = m.specular.map_or(Rgb::splat(0.0), rgb);
@@ -398,7 +414,7 @@ fn map_material(m: &tobj::Material, name: &str, warnings: &mut Vec<FieldIssue>) 
     let mut warn = |field: &str, problem: String| {
         warnings.push(FieldIssue { field: format!("materials.{name}.{field}"), problem });
     };
-    let transmission = Rgb::splat(1.0 - m.dissolve.unwrap_or(1.0).clamp(0.0, 1.0));
+    let transmission = Rgb::splat(1.0 - dissolve(m, &mut warn).clamp(0.0, 1.0));
     let (ks_local, kr, kt) = match illum {
         0 | 1 => (Rgb::splat(0.0), Rgb::splat(0.0), Rgb::splat(0.0)),
         2 => (ks, Rgb::splat(0.0), Rgb::splat(0.0)),
@@ -578,6 +594,31 @@ mod tests {
         assert_eq!(
             warnings(&load_obj(&bare).expect("loads")),
             ["line 6: usemtl: names no material and no MTL file has a nameless one; its faces use `obj-default`"]
+        );
+    }
+
+    #[test]
+    fn tr_is_the_transparency_when_d_is_absent() {
+        let dir = tempfile::tempdir().unwrap();
+        write(
+            dir.path(),
+            "m.mtl",
+            "newmtl a\nTr 0.25\nillum 4\nnewmtl b\nd 0.5\nTr 0.25\nillum 4\nnewmtl c\nTr x\nillum 4\n",
+        );
+        let obj = write(
+            dir.path(),
+            "m.obj",
+            &format!("mtllib m.mtl\n{QUAD}usemtl a\nf 1 2 3\nusemtl b\nf 1 3 4\nusemtl c\nf 2 3 4\n"),
+        );
+        let model = load_obj(&obj).expect("loads");
+        assert_eq!(model.materials["a"].kt, Rgb::splat(0.25), "Tr 0.25: k_t = 1 − d = Tr");
+        assert_eq!(model.materials["b"].kt, Rgb::splat(0.5), "d wins over Tr");
+        assert_eq!(model.materials["c"].kt, Rgb::splat(0.0));
+        assert!(model.warnings.iter().any(|w| w.field == "materials.c.Tr" && w.problem.contains("not a number")));
+        assert!(
+            model.sources["a"].fields.iter().any(|(k, v)| *k == "Tr" && v == &vec![0.25]),
+            "{:?}",
+            model.sources["a"]
         );
     }
 
