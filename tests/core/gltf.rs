@@ -256,6 +256,43 @@ fn a_skin_is_posed_by_its_joints_and_ignores_its_nodes_transform() {
     assert!(message.contains("skins[0].joints[0]") && message.contains("not in the rendered scene"), "{message}");
 }
 
+/// KHR_mesh_quantization (what gltfpack writes): positions as normalised shorts with the
+/// dequantisation in the node's scale, normals as normalised bytes, texture coordinates as
+/// unnormalised shorts, all 4-byte aligned. The file requires the extension.
+#[test]
+fn quantised_attributes_are_read_where_the_file_requires_mesh_quantization() {
+    let dir = TempDir::new("gltf-quantized");
+    let mut f = Fixture::quad();
+    let positions = f.push_u16(&[0, 0, 0, 0, 32767, 0, 0, 0, 32767, 32767, 0, 0, 0, 32767, 0, 0]);
+    // Bytes (0, 0, 127, pad) a vertex: +z.
+    let normals = f.push_u16(&[0, 127, 0, 127, 0, 127, 0, 127]);
+    let uvs = f.push_u16(&[0, 0, 2, 0, 2, 2, 0, 2]);
+    for (view, stride) in [(positions, 8), (normals, 4)] {
+        f.json["bufferViews"][view]["byteStride"] = json!(stride);
+    }
+    f.json["accessors"] = json!([
+        { "bufferView": positions, "componentType": 5122, "normalized": true, "count": 4, "type": "VEC3",
+          "min": [0, 0, 0], "max": [32767, 32767, 0] },
+        { "bufferView": normals, "componentType": 5120, "normalized": true, "count": 4, "type": "VEC3" },
+        f.json["accessors"][2].clone(),
+        { "bufferView": uvs, "componentType": 5123, "count": 4, "type": "VEC2" }
+    ]);
+    f.json["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] = json!(3);
+    f.json["nodes"][0]["scale"] = json!([3.0, 3.0, 3.0]);
+    f.json["extensionsUsed"] = json!(["KHR_mesh_quantization"]);
+    f.json["extensionsRequired"] = json!(["KHR_mesh_quantization"]);
+    f.json["images"] = json!([{ "uri": "tex.png" }]);
+    f.json["textures"] = json!([{ "source": 0 }]);
+    f.json["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"] = json!({ "index": 0 });
+    glint_test_support::texture::write_png(&dir.join("tex.png"), 1, 1, &[255, 255, 255, 255]);
+    let m = load(&f.write_glb(&dir, "quantized"));
+    let mesh = &m.meshes[0];
+    assert_eq!(mesh.vertices[2], [3.0, 3.0, 0.0], "32767 normalised is 1, scaled by the node");
+    assert_eq!(mesh.normals.as_ref().unwrap()[1], [0.0, 0.0, 1.0]);
+    assert_eq!(mesh.uvs.as_ref().unwrap()[2], [2.0, 2.0], "unnormalised shorts are their values");
+    assert!(m.warnings.iter().all(|w| !w.field.starts_with("extensions")), "{:?}", m.warnings);
+}
+
 #[test]
 fn strips_and_fans_are_traced_points_and_lines_skipped_with_a_warning() {
     let dir = TempDir::new("gltf-modes");
@@ -467,6 +504,7 @@ fn base_colour_and_emissive_textures_keep_their_sampler_transform_and_texcoords(
     );
     let tr = t.transform.as_ref().expect("KHR_texture_transform");
     assert_eq!((tr.offset, tr.rotation, tr.scale), ([0.5, 0.0], 0.25, [2.0, 1.0]));
+    assert!(m.warnings.iter().all(|w| w.field != "extensionsUsed"), "it is read, not 'unsupported': {:?}", m.warnings);
     let e = mat.emission_texture.as_ref().expect("an emission texture");
     assert!(std::sync::Arc::ptr_eq(e.image.as_ref().unwrap(), image), "one image decoded once");
     assert_eq!(m.meshes[0].uvs.as_deref(), Some(&[[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]][..]));

@@ -17,8 +17,9 @@ pub(super) struct Buffers(pub(super) Vec<Vec<u8>>);
 /// What an accessor must hold to be read as a given attribute.
 #[derive(Clone, Copy, Debug)]
 pub(super) enum Expect {
-    /// VEC3 of FLOAT (POSITION, NORMAL).
-    Vec3F32,
+    /// VEC3 of FLOAT, or of bytes or shorts, normalised or not (POSITION, NORMAL and their
+    /// morph displacements; the integers are KHR_mesh_quantization's).
+    Vec3,
     /// SCALAR of UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT (indices).
     Index,
     /// VEC2 of FLOAT, or normalised UNSIGNED_BYTE / UNSIGNED_SHORT (TEXCOORD_n).
@@ -34,12 +35,10 @@ pub(super) enum Expect {
 impl Expect {
     fn allows(self, dims: Dimensions, ty: DataType, normalized: bool) -> bool {
         match self {
-            Self::Vec3F32 => dims == Dimensions::Vec3 && ty == DataType::F32,
+            Self::Vec3 => dims == Dimensions::Vec3 && ty != DataType::U32,
             Self::Index => dims == Dimensions::Scalar && matches!(ty, DataType::U8 | DataType::U16 | DataType::U32),
-            Self::Vec2Uv => {
-                dims == Dimensions::Vec2
-                    && (ty == DataType::F32 || (normalized && matches!(ty, DataType::U8 | DataType::U16)))
-            }
+            // Unnormalised and signed integers are KHR_mesh_quantization's.
+            Self::Vec2Uv => dims == Dimensions::Vec2 && ty != DataType::U32,
             Self::Mat4F32 => dims == Dimensions::Mat4 && ty == DataType::F32,
             Self::Joints => dims == Dimensions::Vec4 && !normalized && matches!(ty, DataType::U8 | DataType::U16),
             Self::Weights => {
@@ -51,9 +50,9 @@ impl Expect {
 
     fn wanted(self) -> &'static str {
         match self {
-            Self::Vec3F32 => "VEC3 of FLOAT",
+            Self::Vec3 => "VEC3 of FLOAT, BYTE, UNSIGNED_BYTE, SHORT or UNSIGNED_SHORT",
             Self::Index => "SCALAR of UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT",
-            Self::Vec2Uv => "VEC2 of FLOAT or normalized UNSIGNED_BYTE/UNSIGNED_SHORT",
+            Self::Vec2Uv => "VEC2 of FLOAT, BYTE, UNSIGNED_BYTE, SHORT or UNSIGNED_SHORT",
             Self::Mat4F32 => "MAT4 of FLOAT",
             Self::Joints => "VEC4 of UNSIGNED_BYTE or UNSIGNED_SHORT",
             Self::Weights => "VEC4 of FLOAT or normalized UNSIGNED_BYTE/UNSIGNED_SHORT",
@@ -200,12 +199,13 @@ fn read<const N: usize>(accessor: &Accessor<'_>, buffers: &Buffers, expect: Expe
     Ok(out)
 }
 
-/// POSITION or NORMAL: VEC3 of FLOAT, widened exactly to f64.
+/// POSITION or NORMAL: VEC3 of FLOAT widened exactly to f64, or quantised integers (their
+/// values, or mapped to [−1, 1] / [0, 1] where normalised).
 pub(super) fn read_vec3(accessor: &Accessor<'_>, buffers: &Buffers) -> Result<Vec<[f64; 3]>, String> {
-    read::<3>(accessor, buffers, Expect::Vec3F32)
+    read::<3>(accessor, buffers, Expect::Vec3)
 }
 
-/// TEXCOORD_n: VEC2 of FLOAT or normalised integers (those mapped to [0, 1]).
+/// TEXCOORD_n: VEC2 of FLOAT or integers (normalised ones mapped to [0, 1] or [−1, 1]).
 pub(super) fn read_uv(accessor: &Accessor<'_>, buffers: &Buffers) -> Result<Vec<[f64; 2]>, String> {
     read::<2>(accessor, buffers, Expect::Vec2Uv)
 }

@@ -36,6 +36,8 @@ pub const SUPPORTED_EXTENSIONS: &[&str] = &[
     "KHR_materials_pbrSpecularGlossiness",
     "KHR_materials_specular",
     "KHR_materials_transmission",
+    "KHR_mesh_quantization",
+    "KHR_texture_transform",
 ];
 
 /// Why a glTF file did not load. Each names the file; `At` also the JSON path.
@@ -262,6 +264,9 @@ fn parse(bytes: &[u8], file: &Path, warnings: &mut Vec<FieldIssue>) -> Result<::
     let ::gltf::Gltf { document, blob } = ::gltf::Gltf::from_slice_without_validation(bytes)
         .map_err(|e| other_version(bytes, file).unwrap_or_else(|| parse_error(file, e)))?;
     let mut json = document.into_json();
+    // Glint reads quantised attributes itself (`accessor::read_vec3`, `read_uv`); the gltf
+    // crate, which would refuse the file for requiring it, is not told.
+    json.extensions_required.retain(|e| e != "KHR_mesh_quantization");
     let invalid = |path: String, problem: &str| GltfError::At {
         file: file.to_owned(),
         path,
