@@ -19,7 +19,7 @@ pub(super) enum Cut {
 pub(super) fn triangulate(positions: &[[f64; 3]], polygon: &[u32], out: &mut Vec<[u32; 3]>) -> Cut {
     let at = |i: u32| positions[i as usize];
     let normal = newell_normal(polygon.iter().map(|&i| at(i)));
-    if polygon.len() == 3 || normal == [0.0; 3] || is_convex(polygon.iter().map(|&i| at(i)), normal) {
+    if polygon.len() == 3 || normal == [0.0; 3] || is_convex(polygon.len(), |k| at(polygon[k]), normal) {
         out.extend(polygon.windows(2).skip(1).map(|w| [polygon[0], w[0], w[1]]));
         return Cut::Fan;
     }
@@ -55,12 +55,11 @@ fn newell_normal(points: impl Iterator<Item = [f64; 3]> + Clone) -> [f64; 3] {
     })
 }
 
-/// Whether every corner turns the way `normal` says (straight corners allowed).
-fn is_convex(points: impl Iterator<Item = [f64; 3]> + Clone, normal: [f64; 3]) -> bool {
-    let ring: Vec<[f64; 3]> = points.collect();
-    let n = ring.len();
+/// Whether every corner of the ring `corner(0..n)` turns the way `normal` says (straight
+/// corners allowed).
+fn is_convex(n: usize, corner: impl Fn(usize) -> [f64; 3], normal: [f64; 3]) -> bool {
     (0..n).all(|i| {
-        let (p, q, r) = (ring[(i + n - 1) % n], ring[i], ring[(i + 1) % n]);
+        let (p, q, r) = (corner((i + n - 1) % n), corner(i), corner((i + 1) % n));
         let (e, f) = ([q[0] - p[0], q[1] - p[1], q[2] - p[2]], [r[0] - q[0], r[1] - q[1], r[2] - q[2]]);
         let cross = [e[1] * f[2] - e[2] * f[1], e[2] * f[0] - e[0] * f[2], e[0] * f[1] - e[1] * f[0]];
         cross[0] * normal[0] + cross[1] * normal[1] + cross[2] * normal[2] >= 0.0
