@@ -110,6 +110,7 @@ pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
     if !missing_mtl {
         out.warnings.extend(unknown_materials(&uses, &materials));
     }
+    out.warnings.extend(unread_statements(&materials));
     let names: Vec<String> =
         materials.iter().map(|m| material_name(if m.name == obj_text::NAMELESS { "" } else { &m.name })).collect();
     let mut images = Images::default();
@@ -192,6 +193,40 @@ fn triangles(vertices: &[[f64; 3]], mesh: &tobj::Mesh, object: &str, warnings: &
         });
     }
     out
+}
+
+/// The MTL statements this importer reads; any other is named in one warning.
+const READ_STATEMENTS: [&str; 11] = ["Ka", "Kd", "Ks", "Ke", "Ns", "Ni", "d", "Tr", "illum", "map_Kd", "map_Ke"];
+
+/// One warning naming the MTL statements the materials hold that Glint does not read (bump and
+/// specular maps, `Tf`, …), each with how many materials hold it: the model renders without them.
+fn unread_statements(materials: &[tobj::Material]) -> Option<FieldIssue> {
+    let mut unread: std::collections::BTreeMap<&str, usize> = std::collections::BTreeMap::new();
+    for m in materials {
+        let maps = [
+            ("map_Ka", &m.ambient_texture),
+            ("map_Ks", &m.specular_texture),
+            ("map_Bump", &m.normal_texture),
+            ("map_Ns", &m.shininess_texture),
+            ("map_d", &m.dissolve_texture),
+        ];
+        let tobj_fields = maps.into_iter().filter(|(_, v)| v.is_some()).map(|(k, _)| k);
+        let others = m.unknown_param.keys().map(String::as_str).filter(|k| !READ_STATEMENTS.contains(k));
+        for statement in tobj_fields.chain(others) {
+            *unread.entry(statement).or_default() += 1;
+        }
+    }
+    (!unread.is_empty()).then(|| FieldIssue {
+        field: "mtllib".into(),
+        problem: format!(
+            "statements Glint does not read, left out: {}",
+            unread
+                .iter()
+                .map(|(k, n)| format!("{k} ({n} material{})", if *n == 1 { "" } else { "s" }))
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+    })
 }
 
 /// The warning that a file was read from another encoding than UTF-8.
@@ -619,6 +654,25 @@ mod tests {
             model.sources["a"].fields.iter().any(|(k, v)| *k == "Tr" && v == &vec![0.25]),
             "{:?}",
             model.sources["a"]
+        );
+    }
+
+    #[test]
+    fn mtl_statements_glint_does_not_read_are_named_once() {
+        let dir = tempfile::tempdir().unwrap();
+        write(
+            dir.path(),
+            "m.mtl",
+            "newmtl a\nKd 1 1 1\nmap_Bump b.png\nTf 1 1 1\nnewmtl b\nbump b.png\nTr 0\nmap_Ks s.png\n",
+        );
+        let obj = write(dir.path(), "m.obj", &format!("mtllib m.mtl\n{QUAD}usemtl a\nf 1 2 3\nusemtl b\nf 1 3 4\n"));
+        let warnings: Vec<String> =
+            load_obj(&obj).expect("loads").warnings.iter().map(|w| format!("{}: {}", w.field, w.problem)).collect();
+        assert_eq!(
+            warnings,
+            [
+                "mtllib: statements Glint does not read, left out: Tf (1 material), map_Bump (2 materials), map_Ks (1 material)"
+            ]
         );
     }
 
