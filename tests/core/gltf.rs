@@ -505,6 +505,20 @@ fn base_colour_and_emissive_textures_keep_their_sampler_transform_and_texcoords(
     let tr = t.transform.as_ref().expect("KHR_texture_transform");
     assert_eq!((tr.offset, tr.rotation, tr.scale), ([0.5, 0.0], 0.25, [2.0, 1.0]));
     assert!(m.warnings.iter().all(|w| w.field != "extensionsUsed"), "it is read, not 'unsupported': {:?}", m.warnings);
+    assert!(m.warnings.iter().all(|w| w.field != "materials"), "nothing left out: {:?}", m.warnings);
+    // What the seed's model has no term for is named, once for the model.
+    let mut more = f.clone();
+    more.json["materials"][0]["normalTexture"] = json!({ "index": 0 });
+    more.json["materials"][0]["alphaMode"] = json!("MASK");
+    let m2 = load(&more.write_gltf(&dir, "normal-mapped", BufferAt::File("normal-mapped.bin".into())));
+    let left_out: Vec<&str> =
+        m2.warnings.iter().filter(|w| w.field == "materials").map(|w| w.problem.as_str()).collect();
+    assert_eq!(
+        left_out,
+        [
+            "what Glint's model does not read, left out: alphaMode MASK (traced opaque) (1 material), normalTexture (1 material)"
+        ]
+    );
     let e = mat.emission_texture.as_ref().expect("an emission texture");
     assert!(std::sync::Arc::ptr_eq(e.image.as_ref().unwrap(), image), "one image decoded once");
     assert_eq!(m.meshes[0].uvs.as_deref(), Some(&[[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]][..]));

@@ -97,7 +97,18 @@ pub fn load_gltf(path: &Path, options: &ImportOptions) -> Result<Model, GltfErro
     let mut names: Vec<String> = Vec::new();
     let mut uv_sets: Vec<Option<u32>> = Vec::new();
     let mut images = texture::Images::default();
+    let mut unread: BTreeMap<&str, usize> = BTreeMap::new();
     for m in gltf.materials() {
+        for (what, present) in [
+            ("normalTexture", m.normal_texture().is_some()),
+            ("occlusionTexture", m.occlusion_texture().is_some()),
+            ("metallicRoughnessTexture", m.pbr_metallic_roughness().metallic_roughness_texture().is_some()),
+            ("alphaMode MASK (traced opaque)", m.alpha_mode() == ::gltf::material::AlphaMode::Mask),
+        ] {
+            if present {
+                *unread.entry(what).or_default() += 1;
+            }
+        }
         let index = m.index().unwrap_or(names.len());
         let mut name = readable(m.name().unwrap_or(""), index, "material");
         if model.materials.contains_key(&name) {
@@ -140,6 +151,16 @@ pub fn load_gltf(path: &Path, options: &ImportOptions) -> Result<Model, GltfErro
     }
     // Skins are posed by joints anywhere in the scene, walked before or after their mesh.
     let world_of = if gltf.skins().len() > 0 { world_transforms(&scene, gltf.nodes().len()) } else { Vec::new() };
+    if !unread.is_empty() {
+        let each = |(k, n): (&&str, &usize)| format!("{k} ({n} material{})", if *n == 1 { "" } else { "s" });
+        model.warnings.push(FieldIssue {
+            field: "materials".into(),
+            problem: format!(
+                "what Glint's model does not read, left out: {}",
+                unread.iter().map(each).collect::<Vec<_>>().join(", ")
+            ),
+        });
+    }
     // Depth first from the scene's roots; a node reached twice is a cycle or a shared child,
     // both outside glTF's "disjoint strict trees", and refused rather than walked forever.
     let mut reached = vec![false; gltf.nodes().len()];
