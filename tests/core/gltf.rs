@@ -222,9 +222,10 @@ fn morph_targets_take_the_node_weights_else_the_meshes() {
 fn a_skin_is_posed_by_its_joints_and_ignores_its_nodes_transform() {
     let dir = TempDir::new("gltf-skin");
     let mut f = Fixture::quad();
-    // Vertices 0 and 1 follow joint 0, vertex 2 joint 1, vertex 3 half of each.
-    let joints = f.push_u16(&[0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0]);
-    let weights = f.push_f32(&[1., 0., 0., 0., 1., 0., 0., 0., 1., 0., 0., 0., 0.5, 0.5, 0., 0.]);
+    // Vertex 0 follows joint 0 (its weight 0.5 alone, normalised to 1), vertex 1 joint 1 (no
+    // weight: its first joint), vertex 2 joint 1, vertex 3 half of each.
+    let joints = f.push_u16(&[0, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0]);
+    let weights = f.push_f32(&[0.5, 0., 0., 0., 0., 0., 0., 0., 1., 0., 0., 0., 0.5, 0.5, 0., 0.]);
     // Joint 1's inverse bind matrix undoes a bind pose 1 along x.
     let ibm = f.push_f32(&[
         1., 0., 0., 0., 0., 1., 0., 0., 0., 0., 1., 0., 0., 0., 0., 1., //
@@ -247,7 +248,7 @@ fn a_skin_is_posed_by_its_joints_and_ignores_its_nodes_transform() {
     let v = &m.meshes[0].vertices;
     // Joint 0 at z = 1; joint 1 at (1, 0, 3) in the world, bound at x = 1: x + 0, z + 3.
     assert_eq!(v[0], [0.0, 0.0, 1.0], "joint 0, not the node's (5, 5, 5)");
-    assert_eq!(v[1], [1.0, 0.0, 1.0]);
+    assert_eq!(v[1], [1.0, 0.0, 3.0], "no weight: its first joint, 1");
     assert_eq!(v[2], [1.0, 1.0, 3.0], "joint 1");
     assert_eq!(v[3], [0.0, 1.0, 2.0], "half of each");
     // A joint outside the rendered scene cannot pose it.

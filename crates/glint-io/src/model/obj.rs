@@ -36,9 +36,10 @@ pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
     let parse_error = |line, reason| ObjError::Parse { file: path.to_owned(), line, reason };
     let mut out = Model::default();
     let (bytes, encoding) = obj_text::decode(&raw).map_err(|reason| parse_error(None, reason))?;
-    out.warnings.extend(encoding.map(|e| encoding_warning("encoding".into(), e)));
+    out.warnings
+        .extend(encoding.map(|how| FieldIssue { field: "encoding".into(), problem: format!("not UTF-8: {how}") }));
     let uses = obj_text::material_uses(&bytes);
-    let bytes = obj_text::name_the_nameless(&bytes, "usemtl");
+    let bytes = obj_text::material_statements(&bytes, &["mtllib", "usemtl"]);
     let (bytes, polylines) = obj_text::without_polylines(&bytes);
     if polylines > 0 {
         out.warnings.push(FieldIssue {
@@ -53,66 +54,56 @@ pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
     }
     // Polygons come whole: `polygon::triangulate` cuts them (tobj's fans overlap on concave ones).
     let options = tobj::LoadOptions { triangulate: false, single_index: true, ..Default::default() };
-    let mtl_error = std::cell::RefCell::new(None);
-    let mtl_problem = std::cell::RefCell::new(None);
+    // Each `mtllib` on its own: a missing or unreadable one is a warning (as in Assimp and
+    // Blender, the geometry stays readable); one outside the model's folder or too large is an
+    // error, the first such one reported.
+    let refused = std::cell::RefCell::new(None);
     let mtl_warnings = std::cell::RefCell::new(Vec::new());
     let (models, materials) = tobj::load_obj_buf(&mut bytes.as_ref(), &options, |mtl| {
         let uri = mtl.to_string_lossy();
+        let field = format!("mtllib `{uri}`");
+        let warn = |problem: String| mtl_warnings.borrow_mut().push(FieldIssue { field: field.clone(), problem });
         let text = match resolve_uri(path, &uri, MAX_RESOURCE_BYTES) {
             Ok(text) => text,
+            Err(UriError::Io { path: mtl, error, .. }) if error.kind() == std::io::ErrorKind::NotFound => {
+                warn(format!(
+                    "{} does not exist; the faces naming its materials use `{DEFAULT_MATERIAL}`",
+                    mtl.display()
+                ));
+                return Err(tobj::LoadError::OpenFileFailed);
+            }
             Err(error) => {
-                *mtl_error.borrow_mut() = Some(error);
+                refused.borrow_mut().get_or_insert(error);
                 return Err(tobj::LoadError::OpenFileFailed);
             }
         };
-        let decoded = match obj_text::decode(&text) {
-            Ok((text, encoding)) => {
-                mtl_warnings.borrow_mut().extend(encoding.map(|e| encoding_warning(format!("mtllib `{uri}`"), e)));
-                expand_colours(&obj_text::name_the_nameless(&text, "newmtl"))
+        let loaded = obj_text::decode(&text).and_then(|(text, encoding)| {
+            if let Some(how) = encoding {
+                warn(format!("not UTF-8: {how}"));
             }
-            Err(problem) => Err(problem),
-        };
-        decoded.map_or_else(
-            |problem| {
-                *mtl_problem.borrow_mut() = Some(format!("{uri}:{problem}"));
-                Err(tobj::LoadError::MaterialParseError)
-            },
-            |text| tobj::load_mtl_buf(&mut text.as_slice()),
-        )
+            let text = expand_colours(&obj_text::material_statements(&text, &["newmtl"]))
+                .map_err(|problem| format!("{uri}:{problem}"))?;
+            tobj::load_mtl_buf(&mut text.as_slice()).map_err(|e| e.to_string())
+        });
+        loaded.map_err(|problem| {
+            warn(format!("materials not loaded ({problem}); the faces naming them use `{DEFAULT_MATERIAL}`"));
+            tobj::LoadError::MaterialParseError
+        })
     })
     .map_err(|e| parse_error(failing_line(&bytes, &options), e.to_string()))?;
-    out.warnings.extend(mtl_warnings.into_inner());
-    let missing_mtl = match mtl_error.into_inner() {
-        // A missing MTL leaves the geometry readable, as in Assimp and Blender; a reference
-        // outside the model's folder or too large stays an error.
-        Some(UriError::Io { uri, path: mtl, error }) if error.kind() == std::io::ErrorKind::NotFound => {
-            out.warnings.push(FieldIssue {
-                field: "mtllib".into(),
-                problem: format!("`{uri}` ({}) does not exist; faces use `{DEFAULT_MATERIAL}`", mtl.display()),
-            });
-            true
-        }
-        Some(error) => return Err(ObjError::Uri { file: path.to_owned(), error }),
-        None => false,
-    };
-    let materials = match materials {
-        Ok(m) => m,
-        Err(_) if missing_mtl => Vec::new(),
-        Err(e) => {
-            let reason = mtl_problem.into_inner().unwrap_or_else(|| e.to_string());
-            out.warnings.push(FieldIssue {
-                field: "mtllib".into(),
-                problem: format!("materials not loaded ({reason}); faces use `{DEFAULT_MATERIAL}`"),
-            });
-            Vec::new()
-        }
-    };
-    if !missing_mtl {
-        out.warnings.extend(unknown_materials(&uses, &materials));
+    if let Some(error) = refused.into_inner() {
+        return Err(ObjError::Uri { file: path.to_owned(), error });
     }
+    let mtl_warnings = mtl_warnings.into_inner();
+    // With an MTL left out, every name it held would be warned again.
+    let every_mtl_read = mtl_warnings.iter().all(|w| w.problem.starts_with("not UTF-8"));
+    out.warnings.extend(mtl_warnings);
+    if every_mtl_read {
+        out.warnings.extend(unknown_materials(&uses, materials.as_deref().unwrap_or_default()));
+    }
+    let materials = materials.unwrap_or_default();
     out.warnings.extend(unread_statements(&materials));
-    let names: Vec<String> =
-        materials.iter().map(|m| material_name(if m.name == obj_text::NAMELESS { "" } else { &m.name })).collect();
+    let names = material_names(&materials);
     let mut images = Images::default();
     for (m, name) in materials.iter().zip(&names) {
         let mut material = map_material(m, name, &mut out.warnings);
@@ -178,18 +169,19 @@ fn triangles(vertices: &[[f64; 3]], mesh: &tobj::Mesh, object: &str, warnings: &
         mesh.face_arities.iter().map(|&n| n as usize).collect()
     };
     let mut out = Vec::with_capacity(mesh.indices.len() / 3);
-    let (mut start, mut crossing) = (0, None);
-    for (face, n) in arities.into_iter().enumerate() {
+    let (mut start, mut crossing) = (0, Vec::new());
+    for n in arities {
         let polygon = &mesh.indices[start..start + n];
         start += n;
         if n >= 3 && polygon::triangulate(vertices, polygon, &mut out) == polygon::Cut::SelfIntersecting {
-            crossing.get_or_insert((face, n));
+            crossing.push(n);
         }
     }
-    if let Some((face, n)) = crossing {
+    if let Some(n) = crossing.first() {
+        let more = if crossing.len() > 1 { format!(" (and {} more faces)", crossing.len() - 1) } else { String::new() };
         warnings.push(FieldIssue {
             field: format!("object `{object}`"),
-            problem: format!("face {face} (of {n} vertices) crosses itself; cut into the triangles its outline allows"),
+            problem: format!("a face of {n} vertices crosses itself{more}; cut into the triangles its outline allows"),
         });
     }
     out
@@ -211,7 +203,9 @@ fn unread_statements(materials: &[tobj::Material]) -> Option<FieldIssue> {
             ("map_d", &m.dissolve_texture),
         ];
         let tobj_fields = maps.into_iter().filter(|(_, v)| v.is_some()).map(|(k, _)| k);
-        let others = m.unknown_param.keys().map(String::as_str).filter(|k| !READ_STATEMENTS.contains(k));
+        // tobj keeps `#word …` (no space after the #) as a statement: it is a comment.
+        let others =
+            m.unknown_param.keys().map(String::as_str).filter(|k| !READ_STATEMENTS.contains(k) && !k.starts_with('#'));
         for statement in tobj_fields.chain(others) {
             *unread.entry(statement).or_default() += 1;
         }
@@ -227,11 +221,6 @@ fn unread_statements(materials: &[tobj::Material]) -> Option<FieldIssue> {
                 .join(", ")
         ),
     })
-}
-
-/// The warning that a file was read from another encoding than UTF-8.
-fn encoding_warning(field: String, encoding: &str) -> FieldIssue {
-    FieldIssue { field, problem: format!("not UTF-8: read as {encoding}") }
 }
 
 /// One warning per `usemtl` that names no material of the MTL (its faces take the default),
@@ -392,10 +381,19 @@ impl Images {
     }
 }
 
-/// MTL names may hold any character; the scene format's keys are kept readable.
-fn material_name(mtl: &str) -> String {
-    let cleaned: String = mtl.chars().map(|c| if c.is_alphanumeric() || "-_.".contains(c) { c } else { '_' }).collect();
-    if cleaned.is_empty() { "unnamed".into() } else { cleaned }
+/// Each material's name in the scene: MTL names may hold any character, and the scene format's
+/// keys are kept readable (other characters become `_`; the nameless material is `unnamed`); a
+/// name that two materials would share gets its index (`name-3`).
+fn material_names(materials: &[tobj::Material]) -> Vec<String> {
+    let mut names: Vec<String> = Vec::with_capacity(materials.len());
+    for (k, m) in materials.iter().enumerate() {
+        let raw = if m.name == obj_text::NAMELESS { "" } else { &m.name };
+        let cleaned: String =
+            raw.chars().map(|c| if c.is_alphanumeric() || "-_.".contains(c) { c } else { '_' }).collect();
+        let name = if cleaned.is_empty() { "unnamed".to_string() } else { cleaned };
+        names.push(if names.contains(&name) || name == DEFAULT_MATERIAL { format!("{name}-{k}") } else { name });
+    }
+    names
 }
 
 fn default_material() -> MaterialDesc {
@@ -604,7 +602,7 @@ mod tests {
         assert_eq!(model.meshes[0].material, DEFAULT_MATERIAL);
         assert_eq!(model.meshes[0].triangles.len(), 3);
         assert_eq!(warnings(&model).len(), 1, "{:?}", warnings(&model));
-        assert!(warnings(&model)[0].contains("mtllib: `gone.mtl`") && warnings(&model)[0].contains("does not exist"));
+        assert!(warnings(&model)[0].contains("mtllib `gone.mtl`: ") && warnings(&model)[0].contains("does not exist"));
 
         // Terraindæk in Windows-1252 in both files (Assimp's regr01.obj), and Blender's
         // nameless material: a bare newmtl and usemtl (its empty_mat.obj).
@@ -620,8 +618,8 @@ mod tests {
         assert_eq!(
             warnings(&model),
             [
-                "encoding: not UTF-8: read as windows-1252",
-                "mtllib `w.mtl`: not UTF-8: read as windows-1252",
+                "encoding: not UTF-8: lines read as windows-1252",
+                "mtllib `w.mtl`: not UTF-8: lines read as windows-1252",
                 "line 11: usemtl: `blue` is in no MTL file; its faces use `obj-default`",
             ]
         );
@@ -674,6 +672,32 @@ mod tests {
                 "mtllib: statements Glint does not read, left out: Tf (1 material), map_Bump (2 materials), map_Ks (1 material)"
             ]
         );
+    }
+
+    #[test]
+    fn each_mtllib_is_judged_on_its_own_and_statements_are_read_as_written() {
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::create_dir(dir.path().join("model")).unwrap();
+        let model = dir.path().join("model");
+        write(dir.path(), "secret.mtl", "newmtl x\nKd 1 0 0\n");
+        // A refusal is not hidden by a later missing file.
+        let obj = write(&model, "r.obj", &format!("mtllib ../secret.mtl\nmtllib gone.mtl\n{QUAD}"));
+        let message = load_obj(&obj).unwrap_err().to_string();
+        assert!(message.contains("../secret.mtl") && message.contains("outside the model's folder"), "{message}");
+        // Indented and tab-separated statements, a `#word` comment, a real `unnamed` beside the
+        // nameless material.
+        write(&model, "m.mtl", "newmtl red\nKd 1 0 0\n#map_Bump b.png\nnewmtl\tunnamed\nKd 0 0 1\nnewmtl\nKd 0 1 0\n");
+        let text = format!("  mtllib m.mtl\n{QUAD}  usemtl red\nf 1 2 3\nusemtl\tunnamed\nf 1 3 4\nusemtl\nf 2 3 4\n");
+        let m = load_obj(&write(&model, "m.obj", &text)).expect("loads");
+        let materials: Vec<&str> = m.meshes.iter().map(|mesh| mesh.material.as_str()).collect();
+        assert_eq!(materials, [DEFAULT_MATERIAL, "red", "unnamed", "unnamed-2"]);
+        assert_eq!(m.materials["unnamed-2"].kd, Rgb([0.0, 1.0, 0.0]), "the nameless one");
+        assert!(m.warnings.is_empty(), "{:?}", m.warnings);
+        // An MTL that does not parse is one warning, not one more for every name it held.
+        write(&model, "m.mtl", "newmtl red\nKd 0.5 0.25\n");
+        let m = load_obj(&model.join("m.obj")).expect("loads without its materials");
+        assert_eq!(m.warnings.len(), 1, "{:?}", m.warnings);
+        assert!(m.warnings[0].problem.contains("m.mtl:2:"), "{:?}", m.warnings);
     }
 
     fn png(path: &Path) {

@@ -5,11 +5,12 @@
 
 use std::borrow::Cow;
 
-/// `bytes` as UTF-8 text, and the encoding it was read from when that was not UTF-8 (for a
-/// warning). A byte order mark decides (UTF-8, UTF-16LE or UTF-16BE, the mark removed);
-/// without one, text that is not UTF-8 is read as Windows-1252, which decodes every byte.
-/// Malformed UTF-16 is an error.
-pub(super) fn decode(bytes: &[u8]) -> Result<(Cow<'_, [u8]>, Option<&'static str>), String> {
+/// `bytes` as UTF-8 text, and how it was read when it was not UTF-8 (for a warning). A byte order mark decides (UTF-8, UTF-16LE or UTF-16BE, the mark removed);
+/// without one, each line that is not UTF-8 is read as Windows-1252, which decodes every byte,
+/// and the UTF-8 lines stay as they are (one stray byte in a comment must not turn the file's
+/// UTF-8 material names into mojibake that its MTL no longer matches). Malformed UTF-16 is an
+/// error.
+pub(super) fn decode(bytes: &[u8]) -> Result<(Cow<'_, [u8]>, Option<String>), String> {
     if let Some((encoding, mark)) = encoding_rs::Encoding::for_bom(bytes) {
         let body = &bytes[mark..];
         if encoding == encoding_rs::UTF_8 {
@@ -19,14 +20,16 @@ pub(super) fn decode(bytes: &[u8]) -> Result<(Cow<'_, [u8]>, Option<&'static str
         if malformed {
             return Err(format!("malformed {} text (its byte order mark says {0})", encoding.name()));
         }
-        return Ok((Cow::Owned(text.into_owned().into_bytes()), Some(encoding.name())));
+        return Ok((Cow::Owned(text.into_owned().into_bytes()), Some(format!("read as {}", encoding.name()))));
     }
     if std::str::from_utf8(bytes).is_ok() {
         return Ok((Cow::Borrowed(bytes), None));
     }
     let encoding = encoding_rs::WINDOWS_1252;
-    let (text, _) = encoding.decode_without_bom_handling(bytes);
-    Ok((Cow::Owned(text.into_owned().into_bytes()), Some(encoding.name())))
+    let text = rewrite_lines(bytes, |raw| {
+        std::str::from_utf8(raw).is_err().then(|| encoding.decode_without_bom_handling(raw).0.into_owned().into_bytes())
+    });
+    Ok((Cow::Owned(text.into_owned()), Some(format!("lines read as {}", encoding.name()))))
 }
 
 /// The name Glint gives a material that `newmtl` and `usemtl` leave nameless (Blender writes
@@ -47,11 +50,20 @@ pub(super) fn material_uses(text: &[u8]) -> Vec<UseMaterial> {
     lines.filter_map(|(n, raw)| statement_name(raw, "usemtl").map(|name| UseMaterial { line: n + 1, name })).collect()
 }
 
-/// OBJ or MTL text with every `keyword` statement (`usemtl`, `newmtl`) that names nothing
-/// written as naming [`NAMELESS`].
-pub(super) fn name_the_nameless<'a>(text: &'a [u8], keyword: &str) -> Cow<'a, [u8]> {
-    let named = format!("{keyword} {NAMELESS}").into_bytes();
-    rewrite_lines(text, |raw| statement_name(raw, keyword).is_some_and(|name| name.is_empty()).then(|| named.clone()))
+/// OBJ or MTL text with each `keywords` statement (`mtllib`, `usemtl`, `newmtl`) written as
+/// tobj reads it: the keyword, one space, the name. tobj takes the name after the line's first
+/// space, so `  usemtl red` named `usemtl red` and `usemtl<TAB>red` was refused. A `usemtl` or
+/// `newmtl` that names nothing names [`NAMELESS`]; an `mtllib` that names nothing is blanked.
+pub(super) fn material_statements<'a>(text: &'a [u8], keywords: &[&str]) -> Cow<'a, [u8]> {
+    rewrite_lines(text, |raw| {
+        let (keyword, name) = keywords.iter().find_map(|k| statement_name(raw, k).map(|name| (*k, name)))?;
+        let line = match (keyword, name.is_empty()) {
+            ("mtllib", true) => String::new(),
+            (_, true) => format!("{keyword} {NAMELESS}"),
+            (_, false) => format!("{keyword} {name}"),
+        };
+        (line.as_bytes() != raw).then(|| line.into_bytes())
+    })
 }
 
 /// OBJ text with its polyline statements (`l`) blanked, and how many there were: tobj reads
@@ -103,7 +115,7 @@ mod tests {
         ] {
             let bytes: Vec<u8> = mark.into_iter().chain(text.encode_utf16().flat_map(encode)).collect();
             let (decoded, encoding) = decode(&bytes).unwrap();
-            assert_eq!((decoded.as_ref(), encoding), (text.as_bytes(), Some(name)));
+            assert_eq!((decoded.as_ref(), encoding), (text.as_bytes(), Some(format!("read as {name}"))));
         }
         let odd = [0xFE, 0xFF, 0xD8, 0x00, 0x00, 0x41];
         assert!(decode(&odd).unwrap_err().contains("malformed UTF-16BE"), "an unpaired surrogate");
@@ -115,23 +127,32 @@ mod tests {
         assert!(matches!(decode(plain).unwrap(), (Cow::Borrowed(b), None) if b == plain));
         let marked: Vec<u8> = [0xEF, 0xBB, 0xBF].iter().chain(plain).copied().collect();
         assert_eq!(decode(&marked).unwrap(), (Cow::Borrowed(plain), None));
-        let latin = b"usemtl Terraind\xe6k \x80\n";
+        let latin = b"usemtl Terraind\xe6k \x80\n# caf\xc3\xa9\n";
         let (decoded, encoding) = decode(latin).unwrap();
-        assert_eq!((decoded.as_ref(), encoding), ("usemtl Terraindæk €\n".as_bytes(), Some("windows-1252")));
+        let expected = "usemtl Terraindæk €\n# café\n";
+        assert_eq!(
+            (decoded.as_ref(), encoding),
+            (expected.as_bytes(), Some("lines read as windows-1252".into())),
+            "line by line"
+        );
     }
 
     #[test]
-    fn statements_naming_nothing_name_the_nameless_material_and_every_usemtl_is_listed() {
-        let text = b"v 0 0 0\nusemtl \nf 1 1 1\nusemtl  red \nusemtlx\nusemtl\n";
-        let out = name_the_nameless(text, "usemtl");
-        let expected = format!("v 0 0 0\nusemtl {NAMELESS}\nf 1 1 1\nusemtl  red \nusemtlx\nusemtl {NAMELESS}\n");
+    fn material_statements_are_written_as_tobj_reads_them_and_every_usemtl_is_listed() {
+        let text =
+            b"v 0 0 0\nusemtl \nf 1 1 1\n  usemtl  red \nusemtlx\nusemtl\tblue\nusemtl\nmtllib\nmtllib a b.mtl\n";
+        let out = material_statements(text, &["mtllib", "usemtl"]);
+        let expected = format!(
+            "v 0 0 0\nusemtl {NAMELESS}\nf 1 1 1\nusemtl red\nusemtlx\nusemtl blue\nusemtl {NAMELESS}\n\nmtllib a b.mtl\n"
+        );
         assert_eq!(std::str::from_utf8(&out).unwrap(), expected);
         let listed: Vec<(usize, String)> = material_uses(text).into_iter().map(|u| (u.line, u.name)).collect();
-        assert_eq!(listed, [(2, String::new()), (4, "red".into()), (6, String::new())]);
-        let mtl = name_the_nameless(b"newmtl \nKd 1 1 1\n", "newmtl");
+        let names = [(2, ""), (4, "red"), (6, "blue"), (7, "")].map(|(l, n)| (l, n.to_string()));
+        assert_eq!(listed, names);
+        let mtl = material_statements(b"newmtl \nKd 1 1 1\n", &["newmtl"]);
         assert_eq!(std::str::from_utf8(&mtl).unwrap(), format!("newmtl {NAMELESS}\nKd 1 1 1\n"));
         let named = b"usemtl red\nf 1 2 3\n";
-        assert!(matches!(name_the_nameless(named, "usemtl"), Cow::Borrowed(_)), "nothing to rewrite");
+        assert!(matches!(material_statements(named, &["usemtl"]), Cow::Borrowed(_)), "nothing to rewrite");
     }
 
     #[test]

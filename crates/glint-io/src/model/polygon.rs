@@ -39,7 +39,10 @@ pub(super) fn triangulate(positions: &[[f64; 3]], polygon: &[u32], out: &mut Vec
         // is written the other way round.
         out.push(if turn >= 0.0 { [a, b, c] } else { [a, c, b] }.map(|i| polygon[i]));
     }
-    if out.len() - before < polygon.len() - 2 { Cut::SelfIntersecting } else { Cut::Ears }
+    // Ears that do not cover the outline's area (a repeated vertex drops an ear but not area).
+    let covered = earcut::deviation(flat.iter().copied(), &[] as &[u32], &ears);
+    // NaN (no area at all) counts as not covered.
+    if out.len() > before && covered <= 1e-6 { Cut::Ears } else { Cut::SelfIntersecting }
 }
 
 /// The polygon's area-weighted normal (Newell's method): exact for a planar polygon, the
@@ -55,16 +58,23 @@ fn newell_normal(points: impl Iterator<Item = [f64; 3]> + Clone) -> [f64; 3] {
     })
 }
 
-/// Whether every corner of the ring `corner(0..n)` turns the way `normal` says (straight
-/// corners allowed).
+/// Whether every corner of the ring `corner(0..n)` turns the way `normal` says. A corner
+/// straight to within rounding (a vertex on an edge: a T-junction) counts as turning that way,
+/// so that such a convex face stays the fan every importer makes of it.
 fn is_convex(n: usize, corner: impl Fn(usize) -> [f64; 3], normal: [f64; 3]) -> bool {
+    let length = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    let scale = length(normal);
     (0..n).all(|i| {
         let (p, q, r) = (corner((i + n - 1) % n), corner(i), corner((i + 1) % n));
         let (e, f) = ([q[0] - p[0], q[1] - p[1], q[2] - p[2]], [r[0] - q[0], r[1] - q[1], r[2] - q[2]]);
         let cross = [e[1] * f[2] - e[2] * f[1], e[2] * f[0] - e[0] * f[2], e[0] * f[1] - e[1] * f[0]];
-        cross[0] * normal[0] + cross[1] * normal[1] + cross[2] * normal[2] >= 0.0
+        let turn = cross[0] * normal[0] + cross[1] * normal[1] + cross[2] * normal[2];
+        turn >= -STRAIGHT * length(e) * length(f) * scale
     })
 }
+
+/// The sine of the angle below which a corner counts as straight.
+const STRAIGHT: f64 = 1e-9;
 
 #[cfg(test)]
 mod tests {
@@ -78,6 +88,16 @@ mod tests {
             let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
             (area + len / 2.0, [sum[0] + n[0], sum[1] + n[1], sum[2] + n[2]])
         })
+    }
+
+    #[test]
+    fn a_convex_polygon_with_a_vertex_on_an_edge_within_rounding_is_still_the_fan() {
+        // (0.03, 0.21, 0.3) lies on the edge from the origin to (0.1, 0.7, 1) in decimal, not in
+        // binary.
+        let quad = [[0.0, 0.0, 0.0], [0.03, 0.21, 0.3], [0.1, 0.7, 1.0], [-0.7, 0.1, 0.0]];
+        let mut out = Vec::new();
+        assert_eq!(triangulate(&quad, &[0, 1, 2, 3], &mut out), Cut::Fan);
+        assert_eq!(out, [[0, 1, 2], [0, 2, 3]]);
     }
 
     #[test]
@@ -112,6 +132,10 @@ mod tests {
         let bow = [[0.0, 0.0, 0.0], [1.0, 1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.5, 2.0, 0.0]];
         let mut out = Vec::new();
         assert_eq!(triangulate(&bow, &[0, 1, 2, 3, 4], &mut out), Cut::SelfIntersecting);
+        // A repeated vertex in a concave face drops an ear, not area.
+        let l = [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [2.0, 1.0, 0.0], [1.0, 1.0, 0.0], [1.0, 2.0, 0.0], [0.0, 2.0, 0.0]];
+        out.clear();
+        assert_eq!(triangulate(&l, &[0, 1, 2, 2, 3, 4, 5], &mut out), Cut::Ears);
         let line = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [2.0, 0.0, 0.0], [3.0, 0.0, 0.0]];
         out.clear();
         assert_eq!(triangulate(&line, &[0, 1, 2, 3], &mut out), Cut::Fan, "no plane: the fan, as before");

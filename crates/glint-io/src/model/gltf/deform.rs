@@ -88,8 +88,14 @@ pub(super) fn morph(
     Ok(())
 }
 
+/// A JOINTS_n / WEIGHTS_n pair: each vertex's four joint indices and their weights.
+type InfluenceSet = (Vec<[u32; 4]>, Vec<[f64; 4]>);
+
 /// Each vertex's matrix under `placement`: the rigid one, or the joints' matrices blended by
-/// the vertex's JOINTS_0 and WEIGHTS_0 (weights as stored; the specification has them sum to 1).
+/// the vertex's JOINTS_n and WEIGHTS_n (every set the primitive has). The weights are divided by
+/// their sum, as three.js does, so that one that does not quite sum to 1 (or a fifth influence
+/// in a second set) cannot pull the vertex toward the origin; a vertex with no weight follows
+/// its first joint.
 pub(super) fn vertex_matrices(
     primitive: &Primitive<'_>,
     placement: &Placement,
@@ -102,25 +108,37 @@ pub(super) fn vertex_matrices(
         Placement::Skinned(joints) => joints,
     };
     let attribute = |name: &str| format!("{path}.attributes.{name}");
-    let read = |semantic: ::gltf::Semantic, name: &str| {
-        primitive.get(&semantic).ok_or_else(|| (attribute(name), "missing: a skinned primitive needs it".to_string()))
-    };
-    let indices = accessor::read_joints(&read(::gltf::Semantic::Joints(0), "JOINTS_0")?, buffers)
-        .map_err(|p| (attribute("JOINTS_0"), p))?;
-    let weights = accessor::read_weights(&read(::gltf::Semantic::Weights(0), "WEIGHTS_0")?, buffers)
-        .map_err(|p| (attribute("WEIGHTS_0"), p))?;
-    for (name, len) in [("JOINTS_0", indices.len()), ("WEIGHTS_0", weights.len())] {
-        if len != count {
-            return Err((attribute(name), format!("has {len} elements, POSITION {count}")));
+    let mut sets: Vec<InfluenceSet> = Vec::new();
+    for set in 0.. {
+        let (jname, wname) = (format!("JOINTS_{set}"), format!("WEIGHTS_{set}"));
+        let (Some(j), Some(w)) =
+            (primitive.get(&::gltf::Semantic::Joints(set)), primitive.get(&::gltf::Semantic::Weights(set)))
+        else {
+            if set == 0 {
+                return Err((attribute("JOINTS_0"), "a skinned primitive needs JOINTS_0 and WEIGHTS_0".into()));
+            }
+            break;
+        };
+        let indices = accessor::read_joints(&j, buffers).map_err(|p| (attribute(&jname), p))?;
+        let weights = accessor::read_weights(&w, buffers).map_err(|p| (attribute(&wname), p))?;
+        for (name, len) in [(&jname, indices.len()), (&wname, weights.len())] {
+            if len != count {
+                return Err((attribute(name), format!("has {len} elements, POSITION {count}")));
+            }
         }
+        sets.push((indices, weights));
     }
-    indices
-        .iter()
-        .zip(&weights)
-        .enumerate()
-        .map(|(v, (js, ws))| {
+    (0..count)
+        .map(|v| {
+            let influences = sets.iter().flat_map(|(js, ws)| js[v].into_iter().zip(ws[v]));
+            let total: f64 = influences.clone().map(|(_, w)| w).sum();
+            let normalised: Vec<(u32, f64)> = if total > 0.0 && total.is_finite() {
+                influences.filter(|&(_, w)| w != 0.0).map(|(j, w)| (j, w / total)).collect()
+            } else {
+                vec![(sets[0].0[v][0], 1.0)]
+            };
             let mut blended = Mat4([[0.0; 4]; 4]);
-            for (&j, &w) in js.iter().zip(ws).filter(|&(_, &w)| w != 0.0) {
+            for (j, w) in normalised {
                 let m = joints.get(j as usize).ok_or_else(|| {
                     (
                         attribute("JOINTS_0"),

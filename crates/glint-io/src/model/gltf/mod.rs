@@ -372,7 +372,7 @@ fn other_version(bytes: &[u8], file: &Path) -> Option<GltfError> {
         serde_json::Value::Number(v) => v.to_string(),
         _ => return None,
     };
-    if version.starts_with("2.") { None } else { error("asset.version", format!("`{version}`")) }
+    if version == "2" || version.starts_with("2.") { None } else { error("asset.version", format!("`{version}`")) }
 }
 
 /// The gltf crate's error with the JSON paths it names; an unsupported required extension
@@ -652,9 +652,11 @@ mod tests {
         let glb = [b"glTF".as_slice(), &1u32.to_le_bytes(), &20u32.to_le_bytes(), &[0; 8]].concat();
         let message = parse(&glb, file, &mut Vec::new()).unwrap_err().to_string();
         assert!(message.contains("the GLB header's version is 1"), "{message}");
-        let broken = r#"{"asset": {"version": "2.0"}, "accessors": {"a": {}}}"#;
-        let message = parse(broken.as_bytes(), file, &mut Vec::new()).unwrap_err().to_string();
-        assert!(message.contains("not a valid glTF 2.0 file"), "a 2.0 file's own error: {message}");
+        for version in [r#""2.0""#, "2"] {
+            let broken = format!(r#"{{"asset": {{"version": {version}}}, "accessors": {{"a": {{}}}}}}"#);
+            let message = parse(broken.as_bytes(), file, &mut Vec::new()).unwrap_err().to_string();
+            assert!(message.contains("not a valid glTF 2.0 file"), "a 2.0 file's own error: {message}");
+        }
     }
 
     #[test]
