@@ -286,18 +286,23 @@ fn surface_of(objects: &[ObjectDesc], source: Source, epsilon: f64) -> Option<Su
     }
 }
 
-/// A face covering more grid cells than this (a large face among small ones, a ground under
-/// tiles) is compared with every face of its bucket instead of going into the grid.
+/// A face covering more cells of a grid than this (a large face among small ones, a ground under
+/// tiles) goes into a coarser one.
 const MAX_FACE_CELLS: i64 = 4096;
+/// Each grid's cells are this many times the finer one's across; there are `LEVELS` grids.
+const LEVEL_SCALE: f64 = 64.0;
+const LEVELS: u8 = 8;
 /// The grid has at most this many cells along each axis of the plane.
 const MAX_GRID_SIDE: f64 = 65536.0;
 
 /// Calls `pair` with every two of a bucket's surfaces whose extents in the plane overlap
-/// (planes overlap everything). Faces go into a uniform grid over the plane's two axes, a cell
-/// about a median face across, so that a flat grid of k faces costs about k tests; each pair is
-/// reported once, from the cell holding the lower corner of the two extents' intersection. (A
-/// sweep along one axis paired every face with its whole row: 2.7e9 pairs and 12 GB for a floor
-/// of 700 × 700 quads.)
+/// (planes overlap everything). Faces go into uniform grids over the plane's two axes, the
+/// finest with cells about a median face across and each next one 64 times coarser, each face
+/// into the finest where it covers at most 4,096 cells: a flat grid of k faces costs about k
+/// tests, and a large face among small ones meets them through the few coarse cells each small
+/// one covers. Each pair is reported once, from the cell holding the lower corner of the two
+/// extents' intersection. (A sweep along one axis paired every face with its whole row: 2.7e9
+/// pairs and 12 GB for a floor of 700 × 700 quads.)
 fn candidate_pairs(members: &[(Surface, bool)], mut pair: impl FnMut(usize, usize)) {
     let Some((first, _)) = members.first() else { return };
     let axis = first.normal.abs().max_position();
@@ -331,36 +336,56 @@ fn candidate_pairs(members: &[(Surface, bool)], mut pair: impl FnMut(usize, usiz
     let middle = extents.len() / 2;
     let median = *extents.select_nth_unstable_by(middle, f64::total_cmp).1;
     let cell = median.max(span.max_element() / MAX_GRID_SIDE).max(f64::MIN_POSITIVE);
-    let index = |p: DVec2| {
-        let i = ((p - lo) / cell).floor().min(DVec2::splat(MAX_GRID_SIDE));
+    // The cell of point `p` in grid `level`.
+    let index = |p: DVec2, level: u8| {
+        let i = ((p - lo) / (cell * LEVEL_SCALE.powi(i32::from(level)))).floor().min(DVec2::splat(MAX_GRID_SIDE));
         (i.x.max(0.0) as i64, i.y.max(0.0) as i64)
     };
-    let mut entries: Vec<((i64, i64), usize)> = Vec::with_capacity(faces.len() * 4);
-    let mut large = vec![false; faces.len()];
-    for (f, (flo, fhi, _)) in faces.iter().enumerate() {
-        let ((i0, j0), (i1, j1)) = (index(*flo), index(*fhi));
-        if (i1 - i0 + 1) * (j1 - j0 + 1) > MAX_FACE_CELLS {
-            large[f] = true;
-            continue;
-        }
+    let cells = |f: usize, level: u8| (index(faces[f].0, level), index(faces[f].1, level));
+    // Each face in the finest grid where it covers at most MAX_FACE_CELLS cells.
+    let mut entries: Vec<(u8, (i64, i64), usize)> = Vec::with_capacity(faces.len() * 4);
+    let mut level_of = vec![0u8; faces.len()];
+    for (f, level_of_f) in level_of.iter_mut().enumerate() {
+        let level = (0..LEVELS)
+            .find(|&l| {
+                let ((i0, j0), (i1, j1)) = cells(f, l);
+                (i1 - i0 + 1) * (j1 - j0 + 1) <= MAX_FACE_CELLS
+            })
+            .unwrap_or(LEVELS - 1);
+        *level_of_f = level;
+        let ((i0, j0), (i1, j1)) = cells(f, level);
         for i in i0..=i1 {
-            entries.extend((j0..=j1).map(|j| ((i, j), f)));
+            entries.extend((j0..=j1).map(|j| (level, (i, j), f)));
         }
     }
     entries.sort_unstable();
-    for run in entries.chunk_by(|a, b| a.0 == b.0) {
-        for (k, &(here, a)) in run.iter().enumerate() {
-            for &(_, b) in &run[k + 1..] {
-                if overlap(a, b) && index(faces[a].0.max(faces[b].0)) == here {
+    // Two faces of one grid: from the cell holding the lower corner of their boxes'
+    // intersection, which both cover.
+    for run in entries.chunk_by(|a, b| (a.0, a.1) == (b.0, b.1)) {
+        for (k, &(level, here, a)) in run.iter().enumerate() {
+            for &(_, _, b) in &run[k + 1..] {
+                if overlap(a, b) && index(faces[a].0.max(faces[b].0), level) == here {
                     pair(faces[a].2, faces[b].2);
                 }
             }
         }
     }
-    // Two large faces are paired once, from the first.
-    for a in (0..faces.len()).filter(|&a| large[a]) {
-        for b in (0..faces.len()).filter(|&b| b != a && !(large[b] && b < a) && overlap(a, b)) {
-            pair(faces[a].2, faces[b].2);
+    // A face and the faces of each coarser grid, found in the few coarse cells it covers, again
+    // from the cell of the intersection's lower corner.
+    let used: std::collections::BTreeSet<u8> = level_of.iter().copied().collect();
+    for a in 0..faces.len() {
+        for &level in used.range(level_of[a] + 1..) {
+            let ((i0, j0), (i1, j1)) = cells(a, level);
+            for i in i0..=i1 {
+                for j in j0..=j1 {
+                    let start = entries.partition_point(|e| (e.0, e.1) < (level, (i, j)));
+                    for &(_, _, b) in entries[start..].iter().take_while(|e| (e.0, e.1) == (level, (i, j))) {
+                        if overlap(a, b) && index(faces[a].0.max(faces[b].0), level) == (i, j) {
+                            pair(faces[a].2, faces[b].2);
+                        }
+                    }
+                }
+            }
         }
     }
 }
@@ -517,6 +542,53 @@ mod tests {
             })
             .collect();
         mesh(vertices, triangles, name)
+    }
+
+    /// Faces of every size from 0.01 to 1000 (grids of several levels) in one plane: the pairs
+    /// reported are exactly the pairs whose boxes overlap, each once.
+    #[test]
+    fn every_overlapping_pair_of_faces_of_any_size_is_reported_once() {
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut next = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut vertices = Vec::new();
+        let mut triangles = Vec::new();
+        for k in 0..400u32 {
+            let size = 10f64.powf(-2.0 + 5.0 * next().powi(3));
+            let (x, z) = (next() * 1000.0, next() * 1000.0);
+            vertices.extend([[x, 0.0, z], [x + size, 0.0, z + 0.3 * size], [x + 0.2 * size, 0.0, z + size]]);
+            triangles.push([3 * k, 3 * k + 2, 3 * k + 1]);
+        }
+        let desc = scene(vec![mesh(vertices, triangles, "scatter")]);
+        let ObjectDesc::Mesh(m) = &desc.objects[0] else { unreachable!() };
+        let members: Vec<(Surface, bool)> = (0..m.triangles.len() as u32)
+            .map(|t| (triangle(m, Source { object: 0, mesh: 0, triangle: t }, 0.0).unwrap(), false))
+            .collect();
+        let mut reported = Vec::new();
+        candidate_pairs(&members, |a, b| reported.push((a.min(b), a.max(b))));
+        let boxed = |s: &Surface| {
+            let flat = s.corners.map(|c| DVec2::new(c.z, c.x));
+            (flat[0].min(flat[1]).min(flat[2]) - s.tolerance, flat[0].max(flat[1]).max(flat[2]) + s.tolerance)
+        };
+        let mut expected = Vec::new();
+        for a in 0..members.len() {
+            for b in a + 1..members.len() {
+                let ((alo, ahi), (blo, bhi)) = (boxed(&members[a].0), boxed(&members[b].0));
+                if alo.cmple(bhi).all() && blo.cmple(ahi).all() {
+                    expected.push((a, b));
+                }
+            }
+        }
+        let count = reported.len();
+        reported.sort_unstable();
+        reported.dedup();
+        assert_eq!(reported.len(), count, "a pair reported twice");
+        assert_eq!(reported, expected);
+        assert!(expected.len() > 100, "the sizes overlap often enough to mean something: {}", expected.len());
     }
 
     #[test]
