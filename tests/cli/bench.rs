@@ -154,7 +154,7 @@ fn exported_rays_and_hits_agree_with_embree() {
         assert_eq!(size(&format!("{set}.rays")), RAYS * 32, "{set}");
         assert_eq!(size(&format!("{set}.hits")), RAYS * 16, "{set}");
     }
-    if std::env::var("GLINT_SKIP_EMBREE").is_ok_and(|v| v == "1") {
+    if glint_test_support::skip_requested("GLINT_SKIP_EMBREE") {
         eprintln!("GLINT_SKIP_EMBREE=1: skipping the comparison with Embree");
         return;
     }

@@ -51,7 +51,7 @@ fn the_bundle_size_check_refuses_what_a_device_run_cannot_carry() {
 
 #[test]
 fn the_device_suite_refuses_a_software_adapter_without_the_rehearsal_flag() {
-    if std::env::var("GLINT_SKIP_GPU").is_ok_and(|v| v == "1") {
+    if glint_test_support::skip_requested("GLINT_SKIP_GPU") {
         eprintln!("GLINT_SKIP_GPU=1: skipping the device suite's adapter check");
         return;
     }
@@ -83,7 +83,7 @@ fn the_device_suite_refuses_a_software_adapter_without_the_rehearsal_flag() {
 /// is invalid" lines Mesa's device-select layer made libwayland print on every run.
 #[test]
 fn adapters_are_listed_as_json_without_display_errors_on_a_headless_machine() {
-    if std::env::var("GLINT_SKIP_GPU").is_ok_and(|v| v == "1") {
+    if glint_test_support::skip_requested("GLINT_SKIP_GPU") {
         eprintln!("GLINT_SKIP_GPU=1: skipping the adapter listing");
         return;
     }

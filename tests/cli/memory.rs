@@ -8,7 +8,7 @@ use serde_json::Value;
 use super::{glint, text};
 
 fn skip_gpu() -> bool {
-    std::env::var("GLINT_SKIP_GPU").is_ok_and(|v| v == "1")
+    glint_test_support::skip_requested("GLINT_SKIP_GPU")
 }
 
 #[test]

@@ -44,7 +44,7 @@ fn binned(img: &[[f32; 3]]) -> Vec<[f64; 3]> {
 
 #[test]
 fn the_path_tracer_agrees_with_mitsuba_3_on_a_cornell_box() {
-    if std::env::var("GLINT_SKIP_MITSUBA").is_ok_and(|v| v == "1") {
+    if glint_test_support::skip_requested("GLINT_SKIP_MITSUBA") {
         eprintln!("GLINT_SKIP_MITSUBA=1: the comparison with Mitsuba 3 is skipped");
         return;
     }
@@ -65,7 +65,7 @@ fn the_path_tracer_agrees_with_mitsuba_3_on_a_cornell_box() {
         run.status,
         text(&run.stderr)
     );
-    let skip_gpu = std::env::var("GLINT_SKIP_GPU").is_ok_and(|v| v == "1");
+    let skip_gpu = glint_test_support::skip_requested("GLINT_SKIP_GPU");
     let backends: &[&str] = if skip_gpu { &["cpu"] } else { &["cpu", "gpu"] };
     let mitsuba = read_exr(&dir.join("mitsuba.exr"));
     let m = means(&mitsuba);

@@ -11,7 +11,7 @@ const MODELS: &str = "/usr/share/assimp/models";
 
 /// The model file, or `None` when `GLINT_SKIP_MODELS=1`; panics when the package is missing.
 fn model(relative: &str) -> Option<PathBuf> {
-    if std::env::var("GLINT_SKIP_MODELS").is_ok_and(|v| v == "1") {
+    if glint_test_support::skip_requested("GLINT_SKIP_MODELS") {
         eprintln!("GLINT_SKIP_MODELS=1: skipping the model tests");
         return None;
     }
@@ -108,7 +108,7 @@ fn a_model_far_from_the_origin_is_warned_of_the_triangles_f32_loses() {
 /// `GLINT_SKIP_GPU=1`), asserting success, every pixel traced and GPU–CPU parity; returns
 /// what it wrote to stderr (the warnings).
 fn render_model(dir: &TempDir, name: &str, path: &Path, extra: &[&str]) -> String {
-    let skip_gpu = std::env::var("GLINT_SKIP_GPU").is_ok_and(|v| v == "1");
+    let skip_gpu = glint_test_support::skip_requested("GLINT_SKIP_GPU");
     let out = dir.join("m.png");
     let mut args: Vec<std::ffi::OsString> = vec!["render".into(), path.as_os_str().to_owned()];
     for a in ["--width", "64", "--height", "48", "--json", "--backend", if skip_gpu { "cpu" } else { "both" }] {

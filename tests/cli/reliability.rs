@@ -12,7 +12,7 @@ use glint_test_support::scene::stack_overflow_slab;
 use super::{BIN, glint, os, png_text_chunks, text};
 
 fn skip_gpu() -> bool {
-    std::env::var("GLINT_SKIP_GPU").is_ok_and(|v| v == "1")
+    glint_test_support::skip_requested("GLINT_SKIP_GPU")
 }
 
 /// Sends `signal` (TERM, INT) to a running `glint render` on `backend` and checks that it says

@@ -56,7 +56,7 @@ fn split_csv(line: &str) -> Vec<String> {
 
 #[test]
 fn quick_report_writes_consistent_files() {
-    let skip_gpu = std::env::var("GLINT_SKIP_GPU").is_ok_and(|v| v == "1");
+    let skip_gpu = glint_test_support::skip_requested("GLINT_SKIP_GPU");
     let dir = TempDir::new("report");
     let out_dir = dir.join("out");
     let mut args = vec!["report".into(), "--quick".into(), "--out".into(), out_dir.clone().into_os_string()];

@@ -196,7 +196,7 @@ fn bits(path: &Path) -> Vec<u32> {
 
 #[test]
 fn a_slurm_job_array_renders_tiles_whose_dependent_merge_is_the_single_render() {
-    if std::env::var("GLINT_SKIP_SLURM").is_ok_and(|v| v == "1") {
+    if glint_test_support::skip_requested("GLINT_SKIP_SLURM") {
         eprintln!("GLINT_SKIP_SLURM=1: the single-node Slurm test is skipped");
         return;
     }

@@ -75,7 +75,7 @@ fn tiles_merged_are_the_single_render_bit_for_bit_on_the_cpu() {
 
 #[test]
 fn tiles_merged_are_the_single_render_bit_for_bit_on_the_gpu() {
-    if std::env::var("GLINT_SKIP_GPU").is_ok_and(|v| v == "1") {
+    if glint_test_support::skip_requested("GLINT_SKIP_GPU") {
         eprintln!("GLINT_SKIP_GPU=1: no GPU tiles");
         return;
     }

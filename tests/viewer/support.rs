@@ -27,7 +27,7 @@ pub fn viewer_with(
     window: (f32, f32),
     change: impl FnOnce(&mut ViewerOptions),
 ) -> Option<Harness<'static, ViewerApp>> {
-    if std::env::var("GLINT_SKIP_GPU").is_ok_and(|v| v == "1") {
+    if glint_test_support::skip_requested("GLINT_SKIP_GPU") {
         eprintln!("GLINT_SKIP_GPU=1: skipping the viewer UI tests");
         return None;
     }

@@ -20,7 +20,7 @@ pub fn gpu() -> Option<&'static GpuTracer> {
     static TRACER: OnceLock<Option<GpuTracer>> = OnceLock::new();
     TRACER
         .get_or_init(|| {
-            if std::env::var("GLINT_SKIP_GPU").is_ok_and(|v| v == "1") {
+            if crate::skip_requested("GLINT_SKIP_GPU") {
                 eprintln!("GLINT_SKIP_GPU=1: skipping GPU tests");
                 return None;
             }

@@ -16,3 +16,9 @@ pub mod temp;
 pub mod texture;
 
 pub use temp::TempDir;
+
+/// Whether the user skips a group of tests on purpose with its `GLINT_SKIP_*` variable set to
+/// 1 (README's table). Without it, a test that lacks what it needs fails saying what to install.
+pub fn skip_requested(variable: &str) -> bool {
+    std::env::var(variable).is_ok_and(|v| v == "1")
+}
