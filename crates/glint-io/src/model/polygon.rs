@@ -17,10 +17,16 @@ pub(super) enum Cut {
 /// Appends the triangles of `polygon` (indices into `positions`, in the file's order) to
 /// `out`, each turning as the polygon turns.
 pub(super) fn triangulate(positions: &[[f64; 3]], polygon: &[u32], out: &mut Vec<[u32; 3]>) -> Cut {
+    let fan = |out: &mut Vec<[u32; 3]>| out.extend(polygon.windows(2).skip(1).map(|w| [polygon[0], w[0], w[1]]));
+    // Most faces are triangles: no plane to find.
+    if polygon.len() == 3 {
+        fan(out);
+        return Cut::Fan;
+    }
     let at = |i: u32| positions[i as usize];
     let normal = newell_normal(polygon.iter().map(|&i| at(i)));
-    if polygon.len() == 3 || normal == [0.0; 3] || is_convex(polygon.len(), |k| at(polygon[k]), normal) {
-        out.extend(polygon.windows(2).skip(1).map(|w| [polygon[0], w[0], w[1]]));
+    if normal == [0.0; 3] || is_convex(polygon.len(), |k| at(polygon[k]), normal) {
+        fan(out);
         return Cut::Fan;
     }
     // The plane's coordinates: the two axes the normal leans on least, in the order that

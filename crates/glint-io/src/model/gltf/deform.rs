@@ -91,6 +91,37 @@ pub(super) fn morph(
 /// A JOINTS_n / WEIGHTS_n pair: each vertex's four joint indices and their weights.
 type InfluenceSet = (Vec<[u32; 4]>, Vec<[f64; 4]>);
 
+/// Each vertex's matrix: one for a rigid primitive (not a copy per vertex), else one a vertex.
+#[derive(Clone, Debug)]
+pub(super) enum VertexMatrices {
+    Rigid { matrix: Mat4, count: usize },
+    Blended(Vec<Mat4>),
+}
+
+#[cfg(test)]
+impl VertexMatrices {
+    fn len(&self) -> usize {
+        match self {
+            Self::Rigid { count, .. } => *count,
+            Self::Blended(matrices) => matrices.len(),
+        }
+    }
+}
+
+impl std::ops::Index<usize> for VertexMatrices {
+    type Output = Mat4;
+
+    fn index(&self, vertex: usize) -> &Mat4 {
+        match self {
+            Self::Rigid { matrix, count } => {
+                assert!(vertex < *count, "vertex {vertex} of {count}");
+                matrix
+            }
+            Self::Blended(matrices) => &matrices[vertex],
+        }
+    }
+}
+
 /// Each vertex's matrix under `placement`: the rigid one, or the joints' matrices blended by
 /// the vertex's JOINTS_n and WEIGHTS_n (every set the primitive has). The weights are divided by
 /// their sum, as three.js does, so that one that does not quite sum to 1 (or a fifth influence
@@ -102,9 +133,9 @@ pub(super) fn vertex_matrices(
     count: usize,
     buffers: &Buffers,
     path: &str,
-) -> Result<Vec<Mat4>, (String, String)> {
+) -> Result<VertexMatrices, (String, String)> {
     let joints = match placement {
-        Placement::Rigid(m) => return Ok(vec![*m; count]),
+        Placement::Rigid(m) => return Ok(VertexMatrices::Rigid { matrix: *m, count }),
         Placement::Skinned(joints) => joints,
     };
     let attribute = |name: &str| format!("{path}.attributes.{name}");
@@ -128,20 +159,15 @@ pub(super) fn vertex_matrices(
         }
         sets.push((indices, weights));
     }
-    (0..count)
+    let blended = (0..count)
         .map(|v| {
-            let influences = sets.iter().flat_map(|(js, ws)| js[v].into_iter().zip(ws[v]));
-            let total: f64 = influences.clone().map(|(_, w)| w).sum();
-            let normalised: Vec<(u32, f64)> = if total > 0.0 && total.is_finite() {
-                influences.filter(|&(_, w)| w != 0.0).map(|(j, w)| (j, w / total)).collect()
-            } else {
-                vec![(sets[0].0[v][0], 1.0)]
-            };
+            let influences = || sets.iter().flat_map(|(js, ws)| js[v].into_iter().zip(ws[v]));
+            let total: f64 = influences().map(|(_, w)| w).sum();
             let mut blended = Mat4([[0.0; 4]; 4]);
-            for (j, w) in normalised {
+            let mut add = |j: u32, w: f64| {
                 let m = joints.get(j as usize).ok_or_else(|| {
                     (
-                        attribute("JOINTS_0"),
+                        attribute("JOINTS_n"),
                         format!("element {v} names joint {j}; the skin has {} joints", joints.len()),
                     )
                 })?;
@@ -150,10 +176,19 @@ pub(super) fn vertex_matrices(
                         *c += w * jc;
                     }
                 }
+                Ok::<(), (String, String)>(())
+            };
+            if total > 0.0 && total.is_finite() {
+                for (j, w) in influences().filter(|&(_, w)| w != 0.0) {
+                    add(j, w / total)?;
+                }
+            } else {
+                add(sets[0].0[v][0], 1.0)?;
             }
             Ok(blended)
         })
-        .collect()
+        .collect::<Result<Vec<_>, (String, String)>>()?;
+    Ok(VertexMatrices::Blended(blended))
 }
 
 #[cfg(test)]

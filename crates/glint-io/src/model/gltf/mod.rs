@@ -524,7 +524,8 @@ fn read_primitive(
     deform::morph(primitive, place.weights, &mut local, local_normals.as_mut(), buffers, path)?;
     let matrices = deform::vertex_matrices(primitive, place.placement, local.len(), buffers, path)?;
     let mut vertices = Vec::with_capacity(local.len());
-    for (k, (p, m)) in local.iter().zip(&matrices).enumerate() {
+    for (k, p) in local.iter().enumerate() {
+        let m = &matrices[k];
         let w = m.point(*p);
         if !w.iter().all(|c| c.is_finite()) {
             return Err((
@@ -545,7 +546,7 @@ fn read_primitive(
         (len.is_finite() && len > 1e-12).then(|| v.map(|c| c / len))
     };
     let normals = local_normals
-        .and_then(|n| n.iter().zip(&matrices).map(|(v, m)| unit(m.normal(*v))).collect::<Option<Vec<_>>>());
+        .and_then(|n| n.iter().enumerate().map(|(k, v)| unit(matrices[k].normal(*v))).collect::<Option<Vec<_>>>());
     let uvs = match uv_set.and_then(|set| primitive.get(&::gltf::Semantic::TexCoords(set)).map(|a| (set, a))) {
         None => None,
         Some((set, acc)) => {
