@@ -59,6 +59,7 @@ pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
     // error, the first such one reported.
     let refused = std::cell::RefCell::new(None);
     let mtl_warnings = std::cell::RefCell::new(Vec::new());
+    let mtl_left_out = std::cell::Cell::new(false);
     let (models, materials) = tobj::load_obj_buf(&mut bytes.as_ref(), &options, |mtl| {
         let uri = mtl.to_string_lossy();
         let field = format!("mtllib `{uri}`");
@@ -70,6 +71,7 @@ pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
                     "{} does not exist; the faces naming its materials use `{DEFAULT_MATERIAL}`",
                     mtl.display()
                 ));
+                mtl_left_out.set(true);
                 return Err(tobj::LoadError::OpenFileFailed);
             }
             Err(error) => {
@@ -87,6 +89,7 @@ pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
         });
         loaded.map_err(|problem| {
             warn(format!("materials not loaded ({problem}); the faces naming them use `{DEFAULT_MATERIAL}`"));
+            mtl_left_out.set(true);
             tobj::LoadError::MaterialParseError
         })
     })
@@ -94,11 +97,9 @@ pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
     if let Some(error) = refused.into_inner() {
         return Err(ObjError::Uri { file: path.to_owned(), error });
     }
-    let mtl_warnings = mtl_warnings.into_inner();
+    out.warnings.extend(mtl_warnings.into_inner());
     // With an MTL left out, every name it held would be warned again.
-    let every_mtl_read = mtl_warnings.iter().all(|w| w.problem.starts_with("not UTF-8"));
-    out.warnings.extend(mtl_warnings);
-    if every_mtl_read {
+    if !mtl_left_out.get() {
         out.warnings.extend(unknown_materials(&uses, materials.as_deref().unwrap_or_default()));
     }
     let materials = materials.unwrap_or_default();

@@ -70,28 +70,39 @@ pub(super) fn material_statements<'a>(text: &'a [u8], keywords: &[&str]) -> Cow<
 /// `l a b c …` as a filled polygon (a wireframe box became a solid one), and Glint traces no
 /// lines. The lines stay, empty, so that errors still name the file's line numbers.
 pub(super) fn without_polylines(text: &[u8]) -> (Cow<'_, [u8]>, usize) {
-    let polyline = |raw: &[u8]| statement_name(raw, "l").is_some();
-    let count = text.split(|&b| b == b'\n').filter(|raw| polyline(raw)).count();
-    (rewrite_lines(text, |raw| polyline(raw).then(Vec::new)), count)
+    let mut count = 0;
+    let out = rewrite_lines(text, |raw| {
+        let polyline = statement_name(raw, "l").is_some();
+        count += usize::from(polyline);
+        polyline.then(Vec::new)
+    });
+    (out, count)
 }
 
 /// `text` with the lines `replace` gives a replacement for replaced (the line breaks kept, so
-/// every line keeps its number); borrowed as it is when there are none.
-fn rewrite_lines(text: &[u8], replace: impl Fn(&[u8]) -> Option<Vec<u8>>) -> Cow<'_, [u8]> {
-    if !text.split(|&b| b == b'\n').any(|raw| replace(raw).is_some()) {
-        return Cow::Borrowed(text);
-    }
-    let mut out = Vec::with_capacity(text.len() + 64);
-    for (n, raw) in text.split(|&b| b == b'\n').enumerate() {
-        if n > 0 {
-            out.push(b'\n');
+/// every line keeps its number); borrowed as it is when there are none. One pass: the copy
+/// starts at the first replaced line.
+fn rewrite_lines(text: &[u8], mut replace: impl FnMut(&[u8]) -> Option<Vec<u8>>) -> Cow<'_, [u8]> {
+    let mut out: Option<Vec<u8>> = None;
+    let mut start = 0;
+    for raw in text.split(|&b| b == b'\n') {
+        let replaced = replace(raw);
+        match (&mut out, replaced) {
+            (None, None) => {}
+            (None, Some(line)) => {
+                let mut copy = Vec::with_capacity(text.len() + 64);
+                copy.extend_from_slice(&text[..start]);
+                copy.extend_from_slice(&line);
+                out = Some(copy);
+            }
+            (Some(copy), line) => {
+                copy.push(b'\n');
+                copy.extend_from_slice(line.as_deref().unwrap_or(raw));
+            }
         }
-        match replace(raw) {
-            Some(line) => out.extend_from_slice(&line),
-            None => out.extend_from_slice(raw),
-        }
+        start += raw.len() + 1;
     }
-    Cow::Owned(out)
+    out.map_or(Cow::Borrowed(text), Cow::Owned)
 }
 
 /// The name a `keyword` line gives as tobj reads it (the rest of the line, trimmed), else
