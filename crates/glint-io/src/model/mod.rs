@@ -52,6 +52,20 @@ pub(crate) fn widen(x: f32) -> f64 {
     x.to_string().parse().unwrap_or(f64::from(x))
 }
 
+/// The warning naming what a model's materials hold that Glint does not read, each with how many
+/// materials hold it (`Tf (1 material), map_Bump (2 materials)`); `None` when nothing is left out.
+pub(crate) fn left_out(
+    field: &str,
+    what: &str,
+    counts: &std::collections::BTreeMap<&str, usize>,
+) -> Option<FieldIssue> {
+    let each = |(k, n): (&&str, &usize)| format!("{k} ({n} material{})", if *n == 1 { "" } else { "s" });
+    (!counts.is_empty()).then(|| FieldIssue {
+        field: field.into(),
+        problem: format!("{what}, left out: {}", counts.iter().map(each).collect::<Vec<_>>().join(", ")),
+    })
+}
+
 /// Which importer reads a file, by its extension (case-insensitive).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ModelFormat {

@@ -211,17 +211,7 @@ fn unread_statements(materials: &[tobj::Material]) -> Option<FieldIssue> {
             *unread.entry(statement).or_default() += 1;
         }
     }
-    (!unread.is_empty()).then(|| FieldIssue {
-        field: "mtllib".into(),
-        problem: format!(
-            "statements Glint does not read, left out: {}",
-            unread
-                .iter()
-                .map(|(k, n)| format!("{k} ({n} material{})", if *n == 1 { "" } else { "s" }))
-                .collect::<Vec<_>>()
-                .join(", ")
-        ),
-    })
+    super::left_out("mtllib", "statements Glint does not read", &unread)
 }
 
 /// One warning per `usemtl` that names no material of the MTL (its faces take the default),

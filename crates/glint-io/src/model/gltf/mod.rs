@@ -151,16 +151,7 @@ pub fn load_gltf(path: &Path, options: &ImportOptions) -> Result<Model, GltfErro
     }
     // Skins are posed by joints anywhere in the scene, walked before or after their mesh.
     let world_of = if gltf.skins().len() > 0 { world_transforms(&scene, gltf.nodes().len()) } else { Vec::new() };
-    if !unread.is_empty() {
-        let each = |(k, n): (&&str, &usize)| format!("{k} ({n} material{})", if *n == 1 { "" } else { "s" });
-        model.warnings.push(FieldIssue {
-            field: "materials".into(),
-            problem: format!(
-                "what Glint's model does not read, left out: {}",
-                unread.iter().map(each).collect::<Vec<_>>().join(", ")
-            ),
-        });
-    }
+    model.warnings.extend(super::left_out("materials", "what Glint's model does not read", &unread));
     // Depth first from the scene's roots; a node reached twice is a cycle or a shared child,
     // both outside glTF's "disjoint strict trees", and refused rather than walked forever.
     let mut reached = vec![false; gltf.nodes().len()];
