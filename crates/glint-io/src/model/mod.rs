@@ -3,6 +3,7 @@
 
 pub mod gltf;
 mod ground;
+mod mtl;
 pub mod obj;
 mod obj_text;
 mod polygon;

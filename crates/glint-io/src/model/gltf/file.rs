@@ -1,0 +1,202 @@
+//! A glTF file as the importer reads it: its bytes (capped before reading), parsed and
+//! validated by the gltf crate after the checks that crate assumes instead of making, a file of
+//! another glTF version named as such, and every buffer through the one URI resolver.
+
+use std::path::Path;
+
+use super::accessor::Buffers;
+use super::error::GltfError;
+use crate::uri::{MAX_RESOURCE_BYTES, resolve_uri};
+use glint_scene::FieldIssue;
+
+/// The file's bytes, refused beyond `MAX_RESOURCE_BYTES` before they are read.
+pub(super) fn read_capped(path: &Path) -> std::io::Result<Vec<u8>> {
+    let len = std::fs::metadata(path)?.len();
+    if len > MAX_RESOURCE_BYTES {
+        return Err(std::io::Error::new(
+            std::io::ErrorKind::InvalidData,
+            format!("{len} bytes, more than the {MAX_RESOURCE_BYTES} a model file may have"),
+        ));
+    }
+    std::fs::read(path)
+}
+
+/// The file parsed and validated by the gltf crate, after the checks its code assumes
+/// instead of making (each panicked on a file found by the gltf_model fuzz target): each
+/// primitive's POSITION accessor exists (validation indexes the accessors with it); an image
+/// has a URI or a buffer view, and a MIME type with a buffer view; a camera has the
+/// projection its type names (`Image::source` and `Camera::projection` unwrap them).
+///
+/// A POSITION accessor without the `min` and `max` the specification requires is read, with a
+/// warning, as three.js, Blender and Assimp read it: Glint bounds geometry from the positions
+/// themselves and never reads those two.
+pub(super) fn parse(bytes: &[u8], file: &Path, warnings: &mut Vec<FieldIssue>) -> Result<::gltf::Gltf, GltfError> {
+    use ::gltf::json::camera::Type as CameraType;
+    use ::gltf::json::mesh::Semantic;
+    use ::gltf::json::validation::Checked;
+    let ::gltf::Gltf { document, blob } = ::gltf::Gltf::from_slice_without_validation(bytes)
+        .map_err(|e| other_version(bytes, file).unwrap_or_else(|| parse_error(file, e)))?;
+    let mut json = document.into_json();
+    // Glint reads quantised attributes itself (`accessor::read_vec3`, `read_uv`); the gltf
+    // crate, which would refuse the file for requiring it, is not told.
+    json.extensions_required.retain(|e| e != "KHR_mesh_quantization");
+    let invalid = |path: String, problem: &str| GltfError::At {
+        file: file.to_owned(),
+        path,
+        problem: format!("invalid glTF: {problem}"),
+    };
+    for (i, image) in json.images.iter().enumerate() {
+        match (&image.buffer_view, &image.uri, &image.mime_type) {
+            (Some(_), _, None) => {
+                return Err(invalid(format!("images[{i}].mimeType"), "an image in a buffer view needs its MIME type"));
+            }
+            (None, None, _) => return Err(invalid(format!("images[{i}]"), "an image needs a uri or a bufferView")),
+            _ => {}
+        }
+    }
+    for (i, camera) in json.cameras.iter().enumerate() {
+        let named = match camera.type_ {
+            Checked::Valid(CameraType::Perspective) => camera.perspective.is_some(),
+            Checked::Valid(CameraType::Orthographic) => camera.orthographic.is_some(),
+            // Validation names an unknown type.
+            Checked::Invalid => true,
+        };
+        if !named {
+            return Err(invalid(format!("cameras[{i}]"), "the camera lacks the projection its type names"));
+        }
+    }
+    for (m, mesh) in json.meshes.iter().enumerate() {
+        for (p, primitive) in mesh.primitives.iter().enumerate() {
+            if let Some(index) = primitive.attributes.get(&Checked::Valid(Semantic::Positions))
+                && index.value() >= json.accessors.len()
+            {
+                return Err(GltfError::At {
+                    file: file.to_owned(),
+                    path: format!("meshes[{m}].primitives[{p}].attributes.POSITION"),
+                    problem: format!(
+                        "invalid glTF: accessor {} does not exist (the file has {})",
+                        index.value(),
+                        json.accessors.len()
+                    ),
+                });
+            }
+        }
+    }
+    let positions: std::collections::BTreeSet<usize> = json
+        .meshes
+        .iter()
+        .flat_map(|mesh| &mesh.primitives)
+        .filter_map(|primitive| primitive.attributes.get(&Checked::Valid(Semantic::Positions)))
+        .map(|index| index.value())
+        .collect();
+    for index in positions {
+        let accessor = &mut json.accessors[index];
+        if accessor.min.is_none() || accessor.max.is_none() {
+            warnings.push(FieldIssue {
+                field: format!("accessors[{index}]"),
+                problem: "a POSITION accessor without min and max (glTF requires them): bounds taken from \
+                          the positions"
+                    .into(),
+            });
+            // Only validation reads them; it needs three numbers each.
+            let unread = || Some(::gltf::json::Value::from(vec![0.0; 3]));
+            accessor.min = accessor.min.take().or_else(unread);
+            accessor.max = accessor.max.take().or_else(unread);
+        }
+    }
+    let document = ::gltf::Document::from_json(json).map_err(|e| parse_error(file, e))?;
+    Ok(::gltf::Gltf { document, blob })
+}
+
+/// A file the glTF 2.0 parser refused that says it is another version of glTF (a GLB header's
+/// version, or the JSON's `asset.version`, a string in 2.0 and sometimes a number in 1.0):
+/// glTF 1.0 keeps its collections in objects keyed by id, which the parser reports only as
+/// "expected a sequence".
+fn other_version(bytes: &[u8], file: &Path) -> Option<GltfError> {
+    let error = |where_, version: String| Some(GltfError::Version { file: file.to_owned(), where_, version });
+    if let Some(header) = bytes.strip_prefix(b"glTF") {
+        let version = u32::from_le_bytes(header.get(..4)?.try_into().ok()?);
+        return if version == 2 { None } else { error("the GLB header's version", version.to_string()) };
+    }
+    let json: serde_json::Value = serde_json::from_slice(bytes).ok()?;
+    let version = match &json["asset"]["version"] {
+        serde_json::Value::String(v) => v.clone(),
+        serde_json::Value::Number(v) => v.to_string(),
+        _ => return None,
+    };
+    if version == "2" || version.starts_with("2.") { None } else { error("asset.version", format!("`{version}`")) }
+}
+
+/// The gltf crate's error with the JSON paths it names; an unsupported required extension
+/// (which its validation reports among the others) gets its own message.
+fn parse_error(file: &Path, e: ::gltf::Error) -> GltfError {
+    match e {
+        ::gltf::Error::Validation(errors) => {
+            for (path, error) in &errors {
+                let path = path.to_string();
+                if matches!(error, ::gltf::json::validation::Error::Unsupported)
+                    && let Some(rest) = path.strip_prefix("extensionsRequired[")
+                    && let Some((index, value)) = rest.split_once(']')
+                {
+                    return GltfError::RequiredExtension {
+                        file: file.to_owned(),
+                        index: index.parse().unwrap_or(0),
+                        extension: value.trim_start_matches([' ', '=']).trim_matches('"').to_string(),
+                    };
+                }
+            }
+            let shown: Vec<String> = errors.iter().take(8).map(|(p, e)| format!("{p}: {e}")).collect();
+            let more = errors.len().saturating_sub(shown.len());
+            let mut path = errors.first().map(|(p, _)| p.to_string()).unwrap_or_default();
+            if path.is_empty() {
+                path = "(root)".into();
+            }
+            GltfError::At {
+                file: file.to_owned(),
+                path,
+                problem: format!(
+                    "invalid glTF: {}{}",
+                    shown.join("; "),
+                    if more > 0 { format!("; and {more} more") } else { String::new() }
+                ),
+            }
+        }
+        other => GltfError::Parse { file: file.to_owned(), reason: other.to_string() },
+    }
+}
+
+/// Every buffer's bytes: the GLB's BIN chunk, or its URI through the one resolver. A buffer
+/// shorter than its declared `byteLength` is an error; a longer one is cut to it.
+pub(super) fn load_buffers(gltf: &::gltf::Gltf, path: &Path) -> Result<Buffers, GltfError> {
+    let mut out = Vec::new();
+    for buffer in gltf.buffers() {
+        let field = format!("buffers[{}]", buffer.index());
+        let declared = buffer.length();
+        let mut data = match buffer.source() {
+            ::gltf::buffer::Source::Bin => gltf.blob.clone().ok_or_else(|| GltfError::At {
+                file: path.to_owned(),
+                path: field.clone(),
+                problem: "refers to the GLB's BIN chunk, which the file does not have".into(),
+            })?,
+            ::gltf::buffer::Source::Uri(uri) => {
+                // Not the declared length as the cap: a file may hold more (padding), and a
+                // base64 URI's size is only estimated before decoding.
+                resolve_uri(path, uri, MAX_RESOURCE_BYTES).map_err(|error| GltfError::Uri {
+                    file: path.to_owned(),
+                    path: format!("{field}.uri"),
+                    error,
+                })?
+            }
+        };
+        if data.len() < declared {
+            return Err(GltfError::At {
+                file: path.to_owned(),
+                path: format!("{field}.byteLength"),
+                problem: format!("declares {declared} bytes, but the data has {}", data.len()),
+            });
+        }
+        data.truncate(declared);
+        out.push(data);
+    }
+    Ok(Buffers(out))
+}

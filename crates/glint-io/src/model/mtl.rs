@@ -1,0 +1,180 @@
+//! MTL materials mapped onto the seed's model, as `docs/models.md` tabulates: the coefficients
+//! (`map_material`), the statements as the file wrote them (`source`), the scene's names
+//! (`material_names`), and what the importer reads before tobj does (`expand_colours`) or
+//! leaves out (`unread_statements`).
+
+use glint_scene::{FieldIssue, MaterialDesc, MaterialSource, Rgb};
+
+use super::obj_text;
+
+/// The material of faces that name none (MTL's defaults for Kd, no highlight).
+pub const DEFAULT_MATERIAL: &str = "obj-default";
+
+/// The MTL statements this importer reads; any other is named in one warning.
+const READ_STATEMENTS: [&str; 11] = ["Ka", "Kd", "Ks", "Ke", "Ns", "Ni", "d", "Tr", "illum", "map_Kd", "map_Ke"];
+
+/// One warning naming the MTL statements the materials hold that Glint does not read (bump and
+/// specular maps, `Tf`, …), each with how many materials hold it: the model renders without them.
+pub(super) fn unread_statements(materials: &[tobj::Material]) -> Option<FieldIssue> {
+    let mut unread: std::collections::BTreeMap<&str, usize> = std::collections::BTreeMap::new();
+    for m in materials {
+        let maps = [
+            ("map_Ka", &m.ambient_texture),
+            ("map_Ks", &m.specular_texture),
+            ("map_Bump", &m.normal_texture),
+            ("map_Ns", &m.shininess_texture),
+            ("map_d", &m.dissolve_texture),
+        ];
+        let tobj_fields = maps.into_iter().filter(|(_, v)| v.is_some()).map(|(k, _)| k);
+        // tobj keeps `#word …` (no space after the #) as a statement: it is a comment.
+        let others =
+            m.unknown_param.keys().map(String::as_str).filter(|k| !READ_STATEMENTS.contains(k) && !k.starts_with('#'));
+        for statement in tobj_fields.chain(others) {
+            *unread.entry(statement).or_default() += 1;
+        }
+    }
+    super::left_out("mtllib", "statements Glint does not read", &unread)
+}
+
+/// MTL text with every `Ka`/`Kd`/`Ks`/`Ke r` line written as `… r r r`: the MTL format lets g
+/// and b default to r, and tobj panics on fewer than three numbers. A colour line with none or
+/// two numbers is an error naming the line. tobj reads line by line, so the lines are checked
+/// one by one; a line that is not UTF-8 is kept for tobj to refuse.
+pub(super) fn expand_colours(text: &[u8]) -> Result<Vec<u8>, String> {
+    let mut out = Vec::with_capacity(text.len() + 64);
+    for (n, raw) in text.split(|&b| b == b'\n').enumerate() {
+        if n > 0 {
+            out.push(b'\n');
+        }
+        let Ok(line) = std::str::from_utf8(raw) else {
+            out.extend_from_slice(raw);
+            continue;
+        };
+        let mut words = line.split_whitespace();
+        if let Some(key @ ("Ka" | "Kd" | "Ks" | "Ke")) = words.next() {
+            let values: Vec<&str> = words.collect();
+            // `Kd spectral …` and `Kd xyz …` start with a word: tobj refuses those itself.
+            if values.first().is_none_or(|v| v.parse::<f32>().is_ok()) {
+                match values.iter().take_while(|v| v.parse::<f32>().is_ok()).count() {
+                    1 if values.len() == 1 => {
+                        out.extend_from_slice(format!("{key} {0} {0} {0}", values[0]).as_bytes());
+                        continue;
+                    }
+                    3.. => {}
+                    _ => {
+                        return Err(format!(
+                            "{}: `{key}` takes r [g b] (one number, or three), not `{}`",
+                            n + 1,
+                            line.trim()
+                        ));
+                    }
+                }
+            }
+        }
+        out.extend_from_slice(raw);
+    }
+    Ok(out)
+}
+
+/// Each material's name in the scene: MTL names may hold any character, and the scene format's
+/// keys are kept readable (other characters become `_`; the nameless material is `unnamed`); a
+/// name that two materials would share gets its index (`name-3`).
+pub(super) fn material_names(materials: &[tobj::Material]) -> Vec<String> {
+    let mut names: Vec<String> = Vec::with_capacity(materials.len());
+    for (k, m) in materials.iter().enumerate() {
+        let raw = if m.name == obj_text::NAMELESS { "" } else { &m.name };
+        let cleaned: String =
+            raw.chars().map(|c| if c.is_alphanumeric() || "-_.".contains(c) { c } else { '_' }).collect();
+        let name = if cleaned.is_empty() { "unnamed".to_string() } else { cleaned };
+        names.push(if names.contains(&name) || name == DEFAULT_MATERIAL { format!("{name}-{k}") } else { name });
+    }
+    names
+}
+
+pub(super) fn default_material() -> MaterialDesc {
+    MaterialDesc { ka: Rgb::splat(0.8), kd: Rgb::splat(0.8), ks: Rgb::splat(0.0), ..MaterialDesc::default() }
+}
+
+fn rgb(c: [f64; 3]) -> Rgb {
+    Rgb(c)
+}
+
+/// The MTL statements `map_material` reads, as the file wrote them (absent ones left out).
+pub(super) fn source(m: &tobj::Material) -> MaterialSource {
+    let colour = |c: Option<[f64; 3]>| c.map(|c| c.to_vec());
+    let number = |x: Option<f64>| x.map(|x| vec![x]);
+    let fields = [
+        ("Ka", colour(m.ambient)),
+        ("Kd", colour(m.diffuse)),
+        ("Ks", colour(m.specular)),
+        ("Ke", colour(m.emissive)),
+        ("Ns", number(m.shininess)),
+        ("Ni", number(m.optical_density)),
+        ("d", number(m.dissolve)),
+        ("Tr", number(m.unknown_param.get("Tr").and_then(|t| t.trim().parse().ok()))),
+        ("illum", m.illumination_model.map(|i| vec![f64::from(i)])),
+    ];
+    MaterialSource { format: "MTL", fields: fields.into_iter().filter_map(|(k, v)| Some((k, v?))).collect() }
+}
+
+/// The MTL fields onto the seed's coefficients (docs/models.md): Kd → k_d, Ka → k_a (k_d when
+/// absent), Ks → k_s from illum 2 on, Ns → n, Ke → E_m, Ni → ior; illum 3 and 5 trace
+/// reflection rays with k_r = Ks, illum 4, 6 and 7 also refraction rays with k_t = 1 − d.
+/// MTL's opacity: `d`, else 1 − `Tr` (the transparency many exporters write instead), else 1.
+fn dissolve(m: &tobj::Material, warn: &mut impl FnMut(&str, String)) -> f64 {
+    match (m.dissolve, m.unknown_param.get("Tr")) {
+        (Some(d), _) => d,
+        (None, Some(tr)) => match tr.trim().parse::<f64>() {
+            Ok(t) if t.is_finite() => 1.0 - t,
+            _ => {
+                warn("Tr", format!("`Tr {tr}` is not a number; the material is opaque"));
+                1.0
+            }
+        },
+        (None, None) => 1.0,
+    }
+}
+
+pub(super) fn map_material(m: &tobj::Material, name: &str, warnings: &mut Vec<FieldIssue>) -> MaterialDesc {
+    let kd = m.diffuse.map_or(Rgb::splat(0.8), rgb);
+    let ks = m.specular.map_or(Rgb::splat(0.0), rgb);
+    let illum = m.illumination_model.unwrap_or(2);
+    let mut warn = |field: &str, problem: String| {
+        warnings.push(FieldIssue { field: format!("materials.{name}.{field}"), problem });
+    };
+    let transmission = Rgb::splat(1.0 - dissolve(m, &mut warn).clamp(0.0, 1.0));
+    let (ks_local, kr, kt) = match illum {
+        0 | 1 => (Rgb::splat(0.0), Rgb::splat(0.0), Rgb::splat(0.0)),
+        2 => (ks, Rgb::splat(0.0), Rgb::splat(0.0)),
+        3 | 5 => (ks, ks, Rgb::splat(0.0)),
+        4 | 6 | 7 => (ks, ks, transmission),
+        8..=10 => {
+            warn("illum", format!("illum {illum} (no ray tracing) is traced as illum 2"));
+            (ks, Rgb::splat(0.0), Rgb::splat(0.0))
+        }
+        other => {
+            warn("illum", format!("illum {other} is outside 0..=10; traced as illum 2"));
+            (ks, Rgb::splat(0.0), Rgb::splat(0.0))
+        }
+    };
+    let ior = match m.optical_density {
+        Some(ni) if (1.0..=glint_scene::MAX_IOR).contains(&ni) => ni,
+        Some(ni) => {
+            warn("ior", format!("Ni {ni} is outside [1, {}]; using 1.5", glint_scene::MAX_IOR));
+            1.5
+        }
+        None => 1.5,
+    };
+    let shininess = m.shininess.unwrap_or(0.0).clamp(0.0, glint_scene::MAX_SHININESS);
+    MaterialDesc {
+        ka: m.ambient.map_or(kd, rgb),
+        kd,
+        ks: ks_local,
+        shininess,
+        kr,
+        kt,
+        ior,
+        emission: m.emissive.map_or(Rgb::splat(0.0), rgb),
+        ..MaterialDesc::default()
+    }
+}
