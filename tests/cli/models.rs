@@ -76,16 +76,19 @@ fn concave_faces_are_cut_into_ears_and_polylines_are_not_faces() {
     assert!(m.warnings.iter().any(|w| w.problem.contains("6 polyline statement(s) left out")), "{:?}", m.warnings);
 }
 
-/// Wuson moved far from the origin: the OBJ's decimals are read as f64, and the triangles that
-/// lose their area once stored as f32 (as both tracers store vertices) are counted in a warning
-/// that names the f32 step there.
+/// Wuson moved far from the origin (a round offset and a projected map coordinate): stored
+/// relative to its own box (`glint_scene::storage_origin`), none of its triangles lose their
+/// area, its ground keeps the model's own gap, and both tracers render it as at the origin.
+/// Before, at 1e6 f32 world coordinates dropped 1640 triangles and put the ground 4 units
+/// lower (its gap was 64 f32 steps of 1/16). A scene that spans 1e6 itself (the model and a
+/// triangle at the world origin) is stored in world space, and the loss is warned.
 #[test]
-fn a_model_far_from_the_origin_is_warned_of_the_triangles_f32_loses() {
+fn a_model_far_from_the_origin_renders_as_at_the_origin() {
     let dir = TempDir::new("models-far");
     let Some(path) = model("OBJ/WusonOBJ.obj") else { return };
     let text = std::fs::read_to_string(&path).unwrap();
-    for (offset, lost) in [(1e2, false), (1e6, true)] {
-        let moved: String = text
+    let moved = |offset: f64, extra: &str| -> String {
+        let body: String = text
             .lines()
             .map(|line| match line.strip_prefix("v ") {
                 Some(xyz) => {
@@ -95,13 +98,27 @@ fn a_model_far_from_the_origin_is_warned_of_the_triangles_f32_loses() {
                 None => format!("{line}\n"),
             })
             .collect();
-        let file = dir.join("far.obj");
-        std::fs::write(&file, moved).unwrap();
-        let stderr = render_model(&dir, "far.obj", &file, &[]);
-        let warned = stderr.contains("triangles have no area once their vertices are stored as f32");
-        assert_eq!(warned, lost, "{offset:e}: {stderr}");
-        assert!(!lost || stderr.contains("where f32 steps are 6.250e-2"), "{stderr}");
+        body + extra
+    };
+    let render = |name: &str, obj: String| {
+        let file = dir.join(name);
+        std::fs::write(&file, obj).unwrap();
+        let stderr = render_model(&dir, name, &file, &[]);
+        let cpu = image::open(dir.join("m-cpu.png")).expect("the CPU image").into_rgb8();
+        (stderr, cpu)
+    };
+    let lost = "triangles have no area once their vertices are stored as f32";
+    let (_, at_origin) = render("origin.obj", moved(0.0, ""));
+    for offset in [1e6, 452_331.127] {
+        let (stderr, far) = render("far.obj", moved(offset, ""));
+        assert!(!stderr.contains(lost), "{offset:e}: {stderr}");
+        let worst = at_origin.as_raw().iter().zip(far.as_raw()).map(|(a, b)| a.abs_diff(*b)).max();
+        assert!(worst <= Some(1), "{offset:e}: the CPU image differs from the origin's by {worst:?} of 255");
     }
+    // The same model and one triangle at the world origin: the scene spans 1e6.
+    let wide = moved(1e6, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\n");
+    let (stderr, _) = render("wide.obj", wide);
+    assert!(stderr.contains(lost) && stderr.contains("where f32 steps are 6.250e-2"), "{stderr}");
 }
 
 /// Renders `path` at 64×48 with `extra` flags on both backends (the CPU alone with

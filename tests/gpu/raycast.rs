@@ -113,10 +113,11 @@ fn a_traversal_cut_short_by_the_driver_is_an_error_not_a_fast_miss() {
 
 #[test]
 fn the_ray_caster_works_in_world_space_away_from_the_origin() {
-    // The tracer rebases a scene on a frame near its camera; the ray caster's rays are
-    // world-space records, so it must not. The scene, its camera and the rays moved by 4096
-    // along x (exact in f32 for the ray origins; the vertices round the same way for both
-    // backends): the tracer's frame moves (checked), the caster's hits must not.
+    // The tracer rebases a scene on a frame near its camera; the ray caster's rays are records
+    // in the scene's stored coordinates, so it must not. The scene, its camera and the rays
+    // moved by 4096 along x: the scene is stored relative to its geometry (`storage_origin`),
+    // the rays are moved into that frame (exact in f32: the shift and the origin are integers),
+    // the tracer's frame differs from it (checked), and the caster's hits must not.
     const SHIFT: f64 = 4096.0;
     let tracer = gpu_or_skip!();
     let ctx = tracer.context();
@@ -138,13 +139,18 @@ fn the_ray_caster_works_in_world_space_away_from_the_origin() {
     desc.camera.position[0] += SHIFT;
     desc.camera.look_at[0] += SHIFT;
     let flat = FlatScene::build(&desc, &desc.render);
-    assert_ne!(glint_core::rebase::camera_frame(&flat), glint_types::layout::WORLD_FRAME);
+    assert_ne!(flat.header.frame, glint_types::layout::WORLD_FRAME);
+    assert_ne!(glint_core::rebase::camera_frame(&flat), flat.header.frame);
+    // World to stored: + the shift, − the storage origin.
+    let by: Vec<f64> = [SHIFT, 0.0, 0.0].iter().zip(&flat.header.frame).map(|(s, o)| s - f64::from(*o)).collect();
     let caster = RayCaster::new(ctx, &flat).expect("the kernel compiles and the scene uploads");
     let rays: Vec<_> = RaySet::Primary
         .rays()
         .into_iter()
         .map(|mut r| {
-            r.origin_t_min[0] += SHIFT as f32;
+            for (c, by) in r.origin_t_min.iter_mut().zip(&by) {
+                *c = (f64::from(*c) + by) as f32;
+            }
             r
         })
         .collect();

@@ -30,6 +30,7 @@ use glint_core::compare::flip_mean;
 use glint_core::rebase::{Frame, camera_frame, rebased};
 use glint_core::{CpuRender, FlatScene, HdrImage};
 use glint_gpu::GpuOptions;
+use glint_types::layout::WORLD_FRAME;
 
 use crate::gpu::{self, Both, gpu_render_with, render_both};
 use crate::render::{artefact_dir, write_failure_images};
@@ -42,9 +43,11 @@ const H: u32 = 72;
 pub const TRANSLATIONS: [f64; 5] = [1e2, 1e3, 1e4, 1e5, 1e6];
 /// log2 of the scales: the powers of two nearest 1e-3, 1e-2, 1e-1, 1e1, 1e2, 1e3, 1e4.
 pub const SCALE_EXPONENTS: [i32; 7] = [-10, -7, -3, 3, 7, 10, 13];
-/// Measured: worst relative channel difference of a translated CPU image 2.0e-7 at T = 1e6 —
-/// f64 rounding of hit points of magnitude 1e6 (1e6·2^-53 ≈ 1e-10 units) reaching the shading
-/// through the robust offsets (256 ulps of 1e6 in f64 = 3e-8 units) and the light distances;
+/// Measured: worst relative channel difference of a translated CPU image 2.5e-11 at T = 1e2 —
+/// f64 rounding of hit points of magnitude 1e2 reaching the shading through the robust offsets
+/// (256 ulps) and the light distances; from T = 1e3 on the scene is stored relative to its
+/// geometry (`glint_scene::storage_origin`) on the grid the untransformed one has, and the image
+/// is the untransformed one bit for bit (stored in world space it differed by 2.0e-7 at 1e6);
 /// scaled images within 3e-10 (the fixed offset near the origin). Allowed: 1e-6, still below
 /// what an f32 image stores.
 const CPU_REL: f64 = 1e-6;
@@ -91,7 +94,7 @@ pub fn scaled(exponent: i32) -> SceneText {
 
 /// Worst relative channel difference of `image` to `reference`, and the pixels whose first hit
 /// differs.
-fn cpu_difference(reference: &CpuRender, image: &CpuRender) -> (f64, usize) {
+pub fn cpu_difference(reference: &CpuRender, image: &CpuRender) -> (f64, usize) {
     let (a, b): (&HdrImage, &HdrImage) = (&reference.image, &image.image);
     let mismatched = a.first_hit.iter().zip(&b.first_hit).filter(|(x, y)| x != y).count();
     let mut worst = 0.0_f64;
@@ -124,10 +127,12 @@ pub struct Sweep {
     pub failures: Vec<String>,
 }
 
-/// The GPU's FLIP against `both`'s CPU image in world space (no rebasing).
+/// The GPU's FLIP against `both`'s CPU image in world space: the scene stored there (the f32
+/// world coordinates a scene would have without its storage origin) and traced as stored.
 fn world_flip(both: &Both, flat: &FlatScene) -> Option<f64> {
     let tracer = gpu::gpu()?;
-    let r = gpu_render_with(tracer, flat, &GpuOptions { frame: Frame::World, ..GpuOptions::default() });
+    let world = rebased(flat, WORLD_FRAME);
+    let r = gpu_render_with(tracer, &world, &GpuOptions { frame: Frame::Stored, ..GpuOptions::default() });
     Some(flip_mean(&both.cpu.image, &r.image))
 }
 

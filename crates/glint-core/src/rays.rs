@@ -2,7 +2,9 @@
 //! bench `rays`, the GPU ray-cast test) and the comparison of two tracers' hits on them.
 //!
 //! Rays are stored in f32, as the GPU reads them; the CPU widens those exact values (as it does
-//! the scene), so both tracers cast bit-identical rays.
+//! the scene), so both tracers cast bit-identical rays. They are in the scene's stored
+//! coordinates (relative to `SceneHeader::frame`), which for the bench scenes, built around the
+//! world origin, are world space.
 
 use crate::cpu::intersect::FAR;
 use crate::cpu::raycast::{HitRecord, RayRecord};

@@ -1,10 +1,11 @@
-//! View-relative coordinates for the f32 tracer. A scene stored in world space carries in
-//! every f32 hit point the error of its absolute position (ulp(1e6) = 0.0625): the GPU's error
-//! then depends on where the scene is. `rebased` moves the flat scene's origin to where the
-//! camera's centre ray meets the scene (`camera_frame`) — each stored position widened to f64,
-//! the origin subtracted in f64, and only then rounded to f32 — so that f32 carries the
-//! distances within the scene instead. The CPU reference keeps tracing the world-space scene
-//! (its f64 has the digits).
+//! View-relative coordinates for the f32 tracer. A flat scene is stored relative to its
+//! geometry (`glint_scene::storage_origin`), so f32 holds its positions to the scene's own
+//! size; but every f32 hit point still carries the error of its distance from that origin, so
+//! a camera looking at a detail far out in a large scene would see it to the scene's size, not
+//! the detail's. `rebased` moves the origin to where the camera's centre ray meets the scene
+//! (`camera_frame`) — each stored position widened to f64, the origin subtracted in f64, and
+//! only then rounded to f32 — so that f32 carries the distances within the view instead. The
+//! CPU reference keeps tracing the scene as stored (its f64 has the digits).
 //!
 //! What moves: vertex positions (one buffer, so a vertex shared by triangles maps to one value
 //! and watertightness holds), sphere centres, plane offsets d' = d − n·c, point and spot light
@@ -20,7 +21,8 @@ use crate::bvh::{f32_down, f32_up};
 use crate::cpu::intersect::Leaving;
 use crate::cpu::walk::closest_hit;
 use crate::cpu::{Ray, TraceContext, v3};
-use glint_scene::{LightKind, Wrap};
+use crate::flat::place_texture_origins;
+use glint_scene::LightKind;
 use glint_types::layout::{GpuPlane, GpuSphere, origin_power};
 
 /// Where the GPU's coordinates have their origin.
@@ -29,9 +31,10 @@ pub enum Frame {
     /// Where the camera looks (the default): `camera_frame`.
     #[default]
     Camera,
-    /// World space, as stored: the GPU's error then grows with the distance from the world
-    /// origin (kept to measure exactly that).
-    World,
+    /// As the flat scene is stored (`SceneHeader::frame`): the GPU's error then grows with the
+    /// distance from that origin (kept to measure exactly that; a scene rebased to
+    /// `WORLD_FRAME` first is traced in world space).
+    Stored,
 }
 
 impl Frame {
@@ -39,7 +42,7 @@ impl Frame {
     pub fn of(self, scene: &FlatScene) -> [f32; 4] {
         match self {
             Frame::Camera => camera_frame(scene),
-            Frame::World => scene.header.frame,
+            Frame::Stored => scene.header.frame,
         }
     }
 }
@@ -105,7 +108,7 @@ fn focus_within(scene: &FlatScene, eye: DVec3, r: f64) -> DVec3 {
     }
 }
 
-/// The frame the GPU traces `scene` in (world space as stored, origin 0): the focus (`focus_within`) snapped to
+/// The frame the GPU traces `scene` in (a world-space origin and a length scale): the focus (`focus_within`) snapped to
 /// a grid of spacing g, the power of two nearest R/16 (R the scene's reach from the eye,
 /// `reach`), and the offsets' length scale min(1, the power of two nearest R).
 ///
@@ -207,39 +210,6 @@ fn move_the_rest(out: &mut FlatScene, scene: &FlatScene, frame: [f32; 4]) {
     }
 }
 
-/// Each texture's planar origins (`GpuTexture::planar_u`, `planar_v`) for `frame`: the
-/// transformed planar coordinates of the frame's origin, across each axis, in f64, folded into
-/// the wrap mode's period. Planar coordinates are then taken relative to the frame, small,
-/// and a texel edge 1e6 units from the world origin stays where it is on the GPU (its f32
-/// world coordinate was off by 1/16 there). At the world origin they are the offsets, exact.
-fn place_texture_origins(out: &mut FlatScene, frame: [f32; 4]) {
-    let f = v3(frame);
-    let across = [(f.y, f.z), (f.x, f.z), (f.x, f.y)];
-    let at_world_origin = f == DVec3::ZERO;
-    for tex in &mut out.textures {
-        for (k, &(a, b)) in across.iter().enumerate() {
-            let at = |row: [f32; 4], wrap: u32| {
-                if at_world_origin {
-                    return row[2];
-                }
-                fold(f64::from(row[0]) * a + f64::from(row[1]) * b + f64::from(row[2]), wrap) as f32
-            };
-            tex.planar_u[k] = at(tex.transform_u, tex.wrap_s);
-            tex.planar_v[k] = at(tex.transform_v, tex.wrap_t);
-        }
-    }
-}
-
-/// `u` less a whole number of its wrap mode's periods, into [0, period): the same texel, a
-/// small number. Clamped coordinates have no period and stay.
-fn fold(u: f64, wrap: u32) -> f64 {
-    match Wrap::try_from(wrap) {
-        Ok(Wrap::Repeat) => u - u.floor(),
-        Ok(Wrap::MirroredRepeat) => u - 2.0 * (u * 0.5).floor(),
-        Ok(Wrap::ClampToEdge) | Err(_) => u,
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -308,15 +278,17 @@ material = "m"
         assert_eq!(r.vertices.len(), 4);
         assert_eq!(r.vertices[3], [1.0, 0.0, 6.0, 1.0]);
         assert_eq!(r.header.frame, frame);
+        // Stored relative to its geometry (`storage_origin`), the scene moves by the difference.
+        assert_ne!(world.header.frame, WORLD_FRAME);
+        let moved_by = v3(frame) - v3(world.header.frame);
         for (a, b) in r.bvh_nodes.iter().zip(world.bvh_nodes.iter()) {
-            for (k, &c) in frame[..3].iter().enumerate() {
-                let c = f64::from(c);
+            for (k, c) in moved_by.to_array().into_iter().enumerate() {
                 assert!(f64::from(a.min[k]) <= f64::from(b.min[k]) - c, "min[{k}] not rounded down");
                 assert!(f64::from(a.max[k]) >= f64::from(b.max[k]) - c, "max[{k}] not rounded up");
             }
         }
-        // Back to world space: the stored scene again.
-        let back = rebased(&r, WORLD_FRAME);
+        // Back to the storage frame: the stored scene again.
+        let back = rebased(&r, world.header.frame);
         assert_eq!(back.spheres, world.spheres);
         assert_eq!(back.vertices, world.vertices);
     }

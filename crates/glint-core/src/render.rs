@@ -256,7 +256,8 @@ fn built_scene_context(scene: &FlatScene) -> TraceContext<'_> {
     TraceContext::new(scene).unwrap_or_else(|e| panic!("a flat scene from FlatScene::build has valid tags: {e}"))
 }
 
-/// The breakdown of one camera sample of pixel (x, y) into the terms of the model.
+/// The breakdown of one camera sample of pixel (x, y) into the terms of the model, its hit
+/// point in world space.
 ///
 /// # Panics
 /// If the scene holds a tag no kind has (never for a scene from `FlatScene::build`).
@@ -265,11 +266,20 @@ pub fn probe_pixel(scene: &FlatScene, x: u32, y: u32, sample: u32) -> Breakdown 
     let mut b = Breakdown::default();
     let mut counts = RayCounts::default();
     render_sample(&ctx, x, y, sample, &mut counts, Some(&mut b), &mut NoTree);
+    if b.object_id != glint_types::layout::NO_HIT {
+        b.point += frame_origin(scene);
+    }
     b
 }
 
+/// Where `scene`'s stored coordinates have their origin, in world space (`SceneHeader::frame`).
+fn frame_origin(scene: &FlatScene) -> DVec3 {
+    crate::cpu::v3(scene.header.frame)
+}
+
 /// The whole ray tree of one camera sample of pixel (x, y), as the render traced it: node 0
-/// is the camera ray, its `radiance` the sample's radiance, bit for bit.
+/// is the camera ray, its `radiance` the sample's radiance, bit for bit; its points in world
+/// space.
 ///
 /// # Panics
 /// As `probe_pixel`.
@@ -278,6 +288,13 @@ pub fn probe_tree(scene: &FlatScene, x: u32, y: u32, sample: u32) -> RayTree {
     let mut tree = RayTree::default();
     let mut counts = RayCounts::default();
     render_sample(&ctx, x, y, sample, &mut counts, None, &mut tree);
+    let origin = frame_origin(scene);
+    for node in &mut tree.nodes {
+        node.origin += origin;
+        if let Some(terms) = &mut node.terms {
+            terms.point += origin;
+        }
+    }
     tree
 }
 

@@ -50,9 +50,10 @@ pub fn raycast_key(scene: &FlatScene) -> ShaderKey {
 }
 
 impl RayCaster {
-    /// Compiles the kernel for `scene` and uploads the scene (its BVH included) in world space,
-    /// as stored: the rays it casts are world-space records (`glint_core::rays`), and the hits
-    /// compared with the CPU's. Unlike the tracer it is not rebased on a camera (it has none).
+    /// Compiles the kernel for `scene` and uploads the scene (its BVH included) as stored: the
+    /// rays it casts are records in the scene's stored coordinates (`glint_core::rays`; world
+    /// space for a scene around the world origin, `SceneHeader::frame`), and the hits compared
+    /// with the CPU's. Unlike the tracer it is not rebased on a camera (it has none).
     pub fn new(ctx: &GpuContext, scene: &FlatScene) -> Result<Self, GpuError> {
         let pipeline = create_entry_pipeline(ctx, raycast_key(scene), RAYCAST_WGSL, "ray cast")?;
         // A cache of its own: the kernel runs on one scene.

@@ -1,6 +1,6 @@
 //! Transforms composed in f64: glTF node hierarchies and a scene's model placements (the
-//! stored f32 values widened exactly), so a deep hierarchy rounds once, when the world-space
-//! vertices are stored as f32, not once a level.
+//! stored f32 values widened exactly), so a deep hierarchy rounds once, when the vertices are
+//! stored as f32 (relative to the scene's storage origin), not once a level.
 
 /// A 4×4 affine matrix, column-major as glTF writes it: `m[column][row]`.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -5,6 +5,7 @@ use super::{
     Arc, BvhNodes, DVec3, GpuMesh, GpuPlane, GpuSphere, GpuTriangle, LeafCorners, MESH_HAS_NORMALS, MESH_HAS_UVS,
     MeshDesc, ObjectDesc, PlaneDesc, SceneDesc, SphereDesc, bvh, origin_power, vec4,
 };
+use glint_scene::storage_origin;
 
 /// The primitives of a scene by kind, with an object id and name per scene object.
 #[derive(Debug, Default)]
@@ -17,6 +18,8 @@ pub(super) struct Primitives {
     pub(super) uvs: Vec<[f32; 2]>,
     pub(super) meshes: Vec<GpuMesh>,
     pub(super) object_names: Vec<String>,
+    /// The origin the positions are stored relative to (`glint_scene::storage_origin`).
+    pub(super) origin: DVec3,
 }
 
 /// The geometry of a flat scene by identity: two are equal when they share the same data (a
@@ -55,6 +58,8 @@ pub(super) struct Geometry {
     pub(super) bvh_nodes: BvhNodes,
     pub(super) bvh_prims: Arc<[u32]>,
     pub(super) leaf_corners: LeafCorners,
+    /// The origin the positions are stored relative to (exact in f32).
+    pub(super) origin: DVec3,
 }
 
 impl Geometry {
@@ -75,14 +80,18 @@ impl Geometry {
             bvh_nodes: BvhNodes::new(&bvh.nodes),
             bvh_prims,
             leaf_corners,
+            origin: p.origin,
         }
     }
 }
 
-/// Every object's primitives, in scene order (the object id is the index in `desc.objects`).
+/// Every object's primitives, in scene order (the object id is the index in `desc.objects`),
+/// their positions relative to the scene's storage origin (each difference taken in f64 and
+/// rounded once).
 pub(super) fn flat_primitives(desc: &SceneDesc, material_names: &[String]) -> Primitives {
     let material_index = |name: &str| material_names.iter().position(|m| m == name).unwrap_or(0) as u32;
-    let mut out = Primitives::default();
+    let origin = DVec3::from(storage_origin(desc));
+    let mut out = Primitives { origin, ..Primitives::default() };
     for (id, object) in desc.objects.iter().enumerate() {
         let object_id = id as u32;
         let material = material_index(object.material());
@@ -92,17 +101,20 @@ pub(super) fn flat_primitives(desc: &SceneDesc, material_names: &[String]) -> Pr
             object.name().to_string()
         });
         match object {
-            ObjectDesc::Sphere(SphereDesc { center, radius, .. }) => out.spheres.push(GpuSphere {
-                center_radius: vec4(DVec3::from(*center), *radius as f32),
-                material,
-                object_id,
-                power: origin_power(vec4(DVec3::from(*center), *radius as f32)),
-                pad: 0,
-            }),
+            ObjectDesc::Sphere(SphereDesc { center, radius, .. }) => {
+                let center_radius = vec4(DVec3::from(*center) - origin, *radius as f32);
+                out.spheres.push(GpuSphere {
+                    center_radius,
+                    material,
+                    object_id,
+                    power: origin_power(center_radius),
+                    pad: 0,
+                });
+            }
             ObjectDesc::Plane(PlaneDesc { point, normal, .. }) => {
                 let n = DVec3::from(*normal).normalize();
                 out.planes.push(GpuPlane {
-                    normal_offset: vec4(n, n.dot(DVec3::from(*point)) as f32),
+                    normal_offset: vec4(n, n.dot(DVec3::from(*point) - origin) as f32),
                     material,
                     object_id,
                     pad: [0; 2],
@@ -133,7 +145,7 @@ pub(super) fn flat_primitives(desc: &SceneDesc, material_names: &[String]) -> Pr
 fn mesh_triangles(mesh: &MeshDesc, material: u32, object_id: u32, out: &mut Primitives) {
     let MeshDesc { vertices, triangles: tris, normals, uvs, .. } = mesh;
     let first = out.vertices.len() as u32;
-    out.vertices.extend(vertices.iter().map(|&v| vec4(DVec3::from(v), 1.0)));
+    out.vertices.extend(vertices.iter().map(|&v| vec4(DVec3::from(v) - out.origin, 1.0)));
     // Every vertex gets a normal slot, so that one index reaches both; zero without normals.
     match normals {
         Some(n) => out.normals.extend(n.iter().map(|&n| vec4(DVec3::from(n).normalize(), 0.0))),

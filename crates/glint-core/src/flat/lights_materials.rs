@@ -42,10 +42,14 @@ fn cone_versin(degrees: f64) -> f64 {
     2.0 * s * s
 }
 
-/// A light in the flat layout: unit direction, the attenuation model with its parameters, the
-/// spot cone as versines (1 − cos).
-pub(super) fn flat_light(l: &LightDesc) -> GpuLight {
-    let position = l.position.map_or(DVec3::ZERO, DVec3::from);
+/// A light in the flat layout: position relative to the storage origin `origin` (a point or
+/// spot light's; a directional light's is unused and stays), unit direction, the attenuation
+/// model with its parameters, the spot cone as versines (1 − cos).
+pub(super) fn flat_light(l: &LightDesc, origin: DVec3) -> GpuLight {
+    let position = match l.kind {
+        LightKind::Point | LightKind::Spot => l.position.map_or(DVec3::ZERO, DVec3::from) - origin,
+        LightKind::Directional => l.position.map_or(DVec3::ZERO, DVec3::from),
+    };
     let direction = l.direction.map_or(DVec3::ZERO, |d| DVec3::from(d).normalize());
     let (attenuation, range) = match l.attenuation {
         Attenuation::Polynomial { c, l, q } => ([c as f32, l as f32, q as f32, 0.0], 0.0),

@@ -66,10 +66,12 @@ fn rgb4(c: Rgb) -> [f32; 4] {
 
 mod checks;
 mod content_hash;
+mod frame;
 mod geometry;
 mod leaf_corners;
 mod lights_materials;
 
+pub(crate) use frame::place_texture_origins;
 pub use geometry::GeometryId;
 use geometry::{Geometry, flat_primitives};
 pub use leaf_corners::{Corners, GPU_LEAF_BYTES_PER_PRIM, GpuLeafAb, GpuLeafC, LeafCorners, fill_gpu_leaves};
@@ -120,6 +122,8 @@ impl FlatScene {
             bvh_nodes: self.bvh_nodes.clone(),
             bvh_prims: self.bvh_prims.clone(),
             leaf_corners: self.leaf_corners.clone(),
+            // The positions are stored relative to the frame, whether `build` or `rebase` put them there.
+            origin: DVec3::from_array([0, 1, 2].map(|k| f64::from(self.header.frame[k]))),
         }
     }
 
@@ -127,10 +131,13 @@ impl FlatScene {
     fn assemble(desc: &SceneDesc, settings: &RenderSettings, material_names: Vec<String>, geometry: Geometry) -> Self {
         let mut table = TextureTable::default();
         let materials = desc.materials.values().map(|m| flat_material(m, &mut table)).collect();
-        let lights = desc.traced_lights().map(flat_light).collect();
+        let origin = geometry.origin;
+        let lights = desc.traced_lights().map(|l| flat_light(l, origin)).collect();
+        let mut camera = Self::camera_for(desc, settings);
+        camera.position = vec4(DVec3::from(desc.camera.position) - origin, 1.0);
         let mut flat = Self {
             header: flat_header(desc, settings, &geometry, material_names.len()),
-            camera: Self::camera_for(desc, settings),
+            camera,
             materials,
             lights,
             spheres: geometry.spheres,
@@ -148,6 +155,8 @@ impl FlatScene {
             object_names: geometry.object_names,
             material_names,
         };
+        let frame = flat.header.frame;
+        place_texture_origins(&mut flat, frame);
         let light_tags: Vec<LightTags> = desc
             .traced_lights()
             .map(|l| LightTags { kind: l.kind, attenuation: l.attenuation.model(), falloff: l.falloff })
@@ -317,7 +326,10 @@ fn flat_header(desc: &SceneDesc, settings: &RenderSettings, p: &Geometry, materi
             let g = desc.world.global_attenuation;
             [g.c as f32, g.l as f32, g.q as f32, 0.0]
         },
-        frame: WORLD_FRAME,
+        frame: {
+            let o = p.origin;
+            [o.x as f32, o.y as f32, o.z as f32, WORLD_FRAME[3]]
+        },
     }
 }
 

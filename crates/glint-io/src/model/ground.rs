@@ -4,7 +4,7 @@
 
 use std::str::FromStr;
 
-use glint_scene::{FieldIssue, MeshDesc};
+use glint_scene::{FieldIssue, MeshDesc, storage_origin_of_box};
 use glint_types::layout::f32_spacing;
 
 /// Whether an opened model stands on a grey ground plane.
@@ -46,8 +46,9 @@ impl FromStr for Ground {
 /// sees as a floating model.
 pub const GROUND_GAP: f64 = 1e-3;
 
-/// The least gap in f32 spacings at the model's magnitude: a model far from the origin
-/// would otherwise round its base and the ground to the same f32.
+/// The least gap in f32 spacings at the model's stored magnitude (relative to the scene's
+/// storage origin, `glint_scene::storage_origin`): a model that spans far more than its
+/// details would otherwise round its base and the ground to the same f32.
 const MIN_GAP_ULPS: f64 = 64.0;
 
 /// The share of the footprint that upward faces at the lowest y must cover to be a floor.
@@ -62,7 +63,10 @@ pub fn ground_height(
     mode: Ground,
 ) -> (Option<f64>, Option<FieldIssue>) {
     let diagonal = (0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>().sqrt();
-    let magnitude = lo.iter().chain(&hi).fold(0.0_f64, |m, c| m.max(c.abs()));
+    // As both tracers store the model and the ground: relative to the scene's storage origin,
+    // which the ground (a plane) does not move.
+    let origin = storage_origin_of_box(lo, hi);
+    let magnitude = (0..3).fold(0.0_f64, |m, k| m.max((lo[k] - origin[k]).abs()).max((hi[k] - origin[k]).abs()));
     let spacing = f32_spacing(magnitude);
     let below = lo[1] - (GROUND_GAP * diagonal).max(MIN_GAP_ULPS * spacing);
     match mode {
@@ -137,13 +141,21 @@ mod tests {
     }
 
     #[test]
-    fn the_ground_is_never_at_the_models_lowest_y_even_far_from_the_origin() {
+    fn the_ground_is_never_at_the_models_lowest_y_as_stored_and_keeps_its_gap_far_away() {
+        // Stored relative to the storage origin, as both tracers store them; far from the world
+        // origin the gap is the model's own (1e-3 of its diagonal), as at the origin.
         for base in [0.0, 1e4, 1e6, -3e7] {
             let (lo, hi) = ([0.0, base, 0.0], [1.0, base + 1.0, 1.0]);
             let (height, _) = ground_height(&[], lo, hi, Ground::On);
             let h = height.expect("on");
-            assert!((h as f32) < (base as f32), "ground {h} rounds onto the base {base} in f32");
+            let o = storage_origin_of_box(lo, hi)[1];
+            assert!(((h - o) as f32) < ((base - o) as f32), "ground {h} rounds onto the base {base} in f32");
+            assert!((base - h - GROUND_GAP * 3f64.sqrt()).abs() < 1e-6, "ground {h} under {base}");
         }
+        // A model spanning 1e6 from the world origin (stored there): the gap is f32's.
+        let (height, _) = ground_height(&[], [0.0, 1e6, 0.0], [1e6, 1e6 + 1.0, 1.0], Ground::On);
+        let h = height.expect("on");
+        assert!((h as f32) < (1e6f32) && 1e6 - h >= 64.0 * 0.0625, "ground {h}");
         assert_eq!(ground_height(&[quad(0.0, true)], [0.0; 3], [1.0, 0.0, 1.0], Ground::Off), (None, None));
     }
 

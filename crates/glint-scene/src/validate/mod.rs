@@ -151,8 +151,9 @@ pub fn validate(scene: &SceneDesc) -> Report {
 /// `validate_with_objects`.
 pub fn validate_objects(scene: &SceneDesc) -> Report {
     let mut r = Report::default();
+    let origin = crate::storage_origin(scene);
     for (i, object) in scene.objects.iter().enumerate() {
-        validate_object(&format!("objects[{i}]"), object, scene, &mut r);
+        validate_object(&format!("objects[{i}]"), object, scene, origin, &mut r);
     }
     if r.errors.is_empty() {
         r.warnings.extend(coplanar::coplanar_overlaps(scene));

@@ -6,7 +6,9 @@ use super::{
     sub, validate_light,
 };
 
-pub(super) fn validate_object(path: &str, o: &ObjectDesc, scene: &SceneDesc, r: &mut Report) {
+/// `origin`: the scene's storage origin (`storage_origin`), which mesh vertices are stored
+/// relative to.
+pub(super) fn validate_object(path: &str, o: &ObjectDesc, scene: &SceneDesc, origin: [f64; 3], r: &mut Report) {
     for material in o.materials() {
         if !scene.materials.contains_key(material) {
             let known: Vec<&str> = scene.materials.keys().map(String::as_str).collect();
@@ -29,7 +31,7 @@ pub(super) fn validate_object(path: &str, o: &ObjectDesc, scene: &SceneDesc, r: 
             r.point(&format!("{path}.point"), *point);
             r.direction(&format!("{path}.normal"), *normal);
         }
-        ObjectDesc::Mesh(mesh) => validate_mesh(path, mesh, r),
+        ObjectDesc::Mesh(mesh) => validate_mesh(path, mesh, origin, r),
         ObjectDesc::Model(model) => {
             for (field, problem) in model.transform.problems() {
                 r.error(format!("{path}.transform.{field}"), problem);
@@ -51,7 +53,7 @@ pub(super) fn validate_object(path: &str, o: &ObjectDesc, scene: &SceneDesc, r: 
                     // has degenerate triangles in a hundred meshes), with how many meshes share it.
                     let mut meshes = Report::default();
                     for (k, mesh) in loaded.meshes.iter().enumerate() {
-                        validate_mesh(&format!("{path} mesh {k} `{}`", mesh.name), mesh, &mut meshes);
+                        validate_mesh(&format!("{path} mesh {k} `{}`", mesh.name), mesh, origin, &mut meshes);
                     }
                     r.errors.append(&mut meshes.errors);
                     let mut kinds: Vec<(String, FieldIssue, usize)> = Vec::new();
@@ -74,7 +76,7 @@ pub(super) fn validate_object(path: &str, o: &ObjectDesc, scene: &SceneDesc, r: 
     }
 }
 
-fn validate_mesh(path: &str, mesh: &MeshDesc, r: &mut Report) {
+fn validate_mesh(path: &str, mesh: &MeshDesc, origin: [f64; 3], r: &mut Report) {
     let MeshDesc { vertices, triangles, normals, uvs, .. } = mesh;
 
     if triangles.is_empty() {
@@ -143,9 +145,11 @@ fn validate_mesh(path: &str, mesh: &MeshDesc, r: &mut Report) {
             );
         }
     }
-    // Both tracers store vertices as f32: far from the origin, where f32 steps grow past a
-    // model's triangles, a triangle with area in the file has none as stored.
-    let stored = |p: [f64; 3]| p.map(|c| f64::from(c as f32));
+    // Both tracers store vertices as f32 relative to the scene's storage origin: far from it,
+    // where f32 steps grow past a model's triangles (a scene spanning a far wider range than
+    // its smallest details), a triangle with area in the file has none as stored.
+    let relative = |p: [f64; 3]| [0, 1, 2].map(|k| p[k] - origin[k]);
+    let stored = |p: [f64; 3]| relative(p).map(|c| f64::from(c as f32));
     let area = |[a, b, c]: [[f64; 3]; 3]| norm(cross(sub(b, a), sub(c, a)));
     let (mut degenerate, mut rounded_flat) = (0, 0);
     for t in triangles.iter().filter(|t| t.iter().all(|&k| (k as usize) < n)) {
@@ -163,14 +167,20 @@ fn validate_mesh(path: &str, mesh: &MeshDesc, r: &mut Report) {
         );
     }
     if rounded_flat > 0 {
-        let reach = vertices.iter().flatten().fold(0.0f64, |m, c| m.max(c.abs()));
+        let reach = vertices.iter().flat_map(|&v| relative(v)).fold(0.0f64, |m, c| m.max(c.abs()));
         let step = f64::from((reach as f32).next_up()) - f64::from(reach as f32);
+        let from = if origin == [0.0; 3] {
+            "the origin".to_string()
+        } else {
+            format!("the scene's storage origin [{}, {}, {}]", origin[0], origin[1], origin[2])
+        };
         r.warn(
             format!("{path}.vertices"),
             format!(
                 "{rounded_flat} triangles have no area once their vertices are stored as f32, as both \
-                 tracers store them (coordinates reach {reach:.3e}, where f32 steps are {step:.3e}): they \
-                 are never hit; move the geometry nearer the origin"
+                 tracers store them (coordinates reach {reach:.3e} from {from}, where f32 steps are {step:.3e}): \
+                 they are never hit; the scene spans too wide a range for details this small (render them \
+                 in a scene of their own)"
             ),
         );
     }
@@ -180,35 +190,70 @@ fn validate_mesh(path: &str, mesh: &MeshDesc, r: &mut Report) {
 mod tests {
     use super::*;
 
-    fn warnings(offset: f64) -> Vec<String> {
-        // A triangle of 1e-3 sides, and one of zero area.
+    /// A triangle of 1e-3 sides at `offset`, and one of zero area.
+    fn tiny(offset: f64) -> MeshDesc {
         let vertices = [[0.0, 0.0, 0.0], [1e-3, 0.0, 0.0], [0.0, 1e-3, 0.0], [2e-3, 0.0, 0.0]]
             .map(|v| v.map(|c| c + offset))
             .to_vec();
-        let mesh = MeshDesc {
+        MeshDesc {
             vertices,
             triangles: vec![[0, 1, 2], [0, 1, 3]],
             normals: None,
             uvs: None,
             material: "m".into(),
             name: String::new(),
-        };
+        }
+    }
+
+    fn warnings(offset: f64, origin: [f64; 3]) -> Vec<String> {
         let mut report = Report::default();
-        validate_mesh("m", &mesh, &mut report);
+        validate_mesh("m", &tiny(offset), origin, &mut report);
         assert!(report.errors.is_empty(), "{:?}", report.errors);
         report.warnings.into_iter().map(|w| format!("{}: {}", w.field, w.problem)).collect()
     }
 
     #[test]
     fn a_triangle_that_loses_its_area_in_f32_is_warned_with_the_cause() {
-        assert_eq!(warnings(0.0), ["m.triangles: 1 degenerate (zero-area) triangles; they are never hit"]);
-        // At 1e5 an f32 step is 7.8e-3, more than the triangle's sides.
-        let far = warnings(1e5);
+        let degenerate = "m.triangles: 1 degenerate (zero-area) triangles; they are never hit";
+        assert_eq!(warnings(0.0, [0.0; 3]), [degenerate]);
+        // At 1e5 from the storage origin an f32 step is 7.8e-3, more than the triangle's sides.
+        let far = warnings(1e5, [0.0; 3]);
         assert_eq!(far.len(), 2, "{far:?}");
         assert!(
             far[1].starts_with("m.vertices: 1 triangles have no area once their vertices are stored as f32")
-                && far[1].contains("coordinates reach 1.000e5, where f32 steps are 7.812e-3"),
+                && far[1].contains("coordinates reach 1.000e5 from the origin, where f32 steps are 7.812e-3"),
             "{far:?}"
         );
+        // Stored relative to an origin beside it, it keeps its area.
+        assert_eq!(warnings(1e5, [1e5; 3]), [degenerate]);
+        let beside = warnings(0.0, [-1e5, 0.0, 0.0]);
+        assert!(beside[1].contains("from the scene's storage origin [-100000, 0, 0]"), "{beside:?}");
+    }
+
+    #[test]
+    fn the_scene_s_storage_origin_decides() {
+        let scene = |objects: Vec<ObjectDesc>| SceneDesc {
+            description: String::new(),
+            provenance: String::new(),
+            render: crate::RenderSettings::default(),
+            camera: crate::CameraDesc {
+                position: [0.0, 2.0, -5.0],
+                look_at: [0.0; 3],
+                up: [0.0, 1.0, 0.0],
+                fov_y: 40.0,
+            },
+            world: crate::WorldDesc::default(),
+            materials: [("m".to_string(), crate::MaterialDesc::default())].into(),
+            lights: Vec::new(),
+            objects,
+        };
+        let lost = |r: &Report| r.warnings.iter().any(|w| w.problem.contains("no area once"));
+        // Alone, 1e5 from the world origin: stored beside it, nothing is lost.
+        let alone = super::super::validate_objects(&scene(vec![ObjectDesc::Mesh(tiny(1e5))]));
+        assert!(alone.errors.is_empty() && !lost(&alone), "{alone:?}");
+        // With a mesh at the world origin the scene spans 1e5, and is stored around the origin.
+        let wide =
+            super::super::validate_objects(&scene(vec![ObjectDesc::Mesh(tiny(1e5)), ObjectDesc::Mesh(tiny(0.0))]));
+        assert!(lost(&wide), "{wide:?}");
     }
 }

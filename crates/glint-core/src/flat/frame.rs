@@ -1,0 +1,40 @@
+//! A flat scene's frame (`SceneHeader::frame`): the origin its positions are stored
+//! relative to, which planar texture coordinates are taken from.
+
+use glam::DVec3;
+
+use super::FlatScene;
+use glint_scene::Wrap;
+
+/// Each texture's planar origins (`GpuTexture::planar_u`, `planar_v`) for `frame`: the
+/// transformed planar coordinates of the frame's origin, across each axis, in f64, folded into
+/// the wrap mode's period. Planar coordinates are then taken relative to the frame, small,
+/// and a texel edge 1e6 units from the world origin stays where it is on the GPU (its f32
+/// world coordinate was off by 1/16 there). At the world origin they are the offsets, exact.
+pub(crate) fn place_texture_origins(out: &mut FlatScene, frame: [f32; 4]) {
+    let f = DVec3::new(frame[0].into(), frame[1].into(), frame[2].into());
+    let across = [(f.y, f.z), (f.x, f.z), (f.x, f.y)];
+    let at_world_origin = f == DVec3::ZERO;
+    for tex in &mut out.textures {
+        for (k, &(a, b)) in across.iter().enumerate() {
+            let at = |row: [f32; 4], wrap: u32| {
+                if at_world_origin {
+                    return row[2];
+                }
+                fold(f64::from(row[0]) * a + f64::from(row[1]) * b + f64::from(row[2]), wrap) as f32
+            };
+            tex.planar_u[k] = at(tex.transform_u, tex.wrap_s);
+            tex.planar_v[k] = at(tex.transform_v, tex.wrap_t);
+        }
+    }
+}
+
+/// `u` less a whole number of its wrap mode's periods, into [0, period): the same texel, a
+/// small number. Clamped coordinates have no period and stay.
+fn fold(u: f64, wrap: u32) -> f64 {
+    match Wrap::try_from(wrap) {
+        Ok(Wrap::Repeat) => u - u.floor(),
+        Ok(Wrap::MirroredRepeat) => u - 2.0 * (u * 0.5).floor(),
+        Ok(Wrap::ClampToEdge) | Err(_) => u,
+    }
+}

@@ -1,0 +1,163 @@
+//! Where a scene's f32 storage has its origin. Both tracers read positions stored in f32; in
+//! world space a model 1e6 units from the world origin would be stored to 1/16 of a unit, on
+//! the CPU reference too. Stored relative to an origin at the bounded geometry instead, f32
+//! carries the distances within the scene, and the f64 reference is exact again for the scene
+//! the file describes (to f32 of the scene's own size).
+
+use glam::DVec3;
+
+use crate::{ObjectDesc, SceneDesc, SphereDesc};
+
+/// How many of its largest sides a scene's box may have its centre from the world origin and
+/// still be stored in world space: f32 then keeps all but log2(64) = 6 of its 24 bits for the
+/// scene's own size (2^-18 of it, 4e-6), far below what an image shows, and a scene made
+/// around the origin keeps its bits.
+const WORLD_SPACE_REACH: f64 = 64.0;
+
+/// The origin of `desc`'s stored coordinates (`SceneHeader::frame` once flattened): the world
+/// origin for geometry around it, else the centre of the box around the bounded geometry
+/// (spheres, meshes and models; planes, lights and the camera are unbounded or points, and
+/// follow) snapped to a grid of the power of two nearest the box's largest side and rounded to
+/// f32 — the header stores it in f32, so it is exact there.
+///
+/// Why the world origin for geometry around it (the box's centre within `WORLD_SPACE_REACH` of
+/// its largest sides from the origin on every axis): there, world coordinates lose little over
+/// coordinates relative to the box's centre, and the scenes that were always stored in world
+/// space keep their bits (their images are unchanged, golden hashes included).
+///
+/// Why a grid: translating a scene by a multiple of its spacing moves the origin by exactly as
+/// much, so the stored scene — hence both tracers' images — is the same bit for bit wherever
+/// such a scene sits, as long as its coordinates are exact at both places.
+pub fn storage_origin(desc: &SceneDesc) -> [f64; 3] {
+    match bounded_box(desc) {
+        Some((lo, hi)) => storage_origin_of_box(lo.to_array(), hi.to_array()),
+        None => [0.0; 3],
+    }
+}
+
+/// `storage_origin` of a scene whose bounded geometry spans `lo`..`hi` (finite).
+pub fn storage_origin_of_box(lo: [f64; 3], hi: [f64; 3]) -> [f64; 3] {
+    let (lo, hi) = (DVec3::from(lo), DVec3::from(hi));
+    let centre = (lo + hi) * 0.5;
+    let side = (hi - lo).max_element();
+    if centre.abs().max_element() <= WORLD_SPACE_REACH * side || !centre.is_finite() {
+        return [0.0; 3];
+    }
+    let snapped = if side > 0.0 {
+        let g = 2f64.powi(side.log2().round().clamp(-1000.0, 1000.0) as i32);
+        (centre / g).round() * g
+    } else {
+        centre
+    };
+    snapped.to_array().map(|c| f64::from(c as f32))
+}
+
+/// The box around every finite sphere and vertex of the scene (`None` without any): what
+/// validation has yet to judge is skipped, not trusted.
+fn bounded_box(desc: &SceneDesc) -> Option<(DVec3, DVec3)> {
+    let mut lo = DVec3::INFINITY;
+    let mut hi = DVec3::NEG_INFINITY;
+    let mut add = |p: DVec3| {
+        if p.is_finite() {
+            lo = lo.min(p);
+            hi = hi.max(p);
+        }
+    };
+    for object in &desc.objects {
+        match object {
+            ObjectDesc::Sphere(SphereDesc { center, radius, .. }) if radius.is_finite() => {
+                add(DVec3::from(*center) - *radius);
+                add(DVec3::from(*center) + *radius);
+            }
+            ObjectDesc::Mesh(mesh) => mesh.vertices.iter().for_each(|&v| add(DVec3::from(v))),
+            ObjectDesc::Model(model) => {
+                for mesh in model.loaded.iter().flat_map(|m| &m.meshes) {
+                    mesh.vertices.iter().for_each(|&v| add(DVec3::from(v)));
+                }
+            }
+            ObjectDesc::Sphere(_) | ObjectDesc::Plane(_) => {}
+        }
+    }
+    (lo.x <= hi.x).then_some((lo, hi))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{CameraDesc, MeshDesc, PlaneDesc, RenderSettings, WorldDesc};
+
+    fn with(objects: Vec<ObjectDesc>) -> SceneDesc {
+        SceneDesc {
+            description: String::new(),
+            provenance: String::new(),
+            render: RenderSettings::default(),
+            camera: CameraDesc { position: [0.0, 2.0, -5.0], look_at: [0.0; 3], up: [0.0, 1.0, 0.0], fov_y: 40.0 },
+            world: WorldDesc::default(),
+            materials: Default::default(),
+            lights: Vec::new(),
+            objects,
+        }
+    }
+
+    fn sphere(center: [f64; 3], radius: f64) -> ObjectDesc {
+        ObjectDesc::Sphere(SphereDesc { center, radius, material: "m".into(), name: String::new() })
+    }
+
+    fn triangle(offset: [f64; 3], size: f64) -> ObjectDesc {
+        let at = |x: f64, y: f64| [offset[0] + x * size, offset[1] + y * size, offset[2]];
+        ObjectDesc::Mesh(MeshDesc {
+            vertices: vec![at(0.0, 0.0), at(1.0, 0.0), at(0.0, 1.0)],
+            triangles: vec![[0, 1, 2]],
+            normals: None,
+            uvs: None,
+            material: "m".into(),
+            name: String::new(),
+        })
+    }
+
+    #[test]
+    fn geometry_around_the_world_origin_is_stored_in_world_space() {
+        assert_eq!(storage_origin(&with(vec![])), [0.0; 3]);
+        assert_eq!(storage_origin(&with(vec![sphere([0.5, 1.0, 0.0], 1.0)])), [0.0; 3]);
+        // The box's centre 256 from the origin, its side 4: still world space; 260: not.
+        assert_eq!(storage_origin(&with(vec![sphere([256.0, 0.0, 0.0], 2.0)])), [0.0; 3]);
+        assert_eq!(storage_origin(&with(vec![sphere([260.0, 0.0, 0.0], 2.0)])), [260.0, 0.0, 0.0]);
+        // Planes do not count: a floor under a scene far away does not pull the origin back.
+        let floor = ObjectDesc::Plane(PlaneDesc {
+            point: [1e6, 0.0, 0.0],
+            normal: [1.0, 0.0, 0.0],
+            material: "m".into(),
+            name: String::new(),
+        });
+        assert_eq!(storage_origin(&with(vec![floor])), [0.0; 3]);
+    }
+
+    #[test]
+    fn far_geometry_is_stored_around_its_box_on_a_grid_of_its_size() {
+        // A unit triangle at 452331.127 (a projected map coordinate): the grid is 1, so the
+        // origin is the nearest integer to the box's centre.
+        let o = storage_origin(&with(vec![triangle([452_331.127, 5_411_876.883, 81.5], 1.0)]));
+        assert_eq!(o, [452_332.0, 5_411_877.0, 82.0]);
+        // Moved by a multiple of the grid, the origin moves by exactly as much.
+        let moved = storage_origin(&with(vec![triangle([452_331.127 + 64.0, 5_411_876.883, 81.5], 1.0)]));
+        assert_eq!(moved[0] - o[0], 64.0);
+        // Exact in f32, which stores it.
+        for c in o.into_iter().chain(moved) {
+            assert_eq!(f64::from(c as f32), c);
+        }
+    }
+
+    #[test]
+    fn an_origin_beyond_f32_s_grid_is_rounded_to_f32() {
+        let o = storage_origin(&with(vec![triangle([1e12 + 0.3, 0.0, 0.0], 1e-3)]));
+        assert_eq!(f64::from(o[0] as f32), o[0]);
+        assert!((o[0] - 1e12).abs() <= 1e12 * f64::from(f32::EPSILON), "{o:?}");
+    }
+
+    #[test]
+    fn non_finite_coordinates_are_left_to_validation() {
+        let o = storage_origin(&with(vec![triangle([f64::NAN, 0.0, 0.0], 1.0), sphere([1e6, 0.0, 0.0], 1.0)]));
+        assert_eq!(o, [1e6, 0.0, 0.0]);
+        assert_eq!(storage_origin(&with(vec![sphere([f64::INFINITY, 0.0, 0.0], 1.0)])), [0.0; 3]);
+    }
+}
