@@ -15,7 +15,9 @@
 //! world space (what Glint stored before) loses the scene on the CPU reference itself —
 //! positions off by up to a quarter of a unit, first hits that differ.
 
+use glam::DVec3;
 use glint_core::compare::flip_mean;
+use glint_core::probe_pixel;
 use glint_core::rebase::rebased;
 use glint_types::layout::WORLD_FRAME;
 
@@ -37,11 +39,15 @@ const CPU_REL: f64 = 1e-5;
 const FLIP_RATIO: f64 = 2.0;
 /// The scale that makes case 17's coordinates decimals.
 const SCALE: f64 = 1.1;
+/// A pixel on the red sphere (96×72).
+const W_PROBE: u32 = 60;
+const H_PROBE: u32 = 40;
 
 #[test]
 fn a_scene_at_map_coordinates_renders_as_at_the_origin_on_both_backends() {
     let group = "stiff/case21-map-coordinates";
-    let base = render_both(group, "untransformed", &scene([0.0; 3], SCALE).flat());
+    let base_flat = scene([0.0; 3], SCALE).flat();
+    let base = render_both(group, "untransformed", &base_flat);
     let base_flip = base.gpu.as_ref().map(|g| flip_mean(&base.cpu.image, &g.image));
     let mut out = String::new();
     let flip = |f: Option<f64>| f.map_or("-".to_string(), |f| format!("{f:.1e}"));
@@ -64,6 +70,13 @@ fn a_scene_at_map_coordinates_renders_as_at_the_origin_on_both_backends() {
         let both = render_both(group, label, &flat);
         let (cpu_rel, hits) = cpu_difference(&base.cpu, &both.cpu);
         let gpu_flip = both.gpu.as_ref().map(|g| flip_mean(&both.cpu.image, &g.image));
+        // The probe reports its hit point in world space: the untransformed one, moved.
+        let (x, y) = (W_PROBE, H_PROBE);
+        let (far, near) = (probe_pixel(&flat, x, y, 0).point, probe_pixel(&base_flat, x, y, 0).point);
+        let moved = far - DVec3::from(offset) - near;
+        if moved.abs().max_element() > 1e-5 {
+            failures.push(format!("{label}: the probe's point {far} is not the untransformed {near} moved"));
+        }
         let world = render_cpu_checked(&rebased(&flat, WORLD_FRAME), 0, true);
         let (world_rel, world_hits) = cpu_difference(&base.cpu, &world);
         say!(

@@ -94,3 +94,44 @@ fn the_tree_is_drawn_over_the_image_and_can_be_hidden() {
     assert!(h.query_by_label_contains("Ray tree: ").is_none(), "the tree is still drawn");
     assert!(h.query_by_label("cut by bailout or depth").is_none(), "the legend stays without the tree");
 }
+
+/// Whitted moved to a map coordinate (UTM zone 32N), which f32 cannot store (its step is 1/2
+/// there): stored relative to its geometry, the probe reports the same tree as at the origin,
+/// moved, on both tracers, in world coordinates, and the two trees agree.
+#[test]
+fn a_scene_at_a_map_coordinate_is_probed_in_world_coordinates_on_both_tracers() {
+    const AT: [f64; 3] = [452_331.127, 81.5, 5_411_876.883];
+    let Some(mut origin) = viewer("whitted", (1000.0, 700.0)) else { return };
+    probe_glass(&mut origin);
+    let (near, _) = trees(&origin);
+    drop(origin);
+
+    let mut desc = glint_io::load_scene("whitted").expect("built-in").desc;
+    let shift = |p: &mut [f64; 3]| (0..3).for_each(|k| p[k] += AT[k]);
+    shift(&mut desc.camera.position);
+    shift(&mut desc.camera.look_at);
+    desc.lights.iter_mut().filter_map(|l| l.position.as_mut()).for_each(shift);
+    for object in &mut desc.objects {
+        match object {
+            glint_scene::ObjectDesc::Sphere(s) => shift(&mut s.center),
+            glint_scene::ObjectDesc::Plane(p) => shift(&mut p.point),
+            glint_scene::ObjectDesc::Mesh(m) => m.vertices.iter_mut().for_each(shift),
+            glint_scene::ObjectDesc::Model(_) => panic!("whitted has no model"),
+        }
+    }
+    let dir = crate::support::temp_dir("map-coordinate");
+    let file = dir.join("whitted-utm.toml");
+    std::fs::write(&file, glint_io::to_toml(&desc).expect("TOML")).expect("scene written");
+    let Some(mut far) = viewer(file.to_str().expect("UTF-8 path"), (1000.0, 700.0)) else { return };
+    probe_glass(&mut far);
+    let (cpu, gpu) = trees(&far);
+    assert!(far.query_by_label("CPU and GPU trees agree node by node within tolerance.").is_some());
+    assert_eq!(cpu.nodes.len(), near.nodes.len(), "the same rays as at the origin");
+    let at = glam::DVec3::from(AT);
+    for (i, ((c, g), n)) in cpu.nodes.iter().zip(&gpu.nodes).zip(&near.nodes).enumerate() {
+        assert_eq!(c.kind, n.kind, "node {i}");
+        // World coordinates: the node at the origin, moved (to the f32 rounding of the scene's size).
+        assert!((c.origin - at - n.origin).abs().max_element() < 1e-5, "CPU node {i}: {} vs {}", c.origin, n.origin);
+        assert!((g.origin - c.origin).abs().max_element() < 1e-3, "GPU node {i}: {} vs {}", g.origin, c.origin);
+    }
+}
