@@ -23,8 +23,8 @@ use glint_types::layout::f32_spacing;
 const CELLS: f64 = 1024.0;
 /// A normal this close (in cells) to a cell border goes into both cells.
 const BORDER: f64 = 0.01;
-/// Surfaces within this many f32 spacings (at their coordinates' magnitude) are one plane to
-/// both tracers.
+/// Surfaces within this many f32 spacings (at the magnitude of their stored coordinates) are
+/// one plane to both tracers.
 const F32_STEPS: f64 = 4.0;
 /// An overlap below this share of the smaller face is a shared edge or corner, not an overlap.
 const MIN_SHARE: f64 = 1e-6;
@@ -55,11 +55,24 @@ struct Surface {
     tolerance: f64,
 }
 
+/// What decides whether two surfaces are one plane: the scene's ε, and the origin its positions
+/// are stored relative to (`storage_origin`), where f32's spacing is judged.
+#[derive(Clone, Copy, Debug)]
+struct Resolution {
+    epsilon: f64,
+    origin: DVec3,
+}
+
 impl Surface {
-    fn new(source: Source, normal: DVec3, point: DVec3, corners: Option<[DVec3; 3]>, epsilon: f64) -> Option<Self> {
+    /// The magnitude of what the tracers store: a triangle's corners relative to the storage
+    /// origin, a plane's offset from it.
+    fn new(source: Source, normal: DVec3, point: DVec3, corners: Option<[DVec3; 3]>, at: Resolution) -> Option<Self> {
         let normal = oriented(normal)?;
-        let magnitude = corners.iter().flatten().chain([&point]).fold(0.0_f64, |m, p| m.max(p.abs().max_element()));
-        let tolerance = (F32_STEPS * f32_spacing(magnitude)).max(epsilon);
+        let magnitude = match &corners {
+            Some(c) => c.iter().fold(0.0_f64, |m, p| m.max((*p - at.origin).abs().max_element())),
+            None => normal.dot(point - at.origin).abs(),
+        };
+        let tolerance = (F32_STEPS * f32_spacing(magnitude)).max(at.epsilon);
         let (plane, corners) = (corners.is_none(), corners.unwrap_or([point; 3]));
         Some(Self { source, normal, offset: normal.dot(point), plane, corners, tolerance })
     }
@@ -123,13 +136,14 @@ struct Overlap {
 }
 
 /// Warnings for every pair of objects (or one object with itself) whose planar surfaces
-/// overlap coplanar within `epsilon` or the f32 resolution at their coordinates.
+/// overlap coplanar within `epsilon` or the f32 resolution at their stored coordinates
+/// (relative to the scene's storage origin).
 ///
 /// Two passes, so that memory stays small on meshes of millions of triangles: every surface's
 /// normal cells (one 24-byte entry each, sorted), then the surfaces of each shared cell made
 /// whole and compared.
 pub(super) fn coplanar_overlaps(scene: &SceneDesc) -> Vec<FieldIssue> {
-    let epsilon = scene.render.epsilon.max(0.0);
+    let at = Resolution { epsilon: scene.render.epsilon.max(0.0), origin: DVec3::from(crate::storage_origin(scene)) };
     let mut bounds = vec![(DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)); scene.objects.len()];
     // (cell, surface, whether the surface is in more than one cell)
     let mut entries: Vec<(u64, Source, bool)> = Vec::new();
@@ -149,7 +163,7 @@ pub(super) fn coplanar_overlaps(scene: &SceneDesc) -> Vec<FieldIssue> {
         .flat_map_iter(|run| {
             let members: Vec<(Surface, bool)> = run
                 .iter()
-                .filter_map(|&(_, source, several)| surface_of(&scene.objects, source, epsilon).map(|s| (s, several)))
+                .filter_map(|&(_, source, several)| surface_of(&scene.objects, source, at).map(|s| (s, several)))
                 .collect();
             let cell = run[0].0;
             let mut found = Vec::new();
@@ -269,20 +283,20 @@ fn for_each_normal(objects: &[ObjectDesc], bounds: &mut [(DVec3, DVec3)], mut f:
     }
 }
 
-fn triangle(mesh: &MeshDesc, source: Source, epsilon: f64) -> Option<Surface> {
+fn triangle(mesh: &MeshDesc, source: Source, at: Resolution) -> Option<Surface> {
     let tri = mesh.triangles.get(source.triangle as usize)?;
     let corner = |i: u32| mesh.vertices.get(i as usize).map(|&v| DVec3::from(v));
     let (a, b, c) = (corner(tri[0])?, corner(tri[1])?, corner(tri[2])?);
-    Surface::new(source, (b - a).cross(c - a), a, Some([a, b, c]), epsilon)
+    Surface::new(source, (b - a).cross(c - a), a, Some([a, b, c]), at)
 }
 
-/// The surface `source` names, its tolerance at least `epsilon`.
-fn surface_of(objects: &[ObjectDesc], source: Source, epsilon: f64) -> Option<Surface> {
+/// The surface `source` names, its tolerance at least `at.epsilon`.
+fn surface_of(objects: &[ObjectDesc], source: Source, at: Resolution) -> Option<Surface> {
     match objects.get(source.object as usize)? {
         ObjectDesc::Sphere(_) => None,
-        ObjectDesc::Plane(p) => Surface::new(source, DVec3::from(p.normal), DVec3::from(p.point), None, epsilon),
-        ObjectDesc::Mesh(mesh) => triangle(mesh, source, epsilon),
-        ObjectDesc::Model(m) => triangle(m.loaded.as_ref()?.meshes.get(source.mesh as usize)?, source, epsilon),
+        ObjectDesc::Plane(p) => Surface::new(source, DVec3::from(p.normal), DVec3::from(p.point), None, at),
+        ObjectDesc::Mesh(mesh) => triangle(mesh, source, at),
+        ObjectDesc::Model(m) => triangle(m.loaded.as_ref()?.meshes.get(source.mesh as usize)?, source, at),
     }
 }
 
@@ -472,6 +486,9 @@ mod tests {
         })
     }
 
+    /// Judged in world space, with no ε (the unit tests of single surfaces).
+    const WORLD: Resolution = Resolution { epsilon: 0.0, origin: DVec3::ZERO };
+
     fn quad(x0: f64, y: f64, name: &str) -> ObjectDesc {
         mesh(vec![[x0, y, 0.0], [x0 + 1.0, y, 0.0], [x0 + 1.0, y, 1.0], [x0, y, 1.0]], vec![[0, 2, 1], [0, 3, 2]], name)
     }
@@ -519,8 +536,13 @@ mod tests {
         assert!(w.len() == 1 && w[0].problem.contains("area of 1.0000e0"), "{w:?}");
         let w = coplanar_overlaps(&scene(vec![plane(3.0, "p"), plane(3.0, "q")]));
         assert!(w.len() == 1 && w[0].problem.contains("the whole plane"), "{w:?}");
-        // At 1e6 an f32 step is 0.0625: a face 0.01 above another is the same plane there.
-        let w = coplanar_overlaps(&scene(vec![quad(1e6, 1e6, "a"), quad(1e6 + 0.5, 1e6 + 0.01, "b")]));
+        // Far from the world origin on their own, the faces are stored relative to themselves
+        // (`storage_origin`), where f32 tells 0.01 apart.
+        let (a, b) = (quad(1e6, 1e6, "a"), quad(1e6 + 0.5, 1e6 + 0.01, "b"));
+        assert!(coplanar_overlaps(&scene(vec![a.clone(), b.clone()])).is_empty());
+        // In a scene that spans 1e6 (a face at the world origin too) an f32 step is 0.0625 there:
+        // a face 0.01 above another is the same plane.
+        let w = coplanar_overlaps(&scene(vec![a, b, quad(0.0, 0.0, "at the origin")]));
         assert_eq!(w.len(), 1, "{w:?}");
     }
 
@@ -566,7 +588,7 @@ mod tests {
         let desc = scene(vec![mesh(vertices, triangles, "scatter")]);
         let ObjectDesc::Mesh(m) = &desc.objects[0] else { unreachable!() };
         let members: Vec<(Surface, bool)> = (0..m.triangles.len() as u32)
-            .map(|t| (triangle(m, Source { object: 0, mesh: 0, triangle: t }, 0.0).unwrap(), false))
+            .map(|t| (triangle(m, Source { object: 0, mesh: 0, triangle: t }, WORLD).unwrap(), false))
             .collect();
         let mut reported = Vec::new();
         candidate_pairs(&members, |a, b| reported.push((a.min(b), a.max(b))));
@@ -597,7 +619,7 @@ mod tests {
         let desc = scene(vec![floor(n, "floor")]);
         let ObjectDesc::Mesh(m) = &desc.objects[0] else { unreachable!() };
         let members: Vec<(Surface, bool)> = (0..m.triangles.len() as u32)
-            .map(|t| (triangle(m, Source { object: 0, mesh: 0, triangle: t }, 0.0).unwrap(), false))
+            .map(|t| (triangle(m, Source { object: 0, mesh: 0, triangle: t }, WORLD).unwrap(), false))
             .collect();
         let mut pairs = 0usize;
         candidate_pairs(&members, |_, _| pairs += 1);
