@@ -49,7 +49,9 @@ pub fn storage_origin_of_box(lo: [f64; 3], hi: [f64; 3]) -> [f64; 3] {
     } else {
         centre
     };
-    snapped.to_array().map(|c| f64::from(c as f32))
+    let origin = snapped.to_array().map(|c| f64::from(c as f32));
+    // Beyond f32's range (values validation has yet to refuse): world space, as stored before.
+    if origin.iter().all(|c| c.is_finite()) { origin } else { [0.0; 3] }
 }
 
 /// The box around every finite sphere and vertex of the scene (`None` without any): what
@@ -149,9 +151,10 @@ mod tests {
 
     #[test]
     fn an_origin_beyond_f32_s_grid_is_rounded_to_f32() {
-        let o = storage_origin(&with(vec![triangle([1e12 + 0.3, 0.0, 0.0], 1e-3)]));
+        // A 1e-3 model at 5e8 (within the coordinates validation allows): 5e11 grid steps.
+        let o = storage_origin(&with(vec![triangle([5e8 + 0.3, 0.0, 0.0], 1e-3)]));
         assert_eq!(f64::from(o[0] as f32), o[0]);
-        assert!((o[0] - 1e12).abs() <= 1e12 * f64::from(f32::EPSILON), "{o:?}");
+        assert!((o[0] - 5e8).abs() <= 5e8 * f64::from(f32::EPSILON), "{o:?}");
     }
 
     #[test]
@@ -159,5 +162,6 @@ mod tests {
         let o = storage_origin(&with(vec![triangle([f64::NAN, 0.0, 0.0], 1.0), sphere([1e6, 0.0, 0.0], 1.0)]));
         assert_eq!(o, [1e6, 0.0, 0.0]);
         assert_eq!(storage_origin(&with(vec![sphere([f64::INFINITY, 0.0, 0.0], 1.0)])), [0.0; 3]);
+        assert_eq!(storage_origin(&with(vec![sphere([1e300, 0.0, 0.0], 1.0)])), [0.0; 3]);
     }
 }
