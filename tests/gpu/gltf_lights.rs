@@ -5,7 +5,6 @@
 
 use glint_core::FlatScene;
 use glint_core::probe_pixel;
-use glint_gpu::probe::breakdown;
 use glint_io::parse_scene;
 use glint_types::layout::{NO_HIT, feature};
 
@@ -144,9 +143,8 @@ fn gpu_probe_reports_gltf_f_att_and_s_as_the_cpu_does() {
     let (mut ramp, mut windowed) = (0, 0);
     for (x, y) in pixels {
         let c = probe_pixel(&flat, x, y, 0);
-        let (record, status) = tracer.probe_pixel(&flat, x, y).expect("GPU probe");
+        let (g, status) = tracer.probe_pixel(&flat, x, y).expect("GPU probe");
         assert_eq!(status, 0, "({x}, {y}): status {status}");
-        let g = breakdown(&record);
         assert_eq!(c.object_id, g.object_id, "({x}, {y}): first hit differs");
         if c.object_id == NO_HIT {
             continue;

@@ -3,7 +3,6 @@
 
 use glint_core::cpu::shade::Breakdown;
 use glint_core::probe_pixel;
-use glint_gpu::probe::breakdown;
 use glint_types::layout::NO_HIT;
 
 use super::support::{builtin, gpu_or_skip};
@@ -43,9 +42,8 @@ fn gpu_probe_matches_cpu_probe_term_by_term() {
         let flat = builtin(name, 160, 120, spp, 5);
         for &(x, y) in pixels {
             let cpu = probe_pixel(&flat, x, y, 0);
-            let (record, status) = tracer.probe_pixel(&flat, x, y).expect("GPU probe");
+            let (gpu, status) = tracer.probe_pixel(&flat, x, y).expect("GPU probe");
             assert_eq!(status, 0, "{name} ({x}, {y}): status {status}");
-            let gpu = breakdown(&record);
             let what = format!("{name} ({x}, {y}) at {spp} spp");
             check_sum(&cpu, &format!("{what} CPU"));
             check_sum(&gpu, &format!("{what} GPU"));

@@ -4,7 +4,6 @@
 //! thresholds of `parity.rs`, and the probe's textured k_a and k_d term by term.
 
 use glint_core::probe_pixel;
-use glint_gpu::probe::breakdown;
 use glint_test_support::TempDir;
 use glint_test_support::texture::textured_scene;
 use glint_types::layout::feature;
@@ -42,9 +41,8 @@ fn probe_shows_the_textured_colours_on_both_tracers() {
     // The poster, the ball, the checker floor (both colours) and the background.
     for (x, y) in [(60, 40), (90, 50), (120, 58), (20, 110), (70, 112), (5, 5)] {
         let c = probe_pixel(&flat, x, y, 0);
-        let (record, status) = tracer.probe_pixel(&flat, x, y).expect("GPU probe");
+        let (g, status) = tracer.probe_pixel(&flat, x, y).expect("GPU probe");
         assert_eq!(status, 0);
-        let g = breakdown(&record);
         assert_eq!(c.object_id, g.object_id, "({x}, {y}): first hit differs");
         for (term, a, b) in [("k_a", c.ka, g.ka), ("k_d", c.kd, g.kd), ("E_m", c.emission, g.emission)] {
             assert!((a - b).abs().max_element() <= 1e-5, "({x}, {y}) {term}: CPU {a} GPU {b}");

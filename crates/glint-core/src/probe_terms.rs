@@ -102,8 +102,11 @@ pub struct NodeDifference {
 /// values (weight, factor, t, origin, direction, then the local terms) beyond the probe's
 /// f32-against-f64 tolerance (`differs`) widened by `depth_widening(depth)`. A
 /// tree with fewer nodes differs at the first node it lacks; an overflowed GPU tree is
-/// compared over the nodes it kept.
-pub fn first_tree_difference(cpu: &RayTree, gpu: &RayTree) -> Option<NodeDifference> {
+/// compared over the nodes it kept. Ray origins (world space, as both probes report them) are
+/// compared relative to `origin`, the scene's storage origin (`SceneHeader::frame`): the
+/// relative tolerance is then of the scene's size, as at the world origin, not of its distance
+/// from it (at 5e6 it would let the trees part by 500 units).
+pub fn first_tree_difference(cpu: &RayTree, gpu: &RayTree, origin: DVec3) -> Option<NodeDifference> {
     let s = DVec3::splat;
     let kept = if gpu.overflow { gpu.nodes.len().min(cpu.nodes.len()) } else { cpu.nodes.len().max(gpu.nodes.len()) };
     for i in 0..kept {
@@ -128,7 +131,7 @@ pub fn first_tree_difference(cpu: &RayTree, gpu: &RayTree) -> Option<NodeDiffere
             ("factor", c.factor, g.factor),
             ("t", s(c.t.unwrap_or(0.0)), s(g.t.unwrap_or(0.0))),
             ("attenuation", s(c.attenuation), s(g.attenuation)),
-            ("origin", c.origin, g.origin),
+            ("origin", c.origin - origin, g.origin - origin),
             ("direction", c.dir, g.dir),
         ];
         let widen = depth_widening(c.depth);

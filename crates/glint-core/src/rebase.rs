@@ -263,6 +263,25 @@ material = "m"
     }
 
     #[test]
+    fn a_rebased_scene_rebuilt_with_another_camera_keeps_its_frame() {
+        // A sphere of radius 5e-3 seen from 5e-2: the camera frame's length scale is below 1.
+        let text = "[camera]\nposition = [1e6, 0.01, -0.05]\nlook_at = [1e6, 0.0, 0.0]\n[materials.m]\nkd = 0.5\n\
+                    [[objects]]\ntype = \"sphere\"\ncenter = [1e6, 0.005, 0.0]\nradius = 0.005\nmaterial = \"m\"\n";
+        let (mut desc, _) = parse_scene(text, std::path::Path::new("t.toml")).expect("scene");
+        let stored = FlatScene::build(&desc, &desc.render);
+        assert_eq!(stored.header.frame[0], 1e6, "stored relative to the sphere");
+        let r = rebased(&stored, camera_frame(&stored));
+        assert!(r.header.frame[3] < 1.0, "the length scale of a small scene: {:?}", r.header.frame);
+        desc.camera.position[1] = 0.02;
+        let rebuilt = r.rebuild(&desc, &desc.render);
+        assert_eq!(rebuilt.header.frame, r.header.frame);
+        assert_eq!(
+            rebuilt.camera.position,
+            rebased(&FlatScene::build(&desc, &desc.render), r.header.frame).camera.position
+        );
+    }
+
+    #[test]
     fn rebasing_moves_positions_and_keeps_the_rest() {
         let world = scene(1e6);
         let frame = [1e6, 1.0, -5.0, 1.0];

@@ -9,7 +9,9 @@ use std::time::{Duration, Instant};
 use glint_core::HdrImage;
 use glint_core::cpu::RayCounts;
 use glint_core::cpu::ray_tree::RayTree;
+use glint_core::cpu::shade::Breakdown;
 use glint_core::flat::GeometryId;
+use glint_core::glam::DVec3;
 use glint_core::rebase::{Frame, rebased, rebased_with_geometry};
 use glint_core::{Accel, FlatScene, PixelRect};
 use glint_types::layout::{PROBE_HIT, ProbeRecord};
@@ -99,12 +101,29 @@ pub struct GpuRender {
 /// What the probe variant records for one pixel's first sample.
 #[derive(Clone, Debug)]
 pub struct PixelProbe {
-    /// The breakdown of the first hit.
+    /// The breakdown of the first hit, as the shader wrote it: its point is in the frame the
+    /// GPU traced in (`frame`), in f32.
     pub record: ProbeRecord,
+    /// That frame's origin in world space (`SceneHeader::frame` of the rebased scene).
+    pub frame: DVec3,
+    /// The first hit's point in world space, in f64 (`None` for a miss), as the CPU's probe
+    /// reports it: rounded to f32 there, a point 5e6 from the world origin would be off by 1/4.
+    pub point: Option<DVec3>,
     /// The whole ray tree, in the CPU's node order.
     pub tree: RayTree,
     /// The status word (`status::describe` turns it into messages).
     pub status: u32,
+}
+
+impl PixelProbe {
+    /// The record's breakdown (`probe::breakdown`), its hit point in world space.
+    pub fn breakdown(&self) -> Breakdown {
+        let mut b = crate::probe::breakdown(&self.record);
+        if let Some(p) = self.point {
+            b.point = p;
+        }
+        b
+    }
 }
 
 /// The GPU tracer: a device and a cache of compiled shader variants.
@@ -201,10 +220,10 @@ impl GpuTracer {
 
     /// The breakdown of the first sample of pixel (x, y) into the terms of the model, computed
     /// by the probe variant of the same shader (the GPU twin of `glint_core::probe_pixel`), in
-    /// the default frame (near the camera) as `render`; the hit point is given back in world
-    /// space.
-    pub fn probe_pixel(&self, scene: &FlatScene, x: u32, y: u32) -> Result<(ProbeRecord, u32), GpuError> {
-        self.probe(scene, x, y).map(|p| (p.record, p.status))
+    /// the default frame (near the camera) as `render`, with the status word; the hit point is
+    /// given back in world space.
+    pub fn probe_pixel(&self, scene: &FlatScene, x: u32, y: u32) -> Result<(Breakdown, u32), GpuError> {
+        self.probe(scene, x, y).map(|p| (p.breakdown(), p.status))
     }
 
     /// The probe of pixel (x, y) with its whole ray tree, recorded by the same dispatch of the
@@ -226,22 +245,18 @@ impl GpuTracer {
         let bytes = read_buffer(&self.ctx, &buffers.probe)?;
         let tree = read_buffer(&self.ctx, &buffers.probe_tree)?;
         let stats = read_buffer(&self.ctx, &buffers.stats)?;
-        let mut record: ProbeRecord = bytemuck::pod_read_unaligned(&bytes);
+        let record: ProbeRecord = bytemuck::pod_read_unaligned(&bytes);
         let mut tree = crate::probe::ray_tree(&tree)?;
         // Points back in world space (in f64), as the CPU's probe reports them.
         let origin = glint_core::cpu::v3(scene.header.frame);
-        if record.flags & PROBE_HIT != 0 {
-            for k in 0..3 {
-                record.point[k] = (f64::from(record.point[k]) + origin[k]) as f32;
-            }
-        }
+        let point = (record.flags & PROBE_HIT != 0).then(|| glint_core::cpu::v3(record.point) + origin);
         for node in &mut tree.nodes {
             node.origin += origin;
             if let Some(terms) = &mut node.terms {
                 terms.point += origin;
             }
         }
-        Ok(PixelProbe { record, tree, status: decode_stats(&stats).1 })
+        Ok(PixelProbe { record, frame: origin, point, tree, status: decode_stats(&stats).1 })
     }
 
     /// Renders `scene` and reads the image back, waiting for both: `submit`, then the job's

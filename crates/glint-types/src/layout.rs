@@ -117,8 +117,8 @@ pub const NODE_REF_COUNT_BITS: u32 = 3;
 /// Bits of `QuantizedPair::children` below `first`: both children's leaf counts.
 pub const PAIR_FIRST_SHIFT: u32 = 2 * NODE_REF_COUNT_BITS;
 
-/// The frame of a scene that is not rebased: origin at the world's, scale 1
-/// (`SceneHeader::frame`).
+/// The world's frame: origin at the world's, scale 1 (`SceneHeader::frame`); the one a scene
+/// around the world origin is stored in.
 pub const WORLD_FRAME: [f32; 4] = [0.0, 0.0, 0.0, 1.0];
 
 /// Layout of the GPU statistics buffer: (lo, hi) u32 pairs per ray kind, the status word, and
@@ -252,11 +252,12 @@ pub struct SceneHeader {
     /// (c, l, q, unused) of the attenuation of reflected and transmitted terms by the distance
     /// their ray travelled; (1, 0, 0, 0) when off.
     pub global_attenuation: [f32; 4],
-    /// The frame the coordinates are given in (`rebase.rs`): xyz the world point that is the
-    /// origin (0 for the world-space scene both tracers build; the eye where the GPU traces
-    /// camera-relative), w the length scale of the robust offset near the origin (1, or the
+    /// The frame the coordinates are given in: xyz the world point that is the origin (the
+    /// storage origin `glint_scene::storage_origin` of the scene both tracers build, 0 for a
+    /// scene around the world origin; where the camera looks when the GPU traces camera-relative,
+    /// `rebase.rs`), w the length scale of the robust offset near the origin (1, or the
     /// power of two nearest the scene's extent when rebased). Planar texture coordinates are
-    /// taken at world positions (xyz added back).
+    /// taken relative to it, from each texture's planar origins (`GpuTexture::planar_u`).
     pub frame: [f32; 4],
 }
 
@@ -318,7 +319,8 @@ pub struct GpuTexture {
     /// The transformed planar coordinates of the frame's origin, for planar coordinates taken
     /// across the x, y and z axis (`UV_ACROSS_X` …; w unused): u' = transform_u.xy · uv +
     /// planar_u[axis], with uv relative to the frame. Computed in f64 and folded into the wrap
-    /// mode's period by `rebase`, so that a scene far from the world origin keeps its texel
+    /// mode's period (`flat::place_texture_origins`, for the stored and the rebased frame alike),
+    /// so that a scene far from the world origin keeps its texel
     /// edges on the GPU; in world space (frame origin 0) they are transform_u.z and
     /// transform_v.z.
     pub planar_u: [f32; 4],

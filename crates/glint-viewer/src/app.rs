@@ -423,7 +423,7 @@ impl ViewerApp {
         let textures = self.renders.textures(self.doc.revision);
         let size = (self.doc.desc.render.width.max(1), self.doc.desc.render.height.max(1));
         let gizmos = if self.doc.is_valid() {
-            let camera = FlatScene::camera_for(&self.doc.desc, &self.doc.desc.render);
+            let camera = FlatScene::world_camera(&self.doc.desc, &self.doc.desc.render);
             gizmos(&self.doc.desc, &camera, self.selection.light)
         } else {
             Vec::new()
@@ -465,7 +465,7 @@ impl ViewerApp {
         if !self.doc.is_valid() {
             return Vec::new();
         }
-        let camera = FlatScene::camera_for(&self.doc.desc, &self.doc.desc.render);
+        let camera = FlatScene::world_camera(&self.doc.desc, &self.doc.desc.render);
         let c = &self.doc.desc.camera;
         let reach = 2.0 * (DVec3::from_array(c.position) - DVec3::from_array(c.look_at)).length();
         ray_tree_view::segments(&p.cpu_tree, &camera, reach)

@@ -2,10 +2,9 @@
 //! image coordinates ([0, 1]², y down) for the view to draw over the GPU image.
 
 use egui::Color32;
-use glint_core::cpu::v3;
+use glint_core::WorldCamera;
 use glint_core::glam::DVec3;
 use glint_scene::{LightKind, SceneDesc, SpotFalloff};
-use glint_types::layout::GpuCamera;
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct Gizmo {
@@ -19,9 +18,9 @@ pub struct Gizmo {
 
 /// Image position of world point `p`, or `None` behind the camera. Inverts `camera_ray`:
 /// dir = forward + ndc_x·right + ndc_y·up with orthogonal right and up.
-pub fn project(cam: &GpuCamera, p: DVec3) -> Option<(f32, f32)> {
-    let (f, r, u) = (v3(cam.forward), v3(cam.right), v3(cam.up));
-    let q = p - v3(cam.position);
+pub fn project(cam: &WorldCamera, p: DVec3) -> Option<(f32, f32)> {
+    let (f, r, u) = (cam.forward, cam.right, cam.up);
+    let q = p - cam.position;
     let depth = q.dot(f) / f.length_squared();
     if depth <= 1e-6 {
         return None;
@@ -31,7 +30,7 @@ pub fn project(cam: &GpuCamera, p: DVec3) -> Option<(f32, f32)> {
     Some((((ndc_x + 1.0) / 2.0) as f32, ((1.0 - ndc_y) / 2.0) as f32))
 }
 
-fn polyline(cam: &GpuCamera, points: impl IntoIterator<Item = DVec3>) -> Vec<(f32, f32)> {
+fn polyline(cam: &WorldCamera, points: impl IntoIterator<Item = DVec3>) -> Vec<(f32, f32)> {
     points.into_iter().filter_map(|p| project(cam, p)).collect()
 }
 
@@ -41,7 +40,7 @@ fn colour(rgb: [f64; 3]) -> Color32 {
     Color32::from_rgb(c[0].max(60), c[1].max(60), c[2].max(60))
 }
 
-pub fn gizmos(desc: &SceneDesc, cam: &GpuCamera, selected: usize) -> Vec<Gizmo> {
+pub fn gizmos(desc: &SceneDesc, cam: &WorldCamera, selected: usize) -> Vec<Gizmo> {
     let look_at = DVec3::from_array(desc.camera.look_at);
     let scale = (DVec3::from_array(desc.camera.position) - look_at).length() * 0.15;
     desc.lights
@@ -99,11 +98,11 @@ mod tests {
 
     #[test]
     fn the_look_at_point_projects_to_the_centre() {
-        let cam = GpuCamera {
-            position: [0.0, 0.0, -5.0, 0.0],
-            forward: [0.0, 0.0, 1.0, 0.0],
-            right: [0.5, 0.0, 0.0, 0.0],
-            up: [0.0, 0.4, 0.0, 0.0],
+        let cam = WorldCamera {
+            position: DVec3::new(0.0, 0.0, -5.0),
+            forward: DVec3::Z,
+            right: DVec3::new(0.5, 0.0, 0.0),
+            up: DVec3::new(0.0, 0.4, 0.0),
         };
         let (x, y) = project(&cam, DVec3::ZERO).expect("in front");
         assert!((x - 0.5).abs() < 1e-6 && (y - 0.5).abs() < 1e-6);

@@ -32,6 +32,8 @@ pub struct ProbeState {
     pub cpu_tree: RayTree,
     /// The GPU's, once its probe has arrived.
     pub gpu_tree: Option<RayTree>,
+    /// The scene's storage origin, which the trees' points are compared relative to.
+    pub origin: glint_core::glam::DVec3,
     /// In path mode, the pixel's path-traced radiance by bounce and kind of light (CPU).
     pub paths: Option<PathProbe>,
 }
@@ -58,10 +60,7 @@ impl ProbeState {
                 let mut worker = Worker::new("glint-probe", "probe", Some(repaint.clone()));
                 let (tracer, scene) = (tracer.clone(), scene.clone());
                 let started = worker.start(revision, move |_| {
-                    tracer
-                        .probe(&scene, x, y)
-                        .map(|p| (glint_gpu::probe::breakdown(&p.record), p.tree))
-                        .map_err(|e| e.to_string())
+                    tracer.probe(&scene, x, y).map(|p| (p.breakdown(), p.tree)).map_err(|e| e.to_string())
                 });
                 match started {
                     Ok(()) => GpuProbe::Pending(worker),
@@ -73,7 +72,8 @@ impl ProbeState {
             let ctx = glint_core::cpu::TraceContext::new(p).ok()?;
             Some(probe_paths(&ctx, x, y, p.header.spp))
         });
-        Self { x, y, revision, cpu, gpu, cpu_tree, gpu_tree: None, paths }
+        let origin = glint_core::cpu::v3(scene.header.frame);
+        Self { x, y, revision, cpu, gpu, cpu_tree, gpu_tree: None, origin, paths }
     }
 
     /// Collects the GPU result when it has arrived; true when it did.
@@ -90,7 +90,7 @@ impl ProbeState {
 
     /// The first node where the GPU's ray tree differs from the CPU's (none before it arrives).
     pub fn tree_difference(&self) -> Option<NodeDifference> {
-        first_node_difference(&self.cpu_tree, self.gpu_tree.as_ref()?)
+        first_node_difference(&self.cpu_tree, self.gpu_tree.as_ref()?, self.origin)
     }
 
     pub fn gpu_breakdown(&self) -> Option<&Breakdown> {

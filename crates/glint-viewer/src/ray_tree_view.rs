@@ -4,11 +4,10 @@
 //! weight, the branches the bailout or the depth limit cut dashed.
 
 use egui::{Color32, Rect, Sense, Shape, Stroke, Ui, Vec2};
+use glint_core::WorldCamera;
 use glint_core::cpu::ray_tree::RayTree;
-use glint_core::cpu::v3;
 use glint_core::glam::DVec3;
 use glint_types::RayKind;
-use glint_types::layout::GpuCamera;
 
 /// One ray in image coordinates ([0, 1]², y down).
 #[derive(Clone, Debug, PartialEq)]
@@ -31,9 +30,9 @@ pub const SHADOW_BLOCKED: Color32 = Color32::from_gray(120);
 const NEAR: f64 = 1e-3;
 
 /// Image position of `p` (depth already known to be ≥ NEAR); as `gizmos::project`.
-fn to_image(cam: &GpuCamera, p: DVec3) -> (f32, f32) {
-    let (f, r, u) = (v3(cam.forward), v3(cam.right), v3(cam.up));
-    let q = p - v3(cam.position);
+fn to_image(cam: &WorldCamera, p: DVec3) -> (f32, f32) {
+    let (f, r, u) = (cam.forward, cam.right, cam.up);
+    let q = p - cam.position;
     let depth = q.dot(f) / f.length_squared();
     let ndc_x = q.dot(r) / r.length_squared() / depth;
     let ndc_y = q.dot(u) / u.length_squared() / depth;
@@ -41,9 +40,9 @@ fn to_image(cam: &GpuCamera, p: DVec3) -> (f32, f32) {
 }
 
 /// The part of segment a–b in front of the camera, projected.
-fn project_segment(cam: &GpuCamera, a: DVec3, b: DVec3) -> Option<((f32, f32), (f32, f32))> {
-    let f = v3(cam.forward);
-    let depth = |p: DVec3| (p - v3(cam.position)).dot(f) / f.length_squared();
+fn project_segment(cam: &WorldCamera, a: DVec3, b: DVec3) -> Option<((f32, f32), (f32, f32))> {
+    let f = cam.forward;
+    let depth = |p: DVec3| (p - cam.position).dot(f) / f.length_squared();
     let (da, db) = (depth(a), depth(b));
     if da < NEAR && db < NEAR {
         return None;
@@ -55,7 +54,7 @@ fn project_segment(cam: &GpuCamera, a: DVec3, b: DVec3) -> Option<((f32, f32), (
 
 /// The segments of `tree` seen through `cam`. A ray that ends nowhere (a miss) is drawn `reach`
 /// long, a shadow ray at most half that, a cut ray a quarter.
-pub fn segments(tree: &RayTree, cam: &GpuCamera, reach: f64) -> Vec<TreeSegment> {
+pub fn segments(tree: &RayTree, cam: &WorldCamera, reach: f64) -> Vec<TreeSegment> {
     tree.nodes
         .iter()
         .filter_map(|n| {
@@ -159,4 +158,47 @@ fn legend(ui: &mut Ui, r: Rect) {
             ui.label(egui::RichText::new("width: the ray's path weight").color(Color32::WHITE).size(11.0));
         },
     );
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glint_core::{FlatScene, probe_tree};
+    use glint_scene::ObjectDesc;
+
+    /// The glass sphere's tree of whitted, as the viewer draws it, with the scene moved by `at`.
+    fn drawn(at: [f64; 3]) -> Vec<TreeSegment> {
+        let (mut desc, _) = glint_io::builtin("whitted").expect("built-in").load(None).expect("loads");
+        let shift = |p: &mut [f64; 3]| (0..3).for_each(|k| p[k] += at[k]);
+        shift(&mut desc.camera.position);
+        shift(&mut desc.camera.look_at);
+        desc.lights.iter_mut().filter_map(|l| l.position.as_mut()).for_each(shift);
+        for object in &mut desc.objects {
+            match object {
+                ObjectDesc::Sphere(s) => shift(&mut s.center),
+                ObjectDesc::Plane(p) => shift(&mut p.point),
+                ObjectDesc::Mesh(m) => m.vertices.iter_mut().for_each(shift),
+                ObjectDesc::Model(_) => panic!("whitted has no model"),
+            }
+        }
+        let settings = glint_scene::RenderSettings { width: 160, height: 120, ..desc.render.clone() };
+        let tree = probe_tree(&FlatScene::build(&desc, &settings), 100, 70, 0);
+        assert!(tree.nodes.len() >= 10, "the glass sphere's tree");
+        segments(&tree, &FlatScene::world_camera(&desc, &settings), 10.0)
+    }
+
+    #[test]
+    fn a_tree_at_a_map_coordinate_is_drawn_where_it_is_at_the_origin() {
+        // UTM zone 32N: f32 stores the eye there to 1/4 of a unit, 5 units from the scene (an f32
+        // eye drew the tree 2 % too large).
+        let (near, far) = (drawn([0.0; 3]), drawn([452_331.127, 81.5, 5_411_876.883]));
+        assert_eq!(near.len(), far.len());
+        for (a, b) in near.iter().zip(&far) {
+            // Relative beyond the image: a ray leaving the view ends thousands of widths away.
+            let close = |x: f32, y: f32| (x - y).abs() <= 1e-4 * x.abs().max(1.0);
+            for (p, q) in [(a.from, b.from), (a.to, b.to)] {
+                assert!(close(p.0, q.0) && close(p.1, q.1), "{a:?} against {b:?}");
+            }
+        }
+    }
 }

@@ -19,7 +19,7 @@ pub fn surface_at(ctx: &TraceContext, ray: &Ray, hit: &Hit) -> Surface {
     let robust = ctx.epsilon_mode == EpsilonMode::Robust;
     let textures = ctx.has(feature::TEXTURES);
     // Planar texture coordinates relative to the frame's origin, whose own are each
-    // texture's `planar_u`/`planar_v` (computed once in f64 by `rebase`).
+    // texture's `planar_u`/`planar_v` (computed once in f64, `flat::place_texture_origins`).
     let uv_origin_at = |ng: DVec3| if textures { planar_axis(ng) } else { UV_MESH };
     match hit.prim {
         Prim::Sphere => {

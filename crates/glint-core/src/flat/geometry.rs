@@ -6,6 +6,7 @@ use super::{
     MeshDesc, ObjectDesc, PlaneDesc, SceneDesc, SphereDesc, bvh, origin_power, vec4,
 };
 use glint_scene::storage_origin;
+use glint_types::layout::WORLD_FRAME;
 
 /// The primitives of a scene by kind, with an object id and name per scene object.
 #[derive(Debug, Default)]
@@ -58,8 +59,9 @@ pub(super) struct Geometry {
     pub(super) bvh_nodes: BvhNodes,
     pub(super) bvh_prims: Arc<[u32]>,
     pub(super) leaf_corners: LeafCorners,
-    /// The origin the positions are stored relative to (exact in f32).
-    pub(super) origin: DVec3,
+    /// The frame the positions are stored in (`SceneHeader::frame`: the origin, exact in f32,
+    /// and the offsets' length scale).
+    pub(super) frame: [f32; 4],
 }
 
 impl Geometry {
@@ -80,7 +82,7 @@ impl Geometry {
             bvh_nodes: BvhNodes::new(&bvh.nodes),
             bvh_prims,
             leaf_corners,
-            origin: p.origin,
+            frame: [p.origin.x as f32, p.origin.y as f32, p.origin.z as f32, WORLD_FRAME[3]],
         }
     }
 }

@@ -14,8 +14,8 @@ use glint_scene::{
 };
 use glint_types::layout::{
     GpuCamera, GpuLight, GpuMaterial, GpuMesh, GpuPlane, GpuSphere, GpuTexture, GpuTriangle, INTEGRATOR_PATH,
-    LIGHT_CASTS_SHADOWS, MESH_HAS_NORMALS, MESH_HAS_UVS, NO_CONE_VERSIN, NO_TEXTURE, SceneHeader, UnknownTag,
-    WORLD_FRAME, feature, origin_power,
+    LIGHT_CASTS_SHADOWS, MESH_HAS_NORMALS, MESH_HAS_UVS, NO_CONE_VERSIN, NO_TEXTURE, SceneHeader, UnknownTag, feature,
+    origin_power,
 };
 
 /// A scene in the GPU-ready layout, plus the names the UI and reports show. The geometry (the
@@ -122,8 +122,8 @@ impl FlatScene {
             bvh_nodes: self.bvh_nodes.clone(),
             bvh_prims: self.bvh_prims.clone(),
             leaf_corners: self.leaf_corners.clone(),
-            // The positions are stored relative to the frame, whether `build` or `rebase` put them there.
-            origin: DVec3::from_array([0, 1, 2].map(|k| f64::from(self.header.frame[k]))),
+            // The positions are stored in the frame, whether `build` or `rebase` put them there.
+            frame: self.header.frame,
         }
     }
 
@@ -131,10 +131,9 @@ impl FlatScene {
     fn assemble(desc: &SceneDesc, settings: &RenderSettings, material_names: Vec<String>, geometry: Geometry) -> Self {
         let mut table = TextureTable::default();
         let materials = desc.materials.values().map(|m| flat_material(m, &mut table)).collect();
-        let origin = geometry.origin;
+        let origin = DVec3::from_array([0, 1, 2].map(|k| f64::from(geometry.frame[k])));
         let lights = desc.traced_lights().map(|l| flat_light(l, origin)).collect();
-        let mut camera = Self::camera_for(desc, settings);
-        camera.position = vec4(DVec3::from(desc.camera.position) - origin, 1.0);
+        let camera = Self::world_camera(desc, settings).stored(origin);
         let mut flat = Self {
             header: flat_header(desc, settings, &geometry, material_names.len()),
             camera,
@@ -276,23 +275,42 @@ impl FlatScene {
     }
 }
 
+/// The pinhole camera's ray-generation vectors in f64 world space: a ray through image point
+/// (ndc_x, ndc_y) leaves `position` along forward + ndc_x·right + ndc_y·up. What the flat
+/// scene stores in f32 (`stored`), and what the viewer projects world points with (its light
+/// gizmos and ray-tree overlay): an f32 eye 5e6 from the world origin would be off by 1/4.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct WorldCamera {
+    pub position: DVec3,
+    pub forward: DVec3,
+    pub right: DVec3,
+    pub up: DVec3,
+}
+
+impl WorldCamera {
+    /// The camera as the flat scene stores it: its position relative to `origin` (the storage
+    /// origin), each vector rounded once to f32.
+    pub fn stored(&self, origin: DVec3) -> GpuCamera {
+        GpuCamera {
+            position: vec4(self.position - origin, 1.0),
+            forward: vec4(self.forward, 0.0),
+            right: vec4(self.right, 0.0),
+            up: vec4(self.up, 0.0),
+        }
+    }
+}
+
 impl FlatScene {
-    /// Ray-generation vectors of the pinhole camera, computed in f64 and stored once in f32
-    /// (what `build` stores; the viewer's light gizmos project with it).
-    pub fn camera_for(desc: &SceneDesc, settings: &RenderSettings) -> GpuCamera {
+    /// The camera of `desc` at `settings`' aspect ratio, in f64 world space.
+    pub fn world_camera(desc: &SceneDesc, settings: &RenderSettings) -> WorldCamera {
         let c = &desc.camera;
-        let pos = DVec3::from(c.position);
-        let forward = (DVec3::from(c.look_at) - pos).normalize();
+        let position = DVec3::from(c.position);
+        let forward = (DVec3::from(c.look_at) - position).normalize();
         let right = forward.cross(DVec3::from(c.up)).normalize();
         let up = right.cross(forward);
         let half_h = (c.fov_y.to_radians() * 0.5).tan();
         let half_w = half_h * f64::from(settings.width) / f64::from(settings.height);
-        GpuCamera {
-            position: vec4(pos, 1.0),
-            forward: vec4(forward, 0.0),
-            right: vec4(right * half_w, 0.0),
-            up: vec4(up * half_h, 0.0),
-        }
+        WorldCamera { position, forward, right: right * half_w, up: up * half_h }
     }
 }
 
@@ -326,10 +344,7 @@ fn flat_header(desc: &SceneDesc, settings: &RenderSettings, p: &Geometry, materi
             let g = desc.world.global_attenuation;
             [g.c as f32, g.l as f32, g.q as f32, 0.0]
         },
-        frame: {
-            let o = p.origin;
-            [o.x as f32, o.y as f32, o.z as f32, WORLD_FRAME[3]]
-        },
+        frame: p.frame,
     }
 }
 
