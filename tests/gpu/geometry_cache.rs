@@ -58,21 +58,7 @@ fn a_scene_far_from_the_origin_reuses_its_rebased_geometry_while_the_camera_move
     let tracer = GpuTracer::new(gpu_or_skip!().context().clone());
     let options = GpuOptions::default();
     let (mut desc, _) = builtin("whitted").expect("built-in").load(None).expect("loads");
-    let shift = |p: &mut [f64; 3], d: f64| p[0] += d;
-    for object in &mut desc.objects {
-        match object {
-            glint_scene::ObjectDesc::Sphere(s) => shift(&mut s.center, 1e5),
-            glint_scene::ObjectDesc::Plane(p) => shift(&mut p.point, 1e5),
-            _ => {}
-        }
-    }
-    for light in &mut desc.lights {
-        if let Some(p) = &mut light.position {
-            shift(p, 1e5);
-        }
-    }
-    shift(&mut desc.camera.position, 1e5);
-    shift(&mut desc.camera.look_at, 1e5);
+    glint_test_support::scene::translate(&mut desc, [1e5, 0.0, 0.0]);
     let first = FlatScene::build(&desc, &desc.render);
     let frame = glint_core::rebase::camera_frame(&first);
     assert_ne!(frame, glint_types::layout::WORLD_FRAME);

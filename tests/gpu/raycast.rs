@@ -124,20 +124,8 @@ fn the_ray_caster_works_in_world_space_away_from_the_origin() {
     let loaded =
         load_scene_with("bumpy", &LoadOptions { resolution: Some(8), ..LoadOptions::default() }).expect("bumpy loads");
     let mut desc = loaded.desc;
-    for object in &mut desc.objects {
-        if let ObjectDesc::Mesh(mesh) = object {
-            for v in &mut mesh.vertices {
-                v[0] += SHIFT;
-            }
-        }
-    }
-    for light in &mut desc.lights {
-        if let Some(p) = &mut light.position {
-            p[0] += SHIFT;
-        }
-    }
-    desc.camera.position[0] += SHIFT;
-    desc.camera.look_at[0] += SHIFT;
+    assert!(desc.objects.iter().all(|o| matches!(o, ObjectDesc::Mesh(_))), "bumpy is meshes only");
+    glint_test_support::scene::translate(&mut desc, [SHIFT, 0.0, 0.0]);
     let flat = FlatScene::build(&desc, &desc.render);
     assert_ne!(flat.header.frame, glint_types::layout::WORLD_FRAME);
     assert_ne!(glint_core::rebase::camera_frame(&flat), flat.header.frame);

@@ -107,18 +107,7 @@ fn a_scene_at_a_map_coordinate_is_probed_in_world_coordinates_on_both_tracers() 
     drop(origin);
 
     let mut desc = glint_io::load_scene("whitted").expect("built-in").desc;
-    let shift = |p: &mut [f64; 3]| (0..3).for_each(|k| p[k] += AT[k]);
-    shift(&mut desc.camera.position);
-    shift(&mut desc.camera.look_at);
-    desc.lights.iter_mut().filter_map(|l| l.position.as_mut()).for_each(shift);
-    for object in &mut desc.objects {
-        match object {
-            glint_scene::ObjectDesc::Sphere(s) => shift(&mut s.center),
-            glint_scene::ObjectDesc::Plane(p) => shift(&mut p.point),
-            glint_scene::ObjectDesc::Mesh(m) => m.vertices.iter_mut().for_each(shift),
-            glint_scene::ObjectDesc::Model(_) => panic!("whitted has no model"),
-        }
-    }
+    glint_test_support::scene::translate(&mut desc, AT);
     let dir = crate::support::temp_dir("map-coordinate");
     let file = dir.join("whitted-utm.toml");
     std::fs::write(&file, glint_io::to_toml(&desc).expect("TOML")).expect("scene written");

@@ -320,3 +320,26 @@ pub fn mesh_scene(w: u32, h: u32, mesh: (Vec<[f64; 3]>, Vec<[u32; 3]>)) -> Scene
         .sphere([1.3, -0.6, 0.6], 0.6, "mirror")
         .mesh(&mesh.0, &mesh.1, None, "clay")
 }
+
+/// `desc` moved by `by`: the camera (eye and look-at point), point and spot lights, and every
+/// object's positions (sphere centres, plane points, mesh and placed model vertices, and a
+/// model's own lights). Directions are unchanged.
+pub fn translate(desc: &mut SceneDesc, by: [f64; 3]) {
+    let shift = |p: &mut [f64; 3]| (0..3).for_each(|k| p[k] += by[k]);
+    shift(&mut desc.camera.position);
+    shift(&mut desc.camera.look_at);
+    desc.lights.iter_mut().filter_map(|l| l.position.as_mut()).for_each(shift);
+    for object in &mut desc.objects {
+        match object {
+            ObjectDesc::Sphere(s) => shift(&mut s.center),
+            ObjectDesc::Plane(p) => shift(&mut p.point),
+            ObjectDesc::Mesh(m) => m.vertices.iter_mut().for_each(shift),
+            ObjectDesc::Model(m) => {
+                if let Some(loaded) = m.loaded.as_mut().map(std::sync::Arc::make_mut) {
+                    loaded.meshes.iter_mut().flat_map(|mesh| &mut mesh.vertices).for_each(shift);
+                    loaded.lights.iter_mut().filter_map(|l| l.position.as_mut()).for_each(shift);
+                }
+            }
+        }
+    }
+}

@@ -164,23 +164,11 @@ fn legend(ui: &mut Ui, r: Rect) {
 mod tests {
     use super::*;
     use glint_core::{FlatScene, probe_tree};
-    use glint_scene::ObjectDesc;
 
     /// The glass sphere's tree of whitted, as the viewer draws it, with the scene moved by `at`.
     fn drawn(at: [f64; 3]) -> Vec<TreeSegment> {
         let (mut desc, _) = glint_io::builtin("whitted").expect("built-in").load(None).expect("loads");
-        let shift = |p: &mut [f64; 3]| (0..3).for_each(|k| p[k] += at[k]);
-        shift(&mut desc.camera.position);
-        shift(&mut desc.camera.look_at);
-        desc.lights.iter_mut().filter_map(|l| l.position.as_mut()).for_each(shift);
-        for object in &mut desc.objects {
-            match object {
-                ObjectDesc::Sphere(s) => shift(&mut s.center),
-                ObjectDesc::Plane(p) => shift(&mut p.point),
-                ObjectDesc::Mesh(m) => m.vertices.iter_mut().for_each(shift),
-                ObjectDesc::Model(_) => panic!("whitted has no model"),
-            }
-        }
+        glint_test_support::scene::translate(&mut desc, at);
         let settings = glint_scene::RenderSettings { width: 160, height: 120, ..desc.render.clone() };
         let tree = probe_tree(&FlatScene::build(&desc, &settings), 100, 70, 0);
         assert!(tree.nodes.len() >= 10, "the glass sphere's tree");
