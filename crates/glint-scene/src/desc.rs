@@ -328,3 +328,19 @@ pub fn without_imported_materials(desc: &SceneDesc) -> SceneDesc {
     }
     out
 }
+
+/// A scene of `objects` for this crate's unit tests: a camera 5 back from the origin, one
+/// default material `m`, no lights.
+#[cfg(test)]
+pub(crate) fn test_scene(objects: Vec<ObjectDesc>) -> SceneDesc {
+    SceneDesc {
+        description: String::new(),
+        provenance: String::new(),
+        render: RenderSettings::default(),
+        camera: CameraDesc { position: [0.0, 2.0, -5.0], look_at: [0.0; 3], up: [0.0, 1.0, 0.0], fov_y: 40.0 },
+        world: WorldDesc::default(),
+        materials: [("m".to_string(), MaterialDesc::default())].into(),
+        lights: Vec::new(),
+        objects,
+    }
+}

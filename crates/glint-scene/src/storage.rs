@@ -86,20 +86,8 @@ fn bounded_box(desc: &SceneDesc) -> Option<(DVec3, DVec3)> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::{CameraDesc, MeshDesc, PlaneDesc, RenderSettings, WorldDesc};
-
-    fn with(objects: Vec<ObjectDesc>) -> SceneDesc {
-        SceneDesc {
-            description: String::new(),
-            provenance: String::new(),
-            render: RenderSettings::default(),
-            camera: CameraDesc { position: [0.0, 2.0, -5.0], look_at: [0.0; 3], up: [0.0, 1.0, 0.0], fov_y: 40.0 },
-            world: WorldDesc::default(),
-            materials: Default::default(),
-            lights: Vec::new(),
-            objects,
-        }
-    }
+    use crate::desc::test_scene as with;
+    use crate::{MeshDesc, PlaneDesc};
 
     fn sphere(center: [f64; 3], radius: f64) -> ObjectDesc {
         ObjectDesc::Sphere(SphereDesc { center, radius, material: "m".into(), name: String::new() })

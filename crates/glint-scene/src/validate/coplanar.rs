@@ -142,8 +142,10 @@ struct Overlap {
 /// Two passes, so that memory stays small on meshes of millions of triangles: every surface's
 /// normal cells (one 24-byte entry each, sorted), then the surfaces of each shared cell made
 /// whole and compared.
-pub(super) fn coplanar_overlaps(scene: &SceneDesc) -> Vec<FieldIssue> {
-    let at = Resolution { epsilon: scene.render.epsilon.max(0.0), origin: DVec3::from(crate::storage_origin(scene)) };
+///
+/// `origin`: the scene's storage origin (`storage_origin`), where f32's spacing is judged.
+pub(super) fn coplanar_overlaps(scene: &SceneDesc, origin: [f64; 3]) -> Vec<FieldIssue> {
+    let at = Resolution { epsilon: scene.render.epsilon.max(0.0), origin: DVec3::from(origin) };
     let mut bounds = vec![(DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)); scene.objects.len()];
     // (cell, surface, whether the surface is in more than one cell)
     let mut entries: Vec<(u64, Source, bool)> = Vec::new();
@@ -473,7 +475,8 @@ fn clip(subject: &[DVec2], clipper: &[DVec2]) -> Vec<DVec2> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::{CameraDesc, MeshDesc, PlaneDesc, RenderSettings, WorldDesc};
+    use crate::desc::test_scene as scene;
+    use crate::{MeshDesc, PlaneDesc};
 
     fn mesh(vertices: Vec<[f64; 3]>, triangles: Vec<[u32; 3]>, name: &str) -> ObjectDesc {
         ObjectDesc::Mesh(MeshDesc {
@@ -486,6 +489,11 @@ mod tests {
         })
     }
 
+    /// The warnings for `scene`, at its own storage origin, as validation gives them.
+    fn overlaps(scene: &SceneDesc) -> Vec<FieldIssue> {
+        coplanar_overlaps(scene, crate::storage_origin(scene))
+    }
+
     /// Judged in world space, with no ε (the unit tests of single surfaces).
     const WORLD: Resolution = Resolution { epsilon: 0.0, origin: DVec3::ZERO };
 
@@ -493,23 +501,9 @@ mod tests {
         mesh(vec![[x0, y, 0.0], [x0 + 1.0, y, 0.0], [x0 + 1.0, y, 1.0], [x0, y, 1.0]], vec![[0, 2, 1], [0, 3, 2]], name)
     }
 
-    fn scene(objects: Vec<ObjectDesc>) -> SceneDesc {
-        let camera = CameraDesc { position: [0.0, 2.0, -5.0], look_at: [0.0; 3], up: [0.0, 1.0, 0.0], fov_y: 40.0 };
-        SceneDesc {
-            description: String::new(),
-            provenance: String::new(),
-            render: RenderSettings::default(),
-            camera,
-            world: WorldDesc::default(),
-            materials: BTreeMap::new(),
-            lights: Vec::new(),
-            objects,
-        }
-    }
-
     #[test]
     fn half_overlapping_quads_are_named_with_their_shared_area() {
-        let w = coplanar_overlaps(&scene(vec![quad(0.0, 0.0, "a"), quad(0.5, 0.0, "b")]));
+        let w = overlaps(&scene(vec![quad(0.0, 0.0, "a"), quad(0.5, 0.0, "b")]));
         assert_eq!(w.len(), 1, "{w:?}");
         assert!(w[0].problem.contains("objects[0] (mesh `a`) and objects[1] (mesh `b`)"), "{}", w[0].problem);
         assert!(w[0].problem.contains("area of 5.0000e-1"), "{}", w[0].problem);
@@ -517,9 +511,9 @@ mod tests {
 
     #[test]
     fn neighbours_apart_or_sharing_an_edge_are_not_overlaps() {
-        assert!(coplanar_overlaps(&scene(vec![quad(0.0, 0.0, "a"), quad(1.0, 0.0, "b")])).is_empty());
-        assert!(coplanar_overlaps(&scene(vec![quad(0.0, 0.0, "a"), quad(0.5, 1e-3, "b")])).is_empty());
-        assert!(coplanar_overlaps(&scene(vec![quad(0.0, 0.0, "a")])).is_empty(), "a quad's own two triangles");
+        assert!(overlaps(&scene(vec![quad(0.0, 0.0, "a"), quad(1.0, 0.0, "b")])).is_empty());
+        assert!(overlaps(&scene(vec![quad(0.0, 0.0, "a"), quad(0.5, 1e-3, "b")])).is_empty());
+        assert!(overlaps(&scene(vec![quad(0.0, 0.0, "a")])).is_empty(), "a quad's own two triangles");
     }
 
     #[test]
@@ -532,24 +526,24 @@ mod tests {
                 name: name.into(),
             })
         };
-        let w = coplanar_overlaps(&scene(vec![quad(0.0, 0.0, "floor"), plane(0.0, "ground")]));
+        let w = overlaps(&scene(vec![quad(0.0, 0.0, "floor"), plane(0.0, "ground")]));
         assert!(w.len() == 1 && w[0].problem.contains("area of 1.0000e0"), "{w:?}");
-        let w = coplanar_overlaps(&scene(vec![plane(3.0, "p"), plane(3.0, "q")]));
+        let w = overlaps(&scene(vec![plane(3.0, "p"), plane(3.0, "q")]));
         assert!(w.len() == 1 && w[0].problem.contains("the whole plane"), "{w:?}");
         // Far from the world origin on their own, the faces are stored relative to themselves
         // (`storage_origin`), where f32 tells 0.01 apart.
         let (a, b) = (quad(1e6, 1e6, "a"), quad(1e6 + 0.5, 1e6 + 0.01, "b"));
-        assert!(coplanar_overlaps(&scene(vec![a.clone(), b.clone()])).is_empty());
+        assert!(overlaps(&scene(vec![a.clone(), b.clone()])).is_empty());
         // In a scene that spans 1e6 (a face at the world origin too) an f32 step is 0.0625 there:
         // a face 0.01 above another is the same plane.
-        let w = coplanar_overlaps(&scene(vec![a, b, quad(0.0, 0.0, "at the origin")]));
+        let w = overlaps(&scene(vec![a, b, quad(0.0, 0.0, "at the origin")]));
         assert_eq!(w.len(), 1, "{w:?}");
     }
 
     #[test]
     fn a_duplicated_triangle_inside_one_mesh_is_found() {
         let m = mesh(vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]], vec![[0, 1, 2], [0, 2, 1]], "twice");
-        let w = coplanar_overlaps(&scene(vec![m]));
+        let w = overlaps(&scene(vec![m]));
         assert!(w.len() == 1 && w[0].problem.contains("overlaps itself"), "{w:?}");
     }
 
@@ -628,7 +622,7 @@ mod tests {
         // (shared edges and corners): 8.5 pairs a face. A sweep along one axis tested every face
         // against three rows, 6n = 900 a face.
         assert!(pairs <= 9 * faces, "{pairs} candidate pairs for {faces} faces");
-        assert!(coplanar_overlaps(&desc).is_empty(), "neighbours sharing edges are not overlaps");
+        assert!(overlaps(&desc).is_empty(), "neighbours sharing edges are not overlaps");
         // One quad of the size of the whole grid under it: too large for the grid's cells, so
         // compared with every face, and the overlap is the whole floor.
         let ground = mesh(
@@ -636,7 +630,7 @@ mod tests {
             vec![[0, 2, 1], [0, 3, 2]],
             "ground",
         );
-        let w = coplanar_overlaps(&scene(vec![floor(n, "floor"), ground]));
+        let w = overlaps(&scene(vec![floor(n, "floor"), ground]));
         assert_eq!(w.len(), 1, "{w:?}");
         assert!(
             w[0].problem.contains("and objects[1] (mesh `ground`) overlap")
@@ -657,6 +651,6 @@ mod bumpy {
     fn the_bumpy_spheres_pole_is_not_warned() {
         // The built-in scene's default resolution (glint-io's `DEFAULT_RESOLUTION`).
         let desc = crate::bumpy::bumpy(500);
-        assert!(coplanar_overlaps(&desc).is_empty());
+        assert!(coplanar_overlaps(&desc, crate::storage_origin(&desc)).is_empty());
     }
 }

@@ -156,7 +156,7 @@ pub fn validate_objects(scene: &SceneDesc) -> Report {
         validate_object(&format!("objects[{i}]"), object, scene, origin, &mut r);
     }
     if r.errors.is_empty() {
-        r.warnings.extend(coplanar::coplanar_overlaps(scene));
+        r.warnings.extend(coplanar::coplanar_overlaps(scene, origin));
     }
     r
 }

@@ -232,21 +232,7 @@ mod tests {
 
     #[test]
     fn the_scene_s_storage_origin_decides() {
-        let scene = |objects: Vec<ObjectDesc>| SceneDesc {
-            description: String::new(),
-            provenance: String::new(),
-            render: crate::RenderSettings::default(),
-            camera: crate::CameraDesc {
-                position: [0.0, 2.0, -5.0],
-                look_at: [0.0; 3],
-                up: [0.0, 1.0, 0.0],
-                fov_y: 40.0,
-            },
-            world: crate::WorldDesc::default(),
-            materials: [("m".to_string(), crate::MaterialDesc::default())].into(),
-            lights: Vec::new(),
-            objects,
-        };
+        let scene = crate::desc::test_scene;
         let lost = |r: &Report| r.warnings.iter().any(|w| w.problem.contains("no area once"));
         // Alone, 1e5 from the world origin: stored beside it, nothing is lost.
         let alone = super::super::validate_objects(&scene(vec![ObjectDesc::Mesh(tiny(1e5))]));
