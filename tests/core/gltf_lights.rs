@@ -240,7 +240,7 @@ fn a_model_objects_own_lights_shine_when_asked_placed_and_scaled_by_its_exposure
     let flat = glint_core::FlatScene::build(&on, &on.render);
     assert_eq!(flat.lights.len(), 1);
     // Stored relative to the model's mesh, 100 from the world origin (`storage_origin`).
-    assert_eq!(w3(flat.lights[0].position) + w3(flat.header.frame), DVec3::new(0.0, 2.0, 0.0));
+    assert_eq!(w3(flat.lights[0].position) + flat.frame_origin(), DVec3::new(0.0, 2.0, 0.0));
     let lit = crate::support::render(&flat).image.get(0, 0);
     // 1/d² at d = 2 straight above; glTF lights have no ambient term.
     let want = 0.125 * FLOOR_KA * DVec3::ONE + 0.25 * dv(I_D) * dv(FLOOR_KD);

@@ -4,7 +4,6 @@
 //! so.
 
 use glint_core::cpu::ray_tree::{Cut, RayTree};
-use glint_core::cpu::v3;
 use glint_core::probe_terms::first_tree_difference as first_difference;
 use glint_core::probe_tree;
 use glint_types::RayKind;
@@ -41,7 +40,7 @@ fn gpu_tree_matches_cpu_tree_node_by_node_on_whitted() {
             summary(&cpu),
             summary(&gpu.tree)
         );
-        if let Some(d) = first_difference(&cpu, &gpu.tree, v3(flat.header.frame)) {
+        if let Some(d) = first_difference(&cpu, &gpu.tree, flat.frame_origin()) {
             panic!(
                 "({x}, {y}): node {} differs in {}:\nCPU {:#?}\nGPU {:#?}",
                 d.node, d.what, cpu.nodes[d.node], gpu.tree.nodes[d.node]
@@ -65,21 +64,21 @@ fn a_perturbed_node_is_the_first_difference() {
     let flat = builtin("whitted", 160, 120, 1, 5);
     let cpu = probe_tree(&flat, 100, 70, 0);
     let gpu = tracer.probe(&flat, 100, 70).expect("GPU probe").tree;
-    assert_eq!(first_difference(&cpu, &gpu, v3(flat.header.frame)), None);
+    assert_eq!(first_difference(&cpu, &gpu, flat.frame_origin()), None);
     let deep =
         cpu.nodes.iter().position(|n| n.depth == 2 && n.kind == RayKind::Refraction).expect("a depth-2 refraction");
     let mut bent = gpu.clone();
     bent.nodes[deep].weight *= 1.001;
-    let d = first_difference(&cpu, &bent, v3(flat.header.frame)).expect("a difference");
+    let d = first_difference(&cpu, &bent, flat.frame_origin()).expect("a difference");
     assert_eq!((d.node, d.what.as_str()), (deep, "weight"));
     let mut shaded = gpu.clone();
     let hit = cpu.nodes.iter().position(|n| n.depth == 1 && n.terms.is_some()).expect("a depth-1 hit");
     shaded.nodes[hit].terms.as_mut().expect("terms").lights[0].diffuse.y += 0.01;
-    let d = first_difference(&cpu, &shaded, v3(flat.header.frame)).expect("a difference");
+    let d = first_difference(&cpu, &shaded, flat.frame_origin()).expect("a difference");
     assert_eq!((d.node, d.what.as_str()), (hit, "light 0: diffuse"));
     let mut short = gpu;
     short.nodes.pop();
-    assert_eq!(first_difference(&cpu, &short, v3(flat.header.frame)).map(|d| d.node), Some(cpu.nodes.len() - 1));
+    assert_eq!(first_difference(&cpu, &short, flat.frame_origin()).map(|d| d.node), Some(cpu.nodes.len() - 1));
 }
 
 /// A glass sphere over a mirror floor under 16 lights, at depth 14 without bailout: every
@@ -119,5 +118,5 @@ fn a_tree_past_the_buffer_overflows_with_a_flag_and_keeps_its_first_nodes() {
     assert!(gpu.tree.overflow, "no overflow flag with {} nodes", cpu.nodes.len());
     assert!(!gpu.tree.lights_truncated);
     assert_eq!(gpu.tree.nodes.len(), capacity);
-    assert_eq!(first_difference(&cpu, &gpu.tree, v3(flat.header.frame)), None, "the kept nodes are the CPU's first");
+    assert_eq!(first_difference(&cpu, &gpu.tree, flat.frame_origin()), None, "the kept nodes are the CPU's first");
 }

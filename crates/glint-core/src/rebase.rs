@@ -137,7 +137,7 @@ pub fn camera_frame(scene: &FlatScene) -> [f32; 4] {
         return scene.header.frame;
     }
     let g = nearest_power_of_two(r / GRID_DIVISIONS);
-    let world = focus + v3(scene.header.frame);
+    let world = focus + scene.frame_origin();
     let c = (world / g).round() * g;
     let w = nearest_power_of_two(r).min(1.0);
     [c.x as f32, c.y as f32, c.z as f32, w as f32]
@@ -147,7 +147,7 @@ pub fn camera_frame(scene: &FlatScene) -> [f32; 4] {
 /// `frame`'s origin and the scene's own, in f64, rounded once; the header's frame set. The
 /// result renders the same scene on either tracer.
 pub fn rebased(scene: &FlatScene, frame: [f32; 4]) -> FlatScene {
-    let c = v3(frame) - v3(scene.header.frame);
+    let c = v3(frame) - scene.frame_origin();
     let mut out = scene.clone();
     if c != DVec3::ZERO {
         out.vertices = scene.vertices.iter().map(|v| moved(*v, c)).collect();
@@ -196,7 +196,7 @@ pub fn rebased_with_geometry(scene: &FlatScene, frame: [f32; 4], geometry: &Flat
 /// Moves `out`'s camera and point and spot lights (from `scene`'s) into `frame`, sets it, and
 /// places the textures' planar origins there.
 fn move_the_rest(out: &mut FlatScene, scene: &FlatScene, frame: [f32; 4]) {
-    let c = v3(frame) - v3(scene.header.frame);
+    let c = v3(frame) - scene.frame_origin();
     out.header.frame = frame;
     place_texture_origins(out, frame);
     out.camera.position = moved(scene.camera.position, c);
@@ -299,7 +299,7 @@ material = "m"
         assert_eq!(r.header.frame, frame);
         // Stored relative to its geometry (`storage_origin`), the scene moves by the difference.
         assert_ne!(world.header.frame, WORLD_FRAME);
-        let moved_by = v3(frame) - v3(world.header.frame);
+        let moved_by = v3(frame) - world.frame_origin();
         for (a, b) in r.bvh_nodes.iter().zip(world.bvh_nodes.iter()) {
             for (k, c) in moved_by.to_array().into_iter().enumerate() {
                 assert!(f64::from(a.min[k]) <= f64::from(b.min[k]) - c, "min[{k}] not rounded down");

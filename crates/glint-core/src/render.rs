@@ -267,14 +267,9 @@ pub fn probe_pixel(scene: &FlatScene, x: u32, y: u32, sample: u32) -> Breakdown 
     let mut counts = RayCounts::default();
     render_sample(&ctx, x, y, sample, &mut counts, Some(&mut b), &mut NoTree);
     if b.object_id != glint_types::layout::NO_HIT {
-        b.point += frame_origin(scene);
+        b.point += scene.frame_origin();
     }
     b
-}
-
-/// Where `scene`'s stored coordinates have their origin, in world space (`SceneHeader::frame`).
-fn frame_origin(scene: &FlatScene) -> DVec3 {
-    crate::cpu::v3(scene.header.frame)
 }
 
 /// The whole ray tree of one camera sample of pixel (x, y), as the render traced it: node 0
@@ -288,13 +283,7 @@ pub fn probe_tree(scene: &FlatScene, x: u32, y: u32, sample: u32) -> RayTree {
     let mut tree = RayTree::default();
     let mut counts = RayCounts::default();
     render_sample(&ctx, x, y, sample, &mut counts, None, &mut tree);
-    let origin = frame_origin(scene);
-    for node in &mut tree.nodes {
-        node.origin += origin;
-        if let Some(terms) = &mut node.terms {
-            terms.point += origin;
-        }
-    }
+    tree.translate(scene.frame_origin());
     tree
 }
 

@@ -102,10 +102,8 @@ pub struct GpuRender {
 #[derive(Clone, Debug)]
 pub struct PixelProbe {
     /// The breakdown of the first hit, as the shader wrote it: its point is in the frame the
-    /// GPU traced in (`frame`), in f32.
+    /// GPU traced in, in f32.
     pub record: ProbeRecord,
-    /// That frame's origin in world space (`SceneHeader::frame` of the rebased scene).
-    pub frame: DVec3,
     /// The first hit's point in world space, in f64 (`None` for a miss), as the CPU's probe
     /// reports it: rounded to f32 there, a point 5e6 from the world origin would be off by 1/4.
     pub point: Option<DVec3>,
@@ -248,15 +246,10 @@ impl GpuTracer {
         let record: ProbeRecord = bytemuck::pod_read_unaligned(&bytes);
         let mut tree = crate::probe::ray_tree(&tree)?;
         // Points back in world space (in f64), as the CPU's probe reports them.
-        let origin = glint_core::cpu::v3(scene.header.frame);
+        let origin = scene.frame_origin();
         let point = (record.flags & PROBE_HIT != 0).then(|| glint_core::cpu::v3(record.point) + origin);
-        for node in &mut tree.nodes {
-            node.origin += origin;
-            if let Some(terms) = &mut node.terms {
-                terms.point += origin;
-            }
-        }
-        Ok(PixelProbe { record, frame: origin, point, tree, status: decode_stats(&stats).1 })
+        tree.translate(origin);
+        Ok(PixelProbe { record, point, tree, status: decode_stats(&stats).1 })
     }
 
     /// Renders `scene` and reads the image back, waiting for both: `submit`, then the job's

@@ -220,7 +220,7 @@ const GPU_ONLY: [(&str, &str, &str); 43] = [
 ];
 
 /// Functions only the CPU side has, and why.
-const CPU_ONLY: [(&str, &str, &str); 22] = [
+const CPU_ONLY: [(&str, &str, &str); 23] = [
     ("cpu/raycast.rs", "from_hit", "HitRecord from the CPU's Option<Hit>; cast_ray writes the vec4 in place"),
     ("cpu/raycast.rs", "is_hit", "a record read on the host (the benchmark's hit counts)"),
     ("cpu/bvh.rs", "new", "SlabRay::new; WGSL builds it in slab_ray (no methods)"),
@@ -252,6 +252,11 @@ const CPU_ONLY: [(&str, &str, &str); 22] = [
     ("cpu/ray_tree.rs", "children", "a recorded tree read on the host (reports and tests)"),
     ("cpu/ray_tree.rs", "radiance_of", "a recorded tree read on the host: its radiance recomputed from the nodes"),
     ("cpu/ray_tree.rs", "count", "a recorded tree read on the host (reports and tests)"),
+    (
+        "cpu/ray_tree.rs",
+        "translate",
+        "a recorded tree moved on the host into world space (both probes, after reading back)",
+    ),
     (
         "cpu/path.rs",
         "path_sample",

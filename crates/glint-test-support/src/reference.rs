@@ -26,7 +26,7 @@ pub fn primary_ray(flat: &FlatScene, x: u32, y: u32) -> (DVec3, DVec3) {
     let ndc_x = 2.0 * (f64::from(x) + 0.5) / w - 1.0;
     let ndc_y = 1.0 - 2.0 * (f64::from(y) + 0.5) / h;
     let d = w3(c.forward) + ndc_x * w3(c.right) + ndc_y * w3(c.up);
-    (w3(c.position) + w3(flat.header.frame), d.normalize())
+    (w3(c.position) + flat.frame_origin(), d.normalize())
 }
 
 /// Nearest ray/sphere hit with t > 0 and its discriminant relative to r² (how far from the

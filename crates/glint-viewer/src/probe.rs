@@ -72,7 +72,7 @@ impl ProbeState {
             let ctx = glint_core::cpu::TraceContext::new(p).ok()?;
             Some(probe_paths(&ctx, x, y, p.header.spp))
         });
-        let origin = glint_core::cpu::v3(scene.header.frame);
+        let origin = scene.frame_origin();
         Self { x, y, revision, cpu, gpu, cpu_tree, gpu_tree: None, origin, paths }
     }
 

@@ -194,6 +194,17 @@ impl RayTree {
         if node.kind == RayKind::Camera { radiance } else { node.attenuation * radiance }
     }
 
+    /// Moves every point of the tree by `offset`: its rays' origins and hit points, from the
+    /// frame it was traced in to world space (both probes).
+    pub fn translate(&mut self, offset: DVec3) {
+        for node in &mut self.nodes {
+            node.origin += offset;
+            if let Some(terms) = &mut node.terms {
+                terms.point += offset;
+            }
+        }
+    }
+
     /// The number of nodes of `kind`.
     pub fn count(&self, kind: RayKind) -> usize {
         self.nodes.iter().filter(|n| n.kind == kind).count()

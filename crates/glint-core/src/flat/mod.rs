@@ -131,7 +131,7 @@ impl FlatScene {
     fn assemble(desc: &SceneDesc, settings: &RenderSettings, material_names: Vec<String>, geometry: Geometry) -> Self {
         let mut table = TextureTable::default();
         let materials = desc.materials.values().map(|m| flat_material(m, &mut table)).collect();
-        let origin = DVec3::from_array([0, 1, 2].map(|k| f64::from(geometry.frame[k])));
+        let origin = frame::origin_of(geometry.frame);
         let lights = desc.traced_lights().map(|l| flat_light(l, origin)).collect();
         let camera = Self::world_camera(desc, settings).stored(origin);
         let mut flat = Self {
