@@ -78,7 +78,9 @@ fn enter(s: SlabRay, lower: vec3<f32>, upper: vec3<f32>, t_lo: f32, t_hi: f32) -
     let a = (lo - s.origin) * s.inv;
     let b = (hi - s.origin) * s.inv;
     let near = select(min(a, b), vec3<f32>(-SLAB_INF), s.parallel);
-    let far = select(max(a, b) * (1.0 + BOX_PAD), vec3<f32>(SLAB_INF), s.parallel);
+    // Enlarged by its magnitude: a camera ray's t may be negative (traced from t_min < 0).
+    let exit = max(a, b);
+    let far = select(exit + BOX_PAD * abs(exit), vec3<f32>(SLAB_INF), s.parallel);
     let t0 = max(near.x, max(near.y, near.z));
     let t1 = min(far.x, min(far.y, far.z));
     return MaybeT(t0, !outside && t0 <= t1 && t0 <= t_hi + slack(s, t_hi) && t1 >= t_lo - slack(s, t_lo));

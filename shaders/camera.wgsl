@@ -35,9 +35,28 @@ fn sample_offset(pixel: u32, sample_index: u32, spp: u32, seed: u32) -> vec2<f32
 #endif
 }
 
-fn camera_ray(cam: GpuCamera, width: u32, height: u32, x: u32, y: u32, offset: vec2<f32>) -> Ray {
+// A camera ray: it starts on the anchor's plane and is traced from t_min < 0, the eye
+// (GpuCamera in layout.rs says why).
+struct CameraRay {
+    ray: Ray,
+    t_min: f32,
+}
+
+// Where the ray leaves the eye, and its distance from there to the ray's point at t: what a
+// probe and a ray tree report of a camera ray.
+fn eye(c: CameraRay) -> vec3<f32> {
+    return c.ray.origin + c.t_min * c.ray.dir;
+}
+
+fn from_eye(c: CameraRay, t: f32) -> f32 {
+    return t - c.t_min;
+}
+
+fn camera_ray(cam: GpuCamera, width: u32, height: u32, x: u32, y: u32, offset: vec2<f32>) -> CameraRay {
     let ndc_x = 2.0 * (f32(x) + offset.x) / f32(width) - 1.0;
     let ndc_y = 1.0 - 2.0 * (f32(y) + offset.y) / f32(height);
     let dir = cam.forward.xyz + ndc_x * cam.right.xyz + ndc_y * cam.up.xyz;
-    return Ray(cam.position.xyz, normalize(dir));
+    let across = ndc_x * cam.right.xyz + ndc_y * cam.up.xyz;
+    let w = cam.anchor.w;
+    return CameraRay(Ray(cam.anchor.xyz + w * across, normalize(dir)), -w * length(dir));
 }

@@ -65,14 +65,15 @@ fn sphere_c(center: vec3<f32>, radius: f32, power: f32, origin: vec3<f32>, f: ve
 // smaller root from c/q. Two more forms where f32 would cancel (docs/numerics.md,
 // "Cancellation in the f32 twins"); the f64 twin keeps the first forms, which do not lose what
 // f64 needs. `power` is the sphere's precomputed |C|² − r² (GpuSphere::power).
-fn sphere_roots(center: vec3<f32>, radius: f32, power: f32, ray: Ray) -> SphereRoots {
+fn sphere_roots(center: vec3<f32>, radius: f32, power: f32, ray: Ray, t_min: f32) -> SphereRoots {
     let f = ray.origin - center;
     let a = dot(ray.dir, ray.dir);
     let b = -dot(f, ray.dir);
     let rr = radius * radius;
     let ce = sphere_c(center, radius, power, ray.origin, f);
     let c = ce.x;
-    if c > 0.0 && b < 0.0 {
+    // Both roots behind an origin outside (not for a camera ray, traced from t_min < 0).
+    if c > 0.0 && b < 0.0 && t_min >= 0.0 {
         return SphereRoots(0.0, 0.0, false);
     }
     // a·Δ as a·(r² − |l|²), which loses ≈ ε·a·r², or as b² − a·c, which loses ≈ ε·(b² + a·δc):
@@ -93,7 +94,7 @@ fn sphere_roots(center: vec3<f32>, radius: f32, power: f32, ray: Ray) -> SphereR
 }
 
 fn intersect_sphere(center: vec3<f32>, radius: f32, power: f32, ray: Ray, t_min: f32, t_max: f32) -> MaybeT {
-    let r = sphere_roots(center, radius, power, ray);
+    let r = sphere_roots(center, radius, power, ray, t_min);
     if !r.ok {
         return MaybeT(0.0, false);
     }
@@ -140,7 +141,7 @@ fn sphere_roots_counted(leaving: Leaving, index: u32) -> vec2<bool> {
 fn intersect_sphere_leaving(leaving: Leaving, index: u32, center: vec3<f32>, radius: f32, power: f32, ray: Ray, t_min: f32, t_max: f32) -> MaybeT {
 #ifdef SKIP_CONVEX
     if is_leaving(leaving, PRIM_SPHERE, index) {
-        let r = sphere_roots(center, radius, power, ray);
+        let r = sphere_roots(center, radius, power, ray, t_min);
         return MaybeT(r.t_far, leaving.inside && r.ok && r.t_far > t_min && r.t_far < t_max);
     }
 #endif
@@ -280,8 +281,16 @@ fn bound(best: Hit, t_max: f32) -> f32 {
     if best.prim == PRIM_NONE {
         return t_max;
     }
-    // The next f32 up (t > 0 here: every test requires t > t_min >= 0).
-    return bitcast<f32>(bitcast<u32>(best.t) + 1u);
+    // The next f32 up. A camera ray's t may be negative (it is traced from t_min < 0), where
+    // the next value up has the next smaller magnitude; +0 and −0 go to the least positive.
+    let bits = bitcast<u32>(best.t);
+    if best.t > 0.0 {
+        return bitcast<f32>(bits + 1u);
+    }
+    if best.t < 0.0 {
+        return bitcast<f32>(bits - 1u);
+    }
+    return bitcast<f32>(1u);
 }
 
 #ifdef PLANES
@@ -360,7 +369,7 @@ fn all_zero(v: vec3<f32>) -> bool {
 fn sphere_transmittance(tr_in: vec3<f32>, i: u32, ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> vec3<f32> {
     var tr = tr_in;
     let cr = spheres[i].center_radius;
-    let r = sphere_roots(cr.xyz, cr.w, spheres[i].power, ray);
+    let r = sphere_roots(cr.xyz, cr.w, spheres[i].power, ray, t_min);
     var counted = vec2<bool>(true, true);
 #ifdef SKIP_CONVEX
     counted = sphere_roots_counted(leaving, i);

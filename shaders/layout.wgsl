@@ -104,7 +104,8 @@ struct SceneHeader {
 }
 
 struct GpuCamera {
-    position: vec4<f32>,
+    // xyz a point of the view axis, w its distance from the eye (layout.rs says why).
+    anchor: vec4<f32>,
     forward: vec4<f32>,
     right: vec4<f32>,
     up: vec4<f32>,

@@ -275,9 +275,10 @@ fn start_path(x: u32, y: u32, sample_index: u32) -> PathState {
     let offset = sample_offset(pixel, sample_index, header.spp, header.seed);
     ray_counts.camera += 1u;
     let zero = vec3<f32>(0.0);
+    let c = camera_ray(camera, header.width, header.height, x, y, offset);
     return PathState(
-        camera_ray(camera, header.width, header.height, x, y, offset),
-        0.0,
+        c.ray,
+        c.t_min,
         Leaving(PRIM_NONE, 0u, false),
         vec3<f32>(1.0),
         zero,

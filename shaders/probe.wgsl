@@ -209,12 +209,14 @@ fn probe_pop(i: u32) {
     next_link = link_stack[i];
 }
 
-// After shade_hit: the node's hit and terms, and the first hit's breakdown kept.
+// After shade_hit: the node's hit at t (a camera ray's from the eye) and terms, and the first
+// hit's breakdown kept.
 fn probe_shade_end(t: f32, first: bool) {
     probe_active = false;
     close(probe_node, t);
     if first {
         probe_first = probe;
+        probe_first.t = t;
     }
 }
 

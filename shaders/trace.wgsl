@@ -6,7 +6,7 @@
 #import glint::scene_data::{NO_HIT, STATUS_LOOP_LIMIT, STATUS_STACK_OVERFLOW, STATUS_DRIVER_LOOP_CUTOFF, STAT_STATUS}
 #import glint::bindings::{header, camera, tile, materials, spheres, planes, triangles, meshes, output, stats}
 #import glint::ray::{Ray, RayCounts, ray_counts, status, driver_cut_loops, flush_counts}
-#import glint::camera::{camera_ray, sample_offset}
+#import glint::camera::{CameraRay, camera_ray, eye, from_eye, sample_offset}
 #import glint::intersect::{Hit, Leaving, FAR, PRIM_NONE, PRIM_SPHERE, PRIM_PLANE, all_zero}
 #ifdef BVH
 #import glint::bvh::closest_hit
@@ -178,9 +178,9 @@ fn shade_hit(ray: Ray, hit: Hit, depth: u32, weight: vec3<f32>, branch: u32) -> 
 
 // Radiance along a camera ray: its whole tree, walked depth first. Returns the radiance and
 // the id of the first object hit.
-fn trace_ray(ray: Ray) -> SampleResult {
+fn trace_ray(primary: CameraRay) -> SampleResult {
     var result = SampleResult(vec3<f32>(0.0), NO_HIT);
-    var e = StackEntry(ray.origin, 0.0, ray.dir, 0u, vec3<f32>(1.0), Leaving(PRIM_NONE, 0u, false), 0u);
+    var e = StackEntry(primary.ray.origin, primary.t_min, primary.ray.dir, 0u, vec3<f32>(1.0), Leaving(PRIM_NONE, 0u, false), 0u);
     stack_top = 0u;
 #ifdef PROBE
     probe_root();
@@ -189,7 +189,8 @@ fn trace_ray(ray: Ray) -> SampleResult {
         let r = Ray(e.origin, e.dir);
         let branch_of_node = e.branch;
 #ifdef PROBE
-        if probe_enter(r, e.t_min, e.depth, e.weight) {
+        // The camera ray recorded from the eye, where it leaves (traced from the anchor's plane).
+        if probe_enter(Ray(select(r.origin, eye(primary), n == 0u), r.dir), e.t_min, e.depth, e.weight) {
             // Recorded, not traced.
             if stack_top == 0u {
                 return result;
@@ -225,7 +226,7 @@ fn trace_ray(ray: Ray) -> SampleResult {
 #endif
             let shaded = shade_hit(r, hit, e.depth, e.weight, e.branch);
 #ifdef PROBE
-            probe_shade_end(hit.t, n == 0u);
+            probe_shade_end(select(hit.t, from_eye(primary, hit.t), n == 0u), n == 0u);
 #endif
             gathered = shaded.radiance;
             e = shaded.next;
@@ -272,9 +273,8 @@ fn object_id(hit: Hit) -> u32 {
 fn render_sample(x: u32, y: u32, sample_index: u32) -> SampleResult {
     let pixel = y * header.width + x;
     let offset = sample_offset(pixel, sample_index, header.spp, header.seed);
-    let ray = camera_ray(camera, header.width, header.height, x, y, offset);
     ray_counts.camera += 1u;
-    return trace_ray(ray);
+    return trace_ray(camera_ray(camera, header.width, header.height, x, y, offset));
 }
 
 // Adds sample `tile.sample_index` of pixel (x, y) to the output. The samples of a pixel come in

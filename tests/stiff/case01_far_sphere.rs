@@ -12,6 +12,8 @@
 //! b² and c are ≈ D², so their difference (≤ r² = 1) drowns in their rounding once
 //! ulp(D²) ≈ D²·6e-8 reaches 1, at D ≈ 4.1e3.
 
+use glam::DVec3;
+use glint_core::camera_eye;
 use glint_types::layout::NO_HIT;
 
 use crate::gpu::{Backend, render_both};
@@ -43,13 +45,14 @@ fn scene(distance: f64) -> SceneText {
         .sphere([0.0, 0.0, distance], 1.0, "m")
 }
 
-/// Hit pixels by the textbook quadratic in f32, on the GPU's f32 camera ray.
+/// Hit pixels by the textbook quadratic in f32, on an f32 camera ray from the eye.
 fn textbook_f32_hits(flat: &glint_core::FlatScene, distance: f64) -> usize {
     let c = &flat.camera;
     let v = |a: [f32; 4]| [a[0], a[1], a[2]];
-    let (pos, fwd, right, up) = (v(c.position), v(c.forward), v(c.right), v(c.up));
+    let (pos, fwd, right, up) = (camera_eye(c).as_vec3().to_array(), v(c.forward), v(c.right), v(c.up));
     let dot = |a: [f32; 3], b: [f32; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-    let centre = [0.0, 0.0, distance as f32];
+    // Both in the stored coordinates (relative to the storage origin, here the sphere's centre).
+    let centre = (DVec3::new(0.0, 0.0, distance) - flat.frame_origin()).as_vec3().to_array();
     let oc = [pos[0] - centre[0], pos[1] - centre[1], pos[2] - centre[2]];
     let mut hits = 0;
     for y in 0..N {

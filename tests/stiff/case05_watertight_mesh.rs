@@ -14,6 +14,7 @@
 //! GPU's precision) would miss on the same rays.
 
 use glint_core::FlatScene;
+use glint_core::camera_eye;
 use glint_types::layout::NO_HIT;
 
 use crate::gpu::render_both;
@@ -63,7 +64,7 @@ fn moller_trumbore_f32_misses(flat: &FlatScene) -> usize {
             let d: V = std::array::from_fn(|i| v(c.forward)[i] + ndc_x * v(c.right)[i] + ndc_y * v(c.up)[i]);
             let len = dot(d, d).sqrt();
             let d = d.map(|e| e / len);
-            let o = v(c.position);
+            let o = camera_eye(c).as_vec3().to_array();
             let hit = tris.iter().any(|&[a, b, cc]| {
                 let (e1, e2) = (sub(b, a), sub(cc, a));
                 let p = cross(d, e2);

@@ -80,7 +80,7 @@ fn floats(flat: &glint_core::FlatScene) -> Vec<(String, f32)> {
     add("header.ambient".into(), &h.ambient);
     add("header.background".into(), &h.background);
     let c = &flat.camera;
-    add("camera".into(), &[c.position, c.forward, c.right, c.up].concat());
+    add("camera".into(), &[c.anchor, c.forward, c.right, c.up].concat());
     for (i, m) in flat.materials.iter().enumerate() {
         add(format!("materials[{i}]"), &[m.ka, m.kd, m.ks, m.kr, m.kt, m.emission].concat());
         add(format!("materials[{i}]"), &[m.shininess, m.ior]);

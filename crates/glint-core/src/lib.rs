@@ -20,7 +20,7 @@ mod texture_table;
 pub mod tiles;
 
 pub use backend::Backend;
-pub use flat::{FlatScene, WorldCamera};
+pub use flat::{FlatScene, WorldCamera, camera_eye};
 pub use image::HdrImage;
 pub use render::{Accel, CpuOptions, CpuRender, RenderControl, pick_object, probe_pixel, probe_tree, render_cpu};
 pub use tiles::{PixelRect, TileGrid};

@@ -9,7 +9,7 @@
 //!
 //! What moves: vertex positions (one buffer, so a vertex shared by triangles maps to one value
 //! and watertightness holds), sphere centres, plane offsets d' = d − n·c, point and spot light
-//! positions, the camera position, BVH boxes (rounded outward, so traversal stays
+//! positions, the camera (its eye, anchored anew nearest the new origin), BVH boxes (rounded outward, so traversal stays
 //! conservative) and the header's frame (the origin, added back for planar texture
 //! coordinates, and the offsets' length scale). Directions, normals, radii, texture
 //! coordinates and everything else are unchanged.
@@ -21,7 +21,7 @@ use crate::bvh::{f32_down, f32_up};
 use crate::cpu::intersect::Leaving;
 use crate::cpu::walk::closest_hit;
 use crate::cpu::{Ray, TraceContext, v3};
-use crate::flat::place_texture_origins;
+use crate::flat::{anchor_of, camera_eye, camera_forward, place_texture_origins};
 use glint_scene::LightKind;
 use glint_types::layout::{GpuPlane, GpuSphere, origin_power};
 
@@ -130,7 +130,7 @@ fn focus_within(scene: &FlatScene, eye: DVec3, r: f64) -> DVec3 {
 /// made for scenes of unit size; in a smaller scene it would move rays by a sizeable part of
 /// it. Never above 1, so larger scenes keep W&B's constants.
 pub fn camera_frame(scene: &FlatScene) -> [f32; 4] {
-    let eye = v3(scene.camera.position);
+    let eye = camera_eye(&scene.camera);
     let r = reach(scene, eye);
     let focus = focus_within(scene, eye, r);
     if !(r.is_finite() && r > 0.0 && focus.is_finite()) {
@@ -199,7 +199,13 @@ fn move_the_rest(out: &mut FlatScene, scene: &FlatScene, frame: [f32; 4]) {
     let c = v3(frame) - scene.frame_origin();
     out.header.frame = frame;
     place_texture_origins(out, frame);
-    out.camera.position = moved(scene.camera.position, c);
+    // An anchored camera's eye moved in f64 and anchored anew, nearest the new origin; an eye
+    // that is its own anchor (w = 0) moved as the other points.
+    out.camera.anchor = if scene.camera.anchor[3] > 0.0 {
+        anchor_of(camera_eye(&scene.camera) - c, camera_forward(&scene.camera))
+    } else {
+        moved(scene.camera.anchor, c)
+    };
     for (l, from) in out.lights.iter_mut().zip(&scene.lights) {
         match LightKind::try_from(l.kind) {
             Ok(LightKind::Point | LightKind::Spot) => l.position = moved(from.position, c),
@@ -216,11 +222,17 @@ mod tests {
 
     /// The focus of the scene's own camera.
     fn focus(scene: &FlatScene) -> DVec3 {
-        let eye = v3(scene.camera.position);
+        let eye = camera_eye(&scene.camera);
         focus_within(scene, eye, reach(scene, eye))
     }
     use glint_io::parse_scene;
     use glint_types::layout::{BvhNode, WORLD_FRAME};
+
+    /// Points the camera from `eye` along `forward` (the stored anchor placed anew).
+    fn look(scene: &mut FlatScene, eye: DVec3, forward: [f32; 3]) {
+        scene.camera.forward = [forward[0], forward[1], forward[2], 0.0];
+        scene.camera.anchor = [eye.x as f32, eye.y as f32, eye.z as f32, 0.0];
+    }
 
     fn scene(offset: f64) -> FlatScene {
         let text = format!(
@@ -275,10 +287,7 @@ material = "m"
         desc.camera.position[1] = 0.02;
         let rebuilt = r.rebuild(&desc, &desc.render);
         assert_eq!(rebuilt.header.frame, r.header.frame);
-        assert_eq!(
-            rebuilt.camera.position,
-            rebased(&FlatScene::build(&desc, &desc.render), r.header.frame).camera.position
-        );
+        assert_eq!(rebuilt.camera, rebased(&FlatScene::build(&desc, &desc.render), r.header.frame).camera);
     }
 
     #[test]
@@ -286,7 +295,8 @@ material = "m"
         let world = scene(1e6);
         let frame = [1e6, 1.0, -5.0, 1.0];
         let r = rebased(&world, frame);
-        assert_eq!(r.camera.position, [0.0, 0.0, 0.0, 1.0]);
+        // The eye, its own anchor, at the frame's origin.
+        assert_eq!(r.camera.anchor, [0.0, 0.0, 0.0, 0.0]);
         assert_eq!(r.camera.forward, world.camera.forward);
         assert_eq!(r.spheres[0].center_radius, [0.0, -0.5, 5.0, 0.5]);
         // y = 0 moved by the eye's y = 1: n·x = d becomes n·x = d − n·c.
@@ -315,7 +325,7 @@ material = "m"
     #[test]
     fn the_frame_is_where_the_centre_ray_meets_the_scene_on_a_grid_that_moves_with_it() {
         let near = scene(0.0);
-        let r = reach(&near, v3(near.camera.position));
+        let r = reach(&near, camera_eye(&near.camera));
         // The farthest of: the box's far corner, the light, the plane (1 below the eye).
         assert!(r > 6.0 && r < 8.0, "{r}");
         // The centre ray (from (0, 1, −5) to the origin) meets the sphere of radius 0.5 at (0, 0.5, 0).
@@ -346,14 +356,14 @@ material = "m"
     #[test]
     fn a_plane_met_beyond_the_scenes_reach_is_not_the_focus() {
         let mut s = scene(0.0);
+        let eye = camera_eye(&s.camera);
         // Looking almost level: the floor y = 0, 1 below the eye, is met ~1e4 away.
-        s.camera.forward = [0.0, -1e-4, 1.0, 0.0];
+        look(&mut s, eye, [0.0, -1e-4, 1.0]);
         let f = focus(&s);
         // It grazes the sphere's top (y = 1) 5 ahead instead.
-        assert!((f - v3(s.camera.position)).length() < 10.0, "{f}");
+        assert!((f - eye).length() < 10.0, "{f}");
         // Raised a little, it passes over everything but the floor: the geometry's centre.
-        s.camera.forward = [0.0, -1e-5, 1.0, 0.0];
-        s.camera.position[1] = 1.5;
+        look(&mut s, DVec3::new(eye.x, 1.5, eye.z), [0.0, -1e-5, 1.0]);
         let root = s.bvh_nodes.first().copied().expect("a BVH");
         let centre = (DVec3::from(root.min.map(f64::from)) + DVec3::from(root.max.map(f64::from))) * 0.5;
         assert_eq!(focus(&s), centre);
@@ -363,7 +373,8 @@ material = "m"
     fn a_centre_ray_meeting_nothing_falls_back_on_the_geometry_then_the_eye() {
         let mut s = scene(0.0);
         // Looking up: the ray misses everything; the focus is the centre of the bounded box.
-        s.camera.forward = [0.0, 1.0, 0.0, 0.0];
+        let eye = camera_eye(&s.camera);
+        look(&mut s, eye, [0.0, 1.0, 0.0]);
         let root = s.bvh_nodes.first().copied().expect("a BVH");
         let centre = (DVec3::from(root.min.map(f64::from)) + DVec3::from(root.max.map(f64::from))) * 0.5;
         assert_eq!(focus(&s), centre);
@@ -371,7 +382,7 @@ material = "m"
         s.spheres = Vec::new().into();
         s.vertices = Vec::new().into();
         s.triangles = Vec::new().into();
-        assert_eq!(focus(&s), v3(s.camera.position));
+        assert_eq!(focus(&s), camera_eye(&s.camera));
     }
 
     #[test]
@@ -381,7 +392,7 @@ material = "m"
         let mut small = scene(0.0);
         let shrink = |a: [f32; 4]| [a[0] / 1024.0, a[1] / 1024.0, a[2] / 1024.0, a[3]];
         small.vertices = small.vertices.iter().map(|v| shrink(*v)).collect();
-        small.camera.position = shrink(small.camera.position);
+        small.camera.anchor = shrink(small.camera.anchor);
         small.spheres = small
             .spheres
             .iter()

@@ -295,11 +295,11 @@ pub fn probe_tree(scene: &FlatScene, x: u32, y: u32, sample: u32) -> RayTree {
 pub fn pick_object(scene: &FlatScene, x: u32, y: u32) -> u32 {
     let ctx = built_scene_context(scene);
     let h = &scene.header;
-    let ray = crate::cpu::camera::camera_ray(&scene.camera, h.width, h.height, x, y, 0.5, 0.5);
+    let camera = crate::cpu::camera::camera_ray(&scene.camera, h.width, h.height, x, y, 0.5, 0.5);
     match crate::cpu::walk::closest_hit(
         &ctx,
-        &ray,
-        0.0,
+        &camera.ray,
+        camera.t_min,
         crate::cpu::intersect::FAR,
         &crate::cpu::intersect::Leaving::NONE,
     ) {

@@ -263,11 +263,21 @@ pub struct SceneHeader {
 
 /// Pinhole camera as ray-generation vectors: a pixel at normalised device coordinates (x, y)
 /// in [−1, 1]² looks along `forward + x·right + y·up` (right and up are pre-scaled by the
-/// field of view and aspect ratio).
+/// field of view and aspect ratio) from the eye, `anchor.xyz − anchor.w·forward`.
+///
+/// The eye is not stored: a camera ray starts on the plane through the anchor, at
+/// anchor + w·(x·right + y·up), and reaches back to the eye with t_min = −w·|forward + x·right +
+/// y·up| (`camera_ray`). For an eye far from the scene the anchor is the point of the view axis
+/// nearest the coordinates' origin, which lies in the scene, so the pixel's offset is added to
+/// small coordinates and an f32 direction's error acts over the scene's depth only, not over the
+/// eye's distance: from an eye D away, f32 would point each ray D·6e-8 off and store the eye as
+/// far off (stiff case 22). A nearer eye is its own anchor (w = 0: the rays are the eye's).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
 pub struct GpuCamera {
-    pub position: [f32; 4],
+    /// xyz the anchor on the view axis, w ≥ 0 its distance from the eye (an f32 value the
+    /// anchor was placed from, so that the eye is exact to the anchor's rounding).
+    pub anchor: [f32; 4],
     pub forward: [f32; 4],
     pub right: [f32; 4],
     pub up: [f32; 4],

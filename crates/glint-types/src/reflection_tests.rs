@@ -33,7 +33,7 @@ fn rust_layouts() -> Vec<RustLayout> {
             global_attenuation,
             frame
         }),
-        rust_layout!(GpuCamera { position, forward, right, up }),
+        rust_layout!(GpuCamera { anchor, forward, right, up }),
         rust_layout!(GpuMaterial {
             ka,
             kd,

@@ -32,12 +32,32 @@ pub fn sample_offset(pixel: u32, sample: u32, spp: u32, seed: u32, jitter: bool)
     ((f64::from(sample % cols) + jx) / f64::from(cols), (f64::from(sample / cols) + jy) / f64::from(rows))
 }
 
+/// A camera ray: it starts on the anchor's plane and is traced from `t_min` < 0, the eye
+/// (`GpuCamera` says why).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CameraRay {
+    pub ray: Ray,
+    pub t_min: f64,
+}
+
+/// Where the ray leaves the eye, and its distance from there to the ray's point at t: what a
+/// probe and a ray tree report of a camera ray.
+pub fn eye(c: &CameraRay) -> DVec3 {
+    c.ray.origin + c.t_min * c.ray.dir
+}
+
+pub fn from_eye(c: &CameraRay, t: f64) -> f64 {
+    t - c.t_min
+}
+
 /// The camera ray through image position (x + ox, y + oy), y downwards.
-pub fn camera_ray(cam: &GpuCamera, width: u32, height: u32, x: u32, y: u32, ox: f64, oy: f64) -> Ray {
+pub fn camera_ray(cam: &GpuCamera, width: u32, height: u32, x: u32, y: u32, ox: f64, oy: f64) -> CameraRay {
     let ndc_x = 2.0 * (f64::from(x) + ox) / f64::from(width) - 1.0;
     let ndc_y = 1.0 - 2.0 * (f64::from(y) + oy) / f64::from(height);
     let dir: DVec3 = v3(cam.forward) + ndc_x * v3(cam.right) + ndc_y * v3(cam.up);
-    Ray { origin: v3(cam.position), dir: dir.normalize() }
+    let across = ndc_x * v3(cam.right) + ndc_y * v3(cam.up);
+    let w = f64::from(cam.anchor[3]);
+    CameraRay { ray: Ray { origin: v3(cam.anchor) + w * across, dir: dir.normalize() }, t_min: -w * dir.length() }
 }
 
 #[cfg(test)]

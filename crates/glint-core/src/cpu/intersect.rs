@@ -79,7 +79,7 @@ pub fn is_leaving(leaving: &Leaving, prim: Prim, index: u32) -> bool {
 // as three f64 stores read back by 16-byte loads, a store-forwarding stall that cost a fifth
 // of a Whitted render.
 #[inline(always)]
-pub fn sphere_roots(center: DVec3, radius: f64, ray: &Ray) -> Option<(f64, f64)> {
+pub fn sphere_roots(center: DVec3, radius: f64, ray: &Ray, t_min: f64) -> Option<(f64, f64)> {
     let f = ray.origin - center;
     let a = ray.dir.dot(ray.dir);
     let b = -f.dot(ray.dir);
@@ -92,9 +92,10 @@ pub fn sphere_roots(center: DVec3, radius: f64, ray: &Ray) -> Option<(f64, f64)>
         return None;
     }
     let c = sphere_c(center, radius, ray.origin, f);
-    if c > 0.0 && b < 0.0 {
+    if c > 0.0 && b < 0.0 && t_min >= 0.0 {
         // Origin outside and centre behind it: both roots are negative (product c/a > 0,
-        // sum 2b/a < 0), and so are their computed values. Cheaper than the square root.
+        // sum 2b/a < 0), and so are their computed values. Cheaper than the square root. Not
+        // for a camera ray, traced from t_min < 0 (the eye behind the anchor's plane).
         return None;
     }
     let q = b + if b >= 0.0 { 1.0 } else { -1.0 } * (a * disc).sqrt();
@@ -144,7 +145,7 @@ pub fn sphere_surface_point(p: DVec3, center: DVec3, radius: f64, ng: DVec3) -> 
 /// Nearest sphere root inside (t_min, t_max).
 #[inline(always)]
 pub fn intersect_sphere(center: DVec3, radius: f64, ray: &Ray, t_min: f64, t_max: f64) -> Option<f64> {
-    let (t0, t1) = sphere_roots(center, radius, ray)?;
+    let (t0, t1) = sphere_roots(center, radius, ray, t_min)?;
     if t0 > t_min && t0 < t_max {
         Some(t0)
     } else if t1 > t_min && t1 < t_max {
@@ -173,7 +174,7 @@ pub fn intersect_sphere_leaving(
         if !leaving.inside {
             return None;
         }
-        let (_, t1) = sphere_roots(center, radius, ray)?;
+        let (_, t1) = sphere_roots(center, radius, ray, t_min)?;
         return (t1 > t_min && t1 < t_max).then_some(t1);
     }
     intersect_sphere(center, radius, ray, t_min, t_max)
@@ -417,7 +418,7 @@ pub fn sphere_transmittance(
     let cr = s.center_radius;
     let mut tr = tr;
     let counted = sphere_roots_counted(ctx, leaving, index);
-    if let Some((t0, t1)) = sphere_roots(v3(cr), f64::from(cr[3]), ray) {
+    if let Some((t0, t1)) = sphere_roots(v3(cr), f64::from(cr[3]), ray, t_min) {
         for (t, counted) in [t0, t1].into_iter().zip(counted) {
             if counted && t > t_min && t < t_max {
                 tr = cross_surface(ctx, tr, s.material);

@@ -320,9 +320,10 @@ pub fn start_path(ctx: &TraceContext, x: u32, y: u32, sample: u32, counts: &mut 
     let pixel = y * h.width + x;
     let (ox, oy) = sample_offset(pixel, sample, h.spp, h.seed, ctx.has(feature::JITTER));
     counts.camera += 1;
+    let camera = camera_ray(&ctx.scene.camera, h.width, h.height, x, y, ox, oy);
     PathState {
-        ray: camera_ray(&ctx.scene.camera, h.width, h.height, x, y, ox, oy),
-        t_min: 0.0,
+        ray: camera.ray,
+        t_min: camera.t_min,
         leaving: Leaving::NONE,
         beta: DVec3::ONE,
         radiance: DVec3::ZERO,

@@ -6,7 +6,7 @@
 
 use glam::DVec3;
 
-use super::camera::{camera_ray, sample_offset};
+use super::camera::{camera_ray, eye, from_eye, sample_offset};
 use super::intersect::{FAR, Hit, Leaving, Prim, all_zero};
 use super::offset::{leaving_surface, spawn_ray};
 use super::ray_tree::{Cut, NoTree, RayNode, TreeRecorder, record_shadow_rays};
@@ -218,10 +218,16 @@ pub fn render_sample<R: TreeRecorder>(
     let h = &ctx.scene.header;
     let pixel = y * h.width + x;
     let (ox, oy) = sample_offset(pixel, sample, h.spp, h.seed, ctx.has(feature::JITTER));
-    let ray = camera_ray(&ctx.scene.camera, h.width, h.height, x, y, ox, oy);
-    let node =
-        if R::RECORDS { rec.open(RayNode::new(RayKind::Camera, None, 0, &ray, DVec3::ONE, DVec3::ONE)) } else { 0 };
-    match closest_hit(ctx, &ray, 0.0, FAR, &Leaving::NONE) {
+    let camera = camera_ray(&ctx.scene.camera, h.width, h.height, x, y, ox, oy);
+    let ray = camera.ray;
+    // Recorded from the eye, where the camera ray leaves (traced from the anchor's plane).
+    let node = if R::RECORDS {
+        let eye_ray = Ray { origin: eye(&camera), dir: ray.dir };
+        rec.open(RayNode::new(RayKind::Camera, None, 0, &eye_ray, DVec3::ONE, DVec3::ONE))
+    } else {
+        0
+    };
+    match closest_hit(ctx, &ray, camera.t_min, FAR, &Leaving::NONE) {
         Some(hit) => {
             let object = object_id(ctx, &hit);
             let mut terms = Breakdown::default();
@@ -236,8 +242,9 @@ pub fn render_sample<R: TreeRecorder>(
             *counts += own;
             if let Some(b) = probe {
                 b.total = radiance;
+                b.t = from_eye(&camera, hit.t);
                 if R::RECORDS {
-                    rec.close(node, Some(hit.t), 1.0, Some(b.clone()), radiance);
+                    rec.close(node, Some(b.t), 1.0, Some(b.clone()), radiance);
                 }
             }
             (radiance, object)

@@ -71,7 +71,7 @@ impl FlatScene {
             }
         }
         let c = &self.camera;
-        if bad(&[c.position, c.forward, c.right, c.up].concat()) {
+        if bad(&[c.anchor, c.forward, c.right, c.up].concat()) {
             return Some("camera".into());
         }
         let m = self

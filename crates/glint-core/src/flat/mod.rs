@@ -56,14 +56,11 @@ pub struct FlatScene {
     pub material_names: Vec<String>,
 }
 
-fn vec4(v: DVec3, w: f32) -> [f32; 4] {
-    [v.x as f32, v.y as f32, v.z as f32, w]
-}
-
 fn rgb4(c: Rgb) -> [f32; 4] {
     [c.0[0] as f32, c.0[1] as f32, c.0[2] as f32, 0.0]
 }
 
+mod camera;
 mod checks;
 mod content_hash;
 mod frame;
@@ -71,6 +68,8 @@ mod geometry;
 mod leaf_corners;
 mod lights_materials;
 
+pub(crate) use camera::anchor_of;
+pub use camera::{WorldCamera, camera_eye, camera_forward};
 pub(crate) use frame::place_texture_origins;
 pub use geometry::GeometryId;
 use geometry::{Geometry, flat_primitives};
@@ -133,7 +132,7 @@ impl FlatScene {
         let materials = desc.materials.values().map(|m| flat_material(m, &mut table)).collect();
         let origin = frame::origin_of(geometry.frame);
         let lights = desc.traced_lights().map(|l| flat_light(l, origin)).collect();
-        let camera = Self::world_camera(desc, settings).stored(origin);
+        let camera = Self::world_camera(desc, settings).stored(origin, largest_side(&geometry.bvh_nodes));
         let mut flat = Self {
             header: flat_header(desc, settings, &geometry, material_names.len()),
             camera,
@@ -275,43 +274,15 @@ impl FlatScene {
     }
 }
 
-/// The pinhole camera's ray-generation vectors in f64 world space: a ray through image point
-/// (ndc_x, ndc_y) leaves `position` along forward + ndc_x·right + ndc_y·up. What the flat
-/// scene stores in f32 (`stored`), and what the viewer projects world points with (its light
-/// gizmos and ray-tree overlay): an f32 eye 5e6 from the world origin would be off by 1/4.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct WorldCamera {
-    pub position: DVec3,
-    pub forward: DVec3,
-    pub right: DVec3,
-    pub up: DVec3,
+/// The largest side of the box around the bounded geometry (the BVH's root), 0 without any.
+fn largest_side(nodes: &BvhNodes) -> f64 {
+    nodes
+        .first()
+        .map_or(0.0, |root| (0..3).map(|k| f64::from(root.max[k]) - f64::from(root.min[k])).fold(0.0, f64::max))
 }
 
-impl WorldCamera {
-    /// The camera as the flat scene stores it: its position relative to `origin` (the storage
-    /// origin), each vector rounded once to f32.
-    pub fn stored(&self, origin: DVec3) -> GpuCamera {
-        GpuCamera {
-            position: vec4(self.position - origin, 1.0),
-            forward: vec4(self.forward, 0.0),
-            right: vec4(self.right, 0.0),
-            up: vec4(self.up, 0.0),
-        }
-    }
-}
-
-impl FlatScene {
-    /// The camera of `desc` at `settings`' aspect ratio, in f64 world space.
-    pub fn world_camera(desc: &SceneDesc, settings: &RenderSettings) -> WorldCamera {
-        let c = &desc.camera;
-        let position = DVec3::from(c.position);
-        let forward = (DVec3::from(c.look_at) - position).normalize();
-        let right = forward.cross(DVec3::from(c.up)).normalize();
-        let up = right.cross(forward);
-        let half_h = (c.fov_y.to_radians() * 0.5).tan();
-        let half_w = half_h * f64::from(settings.width) / f64::from(settings.height);
-        WorldCamera { position, forward, right: right * half_w, up: up * half_h }
-    }
+fn vec4(v: DVec3, w: f32) -> [f32; 4] {
+    [v.x as f32, v.y as f32, v.z as f32, w]
 }
 
 /// The header: image and sampling settings, counts, and the world's ambient and background.

@@ -100,8 +100,9 @@ impl SlabRay {
                 t1 = far;
             }
         }
-        // Rounding is monotonic, so enlarging the minimum is enlarging every far distance.
-        let t1 = t1 * (1.0 + 2.0 * GAMMA3);
+        // Rounding is monotonic, so enlarging the minimum is enlarging every far distance; by
+        // its magnitude, as a camera ray's t may be negative (it is traced from t_min < 0).
+        let t1 = t1 + 2.0 * GAMMA3 * t1.abs();
         (t0 <= t1 && t0 <= t_hi + self.slack(t_hi) && t1 >= t_lo - self.slack(t_lo)).then_some(t0)
     }
 }
@@ -369,7 +370,7 @@ pub fn shadow_transmittance(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f6
                     let s = &scene.spheres[i as usize];
                     let cr = s.center_radius;
                     let counted = sphere_roots_counted(ctx, leaving, i);
-                    if let Some((t0, t1)) = sphere_roots(v3(cr), f64::from(cr[3]), ray) {
+                    if let Some((t0, t1)) = sphere_roots(v3(cr), f64::from(cr[3]), ray, t_min) {
                         for (root, (t, counted)) in [t0, t1].into_iter().zip(counted).enumerate() {
                             if counted && t > t_min && t < t_max {
                                 if opaque(s.material) {

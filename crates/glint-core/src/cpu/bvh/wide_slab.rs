@@ -56,7 +56,7 @@ impl SlabPlanes {
     #[allow(unsafe_code)] // reason: SSE2 intrinsics are `unsafe` only for their target-feature attribute.
     pub(super) fn enter(&self, node: &WideNode, lo: f64, hi: f64) -> Entered {
         use std::arch::x86_64::{
-            __m128, __m128d, _mm_and_pd, _mm_andnot_pd, _mm_cmple_pd, _mm_cvtps_pd, _mm_max_pd, _mm_min_pd,
+            __m128, __m128d, _mm_add_pd, _mm_and_pd, _mm_andnot_pd, _mm_cmple_pd, _mm_cvtps_pd, _mm_max_pd, _mm_min_pd,
             _mm_movehl_ps, _mm_movemask_pd, _mm_mul_pd, _mm_or_pd, _mm_set1_pd, _mm_sub_pd,
         };
         // SAFETY: SSE2 is part of x86_64's baseline, and these intrinsics touch no memory.
@@ -81,11 +81,17 @@ impl SlabPlanes {
                     t1[p] = _mm_min_pd(t1[p], _mm_mul_pd(_mm_sub_pd(far[p], o_far), inv));
                 }
             }
-            let (lo, hi, grow, none) =
-                (_mm_set1_pd(lo), _mm_set1_pd(hi), _mm_set1_pd(1.0 + 2.0 * GAMMA3), _mm_set1_pd(f64::INFINITY));
+            let (lo, hi, grow, none, sign) = (
+                _mm_set1_pd(lo),
+                _mm_set1_pd(hi),
+                _mm_set1_pd(2.0 * GAMMA3),
+                _mm_set1_pd(f64::INFINITY),
+                _mm_set1_pd(-0.0),
+            );
             let mut out = Entered { t: [f64::INFINITY; WIDTH], mask: 0 };
             for p in 0..PAIRS {
-                let t1 = _mm_mul_pd(t1[p], grow);
+                // t1 + 2γ₃·|t1| (the scalar form's).
+                let t1 = _mm_add_pd(t1[p], _mm_mul_pd(_mm_andnot_pd(sign, t1[p]), grow));
                 let entered =
                     _mm_and_pd(_mm_and_pd(_mm_cmple_pd(t0[p], t1), _mm_cmple_pd(t0[p], hi)), _mm_cmple_pd(lo, t1));
                 let t = _mm_or_pd(_mm_and_pd(entered, t0[p]), _mm_andnot_pd(entered, none));
@@ -119,7 +125,7 @@ impl SlabPlanes {
             }
         }
         Entered::of(std::array::from_fn(|l| {
-            let t1 = t1[l] * (1.0 + 2.0 * GAMMA3);
+            let t1 = t1[l] + 2.0 * GAMMA3 * t1[l].abs();
             if t0[l] <= t1 && t0[l] <= hi && t1 >= lo { t0[l] } else { f64::INFINITY }
         }))
     }
