@@ -21,8 +21,8 @@ use crate::reference::probe;
 use crate::scene::{SceneText, w3};
 use crate::{Y, rel_err};
 
-const N: u32 = 65; // odd: the centre pixel looks exactly along the axis
-const R_PX: f64 = 20.0; // wanted disc radius in pixels
+pub(crate) const N: u32 = 65; // odd: the centre pixel looks exactly along the axis
+pub(crate) const R_PX: f64 = 20.0; // wanted disc radius in pixels
 
 /// Where a pixel centre may be decided either way, as a fraction of the disc radius. Measured
 /// (lavapipe): the GPU misclassifies no pixel centre farther than 5.0e-8 of the radius from the
@@ -43,6 +43,40 @@ fn scene(distance: f64) -> SceneText {
         .material("m", "ka = 1.0\nkd = 0.8\nks = 0.5")
         .light("directional", "direction = [0.3, -1.0, 1.0]")
         .sphere([0.0, 0.0, distance], 1.0, "m")
+}
+
+/// The disc of a unit sphere at distance D on the view axis of an N×N image: the ray through
+/// NDC (x, y) makes an angle with the axis whose tangent is |x·half_w·r̂ + y·half_h·û| (the
+/// axis unit and orthogonal to r̂ and û), and hits iff that tangent is below tan α, sin α = 1/D.
+pub(crate) struct Disc {
+    tan_alpha: f64,
+    half_w: f64,
+    half_h: f64,
+}
+
+impl Disc {
+    pub(crate) fn new(distance: f64, half_w: f64, half_h: f64) -> Self {
+        Self { tan_alpha: 1.0 / (distance * distance - 1.0_f64).sqrt(), half_w, half_h }
+    }
+
+    /// The tangent of pixel centre (x, y)'s angle with the axis, in units of tan α: < 1 inside.
+    pub(crate) fn rho(&self, x: u32, y: u32) -> f64 {
+        let ndc_x = 2.0 * (f64::from(x) + 0.5) / f64::from(N) - 1.0;
+        let ndc_y = 1.0 - 2.0 * (f64::from(y) + 0.5) / f64::from(N);
+        (ndc_x * self.half_w).hypot(ndc_y * self.half_h) / self.tan_alpha
+    }
+
+    fn radius_px(&self) -> f64 {
+        self.tan_alpha / self.half_h * f64::from(N) / 2.0
+    }
+
+    pub(crate) fn area(&self) -> f64 {
+        std::f64::consts::PI * self.radius_px().powi(2)
+    }
+
+    pub(crate) fn perimeter(&self) -> f64 {
+        2.0 * std::f64::consts::PI * self.radius_px()
+    }
 }
 
 /// Hit pixels by the textbook quadratic in f32, on an f32 camera ray from the eye.
@@ -88,19 +122,9 @@ fn unit_sphere_far_away_is_a_disc_on_both_backends() {
     for distance in [1e2, 1e3, 4.1e3, 1e4, 1e5, 1e6] {
         let flat = scene(distance).flat();
         let both = render_both("stiff/case01", &format!("far-sphere-{distance:e}"), &flat);
-        // Classify every pixel centre from the stored camera vectors: the ray through NDC
-        // (x, y) makes an angle with the axis whose tangent is |x·right + y·up| (forward is
-        // unit and orthogonal to both); it hits iff that tangent is below tan α.
-        let tan_alpha = 1.0 / (distance * distance - 1.0_f64).sqrt();
-        let (half_w, half_h) = (w3(flat.camera.right).length(), w3(flat.camera.up).length());
-        let rho = |x: u32, y: u32| {
-            let ndc_x = 2.0 * (f64::from(x) + 0.5) / f64::from(N) - 1.0;
-            let ndc_y = 1.0 - 2.0 * (f64::from(y) + 0.5) / f64::from(N);
-            (ndc_x * half_w).hypot(ndc_y * half_h) / tan_alpha
-        };
-        let r_px = tan_alpha / half_h * f64::from(N) / 2.0;
-        let area = std::f64::consts::PI * r_px * r_px;
-        let perimeter = 2.0 * std::f64::consts::PI * r_px;
+        // Classified from the stored camera vectors.
+        let disc = Disc::new(distance, w3(flat.camera.right).length(), w3(flat.camera.up).length());
+        let (rho, area, perimeter) = (|x, y| disc.rho(x, y), disc.area(), disc.perimeter());
         let mut counts = [0usize; 2];
         let mut worst_gpu_ring = 0.0_f64;
         for (backend, img) in both.images() {

@@ -23,13 +23,12 @@ use glint_core::probe_terms::first_tree_difference;
 use glint_core::probe_tree;
 use glint_types::layout::NO_HIT;
 
+use crate::case01_far_sphere::{Disc, N, R_PX};
 use crate::gpu::render_both;
 use crate::reference::probe;
 use crate::rel_err;
 use crate::scene::SceneText;
 
-const N: u32 = 65; // odd: the centre pixel looks along the axis
-const R_PX: f64 = 20.0;
 /// The sphere's centre: off the origin, coordinates that are not f32 steps.
 const CENTRE: [f64; 3] = [0.3, -0.2, 0.7];
 /// The line of sight (unnormalised): no component zero, none dominant.
@@ -83,19 +82,10 @@ fn a_far_sphere_seen_off_the_axes_is_a_disc_on_both_backends() {
         let desc = text.desc();
         let flat = text.flat();
         let both = render_both("stiff/case22", &format!("telephoto-{distance:e}"), &flat);
-        // The f64 classification of the file's camera: the ray through NDC (x, y) makes an
-        // angle with the axis whose tangent is |x·right + y·up| (right and up orthogonal to
-        // the axis, scaled by the half-extents of the image plane at distance 1).
-        let tan_alpha = 1.0 / (distance * distance - 1.0_f64).sqrt();
+        // The f64 classification of the file's camera (a square image: half_w = half_h).
         let half_h = (desc.camera.fov_y.to_radians() * 0.5).tan();
-        let rho = |x: u32, y: u32| {
-            let ndc_x = 2.0 * (f64::from(x) + 0.5) / f64::from(N) - 1.0;
-            let ndc_y = 1.0 - 2.0 * (f64::from(y) + 0.5) / f64::from(N);
-            (ndc_x * half_h).hypot(ndc_y * half_h) / tan_alpha
-        };
-        let r_px = tan_alpha / half_h * f64::from(N) / 2.0;
-        let area = std::f64::consts::PI * r_px * r_px;
-        let perimeter = 2.0 * std::f64::consts::PI * r_px;
+        let disc = Disc::new(distance, half_h, half_h);
+        let (rho, area, perimeter) = (|x, y| disc.rho(x, y), disc.area(), disc.perimeter());
         let mut counts = [0usize; 2];
         let mut worst = [0.0_f64; 2];
         for (backend, img) in both.images() {
