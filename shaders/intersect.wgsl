@@ -282,7 +282,9 @@ fn bound(best: Hit, t_max: f32) -> f32 {
         return t_max;
     }
     // The next f32 up. A camera ray's t may be negative (it is traced from t_min < 0), where
-    // the next value up has the next smaller magnitude; +0 and −0 go to the least positive.
+    // the next value up has the next smaller magnitude; +0 and −0 go to the least normal
+    // positive value (a subnormal bound may be flushed to zero and refuse a tie at t = 0, as a
+    // camera ray starting on a surface meets it).
     let bits = bitcast<u32>(best.t);
     if best.t > 0.0 {
         return bitcast<f32>(bits + 1u);
@@ -290,7 +292,7 @@ fn bound(best: Hit, t_max: f32) -> f32 {
     if best.t < 0.0 {
         return bitcast<f32>(bits - 1u);
     }
-    return bitcast<f32>(1u);
+    return bitcast<f32>(0x00800000u);
 }
 
 #ifdef PLANES

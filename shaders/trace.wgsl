@@ -190,7 +190,8 @@ fn trace_ray(primary: CameraRay) -> SampleResult {
         let branch_of_node = e.branch;
 #ifdef PROBE
         // The camera ray recorded from the eye, where it leaves (traced from the anchor's plane).
-        if probe_enter(Ray(select(r.origin, eye(primary), n == 0u), r.dir), e.t_min, e.depth, e.weight) {
+        let camera_node = n == 0u;
+        if probe_enter(Ray(select(r.origin, eye(primary), camera_node), r.dir), select(e.t_min, 0.0, camera_node), e.depth, e.weight) {
             // Recorded, not traced.
             if stack_top == 0u {
                 return result;

@@ -14,7 +14,8 @@
 //! with one direction), and the eye itself, stored in f32 D from the scene, moves by as much.
 //!
 //! Remedy: camera rays start on the plane through the view axis's anchor (the point of the axis
-//! nearest the coordinates' origin, which lies in the scene) and reach back to the eye with a
+//! nearest the centre of the scene's geometry; on the GPU nearest its frame's origin, at the
+//! focus) and reach back to the eye with a
 //! negative t_min (`GpuCamera::anchor`): the pixel's offset is added to the anchor's small
 //! coordinates, and the f32 direction's error only acts over the depth of the scene.
 
@@ -29,8 +30,9 @@ use crate::reference::probe;
 use crate::rel_err;
 use crate::scene::SceneText;
 
-/// The sphere's centre: off the origin, coordinates that are not f32 steps.
-const CENTRE: [f64; 3] = [0.3, -0.2, 0.7];
+/// The sphere's centres: near the origin, and 3e4 from it (off every power-of-two grid the GPU
+/// could snap its frame to from the eye's distance), coordinates that are not f32 steps.
+const CENTRES: [[f64; 3]; 2] = [[0.3, -0.2, 0.7], [30_000.3, -0.2, 0.7]];
 /// The line of sight (unnormalised): no component zero, none dominant.
 const SIGHT: [f64; 3] = [0.48, -0.36, 0.8];
 /// Rings as case 1's (its measured reasons apply: the ray direction's f32 rounding on the GPU,
@@ -48,16 +50,16 @@ fn unit(v: [f64; 3]) -> [f64; 3] {
     v.map(|c| c / n)
 }
 
-fn scene(distance: f64) -> SceneText {
+fn scene(centre: [f64; 3], distance: f64) -> SceneText {
     let s = unit(SIGHT);
-    let eye = std::array::from_fn(|k| CENTRE[k] - distance * s[k]);
+    let eye = std::array::from_fn(|k| centre[k] - distance * s[k]);
     let tan_alpha = 1.0 / (distance * distance - 1.0_f64).sqrt();
     let fov = (2.0 * (tan_alpha * f64::from(N) / 2.0 / R_PX).atan()).to_degrees();
-    SceneText::new(N, N, "max_depth = 0", eye, CENTRE, [0.0, 1.0, 0.0], fov)
+    SceneText::new(N, N, "max_depth = 0", eye, centre, [0.0, 1.0, 0.0], fov)
         .world([0.1; 3], [0.0; 3])
         .material("m", "ka = 1.0\nkd = 0.8\nks = 0.5\nshininess = 20.0")
         .light("directional", "direction = [0.3, -1.0, 1.0]")
-        .sphere(CENTRE, 1.0, "m")
+        .sphere(centre, 1.0, "m")
 }
 
 #[test]
@@ -66,7 +68,8 @@ fn a_far_sphere_seen_off_the_axes_is_a_disc_on_both_backends() {
     say!(out, "case 22: case 1 seen along an oblique axis ({N}x{N}, disc radius {R_PX} px)");
     say!(
         out,
-        "  {:>7}  {:>9}  {:>8}  {:>5}  {:>5}  {:>14}  {:>14}  {:>16}",
+        "  {:>9}  {:>7}  {:>9}  {:>8}  {:>5}  {:>5}  {:>14}  {:>14}  {:>16}",
+        "centre x",
         "D",
         "fov (°)",
         "stored",
@@ -77,11 +80,11 @@ fn a_far_sphere_seen_off_the_axes_is_a_disc_on_both_backends() {
         "GPU−CPU shading"
     );
     let mut base_shading = None;
-    for distance in [1e2, 1e3, 1e4, 1e5, 1e6] {
-        let text = scene(distance);
+    for (centre, distance) in CENTRES.into_iter().flat_map(|c| [1e2, 1e3, 1e4, 1e5, 1e6].map(|d| (c, d))) {
+        let text = scene(centre, distance);
         let desc = text.desc();
         let flat = text.flat();
-        let both = render_both("stiff/case22", &format!("telephoto-{distance:e}"), &flat);
+        let both = render_both("stiff/case22", &format!("telephoto-{}-{distance:e}", centre[0]), &flat);
         // The f64 classification of the file's camera (a square image: half_w = half_h).
         let half_h = (desc.camera.fov_y.to_radians() * 0.5).tan();
         let disc = Disc::new(distance, half_h, half_h);
@@ -107,13 +110,16 @@ fn a_far_sphere_seen_off_the_axes_is_a_disc_on_both_backends() {
             both.ensure(worst[backend as usize] <= ring, || {
                 let (x, y, r) = worst_pixel.expect("a misclassified pixel");
                 format!(
-                    "{} D = {distance:e}: pixel ({x}, {y}) at {r:.9} of the disc radius is decided the other way \
+                    "{} centre {centre:?}, D = {distance:e}: pixel ({x}, {y}) at {r:.9} of the disc radius is decided the other way \
                      (allowed within {ring:e} of the silhouette)",
                     backend.name()
                 )
             });
             both.ensure((count as f64 - area).abs() <= perimeter, || {
-                format!("{} D = {distance:e}: {count} hit pixels vs disc area {area:.1}", backend.name())
+                format!(
+                    "{} centre {centre:?}, D = {distance:e}: {count} hit pixels vs disc area {area:.1}",
+                    backend.name()
+                )
             });
         }
         // Shading away from the silhouette, GPU against CPU.
@@ -133,13 +139,16 @@ fn a_far_sphere_seen_off_the_axes_is_a_disc_on_both_backends() {
         if let Some(s) = shading {
             let base = *base_shading.get_or_insert(s);
             both.ensure(s <= SHADING_RATIO * base + 1e-6, || {
-                format!("D = {distance:e}: GPU shading off the CPU's by {s:.2e} (at D = 1e2: {base:.2e})")
+                format!(
+                    "centre {centre:?}, D = {distance:e}: GPU shading off the CPU's by {s:.2e} (at D = 1e2: {base:.2e})"
+                )
             });
         }
         let gpu = |v: String| if both.gpu.is_some() { v } else { "-".into() };
         say!(
             out,
-            "  {distance:>7.1e}  {:>9.2e}  {:>8}  {:>5}  {:>5}  {:>14.2e}  {:>14}  {:>16}",
+            "  {:>9.1}  {distance:>7.1e}  {:>9.2e}  {:>8}  {:>5}  {:>5}  {:>14.2e}  {:>14}  {:>16}",
+            centre[0],
             desc.camera.fov_y,
             if flat.camera.anchor[3] > 0.0 { "anchored" } else { "eye" },
             counts[0],
@@ -153,18 +162,21 @@ fn a_far_sphere_seen_off_the_axes_is_a_disc_on_both_backends() {
         // rounding of the stored eye (D = 1e2: 2.6e-8) or anchor (≈ 6e-8 units).
         let b = probe(&flat, N / 2, N / 2);
         let err = rel_err(b.t, distance - 1.0);
-        assert!(err < T_REL, "D = {distance:e}: t = {} (relative error {err:e})", b.t);
+        assert!(err < T_REL, "centre {centre:?}, D = {distance:e}: t = {} (relative error {err:e})", b.t);
         // The ray trees of that pixel agree node by node, and their camera ray leaves the
         // file's eye (not the anchor's plane), to f32's step there on the GPU.
         let cpu = probe_tree(&flat, N / 2, N / 2, 0);
         let eye = DVec3::from(desc.camera.position);
         let off = (cpu.nodes[0].origin - eye).length();
-        assert!(off <= T_REL * distance, "D = {distance:e}: the CPU tree's camera ray leaves {off:e} from the eye");
+        assert!(
+            off <= T_REL * distance,
+            "centre {centre:?}, D = {distance:e}: the CPU tree's camera ray leaves {off:e} from the eye"
+        );
         if let Some(tracer) = crate::gpu::gpu() {
             let gpu = tracer.probe(&flat, N / 2, N / 2).expect("GPU probe");
             if let Some(d) = first_tree_difference(&cpu, &gpu.tree, flat.frame_origin()) {
                 panic!(
-                    "D = {distance:e}: node {} differs in {}:\nCPU {:#?}\nGPU {:#?}",
+                    "centre {centre:?}, D = {distance:e}: node {} differs in {}:\nCPU {:#?}\nGPU {:#?}",
                     d.node, d.what, cpu.nodes[d.node], gpu.tree.nodes[d.node]
                 );
             }

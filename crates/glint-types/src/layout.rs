@@ -268,7 +268,8 @@ pub struct SceneHeader {
 /// The eye is not stored: a camera ray starts on the plane through the anchor, at
 /// anchor + w·(x·right + y·up), and reaches back to the eye with t_min = −w·|forward + x·right +
 /// y·up| (`camera_ray`). For an eye far from the scene the anchor is the point of the view axis
-/// nearest the coordinates' origin, which lies in the scene, so the pixel's offset is added to
+/// nearest the centre of the scene's bounded geometry (on the GPU, nearest its frame's origin,
+/// at the focus), so the pixel's offset is added to
 /// small coordinates and an f32 direction's error acts over the scene's depth only, not over the
 /// eye's distance: from an eye D away, f32 would point each ray D·6e-8 off and store the eye as
 /// far off (stiff case 22). A nearer eye is its own anchor (w = 0: the rays are the eye's).

@@ -24,39 +24,48 @@ fn wide(v: [f32; 4]) -> DVec3 {
     DVec3::new(v[0].into(), v[1].into(), v[2].into())
 }
 
-/// How many of the scene's largest sides the eye may be from the coordinates' origin and still
-/// be stored itself, unanchored: f32 then carries its rays to the scene's size as it carries
-/// the scene (`glint_scene::storage_origin`'s reach, for the same reason), and every camera
-/// made around a scene keeps its bits.
+/// How many of the scene's largest sides the eye may be from the centre of its bounded geometry
+/// and still be stored itself, unanchored: f32 then carries its rays to the scene's size as it
+/// carries the scene (`glint_scene::storage_origin`'s reach, for the same reason), and every
+/// camera made around a scene keeps its bits.
 const EYE_REACH: f64 = 64.0;
+
+/// The box around a scene's bounded geometry, as the camera's anchoring judges it: its centre
+/// (stored coordinates) and its largest side.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SceneBox {
+    pub centre: DVec3,
+    pub side: f64,
+}
 
 impl WorldCamera {
     /// The camera as the flat scene stores it relative to `origin` (the storage origin), each
-    /// vector rounded once to f32. An eye more than `EYE_REACH` times `scene_size` (the largest
-    /// side of the bounded geometry) from the origin is anchored (`anchor_of`); a nearer one,
-    /// or one in a scene of planes alone (no size to judge by), is its own anchor (w = 0).
-    pub fn stored(&self, origin: DVec3, scene_size: f64) -> GpuCamera {
+    /// vector rounded once to f32. An eye more than `EYE_REACH` of the largest sides from the
+    /// centre of the bounded geometry (`scene`) is anchored nearest that centre (`anchor_of`); a
+    /// nearer one, or one in a scene of planes alone (no size to judge by), is its own anchor
+    /// (w = 0).
+    pub fn stored(&self, origin: DVec3, scene: Option<SceneBox>) -> GpuCamera {
         let eye = self.position - origin;
-        let far = scene_size > 0.0 && eye.length() > EYE_REACH * scene_size;
-        GpuCamera {
-            anchor: if far { anchor_of(eye, self.forward) } else { vec4(eye, 0.0) },
-            forward: vec4(self.forward, 0.0),
-            right: vec4(self.right, 0.0),
-            up: vec4(self.up, 0.0),
-        }
+        let anchor = match scene {
+            Some(b) if b.side > 0.0 && (eye - b.centre).length() > EYE_REACH * b.side => {
+                anchor_of(eye, self.forward, b.centre)
+            }
+            _ => vec4(eye, 0.0),
+        };
+        GpuCamera { anchor, forward: vec4(self.forward, 0.0), right: vec4(self.right, 0.0), up: vec4(self.up, 0.0) }
     }
 }
 
 /// `GpuCamera::anchor` for an eye at `eye` (stored coordinates, f64) looking along `forward`:
-/// the point of the axis nearest the coordinates' origin, or the eye itself when the origin is
+/// the point of the axis nearest `near` (a point of the scene), or the eye itself when `near` is
 /// behind it. Its distance w from the eye is rounded to f32 first and the anchor placed from
 /// that value, so that the stored axis passes through the point of this axis at w (a rounded w
 /// would slide it along the axis by w·2^-24). Given the file's f64 forward, the stored axis
 /// passes through that point, not through the eye: the f32 forward's error (6e-8) turns the
 /// camera about the anchor, in the scene, where about the eye it would move the scene's image
 /// by w·6e-8 (stiff case 22).
-pub(crate) fn anchor_of(eye: DVec3, forward: DVec3) -> [f32; 4] {
-    let w = (-eye.dot(forward) / forward.length_squared()).max(0.0) as f32;
+pub(crate) fn anchor_of(eye: DVec3, forward: DVec3, near: DVec3) -> [f32; 4] {
+    let w = ((near - eye).dot(forward) / forward.length_squared()).max(0.0) as f32;
     vec4(eye + f64::from(w) * forward, w)
 }
 
@@ -81,5 +90,50 @@ impl FlatScene {
         let half_h = (c.fov_y.to_radians() * 0.5).tan();
         let half_w = half_h * f64::from(settings.width) / f64::from(settings.height);
         WorldCamera { position, forward, right: right * half_w, up: up * half_h }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glint_io::parse_scene;
+
+    fn flat(eye: [f64; 3], centre: [f64; 3]) -> FlatScene {
+        let text = format!(
+            "[camera]\nposition = {eye:?}\nlook_at = {centre:?}\n[materials.m]\nkd = 0.5\n\
+             [[objects]]\ntype = \"sphere\"\ncenter = {centre:?}\nradius = 1.0\nmaterial = \"m\"\n"
+        );
+        let (desc, _) = parse_scene(&text, std::path::Path::new("t.toml")).expect("scene");
+        FlatScene::build(&desc, &desc.render)
+    }
+
+    #[test]
+    fn an_eye_near_its_scene_is_its_own_anchor_wherever_the_scene_is_stored() {
+        // Stored in world space (within 64 sides of the origin per axis), |eye| > 64 sides, but
+        // 3 from the sphere: the eye, not a point of the axis near the world origin.
+        let s = flat([103.0, 100.0, 0.0], [100.0, 100.0, 0.0]);
+        assert_eq!(s.header.frame[..3], [0.0; 3]);
+        assert_eq!(s.camera.anchor, [103.0, 100.0, 0.0, 0.0]);
+    }
+
+    #[test]
+    fn a_far_eye_is_anchored_at_its_scene() {
+        // 1.1e6 from a sphere stored in world space: anchored on its axis at the sphere's centre,
+        // the eye where the file puts it to the anchor's rounding.
+        let (eye, centre) = ([-480_000.0, 360_000.0, -800_000.0], [0.3, -0.2, 0.7]);
+        let s = flat(eye, centre);
+        let w = f64::from(s.camera.anchor[3]);
+        let distance = (DVec3::from(eye) - DVec3::from(centre)).length();
+        assert!((w - distance).abs() <= distance * 2f64.powi(-24), "w = {w}, {distance}");
+        // On the axis through the centre; along it, where w's f32 rounding slid it.
+        let (a, f) = (wide(s.camera.anchor), camera_forward(&s.camera));
+        let to_centre = DVec3::from(centre) - a;
+        let across = to_centre - to_centre.dot(f) * f;
+        assert!(across.length() < 1e-6, "the anchor {a} is {across} off the axis through the centre");
+        assert!(to_centre.dot(f).abs() <= distance * 2f64.powi(-24), "the anchor {a} slid too far");
+        let moved = camera_eye(&s.camera) - DVec3::from(eye);
+        // The stored forward's rounding turns the camera about the anchor: the eye moves by up
+        // to w·2^-24 sideways.
+        assert!(moved.length() < w * 2f64.powi(-23), "eye off by {moved}");
     }
 }

@@ -69,7 +69,7 @@ mod leaf_corners;
 mod lights_materials;
 
 pub(crate) use camera::anchor_of;
-pub use camera::{WorldCamera, camera_eye, camera_forward};
+pub use camera::{SceneBox, WorldCamera, camera_eye, camera_forward};
 pub(crate) use frame::place_texture_origins;
 pub use geometry::GeometryId;
 use geometry::{Geometry, flat_primitives};
@@ -132,7 +132,7 @@ impl FlatScene {
         let materials = desc.materials.values().map(|m| flat_material(m, &mut table)).collect();
         let origin = frame::origin_of(geometry.frame);
         let lights = desc.traced_lights().map(|l| flat_light(l, origin)).collect();
-        let camera = Self::world_camera(desc, settings).stored(origin, largest_side(&geometry.bvh_nodes));
+        let camera = Self::world_camera(desc, settings).stored(origin, scene_box(&geometry.bvh_nodes));
         let mut flat = Self {
             header: flat_header(desc, settings, &geometry, material_names.len()),
             camera,
@@ -274,11 +274,11 @@ impl FlatScene {
     }
 }
 
-/// The largest side of the box around the bounded geometry (the BVH's root), 0 without any.
-fn largest_side(nodes: &BvhNodes) -> f64 {
-    nodes
-        .first()
-        .map_or(0.0, |root| (0..3).map(|k| f64::from(root.max[k]) - f64::from(root.min[k])).fold(0.0, f64::max))
+/// The box around the bounded geometry (the BVH's root), `None` without any.
+fn scene_box(nodes: &BvhNodes) -> Option<SceneBox> {
+    let root = nodes.first()?;
+    let (lo, hi) = (DVec3::from(root.min.map(f64::from)), DVec3::from(root.max.map(f64::from)));
+    Some(SceneBox { centre: (lo + hi) * 0.5, side: (hi - lo).max_element() })
 }
 
 fn vec4(v: DVec3, w: f32) -> [f32; 4] {
