@@ -55,6 +55,7 @@ fn from_eye(c: CameraRay, t: f32) -> f32 {
 fn camera_ray(cam: GpuCamera, width: u32, height: u32, x: u32, y: u32, offset: vec2<f32>) -> CameraRay {
     let ndc_x = 2.0 * (f32(x) + offset.x) / f32(width) - 1.0;
     let ndc_y = 1.0 - 2.0 * (f32(y) + offset.y) / f32(height);
+    // Summed in this order (the CPU twin says why).
     let dir = cam.forward.xyz + ndc_x * cam.right.xyz + ndc_y * cam.up.xyz;
     let across = ndc_x * cam.right.xyz + ndc_y * cam.up.xyz;
     let w = cam.anchor.w;

@@ -54,6 +54,8 @@ pub fn from_eye(c: &CameraRay, t: f64) -> f64 {
 pub fn camera_ray(cam: &GpuCamera, width: u32, height: u32, x: u32, y: u32, ox: f64, oy: f64) -> CameraRay {
     let ndc_x = 2.0 * (f64::from(x) + ox) / f64::from(width) - 1.0;
     let ndc_y = 1.0 - 2.0 * (f64::from(y) + oy) / f64::from(height);
+    // Summed in this order, not as forward + across: an eye that is its own anchor (w = 0)
+    // traces bit for bit as the eye-stored camera did.
     let dir: DVec3 = v3(cam.forward) + ndc_x * v3(cam.right) + ndc_y * v3(cam.up);
     let across = ndc_x * v3(cam.right) + ndc_y * v3(cam.up);
     let w = f64::from(cam.anchor[3]);
