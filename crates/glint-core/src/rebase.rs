@@ -76,20 +76,31 @@ pub fn reach(scene: &FlatScene, from: DVec3) -> f64 {
     r
 }
 
-/// The length the frame is chosen for, around the focus: how far the surfaces reach from it;
-/// for a focus on a lone plane, which reaches nothing beyond it, the image's height there.
+/// How large a length the offsets' scale is chosen for: how far the surfaces reach from the
+/// focus; for a focus on a lone plane, which reaches nothing beyond it, the image's height there.
 fn extent(scene: &FlatScene, eye: DVec3, focus: DVec3) -> f64 {
     let r = reach(scene, focus);
-    if r > 0.0 { r } else { 2.0 * (focus - eye).length() * v3(scene.camera.up).length() }
+    if r > 0.0 { r } else { pixel_at(scene, eye, focus) * f64::from(scene.header.height) }
+}
+
+/// The height of a pixel where the centre ray meets `focus`.
+fn pixel_at(scene: &FlatScene, eye: DVec3, focus: DVec3) -> f64 {
+    2.0 * v3(scene.camera.up).length() * (focus - eye).length() / f64::from(scene.header.height.max(1))
 }
 
 /// How much finer than the scene's reach the grid of frame origins is (a power of two).
 const GRID_DIVISIONS: f64 = 16.0;
 
+/// At most how many pixels (their height at the focus) the grid's spacing is: c is then within
+/// 222 pixels of the focus, f32's error there 1.3e-5 of a pixel and W&B's offset (256 of its
+/// ulps) 3.4e-3 of one.
+const GRID_PIXELS: f64 = 256.0;
+
 /// Where the f32 tracer's digits matter most, for a camera at `eye` in a scene reaching `r`
 /// from it: the first surface the ray through the image centre meets within the reach (found
 /// by the CPU reference); if it meets none there, the centre of the bounded geometry; if there
-/// is none, the eye. Within the reach: a ray grazing an infinite plane meets it arbitrarily far
+/// is none, the foot of the eye on the nearest plane (the ground under a camera looking along
+/// it, farther than 2R: R is then the eye's height); if there is none, the eye. Within the reach: a ray grazing an infinite plane meets it arbitrarily far
 /// away (3e9 was seen orbiting a model over its floor), and an origin there would cost every
 /// point of the scene its digits.
 fn focus_within(scene: &FlatScene, eye: DVec3, r: f64) -> DVec3 {
@@ -104,16 +115,21 @@ fn focus_within(scene: &FlatScene, eye: DVec3, r: f64) -> DVec3 {
             return eye + hit.t * ray.dir;
         }
     }
-    match scene.bvh_nodes.first() {
-        Some(root) => (DVec3::from(root.min.map(f64::from)) + DVec3::from(root.max.map(f64::from))) * 0.5,
+    if let Some(root) = scene.bvh_nodes.first() {
+        return (DVec3::from(root.min.map(f64::from)) + DVec3::from(root.max.map(f64::from))) * 0.5;
+    }
+    let height = |p: &GpuPlane| v3(p.normal_offset).dot(eye) - f64::from(p.normal_offset[3]);
+    match scene.planes.iter().min_by(|a, b| height(a).abs().total_cmp(&height(b).abs())) {
+        Some(p) => eye - height(p) * v3(p.normal_offset),
         None => eye,
     }
 }
 
 /// The frame the GPU traces `scene` in (a world-space origin and a length scale): the focus
-/// (`focus_within`) snapped to a grid of spacing g, the power of two nearest R/16 (R how far
-/// the scene's surfaces reach from the focus, `extent`), and the offsets' length scale
-/// min(1, the power of two nearest R).
+/// (`focus_within`) snapped to a grid of spacing g, the power of two nearest the smaller of
+/// R/16 (R how far the scene's surfaces reach from the eye, `reach`) and 256 pixels at the focus
+/// (`GRID_PIXELS`), and the offsets' length scale min(1, the power of two nearest the surfaces'
+/// reach from the focus, `extent`).
 ///
 /// Why the focus: an f32 hit point p carries an error of ulp(|p − c|), so the origin belongs
 /// where the rays meet the scene — for a model seen from afar, the model; for the ground seen
@@ -129,26 +145,30 @@ fn focus_within(scene: &FlatScene, eye: DVec3, r: f64) -> DVec3 {
 /// and moves c rarely, so the rebased geometry is rarely rebuilt (the GPU tracer keeps it
 /// until c moves).
 ///
-/// Why R from the focus, and without lights: measured from the eye, a far eye (a telephoto
-/// view from 1e6) or a far point light (a sun 1e6 away) made R their distance, g 2^16 and c up
-/// to 5e4 from what is seen: a sphere seen from 1e6 at x = 30,000 had the GPU's shading 2.3e-3
-/// off the CPU's (4e-7 at the origin), a scene at x = 5,000 under a far light 0.6 (PSNR 34.5 dB
-/// against 133.7 with the light near).
+/// Why at most 256 pixels, and R without lights: R/16 alone let a far eye (a telephoto view
+/// from 1e6), a far point light (a sun 1e6 away, when R counted lights) or a far plane make g
+/// 2^16 and put c up to 5e4 from what is seen: a sphere seen from 1e6 at x = 30,000 had the
+/// GPU's shading 4.7e-4 off the CPU's at D = 1e5 (1.1e-6 now, stiff case 22), a scene at
+/// x = 5,000 under a far light 0.6 (PSNR 34.5 dB against 133.7 with the light near, case 23).
+/// Bounding g by the pixel instead of the scene's size keeps R/16 — stable while orbiting, as
+/// the focus moves over a model — wherever a pixel is larger than R/4096, as in every image a
+/// camera around the scene makes.
 ///
 /// Why the length scale: W&B's fixed offset near the origin (FLOAT_SCALE·n below |x| < 1/32) is
 /// made for scenes of unit size; in a smaller scene it would move rays by a sizeable part of
 /// it. Never above 1, so larger scenes keep W&B's constants.
 pub fn camera_frame(scene: &FlatScene) -> [f32; 4] {
     let eye = camera_eye(&scene.camera);
-    let focus = focus_within(scene, eye, reach(scene, eye));
-    let r = extent(scene, eye, focus);
-    if !(r.is_finite() && r > 0.0 && focus.is_finite()) {
+    let r = reach(scene, eye);
+    let focus = focus_within(scene, eye, r);
+    let (pixel, extent) = (pixel_at(scene, eye, focus), extent(scene, eye, focus));
+    if !(r.is_finite() && r > 0.0 && focus.is_finite() && pixel > 0.0 && extent > 0.0) {
         return scene.header.frame;
     }
-    let g = nearest_power_of_two(r / GRID_DIVISIONS);
+    let g = nearest_power_of_two((r / GRID_DIVISIONS).min(GRID_PIXELS * pixel));
     let world = focus + scene.frame_origin();
     let c = (world / g).round() * g;
-    let w = nearest_power_of_two(r).min(1.0);
+    let w = nearest_power_of_two(extent).min(1.0);
     [c.x as f32, c.y as f32, c.z as f32, w as f32]
 }
 
@@ -342,15 +362,17 @@ material = "m"
         let f = focus(&near);
         let d = f - DVec3::new(0.0, 0.5, 0.0);
         assert!((d.length() - 0.5).abs() < 1e-9 && f.z < 0.0, "{f}");
-        // From the focus the surfaces reach R ≈ 1.9 (the box's corner (1, 1, 1)): a grid of
-        // g = 1/8, the focus within g/2 of the frame's origin per axis.
-        let extent = extent(&near, camera_eye(&near.camera), f);
-        assert!(extent > 1.8 && extent < 2.0, "{extent}");
+        // R ≈ 6.2: a grid of g = 0.5 (a pixel is 0.68 there), the focus within g/2 of the
+        // origin per axis.
         let c = camera_frame(&near);
         for k in 0..3 {
-            assert_eq!((f64::from(c[k]) / 0.125).fract(), 0.0, "{c:?}");
-            assert!((f64::from(c[k]) - f[k]).abs() <= 0.0625, "{c:?} {f}");
+            assert_eq!((f64::from(c[k]) / 0.5).fract(), 0.0, "{c:?}");
+            assert!((f64::from(c[k]) - f[k]).abs() <= 0.25, "{c:?} {f}");
         }
+        // The offsets' length scale from the surfaces' reach from the focus, ≈ 1.9 (the box's
+        // corner (1, 1, 1)).
+        let extent = extent(&near, camera_eye(&near.camera), f);
+        assert!(extent > 1.8 && extent < 2.0 && c[3] == 1.0, "{extent} {c:?}");
         // Translated by a multiple of g: the frame moves as much, the rebased scene not at all.
         let far = scene(1e6);
         let cf = camera_frame(&far);
@@ -362,24 +384,31 @@ material = "m"
         assert_eq!(a.lights, b.lights);
         assert!(a.bvh_nodes.iter().eq(b.bvh_nodes.iter()));
         // Not by a multiple: rounded differently.
-        let off = scene(1e6 + 0.03125);
+        let off = scene(1e6 + 0.125);
         assert_ne!(rebased(&off, camera_frame(&off)).vertices, a.vertices);
     }
 
     #[test]
     fn neither_a_far_light_nor_a_far_eye_coarsens_the_frame() {
-        let near = scene(0.0);
+        // At x = 3,000: a grid of 2^16 would put the frame's origin at x = 0.
+        let near = scene(3000.0);
         let c = camera_frame(&near);
+        assert_eq!(c[0], 3000.0);
         // A point light 1e6 above (the sun as a point light).
         let mut far_light = near.clone();
         far_light.lights[0].position[1] = 1e6;
         assert_eq!(camera_frame(&far_light), c);
-        // The eye 1e6 back along its axis (anchored on it): the same focus, the same frame.
+        // The eye 1e6 back along its axis (anchored on it), its field of view narrowed to show
+        // the same (a telephoto): the same focus and pixel there (0.68), so a grid of at most 256
+        // pixels (2^7) where R/16 would be 2^16.
         let mut far_eye = near.clone();
         let (eye, forward) = (camera_eye(&near.camera), camera_forward(&near.camera));
         far_eye.camera.anchor = anchor_of(eye - 1e6 * forward, forward, DVec3::ZERO);
+        let zoom = |v: [f32; 4]| v.map(|x| (f64::from(x) * 4.9 / (4.9 + 1e6)) as f32);
+        (far_eye.camera.right, far_eye.camera.up) = (zoom(near.camera.right), zoom(near.camera.up));
         assert!(far_eye.camera.anchor[3] > 0.0);
-        assert_eq!(camera_frame(&far_eye), c);
+        let cf = camera_frame(&far_eye);
+        assert!((v3(cf) - v3(c)).length() <= 64.0 * 3f64.sqrt(), "{cf:?} {c:?}");
     }
 
     #[test]
@@ -399,7 +428,7 @@ material = "m"
     }
 
     #[test]
-    fn a_centre_ray_meeting_nothing_falls_back_on_the_geometry_then_the_eye() {
+    fn a_centre_ray_meeting_nothing_falls_back_on_the_geometry_the_ground_then_the_eye() {
         let mut s = scene(0.0);
         // Looking up: the ray misses everything; the focus is the centre of the bounded box.
         let eye = camera_eye(&s.camera);
@@ -411,6 +440,9 @@ material = "m"
         s.spheres = Vec::new().into();
         s.vertices = Vec::new().into();
         s.triangles = Vec::new().into();
+        // Planes alone: the foot of the eye (0, 1, −5) on the floor y = 0.
+        assert_eq!(focus(&s), DVec3::new(0.0, 0.0, -5.0));
+        s.planes = Vec::new().into();
         assert_eq!(focus(&s), camera_eye(&s.camera));
     }
 
