@@ -9,8 +9,8 @@
 //!
 //! What moves: vertex positions (one buffer, so a vertex shared by triangles maps to one value
 //! and watertightness holds), sphere centres, plane offsets d' = d − n·c, point and spot light
-//! positions, the camera (its eye, anchored anew nearest the new origin), BVH boxes (rounded outward, so traversal stays
-//! conservative) and the header's frame (the origin, added back for planar texture
+//! positions, the camera (its eye; anchored anew nearest the new origin), BVH boxes (rounded
+//! outward, so traversal stays conservative) and the header's frame (the origin, added back for planar texture
 //! coordinates, and the offsets' length scale). Directions, normals, radii, texture
 //! coordinates and everything else are unchanged.
 
@@ -21,7 +21,7 @@ use crate::bvh::{f32_down, f32_up};
 use crate::cpu::intersect::Leaving;
 use crate::cpu::walk::closest_hit;
 use crate::cpu::{Ray, TraceContext, v3};
-use crate::flat::{anchor_of, camera_eye, camera_forward, place_texture_origins};
+use crate::flat::{anchor_of, camera_eye, place_texture_origins, scene_box};
 use glint_scene::LightKind;
 use glint_types::layout::{GpuPlane, GpuSphere, origin_power};
 
@@ -100,9 +100,9 @@ const GRID_PIXELS: f64 = 256.0;
 /// from it: the first surface the ray through the image centre meets within the reach (found
 /// by the CPU reference); if it meets none there, the centre of the bounded geometry; if there
 /// is none, the foot of the eye on the nearest plane (the ground under a camera looking along
-/// it, farther than 2R: R is then the eye's height); if there is none, the eye. Within the reach: a ray grazing an infinite plane meets it arbitrarily far
-/// away (3e9 was seen orbiting a model over its floor), and an origin there would cost every
-/// point of the scene its digits.
+/// it, farther than 2R: R is then the eye's height); if there is none, the eye. Within the
+/// reach: a ray grazing an infinite plane meets it arbitrarily far away (3e9 was seen orbiting
+/// a model over its floor), and an origin there would cost every point of the scene its digits.
 fn focus_within(scene: &FlatScene, eye: DVec3, r: f64) -> DVec3 {
     let forward = v3(scene.camera.forward);
     if let Ok(ctx) = TraceContext::new(scene)
@@ -115,8 +115,8 @@ fn focus_within(scene: &FlatScene, eye: DVec3, r: f64) -> DVec3 {
             return eye + hit.t * ray.dir;
         }
     }
-    if let Some(root) = scene.bvh_nodes.first() {
-        return (DVec3::from(root.min.map(f64::from)) + DVec3::from(root.max.map(f64::from))) * 0.5;
+    if let Some(b) = scene_box(&scene.bvh_nodes) {
+        return b.centre;
     }
     let height = |p: &GpuPlane| v3(p.normal_offset).dot(eye) - f64::from(p.normal_offset[3]);
     match scene.planes.iter().min_by(|a, b| height(a).abs().total_cmp(&height(b).abs())) {
@@ -231,7 +231,7 @@ fn move_the_rest(out: &mut FlatScene, scene: &FlatScene, frame: [f32; 4]) {
     // An anchored camera's eye moved in f64 and anchored anew, nearest the new origin (the
     // focus, snapped); an eye that is its own anchor (w = 0) moved as the other points.
     out.camera.anchor = if scene.camera.anchor[3] > 0.0 {
-        anchor_of(camera_eye(&scene.camera) - c, camera_forward(&scene.camera), DVec3::ZERO)
+        anchor_of(camera_eye(&scene.camera) - c, v3(scene.camera.forward), DVec3::ZERO)
     } else {
         moved(scene.camera.anchor, c)
     };
@@ -402,7 +402,7 @@ material = "m"
         // the same (a telephoto): the same focus and pixel there (0.68), so a grid of at most 256
         // pixels (2^7) where R/16 would be 2^16.
         let mut far_eye = near.clone();
-        let (eye, forward) = (camera_eye(&near.camera), camera_forward(&near.camera));
+        let (eye, forward) = (camera_eye(&near.camera), v3(near.camera.forward));
         far_eye.camera.anchor = anchor_of(eye - 1e6 * forward, forward, DVec3::ZERO);
         let zoom = |v: [f32; 4]| v.map(|x| (f64::from(x) * 4.9 / (4.9 + 1e6)) as f32);
         (far_eye.camera.right, far_eye.camera.up) = (zoom(near.camera.right), zoom(near.camera.up));

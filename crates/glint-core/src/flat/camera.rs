@@ -3,7 +3,7 @@
 
 use glam::DVec3;
 
-use super::{FlatScene, vec4};
+use super::{FlatScene, vec4, wide};
 use glint_scene::{RenderSettings, SceneDesc};
 use glint_types::layout::GpuCamera;
 
@@ -17,11 +17,6 @@ pub struct WorldCamera {
     pub forward: DVec3,
     pub right: DVec3,
     pub up: DVec3,
-}
-
-/// The xyz of a stored vector, widened exactly to f64.
-fn wide(v: [f32; 4]) -> DVec3 {
-    DVec3::new(v[0].into(), v[1].into(), v[2].into())
 }
 
 /// How many of the scene's largest sides the eye may be from the centre of its bounded geometry
@@ -74,11 +69,6 @@ pub fn camera_eye(camera: &GpuCamera) -> DVec3 {
     wide(camera.anchor) - f64::from(camera.anchor[3]) * wide(camera.forward)
 }
 
-/// The stored forward, widened.
-pub fn camera_forward(camera: &GpuCamera) -> DVec3 {
-    wide(camera.forward)
-}
-
 impl FlatScene {
     /// The camera of `desc` at `settings`' aspect ratio, in f64 world space.
     pub fn world_camera(desc: &SceneDesc, settings: &RenderSettings) -> WorldCamera {
@@ -126,7 +116,7 @@ mod tests {
         let distance = (DVec3::from(eye) - DVec3::from(centre)).length();
         assert!((w - distance).abs() <= distance * 2f64.powi(-24), "w = {w}, {distance}");
         // On the axis through the centre; along it, where w's f32 rounding slid it.
-        let (a, f) = (wide(s.camera.anchor), camera_forward(&s.camera));
+        let (a, f) = (wide(s.camera.anchor), wide(s.camera.forward));
         let to_centre = DVec3::from(centre) - a;
         let across = to_centre - to_centre.dot(f) * f;
         assert!(across.length() < 1e-6, "the anchor {a} is {across} off the axis through the centre");

@@ -3,20 +3,15 @@
 
 use glam::DVec3;
 
-use super::FlatScene;
+use super::{FlatScene, wide};
 use glint_scene::Wrap;
-
-/// A frame's origin (its xyz), widened exactly to f64.
-pub(super) fn origin_of(frame: [f32; 4]) -> DVec3 {
-    DVec3::new(frame[0].into(), frame[1].into(), frame[2].into())
-}
 
 impl FlatScene {
     /// Where the stored coordinates have their origin, in world space (`SceneHeader::frame`:
     /// the storage origin as built, the GPU's frame once rebased). A stored point p is the
     /// world point p + `frame_origin()`.
     pub fn frame_origin(&self) -> DVec3 {
-        origin_of(self.header.frame)
+        wide(self.header.frame)
     }
 }
 
@@ -26,7 +21,7 @@ impl FlatScene {
 /// and a texel edge 1e6 units from the world origin stays where it is on the GPU (its f32
 /// world coordinate was off by 1/16 there). At the world origin they are the offsets, exact.
 pub(crate) fn place_texture_origins(out: &mut FlatScene, frame: [f32; 4]) {
-    let f = origin_of(frame);
+    let f = wide(frame);
     let across = [(f.y, f.z), (f.x, f.z), (f.x, f.y)];
     let at_world_origin = f == DVec3::ZERO;
     for tex in &mut out.textures {

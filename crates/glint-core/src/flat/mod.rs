@@ -69,7 +69,7 @@ mod leaf_corners;
 mod lights_materials;
 
 pub(crate) use camera::anchor_of;
-pub use camera::{SceneBox, WorldCamera, camera_eye, camera_forward};
+pub use camera::{SceneBox, WorldCamera, camera_eye};
 pub(crate) use frame::place_texture_origins;
 pub use geometry::GeometryId;
 use geometry::{Geometry, flat_primitives};
@@ -130,7 +130,7 @@ impl FlatScene {
     fn assemble(desc: &SceneDesc, settings: &RenderSettings, material_names: Vec<String>, geometry: Geometry) -> Self {
         let mut table = TextureTable::default();
         let materials = desc.materials.values().map(|m| flat_material(m, &mut table)).collect();
-        let origin = frame::origin_of(geometry.frame);
+        let origin = wide(geometry.frame);
         let lights = desc.traced_lights().map(|l| flat_light(l, origin)).collect();
         let camera = Self::world_camera(desc, settings).stored(origin, scene_box(&geometry.bvh_nodes));
         let mut flat = Self {
@@ -275,10 +275,15 @@ impl FlatScene {
 }
 
 /// The box around the bounded geometry (the BVH's root), `None` without any.
-fn scene_box(nodes: &BvhNodes) -> Option<SceneBox> {
+pub(crate) fn scene_box(nodes: &BvhNodes) -> Option<SceneBox> {
     let root = nodes.first()?;
     let (lo, hi) = (DVec3::from(root.min.map(f64::from)), DVec3::from(root.max.map(f64::from)));
     Some(SceneBox { centre: (lo + hi) * 0.5, side: (hi - lo).max_element() })
+}
+
+/// The xyz of a stored vector, widened exactly to f64 (`vec4`'s inverse up to rounding).
+fn wide(v: [f32; 4]) -> DVec3 {
+    DVec3::new(v[0].into(), v[1].into(), v[2].into())
 }
 
 fn vec4(v: DVec3, w: f32) -> [f32; 4] {
