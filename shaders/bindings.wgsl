@@ -44,13 +44,16 @@
 // The pixel probe's ray tree (only in the PROBE variant).
 @group(0) @binding(19) var<storage, read_write> probe_tree: ProbeTree;
 @group(0) @binding(20) var<storage, read> bvh_leaf_c: array<vec4<u32>>;
+// Linear vertex colours beside the vertices (rgb, w = 1; white for a mesh without them; one
+// unused element when no mesh has them; only with the VERTEX_COLOURS shader def).
+@group(0) @binding(21) var<storage, read> colours: array<vec4<f32>>;
 // The ray-cast kernel's buffers (raycast.wgsl, `glint bench rays`; numbered after the
 // tracer's): two vec4<f32> per ray (origin, t_min; direction, t_max), and per ray its hit as
 // (prim, index, bitcast t, 0).
-@group(0) @binding(21) var<storage, read> rays_in: array<vec4<f32>>;
-@group(0) @binding(22) var<storage, read_write> hits_out: array<vec4<u32>>;
+@group(0) @binding(22) var<storage, read> rays_in: array<vec4<f32>>;
+@group(0) @binding(23) var<storage, read_write> hits_out: array<vec4<u32>>;
 // The path tracer's buffers (path.wgsl; numbered after the ray-cast kernel's): a path per pixel
 // of the tile between the bounce dispatches, and what next-event estimation samples: the
 // emitters' count, then each emissive sphere's index or triangle's PRIM_REF_TRIANGLE | index.
-@group(0) @binding(23) var<storage, read_write> path_states: array<GpuPathState>;
-@group(0) @binding(24) var<storage, read> emitters: array<u32>;
+@group(0) @binding(24) var<storage, read_write> path_states: array<GpuPathState>;
+@group(0) @binding(25) var<storage, read> emitters: array<u32>;

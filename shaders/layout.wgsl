@@ -20,6 +20,7 @@ const FRESNEL_EXACT: u32 = 0u;
 const FRESNEL_SCHLICK: u32 = 1u;
 const MESH_HAS_NORMALS: u32 = 1u;
 const MESH_HAS_UVS: u32 = 2u;
+const MESH_HAS_COLOURS: u32 = 4u;
 const NO_TEXTURE: u32 = 0xffffffffu;
 const WRAP_REPEAT: u32 = 0u;
 const WRAP_CLAMP_TO_EDGE: u32 = 1u;

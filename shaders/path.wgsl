@@ -343,7 +343,7 @@ fn emitter_light(e: u32, count: u32, l: Lobes, s: Surface, ng: vec3<f32>, dir: v
     if dot(dir, q.ng) >= 0.0 || light_pdf <= 0.0 {
         return vec3<f32>(0.0);
     }
-    var emission = material_colours(materials[q.material], q.uv, q.uv_origin).emission;
+    var emission = material_colours(materials[q.material], q).emission;
 #ifdef GLOBAL_ATTENUATION
     emission *= attenuation_factor(header.global_attenuation, hit.t);
 #endif
@@ -381,7 +381,7 @@ fn path_bounce(path: ptr<function, PathState>) -> bool {
     let ng = select(-s.ng, s.ng, front);
     let ns = select(-s.ns, s.ns, front);
     let mat = materials[s.material];
-    let c = material_colours(mat, s.uv, s.uv_origin);
+    let c = material_colours(mat, s);
 #ifdef EMISSION
     if front && !all_zero(c.emission) && counts_kind(met_kind((*path).history)) {
         var weight = 1.0;

@@ -30,6 +30,8 @@ struct Surface {
     uv: vec2<f32>,
     // UV_MESH, or the axis planar coordinates are taken across (relative to the frame).
     uv_origin: u32,
+    // The interpolated vertex colour (white without vertex colours).
+    colour: vec3<f32>,
     material: u32,
     object_id: u32,
     prim: u32,
@@ -238,9 +240,16 @@ struct MaterialColours {
     emission: vec3<f32>,
 }
 
-// A diffuse texture's colour multiplies k_a and k_d, an emission texture's E_m.
-fn material_colours(mat: GpuMaterial, uv: vec2<f32>, uv_origin: u32) -> MaterialColours {
+// A diffuse texture's colour and the vertex colour multiply k_a and k_d, an emission
+// texture's E_m.
+fn material_colours(mat: GpuMaterial, s: Surface) -> MaterialColours {
     var c = MaterialColours(mat.ka.xyz, mat.kd.xyz, mat.emission.xyz);
+    let uv = s.uv;
+    let uv_origin = s.uv_origin;
+#ifdef VERTEX_COLOURS
+    c.ka *= s.colour;
+    c.kd *= s.colour;
+#endif
 #ifdef TEXTURES
     if mat.diffuse_texture != NO_TEXTURE {
         let t = sample_texture(mat.diffuse_texture, uv, uv_origin);
@@ -319,7 +328,7 @@ fn light_term(light: GpuLight, mat: GpuMaterial, s: Surface, n: vec3<f32>, ng: v
 
 fn shade_local(s: Surface, n: vec3<f32>, ng: vec3<f32>, v: vec3<f32>) -> vec3<f32> {
     let mat = materials[s.material];
-    let c = material_colours(mat, s.uv, s.uv_origin);
+    let c = material_colours(mat, s);
     var emission = vec3<f32>(0.0);
 #ifdef EMISSION
     emission = c.emission;

@@ -3,8 +3,8 @@
 // (path.wgsl) share them.
 #define_import_path glint::surface
 
-#import glint::scene_data::{NO_HIT, EPS_ROBUST, UV_MESH}
-#import glint::bindings::{header, spheres, planes, triangles, meshes}
+#import glint::scene_data::{NO_HIT, EPS_ROBUST, UV_MESH, GpuTriangle, MESH_HAS_COLOURS}
+#import glint::bindings::{header, spheres, planes, triangles, meshes, colours}
 #import glint::ray::Ray
 #import glint::intersect::{Hit, PRIM_NONE, PRIM_SPHERE, PRIM_PLANE, PRIM_TRIANGLE, triangle_corners, triangle_shading_normal, sphere_surface_point}
 #import glint::shade::Surface
@@ -15,7 +15,19 @@
 #endif
 #endif
 
-// The surface at a hit. Texture coordinates are computed only under TEXTURES, else zero.
+#ifdef VERTEX_COLOURS
+// Interpolated with the barycentrics of the shading normal; exactly white for a mesh without
+// vertex colours.
+fn triangle_colour(tri: GpuTriangle, bu: f32, bv: f32) -> vec3<f32> {
+    if (meshes[tri.mesh].flags & MESH_HAS_COLOURS) == 0u {
+        return vec3<f32>(1.0);
+    }
+    return (1.0 - bu - bv) * colours[tri.va].xyz + bu * colours[tri.vb].xyz + bv * colours[tri.vc].xyz;
+}
+#endif
+
+// The surface at a hit. Texture coordinates are computed only under TEXTURES, else zero;
+// vertex colours only under VERTEX_COLOURS, else white.
 fn surface_at(ray: Ray, hit: Hit) -> Surface {
     let p = ray.origin + hit.t * ray.dir;
     let robust = header.epsilon_mode == EPS_ROBUST;
@@ -31,7 +43,7 @@ fn surface_at(ray: Ray, hit: Hit) -> Surface {
         uv = planar_uv(p, ng);
         uv_origin = planar_axis(ng);
 #endif
-        return Surface(p, p_surface, ng, ng, uv, uv_origin, s.material, s.object_id, PRIM_SPHERE, hit.index);
+        return Surface(p, p_surface, ng, ng, uv, uv_origin, vec3<f32>(1.0), s.material, s.object_id, PRIM_SPHERE, hit.index);
     }
 #endif
 #ifdef PLANES
@@ -45,7 +57,7 @@ fn surface_at(ray: Ray, hit: Hit) -> Surface {
         uv = planar_uv(p, ng);
         uv_origin = planar_axis(ng);
 #endif
-        return Surface(p, p_surface, ng, ng, uv, uv_origin, pl.material, pl.object_id, PRIM_PLANE, hit.index);
+        return Surface(p, p_surface, ng, ng, uv, uv_origin, vec3<f32>(1.0), pl.material, pl.object_id, PRIM_PLANE, hit.index);
     }
 #endif
 #ifdef TRIANGLES
@@ -60,10 +72,14 @@ fn surface_at(ray: Ray, hit: Hit) -> Surface {
     uv = triangle_uv(tri, hit.bu, hit.bv, p, ng);
     uv_origin = triangle_uv_origin(tri, ng);
 #endif
+    var colour = vec3<f32>(1.0);
+#ifdef VERTEX_COLOURS
+    colour = triangle_colour(tri, hit.bu, hit.bv);
+#endif
     let mesh = meshes[tri.mesh];
-    return Surface(p, p_surface, ng, ns, uv, uv_origin, mesh.material, mesh.object_id, PRIM_TRIANGLE, hit.index);
+    return Surface(p, p_surface, ng, ns, uv, uv_origin, colour, mesh.material, mesh.object_id, PRIM_TRIANGLE, hit.index);
 #else
-    return Surface(p, p, vec3<f32>(0.0, 1.0, 0.0), vec3<f32>(0.0, 1.0, 0.0), vec2<f32>(0.0), UV_MESH, 0u, NO_HIT, PRIM_NONE, 0u);
+    return Surface(p, p, vec3<f32>(0.0, 1.0, 0.0), vec3<f32>(0.0, 1.0, 0.0), vec2<f32>(0.0), UV_MESH, vec3<f32>(1.0), 0u, NO_HIT, PRIM_NONE, 0u);
 #endif
 }
 

@@ -219,3 +219,31 @@ fn spider_mtl_textures_are_decoded_with_their_texture_coordinates() {
     assert!(textured.iter().any(|&(_, w, h)| (w, h) == (768, 768)), "drkwood2.jpg: {textured:?}");
     assert!(m.meshes.iter().all(|mesh| mesh.uvs.as_ref().is_some_and(|uv| uv.len() == mesh.vertices.len())));
 }
+
+#[test]
+fn obj_vertex_colours_colour_the_faces_on_both_backends() {
+    let dir = TempDir::new("models-vertex-colours");
+    for name in ["OBJ/cube_with_vertexcolors.obj", "OBJ/cube_with_vertexcolors_uni.obj"] {
+        let Some(path) = model(name) else { return };
+        // Every vertex takes the colour its `v` line gives, whichever face (normal) it serves.
+        let file = std::fs::read_to_string(&path).expect("readable");
+        let written: Vec<[f64; 6]> = file
+            .lines()
+            .filter_map(|l| l.strip_prefix("v "))
+            .map(|l| {
+                let n: Vec<f64> = l.split_whitespace().map(|w| w.parse().unwrap()).collect();
+                std::array::from_fn(|k| n[k])
+            })
+            .collect();
+        let m = glint_io::model::load_obj(&path).expect("loads");
+        let mesh = &m.meshes[0];
+        let colours = mesh.colours.as_ref().unwrap_or_else(|| panic!("{name}: no vertex colours read"));
+        assert_eq!((colours.len(), mesh.vertices.len()), (24, 24), "{name}: one per face corner");
+        for (p, c) in mesh.vertices.iter().zip(colours) {
+            let w = written.iter().find(|w| w[..3] == p[..]).expect("a written vertex");
+            assert_eq!(c[..], w[3..], "{name}: the vertex at {p:?}");
+        }
+        let stderr = render_model(&dir, name, &path, &[]);
+        assert!(!stderr.contains("vertex colours left out"), "{name}: {stderr}");
+    }
+}

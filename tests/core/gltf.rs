@@ -295,6 +295,62 @@ fn quantised_attributes_are_read_where_the_file_requires_mesh_quantization() {
 }
 
 #[test]
+fn colour_0_becomes_vertex_colours_from_floats_bytes_and_shorts_its_alpha_left_out() {
+    let dir = TempDir::new("gltf-vertex-colours");
+    let mut f = Fixture::quad();
+    let floats = f.push_f32(&[1.0, 0.0, 0.0, 0.0, 0.5, 0.0, 0.0, 0.0, 0.25, 2.0, 2.0, 2.0]);
+    // Normalised bytes (r, g, b, a) a vertex, two to a u16, little-endian.
+    let bytes = f.push_u16(&[255, 255 << 8, 255 << 8, 255 << 8, 51 | (102 << 8), 255 << 8, 0, 0]);
+    let shorts = f.push_u16(&[65535, 0, 0, 65535, 0, 65535, 0, 0, 0, 0, 65535, 0, 32768, 32768, 32768, 65535]);
+    let wanted: [(usize, u32, &str, [[f64; 3]; 4]); 3] = [
+        (floats, 5126, "VEC3", [[1.0, 0.0, 0.0], [0.0, 0.5, 0.0], [0.0, 0.0, 0.25], [2.0, 2.0, 2.0]]),
+        (bytes, 5121, "VEC4", [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.2, 0.4, 0.0], [0.0, 0.0, 0.0]]),
+        (shorts, 5123, "VEC4", [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [32768.0 / 65535.0; 3]]),
+    ];
+    for (k, (view, component_type, kind, expected)) in wanted.into_iter().enumerate() {
+        let mut g = f.clone();
+        let accessor = json!({ "bufferView": view, "componentType": component_type, "count": 4, "type": kind,
+            "normalized": component_type != 5126 });
+        g.json["accessors"].as_array_mut().unwrap().push(accessor);
+        g.json["meshes"][0]["primitives"][0]["attributes"]["COLOR_0"] = json!(3);
+        let m = load(&g.write_glb(&dir, &format!("colours-{k}")));
+        let colours = m.meshes[0].colours.as_ref().expect("COLOR_0 read");
+        for (v, (got, want)) in colours.iter().zip(expected).enumerate() {
+            assert!(
+                got.iter().zip(want).all(|(a, b)| close(*a, b)),
+                "{kind} {component_type}: vertex {v} {got:?} != {want:?}"
+            );
+        }
+    }
+    assert!(load(&f.write_glb(&dir, "none")).meshes[0].colours.is_none(), "no COLOR_0, no colours");
+    // Refused, naming the attribute: integers that are not normalised, too few elements, and
+    // a negative or non-finite float.
+    let broken = [
+        (json!({ "bufferView": bytes, "componentType": 5121, "count": 4, "type": "VEC4" }), "wanted VEC3 or VEC4"),
+        (
+            json!({ "bufferView": floats, "componentType": 5126, "count": 3, "type": "VEC3" }),
+            "has 3 elements, POSITION 4",
+        ),
+    ];
+    for (k, (accessor, message)) in broken.into_iter().enumerate() {
+        let mut g = f.clone();
+        g.json["accessors"].as_array_mut().unwrap().push(accessor);
+        g.json["meshes"][0]["primitives"][0]["attributes"]["COLOR_0"] = json!(3);
+        let e = error(&g.write_glb(&dir, &format!("broken-{k}")));
+        assert!(e.contains("meshes[0].primitives[0].attributes.COLOR_0") && e.contains(message), "{e}");
+    }
+    for (k, bad) in [-0.5_f32, f32::NAN].into_iter().enumerate() {
+        let mut g = f.clone();
+        let view = g.push_f32(&[1.0, 1.0, 1.0, 1.0, bad, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0]);
+        let accessor = json!({ "bufferView": view, "componentType": 5126, "count": 4, "type": "VEC3" });
+        g.json["accessors"].as_array_mut().unwrap().push(accessor);
+        g.json["meshes"][0]["primitives"][0]["attributes"]["COLOR_0"] = json!(3);
+        let e = error(&g.write_glb(&dir, &format!("bad-{k}")));
+        assert!(e.contains("attributes.COLOR_0") && e.contains("element 1: component g"), "{e}");
+    }
+}
+
+#[test]
 fn strips_and_fans_are_traced_points_and_lines_skipped_with_a_warning() {
     let dir = TempDir::new("gltf-modes");
     let mut f = Fixture::quad();

@@ -19,5 +19,6 @@ mod skip_convex;
 mod support;
 mod tour;
 mod validation;
+mod vertex_colours;
 
 use glint_test_support::{reference, render, scene};

@@ -19,5 +19,6 @@ mod raycast;
 mod specialisation;
 mod support;
 mod textures;
+mod vertex_colours;
 
 use glint_test_support::{gpu, render};

@@ -94,6 +94,7 @@ fn a_traversal_cut_short_by_the_driver_is_an_error_not_a_fast_miss() {
         triangles: vec![[0, 1, 2]; 100_000],
         normals: None,
         uvs: None,
+        colours: None,
         material: "clay".into(),
         name: "stack".into(),
     })];

@@ -119,6 +119,7 @@ struct Counts {
     vertices: u64,
     normals: u64,
     uvs: u64,
+    colours: u64,
     meshes: u64,
     texels: u64,
 }
@@ -131,6 +132,7 @@ fn counts(desc: &SceneDesc) -> Counts {
         c.vertices += m.vertices.len() as u64;
         c.normals += m.normals.as_ref().map_or(0, |n| n.len() as u64);
         c.uvs += m.uvs.as_ref().map_or(0, |n| n.len() as u64);
+        c.colours += m.colours.as_ref().map_or(0, |n| n.len() as u64);
     };
     for object in &desc.objects {
         match object {
@@ -171,11 +173,12 @@ pub fn render_estimate(desc: &SceneDesc, settings: &RenderSettings, plan: Render
         + size(c.planes, size_of::<GpuPlane>())
         + size(c.triangles, size_of::<GpuTriangle>())
         + size(c.meshes, size_of::<GpuMesh>())
-        // Positions and normals are vec4<f32>, texture coordinates vec2<f32>; normals and
-        // texture coordinates are stored for every vertex once any mesh has them.
+        // Positions, normals and colours are vec4<f32>, texture coordinates vec2<f32>; normals,
+        // texture coordinates and colours are stored for every vertex once any mesh has them.
         + size(c.vertices, 16)
         + if c.normals > 0 { size(c.vertices, 16) } else { 0 }
-        + if c.uvs > 0 { size(c.vertices, 8) } else { 0 };
+        + if c.uvs > 0 { size(c.vertices, 8) } else { 0 }
+        + if c.colours > 0 { size(c.vertices, 16) } else { 0 };
     let bounded = c.spheres + c.triangles;
     // Nodes, references, the CPU walk's leaf-order corners, and the build's working set.
     let bvh = size(bounded, 2 * size_of::<BvhNode>() + 4)
@@ -188,6 +191,7 @@ pub fn render_estimate(desc: &SceneDesc, settings: &RenderSettings, plan: Render
     let description = size(c.vertices, 24)
         + size(c.normals, 24)
         + size(c.uvs, 16)
+        + size(c.colours, 24)
         + size(c.triangles, 12)
         + size(c.spheres + c.planes, size_of::<ObjectDesc>());
     let mut e = MemoryEstimate::default();

@@ -36,18 +36,20 @@ pub enum Binding {
     /// The pixel probe's ray tree (under the PROBE shader def).
     ProbeTree = 19,
     BvhLeafC = 20,
+    /// Vertex colours (under the VERTEX_COLOURS shader def).
+    Colours = 21,
     /// The ray-cast kernel's rays and hits (raycast.wgsl; after the tracer's).
-    RaysIn = 21,
-    HitsOut = 22,
+    RaysIn = 22,
+    HitsOut = 23,
     /// The path tracer's paths between bounces and its emitters (path.wgsl; after the
     /// ray-cast kernel's).
-    PathStates = 23,
-    Emitters = 24,
+    PathStates = 24,
+    Emitters = 25,
 }
 
 impl Binding {
     /// Every binding, ascending.
-    pub const ALL: [Self; 25] = [
+    pub const ALL: [Self; 26] = [
         Self::Header,
         Self::Camera,
         Self::Tile,
@@ -69,6 +71,7 @@ impl Binding {
         Self::Textures,
         Self::ProbeTree,
         Self::BvhLeafC,
+        Self::Colours,
         Self::RaysIn,
         Self::HitsOut,
         Self::PathStates,
@@ -120,6 +123,7 @@ impl Binding {
             Self::HitsOut => "hits_out",
             Self::PathStates => "path_states",
             Self::Emitters => "emitters",
+            Self::Colours => "colours",
         }
     }
 

@@ -34,6 +34,7 @@ pub struct GeometryBuffers {
     normals: wgpu::Buffer,
     meshes: wgpu::Buffer,
     uvs: wgpu::Buffer,
+    colours: wgpu::Buffer,
 }
 
 /// The last geometry uploaded, shared by the tracer's renders and probes.
@@ -109,6 +110,7 @@ impl GeometryBuffers {
             normals: storage(ctx, "glint normals", &scene.normals),
             meshes: storage(ctx, "glint meshes", &scene.meshes),
             uvs: storage(ctx, "glint texture coordinates", &scene.uvs),
+            colours: storage(ctx, "glint vertex colours", &scene.colours),
         }
     }
 
@@ -214,7 +216,7 @@ fn check_limits(ctx: &GpuContext, scene: &FlatScene, bvh: bool) -> Result<u64, G
 }
 
 /// The bytes of each of a scene's storage buffers whose size grows with the scene, by name.
-pub fn storage_sizes(scene: &FlatScene) -> [(&'static str, u64); 10] {
+pub fn storage_sizes(scene: &FlatScene) -> [(&'static str, u64); 11] {
     let bytes = |n: usize, item: usize| (n * item) as u64;
     let refs = scene.bvh_prims.len();
     [
@@ -226,6 +228,7 @@ pub fn storage_sizes(scene: &FlatScene) -> [(&'static str, u64); 10] {
         ("the BVH leaf buffer of corners a and b", bytes(refs, size_of::<GpuLeafAb>())),
         ("the BVH leaf buffer of corners c", bytes(refs, size_of::<GpuLeafC>())),
         ("the texture coordinate buffer", size_of_val(&scene.uvs[..]) as u64),
+        ("the vertex colour buffer", size_of_val(&scene.colours[..]) as u64),
         ("the texel buffer", size_of_val(scene.texels.as_slice()) as u64),
         ("the texture table", size_of_val(scene.textures.as_slice()) as u64),
     ]
@@ -344,6 +347,7 @@ impl SceneBuffers {
             Binding::Normals => &self.geometry.normals,
             Binding::Meshes => &self.geometry.meshes,
             Binding::Uvs => &self.geometry.uvs,
+            Binding::Colours => &self.geometry.colours,
             Binding::Texels => &self.texels,
             Binding::Textures => &self.textures,
             Binding::PathStates => return self.path_states.as_ref(),

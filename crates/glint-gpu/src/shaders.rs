@@ -141,6 +141,7 @@ impl ShaderKey {
             + if self.bvh { 2 + on(feature::TRIANGLES) } else { 0 }
             + 2 * on(feature::TEXTURES)
             + on(feature::TEXTURES) * on(feature::TRIANGLES)
+            + on(feature::VERTEX_COLOURS) * on(feature::TRIANGLES)
     }
 
     /// The variant, if this device binds as many storage buffers per stage as it needs (wgpu's

@@ -84,6 +84,7 @@ fn mesh(mesh: (Vec<[f64; 3]>, Vec<[u32; 3]>), material: &str, name: &str) -> Obj
         triangles: mesh.1,
         normals: None,
         uvs: None,
+        colours: None,
         material: material.into(),
         name: name.into(),
     })

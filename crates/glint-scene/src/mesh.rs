@@ -2,8 +2,8 @@
 
 use serde::{Deserialize, Serialize};
 
-/// An indexed triangle mesh, optionally with per-vertex shading normals and texture
-/// coordinates.
+/// An indexed triangle mesh, optionally with per-vertex shading normals, texture coordinates
+/// and colours.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct MeshDesc {
@@ -15,6 +15,10 @@ pub struct MeshDesc {
     /// top-left corner. Without them a texture is mapped in planar coordinates.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub uvs: Option<Vec<[f64; 2]>>,
+    /// A linear RGB colour per vertex (glTF's COLOR_0, an OBJ file's `v x y z r g b`),
+    /// interpolated across each triangle: it multiplies k_a and k_d, as a texture's colour does.
+    #[serde(default, alias = "colors", skip_serializing_if = "Option::is_none")]
+    pub colours: Option<Vec<[f64; 3]>>,
     pub material: String,
     #[serde(default)]
     pub name: String,

@@ -213,6 +213,7 @@ impl LoadedModel {
                 vertices: mesh.vertices.iter().map(|v| m.point(*v)).collect(),
                 normals: mesh.normals.map(|ns| ns.iter().map(|n| m.normal(*n)).collect()),
                 uvs: mesh.uvs,
+                colours: mesh.colours,
                 triangles: if mirror {
                     mesh.triangles.iter().map(|t| [t[0], t[2], t[1]]).collect()
                 } else {

@@ -100,6 +100,7 @@ mod tests {
             triangles: vec![[0, 1, 2]],
             normals: None,
             uvs: None,
+            colours: None,
             material: "m".into(),
             name: String::new(),
         })

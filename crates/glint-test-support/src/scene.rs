@@ -234,6 +234,21 @@ impl SceneText {
         self
     }
 
+    /// An indexed mesh with a linear colour per vertex.
+    pub fn coloured_mesh(
+        mut self,
+        vertices: &[[f64; 3]],
+        triangles: &[[u32; 3]],
+        colours: &[[f64; 3]],
+        material: &str,
+    ) -> Self {
+        self = self.mesh(vertices, triangles, None, material);
+        self.text.pop();
+        let colours: Vec<String> = colours.iter().map(|c| arr(*c)).collect();
+        writeln!(self.text, "colours = [{}]\n", colours.join(", ")).unwrap();
+        self
+    }
+
     /// Writes the scene as `dir/scene.toml` and loads it from there (texture paths are
     /// relative to it), panicking with the error text.
     pub fn desc_in(&self, dir: &Path) -> SceneDesc {
@@ -266,6 +281,26 @@ impl SceneText {
     }
 }
 
+/// Vertex colours where every path that reads them shows: a quad with a red, green, blue and
+/// white corner (diffuse, ambient and a white highlight), an uncoloured triangle beside it, a
+/// mirror floor that reflects both and a glass sphere in front, under a point light that casts
+/// shadows; `colours` = false writes the same quad without its colours.
+pub fn vertex_colour_scene(width: u32, height: u32, colours: bool) -> SceneText {
+    let quad = [[-1.5, 0.0, 0.0], [0.5, 0.0, 0.0], [0.5, 2.0, 0.0], [-1.5, 2.0, 0.0]];
+    let corners = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [1.0, 1.0, 1.0]];
+    let tris = [[0, 1, 2], [0, 2, 3]];
+    let s = SceneText::new(width, height, "max_depth = 3", [0.0, 1.6, 5.0], [0.0, 0.8, 0.0], [0.0, 1.0, 0.0], 40.0)
+        .world([0.2; 3], [0.05, 0.05, 0.1])
+        .material("paint", "ka = 1.0\nkd = 0.8\nks = 0.5\nshininess = 40.0")
+        .material("mirror", "ka = 0.2\nkd = 0.3\nkr = 0.5")
+        .material("glass", "ka = 0.0\nkd = 0.0\nks = 0.5\nshininess = 80.0\nkt = 0.9\nior = 1.5")
+        .light("point", "position = [2.0, 4.0, 4.0]\ndiffuse = 1.0\nspecular = 1.0")
+        .plane([0.0, -0.01, 0.0], [0.0, 1.0, 0.0], "mirror")
+        .sphere([0.9, 0.4, 1.2], 0.4, "glass")
+        .mesh(&[[0.7, 0.0, -0.2], [1.9, 0.0, -0.2], [1.3, 1.4, -0.2]], &[[0, 1, 2]], None, "paint");
+    if colours { s.coloured_mesh(&quad, &tris, &corners, "paint") } else { s.mesh(&quad, &tris, None, "paint") }
+}
+
 /// `mesh_scene` for meshes too large to go through scene text: the same scene with the mesh
 /// appended to the parsed description (every index in range, as validation would require).
 pub fn large_mesh_desc(w: u32, h: u32, mesh: (Vec<[f64; 3]>, Vec<[u32; 3]>)) -> SceneDesc {
@@ -276,6 +311,7 @@ pub fn large_mesh_desc(w: u32, h: u32, mesh: (Vec<[f64; 3]>, Vec<[u32; 3]>)) -> 
         triangles: mesh.1,
         normals: None,
         uvs: None,
+        colours: None,
         material: "clay".into(),
         name: "large mesh".into(),
     });

@@ -45,6 +45,7 @@ pub const FRESNEL_SCHLICK: u32 = 1;
 /// `GpuMesh::flags` bits.
 pub const MESH_HAS_NORMALS: u32 = 1;
 pub const MESH_HAS_UVS: u32 = 2;
+pub const MESH_HAS_COLOURS: u32 = 4;
 
 /// `GpuMaterial::diffuse_texture` / `emission_texture` of a material without that texture.
 pub const NO_TEXTURE: u32 = u32::MAX;
@@ -174,11 +175,13 @@ pub mod feature {
     pub const GLOBAL_ATTENUATION: u32 = 1 << 21;
     /// Some material with k_s > 0 has the Cook–Torrance lobe.
     pub const COOK_TORRANCE: u32 = 1 << 22;
+    /// Some mesh has vertex colours (they multiply k_a and k_d).
+    pub const VERTEX_COLOURS: u32 = 1 << 23;
     /// Every feature: the unspecialised tracer.
-    pub const ALL: u32 = (1 << 23) - 1;
+    pub const ALL: u32 = (1 << 24) - 1;
 
     /// Names in bit order, for logs, cache keys and shader defs.
-    pub const NAMES: [&str; 23] = [
+    pub const NAMES: [&str; 24] = [
         "POINT_LIGHTS",
         "DIRECTIONAL_LIGHTS",
         "SPOT_LIGHTS",
@@ -202,6 +205,7 @@ pub mod feature {
         "SKIP_CONVEX",
         "GLOBAL_ATTENUATION",
         "COOK_TORRANCE",
+        "VERTEX_COLOURS",
     ];
 
     /// Whether a scene with `features` traces child rays: the one test of "needs a ray tree

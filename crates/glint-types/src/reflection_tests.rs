@@ -192,6 +192,7 @@ fn wgsl_layout_constants_match_rust() {
         ("FRESNEL_SCHLICK".into(), FRESNEL_SCHLICK),
         ("MESH_HAS_NORMALS".into(), MESH_HAS_NORMALS),
         ("MESH_HAS_UVS".into(), MESH_HAS_UVS),
+        ("MESH_HAS_COLOURS".into(), MESH_HAS_COLOURS),
         ("NO_TEXTURE".into(), NO_TEXTURE),
         ("WRAP_REPEAT".into(), WRAP_REPEAT),
         ("WRAP_CLAMP_TO_EDGE".into(), WRAP_CLAMP_TO_EDGE),

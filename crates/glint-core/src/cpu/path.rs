@@ -361,7 +361,7 @@ pub fn path_bounce(ctx: &TraceContext, emitters: &Emitters, path: &mut PathState
     let front = ray.dir.dot(s.ng) < 0.0;
     let (ng, ns) = if front { (s.ng, s.ns) } else { (-s.ng, -s.ns) };
     let mat = &scene.materials[s.material as usize];
-    let c = material_colours(ctx, mat, s.uv, s.uv_origin);
+    let c = material_colours(ctx, mat, &s);
     // Emission here means the material emits, so a sphere or triangle is in `emitters`.
     if front && c.emission != DVec3::ZERO && counts_kind(ctx, met_kind(path.history)) {
         let weight = match Emitter::of_hit(&hit) {
@@ -566,7 +566,7 @@ pub fn emitter_light(
     if dir.dot(q.ng) >= 0.0 || light_pdf <= 0.0 {
         return DVec3::ZERO;
     }
-    let mut emission = material_colours(ctx, &ctx.scene.materials[q.material as usize], q.uv, q.uv_origin).emission;
+    let mut emission = material_colours(ctx, &ctx.scene.materials[q.material as usize], &q).emission;
     // As the paths that meet it: f_att(t) over the segment.
     if ctx.has(feature::GLOBAL_ATTENUATION) {
         emission *= attenuation_factor(ctx.scene.header.global_attenuation, hit.t);

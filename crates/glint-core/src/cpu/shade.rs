@@ -31,6 +31,8 @@ pub struct Surface {
     pub uv: DVec2,
     /// `UV_MESH`, or the axis planar coordinates are taken across (relative to the frame).
     pub uv_origin: u32,
+    /// The interpolated vertex colour (white without vertex colours).
+    pub colour: DVec3,
     pub material: u32,
     pub object_id: u32,
     /// The primitive hit (`skip_convex` does not test it again from here).
@@ -272,11 +274,16 @@ pub struct MaterialColours {
     pub emission: DVec3,
 }
 
-/// k_a, k_d and E_m at texture coordinates `uv`: a diffuse texture's colour multiplies k_a and
-/// k_d (POV-Ray's pigment, OpenGL's ambient-and-diffuse colour material), an emission
-/// texture's multiplies E_m.
-pub fn material_colours(ctx: &TraceContext, mat: &GpuMaterial, uv: DVec2, uv_origin: u32) -> MaterialColours {
+/// k_a, k_d and E_m at surface `s`: a diffuse texture's colour and the vertex colour multiply
+/// k_a and k_d (POV-Ray's pigment, OpenGL's ambient-and-diffuse colour material, glTF's
+/// COLOR_0 times its base colour), an emission texture's multiplies E_m.
+pub fn material_colours(ctx: &TraceContext, mat: &GpuMaterial, s: &Surface) -> MaterialColours {
     let mut c = MaterialColours { ka: v3(mat.ka), kd: v3(mat.kd), emission: v3(mat.emission) };
+    let (uv, uv_origin) = (s.uv, s.uv_origin);
+    if ctx.has(feature::VERTEX_COLOURS) {
+        c.ka *= s.colour;
+        c.kd *= s.colour;
+    }
     if ctx.has(feature::TEXTURES) {
         if mat.diffuse_texture != NO_TEXTURE {
             let t = sample_texture(ctx, mat.diffuse_texture, uv, uv_origin);
@@ -433,7 +440,7 @@ pub fn shade_local(
 ) -> DVec3 {
     let scene = ctx.scene;
     let mat = &scene.materials[s.material as usize];
-    let c = material_colours(ctx, mat, s.uv, s.uv_origin);
+    let c = material_colours(ctx, mat, s);
     let emission = if ctx.has(feature::EMISSION) { c.emission } else { DVec3::ZERO };
     let ambient = v3(scene.header.ambient) * c.ka;
     let mut sum = DVec3::ZERO;

@@ -9,10 +9,22 @@ use super::shade::Surface;
 use super::texture::{planar_axis, planar_uv, triangle_uv, triangle_uv_origin};
 use super::{Ray, TraceContext, v3};
 use glint_scene::EpsilonMode;
-use glint_types::layout::{UV_MESH, feature};
+use glint_types::layout::{GpuTriangle, MESH_HAS_COLOURS, UV_MESH, feature};
+
+/// The vertex colour at a triangle hit, interpolated with the barycentrics of the shading
+/// normal; exactly white for a mesh without vertex colours.
+pub fn triangle_colour(ctx: &TraceContext, tri: &GpuTriangle, bu: f64, bv: f64) -> DVec3 {
+    let scene = ctx.scene;
+    if scene.meshes[tri.mesh as usize].flags & MESH_HAS_COLOURS == 0 {
+        return DVec3::ONE;
+    }
+    let [a, b, c] = [tri.va, tri.vb, tri.vc].map(|i| v3(scene.colours[i as usize]));
+    (1.0 - bu - bv) * a + bu * b + bv * c
+}
 
 /// The surface at a hit. Texture coordinates are computed only when some material has a
-/// texture (`feature::TEXTURES`), else they are zero.
+/// texture (`feature::TEXTURES`), else they are zero; vertex colours only when some mesh has
+/// them (`feature::VERTEX_COLOURS`), else white.
 pub fn surface_at(ctx: &TraceContext, ray: &Ray, hit: &Hit) -> Surface {
     let scene = ctx.scene;
     let p = ray.origin + hit.t * ray.dir;
@@ -29,7 +41,20 @@ pub fn surface_at(ctx: &TraceContext, ray: &Ray, hit: &Hit) -> Surface {
             let p_surface = if robust { sphere_surface_point(p, c, f64::from(s.center_radius[3]), ng) } else { p };
             let uv = if textures { planar_uv(p, ng) } else { DVec2::ZERO };
             let (material, object_id, uv_origin) = (s.material, s.object_id, uv_origin_at(ng));
-            Surface { p, p_surface, ng, ns: ng, uv, uv_origin, material, object_id, prim: hit.prim, index: hit.index }
+            let colour = DVec3::ONE;
+            Surface {
+                p,
+                p_surface,
+                ng,
+                ns: ng,
+                uv,
+                uv_origin,
+                colour,
+                material,
+                object_id,
+                prim: hit.prim,
+                index: hit.index,
+            }
         }
         Prim::Plane => {
             let pl = &scene.planes[hit.index as usize];
@@ -37,7 +62,20 @@ pub fn surface_at(ctx: &TraceContext, ray: &Ray, hit: &Hit) -> Surface {
             let p_surface = if robust { p - (ng.dot(p) - f64::from(pl.normal_offset[3])) * ng } else { p };
             let uv = if textures { planar_uv(p, ng) } else { DVec2::ZERO };
             let (material, object_id, uv_origin) = (pl.material, pl.object_id, uv_origin_at(ng));
-            Surface { p, p_surface, ng, ns: ng, uv, uv_origin, material, object_id, prim: hit.prim, index: hit.index }
+            let colour = DVec3::ONE;
+            Surface {
+                p,
+                p_surface,
+                ng,
+                ns: ng,
+                uv,
+                uv_origin,
+                colour,
+                material,
+                object_id,
+                prim: hit.prim,
+                index: hit.index,
+            }
         }
         Prim::Triangle => {
             let tri = &scene.triangles[hit.index as usize];
@@ -47,9 +85,23 @@ pub fn surface_at(ctx: &TraceContext, ray: &Ray, hit: &Hit) -> Surface {
             let p_surface = if robust { (1.0 - hit.bu - hit.bv) * v0 + hit.bu * v1 + hit.bv * v2 } else { p };
             let uv = if textures { triangle_uv(scene, tri, hit.bu, hit.bv, p, ng) } else { DVec2::ZERO };
             let uv_origin = if textures { triangle_uv_origin(scene, tri, ng) } else { UV_MESH };
+            let colour =
+                if ctx.has(feature::VERTEX_COLOURS) { triangle_colour(ctx, tri, hit.bu, hit.bv) } else { DVec3::ONE };
             let mesh = &scene.meshes[tri.mesh as usize];
             let (material, object_id) = (mesh.material, mesh.object_id);
-            Surface { p, p_surface, ng, ns, uv, uv_origin, material, object_id, prim: hit.prim, index: hit.index }
+            Surface {
+                p,
+                p_surface,
+                ng,
+                ns,
+                uv,
+                uv_origin,
+                colour,
+                material,
+                object_id,
+                prim: hit.prim,
+                index: hit.index,
+            }
         }
     }
 }

@@ -1,7 +1,10 @@
 //! What the tracers rely on in a flat scene: known tags, indices in range, finite numbers.
 
 // What the parent module declares for its children.
-use super::{EpsilonMode, Filter, FlatScene, LightTags, MESH_HAS_NORMALS, MESH_HAS_UVS, NO_TEXTURE, UnknownTag, Wrap};
+use super::{
+    EpsilonMode, Filter, FlatScene, LightTags, MESH_HAS_COLOURS, MESH_HAS_NORMALS, MESH_HAS_UVS, NO_TEXTURE,
+    UnknownTag, Wrap,
+};
 
 impl FlatScene {
     /// Decodes every stored tag the tracers switch on (the ε strategy, each light's kind,
@@ -32,6 +35,10 @@ impl FlatScene {
         let uvs = self.meshes.iter().any(|m| m.flags & MESH_HAS_UVS != 0);
         if uvs && self.uvs.len() != vertices {
             return Err(UnknownTag { what: "texture coordinate count (one per vertex)", value: self.uvs.len() as u32 });
+        }
+        let colours = self.meshes.iter().any(|m| m.flags & MESH_HAS_COLOURS != 0);
+        if colours && self.colours.len() != vertices {
+            return Err(UnknownTag { what: "vertex colour count (one per vertex)", value: self.colours.len() as u32 });
         }
         for m in &self.materials {
             for t in [m.diffuse_texture, m.emission_texture] {
@@ -90,6 +97,7 @@ impl FlatScene {
         let v = self.vertices.iter();
         let n = self.normals.iter();
         let uv = self.uvs.iter();
+        let colours = self.colours.iter();
         let tx = self.textures.iter().map(|t| [t.transform_u, t.transform_v].concat());
         let texels = self.texels.iter();
         // Generic over the item so that the large arrays are scanned in place, not copied.
@@ -104,6 +112,7 @@ impl FlatScene {
             .or_else(|| first_bad("vertices", v))
             .or_else(|| first_bad("normals", n))
             .or_else(|| first_bad("uvs", uv))
+            .or_else(|| first_bad("colours", colours))
             .or_else(|| first_bad("textures", tx))
             .or_else(|| first_bad("texels", texels))
     }

@@ -29,6 +29,7 @@ impl FlatScene {
         part("vertices", bytemuck::cast_slice(&self.vertices));
         part("normals", bytemuck::cast_slice(&self.normals));
         part("uvs", bytemuck::cast_slice(&self.uvs));
+        part("colours", bytemuck::cast_slice(&self.colours));
         part("meshes", bytemuck::cast_slice(&self.meshes));
         part("textures", bytemuck::cast_slice(&self.textures));
         part("texels", bytemuck::cast_slice(&self.texels));

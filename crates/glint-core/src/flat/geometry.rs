@@ -2,8 +2,8 @@
 
 // What the parent module declares for its children.
 use super::{
-    Arc, BvhNodes, DVec3, GpuMesh, GpuPlane, GpuSphere, GpuTriangle, LeafCorners, MESH_HAS_NORMALS, MESH_HAS_UVS,
-    MeshDesc, ObjectDesc, PlaneDesc, SceneDesc, SphereDesc, bvh, origin_power, vec4,
+    Arc, BvhNodes, DVec3, GpuMesh, GpuPlane, GpuSphere, GpuTriangle, LeafCorners, MESH_HAS_COLOURS, MESH_HAS_NORMALS,
+    MESH_HAS_UVS, MeshDesc, ObjectDesc, PlaneDesc, SceneDesc, SphereDesc, bvh, origin_power, vec4,
 };
 use glint_scene::storage_origin;
 use glint_types::layout::WORLD_FRAME;
@@ -17,6 +17,7 @@ pub(super) struct Primitives {
     pub(super) vertices: Vec<[f32; 4]>,
     pub(super) normals: Vec<[f32; 4]>,
     pub(super) uvs: Vec<[f32; 2]>,
+    pub(super) colours: Vec<[f32; 4]>,
     pub(super) meshes: Vec<GpuMesh>,
     pub(super) object_names: Vec<String>,
     /// The origin the positions are stored relative to (`glint_scene::storage_origin`).
@@ -38,6 +39,7 @@ impl PartialEq for GeometryId {
             && Arc::ptr_eq(&a.vertices, &b.vertices)
             && Arc::ptr_eq(&a.normals, &b.normals)
             && Arc::ptr_eq(&a.uvs, &b.uvs)
+            && Arc::ptr_eq(&a.colours, &b.colours)
             && Arc::ptr_eq(&a.meshes, &b.meshes)
             && a.bvh_nodes.ptr_eq(&b.bvh_nodes)
             && Arc::ptr_eq(&a.bvh_prims, &b.bvh_prims)
@@ -54,6 +56,7 @@ pub(super) struct Geometry {
     pub(super) vertices: Arc<[[f32; 4]]>,
     pub(super) normals: Arc<[[f32; 4]]>,
     pub(super) uvs: Arc<[[f32; 2]]>,
+    pub(super) colours: Arc<[[f32; 4]]>,
     pub(super) meshes: Arc<[GpuMesh]>,
     pub(super) object_names: Arc<[String]>,
     pub(super) bvh_nodes: BvhNodes,
@@ -77,6 +80,7 @@ impl Geometry {
             vertices,
             normals: p.normals.into(),
             uvs: p.uvs.into(),
+            colours: p.colours.into(),
             meshes: p.meshes.into(),
             object_names: p.object_names.into(),
             bvh_nodes: BvhNodes::new(&bvh.nodes),
@@ -137,6 +141,9 @@ pub(super) fn flat_primitives(desc: &SceneDesc, material_names: &[String]) -> Pr
     if out.meshes.iter().all(|m| m.flags & MESH_HAS_UVS == 0) {
         out.uvs = Vec::new();
     }
+    if out.meshes.iter().all(|m| m.flags & MESH_HAS_COLOURS == 0) {
+        out.colours = Vec::new();
+    }
     out
 }
 
@@ -145,7 +152,7 @@ pub(super) fn flat_primitives(desc: &SceneDesc, material_names: &[String]) -> Pr
 /// rounding noise, and one on a line through the eye would be "hit" by a quarter of all camera
 /// rays, with a 0/0 normal.
 fn mesh_triangles(mesh: &MeshDesc, material: u32, object_id: u32, out: &mut Primitives) {
-    let MeshDesc { vertices, triangles: tris, normals, uvs, .. } = mesh;
+    let MeshDesc { vertices, triangles: tris, normals, uvs, colours, .. } = mesh;
     let first = out.vertices.len() as u32;
     out.vertices.extend(vertices.iter().map(|&v| vec4(DVec3::from(v) - out.origin, 1.0)));
     // Every vertex gets a normal slot, so that one index reaches both; zero without normals.
@@ -157,11 +164,17 @@ fn mesh_triangles(mesh: &MeshDesc, material: u32, object_id: u32, out: &mut Prim
         Some(uv) => out.uvs.extend(uv.iter().map(|&[u, v]| [u as f32, v as f32])),
         None => out.uvs.extend(std::iter::repeat_n([0.0; 2], vertices.len())),
     }
+    match colours {
+        Some(c) => out.colours.extend(c.iter().map(|&[r, g, b]| [r as f32, g as f32, b as f32, 1.0])),
+        None => out.colours.extend(std::iter::repeat_n([1.0; 4], vertices.len())),
+    }
     let mesh_index = out.meshes.len() as u32;
     out.meshes.push(GpuMesh {
         material,
         object_id,
-        flags: if normals.is_some() { MESH_HAS_NORMALS } else { 0 } | if uvs.is_some() { MESH_HAS_UVS } else { 0 },
+        flags: if normals.is_some() { MESH_HAS_NORMALS } else { 0 }
+            | if uvs.is_some() { MESH_HAS_UVS } else { 0 }
+            | if colours.is_some() { MESH_HAS_COLOURS } else { 0 },
         pad: 0,
     });
     let stored = &out.vertices;

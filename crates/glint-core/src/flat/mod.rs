@@ -14,8 +14,8 @@ use glint_scene::{
 };
 use glint_types::layout::{
     GpuCamera, GpuLight, GpuMaterial, GpuMesh, GpuPlane, GpuSphere, GpuTexture, GpuTriangle, INTEGRATOR_PATH,
-    LIGHT_CASTS_SHADOWS, MESH_HAS_NORMALS, MESH_HAS_UVS, NO_CONE_VERSIN, NO_TEXTURE, SceneHeader, UnknownTag, feature,
-    origin_power,
+    LIGHT_CASTS_SHADOWS, MESH_HAS_COLOURS, MESH_HAS_NORMALS, MESH_HAS_UVS, NO_CONE_VERSIN, NO_TEXTURE, SceneHeader,
+    UnknownTag, feature, origin_power,
 };
 
 /// A scene in the GPU-ready layout, plus the names the UI and reports show. The geometry (the
@@ -40,6 +40,9 @@ pub struct FlatScene {
     /// Texture coordinates beside `vertices` (zero for a mesh without them), or empty when no
     /// mesh has them.
     pub uvs: Arc<[[f32; 2]]>,
+    /// Linear vertex colours beside `vertices` (rgb, w = 1; white for a mesh without them), or
+    /// empty when no mesh has them.
+    pub colours: Arc<[[f32; 4]]>,
     pub meshes: Arc<[GpuMesh]>,
     /// The texture table the materials' texture indices point into.
     pub textures: Vec<GpuTexture>,
@@ -116,6 +119,7 @@ impl FlatScene {
             vertices: self.vertices.clone(),
             normals: self.normals.clone(),
             uvs: self.uvs.clone(),
+            colours: self.colours.clone(),
             meshes: self.meshes.clone(),
             object_names: self.object_names.clone(),
             bvh_nodes: self.bvh_nodes.clone(),
@@ -144,6 +148,7 @@ impl FlatScene {
             vertices: geometry.vertices,
             normals: geometry.normals,
             uvs: geometry.uvs,
+            colours: geometry.colours,
             meshes: geometry.meshes,
             textures: table.textures,
             texels: table.texels,
@@ -246,6 +251,9 @@ impl FlatScene {
         }
         if !self.triangles.is_empty() {
             f |= feature::TRIANGLES;
+            if self.meshes.iter().any(|m| m.flags & MESH_HAS_COLOURS != 0) {
+                f |= feature::VERTEX_COLOURS;
+            }
         }
         if self.header.spp > 1 {
             f |= feature::JITTER;

@@ -47,6 +47,15 @@ pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
             problem: format!("{polylines} polyline statement(s) left out: lines are not traced"),
         });
     }
+    let (bytes, partial_colours) = obj_text::without_partial_vertex_colours(&bytes);
+    if let Some((coloured, all)) = partial_colours {
+        out.warnings.push(FieldIssue {
+            field: "v".into(),
+            problem: format!(
+                "vertex colours left out: {coloured} of the {all} vertices have one (`v x y z r g b`), the rest none"
+            ),
+        });
+    }
     // Checked as the file wrote them: after a node transform one bad number spreads to every
     // component, and the line is lost.
     if let Some((line, reason)) = non_finite_number(&bytes) {
@@ -145,6 +154,9 @@ pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
         // from the top row.
         let uvs = (mesh.texcoords.len() / 2 == vertices.len() && !mesh.texcoords.is_empty())
             .then(|| mesh.texcoords.chunks_exact(2).map(|t| [t[0], 1.0 - t[1]]).collect::<Vec<_>>());
+        // As the file wrote them, linear as its Kd (multiplied by it).
+        let colours = (!mesh.vertex_color.is_empty() && mesh.vertex_color.len() == mesh.positions.len())
+            .then(|| mesh.vertex_color.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect::<Vec<_>>());
         let material = match mesh.material_id.and_then(|i| names.get(i)) {
             Some(name) => name.clone(),
             None => {
@@ -152,7 +164,7 @@ pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
                 DEFAULT_MATERIAL.into()
             }
         };
-        out.meshes.push(MeshDesc { vertices, triangles, normals, uvs, material, name: model.name.clone() });
+        out.meshes.push(MeshDesc { vertices, triangles, normals, uvs, colours, material, name: model.name.clone() });
     }
     if out.meshes.is_empty() {
         return Err(ObjError::Empty { file: path.to_owned() });
@@ -317,6 +329,23 @@ mod tests {
     }
 
     const QUAD: &str = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n";
+
+    #[test]
+    fn vertex_colours_are_read_as_written_and_a_partial_set_is_left_out_with_a_warning() {
+        let dir = tempfile::tempdir().unwrap();
+        let whole = "v 0 0 0 1 0 0\nv 1 0 0 0 0.5 0\nv 1 1 0 0 0 2\nv 0 1 0 1 1 1\nf 1 2 3 4\n";
+        let m = load_obj(&write(dir.path(), "whole.obj", whole)).unwrap();
+        let expected = [[1.0, 0.0, 0.0], [0.0, 0.5, 0.0], [0.0, 0.0, 2.0], [1.0, 1.0, 1.0]];
+        assert_eq!(m.meshes[0].colours.as_deref(), Some(&expected[..]));
+        assert!(m.warnings.iter().all(|w| w.field != "v"), "{:?}", m.warnings);
+        // Two of four: tobj would give the third vertex the fourth's colour, or refuse it.
+        let partial = "v 0 0 0 1 0 0\nv 1 0 0\nv 1 1 0 0 0 1\nv 0 1 0\nf 1 2 3 4\n";
+        let m = load_obj(&write(dir.path(), "partial.obj", partial)).unwrap();
+        assert_eq!((m.meshes[0].colours.as_ref(), m.meshes[0].vertices.len()), (None, 4));
+        let warned = m.warnings.iter().find(|w| w.field == "v").expect("a warning");
+        assert!(warned.problem.contains("2 of the 4 vertices"), "{}", warned.problem);
+        assert!(load_obj(&write(dir.path(), "quad.obj", QUAD)).unwrap().meshes[0].colours.is_none());
+    }
 
     #[test]
     fn a_non_finite_number_is_reported_at_its_line_before_any_transform() {

@@ -79,6 +79,36 @@ pub(super) fn without_polylines(text: &[u8]) -> (Cow<'_, [u8]>, usize) {
     (out, count)
 }
 
+/// OBJ text whose vertex colours (`v x y z r g b`) are left out when only some vertices have
+/// them, and then how many of how many `v` lines had them. tobj would pair the colours with the
+/// wrong vertices, or refuse a face of an uncoloured one; Assimp and three.js likewise drop a
+/// partial set. A file where every vertex or none has a colour is returned as it is.
+pub(super) fn without_partial_vertex_colours(text: &[u8]) -> (Cow<'_, [u8]>, Option<(usize, usize)>) {
+    let words = |raw: &[u8]| -> Option<usize> {
+        let line = std::str::from_utf8(raw).ok()?;
+        let mut w = line.split_whitespace();
+        (w.next() == Some("v")).then(|| w.count())
+    };
+    let (mut coloured, mut all) = (0, 0);
+    for raw in text.split(|&b| b == b'\n') {
+        if let Some(n) = words(raw) {
+            all += 1;
+            coloured += usize::from(n == 6);
+        }
+    }
+    if coloured == 0 || coloured == all {
+        return (Cow::Borrowed(text), None);
+    }
+    let out = rewrite_lines(text, |raw| {
+        (words(raw) == Some(6)).then(|| {
+            let line = std::str::from_utf8(raw).unwrap_or_default();
+            let position: Vec<&str> = line.split_whitespace().take(4).collect();
+            position.join(" ").into_bytes()
+        })
+    });
+    (out, Some((coloured, all)))
+}
+
 /// `text` with the lines `replace` gives a replacement for replaced (the line breaks kept, so
 /// every line keeps its number); borrowed as it is when there are none. One pass: the copy
 /// starts at the first replaced line.
@@ -164,6 +194,18 @@ mod tests {
         assert_eq!(std::str::from_utf8(&mtl).unwrap(), format!("newmtl {NAMELESS}\nKd 1 1 1\n"));
         let named = b"usemtl red\nf 1 2 3\n";
         assert!(matches!(material_statements(named, &["usemtl"]), Cow::Borrowed(_)), "nothing to rewrite");
+    }
+
+    #[test]
+    fn a_partial_set_of_vertex_colours_is_left_out_and_a_whole_one_kept() {
+        let (out, counted) = without_partial_vertex_colours(b"v 0 0 0 1 0 0\nv 1 0 0\n  v 0 1 0 0 0 1\r\nf 1 2 3\n");
+        assert_eq!(
+            (std::str::from_utf8(&out).unwrap(), counted),
+            ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", Some((2, 3)))
+        );
+        let whole = b"v 0 0 0 1 0 0\nv 1 0 0 0 1 0\nv 0 1 0 0 0 1\nf 1 2 3\n";
+        assert!(matches!(without_partial_vertex_colours(whole), (Cow::Borrowed(_), None)));
+        assert!(matches!(without_partial_vertex_colours(b"v 0 0 0 2\nv 1 0 0\n"), (Cow::Borrowed(_), None)));
     }
 
     #[test]

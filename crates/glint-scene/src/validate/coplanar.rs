@@ -484,6 +484,7 @@ mod tests {
             triangles,
             normals: None,
             uvs: None,
+            colours: None,
             material: "m".into(),
             name: name.into(),
         })

@@ -2,8 +2,8 @@
 
 // What the parent module declares for its children.
 use super::{
-    DVec3, FieldIssue, MeshDesc, ObjectDesc, PlaneDesc, Report, SceneDesc, SphereDesc, cross, norm, ranges, shorten,
-    sub, validate_light,
+    DVec3, FieldIssue, MeshDesc, ObjectDesc, PlaneDesc, Report, Rgb, SceneDesc, SphereDesc, cross, norm, ranges,
+    shorten, sub, validate_light,
 };
 
 /// `origin`: the scene's storage origin (`storage_origin`), which mesh vertices are stored
@@ -77,7 +77,7 @@ pub(super) fn validate_object(path: &str, o: &ObjectDesc, scene: &SceneDesc, ori
 }
 
 fn validate_mesh(path: &str, mesh: &MeshDesc, origin: [f64; 3], r: &mut Report) {
-    let MeshDesc { vertices, triangles, normals, uvs, .. } = mesh;
+    let MeshDesc { vertices, triangles, normals, uvs, colours, .. } = mesh;
 
     if triangles.is_empty() {
         r.error(format!("{path}.triangles"), "a mesh needs at least one triangle [i, j, k]");
@@ -123,6 +123,15 @@ fn validate_mesh(path: &str, mesh: &MeshDesc, origin: [f64; 3], r: &mut Report) 
             for (axis, v) in ["u", "v"].iter().zip(uv) {
                 r.finite_in(&format!("{path}.uvs[{i}].{axis}"), *v, ranges::COORD);
             }
+        }
+    }
+    if let Some(colours) = colours {
+        if colours.len() != n {
+            r.error(format!("{path}.colours"), format!("has {} entries; it needs one per vertex ({n})", colours.len()));
+        }
+        let usable = |c: &[f64; 3]| c.iter().all(|&v| ranges::COLOUR.contains(v));
+        for (i, c) in colours.iter().enumerate().filter(|(_, c)| !usable(c)) {
+            r.colour(&format!("{path}.colours[{i}]"), Rgb(*c));
         }
     }
     if let Some(normals) = normals.as_ref().filter(|ns| ns.len() == n) {
@@ -200,6 +209,7 @@ mod tests {
             triangles: vec![[0, 1, 2], [0, 1, 3]],
             normals: None,
             uvs: None,
+            colours: None,
             material: "m".into(),
             name: String::new(),
         }

@@ -30,6 +30,8 @@ pub(super) enum Expect {
     Joints,
     /// VEC4 of FLOAT, or normalised UNSIGNED_BYTE / UNSIGNED_SHORT (WEIGHTS_n).
     Weights,
+    /// VEC3 or VEC4 of FLOAT, or of normalised UNSIGNED_BYTE / UNSIGNED_SHORT (COLOR_n).
+    Colour,
 }
 
 impl Expect {
@@ -45,6 +47,10 @@ impl Expect {
                 dims == Dimensions::Vec4
                     && (ty == DataType::F32 || (normalized && matches!(ty, DataType::U8 | DataType::U16)))
             }
+            Self::Colour => {
+                matches!(dims, Dimensions::Vec3 | Dimensions::Vec4)
+                    && (ty == DataType::F32 || (normalized && matches!(ty, DataType::U8 | DataType::U16)))
+            }
         }
     }
 
@@ -56,6 +62,7 @@ impl Expect {
             Self::Mat4F32 => "MAT4 of FLOAT",
             Self::Joints => "VEC4 of UNSIGNED_BYTE or UNSIGNED_SHORT",
             Self::Weights => "VEC4 of FLOAT or normalized UNSIGNED_BYTE/UNSIGNED_SHORT",
+            Self::Colour => "VEC3 or VEC4 of FLOAT or normalized UNSIGNED_BYTE/UNSIGNED_SHORT",
         }
     }
 }
@@ -228,6 +235,15 @@ pub(super) fn read_joints(accessor: &Accessor<'_>, buffers: &Buffers) -> Result<
 /// WEIGHTS_n: four joint weights a vertex (normalised integers mapped to [0, 1]).
 pub(super) fn read_weights(accessor: &Accessor<'_>, buffers: &Buffers) -> Result<Vec<[f64; 4]>, String> {
     read::<4>(accessor, buffers, Expect::Weights)
+}
+
+/// COLOR_n: linear RGB, from VEC3 or VEC4 of FLOAT or normalised integers. A VEC4's alpha is
+/// left out, as baseColorFactor's is: Glint's surfaces are opaque.
+pub(super) fn read_colours(accessor: &Accessor<'_>, buffers: &Buffers) -> Result<Vec<[f64; 3]>, String> {
+    if accessor.dimensions() == Dimensions::Vec4 {
+        return Ok(read::<4>(accessor, buffers, Expect::Colour)?.into_iter().map(|[r, g, b, _]| [r, g, b]).collect());
+    }
+    read::<3>(accessor, buffers, Expect::Colour)
 }
 
 /// Indices as u32.

@@ -338,6 +338,31 @@ fn read_primitive(
             Some(uv)
         }
     };
+    let colours = match primitive.get(&::gltf::Semantic::Colors(0)) {
+        None => None,
+        Some(acc) => {
+            let c = accessor::read_colours(&acc, buffers).map_err(|p| (attr("COLOR_0"), p))?;
+            if let Some((k, channel)) = c
+                .iter()
+                .enumerate()
+                .find_map(|(k, c)| c.iter().position(|v| !(v.is_finite() && *v >= 0.0)).map(|a| (k, a)))
+            {
+                return Err((
+                    attr("COLOR_0"),
+                    format!(
+                        "accessors[{}] element {k}: component {} = {}; vertex colours must be finite and at least 0",
+                        acc.index(),
+                        ["r", "g", "b"][channel],
+                        c[k][channel]
+                    ),
+                ));
+            }
+            if c.len() != vertices.len() {
+                return Err((attr("COLOR_0"), format!("has {} elements, POSITION {}", c.len(), vertices.len())));
+            }
+            Some(c)
+        }
+    };
     let indices: Vec<u32> = match primitive.indices() {
         Some(acc) => accessor::read_indices(&acc, buffers).map_err(|p| (format!("{path}.indices"), p))?,
         None => (0..u32::try_from(vertices.len()).unwrap_or(u32::MAX)).collect(),
@@ -356,7 +381,7 @@ fn read_primitive(
     if triangles.is_empty() {
         return Ok(None);
     }
-    Ok(Some(MeshDesc { vertices, triangles, normals, uvs, material, name }))
+    Ok(Some(MeshDesc { vertices, triangles, normals, uvs, colours, material, name }))
 }
 
 /// The triangles of a primitive's index list in its mode (glTF 2.0 §3.7.2.1: strips alternate
