@@ -351,6 +351,63 @@ fn colour_0_becomes_vertex_colours_from_floats_bytes_and_shorts_its_alpha_left_o
 }
 
 #[test]
+fn an_unlit_material_shows_its_base_colour_as_emission_whatever_the_light() {
+    let dir = TempDir::new("gltf-unlit");
+    let mut f = Fixture::quad();
+    f.json["extensionsUsed"] = json!(["KHR_materials_unlit"]);
+    f.json["extensionsRequired"] = json!(["KHR_materials_unlit"]);
+    f.json["materials"] = json!([{
+        "name": "flat",
+        "pbrMetallicRoughness": { "baseColorFactor": [0.2, 0.4, 0.6, 1.0], "metallicFactor": 1.0, "roughnessFactor": 0.0 },
+        "emissiveFactor": [1.0, 0.0, 0.0],
+        "extensions": { "KHR_materials_unlit": {} }
+    }]);
+    let path = f.write_glb(&dir, "unlit");
+    let m = load(&path);
+    let mat = &m.materials["flat"];
+    let black = Rgb::splat(0.0);
+    assert_eq!((mat.ka, mat.kd, mat.ks, mat.kr, mat.kt), (black, black, black, black, black), "no reflection term");
+    assert_eq!(
+        mat.emission,
+        Rgb([0.2, 0.4, 0.6]),
+        "E_m is the base colour; metallic, roughness and emissive are ignored"
+    );
+    assert!(m.warnings.iter().all(|w| w.field != "extensionsUsed"), "read, not 'unsupported': {:?}", m.warnings);
+    // In the lab scene, under its default key and fill lights: every pixel of the quad is E_m.
+    let loaded = load_scene_with(path.to_str().unwrap(), &LoadOptions::default()).unwrap();
+    let flat = glint_core::FlatScene::build(&loaded.desc, &loaded.desc.render);
+    let image = super::render::render_cpu_checked(&flat, 0, true).image;
+    let quad =
+        loaded.desc.objects.iter().position(|o| matches!(o, glint_scene::ObjectDesc::Model(_))).expect("the model")
+            as u32;
+    let on_quad: Vec<_> = image.pixels.iter().zip(&image.first_hit).filter(|(_, h)| **h == quad).collect();
+    assert!(on_quad.len() > 100, "only {} pixels see the quad", on_quad.len());
+    // E_m as both tracers store it, in f32.
+    let stored = [0.2_f32, 0.4, 0.6].map(f64::from);
+    for (p, _) in on_quad {
+        assert_eq!(p.to_array(), stored, "an unlit pixel is its base colour");
+    }
+    // Its base texture is the emission texture; vertex colours, which multiply k_a and k_d only,
+    // are left out with a warning.
+    f.json["images"] = json!([{ "uri": "tex.png" }]);
+    f.json["textures"] = json!([{ "source": 0 }]);
+    f.json["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"] = json!({ "index": 0 });
+    glint_test_support::texture::write_png(&dir.join("tex.png"), 1, 1, &[255, 128, 0, 255]);
+    let colours = f.push_f32(&[1.0; 12]);
+    f.json["accessors"]
+        .as_array_mut()
+        .unwrap()
+        .push(json!({ "bufferView": colours, "componentType": 5126, "count": 4, "type": "VEC3" }));
+    f.json["meshes"][0]["primitives"][0]["attributes"]["COLOR_0"] = json!(3);
+    let m = load(&f.write_gltf(&dir, "unlit-textured", BufferAt::DataUri));
+    let mat = &m.materials["flat"];
+    assert!(mat.texture.is_none() && mat.emission_texture.is_some(), "the base texture is E_m's");
+    assert!(m.meshes[0].colours.is_none());
+    let warned = m.warnings.iter().find(|w| w.field.ends_with("attributes.COLOR_0")).expect("COLOR_0 warned");
+    assert!(warned.problem.contains("unlit"), "{}", warned.problem);
+}
+
+#[test]
 fn strips_and_fans_are_traced_points_and_lines_skipped_with_a_warning() {
     let dir = TempDir::new("gltf-modes");
     let mut f = Fixture::quad();

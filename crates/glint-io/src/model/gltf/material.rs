@@ -27,6 +27,21 @@ fn lerp(a: f64, b: f64, t: f64) -> f64 {
 /// A material's coefficients, and what of it could not be mapped as warnings under `field`.
 pub(super) fn map_material(m: &::gltf::Material<'_>, field: &str, warnings: &mut Vec<FieldIssue>) -> MaterialDesc {
     let mut warn = |problem: String| warnings.push(FieldIssue { field: field.to_string(), problem });
+    if m.unlit() {
+        // KHR_materials_unlit: the surface shows its base colour whatever the light, which in
+        // the seed's model is an emitter with no reflection terms. The base texture becomes
+        // the emission texture (`load_gltf`); every other property is ignored, as the
+        // extension asks.
+        let b = m.pbr_metallic_roughness().base_color_factor();
+        let black = Rgb::splat(0.0);
+        return MaterialDesc {
+            ka: black,
+            kd: black,
+            ks: black,
+            emission: Rgb([b[0], b[1], b[2]].map(widen)),
+            ..MaterialDesc::default()
+        };
+    }
     let (base, f0, roughness) = match m.pbr_specular_glossiness() {
         Some(sg) => {
             let d = sg.diffuse_factor();

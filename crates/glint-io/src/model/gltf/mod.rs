@@ -89,10 +89,15 @@ pub fn load_gltf(path: &Path, options: &ImportOptions) -> Result<Model, GltfErro
         let mut uv_set = None;
         if let Some(info) = base {
             let (t, set) = texture::texture(&info, &buffers, path, &mut images).map_err(|(p, e)| at(p, e))?;
-            desc.texture = Some(t);
+            // An unlit material's base colour is its emission (`material::map_material`).
+            if m.unlit() {
+                desc.emission_texture = Some(t);
+            } else {
+                desc.texture = Some(t);
+            }
             uv_set = Some(set);
         }
-        if let Some(info) = m.emissive_texture() {
+        if let Some(info) = m.emissive_texture().filter(|_| !m.unlit()) {
             let (t, set) = texture::texture(&info, &buffers, path, &mut images).map_err(|(p, e)| at(p, e))?;
             if uv_set.is_some_and(|s| s != set) {
                 model.warnings.push(FieldIssue {
@@ -180,7 +185,15 @@ pub fn load_gltf(path: &Path, options: &ImportOptions) -> Result<Model, GltfErro
                             .into(),
                     });
                 }
-                if let Some(desc) = desc {
+                if let Some(mut desc) = desc {
+                    if primitive.material().unlit() && desc.colours.take().is_some() {
+                        model.warnings.push(FieldIssue {
+                            field: format!("{prim_path}.attributes.COLOR_0"),
+                            problem: "left out: its material is unlit, whose colour is E_m, and vertex colours \
+                                      multiply k_a and k_d only"
+                                .into(),
+                        });
+                    }
                     model.meshes.push(desc);
                 }
             }
