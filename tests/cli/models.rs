@@ -46,10 +46,19 @@ fn obj_models_render_on_both_backends_and_agree() {
 }
 
 #[test]
-fn an_obj_with_points_or_lines_only_is_a_clear_error() {
+fn an_obj_with_points_or_lines_only_or_a_malformed_number_is_a_clear_error() {
     let dir = TempDir::new("models-bad");
-    for name in ["OBJ/point_cloud.obj", "OBJ/testpoints.obj", "OBJ/testline.obj"] {
-        let expected = "no triangles (points and lines are not traced)";
+    let no_triangles = "no triangles (points and lines are not traced)";
+    for (name, expected) in [
+        ("OBJ/point_cloud.obj", no_triangles),
+        ("OBJ/testpoints.obj", no_triangles),
+        ("OBJ/testline.obj", no_triangles),
+        // tobj's own message was "position parse error".
+        (
+            "OBJ/number_formats.obj",
+            "number_formats.obj:11: invalid OBJ (`v 1e+2 2.e+1 3.1+e2`: vertex position component z: `3.1+e2` is not a number)",
+        ),
+    ] {
         let Some(path) = model(name) else { return };
         let run = glint(&dir, ["render".into(), path.into_os_string(), "-o".into(), dir.join("x.png").into()]);
         let stderr = text(&run.stderr);

@@ -58,7 +58,7 @@ pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
     }
     // Checked as the file wrote them: after a node transform one bad number spreads to every
     // component, and the line is lost.
-    if let Some((line, reason)) = non_finite_number(&bytes) {
+    if let Some((line, reason)) = bad_number(&bytes) {
         return Err(parse_error(Some(line), reason));
     }
     // Polygons come whole: `polygon::triangulate` cuts them (tobj's fans overlap on concave ones).
@@ -221,24 +221,40 @@ fn unknown_materials(uses: &[obj_text::UseMaterial], materials: &[tobj::Material
     out
 }
 
-/// The first `v`, `vt` or `vn` line (1-based) holding a number that is not a finite f32
-/// (`nan`, `inf`, or a decimal beyond f32's range, which the GPU tracer cannot hold even after
-/// rebasing), and what is wrong with it. Words that are not numbers are left to tobj, which
-/// refuses them.
-fn non_finite_number(bytes: &[u8]) -> Option<(usize, String)> {
+/// The first `v`, `vt` or `vn` line (1-based) holding a word that is not a number (tobj says
+/// only "position parse error", and drops a colour it cannot read) or a number that is not a
+/// finite f32 (`nan`, `inf`, or a decimal beyond f32's range, which the GPU tracer cannot hold
+/// even after rebasing), and what is wrong with it.
+fn bad_number(bytes: &[u8]) -> Option<(usize, String)> {
     for (n, raw) in bytes.split(|&b| b == b'\n').enumerate() {
         let Ok(line) = std::str::from_utf8(raw) else { continue };
         let mut words = line.split_whitespace();
-        let (what, components): (&str, &[&str]) = match words.next() {
-            Some("v") => ("vertex position", &["x", "y", "z", "r", "g", "b"]),
-            Some("vt") => ("texture coordinate", &["u", "v", "w"]),
-            Some("vn") => ("normal", &["x", "y", "z"]),
+        // A `v` line's fourth number is w, or the first of a colour's three.
+        let components: &[(&str, &str)] = match words.next() {
+            Some("v") if words.clone().count() == 4 => &[
+                ("vertex position", "x"),
+                ("vertex position", "y"),
+                ("vertex position", "z"),
+                ("vertex position", "w"),
+            ],
+            Some("v") => &[
+                ("vertex position", "x"),
+                ("vertex position", "y"),
+                ("vertex position", "z"),
+                ("vertex colour", "r"),
+                ("vertex colour", "g"),
+                ("vertex colour", "b"),
+            ],
+            Some("vt") => &[("texture coordinate", "u"), ("texture coordinate", "v"), ("texture coordinate", "w")],
+            Some("vn") => &[("normal", "x"), ("normal", "y"), ("normal", "z")],
             _ => continue,
         };
         for (k, word) in words.enumerate() {
-            let Ok(value) = word.parse::<f32>() else { continue };
+            let (what, name) = components.get(k).copied().unwrap_or((components[0].0, "extra"));
+            let Ok(value) = word.parse::<f32>() else {
+                return Some((n + 1, format!("`{}`: {what} component {name}: `{word}` is not a number", line.trim())));
+            };
             if !value.is_finite() {
-                let name = components.get(k).copied().unwrap_or("extra");
                 let problem = if word.parse::<f64>().is_ok_and(f64::is_finite) {
                     format!("{word} is beyond f32's range (±{:e})", f32::MAX)
                 } else {
@@ -348,7 +364,7 @@ mod tests {
     }
 
     #[test]
-    fn a_non_finite_number_is_reported_at_its_line_before_any_transform() {
+    fn a_word_that_is_no_finite_number_is_reported_at_its_line_before_any_transform() {
         let dir = tempfile::tempdir().unwrap();
         for (text, expect) in [
             (
@@ -364,9 +380,19 @@ mod tests {
                 ":4: invalid OBJ (`vt 0 inf`: texture coordinate component v: inf",
             ),
             ("v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 -NaN\nf 1 2 3\n", ":4: invalid OBJ (`vn 0 0 -NaN`: normal component z"),
+            // Assimp's number_formats.obj: tobj said only "position parse error".
+            (
+                "v 0 0 0\nv 1 2. 3.0\nv 1e+2 2.e+1 3.1+e2\nf 1 2 3\n",
+                ":3: invalid OBJ (`v 1e+2 2.e+1 3.1+e2`: vertex position component z: `3.1+e2` is not a number)",
+            ),
+            // tobj dropped a colour it could not read, leaving the colours to the wrong vertices.
+            (
+                "v 0 0 0 1 0 0\nv 1 0 0 0 x 0\nv 0 1 0 0 0 1\nf 1 2 3\n",
+                ":2: invalid OBJ (`v 1 0 0 0 x 0`: vertex colour component g: `x` is not a number)",
+            ),
         ] {
             let obj = write(dir.path(), "bad.obj", text);
-            let err = load_obj(&obj).expect_err("a non-finite number is refused").to_string();
+            let err = load_obj(&obj).expect_err("a bad number is refused").to_string();
             assert!(err.contains(expect), "{err}");
             assert_eq!(err.matches("component").count(), 1, "one report, for the component at fault: {err}");
         }
