@@ -552,7 +552,7 @@ pub struct ProbeRecord {
     pub normal: [f32; 4],
     pub emission: [f32; 4],
     pub ambient: [f32; 4],
-    /// k_a and k_d at the hit, after the texture (the material's own without one).
+    /// k_a and k_d at the hit, after the texture and the vertex colour (the material's own without them).
     pub ka: [f32; 4],
     pub kd: [f32; 4],
     pub kr: [f32; 4],

@@ -362,7 +362,7 @@ pub struct Breakdown {
     pub emission: DVec3,
     /// I_a·k_a.
     pub ambient: DVec3,
-    /// k_a and k_d at the hit, after the texture (the material's own without one).
+    /// k_a and k_d at the hit, after the texture and the vertex colour (the material's own without them).
     pub ka: DVec3,
     pub kd: DVec3,
     /// Every light's terms, in light order.
