@@ -254,5 +254,27 @@ fn obj_vertex_colours_colour_the_faces_on_both_backends() {
         }
         let stderr = render_model(&dir, name, &path, &[]);
         assert!(!stderr.contains("vertex colours left out"), "{name}: {stderr}");
+        // The same file without its colours renders grey: the colours reach the image.
+        let coloured = image::open(dir.join("m-cpu.png")).expect("the CPU image").to_rgb8();
+        let grey = dir.join("grey.obj");
+        let stripped: Vec<String> = file
+            .lines()
+            .map(|l| match l.strip_prefix("v ") {
+                Some(rest) => format!("v {}", rest.split_whitespace().take(3).collect::<Vec<_>>().join(" ")),
+                None => l.to_string(),
+            })
+            .collect();
+        std::fs::write(&grey, stripped.join("\n")).expect("written");
+        render_model(&dir, name, &grey, &[]);
+        let plain = image::open(dir.join("m-cpu.png")).expect("the CPU image").to_rgb8();
+        let tinted = |img: &image::RgbImage| {
+            img.pixels().filter(|p| p.0.iter().max().unwrap() - p.0.iter().min().unwrap() > 40).count()
+        };
+        assert!(
+            tinted(&plain) == 0 && tinted(&coloured) > 200,
+            "{name}: {} and {} tinted pixels",
+            tinted(&plain),
+            tinted(&coloured)
+        );
     }
 }

@@ -393,18 +393,28 @@ fn an_unlit_material_shows_its_base_colour_as_emission_whatever_the_light() {
     f.json["textures"] = json!([{ "source": 0 }]);
     f.json["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"] = json!({ "index": 0 });
     glint_test_support::texture::write_png(&dir.join("tex.png"), 1, 1, &[255, 128, 0, 255]);
-    let colours = f.push_f32(&[1.0; 12]);
+    // Not read, so not refused either: a negative channel.
+    let colours = f.push_f32(&[1.0, 1.0, 1.0, -1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0]);
     f.json["accessors"]
         .as_array_mut()
         .unwrap()
         .push(json!({ "bufferView": colours, "componentType": 5126, "count": 4, "type": "VEC3" }));
     f.json["meshes"][0]["primitives"][0]["attributes"]["COLOR_0"] = json!(3);
-    let m = load(&f.write_gltf(&dir, "unlit-textured", BufferAt::DataUri));
+    let textured = f.write_gltf(&dir, "unlit-textured", BufferAt::DataUri);
+    let m = load(&textured);
     let mat = &m.materials["flat"];
     assert!(mat.texture.is_none() && mat.emission_texture.is_some(), "the base texture is E_m's");
     assert!(m.meshes[0].colours.is_none());
     let warned = m.warnings.iter().find(|w| w.field.ends_with("attributes.COLOR_0")).expect("COLOR_0 warned");
     assert!(warned.problem.contains("unlit"), "{}", warned.problem);
+    // Every pixel of the quad is E_m times the texel (sRGB (255, 128, 0), linear (1, 0.2158605, 0)).
+    let loaded = load_scene_with(textured.to_str().unwrap(), &LoadOptions::default()).unwrap();
+    let flat = glint_core::FlatScene::build(&loaded.desc, &loaded.desc.render);
+    let image = super::render::render_cpu_checked(&flat, 0, true).image;
+    let expected = glam::DVec3::from_array(stored) * glam::DVec3::new(1.0, 0.2158605, 0.0);
+    let seen = image.pixels.iter().zip(&image.first_hit).filter(|(_, h)| **h == quad).map(|(p, _)| *p);
+    let worst = seen.map(|p| (p - expected).abs().max_element()).fold(0.0, f64::max);
+    assert!(worst < 1e-6, "an unlit textured pixel is {worst:e} off E_m·T");
 }
 
 #[test]

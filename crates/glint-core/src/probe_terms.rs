@@ -52,10 +52,11 @@ pub fn local_terms(cpu: &Breakdown, gpu: Option<&Breakdown>) -> Vec<Term> {
     let s = |v: f64| DVec3::splat(v);
     let mut out = Vec::new();
     let mut push = |name: String, c: DVec3, g: Option<DVec3>| out.push(Term { name, cpu: c, gpu: g });
-    // The colours after the textures first: where a texture is sampled differently, the terms
-    // it feeds differ too, and the first difference should name the cause.
-    push("k_a (textured)".into(), cpu.ka, gpu.map(|g| g.ka));
-    push("k_d (textured)".into(), cpu.kd, gpu.map(|g| g.kd));
+    // The colours at the hit (after the texture and the vertex colour) first: where a texture
+    // is sampled differently, the terms it feeds differ too, and the first difference should
+    // name the cause.
+    push("k_a at the hit".into(), cpu.ka, gpu.map(|g| g.ka));
+    push("k_d at the hit".into(), cpu.kd, gpu.map(|g| g.kd));
     push("E_m".into(), cpu.emission, gpu.map(|g| g.emission));
     push("I_a·k_a".into(), cpu.ambient, gpu.map(|g| g.ambient));
     for (j, l) in cpu.lights.iter().enumerate() {

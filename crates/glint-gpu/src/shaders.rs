@@ -130,7 +130,8 @@ impl ShaderKey {
     /// four for triangles (triangles, vertices, normals, meshes), the probe record and tree, the
     /// BVH's nodes and leaf words (with triangles, a second array of them for the third corner),
     /// and for textures the texels and the table, with texture coordinates when
-    /// there are triangles; the path tracer's paths, and its emitters where a material emits.
+    /// there are triangles; vertex colours with triangles; the path tracer's paths, and its
+    /// emitters where a material emits.
     pub fn storage_buffers(&self) -> u32 {
         let on = |f: u32| u32::from(self.features & f != 0);
         4 + u32::from(self.path) * (1 + on(feature::EMISSION))

@@ -99,6 +99,14 @@ pub(super) fn map_material(m: &::gltf::Material<'_>, field: &str, warnings: &mut
 /// `map_material` reads (those the file leaves out are absent).
 pub(super) fn source(m: &::gltf::Material<'_>) -> MaterialSource {
     let mut fields: Vec<(&'static str, Vec<f64>)> = Vec::new();
+    if m.unlit() {
+        // All that an unlit material's colour is made of (`map_material`).
+        let base = m.pbr_metallic_roughness().base_color_factor();
+        return MaterialSource {
+            format: "glTF (KHR_materials_unlit)",
+            fields: vec![("baseColorFactor", base.map(widen).to_vec())],
+        };
+    }
     match m.pbr_specular_glossiness() {
         Some(sg) => {
             fields.push(("diffuseFactor", sg.diffuse_factor().map(widen).to_vec()));

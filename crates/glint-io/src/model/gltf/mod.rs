@@ -83,8 +83,10 @@ pub fn load_gltf(path: &Path, options: &ImportOptions) -> Result<Model, GltfErro
             name = format!("{name}-{index}");
         }
         let mut desc = material::map_material(&m, &format!("materials[{index}] ({name})"), &mut model.warnings);
+        // KHR_materials_unlit names the metallic-roughness base colour, whatever else is there.
         let base = m
             .pbr_specular_glossiness()
+            .filter(|_| !m.unlit())
             .map_or_else(|| m.pbr_metallic_roughness().base_color_texture(), |sg| sg.diffuse_texture());
         let mut uv_set = None;
         if let Some(info) = base {
@@ -176,7 +178,8 @@ pub fn load_gltf(path: &Path, options: &ImportOptions) -> Result<Model, GltfErro
                 };
                 let name = readable(node.name().or(mesh.name()).unwrap_or(""), i, "node");
                 let place = Place { placement: &placement, weights: &weights };
-                let desc = read_primitive(&primitive, &buffers, &place, &prim_path, uv_set, material, name)
+                let attributes = Attributes { uv_set, colours: !primitive.material().unlit() };
+                let desc = read_primitive(&primitive, &buffers, &place, &prim_path, attributes, material, name)
                     .map_err(|(path, problem)| at(path, problem))?;
                 if uv_set.is_some() && desc.as_ref().is_some_and(|d| d.uvs.is_none()) {
                     model.warnings.push(FieldIssue {
@@ -185,15 +188,16 @@ pub fn load_gltf(path: &Path, options: &ImportOptions) -> Result<Model, GltfErro
                             .into(),
                     });
                 }
-                if let Some(mut desc) = desc {
-                    if primitive.material().unlit() && desc.colours.take().is_some() {
-                        model.warnings.push(FieldIssue {
-                            field: format!("{prim_path}.attributes.COLOR_0"),
-                            problem: "left out: its material is unlit, whose colour is E_m, and vertex colours \
-                                      multiply k_a and k_d only"
-                                .into(),
-                        });
-                    }
+                let unlit = primitive.material().unlit();
+                if unlit && primitive.get(&::gltf::Semantic::Colors(0)).is_some() {
+                    model.warnings.push(FieldIssue {
+                        field: format!("{prim_path}.attributes.COLOR_0"),
+                        problem: "left out: its material is unlit, whose colour is E_m, and vertex colours \
+                                  multiply k_a and k_d only"
+                            .into(),
+                    });
+                }
+                if let Some(desc) = desc {
                     model.meshes.push(desc);
                 }
             }
@@ -237,6 +241,14 @@ fn readable(name: &str, index: usize, kind: &str) -> String {
     if trimmed.is_empty() { format!("{kind}{index}") } else { trimmed.to_string() }
 }
 
+/// Which optional attributes of a primitive are read: the TEXCOORD set its material's
+/// textures use, and COLOR_0 (not under an unlit material, whose colour is E_m).
+#[derive(Clone, Copy)]
+struct Attributes {
+    uv_set: Option<u32>,
+    colours: bool,
+}
+
 /// Where a primitive goes: its node's placement (rigid or skinned) and morph weights.
 struct Place<'a> {
     placement: &'a deform::Placement,
@@ -267,10 +279,11 @@ fn read_primitive(
     buffers: &Buffers,
     place: &Place<'_>,
     path: &str,
-    uv_set: Option<u32>,
+    attributes: Attributes,
     material: String,
     name: String,
 ) -> Result<Option<MeshDesc>, (String, String)> {
+    let Attributes { uv_set, colours: read_colours } = attributes;
     let attr = |a: &str| format!("{path}.attributes.{a}");
     let position = primitive
         .get(&::gltf::Semantic::Positions)
@@ -351,7 +364,7 @@ fn read_primitive(
             Some(uv)
         }
     };
-    let colours = match primitive.get(&::gltf::Semantic::Colors(0)) {
+    let colours = match primitive.get(&::gltf::Semantic::Colors(0)).filter(|_| read_colours) {
         None => None,
         Some(acc) => {
             let c = accessor::read_colours(&acc, buffers).map_err(|p| (attr("COLOR_0"), p))?;
