@@ -8,10 +8,11 @@ use std::path::Path;
 use std::sync::Arc;
 
 use super::mtl::{default_material, expand_colours, map_material, material_names, source, unread_statements};
+use super::mtl_map::parse_map;
 use super::{obj_text, polygon};
 use crate::uri::{MAX_RESOURCE_BYTES, UriError, resolve_uri};
 use glint_scene::Model;
-use glint_scene::{ColorSpace, FieldIssue, MeshDesc, Rgb, TextureDesc, TextureImage};
+use glint_scene::{ColorSpace, FieldIssue, MeshDesc, Rgb, TextureDesc, TextureImage, UvTransform, Wrap};
 
 /// Why an OBJ did not load.
 #[derive(Debug, thiserror::Error)]
@@ -295,9 +296,9 @@ struct Images {
 }
 
 impl Images {
-    /// A `map_Kd`/`map_Ke` statement as a texture (repeat, bilinear, as MTL renderers sample).
-    /// Its options (`-s`, `-o`, `-clamp`, …) are not applied: a warning names them. Windows
-    /// separators, common in MTL files, are read as `/`.
+    /// A `map_Kd`/`map_Ke` statement as a texture, bilinear, repeating unless `-clamp on`, placed
+    /// by its `-o` and `-s` options; the options Glint's textures have no term for are named
+    /// in a warning. Windows separators, common in MTL files, are read as `/`.
     fn texture(
         &mut self,
         obj: &Path,
@@ -306,19 +307,34 @@ impl Images {
         field: &'static str,
         warnings: &mut Vec<FieldIssue>,
     ) -> Result<TextureDesc, ObjError> {
-        let file = if statement.starts_with('-') {
-            warnings.push(FieldIssue {
-                field: format!("materials.{material}.{field}"),
-                problem: format!("options of `{statement}` are ignored; the image is sampled repeating and bilinear"),
-            });
-            statement.split_whitespace().last().unwrap_or(statement)
-        } else {
-            statement
-        };
-        let uri = file.replace('\\', "/");
+        let map = parse_map(statement);
+        let mut warn =
+            |problem: String| warnings.push(FieldIssue { field: format!("materials.{material}.{field}"), problem });
+        if !map.ignored.is_empty() {
+            warn(format!("`{statement}`: {} left out (no term in Glint's textures)", map.ignored.join(", ")));
+        }
+        if map.clamp {
+            warn(format!(
+                "`{statement}`: -clamp on is sampled clamped to the edge texels, where MTL leaves the material \
+                 untextured outside the one copy"
+            ));
+        }
+        let uri = map.file.replace('\\', "/");
         let uri = uri.strip_prefix("./").unwrap_or(&uri).to_string();
+        let placed = |mut t: TextureDesc| {
+            if map.clamp {
+                (t.wrap_s, t.wrap_t) = (Wrap::ClampToEdge, Wrap::ClampToEdge);
+            }
+            // In OBJ's space u' = s·u + o with v up; Glint's v is 1 − v (down), so v' = s·v + 1 − s − o.
+            let [su, sv] = map.scale;
+            let [ou, ov] = map.offset;
+            if (map.scale, map.offset) != ([1.0; 2], [0.0; 2]) {
+                t.transform = Some(UvTransform { offset: [ou, 1.0 - sv - ov], rotation: 0.0, scale: [su, sv] });
+            }
+            t
+        };
         if let Some((_, image)) = self.decoded.iter().find(|(u, _)| *u == uri) {
-            return Ok(TextureDesc::decoded(uri, Arc::clone(image)));
+            return Ok(placed(TextureDesc::decoded(uri, Arc::clone(image))));
         }
         let error = |reason: String| ObjError::Texture {
             file: obj.to_owned(),
@@ -330,7 +346,7 @@ impl Images {
         let bytes = resolve_uri(obj, &uri, MAX_RESOURCE_BYTES).map_err(|e| error(e.to_string()))?;
         let image = Arc::new(decode_texture(&bytes, ColorSpace::Srgb).map_err(|e| error(e.to_string()))?);
         self.decoded.push((uri.clone(), Arc::clone(&image)));
-        Ok(TextureDesc::decoded(uri, image))
+        Ok(placed(TextureDesc::decoded(uri, image)))
     }
 }
 
@@ -606,7 +622,11 @@ mod tests {
         assert_eq!(texture.path, "tex.png", "`.\\` read as the folder");
         let image = texture.image.as_ref().expect("decoded");
         assert_eq!((image.width(), image.height(), image.texels()[0]), (2, 1, [1.0, 0.0, 0.0, 1.0]));
-        assert!(m.warnings.iter().any(|w| w.field == "materials.t.texture" && w.problem.contains("ignored")));
+        // `-s 2 2 1` tiles the image twice each way, about OBJ's origin (v up): in Glint's
+        // space (v down) v' = 2·v + 1 − 2.
+        let placed = texture.transform.expect("-s is applied");
+        assert_eq!((placed.scale, placed.offset, placed.rotation), ([2.0, 2.0], [0.0, -1.0], 0.0));
+        assert!(m.warnings.iter().all(|w| w.field != "materials.t.texture"), "{:?}", m.warnings);
         let glow = e.emission_texture.as_ref().expect("map_Ke is an emission texture");
         assert!(Arc::ptr_eq(glow.image.as_ref().unwrap(), image), "one decode per image file");
         assert_eq!(e.emission, Rgb::splat(1.0), "map_Ke without Ke");
