@@ -56,6 +56,17 @@ fn only_a_scene_with_vertex_colours_stores_them_and_specialises_for_them() {
     assert!(with.colours.iter().filter(|c| **c == [1.0; 4]).count() >= 3, "the uncoloured triangle is white");
     let without = vertex_colour_scene(16, 12, false).flat();
     assert_eq!((without.header.features & feature::VERTEX_COLOURS, without.colours.len()), (0, 0));
+    // A saved scene keeps them, and `colors` reads as `colours`.
+    let desc = vertex_colour_scene(16, 12, true).desc();
+    let saved = glint_io::to_toml(&desc).expect("TOML");
+    assert!(saved.contains("colours = ["), "{saved}");
+    let (again, _) = glint_io::parse_scene(&saved, std::path::Path::new("saved.toml")).expect("reads back");
+    assert_eq!(again.objects, desc.objects);
+    let american = saved.replace("colours = [", "colors = [");
+    assert_eq!(
+        glint_io::parse_scene(&american, std::path::Path::new("us.toml")).expect("reads").0.objects,
+        desc.objects
+    );
     // The colours change the image (and its content hash, which tiles carry).
     let (a, b) = (render_cpu_checked(&with, 0, true).image, render_cpu_checked(&without, 0, true).image);
     assert!(a.pixels != b.pixels && with.content_hash() != without.content_hash());
