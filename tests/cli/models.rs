@@ -291,49 +291,36 @@ fn mtl_map_offset_and_scale_place_the_image_as_moved_coordinates_would() {
         let vts: String = vt.iter().map(|[u, v]| format!("vt {u} {v}\n")).collect();
         format!("mtllib {mtl}\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n{vts}usemtl t\nf 1/1 2/2 3/3 4/4\n")
     };
-    let corners = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
-    let (s, o) = ([1.5, 2.0], [0.25, 0.125]);
-    let moved = corners.map(|[u, v]| [s[0] * u + o[0], s[1] * v + o[1]]);
-    std::fs::write(dir.join("options.mtl"), "newmtl t\nKd 1 1 1\nmap_Kd -s 1.5 2 1 -o 0.25 0.125 tex.png\n").unwrap();
-    std::fs::write(dir.join("plain.mtl"), "newmtl t\nKd 1 1 1\nmap_Kd tex.png\n").unwrap();
-    std::fs::write(dir.join("options.obj"), quad("options.mtl", corners)).unwrap();
-    std::fs::write(dir.join("plain.obj"), quad("plain.mtl", moved)).unwrap();
-    let mut images = Vec::new();
-    for name in ["options", "plain"] {
+    let render = |name: &str, obj: String, mtl: &str| {
+        std::fs::write(dir.join(format!("{name}.mtl")), format!("newmtl t\nKd 1 1 1\nmap_Kd {mtl}\n")).unwrap();
+        std::fs::write(dir.join(format!("{name}.obj")), obj).unwrap();
         let out = dir.join(format!("{name}.png"));
         let args = ["render", &format!("{name}.obj"), "--backend", "cpu", "--width", "96", "--height", "72", "-o"];
         let run = glint(&dir, args.iter().map(Into::into).chain([out.clone().into_os_string()]));
         assert!(run.status.success(), "{name}: {}", text(&run.stderr));
         assert!(!text(&run.stderr).contains("left out"), "{name}: {}", text(&run.stderr));
-        images.push(image::open(&out).expect("written").to_rgb8());
+        image::open(&out).expect("written").to_rgb8()
+    };
+    let corners = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+    // A fractional v scale: 1 − s_v is then no whole number that repeating would hide.
+    let (s, o) = ([1.5, 0.75], [0.25, 0.125]);
+    let moved = corners.map(|[u, v]| [s[0] * u + o[0], s[1] * v + o[1]]);
+    for clamp in ["", "-clamp on "] {
+        let options =
+            render("options", quad("options.mtl", corners), &format!("{clamp}-s 1.5 0.75 1 -o 0.25 0.125 tex.png"));
+        let by_hand = render("by-hand", quad("by-hand.mtl", moved), &format!("{clamp}tex.png"));
+        let worst = options
+            .pixels()
+            .zip(by_hand.pixels())
+            .flat_map(|(a, b)| (0..3).map(move |k| a.0[k].abs_diff(b.0[k])))
+            .max();
+        assert!(
+            worst <= Some(1),
+            "`{clamp}`: the options' image differs from the moved coordinates' by {worst:?} levels"
+        );
+        // And it is not the unplaced image.
+        let unplaced = render("unplaced", quad("unplaced.mtl", corners), &format!("{clamp}tex.png"));
+        let differing = options.pixels().zip(unplaced.pixels()).filter(|(a, b)| a != b).count();
+        assert!(differing > 500, "`{clamp}`: only {differing} pixels changed by the options");
     }
-    let worst = images[0]
-        .pixels()
-        .zip(images[1].pixels())
-        .flat_map(|(a, b)| (0..3).map(move |k| a.0[k].abs_diff(b.0[k])))
-        .max();
-    assert!(worst <= Some(1), "the options' image differs from the moved coordinates' by {worst:?} levels");
-    // And it is not the unplaced image.
-    let plain_map = dir.join("unplaced.obj");
-    std::fs::write(&plain_map, quad("plain.mtl", corners)).unwrap();
-    let out = dir.join("unplaced.png");
-    let run = glint(
-        &dir,
-        [
-            "render".into(),
-            plain_map.into_os_string(),
-            "--backend".into(),
-            "cpu".into(),
-            "--width".into(),
-            "96".into(),
-            "--height".into(),
-            "72".into(),
-            "-o".into(),
-            out.clone().into_os_string(),
-        ],
-    );
-    assert!(run.status.success());
-    let unplaced = image::open(&out).expect("written").to_rgb8();
-    let differing = images[0].pixels().zip(unplaced.pixels()).filter(|(a, b)| a != b).count();
-    assert!(differing > 500, "only {differing} pixels changed by the options");
 }

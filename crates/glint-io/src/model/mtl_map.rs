@@ -14,8 +14,10 @@ pub(super) struct MapStatement<'a> {
     pub scale: [f64; 2],
     /// `-clamp on`.
     pub clamp: bool,
-    /// Options read but not applied, as written (`-mm 0 2`), and malformed ones.
+    /// Options read but not applied, as written (`-mm 0 2`).
     pub ignored: Vec<String>,
+    /// The options could not be read as the specification writes them, and were all left out.
+    pub unread: bool,
 }
 
 /// How many arguments each option of the specification takes: on/off switches and fixed
@@ -29,17 +31,36 @@ fn arguments(option: &str) -> Option<(usize, usize)> {
     })
 }
 
-/// Splits `statement` into its options and its file. An option the specification does not
-/// know, or one short of its arguments, is kept in `ignored` and the parse goes on after it.
+/// The largest |offset| or |scale| read (a scene file's texture transforms allow as much).
+const MAX_PLACEMENT: f64 = 1e9;
+
+/// Splits `statement` into its options and its file. A statement whose options cannot be read
+/// as the specification writes them (an option it does not know, one short of its arguments,
+/// a number written with a comma, a placement beyond ±1e9) is read as exporters that ignore
+/// options read it: every option left out (named in `ignored`), the file its last word.
 pub(super) fn parse_map(statement: &str) -> MapStatement<'_> {
-    let mut out = MapStatement { file: "", offset: [0.0; 2], scale: [1.0; 2], clamp: false, ignored: Vec::new() };
+    let unread = || MapStatement {
+        file: "",
+        offset: [0.0; 2],
+        scale: [1.0; 2],
+        clamp: false,
+        ignored: Vec::new(),
+        unread: true,
+    };
+    match parse_options(statement) {
+        Some(read) if !read.file.is_empty() => read,
+        _ => MapStatement { file: statement.split_whitespace().last().unwrap_or(""), ..unread() },
+    }
+}
+
+/// The statement as the specification writes it, or `None` where it is not.
+fn parse_options(statement: &str) -> Option<MapStatement<'_>> {
+    let mut out =
+        MapStatement { file: "", offset: [0.0; 2], scale: [1.0; 2], clamp: false, ignored: Vec::new(), unread: false };
     let mut rest = statement.trim_start();
     while let Some(option) = rest.split_whitespace().next().filter(|w| w.starts_with('-') && w.len() > 1) {
         rest = rest[option.len()..].trim_start();
-        let Some((least, most)) = arguments(option) else {
-            out.ignored.push(option.to_string());
-            continue;
-        };
+        let (least, most) = arguments(option)?;
         let numeric = matches!(option, "-o" | "-s" | "-t" | "-mm" | "-texres" | "-bm" | "-boost");
         let mut values: Vec<&str> = Vec::new();
         while values.len() < most {
@@ -53,8 +74,9 @@ pub(super) fn parse_map(statement: &str) -> MapStatement<'_> {
         }
         let written = std::iter::once(option).chain(values.iter().copied()).collect::<Vec<_>>().join(" ");
         let numbers: Vec<f64> = values.iter().filter_map(|v| v.parse().ok()).collect();
+        let placement = numbers.iter().all(|v| v.abs() <= MAX_PLACEMENT);
         match option {
-            _ if values.len() < least => out.ignored.push(format!("{written} (too few arguments)")),
+            _ if values.len() < least || !placement => return None,
             "-o" => out.offset = [numbers[0], numbers.get(1).copied().unwrap_or(0.0)],
             "-s" => out.scale = [numbers[0], numbers.get(1).copied().unwrap_or(1.0)],
             "-clamp" if values[0] == "on" || values[0] == "off" => out.clamp = values[0] == "on",
@@ -62,7 +84,7 @@ pub(super) fn parse_map(statement: &str) -> MapStatement<'_> {
         }
     }
     out.file = rest.trim_end();
-    out
+    Some(out)
 }
 
 #[cfg(test)]
@@ -79,12 +101,30 @@ mod tests {
             (plain.file, plain.scale, plain.clamp, plain.ignored.len()),
             (".\\wal67ar_small.jpg", [1.0; 2], false, 0)
         );
-        // An unknown option is named; one short of its numbers too; the file still follows.
-        let odd = parse_map("-zz -s tex.png");
-        assert_eq!((odd.file, odd.scale), ("tex.png", [1.0; 2]));
-        assert_eq!(odd.ignored, vec!["-zz".to_string(), "-s (too few arguments)".to_string()]);
         // A file named like a number after three of them is the file.
         assert_eq!(parse_map("-s 1 1 1 2.png").file, "2.png");
         assert_eq!(parse_map("-clamp maybe t.png").ignored, vec!["-clamp maybe".to_string()]);
+        assert!(!parse_map("-s 1 1 1 2.png").unread);
+        // What cannot be read as MTL options leaves them all out and takes the last word, as
+        // readers that ignore options do: an unknown or capitalised option (which may take
+        // arguments), a comma decimal, too few numbers, a placement beyond 1e9 or not finite,
+        // a file named with a leading '-'.
+        for statement in [
+            "-colorspace sRGB tex.png",
+            "-O 0.5 0.5 tex.png",
+            "-s 0,5 0,5 1 tex.png",
+            "-s tex.png",
+            "-o 1e10 0 tex.png",
+            "-s nan 1 tex.png",
+            "-s 2 2 -zz tex.png",
+        ] {
+            let m = parse_map(statement);
+            assert_eq!(
+                (m.file, m.offset, m.scale, m.clamp, m.unread),
+                ("tex.png", [0.0; 2], [1.0; 2], false, true),
+                "{statement}"
+            );
+        }
+        assert_eq!(parse_map("-wood.png").file, "-wood.png");
     }
 }

@@ -229,7 +229,8 @@ fn unknown_materials(uses: &[obj_text::UseMaterial], materials: &[tobj::Material
 fn bad_number(bytes: &[u8]) -> Option<(usize, String)> {
     for (n, raw) in bytes.split(|&b| b == b'\n').enumerate() {
         let Ok(line) = std::str::from_utf8(raw) else { continue };
-        let mut words = line.split_whitespace();
+        // tobj reads a line up to a comment, and of `vt` and `vn` lines only the numbers it uses.
+        let mut words = line.split_whitespace().take_while(|w| !w.starts_with('#'));
         // A `v` line's fourth number is w, or the first of a colour's three.
         let components: &[(&str, &str)] = match words.next() {
             Some("v") if words.clone().count() == 4 => &[
@@ -246,12 +247,13 @@ fn bad_number(bytes: &[u8]) -> Option<(usize, String)> {
                 ("vertex colour", "g"),
                 ("vertex colour", "b"),
             ],
-            Some("vt") => &[("texture coordinate", "u"), ("texture coordinate", "v"), ("texture coordinate", "w")],
+            Some("vt") => &[("texture coordinate", "u"), ("texture coordinate", "v")],
             Some("vn") => &[("normal", "x"), ("normal", "y"), ("normal", "z")],
             _ => continue,
         };
-        for (k, word) in words.enumerate() {
-            let (what, name) = components.get(k).copied().unwrap_or((components[0].0, "extra"));
+        // A `v` line's words beyond the six it may have are tobj's to refuse.
+        for (k, word) in words.enumerate().take(components.len()) {
+            let (what, name) = components[k];
             let Ok(value) = word.parse::<f32>() else {
                 return Some((n + 1, format!("`{}`: {what} component {name}: `{word}` is not a number", line.trim())));
             };
@@ -310,6 +312,11 @@ impl Images {
         let map = parse_map(statement);
         let mut warn =
             |problem: String| warnings.push(FieldIssue { field: format!("materials.{material}.{field}"), problem });
+        if map.unread {
+            warn(format!(
+                "options of `{statement}` cannot be read as MTL writes them: all left out, the file its last word"
+            ));
+        }
         if !map.ignored.is_empty() {
             warn(format!("`{statement}`: {} left out (no term in Glint's textures)", map.ignored.join(", ")));
         }
@@ -400,6 +407,11 @@ mod tests {
             (
                 "v 0 0 0\nv 1 2. 3.0\nv 1e+2 2.e+1 3.1+e2\nf 1 2 3\n",
                 ":3: invalid OBJ (`v 1e+2 2.e+1 3.1+e2`: vertex position component z: `3.1+e2` is not a number)",
+            ),
+            // What tobj does not read is not checked: a comment, a `vt`'s w, words after a `vn`.
+            (
+                "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0 # a comment\nvt 0.5 0.5 junk\nvn 0 0 1 # up\nf 1 2 3\nv 0 0 nan\n",
+                ":8: invalid OBJ (`v 0 0 nan`: vertex position component z: nan",
             ),
             // tobj dropped a colour it could not read, leaving the colours to the wrong vertices.
             (

@@ -86,7 +86,7 @@ pub(super) fn without_polylines(text: &[u8]) -> (Cow<'_, [u8]>, usize) {
 pub(super) fn without_partial_vertex_colours(text: &[u8]) -> (Cow<'_, [u8]>, Option<(usize, usize)>) {
     let words = |raw: &[u8]| -> Option<usize> {
         let line = std::str::from_utf8(raw).ok()?;
-        let mut w = line.split_whitespace();
+        let mut w = line.split_whitespace().take_while(|w| !w.starts_with('#'));
         (w.next() == Some("v")).then(|| w.count())
     };
     let (mut coloured, mut all) = (0, 0);
