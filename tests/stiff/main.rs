@@ -48,6 +48,7 @@ mod case20_translated_textures;
 mod case21_map_coordinates;
 mod case22_telephoto;
 mod case23_far_light;
+mod case24_far_eye_over_a_plane;
 mod generated;
 mod plot;
 

@@ -5,7 +5,7 @@ use glam::DVec3;
 
 use super::{FlatScene, vec4, wide};
 use glint_scene::{RenderSettings, SceneDesc};
-use glint_types::layout::GpuCamera;
+use glint_types::layout::{GpuCamera, GpuPlane};
 
 /// The pinhole camera's ray-generation vectors in f64 world space: a ray through image point
 /// (ndc_x, ndc_y) leaves `position` along forward + ndc_x·right + ndc_y·up. What the flat
@@ -36,18 +36,40 @@ pub struct SceneBox {
 impl WorldCamera {
     /// The camera as the flat scene stores it relative to `origin` (the storage origin), each
     /// vector rounded once to f32. An eye more than `EYE_REACH` of the largest sides from the
-    /// centre of the bounded geometry (`scene`) is anchored nearest that centre (`anchor_of`); a
-    /// nearer one, or one in a scene of planes alone (no size to judge by), is its own anchor
-    /// (w = 0).
-    pub fn stored(&self, origin: DVec3, scene: Option<SceneBox>) -> GpuCamera {
+    /// centre of the bounded geometry (`scene`) is anchored nearest that centre (`anchor_of`).
+    /// In a scene of planes alone (`planes`, stored coordinates), which has no size, the view
+    /// judges: an eye more than `EYE_REACH` of the image's heights from where its axis meets the
+    /// nearest plane is anchored there (a telephoto seeing a patch of the ground from afar). Any
+    /// other eye is its own anchor (w = 0).
+    pub fn stored(&self, origin: DVec3, scene: Option<SceneBox>, planes: &[GpuPlane]) -> GpuCamera {
         let eye = self.position - origin;
         let anchor = match scene {
             Some(b) if b.side > 0.0 && (eye - b.centre).length() > EYE_REACH * b.side => {
                 anchor_of(eye, self.forward, b.centre)
             }
-            _ => vec4(eye, 0.0),
+            Some(_) => vec4(eye, 0.0),
+            None => match self.axis_meets(eye, planes) {
+                // The image's height at distance t is 2·t·|up| / |forward|.
+                Some(t) if self.forward.length() > EYE_REACH * 2.0 * self.up.length() => {
+                    anchor_of(eye, self.forward, eye + t * self.forward)
+                }
+                _ => vec4(eye, 0.0),
+            },
         };
         GpuCamera { anchor, forward: vec4(self.forward, 0.0), right: vec4(self.right, 0.0), up: vec4(self.up, 0.0) }
+    }
+}
+
+impl WorldCamera {
+    /// The nearest t > 0 (in units of `forward`) at which the view axis from `eye` meets one of
+    /// `planes`.
+    fn axis_meets(&self, eye: DVec3, planes: &[GpuPlane]) -> Option<f64> {
+        let hits = planes.iter().filter_map(|p| {
+            let n = wide(p.normal_offset);
+            let t = (f64::from(p.normal_offset[3]) - n.dot(eye)) / n.dot(self.forward);
+            (t.is_finite() && t > 0.0).then_some(t)
+        });
+        hits.min_by(f64::total_cmp)
     }
 }
 
@@ -104,6 +126,27 @@ mod tests {
         let s = flat([103.0, 100.0, 0.0], [100.0, 100.0, 0.0]);
         assert_eq!(s.header.frame[..3], [0.0; 3]);
         assert_eq!(s.camera.anchor, [103.0, 100.0, 0.0, 0.0]);
+    }
+
+    fn over_a_plane(eye: [f64; 3], look_at: [f64; 3], fov: f64) -> FlatScene {
+        let text = format!(
+            "[camera]\nposition = {eye:?}\nlook_at = {look_at:?}\nfov_y = {fov:?}\n[materials.m]\nkd = 0.5\n\
+             [[objects]]\ntype = \"plane\"\npoint = [0.0, 0.0, 0.0]\nnormal = [0.0, 1.0, 0.0]\nmaterial = \"m\"\n"
+        );
+        let (desc, _) = parse_scene(&text, std::path::Path::new("t.toml")).expect("scene");
+        FlatScene::build(&desc, &desc.render)
+    }
+
+    #[test]
+    fn over_planes_alone_a_telephoto_is_anchored_where_its_axis_meets_the_nearest() {
+        let (eye, focus) = ([480_000.3, 600_000.0, 640_000.2], [0.3, 0.0, 0.2]);
+        let s = over_a_plane(eye, focus, 5.7e-4);
+        let a = wide(s.camera.anchor);
+        assert!(a.y.abs() < 1e-3 && (a - DVec3::from(focus)).length() < 1e-2, "anchored at {a}, not on the plane");
+        assert!((f64::from(s.camera.anchor[3]) - 1e6).abs() < 1.0);
+        // A normal lens over the plane, and a telephoto whose axis leaves it, keep their eyes.
+        assert_eq!(over_a_plane(eye, focus, 40.0).camera.anchor[3], 0.0);
+        assert_eq!(over_a_plane(eye, [0.3, 1_200_000.0, 0.2], 5.7e-4).camera.anchor[3], 0.0);
     }
 
     #[test]

@@ -136,7 +136,8 @@ impl FlatScene {
         let materials = desc.materials.values().map(|m| flat_material(m, &mut table)).collect();
         let origin = wide(geometry.frame);
         let lights = desc.traced_lights().map(|l| flat_light(l, origin)).collect();
-        let camera = Self::world_camera(desc, settings).stored(origin, scene_box(&geometry.bvh_nodes));
+        let camera =
+            Self::world_camera(desc, settings).stored(origin, scene_box(&geometry.bvh_nodes), &geometry.planes);
         let mut flat = Self {
             header: flat_header(desc, settings, &geometry, material_names.len()),
             camera,

@@ -1,0 +1,78 @@
+//! Case 24: a far eye over a plane alone — a checkered ground seen obliquely through a telephoto
+//! from D = 1e5, 1e6 and 1e7 (the same 10-unit patch of it, 96×72, the field of view narrowed
+//! with D), with no sphere or mesh to give the scene a size.
+//!
+//! Expected: the perspective differs by less than 1e-4 of the patch between the three, so the
+//! CPU's images are alike pixel for pixel (at most 0.1 % of the pixels differ from D = 1e5's, a
+//! pixel centre within 1e-4 of a checker edge), and the GPU's match the CPU's: no first hit and no
+//! pixel's checker square that differs (largest same-hit difference ≤ 1e-6).
+//!
+//! Why it was stiff: the camera anchors an eye far from its scene (case 22) by the scene's size,
+//! and a scene of planes alone has none, so the eye was stored itself and every camera ray left
+//! it in f32: its direction's step (6e-8 against a patch 1e-5 of the distance wide) moved each
+//! ray a third of a pixel on the GPU and the f32 eye moved the CPU's: at D = 1e6 GPU against CPU
+//! PSNR 14.8 dB (FLIP 0.128), and the CPU's image 374 pixels (5.4 %) unlike D = 1e5's. Such a
+//! camera is now anchored where its axis meets the nearest plane, judged by its field of view.
+
+use glint_core::compare::compare_images;
+
+use crate::gpu::render_both;
+use crate::scene::SceneText;
+
+/// The patch of ground seen: its height at the focus.
+const PATCH: f64 = 10.0;
+/// The focus, off every power-of-two grid.
+const FOCUS: [f64; 3] = [0.3, 0.0, 0.2];
+/// The unit direction from the focus to the eye.
+const TOWARDS_EYE: [f64; 3] = [0.48, 0.6, 0.64];
+
+fn scene(distance: f64) -> SceneText {
+    let eye: [f64; 3] = std::array::from_fn(|k| FOCUS[k] + distance * TOWARDS_EYE[k]);
+    let fov = 2.0 * (0.5 * PATCH / distance).atan().to_degrees();
+    SceneText::new(96, 72, "max_depth = 1", eye, FOCUS, [0.0, 1.0, 0.0], fov)
+        .world([0.1; 3], [0.0; 3])
+        .material("floor", "kd = 0.8\nchecker = { kd = 0.1, size = 1.0 }")
+        .light("directional", "direction = [-0.3, -1.0, -0.2]")
+        .plane([0.0; 3], [0.0, 1.0, 0.0], "floor")
+}
+
+#[test]
+fn a_far_eye_over_a_lone_plane_sees_it_as_a_near_one_on_both_tracers() {
+    let mut out = String::new();
+    say!(out, "case 24: a 10-unit patch of a checkered plane seen obliquely from D (96×72)");
+    say!(
+        out,
+        "  {:>7}  {:>23}  {:>19}  {:>10}  {:>11}",
+        "D",
+        "CPU pixels unlike 1e5's",
+        "max |diff| same hit",
+        "PSNR (dB)",
+        "hits differ"
+    );
+    let mut reference = None;
+    for distance in [1e5, 1e6, 1e7] {
+        let both = render_both("stiff/case24", &format!("far-eye-{distance:e}"), &scene(distance).flat());
+        let cpu = &both.cpu.image;
+        let reference = reference.get_or_insert_with(|| cpu.pixels.clone());
+        let unlike = cpu.pixels.iter().zip(reference.iter()).filter(|(a, b)| a != b).count();
+        let Some(gpu) = &both.gpu else { continue };
+        let e = compare_images(cpu, &gpu.image);
+        let worst = cpu
+            .pixels
+            .iter()
+            .zip(&gpu.image.pixels)
+            .zip(cpu.first_hit.iter().zip(&gpu.image.first_hit))
+            .filter(|(_, (a, b))| a == b)
+            .map(|((c, g), _)| (*c - *g).abs().max_element())
+            .fold(0.0_f64, f64::max);
+        let hits = both.first_hit_mismatches().len();
+        say!(out, "  {distance:>7.0e}  {unlike:>23}  {worst:>19.2e}  {:>10.1}  {hits:>11}", e.psnr);
+        both.ensure(unlike * 1000 <= cpu.pixels.len() && worst <= 1e-6 && hits == 0, || {
+            format!(
+                "D = {distance:e}: {unlike} CPU pixels unlike D = 1e5's, GPU off by {worst:.2e}, {hits} hits differ"
+            )
+        });
+    }
+    eprint!("{out}");
+    crate::generated::section("case24-far-eye-over-a-plane", &out);
+}
