@@ -33,6 +33,20 @@ pub fn surface_at(ctx: &TraceContext, ray: &Ray, hit: &Hit) -> Surface {
     // Planar texture coordinates relative to the frame's origin, whose own are each
     // texture's `planar_u`/`planar_v` (computed once in f64, `flat::place_texture_origins`).
     let uv_origin_at = |ng: DVec3| if textures { planar_axis(ng) } else { UV_MESH };
+    // What the primitives differ in; the point and the primitive are the hit's.
+    let surface = |p_surface, ng, ns, uv, uv_origin, colour, (material, object_id)| Surface {
+        p,
+        p_surface,
+        ng,
+        ns,
+        uv,
+        uv_origin,
+        colour,
+        material,
+        object_id,
+        prim: hit.prim,
+        index: hit.index,
+    };
     match hit.prim {
         Prim::Sphere => {
             let s = &scene.spheres[hit.index as usize];
@@ -40,42 +54,14 @@ pub fn surface_at(ctx: &TraceContext, ray: &Ray, hit: &Hit) -> Surface {
             let ng = (p - c).normalize();
             let p_surface = if robust { sphere_surface_point(p, c, f64::from(s.center_radius[3]), ng) } else { p };
             let uv = if textures { planar_uv(p, ng) } else { DVec2::ZERO };
-            let (material, object_id, uv_origin) = (s.material, s.object_id, uv_origin_at(ng));
-            let colour = DVec3::ONE;
-            Surface {
-                p,
-                p_surface,
-                ng,
-                ns: ng,
-                uv,
-                uv_origin,
-                colour,
-                material,
-                object_id,
-                prim: hit.prim,
-                index: hit.index,
-            }
+            surface(p_surface, ng, ng, uv, uv_origin_at(ng), DVec3::ONE, (s.material, s.object_id))
         }
         Prim::Plane => {
             let pl = &scene.planes[hit.index as usize];
             let ng = v3(pl.normal_offset);
             let p_surface = if robust { p - (ng.dot(p) - f64::from(pl.normal_offset[3])) * ng } else { p };
             let uv = if textures { planar_uv(p, ng) } else { DVec2::ZERO };
-            let (material, object_id, uv_origin) = (pl.material, pl.object_id, uv_origin_at(ng));
-            let colour = DVec3::ONE;
-            Surface {
-                p,
-                p_surface,
-                ng,
-                ns: ng,
-                uv,
-                uv_origin,
-                colour,
-                material,
-                object_id,
-                prim: hit.prim,
-                index: hit.index,
-            }
+            surface(p_surface, ng, ng, uv, uv_origin_at(ng), DVec3::ONE, (pl.material, pl.object_id))
         }
         Prim::Triangle => {
             let tri = &scene.triangles[hit.index as usize];
@@ -88,20 +74,7 @@ pub fn surface_at(ctx: &TraceContext, ray: &Ray, hit: &Hit) -> Surface {
             let colour =
                 if ctx.has(feature::VERTEX_COLOURS) { triangle_colour(ctx, tri, hit.bu, hit.bv) } else { DVec3::ONE };
             let mesh = &scene.meshes[tri.mesh as usize];
-            let (material, object_id) = (mesh.material, mesh.object_id);
-            Surface {
-                p,
-                p_surface,
-                ng,
-                ns,
-                uv,
-                uv_origin,
-                colour,
-                material,
-                object_id,
-                prim: hit.prim,
-                index: hit.index,
-            }
+            surface(p_surface, ng, ns, uv, uv_origin, colour, (mesh.material, mesh.object_id))
         }
     }
 }
