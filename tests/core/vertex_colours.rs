@@ -70,6 +70,12 @@ fn only_a_scene_with_vertex_colours_stores_them_and_specialises_for_them() {
     // The colours change the image (and its content hash, which tiles carry).
     let (a, b) = (render_cpu_checked(&with, 0, true).image, render_cpu_checked(&without, 0, true).image);
     assert!(a.pixels != b.pixels && with.content_hash() != without.content_hash());
+    // All white is no colour: left out, and the image is the uncoloured one bit for bit.
+    let lambert = "ka = 1.0\nkd = 0.8\nks = 0.3";
+    let white = quad(lambert, Some([1.0; 3]));
+    assert_eq!((white.header.features & feature::VERTEX_COLOURS, white.colours.len()), (0, 0));
+    let plain = render_cpu_checked(&quad(lambert, None), 0, true).image;
+    assert_eq!(render_cpu_checked(&white, 0, true).image.pixels, plain.pixels);
 }
 
 #[test]

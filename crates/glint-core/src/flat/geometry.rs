@@ -153,6 +153,9 @@ pub(super) fn flat_primitives(desc: &SceneDesc, material_names: &[String]) -> Pr
 /// rays, with a 0/0 normal.
 fn mesh_triangles(mesh: &MeshDesc, material: u32, object_id: u32, out: &mut Primitives) {
     let MeshDesc { vertices, triangles: tris, normals, uvs, colours, .. } = mesh;
+    // White everywhere is no colour (exporters write COLOR_0 so): left out, it costs neither
+    // a buffer nor a multiplication, and k_a and k_d stay exact (an interpolated 1 may not be).
+    let colours = colours.as_ref().filter(|c| c.iter().any(|c| *c != [1.0; 3]));
     let first = out.vertices.len() as u32;
     out.vertices.extend(vertices.iter().map(|&v| vec4(DVec3::from(v) - out.origin, 1.0)));
     // Every vertex gets a normal slot, so that one index reaches both; zero without normals.
