@@ -92,4 +92,14 @@ fn bad_vertex_colours_are_errors_naming_the_field() {
     let named = |field: &str, words: &str| text.iter().any(|e| e.contains(field) && e.contains(words));
     assert!(named(&format!("objects[{last}].colours"), "has 3 entries; it needs one per vertex (4)"), "{text:?}");
     assert!(named(&format!("objects[{last}].colours[1]"), "channel g = -0.1"), "{text:?}");
+    // 8-bit colours written as 0–255 are allowed, as k_d > 1 is, but named.
+    let mut desc = vertex_colour_scene(16, 12, true).desc();
+    let ObjectDesc::Mesh(MeshDesc { colours: Some(colours), .. }) = &mut desc.objects[last] else {
+        panic!("the quad is the last object")
+    };
+    colours[2] = [255.0, 128.0, 0.0];
+    let report = glint_scene::validate(&desc);
+    assert!(report.errors.is_empty(), "{:?}", report.errors);
+    let warned = report.warnings.iter().find(|w| w.field == format!("objects[{last}].colours")).expect("warned");
+    assert!(warned.problem.contains("reach 255") && warned.problem.contains("dividing by 255"), "{}", warned.problem);
 }

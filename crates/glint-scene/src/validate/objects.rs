@@ -2,7 +2,7 @@
 
 // What the parent module declares for its children.
 use super::{
-    DVec3, FieldIssue, MeshDesc, ObjectDesc, PlaneDesc, Report, Rgb, SceneDesc, SphereDesc, cross, norm, ranges,
+    DVec3, FieldIssue, MeshDesc, ObjectDesc, PlaneDesc, Report, Rgb, SceneDesc, SphereDesc, cross, norm, num, ranges,
     shorten, sub, validate_light,
 };
 
@@ -132,6 +132,18 @@ fn validate_mesh(path: &str, mesh: &MeshDesc, origin: [f64; 3], r: &mut Report) 
         let usable = |c: &[f64; 3]| c.iter().all(|&v| ranges::COLOUR.contains(v));
         for (i, c) in colours.iter().enumerate().filter(|(_, c)| !usable(c)) {
             r.colour(&format!("{path}.colours[{i}]"), Rgb(*c));
+        }
+        // Allowed (as k_d > 1 is), but 8-bit colours written as 0–255 light a mesh 255-fold.
+        let brightest = colours.iter().flatten().copied().filter(|v| v.is_finite()).fold(0.0, f64::max);
+        if brightest > 1.0 {
+            r.warn(
+                format!("{path}.colours"),
+                format!(
+                    "reach {}: above 1 they make k_a and k_d return more light than they receive \
+                     (colours written as 0–255 need dividing by 255)",
+                    num(brightest)
+                ),
+            );
         }
     }
     if let Some(normals) = normals.as_ref().filter(|ns| ns.len() == n) {
