@@ -418,6 +418,50 @@ fn an_unlit_material_shows_its_base_colour_as_emission_whatever_the_light() {
 }
 
 #[test]
+fn gpu_instancing_places_a_copy_of_the_mesh_per_instance() {
+    let dir = TempDir::new("gltf-instancing");
+    let mut f = Fixture::quad();
+    let translation = f.push_f32(&[0.0, 0.0, 0.0, 10.0, 0.0, 0.0, 0.0, 20.0, 0.0]);
+    // A quarter turn about z as normalised shorts (x, y, z, w), then none, then none.
+    let (q, one) = (23170_u16, 32767_u16);
+    let rotation = f.push_u16(&[0, 0, q, q, 0, 0, 0, one, 0, 0, 0, one]);
+    let scale = f.push_f32(&[1.0, 1.0, 1.0, 2.0, 2.0, 2.0, 1.0, 1.0, 1.0]);
+    let accessors = f.json["accessors"].as_array_mut().unwrap();
+    accessors.push(json!({ "bufferView": translation, "componentType": 5126, "count": 3, "type": "VEC3" }));
+    accessors
+        .push(json!({ "bufferView": rotation, "componentType": 5122, "normalized": true, "count": 3, "type": "VEC4" }));
+    accessors.push(json!({ "bufferView": scale, "componentType": 5126, "count": 3, "type": "VEC3" }));
+    f.json["extensionsUsed"] = json!(["EXT_mesh_gpu_instancing"]);
+    f.json["extensionsRequired"] = json!(["EXT_mesh_gpu_instancing"]);
+    f.json["nodes"][0]["translation"] = json!([0.0, 0.0, -1.0]);
+    f.json["nodes"][0]["extensions"] =
+        json!({ "EXT_mesh_gpu_instancing": { "attributes": { "TRANSLATION": 3, "ROTATION": 4, "SCALE": 5 } } });
+    let m = load(&f.write_glb(&dir, "instanced"));
+    assert_eq!(m.meshes.len(), 3, "one copy per instance");
+    // Corner (1, 0, 0) of the quad: turned to (0, 1), then doubled and moved 10, then moved 20;
+    // every instance in the node's space, then the node's translation.
+    let corner = |k: usize| m.meshes[k].vertices[1];
+    let near = |a: [f64; 3], b: [f64; 3]| a.iter().zip(b).all(|(x, y)| (x - y).abs() < 1e-4);
+    assert!(near(corner(0), [0.0, 1.0, -1.0]), "{:?}", corner(0));
+    assert!(near(corner(1), [12.0, 0.0, -1.0]), "{:?}", corner(1));
+    assert!(near(corner(2), [1.0, 20.0, -1.0]), "{:?}", corner(2));
+    assert!(m.meshes[1].name.ends_with("#1"), "{}", m.meshes[1].name);
+    assert!(m.warnings.iter().all(|w| w.field != "extensionsUsed"), "read, not 'unsupported': {:?}", m.warnings);
+    // Counts that differ, an accessor that is not there, and no attribute at all are errors.
+    for (attributes, message) in [
+        (json!({ "TRANSLATION": 3, "SCALE": 0 }), "the attributes' counts differ"),
+        (json!({ "TRANSLATION": 9 }), "accessors[9] does not exist"),
+        (json!({}), "names none of TRANSLATION, ROTATION and SCALE"),
+        (json!({ "ROTATION": 3 }), "wanted VEC4 of FLOAT or normalized BYTE/SHORT"),
+    ] {
+        let mut g = f.clone();
+        g.json["nodes"][0]["extensions"]["EXT_mesh_gpu_instancing"]["attributes"] = attributes;
+        let e = error(&g.write_glb(&dir, "broken"));
+        assert!(e.contains("nodes[0].extensions.EXT_mesh_gpu_instancing") && e.contains(message), "{e}");
+    }
+}
+
+#[test]
 fn strips_and_fans_are_traced_points_and_lines_skipped_with_a_warning() {
     let dir = TempDir::new("gltf-modes");
     let mut f = Fixture::quad();

@@ -32,6 +32,8 @@ pub(super) enum Expect {
     Weights,
     /// VEC3 or VEC4 of FLOAT, or of normalised UNSIGNED_BYTE / UNSIGNED_SHORT (COLOR_n).
     Colour,
+    /// VEC4 of FLOAT, or of normalised BYTE / SHORT (an instance's ROTATION quaternion).
+    Rotation,
 }
 
 impl Expect {
@@ -51,6 +53,10 @@ impl Expect {
                 matches!(dims, Dimensions::Vec3 | Dimensions::Vec4)
                     && (ty == DataType::F32 || (normalized && matches!(ty, DataType::U8 | DataType::U16)))
             }
+            Self::Rotation => {
+                dims == Dimensions::Vec4
+                    && (ty == DataType::F32 || (normalized && matches!(ty, DataType::I8 | DataType::I16)))
+            }
         }
     }
 
@@ -63,6 +69,7 @@ impl Expect {
             Self::Joints => "VEC4 of UNSIGNED_BYTE or UNSIGNED_SHORT",
             Self::Weights => "VEC4 of FLOAT or normalized UNSIGNED_BYTE/UNSIGNED_SHORT",
             Self::Colour => "VEC3 or VEC4 of FLOAT or normalized UNSIGNED_BYTE/UNSIGNED_SHORT",
+            Self::Rotation => "VEC4 of FLOAT or normalized BYTE/SHORT",
         }
     }
 }
@@ -244,6 +251,11 @@ pub(super) fn read_colours(accessor: &Accessor<'_>, buffers: &Buffers) -> Result
         return Ok(read::<4>(accessor, buffers, Expect::Colour)?.into_iter().map(|[r, g, b, _]| [r, g, b]).collect());
     }
     read::<3>(accessor, buffers, Expect::Colour)
+}
+
+/// An instance's ROTATION: quaternions (x, y, z, w), normalised integers mapped to [−1, 1].
+pub(super) fn read_rotations(accessor: &Accessor<'_>, buffers: &Buffers) -> Result<Vec<[f64; 4]>, String> {
+    read::<4>(accessor, buffers, Expect::Rotation)
 }
 
 /// Indices as u32.

@@ -6,6 +6,7 @@ use crate::uri::UriError;
 
 /// The extensions Glint reads; a file that requires any other is refused.
 pub const SUPPORTED_EXTENSIONS: &[&str] = &[
+    "EXT_mesh_gpu_instancing",
     "KHR_lights_punctual",
     "KHR_materials_emissive_strength",
     "KHR_materials_ior",

@@ -37,9 +37,10 @@ pub(super) fn parse(bytes: &[u8], file: &Path, warnings: &mut Vec<FieldIssue>) -
     let ::gltf::Gltf { document, blob } = ::gltf::Gltf::from_slice_without_validation(bytes)
         .map_err(|e| other_version(bytes, file).unwrap_or_else(|| parse_error(file, e)))?;
     let mut json = document.into_json();
-    // Glint reads quantised attributes itself (`accessor::read_vec3`, `read_uv`); the gltf
-    // crate, which would refuse the file for requiring it, is not told.
-    json.extensions_required.retain(|e| e != "KHR_mesh_quantization");
+    // Glint reads quantised attributes (`accessor::read_vec3`, `read_uv`) and instances
+    // (`instancing`) itself; the gltf crate, which would refuse a file for requiring them, is
+    // not told.
+    json.extensions_required.retain(|e| e != "KHR_mesh_quantization" && e != super::instancing::EXTENSION);
     let invalid = |path: String, problem: &str| GltfError::At {
         file: file.to_owned(),
         path,

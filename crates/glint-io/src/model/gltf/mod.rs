@@ -10,6 +10,7 @@ mod accessor;
 mod deform;
 mod error;
 mod file;
+mod instancing;
 mod material;
 mod punctual;
 mod texture;
@@ -147,58 +148,96 @@ pub fn load_gltf(path: &Path, options: &ImportOptions) -> Result<Model, GltfErro
         let local = node_matrix(node.transform()).map_err(|p| at(format!("nodes[{i}]"), p))?;
         let world = parent.mul(&local);
         if let Some(mesh) = node.mesh() {
-            let placement = match node.skin() {
-                Some(skin) => deform::Placement::Skinned(
-                    deform::joint_matrices(&skin, &world_of, &buffers).map_err(|(path, problem)| at(path, problem))?,
-                ),
-                None => deform::Placement::Rigid(world),
+            let instanced =
+                instancing::instances(&node, &gltf, &buffers).map_err(|(path, problem)| at(path, problem))?;
+            let placements: Vec<deform::Placement> = match (node.skin(), instanced) {
+                (Some(skin), instanced) => {
+                    if instanced.is_some() {
+                        model.warnings.push(FieldIssue {
+                            field: format!("nodes[{i}].extensions.{}", instancing::EXTENSION),
+                            problem: "left out: the node is skinned, and the extension does not instance skins".into(),
+                        });
+                    }
+                    vec![deform::Placement::Skinned(
+                        deform::joint_matrices(&skin, &world_of, &buffers)
+                            .map_err(|(path, problem)| at(path, problem))?,
+                    )]
+                }
+                (None, Some(instances)) => instances.iter().map(|m| deform::Placement::Rigid(world.mul(m))).collect(),
+                (None, None) => vec![deform::Placement::Rigid(world)],
             };
-            // The node's morph weights, else the mesh's.
-            let weights: Vec<f64> =
-                node.weights().or(mesh.weights()).unwrap_or_default().iter().map(|&w| f64::from(w)).collect();
-            for primitive in mesh.primitives() {
-                let prim_path = format!("meshes[{}].primitives[{}]", mesh.index(), primitive.index());
-                match primitive.mode() {
-                    Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan => {}
-                    other @ (Mode::Points | Mode::Lines | Mode::LineLoop | Mode::LineStrip) => {
-                        skipped_modes
-                            .entry(format!("meshes[{}]", mesh.index()))
-                            .or_default()
-                            .push(format!("{other:?}"));
-                        continue;
+            let triangles: usize = mesh
+                .primitives()
+                .filter_map(|p| p.indices().or(p.get(&::gltf::Semantic::Positions)))
+                .map(|a| a.count() / 3)
+                .sum();
+            let copied = triangles.saturating_mul(placements.len());
+            if placements.len() > 1 && copied > instancing::MAX_INSTANCED_TRIANGLES {
+                return Err(at(
+                    format!("nodes[{i}].extensions.{}", instancing::EXTENSION),
+                    format!(
+                        "{} instances of meshes[{}] make about {copied} triangles; Glint copies each instance (its BVH \
+                         has no instances) and allows {}",
+                        placements.len(),
+                        mesh.index(),
+                        instancing::MAX_INSTANCED_TRIANGLES
+                    ),
+                ));
+            }
+            for (k, placement) in placements.iter().enumerate() {
+                // The node's morph weights, else the mesh's.
+                let weights: Vec<f64> =
+                    node.weights().or(mesh.weights()).unwrap_or_default().iter().map(|&w| f64::from(w)).collect();
+                for primitive in mesh.primitives() {
+                    let prim_path = format!("meshes[{}].primitives[{}]", mesh.index(), primitive.index());
+                    match primitive.mode() {
+                        Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan => {}
+                        other @ (Mode::Points | Mode::Lines | Mode::LineLoop | Mode::LineStrip) => {
+                            // Once a primitive, however many instances draw it.
+                            if k == 0 {
+                                skipped_modes
+                                    .entry(format!("meshes[{}]", mesh.index()))
+                                    .or_default()
+                                    .push(format!("{other:?}"));
+                            }
+                            continue;
+                        }
                     }
-                }
-                let uv_set = primitive.material().index().and_then(|m| uv_sets[m]);
-                let material = match primitive.material().index() {
-                    Some(m) => names[m].clone(),
-                    None => {
-                        model.materials.entry(DEFAULT_MATERIAL.into()).or_insert_with(material::default_material);
-                        DEFAULT_MATERIAL.into()
+                    let uv_set = primitive.material().index().and_then(|m| uv_sets[m]);
+                    let material = match primitive.material().index() {
+                        Some(m) => names[m].clone(),
+                        None => {
+                            model.materials.entry(DEFAULT_MATERIAL.into()).or_insert_with(material::default_material);
+                            DEFAULT_MATERIAL.into()
+                        }
+                    };
+                    let mut name = readable(node.name().or(mesh.name()).unwrap_or(""), i, "node");
+                    if placements.len() > 1 {
+                        name = format!("{name} #{k}");
                     }
-                };
-                let name = readable(node.name().or(mesh.name()).unwrap_or(""), i, "node");
-                let place = Place { placement: &placement, weights: &weights };
-                let attributes = Attributes { uv_set, colours: !primitive.material().unlit() };
-                let desc = read_primitive(&primitive, &buffers, &place, &prim_path, attributes, material, name)
-                    .map_err(|(path, problem)| at(path, problem))?;
-                if uv_set.is_some() && desc.as_ref().is_some_and(|d| d.uvs.is_none()) {
-                    model.warnings.push(FieldIssue {
-                        field: prim_path.clone(),
-                        problem: "its material is textured but it has no texture coordinates: planar ones are used"
-                            .into(),
-                    });
-                }
-                let unlit = primitive.material().unlit();
-                if unlit && primitive.get(&::gltf::Semantic::Colors(0)).is_some() {
-                    model.warnings.push(FieldIssue {
-                        field: format!("{prim_path}.attributes.COLOR_0"),
-                        problem: "left out: its material is unlit, whose colour is E_m, and vertex colours \
+                    let place = Place { placement, weights: &weights };
+                    let attributes = Attributes { uv_set, colours: !primitive.material().unlit() };
+                    let desc = read_primitive(&primitive, &buffers, &place, &prim_path, attributes, material, name)
+                        .map_err(|(path, problem)| at(path, problem))?;
+                    if k == 0 && uv_set.is_some() && desc.as_ref().is_some_and(|d| d.uvs.is_none()) {
+                        model.warnings.push(FieldIssue {
+                            field: prim_path.clone(),
+                            problem: "its material is textured but it has no texture coordinates: planar ones are used"
+                                .into(),
+                        });
+                    }
+                    let unlit = primitive.material().unlit();
+                    if k == 0 && unlit && primitive.get(&::gltf::Semantic::Colors(0)).is_some() {
+                        model.warnings.push(FieldIssue {
+                            field: format!("{prim_path}.attributes.COLOR_0"),
+                            problem: "left out: its material is unlit, whose colour is E_m, and vertex colours \
                                   multiply k_a and k_d only"
-                            .into(),
-                    });
-                }
-                if let Some(desc) = desc {
-                    model.meshes.push(desc);
+                                .into(),
+                        });
+                    }
+                    if let Some(desc) = desc {
+                        model.meshes.push(desc);
+                    }
                 }
             }
         }
@@ -432,22 +471,26 @@ fn node_matrix(transform: ::gltf::scene::Transform) -> Result<Mat4, String> {
     match transform {
         ::gltf::scene::Transform::Matrix { matrix } => Ok(Mat4(matrix.map(|c| c.map(f64::from)))),
         ::gltf::scene::Transform::Decomposed { translation, rotation, scale } => {
-            let q = rotation.map(f64::from);
-            let len = q.iter().map(|c| c * c).sum::<f64>().sqrt();
-            if !(len.is_finite() && len > 1e-12) {
-                return Err(format!("rotation {rotation:?} is not a unit quaternion"));
-            }
-            let mut m = Mat4::from_quaternion(q);
-            // Columns of R scaled by S, then the translation.
-            for (column, s) in m.0.iter_mut().zip(scale) {
-                for c in column.iter_mut().take(3) {
-                    *c *= f64::from(s);
-                }
-            }
-            m.0[3] = [f64::from(translation[0]), f64::from(translation[1]), f64::from(translation[2]), 1.0];
-            Ok(m)
+            trs_matrix(translation.map(f64::from), rotation.map(f64::from), scale.map(f64::from))
         }
     }
+}
+
+/// T · R · S, R from the quaternion (x, y, z, w), which must have a usable length.
+fn trs_matrix(translation: [f64; 3], rotation: [f64; 4], scale: [f64; 3]) -> Result<Mat4, String> {
+    let len = rotation.iter().map(|c| c * c).sum::<f64>().sqrt();
+    if !(len.is_finite() && len > 1e-12) {
+        return Err(format!("rotation {rotation:?} is not a unit quaternion"));
+    }
+    let mut m = Mat4::from_quaternion(rotation);
+    // Columns of R scaled by S, then the translation.
+    for (column, s) in m.0.iter_mut().zip(scale) {
+        for c in column.iter_mut().take(3) {
+            *c *= s;
+        }
+    }
+    m.0[3] = [translation[0], translation[1], translation[2], 1.0];
+    Ok(m)
 }
 
 #[cfg(test)]

@@ -1,0 +1,67 @@
+//! EXT_mesh_gpu_instancing: a node's mesh drawn once per instance, each placed by its own
+//! TRANSLATION, ROTATION and SCALE (in the node's space, before the node's world transform).
+//! Glint's BVH has no instances, so each is a copy of the mesh: the count is bounded.
+
+use ::gltf::Document;
+
+use super::accessor::{self, Buffers};
+use super::trs_matrix;
+use glint_scene::Mat4;
+
+pub(super) const EXTENSION: &str = "EXT_mesh_gpu_instancing";
+
+/// The most triangles a file's instances may copy (a forest of 10,000 trees of 10,000
+/// triangles would need 100 million, and some 20 GB).
+pub const MAX_INSTANCED_TRIANGLES: usize = 1 << 24;
+
+/// The node's instance transforms, or `None` when it has no instancing. An error carries the
+/// JSON path at fault.
+pub(super) fn instances(
+    node: &::gltf::Node<'_>,
+    document: &Document,
+    buffers: &Buffers,
+) -> Result<Option<Vec<Mat4>>, (String, String)> {
+    let Some(ext) = node.extension_value(EXTENSION) else { return Ok(None) };
+    let path = format!("nodes[{}].extensions.{EXTENSION}", node.index());
+    let attributes = ext.get("attributes").and_then(|a| a.as_object());
+    let Some(attributes) = attributes else {
+        return Err((format!("{path}.attributes"), "is missing or not an object".into()));
+    };
+    // Each attribute: an accessor index, read with every bound checked.
+    let accessor_of = |name: &str| -> Result<Option<::gltf::Accessor<'_>>, (String, String)> {
+        let Some(value) = attributes.get(name) else { return Ok(None) };
+        let at = format!("{path}.attributes.{name}");
+        let index = value.as_u64().ok_or_else(|| (at.clone(), format!("{value} is not an accessor index")))?;
+        let count = document.accessors().len();
+        let found = usize::try_from(index).ok().and_then(|i| document.accessors().nth(i));
+        found.map(Some).ok_or_else(|| (at, format!("accessors[{index}] does not exist (the file has {count})")))
+    };
+    let read3 = |name: &str| -> Result<Option<Vec<[f64; 3]>>, (String, String)> {
+        accessor_of(name)?
+            .map(|a| accessor::read_vec3(&a, buffers).map_err(|p| (format!("{path}.attributes.{name}"), p)))
+            .transpose()
+    };
+    let translation = read3("TRANSLATION")?;
+    let scale = read3("SCALE")?;
+    let rotation = accessor_of("ROTATION")?
+        .map(|a| accessor::read_rotations(&a, buffers).map_err(|p| (format!("{path}.attributes.ROTATION"), p)))
+        .transpose()?;
+    let counts = [translation.as_ref().map(Vec::len), rotation.as_ref().map(Vec::len), scale.as_ref().map(Vec::len)];
+    let Some(count) = counts.iter().flatten().copied().max() else {
+        return Err((format!("{path}.attributes"), "names none of TRANSLATION, ROTATION and SCALE".into()));
+    };
+    if counts.iter().flatten().any(|&n| n != count) {
+        return Err((format!("{path}.attributes"), format!("the attributes' counts differ: {counts:?}")));
+    }
+    (0..count)
+        .map(|k| {
+            let t = translation.as_ref().map_or([0.0; 3], |v| v[k]);
+            let r = rotation.as_ref().map_or([0.0, 0.0, 0.0, 1.0], |v| v[k]);
+            let s = scale.as_ref().map_or([1.0; 3], |v| v[k]);
+            let finite = t.iter().chain(&r).chain(&s).all(|c| c.is_finite());
+            let m = if finite { trs_matrix(t, r, s) } else { Err("is not finite".into()) };
+            m.map_err(|p| (format!("{path}: instance {k}"), p))
+        })
+        .collect::<Result<Vec<_>, _>>()
+        .map(Some)
+}
