@@ -58,9 +58,7 @@ impl WorldCamera {
         };
         GpuCamera { anchor, forward: vec4(self.forward, 0.0), right: vec4(self.right, 0.0), up: vec4(self.up, 0.0) }
     }
-}
 
-impl WorldCamera {
     /// The nearest t > 0 (in units of `forward`) at which the view axis from `eye` meets one of
     /// `planes`.
     fn axis_meets(&self, eye: DVec3, planes: &[GpuPlane]) -> Option<f64> {
