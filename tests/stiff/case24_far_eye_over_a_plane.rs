@@ -1,11 +1,11 @@
-//! Case 24: a far eye over a plane alone — a checkered ground seen obliquely through a telephoto
-//! from D = 1e5, 1e6 and 1e7 (the same 10-unit patch of it, 96×72, the field of view narrowed
-//! with D), with no sphere or mesh to give the scene a size.
+//! Case 24: a far eye over a plane alone — a checkered ground seen obliquely through a telephoto,
+//! 36.9° and 20° above it, from D = 1e5, 1e6 and 1e7 (the same 10-unit patch of it, 96×72, the
+//! field of view narrowed with D), with no sphere or mesh to give the scene a size.
 //!
-//! Expected: the perspective differs by less than 1e-4 of the patch between the three, so the
-//! CPU's images are alike pixel for pixel (at most 0.1 % of the pixels differ from D = 1e5's, a
-//! pixel centre within 1e-4 of a checker edge), and the GPU's match the CPU's: no first hit and no
-//! pixel's checker square that differs (largest same-hit difference ≤ 1e-6).
+//! Expected: the perspective differs by at most 3e-4 of the patch between the three (the patch's
+//! depth over D, at 20°), so the CPU's images are alike but for pixel centres that close to a
+//! checker edge (at most 0.5 % of the pixels unlike D = 1e5's), and the GPU's match the CPU's: no
+//! first hit that differs, largest same-hit difference ≤ 1e-6.
 //!
 //! Why it was stiff: the camera anchors an eye far from its scene (case 22) by the scene's size,
 //! and a scene of planes alone has none, so the eye was stored itself and every camera ray left
@@ -23,11 +23,14 @@ use crate::scene::SceneText;
 const PATCH: f64 = 10.0;
 /// The focus, off every power-of-two grid.
 const FOCUS: [f64; 3] = [0.3, 0.0, 0.2];
-/// The unit direction from the focus to the eye.
-const TOWARDS_EYE: [f64; 3] = [0.48, 0.6, 0.64];
+/// The eye's elevation above the plane, in degrees: above and below 30°, where the GPU's frame
+/// once stopped looking for the patch (a review found it); the eye's azimuth is fixed.
+const ELEVATIONS: [f64; 2] = [36.87, 20.0];
 
-fn scene(distance: f64) -> SceneText {
-    let eye: [f64; 3] = std::array::from_fn(|k| FOCUS[k] + distance * TOWARDS_EYE[k]);
+fn scene(elevation: f64, distance: f64) -> SceneText {
+    let (sin, cos) = elevation.to_radians().sin_cos();
+    let towards_eye = [0.6 * cos, sin, 0.8 * cos];
+    let eye: [f64; 3] = std::array::from_fn(|k| FOCUS[k] + distance * towards_eye[k]);
     let fov = 2.0 * (0.5 * PATCH / distance).atan().to_degrees();
     SceneText::new(96, 72, "max_depth = 1", eye, FOCUS, [0.0, 1.0, 0.0], fov)
         .world([0.1; 3], [0.0; 3])
@@ -42,36 +45,44 @@ fn a_far_eye_over_a_lone_plane_sees_it_as_a_near_one_on_both_tracers() {
     say!(out, "case 24: a 10-unit patch of a checkered plane seen obliquely from D (96×72)");
     say!(
         out,
-        "  {:>7}  {:>23}  {:>19}  {:>10}  {:>11}",
+        "  {:>9}  {:>7}  {:>23}  {:>19}  {:>10}  {:>11}",
+        "elevation",
         "D",
         "CPU pixels unlike 1e5's",
         "max |diff| same hit",
         "PSNR (dB)",
         "hits differ"
     );
-    let mut reference = None;
-    for distance in [1e5, 1e6, 1e7] {
-        let both = render_both("stiff/case24", &format!("far-eye-{distance:e}"), &scene(distance).flat());
-        let cpu = &both.cpu.image;
-        let reference = reference.get_or_insert_with(|| cpu.pixels.clone());
-        let unlike = cpu.pixels.iter().zip(reference.iter()).filter(|(a, b)| a != b).count();
-        let Some(gpu) = &both.gpu else { continue };
-        let e = compare_images(cpu, &gpu.image);
-        let worst = cpu
-            .pixels
-            .iter()
-            .zip(&gpu.image.pixels)
-            .zip(cpu.first_hit.iter().zip(&gpu.image.first_hit))
-            .filter(|(_, (a, b))| a == b)
-            .map(|((c, g), _)| (*c - *g).abs().max_element())
-            .fold(0.0_f64, f64::max);
-        let hits = both.first_hit_mismatches().len();
-        say!(out, "  {distance:>7.0e}  {unlike:>23}  {worst:>19.2e}  {:>10.1}  {hits:>11}", e.psnr);
-        both.ensure(unlike * 1000 <= cpu.pixels.len() && worst <= 1e-6 && hits == 0, || {
+    for elevation in ELEVATIONS {
+        let mut reference = None;
+        for distance in [1e5, 1e6, 1e7] {
+            let name = format!("far-eye-{elevation}-{distance:e}");
+            let both = render_both("stiff/case24", &name, &scene(elevation, distance).flat());
+            let cpu = &both.cpu.image;
+            let reference = reference.get_or_insert_with(|| cpu.pixels.clone());
+            let unlike = cpu.pixels.iter().zip(reference.iter()).filter(|(a, b)| a != b).count();
+            let Some(gpu) = &both.gpu else { continue };
+            let e = compare_images(cpu, &gpu.image);
+            let worst = cpu
+                .pixels
+                .iter()
+                .zip(&gpu.image.pixels)
+                .zip(cpu.first_hit.iter().zip(&gpu.image.first_hit))
+                .filter(|(_, (a, b))| a == b)
+                .map(|((c, g), _)| (*c - *g).abs().max_element())
+                .fold(0.0_f64, f64::max);
+            let hits = both.first_hit_mismatches().len();
+            say!(
+                out,
+                "  {elevation:>8.1}°  {distance:>7.0e}  {unlike:>23}  {worst:>19.2e}  {:>10.1}  {hits:>11}",
+                e.psnr
+            );
+            both.ensure(unlike * 200 <= cpu.pixels.len() && worst <= 1e-6 && hits == 0, || {
             format!(
-                "D = {distance:e}: {unlike} CPU pixels unlike D = 1e5's, GPU off by {worst:.2e}, {hits} hits differ"
+                "{elevation}°, D = {distance:e}: {unlike} CPU pixels unlike D = 1e5's, GPU off by {worst:.2e}, {hits} hits differ"
             )
         });
+        }
     }
     eprint!("{out}");
     crate::generated::section("case24-far-eye-over-a-plane", &out);

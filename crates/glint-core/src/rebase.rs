@@ -160,7 +160,9 @@ fn focus_within(scene: &FlatScene, eye: DVec3, r: f64) -> DVec3 {
 pub fn camera_frame(scene: &FlatScene) -> [f32; 4] {
     let eye = camera_eye(&scene.camera);
     let r = reach(scene, eye);
-    let focus = focus_within(scene, eye, r);
+    // An anchored camera looks at its anchor, which can lie beyond 2R (a telephoto over a plane
+    // seen under 30° of elevation): the centre ray is followed that far.
+    let focus = focus_within(scene, eye, r.max(f64::from(scene.camera.anchor[3])));
     let (pixel, extent) = (pixel_at(scene, eye, focus), extent(scene, eye, focus));
     if !(r.is_finite() && r > 0.0 && focus.is_finite() && pixel > 0.0 && extent > 0.0) {
         return scene.header.frame;

@@ -39,8 +39,8 @@ impl WorldCamera {
     /// centre of the bounded geometry (`scene`) is anchored nearest that centre (`anchor_of`).
     /// In a scene of planes alone (`planes`, stored coordinates), which has no size, the view
     /// judges: an eye more than `EYE_REACH` of the image's heights from where its axis meets the
-    /// nearest plane is anchored there (a telephoto seeing a patch of the ground from afar). Any
-    /// other eye is its own anchor (w = 0).
+    /// nearest plane is anchored there (a telephoto seeing a patch of the ground from afar), if
+    /// that point is nearer the origin than the eye. Any other eye is its own anchor (w = 0).
     pub fn stored(&self, origin: DVec3, scene: Option<SceneBox>, planes: &[GpuPlane]) -> GpuCamera {
         let eye = self.position - origin;
         let anchor = match scene {
@@ -49,8 +49,13 @@ impl WorldCamera {
             }
             Some(_) => vec4(eye, 0.0),
             None => match self.axis_meets(eye, planes) {
-                // The image's height at distance t is 2·t·|up| / |forward|.
-                Some(t) if self.forward.length() > EYE_REACH * 2.0 * self.up.length() => {
+                // The image's height at distance t is 2·t·|up| / |forward|. An anchor farther
+                // from the origin than the eye (an axis grazing the plane) would store the
+                // eye worse than the eye itself.
+                Some(t)
+                    if self.forward.length() > EYE_REACH * 2.0 * self.up.length()
+                        && (eye + t * self.forward).length() < eye.length() =>
+                {
                     anchor_of(eye, self.forward, eye + t * self.forward)
                 }
                 _ => vec4(eye, 0.0),
@@ -142,9 +147,12 @@ mod tests {
         let a = wide(s.camera.anchor);
         assert!(a.y.abs() < 1e-3 && (a - DVec3::from(focus)).length() < 1e-2, "anchored at {a}, not on the plane");
         assert!((f64::from(s.camera.anchor[3]) - 1e6).abs() < 1.0);
-        // A normal lens over the plane, and a telephoto whose axis leaves it, keep their eyes.
+        // A normal lens over the plane, a telephoto whose axis leaves it, and one whose axis
+        // grazes it far beyond the eye (an anchor at 1e11 would store the eye 3e3 off) keep their
+        // eyes.
         assert_eq!(over_a_plane(eye, focus, 40.0).camera.anchor[3], 0.0);
         assert_eq!(over_a_plane(eye, [0.3, 1_200_000.0, 0.2], 5.7e-4).camera.anchor[3], 0.0);
+        assert_eq!(over_a_plane([0.0, 1.0, 0.0], [6e8, 0.99, 8e8], 0.5).camera.anchor[3], 0.0);
     }
 
     #[test]
