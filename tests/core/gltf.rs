@@ -453,8 +453,15 @@ fn gpu_instancing_places_a_copy_of_the_mesh_per_instance() {
         (json!({ "TRANSLATION": 9 }), "accessors[9] does not exist"),
         (json!({}), "names none of TRANSLATION, ROTATION and SCALE"),
         (json!({ "ROTATION": 3 }), "wanted VEC4 of FLOAT or normalized BYTE/SHORT"),
+        // 2^27 instances of the quad's 2 triangles, from a sparse view-less accessor the file
+        // holds as a few bytes: refused before anything is read (3 GB of translations).
+        (json!({ "TRANSLATION": 6 }), "make 268435456 triangles"),
     ] {
         let mut g = f.clone();
+        let sparse = json!({ "count": 1, "indices": { "bufferView": rotation, "componentType": 5121 },
+            "values": { "bufferView": translation } });
+        let many = json!({ "componentType": 5126, "count": 1 << 27, "type": "VEC3", "sparse": sparse });
+        g.json["accessors"].as_array_mut().unwrap().push(many);
         g.json["nodes"][0]["extensions"]["EXT_mesh_gpu_instancing"]["attributes"] = attributes;
         let e = error(&g.write_glb(&dir, "broken"));
         assert!(e.contains("nodes[0].extensions.EXT_mesh_gpu_instancing") && e.contains(message), "{e}");

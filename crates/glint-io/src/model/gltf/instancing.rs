@@ -10,16 +10,34 @@ use glint_scene::Mat4;
 
 pub(super) const EXTENSION: &str = "EXT_mesh_gpu_instancing";
 
-/// The most triangles a file's instances may copy (a forest of 10,000 trees of 10,000
-/// triangles would need 100 million, and some 20 GB).
+/// The most triangles a file's instances may copy, all its nodes together (a forest of 10,000
+/// trees of 10,000 triangles would need 100 million, and some 20 GB).
 pub const MAX_INSTANCED_TRIANGLES: usize = 1 << 24;
 
-/// The node's instance transforms, or `None` when it has no instancing. An error carries the
-/// JSON path at fault.
+/// The triangles a mesh's primitives make (what its instances copy).
+pub(super) fn mesh_triangles(mesh: &::gltf::Mesh<'_>) -> usize {
+    use ::gltf::mesh::Mode;
+    mesh.primitives()
+        .map(|p| {
+            let n = p.indices().or_else(|| p.get(&::gltf::Semantic::Positions)).map_or(0, |a| a.count());
+            match p.mode() {
+                Mode::Triangles => n / 3,
+                Mode::TriangleStrip | Mode::TriangleFan => n.saturating_sub(2),
+                Mode::Points | Mode::Lines | Mode::LineLoop | Mode::LineStrip => 0,
+            }
+        })
+        .sum()
+}
+
+/// The node's instance transforms, or `None` when it has no instancing. `budget`: the
+/// triangles the file's instances may still copy, checked against the accessors' counts before
+/// anything is read (a view-less accessor of 2^27 zeros costs the file nothing). An error
+/// carries the JSON path at fault.
 pub(super) fn instances(
     node: &::gltf::Node<'_>,
     document: &Document,
     buffers: &Buffers,
+    budget: &mut usize,
 ) -> Result<Option<Vec<Mat4>>, (String, String)> {
     let Some(ext) = node.extension_value(EXTENSION) else { return Ok(None) };
     let path = format!("nodes[{}].extensions.{EXTENSION}", node.index());
@@ -36,6 +54,24 @@ pub(super) fn instances(
         let found = usize::try_from(index).ok().and_then(|i| document.accessors().nth(i));
         found.map(Some).ok_or_else(|| (at, format!("accessors[{index}] does not exist (the file has {count})")))
     };
+    let declared = ["TRANSLATION", "ROTATION", "SCALE"]
+        .iter()
+        .map(|name| accessor_of(name).map(|a| a.map_or(0, |a| a.count())))
+        .collect::<Result<Vec<_>, _>>()?;
+    let mesh = node.mesh().map_or(0, |m| mesh_triangles(&m));
+    let copied = declared.iter().max().copied().unwrap_or(0).saturating_mul(mesh);
+    if copied > *budget {
+        return Err((
+            path.clone(),
+            format!(
+                "{} instances of meshes[{}] make {copied} triangles; Glint copies each instance (its BVH has \
+                 no instances) and allows {MAX_INSTANCED_TRIANGLES} in a file",
+                declared.iter().max().copied().unwrap_or(0),
+                node.mesh().map_or(0, |m| m.index()),
+            ),
+        ));
+    }
+    *budget -= copied;
     let read3 = |name: &str| -> Result<Option<Vec<[f64; 3]>>, (String, String)> {
         accessor_of(name)?
             .map(|a| accessor::read_vec3(&a, buffers).map_err(|p| (format!("{path}.attributes.{name}"), p)))

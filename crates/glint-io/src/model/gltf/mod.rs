@@ -137,6 +137,7 @@ pub fn load_gltf(path: &Path, options: &ImportOptions) -> Result<Model, GltfErro
         return Err(at(format!("scenes[{}].nodes", scene.index()), "the scene has no nodes".into()));
     }
     let mut skipped_modes: BTreeMap<String, Vec<String>> = BTreeMap::new();
+    let mut instance_budget = instancing::MAX_INSTANCED_TRIANGLES;
     while let Some((node, parent)) = stack.pop() {
         let i = node.index();
         if std::mem::replace(&mut reached[i], true) {
@@ -148,8 +149,8 @@ pub fn load_gltf(path: &Path, options: &ImportOptions) -> Result<Model, GltfErro
         let local = node_matrix(node.transform()).map_err(|p| at(format!("nodes[{i}]"), p))?;
         let world = parent.mul(&local);
         if let Some(mesh) = node.mesh() {
-            let instanced =
-                instancing::instances(&node, &gltf, &buffers).map_err(|(path, problem)| at(path, problem))?;
+            let instanced = instancing::instances(&node, &gltf, &buffers, &mut instance_budget)
+                .map_err(|(path, problem)| at(path, problem))?;
             let placements: Vec<deform::Placement> = match (node.skin(), instanced) {
                 (Some(skin), instanced) => {
                     if instanced.is_some() {
@@ -166,24 +167,6 @@ pub fn load_gltf(path: &Path, options: &ImportOptions) -> Result<Model, GltfErro
                 (None, Some(instances)) => instances.iter().map(|m| deform::Placement::Rigid(world.mul(m))).collect(),
                 (None, None) => vec![deform::Placement::Rigid(world)],
             };
-            let triangles: usize = mesh
-                .primitives()
-                .filter_map(|p| p.indices().or(p.get(&::gltf::Semantic::Positions)))
-                .map(|a| a.count() / 3)
-                .sum();
-            let copied = triangles.saturating_mul(placements.len());
-            if placements.len() > 1 && copied > instancing::MAX_INSTANCED_TRIANGLES {
-                return Err(at(
-                    format!("nodes[{i}].extensions.{}", instancing::EXTENSION),
-                    format!(
-                        "{} instances of meshes[{}] make about {copied} triangles; Glint copies each instance (its BVH \
-                         has no instances) and allows {}",
-                        placements.len(),
-                        mesh.index(),
-                        instancing::MAX_INSTANCED_TRIANGLES
-                    ),
-                ));
-            }
             for (k, placement) in placements.iter().enumerate() {
                 // The node's morph weights, else the mesh's.
                 let weights: Vec<f64> =
