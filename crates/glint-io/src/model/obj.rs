@@ -59,7 +59,7 @@ pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
     }
     // Checked as the file wrote them: after a node transform one bad number spreads to every
     // component, and the line is lost.
-    if let Some((line, reason)) = bad_number(&bytes) {
+    if let Some((line, reason)) = obj_text::bad_number(&bytes) {
         return Err(parse_error(Some(line), reason));
     }
     // Polygons come whole: `polygon::triangulate` cuts them (tobj's fans overlap on concave ones).
@@ -220,54 +220,6 @@ fn unknown_materials(uses: &[obj_text::UseMaterial], materials: &[tobj::Material
         out.push(FieldIssue { field: format!("line {}: usemtl", used.line), problem });
     }
     out
-}
-
-/// The first `v`, `vt` or `vn` line (1-based) holding a word that is not a number (tobj says
-/// only "position parse error", and drops a colour it cannot read) or a number that is not a
-/// finite f32 (`nan`, `inf`, or a decimal beyond f32's range, which the GPU tracer cannot hold
-/// even after rebasing), and what is wrong with it.
-fn bad_number(bytes: &[u8]) -> Option<(usize, String)> {
-    for (n, raw) in bytes.split(|&b| b == b'\n').enumerate() {
-        let Ok(line) = std::str::from_utf8(raw) else { continue };
-        // tobj reads a line up to a comment, and of `vt` and `vn` lines only the numbers it uses.
-        let mut words = line.split_whitespace().take_while(|w| !w.starts_with('#'));
-        // A `v` line's fourth number is w, or the first of a colour's three.
-        let components: &[(&str, &str)] = match words.next() {
-            Some("v") if words.clone().count() == 4 => &[
-                ("vertex position", "x"),
-                ("vertex position", "y"),
-                ("vertex position", "z"),
-                ("vertex position", "w"),
-            ],
-            Some("v") => &[
-                ("vertex position", "x"),
-                ("vertex position", "y"),
-                ("vertex position", "z"),
-                ("vertex colour", "r"),
-                ("vertex colour", "g"),
-                ("vertex colour", "b"),
-            ],
-            Some("vt") => &[("texture coordinate", "u"), ("texture coordinate", "v")],
-            Some("vn") => &[("normal", "x"), ("normal", "y"), ("normal", "z")],
-            _ => continue,
-        };
-        // A `v` line's words beyond the six it may have are tobj's to refuse.
-        for (k, word) in words.enumerate().take(components.len()) {
-            let (what, name) = components[k];
-            let Ok(value) = word.parse::<f32>() else {
-                return Some((n + 1, format!("`{}`: {what} component {name}: `{word}` is not a number", line.trim())));
-            };
-            if !value.is_finite() {
-                let problem = if word.parse::<f64>().is_ok_and(f64::is_finite) {
-                    format!("{word} is beyond f32's range (±{:e})", f32::MAX)
-                } else {
-                    format!("{word} is not a finite number")
-                };
-                return Some((n + 1, format!("`{}`: {what} component {name}: {problem}", line.trim())));
-            }
-        }
-    }
-    None
 }
 
 /// The line at which tobj's parse fails (tobj's errors carry none): the shortest prefix of

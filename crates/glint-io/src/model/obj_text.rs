@@ -1,7 +1,8 @@
 //! OBJ and MTL files as the UTF-8 text `tobj` reads. Real files come in the encoding of the
 //! tool that wrote them: UTF-16 with a byte order mark, or a Windows code page with accented
 //! material names (ISO-8859-1 is its subset). Assimp and Blender read those; so does Glint,
-//! saying which encoding it took. Every line keeps its number, so errors still name lines.
+//! saying which encoding it took. Every line keeps its number, so errors still name lines, as
+//! `bad_number` does for the numbers tobj would refuse or misread.
 
 use std::borrow::Cow;
 
@@ -107,6 +108,54 @@ pub(super) fn without_partial_vertex_colours(text: &[u8]) -> (Cow<'_, [u8]>, Opt
         })
     });
     (out, Some((coloured, all)))
+}
+
+/// The first `v`, `vt` or `vn` line (1-based) holding a word that is not a number (tobj says
+/// only "position parse error", and drops a colour it cannot read) or a number that is not a
+/// finite f32 (`nan`, `inf`, or a decimal beyond f32's range, which the GPU tracer cannot hold
+/// even after rebasing), and what is wrong with it.
+pub(super) fn bad_number(bytes: &[u8]) -> Option<(usize, String)> {
+    for (n, raw) in bytes.split(|&b| b == b'\n').enumerate() {
+        let Ok(line) = std::str::from_utf8(raw) else { continue };
+        // tobj reads a line up to a comment, and of `vt` and `vn` lines only the numbers it uses.
+        let mut words = line.split_whitespace().take_while(|w| !w.starts_with('#'));
+        // A `v` line's fourth number is w, or the first of a colour's three.
+        let components: &[(&str, &str)] = match words.next() {
+            Some("v") if words.clone().count() == 4 => &[
+                ("vertex position", "x"),
+                ("vertex position", "y"),
+                ("vertex position", "z"),
+                ("vertex position", "w"),
+            ],
+            Some("v") => &[
+                ("vertex position", "x"),
+                ("vertex position", "y"),
+                ("vertex position", "z"),
+                ("vertex colour", "r"),
+                ("vertex colour", "g"),
+                ("vertex colour", "b"),
+            ],
+            Some("vt") => &[("texture coordinate", "u"), ("texture coordinate", "v")],
+            Some("vn") => &[("normal", "x"), ("normal", "y"), ("normal", "z")],
+            _ => continue,
+        };
+        // A `v` line's words beyond the six it may have are tobj's to refuse.
+        for (k, word) in words.enumerate().take(components.len()) {
+            let (what, name) = components[k];
+            let Ok(value) = word.parse::<f32>() else {
+                return Some((n + 1, format!("`{}`: {what} component {name}: `{word}` is not a number", line.trim())));
+            };
+            if !value.is_finite() {
+                let problem = if word.parse::<f64>().is_ok_and(f64::is_finite) {
+                    format!("{word} is beyond f32's range (±{:e})", f32::MAX)
+                } else {
+                    format!("{word} is not a finite number")
+                };
+                return Some((n + 1, format!("`{}`: {what} component {name}: {problem}", line.trim())));
+            }
+        }
+    }
+    None
 }
 
 /// `text` with the lines `replace` gives a replacement for replaced (the line breaks kept, so

@@ -5,7 +5,7 @@
 use ::gltf::Document;
 
 use super::accessor::{self, Buffers};
-use super::trs_matrix;
+use super::{triangle_count, trs_matrix};
 use glint_scene::Mat4;
 
 pub(super) const EXTENSION: &str = "EXT_mesh_gpu_instancing";
@@ -15,16 +15,11 @@ pub(super) const EXTENSION: &str = "EXT_mesh_gpu_instancing";
 pub const MAX_INSTANCED_TRIANGLES: usize = 1 << 24;
 
 /// The triangles a mesh's primitives make (what its instances copy).
-pub(super) fn mesh_triangles(mesh: &::gltf::Mesh<'_>) -> usize {
-    use ::gltf::mesh::Mode;
+fn mesh_triangles(mesh: &::gltf::Mesh<'_>) -> usize {
     mesh.primitives()
         .map(|p| {
             let n = p.indices().or_else(|| p.get(&::gltf::Semantic::Positions)).map_or(0, |a| a.count());
-            match p.mode() {
-                Mode::Triangles => n / 3,
-                Mode::TriangleStrip | Mode::TriangleFan => n.saturating_sub(2),
-                Mode::Points | Mode::Lines | Mode::LineLoop | Mode::LineStrip => 0,
-            }
+            triangle_count(p.mode(), n)
         })
         .sum()
 }
@@ -54,41 +49,34 @@ pub(super) fn instances(
         let found = usize::try_from(index).ok().and_then(|i| document.accessors().nth(i));
         found.map(Some).ok_or_else(|| (at, format!("accessors[{index}] does not exist (the file has {count})")))
     };
-    let declared = ["TRANSLATION", "ROTATION", "SCALE"]
-        .iter()
-        .map(|name| accessor_of(name).map(|a| a.map_or(0, |a| a.count())))
-        .collect::<Result<Vec<_>, _>>()?;
-    let mesh = node.mesh().map_or(0, |m| mesh_triangles(&m));
-    let copied = declared.iter().max().copied().unwrap_or(0).saturating_mul(mesh);
-    if copied > *budget {
-        return Err((
-            path.clone(),
-            format!(
-                "{} instances of meshes[{}] make {copied} triangles; Glint copies each instance (its BVH has \
-                 no instances) and allows {MAX_INSTANCED_TRIANGLES} in a file",
-                declared.iter().max().copied().unwrap_or(0),
-                node.mesh().map_or(0, |m| m.index()),
-            ),
-        ));
-    }
-    *budget -= copied;
-    let read3 = |name: &str| -> Result<Option<Vec<[f64; 3]>>, (String, String)> {
-        accessor_of(name)?
-            .map(|a| accessor::read_vec3(&a, buffers).map_err(|p| (format!("{path}.attributes.{name}"), p)))
-            .transpose()
-    };
-    let translation = read3("TRANSLATION")?;
-    let scale = read3("SCALE")?;
-    let rotation = accessor_of("ROTATION")?
-        .map(|a| accessor::read_rotations(&a, buffers).map_err(|p| (format!("{path}.attributes.ROTATION"), p)))
-        .transpose()?;
-    let counts = [translation.as_ref().map(Vec::len), rotation.as_ref().map(Vec::len), scale.as_ref().map(Vec::len)];
+    let [translation, rotation, scale] = ["TRANSLATION", "ROTATION", "SCALE"].map(accessor_of);
+    let (translation, rotation, scale) = (translation?, rotation?, scale?);
+    let counts = [&translation, &rotation, &scale].map(|a| a.as_ref().map(|a| a.count()));
     let Some(count) = counts.iter().flatten().copied().max() else {
         return Err((format!("{path}.attributes"), "names none of TRANSLATION, ROTATION and SCALE".into()));
     };
     if counts.iter().flatten().any(|&n| n != count) {
         return Err((format!("{path}.attributes"), format!("the attributes' counts differ: {counts:?}")));
     }
+    let mesh = node.mesh();
+    let copied = count.saturating_mul(mesh.as_ref().map_or(0, mesh_triangles));
+    if copied > *budget {
+        return Err((
+            path.clone(),
+            format!(
+                "{count} instances of meshes[{}] make {copied} triangles; Glint copies each instance (its BVH has \
+                 no instances) and allows {MAX_INSTANCED_TRIANGLES} in a file",
+                mesh.map_or(0, |m| m.index()),
+            ),
+        ));
+    }
+    *budget -= copied;
+    let at = |name: &'static str, p: String| (format!("{path}.attributes.{name}"), p);
+    let translation =
+        translation.map(|a| accessor::read_vec3(&a, buffers).map_err(|p| at("TRANSLATION", p))).transpose()?;
+    let rotation =
+        rotation.map(|a| accessor::read_rotations(&a, buffers).map_err(|p| at("ROTATION", p))).transpose()?;
+    let scale = scale.map(|a| accessor::read_vec3(&a, buffers).map_err(|p| at("SCALE", p))).transpose()?;
     (0..count)
         .map(|k| {
             let t = translation.as_ref().map_or([0.0; 3], |v| v[k]);

@@ -167,10 +167,10 @@ pub fn load_gltf(path: &Path, options: &ImportOptions) -> Result<Model, GltfErro
                 (None, Some(instances)) => instances.iter().map(|m| deform::Placement::Rigid(world.mul(m))).collect(),
                 (None, None) => vec![deform::Placement::Rigid(world)],
             };
+            // The node's morph weights, else the mesh's.
+            let weights: Vec<f64> =
+                node.weights().or(mesh.weights()).unwrap_or_default().iter().map(|&w| f64::from(w)).collect();
             for (k, placement) in placements.iter().enumerate() {
-                // The node's morph weights, else the mesh's.
-                let weights: Vec<f64> =
-                    node.weights().or(mesh.weights()).unwrap_or_default().iter().map(|&w| f64::from(w)).collect();
                 for primitive in mesh.primitives() {
                     let prim_path = format!("meshes[{}].primitives[{}]", mesh.index(), primitive.index());
                     match primitive.mode() {
@@ -434,6 +434,15 @@ fn read_primitive(
 
 /// The triangles of a primitive's index list in its mode (glTF 2.0 §3.7.2.1: strips alternate
 /// winding so every triangle keeps the first one's orientation; fans share the first vertex).
+/// How many triangles `triangulate` makes of `indices` indices in `mode`.
+fn triangle_count(mode: Mode, indices: usize) -> usize {
+    match mode {
+        Mode::Triangles => indices / 3,
+        Mode::TriangleStrip | Mode::TriangleFan => indices.saturating_sub(2),
+        Mode::Points | Mode::Lines | Mode::LineLoop | Mode::LineStrip => 0,
+    }
+}
+
 fn triangulate(mode: Mode, indices: &[u32]) -> Vec<[u32; 3]> {
     match mode {
         Mode::Triangles => indices.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect(),
