@@ -21,7 +21,7 @@ struct Hit {
     bv: f32,
 }
 
-// The primitive a secondary ray leaves under skip_convex (PRIM_NONE otherwise): not tested
+// The primitive a secondary ray leaves under skip_convex and robust (PRIM_NONE otherwise): not tested
 // again, but for a sphere the ray goes into, whose far root alone counts.
 struct Leaving {
     prim: u32,

@@ -50,7 +50,7 @@ fn spawn_ray(p: vec3<f32>, p_surface: vec3<f32>, n_side: vec3<f32>, dir: vec3<f3
         }
         // EPS_ROBUST; the host refuses any other stored value (FlatScene::check_tags).
         default: {
-            return Spawn(offset_ray(p_surface, n_side, header.frame.w) + eps * n_side, 0.0, none);
+            return Spawn(offset_ray(p_surface, n_side, header.frame.w) + eps * n_side, 0.0, leaving);
         }
     }
 }

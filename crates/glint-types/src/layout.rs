@@ -168,8 +168,9 @@ pub mod feature {
     pub const INVERSE_SQUARE: u32 = 1 << 18;
     /// Some spot light has the smooth (glTF) cone falloff.
     pub const SMOOTH_SPOT: u32 = 1 << 19;
-    /// The ε strategy is `skip_convex`: secondary rays carry the primitive they leave, which
-    /// the primitive loops skip (or, for a sphere the ray enters, test by its far root only).
+    /// The ε strategy is `skip_convex` or `robust`: secondary rays carry the primitive they
+    /// leave, which the primitive loops skip (or, for a sphere the ray enters, test by its far
+    /// root only).
     pub const SKIP_CONVEX: u32 = 1 << 20;
     /// The world's global attenuation is on (not (1, 0, 0)) and child rays are traced.
     pub const GLOBAL_ATTENUATION: u32 = 1 << 21;

@@ -43,13 +43,14 @@ pub struct Hit {
 }
 
 /// The primitive a secondary ray leaves, under `EpsilonMode::SkipConvex` (the seed's "convex
-/// objects do not test intersection if the ray's prior intersection is with that object").
+/// objects do not test intersection if the ray's prior intersection is with that object") and
+/// `EpsilonMode::Robust`.
 /// A plane or triangle cannot be met again by a ray leaving it, nor a sphere by a ray leaving
 /// into its outside: those are not tested at all. A ray entering a sphere meets it once more,
 /// at its far side: of that sphere only the far root counts.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Leaving {
-    /// `None` for camera rays and under every other ε strategy.
+    /// `None` for camera rays and under the other ε strategies.
     pub prim: Option<Prim>,
     pub index: u32,
     /// The ray goes into the sphere it leaves.
@@ -61,7 +62,8 @@ impl Leaving {
     pub const NONE: Self = Self { prim: None, index: 0, inside: false };
 }
 
-/// Whether (prim, index) is the primitive the ray leaves (only ever under `skip_convex`).
+/// Whether (prim, index) is the primitive the ray leaves (only ever under `skip_convex` and
+/// `robust`).
 #[inline]
 pub fn is_leaving(leaving: &Leaving, prim: Prim, index: u32) -> bool {
     leaving.prim == Some(prim) && leaving.index == index

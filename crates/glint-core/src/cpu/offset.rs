@@ -61,8 +61,10 @@ pub fn leaving_surface(prim: Prim, index: u32, ng: DVec3, n_side: DVec3) -> Leav
 
 /// The secondary ray leaving the hit at `p` in direction `dir`; `p_surface` is the hit point
 /// re-projected onto the surface (see `surface_at`), `n_side` the unit geometric normal turned
-/// to the side `dir` goes to, and `leaving` the primitive hit (`leaving_surface`), which only
-/// `skip_convex` keeps.
+/// to the side `dir` goes to, and `leaving` the primitive hit (`leaving_surface`), which
+/// `skip_convex` and `robust` keep: the offset covers the hit point's rounding, but the next
+/// test's own rounding grows with the primitive's size, not the point's coordinates (a large
+/// triangle through a coordinate plane), and a primitive left cannot be met again there.
 pub fn spawn_ray(ctx: &TraceContext, p: DVec3, p_surface: DVec3, n_side: DVec3, dir: DVec3, leaving: Leaving) -> Spawn {
     let eps = ctx.epsilon;
     let (origin, t_min) = match ctx.epsilon_mode {
@@ -70,7 +72,8 @@ pub fn spawn_ray(ctx: &TraceContext, p: DVec3, p_surface: DVec3, n_side: DVec3, 
         EpsilonMode::NudgeRay => (p + eps * dir, 0.0),
         EpsilonMode::NudgeNormal => (p + eps * n_side, 0.0),
         EpsilonMode::Robust => {
-            (offset_ray(p_surface, n_side, f64::from(ctx.scene.header.frame[3])) + eps * n_side, 0.0)
+            let origin = offset_ray(p_surface, n_side, f64::from(ctx.scene.header.frame[3])) + eps * n_side;
+            return Spawn { origin, t_min: 0.0, leaving };
         }
         EpsilonMode::SkipConvex => return Spawn { origin: p, t_min: eps, leaving },
     };

@@ -265,7 +265,11 @@ impl FlatScene {
         if (feature::recurses(f) || path) && self.header.global_attenuation != [1.0, 0.0, 0.0, 0.0] {
             f |= feature::GLOBAL_ATTENUATION;
         }
-        if self.header.epsilon_mode == glint_types::layout::EPS_SKIP_CONVEX
+        // `robust` skips the primitive left as well: its offset is sized for the hit point's
+        // rounding, not for the next test's (a ray sheared off a large triangle through a
+        // coordinate plane re-met it 5e-5 away on the GPU, under an offset of 2^-16).
+        let mode = self.header.epsilon_mode;
+        if (mode == glint_types::layout::EPS_SKIP_CONVEX || mode == glint_types::layout::EPS_ROBUST)
             && (f & feature::SHADOWS != 0 || feature::recurses(f) || path)
         {
             f |= feature::SKIP_CONVEX;
