@@ -17,11 +17,11 @@ fn main() -> ExitCode {
         (Ok(()), _) => ExitCode::SUCCESS,
         // Whatever failed after a stop was requested failed because of it.
         (Err(_), Some(code)) => {
-            eprintln!("interrupted");
+            cli::console::err_line(format_args!("interrupted"));
             ExitCode::from(code)
         }
         (Err(e), None) => {
-            eprintln!("error: {e:#}");
+            cli::console::err_line(format_args!("error: {e:#}"));
             ExitCode::FAILURE
         }
     }

@@ -1,6 +1,7 @@
 //! `glint adapters`: the GPU adapters a render can choose from (`--adapter`, `WGPU_ADAPTER_NAME`,
 //! `WGPU_BACKEND`), as the tracer finds them; what `scripts/device-suite` checks first.
 
+use super::console::say;
 use clap::Args;
 
 #[derive(Debug, Args)]
@@ -25,15 +26,15 @@ pub fn run(args: &AdaptersArgs) -> anyhow::Result<()> {
                 })
             })
             .collect();
-        println!("{}", serde_json::to_string_pretty(&list)?);
+        say!("{}", serde_json::to_string_pretty(&list)?)?;
         return Ok(());
     }
     if adapters.is_empty() {
-        println!("no GPU adapter (install a Vulkan driver: Mesa's lavapipe is apt-get install mesa-vulkan-drivers)");
+        say!("no GPU adapter (install a Vulkan driver: Mesa's lavapipe is apt-get install mesa-vulkan-drivers)")?;
     }
     for a in &adapters {
         let kind = if a.is_software() { "software, runs on the CPU" } else { "hardware" };
-        println!("{a}: driver {} ({kind})", a.driver);
+        say!("{a}: driver {} ({kind})", a.driver)?;
     }
     Ok(())
 }

@@ -7,6 +7,7 @@
 //! Every measurement is one warm-up run, then `--runs` timed runs; the table shows the median
 //! and the best, and throughputs are computed from the median.
 
+use super::console::say;
 use std::borrow::Cow;
 use std::time::{Duration, Instant};
 
@@ -46,7 +47,7 @@ pub struct RaysArgs {
     #[command(flatten)]
     pub scene_size: LoadArgs,
     /// CPU threads for the build and the casts [1, 1024]; default: the available parallelism
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024))]
+    #[arg(long, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(1..=1024))]
     pub threads: Option<u32>,
     /// Which side casts the rays: the CPU (f64), the GPU (WGSL), or both (then their hits are compared)
     #[arg(long, default_value = "cpu", value_parser = ["cpu", "gpu", "both"])]
@@ -55,7 +56,7 @@ pub struct RaysArgs {
     #[arg(long)]
     pub adapter: Option<String>,
     /// Timed runs after the warm-up run [1, 100]
-    #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u32).range(1..=100))]
+    #[arg(long, default_value_t = 5, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(1..=100))]
     pub runs: u32,
     /// Print the results as JSON instead of a table
     #[arg(long)]
@@ -256,9 +257,9 @@ fn rays(args: &RaysArgs) -> anyhow::Result<()> {
         gpu_vs_cpu,
     };
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&report)?);
+        say!("{}", serde_json::to_string_pretty(&report)?)?;
     } else {
-        print_table(&report);
+        print_table(&report)?;
     }
     Ok(())
 }
@@ -276,9 +277,9 @@ fn cast_result(set: RaySet, backend: Backend, rays: usize, timing: Timing, hits:
     }
 }
 
-fn print_table(r: &Report) {
+fn print_table(r: &Report) -> std::io::Result<()> {
     let b = &r.build;
-    println!(
+    say!(
         "{}: {} triangles, {} spheres, {} planes (walked apart); BVH of {} nodes ({} of {} children on the CPU); {} CPU threads",
         r.scene,
         r.triangles,
@@ -288,18 +289,28 @@ fn print_table(r: &Report) {
         b.wide_nodes,
         bvh::WIDTH,
         r.cpu_threads
-    );
-    println!("  warm-up, then median and best of {} runs; Mrays/s and Mtris/s from the median", b.timing.runs);
-    println!(
+    )?;
+    say!("  warm-up, then median and best of {} runs; Mrays/s and Mtris/s from the median", b.timing.runs)?;
+    say!(
         "  BVH build    {:>10.1} ms median {:>10.1} ms best {:>9.2} Mtris/s  (whole FlatScene::build {:.1} ms, load {:.1} ms)",
-        b.timing.median_ms, b.timing.best_ms, b.mtris_per_s, b.flat_scene_ms, b.load_ms
-    );
-    println!(
+        b.timing.median_ms,
+        b.timing.best_ms,
+        b.mtris_per_s,
+        b.flat_scene_ms,
+        b.load_ms
+    )?;
+    say!(
         "  {:<11} {:<8} {:>10} {:>12} {:>12} {:>9} {:>8}",
-        "rays", "backend", "count", "median ms", "best ms", "Mrays/s", "hit %"
-    );
+        "rays",
+        "backend",
+        "count",
+        "median ms",
+        "best ms",
+        "Mrays/s",
+        "hit %"
+    )?;
     for c in &r.casts {
-        println!(
+        say!(
             "  {:<11} {:<8} {:>10} {:>12.1} {:>12.1} {:>9.2} {:>8.2}",
             c.set,
             c.backend,
@@ -308,19 +319,20 @@ fn print_table(r: &Report) {
             c.timing.best_ms,
             c.mrays_per_s,
             100.0 * c.hit_fraction
-        );
+        )?;
     }
     if let Some(adapter) = &r.gpu_adapter {
-        println!("  gpu: {adapter}");
+        say!("  gpu: {adapter}")?;
     }
     for d in &r.gpu_vs_cpu {
-        println!(
+        say!(
             "  gpu vs cpu, {}: {} of {} rays hit another primitive ({:.4} %), max relative t difference {:.2e}",
             d.set,
             d.differing_rays,
             d.rays,
             100.0 * d.differing_fraction,
             d.max_rel_t_difference
-        );
+        )?;
     }
+    Ok(())
 }

@@ -5,6 +5,7 @@
 //! pixels read, one tile at a time, into one f32 image, and the output written atomically.
 //! Nothing is written on any error. At most the output image and one tile are in memory.
 
+use super::console::say;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
@@ -128,10 +129,11 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
         );
     }
     let sources: Vec<&Path> = args.tiles.iter().map(PathBuf::as_path).collect();
-    check_outputs(&[args.output.as_path()], sources[0], args.force)?;
+    // Before `check_outputs`, whose message calls its input a scene.
     if sources.iter().any(|s| is_same_file(s, &args.output)) {
         bail!("{}: the output would replace one of the tiles", args.output.display());
     }
+    check_outputs(&[args.output.as_path()], sources[0], args.force)?;
 
     let mut image = vec![[0f32; 3]; width as usize * height as usize];
     for (&index, path) in &by_index {
@@ -154,6 +156,6 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
         let pixel = |x: usize, y: usize| image[y * width as usize + x];
         write_exr_region(&args.output, (width, height), (0, 0), (width, height), pixel, &metadata)?;
     }
-    println!("merged {count} tiles ({} grid) into {width}x{height}: wrote {}", grid.describe(), args.output.display());
+    say!("merged {count} tiles ({} grid) into {width}x{height}: wrote {}", grid.describe(), args.output.display())?;
     Ok(())
 }

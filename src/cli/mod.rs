@@ -4,6 +4,7 @@ mod adapters;
 mod backend;
 mod bench;
 mod bench_export;
+pub mod console;
 pub mod interrupt;
 mod merge;
 mod output;

@@ -1,5 +1,6 @@
 //! What `glint render` writes and prints: images with metadata, the timing/error table, JSON.
 
+use super::console::{say, tell};
 use std::path::{Path, PathBuf};
 
 use anyhow::bail;
@@ -198,41 +199,51 @@ pub fn print_json(
             peak_rss_bytes: memory::peak_rss(),
         },
     };
-    println!("{}", serde_json::to_string_pretty(&report)?);
+    say!("{}", serde_json::to_string_pretty(&report)?)?;
     Ok(())
 }
 
 /// The human-readable table: one row per backend, then the errors of GPU against CPU.
-pub fn print_table(scene: &str, s: &RenderSettings, runs: &[Run], errors: Option<&ImageErrors>, outputs: &[PathBuf]) {
-    println!("{scene}: {}x{} {} spp depth {}", s.width, s.height, s.spp, s.max_depth);
-    println!("  {:<8} {:>12} {:>12} {:>9}  device", "backend", "render ms", "total ms", "Mrays/s");
+pub fn print_table(
+    scene: &str,
+    s: &RenderSettings,
+    runs: &[Run],
+    errors: Option<&ImageErrors>,
+    outputs: &[PathBuf],
+) -> std::io::Result<()> {
+    say!("{scene}: {}x{} {} spp depth {}", s.width, s.height, s.spp, s.max_depth)?;
+    say!("  {:<8} {:>12} {:>12} {:>9}  device", "backend", "render ms", "total ms", "Mrays/s")?;
     for r in runs {
-        println!(
+        say!(
             "  {:<8} {:>12.1} {:>12.1} {:>9.2}  {}",
             r.backend.name(),
             ms(r.render),
             ms(r.total),
             r.mrays(),
             r.device
-        );
-        println!("           {}", fmt_counts(&r.counts));
+        )?;
+        say!("           {}", fmt_counts(&r.counts))?;
     }
     if let Some(e) = errors {
         let psnr = if e.psnr.is_finite() { format!("{:.1} dB", e.psnr) } else { "inf (identical)".into() };
-        println!(
+        say!(
             "  gpu vs cpu: max abs {:.3e}, mean abs {:.3e}, RMSE {:.3e}, PSNR {psnr}, FLIP mean {:.5},",
-            e.max_abs, e.mean_abs, e.rmse, e.flip_mean
-        );
-        println!(
+            e.max_abs,
+            e.mean_abs,
+            e.rmse,
+            e.flip_mean
+        )?;
+        say!(
             "              first-hit mismatch {:.3} %, p99 |diff| on same-hit pixels {:.3e}, non-finite pixels {}",
             100.0 * e.first_hit_mismatch,
             e.p99_abs_same_hit,
             e.nonfinite
-        );
+        )?;
     }
     for o in outputs {
-        println!("  wrote {}", o.display());
+        say!("  wrote {}", o.display())?;
     }
+    Ok(())
 }
 
 /// Whether a run may be written: its pixels must all fit a file (`HdrImage::unrepresentable`,
@@ -258,7 +269,7 @@ fn check_complete(run: &Run, allow_incomplete: bool) -> anyhow::Result<()> {
     }
     if allow_incomplete {
         for message in &run.incomplete {
-            eprintln!("warning: the {} image is incomplete: {message}", run.backend.name());
+            tell!("warning: the {} image is incomplete: {message}", run.backend.name());
         }
         return Ok(());
     }

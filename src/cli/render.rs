@@ -1,5 +1,6 @@
 //! `glint render`: one scene on the CPU, the GPU or both, to PNG/EXR; or a benchmark.
 
+use super::console::{say, tell};
 use std::path::PathBuf;
 
 use anyhow::bail;
@@ -28,7 +29,7 @@ pub struct RenderArgs {
     pub scene: String,
     /// Output image: .png (sRGB, settings in metadata) or .exr (linear f32). Default: SCENE.png;
     /// with --backend both, NAME-cpu, NAME-gpu and NAME-diff images
-    #[arg(short, long)]
+    #[arg(short, long, conflicts_with = "bench")]
     pub output: Option<PathBuf>,
     #[command(flatten)]
     pub settings: SettingsArgs,
@@ -57,7 +58,7 @@ pub struct RenderArgs {
     /// of N, from 0), or N to take I from SLURM_ARRAY_TASK_ID, JOB_COMPLETION_INDEX or
     /// AWS_BATCH_JOB_ARRAY_INDEX. Writes an EXR whose data window is the tile (default
     /// SCENE-tile-I.exr); `glint merge` joins the tiles
-    #[arg(long, value_name = "I/N|N", value_parser = parse_tile)]
+    #[arg(long, value_name = "I/N|N", allow_hyphen_values = true, value_parser = parse_tile)]
     pub tile: Option<TileSpec>,
     /// Print the results as JSON instead of a table
     #[arg(long)]
@@ -68,8 +69,8 @@ pub struct RenderArgs {
     /// Benchmark: one warm-up, then --runs timed renders; prints median and min
     #[arg(long)]
     pub bench: bool,
-    /// Timed runs of --bench
-    #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u32).range(1..=1000))]
+    /// Timed runs of --bench [1, 1000]
+    #[arg(long, default_value_t = 5, requires = "bench", allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(1..=1000))]
     pub runs: u32,
     /// No progress bar
     #[arg(short, long)]
@@ -106,7 +107,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         for b in BUILTIN_SCENES {
             // A generated scene is described at a small resolution: the text is the same.
             let (desc, _) = b.load(b.is_generated().then_some(*RESOLUTIONS.start()))?;
-            println!("{:<12} {}", b.name, desc.description);
+            say!("{:<12} {}", b.name, desc.description)?;
         }
         return Ok(());
     }
@@ -117,12 +118,12 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     if settings != loaded.desc.render
         && let Some(warning) = unbounded_ray_tree(&loaded.desc, &settings)
     {
-        eprintln!("warning: {warning}");
+        tell!("warning: {warning}");
     }
     // The scene's own integrator was judged at load; one a flag chose is judged here.
     if settings.integrator != loaded.desc.render.integrator {
         for w in integrator_warnings(&loaded.desc, &settings) {
-            eprintln!("warning: {}: {}", w.field, w.problem);
+            tell!("warning: {}: {}", w.field, w.problem);
         }
     }
     let specialise = !args.no_specialise;
@@ -215,18 +216,19 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     if args.json {
         print_json(&loaded.name, &settings, &runs, errors.as_ref(), &outputs, load_estimate.as_ref(), &estimate)?;
     } else {
-        print_table(&loaded.name, &settings, &runs, errors.as_ref(), &outputs);
+        print_table(&loaded.name, &settings, &runs, errors.as_ref(), &outputs)?;
         if settings.integrator == Integrator::Path {
             let transport = if settings.indirect {
                 "every lobe"
             } else {
                 "only k_r and k_t with direct light (--indirect off: Whitted's transport)"
             };
-            println!(
+            say!(
                 "  path tracer: {} paths a pixel, at most {} bounces, {transport}; no ambient term (I_a·k_a and \
                  the lights' I_a,j stand in for the indirect light the paths compute)",
-                settings.spp, settings.max_depth
-            );
+                settings.spp,
+                settings.max_depth
+            )?;
         }
     }
     Ok(())
@@ -252,7 +254,7 @@ fn bench(
     for render in &backends {
         let warm = render()?;
         for message in &warm.incomplete {
-            eprintln!("warning: the {} render is incomplete: {message}", warm.backend.name());
+            tell!("warning: the {} render is incomplete: {message}", warm.backend.name());
         }
         let mut times = Vec::new();
         for _ in 0..args.runs {
@@ -269,7 +271,7 @@ fn bench(
                 format!("path tracer, {:.3} Msamples/s", samples / median.as_secs_f64() / 1e6)
             }
         };
-        println!(
+        say!(
             "bench {name} {}: {}x{} {} spp depth {} {mode}, {}: median {:.1} ms, min {:.1} ms over {} runs, {:.2} Mrays/s; {}",
             warm.backend.name(),
             h.width,
@@ -282,11 +284,11 @@ fn bench(
             args.runs,
             mrays,
             fmt_counts(&warm.counts)
-        );
+        )?;
         medians.push((warm.backend, median));
     }
     if let [(_, cpu), (_, gpu)] = medians.as_slice() {
-        println!("bench {name}: gpu/cpu render time ratio {:.2}", gpu.as_secs_f64() / cpu.as_secs_f64());
+        say!("bench {name}: gpu/cpu render time ratio {:.2}", gpu.as_secs_f64() / cpu.as_secs_f64())?;
     }
     Ok(())
 }

@@ -1,5 +1,6 @@
 //! Render-setting flags shared by the commands, applied on top of a scene's own settings.
 
+use super::console::tell;
 use anyhow::{Context, bail};
 use clap::Args;
 use glint_core::memory::{self, MemoryEstimate, SourceKind};
@@ -31,8 +32,8 @@ pub struct SettingsArgs {
     /// Adaptive bailout: skip child rays whose path weight is below this [0, 1]; 0 disables
     #[arg(long, allow_negative_numbers = true)]
     pub bailout: Option<f64>,
-    /// Seed of the sample jitter and of the paths' random numbers
-    #[arg(long)]
+    /// Seed of the sample jitter and of the paths' random numbers [0, 4294967295]
+    #[arg(long, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(0..=i64::from(u32::MAX)))]
     pub seed: Option<u32>,
     /// How light is carried: whitted (the seed's ray tree) or path (Monte Carlo paths: global
     /// illumination with area lights, colour bleeding and caustics; --spp paths a pixel, --depth
@@ -252,7 +253,7 @@ pub fn load_with_estimate(
     let estimate = check_load_memory(scene, memory_limit)?;
     let loaded = load_scene_with(scene, options).with_context(|| format!("cannot load scene '{scene}'"))?;
     for w in &loaded.warnings {
-        eprintln!("warning: {}: {w}", loaded.source.display());
+        tell!("warning: {}: {w}", loaded.source.display());
     }
     Ok((loaded, estimate))
 }

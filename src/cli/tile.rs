@@ -4,6 +4,7 @@
 //! `glint merge` checks before it joins the blocks: the scene's content hash, the settings, the
 //! grid, the backend and the version.
 
+use super::console::say;
 use std::path::PathBuf;
 
 use anyhow::{Context, bail};
@@ -95,7 +96,7 @@ pub fn render_tile(job: TileJob) -> anyhow::Result<()> {
         );
     }
     check_outputs(&[output.as_path()], &job.loaded.source, job.force)?;
-    println!("tile {index}/{} (index from {source}) of a {} grid over {w}x{h}: {rect}", grid.count(), grid.describe());
+    say!("tile {index}/{} (index from {source}) of a {} grid over {w}x{h}: {rect}", grid.count(), grid.describe())?;
     interrupt::check()?;
     let flat = FlatScene::build(&job.loaded.desc, job.settings);
     let hash = flat.content_hash();
@@ -116,13 +117,13 @@ pub fn render_tile(job: TileJob) -> anyhow::Result<()> {
         ("glint:tile".to_string(), format!("{index}/{}", grid.count())),
     ]);
     write_exr_tile(&output, &run.image, (w, h), (rect.x0, rect.y0), &tags)?;
-    println!(
+    say!(
         "  {} {:.1} ms, {} rays; wrote {}",
         run.backend.name(),
         run.render.as_secs_f64() * 1e3,
         run.counts.total(),
         output.display()
-    );
+    )?;
     Ok(())
 }
 

@@ -1,5 +1,6 @@
 //! `glint view`: the interactive viewer (also what `glint` with no subcommand opens).
 
+use super::console::say;
 use std::path::PathBuf;
 
 use anyhow::bail;
@@ -129,7 +130,7 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
     };
     match glint_viewer::run(options) {
         Ok(Some(report)) => {
-            println!("{report}");
+            say!("{report}")?;
             Ok(())
         }
         Ok(None) => Ok(()),

@@ -349,6 +349,31 @@ fn bad_input_fails_cleanly() {
         &["nothere.toml"],
         &[],
     );
+    // A path that exists but is not a regular file is read as one, not called missing.
+    expect_failure(
+        "scene-is-a-device",
+        |d| os(&[&"render", &"/dev/null", &"-o", &d.join("out.png")]),
+        &["/dev/null", "TOML parse error"],
+        &[],
+    );
+    // Every number flag takes a negative value to its own range message (clap's "unexpected
+    // argument '-1'" suggested `-- -1`, which made -1 the scene).
+    for (flag, value, fragment) in [("--seed", "-1", "0..=4294967295"), ("--tile", "-1/4", "not a whole number")] {
+        expect_failure(
+            "negative-flag",
+            |d| os(&[&"render", &"whitted", &"-o", &d.join("out.png"), &flag, &value]),
+            &[flag, fragment],
+            &[],
+        );
+    }
+    // Flags that would be ignored are refused.
+    expect_failure("runs-without-bench", |_| os(&[&"render", &"whitted", &"--runs", &"3"]), &["--bench"], &[]);
+    expect_failure(
+        "output-with-bench",
+        |d| os(&[&"render", &"whitted", &"--bench", &"-o", &d.join("out.png")]),
+        &["--bench", "--output"],
+        &[],
+    );
 }
 
 #[test]

@@ -296,3 +296,27 @@ fn a_display_without_a_server_is_named_as_the_cause() {
     assert!(last.contains("X server") && last.contains("DISPLAY=:197"), "{last}");
     assert!(!last.contains(".rs:"), "a source location is no cause: {last}");
 }
+
+#[test]
+fn a_reader_that_goes_away_ends_the_output_not_the_command() {
+    // `glint render --list | head -1`, `glint render … | true`: a closed pipe on stdout (or on
+    // stderr, shared with it by `2>&1`). `println!` panicked there (exit 101), after the images
+    // were written.
+    let dir = TempDir::new("closed-pipe");
+    for args in
+        [&["render", "--list"][..], &["render", "whitted", "--width", "32", "--height", "24", "-q", "-o", "w.png"][..]]
+    {
+        let (reader, writer) = std::io::pipe().expect("a pipe");
+        drop(reader);
+        let err_writer = writer.try_clone().expect("a second handle");
+        let status = Command::new(BIN)
+            .args(args)
+            .current_dir(&dir)
+            .stdout(writer)
+            .stderr(err_writer)
+            .status()
+            .expect("run glint");
+        assert!(status.success(), "glint {args:?} with a closed stdout and stderr: {status}");
+    }
+    assert_eq!(dir.listing(), ["w.png"]);
+}

@@ -114,6 +114,12 @@ fn tiles_that_do_not_belong_together_are_refused_by_name_and_nothing_is_written(
     let whole = dir.join("whole.exr");
     render(&dir, "whitted", &size, &whole);
     refused(&[t[0].clone(), whole, t[2].clone()], "not a tile of `glint render --tile`");
+    // An output that is one of the tiles (the first included) is named as a tile.
+    for i in [0, 2] {
+        let done = merge(&dir, &t, &t[i]);
+        assert!(!done.status.success(), "merged over tile {i}");
+        assert!(text(&done.stderr).contains("would replace one of the tiles"), "{}", text(&done.stderr));
+    }
 }
 
 #[test]

@@ -188,6 +188,15 @@ fn attenuation_that_can_reach_zero() {
     // l < 0 whose minimum stays positive is fine: 1 − 1/(4·1) = 0.75.
     expect_valid(&edited(att, "attenuation = { c = 1.0, l = -1.0, q = 1.0 }"), "l < 0, positive minimum");
     expect_valid(&edited(att, "attenuation = { c = 0.5 }"), "constant attenuation");
+    // The least c the message names is allowed (judged as f32 holds both: 1e-6 rounds down);
+    // below it is not.
+    expect_valid(&edited(att, "attenuation = { c = 1e-6 }"), "c at the documented least");
+    expect_valid(&world_with("{ c = 1e-6 }"), "global c at the documented least");
+    expect_invalid(&edited(att, "attenuation = { c = 9.99e-7 }"), field, &["c must be ≥ 1e-6", "c = 9.99e-7"]);
+}
+
+fn world_with(att: &str) -> String {
+    edited("[camera]", &format!("[world]\nglobal_attenuation = {att}\n\n[camera]"))
 }
 
 #[test]

@@ -87,7 +87,9 @@ pub fn load_scene_with(arg: &str, options: &LoadOptions) -> Result<LoadedScene, 
     let resolution = options.resolution;
     let path = Path::new(arg);
     let is_model = ModelFormat::of(path).is_some();
-    if !(options.import.is_default() || is_model && path.is_file()) {
+    // Any readable thing but a folder is a file here: a named pipe (`<(…)`), /dev/stdin.
+    let is_file = std::fs::metadata(path).is_ok_and(|m| !m.is_dir());
+    if !(options.import.is_default() || is_model && is_file) {
         return Err(SceneError::NotAModel { name: arg.to_string() });
     }
     if path.is_dir() {
@@ -96,7 +98,7 @@ pub fn load_scene_with(arg: &str, options: &LoadOptions) -> Result<LoadedScene, 
             error: std::io::Error::new(std::io::ErrorKind::IsADirectory, "a folder, not a scene file"),
         });
     }
-    if path.is_file() {
+    if is_file {
         if let Some(value) = resolution {
             return Err(SceneError::NotGenerated {
                 name: arg.to_string(),

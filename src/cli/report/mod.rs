@@ -15,6 +15,7 @@ mod shard;
 mod specular;
 mod sweep;
 
+use crate::cli::console::say;
 use std::collections::HashMap;
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
@@ -47,17 +48,17 @@ pub struct ReportArgs {
     /// A small sweep for CI: two scenes, 96x72, a reduced grid (under a minute on 2 cores)
     #[arg(long)]
     pub quick: bool,
-    /// Image width for every scene (default 320; 96 with --quick)
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=4096))]
+    /// Image width for every scene [1, 4096] (default 320; 96 with --quick)
+    #[arg(long, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(1..=4096))]
     pub width: Option<u32>,
-    /// Image height for every scene (default 240; 72 with --quick)
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=4096))]
+    /// Image height for every scene [1, 4096] (default 240; 72 with --quick)
+    #[arg(long, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(1..=4096))]
     pub height: Option<u32>,
-    /// Samples per pixel of the CPU reference
-    #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u32).range(64..=4096))]
+    /// Samples per pixel of the CPU reference [64, 4096]
+    #[arg(long, default_value_t = 64, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(64..=4096))]
     pub reference_spp: u32,
-    /// Timed runs per configuration after the warm-up; the median is reported
-    #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u32).range(3..=100))]
+    /// Timed runs per configuration after the warm-up [3, 100]; the median is reported
+    #[arg(long, default_value_t = 3, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(3..=100))]
     pub runs: u32,
     /// GPU adapter: a case-insensitive part of its name (default: WGPU_ADAPTER_NAME, else the best GPU)
     #[arg(long)]
@@ -195,7 +196,7 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
         } else {
             pareto::mark_fronts(&mut result.rows);
             let path = plot::write_plot(&args.out, &result, args.runs as usize)?;
-            bar.suspend(|| println!("{}: {} configurations, wrote {}", result.name, result.rows.len(), path.display()));
+            bar.suspend(|| say!("{}: {} configurations, wrote {}", result.name, result.rows.len(), path.display()))?;
         }
         results.push(result);
     }
@@ -223,14 +224,14 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
         };
         let rows: usize = file.results.iter().map(|r| r.rows.len()).sum();
         let path = shard::write(&args.out, spec, &file)?;
-        println!(
+        say!(
             "report shard {}/{}: {rows} of {} configurations in {:.1} s; wrote {} (merge the shards with --merge)",
             spec.index,
             spec.count,
             scenes.len() * planned.len(),
             started.elapsed().as_secs_f64(),
             path.display()
-        );
+        )?;
         return Ok(());
     }
     let setup = markdown::Setup {
@@ -247,14 +248,14 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
     let devices = [(cpu_device.clone(), gpu_device.clone().unwrap_or_default())];
     write_report_file(&args.out.join("gi.csv"), &gi::render_csv(&gi_results))?;
     write_outputs(&args.out, &setup, &results, &devices, &[], &gi::render_markdown(&gi_results))?;
-    println!(
+    say!(
         "report: {} scenes, {} configurations each, in {:.1} s; wrote {} and {}",
         results.len(),
         planned.len(),
         started.elapsed().as_secs_f64(),
         args.out.join("report.md").display(),
         args.out.join("report.csv").display()
-    );
+    )?;
     Ok(())
 }
 
@@ -290,7 +291,7 @@ fn merge(args: &ReportArgs, started: Instant) -> anyhow::Result<()> {
     for result in &mut results {
         pareto::mark_fronts(&mut result.rows);
         let path = plot::write_plot(&args.out, result, runs as usize)?;
-        println!("{}: {} configurations, wrote {}", result.name, result.rows.len(), path.display());
+        say!("{}: {} configurations, wrote {}", result.name, result.rows.len(), path.display())?;
     }
     for gi in &gi_results {
         gi_plot::write_gi_plot(&args.out, gi, runs as usize)?;
@@ -308,7 +309,7 @@ fn merge(args: &ReportArgs, started: Instant) -> anyhow::Result<()> {
         integrator,
     };
     write_outputs(&args.out, &setup, &results, &devices, &machines, &gi::render_markdown(&gi_results))?;
-    println!(
+    say!(
         "report: {} shards merged, {} scenes, {} configurations each, in {:.1} s; wrote {} and {}",
         devices.len(),
         results.len(),
@@ -316,7 +317,7 @@ fn merge(args: &ReportArgs, started: Instant) -> anyhow::Result<()> {
         started.elapsed().as_secs_f64(),
         args.out.join("report.md").display(),
         args.out.join("report.csv").display()
-    );
+    )?;
     Ok(())
 }
 

@@ -1,6 +1,7 @@
 //! Runs the planned configurations of one scene: a warm-up and timed renders each, errors
 //! against the reference, and the GPU rows against their CPU twins.
 
+use crate::cli::console::tell;
 use std::collections::HashMap;
 use std::time::Duration;
 
@@ -240,7 +241,7 @@ pub fn run_scene(
         let expected_camera = u64::from(base.width) * u64::from(base.height) * u64::from(c.spp);
         if warm.counts.camera != expected_camera {
             bar.suspend(|| {
-                eprintln!(
+                tell!(
                     "warning: {name}: the {} render of {} traced {} camera rays, not {expected_camera}: \
                      samples were dropped",
                     c.backend.name(),

@@ -144,12 +144,13 @@ pub(super) fn validate_polynomial(path: &str, c: f64, l: f64, q: f64, r: &mut Re
     // Judge the coefficients the tracers will use: rounded to f32.
     let (given_c, given_l, given_q) = (c, l, q);
     let (c, l, q) = (as_f32(c), as_f32(l), as_f32(q));
-    let min = MIN_ATTENUATION_DENOMINATOR;
-    let problem = if c < min {
+    // The bound as the tracers hold it too: c = 1e-6, the documented least, is 9.99999997e-7 in f32.
+    let (min, f32_min) = (MIN_ATTENUATION_DENOMINATOR, as_f32(MIN_ATTENUATION_DENOMINATOR));
+    let problem = if c < f32_min {
         Some(format!("c + l·d + q·d² is c at d = 0, so c must be ≥ {min:e}"))
     } else if q < 0.0 || (q == 0.0 && l < 0.0) {
         Some("c + l·d + q·d² falls below 0 at a large distance: it needs q ≥ 0, and l ≥ 0 when q = 0".to_string())
-    } else if l < 0.0 && c - l * l / (4.0 * q) < min {
+    } else if l < 0.0 && c - l * l / (4.0 * q) < f32_min {
         let d = -l / (2.0 * q);
         Some(format!(
             "c + l·d + q·d² falls to {} at d = {}; it must stay ≥ {min:e} for all d ≥ 0",
