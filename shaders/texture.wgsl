@@ -73,15 +73,16 @@ fn transform_uv(tex: GpuTexture, uv: vec2<f32>, origin: u32) -> vec2<f32> {
     return vec2<f32>(r.x * uv.x + r.y * uv.y + o.x, s.x * uv.x + s.y * uv.y + o.y);
 }
 
-// [0, 1] for repeat and clamp to edge, [0, 2] for mirrored repeat.
+// [0, 1) for repeat, [0, 2) for mirrored repeat, [0, 1] for clamp to edge: a small negative u
+// folds to just below the period, not onto it (the CPU twin says why).
 fn wrap_period(u: f32, mode: u32) -> f32 {
     if mode == WRAP_MIRRORED_REPEAT {
-        return u - 2.0 * floor(u * 0.5);
+        return min(u - 2.0 * floor(u * 0.5), 1.9999999);
     }
     if mode == WRAP_CLAMP_TO_EDGE {
         return clamp(u, 0.0, 1.0);
     }
-    return u - floor(u);
+    return min(u - floor(u), 0.99999994);
 }
 
 fn wrap_texel(i: i32, n: i32, mode: u32) -> i32 {

@@ -56,3 +56,48 @@ fn probe_shows_the_textured_colours_on_both_tracers() {
     }
     assert!(textured >= 1, "no probe hit the textured poster");
 }
+
+#[test]
+fn a_huge_checker_seen_near_its_origin_shows_its_four_squares_on_both_tracers() {
+    // Squares of 1e7 and 1e9 (the largest allowed) meeting in view: u = x / (2·size) is within
+    // 2^-25 of 0 there. Looking down at the origin (the GPU's frame origin there too), a point's
+    // u < 0 folded to 1 − |u|, which f32 rounds onto 1, the first texel's edge. Looking at
+    // x, z < 0, the frame origin's coordinates folded to 1 − 1e-9, 1 in f32, and 1 + a point's
+    // own tiny u is 1 again. Either way half the floor took the other colour (PSNR 14.8 dB).
+    let tracer = gpu_or_skip!();
+    let views = [
+        ("above", [0.3, 4.0, 0.2], [0.0; 3], [0.0, 0.0, 1.0]),
+        ("aside", [0.3, 4.0, -3.0], [-0.5, 0.0, -0.7], [0.0, 1.0, 0.0]),
+    ];
+    for (view, eye, look_at, up) in views {
+        for size in [1e7, 1e9] {
+            let flat = glint_test_support::scene::SceneText::new(64, 48, "max_depth = 0", eye, look_at, up, 60.0)
+                .world([0.2; 3], [0.0; 3])
+                .material(
+                    "floor",
+                    &format!("kd = [0.9, 0.1, 0.1]\nchecker = {{ kd = [0.1, 0.1, 0.9], size = {size:?} }}"),
+                )
+                .light("directional", "direction = [0.0, -1.0, 0.0]")
+                .plane([0.0; 3], [0.0, 1.0, 0.0], "floor")
+                .flat();
+            let c = cpu(&flat);
+            let reds = c.image.pixels.iter().filter(|p| p.x > p.z).count();
+            let name = format!("checker-{view}-{size:e}");
+            assert!(
+                reds * 4 > c.image.pixels.len() && reds * 4 < 3 * c.image.pixels.len(),
+                "{name}: the CPU shows {reds} red pixels"
+            );
+            let g = gpu_render(tracer, &flat, true);
+            let (e, base) = compare_and_keep("textures", &name, &c, &g);
+            log_errors(&name, &e, g.status);
+            if e.max_abs > 1e-5 {
+                write_failure_images(&base, &c, &g);
+            }
+            assert!(
+                e.max_abs <= 1e-5,
+                "{name}: GPU off by {:.3e} (images in target/tmp/gpu-tests/textures)",
+                e.max_abs
+            );
+        }
+    }
+}

@@ -85,12 +85,14 @@ pub fn transform_uv(tex: &GpuTexture, uv: DVec2, origin: u32) -> DVec2 {
     DVec2::new(row(tex.transform_u, o.x), row(tex.transform_v, o.y))
 }
 
-/// A coordinate folded into its wrap mode's base period: [0, 1] (repeat, clamp to edge) or
-/// [0, 2] (mirrored repeat, whose period is two copies).
+/// A coordinate folded into its wrap mode's base period: [0, 1) (repeat), [0, 2) (mirrored
+/// repeat, whose period is two copies) or [0, 1] (clamp to edge). A small negative u folds to
+/// just below the period, which rounding would make the period itself, the first texel's edge
+/// instead of the last texel: in f32 for |u| < 2^-25, half a 1e9 checker seen near the origin.
 pub fn wrap_period(u: f64, mode: Wrap) -> f64 {
     match mode {
-        Wrap::Repeat => u - u.floor(),
-        Wrap::MirroredRepeat => u - 2.0 * (u * 0.5).floor(),
+        Wrap::Repeat => (u - u.floor()).min(1.0 - f64::EPSILON / 2.0),
+        Wrap::MirroredRepeat => (u - 2.0 * (u * 0.5).floor()).min(2.0 - f64::EPSILON),
         Wrap::ClampToEdge => u.clamp(0.0, 1.0),
     }
 }
@@ -164,6 +166,9 @@ mod tests {
         assert_eq!(wrap_period(3.5, Wrap::MirroredRepeat), 1.5);
         assert_eq!(wrap_period(-3.0, Wrap::ClampToEdge), 0.0);
         assert_eq!(wrap_period(1.5, Wrap::ClampToEdge), 1.0);
+        // Below the period, not rounded onto it: the last texel's, as u = −1e-20 is.
+        assert!(wrap_period(-1e-20, Wrap::Repeat) < 1.0);
+        assert!(wrap_period(-1e-20, Wrap::MirroredRepeat) < 2.0);
     }
 
     /// A 4×2 texture of distinct texels: red = x / 4, green = y / 2 (exact in f32), blue 1.

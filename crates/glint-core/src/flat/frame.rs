@@ -16,8 +16,8 @@ impl FlatScene {
 }
 
 /// Each texture's planar origins (`GpuTexture::planar_u`, `planar_v`) for `frame`: the
-/// transformed planar coordinates of the frame's origin, across each axis, in f64, folded into
-/// the wrap mode's period. Planar coordinates are then taken relative to the frame, small,
+/// transformed planar coordinates of the frame's origin, across each axis, in f64, folded
+/// towards 0 by the wrap mode's period (`fold`). Planar coordinates are then taken relative to the frame, small,
 /// and a texel edge 1e6 units from the world origin stays where it is on the GPU (its f32
 /// world coordinate was off by 1/16 there). At the world origin they are the offsets, exact.
 pub(crate) fn place_texture_origins(out: &mut FlatScene, frame: [f32; 4]) {
@@ -38,12 +38,15 @@ pub(crate) fn place_texture_origins(out: &mut FlatScene, frame: [f32; 4]) {
     }
 }
 
-/// `u` less a whole number of its wrap mode's periods, into [0, period): the same texel, a
-/// small number. Clamped coordinates have no period and stay.
+/// `u` less the whole number of its wrap mode's periods nearest it, into [−period/2,
+/// period/2]: the same texel, a number near 0. Not [0, period): an origin just below a square's
+/// edge (u = −1e-9, a 1e9 checker's edge at the frame's origin) folded to 1 − 1e-9, which f32
+/// rounds to 1, and 1 + the point's own tiny coordinate is 1 again: every point near the edge
+/// took one side of it. Clamped coordinates have no period and stay.
 fn fold(u: f64, wrap: u32) -> f64 {
     match Wrap::try_from(wrap) {
-        Ok(Wrap::Repeat) => u - u.floor(),
-        Ok(Wrap::MirroredRepeat) => u - 2.0 * (u * 0.5).floor(),
+        Ok(Wrap::Repeat) => u - u.round(),
+        Ok(Wrap::MirroredRepeat) => u - 2.0 * (u * 0.5).round(),
         Ok(Wrap::ClampToEdge) | Err(_) => u,
     }
 }
