@@ -9,7 +9,7 @@ use std::sync::Arc;
 
 use super::mtl::{default_material, expand_colours, map_material, material_names, source, unread_statements};
 use super::mtl_map::parse_map;
-use super::{obj_text, polygon};
+use super::{obj_statements, obj_text, polygon};
 use crate::uri::{MAX_RESOURCE_BYTES, UriError, resolve_uri};
 use glint_scene::Model;
 use glint_scene::{ColorSpace, FieldIssue, MeshDesc, Rgb, TextureDesc, TextureImage, UvTransform, Wrap};
@@ -39,6 +39,8 @@ pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
     let (bytes, encoding) = obj_text::decode(&raw).map_err(|reason| parse_error(None, reason))?;
     out.warnings
         .extend(encoding.map(|how| FieldIssue { field: "encoding".into(), problem: format!("not UTF-8: {how}") }));
+    let bytes = obj_statements::joined_continuations(&bytes);
+    let bytes = obj_statements::without_trailing_comments(&bytes);
     let uses = obj_text::material_uses(&bytes);
     let bytes = obj_text::material_statements(&bytes, &["mtllib", "usemtl"]);
     let (bytes, polylines) = obj_text::without_polylines(&bytes);
@@ -93,6 +95,8 @@ pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
             if let Some(how) = encoding {
                 warn(format!("not UTF-8: {how}"));
             }
+            let text = obj_statements::joined_continuations(&text);
+            let text = obj_statements::without_trailing_comments(&text);
             let text = expand_colours(&obj_text::material_statements(&text, &["newmtl"]))
                 .map_err(|problem| format!("{uri}:{problem}"))?;
             tobj::load_mtl_buf(&mut text.as_slice()).map_err(|e| e.to_string())
@@ -165,6 +169,17 @@ pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
                 DEFAULT_MATERIAL.into()
             }
         };
+        let textured =
+            out.materials.get(&material).is_some_and(|m| m.texture.is_some() || m.emission_texture.is_some());
+        if textured && uvs.is_none() {
+            let which = if mesh.texcoords.is_empty() { "its faces give" } else { "only some of its faces give" };
+            out.warnings.push(FieldIssue {
+                field: format!("object `{}`", model.name),
+                problem: format!(
+                    "its material `{material}` is textured but {which} texture coordinates (`vt`): planar ones are used"
+                ),
+            });
+        }
         out.meshes.push(MeshDesc { vertices, triangles, normals, uvs, colours, material, name: model.name.clone() });
     }
     if out.meshes.is_empty() {
@@ -597,6 +612,50 @@ mod tests {
         // OBJ's v is flipped into glTF's convention.
         let uvs = m.meshes[0].uvs.as_ref().expect("vt read");
         assert_eq!(&uvs[..3], &[[0.0, 1.0], [1.0, 1.0], [1.0, 0.75]]);
+    }
+
+    #[test]
+    fn continued_statements_and_trailing_comments_read_as_the_plain_file() {
+        let dir = tempfile::tempdir().unwrap();
+        write(dir.path(), "m.mtl", "newmtl red # the paint\nKd 0.9 0.1 0.1 # red\n");
+        let plain = write(dir.path(), "plain.obj", &format!("mtllib m.mtl\n{QUAD}usemtl red\nf 1 3 4\n"));
+        let annotated = write(
+            dir.path(),
+            "annotated.obj",
+            "mtllib m.mtl # materials\nv 0 0 0\nv 1 0 0 # x\nv 1 1 0\nv 0 1 0#top\nf 1 2 \\\n   3 4 # base\n\
+             usemtl red # the paint\nf 1 \\\r\n3 \\\n4\n",
+        );
+        let (a, b) = (load_obj(&plain).expect("plain"), load_obj(&annotated).expect("annotated"));
+        assert_eq!(a.meshes, b.meshes);
+        assert_eq!(b.materials["red"].kd, Rgb([0.9, 0.1, 0.1]));
+        assert!(b.warnings.iter().all(|w| !w.problem.contains("red")), "{:?}", b.warnings);
+        // A line that does not parse after them is still named by its own number.
+        let bad = write(dir.path(), "bad.obj", "v 0 0 0 # a\nf 1 \\\n 2\nv 1 x 0\n");
+        assert!(load_obj(&bad).unwrap_err().to_string().contains("bad.obj:4"));
+    }
+
+    #[test]
+    fn a_textured_material_on_faces_without_texture_coordinates_is_warned() {
+        let dir = tempfile::tempdir().unwrap();
+        png(&dir.path().join("tex.png"));
+        write(dir.path(), "m.mtl", "newmtl t\nmap_Kd tex.png\n");
+        let with = "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nusemtl t\n";
+        for (faces, which) in [
+            ("f 1/1 2/2 3/3\n", None),
+            ("f 1 2 3\n", Some("its faces give")),
+            ("f 1/1 2/2 3/3\nf 1 3 4\n", Some("only some")),
+        ] {
+            let m = load_obj(&write(dir.path(), "m.obj", &format!("{with}{faces}"))).expect("loads");
+            let warned = m.warnings.iter().find(|w| w.problem.contains("textured but"));
+            match which {
+                None => assert!(warned.is_none(), "{faces}: {warned:?}"),
+                Some(which) => assert!(
+                    warned.is_some_and(|w| w.problem.contains(which) && w.problem.contains("`t`")),
+                    "{faces}: {:?}",
+                    m.warnings
+                ),
+            }
+        }
     }
 
     #[test]
