@@ -80,6 +80,30 @@ fn metallic_roughness_transmission_ior_and_emissive_strength_map_as_documented()
     let chrome = &load(&f.write_gltf(&dir, "chrome", BufferAt::DataUri)).materials["chrome"];
     assert_eq!((chrome.kd, chrome.ks, chrome.kr), (Rgb::splat(0.0), Rgb::splat(0.75), Rgb::splat(0.75)));
     assert_eq!(chrome.shininess, glint_scene::MAX_SHININESS);
+    // A smooth glass: what it mirrors (F0 = 0.04) it does not transmit, so k_r + k_t = 1, not
+    // the 1.04 validation warned of as energy gain.
+    f.json["extensionsUsed"] = json!(["KHR_materials_transmission"]);
+    f.json["materials"] = json!([{ "name": "glass", "pbrMetallicRoughness": {
+        "baseColorFactor": [1.0, 1.0, 1.0, 1.0], "metallicFactor": 0.0, "roughnessFactor": 0.0 },
+        "extensions": { "KHR_materials_transmission": { "transmissionFactor": 1.0 } } }]);
+    let model = load(&f.write_gltf(&dir, "glass", BufferAt::DataUri));
+    let glass = &model.materials["glass"];
+    assert_eq!((glass.kd, glass.kr), (Rgb::splat(0.0), Rgb::splat(0.04)));
+    assert!(glass.kt.0.iter().all(|&t| close(t, 0.96)), "{:?}", glass.kt);
+    // Factors glTF bounds to [0, 1] are clamped with a warning naming the glTF field (the
+    // coefficients they map to were refused under Glint's names: `materials.….ks`).
+    f.json["materials"] = json!([{ "name": "odd", "pbrMetallicRoughness": {
+        "baseColorFactor": [-1.0, 2.0, 0.5, 1.0], "metallicFactor": 2.0, "roughnessFactor": -1.0 } }]);
+    let model = load(&f.write_gltf(&dir, "odd", BufferAt::DataUri));
+    let odd = &model.materials["odd"];
+    assert_eq!((odd.ks, odd.kd, odd.shininess), (Rgb([0.0, 1.0, 0.5]), Rgb::splat(0.0), glint_scene::MAX_SHININESS));
+    for named in ["baseColorFactor.r = -1", "baseColorFactor.g = 2", "metallicFactor = 2", "roughnessFactor = -1"] {
+        assert!(
+            model.warnings.iter().any(|w| w.problem.starts_with(named) && w.problem.contains("[0, 1]")),
+            "{named}: {:?}",
+            model.warnings
+        );
+    }
 }
 
 #[test]

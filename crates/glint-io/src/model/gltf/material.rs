@@ -24,9 +24,35 @@ fn lerp(a: f64, b: f64, t: f64) -> f64 {
     a + (b - a) * t
 }
 
+/// The factors glTF bounds to [0, 1], each read through `unit`: one outside (a negative or
+/// non-finite colour, a metallic factor of 2) is clamped with a warning naming the glTF field,
+/// where the coefficients it maps to would have been refused under Glint's own names.
+struct Factors<'a> {
+    field: &'a str,
+    warnings: &'a mut Vec<FieldIssue>,
+}
+
+impl Factors<'_> {
+    fn unit(&mut self, name: &str, value: f32) -> f64 {
+        let v = widen(value);
+        if (0.0..=1.0).contains(&v) {
+            return v;
+        }
+        let kept = if v.is_nan() { 0.0 } else { v.clamp(0.0, 1.0) };
+        let problem = format!("{name} = {v} is outside [0, 1], as glTF bounds it; {kept} is used");
+        self.warnings.push(FieldIssue { field: self.field.to_string(), problem });
+        kept
+    }
+
+    fn rgb(&mut self, name: &str, c: [f32; 3]) -> Rgb {
+        const CHANNEL: [&str; 3] = ["r", "g", "b"];
+        Rgb(std::array::from_fn(|k| self.unit(&format!("{name}.{}", CHANNEL[k]), c[k])))
+    }
+}
+
 /// A material's coefficients, and what of it could not be mapped as warnings under `field`.
 pub(super) fn map_material(m: &::gltf::Material<'_>, field: &str, warnings: &mut Vec<FieldIssue>) -> MaterialDesc {
-    let mut warn = |problem: String| warnings.push(FieldIssue { field: field.to_string(), problem });
+    let mut factors = Factors { field, warnings };
     if m.unlit() {
         // KHR_materials_unlit: the surface shows its base colour whatever the light, which in
         // the seed's model is an emitter with no reflection terms. The base texture becomes
@@ -38,22 +64,25 @@ pub(super) fn map_material(m: &::gltf::Material<'_>, field: &str, warnings: &mut
             ka: black,
             kd: black,
             ks: black,
-            emission: Rgb([b[0], b[1], b[2]].map(widen)),
+            emission: factors.rgb("baseColorFactor", [b[0], b[1], b[2]]),
             ..MaterialDesc::default()
         };
     }
     let (base, f0, roughness) = match m.pbr_specular_glossiness() {
         Some(sg) => {
             let d = sg.diffuse_factor();
-            let s = sg.specular_factor();
             // Specular-glossiness gives k_d and F0 directly; roughness = 1 − glossiness.
-            (Rgb([d[0], d[1], d[2]].map(widen)), Rgb(s.map(widen)), 1.0 - widen(sg.glossiness_factor()))
+            (
+                factors.rgb("diffuseFactor", [d[0], d[1], d[2]]),
+                factors.rgb("specularFactor", sg.specular_factor()),
+                1.0 - factors.unit("glossinessFactor", sg.glossiness_factor()),
+            )
         }
         None => {
             let pbr = m.pbr_metallic_roughness();
             let b = pbr.base_color_factor();
-            let base = Rgb([b[0], b[1], b[2]].map(widen));
-            let metallic = widen(pbr.metallic_factor()).clamp(0.0, 1.0);
+            let base = factors.rgb("baseColorFactor", [b[0], b[1], b[2]]);
+            let metallic = factors.unit("metallicFactor", pbr.metallic_factor());
             // KHR_materials_specular scales the dielectric F0 (colour and strength).
             let (strength, tint) = m
                 .specular()
@@ -61,14 +90,17 @@ pub(super) fn map_material(m: &::gltf::Material<'_>, field: &str, warnings: &mut
             let f0 =
                 Rgb(std::array::from_fn(|k| lerp((DIELECTRIC_F0 * tint[k]).min(1.0) * strength, base.0[k], metallic)));
             let diffuse = Rgb(base.0.map(|c| c * (1.0 - metallic)));
-            (diffuse, f0, widen(pbr.roughness_factor()))
+            (diffuse, f0, factors.unit("roughnessFactor", pbr.roughness_factor()))
         }
     };
-    let transmission = m.transmission().map_or(0.0, |t| widen(t.transmission_factor()).clamp(0.0, 1.0));
-    // Transmission replaces the diffuse part and is tinted by it (KHR_materials_transmission).
-    let kd = Rgb(base.0.map(|c| c * (1.0 - transmission)));
-    let kt = Rgb(base.0.map(|c| c * transmission));
+    let transmission = m.transmission().map_or(0.0, |t| factors.unit("transmissionFactor", t.transmission_factor()));
+    let mut warn = |problem: String| warnings.push(FieldIssue { field: field.to_string(), problem });
     let kr = if roughness < MIRROR_ROUGHNESS { f0 } else { Rgb::splat(0.0) };
+    // Transmission replaces the diffuse part and is tinted by it (KHR_materials_transmission);
+    // what a smooth surface mirrors it does not transmit (F0: 0.04 of a glass), so that
+    // k_r + k_t stays within 1 (a plain glass mapped to 1.04, which validation warned of).
+    let kd = Rgb(base.0.map(|c| c * (1.0 - transmission)));
+    let kt = Rgb(std::array::from_fn(|k| base.0[k] * transmission * (1.0 - kr.0[k])));
     let ior = match m.ior().map(widen) {
         None => 1.5,
         Some(ior) if (1.0..=MAX_IOR).contains(&ior) => ior,
