@@ -721,6 +721,16 @@ fn base_colour_and_emissive_textures_keep_their_sampler_transform_and_texcoords(
     let e = mat.emission_texture.as_ref().expect("an emission texture");
     assert!(std::sync::Arc::ptr_eq(e.image.as_ref().unwrap(), image), "one image decoded once");
     assert_eq!(m.meshes[0].uvs.as_deref(), Some(&[[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]][..]));
+    // A texture reading a set the primitive lacks is named by that set.
+    let mut other_set = f.clone();
+    other_set.json["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"] = json!({ "index": 0, "texCoord": 2 });
+    let m3 = load(&other_set.write_gltf(&dir, "other-set", BufferAt::File("other-set.bin".into())));
+    assert!(m3.meshes[0].uvs.is_none());
+    assert!(
+        m3.warnings.iter().any(|w| w.problem.contains("reads TEXCOORD_2, which it does not have")),
+        "{:?}",
+        m3.warnings
+    );
     // A texture outside the model's folder is refused naming the image.
     f.json["images"] = json!([{ "uri": "../tex.png" }]);
     let sub = dir.join("sub");

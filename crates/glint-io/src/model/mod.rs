@@ -17,8 +17,8 @@ pub use ground::{FLOOR_COVER, GROUND_GAP, Ground};
 pub use obj::{ObjError, load_obj};
 
 use glint_scene::{
-    CameraDesc, FieldIssue, LightDesc, LightKind, LoadedModel, MAX_IMAGE_SIDE, MaterialDesc, Model, ModelCamera,
-    ModelDesc, ObjectDesc, PlaneDesc, RenderSettings, Rgb, SceneDesc, TransformDesc, WorldDesc,
+    CameraDesc, FieldIssue, LightDesc, LightKind, LoadedModel, MAX_COORD, MAX_IMAGE_SIDE, MaterialDesc, Model,
+    ModelCamera, ModelDesc, ObjectDesc, PlaneDesc, RenderSettings, Rgb, SceneDesc, TransformDesc, WorldDesc,
 };
 
 /// Choices made when a model file is opened (`--scene-index`, `--camera`, `--exposure`,
@@ -119,6 +119,18 @@ pub fn scene_around(
             hi[k] = hi[k].max(v[k]);
         }
     }
+    // Beyond the coordinates a scene may hold, the camera, lights and ground made around the
+    // model would be refused too, each under Glint's own names: say once what is wrong.
+    let reach = lo.iter().chain(&hi).fold(0.0_f64, |r, c| r.max(c.abs()));
+    if reach > MAX_COORD {
+        return Err(FieldIssue {
+            field: "vertices".into(),
+            problem: format!(
+                "the model reaches {reach:.3e} from the origin; coordinates must lie in [-{MAX_COORD:e}, {MAX_COORD:e}] \
+                 (a node's scale, or a file in other units?)"
+            ),
+        });
+    }
     let center: [f64; 3] = std::array::from_fn(|k| 0.5 * (lo[k] + hi[k]));
     let radius = (0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>().sqrt().max(1e-6) * 0.5;
     let at = |d: [f64; 3], s: f64| std::array::from_fn(|k| center[k] + d[k] * s * radius);
@@ -213,4 +225,29 @@ pub fn scene_around(
         objects,
     };
     Ok((desc, warnings))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glint_scene::MeshDesc;
+
+    #[test]
+    fn a_model_beyond_the_coordinate_range_is_one_error_not_one_per_object_made_around_it() {
+        let quad = |s: f64| MeshDesc {
+            vertices: vec![[-s, -s, 0.0], [s, -s, 0.0], [s, s, 0.0]],
+            triangles: vec![[0, 1, 2]],
+            normals: None,
+            uvs: None,
+            colours: None,
+            material: "m".into(),
+            name: "node0".into(),
+        };
+        let model = |s| Model { meshes: vec![quad(s)], ..Model::default() };
+        let path = Path::new("huge.gltf");
+        let e = scene_around(model(1e15), path, &ImportOptions::default()).unwrap_err();
+        assert_eq!(e.field, "vertices");
+        assert!(e.problem.contains("reaches 1.000e15") && e.problem.contains("[-1e9, 1e9]"), "{}", e.problem);
+        assert!(scene_around(model(1e6), path, &ImportOptions::default()).is_ok());
+    }
 }

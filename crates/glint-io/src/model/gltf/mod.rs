@@ -202,11 +202,16 @@ pub fn load_gltf(path: &Path, options: &ImportOptions) -> Result<Model, GltfErro
                     let attributes = Attributes { uv_set, colours: !primitive.material().unlit() };
                     let desc = read_primitive(&primitive, &buffers, &place, &prim_path, attributes, material, name)
                         .map_err(|(path, problem)| at(path, problem))?;
-                    if k == 0 && uv_set.is_some() && desc.as_ref().is_some_and(|d| d.uvs.is_none()) {
+                    if let Some(set) = uv_set
+                        && k == 0
+                        && desc.as_ref().is_some_and(|d| d.uvs.is_none())
+                    {
                         model.warnings.push(FieldIssue {
                             field: prim_path.clone(),
-                            problem: "its material is textured but it has no texture coordinates: planar ones are used"
-                                .into(),
+                            problem: format!(
+                                "its material's texture reads TEXCOORD_{set}, which it does not have: planar \
+                                 texture coordinates are used"
+                            ),
                         });
                     }
                     let unlit = primitive.material().unlit();
