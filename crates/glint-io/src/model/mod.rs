@@ -6,6 +6,7 @@ mod ground;
 mod mtl;
 mod mtl_map;
 pub mod obj;
+mod obj_smoothing;
 mod obj_statements;
 mod obj_text;
 mod polygon;

@@ -9,7 +9,7 @@ use std::sync::Arc;
 
 use super::mtl::{default_material, expand_colours, map_material, material_names, source, unread_statements};
 use super::mtl_map::parse_map;
-use super::{obj_statements, obj_text, polygon};
+use super::{obj_smoothing, obj_statements, obj_text, polygon};
 use crate::uri::{MAX_RESOURCE_BYTES, UriError, resolve_uri};
 use glint_scene::Model;
 use glint_scene::{ColorSpace, FieldIssue, MeshDesc, Rgb, TextureDesc, TextureImage, UvTransform, Wrap};
@@ -135,7 +135,14 @@ pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
         out.materials.insert(name.clone(), material);
         out.sources.insert(name.clone(), source(m));
     }
-    for model in models {
+    // Smoothing groups are per face statement; tobj's meshes hold the faces in file order.
+    let smooth = obj_smoothing::smooth_faces(&bytes);
+    let face_counts: Vec<usize> = models.iter().map(|m| face_count(&m.mesh)).collect();
+    let aligned = face_counts.iter().sum::<usize>() == smooth.len();
+    let (mut first_face, mut to_smooth) = (0, Vec::new());
+    for (model, faces) in models.iter().zip(face_counts) {
+        let in_groups = aligned.then(|| &smooth[first_face..first_face + faces]);
+        first_face += faces;
         let mesh = &model.mesh;
         let vertices: Vec<[f64; 3]> = mesh.positions.chunks_exact(3).map(|p| [p[0], p[1], p[2]]).collect();
         // tobj refuses face indices beyond the file's vertices, and validation checks again.
@@ -154,6 +161,16 @@ pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
                 problem: "has zero-length normals; shaded with its faces' geometric normals".into(),
             });
             normals = None;
+        }
+        match in_groups {
+            Some(groups) if normals.is_none() && !groups.is_empty() && groups.iter().all(|&g| g) => {
+                to_smooth.push(out.meshes.len());
+            }
+            Some(groups) if normals.is_none() && groups.iter().any(|&g| g) => out.warnings.push(FieldIssue {
+                field: format!("object `{}`", model.name),
+                problem: "only some of its faces are in a smoothing group (`s`): shaded with its faces' normals".into(),
+            }),
+            _ => {}
         }
         // OBJ's v grows upwards from the image's bottom row; glTF's (and Glint's) downwards
         // from the top row.
@@ -182,10 +199,30 @@ pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
         }
         out.meshes.push(MeshDesc { vertices, triangles, normals, uvs, colours, material, name: model.name.clone() });
     }
+    // An object's normals are shared across the meshes tobj split it into (one per material),
+    // so that a change of material does not crease a smooth surface.
+    let mut objects: Vec<&str> = to_smooth.iter().map(|&i| out.meshes[i].name.as_str()).collect();
+    objects.sort_unstable();
+    objects.dedup();
+    let objects: Vec<String> = objects.into_iter().map(str::to_owned).collect();
+    for object in objects {
+        let parts: Vec<usize> = to_smooth.iter().copied().filter(|&i| out.meshes[i].name == object).collect();
+        let geometry: Vec<_> =
+            parts.iter().map(|&i| (out.meshes[i].vertices.as_slice(), out.meshes[i].triangles.as_slice())).collect();
+        for (i, normals) in parts.iter().zip(obj_smoothing::smooth_normals(&geometry)) {
+            out.meshes[*i].normals = normals;
+        }
+    }
     if out.meshes.is_empty() {
         return Err(ObjError::Empty { file: path.to_owned() });
     }
     Ok(out)
+}
+
+/// How many face statements tobj read into `mesh`.
+fn face_count(mesh: &tobj::Mesh) -> usize {
+    // tobj lists no arities when every face is a triangle.
+    if mesh.face_arities.is_empty() { mesh.indices.len() / 3 } else { mesh.face_arities.len() }
 }
 
 /// The mesh's faces as triangles: polygons cut by `polygon::triangulate`, points and lines
@@ -632,6 +669,37 @@ mod tests {
         // A line that does not parse after them is still named by its own number.
         let bad = write(dir.path(), "bad.obj", "v 0 0 0 # a\nf 1 \\\n 2\nv 1 x 0\n");
         assert!(load_obj(&bad).unwrap_err().to_string().contains("bad.obj:4"));
+    }
+
+    #[test]
+    fn faces_in_a_smoothing_group_without_normals_get_vertex_normals() {
+        let dir = tempfile::tempdir().unwrap();
+        write(dir.path(), "m.mtl", "newmtl a\nnewmtl b\n");
+        // A pyramid over the unit square, its sides smooth (two materials, so tobj splits it in
+        // two meshes), its base flat; then a flat tetrahedron, and one half in a group.
+        let obj = "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nv 0.5 1 0.5\n\
+                   o pyramid\ns 1\nusemtl a\nf 1 5 2\nf 2 5 3\nusemtl b\nf 3 5 4\nf 4 5 1\n\
+                   o base\ns off\nf 1 2 3 4\n\
+                   o tetra\nf 1 2 5\nf 2 3 5\n\
+                   o half\ns 2\nf 1 2 5\ns 0\nf 2 3 5\n";
+        let m = load_obj(&write(dir.path(), "m.obj", obj)).expect("loads");
+        let by_name = |name: &'static str| m.meshes.iter().filter(move |mesh| mesh.name == name);
+        let apex = [0.5, 1.0, 0.5];
+        for side in by_name("pyramid") {
+            let normals = side.normals.as_ref().expect("smooth sides have vertex normals");
+            let at_apex = side.vertices.iter().position(|v| *v == apex).expect("the apex");
+            // Shared across the two meshes (materials): the four sides' mean is straight up.
+            assert!((normals[at_apex][1] - 1.0).abs() < 1e-12, "{:?}", normals[at_apex]);
+        }
+        assert_eq!(by_name("pyramid").count(), 2);
+        for flat in ["base", "tetra", "half"] {
+            assert!(by_name(flat).all(|mesh| mesh.normals.is_none()), "{flat} is shaded with its faces' normals");
+        }
+        assert!(
+            m.warnings.iter().any(|w| w.field == "object `half`" && w.problem.contains("only some")),
+            "{:?}",
+            m.warnings
+        );
     }
 
     #[test]
