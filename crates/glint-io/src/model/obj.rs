@@ -72,6 +72,8 @@ pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
     let refused = std::cell::RefCell::new(None);
     let mtl_warnings = std::cell::RefCell::new(Vec::new());
     let mtl_left_out = std::cell::Cell::new(false);
+    // Each loaded MTL's folder (relative to the OBJ's) and how many materials it held, in order.
+    let mtl_folders = std::cell::RefCell::new(Vec::<(String, usize)>::new());
     let (models, materials) = tobj::load_obj_buf(&mut bytes.as_ref(), &options, |mtl| {
         let uri = mtl.to_string_lossy();
         let field = format!("mtllib `{uri}`");
@@ -99,7 +101,10 @@ pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
             let text = obj_statements::without_trailing_comments(&text);
             let text = expand_colours(&obj_text::material_statements(&text, &["newmtl"]))
                 .map_err(|problem| format!("{uri}:{problem}"))?;
-            tobj::load_mtl_buf(&mut text.as_slice()).map_err(|e| e.to_string())
+            let loaded = tobj::load_mtl_buf(&mut text.as_slice()).map_err(|e| e.to_string())?;
+            let folder = uri.replace('\\', "/").rsplit_once('/').map_or(String::new(), |(f, _)| f.to_string());
+            mtl_folders.borrow_mut().push((folder, loaded.0.len()));
+            Ok(loaded)
         });
         loaded.map_err(|problem| {
             warn(format!("materials not loaded ({problem}); the faces naming them use `{DEFAULT_MATERIAL}`"));
@@ -119,14 +124,16 @@ pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
     let materials = materials.unwrap_or_default();
     out.warnings.extend(unread_statements(&materials));
     let names = material_names(&materials);
+    let folders = material_folders(&mtl_folders.into_inner(), materials.len());
     let mut images = Images::default();
-    for (m, name) in materials.iter().zip(&names) {
+    for ((m, name), folder) in materials.iter().zip(&names).zip(&folders) {
         let mut material = map_material(m, name, &mut out.warnings);
+        let at = Source { obj: path, mtl_folder: folder, material: name };
         if let Some(map) = m.diffuse_texture.as_deref() {
-            material.texture = Some(images.texture(path, map, name, "texture", &mut out.warnings)?);
+            material.texture = Some(images.texture(&at, map, "texture", &mut out.warnings)?);
         }
         if let Some(map) = m.unknown_param.get("map_Ke") {
-            material.emission_texture = Some(images.texture(path, map, name, "emission_texture", &mut out.warnings)?);
+            material.emission_texture = Some(images.texture(&at, map, "emission_texture", &mut out.warnings)?);
             // Ke multiplies map_Ke; without Ke the map alone is the emission.
             if m.emissive.is_none() {
                 material.emission = Rgb::splat(1.0);
@@ -307,12 +314,12 @@ impl Images {
     /// in a warning. Windows separators, common in MTL files, are read as `/`.
     fn texture(
         &mut self,
-        obj: &Path,
+        at: &Source<'_>,
         statement: &str,
-        material: &str,
         field: &'static str,
         warnings: &mut Vec<FieldIssue>,
     ) -> Result<TextureDesc, ObjError> {
+        let Source { mtl_folder, material, .. } = *at;
         let map = parse_map(statement);
         let mut warn =
             |problem: String| warnings.push(FieldIssue { field: format!("materials.{material}.{field}"), problem });
@@ -344,21 +351,69 @@ impl Images {
             }
             t
         };
-        if let Some((_, image)) = self.decoded.iter().find(|(u, _)| *u == uri) {
-            return Ok(placed(TextureDesc::decoded(uri, Arc::clone(image))));
+        // Relative to the MTL's folder, as Blender and three.js read it, then to the OBJ's (where
+        // an MTL beside the OBJ puts both).
+        if !mtl_folder.is_empty() && !uri.contains(':') && !uri.starts_with('/') {
+            return match self.image(at, &format!("{mtl_folder}/{uri}"), field) {
+                // Absent from both: the error names it where the MTL places it.
+                Err((beside_mtl, Absent::Yes)) => match self.image(at, &uri, field) {
+                    Err((_, Absent::Yes)) => Err(beside_mtl),
+                    found => found.map(placed).map_err(|(e, _)| e),
+                },
+                found => found.map(placed).map_err(|(e, _)| e),
+            };
+        }
+        self.image(at, &uri, field).map(placed).map_err(|(e, _)| e)
+    }
+
+    /// The image `uri` names (relative to the OBJ's folder), decoded once; an error says
+    /// whether the file is absent.
+    fn image(&mut self, at: &Source<'_>, uri: &str, field: &'static str) -> Result<TextureDesc, (ObjError, Absent)> {
+        if let Some((_, image)) = self.decoded.iter().find(|(u, _)| u == uri) {
+            return Ok(TextureDesc::decoded(uri.to_string(), Arc::clone(image)));
         }
         let error = |reason: String| ObjError::Texture {
-            file: obj.to_owned(),
-            material: material.to_string(),
+            file: at.obj.to_owned(),
+            material: at.material.to_string(),
             field,
-            uri: uri.clone(),
+            uri: uri.to_string(),
             reason,
         };
-        let bytes = resolve_uri(obj, &uri, MAX_RESOURCE_BYTES).map_err(|e| error(e.to_string()))?;
-        let image = Arc::new(decode_texture(&bytes, ColorSpace::Srgb).map_err(|e| error(e.to_string()))?);
-        self.decoded.push((uri.clone(), Arc::clone(&image)));
-        Ok(placed(TextureDesc::decoded(uri, image)))
+        let bytes = match resolve_uri(at.obj, uri, MAX_RESOURCE_BYTES) {
+            Ok(bytes) => bytes,
+            Err(e) if matches!(&e, UriError::Io { error, .. } if error.kind() == std::io::ErrorKind::NotFound) => {
+                return Err((error(e.to_string()), Absent::Yes));
+            }
+            Err(e) => return Err((error(e.to_string()), Absent::No)),
+        };
+        let image = Arc::new(decode_texture(&bytes, ColorSpace::Srgb).map_err(|e| (error(e.to_string()), Absent::No))?);
+        self.decoded.push((uri.to_string(), Arc::clone(&image)));
+        Ok(TextureDesc::decoded(uri.to_string(), image))
     }
+}
+
+/// Whether a texture's file is absent (and another place may be tried).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Absent {
+    Yes,
+    No,
+}
+
+/// Where a material's texture statement is read: the OBJ file, the folder of the MTL that
+/// defined the material (relative to the OBJ's; empty beside it), and the material's name.
+#[derive(Clone, Copy)]
+struct Source<'a> {
+    obj: &'a Path,
+    mtl_folder: &'a str,
+    material: &'a str,
+}
+
+/// Each material's MTL folder, from the loaded MTLs' folders and counts (in tobj's order); the
+/// OBJ's own folder for all where the counts do not add up.
+fn material_folders(loaded: &[(String, usize)], materials: usize) -> Vec<String> {
+    let folders: Vec<String> =
+        loaded.iter().flat_map(|(folder, count)| std::iter::repeat_n(folder.clone(), *count)).collect();
+    if folders.len() == materials { folders } else { vec![String::new(); materials] }
 }
 
 #[cfg(test)]
@@ -724,6 +779,25 @@ mod tests {
                 ),
             }
         }
+    }
+
+    #[test]
+    fn a_texture_is_found_beside_its_mtl_then_beside_the_obj() {
+        let dir = tempfile::tempdir().unwrap();
+        let mats = dir.path().join("mats");
+        std::fs::create_dir(&mats).unwrap();
+        png(&mats.join("near.png"));
+        png(&dir.path().join("far.png"));
+        write(&mats, "m.mtl", "newmtl a\nmap_Kd near.png\nnewmtl b\nmap_Kd far.png\n");
+        write(&mats, "c.mtl", "newmtl c\nmap_Kd gone.png\n");
+        let faces = "usemtl a\nf 1 2 3\nusemtl b\nf 1 3 4\n";
+        let m = load_obj(&write(dir.path(), "m.obj", &format!("mtllib mats/m.mtl\n{QUAD}{faces}"))).expect("loads");
+        let path = |name: &str| m.materials[name].texture.as_ref().map(|t| t.path.clone());
+        assert_eq!((path("a"), path("b")), (Some("mats/near.png".into()), Some("far.png".into())));
+        // Absent from both: the error names the texture as the MTL places it.
+        let obj = write(dir.path(), "c.obj", &format!("mtllib mats/c.mtl\n{QUAD}usemtl c\nf 1 2 3\n"));
+        let message = load_obj(&obj).unwrap_err().to_string();
+        assert!(message.contains("`mats/gone.png`") && message.contains("No such file"), "{message}");
     }
 
     #[test]
