@@ -141,7 +141,11 @@ pub fn scene_around(
             let count = model.cameras.len();
             let chosen = model.cameras.get(i).ok_or_else(|| FieldIssue {
                 field: "--camera".into(),
-                problem: format!("{i} is not a camera of the file; it has {count} (0..{count})"),
+                problem: match count {
+                    0 => format!("{i} is not a camera of the file; it has none"),
+                    1 => format!("{i} is not a camera of the file; it has one, camera 0"),
+                    _ => format!("{i} is not a camera of the file; it has {count}, cameras 0 to {}", count - 1),
+                },
             })?;
             chosen.clone()
         }
@@ -233,9 +237,8 @@ mod tests {
     use super::*;
     use glint_scene::MeshDesc;
 
-    #[test]
-    fn a_model_beyond_the_coordinate_range_is_one_error_not_one_per_object_made_around_it() {
-        let quad = |s: f64| MeshDesc {
+    fn quad(s: f64) -> MeshDesc {
+        MeshDesc {
             vertices: vec![[-s, -s, 0.0], [s, -s, 0.0], [s, s, 0.0]],
             triangles: vec![[0, 1, 2]],
             normals: None,
@@ -243,12 +246,35 @@ mod tests {
             colours: None,
             material: "m".into(),
             name: "node0".into(),
-        };
+        }
+    }
+
+    #[test]
+    fn a_model_beyond_the_coordinate_range_is_one_error_not_one_per_object_made_around_it() {
         let model = |s| Model { meshes: vec![quad(s)], ..Model::default() };
         let path = Path::new("huge.gltf");
         let e = scene_around(model(1e15), path, &ImportOptions::default()).unwrap_err();
         assert_eq!(e.field, "vertices");
         assert!(e.problem.contains("reaches 1.000e15") && e.problem.contains("[-1e9, 1e9]"), "{}", e.problem);
         assert!(scene_around(model(1e6), path, &ImportOptions::default()).is_ok());
+    }
+
+    #[test]
+    fn a_camera_index_beyond_the_files_names_the_ones_it_has() {
+        let camera = ModelCamera {
+            name: "c".into(),
+            camera: CameraDesc { position: [0.0, 0.0, 5.0], look_at: [0.0; 3], up: [0.0, 1.0, 0.0], fov_y: 40.0 },
+            aspect: None,
+        };
+        for (count, says) in [(0, "it has none"), (1, "it has one, camera 0"), (3, "it has 3, cameras 0 to 2")] {
+            let mut model = Model { meshes: vec![MeshDesc { material: "m".into(), ..quad(1.0) }], ..Model::default() };
+            model.cameras = vec![camera.clone(); count];
+            let options = ImportOptions { camera: Some(5), ..ImportOptions::default() };
+            let e = scene_around(model, Path::new("m.gltf"), &options).unwrap_err();
+            assert_eq!(
+                (e.field.as_str(), e.problem.as_str()),
+                ("--camera", format!("5 is not a camera of the file; {says}").as_str())
+            );
+        }
     }
 }
