@@ -50,7 +50,12 @@ fn spawn_ray(p: vec3<f32>, p_surface: vec3<f32>, n_side: vec3<f32>, dir: vec3<f3
         }
         // EPS_ROBUST; the host refuses any other stored value (FlatScene::check_tags).
         default: {
-            return Spawn(offset_ray(p_surface, n_side, header.frame.w) + eps * n_side, 0.0, leaving);
+            let origin = offset_ray(p_surface, n_side, header.frame.w) + eps * n_side;
+            // A direction bent below the surface it leaves meets it again (the CPU twin says why).
+            if dot(dir, n_side) > 0.0 {
+                return Spawn(origin, 0.0, leaving);
+            }
+            return Spawn(origin, 0.0, none);
         }
     }
 }

@@ -41,7 +41,7 @@ pub fn offset_ray(p: DVec3, n: DVec3, scale: f64) -> DVec3 {
 }
 
 /// Where a secondary ray starts, from which t it looks for hits, and the primitive it leaves
-/// (`Leaving::NONE` but under `skip_convex`).
+/// (`Leaving::NONE` but under `skip_convex` and `robust`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Spawn {
     pub origin: DVec3,
@@ -73,6 +73,10 @@ pub fn spawn_ray(ctx: &TraceContext, p: DVec3, p_surface: DVec3, n_side: DVec3, 
         EpsilonMode::NudgeNormal => (p + eps * n_side, 0.0),
         EpsilonMode::Robust => {
             let origin = offset_ray(p_surface, n_side, f64::from(ctx.scene.header.frame[3])) + eps * n_side;
+            // A direction bent by a shading normal below the surface it leaves (a grazing
+            // reflection off an interpolated mesh) crosses that surface at once: it meets it
+            // again, as it did before the skip.
+            let leaving = if dir.dot(n_side) > 0.0 { leaving } else { Leaving::NONE };
             return Spawn { origin, t_min: 0.0, leaving };
         }
         EpsilonMode::SkipConvex => return Spawn { origin: p, t_min: eps, leaving },

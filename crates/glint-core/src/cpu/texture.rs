@@ -2,8 +2,8 @@
 //! tracers — the UV transform, the wrap modes, nearest and bilinear filtering — in f64 from the
 //! same stored f32 texels the GPU reads.
 //!
-//! A coordinate is first folded into its wrap mode's base period in floating point ([0, 1]
-//! repeat and clamp, [0, 2] mirrored), so that the texel indices derived from it stay within
+//! A coordinate is first folded into its wrap mode's base period in floating point ([0, 1)
+//! repeat, [0, 2) mirrored, [0, 1] clamp), so that the texel indices derived from it stay within
 //! [−1, 2n + 1] whatever the coordinate; the indices are then wrapped as integers.
 
 use glam::{DVec2, DVec3};
