@@ -54,10 +54,10 @@ pub struct LoadArgs {
     #[arg(long, value_name = "N", allow_negative_numbers = true, value_parser = parse_resolution)]
     pub resolution: Option<u32>,
     /// The glTF scene to open (0-based; default: the file's default scene, else its first)
-    #[arg(long, value_name = "N", value_parser = parse_index)]
+    #[arg(long, value_name = "N", allow_negative_numbers = true, value_parser = parse_index)]
     pub scene_index: Option<usize>,
     /// The model file's camera to look through (0-based; default: its first, or one framing the model)
-    #[arg(long, value_name = "N", value_parser = parse_index)]
+    #[arg(long, value_name = "N", allow_negative_numbers = true, value_parser = parse_index)]
     pub camera: Option<usize>,
     /// Scale of a model file's light intensities (candela, lux) into I_d and I_s, in (0, 1e6]; default 1
     #[arg(long, value_name = "FACTOR", allow_negative_numbers = true, value_parser = parse_exposure)]

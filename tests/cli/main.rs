@@ -356,9 +356,11 @@ fn bad_input_fails_cleanly() {
         &["/dev/null", "TOML parse error"],
         &[],
     );
-    // Every number flag takes a negative value to its own range message (clap's "unexpected
+    // Number flags take a negative value to their own range messages (clap's "unexpected
     // argument '-1'" suggested `-- -1`, which made -1 the scene).
-    for (flag, value, fragment) in [("--seed", "-1", "0..=4294967295"), ("--tile", "-1/4", "not a whole number")] {
+    for (flag, value, fragment) in
+        [("--seed", "-1", "0..=4294967295"), ("--tile", "-1/4", "not a whole number"), ("--camera", "-1", "--camera")]
+    {
         expect_failure(
             "negative-flag",
             |d| os(&[&"render", &"whitted", &"-o", &d.join("out.png"), &flag, &value]),

@@ -111,7 +111,8 @@ pub fn load_scene_with(arg: &str, options: &LoadOptions) -> Result<LoadedScene, 
             let (desc, warnings) = load_model(path, &options.import)?;
             return Ok(LoadedScene { desc, source: path.to_owned(), name, warnings });
         }
-        let bytes = std::fs::read(path).map_err(|error| SceneError::Io { file: path.to_owned(), error })?;
+        let bytes = read_capped(path, uri::MAX_RESOURCE_BYTES)
+            .map_err(|error| SceneError::Io { file: path.to_owned(), error })?;
         let text = utf8(&bytes, path)?;
         let (desc, warnings) = parse_scene(text, path)?;
         return Ok(LoadedScene { desc, source: path.to_owned(), name, warnings });
@@ -129,6 +130,19 @@ pub fn load_scene_with(arg: &str, options: &LoadOptions) -> Result<LoadedScene, 
     }
     let available = BUILTIN_SCENES.iter().map(|b| b.name).collect::<Vec<_>>().join(", ");
     Err(SceneError::UnknownScene { name: arg.to_string(), available })
+}
+
+/// A scene file's bytes, at most `cap` of them (`uri::MAX_RESOURCE_BYTES`): a device or a pipe
+/// (`/dev/zero`, a generator behind `<(…)`) has no size to check beforehand, and is read only
+/// that far.
+fn read_capped(path: &Path, cap: u64) -> std::io::Result<Vec<u8>> {
+    use std::io::Read as _;
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)?.take(cap + 1).read_to_end(&mut bytes)?;
+    if bytes.len() as u64 > cap {
+        return Err(std::io::Error::other(format!("larger than {cap} bytes, the most a scene file may hold")));
+    }
+    Ok(bytes)
 }
 
 /// The scene file's text, or an error giving the byte offset (and line and column) of the
@@ -167,4 +181,16 @@ fn load_model(path: &Path, options: &ImportOptions) -> Result<(SceneDesc, Vec<Fi
 /// A model object is written as its reference, and its materials only where they were changed.
 pub fn to_toml(desc: &SceneDesc) -> Result<String, toml::ser::Error> {
     toml::to_string_pretty(&without_imported_materials(desc))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_scene_read_from_a_device_stops_at_the_cap() {
+        let e = read_capped(Path::new("/dev/zero"), 1024).unwrap_err();
+        assert!(e.to_string().contains("larger than 1024 bytes"), "{e}");
+        assert_eq!(read_capped(Path::new("/dev/null"), 1024).unwrap(), Vec::<u8>::new());
+    }
 }

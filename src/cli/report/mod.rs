@@ -76,7 +76,7 @@ pub struct ReportArgs {
     pub integrator: Option<Integrator>,
     /// Run shard I of N of the sweep (I from 0): the configurations the shards' fixed split by
     /// expected cost gives it; writes DIR/shard-I-of-N.toml for --merge
-    #[arg(long, value_name = "I/N", value_parser = shard::parse_shard)]
+    #[arg(long, value_name = "I/N", allow_hyphen_values = true, value_parser = shard::parse_shard)]
     pub shard: Option<shard::ShardSpec>,
     /// Merge the shards' files found in these folders (comma-separated) into the report a
     /// one-machine run writes, in --out; names every missing shard

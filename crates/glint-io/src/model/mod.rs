@@ -98,6 +98,10 @@ pub fn load_model_file(path: &Path, options: &ImportOptions) -> Result<Model, St
     }
 }
 
+/// How many of the model's radii the camera and lights made around it lie from its centre, at
+/// most, on any axis (the key light's 1.6 × 3).
+const MADE_AROUND: f64 = 4.8;
+
 /// The material of the ground under an opened model.
 pub const GROUND_MATERIAL: &str = "glint-ground";
 
@@ -120,20 +124,22 @@ pub fn scene_around(
             hi[k] = hi[k].max(v[k]);
         }
     }
+    let center: [f64; 3] = std::array::from_fn(|k| 0.5 * (lo[k] + hi[k]));
+    let radius = (0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>().sqrt().max(1e-6) * 0.5;
     // Beyond the coordinates a scene may hold, the camera, lights and ground made around the
-    // model would be refused too, each under Glint's own names: say once what is wrong.
+    // model (at most `MADE_AROUND` of its radii from its centre on an axis) would be refused,
+    // each under Glint's own names: say once what is wrong.
     let reach = lo.iter().chain(&hi).fold(0.0_f64, |r, c| r.max(c.abs()));
-    if reach > MAX_COORD {
+    let around = center.iter().fold(0.0_f64, |r, c| r.max(c.abs())) + MADE_AROUND * radius;
+    if reach.max(around) > MAX_COORD {
         return Err(FieldIssue {
             field: "vertices".into(),
             problem: format!(
-                "the model reaches {reach:.3e} from the origin; coordinates must lie in [-{MAX_COORD:e}, {MAX_COORD:e}] \
-                 (a node's scale, or a file in other units?)"
+                "the model reaches {reach:.3e} from the origin, and the camera and lights made around it {around:.3e}; \
+                 coordinates must lie in [-{MAX_COORD:e}, {MAX_COORD:e}] (a node's scale, or a file in other units?)"
             ),
         });
     }
-    let center: [f64; 3] = std::array::from_fn(|k| 0.5 * (lo[k] + hi[k]));
-    let radius = (0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>().sqrt().max(1e-6) * 0.5;
     let at = |d: [f64; 3], s: f64| std::array::from_fn(|k| center[k] + d[k] * s * radius);
     let mut render = RenderSettings::default();
     let camera = match (options.camera, model.cameras.first()) {
@@ -257,6 +263,9 @@ mod tests {
         assert_eq!(e.field, "vertices");
         assert!(e.problem.contains("reaches 1.000e15") && e.problem.contains("[-1e9, 1e9]"), "{}", e.problem);
         assert!(scene_around(model(1e6), path, &ImportOptions::default()).is_ok());
+        // Within the range itself, but not the key light made 4.8 radii (here 3.4e8) above it.
+        let e = scene_around(model(5e8), path, &ImportOptions::default()).unwrap_err();
+        assert!(e.problem.contains("reaches 5.000e8") && e.problem.contains("around it 3.394e9"), "{}", e.problem);
     }
 
     #[test]

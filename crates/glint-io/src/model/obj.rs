@@ -39,8 +39,9 @@ pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
     let (bytes, encoding) = obj_text::decode(&raw).map_err(|reason| parse_error(None, reason))?;
     out.warnings
         .extend(encoding.map(|how| FieldIssue { field: "encoding".into(), problem: format!("not UTF-8: {how}") }));
-    let bytes = obj_statements::joined_continuations(&bytes);
+    // Comments first: a comment ending in `\` continues nothing.
     let bytes = obj_statements::without_trailing_comments(&bytes);
+    let bytes = obj_statements::joined_continuations(&bytes);
     let uses = obj_text::material_uses(&bytes);
     let bytes = obj_text::material_statements(&bytes, &["mtllib", "usemtl"]);
     let (bytes, polylines) = obj_text::without_polylines(&bytes);
@@ -97,8 +98,8 @@ pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
             if let Some(how) = encoding {
                 warn(format!("not UTF-8: {how}"));
             }
-            let text = obj_statements::joined_continuations(&text);
             let text = obj_statements::without_trailing_comments(&text);
+            let text = obj_statements::joined_continuations(&text);
             let text = expand_colours(&obj_text::material_statements(&text, &["newmtl"]))
                 .map_err(|problem| format!("{uri}:{problem}"))?;
             let loaded = tobj::load_mtl_buf(&mut text.as_slice()).map_err(|e| e.to_string())?;
@@ -143,17 +144,17 @@ pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
         out.sources.insert(name.clone(), source(m));
     }
     // Smoothing groups are per face statement; tobj's meshes hold the faces in file order.
-    let smooth = obj_smoothing::smooth_faces(&bytes);
+    let groups = obj_smoothing::face_groups(&bytes);
     let face_counts: Vec<usize> = models.iter().map(|m| face_count(&m.mesh)).collect();
-    let aligned = face_counts.iter().sum::<usize>() == smooth.len();
+    let aligned = face_counts.iter().sum::<usize>() == groups.len();
     let (mut first_face, mut to_smooth) = (0, Vec::new());
     for (model, faces) in models.iter().zip(face_counts) {
-        let in_groups = aligned.then(|| &smooth[first_face..first_face + faces]);
+        let in_groups = aligned.then(|| &groups[first_face..first_face + faces]);
         first_face += faces;
         let mesh = &model.mesh;
         let vertices: Vec<[f64; 3]> = mesh.positions.chunks_exact(3).map(|p| [p[0], p[1], p[2]]).collect();
         // tobj refuses face indices beyond the file's vertices, and validation checks again.
-        let triangles = triangles(&vertices, mesh, &model.name, &mut out.warnings);
+        let (triangles, face_of) = triangles(&vertices, mesh, &model.name, &mut out.warnings);
         if triangles.is_empty() {
             continue;
         }
@@ -162,22 +163,21 @@ pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
         // A zero or non-finite normal cannot shade: the whole object is shaded faceted.
         let unusable =
             |n: &[f64; 3]| !(n.iter().all(|c| c.is_finite()) && n.iter().map(|c| c * c).sum::<f64>() > 1e-24);
-        if normals.as_ref().is_some_and(|ns| ns.iter().any(unusable)) {
-            out.warnings.push(FieldIssue {
-                field: format!("object `{}`", model.name),
-                problem: "has zero-length normals; shaded with its faces' geometric normals".into(),
-            });
+        let zero_normals = normals.as_ref().is_some_and(|ns| ns.iter().any(unusable));
+        if zero_normals {
             normals = None;
         }
-        match in_groups {
-            Some(groups) if normals.is_none() && !groups.is_empty() && groups.iter().all(|&g| g) => {
-                to_smooth.push(out.meshes.len());
-            }
-            Some(groups) if normals.is_none() && groups.iter().any(|&g| g) => out.warnings.push(FieldIssue {
+        // Each triangle's smoothing group, where the file gives no (usable) normals but groups.
+        let smoothing: Option<Vec<u32>> = in_groups
+            .filter(|groups| normals.is_none() && groups.iter().any(|&g| g != 0))
+            .map(|groups| face_of.iter().map(|&f| groups[f]).collect());
+        if zero_normals {
+            let instead =
+                if smoothing.is_some() { "made from its smoothing groups" } else { "its faces' geometric normals" };
+            out.warnings.push(FieldIssue {
                 field: format!("object `{}`", model.name),
-                problem: "only some of its faces are in a smoothing group (`s`): shaded with its faces' normals".into(),
-            }),
-            _ => {}
+                problem: format!("has zero-length normals; shaded with {instead}"),
+            });
         }
         // OBJ's v grows upwards from the image's bottom row; glTF's (and Glint's) downwards
         // from the top row.
@@ -204,19 +204,26 @@ pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
                 ),
             });
         }
-        out.meshes.push(MeshDesc { vertices, triangles, normals, uvs, colours, material, name: model.name.clone() });
+        let mut desc = MeshDesc { vertices, triangles, normals, uvs, colours, material, name: model.name.clone() };
+        if let Some(groups) = smoothing {
+            to_smooth.push((out.meshes.len(), obj_smoothing::split(&mut desc, &groups)));
+        }
+        out.meshes.push(desc);
     }
     // An object's normals are shared across the meshes tobj split it into (one per material),
     // so that a change of material does not crease a smooth surface.
-    let mut objects: Vec<&str> = to_smooth.iter().map(|&i| out.meshes[i].name.as_str()).collect();
+    let mut objects: Vec<String> = to_smooth.iter().map(|(i, _)| out.meshes[*i].name.clone()).collect();
     objects.sort_unstable();
     objects.dedup();
-    let objects: Vec<String> = objects.into_iter().map(str::to_owned).collect();
     for object in objects {
-        let parts: Vec<usize> = to_smooth.iter().copied().filter(|&i| out.meshes[i].name == object).collect();
-        let geometry: Vec<_> =
-            parts.iter().map(|&i| (out.meshes[i].vertices.as_slice(), out.meshes[i].triangles.as_slice())).collect();
-        for (i, normals) in parts.iter().zip(obj_smoothing::smooth_normals(&geometry)) {
+        let parts: Vec<&(usize, Vec<obj_smoothing::Corner>)> =
+            to_smooth.iter().filter(|(i, _)| out.meshes[*i].name == object).collect();
+        let geometry: Vec<obj_smoothing::Part<'_>> = parts
+            .iter()
+            .map(|(i, keys)| (out.meshes[*i].vertices.as_slice(), out.meshes[*i].triangles.as_slice(), keys.as_slice()))
+            .collect();
+        let normals = obj_smoothing::normals(&geometry);
+        for ((i, _), normals) in parts.iter().zip(normals) {
             out.meshes[*i].normals = normals;
         }
     }
@@ -233,8 +240,14 @@ fn face_count(mesh: &tobj::Mesh) -> usize {
 }
 
 /// The mesh's faces as triangles: polygons cut by `polygon::triangulate`, points and lines
-/// left out. A polygon whose edges cross is warned once per object.
-fn triangles(vertices: &[[f64; 3]], mesh: &tobj::Mesh, object: &str, warnings: &mut Vec<FieldIssue>) -> Vec<[u32; 3]> {
+/// left out; and for each triangle, the face (of the mesh's, in order) it was cut from. A
+/// polygon whose edges cross is warned once per object.
+fn triangles(
+    vertices: &[[f64; 3]],
+    mesh: &tobj::Mesh,
+    object: &str,
+    warnings: &mut Vec<FieldIssue>,
+) -> (Vec<[u32; 3]>, Vec<usize>) {
     // tobj lists no arities when every face is a triangle.
     let arities: Vec<usize> = if mesh.face_arities.is_empty() {
         vec![3; mesh.indices.len() / 3]
@@ -242,13 +255,15 @@ fn triangles(vertices: &[[f64; 3]], mesh: &tobj::Mesh, object: &str, warnings: &
         mesh.face_arities.iter().map(|&n| n as usize).collect()
     };
     let mut out = Vec::with_capacity(mesh.indices.len() / 3);
+    let mut face_of = Vec::with_capacity(mesh.indices.len() / 3);
     let (mut start, mut crossing) = (0, Vec::new());
-    for n in arities {
+    for (face, n) in arities.into_iter().enumerate() {
         let polygon = &mesh.indices[start..start + n];
         start += n;
         if n >= 3 && polygon::triangulate(vertices, polygon, &mut out) == polygon::Cut::SelfIntersecting {
             crossing.push(n);
         }
+        face_of.resize(out.len(), face);
     }
     if let Some(n) = crossing.first() {
         let more = if crossing.len() > 1 { format!(" (and {} more faces)", crossing.len() - 1) } else { String::new() };
@@ -257,7 +272,7 @@ fn triangles(vertices: &[[f64; 3]], mesh: &tobj::Mesh, object: &str, warnings: &
             problem: format!("a face of {n} vertices crosses itself{more}; cut into the triangles its outline allows"),
         });
     }
-    out
+    (out, face_of)
 }
 
 /// One warning per `usemtl` that names no material of the MTL (its faces take the default),
@@ -710,12 +725,13 @@ mod tests {
     fn continued_statements_and_trailing_comments_read_as_the_plain_file() {
         let dir = tempfile::tempdir().unwrap();
         write(dir.path(), "m.mtl", "newmtl red # the paint\nKd 0.9 0.1 0.1 # red\n");
-        let plain = write(dir.path(), "plain.obj", &format!("mtllib m.mtl\n{QUAD}usemtl red\nf 1 3 4\n"));
+        let plain =
+            write(dir.path(), "plain.obj", &format!("mtllib m.mtl\n{QUAD}usemtl red\nf 1 3 4\nv 1 1 1\nf 1 2 5\n"));
         let annotated = write(
             dir.path(),
             "annotated.obj",
             "mtllib m.mtl # materials\nv 0 0 0\nv 1 0 0 # x\nv 1 1 0\nv 0 1 0#top\nf 1 2 \\\n   3 4 # base\n\
-             usemtl red # the paint\nf 1 \\\r\n3 \\\n4\n",
+             usemtl red # the paint\nf 1 \\\r\n3 \\\n4 # see \\\nv 1 1 1\nf 1 2 5\n",
         );
         let (a, b) = (load_obj(&plain).expect("plain"), load_obj(&annotated).expect("annotated"));
         assert_eq!(a.meshes, b.meshes);
@@ -747,14 +763,24 @@ mod tests {
             assert!((normals[at_apex][1] - 1.0).abs() < 1e-12, "{:?}", normals[at_apex]);
         }
         assert_eq!(by_name("pyramid").count(), 2);
-        for flat in ["base", "tetra", "half"] {
+        for flat in ["base", "tetra"] {
             assert!(by_name(flat).all(|mesh| mesh.normals.is_none()), "{flat} is shaded with its faces' normals");
         }
-        assert!(
-            m.warnings.iter().any(|w| w.field == "object `half`" && w.problem.contains("only some")),
-            "{:?}",
-            m.warnings
-        );
+        // Half in a group, half not: the edge between them stays hard (its vertices split),
+        // the face outside the group keeps its own normal.
+        let half = by_name("half").next().expect("half");
+        let normals = half.normals.as_ref().expect("smoothing made normals");
+        assert_eq!(half.vertices.len(), 6, "the two shared vertices split");
+        let face = |t: [u32; 3]| t.map(|v| half.vertices[v as usize]);
+        let [a, b, c] = face(half.triangles[1]);
+        let (e1, e2) = ([b[0] - a[0], b[1] - a[1], b[2] - a[2]], [c[0] - a[0], c[1] - a[1], c[2] - a[2]]);
+        let n = [e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]];
+        let length = n.iter().map(|c| c * c).sum::<f64>().sqrt();
+        for v in half.triangles[1] {
+            let got = normals[v as usize];
+            assert!((0..3).all(|k| (got[k] - n[k] / length).abs() < 1e-12), "{got:?}");
+        }
+        assert!(m.warnings.iter().all(|w| !w.field.contains("half")), "{:?}", m.warnings);
     }
 
     #[test]

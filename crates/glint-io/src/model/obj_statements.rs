@@ -8,7 +8,8 @@
 use std::borrow::Cow;
 
 /// `text` with every statement continued by a trailing `\` joined into its first line, the
-/// lines it took left empty. A comment line's `\` continues nothing.
+/// lines it took left empty. A comment line's `\` continues nothing (trailing comments are cut
+/// first, `without_trailing_comments`).
 pub(super) fn joined_continuations(text: &[u8]) -> Cow<'_, [u8]> {
     let continued = |line: &[u8]| {
         let line = line.trim_ascii();

@@ -34,26 +34,29 @@ pub fn integrator_warnings(desc: &SceneDesc, settings: &RenderSettings) -> Vec<F
     }
     // The path tracer follows k_d, k_s, k_r and k_t as one BSDF (each lobe's albedo at most its
     // k), so where they sum above 1 a surface returns more light than it receives and radiance
-    // grows with every bounce; Whitted's tree sums k_d and k_s once per light instead.
-    for (name, m) in &desc.materials {
-        let kd = m.checker.as_ref().map_or(m.kd, |c| Rgb(std::array::from_fn(|k| m.kd.0[k].max(c.kd.0[k]))));
-        let sums: [f64; 3] = std::array::from_fn(|k| kd.0[k] + m.ks.0[k] + m.kr.0[k] + m.kt.0[k]);
-        let (k, sum) =
-            sums.iter().enumerate().fold((0, sums[0]), |best, (k, &v)| if v > best.1 { (k, v) } else { best });
-        if sum > 1.0 {
-            let channel = if sums.iter().all(|&v| v == sum) {
-                String::new()
-            } else {
-                format!(" (channel {})", ["r", "g", "b"][k])
-            };
-            out.push(FieldIssue {
-                field: format!("materials.{name}"),
-                problem: format!(
-                    "k_d + k_s + k_r + k_t = {sum:.4} > 1{channel}: under the path tracer the surface returns more \
-                     light than it receives, so radiance grows with --depth"
-                ),
-            });
-        }
+    // grows with every bounce; Whitted's tree sums k_d and k_s once per light instead. One
+    // warning for all (a model's smooth materials, which count F0 as k_s and k_r, are many).
+    let gains: Vec<String> = desc
+        .materials
+        .iter()
+        .filter_map(|(name, m)| {
+            let kd = m.checker.as_ref().map_or(m.kd, |c| Rgb(std::array::from_fn(|k| m.kd.0[k].max(c.kd.0[k]))));
+            let sum = (0..3).map(|k| kd.0[k] + m.ks.0[k] + m.kr.0[k] + m.kt.0[k]).fold(0.0, f64::max);
+            (sum > 1.0).then(|| format!("{name} ({sum:.4})"))
+        })
+        .collect();
+    if !gains.is_empty() {
+        const SHOWN: usize = 6;
+        let more = gains.len().saturating_sub(SHOWN);
+        let more = if more > 0 { format!(" and {more} more") } else { String::new() };
+        out.push(FieldIssue {
+            field: "materials".into(),
+            problem: format!(
+                "k_d + k_s + k_r + k_t > 1 in {}{more}: under the path tracer such a surface returns more light \
+                 than it receives, so radiance grows with --depth",
+                gains[..gains.len().min(SHOWN)].join(", ")
+            ),
+        });
     }
     let emits = desc.materials.values().any(|m| !m.emission.is_zero());
     if desc.lights.is_empty() && !emits && desc.world.background.is_zero() {
@@ -80,7 +83,7 @@ mod tests {
         let mut settings = RenderSettings { integrator: Integrator::Path, bailout: 0.01, ..RenderSettings::default() };
         let fields =
             |s: &RenderSettings| integrator_warnings(&desc, s).into_iter().map(|w| w.field).collect::<Vec<_>>();
-        assert_eq!(fields(&settings), ["world.ambient", "render.bailout", "materials.clay", "render.integrator"]);
+        assert_eq!(fields(&settings), ["world.ambient", "render.bailout", "materials", "render.integrator"]);
         settings.integrator = Integrator::Whitted;
         assert!(fields(&settings).is_empty(), "Whitted's render uses all of it");
     }
@@ -90,10 +93,7 @@ mod tests {
         let mut desc = crate::bumpy::bumpy(2);
         let settings = RenderSettings { integrator: Integrator::Path, ..RenderSettings::default() };
         let gain = |desc: &SceneDesc| {
-            integrator_warnings(desc, &settings)
-                .into_iter()
-                .filter(|w| w.field.starts_with("materials."))
-                .collect::<Vec<_>>()
+            integrator_warnings(desc, &settings).into_iter().filter(|w| w.field == "materials").collect::<Vec<_>>()
         };
         let name = desc.materials.keys().next().expect("a material").clone();
         let m = desc.materials.get_mut(&name).expect("it");
@@ -103,7 +103,7 @@ mod tests {
         let warned = gain(&desc);
         assert_eq!(warned.len(), 1, "{warned:?}");
         assert!(
-            warned[0].problem.starts_with("k_d + k_s + k_r + k_t = 1.1000 > 1 (channel r)"),
+            warned[0].problem.starts_with(&format!("k_d + k_s + k_r + k_t > 1 in {name} (1.1000):")),
             "{}",
             warned[0].problem
         );

@@ -84,9 +84,10 @@ pub(super) fn map_material(m: &::gltf::Material<'_>, field: &str, warnings: &mut
             let base = factors.rgb("baseColorFactor", [b[0], b[1], b[2]]);
             let metallic = factors.unit("metallicFactor", pbr.metallic_factor());
             // KHR_materials_specular scales the dielectric F0 (colour and strength).
-            let (strength, tint) = m
-                .specular()
-                .map_or((1.0, [1.0; 3]), |s| (widen(s.specular_factor()), s.specular_color_factor().map(widen)));
+            let (strength, tint) = match m.specular() {
+                Some(s) => (factors.unit("specularFactor", s.specular_factor()), s.specular_color_factor().map(widen)),
+                None => (1.0, [1.0; 3]),
+            };
             let f0 =
                 Rgb(std::array::from_fn(|k| lerp((DIELECTRIC_F0 * tint[k]).min(1.0) * strength, base.0[k], metallic)));
             let diffuse = Rgb(base.0.map(|c| c * (1.0 - metallic)));
