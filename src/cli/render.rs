@@ -18,7 +18,7 @@ use super::backend::{Run, open_gpu, run_cpu, run_gpu};
 use super::interrupt;
 use super::output::{check_writable, fmt_counts, metadata, print_json, print_table, suffixed, write_diff, write_run};
 use super::output_path::check_outputs;
-use super::settings::{LoadArgs, SettingsArgs, load_with_estimate, parse_ray_cap, parse_threads};
+use super::settings::{LoadArgs, SettingsArgs, is_model, load_with_estimate, parse_ray_cap, parse_threads};
 use super::tile::{TileJob, TileSpec, parse_tile, render_tile};
 use super::units::{mrays_per_s, ms};
 
@@ -113,7 +113,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     }
     let (loaded, load_estimate) =
         load_with_estimate(&args.scene, &args.scene_size.options(), args.scene_size.memory_limit)?;
-    let settings = args.settings.apply(&loaded.desc.render)?;
+    let settings = args.settings.apply(&loaded.desc.render, is_model(&loaded))?;
     // Loading warned about the scene's own settings; flags that change them are judged here.
     if settings != loaded.desc.render
         && let Some(warning) = unbounded_ray_tree(&loaded.desc, &settings)

@@ -7,7 +7,7 @@ use glint_core::memory::{self, MemoryEstimate, SourceKind};
 use glint_io::ImportOptions;
 use glint_io::model::Ground;
 use glint_io::{DEFAULT_RESOLUTION, LoadOptions, LoadedScene, RESOLUTIONS, load_scene_with};
-use glint_scene::{EpsilonMode, Integrator, RenderSettings, Report, validate_settings};
+use glint_scene::{EpsilonMode, Integrator, MAX_IMAGE_SIDE, RenderSettings, Report, validate_settings};
 
 #[derive(Clone, Debug, Default, Args)]
 pub struct SettingsArgs {
@@ -179,14 +179,23 @@ fn parse_epsilon_mode(s: &str) -> Result<EpsilonMode, String> {
 }
 
 impl SettingsArgs {
-    /// The scene's settings with these flags applied, validated.
-    pub fn apply(&self, base: &RenderSettings) -> anyhow::Result<RenderSettings> {
+    /// The scene's settings with these flags applied, validated. With `keep_aspect` (a model
+    /// file, whose image size is its camera's aspect ratio, not something its user wrote) a
+    /// `--width` or `--height` given alone sizes the other side to keep that ratio.
+    pub fn apply(&self, base: &RenderSettings, keep_aspect: bool) -> anyhow::Result<RenderSettings> {
         let mut s = base.clone();
         if let Some(v) = self.width {
             s.width = v;
         }
         if let Some(v) = self.height {
             s.height = v;
+        }
+        let ratio = f64::from(base.width) / f64::from(base.height.max(1));
+        let side = |v: f64| v.round().clamp(1.0, f64::from(MAX_IMAGE_SIDE)) as u32;
+        match (keep_aspect, self.width, self.height) {
+            (true, Some(w), None) => s.height = side(f64::from(w) / ratio),
+            (true, None, Some(h)) => s.width = side(f64::from(h) * ratio),
+            _ => {}
         }
         if let Some(v) = self.spp {
             s.spp = v;
@@ -276,4 +285,9 @@ pub fn check_load_memory(scene: &str, memory_limit: Option<u64>) -> anyhow::Resu
         return Ok(Some(estimate));
     }
     Ok(None)
+}
+
+/// Whether `loaded` came from a model file (glTF, OBJ), whose lab scene Glint made around it.
+pub fn is_model(loaded: &LoadedScene) -> bool {
+    glint_io::ModelFormat::of(&loaded.source).is_some()
 }

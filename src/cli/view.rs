@@ -8,7 +8,7 @@ use clap::Args;
 use glint_io::load_scene_with;
 use glint_viewer::{GiView, ViewMode, ViewerError, ViewerOptions};
 
-use super::settings::{LoadArgs, SettingsArgs, check_load_memory};
+use super::settings::{LoadArgs, SettingsArgs, check_load_memory, is_model};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 pub enum StartView {
@@ -100,7 +100,7 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
     // A resolution the scene cannot take is a flag error, before any window opens, and so is
     // a scene the drag benchmark cannot load: it would measure the window's fallback instead.
     let settings = match load_scene_with(&args.scene, &load) {
-        Ok(loaded) => Some(args.settings.apply(&loaded.desc.render)?),
+        Ok(loaded) => Some(args.settings.apply(&loaded.desc.render, is_model(&loaded))?),
         Err(e @ glint_io::SceneError::NotGenerated { .. }) => bail!("--resolution: {e}"),
         Err(e @ glint_io::SceneError::NotAModel { .. }) => bail!("{e}"),
         Err(e) if args.benchmark_drag.is_some() || args.benchmark_features || args.benchmark_paths.is_some() => {

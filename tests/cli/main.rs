@@ -426,3 +426,25 @@ fn the_path_tracer_renders_on_both_tracers_from_a_flag_or_the_scene() {
     assert!(!out.status.success());
     assert!(text(&out.stderr).contains("render.indirect (--indirect)"), "{}", text(&out.stderr));
 }
+
+#[test]
+fn a_side_given_alone_keeps_a_model_cameras_aspect_ratio() {
+    // The file's camera has aspectRatio 2: the lab scene's image is twice as wide as high, and
+    // a --height alone kept the scene's width (960×120 for 240×120).
+    use glint_test_support::gltf::{BufferAt, Fixture};
+    let dir = TempDir::new("model-aspect");
+    let mut f = Fixture::quad();
+    f.json["cameras"] = serde_json::json!([{ "type": "perspective", "perspective": { "yfov": 0.5, "aspectRatio": 2.0, "znear": 0.1 } }]);
+    f.json["scenes"] = serde_json::json!([{ "nodes": [0, 1] }]);
+    f.json["nodes"] = serde_json::json!([{ "mesh": 0 }, { "translation": [0.5, 0.5, 4.0], "camera": 0 }]);
+    let path = f.write_gltf(&dir, "wide", BufferAt::DataUri);
+    for (flags, size) in [(["--height", "24"], (48, 24)), (["--width", "30"], (30, 15))] {
+        let mut args: Vec<OsString> = vec!["render".into(), path.as_os_str().to_owned(), "--json".into()];
+        args.extend(flags.iter().map(Into::into));
+        args.extend(["-o".into(), dir.join("m.png").into_os_string()]);
+        let run = glint(&dir, args);
+        assert!(run.status.success(), "{flags:?}: {}", text(&run.stderr));
+        let v: serde_json::Value = serde_json::from_str(&text(&run.stdout)).expect("JSON");
+        assert_eq!((v["width"].as_u64(), v["height"].as_u64()), (Some(size.0), Some(size.1)), "{flags:?}");
+    }
+}
