@@ -75,11 +75,10 @@ pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
     let mtl_left_out = std::cell::Cell::new(false);
     // Each loaded MTL's folder (relative to the OBJ's) and how many materials it held, in order.
     let mtl_folders = std::cell::RefCell::new(Vec::<(String, usize)>::new());
-    let (models, materials) = tobj::load_obj_buf(&mut bytes.as_ref(), &options, |mtl| {
-        let uri = mtl.to_string_lossy();
+    let load_mtl = |uri: &str| -> tobj::MTLLoadResult {
         let field = format!("mtllib `{uri}`");
         let warn = |problem: String| mtl_warnings.borrow_mut().push(FieldIssue { field: field.clone(), problem });
-        let text = match resolve_uri(path, &uri, MAX_RESOURCE_BYTES) {
+        let text = match resolve_uri(path, uri, MAX_RESOURCE_BYTES) {
             Ok(text) => text,
             Err(UriError::Io { path: mtl, error, .. }) if error.kind() == std::io::ErrorKind::NotFound => {
                 warn(format!(
@@ -112,6 +111,22 @@ pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
             mtl_left_out.set(true);
             tobj::LoadError::MaterialParseError
         })
+    };
+    let (models, materials) = tobj::load_obj_buf(&mut bytes.as_ref(), &options, |mtl| {
+        let uri = mtl.to_string_lossy();
+        let parts = mtl_files(path, &uri);
+        if let [one] = parts.as_slice() {
+            return load_mtl(one);
+        }
+        // `mtllib a.mtl b.mtl`: one result for tobj, the files' materials in order.
+        let (mut materials, mut names) = (Vec::new(), std::collections::HashMap::new());
+        for part in &parts {
+            if let Ok((mut more, map)) = load_mtl(part) {
+                names.extend(map.into_iter().map(|(name, i)| (name, i + materials.len())));
+                materials.append(&mut more);
+            }
+        }
+        if materials.is_empty() { Err(tobj::LoadError::OpenFileFailed) } else { Ok((materials, names)) }
     })
     .map_err(|e| parse_error(failing_line(&bytes, &options), e.to_string()))?;
     if let Some(error) = refused.into_inner() {
@@ -231,6 +246,20 @@ pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
         return Err(ObjError::Empty { file: path.to_owned() });
     }
     Ok(out)
+}
+
+/// The MTL files an `mtllib` statement names: its whole rest where that is a file beside the
+/// OBJ (a name with spaces, as Blender writes `mtllib my model.mtl`); else, as the OBJ
+/// specification allows, each of its words that ends in `.mtl` where they all do
+/// (`mtllib a.mtl b.mtl`); else the whole rest (missing, warned).
+fn mtl_files(obj: &Path, rest: &str) -> Vec<String> {
+    let folder = obj.parent().unwrap_or(Path::new("."));
+    let words: Vec<&str> = rest.split_whitespace().collect();
+    let all_mtl = words.len() > 1 && words.iter().all(|w| w.to_ascii_lowercase().ends_with(".mtl"));
+    if folder.join(rest).is_file() || !all_mtl {
+        return vec![rest.to_string()];
+    }
+    words.into_iter().map(str::to_string).collect()
 }
 
 /// How many face statements tobj read into `mesh`.
@@ -805,6 +834,34 @@ mod tests {
                 ),
             }
         }
+    }
+
+    #[test]
+    fn an_mtllib_naming_several_files_reads_each_and_a_name_with_spaces_stays_one() {
+        let dir = tempfile::tempdir().unwrap();
+        write(dir.path(), "a.mtl", "newmtl red\nKd 1 0 0\n");
+        write(dir.path(), "b.mtl", "newmtl blue\nKd 0 0 1\n");
+        write(dir.path(), "my model.mtl", "newmtl green\nKd 0 1 0\n");
+        let faces = |a: &str, b: &str| {
+            format!("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nusemtl {a}\nf 1 2 3\nusemtl {b}\nf 1 3 4\n")
+        };
+        let m = load_obj(&write(dir.path(), "two.obj", &format!("mtllib a.mtl b.mtl\n{}", faces("red", "blue"))))
+            .expect("loads");
+        assert_eq!((m.materials["red"].kd, m.materials["blue"].kd), (Rgb([1.0, 0.0, 0.0]), Rgb([0.0, 0.0, 1.0])));
+        assert!(m.meshes.iter().all(|mesh| mesh.material != DEFAULT_MATERIAL), "{:?}", m.warnings);
+        let m =
+            load_obj(&write(dir.path(), "spaced.obj", &format!("mtllib my model.mtl\n{}", faces("green", "green"))))
+                .expect("loads");
+        assert_eq!(m.materials["green"].kd, Rgb([0.0, 1.0, 0.0]));
+        // One of the two missing: the other's materials are read, the missing one warned.
+        let m = load_obj(&write(dir.path(), "gone.obj", &format!("mtllib a.mtl gone.mtl\n{}", faces("red", "red"))))
+            .expect("loads");
+        assert_eq!(m.materials["red"].kd, Rgb([1.0, 0.0, 0.0]));
+        assert!(
+            m.warnings.iter().any(|w| w.field == "mtllib `gone.mtl`" && w.problem.contains("does not exist")),
+            "{:?}",
+            m.warnings
+        );
     }
 
     #[test]
