@@ -18,7 +18,7 @@
 #import glint::bindings::{header, planes, spheres, triangles, meshes, bvh_nodes, bvh_leaf_ab, bvh_leaf_c}
 #import glint::ray::{Ray, status}
 #import glint::intersect::{Hit, Leaving, MaybeT, PRIM_NONE, PRIM_SPHERE, PRIM_PLANE, PRIM_TRIANGLE, sphere_roots, intersect_sphere_leaving, intersect_triangle, ray_shear, cross_surface, all_zero, sphere_transmittance, planes_transmittance, bound, replaces}
-#ifdef SKIP_CONVEX
+#ifdef SKIP_LEFT
 #import glint::intersect::is_leaving
 #endif
 #ifdef PLANES
@@ -287,7 +287,7 @@ fn closest_hit(ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> Hit {
             let i = r & PRIM_REF_INDEX;
             if (r & PRIM_REF_TRIANGLE) != 0u {
 #ifdef TRIANGLES
-#ifdef SKIP_CONVEX
+#ifdef SKIP_LEFT
                 if is_leaving(leaving, PRIM_TRIANGLE, i) {
                     continue;
                 }
@@ -343,7 +343,7 @@ fn shadow_transmittance(ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> v
             let i = r & PRIM_REF_INDEX;
             if (r & PRIM_REF_TRIANGLE) != 0u {
 #ifdef TRIANGLES
-#ifdef SKIP_CONVEX
+#ifdef SKIP_LEFT
                 if is_leaving(leaving, PRIM_TRIANGLE, i) {
                     continue;
                 }

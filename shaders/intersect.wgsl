@@ -122,7 +122,7 @@ fn sphere_surface_point(p: vec3<f32>, center: vec3<f32>, radius: f32, power: f32
     return center + radius * ng;
 }
 
-#ifdef SKIP_CONVEX
+#ifdef SKIP_LEFT
 fn is_leaving(leaving: Leaving, prim: u32, index: u32) -> bool {
     return leaving.prim == prim && leaving.index == index;
 }
@@ -139,7 +139,7 @@ fn sphere_roots_counted(leaving: Leaving, index: u32) -> vec2<bool> {
 
 // intersect_sphere for sphere `index` of a ray leaving `leaving` (the CPU's rule).
 fn intersect_sphere_leaving(leaving: Leaving, index: u32, center: vec3<f32>, radius: f32, power: f32, ray: Ray, t_min: f32, t_max: f32) -> MaybeT {
-#ifdef SKIP_CONVEX
+#ifdef SKIP_LEFT
     if is_leaving(leaving, PRIM_SPHERE, index) {
         let r = sphere_roots(center, radius, power, ray, t_min);
         return MaybeT(r.t_far, leaving.inside && r.ok && r.t_far > t_min && r.t_far < t_max);
@@ -301,7 +301,7 @@ fn bound(best: Hit, t_max: f32) -> f32 {
 fn closest_plane(ray: Ray, t_min: f32, t_max: f32, leaving: Leaving, best_so_far: Hit) -> Hit {
     var best = best_so_far;
     for (var i = 0u; i < header.plane_count; i++) {
-#ifdef SKIP_CONVEX
+#ifdef SKIP_LEFT
         if is_leaving(leaving, PRIM_PLANE, i) {
             continue;
         }
@@ -335,7 +335,7 @@ fn closest_hit(ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> Hit {
     if header.triangle_count > 0u {
         let sh = ray_shear(ray.dir);
         for (var i = 0u; i < header.triangle_count; i++) {
-#ifdef SKIP_CONVEX
+#ifdef SKIP_LEFT
             if is_leaving(leaving, PRIM_TRIANGLE, i) {
                 continue;
             }
@@ -373,7 +373,7 @@ fn sphere_transmittance(tr_in: vec3<f32>, i: u32, ray: Ray, t_min: f32, t_max: f
     let cr = spheres[i].center_radius;
     let r = sphere_roots(cr.xyz, cr.w, spheres[i].power, ray, t_min);
     var counted = vec2<bool>(true, true);
-#ifdef SKIP_CONVEX
+#ifdef SKIP_LEFT
     counted = sphere_roots_counted(leaving, i);
 #endif
     if r.ok {
@@ -409,7 +409,7 @@ fn triangle_transmittance(tr: vec3<f32>, i: u32, ray: Ray, sh: RayShear, t_min: 
 fn planes_transmittance(tr_in: vec3<f32>, ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> vec3<f32> {
     var tr = tr_in;
     for (var i = 0u; i < header.plane_count; i++) {
-#ifdef SKIP_CONVEX
+#ifdef SKIP_LEFT
         if is_leaving(leaving, PRIM_PLANE, i) {
             continue;
         }
@@ -448,7 +448,7 @@ fn shadow_transmittance(ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> v
     if header.triangle_count > 0u {
         let sh = ray_shear(ray.dir);
         for (var i = 0u; i < header.triangle_count; i++) {
-#ifdef SKIP_CONVEX
+#ifdef SKIP_LEFT
             if is_leaving(leaving, PRIM_TRIANGLE, i) {
                 continue;
             }

@@ -248,7 +248,7 @@ fn rays_leaving_a_primitive_skip_it_alike_through_the_bvh_and_brute_force() {
             .sphere([0.5, 0.0, 0.5], 0.4, "tinted")
             .mesh(&uv_sphere(12, [0.3, 0.0, 1.0], 0.9).0, &uv_sphere(12, [0.3, 0.0, 1.0], 0.9).1, None, "tinted");
     let flat = scene.flat();
-    assert!(flat.header.features & feature::SKIP_CONVEX != 0);
+    assert!(flat.header.features & feature::SKIP_LEFT != 0);
     let bvh = TraceContext::new(&flat).expect("valid tags").with_accel(Accel::Bvh);
     let none = TraceContext::new(&flat).expect("valid tags").with_accel(Accel::None);
     let mut rng = Rng(0x2545_f491_4f6c_dd1d);

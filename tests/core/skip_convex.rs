@@ -52,10 +52,10 @@ fn differing(a: &FlatScene, b: &FlatScene, rel: f64) -> (usize, glint_core::CpuR
 #[test]
 fn skip_convex_at_epsilon_zero_and_robust_match_a_strategy_that_skips_nothing() {
     let reference = scene(EpsilonMode::NudgeNormal, 1e-9);
-    assert_eq!(reference.header.features & feature::SKIP_CONVEX, 0, "the reference tests every primitive");
+    assert_eq!(reference.header.features & feature::SKIP_LEFT, 0, "the reference tests every primitive");
     for mode in [EpsilonMode::SkipConvex, EpsilonMode::Robust] {
         let skip = scene(mode, 0.0);
-        assert_ne!(skip.header.features & feature::SKIP_CONVEX, 0, "{}: the scene uses the skip", mode.name());
+        assert_ne!(skip.header.features & feature::SKIP_LEFT, 0, "{}: the scene uses the skip", mode.name());
         let (n, s, r) = differing(&skip, &reference, 1e-6);
         let pixels = s.image.pixels.len();
         // Measured: 0 of 1728 differ by more than 1e-6 relative. A few may, where a ray passes a

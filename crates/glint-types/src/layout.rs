@@ -171,7 +171,7 @@ pub mod feature {
     /// The ε strategy is `skip_convex` or `robust`: secondary rays carry the primitive they
     /// leave, which the primitive loops skip (or, for a sphere the ray enters, test by its far
     /// root only).
-    pub const SKIP_CONVEX: u32 = 1 << 20;
+    pub const SKIP_LEFT: u32 = 1 << 20;
     /// The world's global attenuation is on (not (1, 0, 0)) and child rays are traced.
     pub const GLOBAL_ATTENUATION: u32 = 1 << 21;
     /// Some material with k_s > 0 has the Cook–Torrance lobe.
@@ -203,7 +203,7 @@ pub mod feature {
         "JITTER",
         "INVERSE_SQUARE",
         "SMOOTH_SPOT",
-        "SKIP_CONVEX",
+        "SKIP_LEFT",
         "GLOBAL_ATTENUATION",
         "COOK_TORRANCE",
         "VERTEX_COLOURS",

@@ -172,7 +172,7 @@ pub fn intersect_sphere_leaving(
     t_min: f64,
     t_max: f64,
 ) -> Option<f64> {
-    if ctx.has(feature::SKIP_CONVEX) && is_leaving(leaving, Prim::Sphere, index) {
+    if ctx.has(feature::SKIP_LEFT) && is_leaving(leaving, Prim::Sphere, index) {
         if !leaving.inside {
             return None;
         }
@@ -326,7 +326,7 @@ pub fn closest_plane(
     best: Option<Hit>,
 ) -> Option<Hit> {
     let scene = ctx.scene;
-    let skip = ctx.has(feature::SKIP_CONVEX);
+    let skip = ctx.has(feature::SKIP_LEFT);
     let mut best = best;
     for (i, p) in scene.planes.iter().enumerate() {
         let no = p.normal_offset;
@@ -361,7 +361,7 @@ pub fn closest_hit(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f64, leavin
             }
         }
     }
-    let skip = ctx.has(feature::SKIP_CONVEX);
+    let skip = ctx.has(feature::SKIP_LEFT);
     if ctx.has(feature::PLANES) {
         best = closest_plane(ctx, ray, t_min, t_max, leaving, best);
     }
@@ -397,7 +397,7 @@ pub fn cross_surface(ctx: &TraceContext, tr: DVec3, material: u32) -> DVec3 {
 /// Which roots of sphere `index` a ray leaving `leaving` may cross: both, none (the sphere it
 /// leaves into the outside) or the far one (the sphere it enters).
 pub fn sphere_roots_counted(ctx: &TraceContext, leaving: &Leaving, index: u32) -> [bool; 2] {
-    if ctx.has(feature::SKIP_CONVEX) && is_leaving(leaving, Prim::Sphere, index) {
+    if ctx.has(feature::SKIP_LEFT) && is_leaving(leaving, Prim::Sphere, index) {
         [false, leaving.inside]
     } else {
         [true, true]
@@ -461,7 +461,7 @@ pub fn planes_transmittance(
     leaving: &Leaving,
 ) -> DVec3 {
     let mut tr = tr;
-    let skip = ctx.has(feature::SKIP_CONVEX);
+    let skip = ctx.has(feature::SKIP_LEFT);
     for (i, p) in ctx.scene.planes.iter().enumerate() {
         if skip && is_leaving(leaving, Prim::Plane, i as u32) {
             continue;
@@ -500,7 +500,7 @@ pub fn shadow_transmittance(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f6
     }
     if ctx.has(feature::TRIANGLES) && !scene.triangles.is_empty() {
         let shear = ray_shear(ray.dir);
-        let skip = ctx.has(feature::SKIP_CONVEX);
+        let skip = ctx.has(feature::SKIP_LEFT);
         for (i, tri) in scene.triangles.iter().enumerate() {
             if skip && is_leaving(leaving, Prim::Triangle, i as u32) {
                 continue;

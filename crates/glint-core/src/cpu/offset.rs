@@ -67,21 +67,20 @@ pub fn leaving_surface(prim: Prim, index: u32, ng: DVec3, n_side: DVec3) -> Leav
 /// triangle through a coordinate plane), and a primitive left cannot be met again there.
 pub fn spawn_ray(ctx: &TraceContext, p: DVec3, p_surface: DVec3, n_side: DVec3, dir: DVec3, leaving: Leaving) -> Spawn {
     let eps = ctx.epsilon;
-    let (origin, t_min) = match ctx.epsilon_mode {
-        EpsilonMode::Tmin => (p, eps),
-        EpsilonMode::NudgeRay => (p + eps * dir, 0.0),
-        EpsilonMode::NudgeNormal => (p + eps * n_side, 0.0),
+    let none = Leaving::NONE;
+    match ctx.epsilon_mode {
+        EpsilonMode::Tmin => Spawn { origin: p, t_min: eps, leaving: none },
+        EpsilonMode::NudgeRay => Spawn { origin: p + eps * dir, t_min: 0.0, leaving: none },
+        EpsilonMode::NudgeNormal => Spawn { origin: p + eps * n_side, t_min: 0.0, leaving: none },
+        EpsilonMode::SkipConvex => Spawn { origin: p, t_min: eps, leaving },
         EpsilonMode::Robust => {
             let origin = offset_ray(p_surface, n_side, f64::from(ctx.scene.header.frame[3])) + eps * n_side;
             // A direction bent by a shading normal below the surface it leaves (a grazing
             // reflection off an interpolated mesh) crosses that surface at once: it meets it
             // again, as it did before the skip.
-            let leaving = if dir.dot(n_side) > 0.0 { leaving } else { Leaving::NONE };
-            return Spawn { origin, t_min: 0.0, leaving };
+            Spawn { origin, t_min: 0.0, leaving: if dir.dot(n_side) > 0.0 { leaving } else { none } }
         }
-        EpsilonMode::SkipConvex => return Spawn { origin: p, t_min: eps, leaving },
-    };
-    Spawn { origin, t_min, leaving: Leaving::NONE }
+    }
 }
 
 /// How far a shadow ray of length `dist` may look for occluders: it stops short of the light

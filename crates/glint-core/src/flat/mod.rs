@@ -272,7 +272,7 @@ impl FlatScene {
         if (mode == glint_types::layout::EPS_SKIP_CONVEX || mode == glint_types::layout::EPS_ROBUST)
             && (f & feature::SHADOWS != 0 || feature::recurses(f) || path)
         {
-            f |= feature::SKIP_CONVEX;
+            f |= feature::SKIP_LEFT;
         }
         f
     }

@@ -298,7 +298,7 @@ pub fn closest_hit(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f64, leavin
     let scene = ctx.scene;
     let spheres_on = ctx.has(feature::SPHERES);
     let triangles_on = ctx.has(feature::TRIANGLES);
-    let skip = ctx.has(feature::SKIP_CONVEX);
+    let skip = ctx.has(feature::SKIP_LEFT);
     let shear: RayShear = ray_shear(ray.dir);
     let best = std::cell::Cell::new(None::<Hit>);
     traverse(
@@ -352,7 +352,7 @@ pub fn shadow_transmittance(ctx: &TraceContext, ray: &Ray, t_min: f64, t_max: f6
     let scene = ctx.scene;
     let spheres_on = ctx.has(feature::SPHERES);
     let triangles_on = ctx.has(feature::TRIANGLES);
-    let skip = ctx.has(feature::SKIP_CONVEX);
+    let skip = ctx.has(feature::SKIP_LEFT);
     let shear = ray_shear(ray.dir);
     // A surface whose k_t is zero (or any surface, without filtered shadows) makes the product
     // zero whatever the order: return at once, as brute force would at the end.
