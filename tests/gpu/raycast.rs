@@ -89,15 +89,12 @@ fn a_traversal_cut_short_by_the_driver_is_an_error_not_a_fast_miss() {
     let loaded =
         load_scene_with("bumpy", &LoadOptions { resolution: Some(2), ..LoadOptions::default() }).expect("bumpy loads");
     let mut desc = loaded.desc;
-    desc.objects = vec![ObjectDesc::Mesh(MeshDesc {
-        vertices: vec![[-1.0, -1.0, 0.0], [1.0, -1.0, 0.0], [0.0, 1.0, 0.0]],
-        triangles: vec![[0, 1, 2]; 100_000],
-        normals: None,
-        uvs: None,
-        colours: None,
-        material: "clay".into(),
-        name: "stack".into(),
-    })];
+    desc.objects = vec![ObjectDesc::Mesh(MeshDesc::new(
+        vec![[-1.0, -1.0, 0.0], [1.0, -1.0, 0.0], [0.0, 1.0, 0.0]],
+        vec![[0, 1, 2]; 100_000],
+        "clay",
+        "stack",
+    ))];
     let flat = FlatScene::build(&desc, &desc.render);
     let caster = RayCaster::new(ctx, &flat).expect("the kernel compiles and the scene uploads");
     // A few rays through the middle of the triangle.

@@ -79,15 +79,7 @@ fn rgb(r: f64, g: f64, b: f64) -> Rgb {
 }
 
 fn mesh(mesh: (Vec<[f64; 3]>, Vec<[u32; 3]>), material: &str, name: &str) -> ObjectDesc {
-    ObjectDesc::Mesh(MeshDesc {
-        vertices: mesh.0,
-        triangles: mesh.1,
-        normals: None,
-        uvs: None,
-        colours: None,
-        material: material.into(),
-        name: name.into(),
-    })
+    ObjectDesc::Mesh(MeshDesc::new(mesh.0, mesh.1, material, name))
 }
 
 /// The part both variants share: camera, world, lights and the ground; `sphere_material` is

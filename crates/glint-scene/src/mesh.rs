@@ -23,3 +23,24 @@ pub struct MeshDesc {
     #[serde(default)]
     pub name: String,
 }
+
+impl MeshDesc {
+    /// A mesh of positions and triangles alone: no normals (its faces' own), no texture
+    /// coordinates, no colours.
+    pub fn new(
+        vertices: Vec<[f64; 3]>,
+        triangles: Vec<[u32; 3]>,
+        material: impl Into<String>,
+        name: impl Into<String>,
+    ) -> Self {
+        Self {
+            vertices,
+            triangles,
+            normals: None,
+            uvs: None,
+            colours: None,
+            material: material.into(),
+            name: name.into(),
+        }
+    }
+}

@@ -95,15 +95,7 @@ mod tests {
 
     fn triangle(offset: [f64; 3], size: f64) -> ObjectDesc {
         let at = |x: f64, y: f64| [offset[0] + x * size, offset[1] + y * size, offset[2]];
-        ObjectDesc::Mesh(MeshDesc {
-            vertices: vec![at(0.0, 0.0), at(1.0, 0.0), at(0.0, 1.0)],
-            triangles: vec![[0, 1, 2]],
-            normals: None,
-            uvs: None,
-            colours: None,
-            material: "m".into(),
-            name: String::new(),
-        })
+        ObjectDesc::Mesh(MeshDesc::new(vec![at(0.0, 0.0), at(1.0, 0.0), at(0.0, 1.0)], vec![[0, 1, 2]], "m", ""))
     }
 
     #[test]

@@ -306,15 +306,7 @@ pub fn vertex_colour_scene(width: u32, height: u32, colours: bool) -> SceneText 
 pub fn large_mesh_desc(w: u32, h: u32, mesh: (Vec<[f64; 3]>, Vec<[u32; 3]>)) -> SceneDesc {
     let mut desc = mesh_scene(w, h, (vec![[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]], vec![[0, 1, 2]])).desc();
     let last = desc.objects.len() - 1;
-    desc.objects[last] = ObjectDesc::Mesh(MeshDesc {
-        vertices: mesh.0,
-        triangles: mesh.1,
-        normals: None,
-        uvs: None,
-        colours: None,
-        material: "clay".into(),
-        name: "large mesh".into(),
-    });
+    desc.objects[last] = ObjectDesc::Mesh(MeshDesc::new(mesh.0, mesh.1, "clay", "large mesh"));
     desc
 }
 

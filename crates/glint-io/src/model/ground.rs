@@ -127,15 +127,7 @@ mod tests {
     fn quad(y: f64, up: bool) -> MeshDesc {
         let vertices = vec![[0.0, y, 0.0], [1.0, y, 0.0], [1.0, y, 1.0], [0.0, y, 1.0]];
         let triangles = if up { vec![[0, 2, 1], [0, 3, 2]] } else { vec![[0, 1, 2], [0, 2, 3]] };
-        MeshDesc {
-            vertices,
-            triangles,
-            normals: None,
-            uvs: None,
-            colours: None,
-            material: "m".into(),
-            name: "quad".into(),
-        }
+        MeshDesc::new(vertices, triangles, "m", "quad")
     }
 
     #[test]

@@ -244,15 +244,7 @@ mod tests {
     use glint_scene::MeshDesc;
 
     fn quad(s: f64) -> MeshDesc {
-        MeshDesc {
-            vertices: vec![[-s, -s, 0.0], [s, -s, 0.0], [s, s, 0.0]],
-            triangles: vec![[0, 1, 2]],
-            normals: None,
-            uvs: None,
-            colours: None,
-            material: "m".into(),
-            name: "node0".into(),
-        }
+        MeshDesc::new(vec![[-s, -s, 0.0], [s, -s, 0.0], [s, s, 0.0]], vec![[0, 1, 2]], "m", "node0")
     }
 
     #[test]

@@ -137,15 +137,7 @@ mod tests {
     }
 
     fn mesh(vertices: Vec<[f64; 3]>, triangles: Vec<[u32; 3]>) -> MeshDesc {
-        MeshDesc {
-            vertices,
-            triangles,
-            normals: None,
-            uvs: None,
-            colours: None,
-            material: "m".into(),
-            name: "o".into(),
-        }
+        MeshDesc::new(vertices, triangles, "m", "o")
     }
 
     #[test]

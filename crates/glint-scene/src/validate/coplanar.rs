@@ -479,15 +479,7 @@ mod tests {
     use crate::{MeshDesc, PlaneDesc};
 
     fn mesh(vertices: Vec<[f64; 3]>, triangles: Vec<[u32; 3]>, name: &str) -> ObjectDesc {
-        ObjectDesc::Mesh(MeshDesc {
-            vertices,
-            triangles,
-            normals: None,
-            uvs: None,
-            colours: None,
-            material: "m".into(),
-            name: name.into(),
-        })
+        ObjectDesc::Mesh(MeshDesc::new(vertices, triangles, "m", name))
     }
 
     /// The warnings for `scene`, at its own storage origin, as validation gives them.

@@ -216,15 +216,7 @@ mod tests {
         let vertices = [[0.0, 0.0, 0.0], [1e-3, 0.0, 0.0], [0.0, 1e-3, 0.0], [2e-3, 0.0, 0.0]]
             .map(|v| v.map(|c| c + offset))
             .to_vec();
-        MeshDesc {
-            vertices,
-            triangles: vec![[0, 1, 2], [0, 1, 3]],
-            normals: None,
-            uvs: None,
-            colours: None,
-            material: "m".into(),
-            name: String::new(),
-        }
+        MeshDesc::new(vertices, vec![[0, 1, 2], [0, 1, 3]], "m", "")
     }
 
     fn warnings(offset: f64, origin: [f64; 3]) -> Vec<String> {
