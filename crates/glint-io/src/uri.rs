@@ -37,6 +37,14 @@ pub enum UriError {
     Io { uri: String, path: PathBuf, error: std::io::Error },
 }
 
+impl UriError {
+    /// Whether the file named does not exist (a reference another place may satisfy, or a
+    /// warning rather than an error).
+    pub fn is_not_found(&self) -> bool {
+        matches!(self, Self::Io { error, .. } if error.kind() == std::io::ErrorKind::NotFound)
+    }
+}
+
 /// At most this many characters of a URI go into a message (data URIs can be megabytes).
 const SHOWN: usize = 80;
 

@@ -4,6 +4,7 @@
 pub mod gltf;
 mod ground;
 mod mtl;
+mod mtl_images;
 mod mtl_map;
 pub mod obj;
 mod obj_smoothing;

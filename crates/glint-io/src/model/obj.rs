@@ -3,16 +3,14 @@
 //! `uri::resolve_uri` like every other reference, so a file outside the model's folder is
 //! refused.
 
-use crate::texture::decode_texture;
 use std::path::Path;
-use std::sync::Arc;
 
 use super::mtl::{default_material, expand_colours, map_material, material_names, source, unread_statements};
-use super::mtl_map::parse_map;
+use super::mtl_images::{Images, Source, TextureError, material_folders};
 use super::{obj_smoothing, obj_statements, obj_text, polygon};
 use crate::uri::{MAX_RESOURCE_BYTES, UriError, resolve_uri};
 use glint_scene::Model;
-use glint_scene::{ColorSpace, FieldIssue, MeshDesc, Rgb, TextureDesc, TextureImage, UvTransform, Wrap};
+use glint_scene::{FieldIssue, MeshDesc, Rgb};
 
 /// Why an OBJ did not load.
 #[derive(Debug, thiserror::Error)]
@@ -142,14 +140,22 @@ pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
     let names = material_names(&materials);
     let folders = material_folders(&mtl_folders.into_inner(), materials.len());
     let mut images = Images::default();
+    let unread = |TextureError { material, field, uri, reason }| ObjError::Texture {
+        file: path.to_owned(),
+        material,
+        field,
+        uri,
+        reason,
+    };
     for ((m, name), folder) in materials.iter().zip(&names).zip(&folders) {
         let mut material = map_material(m, name, &mut out.warnings);
         let at = Source { obj: path, mtl_folder: folder, material: name };
         if let Some(map) = m.diffuse_texture.as_deref() {
-            material.texture = Some(images.texture(&at, map, "texture", &mut out.warnings)?);
+            material.texture = Some(images.texture(&at, map, "texture", &mut out.warnings).map_err(unread)?);
         }
         if let Some(map) = m.unknown_param.get("map_Ke") {
-            material.emission_texture = Some(images.texture(&at, map, "emission_texture", &mut out.warnings)?);
+            material.emission_texture =
+                Some(images.texture(&at, map, "emission_texture", &mut out.warnings).map_err(unread)?);
             // Ke multiplies map_Ke; without Ke the map alone is the emission.
             if m.emissive.is_none() {
                 material.emission = Rgb::splat(1.0);
@@ -160,16 +166,16 @@ pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
     }
     // Smoothing groups are per face statement; tobj's meshes hold the faces in file order.
     let groups = obj_smoothing::face_groups(&bytes);
-    let face_counts: Vec<usize> = models.iter().map(|m| face_count(&m.mesh)).collect();
-    let aligned = face_counts.iter().sum::<usize>() == groups.len();
+    let arities: Vec<Vec<usize>> = models.iter().map(|m| face_arities(&m.mesh)).collect();
+    let aligned = arities.iter().map(Vec::len).sum::<usize>() == groups.len();
     let (mut first_face, mut to_smooth) = (0, Vec::new());
-    for (model, faces) in models.iter().zip(face_counts) {
-        let in_groups = aligned.then(|| &groups[first_face..first_face + faces]);
-        first_face += faces;
+    for (model, arities) in models.iter().zip(&arities) {
+        let in_groups = aligned.then(|| &groups[first_face..first_face + arities.len()]);
+        first_face += arities.len();
         let mesh = &model.mesh;
         let vertices: Vec<[f64; 3]> = mesh.positions.chunks_exact(3).map(|p| [p[0], p[1], p[2]]).collect();
         // tobj refuses face indices beyond the file's vertices, and validation checks again.
-        let (triangles, face_of) = triangles(&vertices, mesh, &model.name, &mut out.warnings);
+        let (triangles, face_of) = triangles(&vertices, mesh, arities, &model.name, &mut out.warnings);
         if triangles.is_empty() {
             continue;
         }
@@ -262,31 +268,30 @@ fn mtl_files(obj: &Path, rest: &str) -> Vec<String> {
     words.into_iter().map(str::to_string).collect()
 }
 
-/// How many face statements tobj read into `mesh`.
-fn face_count(mesh: &tobj::Mesh) -> usize {
+/// How many vertices each face statement tobj read into `mesh` has.
+fn face_arities(mesh: &tobj::Mesh) -> Vec<usize> {
     // tobj lists no arities when every face is a triangle.
-    if mesh.face_arities.is_empty() { mesh.indices.len() / 3 } else { mesh.face_arities.len() }
-}
-
-/// The mesh's faces as triangles: polygons cut by `polygon::triangulate`, points and lines
-/// left out; and for each triangle, the face (of the mesh's, in order) it was cut from. A
-/// polygon whose edges cross is warned once per object.
-fn triangles(
-    vertices: &[[f64; 3]],
-    mesh: &tobj::Mesh,
-    object: &str,
-    warnings: &mut Vec<FieldIssue>,
-) -> (Vec<[u32; 3]>, Vec<usize>) {
-    // tobj lists no arities when every face is a triangle.
-    let arities: Vec<usize> = if mesh.face_arities.is_empty() {
+    if mesh.face_arities.is_empty() {
         vec![3; mesh.indices.len() / 3]
     } else {
         mesh.face_arities.iter().map(|&n| n as usize).collect()
-    };
+    }
+}
+
+/// The mesh's faces (of `arities` vertices) as triangles: polygons cut by
+/// `polygon::triangulate`, points and lines left out; and for each triangle, the face (of the
+/// mesh's, in order) it was cut from. A polygon whose edges cross is warned once per object.
+fn triangles(
+    vertices: &[[f64; 3]],
+    mesh: &tobj::Mesh,
+    arities: &[usize],
+    object: &str,
+    warnings: &mut Vec<FieldIssue>,
+) -> (Vec<[u32; 3]>, Vec<usize>) {
     let mut out = Vec::with_capacity(mesh.indices.len() / 3);
     let mut face_of = Vec::with_capacity(mesh.indices.len() / 3);
     let (mut start, mut crossing) = (0, Vec::new());
-    for (face, n) in arities.into_iter().enumerate() {
+    for (face, &n) in arities.iter().enumerate() {
         let polygon = &mesh.indices[start..start + n];
         start += n;
         if n >= 3 && polygon::triangulate(vertices, polygon, &mut out) == polygon::Cut::SelfIntersecting {
@@ -344,120 +349,6 @@ fn failing_line(bytes: &[u8], options: &tobj::LoadOptions) -> Option<usize> {
         if fails(mid) { hi = mid } else { lo = mid + 1 }
     }
     Some(lo)
-}
-
-/// The images of one model, each decoded once however many materials name it.
-#[derive(Default)]
-struct Images {
-    decoded: Vec<(String, Arc<TextureImage>)>,
-}
-
-impl Images {
-    /// A `map_Kd`/`map_Ke` statement as a texture, bilinear, repeating unless `-clamp on`, placed
-    /// by its `-o` and `-s` options; the options Glint's textures have no term for are named
-    /// in a warning. Windows separators, common in MTL files, are read as `/`.
-    fn texture(
-        &mut self,
-        at: &Source<'_>,
-        statement: &str,
-        field: &'static str,
-        warnings: &mut Vec<FieldIssue>,
-    ) -> Result<TextureDesc, ObjError> {
-        let Source { mtl_folder, material, .. } = *at;
-        let map = parse_map(statement);
-        let mut warn =
-            |problem: String| warnings.push(FieldIssue { field: format!("materials.{material}.{field}"), problem });
-        if map.unread {
-            warn(format!(
-                "options of `{statement}` cannot be read as MTL writes them: all left out, the file its last word"
-            ));
-        }
-        if !map.ignored.is_empty() {
-            warn(format!("`{statement}`: {} left out (no term in Glint's textures)", map.ignored.join(", ")));
-        }
-        if map.clamp {
-            warn(format!(
-                "`{statement}`: -clamp on is sampled clamped to the edge texels, where MTL leaves the material \
-                 untextured outside the one copy"
-            ));
-        }
-        let uri = map.file.replace('\\', "/");
-        let uri = uri.strip_prefix("./").unwrap_or(&uri).to_string();
-        let placed = |mut t: TextureDesc| {
-            if map.clamp {
-                (t.wrap_s, t.wrap_t) = (Wrap::ClampToEdge, Wrap::ClampToEdge);
-            }
-            // In OBJ's space u' = s·u + o with v up; Glint's v is 1 − v (down), so v' = s·v + 1 − s − o.
-            let [su, sv] = map.scale;
-            let [ou, ov] = map.offset;
-            if (map.scale, map.offset) != ([1.0; 2], [0.0; 2]) {
-                t.transform = Some(UvTransform { offset: [ou, 1.0 - sv - ov], rotation: 0.0, scale: [su, sv] });
-            }
-            t
-        };
-        // Relative to the MTL's folder, as Blender and three.js read it, then to the OBJ's (where
-        // an MTL beside the OBJ puts both).
-        if !mtl_folder.is_empty() && !uri.contains(':') && !uri.starts_with('/') {
-            return match self.image(at, &format!("{mtl_folder}/{uri}"), field) {
-                // Absent from both: the error names it where the MTL places it.
-                Err((beside_mtl, Absent::Yes)) => match self.image(at, &uri, field) {
-                    Err((_, Absent::Yes)) => Err(beside_mtl),
-                    found => found.map(placed).map_err(|(e, _)| e),
-                },
-                found => found.map(placed).map_err(|(e, _)| e),
-            };
-        }
-        self.image(at, &uri, field).map(placed).map_err(|(e, _)| e)
-    }
-
-    /// The image `uri` names (relative to the OBJ's folder), decoded once; an error says
-    /// whether the file is absent.
-    fn image(&mut self, at: &Source<'_>, uri: &str, field: &'static str) -> Result<TextureDesc, (ObjError, Absent)> {
-        if let Some((_, image)) = self.decoded.iter().find(|(u, _)| u == uri) {
-            return Ok(TextureDesc::decoded(uri.to_string(), Arc::clone(image)));
-        }
-        let error = |reason: String| ObjError::Texture {
-            file: at.obj.to_owned(),
-            material: at.material.to_string(),
-            field,
-            uri: uri.to_string(),
-            reason,
-        };
-        let bytes = match resolve_uri(at.obj, uri, MAX_RESOURCE_BYTES) {
-            Ok(bytes) => bytes,
-            Err(e) if matches!(&e, UriError::Io { error, .. } if error.kind() == std::io::ErrorKind::NotFound) => {
-                return Err((error(e.to_string()), Absent::Yes));
-            }
-            Err(e) => return Err((error(e.to_string()), Absent::No)),
-        };
-        let image = Arc::new(decode_texture(&bytes, ColorSpace::Srgb).map_err(|e| (error(e.to_string()), Absent::No))?);
-        self.decoded.push((uri.to_string(), Arc::clone(&image)));
-        Ok(TextureDesc::decoded(uri.to_string(), image))
-    }
-}
-
-/// Whether a texture's file is absent (and another place may be tried).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Absent {
-    Yes,
-    No,
-}
-
-/// Where a material's texture statement is read: the OBJ file, the folder of the MTL that
-/// defined the material (relative to the OBJ's; empty beside it), and the material's name.
-#[derive(Clone, Copy)]
-struct Source<'a> {
-    obj: &'a Path,
-    mtl_folder: &'a str,
-    material: &'a str,
-}
-
-/// Each material's MTL folder, from the loaded MTLs' folders and counts (in tobj's order); the
-/// OBJ's own folder for all where the counts do not add up.
-fn material_folders(loaded: &[(String, usize)], materials: usize) -> Vec<String> {
-    let folders: Vec<String> =
-        loaded.iter().flat_map(|(folder, count)| std::iter::repeat_n(folder.clone(), *count)).collect();
-    if folders.len() == materials { folders } else { vec![String::new(); materials] }
 }
 
 #[cfg(test)]
@@ -743,7 +634,7 @@ mod tests {
         assert_eq!((placed.scale, placed.offset, placed.rotation), ([2.0, 2.0], [0.0, -1.0], 0.0));
         assert!(m.warnings.iter().all(|w| w.field != "materials.t.texture"), "{:?}", m.warnings);
         let glow = e.emission_texture.as_ref().expect("map_Ke is an emission texture");
-        assert!(Arc::ptr_eq(glow.image.as_ref().unwrap(), image), "one decode per image file");
+        assert!(std::sync::Arc::ptr_eq(glow.image.as_ref().unwrap(), image), "one decode per image file");
         assert_eq!(e.emission, Rgb::splat(1.0), "map_Ke without Ke");
         // OBJ's v is flipped into glTF's convention.
         let uvs = m.meshes[0].uvs.as_ref().expect("vt read");

@@ -72,16 +72,14 @@ pub(super) type Part<'a> = (&'a [[f64; 3]], &'a [[u32; 3]], &'a [Corner]);
 /// folded flat onto each other), which its faces' own normals shade instead. A vertex of
 /// triangles without area alone, which are never hit, gets any unit normal.
 pub(super) fn normals(parts: &[Part<'_>]) -> Vec<Option<Vec<[f64; 3]>>> {
-    let face_normal = |vertices: &[[f64; 3]], t: &[u32; 3]| {
-        let [a, b, c] = t.map(|i| vertices[i as usize]);
-        let (e1, e2) = (sub(b, a), sub(c, a));
-        // |e1 × e2| is twice the area: the weight comes with the direction.
-        [e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]]
-    };
+    // Each part's face normals, |n| twice the area: the weight comes with the direction.
+    let faces: Vec<Vec<[f64; 3]>> = parts
+        .iter()
+        .map(|(vertices, triangles, _)| triangles.iter().map(|t| area_normal(vertices, t)).collect())
+        .collect();
     let mut sums: HashMap<(u32, [u64; 3]), [f64; 3]> = HashMap::new();
-    for (vertices, triangles, keys) in parts {
-        for t in *triangles {
-            let n = face_normal(vertices, t);
+    for ((vertices, triangles, keys), faces) in parts.iter().zip(&faces) {
+        for (t, n) in triangles.iter().zip(faces) {
             for &v in t {
                 if let Corner::Group(g) = keys[v as usize] {
                     let s = sums.entry((g, key_of(&vertices[v as usize]))).or_insert([0.0; 3]);
@@ -90,30 +88,40 @@ pub(super) fn normals(parts: &[Part<'_>]) -> Vec<Option<Vec<[f64; 3]>>> {
             }
         }
     }
-    let unit = |n: [f64; 3]| {
-        let length = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
-        (length.is_finite() && length > 0.0).then(|| n.map(|c| c / length))
-    };
     parts
         .iter()
-        .map(|(vertices, triangles, keys)| {
+        .zip(&faces)
+        .map(|((vertices, triangles, keys), faces)| {
             // Whether each vertex belongs to a triangle with area, whose shading reads it.
             let mut read = vec![false; vertices.len()];
-            for t in *triangles {
-                if unit(face_normal(vertices, t)).is_some() {
+            for (t, n) in triangles.iter().zip(faces) {
+                if unit(*n).is_some() {
                     t.iter().for_each(|&v| read[v as usize] = true);
                 }
             }
             let normal = |(v, key): (usize, &Corner)| {
                 let n = match *key {
                     Corner::Group(g) => sums.get(&(g, key_of(&vertices[v]))).copied().unwrap_or([0.0; 3]),
-                    Corner::Flat(t) => face_normal(vertices, &triangles[t as usize]),
+                    Corner::Flat(t) => faces[t as usize],
                 };
                 unit(n).or((!read[v]).then_some([0.0, 0.0, 1.0]))
             };
             keys.iter().enumerate().map(normal).collect()
         })
         .collect()
+}
+
+/// Triangle `t`'s normal scaled by twice its area: (b − a) × (c − a).
+fn area_normal(vertices: &[[f64; 3]], t: &[u32; 3]) -> [f64; 3] {
+    let [a, b, c] = t.map(|i| vertices[i as usize]);
+    let (e1, e2) = (sub(b, a), sub(c, a));
+    [e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]]
+}
+
+/// `n` of unit length, where it has a direction.
+fn unit(n: [f64; 3]) -> Option<[f64; 3]> {
+    let length = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+    (length.is_finite() && length > 0.0).then(|| n.map(|c| c / length))
 }
 
 /// A position as a hash key: its exact coordinates.
