@@ -1,8 +1,9 @@
 //! `glint adapters`: the GPU adapters a render can choose from (`--adapter`, `WGPU_ADAPTER_NAME`,
 //! `WGPU_BACKEND`), as the tracer finds them; what `scripts/device-suite` checks first.
 
-use super::console::say;
 use clap::Args;
+
+use super::console::say;
 
 #[derive(Debug, Args)]
 pub struct AdaptersArgs {

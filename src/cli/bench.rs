@@ -7,7 +7,6 @@
 //! Every measurement is one warm-up run, then `--runs` timed runs; the table shows the median
 //! and the best, and throughputs are computed from the median.
 
-use super::console::say;
 use std::borrow::Cow;
 use std::time::{Duration, Instant};
 
@@ -24,6 +23,7 @@ use glint_gpu::raycast::RayCaster;
 use serde::Serialize;
 
 use super::backend::open_gpu;
+use super::console::say;
 use super::settings::{LoadArgs, load};
 use super::units::{mrays_per_s, ms};
 

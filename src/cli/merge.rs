@@ -5,7 +5,6 @@
 //! pixels read, one tile at a time, into one f32 image, and the output written atomically.
 //! Nothing is written on any error. At most the output image and one tile are in memory.
 
-use super::console::say;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
@@ -16,6 +15,7 @@ use glint_core::image::linear_f32_to_srgb8;
 use glint_io::exr_file::{ExrHeader, read_exr, read_exr_header, write_exr_region};
 use glint_io::image_file::write_png_rgb8;
 
+use super::console::say;
 use super::output_path::{check_outputs, is_same_file};
 
 #[derive(Debug, Args)]

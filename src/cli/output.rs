@@ -1,6 +1,5 @@
 //! What `glint render` writes and prints: images with metadata, the timing/error table, JSON.
 
-use super::console::{say, tell};
 use std::path::{Path, PathBuf};
 
 use anyhow::bail;
@@ -13,6 +12,7 @@ use glint_scene::{RenderSettings, SceneDesc, overflow_causes};
 use serde::Serialize;
 
 use super::backend::Run;
+use super::console::{say, tell};
 use super::units::ms;
 
 /// Render settings as PNG tEXt chunks (`glint:*` keys).

@@ -1,6 +1,5 @@
 //! `glint render`: one scene on the CPU, the GPU or both, to PNG/EXR; or a benchmark.
 
-use super::console::{say, tell};
 use std::path::PathBuf;
 
 use anyhow::bail;
@@ -15,6 +14,7 @@ use glint_io::{BUILTIN_SCENES, RESOLUTIONS};
 use glint_scene::{Integrator, integrator_warnings, unbounded_ray_tree};
 
 use super::backend::{Run, open_gpu, run_cpu, run_gpu};
+use super::console::{say, tell};
 use super::interrupt;
 use super::output::{check_writable, fmt_counts, metadata, print_json, print_table, suffixed, write_diff, write_run};
 use super::output_path::check_outputs;

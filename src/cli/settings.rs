@@ -1,6 +1,5 @@
 //! Render-setting flags shared by the commands, applied on top of a scene's own settings.
 
-use super::console::tell;
 use anyhow::{Context, bail};
 use clap::Args;
 use glint_core::memory::{self, MemoryEstimate, SourceKind};
@@ -8,6 +7,8 @@ use glint_io::ImportOptions;
 use glint_io::model::Ground;
 use glint_io::{DEFAULT_RESOLUTION, LoadOptions, LoadedScene, RESOLUTIONS, load_scene_with};
 use glint_scene::{EpsilonMode, Integrator, MAX_IMAGE_SIDE, RenderSettings, Report, validate_settings};
+
+use super::console::tell;
 
 #[derive(Clone, Debug, Default, Args)]
 pub struct SettingsArgs {

@@ -4,7 +4,6 @@
 //! `glint merge` checks before it joins the blocks: the scene's content hash, the settings, the
 //! grid, the backend and the version.
 
-use super::console::say;
 use std::path::PathBuf;
 
 use anyhow::{Context, bail};
@@ -15,6 +14,7 @@ use glint_io::image_file::write_exr_tile;
 use glint_scene::RenderSettings;
 
 use super::backend::{open_gpu, run_cpu, run_gpu};
+use super::console::say;
 use super::interrupt;
 use super::output::{check_writable, metadata};
 use super::output_path::check_outputs;

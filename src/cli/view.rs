@@ -1,6 +1,5 @@
 //! `glint view`: the interactive viewer (also what `glint` with no subcommand opens).
 
-use super::console::say;
 use std::path::PathBuf;
 
 use anyhow::bail;
@@ -8,6 +7,7 @@ use clap::Args;
 use glint_io::load_scene_with;
 use glint_viewer::{GiView, ViewMode, ViewerError, ViewerOptions};
 
+use super::console::say;
 use super::settings::{LoadArgs, SettingsArgs, check_load_memory, is_model};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]

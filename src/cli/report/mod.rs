@@ -15,7 +15,6 @@ mod shard;
 mod specular;
 mod sweep;
 
-use crate::cli::console::say;
 use std::collections::HashMap;
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
@@ -31,6 +30,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use self::plan::{Plan, Planned};
 use self::sweep::Engines;
 use super::backend::open_gpu;
+use super::console::say;
 use super::settings::{load, parse_integrator, parse_threads};
 
 const DEFAULT_SCENES: &[&str] = &["whitted", "cornell", "spotlights", "highlights", "lights", "cornell-gi"];

@@ -1,7 +1,6 @@
 //! Runs the planned configurations of one scene: a warm-up and timed renders each, errors
 //! against the reference, and the GPU rows against their CPU twins.
 
-use crate::cli::console::tell;
 use std::collections::HashMap;
 use std::time::Duration;
 
@@ -16,6 +15,7 @@ use indicatif::ProgressBar;
 use serde::{Deserialize, Serialize};
 
 use super::plan::{Config, Group, Planned};
+use crate::cli::console::tell;
 use crate::cli::units::{mrays_per_s, ms};
 
 /// What the sweep needs to render: CPU threads and, unless `--cpu-only`, one GPU tracer whose
