@@ -85,7 +85,7 @@ fn cook_torrance_brdf(wo: vec3<f32>, wi: vec3<f32>, m: f32, eta: f32, fresnel: u
         f = fresnel_exact(eta, o_dot_h);
     }
     let g = min(min(2.0 * h.z * wo.z / o_dot_h, 2.0 * h.z * wi.z / o_dot_h), 1.0);
-    return f * d * g * FRAC_1_PI / (wi.z * wo.z);
+    return f * d * g * 0.25 * FRAC_1_PI / (wi.z * wo.z);
 }
 
 fn sample_cook_torrance(wo: vec3<f32>, u: vec2<f32>, m: f32) -> vec3<f32> {

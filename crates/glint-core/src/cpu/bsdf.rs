@@ -63,9 +63,11 @@ pub fn phong_brdf(wo: DVec3, wi: DVec3, exponent: f64) -> f64 {
     (exponent + 2.0) * 0.5 * FRAC_1_PI * r.dot(wo).max(0.0).powf(exponent)
 }
 
-/// Cook and Torrance's reflectance as their paper writes it, per unit k_s: F·D·G / (π (N·L)(N·V))
-/// with the paper's D (shade.rs's `beckmann_distribution`), so that π·(N·L) times it is exactly
-/// the seed's Cook–Torrance `spec_j`.
+/// Cook and Torrance's microfacet BRDF normalised as Walter et al. (EGSR 2007) do, per unit k_s:
+/// F·D·G / (4π (N·L)(N·V)) with the paper's D (shade.rs's `beckmann_distribution`, which
+/// integrates to π over the projected hemisphere). The paper's own reflectance, F·D·G /
+/// (π (N·L)(N·V)), is 4× this and returns up to 4× the light it receives, which a path meets
+/// bounce after bounce; 4π·(N·L) times this is the seed's Cook–Torrance `spec_j`.
 pub fn cook_torrance_brdf(wo: DVec3, wi: DVec3, m: f64, eta: f64, fresnel: Fresnel) -> f64 {
     if wo.z <= 0.0 || wi.z <= 0.0 {
         return 0.0;
@@ -81,7 +83,7 @@ pub fn cook_torrance_brdf(wo: DVec3, wi: DVec3, m: f64, eta: f64, fresnel: Fresn
         Fresnel::Schlick => fresnel_schlick(eta, o_dot_h),
     };
     let g = (2.0 * h.z * wo.z / o_dot_h).min(2.0 * h.z * wi.z / o_dot_h).min(1.0);
-    f * d * g * FRAC_1_PI / (wi.z * wo.z)
+    f * d * g * 0.25 * FRAC_1_PI / (wi.z * wo.z)
 }
 
 /// A direction from Blinn–Phong's lobe: `wo` mirrored about a half vector drawn ∝ cos^n θ_h.
@@ -180,7 +182,22 @@ mod tests {
     }
 
     #[test]
-    fn cook_torrance_times_pi_cos_is_the_seeds_term() {
+    fn cook_torrance_reflects_at_most_what_it_receives() {
+        // F = 1 everywhere (η → ∞): what is left is D·G, whose albedo is 1 less the V-grooves'
+        // masking. The paper's normalisation gave about 4 here.
+        for m in [0.1, 0.3, 0.6] {
+            for theta in [0.0, 30.0, 60.0, 80.0] {
+                let a = albedo(|o, i| cook_torrance_brdf(o, i, m, 1e9, Fresnel::Exact), dir(theta, 0.0));
+                assert!(a < 1.0 + 2e-3, "m = {m} at {theta}°: albedo {a}");
+                if theta == 0.0 {
+                    assert!(a > 0.75, "m = {m} at normal incidence: albedo {a}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn cook_torrance_times_four_pi_cos_is_the_seeds_term() {
         use glint_types::layout::GpuMaterial;
         let mut mat: GpuMaterial = bytemuck::Zeroable::zeroed();
         (mat.roughness, mat.ior) = (0.3, 1.5);
@@ -189,7 +206,7 @@ mod tests {
                 // The material stores m in f32: the BRDF gets that value.
                 let brdf = cook_torrance_brdf(wo, wi, f64::from(mat.roughness), 1.5, fresnel);
                 let term = crate::cpu::shade::cook_torrance_term(&mat, fresnel, DVec3::Z, wi, wo, wi.z);
-                let from_brdf = std::f64::consts::PI * wi.z * brdf;
+                let from_brdf = 4.0 * std::f64::consts::PI * wi.z * brdf;
                 assert!((from_brdf - term).abs() < 1e-12 * term, "{from_brdf} against {term}");
             }
         }
