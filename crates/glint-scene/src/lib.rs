@@ -23,7 +23,7 @@ mod texture;
 mod transform;
 mod validate;
 
-pub use camera::CameraDesc;
+pub use camera::{CameraDesc, ball_may_be_seen};
 pub use desc::{
     GlobalAttenuation, ObjectDesc, PlaneDesc, RenderSettings, SceneDesc, SphereDesc, WorldDesc,
     without_imported_materials,

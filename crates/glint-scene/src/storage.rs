@@ -6,7 +6,7 @@
 
 use glam::DVec3;
 
-use crate::{ObjectDesc, SceneDesc, SphereDesc};
+use crate::{ObjectDesc, PlaneDesc, SceneDesc, SphereDesc};
 
 /// How many of its largest sides a scene's box may have its centre from the world origin and
 /// still be stored in world space: f32 then keeps all but log2(64) = 6 of its 24 bits for the
@@ -28,11 +28,42 @@ const WORLD_SPACE_REACH: f64 = 64.0;
 /// Why a grid: translating a scene by a multiple of its spacing moves the origin by exactly as
 /// much, so the stored scene — hence both tracers' images — is the same bit for bit wherever
 /// such a scene sits, as long as its coordinates are exact at both places.
+///
+/// Why the eye's neighbourhood in place of the box, where the camera cannot see the box
+/// (`eye_neighbourhood`): the digits belong to what is seen, and stored around a box far away,
+/// the eye and the plane beside it would be rounded to the box's distance.
 pub fn storage_origin(desc: &SceneDesc) -> [f64; 3] {
     match bounded_box(desc) {
-        Some((lo, hi)) => storage_origin_of_box(lo.to_array(), hi.to_array()),
+        Some((lo, hi)) => {
+            let (lo, hi) = eye_neighbourhood(desc, lo, hi).unwrap_or((lo, hi));
+            storage_origin_of_box(lo.to_array(), hi.to_array())
+        }
         None => [0.0; 3],
     }
+}
+
+/// The box around the eye out to its nearest plane, where it takes the place of the bounded
+/// geometry's box `lo`..`hi`: where the eye is more than `WORLD_SPACE_REACH` of that box's
+/// largest sides from its centre (as far as the camera's anchoring judges a far eye), the camera
+/// cannot see the box (`CameraDesc::may_see`) and a plane passes the eye. A floor 0.01 under an
+/// eye with a sphere 3e5 behind it, stored around the sphere, was level with the stored eye, and
+/// vanished from the image.
+fn eye_neighbourhood(desc: &SceneDesc, lo: DVec3, hi: DVec3) -> Option<(DVec3, DVec3)> {
+    let eye = DVec3::from(desc.camera.position);
+    let (centre, side) = ((lo + hi) * 0.5, (hi - lo).max_element());
+    let far = (centre - eye).length() > WORLD_SPACE_REACH * side;
+    if !far || desc.camera.may_see(centre.to_array(), 0.5 * (hi - lo).length()) {
+        return None;
+    }
+    let heights = desc.objects.iter().filter_map(|object| match object {
+        ObjectDesc::Plane(PlaneDesc { point, normal, .. }) => {
+            let h = DVec3::from(*normal).normalize().dot(eye - DVec3::from(*point)).abs();
+            (h.is_finite() && h > 0.0).then_some(h)
+        }
+        ObjectDesc::Sphere(_) | ObjectDesc::Mesh(_) | ObjectDesc::Model(_) => None,
+    });
+    let height = heights.min_by(f64::total_cmp)?;
+    Some((eye - height, eye + height))
 }
 
 /// `storage_origin` of a scene whose bounded geometry spans `lo`..`hi` (finite).
@@ -86,8 +117,8 @@ fn bounded_box(desc: &SceneDesc) -> Option<(DVec3, DVec3)> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::MeshDesc;
     use crate::desc::test_scene as with;
-    use crate::{MeshDesc, PlaneDesc};
 
     fn sphere(center: [f64; 3], radius: f64) -> ObjectDesc {
         ObjectDesc::Sphere(SphereDesc { center, radius, material: "m".into(), name: String::new() })
@@ -144,5 +175,41 @@ mod tests {
         assert_eq!(o, [1e6, 0.0, 0.0]);
         assert_eq!(storage_origin(&with(vec![sphere([f64::INFINITY, 0.0, 0.0], 1.0)])), [0.0; 3]);
         assert_eq!(storage_origin(&with(vec![sphere([1e300, 0.0, 0.0], 1.0)])), [0.0; 3]);
+    }
+
+    #[test]
+    fn a_far_box_the_camera_cannot_see_leaves_the_digits_to_the_eye_and_its_ground() {
+        let floor = |y: f64| {
+            ObjectDesc::Plane(PlaneDesc {
+                point: [0.0, y, 0.0],
+                normal: [0.0, 1.0, 0.0],
+                material: "m".into(),
+                name: String::new(),
+            })
+        };
+        let mut desc = with(vec![sphere([0.0, 3e5, 0.0], 1.0), floor(0.0)]);
+        desc.camera.position = [0.0, 0.01, -0.001];
+        desc.camera.look_at = [0.0; 3];
+        // The sphere is behind the eye, which sits 0.01 over the floor: the world origin.
+        assert_eq!(storage_origin(&desc), [0.0; 3]);
+        // Far from the world origin: an origin at the eye's 0.02, not at the sphere 3e5 away.
+        let shift = |mut d: SceneDesc, dx: f64| {
+            d.camera.position[0] += dx;
+            d.camera.look_at[0] += dx;
+            for object in &mut d.objects {
+                if let ObjectDesc::Sphere(s) = object {
+                    s.center[0] += dx;
+                }
+            }
+            d
+        };
+        let o = storage_origin(&shift(desc.clone(), 1e6));
+        assert!((o[0] - 1e6).abs() < 0.02 && o[1].abs() < 0.02, "{o:?}");
+        // Looking at the sphere instead, or with no plane beside the eye: around the sphere.
+        let mut looking = desc.clone();
+        looking.camera.look_at = [0.0, 3e5, 0.0];
+        assert_eq!(storage_origin(&looking), [0.0, 3e5, 0.0]);
+        desc.objects.pop();
+        assert_eq!(storage_origin(&desc), [0.0, 3e5, 0.0]);
     }
 }
