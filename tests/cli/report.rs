@@ -447,3 +447,28 @@ fn report_shards_merge_into_the_one_machine_report_and_missing_ones_are_named() 
     assert!(!done.status.success());
     assert!(text(&done.stderr).contains("its timed runs is 4, not 3"), "{}", text(&done.stderr));
 }
+
+#[test]
+fn report_shards_of_a_scene_edited_between_them_do_not_merge() {
+    let dir = TempDir::new("report-shards-edited");
+    let scene = dir.join("my.toml");
+    let whitted = concat!(env!("CARGO_MANIFEST_DIR"), "/assets/scenes/whitted.toml");
+    let original = std::fs::read_to_string(whitted).expect("whitted");
+    std::fs::write(&scene, &original).expect("scene");
+    let run = |i: u32| {
+        let shard = format!("{i}/2");
+        let out = format!("s{i}");
+        let args = ["report", "--quick", "--cpu-only", "--width", "16", "--height", "12", "-q", "--scenes"];
+        let done = glint(&dir, args.into_iter().chain(["my.toml", "--shard", &shard, "--out", &out]));
+        assert!(done.status.success(), "{}", text(&done.stderr));
+    };
+    run(0);
+    std::fs::write(&scene, original.replacen("background = [0.15, 0.35, 0.85]", "background = [0.15, 0.35, 0.5]", 1))
+        .expect("edit");
+    run(1);
+    let done = glint(&dir, ["report", "--merge", "s0,s1", "--out", "merged"]);
+    assert!(!done.status.success(), "shards of two versions of a scene merged");
+    let stderr = text(&done.stderr);
+    assert!(stderr.contains("scene my differs between them"), "{stderr}");
+    assert!(!dir.join("merged/report.csv").exists(), "a refused merge wrote a report");
+}

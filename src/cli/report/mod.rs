@@ -22,7 +22,7 @@ use std::time::Instant;
 
 use anyhow::{Context, anyhow, bail};
 use clap::Args;
-use glint_core::Backend;
+use glint_core::{Backend, FlatScene};
 use glint_io::atomic::write_file_atomically;
 use glint_scene::{Integrator, RenderSettings};
 use indicatif::{ProgressBar, ProgressStyle};
@@ -161,10 +161,14 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
     let bar = progress(args.quiet, renders as u64)?;
     let mut results = Vec::with_capacity(scenes.len());
     let mut gi_results = Vec::new();
+    let mut scene_hashes = Vec::new();
     for (si, loaded) in scenes.iter().enumerate() {
         let scene = &loaded.desc.render;
         let base =
             RenderSettings { width, height, integrator: args.integrator.unwrap_or(scene.integrator), ..scene.clone() };
+        if args.shard.is_some() {
+            scene_hashes.push(FlatScene::build(&loaded.desc, &base).content_hash());
+        }
         let ours: Vec<Planned> =
             planned.iter().enumerate().filter(|(ci, _)| mine(si, *ci)).map(|(_, p)| p.clone()).collect();
         let mut result = if ours.is_empty() {
@@ -215,6 +219,7 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
             reference_spp: args.reference_spp,
             integrator: args.integrator,
             scenes: scenes.iter().map(|s| s.name.clone()).collect(),
+            scene_hashes,
             backends,
             cpu_device,
             gpu_device,

@@ -95,6 +95,10 @@ pub struct ShardFile {
     pub integrator: Option<Integrator>,
     /// Every scene of the sweep, in its order.
     pub scenes: Vec<String>,
+    /// Each scene's content hash as the tracers read it (`FlatScene::content_hash`), in the
+    /// same order: a scene file or texture edited between two shards' runs is another sweep.
+    #[serde(default)]
+    pub scene_hashes: Vec<String>,
     pub backends: Vec<Backend>,
     pub cpu_device: String,
     pub gpu_device: Option<String>,
@@ -167,6 +171,15 @@ pub fn read_all(dirs: &[PathBuf]) -> anyhow::Result<Vec<ShardFile>> {
                 first_path.display()
             );
         }
+        if let Some(scene) = changed_scene(first, file) {
+            bail!(
+                "{} is not a shard of the same sweep as {}: scene {scene} differs between them (its content \
+                 hash, `glint:scene_hash` in a render's metadata); the scene or its textures changed between the \
+                 shards' runs, so render every shard of the same files again; nothing was written",
+                path.display(),
+                first_path.display()
+            );
+        }
         if let Some(other) = by_index.insert(file.shard, path) {
             bail!(
                 "shard {} is given twice, {} and {}; nothing was written",
@@ -189,6 +202,16 @@ pub fn read_all(dirs: &[PathBuf]) -> anyhow::Result<Vec<ShardFile>> {
     let mut files: Vec<ShardFile> = found.into_iter().map(|(_, f)| f).collect();
     files.sort_by_key(|f| f.shard);
     Ok(files)
+}
+
+/// The first scene whose content differs between two shards with the same scene names (all of
+/// them where one shard has no hashes: a shard of an older glint).
+fn changed_scene<'a>(first: &ShardFile, other: &'a ShardFile) -> Option<&'a str> {
+    if first.scene_hashes.len() != other.scene_hashes.len() {
+        return other.scenes.first().map(String::as_str);
+    }
+    let differs = |i: &usize| first.scene_hashes[*i] != other.scene_hashes[*i];
+    (0..other.scenes.len().min(other.scene_hashes.len())).find(differs).map(|i| other.scenes[i].as_str())
 }
 
 /// The shards' Whitted-against-paths results, in the sweep's order of scenes.
