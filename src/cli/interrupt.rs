@@ -2,14 +2,15 @@
 //! loop and the atomic writer check (the render stops at the next tile, a write in progress
 //! stops and its temporary is removed); `main` then says "interrupted" and exits with
 //! 128 + the signal's number (130, 143), as shells report a process killed by it. A second
-//! signal ends the process at once, with the same code.
+//! signal ends the process at once, with the same code. SIGXFSZ (a file size limit) is caught
+//! so that the write fails and is reported instead of ending the process.
 
 use std::sync::Arc;
 use std::sync::OnceLock;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use anyhow::Context;
-use signal_hook::consts::{SIGINT, SIGTERM};
+use signal_hook::consts::{SIGINT, SIGTERM, SIGXFSZ};
 
 /// The number of the signal that raised the flag (0: none).
 static SIGNAL: OnceLock<Arc<AtomicUsize>> = OnceLock::new();
@@ -26,6 +27,10 @@ pub fn install() -> anyhow::Result<()> {
             .and_then(|_| signal_hook::flag::register(number, flag.clone()))
             .with_context(|| format!("cannot install the handler of signal {number}"))?;
     }
+    // A file size limit (`ulimit -f`) ends a process that writes past it, by SIGXFSZ's default
+    // action, with no message and its temporary file left behind. Handled, the write fails
+    // with EFBIG instead, which the writer reports, naming the output, after removing it.
+    signal_hook::flag::register(SIGXFSZ, Arc::default()).context("cannot install the handler of SIGXFSZ")?;
     Ok(())
 }
 

@@ -320,3 +320,21 @@ fn a_reader_that_goes_away_ends_the_output_not_the_command() {
     }
     assert_eq!(dir.listing(), ["w.png"]);
 }
+
+/// A file size limit (`ulimit -f`) makes the write fail: glint says so, naming the output, exits
+/// 1 and leaves nothing — the limit's signal, SIGXFSZ, would end it silently, its temporary
+/// left behind.
+#[cfg(unix)]
+#[test]
+fn a_file_size_limit_is_reported_and_leaves_no_file() {
+    let dir = TempDir::new("file-size-limit");
+    for output in ["big.png", "big.exr"] {
+        // 20 blocks of 1 KiB (bash counts 1024 bytes); a 512×384 image takes more in either format.
+        let script = format!("ulimit -f 20; exec '{BIN}' render whitted --width 512 --height 384 -q -o {output}");
+        let out = Command::new("bash").args(["-c", &script]).current_dir(&dir).output().expect("bash");
+        let stderr = text(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{output}: {:?}\n{stderr}", out.status);
+        assert!(stderr.contains(output) && stderr.contains("File too large"), "{output}: {stderr}");
+        assert!(dir.listing().is_empty(), "{output}: left behind {:?}", dir.listing());
+    }
+}
