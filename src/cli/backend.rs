@@ -127,7 +127,7 @@ pub fn run_gpu(tracer: &GpuTracer, flat: &FlatScene, options: &GpuOptions, quiet
         counts: r.counts,
         render: r.render_time,
         total: start.elapsed(),
-        device: tracer.context().adapter.to_string(),
+        device: tracer.context().adapter.with_driver(),
         gpu_status: r.status,
         incomplete: glint_gpu::status::messages(r.status, r.key.stack_size),
     })

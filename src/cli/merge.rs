@@ -33,10 +33,10 @@ pub struct MergeArgs {
 
 /// The attributes every tile of one render shares (its settings, scene and grid), compared in
 /// this order so that a differing setting is named before the scene hash it also changes; the
-/// rest (the tile's index, time, rays, device) is the tile's own.
-const SHARED: [&str; 15] = [
+/// rest (the tile's index, time, rays, the scene's name, the CPU's threads) is the tile's own.
+/// The scene is judged by its content: tiles of one scene file copied under other names merge.
+const SHARED: [&str; 14] = [
     "Software",
-    "glint:scene",
     "glint:size",
     "glint:spp",
     "glint:depth",
@@ -51,6 +51,18 @@ const SHARED: [&str; 15] = [
     "glint:grid",
     "glint:scene_hash",
 ];
+
+/// What GPU tiles share besides `SHARED`: the adapter and its driver. One adapter gives the
+/// same bits for any tile; two GPUs, or two drivers, need not (their f32 arithmetic and
+/// transcendental functions differ), and the merge would be no one render's image. CPU tiles
+/// are the same bits for any machine and thread count.
+const SHARED_ON_GPU: &str = "glint:device";
+
+/// The attributes `header`'s tiles must share.
+fn shared_keys(header: &ExrHeader) -> Vec<&'static str> {
+    let gpu = header.attribute("glint:backend") == Some("gpu");
+    SHARED.iter().copied().chain(gpu.then_some(SHARED_ON_GPU)).collect()
+}
 
 /// A tile's place: its index and count from `glint:tile`.
 fn tile_index(path: &Path, header: &ExrHeader) -> anyhow::Result<(u32, u32)> {
@@ -72,7 +84,8 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
     let headers: Vec<ExrHeader> =
         args.tiles.iter().map(|p| read_exr_header(p).map_err(anyhow::Error::from)).collect::<anyhow::Result<_>>()?;
     let first = (&args.tiles[0], &headers[0]);
-    let shared = |h: &ExrHeader| SHARED.map(|k| h.attribute(k).map(str::to_string));
+    let keys = shared_keys(first.1);
+    let shared = |h: &ExrHeader| keys.iter().map(|k| h.attribute(k).map(str::to_string)).collect::<Vec<_>>();
     let (_, count) = tile_index(first.0, first.1)?;
     let (width, height) = first.1.display;
     let grid = TileGrid::new(count, width, height).with_context(|| format!("{}", first.0.display()))?;
@@ -80,14 +93,21 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
     for (path, header) in args.tiles.iter().zip(&headers) {
         let (index, n) = tile_index(path, header)?;
         let (ours, theirs) = (shared(header), shared(first.1));
-        if let Some(k) = (0..SHARED.len()).find(|&k| ours[k] != theirs[k]) {
+        if let Some(k) = (0..keys.len()).find(|&k| ours[k] != theirs[k]) {
             bail!(
                 "{} is not a tile of the same render as {}: {} is {} there and {} here; nothing was written",
                 path.display(),
                 first.0.display(),
-                SHARED[k],
+                keys[k],
                 theirs[k].as_deref().unwrap_or("absent"),
                 ours[k].as_deref().unwrap_or("absent"),
+            );
+        }
+        if let Some(why) = &header.inexact {
+            bail!(
+                "{}: {why}, so its pixels need not be the values rendered, and the merge would not be the \
+                 render bit for bit; merge the EXR tiles glint wrote; nothing was written",
+                path.display()
             );
         }
         if n != count || header.display != (width, height) {
@@ -146,8 +166,12 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
         }
         super::interrupt::check()?;
     }
-    let mut metadata: Vec<(String, String)> =
-        SHARED.iter().filter_map(|k| Some((k.to_string(), first.1.attribute(k)?.to_string()))).collect();
+    // The scene's name as the first tile gives it (tiles of copies of one scene file merge).
+    let mut metadata: Vec<(String, String)> = ["glint:scene"]
+        .iter()
+        .chain(&keys)
+        .filter_map(|k| Some((k.to_string(), first.1.attribute(k)?.to_string())))
+        .collect();
     metadata.push(("glint:merged_tiles".into(), count.to_string()));
     if png {
         let rgb: Vec<u8> = image.iter().flat_map(|p| p.map(linear_f32_to_srgb8)).collect();

@@ -29,6 +29,33 @@ fn bits(path: &Path) -> Vec<u32> {
     exr.rgb.iter().flatten().map(|v| v.to_bits()).collect()
 }
 
+/// A copy of `tile` re-encoded as a storage pass might do it, its data window and attributes
+/// kept: each sample converted by `sample`, compressed by `compression`.
+fn reencoded<T: exr::prelude::IntoSample>(
+    tile: &Path,
+    out: &Path,
+    sample: impl Fn(f32) -> T + Sync,
+    compression: exr::prelude::Compression,
+) {
+    use exr::prelude::*;
+    let read = read_exr(tile).unwrap_or_else(|e| panic!("{e}"));
+    let h = &read.header;
+    let width = h.width as usize;
+    let attributes =
+        LayerAttributes { layer_position: Vec2(h.origin.0 as i32, h.origin.1 as i32), ..LayerAttributes::default() };
+    let channels = SpecificChannels::rgb(|p: Vec2<usize>| {
+        let [r, g, b] = read.rgb[p.y() * width + p.x()];
+        (sample(r), sample(g), sample(b))
+    });
+    let encoding = Encoding { compression, ..Encoding::SMALL_LOSSLESS };
+    let mut image = Image::from_layer(Layer::new((width, h.height as usize), attributes, encoding, channels));
+    image.attributes.display_window = IntegerBounds::new((0, 0), (h.display.0 as usize, h.display.1 as usize));
+    for (key, value) in &h.attributes {
+        image.attributes.other.insert(Text::from(key.as_str()), AttributeValue::Text(Text::from(value.as_str())));
+    }
+    image.write().to_file(out).unwrap_or_else(|e| panic!("{}: {e}", out.display()));
+}
+
 fn png_pixels(path: &Path) -> Vec<u8> {
     image::open(path).unwrap_or_else(|e| panic!("{}: {e}", path.display())).into_rgb8().into_raw()
 }
@@ -114,6 +141,21 @@ fn tiles_that_do_not_belong_together_are_refused_by_name_and_nothing_is_written(
     let whole = dir.join("whole.exr");
     render(&dir, "whitted", &size, &whole);
     refused(&[t[0].clone(), whole, t[2].clone()], "not a tile of `glint render --tile`");
+    // A tile re-encoded with loss (half floats, PXR24's 24-bit floats) would merge into no
+    // render's bits; a lossless re-encoding merges into the same bits.
+    use exr::prelude::{Compression, f16};
+    let (half, pxr24, piz) = (dir.join("half.exr"), dir.join("pxr24.exr"), dir.join("piz.exr"));
+    reencoded(&t[1], &half, f16::from_f32, Compression::ZIP16);
+    refused(&[t[0].clone(), half, t[2].clone()], "half.exr: its channel B holds F16 samples, not 32-bit floats");
+    reencoded(&t[1], &pxr24, |v| v, Compression::PXR24);
+    refused(&[t[0].clone(), pxr24, t[2].clone()], "its compression PXR24 is lossy for 32-bit floats");
+    reencoded(&t[1], &piz, |v| v, Compression::PIZ);
+    let (whole_merge, piz_merge) = (dir.join("merged.exr"), dir.join("merged-piz.exr"));
+    for (tiles, output) in [(&t[..], &whole_merge), (&[t[0].clone(), piz, t[2].clone()][..], &piz_merge)] {
+        let done = merge(&dir, tiles, output);
+        assert!(done.status.success(), "{}", text(&done.stderr));
+    }
+    assert_eq!(bits(&piz_merge), bits(&whole_merge), "a PIZ copy of a tile merged into other bits");
     // An output that is one of the tiles (the first included) is named as a tile.
     for i in [0, 2] {
         let done = merge(&dir, &t, &t[i]);
@@ -211,4 +253,13 @@ fn the_scene_hash_follows_what_is_rendered_not_how_the_file_is_written() {
     let done = merge(&dir, &[tiles[0].clone(), tiles[2].clone()], &dir.join("other.exr"));
     assert!(!done.status.success());
     assert!(text(&done.stderr).contains("glint:scene_hash is"), "{}", text(&done.stderr));
+    // The same scene under another name (a farm's per-task copy): its tiles merge, named as the
+    // first tile names the scene.
+    std::fs::write(dir.join("task-7.toml"), &variants[0]).expect("copy");
+    let copy = dir.join("copy.exr");
+    render(&dir, "task-7.toml", &[&size[..], &["--tile", "1/2"]].concat(), &copy);
+    let merged = dir.join("copies.exr");
+    let done = merge(&dir, &[tiles[0].clone(), copy], &merged);
+    assert!(done.status.success(), "copies of one scene file did not merge: {}", text(&done.stderr));
+    assert_eq!(read_exr(&merged).expect("merged").header.attribute("glint:scene"), Some("w"));
 }

@@ -42,6 +42,12 @@ impl AdapterSummary {
     pub fn is_software(&self) -> bool {
         self.device_type == format!("{:?}", wgpu::DeviceType::Cpu)
     }
+
+    /// The adapter and its driver, as an image's metadata and a report name the device: two
+    /// drivers of one GPU can render other bits.
+    pub fn with_driver(&self) -> String {
+        if self.driver.is_empty() { self.to_string() } else { format!("{self}, driver {}", self.driver) }
+    }
 }
 
 impl std::fmt::Display for AdapterSummary {

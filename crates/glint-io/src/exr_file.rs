@@ -6,7 +6,7 @@
 use std::io::BufWriter;
 use std::path::{Path, PathBuf};
 
-use exr::meta::attribute::{AttributeValue, Text};
+use exr::meta::attribute::{AttributeValue, SampleType, Text};
 use exr::prelude::{
     Encoding, Image, IntegerBounds, Layer, LayerAttributes, ReadChannels, ReadLayers, SpecificChannels, Vec2,
     WritableImage,
@@ -26,6 +26,11 @@ pub struct ExrHeader {
     pub height: u32,
     /// The text attributes of the header, in name order.
     pub attributes: Vec<(String, String)>,
+    /// Why the RGB values read may not be the f32 values rendered, if they may not: a colour
+    /// channel stored as another sample type (a tile re-encoded as half floats), or a
+    /// compression that is lossy for f32 (PXR24, DWAA/B). `read_exr`, which converts every
+    /// channel to f32 as it reads, judges the compression alone.
+    pub inexact: Option<String>,
 }
 
 impl ExrHeader {
@@ -98,13 +103,25 @@ pub fn read_exr_header(path: &Path) -> Result<ExrHeader, ExrReadError> {
         .first()
         .ok_or_else(|| ExrReadError::Decode { path: path.to_owned(), message: "the file has no layer".into() })?;
     let other = header.shared_attributes.other.iter().chain(&header.own_attributes.other);
-    exr_header(
+    let mut read = exr_header(
         path,
         header.shared_attributes.display_window,
         header.own_attributes.layer_position,
         header.layer_size,
         other,
-    )
+    )?;
+    let colour = header.channels.list.iter().filter(|c| ["R", "G", "B"].contains(&c.name.to_string().as_str()));
+    read.inexact = match colour.into_iter().find(|c| c.sample_type != SampleType::F32) {
+        Some(c) => Some(format!("its channel {} holds {:?} samples, not 32-bit floats", c.name, c.sample_type)),
+        None => lossy_for_f32(header.compression),
+    };
+    Ok(read)
+}
+
+/// Why `compression` may change 32-bit float samples, if it may.
+fn lossy_for_f32(compression: exr::compression::Compression) -> Option<String> {
+    (!compression.is_lossless_for(SampleType::F32))
+        .then(|| format!("its compression {compression:?} is lossy for 32-bit floats"))
 }
 
 fn exr_header<'a>(
@@ -139,6 +156,7 @@ fn exr_header<'a>(
         width: w as u32,
         height: h as u32,
         attributes,
+        inexact: None,
     })
 }
 
@@ -159,6 +177,8 @@ pub fn read_exr(path: &Path) -> Result<ExrPixels, ExrReadError> {
         .map_err(|e| ExrReadError::Decode { path: path.to_owned(), message: e.to_string() })?;
     let layer = image.layer_data;
     let other = image.attributes.other.iter().chain(&layer.attributes.other);
-    let header = exr_header(path, image.attributes.display_window, layer.attributes.layer_position, layer.size, other)?;
+    let mut header =
+        exr_header(path, image.attributes.display_window, layer.attributes.layer_position, layer.size, other)?;
+    header.inexact = lossy_for_f32(layer.encoding.compression);
     Ok(ExrPixels { header, rgb: layer.channel_data.pixels.1 })
 }

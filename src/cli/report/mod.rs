@@ -126,10 +126,7 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
                 .context("glint report needs a GPU adapter; pass --cpu-only to sweep the CPU alone")?,
         )
     };
-    let gpu_device = gpu.as_ref().map(|g| {
-        let a = &g.context().adapter;
-        if a.driver.is_empty() { a.to_string() } else { format!("{a}, driver {}", a.driver) }
-    });
+    let gpu_device = gpu.as_ref().map(|g| g.context().adapter.with_driver());
     std::fs::create_dir_all(&args.out).with_context(|| format!("cannot create {}", args.out.display()))?;
     let backends: Vec<Backend> = if gpu.is_some() { vec![Backend::Cpu, Backend::Gpu] } else { vec![Backend::Cpu] };
     let threads =
