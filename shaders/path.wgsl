@@ -206,6 +206,10 @@ fn emitter_pdf(e: u32, count: u32, p: vec3<f32>, q: vec3<f32>, ng_q: vec3<f32>) 
     let area = 0.5 * length(cross(v[1] - v[0], v[2] - v[0]));
     let to_q = q - p;
     let dist = length(to_q);
+    // A ray met the emitter where it left (ε = 0 on a triangle's edge): no density.
+    if dist == 0.0 {
+        return 0.0;
+    }
     return pick * area_to_solid_angle(1.0 / area, dist, dot(ng_q, to_q / dist));
 #else
     return 0.0;

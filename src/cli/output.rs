@@ -249,13 +249,18 @@ pub fn print_table(
 /// Whether a run may be written: its pixels must all fit a file (`HdrImage::unrepresentable`,
 /// an error naming what in the scene overflows), and a GPU render whose shader raised a status
 /// flag is missing work (`check_complete`).
-pub fn check_writable(run: &Run, desc: &SceneDesc, max_depth: u32, allow_incomplete: bool) -> anyhow::Result<()> {
+pub fn check_writable(
+    run: &Run,
+    desc: &SceneDesc,
+    settings: &RenderSettings,
+    allow_incomplete: bool,
+) -> anyhow::Result<()> {
     check_complete(run, allow_incomplete)?;
     if let Some(found) = run.image.unrepresentable() {
         bail!(
             "the {} render is not a valid image: {found}; no image was written. In this scene: {}",
             run.backend.name(),
-            overflow_causes(desc, max_depth)
+            overflow_causes(desc, settings.max_depth, settings.integrator, found.all_nan())
         );
     }
     Ok(())

@@ -197,7 +197,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     runs.extend(gpu_run);
     // Every image is checked before any is written: a failure leaves no file at all.
     for run in &runs {
-        check_writable(run, &loaded.desc, settings.max_depth, args.allow_incomplete)?;
+        check_writable(run, &loaded.desc, &settings, args.allow_incomplete)?;
     }
     let mut outputs = Vec::new();
     for run in &runs {

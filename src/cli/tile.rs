@@ -109,7 +109,7 @@ pub fn render_tile(job: TileJob) -> anyhow::Result<()> {
         }
     };
     // An incomplete tile is never written: a merge would hide which tile lost work.
-    check_writable(&run, &job.loaded.desc, job.settings.max_depth, false)?;
+    check_writable(&run, &job.loaded.desc, job.settings, false)?;
     let mut tags = metadata(&job.loaded.name, job.settings, &run, job.specialise);
     tags.extend([
         ("glint:scene_hash".to_string(), hash),

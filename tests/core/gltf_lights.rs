@@ -247,7 +247,7 @@ fn a_model_objects_own_lights_shine_when_asked_placed_and_scaled_by_its_exposure
     assert_rel(lit, want, REL, "the model's light on the floor");
     // A bright imported light is named where an overflow error lists the brightest sources.
     let bright = load(&scene("lights = true\nexposure = 1000"));
-    let causes = glint_scene::overflow_causes(&bright, 5);
+    let causes = glint_scene::overflow_causes(&bright, 5, glint_scene::Integrator::Whitted, false);
     assert!(causes.contains("the brightest sources: objects[1].lights[0].specular = 8000"), "{causes}");
     // Saved, the reference keeps the choice and the lights stay in the file, not the scene.
     let text = glint_io::to_toml(&on).unwrap();

@@ -122,3 +122,21 @@ fn the_gpus_images_of_each_kind_of_light_add_up_to_its_path_image() {
     let caustic = mean(&parts[2].image.pixels) / mean(&whole.image.pixels);
     assert!(caustic > 0.005, "no caustic on the GPU ({caustic})");
 }
+
+#[test]
+fn gpu_paths_in_a_closed_emissive_box_at_epsilon_zero_are_finite_in_every_mode() {
+    // As the CPU's (tests/core/path.rs): a ray meeting an emitter where it left has no density.
+    let tracer = gpu_or_skip!();
+    for mode in ["tmin", "nudge_ray", "nudge_normal", "robust"] {
+        let settings =
+            format!("integrator = \"path\"\nmax_depth = 16\nspp = 16\nepsilon = 0.0\nepsilon_mode = \"{mode}\"");
+        let flat = glint_test_support::scene::emissive_box(16, 16, &settings).flat();
+        let gpu = gpu_render(tracer, &flat, true);
+        let mean = gpu.image.pixels.iter().map(|p| p.x).sum::<f64>() / gpu.image.pixels.len() as f64;
+        let expected = 2.0 * (1.0 - 0.5f64.powi(17));
+        assert!(
+            mode != "robust" || (mean - expected).abs() < 0.05 * expected,
+            "{mode}: mean {mean}, expected {expected}"
+        );
+    }
+}

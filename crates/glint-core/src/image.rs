@@ -47,8 +47,9 @@ impl HdrImage {
         let first = chunk * CHUNK + self.pixels[chunk * CHUNK..].iter().position(bad)?;
         let count = self.pixels.iter().filter(|p| bad(p)).count();
         let largest = self.pixels.iter().filter(|p| bad(p)).map(|p| p.abs().max_element()).fold(0.0, f64::max);
+        let nan = self.pixels.iter().filter(|p| p.is_nan()).count();
         let width = self.width.max(1) as usize;
-        Some(Unrepresentable { count, first: ((first % width) as u32, (first / width) as u32), largest })
+        Some(Unrepresentable { count, first: ((first % width) as u32, (first / width) as u32), largest, nan })
     }
 
     /// The pixels of `r`, an image of its size.
@@ -87,14 +88,28 @@ pub struct Unrepresentable {
     pub first: (u32, u32),
     /// The largest magnitude among them (NaN compares as nothing, so a NaN image says 0).
     pub largest: f64,
+    /// How many of them have a NaN channel: no overflow makes those alone.
+    pub nan: usize,
+}
+
+impl Unrepresentable {
+    /// Whether every such pixel is NaN: no value overflowed.
+    pub fn all_nan(&self) -> bool {
+        self.nan == self.count
+    }
 }
 
 impl std::fmt::Display for Unrepresentable {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         let (x, y) = self.first;
+        let (pixels, are, have) = if self.count == 1 { ("pixel", "is", "has") } else { ("pixels", "are", "have") };
+        if self.all_nan() {
+            return write!(f, "{} {pixels} {are} NaN (first at pixel ({x}, {y}))", self.count);
+        }
+        let nan = if self.nan > 0 { format!("{} of them NaN; ", self.nan) } else { String::new() };
         write!(
             f,
-            "{} pixels have radiance that is not a finite f32 number (largest {}, first at pixel ({x}, {y}))",
+            "{} {pixels} {have} radiance that is not a finite f32 number ({nan}largest {}, first at pixel ({x}, {y}))",
             self.count,
             glint_scene::format_number(self.largest)
         )

@@ -106,20 +106,23 @@ mod tests {
         image.pixels[5] = DVec3::new(1.0, 1e45, 0.0);
         image.pixels[7] = DVec3::splat(f64::NAN);
         let found = image.unrepresentable().expect("two bad pixels");
-        assert_eq!(found, Unrepresentable { count: 2, first: (1, 1), largest: 1e45 });
+        assert_eq!(found, Unrepresentable { count: 2, first: (1, 1), largest: 1e45, nan: 1 });
         for name in ["out.exr", "out.png"] {
             let path = dir.join(name);
             let error = write_image(&path, &image, &[]).expect_err("refused");
             assert_eq!(
                 error.to_string(),
                 format!(
-                    "{}: not written: 2 pixels have radiance that is not a finite f32 number (largest 1e45, \
-                     first at pixel (1, 1))",
+                    "{}: not written: 2 pixels have radiance that is not a finite f32 number (1 of them NaN; \
+                     largest 1e45, first at pixel (1, 1))",
                     path.display()
                 )
             );
         }
         assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0, "nothing written");
+        image.pixels[5] = DVec3::ZERO;
+        let nan_only = image.unrepresentable().expect("a NaN pixel");
+        assert_eq!(nan_only.to_string(), "1 pixel is NaN (first at pixel (3, 1))");
         image.pixels[5] = DVec3::splat(f64::from(f32::MAX));
         image.pixels[7] = DVec3::ZERO;
         assert_eq!(image.unrepresentable(), None, "f32::MAX itself is representable");

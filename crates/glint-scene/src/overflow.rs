@@ -5,22 +5,28 @@
 //! every bounce, g^depth in all. The message names such materials first, then the brightest
 //! sources.
 
+use super::Integrator;
 use super::desc::{ObjectDesc, SceneDesc};
 use super::light::LightDesc;
+use super::material::MaterialDesc;
 use super::number::format_number;
 
 /// The largest value f32 holds; radiance beyond it is stored as +inf.
 const F32_MAX: f64 = f32::MAX as f64;
 
-/// The fields of `desc` that can make radiance overflow f32 at `max_depth`, with the remedy.
-pub fn overflow_causes(desc: &SceneDesc, max_depth: u32) -> String {
+/// The fields of `desc` that can make radiance overflow f32 at `max_depth` under `integrator`,
+/// with the remedy; `all_nan`: no pixel overflowed, every bad one is NaN, which a scene without
+/// gain cannot make (a defect to report, said so).
+pub fn overflow_causes(desc: &SceneDesc, max_depth: u32, integrator: Integrator, all_nan: bool) -> String {
+    // Whitted's tree adds k_d and k_s once per light; a path meets them bounce after bounce.
+    let (terms, gain_of): (&str, fn(&MaterialDesc, usize) -> f64) = match integrator {
+        Integrator::Whitted => ("k_r + k_t", |m, c| m.kr.0[c] + m.kt.0[c]),
+        Integrator::Path => ("k_d + k_s + k_r + k_t", |m, c| m.kd.0[c] + m.ks.0[c] + m.kr.0[c] + m.kt.0[c]),
+    };
     let mut gains: Vec<(f64, String)> = desc
         .materials
         .iter()
-        .map(|(name, m)| {
-            let g = (0..3).map(|c| m.kr.0[c] + m.kt.0[c]).fold(0.0, f64::max);
-            (g, name.clone())
-        })
+        .map(|(name, m)| ((0..3).map(|c| gain_of(m, c)).fold(0.0, f64::max), name.clone()))
         .filter(|(g, _)| *g > 1.0)
         .collect();
     gains.sort_by(|a, b| b.0.total_cmp(&a.0));
@@ -36,12 +42,22 @@ pub fn overflow_causes(desc: &SceneDesc, max_depth: u32) -> String {
                 g if g > F32_MAX => format!("{g:.1e}, beyond f32's 3.4e38"),
                 g => format!("{g:.1e}"),
             };
+            let fields = match integrator {
+                Integrator::Whitted => {
+                    format!("kr = {}, kt = {}", format_number(m.kr.max_channel()), format_number(m.kt.max_channel()))
+                }
+                Integrator::Path => format!(
+                    "kd = {}, ks = {}, kr = {}, kt = {}",
+                    format_number(m.kd.max_channel()),
+                    format_number(m.ks.max_channel()),
+                    format_number(m.kr.max_channel()),
+                    format_number(m.kt.max_channel())
+                ),
+            };
             format!(
-                "materials.{name} returns k_r + k_t = {} times the light it receives (kr = {}, kt = {}): \
+                "materials.{name} returns {terms} = {} times the light it receives ({fields}): \
                  up to {} bounces (render.max_depth) multiply radiance by up to {reach}",
                 format_number(*g),
-                format_number(m.kr.max_channel()),
-                format_number(m.kt.max_channel()),
                 max_depth
             )
         })
@@ -66,10 +82,15 @@ pub fn overflow_causes(desc: &SceneDesc, max_depth: u32) -> String {
     if !sources.is_empty() {
         causes.push(format!("the brightest sources: {}", sources.join(", ")));
     }
+    if causes.is_empty() && all_nan {
+        return "no material amplifies light and no source is brighter than 1, so the NaN is no overflow but a \
+                defect in glint: please report it with the scene and the render's settings"
+            .into();
+    }
     let remedy = if gains.is_empty() {
-        "lower the brightest sources"
+        "lower the brightest sources".to_string()
     } else {
-        "keep k_r + k_t ≤ 1, lower render.max_depth or the brightest sources"
+        format!("keep {terms} ≤ 1, lower render.max_depth or the brightest sources")
     };
     if causes.is_empty() {
         causes.push("no material amplifies light and no source is brighter than 1".into());
@@ -107,23 +128,42 @@ mod tests {
             "[materials.dull]\nkd = 0.5\n[materials.mirror]\nkr = 1e9\nemission = 1e9\n\
              [[lights]]\ntype = \"point\"\nposition = [0.0, 1.0, 0.0]\ndiffuse = 2.0\n",
         );
-        let text = overflow_causes(&desc, 4);
+        let text = overflow_causes(&desc, 4, Integrator::Whitted, false);
         assert!(text.starts_with("materials.mirror returns k_r + k_t = 1000000000 times"), "{text}");
         assert!(text.contains("kr = 1000000000, kt = 0"), "{text}");
         assert!(text.contains("up to 4 bounces (render.max_depth) multiply radiance by up to 1.0e36"), "{text}");
         assert!(text.contains("materials.mirror.emission = 1000000000, lights[0].diffuse = 2"), "{text}");
         assert!(text.ends_with("keep k_r + k_t ≤ 1, lower render.max_depth or the brightest sources"), "{text}");
         assert!(!text.contains("dull"), "{text}");
-        assert!(overflow_causes(&desc, 30).contains("by up to 1.0e270, beyond f32's 3.4e38"));
-        assert!(overflow_causes(&desc, 40).contains("by up to more than f64 holds"));
+        assert!(
+            overflow_causes(&desc, 30, Integrator::Whitted, false).contains("by up to 1.0e270, beyond f32's 3.4e38")
+        );
+        assert!(overflow_causes(&desc, 40, Integrator::Whitted, false).contains("by up to more than f64 holds"));
     }
 
     #[test]
     fn a_scene_without_gain_says_so() {
         let desc = scene("[materials.dull]\nkd = 0.5\n");
         assert_eq!(
-            overflow_causes(&desc, 4),
+            overflow_causes(&desc, 4, Integrator::Whitted, false),
             "no material amplifies light and no source is brighter than 1; lower the brightest sources"
+        );
+        assert!(overflow_causes(&desc, 4, Integrator::Path, true).contains("the NaN is no overflow but a defect"));
+    }
+
+    #[test]
+    fn under_paths_k_d_and_k_s_count_too() {
+        // Whitted adds k_d once per light; a path multiplies by it at every bounce.
+        let desc = scene("[materials.bright]\nkd = 1e9\nemission = 1.0\n");
+        assert!(overflow_causes(&desc, 6, Integrator::Whitted, false).starts_with("no material amplifies light"));
+        let text = overflow_causes(&desc, 6, Integrator::Path, false);
+        assert!(
+            text.starts_with("materials.bright returns k_d + k_s + k_r + k_t = 1000000000 times the light it receives (kd = 1000000000, ks = 0, kr = 0, kt = 0)"),
+            "{text}"
+        );
+        assert!(
+            text.ends_with("keep k_d + k_s + k_r + k_t ≤ 1, lower render.max_depth or the brightest sources"),
+            "{text}"
         );
     }
 }

@@ -336,6 +336,34 @@ pub fn uv_sphere(n: u32, c: [f64; 3], r: f64) -> (Vec<[f64; 3]>, Vec<[u32; 3]>) 
 }
 
 /// A lit scene with a ground plane, a mirror sphere and one mesh.
+/// A closed box of white emitting walls seen from inside (the cube [−1, 1]³, its 12 triangles
+/// wound to face inwards, their emitting side): k_d = 0.5 and E_m = 1, so its radiance is
+/// Σ 0.5^k = 2 (1 − 0.5^(d+1)) to path depth d. `render` is the `[render]` table's lines.
+pub fn emissive_box(width: u32, height: u32, render: &str) -> SceneText {
+    let (mut vertices, mut triangles) = (Vec::new(), Vec::new());
+    for axis in 0..3 {
+        for side in [-1.0, 1.0] {
+            let (u, v) = ((axis + 1) % 3, (axis + 2) % 3);
+            let base = vertices.len() as u32;
+            for (a, b) in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)] {
+                let mut p = [0.0; 3];
+                (p[axis], p[u], p[v]) = (side, a, b);
+                vertices.push(p);
+            }
+            // Counter-clockwise in (u, v) faces +axis (e_u × e_v = e_axis); inwards is −side.
+            let quad = if side > 0.0 { [[0, 2, 1], [0, 3, 2]] } else { [[0, 1, 2], [0, 2, 3]] };
+            triangles.extend(quad.map(|t| t.map(|i| base + i)));
+        }
+    }
+    SceneText::new(width, height, render, [0.0, 0.0, -0.5], [0.0, 0.0, 0.5], [0.0, 1.0, 0.0], 60.0)
+        .world([0.0; 3], [0.0; 3])
+        .material(
+            "wall",
+            "ka = [0.0, 0.0, 0.0]\nkd = [0.5, 0.5, 0.5]\nks = [0.0, 0.0, 0.0]\nemission = [1.0, 1.0, 1.0]",
+        )
+        .mesh(&vertices, &triangles, None, "wall")
+}
+
 pub fn mesh_scene(w: u32, h: u32, mesh: (Vec<[f64; 3]>, Vec<[u32; 3]>)) -> SceneText {
     SceneText::new(w, h, "max_depth = 2", [0.3, 1.1, -3.2], [0.0, 0.2, 0.0], [0.0, 1.0, 0.0], 45.0)
         .world([0.1; 3], [0.2, 0.3, 0.4])

@@ -226,7 +226,7 @@ pub fn run_scene(
     if let Some(found) = reference_render.image.unrepresentable() {
         anyhow::bail!(
             "{name}: the reference render is not a valid image: {found}. In this scene: {}",
-            overflow_causes(&loaded.desc, reference.depth)
+            overflow_causes(&loaded.desc, reference.depth, base.integrator, found.all_nan())
         );
     }
     bar.inc(1);
@@ -255,7 +255,7 @@ pub fn run_scene(
                 "{name}: the {} render of {} is not a valid image: {found}. In this scene: {}",
                 c.backend.name(),
                 c.describe(),
-                overflow_causes(&loaded.desc, c.depth)
+                overflow_causes(&loaded.desc, c.depth, base.integrator, found.all_nan())
             );
         }
         rows.push(Row {

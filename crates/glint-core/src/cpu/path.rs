@@ -175,6 +175,11 @@ fn emitter_pdf(ctx: &TraceContext, emitter: Emitter, count: usize, p: DVec3, q: 
             let area = 0.5 * (b - a).cross(c - a).length();
             let to_q = q - p;
             let dist = to_q.length();
+            // A ray met the emitter where it left (ε = 0 on a triangle's edge): no direction,
+            // no density (0/0 would make the sample NaN).
+            if dist == 0.0 {
+                return 0.0;
+            }
             pick * area_to_solid_angle(1.0 / area, dist, ng_q.dot(to_q / dist))
         }
     }
