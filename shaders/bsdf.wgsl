@@ -3,7 +3,8 @@
 // directions (z along the shading normal), both away from the surface; per unit k.
 #define_import_path glint::bsdf
 
-#import glint::sample::{FRAC_1_PI, power_cosine, power_cosine_pdf, reflect_about, reflected_pdf, to_world}
+#import glint::sample::{FRAC_1_PI, cosine_hemisphere, cosine_hemisphere_pdf, power_cosine, power_cosine_pdf, reflect_about, reflected_pdf, to_world}
+#import glint::shade::safe_pow
 #ifdef COOK_TORRANCE
 #import glint::scene_data::FRESNEL_SCHLICK
 #import glint::sample::{beckmann_normal, beckmann_normal_pdf}
@@ -44,7 +45,7 @@ fn phong_brdf(wo: vec3<f32>, wi: vec3<f32>, exponent: f32) -> f32 {
         return 0.0;
     }
     let r = reflect_about(wi, vec3<f32>(0.0, 0.0, 1.0));
-    return (exponent + 2.0) * 0.5 * FRAC_1_PI * pow(max(dot(r, wo), 0.0), exponent);
+    return (exponent + 2.0) * 0.5 * FRAC_1_PI * safe_pow(dot(r, wo), exponent);
 }
 
 fn sample_blinn(wo: vec3<f32>, u: vec2<f32>, exponent: f32) -> vec3<f32> {
@@ -59,11 +60,19 @@ fn blinn_pdf(wo: vec3<f32>, wi: vec3<f32>, exponent: f32) -> f32 {
     return reflected_pdf(power_cosine_pdf(h.z, exponent), dot(wo, h.xyz));
 }
 
+// n = 0: (R·wo)⁰ = 1 above the surface, Lambert's lobe, drawn as Lambert's (a cone about R
+// misses R·wi < 0).
 fn sample_phong(wo: vec3<f32>, u: vec2<f32>, exponent: f32) -> vec3<f32> {
+    if exponent == 0.0 {
+        return cosine_hemisphere(u);
+    }
     return to_world(reflect_about(wo, vec3<f32>(0.0, 0.0, 1.0)), power_cosine(u, exponent));
 }
 
 fn phong_pdf(wo: vec3<f32>, wi: vec3<f32>, exponent: f32) -> f32 {
+    if exponent == 0.0 {
+        return cosine_hemisphere_pdf(wi.z);
+    }
     return power_cosine_pdf(dot(reflect_about(wo, vec3<f32>(0.0, 0.0, 1.0)), wi), exponent);
 }
 
