@@ -21,6 +21,7 @@ fn the_fitted_ambient_lowers_whitteds_error_against_the_path_traced_image() {
             .image;
         let fit = fit_ambient(&desc, &settings, &reference, &options).expect("fit");
         eprintln!("{name}: {fit:?}");
+        assert!(fit.determined, "{name}: {fit:?}");
         assert!(fit.ambient.iter().all(|a| *a > 0.0), "{name}: the indirect light needs some ambient: {fit:?}");
         assert!(fit.rmse_fitted < fit.rmse_without, "{name}: {fit:?}");
         assert!(fit.rmse_fitted <= fit.rmse_as_written, "{name}: {fit:?}");
@@ -45,4 +46,24 @@ fn the_fitted_ambient_lowers_whitteds_error_against_the_path_traced_image() {
             fit.rmse_fitted
         );
     }
+}
+
+#[test]
+fn without_k_a_no_ambient_fits_better_than_another_and_the_fit_says_so() {
+    let mut desc = load_scene("cornell").expect("built-in scene").desc;
+    for m in desc.materials.values_mut() {
+        m.ka = Rgb([0.0; 3]);
+    }
+    let mut settings = desc.render.clone();
+    (settings.width, settings.height) = (16, 12);
+    let reference = render_cpu(
+        &FlatScene::build(&desc, &glint_scene::RenderSettings { integrator: Integrator::Path, ..settings.clone() }),
+        &CpuOptions::default(),
+        RenderControl::default(),
+    )
+    .expect("path-traced reference")
+    .image;
+    let fit = fit_ambient(&desc, &settings, &reference, &CpuOptions::default()).expect("fit");
+    assert!(!fit.determined, "{fit:?}");
+    assert_eq!(fit.rmse_fitted, fit.rmse_without, "{fit:?}");
 }

@@ -20,6 +20,10 @@ use crate::render::{CpuOptions, CpuRenderError, RenderControl, render_cpu};
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct AmbientFit {
     pub ambient: [f64; 3],
+    /// Whether I_a changes the image at all in some channel: without k_a anywhere (or without
+    /// a pixel that sees it) no value fits better than another, and `ambient` is 0 for want of
+    /// one.
+    pub determined: bool,
     pub rmse_as_written: f64,
     pub rmse_without: f64,
     pub rmse_fitted: f64,
@@ -58,6 +62,7 @@ pub fn fit_ambient(
     let as_written = render(desc.world.ambient)?;
     let p = &reference.pixels;
     let mut ambient = [0.0; 3];
+    let mut determined = false;
     for (c, a) in ambient.iter_mut().enumerate() {
         let (mut num, mut den) = (0.0, 0.0);
         for ((w0, w1), r) in without.iter().zip(&unit).zip(p) {
@@ -65,12 +70,14 @@ pub fn fit_ambient(
             num += response * (r[c] - w0[c]);
             den += response * response;
         }
+        determined |= den > 0.0;
         *a = if den > 0.0 { (num / den).max(0.0) } else { 0.0 };
     }
     let fitted: Vec<DVec3> =
         without.iter().zip(&unit).map(|(w0, w1)| *w0 + DVec3::from(ambient) * (*w1 - *w0)).collect();
     Ok(AmbientFit {
         ambient,
+        determined,
         rmse_as_written: rmse(&as_written, p),
         rmse_without: rmse(&without, p),
         rmse_fitted: rmse(&fitted, p),

@@ -90,7 +90,14 @@ pub fn ui(ui: &mut egui::Ui, doc: &mut Document, fitter: &mut AmbientFitter) -> 
     if let Some(e) = &fitter.error {
         ui.colored_label(ui.visuals().warn_fg_color, e);
     }
-    if let Some((revision, fit, indirect)) = fitter.result {
+    if let Some((revision, fit, _)) = fitter.result
+        && !fit.determined
+    {
+        ui.label("No material has k_a: I_a changes nothing here, so no value fits better than another.");
+        if revision != doc.revision {
+            ui.weak("(fitted to an earlier edit of the scene)");
+        }
+    } else if let Some((revision, fit, indirect)) = fitter.result {
         let [r, g, b] = fit.ambient;
         ui.label(format!("Fitted I_a = ({r:.3}, {g:.3}, {b:.3})"));
         ui.label(format!(
