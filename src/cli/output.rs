@@ -13,7 +13,7 @@ use serde::Serialize;
 
 use super::backend::Run;
 use super::console::{say, tell};
-use super::units::ms;
+use super::units::{mrays_per_s, ms};
 
 /// Render settings as PNG tEXt chunks (`glint:*` keys).
 pub fn metadata(scene: &str, s: &RenderSettings, run: &Run, specialised: bool) -> Vec<(String, String)> {
@@ -100,6 +100,98 @@ struct JsonCounts {
     saved_by_bailout: u64,
 }
 
+impl From<&RayCounts> for JsonCounts {
+    fn from(c: &RayCounts) -> Self {
+        Self {
+            camera: c.camera,
+            shadow: c.shadow,
+            reflection: c.reflection,
+            refraction: c.refraction,
+            total: c.total(),
+            saved_by_bailout: c.bailout_saved,
+        }
+    }
+}
+
+/// One backend's `glint render --bench`: its warm-up run (rays, device, status) and the timed
+/// runs' median and least render time.
+pub struct BenchResult {
+    pub warm: Run,
+    pub median: std::time::Duration,
+    pub min: std::time::Duration,
+}
+
+impl BenchResult {
+    /// Camera samples a second, in millions.
+    pub fn msamples_per_s(&self, s: &RenderSettings) -> f64 {
+        f64::from(s.width) * f64::from(s.height) * f64::from(s.spp) / self.median.as_secs_f64() / 1e6
+    }
+}
+
+#[derive(Serialize)]
+struct JsonBenchRun<'a> {
+    backend: &'a str,
+    device: &'a str,
+    median_ms: f64,
+    min_ms: f64,
+    mrays_per_s: f64,
+    msamples_per_s: f64,
+    rays: JsonCounts,
+    gpu_status: u32,
+    incomplete: &'a [String],
+}
+
+#[derive(Serialize)]
+struct JsonBench<'a> {
+    scene: &'a str,
+    width: u32,
+    height: u32,
+    spp: u32,
+    depth: u32,
+    integrator: &'a str,
+    /// Whitted's bailout (the path tracer ends its paths by Russian roulette instead).
+    bailout: f64,
+    runs: u32,
+    backends: Vec<JsonBenchRun<'a>>,
+    /// The GPU's median render time over the CPU's, with both backends.
+    gpu_cpu_ratio: Option<f64>,
+}
+
+/// `glint render --bench --json`: the benchmark's results as one JSON object on stdout.
+pub fn print_bench_json(scene: &str, s: &RenderSettings, runs: u32, results: &[BenchResult]) -> anyhow::Result<()> {
+    let ratio = match results {
+        [cpu, gpu] => Some(gpu.median.as_secs_f64() / cpu.median.as_secs_f64()),
+        _ => None,
+    };
+    let report = JsonBench {
+        scene,
+        width: s.width,
+        height: s.height,
+        spp: s.spp,
+        depth: s.max_depth,
+        integrator: s.integrator.name(),
+        bailout: s.bailout,
+        runs,
+        backends: results
+            .iter()
+            .map(|r| JsonBenchRun {
+                backend: r.warm.backend.name(),
+                device: &r.warm.device,
+                median_ms: ms(r.median),
+                min_ms: ms(r.min),
+                mrays_per_s: mrays_per_s(r.warm.counts.total(), r.median),
+                msamples_per_s: r.msamples_per_s(s),
+                rays: JsonCounts::from(&r.warm.counts),
+                gpu_status: r.warm.gpu_status,
+                incomplete: &r.warm.incomplete,
+            })
+            .collect(),
+        gpu_cpu_ratio: ratio,
+    };
+    say!("{}", serde_json::to_string_pretty(&report)?)?;
+    Ok(())
+}
+
 #[derive(Serialize)]
 struct JsonErrors {
     max_abs: f64,
@@ -166,14 +258,7 @@ pub fn print_json(
                 render_ms: ms(r.render),
                 total_ms: ms(r.total),
                 mrays_per_s: r.mrays(),
-                rays: JsonCounts {
-                    camera: r.counts.camera,
-                    shadow: r.counts.shadow,
-                    reflection: r.counts.reflection,
-                    refraction: r.counts.refraction,
-                    total: r.counts.total(),
-                    saved_by_bailout: r.counts.bailout_saved,
-                },
+                rays: JsonCounts::from(&r.counts),
                 gpu_status: r.gpu_status,
                 incomplete: &r.incomplete,
             })

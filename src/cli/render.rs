@@ -11,12 +11,15 @@ use glint_core::memory::{self, RenderPlan, render_estimate};
 use glint_core::{Accel, Backend, CpuOptions, FlatScene};
 use glint_gpu::GpuOptions;
 use glint_io::{BUILTIN_SCENES, RESOLUTIONS};
-use glint_scene::{Integrator, integrator_warnings, unbounded_ray_tree};
+use glint_scene::{Integrator, RenderSettings, integrator_warnings, unbounded_ray_tree};
 
 use super::backend::{Run, open_gpu, run_cpu, run_gpu};
 use super::console::{say, tell};
 use super::interrupt;
-use super::output::{check_writable, fmt_counts, metadata, print_json, print_table, suffixed, write_diff, write_run};
+use super::output::{
+    BenchResult, check_writable, fmt_counts, metadata, print_bench_json, print_json, print_table, suffixed, write_diff,
+    write_run,
+};
 use super::output_path::check_outputs;
 use super::settings::{LoadArgs, SettingsArgs, is_model, load_with_estimate, parse_ray_cap, parse_threads};
 use super::tile::{TileJob, TileSpec, parse_tile, render_tile};
@@ -46,8 +49,8 @@ pub struct RenderArgs {
     pub threads: usize,
     /// The CPU's bound on one camera sample's ray tree [1, 2^40]: a pixel that reaches it is an
     /// error naming the pixel, never a silently cut tree (default 2^22 = 4,194,304)
-    #[arg(long, value_name = "RAYS", default_value_t = DEFAULT_MAX_RAYS_PER_SAMPLE, allow_negative_numbers = true, value_parser = parse_ray_cap)]
-    pub max_rays_per_sample: u64,
+    #[arg(long, value_name = "RAYS", allow_negative_numbers = true, value_parser = parse_ray_cap)]
+    pub max_rays_per_sample: Option<u64>,
     /// Run every feature of both tracers even where the scene does not need it
     #[arg(long)]
     pub no_specialise: bool,
@@ -60,7 +63,7 @@ pub struct RenderArgs {
     /// SCENE-tile-I.exr); `glint merge` joins the tiles
     #[arg(long, value_name = "I/N|N", allow_hyphen_values = true, value_parser = parse_tile)]
     pub tile: Option<TileSpec>,
-    /// Print the results as JSON instead of a table
+    /// Print the results as JSON instead of a table (with --bench, the benchmark's figures)
     #[arg(long)]
     pub json: bool,
     /// List the built-in scenes and exit
@@ -111,6 +114,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         }
         return Ok(());
     }
+    check_backend_flags(args)?;
     let (loaded, load_estimate) =
         load_with_estimate(&args.scene, &args.scene_size.options(), args.scene_size.memory_limit)?;
     let settings = args.settings.apply(&loaded.desc.render, is_model(&loaded))?;
@@ -131,7 +135,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         threads: args.threads,
         specialise,
         accel: args.accel,
-        max_rays_per_sample: args.max_rays_per_sample,
+        max_rays_per_sample: args.max_rays_per_sample.unwrap_or(DEFAULT_MAX_RAYS_PER_SAMPLE),
         region: None,
     };
     let gpu_options = GpuOptions { specialise, accel: args.accel, ..GpuOptions::default() };
@@ -158,7 +162,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     }
     if args.bench {
         let flat = FlatScene::build(&loaded.desc, &settings);
-        return bench(args, &loaded.name, &flat, &cpu_options, &gpu_options);
+        return bench(args, &loaded.name, &flat, &settings, &cpu_options, &gpu_options);
     }
     let output = args.output.clone().unwrap_or_else(|| PathBuf::from(format!("{}.png", loaded.name)));
     let plan = RenderPlan {
@@ -234,14 +238,31 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// Flags of a backend the render does not use would do nothing: errors, as `--runs` without
+/// `--bench` is.
+fn check_backend_flags(args: &RenderArgs) -> anyhow::Result<()> {
+    if args.adapter.is_some() && !args.backend.contains(&Backend::Gpu) {
+        bail!(
+            "--adapter chooses the GPU, and --backend cpu uses none: give --backend gpu or both, or leave --adapter out"
+        );
+    }
+    if args.max_rays_per_sample.is_some() && !args.backend.contains(&Backend::Cpu) {
+        bail!(
+            "--max-rays-per-sample bounds the CPU's ray trees, and --backend gpu does not run the CPU (the GPU's \
+             trees are bounded by its stack): give --backend cpu or both, or leave it out"
+        );
+    }
+    Ok(())
+}
+
 fn bench(
     args: &RenderArgs,
     name: &str,
     flat: &FlatScene,
+    settings: &RenderSettings,
     cpu: &CpuOptions,
     gpu_options: &GpuOptions,
 ) -> anyhow::Result<()> {
-    let h = &flat.header;
     let gpu = if args.backend.contains(&Backend::Gpu) { Some(open_gpu(args.adapter.as_deref())?) } else { None };
     let mut backends: Vec<Box<dyn Fn() -> anyhow::Result<Run>>> = Vec::new();
     if args.backend.contains(&Backend::Cpu) {
@@ -250,7 +271,7 @@ fn bench(
     if let Some(tracer) = &gpu {
         backends.push(Box::new(move || run_gpu(tracer, flat, gpu_options, true)));
     }
-    let mut medians = Vec::new();
+    let mut results = Vec::new();
     for render in &backends {
         let warm = render()?;
         for message in &warm.incomplete {
@@ -261,34 +282,40 @@ fn bench(
             times.push(render()?.render);
         }
         times.sort();
-        let median = times[times.len() / 2];
-        let mrays = mrays_per_s(warm.counts.total(), median);
-        // The bailout is Whitted's; a path render gives its samples per second instead.
-        let mode = match Integrator::try_from(h.integrator)? {
-            Integrator::Whitted => format!("bailout {}", h.bailout),
-            Integrator::Path => {
-                let samples = f64::from(h.width) * f64::from(h.height) * f64::from(h.spp);
-                format!("path tracer, {:.3} Msamples/s", samples / median.as_secs_f64() / 1e6)
-            }
-        };
-        say!(
-            "bench {name} {}: {}x{} {} spp depth {} {mode}, {}: median {:.1} ms, min {:.1} ms over {} runs, {:.2} Mrays/s; {}",
-            warm.backend.name(),
-            h.width,
-            h.height,
-            h.spp,
-            h.max_depth,
-            warm.device,
-            ms(median),
-            ms(times[0]),
-            args.runs,
-            mrays,
-            fmt_counts(&warm.counts)
-        )?;
-        medians.push((warm.backend, median));
+        let result = BenchResult { median: times[times.len() / 2], min: times[0], warm };
+        if !args.json {
+            say_bench_line(name, settings, args.runs, &result)?;
+        }
+        results.push(result);
     }
-    if let [(_, cpu), (_, gpu)] = medians.as_slice() {
-        say!("bench {name}: gpu/cpu render time ratio {:.2}", gpu.as_secs_f64() / cpu.as_secs_f64())?;
+    if args.json {
+        return print_bench_json(name, settings, args.runs, &results);
     }
+    if let [cpu, gpu] = results.as_slice() {
+        say!("bench {name}: gpu/cpu render time ratio {:.2}", gpu.median.as_secs_f64() / cpu.median.as_secs_f64())?;
+    }
+    Ok(())
+}
+
+/// One backend's `--bench` line.
+fn say_bench_line(name: &str, s: &RenderSettings, runs: u32, r: &BenchResult) -> anyhow::Result<()> {
+    // The bailout is Whitted's; a path render gives its samples per second instead.
+    let mode = match s.integrator {
+        Integrator::Whitted => format!("bailout {}", s.bailout),
+        Integrator::Path => format!("path tracer, {:.3} Msamples/s", r.msamples_per_s(s)),
+    };
+    say!(
+        "bench {name} {}: {}x{} {} spp depth {} {mode}, {}: median {:.1} ms, min {:.1} ms over {runs} runs, {:.2} Mrays/s; {}",
+        r.warm.backend.name(),
+        s.width,
+        s.height,
+        s.spp,
+        s.max_depth,
+        r.warm.device,
+        ms(r.median),
+        ms(r.min),
+        mrays_per_s(r.warm.counts.total(), r.median),
+        fmt_counts(&r.warm.counts)
+    )?;
     Ok(())
 }

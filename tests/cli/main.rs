@@ -376,6 +376,45 @@ fn bad_input_fails_cleanly() {
         &["--bench", "--output"],
         &[],
     );
+    expect_failure(
+        "adapter-on-the-cpu",
+        |d| os(&[&"render", &"whitted", &"--adapter", &"llvmpipe", &"-o", &d.join("out.png")]),
+        &["--adapter", "--backend gpu or both"],
+        &[],
+    );
+    expect_failure(
+        "cpu-bound-on-the-gpu",
+        |d| {
+            os(&[
+                &"render",
+                &"whitted",
+                &"--backend",
+                &"gpu",
+                &"--max-rays-per-sample",
+                &"5",
+                &"-o",
+                &d.join("out.png"),
+            ])
+        },
+        &["--max-rays-per-sample", "--backend cpu or both"],
+        &[],
+    );
+}
+
+#[test]
+fn a_benchmark_prints_its_figures_as_json_when_asked() {
+    let dir = TempDir::new("bench-json");
+    let out =
+        glint(&dir, ["render", "whitted", "--width", "24", "--height", "16", "--bench", "--runs", "2", "--json", "-q"]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).expect("--bench --json prints JSON");
+    assert_eq!(json["scene"], "whitted");
+    assert_eq!(json["runs"], 2);
+    let cpu = &json["backends"][0];
+    assert_eq!(cpu["backend"], "cpu");
+    assert!(cpu["median_ms"].as_f64().is_some_and(|v| v > 0.0) && cpu["min_ms"].as_f64() <= cpu["median_ms"].as_f64());
+    assert_eq!(cpu["rays"]["camera"], 24 * 16);
+    assert!(json["gpu_cpu_ratio"].is_null(), "one backend has no ratio");
 }
 
 #[test]
