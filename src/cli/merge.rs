@@ -73,6 +73,19 @@ fn tile_index(path: &Path, header: &ExrHeader) -> anyhow::Result<(u32, u32)> {
     parsed.with_context(|| format!("{}: glint:tile is '{value}', not I/N", path.display()))
 }
 
+/// Ascending indices as runs, "3" or "5-9", as a job array's `--array` takes them: 3,000
+/// missing tiles are a line, not 17 KB.
+fn index_ranges(sorted: &[u32]) -> Vec<String> {
+    let mut runs: Vec<(u32, u32)> = Vec::new();
+    for &i in sorted {
+        match runs.last_mut() {
+            Some((_, last)) if *last + 1 == i => *last = i,
+            _ => runs.push((i, i)),
+        }
+    }
+    runs.into_iter().map(|(a, b)| if a == b { a.to_string() } else { format!("{a}-{b}") }).collect()
+}
+
 pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
     let ext = args.output.extension().map(|e| e.to_string_lossy().to_ascii_lowercase());
     let png = match ext.as_deref() {
@@ -101,6 +114,14 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
                 keys[k],
                 theirs[k].as_deref().unwrap_or("absent"),
                 ours[k].as_deref().unwrap_or("absent"),
+            );
+        }
+        // `glint render --tile` writes no incomplete tile; one marked so was made otherwise.
+        if let Some(missing) = header.attribute("glint:incomplete") {
+            bail!(
+                "{}: marked incomplete (glint:incomplete: {missing}): its GPU render lost work, and the merge would \
+                 hide it; render the tile again; nothing was written",
+                path.display()
             );
         }
         if let Some(why) = &header.inexact {
@@ -140,12 +161,15 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
             );
         }
     }
-    let missing: Vec<String> = (0..count).filter(|i| !by_index.contains_key(i)).map(|i| i.to_string()).collect();
+    let missing: Vec<u32> = (0..count).filter(|i| !by_index.contains_key(i)).collect();
     if !missing.is_empty() {
+        let runs = index_ranges(&missing);
         bail!(
-            "{} of {count} tiles are missing: {} (render them with --tile I/{count}); nothing was written",
+            "{} of {count} tiles are missing: {} (render them with --tile I/{count}; as a Slurm array, \
+             --array={}); nothing was written",
             missing.len(),
-            missing.join(", ")
+            runs.join(", "),
+            runs.join(",")
         );
     }
     let sources: Vec<&Path> = args.tiles.iter().map(PathBuf::as_path).collect();
@@ -182,4 +206,16 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
     }
     say!("merged {count} tiles ({} grid) into {width}x{height}: wrote {}", grid.describe(), args.output.display())?;
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn missing_indices_are_named_as_runs() {
+        assert_eq!(index_ranges(&[1, 2, 3, 7, 9, 10]), ["1-3", "7", "9-10"]);
+        assert_eq!(index_ranges(&(1..3007).collect::<Vec<_>>()), ["1-3006"]);
+        assert!(index_ranges(&[]).is_empty());
+    }
 }

@@ -338,9 +338,9 @@ pub fn check_writable(
     run: &Run,
     desc: &SceneDesc,
     settings: &RenderSettings,
-    allow_incomplete: bool,
+    incomplete: Incomplete,
 ) -> anyhow::Result<()> {
-    check_complete(run, allow_incomplete)?;
+    check_complete(run, incomplete)?;
     if let Some(found) = run.image.unrepresentable() {
         bail!(
             "the {} render is not a valid image: {found}; no image was written. In this scene: {}",
@@ -353,21 +353,47 @@ pub fn check_writable(
 
 /// A render whose shader raised a status flag is missing work: an error, or with
 /// `--allow-incomplete` a warning (and its PNG metadata says so: `output::metadata`).
-fn check_complete(run: &Run, allow_incomplete: bool) -> anyhow::Result<()> {
+fn check_complete(run: &Run, incomplete: Incomplete) -> anyhow::Result<()> {
     if run.incomplete.is_empty() {
         return Ok(());
     }
-    if allow_incomplete {
-        for message in &run.incomplete {
-            tell!("warning: the {} image is incomplete: {message}", run.backend.name());
+    let remedy = match incomplete {
+        Incomplete::Allow => {
+            for message in &run.incomplete {
+                tell!("warning: the {} image is incomplete: {message}", run.backend.name());
+            }
+            return Ok(());
         }
-        return Ok(());
-    }
+        Incomplete::Refuse => {
+            "no image was written (pass --allow-incomplete to write it anyway, marked as incomplete \
+                               in its metadata)"
+        }
+        Incomplete::RefuseTile => {
+            "no tile was written (a tile is never written incomplete: the merge would hide \
+                                   which tile lost work)"
+        }
+    };
     bail!(
-        "the {} render is incomplete (status {:#x}): {}; no image was written (pass --allow-incomplete to write it \
-         anyway, marked as incomplete in its metadata)",
+        "the {} render is incomplete (status {:#x}): {}; {remedy}",
         run.backend.name(),
         run.gpu_status,
         run.incomplete.join("; ")
     )
+}
+
+/// What may become of an image whose shader raised a status flag (work is missing).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Incomplete {
+    /// An error that names `--allow-incomplete`.
+    Refuse,
+    /// Written with a warning, marked in its metadata (`--allow-incomplete`).
+    Allow,
+    /// A tile: never written incomplete.
+    RefuseTile,
+}
+
+impl Incomplete {
+    pub fn allowed(allow: bool) -> Self {
+        if allow { Self::Allow } else { Self::Refuse }
+    }
 }

@@ -17,8 +17,8 @@ use super::backend::{Run, open_gpu, run_cpu, run_gpu};
 use super::console::{say, tell};
 use super::interrupt;
 use super::output::{
-    BenchResult, check_writable, fmt_counts, metadata, print_bench_json, print_json, print_table, suffixed, write_diff,
-    write_run,
+    BenchResult, Incomplete, check_writable, fmt_counts, metadata, print_bench_json, print_json, print_table, suffixed,
+    write_diff, write_run,
 };
 use super::output_path::check_outputs;
 use super::settings::{LoadArgs, SettingsArgs, is_model, load_with_estimate, parse_ray_cap, parse_threads};
@@ -146,6 +146,12 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         if args.bench || args.json {
             bail!("--tile writes one tile; it has no --bench or --json");
         }
+        if args.allow_incomplete {
+            bail!(
+                "--tile writes no incomplete tile (a merge would hide which tile lost work), so --allow-incomplete \
+                 does nothing there: leave it out"
+            );
+        }
         return render_tile(TileJob {
             loaded: &loaded,
             settings: &settings,
@@ -201,7 +207,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     runs.extend(gpu_run);
     // Every image is checked before any is written: a failure leaves no file at all.
     for run in &runs {
-        check_writable(run, &loaded.desc, &settings, args.allow_incomplete)?;
+        check_writable(run, &loaded.desc, &settings, Incomplete::allowed(args.allow_incomplete))?;
     }
     let mut outputs = Vec::new();
     for run in &runs {

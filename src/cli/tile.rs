@@ -16,7 +16,7 @@ use glint_scene::RenderSettings;
 use super::backend::{open_gpu, run_cpu, run_gpu};
 use super::console::say;
 use super::interrupt;
-use super::output::{check_writable, metadata};
+use super::output::{Incomplete, check_writable, metadata};
 use super::output_path::check_outputs;
 
 /// The array-index variables of the schedulers, in the order they are looked for.
@@ -83,10 +83,22 @@ pub struct TileJob<'a> {
 }
 
 pub fn render_tile(job: TileJob) -> anyhow::Result<()> {
-    let (index, source) = resolve_index(job.spec)?;
     let (w, h) = (job.settings.width, job.settings.height);
+    // The grid first: `--tile 0` is no grid, whatever the scheduler says.
     let grid = TileGrid::new(job.spec.count, w, h).context("--tile")?;
-    let rect = grid.rect(index).context("--tile")?;
+    let (index, source) = resolve_index(job.spec)?;
+    let rect = grid.rect(index).with_context(|| match job.spec.index {
+        Some(_) => "--tile".to_string(),
+        None => {
+            let last = grid.count() - 1;
+            format!(
+                "--tile {} with the index from {source}: an array of {} tasks numbers them 0 to {last} \
+                 (Slurm: --array=0-{last})",
+                grid.count(),
+                grid.count()
+            )
+        }
+    })?;
     let output = job.output.unwrap_or_else(|| PathBuf::from(format!("{}-tile-{index}.exr", job.loaded.name)));
     if !output.extension().is_some_and(|e| e.eq_ignore_ascii_case("exr")) {
         bail!(
@@ -109,7 +121,7 @@ pub fn render_tile(job: TileJob) -> anyhow::Result<()> {
         }
     };
     // An incomplete tile is never written: a merge would hide which tile lost work.
-    check_writable(&run, &job.loaded.desc, job.settings, false)?;
+    check_writable(&run, &job.loaded.desc, job.settings, Incomplete::RefuseTile)?;
     let mut tags = metadata(&job.loaded.name, job.settings, &run, job.specialise);
     tags.extend([
         ("glint:scene_hash".to_string(), hash),

@@ -156,6 +156,22 @@ fn tiles_that_do_not_belong_together_are_refused_by_name_and_nothing_is_written(
         assert!(done.status.success(), "{}", text(&done.stderr));
     }
     assert_eq!(bits(&piz_merge), bits(&whole_merge), "a PIZ copy of a tile merged into other bits");
+    // `--tile` writes no incomplete tile; a tile marked so (made otherwise) is refused.
+    let marked = dir.join("marked.exr");
+    let incomplete = read_exr(&t[1]).expect("tile");
+    let mut attributes = incomplete.header.attributes.clone();
+    attributes.push(("glint:incomplete".into(), "the GPU's loop cut-off".into()));
+    let (w, h) = (incomplete.header.width as usize, incomplete.header.height);
+    glint_io::exr_file::write_exr_region(
+        &marked,
+        incomplete.header.display,
+        incomplete.header.origin,
+        (w as u32, h),
+        |x, y| incomplete.rgb[y * w + x],
+        &attributes,
+    )
+    .expect("marked tile");
+    refused(&[t[0].clone(), marked, t[2].clone()], "marked incomplete (glint:incomplete: the GPU's loop cut-off)");
     // An output that is one of the tiles (the first included) is named as a tile.
     for i in [0, 2] {
         let done = merge(&dir, &t, &t[i]);
@@ -204,11 +220,28 @@ fn the_tile_index_comes_from_the_flag_or_a_schedulers_variable() {
     for name in ["SLURM_ARRAY_TASK_ID", "JOB_COMPLETION_INDEX", "AWS_BATCH_JOB_ARRAY_INDEX", "--tile I/3"] {
         assert!(stderr.contains(name), "{stderr}");
     }
+    // An index past the grid from the scheduler (`--array=1-3` for 3 tiles) names where it
+    // came from and the array that numbers them.
+    let done = std::process::Command::new(env!("CARGO_BIN_EXE_glint"))
+        .args(["render", "whitted", "--width", "24", "--height", "16", "--tile", "3", "-q"])
+        .current_dir(&*dir)
+        .env("SLURM_ARRAY_TASK_ID", "3")
+        .output()
+        .expect("run glint");
+    assert!(!done.status.success());
+    let stderr = text(&done.stderr);
+    assert!(
+        stderr.contains("from SLURM_ARRAY_TASK_ID (Slurm job arrays)") && stderr.contains("--array=0-2"),
+        "{stderr}"
+    );
     for (args, wanted) in [
         (&["--tile", "3/3"][..], "tiles are numbered 0 to 2"),
         (&["--tile", "1/3", "--backend", "both"][..], "--tile renders on one backend"),
         (&["--tile", "1/3", "-o", "t.png"][..], "a tile is written as OpenEXR"),
-        (&["--tile", "0/500"][..], "500 tiles of a 24x16 image"),
+        (&["--tile", "0/500"][..], "500 tiles fit no grid of a 24x16 image"),
+        (&["--tile", "0/29"][..], "the nearest counts that fit one are 28 and 30"),
+        (&["--tile", "0"][..], "a grid needs at least one tile"),
+        (&["--tile", "1/3", "--allow-incomplete"][..], "--tile writes no incomplete tile"),
     ] {
         let done = glint(&dir, ["render", "whitted"].iter().chain(&size).chain(args));
         assert!(!done.status.success(), "{args:?}");

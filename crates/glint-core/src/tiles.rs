@@ -52,8 +52,12 @@ pub struct TileGrid {
 pub enum TileGridError {
     #[error("a grid needs at least one tile")]
     NoTiles,
-    #[error("{count} tiles of a {width}x{height} image: each tile needs at least one pixel; use at most {most}")]
-    TooMany { count: u32, width: u32, height: u32, most: u64 },
+    #[error(
+        "{count} tiles fit no grid of a {width}x{height} image: the tiles are columns × rows, with at most {width} \
+         columns and {height} rows (a pixel each){}",
+        nearest_text(*nearest)
+    )]
+    NoGrid { count: u32, width: u32, height: u32, nearest: (Option<u32>, Option<u32>) },
     #[error("tile {index} of {count}: tiles are numbered 0 to {last}")]
     OutOfRange { index: u32, count: u32, last: u32 },
 }
@@ -65,12 +69,12 @@ impl TileGrid {
         if count == 0 {
             return Err(TileGridError::NoTiles);
         }
-        let ideal = (f64::from(count) * f64::from(width) / f64::from(height.max(1))).sqrt();
-        let fits = |cols: u32| cols <= width && count / cols <= height;
-        let cols = (1..=count)
-            .filter(|c| count.is_multiple_of(*c) && fits(*c))
-            .min_by(|a, b| (f64::from(*a) - ideal).abs().total_cmp(&(f64::from(*b) - ideal).abs()))
-            .ok_or(TileGridError::TooMany { count, width, height, most: u64::from(width) * u64::from(height) })?;
+        let cols = grid_columns(count, width, height).ok_or_else(|| TileGridError::NoGrid {
+            count,
+            width,
+            height,
+            nearest: nearest_counts(count, width, height),
+        })?;
         Ok(Self { cols, rows: count / cols, width, height })
     }
 
@@ -97,6 +101,54 @@ impl TileGrid {
     /// "COLSxROWS", as tile files record it.
     pub fn describe(&self) -> String {
         format!("{}x{}", self.cols, self.rows)
+    }
+}
+
+/// The divisors of `n`, ascending (found up to √n: a count of 4e9 takes 65,536 steps, not 4e9).
+fn divisors(n: u32) -> Vec<u32> {
+    let mut out = Vec::new();
+    let mut i = 1u32;
+    while u64::from(i) * u64::from(i) <= u64::from(n) {
+        if n.is_multiple_of(i) {
+            out.push(i);
+            if i != n / i {
+                out.push(n / i);
+            }
+        }
+        i += 1;
+    }
+    out.sort_unstable();
+    out
+}
+
+/// The columns of the grid of `count` tiles over `width`×`height`: the divisor of `count`
+/// nearest √(count·width/height) (the smaller of two as near) among those that leave every
+/// tile a pixel (at most `width` columns and `height` rows); `None` where no divisor does.
+fn grid_columns(count: u32, width: u32, height: u32) -> Option<u32> {
+    let ideal = (f64::from(count) * f64::from(width) / f64::from(height.max(1))).sqrt();
+    let fits = |cols: u32| cols <= width && count / cols <= height;
+    divisors(count)
+        .into_iter()
+        .filter(|c| fits(*c))
+        .min_by(|a, b| (f64::from(*a) - ideal).abs().total_cmp(&(f64::from(*b) - ideal).abs()))
+}
+
+/// How far from a count no grid takes `nearest_counts` looks for one that a grid does.
+const NEAREST_SEARCH: u32 = 1000;
+
+/// The nearest counts below and above `count` that some grid of `width`×`height` takes.
+fn nearest_counts(count: u32, width: u32, height: u32) -> (Option<u32>, Option<u32>) {
+    let fits = |n: &u32| grid_columns(*n, width, height).is_some();
+    let below = (count.saturating_sub(NEAREST_SEARCH).max(1)..count).rev().find(fits);
+    let above = (count.saturating_add(1)..=count.saturating_add(NEAREST_SEARCH)).find(fits);
+    (below, above)
+}
+
+fn nearest_text(nearest: (Option<u32>, Option<u32>)) -> String {
+    match nearest {
+        (Some(a), Some(b)) => format!("; the nearest counts that fit one are {a} and {b}"),
+        (Some(n), None) | (None, Some(n)) => format!("; the nearest count that fits one is {n}"),
+        (None, None) => String::new(),
     }
 }
 
@@ -127,12 +179,38 @@ mod tests {
     }
 
     #[test]
+    fn the_columns_are_those_a_search_over_every_divisor_gives() {
+        // The grid a tile file records must not change: the √ enumeration picks what the plain
+        // search over 1..=count picked.
+        for (w, h) in [(96, 72), (7, 3), (1920, 1080), (5, 200), (97, 31)] {
+            for count in 1..=300u32 {
+                let ideal = (f64::from(count) * f64::from(w) / f64::from(h)).sqrt();
+                let plain = (1..=count)
+                    .filter(|c| count.is_multiple_of(*c) && *c <= w && count / *c <= h)
+                    .min_by(|a, b| (f64::from(*a) - ideal).abs().total_cmp(&(f64::from(*b) - ideal).abs()));
+                assert_eq!(grid_columns(count, w, h), plain, "{count} of {w}x{h}");
+            }
+        }
+    }
+
+    #[test]
     fn the_grid_is_near_square_and_bad_counts_are_errors() {
         assert_eq!(TileGrid::new(64, 7680, 4320).map(|g| g.describe()), Ok("8x8".to_string()));
         assert_eq!(TileGrid::new(4, 96, 72).map(|g| g.describe()), Ok("2x2".to_string()));
         assert_eq!(TileGrid::new(7, 96, 72).map(|g| g.describe()), Ok("1x7".to_string()));
         assert_eq!(TileGrid::new(0, 96, 72), Err(TileGridError::NoTiles));
-        assert!(matches!(TileGrid::new(13, 2, 2), Err(TileGridError::TooMany { .. })));
+        assert_eq!(
+            TileGrid::new(13, 2, 2),
+            Err(TileGridError::NoGrid { count: 13, width: 2, height: 2, nearest: (Some(4), None) })
+        );
+        // 101 is prime and above both sides of 97×31 (a user was told "use at most 3007").
+        let error = TileGrid::new(101, 97, 31).expect_err("no grid");
+        assert_eq!(
+            error.to_string(),
+            "101 tiles fit no grid of a 97x31 image: the tiles are columns × rows, with at most 97 columns and 31 \
+             rows (a pixel each); the nearest counts that fit one are 100 and 102"
+        );
+        assert_eq!(TileGrid::new(4_000_000_000, 1920, 1080).map(|g| g.count()).ok(), None, "fast, and no grid");
         let grid = TileGrid::new(4, 96, 72).unwrap();
         assert_eq!(grid.rect(4), Err(TileGridError::OutOfRange { index: 4, count: 4, last: 3 }));
         assert_eq!(grid.rect(3), Ok(PixelRect { x0: 48, y0: 36, width: 48, height: 36 }));
