@@ -80,7 +80,16 @@ pub struct ReportArgs {
     pub shard: Option<shard::ShardSpec>,
     /// Merge the shards' files found in these folders (comma-separated) into the report a
     /// one-machine run writes, in --out; names every missing shard
-    #[arg(long, value_delimiter = ',', value_name = "DIR", conflicts_with_all = ["shard", "scenes", "quick"])]
+    /// (The sweep's flags would do nothing here: the shards' files say how they were run.)
+    #[arg(
+        long,
+        value_delimiter = ',',
+        value_name = "DIR",
+        conflicts_with_all = [
+            "shard", "scenes", "quick", "width", "height", "reference_spp", "runs", "adapter", "cpu_only",
+            "threads", "integrator",
+        ]
+    )]
     pub merge: Vec<PathBuf>,
     /// No progress bar
     #[arg(short, long)]
@@ -267,8 +276,12 @@ fn merge(args: &ReportArgs, started: Instant) -> anyhow::Result<()> {
     let first = &files[0];
     let plan = if first.quick { Plan::quick(first.reference_spp) } else { Plan::full(first.reference_spp) };
     let planned = plan.configs(&first.backends);
-    let (machine, width, height, runs, quick, integrator) =
+    let (mut machine, width, height, runs, quick, integrator) =
         (first.machine.clone(), first.width, first.height, first.runs, first.quick, first.integrator);
+    // The report says the merge made it, and when; the shards' own commands and machines are
+    // listed in its Shards section.
+    let now = machine::Machine::probe();
+    (machine.command, machine.date) = (now.command, now.date);
     let devices: Vec<(String, String)> =
         files.iter().map(|f| (f.cpu_device.clone(), f.gpu_device.clone().unwrap_or_default())).collect();
     let machines: Vec<String> = files
@@ -288,7 +301,7 @@ fn merge(args: &ReportArgs, started: Instant) -> anyhow::Result<()> {
         .collect();
     let gpu_device = files[0].gpu_device.clone();
     let gi_results = shard::join_gi(&mut files);
-    let mut results = shard::join(&mut files, &planned);
+    let mut results = shard::join(&mut files, &planned)?;
     std::fs::create_dir_all(&args.out).with_context(|| format!("cannot create {}", args.out.display()))?;
     for result in &mut results {
         pareto::mark_fronts(&mut result.rows);

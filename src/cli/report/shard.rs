@@ -222,8 +222,10 @@ pub fn join_gi(files: &mut [ShardFile]) -> Vec<super::gi::GiResult> {
     all
 }
 
-/// The shards' rows joined per scene, in the sweep's order of scenes and of configurations.
-pub fn join(files: &mut [ShardFile], planned: &[Planned]) -> Vec<SceneResult> {
+/// The shards' rows joined per scene, in the sweep's order of scenes and of configurations;
+/// an error where a scene lacks a configuration or has one twice (a shard's file edited or cut
+/// short: the shards' split gives each configuration to exactly one).
+pub fn join(files: &mut [ShardFile], planned: &[Planned]) -> anyhow::Result<Vec<SceneResult>> {
     let position = |c: &Config| planned.iter().position(|p| p.config == *c).unwrap_or(usize::MAX);
     let names = files[0].scenes.clone();
     let parts: Vec<SceneResult> = files.iter_mut().flat_map(|f| std::mem::take(&mut f.results)).collect();
@@ -240,8 +242,18 @@ pub fn join(files: &mut [ShardFile], planned: &[Planned]) -> Vec<SceneResult> {
     out.sort_by_key(|j| names.iter().position(|n| *n == j.name).unwrap_or(usize::MAX));
     for j in &mut out {
         j.rows.sort_by_key(|r| position(&r.config));
+        let measured: Vec<usize> = j.rows.iter().map(|r| position(&r.config)).collect();
+        if measured != (0..planned.len()).collect::<Vec<_>>() {
+            bail!(
+                "scene {} has {} rows in the shards, not the sweep's {} configurations once each: a shard's file was \
+                 edited or cut short; run that shard again; nothing was written",
+                j.name,
+                j.rows.len(),
+                planned.len()
+            );
+        }
     }
-    out
+    Ok(out)
 }
 
 #[cfg(test)]
