@@ -9,6 +9,10 @@ use clap::Parser;
 fn main() -> ExitCode {
     quiet_device_select_without_a_session();
     env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("warn"))
+        // wgpu's parser of WGPU_BACKEND warns of a name it does not know, and glint's own error
+        // says which names are allowed (RUST_LOG=wgpu_types::backend=warn shows it).
+        .filter_module("wgpu_types::backend", log::LevelFilter::Error)
+        .parse_env(env_logger::Env::default())
         .format_timestamp_millis()
         .init();
     let args = cli::Cli::parse();

@@ -177,11 +177,27 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         exr: output.extension().is_some_and(|e| e.eq_ignore_ascii_case("exr")),
     };
     let estimate = render_estimate(&loaded.desc, &settings, plan);
+    // Only the remedies this render can take.
+    let mut remedies = vec!["lower --width and --height"];
+    if plan.cpu && plan.gpu {
+        remedies.push("render on one backend");
+    }
+    if plan.exr {
+        remedies.push("write a PNG instead of an EXR");
+    }
+    if args.scene_size.memory_limit.is_some() {
+        remedies.push("raise --memory-limit");
+    }
+    let remedy = match remedies.split_last() {
+        Some((last, [])) => last.to_string(),
+        Some((last, rest)) => format!("{}, or {last}", rest.join(", ")),
+        None => String::new(),
+    };
     memory::check(
         format!("rendering {} at {}x{}", loaded.name, settings.width, settings.height),
         &estimate,
         args.scene_size.memory_limit,
-        "lower --width and --height, render on one backend, or write a PNG instead of an EXR",
+        &remedy,
     )?;
     let both = args.backend.len() > 1;
     let image_path = |run: &Run| if both { suffixed(&output, run.backend.name()) } else { output.clone() };

@@ -35,7 +35,9 @@ pub struct TileSpec {
 
 pub fn parse_tile(s: &str) -> Result<TileSpec, String> {
     let number = |t: &str, what: &str| {
-        t.trim().parse::<u32>().map_err(|_| format!("'{t}' is not a whole number ({what}); use I/N or N"))
+        t.trim()
+            .parse::<u32>()
+            .map_err(|_| format!("'{t}' is not a whole number from 0 to {} ({what}); use I/N or N", u32::MAX))
     };
     match s.split_once('/') {
         Some((i, n)) => {
@@ -147,7 +149,12 @@ mod tests {
     fn tile_specs_parse_or_say_what_is_wrong() {
         assert_eq!(parse_tile("3/8"), Ok(TileSpec { index: Some(3), count: 8 }));
         assert_eq!(parse_tile("8"), Ok(TileSpec { index: None, count: 8 }));
-        assert!(parse_tile("a/8").unwrap_err().contains("'a' is not a whole number (the tile's index)"));
+        assert!(
+            parse_tile("a/8")
+                .unwrap_err()
+                .contains("'a' is not a whole number from 0 to 4294967295 (the tile's index)")
+        );
+        assert!(parse_tile("4294967296").unwrap_err().contains("from 0 to 4294967295 (the tile count)"));
         assert!(parse_tile("3/-1").unwrap_err().contains("the tile count"));
     }
 }

@@ -223,15 +223,18 @@ fn spot_cutoff_range() {
 
 #[test]
 fn negative_k_values() {
-    for (from, to, field, channel) in [
-        ("ka = 0.1", "ka = -0.1", "materials.red.ka", "r"),
-        ("kd = [0.7, 0.1, 0.1]", "kd = [0.7, -0.1, 0.1]", "materials.red.kd", "g"),
-        ("ks = 0.3", "ks = [0.3, 0.3, -1e-9]", "materials.red.ks", "b"),
-        ("kr = 0.1", "kr = -0.5", "materials.glass.kr", "r"),
-        ("kt = 0.8", "kt = [-0.8, 0.8, 0.8]", "materials.glass.kt", "r"),
+    // A grey (one number) is one value, named once; a channel of three is named by its letter.
+    for (from, to, field, which) in [
+        ("ka = 0.1", "ka = -0.1", "materials.red.ka", "-0.1 (every channel)"),
+        ("kd = [0.7, 0.1, 0.1]", "kd = [0.7, -0.1, 0.1]", "materials.red.kd", "channel g"),
+        ("ks = 0.3", "ks = [0.3, 0.3, -1e-9]", "materials.red.ks", "channel b"),
+        ("kr = 0.1", "kr = -0.5", "materials.glass.kr", "-0.5 (every channel)"),
+        ("kt = 0.8", "kt = [-0.8, 0.8, 0.8]", "materials.glass.kt", "channel r"),
     ] {
-        expect_invalid(&edited(from, to), field, &[&format!("channel {channel}"), "[0, 1e9]"]);
+        expect_invalid(&edited(from, to), field, &[which, "[0, 1e9]"]);
     }
+    let grey = parse_scene(&edited("ka = 0.1", "ka = -0.1"), Path::new(FILE)).expect_err("invalid");
+    assert_eq!(grey.issues().len(), 1, "a grey is one message: {grey}");
 }
 
 #[test]
@@ -431,7 +434,11 @@ fn texture_error(texture: &str, field: &str, fragments: &[&str]) {
 fn bad_texture_paths_name_the_file_field_and_reason() {
     let field = "materials.red.texture.path";
     texture_error("texture = { path = \"missing.png\" }", field, &["missing.png", "No such file"]);
-    texture_error("texture = { path = \"../outside.png\" }", field, &["../outside.png", "outside the model's folder"]);
+    texture_error(
+        "texture = { path = \"../outside.png\" }",
+        field,
+        &["../outside.png", "outside the folder of the file that names it"],
+    );
     texture_error("texture = { path = \"/etc/passwd\" }", field, &["/etc/passwd", "absolute path"]);
     texture_error("texture = { path = \"file:///etc/passwd\" }", field, &["scheme `file:`"]);
     texture_error("texture = { path = \"image.txt\" }", field, &["not a PNG or JPEG"]);

@@ -25,7 +25,7 @@ pub enum UriError {
     Absolute { uri: String },
     #[error("URI `{uri}` uses the scheme `{scheme}:`; only `data:` URIs and relative paths are read")]
     Scheme { uri: String, scheme: String },
-    #[error("URI `{uri}` resolves to {path}, outside the model's folder {folder}")]
+    #[error("URI `{uri}` resolves to {path}, outside the folder of the file that names it, {folder}")]
     Escapes { uri: String, path: PathBuf, folder: PathBuf },
     #[error("URI `{uri}` has a malformed percent-escape or is not UTF-8 once decoded")]
     Percent { uri: String },
@@ -179,9 +179,9 @@ mod tests {
         let (root, model) = folder();
         let secret = root.path().join("secret.bin");
         let cases = [
-            ("../secret.bin", "outside the model's folder"),
-            ("sub/../../secret.bin", "outside the model's folder"),
-            ("%2E%2E/secret.bin", "outside the model's folder"),
+            ("../secret.bin", "outside the folder of the file that names it"),
+            ("sub/../../secret.bin", "outside the folder of the file that names it"),
+            ("%2E%2E/secret.bin", "outside the folder of the file that names it"),
             (secret.to_str().unwrap(), "absolute path"),
             ("file:///etc/passwd", "scheme `file:`"),
             ("http://example.com/x.bin", "scheme `http:`"),
@@ -206,7 +206,7 @@ mod tests {
         let link = model.parent().unwrap().join("link.bin");
         std::os::unix::fs::symlink(root.path().join("secret.bin"), &link).unwrap();
         let message = resolve_uri(&model, "link.bin", 100).unwrap_err().to_string();
-        assert!(message.contains("outside the model's folder"), "{message}");
+        assert!(message.contains("outside the folder of the file that names it"), "{message}");
     }
 
     #[test]

@@ -16,8 +16,7 @@ pub const WARN_RAYS_PER_SAMPLE: f64 = 65_536.0;
 /// The levels of the deepest ray a tree can reach: `max_depth`, or fewer where the bailout
 /// stops every path first.
 pub fn reachable_depth(desc: &SceneDesc, settings: &RenderSettings) -> u32 {
-    let gain =
-        desc.materials.values().map(|m| (0..3).map(|c| m.kr.0[c] + m.kt.0[c]).fold(0.0, f64::max)).fold(0.0, f64::max);
+    let gain = largest_gain(desc);
     if settings.bailout > 0.0 && gain < 1.0 {
         if gain <= 0.0 {
             return 0;
@@ -28,6 +27,15 @@ pub fn reachable_depth(desc: &SceneDesc, settings: &RenderSettings) -> u32 {
     }
     settings.max_depth
 }
+
+/// g: the largest max-channel k_r + k_t of any material, the most a level multiplies a path's
+/// weight by.
+fn largest_gain(desc: &SceneDesc) -> f64 {
+    desc.materials.values().map(|m| (0..3).map(|c| m.kr.0[c] + m.kt.0[c]).fold(0.0, f64::max)).fold(0.0, f64::max)
+}
+
+/// The levels of the largest tree not warned about: 2^(k+1) − 1 ≤ `WARN_RAYS_PER_SAMPLE`.
+const UNWARNED_LEVELS: i32 = 15;
 
 /// The warning for a scene whose ray tree can grow past `WARN_RAYS_PER_SAMPLE` rays a camera
 /// sample, naming a branching material, the bound and the remedy; `None` for the others.
@@ -52,10 +60,23 @@ pub fn unbounded_ray_tree(desc: &SceneDesc, settings: &RenderSettings) -> Option
             settings.max_depth
         )
     };
+    // A bailout that a gain below 1 lets work is already set: what stops the tree in time is
+    // a larger one (g^15 stops it after 15 levels) or a lower depth.
+    let gain = largest_gain(desc);
+    let remedy = if settings.bailout > 0.0 && gain < 1.0 {
+        format!(
+            "raise render.bailout to {} or more (k_r + k_t = {} then stops it after {UNWARNED_LEVELS} levels) or lower \
+             render.max_depth to {UNWARNED_LEVELS}",
+            // Rounded up to three decimals: at least g^15.
+            format_number((gain.powi(UNWARNED_LEVELS) * 1e3).ceil() / 1e3),
+            format_number(gain)
+        )
+    } else {
+        "set render.bailout (e.g. 1/255, with k_r + k_t < 1) or lower render.max_depth".to_string()
+    };
     Some(format!(
         "materials.{name} reflects and refracts (k_r = {}, k_t = {}), so a ray tree can double at every level, and \
-         {stop}: up to 2^{} − 1{} rays per camera sample; set render.bailout (e.g. 1/255, with k_r + k_t < 1) \
-         or lower render.max_depth",
+         {stop}: up to 2^{} − 1{} rays per camera sample; {remedy}",
         format_number(m.kr.max_channel()),
         format_number(m.kt.max_channel()),
         depth + 1,
@@ -89,7 +110,16 @@ mod tests {
         assert!(text.ends_with("or lower render.max_depth"), "{text}");
         // 0.9^k ≥ 1/255 up to k = 52 levels: the bailout bounds it, but not below the threshold.
         assert_eq!(reachable_depth(&glass, &settings(1024, 1.0 / 255.0)), 52);
-        assert!(unbounded_ray_tree(&glass, &settings(1024, 1.0 / 255.0)).unwrap().contains("only after 52 levels"));
+        let bounded = unbounded_ray_tree(&glass, &settings(1024, 1.0 / 255.0)).unwrap();
+        assert!(bounded.contains("only after 52 levels"), "{bounded}");
+        // Its bailout already works; a larger one is the remedy (0.9^15 = 0.2059), not "set" one.
+        assert!(
+            bounded.ends_with(
+                "raise render.bailout to 0.206 or more (k_r + k_t = 0.9 then stops it after 15 levels) or lower \
+                 render.max_depth to 15"
+            ),
+            "{bounded}"
+        );
         // 0.9^k ≥ 1/32 up to 32 levels; 15 levels (65,535 rays) is the largest tree not warned about.
         assert!(unbounded_ray_tree(&glass, &settings(15, 0.0)).is_none());
         assert!(unbounded_ray_tree(&glass, &settings(16, 0.0)).is_some());

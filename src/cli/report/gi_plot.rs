@@ -41,7 +41,12 @@ fn draw(g: &GiResult, runs: usize) -> anyhow::Result<Vec<u8>> {
             chart
                 .draw_series(DashedLineSeries::new([(x0, f), (x1, f)], 8, 5, FLOOR_COLOUR.stroke_width(2)))?
                 .label(format!("the reference's own noise: RMSE {f:.1e}"))
-                .legend(|(x, y)| PathElement::new([(x, y), (x + 24, y)], FLOOR_COLOUR.stroke_width(2)));
+                // Dashed in the legend too, as drawn.
+                .legend(|(x, y)| {
+                    EmptyElement::at((x, y))
+                        + PathElement::new([(0, 0), (9, 0)], FLOOR_COLOUR.stroke_width(2))
+                        + PathElement::new([(15, 0), (24, 0)], FLOOR_COLOUR.stroke_width(2))
+                });
         }
         for backend in [Backend::Cpu, Backend::Gpu] {
             let mut paths: Vec<&&GiRow> =

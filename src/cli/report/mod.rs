@@ -260,14 +260,19 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
     write_report_file(&args.out.join("gi.csv"), &gi::render_csv(&gi_results))?;
     write_outputs(&args.out, &setup, &results, &devices, &[], &gi::render_markdown(&gi_results))?;
     say!(
-        "report: {} scenes, {} configurations each, in {:.1} s; wrote {} and {}",
-        results.len(),
+        "report: {}, {} configurations each, in {:.1} s; wrote {} and {}",
+        count(results.len(), "scene"),
         planned.len(),
         started.elapsed().as_secs_f64(),
         args.out.join("report.md").display(),
         args.out.join("report.csv").display()
     )?;
     Ok(())
+}
+
+/// "1 scene", "2 scenes".
+fn count(n: usize, noun: &str) -> String {
+    if n == 1 { format!("1 {noun}") } else { format!("{n} {noun}s") }
 }
 
 /// `--merge DIR…`: the shards' rows joined into the files a one-machine run writes.
@@ -325,9 +330,9 @@ fn merge(args: &ReportArgs, started: Instant) -> anyhow::Result<()> {
     };
     write_outputs(&args.out, &setup, &results, &devices, &machines, &gi::render_markdown(&gi_results))?;
     say!(
-        "report: {} shards merged, {} scenes, {} configurations each, in {:.1} s; wrote {} and {}",
-        devices.len(),
-        results.len(),
+        "report: {} merged, {}, {} configurations each, in {:.1} s; wrote {} and {}",
+        count(devices.len(), "shard"),
+        count(results.len(), "scene"),
         planned.len(),
         started.elapsed().as_secs_f64(),
         args.out.join("report.md").display(),

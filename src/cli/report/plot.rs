@@ -157,7 +157,12 @@ fn draw(scene: &SceneResult, runs: usize) -> anyhow::Result<Vec<u8>> {
             chart
                 .draw_series(DashedLineSeries::new([(x0, f), (x1, f)], 8, 5, FLOOR_COLOUR.stroke_width(2)))?
                 .label(format!("GPU at the reference settings: RMSE {f:.1e} ({floor_label})"))
-                .legend(|(x, y)| PathElement::new([(x, y), (x + 24, y)], FLOOR_COLOUR.stroke_width(2)));
+                // Dashed in the legend too, as drawn.
+                .legend(|(x, y)| {
+                    EmptyElement::at((x, y))
+                        + PathElement::new([(0, 0), (9, 0)], FLOOR_COLOUR.stroke_width(2))
+                        + PathElement::new([(15, 0), (24, 0)], FLOOR_COLOUR.stroke_width(2))
+                });
         }
         // Min–max of the timed runs: how much to trust a time difference.
         for (backend, colour) in [(Backend::Cpu, CPU_COLOUR), (Backend::Gpu, GPU_COLOUR)] {

@@ -32,7 +32,9 @@ pub struct ShardSpec {
 
 pub fn parse_shard(s: &str) -> Result<ShardSpec, String> {
     let (i, n) = s.split_once('/').ok_or_else(|| format!("'{s}' is not I/N (shard I of N, I from 0)"))?;
-    let number = |t: &str| t.trim().parse::<u32>().map_err(|_| format!("'{t}' in '{s}' is not a whole number"));
+    let number = |t: &str| {
+        t.trim().parse::<u32>().map_err(|_| format!("'{t}' in '{s}' is not a whole number from 0 to {}", u32::MAX))
+    };
     let (index, count) = (number(i)?, number(n)?);
     if count == 0 || index >= count {
         return Err(format!("shard {index} of {count}: shards are numbered 0 to N-1, N at least 1"));
@@ -121,7 +123,7 @@ impl ShardFile {
             ("--quick", self.quick.to_string()),
             ("reference spp", self.reference_spp.to_string()),
             ("integrator", self.integrator.map_or("each scene's own".into(), |i| i.name().into())),
-            ("scenes", self.scenes.join(",")),
+            ("scene list", self.scenes.join(",")),
         ]
     }
 }

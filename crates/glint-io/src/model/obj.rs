@@ -193,8 +193,11 @@ pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
             .filter(|groups| normals.is_none() && groups.iter().any(|&g| g != 0))
             .map(|groups| face_of.iter().map(|&f| groups[f]).collect());
         if zero_normals {
-            let instead =
-                if smoothing.is_some() { "made from its smoothing groups" } else { "its faces' geometric normals" };
+            let instead = if smoothing.is_some() {
+                "normals made from its smoothing groups"
+            } else {
+                "its faces' geometric normals"
+            };
             out.warnings.push(FieldIssue {
                 field: format!("object `{}`", model.name),
                 problem: format!("has zero-length normals; shaded with {instead}"),
@@ -474,7 +477,10 @@ mod tests {
         write(dir.path(), "secret.mtl", "newmtl x\nKd 1 0 0\n");
         let obj = write(&dir.path().join("model"), "m.obj", &format!("mtllib ../secret.mtl\n{QUAD}"));
         let message = load_obj(&obj).unwrap_err().to_string();
-        assert!(message.contains("../secret.mtl") && message.contains("outside the model's folder"), "{message}");
+        assert!(
+            message.contains("../secret.mtl") && message.contains("outside the folder of the file that names it"),
+            "{message}"
+        );
     }
 
     #[test]
@@ -582,7 +588,10 @@ mod tests {
         // A refusal is not hidden by a later missing file.
         let obj = write(&model, "r.obj", &format!("mtllib ../secret.mtl\nmtllib gone.mtl\n{QUAD}"));
         let message = load_obj(&obj).unwrap_err().to_string();
-        assert!(message.contains("../secret.mtl") && message.contains("outside the model's folder"), "{message}");
+        assert!(
+            message.contains("../secret.mtl") && message.contains("outside the folder of the file that names it"),
+            "{message}"
+        );
         // Indented and tab-separated statements, a `#word` comment, a real `unnamed` beside the
         // nameless material.
         write(&model, "m.mtl", "newmtl red\nKd 1 0 0\n#map_Bump b.png\nnewmtl\tunnamed\nKd 0 0 1\nnewmtl\nKd 0 1 0\n");
@@ -780,7 +789,9 @@ mod tests {
         std::fs::create_dir(dir.path().join("model")).unwrap();
         png(&dir.path().join("secret.png"));
         write(&dir.path().join("model"), "bad.png", "not an image");
-        for (map, reason) in [("../secret.png", "outside the model's folder"), ("bad.png", "not a PNG or JPEG")] {
+        for (map, reason) in
+            [("../secret.png", "outside the folder of the file that names it"), ("bad.png", "not a PNG or JPEG")]
+        {
             write(&dir.path().join("model"), "m.mtl", &format!("newmtl t\nmap_Kd {map}\n"));
             let obj = write(&dir.path().join("model"), "m.obj", &format!("mtllib m.mtl\n{QUAD}usemtl t\nf 1 2 3\n"));
             let message = load_obj(&obj).unwrap_err().to_string();

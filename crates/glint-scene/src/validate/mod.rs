@@ -100,6 +100,15 @@ impl Report {
     fn colour(&mut self, field: &str, c: Rgb) -> bool {
         let mut ok = true;
         let (lo, hi) = (ranges::COLOUR.min, ranges::COLOUR.max);
+        // A grey (one number in the file, or three equal) is one value: one message.
+        let [r, g, b] = c.0;
+        if r.to_bits() == g.to_bits() && g.to_bits() == b.to_bits() {
+            if !ranges::COLOUR.contains(r) {
+                self.error(field, format!("{} (every channel) must be a finite number in [{lo}, {hi:e}]", num(r)));
+                return false;
+            }
+            return true;
+        }
         for (name, v) in ["r", "g", "b"].iter().zip(c.0) {
             if !ranges::COLOUR.contains(v) {
                 self.error(field, format!("channel {name} = {} must be a finite number in [{lo}, {hi:e}]", num(v)));
@@ -134,8 +143,9 @@ pub fn validate_settings(s: &RenderSettings, report: &mut Report) {
     if !s.indirect && s.integrator == Integrator::Whitted {
         report.error(
             "render.indirect",
-            "= false is a path-tracing setting (paths that follow only k_r and k_t), and Whitted's ray tree never \
-             follows anything else: set render.integrator = \"path\" or leave render.indirect out",
+            "off is a path-tracing setting (paths that follow only k_r and k_t), and Whitted's ray tree never \
+             follows anything else: render with the path tracer (render.integrator = \"path\", --integrator path) or \
+             leave it out",
         );
     }
 }
