@@ -11,7 +11,7 @@ use glint_core::memory::{self, RenderPlan, render_estimate};
 use glint_core::{Accel, Backend, CpuOptions, FlatScene};
 use glint_gpu::GpuOptions;
 use glint_io::{BUILTIN_SCENES, RESOLUTIONS};
-use glint_scene::{Integrator, RenderSettings, integrator_warnings, unbounded_ray_tree};
+use glint_scene::{Integrator, RenderSettings, epsilon_warning, integrator_warnings, unbounded_ray_tree};
 
 use super::backend::{Run, open_gpu, run_cpu, run_gpu};
 use super::console::{say, tell};
@@ -123,6 +123,11 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         && let Some(warning) = unbounded_ray_tree(&loaded.desc, &settings)
     {
         tell!("warning: {warning}");
+    }
+    if settings.epsilon != loaded.desc.render.epsilon
+        && let Some(warning) = epsilon_warning(&loaded.desc, &settings)
+    {
+        tell!("warning: render.epsilon (--epsilon): {warning}");
     }
     // The scene's own integrator was judged at load; one a flag chose is judged here.
     if settings.integrator != loaded.desc.render.integrator {

@@ -50,6 +50,6 @@ pub use texture::{
 pub use transform::Mat4;
 pub use validate::{
     MAX_COORD, MAX_DEPTH, MAX_EPSILON, MAX_IMAGE_SIDE, MAX_INTENSITY, MAX_IOR, MAX_ROUGHNESS, MAX_SHININESS,
-    MAX_SPOT_EXPONENT, MAX_SPP, MIN_ATTENUATION_DENOMINATOR, MIN_ROUGHNESS, Range, Report, integrator_warnings, ranges,
-    validate, validate_objects, validate_settings, validate_with_objects,
+    MAX_SPOT_EXPONENT, MAX_SPP, MIN_ATTENUATION_DENOMINATOR, MIN_ROUGHNESS, Range, Report, epsilon_warning,
+    integrator_warnings, ranges, validate, validate_objects, validate_settings, validate_with_objects,
 };

@@ -85,6 +85,12 @@ pub fn storage_origin_of_box(lo: [f64; 3], hi: [f64; 3]) -> [f64; 3] {
     if origin.iter().all(|c| c.is_finite()) { origin } else { [0.0; 3] }
 }
 
+/// The largest side of the box around the scene's bounded geometry (spheres, meshes and models;
+/// `None` without any): its size, as the storage origin and the offsets judge it.
+pub fn scene_extent(desc: &SceneDesc) -> Option<f64> {
+    bounded_box(desc).map(|(lo, hi)| (hi - lo).max_element())
+}
+
 /// The box around every finite sphere and vertex of the scene (`None` without any): what
 /// validation has yet to judge is skipped, not trusted.
 fn bounded_box(desc: &SceneDesc) -> Option<(DVec3, DVec3)> {

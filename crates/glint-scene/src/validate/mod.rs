@@ -18,12 +18,14 @@ use super::texture::TextureDesc;
 use glint_types::{Integrator, LightKind, SpotFalloff};
 
 mod coplanar;
+mod epsilon;
 mod integrator;
 mod lights;
 mod limits;
 mod materials;
 mod objects;
 
+pub use epsilon::epsilon_warning;
 pub use integrator::integrator_warnings;
 use lights::{validate_light, validate_polynomial};
 pub use limits::*;
@@ -191,6 +193,9 @@ pub fn validate_with_objects(scene: &SceneDesc, objects: &Report) -> Report {
     r.warnings.extend_from_slice(&objects.warnings);
     if let Some(warning) = super::ray_tree::unbounded_ray_tree(scene, &scene.render) {
         r.warn("render.max_depth", warning);
+    }
+    if let Some(warning) = epsilon_warning(scene, &scene.render) {
+        r.warn("render.epsilon", warning);
     }
     r.warnings.extend(integrator_warnings(scene, &scene.render));
     r
