@@ -37,7 +37,7 @@ fn blinn_brdf(wo: vec3<f32>, wi: vec3<f32>, exponent: f32) -> f32 {
     if wo.z <= 0.0 || wi.z <= 0.0 || h.w == 0.0 {
         return 0.0;
     }
-    return blinn_normalisation(exponent) * pow(max(h.z, 0.0), exponent);
+    return blinn_normalisation(exponent) * safe_pow(h.z, exponent);
 }
 
 fn phong_brdf(wo: vec3<f32>, wi: vec3<f32>, exponent: f32) -> f32 {

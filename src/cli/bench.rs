@@ -250,7 +250,7 @@ fn rays(args: &RaysArgs) -> anyhow::Result<()> {
         spheres: flat.spheres.len(),
         planes: flat.planes.len(),
         cpu_threads: threads,
-        gpu_adapter: gpu.as_ref().map(|t| t.context().adapter.to_string()),
+        gpu_adapter: gpu.as_ref().map(|t| t.context().adapter.with_driver()),
         statistic: "one warm-up run, then the median and the best of `runs` timed runs; throughput from the median",
         build,
         casts,

@@ -8,7 +8,7 @@ use glint_core::cpu::RayCounts;
 use glint_core::image::{RenderInfo, render_metadata};
 use glint_core::memory::{self, MemoryEstimate, MemoryPart};
 use glint_io::image_file::{write_image, write_png_rgb8};
-use glint_scene::{RenderSettings, SceneDesc, overflow_causes};
+use glint_scene::{Integrator, RenderSettings, SceneDesc, overflow_causes};
 use serde::Serialize;
 
 use super::backend::Run;
@@ -149,20 +149,24 @@ struct JsonBench<'a> {
     spp: u32,
     depth: u32,
     integrator: &'a str,
-    /// Whitted's bailout (the path tracer ends its paths by Russian roulette instead).
-    bailout: f64,
+    /// Whitted's bailout; null for the path tracer, which ends its paths by Russian roulette.
+    bailout: Option<f64>,
     runs: u32,
     backends: Vec<JsonBenchRun<'a>>,
     /// The GPU's median render time over the CPU's, with both backends.
     gpu_cpu_ratio: Option<f64>,
 }
 
-/// `glint render --bench --json`: the benchmark's results as one JSON object on stdout.
-pub fn print_bench_json(scene: &str, s: &RenderSettings, runs: u32, results: &[BenchResult]) -> anyhow::Result<()> {
-    let ratio = match results {
+/// The GPU's median render time over the CPU's, when `results` has both (CPU first).
+pub fn gpu_cpu_ratio(results: &[BenchResult]) -> Option<f64> {
+    match results {
         [cpu, gpu] => Some(gpu.median.as_secs_f64() / cpu.median.as_secs_f64()),
         _ => None,
-    };
+    }
+}
+
+/// `glint render --bench --json`: the benchmark's results as one JSON object on stdout.
+pub fn print_bench_json(scene: &str, s: &RenderSettings, runs: u32, results: &[BenchResult]) -> anyhow::Result<()> {
     let report = JsonBench {
         scene,
         width: s.width,
@@ -170,7 +174,7 @@ pub fn print_bench_json(scene: &str, s: &RenderSettings, runs: u32, results: &[B
         spp: s.spp,
         depth: s.max_depth,
         integrator: s.integrator.name(),
-        bailout: s.bailout,
+        bailout: (s.integrator == Integrator::Whitted).then_some(s.bailout),
         runs,
         backends: results
             .iter()
@@ -186,7 +190,7 @@ pub fn print_bench_json(scene: &str, s: &RenderSettings, runs: u32, results: &[B
                 incomplete: &r.warm.incomplete,
             })
             .collect(),
-        gpu_cpu_ratio: ratio,
+        gpu_cpu_ratio: gpu_cpu_ratio(results),
     };
     say!("{}", serde_json::to_string_pretty(&report)?)?;
     Ok(())

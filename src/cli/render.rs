@@ -11,14 +11,14 @@ use glint_core::memory::{self, RenderPlan, render_estimate};
 use glint_core::{Accel, Backend, CpuOptions, FlatScene};
 use glint_gpu::GpuOptions;
 use glint_io::{BUILTIN_SCENES, RESOLUTIONS};
-use glint_scene::{Integrator, RenderSettings, epsilon_warning, integrator_warnings, unbounded_ray_tree};
+use glint_scene::{Integrator, RenderSettings, settings_warnings};
 
 use super::backend::{Run, open_gpu, run_cpu, run_gpu};
 use super::console::{say, tell};
 use super::interrupt;
 use super::output::{
-    BenchResult, Incomplete, check_writable, fmt_counts, metadata, print_bench_json, print_json, print_table, suffixed,
-    write_diff, write_run,
+    BenchResult, Incomplete, check_writable, fmt_counts, gpu_cpu_ratio, metadata, print_bench_json, print_json,
+    print_table, suffixed, write_diff, write_run,
 };
 use super::output_path::check_outputs;
 use super::settings::{LoadArgs, SettingsArgs, is_model, load_with_estimate, parse_ray_cap, parse_threads};
@@ -118,21 +118,11 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     let (loaded, load_estimate) =
         load_with_estimate(&args.scene, &args.scene_size.options(), args.scene_size.memory_limit)?;
     let settings = args.settings.apply(&loaded.desc.render, is_model(&loaded))?;
-    // Loading warned about the scene's own settings; flags that change them are judged here.
-    if settings != loaded.desc.render
-        && let Some(warning) = unbounded_ray_tree(&loaded.desc, &settings)
-    {
-        tell!("warning: {warning}");
-    }
-    if settings.epsilon != loaded.desc.render.epsilon
-        && let Some(warning) = epsilon_warning(&loaded.desc, &settings)
-    {
-        tell!("warning: render.epsilon (--epsilon): {warning}");
-    }
-    // The scene's own integrator was judged at load; one a flag chose is judged here.
-    if settings.integrator != loaded.desc.render.integrator {
-        for w in integrator_warnings(&loaded.desc, &settings) {
-            tell!("warning: {}: {}", w.field, w.problem);
+    // Loading warned about the scene's own settings; what flags that change them add is said here.
+    if settings != loaded.desc.render {
+        let at_load = settings_warnings(&loaded.desc, &loaded.desc.render);
+        for w in settings_warnings(&loaded.desc, &settings).into_iter().filter(|w| !at_load.contains(w)) {
+            tell!("warning: {w}");
         }
     }
     let specialise = !args.no_specialise;
@@ -318,8 +308,8 @@ fn bench(
     if args.json {
         return print_bench_json(name, settings, args.runs, &results);
     }
-    if let [cpu, gpu] = results.as_slice() {
-        say!("bench {name}: gpu/cpu render time ratio {:.2}", gpu.median.as_secs_f64() / cpu.median.as_secs_f64())?;
+    if let Some(ratio) = gpu_cpu_ratio(&results) {
+        say!("bench {name}: gpu/cpu render time ratio {ratio:.2}")?;
     }
     Ok(())
 }

@@ -136,9 +136,14 @@ fn grid_columns(count: u32, width: u32, height: u32) -> Option<u32> {
 /// How far from a count no grid takes `nearest_counts` looks for one that a grid does.
 const NEAREST_SEARCH: u32 = 1000;
 
-/// The nearest counts below and above `count` that some grid of `width`×`height` takes.
+/// The nearest counts below and above `count` that some grid of `width`×`height` takes. Beyond
+/// width·height pixels no count fits but width·height itself (a pixel a tile).
 fn nearest_counts(count: u32, width: u32, height: u32) -> (Option<u32>, Option<u32>) {
-    let fits = |n: &u32| grid_columns(*n, width, height).is_some();
+    let pixels = u64::from(width) * u64::from(height);
+    if u64::from(count) > pixels {
+        return (u32::try_from(pixels).ok(), None);
+    }
+    let fits = |n: &u32| u64::from(*n) <= pixels && grid_columns(*n, width, height).is_some();
     let below = (count.saturating_sub(NEAREST_SEARCH).max(1)..count).rev().find(fits);
     let above = (count.saturating_add(1)..=count.saturating_add(NEAREST_SEARCH)).find(fits);
     (below, above)
@@ -210,7 +215,16 @@ mod tests {
             "101 tiles fit no grid of a 97x31 image: the tiles are columns × rows, with at most 97 columns and 31 \
              rows (a pixel each); the nearest counts that fit one are 100 and 102"
         );
-        assert_eq!(TileGrid::new(4_000_000_000, 1920, 1080).map(|g| g.count()).ok(), None, "fast, and no grid");
+        assert_eq!(
+            TileGrid::new(4_000_000_000, 1920, 1080),
+            Err(TileGridError::NoGrid {
+                count: 4_000_000_000,
+                width: 1920,
+                height: 1080,
+                nearest: (Some(2_073_600), None)
+            }),
+            "more tiles than pixels: a pixel a tile is the most"
+        );
         let grid = TileGrid::new(4, 96, 72).unwrap();
         assert_eq!(grid.rect(4), Err(TileGridError::OutOfRange { index: 4, count: 4, last: 3 }));
         assert_eq!(grid.rect(3), Ok(PixelRect { x0: 48, y0: 36, width: 48, height: 36 }));

@@ -101,8 +101,8 @@ fn open_model(files: &[(&str, &[u8])], open: &str) {
 
 /// Renders `desc` at `SIDE`² pixels, one sample, through the BVH and by brute force: both
 /// succeed or stop at the ray cap, agree bit for bit, hold no NaN, and hold only finite
-/// values unless a material returns more light than it receives (k_r + k_t > 1), which the
-/// CLI reports as the cause of an overflow.
+/// values unless a material returns more light than it receives (`MaterialDesc::gain` > 1),
+/// which the CLI reports as the cause of an overflow.
 fn render_few_pixels(desc: &SceneDesc) {
     let mut settings = desc.render.clone();
     settings.width = settings.width.min(SIDE);
@@ -126,7 +126,7 @@ fn render_few_pixels(desc: &SceneDesc) {
         bvh.pixels,
         brute.pixels
     );
-    let gains = desc.materials.values().any(|m| (0..3).any(|c| m.kr.0[c] + m.kt.0[c] > 1.0));
+    let gains = desc.materials.values().any(|m| m.gain(settings.integrator) > 1.0);
     if !gains && let Some(found) = bvh.unrepresentable() {
         panic!("no material gains energy, yet {found}");
     }

@@ -42,7 +42,7 @@ impl CameraDesc {
 /// view axis through the corners of a `WIDEST_ASPECT` image, widened by the ball's angular
 /// radius. False only for what the camera certainly does not see directly (behind it, or far
 /// off to a side); an eye inside the ball sees it.
-pub fn ball_may_be_seen(eye: DVec3, forward: DVec3, tan_half_fov: f64, centre: DVec3, radius: f64) -> bool {
+fn ball_may_be_seen(eye: DVec3, forward: DVec3, tan_half_fov: f64, centre: DVec3, radius: f64) -> bool {
     let to_ball = centre - eye;
     let distance = to_ball.length();
     if !(distance > radius && forward.length() > 0.0) {

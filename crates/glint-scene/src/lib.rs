@@ -23,7 +23,7 @@ mod texture;
 mod transform;
 mod validate;
 
-pub use camera::{CameraDesc, ball_may_be_seen};
+pub use camera::CameraDesc;
 pub use desc::{
     GlobalAttenuation, ObjectDesc, PlaneDesc, RenderSettings, SceneDesc, SphereDesc, WorldDesc,
     without_imported_materials,
@@ -42,7 +42,7 @@ pub use number::{clarify_integer_overflow, format_number, shorten, shorten_lines
 pub use overflow::overflow_causes;
 pub use ray_tree::{WARN_RAYS_PER_SAMPLE, reachable_depth, unbounded_ray_tree};
 pub use rgb::Rgb;
-pub use storage::{storage_origin, storage_origin_of_box};
+pub use storage::{far_box_out_of_sight, storage_origin, storage_origin_of_box};
 pub use texture::{
     ColorSpace, MAX_TEXTURE_SIDE, MAX_TEXTURE_TEXELS, TextureDesc, TextureError, TextureImage, UvTransform, check_size,
     srgb_to_linear,
@@ -51,5 +51,6 @@ pub use transform::Mat4;
 pub use validate::{
     MAX_COORD, MAX_DEPTH, MAX_EPSILON, MAX_IMAGE_SIDE, MAX_INTENSITY, MAX_IOR, MAX_ROUGHNESS, MAX_SHININESS,
     MAX_SPOT_EXPONENT, MAX_SPP, MIN_ATTENUATION_DENOMINATOR, MIN_ROUGHNESS, Range, Report, epsilon_warning,
-    integrator_warnings, ranges, validate, validate_objects, validate_settings, validate_with_objects,
+    integrator_warnings, path_gain_warning, ranges, settings_warnings, validate, validate_objects, validate_settings,
+    validate_with_objects,
 };

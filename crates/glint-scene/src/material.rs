@@ -1,6 +1,6 @@
 //! Materials: the seed's coefficients per RGB, the specular lobe, and their textures.
 
-use glint_types::{Fresnel, SpecularModel};
+use glint_types::{Fresnel, Integrator, SpecularModel};
 use serde::{Deserialize, Serialize};
 
 use crate::rgb::Rgb;
@@ -84,6 +84,21 @@ pub struct CheckerDesc {
     pub kd: Rgb,
     /// Edge length of one square in scene units, > 0.
     pub size: f64,
+}
+
+impl MaterialDesc {
+    /// The most a surface of it multiplies radiance by, per bounce (its largest channel): where
+    /// it exceeds 1, radiance grows with depth. Whitted's tree adds k_d and k_s once per light,
+    /// so only k_r + k_t multiply along its rays; a path meets every lobe bounce after bounce
+    /// (each lobe's albedo at most its k, the checker's k_d where it is brighter).
+    pub fn gain(&self, integrator: Integrator) -> f64 {
+        let kd = self.checker.as_ref().map_or(self.kd, |c| Rgb(std::array::from_fn(|k| self.kd.0[k].max(c.kd.0[k]))));
+        let channel = |k: usize| match integrator {
+            Integrator::Whitted => self.kr.0[k] + self.kt.0[k],
+            Integrator::Path => kd.0[k] + self.ks.0[k] + self.kr.0[k] + self.kt.0[k],
+        };
+        (0..3).map(channel).fold(0.0, f64::max)
+    }
 }
 
 /// The textures of one material, with the field name each has in a scene file.

@@ -1,14 +1,13 @@
 //! What in a scene lets radiance leave the f32 range, for the error of a render that did
 //! (docs/numerics.md, "Non-finite images"). Validation bounds every number by 1e9, so a scene
-//! whose surfaces return no more light than they receive (k_r + k_t ≤ 1) stays far below f32's
-//! 3.4e38 at any depth; a surface with k_r + k_t = g > 1 multiplies radiance by up to g at
-//! every bounce, g^depth in all. The message names such materials first, then the brightest
-//! sources.
+//! whose surfaces return no more light than they receive (their gain, `MaterialDesc::gain`:
+//! k_r + k_t ≤ 1 under Whitted's tree, k_d + k_s + k_r + k_t ≤ 1 under paths) stays far below
+//! f32's 3.4e38 at any depth; a surface of gain g > 1 multiplies radiance by up to g at every
+//! bounce, g^depth in all. The message names such materials first, then the brightest sources.
 
 use super::Integrator;
 use super::desc::{ObjectDesc, SceneDesc};
 use super::light::LightDesc;
-use super::material::MaterialDesc;
 use super::number::format_number;
 
 /// The largest value f32 holds; radiance beyond it is stored as +inf.
@@ -18,17 +17,12 @@ const F32_MAX: f64 = f32::MAX as f64;
 /// with the remedy; `all_nan`: no pixel overflowed, every bad one is NaN, which a scene without
 /// gain cannot make (a defect to report, said so).
 pub fn overflow_causes(desc: &SceneDesc, max_depth: u32, integrator: Integrator, all_nan: bool) -> String {
-    // Whitted's tree adds k_d and k_s once per light; a path meets them bounce after bounce.
-    let (terms, gain_of): (&str, fn(&MaterialDesc, usize) -> f64) = match integrator {
-        Integrator::Whitted => ("k_r + k_t", |m, c| m.kr.0[c] + m.kt.0[c]),
-        Integrator::Path => ("k_d + k_s + k_r + k_t", |m, c| m.kd.0[c] + m.ks.0[c] + m.kr.0[c] + m.kt.0[c]),
+    let terms = match integrator {
+        Integrator::Whitted => "k_r + k_t",
+        Integrator::Path => "k_d + k_s + k_r + k_t",
     };
-    let mut gains: Vec<(f64, String)> = desc
-        .materials
-        .iter()
-        .map(|(name, m)| ((0..3).map(|c| gain_of(m, c)).fold(0.0, f64::max), name.clone()))
-        .filter(|(g, _)| *g > 1.0)
-        .collect();
+    let mut gains: Vec<(f64, String)> =
+        desc.materials.iter().map(|(name, m)| (m.gain(integrator), name.clone())).filter(|(g, _)| *g > 1.0).collect();
     gains.sort_by(|a, b| b.0.total_cmp(&a.0));
     let mut causes: Vec<String> = gains
         .iter()
@@ -82,7 +76,8 @@ pub fn overflow_causes(desc: &SceneDesc, max_depth: u32, integrator: Integrator,
     if !sources.is_empty() {
         causes.push(format!("the brightest sources: {}", sources.join(", ")));
     }
-    if causes.is_empty() && all_nan {
+    // Without gain nothing overflows: NaN pixels there are no source's fault.
+    if gains.is_empty() && all_nan {
         return "no material amplifies light and no source is brighter than 1, so the NaN is no overflow but a \
                 defect in glint: please report it with the scene and the render's settings"
             .into();
@@ -149,6 +144,9 @@ mod tests {
             "no material amplifies light and no source is brighter than 1; lower the brightest sources"
         );
         assert!(overflow_causes(&desc, 4, Integrator::Path, true).contains("the NaN is no overflow but a defect"));
+        // A bright lamp without gain cannot overflow either: a NaN is still a defect.
+        let lamp = scene("[materials.dull]\nkd = 0.5\n[materials.lamp]\nemission = 15.0\n");
+        assert!(overflow_causes(&lamp, 4, Integrator::Path, true).contains("the NaN is no overflow but a defect"));
     }
 
     #[test]

@@ -31,7 +31,7 @@ pub fn reachable_depth(desc: &SceneDesc, settings: &RenderSettings) -> u32 {
 /// g: the largest max-channel k_r + k_t of any material, the most a level multiplies a path's
 /// weight by.
 fn largest_gain(desc: &SceneDesc) -> f64 {
-    desc.materials.values().map(|m| (0..3).map(|c| m.kr.0[c] + m.kt.0[c]).fold(0.0, f64::max)).fold(0.0, f64::max)
+    desc.materials.values().map(|m| m.gain(glint_types::Integrator::Whitted)).fold(0.0, f64::max)
 }
 
 /// The levels of the largest tree not warned about: 2^(k+1) − 1 ≤ `WARN_RAYS_PER_SAMPLE`.

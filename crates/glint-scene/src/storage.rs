@@ -42,19 +42,31 @@ pub fn storage_origin(desc: &SceneDesc) -> [f64; 3] {
     }
 }
 
+/// Whether the box around `desc`'s bounded geometry is far from the eye (more than
+/// `WORLD_SPACE_REACH` of its largest sides, as the camera's anchoring judges a far eye) and
+/// out of the camera's sight (`CameraDesc::may_see` of the ball around it): the one judgement
+/// both the storage origin and the camera's anchoring (`FlatScene`) follow.
+pub fn far_box_out_of_sight(desc: &SceneDesc) -> bool {
+    bounded_box(desc).is_some_and(|(lo, hi)| box_far_out_of_sight(desc, lo, hi))
+}
+
+fn box_far_out_of_sight(desc: &SceneDesc, lo: DVec3, hi: DVec3) -> bool {
+    let eye = DVec3::from(desc.camera.position);
+    let (centre, side) = ((lo + hi) * 0.5, (hi - lo).max_element());
+    (centre - eye).length() > WORLD_SPACE_REACH * side
+        && !desc.camera.may_see(centre.to_array(), 0.5 * (hi - lo).length())
+}
+
 /// The box around the eye out to its nearest plane, where it takes the place of the bounded
-/// geometry's box `lo`..`hi`: where the eye is more than `WORLD_SPACE_REACH` of that box's
-/// largest sides from its centre (as far as the camera's anchoring judges a far eye), the camera
-/// cannot see the box (`CameraDesc::may_see`) and a plane passes the eye. A floor 0.01 under an
+/// geometry's box `lo`..`hi`: where that box is far and out of sight (`far_box_out_of_sight`)
+/// and a plane passes the eye. A floor 0.01 under an
 /// eye with a sphere 3e5 behind it, stored around the sphere, was level with the stored eye, and
 /// vanished from the image.
 fn eye_neighbourhood(desc: &SceneDesc, lo: DVec3, hi: DVec3) -> Option<(DVec3, DVec3)> {
-    let eye = DVec3::from(desc.camera.position);
-    let (centre, side) = ((lo + hi) * 0.5, (hi - lo).max_element());
-    let far = (centre - eye).length() > WORLD_SPACE_REACH * side;
-    if !far || desc.camera.may_see(centre.to_array(), 0.5 * (hi - lo).length()) {
+    if !box_far_out_of_sight(desc, lo, hi) {
         return None;
     }
+    let eye = DVec3::from(desc.camera.position);
     let heights = desc.objects.iter().filter_map(|object| match object {
         ObjectDesc::Plane(PlaneDesc { point, normal, .. }) => {
             let h = DVec3::from(*normal).normalize().dot(eye - DVec3::from(*point)).abs();

@@ -335,7 +335,6 @@ pub fn uv_sphere(n: u32, c: [f64; 3], r: f64) -> (Vec<[f64; 3]>, Vec<[u32; 3]>) 
     (v, t)
 }
 
-/// A lit scene with a ground plane, a mirror sphere and one mesh.
 /// A closed box of white emitting walls seen from inside (the cube [−1, 1]³, its 12 triangles
 /// wound to face inwards, their emitting side): k_d = 0.5 and E_m = 1, so its radiance is
 /// Σ 0.5^k = 2 (1 − 0.5^(d+1)) to path depth d. `render` is the `[render]` table's lines.
@@ -364,6 +363,7 @@ pub fn emissive_box(width: u32, height: u32, render: &str) -> SceneText {
         .mesh(&vertices, &triangles, None, "wall")
 }
 
+/// A lit scene with a ground plane, a mirror sphere and one mesh.
 pub fn mesh_scene(w: u32, h: u32, mesh: (Vec<[f64; 3]>, Vec<[u32; 3]>)) -> SceneText {
     SceneText::new(w, h, "max_depth = 2", [0.3, 1.1, -3.2], [0.0, 0.2, 0.0], [0.0, 1.0, 0.0], 45.0)
         .world([0.1; 3], [0.2, 0.3, 0.4])

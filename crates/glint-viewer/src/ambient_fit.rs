@@ -93,7 +93,7 @@ pub fn ui(ui: &mut egui::Ui, doc: &mut Document, fitter: &mut AmbientFitter) -> 
     if let Some((revision, fit, _)) = fitter.result
         && !fit.determined
     {
-        ui.label("No material has k_a: I_a changes nothing here, so no value fits better than another.");
+        ui.label("I_a changes no pixel here (no material in view has k_a), so no value fits better than another.");
         if revision != doc.revision {
             ui.weak("(fitted to an earlier edit of the scene)");
         }

@@ -199,8 +199,9 @@ impl GpuView {
         }
     }
 
+    /// The adapter and its driver, as `glint render` names the device in an image's metadata.
     pub fn adapter_name(&self) -> String {
-        self.tracer.context().adapter.to_string()
+        self.tracer.context().adapter.with_driver()
     }
 
     /// Whether a render of the document is under way (a prewarm is not).

@@ -19,7 +19,7 @@ use glint_core::glam::DVec3;
 use glint_core::path_kinds::kind_alone;
 use glint_core::{Backend, CpuOptions, FlatScene, HdrImage};
 use glint_io::LoadedScene;
-use glint_scene::{Integrator, PathKind, RenderSettings, Rgb, integrator_warnings};
+use glint_scene::{Integrator, PathKind, RenderSettings, Rgb, path_gain_warning};
 use indicatif::ProgressBar;
 use serde::{Deserialize, Serialize};
 
@@ -66,7 +66,7 @@ pub struct GiResult {
     /// The reference's own error (RMSE), from the spread of its `REFERENCE_GROUPS` renders.
     pub reference_noise: f64,
     pub fitted: [f64; 3],
-    /// Whether the ambient term changes Whitted's image at all (some material has k_a).
+    /// Whether the ambient term changes Whitted's image at all (a material in view has k_a).
     #[serde(default = "yes")]
     pub fit_determined: bool,
     /// Validation's warning that materials return more light than they receive under paths:
@@ -102,9 +102,10 @@ pub struct KindSplit {
     pub ambient_share: f64,
     /// Whitted's RMSE with the ambient as written, for scale.
     pub whitted_rmse: f64,
-    /// What makes Whitted's direct light differ from the paths' in this scene.
+    /// What makes Whitted's direct light differ from the paths' in this scene (`None` from a
+    /// shard of a glint that did not say).
     #[serde(default)]
-    pub direct_causes: Vec<String>,
+    pub direct_causes: Option<Vec<String>>,
 }
 
 /// The root mean square of `image` over its pixels and channels.
@@ -171,8 +172,7 @@ pub fn measure(
     let paths = RenderSettings { integrator: Integrator::Path, indirect: true, max_depth: path_depth, ..base.clone() };
     bar.set_message(format!("{name}: path-traced reference ({reference_spp} spp)"));
     let options = CpuOptions { threads: engines.threads, ..CpuOptions::default() };
-    let gain_warning = integrator_warnings(&loaded.desc, &paths).into_iter().find(|w| w.field == "materials");
-    let gain_warning = gain_warning.map(|w| w.problem);
+    let gain_warning = path_gain_warning(&loaded.desc);
     if let Some(problem) = &gain_warning {
         bar.suspend(|| tell!("warning: {name}: the path-traced reference: {problem}"));
     }
@@ -322,19 +322,23 @@ fn split_by_kind(
     split.direct_rmse = rms(&minus(without, &direct.expect("the direct kind is rendered")));
     split.ambient_share = minus(written, without).mean() / paths_mean.max(f64::MIN_POSITIVE);
     split.whitted_rmse = compare_images(reference, written).rmse;
-    split.direct_causes = direct_causes(&loaded.desc);
+    split.direct_causes = Some(direct_causes(&loaded.desc));
     Ok(split)
 }
 
-/// What makes Whitted's direct light differ from the paths' in `desc`: its emitters light
-/// nothing, and its highlight is not the normalised lobe the paths reflect (path-tracing.md's
-/// factors). Point lights, spots and directional lights are the same in both.
+/// What makes Whitted's direct light differ from the paths' in `desc`: its emitters and its sky
+/// light nothing (the paths' direct light is E S* D L, the background among the L), and its
+/// highlight is not the normalised lobe the paths reflect (path-tracing.md's factors). Point
+/// lights, spots and directional lights are the same in both.
 fn direct_causes(desc: &glint_scene::SceneDesc) -> Vec<String> {
     let mut causes = Vec::new();
     if desc.materials.values().any(|m| !m.emission.is_zero()) {
         causes.push("an emitter lights nothing in Whitted's model".to_string());
     }
-    if desc.materials.values().any(|m| !m.ks.is_zero()) && !desc.lights.is_empty() {
+    if !desc.world.background.is_zero() {
+        causes.push("the background lights nothing in Whitted's model, only what it is seen by".to_string());
+    }
+    if desc.materials.values().any(|m| !m.ks.is_zero()) && desc.traced_lights().next().is_some() {
         causes.push("its highlight k_s·spec_j is not the normalised lobe the paths reflect".to_string());
     }
     causes
@@ -344,10 +348,12 @@ fn direct_causes(desc: &glint_scene::SceneDesc) -> Vec<String> {
 pub fn kinds_sentence(g: &GiResult) -> String {
     let k = &g.kinds;
     let pct = |v: f64| format!("{:.0} %", 100.0 * v);
-    let direct = if k.direct_causes.is_empty() {
-        "its direct light differing from the paths' (by their noise alone: lights are the same in both)".to_string()
-    } else {
-        format!("its direct light differing from the paths' ({})", k.direct_causes.join("; "))
+    let direct = match k.direct_causes.as_deref() {
+        None => "its direct light differing from the paths'".to_string(),
+        Some([]) => {
+            "its direct light differing from the paths' (by their noise alone: lights are the same in both)".to_string()
+        }
+        Some(causes) => format!("its direct light differing from the paths' ({})", causes.join("; ")),
     };
     let parts = [
         (direct.as_str(), k.direct_rmse),
@@ -472,7 +478,7 @@ pub fn render_markdown(results: &[GiResult]) -> String {
         let fitted = if g.fit_determined {
             fmt3(g.fitted)
         } else {
-            "none (no material has k_a: the ambient term changes nothing)".to_string()
+            "none (I_a changes no pixel: no material in view has k_a)".to_string()
         };
         let _ = writeln!(
             md,
@@ -551,6 +557,22 @@ mod tests {
     fn row(integrator: Integrator, backend: Backend, ms: u64, rmse: f64) -> GiRow {
         let ambient = (integrator == Integrator::Whitted).then_some(Ambient::Fitted);
         GiRow { integrator, backend, spp: 1, depth: 5, ambient, median: Duration::from_millis(ms), rmse }
+    }
+
+    #[test]
+    fn the_reference_is_its_groups_mean_and_its_noise_their_standard_error() {
+        // One pixel, four groups of 1, 2, 3, 4 in every channel: mean 2.5, sample variance
+        // 5/3 (k − 1 in the divisor), standard error of the mean √(5/3 / 4).
+        let groups: Vec<HdrImage> = (1..=4)
+            .map(|v| {
+                let mut image = HdrImage::new(1, 1);
+                image.pixels[0] = DVec3::splat(f64::from(v));
+                image
+            })
+            .collect();
+        let (mean, noise) = mean_and_noise(&groups);
+        assert_eq!(mean.pixels[0], DVec3::splat(2.5));
+        assert!((noise - (5.0f64 / 3.0 / 4.0).sqrt()).abs() < 1e-15, "{noise}");
     }
 
     #[test]

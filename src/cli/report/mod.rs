@@ -287,6 +287,8 @@ fn merge(args: &ReportArgs, started: Instant) -> anyhow::Result<()> {
     // listed in its Shards section.
     let now = machine::Machine::probe();
     (machine.command, machine.date) = (now.command, now.date);
+    // The Setup's machine is one shard's; say which.
+    machine.cpu_model = format!("{} (shard 0's; every shard's is under Shards)", machine.cpu_model);
     let devices: Vec<(String, String)> =
         files.iter().map(|f| (f.cpu_device.clone(), f.gpu_device.clone().unwrap_or_default())).collect();
     let machines: Vec<String> = files
@@ -305,7 +307,7 @@ fn merge(args: &ReportArgs, started: Instant) -> anyhow::Result<()> {
         })
         .collect();
     let gpu_device = files[0].gpu_device.clone();
-    let gi_results = shard::join_gi(&mut files);
+    let gi_results = shard::join_gi(&mut files)?;
     let mut results = shard::join(&mut files, &planned)?;
     std::fs::create_dir_all(&args.out).with_context(|| format!("cannot create {}", args.out.display()))?;
     for result in &mut results {

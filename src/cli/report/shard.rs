@@ -173,11 +173,9 @@ pub fn read_all(dirs: &[PathBuf]) -> anyhow::Result<Vec<ShardFile>> {
                 first_path.display()
             );
         }
-        if let Some(scene) = changed_scene(first, file) {
+        if let Some(reason) = changed_scene(first, file) {
             bail!(
-                "{} is not a shard of the same sweep as {}: scene {scene} differs between them (its content \
-                 hash, `glint:scene_hash` in a render's metadata); the scene or its textures changed between the \
-                 shards' runs, so render every shard of the same files again; nothing was written",
+                "{} is not a shard of the same sweep as {}: {reason}; nothing was written",
                 path.display(),
                 first_path.display()
             );
@@ -206,22 +204,39 @@ pub fn read_all(dirs: &[PathBuf]) -> anyhow::Result<Vec<ShardFile>> {
     Ok(files)
 }
 
-/// The first scene whose content differs between two shards with the same scene names (all of
-/// them where one shard has no hashes: a shard of an older glint).
-fn changed_scene<'a>(first: &ShardFile, other: &'a ShardFile) -> Option<&'a str> {
+/// Why two shards with the same scene names are not of the same scenes, if they are not: a
+/// scene whose content hash differs, or a shard that records none (an older glint's).
+fn changed_scene(first: &ShardFile, other: &ShardFile) -> Option<String> {
     if first.scene_hashes.len() != other.scene_hashes.len() {
-        return other.scenes.first().map(String::as_str);
+        return Some(
+            "one of them records no scene contents (a shard of an older glint): run every shard with one glint".into(),
+        );
     }
     let differs = |i: &usize| first.scene_hashes[*i] != other.scene_hashes[*i];
-    (0..other.scenes.len().min(other.scene_hashes.len())).find(differs).map(|i| other.scenes[i].as_str())
+    let i = (0..other.scenes.len().min(other.scene_hashes.len())).find(differs)?;
+    Some(format!(
+        "scene {} differs between them (its content hash, `glint:scene_hash` in a render's metadata): the scene or its \
+         textures changed between the shards' runs, so render every shard of the same files again",
+        other.scenes[i]
+    ))
 }
 
-/// The shards' Whitted-against-paths results, in the sweep's order of scenes.
-pub fn join_gi(files: &mut [ShardFile]) -> Vec<super::gi::GiResult> {
+/// The shards' Whitted-against-paths results, in the sweep's order of scenes; an error unless
+/// every scene has one (a shard's file edited or cut short).
+pub fn join_gi(files: &mut [ShardFile]) -> anyhow::Result<Vec<super::gi::GiResult>> {
     let names = files[0].scenes.clone();
     let mut all: Vec<super::gi::GiResult> = files.iter_mut().flat_map(|f| std::mem::take(&mut f.gi)).collect();
     all.sort_by_key(|g| names.iter().position(|n| *n == g.scene).unwrap_or(usize::MAX));
-    all
+    for name in &names {
+        let found = all.iter().filter(|g| g.scene == *name).count();
+        if found != 1 {
+            bail!(
+                "scene {name} has {found} Whitted-against-paths sections in the shards, not one: a shard's file was \
+                 edited or cut short; run that shard again; nothing was written"
+            );
+        }
+    }
+    Ok(all)
 }
 
 /// The shards' rows joined per scene, in the sweep's order of scenes and of configurations;
@@ -245,13 +260,15 @@ pub fn join(files: &mut [ShardFile], planned: &[Planned]) -> anyhow::Result<Vec<
     for j in &mut out {
         j.rows.sort_by_key(|r| position(&r.config));
         let measured: Vec<usize> = j.rows.iter().map(|r| position(&r.config)).collect();
-        if measured != (0..planned.len()).collect::<Vec<_>>() {
+        if measured != (0..planned.len()).collect::<Vec<_>>() || j.specular.is_empty() {
             bail!(
-                "scene {} has {} rows in the shards, not the sweep's {} configurations once each: a shard's file was \
-                 edited or cut short; run that shard again; nothing was written",
+                "scene {} has {} rows in the shards, not the sweep's {} configurations once each with its \
+                 specular models ({} rows): a shard's file was edited or cut short; run that shard again; nothing was \
+                 written",
                 j.name,
                 j.rows.len(),
-                planned.len()
+                planned.len(),
+                j.specular.len()
             );
         }
     }

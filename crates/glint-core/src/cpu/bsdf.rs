@@ -49,7 +49,7 @@ pub fn blinn_brdf(wo: DVec3, wi: DVec3, exponent: f64) -> f64 {
         return 0.0;
     }
     match half_vector(wo, wi) {
-        Some(h) => blinn_normalisation(exponent) * h.z.max(0.0).powf(exponent),
+        Some(h) => blinn_normalisation(exponent) * safe_pow(h.z, exponent),
         None => 0.0,
     }
 }

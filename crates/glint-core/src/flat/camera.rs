@@ -4,7 +4,7 @@
 use glam::DVec3;
 
 use super::{FlatScene, vec4, wide};
-use glint_scene::{RenderSettings, SceneDesc, ball_may_be_seen};
+use glint_scene::{RenderSettings, SceneDesc};
 use glint_types::layout::{GpuCamera, GpuPlane};
 
 /// The pinhole camera's ray-generation vectors in f64 world space: a ray through image point
@@ -36,48 +36,32 @@ pub struct SceneBox {
 impl WorldCamera {
     /// The camera as the flat scene stores it relative to `origin` (the storage origin), each
     /// vector rounded once to f32. An eye more than `EYE_REACH` of the largest sides from the
-    /// centre of the bounded geometry (`scene`) is anchored nearest that centre (`anchor_of`),
-    /// where the camera may see that box (`glint_scene::ball_may_be_seen`). In a scene of planes
-    /// alone (`planes`, stored coordinates), which has no size, or with the box out of sight, the
-    /// view judges: an eye more than `EYE_REACH` of the image's heights from where its axis meets the
+    /// centre of the bounded geometry (`scene`) is anchored nearest that centre (`anchor_of`).
+    /// In a scene of planes alone (`planes`, stored coordinates), which has no size, the view
+    /// judges: an eye more than `EYE_REACH` of the image's heights from where its axis meets the
     /// nearest plane is anchored there (a telephoto seeing a patch of the ground from afar), if
     /// that point is nearer the origin than the eye. Any other eye is its own anchor (w = 0).
     pub fn stored(&self, origin: DVec3, scene: Option<SceneBox>, planes: &[GpuPlane]) -> GpuCamera {
         let eye = self.position - origin;
-        let tan_half_fov = self.up.length() / self.forward.length();
         let anchor = match scene {
             Some(b) if b.side > 0.0 && (eye - b.centre).length() > EYE_REACH * b.side => {
-                // A far box the camera cannot see is not what it looks at (nor, then, what the
-                // scene is stored around: `glint_scene::storage_origin`).
-                let radius = 0.5 * 3f64.sqrt() * b.side;
-                if ball_may_be_seen(eye, self.forward, tan_half_fov, b.centre, radius) {
-                    anchor_of(eye, self.forward, b.centre)
-                } else {
-                    self.anchored_over_planes(eye, planes)
-                }
+                anchor_of(eye, self.forward, b.centre)
             }
             Some(_) => vec4(eye, 0.0),
-            None => self.anchored_over_planes(eye, planes),
+            None => match self.axis_meets(eye, planes) {
+                // The image's height at distance t is 2·t·|up| / |forward|. An anchor farther
+                // from the origin than the eye (an axis grazing the plane) would store the
+                // eye worse than the eye itself.
+                Some(t)
+                    if self.forward.length() > EYE_REACH * 2.0 * self.up.length()
+                        && (eye + t * self.forward).length() < eye.length() =>
+                {
+                    anchor_of(eye, self.forward, eye + t * self.forward)
+                }
+                _ => vec4(eye, 0.0),
+            },
         };
         GpuCamera { anchor, forward: vec4(self.forward, 0.0), right: vec4(self.right, 0.0), up: vec4(self.up, 0.0) }
-    }
-
-    /// The anchor over planes alone: where the view axis meets the nearest plane, for an eye
-    /// more than `EYE_REACH` image heights from it, if that point is nearer the origin than the
-    /// eye; else the eye.
-    fn anchored_over_planes(&self, eye: DVec3, planes: &[GpuPlane]) -> [f32; 4] {
-        match self.axis_meets(eye, planes) {
-            // The image's height at distance t is 2·t·|up| / |forward|. An anchor farther
-            // from the origin than the eye (an axis grazing the plane) would store the
-            // eye worse than the eye itself.
-            Some(t)
-                if self.forward.length() > EYE_REACH * 2.0 * self.up.length()
-                    && (eye + t * self.forward).length() < eye.length() =>
-            {
-                anchor_of(eye, self.forward, eye + t * self.forward)
-            }
-            _ => vec4(eye, 0.0),
-        }
     }
 
     /// The nearest t > 0 (in units of `forward`) at which the view axis from `eye` meets one of

@@ -136,8 +136,10 @@ impl FlatScene {
         let materials = desc.materials.values().map(|m| flat_material(m, &mut table)).collect();
         let origin = wide(geometry.frame);
         let lights = desc.traced_lights().map(|l| flat_light(l, origin)).collect();
-        let camera =
-            Self::world_camera(desc, settings).stored(origin, scene_box(&geometry.bvh_nodes), &geometry.planes);
+        // A far box the camera cannot see is not what it looks at, nor what the scene is stored
+        // around (`glint_scene::storage_origin`): the camera is judged as over planes alone.
+        let seen = scene_box(&geometry.bvh_nodes).filter(|_| !glint_scene::far_box_out_of_sight(desc));
+        let camera = Self::world_camera(desc, settings).stored(origin, seen, &geometry.planes);
         let mut flat = Self {
             header: flat_header(desc, settings, &geometry, material_names.len()),
             camera,

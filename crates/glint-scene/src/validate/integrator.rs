@@ -4,7 +4,6 @@
 
 use crate::desc::{RenderSettings, SceneDesc};
 use crate::error::FieldIssue;
-use crate::rgb::Rgb;
 use glint_types::Integrator;
 
 /// The warnings `settings.integrator` gives `desc`; none for Whitted's.
@@ -32,31 +31,8 @@ pub fn integrator_warnings(desc: &SceneDesc, settings: &RenderSettings) -> Vec<F
             problem: "is not used by the path tracer: Russian roulette ends its paths, without bias".into(),
         });
     }
-    // The path tracer follows k_d, k_s, k_r and k_t as one BSDF (each lobe's albedo at most its
-    // k), so where they sum above 1 a surface returns more light than it receives and radiance
-    // grows with every bounce; Whitted's tree sums k_d and k_s once per light instead. One
-    // warning for all (a model's smooth materials, which count F0 as k_s and k_r, are many).
-    let gains: Vec<String> = desc
-        .materials
-        .iter()
-        .filter_map(|(name, m)| {
-            let kd = m.checker.as_ref().map_or(m.kd, |c| Rgb(std::array::from_fn(|k| m.kd.0[k].max(c.kd.0[k]))));
-            let sum = (0..3).map(|k| kd.0[k] + m.ks.0[k] + m.kr.0[k] + m.kt.0[k]).fold(0.0, f64::max);
-            (sum > 1.0).then(|| format!("{name} ({sum:.4})"))
-        })
-        .collect();
-    if !gains.is_empty() {
-        const SHOWN: usize = 6;
-        let more = gains.len().saturating_sub(SHOWN);
-        let more = if more > 0 { format!(" and {more} more") } else { String::new() };
-        out.push(FieldIssue {
-            field: "materials".into(),
-            problem: format!(
-                "k_d + k_s + k_r + k_t > 1 in {}{more}: under the path tracer such a surface returns more light \
-                 than it receives, so radiance grows with --depth",
-                gains[..gains.len().min(SHOWN)].join(", ")
-            ),
-        });
+    if let Some(problem) = path_gain_warning(desc) {
+        out.push(FieldIssue { field: "materials".into(), problem });
     }
     let emits = desc.materials.values().any(|m| !m.emission.is_zero());
     if desc.lights.is_empty() && !emits && desc.world.background.is_zero() {
@@ -69,9 +45,36 @@ pub fn integrator_warnings(desc: &SceneDesc, settings: &RenderSettings) -> Vec<F
     out
 }
 
+/// The path tracer follows k_d, k_s, k_r and k_t as one BSDF (`MaterialDesc::gain`), so
+/// where they sum above 1 a surface returns more light than it receives and radiance grows with
+/// every bounce; Whitted's tree sums k_d and k_s once per light instead. One warning for all
+/// (a model's smooth materials, which count F0 as k_s and k_r, are many).
+pub fn path_gain_warning(desc: &SceneDesc) -> Option<String> {
+    let gains: Vec<String> = desc
+        .materials
+        .iter()
+        .filter_map(|(name, m)| {
+            let sum = m.gain(Integrator::Path);
+            (sum > 1.0).then(|| format!("{name} ({sum:.4})"))
+        })
+        .collect();
+    if gains.is_empty() {
+        return None;
+    }
+    const SHOWN: usize = 6;
+    let more = gains.len().saturating_sub(SHOWN);
+    let more = if more > 0 { format!(" and {more} more") } else { String::new() };
+    Some(format!(
+        "k_d + k_s + k_r + k_t > 1 in {}{more}: under the path tracer such a surface returns more light than it \
+         receives, so radiance grows with --depth",
+        gains[..gains.len().min(SHOWN)].join(", ")
+    ))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::rgb::Rgb;
 
     #[test]
     fn a_path_render_is_warned_of_what_it_leaves_out_and_of_a_black_image() {

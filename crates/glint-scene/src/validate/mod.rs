@@ -26,7 +26,7 @@ mod materials;
 mod objects;
 
 pub use epsilon::epsilon_warning;
-pub use integrator::integrator_warnings;
+pub use integrator::{integrator_warnings, path_gain_warning};
 use lights::{validate_light, validate_polynomial};
 pub use limits::*;
 use materials::validate_material;
@@ -191,14 +191,23 @@ pub fn validate_with_objects(scene: &SceneDesc, objects: &Report) -> Report {
     }
     r.errors.extend_from_slice(&objects.errors);
     r.warnings.extend_from_slice(&objects.warnings);
-    if let Some(warning) = super::ray_tree::unbounded_ray_tree(scene, &scene.render) {
-        r.warn("render.max_depth", warning);
-    }
-    if let Some(warning) = epsilon_warning(scene, &scene.render) {
-        r.warn("render.epsilon", warning);
-    }
-    r.warnings.extend(integrator_warnings(scene, &scene.render));
+    r.warnings.extend(settings_warnings(scene, &scene.render));
     r
+}
+
+/// The warnings `settings` give `scene`: a ray tree that can grow past its bound, an ε as large
+/// as the scene, what the integrator leaves out or lacks. Validation gives those of the scene's
+/// own settings; `glint render` judges flags that change them with the same function.
+pub fn settings_warnings(scene: &SceneDesc, settings: &RenderSettings) -> Vec<FieldIssue> {
+    let mut out = Vec::new();
+    if let Some(problem) = super::ray_tree::unbounded_ray_tree(scene, settings) {
+        out.push(FieldIssue { field: "render.max_depth".into(), problem });
+    }
+    if let Some(problem) = epsilon_warning(scene, settings) {
+        out.push(FieldIssue { field: "render.epsilon".into(), problem });
+    }
+    out.extend(integrator_warnings(scene, settings));
+    out
 }
 
 fn validate_camera(scene: &SceneDesc, r: &mut Report) {
