@@ -402,8 +402,10 @@ pub fn path_slope(result: &GiResult, backend: Backend) -> Option<f64> {
 }
 
 /// Errors this close, relative, are one: the GPU's f32 against the CPU's f64 of the same row
-/// differ by about 1e-8, and the faster row is Whitted's best, not the one a rounding favours.
-const SAME_ERROR: f64 = 1e-6;
+/// differ by rounding (1e-8 relative on highlights, 1e-3 on cornell-gi, whose GPU row ranked
+/// 0.1 % better at twice the CPU's time), and the faster row is Whitted's best, not the one a
+/// rounding favours. A chart tells nothing finer apart.
+const SAME_ERROR: f64 = 0.01;
 
 /// The fastest path row whose error is below Whitted's best, and Whitted's best: its least
 /// error, the fastest of the rows within `SAME_ERROR` of it.
@@ -588,7 +590,7 @@ mod tests {
             written: [0.1; 3],
             rows: vec![
                 row(Integrator::Whitted, Backend::Gpu, 35, 0.5),
-                row(Integrator::Whitted, Backend::Cpu, 19, 0.5 + 1.5e-9),
+                row(Integrator::Whitted, Backend::Cpu, 19, 0.5 * (1.0 + 1e-3)),
                 row(Integrator::Whitted, Backend::Cpu, 10, 0.6),
                 row(Integrator::Path, Backend::Cpu, 40, 0.45),
             ],
