@@ -42,7 +42,7 @@ pub use number::{clarify_integer_overflow, format_number, shorten, shorten_lines
 pub use overflow::overflow_causes;
 pub use ray_tree::{WARN_RAYS_PER_SAMPLE, reachable_depth, unbounded_ray_tree};
 pub use rgb::Rgb;
-pub use storage::{far_box_out_of_sight, storage_origin, storage_origin_of_box};
+pub use storage::{bounded_box, far_box_out_of_sight, storage_origin, storage_origin_of_box, storage_origin_within};
 pub use texture::{
     ColorSpace, MAX_TEXTURE_SIDE, MAX_TEXTURE_TEXELS, TextureDesc, TextureError, TextureImage, UvTransform, check_size,
     srgb_to_linear,

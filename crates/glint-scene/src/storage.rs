@@ -33,7 +33,13 @@ const WORLD_SPACE_REACH: f64 = 64.0;
 /// (`eye_neighbourhood`): the digits belong to what is seen, and stored around a box far away,
 /// the eye and the plane beside it would be rounded to the box's distance.
 pub fn storage_origin(desc: &SceneDesc) -> [f64; 3] {
-    match bounded_box(desc) {
+    storage_origin_within(desc, bounded_box(desc))
+}
+
+/// `storage_origin` of `desc` whose bounded geometry spans `bounds` (`bounded_box`): for a
+/// caller that keeps the box, to judge another camera without walking the vertices again.
+pub fn storage_origin_within(desc: &SceneDesc, bounds: Option<(DVec3, DVec3)>) -> [f64; 3] {
+    match bounds {
         Some((lo, hi)) => {
             let (lo, hi) = eye_neighbourhood(desc, lo, hi).unwrap_or((lo, hi));
             storage_origin_of_box(lo.to_array(), hi.to_array())
@@ -42,12 +48,12 @@ pub fn storage_origin(desc: &SceneDesc) -> [f64; 3] {
     }
 }
 
-/// Whether the box around `desc`'s bounded geometry is far from the eye (more than
-/// `WORLD_SPACE_REACH` of its largest sides, as the camera's anchoring judges a far eye) and
-/// out of the camera's sight (`CameraDesc::may_see` of the ball around it): the one judgement
-/// both the storage origin and the camera's anchoring (`FlatScene`) follow.
-pub fn far_box_out_of_sight(desc: &SceneDesc) -> bool {
-    bounded_box(desc).is_some_and(|(lo, hi)| box_far_out_of_sight(desc, lo, hi))
+/// Whether the box `bounds` around `desc`'s bounded geometry (`bounded_box`) is far from the
+/// eye (more than `WORLD_SPACE_REACH` of its largest sides, as the camera's anchoring judges a
+/// far eye) and out of the camera's sight (`CameraDesc::may_see` of the ball around it): the
+/// one judgement both the storage origin and the camera's anchoring (`FlatScene`) follow.
+pub fn far_box_out_of_sight(desc: &SceneDesc, bounds: Option<(DVec3, DVec3)>) -> bool {
+    bounds.is_some_and(|(lo, hi)| box_far_out_of_sight(desc, lo, hi))
 }
 
 fn box_far_out_of_sight(desc: &SceneDesc, lo: DVec3, hi: DVec3) -> bool {
@@ -105,7 +111,7 @@ pub fn scene_extent(desc: &SceneDesc) -> Option<f64> {
 
 /// The box around every finite sphere and vertex of the scene (`None` without any): what
 /// validation has yet to judge is skipped, not trusted.
-fn bounded_box(desc: &SceneDesc) -> Option<(DVec3, DVec3)> {
+pub fn bounded_box(desc: &SceneDesc) -> Option<(DVec3, DVec3)> {
     let mut lo = DVec3::INFINITY;
     let mut hi = DVec3::NEG_INFINITY;
     let mut add = |p: DVec3| {

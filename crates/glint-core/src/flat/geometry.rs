@@ -5,7 +5,7 @@ use super::{
     Arc, BvhNodes, DVec3, GpuMesh, GpuPlane, GpuSphere, GpuTriangle, LeafCorners, MESH_HAS_COLOURS, MESH_HAS_NORMALS,
     MESH_HAS_UVS, MeshDesc, ObjectDesc, PlaneDesc, SceneDesc, SphereDesc, bvh, origin_power, vec4,
 };
-use glint_scene::storage_origin;
+use glint_scene::{bounded_box, storage_origin_within};
 use glint_types::layout::WORLD_FRAME;
 
 /// The primitives of a scene by kind, with an object id and name per scene object.
@@ -22,6 +22,8 @@ pub(super) struct Primitives {
     pub(super) object_names: Vec<String>,
     /// The origin the positions are stored relative to (`glint_scene::storage_origin`).
     pub(super) origin: DVec3,
+    /// The world box around the bounded geometry it was judged by (`glint_scene::bounded_box`).
+    pub(super) bounds: Option<(DVec3, DVec3)>,
 }
 
 /// The geometry of a flat scene by identity: two are equal when they share the same data (a
@@ -65,6 +67,9 @@ pub(super) struct Geometry {
     /// The frame the positions are stored in (`SceneHeader::frame`: the origin, exact in f32,
     /// and the offsets' length scale).
     pub(super) frame: [f32; 4],
+    pub(super) bounds: Option<(DVec3, DVec3)>,
+    /// The storage origin `bounds` gave at the build (`frame` moves when the GPU rebases).
+    pub(super) storage_origin: DVec3,
 }
 
 impl Geometry {
@@ -87,6 +92,8 @@ impl Geometry {
             bvh_prims,
             leaf_corners,
             frame: [p.origin.x as f32, p.origin.y as f32, p.origin.z as f32, WORLD_FRAME[3]],
+            bounds: p.bounds,
+            storage_origin: p.origin,
         }
     }
 }
@@ -96,8 +103,9 @@ impl Geometry {
 /// rounded once).
 pub(super) fn flat_primitives(desc: &SceneDesc, material_names: &[String]) -> Primitives {
     let material_index = |name: &str| material_names.iter().position(|m| m == name).unwrap_or(0) as u32;
-    let origin = DVec3::from(storage_origin(desc));
-    let mut out = Primitives { origin, ..Primitives::default() };
+    let bounds = bounded_box(desc);
+    let origin = DVec3::from(storage_origin_within(desc, bounds));
+    let mut out = Primitives { origin, bounds, ..Primitives::default() };
     for (id, object) in desc.objects.iter().enumerate() {
         let object_id = id as u32;
         let material = material_index(object.material());

@@ -57,6 +57,13 @@ pub struct FlatScene {
     /// Object names by object id (scene order; unnamed objects get `kind #index`).
     pub object_names: Arc<[String]>,
     pub material_names: Vec<String>,
+    /// The world box around the bounded geometry, as the description gives it
+    /// (`glint_scene::bounded_box`): what the storage origin and the camera judge a far box by,
+    /// kept so that `rebuild` judges a moved camera without walking the vertices again.
+    pub bounds: Option<(DVec3, DVec3)>,
+    /// The origin the build stored the positions relative to (`glint_scene::storage_origin`);
+    /// the header's frame is moved from it when the GPU rebases (`rebase::rebased`).
+    pub storage_origin: DVec3,
 }
 
 fn rgb4(c: Rgb) -> [f32; 4] {
@@ -102,6 +109,11 @@ impl FlatScene {
     /// primitives and the BVH are copied instead of rebuilt — the viewer's case while the
     /// camera or a light is dragged over a million triangles. Identical to `build`.
     pub fn rebuild(&self, desc: &SceneDesc, settings: &RenderSettings) -> Self {
+        // A camera turned towards or away from a far box can move the storage origin
+        // (`glint_scene::storage_origin`): then every position is stored anew.
+        if DVec3::from(glint_scene::storage_origin_within(desc, self.bounds)) != self.storage_origin {
+            return Self::build(desc, settings);
+        }
         Self::assemble(desc, settings, self.material_names.clone(), self.geometry())
     }
 
@@ -127,6 +139,8 @@ impl FlatScene {
             leaf_corners: self.leaf_corners.clone(),
             // The positions are stored in the frame, whether `build` or `rebase` put them there.
             frame: self.header.frame,
+            bounds: self.bounds,
+            storage_origin: self.storage_origin,
         }
     }
 
@@ -138,7 +152,7 @@ impl FlatScene {
         let lights = desc.traced_lights().map(|l| flat_light(l, origin)).collect();
         // A far box the camera cannot see is not what it looks at, nor what the scene is stored
         // around (`glint_scene::storage_origin`): the camera is judged as over planes alone.
-        let seen = scene_box(&geometry.bvh_nodes).filter(|_| !glint_scene::far_box_out_of_sight(desc));
+        let seen = scene_box(&geometry.bvh_nodes).filter(|_| !glint_scene::far_box_out_of_sight(desc, geometry.bounds));
         let camera = Self::world_camera(desc, settings).stored(origin, seen, &geometry.planes);
         let mut flat = Self {
             header: flat_header(desc, settings, &geometry, material_names.len()),
@@ -160,6 +174,8 @@ impl FlatScene {
             leaf_corners: geometry.leaf_corners,
             object_names: geometry.object_names,
             material_names,
+            bounds: geometry.bounds,
+            storage_origin: geometry.storage_origin,
         };
         let frame = flat.header.frame;
         place_texture_origins(&mut flat, frame);
@@ -359,5 +375,21 @@ mod tests {
         let rebuilt = old.rebuild(&edited, &settings);
         assert_eq!(rebuilt, FlatScene::build(&edited, &settings));
         assert_ne!(rebuilt.camera, old.camera);
+    }
+
+    #[test]
+    fn rebuild_after_turning_away_from_a_far_box_stores_the_scene_as_build_does() {
+        // A sphere 3e5 away and a floor under the eye: looking at the sphere, the scene is
+        // stored around it; turned down to the floor, around the eye (stiff case 26).
+        let text = "[camera]\nposition = [0.0, 0.01, 0.0]\nlook_at = [0.0, 0.01, 1.0]\n[materials.m]\nkd = 0.5\n\
+                    [[objects]]\ntype = \"plane\"\npoint = [0.0, 0.0, 0.0]\nnormal = [0.0, 1.0, 0.0]\nmaterial = \"m\"\n\
+                    [[objects]]\ntype = \"sphere\"\ncenter = [0.0, 1.0, 3e5]\nradius = 1.0\nmaterial = \"m\"\n";
+        let (desc, _) = glint_io::parse_scene(text, std::path::Path::new("t.toml")).expect("scene");
+        let old = FlatScene::build(&desc, &desc.render);
+        let mut turned = desc.clone();
+        turned.camera.look_at = [0.0, 0.0, -1.0];
+        let rebuilt = old.rebuild(&turned, &turned.render);
+        assert_ne!(rebuilt.header.frame, old.header.frame, "the origin moved to the eye");
+        assert_eq!(rebuilt, FlatScene::build(&turned, &turned.render));
     }
 }
