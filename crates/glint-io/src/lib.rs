@@ -136,9 +136,7 @@ pub fn load_scene_with(arg: &str, options: &LoadOptions) -> Result<LoadedScene, 
 /// (`/dev/zero`, a generator behind `<(…)`) has no size to check beforehand, and is read only
 /// that far.
 fn read_capped(path: &Path, cap: u64) -> std::io::Result<Vec<u8>> {
-    use std::io::Read as _;
-    let mut bytes = Vec::new();
-    std::fs::File::open(path)?.take(cap + 1).read_to_end(&mut bytes)?;
+    let bytes = uri::read_up_to(std::fs::File::open(path)?, cap, 0)?;
     if bytes.len() as u64 > cap {
         return Err(std::io::Error::other(format!("larger than {cap} bytes, the most a scene file may hold")));
     }

@@ -41,7 +41,15 @@ impl UriError {
     /// Whether the file named does not exist (a reference another place may satisfy, or a
     /// warning rather than an error).
     pub fn is_not_found(&self) -> bool {
-        matches!(self, Self::Io { error, .. } if error.kind() == std::io::ErrorKind::NotFound)
+        self.missing_path().is_some()
+    }
+
+    /// The path of the file named, where it does not exist.
+    pub fn missing_path(&self) -> Option<&Path> {
+        match self {
+            Self::Io { path, error, .. } if error.kind() == std::io::ErrorKind::NotFound => Some(path),
+            _ => None,
+        }
     }
 }
 
@@ -90,12 +98,19 @@ pub fn resolve_uri(model: &Path, uri: &str, cap: u64) -> Result<Vec<u8>, UriErro
     if meta.len() > cap {
         return Err(UriError::TooLarge { uri: shown(uri), size: meta.len(), cap });
     }
-    // At most cap + 1 bytes, so a file that grows after the size check is still refused.
-    let mut bytes = Vec::with_capacity(meta.len() as usize);
-    file.take(cap + 1).read_to_end(&mut bytes).map_err(|e| io(&path, e))?;
+    let bytes = read_up_to(file, cap, meta.len()).map_err(|e| io(&path, e))?;
     if bytes.len() as u64 > cap {
         return Err(UriError::TooLarge { uri: shown(uri), size: bytes.len() as u64, cap });
     }
+    Ok(bytes)
+}
+
+/// At most `cap` + 1 bytes of `file` (`len` its size where known, for the buffer): one more than
+/// the cap tells the caller that a file which grew after its size was checked, or a pipe that
+/// has no size, holds more than it may read.
+pub(crate) fn read_up_to(file: impl Read, cap: u64, len: u64) -> std::io::Result<Vec<u8>> {
+    let mut bytes = Vec::with_capacity(len.min(cap.saturating_add(1)) as usize);
+    file.take(cap.saturating_add(1)).read_to_end(&mut bytes)?;
     Ok(bytes)
 }
 

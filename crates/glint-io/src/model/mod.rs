@@ -269,7 +269,7 @@ mod tests {
             aspect: None,
         };
         for (count, says) in [(0, "it has none"), (1, "it has one, camera 0"), (3, "it has 3, cameras 0 to 2")] {
-            let mut model = Model { meshes: vec![MeshDesc { material: "m".into(), ..quad(1.0) }], ..Model::default() };
+            let mut model = Model { meshes: vec![quad(1.0)], ..Model::default() };
             model.cameras = vec![camera.clone(); count];
             let options = ImportOptions { camera: Some(5), ..ImportOptions::default() };
             let e = scene_around(model, Path::new("m.gltf"), &options).unwrap_err();

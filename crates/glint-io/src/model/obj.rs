@@ -78,7 +78,7 @@ pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
         let warn = |problem: String| mtl_warnings.borrow_mut().push(FieldIssue { field: field.clone(), problem });
         let text = match resolve_uri(path, uri, MAX_RESOURCE_BYTES) {
             Ok(text) => text,
-            Err(UriError::Io { path: mtl, error, .. }) if error.kind() == std::io::ErrorKind::NotFound => {
+            Err(ref e) if let Some(mtl) = e.missing_path() => {
                 warn(format!(
                     "{} does not exist; the faces naming its materials use `{DEFAULT_MATERIAL}`",
                     mtl.display()
@@ -265,7 +265,7 @@ fn mtl_files(obj: &Path, rest: &str) -> Vec<String> {
     let folder = obj.parent().unwrap_or(Path::new("."));
     let words: Vec<&str> = rest.split_whitespace().collect();
     let all_mtl = words.len() > 1 && words.iter().all(|w| w.to_ascii_lowercase().ends_with(".mtl"));
-    if folder.join(rest).is_file() || !all_mtl {
+    if !all_mtl || folder.join(rest).is_file() {
         return vec![rest.to_string()];
     }
     words.into_iter().map(str::to_string).collect()
