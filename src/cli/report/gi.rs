@@ -150,9 +150,8 @@ fn mean_and_noise(groups: &[HdrImage]) -> (HdrImage, f64) {
     let mut mean = groups[0].clone();
     let mut variance = 0.0;
     for (i, p) in mean.pixels.iter_mut().enumerate() {
-        let values: Vec<_> = groups.iter().map(|g| g.pixels[i]).collect();
-        *p = values.iter().sum::<DVec3>() / k;
-        variance += values.iter().map(|v| (*v - *p).length_squared()).sum::<f64>() / (k - 1.0);
+        *p = groups.iter().map(|g| g.pixels[i]).sum::<DVec3>() / k;
+        variance += groups.iter().map(|g| (g.pixels[i] - *p).length_squared()).sum::<f64>() / (k - 1.0);
     }
     let per_value = variance / (3 * mean.pixels.len().max(1)) as f64;
     (mean, (per_value / k).sqrt())
