@@ -255,16 +255,20 @@ fn report_rejects_an_unknown_scene_before_writing_anything() {
 }
 
 #[test]
-fn report_rejects_an_empty_scene_list_and_a_thread_count_out_of_range() {
+fn report_rejects_an_empty_scene_list_an_empty_merge_folder_and_a_thread_count_out_of_range() {
     let dir = TempDir::new("report-empty");
     let out_dir = dir.join("out");
     for (flag, value, fragments) in [
         ("--scenes", "", &["--scenes names no scene"][..]),
         ("--scenes", " , ", &["--scenes names no scene"][..]),
         ("--threads", "100000", &["--threads", "100000 is outside [0, "][..]),
+        ("--merge", "s0,,s2", &["--merge", "an empty folder name", "doubled"][..]),
     ] {
-        let args: [std::ffi::OsString; 6] =
-            ["report".into(), flag.into(), value.into(), "--cpu-only".into(), "--out".into(), out_dir.clone().into()];
+        let mut args: Vec<std::ffi::OsString> =
+            vec!["report".into(), flag.into(), value.into(), "--out".into(), out_dir.clone().into()];
+        if flag != "--merge" {
+            args.push("--cpu-only".into());
+        }
         let out = glint(&dir, args);
         assert!(!out.status.success(), "{flag} {value:?} succeeded");
         for f in fragments {

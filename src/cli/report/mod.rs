@@ -85,6 +85,7 @@ pub struct ReportArgs {
         long,
         value_delimiter = ',',
         value_name = "DIR",
+        value_parser = parse_merge_folder,
         conflicts_with_all = [
             "shard", "scenes", "quick", "width", "height", "reference_spp", "runs", "adapter", "cpu_only",
             "threads", "integrator",
@@ -94,6 +95,15 @@ pub struct ReportArgs {
     /// No progress bar
     #[arg(short, long)]
     pub quiet: bool,
+}
+
+/// One folder of `--merge`'s list; clap's own word for an empty one ("a value is required …
+/// but none was supplied") hides the doubled or stray comma that makes it.
+fn parse_merge_folder(folder: &str) -> Result<PathBuf, String> {
+    if folder.trim().is_empty() {
+        return Err("an empty folder name in the list: a doubled, leading or trailing comma?".into());
+    }
+    Ok(PathBuf::from(folder))
 }
 
 pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
