@@ -234,23 +234,7 @@ pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
         }
         out.meshes.push(desc);
     }
-    // An object's normals are shared across the meshes tobj split it into (one per material),
-    // so that a change of material does not crease a smooth surface.
-    let mut objects: Vec<String> = to_smooth.iter().map(|(i, _)| out.meshes[*i].name.clone()).collect();
-    objects.sort_unstable();
-    objects.dedup();
-    for object in objects {
-        let parts: Vec<&(usize, Vec<obj_smoothing::Corner>)> =
-            to_smooth.iter().filter(|(i, _)| out.meshes[*i].name == object).collect();
-        let geometry: Vec<obj_smoothing::Part<'_>> = parts
-            .iter()
-            .map(|(i, keys)| (out.meshes[*i].vertices.as_slice(), out.meshes[*i].triangles.as_slice(), keys.as_slice()))
-            .collect();
-        let normals = obj_smoothing::normals(&geometry);
-        for ((i, _), normals) in parts.iter().zip(normals) {
-            out.meshes[*i].normals = normals;
-        }
-    }
+    obj_smoothing::smooth_objects(&mut out.meshes, to_smooth);
     if out.meshes.is_empty() {
         return Err(ObjError::Empty { file: path.to_owned() });
     }

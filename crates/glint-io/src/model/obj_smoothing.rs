@@ -59,6 +59,27 @@ pub(super) fn split(mesh: &mut MeshDesc, groups: &[u32]) -> Vec<Corner> {
     keys
 }
 
+/// Gives the meshes `to_smooth` (index into `meshes`, the keys `split` returned) their
+/// smoothing groups' normals. An object's normals are shared across the meshes tobj split it
+/// into (one per material), so that a change of material does not crease a smooth surface.
+pub(super) fn smooth_objects(meshes: &mut [MeshDesc], to_smooth: Vec<(usize, Vec<Corner>)>) {
+    // Grouped by object name once: a file of many objects is not walked once per object.
+    let mut objects: HashMap<String, Vec<(usize, Vec<Corner>)>> = HashMap::new();
+    for (i, keys) in to_smooth {
+        objects.entry(meshes[i].name.clone()).or_default().push((i, keys));
+    }
+    for parts in objects.into_values() {
+        let geometry: Vec<Part<'_>> = parts
+            .iter()
+            .map(|(i, keys)| (meshes[*i].vertices.as_slice(), meshes[*i].triangles.as_slice(), keys.as_slice()))
+            .collect();
+        let normals = normals(&geometry);
+        for ((i, _), normals) in parts.iter().zip(normals) {
+            meshes[*i].normals = normals;
+        }
+    }
+}
+
 /// `values` at the indices `source`, in its order.
 fn pick<T: Copy>(values: &[T], source: &[usize]) -> Vec<T> {
     source.iter().map(|&i| values[i]).collect()
@@ -187,6 +208,16 @@ mod tests {
         let n = normals(&[(&left.vertices, &left.triangles, &kl), (&right.vertices, &right.triangles, &kr)]);
         let (l, r) = (n[0].as_ref().expect("left"), n[1].as_ref().expect("right"));
         assert_eq!(l[2], r[1], "the ridge's bottom corner");
+        // The same two meshes of two objects are smoothed apart: each ridge its face's normal.
+        let named = |m: &MeshDesc, name: &str| MeshDesc { name: name.into(), ..m.clone() };
+        let mut meshes = vec![named(&left, "a"), named(&right, "a"), named(&left, "b"), named(&right, "c")];
+        let keys = [&kl, &kr, &kl, &kr].map(|k| k.clone());
+        smooth_objects(&mut meshes, keys.into_iter().enumerate().collect());
+        let normal = |m: usize, v: usize| meshes[m].normals.as_ref().expect("smoothed")[v];
+        assert_eq!((normal(0, 2), normal(1, 1)), (l[2], r[1]), "object a: as one object");
+        let h = std::f64::consts::FRAC_1_SQRT_2;
+        let near = |n: [f64; 3], m: [f64; 3]| n.iter().zip(m).all(|(a, b)| (a - b).abs() < 1e-15);
+        assert!(near(normal(2, 2), [-h, h, 0.0]) && near(normal(3, 1), [h, h, 0.0]), "objects b and c: apart");
         // A line of three points: no triangle with area reads its vertices.
         let mut line = mesh(vec![[0.0; 3], [1.0, 0.0, 0.0], [2.0, 0.0, 0.0]], vec![[0, 1, 2]]);
         let keys = split(&mut line, &[1]);
