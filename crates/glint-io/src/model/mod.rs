@@ -99,9 +99,17 @@ pub fn load_model_file(path: &Path, options: &ImportOptions) -> Result<Model, St
     }
 }
 
+/// Where the camera framing a model stands: a direction from the model's centre and how many
+/// of its radii along it.
+const FRAMING_CAMERA: ([f64; 3], f64) = ([0.45, 0.35, 0.82], 2.6);
+/// Where the default rig's point key light stands, as `FRAMING_CAMERA`.
+const KEY_LIGHT: ([f64; 3], f64) = ([-0.8, 1.6, 1.2], 3.0);
+
 /// How many of the model's radii the camera and lights made around it lie from its centre, at
-/// most, on any axis (the key light's 1.6 × 3).
-const MADE_AROUND: f64 = 4.8;
+/// most, on any axis.
+fn made_around() -> f64 {
+    [FRAMING_CAMERA, KEY_LIGHT].iter().flat_map(|(d, s)| d.map(|c| c.abs() * s)).fold(0.0, f64::max)
+}
 
 /// The material of the ground under an opened model.
 pub const GROUND_MATERIAL: &str = "glint-ground";
@@ -128,10 +136,10 @@ pub fn scene_around(
     let center: [f64; 3] = std::array::from_fn(|k| 0.5 * (lo[k] + hi[k]));
     let radius = (0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>().sqrt().max(1e-6) * 0.5;
     // Beyond the coordinates a scene may hold, the camera, lights and ground made around the
-    // model (at most `MADE_AROUND` of its radii from its centre on an axis) would be refused,
+    // model (at most `made_around()` of its radii from its centre on an axis) would be refused,
     // each under Glint's own names: say once what is wrong.
     let reach = lo.iter().chain(&hi).fold(0.0_f64, |r, c| r.max(c.abs()));
-    let around = center.iter().fold(0.0_f64, |r, c| r.max(c.abs())) + MADE_AROUND * radius;
+    let around = center.iter().fold(0.0_f64, |r, c| r.max(c.abs())) + made_around() * radius;
     if reach.max(around) > MAX_COORD {
         return Err(FieldIssue {
             field: "vertices".into(),
@@ -160,7 +168,7 @@ pub fn scene_around(
         (None, None) => ModelCamera {
             name: "framing the model".into(),
             camera: CameraDesc {
-                position: at([0.45, 0.35, 0.82], 2.6),
+                position: at(FRAMING_CAMERA.0, FRAMING_CAMERA.1),
                 look_at: center,
                 up: [0.0, 1.0, 0.0],
                 fov_y: 40.0,
@@ -220,7 +228,7 @@ pub fn scene_around(
             ..LightDesc::new(kind, position, direction)
         };
         vec![
-            light(LightKind::Point, at([-0.8, 1.6, 1.2], 3.0), [0.0; 3], 0.8),
+            light(LightKind::Point, at(KEY_LIGHT.0, KEY_LIGHT.1), [0.0; 3], 0.8),
             light(LightKind::Directional, [0.0; 3], [0.4, -1.0, -0.3], 0.3),
         ]
     } else {
