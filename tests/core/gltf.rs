@@ -187,6 +187,14 @@ fn cameras_come_from_their_nodes_and_the_scene_uses_the_chosen_one() {
     assert!(message.contains("scenes[3]") && message.contains("has 1"), "{message}");
     let not_a_model = load_scene_with("whitted", &missing).unwrap_err().to_string();
     assert!(not_a_model.contains("not a model file"), "{not_a_model}");
+    // A camera under a mirroring parent is looked through unmirrored, and said so.
+    f.json["nodes"][3] = json!({ "scale": [-1.0, 1.0, 1.0], "children": [4] });
+    f.json["nodes"].as_array_mut().unwrap().push(json!({ "translation": [-0.5, 0.5, 2.0], "camera": 2 }));
+    let m = load(&f.write_gltf(&dir, "mirrored", BufferAt::DataUri));
+    assert_eq!(m.cameras[1].camera.position, [0.5, 0.5, 2.0]);
+    let said = m.warnings.iter().find(|w| w.problem.contains("mirrors")).expect("the mirror is said");
+    assert!(said.field.contains("nodes[4].camera"), "{said:?}");
+    assert_eq!(m.warnings.iter().filter(|w| w.problem.contains("mirrors")).count(), 1, "{:?}", m.warnings);
 }
 
 #[test]

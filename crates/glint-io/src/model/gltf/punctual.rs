@@ -71,6 +71,16 @@ pub(super) fn map_camera(
         warnings.push(FieldIssue { field, problem: "the node's transform is degenerate; camera skipped".into() });
         return None;
     };
+    if world.determinant3() < 0.0 {
+        // A mirroring node turns the camera's +X to the image's left; Glint's camera (eye, target,
+        // up) has no handedness to carry that, and a silently unmirrored view misleads.
+        warnings.push(FieldIssue {
+            field: field.clone(),
+            problem: "the node mirrors (a negative scale): Glint's camera does not mirror its image, so the \
+                      view is the unmirrored one, its right forward × up"
+                .into(),
+        });
+    }
     let fov_y = f64::from(p.yfov()).to_degrees();
     if !(fov_y.is_finite() && fov_y > 0.0 && fov_y < 180.0) {
         warnings.push(FieldIssue { field, problem: format!("yfov {} is outside (0, π); camera skipped", p.yfov()) });
