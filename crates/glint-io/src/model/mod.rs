@@ -105,10 +105,10 @@ const FRAMING_CAMERA: ([f64; 3], f64) = ([0.45, 0.35, 0.82], 2.6);
 /// Where the default rig's point key light stands, as `FRAMING_CAMERA`.
 const KEY_LIGHT: ([f64; 3], f64) = ([-0.8, 1.6, 1.2], 3.0);
 
-/// How many of the model's radii the camera and lights made around it lie from its centre, at
-/// most, on any axis.
-fn made_around() -> f64 {
-    [FRAMING_CAMERA, KEY_LIGHT].iter().flat_map(|(d, s)| d.map(|c| c.abs() * s)).fold(0.0, f64::max)
+/// How many of the model's radii the placements `made` (`FRAMING_CAMERA`, `KEY_LIGHT`) lie from
+/// its centre, at most, on any axis.
+fn made_around(made: &[([f64; 3], f64)]) -> f64 {
+    made.iter().flat_map(|(d, s)| d.map(|c| c.abs() * s)).fold(0.0, f64::max)
 }
 
 /// The material of the ground under an opened model.
@@ -135,17 +135,36 @@ pub fn scene_around(
     }
     let center: [f64; 3] = std::array::from_fn(|k| 0.5 * (lo[k] + hi[k]));
     let radius = (0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>().sqrt().max(1e-6) * 0.5;
-    // Beyond the coordinates a scene may hold, the camera, lights and ground made around the
-    // model (at most `made_around()` of its radii from its centre on an axis) would be refused,
-    // each under Glint's own names: say once what is wrong.
+    // Beyond the coordinates a scene may hold, the camera and lights Glint makes around the model
+    // (where the file has none) would be refused, each under Glint's own names: say once what
+    // is wrong. The ground lies within the model's box.
     let reach = lo.iter().chain(&hi).fold(0.0_f64, |r, c| r.max(c.abs()));
-    let around = center.iter().fold(0.0_f64, |r, c| r.max(c.abs())) + made_around() * radius;
-    if reach.max(around) > MAX_COORD {
+    if reach > MAX_COORD {
         return Err(FieldIssue {
             field: "vertices".into(),
             problem: format!(
-                "the model reaches {reach:.3e} from the origin, and the camera and lights made around it {around:.3e}; \
-                 coordinates must lie in [-{MAX_COORD:e}, {MAX_COORD:e}] (a node's scale, or a file in other units?)"
+                "the model reaches {reach:.3e} from the origin; coordinates must lie in [-{MAX_COORD:e}, {MAX_COORD:e}] \
+                 (a node's scale, or a file in other units?)"
+            ),
+        });
+    }
+    let makes_camera = options.camera.is_none() && model.cameras.is_empty();
+    let makes_lights = model.lights.is_empty();
+    let made: Vec<_> =
+        [makes_camera.then_some(FRAMING_CAMERA), makes_lights.then_some(KEY_LIGHT)].into_iter().flatten().collect();
+    let around = center.iter().fold(0.0_f64, |r, c| r.max(c.abs())) + made_around(&made) * radius;
+    if !made.is_empty() && around > MAX_COORD {
+        let what = match (makes_camera, makes_lights) {
+            (true, true) => "the camera and lights",
+            (true, false) => "the camera",
+            (false, _) => "the lights",
+        };
+        return Err(FieldIssue {
+            field: "model".into(),
+            problem: format!(
+                "{what} Glint makes around a model without its own would reach {around:.3e} from the origin \
+                 (the model's box reaches {reach:.3e}); coordinates must lie in [-{MAX_COORD:e}, {MAX_COORD:e}]: \
+                 give the file its own, or scale it down (a node's scale)"
             ),
         });
     }
@@ -266,7 +285,23 @@ mod tests {
         assert!(scene_around(model(1e6), path, &ImportOptions::default()).is_ok());
         // Within the range itself, but not the key light made 4.8 radii (here 3.4e8) above it.
         let e = scene_around(model(5e8), path, &ImportOptions::default()).unwrap_err();
-        assert!(e.problem.contains("reaches 5.000e8") && e.problem.contains("around it 3.394e9"), "{}", e.problem);
+        assert_eq!(e.field, "model");
+        assert!(e.problem.starts_with("the camera and lights Glint makes"), "{}", e.problem);
+        assert!(e.problem.contains("reach 3.394e9") && e.problem.contains("box reaches 5.000e8"), "{}", e.problem);
+        // A file with its own camera and light is judged by what it uses: its vertices.
+        let light = LightDesc::new(LightKind::Directional, [0.0; 3], [0.0, -1.0, 0.0]);
+        let camera = ModelCamera {
+            name: "own".into(),
+            camera: CameraDesc { position: [0.0, 0.0, 5.0], look_at: [0.0; 3], up: [0.0, 1.0, 0.0], fov_y: 40.0 },
+            aspect: None,
+        };
+        let own = Model { lights: vec![light.clone()], cameras: vec![camera.clone()], ..model(5e8) };
+        assert!(scene_around(own, path, &ImportOptions::default()).is_ok());
+        let e = scene_around(Model { lights: vec![light], ..model(5e8) }, path, &ImportOptions::default()).unwrap_err();
+        assert!(e.problem.starts_with("the camera Glint makes"), "{}", e.problem);
+        let e =
+            scene_around(Model { cameras: vec![camera], ..model(5e8) }, path, &ImportOptions::default()).unwrap_err();
+        assert!(e.problem.starts_with("the lights Glint makes"), "{}", e.problem);
     }
 
     #[test]
