@@ -11,7 +11,7 @@ use glint_core::memory::{self, RenderPlan, render_estimate};
 use glint_core::{Accel, Backend, CpuOptions, FlatScene};
 use glint_gpu::GpuOptions;
 use glint_io::{BUILTIN_SCENES, RESOLUTIONS};
-use glint_scene::{Integrator, RenderSettings, settings_warnings};
+use glint_scene::{Integrator, RenderSettings};
 
 use super::backend::{Run, open_gpu, run_cpu, run_gpu};
 use super::console::{say, tell};
@@ -21,7 +21,9 @@ use super::output::{
     print_table, suffixed, write_diff, write_run,
 };
 use super::output_path::check_outputs;
-use super::settings::{LoadArgs, SettingsArgs, is_model, load_with_estimate, parse_ray_cap, parse_threads};
+use super::settings::{
+    LoadArgs, SettingsArgs, is_model, load_with_estimate, parse_ray_cap, parse_threads, tell_warnings,
+};
 use super::tile::{TileJob, TileSpec, parse_tile, render_tile};
 use super::units::{mrays_per_s, ms};
 
@@ -118,13 +120,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     let (loaded, load_estimate) =
         load_with_estimate(&args.scene, &args.scene_size.options(), args.scene_size.memory_limit)?;
     let settings = args.settings.apply(&loaded.desc.render, is_model(&loaded))?;
-    // Loading warned about the scene's own settings; what flags that change them add is said here.
-    if settings != loaded.desc.render {
-        let at_load = settings_warnings(&loaded.desc, &loaded.desc.render);
-        for w in settings_warnings(&loaded.desc, &settings).into_iter().filter(|w| !at_load.contains(w)) {
-            tell!("warning: {w}");
-        }
-    }
+    tell_warnings(&loaded, &settings);
     let specialise = !args.no_specialise;
     let cpu_options = CpuOptions {
         threads: args.threads,

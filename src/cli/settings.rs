@@ -6,7 +6,9 @@ use glint_core::memory::{self, MemoryEstimate, SourceKind};
 use glint_io::ImportOptions;
 use glint_io::model::Ground;
 use glint_io::{DEFAULT_RESOLUTION, LoadOptions, LoadedScene, RESOLUTIONS, load_scene_with};
-use glint_scene::{EpsilonMode, Integrator, MAX_IMAGE_SIDE, RenderSettings, Report, validate_settings};
+use glint_scene::{
+    EpsilonMode, Integrator, MAX_IMAGE_SIDE, RenderSettings, Report, settings_warnings, validate_settings,
+};
 
 use super::console::tell;
 
@@ -247,14 +249,17 @@ fn flag_of(field: &str) -> &'static str {
     }
 }
 
-/// Loads a scene file, model file or built-in scene with `options` and prints its warnings.
-/// Loads a scene or model, first refusing a file whose load is estimated to need more memory
-/// than `memory_limit` (or than is available).
+/// Loads a scene file, model file or built-in scene with `options` and prints its warnings,
+/// first refusing a file whose load is estimated to need more memory than `memory_limit` (or
+/// than is available).
 pub fn load(scene: &str, options: &LoadOptions, memory_limit: Option<u64>) -> anyhow::Result<LoadedScene> {
-    Ok(load_with_estimate(scene, options, memory_limit)?.0)
+    let (loaded, _) = load_with_estimate(scene, options, memory_limit)?;
+    tell_warnings(&loaded, &loaded.desc.render);
+    Ok(loaded)
 }
 
-/// `load`, with the estimate the file's load was checked against (`None` for a built-in).
+/// `load` without its warnings (`tell_warnings` says them once the render's settings are
+/// known), with the estimate the file's load was checked against (`None` for a built-in).
 pub fn load_with_estimate(
     scene: &str,
     options: &LoadOptions,
@@ -262,10 +267,19 @@ pub fn load_with_estimate(
 ) -> anyhow::Result<(LoadedScene, Option<MemoryEstimate>)> {
     let estimate = check_load_memory(scene, memory_limit)?;
     let loaded = load_scene_with(scene, options).with_context(|| format!("cannot load scene '{scene}'"))?;
-    for w in &loaded.warnings {
+    Ok((loaded, estimate))
+}
+
+/// Prints the warnings of `loaded` rendered with `settings`: those its own settings gave that
+/// `settings` (its settings with the flags applied) no longer give are left out, and those the
+/// flags add are said (an ε the flags lowered is not warned about, one they raised is).
+pub fn tell_warnings(loaded: &LoadedScene, settings: &RenderSettings) {
+    let own = settings_warnings(&loaded.desc, &loaded.desc.render);
+    let now = settings_warnings(&loaded.desc, settings);
+    let kept = loaded.warnings.iter().filter(|w| !own.contains(w) || now.contains(w));
+    for w in kept.chain(now.iter().filter(|w| !own.contains(w))) {
         tell!("warning: {}: {w}", loaded.source.display());
     }
-    Ok((loaded, estimate))
 }
 
 /// Refuses a scene or model file whose load is estimated to need more memory than

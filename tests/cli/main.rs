@@ -176,6 +176,30 @@ fn scene_settings_are_used_when_no_flag_overrides_them() {
 }
 
 #[test]
+fn warnings_judge_the_settings_the_render_uses_not_the_scene_files() {
+    // ε = 0.05 is 5 % of a sphere 1 wide: warned about, unless a flag lowers it; a flag that
+    // raises the default to it is warned about once.
+    let dir = TempDir::new("flag-warnings");
+    let scene = |epsilon: &str| {
+        format!(
+            "[render]\nwidth = 8\nheight = 6\n{epsilon}\n[camera]\nposition = [0.0, 0.0, -4.0]\nlook_at = [0.0, 0.0, 0.0]\n\n\
+             [materials.m]\nkd = 0.5\n\n[[objects]]\ntype = \"sphere\"\ncenter = [0.0, 0.0, 0.0]\nradius = 0.5\nmaterial = \"m\"\n"
+        )
+    };
+    std::fs::write(dir.join("large.toml"), scene("epsilon = 0.05")).unwrap();
+    std::fs::write(dir.join("plain.toml"), scene("")).unwrap();
+    let render = |file: &str, flags: &[&str]| {
+        let out = glint(&dir, [&["render", file, "-o", "out.png", "-q"][..], flags].concat());
+        assert!(out.status.success(), "{}", text(&out.stderr));
+        text(&out.stderr).matches("render.epsilon").count()
+    };
+    assert_eq!(render("large.toml", &[]), 1, "the file's own ε");
+    assert_eq!(render("large.toml", &["--epsilon", "1e-7"]), 0, "an ε the flag lowered");
+    assert_eq!(render("plain.toml", &[]), 0);
+    assert_eq!(render("plain.toml", &["--epsilon", "0.05"]), 1, "an ε the flag raised, once");
+}
+
+#[test]
 fn accel_none_and_bvh_render_the_same_pixels() {
     // `--accel none` is brute force, as before the BVH; `--accel bvh` (the default) must give
     // the same image. EXR keeps the linear f32 values; a bad choice fails cleanly.
