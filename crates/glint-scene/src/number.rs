@@ -8,6 +8,13 @@ pub fn format_number(v: f64) -> String {
     if v == 0.0 || !v.is_finite() || (1e-4..1e15).contains(&magnitude) { v.to_string() } else { format!("{v:e}") }
 }
 
+/// A computed value (not one the user wrote) for a message: rounded to `digits` significant
+/// digits, then written as `format_number` writes it (8e-5, not 7.999999797903001e-5).
+pub fn format_rounded(v: f64, digits: usize) -> String {
+    let rounded = format!("{v:.*e}", digits.saturating_sub(1)).parse().unwrap_or(v);
+    format_number(rounded)
+}
+
 /// Characters of an echoed value kept before it is cut.
 pub const ECHO_CHARS: usize = 120;
 

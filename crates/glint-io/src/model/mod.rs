@@ -19,8 +19,8 @@ pub use ground::{FLOOR_COVER, GROUND_GAP, Ground};
 pub use obj::{ObjError, load_obj};
 
 use glint_scene::{
-    CameraDesc, FieldIssue, LightDesc, LightKind, LoadedModel, MAX_COORD, MAX_IMAGE_SIDE, MaterialDesc, Model,
-    ModelCamera, ModelDesc, ObjectDesc, PlaneDesc, RenderSettings, Rgb, SceneDesc, TransformDesc, WorldDesc,
+    CameraDesc, EPSILON_SHARE, FieldIssue, LightDesc, LightKind, LoadedModel, MAX_COORD, MAX_IMAGE_SIDE, MaterialDesc,
+    Model, ModelCamera, ModelDesc, ObjectDesc, PlaneDesc, RenderSettings, Rgb, SceneDesc, TransformDesc, WorldDesc,
 };
 
 /// Choices made when a model file is opened (`--scene-index`, `--camera`, `--exposure`,
@@ -170,6 +170,12 @@ pub fn scene_around(
     }
     let at = |d: [f64; 3], s: f64| std::array::from_fn(|k| center[k] + d[k] * s * radius);
     let mut render = RenderSettings::default();
+    // The default ε is 1e-6 of a model 1 wide; a smaller model (a file in other units, or a
+    // node's scale) gets the same share of its own size, so that it renders as it would at 1.
+    let side = (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max);
+    if side > 0.0 {
+        render.epsilon = render.epsilon.min(EPSILON_SHARE * side);
+    }
     let camera = match (options.camera, model.cameras.first()) {
         (Some(i), _) => {
             let count = model.cameras.len();
@@ -302,6 +308,19 @@ mod tests {
         let e =
             scene_around(Model { cameras: vec![camera], ..model(5e8) }, path, &ImportOptions::default()).unwrap_err();
         assert!(e.problem.starts_with("the lights Glint makes"), "{}", e.problem);
+    }
+
+    #[test]
+    fn a_model_smaller_than_1_gets_the_default_epsilons_share_of_its_size() {
+        let epsilon = |s: f64| {
+            let model = Model { meshes: vec![quad(s)], ..Model::default() };
+            let (desc, _) = scene_around(model, Path::new("m.gltf"), &ImportOptions::default()).expect("in range");
+            assert!(glint_scene::validate(&desc).warnings.iter().all(|w| w.field != "render.epsilon"), "at {s}");
+            desc.render.epsilon
+        };
+        assert_eq!(epsilon(10.0), RenderSettings::default().epsilon);
+        assert_eq!(epsilon(0.5), RenderSettings::default().epsilon, "1 wide");
+        assert_eq!(epsilon(1e-3), 1e-6 * 2e-3);
     }
 
     #[test]

@@ -25,7 +25,7 @@ mod limits;
 mod materials;
 mod objects;
 
-pub use epsilon::epsilon_warning;
+pub use epsilon::{EPSILON_SHARE, EPSILON_WARN_SHARE, epsilon_warning};
 pub use integrator::{integrator_warnings, path_gain_warning};
 use lights::{validate_light, validate_polynomial};
 pub use limits::*;
