@@ -236,13 +236,99 @@ fn intersect_triangle(va: vec3<f32>, vb: vec3<f32>, vc: vec3<f32>, ray: Ray, sh:
     if det == 0.0 {
         return miss;
     }
-    let t_scaled = sum_by_magnitude(u * (sh.s.z * a[sh.kz]), v * (sh.s.z * b[sh.kz]), w * (sh.s.z * c[sh.kz]));
+    let du = u * (sh.s.z * a[sh.kz]);
+    let dv = v * (sh.s.z * b[sh.kz]);
+    let dw = w * (sh.s.z * c[sh.kz]);
     let inv = 1.0 / det;
-    let t = t_scaled * inv;
+    var t = sum_by_magnitude(du, dv, dw) * inv;
+    // The corners' depths cancel for a triangle far larger than its distance from the origin
+    // (the CPU twin says more): the plane's form where its bound is FORM_MARGIN times smaller.
+    let err_watertight = (abs(du) + abs(dv) + abs(dw)) * abs(inv);
+    if err_watertight > 2.0 * FORM_MARGIN * abs(t) {
+        let plane = plane_t(triangle_plane(va, vb, vc), ray, err_watertight);
+        if plane.ok {
+            t = plane.t;
+        }
+    }
     if !(t > t_min && t < t_max) {
         return miss;
     }
     return TriangleHit(t, v * inv, w * inv, true);
+}
+
+// A triangle's plane: the corner first in (x, y, z) order, the normal of the corners in that
+// order (the same for copies with rotated or reversed corners) and its error bound over ε.
+struct TrianglePlane {
+    corner: vec3<f32>,
+    normal: vec3<f32>,
+    err_normal: vec3<f32>,
+}
+
+fn lex_less(p: vec3<f32>, q: vec3<f32>) -> bool {
+    return p.x < q.x || (p.x == q.x && (p.y < q.y || (p.y == q.y && p.z < q.z)));
+}
+
+fn triangle_plane(va: vec3<f32>, vb: vec3<f32>, vc: vec3<f32>) -> TrianglePlane {
+    var a = va;
+    var b = vb;
+    var c = vc;
+    if lex_less(b, a) {
+        let x = a;
+        a = b;
+        b = x;
+    }
+    if lex_less(c, b) {
+        let x = b;
+        b = c;
+        c = x;
+    }
+    if lex_less(b, a) {
+        let x = a;
+        a = b;
+        b = x;
+    }
+    let e1 = b - a;
+    let e2 = c - a;
+    let sizes = abs(e1.yzx * e2.zxy) + abs(e1.zxy * e2.yzx);
+    return TrianglePlane(a, cross(e1, e2), 3.0 * sizes);
+}
+
+// t where the ray meets the plane, where its bound is FORM_MARGIN times below err_watertight.
+fn plane_t(plane: TrianglePlane, ray: Ray, err_watertight: f32) -> MaybeT {
+    let a = plane.corner - ray.origin;
+    let n = plane.normal;
+    let num = dot(n, a);
+    let den = dot(n, ray.dir);
+    let err_num = dot(abs(a), plane.err_normal) + 2.0 * dot(abs(n), abs(a));
+    let err_den = dot(abs(ray.dir), plane.err_normal) + 2.0 * dot(abs(n), abs(ray.dir));
+    let t = num / den;
+    let err = (err_num + abs(t) * err_den) / abs(den);
+    return MaybeT(t, FORM_MARGIN * err < err_watertight);
+}
+
+// The hit point p moved onto the triangle for the robust offset: the corners interpolated at
+// (bu, bv), or where that carries their rounding (ε·|v|: 6 units on a quad of half-size 1e8)
+// and p's height above the plane far less, p moved along the normal by it.
+fn triangle_surface_point(p: vec3<f32>, va: vec3<f32>, vb: vec3<f32>, vc: vec3<f32>, bu: f32, bv: f32) -> vec3<f32> {
+    let bw = 1.0 - bu - bv;
+    let ones = vec3<f32>(1.0);
+    let err_barycentric = dot(abs(bw) * abs(va) + abs(bu) * abs(vb) + abs(bv) * abs(vc), ones);
+    let err_p = dot(abs(p), ones);
+    if err_barycentric > FORM_MARGIN * err_p {
+        let plane = triangle_plane(va, vb, vc);
+        // Scaled by its largest component: |n|² of a triangle 1e9 wide would overflow f32.
+        let m = abs(plane.normal);
+        let scale = max(m.x, max(m.y, m.z));
+        let n = plane.normal / scale;
+        let err_n = plane.err_normal / scale;
+        let f = p - plane.corner;
+        let nn = dot(n, n);
+        let err_height = (dot(abs(f), err_n) + 2.0 * dot(abs(n), abs(f))) / sqrt(nn);
+        if scale > 0.0 && FORM_MARGIN * (err_height + err_p) < err_barycentric {
+            return p - (dot(n, f) / nn) * n;
+        }
+    }
+    return bw * va + bu * vb + bv * vc;
 }
 
 // The rank of a kind in brute force's order (spheres, planes, triangles).

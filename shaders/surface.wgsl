@@ -6,7 +6,7 @@
 #import glint::scene_data::{NO_HIT, EPS_ROBUST, UV_MESH, GpuTriangle, MESH_HAS_COLOURS}
 #import glint::bindings::{header, spheres, planes, triangles, meshes, colours}
 #import glint::ray::Ray
-#import glint::intersect::{Hit, PRIM_NONE, PRIM_SPHERE, PRIM_PLANE, PRIM_TRIANGLE, triangle_corners, triangle_shading_normal, sphere_surface_point}
+#import glint::intersect::{Hit, PRIM_NONE, PRIM_SPHERE, PRIM_PLANE, PRIM_TRIANGLE, triangle_corners, triangle_shading_normal, sphere_surface_point, triangle_surface_point}
 #import glint::shade::Surface
 #ifdef TEXTURES
 #import glint::texture::{planar_axis, planar_uv}
@@ -65,7 +65,10 @@ fn surface_at(ray: Ray, hit: Hit) -> Surface {
     let v = triangle_corners(tri);
     let ng = normalize(cross(v[1] - v[0], v[2] - v[0]));
     let ns = triangle_shading_normal(tri, hit.bu, hit.bv, ng);
-    let p_surface = select(p, (1.0 - hit.bu - hit.bv) * v[0] + hit.bu * v[1] + hit.bv * v[2], robust);
+    var p_surface = p;
+    if robust {
+        p_surface = triangle_surface_point(p, v[0], v[1], v[2], hit.bu, hit.bv);
+    }
     var uv = vec2<f32>(0.0);
     var uv_origin = UV_MESH;
 #ifdef TEXTURES

@@ -51,6 +51,7 @@ mod case23_far_light;
 mod case24_far_eye_over_a_plane;
 mod case25_large_triangle_through_an_axis;
 mod case26_far_object_out_of_sight;
+mod case27_huge_triangle_near_the_eye;
 mod generated;
 mod plot;
 

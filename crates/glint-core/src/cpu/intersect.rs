@@ -1,7 +1,7 @@
 //! CPU twin of `shaders/intersect.wgsl`: ray/primitive intersection, nearest hit and shadow
 //! transmittance.
 
-use glam::DVec3;
+use glam::{DVec3, Vec3Swizzles};
 
 use super::{Ray, TraceContext, v3};
 use crate::FlatScene;
@@ -272,10 +272,90 @@ pub fn intersect_triangle(
     if det == 0.0 {
         return None;
     }
-    let t_scaled = sum_by_magnitude(u * (sz * a[kz]), v * (sz * b[kz]), w * (sz * c[kz]));
+    let (du, dv, dw) = (u * (sz * a[kz]), v * (sz * b[kz]), w * (sz * c[kz]));
     let inv = 1.0 / det;
-    let t = t_scaled * inv;
+    let mut t = sum_by_magnitude(du, dv, dw) * inv;
+    // t sums the corners' depths weighted by the edge functions, which cancel for a triangle
+    // far larger than its distance from the ray's origin (a ground quad of half-size 1e8 under
+    // an eye 2 above it: t off by ε·1e8). The plane's form is taken where its bound is
+    // FORM_MARGIN times smaller; it never is below 2|t|, so ordinary triangles skip it.
+    let err_watertight = (du.abs() + dv.abs() + dw.abs()) * inv.abs();
+    if err_watertight > 2.0 * FORM_MARGIN * t.abs()
+        && let Some(t_plane) = plane_t(&triangle_plane(va, vb, vc), ray, err_watertight)
+    {
+        t = t_plane;
+    }
     (t > t_min && t < t_max).then_some((t, v * inv, w * inv))
+}
+
+/// A triangle's plane for the forms that replace the watertight t and the barycentric
+/// re-projection where those cancel: the corner first in (x, y, z) order, the normal
+/// (b − a) × (c − a) of the corners in that order (so that copies of a triangle with its
+/// corners rotated or reversed get the same plane, bit for bit) and its error bound per
+/// component, over ε.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TrianglePlane {
+    pub corner: DVec3,
+    pub normal: DVec3,
+    pub err_normal: DVec3,
+}
+
+/// Whether `p` comes before `q` in (x, y, z) order.
+fn lex_less(p: DVec3, q: DVec3) -> bool {
+    p.x < q.x || (p.x == q.x && (p.y < q.y || (p.y == q.y && p.z < q.z)))
+}
+
+pub fn triangle_plane(va: DVec3, vb: DVec3, vc: DVec3) -> TrianglePlane {
+    let (mut a, mut b, mut c) = (va, vb, vc);
+    if lex_less(b, a) {
+        (a, b) = (b, a);
+    }
+    if lex_less(c, b) {
+        (b, c) = (c, b);
+    }
+    if lex_less(b, a) {
+        (a, b) = (b, a);
+    }
+    let (e1, e2) = (b - a, c - a);
+    // The edges' rounding and the cross product's: each product's size, three times.
+    let sizes = (e1.yzx() * e2.zxy()).abs() + (e1.zxy() * e2.yzx()).abs();
+    TrianglePlane { corner: a, normal: e1.cross(e2), err_normal: 3.0 * sizes }
+}
+
+/// t where `ray` meets `plane`, n·(a − o) / n·d, where its error bound is FORM_MARGIN times
+/// below `err_watertight` (the watertight t's, over ε): it loses what the normal does (none of
+/// an axis-aligned ground's) and the rounding of a − o along it, not along the triangle.
+pub fn plane_t(plane: &TrianglePlane, ray: &Ray, err_watertight: f64) -> Option<f64> {
+    let a = plane.corner - ray.origin;
+    let n = plane.normal;
+    let (num, den) = (n.dot(a), n.dot(ray.dir));
+    let err_num = a.abs().dot(plane.err_normal) + 2.0 * n.abs().dot(a.abs());
+    let err_den = ray.dir.abs().dot(plane.err_normal) + 2.0 * n.abs().dot(ray.dir.abs());
+    let t = num / den;
+    let err = (err_num + t.abs() * err_den) / den.abs();
+    (FORM_MARGIN * err < err_watertight).then_some(t)
+}
+
+/// The hit point `p` moved onto the triangle for the robust offset (barycentrics `bu`, `bv`):
+/// W&B's interpolation of the corners carries their rounding, ε·|v| (6 units on a quad of
+/// half-size 1e8, which starts shadow rays far off the point); where p moved along the
+/// plane's normal by its height above it carries far less, that.
+pub fn triangle_surface_point(p: DVec3, va: DVec3, vb: DVec3, vc: DVec3, bu: f64, bv: f64) -> DVec3 {
+    let bw = 1.0 - bu - bv;
+    let err_barycentric = (bw.abs() * va.abs() + bu.abs() * vb.abs() + bv.abs() * vc.abs()).element_sum();
+    // The plane's bound is never below |p|: only a larger barycentric one is worth the plane.
+    if err_barycentric > FORM_MARGIN * p.abs().element_sum() {
+        let plane = triangle_plane(va, vb, vc);
+        // Scaled by its largest component: |n|² of a triangle 1e9 wide would overflow f32.
+        let scale = plane.normal.abs().max_element();
+        let (n, err_n, f) = (plane.normal / scale, plane.err_normal / scale, p - plane.corner);
+        let nn = n.dot(n);
+        let err_height = (f.abs().dot(err_n) + 2.0 * n.abs().dot(f.abs())) / nn.sqrt();
+        if scale > 0.0 && FORM_MARGIN * (err_height + p.abs().element_sum()) < err_barycentric {
+            return p - (n.dot(f) / nn) * n;
+        }
+    }
+    bw * va + bu * vb + bv * vc
 }
 
 /// The rank of a kind in brute force's order.

@@ -4,7 +4,9 @@
 
 use glam::{DVec2, DVec3};
 
-use super::intersect::{Hit, Prim, sphere_surface_point, triangle_corners, triangle_shading_normal};
+use super::intersect::{
+    Hit, Prim, sphere_surface_point, triangle_corners, triangle_shading_normal, triangle_surface_point,
+};
 use super::shade::Surface;
 use super::texture::{planar_axis, planar_uv, triangle_uv, triangle_uv_origin};
 use super::{Ray, TraceContext, v3};
@@ -68,7 +70,7 @@ pub fn surface_at(ctx: &TraceContext, ray: &Ray, hit: &Hit) -> Surface {
             let [v0, v1, v2] = triangle_corners(scene, tri);
             let ng = (v1 - v0).cross(v2 - v0).normalize();
             let ns = triangle_shading_normal(scene, tri, hit.bu, hit.bv, ng);
-            let p_surface = if robust { (1.0 - hit.bu - hit.bv) * v0 + hit.bu * v1 + hit.bv * v2 } else { p };
+            let p_surface = if robust { triangle_surface_point(p, v0, v1, v2, hit.bu, hit.bv) } else { p };
             let uv = if textures { triangle_uv(scene, tri, hit.bu, hit.bv, p, ng) } else { DVec2::ZERO };
             let uv_origin = if textures { triangle_uv_origin(scene, tri, ng) } else { UV_MESH };
             let colour =
