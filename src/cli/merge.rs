@@ -14,6 +14,7 @@ use glint_core::TileGrid;
 use glint_core::image::linear_f32_to_srgb8;
 use glint_io::exr_file::{ExrHeader, read_exr, read_exr_header, write_exr_region};
 use glint_io::image_file::write_png_rgb8;
+use glint_scene::MAX_IMAGE_SIDE;
 
 use super::console::say;
 use super::output_path::{check_outputs, is_same_file};
@@ -101,6 +102,14 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
     let shared = |h: &ExrHeader| keys.iter().map(|k| h.attribute(k).map(str::to_string)).collect::<Vec<_>>();
     let (_, count) = tile_index(first.0, first.1)?;
     let (width, height) = first.1.display;
+    // A forged or damaged header must not size the merged image beyond what a render makes.
+    if !(1..=MAX_IMAGE_SIDE).contains(&width) || !(1..=MAX_IMAGE_SIDE).contains(&height) {
+        bail!(
+            "{}: its image (display window) is {width}x{height}; a render's sides are in [1, {MAX_IMAGE_SIDE}]; \
+             nothing was written",
+            first.0.display()
+        );
+    }
     let grid = TileGrid::new(count, width, height).with_context(|| format!("{}", first.0.display()))?;
     let mut by_index: BTreeMap<u32, &Path> = BTreeMap::new();
     for (path, header) in args.tiles.iter().zip(&headers) {
@@ -183,6 +192,17 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
     for (&index, path) in &by_index {
         let tile = read_exr(path)?;
         let rect = grid.rect(index)?;
+        // A render writes no such pixel (it refuses an image with one): the tile was made or
+        // changed otherwise, and a merge must not pass it on.
+        if let Some(at) = tile.rgb.iter().position(|p| !p.iter().all(|c| c.is_finite() && *c >= 0.0)) {
+            let (x, y) = (rect.x0 as usize + at % rect.width as usize, rect.y0 as usize + at / rect.width as usize);
+            bail!(
+                "{}: pixel ({x}, {y}) is {:?}, which no render writes (radiance is finite and ≥ 0); \
+                 render the tile again; nothing was written",
+                path.display(),
+                tile.rgb[at]
+            );
+        }
         for row in 0..rect.height as usize {
             let src = &tile.rgb[row * rect.width as usize..(row + 1) * rect.width as usize];
             let start = (rect.y0 as usize + row) * width as usize + rect.x0 as usize;

@@ -172,6 +172,33 @@ fn tiles_that_do_not_belong_together_are_refused_by_name_and_nothing_is_written(
     )
     .expect("marked tile");
     refused(&[t[0].clone(), marked, t[2].clone()], "marked incomplete (glint:incomplete: the GPU's loop cut-off)");
+    // Pixels no render writes (NaN, infinite, negative), and a header claiming an image larger
+    // than a render makes, are refused before anything is written (a NaN was merged; a claimed
+    // 1e6 × 1e6 image aborted the allocation).
+    let forged = |name: &str, display: (u32, u32), pixel: &(dyn Fn(usize, usize) -> [f32; 3] + Sync)| {
+        let path = dir.join(name);
+        glint_io::exr_file::write_exr_region(
+            &path,
+            display,
+            incomplete.header.origin,
+            (w as u32, h),
+            pixel,
+            &incomplete.header.attributes,
+        )
+        .expect("forged tile");
+        path
+    };
+    let display = incomplete.header.display;
+    for (name, value, says) in
+        [("nan.exr", f32::NAN, "is [NaN"), ("inf.exr", f32::INFINITY, "is [inf"), ("neg.exr", -5.0, "is [-5.0")]
+    {
+        let bad = forged(name, display, &|x, y| if (x, y) == (1, 2) { [value; 3] } else { incomplete.rgb[y * w + x] });
+        let origin = incomplete.header.origin;
+        let at = format!("{name}: pixel ({}, {}) {says}", origin.0 + 1, origin.1 + 2);
+        refused(&[t[0].clone(), bad, t[2].clone()], &at);
+    }
+    let huge = forged("huge.exr", (1_000_000, 1_000_000), &|x, y| incomplete.rgb[y * w + x]);
+    refused(&[huge, t[0].clone(), t[2].clone()], "huge.exr: its image (display window) is 1000000x1000000");
     // An output that is one of the tiles (the first included) is named as a tile.
     for i in [0, 2] {
         let done = merge(&dir, &t, &t[i]);
