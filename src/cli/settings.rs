@@ -266,7 +266,8 @@ pub fn load_with_estimate(
     memory_limit: Option<u64>,
 ) -> anyhow::Result<(LoadedScene, Option<MemoryEstimate>)> {
     let estimate = check_load_memory(scene, memory_limit)?;
-    let loaded = load_scene_with(scene, options).with_context(|| format!("cannot load scene '{scene}'"))?;
+    let loaded = super::interrupt::while_loading(|| load_scene_with(scene, options))
+        .with_context(|| format!("cannot load scene '{scene}'"))?;
     Ok((loaded, estimate))
 }
 

@@ -50,6 +50,52 @@ fn sigterm_and_sigint_stop_a_render_with_130_or_143_and_leave_no_file() {
 }
 
 #[test]
+fn a_named_pipe_is_no_model_file_and_the_first_signal_ends_a_load_waiting_on_one() {
+    let dir = TempDir::new("fifo");
+    let fifo = |name: &str| {
+        let made = Command::new("mkfifo").arg(dir.join(name)).status().expect("mkfifo (coreutils) runs");
+        assert!(made.success(), "mkfifo {name}");
+    };
+    // A file a model refers to, or a model file itself, that is a named pipe is refused before
+    // it is opened (opening waited for a writer for ever).
+    fifo("buffer.bin");
+    fifo("pipe.obj");
+    let gltf = r#"{"asset":{"version":"2.0"},"buffers":[{"uri":"buffer.bin","byteLength":36}]}"#;
+    std::fs::write(dir.join("m.gltf"), gltf).unwrap();
+    for (model, says) in [("m.gltf", "buffer.bin"), ("pipe.obj", "pipe.obj")] {
+        let start = Instant::now();
+        let out = glint(&dir, ["render", model, "-o", "x.png", "-q"]);
+        let stderr = text(&out.stderr);
+        assert!(!out.status.success() && stderr.contains("not a regular file (a named pipe"), "{model}: {stderr}");
+        assert!(stderr.contains(says), "{model}: {stderr}");
+        assert!(start.elapsed() < Duration::from_secs(20), "{model}: took {:?}", start.elapsed());
+    }
+    // A scene file may be a pipe (it is read as a stream); the first SIGTERM while the load
+    // waits for its writer ends the process (it was swallowed until a second).
+    fifo("scene.toml");
+    let child = Command::new(BIN)
+        .args(["render", "scene.toml", "-o", "x.png", "-q"])
+        .current_dir(&dir)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("start glint");
+    std::thread::sleep(Duration::from_millis(1000));
+    let status = Command::new("kill").args(["-TERM", &child.id().to_string()]).status().expect("kill");
+    assert!(status.success(), "kill -TERM failed");
+    let start = Instant::now();
+    let (done, waiter) = std::sync::mpsc::channel();
+    let id = child.id().to_string();
+    std::thread::spawn(move || done.send(child.wait_with_output()));
+    let Ok(out) = waiter.recv_timeout(Duration::from_secs(20)) else {
+        Command::new("kill").args(["-KILL", &id]).status().expect("kill");
+        panic!("one SIGTERM did not end a load waiting on a pipe");
+    };
+    assert_eq!(out.expect("wait for glint").status.code(), Some(143));
+    assert!(start.elapsed() < Duration::from_secs(20));
+}
+
+#[test]
 fn a_gpu_render_stops_between_two_submissions_on_sigint() {
     if skip_gpu() {
         return;

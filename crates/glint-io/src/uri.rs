@@ -90,11 +90,10 @@ pub fn resolve_uri(model: &Path, uri: &str, cap: u64) -> Result<Vec<u8>, UriErro
     if !path.starts_with(&folder) {
         return Err(UriError::Escapes { uri: shown(uri), path, folder });
     }
+    // Judged before it is opened: opening a named pipe waits for a writer that may never come.
+    regular_file(&path).map_err(|e| io(&path, e))?;
     let file = std::fs::File::open(&path).map_err(|e| io(&path, e))?;
     let meta = file.metadata().map_err(|e| io(&path, e))?;
-    if !meta.is_file() {
-        return Err(io(&path, std::io::Error::other("not a regular file")));
-    }
     if meta.len() > cap {
         return Err(UriError::TooLarge { uri: shown(uri), size: meta.len(), cap });
     }
@@ -103,6 +102,22 @@ pub fn resolve_uri(model: &Path, uri: &str, cap: u64) -> Result<Vec<u8>, UriErro
         return Err(UriError::TooLarge { uri: shown(uri), size: bytes.len() as u64, cap });
     }
     Ok(bytes)
+}
+
+/// `path`'s metadata, or an error unless it is a regular file (following links): a file a model
+/// refers to, or a model file, is read whole, and a named pipe, device or folder is not one
+/// (opening a pipe waits for its writer; a device has no end).
+pub(crate) fn regular_file(path: &Path) -> std::io::Result<std::fs::Metadata> {
+    let meta = std::fs::metadata(path)?;
+    let kind = meta.file_type();
+    let what = if kind.is_file() {
+        return Ok(meta);
+    } else if kind.is_dir() {
+        "a folder"
+    } else {
+        "a named pipe, socket or device"
+    };
+    Err(std::io::Error::other(format!("not a regular file ({what})")))
 }
 
 /// At most `cap` + 1 bytes of `file` (`len` its size where known, for the buffer): one more than

@@ -31,7 +31,9 @@ pub use super::mtl::DEFAULT_MATERIAL;
 
 /// Loads `path`: faces triangulated (fans), one mesh per OBJ object or group and material.
 pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
-    let raw = std::fs::read(path).map_err(|error| ObjError::Io { file: path.to_owned(), error })?;
+    let raw = crate::uri::regular_file(path)
+        .and_then(|_| std::fs::read(path))
+        .map_err(|error| ObjError::Io { file: path.to_owned(), error })?;
     let parse_error = |line, reason| ObjError::Parse { file: path.to_owned(), line, reason };
     let mut out = Model::default();
     let (bytes, encoding) = obj_text::decode(&raw).map_err(|reason| parse_error(None, reason))?;

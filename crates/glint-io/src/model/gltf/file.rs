@@ -11,7 +11,7 @@ use glint_scene::FieldIssue;
 
 /// The file's bytes, refused beyond `MAX_RESOURCE_BYTES` before they are read.
 pub(super) fn read_capped(path: &Path) -> std::io::Result<Vec<u8>> {
-    let len = std::fs::metadata(path)?.len();
+    let len = crate::uri::regular_file(path)?.len();
     if len > MAX_RESOURCE_BYTES {
         return Err(std::io::Error::new(
             std::io::ErrorKind::InvalidData,
