@@ -142,7 +142,12 @@ pub(super) fn map_material(m: &tobj::Material, name: &str, warnings: &mut Vec<Fi
     let mut warn = |field: &str, problem: String| {
         warnings.push(FieldIssue { field: format!("materials.{name}.{field}"), problem });
     };
-    let transmission = Rgb::splat(1.0 - dissolve(m, &mut warn).clamp(0.0, 1.0));
+    let opacity = dissolve(m, &mut warn);
+    if !(0.0..=1.0).contains(&opacity) {
+        let written = if m.dissolve.is_some() { format!("d {opacity}") } else { format!("Tr {}", 1.0 - opacity) };
+        warn("d", format!("`{written}` is an opacity outside [0, 1]; clamped to {}", opacity.clamp(0.0, 1.0)));
+    }
+    let transmission = Rgb::splat(1.0 - opacity.clamp(0.0, 1.0));
     let (ks_local, kr, kt) = match illum {
         0 | 1 => (Rgb::splat(0.0), Rgb::splat(0.0), Rgb::splat(0.0)),
         2 => (ks, Rgb::splat(0.0), Rgb::splat(0.0)),
@@ -166,6 +171,9 @@ pub(super) fn map_material(m: &tobj::Material, name: &str, warnings: &mut Vec<Fi
         None => 1.5,
     };
     let shininess = m.shininess.unwrap_or(0.0).clamp(0.0, glint_scene::MAX_SHININESS);
+    if let Some(ns) = m.shininess.filter(|ns| *ns != shininess) {
+        warn("Ns", format!("Ns {ns} is outside [0, {}]; using {shininess}", glint_scene::MAX_SHININESS));
+    }
     MaterialDesc {
         ka: m.ambient.map_or(kd, rgb),
         kd,

@@ -51,6 +51,17 @@ pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
             problem: format!("{polylines} polyline statement(s) left out: lines are not traced"),
         });
     }
+    let (bytes, short_faces) = obj_text::without_short_faces(&bytes);
+    if let Some(first) = short_faces.first() {
+        let more = match short_faces.len() {
+            1 => String::new(),
+            n => format!(" and {} more", n - 1),
+        };
+        out.warnings.push(FieldIssue {
+            field: format!("line {first}{more}"),
+            problem: "`f` with fewer than three corners left out: a polygon needs three".into(),
+        });
+    }
     let (bytes, partial_colours) = obj_text::without_partial_vertex_colours(&bytes);
     if let Some((coloured, all)) = partial_colours {
         out.warnings.push(FieldIssue {
@@ -467,6 +478,34 @@ mod tests {
             message.contains("../secret.mtl") && message.contains("outside the folder of the file that names it"),
             "{message}"
         );
+    }
+
+    #[test]
+    fn an_opacity_or_exponent_outside_its_range_is_clamped_and_said() {
+        let dir = tempfile::tempdir().unwrap();
+        write(dir.path(), "m.mtl", "newmtl a\nNs -4\nd 2\nillum 4\nnewmtl b\nTr -0.5\nillum 4\n");
+        let obj = write(dir.path(), "m.obj", &format!("mtllib m.mtl\n{QUAD}usemtl a\nf 1 2 3\nusemtl b\nf 1 3 4\n"));
+        let m = load_obj(&obj).expect("loads");
+        let said: Vec<String> = m.warnings.iter().map(ToString::to_string).collect();
+        for w in
+            ["materials.a.Ns: Ns -4 is outside [0, ", "materials.a.d: `d 2` is an opacity outside [0, 1]; clamped to 1"]
+        {
+            assert!(said.iter().any(|s| s.starts_with(w)), "{w}: {said:?}");
+        }
+        assert!(said.iter().any(|s| s.starts_with("materials.b.d: `Tr -0.5` is an opacity outside")), "{said:?}");
+        assert_eq!((m.materials["a"].shininess, m.materials["a"].kt), (0.0, Rgb::splat(0.0)));
+    }
+
+    #[test]
+    fn faces_of_fewer_than_three_corners_are_left_out_naming_their_lines() {
+        let dir = tempfile::tempdir().unwrap();
+        let obj = write(dir.path(), "short.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2\nf 3\n");
+        let m = load_obj(&obj).expect("the whole face loads");
+        assert_eq!(m.meshes[0].triangles.len(), 1);
+        let said: Vec<String> = m.warnings.iter().map(ToString::to_string).collect();
+        assert!(said.iter().any(|w| w.starts_with("line 5 and 1 more: `f` with fewer than three")), "{said:?}");
+        let only = write(dir.path(), "only.obj", "v 0 0 0\nv 1 0 0\nf 1 2\n");
+        assert!(load_obj(&only).unwrap_err().to_string().contains("no triangles"));
     }
 
     #[test]

@@ -80,6 +80,24 @@ pub(super) fn without_polylines(text: &[u8]) -> (Cow<'_, [u8]>, usize) {
     (out, count)
 }
 
+/// OBJ text with its faces of fewer than three corners (`f 1 2`, `f 3`) blanked, and their line
+/// numbers (1-based): a polygon needs three, and tobj dropped such a statement without a word
+/// (and with it the count of faces the smoothing groups are read against).
+pub(super) fn without_short_faces(text: &[u8]) -> (Cow<'_, [u8]>, Vec<usize>) {
+    let mut lines = Vec::new();
+    let mut n = 0;
+    let out = rewrite_lines(text, |raw| {
+        n += 1;
+        let mut words = raw.split(u8::is_ascii_whitespace).filter(|w| !w.is_empty());
+        let short = words.next() == Some(b"f".as_slice()) && words.count() < 3;
+        if short {
+            lines.push(n);
+        }
+        short.then(Vec::new)
+    });
+    (out, lines)
+}
+
 /// OBJ text whose vertex colours (`v x y z r g b`) are left out when only some vertices have
 /// them, and then how many of how many `v` lines had them. tobj would pair the colours with the
 /// wrong vertices, or refuse a face of an uncoloured one; Assimp and three.js likewise drop a
