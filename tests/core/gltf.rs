@@ -144,6 +144,37 @@ fn punctual_lights_sit_at_their_nodes_and_scale_with_the_exposure() {
 }
 
 #[test]
+fn a_punctual_light_out_of_range_is_named_by_the_files_own_fields() {
+    let dir = TempDir::new("gltf-light-ranges");
+    let with = |lights: serde_json::Value, name: &str| {
+        let mut f = Fixture::quad();
+        f.json["extensionsUsed"] = json!(["KHR_lights_punctual"]);
+        f.json["extensions"] = json!({ "KHR_lights_punctual": { "lights": lights } });
+        f.json["scenes"] = json!([{ "nodes": [0, 1] }]);
+        f.json["nodes"] = json!([{ "mesh": 0 }, { "translation": [0.0, 2.0, 0.0], "extensions": { "KHR_lights_punctual": { "light": 0 } } }]);
+        f.write_gltf(&dir, name, BufferAt::DataUri)
+    };
+    // Brighter than a scene may hold: the file's intensity named, and the exposure that fits.
+    let bright = with(json!([{ "type": "point", "intensity": 2e9 }]), "bright");
+    let message = load_gltf(&bright, &ImportOptions::default()).unwrap_err().to_string();
+    assert!(message.contains("extensions.KHR_lights_punctual.lights[0].intensity: 2000000000"), "{message}");
+    assert!(message.contains("lower --exposure to 0.5 or less"), "{message}");
+    assert!(load_gltf(&bright, &ImportOptions { exposure: 0.5, ..ImportOptions::default() }).is_ok());
+    let negative = with(json!([{ "type": "point", "intensity": -5.0 }]), "negative");
+    let message = load_gltf(&negative, &ImportOptions::default()).unwrap_err().to_string();
+    assert!(message.contains("lights[0].intensity: -5 must be a finite number ≥ 0"), "{message}");
+    // Cones breaking 0 ≤ inner ≤ outer ≤ π/2 are said, with what was made of them.
+    let cones = with(json!([{ "type": "spot", "spot": { "innerConeAngle": 1.0, "outerConeAngle": 0.5 } }]), "cones");
+    let m = load_gltf(&cones, &ImportOptions::default()).unwrap();
+    let said = m.warnings.iter().find(|w| w.field == "extensions.KHR_lights_punctual.lights[0].spot").expect("said");
+    assert!(said.problem.contains("innerConeAngle 1 and outerConeAngle 0.5"), "{}", said.problem);
+    assert_eq!(
+        (m.lights[0].inner_cone, m.lights[0].outer_cone),
+        (Some(f64::from(0.5f32).to_degrees().min(90.0)), Some(f64::from(0.5f32).to_degrees()))
+    );
+}
+
+#[test]
 fn cameras_come_from_their_nodes_and_the_scene_uses_the_chosen_one() {
     let dir = TempDir::new("gltf-cameras");
     let mut f = Fixture::quad();

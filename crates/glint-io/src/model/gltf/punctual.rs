@@ -1,7 +1,8 @@
 //! KHR_lights_punctual lights and glTF cameras, placed by their node's world transform.
 
 use glint_scene::{Attenuation, CameraDesc, FieldIssue, LightDesc, LightKind, Rgb, SpotFalloff};
-use glint_scene::{Mat4, ModelCamera};
+use glint_scene::{MAX_INTENSITY, Mat4, ModelCamera};
+use glint_scene::{format_number as number, format_rounded};
 
 fn normalized(v: [f64; 3]) -> Option<[f64; 3]> {
     let len = v.iter().map(|c| c * c).sum::<f64>().sqrt();
@@ -9,21 +10,42 @@ fn normalized(v: [f64; 3]) -> Option<[f64; 3]> {
 }
 
 /// The light of `node` (world transform `world`): colour × intensity × `exposure` as I_d and
-/// I_s (candela for point and spot lights, lux for directional ones), down the node's −Z.
+/// I_s (candela for point and spot lights, lux for directional ones), down the node's −Z. An
+/// intensity the scene cannot hold is an error naming the file's own fields (its path, the
+/// problem), not the `lights[i].diffuse` Glint maps it to.
 pub(super) fn map_light(
     light: &::gltf::khr_lights_punctual::Light<'_>,
     world: &Mat4,
     exposure: f64,
     node: usize,
     warnings: &mut Vec<FieldIssue>,
-) -> Option<LightDesc> {
+) -> Result<Option<LightDesc>, (String, String)> {
     let field = format!("nodes[{node}].extensions.KHR_lights_punctual (lights[{}])", light.index());
-    let colour = light.color().map(|c| f64::from(c) * f64::from(light.intensity()) * exposure);
+    let own = format!("extensions.KHR_lights_punctual.lights[{}]", light.index());
+    let intensity = f64::from(light.intensity());
+    if !(intensity.is_finite() && intensity >= 0.0) {
+        return Err((format!("{own}.intensity"), format!("{} must be a finite number ≥ 0", number(intensity))));
+    }
+    let colour = light.color().map(|c| f64::from(c) * intensity * exposure);
+    if let Some(brightest) = colour.iter().copied().filter(|c| *c > MAX_INTENSITY).reduce(f64::max) {
+        let scale = MAX_INTENSITY / brightest * exposure;
+        return Err((
+            format!("{own}.intensity"),
+            format!(
+                "{} × colour × --exposure {} reaches {}, beyond the {MAX_INTENSITY:e} a light may have: \
+                 lower --exposure to {} or less (it scales every light of the file)",
+                number(intensity),
+                number(exposure),
+                format_rounded(brightest, 3),
+                format_rounded(scale, 2)
+            ),
+        ));
+    }
     let position = world.point([0.0; 3]);
     let Some(direction) = normalized(world.vector([0.0, 0.0, -1.0])) else {
         warnings
             .push(FieldIssue { field, problem: "the node's transform has no −Z direction; light skipped".into() });
-        return None;
+        return Ok(None);
     };
     let kind = match light.kind() {
         ::gltf::khr_lights_punctual::Kind::Directional => LightKind::Directional,
@@ -41,14 +63,29 @@ pub(super) fn map_light(
         desc.attenuation = Attenuation::inverse_square(light.range().map(f64::from));
     }
     if let ::gltf::khr_lights_punctual::Kind::Spot { inner_cone_angle, outer_cone_angle } = light.kind() {
-        // glTF's smooth cone; the angles in degrees, within the [0, 90] validation allows.
-        let degrees = |a: f32| f64::from(a).to_degrees().clamp(0.0, 90.0);
-        let outer = degrees(outer_cone_angle);
+        // glTF's smooth cone, 0 ≤ inner < outer ≤ π/2; the angles in degrees within the [0, 90]
+        // validation allows, and a file outside that told what was made of it.
+        let (inner, outer) = (f64::from(inner_cone_angle), f64::from(outer_cone_angle));
+        let degrees = |a: f64| a.to_degrees().clamp(0.0, 90.0);
+        let (inner_deg, outer_deg) = (degrees(inner).min(degrees(outer)), degrees(outer));
+        let right = std::f64::consts::FRAC_PI_2;
+        if !(0.0..=right).contains(&inner) || !(0.0..=right).contains(&outer) || inner > outer {
+            warnings.push(FieldIssue {
+                field: format!("{own}.spot"),
+                problem: format!(
+                    "innerConeAngle {} and outerConeAngle {} break 0 ≤ inner ≤ outer ≤ π/2; taken as {}° and {}°",
+                    number(inner),
+                    number(outer),
+                    format_rounded(inner_deg, 4),
+                    format_rounded(outer_deg, 4)
+                ),
+            });
+        }
         desc.falloff = SpotFalloff::Smooth;
-        desc.inner_cone = Some(degrees(inner_cone_angle).min(outer));
-        desc.outer_cone = Some(outer);
+        desc.inner_cone = Some(inner_deg);
+        desc.outer_cone = Some(outer_deg);
     }
-    Some(desc)
+    Ok(Some(desc))
 }
 
 /// A perspective camera at its node: the eye at the origin, looking down −Z with +Y up.
