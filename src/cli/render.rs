@@ -74,9 +74,11 @@ pub struct RenderArgs {
     /// Benchmark: one warm-up, then --runs timed renders; prints median and min
     #[arg(long)]
     pub bench: bool,
-    /// Timed runs of --bench [1, 1000]
-    #[arg(long, default_value_t = 5, requires = "bench", allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(1..=1000))]
-    pub runs: u32,
+    /// Timed runs of --bench [1, 1000] (default 5)
+    // Checked by `check_backend_flags`: clap's `requires = "bench"` counts the flag's default
+    // (false) as given, and `--runs` without `--bench` rendered once without a word.
+    #[arg(long, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(1..=1000))]
+    pub runs: Option<u32>,
     /// No progress bar
     #[arg(short, long)]
     pub quiet: bool,
@@ -259,6 +261,18 @@ fn check_backend_flags(args: &RenderArgs) -> anyhow::Result<()> {
             "--adapter chooses the GPU, and --backend cpu uses none: give --backend gpu or both, or leave --adapter out"
         );
     }
+    if args.runs.is_some() && !args.bench {
+        bail!("--runs counts the timed renders of --bench: give --bench, or leave --runs out");
+    }
+    if args.adapter.as_deref().is_some_and(|a| a.trim().is_empty()) {
+        bail!("--adapter is empty: give a part of an adapter's name (`glint adapters` lists them), or leave it out");
+    }
+    if args.allow_incomplete && !args.backend.contains(&Backend::Gpu) {
+        bail!(
+            "--allow-incomplete keeps a GPU image its shader flagged, and --backend cpu renders none (the CPU's \
+             images are never incomplete): give --backend gpu or both, or leave it out"
+        );
+    }
     if args.max_rays_per_sample.is_some() && !args.backend.contains(&Backend::Cpu) {
         bail!(
             "--max-rays-per-sample bounds the CPU's ray trees, and --backend gpu does not run the CPU (the GPU's \
@@ -268,6 +282,9 @@ fn check_backend_flags(args: &RenderArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// `--bench`'s timed runs without `--runs`.
+const DEFAULT_BENCH_RUNS: u32 = 5;
+
 fn bench(
     args: &RenderArgs,
     name: &str,
@@ -276,6 +293,7 @@ fn bench(
     cpu: &CpuOptions,
     gpu_options: &GpuOptions,
 ) -> anyhow::Result<()> {
+    let runs = args.runs.unwrap_or(DEFAULT_BENCH_RUNS);
     let gpu = if args.backend.contains(&Backend::Gpu) { Some(open_gpu(args.adapter.as_deref())?) } else { None };
     let mut backends: Vec<Box<dyn Fn() -> anyhow::Result<Run>>> = Vec::new();
     if args.backend.contains(&Backend::Cpu) {
@@ -291,18 +309,18 @@ fn bench(
             tell!("warning: the {} render is incomplete: {message}", warm.backend.name());
         }
         let mut times = Vec::new();
-        for _ in 0..args.runs {
+        for _ in 0..runs {
             times.push(render()?.render);
         }
         times.sort();
         let result = BenchResult { median: times[times.len() / 2], min: times[0], warm };
         if !args.json {
-            say_bench_line(name, settings, args.runs, &result)?;
+            say_bench_line(name, settings, runs, &result)?;
         }
         results.push(result);
     }
     if args.json {
-        return print_bench_json(name, settings, args.runs, &results);
+        return print_bench_json(name, settings, runs, &results);
     }
     if let Some(ratio) = gpu_cpu_ratio(&results) {
         say!("bench {name}: gpu/cpu render time ratio {ratio:.2}")?;

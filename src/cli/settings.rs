@@ -224,6 +224,12 @@ impl SettingsArgs {
         if let Some(v) = self.indirect {
             s.indirect = v;
         }
+        if self.bailout.is_some() && s.integrator == Integrator::Path {
+            bail!(
+                "--bailout prunes Whitted's ray tree, and the path tracer has none to prune (Russian roulette ends \
+                 its paths): leave --bailout out, or render with --integrator whitted"
+            );
+        }
         let mut report = Report::default();
         validate_settings(&s, &mut report);
         if !report.errors.is_empty() {

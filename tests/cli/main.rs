@@ -84,17 +84,20 @@ fn renders_every_builtin_scene_to_png_and_exr_with_metadata() {
             "0.001",
             "--epsilon-mode",
             "nudge_normal",
-            "--bailout",
-            "0.01",
             "--seed",
             "7",
             "--threads",
             "2",
             "--quiet",
         ];
+        // The bailout prunes Whitted's ray trees; under the path tracer (the scene's own
+        // integrator) the flag would do nothing, and is an error.
+        let builtin = glint_io::BUILTIN_SCENES.iter().find(|b| b.name == name).expect("a built-in");
+        let whitted = builtin.load(None).expect("loads").0.render.integrator == glint_scene::Integrator::Whitted;
+        let bailout = if whitted { &["--bailout", "0.01"][..] } else { &[] };
         for path in [&png_path, &exr_path] {
             let mut args: Vec<OsString> = vec!["render".into(), name.into(), "-o".into(), path.into()];
-            args.extend(settings.iter().map(Into::into));
+            args.extend(settings.iter().chain(bailout).map(Into::into));
             let out = glint(&dir, &args);
             assert!(out.status.success(), "{name} -> {}: {}", path.display(), text(&out.stderr));
             // One summary line: time, rays by kind, bailout savings, throughput.
@@ -118,7 +121,9 @@ fn renders_every_builtin_scene_to_png_and_exr_with_metadata() {
         assert_eq!(meta(&chunks, "glint:depth"), "3");
         assert_eq!(meta(&chunks, "glint:epsilon").parse::<f64>().unwrap(), 0.001);
         assert_eq!(meta(&chunks, "glint:epsilon_mode"), "nudge_normal");
-        assert_eq!(meta(&chunks, "glint:bailout").parse::<f64>().unwrap(), 0.01);
+        if whitted {
+            assert_eq!(meta(&chunks, "glint:bailout").parse::<f64>().unwrap(), 0.01);
+        }
         assert_eq!(meta(&chunks, "glint:seed"), "7");
         assert_eq!(meta(&chunks, "glint:backend"), "cpu");
         let ms: f64 = meta(&chunks, "glint:time_ms").parse().expect("time is a number");
@@ -422,6 +427,41 @@ fn bad_input_fails_cleanly() {
         },
         &["--max-rays-per-sample", "--backend cpu or both"],
         &[],
+    );
+    // Flags that would do nothing where they are given.
+    expect_failure(
+        "runs-without-bench",
+        |d| os(&[&"render", &"whitted", &"--runs", &"7", &"-o", &d.join("out.png")]),
+        &["--runs", "--bench"],
+        &[],
+    );
+    expect_failure(
+        "incomplete-on-the-cpu",
+        |d| os(&[&"render", &"whitted", &"--allow-incomplete", &"-o", &d.join("out.png")]),
+        &["--allow-incomplete", "--backend gpu or both"],
+        &[],
+    );
+    expect_failure(
+        "empty-adapter",
+        |d| os(&[&"render", &"whitted", &"--backend", &"gpu", &"--adapter", &"", &"-o", &d.join("out.png")]),
+        &["--adapter is empty", "glint adapters"],
+        &[],
+    );
+    expect_failure(
+        "bailout-under-paths",
+        |d| os(&[&"render", &"cornell-gi", &"--bailout", &"0.5", &"-o", &d.join("out.png")]),
+        &["--bailout", "Russian roulette", "--integrator whitted"],
+        &[],
+    );
+    expect_failure(
+        "scene-index-of-an-obj",
+        |d| {
+            let obj = d.join("q.obj");
+            std::fs::write(&obj, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
+            os(&[&"render", &obj, &"--scene-index", &"0", &"-o", &d.join("out.png")])
+        },
+        &["q.obj: an OBJ file has no scenes", "--scene-index"],
+        &["q.obj"],
     );
 }
 

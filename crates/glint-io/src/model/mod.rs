@@ -94,6 +94,11 @@ impl ModelFormat {
 pub fn load_model_file(path: &Path, options: &ImportOptions) -> Result<Model, String> {
     match ModelFormat::of(path) {
         Some(ModelFormat::Gltf) => load_gltf(path, options).map_err(|e| e.to_string()),
+        Some(ModelFormat::Obj) if options.scene_index.is_some() => Err(format!(
+            "{}: an OBJ file has no scenes to choose from: a scene index (--scene-index, an object's \
+             scene_index) is for glTF files",
+            path.display()
+        )),
         Some(ModelFormat::Obj) => load_obj(path).map_err(|e| e.to_string()),
         None => Err(format!("{}: not a model file (.gltf, .glb or .obj)", path.display())),
     }
