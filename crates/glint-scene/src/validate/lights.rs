@@ -102,6 +102,19 @@ fn validate_power_cone(path: &str, l: &LightDesc, r: &mut Report) {
             format!("{} is outside the allowed range [{lo}, {hi}] or {NO_CONE_CUTOFF} (no cone)", num(c)),
         );
     }
+    // OpenGL's rule, which Glint follows: without a cone (cutoff 180) the spot is a point light
+    // and its exponent does nothing. The slides' I·(L_N·L)^s has no cone, so a lecturer's
+    // exponent alone would silently light the whole sphere around it.
+    if c == NO_CONE_CUTOFF && l.exponent > 0.0 && l.exponent.is_finite() {
+        r.warn(
+            format!("{path}.exponent"),
+            format!(
+                "{} does nothing without a cone: a spot with cutoff = {NO_CONE_CUTOFF} (the default) lights every \
+                 direction as a point light (OpenGL's rule); set cutoff to at most 90 for (L_N·L)^s to fall off",
+                num(l.exponent)
+            ),
+        );
+    }
 }
 
 /// The smooth falloff: 0 ≤ inner ≤ outer ≤ 90 degrees.
