@@ -46,7 +46,7 @@
 // Random dimensions per bounce, and the camera's two before them (cpu::path's).
 const DIMS_PER_BOUNCE: u32 = 8u;
 const FIRST_PATH_DIM: u32 = 2u;
-// Bounces traced in full before Russian roulette, and the most a path survives it with.
+// Rays traced in full before Russian roulette (the camera's and two bounces'), and the most a path survives it with.
 const ROULETTE_FROM: u32 = 3u;
 const MAX_SURVIVAL: f32 = 0.95;
 // What of_hit gives for a plane or a miss: nothing next-event estimation samples.

@@ -14,8 +14,8 @@
 //!
 //! and continues along one lobe chosen in proportion to its largest k: Lambert's and the glossy
 //! lobe (sampled from their mixture, so either may have drawn the direction), or the delta lobes
-//! k_r and k_t (Whitted's directions, ior and total internal reflection). Russian roulette after
-//! `ROULETTE_FROM` bounces keeps it unbiased; `max_depth` bounds the bounces. I_a·k_a and the
+//! k_r and k_t (Whitted's directions, ior and total internal reflection). Russian roulette from
+//! the third bounce on (`ROULETTE_FROM`) keeps it unbiased; `max_depth` bounds the bounces. I_a·k_a and the
 //! lights' I_a,j have no place here: they stand in for the indirect light the paths compute.
 //!
 //! Every random number is a hash of the pixel, the sample, its dimension and the seed, so a
@@ -63,7 +63,8 @@ use glint_types::layout::{
 const DIMS_PER_BOUNCE: u32 = 8;
 const FIRST_PATH_DIM: u32 = 2;
 
-/// Bounces traced in full before Russian roulette may end a path.
+/// Rays of a path traced in full before Russian roulette may end it: the camera's and the first
+/// two bounces'; the third bounce on is drawn for.
 pub const ROULETTE_FROM: u32 = 3;
 /// The most a path survives Russian roulette with, so that a path through white walls ends.
 const MAX_SURVIVAL: f64 = 0.95;
