@@ -212,6 +212,22 @@ fn global_attenuation_is_validated_as_a_lights() {
 }
 
 #[test]
+fn arrays_longer_than_their_kind_are_refused_not_cut() {
+    // serde read [f64; 3] from its first three items and left the rest unread: a camera at
+    // [0, 1, -5, "x"] and a triangle [0, 1, 2, 99999] (a quad written as one) went through.
+    let four = "invalid length 4, expected an array of length 3";
+    for (from, to, says) in [
+        ("position = [2.0, 4.0, -2.0]", "position = [2.0, 4.0, -2.0, 7.0]", four),
+        ("position = [2.0, 4.0, -2.0]", "position = [2.0, 4.0, -2.0, \"x\"]", "invalid type: string \"x\""),
+        ("center = [0.0, 1.0, 0.0]", "center = [0.0, 1.0, 0.0, 1e300]", four),
+        ("triangles = [[0, 1, 2]]", "triangles = [[0, 1, 2, 99999]]", four),
+        ("direction = [0.3, -1.0, 0.2]", "direction = [0.3, -1.0, 0.2, 1.0]", four),
+    ] {
+        expect_parse_error(&edited(from, to), &[says]);
+    }
+}
+
+#[test]
 fn spot_cutoff_range() {
     for bad in ["120.0", "-1.0", "90.5", "179.0", "180.5", "nan"] {
         expect_invalid(&edited("cutoff = 30.0", &format!("cutoff = {bad}")), "lights[2].cutoff", &["[0, 90]", "180"]);

@@ -6,9 +6,11 @@ use serde::{Deserialize, Serialize};
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct CameraDesc {
+    #[serde(deserialize_with = "crate::exact_len::array")]
     pub position: [f64; 3],
+    #[serde(deserialize_with = "crate::exact_len::array")]
     pub look_at: [f64; 3],
-    #[serde(default = "default_up")]
+    #[serde(default = "default_up", deserialize_with = "crate::exact_len::array")]
     pub up: [f64; 3],
     /// Vertical field of view in degrees, in [1e-6, 179].
     #[serde(default = "default_fov")]

@@ -202,6 +202,7 @@ pub enum ObjectDesc {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SphereDesc {
+    #[serde(deserialize_with = "crate::exact_len::array")]
     pub center: [f64; 3],
     pub radius: f64,
     pub material: String,
@@ -213,7 +214,9 @@ pub struct SphereDesc {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct PlaneDesc {
+    #[serde(deserialize_with = "crate::exact_len::array")]
     pub point: [f64; 3],
+    #[serde(deserialize_with = "crate::exact_len::array")]
     pub normal: [f64; 3],
     pub material: String,
     #[serde(default)]

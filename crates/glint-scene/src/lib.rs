@@ -9,6 +9,7 @@ pub mod bumpy;
 mod camera;
 mod desc;
 mod error;
+mod exact_len;
 mod light;
 mod material;
 mod mesh;

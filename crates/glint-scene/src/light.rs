@@ -26,11 +26,11 @@ pub struct LightDesc {
     #[serde(rename = "type")]
     pub kind: LightKind,
     /// Position (point and spot lights).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(default, skip_serializing_if = "Option::is_none", deserialize_with = "crate::exact_len::option_array")]
     pub position: Option<[f64; 3]>,
     /// Direction the light travels in: from the light into the scene (directional), or the
     /// spot axis L_N (spot).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(default, skip_serializing_if = "Option::is_none", deserialize_with = "crate::exact_len::option_array")]
     pub direction: Option<[f64; 3]>,
     /// I_d, the diffuse intensity.
     #[serde(default = "Rgb::one")]

@@ -7,17 +7,24 @@ use serde::{Deserialize, Serialize};
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct MeshDesc {
+    #[serde(deserialize_with = "crate::exact_len::arrays")]
     pub vertices: Vec<[f64; 3]>,
+    #[serde(deserialize_with = "crate::exact_len::arrays")]
     pub triangles: Vec<[u32; 3]>,
-    #[serde(default)]
+    #[serde(default, deserialize_with = "crate::exact_len::option_arrays")]
     pub normals: Option<Vec<[f64; 3]>>,
     /// Texture coordinates (u, v) per vertex, glTF's convention: (0, 0) is the image's
     /// top-left corner. Without them a texture is mapped in planar coordinates.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(default, skip_serializing_if = "Option::is_none", deserialize_with = "crate::exact_len::option_arrays")]
     pub uvs: Option<Vec<[f64; 2]>>,
     /// A linear RGB colour per vertex (glTF's COLOR_0, an OBJ file's `v x y z r g b`),
     /// interpolated across each triangle: it multiplies k_a and k_d, as a texture's colour does.
-    #[serde(default, alias = "colors", skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        alias = "colors",
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "crate::exact_len::option_arrays"
+    )]
     pub colours: Option<Vec<[f64; 3]>>,
     pub material: String,
     #[serde(default)]

@@ -76,17 +76,18 @@ pub struct LoadedModel {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct TransformDesc {
+    #[serde(deserialize_with = "crate::exact_len::array")]
     pub translate: [f64; 3],
     /// Degrees about x, then y, then z (each about the fixed scene axes).
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(skip_serializing_if = "Option::is_none", deserialize_with = "crate::exact_len::option_array")]
     pub rotate: Option<[f64; 3]>,
     /// A rotation as a unit quaternion [x, y, z, w]; exclusive with `rotate`.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(skip_serializing_if = "Option::is_none", deserialize_with = "crate::exact_len::option_array")]
     pub quaternion: Option<[f64; 4]>,
     /// A uniform factor or one per axis.
     pub scale: Scale,
     /// A 4×4 matrix, column-major as glTF writes it; exclusive with the fields above.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(skip_serializing_if = "Option::is_none", deserialize_with = "crate::exact_len::option_array")]
     pub matrix: Option<[f64; 16]>,
 }
 
@@ -94,7 +95,7 @@ pub struct TransformDesc {
 #[serde(untagged)]
 pub enum Scale {
     Uniform(f64),
-    PerAxis([f64; 3]),
+    PerAxis(#[serde(deserialize_with = "crate::exact_len::array")] [f64; 3]),
 }
 
 impl Default for TransformDesc {

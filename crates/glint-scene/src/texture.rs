@@ -12,9 +12,11 @@ use serde::{Deserialize, Serialize};
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct UvTransform {
+    #[serde(deserialize_with = "crate::exact_len::array")]
     pub offset: [f64; 2],
     /// Radians, counter-clockwise in UV space, as `KHR_texture_transform` writes it.
     pub rotation: f64,
+    #[serde(deserialize_with = "crate::exact_len::array")]
     pub scale: [f64; 2],
 }
 

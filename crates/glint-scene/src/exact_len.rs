@@ -1,0 +1,74 @@
+//! Fixed-length arrays read from a scene file with their length checked both ways. serde reads
+//! `[T; N]` by taking N items and leaves the rest unread, and the TOML reader does not object:
+//! `position = [0, 1, -5, "not a number"]` and a triangle `[0, 1, 2, 99999]` (a quad written as
+//! a triangle) were read without a word. Too few items were already an error; too many now are
+//! too, in serde's own words ("invalid length 4, expected an array of length 3").
+
+use serde::de::{Deserialize, Deserializer, Error};
+
+struct Expected(usize);
+
+impl serde::de::Expected for Expected {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "an array of length {}", self.0)
+    }
+}
+
+fn exact<T, E: Error, const N: usize>(items: Vec<T>) -> Result<[T; N], E> {
+    let len = items.len();
+    items.try_into().map_err(|_| E::invalid_length(len, &Expected(N)))
+}
+
+/// `[T; N]`, exactly N items.
+pub fn array<'de, D: Deserializer<'de>, T: Deserialize<'de>, const N: usize>(d: D) -> Result<[T; N], D::Error> {
+    exact(Vec::<T>::deserialize(d)?)
+}
+
+/// `Option<[T; N]>` (with `#[serde(default)]` for an absent field).
+pub fn option_array<'de, D: Deserializer<'de>, T: Deserialize<'de>, const N: usize>(
+    d: D,
+) -> Result<Option<[T; N]>, D::Error> {
+    Option::<Vec<T>>::deserialize(d)?.map(exact).transpose()
+}
+
+/// `Vec<[T; N]>`, every element exactly N items.
+pub fn arrays<'de, D: Deserializer<'de>, T: Deserialize<'de>, const N: usize>(d: D) -> Result<Vec<[T; N]>, D::Error> {
+    Vec::<Vec<T>>::deserialize(d)?.into_iter().map(exact).collect()
+}
+
+/// `Option<Vec<[T; N]>>` (with `#[serde(default)]` for an absent field).
+pub fn option_arrays<'de, D: Deserializer<'de>, T: Deserialize<'de>, const N: usize>(
+    d: D,
+) -> Result<Option<Vec<[T; N]>>, D::Error> {
+    Option::<Vec<Vec<T>>>::deserialize(d)?.map(|all| all.into_iter().map(exact).collect()).transpose()
+}
+
+#[cfg(test)]
+mod tests {
+    use serde::Deserialize;
+
+    #[derive(Debug, Deserialize)]
+    struct Fields {
+        #[serde(deserialize_with = "super::array")]
+        point: [f64; 3],
+        #[serde(default, deserialize_with = "super::option_arrays")]
+        uvs: Option<Vec<[f64; 2]>>,
+    }
+
+    #[test]
+    fn one_item_too_many_or_too_few_is_an_error_naming_the_lengths() {
+        let read = |text: &str| toml::from_str::<Fields>(text).map_err(|e| e.to_string());
+        assert_eq!(read("point = [1.0, 2.0, 3.0]").unwrap().point, [1.0, 2.0, 3.0]);
+        assert_eq!(read("point = [1, 2, 3]\nuvs = [[0, 1]]").unwrap().uvs, Some(vec![[0.0, 1.0]]));
+        for (text, len) in [
+            ("point = [1.0, 2.0, 3.0, 4.0]", 4),
+            ("point = [1.0, 2.0]", 2),
+            ("point = [1.0, 2.0, 3.0]\nuvs = [[0.0, 0.0], [0.0, 0.0, 3.0]]", 3),
+        ] {
+            let e = read(text).unwrap_err();
+            assert!(e.contains(&format!("invalid length {len}, expected an array of")), "{text}: {e}");
+        }
+        // A wrong item is named by serde as before.
+        assert!(read("point = [1.0, 2.0, \"x\"]").unwrap_err().contains("invalid type"));
+    }
+}
