@@ -186,10 +186,15 @@ pub fn scene_around(
             let count = model.cameras.len();
             let chosen = model.cameras.get(i).ok_or_else(|| FieldIssue {
                 field: "--camera".into(),
+                // Counted as `--camera` counts them: the nodes with a perspective camera, in the
+                // order the scene's nodes are walked (not the file's `cameras` indices).
                 problem: match count {
-                    0 => format!("{i} is not a camera of the file; it has none"),
-                    1 => format!("{i} is not a camera of the file; it has one, camera 0"),
-                    _ => format!("{i} is not a camera of the file; it has {count}, cameras 0 to {}", count - 1),
+                    0 => format!("{i} is not a camera of the file; it has no perspective camera on a node"),
+                    1 => format!("{i} is not a camera of the file; it has one perspective camera on a node, camera 0"),
+                    _ => format!(
+                        "{i} is not a camera of the file; it has {count} perspective cameras on nodes, cameras 0 to {}",
+                        count - 1
+                    ),
                 },
             })?;
             chosen.clone()
@@ -335,7 +340,11 @@ mod tests {
             camera: CameraDesc { position: [0.0, 0.0, 5.0], look_at: [0.0; 3], up: [0.0, 1.0, 0.0], fov_y: 40.0 },
             aspect: None,
         };
-        for (count, says) in [(0, "it has none"), (1, "it has one, camera 0"), (3, "it has 3, cameras 0 to 2")] {
+        for (count, says) in [
+            (0, "it has no perspective camera on a node"),
+            (1, "it has one perspective camera on a node, camera 0"),
+            (3, "it has 3 perspective cameras on nodes, cameras 0 to 2"),
+        ] {
             let mut model = Model { meshes: vec![quad(1.0)], ..Model::default() };
             model.cameras = vec![camera.clone(); count];
             let options = ImportOptions { camera: Some(5), ..ImportOptions::default() };
