@@ -144,6 +144,42 @@ fn punctual_lights_sit_at_their_nodes_and_scale_with_the_exposure() {
 }
 
 #[test]
+fn an_asset_version_other_than_2_is_said_when_the_file_reads_as_2() {
+    let dir = TempDir::new("gltf-version");
+    let mut f = Fixture::quad();
+    f.json["asset"]["version"] = json!("3.0");
+    let m = load_gltf(&f.write_gltf(&dir, "three", BufferAt::DataUri), &ImportOptions::default()).unwrap();
+    assert!(
+        m.warnings.iter().any(|w| w.field == "asset.version" && w.problem.starts_with("`3.0`")),
+        "{:?}",
+        m.warnings
+    );
+    f.json["asset"]["version"] = json!("2.1");
+    let m = load_gltf(&f.write_gltf(&dir, "two", BufferAt::DataUri), &ImportOptions::default()).unwrap();
+    assert!(m.warnings.iter().all(|w| w.field != "asset.version"), "{:?}", m.warnings);
+}
+
+#[test]
+fn a_camera_wider_than_a_scene_allows_is_skipped_as_a_zero_one_is() {
+    let dir = TempDir::new("gltf-wide");
+    let mut f = Fixture::quad();
+    f.json["cameras"] = json!([
+        { "type": "perspective", "perspective": { "yfov": 3.13, "znear": 0.1 } },
+        { "type": "perspective", "perspective": { "yfov": 0.5, "znear": 0.1 } }
+    ]);
+    f.json["scenes"] = json!([{ "nodes": [0, 1, 2] }]);
+    f.json["nodes"] = json!([
+        { "mesh": 0 },
+        { "translation": [0.5, 0.5, 4.0], "camera": 0 },
+        { "translation": [0.5, 0.5, 3.0], "camera": 1 }
+    ]);
+    let m = load_gltf(&f.write_gltf(&dir, "wide", BufferAt::DataUri), &ImportOptions::default()).unwrap();
+    assert_eq!(m.cameras.len(), 1, "the wide one skipped");
+    let said = m.warnings.iter().find(|w| w.problem.contains("camera skipped")).expect("said");
+    assert!(said.problem.starts_with("yfov 3.13 (cameras[0].perspective.yfov) is outside"), "{}", said.problem);
+}
+
+#[test]
 fn a_punctual_light_out_of_range_is_named_by_the_files_own_fields() {
     let dir = TempDir::new("gltf-light-ranges");
     let with = |lights: serde_json::Value, name: &str| {
@@ -163,6 +199,17 @@ fn a_punctual_light_out_of_range_is_named_by_the_files_own_fields() {
     let negative = with(json!([{ "type": "point", "intensity": -5.0 }]), "negative");
     let message = load_gltf(&negative, &ImportOptions::default()).unwrap_err().to_string();
     assert!(message.contains("lights[0].intensity: -5 must be a finite number ≥ 0"), "{message}");
+    // A node's light that does not exist is named as the file spells the extension (the gltf
+    // crate's path said `khrLightsPunctual`).
+    let mut f = Fixture::quad();
+    f.json["extensionsUsed"] = json!(["KHR_lights_punctual"]);
+    f.json["extensions"] = json!({ "KHR_lights_punctual": { "lights": [{ "type": "point" }] } });
+    f.json["scenes"] = json!([{ "nodes": [0, 1] }]);
+    f.json["nodes"] = json!([{ "mesh": 0 }, { "extensions": { "KHR_lights_punctual": { "light": 5 } } }]);
+    let message = load_gltf(&f.write_gltf(&dir, "missing", BufferAt::DataUri), &ImportOptions::default())
+        .unwrap_err()
+        .to_string();
+    assert!(message.contains("nodes[1].extensions.KHR_lights_punctual.light"), "{message}");
     // Cones breaking 0 ≤ inner ≤ outer ≤ π/2 are said, with what was made of them.
     let cones = with(json!([{ "type": "spot", "spot": { "innerConeAngle": 1.0, "outerConeAngle": 0.5 } }]), "cones");
     let m = load_gltf(&cones, &ImportOptions::default()).unwrap();
@@ -699,6 +746,10 @@ transform = { translate = [10, 0, 0], rotate = [0, 0, 90], scale = 2 }
         (
             "path = \"quad.glb\"\ntransform = { matrix = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1], translate = [1, 0, 0] }",
             "objects[1].transform.matrix",
+        ),
+        (
+            "path = \"quad.glb\"\ntransform = { matrix = [1, 0, 0, 5, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0] }",
+            "objects[1].transform.matrix: its bottom row",
         ),
     ] {
         let bad = dir.join("bad.toml");

@@ -127,6 +127,18 @@ impl TransformDesc {
             if !finite(m) {
                 out.push(("matrix".into(), "every entry must be finite".into()));
             }
+            // Column-major: entries 3, 7, 11 and 15 are the bottom row. Anything but
+            // (0, 0, 0, 1) is a projection, which a placement cannot be (and was used as affine).
+            let bottom = [m[3], m[7], m[11], m[15]];
+            if finite(m) && bottom != [0.0, 0.0, 0.0, 1.0] {
+                out.push((
+                    "matrix".into(),
+                    format!(
+                        "its bottom row (entries 3, 7, 11, 15 column-major) is {bottom:?}; a placement's is \
+                         [0, 0, 0, 1] (an affine transform, as glTF requires of a node's matrix)"
+                    ),
+                ));
+            }
         }
         if !finite(&self.translate) {
             out.push(("translate".into(), "must be finite".into()));

@@ -211,13 +211,25 @@ pub fn scene_around(
             aspect: None,
         },
     };
+    let mut warnings = std::mem::take(&mut model.warnings);
     if let Some(aspect) = camera.aspect {
         // Keep the height, give the width the camera's aspect (within the image limits).
-        let width = (f64::from(render.height) * aspect).round().clamp(1.0, f64::from(MAX_IMAGE_SIDE));
+        let wanted = (f64::from(render.height) * aspect).round();
+        let width = wanted.clamp(1.0, f64::from(MAX_IMAGE_SIDE));
         render.width = width as u32;
+        if width != wanted {
+            warnings.push(FieldIssue {
+                field: format!("camera `{}`", camera.name),
+                problem: format!(
+                    "its aspectRatio {} would make the image {wanted}x{} pixels; the width is held to {width} \
+                     (sides in [1, {MAX_IMAGE_SIDE}]): set --width and --height",
+                    glint_scene::format_number(aspect),
+                    render.height
+                ),
+            });
+        }
     }
     let lights = std::mem::take(&mut model.lights);
-    let mut warnings = std::mem::take(&mut model.warnings);
     // The scene refers to the file (saved as a reference, never as vertices): an absolute
     // path, since the scene may be saved anywhere.
     let file = std::fs::canonicalize(path).unwrap_or_else(|_| path.to_owned());
@@ -331,6 +343,24 @@ mod tests {
         assert_eq!(epsilon(10.0), RenderSettings::default().epsilon);
         assert_eq!(epsilon(0.5), RenderSettings::default().epsilon, "1 wide");
         assert_eq!(epsilon(1e-3), 1e-6 * 2e-3);
+    }
+
+    #[test]
+    fn an_aspect_ratio_no_image_can_have_is_said_with_the_width_held() {
+        let camera = |aspect: f64| ModelCamera {
+            name: "c".into(),
+            camera: CameraDesc { position: [0.0, 0.0, 5.0], look_at: [0.0; 3], up: [0.0, 1.0, 0.0], fov_y: 40.0 },
+            aspect: Some(aspect),
+        };
+        let said = |aspect: f64| {
+            let model = Model { meshes: vec![quad(1.0)], cameras: vec![camera(aspect)], ..Model::default() };
+            let (desc, warnings) = scene_around(model, Path::new("m.gltf"), &ImportOptions::default()).unwrap();
+            (desc.render.width, warnings.into_iter().find(|w| w.problem.contains("aspectRatio")))
+        };
+        let (width, warning) = said(1e-9);
+        assert_eq!(width, 1);
+        assert!(warning.expect("said").problem.starts_with("its aspectRatio 1e-9 would make the image 0x"));
+        assert_eq!(said(2.0).1, None);
     }
 
     #[test]

@@ -66,6 +66,14 @@ pub(super) fn parse(bytes: &[u8], file: &Path, warnings: &mut Vec<FieldIssue>) -
             return Err(invalid(format!("cameras[{i}]"), "the camera lacks the projection its type names"));
         }
     }
+    // A later 2.x minor version is 2.0 by the specification's rule; any other major is not.
+    let version = &json.asset.version;
+    if !(version == "2" || version.starts_with("2.")) {
+        warnings.push(FieldIssue {
+            field: "asset.version".into(),
+            problem: format!("`{version}`, not glTF 2.0: read as 2.0, the one version Glint reads"),
+        });
+    }
     for (m, mesh) in json.meshes.iter().enumerate() {
         for (p, primitive) in mesh.primitives.iter().enumerate() {
             if let Some(index) = primitive.attributes.get(&Checked::Valid(Semantic::Positions))
@@ -146,9 +154,10 @@ fn parse_error(file: &Path, e: ::gltf::Error) -> GltfError {
                     };
                 }
             }
-            let shown: Vec<String> = errors.iter().take(8).map(|(p, e)| format!("{p}: {e}")).collect();
+            let shown: Vec<String> =
+                errors.iter().take(8).map(|(p, e)| format!("{}: {e}", as_written(&p.to_string()))).collect();
             let more = errors.len().saturating_sub(shown.len());
-            let mut path = errors.first().map(|(p, _)| p.to_string()).unwrap_or_default();
+            let mut path = errors.first().map(|(p, _)| as_written(&p.to_string())).unwrap_or_default();
             if path.is_empty() {
                 path = "(root)".into();
             }
@@ -164,6 +173,29 @@ fn parse_error(file: &Path, e: ::gltf::Error) -> GltfError {
         }
         other => GltfError::Parse { file: file.to_owned(), reason: other.to_string() },
     }
+}
+
+/// A validation path as the file spells it: the gltf crate names an extension by its Rust
+/// field (`khrLightsPunctual`), the file by its registered name (`KHR_lights_punctual`).
+fn as_written(path: &str) -> String {
+    path.split('.')
+        .map(|segment| {
+            let (prefix, rest) = segment.split_at(segment.len().min(3));
+            let vendor = matches!(prefix, "khr" | "ext");
+            if !(vendor && rest.starts_with(|c: char| c.is_ascii_uppercase())) {
+                return segment.to_string();
+            }
+            let mut name = prefix.to_ascii_uppercase();
+            for c in rest.chars() {
+                if c.is_ascii_uppercase() {
+                    name.push('_');
+                }
+                name.push(c.to_ascii_lowercase());
+            }
+            name
+        })
+        .collect::<Vec<_>>()
+        .join(".")
 }
 
 /// Every buffer's bytes: the GLB's BIN chunk, or its URI through the one resolver. A buffer

@@ -4,6 +4,12 @@ use glint_scene::{Attenuation, CameraDesc, FieldIssue, LightDesc, LightKind, Rgb
 use glint_scene::{MAX_INTENSITY, Mat4, ModelCamera};
 use glint_scene::{format_number as number, format_rounded};
 
+/// An f32 the file wrote, as short as it reads back (`1e30`, not the f64 widening's
+/// 1.0000000150474662e30).
+fn written(v: f32) -> String {
+    number(v.to_string().parse().unwrap_or(f64::from(v)))
+}
+
 fn normalized(v: [f64; 3]) -> Option<[f64; 3]> {
     let len = v.iter().map(|c| c * c).sum::<f64>().sqrt();
     (len.is_finite() && len > 1e-300).then(|| v.map(|c| c / len))
@@ -24,7 +30,10 @@ pub(super) fn map_light(
     let own = format!("extensions.KHR_lights_punctual.lights[{}]", light.index());
     let intensity = f64::from(light.intensity());
     if !(intensity.is_finite() && intensity >= 0.0) {
-        return Err((format!("{own}.intensity"), format!("{} must be a finite number ≥ 0", number(intensity))));
+        return Err((
+            format!("{own}.intensity"),
+            format!("{} must be a finite number ≥ 0", written(light.intensity())),
+        ));
     }
     let colour = light.color().map(|c| f64::from(c) * intensity * exposure);
     if let Some(brightest) = colour.iter().copied().filter(|c| *c > MAX_INTENSITY).reduce(f64::max) {
@@ -34,7 +43,7 @@ pub(super) fn map_light(
             format!(
                 "{} × colour × --exposure {} reaches {}, beyond the {MAX_INTENSITY:e} a light may have: \
                  lower --exposure to {} or less (it scales every light of the file)",
-                number(intensity),
+                written(light.intensity()),
                 number(exposure),
                 format_rounded(brightest, 3),
                 format_rounded(scale, 2)
@@ -74,8 +83,8 @@ pub(super) fn map_light(
                 field: format!("{own}.spot"),
                 problem: format!(
                     "innerConeAngle {} and outerConeAngle {} break 0 ≤ inner ≤ outer ≤ π/2; taken as {}° and {}°",
-                    number(inner),
-                    number(outer),
+                    written(inner_cone_angle),
+                    written(outer_cone_angle),
                     format_rounded(inner_deg, 4),
                     format_rounded(outer_deg, 4)
                 ),
@@ -119,8 +128,23 @@ pub(super) fn map_camera(
         });
     }
     let fov_y = f64::from(p.yfov()).to_degrees();
-    if !(fov_y.is_finite() && fov_y > 0.0 && fov_y < 180.0) {
-        warnings.push(FieldIssue { field, problem: format!("yfov {} is outside (0, π); camera skipped", p.yfov()) });
+    // Judged by the range a scene's camera has, so that a yfov a hair under π is skipped as
+    // yfov 0 is, not refused later under Glint's `camera.fov_y`.
+    let range = glint_scene::ranges::FOV_Y;
+    if !(fov_y.is_finite() && range.contains(fov_y)) {
+        let (lo, hi) = (range.min.to_radians(), range.max.to_radians());
+        warnings.push(FieldIssue {
+            field,
+            problem: format!(
+                "yfov {} (cameras[{}].perspective.yfov) is outside [{}, {}] radians ({}° to {}°); camera skipped",
+                written(p.yfov()),
+                camera.index(),
+                format_rounded(lo, 3),
+                format_rounded(hi, 6),
+                number(range.min),
+                number(range.max)
+            ),
+        });
         return None;
     }
     Some(ModelCamera {
