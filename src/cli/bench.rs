@@ -16,6 +16,7 @@ use glint_core::bvh::{self, BvhNodes};
 use glint_core::cpu::TraceContext;
 use glint_core::cpu::raycast::cast_rays;
 use glint_core::cpu::raycast::{HitRecord, RayRecord};
+use glint_core::memory::{self, RenderPlan, render_estimate};
 use glint_core::rays::{HitAgreement, RaySet, compare_hits, hit_fraction};
 use glint_core::{Backend, FlatScene};
 use glint_gpu::GpuContext;
@@ -24,7 +25,7 @@ use serde::Serialize;
 
 use super::backend::open_gpu;
 use super::console::say;
-use super::settings::{LoadArgs, load};
+use super::settings::{LoadArgs, load, parse_threads};
 use super::units::{mrays_per_s, ms};
 
 #[derive(Debug, Args)]
@@ -46,9 +47,10 @@ pub struct RaysArgs {
     pub scene: String,
     #[command(flatten)]
     pub scene_size: LoadArgs,
-    /// CPU threads for the build and the casts [1, 1024]; default: the available parallelism
-    #[arg(long, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(1..=1024))]
-    pub threads: Option<u32>,
+    /// CPU threads for the build and the casts: 0 = one per core (the default), at most 4 per
+    /// core, as `glint render --threads`
+    #[arg(long, default_value_t = 0, allow_negative_numbers = true, value_parser = parse_threads)]
+    pub threads: usize,
     /// Which side casts the rays: the CPU (f64), the GPU (WGSL), or both (then their hits are compared)
     #[arg(long, default_value = "cpu", value_parser = ["cpu", "gpu", "both"])]
     pub backend: String,
@@ -157,11 +159,11 @@ fn rays(args: &RaysArgs) -> anyhow::Result<()> {
         _ => &[Backend::Cpu, Backend::Gpu],
     };
     let threads = match args.threads {
-        Some(t) => t,
-        None => std::thread::available_parallelism().map_or(1, |n| n.get() as u32),
+        0 => std::thread::available_parallelism().map_or(1, |n| n.get()),
+        t => t,
     };
     let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads as usize)
+        .num_threads(threads)
         .thread_name(|i| format!("glint-bench-{i}"))
         .build()
         .with_context(|| format!("cannot start {threads} threads (--threads)"))?;
@@ -170,6 +172,15 @@ fn rays(args: &RaysArgs) -> anyhow::Result<()> {
 
     let (loaded, load_time) = timed(|| load(&args.scene, &args.scene_size.options(), args.scene_size.memory_limit));
     let loaded = loaded?;
+    // The flat scene and its BVH, as a render of it holds them (the rays are a few MB beside):
+    // `--memory-limit` bounds the benchmark as it bounds a render.
+    let plan = RenderPlan { cpu: backends.contains(&Backend::Cpu), gpu: gpu.is_some(), exr: false };
+    memory::check(
+        format!("building {} for the benchmark", loaded.name),
+        &render_estimate(&loaded.desc, &loaded.desc.render, plan),
+        args.scene_size.memory_limit,
+        "lower --resolution, or raise --memory-limit",
+    )?;
     let (flat, flat_time) = pool.install(|| timed(|| FlatScene::build(&loaded.desc, &loaded.desc.render)));
     if flat.bvh_nodes.is_empty() {
         bail!("scene '{}' has no spheres or triangles: there is no BVH to measure", loaded.name);
@@ -249,7 +260,7 @@ fn rays(args: &RaysArgs) -> anyhow::Result<()> {
         triangles: flat.triangles.len(),
         spheres: flat.spheres.len(),
         planes: flat.planes.len(),
-        cpu_threads: threads,
+        cpu_threads: threads as u32,
         gpu_adapter: gpu.as_ref().map(|t| t.context().adapter.with_driver()),
         statistic: "one warm-up run, then the median and the best of `runs` timed runs; throughput from the median",
         build,

@@ -159,10 +159,6 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
             quiet: args.quiet,
         });
     }
-    if args.bench {
-        let flat = FlatScene::build(&loaded.desc, &settings);
-        return bench(args, &loaded.name, &flat, &settings, &cpu_options, &gpu_options);
-    }
     let output = args.output.clone().unwrap_or_else(|| PathBuf::from(format!("{}.png", loaded.name)));
     let plan = RenderPlan {
         cpu: args.backend.contains(&Backend::Cpu),
@@ -192,6 +188,11 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         args.scene_size.memory_limit,
         &remedy,
     )?;
+    // After the memory check: a benchmark builds and renders the same (it writes no image).
+    if args.bench {
+        let flat = FlatScene::build(&loaded.desc, &settings);
+        return bench(args, &loaded.name, &flat, &settings, &cpu_options, &gpu_options);
+    }
     let both = args.backend.len() > 1;
     let image_path = |run: &Run| if both { suffixed(&output, run.backend.name()) } else { output.clone() };
     let diff_path = suffixed(&output, "diff").with_extension("png");

@@ -83,7 +83,7 @@ impl LoadArgs {
             exposure: self.exposure.unwrap_or(ImportOptions::default().exposure),
             ground: self.ground.unwrap_or_default(),
         };
-        LoadOptions { resolution: self.resolution, import }
+        LoadOptions { resolution: self.resolution, import, stream_cap: memory::stream_cap(self.memory_limit) }
     }
 }
 

@@ -94,10 +94,18 @@ fn bad_resolutions_fail_cleanly() {
         &["whitted", "not a generated scene", "bumpy"],
         &[],
     );
+    // --memory-limit bounds the benchmark's scene as it bounds a render (it was ignored).
+    expect_failure(
+        "bench-memory",
+        |_| os(&[&"bench", &"rays", &"bumpy", &"--resolution", &"300", &"--memory-limit", &"50M"]),
+        &["building bumpy for the benchmark", "set by --memory-limit"],
+        &[],
+    );
+    // The same range as `glint render --threads` (bench took 1 to 1024 whatever the cores).
     expect_failure(
         "bench-threads",
-        |_| os(&[&"bench", &"rays", &"bumpy", &"--resolution", &"4", &"--threads", &"0"]),
-        &["--threads"],
+        |_| os(&[&"bench", &"rays", &"bumpy", &"--resolution", &"4", &"--threads", &"100000"]),
+        &["--threads", "100000 is outside [0, ", "(4 per core"],
         &[],
     );
 }

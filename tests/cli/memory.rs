@@ -56,6 +56,12 @@ fn a_scene_file_beyond_the_memory_limit_is_refused_before_it_is_parsed() {
         assert!(stderr.contains(f), "no {f:?} in\n{stderr}");
     }
     assert_eq!(dir.listing(), ["big.toml"]);
+    // A stream has no size to estimate beforehand: it is read only as far as the limit leaves
+    // room to parse (/dev/zero under 100M was read to 1 GiB before it was refused).
+    let out = glint(&dir, ["render", "/dev/zero", "-q", "-o", "zero.png", "--memory-limit", "100M"]);
+    let stderr = text(&out.stderr);
+    let cap = (100u64 << 20).saturating_sub(16 << 20) / 36;
+    assert!(!out.status.success() && stderr.contains(&format!("larger than {cap} bytes")), "{stderr}");
 }
 
 /// The estimate and the peak resident memory of one `glint render --json` run.

@@ -274,6 +274,15 @@ pub struct MemoryError {
     pub remedy: String,
 }
 
+/// The most bytes a scene file of unknown size (a pipe, a device) may have for its parse to fit
+/// `limit` (a limit the user set, else the memory available; `None` when neither is known):
+/// read that far, not to the 1 GiB any file may have (`/dev/zero` under `--memory-limit 100M`
+/// took 1 GiB before it was refused).
+pub fn stream_cap(limit: Option<u64>) -> Option<u64> {
+    let limit = limit.or_else(available)?;
+    Some(limit.saturating_sub(PROCESS_BYTES) / TOML_BYTES_PER_FILE_BYTE)
+}
+
 /// Refuses `estimate` when it exceeds `limit` (a limit the user set), else the memory
 /// available; passes when neither is known.
 pub fn check(

@@ -74,6 +74,9 @@ pub fn validated(desc: SceneDesc, file: &Path) -> Result<(SceneDesc, Vec<FieldIs
 pub struct LoadOptions {
     pub resolution: Option<u32>,
     pub import: ImportOptions,
+    /// The most bytes a scene file without a size (a pipe, a device) is read to, below
+    /// `uri::MAX_RESOURCE_BYTES` (1 GiB, the default): what a memory limit leaves for parsing it.
+    pub stream_cap: Option<u64>,
 }
 
 /// Loads `arg`: a scene or model file if such a file exists, otherwise a built-in scene name.
@@ -111,8 +114,8 @@ pub fn load_scene_with(arg: &str, options: &LoadOptions) -> Result<LoadedScene, 
             let (desc, warnings) = load_model(path, &options.import)?;
             return Ok(LoadedScene { desc, source: path.to_owned(), name, warnings });
         }
-        let bytes = read_capped(path, uri::MAX_RESOURCE_BYTES)
-            .map_err(|error| SceneError::Io { file: path.to_owned(), error })?;
+        let cap = options.stream_cap.map_or(uri::MAX_RESOURCE_BYTES, |c| c.min(uri::MAX_RESOURCE_BYTES));
+        let bytes = read_capped(path, cap).map_err(|error| SceneError::Io { file: path.to_owned(), error })?;
         let text = utf8(&bytes, path)?;
         let (desc, warnings) = parse_scene(text, path)?;
         return Ok(LoadedScene { desc, source: path.to_owned(), name, warnings });
@@ -123,22 +126,30 @@ pub fn load_scene_with(arg: &str, options: &LoadOptions) -> Result<LoadedScene, 
         return Ok(LoadedScene { desc, source, name: b.name.to_string(), warnings });
     }
     if path.extension().is_some() || arg.contains(std::path::MAIN_SEPARATOR) {
-        return Err(SceneError::Io {
-            file: path.to_owned(),
-            error: std::io::Error::new(std::io::ErrorKind::NotFound, "no such file"),
-        });
+        // What the file system says where it is more than "missing": a loop of links, a
+        // folder that may not be entered (a loop was called "no such file").
+        let error = std::fs::metadata(path)
+            .err()
+            .filter(|e| e.kind() != std::io::ErrorKind::NotFound)
+            .unwrap_or_else(|| std::io::Error::new(std::io::ErrorKind::NotFound, "no such file"));
+        return Err(SceneError::Io { file: path.to_owned(), error });
     }
     let available = BUILTIN_SCENES.iter().map(|b| b.name).collect::<Vec<_>>().join(", ");
     Err(SceneError::UnknownScene { name: arg.to_string(), available })
 }
 
-/// A scene file's bytes, at most `cap` of them (`uri::MAX_RESOURCE_BYTES`): a device or a pipe
-/// (`/dev/zero`, a generator behind `<(…)`) has no size to check beforehand, and is read only
-/// that far.
+/// A scene file's bytes, at most `cap` of them (`uri::MAX_RESOURCE_BYTES`, or what a memory
+/// limit leaves: `LoadOptions::stream_cap`): a device or a pipe (`/dev/zero`, a generator behind
+/// `<(…)`) has no size to check beforehand, and is read only that far.
 fn read_capped(path: &Path, cap: u64) -> std::io::Result<Vec<u8>> {
     let bytes = uri::read_up_to(std::fs::File::open(path)?, cap, 0)?;
     if bytes.len() as u64 > cap {
-        return Err(std::io::Error::other(format!("larger than {cap} bytes, the most a scene file may hold")));
+        let why = if cap < uri::MAX_RESOURCE_BYTES {
+            "what the memory limit (--memory-limit, else the memory available) leaves for parsing it"
+        } else {
+            "the most a scene file may hold"
+        };
+        return Err(std::io::Error::other(format!("larger than {cap} bytes, {why}")));
     }
     Ok(bytes)
 }
