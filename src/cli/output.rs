@@ -65,16 +65,28 @@ pub fn write_diff(path: &Path, cpu: &Run, gpu: &Run, mut metadata: Vec<(String, 
     Ok(())
 }
 
-pub fn fmt_counts(c: &RayCounts) -> String {
-    format!(
-        "rays: {} camera, {} shadow, {} reflection, {} refraction ({} total), {} saved by bailout",
-        c.camera,
-        c.shadow,
-        c.reflection,
-        c.refraction,
-        c.total(),
-        c.bailout_saved
-    )
+/// The ray counts in the integrator's words: a path's bounce off a diffuse or glossy lobe is
+/// counted with the mirror's (it is no reflection in Whitted's sense), and paths have no bailout.
+pub fn fmt_counts(c: &RayCounts, integrator: Integrator) -> String {
+    match integrator {
+        Integrator::Whitted => format!(
+            "rays: {} camera, {} shadow, {} reflection, {} refraction ({} total), {} saved by bailout",
+            c.camera,
+            c.shadow,
+            c.reflection,
+            c.refraction,
+            c.total(),
+            c.bailout_saved
+        ),
+        Integrator::Path => format!(
+            "rays: {} camera, {} shadow, {} reflected or scattered, {} refracted ({} total)",
+            c.camera,
+            c.shadow,
+            c.reflection,
+            c.refraction,
+            c.total()
+        ),
+    }
 }
 
 #[derive(Serialize)]
@@ -311,7 +323,7 @@ pub fn print_table(
             r.mrays(),
             r.device
         )?;
-        say!("           {}", fmt_counts(&r.counts))?;
+        say!("           {}", fmt_counts(&r.counts, s.integrator))?;
     }
     if let Some(e) = errors {
         let psnr = if e.psnr.is_finite() { format!("{:.1} dB", e.psnr) } else { "inf (identical)".into() };

@@ -347,7 +347,7 @@ fn say_bench_line(name: &str, s: &RenderSettings, runs: u32, r: &BenchResult) ->
         ms(r.median),
         ms(r.min),
         mrays_per_s(r.warm.counts.total(), r.median),
-        fmt_counts(&r.warm.counts)
+        fmt_counts(&r.warm.counts, s.integrator)
     )?;
     Ok(())
 }

@@ -102,7 +102,12 @@ fn renders_every_builtin_scene_to_png_and_exr_with_metadata() {
             assert!(out.status.success(), "{name} -> {}: {}", path.display(), text(&out.stderr));
             // One summary line: time, rays by kind, bailout savings, throughput.
             let stdout = text(&out.stdout);
-            for word in [name, "camera", "shadow", "reflection", "refraction", "bailout", "Mrays/s"] {
+            let kinds: &[&str] = if whitted {
+                &["reflection", "refraction", "bailout"]
+            } else {
+                &["reflected or scattered", "refracted"]
+            };
+            for word in [name, "camera", "shadow", "Mrays/s"].iter().chain(kinds) {
                 assert!(stdout.contains(word), "{name}: summary lacks {word:?}: {stdout}");
             }
         }
@@ -202,6 +207,26 @@ fn warnings_judge_the_settings_the_render_uses_not_the_scene_files() {
     assert_eq!(render("large.toml", &["--epsilon", "1e-7"]), 0, "an ε the flag lowered");
     assert_eq!(render("plain.toml", &[]), 0);
     assert_eq!(render("plain.toml", &["--epsilon", "0.05"]), 1, "an ε the flag raised, once");
+}
+
+#[test]
+fn an_adapter_name_from_the_environment_is_said_to_come_from_it() {
+    let dir = TempDir::new("adapter-env");
+    let run = |env: Option<&str>, flag: &[&str]| {
+        let mut command = Command::new(BIN);
+        command.args(["render", "whitted", "--backend", "gpu", "-o", "x.png", "-q"]).args(flag).current_dir(&dir);
+        match env {
+            Some(value) => command.env("WGPU_ADAPTER_NAME", value),
+            None => command.env_remove("WGPU_ADAPTER_NAME"),
+        };
+        let out = command.output().expect("run glint");
+        assert!(!out.status.success());
+        text(&out.stderr)
+    };
+    let said = run(Some("no-such-gpu-zzz"), &[]);
+    assert!(said.contains("no GPU adapter matches 'no-such-gpu-zzz' (from WGPU_ADAPTER_NAME)"), "{said}");
+    let said = run(None, &["--adapter", "no-such-gpu-zzz"]);
+    assert!(said.contains("'no-such-gpu-zzz' (the adapter asked for)"), "{said}");
 }
 
 #[test]
@@ -427,6 +452,17 @@ fn bad_input_fails_cleanly() {
         },
         &["--max-rays-per-sample", "--backend cpu or both"],
         &[],
+    );
+    // A loop of links is named as one (it was "no such file").
+    expect_failure(
+        "link-loop",
+        |d| {
+            std::os::unix::fs::symlink(d.join("b.toml"), d.join("a.toml")).unwrap();
+            std::os::unix::fs::symlink(d.join("a.toml"), d.join("b.toml")).unwrap();
+            os(&[&"render", &d.join("a.toml"), &"-o", &d.join("out.png")])
+        },
+        &["a.toml", "symbolic links"],
+        &["a.toml", "b.toml"],
     );
     // Flags that would do nothing where they are given.
     expect_failure(

@@ -179,6 +179,13 @@ fn attenuation_that_can_reach_zero() {
     expect_invalid(&edited(att, "attenuation = { c = 1.0, l = -1.0, q = 0.1 }"), field, &["d = 5"]);
     // Exactly zero at its minimum: 1 − 4/(4·1) = 0 at d = −l/(2q) = 1.
     expect_invalid(&edited(att, "attenuation = { c = 1.0, l = -2.0, q = 1.0 }"), field, &["d = 1"]);
+    // A minimum just below the bound is written in significant digits, not rounded onto it
+    // ("falls to 0.000001" seemed to meet "≥ 1e-6").
+    expect_invalid(
+        &edited(att, "attenuation = { c = 1e-6, l = -1e-9, q = 1e-9 }"),
+        field,
+        &["falls to 9.9975e-7 at d = 0.5"],
+    );
     // The same on a spot light.
     expect_invalid(
         &edited("exponent = 8.0", "exponent = 8.0\nattenuation = { c = 0.0, q = 1.0 }"),

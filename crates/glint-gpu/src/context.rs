@@ -139,13 +139,19 @@ fn choose_adapter(adapters: Vec<wgpu::Adapter>, request: &AdapterRequest) -> Res
     if adapters.is_empty() {
         return Err(GpuError::NoAdapter);
     }
-    let name = request.name.clone().or_else(|| std::env::var("WGPU_ADAPTER_NAME").ok()).filter(|n| !n.is_empty());
+    // Where the name came from, for the message: a variable set in a shell profile is easily
+    // forgotten.
+    let (name, given) = match request.name.clone() {
+        Some(name) => (Some(name), "the adapter asked for"),
+        None => (std::env::var("WGPU_ADAPTER_NAME").ok(), "from WGPU_ADAPTER_NAME"),
+    };
+    let name = name.filter(|n| !n.is_empty());
     if let Some(name) = name {
         let wanted = name.to_lowercase();
         let found = adapters.iter().position(|a| a.get_info().name.to_lowercase().contains(&wanted));
         return match found {
             Some(i) => Ok(adapters.into_iter().nth(i).expect("index from position")),
-            None => Err(GpuError::UnknownAdapter { name, available: listing(&adapters) }),
+            None => Err(GpuError::UnknownAdapter { name, given, available: listing(&adapters) }),
         };
     }
     let rank = |a: &wgpu::Adapter| {

@@ -14,8 +14,8 @@ pub enum GpuError {
     TileTooLarge { tile: u32, groups: u32, limit: u32 },
     #[error("WGPU_BACKEND='{value}' names no backend; allowed: vulkan, metal, dx12, gl (comma-separated)")]
     UnknownBackend { value: String },
-    #[error("no GPU adapter matches '{name}'; adapters found: {available}")]
-    UnknownAdapter { name: String, available: String },
+    #[error("no GPU adapter matches '{name}' ({given}); adapters found: {available}")]
+    UnknownAdapter { name: String, given: &'static str, available: String },
     #[error("cannot open a device on adapter '{adapter}': {message}")]
     Device { adapter: String, message: String },
     #[error("shader composition failed:\n{0}")]

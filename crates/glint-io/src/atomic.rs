@@ -41,7 +41,12 @@ fn create_temporary(folder: &Path, random_chars: usize) -> std::io::Result<tempf
     builder.prefix(".glint-").suffix(".tmp").rand_bytes(random_chars);
     #[cfg(unix)]
     builder.permissions(std::os::unix::fs::PermissionsExt::from_mode(0o666));
-    builder.tempfile_in(folder)
+    // tempfile's error names the temporary ("at path /proc/.glint-WpS6LXsQwP.tmp"), a name
+    // the user never gave: say which folder refused a new file, and why.
+    builder.tempfile_in(folder).map_err(|e| {
+        let kind = e.kind();
+        std::io::Error::new(kind, format!("cannot create a file in the folder {}: {kind}", folder.display()))
+    })
 }
 
 /// The temporary as the writer sees it: writes stop with `Interrupted` once a stop is
@@ -158,6 +163,14 @@ mod tests {
         assert_eq!(std::fs::read_to_string(&path).unwrap(), "new");
         assert_eq!(listing(&dir), ["out.txt"]);
         std::fs::remove_dir_all(dir).unwrap();
+    }
+
+    #[test]
+    fn a_folder_that_takes_no_new_file_is_named_not_the_temporary() {
+        // /proc takes no regular file; tempfile's own message named `/proc/.glint-….tmp`.
+        let e = write_file_atomically(Path::new("/proc/x.png"), b"image").unwrap_err().to_string();
+        assert!(e.contains("cannot create a file in the folder /proc"), "{e}");
+        assert!(!e.contains(".glint-"), "{e}");
     }
 
     #[test]

@@ -21,7 +21,7 @@ pub const MAX_RESOURCE_BYTES: u64 = 1 << 30;
 /// Why a reference was not read.
 #[derive(Debug, thiserror::Error)]
 pub enum UriError {
-    #[error("URI `{uri}` is an absolute path; a model may only name files inside its own folder")]
+    #[error("URI `{uri}` is an absolute path; a file may only name files inside its own folder (or below it)")]
     Absolute { uri: String },
     #[error("URI `{uri}` uses the scheme `{scheme}:`; only `data:` URIs and relative paths are read")]
     Scheme { uri: String, scheme: String },
@@ -31,7 +31,7 @@ pub enum UriError {
     Percent { uri: String },
     #[error("data URI `{uri}`: {reason}")]
     Data { uri: String, reason: String },
-    #[error("URI `{uri}` names {size} bytes, more than the {cap} a model resource may have")]
+    #[error("URI `{uri}` names {size} bytes, more than the {cap} a referenced file may have")]
     TooLarge { uri: String, size: u64, cap: u64 },
     #[error("URI `{uri}` ({path}): {error}")]
     Io { uri: String, path: PathBuf, error: std::io::Error },

@@ -32,11 +32,11 @@ pub use limits::*;
 use materials::validate_material;
 use objects::validate_object;
 
-/// Six significant digits without trailing zeros, for messages about f32-rounded values.
+/// Six significant digits, for messages about f32-rounded values (six decimals printed the
+/// least 9.9975e-7 of an attenuation as "0.000001", which seemed to meet its bound of 1e-6,
+/// and 9e-8 as "0").
 fn short(v: f64) -> String {
-    let s = format!("{v:.6}");
-    let s = if s.contains('.') { s.trim_end_matches('0').trim_end_matches('.') } else { &s };
-    s.to_string()
+    crate::number::format_rounded(v, 6)
 }
 
 /// The value the tracers will see: both read the scene in f32.
