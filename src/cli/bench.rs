@@ -158,6 +158,11 @@ fn rays(args: &RaysArgs) -> anyhow::Result<()> {
         "gpu" => &[Backend::Gpu],
         _ => &[Backend::Cpu, Backend::Gpu],
     };
+    if args.adapter.is_some() && !backends.contains(&Backend::Gpu) {
+        bail!(
+            "--adapter chooses the GPU, and --backend cpu uses none: give --backend gpu or both, or leave --adapter out"
+        );
+    }
     let threads = match args.threads {
         0 => std::thread::available_parallelism().map_or(1, |n| n.get()),
         t => t,

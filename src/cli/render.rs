@@ -69,7 +69,8 @@ pub struct RenderArgs {
     #[arg(long)]
     pub json: bool,
     /// List the built-in scenes and exit
-    #[arg(long)]
+    // Alone: with other flags it listed and ignored them (`--list whitted --width 0`).
+    #[arg(long, exclusive = true)]
     pub list: bool,
     /// Benchmark: one warm-up, then --runs timed renders; prints median and min
     #[arg(long)]

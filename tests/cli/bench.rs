@@ -101,6 +101,12 @@ fn bad_resolutions_fail_cleanly() {
         &["building bumpy for the benchmark", "set by --memory-limit"],
         &[],
     );
+    expect_failure(
+        "bench-adapter-on-the-cpu",
+        |_| os(&[&"bench", &"rays", &"bumpy", &"--resolution", &"4", &"--adapter", &"llvmpipe"]),
+        &["--adapter", "--backend gpu or both"],
+        &[],
+    );
     // The same range as `glint render --threads` (bench took 1 to 1024 whatever the cores).
     expect_failure(
         "bench-threads",

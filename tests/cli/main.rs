@@ -466,6 +466,12 @@ fn bad_input_fails_cleanly() {
     );
     // Flags that would do nothing where they are given.
     expect_failure(
+        "list-with-flags",
+        |d| os(&[&"render", &"--list", &"whitted", &"-o", &d.join("x.png"), &"--width", &"0"]),
+        &["--list", "cannot be used with"],
+        &[],
+    );
+    expect_failure(
         "runs-without-bench",
         |d| os(&[&"render", &"whitted", &"--runs", &"7", &"-o", &d.join("out.png")]),
         &["--runs", "--bench"],

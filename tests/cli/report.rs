@@ -263,6 +263,7 @@ fn report_rejects_an_empty_scene_list_an_empty_merge_folder_and_a_thread_count_o
         ("--scenes", " , ", &["--scenes names no scene"][..]),
         ("--threads", "100000", &["--threads", "100000 is outside [0, "][..]),
         ("--merge", "s0,,s2", &["--merge", "an empty folder name", "doubled"][..]),
+        ("--adapter", "llvmpipe", &["--adapter", "--cpu-only", "cannot be used with"][..]),
     ] {
         let mut args: Vec<std::ffi::OsString> =
             vec!["report".into(), flag.into(), value.into(), "--out".into(), out_dir.clone().into()];

@@ -61,7 +61,7 @@ pub struct ReportArgs {
     #[arg(long, default_value_t = 3, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(3..=100))]
     pub runs: u32,
     /// GPU adapter: a case-insensitive part of its name (default: WGPU_ADAPTER_NAME, else the best GPU)
-    #[arg(long)]
+    #[arg(long, conflicts_with = "cpu_only")]
     pub adapter: Option<String>,
     /// Sweep the CPU tracer only (no GPU needed)
     #[arg(long)]
