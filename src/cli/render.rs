@@ -2,16 +2,17 @@
 
 use std::path::PathBuf;
 
-use anyhow::bail;
+use anyhow::{anyhow, bail};
 use clap::Args;
 use clap::builder::{PossibleValuesParser, TypedValueParser};
 use glint_core::compare::compare_images;
 use glint_core::cpu::DEFAULT_MAX_RAYS_PER_SAMPLE;
 use glint_core::memory::{self, RenderPlan, render_estimate};
+use glint_core::render::CpuRenderError;
 use glint_core::{Accel, Backend, CpuOptions, FlatScene};
 use glint_gpu::GpuOptions;
 use glint_io::{BUILTIN_SCENES, RESOLUTIONS};
-use glint_scene::{Integrator, RenderSettings};
+use glint_scene::{Integrator, RenderSettings, SceneDesc, WARN_RAYS_PER_SAMPLE, unbounded_ray_tree};
 
 use super::backend::{Run, open_gpu, run_cpu, run_gpu};
 use super::console::{say, tell};
@@ -213,7 +214,8 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         gpu.as_ref().map(|tracer| run_gpu(tracer, &flat, &gpu_options, args.quiet || args.json)).transpose()?;
     let mut runs = Vec::new();
     if args.backend.contains(&Backend::Cpu) {
-        runs.push(run_cpu(&flat, &cpu_options, args.quiet || args.json)?);
+        let run = run_cpu(&flat, &cpu_options, args.quiet || args.json);
+        runs.push(run.map_err(|e| explain_ray_cap(e, &loaded.desc, &settings))?);
     }
     runs.extend(gpu_run);
     // Every image is checked before any is written: a failure leaves no file at all.
@@ -282,6 +284,21 @@ fn check_backend_flags(args: &RenderArgs) -> anyhow::Result<()> {
         );
     }
     Ok(())
+}
+
+/// A ray tree stopped at `--max-rays-per-sample` in a scene whose own tree is bounded (its
+/// bailout and depth keep it within `WARN_RAYS_PER_SAMPLE`): the cap is the cause, not the
+/// scene, whose remedies the core's message offers first (`--max-rays-per-sample 1` on whitted
+/// was told to set the bailout it has).
+fn explain_ray_cap(e: anyhow::Error, desc: &SceneDesc, settings: &RenderSettings) -> anyhow::Error {
+    match e.downcast_ref::<CpuRenderError>() {
+        Some(&CpuRenderError::RayCap { x, y, cap }) if unbounded_ray_tree(desc, settings).is_none() => anyhow!(
+            "pixel ({x}, {y}): a camera sample's ray tree reached the cap of {cap} rays (--max-rays-per-sample), so \
+             the render stopped; the scene's own bailout and depth keep its trees within {WARN_RAYS_PER_SAMPLE} \
+             rays: raise the cap"
+        ),
+        _ => e,
+    }
 }
 
 /// `--bench`'s timed runs without `--runs`.

@@ -313,6 +313,12 @@ fn a_ray_tree_without_end_stops_at_the_cap_naming_the_pixel_and_the_remedy() {
     std::fs::write(dir.join("tree.toml"), bounded).unwrap();
     let out = glint(&dir, ["render", "tree.toml", "-q", "-o", "tree.exr", "--max-rays-per-sample", "5000"]);
     assert!(out.status.success(), "{}", text(&out.stderr));
+    // A cap below what a bounded scene needs is the cause, and said to be (whitted was told to
+    // set the bailout it has).
+    let out = glint(&dir, ["render", "whitted", "-q", "-o", "w.exr", "--max-rays-per-sample", "1"]);
+    let stderr = text(&out.stderr);
+    assert!(!out.status.success() && stderr.contains("raise the cap"), "{stderr}");
+    assert!(!stderr.contains("set render.bailout"), "{stderr}");
     for bad in ["0", "-3", "1099511627777", "x"] {
         let out = glint(&dir, ["render", "tree.toml", "-q", "-o", "bad.exr", "--max-rays-per-sample", bad]);
         let stderr = text(&out.stderr);

@@ -20,6 +20,14 @@ pub fn decode_texture(bytes: &[u8], color: ColorSpace) -> Result<TextureImage, T
         Some(image::ImageFormat::Png | image::ImageFormat::Jpeg) => {}
         _ => return Err(TextureError::Format),
     }
+    // A PNG's size is read from its IHDR here: the decoder answered a header claiming
+    // 2^31 × 2^31 texels with "Memory limit exceeded" before the size could be named.
+    if reader.format() == Some(image::ImageFormat::Png)
+        && let Some(ihdr) = bytes.get(12..24).filter(|h| h.starts_with(b"IHDR"))
+    {
+        let side = |at: usize| u32::from_be_bytes([ihdr[at], ihdr[at + 1], ihdr[at + 2], ihdr[at + 3]]);
+        check_size(side(4), side(8))?;
+    }
     let (width, height) = reader.into_dimensions().map_err(|e| TextureError::Decode(e.to_string()))?;
     check_size(width, height)?;
     let reader = image::ImageReader::new(std::io::Cursor::new(bytes))
@@ -107,13 +115,16 @@ mod tests {
         assert!(decode_texture(&bytes, ColorSpace::Srgb).is_err());
         // A valid 1×1 PNG whose header claims 20000×20000 texels (CRC fixed): refused from
         // the header, before anything is decoded.
-        let mut huge = png(1, 1, &[0, 0, 0, 255]);
-        huge[16..20].copy_from_slice(&20000u32.to_be_bytes());
-        huge[20..24].copy_from_slice(&20000u32.to_be_bytes());
-        let crc = crc32(&huge[12..29]);
-        huge[29..33].copy_from_slice(&crc.to_be_bytes());
-        let e = decode_texture(&huge, ColorSpace::Srgb).unwrap_err();
-        assert!(matches!(e, TextureError::TooLarge { width: 20000, height: 20000 }), "{e}");
+        // PNG's largest, 2^31 − 1 a side, too: named by its size, not the decoder's memory limit.
+        for side in [20000u32, (1 << 31) - 1] {
+            let mut huge = png(1, 1, &[0, 0, 0, 255]);
+            huge[16..20].copy_from_slice(&side.to_be_bytes());
+            huge[20..24].copy_from_slice(&side.to_be_bytes());
+            let crc = crc32(&huge[12..29]);
+            huge[29..33].copy_from_slice(&crc.to_be_bytes());
+            let e = decode_texture(&huge, ColorSpace::Srgb).unwrap_err();
+            assert!(matches!(e, TextureError::TooLarge { width, height } if width == side && height == side), "{e}");
+        }
         let e = TextureImage::from_linear_rgba(2, 2, vec![[0.0; 4]; 3]).unwrap_err();
         assert_eq!(e.to_string(), "3 texels given for a 2x2 image");
     }

@@ -13,7 +13,24 @@ pub struct FieldIssue {
 }
 
 impl fmt::Display for FieldIssue {
+    /// Each part of the field's path cut as an echoed value is (`shorten`): a material named by
+    /// 100,000 characters made a line as long, and its `.ks` after it must still show.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}: {}", self.field, self.problem)
+        let field: Vec<String> = self.field.split('.').map(crate::number::shorten).collect();
+        write!(f, "{}: {}", field.join("."), self.problem)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_long_part_of_a_field_is_cut_and_the_rest_still_shows() {
+        let name = "x".repeat(100_000);
+        let issue = FieldIssue { field: format!("materials.{name}.ks"), problem: "-1 is outside [0, 1e9]".into() };
+        let shown = issue.to_string();
+        assert!(shown.len() < 300, "{} bytes", shown.len());
+        assert!(shown.ends_with(".ks: -1 is outside [0, 1e9]") && shown.contains("more bytes)"), "{shown}");
     }
 }

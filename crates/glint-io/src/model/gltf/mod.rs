@@ -54,7 +54,13 @@ pub fn load_gltf(path: &Path, options: &ImportOptions) -> Result<Model, GltfErro
     let buffers = load_buffers(&gltf, path)?;
     let scene = match options.scene_index {
         Some(i) => gltf.scenes().nth(i).ok_or_else(|| {
-            at(format!("scenes[{i}]"), format!("no such scene: the file has {} (--scene-index)", gltf.scenes().len()))
+            at(
+                format!("scenes[{i}]"),
+                format!(
+                    "no such scene: the file has {} (the scene index: --scene-index, or a model object's scene_index)",
+                    gltf.scenes().len()
+                ),
+            )
         })?,
         None => gltf
             .default_scene()
