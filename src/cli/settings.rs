@@ -82,6 +82,7 @@ impl LoadArgs {
             camera: self.camera,
             exposure: self.exposure.unwrap_or(ImportOptions::default().exposure),
             ground: self.ground.unwrap_or_default(),
+            lights: true,
         };
         LoadOptions { resolution: self.resolution, import, stream_cap: memory::stream_cap(self.memory_limit) }
     }

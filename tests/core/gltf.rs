@@ -194,7 +194,9 @@ fn a_punctual_light_out_of_range_is_named_by_the_files_own_fields() {
     let bright = with(json!([{ "type": "point", "intensity": 2e9 }]), "bright");
     let message = load_gltf(&bright, &ImportOptions::default()).unwrap_err().to_string();
     assert!(message.contains("extensions.KHR_lights_punctual.lights[0].intensity: 2000000000"), "{message}");
-    assert!(message.contains("lower --exposure to 0.5 or less"), "{message}");
+    assert!(message.contains("(--exposure, or a model object's exposure) to 0.5 or less"), "{message}");
+    // A light the load does not use (a scene's model object without `lights = true`) fails nothing.
+    assert!(load_gltf(&bright, &ImportOptions { lights: false, ..ImportOptions::default() }).is_ok());
     assert!(load_gltf(&bright, &ImportOptions { exposure: 0.5, ..ImportOptions::default() }).is_ok());
     let negative = with(json!([{ "type": "point", "intensity": -5.0 }]), "negative");
     let message = load_gltf(&negative, &ImportOptions::default()).unwrap_err().to_string();
@@ -210,6 +212,13 @@ fn a_punctual_light_out_of_range_is_named_by_the_files_own_fields() {
         .unwrap_err()
         .to_string();
     assert!(message.contains("nodes[1].extensions.KHR_lights_punctual.light"), "{message}");
+    // An outer cone of π/2 as an exporter writes it (f64 digits, rounded up by f32) is valid.
+    let right = with(
+        json!([{ "type": "spot", "spot": { "innerConeAngle": 0.5, "outerConeAngle": std::f64::consts::FRAC_PI_2 } }]),
+        "right",
+    );
+    let m = load_gltf(&right, &ImportOptions::default()).unwrap();
+    assert!(m.warnings.iter().all(|w| !w.field.ends_with(".spot")), "{:?}", m.warnings);
     // Cones breaking 0 ≤ inner ≤ outer ≤ π/2 are said, with what was made of them.
     let cones = with(json!([{ "type": "spot", "spot": { "innerConeAngle": 1.0, "outerConeAngle": 0.5 } }]), "cones");
     let m = load_gltf(&cones, &ImportOptions::default()).unwrap();

@@ -13,7 +13,12 @@ use crate::model::{ImportOptions, load_model_file};
 pub fn load_model_ref(reference: &ModelDesc, folder: &Path, prefix: &str) -> Result<LoadedModel, String> {
     let file = folder.join(&reference.path);
     let exposure = reference.exposure.unwrap_or(ImportOptions::default().exposure);
-    let options = ImportOptions { scene_index: reference.scene_index, exposure, ..ImportOptions::default() };
+    let options = ImportOptions {
+        scene_index: reference.scene_index,
+        exposure,
+        lights: reference.lights,
+        ..ImportOptions::default()
+    };
     let model = load_model_file(&file, &options)?;
     Ok(LoadedModel::place(file, model, &reference.transform, prefix))
 }

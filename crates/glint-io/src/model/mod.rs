@@ -36,11 +36,14 @@ pub struct ImportOptions {
     pub exposure: f64,
     /// Whether the lab scene puts a ground under the model.
     pub ground: Ground,
+    /// Whether the file's lights are read: a scene's model object uses them only with
+    /// `lights = true`, and a light it does not use must not fail its load.
+    pub lights: bool,
 }
 
 impl Default for ImportOptions {
     fn default() -> Self {
-        Self { scene_index: None, camera: None, exposure: 1.0, ground: Ground::Auto }
+        Self { scene_index: None, camera: None, exposure: 1.0, ground: Ground::Auto, lights: true }
     }
 }
 

@@ -235,7 +235,8 @@ pub fn load_gltf(path: &Path, options: &ImportOptions) -> Result<Model, GltfErro
                 }
             }
         }
-        if let Some(light) = node.light()
+        if options.lights
+            && let Some(light) = node.light()
             && let Some(l) = punctual::map_light(&light, &world, options.exposure, i, &mut model.warnings)
                 .map_err(|(path, problem)| at(path, problem))?
         {

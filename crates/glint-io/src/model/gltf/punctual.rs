@@ -41,8 +41,9 @@ pub(super) fn map_light(
         return Err((
             format!("{own}.intensity"),
             format!(
-                "{} × colour × --exposure {} reaches {}, beyond the {MAX_INTENSITY:e} a light may have: \
-                 lower --exposure to {} or less (it scales every light of the file)",
+                "{} × colour × exposure {} reaches {}, beyond the {MAX_INTENSITY:e} a light may have: lower \
+                 the exposure (--exposure, or a model object's exposure) to {} or less (it scales every light of \
+                 the file)",
                 written(light.intensity()),
                 number(exposure),
                 format_rounded(brightest, 3),
@@ -77,7 +78,8 @@ pub(super) fn map_light(
         let (inner, outer) = (f64::from(inner_cone_angle), f64::from(outer_cone_angle));
         let degrees = |a: f64| a.to_degrees().clamp(0.0, 90.0);
         let (inner_deg, outer_deg) = (degrees(inner).min(degrees(outer)), degrees(outer));
-        let right = std::f64::consts::FRAC_PI_2;
+        // π/2 as the file's f32 holds it (1.5707964, above f64's π/2): a 180° cone is valid.
+        let right = f64::from(std::f32::consts::FRAC_PI_2);
         if !(0.0..=right).contains(&inner) || !(0.0..=right).contains(&outer) || inner > outer {
             warnings.push(FieldIssue {
                 field: format!("{own}.spot"),
