@@ -243,7 +243,7 @@ fn intersect_triangle(va: vec3<f32>, vb: vec3<f32>, vc: vec3<f32>, ray: Ray, sh:
     var t = sum_by_magnitude(du, dv, dw) * inv;
     // The corners' depths cancel for a triangle far larger than its distance from the origin
     // (the CPU twin says more): the plane's form where its bound is FORM_MARGIN times smaller.
-    let err_watertight = (abs(du) + abs(dv) + abs(dw)) * abs(inv);
+    let err_watertight = sum_by_magnitude(abs(du), abs(dv), abs(dw)) * abs(inv);
     if err_watertight > 2.0 * FORM_MARGIN * abs(t) {
         let plane = plane_t(triangle_plane(va, vb, vc), ray, err_watertight);
         if plane.ok {
@@ -302,6 +302,11 @@ fn plane_t(plane: TrianglePlane, ray: Ray, err_watertight: f32) -> MaybeT {
     let err_num = dot(abs(a), plane.err_normal) + 2.0 * dot(abs(n), abs(a));
     let err_den = dot(abs(ray.dir), plane.err_normal) + 2.0 * dot(abs(n), abs(ray.dir));
     let t = num / den;
+    // WGSL promises nothing of comparisons with infinities or NaN: a ray along the plane
+    // (den 0) or a t beyond FAR is refused outright.
+    if !(abs(den) > 0.0 && abs(t) < FAR) {
+        return MaybeT(0.0, false);
+    }
     let err = (err_num + abs(t) * err_den) / abs(den);
     return MaybeT(t, FORM_MARGIN * err < err_watertight);
 }

@@ -278,8 +278,11 @@ pub fn intersect_triangle(
     // t sums the corners' depths weighted by the edge functions, which cancel for a triangle
     // far larger than its distance from the ray's origin (a ground quad of half-size 1e8 under
     // an eye 2 above it: t off by ε·1e8). The plane's form is taken where its bound is
-    // FORM_MARGIN times smaller; it never is below 2|t|, so ordinary triangles skip it.
-    let err_watertight = (du.abs() + dv.abs() + dw.abs()) * inv.abs();
+    // FORM_MARGIN times smaller; it never is below 2|t|, so it is not even formed unless the
+    // watertight bound exceeds that many times |t| (a huge triangle, or a ray meeting a wall at
+    // a small t near a corner). The bound is summed as t is, so that a copy with rotated
+    // corners makes the same choice.
+    let err_watertight = sum_by_magnitude(du.abs(), dv.abs(), dw.abs()) * inv.abs();
     if err_watertight > 2.0 * FORM_MARGIN * t.abs()
         && let Some(t_plane) = plane_t(&triangle_plane(va, vb, vc), ray, err_watertight)
     {
@@ -332,6 +335,11 @@ pub fn plane_t(plane: &TrianglePlane, ray: &Ray, err_watertight: f64) -> Option<
     let err_num = a.abs().dot(plane.err_normal) + 2.0 * n.abs().dot(a.abs());
     let err_den = ray.dir.abs().dot(plane.err_normal) + 2.0 * n.abs().dot(ray.dir.abs());
     let t = num / den;
+    // A ray along the plane (den 0) or a t beyond FAR has no plane form: said outright, since
+    // the f32 twin cannot lean on comparisons with infinities and NaN.
+    if !(den.abs() > 0.0 && t.abs() < FAR) {
+        return None;
+    }
     let err = (err_num + t.abs() * err_den) / den.abs();
     (FORM_MARGIN * err < err_watertight).then_some(t)
 }
