@@ -225,7 +225,7 @@ fn arrays_longer_than_their_kind_are_refused_not_cut() {
     let four = "invalid length 4, expected an array of length 3";
     for (from, to, says) in [
         ("position = [2.0, 4.0, -2.0]", "position = [2.0, 4.0, -2.0, 7.0]", four),
-        ("position = [2.0, 4.0, -2.0]", "position = [2.0, 4.0, -2.0, \"x\"]", "invalid type: string \"x\""),
+        ("position = [2.0, 4.0, -2.0]", "position = [2.0, 4.0, -2.0, \"x\"]", four),
         ("center = [0.0, 1.0, 0.0]", "center = [0.0, 1.0, 0.0, 1e300]", four),
         ("triangles = [[0, 1, 2]]", "triangles = [[0, 1, 2, 99999]]", four),
         ("direction = [0.3, -1.0, 0.2]", "direction = [0.3, -1.0, 0.2, 1.0]", four),

@@ -4,7 +4,9 @@
 //! a triangle) were read without a word. Too few items were already an error; too many now are
 //! too, in serde's own words ("invalid length 4, expected an array of length 3").
 
-use serde::de::{Deserialize, Deserializer, Error};
+use std::marker::PhantomData;
+
+use serde::de::{Deserialize, Deserializer, Error, IgnoredAny, SeqAccess, Visitor};
 
 struct Expected(usize);
 
@@ -14,33 +16,65 @@ impl serde::de::Expected for Expected {
     }
 }
 
-fn exact<T, E: Error, const N: usize>(items: Vec<T>) -> Result<[T; N], E> {
-    let len = items.len();
-    items.try_into().map_err(|_| E::invalid_length(len, &Expected(N)))
+/// `[T; N]` read item by item into place (a mesh's vertices are not gathered into a `Vec`
+/// each first), with the rest counted for the message.
+struct Exact<T, const N: usize>([T; N]);
+
+impl<'de, T: Deserialize<'de> + Copy + Default, const N: usize> Deserialize<'de> for Exact<T, N> {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct Items<T, const N: usize>(PhantomData<T>);
+        impl<'de, T: Deserialize<'de> + Copy + Default, const N: usize> Visitor<'de> for Items<T, N> {
+            type Value = Exact<T, N>;
+
+            fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+                write!(f, "an array of length {N}")
+            }
+
+            fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Self::Value, A::Error> {
+                let mut items = [T::default(); N];
+                for (i, item) in items.iter_mut().enumerate() {
+                    *item = seq.next_element()?.ok_or_else(|| A::Error::invalid_length(i, &Expected(N)))?;
+                }
+                let mut len = N;
+                while seq.next_element::<IgnoredAny>()?.is_some() {
+                    len += 1;
+                }
+                if len > N {
+                    return Err(A::Error::invalid_length(len, &Expected(N)));
+                }
+                Ok(Exact(items))
+            }
+        }
+        d.deserialize_seq(Items(PhantomData))
+    }
 }
 
 /// `[T; N]`, exactly N items.
-pub fn array<'de, D: Deserializer<'de>, T: Deserialize<'de>, const N: usize>(d: D) -> Result<[T; N], D::Error> {
-    exact(Vec::<T>::deserialize(d)?)
+pub fn array<'de, D: Deserializer<'de>, T: Deserialize<'de> + Copy + Default, const N: usize>(
+    d: D,
+) -> Result<[T; N], D::Error> {
+    Exact::deserialize(d).map(|e| e.0)
 }
 
 /// `Option<[T; N]>` (with `#[serde(default)]` for an absent field).
-pub fn option_array<'de, D: Deserializer<'de>, T: Deserialize<'de>, const N: usize>(
+pub fn option_array<'de, D: Deserializer<'de>, T: Deserialize<'de> + Copy + Default, const N: usize>(
     d: D,
 ) -> Result<Option<[T; N]>, D::Error> {
-    Option::<Vec<T>>::deserialize(d)?.map(exact).transpose()
+    Ok(Option::<Exact<T, N>>::deserialize(d)?.map(|e| e.0))
 }
 
 /// `Vec<[T; N]>`, every element exactly N items.
-pub fn arrays<'de, D: Deserializer<'de>, T: Deserialize<'de>, const N: usize>(d: D) -> Result<Vec<[T; N]>, D::Error> {
-    Vec::<Vec<T>>::deserialize(d)?.into_iter().map(exact).collect()
+pub fn arrays<'de, D: Deserializer<'de>, T: Deserialize<'de> + Copy + Default, const N: usize>(
+    d: D,
+) -> Result<Vec<[T; N]>, D::Error> {
+    Ok(Vec::<Exact<T, N>>::deserialize(d)?.into_iter().map(|e| e.0).collect())
 }
 
 /// `Option<Vec<[T; N]>>` (with `#[serde(default)]` for an absent field).
-pub fn option_arrays<'de, D: Deserializer<'de>, T: Deserialize<'de>, const N: usize>(
+pub fn option_arrays<'de, D: Deserializer<'de>, T: Deserialize<'de> + Copy + Default, const N: usize>(
     d: D,
 ) -> Result<Option<Vec<[T; N]>>, D::Error> {
-    Option::<Vec<Vec<T>>>::deserialize(d)?.map(|all| all.into_iter().map(exact).collect()).transpose()
+    Ok(Option::<Vec<Exact<T, N>>>::deserialize(d)?.map(|all| all.into_iter().map(|e| e.0).collect()))
 }
 
 #[cfg(test)]
