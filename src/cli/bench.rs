@@ -177,14 +177,23 @@ fn rays(args: &RaysArgs) -> anyhow::Result<()> {
 
     let (loaded, load_time) = timed(|| load(&args.scene, &args.scene_size.options(), args.scene_size.memory_limit));
     let loaded = loaded?;
-    // The flat scene and its BVH, as a render of it holds them (the rays are a few MB beside):
-    // `--memory-limit` bounds the benchmark as it bounds a render.
-    let plan = RenderPlan { cpu: backends.contains(&Backend::Cpu), gpu: gpu.is_some(), exr: false };
+    // The flat scene and its BVH, as a render of it holds them, without the images a render
+    // makes and the benchmark does not (the rays are a few MB beside): `--memory-limit` bounds
+    // the benchmark as it bounds a render.
+    let plan = RenderPlan { cpu: false, gpu: false, exr: false };
+    let mut remedies = Vec::new();
+    if loaded.source.to_string_lossy().starts_with("builtin:") {
+        remedies.push("lower --resolution");
+    }
+    if args.scene_size.memory_limit.is_some() {
+        remedies.push("raise --memory-limit");
+    }
+    remedies.push("run it on a machine with more memory");
     memory::check(
         format!("building {} for the benchmark", loaded.name),
         &render_estimate(&loaded.desc, &loaded.desc.render, plan),
         args.scene_size.memory_limit,
-        "lower --resolution, or raise --memory-limit",
+        remedies.join(", or "),
     )?;
     let (flat, flat_time) = pool.install(|| timed(|| FlatScene::build(&loaded.desc, &loaded.desc.render)));
     if flat.bvh_nodes.is_empty() {
