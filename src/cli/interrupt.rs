@@ -43,11 +43,16 @@ pub fn install() -> anyhow::Result<()> {
 
 /// Runs `load` with the first signal ending the process at once (see `LOADING`).
 pub fn while_loading<T>(load: impl FnOnce() -> T) -> T {
-    let loading = LOADING.get();
-    loading.inspect(|l| l.store(true, Ordering::SeqCst));
-    let loaded = load();
-    loading.inspect(|l| l.store(false, Ordering::SeqCst));
-    loaded
+    /// Lowers the flag however `load` ends, an unwinding panic included.
+    struct Loading(Option<&'static Arc<AtomicBool>>);
+    impl Drop for Loading {
+        fn drop(&mut self) {
+            self.0.inspect(|l| l.store(false, Ordering::SeqCst));
+        }
+    }
+    let guard = Loading(LOADING.get());
+    guard.0.inspect(|l| l.store(true, Ordering::SeqCst));
+    load()
 }
 
 /// The exit code of an interrupted run (128 + the signal), if a signal interrupted it.

@@ -99,7 +99,7 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
     // A scene that does not load is reported in the viewer window; flags apply to one that does.
     // A resolution the scene cannot take is a flag error, before any window opens, and so is
     // a scene the drag benchmark cannot load: it would measure the window's fallback instead.
-    let settings = match load_scene_with(&args.scene, &load) {
+    let settings = match super::interrupt::while_loading(|| load_scene_with(&args.scene, &load)) {
         Ok(loaded) => Some(args.settings.apply(&loaded.desc.render, is_model(&loaded))?),
         Err(e @ glint_io::SceneError::NotGenerated { .. }) => bail!("--resolution: {e}"),
         Err(e @ glint_io::SceneError::NotAModel { .. }) => bail!("{e}"),
