@@ -144,8 +144,17 @@ pub(super) fn map_material(m: &tobj::Material, name: &str, warnings: &mut Vec<Fi
     };
     let opacity = dissolve(m, &mut warn);
     if !(0.0..=1.0).contains(&opacity) {
-        let written = if m.dissolve.is_some() { format!("d {opacity}") } else { format!("Tr {}", 1.0 - opacity) };
-        warn("d", format!("`{written}` is an opacity outside [0, 1]; clamped to {}", opacity.clamp(0.0, 1.0)));
+        // Named as the file wrote it: `Tr`'s own text, not 1 − opacity back in f64.
+        let (field, written) = match (m.dissolve, m.unknown_param.get("Tr")) {
+            (Some(d), _) => ("d", format!("d {d}")),
+            (None, Some(tr)) => ("Tr", format!("Tr {}", tr.trim())),
+            (None, None) => ("d", format!("d {opacity}")),
+        };
+        let problem = if field == "d" { "an opacity" } else { "a transparency" };
+        warn(
+            field,
+            format!("`{written}` is {problem} outside [0, 1]; the opacity is clamped to {}", opacity.clamp(0.0, 1.0)),
+        );
     }
     let transmission = Rgb::splat(1.0 - opacity.clamp(0.0, 1.0));
     let (ks_local, kr, kt) = match illum {
