@@ -211,6 +211,10 @@ fn warnings_judge_the_settings_the_render_uses_not_the_scene_files() {
 
 #[test]
 fn an_adapter_name_from_the_environment_is_said_to_come_from_it() {
+    // Names are matched once an adapter exists: with none the error is that, not the name.
+    if glint_test_support::skip_requested("GLINT_SKIP_GPU") {
+        return;
+    }
     let dir = TempDir::new("adapter-env");
     let run = |env: Option<&str>, flag: &[&str]| {
         let mut command = Command::new(BIN);

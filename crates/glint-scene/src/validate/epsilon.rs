@@ -15,7 +15,7 @@ pub const EPSILON_WARN_SHARE: f64 = 1e-5;
 /// The ε to suggest, as a share of the scene's size: the default ε's of a scene 1 wide.
 pub const EPSILON_SHARE: f64 = 1e-6;
 
-/// The warning for an ε beyond `WARN_SHARE` of the scene's bounded geometry's largest side.
+/// The warning for an ε beyond `EPSILON_WARN_SHARE` of the scene's bounded geometry's largest side.
 pub fn epsilon_warning(desc: &SceneDesc, settings: &RenderSettings) -> Option<String> {
     let extent = crate::storage::scene_extent(desc).filter(|e| *e > 0.0 && e.is_finite())?;
     (settings.epsilon > EPSILON_WARN_SHARE * extent).then(|| {
@@ -50,8 +50,8 @@ mod tests {
         assert!(text.ends_with("lower it to 2e-12 or less"), "{text}");
         let unit = scene(1.0);
         assert_eq!(epsilon_warning(&unit, &unit.render), None);
-        // A sphere of radius 0.04 is 8e-2 wide: 1e-6 of it 1.25e-5, rounded; its f32 side
-        // rounded to 3 digits, not written out to 16.
+        // A sphere of radius 0.04 is 8e-2 wide: ε = 1e-6 is 1.25e-5 of it, written to 2 digits;
+        // the side rounded to 3 digits, not written out to 16.
         let small = scene(0.04);
         let text = epsilon_warning(&small, &small.render).expect("ε = 1e-6 of a scene 8e-2 wide");
         assert!(text.starts_with("1e-6 is 1.2e-5 of the scene's size (0.08,"), "{text}");
