@@ -40,7 +40,7 @@ const MAX_WARNINGS: usize = 8;
 /// triangle, 1.8e7 pairs, took 17 s and 1.1 GB; 200,000 did not finish). The bound keeps time
 /// and memory linear; the warning then says "at least" (and a cell cut short before its first
 /// overlap says nothing).
-const MAX_PAIRS_PER_SURFACE: usize = 256;
+const MAX_PAIRS_PER_SURFACE: usize = 64;
 
 /// Where a planar surface comes from: an object, and for a mesh its mesh and triangle.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
@@ -144,6 +144,25 @@ struct Overlap {
     cut: bool,
 }
 
+impl Overlap {
+    fn add(&mut self, area: f64, pair: (Source, Source)) {
+        self.area += area;
+        self.pairs += 1;
+        // The smallest pair, whatever order the cells were compared in.
+        self.first = Some(self.first.map_or(pair, |f| f.min(pair)));
+    }
+
+    fn merge(&mut self, other: Self) {
+        self.area += other.area;
+        self.pairs += other.pairs;
+        self.cut |= other.cut;
+        self.first = match (self.first, other.first) {
+            (Some(a), Some(b)) => Some(a.min(b)),
+            (a, b) => a.or(b),
+        };
+    }
+}
+
 /// Warnings for every pair of objects (or one object with itself) whose planar surfaces
 /// overlap coplanar within `epsilon` or the f32 resolution at their stored coordinates
 /// (relative to the scene's storage origin).
@@ -168,16 +187,18 @@ pub(super) fn coplanar_overlaps(scene: &SceneDesc, origin: [f64; 3]) -> Vec<Fiel
     entries.par_sort_unstable_by_key(|e| e.0);
     // Each shared cell on its own (in parallel); a pair of surfaces that share several cells
     // (near a border) is counted in the smallest of them only.
-    let overlaps: Vec<(Source, Source, f64, bool)> = entries
+    // Gathered by pair of objects within each cell: copies of a face make pairs by the million,
+    // and a list of them took gigabytes.
+    let overlaps: Vec<BTreeMap<(u32, u32), Overlap>> = entries
         .par_chunk_by(|a, b| a.0 == b.0)
         .filter(|run| run.len() > 1)
-        .flat_map_iter(|run| {
+        .map(|run| {
             let members: Vec<(Surface, bool)> = run
                 .iter()
                 .filter_map(|&(_, source, several)| surface_of(&scene.objects, source, at).map(|s| (s, several)))
                 .collect();
             let cell = run[0].0;
-            let mut found = Vec::new();
+            let mut found: BTreeMap<(u32, u32), Overlap> = BTreeMap::new();
             let budget = MAX_PAIRS_PER_SURFACE * members.len();
             let complete = candidate_pairs(&members, budget, |a, b| {
                 let ((sa, several_a), (sb, several_b)) = (&members[a], &members[b]);
@@ -186,25 +207,22 @@ pub(super) fn coplanar_overlaps(scene: &SceneDesc, origin: [f64; 3]) -> Vec<Fiel
                 }
                 if let Some(area) = overlap_area(sa, sb) {
                     let (x, y) = if sa.source <= sb.source { (sa.source, sb.source) } else { (sb.source, sa.source) };
-                    found.push((x, y, area, false));
+                    found.entry((x.object, y.object)).or_default().add(area, (x, y));
                 }
                 true
             });
             // A cell cut short: every pair of objects found in it may have more.
             if !complete {
-                found.iter_mut().for_each(|f| f.3 = true);
+                found.values_mut().for_each(|o| o.cut = true);
             }
             found
         })
         .collect();
     let mut found: BTreeMap<(u32, u32), Overlap> = BTreeMap::new();
-    for (x, y, area, cut) in overlaps {
-        let o = found.entry((x.object, y.object)).or_default();
-        o.area += area;
-        o.pairs += 1;
-        o.cut |= cut;
-        // The smallest pair, whatever order the cells were compared in.
-        o.first = Some(o.first.map_or((x, y), |f| f.min((x, y))));
+    for cell in overlaps {
+        for (objects, o) in cell {
+            found.entry(objects).or_default().merge(o);
+        }
     }
     // Each object's size: the diagonal of its faces' bounding box (a plane has none).
     let size2 = |k: u32| {
@@ -624,7 +642,7 @@ mod tests {
     fn layers_of_one_normal_are_searched_apart_and_an_overlap_in_the_last_is_counted_whole() {
         // 25 floors of 20 × 20 quads stacked 3 apart share one normal cell; the top one holds
         // a copy of one of its triangles. A budget spent across the layers (14 candidates a
-        // face a layer, 350 a face here, beyond 256) cut the search before the top floor.
+        // face a layer, 350 a face here, beyond 64) cut the search before the top floor.
         let mut objects: Vec<ObjectDesc> = (0..25)
             .map(|k| {
                 let ObjectDesc::Mesh(mut m) = floor(20, &format!("floor {k}")) else { unreachable!() };
