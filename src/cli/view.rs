@@ -99,8 +99,13 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
     // A scene that does not load is reported in the viewer window; flags apply to one that does.
     // A resolution the scene cannot take is a flag error, before any window opens, and so is
     // a scene the drag benchmark cannot load: it would measure the window's fallback instead.
+    let mut read = None;
     let settings = match super::interrupt::while_loading(|| load_scene_with(&args.scene, &load)) {
-        Ok(loaded) => Some(args.settings.apply(&loaded.desc.render, is_model(&loaded))?),
+        Ok(loaded) => {
+            let settings = args.settings.apply(&loaded.desc.render, is_model(&loaded))?;
+            read = Some(loaded);
+            Some(settings)
+        }
         Err(e @ glint_io::SceneError::NotGenerated { .. }) => bail!("--resolution: {e}"),
         Err(e @ glint_io::SceneError::NotAModel { .. }) => bail!("{e}"),
         Err(e) if args.benchmark_drag.is_some() || args.benchmark_features || args.benchmark_paths.is_some() => {
@@ -123,6 +128,7 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
         paths_benchmark: args.benchmark_paths,
         scene: args.scene.clone(),
         load,
+        loaded: read,
         screenshot: args.screenshot.clone(),
         drag_benchmark: args.benchmark_drag,
         features_benchmark: args.benchmark_features,

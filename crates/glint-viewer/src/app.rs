@@ -38,6 +38,9 @@ pub struct ViewerOptions {
     pub scene: String,
     /// How the scene is opened: a generated scene's resolution, a model file's import options.
     pub load: LoadOptions,
+    /// The scene as the caller already loaded it (from `scene` with `load`): it is read once,
+    /// since a named pipe cannot be read twice and its second read would wait for ever.
+    pub loaded: Option<glint_io::LoadedScene>,
     /// Render settings replacing the scene's own (command-line flags).
     pub settings: Option<glint_scene::RenderSettings>,
     /// The view to start in (default: side by side, or the CPU view without a GPU).
@@ -92,7 +95,11 @@ pub struct ViewerApp {
 
 impl ViewerApp {
     pub fn new(cc: &eframe::CreationContext<'_>, options: ViewerOptions) -> Self {
-        let (doc, message) = match Document::load_with(&options.scene, &options.load) {
+        let doc = match options.loaded.clone() {
+            Some(loaded) => Ok(Document::from_loaded(loaded)),
+            None => Document::load_with(&options.scene, &options.load),
+        };
+        let (doc, message) = match doc {
             Ok(mut d) => {
                 if let Some(s) = &options.settings {
                     d.desc.render = s.clone();
