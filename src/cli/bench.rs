@@ -177,12 +177,19 @@ fn rays(args: &RaysArgs) -> anyhow::Result<()> {
 
     let (loaded, load_time) = timed(|| load(&args.scene, &args.scene_size.options(), args.scene_size.memory_limit));
     let loaded = loaded?;
-    // The flat scene and its BVH, as a render of it holds them, without the images a render
-    // makes and the benchmark does not (the rays are a few MB beside): `--memory-limit` bounds
-    // the benchmark as it bounds a render.
-    let plan = RenderPlan { cpu: false, gpu: false, exr: false };
+    // The flat scene, its BVH and the walk's nodes as a render on these backends holds them,
+    // without the images a render makes and the benchmark does not (no pixels: the rays are a
+    // few MB beside), and one more BVH for the timed build's own: `--memory-limit` bounds the
+    // benchmark as it bounds a render.
+    let plan = RenderPlan { cpu: backends.contains(&Backend::Cpu), gpu: gpu.is_some(), exr: false };
+    let no_image = glint_scene::RenderSettings { width: 0, height: 0, ..loaded.desc.render.clone() };
+    let mut estimate = render_estimate(&loaded.desc, &no_image, plan);
+    if let Some(bvh) = estimate.parts.iter().find(|p| p.what == "BVH").map(|p| p.bytes) {
+        estimate.parts.push(memory::MemoryPart { what: "the timed build's BVH", bytes: bvh });
+    }
+    let generated = glint_io::builtin(&args.scene).is_some_and(|b| b.is_generated()) && !loaded.source.exists();
     let mut remedies = Vec::new();
-    if loaded.source.to_string_lossy().starts_with("builtin:") {
+    if generated {
         remedies.push("lower --resolution");
     }
     if args.scene_size.memory_limit.is_some() {
@@ -191,7 +198,7 @@ fn rays(args: &RaysArgs) -> anyhow::Result<()> {
     remedies.push("run it on a machine with more memory");
     memory::check(
         format!("building {} for the benchmark", loaded.name),
-        &render_estimate(&loaded.desc, &loaded.desc.render, plan),
+        &estimate,
         args.scene_size.memory_limit,
         remedies.join(", or "),
     )?;
