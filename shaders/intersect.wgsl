@@ -301,15 +301,18 @@ fn plane_t(plane: TrianglePlane, ray: Ray, err_watertight: f32) -> MaybeT {
     let den = dot(n, ray.dir);
     let err_num = dot(abs(a), plane.err_normal) + 2.0 * dot(abs(n), abs(a));
     let err_den = dot(abs(ray.dir), plane.err_normal) + 2.0 * dot(abs(n), abs(ray.dir));
-    let t = num / den;
-    // WGSL promises nothing of comparisons with infinities or NaN: a ray along the plane
-    // (den 0) or a t beyond FAR is refused outright.
-    if !(abs(den) > 0.0 && abs(t) < FAR) {
+    // Only where den's sign is sure and t stays below FAR, judged before dividing: WGSL
+    // promises nothing of infinities or NaN (the CPU twin says more).
+    if !(err_den * F32_EPSILON < abs(den) && abs(num) * (1.0 / FAR) < abs(den)) {
         return MaybeT(0.0, false);
     }
-    let err = (err_num + abs(t) * err_den) / abs(den);
+    let t = num / den;
+    let err = err_num / abs(den) + abs(t) * (err_den / abs(den));
     return MaybeT(t, FORM_MARGIN * err < err_watertight);
 }
+
+// f32's machine epsilon, 2^-23: the unit of the error bounds above.
+const F32_EPSILON: f32 = 1.1920929e-7;
 
 // The hit point p moved onto the triangle for the robust offset: the corners interpolated at
 // (bu, bv), or where that carries their rounding (ε·|v|: 6 units on a quad of half-size 1e8)

@@ -334,13 +334,14 @@ pub fn plane_t(plane: &TrianglePlane, ray: &Ray, err_watertight: f64) -> Option<
     let (num, den) = (n.dot(a), n.dot(ray.dir));
     let err_num = a.abs().dot(plane.err_normal) + 2.0 * n.abs().dot(a.abs());
     let err_den = ray.dir.abs().dot(plane.err_normal) + 2.0 * n.abs().dot(ray.dir.abs());
-    let t = num / den;
-    // A ray along the plane (den 0) or a t beyond FAR has no plane form: said outright, since
-    // the f32 twin cannot lean on comparisons with infinities and NaN.
-    if !(den.abs() > 0.0 && t.abs() < FAR) {
+    // Taken only where den's sign is sure (its bound, in units of the precision's ε, below it)
+    // and t = num/den stays below FAR: judged before dividing, so that no infinity or NaN is
+    // ever formed, which the f32 twin cannot compare with (WGSL promises nothing of them).
+    if !(err_den * f64::EPSILON < den.abs() && num.abs() * (1.0 / FAR) < den.abs()) {
         return None;
     }
-    let err = (err_num + t.abs() * err_den) / den.abs();
+    let t = num / den;
+    let err = err_num / den.abs() + t.abs() * (err_den / den.abs());
     (FORM_MARGIN * err < err_watertight).then_some(t)
 }
 
