@@ -282,6 +282,14 @@ pub fn load_with_estimate(
 /// `settings` (its settings with the flags applied) no longer give are left out, and those the
 /// flags add are said (an ε the flags lowered is not warned about, one they raised is).
 pub fn tell_warnings(loaded: &LoadedScene, settings: &RenderSettings) {
+    // Validation judged the scene's own settings already; judging them again walks every
+    // vertex twice more (the ε warning's scene size) for nothing.
+    if *settings == loaded.desc.render {
+        for w in &loaded.warnings {
+            tell!("warning: {}: {w}", loaded.source.display());
+        }
+        return;
+    }
     let own = settings_warnings(&loaded.desc, &loaded.desc.render);
     let now = settings_warnings(&loaded.desc, settings);
     let kept = loaded.warnings.iter().filter(|w| !own.contains(w) || now.contains(w));
