@@ -91,9 +91,8 @@ pub fn resolve_uri(model: &Path, uri: &str, cap: u64) -> Result<Vec<u8>, UriErro
         return Err(UriError::Escapes { uri: shown(uri), path, folder });
     }
     // Judged before it is opened: opening a named pipe waits for a writer that may never come.
-    regular_file(&path).map_err(|e| io(&path, e))?;
+    let meta = regular_file(&path).map_err(|e| io(&path, e))?;
     let file = std::fs::File::open(&path).map_err(|e| io(&path, e))?;
-    let meta = file.metadata().map_err(|e| io(&path, e))?;
     if meta.len() > cap {
         return Err(UriError::TooLarge { uri: shown(uri), size: meta.len(), cap });
     }
