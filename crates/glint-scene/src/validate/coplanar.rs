@@ -146,12 +146,11 @@ struct Overlap {
 
 impl Overlap {
     fn add(&mut self, area: f64, pair: (Source, Source)) {
-        self.area += area;
-        self.pairs += 1;
-        // The smallest pair, whatever order the cells were compared in.
-        self.first = Some(self.first.map_or(pair, |f| f.min(pair)));
+        self.merge(Self { area, pairs: 1, first: Some(pair), cut: false });
     }
 
+    /// `other` counted in; `first` stays the smallest pair, whatever order the cells were
+    /// compared in.
     fn merge(&mut self, other: Self) {
         self.area += other.area;
         self.pairs += other.pairs;
