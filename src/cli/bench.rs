@@ -187,7 +187,8 @@ fn rays(args: &RaysArgs) -> anyhow::Result<()> {
     if let Some(bvh) = estimate.parts.iter().find(|p| p.what == "BVH").map(|p| p.bytes) {
         estimate.parts.push(memory::MemoryPart { what: "the timed build's BVH", bytes: bvh });
     }
-    let generated = glint_io::builtin(&args.scene).is_some_and(|b| b.is_generated()) && !loaded.source.exists();
+    let builtin = loaded.source.to_str().and_then(|s| s.strip_prefix("builtin:")).and_then(glint_io::builtin);
+    let generated = builtin.is_some_and(|b| b.is_generated());
     let mut remedies = Vec::new();
     if generated {
         remedies.push("lower --resolution");
