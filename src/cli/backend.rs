@@ -87,6 +87,19 @@ pub fn run_cpu(flat: &FlatScene, options: &CpuOptions, quiet: bool) -> anyhow::R
     })
 }
 
+/// `--adapter` where it can choose something: with a GPU backend (`uses_gpu`), and not empty.
+pub fn check_adapter(adapter: Option<&str>, uses_gpu: bool) -> anyhow::Result<()> {
+    match adapter {
+        Some(_) if !uses_gpu => anyhow::bail!(
+            "--adapter chooses the GPU, and --backend cpu uses none: give --backend gpu or both, or leave --adapter out"
+        ),
+        Some(a) if a.trim().is_empty() => anyhow::bail!(
+            "--adapter is empty: give a part of an adapter's name (`glint adapters` lists them), or leave it out"
+        ),
+        _ => Ok(()),
+    }
+}
+
 /// Opens the GPU named by `--adapter` (or `WGPU_ADAPTER_NAME`).
 pub fn open_gpu(adapter: Option<&str>) -> anyhow::Result<GpuTracer> {
     let request = AdapterRequest { name: adapter.map(str::to_string), prefer_cpu: false };

@@ -23,7 +23,7 @@ use glint_gpu::GpuContext;
 use glint_gpu::raycast::RayCaster;
 use serde::Serialize;
 
-use super::backend::open_gpu;
+use super::backend::{check_adapter, open_gpu};
 use super::console::say;
 use super::settings::{LoadArgs, load, parse_threads};
 use super::units::{mrays_per_s, ms};
@@ -158,11 +158,7 @@ fn rays(args: &RaysArgs) -> anyhow::Result<()> {
         "gpu" => &[Backend::Gpu],
         _ => &[Backend::Cpu, Backend::Gpu],
     };
-    if args.adapter.is_some() && !backends.contains(&Backend::Gpu) {
-        bail!(
-            "--adapter chooses the GPU, and --backend cpu uses none: give --backend gpu or both, or leave --adapter out"
-        );
-    }
+    check_adapter(args.adapter.as_deref(), backends.contains(&Backend::Gpu))?;
     let threads = match args.threads {
         0 => std::thread::available_parallelism().map_or(1, |n| n.get()),
         t => t,

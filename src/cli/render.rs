@@ -14,7 +14,7 @@ use glint_gpu::GpuOptions;
 use glint_io::{BUILTIN_SCENES, RESOLUTIONS};
 use glint_scene::{Integrator, RenderSettings, SceneDesc, WARN_RAYS_PER_SAMPLE, unbounded_ray_tree};
 
-use super::backend::{Run, open_gpu, run_cpu, run_gpu};
+use super::backend::{Run, check_adapter, open_gpu, run_cpu, run_gpu};
 use super::console::{say, tell};
 use super::interrupt;
 use super::output::{
@@ -260,16 +260,9 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
 /// Flags of a backend the render does not use would do nothing: errors, as `--runs` without
 /// `--bench` is.
 fn check_backend_flags(args: &RenderArgs) -> anyhow::Result<()> {
-    if args.adapter.is_some() && !args.backend.contains(&Backend::Gpu) {
-        bail!(
-            "--adapter chooses the GPU, and --backend cpu uses none: give --backend gpu or both, or leave --adapter out"
-        );
-    }
+    check_adapter(args.adapter.as_deref(), args.backend.contains(&Backend::Gpu))?;
     if args.runs.is_some() && !args.bench {
         bail!("--runs counts the timed renders of --bench: give --bench, or leave --runs out");
-    }
-    if args.adapter.as_deref().is_some_and(|a| a.trim().is_empty()) {
-        bail!("--adapter is empty: give a part of an adapter's name (`glint adapters` lists them), or leave it out");
     }
     if args.allow_incomplete && !args.backend.contains(&Backend::Gpu) {
         bail!(
