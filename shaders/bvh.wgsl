@@ -17,7 +17,8 @@
 #import glint::scene_data::{BvhNode, QuantizedPair, PRIM_REF_TRIANGLE, PRIM_REF_INDEX, NODE_REF_COUNT_BITS, PAIR_FIRST_SHIFT, STATUS_BVH_STACK_OVERFLOW}
 #import glint::bindings::{header, planes, spheres, triangles, meshes, bvh_nodes, bvh_leaf_ab, bvh_leaf_c}
 #import glint::ray::{Ray, status}
-#import glint::intersect::{Hit, Leaving, MaybeT, PRIM_NONE, PRIM_SPHERE, PRIM_PLANE, PRIM_TRIANGLE, sphere_roots, intersect_sphere_leaving, intersect_triangle, ray_shear, cross_surface, all_zero, sphere_transmittance, planes_transmittance, bound, replaces}
+#import glint::primitive::{MaybeT, sphere_roots, intersect_triangle, ray_shear}
+#import glint::intersect::{Hit, Leaving, PRIM_NONE, PRIM_SPHERE, PRIM_PLANE, PRIM_TRIANGLE, intersect_sphere_leaving, cross_surface, all_zero, sphere_transmittance, planes_transmittance, bound, replaces}
 #ifdef SKIP_LEFT
 #import glint::intersect::is_leaving
 #endif

@@ -13,7 +13,8 @@
 #import glint::ray::{Ray, RayCounts, ray_counts, status, driver_cut_loops, flush_counts}
 #import glint::rng::{sample_hash, hash_to_unit}
 #import glint::camera::{camera_ray, sample_offset}
-#import glint::intersect::{Hit, Leaving, FAR, PRIM_NONE, PRIM_SPHERE, PRIM_TRIANGLE, triangle_corners, all_zero}
+#import glint::ray::FAR
+#import glint::intersect::{Hit, Leaving, PRIM_NONE, PRIM_SPHERE, PRIM_TRIANGLE, triangle_corners, all_zero}
 #ifdef BVH
 #import glint::bvh::closest_hit
 #else

@@ -5,6 +5,9 @@
 #import glint::scene_data::{ProbeRecord, STAT_STATUS, STAT_CAMERA, STAT_SHADOW, STAT_REFLECTION, STAT_REFRACTION, STAT_BAILOUT_SAVED}
 #import glint::bindings::{tile, stats}
 
+// Largest ray parameter; also the reach of shadow rays towards directional lights.
+const FAR: f32 = 1e30;
+
 struct Ray {
     origin: vec3<f32>,
     dir: vec3<f32>,

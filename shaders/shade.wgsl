@@ -5,7 +5,8 @@
 #import glint::scene_data::{NO_CONE_VERSIN, ProbeLight, MAX_PROBE_LIGHTS, GpuLight, GpuMaterial, LIGHT_CASTS_SHADOWS, LIGHT_DIRECTIONAL, LIGHT_SPOT, SPECULAR_PHONG, SPECULAR_COOK_TORRANCE, FRESNEL_SCHLICK, NO_TEXTURE, ATTENUATION_POLYNOMIAL, ATTENUATION_INVERSE_SQUARE, SPOT_FALLOFF_SMOOTH}
 #import glint::bindings::{header, materials, lights}
 #import glint::ray::{Ray, ray_counts, probe, probe_active}
-#import glint::intersect::{FAR, all_zero}
+#import glint::ray::FAR
+#import glint::intersect::all_zero
 #ifdef BVH
 #import glint::bvh::shadow_transmittance
 #else

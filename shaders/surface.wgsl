@@ -6,7 +6,8 @@
 #import glint::scene_data::{NO_HIT, EPS_ROBUST, UV_MESH, GpuTriangle, MESH_HAS_COLOURS}
 #import glint::bindings::{header, spheres, planes, triangles, meshes, colours}
 #import glint::ray::Ray
-#import glint::intersect::{Hit, PRIM_NONE, PRIM_SPHERE, PRIM_PLANE, PRIM_TRIANGLE, triangle_corners, triangle_shading_normal, sphere_surface_point, triangle_surface_point}
+#import glint::intersect::{Hit, PRIM_NONE, PRIM_SPHERE, PRIM_PLANE, PRIM_TRIANGLE, triangle_corners, triangle_shading_normal}
+#import glint::primitive::{sphere_surface_point, triangle_surface_point}
 #import glint::shade::Surface
 #ifdef TEXTURES
 #import glint::texture::{planar_axis, planar_uv}

@@ -7,7 +7,8 @@
 #import glint::bindings::{header, camera, tile, materials, spheres, planes, triangles, meshes, output, stats}
 #import glint::ray::{Ray, RayCounts, ray_counts, status, driver_cut_loops, flush_counts}
 #import glint::camera::{CameraRay, camera_ray, eye, from_eye, sample_offset}
-#import glint::intersect::{Hit, Leaving, FAR, PRIM_NONE, PRIM_SPHERE, PRIM_PLANE, all_zero}
+#import glint::ray::FAR
+#import glint::intersect::{Hit, Leaving, PRIM_NONE, PRIM_SPHERE, PRIM_PLANE, all_zero}
 #ifdef BVH
 #import glint::bvh::closest_hit
 #else

@@ -11,7 +11,8 @@
 
 use std::f64::consts::PI;
 
-use glint_core::cpu::intersect::{FAR, Leaving, Prim};
+use glint_core::cpu::FAR;
+use glint_core::cpu::intersect::{Leaving, Prim};
 use glint_core::cpu::walk::{closest_hit, shadow_transmittance};
 use glint_core::cpu::{Accel, Ray, TraceContext};
 use glint_core::glam::DVec3;

@@ -13,7 +13,7 @@
 //! vanished at 1e8; the eye 2 mm over a cube of 1 mm on a quad of 1e6 lost 80 % of its first
 //! hits. Where its error bound is 16× smaller, both twins now take t from the plane,
 //! n·(a − o)/n·d, with n from the corners in a fixed order, and move the hit point along n
-//! (`intersect::plane_t`, `triangle_surface_point`): exact for an axis-aligned ground.
+//! (`primitive::plane_t`, `triangle_surface_point`): exact for an axis-aligned ground.
 
 use glint_core::compare::compare_images;
 

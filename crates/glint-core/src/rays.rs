@@ -6,7 +6,7 @@
 //! coordinates (relative to `SceneHeader::frame`), which for the bench scenes, built around the
 //! world origin, are world space.
 
-use crate::cpu::intersect::FAR;
+use crate::cpu::FAR;
 use crate::cpu::raycast::{HitRecord, RayRecord};
 
 /// Width and height of both ray sets: one 720p frame.

@@ -300,7 +300,7 @@ pub fn pick_object(scene: &FlatScene, x: u32, y: u32) -> u32 {
         &ctx,
         &camera.ray,
         camera.t_min,
-        crate::cpu::intersect::FAR,
+        crate::cpu::FAR,
         &crate::cpu::intersect::Leaving::NONE,
     ) {
         Some(hit) => crate::cpu::trace::object_id(&ctx, &hit),

@@ -2,7 +2,7 @@
 //! layout, the BVH's records included, against `shaders/layout.wgsl`): the binding table and
 //! the constants the two tracers' functions share. No "keep in sync" comments.
 
-use glint_core::cpu::{intersect, offset, shade};
+use glint_core::cpu::{FAR, intersect, offset, primitive, shade};
 use glint_types::layout::NO_HIT;
 use naga_oil::compose::Composer;
 
@@ -54,8 +54,8 @@ fn shared_tracer_constants_match_rust() {
         ("glint::intersect", "PRIM_SPHERE", f64::from(intersect::PRIM_SPHERE)),
         ("glint::intersect", "PRIM_PLANE", f64::from(intersect::PRIM_PLANE)),
         ("glint::intersect", "PRIM_TRIANGLE", f64::from(intersect::PRIM_TRIANGLE)),
-        ("glint::intersect", "PLANE_PARALLEL_COS", intersect::PLANE_PARALLEL_COS),
-        ("glint::intersect", "FAR", intersect::FAR),
+        ("glint::primitive", "PLANE_PARALLEL_COS", primitive::PLANE_PARALLEL_COS),
+        ("glint::ray", "FAR", FAR),
         ("glint::shade", "MIN_LIGHT_DISTANCE", shade::MIN_LIGHT_DISTANCE),
         ("glint::shade", "MIN_HALF_LENGTH", shade::MIN_HALF_LENGTH),
         ("glint::shade", "MIN_ATTENUATION_DENOMINATOR", shade::MIN_ATTENUATION_DENOMINATOR),

@@ -46,12 +46,13 @@ pub const BVH_STACK_SIZE: u32 = 64;
 pub const MAX_TREE_NODES: u32 = LAVAPIPE_LOOP_BUDGET / 1_000 * 1_000;
 
 /// The modules in dependency order: (import path, file name, source).
-pub const SHADER_MODULES: [(&str, &str, &str); 14] = [
+pub const SHADER_MODULES: [(&str, &str, &str); 15] = [
     ("glint::scene_data", "layout.wgsl", include_str!("../../../shaders/layout.wgsl")),
     ("glint::bindings", "bindings.wgsl", include_str!("../../../shaders/bindings.wgsl")),
     ("glint::ray", "ray.wgsl", include_str!("../../../shaders/ray.wgsl")),
     ("glint::rng", "rng.wgsl", include_str!("../../../shaders/rng.wgsl")),
     ("glint::camera", "camera.wgsl", include_str!("../../../shaders/camera.wgsl")),
+    ("glint::primitive", "primitive.wgsl", include_str!("../../../shaders/primitive.wgsl")),
     ("glint::intersect", "intersect.wgsl", include_str!("../../../shaders/intersect.wgsl")),
     ("glint::bvh", "bvh.wgsl", include_str!("../../../shaders/bvh.wgsl")),
     ("glint::offset", "offset.wgsl", include_str!("../../../shaders/offset.wgsl")),

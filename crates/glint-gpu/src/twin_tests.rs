@@ -6,7 +6,7 @@
 
 use std::collections::{BTreeMap, BTreeSet};
 
-const TWINS: [(&str, &str, &str, &str); 16] = [
+const TWINS: [(&str, &str, &str, &str); 17] = [
     (
         "bsdf.wgsl",
         include_str!("../../../shaders/bsdf.wgsl"),
@@ -30,6 +30,12 @@ const TWINS: [(&str, &str, &str, &str); 16] = [
         include_str!("../../../shaders/camera.wgsl"),
         "cpu/camera.rs",
         include_str!("../../glint-core/src/cpu/camera.rs"),
+    ),
+    (
+        "primitive.wgsl",
+        include_str!("../../../shaders/primitive.wgsl"),
+        "cpu/primitive.rs",
+        include_str!("../../glint-core/src/cpu/primitive.rs"),
     ),
     (
         "intersect.wgsl",
@@ -271,9 +277,9 @@ const CPU_ONLY: [(&str, &str, &str); 23] = [
 /// Structs only the GPU side has, and why.
 const GPU_ONLY_STRUCTS: [(&str, &str, &str); 8] = [
     ("bvh.wgsl", "NodeStack", "the CPU walk's Vec<Pending>: WGSL has no Vec, so a fixed array with its length"),
-    ("intersect.wgsl", "MaybeT", "WGSL has no Option: a flag beside the value"),
-    ("intersect.wgsl", "SphereRoots", "WGSL has no Option<(f64, f64)>: a flag beside the roots"),
-    ("intersect.wgsl", "TriangleHit", "WGSL has no Option<(t, bu, bv)>: a flag beside the hit"),
+    ("primitive.wgsl", "MaybeT", "WGSL has no Option: a flag beside the value"),
+    ("primitive.wgsl", "SphereRoots", "WGSL has no Option<(f64, f64)>: a flag beside the roots"),
+    ("primitive.wgsl", "TriangleHit", "WGSL has no Option<(t, bu, bv)>: a flag beside the hit"),
     ("trace.wgsl", "SampleResult", "the CPU returns the pair (radiance, object)"),
     ("trace.wgsl", "StackEntry", "the explicit ray stack: WGSL has no recursion"),
     ("trace.wgsl", "Shaded", "a hit's radiance and the next ray of the stack walk, kept in registers"),

@@ -7,6 +7,7 @@ pub mod camera;
 pub mod intersect;
 pub mod offset;
 pub mod path;
+pub mod primitive;
 pub mod ray_tree;
 pub mod raycast;
 pub mod rng;
@@ -30,6 +31,10 @@ use glint_types::layout::{UnknownTag, feature};
 /// depth-5 tree through glass (63 hits) with 10,000 lights traces 630,000 rays; a tree
 /// beyond 2^22 is one that doubles for more than 20 levels, which the bailout did not stop.
 pub const DEFAULT_MAX_RAYS_PER_SAMPLE: u64 = 1 << 22;
+
+/// Largest ray parameter; also the reach of shadow rays towards directional lights. Finite
+/// so that the f32 tracer never computes with infinities.
+pub const FAR: f64 = 1e30;
 
 /// A ray with a unit direction.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -34,12 +34,13 @@ use std::f64::consts::PI;
 
 use glam::{DVec2, DVec3, DVec4};
 
+use super::FAR;
 use super::bsdf::{
     blinn_brdf, blinn_pdf, cook_torrance_brdf, cook_torrance_pdf, lambert_brdf, phong_brdf, phong_pdf, sample_blinn,
     sample_cook_torrance, sample_phong,
 };
 use super::camera::{camera_ray, sample_offset};
-use super::intersect::{FAR, Hit, Leaving, Prim, triangle_corners};
+use super::intersect::{Hit, Leaving, Prim, triangle_corners};
 use super::offset::{leaving_surface, spawn_ray};
 use super::rng::{hash_to_unit, sample_hash};
 use super::sample::{

@@ -5,7 +5,8 @@
 
 use glam::{DVec2, DVec3};
 
-use super::intersect::{FAR, Prim, all_zero};
+use super::FAR;
+use super::intersect::{Prim, all_zero};
 use super::offset::{leaving_surface, shadow_t_max, spawn_ray};
 use super::texture::sample_texture;
 use super::walk::shadow_transmittance;

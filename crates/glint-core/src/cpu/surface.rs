@@ -4,9 +4,8 @@
 
 use glam::{DVec2, DVec3};
 
-use super::intersect::{
-    Hit, Prim, sphere_surface_point, triangle_corners, triangle_shading_normal, triangle_surface_point,
-};
+use super::intersect::{Hit, Prim, triangle_corners, triangle_shading_normal};
+use super::primitive::{sphere_surface_point, triangle_surface_point};
 use super::shade::Surface;
 use super::texture::{planar_axis, planar_uv, triangle_uv, triangle_uv_origin};
 use super::{Ray, TraceContext, v3};

@@ -6,8 +6,9 @@
 
 use glam::DVec3;
 
+use super::FAR;
 use super::camera::{camera_ray, eye, from_eye, sample_offset};
-use super::intersect::{FAR, Hit, Leaving, Prim, all_zero};
+use super::intersect::{Hit, Leaving, Prim, all_zero};
 use super::offset::{leaving_surface, spawn_ray};
 use super::ray_tree::{Cut, NoTree, RayNode, TreeRecorder, record_shadow_rays};
 use super::shade::{Breakdown, attenuation_factor, shade_local};

@@ -18,10 +18,10 @@ use glam::DVec3;
 
 use self::wide_slab::{Entered, SlabPlanes};
 use super::intersect::{
-    Hit, Leaving, Prim, RayShear, all_zero, bound, closest_plane, cross_surface, intersect_sphere_leaving,
-    intersect_triangle, is_leaving, planes_transmittance, ray_shear, replaces, sphere_roots, sphere_roots_counted,
-    triangle_corners,
+    Hit, Leaving, Prim, all_zero, bound, closest_plane, cross_surface, intersect_sphere_leaving, is_leaving,
+    planes_transmittance, replaces, sphere_roots_counted, triangle_corners,
 };
+use super::primitive::{RayShear, intersect_triangle, ray_shear, sphere_roots};
 use super::{Ray, TraceContext, v3};
 use crate::bvh::{PrimRef, WIDTH, WideNode};
 use crate::flat::Corners;

@@ -160,8 +160,8 @@ mod tests {
     use glam::DVec3;
 
     use super::*;
+    use crate::cpu::FAR;
     use crate::cpu::Ray;
-    use crate::cpu::intersect::FAR;
     use glint_types::layout::BvhNode;
 
     fn node(min: [f32; 3], max: [f32; 3]) -> BvhNode {
