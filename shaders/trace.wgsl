@@ -39,6 +39,8 @@ const STACK_SIZE: u32 = #{STACK_SIZE}u;
 // Bound of the tree walk per sample (glint_gpu::shaders::MAX_TREE_NODES, below lavapipe's loop
 // budget); reaching it raises STATUS_LOOP_LIMIT.
 const MAX_TREE_NODES: u32 = #{MAX_TREE_NODES}u;
+// f32's largest finite value.
+const F32_MAX: f32 = 3.4028235e38;
 
 struct StackEntry {
     origin: vec3<f32>,
@@ -55,6 +57,13 @@ struct StackEntry {
 
 var<private> stack: array<StackEntry, STACK_SIZE>;
 var<private> stack_top: u32;
+
+// A path weight times k, held at f32's largest value. The CPU adds k·I(child) on return,
+// where a zero radiance stays zero; here the weight is carried down, and k_r up to 1e9
+// overflows f32 within 5 bounces: an infinite weight times a zero local radiance would be NaN.
+fn child_weight(weight: vec3<f32>, k: vec3<f32>) -> vec3<f32> {
+    return min(weight * k, vec3<f32>(F32_MAX));
+}
 
 #ifdef RECURSION
 fn max_channel(v: vec3<f32>) -> f32 {
@@ -120,7 +129,7 @@ fn shade_hit(ray: Ray, hit: Hit, depth: u32, weight: vec3<f32>, branch: u32) -> 
     probe_factors(kr, kt, !all_zero(kt) && refracted.w == 0.0);
 #endif
     if refracted.w != 0.0 {
-        let w = weight * kt;
+        let w = child_weight(weight, kt);
 #ifdef PROBE
         // A cut child goes down the walk like a traced one, so that it is recorded in the
         // CPU's order (after the mirror child's subtree), but is not traced.
@@ -145,7 +154,7 @@ fn shade_hit(ray: Ray, hit: Hit, depth: u32, weight: vec3<f32>, branch: u32) -> 
     }
 #endif
     if !all_zero(k_mirror) {
-        let w = weight * k_mirror;
+        let w = child_weight(weight, k_mirror);
 #ifdef PROBE
         let cut = probe_cut(depth, max_channel(w));
         if cut != 0u {
@@ -217,7 +226,7 @@ fn trace_ray(primary: CameraRay) -> SampleResult {
             // CPU's trace_ray); the camera ray (depth 0) and the background are not attenuated.
             if e.depth > 0u {
                 let f = attenuation_factor(header.global_attenuation, hit.t);
-                e.weight *= f;
+                e.weight = child_weight(e.weight, vec3<f32>(f));
 #ifdef PROBE
                 probe_attenuation(f);
 #endif

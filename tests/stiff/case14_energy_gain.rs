@@ -196,3 +196,38 @@ fn lit_plane_mirrors_at_depth_32_are_exact_on_the_axis_and_bounded() {
         }
     }
 }
+
+/// Unlit facing mirrors at the largest gain the format allows (k_r = 1e9), depth 64, bailout 0,
+/// with an emitting sphere between them in front of the eye. A ray that misses the sphere
+/// bounces away from it for ever and gathers nothing: its pixel is exactly 0, though its path
+/// weight 1e9^k leaves f32 after 5 bounces (and f64 after 35). The CPU adds k·0 on return; the
+/// GPU carries the weight down and holds it finite (`child_weight`), where ∞·0 made every
+/// mirror pixel NaN and refused the image.
+#[test]
+fn unlit_mirrors_at_the_largest_gain_gather_exactly_nothing() {
+    let (n, e) = (16, 0.5);
+    let flat = SceneText::new(n, n, "max_depth = 64\nbailout = 0.0", [0.0, 0.0, -0.5], [0.0, 0.0, 1.0], Y, 60.0)
+        .world([0.0; 3], [1.0; 3])
+        .material("mirror", "ka = 0.0\nkd = 0.0\nks = 0.0\nkr = 1e9")
+        .material("lamp", &format!("ka = 0.0\nkd = 0.0\nks = 0.0\nemission = {}", num(e)))
+        .plane([0.0, 0.0, 1.0], [0.0, 0.0, -1.0], "mirror")
+        .plane([0.0, 0.0, -1.0], Z, "mirror")
+        .sphere([0.0; 3], 0.1, "lamp")
+        .flat();
+    let both = render_both("stiff/case14", "unlit-mirrors-gain-1e9", &flat);
+    let mut seen = [0; 2];
+    for (backend, img) in both.images() {
+        for (i, p) in img.pixels.iter().enumerate() {
+            let lamp = img.first_hit[i] == 2;
+            seen[usize::from(lamp)] += 1;
+            let want = if lamp { e } else { 0.0 };
+            both.ensure(*p == DVec3::splat(want), || {
+                format!("{} pixel {i} (first hit {}) = {p}, not {want}", backend.name(), img.first_hit[i])
+            });
+        }
+    }
+    assert!(seen[0] > 0 && seen[1] > 0, "the view must hold mirror and lamp pixels: {seen:?}");
+    if let Some(g) = &both.gpu {
+        both.ensure(g.counts == both.cpu.counts, || format!("GPU rays {:?} vs CPU {:?}", g.counts, both.cpu.counts));
+    }
+}

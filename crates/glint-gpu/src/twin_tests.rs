@@ -112,7 +112,7 @@ const TWINS: [(&str, &str, &str, &str); 17] = [
 ];
 
 /// Functions only the GPU side has, and why.
-const GPU_ONLY: [(&str, &str, &str); 43] = [
+const GPU_ONLY: [(&str, &str, &str); 44] = [
     ("bvh.wgsl", "load_node", "the root in two vec4 loads; the CPU reads the shared BvhNode where it lies"),
     (
         "bvh.wgsl",
@@ -152,6 +152,11 @@ const GPU_ONLY: [(&str, &str, &str); 43] = [
     ),
     ("bvh.wgsl", "slab_ray", "the CPU's SlabRay::new: WGSL has no methods"),
     ("trace.wgsl", "push_ray", "the explicit ray stack: WGSL has no recursion"),
+    (
+        "trace.wgsl",
+        "child_weight",
+        "the weight carried down the stack walk, held finite; the CPU multiplies k·I(child) on return",
+    ),
     ("ray.wgsl", "add_stat", "64-bit ray counters built from u32 atomics"),
     ("ray.wgsl", "flush_counts", "an invocation's counters into the statistics buffer; the CPU adds RayCounts"),
     ("trace.wgsl", "main", "the compute entry point; the CPU's loop is render::render_cpu"),
