@@ -98,7 +98,8 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
     let load = args.scene_size.options();
     // A scene that does not load is reported in the viewer window; flags apply to one that does.
     // A resolution the scene cannot take is a flag error, before any window opens, and so is
-    // a scene the drag benchmark cannot load: it would measure the window's fallback instead.
+    // a scene a benchmark or a screenshot cannot load: it would measure, or picture, the
+    // window's fallback instead, and a script would take that for the scene.
     let mut read = None;
     let settings = match super::interrupt::while_loading(|| load_scene_with(&args.scene, &load)) {
         Ok(loaded) => {
@@ -108,13 +109,20 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
         }
         Err(e @ glint_io::SceneError::NotGenerated { .. }) => bail!("--resolution: {e}"),
         Err(e @ glint_io::SceneError::NotAModel { .. }) => bail!("{e}"),
-        Err(e) if args.benchmark_drag.is_some() || args.benchmark_features || args.benchmark_paths.is_some() => {
+        Err(e)
+            if args.benchmark_drag.is_some()
+                || args.benchmark_features
+                || args.benchmark_paths.is_some()
+                || args.screenshot.is_some() =>
+        {
             let flag = if args.benchmark_features {
                 "--benchmark-features"
             } else if args.benchmark_paths.is_some() {
                 "--benchmark-paths"
-            } else {
+            } else if args.benchmark_drag.is_some() {
                 "--benchmark-drag"
+            } else {
+                "--screenshot"
             };
             bail!("{flag}: cannot load scene '{}': {e}", args.scene)
         }

@@ -322,6 +322,17 @@ fn bad_input_fails_cleanly() {
         &["--benchmark-drag", "missing.glb", "no such file"],
         &[],
     );
+    // A screenshot for a script pictures the scene it names, not the fallback, and writes
+    // nothing when that does not load.
+    expect_failure(
+        "screenshot-bad-scene",
+        |d| {
+            std::fs::write(d.join("bad.toml"), BAD_SCENE).expect("scene");
+            os(&[&"view", &d.join("bad.toml"), &"--screenshot", &d.join("shot.png")])
+        },
+        &["--screenshot", "bad.toml", "objects[0].radius"],
+        &["bad.toml"],
+    );
     expect_failure(
         "features-benchmark-missing-model",
         |d| os(&[&"view", &d.join("missing.glb"), &"--benchmark-features"]),
