@@ -839,6 +839,31 @@ fn base_colour_and_emissive_textures_keep_their_sampler_transform_and_texcoords(
 }
 
 #[test]
+fn a_misspelt_override_of_a_model_material_is_warned_about_with_the_models_names() {
+    let dir = TempDir::new("gltf-override-typo");
+    Fixture::quad().write_glb(&dir, "quad");
+    let scene = dir.join("lab.toml");
+    let text = |materials: &str| {
+        format!(
+            "[camera]\nposition = [0, 0, 5]\nlook_at = [0, 0, 0]\n{materials}\n\
+             [[objects]]\ntype = \"model\"\npath = \"quad.glb\"\nname = \"tile\"\n"
+        )
+    };
+    let warnings = |materials: &str| {
+        std::fs::write(&scene, text(materials)).unwrap();
+        load_scene_with(scene.to_str().unwrap(), &LoadOptions::default()).unwrap_or_else(|e| panic!("{e}")).warnings
+    };
+    let found = warnings("[materials.\"tile/whit\"]\nkd = 0.2");
+    let w = found.iter().find(|w| w.field == "materials.\"tile/whit\"").unwrap_or_else(|| panic!("{found:?}"));
+    assert!(w.problem.contains("overrides nothing") && w.problem.contains("its materials: \"white\""), "{w:?}");
+    // The override itself, and a material named for no model, are not warned about.
+    for materials in ["[materials.\"tile/white\"]\nkd = 0.2", "[materials.\"other/x\"]\nkd = 0.2"] {
+        let found = warnings(materials);
+        assert!(found.iter().all(|w| !w.problem.contains("overrides nothing")), "{materials}: {found:?}");
+    }
+}
+
+#[test]
 fn a_saved_edit_of_a_textured_model_material_loads_again_with_the_models_images() {
     let dir = TempDir::new("gltf-override-texture");
     let models = dir.join("models");

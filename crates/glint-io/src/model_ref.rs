@@ -58,7 +58,52 @@ pub fn load_models(desc: &mut SceneDesc, folder: &Path) -> Result<Vec<FieldIssue
             Err(problem) => errors.push(FieldIssue { field: format!("objects[{i}].path"), problem }),
         }
     }
-    if errors.is_empty() { Ok(warnings) } else { Err(errors) }
+    if !errors.is_empty() {
+        return Err(errors);
+    }
+    warnings.extend(overrides_of_nothing(desc));
+    Ok(warnings)
+}
+
+/// How many of a model's material names a warning lists.
+const LISTED_MATERIALS: usize = 8;
+
+/// Scene materials named as a model's (`OBJECT/MATERIAL`) that the model does not have and no
+/// object of the scene uses: a misspelt override, which would otherwise change nothing,
+/// silently.
+fn overrides_of_nothing(desc: &SceneDesc) -> Vec<FieldIssue> {
+    let models: Vec<(String, &LoadedModel)> = desc
+        .objects
+        .iter()
+        .filter_map(|o| match o {
+            ObjectDesc::Model(m) => m.loaded.as_deref().map(|loaded| (format!("{}/", m.prefix()), loaded)),
+            ObjectDesc::Sphere(_) | ObjectDesc::Plane(_) | ObjectDesc::Mesh(_) => None,
+        })
+        .collect();
+    let mut warnings = Vec::new();
+    for name in desc.materials.keys() {
+        let Some((prefix, model)) = models.iter().find(|(prefix, _)| name.starts_with(prefix.as_str())) else {
+            continue;
+        };
+        if models.iter().any(|(_, m)| m.materials.contains_key(name))
+            || desc.objects.iter().any(|o| o.material() == name)
+        {
+            continue;
+        }
+        let own: Vec<&str> = model.materials.keys().filter_map(|n| n.strip_prefix(prefix.as_str())).collect();
+        let listed = own.iter().take(LISTED_MATERIALS).map(|n| format!("\"{n}\"")).collect::<Vec<_>>().join(", ");
+        let more = if own.len() > LISTED_MATERIALS { format!(", … ({} in all)", own.len()) } else { String::new() };
+        let listed = if own.is_empty() { "it has none".to_string() } else { format!("its materials: {listed}{more}") };
+        warnings.push(FieldIssue {
+            field: format!("materials.\"{name}\""),
+            problem: format!(
+                "overrides nothing: the model {} has no material \"{}\" ({listed})",
+                model.file.display(),
+                &name[prefix.len()..]
+            ),
+        });
+    }
+    warnings
 }
 
 /// A scene material that overrides an imported one keeps the model's decoded image where its
