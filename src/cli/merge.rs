@@ -12,7 +12,7 @@ use anyhow::{Context, bail};
 use clap::Args;
 use glint_core::TileGrid;
 use glint_core::image::linear_f32_to_srgb8;
-use glint_io::exr_file::{ExrHeader, read_exr, read_exr_header, write_exr_region};
+use glint_io::exr_file::{ExrHeader, ExrPixels, read_exr, read_exr_header, write_exr_region};
 use glint_io::image_file::write_png_rgb8;
 use glint_scene::MAX_IMAGE_SIDE;
 
@@ -111,7 +111,7 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
         );
     }
     let grid = TileGrid::new(count, width, height).with_context(|| format!("{}", first.0.display()))?;
-    let mut by_index: BTreeMap<u32, &Path> = BTreeMap::new();
+    let mut by_index: BTreeMap<u32, (&Path, &ExrHeader)> = BTreeMap::new();
     for (path, header) in args.tiles.iter().zip(&headers) {
         let (index, n) = tile_index(path, header)?;
         let (ours, theirs) = (shared(header), shared(first.1));
@@ -162,7 +162,7 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
                 grid.describe()
             );
         }
-        if let Some(other) = by_index.insert(index, path) {
+        if let Some((other, _)) = by_index.insert(index, (path, header)) {
             bail!(
                 "tile {index} is given twice, {} and {}: tiles must not overlap; nothing was written",
                 other.display(),
@@ -189,8 +189,9 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
     check_outputs(&[args.output.as_path()], sources[0], args.force)?;
 
     let mut image = vec![[0f32; 3]; width as usize * height as usize];
-    for (&index, path) in &by_index {
+    for (&index, &(path, checked)) in &by_index {
         let tile = read_exr(path)?;
+        same_as_checked(path, checked, &tile)?;
         let rect = grid.rect(index)?;
         // A render writes no such pixel (it refuses an image with one): the tile was made or
         // changed otherwise, and a merge must not pass it on.
@@ -228,6 +229,27 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// The pixels are read after every header was checked, so a tile replaced in between (a
+/// requeued task renaming its fresh tile over the old one) would bring another render's pixels,
+/// or another block's, unchecked: the header read with the pixels must be the one checked, and
+/// the pixels must fill its data window.
+fn same_as_checked(path: &Path, checked: &ExrHeader, tile: &ExrPixels) -> anyhow::Result<()> {
+    let read = &tile.header;
+    let same = read.display == checked.display
+        && read.origin == checked.origin
+        && (read.width, read.height) == (checked.width, checked.height)
+        && read.attributes == checked.attributes
+        && read.inexact.is_none();
+    if !same || tile.rgb.len() != checked.width as usize * checked.height as usize {
+        bail!(
+            "{}: the file changed while the merge read it (its header or size is not the one checked); \
+             merge again once no task writes it; nothing was written",
+            path.display()
+        );
+    }
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -237,5 +259,30 @@ mod tests {
         assert_eq!(index_ranges(&[1, 2, 3, 7, 9, 10]), ["1-3", "7", "9-10"]);
         assert_eq!(index_ranges(&(1..3007).collect::<Vec<_>>()), ["1-3006"]);
         assert!(index_ranges(&[]).is_empty());
+    }
+
+    #[test]
+    fn a_tile_that_changed_after_its_check_is_refused() {
+        let checked = ExrHeader {
+            display: (8, 4),
+            origin: (4, 0),
+            width: 4,
+            height: 4,
+            attributes: vec![("glint:seed".into(), "0".into()), ("glint:tile".into(), "1/2".into())],
+            inexact: None,
+        };
+        let tile = ExrPixels { header: checked.clone(), rgb: vec![[0.5; 3]; 16] };
+        let path = Path::new("tile-1.exr");
+        assert!(same_as_checked(path, &checked, &tile).is_ok());
+        let mut seed = tile.clone();
+        seed.header.attributes[0].1 = "1".into();
+        let mut block = tile.clone();
+        block.header.origin = (0, 0);
+        let mut short = tile.clone();
+        short.rgb.pop();
+        for changed in [seed, block, short] {
+            let e = same_as_checked(path, &checked, &changed).expect_err("a changed tile").to_string();
+            assert!(e.contains("tile-1.exr") && e.contains("changed while the merge read it"), "{e}");
+        }
     }
 }
