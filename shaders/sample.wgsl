@@ -132,8 +132,17 @@ fn area_to_solid_angle(pdf_area: f32, distance: f32, cos_at_light: f32) -> f32 {
     return pdf_area * distance * distance / abs(cos_at_light);
 }
 
-// Veach's power heuristic, β = 2.
+// The largest density whose square the power heuristic forms: f32's square overflows at 1.8e19,
+// which a small emitter's density reaches from far away, and ∞/∞ is NaN.
+const MAX_SQUARED_PDF: f32 = 1e18;
+
+// Veach's power heuristic, β = 2; beyond MAX_SQUARED_PDF from the ratio of the densities.
 fn power_heuristic(pdf: f32, other: f32) -> f32 {
+    if max(pdf, other) > MAX_SQUARED_PDF {
+        let r = min(pdf, other) / max(pdf, other);
+        let r2 = r * r;
+        return select(r2 / (1.0 + r2), 1.0 / (1.0 + r2), pdf >= other);
+    }
     let a = pdf * pdf;
     let b = other * other;
     return select(a / (a + b), 0.0, a + b == 0.0);

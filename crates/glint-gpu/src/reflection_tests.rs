@@ -2,7 +2,7 @@
 //! layout, the BVH's records included, against `shaders/layout.wgsl`): the binding table and
 //! the constants the two tracers' functions share. No "keep in sync" comments.
 
-use glint_core::cpu::{FAR, intersect, offset, primitive, shade};
+use glint_core::cpu::{FAR, intersect, offset, primitive, sample, shade};
 use glint_types::layout::NO_HIT;
 use naga_oil::compose::Composer;
 
@@ -49,7 +49,7 @@ fn shared_tracer_constants_match_rust() {
     // Constants the two tracers must share exactly. (offset.rs's FLOAT_SCALE and SHADOW_REL
     // differ on purpose: each is scaled to its tracer's precision.) A probe module imports
     // each one and stores it, so naga cannot fold it away before we read it.
-    let expected: [(&str, &str, f64); 14] = [
+    let expected: [(&str, &str, f64); 15] = [
         ("glint::intersect", "PRIM_NONE", f64::from(intersect::PRIM_NONE)),
         ("glint::intersect", "PRIM_SPHERE", f64::from(intersect::PRIM_SPHERE)),
         ("glint::intersect", "PRIM_PLANE", f64::from(intersect::PRIM_PLANE)),
@@ -60,6 +60,7 @@ fn shared_tracer_constants_match_rust() {
         ("glint::shade", "MIN_HALF_LENGTH", shade::MIN_HALF_LENGTH),
         ("glint::shade", "MIN_ATTENUATION_DENOMINATOR", shade::MIN_ATTENUATION_DENOMINATOR),
         ("glint::shade", "MIN_GRAZING_COS", shade::MIN_GRAZING_COS),
+        ("glint::sample", "MAX_SQUARED_PDF", sample::MAX_SQUARED_PDF),
         ("glint::offset", "ORIGIN", offset::ORIGIN),
         ("glint::offset", "INT_SCALE", offset::INT_SCALE),
         ("glint::scene_data", "NO_HIT", f64::from(NO_HIT)),

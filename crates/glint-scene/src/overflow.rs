@@ -73,14 +73,21 @@ pub fn overflow_causes(desc: &SceneDesc, max_depth: u32, integrator: Integrator,
         .filter(|(v, _)| *v > 1.0)
         .map(|(v, field)| format!("{field} = {}", format_number(v)))
         .collect();
+    // Without gain nothing overflows (validation bounds every source by 1e9, far within f32):
+    // NaN pixels there are no source's fault.
+    if gains.is_empty() && all_nan {
+        let sources = if sources.is_empty() {
+            "no source is brighter than 1".to_string()
+        } else {
+            format!("the brightest sources ({}) are far within f32's range", sources.join(", "))
+        };
+        return format!(
+            "no material amplifies light and {sources}, so the NaN is no overflow but a defect in glint: \
+             please report it with the scene and the render's settings"
+        );
+    }
     if !sources.is_empty() {
         causes.push(format!("the brightest sources: {}", sources.join(", ")));
-    }
-    // Without gain nothing overflows: NaN pixels there are no source's fault.
-    if gains.is_empty() && all_nan {
-        return "no material amplifies light and no source is brighter than 1, so the NaN is no overflow but a \
-                defect in glint: please report it with the scene and the render's settings"
-            .into();
     }
     let remedy = if gains.is_empty() {
         "lower the brightest sources".to_string()
@@ -146,7 +153,13 @@ mod tests {
         assert!(overflow_causes(&desc, 4, Integrator::Path, true).contains("the NaN is no overflow but a defect"));
         // A bright lamp without gain cannot overflow either: a NaN is still a defect.
         let lamp = scene("[materials.dull]\nkd = 0.5\n[materials.lamp]\nemission = 15.0\n");
-        assert!(overflow_causes(&lamp, 4, Integrator::Path, true).contains("the NaN is no overflow but a defect"));
+        let text = overflow_causes(&lamp, 4, Integrator::Path, true);
+        assert!(text.contains("the NaN is no overflow but a defect"), "{text}");
+        // Named as the brightest source, not called one no brighter than 1.
+        assert!(
+            text.contains("the brightest sources (materials.lamp.emission = 15) are far within f32's range"),
+            "{text}"
+        );
     }
 
     #[test]

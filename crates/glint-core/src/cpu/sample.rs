@@ -171,9 +171,20 @@ pub fn area_to_solid_angle(pdf_area: f64, distance: f64, cos_at_light: f64) -> f
     pdf_area * distance * distance / cos_at_light.abs()
 }
 
+/// The largest density whose square the power heuristic forms (twin of sample.wgsl's): f32's
+/// square overflows at 1.8e19, which a small emitter's density reaches from far away (a sphere
+/// 1e-4 across, 2e7 away along an infinite floor: 1e22 per steradian), and ∞/∞ is NaN.
+pub const MAX_SQUARED_PDF: f64 = 1e18;
+
 /// The power heuristic (β = 2) weight of a sample drawn with density `pdf` against one other
-/// technique of density `other` (Veach 1997): the weights of the two add to 1.
+/// technique of density `other` (Veach 1997): the weights of the two add to 1. Beyond
+/// `MAX_SQUARED_PDF`, from the ratio of the smaller density to the larger.
 pub fn power_heuristic(pdf: f64, other: f64) -> f64 {
+    if pdf.max(other) > MAX_SQUARED_PDF {
+        let r = pdf.min(other) / pdf.max(other);
+        let r2 = r * r;
+        return if pdf >= other { 1.0 / (1.0 + r2) } else { r2 / (1.0 + r2) };
+    }
     let (a, b) = (pdf * pdf, other * other);
     if a + b == 0.0 { 0.0 } else { a / (a + b) }
 }
@@ -221,5 +232,12 @@ mod tests {
             assert!((power_heuristic(a, b) + power_heuristic(b, a) - 1.0).abs() < 1e-15);
         }
         assert_eq!(power_heuristic(0.0, 0.0), 0.0);
+        // Beyond f32's squares: from the ratio, still adding to 1, and the same below the bound.
+        for (a, b) in [(1e22, 3.0), (9.5e21, 4e21), (2e30, 2e30), (1e19, 0.0)] {
+            let (w, v) = (power_heuristic(a, b), power_heuristic(b, a));
+            assert!(w.is_finite() && (w + v - 1.0).abs() < 1e-15, "{a}, {b}: {w} + {v}");
+        }
+        assert_eq!(power_heuristic(1e22, 0.0), 1.0);
+        assert!((power_heuristic(1e22, 1e21) - 100.0 / 101.0).abs() < 1e-15);
     }
 }
