@@ -364,6 +364,8 @@ fn report_renders_every_scene_with_the_integrator_it_is_given() {
     assert!(out.status.success(), "{}", text(&out.stderr));
     let md = std::fs::read_to_string(out_dir.join("report.md")).expect("report.md");
     assert!(md.contains("Integrator: every scene with `--integrator path`"), "{md}");
+    // The bailout does nothing under paths: no saving is tabled for them.
+    assert!(md.contains("Left out: lights, whose paths end by Russian roulette"), "{md}");
     let csv = std::fs::read_to_string(out_dir.join("report.csv")).expect("report.csv");
     assert!(csv.lines().count() > 2, "{csv}");
 

@@ -8,6 +8,7 @@ use super::cells::{sci, triple};
 use super::prose::{Block, prose};
 use super::{backends, find};
 use crate::cli::units::ms_cell;
+use glint_scene::Integrator;
 
 pub fn bailout_summary(md: &mut String, scenes: &[SceneResult]) {
     // The deepest, most sampled configuration of the bailout sweep: where the bailout matters most.
@@ -24,7 +25,11 @@ pub fn bailout_summary(md: &mut String, scenes: &[SceneResult]) {
     let _ = writeln!(md, "| scene | backend | rays per pixel | render ms | RMSE |");
     let _ = writeln!(md, "|---|---|--:|--:|--:|");
     let px = |s: &SceneResult| s.pixels() as f64;
-    for s in scenes {
+    // Paths end by Russian roulette; the bailout prunes Whitted's tree only, so a path scene's
+    // bailout rows are one render three times, not a saving.
+    let (paths, whitted): (Vec<&SceneResult>, Vec<&SceneResult>) =
+        scenes.iter().partition(|s| s.settings.integrator == Integrator::Path);
+    for s in whitted {
         for b in backends(scenes) {
             let rows: Vec<Option<&Row>> = [Bailout::Off, Bailout::Per255, Bailout::Per32]
                 .iter()
@@ -45,4 +50,13 @@ pub fn bailout_summary(md: &mut String, scenes: &[SceneResult]) {
         }
     }
     let _ = writeln!(md);
+    if !paths.is_empty() {
+        let names: Vec<&str> = paths.iter().map(|s| s.name.as_str()).collect();
+        let _ = writeln!(
+            md,
+            "Left out: {}, whose paths end by Russian roulette, which the bailout does not change \
+             (`glint render --integrator path --bailout` is refused); its bailout rows are one render.\n",
+            names.join(", ")
+        );
+    }
 }
