@@ -246,11 +246,15 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
             } else {
                 "only k_r and k_t with direct light (--indirect off: Whitted's transport)"
             };
+            let paths = if settings.spp == 1 { "1 path".to_string() } else { format!("{} paths", settings.spp) };
+            let bounces = if settings.max_depth == 1 {
+                "1 bounce".to_string()
+            } else {
+                format!("{} bounces", settings.max_depth)
+            };
             say!(
-                "  path tracer: {} paths a pixel, at most {} bounces, {transport}; no ambient term (I_a·k_a and \
-                 the lights' I_a,j stand in for the indirect light the paths compute)",
-                settings.spp,
-                settings.max_depth
+                "  path tracer: {paths} a pixel, at most {bounces}, {transport}; no ambient term (I_a·k_a and \
+                 the lights' I_a,j stand in for the indirect light the paths compute)"
             )?;
         }
     }

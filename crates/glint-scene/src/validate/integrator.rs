@@ -2,7 +2,7 @@
 //! path tracer, which has no ambient term and draws its light from lights, emitters and the
 //! background alone, and that may return more light than they receive under it.
 
-use crate::desc::{RenderSettings, SceneDesc};
+use crate::desc::{RenderSettings, SceneDesc, WorldDesc};
 use crate::error::FieldIssue;
 use glint_types::Integrator;
 
@@ -14,7 +14,8 @@ pub fn integrator_warnings(desc: &SceneDesc, settings: &RenderSettings) -> Vec<F
         Integrator::Path => {}
     }
     let unused = "is not used by the path tracer: the indirect light it stands in for is computed";
-    if !desc.world.ambient.is_zero() {
+    // The default is not the scene's doing: a path scene without a [world] table is not warned.
+    if !desc.world.ambient.is_zero() && desc.world.ambient != WorldDesc::default().ambient {
         out.push(FieldIssue { field: "world.ambient".into(), problem: unused.into() });
     }
     for (i, light) in desc.lights.iter().enumerate() {
@@ -81,14 +82,19 @@ mod tests {
         // A bumpy scene without its light, under an ambient sky.
         let mut desc = crate::bumpy::bumpy(2);
         desc.lights.clear();
-        desc.world.ambient = Rgb([0.1; 3]);
+        desc.world.ambient = Rgb([0.2; 3]);
         desc.world.background = Rgb([0.0; 3]);
         let mut settings = RenderSettings { integrator: Integrator::Path, bailout: 0.01, ..RenderSettings::default() };
-        let fields =
-            |s: &RenderSettings| integrator_warnings(&desc, s).into_iter().map(|w| w.field).collect::<Vec<_>>();
-        assert_eq!(fields(&settings), ["world.ambient", "render.bailout", "materials", "render.integrator"]);
+        let fields = |desc: &SceneDesc, s: &RenderSettings| {
+            integrator_warnings(desc, s).into_iter().map(|w| w.field).collect::<Vec<_>>()
+        };
+        assert_eq!(fields(&desc, &settings), ["world.ambient", "render.bailout", "materials", "render.integrator"]);
+        // The default ambient (a scene without a [world] table) is not the scene's doing.
+        let mut unset = desc.clone();
+        unset.world.ambient = WorldDesc::default().ambient;
+        assert_eq!(fields(&unset, &settings), ["render.bailout", "materials", "render.integrator"]);
         settings.integrator = Integrator::Whitted;
-        assert!(fields(&settings).is_empty(), "Whitted's render uses all of it");
+        assert!(fields(&desc, &settings).is_empty(), "Whitted's render uses all of it");
     }
 
     #[test]
