@@ -19,17 +19,20 @@ fn strata_rows(spp: u32) -> u32 {
 }
 #endif
 
-// Without JITTER (spp 1), the pixel centre; the CPU twin takes the feature as `jitter`.
-fn sample_offset(pixel: u32, sample_index: u32, spp: u32, seed: u32) -> vec2<f32> {
+// Without JITTER, or for Whitted's one sample (`single` false), the pixel centre; the CPU
+// twin's callers pass that as `jitter`.
+fn sample_offset(pixel: u32, sample_index: u32, spp: u32, seed: u32, single: bool) -> vec2<f32> {
 #ifdef JITTER
-    if spp <= 1u {
+    if spp <= 1u && !single {
         return vec2<f32>(0.5, 0.5);
     }
     let rows = strata_rows(spp);
     let cols = spp / rows;
     let jx = hash_to_unit(sample_hash(pixel, sample_index, 0u, seed));
     let jy = hash_to_unit(sample_hash(pixel, sample_index, 1u, seed));
-    return vec2<f32>((f32(sample_index % cols) + jx) / f32(cols), (f32(sample_index / cols) + jy) / f32(rows));
+    // Samples past spp go round the grid again (the CPU twin says when).
+    let cell = sample_index % max(spp, 1u);
+    return vec2<f32>((f32(cell % cols) + jx) / f32(cols), (f32(cell / cols) + jy) / f32(rows));
 #else
     return vec2<f32>(0.5, 0.5);
 #endif

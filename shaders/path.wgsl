@@ -277,7 +277,8 @@ fn lobes_pdf(l: Lobes, wi: vec3<f32>) -> f32 {
 
 fn start_path(x: u32, y: u32, sample_index: u32) -> PathState {
     let pixel = y * header.width + x;
-    let offset = sample_offset(pixel, sample_index, header.spp, header.seed);
+    // A path's one sample is jittered over the pixel too (its mean is over the pixel's area).
+    let offset = sample_offset(pixel, sample_index, header.spp, header.seed, true);
     ray_counts.camera += 1u;
     let zero = vec3<f32>(0.0);
     let c = camera_ray(camera, header.width, header.height, x, y, offset);

@@ -283,7 +283,7 @@ fn object_id(hit: Hit) -> u32 {
 
 fn render_sample(x: u32, y: u32, sample_index: u32) -> SampleResult {
     let pixel = y * header.width + x;
-    let offset = sample_offset(pixel, sample_index, header.spp, header.seed);
+    let offset = sample_offset(pixel, sample_index, header.spp, header.seed, false);
     ray_counts.camera += 1u;
     return trace_ray(camera_ray(camera, header.width, header.height, x, y, offset));
 }

@@ -107,12 +107,13 @@ fn inside_a_closed_diffuse_emitter_every_pixel_converges_to_e_over_one_minus_rho
 #[test]
 fn direct_light_is_whitteds_where_both_compute_it() {
     // Depth 0, no ambient, no glossy lobe, no sampled emitter: the path adds E_m and each
-    // light's I_d·k_d·(N·L) with its factors, exactly Whitted's local model.
+    // light's I_d·k_d·(N·L) with its factors, exactly Whitted's local model. At 4 spp both jitter
+    // the same points (at 1, Whitted takes the pixel's centre and a path a jittered point).
     let scene = |integrator: &str| {
         SceneText::new(
             32,
             32,
-            &format!("integrator = \"{integrator}\"\nmax_depth = 0"),
+            &format!("integrator = \"{integrator}\"\nmax_depth = 0\nspp = 4"),
             [0.0, 0.0, -5.0],
             [0.0; 3],
             Y,
@@ -139,7 +140,7 @@ fn direct_light_is_whitteds_where_both_compute_it() {
     let mut counts = RayCounts::default();
     for y in 0..32 {
         for x in 0..32 {
-            let path = path_pixel(&ctx, &emitters, x, y, 1, &mut counts).0;
+            let path = path_pixel(&ctx, &emitters, x, y, 4, &mut counts).0;
             let w = whitted.image.get(x, y);
             assert!(
                 (path - w).abs().max_element() <= 1e-12 * w.max_element().max(1.0),
@@ -267,7 +268,8 @@ fn a_path_traced_image_is_the_same_bits_for_any_thread_count() {
 fn without_indirect_light_paths_compute_whitteds_image() {
     // `indirect = false` follows only k_r and k_t, with each light's direct light: Whitted's
     // transport. With no ambient, no glossy lobe, one delta lobe a material (so no choice is
-    // random), no bailout and no Russian roulette (depth 2), one path is Whitted's whole tree.
+    // random), no bailout and no Russian roulette (depth 2), one path is Whitted's whole tree
+    // (at 4 spp, where both jitter the same points).
     let scene = |render: &str| {
         SceneText::new(
             32,
@@ -291,9 +293,9 @@ fn without_indirect_light_paths_compute_whitteds_image() {
         .sphere([0.9, 0.7, -0.5], 0.7, "glass")
         .flat()
     };
-    let whitted = render(&scene(""));
+    let whitted = render(&scene("spp = 4"));
     let paths = glint_core::render_cpu(
-        &scene("integrator = \"path\"\nindirect = false"),
+        &scene("integrator = \"path\"\nindirect = false\nspp = 4"),
         &CpuOptions::default(),
         RenderControl::default(),
     )

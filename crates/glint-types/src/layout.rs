@@ -162,7 +162,7 @@ pub mod feature {
     pub const EMISSION: u32 = 1 << 15;
     /// Some material has k_s > 0.
     pub const SPECULAR: u32 = 1 << 16;
-    /// Stratified jitter (spp > 1).
+    /// Stratified jitter (spp > 1, or any path render).
     pub const JITTER: u32 = 1 << 17;
     /// Some point or spot light has inverse-square attenuation (with or without a range).
     pub const INVERSE_SQUARE: u32 = 1 << 18;

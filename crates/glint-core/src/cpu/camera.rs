@@ -19,17 +19,20 @@ pub fn strata_rows(spp: u32) -> u32 {
     rows
 }
 
-/// Position of a sample inside its pixel, in [0, 1)². One sample sits at the pixel centre;
-/// more samples are jittered inside the cells of the stratification grid.
+/// Position of a sample inside its pixel, in [0, 1)². Without jitter (the JITTER feature off,
+/// or Whitted's one sample: the callers decide) the pixel centre; with it, jittered inside the
+/// cells of the stratification grid (one cell, the whole pixel, for a path's single sample).
 pub fn sample_offset(pixel: u32, sample: u32, spp: u32, seed: u32, jitter: bool) -> (f64, f64) {
-    if !jitter || spp <= 1 {
+    if !jitter {
         return (0.5, 0.5);
     }
     let rows = strata_rows(spp);
     let cols = spp / rows;
     let jx = hash_to_unit(sample_hash(pixel, sample, 0, seed));
     let jy = hash_to_unit(sample_hash(pixel, sample, 1, seed));
-    ((f64::from(sample % cols) + jx) / f64::from(cols), (f64::from(sample / cols) + jy) / f64::from(rows))
+    // Samples past spp (a caller drawing more than the header's) go round the grid again.
+    let cell = sample % spp.max(1);
+    ((f64::from(cell % cols) + jx) / f64::from(cols), (f64::from(cell / cols) + jy) / f64::from(rows))
 }
 
 /// A camera ray: it starts on the anchor's plane and is traced from `t_min` < 0, the eye
@@ -78,5 +81,14 @@ mod tests {
             cells[(y * 2.0) as usize * 4 + (x * 4.0) as usize] += 1;
         }
         assert_eq!(cells, [1; 8]);
+        // A path's one sample is jittered over the whole pixel, and samples past spp (tests draw
+        // thousands from a scene of spp 1) stay inside it.
+        for s in 0..100 {
+            for spp in [1, 8] {
+                let (x, y) = sample_offset(17, s, spp, 3, true);
+                assert!((0.0..1.0).contains(&x) && (0.0..1.0).contains(&y), "spp {spp}, sample {s}: ({x}, {y})");
+            }
+        }
+        assert_eq!(sample_offset(17, 5, 1, 3, false), (0.5, 0.5));
     }
 }

@@ -218,7 +218,8 @@ pub fn render_sample<R: TreeRecorder>(
 ) -> (DVec3, u32) {
     let h = &ctx.scene.header;
     let pixel = y * h.width + x;
-    let (ox, oy) = sample_offset(pixel, sample, h.spp, h.seed, ctx.has(feature::JITTER));
+    // Whitted's one sample is the pixel's centre, also in a tracer with every feature on.
+    let (ox, oy) = sample_offset(pixel, sample, h.spp, h.seed, ctx.has(feature::JITTER) && h.spp > 1);
     let camera = camera_ray(&ctx.scene.camera, h.width, h.height, x, y, ox, oy);
     let ray = camera.ray;
     // Recorded from the eye, where the camera ray leaves (traced from the anchor's plane).

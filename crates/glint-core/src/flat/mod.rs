@@ -274,7 +274,10 @@ impl FlatScene {
                 f |= feature::VERTEX_COLOURS;
             }
         }
-        if self.header.spp > 1 {
+        // A path's pixel is the mean over its area, whatever spp: one sample at the centre would
+        // make renders of other seeds average to the centres' image (aliased edges), as the
+        // viewer's and the report's do. Whitted's single sample is the pixel's centre.
+        if self.header.spp > 1 || path {
             f |= feature::JITTER;
         }
         // Only secondary rays leave a primitive: without shadow or child rays there is nothing
