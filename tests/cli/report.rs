@@ -467,8 +467,23 @@ fn report_shards_merge_into_the_one_machine_report_and_missing_ones_are_named() 
     std::fs::write(&shard1, toml::to_string(&shard).expect("TOML")).expect("cut");
     let done = merge("s0,s1,s2", "cut");
     assert!(!done.status.success(), "a shard cut short merged");
-    assert!(text(&done.stderr).contains("a shard's file was edited or cut short"), "{}", text(&done.stderr));
+    // Named: the split is the same in every shard, so the merge knows whose row is missing.
+    assert!(
+        text(&done.stderr).contains("shard 1's file was edited or cut short; run shard 1 again"),
+        "{}",
+        text(&done.stderr)
+    );
     assert!(!dir.join("cut/report.csv").exists(), "a refused merge wrote a report");
+    // A shard measured on another GPU (or with other backends) is another sweep: its GPU rows'
+    // f32 error is another adapter's.
+    std::fs::write(&shard1, &cut).expect("restore shard 1");
+    let shard2 = dir.join("s2/shard-2-of-3.toml");
+    let mut other_gpu: toml::Table = std::fs::read_to_string(&shard2).expect("shard 2").parse().expect("TOML");
+    other_gpu.insert("gpu_device".into(), "Another GPU (Vulkan)".into());
+    std::fs::write(&shard2, toml::to_string(&other_gpu).expect("TOML")).expect("edit");
+    let done = merge("s0,s1,s2", "gpus");
+    assert!(!done.status.success(), "shards of two GPUs merged");
+    assert!(text(&done.stderr).contains("its GPU is Another GPU (Vulkan), not none"), "{}", text(&done.stderr));
 }
 
 #[test]

@@ -141,6 +141,7 @@ pub const SPECULAR_HEADER: &[&str] = &[
     "shadow_rays",
     "reflection_rays",
     "refraction_rays",
+    "shard",
 ];
 
 /// `specular.csv`: the render time of each specular model, every material set to it.
@@ -168,6 +169,7 @@ pub fn render_specular_csv(scenes: &[SceneResult]) -> String {
                 r.counts.shadow.to_string(),
                 r.counts.reflection.to_string(),
                 r.counts.refraction.to_string(),
+                r.shard.map_or(String::new(), |s| s.to_string()),
             ];
             out.push_str(&fields.join(","));
             out.push('\n');

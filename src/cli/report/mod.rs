@@ -213,6 +213,9 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
             for row in &mut result.rows {
                 row.shard = Some(s.index);
             }
+            for row in &mut result.specular {
+                row.shard = Some(s.index);
+            }
         } else {
             pareto::mark_fronts(&mut result.rows);
             let path = plot::write_plot(&args.out, &result, args.runs as usize)?;
@@ -370,9 +373,14 @@ fn write_outputs(
     if !machines.is_empty() {
         md.push_str(&format!(
             "\n## Shards\n\nThis report was measured in {} shards (`glint report --shard I/N`, merged by \
-             `--merge`). Every row's timing comes from the machine of its shard (report.csv's `shard` column); \
-             the header's machine is shard 0's. Errors are measured against each shard's own CPU reference, \
-             which is the same image on every machine.\n\n",
+             `--merge`). Every row's timing comes from the machine of its shard (the `shard` column of \
+             report.csv, specular.csv and gi.csv); the header's machine is shard 0's. A scene's families of \
+             configurations go to different shards, so the tables above that set times side by side (the \
+             bailout's, specialisation's, the Pareto fronts, equal time and equal error) compare machines, or \
+             one machine at two moments, wherever their rows' shards differ: a time ratio between two \
+             shards is not the configurations' alone. A GPU row and its CPU twin always share a shard. \
+             Errors are measured against each shard's own CPU reference, which is the same image on every \
+             machine.\n\n",
             machines.len()
         ));
         for m in machines {

@@ -113,8 +113,11 @@ pub struct ShardFile {
 }
 
 impl ShardFile {
-    /// What must be equal in every shard of one sweep, as text for the message.
-    fn sweep(&self) -> [(&'static str, String); 8] {
+    /// What must be equal in every shard of one sweep, as text for the message. The GPU too:
+    /// its rows' f32 error and the GPU-against-CPU figures are one adapter's, as a merged
+    /// render's tiles are (`glint merge` refuses tiles of two adapters).
+    fn sweep(&self) -> [(&'static str, String); 10] {
+        let backends: Vec<&str> = self.backends.iter().map(|b| b.name()).collect();
         [
             ("glint version", self.glint.clone()),
             ("shard count", self.count.to_string()),
@@ -124,6 +127,8 @@ impl ShardFile {
             ("reference spp", self.reference_spp.to_string()),
             ("integrator", self.integrator.map_or("each scene's own".into(), |i| i.name().into())),
             ("scene list", self.scenes.join(",")),
+            ("backends", backends.join(",")),
+            ("GPU", self.gpu_device.clone().unwrap_or_else(|| "none".into())),
         ]
     }
 }
@@ -245,6 +250,10 @@ pub fn join_gi(files: &mut [ShardFile]) -> anyhow::Result<Vec<super::gi::GiResul
 pub fn join(files: &mut [ShardFile], planned: &[Planned]) -> anyhow::Result<Vec<SceneResult>> {
     let position = |c: &Config| planned.iter().position(|p| p.config == *c).unwrap_or(usize::MAX);
     let names = files[0].scenes.clone();
+    // Which shard measures each configuration of each scene: the split every shard made.
+    let first = &files[0];
+    let owners =
+        assign(names.len(), planned, u64::from(first.width) * u64::from(first.height), first.runs, first.count);
     let parts: Vec<SceneResult> = files.iter_mut().flat_map(|f| std::mem::take(&mut f.results)).collect();
     let mut out: Vec<SceneResult> = Vec::new();
     for part in parts {
@@ -260,6 +269,20 @@ pub fn join(files: &mut [ShardFile], planned: &[Planned]) -> anyhow::Result<Vec<
     for j in &mut out {
         j.rows.sort_by_key(|r| position(&r.config));
         let measured: Vec<usize> = j.rows.iter().map(|r| position(&r.config)).collect();
+        let scene = names.iter().position(|n| *n == j.name);
+        let short = (0..planned.len()).find(|i| measured.iter().filter(|m| *m == i).count() != 1);
+        if let (Some(i), Some(scene)) = (short, scene) {
+            let shard = owners.get(scene).and_then(|o| o.get(i)).copied().unwrap_or(0);
+            let times = measured.iter().filter(|m| **m == i).count();
+            bail!(
+                "scene {} has the configuration ({} {}) {} times, not once, and shard {shard} measures it: shard \
+                 {shard}'s file was edited or cut short; run shard {shard} again; nothing was written",
+                j.name,
+                planned[i].config.backend.name(),
+                planned[i].config.describe(),
+                times
+            );
+        }
         if measured != (0..planned.len()).collect::<Vec<_>>() || j.specular.is_empty() {
             bail!(
                 "scene {} has {} rows in the shards, not the sweep's {} configurations once each with its \

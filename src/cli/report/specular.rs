@@ -73,6 +73,7 @@ pub fn measure(
             times: Vec::new(),
             counts: warm.counts,
             gpu: warm.gpu,
+            shard: None,
         });
         bar.inc(1);
     }

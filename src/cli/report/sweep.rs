@@ -115,6 +115,9 @@ pub struct SpecularRow {
     pub times: Vec<Duration>,
     pub counts: RayCounts,
     pub gpu: Option<GpuExtra>,
+    /// The shard that timed it (`--shard`), as a row's.
+    #[serde(default)]
+    pub shard: Option<u32>,
 }
 
 impl SpecularRow {
