@@ -136,7 +136,8 @@ fn validate_attenuation(path: &str, a: Attenuation, r: &mut Report) {
         Attenuation::InverseSquare { range: Some(range) } => {
             if !ranges::LIGHT_RANGE.contains(range) {
                 let (lo, hi) = (ranges::LIGHT_RANGE.min, ranges::LIGHT_RANGE.max);
-                r.error(format!("{path}.range"), format!("{range} is outside the allowed range ({lo}, {hi:e}]"));
+                let why = ranges::LIGHT_RANGE.why_outside(range);
+                r.error(format!("{path}.range"), format!("{range} is outside the allowed range ({lo}, {hi:e}]{why}"));
             }
         }
         Attenuation::InverseSquare { range: None } => {}

@@ -1,6 +1,7 @@
 //! The bounds of every number a scene holds, and the range type the viewer's editors share.
 
 use super::as_f32;
+use crate::number::format_number;
 
 /// Coordinates and sizes are limited so that squares and sums stay finite in f32
 /// (the GPU tracer computes |o − c|² for spheres).
@@ -63,6 +64,21 @@ impl Range<f64> {
         let above_min = if self.min_excluded { as_f32(v) > self.min } else { v >= self.min };
         v.is_finite() && above_min && v <= self.max
     }
+
+    /// Why `v` is outside, where the range alone does not say: a value above an excluded
+    /// minimum that f32, in which the tracers store it, rounds down to that minimum (an ior of
+    /// 1e-46 is above 0, but stored it is 0). Empty otherwise.
+    pub fn why_outside(&self, v: f64) -> String {
+        if self.min_excluded && v.is_finite() && v > self.min && as_f32(v) <= self.min {
+            format!(
+                ": {} rounds to {} in f32, the precision the tracers store it in",
+                format_number(v),
+                format_number(self.min)
+            )
+        } else {
+            String::new()
+        }
+    }
 }
 
 impl Range<u32> {
@@ -106,4 +122,21 @@ pub mod ranges {
     pub const CONE: Range<f64> = Range::linear(0.0, 90.0);
     /// The inverse-square model's range window, in scene units.
     pub const LIGHT_RANGE: Range<f64> = Range::logarithmic_above(0.0, MAX_COORD);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::ranges;
+
+    #[test]
+    fn a_value_above_an_excluded_minimum_that_f32_rounds_to_it_is_told_so() {
+        assert!(!ranges::IOR.contains(1e-46));
+        let why = ranges::IOR.why_outside(1e-46);
+        assert!(why.contains("1e-46 rounds to 0 in f32"), "{why}");
+        // Outside for the plain reason: nothing to add.
+        for v in [0.0, -1.0, 2e3, f64::NAN] {
+            assert!(ranges::IOR.why_outside(v).is_empty(), "{v}");
+        }
+        assert!(ranges::SIZE.why_outside(1e-50).contains("rounds to 0"));
+    }
 }

@@ -12,7 +12,8 @@ pub(super) fn validate_material(path: &str, m: &MaterialDesc, r: &mut Report) {
     r.finite_in(&format!("{path}.roughness"), m.roughness, ranges::ROUGHNESS);
     if !ranges::IOR.contains(m.ior) {
         let (lo, hi) = (ranges::IOR.min, ranges::IOR.max);
-        r.error(format!("{path}.ior"), format!("{} is outside the allowed range ({lo}, {hi}]", num(m.ior)));
+        let why = ranges::IOR.why_outside(m.ior);
+        r.error(format!("{path}.ior"), format!("{} is outside the allowed range ({lo}, {hi}]{why}", num(m.ior)));
     }
     if let Some(ch) = &m.checker {
         r.colour(&format!("{path}.checker.kd"), ch.kd);

@@ -123,7 +123,8 @@ impl Report {
     /// A size in a range (min, max] (its maximum shown as 1e9 and the like).
     fn size(&mut self, field: &str, v: f64, range: Range<f64>) {
         if !range.contains(v) {
-            self.error(field, format!("{} is outside the allowed range ({}, {:e}]", num(v), range.min, range.max));
+            let why = range.why_outside(v);
+            self.error(field, format!("{} is outside the allowed range ({}, {:e}]{why}", num(v), range.min, range.max));
         }
     }
 
