@@ -19,11 +19,11 @@ fn strata_rows(spp: u32) -> u32 {
 }
 #endif
 
-// Without JITTER, or for Whitted's one sample (`single` false), the pixel centre; the CPU
-// twin's callers pass that as `jitter`.
-fn sample_offset(pixel: u32, sample_index: u32, spp: u32, seed: u32, single: bool) -> vec2<f32> {
+// Without jitter (the JITTER feature off, or Whitted's one sample: the callers decide, as
+// the CPU twin's), the pixel centre. spp ≥ 1 (validated).
+fn sample_offset(pixel: u32, sample_index: u32, spp: u32, seed: u32, jitter: bool) -> vec2<f32> {
 #ifdef JITTER
-    if spp <= 1u && !single {
+    if !jitter {
         return vec2<f32>(0.5, 0.5);
     }
     let rows = strata_rows(spp);
@@ -31,7 +31,7 @@ fn sample_offset(pixel: u32, sample_index: u32, spp: u32, seed: u32, single: boo
     let jx = hash_to_unit(sample_hash(pixel, sample_index, 0u, seed));
     let jy = hash_to_unit(sample_hash(pixel, sample_index, 1u, seed));
     // Samples past spp go round the grid again (the CPU twin says when).
-    let cell = sample_index % max(spp, 1u);
+    let cell = sample_index % spp;
     return vec2<f32>((f32(cell % cols) + jx) / f32(cols), (f32(cell / cols) + jy) / f32(rows));
 #else
     return vec2<f32>(0.5, 0.5);

@@ -283,7 +283,8 @@ fn object_id(hit: Hit) -> u32 {
 
 fn render_sample(x: u32, y: u32, sample_index: u32) -> SampleResult {
     let pixel = y * header.width + x;
-    let offset = sample_offset(pixel, sample_index, header.spp, header.seed, false);
+    // Whitted's one sample is the pixel's centre, also in the shader with every feature on.
+    let offset = sample_offset(pixel, sample_index, header.spp, header.seed, header.spp > 1u);
     ray_counts.camera += 1u;
     return trace_ray(camera_ray(camera, header.width, header.height, x, y, offset));
 }

@@ -20,7 +20,7 @@ pub struct SettingsArgs {
     /// Image height in pixels [1, 16384]
     #[arg(long, allow_negative_numbers = true, value_parser = parse_count)]
     pub height: Option<u32>,
-    /// Samples per pixel [1, 4096]; more than one are stratified and jittered
+    /// Samples per pixel [1, 4096]; more than one are stratified and jittered (a path render's one is jittered too)
     #[arg(long, allow_negative_numbers = true, value_parser = parse_count)]
     pub spp: Option<u32>,
     /// Maximum recursion depth [0, 1024]; 0 = local shading only

@@ -19,8 +19,8 @@ pub fn strata_rows(spp: u32) -> u32 {
     rows
 }
 
-/// Position of a sample inside its pixel, in [0, 1)². Without jitter (the JITTER feature off,
-/// or Whitted's one sample: the callers decide) the pixel centre; with it, jittered inside the
+/// Position of a sample inside its pixel, in [0, 1)², spp ≥ 1. Without jitter (the JITTER
+/// feature off, or Whitted's one sample: the callers decide) the pixel centre; with it, jittered inside the
 /// cells of the stratification grid (one cell, the whole pixel, for a path's single sample).
 pub fn sample_offset(pixel: u32, sample: u32, spp: u32, seed: u32, jitter: bool) -> (f64, f64) {
     if !jitter {
@@ -31,7 +31,8 @@ pub fn sample_offset(pixel: u32, sample: u32, spp: u32, seed: u32, jitter: bool)
     let jx = hash_to_unit(sample_hash(pixel, sample, 0, seed));
     let jy = hash_to_unit(sample_hash(pixel, sample, 1, seed));
     // Samples past spp (a caller drawing more than the header's) go round the grid again.
-    let cell = sample % spp.max(1);
+    // spp ≥ 1 (validated).
+    let cell = sample % spp;
     ((f64::from(cell % cols) + jx) / f64::from(cols), (f64::from(cell / cols) + jy) / f64::from(rows))
 }
 
