@@ -85,7 +85,7 @@ fn yes() -> bool {
 }
 
 /// What Whitted's error is made of: the reference's light by kind (`PathKind::ALL` order),
-/// from a path render of `spp` samples with the reference's seed split four ways, against
+/// from a path render of `spp` samples at the rows' seed split four ways, against
 /// Whitted's CPU image at the sweep's deepest, most sampled setting.
 #[derive(Clone, Debug, Default, Serialize, Deserialize)]
 pub struct KindSplit {

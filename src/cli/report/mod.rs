@@ -376,9 +376,10 @@ fn write_outputs(
              `--merge`). Every row's timing comes from the machine of its shard (the `shard` column of \
              report.csv, specular.csv and gi.csv); the header's machine is shard 0's. A scene's families of \
              configurations go to different shards, so the tables above that set times side by side (the \
-             bailout's, specialisation's, the Pareto fronts, equal time and equal error) compare machines, or \
-             one machine at two moments, wherever their rows' shards differ: a time ratio between two \
-             shards is not the configurations' alone. A GPU row and its CPU twin always share a shard. \
+             bailout's, the Pareto fronts, equal time and equal error) compare machines, or one machine at \
+             two moments, wherever their rows' shards differ: a time ratio between two shards is not the \
+             configurations' alone. A GPU row and its CPU twin, and a specialised row and its full-shader \
+             twin, always share a shard. \
              Errors are measured against each shard's own CPU reference, which is the same image on every \
              machine.\n\n",
             machines.len()

@@ -271,17 +271,22 @@ pub fn join(files: &mut [ShardFile], planned: &[Planned]) -> anyhow::Result<Vec<
         let measured: Vec<usize> = j.rows.iter().map(|r| position(&r.config)).collect();
         let scene = names.iter().position(|n| *n == j.name);
         let short = (0..planned.len()).find(|i| measured.iter().filter(|m| *m == i).count() != 1);
-        if let (Some(i), Some(scene)) = (short, scene) {
-            let shard = owners.get(scene).and_then(|o| o.get(i)).copied().unwrap_or(0);
-            let times = measured.iter().filter(|m| **m == i).count();
-            bail!(
-                "scene {} has the configuration ({} {}) {} times, not once, and shard {shard} measures it: shard \
-                 {shard}'s file was edited or cut short; run shard {shard} again; nothing was written",
-                j.name,
-                planned[i].config.backend.name(),
-                planned[i].config.describe(),
-                times
-            );
+        if let Some(i) = short {
+            let what = format!("{} {}", planned[i].config.backend.name(), planned[i].config.describe());
+            let owner = scene.and_then(|s| owners.get(s)).and_then(|o| o.get(i)).copied();
+            match (measured.iter().filter(|m| **m == i).count(), owner) {
+                (0, Some(shard)) => bail!(
+                    "scene {} lacks the configuration ({what}), which shard {shard} measures: shard {shard}'s file \
+                     was edited or cut short; run shard {shard} again; nothing was written",
+                    j.name
+                ),
+                // Twice: either file may be the edited one.
+                (times, _) => bail!(
+                    "scene {} has the configuration ({what}) {times} times, not once: a shard's file was edited or \
+                     copied; run the shards that have it again; nothing was written",
+                    j.name
+                ),
+            }
         }
         if measured != (0..planned.len()).collect::<Vec<_>>() || j.specular.is_empty() {
             bail!(

@@ -52,10 +52,12 @@ pub fn bailout_summary(md: &mut String, scenes: &[SceneResult]) {
     let _ = writeln!(md);
     if !paths.is_empty() {
         let names: Vec<&str> = paths.iter().map(|s| s.name.as_str()).collect();
+        let its =
+            if names.len() == 1 { "its bailout rows are one render" } else { "each one's bailout rows are one render" };
         let _ = writeln!(
             md,
             "Left out: {}, whose paths end by Russian roulette, which the bailout does not change \
-             (`glint render --integrator path --bailout` is refused); its bailout rows are one render.\n",
+             (`glint render --integrator path --bailout` is refused); {its}.\n",
             names.join(", ")
         );
     }
