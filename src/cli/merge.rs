@@ -234,13 +234,9 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
 /// or another block's, unchecked: the header read with the pixels must be the one checked, and
 /// the pixels must fill its data window.
 fn same_as_checked(path: &Path, checked: &ExrHeader, tile: &ExrPixels) -> anyhow::Result<()> {
-    let read = &tile.header;
-    let same = read.display == checked.display
-        && read.origin == checked.origin
-        && (read.width, read.height) == (checked.width, checked.height)
-        && read.attributes == checked.attributes
-        && read.inexact.is_none();
-    if !same || tile.rgb.len() != checked.width as usize * checked.height as usize {
+    // A checked header has no `inexact` (refused before), and a re-read one none either unless
+    // its compression changed.
+    if tile.header != *checked || tile.rgb.len() != checked.width as usize * checked.height as usize {
         bail!(
             "{}: the file changed while the merge read it (its header or size is not the one checked); \
              merge again once no task writes it; nothing was written",

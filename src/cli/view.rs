@@ -86,6 +86,19 @@ impl Default for ViewArgs {
     }
 }
 
+/// The flag of a scripted run (a benchmark or a screenshot), which must not measure or picture
+/// the window's fallback scene in place of the one it names.
+fn scripted_flag(args: &ViewArgs) -> Option<&'static str> {
+    [
+        (args.benchmark_features, "--benchmark-features"),
+        (args.benchmark_paths.is_some(), "--benchmark-paths"),
+        (args.benchmark_drag.is_some(), "--benchmark-drag"),
+        (args.screenshot.is_some(), "--screenshot"),
+    ]
+    .into_iter()
+    .find_map(|(given, flag)| given.then_some(flag))
+}
+
 pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
     for (flag, value) in [("--benchmark-drag", args.benchmark_drag), ("--benchmark-paths", args.benchmark_paths)] {
         if let Some(s) = value
@@ -109,24 +122,10 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
         }
         Err(e @ glint_io::SceneError::NotGenerated { .. }) => bail!("--resolution: {e}"),
         Err(e @ glint_io::SceneError::NotAModel { .. }) => bail!("{e}"),
-        Err(e)
-            if args.benchmark_drag.is_some()
-                || args.benchmark_features
-                || args.benchmark_paths.is_some()
-                || args.screenshot.is_some() =>
-        {
-            let flag = if args.benchmark_features {
-                "--benchmark-features"
-            } else if args.benchmark_paths.is_some() {
-                "--benchmark-paths"
-            } else if args.benchmark_drag.is_some() {
-                "--benchmark-drag"
-            } else {
-                "--screenshot"
-            };
-            bail!("{flag}: cannot load scene '{}': {e}", args.scene)
-        }
-        Err(_) => None,
+        Err(e) => match scripted_flag(args) {
+            Some(flag) => bail!("{flag}: cannot load scene '{}': {e}", args.scene),
+            None => None,
+        },
     };
     let (view, gi_view) = args.view.modes();
     let options = ViewerOptions {

@@ -232,12 +232,14 @@ mod tests {
             assert!((power_heuristic(a, b) + power_heuristic(b, a) - 1.0).abs() < 1e-15);
         }
         assert_eq!(power_heuristic(0.0, 0.0), 0.0);
-        // Beyond f32's squares: from the ratio, still adding to 1, and the same below the bound.
+        // Beyond f32's squares: from the ratio, still adding to 1.
         for (a, b) in [(1e22, 3.0), (9.5e21, 4e21), (2e30, 2e30), (1e19, 0.0)] {
             let (w, v) = (power_heuristic(a, b), power_heuristic(b, a));
             assert!(w.is_finite() && (w + v - 1.0).abs() < 1e-15, "{a}, {b}: {w} + {v}");
         }
         assert_eq!(power_heuristic(1e22, 0.0), 1.0);
         assert!((power_heuristic(1e22, 1e21) - 100.0 / 101.0).abs() < 1e-15);
+        // The two forms agree where both hold: the squares' form just below the bound.
+        assert!((power_heuristic(9e17, 3e17) - 9.0 / 10.0).abs() < 1e-15);
     }
 }
