@@ -36,7 +36,7 @@ pub struct MergeArgs {
 /// this order so that a differing setting is named before the scene hash it also changes; the
 /// rest (the tile's index, time, rays, the scene's name, the CPU's threads) is the tile's own.
 /// The scene is judged by its content: tiles of one scene file copied under other names merge.
-const SHARED: [&str; 14] = [
+const SHARED: [&str; 13] = [
     "Software",
     "glint:size",
     "glint:spp",
@@ -48,21 +48,21 @@ const SHARED: [&str; 14] = [
     "glint:integrator",
     "glint:indirect",
     "glint:backend",
-    "glint:specialised",
     "glint:grid",
     "glint:scene_hash",
 ];
 
-/// What GPU tiles share besides `SHARED`: the adapter and its driver. One adapter gives the
-/// same bits for any tile; two GPUs, or two drivers, need not (their f32 arithmetic and
-/// transcendental functions differ), and the merge would be no one render's image. CPU tiles
-/// are the same bits for any machine and thread count.
-const SHARED_ON_GPU: &str = "glint:device";
+/// What GPU tiles share besides `SHARED`: the shader (specialised or whole), the adapter and
+/// its driver. One adapter and shader give the same bits for any tile; two GPUs, two drivers or
+/// two shaders need not (their f32 arithmetic, compiled apart, may round apart), and the merge
+/// would be no one render's image. CPU tiles are the same bits for any machine, thread count
+/// and specialisation (tested), so tiles rendered with and without `--no-specialise` merge.
+const SHARED_ON_GPU: [&str; 2] = ["glint:specialised", "glint:device"];
 
 /// The attributes `header`'s tiles must share.
 fn shared_keys(header: &ExrHeader) -> Vec<&'static str> {
     let gpu = header.attribute("glint:backend") == Some("gpu");
-    SHARED.iter().copied().chain(gpu.then_some(SHARED_ON_GPU)).collect()
+    SHARED.iter().copied().chain(SHARED_ON_GPU.iter().copied().filter(|_| gpu)).collect()
 }
 
 /// A tile's place: its index and count from `glint:tile`.

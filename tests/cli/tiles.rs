@@ -98,6 +98,27 @@ fn tiles_merged_are_the_single_render_bit_for_bit_on_the_cpu() {
     // Whitted's tree in a 2×2 grid, the path tracer (4 paths a pixel) in 5 bands.
     split_and_merge(&dir, "whitted", &[&size[..], &["--spp", "2"]].concat(), "cpu", 4);
     split_and_merge(&dir, "cornell-gi", &[&size[..], &["--spp", "4", "--depth", "6"]].concat(), "cpu", 5);
+    // The CPU's images are the same bits with the whole tracer: tiles rendered with and
+    // without --no-specialise merge into the single render.
+    let args = [&size[..], &["--spp", "2", "--backend", "cpu"]].concat();
+    let whole = dir.join("mixed.exr");
+    render(&dir, "whitted", &args, &whole);
+    let tiles: Vec<PathBuf> = (0..3)
+        .map(|i| {
+            let tile = dir.join(format!("mixed-tile-{i}.exr"));
+            let spec = format!("{i}/3");
+            let mut tile_args = [&args[..], &["--tile", &spec]].concat();
+            if i % 2 == 1 {
+                tile_args.push("--no-specialise");
+            }
+            render(&dir, "whitted", &tile_args, &tile);
+            tile
+        })
+        .collect();
+    let merged = dir.join("mixed-merged.exr");
+    let done = merge(&dir, &tiles, &merged);
+    assert!(done.status.success(), "{}", text(&done.stderr));
+    assert_eq!(bits(&merged), bits(&whole), "tiles with and without specialisation merged apart from the render");
 }
 
 #[test]
