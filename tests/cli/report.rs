@@ -368,6 +368,33 @@ fn report_renders_every_scene_with_the_integrator_it_is_given() {
     assert!(md.contains("Left out: lights, whose paths end by Russian roulette"), "{md}");
     let csv = std::fs::read_to_string(out_dir.join("report.csv")).expect("report.csv");
     assert!(csv.lines().count() > 2, "{csv}");
+    // A read-only report is refused before anything of the new run moves in, and the run
+    // leaves no staging folder behind; --force replaces it.
+    let md_path = out_dir.join("report.md");
+    let mut permissions = std::fs::metadata(&md_path).expect("report.md").permissions();
+    permissions.set_readonly(true);
+    std::fs::set_permissions(&md_path, permissions).expect("chmod");
+    let again = |force: bool| {
+        let mut args: Vec<&std::ffi::OsStr> = ["report", "--quick", "--cpu-only", "--scenes", "lights", "--width", "8"]
+            .iter()
+            .map(|a| a.as_ref())
+            .collect();
+        args.extend(["--height".as_ref(), "6".as_ref(), "--out".as_ref(), out_dir.as_os_str()]);
+        if force {
+            args.push("--force".as_ref());
+        }
+        glint(&dir, args)
+    };
+    let refused = again(false);
+    assert!(!refused.status.success(), "a read-only report.md was replaced");
+    assert!(text(&refused.stderr).contains("report.md: read-only; pass --force"), "{}", text(&refused.stderr));
+    assert_eq!(std::fs::read_to_string(&md_path).expect("kept"), md, "the refused run changed report.md");
+    let listing =
+        || std::fs::read_dir(&out_dir).expect("out").map(|e| e.expect("entry").file_name()).collect::<Vec<_>>();
+    assert!(listing().iter().all(|n| !n.to_string_lossy().starts_with(".glint-report")), "{:?}", listing());
+    let forced = again(true);
+    assert!(forced.status.success(), "{}", text(&forced.stderr));
+    assert!(std::fs::read_to_string(&md_path).expect("report.md").contains("8×6"), "--force did not replace it");
 
     let out = glint(&dir, ["report", "--quick", "--cpu-only", "--integrator", "radiosity"]);
     assert!(!out.status.success());

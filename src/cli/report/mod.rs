@@ -13,6 +13,7 @@ mod plan;
 mod plot;
 mod shard;
 mod specular;
+mod staging;
 mod sweep;
 
 use std::collections::HashMap;
@@ -92,6 +93,9 @@ pub struct ReportArgs {
         ]
     )]
     pub merge: Vec<PathBuf>,
+    /// Replace output files in --out even if they are read-only
+    #[arg(long)]
+    pub force: bool,
     /// No progress bar
     #[arg(short, long)]
     pub quiet: bool,
@@ -146,7 +150,8 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
         )
     };
     let gpu_device = gpu.as_ref().map(|g| g.context().adapter.with_driver());
-    std::fs::create_dir_all(&args.out).with_context(|| format!("cannot create {}", args.out.display()))?;
+    let staging = staging::Staging::new(&args.out)?;
+    let out = staging.path();
     let backends: Vec<Backend> = if gpu.is_some() { vec![Backend::Cpu, Backend::Gpu] } else { vec![Backend::Cpu] };
     let threads =
         if args.threads == 0 { std::thread::available_parallelism().map_or(1, |n| n.get()) } else { args.threads };
@@ -205,7 +210,7 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
             let mut gi = gi::measure(&mut engines, loaded, &base, &backends, args.runs, args.quick, &bar)?;
             gi.shard = args.shard.map(|s| s.index);
             if args.shard.is_none() {
-                gi_plot::write_gi_plot(&args.out, &gi, args.runs as usize)?;
+                gi_plot::write_gi_plot(out, &gi, args.runs as usize)?;
             }
             gi_results.push(gi);
         }
@@ -218,8 +223,8 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
             }
         } else {
             pareto::mark_fronts(&mut result.rows);
-            let path = plot::write_plot(&args.out, &result, args.runs as usize)?;
-            bar.suspend(|| say!("{}: {} configurations, wrote {}", result.name, result.rows.len(), path.display()))?;
+            let path = published(&args.out, &plot::write_plot(out, &result, args.runs as usize)?);
+            bar.suspend(|| say!("{}: {} configurations, writes {}", result.name, result.rows.len(), path.display()))?;
         }
         results.push(result);
     }
@@ -247,7 +252,8 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
             gi: gi_results,
         };
         let rows: usize = file.results.iter().map(|r| r.rows.len()).sum();
-        let path = shard::write(&args.out, spec, &file)?;
+        let path = published(&args.out, &shard::write(out, spec, &file)?);
+        staging.publish(args.force)?;
         say!(
             "report shard {}/{}: {rows} of {} configurations in {:.1} s; wrote {} (merge the shards with --merge)",
             spec.index,
@@ -270,8 +276,9 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
         integrator: args.integrator,
     };
     let devices = [(cpu_device.clone(), gpu_device.clone().unwrap_or_default())];
-    write_report_file(&args.out.join("gi.csv"), &gi::render_csv(&gi_results))?;
-    write_outputs(&args.out, &setup, &results, &devices, &[], &gi::render_markdown(&gi_results))?;
+    write_report_file(&out.join("gi.csv"), &gi::render_csv(&gi_results))?;
+    write_outputs(out, &setup, &results, &devices, &[], &gi::render_markdown(&gi_results))?;
+    staging.publish(args.force)?;
     say!(
         "report: {}, {} configurations each, in {:.1} s; wrote {} and {}",
         count(results.len(), "scene"),
@@ -281,6 +288,11 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
         args.out.join("report.csv").display()
     )?;
     Ok(())
+}
+
+/// Where a file written into the staging folder will lie once the run is published.
+fn published(out: &Path, staged: &Path) -> PathBuf {
+    staged.file_name().map_or_else(|| staged.to_path_buf(), |name| out.join(name))
 }
 
 /// "1 scene", "2 scenes".
@@ -322,16 +334,17 @@ fn merge(args: &ReportArgs, started: Instant) -> anyhow::Result<()> {
     let gpu_device = files[0].gpu_device.clone();
     let gi_results = shard::join_gi(&mut files)?;
     let mut results = shard::join(&mut files, &planned)?;
-    std::fs::create_dir_all(&args.out).with_context(|| format!("cannot create {}", args.out.display()))?;
+    let staging = staging::Staging::new(&args.out)?;
+    let out = staging.path();
     for result in &mut results {
         pareto::mark_fronts(&mut result.rows);
-        let path = plot::write_plot(&args.out, result, runs as usize)?;
-        say!("{}: {} configurations, wrote {}", result.name, result.rows.len(), path.display())?;
+        let path = published(&args.out, &plot::write_plot(out, result, runs as usize)?);
+        say!("{}: {} configurations, writes {}", result.name, result.rows.len(), path.display())?;
     }
     for gi in &gi_results {
-        gi_plot::write_gi_plot(&args.out, gi, runs as usize)?;
+        gi_plot::write_gi_plot(out, gi, runs as usize)?;
     }
-    write_report_file(&args.out.join("gi.csv"), &gi::render_csv(&gi_results))?;
+    write_report_file(&out.join("gi.csv"), &gi::render_csv(&gi_results))?;
     let setup = markdown::Setup {
         machine: &machine,
         cpu_device: &devices[0].0,
@@ -343,7 +356,8 @@ fn merge(args: &ReportArgs, started: Instant) -> anyhow::Result<()> {
         plan: &plan,
         integrator,
     };
-    write_outputs(&args.out, &setup, &results, &devices, &machines, &gi::render_markdown(&gi_results))?;
+    write_outputs(out, &setup, &results, &devices, &machines, &gi::render_markdown(&gi_results))?;
+    staging.publish(args.force)?;
     say!(
         "report: {} merged, {}, {} configurations each, in {:.1} s; wrote {} and {}",
         count(devices.len(), "shard"),
