@@ -223,7 +223,7 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
             }
         } else {
             pareto::mark_fronts(&mut result.rows);
-            let path = published(&args.out, &plot::write_plot(out, &result, args.runs as usize)?);
+            let path = staging.published(&plot::write_plot(out, &result, args.runs as usize)?);
             bar.suspend(|| say!("{}: {} configurations, writes {}", result.name, result.rows.len(), path.display()))?;
         }
         results.push(result);
@@ -252,7 +252,7 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
             gi: gi_results,
         };
         let rows: usize = file.results.iter().map(|r| r.rows.len()).sum();
-        let path = published(&args.out, &shard::write(out, spec, &file)?);
+        let path = staging.published(&shard::write(out, spec, &file)?);
         staging.publish(args.force)?;
         say!(
             "report shard {}/{}: {rows} of {} configurations in {:.1} s; wrote {} (merge the shards with --merge)",
@@ -276,8 +276,7 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
         integrator: args.integrator,
     };
     let devices = [(cpu_device.clone(), gpu_device.clone().unwrap_or_default())];
-    write_report_file(&out.join("gi.csv"), &gi::render_csv(&gi_results))?;
-    write_outputs(out, &setup, &results, &devices, &[], &gi::render_markdown(&gi_results))?;
+    write_outputs(out, &setup, &results, &devices, &[], &gi_results)?;
     staging.publish(args.force)?;
     say!(
         "report: {}, {} configurations each, in {:.1} s; wrote {} and {}",
@@ -288,11 +287,6 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
         args.out.join("report.csv").display()
     )?;
     Ok(())
-}
-
-/// Where a file written into the staging folder will lie once the run is published.
-fn published(out: &Path, staged: &Path) -> PathBuf {
-    staged.file_name().map_or_else(|| staged.to_path_buf(), |name| out.join(name))
 }
 
 /// "1 scene", "2 scenes".
@@ -338,13 +332,12 @@ fn merge(args: &ReportArgs, started: Instant) -> anyhow::Result<()> {
     let out = staging.path();
     for result in &mut results {
         pareto::mark_fronts(&mut result.rows);
-        let path = published(&args.out, &plot::write_plot(out, result, runs as usize)?);
+        let path = staging.published(&plot::write_plot(out, result, runs as usize)?);
         say!("{}: {} configurations, writes {}", result.name, result.rows.len(), path.display())?;
     }
     for gi in &gi_results {
         gi_plot::write_gi_plot(out, gi, runs as usize)?;
     }
-    write_report_file(&out.join("gi.csv"), &gi::render_csv(&gi_results))?;
     let setup = markdown::Setup {
         machine: &machine,
         cpu_device: &devices[0].0,
@@ -356,7 +349,7 @@ fn merge(args: &ReportArgs, started: Instant) -> anyhow::Result<()> {
         plan: &plan,
         integrator,
     };
-    write_outputs(out, &setup, &results, &devices, &machines, &gi::render_markdown(&gi_results))?;
+    write_outputs(out, &setup, &results, &devices, &machines, &gi_results)?;
     staging.publish(args.force)?;
     say!(
         "report: {} merged, {}, {} configurations each, in {:.1} s; wrote {} and {}",
@@ -370,20 +363,21 @@ fn merge(args: &ReportArgs, started: Instant) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// report.csv, specular.csv and report.md (ending with `gi_md`, the Whitted-against-paths
-/// section); `machines` lists a merged report's shards.
+/// report.csv, specular.csv, gi.csv and report.md (ending with the Whitted-against-paths
+/// section of `gi_results`); `machines` lists a merged report's shards.
 fn write_outputs(
     out: &Path,
     setup: &markdown::Setup,
     results: &[sweep::SceneResult],
     devices: &[(String, String)],
     machines: &[String],
-    gi_md: &str,
+    gi_results: &[gi::GiResult],
 ) -> anyhow::Result<()> {
     write_report_file(&out.join("report.csv"), &csv::render_csv(results, devices))?;
     write_report_file(&out.join("specular.csv"), &csv::render_specular_csv(results))?;
+    write_report_file(&out.join("gi.csv"), &gi::render_csv(gi_results))?;
     let mut md = markdown::render_markdown(setup, results);
-    md.push_str(gi_md);
+    md.push_str(&gi::render_markdown(gi_results));
     if !machines.is_empty() {
         md.push_str(&format!(
             "\n## Shards\n\nThis report was measured in {} shards (`glint report --shard I/N`, merged by \
@@ -405,7 +399,7 @@ fn write_outputs(
     write_report_file(&out.join("report.md"), &md)
 }
 
-/// Replaces `path` atomically: a reader (or a CI artefact upload) never sees a half-written report.
+/// Replaces `path` atomically, as every file glint writes (`glint_io::atomic`).
 fn write_report_file(path: &Path, text: &str) -> anyhow::Result<()> {
     write_file_atomically(path, text.as_bytes()).map_err(|e| anyhow!("cannot write {}: {}", e.path.display(), e.error))
 }

@@ -27,6 +27,11 @@ impl Staging {
         self.dir.path()
     }
 
+    /// Where `staged`, a file written into the staging folder, lies once the run is published.
+    pub fn published(&self, staged: &Path) -> PathBuf {
+        staged.file_name().map_or_else(|| staged.to_path_buf(), |name| self.out.join(name))
+    }
+
     /// Moves every staged file into `--out`. A read-only file there is refused before anything
     /// moves, unless `force`, as `glint render` and `glint merge` refuse one.
     pub fn publish(self, force: bool) -> anyhow::Result<()> {
