@@ -3,14 +3,7 @@
 
 pub mod gltf;
 mod ground;
-mod mtl;
-mod mtl_images;
-mod mtl_map;
 pub mod obj;
-mod obj_smoothing;
-mod obj_statements;
-mod obj_text;
-mod polygon;
 
 use std::path::Path;
 

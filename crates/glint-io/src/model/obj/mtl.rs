@@ -3,19 +3,53 @@
 //! (`material_names`), and what the importer reads before tobj does (`expand_colours`) or
 //! leaves out (`unread_statements`).
 
-use glint_scene::{FieldIssue, MaterialDesc, MaterialSource, Rgb};
+use std::path::Path;
 
-use super::obj_text;
+use super::mtl_images::{Images, Source, TextureError, material_folders};
+use super::text;
+use glint_scene::{FieldIssue, MaterialDesc, MaterialSource, Model, Rgb};
 
 /// The material of faces that name none (MTL's defaults for Kd, no highlight).
 pub const DEFAULT_MATERIAL: &str = "obj-default";
+
+/// The OBJ's (`obj`) MTL materials put into `out` with their warnings and textures, under the
+/// names `material_names` gives (returned, in the materials' order); `folders` are the MTL
+/// files' folders and how many materials each held, as read.
+pub(super) fn add_materials(
+    obj: &Path,
+    materials: &[tobj::Material],
+    folders: &[(String, usize)],
+    out: &mut Model,
+) -> Result<Vec<String>, TextureError> {
+    out.warnings.extend(unread_statements(materials));
+    let names = material_names(materials);
+    let folders = material_folders(folders, materials.len());
+    let mut images = Images::default();
+    for ((m, name), folder) in materials.iter().zip(&names).zip(&folders) {
+        let mut material = map_material(m, name, &mut out.warnings);
+        let at = Source { obj, mtl_folder: folder, material: name };
+        if let Some(map) = m.diffuse_texture.as_deref() {
+            material.texture = Some(images.texture(&at, map, "texture", &mut out.warnings)?);
+        }
+        if let Some(map) = m.unknown_param.get("map_Ke") {
+            material.emission_texture = Some(images.texture(&at, map, "emission_texture", &mut out.warnings)?);
+            // Ke multiplies map_Ke; without Ke the map alone is the emission.
+            if m.emissive.is_none() {
+                material.emission = Rgb::splat(1.0);
+            }
+        }
+        out.materials.insert(name.clone(), material);
+        out.sources.insert(name.clone(), source(m));
+    }
+    Ok(names)
+}
 
 /// The MTL statements this importer reads; any other is named in one warning.
 const READ_STATEMENTS: [&str; 11] = ["Ka", "Kd", "Ks", "Ke", "Ns", "Ni", "d", "Tr", "illum", "map_Kd", "map_Ke"];
 
 /// One warning naming the MTL statements the materials hold that Glint does not read (bump and
 /// specular maps, `Tf`, …), each with how many materials hold it: the model renders without them.
-pub(super) fn unread_statements(materials: &[tobj::Material]) -> Option<FieldIssue> {
+fn unread_statements(materials: &[tobj::Material]) -> Option<FieldIssue> {
     let mut unread: std::collections::BTreeMap<&str, usize> = std::collections::BTreeMap::new();
     for m in materials {
         let maps = [
@@ -33,7 +67,7 @@ pub(super) fn unread_statements(materials: &[tobj::Material]) -> Option<FieldIss
             *unread.entry(statement).or_default() += 1;
         }
     }
-    super::left_out("mtllib", "statements Glint does not read", &unread)
+    crate::model::left_out("mtllib", "statements Glint does not read", &unread)
 }
 
 /// MTL text with every `Ka`/`Kd`/`Ks`/`Ke r` line written as `… r r r`: the MTL format lets g
@@ -79,10 +113,10 @@ pub(super) fn expand_colours(text: &[u8]) -> Result<Vec<u8>, String> {
 /// Each material's name in the scene: MTL names may hold any character, and the scene format's
 /// keys are kept readable (other characters become `_`; the nameless material is `unnamed`); a
 /// name that two materials would share gets its index (`name-3`).
-pub(super) fn material_names(materials: &[tobj::Material]) -> Vec<String> {
+fn material_names(materials: &[tobj::Material]) -> Vec<String> {
     let mut names: Vec<String> = Vec::with_capacity(materials.len());
     for (k, m) in materials.iter().enumerate() {
-        let raw = if m.name == obj_text::NAMELESS { "" } else { &m.name };
+        let raw = if m.name == text::NAMELESS { "" } else { &m.name };
         let cleaned: String =
             raw.chars().map(|c| if c.is_alphanumeric() || "-_.".contains(c) { c } else { '_' }).collect();
         let name = if cleaned.is_empty() { "unnamed".to_string() } else { cleaned };
@@ -100,7 +134,7 @@ fn rgb(c: [f64; 3]) -> Rgb {
 }
 
 /// The MTL statements `map_material` reads, as the file wrote them (absent ones left out).
-pub(super) fn source(m: &tobj::Material) -> MaterialSource {
+fn source(m: &tobj::Material) -> MaterialSource {
     let colour = |c: Option<[f64; 3]>| c.map(|c| c.to_vec());
     let number = |x: Option<f64>| x.map(|x| vec![x]);
     let fields = [
@@ -135,7 +169,7 @@ fn dissolve(m: &tobj::Material, warn: &mut impl FnMut(&str, String)) -> f64 {
     }
 }
 
-pub(super) fn map_material(m: &tobj::Material, name: &str, warnings: &mut Vec<FieldIssue>) -> MaterialDesc {
+fn map_material(m: &tobj::Material, name: &str, warnings: &mut Vec<FieldIssue>) -> MaterialDesc {
     let kd = m.diffuse.map_or(Rgb::splat(0.8), rgb);
     let ks = m.specular.map_or(Rgb::splat(0.0), rgb);
     let illum = m.illumination_model.unwrap_or(2);

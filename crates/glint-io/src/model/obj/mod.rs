@@ -1,0 +1,99 @@
+//! Wavefront OBJ/MTL import (through `tobj`): meshes and the MTL materials, mapped onto the
+//! seed's model as `docs/models.md` tabulates. `mtllib`, `map_Kd` and `map_Ke` go through
+//! `uri::resolve_uri` like every other reference, so a file outside the model's folder is
+//! refused. The file is read in four steps: its text made into what tobj reads (`prepare`),
+//! parsed with its MTL files (`mtllib`), the materials mapped (`mtl`, `mtl_images`), and the
+//! faces made meshes (`meshes`).
+
+mod meshes;
+mod mtl;
+mod mtl_images;
+mod mtl_map;
+mod mtllib;
+mod polygon;
+mod prepare;
+mod smoothing;
+mod statements;
+#[cfg(test)]
+mod tests;
+mod text;
+
+use std::path::Path;
+
+use crate::uri::UriError;
+use glint_scene::Model;
+
+/// Why an OBJ did not load.
+#[derive(Debug, thiserror::Error)]
+pub enum ObjError {
+    #[error("{file}: cannot read the model: {error}")]
+    Io { file: std::path::PathBuf, error: std::io::Error },
+    #[error("{file}: {error}")]
+    Uri { file: std::path::PathBuf, error: UriError },
+    #[error("{file}:{}: invalid OBJ ({reason})", line.map_or_else(|| "?".to_string(), |l| l.to_string()))]
+    Parse { file: std::path::PathBuf, line: Option<usize>, reason: String },
+    #[error("{file}: no triangles (points and lines are not traced)")]
+    Empty { file: std::path::PathBuf },
+    #[error("{file}: materials.{material}.{field} `{uri}`: {reason}")]
+    Texture { file: std::path::PathBuf, material: String, field: &'static str, uri: String, reason: String },
+}
+
+pub use mtl::DEFAULT_MATERIAL;
+
+/// Loads `path`: faces triangulated (fans), one mesh per OBJ object or group and material.
+pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
+    let raw = crate::uri::regular_file(path)
+        .and_then(|_| std::fs::read(path))
+        .map_err(|error| ObjError::Io { file: path.to_owned(), error })?;
+    let parse_error = |line, reason| ObjError::Parse { file: path.to_owned(), line, reason };
+    let mut out = Model::default();
+    let prepared = prepare::prepared(&raw, &mut out.warnings).map_err(|(line, reason)| parse_error(line, reason))?;
+    let bytes = prepared.bytes;
+    // Polygons come whole: `polygon::triangulate` cuts them (tobj's fans overlap on concave ones).
+    let options = tobj::LoadOptions { triangulate: false, single_index: true, ..Default::default() };
+    let libraries = mtllib::Libraries::new(path);
+    let (models, materials) = tobj::load_obj_buf(&mut bytes.as_slice(), &options, |mtl| libraries.load(mtl))
+        .map_err(|e| parse_error(failing_line(&bytes, &options), e.to_string()))?;
+    let read = libraries.read().map_err(|error| ObjError::Uri { file: path.to_owned(), error })?;
+    out.warnings.extend(read.warnings);
+    // With an MTL left out, every name it held would be warned again.
+    if !read.left_out {
+        out.warnings.extend(mtllib::unknown_materials(&prepared.uses, materials.as_deref().unwrap_or_default()));
+    }
+    let materials = materials.unwrap_or_default();
+    let names = mtl::add_materials(path, &materials, &read.folders, &mut out).map_err(
+        |mtl_images::TextureError { material, field, uri, reason }| ObjError::Texture {
+            file: path.to_owned(),
+            material,
+            field,
+            uri,
+            reason,
+        },
+    )?;
+    meshes::add_meshes(&models, &bytes, &names, &mut out);
+    if out.meshes.is_empty() {
+        return Err(ObjError::Empty { file: path.to_owned() });
+    }
+    Ok(out)
+}
+
+/// The line at which tobj's parse fails (tobj's errors carry none): the shortest prefix of
+/// the file that fails to parse, found by bisection over line counts (about log₂ n parses of
+/// prefixes, only on the error path). Materials are not read here: only the OBJ itself.
+fn failing_line(bytes: &[u8], options: &tobj::LoadOptions) -> Option<usize> {
+    let ends: Vec<usize> =
+        bytes.iter().enumerate().filter(|&(_, &b)| b == b'\n').map(|(i, _)| i + 1).chain([bytes.len()]).collect();
+    let fails = |lines: usize| {
+        let prefix = &bytes[..ends[lines - 1]];
+        tobj::load_obj_buf(&mut &prefix[..], options, |_| Err(tobj::LoadError::OpenFileFailed)).is_err()
+    };
+    let (mut lo, mut hi) = (1, ends.len());
+    if !fails(hi) {
+        return None;
+    }
+    while lo < hi {
+        let mid = lo + (hi - lo) / 2;
+        if fails(mid) { hi = mid } else { lo = mid + 1 }
+    }
+    Some(lo)
+}

@@ -1,0 +1,146 @@
+//! An OBJ's `mtllib` statements: each MTL file read for tobj, what went wrong with it kept for
+//! the importer, and the `usemtl` names no file defines.
+
+use std::cell::{Cell, RefCell};
+use std::path::Path;
+
+use super::mtl::{DEFAULT_MATERIAL, expand_colours};
+use super::{statements, text};
+use crate::uri::{MAX_RESOURCE_BYTES, UriError, resolve_uri};
+use glint_scene::FieldIssue;
+
+/// The MTL files of one OBJ as tobj asks for them, one `mtllib` statement at a time. A missing
+/// or unreadable one is a warning (as in Assimp and Blender, the geometry stays readable); one
+/// outside the model's folder or too large is an error, the first such one reported. Cells:
+/// tobj takes its loader as `Fn`.
+pub(super) struct Libraries<'a> {
+    obj: &'a Path,
+    refused: RefCell<Option<UriError>>,
+    warnings: RefCell<Vec<FieldIssue>>,
+    left_out: Cell<bool>,
+    /// Each loaded MTL's folder (relative to the OBJ's) and how many materials it held, in order.
+    folders: RefCell<Vec<(String, usize)>>,
+}
+
+/// What reading an OBJ's MTL files gave besides its materials.
+pub(super) struct Read {
+    pub warnings: Vec<FieldIssue>,
+    /// Whether an MTL file was missing or unreadable.
+    pub left_out: bool,
+    pub folders: Vec<(String, usize)>,
+}
+
+impl<'a> Libraries<'a> {
+    pub fn new(obj: &'a Path) -> Self {
+        Self {
+            obj,
+            refused: RefCell::new(None),
+            warnings: RefCell::new(Vec::new()),
+            left_out: Cell::new(false),
+            folders: RefCell::new(Vec::new()),
+        }
+    }
+
+    /// The materials of one `mtllib` statement (`mtl`, its rest), for tobj.
+    pub fn load(&self, mtl: &Path) -> tobj::MTLLoadResult {
+        let uri = mtl.to_string_lossy();
+        let parts = mtl_files(self.obj, &uri);
+        if let [one] = parts.as_slice() {
+            return self.load_file(one);
+        }
+        // `mtllib a.mtl b.mtl`: one result for tobj, the files' materials in order.
+        let (mut materials, mut names) = (Vec::new(), std::collections::HashMap::new());
+        for part in &parts {
+            if let Ok((mut more, map)) = self.load_file(part) {
+                names.extend(map.into_iter().map(|(name, i)| (name, i + materials.len())));
+                materials.append(&mut more);
+            }
+        }
+        if materials.is_empty() { Err(tobj::LoadError::OpenFileFailed) } else { Ok((materials, names)) }
+    }
+
+    /// What the files read gave, or the first file refused.
+    pub fn read(self) -> Result<Read, UriError> {
+        if let Some(error) = self.refused.into_inner() {
+            return Err(error);
+        }
+        Ok(Read {
+            warnings: self.warnings.into_inner(),
+            left_out: self.left_out.get(),
+            folders: self.folders.into_inner(),
+        })
+    }
+
+    fn load_file(&self, uri: &str) -> tobj::MTLLoadResult {
+        let field = format!("mtllib `{uri}`");
+        let warn = |problem: String| self.warnings.borrow_mut().push(FieldIssue { field: field.clone(), problem });
+        let text = match resolve_uri(self.obj, uri, MAX_RESOURCE_BYTES) {
+            Ok(text) => text,
+            Err(ref e) if let Some(mtl) = e.missing_path() => {
+                warn(format!(
+                    "{} does not exist; the faces naming its materials use `{DEFAULT_MATERIAL}`",
+                    mtl.display()
+                ));
+                self.left_out.set(true);
+                return Err(tobj::LoadError::OpenFileFailed);
+            }
+            Err(error) => {
+                self.refused.borrow_mut().get_or_insert(error);
+                return Err(tobj::LoadError::OpenFileFailed);
+            }
+        };
+        let loaded = text::decode(&text).and_then(|(text, encoding)| {
+            if let Some(how) = encoding {
+                warn(format!("not UTF-8: {how}"));
+            }
+            let text = statements::without_trailing_comments(&text);
+            let text = statements::joined_continuations(&text);
+            let text = expand_colours(&text::material_statements(&text, &["newmtl"]))
+                .map_err(|problem| format!("{uri}:{problem}"))?;
+            let loaded = tobj::load_mtl_buf(&mut text.as_slice()).map_err(|e| e.to_string())?;
+            let folder = uri.replace('\\', "/").rsplit_once('/').map_or(String::new(), |(f, _)| f.to_string());
+            self.folders.borrow_mut().push((folder, loaded.0.len()));
+            Ok(loaded)
+        });
+        loaded.map_err(|problem| {
+            warn(format!("materials not loaded ({problem}); the faces naming them use `{DEFAULT_MATERIAL}`"));
+            self.left_out.set(true);
+            tobj::LoadError::MaterialParseError
+        })
+    }
+}
+
+/// The MTL files an `mtllib` statement names: its whole rest where that is a file beside the
+/// OBJ (a name with spaces, as Blender writes `mtllib my model.mtl`); else, as the OBJ
+/// specification allows, each of its words that ends in `.mtl` where they all do
+/// (`mtllib a.mtl b.mtl`); else the whole rest (missing, warned).
+fn mtl_files(obj: &Path, rest: &str) -> Vec<String> {
+    let folder = obj.parent().unwrap_or(Path::new("."));
+    let words: Vec<&str> = rest.split_whitespace().collect();
+    let all_mtl = words.len() > 1 && words.iter().all(|w| w.to_ascii_lowercase().ends_with(".mtl"));
+    if !all_mtl || folder.join(rest).is_file() {
+        return vec![rest.to_string()];
+    }
+    words.into_iter().map(str::to_string).collect()
+}
+
+/// One warning per `usemtl` that names no material of the MTL (its faces take the default),
+/// at the first line naming it.
+pub(super) fn unknown_materials(uses: &[text::UseMaterial], materials: &[tobj::Material]) -> Vec<FieldIssue> {
+    let mut warned: Vec<&str> = Vec::new();
+    let mut out = Vec::new();
+    for used in uses {
+        let name = if used.name.is_empty() { text::NAMELESS } else { &used.name };
+        if warned.contains(&name) || materials.iter().any(|m| m.name == name) {
+            continue;
+        }
+        warned.push(name);
+        let problem = if used.name.is_empty() {
+            format!("names no material and no MTL file has a nameless one; its faces use `{DEFAULT_MATERIAL}`")
+        } else {
+            format!("`{}` is in no MTL file; its faces use `{DEFAULT_MATERIAL}`", used.name)
+        };
+        out.push(FieldIssue { field: format!("line {}: usemtl", used.line), problem });
+    }
+    out
+}
