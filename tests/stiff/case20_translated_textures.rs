@@ -13,6 +13,7 @@
 
 use glint_core::compare::flip_mean;
 use glint_test_support::TempDir;
+use glint_test_support::render::render_cpu_checked;
 use glint_test_support::texture::textured_scene_moved;
 
 use crate::TRANSLATED_TEXTURES;
@@ -66,4 +67,27 @@ fn textures_far_from_the_origin_are_as_accurate_on_the_gpu_as_at_the_origin() {
     eprint!("{out}");
     crate::generated::section("case20-textures", &out);
     assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// A checker floor of size 0.3 (its scale 1/0.6 is not an f32) and a sphere, moved by `o`.
+fn checker_scene(o: [f64; 3]) -> SceneText {
+    let p = |v: [f64; 3]| [v[0] + o[0], v[1] + o[1], v[2] + o[2]];
+    SceneText::new(96, 72, "max_depth = 0", p([0.3, 1.5, -5.0]), p([0.2, 0.5, 0.0]), crate::Y, 40.0)
+        .world([0.0; 3], [0.0; 3])
+        .material("f", "ka = 0.0\nkd = 0.8\nchecker = { kd = 0.2, size = 0.3 }")
+        .light("directional", "direction = [0.3, -1.0, 0.5]")
+        .plane(p([0.0; 3]), crate::Y, "f")
+        .sphere(p([0.0, 0.8, 0.0]), 0.8, "f")
+}
+
+#[test]
+fn a_checker_moved_by_whole_periods_is_where_it_was_on_the_cpu() {
+    // (750000, 0, −9019794) periods of 0.6: every square lands where it was. Before, each
+    // texture's planar origin was placed with its f32 scale (1/0.6 rounded by 3e-8), whose
+    // error times 9e6 periods is half a period: 2053 of 6912 pixels took the other colour, on
+    // both tracers alike.
+    let at = |o: [f64; 3]| render_cpu_checked(&checker_scene(o).flat(), 2, true).image;
+    let (origin, moved) = (at([0.0; 3]), at([450_000.0, 0.0, -5_411_876.4]));
+    let differing = origin.pixels.iter().zip(&moved.pixels).filter(|(a, b)| (0..3).any(|c| (a[c] - b[c]).abs() > 1e-3));
+    assert_eq!(differing.count(), 0, "pixels of the moved checker unlike the origin's");
 }

@@ -12,6 +12,9 @@ use glint_types::layout::{GpuTexture, NO_TEXTURE};
 pub(crate) struct TextureTable {
     pub textures: Vec<GpuTexture>,
     pub texels: Vec<[f32; 4]>,
+    /// Each texture's UV transform rows in f64, as `textures` stores them in f32
+    /// (`FlatScene::texture_transforms`).
+    pub transforms: Vec<[[f64; 3]; 2]>,
     /// Images already in `texels`, with their first texel.
     stored: Vec<(Arc<TextureImage>, u32)>,
 }
@@ -51,6 +54,7 @@ impl TextureTable {
 
     fn push(&mut self, offset: u32, width: u32, height: u32, wrap: [Wrap; 2], filter: Filter, t: &UvTransform) -> u32 {
         let [u, v] = t.matrix();
+        self.transforms.push([u, v]);
         self.textures.push(GpuTexture {
             offset,
             width,

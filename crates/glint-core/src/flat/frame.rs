@@ -16,7 +16,9 @@ impl FlatScene {
 }
 
 /// Each texture's planar origins (`GpuTexture::planar_u`, `planar_v`) for `frame`: the
-/// transformed planar coordinates of the frame's origin, across each axis, in f64, folded
+/// transformed planar coordinates of the frame's origin, across each axis, in f64 (with the f64
+/// transform, `FlatScene::texture_transforms`: the stored f32 one's rounding times the origin's
+/// distance is a shift of the pattern), folded
 /// towards 0 by the wrap mode's period (`fold`). Planar coordinates are then taken relative to the frame, small,
 /// and a texel edge 1e6 units from the world origin stays where it is on the GPU (its f32
 /// world coordinate was off by 1/16 there). At the world origin they are the offsets, exact.
@@ -24,16 +26,16 @@ pub(crate) fn place_texture_origins(out: &mut FlatScene, frame: [f32; 4]) {
     let f = wide(frame);
     let across = [(f.y, f.z), (f.x, f.z), (f.x, f.y)];
     let at_world_origin = f == DVec3::ZERO;
-    for tex in &mut out.textures {
+    for (tex, [u, v]) in out.textures.iter_mut().zip(&out.texture_transforms) {
         for (k, &(a, b)) in across.iter().enumerate() {
-            let at = |row: [f32; 4], wrap: u32| {
+            let at = |stored: [f32; 4], row: [f64; 3], wrap: u32| {
                 if at_world_origin {
-                    return row[2];
+                    return stored[2];
                 }
-                fold(f64::from(row[0]) * a + f64::from(row[1]) * b + f64::from(row[2]), wrap) as f32
+                fold(row[0] * a + row[1] * b + row[2], wrap) as f32
             };
-            tex.planar_u[k] = at(tex.transform_u, tex.wrap_s);
-            tex.planar_v[k] = at(tex.transform_v, tex.wrap_t);
+            tex.planar_u[k] = at(tex.transform_u, *u, tex.wrap_s);
+            tex.planar_v[k] = at(tex.transform_v, *v, tex.wrap_t);
         }
     }
 }

@@ -48,6 +48,10 @@ pub struct FlatScene {
     pub textures: Vec<GpuTexture>,
     /// Every texture's texels, linear RGBA, row by row from the top (`GpuTexture::offset`).
     pub texels: Vec<[f32; 4]>,
+    /// Each texture's UV transform rows in f64, beside `textures`: what the planar origins are
+    /// placed with (`place_texture_origins`). Far from the world origin the f32 rows' rounding
+    /// would move a checker of size 0.3 by half a square at 5e6.
+    pub texture_transforms: Vec<[[f64; 3]; 2]>,
     /// The BVH over spheres and triangles (`bvh::build`; root first, empty without them).
     pub bvh_nodes: BvhNodes,
     /// The primitive references its leaves point into (`bvh::PrimRef`).
@@ -169,6 +173,7 @@ impl FlatScene {
             meshes: geometry.meshes,
             textures: table.textures,
             texels: table.texels,
+            texture_transforms: table.transforms,
             bvh_nodes: geometry.bvh_nodes,
             bvh_prims: geometry.bvh_prims,
             leaf_corners: geometry.leaf_corners,
