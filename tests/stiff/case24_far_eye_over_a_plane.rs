@@ -87,3 +87,37 @@ fn a_far_eye_over_a_lone_plane_sees_it_as_a_near_one_on_both_tracers() {
     eprint!("{out}");
     crate::generated::section("case24-far-eye-over-a-plane", &out);
 }
+
+/// A diffuse floor 2 under an eye, lit by an attenuated point light, nothing else: moved by `x`.
+fn lit_floor(x: f64) -> SceneText {
+    let p = |v: [f64; 3]| [v[0] + x, v[1], v[2]];
+    SceneText::new(64, 48, "max_depth = 0", p([0.5, 2.0, -3.0]), p([0.0; 3]), crate::Y, 50.0)
+        .world([0.0; 3], [0.0; 3])
+        .material("p", "ka = 0.0\nkd = 0.7")
+        .light(
+            "point",
+            &format!(
+                "position = {}\nattenuation = {{ c = 1.0, l = 0.5, q = 0.25 }}",
+                crate::scene::arr(p([0.3, 1.0, 0.2]))
+            ),
+        )
+        .plane(p([0.0; 3]), crate::Y, "p")
+}
+
+#[test]
+fn planes_alone_far_from_the_origin_are_stored_around_the_eye() {
+    // Before, a scene of planes alone was stored in world space: at x = 1e7 the eye, the light
+    // and the plane's offset were rounded to 1, and the floor lit up to 20 % off.
+    let at = |x: f64| crate::render::render_cpu_checked(&lit_floor(x).flat(), 2, true).image;
+    let origin = at(0.0);
+    for x in [1e6, 1e7] {
+        let moved = at(x);
+        let worst = origin
+            .pixels
+            .iter()
+            .zip(&moved.pixels)
+            .flat_map(|(a, b)| (0..3).map(move |c| crate::rel_err(b[c], a[c])))
+            .fold(0.0, f64::max);
+        assert!(worst < 1e-5, "x = {x:e}: the floor is lit {worst:.2e} off the origin's");
+    }
+}

@@ -17,7 +17,7 @@ const WORLD_SPACE_REACH: f64 = 64.0;
 /// The origin of `desc`'s stored coordinates (`SceneHeader::frame` once flattened): the world
 /// origin for geometry around it, else the centre of the box around the bounded geometry
 /// (spheres, meshes and models; planes, lights and the camera are unbounded or points, and
-/// follow) snapped to a grid of the power of two nearest the box's largest side and rounded to
+/// follow; in a scene of planes alone, the box around the eye out to its nearest plane) snapped to a grid of the power of two nearest the box's largest side and rounded to
 /// f32 — the header stores it in f32, so it is exact there.
 ///
 /// Why the world origin for geometry around it (the box's centre within `WORLD_SPACE_REACH` of
@@ -44,7 +44,10 @@ pub fn storage_origin_within(desc: &SceneDesc, bounds: Option<(DVec3, DVec3)>) -
             let (lo, hi) = eye_neighbourhood(desc, lo, hi).unwrap_or((lo, hi));
             storage_origin_of_box(lo.to_array(), hi.to_array())
         }
-        None => [0.0; 3],
+        // Planes alone have no size: what is seen is near the eye, and f32 holds it to the
+        // eye's height over its nearest plane. In world space a floor 3.6 under an eye at 1e7
+        // was lit 20 % off (the eye, the light and the plane's offset rounded to 1).
+        None => around_the_eye(desc).map_or([0.0; 3], |(lo, hi)| storage_origin_of_box(lo.to_array(), hi.to_array())),
     }
 }
 
@@ -63,15 +66,21 @@ fn box_far_out_of_sight(desc: &SceneDesc, lo: DVec3, hi: DVec3) -> bool {
         && !desc.camera.may_see(centre.to_array(), 0.5 * (hi - lo).length())
 }
 
-/// The box around the eye out to its nearest plane, where it takes the place of the bounded
-/// geometry's box `lo`..`hi`: where that box is far and out of sight (`far_box_out_of_sight`)
-/// and a plane passes the eye. A floor 0.01 under an
-/// eye with a sphere 3e5 behind it, stored around the sphere, was level with the stored eye, and
-/// vanished from the image.
+/// The box around the eye out to its nearest plane (`around_the_eye`), where it takes the place
+/// of the bounded geometry's box `lo`..`hi`: where that box is far and out of sight
+/// (`far_box_out_of_sight`) and a plane passes the eye. A floor 0.01 under an eye with a sphere
+/// 3e5 behind it, stored around the sphere, was level with the stored eye, and vanished from the
+/// image.
 fn eye_neighbourhood(desc: &SceneDesc, lo: DVec3, hi: DVec3) -> Option<(DVec3, DVec3)> {
     if !box_far_out_of_sight(desc, lo, hi) {
         return None;
     }
+    around_the_eye(desc)
+}
+
+/// The box around the eye out to its nearest plane, `None` when no plane passes it (at a
+/// finite, non-zero height).
+fn around_the_eye(desc: &SceneDesc) -> Option<(DVec3, DVec3)> {
     let eye = DVec3::from(desc.camera.position);
     let heights = desc.objects.iter().filter_map(|object| match object {
         ObjectDesc::Plane(PlaneDesc { point, normal, .. }) => {
@@ -168,6 +177,26 @@ mod tests {
             name: String::new(),
         });
         assert_eq!(storage_origin(&with(vec![floor])), [0.0; 3]);
+    }
+
+    #[test]
+    fn planes_alone_far_from_the_world_origin_are_stored_around_the_eye() {
+        let floor = ObjectDesc::Plane(PlaneDesc {
+            point: [1e7, 0.0, 0.0],
+            normal: [0.0, 1.0, 0.0],
+            material: "m".into(),
+            name: String::new(),
+        });
+        let mut desc = with(vec![floor]);
+        desc.camera.position = [1e7 + 0.5, 2.0, -3.0];
+        desc.camera.look_at = [1e7, 0.0, 0.0];
+        // 2 over the floor: a grid of 4, the origin within it of the eye.
+        let o = storage_origin(&desc);
+        assert!(DVec3::from(o).distance(DVec3::from(desc.camera.position)) < 4.0, "{o:?}");
+        assert_eq!(o, o.map(|c| f64::from(c as f32)));
+        // Near the world origin (for its height): world space, as always.
+        desc.camera.position = [0.5, 2.0, -3.0];
+        assert_eq!(storage_origin(&desc), [0.0; 3]);
     }
 
     #[test]
