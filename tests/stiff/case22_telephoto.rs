@@ -185,3 +185,39 @@ fn a_far_sphere_seen_off_the_axes_is_a_disc_on_both_backends() {
     eprint!("{out}");
     crate::generated::section("case22-telephoto", &out);
 }
+
+/// A telephoto (0.0025°) view from 1.1e5 of a spot-lit triangle 1.1e5 wide: the scene as large
+/// as the eye's distance, so the distance anchors nothing (a fuzzed scene, shrunk).
+fn telephoto_in_a_large_scene() -> SceneText {
+    let y = 0.756_55;
+    let h = 53_954.0;
+    SceneText::new(63, 34, "max_depth = 0", [-64_808.9, 15_028.5, -91_666.3], [-0.46, 0.56, -0.36], crate::Y, 0.002_53)
+        .world([0.0; 3], [0.0; 3])
+        .material("m", "kd = 0.8")
+        .light(
+            "spot",
+            "position = [-2.8, 3.2, 3.5]\ndirection = [2.14, -2.16, -4.05]\nfalloff = \"smooth\"\n\
+             inner_cone = 48.2\nouter_cone = 61.9\nattenuation = { c = 1.36, l = 0.143, q = 0.0194 }",
+        )
+        .mesh(&[[-h, y, -h], [h, y, -h], [0.0, y, h]], &[[0, 1, 2]], None, "m")
+}
+
+#[test]
+fn a_telephoto_in_a_scene_as_large_as_its_distance_is_anchored_on_the_gpu() {
+    // Before, the eye was stored itself and the GPU summed each ray's direction in f32: 1/20 of
+    // a pixel off, and the shading up to 1.2e-2 (4 %) off the CPU's at the spot's edge (PSNR
+    // 67 dB; the lit floor is about 0.2). The GPU
+    // now anchors a telephoto near its focus (`rebase::rebases`); the CPU is as it was.
+    let both = render_both("stiff/case22", "telephoto-large-scene", &telephoto_in_a_large_scene().flat());
+    let Some(gpu) = &both.gpu else { return };
+    let worst = both
+        .cpu
+        .image
+        .pixels
+        .iter()
+        .zip(&gpu.image.pixels)
+        .map(|(c, g)| (*c - *g).abs().max_element())
+        .fold(0.0, f64::max);
+    let hits = both.first_hit_mismatches().len();
+    both.ensure(worst <= 1e-5 && hits == 0, || format!("GPU shading {worst:.2e} off the CPU's, {hits} hits differ"));
+}

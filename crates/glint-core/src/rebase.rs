@@ -21,7 +21,7 @@ use crate::bvh::{f32_down, f32_up};
 use crate::cpu::intersect::Leaving;
 use crate::cpu::walk::closest_hit;
 use crate::cpu::{Ray, TraceContext, v3};
-use crate::flat::{anchor_of, camera_eye, place_texture_origins, scene_box};
+use crate::flat::{anchor_of, camera_eye, place_texture_origins, scene_box, telephoto};
 use glint_scene::LightKind;
 use glint_types::layout::{GpuPlane, GpuSphere, origin_power};
 
@@ -174,6 +174,24 @@ pub fn camera_frame(scene: &FlatScene) -> [f32; 4] {
     [c.x as f32, c.y as f32, c.z as f32, w as f32]
 }
 
+/// Whether the GPU traces `scene` rebased into `frame`: where that is not the frame it is
+/// stored in, and where its camera is a telephoto whose eye is stored itself
+/// (`unanchored_telephoto`), also in its own frame.
+pub fn rebases(scene: &FlatScene, frame: [f32; 4]) -> bool {
+    frame != scene.header.frame || unanchored_telephoto(scene)
+}
+
+/// A telephoto (`flat::telephoto`, a field of view under 0.9°) stored with its eye (w = 0): in
+/// a scene as large as its distance, which anchors no eye by the distance. The CPU sums each
+/// ray's direction in f64 from the stored vectors; the GPU's f32 sum, each component of order 1
+/// with a step of 6e-8, moves the ray a share of a pixel that grows as the field narrows (a
+/// 1e5 triangle seen from 1.1e5 through 0.0025°: 1/20 of a pixel, and shading 4 % off the CPU's
+/// under a spot light's edge). Anchored near the focus, the sum's error acts over the distance
+/// from there only.
+fn unanchored_telephoto(scene: &FlatScene) -> bool {
+    scene.camera.anchor[3] == 0.0 && telephoto(v3(scene.camera.forward), v3(scene.camera.up))
+}
+
 /// `scene` in `frame` (see the module comment): positions moved by the difference between
 /// `frame`'s origin and the scene's own, in f64, rounded once; the header's frame set. The
 /// result renders the same scene on either tracer.
@@ -230,9 +248,10 @@ fn move_the_rest(out: &mut FlatScene, scene: &FlatScene, frame: [f32; 4]) {
     let c = v3(frame) - scene.frame_origin();
     out.header.frame = frame;
     place_texture_origins(out, frame);
-    // An anchored camera's eye moved in f64 and anchored anew, nearest the new origin (the
-    // focus, snapped); an eye that is its own anchor (w = 0) moved as the other points.
-    out.camera.anchor = if scene.camera.anchor[3] > 0.0 {
+    // An anchored camera's eye, or a telephoto's (`unanchored_telephoto`), moved in f64 and
+    // anchored anew, nearest the new origin (the focus, snapped); any other eye that is its own
+    // anchor (w = 0) moved as the other points.
+    out.camera.anchor = if scene.camera.anchor[3] > 0.0 || unanchored_telephoto(scene) {
         anchor_of(camera_eye(&scene.camera) - c, v3(scene.camera.forward), DVec3::ZERO)
     } else {
         moved(scene.camera.anchor, c)

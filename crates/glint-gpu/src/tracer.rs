@@ -12,7 +12,7 @@ use glint_core::cpu::ray_tree::RayTree;
 use glint_core::cpu::shade::Breakdown;
 use glint_core::flat::GeometryId;
 use glint_core::glam::DVec3;
-use glint_core::rebase::{Frame, rebased, rebased_with_geometry};
+use glint_core::rebase::{Frame, rebased, rebased_with_geometry, rebases};
 use glint_core::{Accel, FlatScene, PixelRect};
 use glint_types::layout::{PROBE_HIT, ProbeRecord};
 
@@ -62,7 +62,7 @@ impl RebasedCache {
     /// rebased geometry when it is this one's in this frame.
     fn in_frame<'a>(&self, scene: &'a FlatScene, frame: Frame) -> Cow<'a, FlatScene> {
         let frame = frame.of(scene);
-        if frame == scene.header.frame {
+        if !rebases(scene, frame) {
             return Cow::Borrowed(scene);
         }
         let id = scene.geometry_id();

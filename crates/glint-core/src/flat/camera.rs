@@ -52,10 +52,7 @@ impl WorldCamera {
                 // The image's height at distance t is 2·t·|up| / |forward|. An anchor farther
                 // from the origin than the eye (an axis grazing the plane) would store the
                 // eye worse than the eye itself.
-                Some(t)
-                    if self.forward.length() > EYE_REACH * 2.0 * self.up.length()
-                        && (eye + t * self.forward).length() < eye.length() =>
-                {
+                Some(t) if telephoto(self.forward, self.up) && (eye + t * self.forward).length() < eye.length() => {
                     anchor_of(eye, self.forward, eye + t * self.forward)
                 }
                 _ => vec4(eye, 0.0),
@@ -74,6 +71,15 @@ impl WorldCamera {
         });
         hits.min_by(f64::total_cmp)
     }
+}
+
+/// Whether a camera of these ray-generation vectors sees, at any distance, a patch less than
+/// 1/`EYE_REACH` of that distance high (a vertical field of view under 0.9°): the image's
+/// height at distance t is 2·t·|up| / |forward|. Its rays are anchored near what they meet,
+/// however large the scene: from the eye, the f32 direction's step (6e-8) is a fixed share of
+/// a pixel that grows as the field narrows.
+pub(crate) fn telephoto(forward: DVec3, up: DVec3) -> bool {
+    forward.length() > EYE_REACH * 2.0 * up.length()
 }
 
 /// `GpuCamera::anchor` for an eye at `eye` (stored coordinates, f64) looking along `forward`:

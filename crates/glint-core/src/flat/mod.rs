@@ -82,8 +82,8 @@ mod geometry;
 mod leaf_corners;
 mod lights_materials;
 
-pub(crate) use camera::anchor_of;
 pub use camera::{SceneBox, WorldCamera, camera_eye};
+pub(crate) use camera::{anchor_of, telephoto};
 pub(crate) use frame::place_texture_origins;
 pub use geometry::GeometryId;
 use geometry::{Geometry, flat_primitives};
