@@ -7,6 +7,7 @@
 //! warned about at load, with the bound and the remedy.
 
 use super::desc::{RenderSettings, SceneDesc};
+use super::material::MaterialDesc;
 use super::number::format_number;
 
 /// Rays of one camera sample's tree beyond which a scene is warned about: the GPU's walk bound
@@ -28,10 +29,17 @@ pub fn reachable_depth(desc: &SceneDesc, settings: &RenderSettings) -> u32 {
     settings.max_depth
 }
 
-/// g: the largest max-channel k_r + k_t of any material, the most a level multiplies a path's
-/// weight by.
+/// g: the largest max-channel k_r + k_t of any material an object uses, the most a level
+/// multiplies a path's weight by.
 fn largest_gain(desc: &SceneDesc) -> f64 {
-    desc.materials.values().map(|m| m.gain(glint_types::Integrator::Whitted)).fold(0.0, f64::max)
+    used_materials(desc).map(|(_, m)| m.gain(glint_types::Integrator::Whitted)).fold(0.0, f64::max)
+}
+
+/// The materials some object uses, in the scene's order: a material no ray can hit shapes no
+/// tree (a scene file may define materials it does not use).
+fn used_materials(desc: &SceneDesc) -> impl Iterator<Item = (&String, &MaterialDesc)> {
+    let used: std::collections::HashSet<&str> = desc.objects.iter().flat_map(|o| o.materials()).collect();
+    desc.materials.iter().filter(move |(name, _)| used.contains(name.as_str()))
 }
 
 /// The levels of the largest tree not warned about: 2^(k+1) − 1 ≤ `WARN_RAYS_PER_SAMPLE`.
@@ -44,7 +52,7 @@ pub fn unbounded_ray_tree(desc: &SceneDesc, settings: &RenderSettings) -> Option
     if settings.integrator == glint_types::Integrator::Path {
         return None;
     }
-    let (name, m) = desc.materials.iter().find(|(_, m)| m.kr.max_channel() > 0.0 && m.kt.max_channel() > 0.0)?;
+    let (name, m) = used_materials(desc).find(|(_, m)| m.kr.max_channel() > 0.0 && m.kt.max_channel() > 0.0)?;
     let depth = reachable_depth(desc, settings);
     // A full binary tree of `depth` levels below the camera ray.
     let rays = 2f64.powf(f64::from(depth) + 1.0) - 1.0;
@@ -88,9 +96,13 @@ pub fn unbounded_ray_tree(desc: &SceneDesc, settings: &RenderSettings) -> Option
 mod tests {
     use super::*;
 
+    const SPHERE: &str = "[[objects]]\ntype = \"sphere\"\ncenter = [0.0, 0.0, 0.0]\nradius = 1.0\n";
+
+    /// A sphere of `material` (named glass).
     fn scene(material: &str) -> SceneDesc {
         let head = "[camera]\nposition = [0.0, 0.0, -4.0]\nlook_at = [0.0, 0.0, 0.0]\n";
-        toml::from_str(&format!("{head}[materials.glass]\n{material}\n")).expect("scene parses")
+        toml::from_str(&format!("{head}[materials.glass]\n{material}\n{SPHERE}material = \"glass\"\n"))
+            .expect("scene parses")
     }
 
     fn settings(max_depth: u32, bailout: f64) -> RenderSettings {
@@ -132,5 +144,17 @@ mod tests {
         assert!(unbounded_ray_tree(&gain, &settings(40, 0.5)).is_some());
         let mirror = scene("kr = 1.0");
         assert!(unbounded_ray_tree(&mirror, &settings(1024, 0.0)).is_none(), "a chain, not a tree");
+    }
+
+    #[test]
+    fn a_branching_material_no_object_uses_is_not_warned_about() {
+        let head = "[camera]\nposition = [0.0, 0.0, -4.0]\nlook_at = [0.0, 0.0, 0.0]\n";
+        let text = format!(
+            "{head}[materials.glass]\nkr = 0.3\nkt = 0.9\n[materials.mirror]\nkr = 0.5\n{SPHERE}material = \"mirror\"\n"
+        );
+        let mirrors: SceneDesc = toml::from_str(&text).expect("scene parses");
+        assert!(unbounded_ray_tree(&mirrors, &settings(1024, 0.0)).is_none(), "glass is on nothing");
+        // 0.5^3 ≥ 0.1 > 0.5^4; counting glass's gain of 1.2, the bailout could stop nothing.
+        assert_eq!(reachable_depth(&mirrors, &settings(1024, 0.1)), 3);
     }
 }
