@@ -26,7 +26,7 @@ use glint_scene::{FieldIssue, MeshDesc};
 use glint_scene::{Mat4, Model};
 
 pub use self::error::{GltfError, SUPPORTED_EXTENSIONS};
-use self::file::{load_buffers, parse, read_capped};
+use self::file::{NodeNumbers, load_buffers, node_numbers, parse, read_capped};
 pub use self::material::{MIRROR_ROUGHNESS, blinn_exponent};
 
 /// The material of primitives that name none.
@@ -40,6 +40,7 @@ pub fn load_gltf(path: &Path, options: &ImportOptions) -> Result<Model, GltfErro
     let bytes = read_capped(path).map_err(|error| GltfError::Io { file: file.clone(), error })?;
     let mut model = Model::default();
     let gltf = parse(&bytes, &file, &mut model.warnings)?;
+    let numbers = node_numbers(&bytes);
     for (index, extension) in gltf.extensions_required().enumerate() {
         if !SUPPORTED_EXTENSIONS.contains(&extension) {
             return Err(GltfError::RequiredExtension { file: file.clone(), index, extension: extension.to_string() });
@@ -132,7 +133,8 @@ pub fn load_gltf(path: &Path, options: &ImportOptions) -> Result<Model, GltfErro
         });
     }
     // Skins are posed by joints anywhere in the scene, walked before or after their mesh.
-    let world_of = if gltf.skins().len() > 0 { world_transforms(&scene, gltf.nodes().len()) } else { Vec::new() };
+    let world_of =
+        if gltf.skins().len() > 0 { world_transforms(&scene, gltf.nodes().len(), &numbers) } else { Vec::new() };
     model.warnings.extend(super::left_out("materials", "what Glint's model does not read", &unread));
     // Depth first from the scene's roots; a node reached twice is a cycle or a shared child,
     // both outside glTF's "disjoint strict trees", and refused rather than walked forever.
@@ -152,7 +154,7 @@ pub fn load_gltf(path: &Path, options: &ImportOptions) -> Result<Model, GltfErro
                 "is reached twice from the scene (a cycle or a shared child; glTF node hierarchies are trees)".into(),
             ));
         }
-        let local = node_matrix(node.transform()).map_err(|p| at(format!("nodes[{i}]"), p))?;
+        let local = node_matrix(&node, &numbers).map_err(|p| at(format!("nodes[{i}]"), p))?;
         let world = parent.mul(&local);
         if let Some(mesh) = node.mesh() {
             let instanced = instancing::instances(&node, &gltf, &buffers, &mut instance_budget)
@@ -292,11 +294,11 @@ struct Place<'a> {
 
 /// Every node's world transform in `scene` (`None` for a node outside it); a node reached twice
 /// keeps its first (the walk in `load_gltf` refuses such a file).
-fn world_transforms(scene: &::gltf::Scene<'_>, nodes: usize) -> Vec<Option<Mat4>> {
+fn world_transforms(scene: &::gltf::Scene<'_>, nodes: usize, numbers: &[NodeNumbers]) -> Vec<Option<Mat4>> {
     let mut world = vec![None; nodes];
     let mut stack: Vec<(::gltf::Node<'_>, Mat4)> = scene.nodes().map(|n| (n, Mat4::IDENTITY)).collect();
     while let Some((node, parent)) = stack.pop() {
-        let Ok(local) = node_matrix(node.transform()) else { continue };
+        let Ok(local) = node_matrix(&node, numbers) else { continue };
         if world[node.index()].is_some() {
             continue;
         }
@@ -471,13 +473,25 @@ fn triangulate(mode: Mode, indices: &[u32]) -> Vec<[u32; 3]> {
 }
 
 /// A node's local transform: its matrix, or T·R·S from translation, rotation (a unit
-/// quaternion x, y, z, w; normalised here, as glTF requires it to be unit already) and scale.
-fn node_matrix(transform: ::gltf::scene::Transform) -> Result<Mat4, String> {
+/// quaternion x, y, z, w; normalised here, as glTF requires it to be unit already) and scale;
+/// each as the JSON wrote it (`numbers`, by node), else as the gltf crate read it.
+fn node_matrix(node: &::gltf::Node<'_>, numbers: &[NodeNumbers]) -> Result<Mat4, String> {
+    local_matrix(node.transform(), numbers.get(node.index()))
+}
+
+/// `transform` (as the gltf crate read it, in f32) with the numbers `written` in the JSON where
+/// it gives them.
+fn local_matrix(transform: ::gltf::scene::Transform, written: Option<&NodeNumbers>) -> Result<Mat4, String> {
     match transform {
-        ::gltf::scene::Transform::Matrix { matrix } => Ok(Mat4(matrix.map(|c| c.map(f64::from)))),
-        ::gltf::scene::Transform::Decomposed { translation, rotation, scale } => {
-            trs_matrix(translation.map(f64::from), rotation.map(f64::from), scale.map(f64::from))
-        }
+        ::gltf::scene::Transform::Matrix { matrix } => Ok(match written.and_then(|n| n.matrix) {
+            Some(m) => Mat4(std::array::from_fn(|c| std::array::from_fn(|r| m[4 * c + r]))),
+            None => Mat4(matrix.map(|c| c.map(f64::from))),
+        }),
+        ::gltf::scene::Transform::Decomposed { translation, rotation, scale } => trs_matrix(
+            written.and_then(|n| n.translation).unwrap_or(translation.map(f64::from)),
+            written.and_then(|n| n.rotation).unwrap_or(rotation.map(f64::from)),
+            written.and_then(|n| n.scale).unwrap_or(scale.map(f64::from)),
+        ),
     }
 }
 
@@ -530,14 +544,50 @@ mod tests {
     fn trs_rotates_scales_then_translates() {
         let h = std::f32::consts::FRAC_1_SQRT_2;
         // 90° about +y: +x goes to −z.
-        let m = node_matrix(::gltf::scene::Transform::Decomposed {
-            translation: [1.0, 2.0, 3.0],
-            rotation: [0.0, h, 0.0, h],
-            scale: [2.0, 1.0, 1.0],
-        })
+        let m = local_matrix(
+            ::gltf::scene::Transform::Decomposed {
+                translation: [1.0, 2.0, 3.0],
+                rotation: [0.0, h, 0.0, h],
+                scale: [2.0, 1.0, 1.0],
+            },
+            None,
+        )
         .unwrap();
         assert!(close(m.point([1.0, 0.0, 0.0]), [1.0, 2.0, 1.0]), "{:?}", m.point([1.0, 0.0, 0.0]));
         assert!(m.determinant3() > 0.0);
+    }
+
+    #[test]
+    fn node_transforms_are_read_as_the_json_wrote_them_not_in_f32() {
+        // An ECEF point (f32's step there is 0.5), as a translation and as a matrix.
+        let ecef = [4_201_234.56, 4_779_855.21, 171_653.09];
+        let json = format!(
+            r#"{{"asset":{{"version":"2.0"}},"nodes":[{{"translation":{ecef:?}}},{{"matrix":[1,0,0,0,0,1,0,0,0,0,1,0,{},{},{},1]}},{{}}]}}"#,
+            ecef[0], ecef[1], ecef[2]
+        );
+        let numbers = node_numbers(json.as_bytes());
+        let f32_read = ::gltf::scene::Transform::Decomposed {
+            translation: ecef.map(|c| c as f32),
+            rotation: [0.0, 0.0, 0.0, 1.0],
+            scale: [1.0; 3],
+        };
+        assert_eq!(local_matrix(f32_read.clone(), numbers.first()).unwrap().point([0.0; 3]), ecef);
+        assert_ne!(local_matrix(f32_read, None).unwrap().point([0.0; 3]), ecef, "f32 would round it");
+        let m = ::gltf::scene::Transform::Matrix { matrix: Mat4::IDENTITY.0.map(|c| c.map(|x| x as f32)) };
+        assert_eq!(local_matrix(m, numbers.get(1)).unwrap().point([0.0; 3]), ecef);
+        assert!(numbers[2].translation.is_none() && numbers.len() == 3);
+        // A GLB's JSON chunk is read the same way.
+        let mut chunk = json.into_bytes();
+        chunk.resize(chunk.len().next_multiple_of(4), b' ');
+        let total = 12 + 8 + chunk.len() as u32;
+        let glb = [b"glTF".as_slice(), &2u32.to_le_bytes(), &total.to_le_bytes()]
+            .concat()
+            .into_iter()
+            .chain((chunk.len() as u32).to_le_bytes())
+            .chain(*b"JSON")
+            .chain(chunk)
+            .collect::<Vec<u8>>();
+        assert_eq!(node_numbers(&glb)[0].translation, Some(ecef));
     }
 
     #[test]
