@@ -154,6 +154,26 @@ fn zero_length_directions() {
         "camera.up",
         &["length"],
     );
+    // The bound is exclusive, as the message says: a normal of length exactly 1e-12 is refused.
+    expect_invalid(
+        &edited("normal = [0.0, 1.0, 0.0]", "normal = [0.0, 1e-12, 0.0]"),
+        "objects[1].normal",
+        &["needs length > 1e-12"],
+    );
+}
+
+#[test]
+fn a_look_at_nearer_the_eye_than_its_bound_says_how_near_and_the_bound() {
+    expect_invalid(
+        &edited("look_at = [0.0, 0.5, 0.0]", "look_at = [0.0, 1.0, -4.9999999999]"),
+        "camera.look_at",
+        &["is 1e-10 from camera.position", "at least 1e-9"],
+    );
+    expect_invalid(
+        &edited("look_at = [0.0, 0.5, 0.0]", "look_at = [0.0, 1.0, -5.0]"),
+        "camera.look_at",
+        &["equals camera.position", "at least 1e-9"],
+    );
 }
 
 #[test]

@@ -92,7 +92,8 @@ impl Report {
         }
         let len2 = d.iter().map(|v| v * v).sum::<f64>();
         // Must stay a usable direction after rounding to f32 and normalising there.
-        if len2.sqrt() < 1e-12 {
+        // As the message says: exactly 1e-12 is refused too.
+        if len2.sqrt() <= 1e-12 {
             self.error(field, format!("{d:?} has (near) zero length; a direction needs length > 1e-12"));
             return false;
         }
@@ -222,7 +223,15 @@ fn validate_camera(scene: &SceneDesc, r: &mut Report) {
     let f = sub(c.look_at, c.position);
     let flen = norm(f);
     if flen < 1e-9 {
-        r.error("camera.look_at", "equals camera.position; the camera needs a viewing direction");
+        let problem = if flen == 0.0 {
+            "equals camera.position; the camera needs a viewing direction (look_at at least 1e-9 from it)".to_string()
+        } else {
+            format!(
+                "is {} from camera.position; the camera needs a viewing direction (look_at at least 1e-9 from it)",
+                crate::number::format_rounded(flen, 2)
+            )
+        };
+        r.error("camera.look_at", problem);
         return;
     }
     let cr = cross(f, c.up);
