@@ -2,11 +2,19 @@
 //! leaves (`tmin` skips hits nearer than ε), so in a scene a few ε across rays pass through the
 //! geometry they should meet: a furnace box 2e-6 wide at the default ε = 1e-6 returned 1.46 of
 //! its 2.00, and a model scaled to 8e-3 wide (ε 1.25e-4 of it) lost a mirror's reflection of a
-//! sphere in 12 pixels. A warning, not an error: a large ε is also an experiment (the acne it
-//! hides).
+//! sphere in 12 pixels. And one too small for the classic modes, which have nothing but ε to
+//! keep a ray off the surface it leaves: below f32's step at the scene's size the GPU's hit
+//! points lie on either side of their surface, and at 0 the CPU's too (a fuzzed scene at
+//! `nudge_ray`, ε = 0: acne on both, 102 of 1,728 pixels 10 % apart). Warnings, not errors: both
+//! are also experiments (numerics.md case 2 is the acne a small ε lets through).
 
 use crate::desc::{RenderSettings, SceneDesc};
 use crate::number::{format_number, format_rounded};
+use glint_types::EpsilonMode;
+
+/// f32's step at the scene's size, as a share of it (2^-23): hit points stored and computed in
+/// f32 are that far off their surfaces.
+const F32_STEP_SHARE: f64 = 1.0 / 8_388_608.0;
 
 /// The share of the scene's size beyond which ε is warned about: ten times what the default
 /// ε is of a scene 1 wide.
@@ -15,9 +23,45 @@ pub const EPSILON_WARN_SHARE: f64 = 1e-5;
 /// The ε to suggest, as a share of the scene's size: the default ε's of a scene 1 wide.
 pub const EPSILON_SHARE: f64 = 1e-6;
 
-/// The warning for an ε beyond `EPSILON_WARN_SHARE` of the scene's bounded geometry's largest side.
+/// The warning for an ε beyond `EPSILON_WARN_SHARE` of the scene's bounded geometry's largest
+/// side, or, in a mode that only ε keeps off the surface a ray leaves (`tmin`, `nudge_ray`,
+/// `nudge_normal`), below f32's step at that size (`F32_STEP_SHARE`; without bounded geometry, 0).
 pub fn epsilon_warning(desc: &SceneDesc, settings: &RenderSettings) -> Option<String> {
-    let extent = crate::storage::scene_extent(desc).filter(|e| *e > 0.0 && e.is_finite())?;
+    let extent = crate::storage::scene_extent(desc).filter(|e| *e > 0.0 && e.is_finite());
+    too_small(settings, extent).or_else(|| too_large(settings, extent?))
+}
+
+fn too_small(settings: &RenderSettings, extent: Option<f64>) -> Option<String> {
+    let mode = settings.epsilon_mode;
+    match mode {
+        EpsilonMode::Tmin | EpsilonMode::NudgeRay | EpsilonMode::NudgeNormal => {}
+        EpsilonMode::Robust | EpsilonMode::SkipConvex => return None,
+    }
+    let step = extent.map_or(0.0, |e| F32_STEP_SHARE * e);
+    let eps = settings.epsilon;
+    let why = if eps == 0.0 {
+        "keeps no ray off the surface it leaves".to_string()
+    } else if eps < step {
+        format!(
+            "is below f32's step at the scene's size ({}, 2^-23 of its largest side {}), which the GPU's hit \
+             points are off their surfaces by",
+            format_rounded(step, 2),
+            format_rounded(extent.unwrap_or(0.0), 3)
+        )
+    } else {
+        return None;
+    };
+    let fits =
+        extent.map_or_else(|| "one that fits the scene's size".to_string(), |e| format_rounded(EPSILON_SHARE * e, 2));
+    Some(format!(
+        "{} in `{}` mode {why}: rays can meet the surface they leave again and shade it with acne (numerics.md \
+         case 2); raise it to {fits}, or use `robust`",
+        format_number(eps),
+        mode.name()
+    ))
+}
+
+fn too_large(settings: &RenderSettings, extent: f64) -> Option<String> {
     (settings.epsilon > EPSILON_WARN_SHARE * extent).then(|| {
         format!(
             "{} is {} of the scene's size ({}, the largest side of its spheres' and meshes' box): rays move \
@@ -58,5 +102,23 @@ mod tests {
         assert!(text.ends_with("lower it to 8e-8 or less"), "{text}");
         let tenth = scene(0.06);
         assert_eq!(epsilon_warning(&tenth, &tenth.render), None, "8.3e-6 of the scene's size");
+    }
+
+    #[test]
+    fn an_epsilon_too_small_for_a_classic_mode_is_warned_about() {
+        let unit = scene(1.0);
+        let at = |mode: EpsilonMode, epsilon: f64| {
+            epsilon_warning(&unit, &RenderSettings { epsilon_mode: mode, epsilon, ..unit.render.clone() })
+        };
+        let zero = at(EpsilonMode::NudgeRay, 0.0).expect("ε = 0 at nudge_ray");
+        assert!(zero.starts_with("0 in `nudge_ray` mode keeps no ray off the surface it leaves: rays"), "{zero}");
+        assert!(zero.ends_with("raise it to 2e-6, or use `robust`"), "{zero}");
+        // The step at a scene 2 wide is 2.4e-7.
+        let tiny = at(EpsilonMode::Tmin, 1e-7).expect("ε = 1e-7 at tmin, in a scene 2 wide");
+        assert!(tiny.starts_with("1e-7 in `tmin` mode is below f32's step at the scene's size (2.4e-7"), "{tiny}");
+        assert_eq!(at(EpsilonMode::NudgeNormal, 3e-7), None);
+        for mode in [EpsilonMode::Robust, EpsilonMode::SkipConvex] {
+            assert_eq!(at(mode, 0.0), None, "{mode:?} needs no ε on a sphere");
+        }
     }
 }
