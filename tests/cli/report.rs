@@ -505,12 +505,54 @@ fn report_shards_merge_into_the_one_machine_report_and_missing_ones_are_named() 
     // f32 error is another adapter's.
     std::fs::write(&shard1, &cut).expect("restore shard 1");
     let shard2 = dir.join("s2/shard-2-of-3.toml");
-    let mut other_gpu: toml::Table = std::fs::read_to_string(&shard2).expect("shard 2").parse().expect("TOML");
+    let original2 = std::fs::read_to_string(&shard2).expect("shard 2");
+    let mut other_gpu: toml::Table = original2.parse().expect("TOML");
     other_gpu.insert("gpu_device".into(), "Another GPU (Vulkan)".into());
     std::fs::write(&shard2, toml::to_string(&other_gpu).expect("TOML")).expect("edit");
     let done = merge("s0,s1,s2", "gpus");
     assert!(!done.status.success(), "shards of two GPUs merged");
     assert!(text(&done.stderr).contains("its GPU is Another GPU (Vulkan), not none"), "{}", text(&done.stderr));
+    // Damaged rows are refused by field, not followed into a panic (a row's shard indexed the
+    // devices, an empty `times` was indexed for its median), and an absurd but finite error
+    // plots (its axis's ticks once grew without end).
+    std::fs::write(&shard2, &original2).expect("restore shard 2");
+    let edited = |edit: &dyn Fn(&mut toml::Table), out: &str| {
+        let mut shard: toml::Table = cut.parse().expect("shard 1 is TOML");
+        edit(&mut shard);
+        std::fs::write(&shard1, toml::to_string(&shard).expect("TOML")).expect("edit");
+        let done = merge("s0,s1,s2", out);
+        std::fs::write(&shard1, &cut).expect("restore shard 1");
+        done
+    };
+    let set_first_row = |shard: &mut toml::Table, key: &str, value: toml::Value| {
+        let results = shard["results"].as_array_mut().expect("results");
+        let rows = results.iter_mut().find_map(|r| r["rows"].as_array_mut().filter(|rows| !rows.is_empty()));
+        let row = rows.expect("shard 1 has a row")[0].as_table_mut().expect("a row");
+        match key.split_once('.') {
+            Some((table, field)) => row[table].as_table_mut().expect(table).insert(field.into(), value),
+            None => row.insert(key.into(), value),
+        };
+    };
+    for (key, value, expected) in [
+        ("shard", toml::Value::Integer(7), "rows[0].shard: is 7, not this file's shard 1"),
+        ("times", toml::Value::Array(Vec::new()), "rows[0].times: empty"),
+        ("errors.rmse", toml::Value::Float(f64::NAN), "rows[0].errors.rmse: NaN is not a finite number ≥ 0"),
+    ] {
+        let done = edited(&|s| set_first_row(s, key, value.clone()), "damaged");
+        let stderr = text(&done.stderr);
+        assert!(!done.status.success() && stderr.contains("shard-1-of-3.toml: results["), "{key}: {stderr}");
+        assert!(stderr.contains(expected) && !stderr.contains("panicked"), "{key}: {stderr}");
+        assert!(!dir.join("damaged/report.csv").exists(), "a refused merge wrote a report");
+    }
+    let absurd = |shard: &mut toml::Table| {
+        for scene in shard["results"].as_array_mut().expect("results") {
+            for row in scene["rows"].as_array_mut().expect("rows") {
+                row["errors"].as_table_mut().expect("errors").insert("rmse".into(), toml::Value::Float(1e308));
+            }
+        }
+    };
+    let done = edited(&absurd, "absurd");
+    assert!(done.status.success(), "{}", text(&done.stderr));
 }
 
 #[test]

@@ -42,7 +42,8 @@ pub(super) fn log_range(values: impl Iterator<Item = f64>, below: f64, above: f6
     if !(lo > 0.0 && hi.is_finite()) {
         return (0.1, 10.0);
     }
-    (lo / below, hi * above)
+    // Padded within f64: an axis to infinity has no ticks.
+    (lo / below, (hi * above).min(f64::MAX))
 }
 
 /// Ticks m × 10^k inside [lo, hi] for the mantissas `ms`: plotters' own log ticks leave
@@ -50,7 +51,8 @@ pub(super) fn log_range(values: impl Iterator<Item = f64>, below: f64, above: f6
 pub(super) fn ticks(lo: f64, hi: f64, ms: &[f64]) -> Vec<f64> {
     let mut out = Vec::new();
     let mut decade = 10f64.powi(lo.log10().floor() as i32);
-    while decade <= hi {
+    // Finite: past f64's largest decade it would stay infinite, and ≤ an infinite hi, forever.
+    while decade <= hi && decade.is_finite() {
         out.extend(ms.iter().map(|m| m * decade).filter(|v| *v >= lo && *v <= hi));
         decade *= 10.0;
     }
@@ -250,4 +252,20 @@ pub fn write_plot(dir: &Path, scene: &SceneResult, runs: usize) -> anyhow::Resul
     ];
     write_png_rgb8(&path, WIDTH, HEIGHT, &rgb, &metadata)?;
     Ok(path)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ticks_end_at_the_largest_decade_of_an_absurd_range() {
+        // A damaged shard's error of 1e308, padded: the decades ran past f64 into infinity,
+        // which is ≤ an infinite bound, and the ticks grew until memory ran out.
+        let (lo, hi) = log_range([1e-3, 1e308].into_iter(), 1.5, 1.5);
+        assert!(hi.is_finite(), "{hi}");
+        let labelled = bold_ticks(lo, hi);
+        assert_eq!(labelled.len(), 312, "one a decade from 1e-3 to 1e308");
+        assert!(ticks(1.0, f64::INFINITY, &ALL_MANTISSAS).len() < 9 * 310);
+    }
 }

@@ -133,6 +133,69 @@ impl ShardFile {
     }
 }
 
+impl ShardFile {
+    /// What the merge relies on and a shard always writes: each row its own shard's, at least
+    /// one timed run a row (sorted here, as a run sorts them), and every error a finite,
+    /// non-negative number (a PSNR may be infinite: identical images). The first field that
+    /// is not, as `path: problem`.
+    fn check(&mut self) -> Result<(), String> {
+        let own = Some(self.shard);
+        let shard_of = |at: String, shard: Option<u32>| match shard {
+            s if s == own => Ok(()),
+            Some(s) => Err(format!("{at}.shard: is {s}, not this file's shard {}", self.shard)),
+            None => Err(format!("{at}.shard: missing; this file's rows are shard {}'s", self.shard)),
+        };
+        let number = |at: String, v: f64| {
+            if v.is_finite() && v >= 0.0 { Ok(()) } else { Err(format!("{at}: {v} is not a finite number ≥ 0")) }
+        };
+        for (i, scene) in self.results.iter_mut().enumerate() {
+            for (j, row) in scene.rows.iter_mut().enumerate() {
+                let at = format!("results[{i}].rows[{j}]");
+                shard_of(at.clone(), row.shard)?;
+                if row.times.is_empty() {
+                    return Err(format!("{at}.times: empty; a row has at least one timed run"));
+                }
+                row.times.sort();
+                let e = &row.errors;
+                for (name, v) in [
+                    ("max_abs", e.max_abs),
+                    ("mean_abs", e.mean_abs),
+                    ("rmse", e.rmse),
+                    ("rel_mse", e.rel_mse),
+                    ("flip_mean", e.flip_mean),
+                    ("first_hit_mismatch", e.first_hit_mismatch),
+                    ("p99_abs_same_hit", e.p99_abs_same_hit),
+                ] {
+                    number(format!("{at}.errors.{name}"), v)?;
+                }
+                if e.psnr.is_nan() {
+                    return Err(format!("{at}.errors.psnr: is not a number"));
+                }
+                for (name, v) in [("twin_rmse", row.twin_rmse), ("twin_rays_pct", row.twin_rays_pct.map(f64::abs))] {
+                    v.map_or(Ok(()), |v| number(format!("{at}.{name}"), v))?;
+                }
+            }
+            for (j, row) in scene.specular.iter_mut().enumerate() {
+                let at = format!("results[{i}].specular[{j}]");
+                shard_of(at.clone(), row.shard)?;
+                if row.times.is_empty() {
+                    return Err(format!("{at}.times: empty; a row has at least one timed run"));
+                }
+                row.times.sort();
+            }
+        }
+        for (i, gi) in self.gi.iter().enumerate() {
+            let at = format!("gi[{i}]");
+            shard_of(at.clone(), gi.shard)?;
+            number(format!("{at}.reference_noise"), gi.reference_noise)?;
+            for (j, row) in gi.rows.iter().enumerate() {
+                number(format!("{at}.rows[{j}].rmse"), row.rmse)?;
+            }
+        }
+        Ok(())
+    }
+}
+
 pub fn file_name(spec: ShardSpec) -> String {
     format!("shard-{}-of-{}.toml", spec.index, spec.count)
 }
@@ -159,8 +222,14 @@ pub fn read_all(dirs: &[PathBuf]) -> anyhow::Result<Vec<ShardFile>> {
         names.sort();
         for path in names {
             let text = std::fs::read_to_string(&path).with_context(|| format!("cannot read {}", path.display()))?;
-            let file: ShardFile = toml::from_str(&text)
+            let mut file: ShardFile = toml::from_str(&text)
                 .with_context(|| format!("{}: not a shard of `glint report --shard`", path.display()))?;
+            if let Err(problem) = file.check() {
+                bail!(
+                    "{}: {problem}: the file was edited or damaged; run that shard again; nothing was written",
+                    path.display()
+                );
+            }
             found.push((path, file));
         }
     }
