@@ -760,6 +760,10 @@ transform = { translate = [10, 0, 0], rotate = [0, 0, 90], scale = 2 }
             "path = \"quad.glb\"\ntransform = { matrix = [1, 0, 0, 5, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0] }",
             "objects[1].transform.matrix: its bottom row",
         ),
+        // Placed beyond the coordinates a scene holds: one error on the transform, not one per
+        // vertex component; a scale whose product underflows is named as written.
+        ("path = \"quad.glb\"\ntransform = { scale = 1e300 }", "objects[1].transform: places the model out to 1e300"),
+        ("path = \"quad.glb\"\ntransform = { scale = 1e-300 }", "objects[1].transform.scale: its factors' product"),
     ] {
         let bad = dir.join("bad.toml");
         std::fs::write(

@@ -163,7 +163,14 @@ impl TransformDesc {
             out.push(("scale".into(), "every factor must be finite and non-zero".into()));
         }
         if out.is_empty() && self.matrix().determinant3() == 0.0 {
-            out.push(("matrix".into(), "is singular (flattens the model)".into()));
+            // Named as the file wrote it: a scale whose factors' product underflows has no matrix.
+            out.push(match self.matrix {
+                Some(_) => ("matrix".into(), "is singular (flattens the model)".into()),
+                None => (
+                    "scale".into(),
+                    "its factors' product underflows to 0 in f64, which flattens the model; scale it less".into(),
+                ),
+            });
         }
         out
     }

@@ -47,6 +47,12 @@ pub(super) fn validate_object(path: &str, o: &ObjectDesc, scene: &SceneDesc, ori
                 }
             }
             match &model.loaded {
+                // Placed beyond the coordinates a scene may hold: one error naming what placed it,
+                // not one per vertex and normal component (a spider scaled by 1e300 gave 5,917).
+                Some(loaded) if let Some(problem) = beyond_range(loaded) => {
+                    let field = if model.transform == Default::default() { "path" } else { "transform" };
+                    r.error(format!("{path}.{field}"), problem);
+                }
                 // Named by the model's own mesh names (`PREFIX/NODE`), which say where to look.
                 Some(loaded) => {
                     // Errors one by one; warnings of a kind once for the model (a CAD export
@@ -74,6 +80,28 @@ pub(super) fn validate_object(path: &str, o: &ObjectDesc, scene: &SceneDesc, ori
             }
         }
     }
+}
+
+/// Why a placed model lies beyond the coordinates a scene may hold (`MAX_COORD`): how far its
+/// vertices reach from the origin, or that some are not finite.
+fn beyond_range(model: &crate::LoadedModel) -> Option<String> {
+    let coords = || model.meshes.iter().flat_map(|m| m.vertices.iter().flatten().copied());
+    if coords().any(|c| !c.is_finite()) {
+        return Some(format!(
+            "places the model's vertices beyond f64's range (not finite); coordinates must lie in [{:e}, {:e}]",
+            ranges::COORD.min,
+            ranges::COORD.max
+        ));
+    }
+    let reach = coords().fold(0.0f64, |m, c| m.max(c.abs()));
+    (!ranges::COORD.contains(reach)).then(|| {
+        format!(
+            "places the model out to {} from the origin; coordinates must lie in [{:e}, {:e}]",
+            crate::number::format_rounded(reach, 3),
+            ranges::COORD.min,
+            ranges::COORD.max
+        )
+    })
 }
 
 fn validate_mesh(path: &str, mesh: &MeshDesc, origin: [f64; 3], r: &mut Report) {
