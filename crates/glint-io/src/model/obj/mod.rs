@@ -32,6 +32,8 @@ pub enum ObjError {
     Uri { file: std::path::PathBuf, error: UriError },
     #[error("{file}:{}: invalid OBJ ({reason})", line.map_or_else(|| "?".to_string(), |l| l.to_string()))]
     Parse { file: std::path::PathBuf, line: Option<usize>, reason: String },
+    #[error("{file}:{line}: invalid MTL ({reason})")]
+    Mtl { file: std::path::PathBuf, line: usize, reason: String },
     #[error("{file}: no triangles (points and lines are not traced)")]
     Empty { file: std::path::PathBuf },
     #[error("{file}: materials.{material}.{field} `{uri}`: {reason}")]
@@ -54,7 +56,12 @@ pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
     let libraries = mtllib::Libraries::new(path);
     let (models, materials) = tobj::load_obj_buf(&mut bytes.as_slice(), &options, |mtl| libraries.load(mtl))
         .map_err(|e| parse_error(failing_line(&bytes, &options), e.to_string()))?;
-    let read = libraries.read().map_err(|error| ObjError::Uri { file: path.to_owned(), error })?;
+    let read = libraries.read().map_err(|refused| match refused {
+        mtllib::Refused::Uri(error) => ObjError::Uri { file: path.to_owned(), error },
+        mtllib::Refused::Number { mtl, line, reason } => {
+            ObjError::Mtl { file: path.parent().unwrap_or(Path::new("")).join(mtl), line, reason }
+        }
+    })?;
     out.warnings.extend(read.warnings);
     // With an MTL left out, every name it held would be warned again.
     if !read.left_out {

@@ -70,6 +70,39 @@ fn unread_statements(materials: &[tobj::Material]) -> Option<FieldIssue> {
     crate::model::left_out("mtllib", "statements Glint does not read", &unread)
 }
 
+/// The first number of the MTL statements Glint reads that cannot be read (its line, why):
+/// not a finite f32 (tobj reads f32), or a colour channel below 0 or above `MAX_INTENSITY`.
+/// Checked as the file wrote them: mapped, a `Kd nan` was refused as the scene material's `ka`
+/// and `kd` (k_a defaults to k_d), and `d nan` clamped "to NaN".
+pub(super) fn bad_number(text: &[u8]) -> Option<(usize, String)> {
+    for (n, raw) in text.split(|&b| b == b'\n').enumerate() {
+        let Ok(line) = std::str::from_utf8(raw) else { continue };
+        let mut words = line.split_whitespace();
+        let colour = match words.next() {
+            Some("Ka" | "Kd" | "Ks" | "Ke") => true,
+            Some("Ns" | "Ni" | "d" | "Tr") => false,
+            _ => continue,
+        };
+        // `Kd spectral …` and `Kd xyz …` start with a word: tobj refuses those itself.
+        for word in words.take_while(|w| w.parse::<f64>().is_ok()) {
+            let value = word.parse::<f32>().map_or(f64::NAN, f64::from);
+            let problem = if !value.is_finite() {
+                if word.parse::<f64>().is_ok_and(f64::is_finite) {
+                    format!("{word} is beyond f32's range (±{:e})", f32::MAX)
+                } else {
+                    format!("{word} is not a finite number")
+                }
+            } else if colour && !(0.0..=glint_scene::MAX_INTENSITY).contains(&value) {
+                format!("{word} is outside a colour channel's [0, {:e}]", glint_scene::MAX_INTENSITY)
+            } else {
+                continue;
+            };
+            return Some((n + 1, format!("`{}`: {problem}", line.trim())));
+        }
+    }
+    None
+}
+
 /// MTL text with every `Ka`/`Kd`/`Ks`/`Ke r` line written as `… r r r`: the MTL format lets g
 /// and b default to r, and tobj panics on fewer than three numbers. A colour line with none or
 /// two numbers is an error naming the line. tobj reads line by line, so the lines are checked

@@ -4,22 +4,32 @@
 use std::cell::{Cell, RefCell};
 use std::path::Path;
 
-use super::mtl::{DEFAULT_MATERIAL, expand_colours};
+use super::mtl::{DEFAULT_MATERIAL, bad_number, expand_colours};
 use super::{statements, text};
 use crate::uri::{MAX_RESOURCE_BYTES, UriError, resolve_uri};
 use glint_scene::FieldIssue;
 
 /// The MTL files of one OBJ as tobj asks for them, one `mtllib` statement at a time. A missing
 /// or unreadable one is a warning (as in Assimp and Blender, the geometry stays readable); one
-/// outside the model's folder or too large is an error, the first such one reported. Cells:
-/// tobj takes its loader as `Fn`.
+/// outside the model's folder or too large, or with a number that cannot be read, is an error,
+/// the first such one reported. Cells: tobj takes its loader as `Fn`.
 pub(super) struct Libraries<'a> {
     obj: &'a Path,
-    refused: RefCell<Option<UriError>>,
+    refused: RefCell<Option<Refused>>,
     warnings: RefCell<Vec<FieldIssue>>,
     left_out: Cell<bool>,
     /// Each loaded MTL's folder (relative to the OBJ's) and how many materials it held, in order.
     folders: RefCell<Vec<(String, usize)>>,
+}
+
+/// Why an OBJ's MTL file is an error.
+#[derive(Debug)]
+pub(super) enum Refused {
+    /// Outside the model's folder, too large, or not a file.
+    Uri(UriError),
+    /// A number of a statement Glint reads (`mtl::bad_number`): the MTL file as the OBJ names
+    /// it, the line, why.
+    Number { mtl: String, line: usize, reason: String },
 }
 
 /// What reading an OBJ's MTL files gave besides its materials.
@@ -60,7 +70,7 @@ impl<'a> Libraries<'a> {
     }
 
     /// What the files read gave, or the first file refused.
-    pub fn read(self) -> Result<Read, UriError> {
+    pub fn read(self) -> Result<Read, Refused> {
         if let Some(error) = self.refused.into_inner() {
             return Err(error);
         }
@@ -85,7 +95,7 @@ impl<'a> Libraries<'a> {
                 return Err(tobj::LoadError::OpenFileFailed);
             }
             Err(error) => {
-                self.refused.borrow_mut().get_or_insert(error);
+                self.refused.borrow_mut().get_or_insert(Refused::Uri(error));
                 return Err(tobj::LoadError::OpenFileFailed);
             }
         };
@@ -95,6 +105,11 @@ impl<'a> Libraries<'a> {
             }
             let text = statements::without_trailing_comments(&text);
             let text = statements::joined_continuations(&text);
+            if let Some((line, reason)) = bad_number(&text) {
+                let number = Refused::Number { mtl: uri.to_string(), line, reason };
+                self.refused.borrow_mut().get_or_insert(number);
+                return Err("a number that cannot be read".to_string());
+            }
             let text = expand_colours(&text::material_statements(&text, &["newmtl"]))
                 .map_err(|problem| format!("{uri}:{problem}"))?;
             let loaded = tobj::load_mtl_buf(&mut text.as_slice()).map_err(|e| e.to_string())?;

@@ -471,3 +471,23 @@ fn a_map_kd_outside_the_folder_or_not_an_image_is_an_error_naming_it() {
         );
     }
 }
+
+#[test]
+fn an_mtl_number_that_cannot_be_read_is_an_error_naming_the_mtl_line_and_statement() {
+    let dir = tempfile::tempdir().unwrap();
+    let obj = write(dir.path(), "t.obj", &format!("mtllib t.mtl\nusemtl a\n{QUAD}"));
+    for (statement, problem) in [
+        ("Kd nan 0 0", "nan is not a finite number"),
+        ("d nan", "nan is not a finite number"),
+        ("Ns 1e39", "1e39 is beyond f32's range (±3.4028235e38)"),
+        ("Kd -1 0 0", "-1 is outside a colour channel's [0, 1e9]"),
+    ] {
+        write(dir.path(), "t.mtl", &format!("newmtl a\n{statement}\nillum 4\n"));
+        let message = load_obj(&obj).unwrap_err().to_string();
+        let expected = format!("t.mtl:2: invalid MTL (`{statement}`: {problem})");
+        assert!(message.ends_with(&expected), "{statement}: {message}");
+    }
+    // Words tobj refuses itself, and numbers in range, are not this check's.
+    write(dir.path(), "t.mtl", "newmtl a\nKd 0.5 0.25 1\nd 0.5\nNs 1e3\nillum 4\n");
+    assert!(load_obj(&obj).is_ok());
+}
