@@ -231,6 +231,22 @@ fn a_punctual_light_out_of_range_is_named_by_the_files_own_fields() {
 }
 
 #[test]
+fn an_aspect_ratio_that_is_not_positive_is_left_out_with_a_warning() {
+    let dir = TempDir::new("gltf-aspect");
+    for (aspect, written) in [(0.0, "aspectRatio 0 "), (-1.0, "aspectRatio -1 ")] {
+        let mut f = Fixture::quad();
+        f.json["cameras"] =
+            json!([{ "type": "perspective", "perspective": { "yfov": 0.5, "aspectRatio": aspect, "znear": 0.1 } }]);
+        f.json["scenes"] = json!([{ "nodes": [0, 1] }]);
+        f.json["nodes"] = json!([{ "mesh": 0 }, { "translation": [0.5, 0.5, 4.0], "camera": 0 }]);
+        let m = load(&f.write_gltf(&dir, "aspect", BufferAt::DataUri));
+        assert_eq!((m.cameras.len(), m.cameras[0].aspect), (1, None), "aspectRatio {aspect}");
+        let said = m.warnings.iter().find(|w| w.problem.contains("aspectRatio")).expect("a warning");
+        assert!(said.problem.starts_with(written) && said.problem.contains("not a positive number"), "{said:?}");
+    }
+}
+
+#[test]
 fn cameras_come_from_their_nodes_and_the_scene_uses_the_chosen_one() {
     let dir = TempDir::new("gltf-cameras");
     let mut f = Fixture::quad();
@@ -773,6 +789,7 @@ transform = { translate = [10, 0, 0], rotate = [0, 0, 90], scale = 2 }
         .unwrap();
         let message = load_scene_with(bad.to_str().unwrap(), &LoadOptions::default()).unwrap_err().to_string();
         assert!(message.contains("bad.toml") && message.contains(wanted), "{edit}: {message}");
+        assert!(!message.contains("vertices["), "{edit}: an error per vertex: {message}");
     }
 }
 

@@ -217,9 +217,10 @@ pub fn scene_around(
             warnings.push(FieldIssue {
                 field: format!("camera `{}`", camera.name),
                 problem: format!(
-                    "its aspectRatio {} would make the image {wanted}x{} pixels; the width is held to {width} \
+                    "its aspectRatio {} would make the image {}x{} pixels; the width is held to {width} \
                      (sides in [1, {MAX_IMAGE_SIDE}]): set --width and --height",
                     glint_scene::format_number(aspect),
+                    glint_scene::format_number(wanted),
                     render.height
                 ),
             });
@@ -357,6 +358,9 @@ mod tests {
         assert_eq!(width, 1);
         assert!(warning.expect("said").problem.starts_with("its aspectRatio 1e-9 would make the image 0x"));
         assert_eq!(said(2.0).1, None);
+        // Written short, not as 39 digits.
+        let said = said(1e38).1.expect("said").problem;
+        assert!(said.starts_with("its aspectRatio 1e38 would make the image 4.8e40x480 pixels"), "{said}");
     }
 
     #[test]

@@ -149,9 +149,26 @@ pub(super) fn map_camera(
         });
         return None;
     }
+    // The specification requires aspectRatio > 0: another is left out, said, and the image
+    // keeps its size.
+    let aspect = p.aspect_ratio().filter(|a| {
+        let usable = a.is_finite() && *a > 0.0;
+        if !usable {
+            warnings.push(FieldIssue {
+                field: field.clone(),
+                problem: format!(
+                    "aspectRatio {} (cameras[{}].perspective.aspectRatio) is not a positive number; left out, the \
+                     image keeps its width and height",
+                    written(*a),
+                    camera.index()
+                ),
+            });
+        }
+        usable
+    });
     Some(ModelCamera {
         name: camera.name().map_or_else(|| format!("camera {}", camera.index()), str::to_string),
         camera: CameraDesc { position, look_at: std::array::from_fn(|k| position[k] + forward[k]), up, fov_y },
-        aspect: p.aspect_ratio().map(f64::from).filter(|a| a.is_finite() && *a > 0.0),
+        aspect: aspect.map(crate::model::widen),
     })
 }
