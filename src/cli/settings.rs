@@ -100,10 +100,19 @@ fn parse_ground(s: &str) -> Result<Ground, String> {
     s.parse()
 }
 
+/// Judged as a scene file's `exposure` is (`ranges::EXPOSURE`): a factor that f32 rounds to 0
+/// would turn the model's lights off without a word.
 fn parse_exposure(s: &str) -> Result<f64, String> {
+    let range = glint_scene::ranges::EXPOSURE;
     match s.trim().parse::<f64>() {
-        Ok(v) if v.is_finite() && v > 0.0 && v <= 1e6 => Ok(v),
-        Ok(v) => Err(format!("{v} is outside (0, 1e6]")),
+        Ok(v) if range.contains(v) => Ok(v),
+        Ok(v) => Err(format!(
+            "{} is outside ({}, {:e}]{}",
+            glint_scene::format_number(v),
+            glint_scene::format_number(range.min),
+            range.max,
+            range.why_outside(v)
+        )),
         Err(_) => Err(format!("'{s}' is not a number")),
     }
 }
@@ -321,4 +330,22 @@ pub fn check_load_memory(scene: &str, memory_limit: Option<u64>) -> anyhow::Resu
 /// Whether `loaded` came from a model file (glTF, OBJ), whose lab scene Glint made around it.
 pub fn is_model(loaded: &LoadedScene) -> bool {
     glint_io::ModelFormat::of(&loaded.source).is_some()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_exposure_is_judged_as_a_scene_files_is() {
+        assert_eq!(parse_exposure("2.5"), Ok(2.5));
+        // Above 0, but 0 in f32: the lights would go out without a word.
+        assert_eq!(
+            parse_exposure("1e-308").unwrap_err(),
+            "1e-308 is outside (0, 1e6]: 1e-308 rounds to 0 in f32, the precision the tracers store it in"
+        );
+        // Written short, not as 309 digits.
+        assert_eq!(parse_exposure("1e308").unwrap_err(), "1e308 is outside (0, 1e6]");
+        assert_eq!(parse_exposure("-1").unwrap_err(), "-1 is outside (0, 1e6]");
+    }
 }
