@@ -496,7 +496,7 @@ fn report_shards_merge_into_the_one_machine_report_and_missing_ones_are_named() 
     assert!(!done.status.success(), "a shard cut short merged");
     // Named: the split is the same in every shard, so the merge knows whose row is missing.
     assert!(
-        text(&done.stderr).contains("shard 1's file was edited or cut short; run shard 1 again"),
+        text(&done.stderr).contains("shard-1-of-3.toml) was edited or cut short; run shard 1 again"),
         "{}",
         text(&done.stderr)
     );

@@ -250,6 +250,7 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
             machine,
             results,
             gi: gi_results,
+            path: PathBuf::new(),
         };
         let rows: usize = file.results.iter().map(|r| r.rows.len()).sum();
         let path = staging.published(&shard::write(out, spec, &file)?);

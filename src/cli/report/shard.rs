@@ -110,6 +110,9 @@ pub struct ShardFile {
     /// this shard has.
     #[serde(default)]
     pub gi: Vec<super::gi::GiResult>,
+    /// Where the merge read it from (not written): what its messages name.
+    #[serde(skip)]
+    pub path: PathBuf,
 }
 
 impl ShardFile {
@@ -224,6 +227,7 @@ pub fn read_all(dirs: &[PathBuf]) -> anyhow::Result<Vec<ShardFile>> {
             let text = std::fs::read_to_string(&path).with_context(|| format!("cannot read {}", path.display()))?;
             let mut file: ShardFile = toml::from_str(&text)
                 .with_context(|| format!("{}: not a shard of `glint report --shard`", path.display()))?;
+            file.path.clone_from(&path);
             if let Err(problem) = file.check() {
                 bail!(
                     "{}: {problem}: the file was edited or damaged; run that shard again; nothing was written",
@@ -323,6 +327,7 @@ pub fn join(files: &mut [ShardFile], planned: &[Planned]) -> anyhow::Result<Vec<
     let first = &files[0];
     let owners =
         assign(names.len(), planned, u64::from(first.width) * u64::from(first.height), first.runs, first.count);
+    let paths: Vec<PathBuf> = files.iter().map(|f| f.path.clone()).collect();
     let parts: Vec<SceneResult> = files.iter_mut().flat_map(|f| std::mem::take(&mut f.results)).collect();
     let mut out: Vec<SceneResult> = Vec::new();
     for part in parts {
@@ -346,8 +351,9 @@ pub fn join(files: &mut [ShardFile], planned: &[Planned]) -> anyhow::Result<Vec<
             match (measured.iter().filter(|m| **m == i).count(), owner) {
                 (0, Some(shard)) => bail!(
                     "scene {} lacks the configuration ({what}), which shard {shard} measures: shard {shard}'s file \
-                     was edited or cut short; run shard {shard} again; nothing was written",
-                    j.name
+                     ({}) was edited or cut short; run shard {shard} again; nothing was written",
+                    j.name,
+                    paths.get(shard as usize).map_or_else(|| "missing".into(), |p| p.display().to_string())
                 ),
                 // Twice: either file may be the edited one.
                 (times, _) => bail!(
