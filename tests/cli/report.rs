@@ -544,6 +544,17 @@ fn report_shards_merge_into_the_one_machine_report_and_missing_ones_are_named() 
         assert!(stderr.contains(expected) && !stderr.contains("panicked"), "{key}: {stderr}");
         assert!(!dir.join("damaged/report.csv").exists(), "a refused merge wrote a report");
     }
+    let stray = edited(
+        &|s| {
+            s.insert("shard".into(), toml::Value::Integer(7));
+        },
+        "stray",
+    );
+    assert!(
+        text(&stray.stderr).contains("shard-1-of-3.toml: shard: is 7, not below the shard count 3"),
+        "{}",
+        text(&stray.stderr)
+    );
     let absurd = |shard: &mut toml::Table| {
         for scene in shard["results"].as_array_mut().expect("results") {
             for row in scene["rows"].as_array_mut().expect("rows") {

@@ -25,7 +25,7 @@ fn draw(g: &GiResult, runs: usize) -> anyhow::Result<Vec<u8>> {
     let (x0, x1) = log_range(rows.iter().map(|r| at(r).0), 1.3, 1.3);
     let floor = Some(g.reference_noise).filter(|n| *n > 0.0);
     let (y0, y1) = log_range(rows.iter().map(|r| r.rmse).chain(floor), 1.6, 1.6);
-    let y1 = y1 * (y1 / y0).powf(0.4);
+    let y1 = (y1 * (y1 / y0).powf(0.4)).min(f64::MAX);
     let mut buf = vec![255u8; (WIDTH * HEIGHT * 3) as usize];
     {
         let root = BitMapBackend::with_buffer(&mut buf, (WIDTH, HEIGHT)).into_drawing_area();

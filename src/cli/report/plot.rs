@@ -42,8 +42,8 @@ pub(super) fn log_range(values: impl Iterator<Item = f64>, below: f64, above: f6
     if !(lo > 0.0 && hi.is_finite()) {
         return (0.1, 10.0);
     }
-    // Padded within f64: an axis to infinity has no ticks.
-    (lo / below, (hi * above).min(f64::MAX))
+    // Padded within f64's normal numbers: an axis from 0 or to infinity has no decades.
+    ((lo / below).max(f64::MIN_POSITIVE), (hi * above).min(f64::MAX))
 }
 
 /// Ticks m × 10^k inside [lo, hi] for the mantissas `ms`: plotters' own log ticks leave
@@ -51,8 +51,9 @@ pub(super) fn log_range(values: impl Iterator<Item = f64>, below: f64, above: f6
 pub(super) fn ticks(lo: f64, hi: f64, ms: &[f64]) -> Vec<f64> {
     let mut out = Vec::new();
     let mut decade = 10f64.powi(lo.log10().floor() as i32);
-    // Finite: past f64's largest decade it would stay infinite, and ≤ an infinite hi, forever.
-    while decade <= hi && decade.is_finite() {
+    // Finite and above 0: past f64's largest decade it would stay infinite, and below its
+    // smallest (10^-324) 0, and either ≤ hi forever.
+    while decade <= hi && decade.is_finite() && decade > 0.0 {
         out.extend(ms.iter().map(|m| m * decade).filter(|v| *v >= lo && *v <= hi));
         decade *= 10.0;
     }
@@ -136,7 +137,7 @@ fn draw(scene: &SceneResult, runs: usize) -> anyhow::Result<Vec<u8>> {
     let errors = rows.iter().flat_map(|r| [Some(r.errors.rmse), r.twin_rmse]).flatten().chain(floor);
     let (y0, y1) = log_range(errors.filter(|e| *e > 0.0), 1.6, 1.6);
     // Head room above the data, a third of the height, keeps the legend off the points.
-    let y1 = y1 * (y1 / y0).powf(0.4);
+    let y1 = (y1 * (y1 / y0).powf(0.4)).min(f64::MAX);
     let mut buf = vec![255u8; (WIDTH * HEIGHT * 3) as usize];
     {
         let root = BitMapBackend::with_buffer(&mut buf, (WIDTH, HEIGHT)).into_drawing_area();
@@ -267,5 +268,9 @@ mod tests {
         let labelled = bold_ticks(lo, hi);
         assert_eq!(labelled.len(), 312, "one a decade from 1e-3 to 1e308");
         assert!(ticks(1.0, f64::INFINITY, &ALL_MANTISSAS).len() < 9 * 310);
+        // And the smallest: 10^-324 is 0, which stayed 0.
+        assert!(ticks(5e-324, 1.0, &[1.0]).len() < 330);
+        let (lo, _) = log_range([5e-324, 1.0].into_iter(), 1.5, 1.5);
+        assert!(lo >= f64::MIN_POSITIVE, "{lo}");
     }
 }

@@ -137,11 +137,29 @@ impl ShardFile {
 }
 
 impl ShardFile {
-    /// What the merge relies on and a shard always writes: each row its own shard's, at least
-    /// one timed run a row (sorted here, as a run sorts them), and every error a finite,
-    /// non-negative number (a PSNR may be infinite: identical images). The first field that
-    /// is not, as `path: problem`.
-    fn check(&mut self) -> Result<(), String> {
+    /// Every row's timed runs in order, as a run writes them (a median is read from the middle).
+    fn sort_times(&mut self) {
+        for scene in &mut self.results {
+            scene.rows.iter_mut().for_each(|r| r.times.sort());
+            scene.specular.iter_mut().for_each(|r| r.times.sort());
+        }
+    }
+
+    /// What the merge relies on and a shard always writes: a shard index below the count, the
+    /// sweep's scenes only, each row its own shard's, at least one timed run a row, and every
+    /// error a finite, non-negative number (a PSNR may be infinite: identical images). The
+    /// first field that is not, as `field: problem`.
+    fn check(&self) -> Result<(), String> {
+        if self.shard >= self.count {
+            return Err(format!("shard: is {}, not below the shard count {}", self.shard, self.count));
+        }
+        let scene_of = |at: String, name: &str| {
+            if self.scenes.iter().any(|s| s == name) {
+                Ok(())
+            } else {
+                Err(format!("{at}: `{name}` is not a scene of this sweep ({})", self.scenes.join(", ")))
+            }
+        };
         let own = Some(self.shard);
         let shard_of = |at: String, shard: Option<u32>| match shard {
             s if s == own => Ok(()),
@@ -151,14 +169,14 @@ impl ShardFile {
         let number = |at: String, v: f64| {
             if v.is_finite() && v >= 0.0 { Ok(()) } else { Err(format!("{at}: {v} is not a finite number ≥ 0")) }
         };
-        for (i, scene) in self.results.iter_mut().enumerate() {
-            for (j, row) in scene.rows.iter_mut().enumerate() {
+        for (i, scene) in self.results.iter().enumerate() {
+            scene_of(format!("results[{i}].name"), &scene.name)?;
+            for (j, row) in scene.rows.iter().enumerate() {
                 let at = format!("results[{i}].rows[{j}]");
                 shard_of(at.clone(), row.shard)?;
                 if row.times.is_empty() {
                     return Err(format!("{at}.times: empty; a row has at least one timed run"));
                 }
-                row.times.sort();
                 let e = &row.errors;
                 for (name, v) in [
                     ("max_abs", e.max_abs),
@@ -178,17 +196,17 @@ impl ShardFile {
                     v.map_or(Ok(()), |v| number(format!("{at}.{name}"), v))?;
                 }
             }
-            for (j, row) in scene.specular.iter_mut().enumerate() {
+            for (j, row) in scene.specular.iter().enumerate() {
                 let at = format!("results[{i}].specular[{j}]");
                 shard_of(at.clone(), row.shard)?;
                 if row.times.is_empty() {
                     return Err(format!("{at}.times: empty; a row has at least one timed run"));
                 }
-                row.times.sort();
             }
         }
         for (i, gi) in self.gi.iter().enumerate() {
             let at = format!("gi[{i}]");
+            scene_of(format!("{at}.scene"), &gi.scene)?;
             shard_of(at.clone(), gi.shard)?;
             number(format!("{at}.reference_noise"), gi.reference_noise)?;
             for (j, row) in gi.rows.iter().enumerate() {
@@ -228,6 +246,7 @@ pub fn read_all(dirs: &[PathBuf]) -> anyhow::Result<Vec<ShardFile>> {
             let mut file: ShardFile = toml::from_str(&text)
                 .with_context(|| format!("{}: not a shard of `glint report --shard`", path.display()))?;
             file.path.clone_from(&path);
+            file.sort_times();
             if let Err(problem) = file.check() {
                 bail!(
                     "{}: {problem}: the file was edited or damaged; run that shard again; nothing was written",
