@@ -207,7 +207,7 @@ fn a_telephoto_in_a_scene_as_large_as_its_distance_is_anchored_on_the_gpu() {
     // Before, the eye was stored itself and the GPU summed each ray's direction in f32: 1/20 of
     // a pixel off, and the shading up to 1.2e-2 (4 %) off the CPU's at the spot's edge (PSNR
     // 67 dB; the lit floor is about 0.2). The GPU
-    // now anchors a telephoto near its focus (`rebase::rebases`); the CPU is as it was.
+    // now anchors a telephoto near its focus (`Frame::rebased_into`); the CPU is as it was.
     let both = render_both("stiff/case22", "telephoto-large-scene", &telephoto_in_a_large_scene().flat());
     let Some(gpu) = &both.gpu else { return };
     let worst = both

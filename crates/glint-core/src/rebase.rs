@@ -38,11 +38,17 @@ pub enum Frame {
 }
 
 impl Frame {
-    /// The frame (`SceneHeader::frame`) this choice gives `scene`.
-    pub fn of(self, scene: &FlatScene) -> [f32; 4] {
+    /// The frame (`SceneHeader::frame`) this choice rebases `scene` into, `None` where it is
+    /// traced as stored. Where the camera looks: `camera_frame`, unless that is the frame it is
+    /// stored in, but also then for a telephoto whose eye is stored itself
+    /// (`unanchored_telephoto`), which a rebase anchors at the focus.
+    pub fn rebased_into(self, scene: &FlatScene) -> Option<[f32; 4]> {
         match self {
-            Frame::Camera => camera_frame(scene),
-            Frame::Stored => scene.header.frame,
+            Frame::Camera => {
+                let frame = camera_frame(scene);
+                (frame != scene.header.frame || unanchored_telephoto(scene)).then_some(frame)
+            }
+            Frame::Stored => None,
         }
     }
 }
@@ -174,13 +180,6 @@ pub fn camera_frame(scene: &FlatScene) -> [f32; 4] {
     [c.x as f32, c.y as f32, c.z as f32, w as f32]
 }
 
-/// Whether the GPU traces `scene` rebased into `frame`: where that is not the frame it is
-/// stored in, and where its camera is a telephoto whose eye is stored itself
-/// (`unanchored_telephoto`), also in its own frame.
-pub fn rebases(scene: &FlatScene, frame: [f32; 4]) -> bool {
-    frame != scene.header.frame || unanchored_telephoto(scene)
-}
-
 /// A telephoto (`flat::telephoto`, a field of view under 0.9°) stored with its eye (w = 0): in
 /// a scene as large as its distance, which anchors no eye by the distance. The CPU sums each
 /// ray's direction in f64 from the stored vectors; the GPU's f32 sum, each component of order 1
@@ -282,6 +281,31 @@ mod tests {
     fn look(scene: &mut FlatScene, eye: DVec3, forward: [f32; 3]) {
         scene.camera.forward = [forward[0], forward[1], forward[2], 0.0];
         scene.camera.anchor = [eye.x as f32, eye.y as f32, eye.z as f32, 0.0];
+    }
+
+    #[test]
+    fn a_telephoto_stored_with_its_eye_is_anchored_at_the_focus_even_in_its_own_frame() {
+        // A 0.0025° view from 1.1e5 of a triangle as large: the distance anchors nothing.
+        let text = "[render]\nwidth = 63\nheight = 34\n[camera]\nposition = [-64808.9, 15028.5, -91666.3]\n\
+                    look_at = [-0.46, 0.56, -0.36]\nfov_y = 0.00253\n[materials.m]\nkd = 0.8\n[[objects]]\n\
+                    type = \"mesh\"\nvertices = [[-53954.0, 0.75, -53954.0], [53954.0, 0.75, -53954.0], \
+                    [0.0, 0.75, 53954.0]]\ntriangles = [[0, 1, 2]]\nmaterial = \"m\"\n";
+        let (desc, _) = parse_scene(text, std::path::Path::new("t.toml")).expect("scene");
+        let stored = FlatScene::build(&desc, &desc.render);
+        assert_eq!(stored.camera.anchor[3], 0.0, "stored with its eye");
+        let frame = Frame::Camera.rebased_into(&stored).expect("rebased although its frame is the stored one");
+        assert_eq!(frame[..3], stored.header.frame[..3]);
+        let traced = rebased(&stored, frame);
+        // The focus is where the axis meets the triangle, near look_at (1.13e5 from the eye).
+        let w = f64::from(traced.camera.anchor[3]);
+        let to_look_at = (DVec3::new(-0.46, 0.56, -0.36) - DVec3::new(-64808.9, 15028.5, -91666.3)).length();
+        assert!((w - to_look_at).abs() < 10.0, "anchored {w} from the eye, not at the focus ({to_look_at})");
+        assert!((camera_eye(&traced.camera) - camera_eye(&stored.camera)).length() < 1e-2, "the eye moved");
+        assert_eq!(Frame::Stored.rebased_into(&stored), None, "as stored means as stored");
+        // A normal lens there keeps its eye.
+        let mut wide = desc.clone();
+        wide.camera.fov_y = 40.0;
+        assert_eq!(Frame::Camera.rebased_into(&FlatScene::build(&wide, &wide.render)), None);
     }
 
     fn scene(offset: f64) -> FlatScene {

@@ -12,7 +12,7 @@ use glint_core::cpu::ray_tree::RayTree;
 use glint_core::cpu::shade::Breakdown;
 use glint_core::flat::GeometryId;
 use glint_core::glam::DVec3;
-use glint_core::rebase::{Frame, rebased, rebased_with_geometry, rebases};
+use glint_core::rebase::{Frame, rebased, rebased_with_geometry};
 use glint_core::{Accel, FlatScene, PixelRect};
 use glint_types::layout::{PROBE_HIT, ProbeRecord};
 
@@ -61,10 +61,9 @@ impl RebasedCache {
     /// `scene` in `frame`: itself when stored in that frame, else rebased, reusing the last
     /// rebased geometry when it is this one's in this frame.
     fn in_frame<'a>(&self, scene: &'a FlatScene, frame: Frame) -> Cow<'a, FlatScene> {
-        let frame = frame.of(scene);
-        if !rebases(scene, frame) {
+        let Some(frame) = frame.rebased_into(scene) else {
             return Cow::Borrowed(scene);
-        }
+        };
         let id = scene.geometry_id();
         let mut last = self.last.lock().unwrap_or_else(|e| e.into_inner());
         if let Some((_, _, geometry)) = last.as_ref().filter(|(i, f, _)| *i == id && f[..3] == frame[..3]) {
