@@ -26,7 +26,12 @@ pub(crate) fn place_texture_origins(out: &mut FlatScene, frame: [f32; 4]) {
     let f = wide(frame);
     let across = [(f.y, f.z), (f.x, f.z), (f.x, f.y)];
     let at_world_origin = f == DVec3::ZERO;
-    for (tex, [u, v]) in out.textures.iter_mut().zip(&out.texture_transforms) {
+    for (i, tex) in out.textures.iter_mut().enumerate() {
+        // A texture put in without its f64 rows (a test's table) is placed with its f32 ones,
+        // not left unplaced.
+        let widened = |r: [f32; 4]| [f64::from(r[0]), f64::from(r[1]), f64::from(r[2])];
+        let [u, v] =
+            out.texture_transforms.get(i).copied().unwrap_or([widened(tex.transform_u), widened(tex.transform_v)]);
         for (k, &(a, b)) in across.iter().enumerate() {
             let at = |stored: [f32; 4], row: [f64; 3], wrap: u32| {
                 if at_world_origin {
@@ -34,8 +39,8 @@ pub(crate) fn place_texture_origins(out: &mut FlatScene, frame: [f32; 4]) {
                 }
                 fold(row[0] * a + row[1] * b + row[2], wrap) as f32
             };
-            tex.planar_u[k] = at(tex.transform_u, *u, tex.wrap_s);
-            tex.planar_v[k] = at(tex.transform_v, *v, tex.wrap_t);
+            tex.planar_u[k] = at(tex.transform_u, u, tex.wrap_s);
+            tex.planar_v[k] = at(tex.transform_v, v, tex.wrap_t);
         }
     }
 }
