@@ -778,7 +778,10 @@ transform = { translate = [10, 0, 0], rotate = [0, 0, 90], scale = 2 }
         ),
         // Placed beyond the coordinates a scene holds: one error on the transform, not one per
         // vertex component; a scale whose product underflows is named as written.
-        ("path = \"quad.glb\"\ntransform = { scale = 1e300 }", "objects[1].transform: places the model out to 1e300"),
+        (
+            "path = \"quad.glb\"\ntransform = { scale = 1e300 }",
+            "objects[1].transform: with this transform, the model reaches 1e300",
+        ),
         ("path = \"quad.glb\"\ntransform = { scale = 1e-300 }", "objects[1].transform.scale: its factors' product"),
     ] {
         let bad = dir.join("bad.toml");

@@ -45,7 +45,7 @@ pub fn storage_origin_within(desc: &SceneDesc, bounds: Option<(DVec3, DVec3)>) -
             storage_origin_of_box(lo.to_array(), hi.to_array())
         }
         // Planes alone have no size: what is seen is near the eye, and f32 holds it to the
-        // eye's height over its nearest plane. In world space a floor 3.6 under an eye at 1e7
+        // eye's height over its nearest plane. In world space a floor 2 under an eye at 1e7
         // was lit 20 % off (the eye, the light and the plane's offset rounded to 1).
         None => around_the_eye(desc).map_or([0.0; 3], |(lo, hi)| storage_origin_of_box(lo.to_array(), hi.to_array())),
     }

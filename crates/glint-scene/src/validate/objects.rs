@@ -49,7 +49,7 @@ pub(super) fn validate_object(path: &str, o: &ObjectDesc, scene: &SceneDesc, ori
             match &model.loaded {
                 // Placed beyond the coordinates a scene may hold: one error naming what placed it,
                 // not one per vertex and normal component (a spider scaled by 1e300 gave 5,917).
-                Some(loaded) if let Some(problem) = beyond_range(loaded) => {
+                Some(loaded) if let Some(problem) = beyond_range(loaded, model.transform != Default::default()) => {
                     let field = if model.transform == Default::default() { "path" } else { "transform" };
                     r.error(format!("{path}.{field}"), problem);
                 }
@@ -83,12 +83,14 @@ pub(super) fn validate_object(path: &str, o: &ObjectDesc, scene: &SceneDesc, ori
 }
 
 /// Why a placed model lies beyond the coordinates a scene may hold (`MAX_COORD`): how far its
-/// vertices reach from the origin, or that some are not finite.
-fn beyond_range(model: &crate::LoadedModel) -> Option<String> {
+/// vertices reach from the origin, or that some are not finite; said of the transform where one
+/// placed it (`transformed`: the file's own reach is not known apart from it), else of the file.
+fn beyond_range(model: &crate::LoadedModel, transformed: bool) -> Option<String> {
     let coords = || model.meshes.iter().flat_map(|m| m.vertices.iter().flatten().copied());
+    let with = if transformed { "with this transform, " } else { "" };
     if coords().any(|c| !c.is_finite()) {
         return Some(format!(
-            "places the model's vertices beyond f64's range (not finite); coordinates must lie in [{:e}, {:e}]",
+            "{with}the model's vertices are not finite numbers; coordinates must lie in [{:e}, {:e}]",
             ranges::COORD.min,
             ranges::COORD.max
         ));
@@ -96,7 +98,7 @@ fn beyond_range(model: &crate::LoadedModel) -> Option<String> {
     let reach = coords().fold(0.0f64, |m, c| m.max(c.abs()));
     (!ranges::COORD.contains(reach)).then(|| {
         format!(
-            "places the model out to {} from the origin; coordinates must lie in [{:e}, {:e}]",
+            "{with}the model reaches {} from the origin; coordinates must lie in [{:e}, {:e}]",
             crate::number::format_rounded(reach, 3),
             ranges::COORD.min,
             ranges::COORD.max
