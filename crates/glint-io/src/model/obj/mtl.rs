@@ -85,14 +85,10 @@ pub(super) fn bad_number(text: &[u8]) -> Option<(usize, String)> {
         };
         // `Kd spectral …` and `Kd xyz …` start with a word: tobj refuses those itself.
         for word in words.take_while(|w| w.parse::<f64>().is_ok()) {
-            let value = word.parse::<f32>().map_or(f64::NAN, f64::from);
-            let problem = if !value.is_finite() {
-                if word.parse::<f64>().is_ok_and(f64::is_finite) {
-                    format!("{word} is beyond f32's range (±{:e})", f32::MAX)
-                } else {
-                    format!("{word} is not a finite number")
-                }
-            } else if colour && !(0.0..=glint_scene::MAX_INTENSITY).contains(&value) {
+            let value = word.parse::<f32>().unwrap_or(f32::NAN);
+            let problem = if let Some(problem) = text::not_finite(word, value) {
+                problem
+            } else if colour && !(0.0..=glint_scene::MAX_INTENSITY).contains(&f64::from(value)) {
                 format!("{word} is outside a colour channel's [0, {:e}]", glint_scene::MAX_INTENSITY)
             } else {
                 continue;

@@ -163,17 +163,24 @@ pub(super) fn bad_number(bytes: &[u8]) -> Option<(usize, String)> {
             let Ok(value) = word.parse::<f32>() else {
                 return Some((n + 1, format!("`{}`: {what} component {name}: `{word}` is not a number", line.trim())));
             };
-            if !value.is_finite() {
-                let problem = if word.parse::<f64>().is_ok_and(f64::is_finite) {
-                    format!("{word} is beyond f32's range (±{:e})", f32::MAX)
-                } else {
-                    format!("{word} is not a finite number")
-                };
+            if let Some(problem) = not_finite(word, value) {
                 return Some((n + 1, format!("`{}`: {what} component {name}: {problem}", line.trim())));
             }
         }
     }
     None
+}
+
+/// Why `word`, read as the f32 `value` (tobj reads f32), is no finite number; `None` when it is
+/// one. What the OBJ's and the MTL's number checks say alike.
+pub(super) fn not_finite(word: &str, value: f32) -> Option<String> {
+    if value.is_finite() {
+        None
+    } else if word.parse::<f64>().is_ok_and(f64::is_finite) {
+        Some(format!("{word} is beyond f32's range (±{:e})", f32::MAX))
+    } else {
+        Some(format!("{word} is not a finite number"))
+    }
 }
 
 /// `text` with the lines `replace` gives a replacement for replaced (the line breaks kept, so
