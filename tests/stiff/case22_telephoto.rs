@@ -210,14 +210,7 @@ fn a_telephoto_in_a_scene_as_large_as_its_distance_is_anchored_on_the_gpu() {
     // now anchors a telephoto near its focus (`Frame::rebased_into`); the CPU is as it was.
     let both = render_both("stiff/case22", "telephoto-large-scene", &telephoto_in_a_large_scene().flat());
     let Some(gpu) = &both.gpu else { return };
-    let worst = both
-        .cpu
-        .image
-        .pixels
-        .iter()
-        .zip(&gpu.image.pixels)
-        .map(|(c, g)| (*c - *g).abs().max_element())
-        .fold(0.0, f64::max);
+    let worst = glint_core::compare::compare_images(&both.cpu.image, &gpu.image).max_abs;
     let hits = both.first_hit_mismatches().len();
     both.ensure(worst <= 1e-5 && hits == 0, || format!("GPU shading {worst:.2e} off the CPU's, {hits} hits differ"));
 }

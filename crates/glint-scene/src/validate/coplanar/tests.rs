@@ -71,19 +71,21 @@ fn copies_of_one_face_are_counted_to_a_bound_not_paired_all() {
     assert!(said.contains("(at least "), "{said}");
 }
 
+/// The plane y = `y`.
+fn horizontal(y: f64) -> ObjectDesc {
+    ObjectDesc::Plane(PlaneDesc {
+        point: [0.0, y, 0.0],
+        normal: [0.0, 1.0, 0.0],
+        material: "m".into(),
+        name: "".into(),
+    })
+}
+
 #[test]
 fn copies_of_one_plane_are_counted_to_a_bound_and_parallel_planes_are_not_paired() {
-    let plane = |y: f64| {
-        ObjectDesc::Plane(PlaneDesc {
-            point: [0.0, y, 0.0],
-            normal: [0.0, 1.0, 0.0],
-            material: "m".into(),
-            name: "".into(),
-        })
-    };
     // 2,000 parallel planes 1 apart: none overlaps, and each is tested against none of the
     // others (all 2e6 pairs were tested).
-    let apart: Vec<ObjectDesc> = (0..2_000).map(|y| plane(f64::from(y))).collect();
+    let apart: Vec<ObjectDesc> = (0..2_000).map(|y| horizontal(f64::from(y))).collect();
     let at = Resolution { epsilon: 1e-6, origin: DVec3::ZERO };
     let members: Vec<(Surface, bool)> = (0..apart.len() as u32)
         .map(|k| (surface_of(&apart, Source { object: k, mesh: 0, triangle: u32::MAX }, at).unwrap(), false))
@@ -97,7 +99,7 @@ fn copies_of_one_plane_are_counted_to_a_bound_and_parallel_planes_are_not_paired
     assert!(overlaps(&scene(apart)).is_empty());
     // 2,000 copies: 2e6 pairs, all tested and kept before (4,000 took 21 s and 877 MB); the
     // budget now stops the search at 64 tests a surface.
-    let w = overlaps(&scene(vec![plane(0.5); 2_000]));
+    let w = overlaps(&scene(vec![horizontal(0.5); 2_000]));
     assert_eq!(w.len(), MAX_WARNINGS + 1, "{w:?}");
     assert!(w[0].problem.contains("over the whole plane (at least 1 pair"), "{}", w[0].problem);
     assert!(w[MAX_WARNINGS].problem.starts_with("at least "), "{}", w[MAX_WARNINGS].problem);
@@ -105,18 +107,10 @@ fn copies_of_one_plane_are_counted_to_a_bound_and_parallel_planes_are_not_paired
 
 #[test]
 fn planes_over_a_floor_are_tested_only_against_the_faces_at_their_height() {
-    let plane = |y: f64| {
-        ObjectDesc::Plane(PlaneDesc {
-            point: [0.0, y, 0.0],
-            normal: [0.0, 1.0, 0.0],
-            material: "m".into(),
-            name: "".into(),
-        })
-    };
     // 200 planes 100 and more above a floor of 20,000 faces: each plane was tested against
     // every face (4,000 over 80,000 took 72 s).
     let mut objects = vec![floor(100, "floor")];
-    objects.extend((0..200).map(|k| plane(100.0 + f64::from(k))));
+    objects.extend((0..200).map(|k| horizontal(100.0 + f64::from(k))));
     let at = Resolution { epsilon: 1e-6, origin: DVec3::ZERO };
     let ObjectDesc::Mesh(m) = &objects[0] else { unreachable!() };
     let mut members: Vec<(Surface, bool)> = (0..m.triangles.len() as u32)
@@ -134,7 +128,7 @@ fn planes_over_a_floor_are_tested_only_against_the_faces_at_their_height() {
     assert!(tested <= 9 * m.triangles.len(), "{tested} tests");
     assert!(overlaps(&scene(objects.clone())).is_empty());
     // One at the floor's height is still found over all of it.
-    objects.push(plane(0.0));
+    objects.push(horizontal(0.0));
     let w = overlaps(&scene(objects));
     assert!(w.len() == 1 && w[0].problem.contains("area of 1.0000e4"), "{w:?}");
 }
