@@ -61,12 +61,18 @@ pub(super) fn candidate_pairs(
     let mut left = budget;
     planes.sort_by(|&a, &b| members[a].0.offset.total_cmp(&members[b].0.offset));
     let tolerance = members.iter().map(|(s, _)| s.tolerance).fold(0.0, f64::max);
-    let reach = faces
-        .iter()
-        .map(|f| members[f.2].0.corners.iter().fold(0.0_f64, |r, c| r.max(c.abs().max_element())))
-        .fold(0.0, f64::max);
-    let mut by_height: Vec<(f64, usize)> = faces.iter().map(|f| (height(f.2).0, f.2)).collect();
-    by_height.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
+    // Only a cell with planes needs the faces by height (a million-face mesh has none).
+    let (reach, by_height) = if planes.is_empty() {
+        (0.0, Vec::new())
+    } else {
+        let reach = faces
+            .iter()
+            .map(|f| members[f.2].0.corners.iter().fold(0.0_f64, |r, c| r.max(c.abs().max_element())))
+            .fold(0.0, f64::max);
+        let mut by_height: Vec<(f64, usize)> = faces.iter().map(|f| (height(f.2).0, f.2)).collect();
+        by_height.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
+        (reach, by_height)
+    };
     let mut test = |a: usize, b: usize| {
         if left == 0 {
             return false;
