@@ -21,7 +21,7 @@ use crate::bvh::{f32_down, f32_up};
 use crate::cpu::intersect::Leaving;
 use crate::cpu::walk::closest_hit;
 use crate::cpu::{Ray, TraceContext, v3};
-use crate::flat::{anchor_of, camera_eye, place_texture_origins, scene_box, telephoto};
+use crate::flat::{anchor_of, camera_eye, move_texture_origins, scene_box, telephoto};
 use glint_scene::LightKind;
 use glint_types::layout::{GpuPlane, GpuSphere, origin_power};
 
@@ -242,11 +242,11 @@ pub fn rebased_with_geometry(scene: &FlatScene, frame: [f32; 4], geometry: &Flat
 }
 
 /// Moves `out`'s camera and point and spot lights (from `scene`'s) into `frame`, sets it, and
-/// places the textures' planar origins there.
+/// moves the textures' planar origins with it (`move_texture_origins`).
 fn move_the_rest(out: &mut FlatScene, scene: &FlatScene, frame: [f32; 4]) {
     let c = v3(frame) - scene.frame_origin();
     out.header.frame = frame;
-    place_texture_origins(out, frame);
+    move_texture_origins(out, scene.frame_origin(), v3(frame));
     // An anchored camera's eye, or a telephoto's (`unanchored_telephoto`), moved in f64 and
     // anchored anew, nearest the new origin (the focus, snapped); any other eye that is its own
     // anchor (w = 0) moved as the other points.

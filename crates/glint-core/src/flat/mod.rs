@@ -84,7 +84,7 @@ mod lights_materials;
 
 pub use camera::{SceneBox, WorldCamera, camera_eye};
 pub(crate) use camera::{anchor_of, telephoto};
-pub(crate) use frame::place_texture_origins;
+pub(crate) use frame::{move_texture_origins, place_texture_origins};
 pub use geometry::GeometryId;
 use geometry::{Geometry, flat_primitives};
 pub use leaf_corners::{Corners, GPU_LEAF_BYTES_PER_PRIM, GpuLeafAb, GpuLeafC, LeafCorners, fill_gpu_leaves};
