@@ -21,36 +21,6 @@ pub(super) fn read_capped(path: &Path) -> std::io::Result<Vec<u8>> {
     std::fs::read(path)
 }
 
-/// A node's transform numbers as the JSON wrote them, in f64: what the gltf crate keeps only
-/// in f32. A geo-referenced file puts its offset in a node (an ECEF 4.8e6, where f32's step is
-/// 0.5), and glTF's JSON numbers are doubles, as three.js and CesiumJS read them.
-#[derive(Clone, Debug, Default, serde::Deserialize)]
-pub(super) struct NodeNumbers {
-    pub matrix: Option<[f64; 16]>,
-    pub translation: Option<[f64; 3]>,
-    pub rotation: Option<[f64; 4]>,
-    pub scale: Option<[f64; 3]>,
-}
-
-/// Every node's `NodeNumbers`, in the file's order (of a .glb, its JSON chunk's); empty where
-/// the nodes do not read as numbers, which the gltf crate then refuses or reads in f32.
-pub(super) fn node_numbers(bytes: &[u8]) -> Vec<NodeNumbers> {
-    #[derive(serde::Deserialize)]
-    struct Nodes {
-        #[serde(default)]
-        nodes: Vec<NodeNumbers>,
-    }
-    let json = if bytes.starts_with(b"glTF") {
-        match ::gltf::Glb::from_slice(bytes) {
-            Ok(glb) => glb.json.into_owned(),
-            Err(_) => return Vec::new(),
-        }
-    } else {
-        bytes.to_vec()
-    };
-    serde_json::from_slice::<Nodes>(&json).map_or_else(|_| Vec::new(), |n| n.nodes)
-}
-
 /// The file parsed and validated by the gltf crate, after the checks its code assumes
 /// instead of making (each panicked on a file found by the gltf_model fuzz target): each
 /// primitive's POSITION accessor exists (validation indexes the accessors with it); an image

@@ -5,7 +5,8 @@
 use ::gltf::Document;
 
 use super::accessor::{self, Buffers};
-use super::{triangle_count, trs_matrix};
+use super::nodes::trs_matrix;
+use super::triangle_count;
 use glint_scene::Mat4;
 
 pub(super) const EXTENSION: &str = "EXT_mesh_gpu_instancing";
