@@ -6,7 +6,7 @@
 //! Expected: the GPU's image as close to its CPU reference at every T as at the origin (mean
 //! FLIP within 2×, and 4 pixels' worth). Planar coordinates are taken relative to the GPU's
 //! frame and each texture's coordinates of the frame's origin are computed once in f64 and
-//! folded into its period (`flat::place_texture_origins`): a checker edge 1e6 units out is
+//! folded into its period (`texture_table::planar_origins`): a checker edge 1e6 units out is
 //! where it is at the origin. Before, the GPU took planar coordinates at the f32 world
 //! position (1/16 apart at 1e6): checker edges moved, seen directly and through the glass
 //! (FLIP 0.08 at 1e6 on the scene; this one's figures are in docs/numerics.md).

@@ -1,22 +1,24 @@
 //! The flat layout's textures: one texel buffer (linear RGBA f32, each image once however many
 //! materials use it) and a table of `GpuTexture`s pointing into it, built from the materials'
-//! image textures and checkers.
+//! image textures and checkers, with their planar origins placed in the frame the scene is
+//! stored in.
 
 use std::sync::Arc;
+
+use glam::DVec3;
 
 use glint_scene::{CheckerDesc, Filter, Rgb, TextureDesc, TextureImage, UvTransform, Wrap};
 use glint_types::layout::{GpuTexture, NO_TEXTURE};
 
 /// The texture table and texel buffer under construction.
-#[derive(Debug, Default)]
+#[derive(Debug)]
 pub(crate) struct TextureTable {
     pub textures: Vec<GpuTexture>,
     pub texels: Vec<[f32; 4]>,
-    /// Each texture's UV transform rows in f64, as `textures` stores them in f32
-    /// (`FlatScene::texture_transforms`).
-    pub transforms: Vec<[[f64; 3]; 2]>,
     /// Images already in `texels`, with their first texel.
     stored: Vec<(Arc<TextureImage>, u32)>,
+    /// The frame's origin in world space (the storage origin), where `planar_origins` are placed.
+    origin: DVec3,
 }
 
 fn row(m: [f64; 3]) -> [f32; 4] {
@@ -24,6 +26,11 @@ fn row(m: [f64; 3]) -> [f32; 4] {
 }
 
 impl TextureTable {
+    /// An empty table for a scene stored relative to `origin` (world space).
+    pub fn new(origin: DVec3) -> Self {
+        Self { textures: Vec::new(), texels: Vec::new(), stored: Vec::new(), origin }
+    }
+
     /// The table entry of an image texture, its image stored once. A texture without an image
     /// (never passes validation) gets `NO_TEXTURE`.
     pub fn add(&mut self, t: &TextureDesc) -> u32 {
@@ -54,7 +61,7 @@ impl TextureTable {
 
     fn push(&mut self, offset: u32, width: u32, height: u32, wrap: [Wrap; 2], filter: Filter, t: &UvTransform) -> u32 {
         let [u, v] = t.matrix();
-        self.transforms.push([u, v]);
+        let (planar_u, planar_v) = (planar_origins(u, wrap[0], self.origin), planar_origins(v, wrap[1], self.origin));
         self.textures.push(GpuTexture {
             offset,
             width,
@@ -66,10 +73,40 @@ impl TextureTable {
             pad_b: 0,
             transform_u: row(u),
             transform_v: row(v),
-            // In world space (frame origin 0) the origin's coordinates are the offsets.
-            planar_u: [row(u)[2]; 4],
-            planar_v: [row(v)[2]; 4],
+            planar_u,
+            planar_v,
         });
         self.textures.len() as u32 - 1
+    }
+}
+
+/// A texture's planar origins (`GpuTexture::planar_u` or `planar_v`, for the transform `row`)
+/// in the frame whose origin is `origin`: the transformed planar coordinates of that origin
+/// across each axis, in f64 from the f64 transform (the f32 one's rounding times the origin's
+/// distance is a shift of the pattern: a checker of size 0.3 moved by 9e6 of its periods was
+/// half a period off), folded towards 0 by the wrap mode's period (`fold`). Planar coordinates
+/// are then taken relative to the frame, small, and a texel edge 1e6 units from the world
+/// origin stays where it is (its f32 world coordinate was off by 1/16 there). At the world
+/// origin they are the offsets, exact. A rebase moves them (`flat::move_texture_origins`).
+fn planar_origins(row: [f64; 3], wrap: Wrap, origin: DVec3) -> [f32; 4] {
+    let offset = row[2] as f32;
+    if origin == DVec3::ZERO {
+        return [offset; 4];
+    }
+    let across = [(origin.y, origin.z), (origin.x, origin.z), (origin.x, origin.y)];
+    let [a, b, c] = across.map(|(a, b)| fold(row[0] * a + row[1] * b + row[2], wrap as u32) as f32);
+    [a, b, c, offset]
+}
+
+/// `u` less the whole number of its wrap mode's periods nearest it, into [−period/2,
+/// period/2]: the same texel, a number near 0. Not [0, period): an origin just below a square's
+/// edge (u = −1e-9, a 1e9 checker's edge at the frame's origin) folded to 1 − 1e-9, which f32
+/// rounds to 1, and 1 + the point's own tiny coordinate is 1 again: every point near the edge
+/// took one side of it. Clamped coordinates have no period and stay.
+pub(crate) fn fold(u: f64, wrap: u32) -> f64 {
+    match Wrap::try_from(wrap) {
+        Ok(Wrap::Repeat) => u - u.round(),
+        Ok(Wrap::MirroredRepeat) => u - 2.0 * (u * 0.5).round(),
+        Ok(Wrap::ClampToEdge) | Err(_) => u,
     }
 }

@@ -335,7 +335,7 @@ pub struct GpuTexture {
     /// The transformed planar coordinates of the frame's origin, for planar coordinates taken
     /// across the x, y and z axis (`UV_ACROSS_X` …; w unused): u' = transform_u.xy · uv +
     /// planar_u[axis], with uv relative to the frame. Computed in f64 and folded into the wrap
-    /// mode's period (`flat::place_texture_origins`, for the stored and the rebased frame alike),
+    /// mode's period (`texture_table::planar_origins` for the stored frame, `flat::move_texture_origins` for a rebased one),
     /// so that a scene far from the world origin keeps its texel
     /// edges on the GPU; in world space (frame origin 0) they are transform_u.z and
     /// transform_v.z.

@@ -32,7 +32,7 @@ pub fn surface_at(ctx: &TraceContext, ray: &Ray, hit: &Hit) -> Surface {
     let robust = ctx.epsilon_mode == EpsilonMode::Robust;
     let textures = ctx.has(feature::TEXTURES);
     // Planar texture coordinates relative to the frame's origin, whose own are each
-    // texture's `planar_u`/`planar_v` (computed once in f64, `flat::place_texture_origins`).
+    // texture's `planar_u`/`planar_v` (placed in f64 where the scene is stored, `texture_table::planar_origins`, and moved by a rebase).
     let uv_origin_at = |ng: DVec3| if textures { planar_axis(ng) } else { UV_MESH };
     // What the primitives differ in; the point and the primitive are the hit's.
     let surface = |p_surface, ng, ns, uv, uv_origin, colour, (material, object_id)| Surface {

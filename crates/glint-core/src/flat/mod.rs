@@ -48,10 +48,6 @@ pub struct FlatScene {
     pub textures: Vec<GpuTexture>,
     /// Every texture's texels, linear RGBA, row by row from the top (`GpuTexture::offset`).
     pub texels: Vec<[f32; 4]>,
-    /// Each texture's UV transform rows in f64, beside `textures`: what the planar origins are
-    /// placed with (`place_texture_origins`). Far from the world origin the f32 rows' rounding
-    /// would move a checker of size 0.3 by half a square at 5e6.
-    pub texture_transforms: Vec<[[f64; 3]; 2]>,
     /// The BVH over spheres and triangles (`bvh::build`; root first, empty without them).
     pub bvh_nodes: BvhNodes,
     /// The primitive references its leaves point into (`bvh::PrimRef`).
@@ -84,7 +80,7 @@ mod lights_materials;
 
 pub use camera::{SceneBox, WorldCamera, camera_eye};
 pub(crate) use camera::{anchor_of, telephoto};
-pub(crate) use frame::{move_texture_origins, place_texture_origins};
+pub(crate) use frame::move_texture_origins;
 pub use geometry::GeometryId;
 use geometry::{Geometry, flat_primitives};
 pub use leaf_corners::{Corners, GPU_LEAF_BYTES_PER_PRIM, GpuLeafAb, GpuLeafC, LeafCorners, fill_gpu_leaves};
@@ -150,9 +146,9 @@ impl FlatScene {
 
     /// Everything but the geometry, around it.
     fn assemble(desc: &SceneDesc, settings: &RenderSettings, material_names: Vec<String>, geometry: Geometry) -> Self {
-        let mut table = TextureTable::default();
-        let materials = desc.materials.values().map(|m| flat_material(m, &mut table)).collect();
         let origin = wide(geometry.frame);
+        let mut table = TextureTable::new(origin);
+        let materials = desc.materials.values().map(|m| flat_material(m, &mut table)).collect();
         let lights = desc.traced_lights().map(|l| flat_light(l, origin)).collect();
         // A far box the camera cannot see is not what it looks at, nor what the scene is stored
         // around (`glint_scene::storage_origin`): the camera is judged as over planes alone.
@@ -173,7 +169,6 @@ impl FlatScene {
             meshes: geometry.meshes,
             textures: table.textures,
             texels: table.texels,
-            texture_transforms: table.transforms,
             bvh_nodes: geometry.bvh_nodes,
             bvh_prims: geometry.bvh_prims,
             leaf_corners: geometry.leaf_corners,
@@ -182,8 +177,6 @@ impl FlatScene {
             bounds: geometry.bounds,
             storage_origin: geometry.storage_origin,
         };
-        let frame = flat.header.frame;
-        place_texture_origins(&mut flat, frame);
         let light_tags: Vec<LightTags> = desc
             .traced_lights()
             .map(|l| LightTags { kind: l.kind, attenuation: l.attenuation.model(), falloff: l.falloff })
