@@ -46,11 +46,12 @@ pub(super) fn validate_object(path: &str, o: &ObjectDesc, scene: &SceneDesc, ori
                     validate_light(&format!("{path}.lights[{j}]"), light, r);
                 }
             }
+            let transformed = model.transform != Default::default();
             match &model.loaded {
                 // Placed beyond the coordinates a scene may hold: one error naming what placed it,
                 // not one per vertex and normal component (a spider scaled by 1e300 gave 5,917).
-                Some(loaded) if let Some(problem) = beyond_range(loaded, model.transform != Default::default()) => {
-                    let field = if model.transform == Default::default() { "path" } else { "transform" };
+                Some(loaded) if let Some(problem) = beyond_range(loaded, transformed) => {
+                    let field = if transformed { "transform" } else { "path" };
                     r.error(format!("{path}.{field}"), problem);
                 }
                 // Named by the model's own mesh names (`PREFIX/NODE`), which say where to look.
