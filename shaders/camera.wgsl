@@ -1,7 +1,7 @@
 // Twin of crates/glint-core/src/cpu/camera.rs: primary ray generation.
 #define_import_path glint::camera
 
-#import glint::scene_data::GpuCamera
+#import glint::scene_data::{GpuCamera, CAMERA_ORTHOGRAPHIC}
 #import glint::rng::{sample_hash, hash_to_unit}
 #import glint::ray::Ray
 
@@ -58,6 +58,10 @@ fn from_eye(c: CameraRay, t: f32) -> f32 {
 fn camera_ray(cam: GpuCamera, width: u32, height: u32, x: u32, y: u32, offset: vec2<f32>) -> CameraRay {
     let ndc_x = 2.0 * (f32(x) + offset.x) / f32(width) - 1.0;
     let ndc_y = 1.0 - 2.0 * (f32(y) + offset.y) / f32(height);
+    if cam.forward.w == CAMERA_ORTHOGRAPHIC {
+        let across = ndc_x * cam.right.xyz + ndc_y * cam.up.xyz;
+        return CameraRay(Ray(cam.anchor.xyz + across, normalize(cam.forward.xyz)), -cam.anchor.w * length(cam.forward.xyz));
+    }
     // Summed in this order (the CPU twin says why).
     let dir = cam.forward.xyz + ndc_x * cam.right.xyz + ndc_y * cam.up.xyz;
     let across = ndc_x * cam.right.xyz + ndc_y * cam.up.xyz;

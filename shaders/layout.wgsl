@@ -13,6 +13,7 @@ const SPOT_FALLOFF_SMOOTH: u32 = 1u;
 const LIGHT_CASTS_SHADOWS: u32 = 1u;
 // GpuLight::spot_versin_cutoff of a light with no cone (cutoff 180°): 1 − cos 180°.
 const NO_CONE_VERSIN: f32 = 2.0;
+const CAMERA_ORTHOGRAPHIC: f32 = 1.0;
 const SPECULAR_BLINN: u32 = 0u;
 const SPECULAR_PHONG: u32 = 1u;
 const SPECULAR_COOK_TORRANCE: u32 = 2u;
@@ -107,6 +108,7 @@ struct SceneHeader {
 struct GpuCamera {
     // xyz a point of the view axis, w its distance from the eye (layout.rs says why).
     anchor: vec4<f32>,
+    // xyz the view direction, w the projection (0 a pinhole, or CAMERA_ORTHOGRAPHIC).
     forward: vec4<f32>,
     right: vec4<f32>,
     up: vec4<f32>,

@@ -8,7 +8,7 @@ use glint_io::ImportOptions;
 use glint_io::model::load_gltf;
 use glint_io::{LoadOptions, load_scene_with};
 use glint_scene::Model;
-use glint_scene::{LightKind, Rgb};
+use glint_scene::{LightKind, Projection, Rgb};
 use glint_test_support::TempDir;
 use glint_test_support::gltf::{BufferAt, Fixture};
 use serde_json::json;
@@ -247,6 +247,29 @@ fn an_aspect_ratio_that_is_not_positive_is_left_out_with_a_warning() {
 }
 
 #[test]
+fn an_orthographic_camera_without_a_usable_ymag_is_skipped_and_a_negative_xmag_left_out() {
+    let dir = TempDir::new("gltf-orthographic");
+    for (xmag, ymag, kept, said) in [
+        (1.0, 0.0, false, "ymag 0 (cameras[0].orthographic.ymag) gives no view height in [1e-9, 1000000000]"),
+        (1.0, -2.0, false, "ymag -2 "),
+        (1.0, 1e30, false, "ymag 1e30 "),
+        (-3.0, 1.5, true, "xmag -3 (cameras[0].orthographic.xmag) is not a positive number"),
+    ] {
+        let mut f = Fixture::quad();
+        f.json["cameras"] = json!([{ "type": "orthographic", "orthographic": { "xmag": xmag, "ymag": ymag, "znear": 0.1, "zfar": 10.0 } }]);
+        f.json["scenes"] = json!([{ "nodes": [0, 1] }]);
+        f.json["nodes"] = json!([{ "mesh": 0 }, { "translation": [0.5, 0.5, 4.0], "camera": 0 }]);
+        let m = load(&f.write_gltf(&dir, "orthographic", BufferAt::DataUri));
+        assert_eq!(m.cameras.len(), usize::from(kept), "xmag {xmag}, ymag {ymag}");
+        if kept {
+            assert_eq!((m.cameras[0].camera.view_height, m.cameras[0].aspect), (Some(3.0), None));
+        }
+        let warning = m.warnings.iter().find(|w| w.field.contains("cameras[0]")).expect("a warning");
+        assert!(warning.problem.starts_with(said), "{warning:?}");
+    }
+}
+
+#[test]
 fn cameras_come_from_their_nodes_and_the_scene_uses_the_chosen_one() {
     let dir = TempDir::new("gltf-cameras");
     let mut f = Fixture::quad();
@@ -264,8 +287,11 @@ fn cameras_come_from_their_nodes_and_the_scene_uses_the_chosen_one() {
     ]);
     let path = f.write_gltf(&dir, "cams", BufferAt::DataUri);
     let m = load(&path);
-    assert_eq!(m.cameras.len(), 2, "the orthographic camera is skipped");
-    assert!(m.warnings.iter().any(|w| w.problem.contains("orthographic")), "{:?}", m.warnings);
+    assert_eq!(m.cameras.len(), 3);
+    assert!(m.warnings.iter().all(|w| !w.field.contains("camera")), "{:?}", m.warnings);
+    // xmag and ymag are the half-width and half-height.
+    let o = &m.cameras[1];
+    assert_eq!((o.camera.projection, o.camera.view_height, o.aspect), (Projection::Orthographic, Some(2.0), Some(1.0)));
     let c = &m.cameras[0].camera;
     assert_eq!(c.position, [0.5, 0.5, 4.0]);
     assert_eq!(c.look_at, [0.5, 0.5, 3.0], "down the node's −Z");
@@ -277,11 +303,15 @@ fn cameras_come_from_their_nodes_and_the_scene_uses_the_chosen_one() {
     assert!(first.warnings.iter().any(|w| w.field == "lights"), "the default rig is said: {:?}", first.warnings);
     let chosen =
         LoadOptions { import: ImportOptions { camera: Some(1), ..ImportOptions::default() }, ..LoadOptions::default() };
+    let orthographic = load_scene_with(arg, &chosen).unwrap().desc.camera;
+    assert_eq!((orthographic.position, orthographic.projection), ([0.5, 0.5, 4.0], Projection::Orthographic));
+    let chosen =
+        LoadOptions { import: ImportOptions { camera: Some(2), ..ImportOptions::default() }, ..LoadOptions::default() };
     assert_eq!(load_scene_with(arg, &chosen).unwrap().desc.camera.position, [0.5, 0.5, 2.0]);
     let missing =
         LoadOptions { import: ImportOptions { camera: Some(5), ..ImportOptions::default() }, ..LoadOptions::default() };
     let message = load_scene_with(arg, &missing).unwrap_err().to_string();
-    assert!(message.contains("--camera") && message.contains("has 2"), "{message}");
+    assert!(message.contains("--camera") && message.contains("has 3"), "{message}");
     let scene = LoadOptions {
         import: ImportOptions { scene_index: Some(3), ..ImportOptions::default() },
         ..LoadOptions::default()
@@ -294,7 +324,7 @@ fn cameras_come_from_their_nodes_and_the_scene_uses_the_chosen_one() {
     f.json["nodes"][3] = json!({ "scale": [-1.0, 1.0, 1.0], "children": [4] });
     f.json["nodes"].as_array_mut().unwrap().push(json!({ "translation": [-0.5, 0.5, 2.0], "camera": 2 }));
     let m = load(&f.write_gltf(&dir, "mirrored", BufferAt::DataUri));
-    assert_eq!(m.cameras[1].camera.position, [0.5, 0.5, 2.0]);
+    assert_eq!(m.cameras[2].camera.position, [0.5, 0.5, 2.0]);
     let said = m.warnings.iter().find(|w| w.problem.contains("mirrors")).expect("the mirror is said");
     assert!(said.field.contains("nodes[4].camera"), "{said:?}");
     assert_eq!(m.warnings.iter().filter(|w| w.problem.contains("mirrors")).count(), 1, "{:?}", m.warnings);

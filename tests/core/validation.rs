@@ -177,6 +177,38 @@ fn a_look_at_nearer_the_eye_than_its_bound_says_how_near_and_the_bound() {
 }
 
 #[test]
+fn an_orthographic_camera_needs_a_view_height_in_range_and_a_perspective_one_ignores_it_aloud() {
+    let orthographic =
+        |extra: &str| edited("look_at = [0.0, 0.5, 0.0]", &format!("look_at = [0.0, 0.5, 0.0]\n{extra}"));
+    assert!(expect_valid(&orthographic("projection = \"orthographic\"\nview_height = 3.0"), "3.0").is_empty());
+    // Not given, it is what the field of view sees at look_at: valid here.
+    assert!(expect_valid(&orthographic("projection = \"orthographic\""), "derived").is_empty());
+    for bad in ["0.0", "-3.0", "1e10", "nan"] {
+        expect_invalid(
+            &orthographic(&format!("projection = \"orthographic\"\nview_height = {bad}")),
+            "camera.view_height",
+            &["[1e-9, 1000000000]"],
+        );
+    }
+    // A field of view so narrow that the derived height is below the bound says how it was derived.
+    expect_invalid(
+        &edited(
+            "look_at = [0.0, 0.5, 0.0]",
+            "look_at = [0.0, 1.0, -4.99999]\nprojection = \"orthographic\"\nfov_y = 1e-6",
+        ),
+        "camera.view_height",
+        &["not given", "2·|look_at − position|·tan(fov_y/2) = 1.75e-13, outside", "give it"],
+    );
+    let warned = expect_valid(&orthographic("view_height = 3.0"), "perspective with a view height");
+    assert!(
+        warned.len() == 1 && warned[0].starts_with("camera.view_height: is used by an orthographic camera only"),
+        "{warned:?}"
+    );
+    let err = parse_scene(&orthographic("projection = \"fisheye\""), Path::new(FILE)).unwrap_err().to_string();
+    assert!(err.contains("unknown variant `fisheye`, expected `perspective` or `orthographic`"), "{err}");
+}
+
+#[test]
 fn ior_must_be_positive() {
     for bad in ["0.0", "-1.5"] {
         expect_invalid(&edited("ior = 1.5", &format!("ior = {bad}")), "materials.glass.ior", &["(0, 1000]"]);

@@ -1,4 +1,4 @@
-//! The stiff-and-extreme-cases suite (issue 5): twenty-six small generated scenes, each rendered on
+//! The stiff-and-extreme-cases suite (issue 5): twenty-eight small generated scenes, each rendered on
 //! the CPU f64 reference and on the WGSL tracer, with the expected behaviour stated in a comment
 //! and checked automatically. Every read-back image is scanned for NaN and infinities (there
 //! must be none: `gpu::render_both` fails otherwise and leaves the images in target/tmp/stiff).
@@ -52,6 +52,7 @@ mod case24_far_eye_over_a_plane;
 mod case25_large_triangle_through_an_axis;
 mod case26_far_object_out_of_sight;
 mod case27_huge_triangle_near_the_eye;
+mod case28_orthographic;
 mod generated;
 mod plot;
 

@@ -5,6 +5,7 @@ use egui::{Event, PointerButton, Pos2, Vec2};
 use std::time::{Duration, Instant};
 
 use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
 use glint_core::glam::DVec3;
 use glint_viewer::ViewerApp;
 
@@ -125,4 +126,26 @@ fn a_camera_typed_in_shows_its_preview_before_its_long_render() {
         std::thread::sleep(Duration::from_millis(5));
     }
     assert!(preview_while_rendering, "the old camera stayed on screen until the full render was done");
+}
+
+#[test]
+fn the_projection_switch_keeps_the_framing_and_renders_parallel_rays_on_both_tracers() {
+    let Some(mut h) = viewer("whitted", (1000.0, 640.0)) else { return };
+    let perspective = crate::support::gpu_image(&h);
+    let framing = h.state().doc.desc.camera.view_height();
+    crate::support::choose(&mut h, "Scene", "Projection", "orthographic");
+    settle(&mut h);
+    let c = h.state().doc.desc.camera.clone();
+    assert_eq!((c.projection, c.view_height), (glint_scene::Projection::Orthographic, Some(framing)));
+    assert!(
+        h.query_all_by_label("Field of view").next().is_none() && h.query_all_by_label("View height").next().is_some()
+    );
+    let orthographic = crate::support::gpu_image(&h);
+    assert!(crate::support::mean_abs_diff(&perspective, &orthographic) > 1e-3, "the image changed");
+    crate::edits::assert_current_agreement(&h);
+    crate::support::choose(&mut h, "Scene", "Projection", "perspective");
+    settle(&mut h);
+    let c = &h.state().doc.desc.camera;
+    assert_eq!((c.projection, c.view_height), (glint_scene::Projection::Perspective, None));
+    assert!(crate::support::mean_abs_diff(&perspective, &crate::support::gpu_image(&h)) < 1e-6, "back as it was");
 }

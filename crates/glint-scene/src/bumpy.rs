@@ -107,7 +107,7 @@ fn base(n: u32, sphere_material: (&str, MaterialDesc)) -> SceneDesc {
         provenance: "Glint ray-benchmark issue: displaced UV sphere (generated, resolution N)".into(),
         render: RenderSettings { width: 960, height: 540, ..RenderSettings::default() },
         // The benchmark's eye point, looking slightly down at the sphere's centre.
-        camera: CameraDesc { position: [0.0, 0.3, 3.0], look_at: [0.0, -0.05, 0.0], up: [0.0, 1.0, 0.0], fov_y: 55.0 },
+        camera: CameraDesc::perspective([0.0, 0.3, 3.0], [0.0, -0.05, 0.0], [0.0, 1.0, 0.0], 55.0),
         world: WorldDesc { ambient: Rgb::splat(0.12), background: rgb(0.55, 0.65, 0.8), ..WorldDesc::default() },
         materials: BTreeMap::from([("ground".to_string(), ground), (name.to_string(), material)]),
         lights: vec![key, fill],

@@ -3,6 +3,34 @@
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
+/// How the camera maps the scene onto the image.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Projection {
+    /// A pinhole at `position`: rays fan out through the field of view `fov_y`.
+    #[default]
+    Perspective,
+    /// Parallel rays along the view axis, leaving a rectangle `view_height` tall centred on
+    /// `position` (glTF's orthographic cameras, the parallel projection of CAD drawings).
+    Orthographic,
+}
+
+impl Projection {
+    pub const ALL: [Projection; 2] = [Projection::Perspective, Projection::Orthographic];
+
+    /// As a scene file spells it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Projection::Perspective => "perspective",
+            Projection::Orthographic => "orthographic",
+        }
+    }
+
+    fn is_perspective(&self) -> bool {
+        *self == Projection::Perspective
+    }
+}
+
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct CameraDesc {
@@ -15,6 +43,12 @@ pub struct CameraDesc {
     /// Vertical field of view in degrees, in [1e-6, 179].
     #[serde(default = "default_fov")]
     pub fov_y: f64,
+    #[serde(default, skip_serializing_if = "Projection::is_perspective")]
+    pub projection: Projection,
+    /// An orthographic view's height in world units; not given, the height the perspective view
+    /// (`fov_y`) sees at `look_at` (`CameraDesc::view_height`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub view_height: Option<f64>,
 }
 
 fn default_up() -> [f64; 3] {
@@ -31,12 +65,51 @@ fn default_fov() -> f64 {
 const WIDEST_ASPECT: f64 = 4.0;
 
 impl CameraDesc {
-    /// `ball_may_be_seen` from this camera.
+    /// A pinhole camera.
+    pub fn perspective(position: [f64; 3], look_at: [f64; 3], up: [f64; 3], fov_y: f64) -> Self {
+        CameraDesc { position, look_at, up, fov_y, projection: Projection::Perspective, view_height: None }
+    }
+
+    /// The height of the view an orthographic camera sees: `view_height`, or where it is not
+    /// given, what the perspective view sees at `look_at`, 2·|look_at − position|·tan(fov_y/2):
+    /// switching a camera to orthographic keeps the look-at point's framing.
+    pub fn view_height(&self) -> f64 {
+        self.view_height.unwrap_or_else(|| {
+            let distance = (DVec3::from(self.look_at) - DVec3::from(self.position)).length();
+            2.0 * distance * (self.fov_y.to_radians() * 0.5).tan()
+        })
+    }
+
+    /// Whether any part of the ball of `radius` around `centre` may be seen by this camera
+    /// directly: `ball_may_be_seen`, or for an orthographic camera `ball_may_be_seen_parallel`.
     pub fn may_see(&self, centre: [f64; 3], radius: f64) -> bool {
         let eye = DVec3::from(self.position);
-        let tan_half_fov = (self.fov_y.to_radians() * 0.5).tan();
-        ball_may_be_seen(eye, DVec3::from(self.look_at) - eye, tan_half_fov, DVec3::from(centre), radius)
+        let forward = DVec3::from(self.look_at) - eye;
+        match self.projection {
+            Projection::Perspective => {
+                let tan_half_fov = (self.fov_y.to_radians() * 0.5).tan();
+                ball_may_be_seen(eye, forward, tan_half_fov, DVec3::from(centre), radius)
+            }
+            Projection::Orthographic => {
+                ball_may_be_seen_parallel(eye, forward, self.view_height(), DVec3::from(centre), radius)
+            }
+        }
     }
+}
+
+/// `ball_may_be_seen` for parallel rays along `forward` leaving a rectangle `view_height` tall
+/// around `eye`: the ball reaches in front of the eye's plane, and within the corners of a
+/// `WIDEST_ASPECT` image around the axis.
+fn ball_may_be_seen_parallel(eye: DVec3, forward: DVec3, view_height: f64, centre: DVec3, radius: f64) -> bool {
+    let Some(axis) = forward.try_normalize() else {
+        return true;
+    };
+    let to_ball = centre - eye;
+    let ahead = to_ball.dot(axis);
+    let across = (to_ball - ahead * axis).length();
+    let half_diagonal = 0.5 * view_height * WIDEST_ASPECT.hypot(1.0);
+    // Unsure (a NaN) counts as seen.
+    !(ahead < -radius || across > half_diagonal + radius)
 }
 
 /// Whether any part of the ball of `radius` around `centre` may lie within the view of an eye at
@@ -62,7 +135,7 @@ mod tests {
 
     #[test]
     fn a_ball_is_seen_ahead_and_not_behind_or_far_to_a_side() {
-        let camera = CameraDesc { position: [0.0; 3], look_at: [0.0, 0.0, 1.0], up: default_up(), fov_y: 40.0 };
+        let camera = CameraDesc::perspective([0.0; 3], [0.0, 0.0, 1.0], default_up(), 40.0);
         assert!(camera.may_see([0.0, 0.0, 100.0], 1.0));
         assert!(!camera.may_see([0.0, 0.0, -100.0], 1.0));
         assert!(!camera.may_see([0.0, 100.0, 0.0], 1.0));
@@ -72,5 +145,24 @@ mod tests {
         assert!(!camera.may_see(at(57.2), 1.0));
         // An eye inside the ball, or on its surface, sees it.
         assert!(camera.may_see([0.0, 0.0, -0.5], 1.0));
+    }
+
+    #[test]
+    fn an_orthographic_camera_sees_what_lies_in_front_of_its_plane_within_its_rectangle() {
+        let camera = CameraDesc {
+            projection: Projection::Orthographic,
+            view_height: Some(2.0),
+            ..CameraDesc::perspective([0.0; 3], [0.0, 0.0, 1.0], default_up(), 40.0)
+        };
+        assert!(camera.may_see([0.0, 0.0, 1e6], 1.0));
+        // Behind the eye's plane, but reaching through it.
+        assert!(camera.may_see([0.0, 0.0, -0.5], 1.0));
+        assert!(!camera.may_see([0.0, 0.0, -2.0], 1.0));
+        // A 4:1 image 2 high reaches √17 ≈ 4.12 from the axis at its corners, at any distance.
+        assert!(camera.may_see([5.0, 0.0, 1e6], 1.0));
+        assert!(!camera.may_see([5.2, 0.0, 1.0], 1.0));
+        // Not given, the view height is the perspective view's at look_at: 2·1·tan(20°).
+        let framed = CameraDesc { view_height: None, ..camera };
+        assert!((framed.view_height() - 2.0 * 20f64.to_radians().tan()).abs() < 1e-15);
     }
 }

@@ -340,7 +340,7 @@ pub(crate) fn test_scene(objects: Vec<ObjectDesc>) -> SceneDesc {
         description: String::new(),
         provenance: String::new(),
         render: RenderSettings::default(),
-        camera: CameraDesc { position: [0.0, 2.0, -5.0], look_at: [0.0; 3], up: [0.0, 1.0, 0.0], fov_y: 40.0 },
+        camera: CameraDesc::perspective([0.0, 2.0, -5.0], [0.0; 3], [0.0, 1.0, 0.0], 40.0),
         world: WorldDesc::default(),
         materials: [("m".to_string(), MaterialDesc::default())].into(),
         lights: Vec::new(),

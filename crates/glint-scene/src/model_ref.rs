@@ -253,6 +253,10 @@ impl LoadedModel {
                     position: m.point(c.camera.position),
                     look_at: m.point(c.camera.look_at),
                     up: m.vector(c.camera.up),
+                    // An orthographic view is as tall as the transform stretches the camera's up.
+                    view_height: c.camera.view_height.map(|h| {
+                        h * glam::DVec3::from(m.vector(c.camera.up)).length() / glam::DVec3::from(c.camera.up).length()
+                    }),
                     ..c.camera
                 },
                 ..c

@@ -33,6 +33,9 @@ pub const LIGHT_CASTS_SHADOWS: u32 = 1;
 /// `GpuLight::spot_versin_cutoff` of a light with no cone (cutoff 180°): 1 − cos 180°.
 pub const NO_CONE_VERSIN: f32 = 2.0;
 
+/// `GpuCamera::forward`'s w: the projection (a pinhole's is 0).
+pub const CAMERA_ORTHOGRAPHIC: f32 = 1.0;
+
 /// Specular models (`GpuMaterial::specular_model`).
 pub const SPECULAR_BLINN: u32 = 0;
 pub const SPECULAR_PHONG: u32 = 1;
@@ -268,7 +271,9 @@ pub struct SceneHeader {
 
 /// Pinhole camera as ray-generation vectors: a pixel at normalised device coordinates (x, y)
 /// in [−1, 1]² looks along `forward + x·right + y·up` (right and up are pre-scaled by the
-/// field of view and aspect ratio) from the eye, `anchor.xyz − anchor.w·forward`.
+/// field of view and aspect ratio) from the eye, `anchor.xyz − anchor.w·forward`. An
+/// orthographic camera (`forward.w` = `CAMERA_ORTHOGRAPHIC`) looks along `forward` from the
+/// eye's plane, at eye + x·right + y·up (right and up then half the view's width and height).
 ///
 /// The eye is not stored: a camera ray starts on the plane through the anchor, at
 /// anchor + w·(x·right + y·up), and reaches back to the eye with t_min = −w·|forward + x·right +
@@ -278,12 +283,15 @@ pub struct SceneHeader {
 /// small coordinates and an f32 direction's error acts over the scene's depth only, not over the
 /// eye's distance: from an eye D away, f32 would point each ray D·6e-8 off and store the eye as
 /// far off (stiff case 22). A nearer eye is its own anchor (w = 0: the rays are the eye's).
+/// An orthographic ray starts at anchor + x·right + y·up and reaches back to the eye's plane
+/// with t_min = −w·|forward|.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
 pub struct GpuCamera {
     /// xyz the anchor on the view axis, w ≥ 0 its distance from the eye (an f32 value the
     /// anchor was placed from, so that the eye is exact to the anchor's rounding).
     pub anchor: [f32; 4],
+    /// xyz the view direction, w the projection (0 a pinhole, or `CAMERA_ORTHOGRAPHIC`).
     pub forward: [f32; 4],
     pub right: [f32; 4],
     pub up: [f32; 4],

@@ -258,7 +258,10 @@ fn wgsl_layout_constants_match_rust() {
     let expected: Vec<(String, f64)> = expected
         .into_iter()
         .map(|(n, v)| (n, f64::from(v)))
-        .chain([("NO_CONE_VERSIN".to_string(), f64::from(NO_CONE_VERSIN))])
+        .chain([
+            ("NO_CONE_VERSIN".to_string(), f64::from(NO_CONE_VERSIN)),
+            ("CAMERA_ORTHOGRAPHIC".to_string(), f64::from(CAMERA_ORTHOGRAPHIC)),
+        ])
         .collect();
     for (name, value) in &expected {
         let found = wgsl.iter().find(|(n, _)| n == name).unwrap_or_else(|| panic!("{name} missing from layout.wgsl"));

@@ -2,7 +2,7 @@
 //! look-at point, keeping the scene's up vector.
 
 use glint_core::glam::DVec3;
-use glint_scene::{CameraDesc, ObjectDesc, SceneDesc};
+use glint_scene::{CameraDesc, ObjectDesc, Projection, SceneDesc, ranges};
 
 /// Keeps the camera off the poles, where the up vector and the view direction align.
 const MAX_PITCH: f64 = 1.55;
@@ -66,18 +66,28 @@ pub fn pan(cam: &mut CameraDesc, dx: f32, dy: f32, view_height: f32) {
     let forward = (target - pos).normalize_or_zero();
     let right = forward.cross(DVec3::from(cam.up)).normalize_or_zero();
     let up = right.cross(forward);
-    let distance = (target - pos).length();
-    let per_point = 2.0 * distance * (cam.fov_y.to_radians() / 2.0).tan() / f64::from(view_height.max(1.0));
+    let seen = match cam.projection {
+        Projection::Perspective => 2.0 * (target - pos).length() * (cam.fov_y.to_radians() / 2.0).tan(),
+        Projection::Orthographic => cam.view_height(),
+    };
+    let per_point = seen / f64::from(view_height.max(1.0));
     let shift = (-right * f64::from(dx) + up * f64::from(dy)) * per_point;
     cam.position = (pos + shift).to_array();
     cam.look_at = (target + shift).to_array();
 }
 
-/// Moves the camera towards (scroll > 0) or away from its look-at point.
+/// Moves the camera towards (scroll > 0) or away from its look-at point; an orthographic
+/// camera, whose image a move along its axis does not change, narrows or widens its view
+/// instead, within the view heights a scene allows.
 pub fn zoom(cam: &mut CameraDesc, scroll: f32) {
     let target = DVec3::from(cam.look_at);
     let offset = DVec3::from(cam.position) - target;
     let factor = (-f64::from(scroll) * 0.002).exp();
+    if cam.projection == Projection::Orthographic {
+        let range = ranges::VIEW_HEIGHT;
+        cam.view_height = Some((cam.view_height() * factor).clamp(range.min, range.max));
+        return;
+    }
     let new = offset * factor;
     // Never onto the look-at point itself (the view direction would vanish).
     if new.length() > 1e-3 {
@@ -90,7 +100,7 @@ mod tests {
     use super::*;
 
     fn cam() -> CameraDesc {
-        CameraDesc { position: [0.0, 1.0, -5.0], look_at: [0.0, 1.0, 0.0], up: [0.0, 1.0, 0.0], fov_y: 45.0 }
+        CameraDesc::perspective([0.0, 1.0, -5.0], [0.0, 1.0, 0.0], [0.0, 1.0, 0.0], 45.0)
     }
 
     #[test]
@@ -145,5 +155,23 @@ mod tests {
         let after = DVec3::from(c.position) - DVec3::from(c.look_at);
         assert!((before - after).length() < 1e-12);
         assert_ne!(c.look_at, cam().look_at);
+    }
+
+    #[test]
+    fn an_orthographic_camera_zooms_by_its_view_height_and_pans_by_it() {
+        let mut c = CameraDesc { projection: Projection::Orthographic, view_height: Some(4.0), ..cam() };
+        zoom(&mut c, 100.0);
+        assert_eq!(c.position, cam().position, "a move along the axis would not zoom");
+        let h = c.view_height.expect("set");
+        assert!((h - 4.0 * (-0.2f64).exp()).abs() < 1e-12, "{h}");
+        // A drag of 300 points over a view 300 points tall moves the scene by the view's height.
+        let before = c.look_at;
+        pan(&mut c, 0.0, 300.0, 300.0);
+        assert!((c.look_at[1] - before[1] - h).abs() < 1e-12, "{:?}", c.look_at);
+        // Zooming stops at the view heights a scene allows.
+        for _ in 0..100 {
+            zoom(&mut c, 1e4);
+        }
+        assert_eq!(c.view_height, Some(ranges::VIEW_HEIGHT.min));
     }
 }

@@ -88,7 +88,7 @@ impl Document {
             description: String::new(),
             provenance: String::new(),
             render: Default::default(),
-            camera: CameraDesc { position: [0.0, 0.0, -5.0], look_at: [0.0; 3], up: [0.0, 1.0, 0.0], fov_y: 45.0 },
+            camera: CameraDesc::perspective([0.0, 0.0, -5.0], [0.0; 3], [0.0, 1.0, 0.0], 45.0),
             world: Default::default(),
             materials: Default::default(),
             lights: Vec::new(),

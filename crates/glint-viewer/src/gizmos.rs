@@ -16,18 +16,13 @@ pub struct Gizmo {
     pub selected: bool,
 }
 
-/// Image position of world point `p`, or `None` behind the camera. Inverts `camera_ray`:
-/// dir = forward + ndc_x·right + ndc_y·up with orthogonal right and up.
+/// Image position of world point `p` (`WorldCamera::image_point`), or `None` behind the
+/// camera or within 1e-6 of its eye's plane.
 pub fn project(cam: &WorldCamera, p: DVec3) -> Option<(f32, f32)> {
-    let (f, r, u) = (cam.forward, cam.right, cam.up);
-    let q = p - cam.position;
-    let depth = q.dot(f) / f.length_squared();
-    if depth <= 1e-6 {
-        return None;
+    match cam.image_point(p) {
+        (Some((x, y)), depth) if depth > 1e-6 => Some((x as f32, y as f32)),
+        _ => None,
     }
-    let ndc_x = q.dot(r) / r.length_squared() / depth;
-    let ndc_y = q.dot(u) / u.length_squared() / depth;
-    Some((((ndc_x + 1.0) / 2.0) as f32, ((1.0 - ndc_y) / 2.0) as f32))
 }
 
 fn polyline(cam: &WorldCamera, points: impl IntoIterator<Item = DVec3>) -> Vec<(f32, f32)> {
@@ -103,11 +98,19 @@ mod tests {
             forward: DVec3::Z,
             right: DVec3::new(0.5, 0.0, 0.0),
             up: DVec3::new(0.0, 0.4, 0.0),
+            orthographic: false,
         };
         let (x, y) = project(&cam, DVec3::ZERO).expect("in front");
         assert!((x - 0.5).abs() < 1e-6 && (y - 0.5).abs() < 1e-6);
         let (x, y) = project(&cam, DVec3::new(2.5, 2.0, 0.0)).expect("in front");
         assert!((x - 1.0).abs() < 1e-6 && y.abs() < 1e-6, "{x} {y}");
         assert!(project(&cam, DVec3::new(0.0, 0.0, -10.0)).is_none());
+        // Orthographic, right and up are the half-width and half-height at any depth.
+        let parallel = WorldCamera { orthographic: true, ..cam };
+        for z in [0.0, 100.0] {
+            let (x, y) = project(&parallel, DVec3::new(0.25, 0.2, z)).expect("in front");
+            assert!((x - 0.75).abs() < 1e-6 && (y - 0.25).abs() < 1e-6, "{x} {y}");
+        }
+        assert!(project(&parallel, DVec3::new(0.0, 0.0, -5.0)).is_none(), "on the eye's plane");
     }
 }

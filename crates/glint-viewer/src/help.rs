@@ -13,6 +13,11 @@ pub fn tooltip(label: &str) -> Option<&'static str> {
     }
     Some(match base {
         "Field of view" => "The camera's vertical field of view in degrees. Smaller zooms in.",
+        "Projection" => {
+            "Perspective: rays fan out from the eye. Orthographic: parallel rays along the view axis, so sizes \
+             do not shrink with distance (a CAD or architectural drawing's parallel projection)."
+        }
+        "View height" => "How tall the orthographic view is, in scene units. Smaller zooms in.",
         "Ambient I_a" => {
             "I_a: the scene's ambient intensity, the seed's stand-in for all light that arrives indirectly. \
              It adds I_a·k_a everywhere, shadowed or not: raise it and shadows turn grey."
@@ -131,6 +136,11 @@ pub fn with_tooltip(response: egui::Response, text: Option<&str>) -> egui::Respo
 /// The tooltip of one option of the combo box labelled `control`.
 pub fn option_tooltip(control: &str, option: &str) -> Option<&'static str> {
     Some(match (control, option) {
+        ("Projection", "perspective") => "A pinhole camera at the eye; the field of view sets the zoom.",
+        ("Projection", "orthographic") => {
+            "Parallel rays from the plane through the eye; the view height sets the zoom. Switching keeps the \
+             look-at point's framing."
+        }
         ("Integrator", "whitted") => {
             "The seed's model: local Phong terms, mirror and refracted rays, the ambient term."
         }

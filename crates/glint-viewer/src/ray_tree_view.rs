@@ -29,20 +29,15 @@ pub const SHADOW_BLOCKED: Color32 = Color32::from_gray(120);
 /// there, so that a ray passing behind the camera is drawn up to it).
 const NEAR: f64 = 1e-3;
 
-/// Image position of `p` (depth already known to be ≥ NEAR); as `gizmos::project`.
+/// Image position of `p` (depth already known to be ≥ NEAR), `WorldCamera::image_point`.
 fn to_image(cam: &WorldCamera, p: DVec3) -> (f32, f32) {
-    let (f, r, u) = (cam.forward, cam.right, cam.up);
-    let q = p - cam.position;
-    let depth = q.dot(f) / f.length_squared();
-    let ndc_x = q.dot(r) / r.length_squared() / depth;
-    let ndc_y = q.dot(u) / u.length_squared() / depth;
-    (((ndc_x + 1.0) / 2.0) as f32, ((1.0 - ndc_y) / 2.0) as f32)
+    let (x, y) = cam.image_point(p).0.unwrap_or((0.5, 0.5));
+    (x as f32, y as f32)
 }
 
 /// The part of segment a–b in front of the camera, projected.
 fn project_segment(cam: &WorldCamera, a: DVec3, b: DVec3) -> Option<((f32, f32), (f32, f32))> {
-    let f = cam.forward;
-    let depth = |p: DVec3| (p - cam.position).dot(f) / f.length_squared();
+    let depth = |p: DVec3| cam.image_point(p).1;
     let (da, db) = (depth(a), depth(b));
     if da < NEAR && db < NEAR {
         return None;

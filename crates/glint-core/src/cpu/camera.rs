@@ -4,7 +4,7 @@ use glam::DVec3;
 
 use super::rng::{hash_to_unit, sample_hash};
 use super::{Ray, v3};
-use glint_types::layout::GpuCamera;
+use glint_types::layout::{CAMERA_ORTHOGRAPHIC, GpuCamera};
 
 /// Rows of the stratification grid: the largest divisor of spp not above √spp, so that the
 /// nx × ny = spp cells tile the pixel and are as square as spp allows (2 → 2×1, 8 → 4×2,
@@ -58,6 +58,15 @@ pub fn from_eye(c: &CameraRay, t: f64) -> f64 {
 pub fn camera_ray(cam: &GpuCamera, width: u32, height: u32, x: u32, y: u32, ox: f64, oy: f64) -> CameraRay {
     let ndc_x = 2.0 * (f64::from(x) + ox) / f64::from(width) - 1.0;
     let ndc_y = 1.0 - 2.0 * (f64::from(y) + oy) / f64::from(height);
+    if cam.forward[3] == CAMERA_ORTHOGRAPHIC {
+        let forward = v3(cam.forward);
+        let across = ndc_x * v3(cam.right) + ndc_y * v3(cam.up);
+        let w = f64::from(cam.anchor[3]);
+        return CameraRay {
+            ray: Ray { origin: v3(cam.anchor) + across, dir: forward.normalize() },
+            t_min: -w * forward.length(),
+        };
+    }
     // Summed in this order, not as forward + across: an eye that is its own anchor (w = 0)
     // traces bit for bit as the eye-stored camera did.
     let dir: DVec3 = v3(cam.forward) + ndc_x * v3(cam.right) + ndc_y * v3(cam.up);
@@ -91,5 +100,23 @@ mod tests {
             }
         }
         assert_eq!(sample_offset(17, 5, 1, 3, false), (0.5, 0.5));
+    }
+
+    #[test]
+    fn orthographic_rays_are_parallel_and_leave_the_eyes_plane() {
+        // Eye at (0, 0, −10), anchored 8 along +z; the view 2 × 4 (half-sides 1 and 2).
+        let cam = GpuCamera {
+            anchor: [0.0, 0.0, -2.0, 8.0],
+            forward: [0.0, 0.0, 1.0, CAMERA_ORTHOGRAPHIC],
+            right: [-2.0, 0.0, 0.0, 0.0],
+            up: [0.0, 1.0, 0.0, 0.0],
+        };
+        for (x, y) in [(0, 0), (3, 1), (1, 0)] {
+            let c = camera_ray(&cam, 4, 2, x, y, 0.5, 0.5);
+            assert_eq!(c.ray.dir, DVec3::Z);
+            let ndc = (2.0 * (f64::from(x) + 0.5) / 4.0 - 1.0, 1.0 - 2.0 * (f64::from(y) + 0.5) / 2.0);
+            assert_eq!(eye(&c), DVec3::new(-2.0 * ndc.0, ndc.1, -10.0), "pixel ({x}, {y})");
+            assert_eq!(from_eye(&c, 0.0), 8.0);
+        }
     }
 }

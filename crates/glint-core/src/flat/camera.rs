@@ -1,22 +1,25 @@
-//! The pinhole camera: in f64 world space (`WorldCamera`) and as both tracers store it
-//! (`GpuCamera`: an anchor on the view axis instead of the eye, layout.rs says why).
+//! The camera, pinhole or orthographic: in f64 world space (`WorldCamera`) and as both tracers
+//! store it (`GpuCamera`: an anchor on the view axis instead of the eye, layout.rs says why).
 
 use glam::DVec3;
 
 use super::{FlatScene, vec4, wide};
-use glint_scene::{RenderSettings, SceneDesc};
-use glint_types::layout::{GpuCamera, GpuPlane};
+use glint_scene::{Projection, RenderSettings, SceneDesc};
+use glint_types::layout::{CAMERA_ORTHOGRAPHIC, GpuCamera, GpuPlane};
 
-/// The pinhole camera's ray-generation vectors in f64 world space: a ray through image point
-/// (ndc_x, ndc_y) leaves `position` along forward + ndc_x·right + ndc_y·up. What the flat
-/// scene stores in f32 (`stored`), and what the viewer projects world points with (its light
-/// gizmos and ray-tree overlay): an f32 eye 5e6 from the world origin would be off by 1/4.
+/// The camera's ray-generation vectors in f64 world space: a ray through image point
+/// (ndc_x, ndc_y) leaves `position` along forward + ndc_x·right + ndc_y·up, or for an
+/// `orthographic` camera leaves position + ndc_x·right + ndc_y·up along forward (unit). What
+/// the flat scene stores in f32 (`stored`), and what the viewer projects world points with
+/// (`image_point`: its light gizmos and ray-tree overlay): an f32 eye 5e6 from the world origin
+/// would be off by 1/4.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct WorldCamera {
     pub position: DVec3,
     pub forward: DVec3,
     pub right: DVec3,
     pub up: DVec3,
+    pub orthographic: bool,
 }
 
 /// How many of the scene's largest sides the eye may be from the centre of its bounded geometry
@@ -52,13 +55,34 @@ impl WorldCamera {
                 // The image's height at distance t is 2·t·|up| / |forward|. An anchor farther
                 // from the origin than the eye (an axis grazing the plane) would store the
                 // eye worse than the eye itself.
-                Some(t) if telephoto(self.forward, self.up) && (eye + t * self.forward).length() < eye.length() => {
+                Some(t)
+                    if telephoto(self.forward, self.up, self.orthographic)
+                        && (eye + t * self.forward).length() < eye.length() =>
+                {
                     anchor_of(eye, self.forward, eye + t * self.forward)
                 }
                 _ => vec4(eye, 0.0),
             },
         };
-        GpuCamera { anchor, forward: vec4(self.forward, 0.0), right: vec4(self.right, 0.0), up: vec4(self.up, 0.0) }
+        let projection = if self.orthographic { CAMERA_ORTHOGRAPHIC } else { 0.0 };
+        let mut forward = vec4(self.forward, 0.0);
+        forward[3] = projection;
+        GpuCamera { anchor, forward, right: vec4(self.right, 0.0), up: vec4(self.up, 0.0) }
+    }
+
+    /// Where world point `p` lies in the image ([0, 1]², y down), and its depth along the view
+    /// axis in units of `forward` (a point behind the eye, or on its plane, has depth ≤ 0 and
+    /// no place). Inverts `camera_ray` for orthogonal right and up.
+    pub fn image_point(&self, p: DVec3) -> (Option<(f64, f64)>, f64) {
+        let q = p - self.position;
+        let depth = q.dot(self.forward) / self.forward.length_squared();
+        if depth <= 0.0 {
+            return (None, depth);
+        }
+        let scale = if self.orthographic { 1.0 } else { depth };
+        let ndc_x = q.dot(self.right) / self.right.length_squared() / scale;
+        let ndc_y = q.dot(self.up) / self.up.length_squared() / scale;
+        (Some(((ndc_x + 1.0) / 2.0, (1.0 - ndc_y) / 2.0)), depth)
     }
 
     /// The nearest t > 0 (in units of `forward`) at which the view axis from `eye` meets one of
@@ -77,9 +101,10 @@ impl WorldCamera {
 /// 1/`EYE_REACH` of that distance high (a vertical field of view under 0.9°): the image's
 /// height at distance t is 2·t·|up| / |forward|. Its rays are anchored near what they meet,
 /// however large the scene: from the eye, the f32 direction's step (6e-8) is a fixed share of
-/// a pixel that grows as the field narrows.
-pub(crate) fn telephoto(forward: DVec3, up: DVec3) -> bool {
-    forward.length() > EYE_REACH * 2.0 * up.length()
+/// a pixel that grows as the field narrows. An orthographic camera is the narrowest of all (its
+/// view as high at any distance), a telephoto.
+pub(crate) fn telephoto(forward: DVec3, up: DVec3, orthographic: bool) -> bool {
+    orthographic || forward.length() > EYE_REACH * 2.0 * up.length()
 }
 
 /// `GpuCamera::anchor` for an eye at `eye` (stored coordinates, f64) looking along `forward`:
@@ -101,16 +126,19 @@ pub fn camera_eye(camera: &GpuCamera) -> DVec3 {
 }
 
 impl FlatScene {
-    /// The camera of `desc` at `settings`' aspect ratio, in f64 world space.
+    /// The camera of `desc` at `settings`' aspect ratio, in f64 world space: right and up
+    /// scaled by tan(fov_y/2) for a pinhole, by half the view's height for an orthographic
+    /// camera.
     pub fn world_camera(desc: &SceneDesc, settings: &RenderSettings) -> WorldCamera {
         let c = &desc.camera;
         let position = DVec3::from(c.position);
         let forward = (DVec3::from(c.look_at) - position).normalize();
         let right = forward.cross(DVec3::from(c.up)).normalize();
         let up = right.cross(forward);
-        let half_h = (c.fov_y.to_radians() * 0.5).tan();
+        let orthographic = c.projection == Projection::Orthographic;
+        let half_h = if orthographic { 0.5 * c.view_height() } else { (c.fov_y.to_radians() * 0.5).tan() };
         let half_w = half_h * f64::from(settings.width) / f64::from(settings.height);
-        WorldCamera { position, forward, right: right * half_w, up: up * half_h }
+        WorldCamera { position, forward, right: right * half_w, up: up * half_h, orthographic }
     }
 }
 

@@ -198,12 +198,7 @@ pub fn scene_around(
         (None, Some(first)) => first.clone(),
         (None, None) => ModelCamera {
             name: "framing the model".into(),
-            camera: CameraDesc {
-                position: at(FRAMING_CAMERA.0, FRAMING_CAMERA.1),
-                look_at: center,
-                up: [0.0, 1.0, 0.0],
-                fov_y: 40.0,
-            },
+            camera: CameraDesc::perspective(at(FRAMING_CAMERA.0, FRAMING_CAMERA.1), center, [0.0, 1.0, 0.0], 40.0),
             aspect: None,
         },
     };
@@ -317,7 +312,7 @@ mod tests {
         let light = LightDesc::new(LightKind::Directional, [0.0; 3], [0.0, -1.0, 0.0]);
         let camera = ModelCamera {
             name: "own".into(),
-            camera: CameraDesc { position: [0.0, 0.0, 5.0], look_at: [0.0; 3], up: [0.0, 1.0, 0.0], fov_y: 40.0 },
+            camera: CameraDesc::perspective([0.0, 0.0, 5.0], [0.0; 3], [0.0, 1.0, 0.0], 40.0),
             aspect: None,
         };
         let own = Model { lights: vec![light.clone()], cameras: vec![camera.clone()], ..model(5e8) };
@@ -346,7 +341,7 @@ mod tests {
     fn an_aspect_ratio_no_image_can_have_is_said_with_the_width_held() {
         let camera = |aspect: f64| ModelCamera {
             name: "c".into(),
-            camera: CameraDesc { position: [0.0, 0.0, 5.0], look_at: [0.0; 3], up: [0.0, 1.0, 0.0], fov_y: 40.0 },
+            camera: CameraDesc::perspective([0.0, 0.0, 5.0], [0.0; 3], [0.0, 1.0, 0.0], 40.0),
             aspect: Some(aspect),
         };
         let said = |aspect: f64| {
@@ -367,7 +362,7 @@ mod tests {
     fn a_camera_index_beyond_the_files_names_the_ones_it_has() {
         let camera = ModelCamera {
             name: "c".into(),
-            camera: CameraDesc { position: [0.0, 0.0, 5.0], look_at: [0.0; 3], up: [0.0, 1.0, 0.0], fov_y: 40.0 },
+            camera: CameraDesc::perspective([0.0, 0.0, 5.0], [0.0; 3], [0.0, 1.0, 0.0], 40.0),
             aspect: None,
         };
         for (count, says) in [

@@ -101,6 +101,9 @@ pub mod ranges {
     pub const BAILOUT: Range<f64> = Range::linear(0.0, 1.0);
     pub const EPSILON: Range<f64> = Range::logarithmic(0.0, MAX_EPSILON);
     pub const FOV_Y: Range<f64> = Range::linear(1e-6, 179.0);
+    /// An orthographic camera's view height: from the smallest distance a look-at point may be
+    /// from the eye to the span of the coordinates.
+    pub const VIEW_HEIGHT: Range<f64> = Range::logarithmic(1e-9, MAX_COORD);
     /// Each component of a position or direction.
     pub const COORD: Range<f64> = Range::linear(-MAX_COORD, MAX_COORD);
     /// Each channel of a colour or intensity (reflectances, emission, light intensities).

@@ -6,6 +6,7 @@
 
 use glam::DVec3;
 
+use super::camera::{CameraDesc, Projection};
 use super::desc::{ObjectDesc, PlaneDesc, RenderSettings, SceneDesc, SphereDesc};
 use super::error::FieldIssue;
 use super::light::{Attenuation, LightDesc, NO_CONE_CUTOFF};
@@ -237,6 +238,37 @@ fn validate_camera(scene: &SceneDesc, r: &mut Report) {
     let cr = cross(f, c.up);
     if norm(cr) <= 1e-9 * flen * norm(c.up) {
         r.error("camera.up", "is parallel to the viewing direction (look_at − position); choose another up vector");
+    }
+    validate_view_height(c, r);
+}
+
+/// An orthographic camera's view height, given or derived from the field of view; a view
+/// height given to a perspective camera does nothing, and is said to.
+fn validate_view_height(c: &CameraDesc, r: &mut Report) {
+    match (c.projection, c.view_height) {
+        (Projection::Perspective, None) => {}
+        (Projection::Perspective, Some(_)) => r.warn(
+            "camera.view_height",
+            "is used by an orthographic camera only (camera.projection = \"orthographic\"); ignored",
+        ),
+        (Projection::Orthographic, Some(h)) => {
+            r.finite_in("camera.view_height", h, ranges::VIEW_HEIGHT);
+        }
+        (Projection::Orthographic, None) => {
+            let h = c.view_height();
+            if !ranges::VIEW_HEIGHT.contains(h) {
+                r.error(
+                    "camera.view_height",
+                    format!(
+                        "not given, it is the height the field of view sees at look_at, \
+                         2·|look_at − position|·tan(fov_y/2) = {}, outside the allowed range [{}, {}]; give it",
+                        crate::number::format_rounded(h, 3),
+                        num(ranges::VIEW_HEIGHT.min),
+                        num(ranges::VIEW_HEIGHT.max)
+                    ),
+                );
+            }
+        }
     }
 }
 

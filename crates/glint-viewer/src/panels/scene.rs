@@ -2,7 +2,7 @@
 
 use egui::Ui;
 use glint_scene::{
-    CameraDesc, EpsilonMode, GlobalAttenuation, Integrator, ObjectDesc, PathKind, SpecularModel, ranges,
+    CameraDesc, EpsilonMode, GlobalAttenuation, Integrator, ObjectDesc, PathKind, Projection, SpecularModel, ranges,
 };
 
 use crate::ambient_fit::AmbientFitter;
@@ -13,10 +13,39 @@ use crate::widgets::{choice, int_slider, log_slider, number, rgb_edit, slider};
 /// child ray 10 units long brings back half), since (1, 0, 0) is "off".
 const NEW_GLOBAL_ATTENUATION: GlobalAttenuation = GlobalAttenuation { c: 1.0, l: 0.1, q: 0.0 };
 
+/// What a view height slider's drag spans, in world units: from a millimetre to a kilometre at
+/// a scene's usual scale; typed values reach the whole valid range.
+const VIEW_HEIGHT_SPAN: (f64, f64) = (1e-3, 1e3);
+
+/// The projection, and the field of view or the view height it uses. Switching keeps the
+/// look-at point's framing: an orthographic view as high as the perspective one at look_at.
+fn projection_ui(ui: &mut Ui, camera: &mut CameraDesc) -> bool {
+    let mut projection = camera.projection;
+    let mut changed = choice(ui, "Projection", &mut projection, &Projection::ALL, Projection::name);
+    if changed {
+        camera.view_height = match projection {
+            Projection::Perspective => None,
+            Projection::Orthographic => Some(camera.view_height()),
+        };
+        camera.projection = projection;
+    }
+    match camera.projection {
+        Projection::Perspective => changed |= slider(ui, "Field of view", &mut camera.fov_y, ranges::FOV_Y),
+        Projection::Orthographic => {
+            let mut height = camera.view_height();
+            if log_slider(ui, "View height", &mut height, ranges::VIEW_HEIGHT, VIEW_HEIGHT_SPAN) {
+                camera.view_height = Some(height);
+                changed = true;
+            }
+        }
+    }
+    changed
+}
+
 pub fn ui(ui: &mut Ui, doc: &mut Document, fitter: &mut AmbientFitter) -> bool {
     let mut changed = false;
     egui::CollapsingHeader::new("Camera").default_open(true).show(ui, |ui| {
-        changed |= slider(ui, "Field of view", &mut doc.desc.camera.fov_y, ranges::FOV_Y);
+        changed |= projection_ui(ui, &mut doc.desc.camera);
         if ui.button("Reset camera").clicked() {
             doc.desc.camera = doc.initial_camera.clone();
             changed = true;

@@ -1,6 +1,6 @@
 //! KHR_lights_punctual lights and glTF cameras, placed by their node's world transform.
 
-use glint_scene::{Attenuation, CameraDesc, FieldIssue, LightDesc, LightKind, Rgb, SpotFalloff};
+use glint_scene::{Attenuation, CameraDesc, FieldIssue, LightDesc, LightKind, Projection, Rgb, SpotFalloff};
 use glint_scene::{MAX_INTENSITY, Mat4, ModelCamera};
 use glint_scene::{format_number as number, format_rounded};
 
@@ -99,8 +99,8 @@ pub(super) fn map_light(
     Ok(Some(desc))
 }
 
-/// A perspective camera at its node: the eye at the origin, looking down −Z with +Y up.
-/// Orthographic cameras are skipped with a warning (Glint's camera is a pinhole).
+/// A camera at its node: the eye at the origin, looking down −Z with +Y up; perspective
+/// (`perspective_view`) or orthographic (`orthographic_view`).
 pub(super) fn map_camera(
     camera: &::gltf::Camera<'_>,
     world: &Mat4,
@@ -108,10 +108,6 @@ pub(super) fn map_camera(
     warnings: &mut Vec<FieldIssue>,
 ) -> Option<ModelCamera> {
     let field = format!("nodes[{node}].camera (cameras[{}])", camera.index());
-    let ::gltf::camera::Projection::Perspective(p) = camera.projection() else {
-        warnings.push(FieldIssue { field, problem: "orthographic cameras are not supported; skipped".into() });
-        return None;
-    };
     let position = world.point([0.0; 3]);
     let (Some(forward), Some(up)) =
         (normalized(world.vector([0.0, 0.0, -1.0])), normalized(world.vector([0.0, 1.0, 0.0])))
@@ -119,16 +115,43 @@ pub(super) fn map_camera(
         warnings.push(FieldIssue { field, problem: "the node's transform is degenerate; camera skipped".into() });
         return None;
     };
+    let look_at = std::array::from_fn(|k| position[k] + forward[k]);
+    let (desc, aspect) = match camera.projection() {
+        ::gltf::camera::Projection::Perspective(p) => {
+            let (fov_y, aspect) = perspective_view(&p, camera.index(), &field, warnings)?;
+            (CameraDesc::perspective(position, look_at, up, fov_y), aspect)
+        }
+        ::gltf::camera::Projection::Orthographic(o) => {
+            let (view_height, aspect) = orthographic_view(&o, camera.index(), &field, warnings)?;
+            let pinhole = CameraDesc::perspective(position, look_at, up, 45.0);
+            (CameraDesc { projection: Projection::Orthographic, view_height: Some(view_height), ..pinhole }, aspect)
+        }
+    };
     if world.determinant3() < 0.0 {
         // A mirroring node turns the camera's +X to the image's left; Glint's camera (eye, target,
         // up) has no handedness to carry that, and a silently unmirrored view misleads.
         warnings.push(FieldIssue {
-            field: field.clone(),
+            field,
             problem: "the node mirrors (a negative scale): Glint's camera does not mirror its image, so the \
                       view is the unmirrored one, its right forward × up"
                 .into(),
         });
     }
+    Some(ModelCamera {
+        name: camera.name().map_or_else(|| format!("camera {}", camera.index()), str::to_string),
+        camera: desc,
+        aspect: aspect.map(crate::model::widen),
+    })
+}
+
+/// A perspective camera's field of view (degrees) and aspect ratio, or `None` (said) where the
+/// field of view is outside what a scene's camera may have.
+fn perspective_view(
+    p: &::gltf::camera::Perspective<'_>,
+    index: usize,
+    field: &str,
+    warnings: &mut Vec<FieldIssue>,
+) -> Option<(f64, Option<f32>)> {
     let fov_y = f64::from(p.yfov()).to_degrees();
     // Judged by the range a scene's camera has, so that a yfov a hair under π is skipped as
     // yfov 0 is, not refused later under Glint's `camera.fov_y`.
@@ -136,11 +159,10 @@ pub(super) fn map_camera(
     if !(fov_y.is_finite() && range.contains(fov_y)) {
         let (lo, hi) = (range.min.to_radians(), range.max.to_radians());
         warnings.push(FieldIssue {
-            field,
+            field: field.to_string(),
             problem: format!(
-                "yfov {} (cameras[{}].perspective.yfov) is outside [{}, {}] radians ({}° to {}°); camera skipped",
+                "yfov {} (cameras[{index}].perspective.yfov) is outside [{}, {}] radians ({}° to {}°); camera skipped",
                 written(p.yfov()),
-                camera.index(),
                 format_rounded(lo, 3),
                 format_rounded(hi, 6),
                 number(range.min),
@@ -155,20 +177,54 @@ pub(super) fn map_camera(
         let usable = a.is_finite() && *a > 0.0;
         if !usable {
             warnings.push(FieldIssue {
-                field: field.clone(),
+                field: field.to_string(),
                 problem: format!(
-                    "aspectRatio {} (cameras[{}].perspective.aspectRatio) is not a positive number; left out, the \
-                     image keeps its width and height",
-                    written(*a),
-                    camera.index()
+                    "aspectRatio {} (cameras[{index}].perspective.aspectRatio) is not a positive number; left out, \
+                     the image keeps its width and height",
+                    written(*a)
                 ),
             });
         }
         usable
     });
-    Some(ModelCamera {
-        name: camera.name().map_or_else(|| format!("camera {}", camera.index()), str::to_string),
-        camera: CameraDesc { position, look_at: std::array::from_fn(|k| position[k] + forward[k]), up, fov_y },
-        aspect: aspect.map(crate::model::widen),
-    })
+    Some((fov_y, aspect))
+}
+
+/// An orthographic camera's view height (2·ymag: xmag and ymag are the view's half-width and
+/// half-height) and aspect ratio (xmag / ymag), or `None` (said) where ymag gives no view height
+/// a scene's camera may have. The specification requires both to be non-zero and allows no
+/// negative ones; a negative xmag is left out, and the image keeps its width.
+fn orthographic_view(
+    o: &::gltf::camera::Orthographic<'_>,
+    index: usize,
+    field: &str,
+    warnings: &mut Vec<FieldIssue>,
+) -> Option<(f64, Option<f32>)> {
+    let height = 2.0 * f64::from(o.ymag());
+    let range = glint_scene::ranges::VIEW_HEIGHT;
+    if !range.contains(height) {
+        warnings.push(FieldIssue {
+            field: field.to_string(),
+            problem: format!(
+                "ymag {} (cameras[{index}].orthographic.ymag) gives no view height in [{}, {}] (2·ymag); camera skipped",
+                written(o.ymag()),
+                number(range.min),
+                number(range.max)
+            ),
+        });
+        return None;
+    }
+    let aspect = o.xmag() / o.ymag();
+    if !(aspect.is_finite() && aspect > 0.0) {
+        warnings.push(FieldIssue {
+            field: field.to_string(),
+            problem: format!(
+                "xmag {} (cameras[{index}].orthographic.xmag) is not a positive number; left out, the image keeps \
+                 its width and height",
+                written(o.xmag())
+            ),
+        });
+        return Some((height, None));
+    }
+    Some((height, Some(aspect)))
 }
