@@ -229,6 +229,12 @@ struct JsonReport<'a> {
     height: u32,
     spp: u32,
     depth: u32,
+    integrator: &'a str,
+    /// Whitted's bailout; null for the path tracer, which ends its paths by Russian roulette.
+    bailout: Option<f64>,
+    /// Whether paths follow every lobe (`--indirect`); null for Whitted's tree.
+    indirect: Option<bool>,
+    seed: u32,
     runs: Vec<JsonRun<'a>>,
     gpu_vs_cpu: Option<JsonErrors>,
     outputs: Vec<String>,
@@ -266,6 +272,10 @@ pub fn print_json(
         height: s.height,
         spp: s.spp,
         depth: s.max_depth,
+        integrator: s.integrator.name(),
+        bailout: (s.integrator == Integrator::Whitted).then_some(s.bailout),
+        indirect: (s.integrator == Integrator::Path).then_some(s.indirect),
+        seed: s.seed,
         runs: runs
             .iter()
             .map(|r| JsonRun {

@@ -128,6 +128,10 @@ fn renders_every_builtin_scene_to_png_and_exr_with_metadata() {
         assert_eq!(meta(&chunks, "glint:epsilon_mode"), "nudge_normal");
         if whitted {
             assert_eq!(meta(&chunks, "glint:bailout").parse::<f64>().unwrap(), 0.01);
+        } else {
+            // Paths have no bailout to record, and say whether they follow every lobe.
+            assert!(chunks.iter().all(|(k, _)| k != "glint:bailout"), "{name}: {chunks:?}");
+            assert_eq!(meta(&chunks, "glint:indirect"), "on");
         }
         assert_eq!(meta(&chunks, "glint:seed"), "7");
         assert_eq!(meta(&chunks, "glint:backend"), "cpu");
@@ -606,5 +610,26 @@ fn a_side_given_alone_keeps_a_model_cameras_aspect_ratio() {
         assert!(run.status.success(), "{flags:?}: {}", text(&run.stderr));
         let v: serde_json::Value = serde_json::from_str(&text(&run.stdout)).expect("JSON");
         assert_eq!((v["width"].as_u64(), v["height"].as_u64()), (Some(size.0), Some(size.1)), "{flags:?}");
+    }
+}
+
+#[test]
+fn render_json_says_which_integrator_and_its_settings() {
+    let dir = TempDir::new("json-integrator");
+    let null = serde_json::Value::Null;
+    for (integrator, own, bailout, indirect) in [
+        ("whitted", ["--bailout", "0.25"], serde_json::json!(0.25), null.clone()),
+        ("path", ["--indirect", "off"], null.clone(), serde_json::json!(false)),
+    ] {
+        let out = dir.join(format!("{integrator}.png")).into_os_string();
+        let args =
+            ["render", "cornell-gi", "--width", "8", "--height", "6", "--spp", "2", "--seed", "9", "--json", "-q"];
+        let chosen = ["--integrator", integrator];
+        let args = args.iter().chain(&chosen).chain(&own).map(OsString::from);
+        let run = glint(&dir, args.chain([OsString::from("-o"), out]));
+        assert!(run.status.success(), "{integrator}: {}", text(&run.stderr));
+        let v: serde_json::Value = serde_json::from_str(&text(&run.stdout)).expect("JSON");
+        assert_eq!(v["integrator"], integrator);
+        assert_eq!((&v["bailout"], &v["indirect"], v["seed"].as_u64()), (&bailout, &indirect, Some(9)), "{v}");
     }
 }

@@ -253,7 +253,6 @@ pub fn render_metadata(s: &glint_scene::RenderSettings, info: &RenderInfo) -> Ve
         ("glint:depth", s.max_depth.to_string()),
         ("glint:epsilon", s.epsilon.to_string()),
         ("glint:epsilon_mode", s.epsilon_mode.name().to_string()),
-        ("glint:bailout", s.bailout.to_string()),
         ("glint:seed", s.seed.to_string()),
         ("glint:integrator", s.integrator.name().to_string()),
         ("glint:backend", info.backend.to_string()),
@@ -263,8 +262,12 @@ pub fn render_metadata(s: &glint_scene::RenderSettings, info: &RenderInfo) -> Ve
     .into_iter()
     .map(|(k, v)| (k.to_string(), v))
     .collect();
-    if s.integrator == glint_scene::Integrator::Path {
-        m.push(("glint:indirect".into(), if s.indirect { "on" } else { "off" }.into()));
+    // Whitted's bailout; paths end by Russian roulette, and have no such setting to record.
+    match s.integrator {
+        glint_scene::Integrator::Whitted => m.push(("glint:bailout".into(), s.bailout.to_string())),
+        glint_scene::Integrator::Path => {
+            m.push(("glint:indirect".into(), if s.indirect { "on" } else { "off" }.into()))
+        }
     }
     if let Some(t) = info.time_ms {
         m.push(("glint:time_ms".into(), format!("{t:.3}")));

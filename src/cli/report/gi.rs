@@ -100,6 +100,15 @@ pub struct KindSplit {
     pub direct_rmse: f64,
     /// What the ambient as written adds, as a share of the paths' mean.
     pub ambient_share: f64,
+    /// The paths' mean (`None` from a shard of a glint that did not say): a black reference
+    /// has no shares.
+    #[serde(default)]
+    pub paths_mean: Option<f64>,
+    /// The RMS difference of what the ambient as written adds from the indirect light the paths
+    /// bring (all kinds but the direct): the error of the ambient as the stand-in it is, which
+    /// is the largest part where it adds more than that light (`None` from an older shard).
+    #[serde(default)]
+    pub ambient_rmse: Option<f64>,
     /// Whitted's RMSE with the ambient as written, for scale.
     pub whitted_rmse: f64,
     /// What makes Whitted's direct light differ from the paths' in this scene (`None` from a
@@ -321,16 +330,23 @@ fn split_by_kind(
     let flat = FlatScene::build(&loaded.desc, &RenderSettings { spp, ..paths.clone() });
     let mut split = KindSplit { spp, ..KindSplit::default() };
     let mut direct = None;
+    let ambient = minus(written, without);
+    // What the ambient adds less the indirect light, kind by kind.
+    let mut ambient_less_indirect = ambient.clone();
     let paths_mean = reference.mean();
     for (i, kind) in PathKind::ALL.into_iter().enumerate() {
         let image = cpu(&kind_alone(&flat, kind), &format!("{} alone ({spp} spp)", kind.label()))?;
         (split.share[i], split.rms[i]) = (image.mean() / paths_mean.max(f64::MIN_POSITIVE), rms(&image));
         if kind == PathKind::Direct {
             direct = Some(image);
+        } else {
+            ambient_less_indirect = minus(&ambient_less_indirect, &image);
         }
     }
     split.direct_rmse = rms(&minus(without, &direct.expect("the direct kind is rendered")));
-    split.ambient_share = minus(written, without).mean() / paths_mean.max(f64::MIN_POSITIVE);
+    split.ambient_share = ambient.mean() / paths_mean.max(f64::MIN_POSITIVE);
+    split.paths_mean = Some(paths_mean);
+    split.ambient_rmse = Some(rms(&ambient_less_indirect));
     split.whitted_rmse = compare_images(reference, written).rmse;
     split.direct_causes = Some(direct_causes(&loaded.desc));
     Ok(split)
@@ -365,30 +381,56 @@ pub fn kinds_sentence(g: &GiResult) -> String {
         }
         Some(causes) => format!("its direct light differing from the paths' ({})", causes.join("; ")),
     };
-    let parts = [
-        (direct.as_str(), k.direct_rmse),
-        ("the indirect diffuse light it has no term for", k.rms[1]),
-        ("the caustics it has no term for", k.rms[2]),
-        ("the rest of the light it has no term for (a mirror or glass between two diffuse bounces)", k.rms[3]),
+    let black = k.paths_mean.is_some_and(|m| m <= 0.0);
+    let indirect_share = k.share[1] + k.share[2] + k.share[3];
+    let mut parts = vec![
+        (direct, k.direct_rmse),
+        ("the indirect diffuse light it has no term for".to_string(), k.rms[1]),
+        ("the caustics it has no term for".to_string(), k.rms[2]),
+        (
+            "the rest of the light it has no term for (a mirror or glass between two diffuse bounces)".to_string(),
+            k.rms[3],
+        ),
     ];
+    // An ambient that adds more than the indirect light it stands in for is an error of its own;
+    // one that adds less leaves the kinds above missing, in part.
+    let ambient_over = black && k.ambient_share > 0.0 || !black && k.ambient_share > indirect_share;
+    if let (Some(rmse), true) = (k.ambient_rmse, ambient_over) {
+        parts.push((
+            "its ambient term as written, I_a·k_a, which adds more light than the indirect light it stands in for"
+                .to_string(),
+            rmse,
+        ));
+    }
     let (largest, _) = parts.iter().max_by(|a, b| a.1.total_cmp(&b.1)).expect("four parts");
+    let ambient = match k.ambient_rmse {
+        Some(rmse) => {
+            format!("; what its ambient as written adds differs from the paths' indirect light by RMS {rmse:.3e}")
+        }
+        None => String::new(),
+    };
+    let shares = if black {
+        "The paths' image is black (no light reaches the camera), so it has no shares by kind; the ambient as \
+         written adds light to it."
+            .to_string()
+    } else {
+        format!(
+            "The paths' light is {} direct, {} indirect diffuse, {} caustics and {} the rest (a {}-sample split); the \
+             ambient as written adds {} of the paths' light where the indirect kinds bring {}.",
+            pct(k.share[0]),
+            pct(k.share[1]),
+            pct(k.share[2]),
+            pct(k.share[3]),
+            k.spp,
+            pct(k.ambient_share),
+            pct(indirect_share),
+        )
+    };
     format!(
         "Whitted's error (RMSE {:.3e}, ambient as written) is mostly {largest}: its direct light differs from the \
          paths' by RMS {:.3e}, and it lacks indirect diffuse light (RMS {:.3e}), caustics ({:.3e}) and the rest \
-         ({:.3e}). The paths' light is {} direct, {} indirect diffuse, {} caustics and {} the rest (a {}-sample \
-         split); the ambient as written adds {} of the paths' light where the indirect kinds bring {}.",
-        k.whitted_rmse,
-        k.direct_rmse,
-        k.rms[1],
-        k.rms[2],
-        k.rms[3],
-        pct(k.share[0]),
-        pct(k.share[1]),
-        pct(k.share[2]),
-        pct(k.share[3]),
-        k.spp,
-        pct(k.ambient_share),
-        pct(k.share[1] + k.share[2] + k.share[3]),
+         ({:.3e}){ambient}. {shares}",
+        k.whitted_rmse, k.direct_rmse, k.rms[1], k.rms[2], k.rms[3],
     )
 }
 
@@ -539,6 +581,9 @@ pub fn render_markdown(results: &[GiResult]) -> String {
                     ms(p.median)
                 );
             }
+            (None, Some(w)) if w.rmse == 0.0 => {
+                let _ = writeln!(md, "Whitted's best is the reference exactly (RMSE 0): no path row can beat it.");
+            }
             (None, Some(w)) => {
                 let _ = writeln!(md, "Paths do not beat Whitted's best (RMSE {:.3e}) within the sweep.", w.rmse);
             }
@@ -623,5 +668,58 @@ mod tests {
         let best = best.expect("a Whitted row");
         assert_eq!((best.backend, best.median), (Backend::Cpu, Duration::from_millis(19)));
         assert_eq!(first.map(|r| r.rmse), Some(0.45));
+    }
+
+    fn with_kinds(kinds: KindSplit) -> GiResult {
+        GiResult {
+            scene: "s".into(),
+            reference_spp: 64,
+            reference_depth: 8,
+            reference_noise: 0.01,
+            fitted: [0.0; 3],
+            fit_determined: true,
+            gain_warning: None,
+            written: [2.0; 3],
+            rows: Vec::new(),
+            shard: None,
+            kinds,
+        }
+    }
+
+    #[test]
+    fn an_ambient_that_adds_more_than_the_indirect_light_is_named_when_it_is_the_largest_part() {
+        // A lit sphere under an ambient of 2 (a helper's scene): the ambient adds ten times the
+        // paths' light, which has no indirect part.
+        let over = KindSplit {
+            spp: 16,
+            share: [1.0, 0.0, 0.0, 0.0],
+            rms: [0.1, 0.0, 0.0, 0.0],
+            direct_rmse: 0.0157,
+            ambient_share: 10.09,
+            paths_mean: Some(0.08),
+            ambient_rmse: Some(0.866),
+            whitted_rmse: 0.868,
+            direct_causes: Some(Vec::new()),
+        };
+        let said = kinds_sentence(&with_kinds(over.clone()));
+        assert!(said.contains("is mostly its ambient term as written"), "{said}");
+        // An ambient under the indirect light leaves the kinds to name, as before.
+        let under =
+            KindSplit { share: [0.5, 0.4, 0.05, 0.05], rms: [0.1, 0.2, 0.01, 0.01], ambient_share: 0.2, ..over };
+        let said = kinds_sentence(&with_kinds(under.clone()));
+        assert!(said.contains("is mostly the indirect diffuse light it has no term for"), "{said}");
+        // A black reference (no light, an ambient): no shares, no division by its zero mean.
+        let black = KindSplit {
+            share: [0.0; 4],
+            rms: [0.0; 4],
+            direct_rmse: 0.0,
+            ambient_share: 0.5 / f64::MIN_POSITIVE,
+            paths_mean: Some(0.0),
+            ambient_rmse: Some(0.2165),
+            ..under
+        };
+        let said = kinds_sentence(&with_kinds(black));
+        assert!(said.contains("is mostly its ambient term as written") && said.contains("The paths' image is black"));
+        assert!(!said.contains("inf") && !said.contains(" %"), "{said}");
     }
 }
