@@ -5,7 +5,7 @@
 //! pixels read, one tile at a time, into one f32 image, and the output written atomically.
 //! Nothing is written on any error. At most the output image and one tile are in memory.
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, HashMap};
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, bail};
@@ -74,19 +74,6 @@ fn tile_index(path: &Path, header: &ExrHeader) -> anyhow::Result<(u32, u32)> {
     parsed.with_context(|| format!("{}: glint:tile is '{value}', not I/N", path.display()))
 }
 
-/// Ascending indices as runs, "3" or "5-9", as a job array's `--array` takes them: 3,000
-/// missing tiles are a line, not 17 KB.
-fn index_ranges(sorted: &[u32]) -> Vec<String> {
-    let mut runs: Vec<(u32, u32)> = Vec::new();
-    for &i in sorted {
-        match runs.last_mut() {
-            Some((_, last)) if *last + 1 == i => *last = i,
-            _ => runs.push((i, i)),
-        }
-    }
-    runs.into_iter().map(|(a, b)| if a == b { a.to_string() } else { format!("{a}-{b}") }).collect()
-}
-
 pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
     let ext = args.output.extension().map(|e| e.to_string_lossy().to_ascii_lowercase());
     let png = match ext.as_deref() {
@@ -97,9 +84,17 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
     // Headers first: every check before any pixel is read or anything is written.
     let headers: Vec<ExrHeader> =
         args.tiles.iter().map(|p| read_exr_header(p).map_err(anyhow::Error::from)).collect::<anyhow::Result<_>>()?;
-    let first = (&args.tiles[0], &headers[0]);
-    let keys = shared_keys(first.1);
+    let keys = shared_keys(&headers[0]);
     let shared = |h: &ExrHeader| keys.iter().map(|k| h.attribute(k).map(str::to_string)).collect::<Vec<_>>();
+    // Tiles are held against the render most of them are of (the first tile's on a tie), so that
+    // a stale tile left from another render is the one named, wherever the glob puts it.
+    let mut renders: HashMap<Vec<Option<String>>, (usize, usize)> = HashMap::new();
+    for (i, h) in headers.iter().enumerate() {
+        renders.entry(shared(h)).or_insert((0, i)).0 += 1;
+    }
+    let (agreeing, reference) =
+        renders.values().copied().max_by_key(|&(n, first)| (n, std::cmp::Reverse(first))).unwrap_or((1, 0));
+    let first = (&args.tiles[reference], &headers[reference]);
     let (_, count) = tile_index(first.0, first.1)?;
     let (width, height) = first.1.display;
     // A forged or damaged header must not size the merged image beyond what a render makes.
@@ -116,8 +111,12 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
         let (index, n) = tile_index(path, header)?;
         let (ours, theirs) = (shared(header), shared(first.1));
         if let Some(k) = (0..keys.len()).find(|&k| ours[k] != theirs[k]) {
+            let others = match agreeing {
+                1 => String::new(),
+                n => format!(" and {} more of the {} tiles", n - 1, headers.len()),
+            };
             bail!(
-                "{} is not a tile of the same render as {}: {} is {} there and {} here; nothing was written",
+                "{} is not a tile of the same render as {}{others}: {} is {} there and {} here; nothing was written",
                 path.display(),
                 first.0.display(),
                 keys[k],
@@ -170,13 +169,11 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
             );
         }
     }
-    let missing: Vec<u32> = (0..count).filter(|i| !by_index.contains_key(i)).collect();
-    if !missing.is_empty() {
-        let runs = index_ranges(&missing);
+    let (missing, runs) = super::job_array::missing_runs(by_index.keys().copied(), count);
+    if missing > 0 {
         bail!(
-            "{} of {count} tiles are missing: {} (render them with --tile I/{count}; as a Slurm array, \
+            "{missing} of {count} tiles are missing: {} (render them with --tile I/{count}; as a Slurm array, \
              --array={}); nothing was written",
-            missing.len(),
             runs.join(", "),
             runs.join(",")
         );
@@ -249,13 +246,6 @@ fn same_as_checked(path: &Path, checked: &ExrHeader, tile: &ExrPixels) -> anyhow
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn missing_indices_are_named_as_runs() {
-        assert_eq!(index_ranges(&[1, 2, 3, 7, 9, 10]), ["1-3", "7", "9-10"]);
-        assert_eq!(index_ranges(&(1..3007).collect::<Vec<_>>()), ["1-3006"]);
-        assert!(index_ranges(&[]).is_empty());
-    }
 
     #[test]
     fn a_tile_that_changed_after_its_check_is_refused() {

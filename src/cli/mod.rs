@@ -6,6 +6,7 @@ mod bench;
 mod bench_export;
 pub mod console;
 pub mod interrupt;
+mod job_array;
 mod merge;
 mod output;
 mod output_path;

@@ -472,11 +472,27 @@ fn report_shards_merge_into_the_one_machine_report_and_missing_ones_are_named() 
 
     let done = merge("s0,s2", "partial");
     assert!(!done.status.success());
-    assert!(text(&done.stderr).contains("1 of 3 shards are missing: 1"), "{}", text(&done.stderr));
+    assert!(
+        text(&done.stderr)
+            .contains("1 of 3 shards are missing: 1 (run them with --shard I/3; as a Slurm array, --array=1)"),
+        "{}",
+        text(&done.stderr)
+    );
     assert!(!dir.join("partial/report.csv").exists(), "a refused merge wrote a report");
     let done = merge("s0,s1,s1,s2", "twice");
     assert!(!done.status.success());
     assert!(text(&done.stderr).contains("shard 1 is given twice"), "{}", text(&done.stderr));
+    // More shards than the sweep has families would leave shards with nothing to run (and a
+    // count of 2^32 − 1 once allocated 34 GB).
+    for count in ["12", "4294967295"] {
+        let one_scene = ["many", "--scenes", "whitted", "--shard"];
+        let done = glint(&dir, sweep.iter().copied().chain(one_scene).chain([format!("0/{count}").as_str()]));
+        let said = text(&done.stderr);
+        assert!(
+            !done.status.success() && said.contains("this sweep has 11 families") && said.contains("at most 11 shards"),
+            "{said}"
+        );
+    }
     run("other", &["--shard", "1/3", "--runs", "4"]);
     let done = merge("s0,other,s2", "mixed");
     assert!(!done.status.success());

@@ -4,7 +4,8 @@
 //! tiles of a Whitted scene and of a path-traced one (`glint render --tile N`, the index from
 //! `SLURM_ARRAY_TASK_ID`), a dependent job merges them (`--dependency=afterok`), and the merged
 //! image is the single render bit for bit; an array in which one task fails leaves a merge
-//! (`afterany`) that fails naming the missing tile and writes nothing. docs/farm.md is the
+//! (`afterany`) that fails naming the missing tile and writes nothing, and farm.md's retry of
+//! that tile, with a merge after both arrays, is the single render again. docs/farm.md is the
 //! recipe this follows.
 //!
 //! `GLINT_SKIP_SLURM=1` skips it on purpose; without Slurm (or without root) it fails saying
@@ -219,13 +220,34 @@ fn a_slurm_job_array_renders_tiles_whose_dependent_merge_is_the_single_render() 
         let tiles = format!("{}/{name}-tile-*.exr", dir.display());
         let wrap = format!("{BIN} merge {tiles} -o {}", merged.display());
         let log = dir.join(format!("{name}-merge.txt"));
-        cluster.sbatch(&[
+        let merge = cluster.sbatch(&[
             &format!("--dependency={kind}:{array}"),
             &format!("--output={}", log.display()),
             "--wrap",
             &wrap,
         ]);
         merges.push((name, scene, settings, merged, log, fail));
+        if let Some(i) = fail {
+            // farm.md's retry: the failed index again (here once the first merge has said what is
+            // missing), and a merge after both the retry and the whole first array, which may
+            // still be running when a user notices the failure.
+            let fixed = array_script(&dir, name, scene, settings, count, None);
+            let retry = cluster.sbatch(&[
+                &format!("--array={i}"),
+                &format!("--dependency=afterany:{merge}"),
+                &out,
+                fixed.to_str().expect("utf-8"),
+            ]);
+            let retried = dir.join(format!("{name}-retried.exr"));
+            let log = dir.join(format!("{name}-retried-merge.txt"));
+            cluster.sbatch(&[
+                &format!("--dependency=afterany:{array},afterok:{retry}"),
+                &format!("--output={}", log.display()),
+                "--wrap",
+                &format!("{BIN} merge {tiles} -o {}", retried.display()),
+            ]);
+            merges.push((name, scene, settings, retried, log, None));
+        }
     }
     cluster.drain();
     for (name, scene, settings, merged, log, fail) in merges {

@@ -159,6 +159,12 @@ fn tiles_that_do_not_belong_together_are_refused_by_name_and_nothing_is_written(
     let seeded = dir.join("s1.exr");
     render(&dir, "whitted", &[&size[..], &["--tile", "1/3", "--seed", "7"]].concat(), &seeded);
     refused(&[t[0].clone(), seeded, t[2].clone()], "glint:seed is 0 there and 7 here");
+    // A stale tile left from another render is named wherever the glob puts it: first here, as
+    // tile-0 is under `tile-*.exr` (it was the good tiles that were named).
+    let stale = dir.join("s0.exr");
+    render(&dir, "whitted", &[&size[..], &["--tile", "0/3", "--seed", "7"]].concat(), &stale);
+    refused(&[stale.clone(), t[1].clone(), t[2].clone()], "s0.exr is not a tile of the same render as");
+    refused(&[stale, t[1].clone(), t[2].clone()], "t1.exr and 1 more of the 3 tiles: glint:seed is 0 there and 7 here");
     let whole = dir.join("whole.exr");
     render(&dir, "whitted", &size, &whole);
     refused(&[t[0].clone(), whole, t[2].clone()], "not a tile of `glint render --tile`");

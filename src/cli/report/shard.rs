@@ -47,7 +47,17 @@ fn family(config: &Config) -> (u32, u32, super::plan::Bailout, glint_scene::Epsi
     (config.spp, config.depth, config.bailout, config.epsilon_mode)
 }
 
-/// Which shard times each (scene, planned configuration): `shards[scene][config]`.
+/// How many families (scene, family) a sweep of `scenes` scenes of `planned` configurations
+/// has: each is timed whole by one shard, so more shards than this would have nothing to run.
+pub fn families(scenes: usize, planned: &[Planned]) -> usize {
+    let first_of_its_family =
+        |(i, p): &(usize, &Planned)| planned.iter().position(|q| family(&q.config) == family(&p.config)) == Some(*i);
+    scenes * planned.iter().enumerate().filter(first_of_its_family).count()
+}
+
+/// Which shard times each (scene, planned configuration): `shards[scene][config]`. Shards past
+/// the count of families get none (`families`), and are not walked: a count of 2^32 costs what
+/// the families do.
 pub fn assign(scenes: usize, planned: &[Planned], pixels: u64, runs: u32, count: u32) -> Vec<Vec<u32>> {
     let mut families: BTreeMap<(usize, usize), f64> = BTreeMap::new();
     for scene in 0..scenes {
@@ -62,10 +72,13 @@ pub fn assign(scenes: usize, planned: &[Planned], pixels: u64, runs: u32, count:
     let mut order: Vec<((usize, usize), f64)> = families.into_iter().collect();
     // The largest first; equal costs in plan order, so every machine deals the same.
     order.sort_by(|a, b| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0)));
-    let mut load = vec![0.0f64; count as usize];
+    // Each family goes to the least loaded shard, the lowest of equals: while empty shards are
+    // left, that is the next one, so only the first `used` ever receive one.
+    let used = (count as usize).min(order.len()).max(1);
+    let mut load = vec![0.0f64; used];
     let mut owner: BTreeMap<(usize, usize), u32> = BTreeMap::new();
     for (key, cost) in order {
-        let shard = (0..count as usize).min_by(|&a, &b| load[a].total_cmp(&load[b]).then(a.cmp(&b))).unwrap_or(0);
+        let shard = (0..used).min_by(|&a, &b| load[a].total_cmp(&load[b]).then(a.cmp(&b))).unwrap_or(0);
         load[shard] += cost;
         owner.insert(key, shard as u32);
     }
@@ -286,14 +299,15 @@ pub fn read_all(dirs: &[PathBuf]) -> anyhow::Result<Vec<ShardFile>> {
             );
         }
     }
-    let missing: Vec<String> = (0..first.count).filter(|i| !by_index.contains_key(i)).map(|i| i.to_string()).collect();
-    if !missing.is_empty() {
+    let (missing, runs) = crate::cli::job_array::missing_runs(by_index.keys().copied(), first.count);
+    if missing > 0 {
         bail!(
-            "{} of {} shards are missing: {} (run them with --shard I/{}); nothing was written",
-            missing.len(),
+            "{missing} of {} shards are missing: {} (run them with --shard I/{}; as a Slurm array, --array={}); \
+             nothing was written",
             first.count,
-            missing.join(", "),
-            first.count
+            runs.join(", "),
+            first.count,
+            runs.join(",")
         );
     }
     let mut files: Vec<ShardFile> = found.into_iter().map(|(_, f)| f).collect();
@@ -401,6 +415,19 @@ pub fn join(files: &mut [ShardFile], planned: &[Planned]) -> anyhow::Result<Vec<
 mod tests {
     use super::*;
     use crate::cli::report::plan::Plan;
+
+    #[test]
+    fn shards_past_the_families_get_nothing_and_cost_nothing() {
+        let planned = Plan::full(64).configs(&[Backend::Cpu, Backend::Gpu]);
+        let families = families(5, &planned);
+        assert!(families > 5 && families < 5 * planned.len(), "{families}");
+        let fitted = assign(5, &planned, 320 * 240, 3, families as u32);
+        // As many shards as families: one each, every shard used.
+        let used: std::collections::BTreeSet<u32> = fitted.iter().flatten().copied().collect();
+        assert_eq!(used.len(), families);
+        // Any more deal the same (no 2^32-long load vector), and leave the rest empty.
+        assert_eq!(assign(5, &planned, 320 * 240, 3, u32::MAX), fitted);
+    }
 
     #[test]
     fn every_family_goes_to_one_shard_and_the_loads_balance() {

@@ -1,0 +1,38 @@
+//! Job-array indices in messages: what of 0..N is missing, as the runs a job array's
+//! `--array` takes ("3", "5-9"), so that 3,000 missing tiles or a million missing shards are a
+//! line, not megabytes.
+
+/// The indices of 0..`count` not in `present` (ascending, each below `count`), as runs, and
+/// how many they are. Walks the present indices only: a count of 2^32 costs nothing.
+pub fn missing_runs(present: impl IntoIterator<Item = u32>, count: u32) -> (u64, Vec<String>) {
+    let mut runs = Vec::new();
+    let mut missing = 0u64;
+    let mut next = 0u32;
+    let mut gap = |from: u32, to: u32, runs: &mut Vec<String>| {
+        // [from, to) is missing.
+        if from < to {
+            missing += u64::from(to - from);
+            runs.push(if to - from == 1 { from.to_string() } else { format!("{from}-{}", to - 1) });
+        }
+    };
+    for i in present {
+        gap(next, i, &mut runs);
+        next = i + 1;
+    }
+    gap(next, count, &mut runs);
+    (missing, runs)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn missing_indices_are_named_as_runs() {
+        let (n, runs) = missing_runs([0, 4, 5, 6, 8, 11], 13);
+        assert_eq!((n, runs), (7, vec!["1-3".to_string(), "7".into(), "9-10".into(), "12".into()]));
+        assert_eq!(missing_runs([], 3007), (3007, vec!["0-3006".to_string()]));
+        assert_eq!(missing_runs(0..5, 5), (0, vec![]));
+        assert_eq!(missing_runs([0], u32::MAX), (u64::from(u32::MAX) - 1, vec![format!("1-{}", u32::MAX - 1)]));
+    }
+}
