@@ -1,0 +1,244 @@
+//! What Whitted's error is made of: the reference's paths split by kind of light
+//! (`glint_core::path_kinds`) against Whitted's images, and the sentence the report says of it.
+
+use anyhow::Context;
+use glint_core::compare::compare_images;
+use glint_core::path_kinds::kind_alone;
+use glint_core::{CpuOptions, FlatScene, HdrImage};
+use glint_io::LoadedScene;
+use glint_scene::{PathKind, RenderSettings};
+use indicatif::ProgressBar;
+use serde::{Deserialize, Serialize};
+
+use super::GiResult;
+
+/// What Whitted's error is made of: the reference's light by kind (`PathKind::ALL` order),
+/// from a path render of `spp` samples at the rows' seed split four ways, against
+/// Whitted's CPU image at the sweep's deepest, most sampled setting.
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
+pub struct KindSplit {
+    pub spp: u32,
+    /// Each kind's share of the paths' mean.
+    pub share: [f64; 4],
+    /// Each kind's root mean square over the pixels and channels: the error of an image that
+    /// lacks it.
+    pub rms: [f64; 4],
+    /// The RMS difference of Whitted's image without its ambient from the paths' direct light
+    /// (point lights against area lights' soft shadows, the glossy lobe against k_s·(H·N)^n).
+    pub direct_rmse: f64,
+    /// What the ambient as written adds, as a share of the paths' mean.
+    pub ambient_share: f64,
+    /// The paths' mean (`None` from a shard of a glint that did not say): a black reference
+    /// has no shares.
+    #[serde(default)]
+    pub paths_mean: Option<f64>,
+    /// The RMS difference of what the ambient as written adds from the indirect light the paths
+    /// bring (all kinds but the direct): the error of the ambient as the stand-in it is, which
+    /// is the largest part where it adds more than that light (`None` from an older shard).
+    #[serde(default)]
+    pub ambient_rmse: Option<f64>,
+    /// Whitted's RMSE with the ambient as written, for scale.
+    pub whitted_rmse: f64,
+    /// What makes Whitted's direct light differ from the paths' in this scene (`None` from a
+    /// shard of a glint that did not say).
+    #[serde(default)]
+    pub direct_causes: Option<Vec<String>>,
+}
+
+/// The root mean square of `image` over its pixels and channels.
+fn rms(image: &HdrImage) -> f64 {
+    let sq: f64 = image.pixels.iter().map(|p| p.length_squared()).sum();
+    (sq / (3 * image.pixels.len().max(1)) as f64).sqrt()
+}
+
+/// `a − b`, pixel by pixel.
+fn minus(a: &HdrImage, b: &HdrImage) -> HdrImage {
+    let mut d = a.clone();
+    for (p, q) in d.pixels.iter_mut().zip(&b.pixels) {
+        *p -= *q;
+    }
+    d
+}
+
+/// The reference's light by kind against Whitted's CPU images `written` (the ambient as
+/// written) and `without` (none).
+pub(super) fn split_by_kind(
+    loaded: &LoadedScene,
+    paths: &RenderSettings,
+    [written, without]: [&HdrImage; 2],
+    reference: &HdrImage,
+    spp: u32,
+    options: &CpuOptions,
+    bar: &ProgressBar,
+) -> anyhow::Result<KindSplit> {
+    let name = &loaded.name;
+    let cpu = |flat: &FlatScene, what: &str| -> anyhow::Result<HdrImage> {
+        bar.set_message(format!("{name}: {what}"));
+        let r = glint_core::render_cpu(flat, options, Default::default()).with_context(|| format!("{name}: {what}"))?;
+        bar.inc(1);
+        Ok(r.image)
+    };
+    let flat = FlatScene::build(&loaded.desc, &RenderSettings { spp, ..paths.clone() });
+    let mut split = KindSplit { spp, ..KindSplit::default() };
+    let mut direct = None;
+    let ambient = minus(written, without);
+    // What the ambient adds less the indirect light, kind by kind.
+    let mut ambient_less_indirect = ambient.clone();
+    let paths_mean = reference.mean();
+    for (i, kind) in PathKind::ALL.into_iter().enumerate() {
+        let image = cpu(&kind_alone(&flat, kind), &format!("{} alone ({spp} spp)", kind.label()))?;
+        (split.share[i], split.rms[i]) = (image.mean() / paths_mean.max(f64::MIN_POSITIVE), rms(&image));
+        if kind == PathKind::Direct {
+            direct = Some(image);
+        } else {
+            ambient_less_indirect = minus(&ambient_less_indirect, &image);
+        }
+    }
+    split.direct_rmse = rms(&minus(without, &direct.expect("the direct kind is rendered")));
+    split.ambient_share = ambient.mean() / paths_mean.max(f64::MIN_POSITIVE);
+    split.paths_mean = Some(paths_mean);
+    split.ambient_rmse = Some(rms(&ambient_less_indirect));
+    split.whitted_rmse = compare_images(reference, written).rmse;
+    split.direct_causes = Some(direct_causes(&loaded.desc));
+    Ok(split)
+}
+
+/// What makes Whitted's direct light differ from the paths' in `desc`: its emitters and its sky
+/// light nothing (the paths' direct light is E S* D L, the background among the L), and its
+/// highlight is not the normalised lobe the paths reflect (path-tracing.md's factors). Point
+/// lights, spots and directional lights are the same in both.
+fn direct_causes(desc: &glint_scene::SceneDesc) -> Vec<String> {
+    let mut causes = Vec::new();
+    if desc.materials.values().any(|m| !m.emission.is_zero()) {
+        causes.push("an emitter lights nothing in Whitted's model".to_string());
+    }
+    if !desc.world.background.is_zero() {
+        causes.push("the background lights nothing in Whitted's model, only what it is seen by".to_string());
+    }
+    if desc.materials.values().any(|m| !m.ks.is_zero()) && desc.traced_lights().next().is_some() {
+        causes.push("its highlight k_s·spec_j is not the normalised lobe the paths reflect".to_string());
+    }
+    causes
+}
+
+/// A sentence on what Whitted's remaining error is made of.
+pub fn kinds_sentence(g: &GiResult) -> String {
+    let k = &g.kinds;
+    let pct = |v: f64| format!("{:.0} %", 100.0 * v);
+    let direct = match k.direct_causes.as_deref() {
+        None => "its direct light differing from the paths'".to_string(),
+        Some([]) => {
+            "its direct light differing from the paths' (by their noise alone: lights are the same in both)".to_string()
+        }
+        Some(causes) => format!("its direct light differing from the paths' ({})", causes.join("; ")),
+    };
+    let black = k.paths_mean.is_some_and(|m| m <= 0.0);
+    let indirect_share = k.share[1] + k.share[2] + k.share[3];
+    let mut parts = vec![
+        (direct, k.direct_rmse),
+        ("the indirect diffuse light it has no term for".to_string(), k.rms[1]),
+        ("the caustics it has no term for".to_string(), k.rms[2]),
+        (
+            "the rest of the light it has no term for (a mirror or glass between two diffuse bounces)".to_string(),
+            k.rms[3],
+        ),
+    ];
+    // An ambient that adds more than the indirect light it stands in for is an error of its own;
+    // one that adds less leaves the kinds above missing, in part.
+    let ambient_over = black && k.ambient_share > 0.0 || !black && k.ambient_share > indirect_share;
+    if let (Some(rmse), true) = (k.ambient_rmse, ambient_over) {
+        parts.push((
+            "its ambient term as written, I_a·k_a, which adds more light than the indirect light it stands in for"
+                .to_string(),
+            rmse,
+        ));
+    }
+    let (largest, _) = parts.iter().max_by(|a, b| a.1.total_cmp(&b.1)).expect("four parts");
+    let ambient = match k.ambient_rmse {
+        Some(rmse) => {
+            format!("; what its ambient as written adds differs from the paths' indirect light by RMS {rmse:.3e}")
+        }
+        None => String::new(),
+    };
+    let shares = if black {
+        "The paths' image is black (no light reaches the camera), so it has no shares by kind; the ambient as \
+         written adds light to it."
+            .to_string()
+    } else {
+        format!(
+            "The paths' light is {} direct, {} indirect diffuse, {} caustics and {} the rest (a {}-sample split); the \
+             ambient as written adds {} of the paths' light where the indirect kinds bring {}.",
+            pct(k.share[0]),
+            pct(k.share[1]),
+            pct(k.share[2]),
+            pct(k.share[3]),
+            k.spp,
+            pct(k.ambient_share),
+            pct(indirect_share),
+        )
+    };
+    format!(
+        "Whitted's error (RMSE {:.3e}, ambient as written) is mostly {largest}: its direct light differs from the \
+         paths' by RMS {:.3e}, and it lacks indirect diffuse light (RMS {:.3e}), caustics ({:.3e}) and the rest \
+         ({:.3e}){ambient}. {shares}",
+        k.whitted_rmse, k.direct_rmse, k.rms[1], k.rms[2], k.rms[3],
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn with_kinds(kinds: KindSplit) -> GiResult {
+        GiResult {
+            scene: "s".into(),
+            reference_spp: 64,
+            reference_depth: 8,
+            reference_noise: 0.01,
+            fitted: [0.0; 3],
+            fit_determined: true,
+            gain_warning: None,
+            written: [2.0; 3],
+            rows: Vec::new(),
+            shard: None,
+            kinds,
+        }
+    }
+
+    #[test]
+    fn an_ambient_that_adds_more_than_the_indirect_light_is_named_when_it_is_the_largest_part() {
+        // A lit sphere under an ambient of 2 (a helper's scene): the ambient adds ten times the
+        // paths' light, which has no indirect part.
+        let over = KindSplit {
+            spp: 16,
+            share: [1.0, 0.0, 0.0, 0.0],
+            rms: [0.1, 0.0, 0.0, 0.0],
+            direct_rmse: 0.0157,
+            ambient_share: 10.09,
+            paths_mean: Some(0.08),
+            ambient_rmse: Some(0.866),
+            whitted_rmse: 0.868,
+            direct_causes: Some(Vec::new()),
+        };
+        let said = kinds_sentence(&with_kinds(over.clone()));
+        assert!(said.contains("is mostly its ambient term as written"), "{said}");
+        // An ambient under the indirect light leaves the kinds to name, as before.
+        let under =
+            KindSplit { share: [0.5, 0.4, 0.05, 0.05], rms: [0.1, 0.2, 0.01, 0.01], ambient_share: 0.2, ..over };
+        let said = kinds_sentence(&with_kinds(under.clone()));
+        assert!(said.contains("is mostly the indirect diffuse light it has no term for"), "{said}");
+        // A black reference (no light, an ambient): no shares, no division by its zero mean.
+        let black = KindSplit {
+            share: [0.0; 4],
+            rms: [0.0; 4],
+            direct_rmse: 0.0,
+            ambient_share: 0.5 / f64::MIN_POSITIVE,
+            paths_mean: Some(0.0),
+            ambient_rmse: Some(0.2165),
+            ..under
+        };
+        let said = kinds_sentence(&with_kinds(black));
+        assert!(said.contains("is mostly its ambient term as written") && said.contains("The paths' image is black"));
+        assert!(!said.contains("inf") && !said.contains(" %"), "{said}");
+    }
+}

@@ -1,0 +1,299 @@
+//! Whitted against global illumination (issue 33's report part, first slice): for each scene,
+//! the error against a path-traced reference of Whitted's images (depths, samples, and the
+//! ambient term as written, without it and fitted to the reference) and of the path tracer's at
+//! increasing samples, on each backend, against render time. The reference is eight CPU path
+//! renders with consecutive seeds after the rows', averaged; their spread estimates its own noise.
+//! The path tracer's log-log slope of error against time is measured (−1/2 while noise
+//! dominates), and so is the time from which its error falls below Whitted's best. What
+//! Whitted's error is made of comes from the reference's paths split by kind
+//! (`glint_core::path_kinds`): the light Whitted has no term for, its direct light against the
+//! paths', and what its ambient adds.
+
+use std::time::Duration;
+
+use anyhow::Context;
+use glint_core::ambient_fit::fit_ambient;
+use glint_core::compare::compare_images;
+use glint_core::glam::DVec3;
+use glint_core::{Backend, CpuOptions, FlatScene, HdrImage};
+use glint_io::LoadedScene;
+use glint_scene::{Integrator, PathKind, RenderSettings, Rgb, path_gain_warning};
+use indicatif::ProgressBar;
+use serde::{Deserialize, Serialize};
+
+use super::plan::{Bailout, Config};
+use super::sweep::{Engines, render, timed_passes};
+use crate::cli::console::tell;
+
+/// How a Whitted row's ambient term was set.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub enum Ambient {
+    AsWritten,
+    Without,
+    Fitted,
+}
+
+impl Ambient {
+    fn name(self) -> &'static str {
+        match self {
+            Self::AsWritten => "as written",
+            Self::Without => "none",
+            Self::Fitted => "fitted",
+        }
+    }
+}
+
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct GiRow {
+    pub integrator: Integrator,
+    pub backend: Backend,
+    pub spp: u32,
+    pub depth: u32,
+    /// Whitted's rows only.
+    pub ambient: Option<Ambient>,
+    pub median: Duration,
+    pub rmse: f64,
+}
+
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct GiResult {
+    pub scene: String,
+    pub reference_spp: u32,
+    pub reference_depth: u32,
+    /// The reference's own error (RMSE), from the spread of its `REFERENCE_GROUPS` renders.
+    pub reference_noise: f64,
+    pub fitted: [f64; 3],
+    /// Whether the ambient term changes Whitted's image at all (a material in view has k_a).
+    #[serde(default = "yes")]
+    pub fit_determined: bool,
+    /// Validation's warning that materials return more light than they receive under paths:
+    /// the reference then grows with its depth.
+    #[serde(default)]
+    pub gain_warning: Option<String>,
+    pub written: [f64; 3],
+    pub rows: Vec<GiRow>,
+    /// The shard of `glint report --shard` that measured it (`None` in a one-machine run).
+    pub shard: Option<u32>,
+    pub kinds: KindSplit,
+}
+
+fn yes() -> bool {
+    true
+}
+
+mod kinds;
+mod tables;
+
+pub use kinds::KindSplit;
+use kinds::split_by_kind;
+pub use tables::{render_csv, render_markdown};
+
+/// The sweep's axes: (reference spp, path depth, Whitted depths, Whitted spp, path spp).
+fn axes(quick: bool) -> (u32, u32, &'static [u32], &'static [u32], &'static [u32]) {
+    if quick { (64, 8, &[5], &[1], &[1, 4, 16]) } else { (1024, 16, &[2, 5], &[1, 4], &[1, 4, 16, 64]) }
+}
+
+/// The reference is this many CPU path renders with consecutive seeds, averaged: their spread
+/// estimates its noise. Two (one degree of freedom a pixel) let one firefly set the estimate:
+/// the highlights scene's came out 0.249 where other seeds gave 0.063–0.071, above the error
+/// of a 16-sample row.
+const REFERENCE_GROUPS: u32 = 8;
+
+/// The seed of the reference's render `k`: the rows' seed plus 1 + k, so that none shares its
+/// random numbers with the rows (rendered at the rows' seed). A row whose samples were the
+/// reference's first would correlate with it (0.37 measured on cornell-gi at 16 spp), and its
+/// squared error would hold the reference's noise with the wrong sign.
+fn reference_seed(rows: u32, k: u32) -> u32 {
+    rows.wrapping_add(1).wrapping_add(k)
+}
+
+/// Renders per scene, for the progress bar: the reference's groups, each row's warm-up and
+/// runs, and the kinds.
+pub fn renders(backends: &[Backend], runs: u32, quick: bool) -> usize {
+    let (_, _, depths, spps, path_spps) = axes(quick);
+    REFERENCE_GROUPS as usize
+        + PathKind::ALL.len()
+        + backends.len() * (depths.len() * spps.len() * 3 + path_spps.len()) * (1 + runs as usize)
+}
+
+/// The mean of `groups` (images of equal size and samples) and the RMS over pixels and
+/// channels of that mean's standard error, from the groups' sample variance.
+fn mean_and_noise(groups: &[HdrImage]) -> (HdrImage, f64) {
+    let k = groups.len() as f64;
+    let mut mean = groups[0].clone();
+    let mut variance = 0.0;
+    for (i, p) in mean.pixels.iter_mut().enumerate() {
+        *p = groups.iter().map(|g| g.pixels[i]).sum::<DVec3>() / k;
+        variance += groups.iter().map(|g| (g.pixels[i] - *p).length_squared()).sum::<f64>() / (k - 1.0);
+    }
+    let per_value = variance / (3 * mean.pixels.len().max(1)) as f64;
+    (mean, (per_value / k).sqrt())
+}
+
+pub fn measure(
+    engines: &mut Engines,
+    loaded: &LoadedScene,
+    base: &RenderSettings,
+    backends: &[Backend],
+    runs: u32,
+    quick: bool,
+    bar: &ProgressBar,
+) -> anyhow::Result<GiResult> {
+    let name = &loaded.name;
+    let (reference_spp, path_depth, depths, spps, path_spps) = axes(quick);
+    let paths = RenderSettings { integrator: Integrator::Path, indirect: true, max_depth: path_depth, ..base.clone() };
+    bar.set_message(format!("{name}: path-traced reference ({reference_spp} spp)"));
+    let options = CpuOptions { threads: engines.threads, ..CpuOptions::default() };
+    let gain_warning = path_gain_warning(&loaded.desc);
+    if let Some(problem) = &gain_warning {
+        bar.suspend(|| tell!("warning: {name}: the path-traced reference: {problem}"));
+    }
+    let group = |k: u32| -> anyhow::Result<HdrImage> {
+        let s = RenderSettings {
+            spp: reference_spp / REFERENCE_GROUPS,
+            seed: reference_seed(base.seed, k),
+            ..paths.clone()
+        };
+        let r = glint_core::render_cpu(&FlatScene::build(&loaded.desc, &s), &options, Default::default())
+            .with_context(|| format!("{name}: the path-traced reference"))?;
+        bar.inc(1);
+        Ok(r.image)
+    };
+    let groups = (0..REFERENCE_GROUPS).map(group).collect::<anyhow::Result<Vec<_>>>()?;
+    let (reference, reference_noise) = mean_and_noise(&groups);
+    drop(groups);
+    let whitted = RenderSettings { integrator: Integrator::Whitted, indirect: true, ..base.clone() };
+    let fit = fit_ambient(&loaded.desc, &whitted, &reference, &options)
+        .with_context(|| format!("{name}: fitting the ambient term"))?;
+    // The CPU's Whitted images at the deepest, most sampled setting, as written and without the
+    // ambient, are what the split by kind holds the paths' kinds against (kept from the warm-up).
+    let deepest = (*depths.last().expect("Whitted depths"), *spps.last().expect("Whitted spp"));
+    let (mut written, mut without) = (None, None);
+
+    let mut planned: Vec<(GiRow, FlatScene)> = Vec::new();
+    for &backend in backends {
+        for &depth in depths {
+            for &spp in spps {
+                for ambient in [Ambient::AsWritten, Ambient::Without, Ambient::Fitted] {
+                    let mut desc = loaded.desc.clone();
+                    desc.world.ambient = match ambient {
+                        Ambient::AsWritten => desc.world.ambient,
+                        Ambient::Without => Rgb([0.0; 3]),
+                        Ambient::Fitted => Rgb(fit.ambient),
+                    };
+                    let s = RenderSettings { spp, max_depth: depth, ..whitted.clone() };
+                    let row = GiRow {
+                        integrator: Integrator::Whitted,
+                        backend,
+                        spp,
+                        depth,
+                        ambient: Some(ambient),
+                        median: Duration::ZERO,
+                        rmse: 0.0,
+                    };
+                    planned.push((row, FlatScene::build(&desc, &s)));
+                }
+            }
+        }
+        for &spp in path_spps {
+            let s = RenderSettings { spp, ..paths.clone() };
+            let row = GiRow {
+                integrator: Integrator::Path,
+                backend,
+                spp,
+                depth: path_depth,
+                ambient: None,
+                median: Duration::ZERO,
+                rmse: 0.0,
+            };
+            planned.push((row, FlatScene::build(&loaded.desc, &s)));
+        }
+    }
+    let config = |row: &GiRow| Config {
+        backend: row.backend,
+        spp: row.spp,
+        depth: row.depth,
+        bailout: Bailout::Per255,
+        specialise: true,
+        epsilon_mode: base.epsilon_mode,
+    };
+    // A warm-up pass (the images), then timed passes over every row, as the main sweep does.
+    for (row, flat) in &mut planned {
+        bar.set_message(format!(
+            "{name}: GI warm-up: {} {} {} spp",
+            row.backend.name(),
+            row.integrator.name(),
+            row.spp
+        ));
+        let warm = render(engines, flat, &config(row)).with_context(|| format!("{name}: {row:?}"))?;
+        row.rmse = compare_images(&reference, &warm.image).rmse;
+        bar.inc(1);
+        if row.backend == Backend::Cpu && (row.depth, row.spp) == deepest {
+            match row.ambient {
+                Some(Ambient::AsWritten) => written = Some(warm.image),
+                Some(Ambient::Without) => without = Some(warm.image),
+                Some(Ambient::Fitted) | None => {}
+            }
+        }
+    }
+    let (Some(written), Some(without)) = (written, without) else {
+        anyhow::bail!("{name}: the Whitted against GI sweep has no CPU row at depth {}, {} spp", deepest.0, deepest.1)
+    };
+    let kinds = split_by_kind(loaded, &paths, [&written, &without], &reference, reference_spp / 4, &options, bar)?;
+    let jobs: Vec<(&FlatScene, Config)> = planned.iter().map(|(row, flat)| (flat, config(row))).collect();
+    let times = timed_passes(engines, &jobs, runs, bar, &format!("{name}: GI"))?;
+    let rows = planned
+        .into_iter()
+        .zip(times)
+        .map(|((mut row, _), t)| {
+            row.median = t[t.len() / 2];
+            row
+        })
+        .collect();
+    Ok(GiResult {
+        scene: name.clone(),
+        reference_spp,
+        reference_depth: path_depth,
+        reference_noise,
+        fitted: fit.ambient,
+        fit_determined: fit.determined,
+        gain_warning,
+        written: loaded.desc.world.ambient.0,
+        rows,
+        shard: None,
+        kinds,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_reference_is_its_groups_mean_and_its_noise_their_standard_error() {
+        // One pixel, four groups of 1, 2, 3, 4 in every channel: mean 2.5, sample variance
+        // 5/3 (k − 1 in the divisor), standard error of the mean √(5/3 / 4).
+        let groups: Vec<HdrImage> = (1..=4)
+            .map(|v| {
+                let mut image = HdrImage::new(1, 1);
+                image.pixels[0] = DVec3::splat(f64::from(v));
+                image
+            })
+            .collect();
+        let (mean, noise) = mean_and_noise(&groups);
+        assert_eq!(mean.pixels[0], DVec3::splat(2.5));
+        assert!((noise - (5.0f64 / 3.0 / 4.0).sqrt()).abs() < 1e-15, "{noise}");
+    }
+
+    #[test]
+    fn no_reference_render_shares_the_rows_seed() {
+        for rows in [0, 7, u32::MAX] {
+            let seeds: Vec<u32> = (0..REFERENCE_GROUPS).map(|k| reference_seed(rows, k)).collect();
+            assert!(!seeds.contains(&rows), "{rows}: {seeds:?}");
+            let mut distinct = seeds.clone();
+            distinct.sort_unstable();
+            distinct.dedup();
+            assert_eq!(distinct.len(), seeds.len(), "{rows}: {seeds:?}");
+        }
+    }
+}
