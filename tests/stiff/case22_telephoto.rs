@@ -25,7 +25,7 @@ use glint_core::probe_tree;
 use glint_types::layout::NO_HIT;
 
 use crate::case01_far_sphere::{Disc, N, R_PX};
-use crate::gpu::render_both;
+use crate::gpu::{Both, render_both};
 use crate::reference::probe;
 use crate::rel_err;
 use crate::scene::SceneText;
@@ -89,53 +89,10 @@ fn a_far_sphere_seen_off_the_axes_is_a_disc_on_both_backends() {
         let half_h = (desc.camera.fov_y.to_radians() * 0.5).tan();
         let disc = Disc::new(distance, half_h, half_h);
         let (rho, area, perimeter) = (|x, y| disc.rho(x, y), disc.area(), disc.perimeter());
-        let mut counts = [0usize; 2];
-        let mut worst = [0.0_f64; 2];
-        for (backend, img) in both.images() {
-            let ring = backend.pick(CPU_RING, GPU_RING);
-            let mut count = 0usize;
-            let mut worst_pixel = None;
-            for y in 0..N {
-                for x in 0..N {
-                    let hit = img.first_hit[(y * N + x) as usize] != NO_HIT;
-                    count += usize::from(hit);
-                    let r = rho(x, y);
-                    if hit != (r < 1.0) && (r - 1.0).abs() > worst[backend as usize] {
-                        worst[backend as usize] = (r - 1.0).abs();
-                        worst_pixel = Some((x, y, r));
-                    }
-                }
-            }
-            counts[backend as usize] = count;
-            both.ensure(worst[backend as usize] <= ring, || {
-                let (x, y, r) = worst_pixel.expect("a misclassified pixel");
-                format!(
-                    "{} centre {centre:?}, D = {distance:e}: pixel ({x}, {y}) at {r:.9} of the disc radius is decided the other way \
-                     (allowed within {ring:e} of the silhouette)",
-                    backend.name()
-                )
-            });
-            both.ensure((count as f64 - area).abs() <= perimeter, || {
-                format!(
-                    "{} centre {centre:?}, D = {distance:e}: {count} hit pixels vs disc area {area:.1}",
-                    backend.name()
-                )
-            });
-        }
+        let what = format!("centre {centre:?}, D = {distance:e}");
+        let (counts, worst) = check_disc(&both, rho, (area, perimeter), [CPU_RING, GPU_RING], &what);
         // Shading away from the silhouette, GPU against CPU.
-        let shading = both.gpu.as_ref().map(|g| {
-            let mut worst = 0.0_f64;
-            for y in 0..N {
-                for x in 0..N {
-                    let i = (y * N + x) as usize;
-                    if rho(x, y) < 0.98 && both.cpu.image.first_hit[i] != NO_HIT && g.image.first_hit[i] != NO_HIT {
-                        let d = (g.image.pixels[i] - both.cpu.image.pixels[i]).abs().max_element();
-                        worst = worst.max(d);
-                    }
-                }
-            }
-            worst
-        });
+        let shading = gpu_shading_inside(&both, rho);
         if let Some(s) = shading {
             let base = *base_shading.get_or_insert(s);
             both.ensure(s <= SHADING_RATIO * base + 1e-6, || {
@@ -184,6 +141,67 @@ fn a_far_sphere_seen_off_the_axes_is_a_disc_on_both_backends() {
     }
     eprint!("{out}");
     crate::generated::section("case22-telephoto", &out);
+}
+
+/// The hit pixels of each backend's image (`[cpu, gpu]`) and the farthest from the silhouette
+/// any pixel centre is decided against `rho` (its distance from the disc's centre in radii, < 1
+/// inside), each checked: within `rings` (`[cpu, gpu]`) of the silhouette, and a count within
+/// one perimeter of the disc's area. `what` names the case in a failure.
+pub(crate) fn check_disc(
+    both: &Both,
+    rho: impl Fn(u32, u32) -> f64,
+    (area, perimeter): (f64, f64),
+    rings: [f64; 2],
+    what: &str,
+) -> ([usize; 2], [f64; 2]) {
+    let mut counts = [0usize; 2];
+    let mut worst = [0.0_f64; 2];
+    for (backend, img) in both.images() {
+        let ring = backend.pick(rings[0], rings[1]);
+        let mut count = 0usize;
+        let mut worst_pixel = None;
+        for y in 0..N {
+            for x in 0..N {
+                let hit = img.first_hit[(y * N + x) as usize] != NO_HIT;
+                count += usize::from(hit);
+                let r = rho(x, y);
+                if hit != (r < 1.0) && (r - 1.0).abs() > worst[backend as usize] {
+                    worst[backend as usize] = (r - 1.0).abs();
+                    worst_pixel = Some((x, y, r));
+                }
+            }
+        }
+        counts[backend as usize] = count;
+        both.ensure(worst[backend as usize] <= ring, || {
+            let (x, y, r) = worst_pixel.expect("a misclassified pixel");
+            format!(
+                "{} {what}: pixel ({x}, {y}) at {r:.9} of the disc radius is decided the other way (allowed within \
+                 {ring:e} of the silhouette)",
+                backend.name()
+            )
+        });
+        both.ensure((count as f64 - area).abs() <= perimeter, || {
+            format!("{} {what}: {count} hit pixels vs disc area {area:.1}", backend.name())
+        });
+    }
+    (counts, worst)
+}
+
+/// The largest |GPU − CPU| of a channel on pixels both hit inside 0.98 of the disc's radius
+/// (away from the silhouette, where a pixel may be decided either way); `None` without a GPU.
+pub(crate) fn gpu_shading_inside(both: &Both, rho: impl Fn(u32, u32) -> f64) -> Option<f64> {
+    both.gpu.as_ref().map(|g| {
+        let mut worst = 0.0_f64;
+        for y in 0..N {
+            for x in 0..N {
+                let i = (y * N + x) as usize;
+                if rho(x, y) < 0.98 && both.cpu.image.first_hit[i] != NO_HIT && g.image.first_hit[i] != NO_HIT {
+                    worst = worst.max((g.image.pixels[i] - both.cpu.image.pixels[i]).abs().max_element());
+                }
+            }
+        }
+        worst
+    })
 }
 
 /// A telephoto (0.0025°) view from 1.1e5 of a spot-lit triangle 1.1e5 wide: the scene as large

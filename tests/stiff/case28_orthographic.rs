@@ -18,9 +18,9 @@
 //! orthographic camera at its focus, whatever its distance (`flat::telephoto`).
 
 use glam::DVec3;
-use glint_types::layout::NO_HIT;
 
 use crate::case01_far_sphere::{N, R_PX};
+use crate::case22_telephoto::{check_disc, gpu_shading_inside};
 use crate::gpu::render_both;
 use crate::reference::probe;
 use crate::rel_err;
@@ -86,50 +86,9 @@ fn a_sphere_seen_through_an_orthographic_camera_is_the_same_disc_at_every_distan
         let desc = text.desc();
         let flat = text.flat();
         let both = render_both("stiff/case28", &format!("orthographic-{}-{distance:e}", centre[0]), &flat);
-        let mut counts = [0usize; 2];
-        let mut worst = [0.0_f64; 2];
-        for (backend, img) in both.images() {
-            let ring = backend.pick(CPU_RING, GPU_RING);
-            let mut worst_pixel = None;
-            for y in 0..N {
-                for x in 0..N {
-                    let hit = img.first_hit[(y * N + x) as usize] != NO_HIT;
-                    counts[backend as usize] += usize::from(hit);
-                    let r = rho(x, y);
-                    if hit != (r < 1.0) && (r - 1.0).abs() > worst[backend as usize] {
-                        worst[backend as usize] = (r - 1.0).abs();
-                        worst_pixel = Some((x, y, r));
-                    }
-                }
-            }
-            both.ensure(worst[backend as usize] <= ring, || {
-                let (x, y, r) = worst_pixel.expect("a misclassified pixel");
-                format!(
-                    "{} centre {centre:?}, D = {distance:e}: pixel ({x}, {y}) at {r:.9} of the radius is decided the \
-                     other way (allowed within {ring:e} of the silhouette)",
-                    backend.name()
-                )
-            });
-            let count = counts[backend as usize];
-            both.ensure((count as f64 - area).abs() <= perimeter, || {
-                format!(
-                    "{} centre {centre:?}, D = {distance:e}: {count} hit pixels vs disc area {area:.1}",
-                    backend.name()
-                )
-            });
-        }
-        let shading = both.gpu.as_ref().map(|g| {
-            let mut worst = 0.0_f64;
-            for y in 0..N {
-                for x in 0..N {
-                    let i = (y * N + x) as usize;
-                    if rho(x, y) < 0.98 && both.cpu.image.first_hit[i] != NO_HIT && g.image.first_hit[i] != NO_HIT {
-                        worst = worst.max((g.image.pixels[i] - both.cpu.image.pixels[i]).abs().max_element());
-                    }
-                }
-            }
-            worst
-        });
+        let what = format!("centre {centre:?}, D = {distance:e}");
+        let (counts, worst) = check_disc(&both, rho, (area, perimeter), [CPU_RING, GPU_RING], &what);
+        let shading = gpu_shading_inside(&both, rho);
         if let Some(s) = shading {
             let base = *base_shading.get_or_insert(s);
             both.ensure(s <= SHADING_RATIO * base + 1e-6, || {
