@@ -12,10 +12,11 @@
 //!
 //! Why it is stiff: an orthographic camera is the limit of case 22's telephoto. Each ray starts
 //! at eye + x·right + y·up: from an eye D away in f32 the start is off by D·6e-8, a pixel at
-//! D ≈ 1e5 here, and the direction's error grows over D as well. Remedy, as case 22's: both
+//! D ≈ 1e6 here, and the direction's error grows over D as well. Remedy, as case 22's: both
 //! tracers start the rays on the plane through the view axis's anchor near the scene and reach
-//! back to the eye's plane with a negative t_min (`GpuCamera::anchor`); the GPU anchors every
-//! orthographic camera at its focus, whatever its distance (`flat::telephoto`).
+//! back to the eye's plane with a negative t_min (`GpuCamera::anchor`); an orthographic camera is
+//! anchored whatever its distance (`WorldCamera::stored`, and at its focus on the GPU,
+//! `flat::telephoto`).
 
 use glam::DVec3;
 

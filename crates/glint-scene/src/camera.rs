@@ -59,6 +59,11 @@ fn default_fov() -> f64 {
     45.0
 }
 
+/// tan(fov_y/2) under which a perspective view is narrow (a field of view under 0.9°): at any
+/// distance t it sees a patch under t/64 high, and its rays are anchored near what they meet
+/// (`glint_core`'s `telephoto` judges the stored camera so), however far its eye is.
+pub const NARROW_TAN_HALF_FOV: f64 = 1.0 / 128.0;
+
 /// The widest image `ball_may_be_seen` allows for: 4:1. The judgement is made without the
 /// image's size (scene validation and the storage origin have only the scene), and must not
 /// change with it.
@@ -71,13 +76,49 @@ impl CameraDesc {
     }
 
     /// The height of the view an orthographic camera sees: `view_height`, or where it is not
-    /// given, what the perspective view sees at `look_at`, 2·|look_at − position|·tan(fov_y/2):
-    /// switching a camera to orthographic keeps the look-at point's framing.
+    /// given, what the perspective view sees at `look_at` (`perspective_height`): switching a
+    /// camera to orthographic keeps the look-at point's framing.
     pub fn view_height(&self) -> f64 {
-        self.view_height.unwrap_or_else(|| {
-            let distance = (DVec3::from(self.look_at) - DVec3::from(self.position)).length();
-            2.0 * distance * (self.fov_y.to_radians() * 0.5).tan()
-        })
+        self.view_height.unwrap_or_else(|| self.perspective_height())
+    }
+
+    /// What the perspective view (`fov_y`) sees at `look_at`: 2·|look_at − position|·tan(fov_y/2).
+    pub fn perspective_height(&self) -> f64 {
+        2.0 * self.look_at_distance() * (self.fov_y.to_radians() * 0.5).tan()
+    }
+
+    /// Whether the view is narrow: orthographic (the narrowest of all), or a perspective view
+    /// under `NARROW_TAN_HALF_FOV`.
+    pub fn is_narrow(&self) -> bool {
+        self.projection == Projection::Orthographic || (self.fov_y.to_radians() * 0.5).tan() < NARROW_TAN_HALF_FOV
+    }
+
+    /// How high what the camera shows at `look_at` is, in its projection.
+    pub fn height_at_look_at(&self) -> f64 {
+        match self.projection {
+            Projection::Perspective => self.perspective_height(),
+            Projection::Orthographic => self.view_height(),
+        }
+    }
+
+    /// How far the camera is from what it shows, for sizing what is drawn over its image: the
+    /// distance to `look_at`, or for an orthographic camera (whose eye may be anywhere back
+    /// along its axis) the distance at which the perspective view is as high as its view.
+    pub fn framing_distance(&self) -> f64 {
+        match self.projection {
+            Projection::Perspective => self.look_at_distance(),
+            Projection::Orthographic => self.view_height() / (2.0 * (self.fov_y.to_radians() * 0.5).tan()),
+        }
+    }
+
+    /// The field of view (degrees) whose perspective view is `height` high at `look_at`:
+    /// switching an orthographic camera to perspective keeps the framing.
+    pub fn fov_seeing(&self, height: f64) -> f64 {
+        (2.0 * (0.5 * height / self.look_at_distance()).atan()).to_degrees()
+    }
+
+    fn look_at_distance(&self) -> f64 {
+        (DVec3::from(self.look_at) - DVec3::from(self.position)).length()
     }
 
     /// Whether any part of the ball of `radius` around `centre` may be seen by this camera
@@ -162,7 +203,11 @@ mod tests {
         assert!(camera.may_see([5.0, 0.0, 1e6], 1.0));
         assert!(!camera.may_see([5.2, 0.0, 1.0], 1.0));
         // Not given, the view height is the perspective view's at look_at: 2·1·tan(20°).
-        let framed = CameraDesc { view_height: None, ..camera };
+        let framed = CameraDesc { view_height: None, ..camera.clone() };
         assert!((framed.view_height() - 2.0 * 20f64.to_radians().tan()).abs() < 1e-15);
+        // Back to perspective with the field of view that frames it so; a framing distance at
+        // which a 40° view is as high.
+        assert!((camera.fov_seeing(2.0) - 90.0).abs() < 1e-12);
+        assert!((camera.framing_distance() - 1.0 / 20f64.to_radians().tan()).abs() < 1e-12);
     }
 }

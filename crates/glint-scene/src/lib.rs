@@ -24,7 +24,7 @@ mod texture;
 mod transform;
 mod validate;
 
-pub use camera::{CameraDesc, Projection};
+pub use camera::{CameraDesc, NARROW_TAN_HALF_FOV, Projection};
 pub use desc::{
     GlobalAttenuation, ObjectDesc, PlaneDesc, RenderSettings, SceneDesc, SphereDesc, WorldDesc,
     without_imported_materials,

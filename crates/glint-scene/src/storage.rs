@@ -6,7 +6,7 @@
 
 use glam::DVec3;
 
-use crate::{ObjectDesc, PlaneDesc, SceneDesc, SphereDesc};
+use crate::{ObjectDesc, PlaneDesc, Projection, SceneDesc, SphereDesc};
 
 /// How many of its largest sides a scene's box may have its centre from the world origin and
 /// still be stored in world space: f32 then keeps all but log2(64) = 6 of its 24 bits for the
@@ -17,8 +17,9 @@ const WORLD_SPACE_REACH: f64 = 64.0;
 /// The origin of `desc`'s stored coordinates (`SceneHeader::frame` once flattened): the world
 /// origin for geometry around it, else the centre of the box around the bounded geometry
 /// (spheres, meshes and models; planes, lights and the camera are unbounded or points, and
-/// follow; in a scene of planes alone, the box around the eye out to its nearest plane) snapped to a grid of the power of two nearest the box's largest side and rounded to
-/// f32 — the header stores it in f32, so it is exact there.
+/// follow; in a scene of planes alone, what the eye sees of them, `seen_of_planes`) snapped to
+/// a grid of the power of two nearest the box's largest side and rounded to f32 — the header
+/// stores it in f32, so it is exact there.
 ///
 /// Why the world origin for geometry around it (the box's centre within `WORLD_SPACE_REACH` of
 /// its largest sides from the origin on every axis): there, world coordinates lose little over
@@ -44,10 +45,7 @@ pub fn storage_origin_within(desc: &SceneDesc, bounds: Option<(DVec3, DVec3)>) -
             let (lo, hi) = eye_neighbourhood(desc, lo, hi).unwrap_or((lo, hi));
             storage_origin_of_box(lo.to_array(), hi.to_array())
         }
-        // Planes alone have no size: what is seen is near the eye, and f32 holds it to the
-        // eye's height over its nearest plane. In world space a floor 2 under an eye at 1e7
-        // was lit 20 % off (the eye, the light and the plane's offset rounded to 1).
-        None => around_the_eye(desc).map_or([0.0; 3], |(lo, hi)| storage_origin_of_box(lo.to_array(), hi.to_array())),
+        None => seen_of_planes(desc).map_or([0.0; 3], |(lo, hi)| storage_origin_of_box(lo.to_array(), hi.to_array())),
     }
 }
 
@@ -75,7 +73,61 @@ fn eye_neighbourhood(desc: &SceneDesc, lo: DVec3, hi: DVec3) -> Option<(DVec3, D
     if !box_far_out_of_sight(desc, lo, hi) {
         return None;
     }
-    around_the_eye(desc)
+    seen_of_planes(desc)
+}
+
+/// What the eye sees of the planes, which have no size: for a narrow view
+/// (`CameraDesc::is_narrow`) whose axis meets a plane, the patch there, as high as the view
+/// (`the_patch_seen`); else the box around the eye out to its nearest plane (`around_the_eye`).
+///
+/// Why the patch: a narrow view's eye is anchored there (`glint_core`'s `WorldCamera::stored`),
+/// and what it shows lies within its view of it; stored around a far eye, the plane's offset
+/// and the anchor were rounded to the eye's distance, which a grazing view magnifies along
+/// the ground (an orthographic view 4 high, 0.1° over a checkered plane from 1e6: 881 of 19,200
+/// pixels of the CPU's image on the wrong square). Why the eye otherwise: a wider view sees the
+/// plane near the eye too, and f32 holds it to the eye's height over it; in world space a floor
+/// 2 under an eye at 1e7 was lit 20 % off (the eye, the light and the plane's offset rounded
+/// to 1).
+fn seen_of_planes(desc: &SceneDesc) -> Option<(DVec3, DVec3)> {
+    the_patch_seen(desc).or_else(|| around_the_eye(desc))
+}
+
+/// The patch of the nearest plane a narrow view's axis meets (ahead of the eye), as high as the
+/// view is there: `None` for a wider view, an axis that meets none, or a perspective view that
+/// also sees the plane much nearer or farther than there (one within its field of view of
+/// grazing it, whose lower edge meets the plane near the eye: that is what it sees).
+fn the_patch_seen(desc: &SceneDesc) -> Option<(DVec3, DVec3)> {
+    let c = &desc.camera;
+    if !c.is_narrow() {
+        return None;
+    }
+    let eye = DVec3::from(c.position);
+    let axis = (DVec3::from(c.look_at) - eye).try_normalize()?;
+    let half_fov = c.fov_y.to_radians() * 0.5;
+    let meets = desc.objects.iter().filter_map(|object| match object {
+        ObjectDesc::Plane(PlaneDesc { point, normal, .. }) => {
+            let n = DVec3::from(*normal).try_normalize()?;
+            let t = n.dot(DVec3::from(*point) - eye) / n.dot(axis);
+            // The axis's angle to the plane, and the nearest and farthest the view's rays meet it:
+            // within a factor of two of t where sin(e − a) ≥ sin(e)/2.
+            let grazing = n.dot(axis).abs().asin();
+            let one_patch = c.projection == Projection::Orthographic
+                || grazing > half_fov && (grazing - half_fov).sin() >= 0.5 * grazing.sin();
+            (t.is_finite() && t > 0.0).then_some((t, one_patch))
+        }
+        ObjectDesc::Sphere(_) | ObjectDesc::Mesh(_) | ObjectDesc::Model(_) => None,
+    });
+    let (t, one_patch) = meets.min_by(|a, b| a.0.total_cmp(&b.0))?;
+    if !one_patch {
+        return None;
+    }
+    let half = 0.5
+        * match c.projection {
+            Projection::Orthographic => c.view_height(),
+            Projection::Perspective => 2.0 * t * (c.fov_y.to_radians() * 0.5).tan(),
+        };
+    let patch = eye + t * axis;
+    (half.is_finite() && half > 0.0).then_some((patch - half, patch + half))
 }
 
 /// The box around the eye out to its nearest plane, `None` when no plane passes it (at a
@@ -197,6 +249,33 @@ mod tests {
         // Near the world origin (for its height): world space, as always.
         desc.camera.position = [0.5, 2.0, -3.0];
         assert_eq!(storage_origin(&desc), [0.0; 3]);
+    }
+
+    #[test]
+    fn a_narrow_view_of_planes_alone_is_stored_around_the_patch_it_sees() {
+        let floor = ObjectDesc::Plane(PlaneDesc {
+            point: [0.0; 3],
+            normal: [0.0, 1.0, 0.0],
+            material: "m".into(),
+            name: String::new(),
+        });
+        let mut desc = with(vec![floor]);
+        // 0.1° over the floor from 1e6, looking at a patch near the world origin: stored around
+        // the eye, 1.7e3 over the floor, the floor's offset was rounded to 1e-4.
+        let e = 0.1f64.to_radians();
+        desc.camera.position = [1e6 * e.cos(), 1e6 * e.sin(), 0.0];
+        desc.camera.look_at = [0.0; 3];
+        assert_ne!(storage_origin(&desc), [0.0; 3], "a wide view is stored around the eye");
+        desc.camera.projection = Projection::Orthographic;
+        desc.camera.view_height = Some(4.0);
+        assert_eq!(storage_origin(&desc), [0.0; 3], "the patch lies at the world origin");
+        desc.camera.projection = Projection::Perspective;
+        desc.camera.fov_y = 2.0 * (2.0f64 / 1e6).atan().to_degrees();
+        assert_eq!(storage_origin(&desc), [0.0; 3], "so does a telephoto's, 4 high there");
+        // A telephoto within its field of view of grazing the floor sees it from near its eye
+        // to the horizon: stored around the eye.
+        desc.camera.fov_y = 0.5;
+        assert_ne!(storage_origin(&desc), [0.0; 3]);
     }
 
     #[test]

@@ -5,6 +5,7 @@
 use glam::DVec3;
 use glint_core::cpu::shade::Breakdown;
 use glint_core::{FlatScene, camera_eye, probe_pixel};
+use glint_types::layout::CAMERA_ORTHOGRAPHIC;
 
 use crate::scene::w3;
 
@@ -17,16 +18,20 @@ pub fn probe(flat: &FlatScene, x: u32, y: u32) -> Breakdown {
 
 /// The camera ray through the centre of pixel (x, y) (y downwards), re-derived from the stored
 /// camera vectors: direction ∝ forward + ndc_x·right + ndc_y·up with pixel centres at
-/// (x + 0.5, y + 0.5) (the documented camera model). Its origin is the eye in world space (the
-/// stored camera's eye plus the scene's storage origin, `SceneHeader::frame`), where the tests'
-/// closed forms are written.
+/// (x + 0.5, y + 0.5) (the documented camera model), or for an orthographic camera along forward
+/// from eye + ndc_x·right + ndc_y·up. Its origin is in world space (the stored camera's eye plus
+/// the scene's storage origin, `SceneHeader::frame`), where the tests' closed forms are written.
 pub fn primary_ray(flat: &FlatScene, x: u32, y: u32) -> (DVec3, DVec3) {
     let (w, h) = (f64::from(flat.header.width), f64::from(flat.header.height));
     let c = &flat.camera;
     let ndc_x = 2.0 * (f64::from(x) + 0.5) / w - 1.0;
     let ndc_y = 1.0 - 2.0 * (f64::from(y) + 0.5) / h;
-    let d = w3(c.forward) + ndc_x * w3(c.right) + ndc_y * w3(c.up);
-    (camera_eye(c) + flat.frame_origin(), d.normalize())
+    let across = ndc_x * w3(c.right) + ndc_y * w3(c.up);
+    let eye = camera_eye(c) + flat.frame_origin();
+    if c.forward[3] == CAMERA_ORTHOGRAPHIC {
+        return (eye + across, w3(c.forward).normalize());
+    }
+    (eye, (w3(c.forward) + ndc_x * w3(c.right) + ndc_y * w3(c.up)).normalize())
 }
 
 /// Nearest ray/sphere hit with t > 0 and its discriminant relative to r² (how far from the

@@ -4,7 +4,7 @@
 use glam::DVec3;
 
 use super::{FlatScene, vec4, wide};
-use glint_scene::{Projection, RenderSettings, SceneDesc};
+use glint_scene::{NARROW_TAN_HALF_FOV, Projection, RenderSettings, SceneDesc};
 use glint_types::layout::{CAMERA_ORTHOGRAPHIC, GpuCamera, GpuPlane};
 
 /// The camera's ray-generation vectors in f64 world space: a ray through image point
@@ -39,7 +39,10 @@ pub struct SceneBox {
 impl WorldCamera {
     /// The camera as the flat scene stores it relative to `origin` (the storage origin), each
     /// vector rounded once to f32. An eye more than `EYE_REACH` of the largest sides from the
-    /// centre of the bounded geometry (`scene`) is anchored nearest that centre (`anchor_of`).
+    /// centre of the bounded geometry (`scene`) is anchored nearest that centre (`anchor_of`),
+    /// and so is an orthographic camera's wherever it is: its view may be far smaller than the
+    /// scene, and its rays start at the eye's plane however far back that is (an eye 5e5 away in
+    /// a scene 1e4 wide, stored itself, put a 0.1-high view's sphere 8 px off centre).
     /// In a scene of planes alone (`planes`, stored coordinates), which has no size, the view
     /// judges: an eye more than `EYE_REACH` of the image's heights from where its axis meets the
     /// nearest plane is anchored there (a telephoto seeing a patch of the ground from afar), if
@@ -47,7 +50,7 @@ impl WorldCamera {
     pub fn stored(&self, origin: DVec3, scene: Option<SceneBox>, planes: &[GpuPlane]) -> GpuCamera {
         let eye = self.position - origin;
         let anchor = match scene {
-            Some(b) if b.side > 0.0 && (eye - b.centre).length() > EYE_REACH * b.side => {
+            Some(b) if b.side > 0.0 && (self.orthographic || (eye - b.centre).length() > EYE_REACH * b.side) => {
                 anchor_of(eye, self.forward, b.centre)
             }
             Some(_) => vec4(eye, 0.0),
@@ -65,9 +68,12 @@ impl WorldCamera {
             },
         };
         let projection = if self.orthographic { CAMERA_ORTHOGRAPHIC } else { 0.0 };
-        let mut forward = vec4(self.forward, 0.0);
-        forward[3] = projection;
-        GpuCamera { anchor, forward, right: vec4(self.right, 0.0), up: vec4(self.up, 0.0) }
+        GpuCamera {
+            anchor,
+            forward: vec4(self.forward, projection),
+            right: vec4(self.right, 0.0),
+            up: vec4(self.up, 0.0),
+        }
     }
 
     /// Where world point `p` lies in the image ([0, 1]², y down), and its depth along the view
@@ -104,7 +110,8 @@ impl WorldCamera {
 /// a pixel that grows as the field narrows. An orthographic camera is the narrowest of all (its
 /// view as high at any distance), a telephoto.
 pub(crate) fn telephoto(forward: DVec3, up: DVec3, orthographic: bool) -> bool {
-    orthographic || forward.length() > EYE_REACH * 2.0 * up.length()
+    // `CameraDesc::is_narrow`'s judgement, on the camera's vectors: |up| = tan(fov_y/2)·|forward|.
+    orthographic || up.length() < NARROW_TAN_HALF_FOV * forward.length()
 }
 
 /// `GpuCamera::anchor` for an eye at `eye` (stored coordinates, f64) looking along `forward`:
