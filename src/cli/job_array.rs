@@ -16,8 +16,12 @@ pub fn missing_runs(present: impl IntoIterator<Item = u32>, count: u32) -> (u64,
         }
     };
     for i in present {
-        gap(next, i, &mut runs);
-        next = i + 1;
+        // Ascending and unique by the callers (map keys); a repeat or an index past `count`
+        // adds no gap.
+        if i >= next {
+            gap(next, i.min(count), &mut runs);
+            next = i.saturating_add(1);
+        }
     }
     gap(next, count, &mut runs);
     (missing, runs)

@@ -84,17 +84,21 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
     // Headers first: every check before any pixel is read or anything is written.
     let headers: Vec<ExrHeader> =
         args.tiles.iter().map(|p| read_exr_header(p).map_err(anyhow::Error::from)).collect::<anyhow::Result<_>>()?;
-    let keys = shared_keys(&headers[0]);
-    let shared = |h: &ExrHeader| keys.iter().map(|k| h.attribute(k).map(str::to_string)).collect::<Vec<_>>();
     // Tiles are held against the render most of them are of (the first tile's on a tie), so that
-    // a stale tile left from another render is the one named, wherever the glob puts it.
-    let mut renders: HashMap<Vec<Option<String>>, (usize, usize)> = HashMap::new();
+    // a stale tile left from another render is the one named, wherever the glob puts it. A
+    // render is its attributes (`shared_keys`, which a GPU tile has more of).
+    let render_of =
+        |h: &ExrHeader| shared_keys(h).into_iter().map(|k| (k, h.attribute(k).map(str::to_string))).collect::<Vec<_>>();
+    // Per render: how many tiles are of it, and the first.
+    let mut renders: HashMap<_, (usize, usize)> = HashMap::new();
     for (i, h) in headers.iter().enumerate() {
-        renders.entry(shared(h)).or_insert((0, i)).0 += 1;
+        renders.entry(render_of(h)).or_insert((0, i)).0 += 1;
     }
     let (agreeing, reference) =
         renders.values().copied().max_by_key(|&(n, first)| (n, std::cmp::Reverse(first))).unwrap_or((1, 0));
     let first = (&args.tiles[reference], &headers[reference]);
+    let keys = shared_keys(first.1);
+    let shared = |h: &ExrHeader| keys.iter().map(|k| h.attribute(k).map(str::to_string)).collect::<Vec<_>>();
     let (_, count) = tile_index(first.0, first.1)?;
     let (width, height) = first.1.display;
     // A forged or damaged header must not size the merged image beyond what a render makes.

@@ -109,18 +109,19 @@ struct JsonCounts {
     reflection: u64,
     refraction: u64,
     total: u64,
-    saved_by_bailout: u64,
+    /// Null for the path tracer, which has no bailout.
+    saved_by_bailout: Option<u64>,
 }
 
-impl From<&RayCounts> for JsonCounts {
-    fn from(c: &RayCounts) -> Self {
+impl JsonCounts {
+    fn of(c: &RayCounts, integrator: Integrator) -> Self {
         Self {
             camera: c.camera,
             shadow: c.shadow,
             reflection: c.reflection,
             refraction: c.refraction,
             total: c.total(),
-            saved_by_bailout: c.bailout_saved,
+            saved_by_bailout: (integrator == Integrator::Whitted).then_some(c.bailout_saved),
         }
     }
 }
@@ -197,7 +198,7 @@ pub fn print_bench_json(scene: &str, s: &RenderSettings, runs: u32, results: &[B
                 min_ms: ms(r.min),
                 mrays_per_s: mrays_per_s(r.warm.counts.total(), r.median),
                 msamples_per_s: r.msamples_per_s(s),
-                rays: JsonCounts::from(&r.warm.counts),
+                rays: JsonCounts::of(&r.warm.counts, s.integrator),
                 gpu_status: r.warm.gpu_status,
                 incomplete: &r.warm.incomplete,
             })
@@ -284,7 +285,7 @@ pub fn print_json(
                 render_ms: ms(r.render),
                 total_ms: ms(r.total),
                 mrays_per_s: r.mrays(),
-                rays: JsonCounts::from(&r.counts),
+                rays: JsonCounts::of(&r.counts, s.integrator),
                 gpu_status: r.gpu_status,
                 incomplete: &r.incomplete,
             })

@@ -631,5 +631,8 @@ fn render_json_says_which_integrator_and_its_settings() {
         let v: serde_json::Value = serde_json::from_str(&text(&run.stdout)).expect("JSON");
         assert_eq!(v["integrator"], integrator);
         assert_eq!((&v["bailout"], &v["indirect"], v["seed"].as_u64()), (&bailout, &indirect, Some(9)), "{v}");
+        // Rays the bailout saved: Whitted's alone.
+        let saved = &v["runs"][0]["rays"]["saved_by_bailout"];
+        assert_eq!(saved.is_null(), integrator == "path", "{v}");
     }
 }

@@ -199,6 +199,8 @@ fn an_orthographic_camera_needs_a_view_height_in_range_and_a_perspective_one_ign
         "camera.view_height",
         &["not given", "2·|look_at − position|·tan(fov_y/2) = 1.75e-13, outside", "give it"],
     );
+    // An invalid fov_y is refused under its own name, not again as the view height it gives.
+    expect_invalid(&orthographic("projection = \"orthographic\"\nfov_y = 200.0"), "camera.fov_y", &["[1e-6, 179]"]);
     let warned = expect_valid(&orthographic("view_height = 3.0"), "perspective with a view height");
     assert!(
         warned.len() == 1 && warned[0].starts_with("camera.view_height: is used by an orthographic camera only"),

@@ -35,7 +35,7 @@ pub struct MaterialSource {
     pub fields: Vec<(&'static str, Vec<f64>)>,
 }
 
-/// A camera of the file (glTF perspective cameras).
+/// A camera of the file (glTF perspective and orthographic cameras).
 #[derive(Clone, Debug, PartialEq)]
 pub struct ModelCamera {
     pub name: String,

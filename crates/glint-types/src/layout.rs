@@ -269,7 +269,7 @@ pub struct SceneHeader {
     pub frame: [f32; 4],
 }
 
-/// Pinhole camera as ray-generation vectors: a pixel at normalised device coordinates (x, y)
+/// The camera as ray-generation vectors: a pinhole's pixel at normalised device coordinates (x, y)
 /// in [−1, 1]² looks along `forward + x·right + y·up` (right and up are pre-scaled by the
 /// field of view and aspect ratio) from the eye, `anchor.xyz − anchor.w·forward`. An
 /// orthographic camera (`forward.w` = `CAMERA_ORTHOGRAPHIC`) looks along `forward` from the

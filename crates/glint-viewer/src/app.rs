@@ -7,7 +7,6 @@ use std::time::{Duration, Instant};
 
 use egui::Ui;
 use glint_core::FlatScene;
-use glint_core::glam::DVec3;
 use glint_core::image::{RenderInfo, render_metadata};
 use glint_io::LoadOptions;
 use glint_types::layout::NO_HIT;
@@ -473,8 +472,7 @@ impl ViewerApp {
             return Vec::new();
         }
         let camera = FlatScene::world_camera(&self.doc.desc, &self.doc.desc.render);
-        let c = &self.doc.desc.camera;
-        let reach = 2.0 * (DVec3::from_array(c.position) - DVec3::from_array(c.look_at)).length();
+        let reach = 2.0 * self.doc.desc.camera.framing_distance();
         ray_tree_view::segments(&p.cpu_tree, &camera, reach)
     }
 }

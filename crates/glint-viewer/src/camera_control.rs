@@ -66,11 +66,7 @@ pub fn pan(cam: &mut CameraDesc, dx: f32, dy: f32, view_height: f32) {
     let forward = (target - pos).normalize_or_zero();
     let right = forward.cross(DVec3::from(cam.up)).normalize_or_zero();
     let up = right.cross(forward);
-    let seen = match cam.projection {
-        Projection::Perspective => 2.0 * (target - pos).length() * (cam.fov_y.to_radians() / 2.0).tan(),
-        Projection::Orthographic => cam.view_height(),
-    };
-    let per_point = seen / f64::from(view_height.max(1.0));
+    let per_point = cam.height_at_look_at() / f64::from(view_height.max(1.0));
     let shift = (-right * f64::from(dx) + up * f64::from(dy)) * per_point;
     cam.position = (pos + shift).to_array();
     cam.look_at = (target + shift).to_array();

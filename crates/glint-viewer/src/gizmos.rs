@@ -37,7 +37,8 @@ fn colour(rgb: [f64; 3]) -> Color32 {
 
 pub fn gizmos(desc: &SceneDesc, cam: &WorldCamera, selected: usize) -> Vec<Gizmo> {
     let look_at = DVec3::from_array(desc.camera.look_at);
-    let scale = (DVec3::from_array(desc.camera.position) - look_at).length() * 0.15;
+    // An orthographic eye may be anywhere back along its axis: sized by what the view shows.
+    let scale = desc.camera.framing_distance() * 0.15;
     desc.lights
         .iter()
         .enumerate()

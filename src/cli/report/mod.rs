@@ -141,6 +141,23 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
             );
         }
     }
+    // Before the GPU opens or --out is made: a family is the same with either backend.
+    if let Some(s) = args.shard {
+        let families = shard::families(scenes.len(), &plan.configs(&[Backend::Cpu]));
+        if s.count as usize > families {
+            let idle = if s.count as usize == families + 1 {
+                format!("shard {families} would have nothing to run")
+            } else {
+                format!("shards {families} to {} would have nothing to run", s.count - 1)
+            };
+            bail!(
+                "--shard {}/{}: this sweep has {families} families of configurations (each timed whole by one \
+                 shard), so {idle}; use at most {families} shards",
+                s.index,
+                s.count
+            );
+        }
+    }
     let gpu = if args.cpu_only {
         None
     } else {
@@ -162,18 +179,6 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
     let reference = plan.reference();
     // With --shard, which shard times each (scene, configuration); specular models go with the
     // shard of a scene's first configuration.
-    if let Some(s) = args.shard {
-        let families = shard::families(scenes.len(), &planned);
-        if s.count as usize > families {
-            bail!(
-                "--shard {}/{}: this sweep has {families} families of configurations (each timed whole by one \
-                 shard), so shards {families} to {} would have nothing to run; use at most {families} shards",
-                s.index,
-                s.count,
-                s.count - 1
-            );
-        }
-    }
     let owners = args
         .shard
         .map(|s| shard::assign(scenes.len(), &planned, u64::from(width) * u64::from(height), args.runs, s.count));

@@ -47,23 +47,30 @@ fn family(config: &Config) -> (u32, u32, super::plan::Bailout, glint_scene::Epsi
     (config.spp, config.depth, config.bailout, config.epsilon_mode)
 }
 
+/// Each planned configuration's family, as the index of its first configuration in plan order.
+fn family_heads(planned: &[Planned]) -> Vec<usize> {
+    planned
+        .iter()
+        .enumerate()
+        .map(|(i, p)| planned.iter().position(|q| family(&q.config) == family(&p.config)).unwrap_or(i))
+        .collect()
+}
+
 /// How many families (scene, family) a sweep of `scenes` scenes of `planned` configurations
 /// has: each is timed whole by one shard, so more shards than this would have nothing to run.
 pub fn families(scenes: usize, planned: &[Planned]) -> usize {
-    let first_of_its_family =
-        |(i, p): &(usize, &Planned)| planned.iter().position(|q| family(&q.config) == family(&p.config)) == Some(*i);
-    scenes * planned.iter().enumerate().filter(first_of_its_family).count()
+    scenes * family_heads(planned).iter().enumerate().filter(|(i, head)| i == *head).count()
 }
 
 /// Which shard times each (scene, planned configuration): `shards[scene][config]`. Shards past
 /// the count of families get none (`families`), and are not walked: a count of 2^32 costs what
 /// the families do.
 pub fn assign(scenes: usize, planned: &[Planned], pixels: u64, runs: u32, count: u32) -> Vec<Vec<u32>> {
+    let heads = family_heads(planned);
     let mut families: BTreeMap<(usize, usize), f64> = BTreeMap::new();
     for scene in 0..scenes {
-        for (i, p) in planned.iter().enumerate() {
+        for (p, &first) in planned.iter().zip(&heads) {
             // Keyed by the family's first configuration, in plan order.
-            let first = planned.iter().position(|q| family(&q.config) == family(&p.config)).unwrap_or(i);
             let c = &p.config;
             let cost = pixels as f64 * f64::from(c.spp) * f64::from(c.depth + 1) * f64::from(runs + 1);
             *families.entry((scene, first)).or_default() += cost;
@@ -82,18 +89,7 @@ pub fn assign(scenes: usize, planned: &[Planned], pixels: u64, runs: u32, count:
         load[shard] += cost;
         owner.insert(key, shard as u32);
     }
-    (0..scenes)
-        .map(|scene| {
-            planned
-                .iter()
-                .enumerate()
-                .map(|(i, p)| {
-                    let first = planned.iter().position(|q| family(&q.config) == family(&p.config)).unwrap_or(i);
-                    owner[&(scene, first)]
-                })
-                .collect()
-        })
-        .collect()
+    (0..scenes).map(|scene| heads.iter().map(|&first| owner[&(scene, first)]).collect()).collect()
 }
 
 /// What a shard writes: the sweep it is part of, its machine, and its rows.

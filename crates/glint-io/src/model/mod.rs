@@ -182,13 +182,13 @@ pub fn scene_around(
             let count = model.cameras.len();
             let chosen = model.cameras.get(i).ok_or_else(|| FieldIssue {
                 field: "--camera".into(),
-                // Counted as `--camera` counts them: the nodes with a perspective camera, in the
-                // order the scene's nodes are walked (not the file's `cameras` indices).
+                // Counted as `--camera` counts them: the nodes with a camera Glint looks through, in
+                // the order the scene's nodes are walked (not the file's `cameras` indices).
                 problem: match count {
-                    0 => format!("{i} is not a camera of the file; it has no perspective camera on a node"),
-                    1 => format!("{i} is not a camera of the file; it has one perspective camera on a node, camera 0"),
+                    0 => format!("{i} is not a camera of the file; it has no camera on a node"),
+                    1 => format!("{i} is not a camera of the file; it has one camera on a node, camera 0"),
                     _ => format!(
-                        "{i} is not a camera of the file; it has {count} perspective cameras on nodes, cameras 0 to {}",
+                        "{i} is not a camera of the file; it has {count} cameras on nodes, cameras 0 to {}",
                         count - 1
                     ),
                 },
@@ -212,7 +212,7 @@ pub fn scene_around(
             warnings.push(FieldIssue {
                 field: format!("camera `{}`", camera.name),
                 problem: format!(
-                    "its aspectRatio {} would make the image {}x{} pixels; the width is held to {width} \
+                    "its aspect ratio {} would make the image {}x{} pixels; the width is held to {width} \
                      (sides in [1, {MAX_IMAGE_SIDE}]): set --width and --height",
                     glint_scene::format_number(aspect),
                     glint_scene::format_number(wanted),
@@ -347,15 +347,15 @@ mod tests {
         let said = |aspect: f64| {
             let model = Model { meshes: vec![quad(1.0)], cameras: vec![camera(aspect)], ..Model::default() };
             let (desc, warnings) = scene_around(model, Path::new("m.gltf"), &ImportOptions::default()).unwrap();
-            (desc.render.width, warnings.into_iter().find(|w| w.problem.contains("aspectRatio")))
+            (desc.render.width, warnings.into_iter().find(|w| w.problem.contains("aspect ratio")))
         };
         let (width, warning) = said(1e-9);
         assert_eq!(width, 1);
-        assert!(warning.expect("said").problem.starts_with("its aspectRatio 1e-9 would make the image 0x"));
+        assert!(warning.expect("said").problem.starts_with("its aspect ratio 1e-9 would make the image 0x"));
         assert_eq!(said(2.0).1, None);
         // Written short, not as 39 digits.
         let said = said(1e38).1.expect("said").problem;
-        assert!(said.starts_with("its aspectRatio 1e38 would make the image 4.8e40x480 pixels"), "{said}");
+        assert!(said.starts_with("its aspect ratio 1e38 would make the image 4.8e40x480 pixels"), "{said}");
     }
 
     #[test]
@@ -366,9 +366,9 @@ mod tests {
             aspect: None,
         };
         for (count, says) in [
-            (0, "it has no perspective camera on a node"),
-            (1, "it has one perspective camera on a node, camera 0"),
-            (3, "it has 3 perspective cameras on nodes, cameras 0 to 2"),
+            (0, "it has no camera on a node"),
+            (1, "it has one camera on a node, camera 0"),
+            (3, "it has 3 cameras on nodes, cameras 0 to 2"),
         ] {
             let mut model = Model { meshes: vec![quad(1.0)], ..Model::default() };
             model.cameras = vec![camera.clone(); count];

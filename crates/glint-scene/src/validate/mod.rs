@@ -256,7 +256,8 @@ fn validate_view_height(c: &CameraDesc, r: &mut Report) {
         }
         (Projection::Orthographic, None) => {
             let h = c.view_height();
-            if !ranges::VIEW_HEIGHT.contains(h) {
+            // Derived from fov_y: an invalid one is refused under its own name alone.
+            if ranges::FOV_Y.contains(c.fov_y) && !ranges::VIEW_HEIGHT.contains(h) {
                 r.error(
                     "camera.view_height",
                     format!(

@@ -18,15 +18,20 @@ const NEW_GLOBAL_ATTENUATION: GlobalAttenuation = GlobalAttenuation { c: 1.0, l:
 const VIEW_HEIGHT_SPAN: (f64, f64) = (1e-3, 1e3);
 
 /// The projection, and the field of view or the view height it uses. Switching keeps the
-/// look-at point's framing: an orthographic view as high as the perspective one at look_at.
+/// look-at point's framing: an orthographic view as high as the perspective one at look_at, and
+/// back, the field of view that sees the orthographic view's height there.
 fn projection_ui(ui: &mut Ui, camera: &mut CameraDesc) -> bool {
     let mut projection = camera.projection;
     let mut changed = choice(ui, "Projection", &mut projection, &Projection::ALL, Projection::name);
     if changed {
-        camera.view_height = match projection {
-            Projection::Perspective => None,
-            Projection::Orthographic => Some(camera.view_height()),
-        };
+        let height = camera.height_at_look_at();
+        match projection {
+            Projection::Perspective => {
+                camera.fov_y = camera.fov_seeing(height).clamp(ranges::FOV_Y.min, ranges::FOV_Y.max);
+                camera.view_height = None;
+            }
+            Projection::Orthographic => camera.view_height = Some(height),
+        }
         camera.projection = projection;
     }
     match camera.projection {
@@ -131,7 +136,7 @@ fn global_attenuation_ui(ui: &mut Ui, g: &mut GlobalAttenuation) -> bool {
     changed
 }
 
-/// The cameras of the scene's model files (glTF perspective cameras, placed with the model):
+/// The cameras of the scene's model files (glTF perspective and orthographic cameras, placed with the model):
 /// choosing one looks through it, as `--camera N` does on the command line.
 fn model_cameras(ui: &mut Ui, doc: &mut Document) -> bool {
     let cameras: Vec<(String, CameraDesc)> = doc

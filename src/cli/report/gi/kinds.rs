@@ -134,26 +134,34 @@ pub fn kinds_sentence(g: &GiResult) -> String {
     };
     let black = k.paths_mean.is_some_and(|m| m <= 0.0);
     let indirect_share = k.share[1] + k.share[2] + k.share[3];
-    let mut parts = vec![
-        (direct, k.direct_rmse),
-        ("the indirect diffuse light it has no term for".to_string(), k.rms[1]),
-        ("the caustics it has no term for".to_string(), k.rms[2]),
-        (
-            "the rest of the light it has no term for (a mirror or glass between two diffuse bounces)".to_string(),
-            k.rms[3],
-        ),
+    let kinds = [
+        ("the indirect diffuse light it has no term for", k.rms[1]),
+        ("the caustics it has no term for", k.rms[2]),
+        ("the rest of the light it has no term for (a mirror or glass between two diffuse bounces)", k.rms[3]),
     ];
-    // An ambient that adds more than the indirect light it stands in for is an error of its own;
-    // one that adds less leaves the kinds above missing, in part.
-    let ambient_over = black && k.ambient_share > 0.0 || !black && k.ambient_share > indirect_share;
-    if let (Some(rmse), true) = (k.ambient_rmse, ambient_over) {
-        parts.push((
-            "its ambient term as written, I_a·k_a, which adds more light than the indirect light it stands in for"
-                .to_string(),
-            rmse,
-        ));
-    }
-    let (largest, _) = parts.iter().max_by(|a, b| a.1.total_cmp(&b.1)).expect("four parts");
+    let (largest_kind, _) = kinds.iter().max_by(|a, b| a.1.total_cmp(&b.1)).expect("three kinds");
+    // Without an ambient term, each kind it lacks is a part of its own. With one, the indirect
+    // light is what the ambient stands in for: one part, the ambient's difference from it (an
+    // ambient matching it well leaves little), named for the ambient where it adds more light
+    // than that, else for the kinds it leaves out.
+    let parts: Vec<(String, f64)> = match k.ambient_rmse {
+        Some(rmse) if k.ambient_share > 0.0 => {
+            let over = black || k.ambient_share > indirect_share;
+            let indirect = if over {
+                "its ambient term as written, I_a·k_a, which adds more light than the indirect light it stands in \
+                 for"
+                .to_string()
+            } else {
+                format!("the indirect light its ambient term as written leaves out, mostly {largest_kind}")
+            };
+            vec![(direct, k.direct_rmse), (indirect, rmse)]
+        }
+        // An older shard, or no ambient.
+        Some(_) | None => {
+            std::iter::once((direct, k.direct_rmse)).chain(kinds.iter().map(|(n, v)| (n.to_string(), *v))).collect()
+        }
+    };
+    let (largest, _) = parts.iter().max_by(|a, b| a.1.total_cmp(&b.1)).expect("the direct part");
     let ambient = match k.ambient_rmse {
         Some(rmse) => {
             format!("; what its ambient as written adds differs from the paths' indirect light by RMS {rmse:.3e}")
@@ -222,10 +230,28 @@ mod tests {
         };
         let said = kinds_sentence(&with_kinds(over.clone()));
         assert!(said.contains("is mostly its ambient term as written"), "{said}");
-        // An ambient under the indirect light leaves the kinds to name, as before.
-        let under =
-            KindSplit { share: [0.5, 0.4, 0.05, 0.05], rms: [0.1, 0.2, 0.01, 0.01], ambient_share: 0.2, ..over };
+        // An ambient under the indirect light leaves the kinds it stands in for to name; without
+        // an ambient each kind is a part, as before.
+        let under = KindSplit {
+            share: [0.5, 0.4, 0.05, 0.05],
+            rms: [0.1, 0.2, 0.01, 0.01],
+            ambient_share: 0.2,
+            ambient_rmse: Some(0.15),
+            ..over
+        };
         let said = kinds_sentence(&with_kinds(under.clone()));
+        assert!(
+            said.contains(
+                "is mostly the indirect light its ambient term as written leaves out, mostly the indirect diffuse"
+            ),
+            "{said}"
+        );
+        // An ambient that matches the indirect light well leaves the direct light the largest,
+        // though the indirect light alone is larger.
+        let matched = KindSplit { direct_rmse: 0.1, ambient_share: 0.45, ambient_rmse: Some(0.02), ..under.clone() };
+        assert!(kinds_sentence(&with_kinds(matched)).contains("is mostly its direct light"));
+        let none = KindSplit { ambient_share: 0.0, ambient_rmse: Some(0.2), ..under.clone() };
+        let said = kinds_sentence(&with_kinds(none));
         assert!(said.contains("is mostly the indirect diffuse light it has no term for"), "{said}");
         // A black reference (no light, an ambient): no shares, no division by its zero mean.
         let black = KindSplit {
