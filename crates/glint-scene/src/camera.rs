@@ -67,7 +67,7 @@ pub const NARROW_TAN_HALF_FOV: f64 = 1.0 / 128.0;
 /// The widest image `ball_may_be_seen` allows for: 4:1. The judgement is made without the
 /// image's size (scene validation and the storage origin have only the scene), and must not
 /// change with it.
-const WIDEST_ASPECT: f64 = 4.0;
+pub(crate) const WIDEST_ASPECT: f64 = 4.0;
 
 impl CameraDesc {
     /// A pinhole camera.

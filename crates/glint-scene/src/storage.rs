@@ -6,6 +6,7 @@
 
 use glam::DVec3;
 
+use crate::camera::WIDEST_ASPECT;
 use crate::{ObjectDesc, PlaneDesc, Projection, SceneDesc, SphereDesc};
 
 /// How many of its largest sides a scene's box may have its centre from the world origin and
@@ -77,8 +78,9 @@ fn eye_neighbourhood(desc: &SceneDesc, lo: DVec3, hi: DVec3) -> Option<(DVec3, D
 }
 
 /// What the eye sees of the planes, which have no size: for a narrow view
-/// (`CameraDesc::is_narrow`) whose axis meets a plane, the patch there, as high as the view
-/// (`the_patch_seen`); else the box around the eye out to its nearest plane (`around_the_eye`).
+/// (`CameraDesc::is_narrow`) that sees all of them only near where its axis meets the nearest,
+/// the patch there, as high as the view (`the_patch_seen`); else the box around the eye out to
+/// its nearest plane (`around_the_eye`).
 ///
 /// Why the patch: a narrow view's eye is anchored there (`glint_core`'s `WorldCamera::stored`),
 /// and what it shows lies within its view of it; stored around a far eye, the plane's offset
@@ -87,15 +89,29 @@ fn eye_neighbourhood(desc: &SceneDesc, lo: DVec3, hi: DVec3) -> Option<(DVec3, D
 /// pixels of the CPU's image on the wrong square). Why the eye otherwise: a wider view sees the
 /// plane near the eye too, and f32 holds it to the eye's height over it; in world space a floor
 /// 2 under an eye at 1e7 was lit 20 % off (the eye, the light and the plane's offset rounded
-/// to 1).
+/// to 1). An eye whose neighbourhood is stored in world space stays so, with its bits.
 fn seen_of_planes(desc: &SceneDesc) -> Option<(DVec3, DVec3)> {
-    the_patch_seen(desc).or_else(|| around_the_eye(desc))
+    let near = around_the_eye(desc);
+    let in_world_space = near.is_some_and(|(lo, hi)| storage_origin_of_box(lo.to_array(), hi.to_array()) == [0.0; 3]);
+    if in_world_space {
+        return near;
+    }
+    the_patch_seen(desc).or(near)
 }
 
-/// The patch of the nearest plane a narrow view's axis meets (ahead of the eye), as high as the
-/// view is there: `None` for a wider view, an axis that meets none, or a perspective view that
-/// also sees the plane much nearer or farther than there (one within its field of view of
-/// grazing it, whose lower edge meets the plane near the eye: that is what it sees).
+/// A plane as the eye sees it: its unit normal towards the eye, and the eye's height over it.
+fn facing_the_eye(point: [f64; 3], normal: [f64; 3], eye: DVec3) -> Option<(DVec3, f64)> {
+    let n = DVec3::from(normal).try_normalize()?;
+    let h = n.dot(eye - DVec3::from(point));
+    (h.is_finite() && h != 0.0).then(|| if h > 0.0 { (n, h) } else { (-n, -h) })
+}
+
+/// The patch of the nearest plane a narrow view's axis meets ahead of the eye, as high as the
+/// view is there: `None` for a wider view, an axis that meets no plane, or a view whose rays
+/// meet some plane (that one or another: a wall beside the eye) nearer than half that
+/// distance, or the plane it looks at beyond twice it — a view within its field of grazing
+/// the plane sees it from near its eye to the horizon. Judged at the corners of a
+/// `WIDEST_ASPECT` image, as `CameraDesc::may_see` judges.
 fn the_patch_seen(desc: &SceneDesc) -> Option<(DVec3, DVec3)> {
     let c = &desc.camera;
     if !c.is_narrow() {
@@ -103,22 +119,22 @@ fn the_patch_seen(desc: &SceneDesc) -> Option<(DVec3, DVec3)> {
     }
     let eye = DVec3::from(c.position);
     let axis = (DVec3::from(c.look_at) - eye).try_normalize()?;
-    let half_fov = c.fov_y.to_radians() * 0.5;
-    let meets = desc.objects.iter().filter_map(|object| match object {
-        ObjectDesc::Plane(PlaneDesc { point, normal, .. }) => {
-            let n = DVec3::from(*normal).try_normalize()?;
-            let t = n.dot(DVec3::from(*point) - eye) / n.dot(axis);
-            // The axis's angle to the plane, and the nearest and farthest the view's rays meet it:
-            // within a factor of two of t where sin(e − a) ≥ sin(e)/2.
-            let grazing = n.dot(axis).abs().asin();
-            let one_patch = c.projection == Projection::Orthographic
-                || grazing > half_fov && (grazing - half_fov).sin() >= 0.5 * grazing.sin();
-            (t.is_finite() && t > 0.0).then_some((t, one_patch))
-        }
-        ObjectDesc::Sphere(_) | ObjectDesc::Mesh(_) | ObjectDesc::Model(_) => None,
-    });
-    let (t, one_patch) = meets.min_by(|a, b| a.0.total_cmp(&b.0))?;
-    if !one_patch {
+    let planes: Vec<(f64, f64)> = desc
+        .objects
+        .iter()
+        .filter_map(|object| match object {
+            // Each plane's eye height h and the sine of the axis's angle towards it.
+            ObjectDesc::Plane(PlaneDesc { point, normal, .. }) => {
+                facing_the_eye(*point, *normal, eye).map(|(n, h)| (h, -n.dot(axis)))
+            }
+            ObjectDesc::Sphere(_) | ObjectDesc::Mesh(_) | ObjectDesc::Model(_) => None,
+        })
+        .collect();
+    let (h, sin_e) = planes.iter().copied().filter(|p| p.1 > 0.0).min_by(|a, b| (a.0 / a.1).total_cmp(&(b.0 / b.1)))?;
+    let t = h / sin_e;
+    let view = ViewSpread::of(c);
+    let farthest = view.farthest(h, sin_e);
+    if farthest > 2.0 * t || planes.iter().any(|&(h, sin_e)| view.nearest(h, sin_e) < 0.5 * t) {
         return None;
     }
     let half = 0.5
@@ -128,6 +144,49 @@ fn the_patch_seen(desc: &SceneDesc) -> Option<(DVec3, DVec3)> {
         };
     let patch = eye + t * axis;
     (half.is_finite() && half > 0.0).then_some((patch - half, patch + half))
+}
+
+/// How far a view's rays spread from its axis, out to the corners of a `WIDEST_ASPECT` image:
+/// in angle for a perspective view, across the axis for an orthographic one's parallel rays.
+enum ViewSpread {
+    Angle(f64),
+    Across(f64),
+}
+
+impl ViewSpread {
+    fn of(c: &crate::CameraDesc) -> Self {
+        let corner = WIDEST_ASPECT.hypot(1.0);
+        match c.projection {
+            Projection::Perspective => ViewSpread::Angle(((c.fov_y.to_radians() * 0.5).tan() * corner).atan()),
+            Projection::Orthographic => ViewSpread::Across(0.5 * c.view_height() * corner),
+        }
+    }
+
+    /// The nearest any ray meets a plane the eye is `h` over, the axis heading towards it at an
+    /// angle whose sine is `sin_e` (∞ where none does).
+    fn nearest(&self, h: f64, sin_e: f64) -> f64 {
+        match *self {
+            ViewSpread::Angle(spread) => {
+                let steepest = (sin_e.clamp(-1.0, 1.0).asin() + spread).min(std::f64::consts::FRAC_PI_2);
+                if steepest > 0.0 { h / steepest.sin() } else { f64::INFINITY }
+            }
+            ViewSpread::Across(across) => {
+                let cos_e = (1.0 - sin_e * sin_e).max(0.0).sqrt();
+                if sin_e > 0.0 { (h - across * cos_e).max(0.0) / sin_e } else { f64::INFINITY }
+            }
+        }
+    }
+
+    /// The farthest any ray meets the plane the axis meets (`sin_e` > 0; ∞ where a ray misses it).
+    fn farthest(&self, h: f64, sin_e: f64) -> f64 {
+        match *self {
+            ViewSpread::Angle(spread) => {
+                let shallowest = sin_e.clamp(-1.0, 1.0).asin() - spread;
+                if shallowest > 0.0 { h / shallowest.sin() } else { f64::INFINITY }
+            }
+            ViewSpread::Across(across) => (h + across * (1.0 - sin_e * sin_e).max(0.0).sqrt()) / sin_e,
+        }
+    }
 }
 
 /// The box around the eye out to its nearest plane, `None` when no plane passes it (at a
@@ -275,7 +334,26 @@ mod tests {
         // A telephoto within its field of view of grazing the floor sees it from near its eye
         // to the horizon: stored around the eye.
         desc.camera.fov_y = 0.5;
-        assert_ne!(storage_origin(&desc), [0.0; 3]);
+        let by_the_eye = storage_origin(&desc);
+        assert_ne!(by_the_eye, [0.0; 3]);
+        // So does a view of the patch with a wall 1 beside the eye, which it sees from 229 on
+        // (a review's: 227 of 1,536 pixels of the wall on the other square).
+        desc.camera.fov_y = 2.0 * (2.0f64 / 1e6).atan().to_degrees();
+        let wall = ObjectDesc::Plane(PlaneDesc {
+            point: [0.0, 0.0, 1.0],
+            normal: [0.0, 0.0, 1.0],
+            material: "m".into(),
+            name: String::new(),
+        });
+        desc.objects.push(wall);
+        let o = DVec3::from(storage_origin(&desc));
+        assert!(o.distance(DVec3::from(desc.camera.position)) < 4.0, "stored at {o}, not around the eye");
+        // An eye whose neighbourhood is stored in world space keeps it, narrow view or not.
+        desc.objects.pop();
+        desc.camera.position = [0.0, 10.0, 0.0];
+        desc.camera.look_at = [0.0, 0.0, 50.0];
+        desc.camera.fov_y = 0.5;
+        assert_eq!(storage_origin(&desc), [0.0; 3]);
     }
 
     #[test]

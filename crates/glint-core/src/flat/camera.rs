@@ -40,7 +40,7 @@ impl WorldCamera {
     /// The camera as the flat scene stores it relative to `origin` (the storage origin), each
     /// vector rounded once to f32. An eye more than `EYE_REACH` of the largest sides from the
     /// centre of the bounded geometry (`scene`) is anchored nearest that centre (`anchor_of`),
-    /// and so is an orthographic camera's wherever it is: its view may be far smaller than the
+    /// and so is an orthographic camera's wherever it is (where there is such geometry): its view may be far smaller than the
     /// scene, and its rays start at the eye's plane however far back that is (an eye 5e5 away in
     /// a scene 1e4 wide, stored itself, put a 0.1-high view's sphere 8 px off centre).
     /// In a scene of planes alone (`planes`, stored coordinates), which has no size, the view
@@ -110,7 +110,8 @@ impl WorldCamera {
 /// a pixel that grows as the field narrows. An orthographic camera is the narrowest of all (its
 /// view as high at any distance), a telephoto.
 pub(crate) fn telephoto(forward: DVec3, up: DVec3, orthographic: bool) -> bool {
-    // `CameraDesc::is_narrow`'s judgement, on the camera's vectors: |up| = tan(fov_y/2)·|forward|.
+    // `CameraDesc::is_narrow`'s judgement on the camera's vectors, |up| = tan(fov_y/2)·|forward|:
+    // the same up to their rounding, a few ulps of tan(fov_y/2) = 1/128.
     orthographic || up.length() < NARROW_TAN_HALF_FOV * forward.length()
 }
 
