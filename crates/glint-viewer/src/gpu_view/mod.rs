@@ -11,7 +11,6 @@ use std::collections::VecDeque;
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
-use glint_core::Accel;
 use glint_core::FlatScene;
 use glint_core::HdrImage;
 use glint_core::cpu::RayCounts;
@@ -22,6 +21,11 @@ use glint_gpu::{
 
 use crate::accumulation::Accumulation;
 use crate::worker::Worker;
+use rate::renders_per_second;
+use variants::{likely_next, new_in, variant_of};
+
+mod rate;
+mod variants;
 
 /// Tile sides of the viewer's renders. On a CPU adapter (lavapipe) each submission holds the
 /// cores the UI needs, so full-resolution renders go in short ones. Measured with whitted at
@@ -559,106 +563,8 @@ impl GpuView {
     }
 }
 
-/// The variant the viewer's renders of `scene` use (`GpuOptions::default()`).
-fn variant_of(scene: &FlatScene) -> ShaderKey {
-    ShaderKey::for_scene(scene, GpuOptions::default().specialise).with_accel(scene, Accel::default())
-}
-
-/// 1×1 copies of `scene` with what an edit is likely to add next: more samples, depth 0, a spot
-/// light, a Phong or a Cook–Torrance material (the features the first use of which froze the
-/// window before the tracer had a device of its own).
-fn likely_next(scene: &FlatScene) -> Vec<FlatScene> {
-    use glint_types::layout::feature;
-    let tiny = |change: &dyn Fn(&mut FlatScene)| {
-        let mut s = scene.clone();
-        (s.header.width, s.header.height) = (1, 1);
-        change(&mut s);
-        s
-    };
-    vec![
-        tiny(&|s| {
-            s.header.spp = s.header.spp.max(4);
-            s.header.features |= feature::JITTER;
-        }),
-        tiny(&|s| s.header.max_depth = 0),
-        tiny(&|s| s.header.features |= feature::SPOT_LIGHTS),
-        // The only point light switched to a spot: no point light is left.
-        tiny(&|s| s.header.features = (s.header.features & !feature::POINT_LIGHTS) | feature::SPOT_LIGHTS),
-        tiny(&|s| s.header.features |= feature::PHONG),
-        tiny(&|s| s.header.features |= feature::COOK_TORRANCE),
-    ]
-}
-
-/// What `key` compiles in that `last` did not, in words ("spot lights, phong"), or what else
-/// makes it new.
-fn new_in(key: ShaderKey, last: Option<ShaderKey>) -> String {
-    let before = last.map_or(0, |l| l.features);
-    let added: Vec<String> = glint_types::layout::feature::NAMES
-        .iter()
-        .enumerate()
-        .filter(|(bit, _)| key.features & !before & (1 << bit) != 0)
-        .map(|(_, n)| n.to_lowercase().replace('_', " "))
-        .collect();
-    if added.is_empty() { "this scene's features".into() } else { added.join(", ") }
-}
-
 /// What a status word from the shader means for the user.
 pub fn status_warning(status: u32, stack_size: u32) -> Option<String> {
     let messages = glint_gpu::status::messages(status, stack_size);
     (!messages.is_empty()).then(|| messages.join("; "))
-}
-
-/// Renders per second from the completion times within the last two seconds. With fewer than
-/// two (at the start, when idle) the rate the last render's GPU time allows, so the figure is
-/// there from the first frame; and while a render has been running longer than that rate
-/// implies, at most one over its running time, so a long render does not keep a stale rate.
-fn renders_per_second(
-    now: Instant,
-    completions: impl Iterator<Item = Instant>,
-    last_ms: Option<f64>,
-    running: Option<Duration>,
-) -> Option<f64> {
-    let recent: Vec<_> = completions.filter(|t| now - *t < Duration::from_secs(2)).collect();
-    let measured = if recent.len() < 2 {
-        last_ms.filter(|ms| *ms > 0.0).map(|ms| 1e3 / ms)
-    } else {
-        let span = (recent[recent.len() - 1] - recent[0]).as_secs_f64();
-        (span > 0.0).then(|| (recent.len() - 1) as f64 / span)
-    };
-    match (measured, running.map(|d| d.as_secs_f64()).filter(|s| *s > 0.0)) {
-        (Some(rate), Some(secs)) => Some(rate.min(1.0 / secs)),
-        (None, Some(secs)) if secs >= 1.0 => Some(1.0 / secs),
-        (rate, _) => rate,
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn a_new_variant_is_named_by_what_it_adds() {
-        use glint_types::layout::feature;
-        let key = |features| ShaderKey { features, ..ShaderKey::full() };
-        let before = key(feature::SPHERES | feature::POINT_LIGHTS);
-        let after = key(feature::SPHERES | feature::POINT_LIGHTS | feature::SPOT_LIGHTS);
-        assert_eq!(new_in(after, Some(before)), "spot lights");
-        assert_eq!(new_in(before, Some(after)), "this scene's features");
-    }
-
-    #[test]
-    fn a_long_render_brings_the_rate_down_instead_of_keeping_the_last_one() {
-        let now = Instant::now();
-        let before = |ms: u64| now - Duration::from_millis(ms);
-        // Idle after a 550 ms render: 1.8 fps, the stale figure.
-        let idle = renders_per_second(now, std::iter::empty(), Some(550.0), None).unwrap();
-        assert!((idle - 1.818).abs() < 1e-3, "{idle}");
-        // 20 s into the next render: at most 0.05 fps.
-        let long = renders_per_second(now, std::iter::empty(), Some(550.0), Some(Duration::from_secs(20))).unwrap();
-        assert!((long - 0.05).abs() < 1e-9, "{long}");
-        // Renders following each other: their rate, not lowered by the short one in flight.
-        let steady = [before(1500), before(1000), before(500), before(0)].into_iter();
-        let rate = renders_per_second(now, steady, Some(10.0), Some(Duration::from_millis(100))).unwrap();
-        assert!((rate - 2.0).abs() < 1e-6, "{rate}");
-    }
 }
