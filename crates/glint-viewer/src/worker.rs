@@ -62,11 +62,26 @@ pub struct Worker<T> {
     /// Woken when a result is ready; `None` for a worker the UI polls every frame anyway.
     repaint: Option<egui::Context>,
     running: Option<Running<T>>,
+    /// The threads it started that may still run (a cancelled job finishes its step first).
+    threads: Vec<std::thread::JoinHandle<()>>,
 }
 
 impl<T> Worker<T> {
     pub fn new(thread: &'static str, what: &'static str, repaint: Option<egui::Context>) -> Self {
-        Self { thread, what, repaint, running: None }
+        Self { thread, what, repaint, running: None, threads: Vec::new() }
+    }
+
+    /// Cancels the running job and waits, at most until `deadline`, for every thread this worker
+    /// started to end: for an owner that goes away with the device its jobs use (a process that
+    /// exits while a GPU job still runs in the driver crashed in the driver's teardown). Whether
+    /// they all ended.
+    pub fn cancel_and_wait(&mut self, deadline: std::time::Instant) -> bool {
+        self.cancel();
+        while self.threads.iter().any(|t| !t.is_finished()) && std::time::Instant::now() < deadline {
+            std::thread::sleep(std::time::Duration::from_millis(5));
+        }
+        self.threads.retain(|t| !t.is_finished());
+        self.threads.is_empty()
     }
 
     /// Cancels the running job: its flag is set and its result will be discarded. The thread is
@@ -112,7 +127,7 @@ impl<T: Send + 'static> Worker<T> {
         let (tx, rx) = channel();
         let handle = JobHandle { cancel: Arc::default(), repaint: self.repaint.clone() };
         let cancel = handle.cancel.clone();
-        std::thread::Builder::new()
+        let thread = std::thread::Builder::new()
             .name(self.thread.into())
             .spawn(move || {
                 let value = job(&handle);
@@ -123,6 +138,8 @@ impl<T: Send + 'static> Worker<T> {
                 }
             })
             .map_err(|error| WorkerError::Spawn { what: self.what, error })?;
+        self.threads.retain(|t| !t.is_finished());
+        self.threads.push(thread);
         self.running = Some(Running { revision, cancel, result: rx });
         Ok(())
     }
@@ -194,5 +211,27 @@ mod tests {
         drop(worker);
         release.send(()).expect("the job waits");
         assert_eq!(seen.recv_timeout(Duration::from_secs(10)), Ok(true));
+    }
+
+    #[test]
+    fn waiting_cancels_and_covers_replaced_jobs_still_running_but_only_until_the_deadline() {
+        let mut worker = Worker::new("glint-test-wait", "test", None);
+        // Two jobs that run until cancelled: the first replaced by the second, both still running.
+        for revision in [1, 2] {
+            worker
+                .start(revision, |job| {
+                    while !job.cancel_flag().load(Ordering::Relaxed) {
+                        std::thread::sleep(Duration::from_millis(1));
+                    }
+                })
+                .expect("spawn");
+        }
+        assert!(worker.cancel_and_wait(Instant::now() + Duration::from_secs(10)), "both ended");
+        // A job that ignores its flag is waited for only until the deadline.
+        let (release, hold) = sync_channel::<()>(0);
+        worker.start(3, move |_| hold.recv().unwrap_or_default()).expect("spawn");
+        assert!(!worker.cancel_and_wait(Instant::now() + Duration::from_millis(20)), "still held");
+        release.send(()).expect("the job waits");
+        assert!(worker.cancel_and_wait(Instant::now() + Duration::from_secs(10)));
     }
 }

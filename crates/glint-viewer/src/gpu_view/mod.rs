@@ -142,6 +142,22 @@ pub struct GpuView {
     superseded_below: u64,
 }
 
+/// How long dropping the view waits for its GPU jobs: a cancelled full render stops between
+/// sample passes, a prewarm's 1×1 render ends when its shader is compiled (seconds on a slow
+/// machine with lavapipe).
+const JOBS_END_WITHIN: Duration = Duration::from_secs(20);
+
+impl Drop for GpuView {
+    fn drop(&mut self) {
+        // The device goes with the view, and the process may exit next: a submission thread
+        // still in the driver then (a prewarm compiling) crashed the viewer tests' process at
+        // its exit, once, after every test had passed.
+        if !self.submitter.cancel_and_wait(Instant::now() + JOBS_END_WITHIN) {
+            log::warn!("a GPU job was still running {} s after the view closed", JOBS_END_WITHIN.as_secs());
+        }
+    }
+}
+
 impl std::fmt::Debug for GpuView {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("GpuView")
