@@ -99,6 +99,7 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
     let first = (&args.tiles[reference], &headers[reference]);
     let keys = shared_keys(first.1);
     let shared = |h: &ExrHeader| keys.iter().map(|k| h.attribute(k).map(str::to_string)).collect::<Vec<_>>();
+    let theirs = shared(first.1);
     let (_, count) = tile_index(first.0, first.1)?;
     let (width, height) = first.1.display;
     // A forged or damaged header must not size the merged image beyond what a render makes.
@@ -113,7 +114,7 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
     let mut by_index: BTreeMap<u32, (&Path, &ExrHeader)> = BTreeMap::new();
     for (path, header) in args.tiles.iter().zip(&headers) {
         let (index, n) = tile_index(path, header)?;
-        let (ours, theirs) = (shared(header), shared(first.1));
+        let ours = shared(header);
         if let Some(k) = (0..keys.len()).find(|&k| ours[k] != theirs[k]) {
             let others = match agreeing {
                 1 => String::new(),

@@ -20,8 +20,9 @@
 //! coordinates, and the f32 direction's error only acts over the depth of the scene.
 
 use glam::DVec3;
+use glint_core::cpu::ray_tree::RayTree;
 use glint_core::probe_terms::first_tree_difference;
-use glint_core::probe_tree;
+use glint_core::{FlatScene, probe_tree};
 use glint_types::layout::NO_HIT;
 
 use crate::case01_far_sphere::{Disc, N, R_PX};
@@ -93,14 +94,7 @@ fn a_far_sphere_seen_off_the_axes_is_a_disc_on_both_backends() {
         let (counts, worst) = check_disc(&both, rho, (area, perimeter), [CPU_RING, GPU_RING], &what);
         // Shading away from the silhouette, GPU against CPU.
         let shading = gpu_shading_inside(&both, rho);
-        if let Some(s) = shading {
-            let base = *base_shading.get_or_insert(s);
-            both.ensure(s <= SHADING_RATIO * base + 1e-6, || {
-                format!(
-                    "centre {centre:?}, D = {distance:e}: GPU shading off the CPU's by {s:.2e} (at D = 1e2: {base:.2e})"
-                )
-            });
-        }
+        check_shading(&both, shading, &mut base_shading, &what, "D = 1e2");
         let gpu = |v: String| if both.gpu.is_some() { v } else { "-".into() };
         say!(
             out,
@@ -117,18 +111,9 @@ fn a_far_sphere_seen_off_the_axes_is_a_disc_on_both_backends() {
         // The centre pixel hits the near pole at t = D − 1, measured from the eye (not from
         // where the camera ray starts, the anchor's plane through the centre), to the f32
         // rounding of the stored eye (D = 1e2: 2.6e-8) or anchor (≈ 6e-8 units).
-        let b = probe(&flat, N / 2, N / 2);
-        let err = rel_err(b.t, distance - 1.0);
-        assert!(err < T_REL, "centre {centre:?}, D = {distance:e}: t = {} (relative error {err:e})", b.t);
         // The ray trees of that pixel agree node by node, and their camera ray leaves the
         // file's eye (not the anchor's plane), to f32's step there on the GPU.
-        let cpu = probe_tree(&flat, N / 2, N / 2, 0);
-        let eye = DVec3::from(desc.camera.position);
-        let off = (cpu.nodes[0].origin - eye).length();
-        assert!(
-            off <= T_REL * distance,
-            "centre {centre:?}, D = {distance:e}: the CPU tree's camera ray leaves {off:e} from the eye"
-        );
+        let cpu = check_centre(&flat, DVec3::from(desc.camera.position), distance, &what);
         if let Some(tracer) = crate::gpu::gpu() {
             let gpu = tracer.probe(&flat, N / 2, N / 2).expect("GPU probe");
             if let Some(d) = first_tree_difference(&cpu, &gpu.tree, flat.frame_origin()) {
@@ -141,6 +126,31 @@ fn a_far_sphere_seen_off_the_axes_is_a_disc_on_both_backends() {
     }
     eprint!("{out}");
     crate::generated::section("case22-telephoto", &out);
+}
+
+/// `shading` (`gpu_shading_inside`) within `SHADING_RATIO` of the first row's (`first`, kept
+/// in `base`), plus 1e-6 for a zero.
+pub(crate) fn check_shading(both: &Both, shading: Option<f64>, base: &mut Option<f64>, what: &str, first: &str) {
+    if let Some(s) = shading {
+        let base = *base.get_or_insert(s);
+        both.ensure(s <= SHADING_RATIO * base + 1e-6, || {
+            format!("{what}: GPU shading off the CPU's by {s:.2e} (at {first}: {base:.2e})")
+        });
+    }
+}
+
+/// The centre pixel's probe at t = D − 1 from the eye (its plane, orthographic), measured from
+/// there, not from where the camera ray starts (the anchor's plane), to the f32 rounding of the
+/// stored eye (D = 1e2: 2.6e-8) or anchor (≈ 6e-8 units); and its CPU ray tree's camera ray
+/// leaving `eye`, the file's, to as much of D. The tree, for more checks.
+pub(crate) fn check_centre(flat: &FlatScene, eye: DVec3, distance: f64, what: &str) -> RayTree {
+    let b = probe(flat, N / 2, N / 2);
+    let err = rel_err(b.t, distance - 1.0);
+    assert!(err < T_REL, "{what}: t = {} (relative error {err:e})", b.t);
+    let tree = probe_tree(flat, N / 2, N / 2, 0);
+    let off = (tree.nodes[0].origin - eye).length();
+    assert!(off <= T_REL * distance, "{what}: the CPU tree's camera ray leaves {off:e} from the eye");
+    tree
 }
 
 /// The hit pixels of each backend's image (`[cpu, gpu]`) and the farthest from the silhouette

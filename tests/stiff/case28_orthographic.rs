@@ -21,18 +21,14 @@
 use glam::DVec3;
 
 use crate::case01_far_sphere::{N, R_PX};
-use crate::case22_telephoto::{check_disc, gpu_shading_inside};
+use crate::case22_telephoto::{check_centre, check_disc, check_shading, gpu_shading_inside};
 use crate::gpu::render_both;
-use crate::reference::probe;
-use crate::rel_err;
 use crate::scene::SceneText;
 
 const CENTRES: [[f64; 3]; 2] = [[0.3, -0.2, 0.7], [30_000.3, -0.2, 0.7]];
 const SIGHT: [f64; 3] = [0.48, -0.36, 0.8];
 const CPU_RING: f64 = 1e-6;
 const GPU_RING: f64 = 1e-5;
-const T_REL: f64 = 1e-7;
-const SHADING_RATIO: f64 = 2.0;
 
 fn unit(v: [f64; 3]) -> [f64; 3] {
     let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
@@ -90,14 +86,7 @@ fn a_sphere_seen_through_an_orthographic_camera_is_the_same_disc_at_every_distan
         let what = format!("centre {centre:?}, D = {distance:e}");
         let (counts, worst) = check_disc(&both, rho, (area, perimeter), [CPU_RING, GPU_RING], &what);
         let shading = gpu_shading_inside(&both, rho);
-        if let Some(s) = shading {
-            let base = *base_shading.get_or_insert(s);
-            both.ensure(s <= SHADING_RATIO * base + 1e-6, || {
-                format!(
-                    "centre {centre:?}, D = {distance:e}: GPU shading off the CPU's by {s:.2e} (at D = 2: {base:.2e})"
-                )
-            });
-        }
+        check_shading(&both, shading, &mut base_shading, &what, "D = 2");
         let gpu = |v: String| if both.gpu.is_some() { v } else { "-".into() };
         say!(
             out,
@@ -112,15 +101,7 @@ fn a_sphere_seen_through_an_orthographic_camera_is_the_same_disc_at_every_distan
         );
         // The centre pixel meets the near pole at t = D − 1 from the eye's plane, and its ray
         // tree's camera ray leaves the eye.
-        let b = probe(&flat, N / 2, N / 2);
-        let err = rel_err(b.t, distance - 1.0);
-        assert!(err < T_REL, "centre {centre:?}, D = {distance:e}: t = {} (relative error {err:e})", b.t);
-        let tree = glint_core::probe_tree(&flat, N / 2, N / 2, 0);
-        let off = (tree.nodes[0].origin - DVec3::from(desc.camera.position)).length();
-        assert!(
-            off <= T_REL * distance,
-            "centre {centre:?}, D = {distance:e}: the camera ray leaves {off:e} from the eye"
-        );
+        check_centre(&flat, DVec3::from(desc.camera.position), distance, &what);
     }
     eprint!("{out}");
     crate::generated::section("case28-orthographic", &out);

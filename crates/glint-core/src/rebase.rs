@@ -23,7 +23,7 @@ use crate::cpu::walk::closest_hit;
 use crate::cpu::{Ray, TraceContext, v3};
 use crate::flat::{anchor_of, camera_eye, move_texture_origins, scene_box, telephoto};
 use glint_scene::LightKind;
-use glint_types::layout::{CAMERA_ORTHOGRAPHIC, GpuCamera, GpuPlane, GpuSphere, origin_power};
+use glint_types::layout::{GpuPlane, GpuSphere, origin_power};
 
 /// Where the GPU's coordinates have their origin.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -92,12 +92,8 @@ fn extent(scene: &FlatScene, eye: DVec3, focus: DVec3) -> f64 {
 /// The height of a pixel where the centre ray meets `focus` (an orthographic camera's at any
 /// distance).
 fn pixel_at(scene: &FlatScene, eye: DVec3, focus: DVec3) -> f64 {
-    let distance = if orthographic(&scene.camera) { 1.0 } else { (focus - eye).length() };
+    let distance = if scene.camera.is_orthographic() { 1.0 } else { (focus - eye).length() };
     2.0 * v3(scene.camera.up).length() * distance / f64::from(scene.header.height.max(1))
-}
-
-fn orthographic(camera: &GpuCamera) -> bool {
-    camera.forward[3] == CAMERA_ORTHOGRAPHIC
 }
 
 /// How much finer than the scene's reach the grid of frame origins is (a power of two).
@@ -195,7 +191,7 @@ pub fn camera_frame(scene: &FlatScene) -> [f32; 4] {
 /// from there only.
 fn unanchored_telephoto(scene: &FlatScene) -> bool {
     let c = &scene.camera;
-    c.anchor[3] == 0.0 && telephoto(v3(c.forward), v3(c.up), orthographic(c))
+    c.anchor[3] == 0.0 && telephoto(v3(c.forward), v3(c.up), c.is_orthographic())
 }
 
 /// `scene` in `frame` (see the module comment): positions moved by the difference between

@@ -84,13 +84,13 @@ impl CameraDesc {
 
     /// What the perspective view (`fov_y`) sees at `look_at`: 2·|look_at − position|·tan(fov_y/2).
     pub fn perspective_height(&self) -> f64 {
-        2.0 * self.look_at_distance() * (self.fov_y.to_radians() * 0.5).tan()
+        2.0 * self.look_at_distance() * self.tan_half_fov()
     }
 
     /// Whether the view is narrow: orthographic (the narrowest of all), or a perspective view
     /// under `NARROW_TAN_HALF_FOV`.
     pub fn is_narrow(&self) -> bool {
-        self.projection == Projection::Orthographic || (self.fov_y.to_radians() * 0.5).tan() < NARROW_TAN_HALF_FOV
+        self.projection == Projection::Orthographic || self.tan_half_fov() < NARROW_TAN_HALF_FOV
     }
 
     /// How high what the camera shows at `look_at` is, in its projection.
@@ -107,7 +107,7 @@ impl CameraDesc {
     pub fn framing_distance(&self) -> f64 {
         match self.projection {
             Projection::Perspective => self.look_at_distance(),
-            Projection::Orthographic => self.view_height() / (2.0 * (self.fov_y.to_radians() * 0.5).tan()),
+            Projection::Orthographic => self.view_height() / (2.0 * self.tan_half_fov()),
         }
     }
 
@@ -115,6 +115,21 @@ impl CameraDesc {
     /// switching an orthographic camera to perspective keeps the framing.
     pub fn fov_seeing(&self, height: f64) -> f64 {
         (2.0 * (0.5 * height / self.look_at_distance()).atan()).to_degrees()
+    }
+
+    /// tan(fov_y/2): the perspective view's half-height at distance 1.
+    pub fn tan_half_fov(&self) -> f64 {
+        (self.fov_y.to_radians() * 0.5).tan()
+    }
+
+    /// How far this view's rays spread from its axis out to the corners of a `WIDEST_ASPECT`
+    /// image: what `may_see` and the storage origin judge by.
+    pub(crate) fn spread(&self) -> ViewSpread {
+        let corner = WIDEST_ASPECT.hypot(1.0);
+        match self.projection {
+            Projection::Perspective => ViewSpread::Angle((self.tan_half_fov() * corner).atan()),
+            Projection::Orthographic => ViewSpread::Across(0.5 * self.view_height() * corner),
+        }
     }
 
     fn look_at_distance(&self) -> f64 {
@@ -126,45 +141,51 @@ impl CameraDesc {
     pub fn may_see(&self, centre: [f64; 3], radius: f64) -> bool {
         let eye = DVec3::from(self.position);
         let forward = DVec3::from(self.look_at) - eye;
-        match self.projection {
-            Projection::Perspective => {
-                let tan_half_fov = (self.fov_y.to_radians() * 0.5).tan();
-                ball_may_be_seen(eye, forward, tan_half_fov, DVec3::from(centre), radius)
+        match self.spread() {
+            ViewSpread::Angle(half_diagonal) => {
+                ball_may_be_seen(eye, forward, half_diagonal, DVec3::from(centre), radius)
             }
-            Projection::Orthographic => {
-                ball_may_be_seen_parallel(eye, forward, self.view_height(), DVec3::from(centre), radius)
+            ViewSpread::Across(half_diagonal) => {
+                ball_may_be_seen_parallel(eye, forward, half_diagonal, DVec3::from(centre), radius)
             }
         }
     }
 }
 
-/// `ball_may_be_seen` for parallel rays along `forward` leaving a rectangle `view_height` tall
-/// around `eye`: the ball reaches in front of the eye's plane, and within the corners of a
-/// `WIDEST_ASPECT` image around the axis.
-fn ball_may_be_seen_parallel(eye: DVec3, forward: DVec3, view_height: f64, centre: DVec3, radius: f64) -> bool {
+/// How far a view's rays spread from its axis, out to the corners of a `WIDEST_ASPECT` image
+/// (`CameraDesc::spread`): in angle for a perspective view, across the axis for an orthographic
+/// one's parallel rays.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum ViewSpread {
+    Angle(f64),
+    Across(f64),
+}
+
+/// `ball_may_be_seen` for parallel rays along `forward` leaving the eye's plane up to
+/// `half_diagonal` from the axis: the ball reaches in front of the eye's plane, and within the
+/// corners around the axis.
+fn ball_may_be_seen_parallel(eye: DVec3, forward: DVec3, half_diagonal: f64, centre: DVec3, radius: f64) -> bool {
     let Some(axis) = forward.try_normalize() else {
         return true;
     };
     let to_ball = centre - eye;
     let ahead = to_ball.dot(axis);
     let across = (to_ball - ahead * axis).length();
-    let half_diagonal = 0.5 * view_height * WIDEST_ASPECT.hypot(1.0);
     // Unsure (a NaN) counts as seen.
     !(ahead < -radius || across > half_diagonal + radius)
 }
 
 /// Whether any part of the ball of `radius` around `centre` may lie within the view of an eye at
-/// `eye` looking along `forward` with tan(fov_y/2) = `tan_half_fov`: within the cone around the
-/// view axis through the corners of a `WIDEST_ASPECT` image, widened by the ball's angular
-/// radius. False only for what the camera certainly does not see directly (behind it, or far
+/// `eye` looking along `forward` whose rays reach `half_diagonal` (radians) off the axis at the
+/// corners of a `WIDEST_ASPECT` image (`ViewSpread::Angle`): within that cone, widened by the
+/// ball's angular radius. False only for what the camera certainly does not see directly (behind it, or far
 /// off to a side); an eye inside the ball sees it.
-fn ball_may_be_seen(eye: DVec3, forward: DVec3, tan_half_fov: f64, centre: DVec3, radius: f64) -> bool {
+fn ball_may_be_seen(eye: DVec3, forward: DVec3, half_diagonal: f64, centre: DVec3, radius: f64) -> bool {
     let to_ball = centre - eye;
     let distance = to_ball.length();
     if !(distance > radius && forward.length() > 0.0) {
         return true;
     }
-    let half_diagonal = (tan_half_fov * WIDEST_ASPECT.hypot(1.0)).atan();
     let limit = half_diagonal + (radius / distance).asin();
     // Unsure (a NaN) counts as seen.
     to_ball.angle_between(forward).partial_cmp(&limit) != Some(std::cmp::Ordering::Greater)

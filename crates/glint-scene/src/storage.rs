@@ -6,7 +6,7 @@
 
 use glam::DVec3;
 
-use crate::camera::WIDEST_ASPECT;
+use crate::camera::ViewSpread;
 use crate::{ObjectDesc, PlaneDesc, Projection, SceneDesc, SphereDesc};
 
 /// How many of its largest sides a scene's box may have its centre from the world origin and
@@ -132,7 +132,7 @@ fn the_patch_seen(desc: &SceneDesc) -> Option<(DVec3, DVec3)> {
         .collect();
     let (h, sin_e) = planes.iter().copied().filter(|p| p.1 > 0.0).min_by(|a, b| (a.0 / a.1).total_cmp(&(b.0 / b.1)))?;
     let t = h / sin_e;
-    let view = ViewSpread::of(c);
+    let view = c.spread();
     let farthest = view.farthest(h, sin_e);
     if farthest > 2.0 * t || planes.iter().any(|&(h, sin_e)| view.nearest(h, sin_e) < 0.5 * t) {
         return None;
@@ -140,28 +140,14 @@ fn the_patch_seen(desc: &SceneDesc) -> Option<(DVec3, DVec3)> {
     let half = 0.5
         * match c.projection {
             Projection::Orthographic => c.view_height(),
-            Projection::Perspective => 2.0 * t * (c.fov_y.to_radians() * 0.5).tan(),
+            Projection::Perspective => 2.0 * t * c.tan_half_fov(),
         };
     let patch = eye + t * axis;
     (half.is_finite() && half > 0.0).then_some((patch - half, patch + half))
 }
 
-/// How far a view's rays spread from its axis, out to the corners of a `WIDEST_ASPECT` image:
-/// in angle for a perspective view, across the axis for an orthographic one's parallel rays.
-enum ViewSpread {
-    Angle(f64),
-    Across(f64),
-}
-
+/// What a view's spread (`CameraDesc::spread`) sees of a plane.
 impl ViewSpread {
-    fn of(c: &crate::CameraDesc) -> Self {
-        let corner = WIDEST_ASPECT.hypot(1.0);
-        match c.projection {
-            Projection::Perspective => ViewSpread::Angle(((c.fov_y.to_radians() * 0.5).tan() * corner).atan()),
-            Projection::Orthographic => ViewSpread::Across(0.5 * c.view_height() * corner),
-        }
-    }
-
     /// The nearest any ray meets a plane the eye is `h` over, the axis heading towards it at an
     /// angle whose sine is `sin_e` (∞ where none does).
     fn nearest(&self, h: f64, sin_e: f64) -> f64 {

@@ -5,7 +5,6 @@
 use glam::DVec3;
 use glint_core::cpu::shade::Breakdown;
 use glint_core::{FlatScene, camera_eye, probe_pixel};
-use glint_types::layout::CAMERA_ORTHOGRAPHIC;
 
 use crate::scene::w3;
 
@@ -28,7 +27,7 @@ pub fn primary_ray(flat: &FlatScene, x: u32, y: u32) -> (DVec3, DVec3) {
     let ndc_y = 1.0 - 2.0 * (f64::from(y) + 0.5) / h;
     let across = ndc_x * w3(c.right) + ndc_y * w3(c.up);
     let eye = camera_eye(c) + flat.frame_origin();
-    if c.forward[3] == CAMERA_ORTHOGRAPHIC {
+    if c.is_orthographic() {
         return (eye + across, w3(c.forward).normalize());
     }
     (eye, (w3(c.forward) + ndc_x * w3(c.right) + ndc_y * w3(c.up)).normalize())

@@ -297,6 +297,13 @@ pub struct GpuCamera {
     pub up: [f32; 4],
 }
 
+impl GpuCamera {
+    /// Whether its rays are parallel (`forward.w` = `CAMERA_ORTHOGRAPHIC`), not a pinhole's.
+    pub fn is_orthographic(&self) -> bool {
+        self.forward[3] == CAMERA_ORTHOGRAPHIC
+    }
+}
+
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
 pub struct GpuMaterial {

@@ -4,7 +4,7 @@ use glam::DVec3;
 
 use super::rng::{hash_to_unit, sample_hash};
 use super::{Ray, v3};
-use glint_types::layout::{CAMERA_ORTHOGRAPHIC, GpuCamera};
+use glint_types::layout::GpuCamera;
 
 /// Rows of the stratification grid: the largest divisor of spp not above √spp, so that the
 /// nx × ny = spp cells tile the pixel and are as square as spp allows (2 → 2×1, 8 → 4×2,
@@ -58,7 +58,7 @@ pub fn from_eye(c: &CameraRay, t: f64) -> f64 {
 pub fn camera_ray(cam: &GpuCamera, width: u32, height: u32, x: u32, y: u32, ox: f64, oy: f64) -> CameraRay {
     let ndc_x = 2.0 * (f64::from(x) + ox) / f64::from(width) - 1.0;
     let ndc_y = 1.0 - 2.0 * (f64::from(y) + oy) / f64::from(height);
-    if cam.forward[3] == CAMERA_ORTHOGRAPHIC {
+    if cam.is_orthographic() {
         let forward = v3(cam.forward);
         let across = ndc_x * v3(cam.right) + ndc_y * v3(cam.up);
         let w = f64::from(cam.anchor[3]);
@@ -78,6 +78,7 @@ pub fn camera_ray(cam: &GpuCamera, width: u32, height: u32, x: u32, y: u32, ox: 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use glint_types::layout::CAMERA_ORTHOGRAPHIC;
 
     #[test]
     fn strata_tile_the_pixel() {

@@ -144,7 +144,7 @@ impl FlatScene {
         let right = forward.cross(DVec3::from(c.up)).normalize();
         let up = right.cross(forward);
         let orthographic = c.projection == Projection::Orthographic;
-        let half_h = if orthographic { 0.5 * c.view_height() } else { (c.fov_y.to_radians() * 0.5).tan() };
+        let half_h = if orthographic { 0.5 * c.view_height() } else { c.tan_half_fov() };
         let half_w = half_h * f64::from(settings.width) / f64::from(settings.height);
         WorldCamera { position, forward, right: right * half_w, up: up * half_h, orthographic }
     }

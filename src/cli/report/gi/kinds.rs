@@ -198,19 +198,7 @@ mod tests {
     use super::*;
 
     fn with_kinds(kinds: KindSplit) -> GiResult {
-        GiResult {
-            scene: "s".into(),
-            reference_spp: 64,
-            reference_depth: 8,
-            reference_noise: 0.01,
-            fitted: [0.0; 3],
-            fit_determined: true,
-            gain_warning: None,
-            written: [2.0; 3],
-            rows: Vec::new(),
-            shard: None,
-            kinds,
-        }
+        super::super::result_for_tests(Vec::new(), kinds)
     }
 
     #[test]

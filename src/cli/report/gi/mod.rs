@@ -265,6 +265,24 @@ pub fn measure(
     })
 }
 
+/// A result of `rows` and `kinds` for the sections' tests (the rest as a sweep of one scene).
+#[cfg(test)]
+fn result_for_tests(rows: Vec<GiRow>, kinds: KindSplit) -> GiResult {
+    GiResult {
+        scene: "s".into(),
+        reference_spp: 64,
+        reference_depth: 8,
+        reference_noise: 0.01,
+        fitted: [0.1; 3],
+        fit_determined: true,
+        gain_warning: None,
+        written: [0.1; 3],
+        rows,
+        shard: None,
+        kinds,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -198,24 +198,13 @@ mod tests {
 
     #[test]
     fn whitteds_best_is_the_fastest_of_the_rows_rounding_alone_tells_apart() {
-        let result = GiResult {
-            scene: "s".into(),
-            reference_spp: 64,
-            reference_depth: 8,
-            reference_noise: 0.01,
-            fitted: [0.1; 3],
-            fit_determined: true,
-            gain_warning: None,
-            written: [0.1; 3],
-            rows: vec![
-                row(Integrator::Whitted, Backend::Gpu, 35, 0.5),
-                row(Integrator::Whitted, Backend::Cpu, 19, 0.5 * (1.0 + 1e-3)),
-                row(Integrator::Whitted, Backend::Cpu, 10, 0.6),
-                row(Integrator::Path, Backend::Cpu, 40, 0.45),
-            ],
-            shard: None,
-            kinds: KindSplit::default(),
-        };
+        let rows = vec![
+            row(Integrator::Whitted, Backend::Gpu, 35, 0.5),
+            row(Integrator::Whitted, Backend::Cpu, 19, 0.5 * (1.0 + 1e-3)),
+            row(Integrator::Whitted, Backend::Cpu, 10, 0.6),
+            row(Integrator::Path, Backend::Cpu, 40, 0.45),
+        ];
+        let result = super::super::result_for_tests(rows, KindSplit::default());
         let (first, best) = crossover(&result);
         let best = best.expect("a Whitted row");
         assert_eq!((best.backend, best.median), (Backend::Cpu, Duration::from_millis(19)));
