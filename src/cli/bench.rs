@@ -171,7 +171,7 @@ fn rays(args: &RaysArgs) -> anyhow::Result<()> {
     // The GPU first: a device that cannot be opened fails before minutes of CPU work.
     let gpu = if backends.contains(&Backend::Gpu) { Some(open_gpu(args.adapter.as_deref())?) } else { None };
 
-    let (loaded, load_time) = timed(|| load(&args.scene, &args.scene_size.options(), args.scene_size.memory_limit));
+    let (loaded, load_time) = timed(|| load(&args.scene, &args.scene_size.options(None), args.scene_size.memory_limit));
     let loaded = loaded?;
     // The flat scene, its BVH and the walk's nodes as a render on these backends holds them,
     // without the images a render makes and the benchmark does not (no pixels: the rays are a

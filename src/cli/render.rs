@@ -22,9 +22,7 @@ use super::output::{
     print_table, suffixed, write_diff, write_run,
 };
 use super::output_path::check_outputs;
-use super::settings::{
-    LoadArgs, SettingsArgs, is_model, load_with_estimate, parse_ray_cap, parse_threads, tell_warnings,
-};
+use super::settings::{LoadArgs, SettingsArgs, load_with_estimate, parse_ray_cap, parse_threads, tell_warnings};
 use super::tile::{TileJob, TileSpec, parse_tile, render_tile};
 use super::units::{mrays_per_s, ms};
 
@@ -122,8 +120,8 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     }
     check_backend_flags(args)?;
     let (loaded, load_estimate) =
-        load_with_estimate(&args.scene, &args.scene_size.options(), args.scene_size.memory_limit)?;
-    let settings = args.settings.apply(&loaded.desc.render, is_model(&loaded))?;
+        load_with_estimate(&args.scene, &args.scene_size.options(Some(&args.settings)), args.scene_size.memory_limit)?;
+    let settings = args.settings.apply(&loaded.desc.render)?;
     tell_warnings(&loaded, &settings);
     let specialise = !args.no_specialise;
     let cpu_options = CpuOptions {

@@ -6,9 +6,7 @@ use glint_core::memory::{self, MemoryEstimate, SourceKind};
 use glint_io::ImportOptions;
 use glint_io::model::Ground;
 use glint_io::{DEFAULT_RESOLUTION, LoadOptions, LoadedScene, RESOLUTIONS, load_scene_with};
-use glint_scene::{
-    EpsilonMode, Integrator, MAX_IMAGE_SIDE, RenderSettings, Report, settings_warnings, validate_settings,
-};
+use glint_scene::{EpsilonMode, Integrator, RenderSettings, Report, settings_warnings, validate_settings};
 
 use super::console::tell;
 
@@ -76,13 +74,17 @@ pub struct LoadArgs {
 }
 
 impl LoadArgs {
-    pub fn options(&self) -> LoadOptions {
+    /// The load options of these flags, with the image sides given (`--width`, `--height`): a
+    /// model file sizes the side not given by its camera's aspect ratio.
+    pub fn options(&self, settings: Option<&SettingsArgs>) -> LoadOptions {
         let import = ImportOptions {
             scene_index: self.scene_index,
             camera: self.camera,
             exposure: self.exposure.unwrap_or(ImportOptions::default().exposure),
             ground: self.ground.unwrap_or_default(),
             lights: true,
+            width: settings.and_then(|s| s.width),
+            height: settings.and_then(|s| s.height),
         };
         LoadOptions { resolution: self.resolution, import, stream_cap: memory::stream_cap(self.memory_limit) }
     }
@@ -192,23 +194,15 @@ fn parse_epsilon_mode(s: &str) -> Result<EpsilonMode, String> {
 }
 
 impl SettingsArgs {
-    /// The scene's settings with these flags applied, validated. With `keep_aspect` (a model
-    /// file, whose image size is its camera's aspect ratio, not something its user wrote) a
-    /// `--width` or `--height` given alone sizes the other side to keep that ratio.
-    pub fn apply(&self, base: &RenderSettings, keep_aspect: bool) -> anyhow::Result<RenderSettings> {
+    /// The scene's settings with these flags applied, validated. (A model file's load has
+    /// sized the side not given by its camera's aspect ratio: `LoadArgs::options`.)
+    pub fn apply(&self, base: &RenderSettings) -> anyhow::Result<RenderSettings> {
         let mut s = base.clone();
         if let Some(v) = self.width {
             s.width = v;
         }
         if let Some(v) = self.height {
             s.height = v;
-        }
-        let ratio = f64::from(base.width) / f64::from(base.height.max(1));
-        let side = |v: f64| v.round().clamp(1.0, f64::from(MAX_IMAGE_SIDE)) as u32;
-        match (keep_aspect, self.width, self.height) {
-            (true, Some(w), None) => s.height = side(f64::from(w) / ratio),
-            (true, None, Some(h)) => s.width = side(f64::from(h) * ratio),
-            _ => {}
         }
         if let Some(v) = self.spp {
             s.spp = v;
@@ -325,11 +319,6 @@ pub fn check_load_memory(scene: &str, memory_limit: Option<u64>) -> anyhow::Resu
         return Ok(Some(estimate));
     }
     Ok(None)
-}
-
-/// Whether `loaded` came from a model file (glTF, OBJ), whose lab scene Glint made around it.
-pub fn is_model(loaded: &LoadedScene) -> bool {
-    glint_io::ModelFormat::of(&loaded.source).is_some()
 }
 
 #[cfg(test)]

@@ -8,7 +8,7 @@ use glint_io::load_scene_with;
 use glint_viewer::{GiView, ViewMode, ViewerError, ViewerOptions};
 
 use super::console::say;
-use super::settings::{LoadArgs, SettingsArgs, check_load_memory, is_model};
+use super::settings::{LoadArgs, SettingsArgs, check_load_memory};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 pub enum StartView {
@@ -108,7 +108,7 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
         }
     }
     check_load_memory(&args.scene, args.scene_size.memory_limit)?;
-    let load = args.scene_size.options();
+    let load = args.scene_size.options(Some(&args.settings));
     // A scene that does not load is reported in the viewer window; flags apply to one that does.
     // A resolution the scene cannot take is a flag error, before any window opens, and so is
     // a scene a benchmark or a screenshot cannot load: it would measure, or picture, the
@@ -116,7 +116,7 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
     let mut read = None;
     let settings = match super::interrupt::while_loading(|| load_scene_with(&args.scene, &load)) {
         Ok(loaded) => {
-            let settings = args.settings.apply(&loaded.desc.render, is_model(&loaded))?;
+            let settings = args.settings.apply(&loaded.desc.render)?;
             read = Some(loaded);
             Some(settings)
         }

@@ -594,22 +594,48 @@ fn the_path_tracer_renders_on_both_tracers_from_a_flag_or_the_scene() {
 #[test]
 fn a_side_given_alone_keeps_a_model_cameras_aspect_ratio() {
     // The file's camera has aspectRatio 2: the lab scene's image is twice as wide as high, and
-    // a --height alone kept the scene's width (960×120 for 240×120).
+    // a --height alone kept the scene's width (960×120 for 240×120). The ratio is the camera's
+    // exact one, not the default image's rounded one: at 0.0031 that image is 1×480, whose ratio
+    // made a --height 2000 image 4 wide, not 6. A side the ratio takes beyond the limits is held
+    // to them and said, with the sides asked.
     use glint_test_support::gltf::{BufferAt, Fixture};
     let dir = TempDir::new("model-aspect");
-    let mut f = Fixture::quad();
-    f.json["cameras"] = serde_json::json!([{ "type": "perspective", "perspective": { "yfov": 0.5, "aspectRatio": 2.0, "znear": 0.1 } }]);
-    f.json["scenes"] = serde_json::json!([{ "nodes": [0, 1] }]);
-    f.json["nodes"] = serde_json::json!([{ "mesh": 0 }, { "translation": [0.5, 0.5, 4.0], "camera": 0 }]);
-    let path = f.write_gltf(&dir, "wide", BufferAt::DataUri);
-    for (flags, size) in [(["--height", "24"], (48, 24)), (["--width", "30"], (30, 15))] {
-        let mut args: Vec<OsString> = vec!["render".into(), path.as_os_str().to_owned(), "--json".into()];
+    let model = |aspect: f64| {
+        let mut f = Fixture::quad();
+        f.json["cameras"] = serde_json::json!([{ "type": "perspective", "perspective": { "yfov": 0.5, "aspectRatio": aspect, "znear": 0.1 } }]);
+        f.json["scenes"] = serde_json::json!([{ "nodes": [0, 1] }]);
+        f.json["nodes"] = serde_json::json!([{ "mesh": 0 }, { "translation": [0.5, 0.5, 4.0], "camera": 0 }]);
+        f.write_gltf(&dir, &format!("aspect-{aspect}"), BufferAt::DataUri)
+    };
+    for (aspect, flags, size, said) in [
+        (2.0, ["--height", "24"], (48, 24), None),
+        (2.0, ["--width", "30"], (30, 15), None),
+        (0.0031, ["--height", "2000"], (6, 2000), None),
+        (
+            1e12,
+            ["--height", "1"],
+            (16384, 1),
+            Some("would make the image 1000000000000x1 pixels; the width is held to 16384"),
+        ),
+        (
+            1e-12,
+            ["--width", "2"],
+            (2, 16384),
+            Some("would make the image 2x2000000000000 pixels; the height is held to 16384"),
+        ),
+    ] {
+        let mut args: Vec<OsString> = vec!["render".into(), model(aspect).into_os_string(), "--json".into()];
         args.extend(flags.iter().map(Into::into));
         args.extend(["-o".into(), dir.join("m.png").into_os_string()]);
         let run = glint(&dir, args);
         assert!(run.status.success(), "{flags:?}: {}", text(&run.stderr));
         let v: serde_json::Value = serde_json::from_str(&text(&run.stdout)).expect("JSON");
-        assert_eq!((v["width"].as_u64(), v["height"].as_u64()), (Some(size.0), Some(size.1)), "{flags:?}");
+        assert_eq!((v["width"].as_u64(), v["height"].as_u64()), (Some(size.0), Some(size.1)), "{aspect} {flags:?}");
+        let stderr = text(&run.stderr);
+        assert_eq!(stderr.contains("would make the image"), said.is_some(), "{aspect} {flags:?}: {stderr}");
+        if let Some(said) = said {
+            assert!(stderr.contains(said), "{aspect} {flags:?}: {stderr}");
+        }
     }
 }
 

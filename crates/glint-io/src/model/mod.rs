@@ -17,7 +17,7 @@ use glint_scene::{
 };
 
 /// Choices made when a model file is opened (`--scene-index`, `--camera`, `--exposure`,
-/// `--ground`).
+/// `--ground`), and the image sides given (`--width`, `--height`).
 #[derive(Clone, Debug, PartialEq)]
 pub struct ImportOptions {
     /// The glTF scene to load; the file's default scene (else its first) when `None`.
@@ -32,17 +32,30 @@ pub struct ImportOptions {
     /// Whether the file's lights are read: a scene's model object uses them only with
     /// `lights = true`, and a light it does not use must not fail its load.
     pub lights: bool,
+    /// Image sides given by the user: a side given alone sizes the other by the file camera's
+    /// aspect ratio (exact, not the default image's rounded one).
+    pub width: Option<u32>,
+    pub height: Option<u32>,
 }
 
 impl Default for ImportOptions {
     fn default() -> Self {
-        Self { scene_index: None, camera: None, exposure: 1.0, ground: Ground::Auto, lights: true }
+        Self {
+            scene_index: None,
+            camera: None,
+            exposure: 1.0,
+            ground: Ground::Auto,
+            lights: true,
+            width: None,
+            height: None,
+        }
     }
 }
 
 impl ImportOptions {
+    /// Whether no import choice was made; the image sides are not one (every scene takes them).
     pub fn is_default(&self) -> bool {
-        *self == Self::default()
+        Self { width: None, height: None, ..self.clone() } == Self::default()
     }
 }
 
@@ -108,6 +121,51 @@ const KEY_LIGHT: ([f64; 3], f64) = ([-0.8, 1.6, 1.2], 3.0);
 
 /// How many of the model's radii the placements `made` (`FRAMING_CAMERA`, `KEY_LIGHT`) lie from
 /// its centre, at most, on any axis.
+/// The image sides for a camera of aspect ratio `aspect` (width / height): a side the user gave
+/// alone sizes the other (the height is the default's when neither is given), both given are
+/// kept. A side beyond the image limits is held to them, and said.
+fn size_by_aspect(
+    render: &mut RenderSettings,
+    aspect: f64,
+    width: Option<u32>,
+    height: Option<u32>,
+    camera: &str,
+    warnings: &mut Vec<FieldIssue>,
+) {
+    let held = |wanted: f64| wanted.clamp(1.0, f64::from(MAX_IMAGE_SIDE));
+    // The side sized, and the image the ratio asks (width, height).
+    let (side, wanted) = match (width, height) {
+        (Some(w), Some(h)) => {
+            (render.width, render.height) = (w, h);
+            return;
+        }
+        (Some(w), None) => {
+            let wanted = (f64::from(w) / aspect).round();
+            (render.width, render.height) = (w, held(wanted) as u32);
+            ("height", (f64::from(w), wanted))
+        }
+        (None, h) => {
+            let h = h.unwrap_or(render.height);
+            let wanted = (f64::from(h) * aspect).round();
+            (render.width, render.height) = (held(wanted) as u32, h);
+            ("width", (wanted, f64::from(h)))
+        }
+    };
+    let (was, now) = if side == "width" { (wanted.0, render.width) } else { (wanted.1, render.height) };
+    if was != f64::from(now) {
+        warnings.push(FieldIssue {
+            field: format!("camera `{camera}`"),
+            problem: format!(
+                "its aspect ratio {} would make the image {}x{} pixels; the {side} is held to {now} \
+                 (sides in [1, {MAX_IMAGE_SIDE}]): set --width and --height",
+                glint_scene::format_number(aspect),
+                glint_scene::format_number(wanted.0),
+                glint_scene::format_number(wanted.1),
+            ),
+        });
+    }
+}
+
 fn made_around(made: &[([f64; 3], f64)]) -> f64 {
     made.iter().flat_map(|(d, s)| d.map(|c| c.abs() * s)).fold(0.0, f64::max)
 }
@@ -203,24 +261,9 @@ pub fn scene_around(
         },
     };
     let mut warnings = std::mem::take(&mut model.warnings);
-    if let Some(aspect) = camera.aspect {
-        // Keep the height, give the width the camera's aspect (within the image limits).
-        let wanted = (f64::from(render.height) * aspect).round();
-        let width = wanted.clamp(1.0, f64::from(MAX_IMAGE_SIDE));
-        render.width = width as u32;
-        if width != wanted {
-            warnings.push(FieldIssue {
-                field: format!("camera `{}`", camera.name),
-                problem: format!(
-                    "its aspect ratio {} would make the image {}x{} pixels; the width is held to {width} \
-                     (sides in [1, {MAX_IMAGE_SIDE}]): set --width and --height",
-                    glint_scene::format_number(aspect),
-                    glint_scene::format_number(wanted),
-                    render.height
-                ),
-            });
-        }
-    }
+    // A camera without its own aspect ratio keeps the default image's.
+    let aspect = camera.aspect.unwrap_or(f64::from(render.width) / f64::from(render.height));
+    size_by_aspect(&mut render, aspect, options.width, options.height, &camera.name, &mut warnings);
     let lights = std::mem::take(&mut model.lights);
     // The scene refers to the file (saved as a reference, never as vertices): an absolute
     // path, since the scene may be saved anywhere.
