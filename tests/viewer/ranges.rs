@@ -170,3 +170,24 @@ fn a_40_point_drag_moves_shininess_about_a_decade_and_typed_values_beyond_the_sp
     settle(&mut h);
     assert!(h.state().doc.issues.is_empty(), "{:?}", h.state().doc.issues);
 }
+
+#[test]
+fn a_typed_nan_or_infinity_leaves_the_value_as_it_was() {
+    // egui's own reading of "NaN" clamped it to the range's end: the field of view became 179°,
+    // ε 1000, and a width 16384 (which the window's textures did not hold).
+    let Some(mut h) = viewer("whitted", (1000.0, 900.0)) else { return };
+    let before = h.state().doc.desc.clone();
+    for label in ["Field of view", "Epsilon", "Width", "Background R"] {
+        for typed in ["NaN", "inf", "-inf", "nan"] {
+            type_number(&mut h, label, typed);
+        }
+    }
+    let doc = &h.state().doc.desc;
+    assert_eq!(doc.camera.fov_y, before.camera.fov_y);
+    assert_eq!(doc.render.epsilon, before.render.epsilon);
+    assert_eq!(doc.render.width, before.render.width);
+    assert_eq!(doc.world.background, before.world.background);
+    // A finite number typed the same way is taken.
+    type_number(&mut h, "Field of view", "50");
+    assert_eq!(h.state().doc.desc.camera.fov_y, 50.0);
+}

@@ -31,6 +31,7 @@ impl CpuTexture {
     fn set(&mut self, ctx: &egui::Context, name: &str, image: egui::ColorImage, size: (u32, u32)) {
         // Nearest filtering: the pixels of a reference image should stay pixels when magnified.
         let options = egui::TextureOptions::NEAREST;
+        let image = within_texture_side(image, ctx.input(|i| i.max_texture_side));
         match &mut self.handle {
             Some(h) => h.set(image, options),
             None => self.handle = Some(ctx.load_texture(name, image, options)),
@@ -41,6 +42,24 @@ impl CpuTexture {
     pub fn id(&self) -> Option<egui::TextureId> {
         self.handle.as_ref().map(egui::TextureHandle::id)
     }
+}
+
+/// `image`, or every k-th pixel of it where a side exceeds what the window's textures hold
+/// (`max_side`, the device's; a render may be up to 16384 a side): shown in the same place, as
+/// the sampler's nearest filtering would minify it, where the whole image made the window's
+/// device fail. Probes and saved images read the render itself, not this.
+pub fn within_texture_side(image: egui::ColorImage, max_side: usize) -> egui::ColorImage {
+    let [width, height] = image.size;
+    let k = width.max(height).div_ceil(max_side.max(1));
+    if k <= 1 {
+        return image;
+    }
+    let size = [width.div_ceil(k), height.div_ceil(k)];
+    let pixels = (0..size[1])
+        .flat_map(|y| (0..size[0]).map(move |x| (x * k, y * k)))
+        .map(|(x, y)| image.pixels[y * width + x])
+        .collect();
+    egui::ColorImage::new(size, pixels)
 }
 
 /// Images placed left to right on one canvas (8-bit RGB, same height).
@@ -95,6 +114,17 @@ pub fn srgb(image: &HdrImage) -> Vec<u8> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn an_image_wider_than_the_textures_is_shown_by_every_kth_pixel() {
+        let (width, height) = (9000, 3);
+        let pixels = (0..width * height).map(|i| egui::Color32::from_gray((i % 251) as u8)).collect();
+        let image = egui::ColorImage::new([width, height], pixels);
+        let small = within_texture_side(image.clone(), 8192);
+        assert_eq!(small.size, [4500, 2]);
+        assert_eq!(small.pixels[4500 + 7], image.pixels[2 * width + 14]);
+        assert_eq!(within_texture_side(image.clone(), 9000).size, [9000, 3], "one that fits is kept");
+    }
 
     #[test]
     fn side_by_side_places_each_part_at_its_offset() {

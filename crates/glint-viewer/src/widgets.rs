@@ -12,6 +12,14 @@ use glint_scene::{Range, Rgb, ranges};
 /// 0 itself sits at the left end and can be typed.
 const SMALLEST_POSITIVE: f64 = 1e-9;
 
+/// A typed number, read as egui reads one (spaces ignored, U+2212 a minus), or `None` — the
+/// field keeps its value — for what is not a finite number: egui's own reading takes "NaN" and
+/// "inf" and then clamps them to the range's end (a typed NaN made the field of view 179°).
+fn finite_number(text: &str) -> Option<f64> {
+    let text: String = text.chars().filter(|c| !c.is_whitespace()).map(|c| if c == '−' { '-' } else { c }).collect();
+    text.parse::<f64>().ok().filter(|v| v.is_finite())
+}
+
 /// Values of a logarithmic slider: scientific, with exactly 0 written as such.
 fn scientific(v: f64) -> String {
     if v == 0.0 { "0".into() } else { format!("{v:.3e}") }
@@ -21,7 +29,10 @@ fn scientific(v: f64) -> String {
 pub fn slider(ui: &mut Ui, label: &str, value: &mut f64, range: Range<f64>) -> bool {
     let wanted = ui.spacing().slider_width;
     fitted(ui, label, wanted, |ui, text| {
-        let slider = Slider::new(value, range.min..=range.max).clamping(SliderClamping::Edits).text(text);
+        let slider = Slider::new(value, range.min..=range.max)
+            .clamping(SliderClamping::Edits)
+            .custom_parser(finite_number)
+            .text(text);
         labelled(hint(ui.add(slider), label), label, text).changed()
     })
 }
@@ -84,7 +95,8 @@ pub fn log_slider(ui: &mut Ui, label: &str, value: &mut f64, range: Range<f64>, 
             .text(text)
             .logarithmic(true)
             .smallest_positive(span.0.max(SMALLEST_POSITIVE))
-            .custom_formatter(|v, _| scientific(v));
+            .custom_formatter(|v, _| scientific(v))
+            .custom_parser(finite_number);
         labelled(hint(ui.add(slider), label), label, text).changed()
     });
     if changed {
@@ -98,14 +110,16 @@ pub fn log_slider(ui: &mut Ui, label: &str, value: &mut f64, range: Range<f64>, 
 pub fn int_slider(ui: &mut Ui, label: &str, value: &mut u32, range: Range<u32>) -> bool {
     let wanted = ui.spacing().slider_width;
     fitted(ui, label, wanted, |ui, text| {
-        let slider = Slider::new(value, range.min..=range.max).logarithmic(range.log);
+        let slider = Slider::new(value, range.min..=range.max).logarithmic(range.log).custom_parser(finite_number);
         labelled(hint(ui.add(slider.clamping(SliderClamping::Edits).text(text)), label), label, text).changed()
     })
 }
 
 /// A drag value whose accessible label is `label`.
 fn labelled_drag(ui: &mut Ui, label: String, value: &mut f64, speed: f64, range: Range<f64>) -> Response {
-    let r = ui.add(DragValue::new(value).speed(speed).range(range.min..=range.max).max_decimals(4));
+    let r = ui.add(
+        DragValue::new(value).speed(speed).range(range.min..=range.max).max_decimals(4).custom_parser(finite_number),
+    );
     let v = *value;
     r.widget_info(|| WidgetInfo { label: Some(label.clone()), ..WidgetInfo::drag_value(true, v) });
     hint(r, &label)
@@ -147,7 +161,12 @@ pub fn vec3_edit(ui: &mut Ui, label: &str, value: &mut [f64; 3], speed: f64) -> 
 /// A labelled drag value for one number.
 pub fn number(ui: &mut Ui, label: &str, value: &mut f64, speed: f64, range: Range<f64>) -> bool {
     let r = ui.add(
-        DragValue::new(value).speed(speed).range(range.min..=range.max).max_decimals(4).prefix(format!("{label} = ")),
+        DragValue::new(value)
+            .speed(speed)
+            .range(range.min..=range.max)
+            .max_decimals(4)
+            .custom_parser(finite_number)
+            .prefix(format!("{label} = ")),
     );
     let v = *value;
     r.widget_info(|| WidgetInfo { label: Some(label.to_string()), ..WidgetInfo::drag_value(true, v) });

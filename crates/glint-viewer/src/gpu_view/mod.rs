@@ -568,6 +568,7 @@ impl GpuView {
         // Nearest, like the CPU view: magnified pixels stay pixels and the wipe compares like
         // with like.
         let options = egui::TextureOptions::NEAREST;
+        let image = crate::images::within_texture_side(image, self.egui.input(|i| i.max_texture_side));
         let texture = match &mut self.texture {
             Some(t) => {
                 t.set(image, options);
