@@ -3,8 +3,10 @@
 
 use std::time::{Duration, Instant};
 
+use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use glint_test_support::scene::stack_overflow_slab;
+use glint_viewer::ViewerApp;
 
 use super::support::{settle, temp_dir, viewer};
 
@@ -88,4 +90,44 @@ fn the_variants_an_edit_is_likely_to_need_are_compiled_ahead_while_idle() {
         assert_eq!(compiling, None, "a prewarmed variant was compiled again");
         std::thread::sleep(Duration::from_millis(5));
     }
+}
+
+#[test]
+fn an_edit_made_while_a_variant_compiles_ahead_wakes_the_window_when_it_is_done() {
+    // An edit arriving during a prewarm waits for it; the prewarm's end must wake the window
+    // to submit the edit. It did not: the image said "updating…" until the mouse moved.
+    let Some(mut h) = viewer("whitted", (1000.0, 640.0)) else { return };
+    settle(&mut h);
+    let prewarming = |h: &Harness<'static, ViewerApp>| {
+        h.state().renders.gpu.as_ref().and_then(|g| g.in_flight()).is_some_and(|(revision, _)| revision == 0)
+    };
+    let deadline = Instant::now() + Duration::from_secs(120);
+    while !prewarming(&h) {
+        assert!(Instant::now() < deadline, "no variant was compiled ahead");
+        h.step();
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    h.state_mut().doc.desc.world.ambient.0[0] = 0.3;
+    h.state_mut().doc.edited();
+    // Frames until the window has nothing more to ask of itself: the edit's CPU render done
+    // (its worker wakes the window), its GPU render waiting behind the prewarm, which is not
+    // the document's render.
+    let revision = h.state().doc.revision;
+    loop {
+        h.step();
+        let cpu_done = h.state().renders.cpu_of(revision).is_some();
+        if cpu_done && !h.ctx.has_requested_repaint() {
+            break;
+        }
+        assert!(Instant::now() < deadline, "the CPU render of the edit never finished");
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    assert!(prewarming(&h), "the prewarm ended before the test could wait on it: make it longer");
+    let deadline = Instant::now() + Duration::from_secs(120);
+    while !h.ctx.has_requested_repaint() {
+        assert!(Instant::now() < deadline, "the window was not woken when the prewarm ended");
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    settle(&mut h);
+    assert_eq!(h.state().renders.gpu.as_ref().and_then(|g| g.shown_revision()), Some(h.state().doc.revision));
 }

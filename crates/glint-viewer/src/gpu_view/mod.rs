@@ -197,8 +197,9 @@ impl GpuView {
             last_variant: None,
             last_scene: None,
             prewarm_queue: None,
-            // Not woken on completion: the UI polls every frame while a render is in flight.
-            submitter: Worker::new("glint-gpu-submit", "GPU submission", None),
+            // Woken when a job ends (its thread waits for the GPU first): a prewarm is no render
+            // of the document, so an edit that waits behind one is submitted only on this wake.
+            submitter: Worker::new("glint-gpu-submit", "GPU submission", Some(egui.clone())),
             in_flight: None,
             readback: None,
             accumulation: None,
