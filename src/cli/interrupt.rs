@@ -2,7 +2,8 @@
 //! loop and the atomic writer check (the render stops at the next tile, a write in progress
 //! stops and its temporary is removed); `main` then says "interrupted" and exits with
 //! 128 + the signal's number (130, 143), as shells report a process killed by it. A second
-//! signal ends the process at once, with the same code, as does the first while a scene loads. SIGXFSZ (a file size limit) is caught
+//! signal ends the process at once, with the same code, as does the first while a scene loads.
+//! The viewer answers the flag as File → Quit (`glint_viewer`'s `signal_watch` wakes it). SIGXFSZ (a file size limit) is caught
 //! so that the write fails and is reported instead of ending the process.
 
 use std::sync::Arc;

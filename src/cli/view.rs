@@ -146,7 +146,8 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
             say!("{report}")?;
             Ok(())
         }
-        Ok(None) => Ok(()),
+        // Closed by a signal (and not taken over in the window): "interrupted", 130 or 143.
+        Ok(None) => super::interrupt::check(),
         // One line, no chain: the message already says what to do instead.
         Err(e @ (ViewerError::NoDisplay | ViewerError::Window(_))) => bail!("{e}"),
         Err(e) => Err(e.into()),

@@ -172,3 +172,52 @@ fn quitting_or_closing_the_window_over_unsaved_edits_asks_first() {
     assert!(h.query_by_label("Unsaved changes").is_none());
     assert!(h.state().quitting && asked_to_close(&h));
 }
+
+/// Set in the child process `a_signal_quits_as_file_quit_does…` runs itself in.
+const SIGNAL_CHILD: &str = "GLINT_VIEWER_SIGNAL_CHILD";
+
+#[test]
+fn a_signal_quits_as_file_quit_does_and_save_or_cancel_take_over_from_it() {
+    // The stop flag a signal raises is one for the process (other tests' saves would stop):
+    // the test runs again, alone, in a child process.
+    let name = "dialogs::a_signal_quits_as_file_quit_does_and_save_or_cancel_take_over_from_it";
+    if std::env::var_os(SIGNAL_CHILD).is_none() {
+        let exe = std::env::current_exe().expect("the test binary");
+        let out = std::process::Command::new(exe)
+            .args(["--exact", name, "--test-threads=1"])
+            .env(SIGNAL_CHILD, "1")
+            .output()
+            .expect("the test binary runs");
+        let stdout = String::from_utf8_lossy(&out.stdout);
+        assert!(out.status.success(), "{stdout}{}", String::from_utf8_lossy(&out.stderr));
+        assert!(stdout.contains("1 passed"), "the child ran no test: {stdout}");
+        return;
+    }
+    let raise = || glint_io::interrupt::flag().store(true, std::sync::atomic::Ordering::Relaxed);
+
+    // Without edits, a signal closes the window at once.
+    let Some(mut h) = viewer("whitted", (1000.0, 640.0)) else { return };
+    raise();
+    h.run_steps(1);
+    assert!(h.state().quitting && asked_to_close(&h), "a signal quits");
+    glint_io::interrupt::withdraw();
+
+    // Over edits it asks first, the flag still raised (a second signal ends the process).
+    let Some(mut h) = viewer("whitted", (1000.0, 640.0)) else { return };
+    h.state_mut().doc.desc.render.max_depth = 2;
+    h.state_mut().doc.edited();
+    raise();
+    h.run_steps(2);
+    assert!(h.query_by_label_contains("before quitting").is_some(), "asked first");
+    assert!(!h.state().quitting && glint_io::interrupt::requested());
+    // Cancel takes over: the flag is lowered, the window stays and a later save is not stopped.
+    h.get_by_label("Cancel").click();
+    h.run_steps(2);
+    assert!(!h.state().quitting && !glint_io::interrupt::requested());
+    let dir = temp_dir("signal-save");
+    h.state_mut().doc.save(&dir.join("after.toml")).expect("a save after Cancel is not interrupted");
+    // The next signal is answered again: the edits saved, it quits.
+    raise();
+    h.run_steps(1);
+    assert!(h.state().quitting && asked_to_close(&h), "the next signal quits");
+}

@@ -18,6 +18,15 @@ pub fn requested() -> bool {
     REQUESTED.get().is_some_and(|f| f.load(Ordering::Relaxed))
 }
 
+/// Lowers the flag: a stop asked of an interactive program that its user has taken over (the
+/// viewer asks "unsaved changes" on a signal; Save or Cancel there means go on, and a save
+/// must not be stopped by the signal that asked).
+pub fn withdraw() {
+    if let Some(f) = REQUESTED.get() {
+        f.store(false, Ordering::Relaxed);
+    }
+}
+
 /// The error of work stopped by the request.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
 #[error("interrupted")]

@@ -88,6 +88,8 @@ pub struct ViewerApp {
     pub fitter: AmbientFitter,
     /// The user chose to quit (or had nothing to save): the next close request goes through.
     pub quitting: bool,
+    /// Whether the raised stop flag (SIGINT, SIGTERM) was answered already: one quit a signal.
+    signal_answered: bool,
     /// Close the window at the end of this frame (after "unsaved changes" was answered).
     close_pending: bool,
 }
@@ -146,6 +148,7 @@ impl ViewerApp {
             error_axis: Axis::Samples,
             fitter: AmbientFitter::new(Some(cc.egui_ctx.clone())),
             quitting: false,
+            signal_answered: false,
             close_pending: false,
         }
     }
@@ -347,8 +350,24 @@ impl ViewerApp {
         }
     }
 
+    /// A SIGINT or SIGTERM (Ctrl+C in the terminal, `kill`) quits as File → Quit does, asking
+    /// first while the scene has edits; a second signal then ends the process at once, as the
+    /// CLI's does. Woken by `crate::signal_watch`.
+    fn answer_signal(&mut self) {
+        let raised = glint_io::interrupt::requested();
+        if raised && !self.signal_answered {
+            log::info!("a signal asked the viewer to quit");
+            self.request_quit();
+        }
+        self.signal_answered = raised;
+    }
+
     /// The answer to "unsaved changes" before `target`.
     fn apply_unsaved(&mut self, answer: Unsaved, target: Then) {
+        if matches!(answer, Unsaved::Save | Unsaved::Cancel) {
+            // The user took over from a signal's quit: go on (a save must not be stopped by it).
+            glint_io::interrupt::withdraw();
+        }
         match answer {
             Unsaved::Save => match self.doc.path.clone() {
                 Some(p) => self.save_then_open(&p, Some(target)),
@@ -487,6 +506,7 @@ impl eframe::App for ViewerApp {
         let start = Instant::now();
         let ctx = ui.ctx().clone();
         self.hold_close_for_unsaved_edits(&ctx);
+        self.answer_signal();
         self.renders.poll(&ctx);
         self.dialogs.take_dropped_file(&ctx);
         if let Some(p) = self.dialogs.pending_open.take() {

@@ -31,6 +31,7 @@ mod ray_tree_view;
 mod recent;
 mod renders;
 mod selection;
+mod signal_watch;
 mod view;
 mod whitted_vs_gi;
 mod widgets;
@@ -128,6 +129,7 @@ fn run_with(options: ViewerOptions, renderer: eframe::Renderer) -> Result<Option
         "Glint viewer",
         native_options(renderer),
         Box::new(move |cc| {
+            signal_watch::start(&cc.egui_ctx);
             let app = ViewerApp::new(cc, options);
             let shared = app.automation.outcome.clone();
             // An interactive run that ends by closing the window reports nothing; an automated
