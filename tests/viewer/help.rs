@@ -65,3 +65,20 @@ fn the_help_menu_opens_the_first_five_minutes_and_the_bindings() {
     h.run_steps(2);
     assert!(h.query_by_label("The viewer (docs/viewer.md)").is_some(), "the docs are linked");
 }
+
+#[test]
+fn escape_closes_save_image_and_the_help_windows_one_at_a_time() {
+    // Help → Keyboard and mouse says "Escape: close a dialog"; only "unsaved changes" did.
+    let Some(mut h) = viewer("whitted", (1000.0, 640.0)) else { return };
+    menu(&mut h, &["Help", "Keyboard and mouse"]);
+    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::S);
+    h.run_steps(2);
+    assert!(h.query_by_label("Browse…").is_some() && h.query_by_label("F9").is_some(), "both windows open");
+    h.key_press(egui::Key::Escape);
+    h.run_steps(2);
+    assert!(h.query_by_label("Browse…").is_none(), "Save image closed first");
+    assert!(h.query_by_label("F9").is_some(), "one window an Escape");
+    h.key_press(egui::Key::Escape);
+    h.run_steps(2);
+    assert!(h.query_by_label("F9").is_none(), "the bindings closed");
+}

@@ -393,6 +393,14 @@ impl ViewerApp {
 
     /// The windows of the app: "Save image", a typed path, "unsaved changes".
     fn windows(&mut self, ctx: &egui::Context) {
+        // Escape closes one window a frame, the dialogs before Help ("unsaved changes" answers
+        // it itself).
+        if !self.dialogs.asking_unsaved()
+            && ctx.input(|i| i.key_pressed(egui::Key::Escape))
+            && !self.dialogs.close_on_escape()
+        {
+            self.layout.help = crate::help::HelpWindow::None;
+        }
         crate::help::window(ctx, &mut self.layout.help);
         self.export_window(ctx);
         if let Some((purpose, path, then_open)) = self.dialogs.path_window(ctx) {

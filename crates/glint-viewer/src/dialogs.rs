@@ -284,6 +284,16 @@ impl Dialogs {
         self.unsaved.is_some()
     }
 
+    /// Escape: closes the typed-path window, else "Save image", as their Cancel or close button
+    /// would (nothing typed there is applied); whether one was open. "Unsaved changes" answers
+    /// Escape itself, as Cancel.
+    pub fn close_on_escape(&mut self) -> bool {
+        if self.path_prompt.take().is_some() {
+            return true;
+        }
+        std::mem::take(&mut self.export_open)
+    }
+
     /// The "unsaved changes" window (when asked) over the document `name`; returns the answer
     /// with what waited for it.
     pub fn unsaved_window(&mut self, ctx: &egui::Context, name: &str) -> Option<(Unsaved, Then)> {
