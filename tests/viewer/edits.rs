@@ -92,6 +92,11 @@ fn an_invalid_value_is_reported_in_the_ui_and_the_last_valid_image_stays() {
     assert!(!h.state().doc.issues.is_empty(), "c = 0 must be reported");
     assert!(h.query_all_by_label_contains("lights[0].attenuation").count() > 0, "the problem is shown in the UI");
     assert_eq!(h.state().renders.gpu.as_ref().and_then(|g| g.latest.as_ref()).map(|l| l.revision), revision);
+    // The images say they are held, not "updating…" (nothing renders until the value is mended).
+    for said in ["GPU: held while a value is invalid", "CPU: held while a value is invalid", "GPU vs CPU: held"] {
+        assert!(h.query_all_by_label_contains(said).count() > 0, "{said:?} is not shown");
+    }
+    assert_eq!(h.query_all_by_label_contains("updating…").count(), 0);
 }
 
 #[test]

@@ -454,6 +454,7 @@ impl ViewerApp {
 
     fn central(&mut self, ui: &mut Ui) -> Vec<ViewAction> {
         let textures = self.renders.textures(self.doc.revision);
+        let textures = if self.doc.is_valid() { textures } else { textures.held() };
         let size = (self.doc.desc.render.width.max(1), self.doc.desc.render.height.max(1));
         let gizmos = if self.doc.is_valid() {
             let camera = FlatScene::world_camera(&self.doc.desc, &self.doc.desc.render);
@@ -530,6 +531,7 @@ impl eframe::App for ViewerApp {
             .show(ui, |ui| {
                 panels::messages::ui(ui, self.renders.messages(), self.message.as_deref());
                 let mut status = self.renders.status(self.doc.revision, self.clock.ui_ms);
+                status.held = !self.doc.is_valid();
                 let r = &self.doc.desc.render;
                 if r.integrator == glint_scene::Integrator::Path {
                     status.samples = Some(self.renders.samples(self.doc.revision, r.spp));

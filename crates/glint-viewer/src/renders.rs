@@ -256,6 +256,7 @@ impl Renders {
                 id,
                 size: self.cpu_texture.size,
                 stale: self.cpu_of(revision).is_none(),
+                held: false,
             }),
             diff: self.diff_texture.id().filter(|_| self.comparison_of(revision).is_some()),
             gpu_incomplete: self.gpu.as_ref().and_then(|g| g.warning.as_deref()),
@@ -264,6 +265,7 @@ impl Renders {
                 id,
                 size: self.gi.whitted_texture.size,
                 stale: self.gi.whitted_of(revision).is_none(),
+                held: false,
             }),
             gi: match &self.gpu {
                 Some(_) => self.textures_gpu(revision),
@@ -271,6 +273,7 @@ impl Renders {
                     id,
                     size: self.cpu_texture.size,
                     stale: self.cpu_of(revision).is_none(),
+                    held: false,
                 }),
             },
             gi_diff: self.gi.diff_texture.id().filter(|_| self.gi.difference_of(revision).is_some()),
@@ -280,7 +283,12 @@ impl Renders {
     }
 
     fn textures_gpu(&self, revision: u64) -> Option<Shown> {
-        self.gpu.as_ref().and_then(|g| g.shown).map(|s| Shown { id: s.3, size: s.2, stale: s.0 != revision })
+        self.gpu.as_ref().and_then(|g| g.shown).map(|s| Shown {
+            id: s.3,
+            size: s.2,
+            stale: s.0 != revision,
+            held: false,
+        })
     }
 
     /// What the messages above the status bar say of the renders.
@@ -321,6 +329,7 @@ impl Renders {
             gpu_counts: self.gpu.as_ref().and_then(|g| g.latest.as_ref()).map(|l| l.counts),
             cpu_counts: self.cpu.finished.as_ref().map(|(_, f)| f.counts),
             samples: None,
+            held: false,
         }
     }
 

@@ -68,6 +68,9 @@ pub struct Shown {
     pub id: egui::TextureId,
     pub size: (u32, u32),
     pub stale: bool,
+    /// Of an earlier revision because the document's has invalid values: nothing renders
+    /// until they are mended (said so, not "updating…").
+    pub held: bool,
 }
 
 /// The textures to show (any may be missing: no GPU, CPU still rendering, no comparison).
@@ -127,6 +130,16 @@ pub fn placement(rect: Rect, frame: (u32, u32), texture: (u32, u32)) -> Rect {
     if (aspect(frame) / aspect(texture) - 1.0).abs() < 0.01 { rect } else { fit(rect, texture.0, texture.1) }
 }
 
+impl Textures<'_> {
+    /// These textures, those of an earlier revision marked held (the document is invalid).
+    pub fn held(mut self) -> Self {
+        for shown in [&mut self.gpu, &mut self.cpu, &mut self.whitted, &mut self.gi].into_iter().flatten() {
+            shown.held = shown.stale;
+        }
+        self
+    }
+}
+
 /// The tint of an image of an earlier revision.
 const STALE_TINT: Color32 = Color32::from_gray(120);
 
@@ -143,7 +156,8 @@ fn image(ui: &mut Ui, rect: Rect, tex: Option<Shown>, uv: Rect, frame: (u32, u32
             }
             ui.painter().image(t.id, at, uv, if t.stale { STALE_TINT } else { Color32::WHITE });
             if t.stale {
-                let text = egui::RichText::new(format!("{name}: updating…")).color(Color32::WHITE).size(13.0);
+                let state = if t.held { "held while a value is invalid" } else { "updating…" };
+                let text = egui::RichText::new(format!("{name}: {state}")).color(Color32::WHITE).size(13.0);
                 anchored_label(ui, at.left_bottom() + Vec2::new(6.0, -4.0), egui::Align2::LEFT_BOTTOM, text, Some(at));
             }
         }
@@ -417,12 +431,12 @@ pub fn show(
                 }
                 ViewMode::Cpu => image(ui, r, tex.cpu, UV, (w, h), "CPU", right_missing),
                 ViewMode::Difference => {
-                    let diff = tex.diff.map(|id| Shown { id, size: (w, h), stale: false });
+                    let diff = tex.diff.map(|id| Shown { id, size: (w, h), stale: false, held: false });
                     image(ui, r, diff, UV, (w, h), "Difference", "comparing GPU and CPU…");
                     colour_bar(ui, r);
                 }
                 ViewMode::WhittedVsGi => {
-                    let diff = tex.gi_diff.map(|id| Shown { id, size: (w, h), stale: false });
+                    let diff = tex.gi_diff.map(|id| Shown { id, size: (w, h), stale: false, held: false });
                     image(ui, r, diff, UV, (w, h), "Whitted − GI", "rendering Whitted and the paths…");
                     if let Some(d) = tex.gi_signed {
                         signed_colour_bar(ui, r, d.scale);

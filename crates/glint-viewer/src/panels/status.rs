@@ -29,6 +29,8 @@ pub struct Status {
     pub cpu_counts: Option<RayCounts>,
     /// Path mode: the samples a pixel of each tracer's image has.
     pub samples: Option<Samples>,
+    /// The document has invalid values: nothing renders until they are mended.
+    pub held: bool,
 }
 
 /// Path mode's samples: the GPU's mean over its batches, and the CPU reference's.
@@ -134,6 +136,9 @@ pub fn ui(ui: &mut Ui, s: &Status) {
         }
         (None, false) if s.adapter.is_none() => {
             ui.weak("GPU vs CPU: no GPU to compare");
+        }
+        (None, false) if s.held => {
+            ui.weak("GPU vs CPU: held while a value is invalid (listed in the side panel)");
         }
         (None, false) => {
             ui.weak("GPU vs CPU: waiting for both renders");
