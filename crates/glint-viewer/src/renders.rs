@@ -267,18 +267,28 @@ impl Renders {
                 stale: self.gi.whitted_of(revision).is_none(),
                 held: false,
             }),
-            gi: match &self.gpu {
-                Some(_) => self.textures_gpu(revision),
-                None => self.cpu_texture.id().map(|id| Shown {
-                    id,
-                    size: self.cpu_texture.size,
-                    stale: self.cpu_of(revision).is_none(),
-                    held: false,
-                }),
-            },
+            gi: self.gi_texture(revision),
             gi_diff: self.gi.diff_texture.id().filter(|_| self.gi.difference_of(revision).is_some()),
             gi_signed: self.gi.difference_of(revision).map(|d| &d.diff),
             gi_samples: self.gi.difference_of(revision).map(|d| d.samples),
+        }
+    }
+
+    /// The paths beside Whitted's: the image `schedule_gi` takes the difference from, the GPU's
+    /// full render of `revision`, else the CPU's, else whatever the GPU shows (a preview, an
+    /// earlier revision). The GPU's half-size preview stood beside Whitted while the CPU had
+    /// finished all its samples, and the difference was of the CPU's.
+    fn gi_texture(&self, revision: u64) -> Option<Shown> {
+        let gpu_full = self.gpu.as_ref().and_then(|g| g.latest.as_ref()).is_some_and(|l| l.revision == revision);
+        let cpu = self.cpu_texture.id().map(|id| Shown {
+            id,
+            size: self.cpu_texture.size,
+            stale: self.cpu_of(revision).is_none(),
+            held: false,
+        });
+        match (gpu_full, cpu) {
+            (false, Some(c)) if !c.stale => Some(c),
+            (_, cpu) => self.textures_gpu(revision).or(cpu),
         }
     }
 

@@ -337,10 +337,11 @@ fn signed_readout(ui: &mut Ui, r: Rect, at: Option<((u32, u32), DVec3)>, samples
             d.z,
             if d.element_sum() < 0.0 { ": too dark" } else { ": too bright" }
         ),
-        None => format!(
-            "Whitted − GI, mean of R, G, B; paths of {} samples. Point at a pixel.",
-            samples.map_or("?".into(), |n| n.to_string())
-        ),
+        None => match samples {
+            Some(n) => format!("Whitted − GI, mean of R, G, B; paths of {n} samples. Point at a pixel."),
+            // The difference shown is of an earlier edit (or none yet): its count is not this one's.
+            None => "Whitted − GI, mean of R, G, B; the difference of this edit is being made…".into(),
+        },
     };
     image_label_at(ui, pos2(r.left(), r.bottom() + 34.0), egui::Align2::LEFT_TOP, &text);
 }
