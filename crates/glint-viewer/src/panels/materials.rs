@@ -104,6 +104,13 @@ fn numbers(values: &[f64]) -> String {
     values.iter().map(|v| format_number(*v)).collect::<Vec<_>>().join(" ")
 }
 
+/// Values the import computed, to 7 significant digits, as the file's f32 factors are shown:
+/// a roughness of 0.05 maps to n = 319998, which f64 arithmetic gives as 319997.9999999999.
+fn computed(values: &[f64]) -> String {
+    let rounded: Vec<f64> = values.iter().map(|v| format!("{v:.6e}").parse().unwrap_or(*v)).collect();
+    numbers(&rounded)
+}
+
 /// For a material a model file brought in: what the file said (glTF factors, MTL statements)
 /// beside the seed's coefficients they were mapped to on import; the editors below hold the
 /// current values.
@@ -118,25 +125,31 @@ fn imported_ui(ui: &mut Ui, doc: &Document, name: &str) {
     let Some((file, source, mapped)) = imported else { return };
     let file = file.file_name().map_or_else(|| file.display().to_string(), |f| f.to_string_lossy().into_owned());
     ui.separator();
+    // Each column left-aligned, not justified: a justified column spread a wrapped heading
+    // letter by letter across its width ("g l T F   i n").
     ui.columns(2, |columns| {
-        columns[0].strong(format!("{} in {file}", source.format));
-        for (field, values) in &source.fields {
-            columns[0].label(format!("{field} = {}", numbers(values)));
-        }
-        columns[1].strong("Mapped on import");
-        let rgb = |r: &Rgb| numbers(&r.0);
-        for (label, value) in [
-            ("k_a", rgb(&mapped.ka)),
-            ("k_d", rgb(&mapped.kd)),
-            ("k_s", rgb(&mapped.ks)),
-            ("n", numbers(&[mapped.shininess])),
-            ("k_r", rgb(&mapped.kr)),
-            ("k_t", rgb(&mapped.kt)),
-            ("ior", numbers(&[mapped.ior])),
-            ("E_m", rgb(&mapped.emission)),
-        ] {
-            columns[1].label(format!("{label} = {value}"));
-        }
+        columns[0].vertical(|ui| {
+            ui.strong(format!("{} in {file}", source.format));
+            for (field, values) in &source.fields {
+                ui.label(format!("{field} = {}", numbers(values)));
+            }
+        });
+        columns[1].vertical(|ui| {
+            ui.strong("Mapped on import");
+            let rgb = |r: &Rgb| computed(&r.0);
+            for (label, value) in [
+                ("k_a", rgb(&mapped.ka)),
+                ("k_d", rgb(&mapped.kd)),
+                ("k_s", rgb(&mapped.ks)),
+                ("n", computed(&[mapped.shininess])),
+                ("k_r", rgb(&mapped.kr)),
+                ("k_t", rgb(&mapped.kt)),
+                ("ior", computed(&[mapped.ior])),
+                ("E_m", rgb(&mapped.emission)),
+            ] {
+                ui.label(format!("{label} = {value}"));
+            }
+        });
     });
     if doc.desc.materials.get(name) != Some(mapped) {
         ui.weak("Edited since the import (the values below).");
