@@ -92,6 +92,14 @@ fn an_unreadable_scene_is_a_message_not_a_crash() {
     assert!(message.contains("/nonexistent/scene.toml"), "{message}");
     assert!(h.query_by_label_contains("cannot read the scene file").is_some(), "the message is shown");
     assert_eq!(h.state().doc.desc, before, "the open scene stays");
+    // It stays through later edits until dismissed.
+    h.state_mut().doc.desc.render.max_depth = 2;
+    h.state_mut().doc.edited();
+    h.run_steps(2);
+    assert!(h.query_by_label_contains("cannot read the scene file").is_some(), "the message stays");
+    h.get_by_label("Dismiss").click();
+    h.run_steps(2);
+    assert!(h.state().message.is_none() && h.query_by_label_contains("cannot read the scene file").is_none());
 }
 
 /// Without a wgpu renderer (no adapter) the viewer runs with the CPU view alone and says why.

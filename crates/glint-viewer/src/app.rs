@@ -529,7 +529,9 @@ impl eframe::App for ViewerApp {
         }
         self.layout.status_rect = egui::Panel::bottom("status")
             .show(ui, |ui| {
-                panels::messages::ui(ui, self.renders.messages(), self.message.as_deref());
+                if panels::messages::ui(ui, self.renders.messages(), self.message.as_deref()) {
+                    self.message = None;
+                }
                 let mut status = self.renders.status(self.doc.revision, self.clock.ui_ms);
                 status.held = !self.doc.is_valid();
                 let r = &self.doc.desc.render;

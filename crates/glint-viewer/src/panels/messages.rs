@@ -12,7 +12,9 @@ pub struct RenderMessages<'a> {
     pub cpu_error: Option<&'a str>,
 }
 
-pub fn ui(ui: &mut Ui, renders: RenderMessages<'_>, message: Option<&str>) {
+/// Shows the messages; returns whether the app's message was dismissed (it stays until then,
+/// or until the next load or save says something else).
+pub fn ui(ui: &mut Ui, renders: RenderMessages<'_>, message: Option<&str>) -> bool {
     let warn = ui.visuals().warn_fg_color;
     let err = ui.visuals().error_fg_color;
     if let Some(r) = renders.no_gpu_reason {
@@ -27,7 +29,12 @@ pub fn ui(ui: &mut Ui, renders: RenderMessages<'_>, message: Option<&str>) {
     if let Some(e) = renders.cpu_error {
         ui.colored_label(err, format!("CPU: {e}"));
     }
+    let mut dismissed = false;
     if let Some(m) = message {
-        ui.label(m);
+        ui.horizontal_wrapped(|ui| {
+            dismissed = ui.small_button("Dismiss").clicked();
+            ui.label(m);
+        });
     }
+    dismissed
 }
