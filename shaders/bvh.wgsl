@@ -39,8 +39,10 @@ const DIR_ZERO: f32 = 1e-30;
 // Stand-in for an infinite slab distance.
 const SLAB_INF: f32 = 3e38;
 
-// The per-ray part of the slab test, with the padding relative to the larger of the origin's
-// and the whole scene's (the root box's) magnitude: at least what any box of the scene needs.
+// The per-ray part of the slab test, with the padding relative to the origin's magnitude; a box
+// adds its own (`enter`). Not the whole scene's, as the CPU's SlabRay::new takes at its 1e-9:
+// at this 1e-5, a ground 3e3 wide padded every box of a model 0.3 wide by 0.03, the walk culled
+// almost nothing, and lavapipe's loop budget ran out (an off-screen triangle 3e3 away did it).
 struct SlabRay {
     origin: vec3<f32>,
     inv: vec3<f32>,
@@ -48,33 +50,34 @@ struct SlabRay {
     pad: f32,
 }
 
-// The largest magnitude of a box's coordinates.
-fn box_scale(node: BvhNode) -> f32 {
-    let m = max(abs(node.min), abs(node.max));
-    return max(m.x, max(m.y, m.z));
-}
-
 // The CPU's SlabRay::new.
-fn slab_ray(ray: Ray, root: BvhNode) -> SlabRay {
+fn slab_ray(ray: Ray) -> SlabRay {
     let parallel = abs(ray.dir) < vec3<f32>(DIR_ZERO);
     let inv = select(vec3<f32>(1.0) / ray.dir, vec3<f32>(0.0), parallel);
     let o = abs(ray.origin);
-    let scale = max(box_scale(root), max(o.x, max(o.y, o.z)));
-    return SlabRay(ray.origin, inv, parallel, BOX_PAD * scale + BOX_PAD_ABS);
+    return SlabRay(ray.origin, inv, parallel, BOX_PAD * max(o.x, max(o.y, o.z)) + BOX_PAD_ABS);
 }
 
-// The margin by which a slab distance may pass the bound t and the box still be entered: the
+// The padding of the box from lower to upper: relative to the larger of the origin's and the
+// box's own magnitude.
+fn box_pad(s: SlabRay, lower: vec3<f32>, upper: vec3<f32>) -> f32 {
+    let m = max(abs(lower), abs(upper));
+    return max(s.pad, BOX_PAD * max(m.x, max(m.y, m.z)) + BOX_PAD_ABS);
+}
+
+// The margin by which a slab distance may pass the bound t and the box still be entered: a
 // padding and the rounding of distances up to |t|. Each end of [t_lo, t_hi] gets its own (the
 // CPU's SlabRay::slack says why).
-fn slack(s: SlabRay, t: f32) -> f32 {
-    return s.pad + BOX_PAD * min(abs(t), 1e30);
+fn slack(pad: f32, t: f32) -> f32 {
+    return pad + BOX_PAD * min(abs(t), 1e30);
 }
 
 // The entry distance into the padded box from lower to upper if the ray meets it within
 // [t_lo, t_hi].
 fn enter(s: SlabRay, lower: vec3<f32>, upper: vec3<f32>, t_lo: f32, t_hi: f32) -> MaybeT {
-    let lo = lower - vec3<f32>(s.pad);
-    let hi = upper + vec3<f32>(s.pad);
+    let pad = box_pad(s, lower, upper);
+    let lo = lower - vec3<f32>(pad);
+    let hi = upper + vec3<f32>(pad);
     let outside = any(s.parallel & ((s.origin < lo) | (s.origin > hi)));
     let a = (lo - s.origin) * s.inv;
     let b = (hi - s.origin) * s.inv;
@@ -84,7 +87,7 @@ fn enter(s: SlabRay, lower: vec3<f32>, upper: vec3<f32>, t_lo: f32, t_hi: f32) -
     let far = select(exit + BOX_PAD * abs(exit), vec3<f32>(SLAB_INF), s.parallel);
     let t0 = max(near.x, max(near.y, near.z));
     let t1 = min(far.x, min(far.y, far.z));
-    return MaybeT(t0, !outside && t0 <= t1 && t0 <= t_hi + slack(s, t_hi) && t1 >= t_lo - slack(s, t_lo));
+    return MaybeT(t0, !outside && t0 <= t1 && t0 <= t_hi + slack(pad, t_hi) && t1 >= t_lo - slack(pad, t_lo));
 }
 
 // No node: the walk pops the stack next. Never a node_ref (its count bits would be 7, above
@@ -209,7 +212,7 @@ fn pop_node(
 ) -> u32 {
     let n = (*stack).len - 1u;
     (*stack).len = n;
-    return select(NO_NODE, (*stack).node[n], (*stack).t[n] <= t_hi + slack(slab, t_hi));
+    return select(NO_NODE, (*stack).node[n], (*stack).t[n] <= t_hi + slack(slab.pad, t_hi));
 }
 
 // The walk's next leaf from `start` (NO_NODE: pop first), NO_NODE when the stack runs out:
@@ -265,7 +268,7 @@ fn leaf_triangle(head: vec4<u32>, slot: u32) -> array<vec3<f32>, 3> {
 fn closest_hit(ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> Hit {
     var best = Hit(t_max, PRIM_NONE, 0u, 0.0, 0.0);
     let root = load_node(0u);
-    let slab = slab_ray(ray, root);
+    let slab = slab_ray(ray);
 #ifdef TRIANGLES
     let sh = ray_shear(ray.dir);
 #endif
@@ -321,7 +324,7 @@ fn closest_hit(ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> Hit {
 fn shadow_transmittance(ray: Ray, t_min: f32, t_max: f32, leaving: Leaving) -> vec3<f32> {
     var tr = vec3<f32>(1.0);
     let root = load_node(0u);
-    let slab = slab_ray(ray, root);
+    let slab = slab_ray(ray);
 #ifdef TRIANGLES
     let sh = ray_shear(ray.dir);
 #endif

@@ -168,3 +168,21 @@ fn bumpy_glass_at_its_own_depth_stays_within_the_loop_budget() {
     assert_eq!(g.status, 0, "status word");
     assert!(g.image.pixels.iter().all(|p| p.is_finite()), "a non-finite pixel");
 }
+
+#[test]
+fn a_far_small_triangle_does_not_pad_every_box_of_a_detailed_mesh() {
+    // The GPU padded every box by 1e-5 of the whole scene's reach: one triangle 1e5 away padded
+    // the boxes of a sphere 2 wide by 1, the walk culled nothing, and lavapipe's loop budget
+    // ran out (status 0x4; a tester's engine 0.3 wide beside a triangle 3e3 away did the same).
+    let tracer = gpu_or_skip!();
+    let far = [[1e5, 0.0, 0.0], [1e5 + 0.01, 0.0, 0.0], [1e5, 0.01, 0.0]];
+    let flat = mesh_scene(64, 48, uv_sphere(50, [0.0, 0.1, 0.0], 1.0)).mesh(&far, &[[0, 1, 2]], None, "clay").flat();
+    let g = render(tracer, &flat, Accel::Bvh);
+    assert_eq!(g.status, 0, "status word");
+    let c = render_cpu(&flat, &CpuOptions::default(), RenderControl::default()).expect("CPU render");
+    let e = compare_images(&c.image, &g.image);
+    assert!(
+        e.flip_mean <= FLIP_MEAN_MAX && e.p99_abs_same_hit <= P99_MAX && e.first_hit_mismatch <= MISMATCH_MAX,
+        "{e:?}"
+    );
+}
