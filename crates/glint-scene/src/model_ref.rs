@@ -218,6 +218,12 @@ impl ModelDesc {
     }
 }
 
+/// `v` scaled to length 1 (as it is where it is finite and not zero; validation names it).
+fn unit(v: [f64; 3]) -> [f64; 3] {
+    let length = v.iter().map(|x| x * x).sum::<f64>().sqrt();
+    if length.is_finite() && length > 0.0 { v.map(|x| x / length) } else { v }
+}
+
 impl LoadedModel {
     /// An imported model placed by `transform` (meshes moved, normals by the inverse
     /// transpose, winding flipped back under a mirror), its materials renamed `PREFIX/NAME`.
@@ -231,7 +237,10 @@ impl LoadedModel {
             .into_iter()
             .map(|mesh| MeshDesc {
                 vertices: mesh.vertices.iter().map(|v| m.point(*v)).collect(),
-                normals: mesh.normals.map(|ns| ns.iter().map(|n| m.normal(*n)).collect()),
+                // Renormalised: the cofactor matrix scales a normal by the square of a uniform
+                // scale, and at 1e-6 or 4e4 validation refused every normal as (near) zero or
+                // too long, though the same scale as a glTF node's was taken.
+                normals: mesh.normals.map(|ns| ns.iter().map(|n| unit(m.normal(*n))).collect()),
                 uvs: mesh.uvs,
                 colours: mesh.colours,
                 triangles: if mirror {
@@ -280,5 +289,35 @@ impl LoadedModel {
             })
             .collect();
         Self { file, meshes, materials, sources, cameras, lights, warnings: model.warnings }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::MeshDesc;
+
+    #[test]
+    fn a_placed_models_normals_are_unit_vectors_at_any_scale() {
+        // The cofactor matrix scales a normal by s² (a uniform scale): at 1e-6 and 4e4 every
+        // normal was refused by validation.
+        let mut mesh = MeshDesc::new(vec![[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]], vec![[0, 1, 2]], "m", "tri");
+        let tilted = [0.6, 0.0, 0.8];
+        mesh.normals = Some(vec![[0.0, 0.0, 1.0], tilted, [0.0, 0.0, 1.0]]);
+        for scale in [Scale::Uniform(1e-6), Scale::Uniform(4e4), Scale::PerAxis([2.0, 1.0, 1e-3])] {
+            let transform = TransformDesc { scale, ..TransformDesc::default() };
+            let model = Model { meshes: vec![mesh.clone()], ..Model::default() };
+            let placed = LoadedModel::place(PathBuf::from("m.glb"), model, &transform, "m");
+            for n in placed.meshes[0].normals.as_ref().expect("normals") {
+                let length = n.iter().map(|x| x * x).sum::<f64>().sqrt();
+                assert!((length - 1.0).abs() < 1e-12, "{scale:?}: {n:?}");
+            }
+            // The inverse transpose: the tilted normal leans by the inverse of the scale's ratio.
+            let n = placed.meshes[0].normals.as_ref().unwrap()[1];
+            if let Scale::PerAxis([sx, _, sz]) = scale {
+                let expected = (tilted[0] / sx) / (tilted[2] / sz);
+                assert!((n[0] / n[2] - expected).abs() < 1e-9 * expected.abs(), "{n:?}");
+            }
+        }
     }
 }
