@@ -637,6 +637,10 @@ fn a_side_given_alone_keeps_a_model_cameras_aspect_ratio() {
             assert!(stderr.contains(said), "{aspect} {flags:?}: {stderr}");
         }
     }
+    // A side no image can have is the flag's error, as for a scene file.
+    let run = glint(&dir, ["render".into(), model(2.0).into_os_string(), "--width".into(), "0".into()]);
+    assert!(!run.status.success());
+    assert!(text(&run.stderr).contains("render.width (--width): 0 is outside"), "{}", text(&run.stderr));
 }
 
 #[test]

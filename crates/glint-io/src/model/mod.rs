@@ -133,8 +133,10 @@ fn size_by_aspect(
     warnings: &mut Vec<FieldIssue>,
 ) {
     let held = |wanted: f64| wanted.clamp(1.0, f64::from(MAX_IMAGE_SIDE));
+    // A side no image can have is left to the settings' validation, which names its flag.
+    let valid = |side: Option<u32>| side.filter(|s| (1..=MAX_IMAGE_SIDE).contains(s));
     // The side sized, and the image the ratio asks (width, height).
-    let (side, wanted) = match (width, height) {
+    let (side, wanted) = match (valid(width), valid(height)) {
         (Some(w), Some(h)) => {
             (render.width, render.height) = (w, h);
             return;
@@ -158,7 +160,8 @@ fn size_by_aspect(
             problem: format!(
                 "its aspect ratio {} would make the image {}x{} pixels; the {side} is held to {now} \
                  (sides in [1, {MAX_IMAGE_SIDE}]): set --width and --height",
-                glint_scene::format_number(aspect),
+                // To 7 digits: the lab scene's 4:3 is 1.3333333333333333 in full.
+                glint_scene::format_number(format!("{aspect:.6e}").parse().unwrap_or(aspect)),
                 glint_scene::format_number(wanted.0),
                 glint_scene::format_number(wanted.1),
             ),
@@ -298,11 +301,18 @@ pub fn scene_around(
         }));
     }
     let lights = if lights.is_empty() {
+        // --exposure scales a file's lights: with none it would change nothing without a word.
+        let exposure = if options.exposure == ImportOptions::default().exposure {
+            ""
+        } else {
+            "; --exposure scales a file's lights and changes nothing here"
+        };
         warnings.push(FieldIssue {
             field: "lights".into(),
-            problem: "the model has none: lit by Glint's default rig (a point key light, a directional fill, \
-                      ambient 0.1)"
-                .into(),
+            problem: format!(
+                "the model has none: lit by Glint's default rig (a point key light, a directional fill, \
+                 ambient 0.1){exposure}"
+            ),
         });
         let light = |kind, position, direction, intensity| LightDesc {
             diffuse: Rgb::splat(intensity),
@@ -399,6 +409,18 @@ mod tests {
         // Written short, not as 39 digits.
         let said = said(1e38).1.expect("said").problem;
         assert!(said.starts_with("its aspect ratio 1e38 would make the image 4.8e40x480 pixels"), "{said}");
+    }
+
+    #[test]
+    fn an_exposure_for_a_model_without_lights_is_said_to_change_nothing() {
+        let said = |exposure: f64| {
+            let model = Model { meshes: vec![quad(1.0)], ..Model::default() };
+            let options = ImportOptions { exposure, ..ImportOptions::default() };
+            let (_, warnings) = scene_around(model, Path::new("m.gltf"), &options).unwrap();
+            warnings.into_iter().find(|w| w.field == "lights").expect("the default rig is said").problem
+        };
+        assert!(said(2.0).ends_with("; --exposure scales a file's lights and changes nothing here"), "{}", said(2.0));
+        assert!(!said(1.0).contains("--exposure"));
     }
 
     #[test]
