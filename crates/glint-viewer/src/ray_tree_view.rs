@@ -101,11 +101,12 @@ pub fn draw(ui: &mut Ui, rects: &[Rect], segments: &[TreeSegment]) {
                 }
             }
         }
-        if i + 1 == rects.len() {
-            legend(ui, *r);
-        }
         let label = format!("Ray tree: {} rays", segments.len());
         let area = bounds.expand(2.0).intersect(*r);
+        // Only beside a tree in sight: after a camera move it may lie wholly outside the image.
+        if i + 1 == rects.len() && area.is_positive() {
+            legend(ui, *r);
+        }
         if area.is_positive() {
             let response = ui.interact(area, ui.scope_id().with(("ray tree", i)), Sense::hover());
             response.widget_info(|| egui::WidgetInfo::labeled(egui::Role::Image, true, &label));
