@@ -673,3 +673,31 @@ fn cook_torrance_roughness_in_range_and_fresnel_by_name() {
     expect_parse_error(&ct("fresnel = 1"), &["fresnel"]);
     expect_parse_error(&edited("shininess = 32.0", "specular_model = \"cook-torrance\""), &["cook_torrance"]);
 }
+
+#[test]
+fn an_epsilon_out_of_range_is_refused_at_once_beside_a_mesh() {
+    // The coplanar-overlap check ran with ε = 1e308 before ε was refused: its tolerance was
+    // infinite and its grid took 10 GB in 15 s.
+    let text = r#"
+[render]
+epsilon = 1e308
+[camera]
+position = [0.0, 0.0, -5.0]
+look_at = [0.0, 0.0, 0.0]
+[materials.m]
+[[objects]]
+type = "mesh"
+material = "m"
+vertices = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [1.0, 1.0, 0.0]]
+triangles = [[0, 1, 2], [1, 3, 2]]
+"#;
+    expect_invalid(text, "render.epsilon", &["1e308", "[0, 1000]"]);
+}
+
+#[test]
+fn the_largest_depth_is_refused_not_an_overflow_in_its_ray_tree_warning() {
+    // The warning of a ray tree that doubles at every level, made in the same pass, added 1 to
+    // max_depth = u32::MAX: a panic in debug builds (`cargo test`, `cargo run`).
+    let text = format!("[render]\nmax_depth = 4294967295\nbailout = 0.0\n{BASE}");
+    expect_invalid(&text, "render.max_depth", &["4294967295", "[0, 1024]"]);
+}

@@ -87,7 +87,8 @@ pub fn unbounded_ray_tree(desc: &SceneDesc, settings: &RenderSettings) -> Option
          {stop}: up to 2^{} − 1{} rays per camera sample; {remedy}",
         format_number(m.kr.max_channel()),
         format_number(m.kt.max_channel()),
-        depth + 1,
+        // Widened: max_depth = u32::MAX (refused, but warned of in the same pass) overflowed.
+        u64::from(depth) + 1,
         if rays.is_finite() { format!(" ≈ {rays:.1e}") } else { String::new() }
     ))
 }

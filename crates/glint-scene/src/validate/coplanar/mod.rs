@@ -121,7 +121,13 @@ impl Overlap {
 ///
 /// `origin`: the scene's storage origin (`storage_origin`), where f32's spacing is judged.
 pub(super) fn coplanar_overlaps(scene: &SceneDesc, origin: [f64; 3]) -> Vec<FieldIssue> {
-    let at = Resolution { epsilon: scene.render.epsilon.max(0.0), origin: DVec3::from(origin) };
+    // Within validation's range: the check runs before render.epsilon's own is refused, and
+    // ε = 1e308 made the tolerance infinite and the grid fill memory (10 GB in 15 s).
+    let epsilon = match scene.render.epsilon {
+        e if e.is_nan() => 0.0,
+        e => e.clamp(0.0, super::limits::MAX_EPSILON),
+    };
+    let at = Resolution { epsilon, origin: DVec3::from(origin) };
     let mut bounds = vec![(DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)); scene.objects.len()];
     // (cell, surface, whether the surface is in more than one cell)
     let mut entries: Vec<(u64, Source, bool)> = Vec::new();
