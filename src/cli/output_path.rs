@@ -1,10 +1,12 @@
 //! Which output paths `glint render` may write: a known format in an existing folder, never
-//! the input scene (the same file by any name: a link, `./`, another path to it), and not a
-//! read-only file unless `--force` says to replace it.
+//! the input scene or a file it reads (a texture, a model; the same file by any name: a link,
+//! `./`, another path to it), and not a read-only file unless `--force` says to replace it.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use anyhow::bail;
+use glint_io::LoadedScene;
+use glint_scene::{MaterialDesc, ObjectDesc};
 
 /// Checks every output of one command before any rendering starts.
 pub fn check_outputs(outputs: &[&Path], input: &Path, force: bool) -> anyhow::Result<()> {
@@ -23,6 +25,46 @@ pub fn check_outputs(outputs: &[&Path], input: &Path, force: bool) -> anyhow::Re
         }
     }
     Ok(())
+}
+
+/// Refuses an output that is a file the scene reads besides itself: a texture (`-o` named as
+/// a material's image overwrote it without a word) or a model file.
+pub fn check_not_read(outputs: &[&Path], loaded: &LoadedScene) -> anyhow::Result<()> {
+    let read = files_read(loaded);
+    for path in outputs {
+        if let Some((what, file)) = read.iter().find(|(_, file)| is_same_file(path, file)) {
+            bail!(
+                "{}: this output is {what} the scene reads, {}; writing it would destroy it: choose another output name",
+                path.display(),
+                file.display()
+            );
+        }
+    }
+    Ok(())
+}
+
+/// The textures and model files `loaded` read (as found: a texture of a scene file beside the
+/// scene, a model's beside the model).
+fn files_read(loaded: &LoadedScene) -> Vec<(&'static str, PathBuf)> {
+    let folder = loaded.source.parent().unwrap_or(Path::new(".")).to_path_buf();
+    let textures = |materials: &mut dyn Iterator<Item = &MaterialDesc>, folder: &Path| {
+        materials
+            .flat_map(|m| [&m.texture, &m.emission_texture])
+            .flatten()
+            .map(|t| ("a texture", folder.join(&t.path)))
+            .collect::<Vec<_>>()
+    };
+    let mut read = textures(&mut loaded.desc.materials.values(), &folder);
+    for object in &loaded.desc.objects {
+        if let ObjectDesc::Model(m) = object
+            && let Some(model) = &m.loaded
+        {
+            read.push(("a model file", model.file.clone()));
+            let beside = model.file.parent().unwrap_or(Path::new(".")).to_path_buf();
+            read.extend(textures(&mut model.materials.values(), &beside));
+        }
+    }
+    read
 }
 
 fn check_format_and_folder(path: &Path) -> anyhow::Result<()> {

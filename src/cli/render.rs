@@ -21,7 +21,7 @@ use super::output::{
     BenchResult, Incomplete, check_writable, fmt_counts, gpu_cpu_ratio, metadata, print_bench_json, print_json,
     print_table, suffixed, write_diff, write_run,
 };
-use super::output_path::check_outputs;
+use super::output_path::{check_not_read, check_outputs};
 use super::settings::{LoadArgs, SettingsArgs, load_with_estimate, parse_ray_cap, parse_threads, tell_warnings};
 use super::tile::{TileJob, TileSpec, parse_tile, render_tile};
 use super::units::{mrays_per_s, ms};
@@ -201,7 +201,9 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     } else {
         vec![output.clone()]
     };
-    check_outputs(&planned.iter().map(PathBuf::as_path).collect::<Vec<_>>(), &loaded.source, args.force)?;
+    let planned_paths: Vec<&std::path::Path> = planned.iter().map(PathBuf::as_path).collect();
+    check_outputs(&planned_paths, &loaded.source, args.force)?;
+    check_not_read(&planned_paths, &loaded)?;
     interrupt::check()?;
     let flat = FlatScene::build(&loaded.desc, &settings);
     interrupt::check()?;

@@ -17,7 +17,7 @@ use super::backend::{open_gpu, run_cpu, run_gpu};
 use super::console::say;
 use super::interrupt;
 use super::output::{Incomplete, check_writable, metadata};
-use super::output_path::check_outputs;
+use super::output_path::{check_not_read, check_outputs};
 
 /// The array-index variables of the schedulers, in the order they are looked for.
 pub const INDEX_VARIABLES: [(&str, &str); 3] = [
@@ -110,6 +110,7 @@ pub fn render_tile(job: TileJob) -> anyhow::Result<()> {
         );
     }
     check_outputs(&[output.as_path()], &job.loaded.source, job.force)?;
+    check_not_read(&[output.as_path()], job.loaded)?;
     say!("tile {index}/{} (index from {source}) of a {} grid over {w}x{h}: {rect}", grid.count(), grid.describe())?;
     interrupt::check()?;
     let flat = FlatScene::build(&job.loaded.desc, job.settings);

@@ -161,6 +161,24 @@ fn the_input_scene_is_never_an_output_by_any_name() {
     assert_eq!(dir.listing(), ["hard.png", "link.png", "scene.png"]);
 }
 
+#[test]
+fn a_texture_or_model_the_scene_reads_is_never_an_output() {
+    // `-o tex.png` on a scene whose material reads tex.png overwrote the texture without a word.
+    let dir = TempDir::new("texture-output");
+    let scene = glint_test_support::texture::textured_scene(&dir, 8, 6);
+    std::fs::write(dir.join("scene.toml"), &scene.text).unwrap();
+    let texture = std::fs::read(dir.join("tex.png")).unwrap();
+    for extra in [&[][..], &["--backend", "cpu", "--force"][..]] {
+        let mut args = os(&[&"render", &"scene.toml", &"-q", &"-o", &"./tex.png"]);
+        args.extend(extra.iter().map(OsString::from));
+        let out = glint(&dir, args);
+        let stderr = text(&out.stderr);
+        assert!(!out.status.success(), "-o tex.png {extra:?} succeeded");
+        assert!(stderr.contains("is a texture the scene reads") && stderr.contains("tex.png"), "{stderr}");
+        assert_eq!(std::fs::read(dir.join("tex.png")).unwrap(), texture, "the texture is left as it was");
+    }
+}
+
 /// Two facing mirror planes, the camera between them, radiance growing by k_r = 1e9 per bounce
 /// over an emission of 1e9: finite in f64 at depth 4, beyond f32 (1e45).
 fn overflowing_scene(depth: u32) -> String {
