@@ -83,7 +83,11 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
     };
     // Headers first: every check before any pixel is read or anything is written.
     let headers: Vec<ExrHeader> =
-        args.tiles.iter().map(|p| read_exr_header(p).map_err(anyhow::Error::from)).collect::<anyhow::Result<_>>()?;
+        // A tile that blocks its reader (a named pipe nobody writes) ends the merge at the first
+        // signal: it waited for a second, and `timeout` sends one.
+        super::interrupt::while_loading(|| {
+            args.tiles.iter().map(|p| read_exr_header(p).map_err(anyhow::Error::from)).collect::<anyhow::Result<_>>()
+        })?;
     // Tiles are held against the render most of them are of (the first tile's on a tie), so that
     // a stale tile left from another render is the one named, wherever the glob puts it. A
     // render is its attributes (`shared_keys`, which a GPU tile has more of).
@@ -192,7 +196,7 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
 
     let mut image = vec![[0f32; 3]; width as usize * height as usize];
     for (&index, &(path, checked)) in &by_index {
-        let tile = read_exr(path)?;
+        let tile = super::interrupt::while_loading(|| read_exr(path))?;
         same_as_checked(path, checked, &tile)?;
         let rect = grid.rect(index)?;
         // A render writes no such pixel (it refuses an image with one): the tile was made or
