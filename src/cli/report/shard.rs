@@ -204,6 +204,14 @@ impl ShardFile {
                 for (name, v) in [("twin_rmse", row.twin_rmse), ("twin_rays_pct", row.twin_rays_pct.map(f64::abs))] {
                     v.map_or(Ok(()), |v| number(format!("{at}.{name}"), v))?;
                 }
+                // Their sum is taken (rays per second): counts no render can make overflowed it.
+                let c = &row.counts;
+                let sum = [c.camera, c.shadow, c.reflection, c.refraction, c.bailout_saved, c.capped_samples]
+                    .into_iter()
+                    .try_fold(0u64, u64::checked_add);
+                if sum.is_none_or(|s| s > MAX_RAYS) {
+                    return Err(format!("{at}.counts: sum to more than {MAX_RAYS:e} rays"));
+                }
             }
             for (j, row) in scene.specular.iter().enumerate() {
                 let at = format!("results[{i}].specular[{j}]");
@@ -225,6 +233,10 @@ impl ShardFile {
         Ok(())
     }
 }
+
+/// More rays than a shard's renders can trace (16384² pixels × 4096 samples × 2^10 rays is
+/// 1.1e15; this leaves room), and far from u64's end, so that sums of a sweep's rows stay exact.
+const MAX_RAYS: u64 = 1 << 60;
 
 pub fn file_name(spec: ShardSpec) -> String {
     format!("shard-{}-of-{}.toml", spec.index, spec.count)
