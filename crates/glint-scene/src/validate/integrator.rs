@@ -22,7 +22,8 @@ pub fn integrator_warnings(desc: &SceneDesc, settings: &RenderSettings) -> Vec<F
         if !light.ambient.is_zero() {
             out.push(FieldIssue {
                 field: format!("lights[{i}].ambient"),
-                problem: format!("({}) {unused}", light.name),
+                // Named where the light has a name: an unnamed one printed "()".
+                problem: if light.name.is_empty() { unused.to_string() } else { format!("({}) {unused}", light.name) },
             });
         }
     }
@@ -95,6 +96,21 @@ mod tests {
         assert_eq!(fields(&unset, &settings), ["render.bailout", "materials", "render.integrator"]);
         settings.integrator = Integrator::Whitted;
         assert!(fields(&desc, &settings).is_empty(), "Whitted's render uses all of it");
+    }
+
+    #[test]
+    fn a_lights_ambient_is_warned_of_by_its_name_or_by_its_place_alone() {
+        let mut desc = crate::bumpy::bumpy(2);
+        let settings = RenderSettings { integrator: Integrator::Path, ..RenderSettings::default() };
+        let said = |desc: &SceneDesc| {
+            let warnings = integrator_warnings(desc, &settings);
+            warnings.into_iter().find(|w| w.field == "lights[0].ambient").expect("warned").problem
+        };
+        desc.lights[0].ambient = Rgb([0.1; 3]);
+        desc.lights[0].name = String::new();
+        assert!(said(&desc).starts_with("is not used by the path tracer"), "{}", said(&desc));
+        desc.lights[0].name = "key".into();
+        assert!(said(&desc).starts_with("(key) is not used"), "{}", said(&desc));
     }
 
     #[test]
