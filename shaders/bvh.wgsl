@@ -212,6 +212,8 @@ fn pop_node(
 ) -> u32 {
     let n = (*stack).len - 1u;
     (*stack).len = n;
+    // The origin's pad alone, not the box's: t is the entry into the padded box, at or before
+    // any hit in it, so a box with a hit within t_hi passes on the rounding of t alone.
     return select(NO_NODE, (*stack).node[n], (*stack).t[n] <= t_hi + slack(slab.pad, t_hi));
 }
 

@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::bail;
 use glint_io::LoadedScene;
-use glint_scene::{MaterialDesc, ObjectDesc};
+use glint_scene::{LoadedModel, MaterialDesc, ObjectDesc, material_textures};
 
 /// Checks every output of one command before any rendering starts.
 pub fn check_outputs(outputs: &[&Path], input: &Path, force: bool) -> anyhow::Result<()> {
@@ -43,26 +43,35 @@ pub fn check_not_read(outputs: &[&Path], loaded: &LoadedScene) -> anyhow::Result
     Ok(())
 }
 
-/// The textures and model files `loaded` read (as found: a texture of a scene file beside the
-/// scene, a model's beside the model).
+/// The textures and model files `loaded` read (as found: a texture of a scene file's own
+/// material beside the scene, a model's beside the model). A model file is never named .png or
+/// .exr, but may be linked under such a name.
 fn files_read(loaded: &LoadedScene) -> Vec<(&'static str, PathBuf)> {
-    let folder = loaded.source.parent().unwrap_or(Path::new(".")).to_path_buf();
-    let textures = |materials: &mut dyn Iterator<Item = &MaterialDesc>, folder: &Path| {
-        materials
-            .flat_map(|m| [&m.texture, &m.emission_texture])
-            .flatten()
+    let textures = |material: &MaterialDesc, folder: &Path| {
+        material_textures(material)
+            .into_iter()
+            .filter_map(|(_, t)| t)
             .map(|t| ("a texture", folder.join(&t.path)))
             .collect::<Vec<_>>()
     };
-    let mut read = textures(&mut loaded.desc.materials.values(), &folder);
-    for object in &loaded.desc.objects {
-        if let ObjectDesc::Model(m) = object
-            && let Some(model) = &m.loaded
-        {
-            read.push(("a model file", model.file.clone()));
-            let beside = model.file.parent().unwrap_or(Path::new(".")).to_path_buf();
-            read.extend(textures(&mut model.materials.values(), &beside));
-        }
+    let models: Vec<&LoadedModel> = loaded
+        .desc
+        .objects
+        .iter()
+        .filter_map(|o| match o {
+            ObjectDesc::Model(m) => m.loaded.as_deref(),
+            _ => None,
+        })
+        .collect();
+    let scene_folder = loaded.source.parent().unwrap_or(Path::new("."));
+    // A model's materials are in the scene's too (under its object's name): found beside the
+    // model only, not beside the scene.
+    let own = loaded.desc.materials.iter().filter(|(name, _)| !models.iter().any(|m| m.materials.contains_key(*name)));
+    let mut read: Vec<_> = own.flat_map(|(_, material)| textures(material, scene_folder)).collect();
+    for model in models {
+        read.push(("a model file", model.file.clone()));
+        let beside = model.file.parent().unwrap_or(Path::new("."));
+        read.extend(model.materials.values().flat_map(|material| textures(material, beside)));
     }
     read
 }

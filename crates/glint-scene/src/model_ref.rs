@@ -218,10 +218,16 @@ impl ModelDesc {
     }
 }
 
-/// `v` scaled to length 1 (as it is where it is finite and not zero; validation names it).
-fn unit(v: [f64; 3]) -> [f64; 3] {
-    let length = v.iter().map(|x| x * x).sum::<f64>().sqrt();
-    if length.is_finite() && length > 0.0 { v.map(|x| x / length) } else { v }
+/// `moved` (the normal `n` through the cofactor matrix) at `n`'s length where the transform
+/// took it more than 1000-fold from it: the cofactor matrix scales a normal by the square of a
+/// uniform scale, and at 1e-6 or 4e4 validation refused every normal as (near) zero or too
+/// long, though the same scale as a glTF node's was taken. Nearer, `moved` is kept bit for bit
+/// (the tracer normalises each vertex normal itself; a model's images stay as they were).
+fn kept_length(n: [f64; 3], moved: [f64; 3]) -> [f64; 3] {
+    let length = |v: [f64; 3]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
+    let (before, after) = (length(n), length(moved));
+    let ratio = after / before;
+    if ratio.is_finite() && ratio > 0.0 && !(1e-3..=1e3).contains(&ratio) { moved.map(|x| x / ratio) } else { moved }
 }
 
 impl LoadedModel {
@@ -237,10 +243,7 @@ impl LoadedModel {
             .into_iter()
             .map(|mesh| MeshDesc {
                 vertices: mesh.vertices.iter().map(|v| m.point(*v)).collect(),
-                // Renormalised: the cofactor matrix scales a normal by the square of a uniform
-                // scale, and at 1e-6 or 4e4 validation refused every normal as (near) zero or
-                // too long, though the same scale as a glTF node's was taken.
-                normals: mesh.normals.map(|ns| ns.iter().map(|n| unit(m.normal(*n))).collect()),
+                normals: mesh.normals.map(|ns| ns.iter().map(|n| kept_length(*n, m.normal(*n))).collect()),
                 uvs: mesh.uvs,
                 colours: mesh.colours,
                 triangles: if mirror {
@@ -298,26 +301,32 @@ mod tests {
     use crate::MeshDesc;
 
     #[test]
-    fn a_placed_models_normals_are_unit_vectors_at_any_scale() {
+    fn a_placed_models_normals_keep_their_length_at_any_scale_and_identity_keeps_them_bit_for_bit() {
         // The cofactor matrix scales a normal by s² (a uniform scale): at 1e-6 and 4e4 every
         // normal was refused by validation.
         let mut mesh = MeshDesc::new(vec![[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]], vec![[0, 1, 2]], "m", "tri");
-        let tilted = [0.6, 0.0, 0.8];
-        mesh.normals = Some(vec![[0.0, 0.0, 1.0], tilted, [0.0, 0.0, 1.0]]);
-        for scale in [Scale::Uniform(1e-6), Scale::Uniform(4e4), Scale::PerAxis([2.0, 1.0, 1e-3])] {
+        let tilted = [0.6, 0.1, 0.8];
+        mesh.normals = Some(vec![[0.0, 0.0, 1.0], tilted, [0.3, 0.4, 0.5]]);
+        let placed = |scale: Scale| {
             let transform = TransformDesc { scale, ..TransformDesc::default() };
             let model = Model { meshes: vec![mesh.clone()], ..Model::default() };
-            let placed = LoadedModel::place(PathBuf::from("m.glb"), model, &transform, "m");
-            for n in placed.meshes[0].normals.as_ref().expect("normals") {
-                let length = n.iter().map(|x| x * x).sum::<f64>().sqrt();
-                assert!((length - 1.0).abs() < 1e-12, "{scale:?}: {n:?}");
-            }
-            // The inverse transpose: the tilted normal leans by the inverse of the scale's ratio.
-            let n = placed.meshes[0].normals.as_ref().unwrap()[1];
-            if let Scale::PerAxis([sx, _, sz]) = scale {
-                let expected = (tilted[0] / sx) / (tilted[2] / sz);
-                assert!((n[0] / n[2] - expected).abs() < 1e-9 * expected.abs(), "{n:?}");
+            LoadedModel::place(PathBuf::from("m.glb"), model, &transform, "m").meshes[0]
+                .normals
+                .clone()
+                .expect("normals")
+        };
+        assert_eq!(placed(Scale::Uniform(1.0)), mesh.normals.clone().unwrap(), "identity: bit for bit");
+        let length = |v: &[f64; 3]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
+        for s in [1e-6, 4e4] {
+            for (n, was) in placed(Scale::Uniform(s)).iter().zip(mesh.normals.as_ref().unwrap()) {
+                assert!((length(n) / length(was) - 1.0).abs() < 1e-12, "scale {s}: {n:?}");
+                assert!((n[0] * was[2] - n[2] * was[0]).abs() < 1e-12, "scale {s}: the direction kept");
             }
         }
+        // A scale that keeps the length near: as before (the inverse transpose, unscaled); the
+        // tilted normal leans by the inverse of the scale's ratio.
+        let n = placed(Scale::PerAxis([2.0, 1.0, 0.5]))[1];
+        let expected = (tilted[0] / 2.0) / (tilted[2] / 0.5);
+        assert!((n[0] / n[2] - expected).abs() < 1e-12, "{n:?}");
     }
 }

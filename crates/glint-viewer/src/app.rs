@@ -394,8 +394,9 @@ impl ViewerApp {
     /// The windows of the app: "Save image", a typed path, "unsaved changes".
     fn windows(&mut self, ctx: &egui::Context) {
         // Escape closes one window a frame, the dialogs before Help ("unsaved changes" answers
-        // it itself).
+        // it itself); not while a field has focus, which Escape leaves first.
         if !self.dialogs.asking_unsaved()
+            && ctx.memory(|m| m.focused().is_none())
             && ctx.input(|i| i.key_pressed(egui::Key::Escape))
             && !self.dialogs.close_on_escape()
         {

@@ -210,7 +210,7 @@ impl ShardFile {
                     .into_iter()
                     .try_fold(0u64, u64::checked_add);
                 if sum.is_none_or(|s| s > MAX_RAYS) {
-                    return Err(format!("{at}.counts: sum to more than {MAX_RAYS:e} rays"));
+                    return Err(format!("{at}.counts: sum to more than 2^60 rays, more than any sweep traces"));
                 }
             }
             for (j, row) in scene.specular.iter().enumerate() {

@@ -119,8 +119,6 @@ const FRAMING_CAMERA: ([f64; 3], f64) = ([0.45, 0.35, 0.82], 2.6);
 /// Where the default rig's point key light stands, as `FRAMING_CAMERA`.
 const KEY_LIGHT: ([f64; 3], f64) = ([-0.8, 1.6, 1.2], 3.0);
 
-/// How many of the model's radii the placements `made` (`FRAMING_CAMERA`, `KEY_LIGHT`) lie from
-/// its centre, at most, on any axis.
 /// The image sides for a camera of aspect ratio `aspect` (width / height): a side the user gave
 /// alone sizes the other (the height is the default's when neither is given), both given are
 /// kept. A side beyond the image limits is held to them, and said.
@@ -169,6 +167,8 @@ fn size_by_aspect(
     }
 }
 
+/// How many of the model's radii the placements `made` (`FRAMING_CAMERA`, `KEY_LIGHT`) lie from
+/// its centre, at most, on any axis.
 fn made_around(made: &[([f64; 3], f64)]) -> f64 {
     made.iter().flat_map(|(d, s)| d.map(|c| c.abs() * s)).fold(0.0, f64::max)
 }
