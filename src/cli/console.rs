@@ -44,7 +44,6 @@ fn inert(text: &str) -> std::borrow::Cow<'_, str> {
     text.chars().map(|c| if live(c) { c.escape_default().to_string() } else { c.to_string() }).collect()
 }
 
-
 /// `println!` that returns an `io::Result` instead of panicking (`out_line`).
 macro_rules! say {
     ($($arg:tt)*) => {
@@ -67,7 +66,10 @@ mod tests {
 
     #[test]
     fn control_characters_of_a_message_are_written_as_escapes() {
-        assert_eq!(inert("invalid OBJ (`v 1 0 \u{1b}[2J\u{1b}[31mEVIL`)"), "invalid OBJ (`v 1 0 \\u{1b}[2J\\u{1b}[31mEVIL`)");
+        assert_eq!(
+            inert("invalid OBJ (`v 1 0 \u{1b}[2J\u{1b}[31mEVIL`)"),
+            "invalid OBJ (`v 1 0 \\u{1b}[2J\\u{1b}[31mEVIL`)"
+        );
         assert_eq!(inert("a\0b\rc"), "a\\u{0}b\\rc");
         assert_eq!(inert("two lines\n\tand a tab, é ✓"), "two lines\n\tand a tab, é ✓");
     }

@@ -12,6 +12,11 @@ use glint_scene::{LoadedModel, MaterialDesc, ObjectDesc, material_textures};
 pub fn check_outputs(outputs: &[&Path], input: &Path, force: bool) -> anyhow::Result<()> {
     for path in outputs {
         check_format_and_folder(path)?;
+        // Refused before any is written: `--backend both` wrote X-cpu.png and then failed on an
+        // X-gpu.png that was a folder.
+        if path.is_dir() {
+            bail!("{}: is a folder, not a file; choose another output name", path.display());
+        }
         if is_same_file(path, input) {
             bail!(
                 "{}: this output is the input scene {}; writing it would destroy the scene: choose another output name",

@@ -166,6 +166,16 @@ fn the_input_scene_is_never_an_output_by_any_name() {
 }
 
 #[test]
+fn an_output_that_is_a_folder_is_refused_before_any_output_is_written() {
+    let dir = TempDir::new("folder-output");
+    std::fs::create_dir(dir.join("bo-gpu.png")).unwrap();
+    let out = glint(&dir, ["render", "whitted", "--width", "8", "--height", "6", "--backend", "both", "-o", "bo.png"]);
+    let stderr = text(&out.stderr);
+    assert!(!out.status.success() && stderr.contains("bo-gpu.png: is a folder, not a file"), "{stderr}");
+    assert_eq!(dir.listing(), ["bo-gpu.png"], "bo-cpu.png was written before the refusal");
+}
+
+#[test]
 fn a_texture_or_model_the_scene_reads_is_never_an_output() {
     // `-o tex.png` on a scene whose material reads tex.png overwrote the texture without a word.
     let dir = TempDir::new("texture-output");
