@@ -77,6 +77,11 @@ fn whitted_against_gi_shows_beside_wiped_and_as_a_signed_difference() {
     let whitted = gi.whitted_of(rev).expect("Whitted's image of the revision").clone();
     let d = gi.difference_of(rev).expect("the difference").diff.clone();
     let paths = crate::support::gpu_image(&h);
+    // Beside Whitted: the paths the difference was taken from (here the GPU's).
+    let difference = gi.difference_of(rev).expect("the difference");
+    assert!(difference.from_gpu, "a GPU's paths are the difference's");
+    let textures = h.state().renders.textures(rev);
+    assert_eq!(textures.gi.map(|s| s.id), textures.gpu.map(|s| s.id), "the GPU's image is shown beside Whitted");
     // The signed difference is Whitted's image less the paths', pixel for pixel.
     for (i, v) in d.pixels.iter().enumerate() {
         assert_eq!(*v, whitted.pixels[i] - paths.pixels[i], "pixel {i}");

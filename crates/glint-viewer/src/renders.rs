@@ -143,8 +143,9 @@ impl Renders {
         let scene = if self.gi.needs_whitted(rev) { doc.flat_with(&whitted_settings(doc)) } else { None };
         // By field, as in `schedule`: `gi` is borrowed mutably beside the images.
         let gpu = self.gpu.as_ref().and_then(|g| g.latest.as_ref()).filter(|l| l.revision == rev);
-        let cpu = self.cpu.finished.as_ref().filter(|(r, _)| *r == rev).map(|(_, f)| (&f.image, doc.desc.render.spp));
-        self.gi.request(rev, scene, gpu.map(|l| (&l.image, l.samples)).or(cpu));
+        let cpu =
+            self.cpu.finished.as_ref().filter(|(r, _)| *r == rev).map(|(_, f)| (&f.image, doc.desc.render.spp, false));
+        self.gi.request(rev, scene, gpu.map(|l| (&l.image, l.samples, true)).or(cpu));
     }
 
     /// Starts whatever the document's revision still needs; `interacting` (a value or the
@@ -274,22 +275,27 @@ impl Renders {
         }
     }
 
-    /// The paths beside Whitted's: the image `schedule_gi` takes the difference from, the GPU's
-    /// full render of `revision`, else the CPU's, else whatever the GPU shows (a preview, an
-    /// earlier revision). The GPU's half-size preview stood beside Whitted while the CPU had
-    /// finished all its samples, and the difference was of the CPU's.
+    /// The paths beside Whitted's: those the difference of `revision` was taken from (the
+    /// GPU's, else the CPU's; `schedule_gi`), and until there is one, the GPU's full render of
+    /// it, else the CPU's, else whatever the GPU shows (a preview, an earlier revision). The
+    /// GPU's half-size preview stood beside Whitted while the difference was of the CPU's 64
+    /// samples.
     fn gi_texture(&self, revision: u64) -> Option<Shown> {
-        let gpu_full = self.gpu.as_ref().and_then(|g| g.latest.as_ref()).is_some_and(|l| l.revision == revision);
         let cpu = self.cpu_texture.id().map(|id| Shown {
             id,
             size: self.cpu_texture.size,
             stale: self.cpu_of(revision).is_none(),
             held: false,
         });
-        match (gpu_full, cpu) {
-            (false, Some(c)) if !c.stale => Some(c),
-            (_, cpu) => self.textures_gpu(revision).or(cpu),
-        }
+        let from_gpu = match self.gi.difference_of(revision) {
+            Some(d) => d.from_gpu,
+            None => {
+                let gpu_full =
+                    self.gpu.as_ref().and_then(|g| g.latest.as_ref()).is_some_and(|l| l.revision == revision);
+                gpu_full || cpu.is_none_or(|c| c.stale)
+            }
+        };
+        if from_gpu { self.textures_gpu(revision).or(cpu) } else { cpu.or_else(|| self.textures_gpu(revision)) }
     }
 
     fn textures_gpu(&self, revision: u64) -> Option<Shown> {

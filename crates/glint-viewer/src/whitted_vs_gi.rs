@@ -13,8 +13,13 @@ use crate::worker::Worker;
 pub struct GiDifference {
     pub revision: u64,
     pub samples: u32,
+    /// Whether the paths were the GPU's (else the CPU's): the image shown beside Whitted.
+    pub from_gpu: bool,
     pub diff: SignedDifference,
 }
+
+/// The paths a difference is taken from: their image, samples a pixel, and whether the GPU's.
+pub type Paths<'a> = (&'a HdrImage, u32, bool);
 
 #[derive(Debug)]
 pub struct WhittedVsGi {
@@ -58,7 +63,7 @@ impl WhittedVsGi {
     /// Starts what `revision` still needs: its Whitted image (`whitted`, the scene with
     /// Whitted's integrator), then the difference from `gi` (the paths of `samples` a pixel),
     /// again each time the paths have twice the samples of the last difference.
-    pub fn request(&mut self, revision: u64, whitted: Option<FlatScene>, gi: Option<(&HdrImage, u32)>) {
+    pub fn request(&mut self, revision: u64, whitted: Option<FlatScene>, gi: Option<Paths<'_>>) {
         if self.needs_whitted(revision) {
             let Some(scene) = whitted else { return };
             let started = self.whitted_worker.start(revision, move |handle| {
@@ -73,7 +78,7 @@ impl WhittedVsGi {
             return;
         }
         // Still rendering: nothing to hold against the paths yet.
-        let (Some(w), Some((gi, samples))) = (self.whitted_of(revision), gi) else { return };
+        let (Some(w), Some((gi, samples, from_gpu))) = (self.whitted_of(revision), gi) else { return };
         let current = self.difference_of(revision).map(|d| d.samples);
         let due = current.is_none_or(|n| samples >= 2 * n);
         if !due || self.diff_worker.is_running() || (w.width, w.height) != (gi.width, gi.height) {
@@ -83,6 +88,7 @@ impl WhittedVsGi {
         let started = self.diff_worker.start(revision, move |_| GiDifference {
             revision,
             samples,
+            from_gpu,
             diff: SignedDifference::new(&w, &gi),
         });
         if let Err(e) = started {
