@@ -55,7 +55,13 @@ fn resolve_index(spec: TileSpec) -> anyhow::Result<(u32, String)> {
     for (name, scheduler) in INDEX_VARIABLES {
         if let Ok(value) = std::env::var(name) {
             let i = value.trim().parse::<u32>().with_context(|| {
-                format!("{name}='{value}' ({scheduler}) is not a whole number, so it names no tile")
+                // A whole number too large is said so, not called no number.
+                let what = if value.trim().bytes().all(|b| b.is_ascii_digit()) && !value.trim().is_empty() {
+                    format!("is beyond {}", u32::MAX)
+                } else {
+                    "is not a whole number".into()
+                };
+                format!("{name}='{value}' ({scheduler}) {what}, so it names no tile")
             })?;
             return Ok((i, format!("{name} ({scheduler})")));
         }

@@ -555,6 +555,7 @@ fn report_shards_merge_into_the_one_machine_report_and_missing_ones_are_named() 
         ("errors.rmse", toml::Value::Float(f64::NAN), "rows[0].errors.rmse: NaN is not a finite number ≥ 0"),
         // Summed for rays per second: it overflowed (a panic in debug builds, wrapped in release).
         ("counts.camera", toml::Value::Integer(i64::MAX), "rows[0].counts: sum to more than"),
+        ("errors.psnr", toml::Value::Float(f64::NEG_INFINITY), "rows[0].errors.psnr: is -inf, which no image pair has"),
     ] {
         let done = edited(&|s| set_first_row(s, key, value.clone()), "damaged");
         let stderr = text(&done.stderr);

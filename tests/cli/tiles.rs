@@ -288,6 +288,19 @@ fn the_tile_index_comes_from_the_flag_or_a_schedulers_variable() {
         stderr.contains("from SLURM_ARRAY_TASK_ID (Slurm job arrays)") && stderr.contains("--array=0-2"),
         "{stderr}"
     );
+    // A variable beyond u32 is said to be so, not called no number; one that is none, so.
+    for (value, wanted) in [
+        ("99999999999999999999", "SLURM_ARRAY_TASK_ID='99999999999999999999' (Slurm job arrays) is beyond 4294967295"),
+        ("x1", "SLURM_ARRAY_TASK_ID='x1' (Slurm job arrays) is not a whole number"),
+    ] {
+        let done = std::process::Command::new(env!("CARGO_BIN_EXE_glint"))
+            .args(["render", "whitted", "--width", "24", "--height", "16", "--tile", "3", "-q"])
+            .current_dir(&*dir)
+            .env("SLURM_ARRAY_TASK_ID", value)
+            .output()
+            .expect("run glint");
+        assert!(!done.status.success() && text(&done.stderr).contains(wanted), "{}", text(&done.stderr));
+    }
     for (args, wanted) in [
         (&["--tile", "3/3"][..], "tiles are numbered 0 to 2"),
         (&["--tile", "1/3", "--backend", "both"][..], "--tile renders on one backend"),

@@ -198,8 +198,10 @@ impl ShardFile {
                 ] {
                     number(format!("{at}.errors.{name}"), v)?;
                 }
-                if e.psnr.is_nan() {
-                    return Err(format!("{at}.errors.psnr: is not a number"));
+                // +inf: identical images; −inf would need an infinite error, which finite images
+                // (non-finite ones are refused) never have.
+                if e.psnr.is_nan() || e.psnr == f64::NEG_INFINITY {
+                    return Err(format!("{at}.errors.psnr: is {}, which no image pair has", e.psnr));
                 }
                 for (name, v) in [("twin_rmse", row.twin_rmse), ("twin_rays_pct", row.twin_rays_pct.map(f64::abs))] {
                     v.map_or(Ok(()), |v| number(format!("{at}.{name}"), v))?;
