@@ -130,36 +130,29 @@ fn size_by_aspect(
     camera: &str,
     warnings: &mut Vec<FieldIssue>,
 ) {
-    let held = |wanted: f64| wanted.clamp(1.0, f64::from(MAX_IMAGE_SIDE));
     // A side no image can have is left to the settings' validation, which names its flag.
     let valid = |side: Option<u32>| side.filter(|s| (1..=MAX_IMAGE_SIDE).contains(s));
-    // The side sized, and the image the ratio asks (width, height).
-    let (side, wanted) = match (valid(width), valid(height)) {
-        (Some(w), Some(h)) => {
-            (render.width, render.height) = (w, h);
-            return;
-        }
-        (Some(w), None) => {
-            let wanted = (f64::from(w) / aspect).round();
-            (render.width, render.height) = (w, held(wanted) as u32);
-            ("height", (f64::from(w), wanted))
-        }
+    // The image the ratio asks (width, height), one side of it given.
+    let wanted = match (valid(width), valid(height)) {
+        (Some(w), Some(h)) => (f64::from(w), f64::from(h)),
+        (Some(w), None) => (f64::from(w), (f64::from(w) / aspect).round()),
         (None, h) => {
-            let h = h.unwrap_or(render.height);
-            let wanted = (f64::from(h) * aspect).round();
-            (render.width, render.height) = (held(wanted) as u32, h);
-            ("width", (wanted, f64::from(h)))
+            let h = f64::from(h.unwrap_or(render.height));
+            ((h * aspect).round(), h)
         }
     };
-    let (was, now) = if side == "width" { (wanted.0, render.width) } else { (wanted.1, render.height) };
-    if was != f64::from(now) {
+    let held = |side: f64| side.clamp(1.0, f64::from(MAX_IMAGE_SIDE));
+    let (w, h) = (held(wanted.0), held(wanted.1));
+    (render.width, render.height) = (w as u32, h as u32);
+    let clamped = if w != wanted.0 { Some(("width", w)) } else { (h != wanted.1).then_some(("height", h)) };
+    if let Some((side, now)) = clamped {
         warnings.push(FieldIssue {
             field: format!("camera `{camera}`"),
             problem: format!(
                 "its aspect ratio {} would make the image {}x{} pixels; the {side} is held to {now} \
                  (sides in [1, {MAX_IMAGE_SIDE}]): set --width and --height",
                 // To 7 digits: the lab scene's 4:3 is 1.3333333333333333 in full.
-                glint_scene::format_number(format!("{aspect:.6e}").parse().unwrap_or(aspect)),
+                glint_scene::format_rounded(aspect, 7),
                 glint_scene::format_number(wanted.0),
                 glint_scene::format_number(wanted.1),
             ),

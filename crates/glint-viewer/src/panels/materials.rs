@@ -107,8 +107,7 @@ fn numbers(values: &[f64]) -> String {
 /// Values the import computed, to 7 significant digits, as the file's f32 factors are shown:
 /// a roughness of 0.05 maps to n = 319998, which f64 arithmetic gives as 319997.9999999999.
 fn computed(values: &[f64]) -> String {
-    let rounded: Vec<f64> = values.iter().map(|v| format!("{v:.6e}").parse().unwrap_or(*v)).collect();
-    numbers(&rounded)
+    values.iter().map(|v| glint_scene::format_rounded(*v, 7)).collect::<Vec<_>>().join(" ")
 }
 
 /// For a material a model file brought in: what the file said (glTF factors, MTL statements)
