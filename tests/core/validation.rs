@@ -431,6 +431,26 @@ fn a_light_written_as_an_array_says_a_light_is_a_table() {
 }
 
 #[test]
+fn a_table_written_as_an_array_is_refused_not_read_by_position() {
+    // Before: serde's derive read `render = [16, 12, 3]` as width 16, height 12, spp 3.
+    let camera = "[camera]\nposition = [0.0, 1.0, -5.0]\nlook_at = [0.0, 0.5, 0.0]\n";
+    let expected = ["invalid type: sequence, expected a table ([section] or { key = value, … })"];
+    for head in [
+        "render = [16, 12, 3]\n",
+        "world = [0.1, [0.0, 0.0, 0.0]]\n",
+        "world = { global_attenuation = [1.0, 0.0, 0.0] }\n",
+        "materials = { red = [1.0, 0.5] }\n",
+        "materials = { red = { checker = [0.2, 1.0] } }\n",
+        "materials = { red = { texture = { path = \"t.png\", transform = [[1.0, 1.0]] } } }\n",
+    ] {
+        expect_parse_error(&format!("{head}{camera}"), &expected);
+    }
+    expect_parse_error("camera = [[0.0, 1.0, -5.0], [0.0, 0.5, 0.0]]\n", &expected);
+    let model = format!("{camera}[[objects]]\ntype = \"model\"\npath = \"m.obj\"\ntransform = [[1.0, 2.0, 3.0]]\n");
+    expect_parse_error(&model, &["objects[0]", "expected a table"]);
+}
+
+#[test]
 fn a_light_error_keeps_the_position_of_its_field() {
     // Lights are read by their derive, which keeps the parser's position of the bad value.
     expect_parse_error(

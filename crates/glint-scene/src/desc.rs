@@ -27,13 +27,14 @@ pub struct SceneDesc {
     /// Where the scene comes from (paper, figure, author).
     #[serde(default)]
     pub provenance: String,
-    #[serde(default)]
+    #[serde(default, deserialize_with = "crate::tables::table")]
     pub render: RenderSettings,
+    #[serde(deserialize_with = "crate::tables::table")]
     pub camera: CameraDesc,
-    #[serde(default)]
+    #[serde(default, deserialize_with = "crate::tables::table")]
     pub world: WorldDesc,
     /// Named materials; objects refer to them by name.
-    #[serde(default)]
+    #[serde(default, deserialize_with = "crate::tables::tables_by_name")]
     pub materials: BTreeMap<String, MaterialDesc>,
     #[serde(default, deserialize_with = "lights_as_tables")]
     pub lights: Vec<LightDesc>,
@@ -146,7 +147,7 @@ pub struct WorldDesc {
     pub background: Rgb,
     /// Attenuation of the reflected and transmitted terms by the distance their ray travelled
     /// (the seed's "distance attenuation coefficients with k_rg and k_s"); (1, 0, 0) is off.
-    #[serde(skip_serializing_if = "GlobalAttenuation::is_none")]
+    #[serde(skip_serializing_if = "GlobalAttenuation::is_none", deserialize_with = "crate::tables::table")]
     pub global_attenuation: GlobalAttenuation,
 }
 

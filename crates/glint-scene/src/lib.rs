@@ -20,6 +20,7 @@ mod overflow;
 mod ray_tree;
 mod rgb;
 mod storage;
+mod tables;
 mod texture;
 mod transform;
 mod validate;

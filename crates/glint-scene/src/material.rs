@@ -45,14 +45,14 @@ pub struct MaterialDesc {
     pub emission: Rgb,
     /// A two-colour checker (k_d and `checker.kd`) in planar coordinates: stored as a 2×2
     /// texture, so it colours k_a as well as k_d, as `texture` does.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(skip_serializing_if = "Option::is_none", deserialize_with = "crate::tables::option_table")]
     pub checker: Option<CheckerDesc>,
     /// Base-colour texture: its colour multiplies k_a and k_d (POV-Ray's pigment, OpenGL's
     /// ambient-and-diffuse colour material, glTF's base colour × factor).
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(skip_serializing_if = "Option::is_none", deserialize_with = "crate::tables::option_table")]
     pub texture: Option<TextureDesc>,
     /// Emission texture: its colour multiplies E_m.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(skip_serializing_if = "Option::is_none", deserialize_with = "crate::tables::option_table")]
     pub emission_texture: Option<TextureDesc>,
 }
 

@@ -22,7 +22,7 @@ use crate::transform::Mat4;
 pub struct ModelDesc {
     /// The model file (`.gltf`, `.glb`, `.obj`), relative to the scene file's folder.
     pub path: String,
-    #[serde(default, skip_serializing_if = "TransformDesc::is_identity")]
+    #[serde(default, skip_serializing_if = "TransformDesc::is_identity", deserialize_with = "crate::tables::table")]
     pub transform: TransformDesc,
     /// The glTF scene to place (default: the file's default scene, else its first).
     #[serde(default, skip_serializing_if = "Option::is_none")]

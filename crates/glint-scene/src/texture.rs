@@ -51,7 +51,7 @@ pub struct TextureDesc {
     pub wrap_t: Wrap,
     #[serde(default)]
     pub filter: Filter,
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(default, skip_serializing_if = "Option::is_none", deserialize_with = "crate::tables::option_table")]
     pub transform: Option<UvTransform>,
     /// The decoded image: filled when a scene file is loaded (`load_textures`), or by an
     /// importer that decoded it itself (`TextureImage::decode`); never written to a file.
