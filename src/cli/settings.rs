@@ -56,10 +56,10 @@ pub struct LoadArgs {
     pub resolution: Option<u32>,
     /// The glTF scene to open (0-based; default: the file's default scene, else its first)
     #[arg(long, value_name = "N", allow_negative_numbers = true, value_parser = parse_index)]
-    pub scene_index: Option<usize>,
+    pub scene_index: Option<u32>,
     /// The model file's camera to look through (0-based; default: its first, or one framing the model)
     #[arg(long, value_name = "N", allow_negative_numbers = true, value_parser = parse_index)]
-    pub camera: Option<usize>,
+    pub camera: Option<u32>,
     /// Scale of a model file's light intensities (candela, lux) into I_d and I_s, in (0, 1e6]; default 1
     #[arg(long, value_name = "FACTOR", allow_negative_numbers = true, value_parser = parse_exposure)]
     pub exposure: Option<f64>,
@@ -79,7 +79,7 @@ impl LoadArgs {
     pub fn options(&self, settings: Option<&SettingsArgs>) -> LoadOptions {
         let import = ImportOptions {
             scene_index: self.scene_index,
-            camera: self.camera,
+            camera: self.camera.map(|i| i as usize),
             exposure: self.exposure.unwrap_or(ImportOptions::default().exposure),
             ground: self.ground.unwrap_or_default(),
             lights: true,
@@ -94,8 +94,9 @@ fn parse_size(s: &str) -> Result<u64, String> {
     memory::parse_size(s)
 }
 
-fn parse_index(s: &str) -> Result<usize, String> {
-    s.trim().parse::<usize>().map_err(|_| format!("'{s}' is not an index (a whole number from 0)"))
+/// u32, as every whole number in a scene file (a scene's `scene_index`).
+fn parse_index(s: &str) -> Result<u32, String> {
+    s.trim().parse::<u32>().map_err(|_| format!("'{s}' is not an index (a whole number from 0 to {})", u32::MAX))
 }
 
 fn parse_ground(s: &str) -> Result<Ground, String> {

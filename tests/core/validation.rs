@@ -451,6 +451,14 @@ fn a_table_written_as_an_array_is_refused_not_read_by_position() {
 }
 
 #[test]
+fn a_model_scene_index_is_a_whole_number_as_the_format_names_them() {
+    // Before: "expected usize", a type the format does not name.
+    let camera = "[camera]\nposition = [0.0, 1.0, -5.0]\nlook_at = [0.0, 0.5, 0.0]\n";
+    let model = format!("{camera}[[objects]]\ntype = \"model\"\npath = \"m.gltf\"\nscene_index = -1\n");
+    expect_parse_error(&model, &["objects[0] (model): scene_index", "expected u32"]);
+}
+
+#[test]
 fn a_light_error_keeps_the_position_of_its_field() {
     // Lights are read by their derive, which keeps the parser's position of the bad value.
     expect_parse_error(

@@ -26,7 +26,7 @@ pub struct ModelDesc {
     pub transform: TransformDesc,
     /// The glTF scene to place (default: the file's default scene, else its first).
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub scene_index: Option<usize>,
+    pub scene_index: Option<u32>,
     #[serde(default, skip_serializing_if = "String::is_empty")]
     pub name: String,
     /// Light the scene with the file's own lights (glTF `KHR_lights_punctual`), placed with the

@@ -21,7 +21,7 @@ use glint_scene::{
 #[derive(Clone, Debug, PartialEq)]
 pub struct ImportOptions {
     /// The glTF scene to load; the file's default scene (else its first) when `None`.
-    pub scene_index: Option<usize>,
+    pub scene_index: Option<u32>,
     /// The file's camera to look through; its first camera when `None`, or the lab camera
     /// framing the model when the file has none.
     pub camera: Option<usize>,

@@ -56,7 +56,7 @@ pub fn load_gltf(path: &Path, options: &ImportOptions) -> Result<Model, GltfErro
     }
     let buffers = load_buffers(&gltf, path)?;
     let scene = match options.scene_index {
-        Some(i) => gltf.scenes().nth(i).ok_or_else(|| {
+        Some(i) => gltf.scenes().nth(i as usize).ok_or_else(|| {
             at(
                 format!("scenes[{i}]"),
                 format!(
