@@ -395,6 +395,19 @@ fn report_renders_every_scene_with_the_integrator_it_is_given() {
     let forced = again(true);
     assert!(forced.status.success(), "{}", text(&forced.stderr));
     assert!(std::fs::read_to_string(&md_path).expect("report.md").contains("8×6"), "--force did not replace it");
+    // Both refusals come before the sweep ("nothing was run"), not after its minutes of renders.
+    assert!(text(&refused.stderr).contains("nothing was run"), "{}", text(&refused.stderr));
+    // A folder where a report file goes: refused before the sweep, with nothing written (before,
+    // the sweep ran and the move into place failed on it after the first files had moved).
+    let md = std::fs::read_to_string(&md_path).expect("report.md");
+    std::fs::create_dir(out_dir.join("error_vs_time_lights.png")).expect("mkdir");
+    let refused = again(true);
+    assert!(!refused.status.success(), "a folder named as a plot was accepted");
+    let stderr = text(&refused.stderr);
+    assert!(stderr.contains("error_vs_time_lights.png: is a folder, not a file"), "{stderr}");
+    assert!(stderr.contains("nothing was run"), "{stderr}");
+    assert_eq!(std::fs::read_to_string(&md_path).expect("kept"), md, "the refused run changed report.md");
+    assert!(listing().iter().all(|n| !n.to_string_lossy().starts_with(".glint-report")), "{:?}", listing());
 
     let out = glint(&dir, ["report", "--quick", "--cpu-only", "--integrator", "radiosity"]);
     assert!(!out.status.success());

@@ -102,10 +102,15 @@ fn draw(g: &GiResult, runs: usize) -> anyhow::Result<Vec<u8>> {
     Ok(buf)
 }
 
+/// The plot's file name for the scene `scene`.
+pub fn file_name(scene: &str) -> String {
+    format!("gi_vs_time_{scene}.png")
+}
+
 /// Writes `gi_vs_time_SCENE.png` into `dir`.
 pub fn write_gi_plot(dir: &Path, g: &GiResult, runs: usize) -> anyhow::Result<PathBuf> {
     let rgb = draw(g, runs)?;
-    let path = dir.join(format!("gi_vs_time_{}.png", g.scene));
+    let path = dir.join(file_name(&g.scene));
     let metadata = vec![
         ("Software".to_string(), format!("glint {}", env!("CARGO_PKG_VERSION"))),
         ("Title".to_string(), format!("{}: Whitted and paths against a path-traced reference", g.scene)),

@@ -167,7 +167,11 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
         )
     };
     let gpu_device = gpu.as_ref().map(|g| g.context().adapter.with_driver());
-    let staging = staging::Staging::new(&args.out)?;
+    let files = match args.shard {
+        Some(spec) => vec![shard::file_name(spec)],
+        None => report_files(scenes.iter().map(|s| s.name.as_str())),
+    };
+    let staging = staging::Staging::new(&args.out, &files, args.force)?;
     let out = staging.path();
     let backends: Vec<Backend> = if gpu.is_some() { vec![Backend::Cpu, Backend::Gpu] } else { vec![Backend::Cpu] };
     let threads =
@@ -346,7 +350,7 @@ fn merge(args: &ReportArgs, started: Instant) -> anyhow::Result<()> {
     let gpu_device = files[0].gpu_device.clone();
     let gi_results = shard::join_gi(&mut files)?;
     let mut results = shard::join(&mut files, &planned)?;
-    let staging = staging::Staging::new(&args.out)?;
+    let staging = staging::Staging::new(&args.out, &report_files(results.iter().map(|r| r.name.as_str())), args.force)?;
     let out = staging.path();
     for result in &mut results {
         pareto::mark_fronts(&mut result.rows);
@@ -391,9 +395,10 @@ fn write_outputs(
     machines: &[String],
     gi_results: &[gi::GiResult],
 ) -> anyhow::Result<()> {
-    write_report_file(&out.join("report.csv"), &csv::render_csv(results, devices))?;
-    write_report_file(&out.join("specular.csv"), &csv::render_specular_csv(results))?;
-    write_report_file(&out.join("gi.csv"), &gi::render_csv(gi_results))?;
+    let [report_csv, specular_csv, gi_csv, report_md] = TABLES;
+    write_report_file(&out.join(report_csv), &csv::render_csv(results, devices))?;
+    write_report_file(&out.join(specular_csv), &csv::render_specular_csv(results))?;
+    write_report_file(&out.join(gi_csv), &gi::render_csv(gi_results))?;
     let mut md = markdown::render_markdown(setup, results);
     md.push_str(&gi::render_markdown(gi_results));
     if !machines.is_empty() {
@@ -414,7 +419,16 @@ fn write_outputs(
             md.push_str(&format!("- {m}\n"));
         }
     }
-    write_report_file(&out.join("report.md"), &md)
+    write_report_file(&out.join(report_md), &md)
+}
+
+/// The tables and text a whole report writes beside its plots.
+const TABLES: [&str; 4] = ["report.csv", "specular.csv", "gi.csv", "report.md"];
+
+/// Every file a whole report over scenes named `scenes` writes into `--out`.
+fn report_files<'a>(scenes: impl IntoIterator<Item = &'a str>) -> Vec<String> {
+    let plots = scenes.into_iter().flat_map(|s| [plot::file_name(s), gi_plot::file_name(s)]);
+    TABLES.iter().map(|t| t.to_string()).chain(plots).collect()
 }
 
 /// Replaces `path` atomically, as every file glint writes (`glint_io::atomic`).

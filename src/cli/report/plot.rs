@@ -263,10 +263,15 @@ fn draw(scene: &SceneResult, runs: usize) -> anyhow::Result<Vec<u8>> {
     Ok(buf)
 }
 
+/// The plot's file name for the scene `scene`.
+pub fn file_name(scene: &str) -> String {
+    format!("error_vs_time_{scene}.png")
+}
+
 /// Writes `error_vs_time_SCENE.png` into `dir` (atomically, via glint-core's PNG writer).
 pub fn write_plot(dir: &Path, scene: &SceneResult, runs: usize) -> anyhow::Result<std::path::PathBuf> {
     let rgb = draw(scene, runs)?;
-    let path = dir.join(format!("error_vs_time_{}.png", scene.name));
+    let path = dir.join(file_name(&scene.name));
     let metadata = vec![
         ("Software".to_string(), format!("glint {}", env!("CARGO_PKG_VERSION"))),
         ("Title".to_string(), format!("{}: RMSE against render time", scene.name)),

@@ -14,8 +14,13 @@ pub struct Staging {
 }
 
 impl Staging {
-    /// A staging folder in `out` (created if missing).
-    pub fn new(out: &Path) -> anyhow::Result<Self> {
+    /// A staging folder in `out` (created if missing), for a run that will write `files` there:
+    /// a name that is a folder, or a read-only file without `force`, is refused now, before the
+    /// sweep, instead of when its minutes of results are published.
+    pub fn new(out: &Path, files: &[String], force: bool) -> anyhow::Result<Self> {
+        for name in files {
+            check_destination(&out.join(name), force, "nothing was run")?;
+        }
         std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
         let dir = TempDir::with_prefix_in(".glint-report-", out)
             .with_context(|| format!("cannot create a folder in {}", out.display()))?;
@@ -41,11 +46,7 @@ impl Staging {
         }
         names.sort();
         for name in &names {
-            let dest = self.out.join(name);
-            let read_only = std::fs::metadata(&dest).is_ok_and(|m| m.permissions().readonly());
-            if read_only && !force {
-                bail!("{}: read-only; pass --force to replace it; nothing was written", dest.display());
-            }
+            check_destination(&self.out.join(name), force, "nothing was written")?;
         }
         for name in &names {
             let dest = self.out.join(name);
@@ -56,6 +57,22 @@ impl Staging {
     }
 }
 
+/// Whether a file may be moved to `dest`: not over a folder (the rename fails), and not over a
+/// read-only file unless `force`; `outcome` says what the refusal left undone.
+fn check_destination(dest: &Path, force: bool, outcome: &str) -> anyhow::Result<()> {
+    let Ok(meta) = std::fs::metadata(dest) else { return Ok(()) };
+    if meta.is_dir() {
+        bail!(
+            "{}: is a folder, not a file, and the report writes this name: move it or choose another --out; {outcome}",
+            dest.display()
+        );
+    }
+    if meta.permissions().readonly() && !force {
+        bail!("{}: read-only; pass --force to replace it; {outcome}", dest.display());
+    }
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -64,7 +81,7 @@ mod tests {
     fn files_appear_only_when_published_and_a_read_only_one_is_kept_without_force() {
         let root = tempfile::tempdir().expect("temp folder");
         let out = root.path().join("out");
-        let staging = Staging::new(&out).expect("staging");
+        let staging = Staging::new(&out, &[], false).expect("staging");
         std::fs::write(staging.path().join("report.md"), "new").expect("write");
         assert!(!out.join("report.md").exists(), "a staged file is not in --out yet");
         staging.publish(false).expect("publish");
@@ -75,7 +92,7 @@ mod tests {
         let mut permissions = std::fs::metadata(out.join("report.md")).expect("meta").permissions();
         permissions.set_readonly(true);
         std::fs::set_permissions(out.join("report.md"), permissions).expect("chmod");
-        let staging = Staging::new(&out).expect("staging");
+        let staging = Staging::new(&out, &[], false).expect("staging");
         std::fs::write(staging.path().join("a.png"), "plot").expect("write");
         std::fs::write(staging.path().join("report.md"), "newer").expect("write");
         let e = staging.publish(false).expect_err("read-only").to_string();
@@ -83,13 +100,26 @@ mod tests {
         assert!(!out.join("a.png").exists(), "a refused run moved a file");
         assert_eq!(std::fs::read_dir(&out).expect("out").count(), 1, "the staging folder is gone");
 
-        let staging = Staging::new(&out).expect("staging");
+        let staging = Staging::new(&out, &[], false).expect("staging");
         std::fs::write(staging.path().join("report.md"), "forced").expect("write");
         staging.publish(true).expect("--force");
         assert_eq!(std::fs::read_to_string(out.join("report.md")).expect("published"), "forced");
 
+        // A folder where a file goes: refused when the run starts, and again when it publishes
+        // (one made meanwhile), before any file moves.
+        std::fs::create_dir(out.join("a.png")).expect("mkdir");
+        let e = Staging::new(&out, &["a.png".into()], true).err().expect("a folder").to_string();
+        assert!(e.contains("a.png: is a folder, not a file") && e.contains("nothing was run"), "{e}");
+        let staging = Staging::new(&out, &[], true).expect("staging");
+        std::fs::write(staging.path().join("a.png"), "plot").expect("write");
+        std::fs::write(staging.path().join("report.md"), "beside").expect("write");
+        let e = staging.publish(true).expect_err("a folder").to_string();
+        assert!(e.contains("a.png: is a folder") && e.contains("nothing was written"), "{e}");
+        assert_eq!(std::fs::read_to_string(out.join("report.md")).expect("kept"), "forced");
+        std::fs::remove_dir(out.join("a.png")).expect("rmdir");
+
         // Dropped unpublished (a failed run): --out keeps what it had.
-        let staging = Staging::new(&out).expect("staging");
+        let staging = Staging::new(&out, &[], false).expect("staging");
         std::fs::write(staging.path().join("report.md"), "half").expect("write");
         drop(staging);
         assert_eq!(std::fs::read_to_string(out.join("report.md")).expect("kept"), "forced");
