@@ -51,6 +51,9 @@ pub struct GiRow {
     pub depth: u32,
     /// Whitted's rows only.
     pub ambient: Option<Ambient>,
+    /// The I_a a Whitted row rendered with: as written, 0, or fitted at its own depth and samples.
+    #[serde(default)]
+    pub ambient_rgb: Option<[f64; 3]>,
     pub median: Duration,
     pub rmse: f64,
 }
@@ -62,6 +65,8 @@ pub struct GiResult {
     pub reference_depth: u32,
     /// The reference's own error (RMSE), from the spread of its `REFERENCE_GROUPS` renders.
     pub reference_noise: f64,
+    /// The fitted I_a of Whitted's deepest, most sampled rows (each fitted row has its own fit
+    /// at its depth and samples, `GiRow::ambient_rgb`).
     pub fitted: [f64; 3],
     /// Whether the ambient term changes Whitted's image at all (a material in view has k_a).
     #[serde(default = "yes")]
@@ -163,11 +168,23 @@ pub fn measure(
     let (reference, reference_noise) = mean_and_noise(&groups);
     drop(groups);
     let whitted = RenderSettings { integrator: Integrator::Whitted, indirect: true, ..base.clone() };
-    let fit = fit_ambient(&loaded.desc, &whitted, &reference, &options)
-        .with_context(|| format!("{name}: fitting the ambient term"))?;
+    // The fitted rows' I_a, each fitted at the row's own depth and samples: the I_a that brings
+    // Whitted's image closest to the reference depends on both (fitted once at the scene's own
+    // settings, a 1-spp depth-5 row of cornell-gi got 0.225 where its own fit is 0.243).
+    let mut fits = Vec::new();
+    for &depth in depths {
+        for &spp in spps {
+            let s = RenderSettings { spp, max_depth: depth, ..whitted.clone() };
+            let fit = fit_ambient(&loaded.desc, &s, &reference, &options)
+                .with_context(|| format!("{name}: fitting the ambient term at depth {depth}, {spp} spp"))?;
+            fits.push(((depth, spp), fit));
+        }
+    }
+    let fit_at = |depth: u32, spp: u32| &fits.iter().find(|(at, _)| *at == (depth, spp)).expect("a fit per row").1;
     // The CPU's Whitted images at the deepest, most sampled setting, as written and without the
     // ambient, are what the split by kind holds the paths' kinds against (kept from the warm-up).
     let deepest = (*depths.last().expect("Whitted depths"), *spps.last().expect("Whitted spp"));
+    let fit = fit_at(deepest.0, deepest.1);
     let (mut written, mut without) = (None, None);
 
     let mut planned: Vec<(GiRow, FlatScene)> = Vec::new();
@@ -179,7 +196,7 @@ pub fn measure(
                     desc.world.ambient = match ambient {
                         Ambient::AsWritten => desc.world.ambient,
                         Ambient::Without => Rgb([0.0; 3]),
-                        Ambient::Fitted => Rgb(fit.ambient),
+                        Ambient::Fitted => Rgb(fit_at(depth, spp).ambient),
                     };
                     let s = RenderSettings { spp, max_depth: depth, ..whitted.clone() };
                     let row = GiRow {
@@ -188,6 +205,7 @@ pub fn measure(
                         spp,
                         depth,
                         ambient: Some(ambient),
+                        ambient_rgb: Some(desc.world.ambient.0),
                         median: Duration::ZERO,
                         rmse: 0.0,
                     };
@@ -203,6 +221,7 @@ pub fn measure(
                 spp,
                 depth: path_depth,
                 ambient: None,
+                ambient_rgb: None,
                 median: Duration::ZERO,
                 rmse: 0.0,
             };

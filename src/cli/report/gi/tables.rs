@@ -60,6 +60,9 @@ pub const HEADER: &[&str] = &[
     "spp",
     "max_depth",
     "ambient",
+    "ambient_r",
+    "ambient_g",
+    "ambient_b",
     "render_ms_median",
     "rmse_vs_path_reference",
     "reference_spp",
@@ -74,13 +77,14 @@ pub fn render_csv(results: &[GiResult]) -> String {
         for r in &g.rows {
             let _ = writeln!(
                 out,
-                "{},{},{},{},{},{},{},{:e},{},{:e},{}",
+                "{},{},{},{},{},{},{},{},{:e},{},{:e},{}",
                 g.scene,
                 r.integrator.name(),
                 r.backend.name(),
                 r.spp,
                 r.depth,
                 r.ambient.map_or("", Ambient::name),
+                r.ambient_rgb.map_or(",,".to_string(), |a| format!("{:e},{:e},{:e}", a[0], a[1], a[2])),
                 crate::cli::units::ms_csv(r.median),
                 r.rmse,
                 g.reference_spp,
@@ -90,6 +94,12 @@ pub fn render_csv(results: &[GiResult]) -> String {
         }
     }
     out
+}
+
+/// The depth and samples of the fitted row `GiResult::fitted` belongs to: the deepest, most
+/// sampled Whitted row's.
+fn deepest_fit(g: &GiResult) -> Option<(u32, u32)> {
+    g.rows.iter().filter(|r| r.ambient == Some(Ambient::Fitted)).map(|r| (r.depth, r.spp)).max()
 }
 
 /// The report's section: per scene, the fitted ambient, the path tracer's slope and the time
@@ -102,7 +112,8 @@ pub fn render_markdown(results: &[GiResult]) -> String {
          so rows approach it as their own noise falls; the estimate is itself uncertain where fireflies dominate). \
          Whitted's rows come with the \
          ambient term as the scene writes it, without it, and fitted to the reference (the I_a per channel that \
-         minimises Whitted's error, `glint_core::ambient_fit`). gi.csv has every row.\n",
+         minimises Whitted's error at the row's own depth and samples, `glint_core::ambient_fit`). gi.csv has every \
+         row, with the I_a it rendered with.\n",
     );
     let fmt3 = |v: [f64; 3]| format!("({:.3}, {:.3}, {:.3})", v[0], v[1], v[2]);
     for g in results {
@@ -113,12 +124,15 @@ pub fn render_markdown(results: &[GiResult]) -> String {
         };
         let _ = writeln!(
             md,
-            "\n### {}\n\nReference: {} paths a pixel, depth {}, its noise {:.2e} RMSE. Ambient as written {}, fitted {fitted}.",
+            "\n### {}\n\nReference: {} paths a pixel, depth {}, its noise {:.2e} RMSE. Ambient as written {}, fitted {fitted}{}.",
             g.scene,
             g.reference_spp,
             g.reference_depth,
             g.reference_noise,
             fmt3(g.written),
+            deepest_fit(g).filter(|_| g.fit_determined).map_or(String::new(), |(depth, spp)| format!(
+                " at depth {depth}, {spp} spp (each fitted row at its own: gi.csv)"
+            )),
         );
         if let Some(problem) = &g.gain_warning {
             let _ = writeln!(
@@ -193,7 +207,16 @@ mod tests {
 
     fn row(integrator: Integrator, backend: Backend, ms: u64, rmse: f64) -> GiRow {
         let ambient = (integrator == Integrator::Whitted).then_some(Ambient::Fitted);
-        GiRow { integrator, backend, spp: 1, depth: 5, ambient, median: Duration::from_millis(ms), rmse }
+        GiRow {
+            integrator,
+            backend,
+            spp: 1,
+            depth: 5,
+            ambient,
+            ambient_rgb: None,
+            median: Duration::from_millis(ms),
+            rmse,
+        }
     }
 
     #[test]
