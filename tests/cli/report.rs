@@ -418,6 +418,7 @@ fn report_renders_every_scene_with_the_integrator_it_is_given() {
     // A folder where a report file goes: refused before the sweep, with nothing written (before,
     // the sweep ran and the move into place failed on it after the first files had moved).
     let md = std::fs::read_to_string(&md_path).expect("report.md");
+    std::fs::remove_file(out_dir.join("error_vs_time_lights.png")).expect("the plot of the run before");
     std::fs::create_dir(out_dir.join("error_vs_time_lights.png")).expect("mkdir");
     let refused = again(true);
     assert!(!refused.status.success(), "a folder named as a plot was accepted");
