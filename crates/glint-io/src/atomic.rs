@@ -8,7 +8,7 @@
 //! the file system allows.
 
 use std::fs::File;
-use std::io::{Seek, SeekFrom, Write};
+use std::io::{Read, Seek, SeekFrom, Write};
 use std::path::{Path, PathBuf};
 
 use crate::interrupt::{self, Interrupted};
@@ -80,6 +80,14 @@ impl Write for TemporaryFile<'_> {
 
     fn flush(&mut self) -> std::io::Result<()> {
         let result = self.file.flush();
+        self.check(result)
+    }
+}
+
+/// Read back what was written: a writer that fixes up its own header (`exr_order`).
+impl Read for TemporaryFile<'_> {
+    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+        let result = self.file.read(buf);
         self.check(result)
     }
 }

@@ -14,6 +14,7 @@ use exr::prelude::{
 
 use crate::atomic::write_atomically;
 use crate::error::ImageWriteError;
+use crate::exr_order::sort_attributes;
 
 /// Where an EXR file's pixels lie in the whole image, and its text attributes.
 #[derive(Clone, Debug, PartialEq)]
@@ -90,7 +91,11 @@ pub fn write_exr_region(
     for (key, value) in metadata {
         image.attributes.other.insert(exr_text(key), AttributeValue::Text(exr_text(value)));
     }
-    write_atomically(path, |file| image.write().to_buffered(BufWriter::new(file)).map_err(|e| exr_error(e.to_string())))
+    write_atomically(path, |file| {
+        image.write().to_buffered(BufWriter::new(&mut *file)).map_err(|e| exr_error(e.to_string()))?;
+        let names: Vec<&str> = metadata.iter().map(|(key, _)| key.as_str()).collect();
+        sort_attributes(file, &names).map_err(|e| exr_error(e.to_string()))
+    })
 }
 
 /// The header of an EXR file alone, without its pixels: where its data window lies in the

@@ -11,6 +11,7 @@ pub mod atomic;
 mod builtin;
 mod error;
 pub mod exr_file;
+mod exr_order;
 pub mod image_file;
 pub mod interrupt;
 pub mod model;
