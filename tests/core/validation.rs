@@ -459,6 +459,20 @@ fn a_model_scene_index_is_a_whole_number_as_the_format_names_them() {
 }
 
 #[test]
+fn a_checker_square_is_refused_where_its_texture_scale_would_overflow_f32() {
+    // Before: (0, 1e9] was allowed, and 1e-39 rendered on the CPU while the GPU refused the scene
+    // ("a NaN or an infinity in textures[0]"): 1 / (2·size) overflows f32 below 1.5e-39.
+    let checker =
+        |size: &str| edited("shininess = 32.0", &format!("shininess = 32.0\nchecker = {{ kd = 0.5, size = {size} }}"));
+    for size in ["1e-39", "1e-10", "0.0", "2e9"] {
+        expect_invalid(&checker(size), "materials.red.checker.size", &["the allowed range [1e-9, 1000000000]"]);
+    }
+    for size in ["1e-9", "1e9"] {
+        parse_scene(&checker(size), Path::new(FILE)).unwrap_or_else(|e| panic!("size {size}: {e}"));
+    }
+}
+
+#[test]
 fn a_light_error_keeps_the_position_of_its_field() {
     // Lights are read by their derive, which keeps the parser's position of the bad value.
     expect_parse_error(

@@ -112,8 +112,12 @@ pub mod ranges {
     pub const IOR: Range<f64> = Range::logarithmic_above(0.0, MAX_IOR);
     /// The Beckmann roughness m of the Cook–Torrance lobe.
     pub const ROUGHNESS: Range<f64> = Range::logarithmic(MIN_ROUGHNESS, MAX_ROUGHNESS);
-    /// A sphere's radius and a checker's square size.
+    /// A sphere's radius.
     pub const SIZE: Range<f64> = Range::logarithmic_above(0.0, MAX_COORD);
+    /// A checker's square size: the texture scales planar coordinates by 1 / (2·size), which
+    /// must stay finite in f32 (the GPU refused 1e-39, which the CPU rendered); 1e-9 as a view
+    /// height's least.
+    pub const CHECKER_SIZE: Range<f64> = Range::logarithmic(1e-9, MAX_COORD);
     /// Each of the attenuation coefficients c, l, q (their sum has a rule of its own).
     pub const ATTENUATION: Range<f64> = Range::linear(-MAX_INTENSITY, MAX_INTENSITY);
     pub const SPOT_EXPONENT: Range<f64> = Range::logarithmic(0.0, MAX_SPOT_EXPONENT);

@@ -17,7 +17,7 @@ pub(super) fn validate_material(path: &str, m: &MaterialDesc, r: &mut Report) {
     }
     if let Some(ch) = &m.checker {
         r.colour(&format!("{path}.checker.kd"), ch.kd);
-        r.size(&format!("{path}.checker.size"), ch.size, ranges::SIZE);
+        r.finite_in(&format!("{path}.checker.size"), ch.size, ranges::CHECKER_SIZE);
         if m.texture.is_some() {
             r.error(format!("{path}.checker"), "a material has a checker or a texture, not both");
         }

@@ -80,7 +80,7 @@ pub fn ui(
     }
     if let Some(c) = &mut m.checker {
         changed |= rgb_edit(ui, "Checker k_d", &mut c.kd);
-        changed |= log_slider(ui, "Checker size", &mut c.size, ranges::SIZE, (0.01, 100.0));
+        changed |= log_slider(ui, "Checker size", &mut c.size, ranges::CHECKER_SIZE, (0.01, 100.0));
     }
     changed
 }
