@@ -136,8 +136,8 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
         // `glint render --tile` writes no incomplete tile; one marked so was made otherwise.
         if let Some(missing) = header.attribute("glint:incomplete") {
             bail!(
-                "{}: marked incomplete (glint:incomplete: {missing}): its GPU render lost work, and the merge would \
-                 hide it; render the tile again; nothing was written",
+                "{}: carries glint:incomplete (\"{missing}\"), which glint writes on a render that lost work, and \
+                 the merge would hide it; render the tile again; nothing was written",
                 path.display()
             );
         }
@@ -181,8 +181,9 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
     let (missing, runs) = super::job_array::missing_runs(by_index.keys().copied(), count);
     if missing > 0 {
         bail!(
-            "{missing} of {count} tiles are missing: {} (render them with --tile I/{count}; as a Slurm array, \
+            "{missing} of {count} {} missing: {} (render them with --tile I/{count}; as a Slurm array, \
              --array={}); nothing was written",
+            if missing == 1 { "tiles is" } else { "tiles are" },
             runs.join(", "),
             runs.join(",")
         );

@@ -11,18 +11,19 @@ use glint_scene::{LoadedModel, MaterialDesc, ObjectDesc, material_textures};
 /// Checks every output of one command before any rendering starts.
 pub fn check_outputs(outputs: &[&Path], input: &Path, force: bool) -> anyhow::Result<()> {
     for path in outputs {
-        check_format_and_folder(path)?;
-        // Refused before any is written: `--backend both` wrote X-cpu.png and then failed on an
-        // X-gpu.png that was a folder.
-        if path.is_dir() {
-            bail!("{}: is a folder, not a file; choose another output name", path.display());
-        }
+        // First, whatever its name: `-o scene.toml` was refused as an unsupported format.
         if is_same_file(path, input) {
             bail!(
                 "{}: this output is the input scene {}; writing it would destroy the scene: choose another output name",
                 path.display(),
                 input.display()
             );
+        }
+        check_format_and_folder(path)?;
+        // Refused before any is written: `--backend both` wrote X-cpu.png and then failed on an
+        // X-gpu.png that was a folder.
+        if path.is_dir() {
+            bail!("{}: is a folder, not a file; choose another output name", path.display());
         }
         // `metadata` follows a link: a link to a read-only file is refused too.
         if !force && std::fs::metadata(path).is_ok_and(|m| m.permissions().readonly()) {

@@ -143,6 +143,7 @@ fn the_input_scene_is_never_an_output_by_any_name() {
     let dir = TempDir::new("same-file");
     // A scene file named like an image: TOML whatever its extension.
     std::fs::write(dir.join("scene.png"), SCENE).unwrap();
+    std::fs::write(dir.join("scene.toml"), SCENE).unwrap();
     std::os::unix::fs::symlink(dir.join("scene.png"), dir.join("link.png")).unwrap();
     std::fs::hard_link(dir.join("scene.png"), dir.join("hard.png")).unwrap();
     for (scene, output) in [
@@ -151,6 +152,8 @@ fn the_input_scene_is_never_an_output_by_any_name() {
         ("link.png", "scene.png"),
         ("scene.png", "link.png"),
         ("scene.png", "hard.png"),
+        // Said as the input scene, not as an unsupported output format.
+        ("scene.toml", "scene.toml"),
     ] {
         for extra in [&[][..], &["--force"][..]] {
             let mut args = os(&[&"render", &scene, &"-q", &"-o", &output]);
@@ -162,7 +165,8 @@ fn the_input_scene_is_never_an_output_by_any_name() {
             assert_eq!(std::fs::read_to_string(dir.join("scene.png")).unwrap(), SCENE, "{scene} -o {output}");
         }
     }
-    assert_eq!(dir.listing(), ["hard.png", "link.png", "scene.png"]);
+    assert_eq!(std::fs::read_to_string(dir.join("scene.toml")).unwrap(), SCENE);
+    assert_eq!(dir.listing(), ["hard.png", "link.png", "scene.png", "scene.toml"]);
 }
 
 #[test]

@@ -506,7 +506,7 @@ fn report_shards_merge_into_the_one_machine_report_and_missing_ones_are_named() 
     assert!(!done.status.success());
     assert!(
         text(&done.stderr)
-            .contains("1 of 3 shards are missing: 1 (run them with --shard I/3; as a Slurm array, --array=1)"),
+            .contains("1 of 3 shards is missing: 1 (run them with --shard I/3; as a Slurm array, --array=1)"),
         "{}",
         text(&done.stderr)
     );
@@ -528,7 +528,7 @@ fn report_shards_merge_into_the_one_machine_report_and_missing_ones_are_named() 
     run("other", &["--shard", "1/3", "--runs", "4"]);
     let done = merge("s0,other,s2", "mixed");
     assert!(!done.status.success());
-    assert!(text(&done.stderr).contains("its timed runs is 4, not 3"), "{}", text(&done.stderr));
+    assert!(text(&done.stderr).contains("its timed runs: 4, not 3"), "{}", text(&done.stderr));
     // The sweep's flags would do nothing in a merge.
     let done = glint(&dir, ["report", "--merge", "s0,s1,s2", "--out", "flags", "--width", "50"]);
     assert!(!done.status.success() && text(&done.stderr).contains("--width"), "{}", text(&done.stderr));
@@ -559,7 +559,7 @@ fn report_shards_merge_into_the_one_machine_report_and_missing_ones_are_named() 
     std::fs::write(&shard2, toml::to_string(&other_gpu).expect("TOML")).expect("edit");
     let done = merge("s0,s1,s2", "gpus");
     assert!(!done.status.success(), "shards of two GPUs merged");
-    assert!(text(&done.stderr).contains("its GPU is Another GPU (Vulkan), not none"), "{}", text(&done.stderr));
+    assert!(text(&done.stderr).contains("its GPU: Another GPU (Vulkan), not none"), "{}", text(&done.stderr));
     // Damaged rows are refused by field, not followed into a panic (a row's shard indexed the
     // devices, an empty `times` was indexed for its median), and an absurd but finite error
     // plots (its axis's ticks once grew without end).

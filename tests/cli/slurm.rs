@@ -276,7 +276,7 @@ fn a_slurm_job_array_renders_tiles_whose_dependent_merge_is_the_single_render() 
             }
             Some(i) => {
                 assert!(!merged.exists(), "{name}: a merge with a failed tile wrote {}", merged.display());
-                assert!(said.contains(&format!("tiles are missing: {i}")), "{name}: the merge said:\n{said}");
+                assert!(said.contains(&format!("tiles is missing: {i}")), "{name}: the merge said:\n{said}");
             }
         }
     }

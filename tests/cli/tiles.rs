@@ -156,7 +156,7 @@ fn tiles_that_do_not_belong_together_are_refused_by_name_and_nothing_is_written(
         assert!(text(&done.stderr).contains(wanted), "{}", text(&done.stderr));
         assert!(!out.exists(), "a refused merge wrote {}", out.display());
     };
-    refused(&[t[0].clone(), t[2].clone()], "1 of 3 tiles are missing: 1");
+    refused(&[t[0].clone(), t[2].clone()], "1 of 3 tiles is missing: 1");
     refused(&[t[0].clone(), t[1].clone(), t[1].clone(), t[2].clone()], "tile 1 is given twice");
     let other_scene = tile("cornell", "1/3", "c1.exr");
     refused(&[t[0].clone(), other_scene, t[2].clone()], "c1.exr is not a tile of the same render as");
@@ -181,7 +181,7 @@ fn tiles_that_do_not_belong_together_are_refused_by_name_and_nothing_is_written(
     reencoded(&t[1], &half, f16::from_f32, Compression::ZIP16);
     refused(&[t[0].clone(), half, t[2].clone()], "half.exr: its channel B holds F16 samples, not 32-bit floats");
     reencoded(&t[1], &pxr24, |v| v, Compression::PXR24);
-    refused(&[t[0].clone(), pxr24, t[2].clone()], "its compression PXR24 is lossy for 32-bit floats");
+    refused(&[t[0].clone(), pxr24, t[2].clone()], "its pxr24 compression is lossy for 32-bit floats");
     reencoded(&t[1], &piz, |v| v, Compression::PIZ);
     let (whole_merge, piz_merge) = (dir.join("merged.exr"), dir.join("merged-piz.exr"));
     for (tiles, output) in [(&t[..], &whole_merge), (&[t[0].clone(), piz, t[2].clone()][..], &piz_merge)] {
@@ -204,7 +204,10 @@ fn tiles_that_do_not_belong_together_are_refused_by_name_and_nothing_is_written(
         &attributes,
     )
     .expect("marked tile");
-    refused(&[t[0].clone(), marked, t[2].clone()], "marked incomplete (glint:incomplete: the GPU's loop cut-off)");
+    refused(
+        &[t[0].clone(), marked, t[2].clone()],
+        "carries glint:incomplete (\"the GPU's loop cut-off\"), which glint writes on a render that lost work",
+    );
     // Pixels no render writes (NaN, infinite, negative), and a header claiming an image larger
     // than a render makes, are refused before anything is written (a NaN was merged; a claimed
     // 1e6 × 1e6 image aborted the allocation).

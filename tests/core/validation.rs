@@ -399,7 +399,7 @@ fn an_empty_vertex_list_with_triangles_says_the_mesh_has_no_vertices() {
     // Before: "vertex index 0 is out of range; allowed: [0, 0]".
     let text = edited("vertices = [[-1.0, 0.0, 2.0], [1.0, 0.0, 2.0], [0.0, 2.0, 2.0]]", "vertices = []")
         .replace("normals = [[0.0, 0.0, 1.0], [0.0, 0.0, 1.0], [0.0, 0.0, 1.0]]\n", "");
-    expect_invalid(&text, "objects[2].vertices", &["the mesh has no vertices, but its triangle index them"]);
+    expect_invalid(&text, "objects[2].vertices", &["the mesh has no vertices, but its triangle refers to them"]);
 }
 
 #[test]
@@ -470,6 +470,19 @@ fn a_checker_square_is_refused_where_its_texture_scale_would_overflow_f32() {
     for size in ["1e-9", "1e9"] {
         parse_scene(&checker(size), Path::new(FILE)).unwrap_or_else(|e| panic!("size {size}: {e}"));
     }
+}
+
+#[test]
+fn light_messages_write_numbers_short() {
+    // Before: "1000000000000…(301 digits)" and "outer_cone = 0.000…(300 digits)…1".
+    let far = edited(
+        "attenuation = { c = 1.0, l = 0.1, q = 0.01 }",
+        "attenuation = { model = \"inverse_square\", range = 1e300 }",
+    );
+    expect_invalid(&far, "lights[0].attenuation.range", &["1e300 is outside the allowed range (0, 1e9]"]);
+    let narrow =
+        edited("exponent = 8.0\ncutoff = 30.0", "falloff = \"smooth\"\ninner_cone = 12.0\nouter_cone = 1e-300");
+    expect_invalid(&narrow, "lights[2].inner_cone", &["12 is larger than outer_cone = 1e-300;"]);
 }
 
 #[test]

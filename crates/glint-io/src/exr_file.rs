@@ -125,8 +125,7 @@ pub fn read_exr_header(path: &Path) -> Result<ExrHeader, ExrReadError> {
 
 /// Why `compression` may change 32-bit float samples, if it may.
 fn lossy_for_f32(compression: exr::compression::Compression) -> Option<String> {
-    (!compression.is_lossless_for(SampleType::F32))
-        .then(|| format!("its compression {compression:?} is lossy for 32-bit floats"))
+    (!compression.is_lossless_for(SampleType::F32)).then(|| format!("its {compression} is lossy for 32-bit floats"))
 }
 
 fn exr_header<'a>(

@@ -288,7 +288,7 @@ pub fn read_all(dirs: &[PathBuf]) -> anyhow::Result<Vec<ShardFile>> {
     for (path, file) in &found {
         if let Some(((what, theirs), (_, ours))) = expected.iter().zip(file.sweep()).find(|((_, a), (_, b))| a != b) {
             bail!(
-                "{} is not a shard of the same sweep as {}: its {what} is {ours}, not {theirs}; nothing was written",
+                "{} is not a shard of the same sweep as {}: its {what}: {ours}, not {theirs}; nothing was written",
                 path.display(),
                 first_path.display()
             );
@@ -312,9 +312,10 @@ pub fn read_all(dirs: &[PathBuf]) -> anyhow::Result<Vec<ShardFile>> {
     let (missing, runs) = crate::cli::job_array::missing_runs(by_index.keys().copied(), first.count);
     if missing > 0 {
         bail!(
-            "{missing} of {} shards are missing: {} (run them with --shard I/{}; as a Slurm array, --array={}); \
+            "{missing} of {} {} missing: {} (run them with --shard I/{}; as a Slurm array, --array={}); \
              nothing was written",
             first.count,
+            if missing == 1 { "shards is" } else { "shards are" },
             runs.join(", "),
             first.count,
             runs.join(",")

@@ -64,11 +64,13 @@ fn too_small(settings: &RenderSettings, extent: Option<f64>) -> Option<String> {
 fn too_large(settings: &RenderSettings, extent: f64) -> Option<String> {
     (settings.epsilon > EPSILON_WARN_SHARE * extent).then(|| {
         format!(
-            "{} is {} of the scene's size ({}, the largest side of its spheres' and meshes' box): rays move \
-             about ε off each surface they leave, so they can pass through geometry; lower it to {} or less",
+            "{} is {} of the scene's size ({}, the largest side of its spheres' and meshes' box), more than {}: \
+             rays move about ε off each surface they leave, so they can pass through geometry; lower it to {} or less",
             format_number(settings.epsilon),
-            format_rounded(settings.epsilon / extent, 2),
+            // Three digits: 5e-5 of a scene 4.9 wide, 1.02e-5, read "1e-5" at two, the limit itself.
+            format_rounded(settings.epsilon / extent, 3),
             format_rounded(extent, 3),
+            format_number(EPSILON_WARN_SHARE),
             format_rounded(EPSILON_SHARE * extent, 2)
         )
     })
@@ -94,11 +96,11 @@ mod tests {
         assert!(text.ends_with("lower it to 2e-12 or less"), "{text}");
         let unit = scene(1.0);
         assert_eq!(epsilon_warning(&unit, &unit.render), None);
-        // A sphere of radius 0.04 is 8e-2 wide: ε = 1e-6 is 1.25e-5 of it, written to 2 digits;
+        // A sphere of radius 0.04 is 8e-2 wide: ε = 1e-6 is 1.25e-5 of it, written to 3 digits;
         // the side rounded to 3 digits, not written out to 16.
         let small = scene(0.04);
         let text = epsilon_warning(&small, &small.render).expect("ε = 1e-6 of a scene 8e-2 wide");
-        assert!(text.starts_with("1e-6 is 1.2e-5 of the scene's size (0.08,"), "{text}");
+        assert!(text.starts_with("1e-6 is 1.25e-5 of the scene's size (0.08, the largest side of its spheres' and meshes' box), more than 1e-5:"), "{text}");
         assert!(text.ends_with("lower it to 8e-8 or less"), "{text}");
         let tenth = scene(0.06);
         assert_eq!(epsilon_warning(&tenth, &tenth.render), None, "8.3e-6 of the scene's size");

@@ -125,7 +125,11 @@ fn validate_smooth_cone(path: &str, l: &LightDesc, r: &mut Report) {
     if inner_ok && outer_ok && inner > outer {
         r.error(
             format!("{path}.inner_cone"),
-            format!("{inner} is larger than outer_cone = {outer}; allowed: 0 ≤ inner_cone ≤ outer_cone ≤ 90"),
+            format!(
+                "{} is larger than outer_cone = {}; allowed: 0 ≤ inner_cone ≤ outer_cone ≤ 90",
+                num(inner),
+                num(outer)
+            ),
         );
     }
 }
@@ -137,7 +141,10 @@ fn validate_attenuation(path: &str, a: Attenuation, r: &mut Report) {
             if !ranges::LIGHT_RANGE.contains(range) {
                 let (lo, hi) = (ranges::LIGHT_RANGE.min, ranges::LIGHT_RANGE.max);
                 let why = ranges::LIGHT_RANGE.why_outside(range);
-                r.error(format!("{path}.range"), format!("{range} is outside the allowed range ({lo}, {hi:e}]{why}"));
+                r.error(
+                    format!("{path}.range"),
+                    format!("{} is outside the allowed range ({}, {hi:e}]{why}", num(range), num(lo)),
+                );
             }
         }
         Attenuation::InverseSquare { range: None } => {}

@@ -148,7 +148,7 @@ pub fn validate_settings(s: &RenderSettings, report: &mut Report) {
     if !s.indirect && s.integrator == Integrator::Whitted {
         report.error(
             "render.indirect",
-            "off is a path-tracing setting (paths that follow only k_r and k_t), and Whitted's ray tree never \
+            "false (--indirect off) is a path-tracing setting (paths that follow only k_r and k_t), and Whitted's ray tree never \
              follows anything else: render with the path tracer (render.integrator = \"path\", --integrator path) or \
              leave it out",
         );

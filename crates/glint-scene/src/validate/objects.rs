@@ -124,8 +124,12 @@ fn validate_mesh(path: &str, mesh: &MeshDesc, origin: [f64; 3], r: &mut Report) 
         r.error(
             format!("{path}.vertices"),
             format!(
-                "the mesh has no vertices, but its {} index them; give the vertex positions [x, y, z]",
-                if triangles.len() == 1 { "triangle".to_string() } else { format!("{} triangles", triangles.len()) }
+                "the mesh has no vertices, but {} to them; give the vertex positions [x, y, z]",
+                if triangles.len() == 1 {
+                    "its triangle refers".to_string()
+                } else {
+                    format!("its {} triangles refer", triangles.len())
+                }
             ),
         );
     }
@@ -224,7 +228,7 @@ fn validate_mesh(path: &str, mesh: &MeshDesc, origin: [f64; 3], r: &mut Report) 
         let from = if origin == [0.0; 3] {
             "the origin".to_string()
         } else {
-            format!("the scene's storage origin [{}, {}, {}]", origin[0], origin[1], origin[2])
+            format!("the scene's storage origin [{}, {}, {}]", num(origin[0]), num(origin[1]), num(origin[2]))
         };
         r.warn(
             format!("{path}.vertices"),
