@@ -18,15 +18,20 @@ use glint_core::cpu::raycast::{HitRecord, RayRecord};
 use glint_core::rays::RaySet;
 use glint_io::atomic::write_file_atomically;
 
+/// "1 plane", "2 planes".
+fn counted(n: usize, noun: &str) -> String {
+    if n == 1 { format!("1 {noun}") } else { format!("{n} {noun}s") }
+}
+
 /// Before the benchmark runs: an error unless the exported mesh is the whole scene, and
 /// `dir` made if missing (so a path that cannot be a folder fails before minutes of work).
 pub fn prepare(dir: &Path, flat: &FlatScene) -> anyhow::Result<()> {
     if !flat.spheres.is_empty() || !flat.planes.is_empty() {
         bail!(
-            "--export: the scene has {} spheres and {} planes; the exported mesh holds triangles only, \
-             so an outside tracer would not see them (bumpy has none)",
-            flat.spheres.len(),
-            flat.planes.len()
+            "--export: the scene has {} and {}; the exported mesh holds triangles only, so an outside tracer \
+             would not see them (bumpy has none)",
+            counted(flat.spheres.len(), "sphere"),
+            counted(flat.planes.len(), "plane")
         );
     }
     std::fs::create_dir_all(dir).with_context(|| format!("--export: cannot make the folder {}", dir.display()))

@@ -206,7 +206,7 @@ fn export_refuses_a_scene_an_outside_tracer_would_see_only_in_part() {
     expect_failure(
         "bench-export-spheres",
         |d| os(&[&"bench", &"rays", &"whitted", &"--runs", &"1", &"--export", &d.join("rays")]),
-        &["--export", "spheres", "planes", "triangles only"],
+        &["--export", "2 spheres and 1 plane;", "triangles only"],
         &[],
     );
     // A folder that cannot be made: refused before the benchmark, naming it.
