@@ -58,7 +58,7 @@ pub struct RaysArgs {
     #[arg(long)]
     pub adapter: Option<String>,
     /// Timed runs after the warm-up run [1, 100]
-    #[arg(long, default_value_t = 5, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(1..=100))]
+    #[arg(long, default_value_t = 5, allow_negative_numbers = true, value_parser = crate::cli::settings::parse_in::<1, 100>)]
     pub runs: u32,
     /// Print the results as JSON instead of a table
     #[arg(long)]

@@ -77,7 +77,7 @@ pub struct RenderArgs {
     /// Timed runs of --bench [1, 1000] (default 5)
     // Checked by `check_backend_flags`: clap's `requires = "bench"` counts the flag's default
     // (false) as given, and `--runs` without `--bench` rendered once without a word.
-    #[arg(long, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(1..=1000))]
+    #[arg(long, allow_negative_numbers = true, value_parser = crate::cli::settings::parse_in::<1, 1000>)]
     pub runs: Option<u32>,
     /// No progress bar
     #[arg(short, long)]

@@ -34,7 +34,7 @@ pub struct SettingsArgs {
     #[arg(long, allow_negative_numbers = true)]
     pub bailout: Option<f64>,
     /// Seed of the sample jitter and of the paths' random numbers [0, 4294967295]
-    #[arg(long, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(0..=i64::from(u32::MAX)))]
+    #[arg(long, allow_negative_numbers = true, value_parser = parse_in::<0, { u32::MAX }>)]
     pub seed: Option<u32>,
     /// How light is carried: whitted (the seed's ray tree) or path (Monte Carlo paths: global
     /// illumination with area lights, colour bleeding and caustics; --spp paths a pixel, --depth
@@ -129,6 +129,16 @@ fn parse_resolution(s: &str) -> Result<u32, String> {
         Ok(v) if (i64::from(lo)..=i64::from(hi)).contains(&v) => Ok(v as u32),
         Ok(v) => Err(format!("{v} is outside [{lo}, {hi}]: {}", out_of_range())),
         Err(_) => Err(format!("'{s}' is not a whole number: {}", out_of_range())),
+    }
+}
+
+/// A whole number in [LO, HI], said as the scene errors say a range (clap's own `.range()`
+/// said "4097 is not in 1..=4096", Rust's syntax).
+pub fn parse_in<const LO: u32, const HI: u32>(s: &str) -> Result<u32, String> {
+    match s.trim().parse::<i128>() {
+        Ok(v) if (i128::from(LO)..=i128::from(HI)).contains(&v) => Ok(v as u32),
+        Ok(v) => Err(format!("{v} is outside the allowed range [{LO}, {HI}]")),
+        Err(_) => Err(format!("'{s}' is not a whole number; allowed: [{LO}, {HI}]")),
     }
 }
 

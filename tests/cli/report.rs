@@ -282,6 +282,9 @@ fn report_rejects_an_empty_scene_list_an_empty_merge_folder_and_a_thread_count_o
         ("--threads", "100000", &["--threads", "100000 is outside [0, "][..]),
         ("--merge", "s0,,s2", &["--merge", "an empty folder name", "doubled"][..]),
         ("--adapter", "llvmpipe", &["--adapter", "--cpu-only", "cannot be used with"][..]),
+        // As the scene errors say a range, not clap's "4097 is not in 1..=4096".
+        ("--width", "4097", &["--width", "4097 is outside the allowed range [1, 4096]"][..]),
+        ("--runs", "x", &["--runs", "'x' is not a whole number; allowed: [3, 100]"][..]),
     ] {
         let mut args: Vec<std::ffi::OsString> =
             vec!["report".into(), flag.into(), value.into(), "--out".into(), out_dir.clone().into()];
