@@ -426,3 +426,17 @@ fn a_file_size_limit_is_reported_and_leaves_no_file() {
         assert!(dir.listing().is_empty(), "{output}: left behind {:?}", dir.listing());
     }
 }
+
+#[cfg(unix)]
+#[test]
+fn an_output_that_is_a_link_is_replaced_and_its_target_kept() {
+    // rendering.md: the link goes, the file it pointed to is left as it was.
+    let dir = TempDir::new("link-output");
+    std::fs::write(dir.join("target.txt"), "kept").unwrap();
+    std::os::unix::fs::symlink(dir.join("target.txt"), dir.join("link.png")).unwrap();
+    let out = glint(&dir, ["render", "whitted", "--width", "8", "--height", "6", "-q", "-o", "link.png"]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    assert!(!std::fs::symlink_metadata(dir.join("link.png")).unwrap().file_type().is_symlink(), "still a link");
+    assert_eq!(image::open(dir.join("link.png")).expect("a PNG").into_rgb8().dimensions(), (8, 6));
+    assert_eq!(std::fs::read_to_string(dir.join("target.txt")).unwrap(), "kept");
+}
