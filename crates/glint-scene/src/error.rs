@@ -14,10 +14,12 @@ pub struct FieldIssue {
 
 impl fmt::Display for FieldIssue {
     /// Each part of the field's path cut as an echoed value is (`shorten`): a material named by
-    /// 100,000 characters made a line as long, and its `.ks` after it must still show.
+    /// 100,000 characters made a line as long, and its `.ks` after it must still show. The
+    /// problem is cut in its middle (a path it quotes can be thousands of characters).
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let field: Vec<String> = self.field.split('.').map(crate::number::shorten).collect();
-        write!(f, "{}: {}", field.join("."), self.problem)
+        let problem: Vec<String> = self.problem.split('\n').map(crate::number::shorten_middle).collect();
+        write!(f, "{}: {}", field.join("."), problem.join("\n"))
     }
 }
 
@@ -32,5 +34,13 @@ mod tests {
         let shown = issue.to_string();
         assert!(shown.len() < 300, "{} bytes", shown.len());
         assert!(shown.ends_with(".ks: -1 is outside [0, 1e9]") && shown.contains("more bytes)"), "{shown}");
+        // A problem quoting a 5,000-character path keeps its reason at the end (a 5 KB line before).
+        let path = format!("/m/{}.obj", "d".repeat(5000));
+        let issue = FieldIssue {
+            field: "objects[1].path".into(),
+            problem: format!("{path}: cannot read the model: File name too long"),
+        };
+        let shown = issue.to_string();
+        assert!(shown.len() < 500 && shown.ends_with(".obj: cannot read the model: File name too long"), "{shown}");
     }
 }

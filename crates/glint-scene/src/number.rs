@@ -33,6 +33,20 @@ fn cut(text: &str, chars: usize) -> String {
     }
 }
 
+/// A line cut to `LINE_CHARS` characters in its middle, so that its start (what is wrong) and
+/// its end (the reason a system call gives, after a path) both show: a 5,000-character texture
+/// path made a 5 KB error line.
+pub fn shorten_middle(text: &str) -> String {
+    let chars = text.chars().count();
+    if chars <= LINE_CHARS {
+        return text.to_string();
+    }
+    let (head, tail) = (LINE_CHARS * 5 / 8, LINE_CHARS * 3 / 8);
+    let start: String = text.chars().take(head).collect();
+    let end: String = text.chars().skip(chars - tail).collect();
+    format!("{start}…({} characters)…{end}", chars - head - tail)
+}
+
 /// Every line of a multi-line message cut to `LINE_CHARS` (the TOML parser shows the offending
 /// line and a caret line under it, as long as the line is).
 pub fn shorten_lines(text: &str) -> String {
@@ -57,7 +71,17 @@ pub fn clarify_integer_overflow(message: &str) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::{clarify_integer_overflow, format_number, shorten, shorten_lines};
+    use super::{LINE_CHARS, clarify_integer_overflow, format_number, shorten, shorten_lines, shorten_middle};
+
+    #[test]
+    fn a_long_line_keeps_its_start_and_its_end() {
+        let line = format!("URI `{}.png`: File name too long (os error 36)", "a".repeat(5000));
+        let cut = shorten_middle(&line);
+        assert!(cut.starts_with("URI `aaa") && cut.ends_with("a.png`: File name too long (os error 36)"), "{cut}");
+        assert!(cut.contains("…(4644 characters)…"), "{cut}");
+        assert!(cut.chars().count() < LINE_CHARS + 30, "{}", cut.len());
+        assert_eq!(shorten_middle("short"), "short");
+    }
 
     #[test]
     fn integers_beyond_64_bits_are_said_to_be_too_large_not_of_the_wrong_type() {
