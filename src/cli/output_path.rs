@@ -50,14 +50,16 @@ pub fn check_not_read(outputs: &[&Path], loaded: &LoadedScene) -> anyhow::Result
 }
 
 /// The textures and model files `loaded` read (as found: a texture of a scene file's own
-/// material beside the scene, a model's beside the model). A model file is never named .png or
-/// .exr, but may be linked under such a name.
+/// material beside the scene, a model's beside the model, each through the one resolver that
+/// read it, so `t%20x.png` is `t x.png`). A model file is never named .png or .exr, but may be
+/// linked under such a name.
 fn files_read(loaded: &LoadedScene) -> Vec<(&'static str, PathBuf)> {
-    let textures = |material: &MaterialDesc, folder: &Path| {
+    let textures = |material: &MaterialDesc, beside: &Path| {
         material_textures(material)
             .into_iter()
             .filter_map(|(_, t)| t)
-            .map(|t| ("a texture", folder.join(&t.path)))
+            .filter_map(|t| glint_io::uri::uri_file(beside, &t.path).ok().flatten())
+            .map(|file| ("a texture", file))
             .collect::<Vec<_>>()
     };
     let models: Vec<&LoadedModel> = loaded
@@ -69,15 +71,13 @@ fn files_read(loaded: &LoadedScene) -> Vec<(&'static str, PathBuf)> {
             _ => None,
         })
         .collect();
-    let scene_folder = loaded.source.parent().unwrap_or(Path::new("."));
     // A model's materials are in the scene's too (under its object's name): found beside the
     // model only, not beside the scene.
     let own = loaded.desc.materials.iter().filter(|(name, _)| !models.iter().any(|m| m.materials.contains_key(*name)));
-    let mut read: Vec<_> = own.flat_map(|(_, material)| textures(material, scene_folder)).collect();
+    let mut read: Vec<_> = own.flat_map(|(_, material)| textures(material, &loaded.source)).collect();
     for model in models {
         read.push(("a model file", model.file.clone()));
-        let beside = model.file.parent().unwrap_or(Path::new("."));
-        read.extend(model.materials.values().flat_map(|material| textures(material, beside)));
+        read.extend(model.materials.values().flat_map(|material| textures(material, &model.file)));
     }
     read
 }

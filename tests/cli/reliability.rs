@@ -195,6 +195,29 @@ fn a_texture_or_model_the_scene_reads_is_never_an_output() {
         assert!(stderr.contains("is a texture the scene reads") && stderr.contains("tex.png"), "{stderr}");
         assert_eq!(std::fs::read(dir.join("tex.png")).unwrap(), texture, "the texture is left as it was");
     }
+    // Named as its resolver reads it: `t%20x.png` is the file `t x.png` (it was looked for as
+    // `t%20x.png` and overwritten).
+    assert!(scene.text.contains("path = \"tex.png\""), "{}", scene.text);
+    std::fs::write(dir.join("t x.png"), &texture).unwrap();
+    std::fs::write(dir.join("encoded.toml"), scene.text.replace("path = \"tex.png\"", "path = \"t%20x.png\"")).unwrap();
+    let out = glint(&dir, ["render", "encoded.toml", "-q", "--force", "-o", "t x.png"]);
+    assert!(text(&out.stderr).contains("is a texture the scene reads"), "{}", text(&out.stderr));
+    assert_eq!(std::fs::read(dir.join("t x.png")).unwrap(), texture, "the encoded texture is left as it was");
+    // A model's texture, beside the model in a subfolder.
+    std::fs::create_dir(dir.join("sub")).unwrap();
+    std::fs::write(dir.join("sub/tex2.png"), &texture).unwrap();
+    std::fs::write(dir.join("sub/m.mtl"), "newmtl m\nKd 1 1 1\nmap_Kd tex2.png\n").unwrap();
+    std::fs::write(
+        dir.join("sub/m.obj"),
+        "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nusemtl m\nf 1/1 2/2 3/3\n",
+    )
+    .unwrap();
+    let camera = "[camera]\nposition = [0.3, 0.3, 3.0]\nlook_at = [0.3, 0.3, 0.0]\n";
+    let model = format!("{camera}[[objects]]\ntype = \"model\"\npath = \"sub/m.obj\"\n");
+    std::fs::write(dir.join("model.toml"), model).unwrap();
+    let out = glint(&dir, ["render", "model.toml", "-q", "--width", "8", "--height", "6", "-o", "sub/tex2.png"]);
+    assert!(text(&out.stderr).contains("is a texture the scene reads"), "{}", text(&out.stderr));
+    assert_eq!(std::fs::read(dir.join("sub/tex2.png")).unwrap(), texture, "the model's texture is left as it was");
 }
 
 /// Two facing mirror planes, the camera between them, radiance growing by k_r = 1e9 per bounce

@@ -66,9 +66,27 @@ fn shown(uri: &str) -> String {
 /// The bytes `uri` refers to, for a reference inside the model file `model` (relative paths
 /// are relative to its folder), at most `cap` bytes.
 pub fn resolve_uri(model: &Path, uri: &str, cap: u64) -> Result<Vec<u8>, UriError> {
+    let Some(path) = uri_file(model, uri)? else { return decode_data_uri(uri, cap) };
+    let io = |path: &Path, error| UriError::Io { uri: shown(uri), path: path.to_owned(), error };
+    // Judged before it is opened: opening a named pipe waits for a writer that may never come.
+    let meta = regular_file(&path).map_err(|e| io(&path, e))?;
+    let file = std::fs::File::open(&path).map_err(|e| io(&path, e))?;
+    if meta.len() > cap {
+        return Err(UriError::TooLarge { uri: shown(uri), size: meta.len(), cap });
+    }
+    let bytes = read_up_to(file, cap, meta.len()).map_err(|e| io(&path, e))?;
+    if bytes.len() as u64 > cap {
+        return Err(UriError::TooLarge { uri: shown(uri), size: bytes.len() as u64, cap });
+    }
+    Ok(bytes)
+}
+
+/// The existing file `uri` names for a reference inside `model` (percent-decoded, canonical,
+/// inside the model's folder), or `None` for a `data:` URI, which names no file.
+pub fn uri_file(model: &Path, uri: &str) -> Result<Option<PathBuf>, UriError> {
     if let Some(scheme) = scheme_of(uri) {
         return if scheme.eq_ignore_ascii_case("data") {
-            decode_data_uri(uri, cap)
+            Ok(None)
         } else {
             Err(UriError::Scheme { uri: shown(uri), scheme: scheme.to_string() })
         };
@@ -90,17 +108,7 @@ pub fn resolve_uri(model: &Path, uri: &str, cap: u64) -> Result<Vec<u8>, UriErro
     if !path.starts_with(&folder) {
         return Err(UriError::Escapes { uri: shown(uri), path, folder });
     }
-    // Judged before it is opened: opening a named pipe waits for a writer that may never come.
-    let meta = regular_file(&path).map_err(|e| io(&path, e))?;
-    let file = std::fs::File::open(&path).map_err(|e| io(&path, e))?;
-    if meta.len() > cap {
-        return Err(UriError::TooLarge { uri: shown(uri), size: meta.len(), cap });
-    }
-    let bytes = read_up_to(file, cap, meta.len()).map_err(|e| io(&path, e))?;
-    if bytes.len() as u64 > cap {
-        return Err(UriError::TooLarge { uri: shown(uri), size: bytes.len() as u64, cap });
-    }
-    Ok(bytes)
+    Ok(Some(path))
 }
 
 /// `path`'s metadata, or an error unless it is a regular file (following links): a file a model
