@@ -36,4 +36,6 @@ mod layout_check;
 #[cfg(test)]
 mod reflection_tests;
 #[cfg(test)]
+mod shader_tests;
+#[cfg(test)]
 mod twin_tests;
