@@ -61,8 +61,22 @@ fn metallic_roughness_transmission_ior_and_emissive_strength_map_as_documented()
     }]);
     let m = load(&f.write_gltf(&dir, "m", BufferAt::DataUri));
     let mat = &m.materials["glassy gold"];
-    // k_d = base·(1 − metallic)·(1 − transmission); k_t = base·(1 − metallic)·transmission.
-    assert_eq!(mat.kd, Rgb([0.25, 0.125, 0.0625]));
+    // k_d = base·(1 − metallic)·(1 − transmission)·(1 − F0), F0 = 0.04 (the dielectric lobe's
+    // diffuse keeps 1 − F0; it was base·(1 − metallic)·(1 − transmission), and a white plastic
+    // summed to 1.04 with its k_s); k_t = base·(1 − metallic)·transmission.
+    for (k, v) in [0.25, 0.125, 0.0625].into_iter().enumerate() {
+        assert!(close(mat.kd.0[k], v * 0.96), "{:?}", mat.kd);
+    }
+    // A white rough plastic returns at most the light it receives under paths (it summed to
+    // k_d + k_s = 1.04, and the path tracer warned of gain on every such import).
+    f.json["extensionsUsed"] = json!([]);
+    f.json["materials"] = json!([{
+        "name": "white plastic",
+        "pbrMetallicRoughness": { "baseColorFactor": [1.0, 1.0, 1.0, 1.0], "metallicFactor": 0.0, "roughnessFactor": 0.5 }
+    }]);
+    let plastic = &load(&f.write_gltf(&dir, "plastic", BufferAt::DataUri)).materials["white plastic"];
+    let gain = plastic.gain(glint_scene::Integrator::Path);
+    assert!(gain <= 1.0 + 1e-12, "k_d {:?} + k_s {:?}: gain {gain}", plastic.kd, plastic.ks);
     assert_eq!(mat.kt, Rgb([0.25, 0.125, 0.0625]));
     assert_eq!(mat.ka, mat.kd, "k_a = k_d");
     // k_s = lerp(0.04, base, metallic).

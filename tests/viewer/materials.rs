@@ -61,9 +61,10 @@ fn a_gltf_material_shows_its_factors_beside_the_mapped_coefficients() {
     choose(&mut h, "Materials", "Material", "model/glassy");
     assert_shown(&h, &["glTF in model.gltf", "baseColorFactor = 1 0.5 0.25 1", "metallicFactor = 0"]);
     assert_shown(&h, &["roughnessFactor = 0.05", "transmissionFactor = 0.5"]);
-    // Transmission takes half the diffuse part; a dielectric's F0 is 0.04, mirrored when smooth,
-    // and not transmitted: k_t = 0.5·base·0.96.
-    assert_shown(&h, &["k_d = 0.5 0.25 0.125", "k_t = 0.48 0.24 0.12", "k_r = 0.04 0.04 0.04"]);
+    // Transmission takes half the diffuse part, and the diffuse keeps 1 − F0 (glTF's Fresnel
+    // mix): k_d = 0.5·base·0.96; a dielectric's F0 is 0.04, mirrored when smooth, and not
+    // transmitted: k_t = 0.5·base·0.96.
+    assert_shown(&h, &["k_d = 0.48 0.24 0.12", "k_t = 0.48 0.24 0.12", "k_r = 0.04 0.04 0.04"]);
     assert_eq!(h.query_all_by_label("ior = 1.7").count(), 2, "the file's ior and the mapped one");
     // Computed values to 7 digits (n was 319997.9999999999).
     assert_shown(&h, &["n = 319998"]);

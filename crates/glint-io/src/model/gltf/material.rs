@@ -68,7 +68,8 @@ pub(super) fn map_material(m: &::gltf::Material<'_>, field: &str, warnings: &mut
             ..MaterialDesc::default()
         };
     }
-    let (base, f0, roughness) = match m.pbr_specular_glossiness() {
+    // `diffuse_share`: what of the diffuse colour the diffuse lobe keeps beside the specular one.
+    let (base, f0, roughness, diffuse_share) = match m.pbr_specular_glossiness() {
         Some(sg) => {
             let d = sg.diffuse_factor();
             // Specular-glossiness gives k_d and F0 directly; roughness = 1 − glossiness.
@@ -76,6 +77,7 @@ pub(super) fn map_material(m: &::gltf::Material<'_>, field: &str, warnings: &mut
                 factors.rgb("diffuseFactor", [d[0], d[1], d[2]]),
                 factors.rgb("specularFactor", sg.specular_factor()),
                 1.0 - factors.unit("glossinessFactor", sg.glossiness_factor()),
+                [1.0; 3],
             )
         }
         None => {
@@ -88,10 +90,14 @@ pub(super) fn map_material(m: &::gltf::Material<'_>, field: &str, warnings: &mut
                 Some(s) => (factors.unit("specularFactor", s.specular_factor()), s.specular_color_factor().map(widen)),
                 None => (1.0, [1.0; 3]),
             };
-            let f0 =
-                Rgb(std::array::from_fn(|k| lerp((DIELECTRIC_F0 * tint[k]).min(1.0) * strength, base.0[k], metallic)));
+            let dielectric_f0: [f64; 3] = std::array::from_fn(|k| (DIELECTRIC_F0 * tint[k]).min(1.0) * strength);
+            let f0 = Rgb(std::array::from_fn(|k| lerp(dielectric_f0[k], base.0[k], metallic)));
             let diffuse = Rgb(base.0.map(|c| c * (1.0 - metallic)));
-            (diffuse, f0, factors.unit("roughnessFactor", pbr.roughness_factor()))
+            // glTF's dielectric lobe mixes diffuse and specular by the Fresnel term, so the
+            // diffuse keeps 1 − F0 of the light at normal incidence: a white plastic mapped to
+            // k_d + k_s = 1.04 returned more light than it received under paths.
+            let share = dielectric_f0.map(|f| 1.0 - f);
+            (diffuse, f0, factors.unit("roughnessFactor", pbr.roughness_factor()), share)
         }
     };
     let transmission = m.transmission().map_or(0.0, |t| factors.unit("transmissionFactor", t.transmission_factor()));
@@ -100,7 +106,7 @@ pub(super) fn map_material(m: &::gltf::Material<'_>, field: &str, warnings: &mut
     // Transmission replaces the diffuse part and is tinted by it (KHR_materials_transmission);
     // what a smooth surface mirrors it does not transmit (F0: 0.04 of a glass), so that
     // k_r + k_t stays within 1 (a plain glass mapped to 1.04, which validation warned of).
-    let kd = Rgb(base.0.map(|c| c * (1.0 - transmission)));
+    let kd = Rgb(std::array::from_fn(|k| base.0[k] * (1.0 - transmission) * diffuse_share[k]));
     let kt = Rgb(std::array::from_fn(|k| base.0[k] * transmission * (1.0 - kr.0[k])));
     let ior = match m.ior().map(widen) {
         None => 1.5,
