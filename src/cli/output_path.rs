@@ -3,10 +3,11 @@
 //! `./`, another path to it), and not a read-only file unless `--force` says to replace it.
 
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 use anyhow::bail;
 use glint_io::LoadedScene;
-use glint_scene::{LoadedModel, MaterialDesc, ObjectDesc, material_textures};
+use glint_scene::{LoadedModel, MaterialDesc, ObjectDesc, TextureDesc, material_textures};
 
 /// Checks every output of one command before any rendering starts.
 pub fn check_outputs(outputs: &[&Path], input: &Path, force: bool) -> anyhow::Result<()> {
@@ -54,12 +55,14 @@ pub fn check_not_read(outputs: &[&Path], loaded: &LoadedScene) -> anyhow::Result
 /// read it, so `t%20x.png` is `t x.png`). A model file is never named .png or .exr, but may be
 /// linked under such a name.
 fn files_read(loaded: &LoadedScene) -> Vec<(&'static str, PathBuf)> {
+    let found = |t: &TextureDesc, beside: &Path| {
+        glint_io::uri::uri_file(beside, &t.path).ok().flatten().map(|file| ("a texture", file))
+    };
     let textures = |material: &MaterialDesc, beside: &Path| {
         material_textures(material)
             .into_iter()
             .filter_map(|(_, t)| t)
-            .filter_map(|t| glint_io::uri::uri_file(beside, &t.path).ok().flatten())
-            .map(|file| ("a texture", file))
+            .filter_map(|t| found(t, beside))
             .collect::<Vec<_>>()
     };
     let models: Vec<&LoadedModel> = loaded
@@ -71,10 +74,25 @@ fn files_read(loaded: &LoadedScene) -> Vec<(&'static str, PathBuf)> {
             _ => None,
         })
         .collect();
-    // A model's materials are in the scene's too (under its object's name): found beside the
-    // model only, not beside the scene.
-    let own = loaded.desc.materials.iter().filter(|(name, _)| !models.iter().any(|m| m.materials.contains_key(*name)));
-    let mut read: Vec<_> = own.flat_map(|(_, material)| textures(material, &loaded.source)).collect();
+    // A model's materials are in the scene's too (under its object's name), their textures
+    // decoded by the importer beside the model; one the scene file gives (an override of a
+    // model's material, `[materials."OBJ/MAT"]`) was read beside the scene. The importer's
+    // texture is the very image the model holds.
+    let models_texture = |name: &str, slot: usize, t: &TextureDesc| {
+        models.iter().filter_map(|m| m.materials.get(name)).any(|m| {
+            material_textures(m)[slot].1.is_some_and(|own| {
+                own.path == t.path && matches!((&own.image, &t.image), (Some(a), Some(b)) if Arc::ptr_eq(a, b))
+            })
+        })
+    };
+    let mut read: Vec<_> = Vec::new();
+    for (name, material) in &loaded.desc.materials {
+        for (slot, (_, t)) in material_textures(material).into_iter().enumerate() {
+            if let Some(t) = t.filter(|t| !models_texture(name, slot, t)) {
+                read.extend(found(t, &loaded.source));
+            }
+        }
+    }
     for model in models {
         read.push(("a model file", model.file.clone()));
         read.extend(model.materials.values().flat_map(|material| textures(material, &model.file)));

@@ -218,6 +218,16 @@ fn a_texture_or_model_the_scene_reads_is_never_an_output() {
     let out = glint(&dir, ["render", "model.toml", "-q", "--width", "8", "--height", "6", "-o", "sub/tex2.png"]);
     assert!(text(&out.stderr).contains("is a texture the scene reads"), "{}", text(&out.stderr));
     assert_eq!(std::fs::read(dir.join("sub/tex2.png")).unwrap(), texture, "the model's texture is left as it was");
+    // A scene file's override of the model's material reads its texture beside the scene (a
+    // reviewer's find: it was overwritten, while the model's own, unread, was refused).
+    std::fs::write(dir.join("over.png"), &texture).unwrap();
+    let over = format!(
+        "{camera}[materials.\"m/m\"]\ntexture = {{ path = \"over.png\" }}\n[[objects]]\ntype = \"model\"\npath = \"sub/m.obj\"\n"
+    );
+    std::fs::write(dir.join("over.toml"), over).unwrap();
+    let out = glint(&dir, ["render", "over.toml", "-q", "--width", "8", "--height", "6", "-o", "over.png"]);
+    assert!(text(&out.stderr).contains("is a texture the scene reads"), "{}", text(&out.stderr));
+    assert_eq!(std::fs::read(dir.join("over.png")).unwrap(), texture, "the override's texture is left as it was");
 }
 
 /// Two facing mirror planes, the camera between them, radiance growing by k_r = 1e9 per bounce
