@@ -18,10 +18,7 @@ use glint_core::cpu::raycast::{HitRecord, RayRecord};
 use glint_core::rays::RaySet;
 use glint_io::atomic::write_file_atomically;
 
-/// "1 plane", "2 planes".
-fn counted(n: usize, noun: &str) -> String {
-    if n == 1 { format!("1 {noun}") } else { format!("{n} {noun}s") }
-}
+use crate::cli::units::counted;
 
 /// Before the benchmark runs: an error unless the exported mesh is the whole scene, and
 /// `dir` made if missing (so a path that cannot be a folder fails before minutes of work).

@@ -38,3 +38,8 @@ pub fn count(n: u64) -> String {
         n => format!("{n}"),
     }
 }
+
+/// "1 scene", "2 scenes": `n` and the noun, plural where `n` is not 1.
+pub fn counted(n: usize, noun: &str) -> String {
+    if n == 1 { format!("1 {noun}") } else { format!("{n} {noun}s") }
+}

@@ -93,7 +93,8 @@ pub fn write_exr_region(
     }
     write_atomically(path, |file| {
         image.write().to_buffered(BufWriter::new(&mut *file)).map_err(|e| exr_error(e.to_string()))?;
-        let names: Vec<&str> = metadata.iter().map(|(key, _)| key.as_str()).collect();
+        // The names as the file holds them (Latin-1, `exr_text`), not as UTF-8.
+        let names: Vec<Vec<u8>> = metadata.iter().map(|(key, _)| exr_text(key).as_slice().to_vec()).collect();
         sort_attributes(file, &names).map_err(|e| exr_error(e.to_string()))
     })
 }

@@ -22,7 +22,7 @@ struct Record {
 
 /// Puts the attributes named in `names` of the single-part EXR in `file` in name order, in the
 /// places those attributes held; every other attribute keeps its place.
-pub(crate) fn sort_attributes(file: &mut (impl Read + Write + Seek), names: &[&str]) -> std::io::Result<()> {
+pub(crate) fn sort_attributes(file: &mut (impl Read + Write + Seek), names: &[Vec<u8>]) -> std::io::Result<()> {
     let invalid = |what: &str| std::io::Error::new(std::io::ErrorKind::InvalidData, format!("EXR header: {what}"));
     let mut header = Vec::new();
     file.seek(SeekFrom::Start(0))?;
@@ -44,7 +44,7 @@ pub(crate) fn sort_attributes(file: &mut (impl Read + Write + Seek), names: &[&s
             None => {}
         }
     };
-    let wanted = |r: &Record| names.iter().any(|n| n.as_bytes() == r.name.as_slice());
+    let wanted = |r: &Record| names.contains(&r.name);
     let mut moved: Vec<&Record> = records.iter().filter(|r| wanted(r)).collect();
     moved.sort_by(|a, b| a.name.cmp(&b.name));
     let mut moved = moved.into_iter();
@@ -101,8 +101,9 @@ mod tests {
         // Before: each write drew a new hash order for the attributes (three merges of the same
         // tiles gave three checksums).
         let dir = tempfile::tempdir().expect("temporary folder");
+        // Names the file holds as Latin-1 (é), not as their UTF-8, are ordered too.
         let metadata: Vec<(String, String)> =
-            (0..12).map(|i| (format!("glint:key{:02}", 11 - i), format!("value {i}"))).collect();
+            (0..12).map(|i| (format!("glint:clé{:02}", 11 - i), format!("value {i}"))).collect();
         let pixel = |x: usize, y: usize| [x as f32, y as f32, 0.5];
         let files: Vec<Vec<u8>> = (0..6)
             .map(|i| {

@@ -82,7 +82,7 @@ impl Default for MaterialDesc {
 pub struct CheckerDesc {
     /// The second colour of the checker (the first is the material's k_d).
     pub kd: Rgb,
-    /// Edge length of one square in scene units, > 0.
+    /// Edge length of one square in scene units, in [1e-9, 1e9] (`ranges::CHECKER_SIZE`).
     pub size: f64,
 }
 

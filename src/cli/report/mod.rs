@@ -33,6 +33,7 @@ use self::sweep::Engines;
 use super::backend::open_gpu;
 use super::console::say;
 use super::settings::{load, parse_integrator, parse_threads};
+use super::units::counted;
 
 const DEFAULT_SCENES: &[&str] = &["whitted", "cornell", "spotlights", "highlights", "lights", "cornell-gi"];
 const QUICK_SCENES: &[&str] = &["whitted", "highlights"];
@@ -302,18 +303,13 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
     staging.publish(args.force)?;
     say!(
         "report: {}, {} configurations each, in {:.1} s; wrote {} and {}",
-        count(results.len(), "scene"),
+        counted(results.len(), "scene"),
         planned.len(),
         started.elapsed().as_secs_f64(),
         args.out.join("report.md").display(),
         args.out.join("report.csv").display()
     )?;
     Ok(())
-}
-
-/// "1 scene", "2 scenes".
-fn count(n: usize, noun: &str) -> String {
-    if n == 1 { format!("1 {noun}") } else { format!("{n} {noun}s") }
 }
 
 /// `--merge DIR…`: the shards' rows joined into the files a one-machine run writes.
@@ -375,8 +371,8 @@ fn merge(args: &ReportArgs, started: Instant) -> anyhow::Result<()> {
     staging.publish(args.force)?;
     say!(
         "report: {} merged, {}, {} configurations each, in {:.1} s; wrote {} and {}",
-        count(devices.len(), "shard"),
-        count(results.len(), "scene"),
+        counted(devices.len(), "shard"),
+        counted(results.len(), "scene"),
         planned.len(),
         started.elapsed().as_secs_f64(),
         args.out.join("report.md").display(),

@@ -61,7 +61,8 @@ impl Staging {
 /// read-only file unless `force`; `outcome` says what the refusal left undone.
 fn check_destination(dest: &Path, force: bool, outcome: &str) -> anyhow::Result<()> {
     let Ok(meta) = std::fs::metadata(dest) else { return Ok(()) };
-    if meta.is_dir() {
+    // A link to a folder is not refused: the rename replaces the link.
+    if meta.is_dir() && !std::fs::symlink_metadata(dest).is_ok_and(|m| m.file_type().is_symlink()) {
         bail!(
             "{}: is a folder, not a file, and the report writes this name: move it or choose another --out; {outcome}",
             dest.display()
@@ -117,6 +118,13 @@ mod tests {
         assert!(e.contains("a.png: is a folder") && e.contains("nothing was written"), "{e}");
         assert_eq!(std::fs::read_to_string(out.join("report.md")).expect("kept"), "forced");
         std::fs::remove_dir(out.join("a.png")).expect("rmdir");
+        // A link named so, to a folder, is not refused: the move replaces the link.
+        #[cfg(unix)]
+        {
+            std::os::unix::fs::symlink(root.path(), out.join("a.png")).expect("link");
+            assert!(Staging::new(&out, &["a.png".into()], true).is_ok(), "a link to a folder was refused");
+            std::fs::remove_file(out.join("a.png")).expect("unlink");
+        }
 
         // Dropped unpublished (a failed run): --out keeps what it had.
         let staging = Staging::new(&out, &[], false).expect("staging");

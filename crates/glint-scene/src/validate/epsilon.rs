@@ -61,14 +61,23 @@ fn too_small(settings: &RenderSettings, extent: Option<f64>) -> Option<String> {
     ))
 }
 
+/// `share`, above `EPSILON_WARN_SHARE`, with the digits that show it is above: three at least,
+/// more where fewer round onto the limit (5e-5 of a scene 4.9 wide, 1.02e-5, read "1e-5" at two;
+/// 1.0001e-5 reads so at three).
+fn above_limit(share: f64) -> String {
+    (3..=17)
+        .map(|digits| format_rounded(share, digits))
+        .find(|shown| shown.parse::<f64>().is_ok_and(|v| v > EPSILON_WARN_SHARE))
+        .unwrap_or_else(|| format_rounded(share, 17))
+}
+
 fn too_large(settings: &RenderSettings, extent: f64) -> Option<String> {
     (settings.epsilon > EPSILON_WARN_SHARE * extent).then(|| {
         format!(
             "{} is {} of the scene's size ({}, the largest side of its spheres' and meshes' box), more than {}: \
              rays move about ε off each surface they leave, so they can pass through geometry; lower it to {} or less",
             format_number(settings.epsilon),
-            // Three digits: 5e-5 of a scene 4.9 wide, 1.02e-5, read "1e-5" at two, the limit itself.
-            format_rounded(settings.epsilon / extent, 3),
+            above_limit(settings.epsilon / extent),
             format_rounded(extent, 3),
             format_number(EPSILON_WARN_SHARE),
             format_rounded(EPSILON_SHARE * extent, 2)
@@ -100,6 +109,11 @@ mod tests {
         // the side rounded to 3 digits, not written out to 16.
         let small = scene(0.04);
         let text = epsilon_warning(&small, &small.render).expect("ε = 1e-6 of a scene 8e-2 wide");
+        assert!(
+            above_limit(1.0001e-5) == "1.0001e-5" && above_limit(1.02e-5) == "1.02e-5",
+            "{}",
+            above_limit(1.0001e-5)
+        );
         assert!(text.starts_with("1e-6 is 1.25e-5 of the scene's size (0.08, the largest side of its spheres' and meshes' box), more than 1e-5:"), "{text}");
         assert!(text.ends_with("lower it to 8e-8 or less"), "{text}");
         let tenth = scene(0.06);
