@@ -167,3 +167,34 @@ fn the_selected_object_is_outlined_on_both_images() {
     click(&mut h, pos, Modifiers::NONE);
     assert!(h.query_by_label("Selected: glass sphere").is_none(), "the outline stays after deselecting");
 }
+
+#[test]
+fn clicking_a_models_face_shows_that_faces_material_and_the_list_can_choose_another() {
+    // A tester's find: a model's own materials could not be chosen (the panel set the object's
+    // first material every frame), and a click on a face showed that first material.
+    let Some(mut h) = viewer("whitted", (1000.0, 640.0)) else { return };
+    let dir = crate::support::temp_dir("two-materials");
+    std::fs::write(dir.join("m.mtl"), "newmtl a\nKd 0.9 0.1 0.1\nnewmtl b\nKd 0.1 0.1 0.9\n").unwrap();
+    let obj = "mtllib m.mtl\nv -1 0 0\nv 0 0 0\nv 0 1 0\nv -1 1 0\nv 1 0 0\nv 1 1 0\n\
+               usemtl a\nf 1 2 3 4\nusemtl b\nf 2 5 6 3\n";
+    std::fs::write(dir.join("model.obj"), obj).unwrap();
+    h.state_mut().open(&dir.join("model.obj").display().to_string());
+    settle(&mut h);
+    let (w, ht) = (h.state().doc.desc.render.width, h.state().doc.desc.render.height);
+    let mut seen = std::collections::BTreeSet::new();
+    for x in (0..w).step_by(4) {
+        h.state_mut().pick(x, ht / 2);
+        if h.state().selection.object.is_some() {
+            seen.extend(h.state().selection.material.clone());
+        }
+    }
+    assert!(seen.contains("model/a") && seen.contains("model/b"), "materials picked along the middle row: {seen:?}");
+    // With the model selected, the list chooses its other material, and the choice stays.
+    crate::support::choose(&mut h, "Materials", "Material", "model/a");
+    h.run_steps(3);
+    assert_eq!(h.state().selection.material.as_deref(), Some("model/a"));
+    crate::support::choose(&mut h, "Materials", "Material", "model/b");
+    h.run_steps(3);
+    assert_eq!(h.state().selection.material.as_deref(), Some("model/b"));
+    let _ = std::fs::remove_dir_all(dir);
+}

@@ -287,25 +287,35 @@ pub fn probe_tree(scene: &FlatScene, x: u32, y: u32, sample: u32) -> RayTree {
     tree
 }
 
-/// The object the camera ray through the centre of pixel (x, y) hits first (`NO_HIT` for
-/// none): picking in the viewer.
+/// What the camera ray through the centre of pixel (x, y) hits first: picking in the viewer.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Picked {
+    /// The object's id (its index in the scene's objects).
+    pub object: u32,
+    /// The material of the primitive hit (`FlatScene::material_names` index): one of a model's
+    /// several.
+    pub material: u32,
+}
+
+/// The first hit of the camera ray through the centre of pixel (x, y), `None` for none.
 ///
 /// # Panics
 /// As `probe_pixel`.
-pub fn pick_object(scene: &FlatScene, x: u32, y: u32) -> u32 {
+pub fn pick(scene: &FlatScene, x: u32, y: u32) -> Option<Picked> {
     let ctx = built_scene_context(scene);
     let h = &scene.header;
     let camera = crate::cpu::camera::camera_ray(&scene.camera, h.width, h.height, x, y, 0.5, 0.5);
-    match crate::cpu::walk::closest_hit(
+    let hit = crate::cpu::walk::closest_hit(
         &ctx,
         &camera.ray,
         camera.t_min,
         crate::cpu::FAR,
         &crate::cpu::intersect::Leaving::NONE,
-    ) {
-        Some(hit) => crate::cpu::trace::object_id(&ctx, &hit),
-        None => glint_types::layout::NO_HIT,
-    }
+    )?;
+    Some(Picked {
+        object: crate::cpu::trace::object_id(&ctx, &hit),
+        material: crate::cpu::trace::hit_material(&ctx, &hit),
+    })
 }
 
 #[cfg(test)]

@@ -9,7 +9,6 @@ use egui::Ui;
 use glint_core::FlatScene;
 use glint_core::image::{RenderInfo, render_metadata};
 use glint_io::LoadOptions;
-use glint_types::layout::NO_HIT;
 
 use crate::ambient_fit::AmbientFitter;
 use crate::automation::{Automation, Frame};
@@ -233,12 +232,14 @@ impl ViewerApp {
         render_metadata(&self.doc.desc.render, &info)
     }
 
-    /// Selects the object under pixel (x, y) (a CPU camera ray) and shows its material.
+    /// Selects the object under pixel (x, y) (a CPU camera ray) and shows the material there:
+    /// of a model's several, the one of the face clicked.
     pub fn pick(&mut self, x: u32, y: u32) {
         let Some(flat) = self.doc.flat(false) else { return };
-        let id = glint_core::pick_object(&flat, x, y);
-        self.selection.object = if id == NO_HIT { None } else { self.doc.object_index(id) };
-        if self.selection.object.is_some() {
+        let picked = glint_core::pick(&flat, x, y);
+        self.selection.object = picked.and_then(|p| self.doc.object_index(p.object));
+        if let Some(p) = picked.filter(|_| self.selection.object.is_some()) {
+            self.selection.material = flat.material_names.get(p.material as usize).cloned();
             self.layout.tab = Tab::Materials;
             self.layout.show_side_panel = true;
         }

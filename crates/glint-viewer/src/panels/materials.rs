@@ -17,7 +17,11 @@ pub fn ui(
         let label = doc.object_label(i);
         if let Some(o) = doc.desc.objects.get(i) {
             ui.label(format!("Selected: {label} ({})", o.kind_name()));
-            *selected_material = Some(o.material().to_string());
+            // Picking chose the material clicked; any other is the user's choice in the list,
+            // kept (set every frame, a model's other materials could not be chosen).
+            if selected_material.as_ref().is_none_or(|m| !doc.desc.materials.contains_key(m)) {
+                *selected_material = Some(o.material().to_string());
+            }
         }
     } else {
         ui.weak("Click an object in the view to select it.");
