@@ -60,6 +60,15 @@ fn spawn_ray(p: vec3<f32>, p_surface: vec3<f32>, n_side: vec3<f32>, dir: vec3<f3
     }
 }
 
+// Where a ray leaving p to n_side's side starts, for aiming it at a point (the CPU twin says why):
+// the spawned origin where it moves off the surface whatever the direction, else p.
+fn aim_origin(p: vec3<f32>, p_surface: vec3<f32>, n_side: vec3<f32>) -> vec3<f32> {
+    if header.epsilon_mode == EPS_ROBUST || header.epsilon_mode == EPS_NUDGE_NORMAL {
+        return spawn_ray(p, p_surface, n_side, n_side, Leaving(PRIM_NONE, 0u, false)).origin;
+    }
+    return p;
+}
+
 fn shadow_t_max(dist: f32) -> f32 {
     if header.epsilon_mode == EPS_ROBUST {
         return dist * (1.0 - SHADOW_REL) - header.epsilon;

@@ -20,7 +20,7 @@
 #else
 #import glint::intersect::closest_hit
 #endif
-#import glint::offset::{spawn_ray, leaving_surface}
+#import glint::offset::{spawn_ray, leaving_surface, aim_origin}
 #import glint::shade::{Surface, light_sample, material_colours}
 #ifdef SHADOWS
 #import glint::shade::light_visibility
@@ -331,7 +331,7 @@ fn lights_light(l: Lobes, s: Surface, ng: vec3<f32>, beta: vec3<f32>, radiance: 
 #ifdef EMISSION
 // What emitter e sends back along dir from s, drawn by next-event estimation and weighed
 // against the paths that meet it (mis), or alone.
-fn emitter_light(e: u32, count: u32, l: Lobes, s: Surface, ng: vec3<f32>, dir: vec3<f32>, mis: bool) -> vec3<f32> {
+fn emitter_light(e: u32, count: u32, l: Lobes, s: Surface, ng: vec3<f32>, aim: vec3<f32>, dir: vec3<f32>, mis: bool) -> vec3<f32> {
     let wi = to_local(l, dir);
     if wi.z <= 0.0 || dot(dir, ng) <= 0.0 {
         return vec3<f32>(0.0);
@@ -345,7 +345,7 @@ fn emitter_light(e: u32, count: u32, l: Lobes, s: Surface, ng: vec3<f32>, dir: v
         return vec3<f32>(0.0);
     }
     let q = surface_at(shadow, hit);
-    let light_pdf = emitter_pdf(e, count, s.p, q.p, q.ng);
+    let light_pdf = emitter_pdf(e, count, aim, q.p, q.ng);
     if dot(dir, q.ng) >= 0.0 || light_pdf <= 0.0 {
         return vec3<f32>(0.0);
     }
@@ -435,11 +435,13 @@ fn path_bounce(path: ptr<function, PathState>) -> bool {
         let pick = min(u32(path_uniform(*path, dim + 4u) * f32(count)), count - 1u);
         let e = emitters[1u + pick];
         let u = vec2<f32>(path_uniform(*path, dim + 5u), path_uniform(*path, dim + 6u));
-        let dir = sample_emitter(e, s.p, u);
+        // Drawn from where the shadow ray will start, so that it meets what it was aimed at.
+        let aim = aim_origin(s.p, s.p_surface, ng);
+        let dir = sample_emitter(e, aim, u);
         if dir.w != 0.0 {
             // At the last bounce no path goes on to meet the emitter: its light sample alone
             // counts it, unweighted.
-            (*path).radiance += (*path).beta * emitter_light(e, count, l, s, ng, dir.xyz, depth < header.max_depth);
+            (*path).radiance += (*path).beta * emitter_light(e, count, l, s, ng, aim, dir.xyz, depth < header.max_depth);
         }
     }
 #endif

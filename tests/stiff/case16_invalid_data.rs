@@ -120,7 +120,7 @@ fn scenes_at_the_edge_of_validation_stay_finite_on_both_backends() {
     let text = SceneText::new(16, 12, "max_depth = 3\nepsilon = 1000.0\nbailout = 1.0", [0.0, 1.0, -big], [0.0; 3], Y, 179.0)
         .world([big; 3], [big; 3])
         .material("m", "ka = 1e9\nkd = 1e9\nks = 1e9\nshininess = 1e6\nkr = 0.5\nkt = 0.5\nior = 1000.0\nemission = 1e9")
-        .material("tiny", "ka = 1e-30\nkd = 1e-30\nshininess = 0.0\nior = 1e-30\nchecker = { kd = 1e-30, size = 1e-30 }")
+        .material("tiny", "ka = 1e-30\nkd = 1e-30\nshininess = 0.0\nior = 1e-30\nchecker = { kd = 1e-30, size = 1e-9 }")
         .light("point", "position = [1e9, 1e9, -1e9]\ndiffuse = 1e9\nspecular = 1e9\nambient = 1e9\nattenuation = { c = 2e-6 }")
         .light("directional", "direction = [1e-12, -1e-12, 1e-12]\ndiffuse = 1e9")
         .light("spot", "position = [0.0, 2.0, 0.0]\ndirection = [1e9, -1e9, 0.0]\ncutoff = 90.0\nexponent = 1e6\nattenuation = { c = 2e-6, l = 1e9, q = 1e9 }")

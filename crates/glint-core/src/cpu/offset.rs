@@ -83,6 +83,20 @@ pub fn spawn_ray(ctx: &TraceContext, p: DVec3, p_surface: DVec3, n_side: DVec3, 
     }
 }
 
+/// Where a ray leaving `p` to `n_side`'s side starts, for aiming it at a point: the spawned
+/// origin where it moves off the surface whatever the direction (robust, nudge_normal), else
+/// `p`, whose line the origin stays on (tmin, skip_convex; nudge_ray moves along the direction).
+/// A direction drawn towards an emitter from `p` and traced from 2^-16 away (the GPU's robust
+/// offset) passed beside a lamp 1e-5 wide: 62 % of a Cornell box's light was lost.
+pub fn aim_origin(ctx: &TraceContext, p: DVec3, p_surface: DVec3, n_side: DVec3) -> DVec3 {
+    match ctx.epsilon_mode {
+        EpsilonMode::Robust | EpsilonMode::NudgeNormal => {
+            spawn_ray(ctx, p, p_surface, n_side, n_side, Leaving::NONE).origin
+        }
+        EpsilonMode::Tmin | EpsilonMode::NudgeRay | EpsilonMode::SkipConvex => p,
+    }
+}
+
 /// How far a shadow ray of length `dist` may look for occluders: it stops short of the light
 /// by the same rule that moved its origin.
 pub fn shadow_t_max(ctx: &TraceContext, dist: f64) -> f64 {

@@ -41,7 +41,7 @@ use super::bsdf::{
 };
 use super::camera::{camera_ray, sample_offset};
 use super::intersect::{Hit, Leaving, Prim, triangle_corners};
-use super::offset::{leaving_surface, spawn_ray};
+use super::offset::{aim_origin, leaving_surface, spawn_ray};
 use super::rng::{hash_to_unit, sample_hash};
 use super::sample::{
     area_to_solid_angle, cone_versin, cosine_hemisphere, cosine_hemisphere_pdf, frame_x, frame_y, power_heuristic,
@@ -405,11 +405,13 @@ pub fn path_bounce(ctx: &TraceContext, emitters: &Emitters, path: &mut PathState
             ((path_uniform(ctx, path, dim + 4) * emitters.list.len() as f64) as usize).min(emitters.list.len() - 1);
         let e = emitters.list[pick];
         let u = DVec2::new(path_uniform(ctx, path, dim + 5), path_uniform(ctx, path, dim + 6));
-        if let Some(dir) = sample_emitter(ctx, e, s.p, u) {
+        // Drawn from where the shadow ray will start, so that it meets what it was aimed at.
+        let aim = aim_origin(ctx, s.p, s.p_surface, ng);
+        if let Some(dir) = sample_emitter(ctx, e, aim, u) {
             // At the last bounce no path goes on to meet the emitter: its light sample alone
             // counts it, unweighted.
             let mis = depth < ctx.max_depth;
-            path.radiance += path.beta * emitter_light(ctx, emitters, e, &l, &s, ng, dir, mis, counts);
+            path.radiance += path.beta * emitter_light(ctx, emitters, e, &l, &s, ng, aim, dir, mis, counts);
         }
     }
 
@@ -542,7 +544,8 @@ pub fn path_sample(
 }
 
 /// What an emitter sends back along `dir` from the surface `s` (its normal `ng` turned to the
-/// incoming ray), drawn by next-event estimation: E_m over the density the point was drawn with,
+/// incoming ray), `dir` drawn from `aim` (`aim_origin`) by next-event estimation: E_m over the
+/// density the point was drawn with,
 /// times the lobes' BRDF and cosine, weighed against the paths' own chance to meet it; without
 /// `mis` the light sample is the only way the emitter is counted from here.
 pub fn emitter_light(
@@ -552,6 +555,7 @@ pub fn emitter_light(
     l: &Lobes,
     s: &super::shade::Surface,
     ng: DVec3,
+    aim: DVec3,
     dir: DVec3,
     mis: bool,
     counts: &mut RayCounts,
@@ -569,7 +573,7 @@ pub fn emitter_light(
         return DVec3::ZERO;
     }
     let q = surface_at(ctx, &shadow, &hit);
-    let light_pdf = emitter_pdf(ctx, e, emitters.list.len(), s.p, q.p, q.ng);
+    let light_pdf = emitter_pdf(ctx, e, emitters.list.len(), aim, q.p, q.ng);
     if dir.dot(q.ng) >= 0.0 || light_pdf <= 0.0 {
         return DVec3::ZERO;
     }

@@ -204,16 +204,6 @@ pub fn object_id(ctx: &TraceContext, hit: &Hit) -> u32 {
     }
 }
 
-/// The material index of a hit's primitive (a model's meshes each have their own).
-pub fn hit_material(ctx: &TraceContext, hit: &Hit) -> u32 {
-    let s = ctx.scene;
-    match hit.prim {
-        Prim::Sphere => s.spheres[hit.index as usize].material,
-        Prim::Plane => s.planes[hit.index as usize].material,
-        Prim::Triangle => s.meshes[s.triangles[hit.index as usize].mesh as usize].material,
-    }
-}
-
 /// One camera sample: radiance and the id of the first object hit (`NO_HIT` for none).
 /// Its rays are added to `counts`; a tree cut at `max_rays_per_sample` adds one capped sample.
 /// A recording `rec` gets the sample's whole ray tree, the camera ray its node 0.
