@@ -166,4 +166,9 @@ fn fit_ambient_lowers_whitteds_error_against_the_paths_and_applies_on_click() {
     h.get_by_label("Apply the fitted I_a").click();
     settle(&mut h);
     assert_eq!(h.state().doc.desc.world.ambient.0, fit.ambient, "Apply sets the world's ambient");
+    // Applied, the fit is the scene's, not an earlier edit's, and is not offered again (a
+    // tester's find: both stayed).
+    assert!(h.query_by_label_contains("fitted to an earlier edit").is_none(), "the applied fit called stale");
+    assert!(h.query_by_label("Apply the fitted I_a").is_none(), "Apply offered again");
+    assert!(h.query_by_label_contains("the fitted value").is_some(), "says it is applied");
 }

@@ -19,11 +19,18 @@ pub struct AmbientFitter {
     /// light), and the revision it was made for.
     pub result: Option<(u64, AmbientFit, f64)>,
     pub error: Option<String>,
+    /// The fit was applied: the edit that applied it is the revision it fits (the next frame's).
+    applied: bool,
 }
 
 impl AmbientFitter {
     pub fn new(repaint: Option<egui::Context>) -> Self {
-        Self { worker: Worker::new("glint-ambient-fit", "ambient fit", repaint), result: None, error: None }
+        Self {
+            worker: Worker::new("glint-ambient-fit", "ambient fit", repaint),
+            result: None,
+            error: None,
+            applied: false,
+        }
     }
 
     pub fn is_running(&self) -> bool {
@@ -76,6 +83,12 @@ impl AmbientFitter {
 /// The World section's Fit ambient row; true when the fitted I_a was applied.
 pub fn ui(ui: &mut egui::Ui, doc: &mut Document, fitter: &mut AmbientFitter) -> bool {
     fitter.poll();
+    // Applying changed the ambient alone, which the fit does not depend on: it still fits.
+    if std::mem::take(&mut fitter.applied)
+        && let Some(result) = &mut fitter.result
+    {
+        result.0 = doc.revision;
+    }
     let mut applied = false;
     ui.horizontal_wrapped(|ui| {
         let button = ui.add_enabled(!fitter.is_running(), egui::Button::new("Fit ambient to paths"));
@@ -112,9 +125,11 @@ pub fn ui(ui: &mut egui::Ui, doc: &mut Document, fitter: &mut AmbientFitter) -> 
         if revision != doc.revision {
             ui.weak("(fitted to an earlier edit of the scene)");
         }
-        if ui.button("Apply the fitted I_a").clicked() {
+        if doc.desc.world.ambient.0 == fit.ambient {
+            ui.weak("I_a is the fitted value.");
+        } else if ui.button("Apply the fitted I_a").clicked() {
             doc.desc.world.ambient = glint_scene::Rgb(fit.ambient);
-            applied = true;
+            (applied, fitter.applied) = (true, true);
         }
     }
     applied

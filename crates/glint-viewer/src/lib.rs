@@ -54,6 +54,11 @@ pub use view::{GiView, ViewMode, placement as view_placement};
 /// larger: on a software rasterizer (lavapipe) every frame costs time per window pixel.
 pub const WINDOW_SIZE: [f32; 2] = [1200.0, 720.0];
 
+/// The smallest window the window manager is asked to allow: the side panel at its least and the
+/// images at their least beside it, with room for the toolbar's rows. At 400×300 no image was
+/// shown and the view's toolbar lost its buttons; at 640×420 with the panel the view was blank.
+pub const MIN_WINDOW_SIZE: [f32; 2] = [layout::SIDE_PANEL_MIN + layout::VIEW_MIN_WIDTH + 60.0, 480.0];
+
 /// Whether a display server is reachable (X11 or Wayland; other systems always have one).
 pub fn has_display() -> bool {
     if cfg!(any(target_os = "windows", target_os = "macos")) {
@@ -67,6 +72,7 @@ fn native_options(renderer: eframe::Renderer) -> eframe::NativeOptions {
         renderer,
         viewport: egui::ViewportBuilder::default()
             .with_inner_size(WINDOW_SIZE)
+            .with_min_inner_size(MIN_WINDOW_SIZE)
             .with_title("Glint viewer")
             .with_drag_and_drop(true),
         wgpu_options: egui_wgpu::WgpuConfiguration {
@@ -167,5 +173,16 @@ impl eframe::App for OutcomeForwarder {
         if let Some(r) = self.shared.lock().unwrap_or_else(|e| e.into_inner()).clone() {
             *self.slot.lock().unwrap_or_else(|e| e.into_inner()) = Some(r);
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn the_window_keeps_room_for_the_panel_and_the_images() {
+        let options = super::native_options(eframe::Renderer::Wgpu);
+        let min = options.viewport.min_inner_size.expect("a least window size");
+        assert!(min.x >= crate::layout::SIDE_PANEL_MIN + crate::layout::VIEW_MIN_WIDTH, "{min:?}");
+        assert!(min.x <= super::WINDOW_SIZE[0] && min.y <= super::WINDOW_SIZE[1], "{min:?}");
     }
 }

@@ -132,10 +132,10 @@ pub fn rgb_edit(ui: &mut Ui, label: &str, value: &mut Rgb) -> bool {
     let mut changed = false;
     ui.horizontal_wrapped(|ui| {
         hint(ui.label(label), label);
-        let mut c = value.0.map(|v| v.clamp(0.0, 1.0) as f32);
+        let before = value.0.map(|v| v.clamp(0.0, 1.0) as f32);
+        let mut c = before;
         if ui.color_edit_button_rgb(&mut c).changed() {
-            value.0 = c.map(f64::from);
-            changed = true;
+            changed = picked_colour(&mut value.0, before, c);
         }
         for (i, ch) in ["R", "G", "B"].iter().enumerate() {
             let r = labelled_drag(ui, format!("{label} {ch}"), &mut value.0[i], 0.005, ranges::COLOUR);
@@ -190,4 +190,40 @@ pub fn choice<T: PartialEq + Copy>(
     });
     hint(combo.response, label);
     changed
+}
+
+/// The colour picker's change to `value`, shown to it as `before`: a channel it moved by less
+/// than `PICKER_NOISE` keeps its exact value, and whether any channel changed. Opening and
+/// closing the picker sends f32 channels through HSV and back, an ulp or two off: k_a = 0.05
+/// was saved as 0.04999999701976776 and the scene marked edited, with nothing touched.
+fn picked_colour(value: &mut [f64; 3], before: [f32; 3], after: [f32; 3]) -> bool {
+    let mut changed = false;
+    for k in 0..3 {
+        if (after[k] - before[k]).abs() > PICKER_NOISE {
+            value[k] = f64::from(after[k]);
+            changed = true;
+        }
+    }
+    changed
+}
+
+/// Far below the picker's own steps (its sliders move by 1/255 of the range and more), and far
+/// above its round trip's rounding (a few f32 ulps of a value ≤ 1).
+const PICKER_NOISE: f32 = 1e-6;
+
+#[cfg(test)]
+mod tests {
+    use super::picked_colour;
+
+    #[test]
+    fn the_pickers_rounding_changes_nothing_and_a_pick_changes_its_channel() {
+        let mut value = [0.05, 0.3, 0.05];
+        let before = value.map(|v| v as f32);
+        let round_trip = [0.049_999_997, 0.300_000_04, 0.050_000_05];
+        assert!(!picked_colour(&mut value, before, round_trip));
+        assert_eq!(value, [0.05, 0.3, 0.05], "the typed values are kept exactly");
+        let picked = [0.049_999_997, 0.5, 0.050_000_05];
+        assert!(picked_colour(&mut value, before, picked));
+        assert_eq!(value, [0.05, f64::from(0.5f32), 0.05], "only the channel picked changes");
+    }
 }

@@ -71,7 +71,9 @@ pub fn ui(ui: &mut Ui, probe: Option<&ProbeState>, doc: &Document) {
 /// The pixel's path-traced radiance by bounce (rows) and kind of light (columns), as the mean
 /// of R, G and B, with each kind's total: what the terms above, Whitted's, leave out.
 fn path_split(ui: &mut Ui, p: &PathProbe) {
-    ui.strong(format!("Paths: the pixel's light by bounce and kind ({} samples)", p.spp));
+    // Its own CPU samples, not the images' means (the Whitted − GI readout is the GPU's mean).
+    let samples = if p.spp == 1 { "1 sample".to_string() } else { format!("{} samples", p.spp) };
+    ui.strong(format!("Paths: the pixel's light by bounce and kind (the CPU's {samples} of this pixel)"));
     ui.weak("Mean of R, G, B. Bounce 0 is the first hit; Whitted's terms below are its direct light and ambient.");
     let mean = |v: DVec3| v.element_sum() / 3.0;
     egui::Grid::new("path split").striped(true).show(ui, |ui| {

@@ -3,6 +3,7 @@
 use egui::Ui;
 use glint_core::compare::ImageErrors;
 use glint_core::cpu::RayCounts;
+use glint_scene::format_rounded;
 
 /// What the status bar says on a software adapter.
 pub const SOFTWARE_ADAPTER: &str = "software Vulkan (lavapipe): the GPU tracer runs on the CPU";
@@ -47,9 +48,12 @@ pub struct Samples {
 
 /// "GPU 192 samples (48/s), adding…; CPU 64 samples".
 pub fn samples_text(s: &Samples) -> String {
+    let samples = |n: u32| if n == 1 { "1 sample".to_string() } else { format!("{n} samples") };
     let gpu = match (s.gpu, s.gpu_rate) {
-        (Some(n), Some(rate)) => format!("GPU {n} samples ({rate:.0}/s)"),
-        (Some(n), None) => format!("GPU {n} samples"),
+        // Two digits below 10: a model at 2.7 s a sample showed "(0/s)" while it added them.
+        (Some(n), Some(rate)) if rate < 10.0 => format!("GPU {} ({}/s)", samples(n), format_rounded(rate, 2)),
+        (Some(n), Some(rate)) => format!("GPU {} ({rate:.0}/s)", samples(n)),
+        (Some(n), None) => format!("GPU {}", samples(n)),
         (None, _) => "GPU no samples yet".into(),
     };
     let state = if s.full {
@@ -61,7 +65,7 @@ pub fn samples_text(s: &Samples) -> String {
     } else {
         ""
     };
-    let cpu = s.cpu.map_or("CPU rendering…".to_string(), |n| format!("CPU {n} samples"));
+    let cpu = s.cpu.map_or("CPU rendering…".to_string(), |n| format!("CPU {}", samples(n)));
     format!("{gpu}{state}; {cpu}")
 }
 
@@ -149,4 +153,24 @@ pub fn ui(ui: &mut Ui, s: &Status) {
         (None, Some(c)) => ui.label(format!("Rays (CPU): {}", counts(c))),
         (None, None) => ui.weak("Rays: no render yet"),
     };
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{Samples, samples_text};
+
+    #[test]
+    fn a_slow_rate_is_not_written_as_zero() {
+        let s = |n, rate| Samples {
+            gpu: Some(n),
+            gpu_rate: rate,
+            accumulating: true,
+            paused: false,
+            full: false,
+            cpu: Some(1),
+        };
+        assert_eq!(samples_text(&s(10, Some(0.37))), "GPU 10 samples (0.37/s), adding…; CPU 1 sample");
+        assert_eq!(samples_text(&s(192, Some(48.4))), "GPU 192 samples (48/s), adding…; CPU 1 sample");
+        assert_eq!(samples_text(&s(1, None)), "GPU 1 sample, adding…; CPU 1 sample");
+    }
 }
