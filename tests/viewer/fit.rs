@@ -74,3 +74,20 @@ fn every_tab_fits_the_minimum_width_of_the_side_panel() {
     let found = every_tab((700.0, 900.0));
     assert!(found.is_empty(), "clipped at the minimum width:\n{}", found.join("\n"));
 }
+
+#[test]
+fn the_side_panel_gets_its_width_back_when_the_window_widens_again() {
+    // A tester's find: narrowed by a smaller window, the panel stayed at that width afterwards.
+    let Some(mut h) = viewer("whitted", (1000.0, 640.0)) else { return };
+    h.run_steps(2);
+    let first = h.state().layout.side_rect.width();
+    assert!((first - 300.0).abs() < 2.0, "the default width: {first}");
+    h.set_size(egui::vec2(740.0, 640.0));
+    h.run_steps(3);
+    let narrowed = h.state().layout.side_rect.width();
+    assert!(narrowed < first - 20.0, "a narrower window narrows the panel: {first} → {narrowed}");
+    h.set_size(egui::vec2(1000.0, 640.0));
+    h.run_steps(3);
+    let back = h.state().layout.side_rect.width();
+    assert!((back - first).abs() < 1.0, "the panel came back to {back}, not {first}");
+}

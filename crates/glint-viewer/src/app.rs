@@ -436,21 +436,35 @@ impl eframe::App for ViewerApp {
         if self.layout.show_side_panel {
             // Resizable, never so wide that the images get less than VIEW_MIN_WIDTH.
             let widest = (ui.available_width() - VIEW_MIN_WIDTH).max(SIDE_PANEL_MIN);
-            let side = egui::Panel::left("panels")
+            let mut panel = egui::Panel::left("panels")
                 .default_size(SIDE_PANEL_DEFAULT.min(widest))
                 .size_range(SIDE_PANEL_MIN..=widest)
-                .resizable(true)
-                .show(ui, |ui| {
-                    let inputs = panels::SideInputs {
-                        probed: self.renders.probe.as_ref(),
-                        compared: self.renders.comparison_of(self.doc.revision),
-                        history: &self.history,
-                        axis: &mut self.error_axis,
-                        fitter: &mut self.fitter,
-                    };
-                    panels::side(ui, &mut self.layout.tab, &mut self.doc, &mut self.selection, inputs)
-                });
+                .resizable(true);
+            // Clamped by a narrower window before, and there is room again: back to the width
+            // the user left it at.
+            let wanted = self.layout.panel_wanted.min(widest);
+            let restoring = self.layout.panel_drawn.is_some_and(|drawn| drawn + 0.5 < wanted);
+            if restoring {
+                panel = panel.exact_size(wanted);
+            }
+            let side = panel.show(ui, |ui| {
+                let inputs = panels::SideInputs {
+                    probed: self.renders.probe.as_ref(),
+                    compared: self.renders.comparison_of(self.doc.revision),
+                    history: &self.history,
+                    axis: &mut self.error_axis,
+                    fitter: &mut self.fitter,
+                };
+                panels::side(ui, &mut self.layout.tab, &mut self.doc, &mut self.selection, inputs)
+            });
             self.layout.side_rect = side.response.rect;
+            let drawn = side.response.rect.width();
+            // Narrower than the window allows is the user's choice; at the window's limit it is
+            // the user's only where wider than before (a clamp only narrows it).
+            if !restoring && (drawn + 0.5 < widest || drawn > self.layout.panel_wanted) {
+                self.layout.panel_wanted = drawn;
+            }
+            self.layout.panel_drawn = Some(drawn);
             if let Some((x, y)) = side.inner {
                 self.probe_at(x, y);
             }

@@ -36,6 +36,10 @@ pub struct Layout {
     pub status_rect: egui::Rect,
     /// Where the side panel was drawn (nothing when hidden), for checking what fits in it.
     pub side_rect: egui::Rect,
+    /// The side panel's width as the user left it, and as it was last drawn: a narrower window
+    /// clamps the panel, and a wider one gives that width back (it stayed at 220).
+    pub panel_wanted: f32,
+    pub panel_drawn: Option<f32>,
     /// The Help window open (Help menu).
     pub help: crate::help::HelpWindow,
 }
@@ -59,6 +63,8 @@ impl Layout {
             view_rects: Vec::new(),
             status_rect: egui::Rect::NOTHING,
             side_rect: egui::Rect::NOTHING,
+            panel_wanted: SIDE_PANEL_DEFAULT,
+            panel_drawn: None,
             help: crate::help::HelpWindow::None,
         }
     }
