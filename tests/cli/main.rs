@@ -435,6 +435,9 @@ fn bad_input_fails_cleanly() {
         ("--seed", "-1", "-1 is outside the allowed range [0, 4294967295]"),
         ("--tile", "-1/4", "not a whole number"),
         ("--camera", "-1", "--camera"),
+        // Beyond u32, the range every whole number of the scene format has.
+        ("--scene-index", "4294967296", "'4294967296' is not an index (a whole number from 0 to 4294967295)"),
+        ("--camera", "99999999999", "'99999999999' is not an index (a whole number from 0 to 4294967295)"),
     ] {
         expect_failure(
             "negative-flag",
