@@ -87,6 +87,15 @@ fn the_tree_is_drawn_over_the_image_and_can_be_hidden() {
     for (name, ..) in glint_viewer::RAY_TREE_LEGEND {
         assert!(h.query_by_label(name).is_some(), "the legend does not say what {name} looks like");
     }
+    // The legend stays within the image (it ran onto the difference view's colour bar below).
+    let image = *h.state().layout.view_rects.last().expect("an image");
+    let last = h.get_by_label("width: the ray's path weight").rect();
+    assert!(
+        last.bottom() <= image.bottom(),
+        "the legend ends at {} below the image's {}",
+        last.bottom(),
+        image.bottom()
+    );
     menu(&mut h, &["View", "Ray tree overlay"]);
     h.key_press(egui::Key::Escape);
     h.run_steps(2);

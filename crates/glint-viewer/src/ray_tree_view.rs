@@ -128,7 +128,10 @@ pub const LEGEND: [(&str, Color32, bool); 6] = [
 /// The legend in the bottom-right corner of the image `r`, on a dark box.
 fn legend(ui: &mut Ui, r: Rect) {
     let width = 172.0;
-    let height = 16.0 * (LEGEND.len() as f32 + 1.0) + 8.0;
+    // Each row is as tall as a horizontal layout makes it (its interact height, 18 points by
+    // default, not 16): reckoned lower, the box ran past the image onto the colour bar below it.
+    let row = ui.spacing().interact_size.y;
+    let height = row * (LEGEND.len() as f32 + 1.0) + 8.0;
     let at = Rect::from_min_size(r.right_bottom() - Vec2::new(width + 6.0, height + 6.0), Vec2::new(width, height));
     if !r.contains_rect(at) {
         return;
