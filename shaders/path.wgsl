@@ -429,6 +429,9 @@ fn path_bounce(path: ptr<function, PathState>) -> bool {
 
     let weights = l.weights;
     let dim = FIRST_PATH_DIM + depth * DIMS_PER_BOUNCE;
+    // Where a ray leaving to the front starts: the light sample and a lobe's emitter density
+    // are both taken from it (the CPU twin says why).
+    let aim = aim_origin(s.p, s.p_surface, ng);
 #ifdef EMISSION
     let count = emitters[0];
     if sampled && count > 0u && weights.x + weights.y > 0.0 {
@@ -436,7 +439,6 @@ fn path_bounce(path: ptr<function, PathState>) -> bool {
         let e = emitters[1u + pick];
         let u = vec2<f32>(path_uniform(*path, dim + 5u), path_uniform(*path, dim + 6u));
         // Drawn from where the shadow ray will start, so that it meets what it was aimed at.
-        let aim = aim_origin(s.p, s.p_surface, ng);
         let dir = sample_emitter(e, aim, u);
         if dir.w != 0.0 {
             // At the last bounce no path goes on to meet the emitter: its light sample alone
@@ -473,7 +475,7 @@ fn path_bounce(path: ptr<function, PathState>) -> bool {
         }
         (*path).beta *= lobes_brdf(l, wi) * (wi.z / pdf);
         ray_counts.reflection += 1u;
-        (*path).scattered_from = s.p;
+        (*path).scattered_from = aim;
         (*path).scattered_pdf = pdf;
         (*path).history = scattered((*path).history, false);
         dir = to_world(ns, wi);

@@ -400,13 +400,17 @@ pub fn path_bounce(ctx: &TraceContext, emitters: &Emitters, path: &mut PathState
 
     let weights = l.weights;
     let dim = FIRST_PATH_DIM + depth * DIMS_PER_BOUNCE;
+    // Where a ray leaving to the front starts: the light sample is drawn from it, and a lobe's
+    // ray that meets an emitter has the emitter's density taken from it too, so that the two
+    // weights of one direction add to 1 (taken from the surface point, they did not, and with
+    // robust ε = 0.01 a lamp 0.02 above a floor lit it 0.9 % too dark).
+    let aim = aim_origin(ctx, s.p, s.p_surface, ng);
     if sampled && !emitters.list.is_empty() && weights.x + weights.y > 0.0 {
         let pick =
             ((path_uniform(ctx, path, dim + 4) * emitters.list.len() as f64) as usize).min(emitters.list.len() - 1);
         let e = emitters.list[pick];
         let u = DVec2::new(path_uniform(ctx, path, dim + 5), path_uniform(ctx, path, dim + 6));
         // Drawn from where the shadow ray will start, so that it meets what it was aimed at.
-        let aim = aim_origin(ctx, s.p, s.p_surface, ng);
         if let Some(dir) = sample_emitter(ctx, e, aim, u) {
             // At the last bounce no path goes on to meet the emitter: its light sample alone
             // counts it, unweighted.
@@ -440,7 +444,7 @@ pub fn path_bounce(ctx: &TraceContext, emitters: &Emitters, path: &mut PathState
         }
         path.beta *= lobes_brdf(ctx, &l, wi) * (wi.z / pdf);
         counts.reflection += 1;
-        (path.scattered_from, path.scattered_pdf) = (s.p, pdf);
+        (path.scattered_from, path.scattered_pdf) = (aim, pdf);
         path.history = scattered(path.history, false);
         (to_world(ns, wi), false)
     } else if pick < choice.x + choice.y + choice.z {
