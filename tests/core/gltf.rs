@@ -77,6 +77,26 @@ fn metallic_roughness_transmission_ior_and_emissive_strength_map_as_documented()
     let plastic = &load(&f.write_gltf(&dir, "plastic", BufferAt::DataUri)).materials["white plastic"];
     let gain = plastic.gain(glint_scene::Integrator::Path);
     assert!(gain <= 1.0 + 1e-12, "k_d {:?} + k_s {:?}: gain {gain}", plastic.kd, plastic.ks);
+    // Specular-glossiness keeps 1 − max(specular) for the diffuse, as its extension says (it
+    // kept all: a white diffuse with specular 0.2 summed to 1.2); KHR_materials_specular's
+    // coloured F0 takes its largest channel, so the diffuse keeps its hue.
+    f.json["extensionsUsed"] = json!(["KHR_materials_pbrSpecularGlossiness", "KHR_materials_specular"]);
+    f.json["materials"] = json!([
+        { "name": "sg", "extensions": { "KHR_materials_pbrSpecularGlossiness": {
+            "diffuseFactor": [1.0, 1.0, 1.0, 1.0], "specularFactor": [0.2, 0.1, 0.1], "glossinessFactor": 0.5 } } },
+        { "name": "tinted", "pbrMetallicRoughness": { "baseColorFactor": [1.0, 1.0, 1.0, 1.0], "metallicFactor": 0.0, "roughnessFactor": 0.5 },
+          "extensions": { "KHR_materials_specular": { "specularColorFactor": [10.0, 1.0, 1.0] } } }
+    ]);
+    let m = load(&f.write_gltf(&dir, "sg", BufferAt::DataUri));
+    let sg = &m.materials["sg"];
+    assert!(sg.kd.0.iter().all(|&d| close(d, 0.8)), "k_d = diffuse·(1 − max(specular)): {:?}", sg.kd);
+    assert!(sg.gain(glint_scene::Integrator::Path) <= 1.0 + 1e-12, "{:?} {:?}", sg.kd, sg.ks);
+    let tinted = &m.materials["tinted"];
+    assert!(
+        tinted.kd.0.iter().all(|&d| close(d, 0.6)),
+        "k_d = base·(1 − max(F0)) = 0.6 in every channel: {:?}",
+        tinted.kd
+    );
     assert_eq!(mat.kt, Rgb([0.25, 0.125, 0.0625]));
     assert_eq!(mat.ka, mat.kd, "k_a = k_d");
     // k_s = lerp(0.04, base, metallic).

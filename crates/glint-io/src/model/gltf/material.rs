@@ -68,16 +68,18 @@ pub(super) fn map_material(m: &::gltf::Material<'_>, field: &str, warnings: &mut
             ..MaterialDesc::default()
         };
     }
-    // `diffuse_share`: what of the diffuse colour the diffuse lobe keeps beside the specular one.
-    let (base, f0, roughness, diffuse_share) = match m.pbr_specular_glossiness() {
+    // `dielectric_f0`: the largest channel of the specular reflectance the diffuse lobe shares
+    // the light with (both extensions keep 1 − its largest channel for the diffuse).
+    let (base, f0, roughness, dielectric_f0) = match m.pbr_specular_glossiness() {
         Some(sg) => {
             let d = sg.diffuse_factor();
             // Specular-glossiness gives k_d and F0 directly; roughness = 1 − glossiness.
+            let specular = factors.rgb("specularFactor", sg.specular_factor());
             (
                 factors.rgb("diffuseFactor", [d[0], d[1], d[2]]),
-                factors.rgb("specularFactor", sg.specular_factor()),
+                specular,
                 1.0 - factors.unit("glossinessFactor", sg.glossiness_factor()),
-                [1.0; 3],
+                max_channel(specular.0),
             )
         }
         None => {
@@ -93,11 +95,7 @@ pub(super) fn map_material(m: &::gltf::Material<'_>, field: &str, warnings: &mut
             let dielectric_f0: [f64; 3] = std::array::from_fn(|k| (DIELECTRIC_F0 * tint[k]).min(1.0) * strength);
             let f0 = Rgb(std::array::from_fn(|k| lerp(dielectric_f0[k], base.0[k], metallic)));
             let diffuse = Rgb(base.0.map(|c| c * (1.0 - metallic)));
-            // glTF's dielectric lobe mixes diffuse and specular by the Fresnel term, so the
-            // diffuse keeps 1 − F0 of the light at normal incidence: a white plastic mapped to
-            // k_d + k_s = 1.04 returned more light than it received under paths.
-            let share = dielectric_f0.map(|f| 1.0 - f);
-            (diffuse, f0, factors.unit("roughnessFactor", pbr.roughness_factor()), share)
+            (diffuse, f0, factors.unit("roughnessFactor", pbr.roughness_factor()), max_channel(dielectric_f0))
         }
     };
     let transmission = m.transmission().map_or(0.0, |t| factors.unit("transmissionFactor", t.transmission_factor()));
@@ -106,7 +104,11 @@ pub(super) fn map_material(m: &::gltf::Material<'_>, field: &str, warnings: &mut
     // Transmission replaces the diffuse part and is tinted by it (KHR_materials_transmission);
     // what a smooth surface mirrors it does not transmit (F0: 0.04 of a glass), so that
     // k_r + k_t stays within 1 (a plain glass mapped to 1.04, which validation warned of).
-    let kd = Rgb(std::array::from_fn(|k| base.0[k] * (1.0 - transmission) * diffuse_share[k]));
+    // glTF mixes the diffuse with the specular lobe by the Fresnel term, keeping 1 − max(F0) at
+    // normal incidence for the diffuse (KHR_materials_specular and pbrSpecularGlossiness say
+    // so): a white rough plastic mapped to k_d + k_s = 1.04 returned more light than it
+    // received under paths.
+    let kd = Rgb(std::array::from_fn(|k| base.0[k] * (1.0 - transmission) * (1.0 - dielectric_f0)));
     let kt = Rgb(std::array::from_fn(|k| base.0[k] * transmission * (1.0 - kr.0[k])));
     let ior = match m.ior().map(widen) {
         None => 1.5,
@@ -189,6 +191,10 @@ pub fn default_material() -> MaterialDesc {
         shininess: blinn_exponent(0.5),
         ..MaterialDesc::default()
     }
+}
+
+fn max_channel(c: [f64; 3]) -> f64 {
+    c[0].max(c[1]).max(c[2])
 }
 
 #[cfg(test)]
