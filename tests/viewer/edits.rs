@@ -171,4 +171,6 @@ fn fit_ambient_lowers_whitteds_error_against_the_paths_and_applies_on_click() {
     assert!(h.query_by_label_contains("fitted to an earlier edit").is_none(), "the applied fit called stale");
     assert!(h.query_by_label("Apply the fitted I_a").is_none(), "Apply offered again");
     assert!(h.query_by_label_contains("the fitted value").is_some(), "says it is applied");
+    let (_, applied, _) = h.state().fitter.result.expect("the fit");
+    assert_eq!(applied.rmse_as_written, fit.rmse_fitted, "'as written' is the applied ambient's now");
 }

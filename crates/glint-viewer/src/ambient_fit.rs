@@ -19,8 +19,9 @@ pub struct AmbientFitter {
     /// light), and the revision it was made for.
     pub result: Option<(u64, AmbientFit, f64)>,
     pub error: Option<String>,
-    /// The fit was applied: the edit that applied it is the revision it fits (the next frame's).
-    applied: bool,
+    /// The revision the fit was applied at: the next revision, the apply's own edit, is one it
+    /// still fits (it does not depend on the ambient written).
+    applied_at: Option<u64>,
 }
 
 impl AmbientFitter {
@@ -29,7 +30,7 @@ impl AmbientFitter {
             worker: Worker::new("glint-ambient-fit", "ambient fit", repaint),
             result: None,
             error: None,
-            applied: false,
+            applied_at: None,
         }
     }
 
@@ -83,11 +84,16 @@ impl AmbientFitter {
 /// The World section's Fit ambient row; true when the fitted I_a was applied.
 pub fn ui(ui: &mut egui::Ui, doc: &mut Document, fitter: &mut AmbientFitter) -> bool {
     fitter.poll();
-    // Applying changed the ambient alone, which the fit does not depend on: it still fits.
-    if std::mem::take(&mut fitter.applied)
-        && let Some(result) = &mut fitter.result
+    // Applying changed the ambient alone, which the fit does not depend on: it still fits the
+    // apply's revision, and the figures "as written" are now the fitted ones (the image is
+    // affine in I_a). Any other edit since leaves it an earlier edit's.
+    if let Some(at) = fitter.applied_at.take()
+        && let Some((revision, fit, _)) = &mut fitter.result
+        && *revision == at
+        && doc.revision == at + 1
     {
-        result.0 = doc.revision;
+        *revision = doc.revision;
+        (fit.rmse_as_written, fit.adds_as_written) = (fit.rmse_fitted, fit.adds_fitted);
     }
     let mut applied = false;
     ui.horizontal_wrapped(|ui| {
@@ -129,7 +135,7 @@ pub fn ui(ui: &mut egui::Ui, doc: &mut Document, fitter: &mut AmbientFitter) -> 
             ui.weak("I_a is the fitted value.");
         } else if ui.button("Apply the fitted I_a").clicked() {
             doc.desc.world.ambient = glint_scene::Rgb(fit.ambient);
-            (applied, fitter.applied) = (true, true);
+            (applied, fitter.applied_at) = (true, Some(revision));
         }
     }
     applied

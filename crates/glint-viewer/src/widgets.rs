@@ -197,9 +197,13 @@ pub fn choice<T: PartialEq + Copy>(
 /// closing the picker sends f32 channels through HSV and back, an ulp or two off: k_a = 0.05
 /// was saved as 0.04999999701976776 and the scene marked edited, with nothing touched.
 fn picked_colour(value: &mut [f64; 3], before: [f32; 3], after: [f32; 3]) -> bool {
+    let moved = (0..3).any(|k| (after[k] - before[k]).abs() > PICKER_NOISE);
     let mut changed = false;
     for k in 0..3 {
-        if (after[k] - before[k]).abs() > PICKER_NOISE {
+        // A channel beyond the picker's [0, 1] (an emission of 12) was shown clamped: once the
+        // colour is picked, it is the picker's value too, not 12 beside the picked others.
+        let clamped = value[k] != f64::from(before[k]) && !(0.0..=1.0).contains(&value[k]);
+        if (after[k] - before[k]).abs() > PICKER_NOISE || (moved && clamped) {
             value[k] = f64::from(after[k]);
             changed = true;
         }
@@ -225,5 +229,12 @@ mod tests {
         let picked = [0.049_999_997, 0.5, 0.050_000_05];
         assert!(picked_colour(&mut value, before, picked));
         assert_eq!(value, [0.05, f64::from(0.5f32), 0.05], "only the channel picked changes");
+        // A lamp's E_m of (12, 11.4, 10.2) is shown as (1, 1, 1): picking (1, 0.9, 0.8) makes it
+        // that colour, not (12, 0.9, 0.8) (a reviewer's find).
+        let mut lamp = [12.0, 11.4, 10.2];
+        assert!(!picked_colour(&mut lamp, [1.0; 3], [1.0; 3]), "opening the picker changes nothing");
+        assert_eq!(lamp, [12.0, 11.4, 10.2]);
+        assert!(picked_colour(&mut lamp, [1.0; 3], [1.0, 0.9, 0.8]));
+        assert_eq!(lamp, [1.0, f64::from(0.9f32), f64::from(0.8f32)]);
     }
 }
