@@ -988,3 +988,22 @@ fn a_saved_edit_of_a_textured_model_material_loads_again_with_the_models_images(
     assert_eq!(m.texture.as_ref().and_then(|t| t.image.as_ref()).map(|i| i.width()), Some(2));
     assert_eq!(reloaded.desc, desc);
 }
+
+#[test]
+fn normals_under_a_tiny_node_scale_are_kept() {
+    // Nodes scaled by 1e-3 twice (a tester's file): the cofactor transform scaled each normal's
+    // length by s² = 1e-12, the importer took that for a zero normal, and a smooth sphere was
+    // shaded faceted without a word.
+    let dir = TempDir::new("gltf-tiny-scale");
+    let mut f = Fixture::quad();
+    f.json["scenes"][0]["nodes"] = json!([1]);
+    f.json["nodes"] = json!([
+        { "mesh": 0, "name": "quad" },
+        { "scale": [1e-3, 1e-3, 1e-3], "children": [2] },
+        { "scale": [1e-3, 1e-3, 1e-3], "children": [0] }
+    ]);
+    let m = load(&f.write_gltf(&dir, "tiny", BufferAt::DataUri));
+    let normals = m.meshes[0].normals.as_ref().expect("the file's normals are kept");
+    assert!(normals.iter().all(|n| close(n[2], 1.0)), "{normals:?}");
+    assert!(close(m.meshes[0].vertices[2][0], 1e-6), "{:?}", m.meshes[0].vertices);
+}

@@ -355,13 +355,20 @@ fn read_primitive(
         vertices.push(w);
     }
     // A zero or non-finite normal cannot shade: the primitive is shaded faceted, as the OBJ
-    // importer does (validation would refuse it).
-    let unit = |v: [f64; 3]| {
-        let len = v.iter().map(|c| c * c).sum::<f64>().sqrt();
-        (len.is_finite() && len > 1e-12).then(|| v.map(|c| c / len))
+    // importer does (validation would refuse it). Zero is judged on the file's normal; the
+    // transformed one is only renormalised, since the transform scales its length by s² (nodes
+    // scaled by 1e-6 made every normal 1e-12 long, and a smooth sphere faceted without a word).
+    let length = |v: [f64; 3]| v.iter().map(|c| c * c).sum::<f64>().sqrt();
+    let unit = |v: [f64; 3], zero: f64| {
+        let len = length(v);
+        (len.is_finite() && len > zero).then(|| v.map(|c| c / len))
     };
-    let normals = local_normals
-        .and_then(|n| n.iter().enumerate().map(|(k, v)| unit(matrices[k].normal(*v))).collect::<Option<Vec<_>>>());
+    let normals = local_normals.and_then(|n| {
+        n.iter()
+            .enumerate()
+            .map(|(k, v)| unit(*v, 1e-12).and_then(|v| unit(matrices[k].normal(v), f64::MIN_POSITIVE)))
+            .collect::<Option<Vec<_>>>()
+    });
     let uvs = match uv_set.and_then(|set| primitive.get(&::gltf::Semantic::TexCoords(set)).map(|a| (set, a))) {
         None => None,
         Some((set, acc)) => {
