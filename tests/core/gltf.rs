@@ -1007,3 +1007,27 @@ fn normals_under_a_tiny_node_scale_are_kept() {
     assert!(normals.iter().all(|n| close(n[2], 1.0)), "{normals:?}");
     assert!(close(m.meshes[0].vertices[2][0], 1e-6), "{:?}", m.meshes[0].vertices);
 }
+
+#[test]
+fn the_camera_made_for_a_model_sees_all_of_a_tall_one() {
+    // A column 0.2 × 2 × 0.2 (a tester's file): the framing camera stood 2.6 bounding radii
+    // away, where its 40° view holds only 22.6° of the 20° it needs, and the column's top was
+    // cut off. Every corner of the box lies within the view's half-height of its axis.
+    let dir = TempDir::new("gltf-tall");
+    let mut f = Fixture::quad();
+    f.json["nodes"][0]["scale"] = json!([0.2, 2.0, 0.2]);
+    let path = f.write_gltf(&dir, "tall", BufferAt::DataUri);
+    let loaded = glint_io::load_scene(&path.display().to_string()).expect("the model opens");
+    let camera = &loaded.desc.camera;
+    let (eye, at) = (glam::DVec3::from(camera.position), glam::DVec3::from(camera.look_at));
+    let axis = (at - eye).normalize();
+    for corner in [[0.0, 0.0, 0.0], [0.2, 0.0, 0.0], [0.0, 2.0, 0.0], [0.2, 2.0, 0.0]] {
+        let to = (glam::DVec3::from(corner) - eye).normalize();
+        let angle = axis.dot(to).clamp(-1.0, 1.0).acos().to_degrees();
+        assert!(
+            angle < 0.5 * camera.fov_y,
+            "corner {corner:?} is {angle:.2}° off the axis of a {}° view",
+            camera.fov_y
+        );
+    }
+}

@@ -114,8 +114,9 @@ pub fn load_model_file(path: &Path, options: &ImportOptions) -> Result<Model, St
 }
 
 /// Where the camera framing a model stands: a direction from the model's centre and how many
-/// of its radii along it.
-const FRAMING_CAMERA: ([f64; 3], f64) = ([0.45, 0.35, 0.82], 2.6);
+/// of its radii along it. Its 40° view holds the bounding sphere from 1/sin 20° = 2.92 radii:
+/// at 2.6 a tall model (a skinned figure, a column) lost its top.
+const FRAMING_CAMERA: ([f64; 3], f64) = ([0.45, 0.35, 0.82], 3.0);
 /// Where the default rig's point key light stands, as `FRAMING_CAMERA`.
 const KEY_LIGHT: ([f64; 3], f64) = ([-0.8, 1.6, 1.2], 3.0);
 
