@@ -28,7 +28,7 @@ use super::units::{mrays_per_s, ms};
 
 #[derive(Debug, Args)]
 pub struct RenderArgs {
-    /// A scene file (.toml) or the name of a built-in scene (see --list)
+    /// A scene file (.toml), a model file (.gltf, .glb, .obj) opened in a lab scene, or the name of a built-in scene (see --list)
     #[arg(default_value = "whitted")]
     pub scene: String,
     /// Output image: .png (sRGB, settings in metadata) or .exr (linear f32). Default: SCENE.png;

@@ -43,7 +43,7 @@ impl StartView {
 
 #[derive(Debug, Args)]
 pub struct ViewArgs {
-    /// A scene file (.toml) or the name of a built-in scene
+    /// A scene file (.toml), a model file (.gltf, .glb, .obj) opened in a lab scene, or the name of a built-in scene
     #[arg(default_value = "whitted")]
     pub scene: String,
     #[command(flatten)]
