@@ -262,6 +262,24 @@ fn a_punctual_light_out_of_range_is_named_by_the_files_own_fields() {
         (m.lights[0].inner_cone, m.lights[0].outer_cone),
         (Some(f64::from(0.5f32).to_degrees().min(90.0)), Some(f64::from(0.5f32).to_degrees()))
     );
+    // A colour or range the extension does not allow is named by its own field, not by the
+    // lights[i].diffuse or .attenuation.range Glint maps it to (a tester's find: the colour of
+    // the file's light 2 was refused as Glint's lights[0].diffuse and .specular).
+    let red = with(json!([{ "type": "point", "color": [-1.0, 0.5, 0.5] }]), "red");
+    let message = load_gltf(&red, &ImportOptions::default()).unwrap_err().to_string();
+    assert!(message.contains("extensions.KHR_lights_punctual.lights[0].color: r = -1 must be in [0, 1]"), "{message}");
+    let near = with(json!([{ "type": "point", "range": -3.0 }]), "near");
+    let message = load_gltf(&near, &ImportOptions::default()).unwrap_err().to_string();
+    assert!(
+        message.contains("extensions.KHR_lights_punctual.lights[0].range: -3 must be a finite number > 0"),
+        "{message}"
+    );
+    // Above 1, as the extension bounds it: taken as 1, and said.
+    let bright = with(json!([{ "type": "point", "color": [2.0, 0.5, 0.5] }]), "bright-colour");
+    let m = load_gltf(&bright, &ImportOptions::default()).unwrap();
+    let said = m.warnings.iter().find(|w| w.field == "extensions.KHR_lights_punctual.lights[0].color").expect("said");
+    assert!(said.problem.starts_with("r = 2 is outside [0, 1]"), "{}", said.problem);
+    assert_eq!(m.lights[0].diffuse.0[0], 1.0);
 }
 
 #[test]
