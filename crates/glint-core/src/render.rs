@@ -7,7 +7,6 @@ use glam::DVec3;
 use rayon::prelude::*;
 
 pub use crate::cpu::Accel;
-use crate::cpu::intersect::{Hit, Prim};
 use crate::cpu::path::{Emitters, path_pixel};
 use crate::cpu::ray_tree::{NoTree, RayTree};
 use crate::cpu::shade::Breakdown;
@@ -313,18 +312,8 @@ pub fn pick(scene: &FlatScene, x: u32, y: u32) -> Option<Picked> {
         crate::cpu::FAR,
         &crate::cpu::intersect::Leaving::NONE,
     )?;
-    Some(Picked { object: crate::cpu::trace::object_id(&ctx, &hit), material: hit_material(&ctx, &hit) })
-}
-
-/// The material index of a hit's primitive (a model's meshes each have their own): picking's
-/// alone, so not in trace.rs, whose functions each have a WGSL twin.
-fn hit_material(ctx: &TraceContext, hit: &Hit) -> u32 {
-    let s = ctx.scene;
-    match hit.prim {
-        Prim::Sphere => s.spheres[hit.index as usize].material,
-        Prim::Plane => s.planes[hit.index as usize].material,
-        Prim::Triangle => s.meshes[s.triangles[hit.index as usize].mesh as usize].material,
-    }
+    let s = crate::cpu::surface::surface_at(&ctx, &camera.ray, &hit);
+    Some(Picked { object: s.object_id, material: s.material })
 }
 
 #[cfg(test)]
