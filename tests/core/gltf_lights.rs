@@ -204,6 +204,8 @@ fn smooth_spot_with_inverse_square_multiplies_both() {
 
 #[test]
 fn a_model_objects_own_lights_shine_when_asked_placed_and_scaled_by_its_exposure() {
+    // A colour KHR_lights_punctual allows, each channel in [0, 1] (I_D's 2 is taken as 1).
+    const BULB: [f64; 3] = [1.0, 0.5, 0.25];
     use glint_io::{LoadOptions, load_scene_with};
     use glint_test_support::gltf::Fixture;
     use serde_json::json;
@@ -212,7 +214,7 @@ fn a_model_objects_own_lights_shine_when_asked_placed_and_scaled_by_its_exposure
     let mut f = Fixture::quad();
     f.json["extensionsUsed"] = json!(["KHR_lights_punctual"]);
     f.json["extensions"] = json!({ "KHR_lights_punctual": { "lights": [
-        { "type": "point", "color": I_D, "intensity": 4.0, "name": "bulb" }
+        { "type": "point", "color": BULB, "intensity": 4.0, "name": "bulb" }
     ] } });
     f.json["scenes"] = json!([{ "nodes": [0, 1] }]);
     f.json["nodes"] = json!([
@@ -243,12 +245,12 @@ fn a_model_objects_own_lights_shine_when_asked_placed_and_scaled_by_its_exposure
     assert_eq!(w3(flat.lights[0].position) + flat.frame_origin(), DVec3::new(0.0, 2.0, 0.0));
     let lit = crate::support::render(&flat).image.get(0, 0);
     // 1/d² at d = 2 straight above; glTF lights have no ambient term.
-    let want = 0.125 * FLOOR_KA * DVec3::ONE + 0.25 * dv(I_D) * dv(FLOOR_KD);
+    let want = 0.125 * FLOOR_KA * DVec3::ONE + 0.25 * dv(BULB) * dv(FLOOR_KD);
     assert_rel(lit, want, REL, "the model's light on the floor");
     // A bright imported light is named where an overflow error lists the brightest sources.
     let bright = load(&scene("lights = true\nexposure = 1000"));
     let causes = glint_scene::overflow_causes(&bright, 5, glint_scene::Integrator::Whitted, false);
-    assert!(causes.contains("the brightest sources: objects[1].lights[0].specular = 8000"), "{causes}");
+    assert!(causes.contains("the brightest sources: objects[1].lights[0].specular = 4000"), "{causes}");
     // Saved, the reference keeps the choice and the lights stay in the file, not the scene.
     let text = glint_io::to_toml(&on).unwrap();
     assert!(text.contains("lights = true") && text.contains("exposure = 0.25"), "{text}");
