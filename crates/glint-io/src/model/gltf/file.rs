@@ -35,7 +35,7 @@ pub(super) fn parse(bytes: &[u8], file: &Path, warnings: &mut Vec<FieldIssue>) -
     use ::gltf::json::mesh::Semantic;
     use ::gltf::json::validation::Checked;
     let ::gltf::Gltf { document, blob } = ::gltf::Gltf::from_slice_without_validation(bytes)
-        .map_err(|e| other_version(bytes, file).unwrap_or_else(|| parse_error(file, e)))?;
+        .map_err(|e| other_version(bytes, file).unwrap_or_else(|| parse_error(file, e, None)))?;
     let mut json = document.into_json();
     // Glint reads quantised attributes (`accessor::read_vec3`, `read_uv`) and instances
     // (`instancing`) itself; the gltf crate, which would refuse a file for requiring them, is
@@ -113,7 +113,8 @@ pub(super) fn parse(bytes: &[u8], file: &Path, warnings: &mut Vec<FieldIssue>) -
             accessor.max = accessor.max.take().or_else(unread);
         }
     }
-    let document = ::gltf::Document::from_json(json).map_err(|e| parse_error(file, e))?;
+    let counts = Counts::of(&json);
+    let document = ::gltf::Document::from_json(json).map_err(|e| parse_error(file, e, Some(&counts)))?;
     Ok(::gltf::Gltf { document, blob })
 }
 
@@ -138,7 +139,63 @@ fn other_version(bytes: &[u8], file: &Path) -> Option<GltfError> {
 
 /// The gltf crate's error with the JSON paths it names; an unsupported required extension
 /// (which its validation reports among the others) gets its own message.
-fn parse_error(file: &Path, e: ::gltf::Error) -> GltfError {
+/// How many items each collection of the file holds: an index out of bounds says how many
+/// there are ("Index out of bounds" alone named no range).
+struct Counts(Vec<(&'static str, usize)>);
+
+impl Counts {
+    fn of(json: &::gltf::json::Root) -> Self {
+        let lights =
+            json.extensions.as_ref().and_then(|e| e.khr_lights_punctual.as_ref()).map_or(0, |l| l.lights.len());
+        Self(vec![
+            ("scenes", json.scenes.len()),
+            ("nodes", json.nodes.len()),
+            ("meshes", json.meshes.len()),
+            ("materials", json.materials.len()),
+            ("cameras", json.cameras.len()),
+            ("skins", json.skins.len()),
+            ("accessors", json.accessors.len()),
+            ("bufferViews", json.buffer_views.len()),
+            ("buffers", json.buffers.len()),
+            ("images", json.images.len()),
+            ("samplers", json.samplers.len()),
+            ("textures", json.textures.len()),
+            ("KHR_lights_punctual lights", lights),
+        ])
+    }
+
+    /// " (the file has N COLLECTION, indices 0 to N − 1)" for the index at `path`, by the field
+    /// that holds it; nothing for a field not known here.
+    fn hint(&self, path: &str) -> String {
+        let field = path.rsplit('.').next().unwrap_or(path);
+        let field = field.split('[').next().unwrap_or(field);
+        let collection = match field {
+            "scene" | "scenes" => "scenes",
+            "nodes" | "children" | "joints" | "skeleton" | "node" => "nodes",
+            "mesh" => "meshes",
+            "material" => "materials",
+            "camera" => "cameras",
+            "skin" => "skins",
+            "light" => "KHR_lights_punctual lights",
+            "bufferView" => "bufferViews",
+            "buffer" => "buffers",
+            "source" => "images",
+            "sampler" => "samplers",
+            "index" => "textures",
+            "indices" | "inverseBindMatrices" | "input" | "output" => "accessors",
+            _ if field.chars().all(|c| c.is_ascii_uppercase() || c.is_ascii_digit() || c == '_') => "accessors",
+            _ => return String::new(),
+        };
+        match self.0.iter().find(|(name, _)| *name == collection) {
+            Some((name, 0)) => format!(" (the file has no {name})"),
+            Some((name, 1)) => format!(" (the file's {name} have only index 0)"),
+            Some((name, n)) => format!(" (the file has {n} {name}, indices 0 to {})", n - 1),
+            None => String::new(),
+        }
+    }
+}
+
+fn parse_error(file: &Path, e: ::gltf::Error, counts: Option<&Counts>) -> GltfError {
     match e {
         ::gltf::Error::Validation(errors) => {
             for (path, error) in &errors {
@@ -154,8 +211,19 @@ fn parse_error(file: &Path, e: ::gltf::Error) -> GltfError {
                     };
                 }
             }
-            let shown: Vec<String> =
-                errors.iter().take(8).map(|(p, e)| format!("{}: {e}", as_written(&p.to_string()))).collect();
+            let shown: Vec<String> = errors
+                .iter()
+                .take(8)
+                .map(|(p, e)| {
+                    let path = as_written(&p.to_string());
+                    let hint = match (e, counts) {
+                        (::gltf::json::validation::Error::IndexOutOfBounds, Some(c)) => c.hint(&path),
+                        _ => String::new(),
+                    };
+                    // One error is said after its path already: not twice ("scene: … scene: …").
+                    if errors.len() == 1 { format!("{e}{hint}") } else { format!("{path}: {e}{hint}") }
+                })
+                .collect();
             let more = errors.len().saturating_sub(shown.len());
             let mut path = errors.first().map(|(p, _)| as_written(&p.to_string())).unwrap_or_default();
             if path.is_empty() {

@@ -516,6 +516,24 @@ mod tests {
     }
 
     #[test]
+    fn an_index_out_of_bounds_says_what_the_file_has() {
+        // "scene: invalid glTF: scene: Index out of bounds" named no range, and its path twice.
+        for (json, said) in [
+            (r#""scene":0"#, "scene: invalid glTF: Index out of bounds (the file has no scenes)"),
+            (
+                r#""scenes":[{"nodes":[0]}],"nodes":[{"camera":3}],"cameras":[{"type":"perspective","perspective":{"yfov":1,"znear":0.1}}]"#,
+                "nodes[0].camera: invalid glTF: Index out of bounds (the file's cameras have only index 0)",
+            ),
+        ] {
+            let text = format!(r#"{{"asset":{{"version":"2.0"}},{json}}}"#);
+            let Err(err) = parse(text.as_bytes(), Path::new("m.gltf"), &mut Vec::new()) else {
+                panic!("{json}: accepted")
+            };
+            assert!(err.to_string().contains(said), "{err}");
+        }
+    }
+
+    #[test]
     fn a_position_accessor_that_does_not_exist_is_an_error_naming_it_not_a_panic() {
         let json = br#"{"asset":{"version":"2.0"},"meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}]}"#;
         let Err(err) = parse(json, Path::new("m.gltf"), &mut Vec::new()) else {
