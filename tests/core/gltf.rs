@@ -1049,3 +1049,23 @@ fn the_camera_made_for_a_model_sees_all_of_a_tall_one() {
         );
     }
 }
+
+#[test]
+fn a_camera_index_beyond_those_kept_names_the_ones_skipped() {
+    // A file with two camera nodes, the first with yfov 0 (a tester's file): `--camera 1` said
+    // "it has one camera on a node" and the warning that explains it was not printed.
+    let dir = TempDir::new("gltf-camera-skipped");
+    let mut f = Fixture::quad();
+    f.json["cameras"] = json!([
+        { "type": "perspective", "perspective": { "yfov": 0.0, "znear": 0.1 } },
+        { "type": "perspective", "perspective": { "yfov": 0.7, "znear": 0.1 } }
+    ]);
+    f.json["scenes"] = json!([{ "nodes": [0, 1, 2] }]);
+    f.json["nodes"] = json!([{ "mesh": 0 }, { "translation": [0.5, 0.5, 4.0], "camera": 0 }, { "translation": [0.5, 0.5, 5.0], "camera": 1 }]);
+    let path = f.write_gltf(&dir, "cameras", BufferAt::DataUri);
+    let options =
+        LoadOptions { import: ImportOptions { camera: Some(1), ..ImportOptions::default() }, ..LoadOptions::default() };
+    let err = load_scene_with(&path.display().to_string(), &options).unwrap_err().to_string();
+    assert!(err.contains("--camera: 1 is not a camera of the file; it has one camera on a node, camera 0"), "{err}");
+    assert!(err.contains("(skipped: nodes[1].camera (cameras[0]): yfov 0 "), "{err}");
+}

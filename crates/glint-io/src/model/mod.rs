@@ -235,15 +235,25 @@ pub fn scene_around(
     let camera = match (options.camera, model.cameras.first()) {
         (Some(i), _) => {
             let count = model.cameras.len();
+            // The cameras skipped (with the warnings that say why) explain a count lower than the
+            // file's: the error is all that is printed, so it says them.
+            let skipped: Vec<String> = model
+                .warnings
+                .iter()
+                .filter(|w| w.problem.ends_with(gltf::CAMERA_SKIPPED))
+                .map(|w| format!("{}: {}", w.field, w.problem))
+                .collect();
+            let skipped =
+                if skipped.is_empty() { String::new() } else { format!(" (skipped: {})", skipped.join("; ")) };
             let chosen = model.cameras.get(i).ok_or_else(|| FieldIssue {
                 field: "--camera".into(),
                 // Counted as `--camera` counts them: the nodes with a camera Glint looks through, in
                 // the order the scene's nodes are walked (not the file's `cameras` indices).
                 problem: match count {
-                    0 => format!("{i} is not a camera of the file; it has no camera on a node"),
-                    1 => format!("{i} is not a camera of the file; it has one camera on a node, camera 0"),
+                    0 => format!("{i} is not a camera of the file; it has no camera on a node{skipped}"),
+                    1 => format!("{i} is not a camera of the file; it has one camera on a node, camera 0{skipped}"),
                     _ => format!(
-                        "{i} is not a camera of the file; it has {count} cameras on nodes, cameras 0 to {}",
+                        "{i} is not a camera of the file; it has {count} cameras on nodes, cameras 0 to {}{skipped}",
                         count - 1
                     ),
                 },

@@ -14,6 +14,7 @@ mod instancing;
 mod material;
 mod nodes;
 mod punctual;
+pub(crate) use punctual::CAMERA_SKIPPED;
 mod texture;
 
 use std::collections::BTreeMap;

@@ -4,6 +4,10 @@ use glint_scene::{Attenuation, CameraDesc, FieldIssue, LightDesc, LightKind, Pro
 use glint_scene::{MAX_INTENSITY, Mat4, ModelCamera};
 use glint_scene::{format_number as number, format_rounded};
 
+/// The end of every warning of a camera left out, which `--camera`'s error lists when its count
+/// is short of the file's (`model::scene_around`).
+pub(crate) const CAMERA_SKIPPED: &str = "camera skipped";
+
 /// An f32 the file wrote, as short as it reads back (`1e30`, not the f64 widening's
 /// 1.0000000150474662e30).
 fn written(v: f32) -> String {
@@ -129,7 +133,7 @@ pub(super) fn map_camera(
     let (Some(forward), Some(up)) =
         (normalized(world.vector([0.0, 0.0, -1.0])), normalized(world.vector([0.0, 1.0, 0.0])))
     else {
-        warnings.push(FieldIssue { field, problem: "the node's transform is degenerate; camera skipped".into() });
+        warnings.push(FieldIssue { field, problem: format!("the node's transform is degenerate; {CAMERA_SKIPPED}") });
         return None;
     };
     let look_at = std::array::from_fn(|k| position[k] + forward[k]);
@@ -178,7 +182,7 @@ fn perspective_view(
         warnings.push(FieldIssue {
             field: field.to_string(),
             problem: format!(
-                "yfov {} (cameras[{index}].perspective.yfov) is outside [{}, {}] radians ({}° to {}°); camera skipped",
+                "yfov {} (cameras[{index}].perspective.yfov) is outside [{}, {}] radians ({}° to {}°); {CAMERA_SKIPPED}",
                 written(p.yfov()),
                 format_rounded(lo, 3),
                 format_rounded(hi, 6),
@@ -223,7 +227,7 @@ fn orthographic_view(
         warnings.push(FieldIssue {
             field: field.to_string(),
             problem: format!(
-                "ymag {} (cameras[{index}].orthographic.ymag) gives no view height in [{}, {}] (2·ymag); camera skipped",
+                "ymag {} (cameras[{index}].orthographic.ymag) gives no view height in [{}, {}] (2·ymag); {CAMERA_SKIPPED}",
                 written(o.ymag()),
                 number(range.min),
                 number(range.max)
