@@ -79,8 +79,15 @@ pub fn unbounded_ray_tree(desc: &SceneDesc, settings: &RenderSettings) -> Option
             format_number((gain.powi(UNWARNED_LEVELS) * 1e3).ceil() / 1e3),
             format_number(gain)
         )
+    } else if settings.bailout > 0.0 {
+        // The bailout is set: asking for one (as before) read as if it were not (a glTF glass,
+        // k_r + k_t = 0.04 + 0.96, under the default 1/255).
+        format!(
+            "k_r + k_t = {} keeps a path's weight from level to level, so no bailout stops it: lower render.max_depth (--depth) to {UNWARNED_LEVELS}, or make k_r + k_t < 1",
+            format_number(gain)
+        )
     } else {
-        "set render.bailout (e.g. 1/255, with k_r + k_t < 1) or lower render.max_depth".to_string()
+        "set render.bailout (--bailout; e.g. 1/255, with k_r + k_t < 1) or lower render.max_depth (--depth)".to_string()
     };
     Some(format!(
         "materials.{name} reflects and refracts (k_r = {}, k_t = {}), so a ray tree can double at every level, and \
@@ -111,6 +118,18 @@ mod tests {
     }
 
     #[test]
+    fn a_bailout_already_set_is_not_asked_for_again() {
+        // glTF's clear glass: k_r + k_t = 1 keeps the weight, so the default bailout cannot stop it.
+        let glass = scene("kr = 0.04\nkt = 0.96");
+        let text = unbounded_ray_tree(&glass, &settings(40, 1.0 / 255.0)).expect("a warning");
+        assert!(text.contains("k_r + k_t = 1 keeps a path's weight"), "{text}");
+        assert!(
+            text.contains("lower render.max_depth (--depth) to 15") && !text.contains("set render.bailout"),
+            "{text}"
+        );
+    }
+
+    #[test]
     fn glass_between_mirrors_without_a_bailout_is_warned_about_with_its_bound() {
         let glass = scene("kr = 0.5\nkt = 0.4");
         let text = unbounded_ray_tree(&glass, &settings(1024, 0.0)).expect("a warning");
@@ -120,7 +139,7 @@ mod tests {
             "{text}"
         );
         assert!(unbounded_ray_tree(&glass, &settings(20, 0.0)).unwrap().contains("up to 2^21 − 1 ≈ 2.1e6 rays"));
-        assert!(text.ends_with("or lower render.max_depth"), "{text}");
+        assert!(text.ends_with("or lower render.max_depth (--depth)"), "{text}");
         // 0.9^k ≥ 1/255 up to k = 52 levels: the bailout bounds it, but not below the threshold.
         assert_eq!(reachable_depth(&glass, &settings(1024, 1.0 / 255.0)), 52);
         let bounded = unbounded_ray_tree(&glass, &settings(1024, 1.0 / 255.0)).unwrap();
