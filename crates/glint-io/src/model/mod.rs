@@ -315,7 +315,7 @@ pub fn scene_around(
             field: "lights".into(),
             problem: format!(
                 "the model has none: lit by Glint's default rig (a point key light, a directional fill, \
-                 ambient 0.1){exposure}"
+                 and an ambient 0.1 that only Whitted's model uses){exposure}"
             ),
         });
         let light = |kind, position, direction, intensity| LightDesc {
