@@ -1069,3 +1069,19 @@ fn a_camera_index_beyond_those_kept_names_the_ones_skipped() {
     assert!(err.contains("--camera: 1 is not a camera of the file; it has one camera on a node, camera 0"), "{err}");
     assert!(err.contains("(skipped: nodes[1].camera (cameras[0]): yfov 0 "), "{err}");
 }
+
+#[test]
+fn an_emission_beyond_the_scenes_range_is_named_by_the_files_fields() {
+    // Validation named Glint's `materials.X/material0.emission`, which the file does not have.
+    let dir = TempDir::new("gltf-emission");
+    let mut f = Fixture::quad();
+    f.json["extensionsUsed"] = json!(["KHR_materials_emissive_strength"]);
+    f.json["materials"][0]["emissiveFactor"] = json!([1.0, 0.5, 0.0]);
+    f.json["materials"][0]["extensions"] = json!({ "KHR_materials_emissive_strength": { "emissiveStrength": 1e30 } });
+    let message = error(&f.write_gltf(&dir, "bright", BufferAt::DataUri));
+    assert!(
+        message
+            .contains("materials[0].emissiveFactor: (1, 0.5, 0) × KHR_materials_emissive_strength 1e30 reaches 1e30"),
+        "{message}"
+    );
+}

@@ -193,6 +193,33 @@ pub fn default_material() -> MaterialDesc {
     }
 }
 
+/// An emission the scene cannot hold (beyond `MAX_INTENSITY`) named by the file's own fields:
+/// validation would name Glint's `materials.X.emission`, which the file does not have.
+pub(super) fn check_emission(
+    m: &::gltf::Material<'_>,
+    index: usize,
+    desc: &MaterialDesc,
+) -> Result<(), (String, String)> {
+    let brightest = desc.emission.0.iter().copied().fold(0.0, f64::max);
+    if brightest.is_finite() && brightest <= glint_scene::MAX_INTENSITY {
+        return Ok(());
+    }
+    let strength = m.emissive_strength().map_or(1.0, widen);
+    let [r, g, b] = m.emissive_factor().map(widen);
+    Err((
+        format!("materials[{index}].emissiveFactor"),
+        format!(
+            "({}, {}, {}) × KHR_materials_emissive_strength {} reaches {}, beyond the {:e} an emission may have",
+            glint_scene::format_number(r),
+            glint_scene::format_number(g),
+            glint_scene::format_number(b),
+            glint_scene::format_number(strength),
+            glint_scene::format_number(brightest),
+            glint_scene::MAX_INTENSITY
+        ),
+    ))
+}
+
 fn max_channel(c: [f64; 3]) -> f64 {
     c[0].max(c[1]).max(c[2])
 }

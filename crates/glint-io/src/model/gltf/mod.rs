@@ -94,6 +94,7 @@ pub fn load_gltf(path: &Path, options: &ImportOptions) -> Result<Model, GltfErro
             name = format!("{name}-{index}");
         }
         let mut desc = material::map_material(&m, &format!("materials[{index}] ({name})"), &mut model.warnings);
+        material::check_emission(&m, index, &desc).map_err(|(p, e)| at(p, e))?;
         // KHR_materials_unlit names the metallic-roughness base colour, whatever else is there.
         let base = m
             .pbr_specular_glossiness()
