@@ -50,17 +50,7 @@ fn lights_as_tables<'de, D: serde::Deserializer<'de>>(deserializer: D) -> Result
     struct Entry(LightDesc);
     impl<'de> Deserialize<'de> for Entry {
         fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
-            deserializer.deserialize_any(EntryVisitor)
-        }
-    }
-    struct EntryVisitor;
-    impl<'de> serde::de::Visitor<'de> for EntryVisitor {
-        type Value = Entry;
-        fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
-            f.write_str("a light: a table ([[lights]] or { type = \"point\", … })")
-        }
-        fn visit_map<A: serde::de::MapAccess<'de>>(self, map: A) -> Result<Entry, A::Error> {
-            LightDesc::deserialize(serde::de::value::MapAccessDeserializer::new(map)).map(Entry)
+            super::tables::table_of(deserializer, "a light: a table ([[lights]] or { type = \"point\", … })").map(Entry)
         }
     }
     Ok(Vec::<Entry>::deserialize(deserializer)?.into_iter().map(|e| e.0).collect())

@@ -14,12 +14,15 @@ use serde::{Deserialize, Deserializer};
 /// What a table-valued field says it expected.
 const EXPECTED: &str = "a table ([section] or { key = value, … })";
 
-struct TableVisitor<T>(PhantomData<T>);
+struct TableVisitor<T> {
+    expected: &'static str,
+    value: PhantomData<T>,
+}
 
 impl<'de, T: Deserialize<'de>> Visitor<'de> for TableVisitor<T> {
     type Value = T;
     fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
-        f.write_str(EXPECTED)
+        f.write_str(self.expected)
     }
     fn visit_map<A: MapAccess<'de>>(self, map: A) -> Result<T, A::Error> {
         T::deserialize(MapAccessDeserializer::new(map))
@@ -28,7 +31,15 @@ impl<'de, T: Deserialize<'de>> Visitor<'de> for TableVisitor<T> {
 
 /// A field that is one table.
 pub(crate) fn table<'de, D: Deserializer<'de>, T: Deserialize<'de>>(deserializer: D) -> Result<T, D::Error> {
-    deserializer.deserialize_any(TableVisitor(PhantomData))
+    table_of(deserializer, EXPECTED)
+}
+
+/// One table, and what to say it is when it is not (`expected`: "a light: a table …").
+pub(crate) fn table_of<'de, D: Deserializer<'de>, T: Deserialize<'de>>(
+    deserializer: D,
+    expected: &'static str,
+) -> Result<T, D::Error> {
+    deserializer.deserialize_any(TableVisitor { expected, value: PhantomData })
 }
 
 /// An optional field that is one table when present (with `#[serde(default)]`).
