@@ -77,12 +77,11 @@ fn files_read(loaded: &LoadedScene) -> Vec<(&'static str, PathBuf)> {
     // A model's materials are in the scene's too (under its object's name), their textures
     // decoded by the importer beside the model; one the scene file gives (an override of a
     // model's material, `[materials."OBJ/MAT"]`) was read beside the scene. The importer's
-    // texture is the very image the model holds.
+    // texture is the very image the model holds (the scene's loads decode their own).
     let models_texture = |name: &str, slot: usize, t: &TextureDesc| {
         models.iter().filter_map(|m| m.materials.get(name)).any(|m| {
-            material_textures(m)[slot].1.is_some_and(|own| {
-                own.path == t.path && matches!((&own.image, &t.image), (Some(a), Some(b)) if Arc::ptr_eq(a, b))
-            })
+            let own = material_textures(m)[slot].1.and_then(|own| own.image.as_ref());
+            matches!((own, &t.image), (Some(a), Some(b)) if Arc::ptr_eq(a, b))
         })
     };
     let mut read: Vec<_> = Vec::new();

@@ -197,18 +197,18 @@ pub fn choice<T: PartialEq + Copy>(
 /// closing the picker sends f32 channels through HSV and back, an ulp or two off: k_a = 0.05
 /// was saved as 0.04999999701976776 and the scene marked edited, with nothing touched.
 fn picked_colour(value: &mut [f64; 3], before: [f32; 3], after: [f32; 3]) -> bool {
-    let moved = (0..3).any(|k| (after[k] - before[k]).abs() > PICKER_NOISE);
-    let mut changed = false;
+    let moved = |k: usize| (after[k] - before[k]).abs() > PICKER_NOISE;
+    if !(0..3).any(moved) {
+        return false;
+    }
     for k in 0..3 {
         // A channel beyond the picker's [0, 1] (an emission of 12) was shown clamped: once the
         // colour is picked, it is the picker's value too, not 12 beside the picked others.
-        let clamped = value[k] != f64::from(before[k]) && !(0.0..=1.0).contains(&value[k]);
-        if (after[k] - before[k]).abs() > PICKER_NOISE || (moved && clamped) {
+        if moved(k) || !(0.0..=1.0).contains(&value[k]) {
             value[k] = f64::from(after[k]);
-            changed = true;
         }
     }
-    changed
+    true
 }
 
 /// Far below the picker's own steps (its sliders move by 1/255 of the range and more), and far

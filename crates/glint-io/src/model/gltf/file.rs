@@ -137,8 +137,6 @@ fn other_version(bytes: &[u8], file: &Path) -> Option<GltfError> {
     if version == "2" || version.starts_with("2.") { None } else { error("asset.version", format!("`{version}`")) }
 }
 
-/// The gltf crate's error with the JSON paths it names; an unsupported required extension
-/// (which its validation reports among the others) gets its own message.
 /// How many items each collection of the file holds: an index out of bounds says how many
 /// there are ("Index out of bounds" alone named no range).
 struct Counts(Vec<(&'static str, usize)>);
@@ -195,6 +193,9 @@ impl Counts {
     }
 }
 
+/// The gltf crate's error with the JSON paths it names (an index out of bounds with what the
+/// file has, where `counts` are known); an unsupported required extension (which its
+/// validation reports among the others) gets its own message.
 fn parse_error(file: &Path, e: ::gltf::Error, counts: Option<&Counts>) -> GltfError {
     match e {
         ::gltf::Error::Validation(errors) => {

@@ -3,7 +3,7 @@
 
 use crate::model::widen;
 use glint_scene::MaterialSource;
-use glint_scene::{FieldIssue, MAX_IOR, MAX_SHININESS, MaterialDesc, Rgb};
+use glint_scene::{FieldIssue, MAX_INTENSITY, MAX_IOR, MAX_SHININESS, MaterialDesc, Rgb, format_number};
 
 /// Below this roughness a surface is treated as smooth enough to mirror: it traces
 /// reflection rays with k_r = its specular colour (F0). Rougher surfaces keep the highlight
@@ -79,7 +79,7 @@ pub(super) fn map_material(m: &::gltf::Material<'_>, field: &str, warnings: &mut
                 factors.rgb("diffuseFactor", [d[0], d[1], d[2]]),
                 specular,
                 1.0 - factors.unit("glossinessFactor", sg.glossiness_factor()),
-                max_channel(specular.0),
+                specular.max_channel(),
             )
         }
         None => {
@@ -95,7 +95,7 @@ pub(super) fn map_material(m: &::gltf::Material<'_>, field: &str, warnings: &mut
             let dielectric_f0: [f64; 3] = std::array::from_fn(|k| (DIELECTRIC_F0 * tint[k]).min(1.0) * strength);
             let f0 = Rgb(std::array::from_fn(|k| lerp(dielectric_f0[k], base.0[k], metallic)));
             let diffuse = Rgb(base.0.map(|c| c * (1.0 - metallic)));
-            (diffuse, f0, factors.unit("roughnessFactor", pbr.roughness_factor()), max_channel(dielectric_f0))
+            (diffuse, f0, factors.unit("roughnessFactor", pbr.roughness_factor()), Rgb(dielectric_f0).max_channel())
         }
     };
     let transmission = m.transmission().map_or(0.0, |t| factors.unit("transmissionFactor", t.transmission_factor()));
@@ -200,28 +200,21 @@ pub(super) fn check_emission(
     index: usize,
     desc: &MaterialDesc,
 ) -> Result<(), (String, String)> {
-    let brightest = desc.emission.0.iter().copied().fold(0.0, f64::max);
-    if brightest.is_finite() && brightest <= glint_scene::MAX_INTENSITY {
+    let brightest = desc.emission.max_channel();
+    if brightest.is_finite() && brightest <= MAX_INTENSITY {
         return Ok(());
     }
     let strength = m.emissive_strength().map_or(1.0, widen);
-    let [r, g, b] = m.emissive_factor().map(widen);
+    let [r, g, b] = m.emissive_factor().map(|c| format_number(widen(c)));
     Err((
         format!("materials[{index}].emissiveFactor"),
         format!(
-            "({}, {}, {}) × KHR_materials_emissive_strength {} reaches {}, beyond the {:e} an emission may have",
-            glint_scene::format_number(r),
-            glint_scene::format_number(g),
-            glint_scene::format_number(b),
-            glint_scene::format_number(strength),
-            glint_scene::format_number(brightest),
-            glint_scene::MAX_INTENSITY
+            "({r}, {g}, {b}) × KHR_materials_emissive_strength {} reaches {}, beyond the {MAX_INTENSITY:e} an \
+             emission may have",
+            format_number(strength),
+            format_number(brightest),
         ),
     ))
-}
-
-fn max_channel(c: [f64; 3]) -> f64 {
-    c[0].max(c[1]).max(c[2])
 }
 
 #[cfg(test)]

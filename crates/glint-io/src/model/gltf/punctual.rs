@@ -41,8 +41,8 @@ pub(super) fn map_light(
     }
     // The file's own fields named, not the lights[i].diffuse Glint maps them to (a colour of
     // −1 was refused as "lights[0].diffuse: channel r = -1", of another light's index).
-    let rgb = ["r", "g", "b"];
-    for (k, c) in light.color().into_iter().enumerate() {
+    let (rgb, color) = (["r", "g", "b"], light.color());
+    for (k, c) in color.into_iter().enumerate() {
         if !(c.is_finite() && c >= 0.0) {
             return Err((format!("{own}.color"), format!("{} = {} must be in [0, 1]", rgb[k], written(c))));
         }
@@ -50,11 +50,11 @@ pub(super) fn map_light(
     if let Some(range) = light.range().filter(|r| !(r.is_finite() && *r > 0.0)) {
         return Err((format!("{own}.range"), format!("{} must be a finite number > 0", written(range))));
     }
-    let colour = light.color().map(|c| f64::from(c.min(1.0)) * intensity * exposure);
-    if let Some(k) = light.color().iter().position(|c| *c > 1.0) {
+    let colour = color.map(|c| f64::from(c.min(1.0)) * intensity * exposure);
+    if let Some(k) = color.iter().position(|c| *c > 1.0) {
         warnings.push(FieldIssue {
             field: format!("{own}.color"),
-            problem: format!("{} = {} is outside [0, 1]; taken as 1", rgb[k], written(light.color()[k])),
+            problem: format!("{} = {} is outside [0, 1]; taken as 1", rgb[k], written(color[k])),
         });
     }
     if let Some(brightest) = colour.iter().copied().filter(|c| *c > MAX_INTENSITY).reduce(f64::max) {
