@@ -6,23 +6,25 @@ use glint_core::memory::{self, MemoryEstimate, SourceKind};
 use glint_io::ImportOptions;
 use glint_io::model::Ground;
 use glint_io::{DEFAULT_RESOLUTION, LoadOptions, LoadedScene, RESOLUTIONS, load_scene_with};
-use glint_scene::{EpsilonMode, Integrator, RenderSettings, Report, settings_warnings, validate_settings};
+use glint_scene::{
+    EpsilonMode, Integrator, Range, RenderSettings, Report, ranges, settings_warnings, validate_settings,
+};
 
 use super::console::tell;
 
 #[derive(Clone, Debug, Default, Args)]
 pub struct SettingsArgs {
     /// Image width in pixels [1, 16384] (default: the scene's)
-    #[arg(long, allow_negative_numbers = true, value_parser = parse_count)]
+    #[arg(long, allow_negative_numbers = true, value_parser = parse_side)]
     pub width: Option<u32>,
     /// Image height in pixels [1, 16384]
-    #[arg(long, allow_negative_numbers = true, value_parser = parse_count)]
+    #[arg(long, allow_negative_numbers = true, value_parser = parse_side)]
     pub height: Option<u32>,
     /// Samples per pixel [1, 4096]; more than one are stratified and jittered (a path render's one is jittered too)
-    #[arg(long, allow_negative_numbers = true, value_parser = parse_count)]
+    #[arg(long, allow_negative_numbers = true, value_parser = parse_spp)]
     pub spp: Option<u32>,
     /// Maximum recursion depth [0, 1024]; 0 = local shading only
-    #[arg(long, allow_negative_numbers = true, value_parser = parse_count)]
+    #[arg(long, allow_negative_numbers = true, value_parser = parse_depth)]
     pub depth: Option<u32>,
     /// Self-intersection epsilon in scene units [0, 1000]
     #[arg(long, allow_negative_numbers = true)]
@@ -69,7 +71,7 @@ pub struct LoadArgs {
     pub ground: Option<Ground>,
     /// Refuse a load or render estimated to need more memory than this (e.g. 512M, 8G;
     /// default: the memory available)
-    #[arg(long, value_name = "SIZE", allow_hyphen_values = true, value_parser = parse_size)]
+    #[arg(long, value_name = "SIZE", allow_hyphen_values = true, value_parser = memory::parse_size)]
     pub memory_limit: Option<u64>,
 }
 
@@ -90,10 +92,6 @@ impl LoadArgs {
     }
 }
 
-fn parse_size(s: &str) -> Result<u64, String> {
-    memory::parse_size(s)
-}
-
 /// u32, as every whole number in a scene file (a scene's `scene_index`).
 fn parse_index(s: &str) -> Result<u32, String> {
     s.trim().parse::<u32>().map_err(|_| format!("'{s}' is not an index (a whole number from 0 to {})", u32::MAX))
@@ -106,7 +104,7 @@ fn parse_ground(s: &str) -> Result<Ground, String> {
 /// Judged as a scene file's `exposure` is (`ranges::EXPOSURE`): a factor that f32 rounds to 0
 /// would turn the model's lights off without a word.
 fn parse_exposure(s: &str) -> Result<f64, String> {
-    let range = glint_scene::ranges::EXPOSURE;
+    let range = ranges::EXPOSURE;
     match s.trim().parse::<f64>() {
         Ok(v) if range.contains(v) => Ok(v),
         Ok(v) => Err(format!(
@@ -142,14 +140,27 @@ pub fn parse_in<const LO: u32, const HI: u32>(s: &str) -> Result<u32, String> {
     }
 }
 
-/// A whole number; a negative one gets its own message instead of clap's "unexpected argument
-/// '-8'". The allowed range of each setting is checked with the others, by validation.
-fn parse_count(s: &str) -> Result<u32, String> {
-    match s.trim().parse::<i64>() {
-        Ok(v) if v < 0 => Err(format!("{v} is negative; a count of pixels, samples or levels is ≥ 0")),
-        Ok(v) => u32::try_from(v).map_err(|_| format!("{v} is larger than {}", u32::MAX)),
-        Err(_) => Err(format!("'{s}' is not a whole number")),
+/// A whole number a u32 holds, refused with its setting's allowed range otherwise (a negative
+/// one would get clap's "unexpected argument '-8'"). The range itself is checked with the other
+/// settings, by validation, which names the scene field and the flag together.
+fn parse_count(s: &str, range: Range<u32>) -> Result<u32, String> {
+    let (lo, hi) = (range.min, range.max);
+    match s.trim().parse::<i128>() {
+        Ok(v) => u32::try_from(v).map_err(|_| format!("{v} is outside the allowed range [{lo}, {hi}]")),
+        Err(_) => Err(format!("'{s}' is not a whole number; allowed: [{lo}, {hi}]")),
     }
+}
+
+fn parse_side(s: &str) -> Result<u32, String> {
+    parse_count(s, ranges::IMAGE_SIDE)
+}
+
+fn parse_spp(s: &str) -> Result<u32, String> {
+    parse_count(s, ranges::SPP)
+}
+
+fn parse_depth(s: &str) -> Result<u32, String> {
+    parse_count(s, ranges::DEPTH)
 }
 
 /// The most worker threads `--threads` takes, whatever the machine: more only adds memory

@@ -347,7 +347,14 @@ fn bad_input_fails_cleanly() {
     expect_failure(
         "width-negative",
         |d| os(&[&"render", &"whitted", &"-o", &d.join("out.png"), &"--width", &"-8"]),
-        &["--width", "-8 is negative"],
+        &["--width", "-8 is outside the allowed range [1, 16384]"],
+        &[],
+    );
+    // Beyond what a u32 holds: the flag's range, not the type's.
+    expect_failure(
+        "depth-overflow",
+        |d| os(&[&"render", &"whitted", &"-o", &d.join("out.png"), &"--depth", &"99999999999"]),
+        &["--depth", "99999999999 is outside the allowed range [0, 1024]"],
         &[],
     );
     expect_failure(

@@ -17,13 +17,12 @@ pub mod interrupt;
 pub mod model;
 mod model_ref;
 mod texture;
+mod toml_message;
 pub mod uri;
 
 use std::path::{Path, PathBuf};
 
-use glint_scene::{
-    FieldIssue, SceneDesc, clarify_integer_overflow, shorten_lines, validate, without_imported_materials,
-};
+use glint_scene::{FieldIssue, SceneDesc, validate, without_imported_materials};
 
 pub use builtin::{BUILTIN_SCENES, BuiltinScene, BuiltinSource, DEFAULT_RESOLUTION, RESOLUTIONS, builtin};
 pub use error::SceneError;
@@ -45,10 +44,8 @@ pub struct LoadedScene {
 /// Parses scene text, loads its model objects and decodes its textures (paths relative to
 /// `file`, the scene file's path, also named in messages), and validates it.
 pub fn parse_scene(text: &str, file: &Path) -> Result<(SceneDesc, Vec<FieldIssue>), SceneError> {
-    let mut desc: SceneDesc = toml::from_str(text).map_err(|e| SceneError::Parse {
-        file: file.to_owned(),
-        message: shorten_lines(&clarify_integer_overflow(&e.to_string())),
-    })?;
+    let mut desc: SceneDesc = toml::from_str(text)
+        .map_err(|e| SceneError::Parse { file: file.to_owned(), message: toml_message::parse_message(&e, text) })?;
     let folder = file.parent().unwrap_or(Path::new("."));
     let mut warnings =
         load_models(&mut desc, folder).map_err(|issues| SceneError::Invalid { file: file.to_owned(), issues })?;

@@ -90,13 +90,18 @@ fn one_line(e: &impl std::fmt::Display) -> String {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct RenderSettings {
+    #[serde(deserialize_with = "crate::whole::image_side")]
     pub width: u32,
+    #[serde(deserialize_with = "crate::whole::image_side")]
     pub height: u32,
+    #[serde(deserialize_with = "crate::whole::spp")]
     pub spp: u32,
+    #[serde(deserialize_with = "crate::whole::depth")]
     pub max_depth: u32,
     pub bailout: f64,
     pub epsilon: f64,
     pub epsilon_mode: EpsilonMode,
+    #[serde(deserialize_with = "crate::whole::seed")]
     pub seed: u32,
     /// What the render computes; Whitted's ray tree unless a scene asks for paths.
     #[serde(skip_serializing_if = "Integrator::is_whitted")]

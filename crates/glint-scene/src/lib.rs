@@ -24,6 +24,7 @@ mod tables;
 mod texture;
 mod transform;
 mod validate;
+mod whole;
 
 pub use camera::{CameraDesc, NARROW_TAN_HALF_FOV, Projection};
 pub use desc::{
@@ -40,7 +41,7 @@ pub use material::{CheckerDesc, DEFAULT_ROUGHNESS, MaterialDesc, material_textur
 pub use mesh::MeshDesc;
 pub use model::{MaterialSource, Model, ModelCamera};
 pub use model_ref::{LoadedModel, ModelDesc, Scale, TransformDesc};
-pub use number::{clarify_integer_overflow, format_number, format_rounded, shorten, shorten_lines};
+pub use number::{format_number, format_rounded, shorten, shorten_lines};
 pub use overflow::overflow_causes;
 pub use ray_tree::{WARN_RAYS_PER_SAMPLE, reachable_depth, unbounded_ray_tree};
 pub use rgb::Rgb;

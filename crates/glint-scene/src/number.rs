@@ -53,25 +53,9 @@ pub fn shorten_lines(text: &str) -> String {
     text.split('\n').map(|line| cut(line, LINE_CHARS)).collect::<Vec<_>>().join("\n")
 }
 
-/// serde's words for an integer TOML cannot hold (beyond i64; "as i128, expected any valid
-/// TOML value" read as if the value had the wrong type) said plainly.
-pub fn clarify_integer_overflow(message: &str) -> String {
-    const LIMIT: &str = "beyond the 64-bit integers TOML allows (at most 9223372036854775807)";
-    let mut out = message.to_string();
-    for wide in ["i128", "u128"] {
-        out = out
-            .replace(&format!(" as {wide}, expected any valid TOML value"), &format!(" is {LIMIT}"))
-            .replace(&format!(" as {wide}, expected "), &format!(" is {LIMIT}; expected "));
-    }
-    if out != message {
-        out = out.replace("invalid type: integer", "invalid value: integer");
-    }
-    out.replace("u64 value was too large", &format!("an integer {LIMIT}"))
-}
-
 #[cfg(test)]
 mod tests {
-    use super::{LINE_CHARS, clarify_integer_overflow, format_number, shorten, shorten_lines, shorten_middle};
+    use super::{LINE_CHARS, format_number, shorten, shorten_lines, shorten_middle};
 
     #[test]
     fn a_long_line_keeps_its_start_and_its_end() {
@@ -81,18 +65,6 @@ mod tests {
         assert!(cut.contains("…(4644 characters)…"), "{cut}");
         assert!(cut.chars().count() < LINE_CHARS + 30, "{}", cut.len());
         assert_eq!(shorten_middle("short"), "short");
-    }
-
-    #[test]
-    fn integers_beyond_64_bits_are_said_to_be_too_large_not_of_the_wrong_type() {
-        assert_eq!(
-            clarify_integer_overflow(
-                "invalid type: integer `99999999999999999999` as i128, expected any valid TOML value"
-            ),
-            "invalid value: integer `99999999999999999999` is beyond the 64-bit integers TOML allows (at most \
-             9223372036854775807)"
-        );
-        assert_eq!(clarify_integer_overflow("expected f64"), "expected f64");
     }
 
     #[test]

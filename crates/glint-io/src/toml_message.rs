@@ -1,0 +1,95 @@
+//! The TOML parser's error, said in a scene author's words. serde's derive sees a TOML
+//! date-time as a map with one private key, and an integer beyond i64 as an i128 of the wrong
+//! type; the author wrote neither.
+
+use glint_scene::shorten_lines;
+
+/// The key under which the `toml` crate hands a date-time to serde.
+const DATETIME_KEY: &str = "$__toml_private_datetime";
+
+/// `error`, raised parsing `text`, as a message: what the file holds named as the file says it,
+/// every line cut to a readable length.
+pub fn parse_message(error: &toml::de::Error, text: &str) -> String {
+    let spanned = error.span().and_then(|span| text.get(span)).unwrap_or("");
+    shorten_lines(&clarify_datetime(&clarify_integer_overflow(&error.to_string()), spanned))
+}
+
+/// A date-time where another type belongs is called one, not a map or a table with a private
+/// field (`unknown field `$__toml_private_datetime``).
+fn clarify_datetime(message: &str, spanned: &str) -> String {
+    let is_datetime = spanned.trim().parse::<toml::value::Datetime>().is_ok();
+    message
+        .lines()
+        .map(|line| {
+            if line.starts_with(&format!("unknown field `{DATETIME_KEY}`")) {
+                "invalid type: date-time, expected a table ([section] or { key = value, … })".to_string()
+            } else if is_datetime && line.starts_with("invalid type: map, expected ") {
+                line.replacen("map", "date-time", 1)
+            } else {
+                line.to_string()
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// serde's words for an integer TOML cannot hold (beyond i64; "as i128, expected any valid
+/// TOML value" read as if the value had the wrong type) said plainly.
+fn clarify_integer_overflow(message: &str) -> String {
+    const LIMIT: &str = "beyond the 64-bit integers TOML allows (at most 9223372036854775807)";
+    let mut out = message.to_string();
+    for wide in ["i128", "u128"] {
+        out = out
+            .replace(&format!(" as {wide}, expected any valid TOML value"), &format!(" is {LIMIT}"))
+            .replace(&format!(" as {wide}, expected "), &format!(" is {LIMIT}; expected "));
+    }
+    if out != message {
+        out = out.replace("invalid type: integer", "invalid value: integer");
+    }
+    out.replace("u64 value was too large", &format!("an integer {LIMIT}"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{clarify_integer_overflow, parse_message};
+
+    fn message(text: &str) -> String {
+        let error = toml::from_str::<glint_scene::SceneDesc>(text).expect_err("the scene is refused");
+        parse_message(&error, text)
+    }
+
+    #[test]
+    fn a_date_time_is_called_one_wherever_it_stands() {
+        let number = message("[camera]\nposition = [0, 0, -5]\nlook_at = [0, 0, 0]\nfov_y = 07:32:00\n");
+        assert!(message_line(&number).starts_with("invalid type: date-time, expected f64"), "{number}");
+        let colour = message("[world]\nambient = 1979-05-27T07:32:00Z\n");
+        assert!(message_line(&colour).starts_with("invalid type: date-time, expected a number (grey)"), "{colour}");
+        let table = message("[materials]\nglass = 1979-05-27\n");
+        assert!(!table.contains("$__toml"), "{table}");
+        assert!(table.contains("invalid type: date-time, expected a table"), "{table}");
+        // The parser's position stays.
+        assert!(table.contains("line 2"), "{table}");
+    }
+
+    #[test]
+    fn a_map_that_is_a_map_stays_one() {
+        let text = "[world]\nambient = { r = 1 }\n";
+        assert!(message(text).contains("invalid type: map, expected a number (grey)"), "{}", message(text));
+    }
+
+    fn message_line(message: &str) -> &str {
+        message.lines().last().unwrap_or("")
+    }
+
+    #[test]
+    fn integers_beyond_64_bits_are_said_to_be_too_large_not_of_the_wrong_type() {
+        assert_eq!(
+            clarify_integer_overflow(
+                "invalid type: integer `99999999999999999999` as i128, expected any valid TOML value"
+            ),
+            "invalid value: integer `99999999999999999999` is beyond the 64-bit integers TOML allows (at most \
+             9223372036854775807)"
+        );
+        assert_eq!(clarify_integer_overflow("expected f64"), "expected f64");
+    }
+}
