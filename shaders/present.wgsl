@@ -8,7 +8,8 @@
 // The sRGB transfer function (IEC 61966-2-1) of a clamped linear value, as a value in [0, 1]
 // that pack4x8unorm rounds to the same byte as the CPU's linear_to_srgb8.
 fn linear_to_srgb8(v: f32) -> f32 {
-    let c = clamp(v, 0.0, 1.0);
+    // WGSL leaves clamp of a NaN to the implementation; the CPU's clamp_linear makes it 0.
+    let c = select(clamp(v, 0.0, 1.0), 0.0, v != v);
     if c <= 0.0031308 {
         return 12.92 * c;
     }

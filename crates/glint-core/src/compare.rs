@@ -7,7 +7,6 @@
 use glam::DVec3;
 
 use crate::HdrImage;
-use crate::image::linear_to_srgb8;
 
 /// Lower end of the heat map's log scale: |difference| ≤ 10^-7 is dark, 1 is bright.
 pub const HEATMAP_LOG10_MIN: f64 = -7.0;
@@ -285,11 +284,6 @@ impl PixelDiffs {
         }
         bins
     }
-}
-
-/// An 8-bit sRGB encoding of an image (for side-by-side composites).
-pub fn srgb8(image: &HdrImage) -> Vec<u8> {
-    image.pixels.iter().flat_map(|p| p.to_array().map(linear_to_srgb8)).collect()
 }
 
 #[cfg(test)]

@@ -73,7 +73,7 @@ impl HdrImage {
         let mut out = vec![0; self.pixels.len() * 3];
         out.par_chunks_mut(3 * CHUNK).zip(self.pixels.par_chunks(CHUNK)).for_each(|(bytes, pixels)| {
             for (b, p) in bytes.chunks_exact_mut(3).zip(pixels) {
-                b.copy_from_slice(&p.to_array().map(|v| linear_f32_to_srgb8(v as f32)));
+                b.copy_from_slice(&srgb8_as_stored(*p));
             }
         });
         out
@@ -144,6 +144,12 @@ pub fn linear_to_srgb8(v: f64) -> u8 {
         code += 1;
     }
     code
+}
+
+/// 8-bit sRGB of a pixel as a file stores it, each channel rounded to f32 first: what every
+/// PNG, export and display of a CPU image shows, so that they agree code for code.
+pub fn srgb8_as_stored(p: DVec3) -> [u8; 3] {
+    p.to_array().map(|v| linear_f32_to_srgb8(v as f32))
 }
 
 /// `linear_to_srgb8` of a stored f32 channel.

@@ -46,7 +46,7 @@ const TWINS: [(&str, &str, &str, &str); 17] = [
     (
         "bvh.wgsl",
         include_str!("../../../shaders/bvh.wgsl"),
-        "cpu/bvh.rs",
+        "cpu/bvh/mod.rs",
         include_str!("../../glint-core/src/cpu/bvh/mod.rs"),
     ),
     (
@@ -154,7 +154,7 @@ const GPU_ONLY: [(&str, &str, &str); 45] = [
     (
         "bvh.wgsl",
         "box_pad",
-        "the GPU pads each box by its own magnitude (its 1e-5 of the root's made far geometry cost the walk its culling); the CPU pads once per ray against the root (cpu/bvh.rs box_scale)",
+        "the GPU pads each box by its own magnitude (its 1e-5 of the root's made far geometry cost the walk its culling); the CPU pads once per ray against the root (cpu/bvh/mod.rs box_scale)",
     ),
     ("trace.wgsl", "push_ray", "the explicit ray stack: WGSL has no recursion"),
     (
@@ -239,21 +239,21 @@ const GPU_ONLY: [(&str, &str, &str); 45] = [
 const CPU_ONLY: [(&str, &str, &str); 24] = [
     ("cpu/raycast.rs", "from_hit", "HitRecord from the CPU's Option<Hit>; cast_ray writes the vec4 in place"),
     ("cpu/raycast.rs", "is_hit", "a record read on the host (the benchmark's hit counts)"),
-    ("cpu/bvh.rs", "new", "SlabRay::new; WGSL builds it in slab_ray (no methods)"),
+    ("cpu/bvh/mod.rs", "new", "SlabRay::new; WGSL builds it in slab_ray (no methods)"),
     (
-        "cpu/bvh.rs",
+        "cpu/bvh/mod.rs",
         "box_scale",
         "the root's magnitude for the CPU's once-per-ray padding (1e-9 of it costs nothing); the GPU pads per box (bvh.wgsl box_pad)",
     ),
-    ("cpu/bvh.rs", "prefetch", "a CPU cache hint for the nodes and leaves the walk takes next; WGSL has none"),
+    ("cpu/bvh/mod.rs", "prefetch", "a CPU cache hint for the nodes and leaves the walk takes next; WGSL has none"),
     (
-        "cpu/bvh.rs",
+        "cpu/bvh/mod.rs",
         "run",
         "traverse's loop over the wide nodes (bvh::WideNode) with its reused per-thread stack; the GPU walks \
          the binary nodes they are collapsed from, with its stack in a local array",
     ),
     (
-        "cpu/bvh.rs",
+        "cpu/bvh/mod.rs",
         "traverse",
         "the stack walk over a visitor closure: WGSL has no closures, so closest_hit and \
          shadow_transmittance each hold the same walk",
@@ -306,13 +306,13 @@ const CPU_ONLY_STRUCTS: [(&str, &str, &str); 13] = [
     ("cpu/raycast.rs", "RayRecord", "a ray of the buffer as the host writes it; WGSL reads two vec4<f32>"),
     ("cpu/raycast.rs", "HitRecord", "a hit of the buffer as the host reads it; WGSL writes one vec4<u32>"),
     (
-        "cpu/bvh.rs",
+        "cpu/bvh/mod.rs",
         "Pending",
         "an entry of the CPU walk's stack, a wide node or a leaf with its entry distance; NodeStack's on the GPU",
     ),
-    ("cpu/bvh.rs", "Walk", "what the CPU's loop over the wide nodes reads; WGSL reads bindings"),
+    ("cpu/bvh/mod.rs", "Walk", "what the CPU's loop over the wide nodes reads; WGSL reads bindings"),
     (
-        "cpu/bvh.rs",
+        "cpu/bvh/mod.rs",
         "Crossing",
         "the CPU sorts shadow crossings into brute force's order to be bit-identical; the f32 GPU \
          multiplies in visiting order",

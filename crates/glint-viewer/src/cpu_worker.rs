@@ -5,7 +5,7 @@ use std::sync::{Arc, Mutex, MutexGuard};
 use std::time::{Duration, Instant};
 
 use glint_core::cpu::RayCounts;
-use glint_core::image::linear_to_srgb8;
+use glint_core::image::srgb8_as_stored;
 use glint_core::render::{Tile, tile_count};
 use glint_core::{CpuOptions, FlatScene, HdrImage, RenderControl, render_cpu};
 
@@ -107,7 +107,7 @@ impl CpuWorker {
                     for col in 0..tile.width {
                         let src = tile.radiance[(row * tile.width + col) as usize];
                         let dst = (((tile.y0 + row) * width + tile.x0 + col) * 4) as usize;
-                        let px = src.to_array().map(linear_to_srgb8);
+                        let px = srgb8_as_stored(src);
                         g.rgba[dst..dst + 4].copy_from_slice(&[px[0], px[1], px[2], 255]);
                     }
                 }

@@ -12,7 +12,7 @@ use crate::comparison::Compared;
 use crate::cpu_worker::Finished;
 use crate::error::ViewerError;
 use crate::gpu_view::GpuImage;
-use crate::images::{abs_difference, side_by_side, side_by_side_hdr, srgb};
+use crate::images::{abs_difference, side_by_side, side_by_side_hdr};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ExportView {
@@ -107,15 +107,15 @@ pub fn export(path: &Path, view: ExportView, s: &Sources) -> Result<(), ViewerEr
     }
     let heatmap = || s.diff.ok_or(ViewerError::NotReady("the comparison of GPU and CPU is still running"));
     let (width, height, rgb) = match (view, cpu, gpu) {
-        (ExportView::Cpu, Some(c), _) => (c.image.width, c.image.height, srgb(&c.image)),
-        (ExportView::Gpu, _, Some(g)) => (g.image.width, g.image.height, srgb(&g.image)),
+        (ExportView::Cpu, Some(c), _) => (c.image.width, c.image.height, c.image.to_srgb8()),
+        (ExportView::Gpu, _, Some(g)) => (g.image.width, g.image.height, g.image.to_srgb8()),
         (ExportView::Difference, _, _) => {
             let d = heatmap()?;
             (d.width, d.height, d.heatmap.clone())
         }
         (ExportView::All, Some(c), Some(g)) => {
             let d = heatmap()?;
-            let (cs, gs) = (srgb(&c.image), srgb(&g.image));
+            let (cs, gs) = (c.image.to_srgb8(), g.image.to_srgb8());
             side_by_side(&[
                 (c.image.width, c.image.height, &cs),
                 (g.image.width, g.image.height, &gs),

@@ -2,7 +2,6 @@
 //! composites that "Save image" writes.
 
 use glint_core::HdrImage;
-use glint_core::compare::srgb8;
 
 /// A texture that is replaced in place when its pixels change.
 #[derive(Default)]
@@ -105,10 +104,6 @@ pub fn abs_difference(cpu: &HdrImage, gpu: &HdrImage) -> HdrImage {
         *o = (*g - *o).abs();
     }
     out
-}
-
-pub fn srgb(image: &HdrImage) -> Vec<u8> {
-    srgb8(image)
 }
 
 #[cfg(test)]

@@ -100,8 +100,7 @@ impl WhittedVsGi {
     pub fn poll(&mut self, ctx: &egui::Context) {
         match self.whitted_worker.poll() {
             Some((revision, Ok(Ok(image)))) => {
-                let rgba: Vec<u8> =
-                    crate::images::srgb(&image).chunks_exact(3).flat_map(|p| [p[0], p[1], p[2], 255]).collect();
+                let rgba: Vec<u8> = image.to_srgb8().chunks_exact(3).flat_map(|p| [p[0], p[1], p[2], 255]).collect();
                 self.whitted_texture.set_rgba(ctx, "whitted", image.width, image.height, &rgba);
                 self.whitted = Some((revision, image));
                 self.error = None;

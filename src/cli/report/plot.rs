@@ -268,7 +268,7 @@ pub fn file_name(scene: &str) -> String {
     format!("error_vs_time_{scene}.png")
 }
 
-/// Writes `error_vs_time_SCENE.png` into `dir` (atomically, via glint-core's PNG writer).
+/// Writes `error_vs_time_SCENE.png` into `dir` (atomically, via glint-io's PNG writer).
 pub fn write_plot(dir: &Path, scene: &SceneResult, runs: usize) -> anyhow::Result<std::path::PathBuf> {
     let rgb = draw(scene, runs)?;
     let path = dir.join(file_name(&scene.name));

@@ -376,7 +376,7 @@ pub fn path_bounce(ctx: &TraceContext, emitters: &Emitters, path: &mut PathState
                 path.scattered_pdf,
                 emitter_pdf(ctx, e, emitters.list.len(), path.scattered_from, s.p, s.ng),
             ),
-            _ => 1.0,
+            Some(_) | None => 1.0,
         };
         path.radiance += path.beta * c.emission * weight;
     }
