@@ -12,7 +12,7 @@ use glint_core::render::CpuRenderError;
 use glint_core::{Accel, Backend, CpuOptions, FlatScene};
 use glint_gpu::GpuOptions;
 use glint_io::{BUILTIN_SCENES, RESOLUTIONS};
-use glint_scene::{Integrator, RenderSettings, SceneDesc, WARN_RAYS_PER_SAMPLE, unbounded_ray_tree};
+use glint_scene::{Integrator, RenderSettings, SceneDesc, ray_tree_bound, unbounded_ray_tree};
 
 use super::backend::{Run, check_adapter, open_gpu, run_cpu, run_gpu};
 use super::console::{say, tell};
@@ -286,16 +286,30 @@ fn check_backend_flags(args: &RenderArgs) -> anyhow::Result<()> {
 /// A ray tree stopped at `--max-rays-per-sample` in a scene whose own tree is bounded (its
 /// bailout and depth keep it within `WARN_RAYS_PER_SAMPLE`): the cap is the cause, not the
 /// scene, whose remedies the core's message offers first (`--max-rays-per-sample 1` on whitted
-/// was told to set the bailout it has).
+/// was told to set the bailout it has), and the scene's bound is the cap that suffices.
 fn explain_ray_cap(e: anyhow::Error, desc: &SceneDesc, settings: &RenderSettings) -> anyhow::Error {
     match e.downcast_ref::<CpuRenderError>() {
         Some(&CpuRenderError::RayCap { x, y, cap }) if unbounded_ray_tree(desc, settings).is_none() => anyhow!(
             "pixel ({x}, {y}): a camera sample's ray tree reached the cap of {cap} rays (--max-rays-per-sample), so \
-             the render stopped; the scene's own bailout and depth keep its trees within {WARN_RAYS_PER_SAMPLE} \
-             rays: raise the cap"
+             the render stopped; the scene's own bailout and depth keep every tree within {} rays{}: raise the cap \
+             to that",
+            tree_rays_with_shadows(desc, settings),
+            match desc.lights.len() {
+                0 => String::new(),
+                n => format!(
+                    " ({} reflected and refracted, each hit with a shadow ray to each of {n} light{})",
+                    ray_tree_bound(desc, settings),
+                    if n == 1 { "" } else { "s" }
+                ),
+            }
         ),
         _ => e,
     }
+}
+
+/// What the cap counts: the tree's rays and at most one shadow ray from each hit to each light.
+fn tree_rays_with_shadows(desc: &SceneDesc, settings: &RenderSettings) -> f64 {
+    ray_tree_bound(desc, settings) * (1.0 + desc.lights.len() as f64)
 }
 
 /// `--bench`'s timed runs without `--runs`.

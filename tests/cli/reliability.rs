@@ -387,6 +387,17 @@ fn a_ray_tree_without_end_stops_at_the_cap_naming_the_pixel_and_the_remedy() {
     let out = glint(&dir, ["render", "whitted", "-q", "-o", "w.exr", "--max-rays-per-sample", "1"]);
     let stderr = text(&out.stderr);
     assert!(!out.status.success() && stderr.contains("raise the cap"), "{stderr}");
+    // To the scene's own bound, which suffices (whitted: 41 tree rays at depth 5 with its
+    // bailout, each hit with a shadow ray to its one light).
+    assert!(
+        stderr.contains("within 82 rays (41 reflected and refracted, each hit with a shadow ray to each of 1 light)"),
+        "{stderr}"
+    );
+    let out = glint(
+        &dir,
+        ["render", "whitted", "-q", "-o", "w.exr", "--max-rays-per-sample", "82", "--width", "64", "--height", "48"],
+    );
+    assert!(out.status.success(), "{}", text(&out.stderr));
     assert!(!stderr.contains("set render.bailout"), "{stderr}");
     for bad in ["0", "-3", "1099511627777", "x"] {
         let out = glint(&dir, ["render", "tree.toml", "-q", "-o", "bad.exr", "--max-rays-per-sample", bad]);

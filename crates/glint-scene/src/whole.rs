@@ -7,7 +7,7 @@ use std::fmt;
 use serde::Deserializer;
 use serde::de::{Error, Unexpected, Visitor};
 
-use crate::validate::{Range, ranges};
+use crate::limits::{Range, ranges};
 
 struct WholeIn(Range<u32>);
 

@@ -22,14 +22,13 @@ mod coplanar;
 mod epsilon;
 mod integrator;
 mod lights;
-mod limits;
 mod materials;
 mod objects;
 
+pub use crate::limits::*;
 pub use epsilon::{EPSILON_SHARE, EPSILON_WARN_SHARE, epsilon_warning};
 pub use integrator::{integrator_warnings, path_gain_warning};
 use lights::{validate_light, validate_polynomial};
-pub use limits::*;
 use materials::validate_material;
 use objects::validate_object;
 
@@ -38,11 +37,6 @@ use objects::validate_object;
 /// and 9e-8 as "0").
 fn short(v: f64) -> String {
     crate::number::format_rounded(v, 6)
-}
-
-/// The value the tracers will see: both read the scene in f32.
-fn as_f32(v: f64) -> f64 {
-    f64::from(v as f32)
 }
 
 /// What validation found: hard errors and warnings (the scene still renders with warnings).

@@ -125,7 +125,7 @@ pub(super) fn coplanar_overlaps(scene: &SceneDesc, origin: [f64; 3]) -> Vec<Fiel
     // ε = 1e308 made the tolerance infinite and the grid fill memory (10 GB in 15 s).
     let epsilon = match scene.render.epsilon {
         e if e.is_nan() => 0.0,
-        e => e.clamp(0.0, super::limits::MAX_EPSILON),
+        e => e.clamp(0.0, crate::limits::MAX_EPSILON),
     };
     let at = Resolution { epsilon, origin: DVec3::from(origin) };
     let mut bounds = vec![(DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)); scene.objects.len()];

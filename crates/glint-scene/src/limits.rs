@@ -1,7 +1,11 @@
 //! The bounds of every number a scene holds, and the range type the viewer's editors share.
 
-use super::as_f32;
 use crate::number::format_number;
+
+/// `v` as the tracers store it: rounded to f32.
+pub(crate) fn as_f32(v: f64) -> f64 {
+    f64::from(v as f32)
+}
 
 /// Coordinates and sizes are limited so that squares and sums stay finite in f32
 /// (the GPU tracer computes |o − c|² for spheres).
