@@ -5,6 +5,7 @@ use super::{
     DVec3, FieldIssue, MeshDesc, ObjectDesc, PlaneDesc, Report, Rgb, SceneDesc, SphereDesc, cross, norm, num, ranges,
     shorten, sub, validate_light,
 };
+use crate::number::format_rounded;
 
 /// `origin`: the scene's storage origin (`storage_origin`), which mesh vertices are stored
 /// relative to.
@@ -26,6 +27,9 @@ pub(super) fn validate_object(path: &str, o: &ObjectDesc, scene: &SceneDesc, ori
         ObjectDesc::Sphere(SphereDesc { center, radius, .. }) => {
             r.point(&format!("{path}.center"), *center);
             r.size(&format!("{path}.radius"), *radius, ranges::SIZE);
+            if let Some(coarse) = coarsely_stored(&[*center], *radius, "radius", origin) {
+                r.warn(format!("{path}.center"), format!("the sphere (radius {}) {coarse}", num(*radius)));
+            }
         }
         ObjectDesc::Plane(PlaneDesc { point, normal, .. }) => {
             r.point(&format!("{path}.point"), *point);
@@ -100,7 +104,7 @@ fn beyond_range(model: &crate::LoadedModel, transformed: bool) -> Option<String>
     (!ranges::COORD.contains(reach)).then(|| {
         format!(
             "{with}the model reaches {} from the origin; coordinates must lie in [{:e}, {:e}]",
-            crate::number::format_rounded(reach, 3),
+            format_rounded(reach, 3),
             ranges::COORD.min,
             ranges::COORD.max
         )
@@ -224,12 +228,8 @@ fn validate_mesh(path: &str, mesh: &MeshDesc, origin: [f64; 3], r: &mut Report) 
     }
     if rounded_flat > 0 {
         let reach = vertices.iter().flat_map(|&v| relative(v)).fold(0.0f64, |m, c| m.max(c.abs()));
-        let step = f64::from((reach as f32).next_up()) - f64::from(reach as f32);
-        let from = if origin == [0.0; 3] {
-            "the origin".to_string()
-        } else {
-            format!("the scene's storage origin [{}, {}, {}]", num(origin[0]), num(origin[1]), num(origin[2]))
-        };
+        let step = f32_step(reach);
+        let from = storage_origin_named(origin);
         r.warn(
             format!("{path}.vertices"),
             format!(
@@ -239,12 +239,110 @@ fn validate_mesh(path: &str, mesh: &MeshDesc, origin: [f64; 3], r: &mut Report) 
                  in a scene of their own)"
             ),
         );
+    } else if let Some(size) = mesh_size(vertices)
+        && let Some(coarse) = coarsely_stored(vertices, size, "size", origin)
+    {
+        r.warn(format!("{path}.vertices"), format!("the mesh (size {}) {coarse}", num(size)));
     }
+}
+
+/// What f32 steps are at `reach`: the spacing of the f32 values there.
+fn f32_step(reach: f64) -> f64 {
+    f64::from((reach as f32).next_up()) - f64::from(reach as f32)
+}
+
+fn storage_origin_named(origin: [f64; 3]) -> String {
+    if origin == [0.0; 3] {
+        "the origin".to_string()
+    } else {
+        format!("the scene's storage origin [{}, {}, {}]", num(origin[0]), num(origin[1]), num(origin[2]))
+    }
+}
+
+/// Storage error, as a share of an object's size, from which it is warned about: an object
+/// 10,000 pixels across moves by a pixel.
+const VISIBLE_STORAGE_ERROR: f64 = 1e-4;
+
+/// Why points stored as f32 relative to `origin` (as both tracers store them) may move an
+/// object of `size` (its `measure`: "radius", "size") visibly: the rest of a warning, or
+/// `None`. A scene that spans far more than an object (a ground of 1e8 under spheres at map
+/// coordinates puts the storage origin at the ground's centre) keeps the object to f32 of that
+/// span, not of its own size; no triangle need lose its area for the image to change. A scene
+/// far from the world origin whose own storage origin f32 cannot put near it has the same fault.
+fn coarsely_stored(points: &[[f64; 3]], size: f64, measure: &str, origin: [f64; 3]) -> Option<String> {
+    let reach = points.iter().flat_map(|p| [0, 1, 2].map(|k| (p[k] - origin[k]).abs())).fold(0.0, f64::max);
+    let error = 0.5 * f32_step(reach);
+    if !(size > 0.0 && reach.is_finite()) || error <= VISIBLE_STORAGE_ERROR * size {
+        return None;
+    }
+    let far = origin.iter().fold(0.0_f64, |m, c| m.max(c.abs()));
+    let remedy = if far > 0.0 && reach <= f32_step(far) {
+        format!(
+            "the scene lies too far from the world origin for f32 to put its storage origin nearer (steps of {} \
+             there): move it nearer the world origin",
+            num(f32_step(far))
+        )
+    } else {
+        "the scene spans too wide a range for a detail this small: render it on its own, or bring the far geometry \
+         closer"
+            .to_string()
+    };
+    Some(format!(
+        "is stored as f32 {} from {}, to {} ({} of its {measure}; the GPU errs more): {remedy} (docs/numerics.md, \
+         Known limits)",
+        format_rounded(reach, 3),
+        storage_origin_named(origin),
+        format_rounded(error, 3),
+        format_rounded(error / size, 2),
+    ))
+}
+
+/// The diagonal of a mesh's vertices' box, `None` for a mesh of one point or none.
+fn mesh_size(vertices: &[[f64; 3]]) -> Option<f64> {
+    let (lo, hi) = vertices
+        .iter()
+        .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), v| (lo.min(DVec3::from(*v)), hi.max(DVec3::from(*v))));
+    let size = (hi - lo).length();
+    (size.is_finite() && size > 0.0).then_some(size)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn an_object_f32_storage_moves_visibly_is_warned_about_with_its_cause() {
+        let scene: SceneDesc =
+            toml::from_str("[camera]\nposition = [0.0, 0.0, -4.0]\nlook_at = [0.0, 0.0, 0.0]\n").expect("scene");
+        let sphere = |center: [f64; 3], radius: f64, origin: [f64; 3]| {
+            let mut r = Report::default();
+            let object =
+                ObjectDesc::Sphere(SphereDesc { center, radius, material: String::new(), name: String::new() });
+            validate_object("objects[0]", &object, &scene, origin, &mut r);
+            r.warnings.into_iter().map(|w| format!("{}: {}", w.field, w.problem)).collect::<Vec<_>>()
+        };
+        // Spheres at map coordinates stored in world space (a ground of 1e8 under them keeps the
+        // origin there): f32 steps of 0.25 move a radius of 0.75 by a sixth of it.
+        let far = sphere([1234567.3, -2345678.9, 345678.1], 0.75, [0.0; 3]);
+        assert_eq!(far.len(), 1, "{far:?}");
+        assert!(far[0].starts_with("objects[0].center: the sphere (radius 0.75) is stored as f32 2350000 from the origin, to 0.125 (0.17 of its radius"), "{far:?}");
+        assert!(far[0].contains("bring the far geometry closer"), "{far:?}");
+        // Stored near its own origin it keeps its size's digits; at the origin, as every scene
+        // made there.
+        assert!(sphere([1234567.3, -2345678.9, 345678.1], 0.75, [1234567.0, -2345679.0, 345678.0]).is_empty());
+        assert!(sphere([0.9, 1.1, 1.6], 1.1, [0.0; 3]).is_empty());
+        // A micro-scene beyond what f32 can put an origin near: the cause is the distance.
+        let micro = sphere([0.0, 4779855.25, 0.0], 1.1e-6, [0.0, 4779855.0, 0.0]);
+        assert!(micro[0].contains("move it nearer the world origin"), "{micro:?}");
+        // A mesh likewise, by its own size.
+        let mut r = Report::default();
+        validate_mesh("m", &tiny(1e3), [0.0; 3], &mut r);
+        assert!(
+            r.warnings.iter().any(|w| w.field == "m.vertices" && w.problem.starts_with("the mesh (size ")),
+            "{:?}",
+            r.warnings
+        );
+    }
 
     /// A triangle of 1e-3 sides at `offset`, and one of zero area.
     fn tiny(offset: f64) -> MeshDesc {
