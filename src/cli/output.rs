@@ -3,7 +3,8 @@
 use std::path::{Path, PathBuf};
 
 use anyhow::bail;
-use glint_core::compare::{HEATMAP_LOG10_MAX, HEATMAP_LOG10_MIN, ImageErrors, diff_heatmap};
+use glint_core::HdrImage;
+use glint_core::compare::{HEATMAP_LOG10_MAX, HEATMAP_LOG10_MIN, ImageErrors, abs_difference, diff_heatmap};
 use glint_core::cpu::RayCounts;
 use glint_core::image::{RenderInfo, render_metadata};
 use glint_core::memory::{self, MemoryEstimate, MemoryPart};
@@ -48,21 +49,38 @@ pub fn write_run(path: &Path, run: &Run, metadata: &[(String, String)]) -> anyho
     Ok(())
 }
 
-/// The false-colour difference image, its scale in the metadata.
-pub fn write_diff(path: &Path, cpu: &Run, gpu: &Run, mut metadata: Vec<(String, String)>) -> anyhow::Result<()> {
+/// The difference of the GPU's image from the CPU's (`cpu` as its file stores it): beside EXR
+/// outputs the linear |gpu − cpu| per channel as an EXR, beside PNG ones a false-colour heat
+/// map with its scale in the metadata. Returns the path written.
+pub fn write_diff(
+    path: &Path,
+    cpu: &HdrImage,
+    gpu: &HdrImage,
+    mut metadata: Vec<(String, String)>,
+) -> anyhow::Result<PathBuf> {
     metadata.retain(|(k, _)| k != "glint:backend" && k != "glint:time_ms" && k != "glint:rays" && k != "glint:device");
     metadata.push(("glint:backend".into(), "diff gpu-cpu".into()));
+    if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("exr")) {
+        metadata.push((
+            "glint:diff".into(),
+            "|gpu - cpu| per channel of linear radiance, the CPU's image rounded to f32 as its EXR holds it; 0 = identical"
+                .into(),
+        ));
+        write_image(path, &abs_difference(cpu, gpu), &metadata)?;
+        return Ok(path.to_owned());
+    }
     metadata.push((
         "glint:diff_scale".into(),
         format!(
-            "per-pixel max-channel |gpu - cpu| of linear radiance; black = identical; magma colour map over \
-             log10 |diff| from {HEATMAP_LOG10_MIN} (dark) to {HEATMAP_LOG10_MAX} (bright)"
+            "per-pixel max-channel |gpu - cpu| of linear radiance, the CPU's image rounded to f32 as its file holds it; \
+             black = identical; magma colour map over log10 |diff| from {HEATMAP_LOG10_MIN} (dark) to \
+             {HEATMAP_LOG10_MAX} (bright)"
         ),
     ));
-    let rgb = diff_heatmap(&cpu.image, &gpu.image);
+    let rgb = diff_heatmap(cpu, gpu);
     let png = path.with_extension("png");
-    write_png_rgb8(&png, cpu.image.width, cpu.image.height, &rgb, &metadata)?;
-    Ok(())
+    write_png_rgb8(&png, cpu.width, cpu.height, &rgb, &metadata)?;
+    Ok(png)
 }
 
 /// The ray counts in the integrator's words: a path's bounce off a diffuse or glossy lobe is

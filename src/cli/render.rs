@@ -195,7 +195,8 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     }
     let both = args.backend.len() > 1;
     let image_path = |run: &Run| if both { suffixed(&output, run.backend.name()) } else { output.clone() };
-    let diff_path = suffixed(&output, "diff").with_extension("png");
+    // A heat map beside PNG images, the linear difference beside EXR ones (`write_diff`).
+    let diff_path = suffixed(&output, "diff");
     let planned: Vec<PathBuf> = if both {
         vec![suffixed(&output, "cpu"), suffixed(&output, "gpu"), diff_path.clone()]
     } else {
@@ -230,9 +231,11 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         outputs.push(path);
     }
     let errors = if let [cpu, gpu] = runs.as_slice() {
-        write_diff(&diff_path, cpu, gpu, metadata(&loaded.name, &settings, gpu, specialise))?;
-        outputs.push(diff_path);
-        Some(compare_images(&cpu.image, &gpu.image))
+        // The CPU's image as its file holds it (f32): identical files compare as identical.
+        let stored = cpu.image.as_stored();
+        let written = write_diff(&diff_path, &stored, &gpu.image, metadata(&loaded.name, &settings, gpu, specialise))?;
+        outputs.push(written);
+        Some(compare_images(&stored, &gpu.image))
     } else {
         None
     };

@@ -678,3 +678,37 @@ fn render_json_says_which_integrator_and_its_settings() {
         assert_eq!(saved.is_null(), integrator == "path", "{v}");
     }
 }
+
+#[test]
+fn the_comparison_reads_the_images_as_written_and_an_exr_run_writes_a_linear_difference() {
+    if glint_test_support::skip_requested("GLINT_SKIP_GPU") {
+        return;
+    }
+    let dir = TempDir::new("diff-exr");
+    let args = ["render", "whitted", "--backend", "both", "--width", "80", "--height", "60", "-q", "--json"];
+    let out = glint(&dir, args.iter().copied().chain(["-o", "w.exr"]));
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
+    let read = |name: &str| glint_io::exr_file::read_exr(&dir.join(name)).expect(name).rgb;
+    let (cpu, gpu, diff) = (read("w-cpu.exr"), read("w-gpu.exr"), read("w-diff.exr"));
+    // The difference is |gpu − cpu| of the files, 0 exactly where they are the same bits (the
+    // CPU's f64 image made some of those pixels differ before).
+    let mut sum = 0.0;
+    for ((c, g), d) in cpu.iter().zip(&gpu).zip(&diff) {
+        for k in 0..3 {
+            assert_eq!(d[k], (g[k] - c[k]).abs(), "{c:?} {g:?} {d:?}");
+            sum += (f64::from(g[k]) - f64::from(c[k])).abs();
+        }
+    }
+    let mean_abs = sum / (3 * cpu.len()) as f64;
+    let printed = json["gpu_vs_cpu"]["mean_abs"].as_f64().expect("mean_abs");
+    assert!((printed - mean_abs).abs() <= 1e-12 * mean_abs.max(1e-30), "{printed} against {mean_abs} from the files");
+    let identical = cpu.iter().zip(&gpu).filter(|(c, g)| c == g).count();
+    assert!(identical > 0, "the test needs pixels the tracers agree on to the bit");
+    // A PNG run's heat map is black on the same pixels.
+    let out = glint(&dir, args.iter().copied().chain(["-o", "w.png"]));
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let heat = image::open(dir.join("w-diff.png")).expect("heat map").to_rgb8();
+    let black = heat.pixels().filter(|p| p.0 == [0, 0, 0]).count();
+    assert_eq!(black, identical, "black where the written images are identical");
+}

@@ -160,6 +160,15 @@ fn nice_ceiling(v: f64) -> f64 {
     [1.0, 2.0, 5.0, 10.0].into_iter().map(|m| m * p).find(|c| *c >= v * (1.0 - 1e-12)).unwrap_or(10.0 * p)
 }
 
+/// |test − reference| per channel as a linear image (the EXR form of the difference view).
+pub fn abs_difference(reference: &HdrImage, test: &HdrImage) -> HdrImage {
+    let mut out = reference.clone();
+    for (o, t) in out.pixels.iter_mut().zip(&test.pixels) {
+        *o = (*t - *o).abs();
+    }
+    out
+}
+
 /// The per-pixel max-channel |test − reference| as an 8-bit RGB heat map: black where the
 /// images are identical, else `heatmap_colour(heatmap_position(d))`.
 pub fn diff_heatmap(reference: &HdrImage, test: &HdrImage) -> Vec<u8> {

@@ -64,6 +64,15 @@ impl HdrImage {
         out
     }
 
+    /// The image as a file stores it: each channel rounded to f32, as the GPU computes and an
+    /// EXR holds it. What a comparison with the GPU, and its "black = identical", reads: two
+    /// images whose files are bit-identical compare as identical.
+    pub fn as_stored(&self) -> Self {
+        let mut out = self.clone();
+        out.pixels.par_iter_mut().for_each(|p| *p = p.as_vec3().as_dvec3());
+        out
+    }
+
     /// 8-bit sRGB, clamped to [0, 1] first, of each channel's f32 value (as an EXR stores it,
     /// so that a PNG made from EXR tiles, `glint merge`, is the same bytes as one rendered
     /// whole). In parallel chunks: even without a `powf` per channel (`linear_to_srgb8`), a 720p

@@ -38,7 +38,9 @@ impl Comparison {
         if done || running || (cpu.width, cpu.height) != (gpu.width, gpu.height) {
             return;
         }
-        let (cpu, gpu) = (cpu.clone(), gpu.clone());
+        // The CPU's image as a file stores it, so that what is identical in the saved images
+        // shows black.
+        let (cpu, gpu) = (cpu.as_stored(), gpu.clone());
         let started = self.worker.start(revision, move |_| {
             let errors = compare_images(&cpu, &gpu);
             let heatmap = diff_heatmap(&cpu, &gpu);

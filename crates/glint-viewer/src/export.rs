@@ -12,7 +12,8 @@ use crate::comparison::Compared;
 use crate::cpu_worker::Finished;
 use crate::error::ViewerError;
 use crate::gpu_view::GpuImage;
-use crate::images::{abs_difference, side_by_side, side_by_side_hdr};
+use crate::images::{side_by_side, side_by_side_hdr};
+use glint_core::compare::abs_difference;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ExportView {

@@ -97,15 +97,6 @@ pub fn side_by_side_hdr(parts: &[&HdrImage]) -> HdrImage {
     out
 }
 
-/// |GPU − CPU| per channel as a linear image (the EXR form of the difference view).
-pub fn abs_difference(cpu: &HdrImage, gpu: &HdrImage) -> HdrImage {
-    let mut out = cpu.clone();
-    for (o, g) in out.pixels.iter_mut().zip(&gpu.pixels) {
-        *o = (*g - *o).abs();
-    }
-    out
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
