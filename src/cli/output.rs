@@ -6,8 +6,10 @@ use anyhow::bail;
 use glint_core::HdrImage;
 use glint_core::compare::{HEATMAP_LOG10_MAX, HEATMAP_LOG10_MIN, ImageErrors, abs_difference, diff_heatmap};
 use glint_core::cpu::RayCounts;
+use glint_core::flat::FlatScene;
 use glint_core::image::{RenderInfo, render_metadata};
 use glint_core::memory::{self, MemoryEstimate, MemoryPart};
+use glint_io::LoadedScene;
 use glint_io::image_file::{write_image, write_png_rgb8};
 use glint_scene::{Integrator, RenderSettings, SceneDesc, overflow_causes};
 use serde::Serialize;
@@ -17,11 +19,33 @@ use super::console::{say, tell};
 use super::units::{mrays_per_s, ms};
 
 /// Render settings as PNG tEXt chunks (`glint:*` keys).
-pub fn metadata(scene: &str, s: &RenderSettings, run: &Run, specialised: bool) -> Vec<(String, String)> {
+/// What names a render's scene in its metadata: the short name (`glint:scene`), where it came
+/// from (`glint:source`: the scene argument as given, or `builtin:NAME`), the flags that shaped it
+/// as loaded (`glint:load_flags`, when any), and the content hash of the scene as the tracers
+/// read it (`glint:scene_hash`), which tells two edits of one file apart.
+pub struct SceneTags {
+    pub name: String,
+    pub source: String,
+    pub load_flags: String,
+    pub hash: String,
+}
+
+impl SceneTags {
+    pub fn new(loaded: &LoadedScene, load_flags: String, flat: &FlatScene) -> Self {
+        Self {
+            name: loaded.name.clone(),
+            source: loaded.source.display().to_string(),
+            load_flags,
+            hash: flat.content_hash(),
+        }
+    }
+}
+
+pub fn metadata(scene: &SceneTags, s: &RenderSettings, run: &Run, specialised: bool) -> Vec<(String, String)> {
     let mut m = render_metadata(
         s,
         &RenderInfo {
-            scene,
+            scene: &scene.name,
             backend: run.backend.name(),
             device: &run.device,
             specialised,
@@ -29,6 +53,11 @@ pub fn metadata(scene: &str, s: &RenderSettings, run: &Run, specialised: bool) -
             rays: Some(run.counts.total()),
         },
     );
+    m.push(("glint:source".into(), scene.source.clone()));
+    if !scene.load_flags.is_empty() {
+        m.push(("glint:load_flags".into(), scene.load_flags.clone()));
+    }
+    m.push(("glint:scene_hash".into(), scene.hash.clone()));
     // Written only with --allow-incomplete: the image is missing work, and says which.
     if !run.incomplete.is_empty() {
         m.push(("glint:gpu_status".into(), format!("{:#x}", run.gpu_status)));

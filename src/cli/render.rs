@@ -18,8 +18,8 @@ use super::backend::{Run, check_adapter, open_gpu, run_cpu, run_gpu};
 use super::console::{say, tell};
 use super::interrupt;
 use super::output::{
-    BenchResult, Incomplete, check_writable, fmt_counts, gpu_cpu_ratio, metadata, print_bench_json, print_json,
-    print_table, suffixed, write_diff, write_run,
+    BenchResult, Incomplete, SceneTags, check_writable, fmt_counts, gpu_cpu_ratio, metadata, print_bench_json,
+    print_json, print_table, suffixed, write_diff, write_run,
 };
 use super::output_path::{check_not_read, check_outputs};
 use super::settings::{LoadArgs, SettingsArgs, load_with_estimate, parse_ray_cap, parse_threads, tell_warnings};
@@ -154,6 +154,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
             cpu: cpu_options,
             gpu: gpu_options,
             adapter: args.adapter.as_deref(),
+            load_flags: args.scene_size.flags(),
             specialise,
             force: args.force,
             quiet: args.quiet,
@@ -207,6 +208,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     check_not_read(&planned_paths, &loaded)?;
     interrupt::check()?;
     let flat = FlatScene::build(&loaded.desc, &settings);
+    let scene_tags = SceneTags::new(&loaded, args.scene_size.flags(), &flat);
     interrupt::check()?;
 
     let gpu = if args.backend.contains(&Backend::Gpu) { Some(open_gpu(args.adapter.as_deref())?) } else { None };
@@ -226,14 +228,14 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     let mut outputs = Vec::new();
     for run in &runs {
         let path = image_path(run);
-        let tags = metadata(&loaded.name, &settings, run, specialise);
+        let tags = metadata(&scene_tags, &settings, run, specialise);
         write_run(&path, run, &tags)?;
         outputs.push(path);
     }
     let errors = if let [cpu, gpu] = runs.as_slice() {
         // The CPU's image as its file holds it (f32): identical files compare as identical.
         let stored = cpu.image.as_stored();
-        let written = write_diff(&diff_path, &stored, &gpu.image, metadata(&loaded.name, &settings, gpu, specialise))?;
+        let written = write_diff(&diff_path, &stored, &gpu.image, metadata(&scene_tags, &settings, gpu, specialise))?;
         outputs.push(written);
         Some(compare_images(&stored, &gpu.image))
     } else {

@@ -76,6 +76,29 @@ pub struct LoadArgs {
 }
 
 impl LoadArgs {
+    /// The flags among these that change the scene as loaded, as they would be typed again
+    /// (`--resolution 10 --ground off`): what an image's metadata needs, besides the scene and
+    /// the settings, to be rendered again. The memory limit changes nothing drawn.
+    pub fn flags(&self) -> String {
+        let mut out = Vec::new();
+        if let Some(n) = self.resolution {
+            out.push(format!("--resolution {n}"));
+        }
+        if let Some(i) = self.scene_index {
+            out.push(format!("--scene-index {i}"));
+        }
+        if let Some(i) = self.camera {
+            out.push(format!("--camera {i}"));
+        }
+        if let Some(e) = self.exposure {
+            out.push(format!("--exposure {e}"));
+        }
+        if let Some(g) = self.ground {
+            out.push(format!("--ground {}", g.name()));
+        }
+        out.join(" ")
+    }
+
     /// The load options of these flags, with the image sides given (`--width`, `--height`): a
     /// model file sizes the side not given by its camera's aspect ratio.
     pub fn options(&self, settings: Option<&SettingsArgs>) -> LoadOptions {

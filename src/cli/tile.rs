@@ -16,7 +16,7 @@ use glint_scene::RenderSettings;
 use super::backend::{open_gpu, run_cpu, run_gpu};
 use super::console::say;
 use super::interrupt;
-use super::output::{Incomplete, check_writable, metadata};
+use super::output::{Incomplete, SceneTags, check_writable, metadata};
 use super::output_path::{check_not_read, check_outputs};
 
 /// The array-index variables of the schedulers, in the order they are looked for.
@@ -85,6 +85,8 @@ pub struct TileJob<'a> {
     pub cpu: CpuOptions,
     pub gpu: GpuOptions,
     pub adapter: Option<&'a str>,
+    /// `LoadArgs::flags`, for the tile's metadata.
+    pub load_flags: String,
     pub specialise: bool,
     pub force: bool,
     pub quiet: bool,
@@ -120,7 +122,7 @@ pub fn render_tile(job: TileJob) -> anyhow::Result<()> {
     say!("tile {index}/{} (index from {source}) of a {} grid over {w}x{h}: {rect}", grid.count(), grid.describe())?;
     interrupt::check()?;
     let flat = FlatScene::build(&job.loaded.desc, job.settings);
-    let hash = flat.content_hash();
+    let scene = SceneTags::new(job.loaded, job.load_flags.clone(), &flat);
     interrupt::check()?;
     let run = match job.backend {
         Backend::Cpu => run_cpu(&flat, &CpuOptions { region: Some(rect), ..job.cpu }, job.quiet)?,
@@ -131,9 +133,8 @@ pub fn render_tile(job: TileJob) -> anyhow::Result<()> {
     };
     // An incomplete tile is never written: a merge would hide which tile lost work.
     check_writable(&run, &job.loaded.desc, job.settings, Incomplete::RefuseTile)?;
-    let mut tags = metadata(&job.loaded.name, job.settings, &run, job.specialise);
+    let mut tags = metadata(&scene, job.settings, &run, job.specialise);
     tags.extend([
-        ("glint:scene_hash".to_string(), hash),
         ("glint:grid".to_string(), grid.describe()),
         ("glint:tile".to_string(), format!("{index}/{}", grid.count())),
     ]);

@@ -121,6 +121,9 @@ fn renders_every_builtin_scene_to_png_and_exr_with_metadata() {
         // The metadata round-trips the settings given on the command line.
         let chunks = png_text_chunks(&png_path);
         assert_eq!(meta(&chunks, "glint:scene"), name);
+        assert_eq!(meta(&chunks, "glint:source"), format!("builtin:{name}"));
+        assert_eq!(meta(&chunks, "glint:scene_hash").len(), 64, "{name}: SHA-256 in hex");
+        assert!(chunks.iter().all(|(k, _)| k != "glint:load_flags"), "{name}: no load flags were given");
         assert_eq!(meta(&chunks, "glint:size"), "40x30");
         assert_eq!(meta(&chunks, "glint:spp"), "2");
         assert_eq!(meta(&chunks, "glint:depth"), "3");
@@ -711,4 +714,41 @@ fn the_comparison_reads_the_images_as_written_and_an_exr_run_writes_a_linear_dif
     let heat = image::open(dir.join("w-diff.png")).expect("heat map").to_rgb8();
     let black = heat.pixels().filter(|p| p.0 == [0, 0, 0]).count();
     assert_eq!(black, identical, "black where the written images are identical");
+}
+
+#[test]
+fn an_image_records_what_shaped_its_scene_so_that_it_can_be_made_again() {
+    let dir = TempDir::new("provenance");
+    let render = |out: &str, extra: &[&str]| {
+        let mut args = vec!["render", "bumpy", "--width", "24", "--height", "16", "-q", "-o", out];
+        args.extend(extra);
+        let run = glint(&dir, args);
+        assert!(run.status.success(), "{}", text(&run.stderr));
+        png_text_chunks(&dir.join(out))
+    };
+    let coarse = render("a.png", &["--resolution", "10"]);
+    let finer = render("b.png", &["--resolution", "12"]);
+    assert_eq!(meta(&coarse, "glint:load_flags"), "--resolution 10");
+    assert_ne!(meta(&coarse, "glint:scene_hash"), meta(&finer, "glint:scene_hash"), "two scenes, two hashes");
+    // The same flags again make the same scene; an edited copy of a scene file does not.
+    assert_eq!(meta(&render("c.png", &["--resolution", "10"]), "glint:scene_hash"), meta(&coarse, "glint:scene_hash"));
+    let file =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes/lights.toml")).unwrap();
+    std::fs::create_dir(dir.join("edited")).unwrap();
+    std::fs::write(dir.join("lights.toml"), &file).unwrap();
+    std::fs::write(
+        dir.join("edited/lights.toml"),
+        file.replacen("background = [0.05, 0.05, 0.07]", "background = 0.5", 1),
+    )
+    .unwrap();
+    let scene = |file: &str| {
+        let run = glint(&dir, ["render", file, "--width", "24", "--height", "16", "-q", "-o", "l.png"]);
+        assert!(run.status.success(), "{}", text(&run.stderr));
+        png_text_chunks(&dir.join("l.png"))
+    };
+    let (copy, edited, builtin) = (scene("lights.toml"), scene("edited/lights.toml"), scene("lights"));
+    assert_eq!(meta(&copy, "glint:scene"), meta(&edited, "glint:scene"), "one name");
+    assert_eq!(meta(&edited, "glint:source"), "edited/lights.toml");
+    assert_ne!(meta(&copy, "glint:scene_hash"), meta(&edited, "glint:scene_hash"), "an edit changes the hash");
+    assert_eq!(meta(&copy, "glint:scene_hash"), meta(&builtin, "glint:scene_hash"), "a copy has the built-in's");
 }
