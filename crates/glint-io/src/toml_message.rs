@@ -25,6 +25,12 @@ fn clarify_datetime(message: &str, spanned: &str) -> String {
                 "invalid type: date-time, expected a table ([section] or { key = value, … })".to_string()
             } else if is_datetime && line.starts_with("invalid type: map, expected ") {
                 line.replacen("map", "date-time", 1)
+            } else if line.contains(DATETIME_KEY) {
+                // Glint's own table readers see the private key too: `attenuation.KEY is not a
+                // field` and `got { KEY = "1979-05-27" }`.
+                line.replace(&format!(".{DATETIME_KEY} is not a field"), " is a date-time, not a table")
+                    .replace(&format!("{{ {DATETIME_KEY} = \""), "the date-time ")
+                    .replace("\" }", "")
             } else {
                 line.to_string()
             }
@@ -69,6 +75,21 @@ mod tests {
         assert!(table.contains("invalid type: date-time, expected a table"), "{table}");
         // The parser's position stays.
         assert!(table.contains("line 2"), "{table}");
+    }
+
+    #[test]
+    fn a_date_time_read_by_glint_s_own_table_readers_is_called_one_too() {
+        let light = "[camera]\nposition = [0, 0, -4]\nlook_at = [0, 0, 0]\n[[lights]]\ntype = \"point\"\n\
+                     position = [0, 1, -4]\nattenuation = 07:32:00\n";
+        let said = message(light);
+        assert!(said.contains("attenuation is a date-time, not a table; model = "), "{said}");
+        let object = "[camera]\nposition = [0, 0, -4]\nlook_at = [0, 0, 0]\n[[objects]]\ntype = 1979-05-27\n";
+        let said = message(object);
+        assert!(
+            said.contains("must be a string, one of: sphere, plane, mesh, model; got the date-time 1979-05-27"),
+            "{said}"
+        );
+        assert!(!said.contains("$__toml"), "{said}");
     }
 
     #[test]

@@ -77,6 +77,52 @@ pub fn option_arrays<'de, D: Deserializer<'de>, T: Deserialize<'de> + Copy + Def
     Ok(Option::<Vec<Exact<T, N>>>::deserialize(d)?.map(|all| all.into_iter().map(|e| e.0).collect()))
 }
 
+/// A number or an array of exactly three numbers: a colour's grey or [r, g, b], a scale's
+/// uniform factor or [x, y, z].
+pub(crate) enum OneOrThree {
+    One(f64),
+    Three([f64; 3]),
+}
+
+/// `OneOrThree`, with `expecting` naming both forms in a message ("a number (grey) or an array
+/// of three numbers [r, g, b]"; serde's untagged enum said "data did not match any variant").
+pub(crate) fn one_or_three<'de, D: Deserializer<'de>>(d: D, expecting: &'static str) -> Result<OneOrThree, D::Error> {
+    struct Forms(&'static str);
+
+    impl<'de> Visitor<'de> for Forms {
+        type Value = OneOrThree;
+
+        fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+            f.write_str(self.0)
+        }
+
+        fn visit_f64<E: Error>(self, v: f64) -> Result<OneOrThree, E> {
+            Ok(OneOrThree::One(v))
+        }
+
+        fn visit_i64<E: Error>(self, v: i64) -> Result<OneOrThree, E> {
+            Ok(OneOrThree::One(v as f64))
+        }
+
+        fn visit_u64<E: Error>(self, v: u64) -> Result<OneOrThree, E> {
+            Ok(OneOrThree::One(v as f64))
+        }
+
+        fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<OneOrThree, A::Error> {
+            let mut out = [0.0; 3];
+            for (i, slot) in out.iter_mut().enumerate() {
+                *slot = seq.next_element()?.ok_or_else(|| Error::invalid_length(i, &self))?;
+            }
+            if seq.next_element::<IgnoredAny>()?.is_some() {
+                return Err(Error::invalid_length(4, &self));
+            }
+            Ok(OneOrThree::Three(out))
+        }
+    }
+
+    d.deserialize_any(Forms(expecting))
+}
+
 #[cfg(test)]
 mod tests {
     use serde::Deserialize;

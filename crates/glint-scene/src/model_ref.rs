@@ -91,11 +91,21 @@ pub struct TransformDesc {
     pub matrix: Option<[f64; 16]>,
 }
 
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 #[serde(untagged)]
 pub enum Scale {
     Uniform(f64),
-    PerAxis(#[serde(deserialize_with = "crate::exact_len::array")] [f64; 3]),
+    PerAxis([f64; 3]),
+}
+
+impl<'de> Deserialize<'de> for Scale {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        use crate::exact_len::{OneOrThree, one_or_three};
+        Ok(match one_or_three(d, "a number (uniform) or an array of three numbers [x, y, z]")? {
+            OneOrThree::One(v) => Scale::Uniform(v),
+            OneOrThree::Three(xyz) => Scale::PerAxis(xyz),
+        })
+    }
 }
 
 impl Default for TransformDesc {
@@ -328,5 +338,25 @@ mod tests {
         let n = placed(Scale::PerAxis([2.0, 1.0, 0.5]))[1];
         let expected = (tilted[0] / 2.0) / (tilted[2] / 0.5);
         assert!((n[0] / n[2] - expected).abs() < 1e-12, "{n:?}");
+    }
+}
+
+#[cfg(test)]
+mod scale_tests {
+    use super::{Scale, TransformDesc};
+
+    fn read(text: &str) -> Result<Scale, String> {
+        toml::from_str::<TransformDesc>(text).map(|t| t.scale).map_err(|e| e.to_string())
+    }
+
+    #[test]
+    fn a_scale_is_a_number_or_three_and_says_so() {
+        assert_eq!(read("scale = 2"), Ok(Scale::Uniform(2.0)));
+        assert_eq!(read("scale = [1, 2.5, 3]"), Ok(Scale::PerAxis([1.0, 2.5, 3.0])));
+        let wrong = read("scale = \"big\"").unwrap_err();
+        assert!(wrong.contains("expected a number (uniform) or an array of three numbers [x, y, z]"), "{wrong}");
+        assert!(!wrong.contains("untagged"), "{wrong}");
+        assert!(read("scale = [1, 2]").unwrap_err().contains("invalid length 2"));
+        assert!(read("scale = [1, 2, 3, 4]").unwrap_err().contains("invalid length 4"));
     }
 }

@@ -1,9 +1,8 @@
 //! An RGB triple that a scene file may write as one number (grey) or as `[r, g, b]`.
 
-use std::fmt;
-
-use serde::de::{self, SeqAccess, Visitor};
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
+
+use crate::exact_len::{OneOrThree, one_or_three};
 
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
 pub struct Rgb(pub [f64; 3]);
@@ -49,39 +48,9 @@ impl Serialize for Rgb {
 
 impl<'de> Deserialize<'de> for Rgb {
     fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
-        struct RgbVisitor;
-
-        impl<'de> Visitor<'de> for RgbVisitor {
-            type Value = Rgb;
-
-            fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-                f.write_str("a number (grey) or an array of three numbers [r, g, b]")
-            }
-
-            fn visit_f64<E: de::Error>(self, v: f64) -> Result<Rgb, E> {
-                Ok(Rgb::splat(v))
-            }
-
-            fn visit_i64<E: de::Error>(self, v: i64) -> Result<Rgb, E> {
-                Ok(Rgb::splat(v as f64))
-            }
-
-            fn visit_u64<E: de::Error>(self, v: u64) -> Result<Rgb, E> {
-                Ok(Rgb::splat(v as f64))
-            }
-
-            fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Rgb, A::Error> {
-                let mut out = [0.0; 3];
-                for (i, slot) in out.iter_mut().enumerate() {
-                    *slot = seq.next_element()?.ok_or_else(|| de::Error::invalid_length(i, &self))?;
-                }
-                if seq.next_element::<de::IgnoredAny>()?.is_some() {
-                    return Err(de::Error::invalid_length(4, &self));
-                }
-                Ok(Rgb(out))
-            }
-        }
-
-        d.deserialize_any(RgbVisitor)
+        Ok(match one_or_three(d, "a number (grey) or an array of three numbers [r, g, b]")? {
+            OneOrThree::One(v) => Rgb::splat(v),
+            OneOrThree::Three(rgb) => Rgb(rgb),
+        })
     }
 }

@@ -26,7 +26,7 @@ macro_rules! tags {
         }
     ) => {
         $(#[$meta])*
-        #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+        #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
         #[repr(u32)]
         pub enum $name {
             $($(#[$vmeta])* #[serde(rename = $spelling)] $variant = $value,)+
@@ -46,6 +46,29 @@ macro_rules! tags {
             /// The variant a scene file calls `name`.
             pub fn from_name(name: &str) -> Option<Self> {
                 Self::ALL.into_iter().find(|t| t.name() == name)
+            }
+        }
+
+        /// Only a name: serde's derive also took `{ name = [] }` for a unit variant, and said
+        /// "wanted string or table" of a number, naming neither the field's kind nor its names.
+        impl<'de> Deserialize<'de> for $name {
+            fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+                struct Names;
+
+                impl serde::de::Visitor<'_> for Names {
+                    type Value = $name;
+
+                    fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+                        let article = if $what.starts_with(['a', 'e', 'i', 'o', 'u']) { "an" } else { "a" };
+                        write!(f, "{article} {} named by a string, one of: {}", $what, [$($spelling),+].join(", "))
+                    }
+
+                    fn visit_str<E: serde::de::Error>(self, v: &str) -> Result<$name, E> {
+                        $name::from_name(v).ok_or_else(|| E::unknown_variant(v, &[$($spelling),+]))
+                    }
+                }
+
+                d.deserialize_str(Names)
             }
         }
 
@@ -352,5 +375,15 @@ mod tests {
             assert_eq!(back.kind, t);
             assert_eq!(serde_json::to_string(&Holder { kind: t }).expect("serialises"), text);
         }
+        // Only a name: a number says what the field takes, and a table is no variant (serde's
+        // derive took `{"kind": {"phong": []}}` and said "wanted string or table" of a number).
+        let error = |text: &str| serde_json::from_str::<Holder>(text).err().map(|e| e.to_string()).unwrap_or_default();
+        assert!(
+            error("{\"kind\":1}").contains("expected a specular model named by a string, one of: blinn, phong"),
+            "{}",
+            error("{\"kind\":1}")
+        );
+        assert!(error("{\"kind\":{\"phong\":[]}}").contains("invalid type: map"));
+        assert!(error("{\"kind\":\"glossy\"}").contains("unknown variant `glossy`"));
     }
 }
