@@ -7,7 +7,7 @@ use glint_io::ImportOptions;
 use glint_io::model::Ground;
 use glint_io::{DEFAULT_RESOLUTION, LoadOptions, LoadedScene, RESOLUTIONS, load_scene_with};
 use glint_scene::{
-    EpsilonMode, Integrator, Range, RenderSettings, Report, ranges, settings_warnings, validate_settings,
+    EpsilonMode, Integrator, Range, RenderSettings, Report, format_number, ranges, settings_warnings, validate_settings,
 };
 
 use super::console::tell;
@@ -27,13 +27,13 @@ pub struct SettingsArgs {
     #[arg(long, allow_negative_numbers = true, value_parser = parse_depth)]
     pub depth: Option<u32>,
     /// Self-intersection epsilon in scene units [0, 1000]
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long, allow_negative_numbers = true, value_parser = parse_epsilon)]
     pub epsilon: Option<f64>,
     /// How epsilon is applied: tmin, nudge_ray, nudge_normal, robust or skip_convex
     #[arg(long, value_parser = parse_epsilon_mode)]
     pub epsilon_mode: Option<EpsilonMode>,
     /// Adaptive bailout: skip child rays whose path weight is below this [0, 1]; 0 disables
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long, allow_negative_numbers = true, value_parser = parse_bailout)]
     pub bailout: Option<f64>,
     /// Seed of the sample jitter and of the paths' random numbers [0, 4294967295]
     #[arg(long, allow_negative_numbers = true, value_parser = parse_in::<0, { u32::MAX }>)]
@@ -132,12 +132,12 @@ fn parse_exposure(s: &str) -> Result<f64, String> {
         Ok(v) if range.contains(v) => Ok(v),
         Ok(v) => Err(format!(
             "{} is outside ({}, {:e}]{}",
-            glint_scene::format_number(v),
-            glint_scene::format_number(range.min),
+            format_number(v),
+            format_number(range.min),
             range.max,
             range.why_outside(v)
         )),
-        Err(_) => Err(format!("'{s}' is not a number")),
+        Err(_) => Err(format!("'{s}' is not a number; allowed: ({}, {:e}]", format_number(range.min), range.max)),
     }
 }
 
@@ -172,6 +172,22 @@ fn parse_count(s: &str, range: Range<u32>) -> Result<u32, String> {
         Ok(v) => u32::try_from(v).map_err(|_| format!("{v} is outside the allowed range [{lo}, {hi}]")),
         Err(_) => Err(format!("'{s}' is not a whole number; allowed: [{lo}, {hi}]")),
     }
+}
+
+/// A number, refused with its setting's allowed range when it is none ("invalid float literal"
+/// named neither); the range itself is checked by validation, as for `parse_count`.
+fn parse_number(s: &str, range: Range<f64>) -> Result<f64, String> {
+    s.trim().parse::<f64>().map_err(|_| {
+        format!("'{s}' is not a number; allowed: [{}, {}]", format_number(range.min), format_number(range.max))
+    })
+}
+
+fn parse_epsilon(s: &str) -> Result<f64, String> {
+    parse_number(s, ranges::EPSILON)
+}
+
+fn parse_bailout(s: &str) -> Result<f64, String> {
+    parse_number(s, ranges::BAILOUT)
 }
 
 fn parse_side(s: &str) -> Result<u32, String> {

@@ -448,6 +448,10 @@ fn bad_input_fails_cleanly() {
         // Beyond u32, the range every whole number of the scene format has.
         ("--scene-index", "4294967296", "'4294967296' is not an index (a whole number from 0 to 4294967295)"),
         ("--camera", "99999999999", "'99999999999' is not an index (a whole number from 0 to 4294967295)"),
+        // Not numbers at all: the range, not "invalid float literal".
+        ("--epsilon", "abc", "'abc' is not a number; allowed: [0, 1000]"),
+        ("--bailout", "", "'' is not a number; allowed: [0, 1]"),
+        ("--width", "wide", "'wide' is not a whole number; allowed: [1, 16384]"),
     ] {
         expect_failure(
             "negative-flag",

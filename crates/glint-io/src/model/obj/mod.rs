@@ -47,18 +47,27 @@ pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
     let raw = crate::uri::regular_file(path)
         .and_then(|_| std::fs::read(path))
         .map_err(|error| ObjError::Io { file: path.to_owned(), error })?;
-    let parse_error = |line, reason| ObjError::Parse { file: path.to_owned(), line, reason };
+    // Cut in the middle: a 1 MB number echoed back made a 2 MB message.
+    let parse_error = |line, reason: String| ObjError::Parse {
+        file: path.to_owned(),
+        line,
+        reason: glint_scene::shorten_middle(&reason),
+    };
     let mut out = Model::default();
     let prepared = prepare::prepared(&raw, &mut out.warnings).map_err(|(line, reason)| parse_error(line, reason))?;
     let bytes = prepared.bytes;
     // Polygons come whole: `polygon::triangulate` cuts them (tobj's fans overlap on concave ones).
     let options = tobj::LoadOptions { triangulate: false, single_index: true, ..Default::default() };
     let libraries = mtllib::Libraries::new(path);
-    let (models, materials) = tobj::load_obj_buf(&mut bytes.as_slice(), &options, |mtl| libraries.load(mtl))
-        .map_err(|e| parse_error(failing_line(&bytes, &options), e.to_string()))?;
+    let (models, materials) =
+        tobj::load_obj_buf(&mut bytes.as_slice(), &options, |mtl| libraries.load(mtl)).map_err(|e| {
+            let line = failing_line(&bytes, &options);
+            parse_error(line, face_problem(&e, &bytes, line))
+        })?;
     let read = libraries.read().map_err(|refused| match refused {
         mtllib::Refused::Uri(error) => ObjError::Uri { file: path.to_owned(), error },
         mtllib::Refused::Number { mtl, line, reason } => {
+            let reason = glint_scene::shorten_middle(&reason);
             ObjError::Mtl { file: path.parent().unwrap_or(Path::new("")).join(mtl), line, reason }
         }
     })?;
@@ -87,6 +96,34 @@ pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
 /// The line at which tobj's parse fails (tobj's errors carry none): the shortest prefix of
 /// the file that fails to parse, found by bisection over line counts (about log₂ n parses of
 /// prefixes, only on the error path). Materials are not read here: only the OBJ itself.
+/// tobj's error, with what a face's index may be where it names a bad one: "face vertex index
+/// out of bounds" said neither the index nor the range.
+fn face_problem(e: &tobj::LoadError, bytes: &[u8], line: Option<usize>) -> String {
+    let (kind, what) = match e {
+        tobj::LoadError::FaceVertexOutOfBounds => ("v", "vertices"),
+        tobj::LoadError::FaceTexCoordOutOfBounds => ("vt", "texture coordinates"),
+        tobj::LoadError::FaceNormalOutOfBounds => ("vn", "normals"),
+        tobj::LoadError::FaceParseError => {
+            return format!("{e}: a face is `f` and three or more of v, v/vt, v//vn or v/vt/vn, each a whole number");
+        }
+        _ => return e.to_string(),
+    };
+    let Some(line) = line else { return e.to_string() };
+    // Indices refer to the statements before the face.
+    let before = bytes.split(|&b| b == b'\n').take(line - 1);
+    let count = before
+        .filter(|l| {
+            let mut words = l.split(|b| b.is_ascii_whitespace()).filter(|w| !w.is_empty());
+            words.next() == Some(kind.as_bytes())
+        })
+        .count();
+    let statement = bytes.split(|&b| b == b'\n').nth(line - 1).map(String::from_utf8_lossy).unwrap_or_default();
+    format!(
+        "`{}`: {e}; {count} {what} come before it, so an index runs from 1 to {count}, or from −1 back to −{count}",
+        statement.trim()
+    )
+}
+
 fn failing_line(bytes: &[u8], options: &tobj::LoadOptions) -> Option<usize> {
     let ends: Vec<usize> =
         bytes.iter().enumerate().filter(|&(_, &b)| b == b'\n').map(|(i, _)| i + 1).chain([bytes.len()]).collect();

@@ -491,3 +491,24 @@ fn an_mtl_number_that_cannot_be_read_is_an_error_naming_the_mtl_line_and_stateme
     write(dir.path(), "t.mtl", "newmtl a\nKd 0.5 0.25 1\nd 0.5\nNs 1e3\nillum 4\n");
     assert!(load_obj(&obj).is_ok());
 }
+
+#[test]
+fn a_bad_face_index_names_the_index_and_the_range_and_a_huge_word_is_cut() {
+    let dir = tempfile::tempdir().unwrap();
+    let message = |name: &str, text: &str| load_obj(&write(dir.path(), name, text)).unwrap_err().to_string();
+    let index = message("i.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1 2 99\n");
+    assert!(
+        index.ends_with(
+            "i.obj:5: invalid OBJ (`f 1 2 99`: face vertex index out of bounds; 3 vertices come before it, so an \
+             index runs from 1 to 3, or from −1 back to −3)"
+        ),
+        "{index}"
+    );
+    let normal = message("n.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//2 3//1\n");
+    assert!(normal.contains("1 normals come before it, so an index runs from 1 to 1"), "{normal}");
+    let unparsed = message("p.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 18446744073709551616\n");
+    assert!(unparsed.contains("face parse error: a face is `f` and three or more of"), "{unparsed}");
+    // A megabyte of digits: the message keeps its start and end, not the megabyte.
+    let long = message("l.obj", &format!("v 0 0 0\nv 1 0 0\nv 0 1 0\nv {} 0 0\nf 1 2 3\n", "1".repeat(1_000_000)));
+    assert!(long.len() < 1000 && long.contains("l.obj:4: invalid OBJ"), "{} bytes", long.len());
+}
