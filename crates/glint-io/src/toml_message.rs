@@ -2,7 +2,7 @@
 //! date-time as a map with one private key, and an integer beyond i64 as an i128 of the wrong
 //! type; the author wrote neither.
 
-use glint_scene::shorten_lines;
+use glint_scene::{shorten_lines, tidy_floats};
 
 /// The key under which the `toml` crate hands a date-time to serde.
 const DATETIME_KEY: &str = "$__toml_private_datetime";
@@ -10,8 +10,31 @@ const DATETIME_KEY: &str = "$__toml_private_datetime";
 /// `error`, raised parsing `text`, as a message: what the file holds named as the file says it,
 /// every line cut to a readable length.
 pub fn parse_message(error: &toml::de::Error, text: &str) -> String {
+    if error.span().is_none() && error.message().contains("recursion limit") {
+        return too_deep(text);
+    }
     let spanned = error.span().and_then(|span| text.get(span)).unwrap_or("");
-    shorten_lines(&clarify_datetime(&clarify_integer_overflow(&error.to_string()), spanned))
+    shorten_lines(&tidy_floats(&clarify_datetime(&clarify_integer_overflow(&error.to_string()), spanned)))
+}
+
+/// Tables nested past what serde's reader recurses into: the parser said only "recursion
+/// limit", with no line. The first header that nests that deep, found here.
+fn too_deep(text: &str) -> String {
+    /// A scene's deepest table is a few levels down (`[objects.transform]`, a texture's
+    /// `uv_transform`); serde's reader stops near a hundred.
+    const DEEP: usize = 16;
+    let deepest = text.lines().enumerate().find_map(|(i, line)| {
+        let header = line.trim_start().strip_prefix('[')?;
+        let depth = header.split(']').next()?.matches('.').count() + 1;
+        (depth > DEEP).then_some((i + 1, depth))
+    });
+    match deepest {
+        Some((line, depth)) => format!(
+            "line {line}: a table header nests {depth} tables, more than the TOML reader recurses into (a scene \
+             nests a few)"
+        ),
+        None => "tables or arrays nested more deeply than the TOML reader recurses into (a scene nests a few)".into(),
+    }
 }
 
 /// A date-time where another type belongs is called one, not a map or a table with a private
@@ -90,6 +113,15 @@ mod tests {
             "{said}"
         );
         assert!(!said.contains("$__toml"), "{said}");
+    }
+
+    #[test]
+    fn tables_nested_past_the_reader_s_limit_name_their_line() {
+        let deep = format!("[camera]\nposition = [0, 0, -4]\nlook_at = [0, 0, 0]\n[{}]\nx = 1\n", ["a"; 100].join("."));
+        assert_eq!(
+            message(&deep),
+            "line 4: a table header nests 100 tables, more than the TOML reader recurses into (a scene nests a few)"
+        );
     }
 
     #[test]

@@ -15,6 +15,34 @@ pub fn format_rounded(v: f64, digits: usize) -> String {
     format_number(rounded)
 }
 
+/// serde's `floating point \`…\`` written as `format_number` writes it: serde prints every
+/// digit, 309 of them for 1e308 and 320 zeros for 1e-320.
+pub fn tidy_floats(message: &str) -> String {
+    const MARK: &str = "floating point `";
+    let mut out = String::with_capacity(message.len());
+    let mut rest = message;
+    while let Some(at) = rest.find(MARK) {
+        let (head, tail) = rest.split_at(at + MARK.len());
+        out.push_str(head);
+        match tail.find('`') {
+            Some(end) => {
+                let (number, after) = tail.split_at(end);
+                match number.parse::<f64>() {
+                    Ok(v) => out.push_str(&format_number(v)),
+                    Err(_) => out.push_str(number),
+                }
+                rest = after;
+            }
+            None => {
+                rest = tail;
+                break;
+            }
+        }
+    }
+    out.push_str(rest);
+    out
+}
+
 /// Characters of an echoed value kept before it is cut.
 pub const ECHO_CHARS: usize = 120;
 
@@ -55,7 +83,18 @@ pub fn shorten_lines(text: &str) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::{LINE_CHARS, format_number, shorten, shorten_lines, shorten_middle};
+    use super::{LINE_CHARS, format_number, shorten, shorten_lines, shorten_middle, tidy_floats};
+
+    #[test]
+    fn serde_s_long_floats_are_written_short() {
+        let long = format!("invalid type: floating point `1{}.0`, expected an array of length 3", "0".repeat(308));
+        assert_eq!(tidy_floats(&long), "invalid type: floating point `1e308`, expected an array of length 3");
+        assert_eq!(
+            tidy_floats("floating point `0.5` and floating point `x`"),
+            "floating point `0.5` and floating point `x`"
+        );
+        assert_eq!(tidy_floats("unclosed floating point `1"), "unclosed floating point `1");
+    }
 
     #[test]
     fn a_long_line_keeps_its_start_and_its_end() {
