@@ -1085,3 +1085,24 @@ fn an_emission_beyond_the_scenes_range_is_named_by_the_files_fields() {
         "{message}"
     );
 }
+
+#[test]
+fn a_negative_emission_and_a_camera_beyond_the_scenes_range_are_named_by_the_files_own_terms() {
+    // A fuzzing tester: these were named by the generated scene's `materials.X.emission` and
+    // `camera.position`, which the file does not have.
+    let dir = TempDir::new("gltf-file-terms");
+    let mut f = Fixture::quad();
+    f.json["materials"][0]["emissiveFactor"] = json!([-1.0, 0.1, 0.1]);
+    let message = error(&f.write_gltf(&dir, "negative", BufferAt::DataUri));
+    assert!(message.contains("materials[0].emissiveFactor: (-1, 0.1, 0.1): -1 is outside [0, 1]"), "{message}");
+    let mut f = Fixture::quad();
+    f.json["cameras"] = json!([{ "name": "far", "type": "perspective", "perspective": { "yfov": 0.7, "znear": 0.1 } }]);
+    f.json["scenes"] = json!([{ "nodes": [0, 1] }]);
+    f.json["nodes"] = json!([{ "mesh": 0 }, { "translation": [2e9, 0.5, 3.0], "camera": 0 }]);
+    let path = f.write_gltf(&dir, "far-camera", BufferAt::DataUri);
+    let message = glint_io::load_scene(&path.display().to_string()).expect_err("refused").to_string();
+    assert!(
+        message.contains("camera.position (the file's camera `far`, placed by its node's and its parents' transforms)"),
+        "{message}"
+    );
+}

@@ -177,11 +177,43 @@ fn utf8<'a>(bytes: &'a [u8], file: &Path) -> Result<&'a str, SceneError> {
 /// file; the importer's warnings come first.
 fn load_model(path: &Path, options: &ImportOptions) -> Result<(SceneDesc, Vec<FieldIssue>), SceneError> {
     let model = model::load_model_file(path, options).map_err(|message| SceneError::Model { message })?;
+    // The scene's camera and lights come from the file's nodes: a problem with them is named
+    // by the file's own camera or light too, which the generated scene's fields are not.
+    let camera = match options.camera {
+        Some(i) => model.cameras.get(i),
+        None => model.cameras.first(),
+    }
+    .map(|c| c.name.clone());
+    let lights: Vec<String> = model.lights.iter().map(|l| l.name.clone()).collect();
     let (desc, mut warnings) = model::scene_around(model, path, options)
         .map_err(|issue| SceneError::Invalid { file: path.to_owned(), issues: vec![issue] })?;
-    let (desc, scene_warnings) = validated(desc, path)?;
+    let (desc, scene_warnings) = validated(desc, path).map_err(|e| match e {
+        SceneError::Invalid { file, issues } => SceneError::Invalid {
+            file,
+            issues: issues.into_iter().map(|i| in_file_terms(i, camera.as_deref(), &lights)).collect(),
+        },
+        other => other,
+    })?;
     warnings.extend(scene_warnings);
     Ok((desc, warnings))
+}
+
+/// `issue` of the scene made around a model file, with what of the file it comes from: the
+/// camera node (`camera.position`) or the light node (`lights[2].position`).
+fn in_file_terms(issue: FieldIssue, camera: Option<&str>, lights: &[String]) -> FieldIssue {
+    let placed = "placed by its node's and its parents' transforms";
+    let whose = if issue.field.starts_with("camera.") {
+        camera.map(|name| format!("the file's camera `{name}`, {placed}"))
+    } else if let Some(rest) = issue.field.strip_prefix("lights[") {
+        let index: Option<usize> = rest.split(']').next().and_then(|i| i.parse().ok());
+        index.and_then(|i| lights.get(i)).map(|name| format!("the file's light `{name}`, {placed}"))
+    } else {
+        None
+    };
+    match whose {
+        Some(whose) => FieldIssue { field: format!("{} ({whose})", issue.field), problem: issue.problem },
+        None => issue,
+    }
 }
 
 /// Serialises a scene back to the file format (used by the viewer's "Save scene").

@@ -219,6 +219,7 @@ fn parse_error(file: &Path, e: ::gltf::Error, counts: Option<&Counts>) -> GltfEr
                     let path = as_written(&p.to_string());
                     let hint = match (e, counts) {
                         (::gltf::json::validation::Error::IndexOutOfBounds, Some(c)) => c.hint(&path),
+                        (::gltf::json::validation::Error::Invalid, _) => allowed_values(&path),
                         _ => String::new(),
                     };
                     // One error is said after its path already: not twice ("scene: … scene: …").
@@ -242,6 +243,32 @@ fn parse_error(file: &Path, e: ::gltf::Error, counts: Option<&Counts>) -> GltfEr
         }
         other => GltfError::Parse { file: file.to_owned(), reason: other.to_string() },
     }
+}
+
+/// What the glTF 2.0 specification allows where the gltf crate said only "Invalid value", by
+/// the field's name; empty for a field not listed.
+fn allowed_values(path: &str) -> String {
+    let field = path.rsplit('.').next().unwrap_or(path);
+    let field = field.split('[').next().unwrap_or(field);
+    let allowed = match field {
+        "componentType" => {
+            "5120 (byte), 5121 (unsigned byte), 5122 (short), 5123 (unsigned short), 5125 (unsigned int) or 5126 (float)"
+        }
+        "type" if path.starts_with("accessors") => "SCALAR, VEC2, VEC3, VEC4, MAT2, MAT3 or MAT4",
+        "type" if path.starts_with("cameras") => "perspective or orthographic",
+        "type" if path.contains("KHR_lights_punctual") => "directional, point or spot",
+        "mode" => "0 (points) to 6 (triangle fan)",
+        "wrapS" | "wrapT" => "33071 (clamp to edge), 33648 (mirrored repeat) or 10497 (repeat)",
+        "magFilter" => "9728 (nearest) or 9729 (linear)",
+        "minFilter" => "9728, 9729 or 9984 to 9987 (the mipmap filters)",
+        "alphaMode" => "OPAQUE, MASK or BLEND",
+        "target" => "34962 (array buffer) or 34963 (element array buffer)",
+        "min" | "max" => "as many numbers as the accessor's type has components",
+        "interpolation" => "LINEAR, STEP or CUBICSPLINE",
+        "path" => "translation, rotation, scale or weights",
+        _ => return String::new(),
+    };
+    format!(" (allowed: {allowed})")
 }
 
 /// A validation path as the file spells it: the gltf crate names an extension by its Rust

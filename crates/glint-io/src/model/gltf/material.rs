@@ -200,12 +200,26 @@ pub(super) fn check_emission(
     index: usize,
     desc: &MaterialDesc,
 ) -> Result<(), (String, String)> {
+    let strength = m.emissive_strength().map_or(1.0, widen);
+    let [r, g, b] = m.emissive_factor().map(|c| format_number(widen(c)));
+    // The specification's range, which the gltf crate does not check: a negative factor would
+    // reach validation as Glint's negative `emission`.
+    if let Some(c) = m.emissive_factor().into_iter().find(|c| !(0.0..=1.0).contains(c)) {
+        return Err((
+            format!("materials[{index}].emissiveFactor"),
+            format!("({r}, {g}, {b}): {} is outside [0, 1], each factor's range in glTF 2.0", format_number(widen(c))),
+        ));
+    }
+    if strength.is_nan() || strength < 0.0 {
+        return Err((
+            format!("materials[{index}].extensions.KHR_materials_emissive_strength.emissiveStrength"),
+            format!("{} is negative; it must be ≥ 0", format_number(strength)),
+        ));
+    }
     let brightest = desc.emission.max_channel();
     if brightest.is_finite() && brightest <= MAX_INTENSITY {
         return Ok(());
     }
-    let strength = m.emissive_strength().map_or(1.0, widen);
-    let [r, g, b] = m.emissive_factor().map(|c| format_number(widen(c)));
     Err((
         format!("materials[{index}].emissiveFactor"),
         format!(

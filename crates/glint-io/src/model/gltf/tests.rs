@@ -64,6 +64,28 @@ fn an_index_out_of_bounds_says_what_the_file_has() {
 }
 
 #[test]
+fn an_invalid_value_says_what_the_specification_allows() {
+    for (json, said) in [
+        (
+            r#""accessors":[{"componentType":5124,"count":1,"type":"SCALAR"}]"#,
+            "componentType: Invalid value (allowed: 5120 (byte), 5121 (unsigned byte)",
+        ),
+        (
+            r#""meshes":[{"primitives":[{"attributes":{},"mode":9}]}]"#,
+            "mode: Invalid value (allowed: 0 (points) to 6 (triangle fan))",
+        ),
+        (
+            r#""materials":[{"alphaMode":"GLASS"}]"#,
+            "materials[0].alphaMode: invalid glTF: Invalid value (allowed: OPAQUE, MASK or BLEND)",
+        ),
+    ] {
+        let text = format!(r#"{{"asset":{{"version":"2.0"}},{json}}}"#);
+        let Err(err) = parse(text.as_bytes(), Path::new("m.gltf"), &mut Vec::new()) else { panic!("{json}: accepted") };
+        assert!(err.to_string().contains(said), "{err}");
+    }
+}
+
+#[test]
 fn a_position_accessor_that_does_not_exist_is_an_error_naming_it_not_a_panic() {
     let json = br#"{"asset":{"version":"2.0"},"meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}]}"#;
     let Err(err) = parse(json, Path::new("m.gltf"), &mut Vec::new()) else { panic!("a missing accessor was accepted") };
