@@ -3,9 +3,9 @@
 use anyhow::{Context, bail};
 use clap::Args;
 use glint_core::memory::{self, MemoryEstimate, SourceKind};
-use glint_io::ImportOptions;
 use glint_io::model::Ground;
 use glint_io::{DEFAULT_RESOLUTION, LoadOptions, LoadedScene, RESOLUTIONS, load_scene_with};
+use glint_io::{ImportOptions, ModelFormat};
 use glint_scene::{
     EpsilonMode, Integrator, Range, RenderSettings, Report, format_number, ranges, settings_warnings, validate_settings,
 };
@@ -370,7 +370,12 @@ pub fn check_load_memory(scene: &str, memory_limit: Option<u64>) -> anyhow::Resu
     if let Ok(meta) = std::fs::metadata(path)
         && meta.is_file()
     {
-        let estimate = memory::load_estimate(SourceKind::of(path), meta.len());
+        let kind = match ModelFormat::of(path) {
+            Some(ModelFormat::Gltf) => SourceKind::Gltf,
+            Some(ModelFormat::Obj) => SourceKind::Obj,
+            None => SourceKind::Toml,
+        };
+        let estimate = memory::load_estimate(kind, meta.len());
         memory::check(
             format!("loading {scene} ({})", memory::format_bytes(meta.len())),
             &estimate,

@@ -11,6 +11,7 @@
 use glam::DVec3;
 use glint_scene::{RenderSettings, Rgb, SceneDesc};
 
+use crate::compare::rms_difference;
 use crate::flat::FlatScene;
 use crate::image::HdrImage;
 use crate::render::{CpuOptions, CpuRenderError, RenderControl, render_cpu};
@@ -36,11 +37,6 @@ pub struct AmbientFit {
 /// The mean of `a − b` over the pixels and channels.
 fn mean_difference(a: &[DVec3], b: &[DVec3]) -> f64 {
     a.iter().zip(b).map(|(p, q)| (*p - *q).element_sum()).sum::<f64>() / (3 * a.len().max(1)) as f64
-}
-
-fn rmse(a: &[DVec3], b: &[DVec3]) -> f64 {
-    let sum: f64 = a.iter().zip(b).map(|(p, q)| (*p - *q).length_squared()).sum();
-    (sum / (3 * a.len().max(1)) as f64).sqrt()
 }
 
 /// Fits the global ambient of `desc` rendered by Whitted's tree with `settings` (its integrator
@@ -78,9 +74,9 @@ pub fn fit_ambient(
     Ok(AmbientFit {
         ambient,
         determined,
-        rmse_as_written: rmse(&as_written, p),
-        rmse_without: rmse(&without, p),
-        rmse_fitted: rmse(&fitted, p),
+        rmse_as_written: rms_difference(&as_written, p),
+        rmse_without: rms_difference(&without, p),
+        rmse_fitted: rms_difference(&fitted, p),
         adds_as_written: mean_difference(&as_written, &without),
         adds_fitted: mean_difference(&fitted, &without),
     })

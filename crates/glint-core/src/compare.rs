@@ -33,6 +33,18 @@ pub struct ImageErrors {
     pub nonfinite: usize,
 }
 
+/// The root mean square of every channel of `pixels`: an image's RMS, or a difference's.
+pub fn rms(pixels: &[DVec3]) -> f64 {
+    let sum: f64 = pixels.iter().map(|p| p.length_squared()).sum();
+    (sum / (3 * pixels.len().max(1)) as f64).sqrt()
+}
+
+/// The RMS of `a − b` (same length), the RMSE of `compare_images`, without a difference image.
+pub fn rms_difference(a: &[DVec3], b: &[DVec3]) -> f64 {
+    let sum: f64 = a.iter().zip(b).map(|(p, q)| (*p - *q).length_squared()).sum();
+    (sum / (3 * a.len().max(1)) as f64).sqrt()
+}
+
 /// Compares `test` with `reference` (same size).
 pub fn compare_images(reference: &HdrImage, test: &HdrImage) -> ImageErrors {
     assert_eq!((reference.width, reference.height), (test.width, test.height), "images of different sizes");

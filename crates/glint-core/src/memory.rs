@@ -77,24 +77,12 @@ pub fn format_bytes(bytes: u64) -> String {
     if unit == 0 { format!("{bytes} B") } else { format!("{value:.1} {}", UNITS[unit]) }
 }
 
-/// The kinds of file a load estimate knows.
+/// The kinds of file a load estimate knows (which kind a path is, glint-io's formats say).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum SourceKind {
     Toml,
     Gltf,
     Obj,
-}
-
-impl SourceKind {
-    /// The kind of `path` by its extension (a scene file otherwise).
-    pub fn of(path: &Path) -> Self {
-        let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
-        match ext.as_deref() {
-            Some("gltf" | "glb") => Self::Gltf,
-            Some("obj") => Self::Obj,
-            _ => Self::Toml,
-        }
-    }
 }
 
 /// What loading a file of `file_bytes` bytes will take, before it is read.

@@ -2,7 +2,7 @@
 //! (`glint_core::path_kinds`) against Whitted's images, and the sentence the report says of it.
 
 use anyhow::Context;
-use glint_core::compare::compare_images;
+use glint_core::compare::{compare_images, rms, rms_difference};
 use glint_core::path_kinds::kind_alone;
 use glint_core::{CpuOptions, FlatScene, HdrImage};
 use glint_io::LoadedScene;
@@ -45,12 +45,6 @@ pub struct KindSplit {
     pub direct_causes: Option<Vec<String>>,
 }
 
-/// The root mean square of `image` over its pixels and channels.
-fn rms(image: &HdrImage) -> f64 {
-    let sq: f64 = image.pixels.iter().map(|p| p.length_squared()).sum();
-    (sq / (3 * image.pixels.len().max(1)) as f64).sqrt()
-}
-
 /// `a − b`, pixel by pixel.
 fn minus(a: &HdrImage, b: &HdrImage) -> HdrImage {
     let mut d = a.clone();
@@ -87,7 +81,7 @@ pub(super) fn split_by_kind(
     let mut means = [0.0; 4];
     for (i, kind) in PathKind::ALL.into_iter().enumerate() {
         let image = cpu(&kind_alone(&flat, kind), &format!("{} alone ({spp} spp)", kind.label()))?;
-        (means[i], split.rms[i]) = (image.mean(), rms(&image));
+        (means[i], split.rms[i]) = (image.mean(), rms(&image.pixels));
         if kind == PathKind::Direct {
             direct = Some(image);
         } else {
@@ -98,10 +92,10 @@ pub(super) fn split_by_kind(
     // estimate (on cornell-gi the 16-sample split's was 0.974 of it, and the shares added to 97 %).
     let paths_mean: f64 = means.iter().sum();
     split.share = means.map(|m| m / paths_mean.max(f64::MIN_POSITIVE));
-    split.direct_rmse = rms(&minus(without, &direct.expect("the direct kind is rendered")));
+    split.direct_rmse = rms_difference(&without.pixels, &direct.expect("the direct kind is rendered").pixels);
     split.ambient_share = ambient.mean() / paths_mean.max(f64::MIN_POSITIVE);
     split.paths_mean = Some(paths_mean);
-    split.ambient_rmse = Some(rms(&ambient_less_indirect));
+    split.ambient_rmse = Some(rms(&ambient_less_indirect.pixels));
     split.whitted_rmse = compare_images(reference, written).rmse;
     split.direct_causes = Some(direct_causes(&loaded.desc));
     Ok(split)
