@@ -28,7 +28,7 @@
 #ifdef GLOBAL_ATTENUATION
 #import glint::shade::attenuation_factor
 #endif
-#import glint::surface::{surface_at, reflect_dir}
+#import glint::surface::{surface_at, reflect_dir, max_channel}
 #ifdef TRANSMISSION
 #import glint::surface::refract_dir
 #endif
@@ -112,10 +112,6 @@ struct Lobes {
     ks: vec3<f32>,
     weights: vec4<f32>,
     material: u32,
-}
-
-fn max_channel(v: vec3<f32>) -> f32 {
-    return max(max(v.x, v.y), v.z);
 }
 
 #ifdef SPECULAR

@@ -103,3 +103,8 @@ fn refract_dir(d: vec3<f32>, n: vec3<f32>, eta: f32) -> vec4<f32> {
 fn reflect_dir(d: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
     return normalize(d - 2.0 * dot(d, n) * n);
 }
+
+// The largest channel of a path weight or colour: what the bailout and Russian roulette judge.
+fn max_channel(v: vec3<f32>) -> f32 {
+    return max(max(v.x, v.y), v.z);
+}

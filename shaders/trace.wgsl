@@ -16,7 +16,7 @@
 #endif
 #import glint::offset::{spawn_ray, leaving_surface}
 #import glint::shade::shade_local
-#import glint::surface::{surface_at, reflect_dir}
+#import glint::surface::{surface_at, reflect_dir, max_channel}
 #ifdef TRANSMISSION
 #import glint::surface::refract_dir
 #endif
@@ -66,10 +66,6 @@ fn child_weight(weight: vec3<f32>, k: vec3<f32>) -> vec3<f32> {
 }
 
 #ifdef RECURSION
-fn max_channel(v: vec3<f32>) -> f32 {
-    return max(max(v.x, v.y), v.z);
-}
-
 fn push_ray(entry: StackEntry) {
     if stack_top >= STACK_SIZE {
         status |= STATUS_STACK_OVERFLOW;

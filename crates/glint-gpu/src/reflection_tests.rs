@@ -2,7 +2,7 @@
 //! layout, the BVH's records included, against `shaders/layout.wgsl`): the binding table and
 //! the constants the two tracers' functions share. No "keep in sync" comments.
 
-use glint_core::cpu::{FAR, intersect, offset, primitive, sample, shade};
+use glint_core::cpu::{FAR, intersect, offset, path, primitive, sample, shade};
 use glint_types::layout::NO_HIT;
 use naga_oil::compose::Composer;
 
@@ -49,12 +49,13 @@ fn shared_tracer_constants_match_rust() {
     // Constants the two tracers must share exactly. (offset.rs's FLOAT_SCALE and SHADOW_REL
     // differ on purpose: each is scaled to its tracer's precision.) A probe module imports
     // each one and stores it, so naga cannot fold it away before we read it.
-    let expected: [(&str, &str, f64); 15] = [
+    let expected: [(&str, &str, f64); 16] = [
         ("glint::intersect", "PRIM_NONE", f64::from(intersect::PRIM_NONE)),
         ("glint::intersect", "PRIM_SPHERE", f64::from(intersect::PRIM_SPHERE)),
         ("glint::intersect", "PRIM_PLANE", f64::from(intersect::PRIM_PLANE)),
         ("glint::intersect", "PRIM_TRIANGLE", f64::from(intersect::PRIM_TRIANGLE)),
         ("glint::primitive", "PLANE_PARALLEL_COS", primitive::PLANE_PARALLEL_COS),
+        ("glint::primitive", "FORM_MARGIN", primitive::FORM_MARGIN),
         ("glint::ray", "FAR", FAR),
         ("glint::shade", "MIN_LIGHT_DISTANCE", shade::MIN_LIGHT_DISTANCE),
         ("glint::shade", "MIN_HALF_LENGTH", shade::MIN_HALF_LENGTH),
@@ -88,6 +89,29 @@ fn shared_tracer_constants_match_rust() {
         let wgsl = literal_value(&module, c.init);
         // u32 constants must be equal; f32 ones equal to the Rust value rounded to f32.
         assert!(wgsl == value || wgsl == f64::from(value as f32), "{path}::{name}: WGSL {wgsl} != Rust {value}");
+    }
+}
+
+#[test]
+fn the_path_tracers_constants_match_rust() {
+    // path.wgsl is an entry point, which no probe can import: its constants are read from the
+    // composed path tracer itself (a review found them unchecked).
+    let key = ShaderKey { path: true, ..ShaderKey::full() };
+    let module = crate::shaders::compose(&key).unwrap_or_else(|e| panic!("{e}"));
+    for (name, value) in [
+        ("DIMS_PER_BOUNCE", f64::from(path::DIMS_PER_BOUNCE)),
+        ("FIRST_PATH_DIM", f64::from(path::FIRST_PATH_DIM)),
+        ("ROULETTE_FROM", f64::from(path::ROULETTE_FROM)),
+        ("MAX_SURVIVAL", path::MAX_SURVIVAL),
+    ] {
+        let c = module
+            .constants
+            .iter()
+            .find(|(_, c)| c.name.as_deref().map(crate::shaders::undecorated) == Some(name))
+            .unwrap_or_else(|| panic!("path.wgsl's {name} not found in the composed module"))
+            .1;
+        let wgsl = literal_value(&module, c.init);
+        assert!(wgsl == value || wgsl == f64::from(value as f32), "{name}: WGSL {wgsl} != Rust {value}");
     }
 }
 

@@ -48,7 +48,7 @@ use super::sample::{
     to_world, uniform_cone, uniform_cone_pdf, uniform_triangle,
 };
 use super::shade::{attenuation_factor, light_sample, light_visibility, material_colours};
-use super::surface::{reflect_dir, refract_dir, surface_at};
+use super::surface::{max_channel, reflect_dir, refract_dir, surface_at};
 use super::walk::closest_hit;
 use super::{Ray, RayCounts, TraceContext, v3};
 use crate::flat::FlatScene;
@@ -61,18 +61,14 @@ use glint_types::layout::{
 
 /// Random dimensions per bounce: the lobe, the direction's two, Russian roulette, the emitter
 /// and the point on it (two), one spare. The camera's jitter takes dimensions 0 and 1.
-const DIMS_PER_BOUNCE: u32 = 8;
-const FIRST_PATH_DIM: u32 = 2;
+pub const DIMS_PER_BOUNCE: u32 = 8;
+pub const FIRST_PATH_DIM: u32 = 2;
 
 /// Rays of a path traced in full before Russian roulette may end it: the camera's and the first
 /// two bounces'; the third bounce on is drawn for.
 pub const ROULETTE_FROM: u32 = 3;
 /// The most a path survives Russian roulette with, so that a path through white walls ends.
-const MAX_SURVIVAL: f64 = 0.95;
-
-fn max_channel(v: DVec3) -> f64 {
-    v.x.max(v.y).max(v.z)
-}
+pub const MAX_SURVIVAL: f64 = 0.95;
 
 /// The glossy lobe's BRDF per unit k_s, for the material's specular model.
 pub fn glossy_brdf(mat: &GpuMaterial, tags: MaterialTags, wo: DVec3, wi: DVec3) -> f64 {

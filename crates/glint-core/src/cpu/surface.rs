@@ -95,3 +95,8 @@ pub fn refract_dir(d: DVec3, n: DVec3, eta: f64) -> Option<DVec3> {
 pub fn reflect_dir(d: DVec3, n: DVec3) -> DVec3 {
     (d - 2.0 * d.dot(n) * n).normalize()
 }
+
+/// The largest channel of a path weight or colour: what the bailout and Russian roulette judge.
+pub fn max_channel(v: DVec3) -> f64 {
+    v.x.max(v.y).max(v.z)
+}

@@ -12,15 +12,11 @@ use super::intersect::{Hit, Leaving, Prim, all_zero};
 use super::offset::{leaving_surface, spawn_ray};
 use super::ray_tree::{Cut, NoTree, RayNode, TreeRecorder, record_shadow_rays};
 use super::shade::{Breakdown, attenuation_factor, shade_local};
-use super::surface::{reflect_dir, refract_dir, surface_at};
+use super::surface::{max_channel, reflect_dir, refract_dir, surface_at};
 use super::walk::closest_hit;
 use super::{Ray, RayCounts, TraceContext, v3};
 use glint_types::RayKind;
 use glint_types::layout::{NO_HIT, feature};
-
-fn max_channel(v: DVec3) -> f64 {
-    v.x.max(v.y).max(v.z)
-}
 
 /// Radiance along a child ray: background on a miss, else the shaded hit — times the world's
 /// global attenuation f_att(t) when it is on: what the ray brings back, and the path weight its
