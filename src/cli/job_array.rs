@@ -1,6 +1,25 @@
-//! Job-array indices in messages: what of 0..N is missing, as the runs a job array's
-//! `--array` takes ("3", "5-9"), so that 3,000 missing tiles or a million missing shards are a
-//! line, not megabytes.
+//! Job-array indices: `I/N` as `--tile` and `--shard` take it, and in messages what of 0..N is
+//! missing, as the runs a job array's `--array` takes ("3", "5-9"), so that 3,000 missing tiles
+//! or a million missing shards are a line, not megabytes.
+
+/// `I/N`, part I of N (I from 0), or `N` alone where `index_optional` (the index then comes
+/// from the scheduler); `part` names a part in messages ("tile", "shard"). Whether I < N is the
+/// caller's to judge.
+pub fn parse_part(s: &str, part: &str, index_optional: bool) -> Result<(Option<u32>, u32), String> {
+    let forms = if index_optional { "I/N or N" } else { "I/N" };
+    let number = |t: &str, what: &str| {
+        t.trim()
+            .parse::<u32>()
+            .map_err(|_| format!("'{t}' is not a whole number from 0 to {} ({what}); use {forms}", u32::MAX))
+    };
+    let index = format!("the {part}'s index");
+    let count = format!("the {part} count");
+    match s.split_once('/') {
+        Some((i, n)) => Ok((Some(number(i, &index)?), number(n, &count)?)),
+        None if index_optional => Ok((None, number(s, &count)?)),
+        None => Err(format!("'{s}' is not I/N ({part} I of N, I from 0)")),
+    }
+}
 
 /// The indices of 0..`count` not in `present` (ascending, each below `count`), as runs, and
 /// how many they are. Walks the present indices only: a count of 2^32 costs nothing.

@@ -34,17 +34,8 @@ pub struct TileSpec {
 }
 
 pub fn parse_tile(s: &str) -> Result<TileSpec, String> {
-    let number = |t: &str, what: &str| {
-        t.trim()
-            .parse::<u32>()
-            .map_err(|_| format!("'{t}' is not a whole number from 0 to {} ({what}); use I/N or N", u32::MAX))
-    };
-    match s.split_once('/') {
-        Some((i, n)) => {
-            Ok(TileSpec { index: Some(number(i, "the tile's index")?), count: number(n, "the tile count")? })
-        }
-        None => Ok(TileSpec { index: None, count: number(s, "the tile count")? }),
-    }
+    let (index, count) = super::job_array::parse_part(s, "tile", true)?;
+    Ok(TileSpec { index, count })
 }
 
 /// The tile's index, and where it came from (the flag, or a scheduler's variable).

@@ -31,11 +31,8 @@ pub struct ShardSpec {
 }
 
 pub fn parse_shard(s: &str) -> Result<ShardSpec, String> {
-    let (i, n) = s.split_once('/').ok_or_else(|| format!("'{s}' is not I/N (shard I of N, I from 0)"))?;
-    let number = |t: &str| {
-        t.trim().parse::<u32>().map_err(|_| format!("'{t}' in '{s}' is not a whole number from 0 to {}", u32::MAX))
-    };
-    let (index, count) = (number(i)?, number(n)?);
+    let (index, count) = super::super::job_array::parse_part(s, "shard", false)?;
+    let index = index.unwrap_or_default();
     if count == 0 || index >= count {
         return Err(format!("shard {index} of {count}: shards are numbered 0 to N-1, N at least 1"));
     }
@@ -468,6 +465,11 @@ mod tests {
     fn shard_specs_parse_or_say_what_is_wrong() {
         assert_eq!(parse_shard("1/4"), Ok(ShardSpec { index: 1, count: 4 }));
         assert!(parse_shard("4/4").unwrap_err().contains("numbered 0 to N-1"));
-        assert!(parse_shard("4").unwrap_err().contains("is not I/N"));
+        assert!(parse_shard("4").unwrap_err().contains("'4' is not I/N (shard I of N, I from 0)"));
+        assert!(
+            parse_shard("x/4")
+                .unwrap_err()
+                .contains("'x' is not a whole number from 0 to 4294967295 (the shard's index)")
+        );
     }
 }
