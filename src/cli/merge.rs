@@ -218,8 +218,10 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
         }
         super::interrupt::check()?;
     }
-    // The scene's name as the first tile gives it (tiles of copies of one scene file merge).
-    let mut metadata: Vec<(String, String)> = ["glint:scene"]
+    // The scene's name, where it came from and the flags that shaped it as the first tile gives
+    // them (tiles of copies of one scene file merge): with the shared keys, what renders the
+    // image again.
+    let mut metadata: Vec<(String, String)> = ["glint:scene", "glint:source", "glint:load_flags"]
         .iter()
         .chain(&keys)
         .filter_map(|k| Some((k.to_string(), first.1.attribute(k)?.to_string())))

@@ -101,7 +101,7 @@ pub fn write_diff(
     metadata.push((
         "glint:diff_scale".into(),
         format!(
-            "per-pixel max-channel |gpu - cpu| of linear radiance, the CPU's image rounded to f32 as its file holds it; \
+            "per-pixel max-channel |gpu - cpu| of linear radiance, the CPU's image rounded to f32 as an EXR holds it; \
              black = identical; magma colour map over log10 |diff| from {HEATMAP_LOG10_MIN} (dark) to \
              {HEATMAP_LOG10_MAX} (bright)"
         ),

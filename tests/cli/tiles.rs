@@ -95,6 +95,10 @@ fn split_and_merge(dir: &Path, scene: &str, settings: &[&str], backend: &str, co
     let header = read_exr(&merged_exr).expect("merged").header;
     assert_eq!(header.attribute("glint:merged_tiles"), Some(count.to_string().as_str()));
     assert_eq!(header.attribute("glint:scene"), Some(scene));
+    // And what renders it again: where the scene came from, and its content.
+    let tile = read_exr(&tiles[0]).expect("tile").header;
+    assert_eq!(header.attribute("glint:source"), Some(format!("builtin:{scene}").as_str()));
+    assert_eq!(header.attribute("glint:scene_hash"), tile.attribute("glint:scene_hash"));
 }
 
 #[test]

@@ -48,6 +48,9 @@ fn clarify_datetime(message: &str, spanned: &str) -> String {
                 "invalid type: date-time, expected a table ([section] or { key = value, … })".to_string()
             } else if is_datetime && line.starts_with("invalid type: map, expected ") {
                 line.replacen("map", "date-time", 1)
+            } else if let Some(at) = line.find(&format!("unknown field `{DATETIME_KEY}`")) {
+                // Inside Glint's own table readers' messages (`objects[0] (model): transform: …`).
+                format!("{}invalid type: date-time, expected a table ([section] or {{ key = value, … }})", &line[..at])
             } else if line.contains(DATETIME_KEY) {
                 // Glint's own table readers see the private key too: `attenuation.KEY is not a
                 // field` and `got { KEY = "1979-05-27" }`.
@@ -112,6 +115,11 @@ mod tests {
             said.contains("must be a string, one of: sphere, plane, mesh, model; got the date-time 1979-05-27"),
             "{said}"
         );
+        assert!(!said.contains("$__toml"), "{said}");
+        let model = "[camera]\nposition = [0, 0, -4]\nlook_at = [0, 0, 0]\n[[objects]]\ntype = \"model\"\n\
+                     path = \"x.obj\"\ntransform = 1979-05-27\n";
+        let said = message(model);
+        assert!(said.contains("transform: invalid type: date-time, expected a table"), "{said}");
         assert!(!said.contains("$__toml"), "{said}");
     }
 

@@ -211,10 +211,24 @@ pub fn unbounded_ray_tree(desc: &SceneDesc, settings: &RenderSettings) -> Option
     } else if settings.bailout > 0.0 {
         // The bailout is set: asking for one (as before) read as if it were not (a glTF glass,
         // k_r + k_t = 0.04 + 0.96, under the default 1/255).
-        format!(
-            "k_r + k_t = {} keeps a path's weight from level to level, so no bailout stops it: {lower}, or make k_r + k_t < 1",
-            format_number(gain)
-        )
+        let attenuation = largest_attenuation(&desc.world.global_attenuation);
+        if attenuation > 1.0 {
+            // The material's own sum is below 1: the world's global attenuation lifts it.
+            format!(
+                "world.global_attenuation reaches {} near a hit (c = {} < 1), which lifts k_r + k_t to {}, so no \
+                 bailout stops it: {lower}, or raise global_attenuation's c (and l, q) so that 1 / (c + l·d + q·d²) \
+                 stays ≤ 1",
+                format_rounded(attenuation, 3),
+                format_number(desc.world.global_attenuation.c),
+                format_rounded(gain, 3)
+            )
+        } else {
+            format!(
+                "k_r + k_t = {} keeps a path's weight from level to level, so no bailout stops it: {lower}, or make \
+                 k_r + k_t < 1",
+                format_number(gain)
+            )
+        }
     } else {
         format!("set render.bailout (--bailout; e.g. 1/255, with k_r + k_t < 1) or {lower}")
     };
@@ -389,6 +403,18 @@ mod tests {
         assert!(unbounded_ray_tree(&gain, &settings(60, 0.5)).is_some());
         let mirror = scene("kr = 1.0");
         assert!(unbounded_ray_tree(&mirror, &settings(1024, 0.0)).is_none(), "a chain, not a tree");
+    }
+
+    #[test]
+    fn a_global_attenuation_that_lifts_the_weight_is_named_as_the_cause() {
+        let mut glass = scene("kr = 0.5\nkt = 0.4");
+        glass.world.global_attenuation = GlobalAttenuation { c: 0.5, l: 0.0, q: 0.0 };
+        let text = unbounded_ray_tree(&glass, &settings(20, 1.0 / 255.0)).expect("a warning");
+        assert!(
+            text.contains("world.global_attenuation reaches 2 near a hit (c = 0.5 < 1), which lifts k_r + k_t to 1.8"),
+            "{text}"
+        );
+        assert!(!text.contains("make k_r + k_t < 1"), "{text}");
     }
 
     #[test]

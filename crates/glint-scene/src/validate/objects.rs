@@ -283,8 +283,10 @@ fn coarsely_stored(points: &[[f64; 3]], size: f64, measure: &str, origin: [f64; 
             num(f32_step(far))
         )
     } else {
-        "the scene spans too wide a range for a detail this small: render it on its own, or bring the far geometry \
-         closer"
+        // Where the whole scene is only offset, moving it to the world origin is the remedy:
+        // near it the storage origin is the world origin, exact for what is near.
+        "the scene spans too wide a range for a detail this small where it lies: move the whole scene to the world \
+         origin if it is only offset, else render this detail on its own"
             .to_string()
     };
     Some(format!(
@@ -326,7 +328,7 @@ mod tests {
         let far = sphere([1234567.3, -2345678.9, 345678.1], 0.75, [0.0; 3]);
         assert_eq!(far.len(), 1, "{far:?}");
         assert!(far[0].starts_with("objects[0].center: the sphere (radius 0.75) is stored as f32 2350000 from the origin, to 0.125 (0.17 of its radius"), "{far:?}");
-        assert!(far[0].contains("bring the far geometry closer"), "{far:?}");
+        assert!(far[0].contains("move the whole scene to the world origin if it is only offset"), "{far:?}");
         // Stored near its own origin it keeps its size's digits; at the origin, as every scene
         // made there.
         assert!(sphere([1234567.3, -2345678.9, 345678.1], 0.75, [1234567.0, -2345679.0, 345678.0]).is_empty());

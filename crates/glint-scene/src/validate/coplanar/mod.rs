@@ -48,7 +48,7 @@ const MAX_PAIRS_PER_SURFACE: usize = 64;
 /// A surface of a cell, and whether it is in more than one cell.
 type Member = (Surface, bool);
 
-/// `members` without the triangles whose corners are bit for bit another's, and those copies
+/// `members` without the triangles whose corners are bit for bit another's (in any order), and those copies
 /// with the index (in what is kept) of the first they copy.
 fn without_copies(mut members: Vec<Member>) -> (Vec<Member>, Vec<(usize, Member)>) {
     // In file order, so that the copy kept, and the first pair a warning names, are the same
@@ -61,7 +61,10 @@ fn without_copies(mut members: Vec<Member>) -> (Vec<Member>, Vec<(usize, Member)
             kept.push(member);
             continue;
         }
-        let key: [u64; 9] = std::array::from_fn(|k| member.0.corners[k / 3][k % 3].to_bits());
+        // The corners in a fixed order: a copy of reversed winding is the same triangle.
+        let mut corners = member.0.corners.map(|c| c.to_array().map(f64::to_bits));
+        corners.sort_unstable();
+        let key: [u64; 9] = std::array::from_fn(|k| corners[k / 3][k % 3]);
         match first.entry(key) {
             std::collections::hash_map::Entry::Occupied(at) => copies.push((*at.get(), member)),
             std::collections::hash_map::Entry::Vacant(slot) => {

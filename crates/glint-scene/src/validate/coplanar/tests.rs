@@ -70,6 +70,15 @@ fn copies_of_one_face_are_counted_whole_without_pairing_them_all() {
     let said = &w[0].problem;
     // 1999·2000/2 = 1,999,000 pairs of half a unit each.
     assert!(said.contains("overlaps itself in one plane over a summed area of 9.9950e5 (1999000 pairs"), "{said}");
+    // Copies of reversed winding are the same triangle: 4 copies, 6 pairs (the pairs across the
+    // two windings were counted once).
+    let m = mesh(
+        vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]],
+        vec![[0, 1, 2], [0, 2, 1], [0, 1, 2], [2, 1, 0]],
+        "wound",
+    );
+    let w = overlaps(&scene(vec![m]));
+    assert!(w[0].problem.contains("(6 pairs"), "{w:?}");
     // 200,000 copies (22 s before; a test a copy now) are counted whole too.
     let m = mesh(vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]], vec![[0, 1, 2]; 200_000], "many");
     let w = overlaps(&scene(vec![m]));
