@@ -293,8 +293,15 @@ fn check_backend_flags(args: &RenderArgs) -> anyhow::Result<()> {
 /// scene, whose remedies the core's message offers first (`--max-rays-per-sample 1` on whitted
 /// was told to set the bailout it has), and the scene's bound is the cap that suffices.
 fn explain_ray_cap(e: anyhow::Error, desc: &SceneDesc, settings: &RenderSettings) -> anyhow::Error {
-    match e.downcast_ref::<CpuRenderError>() {
-        Some(&CpuRenderError::RayCap { x, y, cap }) if unbounded_ray_tree(desc, settings).is_none() => anyhow!(
+    let Some(&CpuRenderError::RayCap { x, y, cap }) = e.downcast_ref::<CpuRenderError>() else { return e };
+    match unbounded_ray_tree(desc, settings) {
+        // The scene's own trees can pass any cap: the load warning's cause and remedy (the
+        // core's generic one asked for a bailout a scene had, under a global attenuation).
+        Some(why) => anyhow!(
+            "pixel ({x}, {y}): a camera sample's ray tree reached the cap of {cap} rays (--max-rays-per-sample), so \
+             the render stopped: {why}; or raise the cap"
+        ),
+        None => anyhow!(
             "pixel ({x}, {y}): a camera sample's ray tree reached the cap of {cap} rays (--max-rays-per-sample), so \
              the render stopped; the scene's own bailout and depth keep every tree within {} rays{}: raise the cap \
              to that",
@@ -308,7 +315,6 @@ fn explain_ray_cap(e: anyhow::Error, desc: &SceneDesc, settings: &RenderSettings
                 ),
             }
         ),
-        _ => e,
     }
 }
 
