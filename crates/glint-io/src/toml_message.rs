@@ -2,7 +2,7 @@
 //! date-time as a map with one private key, and an integer beyond i64 as an i128 of the wrong
 //! type; the author wrote neither.
 
-use glint_scene::{shorten_lines, tidy_floats};
+use glint_scene::{serde_words, shorten_lines};
 
 /// The key under which the `toml` crate hands a date-time to serde.
 const DATETIME_KEY: &str = "$__toml_private_datetime";
@@ -14,7 +14,7 @@ pub fn parse_message(error: &toml::de::Error, text: &str) -> String {
         return too_deep(text);
     }
     let spanned = error.span().and_then(|span| text.get(span)).unwrap_or("");
-    shorten_lines(&tidy_floats(&clarify_datetime(&clarify_integer_overflow(&error.to_string()), spanned)))
+    shorten_lines(&serde_words(&clarify_datetime(&clarify_integer_overflow(&error.to_string()), spanned)))
 }
 
 /// Tables nested past what serde's reader recurses into: the parser said only "recursion
@@ -93,7 +93,7 @@ mod tests {
     #[test]
     fn a_date_time_is_called_one_wherever_it_stands() {
         let number = message("[camera]\nposition = [0, 0, -5]\nlook_at = [0, 0, 0]\nfov_y = 07:32:00\n");
-        assert!(message_line(&number).starts_with("invalid type: date-time, expected f64"), "{number}");
+        assert!(message_line(&number).starts_with("invalid type: date-time, expected a number"), "{number}");
         let colour = message("[world]\nambient = 1979-05-27T07:32:00Z\n");
         assert!(message_line(&colour).starts_with("invalid type: date-time, expected a number (grey)"), "{colour}");
         let table = message("[materials]\nglass = 1979-05-27\n");

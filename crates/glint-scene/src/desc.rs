@@ -83,7 +83,7 @@ fn article(noun: &str) -> &'static str {
 
 /// An error on one line, however its format wrote it.
 fn one_line(e: &impl std::fmt::Display) -> String {
-    crate::number::tidy_floats(e.to_string().trim()).replace('\n', " ")
+    crate::number::serde_words(e.to_string().trim()).replace('\n', " ")
 }
 
 /// Render settings a scene suggests; command-line flags override each of them.

@@ -15,6 +15,15 @@ pub fn format_rounded(v: f64, digits: usize) -> String {
     format_number(rounded)
 }
 
+/// serde's words in a scene author's: Rust's type names (`expected f64`, `expected u32`) as
+/// what a scene file holds, and a float as `tidy_floats` writes it.
+pub fn serde_words(message: &str) -> String {
+    tidy_floats(message)
+        .replace("expected f64", "expected a number")
+        .replace("expected f32", "expected a number")
+        .replace("expected u32", "expected a whole number from 0 to 4294967295")
+}
+
 /// serde's `floating point \`…\`` written as `format_number` writes it: serde prints every
 /// digit, 309 of them for 1e308 and 320 zeros for 1e-320.
 pub fn tidy_floats(message: &str) -> String {
@@ -84,7 +93,16 @@ pub fn shorten_lines(text: &str) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::{LINE_CHARS, format_number, shorten, shorten_lines, shorten_middle, tidy_floats};
+    use super::{LINE_CHARS, format_number, serde_words, shorten, shorten_lines, shorten_middle, tidy_floats};
+
+    #[test]
+    fn rust_type_names_are_said_as_what_a_scene_holds() {
+        assert_eq!(
+            serde_words("invalid type: string \"x\", expected f64"),
+            "invalid type: string \"x\", expected a number"
+        );
+        assert!(serde_words("integer `-1`, expected u32").ends_with("expected a whole number from 0 to 4294967295"));
+    }
 
     #[test]
     fn serde_s_long_floats_are_written_short() {
