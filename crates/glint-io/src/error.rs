@@ -32,9 +32,9 @@ pub enum SceneError {
          model files (.gltf, .glb, .obj)"
     )]
     NotAModel { name: String },
-    /// A model file that did not import (the message names the file and what is wrong).
-    #[error("{message}")]
-    Model { message: String },
+    /// A model file that did not import (the error names the file and what is wrong).
+    #[error(transparent)]
+    Model(#[from] crate::model::ModelError),
 }
 
 impl SceneError {

@@ -26,7 +26,7 @@ use glint_scene::{FieldIssue, SceneDesc, validate, without_imported_materials};
 
 pub use builtin::{BUILTIN_SCENES, BuiltinScene, BuiltinSource, DEFAULT_RESOLUTION, RESOLUTIONS, builtin};
 pub use error::SceneError;
-pub use model::{ImportOptions, ModelFormat};
+pub use model::{ImportOptions, ModelError, ModelFormat};
 pub use model_ref::{load_model_ref, load_models};
 pub use texture::{decode_texture, load_textures};
 
@@ -49,7 +49,7 @@ pub fn parse_scene(text: &str, file: &Path) -> Result<(SceneDesc, Vec<FieldIssue
     let folder = file.parent().unwrap_or(Path::new("."));
     let mut warnings =
         load_models(&mut desc, folder).map_err(|issues| SceneError::Invalid { file: file.to_owned(), issues })?;
-    load_textures(&mut desc, file)?;
+    load_textures(&mut desc, file).map_err(|issues| SceneError::Invalid { file: file.to_owned(), issues })?;
     let (desc, scene_warnings) = validated(desc, file)?;
     warnings.extend(scene_warnings);
     Ok((desc, warnings))
@@ -176,7 +176,7 @@ fn utf8<'a>(bytes: &'a [u8], file: &Path) -> Result<&'a str, SceneError> {
 /// A model file in the lab scene `model::scene_around` makes for it, validated like a scene
 /// file; the importer's warnings come first.
 fn load_model(path: &Path, options: &ImportOptions) -> Result<(SceneDesc, Vec<FieldIssue>), SceneError> {
-    let model = model::load_model_file(path, options).map_err(|message| SceneError::Model { message })?;
+    let model = model::load_model_file(path, options)?;
     // The scene's camera and lights come from the file's nodes: a problem with them is named
     // by the file's own camera or light too, which the generated scene's fields are not.
     let camera = match options.camera {

@@ -6,11 +6,11 @@ use std::sync::Arc;
 
 use glint_scene::{FieldIssue, LoadedModel, MaterialDesc, ModelDesc, ObjectDesc, SceneDesc};
 
-use crate::model::{ImportOptions, load_model_file};
+use crate::model::{ImportOptions, ModelError, load_model_file};
 
 /// Reads the model file `reference` refers to (relative to `folder`) and places it
 /// (`LoadedModel::place`).
-pub fn load_model_ref(reference: &ModelDesc, folder: &Path, prefix: &str) -> Result<LoadedModel, String> {
+pub fn load_model_ref(reference: &ModelDesc, folder: &Path, prefix: &str) -> Result<LoadedModel, ModelError> {
     let file = folder.join(&reference.path);
     let exposure = reference.exposure.unwrap_or(ImportOptions::default().exposure);
     let options = ImportOptions {
@@ -55,7 +55,7 @@ pub fn load_models(desc: &mut SceneDesc, folder: &Path) -> Result<Vec<FieldIssue
                 }
                 model.loaded = Some(Arc::new(loaded));
             }
-            Err(problem) => errors.push(FieldIssue { field: format!("objects[{i}].path"), problem }),
+            Err(e) => errors.push(FieldIssue { field: format!("objects[{i}].path"), problem: e.to_string() }),
         }
     }
     if !errors.is_empty() {

@@ -6,7 +6,6 @@ use std::sync::Arc;
 
 use glint_scene::{ColorSpace, SceneDesc, TextureError, TextureImage, check_size, srgb_to_linear};
 
-use crate::error::SceneError;
 use crate::uri::{MAX_RESOURCE_BYTES, resolve_uri};
 use glint_scene::FieldIssue;
 
@@ -53,8 +52,10 @@ pub fn decode_texture(bytes: &[u8], color: ColorSpace) -> Result<TextureImage, T
 
 /// Decodes every texture of `desc` whose image is not filled yet, reading its path relative to
 /// `file` (the scene file) through `resolve_uri`. Each image file is decoded once, however many
-/// textures name it. Every failure is reported, naming `materials.NAME.FIELD.path`.
-pub fn load_textures(desc: &mut SceneDesc, file: &Path) -> Result<(), SceneError> {
+/// textures name it. Every failure is reported, naming `materials.NAME.FIELD.path`; the caller
+/// names the file (this module imports no error of the scene's, which imports the models that
+/// decode textures here).
+pub fn load_textures(desc: &mut SceneDesc, file: &Path) -> Result<(), Vec<FieldIssue>> {
     let mut decoded: Vec<(String, Arc<TextureImage>)> = Vec::new();
     let mut issues = Vec::new();
     for (name, m) in &mut desc.materials {
@@ -79,7 +80,7 @@ pub fn load_textures(desc: &mut SceneDesc, file: &Path) -> Result<(), SceneError
             }
         }
     }
-    if issues.is_empty() { Ok(()) } else { Err(SceneError::Invalid { file: file.to_owned(), issues }) }
+    if issues.is_empty() { Ok(()) } else { Err(issues) }
 }
 
 #[cfg(test)]

@@ -98,18 +98,32 @@ impl ModelFormat {
     }
 }
 
-/// The model file at `path`, read by the importer of its format; the message of an error
-/// names the file and what is wrong.
-pub fn load_model_file(path: &Path, options: &ImportOptions) -> Result<Model, String> {
+/// Why a model file did not import; each names the file and what is wrong.
+#[derive(Debug, thiserror::Error)]
+pub enum ModelError {
+    #[error(transparent)]
+    Gltf(#[from] GltfError),
+    #[error(transparent)]
+    Obj(#[from] ObjError),
+    #[error(
+        "{}: an OBJ file has no scenes to choose from: a scene index (--scene-index, an object's scene_index) is \
+         for glTF files",
+        file.display()
+    )]
+    ObjHasNoScenes { file: std::path::PathBuf },
+    #[error("{}: not a model file (.gltf, .glb or .obj)", file.display())]
+    NotAModel { file: std::path::PathBuf },
+}
+
+/// The model file at `path`, read by the importer of its format.
+pub fn load_model_file(path: &Path, options: &ImportOptions) -> Result<Model, ModelError> {
     match ModelFormat::of(path) {
-        Some(ModelFormat::Gltf) => load_gltf(path, options).map_err(|e| e.to_string()),
-        Some(ModelFormat::Obj) if options.scene_index.is_some() => Err(format!(
-            "{}: an OBJ file has no scenes to choose from: a scene index (--scene-index, an object's \
-             scene_index) is for glTF files",
-            path.display()
-        )),
-        Some(ModelFormat::Obj) => load_obj(path).map_err(|e| e.to_string()),
-        None => Err(format!("{}: not a model file (.gltf, .glb or .obj)", path.display())),
+        Some(ModelFormat::Gltf) => Ok(load_gltf(path, options)?),
+        Some(ModelFormat::Obj) if options.scene_index.is_some() => {
+            Err(ModelError::ObjHasNoScenes { file: path.to_owned() })
+        }
+        Some(ModelFormat::Obj) => Ok(load_obj(path)?),
+        None => Err(ModelError::NotAModel { file: path.to_owned() }),
     }
 }
 
