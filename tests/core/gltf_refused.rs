@@ -1,0 +1,222 @@
+//! glTF files refused or corrected, each problem named by the file's own fields: versions,
+//! broken JSON paths, hostile URIs, lights, emissions and cameras beyond a scene's range.
+
+use glint_io::ImportOptions;
+use glint_io::model::load_gltf;
+use glint_test_support::TempDir;
+use glint_test_support::gltf::{BufferAt, Fixture};
+use serde_json::json;
+
+use super::gltf::error;
+
+#[test]
+fn an_asset_version_other_than_2_is_said_when_the_file_reads_as_2() {
+    let dir = TempDir::new("gltf-version");
+    let mut f = Fixture::quad();
+    f.json["asset"]["version"] = json!("3.0");
+    let m = load_gltf(&f.write_gltf(&dir, "three", BufferAt::DataUri), &ImportOptions::default()).unwrap();
+    assert!(
+        m.warnings.iter().any(|w| w.field == "asset.version" && w.problem.starts_with("`3.0`")),
+        "{:?}",
+        m.warnings
+    );
+    f.json["asset"]["version"] = json!("2.1");
+    let m = load_gltf(&f.write_gltf(&dir, "two", BufferAt::DataUri), &ImportOptions::default()).unwrap();
+    assert!(m.warnings.iter().all(|w| w.field != "asset.version"), "{:?}", m.warnings);
+}
+
+#[test]
+fn a_punctual_light_out_of_range_is_named_by_the_files_own_fields() {
+    let dir = TempDir::new("gltf-light-ranges");
+    let with = |lights: serde_json::Value, name: &str| {
+        let mut f = Fixture::quad();
+        f.json["extensionsUsed"] = json!(["KHR_lights_punctual"]);
+        f.json["extensions"] = json!({ "KHR_lights_punctual": { "lights": lights } });
+        f.json["scenes"] = json!([{ "nodes": [0, 1] }]);
+        f.json["nodes"] = json!([{ "mesh": 0 }, { "translation": [0.0, 2.0, 0.0], "extensions": { "KHR_lights_punctual": { "light": 0 } } }]);
+        f.write_gltf(&dir, name, BufferAt::DataUri)
+    };
+    // Brighter than a scene may hold: the file's intensity named, and the exposure that fits.
+    let bright = with(json!([{ "type": "point", "intensity": 2e9 }]), "bright");
+    let message = load_gltf(&bright, &ImportOptions::default()).unwrap_err().to_string();
+    assert!(message.contains("extensions.KHR_lights_punctual.lights[0].intensity: 2000000000"), "{message}");
+    assert!(message.contains("(--exposure, or a model object's exposure) to 0.5 or less"), "{message}");
+    // A light the load does not use (a scene's model object without `lights = true`) fails nothing.
+    assert!(load_gltf(&bright, &ImportOptions { lights: false, ..ImportOptions::default() }).is_ok());
+    assert!(load_gltf(&bright, &ImportOptions { exposure: 0.5, ..ImportOptions::default() }).is_ok());
+    let negative = with(json!([{ "type": "point", "intensity": -5.0 }]), "negative");
+    let message = load_gltf(&negative, &ImportOptions::default()).unwrap_err().to_string();
+    assert!(message.contains("lights[0].intensity: -5 must be a finite number ≥ 0"), "{message}");
+    // A node's light that does not exist is named as the file spells the extension (the gltf
+    // crate's path said `khrLightsPunctual`).
+    let mut f = Fixture::quad();
+    f.json["extensionsUsed"] = json!(["KHR_lights_punctual"]);
+    f.json["extensions"] = json!({ "KHR_lights_punctual": { "lights": [{ "type": "point" }] } });
+    f.json["scenes"] = json!([{ "nodes": [0, 1] }]);
+    f.json["nodes"] = json!([{ "mesh": 0 }, { "extensions": { "KHR_lights_punctual": { "light": 5 } } }]);
+    let message = load_gltf(&f.write_gltf(&dir, "missing", BufferAt::DataUri), &ImportOptions::default())
+        .unwrap_err()
+        .to_string();
+    assert!(message.contains("nodes[1].extensions.KHR_lights_punctual.light"), "{message}");
+    // An outer cone of π/2 as an exporter writes it (f64 digits, rounded up by f32) is valid.
+    let right = with(
+        json!([{ "type": "spot", "spot": { "innerConeAngle": 0.5, "outerConeAngle": std::f64::consts::FRAC_PI_2 } }]),
+        "right",
+    );
+    let m = load_gltf(&right, &ImportOptions::default()).unwrap();
+    assert!(m.warnings.iter().all(|w| !w.field.ends_with(".spot")), "{:?}", m.warnings);
+    // Cones breaking 0 ≤ inner ≤ outer ≤ π/2 are said, with what was made of them.
+    let cones = with(json!([{ "type": "spot", "spot": { "innerConeAngle": 1.0, "outerConeAngle": 0.5 } }]), "cones");
+    let m = load_gltf(&cones, &ImportOptions::default()).unwrap();
+    let said = m.warnings.iter().find(|w| w.field == "extensions.KHR_lights_punctual.lights[0].spot").expect("said");
+    assert!(said.problem.contains("innerConeAngle 1 and outerConeAngle 0.5"), "{}", said.problem);
+    assert_eq!(
+        (m.lights[0].inner_cone, m.lights[0].outer_cone),
+        (Some(f64::from(0.5f32).to_degrees().min(90.0)), Some(f64::from(0.5f32).to_degrees()))
+    );
+    // A colour or range the extension does not allow is named by its own field, not by the
+    // lights[i].diffuse or .attenuation.range Glint maps it to (a tester's find: the colour of
+    // the file's light 2 was refused as Glint's lights[0].diffuse and .specular).
+    let red = with(json!([{ "type": "point", "color": [-1.0, 0.5, 0.5] }]), "red");
+    let message = load_gltf(&red, &ImportOptions::default()).unwrap_err().to_string();
+    assert!(message.contains("extensions.KHR_lights_punctual.lights[0].color: r = -1 must be in [0, 1]"), "{message}");
+    let near = with(json!([{ "type": "point", "range": -3.0 }]), "near");
+    let message = load_gltf(&near, &ImportOptions::default()).unwrap_err().to_string();
+    assert!(
+        message.contains("extensions.KHR_lights_punctual.lights[0].range: -3 must be a finite number > 0"),
+        "{message}"
+    );
+    // Above 1, as the extension bounds it: taken as 1, and said.
+    let bright = with(json!([{ "type": "point", "color": [2.0, 0.5, 0.5] }]), "bright-colour");
+    let m = load_gltf(&bright, &ImportOptions::default()).unwrap();
+    let said = m.warnings.iter().find(|w| w.field == "extensions.KHR_lights_punctual.lights[0].color").expect("said");
+    assert!(said.problem.starts_with("r = 2 is outside [0, 1]"), "{}", said.problem);
+    assert_eq!(m.lights[0].diffuse.0[0], 1.0);
+}
+
+#[test]
+fn broken_files_are_errors_naming_the_json_path() {
+    let dir = TempDir::new("gltf-broken");
+    type Edit = Box<dyn Fn(&mut Fixture)>;
+    let cases: Vec<(&str, Edit, &[&str])> = vec![
+        (
+            "cycle",
+            Box::new(|f| f.json["nodes"] = json!([{ "children": [1] }, { "children": [0], "mesh": 0 }])),
+            &["nodes[0]", "reached twice"],
+        ),
+        (
+            "type",
+            Box::new(|f| f.json["accessors"][0]["type"] = json!("VEC2")),
+            &["attributes.POSITION", "VEC3 of FLOAT"],
+        ),
+        ("count", Box::new(|f| f.json["accessors"][0]["count"] = json!(400)), &["attributes.POSITION", "do not fit"]),
+        ("zero", Box::new(|f| f.json["accessors"][0]["count"] = json!(0)), &["accessors[0]"]),
+        ("view", Box::new(|f| f.json["bufferViews"][0]["byteLength"] = json!(4096)), &["bufferViews[0]"]),
+        (
+            "required",
+            Box::new(|f| f.json["extensionsRequired"] = json!(["KHR_draco_mesh_compression"])),
+            &["KHR_draco_mesh_compression", "extensionsRequired[0]"],
+        ),
+        ("noscene", Box::new(|f| f.json["scenes"] = json!([{ "nodes": [] }])), &["scenes[0].nodes"]),
+        ("badmaterial", Box::new(|f| f.json["meshes"][0]["primitives"][0]["material"] = json!(7)), &["material"]),
+    ];
+    for (name, edit, wanted) in cases {
+        let mut f = Fixture::quad();
+        edit(&mut f);
+        let path = f.write_gltf(&dir, name, BufferAt::DataUri);
+        let message = error(&path);
+        assert!(message.contains(&format!("{name}.gltf")), "{name}: {message}");
+        for w in wanted {
+            assert!(message.contains(w), "{name}: wanted `{w}` in: {message}");
+        }
+    }
+    // An index beyond the vertices.
+    let mut f = Fixture::quad();
+    let bad = f.push_u16(&[0, 1, 9, 0, 0, 0]);
+    f.json["accessors"][2]["bufferView"] = json!(bad);
+    let message = error(&f.write_gltf(&dir, "range", BufferAt::DataUri));
+    assert!(message.contains("meshes[0].primitives[0].indices") && message.contains("index 9"), "{message}");
+    // A non-finite position (JSON cannot write one, the buffer can).
+    let mut f = Fixture::quad();
+    let inf = f.push_f32(&[0., 0., 0., f32::INFINITY, 0., 0., 1., 1., 0., 0., 1., 0.]);
+    f.json["accessors"][0]["bufferView"] = json!(inf);
+    let message = error(&f.write_gltf(&dir, "inf", BufferAt::DataUri));
+    assert!(message.contains("attributes.POSITION") && message.contains("finite"), "{message}");
+    // A NaN is named at its accessor element and component, as the file stored it, before the
+    // node's transform spreads it to every component.
+    let mut f = Fixture::quad();
+    let nan = f.push_f32(&[0., 0., 0., 1., 0., 0., 1., f32::NAN, 0., 0., 1., 0.]);
+    f.json["accessors"][0]["bufferView"] = json!(nan);
+    f.json["nodes"][0]["rotation"] = json!([0.0, 0.382_683_43, 0.0, 0.923_879_5]);
+    let message = error(&f.write_gltf(&dir, "nan", BufferAt::DataUri));
+    assert!(message.contains("accessors[0] element 2: component y = NaN as stored in the file"), "{message}");
+}
+
+#[test]
+fn hostile_uris_are_refused_naming_them() {
+    let dir = TempDir::new("gltf-uris");
+    let model = dir.join("model");
+    std::fs::create_dir(&model).unwrap();
+    let f = Fixture::quad();
+    std::fs::write(dir.join("outside.bin"), &f.bin).unwrap();
+    #[cfg(unix)]
+    std::os::unix::fs::symlink(dir.join("outside.bin"), model.join("link.bin")).unwrap();
+    let mut uris =
+        vec!["../outside.bin".to_string(), "/etc/passwd".into(), "file:///etc/passwd".into(), "%FF.bin".into()];
+    uris.push("%2e%2e/outside.bin".into());
+    if cfg!(unix) {
+        uris.push("link.bin".into());
+    }
+    for (k, uri) in uris.iter().enumerate() {
+        let path = f.write_gltf(&model, &format!("u{k}"), BufferAt::Uri(uri.clone()));
+        let message = error(&path);
+        assert!(message.contains("buffers[0].uri") && message.contains(uri.as_str()), "{uri}: {message}");
+    }
+    // A buffer shorter than its declared byteLength.
+    let short = f.write_gltf(&model, "short", BufferAt::File("short.bin".into()));
+    std::fs::write(model.join("short.bin"), &f.bin[..f.bin.len() / 2]).unwrap();
+    let message = error(&short);
+    assert!(message.contains("buffers[0].byteLength") && message.contains("declares"), "{message}");
+    // A GLB without its BIN chunk.
+    let mut glb = f.clone();
+    glb.bin.clear();
+    let message = error(&glb.write_glb(&model, "nobin"));
+    assert!(message.contains("nobin.glb"), "{message}");
+}
+
+#[test]
+fn an_emission_beyond_the_scenes_range_is_named_by_the_files_fields() {
+    // Validation named Glint's `materials.X/material0.emission`, which the file does not have.
+    let dir = TempDir::new("gltf-emission");
+    let mut f = Fixture::quad();
+    f.json["extensionsUsed"] = json!(["KHR_materials_emissive_strength"]);
+    f.json["materials"][0]["emissiveFactor"] = json!([1.0, 0.5, 0.0]);
+    f.json["materials"][0]["extensions"] = json!({ "KHR_materials_emissive_strength": { "emissiveStrength": 1e30 } });
+    let message = error(&f.write_gltf(&dir, "bright", BufferAt::DataUri));
+    assert!(
+        message
+            .contains("materials[0].emissiveFactor: (1, 0.5, 0) × KHR_materials_emissive_strength 1e30 reaches 1e30"),
+        "{message}"
+    );
+}
+
+#[test]
+fn a_negative_emission_and_a_camera_beyond_the_scenes_range_are_named_by_the_files_own_terms() {
+    // A fuzzing tester: these were named by the generated scene's `materials.X.emission` and
+    // `camera.position`, which the file does not have.
+    let dir = TempDir::new("gltf-file-terms");
+    let mut f = Fixture::quad();
+    f.json["materials"][0]["emissiveFactor"] = json!([-1.0, 0.1, 0.1]);
+    let message = error(&f.write_gltf(&dir, "negative", BufferAt::DataUri));
+    assert!(message.contains("materials[0].emissiveFactor: (-1, 0.1, 0.1): -1 is outside [0, 1]"), "{message}");
+    let mut f = Fixture::quad();
+    f.json["cameras"] = json!([{ "name": "far", "type": "perspective", "perspective": { "yfov": 0.7, "znear": 0.1 } }]);
+    f.json["scenes"] = json!([{ "nodes": [0, 1] }]);
+    f.json["nodes"] = json!([{ "mesh": 0 }, { "translation": [2e9, 0.5, 3.0], "camera": 0 }]);
+    let path = f.write_gltf(&dir, "far-camera", BufferAt::DataUri);
+    let message = glint_io::load_scene(&path.display().to_string()).expect_err("refused").to_string();
+    assert!(
+        message.contains("camera.position (the file's camera `far`, placed by its node's and its parents' transforms)"),
+        "{message}"
+    );
+}
