@@ -78,15 +78,15 @@ pub fn write_run(path: &Path, run: &Run, metadata: &[(String, String)]) -> anyho
     Ok(())
 }
 
-/// The difference of the GPU's image from the CPU's (`cpu` as its file stores it): beside EXR
-/// outputs the linear |gpu − cpu| per channel as an EXR, beside PNG ones a false-colour heat
-/// map with its scale in the metadata. Returns the path written.
+/// The difference of the GPU's image from the CPU's (`cpu` as its file stores it) at `path`,
+/// whose extension is the outputs': for EXR the linear |gpu − cpu| per channel, for PNG a
+/// false-colour heat map with its scale in the metadata.
 pub fn write_diff(
     path: &Path,
     cpu: &HdrImage,
     gpu: &HdrImage,
     mut metadata: Vec<(String, String)>,
-) -> anyhow::Result<PathBuf> {
+) -> anyhow::Result<()> {
     metadata.retain(|(k, _)| k != "glint:backend" && k != "glint:time_ms" && k != "glint:rays" && k != "glint:device");
     metadata.push(("glint:backend".into(), "diff gpu-cpu".into()));
     if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("exr")) {
@@ -96,7 +96,7 @@ pub fn write_diff(
                 .into(),
         ));
         write_image(path, &abs_difference(cpu, gpu), &metadata)?;
-        return Ok(path.to_owned());
+        return Ok(());
     }
     metadata.push((
         "glint:diff_scale".into(),
@@ -106,10 +106,8 @@ pub fn write_diff(
              {HEATMAP_LOG10_MAX} (bright)"
         ),
     ));
-    let rgb = diff_heatmap(cpu, gpu);
-    let png = path.with_extension("png");
-    write_png_rgb8(&png, cpu.width, cpu.height, &rgb, &metadata)?;
-    Ok(png)
+    write_png_rgb8(path, cpu.width, cpu.height, &diff_heatmap(cpu, gpu), &metadata)?;
+    Ok(())
 }
 
 /// The ray counts in the integrator's words: a path's bounce off a diffuse or glossy lobe is

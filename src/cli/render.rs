@@ -235,8 +235,8 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     let errors = if let [cpu, gpu] = runs.as_slice() {
         // The CPU's image as its file holds it (f32): identical files compare as identical.
         let stored = cpu.image.as_stored();
-        let written = write_diff(&diff_path, &stored, &gpu.image, metadata(&scene_tags, &settings, gpu, specialise))?;
-        outputs.push(written);
+        write_diff(&diff_path, &stored, &gpu.image, metadata(&scene_tags, &settings, gpu, specialise))?;
+        outputs.push(diff_path);
         Some(compare_images(&stored, &gpu.image))
     } else {
         None
@@ -301,26 +301,25 @@ fn explain_ray_cap(e: anyhow::Error, desc: &SceneDesc, settings: &RenderSettings
             "pixel ({x}, {y}): a camera sample's ray tree reached the cap of {cap} rays (--max-rays-per-sample), so \
              the render stopped: {why}; or raise the cap"
         ),
-        None => anyhow!(
-            "pixel ({x}, {y}): a camera sample's ray tree reached the cap of {cap} rays (--max-rays-per-sample), so \
-             the render stopped; the scene's own bailout and depth keep every tree within {} rays{}: raise the cap \
-             to that",
-            tree_rays_with_shadows(desc, settings),
-            match desc.lights.len() {
+        None => {
+            // The cap counts the tree's rays and at most one shadow ray from each hit to each light.
+            let tree = ray_tree_bound(desc, settings);
+            let lights = desc.lights.len();
+            let shadows = match lights {
                 0 => String::new(),
                 n => format!(
-                    " ({} reflected and refracted, each hit with a shadow ray to each of {n} light{})",
-                    ray_tree_bound(desc, settings),
+                    " ({tree} reflected and refracted, each hit with a shadow ray to each of {n} light{})",
                     if n == 1 { "" } else { "s" }
                 ),
-            }
-        ),
+            };
+            anyhow!(
+                "pixel ({x}, {y}): a camera sample's ray tree reached the cap of {cap} rays (--max-rays-per-sample), \
+                 so the render stopped; the scene's own bailout and depth keep every tree within {} rays{shadows}: \
+                 raise the cap to that",
+                tree * (1.0 + lights as f64)
+            )
+        }
     }
-}
-
-/// What the cap counts: the tree's rays and at most one shadow ray from each hit to each light.
-fn tree_rays_with_shadows(desc: &SceneDesc, settings: &RenderSettings) -> f64 {
-    ray_tree_bound(desc, settings) * (1.0 + desc.lights.len() as f64)
 }
 
 /// `--bench`'s timed runs without `--runs`.

@@ -6,6 +6,7 @@ use super::{
     shorten, sub, validate_light,
 };
 use crate::number::format_rounded;
+use glint_types::layout::f32_spacing;
 
 /// `origin`: the scene's storage origin (`storage_origin`), which mesh vertices are stored
 /// relative to.
@@ -228,7 +229,7 @@ fn validate_mesh(path: &str, mesh: &MeshDesc, origin: [f64; 3], r: &mut Report) 
     }
     if rounded_flat > 0 {
         let reach = vertices.iter().flat_map(|&v| relative(v)).fold(0.0f64, |m, c| m.max(c.abs()));
-        let step = f32_step(reach);
+        let step = f32_spacing(reach);
         let from = storage_origin_named(origin);
         r.warn(
             format!("{path}.vertices"),
@@ -244,11 +245,6 @@ fn validate_mesh(path: &str, mesh: &MeshDesc, origin: [f64; 3], r: &mut Report) 
     {
         r.warn(format!("{path}.vertices"), format!("the mesh (size {}) {coarse}", num(size)));
     }
-}
-
-/// What f32 steps are at `reach`: the spacing of the f32 values there.
-fn f32_step(reach: f64) -> f64 {
-    f64::from((reach as f32).next_up()) - f64::from(reach as f32)
 }
 
 fn storage_origin_named(origin: [f64; 3]) -> String {
@@ -271,16 +267,16 @@ const VISIBLE_STORAGE_ERROR: f64 = 1e-4;
 /// far from the world origin whose own storage origin f32 cannot put near it has the same fault.
 fn coarsely_stored(points: &[[f64; 3]], size: f64, measure: &str, origin: [f64; 3]) -> Option<String> {
     let reach = points.iter().flat_map(|p| [0, 1, 2].map(|k| (p[k] - origin[k]).abs())).fold(0.0, f64::max);
-    let error = 0.5 * f32_step(reach);
+    let error = 0.5 * f32_spacing(reach);
     if !(size > 0.0 && reach.is_finite()) || error <= VISIBLE_STORAGE_ERROR * size {
         return None;
     }
     let far = origin.iter().fold(0.0_f64, |m, c| m.max(c.abs()));
-    let remedy = if far > 0.0 && reach <= f32_step(far) {
+    let remedy = if far > 0.0 && reach <= f32_spacing(far) {
         format!(
             "the scene lies too far from the world origin for f32 to put its storage origin nearer (steps of {} \
              there): move it nearer the world origin",
-            num(f32_step(far))
+            num(f32_spacing(far))
         )
     } else {
         // Where the whole scene is only offset, moving it to the world origin is the remedy:

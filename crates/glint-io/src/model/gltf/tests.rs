@@ -30,6 +30,13 @@ fn strips_keep_the_first_triangles_orientation_and_fans_share_the_first_vertex()
     assert!(triangulate(Mode::TriangleStrip, &[0, 1]).is_empty());
 }
 
+/// The message of a glTF 2.0 file of the top-level `json` members, which must be refused.
+fn refused(json: &str) -> String {
+    let text = format!(r#"{{"asset":{{"version":"2.0"}},{json}}}"#);
+    let Err(err) = parse(text.as_bytes(), Path::new("m.gltf"), &mut Vec::new()) else { panic!("{json}: accepted") };
+    err.to_string()
+}
+
 #[test]
 fn an_image_without_a_source_or_mime_type_and_a_camera_without_its_projection_are_errors() {
     let view = r#""bufferViews":[{"buffer":0,"byteLength":4}],"buffers":[{"byteLength":4}]"#;
@@ -40,9 +47,7 @@ fn an_image_without_a_source_or_mime_type_and_a_camera_without_its_projection_ar
         (r#""images":[{"name":"x"}]"#.to_string(), "images[0]"),
         (perspective_without_it.to_string(), "cameras[0]"),
     ] {
-        let text = format!(r#"{{"asset":{{"version":"2.0"}},{json}}}"#);
-        let Err(err) = parse(text.as_bytes(), Path::new("m.gltf"), &mut Vec::new()) else { panic!("{path}: accepted") };
-        let err = err.to_string();
+        let err = refused(&json);
         assert!(err.contains(&format!("{path}: invalid glTF")), "{err}");
     }
 }
@@ -57,9 +62,8 @@ fn an_index_out_of_bounds_says_what_the_file_has() {
             "nodes[0].camera: invalid glTF: Index out of bounds (the file's cameras have only index 0)",
         ),
     ] {
-        let text = format!(r#"{{"asset":{{"version":"2.0"}},{json}}}"#);
-        let Err(err) = parse(text.as_bytes(), Path::new("m.gltf"), &mut Vec::new()) else { panic!("{json}: accepted") };
-        assert!(err.to_string().contains(said), "{err}");
+        let err = refused(json);
+        assert!(err.contains(said), "{err}");
     }
 }
 
@@ -79,9 +83,8 @@ fn an_invalid_value_says_what_the_specification_allows() {
             "materials[0].alphaMode: invalid glTF: Invalid value (allowed: OPAQUE, MASK or BLEND)",
         ),
     ] {
-        let text = format!(r#"{{"asset":{{"version":"2.0"}},{json}}}"#);
-        let Err(err) = parse(text.as_bytes(), Path::new("m.gltf"), &mut Vec::new()) else { panic!("{json}: accepted") };
-        assert!(err.to_string().contains(said), "{err}");
+        let err = refused(json);
+        assert!(err.contains(said), "{err}");
     }
 }
 
