@@ -389,6 +389,12 @@ fn report_renders_every_scene_with_the_integrator_it_is_given() {
     assert!(md.contains("Left out: lights, whose paths end by Russian roulette"), "{md}");
     let csv = std::fs::read_to_string(out_dir.join("report.csv")).expect("report.csv");
     assert!(csv.lines().count() > 2, "{csv}");
+    // Nor is it timed: the rows that only vary the bailout are left out, the grid's stay.
+    let header: Vec<&str> = csv.lines().next().expect("header").split(',').collect();
+    let col = |name: &str| header.iter().position(|h| *h == name).expect(name);
+    let rows: Vec<Vec<&str>> = csv.lines().skip(1).map(|l| l.split(',').collect()).collect();
+    assert!(rows.iter().all(|r| r[col("groups")] != "bailout"), "{csv}");
+    assert!(rows.iter().any(|r| r[col("groups")].contains("bailout")), "{csv}");
     // A read-only report is refused before anything of the new run moves in, and the run
     // leaves no staging folder behind; --force replaces it.
     let md_path = out_dir.join("report.md");
@@ -444,8 +450,11 @@ fn report_renders_every_scene_with_the_integrator_it_is_given() {
 fn report_shards_merge_into_the_one_machine_report_and_missing_ones_are_named() {
     let dir = TempDir::new("report-shards");
     let sweep = ["report", "--quick", "--cpu-only", "--width", "24", "--height", "18", "-q", "--out"];
+    // A path scene among them: it leaves out the rows that only vary the bailout, in a shard as in
+    // one run.
+    let scenes = ["--scenes", "whitted,highlights,cornell-gi"];
     let run = |out: &str, extra: &[&str]| {
-        let args = sweep.iter().copied().chain([out]).chain(extra.iter().copied());
+        let args = sweep.iter().copied().chain([out]).chain(scenes).chain(extra.iter().copied());
         let done = glint(&dir, args);
         assert!(done.status.success(), "{}", text(&done.stderr));
     };

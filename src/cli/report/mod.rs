@@ -187,6 +187,7 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
     let owners = args
         .shard
         .map(|s| shard::assign(scenes.len(), &planned, u64::from(width) * u64::from(height), args.runs, s.count));
+    let integrator = |scene: usize| args.integrator.unwrap_or(scenes[scene].desc.render.integrator);
     let mine = |scene: usize, config: usize| match (&owners, args.shard) {
         (Some(o), Some(s)) => o[scene][config] == s.index,
         _ => true,
@@ -195,7 +196,8 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
     // then each specular model's.
     let renders: usize = (0..scenes.len())
         .map(|si| {
-            let configs = (0..planned.len()).filter(|&ci| mine(si, ci)).count();
+            let configs =
+                (0..planned.len()).filter(|&ci| mine(si, ci) && planned[ci].measured_for(integrator(si))).count();
             let specular = if mine(si, 0) { specular::renders(&backends, args.runs) } else { 0 };
             let gi = if mine(si, 0) { gi::renders(&backends, args.runs, args.quick) } else { 0 };
             if configs == 0 { specular + gi } else { 1 + configs * (1 + args.runs as usize) + specular + gi }
@@ -212,8 +214,12 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
         if args.shard.is_some() {
             scene_hashes.push(FlatScene::build(&loaded.desc, &base).content_hash());
         }
-        let ours: Vec<Planned> =
-            planned.iter().enumerate().filter(|(ci, _)| mine(si, *ci)).map(|(_, p)| p.clone()).collect();
+        let ours: Vec<Planned> = planned
+            .iter()
+            .enumerate()
+            .filter(|(ci, p)| mine(si, *ci) && p.measured_for(base.integrator))
+            .map(|(_, p)| p.clone())
+            .collect();
         let mut result = if ours.is_empty() {
             sweep::SceneResult {
                 name: loaded.name.clone(),
@@ -281,7 +287,9 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
             "report shard {}/{}: {rows} of {} configurations in {:.1} s; wrote {} (merge the shards with --merge)",
             spec.index,
             spec.count,
-            scenes.len() * planned.len(),
+            (0..scenes.len())
+                .map(|si| planned.iter().filter(|p| p.measured_for(integrator(si))).count())
+                .sum::<usize>(),
             started.elapsed().as_secs_f64(),
             path.display()
         )?;
@@ -302,9 +310,9 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
     write_outputs(out, &setup, &results, &devices, &[], &gi_results)?;
     staging.publish(args.force)?;
     say!(
-        "report: {}, {} configurations each, in {:.1} s; wrote {} and {}",
+        "report: {}, {} configurations in all, in {:.1} s; wrote {} and {}",
         counted(results.len(), "scene"),
-        planned.len(),
+        results.iter().map(|r| r.rows.len()).sum::<usize>(),
         started.elapsed().as_secs_f64(),
         args.out.join("report.md").display(),
         args.out.join("report.csv").display()
@@ -370,10 +378,10 @@ fn merge(args: &ReportArgs, started: Instant) -> anyhow::Result<()> {
     write_outputs(out, &setup, &results, &devices, &machines, &gi_results)?;
     staging.publish(args.force)?;
     say!(
-        "report: {} merged, {}, {} configurations each, in {:.1} s; wrote {} and {}",
+        "report: {} merged, {}, {} configurations in all, in {:.1} s; wrote {} and {}",
         counted(devices.len(), "shard"),
         counted(results.len(), "scene"),
-        planned.len(),
+        results.iter().map(|r| r.rows.len()).sum::<usize>(),
         started.elapsed().as_secs_f64(),
         args.out.join("report.md").display(),
         args.out.join("report.csv").display()

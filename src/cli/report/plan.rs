@@ -2,7 +2,7 @@
 //! deduplicated (a configuration that two sweeps share is measured once and tagged with both).
 
 use glint_core::Backend;
-use glint_scene::EpsilonMode;
+use glint_scene::{EpsilonMode, Integrator};
 use serde::{Deserialize, Serialize};
 
 /// The bailout thresholds of the sweep, kept symbolic so that tables can print "1/255".
@@ -103,6 +103,18 @@ impl Config {
 pub struct Planned {
     pub config: Config,
     pub groups: Vec<Group>,
+}
+
+impl Planned {
+    /// Whether a scene traced by `integrator` is measured at this configuration. Paths end by
+    /// Russian roulette, which the bailout does not change, so a path scene leaves out the rows
+    /// that are in the sweep only to vary the bailout: each would time the grid's render again.
+    pub fn measured_for(&self, integrator: Integrator) -> bool {
+        match integrator {
+            Integrator::Whitted => true,
+            Integrator::Path => self.groups != [Group::Bailout],
+        }
+    }
 }
 
 /// The axes of the sweeps.
@@ -275,5 +287,17 @@ mod tests {
         let r = rows.iter().find(|p| p.config == plan.reference()).expect("reference row");
         assert_eq!(r.groups, vec![Group::Reference]);
         assert_eq!((r.config.spp, r.config.depth, r.config.bailout), (64, 16, Bailout::Off));
+    }
+
+    #[test]
+    fn path_scenes_leave_out_the_rows_that_only_vary_the_bailout() {
+        let plan = Plan::full(64);
+        let rows = plan.configs(&[Backend::Cpu]);
+        let path: Vec<&Planned> = rows.iter().filter(|p| p.measured_for(Integrator::Path)).collect();
+        assert!(rows.iter().all(|p| p.measured_for(Integrator::Whitted)));
+        // bailout 0 and 1/32 at spp {1, 4} × depth {5, 8}; the 1/255 rows are the grid's.
+        assert_eq!(rows.len() - path.len(), 8);
+        assert!(path.iter().all(|p| p.config.bailout == Bailout::Per255 || p.groups.contains(&Group::Reference)));
+        assert!(path.iter().any(|p| p.groups.contains(&Group::Bailout)), "the grid rows of the bailout sweep stay");
     }
 }

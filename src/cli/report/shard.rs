@@ -385,7 +385,10 @@ pub fn join(files: &mut [ShardFile], planned: &[Planned]) -> anyhow::Result<Vec<
         j.rows.sort_by_key(|r| position(&r.config));
         let measured: Vec<usize> = j.rows.iter().map(|r| position(&r.config)).collect();
         let scene = names.iter().position(|n| *n == j.name);
-        let short = (0..planned.len()).find(|i| measured.iter().filter(|m| *m == i).count() != 1);
+        // A path scene leaves out the rows that only vary the bailout (`Planned::measured_for`).
+        let expected: Vec<usize> =
+            (0..planned.len()).filter(|&i| planned[i].measured_for(j.settings.integrator)).collect();
+        let short = expected.iter().copied().find(|i| measured.iter().filter(|m| *m == i).count() != 1);
         if let Some(i) = short {
             let what = format!("{} {}", planned[i].config.backend.name(), planned[i].config.describe());
             let owner = scene.and_then(|s| owners.get(s)).and_then(|o| o.get(i)).copied();
@@ -404,14 +407,14 @@ pub fn join(files: &mut [ShardFile], planned: &[Planned]) -> anyhow::Result<Vec<
                 ),
             }
         }
-        if measured != (0..planned.len()).collect::<Vec<_>>() || j.specular.is_empty() {
+        if measured != expected || j.specular.is_empty() {
             bail!(
                 "scene {} has {} rows in the shards, not the sweep's {} configurations once each with its \
                  specular models ({} rows): a shard's file was edited or cut short; run that shard again; nothing was \
                  written",
                 j.name,
                 j.rows.len(),
-                planned.len(),
+                expected.len(),
                 j.specular.len()
             );
         }

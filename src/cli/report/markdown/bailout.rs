@@ -25,8 +25,8 @@ pub fn bailout_summary(md: &mut String, scenes: &[SceneResult]) {
     let _ = writeln!(md, "| scene | backend | rays per pixel | render ms | RMSE |");
     let _ = writeln!(md, "|---|---|--:|--:|--:|");
     let px = |s: &SceneResult| s.pixels() as f64;
-    // Paths end by Russian roulette; the bailout prunes Whitted's tree only, so a path scene's
-    // bailout rows are one render three times, not a saving.
+    // Paths end by Russian roulette; the bailout prunes Whitted's tree only, so the sweep leaves
+    // out a path scene's bailout rows (`Planned::measured_for`).
     let (paths, whitted): (Vec<&SceneResult>, Vec<&SceneResult>) =
         scenes.iter().partition(|s| s.settings.integrator == Integrator::Path);
     for s in whitted {
@@ -52,12 +52,12 @@ pub fn bailout_summary(md: &mut String, scenes: &[SceneResult]) {
     let _ = writeln!(md);
     if !paths.is_empty() {
         let names: Vec<&str> = paths.iter().map(|s| s.name.as_str()).collect();
-        let its =
-            if names.len() == 1 { "its bailout rows are one render" } else { "each one's bailout rows are one render" };
+        let its = if names.len() == 1 { "its" } else { "their" };
         let _ = writeln!(
             md,
             "Left out: {}, whose paths end by Russian roulette, which the bailout does not change \
-             (`glint render --integrator path --bailout` is refused); {its}.\n",
+             (`glint render --integrator path --bailout` is refused): the sweep renders {its} bailout 1/255 \
+             rows only, which are the grid's.\n",
             names.join(", ")
         );
     }
