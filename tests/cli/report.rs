@@ -627,6 +627,54 @@ fn report_shards_merge_into_the_one_machine_report_and_missing_ones_are_named() 
     };
     let done = edited(&absurd, "absurd");
     assert!(done.status.success(), "{}", text(&done.stderr));
+    // A shard of another glint is refused by its format, not read with its missing fields as
+    // empty columns (an older shard's once merged with blank ambient columns).
+    for (edit, said) in [
+        (None, "no shard format (a glint from before shard formats), glint 0.1.0"),
+        (Some(toml::Value::Integer(99)), "shard format 99, glint 0.1.0"),
+    ] {
+        let done = edited(
+            &|s| match &edit {
+                Some(v) => drop(s.insert("format".into(), v.clone())),
+                None => drop(s.remove("format")),
+            },
+            "old",
+        );
+        let stderr = text(&done.stderr);
+        assert!(!done.status.success() && stderr.contains(said), "{stderr}");
+        assert!(stderr.contains("this glint merges shard format 1 only"), "{stderr}");
+        assert!(!dir.join("old/report.csv").exists(), "a refused merge wrote a report");
+    }
+    // What a shard writes is its format: a change to it must bump `SHARD_FORMAT` (src/cli/report/
+    // shard.rs) and re-record this list (GLINT_RECORD_SHARD_KEYS=1).
+    let mut keys = std::collections::BTreeSet::new();
+    shard_keys(&toml::Value::Table(cut.parse().expect("TOML")), "", &mut keys);
+    let listed: Vec<String> = keys.into_iter().collect();
+    let golden = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/golden/shard-keys.txt");
+    if std::env::var_os("GLINT_RECORD_SHARD_KEYS").is_some() {
+        std::fs::write(golden, listed.join("\n") + "\n").expect("record shard keys");
+    }
+    let recorded = std::fs::read_to_string(golden).expect("tests/golden/shard-keys.txt");
+    assert_eq!(
+        recorded.lines().collect::<Vec<_>>(),
+        listed,
+        "a shard's keys changed: bump SHARD_FORMAT and re-record with GLINT_RECORD_SHARD_KEYS=1"
+    );
+}
+
+/// Every key path of a shard file ("results[].rows[].config.spp"), arrays' elements merged.
+fn shard_keys(value: &toml::Value, at: &str, keys: &mut std::collections::BTreeSet<String>) {
+    match value {
+        toml::Value::Table(t) => {
+            for (k, v) in t {
+                let path = if at.is_empty() { k.clone() } else { format!("{at}.{k}") };
+                keys.insert(path.clone());
+                shard_keys(v, &path, keys);
+            }
+        }
+        toml::Value::Array(a) => a.iter().for_each(|v| shard_keys(v, &format!("{at}[]"), keys)),
+        _ => {}
+    }
 }
 
 #[test]

@@ -261,6 +261,7 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
     let machine = machine::Machine::probe();
     if let Some(spec) = args.shard {
         let file = shard::ShardFile {
+            format: shard::SHARD_FORMAT,
             glint: env!("CARGO_PKG_VERSION").to_string(),
             shard: spec.index,
             count: spec.count,

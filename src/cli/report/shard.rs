@@ -89,9 +89,16 @@ pub fn assign(scenes: usize, planned: &[Planned], pixels: u64, runs: u32, count:
     (0..scenes).map(|scene| heads.iter().map(|&first| owner[&(scene, first)]).collect()).collect()
 }
 
+/// The layout of `shard-I-of-N.toml`. Bump it with any change to what a shard writes (the
+/// `ShardFile` and every type in it; tests/golden/shard-keys.txt lists its keys): the merge
+/// refuses a shard of another format instead of reading fields it lacks as empty.
+pub const SHARD_FORMAT: u32 = 1;
+
 /// What a shard writes: the sweep it is part of, its machine, and its rows.
 #[derive(Debug, Serialize, Deserialize)]
 pub struct ShardFile {
+    /// `SHARD_FORMAT` of the glint that wrote it.
+    pub format: u32,
     pub glint: String,
     pub shard: u32,
     pub count: u32,
@@ -105,7 +112,6 @@ pub struct ShardFile {
     pub scenes: Vec<String>,
     /// Each scene's content hash as the tracers read it (`FlatScene::content_hash`), in the
     /// same order: a scene file or texture edited between two shards' runs is another sweep.
-    #[serde(default)]
     pub scene_hashes: Vec<String>,
     pub backends: Vec<Backend>,
     pub cpu_device: String,
@@ -114,7 +120,6 @@ pub struct ShardFile {
     pub results: Vec<SceneResult>,
     /// Whitted against the path-traced reference, for the scenes whose first configuration
     /// this shard has.
-    #[serde(default)]
     pub gi: Vec<super::gi::GiResult>,
     /// Where the merge read it from (not written): what its messages name.
     #[serde(skip)]
@@ -263,6 +268,7 @@ pub fn read_all(dirs: &[PathBuf]) -> anyhow::Result<Vec<ShardFile>> {
         names.sort();
         for path in names {
             let text = std::fs::read_to_string(&path).with_context(|| format!("cannot read {}", path.display()))?;
+            check_format(&path, &text)?;
             let mut file: ShardFile = toml::from_str(&text)
                 .with_context(|| format!("{}: not a shard of `glint report --shard`", path.display()))?;
             file.path.clone_from(&path);
@@ -323,16 +329,36 @@ pub fn read_all(dirs: &[PathBuf]) -> anyhow::Result<Vec<ShardFile>> {
     Ok(files)
 }
 
-/// Why two shards with the same scene names are not of the same scenes, if they are not: a
-/// scene whose content hash differs, or a shard that records none (an older glint's).
-fn changed_scene(first: &ShardFile, other: &ShardFile) -> Option<String> {
-    if first.scene_hashes.len() != other.scene_hashes.len() {
-        return Some(
-            "one of them records no scene contents (a shard of an older glint): run every shard with one glint".into(),
-        );
+/// An error unless `text` (the file at `path`) is a shard of this glint's `SHARD_FORMAT`. Read
+/// before the whole file, whose fields another format may lack or name otherwise.
+fn check_format(path: &Path, text: &str) -> anyhow::Result<()> {
+    #[derive(Deserialize)]
+    struct Head {
+        format: Option<toml::Value>,
+        glint: Option<String>,
     }
-    let differs = |i: &usize| first.scene_hashes[*i] != other.scene_hashes[*i];
-    let i = (0..other.scenes.len().min(other.scene_hashes.len())).find(differs)?;
+    let Ok(head) = toml::from_str::<Head>(text) else {
+        // Not TOML or not a table: the full read names what is wrong.
+        return Ok(());
+    };
+    let format = match &head.format {
+        Some(toml::Value::Integer(n)) if *n == i64::from(SHARD_FORMAT) => return Ok(()),
+        Some(v) => format!("shard format {v}"),
+        None => "no shard format (a glint from before shard formats)".to_string(),
+    };
+    let glint = head.glint.map_or_else(String::new, |v| format!(", glint {v}"));
+    bail!(
+        "{}: written by another glint ({format}{glint}); this glint merges shard format {SHARD_FORMAT} only: run \
+         that shard again with this glint; nothing was written",
+        path.display()
+    )
+}
+
+/// Why two shards with the same scene names are not of the same scenes, if they are not: a
+/// scene whose content hash differs.
+fn changed_scene(first: &ShardFile, other: &ShardFile) -> Option<String> {
+    let differs = |i: &usize| first.scene_hashes.get(*i) != other.scene_hashes.get(*i);
+    let i = (0..other.scenes.len()).find(differs)?;
     Some(format!(
         "scene {} differs between them (its content hash, `glint:scene_hash` in a render's metadata): the scene or its \
          textures changed between the shards' runs, so render every shard of the same files again",

@@ -116,7 +116,6 @@ pub struct SpecularRow {
     pub counts: RayCounts,
     pub gpu: Option<GpuExtra>,
     /// The shard that timed it (`--shard`), as a row's.
-    #[serde(default)]
     pub shard: Option<u32>,
 }
 

@@ -28,21 +28,16 @@ pub struct KindSplit {
     pub direct_rmse: f64,
     /// What the ambient as written adds, as a share of the split's light.
     pub ambient_share: f64,
-    /// The split's light, the four kinds' means summed (`None` from a shard of a glint that did
-    /// not say): black paths have no shares.
-    #[serde(default)]
-    pub paths_mean: Option<f64>,
+    /// The split's light, the four kinds' means summed: black paths have no shares.
+    pub paths_mean: f64,
     /// The RMS difference of what the ambient as written adds from the indirect light the paths
     /// bring (all kinds but the direct): the error of the ambient as the stand-in it is, which
-    /// is the largest part where it adds more than that light (`None` from an older shard).
-    #[serde(default)]
-    pub ambient_rmse: Option<f64>,
+    /// is the largest part where it adds more than that light.
+    pub ambient_rmse: f64,
     /// Whitted's RMSE with the ambient as written, for scale.
     pub whitted_rmse: f64,
-    /// What makes Whitted's direct light differ from the paths' in this scene (`None` from a
-    /// shard of a glint that did not say).
-    #[serde(default)]
-    pub direct_causes: Option<Vec<String>>,
+    /// What makes Whitted's direct light differ from the paths' in this scene.
+    pub direct_causes: Vec<String>,
 }
 
 /// `a − b`, pixel by pixel.
@@ -94,10 +89,10 @@ pub(super) fn split_by_kind(
     split.share = means.map(|m| m / paths_mean.max(f64::MIN_POSITIVE));
     split.direct_rmse = rms_difference(&without.pixels, &direct.expect("the direct kind is rendered").pixels);
     split.ambient_share = ambient.mean() / paths_mean.max(f64::MIN_POSITIVE);
-    split.paths_mean = Some(paths_mean);
-    split.ambient_rmse = Some(rms(&ambient_less_indirect.pixels));
+    split.paths_mean = paths_mean;
+    split.ambient_rmse = rms(&ambient_less_indirect.pixels);
     split.whitted_rmse = compare_images(reference, written).rmse;
-    split.direct_causes = Some(direct_causes(&loaded.desc));
+    split.direct_causes = direct_causes(&loaded.desc);
     Ok(split)
 }
 
@@ -123,14 +118,13 @@ fn direct_causes(desc: &glint_scene::SceneDesc) -> Vec<String> {
 pub fn kinds_sentence(g: &GiResult) -> String {
     let k = &g.kinds;
     let pct = |v: f64| format!("{:.0} %", 100.0 * v);
-    let direct = match k.direct_causes.as_deref() {
-        None => "its direct light differing from the paths'".to_string(),
-        Some([]) => {
+    let direct = match k.direct_causes.as_slice() {
+        [] => {
             "its direct light differing from the paths' (by their noise alone: lights are the same in both)".to_string()
         }
-        Some(causes) => format!("its direct light differing from the paths' ({})", causes.join("; ")),
+        causes => format!("its direct light differing from the paths' ({})", causes.join("; ")),
     };
-    let black = k.paths_mean.is_some_and(|m| m <= 0.0);
+    let black = k.paths_mean <= 0.0;
     let indirect_share = k.share[1] + k.share[2] + k.share[3];
     let kinds = [
         ("the indirect diffuse light it has no term for", k.rms[1]),
@@ -142,29 +136,23 @@ pub fn kinds_sentence(g: &GiResult) -> String {
     // light is what the ambient stands in for: one part, the ambient's difference from it (an
     // ambient matching it well leaves little), named for the ambient where it adds more light
     // than that, else for the kinds it leaves out.
-    let parts: Vec<(String, f64)> = match k.ambient_rmse {
-        Some(rmse) if k.ambient_share > 0.0 => {
-            let over = black || k.ambient_share > indirect_share;
-            let indirect = if over {
-                "its ambient term as written, I_a·k_a, which adds more light than the indirect light it stands in \
+    let parts: Vec<(String, f64)> = if k.ambient_share > 0.0 {
+        let over = black || k.ambient_share > indirect_share;
+        let indirect = if over {
+            "its ambient term as written, I_a·k_a, which adds more light than the indirect light it stands in \
                  for"
-                .to_string()
-            } else {
-                format!("the indirect light its ambient term as written leaves out, mostly {largest_kind}")
-            };
-            vec![(direct, k.direct_rmse), (indirect, rmse)]
-        }
-        // An older shard, or no ambient.
-        Some(_) | None => {
-            std::iter::once((direct, k.direct_rmse)).chain(kinds.iter().map(|(n, v)| (n.to_string(), *v))).collect()
-        }
+            .to_string()
+        } else {
+            format!("the indirect light its ambient term as written leaves out, mostly {largest_kind}")
+        };
+        vec![(direct, k.direct_rmse), (indirect, k.ambient_rmse)]
+    } else {
+        std::iter::once((direct, k.direct_rmse)).chain(kinds.iter().map(|(n, v)| (n.to_string(), *v))).collect()
     };
-    let ambient = match k.ambient_rmse {
-        Some(rmse) => {
-            format!("; what its ambient as written adds differs from the paths' indirect light by RMS {rmse:.3e}")
-        }
-        None => String::new(),
-    };
+    let ambient = format!(
+        "; what its ambient as written adds differs from the paths' indirect light by RMS {:.3e}",
+        k.ambient_rmse
+    );
     let shares = if black {
         let ambient = if k.ambient_share > 0.0 { "; the ambient as written adds light to it" } else { "" };
         format!("The paths' image is black (no light reaches the camera), so it has no shares by kind{ambient}.")
@@ -241,10 +229,10 @@ mod tests {
             rms: [0.1, 0.0, 0.0, 0.0],
             direct_rmse: 0.0157,
             ambient_share: 10.09,
-            paths_mean: Some(0.08),
-            ambient_rmse: Some(0.866),
+            paths_mean: 0.08,
+            ambient_rmse: 0.866,
             whitted_rmse: 0.868,
-            direct_causes: Some(Vec::new()),
+            direct_causes: Vec::new(),
         };
         let said = kinds_sentence(&with_kinds(over.clone()));
         assert!(said.contains("is mostly its ambient term as written"), "{said}");
@@ -254,7 +242,7 @@ mod tests {
             share: [0.5, 0.4, 0.05, 0.05],
             rms: [0.1, 0.2, 0.01, 0.01],
             ambient_share: 0.2,
-            ambient_rmse: Some(0.15),
+            ambient_rmse: 0.15,
             ..over
         };
         let said = kinds_sentence(&with_kinds(under.clone()));
@@ -266,9 +254,9 @@ mod tests {
         );
         // An ambient that matches the indirect light well leaves the direct light the largest,
         // though the indirect light alone is larger.
-        let matched = KindSplit { direct_rmse: 0.1, ambient_share: 0.45, ambient_rmse: Some(0.02), ..under.clone() };
+        let matched = KindSplit { direct_rmse: 0.1, ambient_share: 0.45, ambient_rmse: 0.02, ..under.clone() };
         assert!(kinds_sentence(&with_kinds(matched)).contains("is mostly its direct light"));
-        let none = KindSplit { ambient_share: 0.0, ambient_rmse: Some(0.2), ..under.clone() };
+        let none = KindSplit { ambient_share: 0.0, ambient_rmse: 0.2, ..under.clone() };
         let said = kinds_sentence(&with_kinds(none));
         assert!(said.contains("is mostly the indirect diffuse light it has no term for"), "{said}");
         // A black reference (no light, an ambient): no shares, no division by its zero mean.
@@ -277,8 +265,8 @@ mod tests {
             rms: [0.0; 4],
             direct_rmse: 0.0,
             ambient_share: 0.5 / f64::MIN_POSITIVE,
-            paths_mean: Some(0.0),
-            ambient_rmse: Some(0.2165),
+            paths_mean: 0.0,
+            ambient_rmse: 0.2165,
             ..under
         };
         let said = kinds_sentence(&with_kinds(black.clone()));
@@ -286,7 +274,7 @@ mod tests {
         assert!(!said.contains("inf") && !said.contains(" %"), "{said}");
         // Black paths and no ambient (a tester's scene): Whitted is exact, and nothing is "mostly"
         // a part of an error of 0, nor does an ambient of 0 add light.
-        let dark = KindSplit { ambient_share: 0.0, ambient_rmse: Some(0.0), whitted_rmse: 0.0, ..black };
+        let dark = KindSplit { ambient_share: 0.0, ambient_rmse: 0.0, whitted_rmse: 0.0, ..black };
         let said = kinds_sentence(&with_kinds(dark));
         assert!(said.starts_with("Whitted's image is the reference exactly (RMSE 0"), "{said}");
         assert!(!said.contains("mostly") && !said.contains("adds light"), "{said}");

@@ -52,7 +52,6 @@ pub struct GiRow {
     /// Whitted's rows only.
     pub ambient: Option<Ambient>,
     /// The I_a a Whitted row rendered with: as written, 0, or fitted at its own depth and samples.
-    #[serde(default)]
     pub ambient_rgb: Option<[f64; 3]>,
     pub median: Duration,
     pub rmse: f64,
@@ -69,21 +68,15 @@ pub struct GiResult {
     /// at its depth and samples, `GiRow::ambient_rgb`).
     pub fitted: [f64; 3],
     /// Whether the ambient term changes Whitted's image at all (a material in view has k_a).
-    #[serde(default = "yes")]
     pub fit_determined: bool,
     /// Validation's warning that materials return more light than they receive under paths:
     /// the reference then grows with its depth.
-    #[serde(default)]
     pub gain_warning: Option<String>,
     pub written: [f64; 3],
     pub rows: Vec<GiRow>,
     /// The shard of `glint report --shard` that measured it (`None` in a one-machine run).
     pub shard: Option<u32>,
     pub kinds: KindSplit,
-}
-
-fn yes() -> bool {
-    true
 }
 
 mod kinds;
