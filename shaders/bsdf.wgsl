@@ -5,6 +5,9 @@
 
 #import glint::sample::{FRAC_1_PI, cosine_hemisphere, cosine_hemisphere_pdf, power_cosine, power_cosine_pdf, reflect_about, reflected_pdf, to_world}
 #import glint::shade::safe_pow
+#ifdef SPECULAR
+#import glint::scene_data::{GpuMaterial, SPECULAR_PHONG, SPECULAR_COOK_TORRANCE}
+#endif
 #ifdef COOK_TORRANCE
 #import glint::scene_data::FRESNEL_SCHLICK
 #import glint::sample::{beckmann_normal, beckmann_normal_pdf}
@@ -107,5 +110,62 @@ fn cook_torrance_pdf(wo: vec3<f32>, wi: vec3<f32>, m: f32) -> f32 {
         return 0.0;
     }
     return reflected_pdf(beckmann_normal_pdf(h.z, m), dot(wo, h.xyz));
+}
+#endif
+
+#ifdef SPECULAR
+// The glossy lobe's BRDF per unit k_s, for the material's specular model.
+fn glossy_brdf(mat: GpuMaterial, wo: vec3<f32>, wi: vec3<f32>) -> f32 {
+#ifdef PHONG
+    if mat.specular_model == SPECULAR_PHONG {
+        return phong_brdf(wo, wi, mat.shininess);
+    }
+#endif
+#ifdef COOK_TORRANCE
+    if mat.specular_model == SPECULAR_COOK_TORRANCE {
+        return cook_torrance_brdf(wo, wi, mat.roughness, mat.ior, mat.fresnel);
+    }
+#endif
+#ifdef BLINN
+    return blinn_brdf(wo, wi, mat.shininess);
+#else
+    return 0.0;
+#endif
+}
+
+fn sample_glossy(mat: GpuMaterial, wo: vec3<f32>, u: vec2<f32>) -> vec3<f32> {
+#ifdef PHONG
+    if mat.specular_model == SPECULAR_PHONG {
+        return sample_phong(wo, u, mat.shininess);
+    }
+#endif
+#ifdef COOK_TORRANCE
+    if mat.specular_model == SPECULAR_COOK_TORRANCE {
+        return sample_cook_torrance(wo, u, mat.roughness);
+    }
+#endif
+#ifdef BLINN
+    return sample_blinn(wo, u, mat.shininess);
+#else
+    return vec3<f32>(0.0);
+#endif
+}
+
+fn glossy_pdf(mat: GpuMaterial, wo: vec3<f32>, wi: vec3<f32>) -> f32 {
+#ifdef PHONG
+    if mat.specular_model == SPECULAR_PHONG {
+        return phong_pdf(wo, wi, mat.shininess);
+    }
+#endif
+#ifdef COOK_TORRANCE
+    if mat.specular_model == SPECULAR_COOK_TORRANCE {
+        return cook_torrance_pdf(wo, wi, mat.roughness);
+    }
+#endif
+#ifdef BLINN
+    return blinn_pdf(wo, wi, mat.shininess);
+#else
+    return 0.0;
+#endif
 }
 #endif

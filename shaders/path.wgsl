@@ -8,13 +8,13 @@
 // pixel's next sample starts in its place at once (path regeneration, Novák et al. 2010), so
 // that the lanes of a workgroup stay busy while their paths' lengths differ. A pixel done with
 // the batch counts itself in STAT_PIXELS_DONE, which the host reads to know when to stop.
-#import glint::scene_data::{GpuMaterial, GpuPathState, NO_HIT, PATH_DIRECT, PATH_INDIRECT, PATH_CAUSTIC, PATH_REST, HISTORY_NON_DELTA, HISTORY_DELTA_AFTER, LIGHT_CASTS_SHADOWS, PRIM_REF_TRIANGLE, PRIM_REF_INDEX, SPECULAR_PHONG, SPECULAR_COOK_TORRANCE, STATUS_DRIVER_LOOP_CUTOFF, STAT_PIXELS_DONE}
-#import glint::bindings::{header, camera, tile, materials, lights, spheres, triangles, output, stats, path_states, emitters}
+#import glint::scene_data::{GpuPathState, NO_HIT, PATH_DIRECT, PATH_INDIRECT, PATH_CAUSTIC, PATH_REST, HISTORY_NON_DELTA, HISTORY_DELTA_AFTER, LIGHT_CASTS_SHADOWS, STATUS_DRIVER_LOOP_CUTOFF, STAT_PIXELS_DONE}
+#import glint::bindings::{header, camera, tile, materials, lights, output, stats, path_states, emitters}
 #import glint::ray::{Ray, RayCounts, ray_counts, status, driver_cut_loops, flush_counts}
 #import glint::rng::{sample_hash, hash_to_unit}
 #import glint::camera::{camera_ray, sample_offset}
 #import glint::ray::FAR
-#import glint::intersect::{Hit, Leaving, PRIM_NONE, PRIM_SPHERE, PRIM_TRIANGLE, triangle_corners, all_zero}
+#import glint::intersect::{Leaving, PRIM_NONE, all_zero}
 #ifdef BVH
 #import glint::bvh::closest_hit
 #else
@@ -32,17 +32,12 @@
 #ifdef TRANSMISSION
 #import glint::surface::refract_dir
 #endif
-#import glint::sample::{PI, frame_x, frame_y, to_world, cosine_hemisphere, cosine_hemisphere_pdf, cone_versin, uniform_cone, uniform_cone_pdf, uniform_triangle, area_to_solid_angle, power_heuristic}
+#import glint::sample::{PI, frame_x, frame_y, to_world, cosine_hemisphere, cosine_hemisphere_pdf, power_heuristic}
 #import glint::bsdf::lambert_brdf
-#ifdef BLINN
-#import glint::bsdf::{blinn_brdf, blinn_pdf, sample_blinn}
+#ifdef SPECULAR
+#import glint::bsdf::{glossy_brdf, sample_glossy, glossy_pdf}
 #endif
-#ifdef PHONG
-#import glint::bsdf::{phong_brdf, phong_pdf, sample_phong}
-#endif
-#ifdef COOK_TORRANCE
-#import glint::bsdf::{cook_torrance_brdf, cook_torrance_pdf, sample_cook_torrance}
-#endif
+#import glint::emitter::{NO_EMITTER, of_hit, emitter_pdf, sample_emitter}
 
 // Random dimensions per bounce, and the camera's two before them (cpu::path's).
 const DIMS_PER_BOUNCE: u32 = 8u;
@@ -50,8 +45,6 @@ const FIRST_PATH_DIM: u32 = 2u;
 // Rays traced in full before Russian roulette (the camera's and two bounces'), and the most a path survives it with.
 const ROULETTE_FROM: u32 = 3u;
 const MAX_SURVIVAL: f32 = 0.95;
-// What of_hit gives for a plane or a miss: nothing next-event estimation samples.
-const NO_EMITTER: u32 = 0xffffffffu;
 
 // A path between bounces (cpu::path::PathState); GpuPathState is its stored form.
 struct PathState {
@@ -112,131 +105,6 @@ struct Lobes {
     ks: vec3<f32>,
     weights: vec4<f32>,
     material: u32,
-}
-
-#ifdef SPECULAR
-// The glossy lobe's BRDF per unit k_s, for the material's specular model.
-fn glossy_brdf(mat: GpuMaterial, wo: vec3<f32>, wi: vec3<f32>) -> f32 {
-#ifdef PHONG
-    if mat.specular_model == SPECULAR_PHONG {
-        return phong_brdf(wo, wi, mat.shininess);
-    }
-#endif
-#ifdef COOK_TORRANCE
-    if mat.specular_model == SPECULAR_COOK_TORRANCE {
-        return cook_torrance_brdf(wo, wi, mat.roughness, mat.ior, mat.fresnel);
-    }
-#endif
-#ifdef BLINN
-    return blinn_brdf(wo, wi, mat.shininess);
-#else
-    return 0.0;
-#endif
-}
-
-fn sample_glossy(mat: GpuMaterial, wo: vec3<f32>, u: vec2<f32>) -> vec3<f32> {
-#ifdef PHONG
-    if mat.specular_model == SPECULAR_PHONG {
-        return sample_phong(wo, u, mat.shininess);
-    }
-#endif
-#ifdef COOK_TORRANCE
-    if mat.specular_model == SPECULAR_COOK_TORRANCE {
-        return sample_cook_torrance(wo, u, mat.roughness);
-    }
-#endif
-#ifdef BLINN
-    return sample_blinn(wo, u, mat.shininess);
-#else
-    return vec3<f32>(0.0);
-#endif
-}
-
-fn glossy_pdf(mat: GpuMaterial, wo: vec3<f32>, wi: vec3<f32>) -> f32 {
-#ifdef PHONG
-    if mat.specular_model == SPECULAR_PHONG {
-        return phong_pdf(wo, wi, mat.shininess);
-    }
-#endif
-#ifdef COOK_TORRANCE
-    if mat.specular_model == SPECULAR_COOK_TORRANCE {
-        return cook_torrance_pdf(wo, wi, mat.roughness);
-    }
-#endif
-#ifdef BLINN
-    return blinn_pdf(wo, wi, mat.shininess);
-#else
-    return 0.0;
-#endif
-}
-#endif
-
-// The emitter a hit is on (a sphere's index, or PRIM_REF_TRIANGLE | a triangle's), if its
-// material emits; NO_EMITTER for planes, which are not sampled, and misses.
-fn of_hit(hit: Hit) -> u32 {
-    if hit.prim == PRIM_SPHERE {
-        return hit.index;
-    }
-    if hit.prim == PRIM_TRIANGLE {
-        return PRIM_REF_TRIANGLE | hit.index;
-    }
-    return NO_EMITTER;
-}
-
-// The density per unit solid angle at p with which next-event estimation picks the point q
-// (geometric normal ng_q) of emitter e, one of count.
-fn emitter_pdf(e: u32, count: u32, p: vec3<f32>, q: vec3<f32>, ng_q: vec3<f32>) -> f32 {
-    let pick = 1.0 / f32(count);
-#ifdef SPHERES
-    if (e & PRIM_REF_TRIANGLE) == 0u {
-        let cr = spheres[e].center_radius;
-        let to_c = cr.xyz - p;
-        let d2 = dot(to_c, to_c);
-        if d2 <= cr.w * cr.w {
-            return 0.0;
-        }
-        return pick * uniform_cone_pdf(cone_versin(cr.w * cr.w / d2));
-    }
-#endif
-#ifdef TRIANGLES
-    let v = triangle_corners(triangles[e & PRIM_REF_INDEX]);
-    let area = 0.5 * length(cross(v[1] - v[0], v[2] - v[0]));
-    let to_q = q - p;
-    let dist = length(to_q);
-    // A ray met the emitter where it left (ε = 0 on a triangle's edge): no density.
-    if dist == 0.0 {
-        return 0.0;
-    }
-    return pick * area_to_solid_angle(1.0 / area, dist, dot(ng_q, to_q / dist));
-#else
-    return 0.0;
-#endif
-}
-
-// A direction from p towards a point of emitter e (xyz), drawn as emitter_pdf says; w is 0
-// where there is none (p inside the sphere, or on the triangle's point).
-fn sample_emitter(e: u32, p: vec3<f32>, u: vec2<f32>) -> vec4<f32> {
-#ifdef SPHERES
-    if (e & PRIM_REF_TRIANGLE) == 0u {
-        let cr = spheres[e].center_radius;
-        let to_c = cr.xyz - p;
-        let d2 = dot(to_c, to_c);
-        if d2 <= cr.w * cr.w {
-            return vec4<f32>(0.0);
-        }
-        return vec4<f32>(to_world(to_c / sqrt(d2), uniform_cone(u, cone_versin(cr.w * cr.w / d2))), 1.0);
-    }
-#endif
-#ifdef TRIANGLES
-    let v = triangle_corners(triangles[e & PRIM_REF_INDEX]);
-    let bary = uniform_triangle(u);
-    let q = v[0] + bary.x * (v[1] - v[0]) + bary.y * (v[2] - v[0]);
-    let len = length(q - p);
-    if len > 0.0 {
-        return vec4<f32>((q - p) / len, 1.0);
-    }
-#endif
-    return vec4<f32>(0.0);
 }
 
 // The path's random number in dimension dim.

@@ -2,7 +2,8 @@
 //! furnaces, and Whitted's direct light where the two integrators compute the same thing.
 
 use glam::DVec3;
-use glint_core::cpu::path::{Emitters, path_pixel, path_sample};
+use glint_core::cpu::emitter::Emitters;
+use glint_core::cpu::path::{path_pixel, path_sample};
 use glint_core::cpu::{RayCounts, TraceContext};
 use glint_core::{CpuOptions, FlatScene, RenderControl};
 

@@ -19,7 +19,8 @@
 
 use glam::DVec3;
 use glint_core::FlatScene;
-use glint_core::cpu::path::{Emitters, path_sample};
+use glint_core::cpu::emitter::Emitters;
+use glint_core::cpu::path::path_sample;
 use glint_core::cpu::{RayCounts, TraceContext};
 use glint_io::{BUILTIN_SCENES, load_scene};
 use glint_scene::Integrator;

@@ -6,7 +6,8 @@
 use glam::DVec3;
 use glint_types::PathKind;
 
-use crate::cpu::path::{Emitters, path_bounce, start_path};
+use crate::cpu::emitter::Emitters;
+use crate::cpu::path::{path_bounce, start_path};
 use crate::cpu::{RayCounts, TraceContext};
 use crate::flat::FlatScene;
 

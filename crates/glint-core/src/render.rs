@@ -7,7 +7,8 @@ use glam::DVec3;
 use rayon::prelude::*;
 
 pub use crate::cpu::Accel;
-use crate::cpu::path::{Emitters, path_pixel};
+use crate::cpu::emitter::Emitters;
+use crate::cpu::path::path_pixel;
 use crate::cpu::ray_tree::{NoTree, RayTree};
 use crate::cpu::shade::Breakdown;
 use crate::cpu::trace::{render_pixel, render_sample};

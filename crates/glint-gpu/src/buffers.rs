@@ -7,7 +7,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use bytemuck::Pod;
 use glint_core::FlatScene;
 use glint_core::bvh::GPU_MAX_TREE_INDEX;
-use glint_core::cpu::path::Emitters;
+use glint_core::cpu::emitter::Emitters;
 use glint_core::flat::{GeometryId, GpuLeafAb, GpuLeafC, fill_gpu_leaves};
 use glint_types::layout::{GpuPathState, ProbeRecord, ProbeTree, STAT_WORDS, TileParams};
 use wgpu::util::DeviceExt;

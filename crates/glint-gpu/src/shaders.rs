@@ -46,7 +46,7 @@ pub const BVH_STACK_SIZE: u32 = 64;
 pub const MAX_TREE_NODES: u32 = LAVAPIPE_LOOP_BUDGET / 1_000 * 1_000;
 
 /// The modules in dependency order: (import path, file name, source).
-pub const SHADER_MODULES: [(&str, &str, &str); 15] = [
+pub const SHADER_MODULES: [(&str, &str, &str); 16] = [
     ("glint::scene_data", "layout.wgsl", include_str!("../../../shaders/layout.wgsl")),
     ("glint::bindings", "bindings.wgsl", include_str!("../../../shaders/bindings.wgsl")),
     ("glint::ray", "ray.wgsl", include_str!("../../../shaders/ray.wgsl")),
@@ -63,6 +63,7 @@ pub const SHADER_MODULES: [(&str, &str, &str); 15] = [
     // The path tracer's warps and BRDFs (path.wgsl imports them).
     ("glint::sample", "sample.wgsl", include_str!("../../../shaders/sample.wgsl")),
     ("glint::bsdf", "bsdf.wgsl", include_str!("../../../shaders/bsdf.wgsl")),
+    ("glint::emitter", "emitter.wgsl", include_str!("../../../shaders/emitter.wgsl")),
 ];
 
 /// The path tracer's entry module (its `start` and bounce `main` kernels).

@@ -6,12 +6,18 @@
 
 use std::collections::{BTreeMap, BTreeSet};
 
-const TWINS: [(&str, &str, &str, &str); 17] = [
+const TWINS: [(&str, &str, &str, &str); 18] = [
     (
         "bsdf.wgsl",
         include_str!("../../../shaders/bsdf.wgsl"),
         "cpu/bsdf.rs",
         include_str!("../../glint-core/src/cpu/bsdf.rs"),
+    ),
+    (
+        "emitter.wgsl",
+        include_str!("../../../shaders/emitter.wgsl"),
+        "cpu/emitter.rs",
+        include_str!("../../glint-core/src/cpu/emitter.rs"),
     ),
     (
         "sample.wgsl",
@@ -284,9 +290,9 @@ const CPU_ONLY: [(&str, &str, &str); 24] = [
         "a path's bounces in a loop; the GPU dispatches its bounce kernel (main) per bounce",
     ),
     ("cpu/path.rs", "path_pixel", "the GPU sums a pixel's samples across dispatches (finish_path)"),
-    ("cpu/path.rs", "of", "Emitters::of, the host's list; the GPU reads the emitter buffer it makes"),
-    ("cpu/path.rs", "of_scene", "Emitters::of_scene, the host's list; the GPU reads the emitter buffer it makes"),
-    ("cpu/path.rs", "gpu_words", "the emitter buffer the host uploads"),
+    ("cpu/emitter.rs", "of", "Emitters::of, the host's list; the GPU reads the emitter buffer it makes"),
+    ("cpu/emitter.rs", "of_scene", "Emitters::of_scene, the host's list; the GPU reads the emitter buffer it makes"),
+    ("cpu/emitter.rs", "gpu_words", "the emitter buffer the host uploads"),
 ];
 
 /// Structs only the GPU side has, and why.
@@ -318,7 +324,7 @@ const CPU_ONLY_STRUCTS: [(&str, &str, &str); 13] = [
          multiplies in visiting order",
     ),
     ("cpu/mod.rs", "TraceContext", "the scene and its decoded header; WGSL reads them from bindings"),
-    ("cpu/path.rs", "Emitters", "the host's emitter list; the GPU reads the buffer of its gpu_words"),
+    ("cpu/emitter.rs", "Emitters", "the host's emitter list; the GPU reads the buffer of its gpu_words"),
     ("cpu/mod.rs", "LightTags", "a light's stored tags decoded into enums once; WGSL compares the u32 fields"),
     ("cpu/mod.rs", "MaterialTags", "a material's stored tags decoded into enums once; WGSL compares the u32 fields"),
     ("cpu/shade.rs", "Breakdown", "the CPU probe's record; the GPU probe writes ProbeRecord (layout.rs)"),

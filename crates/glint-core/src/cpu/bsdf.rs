@@ -19,7 +19,9 @@ use super::sample::{
     reflect_about, reflected_pdf, to_world,
 };
 use super::shade::{beckmann_distribution, fresnel_exact, fresnel_schlick, safe_pow};
-use glint_scene::Fresnel;
+use glint_scene::{Fresnel, SpecularModel};
+use glint_types::MaterialTags;
+use glint_types::layout::GpuMaterial;
 
 /// The half vector of `wo` and `wi`, if they are not opposite.
 fn half_vector(wo: DVec3, wi: DVec3) -> Option<DVec3> {
@@ -129,6 +131,38 @@ pub fn cook_torrance_pdf(wo: DVec3, wi: DVec3, m: f64) -> f64 {
     match half_vector(wo, wi) {
         Some(h) => reflected_pdf(beckmann_normal_pdf(h.z, m), wo.dot(h)),
         None => 0.0,
+    }
+}
+
+/// The glossy lobe's BRDF per unit k_s, for the material's specular model.
+pub fn glossy_brdf(mat: &GpuMaterial, tags: MaterialTags, wo: DVec3, wi: DVec3) -> f64 {
+    let n = f64::from(mat.shininess);
+    match tags.specular {
+        SpecularModel::Blinn => blinn_brdf(wo, wi, n),
+        SpecularModel::Phong => phong_brdf(wo, wi, n),
+        SpecularModel::CookTorrance => {
+            cook_torrance_brdf(wo, wi, f64::from(mat.roughness), f64::from(mat.ior), tags.fresnel)
+        }
+    }
+}
+
+/// A direction from the glossy lobe.
+pub fn sample_glossy(mat: &GpuMaterial, tags: MaterialTags, wo: DVec3, u: DVec2) -> DVec3 {
+    let n = f64::from(mat.shininess);
+    match tags.specular {
+        SpecularModel::Blinn => sample_blinn(wo, u, n),
+        SpecularModel::Phong => sample_phong(wo, u, n),
+        SpecularModel::CookTorrance => sample_cook_torrance(wo, u, f64::from(mat.roughness)),
+    }
+}
+
+/// The density of `sample_glossy` at `wi`.
+pub fn glossy_pdf(mat: &GpuMaterial, tags: MaterialTags, wo: DVec3, wi: DVec3) -> f64 {
+    let n = f64::from(mat.shininess);
+    match tags.specular {
+        SpecularModel::Blinn => blinn_pdf(wo, wi, n),
+        SpecularModel::Phong => phong_pdf(wo, wi, n),
+        SpecularModel::CookTorrance => cook_torrance_pdf(wo, wi, f64::from(mat.roughness)),
     }
 }
 

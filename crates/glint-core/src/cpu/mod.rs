@@ -4,6 +4,7 @@
 pub mod bsdf;
 pub mod bvh;
 pub mod camera;
+pub mod emitter;
 pub mod intersect;
 pub mod offset;
 pub mod path;

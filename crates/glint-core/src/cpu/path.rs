@@ -35,28 +35,20 @@ use std::f64::consts::PI;
 use glam::{DVec2, DVec3, DVec4};
 
 use super::FAR;
-use super::bsdf::{
-    blinn_brdf, blinn_pdf, cook_torrance_brdf, cook_torrance_pdf, lambert_brdf, phong_brdf, phong_pdf, sample_blinn,
-    sample_cook_torrance, sample_phong,
-};
+use super::bsdf::{glossy_brdf, glossy_pdf, lambert_brdf, sample_glossy};
 use super::camera::{camera_ray, sample_offset};
-use super::intersect::{Hit, Leaving, Prim, triangle_corners};
+use super::emitter::{Emitter, Emitters, emitter_pdf, sample_emitter};
+use super::intersect::Leaving;
 use super::offset::{aim_origin, leaving_surface, spawn_ray};
 use super::rng::{hash_to_unit, sample_hash};
-use super::sample::{
-    area_to_solid_angle, cone_versin, cosine_hemisphere, cosine_hemisphere_pdf, frame_x, frame_y, power_heuristic,
-    to_world, uniform_cone, uniform_cone_pdf, uniform_triangle,
-};
+use super::sample::{cosine_hemisphere, cosine_hemisphere_pdf, frame_x, frame_y, power_heuristic, to_world};
 use super::shade::{attenuation_factor, light_sample, light_visibility, material_colours};
 use super::surface::{max_channel, reflect_dir, refract_dir, surface_at};
 use super::walk::closest_hit;
 use super::{Ray, RayCounts, TraceContext, v3};
-use crate::flat::FlatScene;
-use glint_scene::SpecularModel;
-use glint_types::MaterialTags;
 use glint_types::layout::{
-    GpuMaterial, HISTORY_DELTA_AFTER, HISTORY_NON_DELTA, LIGHT_CASTS_SHADOWS, NO_HIT, PATH_CAUSTIC, PATH_DIRECT,
-    PATH_INDIRECT, PATH_REST, PRIM_REF_TRIANGLE, feature,
+    HISTORY_DELTA_AFTER, HISTORY_NON_DELTA, LIGHT_CASTS_SHADOWS, NO_HIT, PATH_CAUSTIC, PATH_DIRECT, PATH_INDIRECT,
+    PATH_REST, feature,
 };
 
 /// Random dimensions per bounce: the lobe, the direction's two, Russian roulette, the emitter
@@ -69,142 +61,6 @@ pub const FIRST_PATH_DIM: u32 = 2;
 pub const ROULETTE_FROM: u32 = 3;
 /// The most a path survives Russian roulette with, so that a path through white walls ends.
 pub const MAX_SURVIVAL: f64 = 0.95;
-
-/// The glossy lobe's BRDF per unit k_s, for the material's specular model.
-pub fn glossy_brdf(mat: &GpuMaterial, tags: MaterialTags, wo: DVec3, wi: DVec3) -> f64 {
-    let n = f64::from(mat.shininess);
-    match tags.specular {
-        SpecularModel::Blinn => blinn_brdf(wo, wi, n),
-        SpecularModel::Phong => phong_brdf(wo, wi, n),
-        SpecularModel::CookTorrance => {
-            cook_torrance_brdf(wo, wi, f64::from(mat.roughness), f64::from(mat.ior), tags.fresnel)
-        }
-    }
-}
-
-/// A direction from the glossy lobe.
-pub fn sample_glossy(mat: &GpuMaterial, tags: MaterialTags, wo: DVec3, u: DVec2) -> DVec3 {
-    let n = f64::from(mat.shininess);
-    match tags.specular {
-        SpecularModel::Blinn => sample_blinn(wo, u, n),
-        SpecularModel::Phong => sample_phong(wo, u, n),
-        SpecularModel::CookTorrance => sample_cook_torrance(wo, u, f64::from(mat.roughness)),
-    }
-}
-
-/// The density of `sample_glossy` at `wi`.
-pub fn glossy_pdf(mat: &GpuMaterial, tags: MaterialTags, wo: DVec3, wi: DVec3) -> f64 {
-    let n = f64::from(mat.shininess);
-    match tags.specular {
-        SpecularModel::Blinn => blinn_pdf(wo, wi, n),
-        SpecularModel::Phong => phong_pdf(wo, wi, n),
-        SpecularModel::CookTorrance => cook_torrance_pdf(wo, wi, f64::from(mat.roughness)),
-    }
-}
-
-/// A primitive that emits: what next-event estimation samples.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Emitter {
-    Sphere(u32),
-    Triangle(u32),
-}
-
-impl Emitter {
-    /// The primitive a hit is on, as an emitter if its material emits (every emissive sphere
-    /// and triangle is in `Emitters`, so no list needs searching); planes are never sampled.
-    fn of_hit(hit: &Hit) -> Option<Self> {
-        match hit.prim {
-            Prim::Sphere => Some(Self::Sphere(hit.index)),
-            Prim::Triangle => Some(Self::Triangle(hit.index)),
-            Prim::Plane => None,
-        }
-    }
-}
-
-/// The emissive spheres and triangles of a scene. Planes emit to the paths that meet them but
-/// are not sampled: they have no finite area.
-#[derive(Clone, Debug, Default)]
-pub struct Emitters {
-    pub list: Vec<Emitter>,
-}
-
-impl Emitters {
-    pub fn of(ctx: &TraceContext) -> Self {
-        Self::of_scene(ctx.scene)
-    }
-
-    pub fn of_scene(scene: &FlatScene) -> Self {
-        let emits = |material: u32| scene.materials[material as usize].emission[..3].iter().any(|&e| e > 0.0);
-        let spheres = (0..scene.spheres.len() as u32).filter(|&i| emits(scene.spheres[i as usize].material));
-        let triangles = (0..scene.triangles.len() as u32)
-            .filter(|&i| emits(scene.meshes[scene.triangles[i as usize].mesh as usize].material));
-        Self { list: spheres.map(Emitter::Sphere).chain(triangles.map(Emitter::Triangle)).collect() }
-    }
-
-    /// The GPU's emitter buffer (path.wgsl): the count, then each sphere's index and each
-    /// triangle's `PRIM_REF_TRIANGLE | index`.
-    pub fn gpu_words(&self) -> Vec<u32> {
-        let refs = self.list.iter().map(|e| match *e {
-            Emitter::Sphere(i) => i,
-            Emitter::Triangle(i) => PRIM_REF_TRIANGLE | i,
-        });
-        std::iter::once(self.list.len() as u32).chain(refs).collect()
-    }
-}
-
-/// The density, per unit solid angle at `p`, with which next-event estimation picks the point
-/// `q` (geometric normal `ng_q`) of `emitter`: the choice of one of `count`, times the cone's or
-/// the area's density. 0 where `p` is inside a sphere (it sees the back faces, which do not emit).
-fn emitter_pdf(ctx: &TraceContext, emitter: Emitter, count: usize, p: DVec3, q: DVec3, ng_q: DVec3) -> f64 {
-    let scene = ctx.scene;
-    let pick = 1.0 / count as f64;
-    match emitter {
-        Emitter::Sphere(i) => {
-            let cr = scene.spheres[i as usize].center_radius;
-            let (c, r) = (v3(cr), f64::from(cr[3]));
-            let d2 = (c - p).length_squared();
-            if d2 <= r * r {
-                return 0.0;
-            }
-            pick * uniform_cone_pdf(cone_versin(r * r / d2))
-        }
-        Emitter::Triangle(i) => {
-            let [a, b, c] = triangle_corners(scene, &scene.triangles[i as usize]);
-            let area = 0.5 * (b - a).cross(c - a).length();
-            let to_q = q - p;
-            let dist = to_q.length();
-            // A ray met the emitter where it left (ε = 0 on a triangle's edge): no direction,
-            // no density (0/0 would make the sample NaN).
-            if dist == 0.0 {
-                return 0.0;
-            }
-            pick * area_to_solid_angle(1.0 / area, dist, ng_q.dot(to_q / dist))
-        }
-    }
-}
-
-/// A direction from `p` towards a point of `emitter`, drawn as `emitter_pdf` says.
-fn sample_emitter(ctx: &TraceContext, emitter: Emitter, p: DVec3, u: DVec2) -> Option<DVec3> {
-    let scene = ctx.scene;
-    match emitter {
-        Emitter::Sphere(i) => {
-            let cr = scene.spheres[i as usize].center_radius;
-            let (c, r) = (v3(cr), f64::from(cr[3]));
-            let to_c = c - p;
-            let d2 = to_c.length_squared();
-            if d2 <= r * r {
-                return None;
-            }
-            Some(to_world(to_c / d2.sqrt(), uniform_cone(u, cone_versin(r * r / d2))))
-        }
-        Emitter::Triangle(i) => {
-            let [a, b, c] = triangle_corners(scene, &scene.triangles[i as usize]);
-            let bary = uniform_triangle(u);
-            let q = a + bary.x * (b - a) + bary.y * (c - a);
-            (q - p).try_normalize()
-        }
-    }
-}
 
 /// A path between bounces: the ray it follows next and what it carries. The GPU keeps one per
 /// pixel in a buffer between its per-bounce dispatches (`GpuPathState`, path.wgsl's
