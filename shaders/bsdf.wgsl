@@ -51,11 +51,18 @@ fn phong_brdf(wo: vec3<f32>, wi: vec3<f32>, exponent: f32) -> f32 {
     return (exponent + 2.0) * 0.5 * FRAC_1_PI * safe_pow(dot(r, wo), exponent);
 }
 
+// n = 0: C(0) = 1/π, Lambert's lobe, drawn as Lambert's (uniform half vectors spread the weights).
 fn sample_blinn(wo: vec3<f32>, u: vec2<f32>, exponent: f32) -> vec3<f32> {
+    if exponent == 0.0 {
+        return cosine_hemisphere(u);
+    }
     return reflect_about(wo, power_cosine(u, exponent));
 }
 
 fn blinn_pdf(wo: vec3<f32>, wi: vec3<f32>, exponent: f32) -> f32 {
+    if exponent == 0.0 {
+        return cosine_hemisphere_pdf(wi.z);
+    }
     let h = half_vector(wo, wi);
     if h.w == 0.0 {
         return 0.0;

@@ -74,14 +74,21 @@ fn power_cosine_follows_its_density() {
 
 #[test]
 fn phong_lobe_follows_its_density() {
-    let (o, n) = (outgoing(), 20.0);
-    assert_passes("Phong lobe", directions(5, |u| sample_phong(o, u, n), |d| phong_pdf(o, d, n)));
+    let o = outgoing();
+    // n = 0 is Lambert's lobe, drawn as Lambert's.
+    for (seed, n) in [(5, 20.0), (12, 0.0)] {
+        let r = directions(seed, |u| sample_phong(o, u, n), |d| phong_pdf(o, d, n));
+        assert_passes(&format!("Phong lobe n = {n}"), r);
+    }
 }
 
 #[test]
 fn blinn_phong_lobe_follows_its_density() {
-    let (o, n) = (outgoing(), 20.0);
-    assert_passes("Blinn–Phong lobe", directions(6, |u| sample_blinn(o, u, n), |d| blinn_pdf(o, d, n)));
+    let o = outgoing();
+    for (seed, n) in [(6, 20.0), (13, 0.0)] {
+        let r = directions(seed, |u| sample_blinn(o, u, n), |d| blinn_pdf(o, d, n));
+        assert_passes(&format!("Blinn–Phong lobe n = {n}"), r);
+    }
 }
 
 #[test]
