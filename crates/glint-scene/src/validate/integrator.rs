@@ -27,7 +27,8 @@ pub fn integrator_warnings(desc: &SceneDesc, settings: &RenderSettings) -> Vec<F
             });
         }
     }
-    if settings.bailout != RenderSettings::default().bailout {
+    // Nor is a bailout of 0, which turns it off: paths have none to turn off.
+    if settings.bailout != RenderSettings::default().bailout && settings.bailout != 0.0 {
         out.push(FieldIssue {
             field: "render.bailout".into(),
             problem: "is not used by the path tracer: Russian roulette ends its paths, without bias".into(),
@@ -94,6 +95,8 @@ mod tests {
         let mut unset = desc.clone();
         unset.world.ambient = WorldDesc::default().ambient;
         assert_eq!(fields(&unset, &settings), ["render.bailout", "materials", "render.integrator"]);
+        let off = RenderSettings { bailout: 0.0, ..settings.clone() };
+        assert_eq!(fields(&unset, &off), ["materials", "render.integrator"], "a bailout of 0 is off");
         settings.integrator = Integrator::Whitted;
         assert!(fields(&desc, &settings).is_empty(), "Whitted's render uses all of it");
     }
