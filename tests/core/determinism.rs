@@ -85,3 +85,30 @@ fn jitter_really_moves_samples() {
     assert_ne!(one.image.pixels, four.image.pixels);
     assert_ne!(four.image.pixels, reseeded.image.pixels);
 }
+
+/// A scene without child rays renders one image at every depth, bit for bit (`glint report`
+/// leaves out its deeper rows on that ground, `SceneNeeds`).
+#[test]
+fn a_scene_without_child_rays_renders_one_image_at_every_depth() {
+    let at = |name: &str, depth: u32| {
+        let loaded = glint_io::load_scene(name).expect("built-in scene");
+        let mut s = loaded.desc.render.clone();
+        (s.width, s.height, s.spp, s.max_depth) = (64, 48, 2, depth);
+        FlatScene::build(&loaded.desc, &s)
+    };
+    let flat_scenes: Vec<&str> = BUILTIN_SCENES
+        .iter()
+        .filter(|b| !b.is_generated())
+        .map(|b| b.name)
+        .filter(|&name| !glint_types::layout::feature::recurses(at(name, 16).header.features))
+        .collect();
+    assert!(flat_scenes.contains(&"lights"), "{flat_scenes:?}");
+    for name in flat_scenes {
+        let shallow = crate::render::render_cpu_checked(&at(name, 0), 2, true);
+        for depth in [1, 8] {
+            let deep = crate::render::render_cpu_checked(&at(name, depth), 2, true);
+            assert!(deep.image == shallow.image, "{name}: depth {depth} differs from depth 0");
+            assert_eq!(deep.counts, shallow.counts, "{name}: depth {depth}");
+        }
+    }
+}

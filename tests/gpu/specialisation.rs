@@ -32,3 +32,26 @@ fn specialised_and_full_shaders_agree() {
     }
     assert_eq!(worst, 0.0, "specialised and full shaders differ by up to {worst:e}");
 }
+
+/// A scene without child rays renders one image at every depth (`glint report` leaves out its
+/// deeper rows on that ground, `SceneNeeds`): the GPU's shader variant for depth 8 has a ray
+/// stack the depth-0 one lacks, and neither may change a pixel.
+#[test]
+fn a_scene_without_child_rays_renders_one_image_at_every_depth() {
+    let tracer = gpu_or_skip!();
+    let flat_scenes: Vec<&str> = BUILTIN_SCENES
+        .iter()
+        .filter(|b| !b.is_generated())
+        .map(|b| b.name)
+        .filter(|&name| !glint_types::layout::feature::recurses(builtin(name, 8, 6, 1, 16).header.features))
+        .collect();
+    assert!(flat_scenes.contains(&"lights"), "{flat_scenes:?}");
+    for name in flat_scenes {
+        let shallow = gpu_render(tracer, &builtin(name, 64, 48, 2, 0), true);
+        for depth in [1, 8] {
+            let deep = gpu_render(tracer, &builtin(name, 64, 48, 2, depth), true);
+            assert!(deep.image == shallow.image, "{name}: depth {depth} differs from depth 0 on the GPU");
+            assert_eq!(deep.counts, shallow.counts, "{name}: depth {depth}");
+        }
+    }
+}

@@ -28,7 +28,7 @@ use glint_io::atomic::write_file_atomically;
 use glint_scene::{Integrator, RenderSettings};
 use indicatif::{ProgressBar, ProgressStyle};
 
-use self::plan::{Plan, Planned};
+use self::plan::{Plan, Planned, SceneNeeds};
 use self::sweep::Engines;
 use super::backend::open_gpu;
 use super::console::say;
@@ -187,7 +187,15 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
     let owners = args
         .shard
         .map(|s| shard::assign(scenes.len(), &planned, u64::from(width) * u64::from(height), args.runs, s.count));
-    let integrator = |scene: usize| args.integrator.unwrap_or(scenes[scene].desc.render.integrator);
+    let bases: Vec<RenderSettings> = scenes
+        .iter()
+        .map(|s| {
+            let integrator = args.integrator.unwrap_or(s.desc.render.integrator);
+            RenderSettings { width, height, integrator, ..s.desc.render.clone() }
+        })
+        .collect();
+    let needs: Vec<SceneNeeds> =
+        scenes.iter().zip(&bases).map(|(s, base)| SceneNeeds::of(&s.desc, base, plan.reference_depth)).collect();
     let mine = |scene: usize, config: usize| match (&owners, args.shard) {
         (Some(o), Some(s)) => o[scene][config] == s.index,
         _ => true,
@@ -196,8 +204,7 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
     // then each specular model's.
     let renders: usize = (0..scenes.len())
         .map(|si| {
-            let configs =
-                (0..planned.len()).filter(|&ci| mine(si, ci) && planned[ci].measured_for(integrator(si))).count();
+            let configs = (0..planned.len()).filter(|&ci| mine(si, ci) && planned[ci].measured_for(needs[si])).count();
             let specular = if mine(si, 0) { specular::renders(&backends, args.runs) } else { 0 };
             let gi = if mine(si, 0) { gi::renders(&backends, args.runs, args.quick) } else { 0 };
             if configs == 0 { specular + gi } else { 1 + configs * (1 + args.runs as usize) + specular + gi }
@@ -208,34 +215,34 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
     let mut gi_results = Vec::new();
     let mut scene_hashes = Vec::new();
     for (si, loaded) in scenes.iter().enumerate() {
-        let scene = &loaded.desc.render;
-        let base =
-            RenderSettings { width, height, integrator: args.integrator.unwrap_or(scene.integrator), ..scene.clone() };
+        let base = &bases[si];
         if args.shard.is_some() {
-            scene_hashes.push(FlatScene::build(&loaded.desc, &base).content_hash());
+            scene_hashes.push(FlatScene::build(&loaded.desc, base).content_hash());
         }
         let ours: Vec<Planned> = planned
             .iter()
             .enumerate()
-            .filter(|(ci, p)| mine(si, *ci) && p.measured_for(base.integrator))
+            .filter(|(ci, p)| mine(si, *ci) && p.measured_for(needs[si]))
             .map(|(_, p)| p.clone())
             .collect();
-        let mut result = if ours.is_empty() {
-            sweep::SceneResult {
-                name: loaded.name.clone(),
-                description: loaded.desc.description.clone(),
-                settings: base.clone(),
-                reference,
-                rows: Vec::new(),
-                specular: Vec::new(),
-            }
+        let rows = if ours.is_empty() {
+            Vec::new()
         } else {
-            sweep::run_scene(&mut engines, loaded, &base, &reference, &ours, args.runs, &bar)?
+            sweep::run_scene(&mut engines, loaded, base, &reference, &ours, args.runs, &bar)?
+        };
+        let mut result = sweep::SceneResult {
+            name: loaded.name.clone(),
+            description: loaded.desc.description.clone(),
+            settings: base.clone(),
+            reference,
+            needs: needs[si],
+            rows,
+            specular: Vec::new(),
         };
         if mine(si, 0) {
-            result.specular = specular::measure(&mut engines, loaded, &base, &backends, args.runs, &bar)?;
+            result.specular = specular::measure(&mut engines, loaded, base, &backends, args.runs, &bar)?;
             // Whitted against a path-traced reference: on the shard that measures the specular models.
-            let mut gi = gi::measure(&mut engines, loaded, &base, &backends, args.runs, args.quick, &bar)?;
+            let mut gi = gi::measure(&mut engines, loaded, base, &backends, args.runs, args.quick, &bar)?;
             gi.shard = args.shard.map(|s| s.index);
             if args.shard.is_none() {
                 gi_plot::write_gi_plot(out, &gi, args.runs as usize)?;
@@ -288,9 +295,7 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
             "report shard {}/{}: {rows} of {} configurations in {:.1} s; wrote {} (merge the shards with --merge)",
             spec.index,
             spec.count,
-            (0..scenes.len())
-                .map(|si| planned.iter().filter(|p| p.measured_for(integrator(si))).count())
-                .sum::<usize>(),
+            needs.iter().map(|n| planned.iter().filter(|p| p.measured_for(*n)).count()).sum::<usize>(),
             started.elapsed().as_secs_f64(),
             path.display()
         )?;

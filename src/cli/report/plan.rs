@@ -1,8 +1,9 @@
 //! Which configurations a report measures: the reference, the main grid and the focused sweeps,
 //! deduplicated (a configuration that two sweeps share is measured once and tagged with both).
 
-use glint_core::Backend;
-use glint_scene::{EpsilonMode, Integrator};
+use glint_core::{Backend, FlatScene};
+use glint_scene::{EpsilonMode, Integrator, RenderSettings, SceneDesc};
+use glint_types::layout::feature;
 use serde::{Deserialize, Serialize};
 
 /// The bailout thresholds of the sweep, kept symbolic so that tables can print "1/255".
@@ -105,14 +106,58 @@ pub struct Planned {
     pub groups: Vec<Group>,
 }
 
+/// What of a scene decides which planned configurations it needs (`Planned::measured_for`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct SceneNeeds {
+    pub integrator: Integrator,
+    /// Whether Whitted's trees have child rays (`feature::recurses` of the scene at the
+    /// reference's depth): without, every depth renders the depth-0 image and the bailout
+    /// prunes nothing.
+    pub recurses: bool,
+}
+
+impl SceneNeeds {
+    /// The needs of `desc` rendered with `base` (its integrator), judged at `depth`.
+    pub fn of(desc: &SceneDesc, base: &RenderSettings, depth: u32) -> Self {
+        let flat = FlatScene::build(desc, &RenderSettings { max_depth: depth, ..base.clone() });
+        Self { integrator: base.integrator, recurses: feature::recurses(flat.header.features) }
+    }
+
+    /// What the sweep leaves out for such a scene, as a sentence for the report.
+    pub fn left_out(&self) -> Option<&'static str> {
+        match self.integrator {
+            Integrator::Path => Some(
+                "Left out: the rows that only vary the bailout, which the paths do not use (Russian roulette ends \
+                 them); each would be the grid's render again.",
+            ),
+            Integrator::Whitted if !self.recurses => Some(
+                "Left out: the grid's and the bailout sweep's rows deeper than 0. No material an object uses has k_r \
+                 or k_t, so no ray goes past the camera's and every depth renders the depth-0 image; the shader and ε \
+                 rows keep their depth.",
+            ),
+            Integrator::Whitted => None,
+        }
+    }
+}
+
 impl Planned {
-    /// Whether a scene traced by `integrator` is measured at this configuration. Paths end by
-    /// Russian roulette, which the bailout does not change, so a path scene leaves out the rows
-    /// that are in the sweep only to vary the bailout: each would time the grid's render again.
-    pub fn measured_for(&self, integrator: Integrator) -> bool {
-        match integrator {
-            Integrator::Whitted => true,
+    /// Whether a scene of `needs` is measured at this configuration: not where the row would
+    /// time another row's render again. Paths end by Russian roulette, which the bailout does
+    /// not change, so a path scene leaves out the rows that only vary the bailout; a Whitted
+    /// scene without child rays renders the depth-0 image at every depth, so it leaves out the
+    /// grid's and the bailout sweep's deeper rows (the reference, shader and ε rows stay: they
+    /// vary something else).
+    pub fn measured_for(&self, needs: SceneNeeds) -> bool {
+        match needs.integrator {
             Integrator::Path => self.groups != [Group::Bailout],
+            Integrator::Whitted => {
+                needs.recurses
+                    || self.config.depth == 0
+                    || self.groups.iter().any(|g| match g {
+                        Group::Reference | Group::Shader | Group::Epsilon => true,
+                        Group::Grid | Group::Bailout => false,
+                    })
+            }
         }
     }
 }
@@ -290,11 +335,18 @@ mod tests {
     }
 
     #[test]
-    fn path_scenes_leave_out_the_rows_that_only_vary_the_bailout() {
+    fn scenes_leave_out_the_rows_that_would_time_another_rows_render_again() {
         let plan = Plan::full(64);
         let rows = plan.configs(&[Backend::Cpu]);
-        let path: Vec<&Planned> = rows.iter().filter(|p| p.measured_for(Integrator::Path)).collect();
-        assert!(rows.iter().all(|p| p.measured_for(Integrator::Whitted)));
+        let needs = |integrator, recurses| SceneNeeds { integrator, recurses };
+        let path: Vec<&Planned> = rows.iter().filter(|p| p.measured_for(needs(Integrator::Path, true))).collect();
+        assert!(rows.iter().all(|p| p.measured_for(needs(Integrator::Whitted, true))));
+        // Without child rays: the reference, the grid's 3 rows at depth 0, the shader rows at
+        // depth 5 (spp 1 and 4, specialised and full) and the 4 other ε strategies (robust's is
+        // the specialised spp-1 row).
+        let flat: Vec<&Planned> = rows.iter().filter(|p| p.measured_for(needs(Integrator::Whitted, false))).collect();
+        assert_eq!(flat.len(), 1 + 3 + 4 + 4, "{flat:#?}");
+        assert!(flat.iter().all(|p| p.config.depth == 0 || !p.groups.iter().all(|g| *g == Group::Grid)));
         // bailout 0 and 1/32 at spp {1, 4} × depth {5, 8}; the 1/255 rows are the grid's.
         assert_eq!(rows.len() - path.len(), 8);
         assert!(path.iter().all(|p| p.config.bailout == Bailout::Per255 || p.groups.contains(&Group::Reference)));

@@ -92,7 +92,7 @@ pub fn assign(scenes: usize, planned: &[Planned], pixels: u64, runs: u32, count:
 /// The layout of `shard-I-of-N.toml`. Bump it with any change to what a shard writes (the
 /// `ShardFile` and every type in it; tests/golden/shard-keys.txt lists its keys): the merge
 /// refuses a shard of another format instead of reading fields it lacks as empty.
-pub const SHARD_FORMAT: u32 = 1;
+pub const SHARD_FORMAT: u32 = 2;
 
 /// What a shard writes: the sweep it is part of, its machine, and its rows.
 #[derive(Debug, Serialize, Deserialize)]
@@ -412,8 +412,7 @@ pub fn join(files: &mut [ShardFile], planned: &[Planned]) -> anyhow::Result<Vec<
         let measured: Vec<usize> = j.rows.iter().map(|r| position(&r.config)).collect();
         let scene = names.iter().position(|n| *n == j.name);
         // A path scene leaves out the rows that only vary the bailout (`Planned::measured_for`).
-        let expected: Vec<usize> =
-            (0..planned.len()).filter(|&i| planned[i].measured_for(j.settings.integrator)).collect();
+        let expected: Vec<usize> = (0..planned.len()).filter(|&i| planned[i].measured_for(j.needs)).collect();
         let short = expected.iter().copied().find(|i| measured.iter().filter(|m| *m == i).count() != 1);
         if let Some(i) = short {
             let what = format!("{} {}", planned[i].config.backend.name(), planned[i].config.describe());

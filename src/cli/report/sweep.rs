@@ -14,7 +14,7 @@ use glint_scene::{RenderSettings, SpecularModel, overflow_causes};
 use indicatif::ProgressBar;
 use serde::{Deserialize, Serialize};
 
-use super::plan::{Config, Group, Planned};
+use super::plan::{Config, Group, Planned, SceneNeeds};
 use crate::cli::console::tell;
 use crate::cli::units::{mrays_per_s, ms};
 
@@ -133,6 +133,8 @@ pub struct SceneResult {
     /// The scene's own settings with the report's size: epsilon value and seed come from here.
     pub settings: RenderSettings,
     pub reference: Config,
+    /// What decided which configurations the scene needs (`Planned::measured_for`).
+    pub needs: SceneNeeds,
     pub rows: Vec<Row>,
     /// The render time of each specular model on each backend (`specular::measure`).
     pub specular: Vec<SpecularRow>,
@@ -212,6 +214,7 @@ pub fn timed_passes(
 /// them (it builds the GPU pipelines and gives the images), then `runs` timed passes. Passes
 /// rather than back-to-back runs of one configuration, so that a load change on a shared
 /// machine spreads over every configuration instead of biasing the few measured during it.
+/// The rows, in `planned`'s order.
 pub fn run_scene(
     engines: &mut Engines,
     loaded: &LoadedScene,
@@ -220,7 +223,7 @@ pub fn run_scene(
     planned: &[Planned],
     runs: u32,
     bar: &ProgressBar,
-) -> anyhow::Result<SceneResult> {
+) -> anyhow::Result<Vec<Row>> {
     let name = &loaded.name;
     bar.set_message(format!("{name}: reference ({} spp, depth {})", reference.spp, reference.depth));
     let build = |c: &Config| FlatScene::build(&loaded.desc, &settings_for(base, c));
@@ -298,12 +301,5 @@ pub fn run_scene(
             rows[i].same_as_specialised = Some(images[j] == images[i]);
         }
     }
-    Ok(SceneResult {
-        name: name.clone(),
-        description: loaded.desc.description.clone(),
-        settings: base.clone(),
-        reference: *reference,
-        rows,
-        specular: Vec::new(),
-    })
+    Ok(rows)
 }

@@ -95,7 +95,7 @@ mod tests {
     use glint_core::cpu::RayCounts;
     use glint_scene::{EpsilonMode, RenderSettings};
 
-    use super::super::super::plan::{Bailout, Config, Group};
+    use super::super::super::plan::{Bailout, Config, Group, SceneNeeds};
     use super::super::super::sweep::{GpuExtra, Row, SceneResult};
     use super::*;
 
@@ -135,6 +135,7 @@ mod tests {
             description: String::new(),
             settings,
             reference,
+            needs: SceneNeeds { integrator: glint_scene::Integrator::Whitted, recurses: true },
             rows,
             specular: Vec::new(),
         };

@@ -22,13 +22,15 @@ pub fn bailout_summary(md: &mut String, scenes: &[SceneResult]) {
         return;
     };
     md.push_str(&prose(Block::Bailout, &[("spp", &base.spp), ("depth", &base.depth)]));
-    let _ = writeln!(md, "| scene | backend | rays per pixel | render ms | RMSE |");
-    let _ = writeln!(md, "|---|---|--:|--:|--:|");
     let px = |s: &SceneResult| s.pixels() as f64;
-    // Paths end by Russian roulette; the bailout prunes Whitted's tree only, so the sweep leaves
-    // out a path scene's bailout rows (`Planned::measured_for`).
-    let (paths, whitted): (Vec<&SceneResult>, Vec<&SceneResult>) =
-        scenes.iter().partition(|s| s.settings.integrator == Integrator::Path);
+    // The bailout prunes Whitted's child rays only, so the sweep leaves out the bailout rows of
+    // a path scene and of a scene without child rays (`Planned::measured_for`).
+    let (left_out, whitted): (Vec<&SceneResult>, Vec<&SceneResult>) =
+        scenes.iter().partition(|s| s.settings.integrator == Integrator::Path || !s.needs.recurses);
+    if !whitted.is_empty() {
+        let _ = writeln!(md, "| scene | backend | rays per pixel | render ms | RMSE |");
+        let _ = writeln!(md, "|---|---|--:|--:|--:|");
+    }
     for s in whitted {
         for b in backends(scenes) {
             let rows: Vec<Option<&Row>> = [Bailout::Off, Bailout::Per255, Bailout::Per32]
@@ -50,15 +52,30 @@ pub fn bailout_summary(md: &mut String, scenes: &[SceneResult]) {
         }
     }
     let _ = writeln!(md);
+    let names = |path: bool| -> Vec<&str> {
+        left_out
+            .iter()
+            .filter(|s| (s.settings.integrator == Integrator::Path) == path)
+            .map(|s| s.name.as_str())
+            .collect()
+    };
+    let (paths, flat) = (names(true), names(false));
     if !paths.is_empty() {
-        let names: Vec<&str> = paths.iter().map(|s| s.name.as_str()).collect();
-        let its = if names.len() == 1 { "its" } else { "their" };
         let _ = writeln!(
             md,
             "Left out: {}, whose paths end by Russian roulette, which the bailout does not change \
-             (`glint render --integrator path --bailout` is refused): the sweep renders {its} bailout 1/255 \
+             (`glint render --integrator path --bailout` is refused): the sweep renders {} bailout 1/255 \
              rows only, which are the grid's.\n",
-            names.join(", ")
+            paths.join(", "),
+            if paths.len() == 1 { "its" } else { "their" }
+        );
+    }
+    if !flat.is_empty() {
+        let _ = writeln!(
+            md,
+            "Left out: {}, where no material an object uses has k_r or k_t: no ray goes past the camera's, so the \
+             bailout has nothing to prune.\n",
+            flat.join(", ")
         );
     }
 }
