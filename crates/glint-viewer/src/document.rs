@@ -33,6 +33,12 @@ pub struct Document {
     /// Validation problems of the current description; while there are any, the last valid
     /// scene stays on screen.
     pub issues: Vec<FieldIssue>,
+    /// Validation's warnings of the current description (an ε as large as the scene, a ray
+    /// tree past its bound, what the integrator leaves out): rendered anyway, and said.
+    pub warnings: Vec<FieldIssue>,
+    /// What the load warned of that validation does not (a model file's import): kept while
+    /// the scene is edited.
+    pub load_warnings: Vec<FieldIssue>,
     /// Per light, the fields its type lacks that an earlier type had (`light_kind::switch_kind`).
     pub light_set_aside: Vec<SetAside>,
     /// The kinds of path-traced light the view leaves out (`SceneHeader::omit_kinds`): a way of
@@ -50,8 +56,10 @@ pub struct Document {
 #[derive(Clone, Debug)]
 struct BuiltGeometry {
     objects: Vec<ObjectDesc>,
-    /// Validation's verdict on those objects (`validate_objects`).
+    /// Validation's verdict on those objects (`validate_objects`), and the ε it was judged at:
+    /// its coplanar-overlap warning reads ε, so an ε edit judges the objects again.
     objects_report: Report,
+    report_epsilon: f64,
     flat: FlatScene,
 }
 
@@ -66,6 +74,8 @@ impl Document {
     pub fn from_loaded(loaded: LoadedScene) -> Self {
         let source = loaded.source.to_str().filter(|s| !s.starts_with("builtin:")).map(PathBuf::from);
         let path = source.clone().filter(|p| ModelFormat::of(p).is_none());
+        let warnings = validate(&loaded.desc).warnings;
+        let load_warnings = loaded.warnings.into_iter().filter(|w| !warnings.contains(w)).collect();
         Self {
             source,
             initial_camera: loaded.desc.camera.clone(),
@@ -75,6 +85,8 @@ impl Document {
             dirty: false,
             revision: 0,
             issues: Vec::new(),
+            warnings,
+            load_warnings,
             light_set_aside: Vec::new(),
             geometry: RefCell::new(None),
             geometry_checked: Cell::new(None),
@@ -103,6 +115,8 @@ impl Document {
             dirty: false,
             revision: 0,
             issues: Vec::new(),
+            warnings: Vec::new(),
+            load_warnings: Vec::new(),
             light_set_aside: Vec::new(),
             geometry: RefCell::new(None),
             geometry_checked: Cell::new(None),
@@ -132,18 +146,23 @@ impl Document {
     pub fn edited(&mut self) {
         self.revision += 1;
         self.dirty = true;
-        let geometry = self.geometry.borrow();
+        let mut geometry = self.geometry.borrow_mut();
         // Objects and material names as last built: their part of validation stands (a camera
         // drag over a million triangles re-validated every vertex each frame before).
-        let report = match geometry.as_ref().filter(|g| g.built_from(&self.desc)) {
+        let report = match geometry.as_mut().filter(|g| g.built_from(&self.desc)) {
             Some(g) => {
                 self.geometry_checked.set(Some(self.revision));
+                if g.report_epsilon.to_bits() != self.desc.render.epsilon.to_bits() {
+                    g.objects_report = validate_objects(&self.desc);
+                    g.report_epsilon = self.desc.render.epsilon;
+                }
                 validate_with_objects(&self.desc, &g.objects_report)
             }
             None => validate(&self.desc),
         };
         drop(geometry);
         self.issues = report.errors;
+        self.warnings = report.warnings;
     }
 
     pub fn is_valid(&self) -> bool {
@@ -181,6 +200,7 @@ impl Document {
         *cache = Some(BuiltGeometry {
             objects: self.desc.objects.clone(),
             objects_report: validate_objects(&self.desc),
+            report_epsilon: self.desc.render.epsilon,
             flat: flat.clone(),
         });
         Some(flat)
@@ -232,5 +252,20 @@ mod tests {
         assert!(doc.revision > revision && doc.dirty);
         assert!(doc.issues.iter().any(|i| i.field.contains("fov_y")), "{:?}", doc.issues);
         assert!(doc.flat(false).is_none());
+    }
+
+    #[test]
+    fn an_edit_that_validation_warns_of_is_warned_of_and_still_rendered() {
+        // A tester's lecture: ε = 2000 (held at 1000) in cornell took every shadow and reflection away with no
+        // word, where `glint render --epsilon 1000` warns.
+        let mut doc = Document::load("cornell").expect("built-in scene");
+        assert!(doc.warnings.is_empty() && doc.load_warnings.is_empty(), "{:?}", doc.warnings);
+        doc.desc.render.epsilon = 1000.0;
+        doc.edited();
+        assert!(doc.warnings.iter().any(|w| w.field == "render.epsilon"), "{:?}", doc.warnings);
+        assert!(doc.is_valid() && doc.flat(false).is_some(), "a warning does not stop the render");
+        doc.desc.render.epsilon = 1e-6;
+        doc.edited();
+        assert!(doc.warnings.is_empty(), "{:?}", doc.warnings);
     }
 }

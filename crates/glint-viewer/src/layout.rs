@@ -88,8 +88,21 @@ impl Layout {
         let mut pause = paused;
         let before = self.mode;
         // Wrapped: in a narrow window the integrator switch goes to a second row, not off screen.
+        // A button moves whole to the next row; its label never breaks ("Whitt / ed vs / GI" at
+        // 760 wide): egui's wrapped rows would wrap the label in the room left instead.
         ui.horizontal_wrapped(|ui| {
             for m in ViewMode::ALL {
+                let label = egui::WidgetText::from(m.label()).into_galley(
+                    ui,
+                    Some(egui::TextWrapMode::Extend),
+                    f32::INFINITY,
+                    egui::TextStyle::Button,
+                );
+                // What is left of the row (a wrapped row's available width is all of it).
+                let left = ui.max_rect().right() - ui.cursor().min.x;
+                if label.size().x + 2.0 * ui.spacing().button_padding.x > left {
+                    ui.end_row();
+                }
                 let enabled = has_gpu || m == ViewMode::Cpu;
                 ui.add_enabled_ui(enabled, |ui| ui.selectable_value(&mut self.mode, m, m.label()));
             }

@@ -125,7 +125,9 @@ pub const LEGEND: [(&str, Color32, bool); 6] = [
     ("cut by bailout or depth", Color32::LIGHT_GRAY, true),
 ];
 
-/// The legend in the bottom-right corner of the image `r`, on a dark box.
+/// The legend in the bottom-right corner of the image `r`, on a dark box; left out where it
+/// would take more than half the image's width or height (at the least window the two images
+/// side by side are each about 225 points wide: the legend hid most of the CPU one).
 fn legend(ui: &mut Ui, r: Rect) {
     let width = 172.0;
     // Each row is as tall as a horizontal layout makes it (its interact height, 18 points by
@@ -133,7 +135,7 @@ fn legend(ui: &mut Ui, r: Rect) {
     let row = ui.spacing().interact_size.y;
     let height = row * (LEGEND.len() as f32 + 1.0) + 8.0;
     let at = Rect::from_min_size(r.right_bottom() - Vec2::new(width + 6.0, height + 6.0), Vec2::new(width, height));
-    if !r.contains_rect(at) {
+    if !r.contains_rect(at) || 2.0 * width > r.width() || 2.0 * height > r.height() {
         return;
     }
     let mut child = ui.new_child(egui::UiBuilder::new().max_rect(at));

@@ -106,7 +106,9 @@ fn error_plot(ui: &mut Ui, history: &ErrorHistory, axis: &mut Axis, current: &Re
     };
     let rmse = series(&|p| p.errors.rmse);
     let flip = series(&|p| p.errors.flip_mean);
-    ui.label(format!("{} comparisons of this scene; log10 of the error", points.len()));
+    let comparisons =
+        if points.len() == 1 { "1 comparison".to_string() } else { format!("{} comparisons", points.len()) };
+    ui.label(format!("{comparisons} of this scene; log10 of the error"));
     let plot = Plot::new("error plot").height(160.0).legend(Legend::default().position(egui_plot::Corner::RightTop));
     plot.x_axis_label(axis.label()).y_axis_label("log10 error").show(ui, |plot| {
         plot.line(Line::new("RMSE", PlotPoints::from(rmse.clone())).color(SAME_HIT));

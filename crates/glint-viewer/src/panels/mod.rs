@@ -76,6 +76,14 @@ pub fn side(
                 ui.colored_label(ui.visuals().error_fg_color, i.to_string());
             }
         }
+        if !doc.warnings.is_empty() || !doc.load_warnings.is_empty() {
+            ui.separator();
+            let warn = ui.visuals().warn_fg_color;
+            ui.colored_label(warn, "Warnings (rendered anyway, as glint render does):");
+            for w in doc.load_warnings.iter().chain(&doc.warnings) {
+                ui.colored_label(warn, w.to_string());
+            }
+        }
     });
     probe
 }
