@@ -11,6 +11,8 @@ use tempfile::TempDir;
 pub struct Staging {
     dir: TempDir,
     out: PathBuf,
+    /// Whether this run made `out`: a run that fails removes it again.
+    made_out: bool,
 }
 
 impl Staging {
@@ -21,10 +23,11 @@ impl Staging {
         for name in files {
             check_destination(&out.join(name), force, "nothing was run")?;
         }
+        let made_out = !out.exists();
         std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
         let dir = TempDir::with_prefix_in(".glint-report-", out)
             .with_context(|| format!("cannot create a folder in {}", out.display()))?;
-        Ok(Self { dir, out: out.to_path_buf() })
+        Ok(Self { dir, out: out.to_path_buf(), made_out })
     }
 
     /// Where the run writes its files.
@@ -39,7 +42,7 @@ impl Staging {
 
     /// Moves every staged file into `--out`. A read-only file there is refused before anything
     /// moves, unless `force`, as `glint render` and `glint merge` refuse one.
-    pub fn publish(self, force: bool) -> anyhow::Result<()> {
+    pub fn publish(mut self, force: bool) -> anyhow::Result<()> {
         let mut names = Vec::new();
         for entry in std::fs::read_dir(self.dir.path()).context("reading the report's staging folder")? {
             names.push(entry.context("reading the report's staging folder")?.file_name());
@@ -53,7 +56,21 @@ impl Staging {
             std::fs::rename(self.dir.path().join(name), &dest)
                 .with_context(|| format!("cannot move the new {} into place", dest.display()))?;
         }
+        // Published, `out` is the run's result even where the run made it.
+        self.made_out = false;
         Ok(())
+    }
+}
+
+impl Drop for Staging {
+    /// A run that did not publish leaves `out` as it was: without the staging folder (the
+    /// `TempDir` removes it after this), and not there at all where the run made it.
+    fn drop(&mut self) {
+        if self.made_out {
+            // Only if nothing else appeared in it meanwhile: remove_dir refuses a folder with files.
+            let _ = std::fs::remove_dir_all(self.dir.path());
+            let _ = std::fs::remove_dir(&self.out);
+        }
     }
 }
 
@@ -77,6 +94,19 @@ fn check_destination(dest: &Path, force: bool, outcome: &str) -> anyhow::Result<
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_run_that_fails_removes_the_out_folder_it_made_and_keeps_one_it_found() {
+        let root = tempfile::tempdir().expect("temp folder");
+        let out = root.path().join("new");
+        let staging = Staging::new(&out, &[], false).expect("staging");
+        std::fs::write(staging.path().join("report.md"), "half").expect("write");
+        drop(staging);
+        assert!(!out.exists(), "an interrupted run left the --out it made");
+        std::fs::create_dir(&out).expect("mkdir");
+        drop(Staging::new(&out, &[], false).expect("staging"));
+        assert!(out.is_dir() && std::fs::read_dir(&out).expect("out").count() == 0, "a found --out is kept, empty");
+    }
 
     #[test]
     fn files_appear_only_when_published_and_a_read_only_one_is_kept_without_force() {
