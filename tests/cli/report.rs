@@ -578,6 +578,19 @@ fn report_shards_merge_into_the_one_machine_report_and_missing_ones_are_named() 
     let done = merge("s0,s1,s2", "gpus");
     assert!(!done.status.success(), "shards of two GPUs merged");
     assert!(text(&done.stderr).contains("its GPU: Another GPU (Vulkan), not none"), "{}", text(&done.stderr));
+    // The odd shard is named, not a good one, though the folders list it first (a tester's stale
+    // shard 0 had shard 1 blamed).
+    std::fs::write(&shard2, &original2).expect("restore shard 2");
+    let shard0 = dir.join("s0/shard-0-of-3.toml");
+    let original0 = std::fs::read_to_string(&shard0).expect("shard 0");
+    let mut stale: toml::Table = original0.parse().expect("TOML");
+    stale.insert("gpu_device".into(), "Another GPU (Vulkan)".into());
+    std::fs::write(&shard0, toml::to_string(&stale).expect("TOML")).expect("edit");
+    let done = merge("s0,s1,s2", "gpus");
+    let said = text(&done.stderr);
+    assert!(said.contains("shard-0-of-3.toml is not a shard of the same sweep as"), "{said}");
+    assert!(said.contains("and 1 more of the 3 shards: its GPU: Another GPU (Vulkan), not none"), "{said}");
+    std::fs::write(&shard0, &original0).expect("restore shard 0");
     // Damaged rows are refused by field, not followed into a panic (a row's shard indexed the
     // devices, an empty `times` was indexed for its median), and an absurd but finite error
     // plots (its axis's ticks once grew without end).

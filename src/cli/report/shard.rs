@@ -282,23 +282,42 @@ pub fn read_all(dirs: &[PathBuf]) -> anyhow::Result<Vec<ShardFile>> {
             found.push((path, file));
         }
     }
-    let Some((first_path, first)) = found.first() else {
+    if found.is_empty() {
         let list: Vec<String> = dirs.iter().map(|d| d.display().to_string()).collect();
         bail!("no shard-I-of-N.toml in {}: run `glint report --shard I/N --out DIR` first", list.join(", "));
+    }
+    // Shards are held against the sweep most of them are of (the first's on a tie), so that a
+    // stale shard is the one named, whichever file the folders list first (as `glint merge`
+    // names a stale tile).
+    let mut sweeps: Vec<((_, &[String]), usize, usize)> = Vec::new();
+    for (i, (_, file)) in found.iter().enumerate() {
+        let key = (file.sweep(), file.scene_hashes.as_slice());
+        match sweeps.iter_mut().find(|(k, _, _)| *k == key) {
+            Some((_, n, _)) => *n += 1,
+            None => sweeps.push((key, 1, i)),
+        }
+    }
+    let (_, agreeing, reference) =
+        sweeps.into_iter().max_by_key(|&(_, n, i)| (n, std::cmp::Reverse(i))).expect("at least one shard");
+    let (first_path, first) = &found[reference];
+    let others = match agreeing {
+        1 => String::new(),
+        n => format!(" and {} more of the {} shards", n - 1, found.len()),
     };
     let expected = first.sweep();
     let mut by_index: BTreeMap<u32, &Path> = BTreeMap::new();
     for (path, file) in &found {
         if let Some(((what, theirs), (_, ours))) = expected.iter().zip(file.sweep()).find(|((_, a), (_, b))| a != b) {
             bail!(
-                "{} is not a shard of the same sweep as {}: its {what}: {ours}, not {theirs}; nothing was written",
+                "{} is not a shard of the same sweep as {}{others}: its {what}: {ours}, not {theirs}; nothing was \
+                 written",
                 path.display(),
                 first_path.display()
             );
         }
         if let Some(reason) = changed_scene(first, file) {
             bail!(
-                "{} is not a shard of the same sweep as {}: {reason}; nothing was written",
+                "{} is not a shard of the same sweep as {}{others}: {reason}; nothing was written",
                 path.display(),
                 first_path.display()
             );
