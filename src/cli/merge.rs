@@ -116,22 +116,21 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
     }
     let grid = TileGrid::new(count, width, height).with_context(|| format!("{}", first.0.display()))?;
     let mut by_index: BTreeMap<u32, (&Path, &ExrHeader)> = BTreeMap::new();
+    // Every tile of another render, named together with the indices to render again (a tester
+    // fixed two stale tiles and a missing one in three rounds, one message each).
+    let mut stale: Vec<(&Path, String)> = Vec::new();
     for (path, header) in args.tiles.iter().zip(&headers) {
         let (index, n) = tile_index(path, header)?;
         let ours = shared(header);
         if let Some(k) = (0..keys.len()).find(|&k| ours[k] != theirs[k]) {
-            let others = match agreeing {
-                1 => String::new(),
-                n => format!(" and {} more of the {} tiles", n - 1, headers.len()),
-            };
-            bail!(
-                "{} is not a tile of the same render as {}{others}: {} is {} there and {} here; nothing was written",
-                path.display(),
-                first.0.display(),
+            let differs = format!(
+                "{} is {} there and {} here",
                 keys[k],
                 theirs[k].as_deref().unwrap_or("absent"),
-                ours[k].as_deref().unwrap_or("absent"),
+                ours[k].as_deref().unwrap_or("absent")
             );
+            stale.push((path, differs));
+            continue;
         }
         // `glint render --tile` writes no incomplete tile; one marked so was made otherwise.
         if let Some(missing) = header.attribute("glint:incomplete") {
@@ -179,6 +178,32 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
         }
     }
     let (missing, runs) = super::job_array::missing_runs(by_index.keys().copied(), count);
+    if !stale.is_empty() {
+        let others = match agreeing {
+            1 => String::new(),
+            n => format!(" and {} more of the {} tiles", n - 1, headers.len()),
+        };
+        let which = match stale.as_slice() {
+            [(path, differs)] => format!(
+                "{} is not a tile of the same render as {}{others}: {differs}",
+                path.display(),
+                first.0.display()
+            ),
+            many => format!(
+                "{} of the {} tiles are not of the same render as {}{others}: {}",
+                many.len(),
+                headers.len(),
+                first.0.display(),
+                many.iter().map(|(p, d)| format!("{} ({d})", p.display())).collect::<Vec<_>>().join(", ")
+            ),
+        };
+        bail!(
+            "{which}; {missing} of {count} tiles to render again: {} (with --tile I/{count}; as a Slurm array, \
+             --array={}); nothing was written",
+            runs.join(", "),
+            runs.join(",")
+        );
+    }
     if missing > 0 {
         bail!(
             "{missing} of {count} {} missing: {} (render them with --tile I/{count}; as a Slurm array, \

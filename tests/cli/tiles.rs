@@ -175,6 +175,19 @@ fn tiles_that_do_not_belong_together_are_refused_by_name_and_nothing_is_written(
     render(&dir, "whitted", &[&size[..], &["--tile", "0/3", "--seed", "7"]].concat(), &stale);
     refused(&[stale.clone(), t[1].clone(), t[2].clone()], "s0.exr is not a tile of the same render as");
     refused(&[stale, t[1].clone(), t[2].clone()], "t1.exr and 1 more of the 3 tiles: glint:seed is 0 there and 7 here");
+    // Every stale tile at once, with what to render again, missing ones included.
+    let five: Vec<PathBuf> = (0..5)
+        .map(|i| {
+            let seed = if i == 1 || i == 3 { "9" } else { "0" };
+            let path = dir.join(format!("f{i}.exr"));
+            render(&dir, "whitted", &[&size[..], &["--tile", &format!("{i}/5"), "--seed", seed]].concat(), &path);
+            path
+        })
+        .collect();
+    refused(&five[..4], "2 of the 4 tiles are not of the same render as ");
+    refused(&five[..4], "f0.exr and 1 more of the 4 tiles: ");
+    refused(&five[..4], "f3.exr (glint:seed is 0 there and 9 here); 3 of 5 tiles to render again: 1, 3-4");
+    refused(&five[..4], "(with --tile I/5; as a Slurm array, --array=1,3-4); nothing was written");
     let whole = dir.join("whole.exr");
     render(&dir, "whitted", &size, &whole);
     refused(&[t[0].clone(), whole, t[2].clone()], "not a tile of `glint render --tile`");
