@@ -206,10 +206,11 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
     }
     if missing > 0 {
         bail!(
-            "{missing} of {count} {} missing: {} (render them with --tile I/{count}; as a Slurm array, \
+            "{missing} of {count} {} missing: {} (render {} with --tile I/{count}; as a Slurm array, \
              --array={}); nothing was written",
             if missing == 1 { "tiles is" } else { "tiles are" },
             runs.join(", "),
+            if missing == 1 { "it" } else { "them" },
             runs.join(",")
         );
     }

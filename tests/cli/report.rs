@@ -524,7 +524,7 @@ fn report_shards_merge_into_the_one_machine_report_and_missing_ones_are_named() 
     assert!(!done.status.success());
     assert!(
         text(&done.stderr)
-            .contains("1 of 3 shards is missing: 1 (run them with --shard I/3; as a Slurm array, --array=1)"),
+            .contains("1 of 3 shards is missing: 1 (run it with --shard I/3; as a Slurm array, --array=1)"),
         "{}",
         text(&done.stderr)
     );

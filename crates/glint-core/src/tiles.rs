@@ -53,8 +53,10 @@ pub enum TileGridError {
     #[error("a grid needs at least one tile")]
     NoTiles,
     #[error(
-        "{count} tiles fit no grid of a {width}x{height} image: the tiles are columns × rows, with at most {width} \
-         columns and {height} rows (a pixel each){}",
+        "{count} tiles fit no grid of a {width}x{height} image: the tiles are columns × rows, with at most {} and \
+         {} (a pixel each){}",
+        counted(*width, "column"),
+        counted(*height, "row"),
         nearest_text(*nearest)
     )]
     NoGrid { count: u32, width: u32, height: u32, nearest: (Option<u32>, Option<u32>) },
@@ -147,6 +149,11 @@ fn nearest_counts(count: u32, width: u32, height: u32) -> (Option<u32>, Option<u
     let below = (count.saturating_sub(NEAREST_SEARCH).max(1)..count).rev().find(fits);
     let above = (count.saturating_add(1)..=count.saturating_add(NEAREST_SEARCH)).find(fits);
     (below, above)
+}
+
+/// "1 column", "97 columns".
+fn counted(n: u32, noun: &str) -> String {
+    if n == 1 { format!("1 {noun}") } else { format!("{n} {noun}s") }
 }
 
 fn nearest_text(nearest: (Option<u32>, Option<u32>)) -> String {

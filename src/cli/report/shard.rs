@@ -334,11 +334,12 @@ pub fn read_all(dirs: &[PathBuf]) -> anyhow::Result<Vec<ShardFile>> {
     let (missing, runs) = crate::cli::job_array::missing_runs(by_index.keys().copied(), first.count);
     if missing > 0 {
         bail!(
-            "{missing} of {} {} missing: {} (run them with --shard I/{}; as a Slurm array, --array={}); \
+            "{missing} of {} {} missing: {} (run {} with --shard I/{}; as a Slurm array, --array={}); \
              nothing was written",
             first.count,
             if missing == 1 { "shards is" } else { "shards are" },
             runs.join(", "),
+            if missing == 1 { "it" } else { "them" },
             first.count,
             runs.join(",")
         );
