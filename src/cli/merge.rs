@@ -67,8 +67,19 @@ fn shared_keys(header: &ExrHeader) -> Vec<&'static str> {
 
 /// A tile's place: its index and count from `glint:tile`.
 fn tile_index(path: &Path, header: &ExrHeader) -> anyhow::Result<(u32, u32)> {
+    // An earlier merge's output under the tiles' glob (`-o tiles/tile-merged.exr`).
+    if let Some(n) = header.attribute("glint:merged_tiles") {
+        bail!(
+            "{}: the output of an earlier `glint merge` (of {n} tiles), not a tile; leave it out of the tiles \
+             given; nothing was written",
+            path.display()
+        );
+    }
     let value = header.attribute("glint:tile").with_context(|| {
-        format!("{}: not a tile of `glint render --tile` (it has no glint:tile attribute)", path.display())
+        format!(
+            "{}: not a tile of `glint render --tile` (it has no glint:tile attribute); nothing was written",
+            path.display()
+        )
     })?;
     let parsed = value.split_once('/').and_then(|(i, n)| Some((i.parse().ok()?, n.parse().ok()?)));
     parsed.with_context(|| format!("{}: glint:tile is '{value}', not I/N", path.display()))

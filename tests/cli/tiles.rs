@@ -206,6 +206,11 @@ fn tiles_that_do_not_belong_together_are_refused_by_name_and_nothing_is_written(
         assert!(done.status.success(), "{}", text(&done.stderr));
     }
     assert_eq!(bits(&piz_merge), bits(&whole_merge), "a PIZ copy of a tile merged into other bits");
+    // A merge's output under the tiles' glob is named as such, not as a tile without glint:tile.
+    refused(
+        &[&t[..], std::slice::from_ref(&whole_merge)].concat(),
+        "merged.exr: the output of an earlier `glint merge` (of 3 tiles)",
+    );
     // `--tile` writes no incomplete tile; a tile marked so (made otherwise) is refused.
     let marked = dir.join("marked.exr");
     let incomplete = read_exr(&t[1]).expect("tile");
