@@ -1,6 +1,6 @@
 // Twin of crates/glint-core/src/cpu/emitter.rs: the emissive primitives next-event estimation
-// samples, read from the `emitters` buffer the host fills with Emitters::gpu_words (the count,
-// then each sphere's index and each triangle's PRIM_REF_TRIANGLE | index).
+// samples, each named as path.wgsl reads it from the `emitters` buffer the host fills with
+// Emitters::gpu_words (a sphere's index, or a triangle's PRIM_REF_TRIANGLE | index).
 #define_import_path glint::emitter
 
 #import glint::scene_data::{PRIM_REF_TRIANGLE, PRIM_REF_INDEX}

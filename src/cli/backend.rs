@@ -55,7 +55,7 @@ pub fn run_cpu(flat: &FlatScene, options: &CpuOptions, quiet: bool) -> anyhow::R
     let tiles = tile_count(w, h) as u64;
     let bar = progress_bar(quiet, tiles, "cpu", "")?;
     let on_tile = |_: &Tile| bar.inc(1);
-    // SIGINT/SIGTERM stop the render at the next tile (see `interrupt`).
+    // SIGINT/SIGTERM stop the render at the next pixel (see `interrupt`).
     let cancel = glint_io::interrupt::flag();
     let rays = AtomicU64::new(0);
     let done = AtomicBool::new(false);

@@ -1,5 +1,5 @@
 //! SIGINT and SIGTERM: the first raises `glint_io::interrupt`'s flag, which the CPU render
-//! loop and the atomic writer check (the render stops at the next tile, a write in progress
+//! loop and the atomic writer check (the render stops at the next pixel, a write in progress
 //! stops and its temporary is removed); `main` then says "interrupted" and exits with
 //! 128 + the signal's number (130, 143), as shells report a process killed by it. A second
 //! signal ends the process at once, with the same code, as does the first while a scene loads.

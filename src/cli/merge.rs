@@ -208,12 +208,20 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
                 many.iter().map(|(p, d)| format!("{} ({d})", p.display())).collect::<Vec<_>>().join(", ")
             ),
         };
-        bail!(
-            "{which}; {missing} of {count} tiles to render again: {} (with --tile I/{count}; as a Slurm array, \
-             --array={}); nothing was written",
-            runs.join(", "),
-            runs.join(",")
-        );
+        // Good tiles may cover every index (a tile left from an earlier render of more tiles).
+        let again = if missing == 0 {
+            format!(
+                "every tile of the render is there: leave {} out of the tiles given",
+                if stale.len() == 1 { "it" } else { "them" }
+            )
+        } else {
+            format!(
+                "{missing} of {count} tiles to render again: {} (with --tile I/{count}; as a Slurm array, --array={})",
+                runs.join(", "),
+                runs.join(",")
+            )
+        };
+        bail!("{which}; {again}; nothing was written");
     }
     if missing > 0 {
         bail!(

@@ -188,6 +188,8 @@ fn tiles_that_do_not_belong_together_are_refused_by_name_and_nothing_is_written(
     refused(&five[..4], "f0.exr and 1 more of the 4 tiles: ");
     refused(&five[..4], "f3.exr (glint:seed is 0 there and 9 here); 3 of 5 tiles to render again: 1, 3-4");
     refused(&five[..4], "(with --tile I/5; as a Slurm array, --array=1,3-4); nothing was written");
+    // A stale tile whose index a good tile has: nothing to render, the stale one to leave out.
+    refused(&[&t[..], &five[1..2]].concat(), "every tile of the render is there: leave it out of the tiles given");
     let whole = dir.join("whole.exr");
     render(&dir, "whitted", &size, &whole);
     refused(&[t[0].clone(), whole, t[2].clone()], "not a tile of `glint render --tile`");

@@ -177,7 +177,7 @@ fn render_tile(
     Ok(Tile { x0, y0, width, height, radiance, first_hit, counts })
 }
 
-/// What stops the tiles not yet started: the caller's cancel flag, or a capped pixel.
+/// What stops the render at the next pixel: the caller's cancel flag, or a capped pixel.
 struct Stop<'a> {
     cancel: Option<&'a AtomicBool>,
     capped: AtomicBool,

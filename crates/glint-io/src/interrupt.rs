@@ -1,5 +1,5 @@
 //! The process-wide request to stop that the CLI's SIGINT/SIGTERM handler raises: the CPU
-//! render loop stops at the next tile, and the atomic writer stops writing and removes its
+//! render loop stops at the next pixel, and the atomic writer stops writing and removes its
 //! temporary. One flag for the process because a signal is one for the process; nothing but
 //! a signal handler (or a test in a child process) raises it.
 

@@ -79,7 +79,7 @@ impl CpuWorker {
         }
     }
 
-    /// Cancels the running render (its thread stops at its next tile).
+    /// Cancels the running render (its thread stops at its next pixel).
     pub fn cancel(&mut self) {
         self.worker.cancel();
         self.job = None;

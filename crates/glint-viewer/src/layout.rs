@@ -88,21 +88,10 @@ impl Layout {
         let mut pause = paused;
         let before = self.mode;
         // Wrapped: in a narrow window the integrator switch goes to a second row, not off screen.
-        // A button moves whole to the next row; its label never breaks ("Whitt / ed vs / GI" at
-        // 760 wide): egui's wrapped rows would wrap the label in the room left instead.
+        // A button moves whole to the next row (`keep_whole`).
         ui.horizontal_wrapped(|ui| {
             for m in ViewMode::ALL {
-                let label = egui::WidgetText::from(m.label()).into_galley(
-                    ui,
-                    Some(egui::TextWrapMode::Extend),
-                    f32::INFINITY,
-                    egui::TextStyle::Button,
-                );
-                // What is left of the row (a wrapped row's available width is all of it).
-                let left = ui.max_rect().right() - ui.cursor().min.x;
-                if label.size().x + 2.0 * ui.spacing().button_padding.x > left {
-                    ui.end_row();
-                }
+                keep_whole(ui, m.label());
                 let enabled = has_gpu || m == ViewMode::Cpu;
                 ui.add_enabled_ui(enabled, |ui| ui.selectable_value(&mut self.mode, m, m.label()));
             }
@@ -110,10 +99,12 @@ impl Layout {
             // What both tracers compute, as the Scene panel's Integrator choice.
             for (i, label) in [(glint_scene::Integrator::Whitted, "Whitted"), (glint_scene::Integrator::Path, "Paths")]
             {
+                keep_whole(ui, label);
                 crate::help::hint(ui.selectable_value(&mut chosen, i, label), "Integrator");
             }
             if integrator == glint_scene::Integrator::Path {
                 let label = if paused { "Continue" } else { "Pause" };
+                keep_whole(ui, label);
                 let tip = if paused {
                     "Go on adding path samples to the GPU image"
                 } else {
@@ -126,6 +117,7 @@ impl Layout {
             if self.mode == ViewMode::WhittedVsGi {
                 ui.separator();
                 for v in GiView::ALL {
+                    keep_whole(ui, v.label());
                     ui.selectable_value(&mut self.gi_view, v, v.label());
                 }
             }
@@ -167,5 +159,24 @@ impl Layout {
         let r = self.view_rects.first()?;
         let (w, h) = (size.0 as f32, size.1 as f32);
         Some(r.min + egui::vec2((x as f32 + 0.5) / w * r.width(), (y as f32 + 0.5) / h * r.height()))
+    }
+}
+
+/// Ends the row of a wrapped toolbar before a button labelled `text` that the rest of the row
+/// cannot hold, so that the button moves whole to the next row: egui would wrap its label in
+/// the room left instead ("Whitt / ed vs / GI" at 760 points wide). Not at a row's start, where
+/// a new row would hold it no better.
+fn keep_whole(ui: &mut Ui, text: &str) {
+    let label = egui::WidgetText::from(text).into_galley(
+        ui,
+        Some(egui::TextWrapMode::Extend),
+        f32::INFINITY,
+        egui::TextStyle::Button,
+    );
+    // A wrapped row's available width is all of it; what is left is from the cursor on.
+    let left = ui.max_rect().right() - ui.cursor().min.x;
+    let at_start = ui.cursor().min.x <= ui.max_rect().left();
+    if !at_start && label.size().x + 2.0 * ui.spacing().button_padding.x > left {
+        ui.end_row();
     }
 }

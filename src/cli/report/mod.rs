@@ -142,9 +142,18 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
             );
         }
     }
+    let bases: Vec<RenderSettings> = scenes
+        .iter()
+        .map(|s| {
+            let integrator = args.integrator.unwrap_or(s.desc.render.integrator);
+            RenderSettings { width, height, integrator, ..s.desc.render.clone() }
+        })
+        .collect();
+    let needs: Vec<SceneNeeds> =
+        scenes.iter().zip(&bases).map(|(s, base)| SceneNeeds::of(&s.desc, base, plan.reference_depth)).collect();
     // Before the GPU opens or --out is made: a family is the same with either backend.
     if let Some(s) = args.shard {
-        let families = shard::families(scenes.len(), &plan.configs(&[Backend::Cpu]));
+        let families = shard::families(&plan.configs(&[Backend::Cpu]), &needs);
         if s.count as usize > families {
             let idle = if s.count as usize == families + 1 {
                 format!("shard {families} would have nothing to run")
@@ -184,18 +193,8 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
     let reference = plan.reference();
     // With --shard, which shard times each (scene, configuration); specular models go with the
     // shard of a scene's first configuration.
-    let owners = args
-        .shard
-        .map(|s| shard::assign(scenes.len(), &planned, u64::from(width) * u64::from(height), args.runs, s.count));
-    let bases: Vec<RenderSettings> = scenes
-        .iter()
-        .map(|s| {
-            let integrator = args.integrator.unwrap_or(s.desc.render.integrator);
-            RenderSettings { width, height, integrator, ..s.desc.render.clone() }
-        })
-        .collect();
-    let needs: Vec<SceneNeeds> =
-        scenes.iter().zip(&bases).map(|(s, base)| SceneNeeds::of(&s.desc, base, plan.reference_depth)).collect();
+    let owners =
+        args.shard.map(|s| shard::assign(&planned, &needs, u64::from(width) * u64::from(height), args.runs, s.count));
     let mine = |scene: usize, config: usize| match (&owners, args.shard) {
         (Some(o), Some(s)) => o[scene][config] == s.index,
         _ => true,

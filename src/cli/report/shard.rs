@@ -20,7 +20,7 @@ use glint_scene::Integrator;
 use serde::{Deserialize, Serialize};
 
 use super::machine::Machine;
-use super::plan::{Config, Planned};
+use super::plan::{Config, Planned, SceneNeeds};
 use super::sweep::SceneResult;
 
 /// `--shard I/N`.
@@ -53,20 +53,29 @@ fn family_heads(planned: &[Planned]) -> Vec<usize> {
         .collect()
 }
 
-/// How many families (scene, family) a sweep of `scenes` scenes of `planned` configurations
-/// has: each is timed whole by one shard, so more shards than this would have nothing to run.
-pub fn families(scenes: usize, planned: &[Planned]) -> usize {
-    scenes * family_heads(planned).iter().enumerate().filter(|(i, head)| i == *head).count()
+/// How many families (scene, family) a sweep of `planned` configurations over scenes of
+/// `needs` has, each with a configuration its scene needs (`Planned::measured_for`): each is
+/// timed whole by one shard, so more shards than this would have nothing to run.
+pub fn families(planned: &[Planned], needs: &[SceneNeeds]) -> usize {
+    let heads = family_heads(planned);
+    let measured =
+        |n: &SceneNeeds, head: usize| (0..planned.len()).any(|j| heads[j] == head && planned[j].measured_for(*n));
+    needs.iter().map(|n| heads.iter().enumerate().filter(|&(i, &head)| i == head && measured(n, head)).count()).sum()
 }
 
-/// Which shard times each (scene, planned configuration): `shards[scene][config]`. Shards past
+/// Which shard times each (scene, planned configuration): `shards[scene][config]`, over the
+/// configurations each scene needs (`needs`; one it leaves out costs nothing, and a family of
+/// none is dealt to no shard: its entries say shard 0, which measures none of it). Shards past
 /// the count of families get none (`families`), and are not walked: a count of 2^32 costs what
 /// the families do.
-pub fn assign(scenes: usize, planned: &[Planned], pixels: u64, runs: u32, count: u32) -> Vec<Vec<u32>> {
+pub fn assign(planned: &[Planned], needs: &[SceneNeeds], pixels: u64, runs: u32, count: u32) -> Vec<Vec<u32>> {
     let heads = family_heads(planned);
     let mut families: BTreeMap<(usize, usize), f64> = BTreeMap::new();
-    for scene in 0..scenes {
+    for (scene, n) in needs.iter().enumerate() {
         for (p, &first) in planned.iter().zip(&heads) {
+            if !p.measured_for(*n) {
+                continue;
+            }
             // Keyed by the family's first configuration, in plan order.
             let c = &p.config;
             let cost = pixels as f64 * f64::from(c.spp) * f64::from(c.depth + 1) * f64::from(runs + 1);
@@ -86,12 +95,15 @@ pub fn assign(scenes: usize, planned: &[Planned], pixels: u64, runs: u32, count:
         load[shard] += cost;
         owner.insert(key, shard as u32);
     }
-    (0..scenes).map(|scene| heads.iter().map(|&first| owner[&(scene, first)]).collect()).collect()
+    (0..needs.len())
+        .map(|scene| heads.iter().map(|&first| owner.get(&(scene, first)).copied().unwrap_or(0)).collect())
+        .collect()
 }
 
 /// The layout of `shard-I-of-N.toml`. Bump it with any change to what a shard writes (the
-/// `ShardFile` and every type in it; tests/golden/shard-keys.txt lists its keys): the merge
-/// refuses a shard of another format instead of reading fields it lacks as empty.
+/// `ShardFile` and every type in it; tests/golden/shard-keys.txt lists the keys of a CPU-only
+/// shard, so a change to the GPU rows' fields alone is not caught there): the merge refuses a
+/// shard of another format instead of reading fields it lacks as empty.
 pub const SHARD_FORMAT: u32 = 2;
 
 /// What a shard writes: the sweep it is part of, its machine, and its rows.
@@ -163,6 +175,13 @@ impl ShardFile {
     fn check(&self) -> Result<(), String> {
         if self.shard >= self.count {
             return Err(format!("shard: is {}, not below the shard count {}", self.shard, self.count));
+        }
+        if self.scene_hashes.len() != self.scenes.len() {
+            return Err(format!(
+                "scene_hashes: has {}, not one for each of the {} scenes",
+                self.scene_hashes.len(),
+                self.scenes.len()
+            ));
         }
         let scene_of = |at: String, name: &str| {
             if self.scenes.iter().any(|s| s == name) {
@@ -377,8 +396,8 @@ fn check_format(path: &Path, text: &str) -> anyhow::Result<()> {
 /// Why two shards with the same scene names are not of the same scenes, if they are not: a
 /// scene whose content hash differs.
 fn changed_scene(first: &ShardFile, other: &ShardFile) -> Option<String> {
-    let differs = |i: &usize| first.scene_hashes.get(*i) != other.scene_hashes.get(*i);
-    let i = (0..other.scenes.len()).find(differs)?;
+    // `check` gave every shard one hash a scene.
+    let i = (0..other.scenes.len()).find(|&i| first.scene_hashes[i] != other.scene_hashes[i])?;
     Some(format!(
         "scene {} differs between them (its content hash, `glint:scene_hash` in a render's metadata): the scene or its \
          textures changed between the shards' runs, so render every shard of the same files again",
@@ -412,8 +431,13 @@ pub fn join(files: &mut [ShardFile], planned: &[Planned]) -> anyhow::Result<Vec<
     let names = files[0].scenes.clone();
     // Which shard measures each configuration of each scene: the split every shard made.
     let first = &files[0];
-    let owners =
-        assign(names.len(), planned, u64::from(first.width) * u64::from(first.height), first.runs, first.count);
+    // Every shard writes a result, its needs included, for every scene (`check`).
+    let needs: Vec<SceneNeeds> = names
+        .iter()
+        .map(|n| first.results.iter().find(|r| r.name == *n).map(|r| r.needs))
+        .collect::<Option<_>>()
+        .with_context(|| format!("{}: a scene of the sweep has no result", first.path.display()))?;
+    let owners = assign(planned, &needs, u64::from(first.width) * u64::from(first.height), first.runs, first.count);
     let paths: Vec<PathBuf> = files.iter().map(|f| f.path.clone()).collect();
     let parts: Vec<SceneResult> = files.iter_mut().flat_map(|f| std::mem::take(&mut f.results)).collect();
     let mut out: Vec<SceneResult> = Vec::new();
@@ -475,21 +499,30 @@ mod tests {
     #[test]
     fn shards_past_the_families_get_nothing_and_cost_nothing() {
         let planned = Plan::full(64).configs(&[Backend::Cpu, Backend::Gpu]);
-        let families = families(5, &planned);
+        let needs = [SceneNeeds { integrator: Integrator::Whitted, recurses: true }; 5];
+        let families = families(&planned, &needs);
         assert!(families > 5 && families < 5 * planned.len(), "{families}");
-        let fitted = assign(5, &planned, 320 * 240, 3, families as u32);
+        let fitted = assign(&planned, &needs, 320 * 240, 3, families as u32);
         // As many shards as families: one each, every shard used.
         let used: std::collections::BTreeSet<u32> = fitted.iter().flatten().copied().collect();
         assert_eq!(used.len(), families);
         // Any more deal the same (no 2^32-long load vector), and leave the rest empty.
-        assert_eq!(assign(5, &planned, 320 * 240, 3, u32::MAX), fitted);
+        assert_eq!(assign(&planned, &needs, 320 * 240, 3, u32::MAX), fitted);
+        // A scene without child rays has fewer families: the deep grid rows it leaves out.
+        let flat = [SceneNeeds { recurses: false, ..needs[0] }];
+        let fewer = self::families(&planned, &flat);
+        assert!(fewer < families / 5, "{fewer} of {}", families / 5);
+        let used: std::collections::BTreeSet<u32> =
+            assign(&planned, &flat, 320 * 240, 3, fewer as u32).into_iter().flatten().collect();
+        assert_eq!(used.len(), fewer, "a shard was dealt only configurations the scene leaves out");
     }
 
     #[test]
     fn every_family_goes_to_one_shard_and_the_loads_balance() {
         let planned = Plan::full(64).configs(&[Backend::Cpu, Backend::Gpu]);
+        let needs = [SceneNeeds { integrator: Integrator::Whitted, recurses: true }; 5];
         for count in [1, 2, 3, 7] {
-            let shards = assign(5, &planned, 320 * 240, 3, count);
+            let shards = assign(&planned, &needs, 320 * 240, 3, count);
             let mut load = vec![0.0; count as usize];
             for scene in &shards {
                 for (i, p) in planned.iter().enumerate() {
@@ -505,7 +538,7 @@ mod tests {
             let (most, least) =
                 (load.iter().copied().fold(0.0, f64::max), load.iter().copied().fold(f64::MAX, f64::min));
             assert!(least > 0.0 && most <= 2.0 * least, "{count} shards: loads {load:?}");
-            assert_eq!(shards, assign(5, &planned, 320 * 240, 3, count), "not the same on every machine");
+            assert_eq!(shards, assign(&planned, &needs, 320 * 240, 3, count), "not the same on every machine");
         }
     }
 

@@ -11,8 +11,9 @@ use tempfile::TempDir;
 pub struct Staging {
     dir: TempDir,
     out: PathBuf,
-    /// Whether this run made `out`: a run that fails removes it again.
-    made_out: bool,
+    /// The folders this run made for `out`, `out` first, then each parent it made: a run that
+    /// fails removes them again.
+    made: Vec<PathBuf>,
 }
 
 impl Staging {
@@ -23,11 +24,12 @@ impl Staging {
         for name in files {
             check_destination(&out.join(name), force, "nothing was run")?;
         }
-        let made_out = !out.exists();
+        let made: Vec<PathBuf> =
+            out.ancestors().take_while(|a| !a.as_os_str().is_empty() && !a.exists()).map(Path::to_path_buf).collect();
         std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
         let dir = TempDir::with_prefix_in(".glint-report-", out)
             .with_context(|| format!("cannot create a folder in {}", out.display()))?;
-        Ok(Self { dir, out: out.to_path_buf(), made_out })
+        Ok(Self { dir, out: out.to_path_buf(), made })
     }
 
     /// Where the run writes its files.
@@ -57,7 +59,7 @@ impl Staging {
                 .with_context(|| format!("cannot move the new {} into place", dest.display()))?;
         }
         // Published, `out` is the run's result even where the run made it.
-        self.made_out = false;
+        self.made.clear();
         Ok(())
     }
 }
@@ -66,10 +68,12 @@ impl Drop for Staging {
     /// A run that did not publish leaves `out` as it was: without the staging folder (the
     /// `TempDir` removes it after this), and not there at all where the run made it.
     fn drop(&mut self) {
-        if self.made_out {
-            // Only if nothing else appeared in it meanwhile: remove_dir refuses a folder with files.
+        if !self.made.is_empty() {
             let _ = std::fs::remove_dir_all(self.dir.path());
-            let _ = std::fs::remove_dir(&self.out);
+        }
+        // Only those still empty: remove_dir refuses a folder with files (made meanwhile).
+        for folder in &self.made {
+            let _ = std::fs::remove_dir(folder);
         }
     }
 }
@@ -99,10 +103,10 @@ mod tests {
     fn a_run_that_fails_removes_the_out_folder_it_made_and_keeps_one_it_found() {
         let root = tempfile::tempdir().expect("temp folder");
         let out = root.path().join("new");
-        let staging = Staging::new(&out, &[], false).expect("staging");
+        let staging = Staging::new(&out.join("deeper"), &[], false).expect("staging");
         std::fs::write(staging.path().join("report.md"), "half").expect("write");
         drop(staging);
-        assert!(!out.exists(), "an interrupted run left the --out it made");
+        assert!(!out.exists(), "an interrupted run left the --out it made, or its parent");
         std::fs::create_dir(&out).expect("mkdir");
         drop(Staging::new(&out, &[], false).expect("staging"));
         assert!(out.is_dir() && std::fs::read_dir(&out).expect("out").count() == 0, "a found --out is kept, empty");

@@ -162,14 +162,18 @@ pub fn settings_for(base: &RenderSettings, config: &Config) -> RenderSettings {
     }
 }
 
+/// A CPU render of the report, which SIGINT/SIGTERM stop at the next pixel (`cli::interrupt`).
+pub fn cpu_render(flat: &FlatScene, options: &CpuOptions) -> anyhow::Result<glint_core::CpuRender> {
+    let cancel = glint_io::interrupt::flag();
+    Ok(render_cpu(flat, options, RenderControl { cancel: Some(&cancel), ..RenderControl::default() })?)
+}
+
 pub fn render(engines: &mut Engines, flat: &FlatScene, config: &Config) -> anyhow::Result<Sample> {
     match config.backend {
         Backend::Cpu => {
             let options =
                 CpuOptions { threads: engines.threads, specialise: config.specialise, ..CpuOptions::default() };
-            // SIGINT/SIGTERM stop the sweep at the next tile (see `cli::interrupt`).
-            let cancel = glint_io::interrupt::flag();
-            let r = render_cpu(flat, &options, RenderControl { cancel: Some(&cancel), ..RenderControl::default() })?;
+            let r = cpu_render(flat, &options)?;
             Ok(Sample { image: r.image, counts: r.counts, time: r.elapsed, gpu: None })
         }
         Backend::Gpu => {

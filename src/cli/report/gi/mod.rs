@@ -152,7 +152,7 @@ pub fn measure(
             seed: reference_seed(base.seed, k),
             ..paths.clone()
         };
-        let r = glint_core::render_cpu(&FlatScene::build(&loaded.desc, &s), &options, Default::default())
+        let r = super::sweep::cpu_render(&FlatScene::build(&loaded.desc, &s), &options)
             .with_context(|| format!("{name}: the path-traced reference"))?;
         bar.inc(1);
         Ok(r.image)

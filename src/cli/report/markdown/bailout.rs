@@ -26,7 +26,7 @@ pub fn bailout_summary(md: &mut String, scenes: &[SceneResult]) {
     // The bailout prunes Whitted's child rays only, so the sweep leaves out the bailout rows of
     // a path scene and of a scene without child rays (`Planned::measured_for`).
     let (left_out, whitted): (Vec<&SceneResult>, Vec<&SceneResult>) =
-        scenes.iter().partition(|s| s.settings.integrator == Integrator::Path || !s.needs.recurses);
+        scenes.iter().partition(|s| s.needs.integrator == Integrator::Path || !s.needs.recurses);
     if !whitted.is_empty() {
         let _ = writeln!(md, "| scene | backend | rays per pixel | render ms | RMSE |");
         let _ = writeln!(md, "|---|---|--:|--:|--:|");
@@ -53,11 +53,7 @@ pub fn bailout_summary(md: &mut String, scenes: &[SceneResult]) {
     }
     let _ = writeln!(md);
     let names = |path: bool| -> Vec<&str> {
-        left_out
-            .iter()
-            .filter(|s| (s.settings.integrator == Integrator::Path) == path)
-            .map(|s| s.name.as_str())
-            .collect()
+        left_out.iter().filter(|s| (s.needs.integrator == Integrator::Path) == path).map(|s| s.name.as_str()).collect()
     };
     let (paths, flat) = (names(true), names(false));
     if !paths.is_empty() {
