@@ -222,7 +222,7 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
             .iter()
             .enumerate()
             .filter(|(ci, p)| mine(si, *ci) && p.measured_for(needs[si]))
-            .map(|(_, p)| p.clone())
+            .map(|(_, p)| Planned { config: p.config, groups: p.groups_for(needs[si]) })
             .collect();
         let rows = if ours.is_empty() {
             Vec::new()

@@ -141,24 +141,26 @@ impl SceneNeeds {
 }
 
 impl Planned {
-    /// Whether a scene of `needs` is measured at this configuration: not where the row would
-    /// time another row's render again. Paths end by Russian roulette, which the bailout does
-    /// not change, so a path scene leaves out the rows that only vary the bailout; a Whitted
-    /// scene without child rays renders the depth-0 image at every depth, so it leaves out the
-    /// grid's and the bailout sweep's deeper rows (the reference, shader and ε rows stay: they
-    /// vary something else).
+    /// The sweeps this configuration is in for a scene of `needs`: not those where the row
+    /// would time another row's render again. Paths end by Russian roulette, which the bailout
+    /// does not change, so a path scene is in no bailout sweep; a Whitted scene without child
+    /// rays renders the depth-0 image at every depth, so its grid and bailout sweep stop at
+    /// depth 0 (the reference, shader and ε sweeps vary something else and keep their depth).
+    pub fn groups_for(&self, needs: SceneNeeds) -> Vec<Group> {
+        let deep = self.config.depth > 0;
+        let applies = |g: &Group| match (needs.integrator, g) {
+            (Integrator::Path, Group::Bailout) => false,
+            (Integrator::Whitted, Group::Grid | Group::Bailout) => needs.recurses || !deep,
+            (Integrator::Path, Group::Reference | Group::Grid | Group::Shader | Group::Epsilon)
+            | (Integrator::Whitted, Group::Reference | Group::Shader | Group::Epsilon) => true,
+        };
+        self.groups.iter().copied().filter(applies).collect()
+    }
+
+    /// Whether a scene of `needs` is measured at this configuration: in some sweep of its own
+    /// (`groups_for`).
     pub fn measured_for(&self, needs: SceneNeeds) -> bool {
-        match needs.integrator {
-            Integrator::Path => self.groups != [Group::Bailout],
-            Integrator::Whitted => {
-                needs.recurses
-                    || self.config.depth == 0
-                    || self.groups.iter().any(|g| match g {
-                        Group::Reference | Group::Shader | Group::Epsilon => true,
-                        Group::Grid | Group::Bailout => false,
-                    })
-            }
-        }
+        !self.groups_for(needs).is_empty()
     }
 }
 
@@ -347,6 +349,13 @@ mod tests {
         let flat: Vec<&Planned> = rows.iter().filter(|p| p.measured_for(needs(Integrator::Whitted, false))).collect();
         assert_eq!(flat.len(), 1 + 3 + 4 + 4, "{flat:#?}");
         assert!(flat.iter().all(|p| p.config.depth == 0 || !p.groups.iter().all(|g| *g == Group::Grid)));
+        // The rows kept for another sweep are not tagged with the sweeps that left them out.
+        let lights = needs(Integrator::Whitted, false);
+        for p in &flat {
+            let groups = p.groups_for(lights);
+            assert!(p.config.depth == 0 || !groups.contains(&Group::Grid) && !groups.contains(&Group::Bailout));
+        }
+        assert!(path.iter().all(|p| !p.groups_for(needs(Integrator::Path, true)).contains(&Group::Bailout)));
         // bailout 0 and 1/32 at spp {1, 4} × depth {5, 8}; the 1/255 rows are the grid's.
         assert_eq!(rows.len() - path.len(), 8);
         assert!(path.iter().all(|p| p.config.bailout == Bailout::Per255 || p.groups.contains(&Group::Reference)));

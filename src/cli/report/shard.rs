@@ -316,12 +316,15 @@ pub fn read_all(dirs: &[PathBuf]) -> anyhow::Result<Vec<ShardFile>> {
             None => sweeps.push((key, 1, i)),
         }
     }
+    // With no sweep of most shards (two shards, one stale) either may be the stale one.
+    let tied = sweeps.iter().filter(|(_, n, _)| *n == sweeps.iter().map(|(_, n, _)| *n).max().unwrap_or(0)).count() > 1;
     let (_, agreeing, reference) =
         sweeps.into_iter().max_by_key(|&(_, n, i)| (n, std::cmp::Reverse(i))).expect("at least one shard");
     let (first_path, first) = &found[reference];
-    let others = match agreeing {
-        1 => String::new(),
-        n => format!(" and {} more of the {} shards", n - 1, found.len()),
+    let others = match (agreeing, tied) {
+        (_, true) => " (as many shards are of either sweep: either may be the stale one)".to_string(),
+        (1, false) => String::new(),
+        (n, false) => format!(" and {} more of the {} shards", n - 1, found.len()),
     };
     let expected = first.sweep();
     let mut by_index: BTreeMap<u32, &Path> = BTreeMap::new();

@@ -12,21 +12,24 @@ use glint_scene::Integrator;
 
 pub fn bailout_summary(md: &mut String, scenes: &[SceneResult]) {
     // The deepest, most sampled configuration of the bailout sweep: where the bailout matters most.
-    let Some(base) = scenes
+    let base = scenes
         .iter()
         .flat_map(|s| &s.rows)
         .filter(|r| r.groups.contains(&Group::Bailout))
         .map(|r| r.config)
-        .max_by_key(|c| (c.depth, c.spp))
-    else {
-        return;
-    };
-    md.push_str(&prose(Block::Bailout, &[("spp", &base.spp), ("depth", &base.depth)]));
-    let px = |s: &SceneResult| s.pixels() as f64;
+        .max_by_key(|c| (c.depth, c.spp));
     // The bailout prunes Whitted's child rays only, so the sweep leaves out the bailout rows of
-    // a path scene and of a scene without child rays (`Planned::measured_for`).
+    // a path scene and of a scene without child rays (`Planned::groups_for`).
     let (left_out, whitted): (Vec<&SceneResult>, Vec<&SceneResult>) =
         scenes.iter().partition(|s| s.needs.integrator == Integrator::Path || !s.needs.recurses);
+    match base {
+        Some(base) => md.push_str(&prose(Block::Bailout, &[("spp", &base.spp), ("depth", &base.depth)])),
+        // Every scene left the sweep out: the heading, then why.
+        None if !left_out.is_empty() => md.push_str("### What the bailout saves\n\n"),
+        None => return,
+    }
+    let px = |s: &SceneResult| s.pixels() as f64;
+    let base = base.unwrap_or(scenes[0].reference);
     if !whitted.is_empty() {
         let _ = writeln!(md, "| scene | backend | rays per pixel | render ms | RMSE |");
         let _ = writeln!(md, "|---|---|--:|--:|--:|");
@@ -60,8 +63,8 @@ pub fn bailout_summary(md: &mut String, scenes: &[SceneResult]) {
         let _ = writeln!(
             md,
             "Left out: {}, whose paths end by Russian roulette, which the bailout does not change \
-             (`glint render --integrator path --bailout` is refused): the sweep renders {} bailout 1/255 \
-             rows only, which are the grid's.\n",
+             (`glint render --integrator path --bailout` is refused): {} rows are the grid's, at bailout \
+             1/255.\n",
             paths.join(", "),
             if paths.len() == 1 { "its" } else { "their" }
         );
