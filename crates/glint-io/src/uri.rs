@@ -104,6 +104,19 @@ pub fn uri_file(model: &Path, uri: &str) -> Result<Option<PathBuf>, UriError> {
     let io = |path: &Path, error| UriError::Io { uri: shown(uri), path: path.to_owned(), error };
     let folder = folder.canonicalize().map_err(|e| io(folder, e))?;
     let joined = folder.join(relative);
+    // A `..` that climbs out is refused by its words, before the file is looked for: whether
+    // such a file exists is no business of the model's (a missing one was only warned of).
+    let mut depth = 0i64;
+    for part in relative.components() {
+        match part {
+            std::path::Component::ParentDir => depth -= 1,
+            std::path::Component::Normal(_) => depth += 1,
+            std::path::Component::CurDir | std::path::Component::RootDir | std::path::Component::Prefix(_) => {}
+        }
+        if depth < 0 {
+            return Err(UriError::Escapes { uri: shown(uri), path: joined, folder });
+        }
+    }
     let path = joined.canonicalize().map_err(|e| io(&joined, e))?;
     if !path.starts_with(&folder) {
         return Err(UriError::Escapes { uri: shown(uri), path, folder });
@@ -219,6 +232,9 @@ mod tests {
             ("../secret.bin", "outside the folder of the file that names it"),
             ("sub/../../secret.bin", "outside the folder of the file that names it"),
             ("%2E%2E/secret.bin", "outside the folder of the file that names it"),
+            // Refused alike whether or not the file outside exists (a missing one was only warned).
+            ("../missing-outside.bin", "outside the folder of the file that names it"),
+            ("sub/../../missing-outside.bin", "outside the folder of the file that names it"),
             (secret.to_str().unwrap(), "absolute path"),
             ("file:///etc/passwd", "scheme `file:`"),
             ("http://example.com/x.bin", "scheme `http:`"),
