@@ -25,7 +25,18 @@ pub(super) fn triangulate(positions: &[[f64; 3]], polygon: &[u32], out: &mut Vec
     }
     let at = |i: u32| positions[i as usize];
     let normal = newell_normal(polygon.iter().map(|&i| at(i)));
-    if normal == [0.0; 3] || is_convex(polygon.len(), |k| at(polygon[k]), normal) {
+    if normal == [0.0; 3] {
+        // No net area: a point, collinear corners, or lobes of opposite turn that cancel (a
+        // bow-tie `f 1 2 3 4` over (0,0) (1,0) (0,1) (1,1)), whose edges cross.
+        let lobes = polygon.windows(2).skip(1).any(|w| {
+            let (a, b, c) = (at(polygon[0]), at(w[0]), at(w[1]));
+            let (e, f) = ([b[0] - a[0], b[1] - a[1], b[2] - a[2]], [c[0] - a[0], c[1] - a[1], c[2] - a[2]]);
+            [e[1] * f[2] - e[2] * f[1], e[2] * f[0] - e[0] * f[2], e[0] * f[1] - e[1] * f[0]] != [0.0; 3]
+        });
+        fan(out);
+        return if lobes { Cut::SelfIntersecting } else { Cut::Fan };
+    }
+    if is_convex(polygon.len(), |k| at(polygon[k]), normal) {
         fan(out);
         return Cut::Fan;
     }
@@ -104,6 +115,16 @@ mod tests {
         let mut out = Vec::new();
         assert_eq!(triangulate(&quad, &[0, 1, 2, 3], &mut out), Cut::Fan);
         assert_eq!(out, [[0, 1, 2], [0, 2, 3]]);
+    }
+
+    #[test]
+    fn a_bow_tie_whose_lobes_cancel_is_a_polygon_whose_edges_cross() {
+        // Newell's normal is exactly 0: the two lobes turn opposite ways with equal areas.
+        let bow_tie = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [1.0, 1.0, 0.0]];
+        let mut out = Vec::new();
+        assert_eq!(triangulate(&bow_tie, &[0, 1, 2, 3], &mut out), Cut::SelfIntersecting);
+        let line = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [2.0, 0.0, 0.0], [3.0, 0.0, 0.0]];
+        assert_eq!(triangulate(&line, &[0, 1, 2, 3], &mut Vec::new()), Cut::Fan, "no area is no crossing");
     }
 
     #[test]
