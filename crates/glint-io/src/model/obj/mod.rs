@@ -99,12 +99,24 @@ pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
 /// tobj's error, with what a face's index may be where it names a bad one: "face vertex index
 /// out of bounds" said neither the index nor the range.
 fn face_problem(e: &tobj::LoadError, bytes: &[u8], line: Option<usize>) -> String {
+    let statement = |line: usize| {
+        bytes.split(|&b| b == b'\n').nth(line - 1).map(String::from_utf8_lossy).unwrap_or_default().trim().to_string()
+    };
     let (kind, what) = match e {
         tobj::LoadError::FaceVertexOutOfBounds => ("v", "vertices"),
         tobj::LoadError::FaceTexCoordOutOfBounds => ("vt", "texture coordinates"),
         tobj::LoadError::FaceNormalOutOfBounds => ("vn", "normals"),
         tobj::LoadError::FaceParseError => {
-            return format!("{e}: a face is `f` and three or more of v, v/vt, v//vn or v/vt/vn, each a whole number");
+            let rule = "a face is `f` and three or more of v, v/vt, v//vn or v/vt/vn, each a whole number";
+            let Some(line) = line else { return format!("{e}: {rule}") };
+            let face = statement(line);
+            // Digits that no index type holds: a whole number, but one that names no statement.
+            let huge = face.split(|c: char| c.is_whitespace() || c == '/').any(|w| {
+                let digits = w.strip_prefix('-').unwrap_or(w);
+                !digits.is_empty() && digits.bytes().all(|b| b.is_ascii_digit()) && w.parse::<i64>().is_err()
+            });
+            let huge = if huge { "; an index of this many digits names no statement of any file" } else { "" };
+            return format!("`{face}`: {e}: {rule}{huge}");
         }
         _ => return e.to_string(),
     };
@@ -117,10 +129,9 @@ fn face_problem(e: &tobj::LoadError, bytes: &[u8], line: Option<usize>) -> Strin
             words.next() == Some(kind.as_bytes())
         })
         .count();
-    let statement = bytes.split(|&b| b == b'\n').nth(line - 1).map(String::from_utf8_lossy).unwrap_or_default();
     format!(
         "`{}`: {e}; {count} {what} come before it, so an index runs from 1 to {count}, or from −1 back to −{count}",
-        statement.trim()
+        statement(line)
     )
 }
 

@@ -508,6 +508,12 @@ fn a_bad_face_index_names_the_index_and_the_range_and_a_huge_word_is_cut() {
     assert!(normal.contains("1 normals come before it, so an index runs from 1 to 1"), "{normal}");
     let unparsed = message("p.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 18446744073709551616\n");
     assert!(unparsed.contains("face parse error: a face is `f` and three or more of"), "{unparsed}");
+    // The face is quoted, and an index no integer holds is said to be one (a tester read "each a
+    // whole number" of a whole number).
+    assert!(unparsed.contains("(`f 1 2 18446744073709551616`: face parse error"), "{unparsed}");
+    assert!(unparsed.ends_with("an index of this many digits names no statement of any file)"), "{unparsed}");
+    let word = message("w.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 x\n");
+    assert!(word.contains("`f 1 2 x`: face parse error") && !word.contains("many digits"), "{word}");
     // A megabyte of digits: the message keeps its start and end, not the megabyte.
     let long = message("l.obj", &format!("v 0 0 0\nv 1 0 0\nv 0 1 0\nv {} 0 0\nf 1 2 3\n", "1".repeat(1_000_000)));
     assert!(long.len() < 2000 && long.contains("l.obj:4: invalid OBJ"), "{} bytes", long.len());
