@@ -130,6 +130,31 @@ fn a_model_far_from_the_origin_renders_as_at_the_origin() {
     assert!(stderr.contains(lost) && stderr.contains("where f32 steps are 6.250e-2"), "{stderr}");
 }
 
+#[test]
+fn a_tiny_model_renders_as_at_scale_one_down_to_the_least_size_and_is_refused_below() {
+    // A floor of 1e-6 on the framing radius once made a 1e-8 model a dot and a 1e-10 one
+    // nothing, without a word (a models tester).
+    let dir = TempDir::new("models-tiny");
+    let tetrahedron = |side: f64| {
+        format!("v 0 0 0\nv {side:e} 0 0\nv 0 {side:e} 0\nv 0 0 {side:e}\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n")
+    };
+    let render = |side: f64| {
+        let file = dir.join("t.obj");
+        std::fs::write(&file, tetrahedron(side)).unwrap();
+        render_model(&dir, "t.obj", &file, &[]);
+        image::open(dir.join("m-cpu.png")).expect("the CPU image").into_rgb8()
+    };
+    let unit = render(1.0);
+    let tiny = render(1e-8);
+    let worst = unit.as_raw().iter().zip(tiny.as_raw()).map(|(a, b)| a.abs_diff(*b)).max();
+    assert!(worst <= Some(1), "the 1e-8 model's image differs from the unit one's by {worst:?} of 255");
+    let file = dir.join("below.obj");
+    std::fs::write(&file, tetrahedron(1e-10)).unwrap();
+    let done = glint(&dir, ["render".as_ref(), file.as_os_str(), "-o".as_ref(), dir.join("b.png").as_os_str()]);
+    let said = text(&done.stderr);
+    assert!(!done.status.success() && said.contains("the model's largest side is 1.000e-10, below 1e-9"), "{said}");
+}
+
 /// Renders `path` at 64×48 with `extra` flags on both backends (the CPU alone with
 /// `GLINT_SKIP_GPU=1`), asserting success, every pixel traced and GPU–CPU parity; returns
 /// what it wrote to stderr (the warnings).

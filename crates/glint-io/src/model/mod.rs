@@ -130,6 +130,10 @@ pub fn load_model_file(path: &Path, options: &ImportOptions) -> Result<Model, Mo
 /// Where the camera framing a model stands: a direction from the model's centre and how many
 /// of its radii along it. Its 40° view holds the bounding sphere from 1/sin 20° = 2.92 radii:
 /// at 2.6 a tall model (a skinned figure, a column) lost its top.
+/// The least largest side of a model Glint frames: its coordinates' products (a triangle's
+/// normal, side², and determinant, side³) stay far above f32's least normal number, 1.2e-38.
+pub const MIN_MODEL_SIDE: f64 = 1e-9;
+
 const FRAMING_CAMERA: ([f64; 3], f64) = ([0.45, 0.35, 0.82], 3.0);
 /// Where the default rig's point key light stands, as `FRAMING_CAMERA`.
 const KEY_LIGHT: ([f64; 3], f64) = ([-0.8, 1.6, 1.2], 3.0);
@@ -204,7 +208,22 @@ pub fn scene_around(
         }
     }
     let center: [f64; 3] = std::array::from_fn(|k| 0.5 * (lo[k] + hi[k]));
-    let radius = (0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>().sqrt().max(1e-6) * 0.5;
+    let side = (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max);
+    // Framed by its own size however small (a floor of 1e-6 once framed a 1e-8 model as a dot,
+    // and a 1e-10 one not at all, without a word), down to where the GPU's f32 products of its
+    // coordinates would underflow; a model of one point has no size and gets 1e-6.
+    if side > 0.0 && side < MIN_MODEL_SIDE {
+        return Err(FieldIssue {
+            field: "vertices".into(),
+            problem: format!(
+                "the model's largest side is {side:.3e}, below {MIN_MODEL_SIDE:e}, the least Glint frames and traces \
+                 (the GPU's f32 products of such coordinates underflow); scale it up (a node's scale, or a file in \
+                 other units?)"
+            ),
+        });
+    }
+    let diagonal = (0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>().sqrt();
+    let radius = if diagonal > 0.0 { 0.5 * diagonal } else { 0.5e-6 };
     // Beyond the coordinates a scene may hold, the camera and lights Glint makes around the model
     // (where the file has none) would be refused, each under Glint's own names: say once what
     // is wrong. The ground lies within the model's box.
@@ -242,7 +261,6 @@ pub fn scene_around(
     let mut render = RenderSettings::default();
     // The default ε is 1e-6 of a model 1 wide; a smaller model (a file in other units, or a
     // node's scale) gets the same share of its own size, so that it renders as it would at 1.
-    let side = (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max);
     if side > 0.0 {
         render.epsilon = render.epsilon.min(EPSILON_SHARE * side);
     }
