@@ -714,6 +714,25 @@ fn a_saved_edit_of_a_textured_model_material_loads_again_with_the_models_images(
 }
 
 #[test]
+fn a_zero_normal_facets_the_primitive_with_a_warning() {
+    // As an OBJ's zero normals are warned of; a glTF's (BoxBadNormals) faceted its box silently.
+    let dir = TempDir::new("gltf-zero-normal");
+    let mut f = Fixture::quad();
+    let view = f.push_f32(&[0., 0., 0., 0., 0., 1., 0., 0., 1., 0., 0., 1.]);
+    let accessors = f.json["accessors"].as_array_mut().expect("accessors");
+    accessors.push(json!({ "bufferView": view, "componentType": 5126, "count": 4, "type": "VEC3" }));
+    let index = accessors.len() - 1;
+    f.json["meshes"][0]["primitives"][0]["attributes"]["NORMAL"] = json!(index);
+    let m = load(&f.write_gltf(&dir, "zero", BufferAt::DataUri));
+    assert!(m.meshes[0].normals.is_none(), "faceted");
+    let warned = m.warnings.iter().find(|w| w.field.ends_with("attributes.NORMAL")).expect("warned");
+    assert!(warned.problem.starts_with("has zero-length normals"), "{warned:?}");
+    // The fixture's own normals: no warning.
+    let m = load(&Fixture::quad().write_gltf(&dir, "unit", BufferAt::DataUri));
+    assert!(m.warnings.iter().all(|w| !w.field.ends_with("NORMAL")), "{:?}", m.warnings);
+}
+
+#[test]
 fn normals_under_a_tiny_node_scale_are_kept() {
     // Nodes scaled by 1e-3 twice (a tester's file): the cofactor transform scaled each normal's
     // length by s² = 1e-12, the importer took that for a zero normal, and a smooth sphere was

@@ -235,6 +235,18 @@ pub fn load_gltf(path: &Path, options: &ImportOptions) -> Result<Model, GltfErro
                                 .into(),
                         });
                     }
+                    // As an OBJ's: one zero normal faceted the primitive without a word.
+                    if k == 0
+                        && primitive.get(&::gltf::Semantic::Normals).is_some()
+                        && desc.as_ref().is_some_and(|d| d.normals.is_none())
+                    {
+                        model.warnings.push(FieldIssue {
+                            field: format!("{prim_path}.attributes.NORMAL"),
+                            problem: "has zero-length normals (or ones its node's transform makes zero); shaded \
+                                      with its faces' geometric normals"
+                                .into(),
+                        });
+                    }
                     if let Some(desc) = desc {
                         model.meshes.push(desc);
                     }
