@@ -305,6 +305,19 @@ fn quantised_attributes_are_read_where_the_file_requires_mesh_quantization() {
     assert_eq!(mesh.normals.as_ref().unwrap()[1], [0.0, 0.0, 1.0]);
     assert_eq!(mesh.uvs.as_ref().unwrap()[2], [2.0, 2.0], "unnormalised shorts are their values");
     assert!(m.warnings.iter().all(|w| !w.field.starts_with("extensions")), "{:?}", m.warnings);
+    assert!(m.warnings.iter().all(|w| !w.problem.contains("KHR_mesh_quantization")), "{:?}", m.warnings);
+    // The same file without the extension listed: read alike, with a warning per attribute.
+    f.json.as_object_mut().expect("JSON").remove("extensionsUsed");
+    f.json.as_object_mut().expect("JSON").remove("extensionsRequired");
+    let m = load(&f.write_glb(&dir, "undeclared"));
+    assert_eq!(m.meshes[0].vertices[2], [3.0, 3.0, 0.0]);
+    let warned: Vec<&str> = m
+        .warnings
+        .iter()
+        .filter(|w| w.problem.contains("KHR_mesh_quantization"))
+        .map(|w| w.field.rsplit('.').next().unwrap_or(""))
+        .collect();
+    assert_eq!(warned, ["POSITION", "NORMAL"], "{:?}", m.warnings);
 }
 
 #[test]

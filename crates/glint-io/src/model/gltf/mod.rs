@@ -235,6 +235,22 @@ pub fn load_gltf(path: &Path, options: &ImportOptions) -> Result<Model, GltfErro
                                 .into(),
                         });
                     }
+                    // Integer positions and normals are KHR_mesh_quantization's: read, but a file that
+                    // does not declare it is not valid glTF, which other readers may refuse.
+                    for (semantic, name) in
+                        [(::gltf::Semantic::Positions, "POSITION"), (::gltf::Semantic::Normals, "NORMAL")]
+                    {
+                        let integer =
+                            primitive.get(&semantic).is_some_and(|a| a.data_type() != ::gltf::accessor::DataType::F32);
+                        if k == 0 && integer && !gltf.extensions_used().any(|e| e == "KHR_mesh_quantization") {
+                            model.warnings.push(FieldIssue {
+                                field: format!("{prim_path}.attributes.{name}"),
+                                problem: "holds integers, which glTF allows only in a file that lists \
+                                          KHR_mesh_quantization in extensionsUsed; read as that extension says"
+                                    .into(),
+                            });
+                        }
+                    }
                     // As an OBJ's: one zero normal faceted the primitive without a word.
                     if k == 0
                         && primitive.get(&::gltf::Semantic::Normals).is_some()
