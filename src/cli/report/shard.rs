@@ -317,9 +317,9 @@ pub fn read_all(dirs: &[PathBuf]) -> anyhow::Result<Vec<ShardFile>> {
         }
     }
     // With no sweep of most shards (two shards, one stale) either may be the stale one.
-    let tied = sweeps.iter().filter(|(_, n, _)| *n == sweeps.iter().map(|(_, n, _)| *n).max().unwrap_or(0)).count() > 1;
     let (_, agreeing, reference) =
-        sweeps.into_iter().max_by_key(|&(_, n, i)| (n, std::cmp::Reverse(i))).expect("at least one shard");
+        *sweeps.iter().max_by_key(|&&(_, n, i)| (n, std::cmp::Reverse(i))).expect("at least one shard");
+    let tied = sweeps.iter().filter(|(_, n, _)| *n == agreeing).count() > 1;
     let (first_path, first) = &found[reference];
     let others = match (agreeing, tied) {
         (_, true) => " (as many shards are of either sweep: either may be the stale one)".to_string(),

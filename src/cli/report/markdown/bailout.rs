@@ -28,31 +28,10 @@ pub fn bailout_summary(md: &mut String, scenes: &[SceneResult]) {
         None if !left_out.is_empty() => md.push_str("### What the bailout saves\n\n"),
         None => return,
     }
-    let px = |s: &SceneResult| s.pixels() as f64;
-    let base = base.unwrap_or(scenes[0].reference);
-    if !whitted.is_empty() {
-        let _ = writeln!(md, "| scene | backend | rays per pixel | render ms | RMSE |");
-        let _ = writeln!(md, "|---|---|--:|--:|--:|");
-    }
-    for s in whitted {
-        for b in backends(scenes) {
-            let rows: Vec<Option<&Row>> = [Bailout::Off, Bailout::Per255, Bailout::Per32]
-                .iter()
-                .map(|&bailout| find(s, &Config { bailout, backend: b, ..base }))
-                .collect();
-            if rows.iter().all(Option::is_none) {
-                continue;
-            }
-            let _ = writeln!(
-                md,
-                "| {} | {} | {} | {} | {} |",
-                s.name,
-                b.name(),
-                triple(&rows, |r| format!("{:.2}", r.counts.total() as f64 / px(s))),
-                triple(&rows, |r| ms_cell(r.median_ms())),
-                triple(&rows, |r| sci(r.errors.rmse))
-            );
-        }
+    if let Some(base) = base
+        && !whitted.is_empty()
+    {
+        saving_table(md, scenes, &whitted, base);
     }
     let _ = writeln!(md);
     let names = |path: bool| -> Vec<&str> {
@@ -76,5 +55,33 @@ pub fn bailout_summary(md: &mut String, scenes: &[SceneResult]) {
              bailout has nothing to prune.\n",
             flat.join(", ")
         );
+    }
+}
+
+/// Rays, time and error of each Whitted scene with child rays at bailout 0 · 1/255 · 1/32, at
+/// `base`'s other settings, per backend.
+fn saving_table(md: &mut String, scenes: &[SceneResult], whitted: &[&SceneResult], base: Config) {
+    let px = |s: &SceneResult| s.pixels() as f64;
+    let _ = writeln!(md, "| scene | backend | rays per pixel | render ms | RMSE |");
+    let _ = writeln!(md, "|---|---|--:|--:|--:|");
+    for s in whitted {
+        for b in backends(scenes) {
+            let rows: Vec<Option<&Row>> = [Bailout::Off, Bailout::Per255, Bailout::Per32]
+                .iter()
+                .map(|&bailout| find(s, &Config { bailout, backend: b, ..base }))
+                .collect();
+            if rows.iter().all(Option::is_none) {
+                continue;
+            }
+            let _ = writeln!(
+                md,
+                "| {} | {} | {} | {} | {} |",
+                s.name,
+                b.name(),
+                triple(&rows, |r| format!("{:.2}", r.counts.total() as f64 / px(s))),
+                triple(&rows, |r| ms_cell(r.median_ms())),
+                triple(&rows, |r| sci(r.errors.rmse))
+            );
+        }
     }
 }
