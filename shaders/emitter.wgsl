@@ -29,13 +29,11 @@ fn emitter_pdf(e: u32, count: u32, p: vec3<f32>, q: vec3<f32>, ng_q: vec3<f32>) 
     let pick = 1.0 / f32(count);
 #ifdef SPHERES
     if (e & PRIM_REF_TRIANGLE) == 0u {
-        let cr = spheres[e].center_radius;
-        let to_c = cr.xyz - p;
-        let d2 = dot(to_c, to_c);
-        if d2 <= cr.w * cr.w {
+        let cone = sphere_cone(e, p);
+        if !cone.outside {
             return 0.0;
         }
-        return pick * uniform_cone_pdf(cone_versin(cr.w * cr.w / d2));
+        return pick * uniform_cone_pdf(cone.versin);
     }
 #endif
 #ifdef TRIANGLES
@@ -58,13 +56,11 @@ fn emitter_pdf(e: u32, count: u32, p: vec3<f32>, q: vec3<f32>, ng_q: vec3<f32>) 
 fn sample_emitter(e: u32, p: vec3<f32>, u: vec2<f32>) -> vec4<f32> {
 #ifdef SPHERES
     if (e & PRIM_REF_TRIANGLE) == 0u {
-        let cr = spheres[e].center_radius;
-        let to_c = cr.xyz - p;
-        let d2 = dot(to_c, to_c);
-        if d2 <= cr.w * cr.w {
+        let cone = sphere_cone(e, p);
+        if !cone.outside {
             return vec4<f32>(0.0);
         }
-        return vec4<f32>(to_world(to_c / sqrt(d2), uniform_cone(u, cone_versin(cr.w * cr.w / d2))), 1.0);
+        return vec4<f32>(to_world(cone.axis, uniform_cone(u, cone.versin)), 1.0);
     }
 #endif
 #ifdef TRIANGLES
@@ -78,3 +74,24 @@ fn sample_emitter(e: u32, p: vec3<f32>, u: vec2<f32>) -> vec4<f32> {
 #endif
     return vec4<f32>(0.0);
 }
+
+// The cone of directions from p that meet sphere i: its unit axis and its versine (1 − cos of
+// its half-angle); outside is false where p is inside, or on, the sphere (it sees only back
+// faces, which do not emit), and then axis and versin mean nothing.
+struct SphereCone {
+    axis: vec3<f32>,
+    versin: f32,
+    outside: bool,
+}
+
+#ifdef SPHERES
+fn sphere_cone(i: u32, p: vec3<f32>) -> SphereCone {
+    let cr = spheres[i].center_radius;
+    let to_c = cr.xyz - p;
+    let d2 = dot(to_c, to_c);
+    if d2 <= cr.w * cr.w {
+        return SphereCone(vec3<f32>(0.0), 0.0, false);
+    }
+    return SphereCone(to_c / sqrt(d2), cone_versin(cr.w * cr.w / d2), true);
+}
+#endif

@@ -296,7 +296,7 @@ const CPU_ONLY: [(&str, &str, &str); 24] = [
 ];
 
 /// Structs only the GPU side has, and why.
-const GPU_ONLY_STRUCTS: [(&str, &str, &str); 8] = [
+const GPU_ONLY_STRUCTS: [(&str, &str, &str); 9] = [
     ("bvh.wgsl", "NodeStack", "the CPU walk's Vec<Pending>: WGSL has no Vec, so a fixed array with its length"),
     ("primitive.wgsl", "MaybeT", "WGSL has no Option: a flag beside the value"),
     ("primitive.wgsl", "SphereRoots", "WGSL has no Option<(f64, f64)>: a flag beside the roots"),
@@ -305,6 +305,7 @@ const GPU_ONLY_STRUCTS: [(&str, &str, &str); 8] = [
     ("trace.wgsl", "StackEntry", "the explicit ray stack: WGSL has no recursion"),
     ("trace.wgsl", "Shaded", "a hit's radiance and the next ray of the stack walk, kept in registers"),
     ("probe.wgsl", "ProbeLink", "how a stacked ray joins the probe's tree; the CPU passes it down the recursion"),
+    ("emitter.wgsl", "SphereCone", "WGSL has no Option<(axis, versine)>: a flag beside the cone"),
 ];
 
 /// Structs only the CPU side has, and why.

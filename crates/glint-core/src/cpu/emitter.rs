@@ -67,15 +67,7 @@ pub fn emitter_pdf(ctx: &TraceContext, emitter: Emitter, count: usize, p: DVec3,
     let scene = ctx.scene;
     let pick = 1.0 / count as f64;
     match emitter {
-        Emitter::Sphere(i) => {
-            let cr = scene.spheres[i as usize].center_radius;
-            let (c, r) = (v3(cr), f64::from(cr[3]));
-            let d2 = (c - p).length_squared();
-            if d2 <= r * r {
-                return 0.0;
-            }
-            pick * uniform_cone_pdf(cone_versin(r * r / d2))
-        }
+        Emitter::Sphere(i) => sphere_cone(ctx, i, p).map_or(0.0, |(_, versin)| pick * uniform_cone_pdf(versin)),
         Emitter::Triangle(i) => {
             let [a, b, c] = triangle_corners(scene, &scene.triangles[i as usize]);
             let area = 0.5 * (b - a).cross(c - a).length();
@@ -95,16 +87,7 @@ pub fn emitter_pdf(ctx: &TraceContext, emitter: Emitter, count: usize, p: DVec3,
 pub fn sample_emitter(ctx: &TraceContext, emitter: Emitter, p: DVec3, u: DVec2) -> Option<DVec3> {
     let scene = ctx.scene;
     match emitter {
-        Emitter::Sphere(i) => {
-            let cr = scene.spheres[i as usize].center_radius;
-            let (c, r) = (v3(cr), f64::from(cr[3]));
-            let to_c = c - p;
-            let d2 = to_c.length_squared();
-            if d2 <= r * r {
-                return None;
-            }
-            Some(to_world(to_c / d2.sqrt(), uniform_cone(u, cone_versin(r * r / d2))))
-        }
+        Emitter::Sphere(i) => sphere_cone(ctx, i, p).map(|(axis, versin)| to_world(axis, uniform_cone(u, versin))),
         Emitter::Triangle(i) => {
             let [a, b, c] = triangle_corners(scene, &scene.triangles[i as usize]);
             let bary = uniform_triangle(u);
@@ -112,4 +95,18 @@ pub fn sample_emitter(ctx: &TraceContext, emitter: Emitter, p: DVec3, u: DVec2) 
             (q - p).try_normalize()
         }
     }
+}
+
+/// The cone of directions from `p` that meet sphere `i`: its unit axis and its versine
+/// (1 − cos of its half-angle). None where `p` is inside, or on, the sphere: it sees only back
+/// faces, which do not emit.
+pub fn sphere_cone(ctx: &TraceContext, i: u32, p: DVec3) -> Option<(DVec3, f64)> {
+    let cr = ctx.scene.spheres[i as usize].center_radius;
+    let (c, r) = (v3(cr), f64::from(cr[3]));
+    let to_c = c - p;
+    let d2 = to_c.length_squared();
+    if d2 <= r * r {
+        return None;
+    }
+    Some((to_c / d2.sqrt(), cone_versin(r * r / d2)))
 }
