@@ -111,6 +111,21 @@ fn broken_files_are_errors_naming_the_json_path() {
         ),
         ("count", Box::new(|f| f.json["accessors"][0]["count"] = json!(400)), &["attributes.POSITION", "do not fit"]),
         ("zero", Box::new(|f| f.json["accessors"][0]["count"] = json!(0)), &["accessors[0]"]),
+        (
+            // Zeros with no data behind them: a few bytes of JSON asked for 3 GiB.
+            "viewless",
+            Box::new(|f| {
+                let (indices, values) = (f.push_u16(&[1]), f.push_f32(&[1.0, 0.0, 0.0]));
+                f.json["accessors"][0].as_object_mut().unwrap().remove("bufferView");
+                f.json["accessors"][0]["count"] = json!(1 << 27);
+                f.json["accessors"][0]["sparse"] = json!({
+                    "count": 1,
+                    "indices": { "bufferView": indices, "componentType": 5123 },
+                    "values": { "bufferView": values },
+                });
+            }),
+            &["accessors[0] has no bufferView and a count of 134217728", "(6)"],
+        ),
         ("view", Box::new(|f| f.json["bufferViews"][0]["byteLength"] = json!(4096)), &["bufferViews[0]"]),
         (
             "required",

@@ -10,9 +10,28 @@ use ::gltf::accessor::{Accessor, DataType, Dimensions};
 /// its count is not bounded by the file's size).
 const MAX_ELEMENTS: usize = 1 << 27;
 
-/// The bytes of every buffer, by buffer index, each cut to its declared `byteLength`.
-#[derive(Debug)]
-pub(super) struct Buffers(pub(super) Vec<Vec<u8>>);
+/// The bytes of every buffer, by buffer index, each cut to its declared `byteLength`, and the
+/// most elements an accessor without a bufferView may have.
+#[derive(Debug, Default)]
+pub(super) struct Buffers {
+    pub(super) data: Vec<Vec<u8>>,
+    /// The longest run of elements the file's bytes hold: the largest count of an accessor with
+    /// a bufferView or of a sparse substitution, each at most its view's byte length. A
+    /// view-less accessor (zeros, perhaps with sparse values) is filled to its count, which
+    /// nothing else bounds: a few bytes of JSON must not allocate gigabytes.
+    pub(super) longest_with_data: usize,
+}
+
+impl Buffers {
+    pub(super) fn new(gltf: &::gltf::Gltf, data: Vec<Vec<u8>>) -> Self {
+        let with_data = gltf.accessors().flat_map(|a| {
+            let viewed = a.view().map(|v| a.count().min(v.length()));
+            let sparse = a.sparse().map(|s| s.count().min(s.indices().view().length()));
+            viewed.into_iter().chain(sparse)
+        });
+        Self { data, longest_with_data: with_data.max().unwrap_or(0) }
+    }
+}
 
 /// What an accessor must hold to be read as a given attribute.
 #[derive(Clone, Copy, Debug)]
@@ -109,7 +128,7 @@ fn component(bytes: &[u8], ty: DataType, normalized: bool) -> f64 {
 
 /// The bytes of `view` (a bufferView), checked against its buffer's real length.
 pub(super) fn view_bytes<'b>(view: &::gltf::buffer::View<'_>, buffers: &'b Buffers) -> Result<&'b [u8], String> {
-    let buffer = &buffers.0[view.buffer().index()];
+    let buffer = &buffers.data[view.buffer().index()];
     let end = view.offset().checked_add(view.length());
     end.and_then(|end| buffer.get(view.offset()..end)).ok_or_else(|| {
         format!(
@@ -178,6 +197,14 @@ fn read<const N: usize>(accessor: &Accessor<'_>, buffers: &Buffers, expect: Expe
                 .into_iter()
                 .map(decode)
                 .collect()
+        }
+        None if count > buffers.longest_with_data => {
+            return Err(format!(
+                "accessors[{}] has no bufferView and a count of {count}; an accessor without data may have at \
+                 most as many elements as the longest one with data in this file ({})",
+                accessor.index(),
+                buffers.longest_with_data
+            ));
         }
         None => vec![[0.0; N]; count],
     };

@@ -202,7 +202,7 @@ mod tests {
         let primitive = gltf.meshes().next().unwrap().primitives().next().unwrap();
         let mut m = Mat4::IDENTITY;
         m.0[3] = [1.0, 2.0, 3.0, 1.0];
-        let matrices = vertex_matrices(&primitive, &Placement::Rigid(m), 2, &Buffers(Vec::new()), "p").unwrap();
+        let matrices = vertex_matrices(&primitive, &Placement::Rigid(m), 2, &Buffers::default(), "p").unwrap();
         assert_eq!(matrices.len(), 2);
         assert_eq!(matrices[1].point([0.0; 3]), [1.0, 2.0, 3.0]);
     }

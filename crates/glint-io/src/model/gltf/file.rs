@@ -327,5 +327,5 @@ pub(super) fn load_buffers(gltf: &::gltf::Gltf, path: &Path) -> Result<Buffers, 
         data.truncate(declared);
         out.push(data);
     }
-    Ok(Buffers(out))
+    Ok(Buffers::new(gltf, out))
 }
