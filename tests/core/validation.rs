@@ -240,11 +240,20 @@ fn attenuation_that_can_reach_zero() {
         field,
         &["falls to 9.9975e-7 at d = 0.5"],
     );
-    // The same on a spot light.
+    // A dip far below c that stays above 1e-6: near it the terms, each about c, cancel, and
+    // the GPU's f32 sum made f_att infinite (c / 1.6e7) or 119 % off (c / 1e7).
+    expect_invalid(
+        &edited(att, "attenuation = { c = 1000000.0625, l = -2000.0, q = 1.0 }"),
+        field,
+        &["falls to 0.0625 at d = 1000, 16000000 times below c", "deeper than c / 1e4"],
+    );
+    expect_invalid(&edited(att, "attenuation = { c = 1.0, l = -2.0, q = 1.00001 }"), field, &["times below c"]);
+    expect_valid(&edited(att, "attenuation = { c = 1.0, l = -2.0, q = 1.001 }"), "a dip to c / 1000");
+    // The same on a spot light; a textbook's pure 1/d² is pointed to the model that has it.
     expect_invalid(
         &edited("exponent = 8.0", "exponent = 8.0\nattenuation = { c = 0.0, q = 1.0 }"),
         "lights[2].attenuation",
-        &["c must be", "c = 0"],
+        &["c must be", "c = 0", "write attenuation = { model = \"inverse_square\" }"],
     );
     // l < 0 whose minimum stays positive is fine: 1 − 1/(4·1) = 0.75.
     expect_valid(&edited(att, "attenuation = { c = 1.0, l = -1.0, q = 1.0 }"), "l < 0, positive minimum");

@@ -30,6 +30,10 @@ pub const MAX_ROUGHNESS: f64 = 1.0;
 /// far from f32 overflow on the GPU. The inverse-square model divides by max(d², this) for the
 /// same bound: a point within 1e-3 of its light gets f_att = 1e6 at most.
 pub const MIN_ATTENUATION_DENOMINATOR: f64 = 1e-6;
+/// How far below c a polynomial denominator's minimum (l < 0) may dip. Near the dip its three
+/// terms are each about c and cancel; the GPU sums them in f32, off by about 2.4e-7 of c, so
+/// f_att there stays within 0.25 % (a dip to c / 1.6e7 made it infinite).
+pub const MAX_ATTENUATION_DIP: f64 = 1e4;
 
 /// The values one number of a scene may take. Validation checks every number against its
 /// entry in [`ranges`], and the viewer's editors take their ranges from there too, so an

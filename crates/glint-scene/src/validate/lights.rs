@@ -2,8 +2,8 @@
 
 // What the parent module declares for its children.
 use super::{
-    Attenuation, LightDesc, LightKind, MIN_ATTENUATION_DENOMINATOR, NO_CONE_CUTOFF, Report, SpotFalloff, as_f32, num,
-    ranges, short,
+    Attenuation, LightDesc, LightKind, MAX_ATTENUATION_DIP, MIN_ATTENUATION_DENOMINATOR, NO_CONE_CUTOFF, Report,
+    SpotFalloff, as_f32, num, ranges, short,
 };
 
 pub(super) fn validate_light(path: &str, l: &LightDesc, r: &mut Report) {
@@ -168,7 +168,12 @@ pub(super) fn validate_polynomial(path: &str, c: f64, l: f64, q: f64, r: &mut Re
     // The bound as the tracers hold it too: c = 1e-6, the documented least, is 9.99999997e-7 in f32.
     let (min, f32_min) = (MIN_ATTENUATION_DENOMINATOR, as_f32(MIN_ATTENUATION_DENOMINATOR));
     let problem = if c < f32_min {
-        Some(format!("c + l·d + q·d² is c at d = 0, so c must be ≥ {min:e}"))
+        let hint = if c == 0.0 && l == 0.0 && q > 0.0 {
+            "; for a pure 1/d² falloff write attenuation = { model = \"inverse_square\" }"
+        } else {
+            ""
+        };
+        Some(format!("c + l·d + q·d² is c at d = 0, so c must be ≥ {min:e}{hint}"))
     } else if q < 0.0 || (q == 0.0 && l < 0.0) {
         Some("c + l·d + q·d² falls below 0 at a large distance: it needs q ≥ 0, and l ≥ 0 when q = 0".to_string())
     } else if l < 0.0 && c - l * l / (4.0 * q) < f32_min {
@@ -177,6 +182,15 @@ pub(super) fn validate_polynomial(path: &str, c: f64, l: f64, q: f64, r: &mut Re
             "c + l·d + q·d² falls to {} at d = {}; it must stay ≥ {min:e} for all d ≥ 0",
             short(c - l * l / (4.0 * q)),
             short(d)
+        ))
+    } else if l < 0.0 && c - l * l / (4.0 * q) < c / MAX_ATTENUATION_DIP {
+        let d = -l / (2.0 * q);
+        Some(format!(
+            "c + l·d + q·d² falls to {} at d = {}, {} times below c: f32 (the GPU tracer) cannot \
+             resolve a dip deeper than c / {MAX_ATTENUATION_DIP:e} (raise c or make l less negative)",
+            short(c - l * l / (4.0 * q)),
+            short(d),
+            short(c / (c - l * l / (4.0 * q)))
         ))
     } else {
         None
