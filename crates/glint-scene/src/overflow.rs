@@ -9,6 +9,7 @@ use super::Integrator;
 use super::desc::{ObjectDesc, SceneDesc};
 use super::light::LightDesc;
 use super::number::format_number;
+use super::ray_tree::largest_attenuation;
 
 /// The largest value f32 holds; radiance beyond it is stored as +inf.
 const F32_MAX: f64 = f32::MAX as f64;
@@ -21,8 +22,15 @@ pub fn overflow_causes(desc: &SceneDesc, max_depth: u32, integrator: Integrator,
         Integrator::Whitted => "k_r + k_t",
         Integrator::Path => "k_d + k_s + k_r + k_t",
     };
-    let mut gains: Vec<(f64, String)> =
-        desc.materials.iter().map(|(name, m)| (m.gain(integrator), name.clone())).filter(|(g, _)| *g > 1.0).collect();
+    // Both integrators weigh each bounce's light by the world's global attenuation, up to
+    // 1 / (its least denominator): with c < 1 it lifts every material's gain.
+    let global = largest_attenuation(&desc.world.global_attenuation);
+    let mut gains: Vec<(f64, String)> = desc
+        .materials
+        .iter()
+        .map(|(name, m)| (m.gain(integrator) * global, name.clone()))
+        .filter(|(g, _)| *g > 1.0)
+        .collect();
     gains.sort_by(|a, b| b.0.total_cmp(&a.0));
     let mut causes: Vec<String> = gains
         .iter()
@@ -48,10 +56,19 @@ pub fn overflow_causes(desc: &SceneDesc, max_depth: u32, integrator: Integrator,
                     format_number(m.kt.max_channel())
                 ),
             };
+            let lifted = if global > 1.0 {
+                format!(
+                    ", and world.global_attenuation weighs it by up to {} (c = {} < 1)",
+                    format_number(global),
+                    format_number(desc.world.global_attenuation.c)
+                )
+            } else {
+                String::new()
+            };
             format!(
-                "materials.{name} returns {terms} = {} times the light it receives ({fields}): \
-                 up to {} bounces (render.max_depth) multiply radiance by up to {reach}",
-                format_number(*g),
+                "materials.{name} returns {terms} = {} times the light it receives ({fields}){lifted}: \
+                 up to {} bounces (the render's max depth) multiply radiance by up to {reach}",
+                format_number(m.gain(integrator)),
                 max_depth
             )
         })
@@ -91,8 +108,13 @@ pub fn overflow_causes(desc: &SceneDesc, max_depth: u32, integrator: Integrator,
     }
     let remedy = if gains.is_empty() {
         "lower the brightest sources".to_string()
+    } else if global > 1.0 {
+        format!(
+            "raise world.global_attenuation's c (and l, q) so that 1 / (c + l·d + q·d²) stays ≤ 1, keep {terms} ≤ 1, \
+             or lower the max depth (render.max_depth, --depth) or the brightest sources"
+        )
     } else {
-        format!("keep {terms} ≤ 1, lower render.max_depth or the brightest sources")
+        format!("keep {terms} ≤ 1, lower the max depth (render.max_depth, --depth) or the brightest sources")
     };
     if causes.is_empty() {
         causes.push("no material amplifies light and no source is brighter than 1".into());
@@ -133,9 +155,14 @@ mod tests {
         let text = overflow_causes(&desc, 4, Integrator::Whitted, false);
         assert!(text.starts_with("materials.mirror returns k_r + k_t = 1000000000 times"), "{text}");
         assert!(text.contains("kr = 1000000000, kt = 0"), "{text}");
-        assert!(text.contains("up to 4 bounces (render.max_depth) multiply radiance by up to 1.0e36"), "{text}");
+        assert!(text.contains("up to 4 bounces (the render's max depth) multiply radiance by up to 1.0e36"), "{text}");
         assert!(text.contains("materials.mirror.emission = 1000000000, lights[0].diffuse = 2"), "{text}");
-        assert!(text.ends_with("keep k_r + k_t ≤ 1, lower render.max_depth or the brightest sources"), "{text}");
+        assert!(
+            text.ends_with(
+                "keep k_r + k_t ≤ 1, lower the max depth (render.max_depth, --depth) or the brightest sources"
+            ),
+            "{text}"
+        );
         assert!(!text.contains("dull"), "{text}");
         assert!(
             overflow_causes(&desc, 30, Integrator::Whitted, false).contains("by up to 1.0e270, beyond f32's 3.4e38")
@@ -163,6 +190,27 @@ mod tests {
     }
 
     #[test]
+    fn a_global_attenuation_above_1_lifts_every_materials_gain() {
+        // Mirrors that return less than they receive, weighed by up to 1e6 a bounce (c = 1e-6):
+        // this overflowed and was called "no material amplifies light" (an extreme-scenes tester).
+        let desc = scene(
+            "[materials.mirror]\nkr = 0.999999\nemission = 0.001\n\
+             [world]\nglobal_attenuation = { c = 1e-6 }\n",
+        );
+        let text = overflow_causes(&desc, 20, Integrator::Whitted, false);
+        assert!(
+            text.starts_with(
+                "materials.mirror returns k_r + k_t = 0.999999 times the light it receives (kr = 0.999999, kt = 0), \
+                 and world.global_attenuation weighs it by up to 1000000 (c = 1e-6 < 1): up to 20 bounces"
+            ),
+            "{text}"
+        );
+        assert!(text.contains("raise world.global_attenuation's c"), "{text}");
+        // Under paths too: each bounce's weight is attenuated there as well.
+        assert!(overflow_causes(&desc, 20, Integrator::Path, false).starts_with("materials.mirror returns"));
+    }
+
+    #[test]
     fn under_paths_k_d_and_k_s_count_too() {
         // Whitted adds k_d once per light; a path multiplies by it at every bounce.
         let desc = scene("[materials.bright]\nkd = 1e9\nemission = 1.0\n");
@@ -173,7 +221,7 @@ mod tests {
             "{text}"
         );
         assert!(
-            text.ends_with("keep k_d + k_s + k_r + k_t ≤ 1, lower render.max_depth or the brightest sources"),
+            text.ends_with("keep k_d + k_s + k_r + k_t ≤ 1, lower the max depth (render.max_depth, --depth) or the brightest sources"),
             "{text}"
         );
     }

@@ -40,7 +40,7 @@ fn largest_gain(desc: &SceneDesc) -> f64 {
 /// The largest global attenuation 1 / (c + l·t + q·t²) over t ≥ 0, at least 1: with c < 1 a
 /// near hit's weight grows. Validation keeps the denominator positive; a scene it refuses is
 /// bounded as if unattenuated.
-fn largest_attenuation(g: &GlobalAttenuation) -> f64 {
+pub(crate) fn largest_attenuation(g: &GlobalAttenuation) -> f64 {
     let vertex = if g.q > 0.0 && g.l < 0.0 { g.c - g.l * g.l / (4.0 * g.q) } else { g.c };
     let least = vertex.min(g.c);
     if least > 0.0 && least.is_finite() { (1.0 / least).max(1.0) } else { 1.0 }
