@@ -513,6 +513,49 @@ fn kr_plus_kt_above_one_warns_but_loads() {
 }
 
 #[test]
+fn a_coefficient_above_1_warns_and_an_8_bit_colour_is_named() {
+    let warnings = expect_valid(&edited("kd = [0.7, 0.1, 0.1]", "kd = [255.0, 0.0, 0.0]"), "kd = 255");
+    assert_eq!(warnings.len(), 1, "{warnings:?}");
+    assert!(
+        warnings[0].starts_with("materials.red.kd: 255 is above 1") && warnings[0].contains("divide it by 255"),
+        "{warnings:?}"
+    );
+    let warnings = expect_valid(&edited("ks = 0.3", "ks = 1.5"), "ks = 1.5");
+    assert!(warnings.len() == 1 && !warnings[0].contains("255"), "{warnings:?}");
+    assert!(expect_valid(&edited("ks = 0.3", "ks = 1.0"), "ks = 1").is_empty());
+}
+
+/// A student's two plausible set-ups that render without an error but not as meant (a lecturer).
+#[test]
+fn a_light_shut_in_an_opaque_sphere_and_a_slab_of_same_facing_planes_warn() {
+    // The point light at (2, 4, -2) inside a sphere of radius 0.5 around it.
+    let ball = |material: &str| {
+        format!(
+            "{BASE}[[objects]]\ntype = \"sphere\"\ncenter = [2.0, 4.0, -2.1]\nradius = 0.5\nmaterial = \"{material}\"\n"
+        )
+    };
+    let warnings = expect_valid(&ball("red"), "a light in an opaque sphere");
+    assert!(
+        warnings.len() == 1 && warnings[0].starts_with("lights[0].position: is inside objects[3], an opaque sphere"),
+        "{warnings:?}"
+    );
+    // Through a glass one it shines, so nothing is said.
+    assert!(expect_valid(&ball("glass"), "a light in a glass sphere").is_empty());
+    let plane = |y: f64, ny: f64| {
+        format!(
+            "[[objects]]\ntype = \"plane\"\npoint = [0.0, {y:?}, 0.0]\nnormal = [0.0, {ny:?}, 0.0]\nmaterial = \"glass\"\n"
+        )
+    };
+    let slab = |lower: f64| BASE.to_string() + &plane(-1.0, 1.0) + &plane(-2.0, lower);
+    let warnings = expect_valid(&slab(1.0), "a slab of planes facing the same way");
+    assert!(
+        warnings.len() == 1 && warnings[0].starts_with("objects[3]: and objects[4] are parallel transmissive planes"),
+        "{warnings:?}"
+    );
+    assert!(expect_valid(&slab(-1.0), "a slab whose planes face out of it").is_empty());
+}
+
+#[test]
 fn invalid_utf8_gives_the_byte_offset_line_and_column() {
     let dir = glint_test_support::TempDir::new("utf8");
     let path = dir.join("latin1.toml");

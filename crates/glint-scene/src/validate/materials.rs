@@ -27,6 +27,22 @@ pub(super) fn validate_material(path: &str, m: &MaterialDesc, r: &mut Report) {
             validate_texture(&format!("{path}.{field}"), t, r);
         }
     }
+    // A coefficient is the fraction of a light's term a surface returns; an 8-bit colour typed
+    // as one (kd = 255) rendered without a word.
+    for (field, v) in [("ka", m.ka), ("kd", m.kd), ("ks", m.ks)] {
+        let most = v.max_channel();
+        if most > 1.0 && most.is_finite() {
+            let eight_bit = if most > 2.0 && most <= 255.0 { " (an 8-bit colour? divide it by 255)" } else { "" };
+            r.warn(
+                format!("{path}.{field}"),
+                format!(
+                    "{} is above 1: the coefficient is the fraction of the light's term the surface returns, in \
+                     [0, 1]{eight_bit}",
+                    num(most)
+                ),
+            );
+        }
+    }
     let sum = (0..3).map(|i| m.kr.0[i] + m.kt.0[i]).fold(0.0, f64::max);
     if sum > 1.0 {
         r.warn(

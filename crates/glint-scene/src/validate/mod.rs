@@ -24,6 +24,7 @@ mod integrator;
 mod lights;
 mod materials;
 mod objects;
+mod placement;
 
 pub use crate::limits::*;
 pub use epsilon::{EPSILON_SHARE, EPSILON_WARN_SHARE, epsilon_warning};
@@ -188,6 +189,7 @@ pub fn validate_with_objects(scene: &SceneDesc, objects: &Report) -> Report {
     }
     r.errors.extend_from_slice(&objects.errors);
     r.warnings.extend_from_slice(&objects.warnings);
+    r.warnings.extend(placement::placement_warnings(scene));
     r.warnings.extend(settings_warnings(scene, &scene.render));
     r
 }
