@@ -549,7 +549,10 @@ fn a_light_shut_in_an_opaque_sphere_and_a_slab_of_same_facing_planes_warn() {
     let slab = |lower: f64| BASE.to_string() + &plane(-1.0, 1.0) + &plane(-2.0, lower);
     let warnings = expect_valid(&slab(1.0), "a slab of planes facing the same way");
     assert!(
-        warnings.len() == 1 && warnings[0].starts_with("objects[3]: and objects[4] are parallel transmissive planes"),
+        warnings.len() == 1
+            && warnings[0].starts_with(
+                "objects[3]: is a transmissive plane parallel to objects[4], another, whose normal faces the same way"
+            ),
         "{warnings:?}"
     );
     assert!(expect_valid(&slab(-1.0), "a slab whose planes face out of it").is_empty());
@@ -641,6 +644,15 @@ fn bad_texture_paths_name_the_file_field_and_reason() {
         "materials.red.checker",
         &["not both"],
     );
+    // A missing texture is one error among the others, all said at once (it hid them), and
+    // validation's own "not decoded" for its field is not said again.
+    texture_error("texture = { path = \"missing.png\" }\nior = 0.0", "materials.red.ior", &["(0, 1000]"]);
+    texture_error("texture = { path = \"missing.png\" }\nior = 0.0", field, &["No such file"]);
+    let dir = glint_test_support::TempDir::new("texture-and-others");
+    let file = dir.join("scene.toml");
+    std::fs::write(&file, edited("shininess = 32.0", "texture = { path = \"missing.png\" }")).unwrap();
+    let err = glint_io::load_scene(&file.to_string_lossy()).expect_err("missing texture");
+    assert_eq!(err.issues().len(), 1, "{err}");
 }
 
 #[test]

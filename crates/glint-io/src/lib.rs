@@ -49,10 +49,18 @@ pub fn parse_scene(text: &str, file: &Path) -> Result<(SceneDesc, Vec<FieldIssue
     let folder = file.parent().unwrap_or(Path::new("."));
     let mut warnings =
         load_models(&mut desc, folder).map_err(|issues| SceneError::Invalid { file: file.to_owned(), issues })?;
-    load_textures(&mut desc, file).map_err(|issues| SceneError::Invalid { file: file.to_owned(), issues })?;
-    let (desc, scene_warnings) = validated(desc, file)?;
-    warnings.extend(scene_warnings);
-    Ok((desc, warnings))
+    // A texture that does not load is one error among the scene's others, all said at once
+    // (it stopped validation, hiding every other broken rule); validation's own "not decoded"
+    // for that field would say it twice.
+    let texture_issues = load_textures(&mut desc, file).err().unwrap_or_default();
+    if texture_issues.is_empty() {
+        let (desc, scene_warnings) = validated(desc, file)?;
+        warnings.extend(scene_warnings);
+        return Ok((desc, warnings));
+    }
+    let others: Vec<FieldIssue> =
+        validate(&desc).errors.into_iter().filter(|e| texture_issues.iter().all(|t| t.field != e.field)).collect();
+    Err(SceneError::Invalid { file: file.to_owned(), issues: texture_issues.into_iter().chain(others).collect() })
 }
 
 /// `desc` with its warnings if it passes validation, else the errors naming `file`.

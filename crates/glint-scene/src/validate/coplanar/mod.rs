@@ -247,14 +247,22 @@ pub(super) fn coplanar_overlaps(scene: &SceneDesc, origin: [f64; 3]) -> Vec<Fiel
         } else {
             "the whole plane".to_string()
         };
-        let with = if i == j { "overlaps itself".to_string() } else { format!("and {} overlap", name(j)) };
+        // The field names objects[i] already: the message goes on from it ("objects[1]: the
+        // plane overlaps …", not "objects[1]: objects[1] (plane) and …").
+        let this = {
+            let object = &scene.objects[i as usize];
+            match object.name() {
+                "" => format!("the {}", object.kind_name()),
+                named => format!("the {} `{named}`", object.kind_name()),
+            }
+        };
+        let with = if i == j { "itself".to_string() } else { name(j) };
         warnings.push(FieldIssue {
             field: format!("objects[{i}]"),
             problem: format!(
-                "{} {with} in one plane over {area} ({at_least}{} pair{} of surfaces, first {} and {}): a ray meets \
-                 both at the same t up to rounding, so each tracer picks its own surface pixel by pixel \
+                "{this} overlaps {with} in one plane over {area} ({at_least}{} pair{} of surfaces, first {} and {}): a \
+                 ray meets both at the same t up to rounding, so each tracer picks its own surface pixel by pixel \
                  (z-fighting); move one apart or remove the duplicate",
-                name(i),
                 o.pairs,
                 if o.pairs == 1 { "" } else { "s" },
                 describe(x, &scene.objects),
