@@ -165,6 +165,27 @@ fn the_gpu_tracer_refuses_a_non_finite_flat_scene() {
     }
     let cpu = glint_core::render_cpu(&bad, &glint_core::CpuOptions::default(), glint_core::RenderControl::default());
     assert!(matches!(cpu, Err(glint_core::render::CpuRenderError::InvalidScene(_))), "{cpu:?}");
+    // So are the tags the GPU had no error for (it traced an unknown integrator as Whitted's,
+    // specular model as Blinn's, Fresnel as the exact one) and an object's material index
+    // beyond the list (the CPU panicked, the GPU read a clamped one).
+    type Edit = fn(&mut glint_core::FlatScene);
+    let edits: [(&str, Edit); 4] = [
+        ("7 is not a valid integrator", |s| s.header.integrator = 7),
+        ("7 is not a valid specular model", |s| s.materials[0].specular_model = 7),
+        ("7 is not a valid Fresnel factor", |s| s.materials[0].fresnel = 7),
+        ("7 is not a valid sphere material index", |s| Arc::make_mut(&mut s.spheres)[0].material = 7),
+    ];
+    for (said, edit) in edits {
+        let mut bad = good.clone();
+        edit(&mut bad);
+        match tracer.render(&bad, &glint_gpu::GpuOptions::default()) {
+            Err(e @ glint_gpu::GpuError::InvalidScene(_)) => assert!(e.to_string().contains(said), "{e}"),
+            other => panic!("{said}: reached the GPU: {:?}", other.map(|r| r.status)),
+        }
+        let cpu =
+            glint_core::render_cpu(&bad, &glint_core::CpuOptions::default(), glint_core::RenderControl::default());
+        assert!(matches!(cpu, Err(glint_core::render::CpuRenderError::InvalidScene(_))), "{said}: {cpu:?}");
+    }
     // The valid scene renders, and its read-back is scanned for NaN and infinities.
     crate::gpu::gpu_render(tracer, &good, true);
 }

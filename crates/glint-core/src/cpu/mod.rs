@@ -170,6 +170,8 @@ impl<'a> TraceContext<'a> {
     /// The tracer running `features` (the scene's own, or `feature::ALL` for every feature's
     /// code path: the image is bit-identical either way).
     pub fn with_features(scene: &'a FlatScene, features: u32) -> Result<Self, UnknownTag> {
+        // Every index the tracer follows unchecked, as the GPU's upload checks it.
+        scene.check_tags()?;
         let h = &scene.header;
         Ok(Self {
             scene,

@@ -1,21 +1,42 @@
 //! What the tracers rely on in a flat scene: known tags, indices in range, finite numbers.
 
 // What the parent module declares for its children.
+use glint_types::Integrator;
+
 use super::{
-    EpsilonMode, Filter, FlatScene, LightTags, MESH_HAS_COLOURS, MESH_HAS_NORMALS, MESH_HAS_UVS, NO_TEXTURE,
-    UnknownTag, Wrap,
+    EpsilonMode, Filter, FlatScene, LightTags, MESH_HAS_COLOURS, MESH_HAS_NORMALS, MESH_HAS_UVS, MaterialTags,
+    NO_TEXTURE, UnknownTag, Wrap,
 };
 
 impl FlatScene {
-    /// Decodes every stored tag the tracers switch on (the ε strategy, each light's kind,
-    /// attenuation model and spot falloff), so
-    /// that both refuse a scene holding a value no kind has instead of tracing it as another.
-    /// Also checks that every triangle's vertex and mesh indices are in range, which both
-    /// tracers then index without a check.
+    /// Decodes every stored tag the tracers switch on (the integrator, the ε strategy, each
+    /// light's kind, attenuation model and spot falloff, each material's specular model and
+    /// Fresnel), so that both refuse a scene holding a value no kind has instead of tracing it
+    /// as another. Also checks that every index both tracers then follow without a check is in
+    /// range: each triangle's vertices and mesh, each object's material, each texture's texels.
     pub fn check_tags(&self) -> Result<(), UnknownTag> {
         EpsilonMode::try_from(self.header.epsilon_mode)?;
+        // The GPU has no error to raise: an unknown integrator ran as Whitted's, an unknown
+        // specular model as Blinn's and an unknown Fresnel as the exact one (a code review).
+        Integrator::try_from(self.header.integrator)?;
         for l in &self.lights {
             LightTags::decode(l)?;
+        }
+        for m in &self.materials {
+            MaterialTags::decode(m)?;
+        }
+        let materials = self.materials.len();
+        let material_of = |what: &'static str, m: u32| {
+            if (m as usize) < materials { Ok(()) } else { Err(UnknownTag { what, value: m }) }
+        };
+        for s in self.spheres.iter() {
+            material_of("sphere material index", s.material)?;
+        }
+        for p in self.planes.iter() {
+            material_of("plane material index", p.material)?;
+        }
+        for m in self.meshes.iter() {
+            material_of("mesh material index", m.material)?;
         }
         let (vertices, meshes) = (self.vertices.len(), self.meshes.len());
         for t in self.triangles.iter() {
