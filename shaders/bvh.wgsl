@@ -1,4 +1,4 @@
-// Twin of crates/glint-core/src/cpu/bvh.rs: closest hit and shadow transmittance through the
+// Twin of crates/glint-core/src/cpu/bvh/mod.rs: closest hit and shadow transmittance through the
 // BVH (built on the CPU, glint_core::bvh), used instead of intersect.wgsl's brute-force loops
 // under the BVH shader def (trace.wgsl and shade.wgsl import from here then: intersect.wgsl
 // cannot import this module, which imports its primitive tests).

@@ -40,8 +40,9 @@ fn sphere_c(center: vec3<f32>, radius: f32, power: f32, origin: vec3<f32>, f: ve
 
 // Haines et al., Ray Tracing Gems ch. 7: discriminant from the perpendicular distance, the
 // smaller root from c/q. Two more forms where f32 would cancel (docs/numerics.md,
-// "Cancellation in the f32 twins"); the f64 twin keeps the first forms, which do not lose what
-// f64 needs. `power` is the sphere's precomputed |C|² − r² (GpuSphere::power).
+// "Cancellation in the f32 twins"): c as the power form, which the f64 twin also chooses by the
+// same bound (sphere_c), and b² − a·c for the discriminant, which the f64 twin leaves out (its
+// first form loses nothing f64 needs). `power` is the sphere's precomputed |C|² − r² (GpuSphere::power).
 fn sphere_roots(center: vec3<f32>, radius: f32, power: f32, ray: Ray, t_min: f32) -> SphereRoots {
     let f = ray.origin - center;
     let a = dot(ray.dir, ray.dir);

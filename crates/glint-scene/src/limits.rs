@@ -35,6 +35,16 @@ pub const MIN_ATTENUATION_DENOMINATOR: f64 = 1e-6;
 /// f_att there stays within 0.25 % (a dip to c / 1.6e7 made it infinite).
 pub const MAX_ATTENUATION_DIP: f64 = 1e4;
 
+/// The shortest a direction (a camera's up, a light's direction, a plane's or a vertex's normal)
+/// may be: it must stay a usable direction after rounding to f32 and normalising there.
+pub const MIN_DIRECTION_LENGTH: f64 = 1e-12;
+
+/// Whether `d` is finite and longer than `MIN_DIRECTION_LENGTH`: the one test validation and
+/// the importers hold normals and directions to (they had three thresholds between them).
+pub fn usable_direction(d: [f64; 3]) -> bool {
+    d.iter().all(|c| c.is_finite()) && d.iter().map(|c| c * c).sum::<f64>().sqrt() > MIN_DIRECTION_LENGTH
+}
+
 /// The values one number of a scene may take. Validation checks every number against its
 /// entry in [`ranges`], and the viewer's editors take their ranges from there too, so an
 /// editor neither clamps a valid value away nor offers an invalid one.

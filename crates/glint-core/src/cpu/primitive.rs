@@ -50,7 +50,7 @@ pub fn sphere_roots(center: DVec3, radius: f64, ray: &Ray, t_min: f64) -> Option
     Some(if t0 <= t1 { (t0, t1) } else { (t1, t0) })
 }
 
-/// |o − C|² − r² with the smaller error bound (twin of intersect.wgsl's, which also returns
+/// |o − C|² − r² with the smaller error bound (twin of primitive.wgsl's, which also returns
 /// the bound for its choice of discriminant): directly, ≈ ε·(|f|² + r²), or as the power |C|² − r² (exact squares of the
 /// stored f32 values) plus o·(o − 2C), ≈ ε·(|power| + |o|·|o − 2C|), by FORM_MARGIN.
 #[inline(always)]
@@ -63,10 +63,10 @@ pub fn sphere_c(center: DVec3, radius: f64, origin: DVec3, f: DVec3) -> f64 {
 }
 
 /// How much better an alternative form's error bound must be before it replaces the usual one
-/// (twin of intersect.wgsl's): 16× (4 bits), so that ordinary scenes keep the usual form.
+/// (twin of primitive.wgsl's): 16× (4 bits), so that ordinary scenes keep the usual form.
 pub const FORM_MARGIN: f64 = 16.0;
 
-/// The hit point `p` moved onto the sphere for the robust offset (twin of intersect.wgsl's):
+/// The hit point `p` moved onto the sphere for the robust offset (twin of primitive.wgsl's):
 /// W&B's C + r·n carries the rounding of |C| + r (on a sphere of radius 1e6, 1.2e-10 in f64 —
 /// enough to start a shadow ray below the surface, where the offset near the origin is 2^-45);
 /// where p − h·n with h = (|C|² − r² + p·(p − 2C)) / (|p − C| + r) carries far less, that. The

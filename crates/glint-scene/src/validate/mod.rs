@@ -86,11 +86,11 @@ impl Report {
         if !self.point(field, d) {
             return false;
         }
-        let len2 = d.iter().map(|v| v * v).sum::<f64>();
-        // Must stay a usable direction after rounding to f32 and normalising there.
-        // As the message says: exactly 1e-12 is refused too.
-        if len2.sqrt() <= 1e-12 {
-            self.error(field, format!("{d:?} has (near) zero length; a direction needs length > 1e-12"));
+        if !usable_direction(d) {
+            self.error(
+                field,
+                format!("{d:?} has (near) zero length; a direction needs length > {MIN_DIRECTION_LENGTH:e}"),
+            );
             return false;
         }
         true

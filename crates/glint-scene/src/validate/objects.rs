@@ -3,7 +3,7 @@
 // What the parent module declares for its children.
 use super::{
     DVec3, FieldIssue, MeshDesc, ObjectDesc, PlaneDesc, Report, Rgb, SceneDesc, SphereDesc, cross, norm, num, ranges,
-    shorten, sub, validate_light,
+    shorten, sub, usable_direction, validate_light,
 };
 use crate::number::format_rounded;
 use glint_types::layout::f32_spacing;
@@ -150,8 +150,7 @@ fn validate_mesh(path: &str, mesh: &MeshDesc, origin: [f64; 3], r: &mut Report) 
         if normals.len() != n {
             r.error(format!("{path}.normals"), format!("has {} entries; it needs one per vertex ({n})", normals.len()));
         }
-        let usable = |d: &[f64; 3]| in_range(&d[..]) && d.iter().map(|c| c * c).sum::<f64>().sqrt() >= 1e-12;
-        for (i, v) in normals.iter().enumerate().filter(|(_, v)| !usable(v)) {
+        for (i, v) in normals.iter().enumerate().filter(|(_, v)| !(in_range(&v[..]) && usable_direction(**v))) {
             r.direction(&format!("{path}.normals[{i}]"), *v);
         }
     }

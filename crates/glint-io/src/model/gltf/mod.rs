@@ -24,7 +24,7 @@ use ::gltf::mesh::Mode;
 
 use self::accessor::Buffers;
 use super::ImportOptions;
-use glint_scene::{FieldIssue, MeshDesc};
+use glint_scene::{FieldIssue, MIN_DIRECTION_LENGTH, MeshDesc};
 use glint_scene::{Mat4, Model};
 
 pub use self::error::{GltfError, SUPPORTED_EXTENSIONS};
@@ -396,7 +396,7 @@ fn read_primitive(
     let normals = local_normals.and_then(|n| {
         n.iter()
             .enumerate()
-            .map(|(k, v)| unit(*v, 1e-12).and_then(|v| unit(matrices[k].normal(v), f64::MIN_POSITIVE)))
+            .map(|(k, v)| unit(*v, MIN_DIRECTION_LENGTH).and_then(|v| unit(matrices[k].normal(v), f64::MIN_POSITIVE)))
             .collect::<Option<Vec<_>>>()
     });
     let uvs = match uv_set.and_then(|set| primitive.get(&::gltf::Semantic::TexCoords(set)).map(|a| (set, a))) {

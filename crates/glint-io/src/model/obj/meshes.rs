@@ -3,7 +3,7 @@
 
 use super::mtl::{DEFAULT_MATERIAL, default_material};
 use super::{polygon, smoothing};
-use glint_scene::{FieldIssue, MeshDesc, Model};
+use glint_scene::{FieldIssue, MeshDesc, Model, usable_direction};
 
 /// One mesh per tobj model with triangles pushed onto `out.meshes`, its material the one of
 /// `names` (the MTL materials' scene names) tobj gave it, else the default. `bytes`: the text
@@ -27,9 +27,7 @@ pub(super) fn add_meshes(models: &[tobj::Model], bytes: &[u8], names: &[String],
         let mut normals: Option<Vec<[f64; 3]>> = (mesh.normals.len() == mesh.positions.len())
             .then(|| mesh.normals.chunks_exact(3).map(|n| [n[0], n[1], n[2]]).collect());
         // A zero or non-finite normal cannot shade: the whole object is shaded faceted.
-        let unusable =
-            |n: &[f64; 3]| !(n.iter().all(|c| c.is_finite()) && n.iter().map(|c| c * c).sum::<f64>() > 1e-24);
-        let zero_normals = normals.as_ref().is_some_and(|ns| ns.iter().any(unusable));
+        let zero_normals = normals.as_ref().is_some_and(|ns| ns.iter().any(|n| !usable_direction(*n)));
         if zero_normals {
             normals = None;
         }
