@@ -3,6 +3,7 @@
 //! backends, are the `stiff` test binary.)
 
 mod ambient_fit;
+mod architecture;
 mod bit_identity;
 mod bvh;
 mod closed_form;
