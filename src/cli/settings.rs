@@ -130,14 +130,8 @@ fn parse_exposure(s: &str) -> Result<f64, String> {
     let range = ranges::EXPOSURE;
     match s.trim().parse::<f64>() {
         Ok(v) if range.contains(v) => Ok(v),
-        Ok(v) => Err(format!(
-            "{} is outside ({}, {:e}]{}",
-            format_number(v),
-            format_number(range.min),
-            range.max,
-            range.why_outside(v)
-        )),
-        Err(_) => Err(format!("'{s}' is not a number; allowed: ({}, {:e}]", format_number(range.min), range.max)),
+        Ok(v) => Err(format!("{} is outside {}{}", format_number(v), range.bounds(), range.why_outside(v))),
+        Err(_) => Err(format!("'{s}' is not a number; allowed: {}", range.bounds())),
     }
 }
 
@@ -177,9 +171,7 @@ fn parse_count(s: &str, range: Range<u32>) -> Result<u32, String> {
 /// A number, refused with its setting's allowed range when it is none ("invalid float literal"
 /// named neither); the range itself is checked by validation, as for `parse_count`.
 fn parse_number(s: &str, range: Range<f64>) -> Result<f64, String> {
-    s.trim().parse::<f64>().map_err(|_| {
-        format!("'{s}' is not a number; allowed: [{}, {}]", format_number(range.min), format_number(range.max))
-    })
+    s.trim().parse::<f64>().map_err(|_| format!("'{s}' is not a number; allowed: {}", range.bounds()))
 }
 
 fn parse_epsilon(s: &str) -> Result<f64, String> {

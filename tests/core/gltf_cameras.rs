@@ -51,7 +51,7 @@ fn an_aspect_ratio_that_is_not_positive_is_left_out_with_a_warning() {
 fn an_orthographic_camera_without_a_usable_ymag_is_skipped_and_a_negative_xmag_left_out() {
     let dir = TempDir::new("gltf-orthographic");
     for (xmag, ymag, kept, said) in [
-        (1.0, 0.0, false, "ymag 0 (cameras[0].orthographic.ymag) gives no view height in [1e-9, 1000000000]"),
+        (1.0, 0.0, false, "ymag 0 (cameras[0].orthographic.ymag) gives no view height in [1e-9, 1e9]"),
         (1.0, -2.0, false, "ymag -2 "),
         (1.0, 1e30, false, "ymag 1e30 "),
         (-3.0, 1.5, true, "xmag -3 (cameras[0].orthographic.xmag) is not a positive number"),

@@ -111,7 +111,7 @@ fn non_finite_numbers() {
     expect_invalid(&edited("radius = 1.0", "radius = inf"), "objects[0].radius", &["inf", "1e9"]);
     expect_invalid(&edited("center = [0.0, 1.0, 0.0]", "center = [0.0, inf, 0.0]"), "objects[0].center", &["y", "1e9"]);
     expect_invalid(&edited("kd = [0.7, 0.1, 0.1]", "kd = [0.7, nan, 0.1]"), "materials.red.kd", &["g", "NaN", "[0,"]);
-    expect_invalid(&edited("shininess = 32.0", "shininess = -inf"), "materials.red.shininess", &["[0, 1000000]"]);
+    expect_invalid(&edited("shininess = 32.0", "shininess = -inf"), "materials.red.shininess", &["[0, 1e6]"]);
     expect_invalid(
         &edited("position = [2.0, 4.0, -2.0]", "position = [nan, 4.0, -2.0]"),
         "lights[0].position",
@@ -187,7 +187,7 @@ fn an_orthographic_camera_needs_a_view_height_in_range_and_a_perspective_one_ign
         expect_invalid(
             &orthographic(&format!("projection = \"orthographic\"\nview_height = {bad}")),
             "camera.view_height",
-            &["[1e-9, 1000000000]"],
+            &["[1e-9, 1e9]"],
         );
     }
     // A field of view so narrow that the derived height is below the bound says how it was derived.
@@ -474,7 +474,7 @@ fn a_checker_square_is_refused_where_its_texture_scale_would_overflow_f32() {
     let checker =
         |size: &str| edited("shininess = 32.0", &format!("shininess = 32.0\nchecker = {{ kd = 0.5, size = {size} }}"));
     for size in ["1e-39", "1e-10", "0.0", "2e9"] {
-        expect_invalid(&checker(size), "materials.red.checker.size", &["the allowed range [1e-9, 1000000000]"]);
+        expect_invalid(&checker(size), "materials.red.checker.size", &["the allowed range [1e-9, 1e9]"]);
     }
     for size in ["1e-9", "1e9"] {
         parse_scene(&checker(size), Path::new(FILE)).unwrap_or_else(|e| panic!("size {size}: {e}"));
@@ -637,7 +637,7 @@ fn bad_texture_paths_name_the_file_field_and_reason() {
     texture_error(
         "texture = { path = \"ok.png\", transform = { scale = [1e12, 1.0] } }",
         "materials.red.texture.transform.scale.u",
-        &["1000000000000", "[-1000000000, 1000000000]"],
+        &["1000000000000", "[-1e9, 1e9]"],
     );
     texture_error(
         "texture = { path = \"ok.png\" }\nchecker = { kd = 0.5, size = 1.0 }",

@@ -1,6 +1,6 @@
 //! The bounds of every number a scene holds, and the range type the viewer's editors share.
 
-use crate::number::format_number;
+use crate::number::{format_bound, format_number};
 
 /// `v` as the tracers store it: rounded to f32.
 pub(crate) fn as_f32(v: f64) -> f64 {
@@ -77,6 +77,13 @@ impl<T> Range<T> {
 }
 
 impl Range<f64> {
+    /// The range as messages write it: `[1e-9, 1e9]`, or `(0, 1000]` where the minimum is
+    /// excluded.
+    pub fn bounds(&self) -> String {
+        let open = if self.min_excluded { '(' } else { '[' };
+        format!("{open}{}, {}]", format_bound(self.min), format_bound(self.max))
+    }
+
     /// Whether `v` is a finite number in the range.
     pub fn contains(&self, v: f64) -> bool {
         let above_min = if self.min_excluded { as_f32(v) > self.min } else { v >= self.min };

@@ -8,6 +8,15 @@ pub fn format_number(v: f64) -> String {
     if v == 0.0 || !v.is_finite() || (1e-4..1e15).contains(&magnitude) { v.to_string() } else { format!("{v:e}") }
 }
 
+/// A range's bound in a message: a power of ten from 1e4 up or 1e-4 down as `1e9`, `-1e9`,
+/// `1e-9` (as the docs' tables write them; 1000000000 beside 1e-9 read as two styles), any
+/// other number as `format_number` writes it.
+pub fn format_bound(v: f64) -> String {
+    let exponent = v.abs().log10().round();
+    let power_of_ten = v != 0.0 && v.is_finite() && 10f64.powf(exponent) == v.abs();
+    if power_of_ten && exponent.abs() >= 4.0 { format!("{v:e}") } else { format_number(v) }
+}
+
 /// A computed value (not one the user wrote) for a message: rounded to `digits` significant
 /// digits, then written as `format_number` writes it (8e-5, not 7.999999797903001e-5).
 pub fn format_rounded(v: f64, digits: usize) -> String {

@@ -139,11 +139,10 @@ fn validate_attenuation(path: &str, a: Attenuation, r: &mut Report) {
         Attenuation::Polynomial { c, l, q } => validate_polynomial(path, c, l, q, r),
         Attenuation::InverseSquare { range: Some(range) } => {
             if !ranges::LIGHT_RANGE.contains(range) {
-                let (lo, hi) = (ranges::LIGHT_RANGE.min, ranges::LIGHT_RANGE.max);
                 let why = ranges::LIGHT_RANGE.why_outside(range);
                 r.error(
                     format!("{path}.range"),
-                    format!("{} is outside the allowed range ({}, {hi:e}]{why}", num(range), num(lo)),
+                    format!("{} is outside the allowed range {}{why}", num(range), ranges::LIGHT_RANGE.bounds()),
                 );
             }
         }

@@ -57,12 +57,12 @@ impl Report {
     }
 
     fn finite_in(&mut self, field: &str, value: f64, range: Range<f64>) -> bool {
-        let (v, lo, hi) = (num(value), num(range.min), num(range.max));
+        let (v, bounds) = (num(value), range.bounds());
         if !range.contains(value) {
             if !value.is_finite() {
-                self.error(field, format!("{v} is not a finite number; allowed: [{lo}, {hi}]"));
+                self.error(field, format!("{v} is not a finite number; allowed: {bounds}"));
             } else {
-                self.error(field, format!("{v} is outside the allowed range [{lo}, {hi}]"));
+                self.error(field, format!("{v} is outside the allowed range {bounds}"));
             }
             false
         } else {
@@ -72,10 +72,10 @@ impl Report {
 
     fn point(&mut self, field: &str, p: [f64; 3]) -> bool {
         let mut ok = true;
-        let (lo, hi) = (ranges::COORD.min, ranges::COORD.max);
         for (axis, v) in ["x", "y", "z"].iter().zip(p) {
             if !ranges::COORD.contains(v) {
-                self.error(field, format!("component {axis} = {} must be a finite number in [{lo:e}, {hi:e}]", num(v)));
+                let bounds = ranges::COORD.bounds();
+                self.error(field, format!("component {axis} = {} must be a finite number in {bounds}", num(v)));
                 ok = false;
             }
         }
@@ -98,19 +98,19 @@ impl Report {
 
     fn colour(&mut self, field: &str, c: Rgb) -> bool {
         let mut ok = true;
-        let (lo, hi) = (ranges::COLOUR.min, ranges::COLOUR.max);
+        let bounds = ranges::COLOUR.bounds();
         // A grey (one number in the file, or three equal) is one value: one message.
         let [r, g, b] = c.0;
         if r.to_bits() == g.to_bits() && g.to_bits() == b.to_bits() {
             if !ranges::COLOUR.contains(r) {
-                self.error(field, format!("{} (every channel) must be a finite number in [{lo}, {hi:e}]", num(r)));
+                self.error(field, format!("{} (every channel) must be a finite number in {bounds}", num(r)));
                 return false;
             }
             return true;
         }
         for (name, v) in ["r", "g", "b"].iter().zip(c.0) {
             if !ranges::COLOUR.contains(v) {
-                self.error(field, format!("channel {name} = {} must be a finite number in [{lo}, {hi:e}]", num(v)));
+                self.error(field, format!("channel {name} = {} must be a finite number in {bounds}", num(v)));
                 ok = false;
             }
         }
@@ -121,7 +121,7 @@ impl Report {
     fn size(&mut self, field: &str, v: f64, range: Range<f64>) {
         if !range.contains(v) {
             let why = range.why_outside(v);
-            self.error(field, format!("{} is outside the allowed range ({}, {:e}]{why}", num(v), range.min, range.max));
+            self.error(field, format!("{} is outside the allowed range {}{why}", num(v), range.bounds()));
         }
     }
 
@@ -258,10 +258,9 @@ fn validate_view_height(c: &CameraDesc, r: &mut Report) {
                     "camera.view_height",
                     format!(
                         "not given, it is the height the field of view sees at look_at, \
-                         2·|look_at − position|·tan(fov_y/2) = {}, outside the allowed range [{}, {}]; give it",
+                         2·|look_at − position|·tan(fov_y/2) = {}, outside the allowed range {}; give it",
                         crate::number::format_rounded(h, 3),
-                        num(ranges::VIEW_HEIGHT.min),
-                        num(ranges::VIEW_HEIGHT.max)
+                        ranges::VIEW_HEIGHT.bounds()
                     ),
                 );
             }

@@ -227,10 +227,9 @@ fn orthographic_view(
         warnings.push(FieldIssue {
             field: field.to_string(),
             problem: format!(
-                "ymag {} (cameras[{index}].orthographic.ymag) gives no view height in [{}, {}] (2·ymag); {CAMERA_SKIPPED}",
+                "ymag {} (cameras[{index}].orthographic.ymag) gives no view height in {} (2·ymag); {CAMERA_SKIPPED}",
                 written(o.ymag()),
-                number(range.min),
-                number(range.max)
+                range.bounds()
             ),
         });
         return None;
