@@ -91,6 +91,11 @@ fn quick_report_writes_consistent_files() {
     expected.extend(["gi.csv", "report.csv", "report.md", "specular.csv"].map(String::from));
     expected.sort();
     assert_eq!(listing, expected);
+    // Its last line names every one of them (it named report.md and report.csv alone).
+    let said = text(&out.stdout);
+    let last = said.lines().last().unwrap_or_default();
+    assert!(last.contains(&format!("wrote 8 files in {}: ", out_dir.display())), "{last}");
+    assert!(expected.iter().all(|f| last.contains(f.as_str())), "{last}");
 
     // Whitted against the path-traced reference: every scene's rows on each backend, finite
     // errors, a fitted ambient and the path tracer's slope in the Markdown.

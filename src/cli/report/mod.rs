@@ -315,12 +315,11 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
     write_outputs(out, &setup, &results, &devices, &[], &gi_results)?;
     staging.publish(args.force)?;
     say!(
-        "report: {}, {} configurations in all, in {:.1} s; wrote {} and {}",
+        "report: {}, {} configurations in all, in {:.1} s; {}",
         counted(results.len(), "scene"),
         results.iter().map(|r| r.rows.len()).sum::<usize>(),
         started.elapsed().as_secs_f64(),
-        args.out.join("report.md").display(),
-        args.out.join("report.csv").display()
+        written(&args.out, results.iter().map(|r| r.name.as_str()))
     )?;
     Ok(())
 }
@@ -383,13 +382,12 @@ fn merge(args: &ReportArgs, started: Instant) -> anyhow::Result<()> {
     write_outputs(out, &setup, &results, &devices, &machines, &gi_results)?;
     staging.publish(args.force)?;
     say!(
-        "report: {} merged, {}, {} configurations in all, in {:.1} s; wrote {} and {}",
+        "report: {} merged, {}, {} configurations in all, in {:.1} s; {}",
         counted(devices.len(), "shard"),
         counted(results.len(), "scene"),
         results.iter().map(|r| r.rows.len()).sum::<usize>(),
         started.elapsed().as_secs_f64(),
-        args.out.join("report.md").display(),
-        args.out.join("report.csv").display()
+        written(&args.out, results.iter().map(|r| r.name.as_str()))
     )?;
     Ok(())
 }
@@ -438,6 +436,13 @@ const TABLES: [&str; 4] = ["report.csv", "specular.csv", "gi.csv", "report.md"];
 fn report_files<'a>(scenes: impl IntoIterator<Item = &'a str>) -> Vec<String> {
     let plots = scenes.into_iter().flat_map(|s| [plot::file_name(s), gi_plot::file_name(s)]);
     TABLES.iter().map(|t| t.to_string()).chain(plots).collect()
+}
+
+/// What a finished report wrote into `out`, every file named (its last line said only
+/// report.md and report.csv of the four tables and the plots).
+fn written<'a>(out: &Path, scenes: impl IntoIterator<Item = &'a str>) -> String {
+    let files: Vec<String> = report_files(scenes).into_iter().filter(|f| out.join(f).is_file()).collect();
+    format!("wrote {} in {}: {}", counted(files.len(), "file"), out.display(), files.join(", "))
 }
 
 /// Replaces `path` atomically, as every file glint writes (`glint_io::atomic`).
