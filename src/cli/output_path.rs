@@ -27,9 +27,54 @@ pub fn check_outputs(outputs: &[&Path], input: &Path, force: bool) -> anyhow::Re
             bail!("{}: is a folder, not a file; choose another output name", path.display());
         }
         // `metadata` follows a link: a link to a read-only file is refused too.
-        if !force && std::fs::metadata(path).is_ok_and(|m| m.permissions().readonly()) {
+        let read_only = std::fs::metadata(path).is_ok_and(|m| m.permissions().readonly());
+        if !force && read_only {
             bail!("{}: the output file is read-only; not replacing it (pass --force to replace it)", path.display());
         }
+        check_replaceable(path, read_only)?;
+    }
+    Ok(())
+}
+
+/// What the file system will refuse when the finished image is written, asked before the
+/// render: a read-only mount, a folder that allows no new file or no rename (append-only), a
+/// name longer than a file system allows, an immutable file. Each was found only after the
+/// whole render (a farm task's render thrown away), and `--backend both` had by then replaced
+/// some of its images and not the others.
+fn check_replaceable(path: &Path, read_only: bool) -> anyhow::Result<()> {
+    // NAME_MAX of Linux's file systems (ext4, xfs, btrfs, tmpfs) and of NTFS and APFS.
+    const NAME_MAX: usize = 255;
+    let name = path.file_name().map_or(0, |n| n.as_encoded_bytes().len());
+    if name > NAME_MAX {
+        bail!("{}: the file name is {name} bytes long; file systems allow at most {NAME_MAX}", path.display());
+    }
+    let folder = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    };
+    // The image is written as a temporary beside it and renamed over it: make one, and remove it.
+    let probe = tempfile::Builder::new().prefix(".glint-").suffix(".tmp").tempfile_in(folder).map_err(|e| {
+        anyhow::anyhow!("{}: cannot create a file in the folder {}: {}", path.display(), folder.display(), e.kind())
+    })?;
+    let probe_path = probe.path().to_owned();
+    if let Err(e) = probe.close() {
+        bail!(
+            "{}: the folder {} lets files be created but not removed or renamed ({}), so the image cannot be \
+             written there; the test file {} is left in it",
+            path.display(),
+            folder.display(),
+            e.kind(),
+            probe_path.display()
+        );
+    }
+    // An immutable file, or one on a read-only mount reached through a link: opening it for
+    // writing (without truncating: nothing changes) says so. A read-only one is replaced with
+    // --force, by the rename; other kinds (a named pipe) would block and are replaced too.
+    if !read_only
+        && std::fs::metadata(path).is_ok_and(|m| m.is_file())
+        && let Err(e) = std::fs::OpenOptions::new().write(true).open(path)
+    {
+        bail!("{}: the existing file cannot be replaced: {}", path.display(), e.kind());
     }
     Ok(())
 }

@@ -349,6 +349,27 @@ fn a_legal_250_byte_output_name_is_written() {
     assert_eq!(dir.listing(), [name]);
 }
 
+/// A name longer than file systems allow is refused before the render, naming its length (it
+/// failed after the whole render, a farm task's work thrown away), and so, with `--backend
+/// both`, before any of the three images is written.
+#[test]
+fn an_output_name_too_long_for_the_file_system_is_refused_before_the_render() {
+    let dir = TempDir::new("too-long-name");
+    let name = format!("{}.png", "n".repeat(252));
+    for backend in ["cpu", "both"] {
+        let out = glint(
+            &dir,
+            ["render", "whitted", "--width", "8", "--height", "6", "-q", "--backend", backend, "-o", &name],
+        );
+        let stderr = text(&out.stderr);
+        assert!(!out.status.success(), "{backend}: succeeded");
+        let length = if backend == "cpu" { 256 } else { 260 };
+        let said = format!("the file name is {length} bytes long; file systems allow at most 255");
+        assert!(stderr.contains(&said), "{backend}: {stderr}");
+        assert!(!stderr.contains("render ms") && dir.listing().is_empty(), "{backend}: {stderr} {:?}", dir.listing());
+    }
+}
+
 /// Glass between two facing mirrors with no bailout: every glass hit doubles the tree, to
 /// 2^1025 rays a camera sample at `max_depth = 1024`.
 const BRANCHING: &str = "[render]\nwidth = 4\nheight = 4\nmax_depth = 1024\nbailout = 0.0\n\n\
