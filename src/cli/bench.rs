@@ -49,7 +49,7 @@ pub struct RaysArgs {
     pub scene_size: LoadArgs,
     /// CPU threads for the build and the casts: 0 = one per core (the default), at most 4 per
     /// core, as `glint render --threads`
-    #[arg(long, default_value_t = 0, allow_negative_numbers = true, value_parser = parse_threads)]
+    #[arg(long, default_value_t = 0, allow_hyphen_values = true, value_parser = parse_threads)]
     pub threads: usize,
     /// Which side casts the rays: the CPU (f64), the GPU (WGSL), or both (then their hits are compared)
     #[arg(long, default_value = "cpu", value_parser = ["cpu", "gpu", "both"])]
@@ -58,7 +58,7 @@ pub struct RaysArgs {
     #[arg(long)]
     pub adapter: Option<String>,
     /// Timed runs after the warm-up run [1, 100]
-    #[arg(long, default_value_t = 5, allow_negative_numbers = true, value_parser = crate::cli::settings::parse_in::<1, 100>)]
+    #[arg(long, default_value_t = 5, allow_hyphen_values = true, value_parser = crate::cli::settings::parse_in::<1, 100>)]
     pub runs: u32,
     /// Print the results as JSON instead of a table
     #[arg(long)]

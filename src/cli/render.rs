@@ -46,11 +46,11 @@ pub struct RenderArgs {
     #[arg(long)]
     pub adapter: Option<String>,
     /// CPU worker threads: 0 = one per core, at most 4 per core (and never more than 1024)
-    #[arg(long, default_value_t = 0, allow_negative_numbers = true, value_parser = parse_threads)]
+    #[arg(long, default_value_t = 0, allow_hyphen_values = true, value_parser = parse_threads)]
     pub threads: usize,
     /// The CPU's bound on one camera sample's ray tree [1, 2^40]: a pixel that reaches it is an
     /// error naming the pixel, never a silently cut tree (default 2^22 = 4,194,304)
-    #[arg(long, value_name = "RAYS", allow_negative_numbers = true, value_parser = parse_ray_cap)]
+    #[arg(long, value_name = "RAYS", allow_hyphen_values = true, value_parser = parse_ray_cap)]
     pub max_rays_per_sample: Option<u64>,
     /// Run every feature of both tracers even where the scene does not need it
     #[arg(long)]
@@ -77,7 +77,7 @@ pub struct RenderArgs {
     /// Timed runs of --bench [1, 1000] (default 5)
     // Checked by `check_backend_flags`: clap's `requires = "bench"` counts the flag's default
     // (false) as given, and `--runs` without `--bench` rendered once without a word.
-    #[arg(long, allow_negative_numbers = true, value_parser = crate::cli::settings::parse_in::<1, 1000>)]
+    #[arg(long, allow_hyphen_values = true, value_parser = crate::cli::settings::parse_in::<1, 1000>)]
     pub runs: Option<u32>,
     /// No progress bar
     #[arg(short, long)]

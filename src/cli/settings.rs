@@ -15,28 +15,28 @@ use super::console::tell;
 #[derive(Clone, Debug, Default, Args)]
 pub struct SettingsArgs {
     /// Image width in pixels [1, 16384] (default: the scene's)
-    #[arg(long, allow_negative_numbers = true, value_parser = parse_side)]
+    #[arg(long, allow_hyphen_values = true, value_parser = parse_side)]
     pub width: Option<u32>,
     /// Image height in pixels [1, 16384]
-    #[arg(long, allow_negative_numbers = true, value_parser = parse_side)]
+    #[arg(long, allow_hyphen_values = true, value_parser = parse_side)]
     pub height: Option<u32>,
     /// Samples per pixel [1, 4096]; more than one are stratified and jittered (a path render's one is jittered too)
-    #[arg(long, allow_negative_numbers = true, value_parser = parse_spp)]
+    #[arg(long, allow_hyphen_values = true, value_parser = parse_spp)]
     pub spp: Option<u32>,
     /// Maximum recursion depth [0, 1024]; 0 = local shading only
-    #[arg(long, allow_negative_numbers = true, value_parser = parse_depth)]
+    #[arg(long, allow_hyphen_values = true, value_parser = parse_depth)]
     pub depth: Option<u32>,
     /// Self-intersection epsilon in scene units [0, 1000]
-    #[arg(long, allow_negative_numbers = true, value_parser = parse_epsilon)]
+    #[arg(long, allow_hyphen_values = true, value_parser = parse_epsilon)]
     pub epsilon: Option<f64>,
     /// How epsilon is applied: tmin, nudge_ray, nudge_normal, robust or skip_convex
     #[arg(long, value_parser = parse_epsilon_mode)]
     pub epsilon_mode: Option<EpsilonMode>,
     /// Adaptive bailout: skip child rays whose path weight is below this [0, 1]; 0 disables
-    #[arg(long, allow_negative_numbers = true, value_parser = parse_bailout)]
+    #[arg(long, allow_hyphen_values = true, value_parser = parse_bailout)]
     pub bailout: Option<f64>,
     /// Seed of the sample jitter and of the paths' random numbers [0, 4294967295]
-    #[arg(long, allow_negative_numbers = true, value_parser = parse_in::<0, { u32::MAX }>)]
+    #[arg(long, allow_hyphen_values = true, value_parser = parse_in::<0, { u32::MAX }>)]
     pub seed: Option<u32>,
     /// How light is carried: whitted (the seed's ray tree) or path (Monte Carlo paths: global
     /// illumination with area lights, colour bleeding and caustics; --spp paths a pixel, --depth
@@ -54,16 +54,16 @@ pub struct SettingsArgs {
 #[derive(Clone, Copy, Debug, Default, Args)]
 pub struct LoadArgs {
     /// Resolution N of a generated built-in scene (bumpy, bumpy-glass): 4·N² sphere triangles, N in [2, 1500], default 500; an error with any other scene
-    #[arg(long, value_name = "N", allow_negative_numbers = true, value_parser = parse_resolution)]
+    #[arg(long, value_name = "N", allow_hyphen_values = true, value_parser = parse_resolution)]
     pub resolution: Option<u32>,
     /// The glTF scene to open (0-based; default: the file's default scene, else its first)
-    #[arg(long, value_name = "N", allow_negative_numbers = true, value_parser = parse_index)]
+    #[arg(long, value_name = "N", allow_hyphen_values = true, value_parser = parse_index)]
     pub scene_index: Option<u32>,
     /// The model file's camera to look through (0-based; default: its first, or one framing the model)
-    #[arg(long, value_name = "N", allow_negative_numbers = true, value_parser = parse_index)]
+    #[arg(long, value_name = "N", allow_hyphen_values = true, value_parser = parse_index)]
     pub camera: Option<u32>,
     /// Scale of a model file's light intensities (candela, lux) into I_d and I_s, in (0, 1e6]; default 1
-    #[arg(long, value_name = "FACTOR", allow_negative_numbers = true, value_parser = parse_exposure)]
+    #[arg(long, value_name = "FACTOR", allow_hyphen_values = true, value_parser = parse_exposure)]
     pub exposure: Option<f64>,
     /// A grey ground under a model file: auto (unless the model has its own floor), on, off;
     /// never coplanar with the model's faces

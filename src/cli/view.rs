@@ -57,7 +57,7 @@ pub struct ViewArgs {
     #[arg(long, value_name = "PNG")]
     pub screenshot: Option<PathBuf>,
     /// Orbit the camera for SECONDS as a drag would, then print the frame rates and exit
-    #[arg(long, value_name = "SECONDS", allow_negative_numbers = true)]
+    #[arg(long, value_name = "SECONDS", allow_hyphen_values = true)]
     pub benchmark_drag: Option<f64>,
     /// Use each feature that needs a shader variant of its own (more samples, depth 0, a spot
     /// light, Phong, Cook–Torrance) for the first time, print the longest frame interval while
@@ -66,7 +66,7 @@ pub struct ViewArgs {
     pub benchmark_features: bool,
     /// Render the scene with paths and let the GPU add samples for SECONDS, then print the
     /// samples reached, their rate and the frame intervals meanwhile, and exit
-    #[arg(long, value_name = "SECONDS", allow_negative_numbers = true)]
+    #[arg(long, value_name = "SECONDS", allow_hyphen_values = true)]
     pub benchmark_paths: Option<f64>,
 }
 

@@ -443,6 +443,9 @@ fn bad_input_fails_cleanly() {
     // argument '-1'" suggested `-- -1`, which made -1 the scene).
     for (flag, value, fragment) in [
         ("--seed", "-1", "-1 is outside the allowed range [0, 4294967295]"),
+        // Those clap's own test does not take for numbers ("unexpected argument '-1' found").
+        ("--epsilon", "-1e-3", "-0.001 is outside the allowed range [0, 1000]"),
+        ("--epsilon", "-inf", "-inf is not a finite number; allowed: [0, 1000]"),
         ("--tile", "-1/4", "not a whole number"),
         ("--camera", "-1", "--camera"),
         // Beyond u32, the range every whole number of the scene format has.

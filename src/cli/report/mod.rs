@@ -51,16 +51,16 @@ pub struct ReportArgs {
     #[arg(long)]
     pub quick: bool,
     /// Image width for every scene [1, 4096] (default 320; 96 with --quick)
-    #[arg(long, allow_negative_numbers = true, value_parser = crate::cli::settings::parse_in::<1, 4096>)]
+    #[arg(long, allow_hyphen_values = true, value_parser = crate::cli::settings::parse_in::<1, 4096>)]
     pub width: Option<u32>,
     /// Image height for every scene [1, 4096] (default 240; 72 with --quick)
-    #[arg(long, allow_negative_numbers = true, value_parser = crate::cli::settings::parse_in::<1, 4096>)]
+    #[arg(long, allow_hyphen_values = true, value_parser = crate::cli::settings::parse_in::<1, 4096>)]
     pub height: Option<u32>,
     /// Samples per pixel of the CPU reference [64, 4096]
-    #[arg(long, default_value_t = 64, allow_negative_numbers = true, value_parser = crate::cli::settings::parse_in::<64, 4096>)]
+    #[arg(long, default_value_t = 64, allow_hyphen_values = true, value_parser = crate::cli::settings::parse_in::<64, 4096>)]
     pub reference_spp: u32,
     /// Timed runs per configuration after the warm-up [3, 100]; the median is reported
-    #[arg(long, default_value_t = 3, allow_negative_numbers = true, value_parser = crate::cli::settings::parse_in::<3, 100>)]
+    #[arg(long, default_value_t = 3, allow_hyphen_values = true, value_parser = crate::cli::settings::parse_in::<3, 100>)]
     pub runs: u32,
     /// GPU adapter: a case-insensitive part of its name (default: WGPU_ADAPTER_NAME, else the best GPU)
     #[arg(long, conflicts_with = "cpu_only")]
@@ -69,7 +69,7 @@ pub struct ReportArgs {
     #[arg(long)]
     pub cpu_only: bool,
     /// CPU worker threads: 0 = one per core, at most 4 per core (and never more than 1024)
-    #[arg(long, default_value_t = 0, allow_negative_numbers = true, value_parser = parse_threads)]
+    #[arg(long, default_value_t = 0, allow_hyphen_values = true, value_parser = parse_threads)]
     pub threads: usize,
     /// Render every scene with this integrator: whitted or path (default: each scene's own
     /// render.integrator). A path-traced reference is itself a Monte Carlo estimate at
