@@ -85,6 +85,24 @@ fn tile_index(path: &Path, header: &ExrHeader) -> anyhow::Result<(u32, u32)> {
     parsed.with_context(|| format!("{}: glint:tile is '{value}', not I/N", path.display()))
 }
 
+/// What a path that is no regular file is, in a message's words.
+fn file_kind(t: std::fs::FileType) -> &'static str {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if t.is_fifo() {
+            return "a named pipe";
+        }
+        if t.is_char_device() || t.is_block_device() {
+            return "a device";
+        }
+        if t.is_socket() {
+            return "a socket";
+        }
+    }
+    if t.is_dir() { "a folder" } else { "not a regular file" }
+}
+
 pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
     let ext = args.output.extension().map(|e| e.to_string_lossy().to_ascii_lowercase());
     let png = match ext.as_deref() {
@@ -92,10 +110,23 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
         Some("exr") => false,
         _ => bail!("{}: the merged image is written as .exr or .png", args.output.display()),
     };
+    // A tile is a file `glint render --tile` wrote: a named pipe the glob caught waited for a
+    // writer that never came, and a device or a folder is no tile either.
+    for path in &args.tiles {
+        let kind = std::fs::metadata(path).ok().map(|m| m.file_type()).filter(|t| !t.is_file());
+        if let Some(t) = kind {
+            bail!(
+                "{}: is {}, not a tile file (the .exr a `glint render --tile` wrote); leave it out of the tiles \
+                 given; nothing was written",
+                path.display(),
+                file_kind(t)
+            );
+        }
+    }
     // Headers first: every check before any pixel is read or anything is written.
     let headers: Vec<ExrHeader> =
-        // A tile that blocks its reader (a named pipe nobody writes) ends the merge at the first
-        // signal: it waited for a second, and `timeout` sends one.
+        // A tile that blocks its reader (a file on a hung network mount) ends the merge at the
+        // first signal: it waited for a second, and `timeout` sends one.
         super::interrupt::while_loading(|| {
             args.tiles.iter().map(|p| read_exr_header(p).map_err(anyhow::Error::from)).collect::<anyhow::Result<_>>()
         })?;

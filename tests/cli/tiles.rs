@@ -259,6 +259,14 @@ fn tiles_that_do_not_belong_together_are_refused_by_name_and_nothing_is_written(
     }
     let huge = forged("huge.exr", (1_000_000, 1_000_000), &|x, y| incomplete.rgb[y * w + x]);
     refused(&[huge, t[0].clone(), t[2].clone()], "huge.exr: its image (display window) is 1000000x1000000");
+    // A named pipe or a folder the glob caught is named at once (the pipe waited for a writer).
+    let pipe = dir.join("t9.exr");
+    let made = std::process::Command::new("mkfifo").arg(&pipe).status().expect("mkfifo (coreutils)");
+    assert!(made.success(), "mkfifo failed");
+    refused(&[t[0].clone(), pipe, t[1].clone(), t[2].clone()], "t9.exr: is a named pipe, not a tile file");
+    let folder = dir.join("t8.exr");
+    std::fs::create_dir(&folder).expect("folder");
+    refused(&[t[0].clone(), t[1].clone(), folder, t[2].clone()], "t8.exr: is a folder, not a tile file");
     // An output that is one of the tiles (the first included) is named as a tile.
     for i in [0, 2] {
         let done = merge(&dir, &t, &t[i]);
