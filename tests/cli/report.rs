@@ -637,6 +637,48 @@ fn report_shards_merge_into_the_one_machine_report_and_missing_ones_are_named() 
         assert!(stderr.contains(expected) && !stderr.contains("panicked"), "{key}: {stderr}");
         assert!(!dir.join("damaged/report.csv").exists(), "a refused merge wrote a report");
     }
+    // Values no run makes, which merged into the report (a CLI tester): a run of 2^63 s, an
+    // infinite PSNR beside an error, a spp of 0, and settings of another sweep.
+    let mut run = toml::Table::new();
+    run.insert("secs".into(), toml::Value::Integer(i64::MAX));
+    run.insert("nanos".into(), toml::Value::Integer(0));
+    let week_long = toml::Value::Array(vec![toml::Value::Table(run)]);
+    type Edit<'a> = &'a dyn Fn(&mut toml::Table);
+    let cases: [(Edit, &str); 4] = [
+        (
+            &|s| set_first_row(s, "times", week_long.clone()),
+            "rows[0].times: a run of 9223372036854775807 s, longer than a week",
+        ),
+        (
+            &|s| {
+                set_first_row(s, "errors.rmse", toml::Value::Float(0.25));
+                set_first_row(s, "errors.psnr", toml::Value::Float(f64::INFINITY));
+            },
+            "rows[0].errors.psnr: is inf with an rmse of 0.25; it is infinite exactly where the rmse is 0",
+        ),
+        (
+            &|s| {
+                s["results"][0]["settings"]["spp"] = toml::Value::Integer(0);
+            },
+            "results[0].settings: render.spp: 0 is outside the allowed range",
+        ),
+        (
+            &|s| {
+                let spp = s["results"][0]["settings"]["spp"].as_integer().expect("spp");
+                s["results"][0]["settings"]["spp"] = toml::Value::Integer(spp + 1);
+            },
+            "settings or reference are not those",
+        ),
+    ];
+    for (edit, expected) in cases {
+        let done = edited(edit, "damaged");
+        let stderr = text(&done.stderr);
+        assert!(
+            !done.status.success() && stderr.contains("shard-1-of-3.toml") && stderr.contains(expected),
+            "{stderr}"
+        );
+        assert!(!dir.join("damaged/report.csv").exists(), "a refused merge wrote a report");
+    }
     let stray = edited(
         &|s| {
             s.insert("shard".into(), toml::Value::Integer(7));
@@ -651,7 +693,9 @@ fn report_shards_merge_into_the_one_machine_report_and_missing_ones_are_named() 
     let absurd = |shard: &mut toml::Table| {
         for scene in shard["results"].as_array_mut().expect("results") {
             for row in scene["rows"].as_array_mut().expect("rows") {
-                row["errors"].as_table_mut().expect("errors").insert("rmse".into(), toml::Value::Float(1e308));
+                let errors = row["errors"].as_table_mut().expect("errors");
+                errors.insert("rmse".into(), toml::Value::Float(1e308));
+                errors.insert("psnr".into(), toml::Value::Float(-6160.0));
             }
         }
     };

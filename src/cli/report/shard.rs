@@ -13,10 +13,11 @@
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
+use std::time::Duration;
 
 use anyhow::{Context, bail};
 use glint_core::Backend;
-use glint_scene::Integrator;
+use glint_scene::{Integrator, Report, format_number, validate_settings};
 use serde::{Deserialize, Serialize};
 
 use super::machine::Machine;
@@ -199,14 +200,31 @@ impl ShardFile {
         let number = |at: String, v: f64| {
             if v.is_finite() && v >= 0.0 { Ok(()) } else { Err(format!("{at}: {v} is not a finite number ≥ 0")) }
         };
+        // A timed run no render of a sweep takes: a week's seconds (u64::MAX seconds was merged
+        // into a median of 1.8e22 ms).
+        let times = |at: &str, times: &[Duration]| {
+            if times.is_empty() {
+                return Err(format!("{at}.times: empty; a row has at least one timed run"));
+            }
+            match times.iter().find(|t| t.as_secs() > MAX_RUN_SECS) {
+                Some(t) => Err(format!(
+                    "{at}.times: a run of {} s, longer than a week ({MAX_RUN_SECS} s), which no render of a sweep takes",
+                    t.as_secs()
+                )),
+                None => Ok(()),
+            }
+        };
         for (i, scene) in self.results.iter().enumerate() {
             scene_of(format!("results[{i}].name"), &scene.name)?;
+            let mut settings = Report::default();
+            validate_settings(&scene.settings, &mut settings);
+            if let Some(e) = settings.errors.first() {
+                return Err(format!("results[{i}].settings: {e}"));
+            }
             for (j, row) in scene.rows.iter().enumerate() {
                 let at = format!("results[{i}].rows[{j}]");
                 shard_of(at.clone(), row.shard)?;
-                if row.times.is_empty() {
-                    return Err(format!("{at}.times: empty; a row has at least one timed run"));
-                }
+                times(&at, &row.times)?;
                 let e = &row.errors;
                 for (name, v) in [
                     ("max_abs", e.max_abs),
@@ -224,6 +242,14 @@ impl ShardFile {
                 if e.psnr.is_nan() || e.psnr == f64::NEG_INFINITY {
                     return Err(format!("{at}.errors.psnr: is {}, which no image pair has", e.psnr));
                 }
+                // Infinite exactly where the images are identical (`compare`: −10·log10 of the MSE).
+                if e.psnr.is_infinite() != (e.rmse == 0.0) {
+                    return Err(format!(
+                        "{at}.errors.psnr: is {} with an rmse of {}; it is infinite exactly where the rmse is 0",
+                        format_number(e.psnr),
+                        format_number(e.rmse)
+                    ));
+                }
                 for (name, v) in [("twin_rmse", row.twin_rmse), ("twin_rays_pct", row.twin_rays_pct.map(f64::abs))] {
                     v.map_or(Ok(()), |v| number(format!("{at}.{name}"), v))?;
                 }
@@ -239,9 +265,7 @@ impl ShardFile {
             for (j, row) in scene.specular.iter().enumerate() {
                 let at = format!("results[{i}].specular[{j}]");
                 shard_of(at.clone(), row.shard)?;
-                if row.times.is_empty() {
-                    return Err(format!("{at}.times: empty; a row has at least one timed run"));
-                }
+                times(&at, &row.times)?;
             }
         }
         for (i, gi) in self.gi.iter().enumerate() {
@@ -251,11 +275,17 @@ impl ShardFile {
             number(format!("{at}.reference_noise"), gi.reference_noise)?;
             for (j, row) in gi.rows.iter().enumerate() {
                 number(format!("{at}.rows[{j}].rmse"), row.rmse)?;
+                if row.median.as_secs() > MAX_RUN_SECS {
+                    return Err(format!("{at}.rows[{j}].median: {} s, longer than a week", row.median.as_secs()));
+                }
             }
         }
         Ok(())
     }
 }
+
+/// The longest timed run a shard may hold, a week: far beyond any render of a sweep.
+const MAX_RUN_SECS: u64 = 7 * 24 * 3600;
 
 /// More rays than a shard's renders can trace (16384² pixels × 4096 samples × 2^10 rays is
 /// 1.1e15; this leaves room), and far from u64's end, so that sums of a sweep's rows stay exact.
@@ -442,15 +472,32 @@ pub fn join(files: &mut [ShardFile], planned: &[Planned]) -> anyhow::Result<Vec<
         .with_context(|| format!("{}: a scene of the sweep has no result", first.path.display()))?;
     let owners = assign(planned, &needs, u64::from(first.width) * u64::from(first.height), first.runs, first.count);
     let paths: Vec<PathBuf> = files.iter().map(|f| f.path.clone()).collect();
-    let parts: Vec<SceneResult> = files.iter_mut().flat_map(|f| std::mem::take(&mut f.results)).collect();
     let mut out: Vec<SceneResult> = Vec::new();
-    for part in parts {
-        match out.iter_mut().find(|j| j.name == part.name) {
-            Some(j) => {
-                j.rows.extend(part.rows);
-                j.specular.extend(part.specular);
+    let mut first_of: Vec<&Path> = Vec::new();
+    for (f, path) in files.iter_mut().zip(&paths) {
+        for part in std::mem::take(&mut f.results) {
+            match out.iter().position(|j| j.name == part.name) {
+                Some(k) => {
+                    // Every shard renders a scene from the one file at the one size: settings
+                    // that differ were edited (spp = 0 was merged without a word).
+                    let j = &mut out[k];
+                    if j.settings != part.settings || j.reference != part.reference {
+                        bail!(
+                            "{}: scene {}'s settings or reference are not those {} has; the file was edited: run \
+                             its shard again; nothing was written",
+                            path.display(),
+                            part.name,
+                            first_of[k].display()
+                        );
+                    }
+                    j.rows.extend(part.rows);
+                    j.specular.extend(part.specular);
+                }
+                None => {
+                    out.push(part);
+                    first_of.push(path);
+                }
             }
-            None => out.push(part),
         }
     }
     out.sort_by_key(|j| names.iter().position(|n| *n == j.name).unwrap_or(usize::MAX));
