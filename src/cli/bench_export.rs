@@ -31,7 +31,7 @@ pub fn prepare(dir: &Path, flat: &FlatScene) -> anyhow::Result<()> {
             counted(flat.planes.len(), "plane")
         );
     }
-    std::fs::create_dir_all(dir).with_context(|| format!("--export: cannot make the folder {}", dir.display()))
+    super::output_path::create_folder("--export", dir)
 }
 
 /// Writes the files above into `dir` (`prepare`d), each atomically.

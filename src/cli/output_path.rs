@@ -171,3 +171,13 @@ pub fn is_same_file(a: &Path, b: &Path) -> bool {
         matches!((a.canonicalize(), b.canonicalize()), (Ok(x), Ok(y)) if x == y)
     }
 }
+
+/// Makes the folder `dir` that `flag` names, with any folders above it that are missing. A
+/// file where a folder must be is named as such ("cannot create ok.png: File exists" said
+/// neither that ok.png is a file nor that the flag wants a folder).
+pub fn create_folder(flag: &str, dir: &Path) -> anyhow::Result<()> {
+    if let Some(file) = dir.ancestors().find(|a| std::fs::metadata(a).is_ok_and(|m| !m.is_dir())) {
+        bail!("{flag} {}: {} is a file, not a folder; {flag} names a folder", dir.display(), file.display());
+    }
+    std::fs::create_dir_all(dir).map_err(|e| anyhow::anyhow!("{flag} {}: cannot make the folder: {e}", dir.display()))
+}

@@ -226,7 +226,7 @@ fn export_refuses_a_scene_an_outside_tracer_would_see_only_in_part() {
                 &d.join("taken/rays"),
             ])
         },
-        &["--export: cannot make the folder", "taken/rays"],
+        &["taken/rays: ", "taken is a file, not a folder; --export names a folder"],
         &["taken"],
     );
 }

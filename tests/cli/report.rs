@@ -303,6 +303,14 @@ fn report_rejects_an_empty_scene_list_an_empty_merge_folder_and_a_thread_count_o
         }
         assert!(!out_dir.exists(), "the output folder was created for a failing report");
     }
+    // A file where --out's folder must be is named as such ("cannot create …: File exists").
+    std::fs::write(dir.join("taken.png"), "a file").expect("write");
+    let out = glint(&dir, ["report", "--quick", "--cpu-only", "-q", "--out", "taken.png/report"]);
+    let said = text(&out.stderr);
+    assert!(
+        !out.status.success() && said.contains("taken.png is a file, not a folder; --out names a folder"),
+        "{said}"
+    );
 }
 
 /// The rows marked `pareto_all` form the front the report's legend describes (time against

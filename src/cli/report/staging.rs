@@ -26,7 +26,7 @@ impl Staging {
         }
         let made: Vec<PathBuf> =
             out.ancestors().take_while(|a| !a.as_os_str().is_empty() && !a.exists()).map(Path::to_path_buf).collect();
-        std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
+        crate::cli::output_path::create_folder("--out", out)?;
         let dir = TempDir::with_prefix_in(".glint-report-", out)
             .with_context(|| format!("cannot create a folder in {}", out.display()))?;
         Ok(Self { dir, out: out.to_path_buf(), made })
