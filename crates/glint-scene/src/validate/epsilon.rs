@@ -28,7 +28,42 @@ pub const EPSILON_SHARE: f64 = 1e-6;
 /// `nudge_normal`), below f32's step at that size (`F32_STEP_SHARE`; without bounded geometry, 0).
 pub fn epsilon_warning(desc: &SceneDesc, settings: &RenderSettings) -> Option<String> {
     let extent = crate::storage::scene_extent(desc).filter(|e| *e > 0.0 && e.is_finite());
-    too_small(settings, extent).or_else(|| too_large(settings, extent?))
+    too_small(settings, extent)
+        .or_else(|| extent.and_then(|e| too_large(settings, e)))
+        .or_else(|| too_large_for_a_sphere(desc, settings))
+}
+
+/// The share of a sphere's diameter beyond which ε is warned about: a sphere fewer than 100 ε
+/// across. The scene's size hid a small one beside a large one (a sphere of radius 1e-7 under
+/// ε = 1e-6 beside one of 1e7 lost its contact shadow without a word).
+pub const EPSILON_SPHERE_SHARE: f64 = 1e-2;
+
+fn too_large_for_a_sphere(desc: &SceneDesc, settings: &RenderSettings) -> Option<String> {
+    let (k, radius) = desc
+        .objects
+        .iter()
+        .enumerate()
+        .filter_map(|(k, o)| match o {
+            crate::desc::ObjectDesc::Sphere(s) if s.radius > 0.0 && s.radius.is_finite() => Some((k, s.radius)),
+            crate::desc::ObjectDesc::Sphere(_)
+            | crate::desc::ObjectDesc::Plane(_)
+            | crate::desc::ObjectDesc::Mesh(_)
+            | crate::desc::ObjectDesc::Model(_) => None,
+        })
+        .min_by(|a, b| a.1.total_cmp(&b.1))?;
+    let diameter = 2.0 * radius;
+    (settings.epsilon > EPSILON_SPHERE_SHARE * diameter).then(|| {
+        format!(
+            "{} is {} of the diameter of objects[{k}] (a sphere of radius {}), more than {}: rays move about ε off \
+             each surface they leave, so near it they can pass through geometry and its contact shadows are lost; \
+             lower it to {} or less",
+            format_number(settings.epsilon),
+            format_rounded(settings.epsilon / diameter, 3),
+            format_number(radius),
+            format_number(EPSILON_SPHERE_SHARE),
+            format_rounded(EPSILON_SPHERE_SHARE * diameter / 10.0, 2)
+        )
+    })
 }
 
 fn too_small(settings: &RenderSettings, extent: Option<f64>) -> Option<String> {
@@ -118,6 +153,25 @@ mod tests {
         assert!(text.ends_with("lower it to 8e-8 or less"), "{text}");
         let tenth = scene(0.06);
         assert_eq!(epsilon_warning(&tenth, &tenth.render), None, "8.3e-6 of the scene's size");
+    }
+
+    #[test]
+    fn an_epsilon_large_beside_the_smallest_sphere_is_warned_about_though_the_scene_is_large() {
+        let text = "[camera]\nposition = [0.0, 0.0, -5e-7]\nlook_at = [0.0, 0.0, 0.0]\n[materials.m]\nkd = 0.5\n\
+             [[objects]]\ntype = \"sphere\"\ncenter = [0.0, 0.0, 10000000.0000002]\nradius = 1e7\nmaterial = \"m\"\n\
+             [[objects]]\ntype = \"sphere\"\ncenter = [0.0, 0.0, 0.0]\nradius = 1e-7\nmaterial = \"m\"\n";
+        let desc: SceneDesc = toml::from_str(text).expect("scene");
+        let said = epsilon_warning(&desc, &desc.render).expect("ε = 1e-6 beside a sphere of radius 1e-7");
+        assert!(
+            said.starts_with("1e-6 is 5 of the diameter of objects[1] (a sphere of radius 1e-7), more than 0.01:"),
+            "{said}"
+        );
+        assert!(said.ends_with("lower it to 2e-10 or less"), "{said}");
+        let fine = RenderSettings { epsilon: 2e-10, ..desc.render.clone() };
+        assert_eq!(epsilon_warning(&desc, &fine), None);
+        // A unit sphere keeps the default ε without a word (100 ε across is 1e-4).
+        let unit = scene(1.0);
+        assert_eq!(too_large_for_a_sphere(&unit, &unit.render), None);
     }
 
     #[test]
