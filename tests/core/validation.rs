@@ -556,6 +556,21 @@ fn a_light_shut_in_an_opaque_sphere_and_a_slab_of_same_facing_planes_warn() {
         "{warnings:?}"
     );
     assert!(expect_valid(&slab(-1.0), "a slab whose planes face out of it").is_empty());
+    // One sphere written twice fights for its pixels as coplanar faces do (an extreme-scenes
+    // tester); one a hair apart in f64 but the same in f32 too.
+    let twice = |radius: &str| {
+        format!(
+            "{BASE}[[objects]]\ntype = \"sphere\"\ncenter = [0.0, 1.0, 0.0]\nradius = {radius}\nmaterial = \"glass\"\n"
+        )
+    };
+    for radius in ["1.0", "1.00000000001"] {
+        let warnings = expect_valid(&twice(radius), "a sphere twice");
+        assert!(
+            warnings.len() == 1 && warnings[0].starts_with("objects[3]: is the sphere objects[0] again"),
+            "{radius}: {warnings:?}"
+        );
+    }
+    assert!(expect_valid(&twice("1.001"), "a sphere inside another").is_empty());
 }
 
 #[test]

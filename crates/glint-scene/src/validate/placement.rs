@@ -1,6 +1,6 @@
 //! Where lights and objects sit against each other: set-ups that render without an error but
 //! not as a student who built them means (a lamp shut inside an opaque ball, a slab made of two
-//! planes that both face out of it).
+//! planes that both face out of it, one sphere written twice).
 
 use super::{FieldIssue, ObjectDesc, SceneDesc, num};
 use glam::DVec3;
@@ -40,6 +40,35 @@ fn shut_in_lights(scene: &SceneDesc) -> Vec<FieldIssue> {
                     num(radius)
                 ),
             });
+        }
+    }
+    out
+}
+
+/// Spheres of one centre and radius as the tracers store them (f32): a ray meets both at the
+/// same t, so each tracer picks its own, pixel by pixel, as with coplanar faces (which are
+/// warned of; a sphere written twice was not).
+pub(super) fn duplicate_spheres(scene: &SceneDesc) -> Vec<FieldIssue> {
+    let mut first: std::collections::HashMap<[u32; 4], usize> = std::collections::HashMap::new();
+    let mut out = Vec::new();
+    for (k, o) in scene.objects.iter().enumerate() {
+        let s = match o {
+            ObjectDesc::Sphere(s) => s,
+            ObjectDesc::Plane(_) | ObjectDesc::Mesh(_) | ObjectDesc::Model(_) => continue,
+        };
+        let key = [s.center[0], s.center[1], s.center[2], s.radius].map(|v| (v as f32).to_bits());
+        match first.get(&key) {
+            Some(&i) => out.push(FieldIssue {
+                field: format!("objects[{k}]"),
+                problem: format!(
+                    "is the sphere objects[{i}] again (the same centre and radius): a ray meets both at the same t up \
+                     to rounding, so each tracer picks its own surface pixel by pixel (z-fighting), and a shadow \
+                     crosses both; remove the duplicate"
+                ),
+            }),
+            None => {
+                first.insert(key, k);
+            }
         }
     }
     out
