@@ -384,10 +384,11 @@ pub fn print_table(
     if let Some(e) = errors {
         let psnr = if e.psnr.is_finite() { format!("{:.1} dB", e.psnr) } else { "inf (identical)".into() };
         say!(
-            "  gpu vs cpu: max abs {:.3e}, mean abs {:.3e}, RMSE {:.3e}, PSNR {psnr}, FLIP mean {:.5},",
+            "  gpu vs cpu: max abs {:.3e}, mean abs {:.3e}, RMSE {:.3e}, relMSE {:.3e}, PSNR {psnr}, FLIP mean {:.5},",
             e.max_abs,
             e.mean_abs,
             e.rmse,
+            e.rel_mse,
             e.flip_mean
         )?;
         say!(
