@@ -26,7 +26,8 @@ fn main() -> ExitCode {
         }
         (Err(e), None) => {
             cli::console::err_line(format_args!("error: {e:#}"));
-            ExitCode::FAILURE
+            // A command line that cannot be run exits as the argument parser's refusals do.
+            if cli::usage::is_usage(&e) { ExitCode::from(2) } else { ExitCode::FAILURE }
         }
     }
 }

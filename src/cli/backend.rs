@@ -12,6 +12,7 @@ use glint_gpu::{AdapterRequest, DispatchControl, GpuContext, GpuError, GpuOption
 use indicatif::{ProgressBar, ProgressStyle};
 
 use super::units::{count, mrays_per_s};
+use crate::cli::usage::usage;
 
 /// One finished render.
 #[derive(Debug)]
@@ -90,10 +91,10 @@ pub fn run_cpu(flat: &FlatScene, options: &CpuOptions, quiet: bool) -> anyhow::R
 /// `--adapter` where it can choose something: with a GPU backend (`uses_gpu`), and not empty.
 pub fn check_adapter(adapter: Option<&str>, uses_gpu: bool) -> anyhow::Result<()> {
     match adapter {
-        Some(_) if !uses_gpu => anyhow::bail!(
+        Some(_) if !uses_gpu => usage!(
             "--adapter chooses the GPU, and --backend cpu uses none: give --backend gpu or both, or leave --adapter out"
         ),
-        Some(a) if a.trim().is_empty() => anyhow::bail!(
+        Some(a) if a.trim().is_empty() => usage!(
             "--adapter is empty: give a part of an adapter's name (`glint adapters` lists them), or leave it out"
         ),
         _ => Ok(()),

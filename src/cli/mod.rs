@@ -15,6 +15,7 @@ mod report;
 mod settings;
 mod tile;
 mod units;
+pub mod usage;
 mod view;
 
 use clap::{Parser, Subcommand};

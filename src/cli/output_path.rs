@@ -5,6 +5,7 @@
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
+use crate::cli::usage::usage;
 use anyhow::bail;
 use glint_io::LoadedScene;
 use glint_scene::{LoadedModel, MaterialDesc, ObjectDesc, TextureDesc, material_textures};
@@ -147,7 +148,7 @@ fn files_read(loaded: &LoadedScene) -> Vec<(&'static str, PathBuf)> {
 fn check_format_and_folder(path: &Path) -> anyhow::Result<()> {
     match path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
         Some("png" | "exr") => {}
-        _ => bail!("{}: unsupported output format; use a .png or .exr file name", path.display()),
+        _ => usage!("{}: unsupported output format; use a .png or .exr file name", path.display()),
     }
     if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty() && !d.is_dir()) {
         bail!("{}: the output folder {} does not exist", path.display(), dir.display());

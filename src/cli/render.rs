@@ -2,7 +2,7 @@
 
 use std::path::PathBuf;
 
-use anyhow::{anyhow, bail};
+use anyhow::anyhow;
 use clap::Args;
 use clap::builder::{PossibleValuesParser, TypedValueParser};
 use glint_core::compare::compare_images;
@@ -25,6 +25,7 @@ use super::output_path::{check_not_read, check_outputs};
 use super::settings::{LoadArgs, SettingsArgs, load_with_estimate, parse_ray_cap, parse_threads, tell_warnings};
 use super::tile::{TileJob, TileSpec, parse_tile, render_tile};
 use super::units::{mrays_per_s, ms};
+use crate::cli::usage::usage;
 
 #[derive(Debug, Args)]
 pub struct RenderArgs {
@@ -134,13 +135,13 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     let gpu_options = GpuOptions { specialise, accel: args.accel, ..GpuOptions::default() };
     if let Some(spec) = args.tile {
         let [backend] = args.backend else {
-            bail!("--tile renders on one backend: give --backend cpu or --backend gpu");
+            usage!("--tile renders on one backend: give --backend cpu or --backend gpu");
         };
         if args.bench || args.json {
-            bail!("--tile writes one tile; it has no --bench or --json");
+            usage!("--tile writes one tile; it has no --bench or --json");
         }
         if args.allow_incomplete {
-            bail!(
+            usage!(
                 "--tile writes no incomplete tile (a merge would hide which tile lost work), so --allow-incomplete \
                  does nothing there: leave it out"
             );
@@ -271,16 +272,16 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
 fn check_backend_flags(args: &RenderArgs) -> anyhow::Result<()> {
     check_adapter(args.adapter.as_deref(), args.backend.contains(&Backend::Gpu))?;
     if args.runs.is_some() && !args.bench {
-        bail!("--runs counts the timed renders of --bench: give --bench, or leave --runs out");
+        usage!("--runs counts the timed renders of --bench: give --bench, or leave --runs out");
     }
     if args.allow_incomplete && !args.backend.contains(&Backend::Gpu) {
-        bail!(
+        usage!(
             "--allow-incomplete keeps a GPU image its shader flagged, and --backend cpu renders none (the CPU's \
              images are never incomplete): give --backend gpu or both, or leave it out"
         );
     }
     if args.max_rays_per_sample.is_some() && !args.backend.contains(&Backend::Cpu) {
-        bail!(
+        usage!(
             "--max-rays-per-sample bounds the CPU's ray trees, and --backend gpu does not run the CPU (the GPU's \
              trees are bounded by its stack): give --backend cpu or both, or leave it out"
         );

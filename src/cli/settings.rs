@@ -1,6 +1,6 @@
 //! Render-setting flags shared by the commands, applied on top of a scene's own settings.
 
-use anyhow::{Context, bail};
+use anyhow::Context;
 use clap::Args;
 use glint_core::memory::{self, MemoryEstimate, SourceKind};
 use glint_io::model::Ground;
@@ -11,6 +11,7 @@ use glint_scene::{
 };
 
 use super::console::tell;
+use crate::cli::usage::usage;
 
 #[derive(Clone, Debug, Default, Args)]
 pub struct SettingsArgs {
@@ -282,7 +283,7 @@ impl SettingsArgs {
             s.indirect = v;
         }
         if self.bailout.is_some() && s.integrator == Integrator::Path {
-            bail!(
+            usage!(
                 "--bailout prunes Whitted's ray tree, and the path tracer has none to prune (Russian roulette ends \
                  its paths): leave --bailout out, or render with --integrator whitted"
             );
@@ -292,7 +293,7 @@ impl SettingsArgs {
         if !report.errors.is_empty() {
             let lines: Vec<String> =
                 report.errors.iter().map(|e| format!("  {} ({}): {}", e.field, flag_of(&e.field), e.problem)).collect();
-            bail!("invalid render settings:\n{}", lines.join("\n"));
+            usage!("invalid render settings:\n{}", lines.join("\n"));
         }
         Ok(s)
     }

@@ -6,7 +6,7 @@
 
 use std::path::PathBuf;
 
-use anyhow::{Context, bail};
+use anyhow::Context;
 use glint_core::{Backend, CpuOptions, FlatScene, TileGrid};
 use glint_gpu::GpuOptions;
 use glint_io::LoadedScene;
@@ -18,6 +18,7 @@ use super::console::say;
 use super::interrupt;
 use super::output::{Incomplete, SceneTags, check_writable, metadata};
 use super::output_path::{check_not_read, check_outputs};
+use crate::cli::usage::usage;
 
 /// The array-index variables of the schedulers, in the order they are looked for.
 pub const INDEX_VARIABLES: [(&str, &str); 3] = [
@@ -58,7 +59,7 @@ fn resolve_index(spec: TileSpec) -> anyhow::Result<(u32, String)> {
         }
     }
     let names: Vec<&str> = INDEX_VARIABLES.iter().map(|(n, _)| *n).collect();
-    bail!(
+    usage!(
         "--tile {} takes the tile's index from the scheduler, but none of {} is set; give it as --tile I/{}",
         spec.count,
         names.join(", "),
@@ -102,7 +103,7 @@ pub fn render_tile(job: TileJob) -> anyhow::Result<()> {
     })?;
     let output = job.output.unwrap_or_else(|| PathBuf::from(format!("{}-tile-{index}.exr", job.loaded.name)));
     if !output.extension().is_some_and(|e| e.eq_ignore_ascii_case("exr")) {
-        bail!(
+        usage!(
             "{}: a tile is written as OpenEXR (its data window is the tile, its display window the image); \
              name the output .exr, and let `glint merge` write the PNG",
             output.display()

@@ -314,6 +314,28 @@ const BAD_SCENE: &str = "[camera]\nposition = [0.0, 1.0, -4.0]\nlook_at = [0.0, 
     [materials.m]\nkd = 0.5\n\n\
     [[objects]]\ntype = \"sphere\"\ncenter = [0.0, 0.5, 0.0]\nradius = -0.5\nmaterial = \"m\"\n";
 
+/// A command line that cannot be run exits 2 whichever check refused it, the argument
+/// parser's or Glint's own (`--width 16385` exited 1 and `--width -5` 2); a scene or render
+/// that fails exits 1.
+#[test]
+fn a_bad_command_line_exits_2_and_a_failed_render_1() {
+    let dir = TempDir::new("exit-codes");
+    for (args, code) in [
+        (&["render", "whitted", "--width", "-5"][..], 2),
+        (&["render", "whitted", "--width", "16385"], 2),
+        (&["render", "whitted", "--epsilon", "2000"], 2),
+        (&["render", "whitted", "--runs", "3"], 2),
+        (&["render", "whitted", "--adapter", "x"], 2),
+        (&["render", "whitted", "-o", "x.jpg"], 2),
+        (&["report", "--scenes", " , ", "--cpu-only"], 2),
+        (&["render", "nothere.toml"], 1),
+    ] {
+        let out = glint(&dir, args);
+        assert_eq!(out.status.code(), Some(code), "{args:?}: {}", text(&out.stderr));
+    }
+    assert!(dir.listing().is_empty(), "{:?}", dir.listing());
+}
+
 #[test]
 fn bad_input_fails_cleanly() {
     expect_failure(

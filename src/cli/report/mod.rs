@@ -34,6 +34,7 @@ use super::backend::open_gpu;
 use super::console::say;
 use super::settings::{load, parse_integrator, parse_threads};
 use super::units::counted;
+use crate::cli::usage::usage;
 
 const DEFAULT_SCENES: &[&str] = &["whitted", "cornell", "spotlights", "highlights", "lights", "cornell-gi"];
 const QUICK_SCENES: &[&str] = &["whitted", "highlights"];
@@ -125,7 +126,7 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
         args.scenes.iter().map(|s| s.trim().to_string()).filter(|s| !s.is_empty()).collect()
     };
     if names.is_empty() {
-        bail!(
+        usage!(
             "--scenes names no scene; give built-in names or scene files, comma-separated (or leave it out for the default set)"
         );
     }
