@@ -198,6 +198,19 @@ fn the_hierarchy_composes_in_f64_and_a_mirror_keeps_faces_outward() {
     let (u, v) = ([b[0] - a[0], b[1] - a[1]], [c[0] - a[0], c[1] - a[1]]);
     assert!(u[0] * v[1] - u[1] * v[0] > 0.0, "winding restored: {:?}", mesh.triangles);
     assert_eq!(mesh.normals.as_ref().unwrap()[0], [0.0, 0.0, 1.0], "the normal still points +z, unit length");
+    assert!(m.warnings.iter().all(|w| !w.field.ends_with(".matrix")), "{:?}", m.warnings);
+    // A projective matrix (its last row not 0, 0, 0, 1), which glTF does not allow, is read
+    // without that row, and said to be (it was read silently).
+    f.json["nodes"][2]["matrix"] =
+        json!([1.0, 0.0, 0.0, 0.5, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0]);
+    let m = load(&f.write_gltf(&dir, "p", BufferAt::DataUri));
+    assert!(
+        m.warnings
+            .iter()
+            .any(|w| w.field == "nodes[2].matrix" && w.problem.starts_with("its last row is [0.5, 0.0, 0.0, 1.0]")),
+        "{:?}",
+        m.warnings
+    );
 }
 
 /// Morph targets blend by the node's weights, else the mesh's (glTF 2.0 §3.7.2.2); without

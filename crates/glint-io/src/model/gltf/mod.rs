@@ -30,7 +30,7 @@ use glint_scene::{Mat4, Model};
 pub use self::error::{GltfError, SUPPORTED_EXTENSIONS};
 use self::file::{load_buffers, parse, read_capped};
 pub use self::material::{MIRROR_ROUGHNESS, blinn_exponent};
-use self::nodes::{node_matrix, node_numbers, world_transforms};
+use self::nodes::{node_matrix, node_numbers, projective_row, world_transforms};
 
 /// The material of primitives that name none.
 pub const DEFAULT_MATERIAL: &str = "gltf-default";
@@ -159,6 +159,15 @@ pub fn load_gltf(path: &Path, options: &ImportOptions) -> Result<Model, GltfErro
             ));
         }
         let local = node_matrix(&node, &numbers).map_err(|p| at(format!("nodes[{i}]"), p))?;
+        if let Some(row) = projective_row(&local) {
+            model.warnings.push(FieldIssue {
+                field: format!("nodes[{i}].matrix"),
+                problem: format!(
+                    "its last row is {row:?}, not (0, 0, 0, 1): glTF allows only a matrix of translation, rotation \
+                     and scale; read without that row (other readers may project by it)"
+                ),
+            });
+        }
         let world = parent.mul(&local);
         if let Some(mesh) = node.mesh() {
             let instanced = instancing::instances(&node, &gltf, &buffers, &mut instance_budget)

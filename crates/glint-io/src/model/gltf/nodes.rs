@@ -56,6 +56,14 @@ fn local_matrix(transform: ::gltf::scene::Transform, written: Option<&NodeNumber
     }
 }
 
+/// The last row of `m` where it is not (0, 0, 0, 1): a projective matrix, which glTF does not
+/// allow (a node's matrix must decompose into translation, rotation and scale) and which the
+/// tracers, transforming points affinely, read without that row.
+pub(super) fn projective_row(m: &Mat4) -> Option<[f64; 4]> {
+    let row = [m.0[0][3], m.0[1][3], m.0[2][3], m.0[3][3]];
+    (row != [0.0, 0.0, 0.0, 1.0]).then_some(row)
+}
+
 /// T · R · S, R from the quaternion (x, y, z, w), which must have a usable length.
 pub(super) fn trs_matrix(translation: [f64; 3], rotation: [f64; 4], scale: [f64; 3]) -> Result<Mat4, String> {
     let len = rotation.iter().map(|c| c * c).sum::<f64>().sqrt();
