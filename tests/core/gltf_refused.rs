@@ -124,7 +124,7 @@ fn broken_files_are_errors_naming_the_json_path() {
                     "values": { "bufferView": values },
                 });
             }),
-            &["accessors[0] has no bufferView and a count of 134217728", "(6)"],
+            &["accessors[0] has no bufferView and a count of 134217728", "at most 65536 elements"],
         ),
         ("view", Box::new(|f| f.json["bufferViews"][0]["byteLength"] = json!(4096)), &["bufferViews[0]"]),
         (
@@ -145,6 +145,25 @@ fn broken_files_are_errors_naming_the_json_path() {
             assert!(message.contains(w), "{name}: wanted `{w}` in: {message}");
         }
     }
+    // A short view-less accessor is valid glTF whatever backs it: a triangle whose corners are
+    // zeros but for 2 sparse values, the longest data in its file (it was refused).
+    let mut f = Fixture::quad();
+    let (indices, values) = (f.push_u16(&[1, 2]), f.push_f32(&[1.0, 0.0, 0.0, 0.0, 1.0, 0.0]));
+    let primitive = &mut f.json["meshes"][0]["primitives"][0];
+    primitive.as_object_mut().unwrap().remove("indices");
+    primitive["attributes"].as_object_mut().unwrap().remove("NORMAL");
+    f.json["accessors"][0].as_object_mut().unwrap().remove("bufferView");
+    f.json["accessors"][0]["count"] = json!(3);
+    f.json["accessors"][0]["min"] = json!([0.0, 0.0, 0.0]);
+    f.json["accessors"][0]["max"] = json!([1.0, 1.0, 0.0]);
+    f.json["accessors"][0]["sparse"] = json!({
+        "count": 2,
+        "indices": { "bufferView": indices, "componentType": 5123 },
+        "values": { "bufferView": values },
+    });
+    let path = f.write_gltf(&dir, "short-viewless", BufferAt::DataUri);
+    let m = load_gltf(&path, &ImportOptions::default()).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(m.meshes[0].vertices.len(), 3);
     // An index beyond the vertices.
     let mut f = Fixture::quad();
     let bad = f.push_u16(&[0, 1, 9, 0, 0, 0]);

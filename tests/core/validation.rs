@@ -262,6 +262,12 @@ fn attenuation_that_can_reach_zero() {
     // below it is not.
     expect_valid(&edited(att, "attenuation = { c = 1e-6 }"), "c at the documented least");
     expect_valid(&world_with("{ c = 1e-6 }"), "global c at the documented least");
+    // The global attenuation has no inverse-square model to point to (it has c, l, q only).
+    let err = parse_scene(&world_with("{ c = 0.0, q = 1.0 }"), Path::new(FILE)).unwrap_err().to_string();
+    assert!(
+        err.contains("world.global_attenuation: c + l·d + q·d² is c at d = 0") && !err.contains("inverse_square"),
+        "{err}"
+    );
     expect_invalid(&edited(att, "attenuation = { c = 9.99e-7 }"), field, &["c must be ≥ 1e-6", "c = 9.99e-7"]);
 }
 
@@ -522,6 +528,10 @@ fn a_coefficient_above_1_warns_and_an_8_bit_colour_is_named() {
     );
     let warnings = expect_valid(&edited("ks = 0.3", "ks = 1.5"), "ks = 1.5");
     assert!(warnings.len() == 1 && !warnings[0].contains("255"), "{warnings:?}");
+    // A checker's second colour is k_d on half the squares.
+    let warnings =
+        expect_valid(&edited("ks = 0.3", "ks = 0.3\nchecker = { kd = 255.0, size = 0.5 }"), "checker.kd = 255");
+    assert!(warnings.len() == 1 && warnings[0].starts_with("materials.red.checker.kd: 255 is above 1"), "{warnings:?}");
     assert!(expect_valid(&edited("ks = 0.3", "ks = 1.0"), "ks = 1").is_empty());
 }
 
@@ -551,7 +561,7 @@ fn a_light_shut_in_an_opaque_sphere_and_a_slab_of_same_facing_planes_warn() {
     assert!(
         warnings.len() == 1
             && warnings[0].starts_with(
-                "objects[3]: is a transmissive plane parallel to objects[4], another, whose normal faces the same way"
+                "objects[3]: is a transmissive plane parallel to the transmissive plane objects[4], its normal facing the same way"
             ),
         "{warnings:?}"
     );

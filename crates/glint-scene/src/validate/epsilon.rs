@@ -54,11 +54,11 @@ fn too_large_for_a_sphere(desc: &SceneDesc, settings: &RenderSettings) -> Option
     let diameter = 2.0 * radius;
     (settings.epsilon > EPSILON_SPHERE_SHARE * diameter).then(|| {
         format!(
-            "{} is {} of the diameter of objects[{k}] (a sphere of radius {}), more than {}: rays move about ε off \
+            "{} is {} the diameter of objects[{k}] (a sphere of radius {}), more than {}: rays move about ε off \
              each surface they leave, so near it they can pass through geometry and its contact shadows are lost; \
              lower it to {} or less",
             format_number(settings.epsilon),
-            format_rounded(settings.epsilon / diameter, 3),
+            share_of(format_rounded(settings.epsilon / diameter, 3)),
             format_number(radius),
             format_number(EPSILON_SPHERE_SHARE),
             format_rounded(EPSILON_SPHERE_SHARE * diameter / 10.0, 2)
@@ -96,6 +96,11 @@ fn too_small(settings: &RenderSettings, extent: Option<f64>) -> Option<String> {
     ))
 }
 
+/// `share` of a size in words: "0.5 of", or from 1 on "5 times" (a share of 5 read as a fraction).
+fn share_of(share: String) -> String {
+    if share.parse::<f64>().is_ok_and(|v| v >= 1.0) { format!("{share} times") } else { format!("{share} of") }
+}
+
 /// `share`, above `EPSILON_WARN_SHARE`, with the digits that show it is above: three at least,
 /// more where fewer round onto the limit (5e-5 of a scene 4.9 wide, 1.02e-5, read "1e-5" at two;
 /// 1.0001e-5 reads so at three).
@@ -109,10 +114,10 @@ fn above_limit(share: f64) -> String {
 fn too_large(settings: &RenderSettings, extent: f64) -> Option<String> {
     (settings.epsilon > EPSILON_WARN_SHARE * extent).then(|| {
         format!(
-            "{} is {} of the scene's size ({}, the largest side of its spheres' and meshes' box), more than {}: \
+            "{} is {} the scene's size ({}, the largest side of its spheres' and meshes' box), more than {}: \
              rays move about ε off each surface they leave, so they can pass through geometry; lower it to {} or less",
             format_number(settings.epsilon),
-            above_limit(settings.epsilon / extent),
+            share_of(above_limit(settings.epsilon / extent)),
             format_rounded(extent, 3),
             format_number(EPSILON_WARN_SHARE),
             format_rounded(EPSILON_SHARE * extent, 2)
@@ -163,7 +168,7 @@ mod tests {
         let desc: SceneDesc = toml::from_str(text).expect("scene");
         let said = epsilon_warning(&desc, &desc.render).expect("ε = 1e-6 beside a sphere of radius 1e-7");
         assert!(
-            said.starts_with("1e-6 is 5 of the diameter of objects[1] (a sphere of radius 1e-7), more than 0.01:"),
+            said.starts_with("1e-6 is 5 times the diameter of objects[1] (a sphere of radius 1e-7), more than 0.01:"),
             "{said}"
         );
         assert!(said.ends_with("lower it to 2e-10 or less"), "{said}");

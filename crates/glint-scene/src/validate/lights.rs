@@ -167,7 +167,8 @@ pub(super) fn validate_polynomial(path: &str, c: f64, l: f64, q: f64, r: &mut Re
     // The bound as the tracers hold it too: c = 1e-6, the documented least, is 9.99999997e-7 in f32.
     let (min, f32_min) = (MIN_ATTENUATION_DENOMINATOR, as_f32(MIN_ATTENUATION_DENOMINATOR));
     let problem = if c < f32_min {
-        let hint = if c == 0.0 && l == 0.0 && q > 0.0 {
+        // A light's attenuation has the inverse-square model; the world's global one does not.
+        let hint = if c == 0.0 && l == 0.0 && q > 0.0 && path.ends_with(".attenuation") {
             "; for a pure 1/d² falloff write attenuation = { model = \"inverse_square\" }"
         } else {
             ""

@@ -29,7 +29,8 @@ pub(super) fn validate_material(path: &str, m: &MaterialDesc, r: &mut Report) {
     }
     // A coefficient is the fraction of a light's term a surface returns; an 8-bit colour typed
     // as one (kd = 255) rendered without a word.
-    for (field, v) in [("ka", m.ka), ("kd", m.kd), ("ks", m.ks)] {
+    let checker = m.checker.as_ref().map(|c| ("checker.kd", c.kd));
+    for (field, v) in [("ka", m.ka), ("kd", m.kd), ("ks", m.ks)].into_iter().chain(checker) {
         let most = v.max_channel();
         if most > 1.0 && most.is_finite() {
             let eight_bit = if most > 2.0 && most <= 255.0 { " (an 8-bit colour? divide it by 255)" } else { "" };

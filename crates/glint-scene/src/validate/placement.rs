@@ -98,7 +98,7 @@ fn same_facing_transmissive_planes(scene: &SceneDesc) -> Vec<FieldIssue> {
             out.push(FieldIssue {
                 field: format!("objects[{i}]"),
                 problem: format!(
-                    "is a transmissive plane parallel to objects[{j}], another, whose normal faces the same way: a plane's \
+                    "is a transmissive plane parallel to the transmissive plane objects[{j}], its normal facing the same way: a plane's \
                      normal points out of its medium, so a ray through both enters twice and never leaves; for a \
                      slab between them, turn one normal to face away from the other plane"
                 ),

@@ -10,13 +10,17 @@ use ::gltf::accessor::{Accessor, DataType, Dimensions};
 /// its count is not bounded by the file's size).
 const MAX_ELEMENTS: usize = 1 << 27;
 
+/// As many elements as a view-less accessor may always have: at most 8 MiB even as MAT4.
+const SMALL_VIEWLESS: usize = 1 << 16;
+
 /// The bytes of every buffer, by buffer index, each cut to its declared `byteLength`, and the
 /// most elements an accessor without a bufferView may have.
 #[derive(Debug, Default)]
 pub(super) struct Buffers {
     pub(super) data: Vec<Vec<u8>>,
     /// The longest run of elements the file's bytes hold: the largest count of an accessor with
-    /// a bufferView or of a sparse substitution, each at most its view's byte length. A
+    /// a bufferView or of a sparse substitution, each at most its view's byte length, and at
+    /// least `SMALL_VIEWLESS`. A
     /// view-less accessor (zeros, perhaps with sparse values) is filled to its count, which
     /// nothing else bounds: a few bytes of JSON must not allocate gigabytes.
     pub(super) longest_with_data: usize,
@@ -29,7 +33,8 @@ impl Buffers {
             let sparse = a.sparse().map(|s| s.count().min(s.indices().view().length()));
             viewed.into_iter().chain(sparse)
         });
-        Self { data, longest_with_data: with_data.max().unwrap_or(0) }
+        // A short run costs nothing whatever backs it (3 zeros and 2 sparse values are valid glTF).
+        Self { data, longest_with_data: with_data.max().unwrap_or(0).max(SMALL_VIEWLESS) }
     }
 }
 
@@ -201,7 +206,7 @@ fn read<const N: usize>(accessor: &Accessor<'_>, buffers: &Buffers, expect: Expe
         None if count > buffers.longest_with_data => {
             return Err(format!(
                 "accessors[{}] has no bufferView and a count of {count}; an accessor without data may have at \
-                 most as many elements as the longest one with data in this file ({})",
+                 most {} elements (as many as the longest one with data in this file, and {SMALL_VIEWLESS} at least)",
                 accessor.index(),
                 buffers.longest_with_data
             ));
