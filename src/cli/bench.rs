@@ -43,8 +43,8 @@ pub enum BenchCommand {
 #[derive(Debug, Args)]
 pub struct RaysArgs {
     /// A scene file (.toml) or the name of a built-in scene; `bumpy` is made for this
-    #[arg(default_value = "bumpy")]
-    pub scene: String,
+    #[arg(default_value = "bumpy", value_parser = clap::value_parser!(std::ffi::OsString))]
+    pub scene: std::ffi::OsString,
     #[command(flatten)]
     pub scene_size: LoadArgs,
     /// CPU threads for the build and the casts: 0 = one per core (the default), at most 4 per

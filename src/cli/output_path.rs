@@ -182,3 +182,16 @@ pub fn create_folder(flag: &str, dir: &Path) -> anyhow::Result<()> {
     }
     std::fs::create_dir_all(dir).map_err(|e| anyhow::anyhow!("{flag} {}: cannot make the folder: {e}", dir.display()))
 }
+
+/// The default output `STEM` + `suffix` in the current folder: the scene file's own stem byte
+/// for byte (a name that is not UTF-8 kept its bytes only in the file; `loaded.name` has
+/// U+FFFD for them), or a built-in scene's name.
+pub fn default_output(loaded: &LoadedScene, suffix: &str) -> PathBuf {
+    let builtin = loaded.source.to_str().is_some_and(|s| s.starts_with("builtin:"));
+    let mut name = match loaded.source.file_stem() {
+        Some(stem) if !builtin => stem.to_os_string(),
+        _ => std::ffi::OsString::from(&loaded.name),
+    };
+    name.push(suffix);
+    PathBuf::from(name)
+}

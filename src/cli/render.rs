@@ -21,7 +21,7 @@ use super::output::{
     BenchResult, Incomplete, SceneTags, check_writable, fmt_counts, gpu_cpu_ratio, metadata, print_bench_json,
     print_json, print_table, suffixed, write_diff, write_run,
 };
-use super::output_path::{check_not_read, check_outputs};
+use super::output_path::{check_not_read, check_outputs, default_output};
 use super::settings::{LoadArgs, SettingsArgs, load_with_estimate, parse_ray_cap, parse_threads, tell_warnings};
 use super::tile::{TileJob, TileSpec, parse_tile, render_tile};
 use super::units::{mrays_per_s, ms};
@@ -30,8 +30,8 @@ use crate::cli::usage::usage;
 #[derive(Debug, Args)]
 pub struct RenderArgs {
     /// A scene file (.toml), a model file (.gltf, .glb, .obj) opened in a lab scene, or the name of a built-in scene (see --list)
-    #[arg(default_value = "whitted")]
-    pub scene: String,
+    #[arg(default_value = "whitted", value_parser = clap::value_parser!(std::ffi::OsString))]
+    pub scene: std::ffi::OsString,
     /// Output image: .png (sRGB, settings in metadata) or .exr (linear f32). Default: SCENE.png;
     /// with --backend both, NAME-cpu, NAME-gpu and NAME-diff images
     #[arg(short, long, conflicts_with = "bench")]
@@ -161,7 +161,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
             quiet: args.quiet,
         });
     }
-    let output = args.output.clone().unwrap_or_else(|| PathBuf::from(format!("{}.png", loaded.name)));
+    let output = args.output.clone().unwrap_or_else(|| default_output(&loaded, ".png"));
     let plan = RenderPlan {
         cpu: args.backend.contains(&Backend::Cpu),
         gpu: args.backend.contains(&Backend::Gpu),

@@ -1,5 +1,7 @@
 //! Render-setting flags shared by the commands, applied on top of a scene's own settings.
 
+use std::ffi::OsStr;
+
 use anyhow::Context;
 use clap::Args;
 use glint_core::memory::{self, MemoryEstimate, SourceKind};
@@ -316,7 +318,7 @@ fn flag_of(field: &str) -> &'static str {
 /// Loads a scene file, model file or built-in scene with `options` and prints its warnings,
 /// first refusing a file whose load is estimated to need more memory than `memory_limit` (or
 /// than is available).
-pub fn load(scene: &str, options: &LoadOptions, memory_limit: Option<u64>) -> anyhow::Result<LoadedScene> {
+pub fn load(scene: impl AsRef<OsStr>, options: &LoadOptions, memory_limit: Option<u64>) -> anyhow::Result<LoadedScene> {
     let (loaded, _) = load_with_estimate(scene, options, memory_limit)?;
     tell_warnings(&loaded, &loaded.desc.render);
     Ok(loaded)
@@ -325,13 +327,14 @@ pub fn load(scene: &str, options: &LoadOptions, memory_limit: Option<u64>) -> an
 /// `load` without its warnings (`tell_warnings` says them once the render's settings are
 /// known), with the estimate the file's load was checked against (`None` for a built-in).
 pub fn load_with_estimate(
-    scene: &str,
+    scene: impl AsRef<OsStr>,
     options: &LoadOptions,
     memory_limit: Option<u64>,
 ) -> anyhow::Result<(LoadedScene, Option<MemoryEstimate>)> {
+    let scene = scene.as_ref();
     let estimate = check_load_memory(scene, memory_limit)?;
     let loaded = super::interrupt::while_loading(|| load_scene_with(scene, options))
-        .with_context(|| format!("cannot load scene '{scene}'"))?;
+        .with_context(|| format!("cannot load scene '{}'", scene.to_string_lossy()))?;
     Ok((loaded, estimate))
 }
 
@@ -358,8 +361,11 @@ pub fn tell_warnings(loaded: &LoadedScene, settings: &RenderSettings) {
 /// Refuses a scene or model file whose load is estimated to need more memory than
 /// `memory_limit` (or than is available), before it is read; the estimate of a file (`None`
 /// for a built-in scene).
-pub fn check_load_memory(scene: &str, memory_limit: Option<u64>) -> anyhow::Result<Option<MemoryEstimate>> {
-    let path = std::path::Path::new(scene);
+pub fn check_load_memory(
+    scene: impl AsRef<OsStr>,
+    memory_limit: Option<u64>,
+) -> anyhow::Result<Option<MemoryEstimate>> {
+    let path = std::path::Path::new(scene.as_ref());
     if let Ok(meta) = std::fs::metadata(path)
         && meta.is_file()
     {
@@ -370,7 +376,7 @@ pub fn check_load_memory(scene: &str, memory_limit: Option<u64>) -> anyhow::Resu
         };
         let estimate = memory::load_estimate(kind, meta.len());
         memory::check(
-            format!("loading {scene} ({})", memory::format_bytes(meta.len())),
+            format!("loading {} ({})", path.display(), memory::format_bytes(meta.len())),
             &estimate,
             memory_limit,
             "split the scene, or load it on a machine with more memory",

@@ -17,7 +17,7 @@ use super::backend::{open_gpu, run_cpu, run_gpu};
 use super::console::say;
 use super::interrupt;
 use super::output::{Incomplete, SceneTags, check_writable, metadata};
-use super::output_path::{check_not_read, check_outputs};
+use super::output_path::{check_not_read, check_outputs, default_output};
 use crate::cli::usage::usage;
 
 /// The array-index variables of the schedulers, in the order they are looked for.
@@ -101,7 +101,7 @@ pub fn render_tile(job: TileJob) -> anyhow::Result<()> {
             )
         }
     })?;
-    let output = job.output.unwrap_or_else(|| PathBuf::from(format!("{}-tile-{index}.exr", job.loaded.name)));
+    let output = job.output.unwrap_or_else(|| default_output(job.loaded, &format!("-tile-{index}.exr")));
     if !output.extension().is_some_and(|e| e.eq_ignore_ascii_case("exr")) {
         usage!(
             "{}: a tile is written as OpenEXR (its data window is the tile, its display window the image); \

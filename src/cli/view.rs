@@ -44,8 +44,8 @@ impl StartView {
 #[derive(Debug, Args)]
 pub struct ViewArgs {
     /// A scene file (.toml), a model file (.gltf, .glb, .obj) opened in a lab scene, or the name of a built-in scene
-    #[arg(default_value = "whitted")]
-    pub scene: String,
+    #[arg(default_value = "whitted", value_parser = clap::value_parser!(std::ffi::OsString))]
+    pub scene: std::ffi::OsString,
     #[command(flatten)]
     pub settings: SettingsArgs,
     #[command(flatten)]
@@ -123,7 +123,7 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
         Err(e @ glint_io::SceneError::NotGenerated { .. }) => bail!("--resolution: {e}"),
         Err(e @ glint_io::SceneError::NotAModel { .. }) => bail!("{e}"),
         Err(e) => match scripted_flag(args) {
-            Some(flag) => bail!("{flag}: cannot load scene '{}': {e}", args.scene),
+            Some(flag) => bail!("{flag}: cannot load scene '{}': {e}", args.scene.to_string_lossy()),
             None => None,
         },
     };

@@ -46,7 +46,10 @@ fn text(bytes: &[u8]) -> String {
 fn png_text_chunks(path: &Path) -> Vec<(String, String)> {
     let file = std::io::BufReader::new(std::fs::File::open(path).expect("open png"));
     let reader = png::Decoder::new(file).read_info().expect("png header");
-    reader.info().uncompressed_latin1_text.iter().map(|t| (t.keyword.clone(), t.text.clone())).collect()
+    let info = reader.info();
+    let latin1 = info.uncompressed_latin1_text.iter().map(|t| (t.keyword.clone(), t.text.clone()));
+    let utf8 = info.utf8_text.iter().map(|t| (t.keyword.clone(), t.get_text().expect("iTXt text")));
+    latin1.chain(utf8).collect()
 }
 
 fn meta<'a>(chunks: &'a [(String, String)], key: &str) -> &'a str {

@@ -349,6 +349,41 @@ fn a_legal_250_byte_output_name_is_written() {
     assert_eq!(dir.listing(), [name]);
 }
 
+/// A scene file's name in any script, or not UTF-8 at all, renders to a PNG of its own name:
+/// 日本.toml failed to write (PNG's tEXt holds Latin-1 only; its path is `glint:source`), and a
+/// name not in UTF-8 was refused by the argument parser without naming the argument.
+#[cfg(unix)]
+#[test]
+fn a_scene_named_in_any_script_or_not_utf8_renders_under_its_own_name() {
+    use std::os::unix::ffi::OsStrExt;
+    let dir = TempDir::new("scene-names");
+    let body = "[camera]\nposition = [0.0, 0.0, -3.0]\nlook_at = [0.0, 0.0, 0.0]\n[materials.m]\nkd = 0.5\n\
+        [[lights]]\ntype = \"point\"\nposition = [0.0, 2.0, -2.0]\n\
+        [[objects]]\ntype = \"sphere\"\ncenter = [0.0, 0.0, 0.0]\nradius = 1.0\nmaterial = \"m\"\n";
+    let latin = std::ffi::OsStr::from_bytes(b"w\xff");
+    for stem in [std::ffi::OsStr::new("日本"), latin] {
+        let mut scene = stem.to_os_string();
+        scene.push(".toml");
+        std::fs::write(dir.join(&scene), body).expect("scene");
+        let out = glint(
+            &dir,
+            [
+                std::ffi::OsStr::new("render"),
+                &scene,
+                "--width".as_ref(),
+                "8".as_ref(),
+                "--height".as_ref(),
+                "6".as_ref(),
+                "-q".as_ref(),
+            ],
+        );
+        assert!(out.status.success(), "{stem:?}: {}", text(&out.stderr));
+        let mut png = stem.to_os_string();
+        png.push(".png");
+        assert!(dir.join(&png).is_file(), "{stem:?}: {:?}", dir.listing());
+    }
+}
+
 /// A name longer than file systems allow is refused before the render, naming its length (it
 /// failed after the whole render, a farm task's work thrown away), and so, with `--backend
 /// both`, before any of the three images is written.

@@ -140,7 +140,7 @@ fn the_camera_made_for_a_model_sees_all_of_a_tall_one() {
     let mut f = Fixture::quad();
     f.json["nodes"][0]["scale"] = json!([0.2, 2.0, 0.2]);
     let path = f.write_gltf(&dir, "tall", BufferAt::DataUri);
-    let loaded = glint_io::load_scene(&path.display().to_string()).expect("the model opens");
+    let loaded = glint_io::load_scene(path.display().to_string()).expect("the model opens");
     let camera = &loaded.desc.camera;
     let (eye, at) = (glam::DVec3::from(camera.position), glam::DVec3::from(camera.look_at));
     let axis = (at - eye).normalize();
@@ -170,7 +170,7 @@ fn a_camera_index_beyond_those_kept_names_the_ones_skipped() {
     let path = f.write_gltf(&dir, "cameras", BufferAt::DataUri);
     let options =
         LoadOptions { import: ImportOptions { camera: Some(1), ..ImportOptions::default() }, ..LoadOptions::default() };
-    let err = load_scene_with(&path.display().to_string(), &options).unwrap_err().to_string();
+    let err = load_scene_with(path.display().to_string(), &options).unwrap_err().to_string();
     assert!(err.contains("--camera: 1 is not a camera of the file; it has one camera on a node, camera 0"), "{err}");
     assert!(err.contains("(skipped: nodes[1].camera (cameras[0]): yfov 0 "), "{err}");
 }

@@ -248,7 +248,7 @@ fn a_negative_emission_and_a_camera_beyond_the_scenes_range_are_named_by_the_fil
     f.json["scenes"] = json!([{ "nodes": [0, 1] }]);
     f.json["nodes"] = json!([{ "mesh": 0 }, { "translation": [2e9, 0.5, 3.0], "camera": 0 }]);
     let path = f.write_gltf(&dir, "far-camera", BufferAt::DataUri);
-    let message = glint_io::load_scene(&path.display().to_string()).expect_err("refused").to_string();
+    let message = glint_io::load_scene(path.display().to_string()).expect_err("refused").to_string();
     assert!(
         message.contains("camera.position (the file's camera `far`, placed by its node's and its parents' transforms)"),
         "{message}"

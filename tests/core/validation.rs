@@ -636,7 +636,7 @@ fn texture_error(texture: &str, field: &str, fragments: &[&str]) {
     std::fs::write(scenes.join("image.txt"), "not an image").unwrap();
     let file = scenes.join("scene.toml");
     std::fs::write(&file, edited("shininess = 32.0", &format!("shininess = 32.0\n{texture}"))).unwrap();
-    let err = glint_io::load_scene(&file.to_string_lossy()).expect_err("a bad texture is an error");
+    let err = glint_io::load_scene(&file).expect_err("a bad texture is an error");
     let msg = err.to_string();
     assert!(matches!(err, SceneError::Invalid { .. }) && msg.contains("scene.toml"), "{field}: {msg}");
     let issue = err.issues().iter().find(|i| i.field == field).unwrap_or_else(|| panic!("no issue for {field}: {msg}"));
@@ -676,7 +676,7 @@ fn bad_texture_paths_name_the_file_field_and_reason() {
     let dir = glint_test_support::TempDir::new("texture-and-others");
     let file = dir.join("scene.toml");
     std::fs::write(&file, edited("shininess = 32.0", "texture = { path = \"missing.png\" }")).unwrap();
-    let err = glint_io::load_scene(&file.to_string_lossy()).expect_err("missing texture");
+    let err = glint_io::load_scene(&file).expect_err("missing texture");
     assert_eq!(err.issues().len(), 1, "{err}");
 }
 

@@ -90,7 +90,7 @@ fn open_model(files: &[(&str, &[u8])], open: &str) {
         std::fs::write(dir.join(name), bytes).expect("write a fuzz input");
     }
     let path: PathBuf = dir.join(open);
-    let loaded = load_scene_with(&path.to_string_lossy(), &LoadOptions::default());
+    let loaded = load_scene_with(path, &LoadOptions::default());
     for (name, _) in files {
         let _ = std::fs::remove_file(dir.join(name));
     }

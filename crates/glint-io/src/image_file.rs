@@ -46,7 +46,13 @@ pub fn write_png_rgb8(
         // against 133 kB): the encoding was a fifth of the whole command's wall time.
         encoder.set_compression(png::Compression::Fast);
         for (key, value) in metadata {
-            encoder.add_text_chunk(key.clone(), value.clone()).map_err(png_err)?;
+            // tEXt holds Latin-1 only: a scene named 日本.toml (its path is `glint:source`)
+            // failed to write at all. UTF-8 goes in iTXt, where a value needs it.
+            if value.chars().all(|c| u32::from(c) < 256) {
+                encoder.add_text_chunk(key.clone(), value.clone()).map_err(png_err)?;
+            } else {
+                encoder.add_itxt_chunk(key.clone(), value.clone()).map_err(png_err)?;
+            }
         }
         let mut writer = encoder.write_header().map_err(png_err)?;
         writer.write_image_data(rgb).map_err(png_err)?;

@@ -20,6 +20,7 @@ mod texture;
 mod toml_message;
 pub mod uri;
 
+use std::ffi::OsStr;
 use std::path::{Path, PathBuf};
 
 use glint_scene::{FieldIssue, SceneDesc, validate, without_imported_materials};
@@ -86,15 +87,19 @@ pub struct LoadOptions {
 }
 
 /// Loads `arg`: a scene or model file if such a file exists, otherwise a built-in scene name.
-pub fn load_scene(arg: &str) -> Result<LoadedScene, SceneError> {
+pub fn load_scene(arg: impl AsRef<OsStr>) -> Result<LoadedScene, SceneError> {
     load_scene_with(arg, &LoadOptions::default())
 }
 
 /// `load_scene` with `options`: the resolution of a generated built-in scene (its default
 /// without one), the import options of a model file (`.gltf`, `.glb`, `.obj`).
-pub fn load_scene_with(arg: &str, options: &LoadOptions) -> Result<LoadedScene, SceneError> {
+/// `arg` is a path as the system gives it (not UTF-8 on every file system); only a built-in
+/// scene's name must be UTF-8.
+pub fn load_scene_with(arg: impl AsRef<OsStr>, options: &LoadOptions) -> Result<LoadedScene, SceneError> {
     let resolution = options.resolution;
-    let path = Path::new(arg);
+    let path = Path::new(arg.as_ref());
+    let arg = arg.as_ref().to_string_lossy();
+    let arg = arg.as_ref();
     let is_model = ModelFormat::of(path).is_some();
     // Any readable thing but a folder is a file here: a named pipe (`<(…)`), /dev/stdin.
     let is_file = std::fs::metadata(path).is_ok_and(|m| !m.is_dir());
@@ -126,7 +131,7 @@ pub fn load_scene_with(arg: &str, options: &LoadOptions) -> Result<LoadedScene, 
         let (desc, warnings) = parse_scene(text, path)?;
         return Ok(LoadedScene { desc, source: path.to_owned(), name, warnings });
     }
-    if let Some(b) = builtin(arg) {
+    if let Some(b) = path.to_str().and_then(builtin) {
         let source = PathBuf::from(format!("builtin:{}", b.name));
         let (desc, warnings) = b.load(resolution)?;
         return Ok(LoadedScene { desc, source, name: b.name.to_string(), warnings });

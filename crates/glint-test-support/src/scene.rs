@@ -254,7 +254,7 @@ impl SceneText {
     pub fn desc_in(&self, dir: &Path) -> SceneDesc {
         let file = dir.join("scene.toml");
         std::fs::write(&file, &self.text).expect("scene file written");
-        match glint_io::load_scene(&file.to_string_lossy()) {
+        match glint_io::load_scene(&file) {
             Ok(loaded) => loaded.desc,
             Err(e) => panic!("test scene does not load: {e}\n--- scene ---\n{}", self.text),
         }

@@ -34,8 +34,8 @@ mod file_flow;
 /// How the viewer starts.
 #[derive(Clone, Debug, Default)]
 pub struct ViewerOptions {
-    /// A scene file or a built-in scene name.
-    pub scene: String,
+    /// A scene file (its path as the system gives it, UTF-8 or not) or a built-in scene name.
+    pub scene: std::ffi::OsString,
     /// How the scene is opened: a generated scene's resolution, a model file's import options.
     pub load: LoadOptions,
     /// The scene as the caller already loaded it (from `scene` with `load`): it is read once,

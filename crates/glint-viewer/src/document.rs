@@ -125,12 +125,12 @@ impl Document {
     }
 
     /// Loads a scene file or a built-in scene by name.
-    pub fn load(arg: &str) -> Result<Self, ViewerError> {
+    pub fn load(arg: impl AsRef<std::ffi::OsStr>) -> Result<Self, ViewerError> {
         Self::load_with(arg, &LoadOptions::default())
     }
 
     /// `load` with a generated scene's resolution or a model file's import options.
-    pub fn load_with(arg: &str, options: &LoadOptions) -> Result<Self, ViewerError> {
+    pub fn load_with(arg: impl AsRef<std::ffi::OsStr>, options: &LoadOptions) -> Result<Self, ViewerError> {
         Ok(Self::from_loaded(load_scene_with(arg, options)?))
     }
 
