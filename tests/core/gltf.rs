@@ -44,6 +44,29 @@ fn a_quad_loads_from_a_data_uri_a_file_and_a_glb_alike() {
     }
 }
 
+/// A load keeps validation's warnings apart from the importer's, so the viewer does not
+/// validate the scene a second time to tell them apart (it doubled a huge model's load).
+#[test]
+fn a_load_keeps_validations_warnings_apart_from_the_importers() {
+    let dir = TempDir::new("gltf-warning-parts");
+    let path = Fixture::quad().write_gltf(&dir, "q", BufferAt::DataUri);
+    let loaded = glint_io::load_scene(&path).expect("the quad opens");
+    assert_eq!(loaded.scene_warnings, glint_scene::validate(&loaded.desc).warnings);
+    assert!(loaded.warnings.ends_with(&loaded.scene_warnings), "{:?}", loaded.warnings);
+    // The default rig's note is the importer's: in `warnings`, not in `scene_warnings`.
+    let rig = |w: &glint_scene::FieldIssue| w.field == "lights" && w.problem.starts_with("the model has none");
+    assert!(loaded.warnings.iter().any(rig) && !loaded.scene_warnings.iter().any(rig), "{:?}", loaded.warnings);
+    // A scene file's own warning is validation's; a built-in scene's are all validation's.
+    let file = dir.join("warned.toml");
+    let text = "[camera]\nposition = [0.0, 0.0, -3.0]\nlook_at = [0.0, 0.0, 0.0]\n[materials.m]\nkd = 255.0\n\
+        [[objects]]\ntype = \"sphere\"\ncenter = [0.0, 0.0, 0.0]\nradius = 1.0\nmaterial = \"m\"\n";
+    std::fs::write(&file, text).expect("scene");
+    let loaded = glint_io::load_scene(&file).expect("loads");
+    assert!(loaded.scene_warnings.len() == 1 && loaded.warnings == loaded.scene_warnings, "{:?}", loaded.warnings);
+    let whitted = glint_io::load_scene("whitted").expect("built-in");
+    assert_eq!(whitted.scene_warnings, whitted.warnings);
+}
+
 #[test]
 fn metallic_roughness_transmission_ior_and_emissive_strength_map_as_documented() {
     let dir = TempDir::new("gltf-materials");

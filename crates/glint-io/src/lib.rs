@@ -39,16 +39,30 @@ pub struct LoadedScene {
     pub source: PathBuf,
     /// A short name for output files and reports (file stem or built-in name).
     pub name: String,
+    /// Every warning of the load: the importer's and the model references' first, then
+    /// validation's (`scene_warnings`).
     pub warnings: Vec<FieldIssue>,
+    /// Validation's part of `warnings`, kept apart so that an editor need not validate the
+    /// scene again to tell them from the importer's (on a million-triangle model that doubled
+    /// the viewer's load).
+    pub scene_warnings: Vec<FieldIssue>,
 }
 
 /// Parses scene text, loads its model objects and decodes its textures (paths relative to
 /// `file`, the scene file's path, also named in messages), and validates it.
 pub fn parse_scene(text: &str, file: &Path) -> Result<(SceneDesc, Vec<FieldIssue>), SceneError> {
+    parse_scene_parts(text, file).map(|(desc, mut loaded, validated)| {
+        loaded.extend(validated);
+        (desc, loaded)
+    })
+}
+
+/// `parse_scene` with its warnings in two: the model references' and validation's.
+fn parse_scene_parts(text: &str, file: &Path) -> Result<(SceneDesc, Vec<FieldIssue>, Vec<FieldIssue>), SceneError> {
     let mut desc: SceneDesc = toml::from_str(text)
         .map_err(|e| SceneError::Parse { file: file.to_owned(), message: toml_message::parse_message(&e, text) })?;
     let folder = file.parent().unwrap_or(Path::new("."));
-    let mut warnings =
+    let warnings =
         load_models(&mut desc, folder).map_err(|issues| SceneError::Invalid { file: file.to_owned(), issues })?;
     // A texture that does not load is one error among the scene's others, all said at once
     // (it stopped validation, hiding every other broken rule); validation's own "not decoded"
@@ -56,8 +70,7 @@ pub fn parse_scene(text: &str, file: &Path) -> Result<(SceneDesc, Vec<FieldIssue
     let texture_issues = load_textures(&mut desc, file).err().unwrap_or_default();
     if texture_issues.is_empty() {
         let (desc, scene_warnings) = validated(desc, file)?;
-        warnings.extend(scene_warnings);
-        return Ok((desc, warnings));
+        return Ok((desc, warnings, scene_warnings));
     }
     let others: Vec<FieldIssue> =
         validate(&desc).errors.into_iter().filter(|e| texture_issues.iter().all(|t| t.field != e.field)).collect();
@@ -122,19 +135,23 @@ pub fn load_scene_with(arg: impl AsRef<OsStr>, options: &LoadOptions) -> Result<
         }
         let name = path.file_stem().map_or_else(|| "scene".into(), |s| s.to_string_lossy().into_owned());
         if is_model {
-            let (desc, warnings) = load_model(path, &options.import)?;
-            return Ok(LoadedScene { desc, source: path.to_owned(), name, warnings });
+            let (desc, mut warnings, scene_warnings) = load_model(path, &options.import)?;
+            warnings.extend(scene_warnings.iter().cloned());
+            return Ok(LoadedScene { desc, source: path.to_owned(), name, warnings, scene_warnings });
         }
         let cap = options.stream_cap.map_or(uri::MAX_RESOURCE_BYTES, |c| c.min(uri::MAX_RESOURCE_BYTES));
         let bytes = read_capped(path, cap).map_err(|error| SceneError::Io { file: path.to_owned(), error })?;
         let text = utf8(&bytes, path)?;
-        let (desc, warnings) = parse_scene(text, path)?;
-        return Ok(LoadedScene { desc, source: path.to_owned(), name, warnings });
+        let (desc, mut warnings, scene_warnings) = parse_scene_parts(text, path)?;
+        warnings.extend(scene_warnings.iter().cloned());
+        return Ok(LoadedScene { desc, source: path.to_owned(), name, warnings, scene_warnings });
     }
     if let Some(b) = path.to_str().and_then(builtin) {
         let source = PathBuf::from(format!("builtin:{}", b.name));
+        // A built-in scene has no models: every warning is validation's.
         let (desc, warnings) = b.load(resolution)?;
-        return Ok(LoadedScene { desc, source, name: b.name.to_string(), warnings });
+        let scene_warnings = warnings.clone();
+        return Ok(LoadedScene { desc, source, name: b.name.to_string(), warnings, scene_warnings });
     }
     if path.extension().is_some() || arg.contains(std::path::MAIN_SEPARATOR) {
         // What the file system says where it is more than "missing": a loop of links, a
@@ -188,7 +205,10 @@ fn utf8<'a>(bytes: &'a [u8], file: &Path) -> Result<&'a str, SceneError> {
 
 /// A model file in the lab scene `model::scene_around` makes for it, validated like a scene
 /// file; the importer's warnings come first.
-fn load_model(path: &Path, options: &ImportOptions) -> Result<(SceneDesc, Vec<FieldIssue>), SceneError> {
+fn load_model(
+    path: &Path,
+    options: &ImportOptions,
+) -> Result<(SceneDesc, Vec<FieldIssue>, Vec<FieldIssue>), SceneError> {
     let model = model::load_model_file(path, options)?;
     // The scene's camera and lights come from the file's nodes: a problem with them is named
     // by the file's own camera or light too, which the generated scene's fields are not.
@@ -198,7 +218,7 @@ fn load_model(path: &Path, options: &ImportOptions) -> Result<(SceneDesc, Vec<Fi
     }
     .map(|c| c.name.clone());
     let lights: Vec<String> = model.lights.iter().map(|l| l.name.clone()).collect();
-    let (desc, mut warnings) = model::scene_around(model, path, options)
+    let (desc, warnings) = model::scene_around(model, path, options)
         .map_err(|issue| SceneError::Invalid { file: path.to_owned(), issues: vec![issue] })?;
     let (desc, scene_warnings) = validated(desc, path).map_err(|e| match e {
         SceneError::Invalid { file, issues } => SceneError::Invalid {
@@ -207,8 +227,7 @@ fn load_model(path: &Path, options: &ImportOptions) -> Result<(SceneDesc, Vec<Fi
         },
         other => other,
     })?;
-    warnings.extend(scene_warnings);
-    Ok((desc, warnings))
+    Ok((desc, warnings, scene_warnings))
 }
 
 /// `issue` of the scene made around a model file, with what of the file it comes from: the

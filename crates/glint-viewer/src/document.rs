@@ -74,7 +74,8 @@ impl Document {
     pub fn from_loaded(loaded: LoadedScene) -> Self {
         let source = loaded.source.to_str().filter(|s| !s.starts_with("builtin:")).map(PathBuf::from);
         let path = source.clone().filter(|p| ModelFormat::of(p).is_none());
-        let warnings = validate(&loaded.desc).warnings;
+        // The loader validated the scene: its warnings are kept apart from the importer's.
+        let warnings = loaded.scene_warnings;
         let load_warnings = loaded.warnings.into_iter().filter(|w| !warnings.contains(w)).collect();
         Self {
             source,
