@@ -110,6 +110,13 @@ fn whitted_against_gi_shows_beside_wiped_and_as_a_signed_difference() {
     h.hover_at(egui::pos2(1.0, 1.0));
     h.run_steps(2);
     crate::snapshots::snapshot(&mut h, "viewer_whitted_minus_gi");
+
+    // A Whitted scene opened in this view is switched to paths as the view's choice switched
+    // the first (it was shown on both sides, the copy labelled "GI (paths)": a lecturer).
+    h.state_mut().open("whitted");
+    h.run_steps(2);
+    assert_eq!(h.state().doc.desc.render.integrator, glint_scene::Integrator::Path, "opened in Whitted vs GI");
+    assert!(!h.state().doc.dirty, "switched for the view, not edited");
 }
 
 #[test]

@@ -181,6 +181,13 @@ impl ViewerApp {
                 if let Some(p) = &d.source {
                     self.recent.add(p);
                 }
+                // Whitted against GI needs the paths, for the scene opened in that view as for
+                // the one it was chosen on: a Whitted scene opened there was shown on both sides,
+                // its copy labelled "GI (paths)" (a lecturer).
+                if self.layout.mode == ViewMode::WhittedVsGi && d.desc.render.integrator.is_whitted() {
+                    d.desc.render.integrator = glint_scene::Integrator::Path;
+                    d.view_changed();
+                }
                 // A fresh revision number keeps old results of the previous scene from matching.
                 d.revision = self.doc.revision + 1;
                 self.doc = d;
