@@ -105,7 +105,11 @@ fn whitted_against_gi_shows_beside_wiped_and_as_a_signed_difference() {
     h.hover_at(pos);
     h.run_steps(2);
     let v = d.at(x, y).expect("a pixel of the image");
-    let text = format!("({x}, {y}): Whitted − GI = {:+.3e}", v.element_sum() / 3.0);
+    // Four digits, as a class reads them aloud (−0.2916, not −2.916e-1), the minus as U+2212.
+    let mean = v.element_sum() / 3.0;
+    let shown = glint_scene::format_rounded(mean, 4);
+    let shown = if mean > 0.0 { format!("+{shown}") } else { shown.replace('-', "−") };
+    let text = format!("({x}, {y}): Whitted − GI = {shown} (R ");
     assert!(h.query_by_label_contains(&text).is_some(), "the readout says {text}");
     h.hover_at(egui::pos2(1.0, 1.0));
     h.run_steps(2);

@@ -326,16 +326,26 @@ fn signed_colour_bar(ui: &mut Ui, r: Rect, scale: f64) {
     image_label_at(ui, label_pos(bar.right()), egui::Align2::RIGHT_TOP, &format!("too bright +{scale}"));
 }
 
+/// A signed value of the readout, as a class reads it aloud: −0.2916, not −2.916e-1.
+fn signed(v: f64) -> String {
+    let plain = glint_scene::format_rounded(v, 4);
+    if v > 0.0 { format!("+{plain}") } else { plain.replace('-', "−") }
+}
+
 /// "Whitted − GI at (x, y)" under the diverging bar for the pixel under the cursor.
 fn signed_readout(ui: &mut Ui, r: Rect, at: Option<((u32, u32), DVec3)>, samples: Option<u32>) {
     let text = match at {
         Some(((x, y), d)) => format!(
-            "({x}, {y}): Whitted − GI = {:+.3e} (R {:+.3e}, G {:+.3e}, B {:+.3e}){}",
-            d.element_sum() / 3.0,
-            d.x,
-            d.y,
-            d.z,
-            if d.element_sum() < 0.0 { ": too dark" } else { ": too bright" }
+            "({x}, {y}): Whitted − GI = {} (R {}, G {}, B {}){}",
+            signed(d.element_sum() / 3.0),
+            signed(d.x),
+            signed(d.y),
+            signed(d.z),
+            match d.element_sum() {
+                s if s < 0.0 => ": too dark",
+                s if s > 0.0 => ": too bright",
+                _ => ": the same",
+            }
         ),
         None => match samples {
             Some(n) => format!("Whitted − GI, mean of R, G, B; paths of {n} samples. Point at a pixel."),

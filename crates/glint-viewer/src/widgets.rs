@@ -20,9 +20,10 @@ fn finite_number(text: &str) -> Option<f64> {
     text.parse::<f64>().ok().filter(|v| v.is_finite())
 }
 
-/// Values of a logarithmic slider: scientific, with exactly 0 written as such.
+/// Values of a logarithmic slider, four digits as a class reads them aloud: 32 and 1.5, not
+/// 3.200e1 and 1.500e0; scientific only beyond [1e-4, 1e15) (1e-6).
 fn scientific(v: f64) -> String {
-    if v == 0.0 { "0".into() } else { format!("{v:.3e}") }
+    glint_scene::format_rounded(v, 4)
 }
 
 /// A slider over `range` (linear; `log_slider` for what spans decades).
