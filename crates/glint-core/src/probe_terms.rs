@@ -13,6 +13,34 @@ pub struct Term {
     pub name: String,
     pub cpu: DVec3,
     pub gpu: Option<DVec3>,
+    /// What the three components are: how the table labels them.
+    pub channels: Channels,
+}
+
+/// What a term's three components are (a table printed `t` three times, and N's x, y, z
+/// under R, G, B).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Channels {
+    /// A colour: R, G, B.
+    Rgb,
+    /// One number (`t`, f_att, S), held in all three.
+    Scalar,
+    /// A direction: x, y, z.
+    Xyz,
+}
+
+impl Term {
+    pub fn rgb(name: impl Into<String>, cpu: DVec3, gpu: Option<DVec3>) -> Self {
+        Self { name: name.into(), cpu, gpu, channels: Channels::Rgb }
+    }
+
+    pub fn scalar(name: impl Into<String>, cpu: f64, gpu: Option<f64>) -> Self {
+        Self { name: name.into(), cpu: DVec3::splat(cpu), gpu: gpu.map(DVec3::splat), channels: Channels::Scalar }
+    }
+
+    pub fn xyz(name: impl Into<String>, cpu: DVec3, gpu: Option<DVec3>) -> Self {
+        Self { name: name.into(), cpu, gpu, channels: Channels::Xyz }
+    }
 }
 
 /// Relative tolerance between the f64 CPU and f32 GPU value of a term. f32 rounds at 6e-8;
@@ -37,21 +65,18 @@ pub fn differs_within(a: DVec3, b: DVec3, widen: f64) -> bool {
 /// The terms of both breakdowns in the order of the model.
 pub fn terms(cpu: &Breakdown, gpu: Option<&Breakdown>) -> Vec<Term> {
     let mut out = local_terms(cpu, gpu);
-    let s = |v: f64| DVec3::splat(v);
-    let mut push = |name: &str, c: DVec3, g: Option<DVec3>| out.push(Term { name: name.into(), cpu: c, gpu: g });
-    push("k_r·I_r", cpu.reflected, gpu.map(|g| g.reflected));
-    push("k_t·I_t", cpu.transmitted, gpu.map(|g| g.transmitted));
-    push("t", s(cpu.t), gpu.map(|g| s(g.t)));
-    push("N", cpu.normal, gpu.map(|g| g.normal));
-    push("I (pixel)", cpu.total, gpu.map(|g| g.total));
+    out.push(Term::rgb("k_r·I_r", cpu.reflected, gpu.map(|g| g.reflected)));
+    out.push(Term::rgb("k_t·I_t", cpu.transmitted, gpu.map(|g| g.transmitted)));
+    out.push(Term::scalar("t", cpu.t, gpu.map(|g| g.t)));
+    out.push(Term::xyz("N", cpu.normal, gpu.map(|g| g.normal)));
+    out.push(Term::rgb("I (pixel)", cpu.total, gpu.map(|g| g.total)));
     out
 }
 
 /// The terms of the local model alone (what a node of the ray tree holds on both tracers).
 pub fn local_terms(cpu: &Breakdown, gpu: Option<&Breakdown>) -> Vec<Term> {
-    let s = |v: f64| DVec3::splat(v);
     let mut out = Vec::new();
-    let mut push = |name: String, c: DVec3, g: Option<DVec3>| out.push(Term { name, cpu: c, gpu: g });
+    let mut push = |name: String, c: DVec3, g: Option<DVec3>| out.push(Term::rgb(name, c, g));
     // The colours at the hit (after the texture and the vertex colour) first: where a texture
     // is sampled differently, the terms it feeds differ too, and the first difference should
     // name the cause.
@@ -61,8 +86,9 @@ pub fn local_terms(cpu: &Breakdown, gpu: Option<&Breakdown>) -> Vec<Term> {
     push("I_a·k_a".into(), cpu.ambient, gpu.map(|g| g.ambient));
     for (j, l) in cpu.lights.iter().enumerate() {
         let gl = gpu.and_then(|g| g.lights.get(j));
-        push(format!("light {j}: f_att"), s(l.f_att), gl.map(|g| s(g.f_att)));
-        push(format!("light {j}: S"), s(l.spot), gl.map(|g| s(g.spot)));
+        out.push(Term::scalar(format!("light {j}: f_att"), l.f_att, gl.map(|g| g.f_att)));
+        out.push(Term::scalar(format!("light {j}: S"), l.spot, gl.map(|g| g.spot)));
+        let mut push = |name: String, c: DVec3, g: Option<DVec3>| out.push(Term::rgb(name, c, g));
         push(format!("light {j}: V"), l.visibility, gl.map(|g| g.visibility));
         push(format!("light {j}: I_a,j·k_a"), l.ambient, gl.map(|g| g.ambient));
         push(format!("light {j}: diffuse"), l.diffuse, gl.map(|g| g.diffuse));
@@ -168,5 +194,18 @@ mod tests {
         assert_eq!(first_difference(&terms(&cpu, Some(&gpu))), Some(3));
         gpu.kd += DVec3::new(0.0, 0.01, 0.0);
         assert_eq!(first_difference(&terms(&cpu, Some(&gpu))), Some(1));
+    }
+
+    #[test]
+    fn each_term_says_what_its_components_are() {
+        let cpu = Breakdown { lights: vec![Default::default()], ..Breakdown::default() };
+        let rows = terms(&cpu, None);
+        let of = |name: &str| rows.iter().find(|t| t.name == name).map(|t| t.channels);
+        assert_eq!(of("t"), Some(Channels::Scalar));
+        assert_eq!(of("light 0: f_att"), Some(Channels::Scalar));
+        assert_eq!(of("light 0: S"), Some(Channels::Scalar));
+        assert_eq!(of("N"), Some(Channels::Xyz));
+        assert_eq!(of("light 0: diffuse"), Some(Channels::Rgb));
+        assert_eq!(of("I (pixel)"), Some(Channels::Rgb));
     }
 }

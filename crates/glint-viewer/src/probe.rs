@@ -101,4 +101,4 @@ impl ProbeState {
     }
 }
 
-pub use glint_core::probe_terms::{Term, first_difference, terms};
+pub use glint_core::probe_terms::{Channels, Term, first_difference, terms};

@@ -41,22 +41,21 @@ pub fn title(i: usize, n: &RayNode, doc: &Document) -> String {
 /// The rows of node `c` (and its GPU twin `g`): its own factor, path weight, distance and the
 /// local terms at its hit.
 fn rows(c: &RayNode, g: Option<&RayNode>) -> Vec<Term> {
-    let s = DVec3::splat;
     let mut out = vec![
-        Term { name: "k (own factor)".into(), cpu: c.factor, gpu: g.map(|g| g.factor) },
-        Term { name: "weight (path product of k)".into(), cpu: c.weight, gpu: g.map(|g| g.weight) },
+        Term::rgb("k (own factor)", c.factor, g.map(|g| g.factor)),
+        Term::rgb("weight (path product of k)", c.weight, g.map(|g| g.weight)),
     ];
     if let Some(t) = c.t {
-        out.push(Term { name: "t".into(), cpu: s(t), gpu: g.and_then(|g| g.t).map(s) });
+        out.push(Term::scalar("t", t, g.and_then(|g| g.t)));
     }
     if c.attenuation != 1.0 {
-        out.push(Term { name: "f_att(t) (world)".into(), cpu: s(c.attenuation), gpu: g.map(|g| s(g.attenuation)) });
+        out.push(Term::scalar("f_att(t) (world)", c.attenuation, g.map(|g| g.attenuation)));
     }
     if let Some(terms) = &c.terms {
         out.extend(local_terms(terms, g.and_then(|g| g.terms.as_ref())));
     }
     if let Some(r) = c.radiance {
-        out.push(Term { name: "I (brought back)".into(), cpu: r, gpu: None });
+        out.push(Term::rgb("I (brought back)", r, None));
     }
     out
 }

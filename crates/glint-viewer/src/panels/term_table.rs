@@ -4,7 +4,7 @@
 use egui::{Color32, RichText, Ui};
 use glint_core::glam::DVec3;
 
-use crate::probe::Term;
+use crate::probe::{Channels, Term};
 
 /// The colour of a highlighted (first differing) row or node.
 pub const HIGHLIGHT: Color32 = Color32::from_rgb(255, 120, 90);
@@ -64,9 +64,18 @@ pub fn term_grid(ui: &mut Ui, id: impl std::hash::Hash + std::fmt::Debug + Copy,
     for (i, t) in rows.iter().enumerate() {
         let highlight = Some(i) == first;
         let colour = |r: RichText| if highlight { r.color(HIGHLIGHT).strong() } else { r };
+        // A colour has a swatch; one number is shown once, a direction's components are named.
+        let (shown, names): (usize, [&str; 3]) = match t.channels {
+            Channels::Rgb => (3, ["R", "G", "B"]),
+            Channels::Scalar => (1, ["", "", ""]),
+            Channels::Xyz => (3, ["x", "y", "z"]),
+        };
         ui.horizontal_wrapped(|ui| {
-            swatch(ui, t.cpu);
-            ui.label(colour(RichText::new(&t.name).strong()));
+            if t.channels == Channels::Rgb {
+                swatch(ui, t.cpu);
+            }
+            let name = if t.channels == Channels::Xyz { format!("{} (x, y, z)", t.name) } else { t.name.clone() };
+            ui.label(colour(RichText::new(name).strong()));
         });
         let values: [(&str, Option<[f64; 3]>, &str); 3] = [
             ("CPU", Some(t.cpu.to_array()), "CPU (f64)"),
@@ -78,14 +87,16 @@ pub fn term_grid(ui: &mut Ui, id: impl std::hash::Hash + std::fmt::Debug + Copy,
                 sized(ui, ROW_LABEL_WIDTH, colour(font(label.into()))).on_hover_text(what);
                 for k in 0..3 {
                     let text = match v {
+                        _ if k >= shown => String::new(),
                         None => "—".to_string(),
                         Some(v) if label == "Δ" => delta(v[k]),
                         Some(v) => cell(v[k]),
                     };
                     let r = sized(ui, channel, colour(font(text)));
-                    if let Some(v) = v {
+                    if let Some(v) = v.filter(|_| k < shown) {
                         let exact = if label == "GPU" { format!("{}", v[k] as f32) } else { format!("{:?}", v[k]) };
-                        r.on_hover_text(format!("{what}, {}: {exact}", ["R", "G", "B"][k]));
+                        let of = if names[k].is_empty() { String::new() } else { format!(", {}", names[k]) };
+                        r.on_hover_text(format!("{what}{of}: {exact}"));
                     }
                 }
                 ui.end_row();
