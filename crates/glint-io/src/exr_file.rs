@@ -57,10 +57,17 @@ pub enum ExrReadError {
     Window { path: PathBuf, window: String, width: i64, height: i64 },
 }
 
-/// An attribute value as EXR text holds it: Latin-1 bytes, so any other character becomes '?'.
+/// An attribute value as EXR text holds it: its UTF-8 bytes (EXR's strings are bytes, which
+/// OpenEXR's tools print as they are). As Latin-1, every other character had become '?': the
+/// path of a scene named 日本.toml read back as ??.toml.
 fn exr_text(value: &str) -> Text {
-    let latin1: String = value.chars().map(|c| if u32::from(c) < 256 { c } else { '?' }).collect();
-    Text::new_or_none(latin1).unwrap_or_else(|| Text::from("?"))
+    Text::from_slice_unchecked(value.as_bytes())
+}
+
+/// An attribute's text: UTF-8 where its bytes are, else Latin-1 (another writer's, or a glint
+/// before UTF-8, whose é is one byte).
+fn text_value(t: &Text) -> String {
+    std::str::from_utf8(t.bytes()).map_or_else(|_| t.to_string(), str::to_owned)
 }
 
 /// Writes the `width`×`height` pixels `pixel(x, y)` (coordinates within the data window) as
@@ -150,7 +157,7 @@ fn exr_header<'a>(
     }
     let mut attributes: Vec<(String, String)> = other
         .filter_map(|(k, v)| match v {
-            AttributeValue::Text(t) => Some((k.to_string(), t.to_string())),
+            AttributeValue::Text(t) => Some((text_value(k), text_value(t))),
             _ => None,
         })
         .collect();
@@ -186,4 +193,18 @@ pub fn read_exr(path: &Path) -> Result<ExrPixels, ExrReadError> {
         exr_header(path, image.attributes.display_window, layer.attributes.layer_position, layer.size, other)?;
     header.inexact = lossy_for_f32(layer.encoding.compression);
     Ok(ExrPixels { header, rgb: layer.channel_data.pixels.1 })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn text_attributes_keep_every_character_and_read_latin1_of_other_writers() {
+        for value in ["whitted", "José", "日本.toml", "w\u{fffd}.toml"] {
+            assert_eq!(text_value(&exr_text(value)), value);
+        }
+        // One byte 0xE9 (Latin-1 é) is not UTF-8: read as Latin-1.
+        assert_eq!(text_value(&Text::from_slice_unchecked(&[b'J', b'o', b's', 0xe9])), "José");
+    }
 }
