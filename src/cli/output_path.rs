@@ -8,6 +8,7 @@ use std::sync::Arc;
 use crate::cli::usage::usage;
 use anyhow::bail;
 use glint_io::LoadedScene;
+use glint_io::atomic::{self, FolderRefuses};
 use glint_scene::{LoadedModel, MaterialDesc, ObjectDesc, TextureDesc, material_textures};
 
 /// Checks every output of one command before any rendering starts.
@@ -24,15 +25,16 @@ pub fn check_outputs(outputs: &[&Path], input: &Path, force: bool) -> anyhow::Re
         check_format_and_folder(path)?;
         // Refused before any is written: `--backend both` wrote X-cpu.png and then failed on an
         // X-gpu.png that was a folder.
-        if path.is_dir() {
+        // `metadata` follows a link: a link to a folder or a read-only file is refused too.
+        let meta = std::fs::metadata(path).ok();
+        if meta.as_ref().is_some_and(std::fs::Metadata::is_dir) {
             bail!("{}: is a folder, not a file; choose another output name", path.display());
         }
-        // `metadata` follows a link: a link to a read-only file is refused too.
-        let read_only = std::fs::metadata(path).is_ok_and(|m| m.permissions().readonly());
+        let read_only = meta.as_ref().is_some_and(|m| m.permissions().readonly());
         if !force && read_only {
             bail!("{}: the output file is read-only; not replacing it (pass --force to replace it)", path.display());
         }
-        check_replaceable(path, read_only)?;
+        check_replaceable(path, read_only && force, meta.as_ref().is_some_and(std::fs::Metadata::is_file))?;
     }
     Ok(())
 }
@@ -42,37 +44,33 @@ pub fn check_outputs(outputs: &[&Path], input: &Path, force: bool) -> anyhow::Re
 /// name longer than a file system allows, an immutable file. Each was found only after the
 /// whole render (a farm task's render thrown away), and `--backend both` had by then replaced
 /// some of its images and not the others.
-fn check_replaceable(path: &Path, read_only: bool) -> anyhow::Result<()> {
+fn check_replaceable(path: &Path, forced_read_only: bool, existing_file: bool) -> anyhow::Result<()> {
     // NAME_MAX of Linux's file systems (ext4, xfs, btrfs, tmpfs) and of NTFS and APFS.
     const NAME_MAX: usize = 255;
     let name = path.file_name().map_or(0, |n| n.as_encoded_bytes().len());
     if name > NAME_MAX {
         bail!("{}: the file name is {name} bytes long; file systems allow at most {NAME_MAX}", path.display());
     }
-    let folder = match path.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p,
-        _ => Path::new("."),
-    };
     // The image is written as a temporary beside it and renamed over it: make one, and remove it.
-    let probe = tempfile::Builder::new().prefix(".glint-").suffix(".tmp").tempfile_in(folder).map_err(|e| {
-        anyhow::anyhow!("{}: cannot create a file in the folder {}: {}", path.display(), folder.display(), e.kind())
-    })?;
-    let probe_path = probe.path().to_owned();
-    if let Err(e) = probe.close() {
-        bail!(
+    let folder = atomic::folder_of(path);
+    match atomic::probe_folder(path) {
+        Ok(()) => {}
+        // The error of `create_temporary` names the folder and why already.
+        Err(FolderRefuses::Create(e)) => bail!("{}: {e}", path.display()),
+        Err(FolderRefuses::Remove { leftover, error }) => bail!(
             "{}: the folder {} lets files be created but not removed or renamed ({}), so the image cannot be \
              written there; the test file {} is left in it",
             path.display(),
             folder.display(),
-            e.kind(),
-            probe_path.display()
-        );
+            error.kind(),
+            leftover.display()
+        ),
     }
     // An immutable file, or one on a read-only mount reached through a link: opening it for
     // writing (without truncating: nothing changes) says so. A read-only one is replaced with
     // --force, by the rename; other kinds (a named pipe) would block and are replaced too.
-    if !read_only
-        && std::fs::metadata(path).is_ok_and(|m| m.is_file())
+    if !forced_read_only
+        && existing_file
         && let Err(e) = std::fs::OpenOptions::new().write(true).open(path)
     {
         bail!("{}: the existing file cannot be replaced: {}", path.display(), e.kind());

@@ -109,10 +109,7 @@ pub fn write_atomically<E: From<AtomicWriteError>>(
     write: impl FnOnce(&mut TemporaryFile) -> Result<(), E>,
 ) -> Result<(), E> {
     let io = |error| E::from(AtomicWriteError { path: path.to_owned(), error });
-    let folder = match path.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p,
-        _ => Path::new("."),
-    };
+    let folder = folder_of(path);
     // The temporary is removed when `tmp` drops, on every early return.
     let mut tmp = create_temporary(folder, RANDOM_CHARS).map_err(io)?;
     let mut file = TemporaryFile { file: tmp.as_file_mut(), io_error: None };
@@ -132,6 +129,31 @@ pub fn write_atomically<E: From<AtomicWriteError>>(
     }
     tmp.persist(path).map_err(|e| io(e.error))?;
     Ok(())
+}
+
+/// The folder an atomic write of `path` makes its temporary in (`.` for a bare file name).
+pub fn folder_of(path: &Path) -> &Path {
+    match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    }
+}
+
+/// Why `write_atomically` could not replace a file in a folder, found before any writing.
+#[derive(Debug)]
+pub enum FolderRefuses {
+    /// No file can be made there (a read-only mount, no permission).
+    Create(std::io::Error),
+    /// A file made there cannot be removed or renamed (append-only); it is left at `leftover`.
+    Remove { leftover: PathBuf, error: std::io::Error },
+}
+
+/// Makes and removes a temporary where `write_atomically` would make the one of `path`: a
+/// command that must not learn after minutes of work that its output folder refuses it.
+pub fn probe_folder(path: &Path) -> Result<(), FolderRefuses> {
+    let tmp = create_temporary(folder_of(path), RANDOM_CHARS).map_err(FolderRefuses::Create)?;
+    let leftover = tmp.path().to_owned();
+    tmp.close().map_err(|error| FolderRefuses::Remove { leftover, error })
 }
 
 /// `bytes` as the whole content of `path`, atomically.

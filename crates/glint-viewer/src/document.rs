@@ -74,9 +74,10 @@ impl Document {
     pub fn from_loaded(loaded: LoadedScene) -> Self {
         let source = loaded.source.to_str().filter(|s| !s.starts_with("builtin:")).map(PathBuf::from);
         let path = source.clone().filter(|p| ModelFormat::of(p).is_none());
-        // The loader validated the scene: its warnings are kept apart from the importer's.
+        // The loader validated the scene: `warnings` ends with validation's, kept apart too.
         let warnings = loaded.scene_warnings;
-        let load_warnings = loaded.warnings.into_iter().filter(|w| !warnings.contains(w)).collect();
+        let mut load_warnings = loaded.warnings;
+        load_warnings.truncate(load_warnings.len().saturating_sub(warnings.len()));
         Self {
             source,
             initial_camera: loaded.desc.camera.clone(),
