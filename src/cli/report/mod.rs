@@ -12,6 +12,7 @@ mod pareto;
 mod plan;
 mod plot;
 mod shard;
+mod shard_check;
 mod specular;
 mod staging;
 mod sweep;

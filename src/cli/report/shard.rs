@@ -13,11 +13,10 @@
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
-use std::time::Duration;
 
 use anyhow::{Context, bail};
 use glint_core::Backend;
-use glint_scene::{Integrator, Report, format_number, validate_settings};
+use glint_scene::Integrator;
 use serde::{Deserialize, Serialize};
 
 use super::machine::Machine;
@@ -168,128 +167,7 @@ impl ShardFile {
             scene.specular.iter_mut().for_each(|r| r.times.sort());
         }
     }
-
-    /// What the merge relies on and a shard always writes: a shard index below the count, the
-    /// sweep's scenes only, each row its own shard's, at least one timed run a row, and every
-    /// error a finite, non-negative number (a PSNR may be infinite: identical images). The
-    /// first field that is not, as `field: problem`.
-    fn check(&self) -> Result<(), String> {
-        if self.shard >= self.count {
-            return Err(format!("shard: is {}, not below the shard count {}", self.shard, self.count));
-        }
-        if self.scene_hashes.len() != self.scenes.len() {
-            return Err(format!(
-                "scene_hashes: has {}, not one for each of the {} scenes",
-                self.scene_hashes.len(),
-                self.scenes.len()
-            ));
-        }
-        let scene_of = |at: String, name: &str| {
-            if self.scenes.iter().any(|s| s == name) {
-                Ok(())
-            } else {
-                Err(format!("{at}: `{name}` is not a scene of this sweep ({})", self.scenes.join(", ")))
-            }
-        };
-        let own = Some(self.shard);
-        let shard_of = |at: String, shard: Option<u32>| match shard {
-            s if s == own => Ok(()),
-            Some(s) => Err(format!("{at}.shard: is {s}, not this file's shard {}", self.shard)),
-            None => Err(format!("{at}.shard: missing; this file's rows are shard {}'s", self.shard)),
-        };
-        let number = |at: String, v: f64| {
-            if v.is_finite() && v >= 0.0 { Ok(()) } else { Err(format!("{at}: {v} is not a finite number ≥ 0")) }
-        };
-        // A timed run no render of a sweep takes: a week's seconds (u64::MAX seconds was merged
-        // into a median of 1.8e22 ms).
-        let times = |at: &str, times: &[Duration]| {
-            if times.is_empty() {
-                return Err(format!("{at}.times: empty; a row has at least one timed run"));
-            }
-            match times.iter().find(|t| t.as_secs() > MAX_RUN_SECS) {
-                Some(t) => Err(format!(
-                    "{at}.times: a run of {} s, longer than a week ({MAX_RUN_SECS} s), which no render of a sweep takes",
-                    t.as_secs()
-                )),
-                None => Ok(()),
-            }
-        };
-        for (i, scene) in self.results.iter().enumerate() {
-            scene_of(format!("results[{i}].name"), &scene.name)?;
-            let mut settings = Report::default();
-            validate_settings(&scene.settings, &mut settings);
-            if let Some(e) = settings.errors.first() {
-                return Err(format!("results[{i}].settings: {e}"));
-            }
-            for (j, row) in scene.rows.iter().enumerate() {
-                let at = format!("results[{i}].rows[{j}]");
-                shard_of(at.clone(), row.shard)?;
-                times(&at, &row.times)?;
-                let e = &row.errors;
-                for (name, v) in [
-                    ("max_abs", e.max_abs),
-                    ("mean_abs", e.mean_abs),
-                    ("rmse", e.rmse),
-                    ("rel_mse", e.rel_mse),
-                    ("flip_mean", e.flip_mean),
-                    ("first_hit_mismatch", e.first_hit_mismatch),
-                    ("p99_abs_same_hit", e.p99_abs_same_hit),
-                ] {
-                    number(format!("{at}.errors.{name}"), v)?;
-                }
-                // +inf: identical images; −inf would need an infinite error, which finite images
-                // (non-finite ones are refused) never have.
-                if e.psnr.is_nan() || e.psnr == f64::NEG_INFINITY {
-                    return Err(format!("{at}.errors.psnr: is {}, which no image pair has", e.psnr));
-                }
-                // Infinite exactly where the images are identical (`compare`: −10·log10 of the MSE).
-                if e.psnr.is_infinite() != (e.rmse == 0.0) {
-                    return Err(format!(
-                        "{at}.errors.psnr: is {} with an rmse of {}; it is infinite exactly where the rmse is 0",
-                        format_number(e.psnr),
-                        format_number(e.rmse)
-                    ));
-                }
-                for (name, v) in [("twin_rmse", row.twin_rmse), ("twin_rays_pct", row.twin_rays_pct.map(f64::abs))] {
-                    v.map_or(Ok(()), |v| number(format!("{at}.{name}"), v))?;
-                }
-                // Their sum is taken (rays per second): counts no render can make overflowed it.
-                let c = &row.counts;
-                let sum = [c.camera, c.shadow, c.reflection, c.refraction, c.bailout_saved, c.capped_samples]
-                    .into_iter()
-                    .try_fold(0u64, u64::checked_add);
-                if sum.is_none_or(|s| s > MAX_RAYS) {
-                    return Err(format!("{at}.counts: sum to more than 2^60 rays, more than any sweep traces"));
-                }
-            }
-            for (j, row) in scene.specular.iter().enumerate() {
-                let at = format!("results[{i}].specular[{j}]");
-                shard_of(at.clone(), row.shard)?;
-                times(&at, &row.times)?;
-            }
-        }
-        for (i, gi) in self.gi.iter().enumerate() {
-            let at = format!("gi[{i}]");
-            scene_of(format!("{at}.scene"), &gi.scene)?;
-            shard_of(at.clone(), gi.shard)?;
-            number(format!("{at}.reference_noise"), gi.reference_noise)?;
-            for (j, row) in gi.rows.iter().enumerate() {
-                number(format!("{at}.rows[{j}].rmse"), row.rmse)?;
-                if row.median.as_secs() > MAX_RUN_SECS {
-                    return Err(format!("{at}.rows[{j}].median: {} s, longer than a week", row.median.as_secs()));
-                }
-            }
-        }
-        Ok(())
-    }
 }
-
-/// The longest timed run a shard may hold, a week: far beyond any render of a sweep.
-const MAX_RUN_SECS: u64 = 7 * 24 * 3600;
-
-/// More rays than a shard's renders can trace (16384² pixels × 4096 samples × 2^10 rays is
-/// 1.1e15; this leaves room), and far from u64's end, so that sums of a sweep's rows stay exact.
-const MAX_RAYS: u64 = 1 << 60;
 
 pub fn file_name(spec: ShardSpec) -> String {
     format!("shard-{}-of-{}.toml", spec.index, spec.count)
