@@ -176,22 +176,26 @@ pub(super) fn validate_polynomial(path: &str, c: f64, l: f64, q: f64, r: &mut Re
         Some(format!("c + l·d + q·d² is c at d = 0, so c must be ≥ {min:e}{hint}"))
     } else if q < 0.0 || (q == 0.0 && l < 0.0) {
         Some("c + l·d + q·d² falls below 0 at a large distance: it needs q ≥ 0, and l ≥ 0 when q = 0".to_string())
-    } else if l < 0.0 && c - l * l / (4.0 * q) < f32_min {
-        let d = -l / (2.0 * q);
-        Some(format!(
-            "c + l·d + q·d² falls to {} at d = {}; it must stay ≥ {min:e} for all d ≥ 0",
-            short(c - l * l / (4.0 * q)),
-            short(d)
-        ))
-    } else if l < 0.0 && c - l * l / (4.0 * q) < c / MAX_ATTENUATION_DIP {
-        let d = -l / (2.0 * q);
-        Some(format!(
-            "c + l·d + q·d² falls to {} at d = {}, {} times below c: f32 (the GPU tracer) cannot \
-             resolve a dip deeper than c / {MAX_ATTENUATION_DIP:e} (raise c or make l less negative)",
-            short(c - l * l / (4.0 * q)),
-            short(d),
-            short(c / (c - l * l / (4.0 * q)))
-        ))
+    } else if l < 0.0 {
+        // The minimum, at d = −l/(2q) (q > 0 here).
+        let (least, d) = (c - l * l / (4.0 * q), -l / (2.0 * q));
+        if least < f32_min {
+            Some(format!(
+                "c + l·d + q·d² falls to {} at d = {}; it must stay ≥ {min:e} for all d ≥ 0",
+                short(least),
+                short(d)
+            ))
+        } else if least < c / MAX_ATTENUATION_DIP {
+            Some(format!(
+                "c + l·d + q·d² falls to {} at d = {}, {} times below c: f32 (the GPU tracer) cannot \
+                 resolve a dip deeper than c / {MAX_ATTENUATION_DIP:e} (raise c or make l less negative)",
+                short(least),
+                short(d),
+                short(c / least)
+            ))
+        } else {
+            None
+        }
     } else {
         None
     };
