@@ -22,4 +22,5 @@ mod snapshots;
 mod status;
 mod support;
 mod view;
+mod warnings;
 mod world;

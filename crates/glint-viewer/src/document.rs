@@ -226,6 +226,15 @@ impl Document {
         (i < self.desc.objects.len()).then_some(i)
     }
 
+    /// A light as the Lights panel lists it: its name, or its type and index.
+    pub fn light_label(&self, index: usize) -> String {
+        match self.desc.lights.get(index) {
+            Some(l) if !l.name.is_empty() => l.name.clone(),
+            Some(l) => format!("{} {index}", l.kind.name()),
+            None => format!("light {index}"),
+        }
+    }
+
     pub fn object_label(&self, index: usize) -> String {
         match self.desc.objects.get(index) {
             Some(o) if !o.name().is_empty() => o.name().to_string(),

@@ -16,6 +16,7 @@ mod document;
 mod error;
 mod error_history;
 mod export;
+mod field_place;
 mod frame_clock;
 mod gizmos;
 mod gpu_view;

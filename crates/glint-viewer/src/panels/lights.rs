@@ -19,13 +19,13 @@ pub fn ui(ui: &mut Ui, doc: &mut Document, selected: &mut usize) -> bool {
     let camera = &doc.desc.camera;
     let centre = DVec3::from(camera.look_at);
     let distance = (DVec3::from(camera.position) - centre).length();
+    let labels: Vec<String> = (0..doc.desc.lights.len()).map(|i| doc.light_label(i)).collect();
     let lights = &mut doc.desc.lights;
     let set_aside = &mut doc.light_set_aside;
     // One entry per light, whoever changed the list (an edit here, a test, a new document).
     set_aside.resize_with(lights.len(), SetAside::default);
     ui.horizontal_wrapped(|ui| {
-        for (i, l) in lights.iter().enumerate() {
-            let name = if l.name.is_empty() { format!("{} {i}", l.kind.name()) } else { l.name.clone() };
+        for (i, name) in labels.into_iter().enumerate() {
             ui.selectable_value(selected, i, name);
         }
     });

@@ -1,6 +1,8 @@
 //! The side panels: each edits one part of the document and says whether it changed it.
+//! Validation's messages head every tab.
 
 pub mod errors;
+pub mod issues;
 pub mod lights;
 pub mod materials;
 pub mod messages;
@@ -53,6 +55,12 @@ pub fn side(
     // Vertical only, one scroll position per tab: every tab is laid out to the panel's width
     // (rows wrap, grids have two columns), so nothing hides sideways or under a horizontal bar.
     egui::ScrollArea::vertical().id_salt(("side panel", *tab)).auto_shrink([false, false]).show(ui, |ui| {
+        // First, where the default window shows them: below a long tab they went unseen.
+        let shown = *tab;
+        issues::ui(ui, doc, tab, selection);
+        if *tab != shown {
+            return;
+        }
         let changed = match tab {
             Tab::Scene => scene::ui(ui, doc, inputs.fitter),
             Tab::Lights => lights::ui(ui, doc, &mut selection.light),
@@ -68,21 +76,6 @@ pub fn side(
         };
         if changed {
             doc.edited();
-        }
-        if !doc.issues.is_empty() {
-            ui.separator();
-            ui.colored_label(ui.visuals().error_fg_color, "Invalid values (the last valid render stays on screen):");
-            for i in &doc.issues {
-                ui.colored_label(ui.visuals().error_fg_color, i.to_string());
-            }
-        }
-        if !doc.warnings.is_empty() || !doc.load_warnings.is_empty() {
-            ui.separator();
-            let warn = ui.visuals().warn_fg_color;
-            ui.colored_label(warn, "Warnings (rendered anyway, as glint render does):");
-            for w in doc.load_warnings.iter().chain(&doc.warnings) {
-                ui.colored_label(warn, w.to_string());
-            }
         }
     });
     probe
