@@ -12,7 +12,7 @@ use anyhow::{Context, bail};
 use clap::Args;
 use glint_core::TileGrid;
 use glint_core::image::linear_f32_to_srgb8;
-use glint_io::exr_file::{ExrHeader, ExrPixels, read_exr, read_exr_header, write_exr_region};
+use glint_io::exr_file::{ExrHeader, ExrPixels, PIXELS_SHA256, read_exr, read_exr_header, write_exr_region};
 use glint_io::image_file::write_png_rgb8;
 use glint_scene::MAX_IMAGE_SIDE;
 
@@ -275,6 +275,19 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
     for (&index, &(path, checked)) in &by_index {
         let tile = super::interrupt::while_loading(|| read_exr(path))?;
         same_as_checked(path, checked, &tile)?;
+        match tile.digest_holds() {
+            Some(true) => {}
+            Some(false) => bail!(
+                "{}: its pixels are not the ones it was written with (their SHA-256 is not its {PIXELS_SHA256}): \
+                 the file was damaged or changed since; render the tile again; nothing was written",
+                path.display()
+            ),
+            None => bail!(
+                "{}: has no {PIXELS_SHA256} (every tile `glint render --tile` writes has one), so a damaged pixel \
+                 could not be told from a rendered one; render the tile again; nothing was written",
+                path.display()
+            ),
+        }
         let rect = grid.rect(index)?;
         // A render writes no such pixel (it refuses an image with one): the tile was made or
         // changed otherwise, and a merge must not pass it on.

@@ -11,10 +11,27 @@ use exr::prelude::{
     Encoding, Image, IntegerBounds, Layer, LayerAttributes, ReadChannels, ReadLayers, SpecificChannels, Vec2,
     WritableImage,
 };
+use sha2::{Digest, Sha256};
 
 use crate::atomic::write_atomically;
 use crate::error::ImageWriteError;
 use crate::exr_order::sort_attributes;
+
+/// The attribute every EXR glint writes holds its pixels' digest in (`pixel_digest`): a tile
+/// whose pixel bytes were damaged in an uncompressed chunk (one no checksum guards) read as
+/// finite values, and `glint merge` passed them on.
+pub const PIXELS_SHA256: &str = "glint:pixels_sha256";
+
+/// SHA-256 of RGB pixels as f32 little-endian bytes, row by row, in hex.
+pub fn pixel_digest(rgb: impl IntoIterator<Item = [f32; 3]>) -> String {
+    let mut h = Sha256::new();
+    for p in rgb {
+        for c in p {
+            h.update(c.to_le_bytes());
+        }
+    }
+    h.finalize().iter().map(|b| format!("{b:02x}")).collect()
+}
 
 /// Where an EXR file's pixels lie in the whole image, and its text attributes.
 #[derive(Clone, Debug, PartialEq)]
@@ -49,6 +66,14 @@ pub struct ExrPixels {
     pub rgb: Vec<[f32; 3]>,
 }
 
+impl ExrPixels {
+    /// Whether the pixels are the ones the file's digest was made of: `None` for a file
+    /// without one (not glint's, or a glint's before digests).
+    pub fn digest_holds(&self) -> Option<bool> {
+        self.header.attribute(PIXELS_SHA256).map(|d| d == pixel_digest(self.rgb.iter().copied()))
+    }
+}
+
 #[derive(Debug, thiserror::Error)]
 pub enum ExrReadError {
     #[error("{path}: not a readable RGB OpenEXR file: {message}")]
@@ -71,8 +96,9 @@ fn text_value(t: &Text) -> String {
 }
 
 /// Writes the `width`×`height` pixels `pixel(x, y)` (coordinates within the data window) as
-/// the data window at `origin` of a `display`-sized image, with `metadata` as text attributes,
-/// atomically. The pixels are generated as they are written, never held twice.
+/// the data window at `origin` of a `display`-sized image, with `metadata` as text attributes
+/// and the pixels' digest (`PIXELS_SHA256`, in place of any `metadata` gives), atomically. The
+/// pixels are generated as they are written, never held twice.
 pub fn write_exr_region(
     path: &Path,
     display: (u32, u32),
@@ -93,9 +119,13 @@ pub fn write_exr_region(
             (r, g, b)
         }),
     );
+    let rows = (0..size.1 as usize).flat_map(|y| (0..size.0 as usize).map(move |x| (x, y)));
+    let digest = pixel_digest(rows.map(|(x, y)| pixel(x, y)));
+    let mut metadata: Vec<(String, String)> = metadata.iter().filter(|(k, _)| k != PIXELS_SHA256).cloned().collect();
+    metadata.push((PIXELS_SHA256.into(), digest));
     let mut image = Image::from_layer(layer);
     image.attributes.display_window = IntegerBounds::new((0, 0), (display.0 as usize, display.1 as usize));
-    for (key, value) in metadata {
+    for (key, value) in &metadata {
         image.attributes.other.insert(exr_text(key), AttributeValue::Text(exr_text(value)));
     }
     write_atomically(path, |file| {
@@ -198,6 +228,25 @@ pub fn read_exr(path: &Path) -> Result<ExrPixels, ExrReadError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_pixel_digest_is_written_and_tells_a_changed_pixel() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let path = dir.path().join("t.exr");
+        let value = |x: usize, y: usize| [x as f32 * 0.25, y as f32, 1e-3];
+        let stale = vec![(PIXELS_SHA256.to_string(), "0".repeat(64))];
+        write_exr_region(&path, (9, 7), (1, 2), (4, 3), value, &stale).expect("write");
+        let mut read = read_exr(&path).expect("read");
+        assert_eq!(read.digest_holds(), Some(true), "the digest of the pixels written, not the one given");
+        assert_eq!(read.header.attributes.iter().filter(|(k, _)| k == PIXELS_SHA256).count(), 1);
+        // Any bit of any channel.
+        read.rgb[5][2] = f32::from_bits(read.rgb[5][2].to_bits() ^ 1);
+        assert_eq!(read.digest_holds(), Some(false));
+        read.header.attributes.retain(|(k, _)| k != PIXELS_SHA256);
+        assert_eq!(read.digest_holds(), None);
+        // Row order counts: the same values elsewhere are another image.
+        assert_ne!(pixel_digest([[1.0, 0.0, 0.0], [0.0; 3]]), pixel_digest([[0.0; 3], [1.0, 0.0, 0.0]]));
+    }
 
     #[test]
     fn text_attributes_keep_every_character_and_read_latin1_of_other_writers() {
