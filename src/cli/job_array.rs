@@ -7,16 +7,17 @@
 /// caller's to judge.
 pub fn parse_part(s: &str, part: &str, index_optional: bool) -> Result<(Option<u32>, u32), String> {
     let forms = if index_optional { "I/N or N" } else { "I/N" };
-    let number = |t: &str, what: &str| {
+    // An index from 0, a count from 1 (`--tile 0` was refused after "from 0" was offered).
+    let number = |t: &str, least: u32, what: &str| {
         t.trim()
             .parse::<u32>()
-            .map_err(|_| format!("'{t}' is not a whole number from 0 to {} ({what}); use {forms}", u32::MAX))
+            .map_err(|_| format!("'{t}' is not a whole number from {least} to {} ({what}); use {forms}", u32::MAX))
     };
-    let index = format!("the {part}'s index");
-    let count = format!("the {part} count");
+    let index = |t: &str| number(t, 0, &format!("the {part}'s index"));
+    let count = |t: &str| number(t, 1, &format!("the {part} count"));
     match s.split_once('/') {
-        Some((i, n)) => Ok((Some(number(i, &index)?), number(n, &count)?)),
-        None if index_optional => Ok((None, number(s, &count)?)),
+        Some((i, n)) => Ok((Some(index(i)?), count(n)?)),
+        None if index_optional => Ok((None, count(s)?)),
         None => Err(format!("'{s}' is not I/N ({part} I of N, I from 0)")),
     }
 }

@@ -39,8 +39,9 @@ pub fn parse_tile(s: &str) -> Result<TileSpec, String> {
     Ok(TileSpec { index, count })
 }
 
-/// The tile's index, and where it came from (the flag, or a scheduler's variable).
-fn resolve_index(spec: TileSpec) -> anyhow::Result<(u32, String)> {
+/// The tile's index, and where it came from (the flag, or a scheduler's variable); `tiles` is
+/// the grid's count, for the range a bad variable is told.
+fn resolve_index(spec: TileSpec, tiles: u32) -> anyhow::Result<(u32, String)> {
     if let Some(i) = spec.index {
         return Ok((i, "--tile".into()));
     }
@@ -53,7 +54,11 @@ fn resolve_index(spec: TileSpec) -> anyhow::Result<(u32, String)> {
                 } else {
                     "is not a whole number".into()
                 };
-                format!("{name}='{value}' ({scheduler}) {what}, so it names no tile")
+                let last = tiles.saturating_sub(1);
+                format!(
+                    "{name}='{value}' ({scheduler}) {what}, so it names no tile: the {tiles} tiles are numbered \
+                     0 to {last} (Slurm: --array=0-{last})"
+                )
             })?;
             return Ok((i, format!("{name} ({scheduler})")));
         }
@@ -88,7 +93,7 @@ pub fn render_tile(job: TileJob) -> anyhow::Result<()> {
     let (w, h) = (job.settings.width, job.settings.height);
     // The grid first: `--tile 0` is no grid, whatever the scheduler says.
     let grid = TileGrid::new(job.spec.count, w, h).context("--tile")?;
-    let (index, source) = resolve_index(job.spec)?;
+    let (index, source) = resolve_index(job.spec, grid.count())?;
     let rect = grid.rect(index).with_context(|| match job.spec.index {
         Some(_) => "--tile".to_string(),
         None => {
@@ -154,7 +159,7 @@ mod tests {
                 .unwrap_err()
                 .contains("'a' is not a whole number from 0 to 4294967295 (the tile's index)")
         );
-        assert!(parse_tile("4294967296").unwrap_err().contains("from 0 to 4294967295 (the tile count)"));
+        assert!(parse_tile("4294967296").unwrap_err().contains("from 1 to 4294967295 (the tile count)"));
         assert!(parse_tile("3/-1").unwrap_err().contains("the tile count"));
     }
 }

@@ -545,6 +545,25 @@ fn report_shards_merge_into_the_one_machine_report_and_missing_ones_are_named() 
         text(&done.stderr)
     );
     assert!(!dir.join("partial/report.csv").exists(), "a refused merge wrote a report");
+    // A cancelled or failed shard made no folder: named with the missing shards, not "cannot
+    // read the folder" (a tester's scancel of one array task).
+    let done = merge("s0,never,s2", "absent");
+    assert!(
+        text(&done.stderr).contains(
+            "1 of 3 shards is missing: 1 (run it with --shard I/3; as a Slurm array, --array=1); never does not exist"
+        ),
+        "{}",
+        text(&done.stderr)
+    );
+    // An empty shard file is said to be empty, not another glint's.
+    std::fs::create_dir_all(dir.join("empty")).expect("folder");
+    std::fs::write(dir.join("empty/shard-1-of-3.toml"), "").expect("empty shard");
+    let done = merge("s0,empty,s2", "emptied");
+    assert!(
+        text(&done.stderr).contains("shard-1-of-3.toml: is empty, not a shard glint wrote"),
+        "{}",
+        text(&done.stderr)
+    );
     let done = merge("s0,s1,s1,s2", "twice");
     assert!(!done.status.success());
     assert!(text(&done.stderr).contains("shard 1 is given twice"), "{}", text(&done.stderr));

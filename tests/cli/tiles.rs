@@ -346,6 +346,8 @@ fn the_tile_index_comes_from_the_flag_or_a_schedulers_variable() {
     for (value, wanted) in [
         ("99999999999999999999", "SLURM_ARRAY_TASK_ID='99999999999999999999' (Slurm job arrays) is beyond 4294967295"),
         ("x1", "SLURM_ARRAY_TASK_ID='x1' (Slurm job arrays) is not a whole number"),
+        // With the range the array must number (it had none).
+        ("-1", "is not a whole number, so it names no tile: the 3 tiles are numbered 0 to 2 (Slurm: --array=0-2)"),
     ] {
         let done = std::process::Command::new(env!("CARGO_BIN_EXE_glint"))
             .args(["render", "whitted", "--width", "24", "--height", "16", "--tile", "3", "-q"])
@@ -362,6 +364,7 @@ fn the_tile_index_comes_from_the_flag_or_a_schedulers_variable() {
         (&["--tile", "0/500"][..], "500 tiles fit no grid of a 24x16 image"),
         (&["--tile", "0/29"][..], "the nearest counts that fit one are 28 and 30"),
         (&["--tile", "0"][..], "a grid needs at least one tile"),
+        (&["--tile", "abc"][..], "'abc' is not a whole number from 1 to 4294967295 (the tile count)"),
         // On the GPU: with the CPU alone --allow-incomplete is refused as doing nothing.
         (&["--tile", "1/3", "--backend", "gpu", "--allow-incomplete"][..], "--tile writes no incomplete tile"),
     ] {

@@ -33,8 +33,11 @@ pub struct ShardSpec {
 pub fn parse_shard(s: &str) -> Result<ShardSpec, String> {
     let (index, count) = super::super::job_array::parse_part(s, "shard", false)?;
     let index = index.unwrap_or_default();
-    if count == 0 || index >= count {
-        return Err(format!("shard {index} of {count}: shards are numbered 0 to N-1, N at least 1"));
+    if count == 0 {
+        return Err("shard I of 0: a sweep needs at least 1 shard".into());
+    }
+    if index >= count {
+        return Err(format!("shard {index} of {count}: shards of {count} are numbered 0 to {}", count - 1));
     }
     Ok(ShardSpec { index, count })
 }
@@ -184,8 +187,19 @@ pub fn write(dir: &Path, spec: ShardSpec, file: &ShardFile) -> anyhow::Result<Pa
 /// Every shard file in `dirs`, checked to be one whole sweep, in shard order.
 pub fn read_all(dirs: &[PathBuf]) -> anyhow::Result<Vec<ShardFile>> {
     let mut found: Vec<(PathBuf, ShardFile)> = Vec::new();
+    // A shard that was cancelled, failed or never ran made no folder (it creates --out when it
+    // writes): one folder a shard is the recipe, so an absent one is a missing shard to name
+    // with the rest, not the end of the merge.
+    let mut absent: Vec<&Path> = Vec::new();
     for dir in dirs {
-        let entries = std::fs::read_dir(dir).with_context(|| format!("cannot read the folder {}", dir.display()))?;
+        let entries = match std::fs::read_dir(dir) {
+            Ok(entries) => entries,
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+                absent.push(dir);
+                continue;
+            }
+            Err(e) => return Err(e).with_context(|| format!("cannot read the folder {}", dir.display())),
+        };
         let mut names: Vec<PathBuf> = entries
             .filter_map(Result::ok)
             .map(|e| e.path())
@@ -213,6 +227,14 @@ pub fn read_all(dirs: &[PathBuf]) -> anyhow::Result<Vec<ShardFile>> {
         let list: Vec<String> = dirs.iter().map(|d| d.display().to_string()).collect();
         bail!("no shard-I-of-N.toml in {}: run `glint report --shard I/N --out DIR` first", list.join(", "));
     }
+    let absent = match absent.as_slice() {
+        [] => String::new(),
+        [one] => format!("; {} does not exist (a shard that failed or never ran writes no folder)", one.display()),
+        many => format!(
+            "; {} do not exist (a shard that failed or never ran writes no folder)",
+            many.iter().map(|d| d.display().to_string()).collect::<Vec<_>>().join(", ")
+        ),
+    };
     // Shards are held against the sweep most of them are of (the first's on a tie), so that a
     // stale shard is the one named, whichever file the folders list first (as `glint merge`
     // names a stale tile).
@@ -264,7 +286,7 @@ pub fn read_all(dirs: &[PathBuf]) -> anyhow::Result<Vec<ShardFile>> {
     let (missing, runs) = crate::cli::job_array::missing_runs(by_index.keys().copied(), first.count);
     if missing > 0 {
         bail!(
-            "{missing} of {} {} missing: {} (run {} with --shard I/{}; as a Slurm array, --array={}); \
+            "{missing} of {} {} missing: {} (run {} with --shard I/{}; as a Slurm array, --array={}){absent}; \
              nothing was written",
             first.count,
             if missing == 1 { "shards is" } else { "shards are" },
@@ -286,6 +308,13 @@ fn check_format(path: &Path, text: &str) -> anyhow::Result<()> {
     struct Head {
         format: Option<toml::Value>,
         glint: Option<String>,
+    }
+    if text.trim().is_empty() {
+        bail!(
+            "{}: is empty, not a shard glint wrote (it writes a shard whole or not at all): the file was made or \
+             cut short otherwise; run that shard again; nothing was written",
+            path.display()
+        );
     }
     let Ok(head) = toml::from_str::<Head>(text) else {
         // Not TOML or not a table: the full read names what is wrong.
@@ -473,7 +502,12 @@ mod tests {
     #[test]
     fn shard_specs_parse_or_say_what_is_wrong() {
         assert_eq!(parse_shard("1/4"), Ok(ShardSpec { index: 1, count: 4 }));
-        assert!(parse_shard("4/4").unwrap_err().contains("numbered 0 to N-1"));
+        assert!(
+            parse_shard("4/4").unwrap_err().contains("shards of 4 are numbered 0 to 3"),
+            "{:?}",
+            parse_shard("4/4")
+        );
+        assert!(parse_shard("0/0").unwrap_err().contains("at least 1 shard"));
         assert!(parse_shard("4").unwrap_err().contains("'4' is not I/N (shard I of N, I from 0)"));
         assert!(
             parse_shard("x/4")
