@@ -7,6 +7,7 @@
 
 mod meshes;
 mod mtl;
+mod mtl_file;
 mod mtl_images;
 mod mtl_map;
 mod mtllib;
@@ -36,8 +37,16 @@ pub enum ObjError {
     Mtl { file: std::path::PathBuf, line: usize, reason: String },
     #[error("{file}: no triangles (points and lines are not traced)")]
     Empty { file: std::path::PathBuf },
-    #[error("{file}: materials.{material}.{field} `{uri}`: {reason}")]
-    Texture { file: std::path::PathBuf, material: String, field: &'static str, uri: String, reason: String },
+    /// `field`: `materials.NAME.texture`; `statement`: the MTL file (as a path from the OBJ's
+    /// folder) and line naming the texture.
+    #[error("{file}: {field} `{uri}`{}: {reason}", statement.as_ref().map_or_else(String::new, |s| format!(" ({}:{})", s.0.display(), s.1)))]
+    Texture {
+        file: std::path::PathBuf,
+        field: String,
+        uri: String,
+        reason: String,
+        statement: Option<Box<(std::path::PathBuf, usize)>>,
+    },
 }
 
 pub use mtl::DEFAULT_MATERIAL;
@@ -77,13 +86,13 @@ pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
         out.warnings.extend(mtllib::unknown_materials(&prepared.uses, materials.as_deref().unwrap_or_default()));
     }
     let materials = materials.unwrap_or_default();
-    let names = mtl::add_materials(path, &materials, &read.folders, &mut out).map_err(
-        |mtl_images::TextureError { material, field, uri, reason }| ObjError::Texture {
+    let names = mtl::add_materials(path, &materials, &read.files, &mut out).map_err(
+        |mtl_images::TextureError { material, field, uri, reason, statement }| ObjError::Texture {
             file: path.to_owned(),
-            material,
-            field,
+            field: format!("materials.{material}.{field}"),
             uri,
             reason,
+            statement: statement.map(|s| Box::new((path.parent().unwrap_or(Path::new("")).join(&s.0), s.1))),
         },
     )?;
     meshes::add_meshes(&models, &bytes, &names, &mut out);

@@ -5,7 +5,8 @@
 
 use std::path::Path;
 
-use super::mtl_images::{Images, Source, TextureError, material_folders};
+use super::mtl_file::MtlFile;
+use super::mtl_images::{Images, Source, TextureError, material_files};
 use super::text;
 use glint_scene::{FieldIssue, MaterialDesc, MaterialSource, Model, Rgb};
 
@@ -13,21 +14,21 @@ use glint_scene::{FieldIssue, MaterialDesc, MaterialSource, Model, Rgb};
 pub const DEFAULT_MATERIAL: &str = "obj-default";
 
 /// The OBJ's (`obj`) MTL materials put into `out` with their warnings and textures, under the
-/// names `material_names` gives (returned, in the materials' order); `folders` are the MTL
-/// files' folders and how many materials each held, as read.
+/// names `material_names` gives (returned, in the materials' order); `files` are the MTL
+/// files as read.
 pub(super) fn add_materials(
     obj: &Path,
     materials: &[tobj::Material],
-    folders: &[(String, usize)],
+    files: &[MtlFile],
     out: &mut Model,
 ) -> Result<Vec<String>, TextureError> {
     out.warnings.extend(unread_statements(materials));
     let names = material_names(materials);
-    let folders = material_folders(folders, materials.len());
+    let files = material_files(files, materials.len());
     let mut images = Images::default();
-    for ((m, name), folder) in materials.iter().zip(&names).zip(&folders) {
+    for ((m, name), file) in materials.iter().zip(&names).zip(&files) {
         let mut material = map_material(m, name, &mut out.warnings);
-        let at = Source { obj, mtl_folder: folder, material: name };
+        let at = Source { obj, mtl: *file, material: name, mtl_name: &m.name };
         if let Some(map) = m.diffuse_texture.as_deref() {
             material.texture = Some(images.texture(&at, map, "texture", &mut out.warnings)?);
         }

@@ -5,18 +5,21 @@
 use std::path::Path;
 use std::sync::Arc;
 
+use super::mtl_file::MtlFile;
 use super::mtl_map::parse_map;
 use crate::texture::decode_texture;
 use crate::uri::{MAX_RESOURCE_BYTES, resolve_uri};
 use glint_scene::{ColorSpace, FieldIssue, TextureDesc, TextureImage, UvTransform, Wrap};
 
-/// A texture that could not be read: the material and field naming it, the file as named, why.
+/// A texture that could not be read: the material and field naming it, the file as named, why,
+/// and the MTL file and line of its statement where found.
 #[derive(Debug)]
 pub(super) struct TextureError {
     pub material: String,
     pub field: &'static str,
     pub uri: String,
     pub reason: String,
+    pub statement: Option<Box<(String, usize)>>,
 }
 
 /// The images of one model, each decoded once however many materials name it.
@@ -25,13 +28,21 @@ pub(super) struct Images {
     decoded: Vec<(String, Arc<TextureImage>)>,
 }
 
-/// Where a material's texture statement is read: the OBJ file, the folder of the MTL that
-/// defined the material (relative to the OBJ's; empty beside it), and the material's name.
+/// Where a material's texture statement is read: the OBJ file, the MTL that defined the
+/// material (none where the files' counts did not add up: the OBJ's folder is searched), and
+/// the material's name in the scene and in the MTL.
 #[derive(Clone, Copy)]
 pub(super) struct Source<'a> {
     pub obj: &'a Path,
-    pub mtl_folder: &'a str,
+    pub mtl: Option<&'a MtlFile>,
     pub material: &'a str,
+    pub mtl_name: &'a str,
+}
+
+impl Source<'_> {
+    fn mtl_folder(&self) -> &str {
+        self.mtl.map_or("", |f| f.folder.as_str())
+    }
 }
 
 impl Images {
@@ -68,8 +79,8 @@ impl Images {
         // Relative to the MTL's folder, as Blender and three.js read it, then to the OBJ's (where
         // an MTL beside the OBJ puts both). Absent from both, the error names it where the MTL
         // places it.
-        let beside_mtl = (!at.mtl_folder.is_empty() && !uri.contains(':') && !uri.starts_with('/'))
-            .then(|| format!("{}/{uri}", at.mtl_folder));
+        let beside_mtl = (!at.mtl_folder().is_empty() && !uri.contains(':') && !uri.starts_with('/'))
+            .then(|| format!("{}/{uri}", at.mtl_folder()));
         let mut found = self.image(at, beside_mtl.as_deref().unwrap_or(&uri), field);
         if beside_mtl.is_some() && matches!(found, Err((_, Absent::Yes))) {
             found = match self.image(at, &uri, field) {
@@ -77,7 +88,11 @@ impl Images {
                 beside_obj => beside_obj,
             };
         }
-        let mut t = found.map_err(|(e, _)| e)?;
+        let keyword = if field == "emission_texture" { "map_Ke" } else { "map_Kd" };
+        let mut t = found.map_err(|(e, _)| TextureError {
+            statement: at.mtl.and_then(|f| Some(Box::new((f.uri.clone(), f.statement_line(at.mtl_name, keyword)?)))),
+            ..e
+        })?;
         if map.clamp {
             (t.wrap_s, t.wrap_t) = (Wrap::ClampToEdge, Wrap::ClampToEdge);
         }
@@ -101,8 +116,13 @@ impl Images {
         if let Some((_, image)) = self.decoded.iter().find(|(u, _)| u == uri) {
             return Ok(TextureDesc::decoded(uri.to_string(), Arc::clone(image)));
         }
-        let error =
-            |reason: String| TextureError { material: at.material.to_string(), field, uri: uri.to_string(), reason };
+        let error = |reason: String| TextureError {
+            material: at.material.to_string(),
+            field,
+            uri: uri.to_string(),
+            reason,
+            statement: None,
+        };
         let bytes = resolve_uri(at.obj, uri, MAX_RESOURCE_BYTES).map_err(|e| {
             let absent = if e.is_not_found() { Absent::Yes } else { Absent::No };
             (error(e.to_string()), absent)
@@ -120,10 +140,9 @@ enum Absent {
     No,
 }
 
-/// Each material's MTL folder, from the loaded MTLs' folders and counts (in tobj's order); the
-/// OBJ's own folder for all where the counts do not add up.
-pub(super) fn material_folders(loaded: &[(String, usize)], materials: usize) -> Vec<String> {
-    let folders: Vec<String> =
-        loaded.iter().flat_map(|(folder, count)| std::iter::repeat_n(folder.clone(), *count)).collect();
-    if folders.len() == materials { folders } else { vec![String::new(); materials] }
+/// Each material's MTL file, from the loaded files' counts (in tobj's order); none for any
+/// where the counts do not add up.
+pub(super) fn material_files(loaded: &[MtlFile], materials: usize) -> Vec<Option<&MtlFile>> {
+    let files: Vec<Option<&MtlFile>> = loaded.iter().flat_map(|f| std::iter::repeat_n(Some(f), f.materials)).collect();
+    if files.len() == materials { files } else { vec![None; materials] }
 }

@@ -5,6 +5,7 @@ use std::cell::{Cell, RefCell};
 use std::path::Path;
 
 use super::mtl::{DEFAULT_MATERIAL, bad_number, expand_colours};
+use super::mtl_file::MtlFile;
 use super::{statements, text};
 use crate::uri::{MAX_RESOURCE_BYTES, UriError, resolve_uri};
 use glint_scene::FieldIssue;
@@ -18,8 +19,8 @@ pub(super) struct Libraries<'a> {
     refused: RefCell<Option<Refused>>,
     warnings: RefCell<Vec<FieldIssue>>,
     left_out: Cell<bool>,
-    /// Each loaded MTL's folder (relative to the OBJ's) and how many materials it held, in order.
-    folders: RefCell<Vec<(String, usize)>>,
+    /// Each loaded MTL, in order.
+    files: RefCell<Vec<MtlFile>>,
 }
 
 /// Why an OBJ's MTL file is an error.
@@ -37,7 +38,7 @@ pub(super) struct Read {
     pub warnings: Vec<FieldIssue>,
     /// Whether an MTL file was missing or unreadable.
     pub left_out: bool,
-    pub folders: Vec<(String, usize)>,
+    pub files: Vec<MtlFile>,
 }
 
 impl<'a> Libraries<'a> {
@@ -47,7 +48,7 @@ impl<'a> Libraries<'a> {
             refused: RefCell::new(None),
             warnings: RefCell::new(Vec::new()),
             left_out: Cell::new(false),
-            folders: RefCell::new(Vec::new()),
+            files: RefCell::new(Vec::new()),
         }
     }
 
@@ -74,11 +75,7 @@ impl<'a> Libraries<'a> {
         if let Some(error) = self.refused.into_inner() {
             return Err(error);
         }
-        Ok(Read {
-            warnings: self.warnings.into_inner(),
-            left_out: self.left_out.get(),
-            folders: self.folders.into_inner(),
-        })
+        Ok(Read { warnings: self.warnings.into_inner(), left_out: self.left_out.get(), files: self.files.into_inner() })
     }
 
     fn load_file(&self, uri: &str) -> tobj::MTLLoadResult {
@@ -103,6 +100,7 @@ impl<'a> Libraries<'a> {
             if let Some(how) = encoding {
                 warn(format!("not UTF-8: {how}"));
             }
+            let text_before_joining = String::from_utf8_lossy(&text).into_owned();
             let text = statements::without_trailing_comments(&text);
             let text = statements::joined_continuations(&text);
             if let Some((line, reason)) = bad_number(&text) {
@@ -114,7 +112,13 @@ impl<'a> Libraries<'a> {
                 .map_err(|problem| format!("{uri}:{problem}"))?;
             let loaded = tobj::load_mtl_buf(&mut text.as_slice()).map_err(|e| e.to_string())?;
             let folder = uri.replace('\\', "/").rsplit_once('/').map_or(String::new(), |(f, _)| f.to_string());
-            self.folders.borrow_mut().push((folder, loaded.0.len()));
+            let decoded = text_before_joining.clone();
+            self.files.borrow_mut().push(MtlFile {
+                uri: uri.to_string(),
+                folder,
+                materials: loaded.0.len(),
+                text: decoded,
+            });
             Ok(loaded)
         });
         loaded.map_err(|problem| {

@@ -439,7 +439,13 @@ fn a_texture_is_found_beside_its_mtl_then_beside_the_obj() {
     png(&mats.join("near.png"));
     png(&dir.path().join("far.png"));
     write(&mats, "m.mtl", "newmtl a\nmap_Kd near.png\nnewmtl b\nmap_Kd far.png\n");
-    write(&mats, "c.mtl", "newmtl c\nmap_Kd gone.png\n");
+    // The statement's line as an editor numbers it: comments, a continued line and another
+    // material before it.
+    write(
+        &mats,
+        "c.mtl",
+        "# made by hand\nnewmtl a\nKd 1 \\\n  1 1\nmap_Kd far.png\nnewmtl c\nKd 1 0 0\n  map_Kd gone.png\n",
+    );
     let faces = "usemtl a\nf 1 2 3\nusemtl b\nf 1 3 4\n";
     let m = load_obj(&write(dir.path(), "m.obj", &format!("mtllib mats/m.mtl\n{QUAD}{faces}"))).expect("loads");
     let path = |name: &str| m.materials[name].texture.as_ref().map(|t| t.path.clone());
@@ -448,6 +454,8 @@ fn a_texture_is_found_beside_its_mtl_then_beside_the_obj() {
     let obj = write(dir.path(), "c.obj", &format!("mtllib mats/c.mtl\n{QUAD}usemtl c\nf 1 2 3\n"));
     let message = load_obj(&obj).unwrap_err().to_string();
     assert!(message.contains("`mats/gone.png`") && message.contains("No such file"), "{message}");
+    let at = format!(" ({}:8)", dir.path().join("mats/c.mtl").display());
+    assert!(message.contains(&format!("materials.c.texture `mats/gone.png`{at}: ")), "{message}");
 }
 
 #[test]
