@@ -382,6 +382,14 @@ fn a_scene_named_in_any_script_or_not_utf8_renders_under_its_own_name() {
         png.push(".png");
         assert!(dir.join(&png).is_file(), "{stem:?}: {:?}", dir.listing());
     }
+    // `report --scenes` takes it in its comma-separated list (clap's list of strings refused
+    // it): the list's next scene, missing, is the error, so the name was read and loaded.
+    let mut list = OsString::from(" ");
+    list.push(latin);
+    list.push(".toml , gone.toml");
+    let out = glint(&dir, [std::ffi::OsStr::new("report"), "--quick".as_ref(), "--scenes".as_ref(), &list]);
+    let stderr = text(&out.stderr);
+    assert!(!out.status.success() && stderr.contains("gone.toml") && !stderr.contains("invalid UTF-8"), "{stderr}");
 }
 
 /// A name longer than file systems allow is refused before the render, naming its length (it

@@ -18,6 +18,7 @@ mod staging;
 mod sweep;
 
 use std::collections::HashMap;
+use std::ffi::{OsStr, OsString};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -44,8 +45,8 @@ const QUICK_SCENES: &[&str] = &["whitted", "highlights"];
 pub struct ReportArgs {
     /// Scenes to sweep, comma-separated: built-in names or scene files (default: every built-in
     /// but the generated ones; with --quick: whitted,highlights)
-    #[arg(long, value_delimiter = ',')]
-    pub scenes: Vec<String>,
+    #[arg(long, value_parser = clap::value_parser!(OsString))]
+    pub scenes: Vec<OsString>,
     /// Folder for report.csv, report.md and the plots (created if missing)
     #[arg(long, default_value = "report")]
     pub out: PathBuf,
@@ -121,10 +122,10 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
     let plan = if args.quick { Plan::quick(args.reference_spp) } else { Plan::full(args.reference_spp) };
     let (width, height) = if args.quick { (96, 72) } else { (320, 240) };
     let (width, height) = (args.width.unwrap_or(width), args.height.unwrap_or(height));
-    let names: Vec<String> = if args.scenes.is_empty() {
-        (if args.quick { QUICK_SCENES } else { DEFAULT_SCENES }).iter().map(|s| s.to_string()).collect()
+    let names: Vec<OsString> = if args.scenes.is_empty() {
+        (if args.quick { QUICK_SCENES } else { DEFAULT_SCENES }).iter().map(OsString::from).collect()
     } else {
-        args.scenes.iter().map(|s| s.trim().to_string()).filter(|s| !s.is_empty()).collect()
+        args.scenes.iter().flat_map(|s| scene_list(s)).collect()
     };
     if names.is_empty() {
         usage!(
@@ -433,6 +434,23 @@ fn write_outputs(
 
 /// The tables and text a whole report writes beside its plots.
 const TABLES: [&str; 4] = ["report.csv", "specular.csv", "gi.csv", "report.md"];
+
+/// The scenes of one `--scenes` value: split at commas, each trimmed of ASCII white space,
+/// empty ones left out. Split as bytes where names are bytes: a scene file's name need not be
+/// UTF-8 (clap's list of strings refused one without naming the flag).
+fn scene_list(value: &OsStr) -> Vec<OsString> {
+    #[cfg(unix)]
+    {
+        use std::os::unix::ffi::OsStrExt;
+        let parts = value.as_bytes().split(|&b| b == b',').map(<[u8]>::trim_ascii);
+        parts.filter(|part| !part.is_empty()).map(|part| OsStr::from_bytes(part).to_os_string()).collect()
+    }
+    #[cfg(not(unix))]
+    {
+        let text = value.to_string_lossy();
+        text.split(',').map(str::trim).filter(|part| !part.is_empty()).map(OsString::from).collect()
+    }
+}
 
 /// Every file a whole report over scenes named `scenes` writes into `--out`.
 fn report_files<'a>(scenes: impl IntoIterator<Item = &'a str>) -> Vec<String> {
