@@ -78,3 +78,23 @@ fn a_clear_sheet_transmits_the_wall_behind_it_times_k_t_over_the_distance_polyno
     assert_ne!(flat.header.features & feature::GLOBAL_ATTENUATION, 0);
     check(&flat, false, true);
 }
+
+/// The bailout judges a child by its whole path weight, the attenuation of the rays before it
+/// included: camera → mirror A (k_r = 0.5) → mirror B about 10 away (f_att = 1/(1 + 0.01·d²),
+/// at most 0.5) → B's child, of weight 0.5 · f · 0.5 ≤ 0.125, below a bailout of 0.2, so never
+/// traced, where A's child (0.5) always is. Left out of the weight, B's child (0.25) was traced
+/// on the CPU alone, and only the GPU parity test told.
+#[test]
+fn the_bailout_weighs_a_child_with_the_attenuation_of_the_rays_before_it() {
+    let s = SceneText::new(16, 16, "max_depth = 4\nbailout = 0.2\nepsilon = 0.0", [0.0; 3], Z, [0.0, 1.0, 0.0], 30.0);
+    let mirror = "ka = 0.0\nkd = 0.0\nks = 0.0\nkr = 0.5";
+    let flat = s
+        .world_attenuated([0.0; 3], [0.0; 3], [1.0, 0.0, 0.01])
+        .material("mirror", mirror)
+        .plane([0.0, 0.0, 5.0], [0.0, 0.0, -1.0], "mirror")
+        .plane([0.0, 0.0, -5.0], Z, "mirror")
+        .flat();
+    let counts = render(&flat).counts;
+    let pixels = 16 * 16;
+    assert_eq!((counts.camera, counts.reflection, counts.bailout_saved), (pixels, pixels, pixels), "{counts:?}");
+}

@@ -205,3 +205,38 @@ fn a_tiny_emitter_seen_from_far_along_an_infinite_floor_weighs_its_paths_finitel
         .count();
     assert!(within * 100 >= cpu.len() * 90, "{within} of {} pixels within the CPU's noise", cpu.len());
 }
+
+#[test]
+fn the_gpus_lamp_samples_and_the_paths_that_meet_the_lamp_weigh_to_one() {
+    // The CPU's test of the same name (tests/core/path.rs) on the GPU: depth 0 counts the light
+    // samples alone, unweighted (no path goes on to meet the lamp); depth 1 weighs them against
+    // the paths that do; both estimate the same image. A last bounce weighed as if paths went
+    // on (its MIS flag always set: a mutation no GPU test told) loses the paths' share.
+    let tracer = gpu_or_skip!();
+    for mode in ["tmin", "robust"] {
+        let mean = |depth: u32| {
+            let settings = format!(
+                "integrator = \"path\"\nmax_depth = {depth}\nspp = 64\nepsilon = 0.01\nepsilon_mode = \"{mode}\""
+            );
+            let flat = glint_test_support::scene::SceneText::new(
+                32,
+                24,
+                &settings,
+                [0.0, 0.5, -0.6],
+                [0.0; 3],
+                [0.0, 1.0, 0.0],
+                40.0,
+            )
+            .world([0.0; 3], [0.0; 3])
+            .material("white", "ka = 0.0\nkd = 0.8")
+            .material("lamp", "ka = 0.0\nkd = 0.0\nemission = 5.0")
+            .plane([0.0; 3], [0.0, 1.0, 0.0], "white")
+            .sphere([0.0, 0.07, 0.0], 0.05, "lamp")
+            .flat();
+            let pixels = gpu_render(tracer, &flat, true).image.pixels;
+            pixels.iter().map(|p| p.element_sum() / 3.0).sum::<f64>() / pixels.len() as f64
+        };
+        let (alone, weighed) = (mean(0), mean(1));
+        assert!((weighed - alone).abs() < 2e-3 * alone, "{mode}: depth 0 {alone}, depth 1 {weighed}");
+    }
+}

@@ -216,6 +216,12 @@ mod tests {
         // 18 % grey is 118 in sRGB.
         assert_eq!(linear_to_srgb8(0.18), 118);
         assert_eq!(linear_to_srgb8(f64::NAN), 0);
+        // IEC 61966-2-1's linear segment, s = 12.92·v, worked by hand (a mutation to 12.5 passed
+        // every test but the golden hashes): 255·12.92·0.002 = 6.59 → 7; at its end 0.0031308,
+        // 10.31 → 10; and the power segment at 0.5, 255·(1.055·0.5^(1/2.4) − 0.055) = 187.52 → 188.
+        assert_eq!(linear_to_srgb8(0.002), 7);
+        assert_eq!(linear_to_srgb8(0.003_130_8), 10);
+        assert_eq!(linear_to_srgb8(0.5), 188);
     }
 
     /// The table gives the definition's code: for 20,000 values around every threshold (where
