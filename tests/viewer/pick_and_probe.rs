@@ -198,3 +198,40 @@ fn clicking_a_models_face_shows_that_faces_material_and_the_list_can_choose_anot
     assert_eq!(h.state().selection.material.as_deref(), Some("model/b"));
     let _ = std::fs::remove_dir_all(dir);
 }
+
+#[test]
+fn a_path_views_outline_follows_each_pixels_centre_not_its_jittered_first_sample() {
+    // A lecturer's find: in a path view the outline was drawn from the first sample's hits,
+    // which fall anywhere in the pixel: a ragged rim, a pixel beyond the sphere here and there.
+    // It is now traced through each pixel's centre: the sphere's pixels as a one-sample
+    // Whitted render (and `glint_core::centre_hits`) finds them.
+    let Some(mut h) = viewer("cornell-gi", (1000.0, 640.0)) else { return };
+    let glass = object_named(&h, "glass sphere");
+    h.state_mut().selection.object = Some(glass as usize);
+    h.run_steps(3);
+    let flat = h.state().doc.flat(false).expect("a valid scene");
+    let (w, hgt) = (flat.header.width, flat.header.height);
+    let hits = glint_core::centre_hits(&flat);
+    let (mut lo, mut hi) = ((u32::MAX, u32::MAX), (0, 0));
+    for (i, _) in hits.iter().enumerate().filter(|(_, id)| **id == glass) {
+        let (px, py) = (i as u32 % w, i as u32 / w);
+        (lo, hi) = ((lo.0.min(px), lo.1.min(py)), (hi.0.max(px + 1), hi.1.max(py + 1)));
+    }
+    // The first sample's hits do reach beyond the centres' (else this test tells nothing).
+    let (_, cpu) = h.state().renders.cpu.finished.as_ref().expect("a CPU render");
+    let beyond = cpu.image.first_hit.iter().zip(&hits).any(|(first, centre)| *first == glass && *centre != glass);
+    assert!(beyond, "the jittered first hits are the centres' here");
+    let outlines: Vec<egui::Rect> = h.query_all_by_label("Selected: glass sphere").map(|n| n.rect()).collect();
+    assert!(!outlines.is_empty(), "outlined");
+    let images = h.state().layout.view_rects.clone();
+    for image in &images {
+        let at = |(px, py): (u32, u32)| {
+            image.min + egui::vec2(px as f32 / w as f32 * image.width(), py as f32 / hgt as f32 * image.height())
+        };
+        let expected = egui::Rect::from_min_max(at(lo), at(hi));
+        let Some(outline) = outlines.iter().find(|o| image.contains_rect(**o)) else { continue };
+        for (a, b) in [(outline.min, expected.min), (outline.max, expected.max)] {
+            assert!((a - b).length() <= 0.5, "outline {outline:?} vs the centres' pixels {expected:?}");
+        }
+    }
+}

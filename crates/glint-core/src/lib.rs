@@ -22,7 +22,9 @@ pub mod tiles;
 pub use backend::Backend;
 pub use flat::{FlatScene, WorldCamera, camera_eye};
 pub use image::HdrImage;
-pub use render::{Accel, CpuOptions, CpuRender, Picked, RenderControl, pick, probe_pixel, probe_tree, render_cpu};
+pub use render::{
+    Accel, CpuOptions, CpuRender, Picked, RenderControl, centre_hits, pick, probe_pixel, probe_tree, render_cpu,
+};
 pub use tiles::{PixelRect, TileGrid};
 
 /// Re-exported so that the GPU tracer and the viewer use the same vector types.

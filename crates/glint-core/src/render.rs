@@ -319,10 +319,45 @@ pub fn pick(scene: &FlatScene, x: u32, y: u32) -> Option<Picked> {
     Some(Picked { object: s.object_id, material: s.material })
 }
 
+/// Each pixel's first hit through its centre, row by row: the object's id, `NO_HIT` for none.
+/// A one-sample Whitted render records these; a jittered render's first hits (a path's first
+/// sample) fall anywhere in the pixel, and an outline drawn from them is ragged.
+///
+/// # Panics
+/// As `probe_pixel`.
+pub fn centre_hits(scene: &FlatScene) -> Vec<u32> {
+    let ctx = built_scene_context(scene);
+    let h = &scene.header;
+    let hit = |x: u32, y: u32| {
+        let camera = crate::cpu::camera::camera_ray(&scene.camera, h.width, h.height, x, y, 0.5, 0.5);
+        let leaving = crate::cpu::intersect::Leaving::NONE;
+        match crate::cpu::walk::closest_hit(&ctx, &camera.ray, camera.t_min, crate::cpu::FAR, &leaving) {
+            Some(hit) => crate::cpu::surface::surface_at(&ctx, &camera.ray, &hit).object_id,
+            None => glint_types::layout::NO_HIT,
+        }
+    };
+    (0..h.height).into_par_iter().flat_map_iter(|y| (0..h.width).map(move |x| hit(x, y))).collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use glint_io::builtin;
+
+    #[test]
+    fn centre_hits_are_what_picking_each_pixel_finds() {
+        let b = builtin("whitted").expect("built-in scene");
+        let (desc, _) = b.load(None).expect("parses");
+        let settings = glint_scene::RenderSettings { width: 24, height: 18, ..desc.render.clone() };
+        let scene = FlatScene::build(&desc, &settings);
+        let hits = centre_hits(&scene);
+        assert_eq!(hits.len(), 24 * 18);
+        for (i, &id) in hits.iter().enumerate() {
+            let (x, y) = ((i % 24) as u32, (i / 24) as u32);
+            assert_eq!(pick(&scene, x, y).map_or(glint_types::layout::NO_HIT, |p| p.object), id, "({x}, {y})");
+        }
+        assert!(hits.contains(&glint_types::layout::NO_HIT) && hits.iter().any(|&h| h != glint_types::layout::NO_HIT));
+    }
 
     #[test]
     fn auto_traces_small_scenes_by_brute_force_and_large_ones_through_the_bvh() {

@@ -2,6 +2,7 @@
 //! the layout; each frame collects results, draws the panels, applies the edits and starts the
 //! renders the current revision still needs.
 
+use std::borrow::Cow;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
@@ -26,7 +27,7 @@ use crate::panels;
 use crate::ray_tree_view;
 use crate::recent::Recent;
 use crate::renders::Renders;
-use crate::selection::Selection;
+use crate::selection::{Hits, Selection};
 use crate::view::{GiView, ViewAction, ViewMode};
 
 mod file_flow;
@@ -357,16 +358,26 @@ impl ViewerApp {
         };
         let probed = self.renders.probe.as_ref().map(|p| (p.x, p.y));
         let tree = self.ray_tree_segments();
-        // The outline from the images of the revision shown (never of another camera): the
-        // GPU's first hits when read back, else the CPU's.
+        // The outline of the revision shown (never of another camera): where a render's first
+        // hits are jittered (paths, or Whitted's several samples), each pixel's centre traced
+        // on the CPU; else the GPU's first hits when read back, else the CPU's.
         let rev = self.doc.revision;
-        let traced = match (self.renders.gpu_of(rev), self.renders.cpu_of(rev)) {
-            (Some(g), _) => Some((&g.image, true)),
-            (None, Some(c)) => Some((&c.image, false)),
-            (None, None) => None,
+        let render = &self.doc.desc.render;
+        let jittered = render.integrator == glint_scene::Integrator::Path || render.spp > 1;
+        let source = match (jittered, self.renders.gpu_of(rev), self.renders.cpu_of(rev)) {
+            (true, _, _) => self.doc.is_valid().then_some(Hits::Centres),
+            (false, Some(_), _) => Some(Hits::Gpu),
+            (false, None, Some(_)) => Some(Hits::Cpu),
+            (false, None, None) => None,
+        };
+        let (doc, renders) = (&self.doc, &self.renders);
+        let hits = |source| match source {
+            Hits::Centres => doc.flat(false).map(|f| (f.header.width, Cow::Owned(glint_core::centre_hits(&f)))),
+            Hits::Gpu => renders.gpu_of(rev).map(|g| (g.image.width, Cow::Borrowed(&g.image.first_hit[..]))),
+            Hits::Cpu => renders.cpu_of(rev).map(|c| (c.image.width, Cow::Borrowed(&c.image.first_hit[..]))),
         };
         let name = self.selection.object.map(|i| self.doc.object_label(i));
-        let segments = self.selection.outline(rev, traced);
+        let segments = self.selection.outline(rev, source, hits);
         let selected = name.as_deref().map(|n| (n, segments));
         let integrator = self.doc.desc.render.integrator;
         self.layout.central(

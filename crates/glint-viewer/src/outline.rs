@@ -1,17 +1,16 @@
 //! The outline of the selected object over the images: the edges between the pixels whose
 //! first hit is the object and the others (another object, the background, the image's edge).
 
-use glint_core::HdrImage;
-
 /// One straight edge of the outline, in pixel-corner coordinates (origin top-left, x right).
 pub type Segment = [(u32, u32); 2];
 
-/// The outline of the pixels of `image` whose first hit is `object`. Runs of unit edges along a
-/// row or column are merged into one segment, so a straight side costs one line to draw.
-pub fn outline(image: &HdrImage, object: u32) -> Vec<Segment> {
-    let (w, h) = (i64::from(image.width), i64::from(image.height));
-    let inside =
-        |x: i64, y: i64| (0..w).contains(&x) && (0..h).contains(&y) && image.first_hit[(y * w + x) as usize] == object;
+/// The outline of the pixels whose first hit is `object`, of an image `width` wide whose first
+/// hits are `hits`, row by row. Runs of unit edges along a row or column are merged into one
+/// segment, so a straight side costs one line to draw.
+pub fn outline(width: u32, hits: &[u32], object: u32) -> Vec<Segment> {
+    let w = i64::from(width.max(1));
+    let h = hits.len() as i64 / w;
+    let inside = |x: i64, y: i64| (0..w).contains(&x) && (0..h).contains(&y) && hits[(y * w + x) as usize] == object;
     let mut out = Vec::new();
     // Horizontal edges: on line y, between rows y − 1 and y.
     for y in 0..=h {
@@ -44,24 +43,18 @@ mod tests {
     use super::*;
     use glint_types::layout::NO_HIT;
 
-    fn image(w: u32, h: u32, hits: &[u32]) -> HdrImage {
-        let mut img = HdrImage::new(w, h);
-        img.first_hit = hits.to_vec();
-        img
-    }
-
     #[test]
     fn a_block_is_outlined_by_its_four_sides() {
         let n = NO_HIT;
         #[rustfmt::skip]
-        let img = image(4, 3, &[
+        let hits = [
             n, n, n, n,
             n, 7, 7, n,
             n, 7, 7, n,
-        ]);
-        let mut segments = outline(&img, 7);
+        ];
+        let mut segments = outline(4, &hits, 7);
         segments.sort_unstable();
         assert_eq!(segments, vec![[(1, 1), (1, 3)], [(1, 1), (3, 1)], [(1, 3), (3, 3)], [(3, 1), (3, 3)]]);
-        assert!(outline(&img, 3).is_empty(), "an object not in the image has no outline");
+        assert!(outline(4, &hits, 3).is_empty(), "an object not in the image has no outline");
     }
 }
