@@ -450,14 +450,7 @@ fn a_lamps_light_sample_and_the_paths_that_meet_it_weigh_to_one_in_every_mode() 
             let settings = format!(
                 "integrator = \"path\"\nmax_depth = {depth}\nspp = 64\nepsilon = 0.01\nepsilon_mode = \"{mode}\""
             );
-            let flat = SceneText::new(32, 24, &settings, [0.0, 0.5, -0.6], [0.0; 3], Y, 40.0)
-                .world([0.0; 3], [0.0; 3])
-                .material("white", "ka = 0.0\nkd = 0.8")
-                .material("lamp", "ka = 0.0\nkd = 0.0\nemission = 5.0")
-                .plane([0.0; 3], [0.0, 1.0, 0.0], "white")
-                .sphere([0.0, 0.07, 0.0], 0.05, "lamp")
-                .flat();
-            image_mean(&flat)
+            image_mean(&glint_test_support::scene::lamp_over_a_floor(&settings).flat())
         };
         let (alone, weighed) = (mean(0), mean(1));
         assert!((weighed - alone).abs() < 2e-3 * alone, "{mode}: depth 0 {alone}, depth 1 {weighed}");

@@ -218,21 +218,7 @@ fn the_gpus_lamp_samples_and_the_paths_that_meet_the_lamp_weigh_to_one() {
             let settings = format!(
                 "integrator = \"path\"\nmax_depth = {depth}\nspp = 64\nepsilon = 0.01\nepsilon_mode = \"{mode}\""
             );
-            let flat = glint_test_support::scene::SceneText::new(
-                32,
-                24,
-                &settings,
-                [0.0, 0.5, -0.6],
-                [0.0; 3],
-                [0.0, 1.0, 0.0],
-                40.0,
-            )
-            .world([0.0; 3], [0.0; 3])
-            .material("white", "ka = 0.0\nkd = 0.8")
-            .material("lamp", "ka = 0.0\nkd = 0.0\nemission = 5.0")
-            .plane([0.0; 3], [0.0, 1.0, 0.0], "white")
-            .sphere([0.0, 0.07, 0.0], 0.05, "lamp")
-            .flat();
+            let flat = glint_test_support::scene::lamp_over_a_floor(&settings).flat();
             let pixels = gpu_render(tracer, &flat, true).image.pixels;
             pixels.iter().map(|p| p.element_sum() / 3.0).sum::<f64>() / pixels.len() as f64
         };

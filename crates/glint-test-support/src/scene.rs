@@ -335,6 +335,19 @@ pub fn uv_sphere(n: u32, c: [f64; 3], r: f64) -> (Vec<[f64; 3]>, Vec<[u32; 3]>) 
     (v, t)
 }
 
+/// A lamp (a sphere 0.1 across, E_m = 5) 0.02 above a white floor (k_d = 0.8), seen from
+/// nearby, 32×24, with `render` the `[render]` table's lines: at depth 0 a path counts the lamp's
+/// light samples alone, at depth 1 it weighs them against the paths that meet the lamp; the
+/// same expectation, which both tracers' MIS tests hold them to (a reviewer's scene).
+pub fn lamp_over_a_floor(render: &str) -> SceneText {
+    SceneText::new(32, 24, render, [0.0, 0.5, -0.6], [0.0; 3], [0.0, 1.0, 0.0], 40.0)
+        .world([0.0; 3], [0.0; 3])
+        .material("white", "ka = 0.0\nkd = 0.8")
+        .material("lamp", "ka = 0.0\nkd = 0.0\nemission = 5.0")
+        .plane([0.0; 3], [0.0, 1.0, 0.0], "white")
+        .sphere([0.0, 0.07, 0.0], 0.05, "lamp")
+}
+
 /// A closed box of white emitting walls seen from inside (the cube [−1, 1]³, its 12 triangles
 /// wound to face inwards, their emitting side): k_d = 0.5 and E_m = 1, so its radiance is
 /// Σ 0.5^k = 2 (1 − 0.5^(d+1)) to path depth d. `render` is the `[render]` table's lines.
