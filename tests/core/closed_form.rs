@@ -668,3 +668,46 @@ fn cook_torrance_lobe_is_finite_and_non_negative_at_grazing_and_extreme_inputs()
     }
     assert!(evaluated > 1000, "{evaluated}");
 }
+
+/// A point light ε/4 behind a ceiling (a lamp flush with it, as a modeller places one) lights
+/// the floor in every mode: a shadow ray looks for occluders up to t = dist − ε only
+/// (scene-format.md), so a ceiling it crosses less than ε before the light is none: from a
+/// floor point whose direction to the light is within 60° of the vertical, it crosses at most
+/// ε/2 before. Each such floor pixel is I_d·k_d·(N·L) with L from the floor point to the light
+/// (no ambient, specular or attenuation), computed here from the stored planes and light.
+/// Dropping the − ε (a mutation only the golden hashes had told) shadows them all.
+#[test]
+fn a_light_within_epsilon_behind_a_ceiling_lights_the_floor_in_every_mode() {
+    let eps = 0.01;
+    for mode in ["tmin", "nudge_ray", "nudge_normal", "robust", "skip_convex"] {
+        let render_settings = format!("max_depth = 0\nepsilon = {eps}\nepsilon_mode = \"{mode}\"");
+        let flat = SceneText::new(16, 12, &render_settings, [0.0, 1.0, -3.0], [0.0; 3], Y, 60.0)
+            .world([0.0; 3], [0.0; 3])
+            .material("white", "ka = 0.0\nkd = 1.0\nks = 0.0")
+            .plane([0.0; 3], Y, "white")
+            .plane([0.0, 2.0, 0.0], [0.0, -1.0, 0.0], "white")
+            .light("point", &format!("position = [0.0, {}, 0.0]\ndiffuse = 1.0\nspecular = 0.0", 2.0 + eps / 4.0))
+            .flat();
+        let img = render(&flat).image;
+        let (floor, ceiling) = (flat.planes[0].normal_offset, flat.planes[1].normal_offset);
+        let light = w3(flat.lights[0].position);
+        let mut floor_pixels = 0;
+        for y in 0..12 {
+            for x in 0..16 {
+                let (o, d) = primary_ray(&flat, x, y);
+                let Some(t) = plane_hit(o, d, w3(floor), f64::from(floor[3])) else { continue };
+                if plane_hit(o, d, w3(ceiling), f64::from(ceiling[3])).is_some_and(|c| c < t) {
+                    continue;
+                }
+                let p = o + t * d;
+                let n_dot_l = w3(floor).dot((light - p).normalize());
+                if n_dot_l < 0.5 {
+                    continue;
+                }
+                assert_rel(img.get(x, y), DVec3::splat(n_dot_l), REL, &format!("{mode}: pixel ({x}, {y})"));
+                floor_pixels += 1;
+            }
+        }
+        assert!(floor_pixels > 30, "{mode}: {floor_pixels} floor pixels");
+    }
+}
