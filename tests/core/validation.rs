@@ -516,6 +516,10 @@ fn kr_plus_kt_above_one_warns_but_loads() {
     assert!(warnings[0].contains("materials.glass") && warnings[0].contains("1.3"), "{warnings:?}");
     // Exactly 1 is fine and silent.
     assert!(expect_valid(&edited("kr = 0.1", "kr = 0.2"), "k_r + k_t = 1").is_empty());
+    // An excess in blue alone is one too (two channels were read, and no test told).
+    let blue = edited("kr = 0.1\nkt = 0.8", "kr = [0.0, 0.0, 0.5]\nkt = [0.0, 0.0, 0.75]");
+    let warnings = expect_valid(&blue, "blue k_r + k_t = 1.25");
+    assert!(warnings.len() == 1 && warnings[0].contains("materials.glass.kr + kt: k_r + k_t = 1.25"), "{warnings:?}");
 }
 
 #[test]

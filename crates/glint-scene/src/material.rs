@@ -105,3 +105,24 @@ impl MaterialDesc {
 pub fn material_textures(m: &MaterialDesc) -> [(&'static str, Option<&TextureDesc>); 2] {
     [("texture", m.texture.as_ref()), ("emission_texture", m.emission_texture.as_ref())]
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The largest channel wherever it lies: a gain held only in blue was missed when two
+    /// channels were read (a mutation no test told), and with it the warnings built on it.
+    #[test]
+    fn the_gain_is_the_largest_channel_in_any_channel() {
+        let permutations = [[0, 1, 2], [0, 2, 1], [1, 0, 2], [1, 2, 0], [2, 0, 1], [2, 1, 0]];
+        let at = |values: [f64; 3], p: [usize; 3]| Rgb(std::array::from_fn(|k| values[p[k]]));
+        for p in permutations {
+            let path =
+                MaterialDesc { kd: at([0.25, 0.25, 0.5], p), ks: at([0.0, 0.0, 0.75], p), ..MaterialDesc::default() };
+            assert_eq!(path.gain(Integrator::Path), 1.25, "{p:?}");
+            let whitted =
+                MaterialDesc { kr: at([0.0, 0.0, 0.5], p), kt: at([0.0, 0.0, 0.75], p), ..MaterialDesc::default() };
+            assert_eq!(whitted.gain(Integrator::Whitted), 1.25, "{p:?}");
+        }
+    }
+}

@@ -44,7 +44,8 @@ pub(super) fn validate_material(path: &str, m: &MaterialDesc, r: &mut Report) {
             );
         }
     }
-    let sum = (0..3).map(|i| m.kr.0[i] + m.kt.0[i]).fold(0.0, f64::max);
+    // Whitted's gain: k_r + k_t in the largest channel.
+    let sum = m.gain(glint_types::Integrator::Whitted);
     if sum > 1.0 {
         r.warn(
             format!("{path}.kr + kt"),
