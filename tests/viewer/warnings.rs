@@ -1,6 +1,6 @@
-//! Validation's messages head the side panel at the viewer's own window size, name the
-//! control that edits each field beside the file's name for it, and "Show" opens that tab with
-//! the light, material or object selected.
+//! Validation's messages stand at the side panel's foot, seen at the viewer's own window size,
+//! name the control that edits each field beside the file's name for it, and "Show" opens that
+//! tab with the light, material or object selected; one that goes moves no control.
 
 use egui_kittest::kittest::Queryable;
 use glint_scene::ObjectDesc;
@@ -9,7 +9,7 @@ use glint_viewer::Tab;
 use crate::support::{settle, viewer};
 
 #[test]
-fn warnings_head_the_panel_name_their_control_and_show_it() {
+fn warnings_stand_at_the_panels_foot_name_their_control_and_show_it_and_move_nothing_as_they_go() {
     let [width, height] = glint_viewer::WINDOW_SIZE;
     let Some(mut h) = viewer("whitted", (width, height)) else { return };
     let mirror = h.state().doc.desc.objects.iter().position(|o| o.name() == "mirror sphere").expect("whitted's mirror");
@@ -32,12 +32,13 @@ fn warnings_head_the_panel_name_their_control_and_show_it() {
         assert!(fields.iter().any(|f| f == field), "{field} among {fields:?}");
     }
 
-    // On the Scene tab, above its first section, in the window the viewer opens with.
+    // On the Scene tab, seen without scrolling in the window the viewer opens with (below the
+    // tab they went unseen), in a strip of their own at the panel's foot.
     assert_eq!(h.state().layout.tab, Tab::Scene);
     let header = h.get_by_label_contains("Warnings (").rect();
     let camera = h.get_by_label("Camera").rect();
-    assert!(header.bottom() < camera.top(), "the warnings ({header:?}) come before the tab ({camera:?})");
     assert!(header.bottom() < height - 40.0, "seen without scrolling: {header:?} in a window {height} high");
+    assert!(camera.bottom() < header.top(), "the tab's first section ({camera:?}) above the strip ({header:?})");
 
     // Each names its control: the trail for the light, the material and the render setting.
     let trails =
@@ -68,4 +69,17 @@ fn warnings_head_the_panel_name_their_control_and_show_it() {
     h.run_steps(3);
     assert_eq!(h.state().layout.tab, Tab::Scene);
     assert!(h.query_all_by_label("Epsilon").next().is_some(), "ε is edited there");
+
+    // A value fixed takes its warning away and moves none of the tab's controls (at the top,
+    // the controls jumped under the pointer as a lecturer typed).
+    let depth = |h: &egui_kittest::Harness<'static, glint_viewer::ViewerApp>| {
+        h.query_all_by_label("Max depth").map(|n| n.rect()).collect::<Vec<_>>()
+    };
+    let before = depth(&h);
+    assert!(!before.is_empty(), "the Scene tab shows Max depth");
+    h.state_mut().doc.desc.render.epsilon = 1e-6;
+    h.state_mut().doc.edited();
+    h.run_steps(3);
+    assert!(h.state().doc.warnings.iter().all(|w| w.field != "render.epsilon"), "{:?}", h.state().doc.warnings);
+    assert_eq!(depth(&h), before, "a control moved as a warning went");
 }

@@ -1,4 +1,4 @@
-//! The document's validation messages, at the top of the side panel whichever tab is open:
+//! The document's validation messages, at the foot of the side panel whichever tab is open:
 //! each names where the viewer edits its field ("Lights › key › Casts shadows") beside the
 //! scene file's name for it, with a button that opens that tab and selects the light,
 //! material or object.
@@ -10,6 +10,11 @@ use crate::document::Document;
 use crate::field_place::{Focus, Place, place};
 use crate::layout::Tab;
 use crate::selection::Selection;
+
+/// Whether the document has a message to show.
+pub fn any(doc: &Document) -> bool {
+    !doc.issues.is_empty() || !doc.warnings.is_empty() || !doc.load_warnings.is_empty()
+}
 
 pub fn ui(ui: &mut Ui, doc: &Document, tab: &mut Tab, selection: &mut Selection) {
     let mut go = None;
