@@ -105,7 +105,7 @@ pub fn draw(ui: &mut Ui, rects: &[Rect], segments: &[TreeSegment]) {
         let area = bounds.expand(2.0).intersect(*r);
         // Only beside a tree in sight: after a camera move it may lie wholly outside the image.
         if i + 1 == rects.len() && area.is_positive() {
-            legend(ui, *r);
+            legend(ui, *r, area);
         }
         if area.is_positive() {
             let response = ui.interact(area, ui.scope_id().with(("ray tree", i)), Sense::hover());
@@ -125,19 +125,22 @@ pub const LEGEND: [(&str, Color32, bool); 6] = [
     ("cut by bailout or depth", Color32::LIGHT_GRAY, true),
 ];
 
-/// The legend in the bottom-right corner of the image `r`, on a dark box; left out where it
-/// would take more than half the image's width or height (at the least window the two images
-/// side by side are each about 225 points wide: the legend hid most of the CPU one).
-fn legend(ui: &mut Ui, r: Rect) {
+/// The legend in a corner of the image `r`, on a dark box: the bottom-right one, or the first
+/// of the others that leaves the tree (`tree`, its bounds on screen) uncovered, else the one
+/// that covers least of it (in the bottom-right corner it hid a probed pixel there, its tree
+/// and, on cornell-gi, the caustic a lesson was about). Left out where it would take more than
+/// half the image's width or height (at the least window the two images side by side are each
+/// about 225 points wide: the legend hid most of the CPU one).
+fn legend(ui: &mut Ui, r: Rect, tree: Rect) {
     let width = 172.0;
     // Each row is as tall as a horizontal layout makes it (its interact height, 18 points by
     // default, not 16): reckoned lower, the box ran past the image onto the colour bar below it.
     let row = ui.spacing().interact_size.y;
     let height = row * (LEGEND.len() as f32 + 1.0) + 8.0;
-    let at = Rect::from_min_size(r.right_bottom() - Vec2::new(width + 6.0, height + 6.0), Vec2::new(width, height));
-    if !r.contains_rect(at) || 2.0 * width > r.width() || 2.0 * height > r.height() {
+    if 2.0 * width > r.width() || 2.0 * height > r.height() {
         return;
     }
+    let at = legend_corner(r.shrink(6.0), Vec2::new(width, height), tree);
     let mut child = ui.new_child(egui::UiBuilder::new().max_rect(at));
     egui::Frame::new().fill(Color32::from_black_alpha(170)).inner_margin(4.0).corner_radius(3.0).show(
         &mut child,
@@ -161,10 +164,43 @@ fn legend(ui: &mut Ui, r: Rect) {
     );
 }
 
+/// The box of `size` in a corner of `r`: bottom-right, bottom-left, top-right or top-left, the
+/// first that does not meet `avoid`, else the one that covers least of it.
+fn legend_corner(r: Rect, size: Vec2, avoid: Rect) -> Rect {
+    let corners = [
+        r.right_bottom() - size,
+        r.left_bottom() - Vec2::new(0.0, size.y),
+        r.right_top() - Vec2::new(size.x, 0.0),
+        r.left_top(),
+    ];
+    let boxes = corners.map(|c| Rect::from_min_size(c, size));
+    let covered = |b: &Rect| {
+        let i = b.intersect(avoid);
+        if i.is_positive() { i.area() } else { 0.0 }
+    };
+    boxes.into_iter().min_by(|a, b| covered(a).total_cmp(&covered(b))).expect("four corners")
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use glint_core::{FlatScene, probe_tree};
+
+    #[test]
+    fn the_legend_takes_the_first_corner_that_leaves_the_tree_uncovered() {
+        let r = Rect::from_min_size(egui::pos2(0.0, 0.0), Vec2::new(400.0, 300.0));
+        let size = Vec2::new(100.0, 80.0);
+        let far = Rect::from_min_max(egui::pos2(10.0, 10.0), egui::pos2(20.0, 20.0));
+        assert_eq!(legend_corner(r, size, far).min, egui::pos2(300.0, 220.0), "bottom-right when free");
+        // A tree in the bottom-right corner (a probed pixel there): bottom-left.
+        let corner = Rect::from_min_max(egui::pos2(350.0, 250.0), egui::pos2(390.0, 290.0));
+        assert_eq!(legend_corner(r, size, corner).min, egui::pos2(0.0, 220.0));
+        // Along the whole bottom: the top-right.
+        let bottom = Rect::from_min_max(egui::pos2(0.0, 250.0), egui::pos2(400.0, 290.0));
+        assert_eq!(legend_corner(r, size, bottom).min, egui::pos2(300.0, 0.0));
+        // Over everything: the one covering least of it (all equal: the first).
+        assert_eq!(legend_corner(r, size, r).min, egui::pos2(300.0, 220.0));
+    }
 
     /// The glass sphere's tree of whitted, as the viewer draws it, with the scene moved by `at`.
     fn drawn(at: [f64; 3]) -> Vec<TreeSegment> {
