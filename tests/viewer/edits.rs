@@ -173,4 +173,15 @@ fn fit_ambient_lowers_whitteds_error_against_the_paths_and_applies_on_click() {
     assert!(h.query_by_label_contains("the fitted value").is_some(), "says it is applied");
     let (_, applied, _) = h.state().fitter.result.expect("the fit");
     assert_eq!(applied.rmse_as_written, fit.rmse_fitted, "'as written' is the applied ambient's now");
+    // Light shown is a way of looking, not an edit: the fit stays the scene's (a lecturer saw
+    // "fitted to an earlier edit" beside "I_a is the fitted value" on choosing Caustics).
+    h.state_mut().doc.omit_kinds = glint_scene::PathKind::Caustic.alone();
+    h.state_mut().doc.view_changed();
+    h.run_steps(2);
+    assert!(h.query_by_label_contains("fitted to an earlier edit").is_none(), "a view change called the fit stale");
+    // An edit of the scene does leave it an earlier edit's.
+    h.state_mut().doc.desc.camera.fov_y += 1.0;
+    h.state_mut().doc.edited();
+    h.run_steps(2);
+    assert!(h.query_by_label_contains("fitted to an earlier edit").is_some(), "an edit left the fit current");
 }

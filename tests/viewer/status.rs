@@ -131,3 +131,17 @@ fn an_edit_made_while_a_variant_compiles_ahead_wakes_the_window_when_it_is_done(
     settle(&mut h);
     assert_eq!(h.state().renders.gpu.as_ref().and_then(|g| g.shown_revision()), Some(h.state().doc.revision));
 }
+
+#[test]
+fn a_scene_opened_shows_none_of_the_last_scenes_figures() {
+    // A lecturer's find: after whitted (160×120 here) the status bar went on saying its
+    // 19,200 camera rays and its frame time for minutes while cornell-gi rendered.
+    let Some(mut h) = viewer("whitted", (1000.0, 640.0)) else { return };
+    let whitted = format!("Rays (GPU): {} camera", 160 * 120);
+    assert!(h.query_by_label_contains(&whitted).is_some(), "whitted's rays are shown once rendered");
+    h.state_mut().open("spotlights");
+    h.run_steps(2);
+    assert!(h.query_by_label_contains(&whitted).is_none(), "the last scene's rays are shown for the new one");
+    settle(&mut h);
+    assert!(h.query_by_label_contains("Rays (GPU): ").is_some(), "the new scene's rays once rendered");
+}

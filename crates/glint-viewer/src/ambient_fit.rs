@@ -86,10 +86,10 @@ pub fn ui(ui: &mut egui::Ui, doc: &mut Document, fitter: &mut AmbientFitter) -> 
     fitter.poll();
     // Applying changed the ambient alone, which the fit does not depend on: it still fits the
     // apply's revision, and the figures "as written" are now the fitted ones (the image is
-    // affine in I_a). Any other edit since leaves it an earlier edit's.
+    // affine in I_a). Any other edit since leaves it an earlier edit's. `at` is the revision
+    // a current fit was applied at (views changed since the fit included).
     if let Some(at) = fitter.applied_at.take()
         && let Some((revision, fit, _)) = &mut fitter.result
-        && *revision == at
         && doc.revision == at + 1
     {
         *revision = doc.revision;
@@ -113,7 +113,7 @@ pub fn ui(ui: &mut egui::Ui, doc: &mut Document, fitter: &mut AmbientFitter) -> 
         && !fit.determined
     {
         ui.label("I_a changes no pixel here (no material in view has k_a), so no value fits better than another.");
-        if revision != doc.revision {
+        if revision < doc.scene_revision {
             ui.weak("(fitted to an earlier edit of the scene)");
         }
     } else if let Some((revision, fit, indirect)) = fitter.result {
@@ -128,14 +128,15 @@ pub fn ui(ui: &mut egui::Ui, doc: &mut Document, fitter: &mut AmbientFitter) -> 
              (the paths' less their direct light) is {indirect:.4}",
             fit.adds_as_written, fit.adds_fitted
         ));
-        if revision != doc.revision {
+        if revision < doc.scene_revision {
             ui.weak("(fitted to an earlier edit of the scene)");
         }
         if doc.desc.world.ambient.0 == fit.ambient {
             ui.weak("I_a is the fitted value.");
         } else if ui.button("Apply the fitted I_a").clicked() {
             doc.desc.world.ambient = glint_scene::Rgb(fit.ambient);
-            (applied, fitter.applied_at) = (true, Some(revision));
+            let current = revision >= doc.scene_revision;
+            (applied, fitter.applied_at) = (true, current.then_some(doc.revision));
         }
     }
     applied

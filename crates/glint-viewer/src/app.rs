@@ -191,6 +191,7 @@ impl ViewerApp {
                 }
                 // A fresh revision number keeps old results of the previous scene from matching.
                 d.revision = self.doc.revision + 1;
+                (d.opened, d.scene_revision) = (d.revision, d.revision);
                 self.doc = d;
                 self.selection = Selection::default();
                 self.renders.probe = None;
@@ -436,7 +437,7 @@ impl eframe::App for ViewerApp {
                 if panels::messages::ui(ui, self.renders.messages(), self.message.as_deref()) {
                     self.message = None;
                 }
-                let mut status = self.renders.status(self.doc.revision, self.clock.ui_ms);
+                let mut status = self.renders.status(self.doc.revision, self.doc.opened, self.clock.ui_ms);
                 status.held = !self.doc.is_valid();
                 let r = &self.doc.desc.render;
                 if r.integrator == glint_scene::Integrator::Path {

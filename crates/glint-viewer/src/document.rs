@@ -28,6 +28,11 @@ pub struct Document {
     /// Edited since it was loaded or saved.
     pub dirty: bool,
     pub revision: u64,
+    /// The revision it was opened at: renders older than it are another scene's.
+    pub opened: u64,
+    /// The revision of the scene's last edit: those since changed only how it is looked at
+    /// (`view_changed`: Light shown, the integrator Whitted vs GI chose).
+    pub scene_revision: u64,
     /// The camera as loaded, for "Reset camera".
     pub initial_camera: CameraDesc,
     /// Validation problems of the current description; while there are any, the last valid
@@ -86,6 +91,8 @@ impl Document {
             path,
             dirty: false,
             revision: 0,
+            opened: 0,
+            scene_revision: 0,
             issues: Vec::new(),
             warnings,
             load_warnings,
@@ -116,6 +123,8 @@ impl Document {
             source: None,
             dirty: false,
             revision: 0,
+            opened: 0,
+            scene_revision: 0,
             issues: Vec::new(),
             warnings: Vec::new(),
             load_warnings: Vec::new(),
@@ -136,17 +145,18 @@ impl Document {
         Ok(Self::from_loaded(load_scene_with(arg, options)?))
     }
 
-    /// Records an edit: bumps the revision and re-validates.
-    /// A change of how the scene is looked at (not of the scene): renders again, unsaved
-    /// changes stay as they were.
+    /// A change of how the scene is looked at (not of the scene): renders again; unsaved
+    /// changes, and what was made of the scene as it is (an ambient fit), stay as they were.
     pub fn view_changed(&mut self) {
-        let dirty = self.dirty;
+        let (dirty, scene_revision) = (self.dirty, self.scene_revision);
         self.edited();
-        self.dirty = dirty;
+        (self.dirty, self.scene_revision) = (dirty, scene_revision);
     }
 
+    /// Records an edit: bumps the revision and re-validates.
     pub fn edited(&mut self) {
         self.revision += 1;
+        self.scene_revision = self.revision;
         self.dirty = true;
         let mut geometry = self.geometry.borrow_mut();
         // Objects and material names as last built: their part of validation stands (a camera

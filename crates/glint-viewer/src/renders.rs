@@ -317,12 +317,16 @@ impl Renders {
         }
     }
 
-    /// What the status bar shows; `ui_ms` is the app's own time per frame.
-    pub fn status(&self, revision: u64, ui_ms: f64) -> Status {
+    /// What the status bar shows; `ui_ms` is the app's own time per frame. The figures of
+    /// renders before revision `opened` are another scene's, and are not shown (a scene opened
+    /// kept the last one's rays and frame time for minutes while its own rendered).
+    pub fn status(&self, revision: u64, opened: u64, ui_ms: f64) -> Status {
+        let gpu_latest = self.gpu.as_ref().and_then(|g| g.latest.as_ref()).filter(|l| l.revision >= opened);
+        let cpu_finished = self.cpu.finished.as_ref().filter(|(r, _)| *r >= opened).map(|(_, f)| f);
         Status {
             adapter: self.gpu.as_ref().map(GpuView::adapter_name),
             software: self.gpu.as_ref().is_some_and(GpuView::is_software),
-            gpu_ms: self.gpu.as_ref().and_then(|g| g.last_ms),
+            gpu_ms: self.gpu.as_ref().and_then(|g| g.last_ms).filter(|_| gpu_latest.is_some()),
             // Said only once it is long enough to look like nothing is happening.
             gpu_compiling: self
                 .gpu
@@ -336,14 +340,14 @@ impl Renders {
                 .and_then(GpuView::full_render_progress)
                 .filter(|(t, _)| *t >= GPU_PROGRESS_AFTER)
                 .map(|(t, passes)| (t.as_secs_f64(), passes)),
-            gpu_fps: self.gpu.as_ref().and_then(GpuView::renders_per_second),
+            gpu_fps: self.gpu.as_ref().and_then(GpuView::renders_per_second).filter(|_| gpu_latest.is_some()),
             ui_ms,
             cpu_progress: self.cpu.progress(),
-            cpu_time: self.cpu.finished.as_ref().map(|(_, f)| f.elapsed.as_secs_f64()),
+            cpu_time: cpu_finished.map(|f| f.elapsed.as_secs_f64()),
             errors: self.comparison_of(revision).map(|c| c.errors),
             comparing: self.comparison.is_running(),
-            gpu_counts: self.gpu.as_ref().and_then(|g| g.latest.as_ref()).map(|l| l.counts),
-            cpu_counts: self.cpu.finished.as_ref().map(|(_, f)| f.counts),
+            gpu_counts: gpu_latest.map(|l| l.counts),
+            cpu_counts: cpu_finished.map(|f| f.counts),
             samples: None,
             held: false,
         }
