@@ -108,7 +108,8 @@ impl SceneBuffers {
     /// pixels each run the batch's samples one after the other (path.wgsl); the bounce kernel
     /// is dispatched in chunks until the finished-pixel count says all are done, which takes
     /// at most (samples × (max_depth + 1)) dispatches. A cancel stops between chunks; the
-    /// progress counts the batches' samples.
+    /// progress counts the batches' samples, a batch's share of them as its tiles finish (a
+    /// batch of 64 on lavapipe said 0/64 for minutes, then all of them).
     fn dispatch_paths(
         &self,
         ctx: &GpuContext,
@@ -127,7 +128,8 @@ impl SceneBuffers {
             let end = (first + PATH_BATCH).min(self.spp);
             // Every path ends within max_depth + 1 bounces; every sample takes at least one.
             let most = (end - first) * (self.max_depth + 1);
-            for (x0, y0, width, height) in tiles_of(region, tile) {
+            let tiles = tiles_of(region, tile).count() as u64;
+            for (k, (x0, y0, width, height)) in tiles_of(region, tile).enumerate() {
                 {
                     if cancelled() {
                         return Err(GpuError::Cancelled);
@@ -148,9 +150,10 @@ impl SceneBuffers {
                         dispatched += chunk;
                     }
                 }
-            }
-            if let Some(p) = control.progress {
-                p.finished(end);
+                if let Some(p) = control.progress {
+                    let share = u64::from(end - first) * (k as u64 + 1) / tiles;
+                    p.finished(first + share as u32);
+                }
             }
         }
         Ok(())
