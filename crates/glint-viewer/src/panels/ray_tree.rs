@@ -55,7 +55,9 @@ fn rows(c: &RayNode, g: Option<&RayNode>) -> Vec<Term> {
         out.extend(local_terms(terms, g.and_then(|g| g.terms.as_ref())));
     }
     if let Some(r) = c.radiance {
-        out.push(Term::rgb("I (brought back)", r, None));
+        // The GPU sums each node's weighted terms into the pixel instead: it has no such value,
+        // and its "–" needs the reason beside it (a lecturer asked).
+        out.push(Term::rgb("I brought back (CPU only)", r, None));
     }
     out
 }
