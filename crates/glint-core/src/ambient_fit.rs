@@ -32,6 +32,11 @@ pub struct AmbientFit {
     /// to be held against the indirect light it stands in for.
     pub adds_as_written: f64,
     pub adds_fitted: f64,
+    /// How far Whitted's image without an ambient falls below the reference's mean: all the
+    /// ambient can make up for. More than the paths' indirect light where Whitted misses direct
+    /// light too (an area emitter's, which its point lights do not compute: cornell-gi's lamp),
+    /// so a fitted ambient may add more than the indirect light (a lecturer asked why).
+    pub below_reference: f64,
 }
 
 /// The mean of `a − b` over the pixels and channels.
@@ -79,5 +84,6 @@ pub fn fit_ambient(
         rmse_fitted: rms_difference(&fitted, p),
         adds_as_written: mean_difference(&as_written, &without),
         adds_fitted: mean_difference(&fitted, &without),
+        below_reference: mean_difference(p, &without),
     })
 }

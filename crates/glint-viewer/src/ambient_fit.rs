@@ -124,9 +124,10 @@ pub fn ui(ui: &mut egui::Ui, doc: &mut Document, fitter: &mut AmbientFitter) -> 
             fit.rmse_as_written, fit.rmse_without, fit.rmse_fitted
         ));
         ui.label(format!(
-            "I_a·k_a adds {:.4} to the mean as written, {:.4} fitted; the indirect light it stands in for \
-             (the paths' less their direct light) is {indirect:.4}",
-            fit.adds_as_written, fit.adds_fitted
+            "I_a·k_a adds {:.4} to the mean as written, {:.4} fitted; without it Whitted's image is {:.4} below \
+             the paths', of which {indirect:.4} is their indirect light (the paths' less their direct light) \
+             and the rest direct light Whitted's model does not compute here (an area emitter's)",
+            fit.adds_as_written, fit.adds_fitted, fit.below_reference
         ));
         if revision < doc.scene_revision {
             ui.weak("(fitted to an earlier edit of the scene)");
