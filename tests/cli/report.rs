@@ -545,6 +545,20 @@ fn report_shards_merge_into_the_one_machine_report_and_missing_ones_are_named() 
         text(&done.stderr)
     );
     assert!(!dir.join("partial/report.csv").exists(), "a refused merge wrote a report");
+    // The list is trimmed as --scenes is (" s1" was a folder that did not exist, and shard 1,
+    // which had run, was called missing), and an --out whose name is not UTF-8 is written (the
+    // report's record of its command line panicked on it).
+    #[cfg(unix)]
+    {
+        use std::os::unix::ffi::OsStrExt;
+        let out = std::ffi::OsStr::from_bytes(b"merged-\xff");
+        let done = glint(
+            &dir,
+            [std::ffi::OsStr::new("report"), "--merge".as_ref(), " s0 , s1,s2 ".as_ref(), "--out".as_ref(), out],
+        );
+        assert!(done.status.success(), "{}", text(&done.stderr));
+        assert!(dir.join(out).join("report.md").is_file(), "{:?}", dir.listing());
+    }
     // A cancelled or failed shard made no folder: named with the missing shards, not "cannot
     // read the folder" (a tester's scancel of one array task).
     let done = merge("s0,never,s2", "absent");

@@ -32,9 +32,11 @@ impl Machine {
             logical_cores: std::thread::available_parallelism().map_or(1, |n| n.get()),
             os: format!("{} {}", std::env::consts::OS, std::env::consts::ARCH),
             date: utc_now(),
-            command: std::env::args()
+            // As text, U+FFFD for what is not UTF-8: `args()` panicked on a file name that is
+            // not, after the whole sweep's plan was said.
+            command: std::env::args_os()
                 .enumerate()
-                .map(|(i, a)| if i == 0 { "glint".to_string() } else { a })
+                .map(|(i, a)| if i == 0 { "glint".to_string() } else { a.to_string_lossy().into_owned() })
                 .collect::<Vec<_>>()
                 .join(" "),
             env: RELEVANT_ENV.iter().filter_map(|k| std::env::var(k).ok().map(|v| format!("{k}={v}"))).collect(),

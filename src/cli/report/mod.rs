@@ -88,30 +88,20 @@ pub struct ReportArgs {
     /// (The sweep's flags would do nothing here: the shards' files say how they were run.)
     #[arg(
         long,
-        value_delimiter = ',',
         value_name = "DIR",
-        value_parser = parse_merge_folder,
+        value_parser = clap::value_parser!(OsString),
         conflicts_with_all = [
             "shard", "scenes", "quick", "width", "height", "reference_spp", "runs", "adapter", "cpu_only",
             "threads", "integrator",
         ]
     )]
-    pub merge: Vec<PathBuf>,
+    pub merge: Vec<OsString>,
     /// Replace output files in --out even if they are read-only
     #[arg(long)]
     pub force: bool,
     /// No progress bar
     #[arg(short, long)]
     pub quiet: bool,
-}
-
-/// One folder of `--merge`'s list; clap's own word for an empty one ("a value is required …
-/// but none was supplied") hides the doubled or stray comma that makes it.
-fn parse_merge_folder(folder: &str) -> Result<PathBuf, String> {
-    if folder.trim().is_empty() {
-        return Err("an empty folder name in the list: a doubled, leading or trailing comma?".into());
-    }
-    Ok(PathBuf::from(folder))
 }
 
 pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
@@ -125,7 +115,7 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
     let names: Vec<OsString> = if args.scenes.is_empty() {
         (if args.quick { QUICK_SCENES } else { DEFAULT_SCENES }).iter().map(OsString::from).collect()
     } else {
-        args.scenes.iter().flat_map(|s| scene_list(s)).collect()
+        args.scenes.iter().flat_map(|s| comma_list(s)).filter(|s| !s.is_empty()).collect()
     };
     if names.is_empty() {
         usage!(
@@ -329,7 +319,7 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
 
 /// `--merge DIR…`: the shards' rows joined into the files a one-machine run writes.
 fn merge(args: &ReportArgs, started: Instant) -> anyhow::Result<()> {
-    let mut files = shard::read_all(&args.merge)?;
+    let mut files = shard::read_all(&merge_folders(&args.merge)?)?;
     let first = &files[0];
     let plan = if first.quick { Plan::quick(first.reference_spp) } else { Plan::full(first.reference_spp) };
     let planned = plan.configs(&first.backends);
@@ -435,21 +425,32 @@ fn write_outputs(
 /// The tables and text a whole report writes beside its plots.
 const TABLES: [&str; 4] = ["report.csv", "specular.csv", "gi.csv", "report.md"];
 
-/// The scenes of one `--scenes` value: split at commas, each trimmed of ASCII white space,
-/// empty ones left out. Split as bytes where names are bytes: a scene file's name need not be
-/// UTF-8 (clap's list of strings refused one without naming the flag).
-fn scene_list(value: &OsStr) -> Vec<OsString> {
+/// The parts of one comma-separated value (`--scenes`, `--merge`), each trimmed of ASCII white
+/// space, empty ones kept (for the caller to judge). Split as bytes where names are bytes: a
+/// file's name need not be UTF-8 (clap's list of strings refused one without naming the flag).
+fn comma_list(value: &OsStr) -> Vec<OsString> {
     #[cfg(unix)]
     {
         use std::os::unix::ffi::OsStrExt;
         let parts = value.as_bytes().split(|&b| b == b',').map(<[u8]>::trim_ascii);
-        parts.filter(|part| !part.is_empty()).map(|part| OsStr::from_bytes(part).to_os_string()).collect()
+        parts.map(|part| OsStr::from_bytes(part).to_os_string()).collect()
     }
     #[cfg(not(unix))]
     {
-        let text = value.to_string_lossy();
-        text.split(',').map(str::trim).filter(|part| !part.is_empty()).map(OsString::from).collect()
+        value.to_string_lossy().split(',').map(|part| OsString::from(part.trim())).collect()
     }
+}
+
+/// `--merge`'s folders, from every value given; an empty one (a doubled, leading or trailing
+/// comma) is an error, whose clap word ("a value is required … but none was supplied") hid
+/// the comma that made it. Trimmed as `--scenes` is: `s0, s1` named " s1", a folder that did
+/// not exist, and a shard that had run was called missing.
+fn merge_folders(values: &[OsString]) -> anyhow::Result<Vec<PathBuf>> {
+    let parts: Vec<OsString> = values.iter().flat_map(|v| comma_list(v)).collect();
+    if parts.iter().any(|p| p.is_empty()) {
+        usage!("--merge: an empty folder name in the list: a doubled, leading or trailing comma?");
+    }
+    Ok(parts.into_iter().map(PathBuf::from).collect())
 }
 
 /// Every file a whole report over scenes named `scenes` writes into `--out`.

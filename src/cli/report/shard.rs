@@ -225,7 +225,12 @@ pub fn read_all(dirs: &[PathBuf]) -> anyhow::Result<Vec<ShardFile>> {
     }
     if found.is_empty() {
         let list: Vec<String> = dirs.iter().map(|d| d.display().to_string()).collect();
-        bail!("no shard-I-of-N.toml in {}: run `glint report --shard I/N --out DIR` first", list.join(", "));
+        let none = if absent.len() == dirs.len() {
+            format!("{} {} not exist", list.join(", "), if dirs.len() == 1 { "does" } else { "do" })
+        } else {
+            format!("no shard-I-of-N.toml in {}", list.join(", "))
+        };
+        bail!("{none}: run `glint report --shard I/N --out DIR` first");
     }
     let absent = match absent.as_slice() {
         [] => String::new(),
