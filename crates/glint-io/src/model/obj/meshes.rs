@@ -63,7 +63,8 @@ pub(super) fn add_meshes(models: &[tobj::Model], bytes: &[u8], names: &[String],
         let textured =
             out.materials.get(&material).is_some_and(|m| m.texture.is_some() || m.emission_texture.is_some());
         if textured && uvs.is_none() {
-            let which = if mesh.texcoords.is_empty() { "its faces give" } else { "only some of its faces give" };
+            let which =
+                if mesh.texcoords.is_empty() { "none of its faces give" } else { "only some of its faces give" };
             out.warnings.push(FieldIssue {
                 field: format!("object `{}`", model.name),
                 problem: format!(

@@ -26,9 +26,16 @@ pub(super) fn add_materials(
     let names = material_names(materials);
     let files = material_files(files, materials.len());
     let mut images = Images::default();
+    // Per file and name, how many materials of that name came before (a file may define one
+    // name twice: its second's texture error named the first's line).
+    let mut before: std::collections::HashMap<(Option<&str>, &str), usize> = std::collections::HashMap::new();
     for ((m, name), file) in materials.iter().zip(&names).zip(&files) {
+        let key = (file.map(|f| f.uri.as_str()), m.name.as_str());
+        let count = before.entry(key).or_default();
+        let nth = *count;
+        *count += 1;
         let mut material = map_material(m, name, &mut out.warnings);
-        let at = Source { obj, mtl: *file, material: name, mtl_name: &m.name };
+        let at = Source { obj, mtl: *file, material: name, mtl_name: &m.name, nth };
         if let Some(map) = m.diffuse_texture.as_deref() {
             material.texture = Some(images.texture(&at, map, "texture", &mut out.warnings)?);
         }

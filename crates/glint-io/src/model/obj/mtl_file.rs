@@ -15,13 +15,17 @@ pub struct MtlFile {
 }
 
 impl MtlFile {
-    /// The line (from 1) of the first `keyword` statement of material `name`.
-    pub fn statement_line(&self, name: &str, keyword: &str) -> Option<usize> {
-        let mut inside = false;
+    /// The line (from 1) of the first `keyword` statement of the `nth` (from 0) material of
+    /// this file named `name` (a file may define one name twice).
+    pub fn statement_line(&self, name: &str, nth: usize, keyword: &str) -> Option<usize> {
+        let (mut inside, mut seen) = (false, 0);
         for (i, line) in self.text.lines().enumerate() {
             let mut words = line.split_whitespace();
             match words.next() {
-                Some("newmtl") => inside = line.trim_start()["newmtl".len()..].trim() == name,
+                Some("newmtl") => {
+                    inside = line.trim_start()["newmtl".len()..].trim() == name && seen == nth;
+                    seen += usize::from(line.trim_start()["newmtl".len()..].trim() == name);
+                }
                 Some(k) if inside && k.eq_ignore_ascii_case(keyword) => return Some(i + 1),
                 _ => {}
             }

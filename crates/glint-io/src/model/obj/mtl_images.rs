@@ -37,6 +37,8 @@ pub(super) struct Source<'a> {
     pub mtl: Option<&'a MtlFile>,
     pub material: &'a str,
     pub mtl_name: &'a str,
+    /// Which of its file's materials of that name it is (from 0).
+    pub nth: usize,
 }
 
 impl Source<'_> {
@@ -90,7 +92,9 @@ impl Images {
         }
         let keyword = if field == "emission_texture" { "map_Ke" } else { "map_Kd" };
         let mut t = found.map_err(|(e, _)| TextureError {
-            statement: at.mtl.and_then(|f| Some(Box::new((f.uri.clone(), f.statement_line(at.mtl_name, keyword)?)))),
+            statement: at
+                .mtl
+                .and_then(|f| Some(Box::new((f.uri.clone(), f.statement_line(at.mtl_name, at.nth, keyword)?)))),
             ..e
         })?;
         if map.clamp {

@@ -389,7 +389,7 @@ fn a_textured_material_on_faces_without_texture_coordinates_is_warned() {
     let with = "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nusemtl t\n";
     for (faces, which) in [
         ("f 1/1 2/2 3/3\n", None),
-        ("f 1 2 3\n", Some("its faces give")),
+        ("f 1 2 3\n", Some("none of its faces give")),
         ("f 1/1 2/2 3/3\nf 1 3 4\n", Some("only some")),
     ] {
         let m = load_obj(&write(dir.path(), "m.obj", &format!("{with}{faces}"))).expect("loads");
@@ -456,6 +456,12 @@ fn a_texture_is_found_beside_its_mtl_then_beside_the_obj() {
     assert!(message.contains("`mats/gone.png`") && message.contains("No such file"), "{message}");
     let at = format!(" ({}:8)", dir.path().join("mats/c.mtl").display());
     assert!(message.contains(&format!("materials.c.texture `mats/gone.png`{at}: ")), "{message}");
+    // A name defined twice in one file: the second's statement, not the first's (a tester's).
+    write(&mats, "d.mtl", "newmtl d\nmap_Kd far.png\nnewmtl d\nKd 1 1 1\n# c\n\nmap_Kd gone.png\n");
+    let obj = write(dir.path(), "d.obj", &format!("mtllib mats/d.mtl\n{QUAD}usemtl d\nf 1 2 3\n"));
+    let message = load_obj(&obj).unwrap_err().to_string();
+    let at = format!("({}:7)", dir.path().join("mats/d.mtl").display());
+    assert!(message.contains("`mats/gone.png`") && message.contains(&at), "{message}");
 }
 
 #[test]
