@@ -397,6 +397,17 @@ fn bad_input_fails_cleanly() {
         &["a folder, not a scene file"],
         &[],
     );
+    // Another 3D format is named as one glint does not read (a PLY was parsed as TOML and
+    // refused for its first line).
+    expect_failure(
+        "scene-is-a-ply",
+        |d| {
+            std::fs::write(d.join("wuson.ply"), "ply\nformat ascii 1.0\nend_header\n").expect("ply");
+            os(&[&"render", &d.join("wuson.ply"), &"-o", &d.join("out.png")])
+        },
+        &["wuson.ply: a .ply file, a format glint does not read", ".gltf, .glb", ".obj"],
+        &["wuson.ply"],
+    );
     expect_failure(
         "spp-zero",
         |d| os(&[&"render", &"whitted", &"-o", &d.join("out.png"), &"--spp", &"0"]),

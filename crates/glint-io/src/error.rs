@@ -32,6 +32,11 @@ pub enum SceneError {
          model files (.gltf, .glb, .obj)"
     )]
     NotAModel { name: String },
+    #[error(
+        "{file}: a .{extension} file, a format glint does not read: scenes are TOML files (.toml), models glTF 2.0 \
+         (.gltf, .glb) or OBJ (.obj); convert it to glTF (Blender, assimp export)"
+    )]
+    Unsupported { file: PathBuf, extension: String },
     /// A model file that did not import (the error names the file and what is wrong).
     #[error(transparent)]
     Model(#[from] crate::model::ModelError),

@@ -139,6 +139,9 @@ pub fn load_scene_with(arg: impl AsRef<OsStr>, options: &LoadOptions) -> Result<
             warnings.extend(scene_warnings.iter().cloned());
             return Ok(LoadedScene { desc, source: path.to_owned(), name, warnings, scene_warnings });
         }
+        if let Some(extension) = ModelFormat::other(path) {
+            return Err(SceneError::Unsupported { file: path.to_owned(), extension });
+        }
         let cap = options.stream_cap.map_or(uri::MAX_RESOURCE_BYTES, |c| c.min(uri::MAX_RESOURCE_BYTES));
         let bytes = read_capped(path, cap).map_err(|error| SceneError::Io { file: path.to_owned(), error })?;
         let text = utf8(&bytes, path)?;

@@ -87,7 +87,20 @@ pub enum ModelFormat {
     Obj,
 }
 
+/// Extensions of 3D formats glint does not import (Assimp's commonest, Blender's, USD's): such a
+/// file was read as a TOML scene, and refused for its first line ("key with no value").
+pub const OTHER_MODEL_FORMATS: [&str; 28] = [
+    "3ds", "3mf", "abc", "ac", "amf", "ase", "b3d", "blend", "bvh", "dae", "dxf", "fbx", "ifc", "lwo", "lws", "md2",
+    "md3", "ms3d", "off", "ply", "smd", "stl", "usd", "usda", "usdc", "usdz", "wrl", "x3d",
+];
+
 impl ModelFormat {
+    /// The extension of `path` (lower case) when it is a 3D format glint does not import.
+    pub fn other(path: &Path) -> Option<String> {
+        let ext = path.extension()?.to_str()?.to_ascii_lowercase();
+        (OTHER_MODEL_FORMATS.contains(&ext.as_str()) || ext == "x").then_some(ext)
+    }
+
     pub fn of(path: &Path) -> Option<Self> {
         let ext = path.extension()?.to_str()?.to_ascii_lowercase();
         match ext.as_str() {
