@@ -799,3 +799,25 @@ fn normals_under_a_tiny_node_scale_are_kept() {
     assert!(normals.iter().all(|n| close(n[2], 1.0)), "{normals:?}");
     assert!(close(m.meshes[0].vertices[2][0], 1e-6), "{:?}", m.meshes[0].vertices);
 }
+
+/// An accessor without a bufferView and without sparse values is zeros (glTF 2.0,
+/// "Accessors"); the gltf crate's validation called its bufferView missing, and a valid file
+/// (a models tester's morph target of zero offsets) was refused. Here the texture coordinates.
+#[test]
+fn an_accessor_without_a_buffer_view_or_sparse_values_is_read_as_zeros() {
+    let dir = TempDir::new("gltf-viewless");
+    let mut f = Fixture::quad();
+    let n = f.json["accessors"].as_array().expect("accessors").len();
+    f.json["accessors"]
+        .as_array_mut()
+        .expect("accessors")
+        .push(json!({ "componentType": 5126, "count": 4, "type": "VEC2" }));
+    f.json["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] = json!(n);
+    // Texture coordinates are read for a textured material.
+    f.json["images"] = json!([{ "uri": "tex.png" }]);
+    f.json["textures"] = json!([{ "source": 0 }]);
+    f.json["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"] = json!({ "index": 0 });
+    glint_test_support::texture::write_png(&dir.join("tex.png"), 1, 1, &[255, 255, 255, 255]);
+    let m = load(&f.write_glb(&dir, "viewless"));
+    assert_eq!(m.meshes[0].uvs.as_deref(), Some(&[[0.0, 0.0]; 4][..]));
+}

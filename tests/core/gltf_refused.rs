@@ -126,6 +126,15 @@ fn broken_files_are_errors_naming_the_json_path() {
             }),
             &["accessors[0] has no bufferView and a count of 134217728", "at most 65536 elements"],
         ),
+        (
+            // Without sparse values too (the gltf crate's validation had refused it otherwise).
+            "viewless-zeros",
+            Box::new(|f| {
+                f.json["accessors"][0].as_object_mut().unwrap().remove("bufferView");
+                f.json["accessors"][0]["count"] = json!(1 << 27);
+            }),
+            &["accessors[0] has no bufferView and a count of 134217728", "at most 65536 elements"],
+        ),
         ("view", Box::new(|f| f.json["bufferViews"][0]["byteLength"] = json!(4096)), &["bufferViews[0]"]),
         (
             "required",

@@ -114,7 +114,26 @@ pub(super) fn parse(bytes: &[u8], file: &Path, warnings: &mut Vec<FieldIssue>) -
         }
     }
     let counts = Counts::of(&json);
-    let document = ::gltf::Document::from_json(json).map_err(|e| parse_error(file, e, Some(&counts)))?;
+    let mut errors = Vec::new();
+    ::gltf::json::validation::Validate::validate(&json, &json, ::gltf::json::Path::new, &mut |path, error| {
+        errors.push((path(), error));
+    });
+    // An accessor without a bufferView is zeros, with or without sparse values (glTF 2.0,
+    // "Accessors"); the gltf crate calls the bufferView of one without sparse missing, and a
+    // valid file (a morph target's zero offsets) was refused. Glint reads it (`accessor.rs`).
+    errors.retain(|(path, error)| {
+        let viewless = path
+            .to_string()
+            .strip_prefix("accessors[")
+            .and_then(|rest| rest.strip_suffix("].bufferView"))
+            .and_then(|i| json.accessors.get(i.parse::<usize>().ok()?))
+            .is_some_and(|a| a.buffer_view.is_none() && a.sparse.is_none());
+        !(viewless && matches!(error, ::gltf::json::validation::Error::Missing))
+    });
+    if !errors.is_empty() {
+        return Err(parse_error(file, ::gltf::Error::Validation(errors), Some(&counts)));
+    }
+    let document = ::gltf::Document::from_json_without_validation(json);
     Ok(::gltf::Gltf { document, blob })
 }
 
