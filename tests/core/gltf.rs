@@ -821,3 +821,22 @@ fn an_accessor_without_a_buffer_view_or_sparse_values_is_read_as_zeros() {
     let m = load(&f.write_glb(&dir, "viewless"));
     assert_eq!(m.meshes[0].uvs.as_deref(), Some(&[[0.0, 0.0]; 4][..]));
 }
+
+/// A scene without `nodes` is valid glTF 2.0 (an empty one), which the gltf crate's parser
+/// refuses: a models tester's SceneWithoutNodes.gltf was "not a valid glTF 2.0 file: missing
+/// field 'nodes'". Another scene of such a file loads, from JSON and from GLB (whose JSON
+/// chunk is rewritten); the empty one is refused as having no nodes.
+#[test]
+fn a_scene_without_nodes_leaves_the_files_other_scenes_readable() {
+    let dir = TempDir::new("gltf-scene-without-nodes");
+    let mut f = Fixture::quad();
+    f.json["scenes"].as_array_mut().expect("scenes").push(json!({ "name": "empty" }));
+    let files = [f.write_glb(&dir, "two"), f.write_gltf(&dir, "two", BufferAt::DataUri)];
+    for path in &files {
+        let m = load(path);
+        assert_eq!(m.meshes.len(), 1, "{}: the quad of scene 0", path.display());
+        let options = ImportOptions { scene_index: Some(1), ..ImportOptions::default() };
+        let err = load_gltf(path, &options).expect_err("scene 1 is empty").to_string();
+        assert!(err.contains("scenes[1].nodes"), "{}: {err}", path.display());
+    }
+}

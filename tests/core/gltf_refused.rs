@@ -142,6 +142,8 @@ fn broken_files_are_errors_naming_the_json_path() {
             &["KHR_draco_mesh_compression", "extensionsRequired[0]"],
         ),
         ("noscene", Box::new(|f| f.json["scenes"] = json!([{ "nodes": [] }])), &["scenes[0].nodes"]),
+        // No `nodes` at all is an empty scene too (the parser had called the file invalid).
+        ("nonodes", Box::new(|f| f.json["scenes"] = json!([{}])), &["scenes[0].nodes", "no nodes"]),
         ("badmaterial", Box::new(|f| f.json["meshes"][0]["primitives"][0]["material"] = json!(7)), &["material"]),
     ];
     for (name, edit, wanted) in cases {

@@ -34,6 +34,10 @@ pub(super) fn parse(bytes: &[u8], file: &Path, warnings: &mut Vec<FieldIssue>) -
     use ::gltf::json::camera::Type as CameraType;
     use ::gltf::json::mesh::Semantic;
     use ::gltf::json::validation::Checked;
+    // A scene without `nodes` is valid glTF 2.0 (an empty scene), which the gltf crate's
+    // parser refuses ("missing field `nodes`", calling the whole file invalid): given `[]`.
+    let patched = with_scene_nodes(bytes);
+    let bytes = patched.as_deref().unwrap_or(bytes);
     let ::gltf::Gltf { document, blob } = ::gltf::Gltf::from_slice_without_validation(bytes)
         .map_err(|e| other_version(bytes, file).unwrap_or_else(|| parse_error(file, e, None)))?;
     let mut json = document.into_json();
@@ -135,6 +139,51 @@ pub(super) fn parse(bytes: &[u8], file: &Path, warnings: &mut Vec<FieldIssue>) -
     }
     let document = ::gltf::Document::from_json_without_validation(json);
     Ok(::gltf::Gltf { document, blob })
+}
+
+/// The file with `"nodes": []` in each scene that has no `nodes`, if one has none (JSON, or
+/// GLB with its JSON chunk rewritten and the rest kept); `None` when none lacks them or the
+/// file cannot be read so (the parser then says why).
+fn with_scene_nodes(bytes: &[u8]) -> Option<Vec<u8>> {
+    let lacks = |json: &serde_json::Value| {
+        json["scenes"].as_array().is_some_and(|s| s.iter().any(|s| s.is_object() && s.get("nodes").is_none()))
+    };
+    let fill = |json: &mut serde_json::Value| {
+        for scene in json["scenes"].as_array_mut().into_iter().flatten() {
+            if let Some(scene) = scene.as_object_mut() {
+                scene.entry("nodes").or_insert_with(|| serde_json::Value::Array(Vec::new()));
+            }
+        }
+    };
+    if bytes.starts_with(b"glTF") {
+        // A 12-byte header, then the JSON chunk's length and type, its bytes, and the rest.
+        let length = u32::from_le_bytes(bytes.get(12..16)?.try_into().ok()?) as usize;
+        let end = 20usize.checked_add(length)?;
+        let mut json: serde_json::Value = serde_json::from_slice(bytes.get(20..end)?).ok()?;
+        if !lacks(&json) {
+            return None;
+        }
+        fill(&mut json);
+        let mut chunk = serde_json::to_vec(&json).ok()?;
+        // Chunks are 4-byte aligned, JSON padded with spaces.
+        chunk.resize(chunk.len().next_multiple_of(4), b' ');
+        let rest = bytes.get(end..)?;
+        let total = u32::try_from(20 + chunk.len() + rest.len()).ok()?;
+        let mut out = Vec::with_capacity(total as usize);
+        out.extend_from_slice(&bytes[..8]);
+        out.extend_from_slice(&total.to_le_bytes());
+        out.extend_from_slice(&u32::try_from(chunk.len()).ok()?.to_le_bytes());
+        out.extend_from_slice(&bytes[16..20]);
+        out.extend_from_slice(&chunk);
+        out.extend_from_slice(rest);
+        return Some(out);
+    }
+    let mut json: serde_json::Value = serde_json::from_slice(bytes).ok()?;
+    if !lacks(&json) {
+        return None;
+    }
+    fill(&mut json);
+    serde_json::to_vec(&json).ok()
 }
 
 /// A file the glTF 2.0 parser refused that says it is another version of glTF (a GLB header's
