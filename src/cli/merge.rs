@@ -323,7 +323,8 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
         let pixel = |x: usize, y: usize| image[y * width as usize + x];
         write_exr_region(&args.output, (width, height), (0, 0), (width, height), pixel, &metadata)?;
     }
-    say!("merged {count} tiles ({} grid) into {width}x{height}: wrote {}", grid.describe(), args.output.display())?;
+    let tiles = if count == 1 { "1 tile".to_string() } else { format!("{count} tiles") };
+    say!("merged {tiles} ({} grid) into {width}x{height}: wrote {}", grid.describe(), args.output.display())?;
     Ok(())
 }
 

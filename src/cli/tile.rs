@@ -47,7 +47,8 @@ fn resolve_index(spec: TileSpec, tiles: u32) -> anyhow::Result<(u32, String)> {
     }
     for (name, scheduler) in INDEX_VARIABLES {
         if let Ok(value) = std::env::var(name) {
-            let i = value.trim().parse::<u32>().with_context(|| {
+            // The parser's own words ("invalid digit found in string") add nothing to these.
+            let i = value.trim().parse::<u32>().map_err(|_| {
                 // A whole number too large is said so, not called no number.
                 let what = if value.trim().bytes().all(|b| b.is_ascii_digit()) && !value.trim().is_empty() {
                     format!("is beyond {}", u32::MAX)
@@ -55,10 +56,12 @@ fn resolve_index(spec: TileSpec, tiles: u32) -> anyhow::Result<(u32, String)> {
                     "is not a whole number".into()
                 };
                 let last = tiles.saturating_sub(1);
-                format!(
-                    "{name}='{value}' ({scheduler}) {what}, so it names no tile: the {tiles} tiles are numbered \
-                     0 to {last} (Slurm: --array=0-{last})"
-                )
+                let range = if tiles == 1 {
+                    "the one tile is numbered 0 (Slurm: --array=0)".to_string()
+                } else {
+                    format!("the {tiles} tiles are numbered 0 to {last} (Slurm: --array=0-{last})")
+                };
+                anyhow::anyhow!("{name}='{value}' ({scheduler}) {what}, so it names no tile: {range}")
             })?;
             return Ok((i, format!("{name} ({scheduler})")));
         }

@@ -70,7 +70,8 @@ impl ExrPixels {
     /// Whether the pixels are the ones the file's digest was made of: `None` for a file
     /// without one (not glint's, or a glint's before digests).
     pub fn digest_holds(&self) -> Option<bool> {
-        self.header.attribute(PIXELS_SHA256).map(|d| d == pixel_digest(self.rgb.iter().copied()))
+        // Hex in either case: a digest rewritten in capitals is the same digest.
+        self.header.attribute(PIXELS_SHA256).map(|d| d.eq_ignore_ascii_case(&pixel_digest(self.rgb.iter().copied())))
     }
 }
 

@@ -532,3 +532,15 @@ fn a_bad_face_index_names_the_index_and_the_range_and_a_huge_word_is_cut() {
     let long = message("l.obj", &format!("v 0 0 0\nv 1 0 0\nv 0 1 0\nv {} 0 0\nf 1 2 3\n", "1".repeat(1_000_000)));
     assert!(long.len() < 2000 && long.contains("l.obj:4: invalid OBJ"), "{} bytes", long.len());
 }
+
+#[test]
+fn files_whose_lines_end_in_bare_carriage_returns_are_read_line_by_line() {
+    // Classic Mac OS line ends: a tester's MTL was one line, its material unread, and the
+    // faces that named it took the default material with only a warning.
+    let dir = tempfile::tempdir().unwrap();
+    write(dir.path(), "m.mtl", "newmtl red\rKd 1 0 0\r");
+    let obj = write(dir.path(), "m.obj", &format!("mtllib m.mtl\r{}usemtl red\rf 1 2 3\r", QUAD.replace('\n', "\r")));
+    let m = load_obj(&obj).expect("loads");
+    assert_eq!(m.materials["red"].kd, Rgb([1.0, 0.0, 0.0]), "{:?}", m.warnings);
+    assert!(m.meshes.iter().any(|mesh| mesh.material == "red"), "{:?}", m.warnings);
+}

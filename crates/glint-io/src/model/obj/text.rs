@@ -12,6 +12,23 @@ use std::borrow::Cow;
 /// UTF-8 material names into mojibake that its MTL no longer matches). Malformed UTF-16 is an
 /// error.
 pub(super) fn decode(bytes: &[u8]) -> Result<(Cow<'_, [u8]>, Option<String>), String> {
+    let (text, how) = decode_encoding(bytes)?;
+    Ok((with_line_feeds(text), how))
+}
+
+/// `text` with each carriage return that ends a line alone (classic Mac OS files) made a line
+/// feed: tobj splits lines at line feeds, and a tester's MTL in bare CRs was one line, its
+/// materials unread.
+fn with_line_feeds(text: Cow<'_, [u8]>) -> Cow<'_, [u8]> {
+    let lone = |i: usize, b: &u8| *b == b'\r' && text.get(i + 1) != Some(&b'\n');
+    if !text.iter().enumerate().any(|(i, b)| lone(i, b)) {
+        return text;
+    }
+    let out: Vec<u8> = text.iter().enumerate().map(|(i, b)| if lone(i, b) { b'\n' } else { *b }).collect();
+    Cow::Owned(out)
+}
+
+fn decode_encoding(bytes: &[u8]) -> Result<(Cow<'_, [u8]>, Option<String>), String> {
     if let Some((encoding, mark)) = encoding_rs::Encoding::for_bom(bytes) {
         let body = &bytes[mark..];
         if encoding == encoding_rs::UTF_8 {
