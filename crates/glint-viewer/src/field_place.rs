@@ -25,6 +25,11 @@ pub struct Place {
 }
 
 impl Place {
+    /// A tab alone, nothing selected: where a field not found in the scene points.
+    fn tab(tab: Tab, name: &str) -> Self {
+        Self { tab, trail: vec![name.to_string()], focus: Focus::Nothing }
+    }
+
     /// The trail as read: "Lights › key › Casts shadows".
     pub fn text(&self) -> String {
         self.trail.join(" › ")
@@ -40,7 +45,7 @@ pub fn place(field: &str, doc: &Document) -> Place {
             trail.extend(light_control(first_part(tail), spot).map(String::from));
             return Place { tab: Tab::Lights, trail, focus: Focus::Light(index) };
         }
-        return Place { tab: Tab::Lights, trail: vec!["Lights".into()], focus: Focus::Nothing };
+        return Place::tab(Tab::Lights, "Lights");
     }
     if let Some(rest) = field.strip_prefix("objects[") {
         if let Some((index, _)) = indexed(rest).filter(|(i, _)| *i < doc.desc.objects.len()) {
@@ -48,7 +53,7 @@ pub fn place(field: &str, doc: &Document) -> Place {
             let trail = vec!["Materials".to_string(), doc.object_label(index)];
             return Place { tab: Tab::Materials, trail, focus: Focus::Object(index) };
         }
-        return Place { tab: Tab::Materials, trail: vec!["Materials".into()], focus: Focus::Nothing };
+        return Place::tab(Tab::Materials, "Materials");
     }
     if let Some(rest) = field.strip_prefix("materials.") {
         // Names may hold dots: the longest name the path starts with.
@@ -64,7 +69,7 @@ pub fn place(field: &str, doc: &Document) -> Place {
             trail.extend(material_control(tail).map(String::from));
             return Place { tab: Tab::Materials, trail, focus: Focus::Material(name.clone()) };
         }
-        return Place { tab: Tab::Materials, trail: vec!["Materials".into()], focus: Focus::Nothing };
+        return Place::tab(Tab::Materials, "Materials");
     }
     let (section, control) = match field.split_once('.') {
         Some(("camera", tail)) => ("Camera", camera_control(first_part(tail))),
@@ -74,11 +79,9 @@ pub fn place(field: &str, doc: &Document) -> Place {
             "camera" => ("Camera", None),
             "world" => ("World", None),
             "render" => ("Render", None),
-            "lights" => return Place { tab: Tab::Lights, trail: vec!["Lights".into()], focus: Focus::Nothing },
-            "materials" => {
-                return Place { tab: Tab::Materials, trail: vec!["Materials".into()], focus: Focus::Nothing };
-            }
-            _ => return Place { tab: Tab::Scene, trail: vec!["Scene".into()], focus: Focus::Nothing },
+            "lights" => return Place::tab(Tab::Lights, "Lights"),
+            "materials" => return Place::tab(Tab::Materials, "Materials"),
+            _ => return Place::tab(Tab::Scene, "Scene"),
         },
     };
     let mut trail = vec!["Scene".to_string(), section.to_string()];

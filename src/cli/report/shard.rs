@@ -223,22 +223,24 @@ pub fn read_all(dirs: &[PathBuf]) -> anyhow::Result<Vec<ShardFile>> {
             found.push((path, file));
         }
     }
+    // "a, b do not exist", "a does not exist".
+    let not_existing = |folders: &[&Path]| {
+        let list: Vec<String> = folders.iter().map(|d| d.display().to_string()).collect();
+        format!("{} {} not exist", list.join(", "), if folders.len() == 1 { "does" } else { "do" })
+    };
     if found.is_empty() {
-        let list: Vec<String> = dirs.iter().map(|d| d.display().to_string()).collect();
         let none = if absent.len() == dirs.len() {
-            format!("{} {} not exist", list.join(", "), if dirs.len() == 1 { "does" } else { "do" })
+            not_existing(&absent)
         } else {
+            let list: Vec<String> = dirs.iter().map(|d| d.display().to_string()).collect();
             format!("no shard-I-of-N.toml in {}", list.join(", "))
         };
         bail!("{none}: run `glint report --shard I/N --out DIR` first");
     }
-    let absent = match absent.as_slice() {
-        [] => String::new(),
-        [one] => format!("; {} does not exist (a shard that failed or never ran writes no folder)", one.display()),
-        many => format!(
-            "; {} do not exist (a shard that failed or never ran writes no folder)",
-            many.iter().map(|d| d.display().to_string()).collect::<Vec<_>>().join(", ")
-        ),
+    let absent = if absent.is_empty() {
+        String::new()
+    } else {
+        format!("; {} (a shard that failed or never ran writes no folder)", not_existing(&absent))
     };
     // Shards are held against the sweep most of them are of (the first's on a tie), so that a
     // stale shard is the one named, whichever file the folders list first (as `glint merge`

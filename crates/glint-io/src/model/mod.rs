@@ -89,20 +89,24 @@ pub enum ModelFormat {
 
 /// Extensions of 3D formats glint does not import (Assimp's commonest, Blender's, USD's): such a
 /// file was read as a TOML scene, and refused for its first line ("key with no value").
-pub const OTHER_MODEL_FORMATS: [&str; 28] = [
+pub const OTHER_MODEL_FORMATS: [&str; 29] = [
     "3ds", "3mf", "abc", "ac", "amf", "ase", "b3d", "blend", "bvh", "dae", "dxf", "fbx", "ifc", "lwo", "lws", "md2",
-    "md3", "ms3d", "off", "ply", "smd", "stl", "usd", "usda", "usdc", "usdz", "wrl", "x3d",
+    "md3", "ms3d", "off", "ply", "smd", "stl", "usd", "usda", "usdc", "usdz", "wrl", "x", "x3d",
 ];
+
+/// The extension of `path` in lower case, if it has one in UTF-8.
+fn extension(path: &Path) -> Option<String> {
+    Some(path.extension()?.to_str()?.to_ascii_lowercase())
+}
 
 impl ModelFormat {
     /// The extension of `path` (lower case) when it is a 3D format glint does not import.
     pub fn other(path: &Path) -> Option<String> {
-        let ext = path.extension()?.to_str()?.to_ascii_lowercase();
-        (OTHER_MODEL_FORMATS.contains(&ext.as_str()) || ext == "x").then_some(ext)
+        extension(path).filter(|ext| OTHER_MODEL_FORMATS.contains(&ext.as_str()))
     }
 
     pub fn of(path: &Path) -> Option<Self> {
-        let ext = path.extension()?.to_str()?.to_ascii_lowercase();
+        let ext = extension(path)?;
         match ext.as_str() {
             "gltf" | "glb" => Some(Self::Gltf),
             "obj" => Some(Self::Obj),

@@ -35,11 +35,14 @@ pub(super) fn parse(bytes: &[u8], file: &Path, warnings: &mut Vec<FieldIssue>) -
     use ::gltf::json::mesh::Semantic;
     use ::gltf::json::validation::Checked;
     // A scene without `nodes` is valid glTF 2.0 (an empty scene), which the gltf crate's
-    // parser refuses ("missing field `nodes`", calling the whole file invalid): given `[]`.
-    let patched = with_scene_nodes(bytes);
-    let bytes = patched.as_deref().unwrap_or(bytes);
-    let ::gltf::Gltf { document, blob } = ::gltf::Gltf::from_slice_without_validation(bytes)
-        .map_err(|e| other_version(bytes, file).unwrap_or_else(|| parse_error(file, e, None)))?;
+    // parser refuses ("missing field `nodes`", calling the whole file invalid): such a file is
+    // parsed again with `[]` given, on that path alone (a second parse of every file's JSON
+    // for a rare case cost each load).
+    let parsed = ::gltf::Gltf::from_slice_without_validation(bytes).or_else(|e| {
+        with_scene_nodes(bytes).map_or(Err(e), |patched| ::gltf::Gltf::from_slice_without_validation(&patched))
+    });
+    let ::gltf::Gltf { document, blob } =
+        parsed.map_err(|e| other_version(bytes, file).unwrap_or_else(|| parse_error(file, e, None)))?;
     let mut json = document.into_json();
     // Glint reads quantised attributes (`accessor::read_vec3`, `read_uv`) and instances
     // (`instancing`) itself; the gltf crate, which would refuse a file for requiring them, is

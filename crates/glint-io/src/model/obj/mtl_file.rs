@@ -20,11 +20,11 @@ impl MtlFile {
     pub fn statement_line(&self, name: &str, nth: usize, keyword: &str) -> Option<usize> {
         let (mut inside, mut seen) = (false, 0);
         for (i, line) in self.text.lines().enumerate() {
-            let mut words = line.split_whitespace();
-            match words.next() {
+            match line.split_whitespace().next() {
                 Some("newmtl") => {
-                    inside = line.trim_start()["newmtl".len()..].trim() == name && seen == nth;
-                    seen += usize::from(line.trim_start()["newmtl".len()..].trim() == name);
+                    let named = line.trim_start()["newmtl".len()..].trim() == name;
+                    inside = named && seen == nth;
+                    seen += usize::from(named);
                 }
                 Some(k) if inside && k.eq_ignore_ascii_case(keyword) => return Some(i + 1),
                 _ => {}

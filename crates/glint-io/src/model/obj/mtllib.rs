@@ -112,12 +112,11 @@ impl<'a> Libraries<'a> {
                 .map_err(|problem| format!("{uri}:{problem}"))?;
             let loaded = tobj::load_mtl_buf(&mut text.as_slice()).map_err(|e| e.to_string())?;
             let folder = uri.replace('\\', "/").rsplit_once('/').map_or(String::new(), |(f, _)| f.to_string());
-            let decoded = text_before_joining.clone();
             self.files.borrow_mut().push(MtlFile {
                 uri: uri.to_string(),
                 folder,
                 materials: loaded.0.len(),
-                text: decoded,
+                text: text_before_joining,
             });
             Ok(loaded)
         });
