@@ -191,7 +191,7 @@ impl ViewerApp {
                 }
                 // A fresh revision number keeps old results of the previous scene from matching.
                 d.revision = self.doc.revision + 1;
-                (d.opened, d.scene_revision) = (d.revision, d.revision);
+                (d.opened, d.scene_revision, d.hits_revision) = (d.revision, d.revision, d.revision);
                 self.doc = d;
                 self.selection = Selection::default();
                 self.renders.probe = None;
@@ -378,7 +378,11 @@ impl ViewerApp {
             Hits::Cpu => renders.cpu_of(rev).map(|c| (c.image.width, Cow::Borrowed(&c.image.first_hit[..]))),
         };
         let name = self.selection.object.map(|i| self.doc.object_label(i));
-        let segments = self.selection.outline(rev, source, hits);
+        // Centres move only with the objects, the camera or the size: not found again on
+        // every revision of a value dragged (each built the scene and traced every pixel on
+        // this thread).
+        let of = if source == Some(Hits::Centres) { self.doc.hits_revision } else { rev };
+        let segments = self.selection.outline(of, source, hits);
         let selected = name.as_deref().map(|n| (n, segments));
         let integrator = self.doc.desc.render.integrator;
         self.layout.central(

@@ -33,6 +33,11 @@ pub struct Document {
     /// The revision of the scene's last edit: those since changed only how it is looked at
     /// (`view_changed`: Light shown, the integrator Whitted vs GI chose).
     pub scene_revision: u64,
+    /// The revision of the last edit that could move a first hit (the objects, the camera or
+    /// the image's size), and those as it left them: the outline traced through pixel centres
+    /// is found again only then, not on every edit of a value dragged.
+    pub hits_revision: u64,
+    hits_of: Option<(CameraDesc, u32, u32)>,
     /// The camera as loaded, for "Reset camera".
     pub initial_camera: CameraDesc,
     /// Validation problems of the current description; while there are any, the last valid
@@ -93,6 +98,8 @@ impl Document {
             revision: 0,
             opened: 0,
             scene_revision: 0,
+            hits_revision: 0,
+            hits_of: None,
             issues: Vec::new(),
             warnings,
             load_warnings,
@@ -125,6 +132,8 @@ impl Document {
             revision: 0,
             opened: 0,
             scene_revision: 0,
+            hits_revision: 0,
+            hits_of: None,
             issues: Vec::new(),
             warnings: Vec::new(),
             load_warnings: Vec::new(),
@@ -161,7 +170,12 @@ impl Document {
         let mut geometry = self.geometry.borrow_mut();
         // Objects and material names as last built: their part of validation stands (a camera
         // drag over a million triangles re-validated every vertex each frame before).
-        let report = match geometry.as_mut().filter(|g| g.built_from(&self.desc)) {
+        let view = Some((self.desc.camera.clone(), self.desc.render.width, self.desc.render.height));
+        let same_objects = geometry.as_ref().is_some_and(|g| g.built_from(&self.desc));
+        if !same_objects || view != self.hits_of {
+            (self.hits_revision, self.hits_of) = (self.revision, view);
+        }
+        let report = match geometry.as_mut().filter(|_| same_objects) {
             Some(g) => {
                 self.geometry_checked.set(Some(self.revision));
                 if g.report_epsilon.to_bits() != self.desc.render.epsilon.to_bits() {
@@ -257,6 +271,29 @@ impl Document {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn first_hits_move_with_the_objects_the_camera_and_the_size_alone() {
+        let mut doc = Document::load("whitted").expect("built-in scene");
+        doc.flat(false).expect("valid");
+        doc.edited();
+        let at = doc.hits_revision;
+        doc.desc.materials.values_mut().for_each(|m| m.kd.0[0] *= 0.5);
+        doc.desc.lights[0].diffuse.0[0] *= 0.5;
+        doc.edited();
+        assert_eq!(doc.hits_revision, at, "a material or light edit moves no first hit");
+        for edit in [
+            (|d: &mut Document| d.desc.camera.fov_y += 1.0) as fn(&mut Document),
+            |d| d.desc.render.width += 2,
+            |d| d.desc.objects.truncate(1),
+        ] {
+            let before = doc.hits_revision;
+            edit(&mut doc);
+            doc.edited();
+            assert!(doc.hits_revision > before && doc.hits_revision == doc.revision);
+            doc.flat(false).expect("valid");
+        }
+    }
 
     #[test]
     fn previews_are_half_size_with_one_sample_and_invalid_scenes_render_nothing() {

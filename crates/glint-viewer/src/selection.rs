@@ -27,7 +27,8 @@ pub struct Selection {
 }
 
 impl Selection {
-    /// The outline of the selected object for `revision`, from the first hits `source` names,
+    /// The outline of the selected object, from the first hits `source` names as of revision
+    /// `revision` (the document's for an image; for centres, the last that could move one),
     /// which `hits` gives (the image's width and its hits) when the outline must be found
     /// again; empty with nothing selected or no hits of the revision.
     pub fn outline<'a>(
