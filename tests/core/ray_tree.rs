@@ -33,7 +33,7 @@ fn check_totals(flat: &FlatScene, step: usize) -> usize {
         for x in (0..flat.header.width).step_by(step) {
             let mut counts = Default::default();
             let (pixel, _) = render_pixel(&ctx, x, y, &mut counts);
-            let tree = probe_tree(flat, x, y, 0);
+            let tree = probe_tree(flat, x, y, 0).expect("valid tags");
             assert_eq!(bits(tree.nodes[0].radiance.expect("root radiance")), bits(pixel), "({x}, {y}) root");
             assert_eq!(bits(tree.radiance_of(0, background)), bits(pixel), "({x}, {y}) recomputed from the tree");
             nodes += tree.nodes.len();
@@ -70,7 +70,7 @@ fn the_tree_recomputes_pixels_under_global_attenuation_bit_for_bit() {
     .flat();
     assert!(flat.header.features & glint_types::layout::feature::GLOBAL_ATTENUATION != 0);
     check_totals(&flat, 1);
-    let tree = probe_tree(&flat, 12, 8, 0);
+    let tree = probe_tree(&flat, 12, 8, 0).expect("valid tags");
     assert!(tree.nodes.iter().any(|n| n.kind != RayKind::Camera && n.hit() && n.attenuation < 1.0), "{tree:#?}");
 }
 
@@ -86,7 +86,7 @@ fn a_glass_sphere_pixel_records_weights_shadows_and_cuts() {
 
 fn check_glass_tree(max_depth: u32) -> RayTree {
     let flat = whitted(160, 120, max_depth, 0.01);
-    let tree: RayTree = probe_tree(&flat, 100, 70, 0);
+    let tree: RayTree = probe_tree(&flat, 100, 70, 0).expect("valid tags");
     let camera = &tree.nodes[0];
     assert_eq!((camera.kind, camera.parent, camera.weight), (RayKind::Camera, None, DVec3::ONE));
     assert!(tree.count(RayKind::Refraction) >= 2 && tree.count(RayKind::Reflection) >= 2, "{}", tree.nodes.len());

@@ -142,7 +142,7 @@ fn gpu_probe_reports_gltf_f_att_and_s_as_the_cpu_does() {
     let pixels = (0..6).flat_map(|j| (0..8).map(move |i| (10 + 20 * i, 10 + 20 * j)));
     let (mut ramp, mut windowed) = (0, 0);
     for (x, y) in pixels {
-        let c = probe_pixel(&flat, x, y, 0);
+        let c = probe_pixel(&flat, x, y, 0).expect("valid tags");
         let (g, status) = tracer.probe_pixel(&flat, x, y).expect("GPU probe");
         assert_eq!(status, 0, "({x}, {y}): status {status}");
         assert_eq!(c.object_id, g.object_id, "({x}, {y}): first hit differs");

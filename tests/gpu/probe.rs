@@ -41,7 +41,7 @@ fn gpu_probe_matches_cpu_probe_term_by_term() {
     for ((name, pixels), spp) in cases.iter().flat_map(|c| [(c, 1), (c, 4)]) {
         let flat = builtin(name, 160, 120, spp, 5);
         for &(x, y) in pixels {
-            let cpu = probe_pixel(&flat, x, y, 0);
+            let cpu = probe_pixel(&flat, x, y, 0).expect("valid tags");
             let (gpu, status) = tracer.probe_pixel(&flat, x, y).expect("GPU probe");
             assert_eq!(status, 0, "{name} ({x}, {y}): status {status}");
             let what = format!("{name} ({x}, {y}) at {spp} spp");

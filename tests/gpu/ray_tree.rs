@@ -29,7 +29,7 @@ fn gpu_tree_matches_cpu_tree_node_by_node_on_whitted() {
     let whitted = [(55, 45), (100, 70), (112, 62), (20, 110), (95, 100), (60, 95)].map(|p| (&flat, p));
     let (mut tir, mut shadowed, mut refracted, mut bailouts) = (0, 0, 0, 0);
     for (flat, (x, y)) in whitted.into_iter().chain([(&slab, (sw / 2, sh / 2))]) {
-        let cpu = probe_tree(flat, x, y, 0);
+        let cpu = probe_tree(flat, x, y, 0).expect("valid tags");
         let gpu = tracer.probe(flat, x, y).expect("GPU probe");
         assert_eq!(gpu.status, 0, "({x}, {y}): status");
         assert!(!gpu.tree.overflow && !gpu.tree.lights_truncated, "({x}, {y})");
@@ -62,7 +62,7 @@ fn gpu_tree_matches_cpu_tree_node_by_node_on_whitted() {
 fn a_perturbed_node_is_the_first_difference() {
     let tracer = gpu_or_skip!();
     let flat = builtin("whitted", 160, 120, 1, 5);
-    let cpu = probe_tree(&flat, 100, 70, 0);
+    let cpu = probe_tree(&flat, 100, 70, 0).expect("valid tags");
     let gpu = tracer.probe(&flat, 100, 70).expect("GPU probe").tree;
     assert_eq!(first_difference(&cpu, &gpu, flat.frame_origin()), None);
     let deep =
@@ -111,7 +111,7 @@ fn crowded_scene() -> glint_core::FlatScene {
 fn a_tree_past_the_buffer_overflows_with_a_flag_and_keeps_its_first_nodes() {
     let tracer = gpu_or_skip!();
     let flat = crowded_scene();
-    let cpu = probe_tree(&flat, 12, 8, 0);
+    let cpu = probe_tree(&flat, 12, 8, 0).expect("valid tags");
     let capacity = glint_types::layout::MAX_PROBE_NODES as usize;
     assert!(cpu.nodes.len() > capacity, "the CPU tree has only {} nodes", cpu.nodes.len());
     let gpu = tracer.probe(&flat, 12, 8).expect("GPU probe");

@@ -40,7 +40,7 @@ fn probe_shows_the_textured_colours_on_both_tracers() {
     let mut textured = 0;
     // The poster, the ball, the checker floor (both colours) and the background.
     for (x, y) in [(60, 40), (90, 50), (120, 58), (20, 110), (70, 112), (5, 5)] {
-        let c = probe_pixel(&flat, x, y, 0);
+        let c = probe_pixel(&flat, x, y, 0).expect("valid tags");
         let (g, status) = tracer.probe_pixel(&flat, x, y).expect("GPU probe");
         assert_eq!(status, 0);
         assert_eq!(c.object_id, g.object_id, "({x}, {y}): first hit differs");

@@ -38,7 +38,7 @@ fn probe_shows_the_vertex_coloured_k_a_and_k_d_on_both_tracers() {
     // Across the quad (red bottom left, green bottom right, blue top right, white top left),
     // the uncoloured triangle, the floor's reflection and the sphere.
     for (x, y) in [(45, 75), (70, 70), (60, 40), (40, 45), (121, 58), (60, 105), (105, 85)] {
-        let c = probe_pixel(&flat, x, y, 0);
+        let c = probe_pixel(&flat, x, y, 0).expect("valid tags");
         let (g, status) = tracer.probe_pixel(&flat, x, y).expect("GPU probe");
         assert_eq!(status, 0);
         assert_eq!(c.object_id, g.object_id, "({x}, {y}): first hit differs");

@@ -72,7 +72,8 @@ fn a_scene_at_map_coordinates_renders_as_at_the_origin_on_both_backends() {
         let gpu_flip = both.gpu.as_ref().map(|g| flip_mean(&both.cpu.image, &g.image));
         // The probe reports its hit point in world space: the untransformed one, moved.
         let (x, y) = (W_PROBE, H_PROBE);
-        let (far, near) = (probe_pixel(&flat, x, y, 0).point, probe_pixel(&base_flat, x, y, 0).point);
+        let probe = |f| probe_pixel(f, x, y, 0).expect("valid tags").point;
+        let (far, near) = (probe(&flat), probe(&base_flat));
         let moved = far - DVec3::from(offset) - near;
         if moved.abs().max_element() > 1e-5 {
             failures.push(format!("{label}: the probe's point {far} is not the untransformed {near} moved"));

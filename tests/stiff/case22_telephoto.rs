@@ -147,7 +147,7 @@ pub(crate) fn check_centre(flat: &FlatScene, eye: DVec3, distance: f64, what: &s
     let b = probe(flat, N / 2, N / 2);
     let err = rel_err(b.t, distance - 1.0);
     assert!(err < T_REL, "{what}: t = {} (relative error {err:e})", b.t);
-    let tree = probe_tree(flat, N / 2, N / 2, 0);
+    let tree = probe_tree(flat, N / 2, N / 2, 0).expect("valid tags");
     let off = (tree.nodes[0].origin - eye).length();
     assert!(off <= T_REL * distance, "{what}: the CPU tree's camera ray leaves {off:e} from the eye");
     tree

@@ -211,7 +211,7 @@ fn a_path_views_outline_follows_each_pixels_centre_not_its_jittered_first_sample
     h.run_steps(3);
     let flat = h.state().doc.flat(false).expect("a valid scene");
     let (w, hgt) = (flat.header.width, flat.header.height);
-    let hits = glint_core::centre_hits(&flat);
+    let hits = glint_core::centre_hits(&flat).expect("valid tags");
     let (mut lo, mut hi) = ((u32::MAX, u32::MAX), (0, 0));
     for (i, _) in hits.iter().enumerate().filter(|(_, id)| **id == glass) {
         let (px, py) = (i as u32 % w, i as u32 / w);

@@ -254,40 +254,36 @@ pub fn render_cpu(
     Ok(CpuRender { image, counts, elapsed, threads })
 }
 
-/// Trace context of a scene made by `FlatScene::build`, whose tags are valid by construction.
-fn built_scene_context(scene: &FlatScene) -> TraceContext<'_> {
-    TraceContext::new(scene).unwrap_or_else(|e| panic!("a flat scene from FlatScene::build has valid tags: {e}"))
-}
-
 /// The breakdown of one camera sample of pixel (x, y) into the terms of the model, its hit
 /// point in world space.
 ///
-/// # Panics
-/// If the scene holds a tag no kind has (never for a scene from `FlatScene::build`).
-pub fn probe_pixel(scene: &FlatScene, x: u32, y: u32, sample: u32) -> Breakdown {
-    let ctx = built_scene_context(scene);
+/// # Errors
+/// If the scene holds a tag no kind has (never for a scene from `FlatScene::build`; its fields
+/// are public, so a scene built by hand may).
+pub fn probe_pixel(scene: &FlatScene, x: u32, y: u32, sample: u32) -> Result<Breakdown, UnknownTag> {
+    let ctx = TraceContext::new(scene)?;
     let mut b = Breakdown::default();
     let mut counts = RayCounts::default();
     render_sample(&ctx, x, y, sample, &mut counts, Some(&mut b), &mut NoTree);
     if b.object_id != glint_types::layout::NO_HIT {
         b.point += scene.frame_origin();
     }
-    b
+    Ok(b)
 }
 
 /// The whole ray tree of one camera sample of pixel (x, y), as the render traced it: node 0
 /// is the camera ray, its `radiance` the sample's radiance, bit for bit; its points in world
 /// space.
 ///
-/// # Panics
+/// # Errors
 /// As `probe_pixel`.
-pub fn probe_tree(scene: &FlatScene, x: u32, y: u32, sample: u32) -> RayTree {
-    let ctx = built_scene_context(scene);
+pub fn probe_tree(scene: &FlatScene, x: u32, y: u32, sample: u32) -> Result<RayTree, UnknownTag> {
+    let ctx = TraceContext::new(scene)?;
     let mut tree = RayTree::default();
     let mut counts = RayCounts::default();
     render_sample(&ctx, x, y, sample, &mut counts, None, &mut tree);
     tree.translate(scene.frame_origin());
-    tree
+    Ok(tree)
 }
 
 /// What the camera ray through the centre of pixel (x, y) hits first: picking in the viewer.
@@ -302,10 +298,10 @@ pub struct Picked {
 
 /// The first hit of the camera ray through the centre of pixel (x, y), `None` for none.
 ///
-/// # Panics
+/// # Errors
 /// As `probe_pixel`.
-pub fn pick(scene: &FlatScene, x: u32, y: u32) -> Option<Picked> {
-    let ctx = built_scene_context(scene);
+pub fn pick(scene: &FlatScene, x: u32, y: u32) -> Result<Option<Picked>, UnknownTag> {
+    let ctx = TraceContext::new(scene)?;
     let h = &scene.header;
     let camera = crate::cpu::camera::camera_ray(&scene.camera, h.width, h.height, x, y, 0.5, 0.5);
     let hit = crate::cpu::walk::closest_hit(
@@ -314,19 +310,21 @@ pub fn pick(scene: &FlatScene, x: u32, y: u32) -> Option<Picked> {
         camera.t_min,
         crate::cpu::FAR,
         &crate::cpu::intersect::Leaving::NONE,
-    )?;
-    let s = crate::cpu::surface::surface_at(&ctx, &camera.ray, &hit);
-    Some(Picked { object: s.object_id, material: s.material })
+    );
+    Ok(hit.map(|hit| {
+        let s = crate::cpu::surface::surface_at(&ctx, &camera.ray, &hit);
+        Picked { object: s.object_id, material: s.material }
+    }))
 }
 
 /// Each pixel's first hit through its centre, row by row: the object's id, `NO_HIT` for none.
 /// A one-sample Whitted render records these; a jittered render's first hits (a path's first
 /// sample) fall anywhere in the pixel, and an outline drawn from them is ragged.
 ///
-/// # Panics
+/// # Errors
 /// As `probe_pixel`.
-pub fn centre_hits(scene: &FlatScene) -> Vec<u32> {
-    let ctx = built_scene_context(scene);
+pub fn centre_hits(scene: &FlatScene) -> Result<Vec<u32>, UnknownTag> {
+    let ctx = TraceContext::new(scene)?;
     let h = &scene.header;
     let hit = |x: u32, y: u32| {
         let camera = crate::cpu::camera::camera_ray(&scene.camera, h.width, h.height, x, y, 0.5, 0.5);
@@ -336,7 +334,7 @@ pub fn centre_hits(scene: &FlatScene) -> Vec<u32> {
             None => glint_types::layout::NO_HIT,
         }
     };
-    (0..h.height).into_par_iter().flat_map_iter(|y| (0..h.width).map(move |x| hit(x, y))).collect()
+    Ok((0..h.height).into_par_iter().flat_map_iter(|y| (0..h.width).map(move |x| hit(x, y))).collect())
 }
 
 #[cfg(test)]
@@ -350,13 +348,33 @@ mod tests {
         let (desc, _) = b.load(None).expect("parses");
         let settings = glint_scene::RenderSettings { width: 24, height: 18, ..desc.render.clone() };
         let scene = FlatScene::build(&desc, &settings);
-        let hits = centre_hits(&scene);
+        let hits = centre_hits(&scene).expect("valid tags");
         assert_eq!(hits.len(), 24 * 18);
         for (i, &id) in hits.iter().enumerate() {
             let (x, y) = ((i % 24) as u32, (i / 24) as u32);
-            assert_eq!(pick(&scene, x, y).map_or(glint_types::layout::NO_HIT, |p| p.object), id, "({x}, {y})");
+            assert_eq!(
+                pick(&scene, x, y).expect("valid tags").map_or(glint_types::layout::NO_HIT, |p| p.object),
+                id,
+                "({x}, {y})"
+            );
         }
         assert!(hits.contains(&glint_types::layout::NO_HIT) && hits.iter().any(|&h| h != glint_types::layout::NO_HIT));
+    }
+
+    #[test]
+    fn a_hand_built_scene_with_an_unknown_tag_is_an_error_to_probe_and_pick_not_a_panic() {
+        let b = builtin("whitted").expect("built-in scene");
+        let (desc, _) = b.load(None).expect("parses");
+        let settings = glint_scene::RenderSettings { width: 8, height: 6, ..desc.render.clone() };
+        let mut scene = FlatScene::build(&desc, &settings);
+        let mut spheres = scene.spheres.to_vec();
+        spheres[0].material = 999;
+        scene.spheres = spheres.into();
+        let expected = UnknownTag { what: "sphere material index", value: 999 };
+        assert_eq!(probe_pixel(&scene, 4, 3, 0).err(), Some(expected));
+        assert_eq!(probe_tree(&scene, 4, 3, 0).err(), Some(expected));
+        assert_eq!(pick(&scene, 4, 3).err(), Some(expected));
+        assert_eq!(centre_hits(&scene).err(), Some(expected));
     }
 
     #[test]

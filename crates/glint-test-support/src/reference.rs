@@ -10,7 +10,7 @@ use crate::scene::w3;
 
 /// The per-term breakdown of the centre sample of pixel (x, y) on the CPU, checked finite.
 pub fn probe(flat: &FlatScene, x: u32, y: u32) -> Breakdown {
-    let b = probe_pixel(flat, x, y, 0);
+    let b = probe_pixel(flat, x, y, 0).expect("a built scene has valid tags");
     assert!(b.total.is_finite(), "probe ({x}, {y}) total {}", b.total);
     b
 }

@@ -245,7 +245,7 @@ impl ViewerApp {
     /// of a model's several, the one of the face clicked.
     pub fn pick(&mut self, x: u32, y: u32) {
         let Some(flat) = self.doc.flat(false) else { return };
-        let picked = glint_core::pick(&flat, x, y);
+        let picked = glint_core::pick(&flat, x, y).inspect_err(|e| log::error!("pick ({x}, {y}): {e}")).ok().flatten();
         self.selection.object = picked.and_then(|p| self.doc.object_index(p.object));
         if let Some(p) = picked.filter(|_| self.selection.object.is_some()) {
             self.selection.material = flat.material_names.get(p.material as usize).cloned();
@@ -373,7 +373,10 @@ impl ViewerApp {
         };
         let (doc, renders) = (&self.doc, &self.renders);
         let hits = |source| match source {
-            Hits::Centres => doc.flat(false).map(|f| (f.header.width, Cow::Owned(glint_core::centre_hits(&f)))),
+            Hits::Centres => doc.flat(false).and_then(|f| {
+                let hits = glint_core::centre_hits(&f).inspect_err(|e| log::error!("outline: {e}")).ok()?;
+                Some((f.header.width, Cow::Owned(hits)))
+            }),
             Hits::Gpu => renders.gpu_of(rev).map(|g| (g.image.width, Cow::Borrowed(&g.image.first_hit[..]))),
             Hits::Cpu => renders.cpu_of(rev).map(|c| (c.image.width, Cow::Borrowed(&c.image.first_hit[..]))),
         };

@@ -10,6 +10,7 @@ use glint_core::path_kinds::{PathProbe, probe_paths};
 use glint_core::probe_terms::{NodeDifference, first_tree_difference as first_node_difference};
 use glint_core::{FlatScene, probe_pixel, probe_tree};
 use glint_gpu::GpuTracer;
+use glint_types::layout::UnknownTag;
 
 use crate::worker::Worker;
 
@@ -51,9 +52,9 @@ impl ProbeState {
         revision: u64,
         gpu: Option<&Arc<GpuTracer>>,
         repaint: &egui::Context,
-    ) -> Self {
-        let cpu = probe_pixel(scene, x, y, 0);
-        let cpu_tree = probe_tree(scene, x, y, 0);
+    ) -> Result<Self, UnknownTag> {
+        let cpu = probe_pixel(scene, x, y, 0)?;
+        let cpu_tree = probe_tree(scene, x, y, 0)?;
         let gpu = match gpu {
             None => GpuProbe::Unavailable("no GPU".into()),
             Some(tracer) => {
@@ -73,7 +74,7 @@ impl ProbeState {
             Some(probe_paths(&ctx, x, y, p.header.spp))
         });
         let origin = scene.frame_origin();
-        Self { x, y, revision, cpu, gpu, cpu_tree, gpu_tree: None, origin, paths }
+        Ok(Self { x, y, revision, cpu, gpu, cpu_tree, gpu_tree: None, origin, paths })
     }
 
     /// Collects the GPU result when it has arrived; true when it did.

@@ -207,7 +207,7 @@ mod tests {
         let (mut desc, _) = glint_io::builtin("whitted").expect("built-in").load(None).expect("loads");
         glint_test_support::scene::translate(&mut desc, at);
         let settings = glint_scene::RenderSettings { width: 160, height: 120, ..desc.render.clone() };
-        let tree = probe_tree(&FlatScene::build(&desc, &settings), 100, 70, 0);
+        let tree = probe_tree(&FlatScene::build(&desc, &settings), 100, 70, 0).expect("valid tags");
         assert!(tree.nodes.len() >= 10, "the glass sphere's tree");
         segments(&tree, &FlatScene::world_camera(&desc, &settings), 10.0)
     }

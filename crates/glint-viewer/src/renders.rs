@@ -243,10 +243,14 @@ impl Renders {
             (w, Some(flat))
         };
         // None when the image shrank past the probed pixel.
-        self.probe = (x < whitted.header.width && y < whitted.header.height).then(|| {
-            let tracer = self.gpu.as_ref().map(|g| &g.tracer);
-            ProbeState::start(&whitted, paths.as_ref(), x, y, doc.revision, tracer, &self.repaint)
-        });
+        if x >= whitted.header.width || y >= whitted.header.height {
+            self.probe = None;
+            return;
+        }
+        let tracer = self.gpu.as_ref().map(|g| &g.tracer);
+        self.probe = ProbeState::start(&whitted, paths.as_ref(), x, y, doc.revision, tracer, &self.repaint)
+            .inspect_err(|e| log::error!("probe ({x}, {y}): {e}"))
+            .ok();
     }
 
     /// The textures of the view (the difference only while it is of `revision`).
