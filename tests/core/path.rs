@@ -486,3 +486,32 @@ fn a_lamp_finer_than_the_robust_offset_is_lit_as_without_an_offset() {
     let (robust, skip) = (mean(glint_scene::EpsilonMode::Robust), mean(glint_scene::EpsilonMode::SkipConvex));
     assert!((robust - skip).abs() < 5e-3 * skip, "robust {robust}, skip_convex {skip}");
 }
+
+#[test]
+fn the_ambient_terms_change_no_path_traced_pixel() {
+    // The viewer keeps a path render running across an ambient edit (applying a fitted I_a)
+    // on this: paths have no ambient term, so I_a, k_a and the lights' I_a,j move no bit.
+    let (mut desc, _) = glint_io::builtin("lights").expect("built-in scene").load(None).expect("parses");
+    desc.render = glint_scene::RenderSettings {
+        width: 24,
+        height: 18,
+        spp: 2,
+        integrator: glint_scene::Integrator::Path,
+        ..desc.render
+    };
+    let before = render(&FlatScene::build(&desc, &desc.render)).image;
+    desc.world.ambient = glint_scene::Rgb([0.7, 0.1, 0.4]);
+    desc.materials.values_mut().for_each(|m| m.ka = glint_scene::Rgb([0.9, 0.3, 0.5]));
+    desc.lights.iter_mut().for_each(|l| l.ambient = glint_scene::Rgb([0.2, 0.8, 0.6]));
+    let after = render(&FlatScene::build(&desc, &desc.render)).image;
+    let bits = |i: &glint_core::image::HdrImage| {
+        i.pixels.iter().flat_map(|p| p.to_array().map(f64::to_bits)).collect::<Vec<_>>()
+    };
+    assert_eq!(bits(&before), bits(&after));
+    assert!(before.mean() > 0.0);
+    // Whitted's tree reads them: the same edit moves its image.
+    desc.render.integrator = glint_scene::Integrator::Whitted;
+    let whitted = render(&FlatScene::build(&desc, &desc.render)).image;
+    desc.world.ambient = glint_scene::Rgb([0.0; 3]);
+    assert_ne!(bits(&whitted), bits(&render(&FlatScene::build(&desc, &desc.render)).image));
+}

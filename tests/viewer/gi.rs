@@ -14,7 +14,7 @@ use crate::support::{choose, settle, viewer, viewer_with};
 
 /// The GPU's path samples a pixel of the current revision (0 before its first render is in).
 fn gpu_samples(h: &Harness<'static, ViewerApp>) -> u32 {
-    let rev = h.state().doc.revision;
+    let rev = h.state().doc.render_revision;
     let a = h.state().renders.gpu.as_ref().and_then(|g| g.accumulation.as_ref());
     a.filter(|a| a.revision == rev).map_or(0, |a| a.samples)
 }
@@ -58,6 +58,19 @@ fn the_gpu_adds_path_samples_until_paused_and_starts_over_on_an_edit() {
     h.get_by_label("Continue").click();
     step_until(&mut h, 120, "the GPU adds samples again", |h| gpu_samples(h) > paused);
 
+    // An ambient edit (applying a fitted I_a) changes no path: the samples go on from where
+    // they were, and the CPU's paths are not rendered again (they were started over).
+    let cpu_of = |h: &Harness<'static, ViewerApp>| {
+        let cpu = &h.state().renders.cpu;
+        cpu.running_revision().or(cpu.finished.as_ref().map(|(r, _)| *r))
+    };
+    let (before, cpu_started) = (gpu_samples(&h), cpu_of(&h));
+    h.state_mut().doc.desc.world.ambient.0[0] += 0.25;
+    h.state_mut().doc.edited();
+    step_until(&mut h, 120, "the GPU adds samples across an ambient edit", |h| gpu_samples(h) > before);
+    assert!(h.state().doc.render_revision < h.state().doc.revision);
+    assert_eq!(cpu_of(&h), cpu_started, "the CPU's paths go on");
+
     // An edit starts over from the new revision's first render.
     h.get_by_label("Pause").click();
     h.state_mut().doc.desc.camera.fov_y += 5.0;
@@ -80,7 +93,7 @@ fn whitted_against_gi_shows_beside_wiped_and_as_a_signed_difference() {
     // Beside Whitted: the paths the difference was taken from (here the GPU's).
     let difference = gi.difference_of(rev).expect("the difference");
     assert!(difference.from_gpu, "a GPU's paths are the difference's");
-    let textures = h.state().renders.textures(rev);
+    let textures = h.state().renders.textures(&h.state().doc);
     assert_eq!(textures.gi.map(|s| s.id), textures.gpu.map(|s| s.id), "the GPU's image is shown beside Whitted");
     // The signed difference is Whitted's image less the paths', pixel for pixel.
     for (i, v) in d.pixels.iter().enumerate() {

@@ -191,7 +191,8 @@ impl ViewerApp {
                 }
                 // A fresh revision number keeps old results of the previous scene from matching.
                 d.revision = self.doc.revision + 1;
-                (d.opened, d.scene_revision, d.hits_revision) = (d.revision, d.revision, d.revision);
+                (d.opened, d.scene_revision, d.hits_revision, d.render_revision) =
+                    (d.revision, d.revision, d.revision, d.revision);
                 self.doc = d;
                 self.selection = Selection::default();
                 self.renders.probe = None;
@@ -214,7 +215,7 @@ impl ViewerApp {
 
     /// Writes one of the views (see `export`), reporting in the UI.
     pub fn save_image(&mut self, path: &Path, view: ExportView) -> Result<(), ViewerError> {
-        let rev = self.doc.revision;
+        let rev = self.doc.render_revision;
         let adapter = self.renders.adapter_name().unwrap_or_default();
         let sources = Sources {
             scene: &self.doc.name,
@@ -256,7 +257,7 @@ impl ViewerApp {
 
     /// Adds the comparison of the current revision to the error history, once.
     fn record_comparison(&mut self) {
-        let rev = self.doc.revision;
+        let rev = self.doc.render_revision;
         let (Some(c), Some(gpu), Some(cpu)) =
             (self.renders.comparison_of(rev), self.renders.gpu_of(rev), self.renders.cpu_of(rev))
         else {
@@ -348,7 +349,7 @@ impl ViewerApp {
     }
 
     fn central(&mut self, ui: &mut Ui) -> Vec<ViewAction> {
-        let textures = self.renders.textures(self.doc.revision);
+        let textures = self.renders.textures(&self.doc);
         let textures = if self.doc.is_valid() { textures } else { textures.held() };
         let size = (self.doc.desc.render.width.max(1), self.doc.desc.render.height.max(1));
         let gizmos = if self.doc.is_valid() {
@@ -362,7 +363,7 @@ impl ViewerApp {
         // The outline of the revision shown (never of another camera): where a render's first
         // hits are jittered (paths, or Whitted's several samples), each pixel's centre traced
         // on the CPU; else the GPU's first hits when read back, else the CPU's.
-        let rev = self.doc.revision;
+        let rev = self.doc.render_revision;
         let render = &self.doc.desc.render;
         let jittered = render.integrator == glint_scene::Integrator::Path || render.spp > 1;
         let source = match (jittered, self.renders.gpu_of(rev), self.renders.cpu_of(rev)) {
@@ -444,11 +445,11 @@ impl eframe::App for ViewerApp {
                 if panels::messages::ui(ui, self.renders.messages(), self.message.as_deref()) {
                     self.message = None;
                 }
-                let mut status = self.renders.status(self.doc.revision, self.doc.opened, self.clock.ui_ms);
+                let mut status = self.renders.status(self.doc.render_revision, self.doc.opened, self.clock.ui_ms);
                 status.held = !self.doc.is_valid();
                 let r = &self.doc.desc.render;
                 if r.integrator == glint_scene::Integrator::Path {
-                    status.samples = Some(self.renders.samples(self.doc.revision, r.spp));
+                    status.samples = Some(self.renders.samples(self.doc.render_revision, r.spp));
                 }
                 panels::status::ui(ui, &status);
             })
@@ -476,7 +477,7 @@ impl eframe::App for ViewerApp {
             let side = panel.show(ui, |ui| {
                 let inputs = panels::SideInputs {
                     probed: self.renders.probe.as_ref(),
-                    compared: self.renders.comparison_of(self.doc.revision),
+                    compared: self.renders.comparison_of(self.doc.render_revision),
                     history: &self.history,
                     axis: &mut self.error_axis,
                     fitter: &mut self.fitter,
@@ -515,7 +516,7 @@ impl eframe::App for ViewerApp {
         }
         let metadata = self.window_metadata();
         let cpu_running = self.renders.cpu.is_running();
-        let gpu_samples = self.renders.samples(self.doc.revision, self.doc.desc.render.spp).gpu;
+        let gpu_samples = self.renders.samples(self.doc.render_revision, self.doc.desc.render.spp).gpu;
         let frame = Frame { settled: self.is_settled(), cpu_running, gpu_renders, gpu_samples, metadata: &metadata };
         self.automation.step(&ctx, &frame);
         if self.renders.needs_polling() || automated_drag || self.automation.paints_every_frame() {

@@ -14,6 +14,7 @@ use glint_scene::{
 
 use crate::error::ViewerError;
 use crate::light_kind::SetAside;
+use crate::render_inputs::RenderInputs;
 
 #[derive(Clone, Debug)]
 pub struct Document {
@@ -38,6 +39,11 @@ pub struct Document {
     /// is found again only then, not on every edit of a value dragged.
     pub hits_revision: u64,
     hits_of: Option<(CameraDesc, u32, u32)>,
+    /// The revision of the last edit that changed what the render under the scene's own
+    /// integrator reads (`RenderInputs`), and that: the renders of the view are keyed by it. In
+    /// path mode an ambient edit leaves the paths as they are, and the GPU's mean goes on.
+    pub render_revision: u64,
+    render_inputs: Option<RenderInputs>,
     /// The camera as loaded, for "Reset camera".
     pub initial_camera: CameraDesc,
     /// Validation problems of the current description; while there are any, the last valid
@@ -100,6 +106,8 @@ impl Document {
             scene_revision: 0,
             hits_revision: 0,
             hits_of: None,
+            render_revision: 0,
+            render_inputs: None,
             issues: Vec::new(),
             warnings,
             load_warnings,
@@ -134,6 +142,8 @@ impl Document {
             scene_revision: 0,
             hits_revision: 0,
             hits_of: None,
+            render_revision: 0,
+            render_inputs: None,
             issues: Vec::new(),
             warnings: Vec::new(),
             load_warnings: Vec::new(),
@@ -174,6 +184,10 @@ impl Document {
         let same_objects = geometry.as_ref().is_some_and(|g| g.built_from(&self.desc));
         if !same_objects || view != self.hits_of {
             (self.hits_revision, self.hits_of) = (self.revision, view);
+        }
+        let inputs = RenderInputs::of(&self.desc, self.omit_kinds);
+        if !same_objects || self.render_inputs.as_ref() != Some(&inputs) {
+            (self.render_revision, self.render_inputs) = (self.revision, Some(inputs));
         }
         let report = match geometry.as_mut().filter(|_| same_objects) {
             Some(g) => {
@@ -292,6 +306,33 @@ mod tests {
             doc.edited();
             assert!(doc.hits_revision > before && doc.hits_revision == doc.revision);
             doc.flat(false).expect("valid");
+        }
+    }
+
+    #[test]
+    fn the_ambient_terms_leave_a_path_render_as_it_is_and_start_a_whitted_one_over() {
+        let mut doc = Document::load("cornell-gi").expect("built-in scene");
+        doc.desc.render.integrator = glint_scene::Integrator::Path;
+        doc.edited();
+        doc.flat(false).expect("valid");
+        let at = doc.render_revision;
+        doc.desc.world.ambient.0[1] += 0.25;
+        doc.desc.materials.values_mut().for_each(|m| m.ka.0[0] += 0.5);
+        doc.desc.lights.iter_mut().for_each(|l| l.ambient.0[2] += 0.5);
+        doc.edited();
+        assert!(doc.revision > at && doc.render_revision == at, "paths read no ambient term");
+        for edit in [
+            (|d: &mut Document| d.desc.world.background.0[0] += 0.5) as fn(&mut Document),
+            |d| d.desc.materials.values_mut().for_each(|m| m.kd.0[0] *= 0.5),
+            |d| d.desc.render.spp += 1,
+            |d| d.omit_kinds ^= 1,
+            |d| d.desc.render.integrator = glint_scene::Integrator::Whitted,
+            |d| d.desc.world.ambient.0[1] += 0.25,
+        ] {
+            let before = doc.render_revision;
+            edit(&mut doc);
+            doc.edited();
+            assert!(doc.render_revision > before && doc.render_revision == doc.revision);
         }
     }
 

@@ -30,6 +30,7 @@ mod panels;
 mod probe;
 mod ray_tree_view;
 mod recent;
+mod render_inputs;
 mod renders;
 mod selection;
 mod signal_watch;

@@ -92,7 +92,7 @@ impl Renders {
             // Nothing renders an invalid revision; only a GPU probe may still be on its way.
             return self.probe_settled();
         }
-        let rev = doc.revision;
+        let rev = doc.render_revision;
         let gpu_failed = self.gpu.as_ref().is_none_or(|g| g.error.is_some());
         let gpu_done =
             self.gpu.as_ref().is_none_or(|g| g.error.is_some() || (self.gpu_of(rev).is_some() && !g.is_busy()));
@@ -138,20 +138,25 @@ impl Renders {
     /// difference from the paths (the GPU's mean over its batches, else the CPU's) as they
     /// converge.
     pub fn schedule_gi(&mut self, doc: &Document) {
-        let rev = doc.revision;
+        // Whitted's image reads the ambient terms, the paths do not (`Document::render_revision`).
+        let (rev, paths) = (doc.revision, doc.render_revision);
         // Built only when its render is to start, not every frame while it runs.
         let scene = if self.gi.needs_whitted(rev) { doc.flat_with(&whitted_settings(doc)) } else { None };
         // By field, as in `schedule`: `gi` is borrowed mutably beside the images.
-        let gpu = self.gpu.as_ref().and_then(|g| g.latest.as_ref()).filter(|l| l.revision == rev);
-        let cpu =
-            self.cpu.finished.as_ref().filter(|(r, _)| *r == rev).map(|(_, f)| (&f.image, doc.desc.render.spp, false));
+        let gpu = self.gpu.as_ref().and_then(|g| g.latest.as_ref()).filter(|l| l.revision == paths);
+        let cpu = self
+            .cpu
+            .finished
+            .as_ref()
+            .filter(|(r, _)| *r == paths)
+            .map(|(_, f)| (&f.image, doc.desc.render.spp, false));
         self.gi.request(rev, scene, gpu.map(|l| (&l.image, l.samples, true)).or(cpu));
     }
 
     /// Starts whatever the document's revision still needs; `interacting` (a value or the
     /// view being dragged) asks for GPU previews only.
     pub fn schedule(&mut self, doc: &Document, interacting: bool) {
-        let rev = doc.revision;
+        let rev = doc.render_revision;
         if self.cpu_revision != Some(rev) && self.cpu.running_revision() != Some(rev) {
             // The next edit cancels the reference at once; it restarts when the edit is done.
             self.cpu.cancel();
@@ -216,7 +221,9 @@ impl Renders {
             self.cpu_revision = Some(rev);
         }
         // The probed pixel follows the edits (not while dragging: a probe per preview is waste).
-        if !interacting && let Some((x, y)) = self.probe.as_ref().filter(|p| p.revision != rev).map(|p| (p.x, p.y)) {
+        if !interacting
+            && let Some((x, y)) = self.probe.as_ref().filter(|p| p.revision != doc.revision).map(|p| (p.x, p.y))
+        {
             self.start_probe(doc, x, y);
         }
         // By field, not through `cpu_of`/`gpu_of`: the comparison is borrowed mutably beside them.
@@ -253,53 +260,54 @@ impl Renders {
             .ok();
     }
 
-    /// The textures of the view (the difference only while it is of `revision`).
-    pub fn textures(&self, revision: u64) -> Textures<'_> {
+    /// The textures of the view of `doc` (each difference only while it is of the revision).
+    pub fn textures(&self, doc: &Document) -> Textures<'_> {
+        // The renders are of `render_revision`, Whitted's side of the GI view of every edit.
+        let (render, edit) = (doc.render_revision, doc.revision);
         Textures {
-            gpu: self.textures_gpu(revision),
+            gpu: self.textures_gpu(render),
             cpu: self.cpu_texture.id().map(|id| Shown {
                 id,
                 size: self.cpu_texture.size,
-                stale: self.cpu_of(revision).is_none(),
+                stale: self.cpu_of(render).is_none(),
                 held: false,
             }),
-            diff: self.diff_texture.id().filter(|_| self.comparison_of(revision).is_some()),
+            diff: self.diff_texture.id().filter(|_| self.comparison_of(render).is_some()),
             gpu_incomplete: self.gpu.as_ref().and_then(|g| g.warning.as_deref()),
-            diffs: self.comparison_of(revision).map(|c| &c.diffs),
+            diffs: self.comparison_of(render).map(|c| &c.diffs),
             whitted: self.gi.whitted_texture.id().map(|id| Shown {
                 id,
                 size: self.gi.whitted_texture.size,
-                stale: self.gi.whitted_of(revision).is_none(),
+                stale: self.gi.whitted_of(edit).is_none(),
                 held: false,
             }),
-            gi: self.gi_texture(revision),
-            gi_diff: self.gi.diff_texture.id().filter(|_| self.gi.difference_of(revision).is_some()),
-            gi_signed: self.gi.difference_of(revision).map(|d| &d.diff),
-            gi_samples: self.gi.difference_of(revision).map(|d| d.samples),
+            gi: self.gi_texture(render, edit),
+            gi_diff: self.gi.diff_texture.id().filter(|_| self.gi.difference_of(edit).is_some()),
+            gi_signed: self.gi.difference_of(edit).map(|d| &d.diff),
+            gi_samples: self.gi.difference_of(edit).map(|d| d.samples),
         }
     }
 
-    /// The paths beside Whitted's: those the difference of `revision` was taken from (the
+    /// The paths beside Whitted's: those the difference of revision `edit` was taken from (the
     /// GPU's, else the CPU's; `schedule_gi`), and until there is one, the GPU's full render of
-    /// it, else the CPU's, else whatever the GPU shows (a preview, an earlier revision). The
-    /// GPU's half-size preview stood beside Whitted while the difference was of the CPU's 64
-    /// samples.
-    fn gi_texture(&self, revision: u64) -> Option<Shown> {
+    /// `render`, else the CPU's, else whatever the GPU shows (a preview, an earlier revision).
+    /// The GPU's half-size preview stood beside Whitted while the difference was of the CPU's
+    /// 64 samples.
+    fn gi_texture(&self, render: u64, edit: u64) -> Option<Shown> {
         let cpu = self.cpu_texture.id().map(|id| Shown {
             id,
             size: self.cpu_texture.size,
-            stale: self.cpu_of(revision).is_none(),
+            stale: self.cpu_of(render).is_none(),
             held: false,
         });
-        let from_gpu = match self.gi.difference_of(revision) {
+        let from_gpu = match self.gi.difference_of(edit) {
             Some(d) => d.from_gpu,
             None => {
-                let gpu_full =
-                    self.gpu.as_ref().and_then(|g| g.latest.as_ref()).is_some_and(|l| l.revision == revision);
+                let gpu_full = self.gpu.as_ref().and_then(|g| g.latest.as_ref()).is_some_and(|l| l.revision == render);
                 gpu_full || cpu.is_none_or(|c| c.stale)
             }
         };
-        if from_gpu { self.textures_gpu(revision).or(cpu) } else { cpu.or_else(|| self.textures_gpu(revision)) }
+        if from_gpu { self.textures_gpu(render).or(cpu) } else { cpu.or_else(|| self.textures_gpu(render)) }
     }
 
     fn textures_gpu(&self, revision: u64) -> Option<Shown> {

@@ -1,0 +1,39 @@
+//! What the render of a scene under its own integrator reads, its objects aside: an edit that
+//! leaves it the same leaves that render as it is. Paths have no ambient term (I_a, k_a and
+//! the lights' I_a,j stand in for the indirect light they compute: `glint_core::cpu::path`),
+//! so applying a fitted I_a in the Whitted vs GI view renders Whitted's side again and lets
+//! the paths go on converging, where it started them over.
+
+use std::collections::BTreeMap;
+
+use glint_scene::{CameraDesc, LightDesc, MaterialDesc, RenderSettings, Rgb, SceneDesc, WorldDesc};
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct RenderInputs {
+    render: RenderSettings,
+    camera: CameraDesc,
+    world: WorldDesc,
+    materials: BTreeMap<String, MaterialDesc>,
+    lights: Vec<LightDesc>,
+    omit_kinds: u32,
+}
+
+impl RenderInputs {
+    /// What the render of `desc` (the kinds of path-traced light in `omit_kinds` left out) reads.
+    pub fn of(desc: &SceneDesc, omit_kinds: u32) -> Self {
+        let mut inputs = Self {
+            render: desc.render.clone(),
+            camera: desc.camera.clone(),
+            world: desc.world.clone(),
+            materials: desc.materials.clone(),
+            lights: desc.lights.clone(),
+            omit_kinds,
+        };
+        if !desc.render.integrator.is_whitted() {
+            inputs.world.ambient = Rgb::default();
+            inputs.materials.values_mut().for_each(|m| m.ka = Rgb::default());
+            inputs.lights.iter_mut().for_each(|l| l.ambient = Rgb::default());
+        }
+        inputs
+    }
+}
