@@ -671,6 +671,12 @@ fn report_shards_merge_into_the_one_machine_report_and_missing_ones_are_named() 
         // Summed for rays per second: it overflowed (a panic in debug builds, wrapped in release).
         ("counts.camera", toml::Value::Integer(i64::MAX), "rows[0].counts: sum to more than"),
         ("errors.psnr", toml::Value::Float(f64::NEG_INFINITY), "rows[0].errors.psnr: is -inf, which no image pair has"),
+        // A fraction: 1e300 merged into a percentage of 303 digits (a tester).
+        (
+            "errors.first_hit_mismatch",
+            toml::Value::Float(1e300),
+            "rows[0].errors.first_hit_mismatch: 1e300 is not a fraction in [0, 1]",
+        ),
     ] {
         let done = edited(&|s| set_first_row(s, key, value.clone()), "damaged");
         let stderr = text(&done.stderr);
@@ -685,7 +691,37 @@ fn report_shards_merge_into_the_one_machine_report_and_missing_ones_are_named() 
     run.insert("nanos".into(), toml::Value::Integer(0));
     let week_long = toml::Value::Array(vec![toml::Value::Table(run)]);
     type Edit<'a> = &'a dyn Fn(&mut toml::Table);
-    let cases: [(Edit, &str); 4] = [
+    let first_gi = |s: &mut toml::Table| -> toml::Table {
+        let gi = s["gi"].as_array_mut().expect("shard 1 measures a scene's Whitted against GI");
+        gi[0].as_table_mut().expect("a table").clone()
+    };
+    let set_first_gi = |s: &mut toml::Table, gi: toml::Table| s["gi"].as_array_mut().expect("gi")[0] = gi.into();
+    let cases: [(Edit, &str); 7] = [
+        // Written into the report as they are: "fitted (NaN, 1.000, 1.000)" (a tester).
+        (
+            &|s| {
+                let mut gi = first_gi(s);
+                gi["fitted"].as_array_mut().expect("fitted")[0] = toml::Value::Float(f64::NAN);
+                set_first_gi(s, gi);
+            },
+            "gi[0].fitted[0]: NaN is not a finite number ≥ 0",
+        ),
+        (
+            &|s| {
+                let mut gi = first_gi(s);
+                gi["written"].as_array_mut().expect("written")[2] = toml::Value::Float(f64::INFINITY);
+                set_first_gi(s, gi);
+            },
+            "gi[0].written[2]: inf is not a finite number ≥ 0",
+        ),
+        (
+            &|s| {
+                let mut gi = first_gi(s);
+                gi["kinds"]["share"].as_array_mut().expect("share")[1] = toml::Value::Float(1.5);
+                set_first_gi(s, gi);
+            },
+            "gi[0].kinds.share[1]: 1.5 is not a fraction in [0, 1]",
+        ),
         (
             &|s| set_first_row(s, "times", week_long.clone()),
             "rows[0].times: a run of 9223372036854775807 s, longer than a week",

@@ -17,7 +17,8 @@ const MAX_RAYS: u64 = 1 << 60;
 impl ShardFile {
     /// What the merge relies on and a shard always writes: a shard index below the count, the
     /// sweep's scenes only, each row its own shard's, at least one timed run a row, and every
-    /// error a finite, non-negative number (a PSNR may be infinite: identical images). The
+    /// error and figure a finite, non-negative number, a share at most 1 (a PSNR may be
+    /// infinite: identical images). The
     /// first field that is not, as `field: problem`.
     pub(super) fn check(&self) -> Result<(), String> {
         if self.shard >= self.count {
@@ -44,8 +45,22 @@ impl ShardFile {
             None => Err(format!("{at}.shard: missing; this file's rows are shard {}'s", self.shard)),
         };
         let number = |at: String, v: f64| {
-            if v.is_finite() && v >= 0.0 { Ok(()) } else { Err(format!("{at}: {v} is not a finite number ≥ 0")) }
+            if v.is_finite() && v >= 0.0 {
+                Ok(())
+            } else {
+                Err(format!("{at}: {} is not a finite number ≥ 0", format_number(v)))
+            }
         };
+        // A share of pixels or of light: 1e300 merged into a 303-digit percentage (a tester).
+        let fraction = |at: String, v: f64| {
+            if (0.0..=1.0).contains(&v) {
+                Ok(())
+            } else {
+                Err(format!("{at}: {} is not a fraction in [0, 1]", format_number(v)))
+            }
+        };
+        let numbers =
+            |at: String, vs: &[f64]| vs.iter().enumerate().try_for_each(|(k, &v)| number(format!("{at}[{k}]"), v));
         // A timed run no render of a sweep takes: a week's seconds (u64::MAX seconds was merged
         // into a median of 1.8e22 ms).
         let times = |at: &str, times: &[Duration]| {
@@ -77,11 +92,12 @@ impl ShardFile {
                     ("mean_abs", e.mean_abs),
                     ("rmse", e.rmse),
                     ("rel_mse", e.rel_mse),
-                    ("flip_mean", e.flip_mean),
-                    ("first_hit_mismatch", e.first_hit_mismatch),
                     ("p99_abs_same_hit", e.p99_abs_same_hit),
                 ] {
                     number(format!("{at}.errors.{name}"), v)?;
+                }
+                for (name, v) in [("flip_mean", e.flip_mean), ("first_hit_mismatch", e.first_hit_mismatch)] {
+                    fraction(format!("{at}.errors.{name}"), v)?;
                 }
                 // +inf: identical images; −inf would need an infinite error, which finite images
                 // (non-finite ones are refused) never have.
@@ -119,8 +135,34 @@ impl ShardFile {
             scene_of(format!("{at}.scene"), &gi.scene)?;
             shard_of(at.clone(), gi.shard)?;
             number(format!("{at}.reference_noise"), gi.reference_noise)?;
+            // Written into the report as they are: NaN merged into "fitted (NaN, 1.000, 1.000)".
+            numbers(format!("{at}.fitted"), &gi.fitted)?;
+            numbers(format!("{at}.written"), &gi.written)?;
+            let k = &gi.kinds;
+            for (name, v) in [("share", &k.share), ("rms", &k.rms)] {
+                numbers(format!("{at}.kinds.{name}"), v)?;
+            }
+            k.share.iter().enumerate().try_for_each(|(n, &v)| fraction(format!("{at}.kinds.share[{n}]"), v))?;
+            for (name, v) in [
+                ("direct_rmse", k.direct_rmse),
+                ("paths_mean", k.paths_mean),
+                ("ambient_rmse", k.ambient_rmse),
+                ("whitted_rmse", k.whitted_rmse),
+            ] {
+                number(format!("{at}.kinds.{name}"), v)?;
+            }
+            // Over black paths' MIN_POSITIVE a large ambient's share is rightly infinite.
+            if k.ambient_share.is_nan() || k.ambient_share < 0.0 {
+                return Err(format!(
+                    "{at}.kinds.ambient_share: {} is not a number ≥ 0",
+                    format_number(k.ambient_share)
+                ));
+            }
             for (j, row) in gi.rows.iter().enumerate() {
                 number(format!("{at}.rows[{j}].rmse"), row.rmse)?;
+                if let Some(rgb) = &row.ambient_rgb {
+                    numbers(format!("{at}.rows[{j}].ambient_rgb"), rgb)?;
+                }
                 if row.median.as_secs() > MAX_RUN_SECS {
                     return Err(format!("{at}.rows[{j}].median: {} s, longer than a week", row.median.as_secs()));
                 }
