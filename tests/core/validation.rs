@@ -206,6 +206,10 @@ fn an_orthographic_camera_needs_a_view_height_in_range_and_a_perspective_one_ign
         warned.len() == 1 && warned[0].starts_with("camera.view_height: is used by an orthographic camera only"),
         "{warned:?}"
     );
+    // Ignored by a perspective camera, but nan is refused everywhere (a tester's rendered).
+    for bad in ["nan", "-1.0", "1e10"] {
+        expect_invalid(&orthographic(&format!("view_height = {bad}")), "camera.view_height", &["[1e-9, 1e9]"]);
+    }
     let err = parse_scene(&orthographic("projection = \"fisheye\""), Path::new(FILE)).unwrap_err().to_string();
     assert!(err.contains("unknown variant `fisheye`, expected `perspective` or `orthographic`"), "{err}");
 }

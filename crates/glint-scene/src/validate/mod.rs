@@ -244,10 +244,16 @@ fn validate_camera(scene: &SceneDesc, r: &mut Report) {
 fn validate_view_height(c: &CameraDesc, r: &mut Report) {
     match (c.projection, c.view_height) {
         (Projection::Perspective, None) => {}
-        (Projection::Perspective, Some(_)) => r.warn(
-            "camera.view_height",
-            "is used by an orthographic camera only (camera.projection = \"orthographic\"); ignored",
-        ),
+        // Checked as where it is read: nan, inf and values out of range are refused everywhere,
+        // and the viewer's projection switch reads it (a tester's nan rendered with a warning).
+        (Projection::Perspective, Some(h)) => {
+            if r.finite_in("camera.view_height", h, ranges::VIEW_HEIGHT) {
+                r.warn(
+                    "camera.view_height",
+                    "is used by an orthographic camera only (camera.projection = \"orthographic\"); ignored",
+                );
+            }
+        }
         (Projection::Orthographic, Some(h)) => {
             r.finite_in("camera.view_height", h, ranges::VIEW_HEIGHT);
         }
