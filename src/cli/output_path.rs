@@ -149,7 +149,14 @@ fn check_format_and_folder(path: &Path) -> anyhow::Result<()> {
         _ => usage!("{}: unsupported output format; use a .png or .exr file name", path.display()),
     }
     if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty() && !d.is_dir()) {
-        bail!("{}: the output folder {} does not exist", path.display(), dir.display());
+        // What is there, if anything: a file in its place was said not to exist (a tester).
+        let what = match std::fs::metadata(dir) {
+            Ok(_) => "is a file, not a folder",
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => "does not exist",
+            Err(_) if dir.ancestors().skip(1).any(Path::is_file) => "is inside a file, not a folder",
+            Err(_) => "cannot be read",
+        };
+        bail!("{}: the output folder {} {what}", path.display(), dir.display());
     }
     Ok(())
 }

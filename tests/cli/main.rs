@@ -444,6 +444,25 @@ fn bad_input_fails_cleanly() {
         &["missing", "does not exist"],
         &[],
     );
+    // A file where the folder should be was said not to exist (a tester).
+    expect_failure(
+        "file-as-folder",
+        |d| {
+            std::fs::write(d.join("notes"), "a file").unwrap();
+            os(&[&"render", &"whitted", &"-o", &d.join("notes/out.png"), &"--width", &"8", &"--height", &"8"])
+        },
+        &["notes/out.png: the output folder", "notes is a file, not a folder"],
+        &["notes"],
+    );
+    expect_failure(
+        "inside-a-file",
+        |d| {
+            std::fs::write(d.join("notes"), "a file").unwrap();
+            os(&[&"render", &"whitted", &"-o", &d.join("notes/deeper/out.png"), &"--width", &"8", &"--height", &"8"])
+        },
+        &["notes/deeper is inside a file, not a folder"],
+        &["notes"],
+    );
     expect_failure(
         "invalid-scene",
         |d| {
