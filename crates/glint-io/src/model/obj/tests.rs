@@ -69,6 +69,24 @@ fn a_word_that_is_no_finite_number_is_reported_at_its_line_before_any_transform(
 }
 
 #[test]
+fn a_line_with_too_few_numbers_says_what_it_needs() {
+    // tobj said only "position parse error" for `v 0 0` (a tester).
+    let dir = tempfile::tempdir().unwrap();
+    for (text, expect) in [
+        (
+            "v 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
+            ":1: invalid OBJ (`v 0 0`: a vertex position needs three numbers x y z (then optionally w, or r g b); 2 given)",
+        ),
+        ("v 0 0 0\nvt 0.5 # v\n", ":2: invalid OBJ (`vt 0.5`: a texture coordinate needs two numbers u v; 1 given)"),
+        ("v 0 0 0\nvn 0 1\n", ":2: invalid OBJ (`vn 0 1`: a normal needs three numbers x y z; 2 given)"),
+    ] {
+        let obj = write(dir.path(), "few.obj", text);
+        let err = load_obj(&obj).expect_err("too few numbers are refused").to_string();
+        assert!(err.contains(expect), "{err}");
+    }
+}
+
+#[test]
 fn mtl_fields_map_onto_the_model_by_illum() {
     let dir = tempfile::tempdir().unwrap();
     write(

@@ -145,8 +145,9 @@ pub(super) fn without_partial_vertex_colours(text: &[u8]) -> (Cow<'_, [u8]>, Opt
     (out, Some((coloured, all)))
 }
 
-/// The first `v`, `vt` or `vn` line (1-based) holding a word that is not a number (tobj says
-/// only "position parse error", and drops a colour it cannot read) or a number that is not a
+/// The first `v`, `vt` or `vn` line (1-based) with too few numbers or holding a word that is
+/// not a number (tobj says only "position parse error", and drops a colour it cannot read) or
+/// a number that is not a
 /// finite f32 (`nan`, `inf`, or a decimal beyond f32's range, which the GPU tracer cannot hold
 /// even after rebasing), and what is wrong with it.
 pub(super) fn bad_number(bytes: &[u8]) -> Option<(usize, String)> {
@@ -174,6 +175,16 @@ pub(super) fn bad_number(bytes: &[u8]) -> Option<(usize, String)> {
             Some("vn") => &[("normal", "x"), ("normal", "y"), ("normal", "z")],
             _ => continue,
         };
+        // Too few numbers: tobj said only "position parse error" for `v 0 0` (a tester).
+        let (what, needs) = match components[0].0 {
+            "vertex position" => ("a vertex position", "three numbers x y z (then optionally w, or r g b)"),
+            "texture coordinate" => ("a texture coordinate", "two numbers u v"),
+            _ => ("a normal", "three numbers x y z"),
+        };
+        let given = words.clone().count();
+        if given < if what == "a texture coordinate" { 2 } else { 3 } {
+            return Some((n + 1, format!("`{}`: {what} needs {needs}; {given} given", line.trim())));
+        }
         // A `v` line's words beyond the six it may have are tobj's to refuse.
         for (k, word) in words.enumerate().take(components.len()) {
             let (what, name) = components[k];
