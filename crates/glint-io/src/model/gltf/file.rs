@@ -44,6 +44,14 @@ pub(super) fn parse(bytes: &[u8], file: &Path, warnings: &mut Vec<FieldIssue>) -
     let ::gltf::Gltf { document, blob } =
         parsed.map_err(|e| other_version(bytes, file).unwrap_or_else(|| parse_error(file, e, None)))?;
     let mut json = document.into_json();
+    // A 1.0 file with no collection of 1.0's form parses as an empty 2.0 one: refused by its
+    // version, not as a file with no scene (a tester's `{"asset":{"version":"1.0"}}`). A later
+    // version that reads as 2.0 is read, with a warning (`asset.version`).
+    let major = json.asset.version.split('.').next().and_then(|m| m.trim().parse::<u32>().ok());
+    if major.is_some_and(|m| m < 2) {
+        let version = format!("`{}`", json.asset.version);
+        return Err(GltfError::Version { file: file.to_owned(), where_: "asset.version", version });
+    }
     // Glint reads quantised attributes (`accessor::read_vec3`, `read_uv`) and instances
     // (`instancing`) itself; the gltf crate, which would refuse a file for requiring them, is
     // not told.
@@ -205,7 +213,12 @@ fn other_version(bytes: &[u8], file: &Path) -> Option<GltfError> {
         serde_json::Value::Number(v) => v.to_string(),
         _ => return None,
     };
-    if version == "2" || version.starts_with("2.") { None } else { error("asset.version", format!("`{version}`")) }
+    if is_version_2(&version) { None } else { error("asset.version", format!("`{version}`")) }
+}
+
+/// Whether an `asset.version` is glTF 2's (`2.0`, a later 2.x, or `2`).
+fn is_version_2(version: &str) -> bool {
+    version == "2" || version.starts_with("2.")
 }
 
 /// How many items each collection of the file holds: an index out of bounds says how many

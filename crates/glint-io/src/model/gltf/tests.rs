@@ -8,6 +8,8 @@ fn a_gltf_1_file_is_refused_naming_its_version() {
     for (text, expected) in [
         (r#"{"asset": {"version": "1.0"}, "accessors": {"a": {}}}"#, "asset.version is `1.0`"),
         (r#"{"asset": {"version": 1}, "meshes": {"m": {}}}"#, "asset.version is `1`"),
+        // Nothing of 1.0's form: parsed as an empty 2.0 file, said to have no scene (a tester).
+        (r#"{"asset": {"version": "1.0"}}"#, "asset.version is `1.0`"),
     ] {
         let message = parse(text.as_bytes(), file, &mut Vec::new()).unwrap_err().to_string();
         assert!(message.contains(expected) && message.contains("glTF 2.0 only"), "{message}");
