@@ -589,6 +589,26 @@ fn a_light_shut_in_an_opaque_sphere_and_a_slab_of_same_facing_planes_warn() {
         );
     }
     assert!(expect_valid(&twice("1.001"), "a sphere inside another").is_empty());
+    // Far from the origin, two spheres 0.003 apart are two in the stored frame (relative to the
+    // storage origin), though one in world f32, whose step is 0.0078 at 1e5 (a tester).
+    let far = |dx: f64| {
+        let sphere = |x: f64| {
+            format!("[[objects]]\ntype = \"sphere\"\ncenter = [{x}, 0.0, 0.0]\nradius = 0.001\nmaterial = \"m\"\n")
+        };
+        format!(
+            "[camera]\nposition = [100000.0, 0.0, -0.02]\nlook_at = [100000.0, 0.0, 0.0]\n[materials.m]\nkd = 0.8\n\
+             [render]\nepsilon = 1e-9\n[[lights]]\ntype = \"directional\"\ndirection = [0.0, 0.0, 1.0]\n{}{}",
+            sphere(100000.0),
+            sphere(100000.0 + dx)
+        )
+    };
+    let warnings = expect_valid(&far(0.003), "spheres apart far out");
+    assert!(warnings.is_empty(), "{warnings:?}");
+    let warnings = expect_valid(&far(0.0), "a sphere twice far out");
+    assert!(
+        warnings.len() == 1 && warnings[0].starts_with("objects[1]: is the sphere objects[0] again"),
+        "{warnings:?}"
+    );
 }
 
 #[test]

@@ -167,7 +167,7 @@ pub fn validate_objects(scene: &SceneDesc) -> Report {
     }
     if r.errors.is_empty() {
         r.warnings.extend(coplanar::coplanar_overlaps(scene, origin));
-        r.warnings.extend(placement::duplicate_spheres(scene));
+        r.warnings.extend(placement::duplicate_spheres(scene, origin));
     }
     r
 }

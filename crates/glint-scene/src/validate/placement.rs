@@ -45,10 +45,11 @@ fn shut_in_lights(scene: &SceneDesc) -> Vec<FieldIssue> {
     out
 }
 
-/// Spheres of one centre and radius as the tracers store them (f32): a ray meets both at the
-/// same t, so each tracer picks its own, pixel by pixel, as with coplanar faces (which are
-/// warned of; a sphere written twice was not).
-pub(super) fn duplicate_spheres(scene: &SceneDesc) -> Vec<FieldIssue> {
+/// Spheres of one centre and radius as the tracers store them (f32, the centre relative to
+/// the storage `origin`, as the coplanar check takes it): a ray meets both at the same t, so
+/// each tracer picks its own, pixel by pixel, as with coplanar faces (which are warned of; a
+/// sphere written twice was not). World f32 merged spheres 0.003 apart at x = 1e5 (a tester).
+pub(super) fn duplicate_spheres(scene: &SceneDesc, origin: [f64; 3]) -> Vec<FieldIssue> {
     let mut first: std::collections::HashMap<[u32; 4], usize> = std::collections::HashMap::new();
     let mut out = Vec::new();
     for (k, o) in scene.objects.iter().enumerate() {
@@ -56,7 +57,8 @@ pub(super) fn duplicate_spheres(scene: &SceneDesc) -> Vec<FieldIssue> {
             ObjectDesc::Sphere(s) => s,
             ObjectDesc::Plane(_) | ObjectDesc::Mesh(_) | ObjectDesc::Model(_) => continue,
         };
-        let key = [s.center[0], s.center[1], s.center[2], s.radius].map(|v| (v as f32).to_bits());
+        let c = DVec3::from(s.center) - DVec3::from(origin);
+        let key = [c.x, c.y, c.z, s.radius].map(|v| (v as f32).to_bits());
         match first.get(&key) {
             Some(&i) => out.push(FieldIssue {
                 field: format!("objects[{k}]"),
