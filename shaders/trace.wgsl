@@ -191,7 +191,10 @@ fn trace_ray(primary: CameraRay) -> SampleResult {
 #ifdef PROBE
     probe_root();
 #endif
-    for (var n = 0u; n < MAX_TREE_NODES; n++) {
+    // Declared outside the loop: a driver that cuts the loop short (lavapipe's budget) leaves
+    // it below the bound, and that is STATUS_DRIVER_LOOP_CUTOFF's to say, not the bound's.
+    var n = 0u;
+    for (; n < MAX_TREE_NODES; n++) {
         let r = Ray(e.origin, e.dir);
         let branch_of_node = e.branch;
 #ifdef PROBE
@@ -255,7 +258,9 @@ fn trace_ray(primary: CameraRay) -> SampleResult {
 #endif
         }
     }
-    status |= STATUS_LOOP_LIMIT;
+    if n >= MAX_TREE_NODES {
+        status |= STATUS_LOOP_LIMIT;
+    }
     return result;
 }
 

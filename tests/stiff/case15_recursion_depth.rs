@@ -163,16 +163,16 @@ fn a_tree_larger_than_the_walk_bound_raises_the_loop_bit() {
     for k in 0..10 {
         s = s.plane([0.0, f64::from(k), 0.0], Y, "glass");
     }
+    // On lavapipe the driver's own loop budget (65,535 iterations in all) runs out first: the
+    // walk, cut short below its bound, raises the driver's bit alone (it raised the bound's too,
+    // and a tester's 4,000 lights at depth 2, 7 nodes a tree, read "some ray trees were cut").
+    let lavapipe = crate::gpu::gpu().is_some_and(|t| t.context().adapter.name.contains("llvmpipe"));
+    let expect_status = if lavapipe { STATUS_DRIVER_LOOP_CUTOFF } else { STATUS_LOOP_LIMIT };
     let both = render_both_with(
         "stiff/case15",
         "loop-limit",
         &s.flat(),
-        // On lavapipe the driver's own loop budget (65,535 iterations in all) runs out first.
-        BothOptions {
-            expect_status: STATUS_LOOP_LIMIT,
-            allow_status: STATUS_DRIVER_LOOP_CUTOFF,
-            ..BothOptions::default()
-        },
+        BothOptions { expect_status, ..BothOptions::default() },
     );
     let nodes = both.cpu.counts.total();
     say!(

@@ -39,8 +39,9 @@ impl StatusBit {
             }
             Self::DriverLoopCutoff => format!(
                 "the GPU driver cut the shader's loops short (lavapipe allows {} loop iterations per invocation \
-                 group); this image is missing work: lower the depth, set a bailout, trace through the BVH (--accel \
-                 auto or bvh: brute force over many primitives spends the budget first) or use the CPU",
+                 group); this image is missing work: lower the depth, set a bailout, use fewer lights (every shading \
+                 point loops over each), trace through the BVH (--accel auto or bvh: brute force over many primitives \
+                 spends the budget first) or use the CPU",
                 with_thousands(LAVAPIPE_LOOP_BUDGET)
             ),
             Self::StackOverflow => format!(
