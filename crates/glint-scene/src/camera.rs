@@ -4,7 +4,7 @@ use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
 /// How the camera maps the scene onto the image.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Projection {
     /// A pinhole at `position`: rays fan out through the field of view `fov_y`.
@@ -15,8 +15,33 @@ pub enum Projection {
     Orthographic,
 }
 
+/// Only a name, as the tags read theirs (`glint_types::tags`): serde's derive said "wanted
+/// string or table" of `projection = 0`, naming neither the field's kind nor its names.
+impl<'de> Deserialize<'de> for Projection {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct Names;
+
+        impl serde::de::Visitor<'_> for Names {
+            type Value = Projection;
+
+            fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+                write!(f, "a projection named by a string, one of: {}", Projection::NAMES.join(", "))
+            }
+
+            fn visit_str<E: serde::de::Error>(self, v: &str) -> Result<Projection, E> {
+                let found = Projection::ALL.into_iter().find(|p| p.name() == v);
+                found.ok_or_else(|| E::unknown_variant(v, Projection::NAMES))
+            }
+        }
+
+        d.deserialize_str(Names)
+    }
+}
+
 impl Projection {
     pub const ALL: [Projection; 2] = [Projection::Perspective, Projection::Orthographic];
+    /// `ALL`'s names, in its order (a test checks them against `name`).
+    const NAMES: &'static [&'static str] = &["perspective", "orthographic"];
 
     /// As a scene file spells it.
     pub fn name(self) -> &'static str {
@@ -194,6 +219,21 @@ fn ball_may_be_seen(eye: DVec3, forward: DVec3, half_diagonal: f64, centre: DVec
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_projection_is_read_by_its_name_alone() {
+        assert_eq!(Projection::NAMES, Projection::ALL.map(Projection::name));
+        #[derive(Debug, Deserialize)]
+        struct Field {
+            projection: Projection,
+        }
+        let read = |text: &str| toml::from_str::<Field>(text).map_err(|e| e.to_string());
+        assert_eq!(read("projection = \"orthographic\"").map(|f| f.projection), Ok(Projection::Orthographic));
+        let e = read("projection = 0").unwrap_err();
+        assert!(e.contains("expected a projection named by a string, one of: perspective, orthographic"), "{e}");
+        let e = read("projection = \"fisheye\"").unwrap_err();
+        assert!(e.contains("unknown variant `fisheye`, expected `perspective` or `orthographic`"), "{e}");
+    }
 
     #[test]
     fn a_ball_is_seen_ahead_and_not_behind_or_far_to_a_side() {
