@@ -18,6 +18,7 @@ pub mod model;
 mod model_ref;
 mod texture;
 mod toml_message;
+mod toml_position;
 pub mod uri;
 
 use std::ffi::OsStr;

@@ -13,8 +13,13 @@ pub fn parse_message(error: &toml::de::Error, text: &str) -> String {
     if error.span().is_none() && error.message().contains("recursion limit") {
         return too_deep(text);
     }
-    let spanned = error.span().and_then(|span| text.get(span)).unwrap_or("");
-    shorten_lines(&serde_words(&clarify_datetime(&clarify_integer_overflow(&error.to_string()), spanned)))
+    // An object's error at the field it names, not at the first `[[objects]]` header.
+    let (span, located) = match crate::toml_position::object_error_span(text, error.message()) {
+        Some(span) => (Some(span.clone()), crate::toml_position::at_position(text, span, error.message())),
+        None => (error.span(), error.to_string()),
+    };
+    let spanned = span.and_then(|span| text.get(span)).unwrap_or("");
+    shorten_lines(&serde_words(&clarify_datetime(&clarify_integer_overflow(&located), spanned)))
 }
 
 /// Tables nested past what serde's reader recurses into: the parser said only "recursion
@@ -121,6 +126,34 @@ mod tests {
         let said = message(model);
         assert!(said.contains("transform: invalid type: date-time, expected a table"), "{said}");
         assert!(!said.contains("$__toml"), "{said}");
+    }
+
+    #[test]
+    fn an_object_s_error_is_at_the_field_it_names_not_the_first_objects_header() {
+        // Objects are read whole, then by their type: the parser put every error of one at the
+        // first `[[objects]]` header (a tester's line 16 said line 7).
+        let scene = "[camera]\nposition = [0, 0, -5]\nlook_at = [0, 0, 0]\n[materials.m]\n\
+                     [[objects]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nmaterial = \"m\"\n\
+                     [[objects]]\ntype = \"mesh\"\nmaterial = \"m\"\nEXTRA\n\
+                     vertices = [[0, 0, 0], [1, 0, 0], [0, 1, 0]]\ntriangles = [[0, 1, 2.0]]\n";
+        let said = message(&scene.replace("EXTRA\n", ""));
+        assert!(said.starts_with("TOML parse error at line 14, column 21\n"), "{said}");
+        assert!(said.contains("14 | triangles = [[0, 1, 2.0]]\n   |                     ^^^\n"), "{said}");
+        assert!(said.ends_with("objects[1] (mesh): triangles[0][2]: invalid type: floating point `2`, expected a whole number from 0 to 4294967295"), "{said}");
+        let said = message(&scene.replace("EXTRA", "bogus = 1"));
+        assert!(said.starts_with("TOML parse error at line 13, column 1\n"), "{said}");
+        assert!(said.contains("13 | bogus = 1\n   | ^^^^^\n"), "{said}");
+        // A field the object lacks: at its table.
+        let lacking = scene.replace("EXTRA\n", "").replace("2.0]", "2]");
+        let said = message(&lacking.replace("type = \"mesh\"\nmaterial = \"m\"", "type = \"mesh\""));
+        assert!(said.starts_with("TOML parse error at line 10, column 1\n"), "{said}");
+        assert!(said.contains("objects[1] (mesh): missing field `material`"), "{said}");
+        // Objects written inline, one line each.
+        let inline = "objects = [\n  { type = \"sphere\", center = [0, 0, 0], radius = 1, material = \"m\" },\n\
+                      { type = \"sphere\", center = [0, 0, \"x\"], radius = 1, material = \"m\" },\n]\n\
+                      [camera]\nposition = [0, 0, -5]\nlook_at = [0, 0, 0]\n[materials.m]\n";
+        let said = message(inline);
+        assert!(said.starts_with("TOML parse error at line 3, column 36\n"), "{said}");
     }
 
     #[test]
