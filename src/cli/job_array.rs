@@ -8,11 +8,12 @@
 pub fn parse_part(s: &str, part: &str, index_optional: bool) -> Result<(Option<u32>, u32), String> {
     let forms = if index_optional { "I/N or N" } else { "I/N" };
     // An index from 0, a count from 1 (`--tile 0` was refused after "from 0" was offered).
-    let number = |t: &str, least: u32, what: &str| {
-        t.trim()
-            .parse::<u32>()
-            .map_err(|_| format!("'{t}' is not a whole number from {least} to {} ({what}); use {forms}", u32::MAX))
-    };
+    let number =
+        |t: &str, least: u32, what: &str| {
+            t.trim().parse::<u32>().ok().filter(|&v| v >= least).ok_or_else(|| {
+                format!("'{t}' is not a whole number from {least} to {} ({what}); use {forms}", u32::MAX)
+            })
+        };
     let index = |t: &str| number(t, 0, &format!("the {part}'s index"));
     let count = |t: &str| number(t, 1, &format!("the {part} count"));
     match s.split_once('/') {
@@ -58,5 +59,16 @@ mod tests {
         assert_eq!(missing_runs([], 3007), (3007, vec!["0-3006".to_string()]));
         assert_eq!(missing_runs(0..5, 5), (0, vec![]));
         assert_eq!(missing_runs([0], u32::MAX), (u64::from(u32::MAX) - 1, vec![format!("1-{}", u32::MAX - 1)]));
+    }
+
+    #[test]
+    fn a_count_of_0_is_refused_with_the_range_as_a_word_is() {
+        // `--tile 0` got "a grid needs at least one tile" and exit 1, `--tile x` the range and
+        // exit 2 (a tester).
+        let said = "is not a whole number from 1 to 4294967295 (the tile count); use I/N or N";
+        assert_eq!(parse_part("0", "tile", true), Err(format!("'0' {said}")));
+        assert_eq!(parse_part("2/0", "tile", true), Err(format!("'0' {said}")));
+        assert_eq!(parse_part("x", "tile", true), Err(format!("'x' {said}")));
+        assert_eq!(parse_part("0/1", "shard", false), Ok((Some(0), 1)));
     }
 }

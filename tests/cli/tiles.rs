@@ -365,7 +365,8 @@ fn the_tile_index_comes_from_the_flag_or_a_schedulers_variable() {
         (&["--tile", "1/3", "-o", "t.png"][..], "a tile is written as OpenEXR"),
         (&["--tile", "0/500"][..], "500 tiles fit no grid of a 24x16 image"),
         (&["--tile", "0/29"][..], "the nearest counts that fit one are 28 and 30"),
-        (&["--tile", "0"][..], "a grid needs at least one tile"),
+        // As a word is (it said "a grid needs at least one tile", exit 1): exit 2, the range.
+        (&["--tile", "0"][..], "'0' is not a whole number from 1 to 4294967295 (the tile count)"),
         (&["--tile", "abc"][..], "'abc' is not a whole number from 1 to 4294967295 (the tile count)"),
         // On the GPU: with the CPU alone --allow-incomplete is refused as doing nothing.
         (&["--tile", "1/3", "--backend", "gpu", "--allow-incomplete"][..], "--tile writes no incomplete tile"),

@@ -32,10 +32,8 @@ pub struct ShardSpec {
 
 pub fn parse_shard(s: &str) -> Result<ShardSpec, String> {
     let (index, count) = super::super::job_array::parse_part(s, "shard", false)?;
+    // A count of 0 is refused by parse_part, with its range.
     let index = index.unwrap_or_default();
-    if count == 0 {
-        return Err("shard I of 0: a sweep needs at least 1 shard".into());
-    }
     if index >= count {
         return Err(format!("shard {index} of {count}: shards of {count} are numbered 0 to {}", count - 1));
     }
@@ -514,7 +512,11 @@ mod tests {
             "{:?}",
             parse_shard("4/4")
         );
-        assert!(parse_shard("0/0").unwrap_err().contains("at least 1 shard"));
+        assert!(
+            parse_shard("0/0")
+                .unwrap_err()
+                .contains("'0' is not a whole number from 1 to 4294967295 (the shard count)")
+        );
         assert!(parse_shard("4").unwrap_err().contains("'4' is not I/N (shard I of N, I from 0)"));
         assert!(
             parse_shard("x/4")
