@@ -233,6 +233,13 @@ fn attenuation_that_can_reach_zero() {
     // Falls forever: q < 0, or q = 0 and l < 0.
     expect_invalid(&edited(att, "attenuation = { c = 1.0, l = 1.0, q = -0.01 }"), field, &["q ≥ 0"]);
     expect_invalid(&edited(att, "attenuation = { c = 1.0, l = -0.1 }"), field, &["l ≥ 0"]);
+    // A q that f32 rounds to 0 is judged as 0, and said to be (a tester read "q = 5e-324" as
+    // contradicting "q ≥ 0").
+    expect_invalid(
+        &edited(att, "attenuation = { c = 1.0, l = -1e-30, q = 5e-324 }"),
+        field,
+        &["l ≥ 0 when q = 0 (got c = 1, l = -1e-30, q = 5e-324, 0 in f32)"],
+    );
     // l < 0 with a small q: minimum 1 − 1/(4·0.1) = −1.5 at d = 5.
     expect_invalid(&edited(att, "attenuation = { c = 1.0, l = -1.0, q = 0.1 }"), field, &["d = 5"]);
     // Exactly zero at its minimum: 1 − 4/(4·1) = 0 at d = −l/(2q) = 1.

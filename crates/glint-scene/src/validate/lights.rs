@@ -200,6 +200,18 @@ pub(super) fn validate_polynomial(path: &str, c: f64, l: f64, q: f64, r: &mut Re
         None
     };
     if let Some(p) = problem {
-        r.error(path, format!("{p} (got c = {}, l = {}, q = {})", num(given_c), num(given_l), num(given_q)));
+        // A coefficient f32 rounds to 0 is judged as 0: said, or `q = 5e-324` reads as
+        // contradicting "q ≥ 0" (a tester).
+        let given = |name: &str, v: f64, stored: f64| {
+            if stored == 0.0 && v != 0.0 {
+                format!("{name} = {}, 0 in f32", num(v))
+            } else {
+                format!("{name} = {}", num(v))
+            }
+        };
+        r.error(
+            path,
+            format!("{p} (got {}, {}, {})", given("c", given_c, c), given("l", given_l, l), given("q", given_q, q)),
+        );
     }
 }
