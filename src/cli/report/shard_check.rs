@@ -143,6 +143,23 @@ impl ShardFile {
                 numbers(format!("{at}.kinds.{name}"), v)?;
             }
             k.share.iter().enumerate().try_for_each(|(n, &v)| fraction(format!("{at}.kinds.share[{n}]"), v))?;
+            // Each kind's part of the four's sum: they add to 1, or are all 0 over black paths
+            // (four shares of 0.9 merged into "270 %" of indirect light; a tester).
+            let sum: f64 = k.share.iter().sum();
+            let adds_up = if k.paths_mean > 0.0 { (sum - 1.0).abs() <= 1e-6 } else { sum == 0.0 };
+            if !adds_up {
+                return Err(format!(
+                    "{at}.kinds.share: adds to {}, not {} (the paths' mean is {})",
+                    format_number(sum),
+                    if k.paths_mean > 0.0 { "1" } else { "0" },
+                    format_number(k.paths_mean)
+                ));
+            }
+            for (name, v) in [("kinds.spp", k.spp), ("reference_spp", gi.reference_spp)] {
+                if v == 0 {
+                    return Err(format!("{at}.{name}: 0; a render takes at least one sample a pixel"));
+                }
+            }
             for (name, v) in [
                 ("direct_rmse", k.direct_rmse),
                 ("paths_mean", k.paths_mean),
@@ -151,15 +168,21 @@ impl ShardFile {
             ] {
                 number(format!("{at}.kinds.{name}"), v)?;
             }
-            // Over black paths' MIN_POSITIVE a large ambient's share is rightly infinite.
-            if k.ambient_share.is_nan() || k.ambient_share < 0.0 {
+            // Over black paths' MIN_POSITIVE a large ambient's share is rightly infinite; over
+            // paths with light it is a finite part of it ("adds inf %" merged; a tester).
+            let black = k.paths_mean == 0.0;
+            if k.ambient_share.is_nan() || k.ambient_share < 0.0 || !(black || k.ambient_share.is_finite()) {
                 return Err(format!(
-                    "{at}.kinds.ambient_share: {} is not a number ≥ 0",
-                    format_number(k.ambient_share)
+                    "{at}.kinds.ambient_share: {} is not a {}number ≥ 0",
+                    format_number(k.ambient_share),
+                    if black { "" } else { "finite " }
                 ));
             }
             for (j, row) in gi.rows.iter().enumerate() {
                 number(format!("{at}.rows[{j}].rmse"), row.rmse)?;
+                if row.spp == 0 {
+                    return Err(format!("{at}.rows[{j}].spp: 0; a render takes at least one sample a pixel"));
+                }
                 if let Some(rgb) = &row.ambient_rgb {
                     numbers(format!("{at}.rows[{j}].ambient_rgb"), rgb)?;
                 }

@@ -117,7 +117,8 @@ fn direct_causes(desc: &glint_scene::SceneDesc) -> Vec<String> {
 /// A sentence on what Whitted's remaining error is made of.
 pub fn kinds_sentence(g: &GiResult) -> String {
     let k = &g.kinds;
-    let pct = |v: f64| format!("{:.0} %", 100.0 * v);
+    // A share of the paths' light; the ambient's over nearly black paths may be vast.
+    let pct = |v: f64| if v < 1e4 { format!("{:.0} %", 100.0 * v) } else { format!("{:.2e} %", 100.0 * v) };
     let direct = match k.direct_causes.as_slice() {
         [] => {
             "its direct light differing from the paths' (by their noise alone: lights are the same in both)".to_string()

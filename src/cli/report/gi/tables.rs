@@ -115,7 +115,9 @@ pub fn render_markdown(results: &[GiResult]) -> String {
          minimises Whitted's error at the row's own depth and samples, `glint_core::ambient_fit`). gi.csv has every \
          row, with the I_a it rendered with.\n",
     );
-    let fmt3 = |v: [f64; 3]| format!("({:.3}, {:.3}, {:.3})", v[0], v[1], v[2]);
+    // Three decimals, as a class reads an I_a; a fit of a scene whose k_a is tiny may be large.
+    let one = |x: f64| if x.abs() < 1e6 { format!("{x:.3}") } else { format!("{x:.3e}") };
+    let fmt3 = |v: [f64; 3]| format!("({}, {}, {})", one(v[0]), one(v[1]), one(v[2]));
     for g in results {
         let fitted = if g.fit_determined {
             fmt3(g.fitted)
