@@ -59,7 +59,7 @@ fn the_gpu_adds_path_samples_until_paused_and_starts_over_on_an_edit() {
     step_until(&mut h, 120, "the GPU adds samples again", |h| gpu_samples(h) > paused);
 
     // An ambient edit (applying a fitted I_a) changes no path: the samples go on from where
-    // they were, and the CPU's paths are not rendered again (they were started over).
+    // they were, and the CPU's paths are not rendered again.
     let cpu_of = |h: &Harness<'static, ViewerApp>| {
         let cpu = &h.state().renders.cpu;
         cpu.running_revision().or(cpu.finished.as_ref().map(|(r, _)| *r))

@@ -185,10 +185,6 @@ impl Document {
         if !same_objects || view != self.hits_of {
             (self.hits_revision, self.hits_of) = (self.revision, view);
         }
-        let inputs = RenderInputs::of(&self.desc, self.omit_kinds);
-        if !same_objects || self.render_inputs.as_ref() != Some(&inputs) {
-            (self.render_revision, self.render_inputs) = (self.revision, Some(inputs));
-        }
         let report = match geometry.as_mut().filter(|_| same_objects) {
             Some(g) => {
                 self.geometry_checked.set(Some(self.revision));
@@ -203,6 +199,13 @@ impl Document {
         drop(geometry);
         self.issues = report.errors;
         self.warnings = report.warnings;
+        // An invalid edit holds the whole view, the paths too, even when what it broke is an
+        // ambient term they do not read: one state on screen, not undimmed paths beside a
+        // "held" status (a reviewer).
+        let inputs = RenderInputs::of(&self.desc, self.omit_kinds);
+        if !same_objects || !self.is_valid() || self.render_inputs.as_ref() != Some(&inputs) {
+            (self.render_revision, self.render_inputs) = (self.revision, Some(inputs));
+        }
     }
 
     pub fn is_valid(&self) -> bool {
@@ -328,6 +331,9 @@ mod tests {
             |d| d.omit_kinds ^= 1,
             |d| d.desc.render.integrator = glint_scene::Integrator::Whitted,
             |d| d.desc.world.ambient.0[1] += 0.25,
+            // Back to paths, then an invalid ambient term: the view is held, paths and all.
+            |d| d.desc.render.integrator = glint_scene::Integrator::Path,
+            |d| d.desc.world.ambient.0[1] = -1.0,
         ] {
             let before = doc.render_revision;
             edit(&mut doc);

@@ -3,7 +3,9 @@
 //! Points belong to one scene: an edit of anything but the render settings starts over.
 
 use glint_core::compare::ImageErrors;
-use glint_scene::{CameraDesc, LightDesc, MaterialDesc, RenderSettings, SceneDesc, WorldDesc};
+use glint_scene::{RenderSettings, SceneDesc};
+
+use crate::render_inputs::SceneInputs;
 
 /// One finished comparison.
 #[derive(Clone, Debug, PartialEq)]
@@ -17,26 +19,10 @@ pub struct ErrorPoint {
     pub cpu_ms: f64,
 }
 
-/// What makes two revisions the same scene for the plot: everything but the render settings
-/// (the objects are not edited in the viewer; a new document clears the history).
-#[derive(Clone, Debug, PartialEq)]
-struct SceneKey {
-    camera: CameraDesc,
-    world: WorldDesc,
-    lights: Vec<LightDesc>,
-    materials: Vec<(String, MaterialDesc)>,
-}
-
-impl SceneKey {
-    fn of(desc: &SceneDesc) -> Self {
-        Self {
-            camera: desc.camera.clone(),
-            world: desc.world.clone(),
-            lights: desc.lights.clone(),
-            materials: desc.materials.iter().map(|(k, v)| (k.clone(), v.clone())).collect(),
-        }
-    }
-}
+/// What makes two revisions the same scene for the plot: everything the render reads but the
+/// render settings (the objects are not edited in the viewer; a new document clears the
+/// history), so that under paths an ambient edit keeps the points (`SceneInputs`).
+type SceneKey = SceneInputs;
 
 /// The plot's horizontal axis.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -156,5 +142,22 @@ mod tests {
         other.world.ambient = glint_scene::Rgb::splat(0.5);
         h.record(&other, point(6, 1, 5, 0.1));
         assert_eq!(h.len(), 1, "another scene starts a new history");
+    }
+
+    #[test]
+    fn under_paths_the_ambient_terms_are_the_same_scene() {
+        // The paths read no ambient term: after applying a fitted I_a the next point kept
+        // nothing before it (a reviewer).
+        let (mut desc, _) = glint_io::builtin("cornell-gi").expect("built-in").load(None).expect("loads");
+        desc.render.integrator = glint_scene::Integrator::Path;
+        let mut h = ErrorHistory::default();
+        h.record(&desc, point(1, 1, 5, 1.0));
+        desc.world.ambient = glint_scene::Rgb::splat(0.3);
+        desc.materials.values_mut().for_each(|m| m.ka = glint_scene::Rgb::splat(0.7));
+        h.record(&desc, point(2, 4, 5, 0.5));
+        assert_eq!(h.len(), 2);
+        desc.materials.values_mut().for_each(|m| m.kd = glint_scene::Rgb::splat(0.7));
+        h.record(&desc, point(3, 16, 5, 0.25));
+        assert_eq!(h.len(), 1, "a k_d edit is another scene");
     }
 }

@@ -8,26 +8,23 @@ use std::collections::BTreeMap;
 
 use glint_scene::{CameraDesc, LightDesc, MaterialDesc, RenderSettings, Rgb, SceneDesc, WorldDesc};
 
+/// The scene's part of it: camera, world, materials and lights, the ambient terms left out
+/// under paths. The error history keys its points by it too.
 #[derive(Clone, Debug, PartialEq)]
-pub struct RenderInputs {
-    render: RenderSettings,
+pub struct SceneInputs {
     camera: CameraDesc,
     world: WorldDesc,
     materials: BTreeMap<String, MaterialDesc>,
     lights: Vec<LightDesc>,
-    omit_kinds: u32,
 }
 
-impl RenderInputs {
-    /// What the render of `desc` (the kinds of path-traced light in `omit_kinds` left out) reads.
-    pub fn of(desc: &SceneDesc, omit_kinds: u32) -> Self {
+impl SceneInputs {
+    pub fn of(desc: &SceneDesc) -> Self {
         let mut inputs = Self {
-            render: desc.render.clone(),
             camera: desc.camera.clone(),
             world: desc.world.clone(),
             materials: desc.materials.clone(),
             lights: desc.lights.clone(),
-            omit_kinds,
         };
         if !desc.render.integrator.is_whitted() {
             inputs.world.ambient = Rgb::default();
@@ -35,5 +32,19 @@ impl RenderInputs {
             inputs.lights.iter_mut().for_each(|l| l.ambient = Rgb::default());
         }
         inputs
+    }
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct RenderInputs {
+    render: RenderSettings,
+    scene: SceneInputs,
+    omit_kinds: u32,
+}
+
+impl RenderInputs {
+    /// What the render of `desc` (the kinds of path-traced light in `omit_kinds` left out) reads.
+    pub fn of(desc: &SceneDesc, omit_kinds: u32) -> Self {
+        Self { render: desc.render.clone(), scene: SceneInputs::of(desc), omit_kinds }
     }
 }
