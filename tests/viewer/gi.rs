@@ -19,6 +19,10 @@ fn gpu_samples(h: &Harness<'static, ViewerApp>) -> u32 {
     a.filter(|a| a.revision == rev).map_or(0, |a| a.samples)
 }
 
+fn spp_of_scene(h: &Harness<'static, ViewerApp>) -> u32 {
+    h.state().doc.desc.render.spp
+}
+
 /// Steps the UI until `done` holds, failing after `secs` with `what`.
 fn step_until(
     h: &mut Harness<'static, ViewerApp>,
@@ -70,6 +74,18 @@ fn the_gpu_adds_path_samples_until_paused_and_starts_over_on_an_edit() {
     step_until(&mut h, 120, "the GPU adds samples across an ambient edit", |h| gpu_samples(h) > before);
     assert!(h.state().doc.render_revision < h.state().doc.revision);
     assert_eq!(cpu_of(&h), cpu_started, "the CPU's paths go on");
+
+    // A saved GPU image is the mean of every batch so far, and says so (it said the scene's
+    // 64 samples of a mean of 340; a lecturer).
+    let dir = crate::support::temp_dir("gi-export");
+    let path = dir.join("gpu.png");
+    h.state_mut().save_image(&path, glint_viewer::ExportView::Gpu).expect("the GPU view saves");
+    let saved = h.state().renders.gpu.as_ref().and_then(|g| g.latest.as_ref()).map(|l| l.samples);
+    let text = glint_io::image_file::read_png_text(&path).expect("tEXt chunks");
+    let written = text.iter().find(|(k, _)| k == "glint:spp").map(|(_, v)| v.clone());
+    assert!(saved.is_some_and(|n| n > spp_of_scene(&h)), "{saved:?}");
+    assert_eq!(written, saved.map(|n| n.to_string()), "the saved mean's samples");
+    let _ = std::fs::remove_dir_all(dir);
 
     // An edit starts over from the new revision's first render.
     h.get_by_label("Pause").click();

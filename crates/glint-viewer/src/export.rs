@@ -88,7 +88,17 @@ pub fn export(path: &Path, view: ExportView, s: &Sources) -> Result<(), ViewerEr
             _ => None,
         },
     };
-    let mut metadata = render_metadata(s.settings, &info);
+    // In path mode the GPU's image is the mean of every batch so far: its samples, not the
+    // scene's (a saved mean of 340 said 64).
+    let gpu_samples = gpu.map(|g| g.samples).filter(|&n| n != s.settings.spp);
+    let settings = match (view, gpu_samples) {
+        (ExportView::Gpu, Some(spp)) => RenderSettings { spp, ..s.settings.clone() },
+        _ => s.settings.clone(),
+    };
+    let mut metadata = render_metadata(&settings, &info);
+    if let (ExportView::Difference | ExportView::All, Some(spp)) = (view, gpu_samples) {
+        metadata.push(("glint:gpu_spp".into(), spp.to_string()));
+    }
     metadata.push(("glint:view".into(), view.label().into()));
     if let Some(d) = s.diff.filter(|_| matches!(view, ExportView::Difference | ExportView::All)) {
         metadata.push(("glint:diff_scale".into(), "magma over log10 |gpu-cpu| from -7 to 0".into()));
