@@ -448,7 +448,16 @@ pub fn show(
                 }
                 ViewMode::WhittedVsGi => {
                     let diff = tex.gi_diff.map(|id| Shown { id, size: (w, h), stale: false, held: false });
-                    image(ui, r, diff, UV, (w, h), "Whitted − GI", "rendering Whitted and the paths…");
+                    // Only what is rendering: after an ambient edit the paths go on (a lecturer
+                    // read that they were rendered again).
+                    let current = |t: Option<Shown>| t.is_some_and(|t| !t.stale);
+                    let waiting = match (current(tex.whitted), current(tex.gi)) {
+                        (true, true) => "taking the difference…",
+                        (false, true) => "rendering Whitted…",
+                        (true, false) => "rendering the paths…",
+                        (false, false) => "rendering Whitted and the paths…",
+                    };
+                    image(ui, r, diff, UV, (w, h), "Whitted − GI", waiting);
                     if let Some(d) = tex.gi_signed {
                         signed_colour_bar(ui, r, d.scale);
                     }
