@@ -97,18 +97,20 @@ pub fn render_tile(job: TileJob) -> anyhow::Result<()> {
     // The grid first: `--tile 0` is no grid, whatever the scheduler says.
     let grid = TileGrid::new(job.spec.count, w, h).context("--tile")?;
     let (index, source) = resolve_index(job.spec, grid.count())?;
-    let rect = grid.rect(index).with_context(|| match job.spec.index {
-        Some(_) => "--tile".to_string(),
-        None => {
+    let rect = match (grid.rect(index), job.spec.index) {
+        (Ok(rect), _) => rect,
+        // The command line's own index: a usage error (exit 2), as `--shard 2/2` is.
+        (Err(e), Some(_)) => usage!("--tile: {e}"),
+        (Err(e), None) => {
             let last = grid.count() - 1;
-            format!(
+            return Err(anyhow::Error::new(e).context(format!(
                 "--tile {} with the index from {source}: an array of {} tasks numbers them 0 to {last} \
                  (Slurm: --array=0-{last})",
                 grid.count(),
                 grid.count()
-            )
+            )));
         }
-    })?;
+    };
     let output = job.output.unwrap_or_else(|| default_output(job.loaded, &format!("-tile-{index}.exr")));
     if !output.extension().is_some_and(|e| e.eq_ignore_ascii_case("exr")) {
         usage!(

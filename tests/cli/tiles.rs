@@ -374,6 +374,11 @@ fn the_tile_index_comes_from_the_flag_or_a_schedulers_variable() {
         let done = glint(&dir, ["render", "whitted"].iter().chain(&size).chain(args));
         assert!(!done.status.success(), "{args:?}");
         assert!(text(&done.stderr).contains(wanted), "{args:?}: {}", text(&done.stderr));
+        // The command line's own index past the grid is a usage error, as --shard 2/2 is (it
+        // exited 1; a tester).
+        if args == ["--tile", "3/3"] {
+            assert_eq!(done.status.code(), Some(2), "{args:?}");
+        }
     }
 }
 
