@@ -883,3 +883,24 @@ fn the_largest_depth_is_refused_not_an_overflow_in_its_ray_tree_warning() {
     let text = format!("[render]\nmax_depth = 4294967295\nbailout = 0.0\n{BASE}");
     expect_invalid(&text, "render.max_depth", &["4294967295", "[0, 1024]"]);
 }
+
+#[test]
+fn objects_or_lights_written_as_one_table_say_they_are_arrays() {
+    // `[objects]` for `[[objects]]` was "invalid type: map, expected a sequence" (a tester).
+    let head = "[camera]\nposition = [0.0, 0.0, -5.0]\nlook_at = [0.0, 0.0, 0.0]\n";
+    for (table, expected) in [
+        (
+            "[objects]\ntype = \"sphere\"\n",
+            "expected an array of objects ([[objects]], or objects = [{ type = \"sphere\", … }])",
+        ),
+        (
+            "[lights]\ntype = \"point\"\n",
+            "expected an array of lights ([[lights]], or lights = [{ type = \"point\", … }])",
+        ),
+        ("objects = 1\n", "invalid type: integer `1`, expected an array of objects"),
+    ] {
+        let text = if table.starts_with('[') { format!("{head}{table}") } else { format!("{table}{head}") };
+        let err = parse_scene(&text, Path::new(FILE)).unwrap_err().to_string();
+        assert!(err.contains(expected), "{err}");
+    }
+}

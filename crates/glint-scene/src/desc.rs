@@ -53,14 +53,21 @@ fn lights_as_tables<'de, D: serde::Deserializer<'de>>(deserializer: D) -> Result
             super::tables::table_of(deserializer, "a light: a table ([[lights]] or { type = \"point\", … })").map(Entry)
         }
     }
-    Ok(Vec::<Entry>::deserialize(deserializer)?.into_iter().map(|e| e.0).collect())
+    let lights: Vec<Entry> = super::tables::array_of(
+        deserializer,
+        "an array of lights ([[lights]], or lights = [{ type = \"point\", … }])",
+    )?;
+    Ok(lights.into_iter().map(|e| e.0).collect())
 }
 
 /// `objects` one by one, so that an error names its index (`objects[2].type`), which the
 /// parser's own position cannot: an object is read as a table first (`ObjectDesc::from_table`).
 fn objects_by_index<'de, D: serde::Deserializer<'de>>(deserializer: D) -> Result<Vec<ObjectDesc>, D::Error> {
     use serde::de::Error;
-    let entries = Vec::<Content>::deserialize(deserializer)?;
+    let entries: Vec<Content> = super::tables::array_of(
+        deserializer,
+        "an array of objects ([[objects]], or objects = [{ type = \"sphere\", … }])",
+    )?;
     entries
         .into_iter()
         .enumerate()

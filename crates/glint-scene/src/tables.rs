@@ -42,6 +42,32 @@ pub(crate) fn table_of<'de, D: Deserializer<'de>, T: Deserialize<'de>>(
     deserializer.deserialize_any(TableVisitor { expected, value: PhantomData })
 }
 
+/// An array, and what to say it is when it is not: `[objects]` written for `[[objects]]` was
+/// "invalid type: map, expected a sequence", naming neither the field nor its form.
+pub(crate) fn array_of<'de, D: Deserializer<'de>, T: Deserialize<'de>>(
+    deserializer: D,
+    expected: &'static str,
+) -> Result<Vec<T>, D::Error> {
+    struct ArrayVisitor<T> {
+        expected: &'static str,
+        value: PhantomData<T>,
+    }
+    impl<'de, T: Deserialize<'de>> Visitor<'de> for ArrayVisitor<T> {
+        type Value = Vec<T>;
+        fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+            f.write_str(self.expected)
+        }
+        fn visit_seq<A: serde::de::SeqAccess<'de>>(self, mut seq: A) -> Result<Vec<T>, A::Error> {
+            let mut out = Vec::with_capacity(seq.size_hint().unwrap_or(0).min(4096));
+            while let Some(item) = seq.next_element()? {
+                out.push(item);
+            }
+            Ok(out)
+        }
+    }
+    deserializer.deserialize_any(ArrayVisitor { expected, value: PhantomData })
+}
+
 /// An optional field that is one table when present (with `#[serde(default)]`).
 pub(crate) fn option_table<'de, D: Deserializer<'de>, T: Deserialize<'de>>(
     deserializer: D,
