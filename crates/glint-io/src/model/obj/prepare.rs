@@ -40,6 +40,11 @@ pub(super) fn prepared(raw: &[u8], warnings: &mut Vec<FieldIssue>) -> Result<Pre
             problem: "`f` with fewer than three corners left out: a polygon needs three".into(),
         });
     }
+    // Before the partial colours go: `v 1 0 0 0.5 0.5 x` among uncoloured vertices lost its
+    // bad word with its colour, and loaded (a tester).
+    if let Some((line, reason)) = text::bad_number(&bytes) {
+        return Err((Some(line), reason));
+    }
     let (bytes, partial_colours) = text::without_partial_vertex_colours(&bytes);
     if let Some((coloured, all)) = partial_colours {
         warnings.push(FieldIssue {
@@ -48,11 +53,6 @@ pub(super) fn prepared(raw: &[u8], warnings: &mut Vec<FieldIssue>) -> Result<Pre
                 "vertex colours left out: {coloured} of the {all} vertices have one (`v x y z r g b`), the rest none"
             ),
         });
-    }
-    // Checked as the file wrote them: after a node transform one bad number spreads to every
-    // component, and the line is lost.
-    if let Some((line, reason)) = text::bad_number(&bytes) {
-        return Err((Some(line), reason));
     }
     Ok(Prepared { bytes: bytes.into_owned(), uses })
 }

@@ -79,6 +79,17 @@ fn a_line_with_too_few_numbers_says_what_it_needs() {
         ),
         ("v 0 0 0\nvt 0.5 # v\n", ":2: invalid OBJ (`vt 0.5`: a texture coordinate needs two numbers u v; 1 given)"),
         ("v 0 0 0\nvn 0 1\n", ":2: invalid OBJ (`vn 0 1`: a normal needs three numbers x y z; 2 given)"),
+        // And too many: tobj's "color parse error (too many or too few components)".
+        (
+            "v 0 0 0 1 2\n",
+            ":1: invalid OBJ (`v 0 0 0 1 2`: a vertex is x y z, then w, or r g b: 3, 4 or 6 numbers; 5 given)",
+        ),
+        ("v 0 0 0 1 2 3 4\n", "7 given)"),
+        // A bad colour among uncoloured vertices, whose colours are left out: refused first.
+        (
+            "v 0 0 0\nv 1 0 0 0.5 0.5 x\nv 0 1 0\nf 1 2 3\n",
+            ":2: invalid OBJ (`v 1 0 0 0.5 0.5 x`: vertex colour component b: `x` is not a number)",
+        ),
     ] {
         let obj = write(dir.path(), "few.obj", text);
         let err = load_obj(&obj).expect_err("too few numbers are refused").to_string();

@@ -185,7 +185,13 @@ pub(super) fn bad_number(bytes: &[u8]) -> Option<(usize, String)> {
         if given < if what == "a texture coordinate" { 2 } else { 3 } {
             return Some((n + 1, format!("`{}`: {what} needs {needs}; {given} given", line.trim())));
         }
-        // A `v` line's words beyond the six it may have are tobj's to refuse.
+        // tobj said "color parse error (too many or too few components)" of 5, 7 or more.
+        if what == "a vertex position" && !matches!(given, 3 | 4 | 6) {
+            return Some((
+                n + 1,
+                format!("`{}`: a vertex is x y z, then w, or r g b: 3, 4 or 6 numbers; {given} given", line.trim()),
+            ));
+        }
         for (k, word) in words.enumerate().take(components.len()) {
             let (what, name) = components[k];
             let Ok(value) = word.parse::<f32>() else {
