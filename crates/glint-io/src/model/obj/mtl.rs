@@ -86,13 +86,29 @@ pub(super) fn bad_number(text: &[u8]) -> Option<(usize, String)> {
     for (n, raw) in text.split(|&b| b == b'\n').enumerate() {
         let Ok(line) = std::str::from_utf8(raw) else { continue };
         let mut words = line.split_whitespace();
-        let colour = match words.next() {
-            Some("Ka" | "Kd" | "Ks" | "Ke") => true,
-            Some("Ns" | "Ni" | "d" | "Tr") => false,
+        let (key, colour) = match words.next() {
+            Some(key @ ("Ka" | "Kd" | "Ks" | "Ke")) => (key, true),
+            Some(key @ ("Ns" | "Ni" | "d" | "Tr")) => (key, false),
             _ => continue,
         };
-        // `Kd spectral …` and `Kd xyz …` start with a word: tobj refuses those itself.
-        for word in words.take_while(|w| w.parse::<f64>().is_ok()) {
+        // A word where a number belongs, or a count a scalar has not, made tobj's "material
+        // parse error" with no line (a tester). `Kd spectral …` and `Kd xyz …` start with a
+        // word: tobj refuses those itself.
+        let values: Vec<&str> = words.collect();
+        // `Tr` is Glint's to read (tobj keeps it as text): its own warning names a bad one.
+        let other_form = key == "Tr" || values.first().is_some_and(|v| matches!(*v, "spectral" | "xyz" | "-halo"));
+        if !colour && values.len() != 1 && !other_form {
+            return Some((n + 1, format!("`{}`: `{key}` takes one number; {} given", line.trim(), values.len())));
+        }
+        // Forms of the MTL format Glint does not read, left to tobj: `Kd spectral file`, `Kd xyz
+        // x y z`, `d -halo factor`. `Tr`'s numbers are checked as before.
+        if other_form && key != "Tr" {
+            continue;
+        }
+        if let Some(word) = values.iter().find(|w| w.parse::<f64>().is_err()).filter(|_| key != "Tr") {
+            return Some((n + 1, format!("`{}`: `{word}` is not a number", line.trim())));
+        }
+        for word in values.into_iter().take_while(|w| w.parse::<f64>().is_ok()) {
             let value = word.parse::<f32>().unwrap_or(f32::NAN);
             let problem = if let Some(problem) = text::not_finite(word, value) {
                 problem

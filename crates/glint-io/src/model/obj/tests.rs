@@ -524,6 +524,10 @@ fn an_mtl_number_that_cannot_be_read_is_an_error_naming_the_mtl_line_and_stateme
         ("d nan", "nan is not a finite number"),
         ("Ns 1e39", "1e39 is beyond f32's range (±3.4028235e38)"),
         ("Kd -1 0 0", "-1 is outside a colour channel's [0, 1e9]"),
+        // tobj said "material parse error" with no line (a tester).
+        ("Kd x 0.5 0.5", "`x` is not a number"),
+        ("Ns", "`Ns` takes one number; 0 given"),
+        ("Ni 1.5 2", "`Ni` takes one number; 2 given"),
     ] {
         write(dir.path(), "t.mtl", &format!("newmtl a\n{statement}\nillum 4\n"));
         let message = load_obj(&obj).unwrap_err().to_string();
