@@ -702,7 +702,22 @@ fn report_shards_merge_into_the_one_machine_report_and_missing_ones_are_named() 
         gi[0].as_table_mut().expect("a table").clone()
     };
     let set_first_gi = |s: &mut toml::Table, gi: toml::Table| s["gi"].as_array_mut().expect("gi")[0] = gi.into();
-    let cases: [(Edit, &str); 10] = [
+    let cases: [(Edit, &str); 12] = [
+        // Text written into report.md as it is: a line break began a heading there (a tester).
+        (
+            &|s| {
+                let mut gi = first_gi(s);
+                gi["kinds"]["direct_causes"] = toml::Value::Array(vec!["x\n## injected".into()]);
+                set_first_gi(s, gi);
+            },
+            "gi[0].kinds.direct_causes: `x\\n## injected` is no cause this glint names",
+        ),
+        (
+            &|s| {
+                s["machine"]["cpu_model"] = "AMD | x\n## injected".into();
+            },
+            "machine.cpu_model: `AMD | x\\n## injected` holds a line break or control character",
+        ),
         // Each share a fraction, but four of 0.9 merged into "270 %" of indirect light (a tester).
         (
             &|s| {

@@ -21,6 +21,25 @@ impl ShardFile {
     /// infinite: identical images). The
     /// first field that is not, as `field: problem`.
     pub(super) fn check(&self) -> Result<(), String> {
+        // Text the report writes as it is, into its header table and sentences: a line break
+        // or a control character there broke report.md (a tester); no name or command has one.
+        let m = &self.machine;
+        let texts = [
+            ("machine.cpu_model", &m.cpu_model),
+            ("machine.os", &m.os),
+            ("machine.date", &m.date),
+            ("machine.command", &m.command),
+            ("glint", &self.glint),
+            ("cpu_device", &self.cpu_device),
+        ];
+        let texts = texts.into_iter().chain(self.gpu_device.iter().map(|g| ("gpu_device", g)));
+        let texts =
+            texts.chain(m.env.iter().map(|e| ("machine.env", e))).chain(self.scenes.iter().map(|s| ("scenes", s)));
+        for (field, text) in texts {
+            if text.chars().any(char::is_control) {
+                return Err(format!("{field}: `{}` holds a line break or control character", text.escape_debug()));
+            }
+        }
         if self.shard >= self.count {
             return Err(format!("shard: is {}, not below the shard count {}", self.shard, self.count));
         }
@@ -167,6 +186,11 @@ impl ShardFile {
                 ("whitted_rmse", k.whitted_rmse),
             ] {
                 number(format!("{at}.kinds.{name}"), v)?;
+            }
+            // Written into report.md as they are: one with a line break began a heading there
+            // (a tester).
+            if let Some(c) = k.direct_causes.iter().find(|c| !super::gi::DIRECT_CAUSES.contains(&c.as_str())) {
+                return Err(format!("{at}.kinds.direct_causes: `{}` is no cause this glint names", c.escape_debug()));
             }
             // Over black paths' MIN_POSITIVE a large ambient's share is rightly infinite; over
             // paths with light it is a finite part of it ("adds inf %" merged; a tester).

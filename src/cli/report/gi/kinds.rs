@@ -101,18 +101,27 @@ pub(super) fn split_by_kind(
 /// highlight is not the normalised lobe the paths reflect (path-tracing.md's factors). Point
 /// lights, spots and directional lights are the same in both.
 fn direct_causes(desc: &glint_scene::SceneDesc) -> Vec<String> {
+    let [emitter, background, highlight] = DIRECT_CAUSES;
     let mut causes = Vec::new();
     if desc.materials.values().any(|m| !m.emission.is_zero()) {
-        causes.push("an emitter lights nothing in Whitted's model".to_string());
+        causes.push(emitter.to_string());
     }
     if !desc.world.background.is_zero() {
-        causes.push("the background lights nothing in Whitted's model, only what it is seen by".to_string());
+        causes.push(background.to_string());
     }
     if desc.materials.values().any(|m| !m.ks.is_zero()) && desc.traced_lights().next().is_some() {
-        causes.push("its highlight k_s·spec_j is not the normalised lobe the paths reflect".to_string());
+        causes.push(highlight.to_string());
     }
     causes
 }
+
+/// Every cause `direct_causes` names: a shard's are these or none (the merge writes them into
+/// report.md as they are).
+pub const DIRECT_CAUSES: [&str; 3] = [
+    "an emitter lights nothing in Whitted's model",
+    "the background lights nothing in Whitted's model, only what it is seen by",
+    "its highlight k_s·spec_j is not the normalised lobe the paths reflect",
+];
 
 /// A sentence on what Whitted's remaining error is made of.
 pub fn kinds_sentence(g: &GiResult) -> String {

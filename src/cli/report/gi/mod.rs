@@ -82,8 +82,8 @@ pub struct GiResult {
 mod kinds;
 mod tables;
 
-pub use kinds::KindSplit;
 use kinds::split_by_kind;
+pub use kinds::{DIRECT_CAUSES, KindSplit};
 pub use tables::{render_csv, render_markdown};
 
 /// The sweep's axes: (reference spp, path depth, Whitted depths, Whitted spp, path spp).
