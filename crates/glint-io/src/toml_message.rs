@@ -19,7 +19,40 @@ pub fn parse_message(error: &toml::de::Error, text: &str) -> String {
         None => (error.span(), error.to_string()),
     };
     let spanned = span.and_then(|span| text.get(span)).unwrap_or("");
+    let located = window_about_caret(&located);
     shorten_lines(&serde_words(&clarify_datetime(&clarify_integer_overflow(&located), spanned)))
+}
+
+/// The parser's source line and caret line cut to a window about the caret where the line is
+/// long: cut at the end of a message line, the value and its caret fell past the cut (a
+/// tester's 300 triangles on one line put the bad index at column 3681).
+fn window_about_caret(message: &str) -> String {
+    /// Characters of the source line kept before the caret, and in all.
+    const BEFORE: usize = 60;
+    const WIDTH: usize = 200;
+    let mut lines: Vec<String> = message.split('\n').map(str::to_string).collect();
+    if lines.len() < 4 || !lines[0].starts_with("TOML parse error at line ") {
+        return message.to_string();
+    }
+    let (Some((gutter, content)), Some(bar)) = (lines[2].split_once(" | "), lines[3].find('|')) else {
+        return message.to_string();
+    };
+    let chars: Vec<char> = content.chars().collect();
+    let after_bar = &lines[3][bar + 1..];
+    // The caret line is the gutter, `|`, then column + 1 spaces and the carets.
+    let column = after_bar.chars().take_while(|&c| c == ' ').count().saturating_sub(1);
+    let carets = after_bar.chars().filter(|&c| c == '^').count().max(1);
+    if chars.len() <= WIDTH || column >= chars.len() {
+        return message.to_string();
+    }
+    let start = column.saturating_sub(BEFORE);
+    let end = (start + WIDTH).min(chars.len());
+    let (head, tail) = (if start > 0 { "…" } else { "" }, if end < chars.len() { "…" } else { "" });
+    let window: String = chars[start..end].iter().collect();
+    let caret_at = column - start + head.chars().count();
+    lines[2] = format!("{gutter} | {head}{window}{tail}");
+    lines[3] = format!("{}|{}{}", &lines[3][..bar], " ".repeat(caret_at + 1), "^".repeat(carets.min(end - column)));
+    lines.join("\n")
 }
 
 /// Tables nested past what serde's reader recurses into: the parser said only "recursion
@@ -167,6 +200,27 @@ mod tests {
             message(&deep),
             "line 4: a table header nests 100 tables, more than the TOML reader recurses into (a scene nests a few)"
         );
+    }
+
+    #[test]
+    fn on_a_long_line_the_value_and_its_caret_stay_in_view() {
+        let triangles: Vec<String> = (0..300).map(|i| format!("[0, {}, {}]", i + 1, i + 2)).collect();
+        let text = format!(
+            "[camera]\nposition = [0, 0, -5]\nlook_at = [0, 0, 0]\n[materials.m]\n[[objects]]\ntype = \"mesh\"\n\
+             material = \"m\"\nvertices = [[0, 0, 0], [1, 0, 0], [0, 1, 0]]\ntriangles = [{}, [0, 1, 2.5]]\n",
+            triangles.join(", ")
+        );
+        let said = message(&text);
+        let lines: Vec<&str> = said.lines().collect();
+        assert!(lines[0].starts_with("TOML parse error at line 9, column "), "{said}");
+        let (source, caret) = (lines[2], lines[3]);
+        assert!(source.chars().count() < 220 && source.starts_with("9 | …") && source.ends_with("2.5]]"), "{said}");
+        let value = source.find("2.5").expect("the value is in view");
+        let at = caret.find('^').expect("a caret");
+        assert_eq!(source[..value].chars().count(), caret[..at].chars().count(), "{said}");
+        // A short line is left as the parser laid it out.
+        let short = message("[camera]\nposition = [0, 0, -5]\nlook_at = [0, 0, 0]\nfov_y = \"x\"\n");
+        assert!(short.contains("4 | fov_y = \"x\"\n  |         ^^^\n"), "{short}");
     }
 
     #[test]
