@@ -14,7 +14,10 @@ pub fn parse_message(error: &toml::de::Error, text: &str) -> String {
         return too_deep(text);
     }
     // An object's error at the field it names, not at the first `[[objects]]` header.
-    let (span, located) = match crate::toml_position::object_error_span(text, error.message()) {
+    // And a field's error inside a table read whole (an attenuation) at the field.
+    let refined = crate::toml_position::object_error_span(text, error.message())
+        .or_else(|| error.span().and_then(|span| crate::toml_position::inner_error_span(text, span, error.message())));
+    let (span, located) = match refined {
         Some(span) => (Some(span.clone()), crate::toml_position::at_position(text, span, error.message())),
         None => (error.span(), error.to_string()),
     };
@@ -200,6 +203,18 @@ mod tests {
             message(&deep),
             "line 4: a table header nests 100 tables, more than the TOML reader recurses into (a scene nests a few)"
         );
+    }
+
+    #[test]
+    fn a_field_of_a_table_read_whole_is_shown_at_the_field() {
+        // A light's attenuation is read whole, then by its model: the parser underlined the
+        // whole table (a tester).
+        let head = "[camera]\nposition = [0, 0, -5]\nlook_at = [0, 0, 0]\n[[lights]]\ntype = \"point\"\nposition = [0, 2, 0]\n";
+        let inline = message(&format!("{head}attenuation = {{ c = 1.0,\n  l = \"x\" }}\n"));
+        assert!(inline.starts_with("TOML parse error at line 8, column 7\n"), "{inline}");
+        assert!(inline.ends_with("attenuation: l: invalid type: string \"x\", expected a number"), "{inline}");
+        let table = message(&format!("{head}[lights.attenuation]\nc = 1.0\nl = \"x\"\n"));
+        assert!(table.starts_with("TOML parse error at line 9, column 5\n"), "{table}");
     }
 
     #[test]

@@ -35,6 +35,37 @@ pub fn object_error_span(text: &str, message: &str) -> Option<Range<usize>> {
     Some(deepest(object, path.split(": ").next().unwrap_or("")).span())
 }
 
+/// The span of the field an error names inside a table read whole (a light's `attenuation`),
+/// which the parser gives the table's span (`attenuation: l: …` underlined all of
+/// `{ c = 1.0, l = "x" }`): the table is found by that span, the field under it by the path
+/// after the table's own name. `None` where that finds nothing deeper.
+pub fn inner_error_span(text: &str, span: Range<usize>, message: &str) -> Option<Range<usize>> {
+    let (name, rest) = message.split_once(": ")?;
+    if name.is_empty() || !name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_') {
+        return None;
+    }
+    let root = DeTable::parse(text).ok()?;
+    let table = with_span(root.get_ref(), &span)?;
+    let path = rest.split(": ").next().unwrap_or("");
+    let field = deepest(table, path);
+    (field.span() != span).then(|| field.span())
+}
+
+/// The value in `table` (at any depth) whose span is `span`.
+fn with_span<'a, 'i>(table: &'a DeTable<'i>, span: &Range<usize>) -> Option<&'a Spanned<DeValue<'i>>> {
+    fn within<'a, 'i>(value: &'a Spanned<DeValue<'i>>, span: &Range<usize>) -> Option<&'a Spanned<DeValue<'i>>> {
+        if value.span() == *span {
+            return Some(value);
+        }
+        match value.get_ref() {
+            DeValue::Table(t) => t.values().find_map(|v| within(v, span)),
+            DeValue::Array(items) => items.iter().find_map(|v| within(v, span)),
+            _ => None,
+        }
+    }
+    table.values().find_map(|v| within(v, span))
+}
+
 /// The value at `path` (`transform.scale`, `triangles[0][2]`) under `value`, or the deepest of
 /// its parts that there is.
 fn deepest<'a, 'i>(value: &'a Spanned<DeValue<'i>>, path: &str) -> &'a Spanned<DeValue<'i>> {
