@@ -45,6 +45,15 @@ fn the_fitted_ambient_lowers_whitteds_error_against_the_path_traced_image() {
             "{name}: rendered {rmse}, fitted {}",
             fit.rmse_fitted
         );
+        // The figures at any I_a written follow from the fit's moments: as written, fitted,
+        // without (the viewer's "as written" after an I_a edit, without a render).
+        // To 1e-7: a render stores its I_a as f32 (0.1 is 0.100000001), the moments take it exact.
+        let close = |a: f64, b: f64| (a - b).abs() <= 1e-7 * a.abs().max(b.abs()).max(1e-12);
+        let (rmse, adds) = fit.at(desc.world.ambient.0);
+        assert!(close(rmse, fit.rmse_as_written) && close(adds, fit.adds_as_written), "{name}: {rmse} {adds} {fit:?}");
+        let (rmse, adds) = fit.at(fit.ambient);
+        assert!(close(rmse, fit.rmse_fitted) && close(adds, fit.adds_fitted), "{name}: {rmse} {adds} {fit:?}");
+        assert!(close(fit.at([0.0; 3]).0, fit.rmse_without) && fit.at([0.0; 3]).1 == 0.0, "{name}");
     }
 }
 

@@ -175,15 +175,27 @@ fn fit_ambient_lowers_whitteds_error_against_the_paths_and_applies_on_click() {
     assert!(h.query_by_label_contains("fitted to an earlier edit").is_none(), "the applied fit called stale");
     assert!(h.query_by_label("Apply the fitted I_a").is_none(), "Apply offered again");
     assert!(h.query_by_label_contains("the fitted value").is_some(), "says it is applied");
-    let (_, applied, _) = h.state().fitter.result.expect("the fit");
-    assert_eq!(applied.rmse_as_written, fit.rmse_fitted, "'as written' is the applied ambient's now");
+    let as_written = format!("RMSE against the paths: {:.4} as written", fit.rmse_fitted);
+    assert!(h.query_by_label_contains(&as_written).is_some(), "'as written' is the applied ambient's now");
+    // Another I_a typed leaves the fit the scene's, its "as written" that I_a's (a lecturer saw
+    // "fitted to an earlier edit" and the old figures after typing one).
+    h.state_mut().doc.desc.world.ambient = glint_scene::Rgb([0.0; 3]);
+    h.state_mut().doc.edited();
+    h.run_steps(2);
+    assert!(h.query_by_label_contains("fitted to an earlier edit").is_none(), "an I_a edit called the fit stale");
+    let without = format!("RMSE against the paths: {:.4} as written", fit.rmse_without);
+    assert!(h.query_by_label_contains(&without).is_some(), "'as written' follows the I_a typed");
     // Light shown is a way of looking, not an edit: the fit stays the scene's (a lecturer saw
     // "fitted to an earlier edit" beside "I_a is the fitted value" on choosing Caustics).
     h.state_mut().doc.omit_kinds = glint_scene::PathKind::Caustic.alone();
     h.state_mut().doc.view_changed();
     h.run_steps(2);
     assert!(h.query_by_label_contains("fitted to an earlier edit").is_none(), "a view change called the fit stale");
-    // An edit of the scene does leave it an earlier edit's.
+    // An edit of the scene does leave it an earlier edit's: a k_a, as a camera.
+    h.state_mut().doc.desc.materials.values_mut().for_each(|m| m.ka.0[0] *= 0.5);
+    h.state_mut().doc.edited();
+    h.run_steps(2);
+    assert!(h.query_by_label_contains("fitted to an earlier edit").is_some(), "a k_a edit left the fit current");
     h.state_mut().doc.desc.camera.fov_y += 1.0;
     h.state_mut().doc.edited();
     h.run_steps(2);

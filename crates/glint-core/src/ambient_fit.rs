@@ -37,6 +37,25 @@ pub struct AmbientFit {
     /// light too (an area emitter's, which its point lights do not compute: cornell-gi's lamp),
     /// so a fitted ambient may add more than the indirect light (a lecturer asked why).
     pub below_reference: f64,
+    /// Per channel, Σ(w₀−r)², Σ(w₀−r)·Δ, ΣΔ² and ΣΔ over the pixels (w₀ Whitted's image
+    /// without an ambient, Δ its response to I_a = 1, r the reference): the image is affine in
+    /// I_a, so these give its error and mean at any I_a written (`at`) without rendering again.
+    pub moments: [[f64; 4]; 3],
+    pub pixels: usize,
+}
+
+impl AmbientFit {
+    /// Whitted's RMSE against the reference, and what I_a·k_a adds to its mean, with `ambient`
+    /// written: `rmse_as_written` and `adds_as_written` of another I_a.
+    pub fn at(&self, ambient: [f64; 3]) -> (f64, f64) {
+        let n = (3 * self.pixels.max(1)) as f64;
+        let (mut squares, mut adds) = (0.0, 0.0);
+        for (&[e0, e1, e2, m], a) in self.moments.iter().zip(ambient) {
+            squares += e0 + 2.0 * a * e1 + a * a * e2;
+            adds += a * m;
+        }
+        (squares.max(0.0).sqrt() / n.sqrt(), adds / n)
+    }
 }
 
 /// The mean of `a − b` over the pixels and channels.
@@ -63,14 +82,15 @@ pub fn fit_ambient(
     let as_written = render(desc.world.ambient)?;
     let p = &reference.pixels;
     let mut ambient = [0.0; 3];
+    let mut moments = [[0.0; 4]; 3];
     let mut determined = false;
-    for (c, a) in ambient.iter_mut().enumerate() {
-        let (mut num, mut den) = (0.0, 0.0);
+    for (c, (a, m)) in ambient.iter_mut().zip(&mut moments).enumerate() {
         for ((w0, w1), r) in without.iter().zip(&unit).zip(p) {
-            let response = w1[c] - w0[c];
-            num += response * (r[c] - w0[c]);
-            den += response * response;
+            let (response, off) = (w1[c] - w0[c], w0[c] - r[c]);
+            *m = [m[0] + off * off, m[1] + off * response, m[2] + response * response, m[3] + response];
         }
+        // The least squares of w₀ + a·Δ against r: a = Σ(r−w₀)Δ / ΣΔ².
+        let (num, den) = (-m[1], m[2]);
         determined |= den > 0.0;
         *a = if den > 0.0 { (num / den).max(0.0) } else { 0.0 };
     }
@@ -85,5 +105,7 @@ pub fn fit_ambient(
         adds_as_written: mean_difference(&as_written, &without),
         adds_fitted: mean_difference(&fitted, &without),
         below_reference: mean_difference(p, &without),
+        moments,
+        pixels: p.len(),
     })
 }

@@ -19,19 +19,11 @@ pub struct AmbientFitter {
     /// light), and the revision it was made for.
     pub result: Option<(u64, AmbientFit, f64)>,
     pub error: Option<String>,
-    /// The revision the fit was applied at: the next revision, the apply's own edit, is one it
-    /// still fits (it does not depend on the ambient written).
-    applied_at: Option<u64>,
 }
 
 impl AmbientFitter {
     pub fn new(repaint: Option<egui::Context>) -> Self {
-        Self {
-            worker: Worker::new("glint-ambient-fit", "ambient fit", repaint),
-            result: None,
-            error: None,
-            applied_at: None,
-        }
+        Self { worker: Worker::new("glint-ambient-fit", "ambient fit", repaint), result: None, error: None }
     }
 
     pub fn is_running(&self) -> bool {
@@ -84,17 +76,6 @@ impl AmbientFitter {
 /// The World section's Fit ambient row; true when the fitted I_a was applied.
 pub fn ui(ui: &mut egui::Ui, doc: &mut Document, fitter: &mut AmbientFitter) -> bool {
     fitter.poll();
-    // Applying changed the ambient alone, which the fit does not depend on: it still fits the
-    // apply's revision, and the figures "as written" are now the fitted ones (the image is
-    // affine in I_a). Any other edit since leaves it an earlier edit's. `at` is the revision
-    // a current fit was applied at (views changed since the fit included).
-    if let Some(at) = fitter.applied_at.take()
-        && let Some((revision, fit, _)) = &mut fitter.result
-        && doc.revision == at + 1
-    {
-        *revision = doc.revision;
-        (fit.rmse_as_written, fit.adds_as_written) = (fit.rmse_fitted, fit.adds_fitted);
-    }
     let mut applied = false;
     ui.horizontal_wrapped(|ui| {
         let button = ui.add_enabled(!fitter.is_running(), egui::Button::new("Fit ambient to paths"));
@@ -113,31 +94,33 @@ pub fn ui(ui: &mut egui::Ui, doc: &mut Document, fitter: &mut AmbientFitter) -> 
         && !fit.determined
     {
         ui.label("I_a changes no pixel here (no material in view has k_a), so no value fits better than another.");
-        if revision < doc.scene_revision {
+        if revision < doc.fit_revision {
             ui.weak("(fitted to an earlier edit of the scene)");
         }
     } else if let Some((revision, fit, indirect)) = fitter.result {
         let [r, g, b] = fit.ambient;
+        // The I_a written now, applied or typed since the fit: the fit does not depend on it,
+        // and its figures follow from the fit's moments (the image is affine in I_a).
+        let (rmse_as_written, adds_as_written) = fit.at(doc.desc.world.ambient.0);
         ui.label(format!("Fitted I_a = ({r:.3}, {g:.3}, {b:.3})"));
         ui.label(format!(
-            "RMSE against the paths: {:.4} as written, {:.4} without, {:.4} fitted",
-            fit.rmse_as_written, fit.rmse_without, fit.rmse_fitted
+            "RMSE against the paths: {rmse_as_written:.4} as written, {:.4} without, {:.4} fitted",
+            fit.rmse_without, fit.rmse_fitted
         ));
         ui.label(format!(
             "I_a·k_a adds {:.4} to the mean as written, {:.4} fitted; without it Whitted's image is {:.4} below \
              the paths', of which {indirect:.4} is their indirect light (the paths' less their direct light) \
              and the rest direct light Whitted's model does not compute here (an area emitter's)",
-            fit.adds_as_written, fit.adds_fitted, fit.below_reference
+            adds_as_written, fit.adds_fitted, fit.below_reference
         ));
-        if revision < doc.scene_revision {
+        if revision < doc.fit_revision {
             ui.weak("(fitted to an earlier edit of the scene)");
         }
         if doc.desc.world.ambient.0 == fit.ambient {
             ui.weak("I_a is the fitted value.");
         } else if ui.button("Apply the fitted I_a").clicked() {
             doc.desc.world.ambient = glint_scene::Rgb(fit.ambient);
-            let current = revision >= doc.scene_revision;
-            (applied, fitter.applied_at) = (true, current.then_some(doc.revision));
+            applied = true;
         }
     }
     applied

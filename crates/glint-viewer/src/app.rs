@@ -191,7 +191,7 @@ impl ViewerApp {
                 }
                 // A fresh revision number keeps old results of the previous scene from matching.
                 d.revision = self.doc.revision + 1;
-                (d.opened, d.scene_revision, d.hits_revision, d.render_revision) =
+                (d.opened, d.hits_revision, d.render_revision, d.fit_revision) =
                     (d.revision, d.revision, d.revision, d.revision);
                 self.doc = d;
                 self.selection = Selection::default();

@@ -14,7 +14,7 @@ use glint_scene::{
 
 use crate::error::ViewerError;
 use crate::light_kind::SetAside;
-use crate::render_inputs::RenderInputs;
+use crate::render_inputs::{FitInputs, RenderInputs};
 
 #[derive(Clone, Debug)]
 pub struct Document {
@@ -31,9 +31,6 @@ pub struct Document {
     pub revision: u64,
     /// The revision it was opened at: renders older than it are another scene's.
     pub opened: u64,
-    /// The revision of the scene's last edit: those since changed only how it is looked at
-    /// (`view_changed`: Light shown, the integrator Whitted vs GI chose).
-    pub scene_revision: u64,
     /// The revision of the last edit that could move a first hit (the objects, the camera or
     /// the image's size), and those as it left them: the outline traced through pixel centres
     /// is found again only then, not on every edit of a value dragged.
@@ -44,6 +41,10 @@ pub struct Document {
     /// path mode an ambient edit leaves the paths as they are, and the GPU's mean goes on.
     pub render_revision: u64,
     render_inputs: Option<RenderInputs>,
+    /// The revision of the last edit that changed what the ambient fit reads (`FitInputs`):
+    /// the world's I_a, applied or typed, leaves a fit current.
+    pub fit_revision: u64,
+    fit_inputs: Option<FitInputs>,
     /// The camera as loaded, for "Reset camera".
     pub initial_camera: CameraDesc,
     /// Validation problems of the current description; while there are any, the last valid
@@ -103,11 +104,12 @@ impl Document {
             dirty: false,
             revision: 0,
             opened: 0,
-            scene_revision: 0,
             hits_revision: 0,
             hits_of: None,
             render_revision: 0,
             render_inputs: None,
+            fit_revision: 0,
+            fit_inputs: None,
             issues: Vec::new(),
             warnings,
             load_warnings,
@@ -139,11 +141,12 @@ impl Document {
             dirty: false,
             revision: 0,
             opened: 0,
-            scene_revision: 0,
             hits_revision: 0,
             hits_of: None,
             render_revision: 0,
             render_inputs: None,
+            fit_revision: 0,
+            fit_inputs: None,
             issues: Vec::new(),
             warnings: Vec::new(),
             load_warnings: Vec::new(),
@@ -167,15 +170,14 @@ impl Document {
     /// A change of how the scene is looked at (not of the scene): renders again; unsaved
     /// changes, and what was made of the scene as it is (an ambient fit), stay as they were.
     pub fn view_changed(&mut self) {
-        let (dirty, scene_revision) = (self.dirty, self.scene_revision);
+        let dirty = self.dirty;
         self.edited();
-        (self.dirty, self.scene_revision) = (dirty, scene_revision);
+        self.dirty = dirty;
     }
 
     /// Records an edit: bumps the revision and re-validates.
     pub fn edited(&mut self) {
         self.revision += 1;
-        self.scene_revision = self.revision;
         self.dirty = true;
         let mut geometry = self.geometry.borrow_mut();
         // Objects and material names as last built: their part of validation stands (a camera
@@ -205,6 +207,10 @@ impl Document {
         let inputs = RenderInputs::of(&self.desc, self.omit_kinds);
         if !same_objects || !self.is_valid() || self.render_inputs.as_ref() != Some(&inputs) {
             (self.render_revision, self.render_inputs) = (self.revision, Some(inputs));
+        }
+        let fit = FitInputs::of(&self.desc);
+        if !same_objects || self.fit_inputs.as_ref() != Some(&fit) {
+            (self.fit_revision, self.fit_inputs) = (self.revision, Some(fit));
         }
     }
 

@@ -48,3 +48,32 @@ impl RenderInputs {
         Self { render: desc.render.clone(), scene: SceneInputs::of(desc), omit_kinds }
     }
 }
+
+/// What the ambient fit reads (`glint_core::ambient_fit`): the scene and the render settings it
+/// renders Whitted and the paths at, its objects aside, but not the world's I_a, which the fit
+/// does not depend on (the figures "as written" follow from its moments at any I_a).
+#[derive(Clone, Debug, PartialEq)]
+pub struct FitInputs {
+    render: RenderSettings,
+    camera: CameraDesc,
+    world: WorldDesc,
+    materials: BTreeMap<String, MaterialDesc>,
+    lights: Vec<LightDesc>,
+}
+
+impl FitInputs {
+    pub fn of(desc: &SceneDesc) -> Self {
+        let mut world = desc.world.clone();
+        world.ambient = Rgb::default();
+        // The fit renders both integrators itself, with every kind of light.
+        let render =
+            RenderSettings { integrator: glint_scene::Integrator::Whitted, indirect: true, ..desc.render.clone() };
+        Self {
+            render,
+            camera: desc.camera.clone(),
+            world,
+            materials: desc.materials.clone(),
+            lights: desc.lights.clone(),
+        }
+    }
+}
