@@ -45,17 +45,45 @@ fn window_about_caret(message: &str) -> String {
     // The caret line is the gutter, `|`, then column + 1 spaces and the carets.
     let column = after_bar.chars().take_while(|&c| c == ' ').count().saturating_sub(1);
     let carets = after_bar.chars().filter(|&c| c == '^').count().max(1);
-    if chars.len() <= WIDTH || column >= chars.len() {
+    // Tabs drawn as spaces to the next stop of 4, the caret moved with them: a tab before the
+    // value left the caret short of it (a tester).
+    let tabs = chars.contains(&'\t');
+    let (chars, column) = if tabs { expand_tabs(&chars, column) } else { (chars, column) };
+    if (!tabs && chars.len() <= WIDTH) || column > chars.len() {
         return message.to_string();
     }
-    let start = column.saturating_sub(BEFORE);
-    let end = (start + WIDTH).min(chars.len());
+    let (start, end) = if chars.len() <= WIDTH {
+        (0, chars.len())
+    } else {
+        let start = column.saturating_sub(BEFORE);
+        (start, (start + WIDTH).min(chars.len()))
+    };
     let (head, tail) = (if start > 0 { "…" } else { "" }, if end < chars.len() { "…" } else { "" });
     let window: String = chars[start..end].iter().collect();
     let caret_at = column - start + head.chars().count();
+    let carets = carets.min(end.saturating_sub(column)).max(1);
     lines[2] = format!("{gutter} | {head}{window}{tail}");
-    lines[3] = format!("{}|{}{}", &lines[3][..bar], " ".repeat(caret_at + 1), "^".repeat(carets.min(end - column)));
+    lines[3] = format!("{}|{}{}", &lines[3][..bar], " ".repeat(caret_at + 1), "^".repeat(carets));
     lines.join("\n")
+}
+
+/// `line` with each tab as the spaces to the next multiple of 4, and where character `column`
+/// of it then stands.
+fn expand_tabs(line: &[char], column: usize) -> (Vec<char>, usize) {
+    let mut out = Vec::with_capacity(line.len() + 16);
+    let mut at = None;
+    for (i, &c) in line.iter().enumerate() {
+        if i == column {
+            at = Some(out.len());
+        }
+        if c == '\t' {
+            out.extend(std::iter::repeat_n(' ', 4 - out.len() % 4));
+        } else {
+            out.push(c);
+        }
+    }
+    let at = at.unwrap_or(out.len() + column.saturating_sub(line.len()));
+    (out, at)
 }
 
 /// Tables nested past what serde's reader recurses into: the parser said only "recursion
@@ -236,6 +264,12 @@ mod tests {
         // A short line is left as the parser laid it out.
         let short = message("[camera]\nposition = [0, 0, -5]\nlook_at = [0, 0, 0]\nfov_y = \"x\"\n");
         assert!(short.contains("4 | fov_y = \"x\"\n  |         ^^^\n"), "{short}");
+    }
+
+    #[test]
+    fn a_tab_before_the_value_moves_the_caret_with_it() {
+        let said = message("[camera]\nposition = [0, 0, -5]\nlook_at = [0, 0, 0]\n\tfov_y\t=\t\"x\"\n");
+        assert!(said.contains("4 |     fov_y   =   \"x\"\n  |                 ^^^\n"), "{said}");
     }
 
     #[test]
