@@ -132,29 +132,9 @@ impl Document {
             lights: Vec::new(),
             objects: Vec::new(),
         };
-        Self {
-            initial_camera: desc.camera.clone(),
-            desc,
-            name: "empty".into(),
-            path: None,
-            source: None,
-            dirty: false,
-            revision: 0,
-            opened: 0,
-            hits_revision: 0,
-            hits_of: None,
-            render_revision: 0,
-            render_inputs: None,
-            fit_revision: 0,
-            fit_inputs: None,
-            issues: Vec::new(),
-            warnings: Vec::new(),
-            load_warnings: Vec::new(),
-            light_set_aside: Vec::new(),
-            geometry: RefCell::new(None),
-            geometry_checked: Cell::new(None),
-            omit_kinds: 0,
-        }
+        // As a loaded scene with nothing to warn of: one constructor for every field.
+        let source = PathBuf::from("builtin:empty");
+        Self::from_loaded(LoadedScene { desc, source, name: "empty".into(), warnings: vec![], scene_warnings: vec![] })
     }
 
     /// Loads a scene file or a built-in scene by name.

@@ -20,18 +20,23 @@ pub struct SceneInputs {
 
 impl SceneInputs {
     pub fn of(desc: &SceneDesc) -> Self {
-        let mut inputs = Self {
-            camera: desc.camera.clone(),
-            world: desc.world.clone(),
-            materials: desc.materials.clone(),
-            lights: desc.lights.clone(),
-        };
+        let mut inputs = Self::as_written(desc);
         if !desc.render.integrator.is_whitted() {
             inputs.world.ambient = Rgb::default();
             inputs.materials.values_mut().for_each(|m| m.ka = Rgb::default());
             inputs.lights.iter_mut().for_each(|l| l.ambient = Rgb::default());
         }
         inputs
+    }
+
+    /// Every term as `desc` writes it.
+    fn as_written(desc: &SceneDesc) -> Self {
+        Self {
+            camera: desc.camera.clone(),
+            world: desc.world.clone(),
+            materials: desc.materials.clone(),
+            lights: desc.lights.clone(),
+        }
     }
 }
 
@@ -55,25 +60,16 @@ impl RenderInputs {
 #[derive(Clone, Debug, PartialEq)]
 pub struct FitInputs {
     render: RenderSettings,
-    camera: CameraDesc,
-    world: WorldDesc,
-    materials: BTreeMap<String, MaterialDesc>,
-    lights: Vec<LightDesc>,
+    scene: SceneInputs,
 }
 
 impl FitInputs {
     pub fn of(desc: &SceneDesc) -> Self {
-        let mut world = desc.world.clone();
-        world.ambient = Rgb::default();
+        let mut scene = SceneInputs::as_written(desc);
+        scene.world.ambient = Rgb::default();
         // The fit renders both integrators itself, with every kind of light.
         let render =
             RenderSettings { integrator: glint_scene::Integrator::Whitted, indirect: true, ..desc.render.clone() };
-        Self {
-            render,
-            camera: desc.camera.clone(),
-            world,
-            materials: desc.materials.clone(),
-            lights: desc.lights.clone(),
-        }
+        Self { render, scene }
     }
 }

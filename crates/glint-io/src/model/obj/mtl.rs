@@ -91,22 +91,21 @@ pub(super) fn bad_number(text: &[u8]) -> Option<(usize, String)> {
             Some(key @ ("Ns" | "Ni" | "d" | "Tr")) => (key, false),
             _ => continue,
         };
-        // A word where a number belongs, or a count a scalar has not, made tobj's "material
-        // parse error" with no line (a tester). `Kd spectral …` and `Kd xyz …` start with a
-        // word: tobj refuses those itself.
         let values: Vec<&str> = words.collect();
-        // `Tr` is Glint's to read (tobj keeps it as text): its own warning names a bad one.
-        let other_form = key == "Tr" || values.first().is_some_and(|v| matches!(*v, "spectral" | "xyz" | "-halo"));
-        if !colour && values.len() != 1 && !other_form {
-            return Some((n + 1, format!("`{}`: `{key}` takes one number; {} given", line.trim(), values.len())));
-        }
-        // Forms of the MTL format Glint does not read, left to tobj: `Kd spectral file`, `Kd xyz
-        // x y z`, `d -halo factor`. `Tr`'s numbers are checked as before.
-        if other_form && key != "Tr" {
-            continue;
-        }
-        if let Some(word) = values.iter().find(|w| w.parse::<f64>().is_err()).filter(|_| key != "Tr") {
-            return Some((n + 1, format!("`{}`: `{word}` is not a number", line.trim())));
+        // A word where a number belongs, or a count a scalar has not, made tobj's "material
+        // parse error" with no line (a tester). `Tr` is Glint's to read (tobj keeps it as
+        // text), and its own warning names a bad one; `Kd spectral file`, `Kd xyz x y z` and
+        // `d -halo factor` are forms Glint does not read, left to tobj.
+        if key != "Tr" {
+            if values.first().is_some_and(|v| matches!(*v, "spectral" | "xyz" | "-halo")) {
+                continue;
+            }
+            if !colour && values.len() != 1 {
+                return Some((n + 1, format!("`{}`: `{key}` takes one number; {} given", line.trim(), values.len())));
+            }
+            if let Some(word) = values.iter().find(|w| w.parse::<f64>().is_err()) {
+                return Some((n + 1, format!("`{}`: `{word}` is not a number", line.trim())));
+            }
         }
         for word in values.into_iter().take_while(|w| w.parse::<f64>().is_ok()) {
             let value = word.parse::<f32>().unwrap_or(f32::NAN);

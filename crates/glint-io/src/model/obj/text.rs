@@ -156,7 +156,8 @@ pub(super) fn bad_number(bytes: &[u8]) -> Option<(usize, String)> {
         // tobj reads a line up to a comment, and of `vt` and `vn` lines only the numbers it uses.
         let mut words = line.split_whitespace().take_while(|w| !w.starts_with('#'));
         // A `v` line's fourth number is w, or the first of a colour's three.
-        let components: &[(&str, &str)] = match words.next() {
+        let keyword = words.next();
+        let components: &[(&str, &str)] = match keyword {
             Some("v") if words.clone().count() == 4 => &[
                 ("vertex position", "x"),
                 ("vertex position", "y"),
@@ -176,17 +177,17 @@ pub(super) fn bad_number(bytes: &[u8]) -> Option<(usize, String)> {
             _ => continue,
         };
         // Too few numbers: tobj said only "position parse error" for `v 0 0` (a tester).
-        let (what, needs) = match components[0].0 {
-            "vertex position" => ("a vertex position", "three numbers x y z (then optionally w, or r g b)"),
-            "texture coordinate" => ("a texture coordinate", "two numbers u v"),
-            _ => ("a normal", "three numbers x y z"),
+        let (what, least, needs) = match keyword {
+            Some("vt") => ("a texture coordinate", 2, "two numbers u v"),
+            Some("vn") => ("a normal", 3, "three numbers x y z"),
+            _ => ("a vertex position", 3, "three numbers x y z (then optionally w, or r g b)"),
         };
         let given = words.clone().count();
-        if given < if what == "a texture coordinate" { 2 } else { 3 } {
+        if given < least {
             return Some((n + 1, format!("`{}`: {what} needs {needs}; {given} given", line.trim())));
         }
         // tobj said "color parse error (too many or too few components)" of 5, 7 or more.
-        if what == "a vertex position" && !matches!(given, 3 | 4 | 6) {
+        if keyword == Some("v") && !matches!(given, 3 | 4 | 6) {
             return Some((
                 n + 1,
                 format!("`{}`: a vertex is x y z, then w, or r g b: 3, 4 or 6 numbers; {given} given", line.trim()),
