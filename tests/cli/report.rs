@@ -675,7 +675,10 @@ fn report_shards_merge_into_the_one_machine_report_and_missing_ones_are_named() 
         ("times", toml::Value::Array(Vec::new()), "rows[0].times: empty"),
         ("errors.rmse", toml::Value::Float(f64::NAN), "rows[0].errors.rmse: NaN is not a finite number ≥ 0"),
         // Summed for rays per second: it overflowed (a panic in debug builds, wrapped in release).
-        ("counts.camera", toml::Value::Integer(i64::MAX), "rows[0].counts: sum to more than"),
+        ("counts.shadow", toml::Value::Integer(i64::MAX), "rows[0].counts: sum to more than"),
+        // One camera ray a sample on the CPU: a count of 0 was merged as dropped work (a tester).
+        ("counts.camera", toml::Value::Integer(0), "rows[0].counts.camera: is 0, not the CPU's one a sample"),
+        ("camera_expected", toml::Value::Integer(5), "rows[0].camera_expected: is 5, not 24×18×"),
         ("errors.psnr", toml::Value::Float(f64::NEG_INFINITY), "rows[0].errors.psnr: is -inf, which no image pair has"),
         // A fraction: 1e300 merged into a percentage of 303 digits (a tester).
         (
@@ -702,7 +705,33 @@ fn report_shards_merge_into_the_one_machine_report_and_missing_ones_are_named() 
         gi[0].as_table_mut().expect("a table").clone()
     };
     let set_first_gi = |s: &mut toml::Table, gi: toml::Table| s["gi"].as_array_mut().expect("gi")[0] = gi.into();
-    let cases: [(Edit, &str); 12] = [
+    let cases: [(Edit, &str); 15] = [
+        // Rows the sweep does not make: a depth of 99999 was merged into the table (a tester).
+        (
+            &|s| {
+                let mut gi = first_gi(s);
+                gi["rows"][0]["depth"] = toml::Value::Integer(99999);
+                set_first_gi(s, gi);
+            },
+            "Whitted-against-paths row 0 is cpu whitted, 1 spp, depth 99999, ambient as written, not the sweep's \
+             cpu whitted, 1 spp, depth 5, ambient as written (6 rows planned, 6 found)",
+        ),
+        (
+            &|s| {
+                let mut gi = first_gi(s);
+                gi["reference_depth"] = toml::Value::Integer(3);
+                set_first_gi(s, gi);
+            },
+            "path-traced reference is 64 spp at depth 3, not the sweep's 64 spp at depth 8",
+        ),
+        (
+            &|s| {
+                let mut gi = first_gi(s);
+                gi["rows"][1]["ambient_rgb"] = toml::Value::Array(vec![toml::Value::Float(0.5); 3]);
+                set_first_gi(s, gi);
+            },
+            "row 1 (cpu whitted, 1 spp, depth 5, ambient none) has ambient_rgb Some([0.5, 0.5, 0.5])",
+        ),
         // Text written into report.md as it is: a line break began a heading there (a tester).
         (
             &|s| {

@@ -354,6 +354,12 @@ fn changed_scene(first: &ShardFile, other: &ShardFile) -> Option<String> {
 /// every scene has one (a shard's file edited or cut short).
 pub fn join_gi(files: &mut [ShardFile]) -> anyhow::Result<Vec<super::gi::GiResult>> {
     let names = files[0].scenes.clone();
+    let (quick, backends) = (files[0].quick, files[0].backends.clone());
+    for f in files.iter() {
+        f.gi.iter().try_for_each(|gi| gi_planned(gi, quick, &backends)).with_context(|| {
+            format!("{}: was edited or is another sweep's; run its shard again; nothing was written", f.path.display())
+        })?;
+    }
     let mut all: Vec<super::gi::GiResult> = files.iter_mut().flat_map(|f| std::mem::take(&mut f.gi)).collect();
     all.sort_by_key(|g| names.iter().position(|n| *n == g.scene).unwrap_or(usize::MAX));
     for name in &names {
@@ -366,6 +372,56 @@ pub fn join_gi(files: &mut [ShardFile]) -> anyhow::Result<Vec<super::gi::GiResul
         }
     }
     Ok(all)
+}
+
+/// Whether a scene's Whitted-against-paths section holds the rows and reference the sweep makes
+/// (`--quick` and the backends are the same in every shard): its rows are the report's table.
+fn gi_planned(gi: &super::gi::GiResult, quick: bool, backends: &[Backend]) -> anyhow::Result<()> {
+    let (spp, depth) = super::gi::reference_axes(quick);
+    let scene = &gi.scene;
+    if (gi.reference_spp, gi.reference_depth) != (spp, depth) {
+        bail!(
+            "scene {scene}'s path-traced reference is {} spp at depth {}, not the sweep's {spp} spp at depth {depth}",
+            gi.reference_spp,
+            gi.reference_depth
+        );
+    }
+    let planned = super::gi::planned_rows(backends, quick);
+    let keys: Vec<_> = gi.rows.iter().map(super::gi::GiRow::key).collect();
+    if let Some(k) = (0..planned.len().max(keys.len())).find(|&k| keys.get(k) != planned.get(k)) {
+        let what = |key: Option<&super::gi::GiRowKey>| key.map_or_else(|| "none".to_string(), |k| k.describe());
+        bail!(
+            "scene {scene}'s Whitted-against-paths row {k} is {}, not the sweep's {} ({} rows planned, {} found)",
+            what(keys.get(k)),
+            what(planned.get(k)),
+            planned.len(),
+            keys.len()
+        );
+    }
+    for (k, row) in gi.rows.iter().enumerate() {
+        use super::gi::Ambient;
+        let consistent = match (row.ambient, row.ambient_rgb) {
+            (Some(Ambient::AsWritten), Some(rgb)) => rgb == gi.written,
+            (Some(Ambient::Without), Some(rgb)) => rgb == [0.0; 3],
+            (Some(Ambient::Fitted), Some(_)) | (None, None) => true,
+            (Some(_), None) | (None, Some(_)) => false,
+        };
+        if !consistent {
+            bail!(
+                "scene {scene}'s Whitted-against-paths row {k} ({}) has ambient_rgb {:?}, which its ambient ({}) does \
+                 not give",
+                row.key().describe(),
+                row.ambient_rgb,
+                match row.ambient {
+                    Some(Ambient::AsWritten) => format!("as written: {:?}", gi.written),
+                    Some(Ambient::Without) => "none: [0.0, 0.0, 0.0]".to_string(),
+                    Some(Ambient::Fitted) => "fitted: some I_a".to_string(),
+                    None => "a path row's: none".to_string(),
+                }
+            );
+        }
+    }
+    Ok(())
 }
 
 /// The shards' rows joined per scene, in the sweep's order of scenes and of configurations;

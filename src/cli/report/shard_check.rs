@@ -3,6 +3,7 @@
 
 use std::time::Duration;
 
+use glint_core::Backend;
 use glint_scene::{Report, format_number, validate_settings};
 
 use super::shard::ShardFile;
@@ -133,6 +134,23 @@ impl ShardFile {
                 }
                 for (name, v) in [("twin_rmse", row.twin_rmse), ("twin_rays_pct", row.twin_rays_pct.map(f64::abs))] {
                     v.map_or(Ok(()), |v| number(format!("{at}.{name}"), v))?;
+                }
+                // One camera ray a sample: the CPU traces every one, and no GPU traces more. A CPU
+                // row's count of 0 was merged and marked as dropped work (a tester).
+                let expected = u64::from(self.width) * u64::from(self.height) * u64::from(row.config.spp);
+                if row.camera_expected != expected {
+                    return Err(format!(
+                        "{at}.camera_expected: is {}, not {}×{}×{} spp = {expected}",
+                        row.camera_expected, self.width, self.height, row.config.spp
+                    ));
+                }
+                let cpu = row.config.backend == Backend::Cpu;
+                if row.counts.camera > expected || (cpu && row.counts.camera != expected) {
+                    return Err(format!(
+                        "{at}.counts.camera: is {}, {} the {expected} samples of the row",
+                        row.counts.camera,
+                        if cpu { "not the CPU's one a sample:" } else { "more than one a sample of" }
+                    ));
                 }
                 // Their sum is taken (rays per second): counts no render can make overflowed it.
                 let c = &row.counts;

@@ -105,13 +105,73 @@ fn reference_seed(rows: u32, k: u32) -> u32 {
     rows.wrapping_add(1).wrapping_add(k)
 }
 
+/// What names a row of the sweep: `measure` renders these, and the merge holds a shard's rows
+/// to them (a row of depth 99999 was merged into the report; a tester).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GiRowKey {
+    pub integrator: Integrator,
+    pub backend: Backend,
+    pub spp: u32,
+    pub depth: u32,
+    /// Whitted's rows only.
+    pub ambient: Option<Ambient>,
+}
+
+impl GiRowKey {
+    pub fn describe(&self) -> String {
+        let ambient = self.ambient.map_or(String::new(), |a| format!(", ambient {}", a.name()));
+        format!("{} {}, {} spp, depth {}{ambient}", self.backend.name(), self.integrator.name(), self.spp, self.depth)
+    }
+}
+
+impl GiRow {
+    pub fn key(&self) -> GiRowKey {
+        GiRowKey {
+            integrator: self.integrator,
+            backend: self.backend,
+            spp: self.spp,
+            depth: self.depth,
+            ambient: self.ambient,
+        }
+    }
+}
+
+/// The sweep's rows in the order `measure` renders them: on each backend, Whitted at each depth
+/// and samples with the ambient as written, without it and fitted, then paths at each samples.
+pub fn planned_rows(backends: &[Backend], quick: bool) -> Vec<GiRowKey> {
+    let (_, path_depth, depths, spps, path_spps) = axes(quick);
+    let mut keys = Vec::new();
+    for &backend in backends {
+        for &depth in depths {
+            for &spp in spps {
+                for ambient in [Ambient::AsWritten, Ambient::Without, Ambient::Fitted] {
+                    keys.push(GiRowKey {
+                        integrator: Integrator::Whitted,
+                        backend,
+                        spp,
+                        depth,
+                        ambient: Some(ambient),
+                    });
+                }
+            }
+        }
+        for &spp in path_spps {
+            keys.push(GiRowKey { integrator: Integrator::Path, backend, spp, depth: path_depth, ambient: None });
+        }
+    }
+    keys
+}
+
+/// The reference's samples and depth in a sweep (`--quick` or not).
+pub fn reference_axes(quick: bool) -> (u32, u32) {
+    let (spp, depth, ..) = axes(quick);
+    (spp, depth)
+}
+
 /// Renders per scene, for the progress bar: the reference's groups, each row's warm-up and
 /// runs, and the kinds.
 pub fn renders(backends: &[Backend], runs: u32, quick: bool) -> usize {
-    let (_, _, depths, spps, path_spps) = axes(quick);
-    REFERENCE_GROUPS as usize
-        + PathKind::ALL.len()
-        + backends.len() * (depths.len() * spps.len() * 3 + path_spps.len()) * (1 + runs as usize)
+    REFERENCE_GROUPS as usize + PathKind::ALL.len() + planned_rows(backends, quick).len() * (1 + runs as usize)
 }
 
 /// The mean of `groups` (images of equal size and samples) and the RMS over pixels and
@@ -138,7 +198,7 @@ pub fn measure(
     bar: &ProgressBar,
 ) -> anyhow::Result<GiResult> {
     let name = &loaded.name;
-    let (reference_spp, path_depth, depths, spps, path_spps) = axes(quick);
+    let (reference_spp, path_depth, depths, spps, _) = axes(quick);
     let paths = RenderSettings { integrator: Integrator::Path, indirect: true, max_depth: path_depth, ..base.clone() };
     bar.set_message(format!("{name}: path-traced reference ({reference_spp} spp)"));
     let options = CpuOptions { threads: engines.threads, ..CpuOptions::default() };
@@ -181,45 +241,30 @@ pub fn measure(
     let (mut written, mut without) = (None, None);
 
     let mut planned: Vec<(GiRow, FlatScene)> = Vec::new();
-    for &backend in backends {
-        for &depth in depths {
-            for &spp in spps {
-                for ambient in [Ambient::AsWritten, Ambient::Without, Ambient::Fitted] {
-                    let mut desc = loaded.desc.clone();
-                    desc.world.ambient = match ambient {
-                        Ambient::AsWritten => desc.world.ambient,
-                        Ambient::Without => Rgb([0.0; 3]),
-                        Ambient::Fitted => Rgb(fit_at(depth, spp).ambient),
-                    };
-                    let s = RenderSettings { spp, max_depth: depth, ..whitted.clone() };
-                    let row = GiRow {
-                        integrator: Integrator::Whitted,
-                        backend,
-                        spp,
-                        depth,
-                        ambient: Some(ambient),
-                        ambient_rgb: Some(desc.world.ambient.0),
-                        median: Duration::ZERO,
-                        rmse: 0.0,
-                    };
-                    planned.push((row, FlatScene::build(&desc, &s)));
-                }
+    for key in planned_rows(backends, quick) {
+        let (desc, s) = match key.ambient {
+            Some(ambient) => {
+                let mut desc = loaded.desc.clone();
+                desc.world.ambient = match ambient {
+                    Ambient::AsWritten => desc.world.ambient,
+                    Ambient::Without => Rgb([0.0; 3]),
+                    Ambient::Fitted => Rgb(fit_at(key.depth, key.spp).ambient),
+                };
+                (desc, RenderSettings { spp: key.spp, max_depth: key.depth, ..whitted.clone() })
             }
-        }
-        for &spp in path_spps {
-            let s = RenderSettings { spp, ..paths.clone() };
-            let row = GiRow {
-                integrator: Integrator::Path,
-                backend,
-                spp,
-                depth: path_depth,
-                ambient: None,
-                ambient_rgb: None,
-                median: Duration::ZERO,
-                rmse: 0.0,
-            };
-            planned.push((row, FlatScene::build(&loaded.desc, &s)));
-        }
+            None => (loaded.desc.clone(), RenderSettings { spp: key.spp, ..paths.clone() }),
+        };
+        let row = GiRow {
+            integrator: key.integrator,
+            backend: key.backend,
+            spp: key.spp,
+            depth: key.depth,
+            ambient: key.ambient,
+            ambient_rgb: key.ambient.map(|_| desc.world.ambient.0),
+            median: Duration::ZERO,
+            rmse: 0.0,
+        };
+        planned.push((row, FlatScene::build(&desc, &s)));
     }
     let config = |row: &GiRow| Config {
         backend: row.backend,
