@@ -21,9 +21,39 @@ pub fn parse_message(error: &toml::de::Error, text: &str) -> String {
         Some(span) => (Some(span.clone()), crate::toml_position::at_position(text, span, error.message())),
         None => (error.span(), error.to_string()),
     };
+    let path = span.as_ref().and_then(|span| crate::toml_position::field_path_at(text, span));
     let spanned = span.and_then(|span| text.get(span)).unwrap_or("");
     let located = window_about_caret(&located);
-    shorten_lines(&serde_words(&clarify_datetime(&clarify_integer_overflow(&located), spanned)))
+    let clarified = serde_words(&clarify_datetime(&clarify_integer_overflow(&located), spanned));
+    shorten_lines(&path.map_or(clarified.clone(), |path| with_field_path(&clarified, &path)))
+}
+
+/// `located`'s message line led by the path of the field it is about (`lights[2].position:
+/// invalid length 2, …`), unless it names the field already: the parts of the path the message
+/// begins with (`attenuation: l: …`) are left to it, and an object's message names its index.
+fn with_field_path(located: &str, path: &str) -> String {
+    let mut lines: Vec<&str> = located.split('\n').collect();
+    if !located.starts_with("TOML parse error at line ") || lines.len() < 5 || lines[4].starts_with("objects[") {
+        return located.to_string();
+    }
+    let said = lines[4];
+    // The path cut before each of its parts, the whole path first: where the message begins
+    // with the part after the cut, only the part before it is added.
+    let cuts = std::iter::once(0).chain(path.match_indices(['.', '[']).map(|(i, _)| i));
+    let named = cuts.into_iter().find_map(|cut| {
+        let rest = path[cut..].trim_start_matches('.');
+        let part = rest.split(['.', '[']).next().unwrap_or(rest);
+        let begins =
+            !part.is_empty() && said.strip_prefix(part).is_some_and(|after| after.starts_with([':', ' ', '.', '[']));
+        begins.then_some(&path[..cut])
+    });
+    let led = match named {
+        Some("") => return located.to_string(),
+        Some(head) => format!("{head}.{said}"),
+        None => format!("{path}: {said}"),
+    };
+    lines[4] = &led;
+    lines.join("\n")
 }
 
 /// The parser's source line and caret line cut to a window about the caret where the line is
@@ -166,9 +196,15 @@ mod tests {
     #[test]
     fn a_date_time_is_called_one_wherever_it_stands() {
         let number = message("[camera]\nposition = [0, 0, -5]\nlook_at = [0, 0, 0]\nfov_y = 07:32:00\n");
-        assert!(message_line(&number).starts_with("invalid type: date-time, expected a number"), "{number}");
+        assert!(
+            message_line(&number).starts_with("camera.fov_y: invalid type: date-time, expected a number"),
+            "{number}"
+        );
         let colour = message("[world]\nambient = 1979-05-27T07:32:00Z\n");
-        assert!(message_line(&colour).starts_with("invalid type: date-time, expected a number (grey)"), "{colour}");
+        assert!(
+            message_line(&colour).starts_with("world.ambient: invalid type: date-time, expected a number (grey)"),
+            "{colour}"
+        );
         let table = message("[materials]\nglass = 1979-05-27\n");
         assert!(!table.contains("$__toml"), "{table}");
         assert!(table.contains("invalid type: date-time, expected a table"), "{table}");
@@ -278,9 +314,31 @@ mod tests {
         assert!(said.contains("line 4, column 9"), "{said}");
         assert_eq!(
             message_line(&said),
-            "1e400: beyond f64's range (±1.7976931348623157e308), and so outside every field's allowed range \
+            "camera.fov_y: 1e400: beyond f64's range (±1.7976931348623157e308), and so outside every field's allowed range \
              (docs/scene-format.md gives each field's)"
         );
+    }
+
+    #[test]
+    fn the_message_names_the_field_it_is_about() {
+        // The caret showed the line, but not whose field it was: with twenty lights, `position`
+        // is any light's (a tester).
+        let head = "[camera]\nposition = [0, 0, -5]\nlook_at = [0, 0, 0]\n[[lights]]\ntype = \"point\"\n\
+                    position = [0, 2, 0]\n[[lights]]\ntype = \"point\"\n";
+        let said = message(&format!("{head}position = [0, 2]\n"));
+        assert!(message_line(&said).starts_with("lights[1].position: invalid length 2"), "{said}");
+        let said = message(&format!("{head}intensity = 1\n"));
+        assert!(message_line(&said).starts_with("lights[1]: unknown field `intensity`, expected one of"), "{said}");
+        // What the message names already is not said twice.
+        let said = message(&format!("{head}attenuation = {{ l = \"x\" }}\n"));
+        assert!(message_line(&said).starts_with("lights[1].attenuation: l: invalid type: string"), "{said}");
+        let said =
+            message("[camera]\nposition = [0, 0, -5]\nlook_at = [0, 0, 0]\n[materials.red]\nkd = [1, \"x\", 0]\n");
+        assert!(message_line(&said).starts_with("materials.red.kd"), "{said}");
+        let said = message("[camera]\nposition = [0, 0, -5]\n");
+        assert_eq!(message_line(&said), "camera: missing field `look_at`", "{said}");
+        let said = message("[render]\nmax_depth = -1\n[camera]\nposition = [0, 0, -5]\nlook_at = [0, 0, 0]\n");
+        assert!(message_line(&said).starts_with("render.max_depth: invalid value: integer `-1`"), "{said}");
     }
 
     #[test]

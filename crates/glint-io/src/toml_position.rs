@@ -51,6 +51,41 @@ pub fn inner_error_span(text: &str, span: Range<usize>, message: &str) -> Option
     (field.span() != span).then(|| field.span())
 }
 
+/// The path of the field the parser's error at `span` is about (`lights[0].position`,
+/// `materials.red`): the deepest value holding the span's start; a key's own span (an unknown
+/// field) names the table holding it. `None` at the top level, or where the file does not
+/// parse. The parser's message said what was wrong and the caret where, but not whose field
+/// it was (`lights[1]`'s `position` or `lights[4]`'s).
+pub fn field_path_at(text: &str, span: &Range<usize>) -> Option<String> {
+    let root = DeTable::parse(text).ok()?;
+    path_in_table(root.get_ref(), span.start, "").filter(|p| !p.is_empty())
+}
+
+fn path_in_table(table: &DeTable<'_>, at: usize, path: &str) -> Option<String> {
+    table.iter().find_map(|(key, value)| {
+        if key.span().contains(&at) {
+            return Some(path.to_string());
+        }
+        let name = key.get_ref();
+        let bare = !name.is_empty() && name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-');
+        let name = if bare { name.to_string() } else { format!("{name:?}") };
+        let here = if path.is_empty() { name } else { format!("{path}.{name}") };
+        path_in_value(value, at, here)
+    })
+}
+
+fn path_in_value(value: &Spanned<DeValue<'_>>, at: usize, path: String) -> Option<String> {
+    // Children first: an `[[array]]` element's span need not cover its body.
+    let inner = match value.get_ref() {
+        DeValue::Table(table) => path_in_table(table, at, &path),
+        DeValue::Array(items) => {
+            items.iter().enumerate().find_map(|(i, item)| path_in_value(item, at, format!("{path}[{i}]")))
+        }
+        _ => None,
+    };
+    inner.or_else(|| value.span().contains(&at).then_some(path))
+}
+
 /// The value in `table` (at any depth) whose span is `span`.
 fn with_span<'a, 'i>(table: &'a DeTable<'i>, span: &Range<usize>) -> Option<&'a Spanned<DeValue<'i>>> {
     fn within<'a, 'i>(value: &'a Spanned<DeValue<'i>>, span: &Range<usize>) -> Option<&'a Spanned<DeValue<'i>>> {
@@ -144,5 +179,22 @@ mod tests {
         assert_eq!(steps("type"), vec![Step::Key("type")]);
         assert_eq!(steps(""), vec![]);
         assert_eq!(steps("invalid type"), vec![Step::Key("invalid")]);
+    }
+
+    #[test]
+    fn a_span_is_named_by_the_field_that_holds_it() {
+        let text = "[camera]\nfov_y = \"x\"\n[[lights]]\ntype = \"point\"\n[[lights]]\nposition = [0, \"y\"]\n\
+                    bogus = 1\n[materials.\"red glass\"]\nkd = { r = 1 }\n";
+        let at = |needle: &str| {
+            let start = text.find(needle).expect("in the text");
+            field_path_at(text, &(start..start + needle.len()))
+        };
+        assert_eq!(at("\"x\"").as_deref(), Some("camera.fov_y"));
+        assert_eq!(at("\"y\"").as_deref(), Some("lights[1].position[1]"));
+        // An unknown key: the table holding it.
+        assert_eq!(at("bogus").as_deref(), Some("lights[1]"));
+        assert_eq!(at("{ r").as_deref(), Some("materials.\"red glass\".kd"));
+        // A header (a missing field's span): its table.
+        assert_eq!(at("[camera]").as_deref(), Some("camera"));
     }
 }
