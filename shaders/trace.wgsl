@@ -39,8 +39,6 @@ const STACK_SIZE: u32 = #{STACK_SIZE}u;
 // Bound of the tree walk per sample (glint_gpu::shaders::MAX_TREE_NODES, below lavapipe's loop
 // budget); reaching it raises STATUS_LOOP_LIMIT.
 const MAX_TREE_NODES: u32 = #{MAX_TREE_NODES}u;
-// f32's largest finite value.
-const F32_MAX: f32 = 3.4028235e38;
 
 struct StackEntry {
     origin: vec3<f32>,
@@ -58,11 +56,13 @@ struct StackEntry {
 var<private> stack: array<StackEntry, STACK_SIZE>;
 var<private> stack_top: u32;
 
-// A path weight times k, held at f32's largest value. The CPU adds k·I(child) on return,
-// where a zero radiance stays zero; here the weight is carried down, and k_r up to 1e9
-// overflows f32 within 5 bounces: an infinite weight times a zero local radiance would be NaN.
-fn child_weight(weight: vec3<f32>, k: vec3<f32>) -> vec3<f32> {
-    return min(weight * k, vec3<f32>(F32_MAX));
+// A path weight times v (a child's k, a local radiance), where a zero of v stays zero. The CPU
+// adds k·I(child) on return, where a zero radiance stays zero; here the weight is carried down,
+// and k_r up to 1e9 passes f32's range within 5 bounces: ∞·0 would be NaN. An infinite weight
+// times light is infinite, so the image is refused as the CPU's is; a weight held at f32's
+// largest value had written a finite, wrong image (k_r = 2 at depth 140; a tester).
+fn weigh(weight: vec3<f32>, v: vec3<f32>) -> vec3<f32> {
+    return select(weight * v, vec3<f32>(0.0), v == vec3<f32>(0.0));
 }
 
 #ifdef RECURSION
@@ -97,7 +97,7 @@ fn shade_hit(ray: Ray, hit: Hit, depth: u32, weight: vec3<f32>, branch: u32) -> 
     let ns = select(-s.ns, s.ns, front);
     let v = -ray.dir;
     let no_ray = StackEntry(vec3<f32>(0.0), 0.0, vec3<f32>(0.0), 0u, vec3<f32>(0.0), Leaving(PRIM_NONE, 0u, false), 0u);
-    var out = Shaded(weight * shade_local(s, ns, ng, v), no_ray, false);
+    var out = Shaded(weigh(weight, shade_local(s, ns, ng, v)), no_ray, false);
 #ifdef PROBE
     probe_hit(s, ns, hit.t, depth, weight);
 #endif
@@ -125,7 +125,7 @@ fn shade_hit(ray: Ray, hit: Hit, depth: u32, weight: vec3<f32>, branch: u32) -> 
     probe_factors(kr, kt, !all_zero(kt) && refracted.w == 0.0);
 #endif
     if refracted.w != 0.0 {
-        let w = child_weight(weight, kt);
+        let w = weigh(weight, kt);
 #ifdef PROBE
         // A cut child goes down the walk like a traced one, so that it is recorded in the
         // CPU's order (after the mirror child's subtree), but is not traced.
@@ -150,7 +150,7 @@ fn shade_hit(ray: Ray, hit: Hit, depth: u32, weight: vec3<f32>, branch: u32) -> 
     }
 #endif
     if !all_zero(k_mirror) {
-        let w = child_weight(weight, k_mirror);
+        let w = weigh(weight, k_mirror);
 #ifdef PROBE
         let cut = probe_cut(depth, max_channel(w));
         if cut != 0u {
@@ -215,7 +215,7 @@ fn trace_ray(primary: CameraRay) -> SampleResult {
         var has_next = false;
         var gathered = vec3<f32>(0.0);
         if hit.prim == PRIM_NONE {
-            gathered = e.weight * header.background.xyz;
+            gathered = weigh(e.weight, header.background.xyz);
         } else {
             if n == 0u {
                 result.object = object_id(hit);
@@ -225,7 +225,7 @@ fn trace_ray(primary: CameraRay) -> SampleResult {
             // CPU's trace_ray); the camera ray (depth 0) and the background are not attenuated.
             if e.depth > 0u {
                 let f = attenuation_factor(header.global_attenuation, hit.t);
-                e.weight = child_weight(e.weight, vec3<f32>(f));
+                e.weight = weigh(e.weight, vec3<f32>(f));
 #ifdef PROBE
                 probe_attenuation(f);
 #endif

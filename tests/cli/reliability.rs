@@ -275,6 +275,51 @@ fn radiance_beyond_f32_is_an_error_naming_its_cause_and_writes_nothing() {
     }
 }
 
+/// Facing mirrors of k_r = 2 around a lit floor and sphere, looked at along their normal: a path
+/// bounces between them, its weight doubling, before it meets the floor. Beyond depth ≈ 127 the
+/// weight passes f32's range while the light it finally meets is below 1.
+fn doubling_mirrors(depth: u32) -> String {
+    format!(
+        "[render]\nwidth = 48\nheight = 36\nmax_depth = {depth}\nbailout = 0.0\n\
+         [camera]\nposition = [0.0, 1.0, -0.5]\nlook_at = [0.0, 1.0, 3.0]\nfov_y = 1\n\
+         [materials.m]\nka = 0.0\nkd = 0.0\nkr = 2.0\n[materials.d]\nkd = 0.7\n\
+         [[lights]]\ntype = \"point\"\nposition = [0.0, 1.8, 0.0]\n\
+         [[objects]]\ntype = \"plane\"\npoint = [0.0, 0.0, 1.0]\nnormal = [0.0, 0.0, -1.0]\nmaterial = \"m\"\n\
+         [[objects]]\ntype = \"plane\"\npoint = [0.0, 0.0, -1.0]\nnormal = [0.0, 0.0, 1.0]\nmaterial = \"m\"\n\
+         [[objects]]\ntype = \"plane\"\npoint = [0.0, 0.0, 0.0]\nnormal = [0.0, 1.0, 0.0]\nmaterial = \"d\"\n\
+         [[objects]]\ntype = \"sphere\"\ncenter = [0.3, 0.5, 0.2]\nradius = 0.3\nmaterial = \"d\"\n"
+    )
+}
+
+#[test]
+fn a_gpu_path_weight_past_f32_is_refused_as_the_cpu_s_radiance_is() {
+    // The GPU held the weight at f32's largest value and wrote a finite, wrong image at depth
+    // 140, which the CPU refused (a tester). At depth 120 both are finite and agree.
+    if skip_gpu() {
+        eprintln!("GLINT_SKIP_GPU=1: the GPU's side of the overflow is not rendered");
+        return;
+    }
+    let dir = TempDir::new("doubling");
+    for (depth, refused) in [(120, false), (140, true)] {
+        std::fs::write(dir.join("mirrors.toml"), doubling_mirrors(depth)).unwrap();
+        for backend in ["cpu", "gpu"] {
+            let out = glint(&dir, ["render", "mirrors.toml", "--backend", backend, "-q", "-o", "out.exr"]);
+            let stderr = text(&out.stderr);
+            let tag = format!("depth {depth}, {backend}");
+            assert_eq!(!out.status.success(), refused, "{tag}:\n{stderr}");
+            if refused {
+                assert!(
+                    stderr.contains("not a finite f32 number") && stderr.contains("keep k_r + k_t ≤ 1"),
+                    "{tag}: {stderr}"
+                );
+                assert!(!dir.join("out.exr").exists(), "{tag}: an image was written");
+            } else {
+                std::fs::remove_file(dir.join("out.exr")).expect(&tag);
+            }
+        }
+    }
+}
+
 #[test]
 fn a_gpu_status_flag_fails_the_render_unless_incomplete_images_are_allowed() {
     if skip_gpu() {

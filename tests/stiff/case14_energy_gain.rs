@@ -201,8 +201,8 @@ fn lit_plane_mirrors_at_depth_32_are_exact_on_the_axis_and_bounded() {
 /// with an emitting sphere between them in front of the eye. A ray that misses the sphere
 /// bounces away from it for ever and gathers nothing: its pixel is exactly 0, though its path
 /// weight 1e9^k leaves f32 after 5 bounces (and f64 after 35). The CPU adds k·0 on return; the
-/// GPU carries the weight down and holds it finite (`child_weight`), where ∞·0 made every
-/// mirror pixel NaN and refused the image.
+/// GPU carries the weight down and keeps a zero zero (`weigh`), where ∞·0 made every mirror
+/// pixel NaN and refused the image.
 #[test]
 fn unlit_mirrors_at_the_largest_gain_gather_exactly_nothing() {
     let (n, e) = (16, 0.5);

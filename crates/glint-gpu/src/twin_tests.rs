@@ -165,8 +165,8 @@ const GPU_ONLY: [(&str, &str, &str); 45] = [
     ("trace.wgsl", "push_ray", "the explicit ray stack: WGSL has no recursion"),
     (
         "trace.wgsl",
-        "child_weight",
-        "the weight carried down the stack walk, held finite; the CPU multiplies k·I(child) on return",
+        "weigh",
+        "the weight carried down the stack walk times a k or a radiance, a zero staying zero; the CPU multiplies k·I(child) on return",
     ),
     ("ray.wgsl", "add_stat", "64-bit ray counters built from u32 atomics"),
     ("ray.wgsl", "flush_counts", "an invocation's counters into the statistics buffer; the CPU adds RayCounts"),
