@@ -566,6 +566,10 @@ fn a_light_shut_in_an_opaque_sphere_and_a_slab_of_same_facing_planes_warn() {
     );
     // Through a glass one it shines, so nothing is said.
     assert!(expect_valid(&ball("glass"), "a light in a glass sphere").is_empty());
+    // A dome about the whole scene, camera and light inside: lit as without it (a tester).
+    let dome =
+        format!("{BASE}[[objects]]\ntype = \"sphere\"\ncenter = [0.0, 0.0, 0.0]\nradius = 1e8\nmaterial = \"red\"\n");
+    assert!(expect_valid(&dome, "a dome about the scene").is_empty());
     let plane = |y: f64, ny: f64| {
         format!(
             "[[objects]]\ntype = \"plane\"\npoint = [0.0, {y:?}, 0.0]\nnormal = [0.0, {ny:?}, 0.0]\nmaterial = \"glass\"\n"

@@ -16,17 +16,21 @@ fn transmits(scene: &SceneDesc, material: &str) -> Option<bool> {
     scene.materials.get(material).map(|m| m.kt.max_channel() > 0.0)
 }
 
-/// A shadow-casting light inside an opaque sphere lights only that sphere's inside: every other
-/// surface is in its shadow, silently.
+/// A shadow-casting light inside an opaque sphere lights only that sphere's inside: where the
+/// camera is outside it, every surface in view is in its shadow, silently. With the camera
+/// inside too, the sphere is a room or a sky dome, and what the camera sees is lit (a dome of
+/// radius 1e9 around a whole scene was warned of; a tester).
 fn shut_in_lights(scene: &SceneDesc) -> Vec<FieldIssue> {
     let mut out = Vec::new();
+    let eye = DVec3::from(scene.camera.position);
     for (i, light) in scene.lights.iter().enumerate() {
         let Some(p) = light.position.filter(|_| light.casts_shadows) else { continue };
         let p = DVec3::from(p);
         let shut_in = scene.objects.iter().enumerate().find_map(|(k, o)| match o {
             ObjectDesc::Sphere(s) => {
-                let inside = p.distance(DVec3::from(s.center)) < s.radius;
-                (inside && transmits(scene, &s.material) == Some(false)).then_some((k, s.radius))
+                let inside = |q: DVec3| q.distance(DVec3::from(s.center)) < s.radius;
+                let opaque = transmits(scene, &s.material) == Some(false);
+                (inside(p) && !inside(eye) && opaque).then_some((k, s.radius))
             }
             ObjectDesc::Plane(_) | ObjectDesc::Mesh(_) | ObjectDesc::Model(_) => None,
         });
@@ -34,9 +38,9 @@ fn shut_in_lights(scene: &SceneDesc) -> Vec<FieldIssue> {
             out.push(FieldIssue {
                 field: format!("lights[{i}].position"),
                 problem: format!(
-                    "is inside objects[{k}], an opaque sphere (radius {}): the light reaches only that sphere's \
-                     inside, and every other surface is in its shadow (move it out, give the sphere kt > 0, or set \
-                     casts_shadows = false)",
+                    "is inside objects[{k}], an opaque sphere (radius {}) the camera is outside of: the light \
+                     reaches only that sphere's inside, and every surface in view is in its shadow (move it out, give \
+                     the sphere kt > 0, or set casts_shadows = false)",
                     num(radius)
                 ),
             });
