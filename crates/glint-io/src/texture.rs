@@ -19,6 +19,13 @@ pub fn decode_texture(bytes: &[u8], color: ColorSpace) -> Result<TextureImage, T
         Some(image::ImageFormat::Png | image::ImageFormat::Jpeg) => {}
         _ => return Err(TextureError::Format),
     }
+    if reader.format() == Some(image::ImageFormat::Jpeg)
+        && let Some(end) = jpeg_cut_short(bytes)
+    {
+        return Err(TextureError::Decode(format!(
+            "the JPEG ends at byte {end}, before its end-of-image marker: the file is cut short"
+        )));
+    }
     // A PNG's size is read from its IHDR here: the decoder answered a header claiming
     // 2^31 × 2^31 texels with "Memory limit exceeded" before the size could be named.
     if reader.format() == Some(image::ImageFormat::Png)
@@ -83,6 +90,47 @@ pub fn load_textures(desc: &mut SceneDesc, file: &Path) -> Result<(), Vec<FieldI
     if issues.is_empty() { Ok(()) } else { Err(issues) }
 }
 
+/// The length of a JPEG that ends before its end-of-image marker, `None` if it has one (or is
+/// not laid out as JPEG markers, which the decoder then names). The decoder fills a file cut
+/// short with grey rows and no error (a tester's texture cut at 3,000 of 9,287 bytes rendered
+/// flat grey). The marker segments are walked from the start, so that an EXIF thumbnail's own
+/// end marker, inside its APP1 segment, is skipped with it; a scan's data runs to the next
+/// marker that is neither a stuffed 0xFF00 nor a restart marker.
+fn jpeg_cut_short(bytes: &[u8]) -> Option<usize> {
+    let cut = Some(bytes.len());
+    let mut at = 2; // after the start-of-image marker
+    loop {
+        if *bytes.get(at)? != 0xFF {
+            return None;
+        }
+        while bytes.get(at) == Some(&0xFF) {
+            at += 1;
+        }
+        let marker = *bytes.get(at)?;
+        at += 1;
+        match marker {
+            0xD9 => return None,
+            0x01 | 0xD0..=0xD7 => continue,
+            _ => {}
+        }
+        let Some(length) = bytes.get(at..at + 2) else { return cut };
+        at += usize::from(u16::from_be_bytes([length[0], length[1]]));
+        if at > bytes.len() {
+            return cut;
+        }
+        if marker == 0xDA {
+            loop {
+                match bytes.get(at..at + 2) {
+                    None => return cut,
+                    Some([0xFF, 0x00 | 0xD0..=0xD7]) => at += 2,
+                    Some([0xFF, next]) if *next != 0xFF => break,
+                    Some(_) => at += 1,
+                }
+            }
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -106,6 +154,26 @@ mod tests {
         assert_eq!(t.texels()[1], [1.0, 1.0, 1.0, 0.0]);
         let linear = decode_texture(&bytes, ColorSpace::Linear).expect("decodes");
         assert_eq!(linear.texels()[0][1], (128.0_f64 / 255.0) as f32);
+    }
+
+    #[test]
+    fn a_jpeg_cut_short_is_refused_and_a_whole_one_decodes() {
+        let mut image = image::RgbImage::new(32, 24);
+        image.pixels_mut().enumerate().for_each(|(i, p)| *p = image::Rgb([(i * 7) as u8, (i * 3) as u8, 90]));
+        let mut whole = Vec::new();
+        image::codecs::jpeg::JpegEncoder::new_with_quality(&mut whole, 90).encode_image(&image).expect("encodes");
+        assert_eq!(jpeg_cut_short(&whole), None);
+        assert!(decode_texture(&whole, ColorSpace::Srgb).is_ok());
+        // Bytes after the end marker (a trailer some writers append) are not a cut.
+        let mut trailed = whole.clone();
+        trailed.extend_from_slice(b"trailer");
+        assert_eq!(jpeg_cut_short(&trailed), None);
+        for keep in [whole.len() - 2, whole.len() / 2, 200] {
+            let cut = &whole[..keep];
+            assert_eq!(jpeg_cut_short(cut), Some(keep), "cut at {keep}");
+            let said = decode_texture(cut, ColorSpace::Srgb).expect_err("a JPEG cut short").to_string();
+            assert!(said.contains(&format!("the JPEG ends at byte {keep}, before its end-of-image marker")), "{said}");
+        }
     }
 
     #[test]

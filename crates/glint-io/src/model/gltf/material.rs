@@ -99,6 +99,8 @@ pub(super) fn map_material(m: &::gltf::Material<'_>, field: &str, warnings: &mut
         }
     };
     let transmission = m.transmission().map_or(0.0, |t| factors.unit("transmissionFactor", t.transmission_factor()));
+    // Clamped as the other factors are (a factor of 2 was an error, against docs/models.md).
+    let emissive = factors.rgb("emissiveFactor", m.emissive_factor());
     let mut warn = |problem: String| warnings.push(FieldIssue { field: field.to_string(), problem });
     let kr = if roughness < MIRROR_ROUGHNESS { f0 } else { Rgb::splat(0.0) };
     // Transmission replaces the diffuse part and is tinted by it (KHR_materials_transmission);
@@ -119,7 +121,7 @@ pub(super) fn map_material(m: &::gltf::Material<'_>, field: &str, warnings: &mut
         }
     };
     let strength = m.emissive_strength().map_or(1.0, widen);
-    let emission = Rgb(m.emissive_factor().map(|e| widen(e) * strength));
+    let emission = Rgb(emissive.0.map(|e| e * strength));
     if m.alpha_mode() == ::gltf::material::AlphaMode::Blend {
         warn("alphaMode BLEND is traced as opaque (use KHR_materials_transmission for glass)".into());
     }
@@ -202,14 +204,6 @@ pub(super) fn check_emission(
 ) -> Result<(), (String, String)> {
     let strength = m.emissive_strength().map_or(1.0, widen);
     let [r, g, b] = m.emissive_factor().map(|c| format_number(widen(c)));
-    // The specification's range, which the gltf crate does not check: a negative factor would
-    // reach validation as Glint's negative `emission`.
-    if let Some(c) = m.emissive_factor().into_iter().find(|c| !(0.0..=1.0).contains(c)) {
-        return Err((
-            format!("materials[{index}].emissiveFactor"),
-            format!("({r}, {g}, {b}): {} is outside [0, 1], each factor's range in glTF 2.0", format_number(widen(c))),
-        ));
-    }
     if strength.is_nan() || strength < 0.0 {
         return Err((
             format!("materials[{index}].extensions.KHR_materials_emissive_strength.emissiveStrength"),

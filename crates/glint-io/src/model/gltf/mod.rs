@@ -267,7 +267,7 @@ pub fn load_gltf(path: &Path, options: &ImportOptions) -> Result<Model, GltfErro
                     {
                         model.warnings.push(FieldIssue {
                             field: format!("{prim_path}.attributes.NORMAL"),
-                            problem: "has zero-length normals (or ones its node's transform makes zero); shaded \
+                            problem: "has zero-length or non-finite normals (or ones its node's transform makes zero); shaded \
                                       with its faces' geometric normals"
                                 .into(),
                         });
@@ -467,6 +467,17 @@ fn read_primitive(
             format!("index {i} (element {k}) is beyond the {} vertices of POSITION", vertices.len()),
         ));
     }
+    // glTF 2.0 §3.7.2.1: TRIANGLES takes three indices a triangle; the rest of a count of 35
+    // was left out without a word (a tester).
+    if primitive.mode() == Mode::Triangles && !indices.len().is_multiple_of(3) {
+        let (field, what) = match primitive.indices() {
+            Some(acc) => {
+                (format!("{path}.indices"), format!("accessors[{}] holds {} indices", acc.index(), indices.len()))
+            }
+            None => (attr("POSITION"), format!("without indices, POSITION holds {} vertices", indices.len())),
+        };
+        return Err((field, format!("{what}, not a multiple of 3, which mode TRIANGLES takes three a triangle")));
+    }
     let mut triangles = triangulate(primitive.mode(), &indices);
     // A mirroring node (or joint) turns counter-clockwise faces clockwise: restore the winding.
     for t in triangles.iter_mut().filter(|t| matrices[t[0] as usize].determinant3() < 0.0) {
@@ -478,8 +489,6 @@ fn read_primitive(
     Ok(Some(MeshDesc { vertices, triangles, normals, uvs, colours, material, name }))
 }
 
-/// The triangles of a primitive's index list in its mode (glTF 2.0 §3.7.2.1: strips alternate
-/// winding so every triangle keeps the first one's orientation; fans share the first vertex).
 /// How many triangles `triangulate` makes of `indices` indices in `mode`.
 fn triangle_count(mode: Mode, indices: usize) -> usize {
     match mode {
@@ -489,6 +498,8 @@ fn triangle_count(mode: Mode, indices: usize) -> usize {
     }
 }
 
+/// The triangles of a primitive's index list in its mode (glTF 2.0 §3.7.2.1: strips alternate
+/// winding so every triangle keeps the first one's orientation; fans share the first vertex).
 fn triangulate(mode: Mode, indices: &[u32]) -> Vec<[u32; 3]> {
     match mode {
         Mode::Triangles => indices.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect(),

@@ -89,6 +89,22 @@ pub(super) fn bad_number(text: &[u8]) -> Option<(usize, String)> {
         let (key, colour) = match words.next() {
             Some(key @ ("Ka" | "Kd" | "Ks" | "Ke")) => (key, true),
             Some(key @ ("Ns" | "Ni" | "d" | "Tr")) => (key, false),
+            // tobj reads an illum as a byte and a map's last word as its file: any other made
+            // its "material parse error", which dropped every material of the file, with no
+            // line (a tester's `illum 2.5`, `illum -1`, a bare `map_Kd`).
+            Some("illum") => {
+                let values: Vec<&str> = words.collect();
+                if values.len() != 1 || values[0].parse::<u8>().is_err() {
+                    return Some((
+                        n + 1,
+                        format!("`{}`: `illum` takes one whole number, an illumination model in 0..=10", line.trim()),
+                    ));
+                }
+                continue;
+            }
+            Some(map) if is_map_statement(map) && words.next().is_none() => {
+                return Some((n + 1, format!("`{}`: names no image file", line.trim())));
+            }
             _ => continue,
         };
         let values: Vec<&str> = words.collect();
@@ -120,6 +136,11 @@ pub(super) fn bad_number(text: &[u8]) -> Option<(usize, String)> {
         }
     }
     None
+}
+
+/// Whether `key` is an MTL texture statement (its last word a file).
+fn is_map_statement(key: &str) -> bool {
+    key.starts_with("map_") || matches!(key, "bump" | "disp" | "decal" | "refl" | "norm")
 }
 
 /// MTL text with every `Ka`/`Kd`/`Ks`/`Ke r` line written as `… r r r`: the MTL format lets g
@@ -268,6 +289,18 @@ fn map_material(m: &tobj::Material, name: &str, warnings: &mut Vec<FieldIssue>) 
     let shininess = m.shininess.unwrap_or(0.0).clamp(0.0, glint_scene::MAX_SHININESS);
     if let Some(ns) = m.shininess.filter(|ns| *ns != shininess) {
         warn("Ns", format!("Ns {ns} is outside [0, {}]; using {shininess}", glint_scene::MAX_SHININESS));
+    }
+    // Exporters write `Ns 0` for a rough surface; Phong's (H·N)^n is then 1 wherever light
+    // falls, and k_s is added over the whole lit side (a tester's red cube came out pink).
+    if shininess < 1.0 && ks_local.0.iter().any(|&k| k > 0.0) {
+        let written = m.shininess.map_or("no `Ns` (n = 0)".to_string(), |ns| format!("`Ns {ns}`"));
+        warn(
+            "Ns",
+            format!(
+                "{written} with Ks > 0 and illum {illum}: (H·N)^n is about 1 wherever the light falls at n < 1, so \
+                 k_s is a glare over the whole lit side, not a highlight; raise Ns or lower Ks"
+            ),
+        );
     }
     MaterialDesc {
         ka: m.ambient.map_or(kd, rgb),

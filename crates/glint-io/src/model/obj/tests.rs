@@ -528,6 +528,10 @@ fn an_mtl_number_that_cannot_be_read_is_an_error_naming_the_mtl_line_and_stateme
         ("Kd x 0.5 0.5", "`x` is not a number"),
         ("Ns", "`Ns` takes one number; 0 given"),
         ("Ni 1.5 2", "`Ni` takes one number; 2 given"),
+        // tobj's "material parse error" dropped every material of the file (a tester).
+        ("illum 2.5", "`illum` takes one whole number, an illumination model in 0..=10"),
+        ("illum -1", "`illum` takes one whole number, an illumination model in 0..=10"),
+        ("map_Kd", "names no image file"),
     ] {
         write(dir.path(), "t.mtl", &format!("newmtl a\n{statement}\nillum 4\n"));
         let message = load_obj(&obj).unwrap_err().to_string();
@@ -576,4 +580,26 @@ fn files_whose_lines_end_in_bare_carriage_returns_are_read_line_by_line() {
     let m = load_obj(&obj).expect("loads");
     assert_eq!(m.materials["red"].kd, Rgb([1.0, 0.0, 0.0]), "{:?}", m.warnings);
     assert!(m.meshes.iter().any(|mesh| mesh.material == "red"), "{:?}", m.warnings);
+}
+
+#[test]
+fn a_specular_colour_without_a_shininess_is_warned_of_as_a_glare() {
+    // `Ns 0` with Ks and illum 2: (H·N)^0 = 1 over the whole lit side (a tester's red cube came
+    // out pink, with no word).
+    let dir = tempfile::tempdir().unwrap();
+    let obj = write(dir.path(), "g.obj", &format!("mtllib g.mtl\nusemtl a\n{QUAD}"));
+    let warnings = |mtl: &str| {
+        write(dir.path(), "g.mtl", mtl);
+        load_obj(&obj).expect("loads").warnings.iter().map(ToString::to_string).collect::<Vec<_>>().join("; ")
+    };
+    let said = warnings("newmtl a\nKd 0.8 0.1 0.1\nKs 0.5 0.5 0.5\nNs 0\nillum 2\n");
+    assert!(said.contains("materials.a.Ns: `Ns 0` with Ks > 0 and illum 2: (H·N)^n is about 1"), "{said}");
+    let said = warnings("newmtl a\nKd 0.8 0.1 0.1\nKs 0.5 0.5 0.5\n");
+    assert!(said.contains("materials.a.Ns: no `Ns` (n = 0) with Ks > 0"), "{said}");
+    // A highlight, or no specular term: nothing to say.
+    for quiet in ["newmtl a\nKs 0.5 0.5 0.5\nNs 50\n", "newmtl a\nKs 0.5 0.5 0.5\nNs 0\nillum 1\n", "newmtl a\nNs 0\n"]
+    {
+        let said = warnings(quiet);
+        assert!(!said.contains(".Ns"), "{quiet}: {said}");
+    }
 }
