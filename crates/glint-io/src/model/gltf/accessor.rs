@@ -187,6 +187,29 @@ fn read<const N: usize>(accessor: &Accessor<'_>, buffers: &Buffers, expect: Expe
                     accessor.index()
                 ));
             }
+            // glTF 2.0 §3.6.2.4: components start at multiples of their size. Read from a
+            // misaligned offset, floats came out as garbage that was refused for another cause
+            // ("the model's largest side is 3.559e-43"; a tester).
+            let start = view.offset() + accessor.offset();
+            if !accessor.offset().is_multiple_of(csize) || !start.is_multiple_of(csize) {
+                return Err(format!(
+                    "accessors[{}].byteOffset {} (byte {start} of buffers[{}] with bufferViews[{}].byteOffset {}) is \
+                     not a multiple of its {csize}-byte components, as glTF 2.0 requires (§3.6.2.4, data alignment)",
+                    accessor.index(),
+                    accessor.offset(),
+                    view.buffer().index(),
+                    view.index(),
+                    view.offset()
+                ));
+            }
+            if !stride.is_multiple_of(csize) {
+                return Err(format!(
+                    "bufferViews[{}].byteStride {stride} is not a multiple of the {csize}-byte components of \
+                     accessors[{}], as glTF 2.0 requires",
+                    view.index(),
+                    accessor.index()
+                ));
+            }
             let data = view_bytes(&view, buffers)?;
             strided(data, accessor.offset(), stride, size, count)
                 .ok_or_else(|| {

@@ -41,8 +41,9 @@ pub(super) fn parse(bytes: &[u8], file: &Path, warnings: &mut Vec<FieldIssue>) -
     let parsed = ::gltf::Gltf::from_slice_without_validation(bytes).or_else(|e| {
         with_scene_nodes(bytes).map_or(Err(e), |patched| ::gltf::Gltf::from_slice_without_validation(&patched))
     });
-    let ::gltf::Gltf { document, blob } =
-        parsed.map_err(|e| other_version(bytes, file).unwrap_or_else(|| parse_error(file, e, None)))?;
+    let ::gltf::Gltf { document, blob } = parsed.map_err(|e| {
+        other_version(bytes, file).or_else(|| glb_cut_short(bytes, file)).unwrap_or_else(|| parse_error(file, e, None))
+    })?;
     let mut json = document.into_json();
     // A 1.0 file with no collection of 1.0's form parses as an empty 2.0 one: refused by its
     // version, not as a file with no scene (a tester's `{"asset":{"version":"1.0"}}`). A later
@@ -216,6 +217,22 @@ fn other_version(bytes: &[u8], file: &Path) -> Option<GltfError> {
     if is_version_2(&version) { None } else { error("asset.version", format!("`{version}`")) }
 }
 
+/// A GLB shorter than its header's length says: the parser's "failed to fill whole buffer" did
+/// not say that the file was cut short (a tester's GLB truncated to 10–4,000 bytes).
+fn glb_cut_short(bytes: &[u8], file: &Path) -> Option<GltfError> {
+    let header = bytes.strip_prefix(b"glTF")?;
+    let declared = header.get(4..8).map(|l| u32::from_le_bytes([l[0], l[1], l[2], l[3]]));
+    let reason = match declared {
+        None => format!("the file ends at byte {} inside its 12-byte GLB header: it is cut short", bytes.len()),
+        Some(length) if length as usize > bytes.len() => format!(
+            "the GLB header gives the file's length as {length} bytes, but it has {}: it is cut short",
+            bytes.len()
+        ),
+        Some(_) => return None,
+    };
+    Some(GltfError::Parse { file: file.to_owned(), reason })
+}
+
 /// Whether an `asset.version` is glTF 2's (`2.0`, a later 2.x, or `2`).
 fn is_version_2(version: &str) -> bool {
     version == "2" || version.starts_with("2.")
@@ -350,6 +367,7 @@ fn allowed_values(path: &str) -> String {
         "min" | "max" => "as many numbers as the accessor's type has components",
         "interpolation" => "LINEAR, STEP or CUBICSPLINE",
         "path" => "translation, rotation, scale or weights",
+        "byteStride" => "a multiple of 4 from 4 to 252",
         _ => return String::new(),
     };
     format!(" (allowed: {allowed})")
