@@ -9,7 +9,8 @@ use glint_io::model::Ground;
 use glint_io::{DEFAULT_RESOLUTION, LoadOptions, LoadedScene, RESOLUTIONS, load_scene_with};
 use glint_io::{ImportOptions, ModelFormat};
 use glint_scene::{
-    EpsilonMode, Integrator, Range, RenderSettings, Report, format_number, ranges, settings_warnings, validate_settings,
+    EpsilonMode, Integrator, Range, RenderSettings, Report, coplanar_warnings, format_number, ranges,
+    settings_warnings, validate_settings,
 };
 
 use super::console::tell;
@@ -350,8 +351,14 @@ pub fn tell_warnings(loaded: &LoadedScene, settings: &RenderSettings) {
         }
         return;
     }
-    let own = settings_warnings(&loaded.desc, &loaded.desc.render);
-    let now = settings_warnings(&loaded.desc, settings);
+    let mut own = settings_warnings(&loaded.desc, &loaded.desc.render);
+    let mut now = settings_warnings(&loaded.desc, settings);
+    // The objects' overlaps are judged at the render's ε too (an `--epsilon` the file's z-fight
+    // warning ignored; a tester): only where the flag changed it, as they walk every triangle.
+    if settings.epsilon != loaded.desc.render.epsilon {
+        own.extend(coplanar_warnings(&loaded.desc, loaded.desc.render.epsilon));
+        now.extend(coplanar_warnings(&loaded.desc, settings.epsilon));
+    }
     let kept = loaded.warnings.iter().filter(|w| !own.contains(w) || now.contains(w));
     for w in kept.chain(now.iter().filter(|w| !own.contains(w))) {
         tell!("warning: {}: {w}", loaded.source.display());

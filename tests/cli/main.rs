@@ -217,6 +217,27 @@ fn warnings_judge_the_settings_the_render_uses_not_the_scene_files() {
     assert_eq!(render("large.toml", &["--epsilon", "1e-7"]), 0, "an ε the flag lowered");
     assert_eq!(render("plain.toml", &[]), 0);
     assert_eq!(render("plain.toml", &["--epsilon", "0.05"]), 1, "an ε the flag raised, once");
+    // Two floors 1e-4 apart overlap within ε = 1e-3, not within 1e-7: the file's ε warned of a
+    // z-fight the flag had removed (a tester).
+    let floors = |epsilon: &str| {
+        format!(
+            "[render]\nwidth = 8\nheight = 6\nepsilon = {epsilon}\n[camera]\nposition = [0.0, 1.0, -4.0]\n\
+             look_at = [0.0, 0.0, 0.0]\n[materials.m]\nkd = 0.5\n\
+             [[objects]]\ntype = \"plane\"\npoint = [0.0, 0.0, 0.0]\nnormal = [0.0, 1.0, 0.0]\nmaterial = \"m\"\n\
+             [[objects]]\ntype = \"plane\"\npoint = [0.0, 1e-4, 0.0]\nnormal = [0.0, 1.0, 0.0]\nmaterial = \"m\"\n"
+        )
+    };
+    std::fs::write(dir.join("wide.toml"), floors("1e-3")).unwrap();
+    std::fs::write(dir.join("narrow.toml"), floors("1e-7")).unwrap();
+    let fights = |file: &str, flags: &[&str]| {
+        let out = glint(&dir, [&["render", file, "-o", "out.png", "-q"][..], flags].concat());
+        assert!(out.status.success(), "{}", text(&out.stderr));
+        text(&out.stderr).matches("z-fighting").count()
+    };
+    assert_eq!(fights("wide.toml", &[]), 1, "the file's own ε");
+    assert_eq!(fights("wide.toml", &["--epsilon", "1e-7"]), 0, "an ε the flag lowered");
+    assert_eq!(fights("narrow.toml", &[]), 0);
+    assert_eq!(fights("narrow.toml", &["--epsilon", "1e-3"]), 1, "an ε the flag raised");
 }
 
 #[test]

@@ -166,10 +166,17 @@ pub fn validate_objects(scene: &SceneDesc) -> Report {
         validate_object(&format!("objects[{i}]"), object, scene, origin, &mut r);
     }
     if r.errors.is_empty() {
-        r.warnings.extend(coplanar::coplanar_overlaps(scene, origin));
+        r.warnings.extend(coplanar::coplanar_overlaps(scene, origin, scene.render.epsilon));
         r.warnings.extend(placement::duplicate_spheres(scene, origin));
     }
     r
+}
+
+/// The coplanar-overlap warnings of `scene`'s objects at ε = `epsilon`, the one warning of
+/// `validate_objects` a setting changes: `glint render --epsilon` judges the flag's ε with it
+/// (the file's ε warned of a z-fight the flag had removed; a tester).
+pub fn coplanar_warnings(scene: &SceneDesc, epsilon: f64) -> Vec<FieldIssue> {
+    coplanar::coplanar_overlaps(scene, crate::storage_origin(scene), epsilon)
 }
 
 /// `validate`, with the objects' part already done (`validate_objects` of a scene with the

@@ -147,10 +147,11 @@ impl Overlap {
 /// whole and compared.
 ///
 /// `origin`: the scene's storage origin (`storage_origin`), where f32's spacing is judged.
-pub(super) fn coplanar_overlaps(scene: &SceneDesc, origin: [f64; 3]) -> Vec<FieldIssue> {
+/// `epsilon`: the render's ε (the scene's `render.epsilon`, or a flag's).
+pub(super) fn coplanar_overlaps(scene: &SceneDesc, origin: [f64; 3], epsilon: f64) -> Vec<FieldIssue> {
     // Within validation's range: the check runs before render.epsilon's own is refused, and
     // ε = 1e308 made the tolerance infinite and the grid fill memory (10 GB in 15 s).
-    let epsilon = match scene.render.epsilon {
+    let epsilon = match epsilon {
         e if e.is_nan() => 0.0,
         e => e.clamp(0.0, crate::limits::MAX_EPSILON),
     };

@@ -10,7 +10,7 @@ fn mesh(vertices: Vec<[f64; 3]>, triangles: Vec<[u32; 3]>, name: &str) -> Object
 
 /// The warnings for `scene`, at its own storage origin, as validation gives them.
 fn overlaps(scene: &SceneDesc) -> Vec<FieldIssue> {
-    coplanar_overlaps(scene, crate::storage_origin(scene))
+    coplanar_overlaps(scene, crate::storage_origin(scene), scene.render.epsilon)
 }
 
 /// Judged in world space, with no ε (the unit tests of single surfaces).
@@ -284,6 +284,6 @@ mod bumpy {
     fn the_bumpy_spheres_pole_is_not_warned() {
         // The built-in scene's default resolution (glint-io's `DEFAULT_RESOLUTION`).
         let desc = crate::bumpy::bumpy(500);
-        assert!(coplanar_overlaps(&desc, crate::storage_origin(&desc)).is_empty());
+        assert!(coplanar_overlaps(&desc, crate::storage_origin(&desc), desc.render.epsilon).is_empty());
     }
 }
