@@ -150,9 +150,9 @@ fn a_tree_deeper_than_the_gpu_stack_raises_the_overflow_bit() {
     eprint!("{out}");
 }
 
-#[test]
-fn a_tree_larger_than_the_walk_bound_raises_the_loop_bit() {
-    let mut out = String::new();
+/// Ten stacked half-mirror, half-glass planes seen from among them, depth 18, no bailout: every
+/// hit splits, and a sample's tree has more than 65,000 nodes.
+fn branching_planes() -> SceneText {
     let a = 10.0_f64.to_radians();
     let mut s = SceneText::pinhole("max_depth = 18\nbailout = 0.0", [0.0, 4.5, 0.0], [a.sin(), 4.5 + a.cos(), 0.0], Z)
         .world([0.0; 3], [0.25; 3])
@@ -163,6 +163,13 @@ fn a_tree_larger_than_the_walk_bound_raises_the_loop_bit() {
     for k in 0..10 {
         s = s.plane([0.0, f64::from(k), 0.0], Y, "glass");
     }
+    s
+}
+
+#[test]
+fn a_tree_larger_than_the_walk_bound_raises_the_loop_bit() {
+    let mut out = String::new();
+    let s = branching_planes();
     // On lavapipe the driver's own loop budget (65,535 iterations in all) runs out first: the
     // walk, cut short below its bound, raises the driver's bit alone (it raised the bound's too,
     // and a tester's 4,000 lights at depth 2, 7 nodes a tree, read "some ray trees were cut").
@@ -181,6 +188,37 @@ fn a_tree_larger_than_the_walk_bound_raises_the_loop_bit() {
     );
     assert!(nodes > 65_000, "the tree has only {nodes} nodes: the loop bound is not reached");
     eprint!("{out}");
+}
+
+#[test]
+fn a_walk_bound_below_the_driver_s_budget_raises_the_bound_s_bit_on_every_adapter() {
+    // Lavapipe's budget cuts the 65,000-node walk first, so the bound's own bit was provoked on
+    // hardware only. A bound of 1,000 nodes is reached first everywhere: the walk stops there,
+    // raises STATUS_LOOP_LIMIT alone, and traces fewer rays than the CPU.
+    let Some(tracer) = crate::gpu::gpu() else { return };
+    let flat = branching_planes().flat();
+    let options = GpuOptions { tree_nodes: 1_000, ..GpuOptions::default() };
+    let g = crate::gpu::gpu_render_with(tracer, &flat, &options);
+    assert_eq!(g.key.tree_nodes, 1_000, "{}", g.key.describe());
+    assert_eq!(g.status, STATUS_LOOP_LIMIT, "status {:#x} on {}", g.status, tracer.context().adapter);
+    let said = glint_gpu::status::messages(g.status, g.key.stack_size).join("; ");
+    assert!(said.contains("hit its loop bound; some ray trees were cut"), "{said}");
+    let c = glint_core::render_cpu(&flat, &glint_core::CpuOptions::default(), glint_core::RenderControl::default())
+        .expect("CPU render");
+    // About the bound's 1,000 nodes (with their shadow rays) against the CPU's 333,799 rays.
+    assert!(
+        g.counts.total() * 100 < c.counts.total(),
+        "GPU rays {} (bound 1,000 nodes a sample), CPU {}",
+        g.counts.total(),
+        c.counts.total()
+    );
+    // Within the default bound a small tree raises nothing.
+    let shallow = SceneText::pinhole("max_depth = 3\nbailout = 0.0", [0.0, 4.5, 0.0], [0.2, 5.5, 0.0], Z)
+        .world([0.0; 3], [0.25; 3])
+        .material("glass", "ka = 0.0\nkd = 0.0\nks = 0.0\nkr = 0.5\nkt = 0.5\nior = 1.5")
+        .plane([0.0, 4.0, 0.0], Y, "glass")
+        .flat();
+    assert_eq!(crate::gpu::gpu_render_with(tracer, &shallow, &options).status, 0);
 }
 
 /// 40,000 triangles in a strip under the camera: 80,000 loop iterations for one camera ray

@@ -46,6 +46,7 @@ pub fn raycast_key(scene: &FlatScene) -> ShaderKey {
         bvh: true,
         bvh_stack: bvh_stack_size(scene),
         path: false,
+        tree_nodes: crate::shaders::MAX_TREE_NODES,
     }
 }
 
@@ -168,7 +169,7 @@ mod tests {
         let kinds = [feature::SPHERES, feature::PLANES, feature::TRIANGLES];
         for mix in 1..8u32 {
             let features = (0..3).filter(|k| mix & (1 << k) != 0).fold(0, |f, k| f | kinds[k]);
-            let key = ShaderKey { features, stack_size: 1, probe: false, bvh: true, bvh_stack: 16, path: false };
+            let key = ShaderKey { features, stack_size: 1, bvh_stack: 16, ..ShaderKey::full() };
             let module = compose_entry(&key, RAYCAST_WGSL).expect("raycast.wgsl composes");
             validate(&module).unwrap_or_else(|e| panic!("[{}]: {e}", key.describe()));
             let main = module.entry_points.iter().find(|e| e.name == "main").expect("entry point main");

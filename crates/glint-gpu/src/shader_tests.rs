@@ -56,7 +56,14 @@ fn every_single_feature_and_its_absence_validate() {
     for bit in 0..feature::NAMES.len() {
         for features in [1u32 << bit, feature::ALL & !(1 << bit)] {
             for (bvh, path) in [(false, false), (true, false), (false, true), (true, true)] {
-                compose_or_report(&ShaderKey { features, stack_size: 4, probe: false, bvh, bvh_stack: 16, path });
+                compose_or_report(&ShaderKey {
+                    features,
+                    stack_size: 4,
+                    bvh,
+                    bvh_stack: 16,
+                    path,
+                    ..ShaderKey::full()
+                });
             }
         }
     }
@@ -211,7 +218,7 @@ fn specialised_module_lacks_what_the_scene_does_not_use() {
         probe: false,
         bvh: false,
         bvh_stack: 8,
-        path: false,
+        ..ShaderKey::full()
     };
     let planar = compose_or_report(&planar);
     let planar_bindings: Vec<u32> =

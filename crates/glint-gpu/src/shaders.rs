@@ -90,6 +90,9 @@ pub struct ShaderKey {
     pub bvh_stack: u32,
     /// The path tracer (path.wgsl) instead of Whitted's (trace.wgsl), as the scene's header says.
     pub path: bool,
+    /// Bound of the ray-tree walk per sample (shader def `MAX_TREE_NODES`): `MAX_TREE_NODES`,
+    /// below lavapipe's loop budget, but for tests that reach it there (`GpuOptions::tree_nodes`).
+    pub tree_nodes: u32,
 }
 
 impl ShaderKey {
@@ -101,7 +104,15 @@ impl ShaderKey {
             // Paths keep no stack: each bounce is a dispatch.
             let depth =
                 if feature::recurses(features) && !path { scene.header.max_depth.min(GPU_STACK_LIMIT - 1) } else { 0 };
-            Self { features, stack_size: depth + 1, probe: false, bvh: true, bvh_stack: bvh_stack_size(scene), path }
+            Self {
+                features,
+                stack_size: depth + 1,
+                probe: false,
+                bvh: true,
+                bvh_stack: bvh_stack_size(scene),
+                path,
+                tree_nodes: MAX_TREE_NODES,
+            }
         } else {
             Self { path, ..Self::full() }
         }
@@ -116,6 +127,7 @@ impl ShaderKey {
             bvh: true,
             bvh_stack: BVH_STACK_LIMIT,
             path: false,
+            tree_nodes: MAX_TREE_NODES,
         }
     }
 
@@ -175,7 +187,7 @@ impl ShaderKey {
             defs.insert("RECURSION".into(), ShaderDefValue::Bool(true));
         }
         defs.insert("STACK_SIZE".into(), ShaderDefValue::UInt(self.stack_size));
-        defs.insert("MAX_TREE_NODES".into(), ShaderDefValue::UInt(MAX_TREE_NODES));
+        defs.insert("MAX_TREE_NODES".into(), ShaderDefValue::UInt(self.tree_nodes.max(1)));
         defs.insert("BVH_STACK_SIZE".into(), ShaderDefValue::UInt(self.bvh_stack.max(1)));
         if self.probe {
             defs.insert("PROBE".into(), ShaderDefValue::Bool(true));
@@ -195,12 +207,13 @@ impl ShaderKey {
             .map(|(_, n)| *n)
             .collect();
         format!(
-            "{}{} stack {}{}{}",
+            "{}{} stack {}{}{}{}",
             if self.path { "path: " } else { "" },
             names.join("|"),
             self.stack_size,
             if self.bvh { format!(" bvh {}", self.bvh_stack) } else { String::new() },
-            if self.probe { " probe" } else { "" }
+            if self.probe { " probe" } else { "" },
+            if self.tree_nodes == MAX_TREE_NODES { String::new() } else { format!(" tree nodes {}", self.tree_nodes) }
         )
     }
 }

@@ -39,11 +39,22 @@ pub struct GpuOptions {
     /// The pixels to render (the whole image by default); `render` gives back an image of
     /// this rectangle only, as `glint_core::render_cpu_region` does.
     pub region: Option<PixelRect>,
+    /// The most nodes a sample's ray-tree walk visits before it stops and raises
+    /// `STATUS_LOOP_LIMIT` (`MAX_TREE_NODES`, below lavapipe's loop budget, by default). A
+    /// smaller one lets a test reach the bound on lavapipe, whose budget cuts a larger walk first.
+    pub tree_nodes: u32,
 }
 
 impl Default for GpuOptions {
     fn default() -> Self {
-        Self { specialise: true, tile: DEFAULT_TILE, accel: Accel::default(), frame: Frame::default(), region: None }
+        Self {
+            specialise: true,
+            tile: DEFAULT_TILE,
+            accel: Accel::default(),
+            frame: Frame::default(),
+            region: None,
+            tree_nodes: crate::shaders::MAX_TREE_NODES,
+        }
     }
 }
 
@@ -188,9 +199,11 @@ impl GpuTracer {
                 height: scene.header.height,
             });
         }
-        let key = ShaderKey::for_scene(scene, options.specialise)
-            .with_accel(scene, options.accel)
-            .check_storage_limit(self.ctx.limits.max_storage_buffers_per_shader_stage)?;
+        let key = ShaderKey {
+            tree_nodes: options.tree_nodes,
+            ..ShaderKey::for_scene(scene, options.specialise).with_accel(scene, options.accel)
+        }
+        .check_storage_limit(self.ctx.limits.max_storage_buffers_per_shader_stage)?;
         let (pipeline, mut pipeline_time) = self.pipeline(key)?;
         let upload_start = Instant::now();
         let scene = self.rebased.in_frame(scene, options.frame);
