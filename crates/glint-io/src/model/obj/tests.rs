@@ -79,6 +79,12 @@ fn a_line_with_too_few_numbers_says_what_it_needs() {
         ),
         ("v 0 0 0\nvt 0.5 # v\n", ":2: invalid OBJ (`vt 0.5`: a texture coordinate needs two numbers u v; 1 given)"),
         ("v 0 0 0\nvn 0 1\n", ":2: invalid OBJ (`vn 0 1`: a normal needs three numbers x y z; 2 given)"),
+        // Named by the mesh's inner index after import, once for every face using it (a tester).
+        (
+            "v 0 0 0\nvt 1e30 1\n",
+            ":2: invalid OBJ (`vt 1e30 1`: texture coordinate component u: 1e30 is outside [-1e9, 1e9], a texture \
+             coordinate's range)",
+        ),
         // And too many: tobj's "color parse error (too many or too few components)".
         (
             "v 0 0 0 1 2\n",

@@ -201,6 +201,20 @@ pub(super) fn bad_number(bytes: &[u8]) -> Option<(usize, String)> {
             if let Some(problem) = not_finite(word, value) {
                 return Some((n + 1, format!("`{}`: {what} component {name}: {problem}", line.trim())));
             }
+            // Validation's range, said here with the line: after import it named the mesh's
+            // inner index, once a line for every face using it (`vt 1e30 1`; a tester).
+            let range = glint_scene::ranges::COORD;
+            if keyword == Some("vt") && !(range.min..=range.max).contains(&f64::from(value)) {
+                return Some((
+                    n + 1,
+                    format!(
+                        "`{}`: {what} component {name}: {word} is outside [{:e}, {:e}], a texture coordinate's range",
+                        line.trim(),
+                        range.min,
+                        range.max
+                    ),
+                ));
+            }
         }
     }
     None
