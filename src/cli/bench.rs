@@ -207,11 +207,36 @@ fn rays(args: &RaysArgs) -> anyhow::Result<()> {
         super::bench_export::prepare(dir, &flat)?;
     }
     // The BVH part of FlatScene::build, on the primitives it flattened, and the CPU walk's
-    // wide nodes made from it (at the first CPU trace otherwise).
-    let (built, build_timing) =
-        measure(args.runs, || Ok(pool.install(|| timed(|| BvhNodes::build_for_cpu(&flat.bounded()).0))))?;
-    if built.nodes[..] != flat.bvh_nodes[..] || *built.prims != *flat.bvh_prims {
-        bail!("the timed BVH build differs from the one FlatScene::build made; the build is not deterministic");
+    // wide nodes made from it (at the first CPU trace otherwise). FlatScene::build stores the
+    // triangles in its leaves' order, so a build over them as stored may break ties (equal
+    // centroids: the lights scene's axis-aligned partitions) otherwise than the build over the
+    // order they were flattened in, and need not be FlatScene's tree (`bench rays lights` was
+    // refused for that). The same input always gives the same tree: the first run against the
+    // last.
+    // A fingerprint, not a copy: at a million triangles a tree is tens of MB.
+    let fingerprint = |bvh: &bvh::Bvh| {
+        use std::hash::{Hash, Hasher};
+        let mut h = std::collections::hash_map::DefaultHasher::new();
+        bytemuck::cast_slice::<_, u8>(&bvh.nodes).hash(&mut h);
+        bvh.prims.hash(&mut h);
+        h.finish()
+    };
+    let mut last = None;
+    let (built, build_timing) = measure(args.runs, || {
+        let (bvh, time) = pool.install(|| timed(|| BvhNodes::build_for_cpu(&flat.bounded()).0));
+        last = Some(fingerprint(&bvh));
+        Ok((bvh, time))
+    })?;
+    if last.is_some_and(|last| last != fingerprint(&built)) {
+        bail!("two timed BVH builds over the same primitives differ; the build is not deterministic");
+    }
+    if built.nodes.is_empty() || built.prims.len() != flat.bvh_prims.len() {
+        bail!(
+            "the timed BVH build holds {} primitives in {} nodes, where FlatScene::build's holds {}",
+            built.prims.len(),
+            built.nodes.len(),
+            flat.bvh_prims.len()
+        );
     }
     let primitives = flat.spheres.len() + flat.triangles.len();
     let build = BuildResult {
