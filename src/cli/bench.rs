@@ -91,7 +91,7 @@ fn measure<T>(runs: u32, mut f: impl FnMut() -> anyhow::Result<(T, Duration)>) -
         times.push(f()?.1);
     }
     times.sort();
-    Ok((value, Timing { median_ms: ms(times[times.len() / 2]), best_ms: ms(times[0]), runs }))
+    Ok((value, Timing { median_ms: ms(super::units::median(&times)), best_ms: ms(times[0]), runs }))
 }
 
 fn timed<T>(f: impl FnOnce() -> T) -> (T, Duration) {

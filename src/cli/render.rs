@@ -354,7 +354,7 @@ fn bench(
             times.push(render()?.render);
         }
         times.sort();
-        let result = BenchResult { median: times[times.len() / 2], min: times[0], warm };
+        let result = BenchResult { median: super::units::median(&times), min: times[0], warm };
         if !args.json {
             say_bench_line(name, settings, runs, &result)?;
         }

@@ -3,6 +3,19 @@
 
 use std::time::Duration;
 
+/// The median of timed runs, one definition for every table and the JSON: the middle run, or
+/// the mean of the two middle runs of an even count (the upper of the two was taken: with two
+/// runs, the slower; a tester). Zero for no runs.
+pub fn median(times: &[Duration]) -> Duration {
+    let mut sorted = times.to_vec();
+    sorted.sort();
+    match sorted.len() {
+        0 => Duration::ZERO,
+        n if n % 2 == 1 => sorted[n / 2],
+        n => (sorted[n / 2 - 1] + sorted[n / 2]) / 2,
+    }
+}
+
 pub fn ms(d: Duration) -> f64 {
     d.as_secs_f64() * 1e3
 }
@@ -42,4 +55,19 @@ pub fn count(n: u64) -> String {
 /// "1 scene", "2 scenes": `n` and the noun, plural where `n` is not 1.
 pub fn counted(n: usize, noun: &str) -> String {
     if n == 1 { format!("1 {noun}") } else { format!("{n} {noun}s") }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_median_of_an_even_count_is_the_mean_of_the_two_middle_runs() {
+        let ms = Duration::from_millis;
+        assert_eq!(median(&[]), Duration::ZERO);
+        assert_eq!(median(&[ms(7)]), ms(7));
+        assert_eq!(median(&[ms(9), ms(1), ms(5)]), ms(5));
+        assert_eq!(median(&[ms(1), ms(9)]), ms(5));
+        assert_eq!(median(&[ms(4), ms(1), ms(100), ms(2)]), ms(3));
+    }
 }

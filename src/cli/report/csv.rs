@@ -159,7 +159,7 @@ pub fn render_specular_csv(scenes: &[SceneResult]) -> String {
                 r.config.spp.to_string(),
                 r.config.depth.to_string(),
                 r.times.len().to_string(),
-                ms_csv(r.times[r.times.len() / 2]),
+                ms_csv(crate::cli::units::median(&r.times)),
                 ms_csv(r.times[0]),
                 ms_csv(r.times[r.times.len() - 1]),
                 r.gpu.map_or(String::new(), |g| ms_csv(g.pipeline)),

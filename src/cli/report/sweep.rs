@@ -16,7 +16,7 @@ use serde::{Deserialize, Serialize};
 
 use super::plan::{Config, Group, Planned, SceneNeeds};
 use crate::cli::console::tell;
-use crate::cli::units::{mrays_per_s, ms};
+use crate::cli::units::{median, mrays_per_s, ms};
 
 /// What the sweep needs to render: CPU threads and, unless `--cpu-only`, one GPU tracer whose
 /// pipeline cache lives for the whole report.
@@ -78,7 +78,7 @@ pub struct Row {
 
 impl Row {
     pub fn median(&self) -> Duration {
-        self.times[self.times.len() / 2]
+        median(&self.times)
     }
 
     pub fn median_ms(&self) -> f64 {
@@ -121,7 +121,7 @@ pub struct SpecularRow {
 
 impl SpecularRow {
     pub fn median_ms(&self) -> f64 {
-        ms(self.times[self.times.len() / 2])
+        ms(median(&self.times))
     }
 }
 

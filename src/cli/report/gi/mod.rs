@@ -303,7 +303,7 @@ pub fn measure(
         .into_iter()
         .zip(times)
         .map(|((mut row, _), t)| {
-            row.median = t[t.len() / 2];
+            row.median = crate::cli::units::median(&t);
             row
         })
         .collect();
