@@ -676,6 +676,8 @@ fn report_shards_merge_into_the_one_machine_report_and_missing_ones_are_named() 
         ("errors.rmse", toml::Value::Float(f64::NAN), "rows[0].errors.rmse: NaN is not a finite number ≥ 0"),
         // Summed for rays per second: it overflowed (a panic in debug builds, wrapped in release).
         ("counts.shadow", toml::Value::Integer(i64::MAX), "rows[0].counts: sum to more than"),
+        // Figures of one image pair that no pair has (an rmse edited beside its PSNR: below).
+        ("errors.mean_abs", toml::Value::Float(1e6), "rows[0].errors: mean_abs 1000000 ≤ rmse"),
         // One camera ray a sample on the CPU: a count of 0 was merged as dropped work (a tester).
         ("counts.camera", toml::Value::Integer(0), "rows[0].counts.camera: is 0, not the CPU's one a sample"),
         ("camera_expected", toml::Value::Integer(5), "rows[0].camera_expected: is 5, not 24×18×"),
@@ -705,7 +707,16 @@ fn report_shards_merge_into_the_one_machine_report_and_missing_ones_are_named() 
         gi[0].as_table_mut().expect("a table").clone()
     };
     let set_first_gi = |s: &mut toml::Table, gi: toml::Table| s["gi"].as_array_mut().expect("gi")[0] = gi.into();
-    let cases: [(Edit, &str); 15] = [
+    let cases: [(Edit, &str); 16] = [
+        // An rmse edited beside its PSNR merged into a self-contradicting table (a tester).
+        (
+            &|s| {
+                set_first_row(s, "errors.rmse", toml::Value::Float(0.25));
+                set_first_row(s, "errors.max_abs", toml::Value::Float(1.0));
+                set_first_row(s, "errors.psnr", toml::Value::Float(99.0));
+            },
+            "rows[0].errors.psnr: is 99 with an rmse of 0.25, which gives 12.04",
+        ),
         // Rows the sweep does not make: a depth of 99999 was merged into the table (a tester).
         (
             &|s| {
@@ -847,6 +858,7 @@ fn report_shards_merge_into_the_one_machine_report_and_missing_ones_are_named() 
             for row in scene["rows"].as_array_mut().expect("rows") {
                 let errors = row["errors"].as_table_mut().expect("errors");
                 errors.insert("rmse".into(), toml::Value::Float(1e308));
+                errors.insert("max_abs".into(), toml::Value::Float(1e308));
                 errors.insert("psnr".into(), toml::Value::Float(-6160.0));
             }
         }

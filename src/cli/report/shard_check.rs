@@ -132,6 +132,30 @@ impl ShardFile {
                         format_number(e.rmse)
                     ));
                 }
+                // The figures `compare_images` makes of one image pair hold to each other: an
+                // rmse edited from 0.2077 to 9.2077 merged beside its PSNR of 13.6 dB (a tester).
+                if e.rmse > 0.0 {
+                    let from_rmse = -20.0 * e.rmse.log10();
+                    if (e.psnr - from_rmse).abs() > 1e-6 * from_rmse.abs().max(1.0) {
+                        return Err(format!(
+                            "{at}.errors.psnr: is {} with an rmse of {}, which gives {}; one of them was edited",
+                            format_number(e.psnr),
+                            format_number(e.rmse),
+                            format_number(from_rmse)
+                        ));
+                    }
+                }
+                let within = |low: f64, high: f64| low <= high * (1.0 + 1e-9);
+                if !(within(e.mean_abs, e.rmse) && within(e.rmse, e.max_abs) && within(e.p99_abs_same_hit, e.max_abs)) {
+                    return Err(format!(
+                        "{at}.errors: mean_abs {} ≤ rmse {} ≤ max_abs {} (and p99_abs_same_hit {} ≤ max_abs) does not \
+                         hold, as it does for any image pair; one of them was edited",
+                        format_number(e.mean_abs),
+                        format_number(e.rmse),
+                        format_number(e.max_abs),
+                        format_number(e.p99_abs_same_hit)
+                    ));
+                }
                 for (name, v) in [("twin_rmse", row.twin_rmse), ("twin_rays_pct", row.twin_rays_pct.map(f64::abs))] {
                     v.map_or(Ok(()), |v| number(format!("{at}.{name}"), v))?;
                 }
