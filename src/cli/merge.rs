@@ -5,6 +5,7 @@
 //! pixels read, one tile at a time, into one f32 image, and the output written atomically.
 //! Nothing is written on any error. At most the output image and one tile are in memory.
 
+use crate::cli::usage::usage;
 use std::collections::{BTreeMap, HashMap};
 use std::path::{Path, PathBuf};
 
@@ -108,7 +109,7 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
     let png = match ext.as_deref() {
         Some("png") => true,
         Some("exr") => false,
-        _ => bail!("{}: the merged image is written as .exr or .png", args.output.display()),
+        _ => usage!("{}: the merged image is written as .exr or .png", args.output.display()),
     };
     // A tile is a file `glint render --tile` wrote: a named pipe the glob caught waited for a
     // writer that never came, and a device or a folder is no tile either.

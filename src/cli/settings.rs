@@ -334,8 +334,14 @@ pub fn load_with_estimate(
 ) -> anyhow::Result<(LoadedScene, Option<MemoryEstimate>)> {
     let scene = scene.as_ref();
     let estimate = check_load_memory(scene, memory_limit)?;
-    let loaded = super::interrupt::while_loading(|| load_scene_with(scene, options))
-        .with_context(|| format!("cannot load scene '{}'", scene.to_string_lossy()))?;
+    let loaded = match super::interrupt::while_loading(|| load_scene_with(scene, options)) {
+        Ok(loaded) => loaded,
+        // Flags that do nothing for this scene: the command line's error (exit 2), not the file's.
+        Err(e @ (glint_io::SceneError::NotGenerated { .. } | glint_io::SceneError::NotAModel { .. })) => {
+            usage!("cannot load scene '{}': {e}", scene.to_string_lossy())
+        }
+        Err(e) => return Err(e).with_context(|| format!("cannot load scene '{}'", scene.to_string_lossy())),
+    };
     Ok((loaded, estimate))
 }
 

@@ -6,7 +6,6 @@
 
 use std::path::PathBuf;
 
-use anyhow::Context;
 use glint_core::{Backend, CpuOptions, FlatScene, TileGrid};
 use glint_gpu::GpuOptions;
 use glint_io::LoadedScene;
@@ -95,7 +94,11 @@ pub struct TileJob<'a> {
 pub fn render_tile(job: TileJob) -> anyhow::Result<()> {
     let (w, h) = (job.settings.width, job.settings.height);
     // The grid first: `--tile 0` is no grid, whatever the scheduler says.
-    let grid = TileGrid::new(job.spec.count, w, h).context("--tile")?;
+    // A count no grid of the image has is the command line's: a usage error (exit 2).
+    let grid = match TileGrid::new(job.spec.count, w, h) {
+        Ok(grid) => grid,
+        Err(e) => usage!("--tile: {e}"),
+    };
     let (index, source) = resolve_index(job.spec, grid.count())?;
     let rect = match (grid.rect(index), job.spec.index) {
         (Ok(rect), _) => rect,

@@ -352,6 +352,17 @@ fn a_bad_command_line_exits_2_and_a_failed_render_1() {
         (&["render", "whitted", "--adapter", "x"], 2),
         (&["render", "whitted", "-o", "x.jpg"], 2),
         (&["report", "--scenes", " , ", "--cpu-only"], 2),
+        // Refused by glint's own checks with exit 1 (a CLI tester): flags that do nothing for
+        // the scene, a tile or shard count no sweep or grid has, a list with a hole or a name
+        // twice, an empty adapter name, a merged image of another format.
+        (&["render", "whitted", "--resolution", "5"], 2),
+        (&["render", "whitted", "--camera", "3"], 2),
+        (&["render", "whitted", "--width", "8", "--height", "8", "--tile", "0/65", "-o", "x.exr"], 2),
+        (&["report", "--quick", "--cpu-only", "--scenes", "whitted,whitted"], 2),
+        (&["report", "--quick", "--cpu-only", "--scenes", "whitted", "--shard", "0/12"], 2),
+        (&["report", "--quick", "--cpu-only", "--scenes", "whitted,,cornell"], 2),
+        (&["report", "--quick", "--adapter", "", "--scenes", "whitted"], 2),
+        (&["merge", "a.exr", "-o", "out.jpg"], 2),
         (&["render", "nothere.toml"], 1),
     ] {
         let out = glint(&dir, args);

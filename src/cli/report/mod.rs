@@ -23,7 +23,7 @@ use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use anyhow::{Context, anyhow, bail};
+use anyhow::{Context, anyhow};
 use clap::Args;
 use glint_core::{Backend, FlatScene};
 use glint_io::atomic::write_file_atomically;
@@ -115,8 +115,15 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
     let names: Vec<OsString> = if args.scenes.is_empty() {
         (if args.quick { QUICK_SCENES } else { DEFAULT_SCENES }).iter().map(OsString::from).collect()
     } else {
-        args.scenes.iter().flat_map(|s| comma_list(s)).filter(|s| !s.is_empty()).collect()
+        let names: Vec<OsString> = args.scenes.iter().flat_map(|s| comma_list(s)).collect();
+        // As `--merge` refuses one: `whitted,,cornell` swept two scenes without a word (a tester).
+        if names.len() > 1 && names.iter().any(|n| n.is_empty()) {
+            usage!("--scenes: an empty scene name in the list: a doubled, leading or trailing comma?");
+        }
+        names.into_iter().filter(|s| !s.is_empty()).collect()
     };
+    // `--adapter ""` ran a whole GPU sweep here, where render refuses it (a tester).
+    super::backend::check_adapter(args.adapter.as_deref(), !args.cpu_only)?;
     if names.is_empty() {
         usage!(
             "--scenes names no scene; give built-in names or scene files, comma-separated (or leave it out for the default set)"
@@ -127,7 +134,7 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
     let mut seen = HashMap::new();
     for s in &scenes {
         if let Some(other) = seen.insert(s.name.clone(), s.source.clone()) {
-            bail!(
+            usage!(
                 "two scenes are both called '{}' ({} and {}); their plots would collide",
                 s.name,
                 other.display(),
@@ -153,7 +160,7 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
             } else {
                 format!("shards {families} to {} would have nothing to run", s.count - 1)
             };
-            bail!(
+            usage!(
                 "--shard {}/{}: this sweep has {families} families of configurations (each timed whole by one \
                  shard), so {idle}; use at most {families} shards",
                 s.index,
