@@ -117,7 +117,7 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
     } else {
         let names: Vec<OsString> = args.scenes.iter().flat_map(|s| comma_list(s)).collect();
         // As `--merge` refuses one: `whitted,,cornell` swept two scenes without a word (a tester).
-        if names.len() > 1 && names.iter().any(|n| n.is_empty()) {
+        if names.iter().any(|n| n.is_empty()) && names.iter().any(|n| !n.is_empty()) {
             usage!("--scenes: an empty scene name in the list: a doubled, leading or trailing comma?");
         }
         names.into_iter().filter(|s| !s.is_empty()).collect()
