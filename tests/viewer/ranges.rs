@@ -191,3 +191,42 @@ fn a_typed_nan_or_infinity_leaves_the_value_as_it_was() {
     type_number(&mut h, "Field of view", "50");
     assert_eq!(h.state().doc.desc.camera.fov_y, 50.0);
 }
+
+#[test]
+fn a_typed_value_outside_its_range_is_named_and_the_value_kept() {
+    // egui clamped typed values to the range's end without a word: I_d −1 became 0, n = 1e30
+    // became 1e6, and an ior of −2 became the excluded 0, which validation then refused naming
+    // 0 (a lecturer).
+    let Some(mut h) = viewer("whitted", (1000.0, 900.0)) else { return };
+    choose(&mut h, "Materials", "Material", "floor");
+    let before = h.state().doc.desc.materials["floor"].clone();
+    let notes = |h: &Harness<'static, ViewerApp>| -> Vec<String> {
+        h.query_all_by_label_contains("the value was kept").filter_map(|n| n.accesskit_node().label()).collect()
+    };
+    type_number(&mut h, "Index of refraction", "-2");
+    let note = "Index of refraction: -2 is outside (0, 1000]; the value was kept";
+    assert!(h.query_by_label(note).is_some(), "no note {note:?} among {:?}", notes(&h));
+    type_number(&mut h, "Shininess n", "1e30");
+    assert!(h.query_by_label("Shininess n: 1e30 is outside [0, 1e6]; the value was kept").is_some(), "{:?}", notes(&h));
+    let floor = &h.state().doc.desc.materials["floor"];
+    assert_eq!((floor.ior, floor.shininess), (before.ior, before.shininess));
+    // A valid value typed after it is taken, and the note goes.
+    type_number(&mut h, "Index of refraction", "1.25");
+    assert_eq!(h.state().doc.desc.materials["floor"].ior, 1.25);
+    assert!(h.query_by_label(note).is_none(), "the note stayed after a valid edit");
+    // Whole numbers too: a depth beyond 1024 and a fraction of one.
+    h.get_by_label("Scene").click();
+    h.run_steps(2);
+    let depth = h.state().doc.desc.render.max_depth;
+    type_number(&mut h, "Max depth", "99999");
+    assert!(h.query_by_label("Max depth: 99999 is outside [0, 1024]; the value was kept").is_some(), "{:?}", notes(&h));
+    type_number(&mut h, "Max depth", "2.5");
+    assert!(
+        h.query_by_label("Max depth: 2.5 is not a whole number in [0, 1024]; the value was kept").is_some(),
+        "{:?}",
+        notes(&h)
+    );
+    assert_eq!(h.state().doc.desc.render.max_depth, depth);
+    settle(&mut h);
+    assert!(h.state().doc.issues.is_empty(), "{:?}", h.state().doc.issues);
+}

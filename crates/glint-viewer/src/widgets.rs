@@ -3,6 +3,8 @@
 //! Ranges come from validation's table (`glint_scene::ranges`): an editor accepts every
 //! valid value, typed or dragged, and clamps only what validation would refuse anyway.
 
+use std::cell::Cell;
+
 use egui::{DragValue, Response, Slider, SliderClamping, Ui, WidgetInfo};
 
 use crate::help::{hint, option_tooltip, with_tooltip};
@@ -20,6 +22,51 @@ fn finite_number(text: &str) -> Option<f64> {
     text.parse::<f64>().ok().filter(|v| v.is_finite())
 }
 
+/// A typed number inside `range`, or `None` (the field keeps its value) with why not kept in
+/// `refused` for `refusal_note`: egui clamped a typed value to the range's end without a word
+/// (a lecturer's I_d −1 became 0, shininess 1e30 became 1e6, and an ior of −2 became the
+/// excluded 0, which validation then refused naming 0, not what was typed).
+fn in_range(text: &str, range: Range<f64>, refused: &Cell<Option<String>>) -> Option<f64> {
+    let v = finite_number(text)?;
+    if range.contains(v) {
+        return Some(v);
+    }
+    refused.set(Some(format!(
+        "{} is outside {}{}; the value was kept",
+        glint_scene::format_number(v),
+        range.bounds(),
+        range.why_outside(v)
+    )));
+    None
+}
+
+/// `in_range` for whole numbers: a fraction or a number outside `range` is refused by name.
+fn whole_in_range(text: &str, range: Range<u32>, refused: &Cell<Option<String>>) -> Option<f64> {
+    let v = finite_number(text)?;
+    if v.fract() == 0.0 && (f64::from(range.min)..=f64::from(range.max)).contains(&v) {
+        return Some(v);
+    }
+    let what = if v.fract() == 0.0 { "is outside" } else { "is not a whole number in" };
+    let v = glint_scene::format_number(v);
+    refused.set(Some(format!("{v} {what} [{}, {}]; the value was kept", range.min, range.max)));
+    None
+}
+
+/// Under the editor of `response`, the last typed value it refused (`refused`, this frame's),
+/// until the value next changes: a typed value outside the range is named, not clamped.
+fn refusal_note(ui: &mut Ui, label: &str, response: &Response, refused: Option<String>) {
+    // Keyed by the row and the label: the editor's own id differs while its text is edited.
+    let id = ui.scope_id().with(("refused", label));
+    if let Some(why) = refused {
+        ui.data_mut(|d| d.insert_temp(id, why));
+    } else if response.changed() {
+        ui.data_mut(|d| d.remove::<String>(id));
+    }
+    if let Some(why) = ui.data(|d| d.get_temp::<String>(id)) {
+        ui.colored_label(ui.visuals().error_fg_color, format!("{label}: {why}"));
+    }
+}
+
 /// Values of a logarithmic slider, four digits as a class reads them aloud: 32 and 1.5, not
 /// 3.200e1 and 1.500e0; scientific only beyond [1e-4, 1e15) (1e-6).
 fn scientific(v: f64) -> String {
@@ -29,13 +76,16 @@ fn scientific(v: f64) -> String {
 /// A slider over `range` (linear; `log_slider` for what spans decades).
 pub fn slider(ui: &mut Ui, label: &str, value: &mut f64, range: Range<f64>) -> bool {
     let wanted = ui.spacing().slider_width;
-    fitted(ui, label, wanted, |ui, text| {
+    let refused = Cell::new(None);
+    let response = fitted(ui, label, wanted, |ui, text| {
         let slider = Slider::new(value, range.min..=range.max)
             .clamping(SliderClamping::Edits)
-            .custom_parser(finite_number)
+            .custom_parser(|t| in_range(t, range, &refused))
             .text(text);
-        labelled(hint(ui.add(slider), label), label, text).changed()
-    })
+        labelled(hint(ui.add(slider), label), label, text)
+    });
+    refusal_note(ui, label, &response, refused.take());
+    response.changed()
 }
 
 /// A slider's `response` labelled `label` for screen readers (and the UI tests) where the
@@ -90,16 +140,19 @@ fn fitted<R>(ui: &mut Ui, label: &str, wanted: f32, add: impl FnOnce(&mut Ui, &s
 /// end).
 pub fn log_slider(ui: &mut Ui, label: &str, value: &mut f64, range: Range<f64>, span: (f64, f64)) -> bool {
     let decades = (span.1 / span.0.max(SMALLEST_POSITIVE)).log10() as f32;
-    let changed = fitted(ui, label, POINTS_PER_DECADE * decades, |ui, text| {
+    let refused = Cell::new(None);
+    let response = fitted(ui, label, POINTS_PER_DECADE * decades, |ui, text| {
         let slider = Slider::new(value, span.0..=span.1)
             .clamping(SliderClamping::Never)
             .text(text)
             .logarithmic(true)
             .smallest_positive(span.0.max(SMALLEST_POSITIVE))
             .custom_formatter(|v, _| scientific(v))
-            .custom_parser(finite_number);
-        labelled(hint(ui.add(slider), label), label, text).changed()
+            .custom_parser(|t| in_range(t, range, &refused));
+        labelled(hint(ui.add(slider), label), label, text)
     });
+    refusal_note(ui, label, &response, refused.take());
+    let changed = response.changed();
     if changed {
         *value = value.clamp(range.min, range.max);
     }
@@ -110,20 +163,32 @@ pub fn log_slider(ui: &mut Ui, label: &str, value: &mut f64, range: Range<f64>, 
 /// small values get most of its length, and the largest valid value can still be reached.
 pub fn int_slider(ui: &mut Ui, label: &str, value: &mut u32, range: Range<u32>) -> bool {
     let wanted = ui.spacing().slider_width;
-    fitted(ui, label, wanted, |ui, text| {
-        let slider = Slider::new(value, range.min..=range.max).logarithmic(range.log).custom_parser(finite_number);
-        labelled(hint(ui.add(slider.clamping(SliderClamping::Edits).text(text)), label), label, text).changed()
-    })
+    let refused = Cell::new(None);
+    let response = fitted(ui, label, wanted, |ui, text| {
+        let slider = Slider::new(value, range.min..=range.max)
+            .logarithmic(range.log)
+            .custom_parser(|t| whole_in_range(t, range, &refused));
+        labelled(hint(ui.add(slider.clamping(SliderClamping::Edits).text(text)), label), label, text)
+    });
+    refusal_note(ui, label, &response, refused.take());
+    response.changed()
 }
 
 /// A drag value whose accessible label is `label`.
 fn labelled_drag(ui: &mut Ui, label: String, value: &mut f64, speed: f64, range: Range<f64>) -> Response {
+    let refused = Cell::new(None);
     let r = ui.add(
-        DragValue::new(value).speed(speed).range(range.min..=range.max).max_decimals(4).custom_parser(finite_number),
+        DragValue::new(value)
+            .speed(speed)
+            .range(range.min..=range.max)
+            .max_decimals(4)
+            .custom_parser(|t| in_range(t, range, &refused)),
     );
     let v = *value;
     r.widget_info(|| WidgetInfo { label: Some(label.clone()), ..WidgetInfo::drag_value(true, v) });
-    hint(r, &label)
+    let r = hint(r, &label);
+    refusal_note(ui, &label, &r, refused.take());
+    r
 }
 
 /// An RGB colour or intensity: a colour picker for values in [0, 1] and one drag value per
@@ -161,17 +226,20 @@ pub fn vec3_edit(ui: &mut Ui, label: &str, value: &mut [f64; 3], speed: f64) -> 
 
 /// A labelled drag value for one number.
 pub fn number(ui: &mut Ui, label: &str, value: &mut f64, speed: f64, range: Range<f64>) -> bool {
+    let refused = Cell::new(None);
     let r = ui.add(
         DragValue::new(value)
             .speed(speed)
             .range(range.min..=range.max)
             .max_decimals(4)
-            .custom_parser(finite_number)
+            .custom_parser(|t| in_range(t, range, &refused))
             .prefix(format!("{label} = ")),
     );
     let v = *value;
     r.widget_info(|| WidgetInfo { label: Some(label.to_string()), ..WidgetInfo::drag_value(true, v) });
-    hint(r, label).changed()
+    let r = hint(r, label);
+    refusal_note(ui, label, &r, refused.take());
+    r.changed()
 }
 
 /// A combo box over `options`, shown by `name`.
