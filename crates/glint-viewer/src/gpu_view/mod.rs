@@ -430,9 +430,13 @@ impl GpuView {
             self.error = Some(e);
             changed = true;
         }
-        if let Err(e) = ctx.device.poll(wgpu::PollType::Poll) {
-            self.error = Some(e.to_string());
-        }
+        // No poll of the tracer's device here: the submit worker waits for its render itself
+        // (which runs the job's callbacks), and the readbacks below poll when they have
+        // something to read. A poll every frame needs the device's submission lock, which a
+        // probe or render thread holds for the whole of a `vkQueueSubmit`; lavapipe's returns
+        // only once its queue thread has JIT-compiled a new variant, so the window stood still
+        // for 40–115 s after a Max depth edit (a lecturer; gdb: the UI in `Device::maintain`
+        // waiting for `command_indices`).
         if let Some(InFlight { stage: Stage::Submitting, size, prewarm, .. }) = &self.in_flight {
             let (size, prewarm) = (*size, *prewarm);
             match self.submitter.poll() {
