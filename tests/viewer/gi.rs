@@ -138,11 +138,24 @@ fn whitted_against_gi_shows_beside_wiped_and_as_a_signed_difference() {
     let mean = v.element_sum() / 3.0;
     let shown = glint_scene::format_rounded(mean, 4);
     let shown = if mean > 0.0 { format!("+{shown}") } else { shown.replace('-', "−") };
-    let text = format!("({x}, {y}): Whitted − GI = {shown} (R ");
+    let text = format!("({x}, {y}): Whitted − GI (paths) = {shown} (R ");
     assert!(h.query_by_label_contains(&text).is_some(), "the readout says {text}");
     h.hover_at(egui::pos2(1.0, 1.0));
     h.run_steps(2);
     crate::snapshots::snapshot(&mut h, "viewer_whitted_minus_gi");
+    // One kind of light shown: the GI side says which, not "GI (paths)" over the caustics alone
+    // (whose lamp then read "too bright" against all of Whitted's light; a lecturer).
+    // (As Scene → Light shown sets it; the panel's combo lies below this small window's fold.)
+    let show = |h: &mut Harness<'static, ViewerApp>, omit: u32| {
+        h.state_mut().doc.omit_kinds = omit;
+        h.state_mut().doc.view_changed();
+        settle(h);
+    };
+    show(&mut h, glint_scene::PathKind::Caustic.alone());
+    assert!(h.query_by_label_contains("Whitted − GI: caustics alone, mean of R, G, B").is_some(), "no kind named");
+    assert!(h.query_by_label_contains("Whitted − GI (paths)").is_none());
+    show(&mut h, 0);
+    assert!(h.query_by_label_contains("Whitted − GI (paths), mean of R, G, B").is_some(), "the whole light again");
 
     // A Whitted scene opened in this view is switched to paths as the view's choice switched
     // the first (it was shown on both sides, the copy labelled "GI (paths)": a lecturer).

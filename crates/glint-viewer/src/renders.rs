@@ -285,6 +285,7 @@ impl Renders {
             gi_diff: self.gi.diff_texture.id().filter(|_| self.gi.difference_of(edit).is_some()),
             gi_signed: self.gi.difference_of(edit).map(|d| &d.diff),
             gi_samples: self.gi.difference_of(edit).map(|d| d.samples),
+            gi_kind: glint_scene::PathKind::ALL.into_iter().find(|k| k.alone() == doc.omit_kinds),
         }
     }
 

@@ -90,6 +90,17 @@ pub struct Textures<'a> {
     pub gi_signed: Option<&'a SignedDifference>,
     /// Samples a pixel of the path-traced image the difference was made with.
     pub gi_samples: Option<u32>,
+    /// The one kind of light the paths show (Scene → Light shown), `None` for all of it: the
+    /// GI side and Whitted − GI say so (with caustics alone it was still called "GI (paths)",
+    /// and the lamp read "too bright"; a lecturer).
+    pub gi_kind: Option<glint_scene::PathKind>,
+}
+
+impl Textures<'_> {
+    /// What the GI side is called: the paths' whole light, or the one kind shown.
+    pub fn gi_name(&self) -> String {
+        self.gi_kind.map_or_else(|| "GI (paths)".to_string(), |k| format!("GI: {} alone", k.label().to_lowercase()))
+    }
 }
 
 /// What the pointer did on the view this frame.
@@ -333,10 +344,10 @@ fn signed(v: f64) -> String {
 }
 
 /// "Whitted − GI at (x, y)" under the diverging bar for the pixel under the cursor.
-fn signed_readout(ui: &mut Ui, r: Rect, at: Option<((u32, u32), DVec3)>, samples: Option<u32>) {
+fn signed_readout(ui: &mut Ui, r: Rect, at: Option<((u32, u32), DVec3)>, samples: Option<u32>, gi: &str) {
     let text = match at {
         Some(((x, y), d)) => format!(
-            "({x}, {y}): Whitted − GI = {} (R {}, G {}, B {}){}",
+            "({x}, {y}): Whitted − {gi} = {} (R {}, G {}, B {}){}",
             signed(d.element_sum() / 3.0),
             signed(d.x),
             signed(d.y),
@@ -348,9 +359,9 @@ fn signed_readout(ui: &mut Ui, r: Rect, at: Option<((u32, u32), DVec3)>, samples
             }
         ),
         None => match samples {
-            Some(n) => format!("Whitted − GI, mean of R, G, B; paths of {n} samples. Point at a pixel."),
+            Some(n) => format!("Whitted − {gi}, mean of R, G, B; paths of {n} samples. Point at a pixel."),
             // The difference shown is of an earlier edit (or none yet): its count is not this one's.
-            None => "Whitted − GI, mean of R, G, B; the difference of this edit is being made…".into(),
+            None => format!("Whitted − {gi}, mean of R, G, B; the difference of this edit is being made…"),
         },
     };
     image_label_at(ui, pos2(r.left(), r.bottom() + 34.0), egui::Align2::LEFT_TOP, &text);
@@ -398,8 +409,9 @@ pub fn show(
     let response = ui.allocate_rect(area, Sense::click_and_drag());
     // The two images a view holds against each other: GPU and CPU, or Whitted and the paths.
     let gi = mode == ViewMode::WhittedVsGi;
+    let gi_name = tex.gi_name();
     let (left_tex, right_tex, left_name, right_name, left_missing, right_missing) = if gi {
-        (tex.whitted, tex.gi, "Whitted", "GI (paths)", "Whitted rendering…", "paths rendering…")
+        (tex.whitted, tex.gi, "Whitted", gi_name.as_str(), "Whitted rendering…", "paths rendering…")
     } else {
         (tex.gpu, tex.cpu, "GPU", "CPU", "no GPU image", "CPU reference rendering…")
     };
@@ -512,7 +524,7 @@ pub fn show(
     {
         let hovered = response.hover_pos().and_then(to_pixel);
         let at = hovered.and_then(|(x, y)| tex.gi_signed.and_then(|d| d.at(x, y)).map(|d| ((x, y), d)));
-        signed_readout(ui, *r, at, tex.gi_samples);
+        signed_readout(ui, *r, at, tex.gi_samples, &tex.gi_name());
     }
     let modifiers = ui.input(|i| i.modifiers);
     if response.clicked()
