@@ -111,6 +111,12 @@ fn broken_files_are_errors_naming_the_json_path() {
         ),
         ("count", Box::new(|f| f.json["accessors"][0]["count"] = json!(400)), &["attributes.POSITION", "do not fit"]),
         ("zero", Box::new(|f| f.json["accessors"][0]["count"] = json!(0)), &["accessors[0]"]),
+        // Normalised without a word, where a scene file's quaternion is refused (a tester).
+        (
+            "rotation",
+            Box::new(|f| f.json["nodes"][0]["rotation"] = json!([0.0, 0.0, 2.0, 0.0])),
+            &["nodes[0]", "rotation [0.0, 0.0, 2.0, 0.0] is not a unit quaternion: its length is 2"],
+        ),
         // Read from a misaligned offset, floats were garbage refused for another cause (a tester).
         (
             "misaligned",

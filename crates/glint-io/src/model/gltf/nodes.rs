@@ -48,11 +48,25 @@ fn local_matrix(transform: ::gltf::scene::Transform, written: Option<&NodeNumber
             Some(m) => Mat4(std::array::from_fn(|c| std::array::from_fn(|r| m[4 * c + r]))),
             None => Mat4(matrix.map(|c| c.map(f64::from))),
         }),
-        ::gltf::scene::Transform::Decomposed { translation, rotation, scale } => trs_matrix(
-            written.and_then(|n| n.translation).unwrap_or(translation.map(f64::from)),
-            written.and_then(|n| n.rotation).unwrap_or(rotation.map(f64::from)),
-            written.and_then(|n| n.scale).unwrap_or(scale.map(f64::from)),
-        ),
+        ::gltf::scene::Transform::Decomposed { translation, rotation, scale } => {
+            let rotation = written.and_then(|n| n.rotation).unwrap_or(rotation.map(f64::from));
+            // Held to unit length as a scene file's quaternion is: [0, 0, 2, 0] was normalised
+            // without a word, where the scene format refuses it (a tester). Within 1e-3 it is
+            // read (and normalised), as exporters' f32 rounding leaves it.
+            let len = rotation.iter().map(|c| c * c).sum::<f64>().sqrt();
+            if !(len.is_finite() && (len - 1.0).abs() < 1e-3) {
+                return Err(format!(
+                    "rotation {rotation:?} is not a unit quaternion: its length is {}, and glTF asks for 1 (within \
+                     1e-3 it is read)",
+                    glint_scene::format_number(len)
+                ));
+            }
+            trs_matrix(
+                written.and_then(|n| n.translation).unwrap_or(translation.map(f64::from)),
+                rotation,
+                written.and_then(|n| n.scale).unwrap_or(scale.map(f64::from)),
+            )
+        }
     }
 }
 
