@@ -42,7 +42,7 @@ pub(super) fn prepared(raw: &[u8], warnings: &mut Vec<FieldIssue>) -> Result<Pre
     }
     // Before the partial colours go: `v 1 0 0 0.5 0.5 x` among uncoloured vertices lost its
     // bad word with its colour, and loaded (a tester).
-    if let Some((line, reason)) = text::bad_number(&bytes) {
+    if let Some((line, reason)) = text::bad_number(&bytes).or_else(|| text::normals_named_without_any(&bytes)) {
         return Err((Some(line), reason));
     }
     let (bytes, partial_colours) = text::without_partial_vertex_colours(&bytes);

@@ -563,6 +563,15 @@ fn a_bad_face_index_names_the_index_and_the_range_and_a_huge_word_is_cut() {
     );
     let normal = message("n.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//2 3//1\n");
     assert!(normal.contains("1 normals come before it, so an index runs from 1 to 1"), "{normal}");
+    // With no `vn` at all tobj read the index as none and the file loaded (a tester).
+    let none = message("none.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1/3 2/1/3 3/1/3\n");
+    assert!(
+        none.ends_with(
+            "none.obj:5: invalid OBJ (`f 1/1/3 2/1/3 3/1/3`: face normal index out of bounds; no normals come before \
+             it (the file has no `vn` statement))"
+        ),
+        "{none}"
+    );
     let unparsed = message("p.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 18446744073709551616\n");
     assert!(unparsed.contains("face parse error: a face is `f` and three or more of"), "{unparsed}");
     // The face is quoted, and an index no integer holds is said to be one (a tester read "each a

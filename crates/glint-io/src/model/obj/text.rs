@@ -220,6 +220,31 @@ pub(super) fn bad_number(bytes: &[u8]) -> Option<(usize, String)> {
     None
 }
 
+/// The first face (its 1-based line, and what is wrong) that names a normal in a file without
+/// a `vn` statement: tobj reads the index as none and the file loaded, where one `vn` made an
+/// index past it an error (`f 5/1/3 …`; a tester).
+pub(super) fn normals_named_without_any(bytes: &[u8]) -> Option<(usize, String)> {
+    let lines = || bytes.split(|&b| b == b'\n').map(|raw| std::str::from_utf8(raw).unwrap_or(""));
+    let keyword = |line: &str| line.split_whitespace().next().map(str::to_string);
+    if lines().any(|line| keyword(line).as_deref() == Some("vn")) {
+        return None;
+    }
+    lines().enumerate().find_map(|(n, line)| {
+        let mut words = line.split_whitespace();
+        let names_normal = words.next() == Some("f")
+            && words.any(|corner| corner.split('/').nth(2).is_some_and(|normal| !normal.is_empty()));
+        names_normal.then(|| {
+            (
+                n + 1,
+                format!(
+                    "`{}`: face normal index out of bounds; no normals come before it (the file has no `vn` statement)",
+                    line.trim()
+                ),
+            )
+        })
+    })
+}
+
 /// Why `word`, read as the f32 `value` (tobj reads f32), is no finite number; `None` when it is
 /// one. What the OBJ's and the MTL's number checks say alike.
 pub(super) fn not_finite(word: &str, value: f32) -> Option<String> {
