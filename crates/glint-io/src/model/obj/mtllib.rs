@@ -111,6 +111,15 @@ impl<'a> Libraries<'a> {
             let text = expand_colours(&text::material_statements(&text, &["newmtl"]))
                 .map_err(|problem| format!("{uri}:{problem}"))?;
             let loaded = tobj::load_mtl_buf(&mut text.as_slice()).map_err(|e| e.to_string())?;
+            // tobj maps a name to its last definition: an earlier one was dropped without a
+            // word (two `newmtl red`, the faces took the second's colour; a tester).
+            let mut counts: std::collections::BTreeMap<&str, usize> = std::collections::BTreeMap::new();
+            for m in &loaded.0 {
+                *counts.entry(m.name.as_str()).or_default() += 1;
+            }
+            for (name, n) in counts.into_iter().filter(|(_, n)| *n > 1) {
+                warn(format!("`newmtl {name}` is written {n} times; the faces naming it use the last"));
+            }
             let folder = uri.replace('\\', "/").rsplit_once('/').map_or(String::new(), |(f, _)| f.to_string());
             self.files.borrow_mut().push(MtlFile {
                 uri: uri.to_string(),

@@ -618,3 +618,20 @@ fn a_specular_colour_without_a_shininess_is_warned_of_as_a_glare() {
         assert!(!said.contains(".Ns"), "{quiet}: {said}");
     }
 }
+
+#[test]
+fn a_material_defined_twice_is_warned_of() {
+    // tobj maps a name to its last definition, and the first was dropped without a word (a
+    // tester's faces turned from red to blue).
+    let dir = tempfile::tempdir().unwrap();
+    write(dir.path(), "d.mtl", "newmtl red\nKd 1 0 0\nnewmtl red\nKd 0 0 1\n");
+    let obj = write(dir.path(), "d.obj", &format!("mtllib d.mtl\nusemtl red\n{QUAD}"));
+    let m = load_obj(&obj).expect("loads");
+    let said = m.warnings.iter().map(ToString::to_string).collect::<Vec<_>>().join("; ");
+    assert!(
+        said.contains("mtllib `d.mtl`: `newmtl red` is written 2 times; the faces naming it use the last"),
+        "{said}"
+    );
+    let used = &m.materials[&m.meshes[0].material];
+    assert_eq!(used.kd, Rgb([0.0, 0.0, 1.0]), "the last definition");
+}
