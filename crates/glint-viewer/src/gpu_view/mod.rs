@@ -152,8 +152,18 @@ impl Drop for GpuView {
         // The device goes with the view, and the process may exit next: a submission thread
         // still in the driver then (a prewarm compiling) crashed the viewer tests' process at
         // its exit, once, after every test had passed.
-        if !self.submitter.cancel_and_wait(Instant::now() + JOBS_END_WITHIN) {
+        let deadline = Instant::now() + JOBS_END_WITHIN;
+        if !self.submitter.cancel_and_wait(deadline) {
             log::warn!("a GPU job was still running {} s after the view closed", JOBS_END_WITHIN.as_secs());
+        }
+        // Probes run on threads of their own, each holding the tracer: a probe still compiling
+        // its variant in lavapipe's LLVM when the process exited aborted it ("LLVM ERROR:
+        // Invalid size request on a scalable vector", after all 71 viewer tests had passed).
+        while Arc::strong_count(&self.tracer) > 1 && Instant::now() < deadline {
+            std::thread::sleep(Duration::from_millis(5));
+        }
+        if Arc::strong_count(&self.tracer) > 1 {
+            log::warn!("a GPU probe was still running {} s after the view closed", JOBS_END_WITHIN.as_secs());
         }
     }
 }
