@@ -15,17 +15,26 @@ pub fn parse_message(error: &toml::de::Error, text: &str) -> String {
     }
     // An object's error at the field it names, not at the first `[[objects]]` header.
     // And a field's error inside a table read whole (an attenuation) at the field.
-    let refined = crate::toml_position::object_error_span(text, error.message())
-        .or_else(|| error.span().and_then(|span| crate::toml_position::inner_error_span(text, span, error.message())));
+    // The file parsed again with its spans, once for every lookup (on the error path alone).
+    let parsed = toml::de::DeTable::parse(text).ok();
+    let root = parsed.as_ref().map(|r| r.get_ref());
+    let refined = root.and_then(|root| {
+        crate::toml_position::object_error_span(root, error.message()).or_else(|| {
+            error.span().and_then(|span| crate::toml_position::inner_error_span(root, span, error.message()))
+        })
+    });
     let (span, located) = match refined {
         Some(span) => (Some(span.clone()), crate::toml_position::at_position(text, span, error.message())),
         None => (error.span(), error.to_string()),
     };
-    let path = span.as_ref().and_then(|span| crate::toml_position::field_path_at(text, span));
+    let path = root.zip(span.as_ref()).and_then(|(root, span)| crate::toml_position::field_path_at(root, span));
     let spanned = span.and_then(|span| text.get(span)).unwrap_or("");
     let located = window_about_caret(&located);
     let clarified = serde_words(&clarify_datetime(&clarify_integer_overflow(&located), spanned));
-    shorten_lines(&path.map_or(clarified.clone(), |path| with_field_path(&clarified, &path)))
+    shorten_lines(&match path {
+        Some(path) => with_field_path(&clarified, &path),
+        None => clarified,
+    })
 }
 
 /// `located`'s message line led by the path of the field it is about (`lights[2].position:
@@ -39,8 +48,8 @@ fn with_field_path(located: &str, path: &str) -> String {
     let said = lines[4];
     // The path cut before each of its parts, the whole path first: where the message begins
     // with the part after the cut, only the part before it is added.
-    let cuts = std::iter::once(0).chain(path.match_indices(['.', '[']).map(|(i, _)| i));
-    let named = cuts.into_iter().find_map(|cut| {
+    let mut cuts = std::iter::once(0).chain(path.match_indices(['.', '[']).map(|(i, _)| i));
+    let named = cuts.find_map(|cut| {
         let rest = path[cut..].trim_start_matches('.');
         let part = rest.split(['.', '[']).next().unwrap_or(rest);
         let begins =

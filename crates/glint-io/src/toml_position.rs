@@ -2,7 +2,7 @@
 //! (`ObjectDesc::from_table`), so the TOML parser's position of an error in one is the first
 //! `[[objects]]` header (a tester's `triangles[0][2]` on line 16 was said to be on line 7). The
 //! error names the field (`objects[1] (mesh): triangles[0][2]: …`); the file, parsed again with
-//! its spans, says where that is.
+//! its spans (once, by the caller, for every lookup here), says where that is.
 
 use std::ops::Range;
 
@@ -11,7 +11,7 @@ use toml::de::{DeTable, DeValue};
 
 /// The span of the value an error raised inside `objects[N]` names (`message` is the parser's,
 /// without position): the deepest part of its field path that the file has, else the object.
-pub fn object_error_span(text: &str, message: &str) -> Option<Range<usize>> {
+pub fn object_error_span(root: &DeTable<'_>, message: &str) -> Option<Range<usize>> {
     let rest = message.strip_prefix("objects[")?;
     let (index, rest) = rest.split_once(']')?;
     let index: usize = index.parse().ok()?;
@@ -21,8 +21,7 @@ pub fn object_error_span(text: &str, message: &str) -> Option<Range<usize>> {
         None => rest,
     };
     let path = rest.strip_prefix(": ").or_else(|| rest.strip_prefix('.')).unwrap_or("");
-    let root = DeTable::parse(text).ok()?;
-    let objects = root.get_ref().get("objects")?;
+    let objects = root.get("objects")?;
     let DeValue::Array(objects) = objects.get_ref() else { return None };
     let object = objects.get(index)?;
     // A key the object's kind has not: the key itself.
@@ -39,13 +38,12 @@ pub fn object_error_span(text: &str, message: &str) -> Option<Range<usize>> {
 /// which the parser gives the table's span (`attenuation: l: …` underlined all of
 /// `{ c = 1.0, l = "x" }`): the table is found by that span, the field under it by the path
 /// after the table's own name. `None` where that finds nothing deeper.
-pub fn inner_error_span(text: &str, span: Range<usize>, message: &str) -> Option<Range<usize>> {
+pub fn inner_error_span(root: &DeTable<'_>, span: Range<usize>, message: &str) -> Option<Range<usize>> {
     let (name, rest) = message.split_once(": ")?;
     if name.is_empty() || !name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_') {
         return None;
     }
-    let root = DeTable::parse(text).ok()?;
-    let table = with_span(root.get_ref(), &span)?;
+    let table = with_span(root, &span)?;
     let path = rest.split(": ").next().unwrap_or("");
     let field = deepest(table, path);
     (field.span() != span).then(|| field.span())
@@ -56,9 +54,8 @@ pub fn inner_error_span(text: &str, span: Range<usize>, message: &str) -> Option
 /// field) names the table holding it. `None` at the top level, or where the file does not
 /// parse. The parser's message said what was wrong and the caret where, but not whose field
 /// it was (`lights[1]`'s `position` or `lights[4]`'s).
-pub fn field_path_at(text: &str, span: &Range<usize>) -> Option<String> {
-    let root = DeTable::parse(text).ok()?;
-    path_in_table(root.get_ref(), span.start, "").filter(|p| !p.is_empty())
+pub fn field_path_at(root: &DeTable<'_>, span: &Range<usize>) -> Option<String> {
+    path_in_table(root, span.start, "").filter(|p| !p.is_empty())
 }
 
 fn path_in_table(table: &DeTable<'_>, at: usize, path: &str) -> Option<String> {
@@ -187,7 +184,7 @@ mod tests {
                     bogus = 1\n[materials.\"red glass\"]\nkd = { r = 1 }\n";
         let at = |needle: &str| {
             let start = text.find(needle).expect("in the text");
-            field_path_at(text, &(start..start + needle.len()))
+            field_path_at(DeTable::parse(text).expect("parses").get_ref(), &(start..start + needle.len()))
         };
         assert_eq!(at("\"x\"").as_deref(), Some("camera.fov_y"));
         assert_eq!(at("\"y\"").as_deref(), Some("lights[1].position[1]"));

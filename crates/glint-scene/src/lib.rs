@@ -51,7 +51,7 @@ pub use texture::{
     ColorSpace, MAX_TEXTURE_SIDE, MAX_TEXTURE_TEXELS, TextureDesc, TextureError, TextureImage, UvTransform, check_size,
     srgb_to_linear,
 };
-pub use transform::Mat4;
+pub use transform::{Mat4, not_unit_quaternion};
 pub use validate::{
     EPSILON_SHARE, EPSILON_WARN_SHARE, MAX_ATTENUATION_DIP, MAX_COORD, MAX_DEPTH, MAX_EPSILON, MAX_IMAGE_SIDE,
     MAX_INTENSITY, MAX_IOR, MAX_ROUGHNESS, MAX_SHININESS, MAX_SPOT_EXPONENT, MAX_SPP, MIN_ATTENUATION_DENOMINATOR,

@@ -159,11 +159,8 @@ impl TransformDesc {
         if self.rotate.is_some_and(|r| !finite(&r)) {
             out.push(("rotate".into(), "must be finite (degrees)".into()));
         }
-        if let Some(q) = self.quaternion {
-            let len = q.iter().map(|c| c * c).sum::<f64>().sqrt();
-            if !(len.is_finite() && (len - 1.0).abs() < 1e-3) {
-                out.push(("quaternion".into(), format!("must be a unit quaternion [x, y, z, w]; its length is {len}")));
-            }
+        if let Some(len) = self.quaternion.and_then(crate::transform::not_unit_quaternion) {
+            out.push(("quaternion".into(), format!("must be a unit quaternion [x, y, z, w]; its length is {len}")));
         }
         let s = match self.scale {
             Scale::Uniform(s) => [s; 3],

@@ -6,6 +6,14 @@
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Mat4(pub [[f64; 4]; 4]);
 
+/// The length of the quaternion [x, y, z, w] where it is no rotation: not finite, or farther
+/// than 1e-3 from 1 (within it, exporters' f32 rounding, it is read normalised). A scene file's
+/// `quaternion` and a glTF node's `rotation` are held to it alike.
+pub fn not_unit_quaternion(q: [f64; 4]) -> Option<f64> {
+    let len = q.iter().map(|c| c * c).sum::<f64>().sqrt();
+    (!(len.is_finite() && (len - 1.0).abs() < 1e-3)).then_some(len)
+}
+
 impl Mat4 {
     pub const IDENTITY: Self =
         Self([[1.0, 0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0], [0.0, 0.0, 0.0, 1.0]]);

@@ -524,7 +524,7 @@ pub fn show(
     {
         let hovered = response.hover_pos().and_then(to_pixel);
         let at = hovered.and_then(|(x, y)| tex.gi_signed.and_then(|d| d.at(x, y)).map(|d| ((x, y), d)));
-        signed_readout(ui, *r, at, tex.gi_samples, &tex.gi_name());
+        signed_readout(ui, *r, at, tex.gi_samples, &gi_name);
     }
     let modifiers = ui.input(|i| i.modifiers);
     if response.clicked()

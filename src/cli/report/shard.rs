@@ -354,9 +354,11 @@ fn changed_scene(first: &ShardFile, other: &ShardFile) -> Option<String> {
 /// every scene has one (a shard's file edited or cut short).
 pub fn join_gi(files: &mut [ShardFile]) -> anyhow::Result<Vec<super::gi::GiResult>> {
     let names = files[0].scenes.clone();
-    let (quick, backends) = (files[0].quick, files[0].backends.clone());
+    // `--quick` and the backends are the same in every shard (`check`): one plan for all.
+    let (quick, backends) = (files[0].quick, &files[0].backends);
+    let (reference, planned) = (super::gi::reference_axes(quick), super::gi::planned_rows(backends, quick));
     for f in files.iter() {
-        f.gi.iter().try_for_each(|gi| gi_planned(gi, quick, &backends)).with_context(|| {
+        f.gi.iter().try_for_each(|gi| gi_planned(gi, reference, &planned)).with_context(|| {
             format!("{}: was edited or is another sweep's; run its shard again; nothing was written", f.path.display())
         })?;
     }
@@ -374,10 +376,13 @@ pub fn join_gi(files: &mut [ShardFile]) -> anyhow::Result<Vec<super::gi::GiResul
     Ok(all)
 }
 
-/// Whether a scene's Whitted-against-paths section holds the rows and reference the sweep makes
-/// (`--quick` and the backends are the same in every shard): its rows are the report's table.
-fn gi_planned(gi: &super::gi::GiResult, quick: bool, backends: &[Backend]) -> anyhow::Result<()> {
-    let (spp, depth) = super::gi::reference_axes(quick);
+/// Whether a scene's Whitted-against-paths section holds the rows (`planned`) and the reference
+/// (samples, depth) the sweep makes: its rows are the report's table.
+fn gi_planned(
+    gi: &super::gi::GiResult,
+    (spp, depth): (u32, u32),
+    planned: &[super::gi::GiRowKey],
+) -> anyhow::Result<()> {
     let scene = &gi.scene;
     if (gi.reference_spp, gi.reference_depth) != (spp, depth) {
         bail!(
@@ -386,7 +391,6 @@ fn gi_planned(gi: &super::gi::GiResult, quick: bool, backends: &[Backend]) -> an
             gi.reference_depth
         );
     }
-    let planned = super::gi::planned_rows(backends, quick);
     let keys: Vec<_> = gi.rows.iter().map(super::gi::GiRow::key).collect();
     if let Some(k) = (0..planned.len().max(keys.len())).find(|&k| keys.get(k) != planned.get(k)) {
         let what = |key: Option<&super::gi::GiRowKey>| key.map_or_else(|| "none".to_string(), |k| k.describe());

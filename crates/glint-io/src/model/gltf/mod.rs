@@ -238,16 +238,18 @@ pub fn load_gltf(path: &Path, options: &ImportOptions) -> Result<Model, GltfErro
                     // glTF 2.0 §3.7.2.1: TRIANGLES takes three indices a triangle. The rest is left
                     // out as GPUs leave it, but said (a count of 35 lost two without a word; a
                     // tester; assimp's IncorrectVertexArrays).
-                    let (field, count, what) = match primitive.indices() {
-                        Some(a) => (format!("{prim_path}.indices"), a.count(), format!("accessors[{}]", a.index())),
+                    let (field, count, what, unit) = match primitive.indices() {
+                        Some(a) => {
+                            (format!("{prim_path}.indices"), a.count(), format!("accessors[{}]", a.index()), "indices")
+                        }
                         None => (
                             format!("{prim_path}.attributes.POSITION"),
                             primitive.get(&::gltf::Semantic::Positions).map_or(0, |a| a.count()),
                             "without indices, POSITION".to_string(),
+                            "vertices",
                         ),
                     };
                     if k == 0 && primitive.mode() == Mode::Triangles && !count.is_multiple_of(3) {
-                        let unit = if primitive.indices().is_some() { "indices" } else { "vertices" };
                         model.warnings.push(FieldIssue {
                             field,
                             problem: format!(

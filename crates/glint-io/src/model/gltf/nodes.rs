@@ -51,10 +51,8 @@ fn local_matrix(transform: ::gltf::scene::Transform, written: Option<&NodeNumber
         ::gltf::scene::Transform::Decomposed { translation, rotation, scale } => {
             let rotation = written.and_then(|n| n.rotation).unwrap_or(rotation.map(f64::from));
             // Held to unit length as a scene file's quaternion is: [0, 0, 2, 0] was normalised
-            // without a word, where the scene format refuses it (a tester). Within 1e-3 it is
-            // read (and normalised), as exporters' f32 rounding leaves it.
-            let len = rotation.iter().map(|c| c * c).sum::<f64>().sqrt();
-            if !(len.is_finite() && (len - 1.0).abs() < 1e-3) {
+            // without a word, where the scene format refuses it (a tester).
+            if let Some(len) = glint_scene::not_unit_quaternion(rotation) {
                 return Err(format!(
                     "rotation {rotation:?} is not a unit quaternion: its length is {}, and glTF asks for 1 (within \
                      1e-3 it is read)",

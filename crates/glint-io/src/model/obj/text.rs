@@ -204,14 +204,13 @@ pub(super) fn bad_number(bytes: &[u8]) -> Option<(usize, String)> {
             // Validation's range, said here with the line: after import it named the mesh's
             // inner index, once a line for every face using it (`vt 1e30 1`; a tester).
             let range = glint_scene::ranges::COORD;
-            if keyword == Some("vt") && !(range.min..=range.max).contains(&f64::from(value)) {
+            if keyword == Some("vt") && !range.contains(f64::from(value)) {
                 return Some((
                     n + 1,
                     format!(
-                        "`{}`: {what} component {name}: {word} is outside [{:e}, {:e}], a texture coordinate's range",
+                        "`{}`: {what} component {name}: {word} is outside {}, a texture coordinate's range",
                         line.trim(),
-                        range.min,
-                        range.max
+                        range.bounds()
                     ),
                 ));
             }
@@ -225,8 +224,7 @@ pub(super) fn bad_number(bytes: &[u8]) -> Option<(usize, String)> {
 /// index past it an error (`f 5/1/3 …`; a tester).
 pub(super) fn normals_named_without_any(bytes: &[u8]) -> Option<(usize, String)> {
     let lines = || bytes.split(|&b| b == b'\n').map(|raw| std::str::from_utf8(raw).unwrap_or(""));
-    let keyword = |line: &str| line.split_whitespace().next().map(str::to_string);
-    if lines().any(|line| keyword(line).as_deref() == Some("vn")) {
+    if lines().any(|line| line.split_whitespace().next() == Some("vn")) {
         return None;
     }
     lines().enumerate().find_map(|(n, line)| {
