@@ -227,12 +227,16 @@ struct ProbeLight {
     f_att: f32,
     spot: f32,
     shadow_ray: u32,
-    pad_b: f32,
+    n_dot_l: f32,
     visibility: vec4<f32>,
     ambient: vec4<f32>,
     diffuse: vec4<f32>,
     specular: vec4<f32>,
     contribution: vec4<f32>,
+    lobe_cosine: f32,
+    lobe: f32,
+    lobe_model: u32,
+    pad_b: f32,
 }
 
 struct ProbeRecord {

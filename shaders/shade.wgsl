@@ -2,7 +2,7 @@
 // I_local = E_m + I_a·k_a + Σ_j f_att,j·S_j·[ I_a,j·k_a + V_j·( I_d,j·k_d·max(N·L,0) + I_s,j·k_s·spec_j ) ]
 #define_import_path glint::shade
 
-#import glint::scene_data::{NO_CONE_VERSIN, ProbeLight, MAX_PROBE_LIGHTS, GpuLight, GpuMaterial, LIGHT_CASTS_SHADOWS, LIGHT_DIRECTIONAL, LIGHT_SPOT, SPECULAR_PHONG, SPECULAR_COOK_TORRANCE, FRESNEL_SCHLICK, NO_TEXTURE, ATTENUATION_POLYNOMIAL, ATTENUATION_INVERSE_SQUARE, SPOT_FALLOFF_SMOOTH}
+#import glint::scene_data::{NO_CONE_VERSIN, ProbeLight, MAX_PROBE_LIGHTS, GpuLight, GpuMaterial, LIGHT_CASTS_SHADOWS, LIGHT_DIRECTIONAL, LIGHT_SPOT, SPECULAR_BLINN, SPECULAR_PHONG, SPECULAR_COOK_TORRANCE, FRESNEL_SCHLICK, NO_TEXTURE, ATTENUATION_POLYNOMIAL, ATTENUATION_INVERSE_SQUARE, SPOT_FALLOFF_SMOOTH}
 #import glint::bindings::{header, materials, lights}
 #import glint::ray::{Ray, ray_counts, probe, probe_active}
 #import glint::ray::FAR
@@ -234,6 +234,58 @@ fn specular_term(mat: GpuMaterial, n: vec3<f32>, l: vec3<f32>, v: vec3<f32>, n_d
 #endif
 }
 
+// The lobe specular_term evaluates for `mat`.
+fn lobe_model(mat: GpuMaterial) -> u32 {
+#ifdef PHONG
+    if mat.specular_model == SPECULAR_PHONG {
+        return SPECULAR_PHONG;
+    }
+#endif
+#ifdef COOK_TORRANCE
+    if mat.specular_model == SPECULAR_COOK_TORRANCE {
+        return SPECULAR_COOK_TORRANCE;
+    }
+#endif
+    return SPECULAR_BLINN;
+}
+
+// The cosine the lobe of `model` is of: R·V (Phong), else N·H with the unit half vector.
+fn lobe_cosine(model: u32, n: vec3<f32>, l: vec3<f32>, v: vec3<f32>, n_dot_l: f32) -> f32 {
+    if model == SPECULAR_PHONG {
+        return dot(2.0 * n_dot_l * n - l, v);
+    }
+    let h = normalize(l) + v;
+    let len = length(h);
+    if len < MIN_HALF_LENGTH {
+        return 0.0;
+    }
+    return dot(n, h) / len;
+}
+
+// The cosines behind one light's terms, for the probe (cpu::shade::LightAngles).
+struct LightAngles {
+    n_dot_l: f32,
+    lobe_cosine: f32,
+    lobe: f32,
+    lobe_model: u32,
+}
+
+fn light_angles(light: GpuLight, mat: GpuMaterial, s: Surface, n: vec3<f32>, v: vec3<f32>) -> LightAngles {
+    let ls = light_sample(light, s.p);
+    let model = lobe_model(mat);
+    if ls.f_att * ls.spot == 0.0 {
+        return LightAngles(0.0, 0.0, 0.0, model);
+    }
+    let n_dot_l = dot(n, ls.l);
+    var lobe = 0.0;
+#ifdef SPECULAR
+    if n_dot_l > 0.0 {
+        lobe = specular_term(mat, n, ls.l, v, n_dot_l);
+    }
+#endif
+    return LightAngles(n_dot_l, lobe_cosine(model, n, ls.l, v, n_dot_l), lobe, model);
+}
+
 // The colours of the model at a hit, after the material's textures.
 struct MaterialColours {
     ka: vec3<f32>,
@@ -344,7 +396,8 @@ fn shade_local(s: Surface, n: vec3<f32>, ng: vec3<f32>, v: vec3<f32>) -> vec3<f3
         sum += term.contribution;
 #ifdef PROBE
         if probe_active && j < MAX_PROBE_LIGHTS {
-            probe.lights[j] = ProbeLight(term.f_att, term.spot, u32(ray_counts.shadow != shadow_rays), 0.0, vec4<f32>(term.visibility, 0.0), vec4<f32>(term.ambient, 0.0), vec4<f32>(term.diffuse, 0.0), vec4<f32>(term.specular, 0.0), vec4<f32>(term.contribution, 0.0));
+            let a = light_angles(lights[j], mat, s, n, v);
+            probe.lights[j] = ProbeLight(term.f_att, term.spot, u32(ray_counts.shadow != shadow_rays), a.n_dot_l, vec4<f32>(term.visibility, 0.0), vec4<f32>(term.ambient, 0.0), vec4<f32>(term.diffuse, 0.0), vec4<f32>(term.specular, 0.0), vec4<f32>(term.contribution, 0.0), a.lobe_cosine, a.lobe, a.lobe_model, 0.0);
         }
 #endif
     }

@@ -3,6 +3,7 @@
 //! taken from the tracer.
 
 use glam::DVec3;
+use glint_types::SpecularModel;
 use glint_types::layout::NO_HIT;
 
 use crate::scene::{SLAB_GROUND, SLAB_KR, SLAB_KT, SLAB_SKY};
@@ -117,6 +118,20 @@ fn check_lit_sphere_with(lobe: &str, model: &str, light: [f64; 3], spec: &dyn Fn
             if ndl > 0.0 {
                 assert_eq!(term.visibility, DVec3::ONE, "{at}: a convex sphere does not shadow its lit side");
             }
+            // The angles the probe shows beside the terms: N·L unclamped, the lobe's cosine and
+            // the lobe (0 on the unlit side, as the model takes it).
+            let a = &term.angles;
+            let (cosine, lobe_model) = match model.split(' ').next() {
+                Some("phong") => ((2.0 * ndl * n - l).dot(v), SpecularModel::Phong),
+                Some("cook_torrance") => (n.dot((l.normalize() + v).normalize()), SpecularModel::CookTorrance),
+                Some("blinn") => (n.dot((l.normalize() + v).normalize()), SpecularModel::Blinn),
+                other => panic!("{at}: no lobe {other:?}"),
+            };
+            assert_eq!(a.lobe_model, lobe_model, "{at}: lobe");
+            assert_rel(DVec3::splat(a.n_dot_l), DVec3::splat(ndl), REL, &format!("{at}: N·L"));
+            assert_rel(DVec3::splat(a.lobe_cosine), DVec3::splat(cosine), REL, &format!("{at}: lobe cosine"));
+            let lobe = if ndl > 0.0 { s } else { 0.0 };
+            assert_rel(DVec3::splat(a.lobe), DVec3::splat(lobe), REL, &format!("{at}: spec_j"));
             assert_rel(b.total, total, REL, &format!("{at}: total"));
             assert_rel(img.get(x, y), total, REL, &format!("{at}: rendered pixel"));
         }

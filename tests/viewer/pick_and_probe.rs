@@ -104,6 +104,19 @@ fn the_probe_breakdown_sums_to_the_pixel_radiance_on_both_tracers() {
         h.query_by_label("First difference beyond tolerance: light 0: diffuse").is_some(),
         "the differing term is not pointed out"
     );
+    // Each light's cosines are listed before the terms they give (whitted's lobes are
+    // Blinn's), so a wrong N·L is named as the cause rather than the diffuse it feeds.
+    for row in ["light 0: N·L", "light 0: N·H", "light 0: (N·H)^n"] {
+        assert!(h.query_all_by_label(row).next().is_some(), "the probe lists no {row}");
+    }
+    let probe = h.state_mut().renders.probe.as_mut().expect("probe");
+    let GpuProbe::Done(Ok(wrong)) = &mut probe.gpu else { panic!("GPU probe: {:?}", probe.gpu) };
+    wrong.lights[0].angles.n_dot_l += 0.1;
+    h.run_steps(2);
+    assert!(
+        h.query_by_label("First difference beyond tolerance: light 0: N·L").is_some(),
+        "the differing cosine is not pointed out"
+    );
 }
 
 #[test]

@@ -3,6 +3,7 @@
 //! the ray tree's node comparison share it.
 
 use glam::DVec3;
+use glint_scene::SpecularModel;
 
 use crate::cpu::ray_tree::RayTree;
 use crate::cpu::shade::Breakdown;
@@ -91,11 +92,29 @@ pub fn local_terms(cpu: &Breakdown, gpu: Option<&Breakdown>) -> Vec<Term> {
         let mut push = |name: String, c: DVec3, g: Option<DVec3>| out.push(Term::rgb(name, c, g));
         push(format!("light {j}: V"), l.visibility, gl.map(|g| g.visibility));
         push(format!("light {j}: I_a,j·k_a"), l.ambient, gl.map(|g| g.ambient));
+        // Each product after the cosines it is of: where a direction differs, the first
+        // difference names the angle, not the term.
+        let (ca, ga) = (&l.angles, gl.map(|g| &g.angles));
+        out.push(Term::scalar(format!("light {j}: N·L"), ca.n_dot_l, ga.map(|g| g.n_dot_l)));
+        let mut push = |name: String, c: DVec3, g: Option<DVec3>| out.push(Term::rgb(name, c, g));
         push(format!("light {j}: diffuse"), l.diffuse, gl.map(|g| g.diffuse));
+        let (cosine, lobe) = lobe_names(ca.lobe_model);
+        out.push(Term::scalar(format!("light {j}: {cosine}"), ca.lobe_cosine, ga.map(|g| g.lobe_cosine)));
+        out.push(Term::scalar(format!("light {j}: {lobe}"), ca.lobe, ga.map(|g| g.lobe)));
+        let mut push = |name: String, c: DVec3, g: Option<DVec3>| out.push(Term::rgb(name, c, g));
         push(format!("light {j}: specular"), l.specular, gl.map(|g| g.specular));
         push(format!("light {j}: total"), l.contribution, gl.map(|g| g.contribution));
     }
     out
+}
+
+/// What the probe calls a lobe's cosine and the lobe spec_j, in the seed's notation.
+pub fn lobe_names(model: SpecularModel) -> (&'static str, &'static str) {
+    match model {
+        SpecularModel::Blinn => ("N·H", "(N·H)^n"),
+        SpecularModel::Phong => ("R·V", "(R·V)^n"),
+        SpecularModel::CookTorrance => ("N·H", "F·D·G/(N·V)"),
+    }
 }
 
 /// Index of the first term where the two tracers differ beyond the tolerance.

@@ -2,20 +2,21 @@
 //! so both can be shown and compared term by term and node by node.
 
 use glint_core::cpu::ray_tree::{Cut, RayNode, RayTree};
-use glint_core::cpu::shade::{Breakdown, LightTerm};
+use glint_core::cpu::shade::{Breakdown, LightAngles, LightTerm};
 use glint_core::cpu::v3 as v;
 use glint_core::glam::DVec3;
-use glint_types::RayKind;
 use glint_types::layout::{
     NO_HIT, NO_PARENT, NODE_CUT_BAILOUT, NODE_CUT_DEPTH, NODE_HIT, NODE_TIR, PROBE_HIT, PROBE_TIR, ProbeLight,
     ProbeNode, ProbeRecord, ProbeTree, TREE_LIGHTS_TRUNCATED, TREE_OVERFLOW, UnknownTag,
 };
+use glint_types::{RayKind, SpecularModel};
 
 /// The breakdown a probe record describes. The mirror subtree's radiance already includes its
 /// weight; under total internal reflection it carried k_r + k_t and is split back per channel.
-pub fn breakdown(r: &ProbeRecord) -> Breakdown {
+/// A lobe of a model no material has is an error, never a guess.
+pub fn breakdown(r: &ProbeRecord) -> Result<Breakdown, UnknownTag> {
     if r.flags & PROBE_HIT == 0 {
-        return Breakdown { object_id: NO_HIT, total: v(r.total), ..Breakdown::default() };
+        return Ok(Breakdown { object_id: NO_HIT, total: v(r.total), ..Breakdown::default() });
     }
     let (kr, kt) = (v(r.kr), v(r.kt));
     let mirror = v(r.mirror_sum);
@@ -26,7 +27,7 @@ pub fn breakdown(r: &ProbeRecord) -> Breakdown {
     } else {
         (mirror, v(r.refraction_sum))
     };
-    Breakdown {
+    Ok(Breakdown {
         object_id: r.object_id,
         material: r.material,
         t: f64::from(r.t),
@@ -36,15 +37,21 @@ pub fn breakdown(r: &ProbeRecord) -> Breakdown {
         ambient: v(r.ambient),
         ka: v(r.ka),
         kd: v(r.kd),
-        lights: r.lights[..r.light_count as usize].iter().map(light_term).collect(),
+        lights: r.lights[..r.light_count as usize].iter().map(light_term).collect::<Result<_, _>>()?,
         reflected,
         transmitted,
         total: v(r.total),
-    }
+    })
 }
 
-fn light_term(l: &ProbeLight) -> LightTerm {
-    LightTerm {
+fn light_term(l: &ProbeLight) -> Result<LightTerm, UnknownTag> {
+    let angles = LightAngles {
+        n_dot_l: f64::from(l.n_dot_l),
+        lobe_cosine: f64::from(l.lobe_cosine),
+        lobe: f64::from(l.lobe),
+        lobe_model: SpecularModel::try_from(l.lobe_model)?,
+    };
+    Ok(LightTerm {
         f_att: f64::from(l.f_att),
         spot: f64::from(l.spot),
         visibility: v(l.visibility),
@@ -53,7 +60,8 @@ fn light_term(l: &ProbeLight) -> LightTerm {
         specular: v(l.specular),
         contribution: v(l.contribution),
         shadow_ray: l.shadow_ray != 0,
-    }
+        angles,
+    })
 }
 
 /// The ray tree the probe variant wrote into `bytes` (a `ProbeTree` buffer): its first
@@ -85,7 +93,8 @@ fn ray_node(n: &ProbeNode) -> Result<RayNode, UnknownTag> {
     } else {
         None
     };
-    let terms = hit.then(|| Breakdown {
+    let lights = n.lights[..(n.light_count as usize).min(n.lights.len())].iter().map(light_term);
+    let terms = hit.then(|| lights.collect::<Result<_, _>>()).transpose()?.map(|lights| Breakdown {
         object_id: n.object_id,
         material: n.material,
         t: f64::from(n.t),
@@ -95,7 +104,7 @@ fn ray_node(n: &ProbeNode) -> Result<RayNode, UnknownTag> {
         ambient: v(n.ambient),
         ka: v(n.ka),
         kd: v(n.kd),
-        lights: n.lights[..(n.light_count as usize).min(n.lights.len())].iter().map(light_term).collect(),
+        lights,
         ..Breakdown::default()
     });
     Ok(RayNode {

@@ -11,7 +11,6 @@ use glint_core::cpu::RayCounts;
 use glint_core::cpu::ray_tree::RayTree;
 use glint_core::cpu::shade::Breakdown;
 use glint_core::flat::GeometryId;
-use glint_core::glam::DVec3;
 use glint_core::rebase::{Frame, rebased, rebased_with_geometry};
 use glint_core::{Accel, FlatScene, PixelRect};
 use glint_types::layout::{PROBE_HIT, ProbeRecord};
@@ -111,27 +110,14 @@ pub struct GpuRender {
 /// What the probe variant records for one pixel's first sample.
 #[derive(Clone, Debug)]
 pub struct PixelProbe {
-    /// The breakdown of the first hit, as the shader wrote it: its point is in the frame the
-    /// GPU traced in, in f32.
-    pub record: ProbeRecord,
-    /// The first hit's point in world space, in f64 (`None` for a miss), as the CPU's probe
-    /// reports it: rounded to f32 there, a point 5e6 from the world origin would be off by 1/4.
-    pub point: Option<DVec3>,
+    /// The breakdown of the first hit (`probe::breakdown`), its point in world space in f64 as
+    /// the CPU's probe reports it: rounded to f32 in the frame the GPU traced in, a point 5e6
+    /// from the world origin would be off by 1/4.
+    pub breakdown: Breakdown,
     /// The whole ray tree, in the CPU's node order.
     pub tree: RayTree,
     /// The status word (`status::describe` turns it into messages).
     pub status: u32,
-}
-
-impl PixelProbe {
-    /// The record's breakdown (`probe::breakdown`), its hit point in world space.
-    pub fn breakdown(&self) -> Breakdown {
-        let mut b = crate::probe::breakdown(&self.record);
-        if let Some(p) = self.point {
-            b.point = p;
-        }
-        b
-    }
 }
 
 /// The GPU tracer: a device and a cache of compiled shader variants.
@@ -233,7 +219,7 @@ impl GpuTracer {
     /// the default frame (near the camera) as `render`, with the status word; the hit point is
     /// given back in world space.
     pub fn probe_pixel(&self, scene: &FlatScene, x: u32, y: u32) -> Result<(Breakdown, u32), GpuError> {
-        self.probe(scene, x, y).map(|p| (p.breakdown(), p.status))
+        self.probe(scene, x, y).map(|p| (p.breakdown, p.status))
     }
 
     /// The probe of pixel (x, y) with its whole ray tree, recorded by the same dispatch of the
@@ -259,9 +245,12 @@ impl GpuTracer {
         let mut tree = crate::probe::ray_tree(&tree)?;
         // Points back in world space (in f64), as the CPU's probe reports them.
         let origin = scene.frame_origin();
-        let point = (record.flags & PROBE_HIT != 0).then(|| glint_core::cpu::v3(record.point) + origin);
+        let mut breakdown = crate::probe::breakdown(&record)?;
+        if record.flags & PROBE_HIT != 0 {
+            breakdown.point = glint_core::cpu::v3(record.point) + origin;
+        }
         tree.translate(origin);
-        Ok(PixelProbe { record, point, tree, status: decode_stats(&stats).1 })
+        Ok(PixelProbe { breakdown, tree, status: decode_stats(&stats).1 })
     }
 
     /// Renders `scene` and reads the image back, waiting for both: `submit`, then the job's

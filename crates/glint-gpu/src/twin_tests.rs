@@ -333,7 +333,7 @@ const CPU_ONLY_STRUCTS: [(&str, &str, &str); 11] = [
 ];
 
 /// Fields only the CPU side of a twin struct has, and why (left out before the comparison).
-const CPU_ONLY_FIELDS: [(&str, &str, &str, &str); 2] = [
+const CPU_ONLY_FIELDS: [(&str, &str, &str, &str); 3] = [
     (
         "cpu/mod.rs",
         "RayCounts",
@@ -345,6 +345,12 @@ const CPU_ONLY_FIELDS: [(&str, &str, &str, &str); 2] = [
         "LightTerm",
         "shadow_ray",
         "set by the probe around light_term on both sides; the GPU probe stores it in ProbeLight::shadow_ray",
+    ),
+    (
+        "cpu/shade.rs",
+        "LightTerm",
+        "angles",
+        "set by the probe beside light_term on both sides (light_angles); the GPU probe stores them in ProbeLight",
     ),
 ];
 

@@ -543,12 +543,18 @@ pub struct ProbeLight {
     pub spot: f32,
     /// 1 when a shadow ray was traced towards the light, else 0.
     pub shadow_ray: u32,
-    pub pad_b: f32,
+    /// N·L before it is clamped (`cpu::shade::LightAngles`, as are the lobe's three).
+    pub n_dot_l: f32,
     pub visibility: [f32; 4],
     pub ambient: [f32; 4],
     pub diffuse: [f32; 4],
     pub specular: [f32; 4],
     pub contribution: [f32; 4],
+    pub lobe_cosine: f32,
+    pub lobe: f32,
+    /// The `SPECULAR_*` lobe evaluated.
+    pub lobe_model: u32,
+    pub pad_b: f32,
 }
 
 /// The breakdown of one camera sample, as the GPU probe writes it (twin of

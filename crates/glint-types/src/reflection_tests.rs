@@ -90,12 +90,16 @@ fn rust_layouts() -> Vec<RustLayout> {
             f_att,
             spot,
             shadow_ray,
-            pad_b,
+            n_dot_l,
             visibility,
             ambient,
             diffuse,
             specular,
-            contribution
+            contribution,
+            lobe_cosine,
+            lobe,
+            lobe_model,
+            pad_b
         }),
         rust_layout!(ProbeRecord {
             object_id,

@@ -61,7 +61,7 @@ impl ProbeState {
                 let mut worker = Worker::new("glint-probe", "probe", Some(repaint.clone()));
                 let (tracer, scene) = (tracer.clone(), scene.clone());
                 let started = worker.start(revision, move |_| {
-                    tracer.probe(&scene, x, y).map(|p| (p.breakdown(), p.tree)).map_err(|e| e.to_string())
+                    tracer.probe(&scene, x, y).map(|p| (p.breakdown, p.tree)).map_err(|e| e.to_string())
                 });
                 match started {
                     Ok(()) => GpuProbe::Pending(worker),

@@ -267,6 +267,56 @@ pub fn specular_term(
     safe_pow((n.dot(h) / len).max(0.0), shininess)
 }
 
+/// The lobe `specular_term` evaluates for a material of `tags`.
+pub fn lobe_model(ctx: &TraceContext, tags: MaterialTags) -> SpecularModel {
+    match tags.specular {
+        SpecularModel::Phong if ctx.has(feature::PHONG) => SpecularModel::Phong,
+        SpecularModel::CookTorrance if ctx.has(feature::COOK_TORRANCE) => SpecularModel::CookTorrance,
+        SpecularModel::Phong | SpecularModel::CookTorrance | SpecularModel::Blinn => SpecularModel::Blinn,
+    }
+}
+
+/// The cosine the lobe of `model` is of: R·V (Phong), else N·H with the unit half vector (0
+/// where H is undefined, as in `specular_term`).
+pub fn lobe_cosine(model: SpecularModel, n: DVec3, l: DVec3, v: DVec3, n_dot_l: f64) -> f64 {
+    match model {
+        SpecularModel::Phong => return (2.0 * n_dot_l * n - l).dot(v),
+        SpecularModel::CookTorrance | SpecularModel::Blinn => {}
+    }
+    let h = l.normalize() + v;
+    let len = h.length();
+    if len < MIN_HALF_LENGTH {
+        return 0.0;
+    }
+    n.dot(h) / len
+}
+
+/// The angles behind `light`'s terms at `s` (`LightAngles`); all 0 where the light gives no
+/// direct term (f_att·S = 0), as `light_term` stops there.
+pub fn light_angles(
+    ctx: &TraceContext,
+    light: &GpuLight,
+    tags: LightTags,
+    mat: &GpuMaterial,
+    s: &Surface,
+    n: DVec3,
+    v: DVec3,
+) -> LightAngles {
+    let ls = light_sample(ctx, light, tags, s.p);
+    let material_tags = ctx.material_tags[s.material as usize];
+    let lobe_model = lobe_model(ctx, material_tags);
+    if ls.f_att * ls.spot == 0.0 {
+        return LightAngles { lobe_model, ..LightAngles::default() };
+    }
+    let n_dot_l = n.dot(ls.l);
+    let lobe = if n_dot_l > 0.0 && ctx.has(feature::SPECULAR) {
+        specular_term(ctx, mat, material_tags, n, ls.l, v, n_dot_l)
+    } else {
+        0.0
+    };
+    LightAngles { n_dot_l, lobe_cosine: lobe_cosine(lobe_model, n, ls.l, v, n_dot_l), lobe, lobe_model }
+}
+
 /// The colours of the model at a hit, after the material's textures.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MaterialColours {
@@ -347,6 +397,21 @@ pub struct LightTerm {
     pub contribution: DVec3,
     /// Whether a shadow ray was traced to the light (V was not simply taken as 1 or left 0).
     pub shadow_ray: bool,
+    /// The angles behind the diffuse and specular terms (`light_angles`).
+    pub angles: LightAngles,
+}
+
+/// The cosines behind one light's terms at a hit, for the pixel probe: N·L before it is
+/// clamped at 0 (why a light behind the surface adds no diffuse), the cosine the specular lobe
+/// is of and the lobe spec_j itself, which the model takes as 0 where N·L ≤ 0.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct LightAngles {
+    pub n_dot_l: f64,
+    /// R·V for Phong's lobe, N·H with the unit half vector for Blinn's and Cook–Torrance's.
+    pub lobe_cosine: f64,
+    pub lobe: f64,
+    /// The lobe evaluated (the material's, as `specular_term` dispatches it).
+    pub lobe_model: SpecularModel,
 }
 
 /// The radiance of a camera ray split into the terms of the model at its first hit.
@@ -450,7 +515,8 @@ pub fn shade_local(
         let term = light_term(ctx, light, tags, mat, s, n, ng, v, &c, counts);
         sum += term.contribution;
         if let Some(b) = probe.as_deref_mut() {
-            b.lights.push(LightTerm { shadow_ray: counts.shadow != shadow_rays, ..term });
+            let angles = light_angles(ctx, light, tags, mat, s, n, v);
+            b.lights.push(LightTerm { shadow_ray: counts.shadow != shadow_rays, angles, ..term });
         }
     }
     if let Some(b) = probe {
