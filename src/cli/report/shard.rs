@@ -105,7 +105,7 @@ pub fn assign(planned: &[Planned], needs: &[SceneNeeds], pixels: u64, runs: u32,
 /// `ShardFile` and every type in it; tests/golden/shard-keys.txt lists the keys of a CPU-only
 /// shard, so a change to the GPU rows' fields alone is not caught there): the merge refuses a
 /// shard of another format instead of reading fields it lacks as empty.
-pub const SHARD_FORMAT: u32 = 2;
+pub const SHARD_FORMAT: u32 = 3;
 
 /// What a shard writes: the sweep it is part of, its machine, and its rows.
 #[derive(Debug, Serialize, Deserialize)]
@@ -357,8 +357,9 @@ pub fn join_gi(files: &mut [ShardFile]) -> anyhow::Result<Vec<super::gi::GiResul
     // `--quick` and the backends are the same in every shard (`check`): one plan for all.
     let (quick, backends) = (files[0].quick, &files[0].backends);
     let (reference, planned) = (super::gi::reference_axes(quick), super::gi::planned_rows(backends, quick));
+    let split = super::gi::split_whitted_axes(quick);
     for f in files.iter() {
-        f.gi.iter().try_for_each(|gi| gi_planned(gi, reference, &planned)).with_context(|| {
+        f.gi.iter().try_for_each(|gi| gi_planned(gi, reference, split, &planned)).with_context(|| {
             format!("{}: was edited or is another sweep's; run its shard again; nothing was written", f.path.display())
         })?;
     }
@@ -381,6 +382,7 @@ pub fn join_gi(files: &mut [ShardFile]) -> anyhow::Result<Vec<super::gi::GiResul
 fn gi_planned(
     gi: &super::gi::GiResult,
     (spp, depth): (u32, u32),
+    split: (u32, u32),
     planned: &[super::gi::GiRowKey],
 ) -> anyhow::Result<()> {
     let scene = &gi.scene;
@@ -389,6 +391,17 @@ fn gi_planned(
             "scene {scene}'s path-traced reference is {} spp at depth {}, not the sweep's {spp} spp at depth {depth}",
             gi.reference_spp,
             gi.reference_depth
+        );
+    }
+    let whitted = (gi.kinds.whitted_depth, gi.kinds.whitted_spp);
+    if whitted != split {
+        bail!(
+            "scene {scene}'s split by kind holds the paths against Whitted at depth {}, {} spp, not the sweep's depth \
+             {}, {} spp",
+            whitted.0,
+            whitted.1,
+            split.0,
+            split.1
         );
     }
     let keys: Vec<_> = gi.rows.iter().map(super::gi::GiRow::key).collect();

@@ -182,6 +182,29 @@ pub fn render_markdown(results: &[GiResult]) -> String {
             }
             _ => {}
         }
+        // Below what Whitted's model leaves out, which no number of its samples removes.
+        let k = &g.kinds;
+        if k.whitted_rmse > 0.0 {
+            let below = g
+                .rows
+                .iter()
+                .filter(|r| r.integrator == Integrator::Path && r.rmse < k.whitted_rmse)
+                .min_by(|a, b| a.median.cmp(&b.median));
+            let converged =
+                format!("Whitted's error at {} spp, depth {} ({:.3e})", k.whitted_spp, k.whitted_depth, k.whitted_rmse);
+            let _ = match below {
+                Some(p) => writeln!(
+                    md,
+                    "Paths go below {converged}, which no number of Whitted's samples removes, from {} {} spp (RMSE \
+                     {:.3e} in {:.1} ms).",
+                    p.backend.name(),
+                    p.spp,
+                    p.rmse,
+                    ms(p.median)
+                ),
+                None => writeln!(md, "No path row of the sweep goes below {converged}."),
+            };
+        }
         md.push_str("\n| integrator | backend | spp | depth | ambient | ms (median) | RMSE vs reference |\n|---|---|---|---|---|---|---|\n");
         for r in &g.rows {
             let _ = writeln!(

@@ -4,7 +4,7 @@
 use std::fmt::Write as _;
 
 use glint_core::Backend;
-use glint_scene::EpsilonMode;
+use glint_scene::{EpsilonMode, Integrator};
 
 use super::super::sweep::SceneResult;
 use super::cells::{psnr, sci};
@@ -77,5 +77,13 @@ pub fn f32_floor(md: &mut String, scenes: &[SceneResult]) {
     let _ = writeln!(md);
     for n in notes {
         md.push_str(&n);
+    }
+    let paths: Vec<&str> = scenes
+        .iter()
+        .filter(|s| s.settings.integrator == Integrator::Path && find(s, &s.reference.on(Backend::Gpu)).is_some())
+        .map(|s| s.name.as_str())
+        .collect();
+    if !paths.is_empty() {
+        md.push_str(&prose(Block::F32FloorPaths, &[("scenes", &paths.join(", "))]));
     }
 }

@@ -11,6 +11,7 @@ pub enum Block {
     Setup,
     F32Floor,
     F32FloorDroppedWork,
+    F32FloorPaths,
     Bailout,
     Specialisation,
     SpecialisationNotMeasured,
@@ -23,10 +24,11 @@ pub enum Block {
 
 impl Block {
     #[cfg(test)]
-    const ALL: [Self; 11] = [
+    const ALL: [Self; 12] = [
         Self::Setup,
         Self::F32Floor,
         Self::F32FloorDroppedWork,
+        Self::F32FloorPaths,
         Self::Bailout,
         Self::Specialisation,
         Self::SpecialisationNotMeasured,
@@ -42,6 +44,7 @@ impl Block {
             Self::Setup => "setup",
             Self::F32Floor => "f32-floor",
             Self::F32FloorDroppedWork => "f32-floor-dropped-work",
+            Self::F32FloorPaths => "f32-floor-paths",
             Self::Bailout => "bailout",
             Self::Specialisation => "specialisation",
             Self::SpecialisationNotMeasured => "specialisation-not-measured",
@@ -71,6 +74,7 @@ impl Block {
                 "sweep",
             ],
             Self::F32FloorDroppedWork => &["scene", "rays", "camera_rays", "camera_expected", "status"],
+            Self::F32FloorPaths => &["scenes"],
             Self::Bailout | Self::Specular => &["spp", "depth"],
             Self::F32Floor
             | Self::Specialisation
