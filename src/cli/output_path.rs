@@ -22,14 +22,15 @@ pub fn check_outputs(outputs: &[&Path], input: &Path, force: bool) -> anyhow::Re
                 input.display()
             );
         }
-        check_format_and_folder(path)?;
         // Refused before any is written: `--backend both` wrote X-cpu.png and then failed on an
-        // X-gpu.png that was a folder.
+        // X-gpu.png that was a folder. Before the format: `-o adir` was "unsupported output
+        // format" (a newcomer).
         // `metadata` follows a link: a link to a folder or a read-only file is refused too.
         let meta = std::fs::metadata(path).ok();
         if meta.as_ref().is_some_and(std::fs::Metadata::is_dir) {
-            bail!("{}: is a folder, not a file; choose another output name", path.display());
+            bail!("{}: is a folder, not a file; choose another output name (a .png or .exr file)", path.display());
         }
+        check_format_and_folder(path)?;
         let read_only = meta.as_ref().is_some_and(|m| m.permissions().readonly());
         if !force && read_only {
             bail!("{}: the output file is read-only; not replacing it (pass --force to replace it)", path.display());
@@ -190,10 +191,16 @@ pub fn create_folder(flag: &str, dir: &Path) -> anyhow::Result<()> {
 
 /// The default output `STEM` + `suffix` in the current folder: the scene file's own stem byte
 /// for byte (a name that is not UTF-8 kept its bytes only in the file; `loaded.name` has
-/// U+FFFD for them), or a built-in scene's name.
+/// U+FFFD for them), a built-in scene's name, or `scene` for a scene read from a pipe or a
+/// device (`<(generate-scene)` wrote `63.png`, after /dev/fd/63; a newcomer).
 pub fn default_output(loaded: &LoadedScene, suffix: &str) -> PathBuf {
     let builtin = loaded.source.to_str().is_some_and(|s| s.starts_with("builtin:"));
+    // /dev/stdin stands for a regular file too where one is redirected in.
+    let streamed = !builtin
+        && (std::fs::metadata(&loaded.source).is_ok_and(|m| !m.is_file())
+            || ["/dev/", "/proc/"].iter().any(|d| loaded.source.starts_with(d)));
     let mut name = match loaded.source.file_stem() {
+        Some(_) if streamed => std::ffi::OsString::from("scene"),
         Some(stem) if !builtin => stem.to_os_string(),
         _ => std::ffi::OsString::from(&loaded.name),
     };

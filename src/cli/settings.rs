@@ -6,6 +6,7 @@ use anyhow::Context;
 use clap::Args;
 use glint_core::memory::{self, MemoryEstimate, SourceKind};
 use glint_io::model::Ground;
+use glint_io::model::ModelError;
 use glint_io::{DEFAULT_RESOLUTION, LoadOptions, LoadedScene, RESOLUTIONS, load_scene_with};
 use glint_io::{ImportOptions, ModelFormat};
 use glint_scene::{
@@ -337,7 +338,11 @@ pub fn load_with_estimate(
     let loaded = match super::interrupt::while_loading(|| load_scene_with(scene, options)) {
         Ok(loaded) => loaded,
         // Flags that do nothing for this scene: the command line's error (exit 2), not the file's.
-        Err(e @ (glint_io::SceneError::NotGenerated { .. } | glint_io::SceneError::NotAModel { .. })) => {
+        Err(
+            e @ (glint_io::SceneError::NotGenerated { .. }
+            | glint_io::SceneError::NotAModel { .. }
+            | glint_io::SceneError::Model(ModelError::ObjHasNoScenes { .. } | ModelError::ObjHasNoCameras { .. })),
+        ) => {
             usage!("cannot load scene '{}': {e}", scene.to_string_lossy())
         }
         Err(e) => return Err(e).with_context(|| format!("cannot load scene '{}'", scene.to_string_lossy())),

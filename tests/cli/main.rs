@@ -344,6 +344,9 @@ const BAD_SCENE: &str = "[camera]\nposition = [0.0, 1.0, -4.0]\nlook_at = [0.0, 
 #[test]
 fn a_bad_command_line_exits_2_and_a_failed_render_1() {
     let dir = TempDir::new("exit-codes");
+    let models = TempDir::new("exit-codes-obj");
+    std::fs::write(models.join("q.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
+    let obj = models.join("q.obj").to_string_lossy().into_owned();
     for (args, code) in [
         (&["render", "whitted", "--width", "-5"][..], 2),
         (&["render", "whitted", "--width", "16385"], 2),
@@ -363,6 +366,9 @@ fn a_bad_command_line_exits_2_and_a_failed_render_1() {
         (&["report", "--quick", "--cpu-only", "--scenes", "whitted,,cornell"], 2),
         (&["report", "--quick", "--adapter", "", "--scenes", "whitted"], 2),
         (&["merge", "a.exr", "-o", "out.jpg"], 2),
+        // A flag an OBJ file has nothing for (exit 1 before; a newcomer).
+        (&["render", &obj, "--scene-index", "0"], 2),
+        (&["render", &obj, "--camera", "0"], 2),
         (&["render", "nothere.toml"], 1),
     ] {
         let out = glint(&dir, args);
@@ -633,6 +639,30 @@ fn bad_input_fails_cleanly() {
         &["q.obj: an OBJ file has no scenes", "--scene-index"],
         &["q.obj"],
     );
+    // A folder as the output was "unsupported output format" (a newcomer).
+    for slash in ["", "/"] {
+        expect_failure(
+            "output-is-a-folder",
+            |d| {
+                std::fs::create_dir_all(d.join("adir")).unwrap();
+                os(&[&"render", &"whitted", &"-o", &format!("{}{slash}", d.join("adir").display())])
+            },
+            &["adir", ": is a folder, not a file; choose another output name (a .png or .exr file)"],
+            &["adir"],
+        );
+    }
+    // It was "1 is not a camera of the file; it has no camera on a node" (a newcomer: OBJ has
+    // neither cameras nor nodes).
+    expect_failure(
+        "camera-of-an-obj",
+        |d| {
+            let obj = d.join("q.obj");
+            std::fs::write(&obj, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
+            os(&[&"render", &obj, &"--camera", &"1", &"-o", &d.join("out.png")])
+        },
+        &["q.obj: an OBJ file has no cameras to choose from: --camera is for glTF files"],
+        &["q.obj"],
+    );
 }
 
 #[test]
@@ -847,4 +877,30 @@ fn an_image_records_what_shaped_its_scene_so_that_it_can_be_made_again() {
     assert_eq!(meta(&edited, "glint:source"), "edited/lights.toml");
     assert_ne!(meta(&copy, "glint:scene_hash"), meta(&edited, "glint:scene_hash"), "an edit changes the hash");
     assert_eq!(meta(&copy, "glint:scene_hash"), meta(&builtin, "glint:scene_hash"), "a copy has the built-in's");
+}
+
+/// A scene read from a pipe names its default image `scene.png`: the stem of /dev/stdin or of
+/// `<(generate-scene)`'s /dev/fd/63 named it `stdin.png` or `63.png` (a newcomer).
+#[test]
+fn a_scene_from_a_pipe_renders_to_scene_png() {
+    let dir = TempDir::new("piped-scene");
+    let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/assets/scenes/cornell.toml");
+    // A file redirected in, and a pipe.
+    for piped in [false, true] {
+        let stdin = if piped { std::process::Stdio::piped() } else { std::fs::File::open(scene).unwrap().into() };
+        let mut child = Command::new(BIN)
+            .args(["render", "/dev/stdin", "--width", "8", "--height", "6", "-q", "--force"])
+            .current_dir(&dir)
+            .stdin(stdin)
+            .stdout(std::process::Stdio::piped())
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .expect("run glint");
+        if let Some(mut input) = child.stdin.take() {
+            std::io::Write::write_all(&mut input, &std::fs::read(scene).unwrap()).unwrap();
+        }
+        let out = child.wait_with_output().expect("glint ends");
+        assert!(out.status.success(), "piped {piped}: {}", text(&out.stderr));
+        assert_eq!(dir.listing(), ["scene.png"], "piped {piped}");
+    }
 }

@@ -266,6 +266,15 @@ fn attenuation_that_can_reach_zero() {
         "lights[2].attenuation",
         &["c must be", "c = 0", "write attenuation = { model = \"inverse_square\" }"],
     );
+    // `{ c = 0 }` alone names both ways out (it named only the bound; a newcomer).
+    expect_invalid(
+        &edited("exponent = 8.0", "exponent = 8.0\nattenuation = { c = 0.0 }"),
+        "lights[2].attenuation",
+        &[
+            "c must be",
+            "for no falloff leave attenuation out (c = 1), for the textbook 1/d² write attenuation = { model = \"inverse_square\" }",
+        ],
+    );
     // l < 0 whose minimum stays positive is fine: 1 − 1/(4·1) = 0.75.
     expect_valid(&edited(att, "attenuation = { c = 1.0, l = -1.0, q = 1.0 }"), "l < 0, positive minimum");
     expect_valid(&edited(att, "attenuation = { c = 0.5 }"), "constant attenuation");

@@ -289,7 +289,14 @@ pub fn check(
     if estimate.total() <= limit {
         return Ok(());
     }
-    Err(MemoryError { what: what.into(), estimate: estimate.clone(), limit, limit_source, remedy: remedy.into() })
+    // Below what the process takes whatever it does, no smaller scene or image fits: the
+    // remedies of a scene ("lower --width and --height" under --memory-limit 10M) cannot help.
+    let remedy = if limit < PROCESS_BYTES {
+        format!("that is below the {} glint takes before any scene or image; raise it", format_bytes(PROCESS_BYTES))
+    } else {
+        remedy.into()
+    };
+    Err(MemoryError { what: what.into(), estimate: estimate.clone(), limit, limit_source, remedy })
 }
 
 /// Parses a size such as `512M`, `2G`, `1.5GiB` or a number of bytes.
@@ -318,6 +325,23 @@ mod tests {
     use super::*;
 
     #[test]
+    fn a_limit_below_the_process_itself_asks_for_more_not_a_smaller_scene() {
+        let mut estimate = MemoryEstimate::default();
+        estimate.add("process", PROCESS_BYTES);
+        estimate.add("CPU image", 1 << 15);
+        let e = check("rendering s at 40x30", &estimate, Some(10 << 20), "lower --width and --height").unwrap_err();
+        assert!(
+            e.to_string().ends_with(
+                "set by --memory-limit; that is below the 16.0 MiB glint takes before any scene or image; raise it"
+            ),
+            "{e}"
+        );
+        let e = check("rendering s at 40x30", &estimate, Some(PROCESS_BYTES + 1), "lower --width and --height")
+            .unwrap_err();
+        assert!(e.to_string().ends_with("; lower --width and --height"), "{e}");
+    }
+
+    #[test]
     fn sizes_parse_with_binary_units_and_bad_ones_are_named() {
         assert_eq!(parse_size("512M"), Ok(512 << 20));
         assert_eq!(parse_size("1.5GiB"), Ok(3 << 29));
@@ -339,9 +363,9 @@ mod tests {
         let both = render_estimate(&desc, &settings, RenderPlan { cpu: true, gpu: true, exr: false });
         assert!(cpu.total() >= 28_000_000 + PROCESS_BYTES, "{cpu}");
         assert!(both.total() > cpu.total() + GPU_DEVICE_BYTES, "{both}");
-        let err = check("rendering", &both, Some(1 << 20), "lower --width").unwrap_err();
+        let err = check("rendering", &both, Some(64 << 20), "lower --width").unwrap_err();
         let message = err.to_string();
-        assert!(message.contains("more than the 1.0 MiB set by --memory-limit; lower --width"), "{message}");
+        assert!(message.contains("more than the 64.0 MiB set by --memory-limit; lower --width"), "{message}");
         assert!(message.contains("CPU image 26.7 MiB"), "{message}");
     }
 }

@@ -18,8 +18,8 @@ pub enum SceneError {
     Parse { file: PathBuf, message: String },
     #[error("{file}: invalid scene:\n{}", list(.issues))]
     Invalid { file: PathBuf, issues: Vec<FieldIssue> },
-    #[error("unknown built-in scene '{name}' and no such file; built-in scenes: {available}")]
-    UnknownScene { name: String, available: String },
+    #[error("unknown built-in scene '{name}' and no such file{}; built-in scenes: {available}", .suggestion.as_ref().map_or(String::new(), |s| format!("; did you mean '{s}'?")))]
+    UnknownScene { name: String, available: String, suggestion: Option<String> },
     #[error("resolution {value} of the generated scene '{name}' is outside {min}..={max}")]
     Resolution { name: String, value: u32, min: u32, max: u32 },
     #[error(
@@ -37,6 +37,11 @@ pub enum SceneError {
          (.gltf, .glb) or OBJ (.obj); convert it to glTF (Blender, assimp export)"
     )]
     Unsupported { file: PathBuf, extension: String },
+    #[error(
+        "{file}: a {format} image, not a scene: glint renders scene files (.toml), model files (.gltf, .glb, \
+         .obj) and built-in scenes (glint render --list)"
+    )]
+    Image { file: PathBuf, format: &'static str },
     /// A model file that did not import (the error names the file and what is wrong).
     #[error(transparent)]
     Model(#[from] crate::model::ModelError),

@@ -167,7 +167,19 @@ pub fn load_scene_with(arg: impl AsRef<OsStr>, options: &LoadOptions) -> Result<
         return Err(SceneError::Io { file: path.to_owned(), error });
     }
     let available = BUILTIN_SCENES.iter().map(|b| b.name).collect::<Vec<_>>().join(", ");
-    Err(SceneError::UnknownScene { name: arg.to_string(), available })
+    Err(SceneError::UnknownScene { name: arg.to_string(), available, suggestion: closest_builtin(arg) })
+}
+
+/// The built-in scene a mistyped name most likely meant: the most similar by Jaro–Winkler
+/// (clap's measure for flags), if similar enough ("whited" → whitted, "cornel-gi" → cornell-gi).
+fn closest_builtin(name: &str) -> Option<String> {
+    let lower = name.to_lowercase();
+    BUILTIN_SCENES
+        .iter()
+        .map(|b| (strsim::jaro_winkler(&lower, b.name), b.name))
+        .filter(|(score, _)| *score > 0.8)
+        .max_by(|a, b| a.0.total_cmp(&b.0))
+        .map(|(_, n)| n.to_string())
 }
 
 /// A scene file's bytes, at most `cap` of them (`uri::MAX_RESOURCE_BYTES`, or what a memory
@@ -190,6 +202,11 @@ fn read_capped(path: &Path, cap: u64) -> std::io::Result<Vec<u8>> {
 /// first byte that is not UTF-8, as a hex editor or `dd skip=` needs it.
 fn utf8<'a>(bytes: &'a [u8], file: &Path) -> Result<&'a str, SceneError> {
     std::str::from_utf8(bytes).map_err(|e| {
+        // An image given as the scene was "not UTF-8 text: byte 0x89 …" (a newcomer); by its
+        // bytes, not its name: a scene file may be named anything (tests name one scene.png).
+        if let Some(format) = image_format(bytes) {
+            return SceneError::Image { file: file.to_owned(), format };
+        }
         let offset = e.valid_up_to();
         let before = &bytes[..offset];
         let line = before.iter().filter(|&&b| b == b'\n').count() + 1;
@@ -205,6 +222,21 @@ fn utf8<'a>(bytes: &'a [u8], file: &Path) -> Result<&'a str, SceneError> {
             ),
         }
     })
+}
+
+/// The image format whose signature `bytes` begin with (the formats an image file given as a
+/// scene is most likely in: glint's own outputs and textures, and the common others).
+fn image_format(bytes: &[u8]) -> Option<&'static str> {
+    const SIGNATURES: [(&[u8], &str); 7] = [
+        (b"\x89PNG\r\n\x1a\n", "PNG"),
+        (b"\x76\x2f\x31\x01", "OpenEXR"),
+        (b"\xff\xd8\xff", "JPEG"),
+        (b"GIF8", "GIF"),
+        (b"BM", "BMP"),
+        (b"II*\x00", "TIFF"),
+        (b"MM\x00*", "TIFF"),
+    ];
+    SIGNATURES.iter().find(|(magic, _)| bytes.starts_with(magic)).map(|&(_, format)| format)
 }
 
 /// A model file in the lab scene `model::scene_around` makes for it, validated like a scene
@@ -267,5 +299,21 @@ mod tests {
         let e = read_capped(Path::new("/dev/zero"), 1024).unwrap_err();
         assert!(e.to_string().contains("larger than 1024 bytes"), "{e}");
         assert_eq!(read_capped(Path::new("/dev/null"), 1024).unwrap(), Vec::<u8>::new());
+    }
+
+    #[test]
+    fn a_mistyped_builtin_name_or_an_image_is_answered_with_what_was_meant() {
+        let said = |name: &str| load_scene(name).err().map(|e| e.to_string()).unwrap_or_default();
+        // A newcomer's typo (a tester: it listed the scenes with no suggestion).
+        for (typed, meant) in [("whited", "whitted"), ("Cornel", "cornell"), ("cornell-g", "cornell-gi")] {
+            assert!(said(typed).contains(&format!("and no such file; did you mean '{meant}'?")), "{}", said(typed));
+        }
+        let dir = tempfile::tempdir().unwrap();
+        let png = dir.path().join("render.PNG");
+        std::fs::write(&png, b"\x89PNG\r\n\x1a\n\x00\x00\x00\x0dIHDR").unwrap();
+        let image = said(png.to_str().unwrap());
+        assert!(image.ends_with("render.PNG: a PNG image, not a scene: glint renders scene files (.toml), model files (.gltf, .glb, .obj) and built-in scenes (glint render --list)"), "{image}");
+        let far = said("teapot");
+        assert!(far.contains("no such file; built-in scenes: whitted") && !far.contains("did you mean"), "{far}");
     }
 }

@@ -128,6 +128,12 @@ pub enum ModelError {
         file.display()
     )]
     ObjHasNoScenes { file: std::path::PathBuf },
+    #[error(
+        "{}: an OBJ file has no cameras to choose from: --camera is for glTF files (without it Glint frames the \
+         model)",
+        file.display()
+    )]
+    ObjHasNoCameras { file: std::path::PathBuf },
     #[error("{}: not a model file (.gltf, .glb or .obj)", file.display())]
     NotAModel { file: std::path::PathBuf },
 }
@@ -138,6 +144,9 @@ pub fn load_model_file(path: &Path, options: &ImportOptions) -> Result<Model, Mo
         Some(ModelFormat::Gltf) => Ok(load_gltf(path, options)?),
         Some(ModelFormat::Obj) if options.scene_index.is_some() => {
             Err(ModelError::ObjHasNoScenes { file: path.to_owned() })
+        }
+        Some(ModelFormat::Obj) if options.camera.is_some() => {
+            Err(ModelError::ObjHasNoCameras { file: path.to_owned() })
         }
         Some(ModelFormat::Obj) => Ok(load_obj(path)?),
         None => Err(ModelError::NotAModel { file: path.to_owned() }),

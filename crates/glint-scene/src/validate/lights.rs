@@ -168,8 +168,13 @@ pub(super) fn validate_polynomial(path: &str, c: f64, l: f64, q: f64, r: &mut Re
     let (min, f32_min) = (MIN_ATTENUATION_DENOMINATOR, as_f32(MIN_ATTENUATION_DENOMINATOR));
     let problem = if c < f32_min {
         // A light's attenuation has the inverse-square model; the world's global one does not.
-        let hint = if c == 0.0 && l == 0.0 && q > 0.0 && path.ends_with(".attenuation") {
+        let light = path.ends_with(".attenuation");
+        let hint = if c == 0.0 && l == 0.0 && q > 0.0 && light {
             "; for a pure 1/d² falloff write attenuation = { model = \"inverse_square\" }"
+        } else if c == 0.0 && l == 0.0 && q == 0.0 && light {
+            // `{ c = 0 }` alone: a newcomer after the textbook falloff, told only the bound.
+            "; for no falloff leave attenuation out (c = 1), for the textbook 1/d² write attenuation = { model = \
+             \"inverse_square\" }"
         } else {
             ""
         };
