@@ -18,7 +18,7 @@ pub enum SceneError {
     Parse { file: PathBuf, message: String },
     #[error("{file}: invalid scene:\n{}", list(.issues))]
     Invalid { file: PathBuf, issues: Vec<FieldIssue> },
-    #[error("unknown built-in scene '{name}' and no such file{}; built-in scenes: {available}", .suggestion.as_ref().map_or(String::new(), |s| format!("; did you mean '{s}'?")))]
+    #[error("unknown built-in scene '{name}' and no such file{}built-in scenes: {available}", .suggestion.as_ref().map_or("; ".to_string(), |s| format!("; did you mean '{s}'? The ")))]
     UnknownScene { name: String, available: String, suggestion: Option<String> },
     #[error("resolution {value} of the generated scene '{name}' is outside {min}..={max}")]
     Resolution { name: String, value: u32, min: u32, max: u32 },

@@ -306,7 +306,8 @@ mod tests {
         let said = |name: &str| load_scene(name).err().map(|e| e.to_string()).unwrap_or_default();
         // A newcomer's typo (a tester: it listed the scenes with no suggestion).
         for (typed, meant) in [("whited", "whitted"), ("Cornel", "cornell"), ("cornell-g", "cornell-gi")] {
-            assert!(said(typed).contains(&format!("and no such file; did you mean '{meant}'?")), "{}", said(typed));
+            let expected = format!("and no such file; did you mean '{meant}'? The built-in scenes: whitted, cornell");
+            assert!(said(typed).contains(&expected), "{}", said(typed));
         }
         let dir = tempfile::tempdir().unwrap();
         let png = dir.path().join("render.PNG");
