@@ -138,6 +138,23 @@ pub(super) fn bad_number(text: &[u8]) -> Option<(usize, String)> {
     None
 }
 
+/// The colour lines (`Ka`, `Kd`, `Ks`, `Ke`) with more than three numbers, as (line, text):
+/// tobj reads the first three, as Assimp does, and dropped the rest without a word (a
+/// tester's `Kd 0.8 0.1 0.1 0.5`, an alpha perhaps).
+pub(super) fn long_colours(text: &[u8]) -> Vec<(usize, String)> {
+    let mut out = Vec::new();
+    for (n, raw) in text.split(|&b| b == b'\n').enumerate() {
+        let Ok(line) = std::str::from_utf8(raw) else { continue };
+        let mut words = line.split_whitespace();
+        if matches!(words.next(), Some("Ka" | "Kd" | "Ks" | "Ke"))
+            && words.take_while(|w| w.parse::<f64>().is_ok()).count() > 3
+        {
+            out.push((n + 1, line.trim().to_string()));
+        }
+    }
+    out
+}
+
 /// Whether `key` is an MTL texture statement (its last word a file).
 fn is_map_statement(key: &str) -> bool {
     key.starts_with("map_") || matches!(key, "bump" | "disp" | "decal" | "refl" | "norm")

@@ -4,7 +4,7 @@
 use std::cell::{Cell, RefCell};
 use std::path::Path;
 
-use super::mtl::{DEFAULT_MATERIAL, bad_number, expand_colours};
+use super::mtl::{DEFAULT_MATERIAL, bad_number, expand_colours, long_colours};
 use super::mtl_file::MtlFile;
 use super::{statements, text};
 use crate::uri::{MAX_RESOURCE_BYTES, UriError, resolve_uri};
@@ -107,6 +107,16 @@ impl<'a> Libraries<'a> {
                 let number = Refused::Number { mtl: uri.to_string(), line, reason };
                 self.refused.borrow_mut().get_or_insert(number);
                 return Err("a number that cannot be read".to_string());
+            }
+            if let [(line, first), rest @ ..] = long_colours(&text).as_slice() {
+                let more = match rest.len() {
+                    0 => String::new(),
+                    1 => " (and 1 more line)".to_string(),
+                    n => format!(" (and {n} more lines)"),
+                };
+                warn(format!(
+                    "line {line}: `{first}`: a colour is r g b; the numbers after the third are ignored{more}"
+                ));
             }
             let text = expand_colours(&text::material_statements(&text, &["newmtl"]))
                 .map_err(|problem| format!("{uri}:{problem}"))?;

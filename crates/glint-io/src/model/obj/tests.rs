@@ -635,3 +635,25 @@ fn a_material_defined_twice_is_warned_of() {
     let used = &m.materials[&m.meshes[0].material];
     assert_eq!(used.kd, Rgb([0.0, 0.0, 1.0]), "the last definition");
 }
+
+#[test]
+fn a_colour_of_more_than_three_numbers_is_read_as_r_g_b_with_a_warning() {
+    // tobj read the first three of `Kd 0.8 0.1 0.1 0.5` and dropped the fourth without a word.
+    let dir = tempfile::tempdir().unwrap();
+    write(dir.path(), "c.mtl", "newmtl a\nKd 0.8 0.1 0.1 0.5\nKs 0.2 0.2 0.2 1 1\nNs 10\n");
+    let obj = write(dir.path(), "c.obj", &format!("mtllib c.mtl\nusemtl a\n{QUAD}"));
+    let m = load_obj(&obj).expect("loads");
+    let said = m.warnings.iter().map(ToString::to_string).collect::<Vec<_>>().join("; ");
+    assert!(
+        said.contains(
+            "mtllib `c.mtl`: line 2: `Kd 0.8 0.1 0.1 0.5`: a colour is r g b; the numbers after the third are ignored \
+             (and 1 more line)"
+        ),
+        "{said}"
+    );
+    assert_eq!(m.materials[&m.meshes[0].material].kd, Rgb([0.8, 0.1, 0.1]));
+    // Three numbers, or one for all three: nothing to say.
+    write(dir.path(), "c.mtl", "newmtl a\nKd 0.8 0.1 0.1\nKs 0.2\n");
+    let said = load_obj(&obj).expect("loads").warnings.iter().map(ToString::to_string).collect::<Vec<_>>().join("; ");
+    assert!(!said.contains("a colour is r g b"), "{said}");
+}
