@@ -560,6 +560,37 @@ fn a_coefficient_above_1_warns_and_an_8_bit_colour_is_named() {
 }
 
 /// A student's two plausible set-ups that render without an error but not as meant (a lecturer).
+/// A sphere that f32 storage sets on a floor (or into another sphere) it clears as written: a
+/// radius of 899,999,990 at 9e8 is stored to 32 units, a 3e-8 part of itself (no coarse-storage
+/// warning), and its 10-unit gap over the floor was gone without a word (an extreme-scenes
+/// tester). A sphere set on a floor by hand (centre 1.1, radius 1, floor 0.1: a gap of 2e-16 in
+/// f64) is said nothing of.
+#[test]
+fn a_contact_f32_storage_makes_or_breaks_is_warned_of() {
+    let scene = |objects: &str| {
+        format!(
+            "[camera]\nposition = [0.0, 20.0, -9e8]\nlook_at = [0.0, 0.0, 0.0]\n\n[materials.m]\nkd = 0.8\n\n\
+             [[lights]]\ntype = \"point\"\nposition = [0.0, 9e8, -9e8]\n\n\
+             [[objects]]\ntype = \"plane\"\npoint = [0.0, 0.1, 0.0]\nnormal = [0.0, 1.0, 0.0]\nmaterial = \"m\"\n\n\
+             [[objects]]\ntype = \"sphere\"\ncenter = [3.0, 1.1, 0.0]\nradius = 1.0\nmaterial = \"m\"\n{objects}"
+        )
+    };
+    assert!(expect_valid(&scene(""), "a sphere set on the floor by hand").is_empty());
+    let giant = "\n[[objects]]\ntype = \"sphere\"\ncenter = [0.0, 9e8, 0.0]\nradius = 899999990.0\nmaterial = \"m\"\n";
+    let warnings = expect_valid(&scene(giant), "a giant sphere over the floor");
+    assert_eq!(
+        warnings,
+        [
+            "objects[2]: with the plane objects[0]: apart as written (gap 9.9), but cutting each other as both \
+             tracers store them in f32 (gap -0.1), and so the image shows them; move the scene nearer the world \
+             origin, or widen the gap beyond f32's step where they lie (docs/numerics.md, Known limits)",
+            "objects[2]: with the sphere objects[1]: apart as written (gap 7.9), but cutting each other as both \
+             tracers store them in f32 (gap -2.1), and so the image shows them; move the scene nearer the world \
+             origin, or widen the gap beyond f32's step where they lie (docs/numerics.md, Known limits)",
+        ]
+    );
+}
+
 #[test]
 fn a_light_shut_in_an_opaque_sphere_and_a_slab_of_same_facing_planes_warn() {
     // The point light at (2, 4, -2) inside a sphere of radius 0.5 around it.

@@ -168,6 +168,7 @@ pub fn validate_objects(scene: &SceneDesc) -> Report {
     if r.errors.is_empty() {
         r.warnings.extend(coplanar::coplanar_overlaps(scene, origin, scene.render.epsilon));
         r.warnings.extend(placement::duplicate_spheres(scene, origin));
+        r.warnings.extend(placement::stored_contacts(scene, origin));
     }
     r
 }

@@ -3,6 +3,7 @@
 //! planes that both face out of it, one sphere written twice).
 
 use super::{FieldIssue, ObjectDesc, SceneDesc, num};
+use crate::number::format_rounded;
 use glam::DVec3;
 
 /// The placement warnings of `scene`, read from its own objects (a model's are not judged).
@@ -78,6 +79,84 @@ pub(super) fn duplicate_spheres(scene: &SceneDesc, origin: [f64; 3]) -> Vec<Fiel
         }
     }
     out
+}
+
+/// Spheres of a scene file beyond which the sphere pairs are not judged (`stored_contacts`):
+/// the pairs grow as the square; a scene of many spheres is generated, not written by hand.
+const MAX_SPHERES_PAIRED: usize = 512;
+
+/// A sphere that f32 storage moves into or out of contact with a plane or another sphere: as
+/// written they are apart (or cut), as both tracers hold them (f32, relative to the storage
+/// `origin`) they touch or cut (or are apart). Its own size hides it (a radius of 999,999,990
+/// at 1e9 over a floor is stored to 32 units, 3e-8 of its radius: no coarse-storage warning),
+/// while the gap it loses is 10 units: it rendered sitting on the floor (a tester).
+pub(super) fn stored_contacts(scene: &SceneDesc, origin: [f64; 3]) -> Vec<FieldIssue> {
+    let origin = DVec3::from(origin);
+    let f32s = |v: DVec3| DVec3::new(f64::from(v.x as f32), f64::from(v.y as f32), f64::from(v.z as f32));
+    let f32_of = |x: f64| f64::from(x as f32);
+    let spheres: Vec<(usize, DVec3, f64)> = scene
+        .objects
+        .iter()
+        .enumerate()
+        .filter_map(|(k, o)| match o {
+            ObjectDesc::Sphere(s) => Some((k, DVec3::from(s.center) - origin, s.radius)),
+            ObjectDesc::Plane(_) | ObjectDesc::Mesh(_) | ObjectDesc::Model(_) => None,
+        })
+        .collect();
+    let planes = scene.objects.iter().enumerate().filter_map(|(k, o)| match o {
+        ObjectDesc::Plane(p) => {
+            let n = DVec3::from(p.normal).try_normalize()?;
+            Some((k, n, n.dot(DVec3::from(p.point) - origin)))
+        }
+        ObjectDesc::Sphere(_) | ObjectDesc::Mesh(_) | ObjectDesc::Model(_) => None,
+    });
+    // Each pair's gap as written and as stored (> 0 apart, < 0 cutting), and the size of the
+    // numbers it is the difference of.
+    let mut pairs: Vec<(usize, usize, &str, f64, f64, f64)> = Vec::new();
+    for (j, n, d) in planes {
+        for &(k, c, r) in &spheres {
+            let written = (n.dot(c) - d).abs() - r;
+            let stored = (f32s(n).dot(f32s(c)) - f32_of(d)).abs() - f32_of(r);
+            pairs.push((k, j, "the plane", written, stored, c.abs().max_element().max(d.abs()).max(r)));
+        }
+    }
+    if spheres.len() <= MAX_SPHERES_PAIRED {
+        for (a, &(k, c, r)) in spheres.iter().enumerate() {
+            for &(j, c2, r2) in &spheres[a + 1..] {
+                let written = c.distance(c2) - r - r2;
+                let stored = f32s(c).distance(f32s(c2)) - f32_of(r) - f32_of(r2);
+                let size = c.abs().max(c2.abs()).max_element().max(r).max(r2);
+                pairs.push((j, k, "the sphere", written, stored, size));
+            }
+        }
+    }
+    // Touching within the render's ε, which no ray resolves, or f64's rounding of the
+    // difference: a sphere set on a floor by hand (centre 1.1, radius 1, floor at 0.1) is a gap
+    // of 2e-16 in f64, not a gap, and a sphere 1e-11 into a plane touches it.
+    let epsilon = scene.render.epsilon;
+    let state = |gap: f64, size: f64| match gap {
+        g if g > epsilon.max(1e-12 * size) => "apart",
+        g if g < -epsilon.max(1e-12 * size) => "cutting each other",
+        _ => "touching",
+    };
+    pairs
+        .into_iter()
+        .filter(|&(.., written, stored, size)| {
+            state(written, size) != "touching" && state(written, size) != state(stored, size)
+        })
+        .map(|(k, j, other, written, stored, size)| FieldIssue {
+            field: format!("objects[{k}]"),
+            problem: format!(
+                "with {other} objects[{j}]: {} as written (gap {}), but {} as both tracers store them in f32 (gap \
+                 {}), and so the image shows them; move the scene nearer the world origin, or widen the gap beyond \
+                 f32's step where they lie (docs/numerics.md, Known limits)",
+                state(written, size),
+                format_rounded(written, 4),
+                state(stored, size),
+                format_rounded(stored, 4),
+            ),
+        })
+        .collect()
 }
 
 /// A transmissive plane's normal points out of its medium, so a ray crossing it against the
