@@ -58,3 +58,52 @@ fn saving_before_the_cpu_has_finished_is_reported_not_crashed() {
     assert!(!path.exists());
     let _ = std::fs::remove_dir_all(dir);
 }
+
+/// The Whitted vs GI view's images can be saved (they could not: a lecturer built the side by
+/// side and the signed difference in numpy): Whitted's image, the paths, Whitted − GI and the
+/// three side by side, the EXR's difference signed and equal to Whitted − paths.
+#[test]
+fn the_whitted_vs_gi_views_are_saved_with_a_signed_difference() {
+    let Some(mut h) = crate::support::viewer_with("cornell-gi", (800.0, 500.0), |o| o.paused = true) else { return };
+    let dir = temp_dir("export-gi");
+    // Before the view has rendered anything, it says so.
+    let early = h.state_mut().save_image(&dir.join("early.png"), glint_viewer::ExportView::WhittedMinusGi);
+    assert!(early.is_err_and(|e| e.to_string().contains("Whitted vs GI view")), "saved before Whitted's image");
+    h.get_by_label("Whitted vs GI").click();
+    h.run_steps(2);
+    crate::support::settle(&mut h);
+    let rev = h.state().doc.revision;
+    let whitted = h.state().renders.gi.whitted_of(rev).expect("Whitted's image").clone();
+    let paths = crate::support::gpu_image(&h);
+    for (name, view) in [
+        ("whitted", glint_viewer::ExportView::Whitted),
+        ("paths", glint_viewer::ExportView::Paths),
+        ("minus", glint_viewer::ExportView::WhittedMinusGi),
+        ("three", glint_viewer::ExportView::WhittedVsGi),
+    ] {
+        for ext in ["png", "exr"] {
+            let path = dir.join(format!("{name}.{ext}"));
+            h.state_mut().save_image(&path, view).unwrap_or_else(|e| panic!("{name}.{ext}: {e}"));
+        }
+        let png = image::open(dir.join(format!("{name}.png"))).expect("decodes").into_rgb8();
+        let across = if name == "three" { 3 } else { 1 };
+        assert_eq!(png.dimensions(), (across * whitted.width, whitted.height), "{name}");
+    }
+    let exr = |name: &str| glint_io::exr_file::read_exr(&dir.join(format!("{name}.exr"))).expect("reads").rgb;
+    let f32s = |v: glam::DVec3| [v.x as f32, v.y as f32, v.z as f32];
+    assert_eq!(exr("whitted"), whitted.pixels.iter().map(|p| f32s(*p)).collect::<Vec<_>>());
+    assert_eq!(exr("paths"), paths.pixels.iter().map(|p| f32s(*p)).collect::<Vec<_>>());
+    let minus = exr("minus");
+    for (i, m) in minus.iter().enumerate() {
+        assert_eq!(*m, f32s(whitted.pixels[i] - paths.pixels[i]), "pixel {i}");
+    }
+    assert!(minus.iter().any(|m| m[0] < 0.0), "the difference is signed: Whitted is darker");
+    let text = read_png_text(&dir.join("minus.png")).expect("tEXt chunks");
+    let get = |k: &str| text.iter().find(|(key, _)| key == k).map(|(_, v)| v.clone()).unwrap_or_default();
+    assert_eq!(get("glint:view"), "Whitted vs GI: Whitted − GI, signed");
+    assert!(get("glint:diff_scale").starts_with("Whitted - GI, mean of R, G, B: blue below, white 0, red above"));
+    let text = read_png_text(&dir.join("paths.png")).expect("tEXt chunks");
+    let get = |k: &str| text.iter().find(|(key, _)| key == k).map(|(_, v)| v.clone()).unwrap_or_default();
+    assert_eq!(get("glint:integrator"), "path");
+    let _ = std::fs::remove_dir_all(dir);
+}

@@ -89,11 +89,15 @@ pub fn write_image(path: &Path, image: &HdrImage, metadata: &[(String, String)])
     }
 }
 
-/// The tEXt chunks of a PNG file.
+/// The text chunks of a PNG file: tEXt, then iTXt (where `write_png` puts a value that is not
+/// Latin-1, a viewer's "Whitted − GI" say).
 pub fn read_png_text(path: &Path) -> Result<Vec<(String, String)>, std::io::Error> {
     let decoder = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(path)?));
     let reader = decoder.read_info().map_err(std::io::Error::other)?;
-    Ok(reader.info().uncompressed_latin1_text.iter().map(|t| (t.keyword.clone(), t.text.clone())).collect())
+    let info = reader.info();
+    let latin1 = info.uncompressed_latin1_text.iter().map(|t| Ok((t.keyword.clone(), t.text.clone())));
+    let utf8 = info.utf8_text.iter().map(|t| Ok((t.keyword.clone(), t.get_text().map_err(std::io::Error::other)?)));
+    latin1.chain(utf8).collect()
 }
 
 #[cfg(test)]

@@ -18,7 +18,7 @@ use crate::dialogs::{Dialogs, PathPurpose, Then};
 use crate::document::Document;
 use crate::error::ViewerError;
 use crate::error_history::{Axis, ErrorHistory, ErrorPoint};
-use crate::export::{ExportView, Sources, export};
+use crate::export::{ExportView, GiSources, Sources, export};
 use crate::frame_clock::FrameClock;
 use crate::gizmos::gizmos;
 use crate::layout::{Layout, SIDE_PANEL_DEFAULT, SIDE_PANEL_MIN, Tab, VIEW_MIN_WIDTH};
@@ -217,6 +217,13 @@ impl ViewerApp {
     pub fn save_image(&mut self, path: &Path, view: ExportView) -> Result<(), ViewerError> {
         let rev = self.doc.render_revision;
         let adapter = self.renders.adapter_name().unwrap_or_default();
+        let whitted_settings = crate::renders::whitted_settings(&self.doc);
+        let gi = match (self.renders.gi.whitted_of(self.doc.revision), self.renders.gi_paths(&self.doc)) {
+            (Some(whitted), Some((paths, samples, paths_on_gpu))) => {
+                Some(GiSources { whitted, whitted_settings: &whitted_settings, paths, samples, paths_on_gpu })
+            }
+            _ => None,
+        };
         let sources = Sources {
             scene: &self.doc.name,
             settings: &self.doc.desc.render,
@@ -224,6 +231,7 @@ impl ViewerApp {
             gpu: self.renders.gpu_of(rev),
             diff: self.renders.comparison_of(rev),
             adapter: &adapter,
+            gi,
         };
         export(path, view, &sources)
     }

@@ -1,6 +1,7 @@
 //! "Save image": the GPU view, the CPU view, the difference view or all three side by side,
-//! as PNG with the render settings embedded (the same `glint:*` keys as `glint render`) or as
-//! linear EXR.
+//! and the Whitted vs GI view's Whitted image, paths, signed difference or all three, as PNG
+//! with the render settings embedded (the same `glint:*` keys as `glint render`) or as linear
+//! EXR (the signed difference signed: Whitted − GI).
 
 use std::path::Path;
 
@@ -13,7 +14,8 @@ use crate::cpu_worker::Finished;
 use crate::error::ViewerError;
 use crate::gpu_view::GpuImage;
 use crate::images::{side_by_side, side_by_side_hdr};
-use glint_core::compare::abs_difference;
+use glint_core::HdrImage;
+use glint_core::compare::{SignedDifference, abs_difference};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ExportView {
@@ -21,10 +23,27 @@ pub enum ExportView {
     Cpu,
     Difference,
     All,
+    /// Whitted vs GI: Whitted's image (rendered on the CPU).
+    Whitted,
+    /// Whitted vs GI: the paths shown beside it (the GPU's mean over its batches, else the CPU's).
+    Paths,
+    /// Whitted vs GI: Whitted − paths, signed.
+    WhittedMinusGi,
+    /// Whitted vs GI: the three side by side.
+    WhittedVsGi,
 }
 
 impl ExportView {
-    pub const ALL: [Self; 4] = [Self::Gpu, Self::Cpu, Self::Difference, Self::All];
+    pub const ALL: [Self; 8] = [
+        Self::Gpu,
+        Self::Cpu,
+        Self::Difference,
+        Self::All,
+        Self::Whitted,
+        Self::Paths,
+        Self::WhittedMinusGi,
+        Self::WhittedVsGi,
+    ];
 
     pub fn label(self) -> &'static str {
         match self {
@@ -32,17 +51,41 @@ impl ExportView {
             Self::Cpu => "CPU view",
             Self::Difference => "Difference view",
             Self::All => "All three side by side",
+            Self::Whitted => "Whitted vs GI: Whitted's image",
+            Self::Paths => "Whitted vs GI: the paths (GI)",
+            Self::WhittedMinusGi => "Whitted vs GI: Whitted − GI, signed",
+            Self::WhittedVsGi => "Whitted vs GI: the three side by side",
+        }
+    }
+
+    fn is_gi(self) -> bool {
+        match self {
+            Self::Gpu | Self::Cpu | Self::Difference | Self::All => false,
+            Self::Whitted | Self::Paths | Self::WhittedMinusGi | Self::WhittedVsGi => true,
         }
     }
 
     fn backend(self) -> &'static str {
         match self {
             Self::Gpu => "gpu",
-            Self::Cpu => "cpu",
+            Self::Cpu | Self::Whitted => "cpu",
             Self::Difference => "diff",
             Self::All => "cpu|gpu|diff",
+            Self::Paths => "paths",
+            Self::WhittedMinusGi | Self::WhittedVsGi => "whitted-gi",
         }
     }
+}
+
+/// What the Whitted vs GI view shows: Whitted's image (of `settings` with Whitted's
+/// integrator) and the paths beside it.
+#[derive(Clone, Copy, Debug)]
+pub struct GiSources<'a> {
+    pub whitted: &'a HdrImage,
+    pub whitted_settings: &'a RenderSettings,
+    pub paths: &'a HdrImage,
+    pub samples: u32,
+    pub paths_on_gpu: bool,
 }
 
 /// The finished renders of the current scene revision.
@@ -54,10 +97,18 @@ pub struct Sources<'a> {
     pub gpu: Option<&'a GpuImage>,
     pub diff: Option<&'a Compared>,
     pub adapter: &'a str,
+    /// The Whitted vs GI view's images, where both are there.
+    pub gi: Option<GiSources<'a>>,
 }
 
 pub fn export(path: &Path, view: ExportView, s: &Sources) -> Result<(), ViewerError> {
     let is_exr = path.extension().and_then(|e| e.to_str()).is_some_and(|e| e.eq_ignore_ascii_case("exr"));
+    if view.is_gi() {
+        let gi = s.gi.ok_or(ViewerError::NotReady(
+            "the Whitted vs GI view has no Whitted image and paths of this scene yet (open that view and let it render)",
+        ))?;
+        return export_gi(path, view, s, &gi, is_exr);
+    }
     let need_cpu = matches!(view, ExportView::Cpu | ExportView::Difference | ExportView::All);
     let need_gpu = matches!(view, ExportView::Gpu | ExportView::Difference | ExportView::All);
     let cpu = s.cpu.filter(|_| need_cpu);
@@ -134,6 +185,58 @@ pub fn export(path: &Path, view: ExportView, s: &Sources) -> Result<(), ViewerEr
             ])
         }
         _ => return Err(ViewerError::NotReady("the renders are not ready")),
+    };
+    Ok(write_png_rgb8(path, width, height, &rgb, &metadata)?)
+}
+
+/// The Whitted vs GI views: the difference taken again from the images as they are now (the
+/// view's own follows the paths at each doubling of their samples).
+fn export_gi(path: &Path, view: ExportView, s: &Sources, gi: &GiSources, is_exr: bool) -> Result<(), ViewerError> {
+    if (gi.whitted.width, gi.whitted.height) != (gi.paths.width, gi.paths.height) {
+        return Err(ViewerError::NotReady("Whitted's image and the paths are of different sizes"));
+    }
+    let paths_device = if gi.paths_on_gpu { s.adapter.to_string() } else { "cpu".to_string() };
+    let paths_settings =
+        RenderSettings { integrator: glint_scene::Integrator::Path, spp: gi.samples, ..s.settings.clone() };
+    let (settings, backend, device) = match view {
+        ExportView::Whitted => (gi.whitted_settings, "cpu", "cpu".to_string()),
+        ExportView::Paths => (&paths_settings, if gi.paths_on_gpu { "gpu" } else { "cpu" }, paths_device.clone()),
+        _ => (gi.whitted_settings, view.backend(), paths_device.clone()),
+    };
+    let info = RenderInfo { scene: s.scene, backend, device: &device, specialised: true, time_ms: None, rays: None };
+    let mut metadata = render_metadata(settings, &info);
+    metadata.push(("glint:view".into(), view.label().into()));
+    let diff = SignedDifference::new(gi.whitted, gi.paths);
+    if matches!(view, ExportView::WhittedMinusGi | ExportView::WhittedVsGi) {
+        metadata.push(("glint:gi_spp".into(), gi.samples.to_string()));
+        metadata.push((
+            "glint:diff_scale".into(),
+            format!(
+                "Whitted - GI, mean of R, G, B: blue below, white 0, red above, full at +-{:e}{}",
+                diff.scale,
+                if is_exr { "; the EXR holds the signed difference per channel" } else { "" }
+            ),
+        ));
+    }
+    if is_exr {
+        let signed = || HdrImage { pixels: diff.pixels.clone(), ..gi.whitted.clone() };
+        let image = match view {
+            ExportView::Whitted => gi.whitted.clone(),
+            ExportView::Paths => gi.paths.clone(),
+            ExportView::WhittedMinusGi => signed(),
+            _ => side_by_side_hdr(&[gi.whitted, gi.paths, &signed()]),
+        };
+        return Ok(write_exr(path, &image, &metadata)?);
+    }
+    let (w, h) = (gi.whitted.width, gi.whitted.height);
+    let (width, height, rgb) = match view {
+        ExportView::Whitted => (w, h, gi.whitted.to_srgb8()),
+        ExportView::Paths => (w, h, gi.paths.to_srgb8()),
+        ExportView::WhittedMinusGi => (w, h, diff.rgb.clone()),
+        _ => {
+            let (ws, ps) = (gi.whitted.to_srgb8(), gi.paths.to_srgb8());
+            side_by_side(&[(w, h, &ws), (w, h, &ps), (w, h, &diff.rgb)])
+        }
     };
     Ok(write_png_rgb8(path, width, height, &rgb, &metadata)?)
 }

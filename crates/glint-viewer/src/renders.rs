@@ -15,7 +15,7 @@ use crate::panels::messages::RenderMessages;
 use crate::panels::status::{Samples, Status};
 use crate::probe::{GpuProbe, ProbeState};
 use crate::view::{Shown, Textures};
-use crate::whitted_vs_gi::WhittedVsGi;
+use crate::whitted_vs_gi::{Paths, WhittedVsGi};
 
 /// How long a full-resolution GPU render runs before the status bar says it is rendering.
 const GPU_PROGRESS_AFTER: Duration = Duration::from_millis(500);
@@ -143,14 +143,14 @@ impl Renders {
         // Built only when its render is to start, not every frame while it runs.
         let scene = if self.gi.needs_whitted(rev) { doc.flat_with(&whitted_settings(doc)) } else { None };
         // By field, as in `schedule`: `gi` is borrowed mutably beside the images.
-        let gpu = self.gpu.as_ref().and_then(|g| g.latest.as_ref()).filter(|l| l.revision == paths);
-        let cpu = self
-            .cpu
-            .finished
-            .as_ref()
-            .filter(|(r, _)| *r == paths)
-            .map(|(_, f)| (&f.image, doc.desc.render.spp, false));
-        self.gi.request(rev, scene, gpu.map(|l| (&l.image, l.samples, true)).or(cpu));
+        let shown = shown_paths(self.gpu.as_ref(), &self.cpu, paths, doc.desc.render.spp);
+        self.gi.request(rev, scene, shown);
+    }
+
+    /// The paths the Whitted vs GI view shows beside Whitted's image: the GPU's mean over its
+    /// batches, else the CPU's.
+    pub fn gi_paths(&self, doc: &Document) -> Option<Paths<'_>> {
+        shown_paths(self.gpu.as_ref(), &self.cpu, doc.render_revision, doc.desc.render.spp)
     }
 
     /// Starts whatever the document's revision still needs; `interacting` (a value or the
@@ -409,6 +409,13 @@ fn batch_spp(spp: u32, rate: Option<f64>) -> u32 {
 }
 
 /// The document's render settings with Whitted's integrator.
-fn whitted_settings(doc: &Document) -> RenderSettings {
+/// `Renders::gi_paths` from the fields it reads (`schedule_gi` borrows `gi` mutably beside them).
+fn shown_paths<'a>(gpu: Option<&'a GpuView>, cpu: &'a CpuWorker, revision: u64, spp: u32) -> Option<Paths<'a>> {
+    let gpu = gpu.and_then(|g| g.latest.as_ref()).filter(|l| l.revision == revision);
+    let cpu = cpu.finished.as_ref().filter(|(r, _)| *r == revision).map(|(_, f)| (&f.image, spp, false));
+    gpu.map(|l| (&l.image, l.samples, true)).or(cpu)
+}
+
+pub fn whitted_settings(doc: &Document) -> RenderSettings {
     RenderSettings { integrator: glint_scene::Integrator::Whitted, indirect: true, ..doc.desc.render.clone() }
 }
