@@ -8,6 +8,7 @@ use anyhow::Context;
 use glint_core::cpu::RayCounts;
 use glint_core::render::{Tile, tile_count};
 use glint_core::{Backend, CpuOptions, FlatScene, HdrImage, RenderControl, render_cpu};
+use glint_gpu::status::StatusContext;
 use glint_gpu::{AdapterRequest, DispatchControl, GpuContext, GpuError, GpuOptions, GpuTracer, SampleProgress};
 use indicatif::{ProgressBar, ProgressStyle};
 
@@ -143,6 +144,6 @@ pub fn run_gpu(tracer: &GpuTracer, flat: &FlatScene, options: &GpuOptions, quiet
         total: start.elapsed(),
         device: tracer.context().adapter.with_driver(),
         gpu_status: r.status,
-        incomplete: glint_gpu::status::messages(r.status, r.key.stack_size),
+        incomplete: glint_gpu::status::messages(r.status, &StatusContext::new(&flat.header, &r.key)),
     })
 }

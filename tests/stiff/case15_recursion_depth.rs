@@ -201,7 +201,8 @@ fn a_walk_bound_below_the_driver_s_budget_raises_the_bound_s_bit_on_every_adapte
     let g = crate::gpu::gpu_render_with(tracer, &flat, &options);
     assert_eq!(g.key.tree_nodes, 1_000, "{}", g.key.describe());
     assert_eq!(g.status, STATUS_LOOP_LIMIT, "status {:#x} on {}", g.status, tracer.context().adapter);
-    let said = glint_gpu::status::messages(g.status, g.key.stack_size).join("; ");
+    let said =
+        glint_gpu::status::messages(g.status, &glint_gpu::status::StatusContext::new(&flat.header, &g.key)).join("; ");
     assert!(said.contains("hit its loop bound; some ray trees were cut"), "{said}");
     let c = glint_core::render_cpu(&flat, &glint_core::CpuOptions::default(), glint_core::RenderControl::default())
         .expect("CPU render");

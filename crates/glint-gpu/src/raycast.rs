@@ -16,7 +16,7 @@ use crate::error::GpuError;
 use crate::pipeline::{TracerPipeline, create_entry_pipeline, with_error_scopes};
 use crate::readback::{decode_stats, read_buffer};
 use crate::shaders::{RAYCAST_WGSL, ShaderKey, bvh_stack_size};
-use crate::status::messages;
+use crate::status::{StatusContext, messages};
 
 /// Invocations per workgroup (`@workgroup_size(64, 1, 1)` of raycast.wgsl).
 pub const WORKGROUP: u32 = 64;
@@ -135,7 +135,10 @@ impl RayCaster {
         }
         let (_, status) = decode_stats(&read_buffer(ctx, &self.scene.stats)?);
         if status != 0 {
-            return Err(GpuError::RaycastStatus { status, messages: messages(status, 1).join("; ") });
+            return Err(GpuError::RaycastStatus {
+                status,
+                messages: messages(status, &StatusContext::CAMERA_RAYS).join("; "),
+            });
         }
         Ok(elapsed)
     }

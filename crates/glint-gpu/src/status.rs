@@ -2,10 +2,73 @@
 //! user: one message per bit, used by the CLI and the viewer alike.
 
 use glint_types::layout::{
-    STATUS_BVH_STACK_OVERFLOW, STATUS_DRIVER_LOOP_CUTOFF, STATUS_LOOP_LIMIT, STATUS_STACK_OVERFLOW,
+    STATUS_BVH_STACK_OVERFLOW, STATUS_DRIVER_LOOP_CUTOFF, STATUS_LOOP_LIMIT, STATUS_STACK_OVERFLOW, SceneHeader,
+    feature,
 };
 
-use crate::shaders::LAVAPIPE_LOOP_BUDGET;
+use crate::shaders::{LAVAPIPE_LOOP_BUDGET, ShaderKey};
+
+/// What the remedies of a status word depend on: the scene as built and the variant that
+/// traced it. The driver cutoff's remedy listed every cure whatever the scene ("set a
+/// bailout" to a scene that had one, "use fewer lights" to a scene of one).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct StatusContext {
+    /// The ray stack's levels.
+    pub stack_size: u32,
+    /// Child rays are traced (a mirror or glass, at a depth above 0).
+    pub recurses: bool,
+    /// The path tracer's variant (its paths end by Russian roulette, not the bailout).
+    pub path: bool,
+    /// A Whitted bailout is set.
+    pub bailout: bool,
+    pub lights: u32,
+    /// Every primitive is tested, not through the BVH.
+    pub brute_force: bool,
+}
+
+impl StatusContext {
+    pub fn new(header: &SceneHeader, key: &ShaderKey) -> Self {
+        Self {
+            stack_size: key.stack_size,
+            recurses: feature::recurses(header.features) && header.max_depth > 0,
+            path: key.path,
+            bailout: header.bailout > 0.0,
+            lights: header.light_count,
+            brute_force: !key.bvh,
+        }
+    }
+
+    /// A variant that traces camera rays alone (the ray caster's): no tree, no shading.
+    pub const CAMERA_RAYS: Self =
+        Self { stack_size: 1, recurses: false, path: false, bailout: false, lights: 0, brute_force: false };
+
+    /// The cures of a driver cutoff this render can take, the CPU last.
+    fn loop_remedies(&self) -> String {
+        let mut cures = Vec::new();
+        if self.recurses {
+            cures.push("lower the depth".to_string());
+        }
+        if self.recurses && !self.path && !self.bailout {
+            cures.push("set a bailout (--bailout, render.bailout)".to_string());
+        }
+        if self.lights > 1 {
+            cures.push(format!("use fewer lights (every shading point loops over each of the {})", self.lights));
+        }
+        if self.brute_force {
+            cures.push(
+                "trace through the BVH (--accel auto or bvh: brute force over many primitives spends the budget \
+                 first)"
+                    .to_string(),
+            );
+        }
+        cures.push("render on the CPU".to_string());
+        match cures.split_last() {
+            Some((last, [])) => last.clone(),
+            Some((last, rest)) => format!("{}, or {last}", rest.join(", ")),
+            None => String::new(),
+        }
+    }
+}
 
 /// One bit of the status word.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -31,21 +94,21 @@ impl StatusBit {
         }
     }
 
-    /// What it means, for a render whose shader had a stack of `stack_size` levels.
-    pub fn message(self, stack_size: u32) -> String {
+    /// What it means for a render of `context`.
+    pub fn message(self, context: &StatusContext) -> String {
         match self {
             Self::LoopLimit => {
                 "the GPU tracer hit its loop bound; some ray trees were cut (see docs/numerics.md)".into()
             }
             Self::DriverLoopCutoff => format!(
                 "the GPU driver cut the shader's loops short (lavapipe allows {} loop iterations per invocation \
-                 group); this image is missing work: lower the depth, set a bailout, use fewer lights (every shading \
-                 point loops over each), trace through the BVH (--accel auto or bvh: brute force over many primitives \
-                 spends the budget first) or use the CPU",
-                with_thousands(LAVAPIPE_LOOP_BUDGET)
+                 group); this image is missing work: {}",
+                with_thousands(LAVAPIPE_LOOP_BUDGET),
+                context.loop_remedies()
             ),
             Self::StackOverflow => format!(
-                "a ray tree branched deeper than the GPU stack ({stack_size} levels); its deepest rays were dropped"
+                "a ray tree branched deeper than the GPU stack ({} levels); its deepest rays were dropped",
+                context.stack_size
             ),
             Self::BvhStackOverflow => format!(
                 "a BVH traversal needed more than the GPU's {} stack entries; some subtrees were not visited \
@@ -58,10 +121,10 @@ impl StatusBit {
 
 /// The messages of every bit `status` raises, in `StatusBit::ALL` order; bits no `StatusBit`
 /// names are reported too, as unknown, never dropped.
-pub fn messages(status: u32, stack_size: u32) -> Vec<String> {
+pub fn messages(status: u32, context: &StatusContext) -> Vec<String> {
     let known = StatusBit::ALL.iter().fold(0, |bits, b| bits | *b as u32);
     let mut out: Vec<String> =
-        StatusBit::ALL.into_iter().filter(|b| status & *b as u32 != 0).map(|b| b.message(stack_size)).collect();
+        StatusBit::ALL.into_iter().filter(|b| status & *b as u32 != 0).map(|b| b.message(context)).collect();
     let unknown = status & !known;
     if unknown != 0 {
         out.push(format!("the shader raised unknown status bits 0x{unknown:x}; this image may be missing work"));
@@ -112,8 +175,9 @@ mod tests {
             let bit = StatusBit::ALL.into_iter().find(|b| *b as u32 == *value);
             let bit = bit.unwrap_or_else(|| panic!("{name} = {value} has no StatusBit (and so no message)"));
             assert_eq!(bit.constant_name(), name, "bit {value}");
-            let text = messages(*value, 7);
-            assert_eq!(text, [bit.message(7)], "{name}");
+            let context = StatusContext { stack_size: 7, ..StatusContext::CAMERA_RAYS };
+            let text = messages(*value, &context);
+            assert_eq!(text, [bit.message(&context)], "{name}");
             assert!(!text[0].contains("unknown"), "{name}: {text:?}");
         }
         assert_eq!(constants.len(), StatusBit::ALL.len(), "a StatusBit has no constant in layout.wgsl");
@@ -121,17 +185,41 @@ mod tests {
 
     #[test]
     fn unknown_bits_are_reported_not_dropped() {
-        let text = messages(STATUS_LOOP_LIMIT | 0x40, 1);
+        let text = messages(STATUS_LOOP_LIMIT | 0x40, &StatusContext::CAMERA_RAYS);
         assert_eq!(text.len(), 2, "{text:?}");
         assert!(text[1].contains("unknown") && text[1].contains("0x40"), "{text:?}");
-        assert!(messages(0, 1).is_empty());
+        assert!(messages(0, &StatusContext::CAMERA_RAYS).is_empty());
     }
 
     #[test]
     fn messages_print_the_budget_and_the_stack() {
-        assert!(StatusBit::DriverLoopCutoff.message(1).contains(&with_thousands(LAVAPIPE_LOOP_BUDGET)));
-        assert!(StatusBit::StackOverflow.message(64).contains("(64 levels)"));
+        let context = StatusContext { stack_size: 64, ..StatusContext::CAMERA_RAYS };
+        assert!(StatusBit::DriverLoopCutoff.message(&context).contains(&with_thousands(LAVAPIPE_LOOP_BUDGET)));
+        assert!(StatusBit::StackOverflow.message(&context).contains("(64 levels)"));
         assert_eq!(with_thousands(1_234_567), "1,234,567");
         assert_eq!(with_thousands(999), "999");
+    }
+
+    /// The driver cutoff's cures are the ones the render can take: each where its scene allows it.
+    #[test]
+    fn the_driver_cutoff_names_only_the_cures_the_render_can_take() {
+        let cures = |c: StatusContext| {
+            let m = StatusBit::DriverLoopCutoff.message(&c);
+            m[m.find("missing work: ").expect("its cures") + "missing work: ".len()..].to_string()
+        };
+        let mirrors =
+            StatusContext { stack_size: 6, recurses: true, path: false, bailout: false, lights: 3, brute_force: true };
+        assert_eq!(
+            cures(mirrors),
+            "lower the depth, set a bailout (--bailout, render.bailout), use fewer lights (every shading point loops \
+             over each of the 3), trace through the BVH (--accel auto or bvh: brute force over many primitives \
+             spends the budget first), or render on the CPU"
+        );
+        // One light, a bailout set, through the BVH: the depth and the CPU are left.
+        let lean = StatusContext { bailout: true, lights: 1, brute_force: false, ..mirrors };
+        assert_eq!(cures(lean), "lower the depth, or render on the CPU");
+        // Paths end by Russian roulette: no bailout to set.
+        assert_eq!(cures(StatusContext { path: true, ..mirrors }).matches("bailout").count(), 0);
+        assert_eq!(cures(StatusContext::CAMERA_RAYS), "render on the CPU");
     }
 }

@@ -14,6 +14,7 @@ use std::time::{Duration, Instant};
 use glint_core::FlatScene;
 use glint_core::HdrImage;
 use glint_core::cpu::RayCounts;
+use glint_gpu::status::StatusContext;
 use glint_gpu::{
     AdapterRequest, DispatchControl, GpuContext, GpuError, GpuJob, GpuOptions, GpuTracer, JobReadback, PendingPixels,
     Presenter, SampleProgress, ShaderKey,
@@ -50,6 +51,8 @@ enum Stage {
 struct InFlight {
     stage: Stage,
     revision: u64,
+    /// What its status word's remedies depend on (its scene and variant).
+    status: StatusContext,
     preview: bool,
     size: (u32, u32),
     started: Instant,
@@ -83,6 +86,7 @@ pub struct GpuImage {
 #[derive(Clone, Copy, Debug)]
 struct Finished {
     revision: u64,
+    status: StatusContext,
     gpu_ms: f64,
     /// Its batch of the revision's paths (0 for a first render) and its samples a pixel.
     batch: u32,
@@ -373,6 +377,7 @@ impl GpuView {
             return false;
         }
         let key = variant_of(scene);
+        let status = StatusContext::new(&scene.header, &key);
         let new_variant = (self.variants.insert(key) && !prewarm).then(|| new_in(key, self.last_variant));
         if !prewarm {
             self.last_variant = Some(key);
@@ -402,6 +407,7 @@ impl GpuView {
                 self.in_flight = Some(InFlight {
                     stage: Stage::Submitting,
                     revision,
+                    status,
                     preview,
                     size,
                     started: Instant::now(),
@@ -498,7 +504,8 @@ impl GpuView {
                 self.arriving = Some(Arriving { pixels, revision: f.revision, preview: f.preview });
             }
             if !f.preview && !superseded {
-                let finished = Finished { revision: f.revision, gpu_ms: ms, batch: f.batch, spp: f.spp };
+                let finished =
+                    Finished { revision: f.revision, gpu_ms: ms, batch: f.batch, spp: f.spp, status: f.status };
                 self.readback = Some((job.start_readback(&ctx), finished));
             }
             changed = true;
@@ -516,11 +523,11 @@ impl GpuView {
         if let Some((rb, f)) = &mut self.readback
             && let Some(result) = rb.poll(&ctx)
         {
-            let (f, stack_size, paths) = (*f, rb.key().stack_size, rb.key().path);
+            let (f, paths) = (*f, rb.key().path);
             self.readback = None;
             match result {
                 Ok((image, counts, status)) if status != 0 || !paths => {
-                    self.warning = status_warning(status, stack_size);
+                    self.warning = status_warning(status, &f.status);
                     self.accumulation = None;
                     let (revision, gpu_ms, samples) = (f.revision, f.gpu_ms, f.spp);
                     self.latest = Some(GpuImage { revision, image, counts, status, gpu_ms, samples });
@@ -535,7 +542,7 @@ impl GpuView {
 
     /// Adds a path render's batch to its revision's mean, and shows the mean of more than one.
     fn accumulate(&mut self, f: Finished, image: HdrImage, counts: RayCounts, status: u32) {
-        let Finished { revision, gpu_ms, batch, spp } = f;
+        let Finished { revision, gpu_ms, batch, spp, .. } = f;
         self.warning = None;
         if batch == 0 {
             self.accumulation = Some(Accumulation::new(revision, image, spp, gpu_ms, counts));
@@ -596,7 +603,7 @@ impl GpuView {
 }
 
 /// What a status word from the shader means for the user.
-pub fn status_warning(status: u32, stack_size: u32) -> Option<String> {
-    let messages = glint_gpu::status::messages(status, stack_size);
+pub fn status_warning(status: u32, context: &StatusContext) -> Option<String> {
+    let messages = glint_gpu::status::messages(status, context);
     (!messages.is_empty()).then(|| messages.join("; "))
 }
