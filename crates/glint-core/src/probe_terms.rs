@@ -16,6 +16,22 @@ pub struct Term {
     pub gpu: Option<DVec3>,
     /// What the three components are: how the table labels them.
     pub channels: Channels,
+    /// How its CPU and GPU values are held against each other.
+    pub compared: Compared,
+}
+
+/// How a term's CPU and GPU values are held against each other (`differs_within`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Compared {
+    /// Relative to the values' size.
+    Relative,
+    /// A cosine of unit vectors: relative to 1, not to its own size. Its f32 error is that of
+    /// the directions, whatever the cosine; near 0 (a grazing light, N·L = −0.028 two bounces
+    /// into whitted) its own size made f32's 2e-5 a difference.
+    Cosine,
+    /// Shown, not held against: the lobe c^n magnifies its cosine's rounding n times (n up to
+    /// 1e6), and where it counts, k_s > 0, the specular term that holds it is compared.
+    Shown,
 }
 
 /// What a term's three components are (a table printed `t` three times, and N's x, y, z
@@ -32,15 +48,31 @@ pub enum Channels {
 
 impl Term {
     pub fn rgb(name: impl Into<String>, cpu: DVec3, gpu: Option<DVec3>) -> Self {
-        Self { name: name.into(), cpu, gpu, channels: Channels::Rgb }
+        Self { name: name.into(), cpu, gpu, channels: Channels::Rgb, compared: Compared::Relative }
     }
 
     pub fn scalar(name: impl Into<String>, cpu: f64, gpu: Option<f64>) -> Self {
-        Self { name: name.into(), cpu: DVec3::splat(cpu), gpu: gpu.map(DVec3::splat), channels: Channels::Scalar }
+        let (cpu, gpu) = (DVec3::splat(cpu), gpu.map(DVec3::splat));
+        Self { name: name.into(), cpu, gpu, channels: Channels::Scalar, compared: Compared::Relative }
     }
 
     pub fn xyz(name: impl Into<String>, cpu: DVec3, gpu: Option<DVec3>) -> Self {
-        Self { name: name.into(), cpu, gpu, channels: Channels::Xyz }
+        Self { name: name.into(), cpu, gpu, channels: Channels::Xyz, compared: Compared::Relative }
+    }
+
+    /// The same term held against its GPU value as `compared` says.
+    pub fn compared(self, compared: Compared) -> Self {
+        Self { compared, ..self }
+    }
+
+    /// Whether its GPU value differs from its CPU value beyond the tolerance times `widen`.
+    pub fn differs_within(&self, widen: f64) -> bool {
+        let Some(g) = self.gpu else { return false };
+        match self.compared {
+            Compared::Relative => differs_within(self.cpu, g, widen),
+            Compared::Cosine => differs_beyond(self.cpu, g, widen, 1.0),
+            Compared::Shown => false,
+        }
     }
 }
 
@@ -59,7 +91,13 @@ pub fn differs(a: DVec3, b: DVec3) -> bool {
 /// `differs` with both tolerances times `widen` (the ray tree's deeper nodes, whose f32
 /// inputs carry the rounding of every bounce before them).
 pub fn differs_within(a: DVec3, b: DVec3, widen: f64) -> bool {
-    let scale = a.abs().max(b.abs()).max_element();
+    differs_beyond(a, b, widen, 0.0)
+}
+
+/// `differs_within` with the relative tolerance of a size no less than `least` (1 for a cosine
+/// of unit vectors).
+fn differs_beyond(a: DVec3, b: DVec3, widen: f64, least: f64) -> bool {
+    let scale = a.abs().max(b.abs()).max_element().max(least);
     (a - b).abs().max_element() > widen * (ABS_TOLERANCE + REL_TOLERANCE * scale)
 }
 
@@ -95,12 +133,13 @@ pub fn local_terms(cpu: &Breakdown, gpu: Option<&Breakdown>) -> Vec<Term> {
         // Each product after the cosines it is of: where a direction differs, the first
         // difference names the angle, not the term.
         let (ca, ga) = (&l.angles, gl.map(|g| &g.angles));
-        out.push(Term::scalar(format!("light {j}: N·L"), ca.n_dot_l, ga.map(|g| g.n_dot_l)));
+        out.push(Term::scalar(format!("light {j}: N·L"), ca.n_dot_l, ga.map(|g| g.n_dot_l)).compared(Compared::Cosine));
         let mut push = |name: String, c: DVec3, g: Option<DVec3>| out.push(Term::rgb(name, c, g));
         push(format!("light {j}: diffuse"), l.diffuse, gl.map(|g| g.diffuse));
         let (cosine, lobe) = lobe_names(ca.lobe_model);
-        out.push(Term::scalar(format!("light {j}: {cosine}"), ca.lobe_cosine, ga.map(|g| g.lobe_cosine)));
-        out.push(Term::scalar(format!("light {j}: {lobe}"), ca.lobe, ga.map(|g| g.lobe)));
+        let cosine = Term::scalar(format!("light {j}: {cosine}"), ca.lobe_cosine, ga.map(|g| g.lobe_cosine));
+        out.push(cosine.compared(Compared::Cosine));
+        out.push(Term::scalar(format!("light {j}: {lobe}"), ca.lobe, ga.map(|g| g.lobe)).compared(Compared::Shown));
         let mut push = |name: String, c: DVec3, g: Option<DVec3>| out.push(Term::rgb(name, c, g));
         push(format!("light {j}: specular"), l.specular, gl.map(|g| g.specular));
         push(format!("light {j}: total"), l.contribution, gl.map(|g| g.contribution));
@@ -124,7 +163,7 @@ pub fn first_difference(terms: &[Term]) -> Option<usize> {
 
 /// `first_difference` with the tolerances times `widen`.
 pub fn first_difference_within(terms: &[Term], widen: f64) -> Option<usize> {
-    terms.iter().position(|t| t.gpu.is_some_and(|g| differs_within(t.cpu, g, widen)))
+    terms.iter().position(|t| t.differs_within(widen))
 }
 
 /// How much wider than at the first hit the f32-against-f64 tolerance is at `depth`: doubled
@@ -201,6 +240,7 @@ pub fn first_tree_difference(cpu: &RayTree, gpu: &RayTree, origin: DVec3) -> Opt
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::cpu::shade::LightTerm;
 
     #[test]
     fn the_first_term_beyond_tolerance_is_found() {
@@ -213,6 +253,26 @@ mod tests {
         assert_eq!(first_difference(&terms(&cpu, Some(&gpu))), Some(3));
         gpu.kd += DVec3::new(0.0, 0.01, 0.0);
         assert_eq!(first_difference(&terms(&cpu, Some(&gpu))), Some(1));
+    }
+
+    #[test]
+    fn a_cosine_is_held_to_f32_of_its_unit_vectors_and_a_lobe_only_shown() {
+        // whitted's glass at depth 2: a grazing light, N·L −0.027754 on the CPU, −0.027777 on
+        // the GPU (2.3e-5 apart: f32 directions two bounces deep, within 4 × 1e-4 of 1).
+        let mut cpu = Breakdown::default();
+        cpu.lights.push(LightTerm::default());
+        let mut gpu = cpu.clone();
+        cpu.lights[0].angles.n_dot_l = -0.027754272301748317;
+        gpu.lights[0].angles.n_dot_l = -0.027777403593063354;
+        assert_eq!(first_difference_within(&local_terms(&cpu, Some(&gpu)), 4.0), None);
+        // A cosine off by 0.01 is a difference, whatever its size.
+        gpu.lights[0].angles.n_dot_l = -0.037754;
+        let rows = local_terms(&cpu, Some(&gpu));
+        assert_eq!(first_difference(&rows).map(|i| rows[i].name.as_str()), Some("light 0: N·L"));
+        // The lobe is shown, not held against: its specular term is.
+        gpu.lights[0].angles.n_dot_l = cpu.lights[0].angles.n_dot_l;
+        gpu.lights[0].angles.lobe = 0.5;
+        assert_eq!(first_difference(&local_terms(&cpu, Some(&gpu))), None);
     }
 
     #[test]
