@@ -105,5 +105,38 @@ fn the_whitted_vs_gi_views_are_saved_with_a_signed_difference() {
     let text = read_png_text(&dir.join("paths.png")).expect("tEXt chunks");
     let get = |k: &str| text.iter().find(|(key, _)| key == k).map(|(_, v)| v.clone()).unwrap_or_default();
     assert_eq!(get("glint:integrator"), "path");
+    // Ctrl+S from this view offers its own images: saved as opened, the three side by side (it
+    // offered the GPU−CPU "All three", and a tester saved the magma map from the signed view).
+    let path = dir.join("from the dialog.png");
+    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::S);
+    h.run_steps(2);
+    let field = h.get_by_role_and_label(Role::TextInput, "File");
+    field.focus();
+    field.set_text_value_accesskit(&path.display().to_string());
+    h.run_steps(2);
+    h.get_by_label("Save").click();
+    h.run_steps(2);
+    let text = read_png_text(&path).unwrap_or_else(|e| panic!("{e}; message: {:?}", h.state().message));
+    let get = |k: &str| text.iter().find(|(key, _)| key == k).map(|(_, v)| v.clone()).unwrap_or_default();
+    assert_eq!(get("glint:view"), "Whitted vs GI: the three side by side");
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn an_image_named_other_than_png_or_exr_is_refused() {
+    // `cpu.jpg` was written as a PNG under that name (a viewer tester).
+    let Some(mut h) = viewer("whitted", (1000.0, 640.0)) else { return };
+    crate::support::settle(&mut h);
+    let dir = temp_dir("export-jpg");
+    for name in ["cpu.jpg", "cpu.pn", "cpu"] {
+        let e = h.state_mut().save_image(&dir.join(name), glint_viewer::ExportView::Cpu).expect_err(name);
+        assert!(
+            e.to_string()
+                .ends_with("an image is saved as .png (sRGB, the settings embedded) or .exr (linear); name it so"),
+            "{e}"
+        );
+        assert!(!dir.join(name).exists(), "{name} was written");
+    }
+    h.state_mut().save_image(&dir.join("cpu.PNG"), glint_viewer::ExportView::Cpu).expect("a PNG in capitals");
     let _ = std::fs::remove_dir_all(dir);
 }

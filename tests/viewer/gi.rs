@@ -138,7 +138,8 @@ fn whitted_against_gi_shows_beside_wiped_and_as_a_signed_difference() {
     let mean = v.element_sum() / 3.0;
     let shown = glint_scene::format_rounded(mean, 4);
     let shown = if mean > 0.0 { format!("+{shown}") } else { shown.replace('-', "−") };
-    let text = format!("({x}, {y}): Whitted − GI (paths) = {shown} (R ");
+    let verdict = if mean < 0.0 { "too dark" } else { "too bright" };
+    let text = format!("({x}, {y}): Whitted − GI (paths) = {shown}: {verdict} (R ");
     assert!(h.query_by_label_contains(&text).is_some(), "the readout says {text}");
     h.hover_at(egui::pos2(1.0, 1.0));
     h.run_steps(2);

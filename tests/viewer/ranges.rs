@@ -230,3 +230,54 @@ fn a_typed_value_outside_its_range_is_named_and_the_value_kept() {
     settle(&mut h);
     assert!(h.state().doc.issues.is_empty(), "{:?}", h.state().doc.issues);
 }
+
+/// Types `text` into the field `label` one key at a time, a frame after each, as a person
+/// types, then Return: `type_number` types it in one event, which hid what each partial text did.
+fn type_keys(h: &mut Harness<'static, ViewerApp>, label: &str, text: &str, role: Role) -> Vec<f64> {
+    h.get_by_role_and_label(role, label).click();
+    h.run_steps(2);
+    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::A);
+    let mut seen = Vec::new();
+    for c in text.chars() {
+        h.get_by_role_and_label(role, label).type_text(&c.to_string());
+        h.run_steps(1);
+        seen.push(h.state().doc.desc.world.ambient.0[0]);
+    }
+    h.key_press(egui::Key::Enter);
+    h.run_steps(2);
+    seen
+}
+
+#[test]
+fn a_value_typed_key_by_key_is_taken_on_return_and_a_refused_one_leaves_the_old() {
+    // Each partial text was applied as it was typed: −0.5 set the ambient to 0 (from "-0")
+    // before −0.5 was refused "and kept", and 2000000 left shininess at 200000 (a viewer tester).
+    let Some(mut h) = viewer("whitted", (1000.0, 900.0)) else { return };
+    let ambient = |h: &Harness<'static, ViewerApp>| h.state().doc.desc.world.ambient.0[0];
+    let before = ambient(&h);
+    let while_typing = type_keys(&mut h, "Ambient I_a R", "-0.5", Role::SpinButton);
+    assert!(while_typing.iter().all(|v| *v == before), "applied while typing: {while_typing:?}");
+    assert_eq!(ambient(&h), before, "a refused value leaves the old one");
+    assert!(h.query_by_label("Ambient I_a R: -0.5 is outside [0, 1e9]; the value was kept").is_some());
+    // A valid one is taken on Return, not before.
+    let while_typing = type_keys(&mut h, "Ambient I_a R", "0.25", Role::SpinButton);
+    assert!(while_typing.iter().all(|v| *v == before), "applied while typing: {while_typing:?}");
+    assert_eq!(ambient(&h), 0.25);
+    // A slider's text too.
+    choose(&mut h, "Materials", "Material", "floor");
+    let shininess = h.state().doc.desc.materials["floor"].shininess;
+    type_keys(&mut h, "Shininess n", "2000000", Role::SpinButton);
+    assert_eq!(h.state().doc.desc.materials["floor"].shininess, shininess, "2000000 is refused whole");
+}
+
+#[test]
+fn a_refusal_note_goes_with_the_scene_it_was_of() {
+    // It stayed under the next scene's valid value (a viewer tester).
+    let Some(mut h) = viewer("whitted", (1000.0, 900.0)) else { return };
+    type_number(&mut h, "Ambient I_a G", "-1");
+    let note = "Ambient I_a G: -1 is outside [0, 1e9]; the value was kept";
+    assert!(h.query_by_label(note).is_some(), "no note to start with");
+    h.state_mut().open("cornell");
+    h.run_steps(3);
+    assert!(h.query_by_label(note).is_none(), "the note outlived its scene");
+}

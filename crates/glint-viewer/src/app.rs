@@ -442,7 +442,7 @@ impl eframe::App for ViewerApp {
         if let Some(p) = self.dialogs.pending_open.take() {
             self.request_open(&p.display().to_string());
         }
-        self.dialogs.export_shortcut(&ctx, &self.doc.name);
+        self.dialogs.export_shortcut(&ctx, &self.doc.name, self.layout.mode == ViewMode::WhittedVsGi);
 
         let menu = egui::Panel::top("menu").show(ui, |ui| menu::bar(ui, &self.doc, &self.recent, &mut self.layout));
         if let Some(action) = menu.inner {
@@ -490,7 +490,11 @@ impl eframe::App for ViewerApp {
                     axis: &mut self.error_axis,
                     fitter: &mut self.fitter,
                 };
-                panels::side(ui, &mut self.layout.tab, &mut self.doc, &mut self.selection, inputs)
+                // Scoped by the scene opened: what a field keeps of its last edit (a refused
+                // value's note) is of that scene's field, not the next one's (a viewer tester
+                // saw a refusal under a freshly opened scene's valid value).
+                let (tab, doc, selection) = (&mut self.layout.tab, &mut self.doc, &mut self.selection);
+                ui.push_id(("opened", doc.opened), |ui| panels::side(ui, tab, doc, selection, inputs)).inner
             });
             self.layout.side_rect = side.response.rect;
             let drawn = side.response.rect.width();

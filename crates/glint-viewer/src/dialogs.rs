@@ -319,15 +319,23 @@ impl Dialogs {
         self.unsaved.take().map(|t| (answer, t))
     }
 
-    /// Opens "Save image".
-    pub fn open_export(&mut self) {
+    /// Opens "Save image", with a view of the mode on screen chosen: from Whitted vs GI its
+    /// three side by side (it offered the GPU−CPU views' "All three" there, and a tester saved
+    /// the magma GPU−CPU map from the signed Whitted − GI view), else the last choice of the
+    /// other views.
+    pub fn open_export(&mut self, gi_view: bool) {
         self.export_open = true;
+        if gi_view && !self.export_view.is_gi() {
+            self.export_view = ExportView::WhittedVsGi;
+        } else if !gi_view && self.export_view.is_gi() {
+            self.export_view = ExportView::All;
+        }
     }
 
     /// Opens "Save image" from the keyboard (Ctrl+S), suggesting a file named after `scene`.
-    pub fn export_shortcut(&mut self, ctx: &egui::Context, scene: &str) {
+    pub fn export_shortcut(&mut self, ctx: &egui::Context, scene: &str, gi_view: bool) {
         if ctx.input_mut(|i| i.consume_key(egui::Modifiers::COMMAND, egui::Key::S)) {
-            self.export_open = true;
+            self.open_export(gi_view);
             if self.export_path.text.is_empty() {
                 self.export_path.text = format!("{scene}.png");
             }

@@ -13,6 +13,8 @@ pub enum ViewerError {
     Serialise(String),
     #[error(transparent)]
     Image(#[from] glint_io::image_file::ImageWriteError),
+    #[error("{}: an image is saved as .png (sRGB, the settings embedded) or .exr (linear); name it so", .0.display())]
+    ImageFormat(PathBuf),
     #[error("nothing to save yet: {0}")]
     NotReady(&'static str),
     #[error(

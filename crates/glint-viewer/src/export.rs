@@ -58,7 +58,7 @@ impl ExportView {
         }
     }
 
-    fn is_gi(self) -> bool {
+    pub fn is_gi(self) -> bool {
         match self {
             Self::Gpu | Self::Cpu | Self::Difference | Self::All => false,
             Self::Whitted | Self::Paths | Self::WhittedMinusGi | Self::WhittedVsGi => true,
@@ -102,7 +102,13 @@ pub struct Sources<'a> {
 }
 
 pub fn export(path: &Path, view: ExportView, s: &Sources) -> Result<(), ViewerError> {
-    let is_exr = path.extension().and_then(|e| e.to_str()).is_some_and(|e| e.eq_ignore_ascii_case("exr"));
+    // By the name's extension, as `glint render -o` reads it: any other (cpu.jpg) was written
+    // as a PNG under that name (a viewer tester).
+    let is_exr = match path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
+        Some("png") => false,
+        Some("exr") => true,
+        _ => return Err(ViewerError::ImageFormat(path.to_owned())),
+    };
     if view.is_gi() {
         let gi = s.gi.ok_or(ViewerError::NotReady(
             "the Whitted vs GI view has no Whitted image and paths of this scene yet (open that view and let it render)",

@@ -3,7 +3,7 @@
 //! yellow where the light is visible and grey where it is blocked), as thick as its path
 //! weight, the branches the bailout or the depth limit cut dashed.
 
-use egui::{Color32, Rect, Sense, Shape, Stroke, Ui, Vec2};
+use egui::{Color32, Pos2, Rect, Sense, Shape, Stroke, Ui, Vec2};
 use glint_core::WorldCamera;
 use glint_core::cpu::ray_tree::RayTree;
 use glint_core::glam::DVec3;
@@ -84,6 +84,7 @@ pub fn draw(ui: &mut Ui, rects: &[Rect], segments: &[TreeSegment]) {
     for (i, r) in rects.iter().enumerate() {
         let to_screen = |(x, y): (f32, f32)| r.min + Vec2::new(x * r.width(), y * r.height());
         let painter = ui.painter().with_clip_rect(*r);
+        let on_screen: Vec<(Pos2, Pos2)> = segments.iter().map(|s| (to_screen(s.from), to_screen(s.to))).collect();
         let mut bounds = Rect::NOTHING;
         for rim in [true, false] {
             for s in segments {
@@ -105,7 +106,8 @@ pub fn draw(ui: &mut Ui, rects: &[Rect], segments: &[TreeSegment]) {
         let area = bounds.expand(2.0).intersect(*r);
         // Only beside a tree in sight: after a camera move it may lie wholly outside the image.
         if i + 1 == rects.len() && area.is_positive() {
-            legend(ui, *r, area);
+            // The camera ray, first in the tree, projects onto the probed pixel.
+            legend(ui, *r, &on_screen, on_screen.first().map(|s| s.0));
         }
         if area.is_positive() {
             let response = ui.interact(area, ui.scope_id().with(("ray tree", i)), Sense::hover());
@@ -125,13 +127,13 @@ pub const LEGEND: [(&str, Color32, bool); 6] = [
     ("cut by bailout or depth", Color32::LIGHT_GRAY, true),
 ];
 
-/// The legend in a corner of the image `r`, on a dark box: the bottom-right one, or the first
-/// of the others that leaves the tree (`tree`, its bounds on screen) uncovered, else the one
-/// that covers least of it (in the bottom-right corner it hid a probed pixel there, its tree
-/// and, on cornell-gi, the caustic a lesson was about). Left out where it would take more than
-/// half the image's width or height (at the least window the two images side by side are each
-/// about 225 points wide: the legend hid most of the CPU one).
-fn legend(ui: &mut Ui, r: Rect, tree: Rect) {
+/// The legend in a corner of the image `r`, on a dark box (`legend_corner`: never over the
+/// probed `pixel`, else over as little of the tree's rays, `pieces` on screen, as it can; in
+/// the bottom-right corner it hid a probed pixel there, its tree and, on cornell-gi, the
+/// caustic a lesson was about). Left out where it would take more than half the image's width
+/// or height (at the least window the two images side by side are each about 225 points wide:
+/// the legend hid most of the CPU one).
+fn legend(ui: &mut Ui, r: Rect, pieces: &[(Pos2, Pos2)], pixel: Option<Pos2>) {
     let width = 172.0;
     // Each row is as tall as a horizontal layout makes it (its interact height, 18 points by
     // default, not 16): reckoned lower, the box ran past the image onto the colour bar below it.
@@ -140,7 +142,7 @@ fn legend(ui: &mut Ui, r: Rect, tree: Rect) {
     if 2.0 * width > r.width() || 2.0 * height > r.height() {
         return;
     }
-    let at = legend_corner(r.shrink(6.0), Vec2::new(width, height), tree);
+    let at = legend_corner(r.shrink(6.0), Vec2::new(width, height), pieces, pixel);
     let mut child = ui.new_child(egui::UiBuilder::new().max_rect(at));
     egui::Frame::new().fill(Color32::from_black_alpha(170)).inner_margin(4.0).corner_radius(3.0).show(
         &mut child,
@@ -164,9 +166,15 @@ fn legend(ui: &mut Ui, r: Rect, tree: Rect) {
     );
 }
 
+/// Points around the probed pixel kept clear of the legend: its marker square and a margin.
+const PIXEL_CLEARANCE: f32 = 10.0;
+
 /// The box of `size` in a corner of `r`: bottom-right, bottom-left, top-right or top-left, the
-/// first that does not meet `avoid`, else the one that covers least of it.
-fn legend_corner(r: Rect, size: Vec2, avoid: Rect) -> Rect {
+/// first that covers neither the probed `pixel` nor any of the rays `pieces`, else of those
+/// clear of the pixel the one over the least length of rays. Judged by the rays themselves, not
+/// their bounds: a floor pixel's shadow rays up to a light span the image diagonally, their box
+/// met every corner, and the least overlap put the legend over the pixel (a viewer tester).
+fn legend_corner(r: Rect, size: Vec2, pieces: &[(Pos2, Pos2)], pixel: Option<Pos2>) -> Rect {
     let corners = [
         r.right_bottom() - size,
         r.left_bottom() - Vec2::new(0.0, size.y),
@@ -174,11 +182,22 @@ fn legend_corner(r: Rect, size: Vec2, avoid: Rect) -> Rect {
         r.left_top(),
     ];
     let boxes = corners.map(|c| Rect::from_min_size(c, size));
-    let covered = |b: &Rect| {
-        let i = b.intersect(avoid);
-        if i.is_positive() { i.area() } else { 0.0 }
+    const SAMPLES: usize = 32;
+    let cost = |b: &Rect| {
+        let over_pixel =
+            pixel.is_some_and(|p| b.intersects(Rect::from_center_size(p, Vec2::splat(2.0 * PIXEL_CLEARANCE))));
+        let covered: f32 = pieces
+            .iter()
+            .map(|&(a, z)| {
+                let inside = (0..=SAMPLES).filter(|&k| b.contains(a.lerp(z, k as f32 / SAMPLES as f32))).count();
+                a.distance(z) * inside as f32 / (SAMPLES + 1) as f32
+            })
+            .sum();
+        (over_pixel, covered)
     };
-    boxes.into_iter().min_by(|a, b| covered(a).total_cmp(&covered(b))).expect("four corners")
+    let costs = boxes.map(|b| cost(&b));
+    let best = (0..4).min_by(|&i, &j| costs[i].0.cmp(&costs[j].0).then(costs[i].1.total_cmp(&costs[j].1)));
+    boxes[best.expect("four corners")]
 }
 
 #[cfg(test)]
@@ -187,19 +206,27 @@ mod tests {
     use glint_core::{FlatScene, probe_tree};
 
     #[test]
-    fn the_legend_takes_the_first_corner_that_leaves_the_tree_uncovered() {
+    fn the_legend_takes_the_first_corner_that_leaves_the_tree_and_its_pixel_uncovered() {
         let r = Rect::from_min_size(egui::pos2(0.0, 0.0), Vec2::new(400.0, 300.0));
         let size = Vec2::new(100.0, 80.0);
-        let far = Rect::from_min_max(egui::pos2(10.0, 10.0), egui::pos2(20.0, 20.0));
-        assert_eq!(legend_corner(r, size, far).min, egui::pos2(300.0, 220.0), "bottom-right when free");
+        let p = egui::pos2;
+        let far = [(p(10.0, 10.0), p(20.0, 20.0))];
+        assert_eq!(legend_corner(r, size, &far, Some(p(10.0, 10.0))).min, p(300.0, 220.0), "bottom-right when free");
         // A tree in the bottom-right corner (a probed pixel there): bottom-left.
-        let corner = Rect::from_min_max(egui::pos2(350.0, 250.0), egui::pos2(390.0, 290.0));
-        assert_eq!(legend_corner(r, size, corner).min, egui::pos2(0.0, 220.0));
+        let corner = [(p(350.0, 250.0), p(390.0, 290.0))];
+        assert_eq!(legend_corner(r, size, &corner, Some(p(350.0, 250.0))).min, p(0.0, 220.0));
         // Along the whole bottom: the top-right.
-        let bottom = Rect::from_min_max(egui::pos2(0.0, 250.0), egui::pos2(400.0, 290.0));
-        assert_eq!(legend_corner(r, size, bottom).min, egui::pos2(300.0, 0.0));
-        // Over everything: the one covering least of it (all equal: the first).
-        assert_eq!(legend_corner(r, size, r).min, egui::pos2(300.0, 220.0));
+        let bottom = [(p(0.0, 250.0), p(400.0, 290.0))];
+        assert_eq!(legend_corner(r, size, &bottom, None).min, p(300.0, 0.0));
+        // A floor pixel bottom-left whose shadow ray runs to a light top-right: the ray's box
+        // meets every corner; the legend goes bottom-right, which no ray crosses, not over the
+        // pixel (a viewer tester).
+        let diagonal = [(p(40.0, 270.0), p(40.0, 270.0)), (p(40.0, 270.0), p(390.0, 5.0))];
+        assert_eq!(legend_corner(r, size, &diagonal, Some(p(40.0, 270.0))).min, p(300.0, 220.0));
+        // Rays through every corner: the least covered of those clear of the pixel.
+        let cross =
+            [(p(0.0, 300.0), p(400.0, 0.0)), (p(0.0, 0.0), p(400.0, 300.0)), (p(350.0, 290.0), p(350.0, 290.0))];
+        assert_ne!(legend_corner(r, size, &cross, Some(p(350.0, 290.0))).min, p(300.0, 220.0), "over the pixel");
     }
 
     /// The glass sphere's tree of whitted, as the viewer draws it, with the scene moved by `at`.

@@ -343,20 +343,22 @@ fn signed(v: f64) -> String {
     if v > 0.0 { format!("+{plain}") } else { plain.replace('-', "−") }
 }
 
-/// "Whitted − GI at (x, y)" under the diverging bar for the pixel under the cursor.
+/// "Whitted − GI at (x, y)" under the diverging bar for the pixel under the cursor, the
+/// verdict beside the mean: at the end of the line it was cut off in a narrow window (a
+/// viewer tester at 760×480).
 fn signed_readout(ui: &mut Ui, r: Rect, at: Option<((u32, u32), DVec3)>, samples: Option<u32>, gi: &str) {
     let text = match at {
         Some(((x, y), d)) => format!(
-            "({x}, {y}): Whitted − {gi} = {} (R {}, G {}, B {}){}",
+            "({x}, {y}): Whitted − {gi} = {}{} (R {}, G {}, B {})",
             signed(d.element_sum() / 3.0),
-            signed(d.x),
-            signed(d.y),
-            signed(d.z),
             match d.element_sum() {
                 s if s < 0.0 => ": too dark",
                 s if s > 0.0 => ": too bright",
                 _ => ": the same",
-            }
+            },
+            signed(d.x),
+            signed(d.y),
+            signed(d.z),
         ),
         None => match samples {
             Some(n) => format!("Whitted − {gi}, mean of R, G, B; paths of {n} samples. Point at a pixel."),

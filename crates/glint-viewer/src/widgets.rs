@@ -1,7 +1,10 @@
 //! Small editing widgets shared by the panels. Each returns whether the value changed; every
 //! widget is labelled so that screen readers (and the UI tests, through AccessKit) find it.
 //! Ranges come from validation's table (`glint_scene::ranges`): an editor accepts every
-//! valid value, typed or dragged, and clamps only what validation would refuse anyway.
+//! valid value, typed or dragged, and clamps only what validation would refuse anyway. A typed
+//! value is taken on Return or when the field loses focus, not keystroke by keystroke: egui's
+//! default applied each partial text, so typing −0.5 set 0 (from "-0") before −0.5 was
+//! refused, and 2000000 left 200000 (a viewer tester).
 
 use std::cell::Cell;
 
@@ -81,6 +84,7 @@ pub fn slider(ui: &mut Ui, label: &str, value: &mut f64, range: Range<f64>) -> b
         let slider = Slider::new(value, range.min..=range.max)
             .clamping(SliderClamping::Edits)
             .custom_parser(|t| in_range(t, range, &refused))
+            .update_while_editing(false)
             .text(text);
         labelled(hint(ui.add(slider), label), label, text)
     });
@@ -148,7 +152,8 @@ pub fn log_slider(ui: &mut Ui, label: &str, value: &mut f64, range: Range<f64>, 
             .logarithmic(true)
             .smallest_positive(span.0.max(SMALLEST_POSITIVE))
             .custom_formatter(|v, _| scientific(v))
-            .custom_parser(|t| in_range(t, range, &refused));
+            .custom_parser(|t| in_range(t, range, &refused))
+            .update_while_editing(false);
         labelled(hint(ui.add(slider), label), label, text)
     });
     refusal_note(ui, label, &response, refused.take());
@@ -167,7 +172,8 @@ pub fn int_slider(ui: &mut Ui, label: &str, value: &mut u32, range: Range<u32>) 
     let response = fitted(ui, label, wanted, |ui, text| {
         let slider = Slider::new(value, range.min..=range.max)
             .logarithmic(range.log)
-            .custom_parser(|t| whole_in_range(t, range, &refused));
+            .custom_parser(|t| whole_in_range(t, range, &refused))
+            .update_while_editing(false);
         labelled(hint(ui.add(slider.clamping(SliderClamping::Edits).text(text)), label), label, text)
     });
     refusal_note(ui, label, &response, refused.take());
@@ -182,7 +188,8 @@ fn labelled_drag(ui: &mut Ui, label: String, value: &mut f64, speed: f64, range:
             .speed(speed)
             .range(range.min..=range.max)
             .max_decimals(4)
-            .custom_parser(|t| in_range(t, range, &refused)),
+            .custom_parser(|t| in_range(t, range, &refused))
+            .update_while_editing(false),
     );
     let v = *value;
     r.widget_info(|| WidgetInfo { label: Some(label.clone()), ..WidgetInfo::drag_value(true, v) });
@@ -233,6 +240,7 @@ pub fn number(ui: &mut Ui, label: &str, value: &mut f64, speed: f64, range: Rang
             .range(range.min..=range.max)
             .max_decimals(4)
             .custom_parser(|t| in_range(t, range, &refused))
+            .update_while_editing(false)
             .prefix(format!("{label} = ")),
     );
     let v = *value;

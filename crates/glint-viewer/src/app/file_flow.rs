@@ -6,6 +6,7 @@ use std::path::Path;
 use super::ViewerApp;
 use crate::dialogs::{PathPurpose, Picked, Then, Unsaved};
 use crate::menu::MenuAction;
+use crate::view::ViewMode;
 
 impl ViewerApp {
     pub(super) fn apply_menu_action(&mut self, action: MenuAction) {
@@ -15,7 +16,7 @@ impl ViewerApp {
             MenuAction::OpenBuiltin(name) => self.request_open(name),
             MenuAction::Save(p) => self.save_scene(&p),
             MenuAction::SaveAs => self.save_as(None),
-            MenuAction::SaveImage => self.dialogs.open_export(),
+            MenuAction::SaveImage => self.dialogs.open_export(self.layout.mode == ViewMode::WhittedVsGi),
             MenuAction::Quit => self.request_quit(),
         }
     }

@@ -19,29 +19,35 @@ pub fn any(doc: &Document) -> bool {
 pub fn ui(ui: &mut Ui, doc: &Document, tab: &mut Tab, selection: &mut Selection) {
     let mut go = None;
     if !doc.issues.is_empty() {
-        let title = format!("Invalid values ({}): the last valid render stays on screen", doc.issues.len());
-        go = go.or(list(ui, doc, &title, ui.visuals().error_fg_color, doc.issues.iter()));
+        let title = format!("Invalid values ({}): render held", doc.issues.len());
+        let why = "The last valid render stays on screen until every value is valid.";
+        go = go.or(list(ui, doc, (&title, why), ui.visuals().error_fg_color, doc.issues.iter()));
     }
     let warnings = doc.load_warnings.len() + doc.warnings.len();
     if warnings > 0 {
-        let title = format!("Warnings ({warnings}): rendered anyway, as glint render does");
-        go = go.or(list(ui, doc, &title, ui.visuals().warn_fg_color, doc.load_warnings.iter().chain(&doc.warnings)));
+        let (title, why) =
+            (format!("Warnings ({warnings}): rendered anyway"), "Rendered anyway, as glint render does.");
+        let all = doc.load_warnings.iter().chain(&doc.warnings);
+        go = go.or(list(ui, doc, (&title, why), ui.visuals().warn_fg_color, all));
     }
     if let Some(p) = go {
         show(&p, doc, tab, selection);
     }
 }
 
-/// One collapsible list; returns the place whose Show was clicked.
+/// One collapsible list, its title short and what it means on hover (egui lays a header's
+/// title out on one line: a long one widened the strip past a narrow panel, and the messages
+/// wrapped to that width were cut at the panel's edge; a viewer tester at 760×480); returns the
+/// place whose Show was clicked.
 fn list<'a>(
     ui: &mut Ui,
     doc: &Document,
-    title: &str,
+    (title, why): (&str, &str),
     colour: Color32,
     issues: impl Iterator<Item = &'a FieldIssue>,
 ) -> Option<Place> {
     let mut clicked = None;
-    egui::CollapsingHeader::new(egui::RichText::new(title).color(colour))
+    let list = egui::CollapsingHeader::new(egui::RichText::new(title).color(colour))
         .id_salt(title.split(' ').next())
         .default_open(true)
         .show(ui, |ui| {
@@ -56,6 +62,7 @@ fn list<'a>(
                 ui.colored_label(colour, issue.to_string());
             }
         });
+    list.header_response.on_hover_text(why);
     ui.separator();
     clicked
 }
