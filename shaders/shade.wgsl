@@ -273,7 +273,8 @@ struct LightAngles {
 fn light_angles(light: GpuLight, mat: GpuMaterial, s: Surface, n: vec3<f32>, v: vec3<f32>) -> LightAngles {
     let ls = light_sample(light, s.p);
     let model = lobe_model(mat);
-    if ls.f_att * ls.spot == 0.0 {
+    // No direct term, or a light on the point itself (L is 0 there: H would be NaN).
+    if ls.f_att * ls.spot == 0.0 || all(ls.l == vec3<f32>(0.0)) {
         return LightAngles(0.0, 0.0, 0.0, model);
     }
     let n_dot_l = dot(n, ls.l);

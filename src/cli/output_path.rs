@@ -195,10 +195,12 @@ pub fn create_folder(flag: &str, dir: &Path) -> anyhow::Result<()> {
 /// device (`<(generate-scene)` wrote `63.png`, after /dev/fd/63; a newcomer).
 pub fn default_output(loaded: &LoadedScene, suffix: &str) -> PathBuf {
     let builtin = loaded.source.to_str().is_some_and(|s| s.starts_with("builtin:"));
-    // /dev/stdin stands for a regular file too where one is redirected in.
+    // /dev/stdin stands for a regular file too where one is redirected in (a file under
+    // /dev/shm is a file: its own stem names it).
+    let streams = ["/dev/stdin", "/dev/fd/", "/proc/self/fd/"];
     let streamed = !builtin
         && (std::fs::metadata(&loaded.source).is_ok_and(|m| !m.is_file())
-            || ["/dev/", "/proc/"].iter().any(|d| loaded.source.starts_with(d)));
+            || streams.iter().any(|d| loaded.source.to_str().is_some_and(|s| s.starts_with(d))));
     let mut name = match loaded.source.file_stem() {
         Some(_) if streamed => std::ffi::OsString::from("scene"),
         Some(stem) if !builtin => stem.to_os_string(),

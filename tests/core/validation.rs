@@ -559,7 +559,6 @@ fn a_coefficient_above_1_warns_and_an_8_bit_colour_is_named() {
     assert!(expect_valid(&edited("ks = 0.3", "ks = 1.0"), "ks = 1").is_empty());
 }
 
-/// A student's two plausible set-ups that render without an error but not as meant (a lecturer).
 /// A sphere that f32 storage sets on a floor (or into another sphere) it clears as written: a
 /// radius of 899,999,990 at 9e8 is stored to 32 units, a 3e-8 part of itself (no coarse-storage
 /// warning), and its 10-unit gap over the floor was gone without a word (an extreme-scenes
@@ -591,6 +590,7 @@ fn a_contact_f32_storage_makes_or_breaks_is_warned_of() {
     );
 }
 
+/// A student's two plausible set-ups that render without an error but not as meant (a lecturer).
 #[test]
 fn a_light_shut_in_an_opaque_sphere_and_a_slab_of_same_facing_planes_warn() {
     // The point light at (2, 4, -2) inside a sphere of radius 0.5 around it.

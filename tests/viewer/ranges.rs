@@ -187,9 +187,16 @@ fn a_typed_nan_or_infinity_leaves_the_value_as_it_was() {
     assert_eq!(doc.render.epsilon, before.render.epsilon);
     assert_eq!(doc.render.width, before.render.width);
     assert_eq!(doc.world.background, before.world.background);
-    // A finite number typed the same way is taken.
+    // Each is named under its field, as a number outside the range is (they were left without
+    // a word; a viewer tester).
+    type_number(&mut h, "Field of view", "nan");
+    assert!(h.query_by_label("Field of view: nan is not a finite number; the value was kept").is_some());
+    type_number(&mut h, "Field of view", "abc");
+    assert!(h.query_by_label("Field of view: `abc` is not a number; the value was kept").is_some());
+    // A finite number typed the same way is taken, and the note goes.
     type_number(&mut h, "Field of view", "50");
     assert_eq!(h.state().doc.desc.camera.fov_y, 50.0);
+    assert!(h.query_by_label_contains("Field of view: `abc`").is_none());
 }
 
 #[test]
@@ -232,8 +239,15 @@ fn a_typed_value_outside_its_range_is_named_and_the_value_kept() {
 }
 
 /// Types `text` into the field `label` one key at a time, a frame after each, as a person
-/// types, then Return: `type_number` types it in one event, which hid what each partial text did.
-fn type_keys(h: &mut Harness<'static, ViewerApp>, label: &str, text: &str, role: Role) -> Vec<f64> {
+/// types, then Return, and gives `value` after each key: `type_number` types it in one event,
+/// which hid what each partial text did.
+fn type_keys(
+    h: &mut Harness<'static, ViewerApp>,
+    label: &str,
+    text: &str,
+    value: impl Fn(&Harness<'static, ViewerApp>) -> f64,
+) -> Vec<f64> {
+    let role = Role::SpinButton;
     h.get_by_role_and_label(role, label).click();
     h.run_steps(2);
     h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::A);
@@ -241,7 +255,7 @@ fn type_keys(h: &mut Harness<'static, ViewerApp>, label: &str, text: &str, role:
     for c in text.chars() {
         h.get_by_role_and_label(role, label).type_text(&c.to_string());
         h.run_steps(1);
-        seen.push(h.state().doc.desc.world.ambient.0[0]);
+        seen.push(value(h));
     }
     h.key_press(egui::Key::Enter);
     h.run_steps(2);
@@ -255,19 +269,21 @@ fn a_value_typed_key_by_key_is_taken_on_return_and_a_refused_one_leaves_the_old(
     let Some(mut h) = viewer("whitted", (1000.0, 900.0)) else { return };
     let ambient = |h: &Harness<'static, ViewerApp>| h.state().doc.desc.world.ambient.0[0];
     let before = ambient(&h);
-    let while_typing = type_keys(&mut h, "Ambient I_a R", "-0.5", Role::SpinButton);
+    let while_typing = type_keys(&mut h, "Ambient I_a R", "-0.5", ambient);
     assert!(while_typing.iter().all(|v| *v == before), "applied while typing: {while_typing:?}");
     assert_eq!(ambient(&h), before, "a refused value leaves the old one");
     assert!(h.query_by_label("Ambient I_a R: -0.5 is outside [0, 1e9]; the value was kept").is_some());
     // A valid one is taken on Return, not before.
-    let while_typing = type_keys(&mut h, "Ambient I_a R", "0.25", Role::SpinButton);
+    let while_typing = type_keys(&mut h, "Ambient I_a R", "0.25", ambient);
     assert!(while_typing.iter().all(|v| *v == before), "applied while typing: {while_typing:?}");
     assert_eq!(ambient(&h), 0.25);
     // A slider's text too.
     choose(&mut h, "Materials", "Material", "floor");
-    let shininess = h.state().doc.desc.materials["floor"].shininess;
-    type_keys(&mut h, "Shininess n", "2000000", Role::SpinButton);
-    assert_eq!(h.state().doc.desc.materials["floor"].shininess, shininess, "2000000 is refused whole");
+    let floor = |h: &Harness<'static, ViewerApp>| h.state().doc.desc.materials["floor"].shininess;
+    let shininess = floor(&h);
+    let while_typing = type_keys(&mut h, "Shininess n", "2000000", floor);
+    assert!(while_typing.iter().all(|v| *v == shininess), "applied while typing: {while_typing:?}");
+    assert_eq!(floor(&h), shininess, "2000000 is refused whole");
 }
 
 #[test]

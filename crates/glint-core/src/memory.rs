@@ -271,6 +271,9 @@ pub fn stream_cap(limit: Option<u64>) -> Option<u64> {
     Some(limit.saturating_sub(PROCESS_BYTES) / TOML_BYTES_PER_FILE_BYTE)
 }
 
+/// Where a limit the user set comes from, as the error says it.
+const SET_BY_FLAG: &str = "set by --memory-limit";
+
 /// Refuses `estimate` when it exceeds `limit` (a limit the user set), else the memory
 /// available; passes when neither is known.
 pub fn check(
@@ -280,7 +283,7 @@ pub fn check(
     remedy: impl Into<String>,
 ) -> Result<(), MemoryError> {
     let (limit, limit_source) = match limit {
-        Some(l) => (l, "set by --memory-limit"),
+        Some(l) => (l, SET_BY_FLAG),
         None => match available() {
             Some(a) => (a, "available"),
             None => return Ok(()),
@@ -291,7 +294,7 @@ pub fn check(
     }
     // Below what the process takes whatever it does, no smaller scene or image fits: the
     // remedies of a scene ("lower --width and --height" under --memory-limit 10M) cannot help.
-    let remedy = if limit < PROCESS_BYTES {
+    let remedy = if limit_source == SET_BY_FLAG && limit < PROCESS_BYTES {
         format!("that is below the {} glint takes before any scene or image; raise it", format_bytes(PROCESS_BYTES))
     } else {
         remedy.into()

@@ -114,35 +114,34 @@ pub fn terms(cpu: &Breakdown, gpu: Option<&Breakdown>) -> Vec<Term> {
 
 /// The terms of the local model alone (what a node of the ray tree holds on both tracers).
 pub fn local_terms(cpu: &Breakdown, gpu: Option<&Breakdown>) -> Vec<Term> {
-    let mut out = Vec::new();
-    let mut push = |name: String, c: DVec3, g: Option<DVec3>| out.push(Term::rgb(name, c, g));
     // The colours at the hit (after the texture and the vertex colour) first: where a texture
     // is sampled differently, the terms it feeds differ too, and the first difference should
     // name the cause.
-    push("k_a at the hit".into(), cpu.ka, gpu.map(|g| g.ka));
-    push("k_d at the hit".into(), cpu.kd, gpu.map(|g| g.kd));
-    push("E_m".into(), cpu.emission, gpu.map(|g| g.emission));
-    push("I_a·k_a".into(), cpu.ambient, gpu.map(|g| g.ambient));
+    let mut out = vec![
+        Term::rgb("k_a at the hit", cpu.ka, gpu.map(|g| g.ka)),
+        Term::rgb("k_d at the hit", cpu.kd, gpu.map(|g| g.kd)),
+        Term::rgb("E_m", cpu.emission, gpu.map(|g| g.emission)),
+        Term::rgb("I_a·k_a", cpu.ambient, gpu.map(|g| g.ambient)),
+    ];
     for (j, l) in cpu.lights.iter().enumerate() {
         let gl = gpu.and_then(|g| g.lights.get(j));
-        out.push(Term::scalar(format!("light {j}: f_att"), l.f_att, gl.map(|g| g.f_att)));
-        out.push(Term::scalar(format!("light {j}: S"), l.spot, gl.map(|g| g.spot)));
-        let mut push = |name: String, c: DVec3, g: Option<DVec3>| out.push(Term::rgb(name, c, g));
-        push(format!("light {j}: V"), l.visibility, gl.map(|g| g.visibility));
-        push(format!("light {j}: I_a,j·k_a"), l.ambient, gl.map(|g| g.ambient));
+        let (ca, ga) = (&l.angles, gl.map(|g| &g.angles));
+        let (cosine, lobe) = lobe_names(ca.lobe_model);
         // Each product after the cosines it is of: where a direction differs, the first
         // difference names the angle, not the term.
-        let (ca, ga) = (&l.angles, gl.map(|g| &g.angles));
-        out.push(Term::scalar(format!("light {j}: N·L"), ca.n_dot_l, ga.map(|g| g.n_dot_l)).compared(Compared::Cosine));
-        let mut push = |name: String, c: DVec3, g: Option<DVec3>| out.push(Term::rgb(name, c, g));
-        push(format!("light {j}: diffuse"), l.diffuse, gl.map(|g| g.diffuse));
-        let (cosine, lobe) = lobe_names(ca.lobe_model);
-        let cosine = Term::scalar(format!("light {j}: {cosine}"), ca.lobe_cosine, ga.map(|g| g.lobe_cosine));
-        out.push(cosine.compared(Compared::Cosine));
-        out.push(Term::scalar(format!("light {j}: {lobe}"), ca.lobe, ga.map(|g| g.lobe)).compared(Compared::Shown));
-        let mut push = |name: String, c: DVec3, g: Option<DVec3>| out.push(Term::rgb(name, c, g));
-        push(format!("light {j}: specular"), l.specular, gl.map(|g| g.specular));
-        push(format!("light {j}: total"), l.contribution, gl.map(|g| g.contribution));
+        out.extend([
+            Term::scalar(format!("light {j}: f_att"), l.f_att, gl.map(|g| g.f_att)),
+            Term::scalar(format!("light {j}: S"), l.spot, gl.map(|g| g.spot)),
+            Term::rgb(format!("light {j}: V"), l.visibility, gl.map(|g| g.visibility)),
+            Term::rgb(format!("light {j}: I_a,j·k_a"), l.ambient, gl.map(|g| g.ambient)),
+            Term::scalar(format!("light {j}: N·L"), ca.n_dot_l, ga.map(|g| g.n_dot_l)).compared(Compared::Cosine),
+            Term::rgb(format!("light {j}: diffuse"), l.diffuse, gl.map(|g| g.diffuse)),
+            Term::scalar(format!("light {j}: {cosine}"), ca.lobe_cosine, ga.map(|g| g.lobe_cosine))
+                .compared(Compared::Cosine),
+            Term::scalar(format!("light {j}: {lobe}"), ca.lobe, ga.map(|g| g.lobe)).compared(Compared::Shown),
+            Term::rgb(format!("light {j}: specular"), l.specular, gl.map(|g| g.specular)),
+            Term::rgb(format!("light {j}: total"), l.contribution, gl.map(|g| g.contribution)),
+        ]);
     }
     out
 }

@@ -37,7 +37,10 @@ pub fn breakdown(r: &ProbeRecord) -> Result<Breakdown, UnknownTag> {
         ambient: v(r.ambient),
         ka: v(r.ka),
         kd: v(r.kd),
-        lights: r.lights[..r.light_count as usize].iter().map(light_term).collect::<Result<_, _>>()?,
+        lights: r.lights[..(r.light_count as usize).min(r.lights.len())]
+            .iter()
+            .map(light_term)
+            .collect::<Result<_, _>>()?,
         reflected,
         transmitted,
         total: v(r.total),

@@ -15,7 +15,8 @@ use crate::shaders::{LAVAPIPE_LOOP_BUDGET, ShaderKey};
 pub struct StatusContext {
     /// The ray stack's levels.
     pub stack_size: u32,
-    /// Child rays are traced (a mirror or glass, at a depth above 0).
+    /// Whitted's child rays are traced in the shader's loops (a mirror or glass, at a depth
+    /// above 0).
     pub recurses: bool,
     /// The path tracer's variant (its paths end by Russian roulette, not the bailout).
     pub path: bool,
@@ -30,7 +31,8 @@ impl StatusContext {
     pub fn new(header: &SceneHeader, key: &ShaderKey) -> Self {
         Self {
             stack_size: key.stack_size,
-            recurses: feature::recurses(header.features) && header.max_depth > 0,
+            // The path tracer traces one bounce a dispatch: its depth costs no loop budget.
+            recurses: feature::recurses(header.features) && header.max_depth > 0 && !key.path,
             path: key.path,
             bailout: header.bailout > 0.0,
             lights: header.light_count,
@@ -218,8 +220,10 @@ mod tests {
         // One light, a bailout set, through the BVH: the depth and the CPU are left.
         let lean = StatusContext { bailout: true, lights: 1, brute_force: false, ..mirrors };
         assert_eq!(cures(lean), "lower the depth, or render on the CPU");
-        // Paths end by Russian roulette: no bailout to set.
-        assert_eq!(cures(StatusContext { path: true, ..mirrors }).matches("bailout").count(), 0);
+        // Paths end by Russian roulette, one bounce a dispatch: no bailout to set, and their
+        // depth costs no loop budget (`new` leaves `recurses` off for them).
+        let paths = StatusContext { path: true, recurses: false, ..mirrors };
+        assert!(!cures(paths).contains("bailout") && !cures(paths).contains("depth"), "{}", cures(paths));
         assert_eq!(cures(StatusContext::CAMERA_RAYS), "render on the CPU");
     }
 }

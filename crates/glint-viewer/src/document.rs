@@ -74,7 +74,8 @@ pub struct Document {
 struct BuiltGeometry {
     objects: Vec<ObjectDesc>,
     /// Validation's verdict on those objects (`validate_objects`), and the ε it was judged at:
-    /// its coplanar-overlap warning reads ε, so an ε edit judges the objects again.
+    /// its coplanar-overlap and stored-contact warnings read ε, so an ε edit judges the objects
+    /// again.
     objects_report: Report,
     report_epsilon: f64,
     flat: FlatScene,

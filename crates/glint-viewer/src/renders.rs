@@ -408,7 +408,6 @@ fn batch_spp(spp: u32, rate: Option<f64>) -> u32 {
     rate.map_or(spp, |r| (r * BATCH_SECONDS).floor().clamp(1.0, f64::from(spp.max(1))) as u32)
 }
 
-/// The document's render settings with Whitted's integrator.
 /// `Renders::gi_paths` from the fields it reads (`schedule_gi` borrows `gi` mutably beside them).
 fn shown_paths<'a>(gpu: Option<&'a GpuView>, cpu: &'a CpuWorker, revision: u64, spp: u32) -> Option<Paths<'a>> {
     let gpu = gpu.and_then(|g| g.latest.as_ref()).filter(|l| l.revision == revision);
@@ -416,6 +415,7 @@ fn shown_paths<'a>(gpu: Option<&'a GpuView>, cpu: &'a CpuWorker, revision: u64, 
     gpu.map(|l| (&l.image, l.samples, true)).or(cpu)
 }
 
+/// The document's render settings with Whitted's integrator.
 pub fn whitted_settings(doc: &Document) -> RenderSettings {
     RenderSettings { integrator: glint_scene::Integrator::Whitted, indirect: true, ..doc.desc.render.clone() }
 }

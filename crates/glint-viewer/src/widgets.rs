@@ -17,12 +17,23 @@ use glint_scene::{Range, Rgb, ranges};
 /// 0 itself sits at the left end and can be typed.
 const SMALLEST_POSITIVE: f64 = 1e-9;
 
-/// A typed number, read as egui reads one (spaces ignored, U+2212 a minus), or `None` — the
+/// A typed number, read as egui reads one (spaces ignored, U+2212 a minus), or why not — the
 /// field keeps its value — for what is not a finite number: egui's own reading takes "NaN" and
 /// "inf" and then clamps them to the range's end (a typed NaN made the field of view 179°).
-fn finite_number(text: &str) -> Option<f64> {
-    let text: String = text.chars().filter(|c| !c.is_whitespace()).map(|c| if c == '−' { '-' } else { c }).collect();
-    text.parse::<f64>().ok().filter(|v| v.is_finite())
+fn finite_number(text: &str) -> Result<f64, String> {
+    let cleaned: String = text.chars().filter(|c| !c.is_whitespace()).map(|c| if c == '−' { '-' } else { c }).collect();
+    match cleaned.parse::<f64>() {
+        Ok(v) if v.is_finite() => Ok(v),
+        Ok(_) => Err(format!("{} is not a finite number; the value was kept", text.trim())),
+        Err(_) if cleaned.is_empty() => Err("an empty field is not a number; the value was kept".into()),
+        Err(_) => Err(format!("`{}` is not a number; the value was kept", text.trim())),
+    }
+}
+
+/// `finite_number`, its refusal kept in `refused` (a typed `abc` or `nan` was left without a
+/// word, while −1 was named; a viewer tester).
+fn number_or_refused(text: &str, refused: &Cell<Option<String>>) -> Option<f64> {
+    finite_number(text).map_err(|why| refused.set(Some(why))).ok()
 }
 
 /// A typed number inside `range`, or `None` (the field keeps its value) with why not kept in
@@ -30,7 +41,7 @@ fn finite_number(text: &str) -> Option<f64> {
 /// (a lecturer's I_d −1 became 0, shininess 1e30 became 1e6, and an ior of −2 became the
 /// excluded 0, which validation then refused naming 0, not what was typed).
 fn in_range(text: &str, range: Range<f64>, refused: &Cell<Option<String>>) -> Option<f64> {
-    let v = finite_number(text)?;
+    let v = number_or_refused(text, refused)?;
     if range.contains(v) {
         return Some(v);
     }
@@ -45,7 +56,7 @@ fn in_range(text: &str, range: Range<f64>, refused: &Cell<Option<String>>) -> Op
 
 /// `in_range` for whole numbers: a fraction or a number outside `range` is refused by name.
 fn whole_in_range(text: &str, range: Range<u32>, refused: &Cell<Option<String>>) -> Option<f64> {
-    let v = finite_number(text)?;
+    let v = number_or_refused(text, refused)?;
     if v.fract() == 0.0 && (f64::from(range.min)..=f64::from(range.max)).contains(&v) {
         return Some(v);
     }

@@ -292,7 +292,8 @@ pub fn lobe_cosine(model: SpecularModel, n: DVec3, l: DVec3, v: DVec3, n_dot_l: 
 }
 
 /// The angles behind `light`'s terms at `s` (`LightAngles`); all 0 where the light gives no
-/// direct term (f_att·S = 0), as `light_term` stops there.
+/// direct term (f_att·S = 0, as `light_term` stops there, or the light closer than
+/// `MIN_LIGHT_DISTANCE`, whose direction is undefined).
 pub fn light_angles(
     ctx: &TraceContext,
     light: &GpuLight,
@@ -305,7 +306,8 @@ pub fn light_angles(
     let ls = light_sample(ctx, light, tags, s.p);
     let material_tags = ctx.material_tags[s.material as usize];
     let lobe_model = lobe_model(ctx, material_tags);
-    if ls.f_att * ls.spot == 0.0 {
+    // No direct term, or a light on the point itself (L is 0 there: H would be NaN).
+    if ls.f_att * ls.spot == 0.0 || ls.l == DVec3::ZERO {
         return LightAngles { lobe_model, ..LightAngles::default() };
     }
     let n_dot_l = n.dot(ls.l);

@@ -156,7 +156,8 @@ pub fn validate(scene: &SceneDesc) -> Report {
 }
 
 /// The objects' part of `validate`. It reads nothing of the scene but the objects, the
-/// material names and (for the coplanar-overlap warning only) `render.epsilon`, so an editor may keep it while only the camera, lights, world, settings or
+/// material names and (for the coplanar-overlap and stored-contact warnings) `render.epsilon`,
+/// so an editor may keep it while only the camera, lights, world, settings or
 /// material values change (a camera drag over a million triangles) and pass it to
 /// `validate_with_objects`.
 pub fn validate_objects(scene: &SceneDesc) -> Report {

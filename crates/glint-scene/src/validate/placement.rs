@@ -87,9 +87,11 @@ const MAX_SPHERES_PAIRED: usize = 512;
 
 /// A sphere that f32 storage moves into or out of contact with a plane or another sphere: as
 /// written they are apart (or cut), as both tracers hold them (f32, relative to the storage
-/// `origin`) they touch or cut (or are apart). Its own size hides it (a radius of 999,999,990
-/// at 1e9 over a floor is stored to 32 units, 3e-8 of its radius: no coarse-storage warning),
-/// while the gap it loses is 10 units: it rendered sitting on the floor (a tester).
+/// `origin`) they touch or cut (or are apart). Its own size hides it (a radius of 899,999,990
+/// at 9e8 over a floor is stored to 32 units, 3e-8 of its radius: no coarse-storage warning),
+/// while the gap it loses is 10 units: it rendered sitting on the floor (a tester). Spheres are
+/// judged as apart or cutting from outside each other (a sphere nested in another is not
+/// judged against its inner wall).
 pub(super) fn stored_contacts(scene: &SceneDesc, origin: [f64; 3]) -> Vec<FieldIssue> {
     let origin = DVec3::from(origin);
     let f32s = |v: DVec3| DVec3::new(f64::from(v.x as f32), f64::from(v.y as f32), f64::from(v.z as f32));

@@ -52,7 +52,7 @@ struct InFlight {
     stage: Stage,
     revision: u64,
     /// What its status word's remedies depend on (its scene and variant).
-    status: StatusContext,
+    status_context: StatusContext,
     preview: bool,
     size: (u32, u32),
     started: Instant,
@@ -86,7 +86,7 @@ pub struct GpuImage {
 #[derive(Clone, Copy, Debug)]
 struct Finished {
     revision: u64,
-    status: StatusContext,
+    status_context: StatusContext,
     gpu_ms: f64,
     /// Its batch of the revision's paths (0 for a first render) and its samples a pixel.
     batch: u32,
@@ -377,7 +377,7 @@ impl GpuView {
             return false;
         }
         let key = variant_of(scene);
-        let status = StatusContext::new(&scene.header, &key);
+        let status_context = StatusContext::new(&scene.header, &key);
         let new_variant = (self.variants.insert(key) && !prewarm).then(|| new_in(key, self.last_variant));
         if !prewarm {
             self.last_variant = Some(key);
@@ -407,7 +407,7 @@ impl GpuView {
                 self.in_flight = Some(InFlight {
                     stage: Stage::Submitting,
                     revision,
-                    status,
+                    status_context,
                     preview,
                     size,
                     started: Instant::now(),
@@ -504,8 +504,13 @@ impl GpuView {
                 self.arriving = Some(Arriving { pixels, revision: f.revision, preview: f.preview });
             }
             if !f.preview && !superseded {
-                let finished =
-                    Finished { revision: f.revision, gpu_ms: ms, batch: f.batch, spp: f.spp, status: f.status };
+                let finished = Finished {
+                    revision: f.revision,
+                    gpu_ms: ms,
+                    batch: f.batch,
+                    spp: f.spp,
+                    status_context: f.status_context,
+                };
                 self.readback = Some((job.start_readback(&ctx), finished));
             }
             changed = true;
@@ -527,7 +532,7 @@ impl GpuView {
             self.readback = None;
             match result {
                 Ok((image, counts, status)) if status != 0 || !paths => {
-                    self.warning = status_warning(status, &f.status);
+                    self.warning = status_warning(status, &f.status_context);
                     self.accumulation = None;
                     let (revision, gpu_ms, samples) = (f.revision, f.gpu_ms, f.spp);
                     self.latest = Some(GpuImage { revision, image, counts, status, gpu_ms, samples });
