@@ -6,15 +6,18 @@ use glint_io::image_file::read_png_text;
 
 use crate::support::{HEIGHT, WIDTH, temp_dir, viewer};
 
-#[test]
-fn save_image_writes_a_png_with_the_render_settings() {
-    let Some(mut h) = viewer("whitted", (1000.0, 640.0)) else { return };
-    let dir = temp_dir("export");
-    let path = dir.join("all three.png");
+/// Saves through the dialog (Ctrl+S), choosing the view `choice` where given, to `path`.
+fn save_through_the_dialog(
+    h: &mut egui_kittest::Harness<'static, glint_viewer::ViewerApp>,
+    choice: Option<&str>,
+    path: &std::path::Path,
+) {
     h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::S);
     h.run_steps(2);
-    h.get_by_label("All three side by side").click();
-    h.run_steps(1);
+    if let Some(label) = choice {
+        h.get_by_label(label).click();
+        h.run_steps(1);
+    }
     let field = h.get_by_role_and_label(Role::TextInput, "File");
     field.focus();
     field.set_text_value_accesskit(&path.display().to_string());
@@ -22,6 +25,20 @@ fn save_image_writes_a_png_with_the_render_settings() {
     h.get_by_label("Save").click();
     h.run_steps(2);
     assert!(path.is_file(), "no image written; message: {:?}", h.state().message);
+}
+
+/// The value of the PNG text chunk `key` of `path` ("" where it has none).
+fn png_text(path: &std::path::Path, key: &str) -> String {
+    let text = read_png_text(path).expect("text chunks");
+    text.into_iter().find(|(k, _)| k == key).map(|(_, v)| v).unwrap_or_default()
+}
+
+#[test]
+fn save_image_writes_a_png_with_the_render_settings() {
+    let Some(mut h) = viewer("whitted", (1000.0, 640.0)) else { return };
+    let dir = temp_dir("export");
+    let path = dir.join("all three.png");
+    save_through_the_dialog(&mut h, Some("All three side by side"), &path);
 
     let decoder = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(&path).expect("open")));
     let mut reader = decoder.read_info().expect("a valid PNG");
@@ -30,8 +47,7 @@ fn save_image_writes_a_png_with_the_render_settings() {
     // CPU | GPU | difference, each at the render size.
     assert_eq!((info.width, info.height), (3 * WIDTH, HEIGHT));
 
-    let text = read_png_text(&path).expect("tEXt chunks");
-    let get = |k: &str| text.iter().find(|(key, _)| key == k).map(|(_, v)| v.clone()).unwrap_or_default();
+    let get = |k: &str| png_text(&path, k);
     let s = &h.state().doc.desc.render;
     assert_eq!(get("glint:scene"), "whitted");
     assert_eq!(get("glint:size"), format!("{}x{}", s.width, s.height));
@@ -98,27 +114,16 @@ fn the_whitted_vs_gi_views_are_saved_with_a_signed_difference() {
         assert_eq!(*m, f32s(whitted.pixels[i] - paths.pixels[i]), "pixel {i}");
     }
     assert!(minus.iter().any(|m| m[0] < 0.0), "the difference is signed: Whitted is darker");
-    let text = read_png_text(&dir.join("minus.png")).expect("tEXt chunks");
-    let get = |k: &str| text.iter().find(|(key, _)| key == k).map(|(_, v)| v.clone()).unwrap_or_default();
-    assert_eq!(get("glint:view"), "Whitted vs GI: Whitted − GI, signed");
-    assert!(get("glint:diff_scale").starts_with("Whitted - GI, mean of R, G, B: blue below, white 0, red above"));
-    let text = read_png_text(&dir.join("paths.png")).expect("tEXt chunks");
-    let get = |k: &str| text.iter().find(|(key, _)| key == k).map(|(_, v)| v.clone()).unwrap_or_default();
-    assert_eq!(get("glint:integrator"), "path");
+    let minus = dir.join("minus.png");
+    assert_eq!(png_text(&minus, "glint:view"), "Whitted vs GI: Whitted − GI, signed");
+    let scale = png_text(&minus, "glint:diff_scale");
+    assert!(scale.starts_with("Whitted - GI, mean of R, G, B: blue below, white 0, red above"), "{scale}");
+    assert_eq!(png_text(&dir.join("paths.png"), "glint:integrator"), "path");
     // Ctrl+S from this view offers its own images: saved as opened, the three side by side (it
     // offered the GPU−CPU "All three", and a tester saved the magma map from the signed view).
     let path = dir.join("from the dialog.png");
-    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::S);
-    h.run_steps(2);
-    let field = h.get_by_role_and_label(Role::TextInput, "File");
-    field.focus();
-    field.set_text_value_accesskit(&path.display().to_string());
-    h.run_steps(2);
-    h.get_by_label("Save").click();
-    h.run_steps(2);
-    let text = read_png_text(&path).unwrap_or_else(|e| panic!("{e}; message: {:?}", h.state().message));
-    let get = |k: &str| text.iter().find(|(key, _)| key == k).map(|(_, v)| v.clone()).unwrap_or_default();
-    assert_eq!(get("glint:view"), "Whitted vs GI: the three side by side");
+    save_through_the_dialog(&mut h, None, &path);
+    assert_eq!(png_text(&path, "glint:view"), "Whitted vs GI: the three side by side");
     let _ = std::fs::remove_dir_all(dir);
 }
 

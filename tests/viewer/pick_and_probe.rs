@@ -143,6 +143,27 @@ fn the_probe_table_fits_the_default_side_panel() {
     }
 }
 
+/// Paths switched on (their warnings shown in the strip) and a pixel probed leave the side
+/// panel as wide as it was: it widened from 300 to about 340 points in a tester's 1280×800
+/// window, the strip's one-line header "Warnings (2): rendered anyway, as glint render does"
+/// being wider than the panel.
+#[test]
+fn paths_and_a_probe_leave_the_side_panel_its_width() {
+    let Some(mut h) = viewer("whitted", (1280.0, 800.0)) else { return };
+    let before = h.state().layout.side_rect.width();
+    h.state_mut().doc.desc.render.integrator = glint_scene::Integrator::Path;
+    h.state_mut().doc.edited();
+    settle(&mut h);
+    assert!(!h.state().doc.warnings.is_empty(), "whitted under paths has warnings to show");
+    let glass = object_named(&h, "glass sphere");
+    let (x, y) = pixel_of(&h, glass);
+    let pos = h.state().screen_pos_of_pixel(x, y).expect("the view is drawn");
+    click(&mut h, pos, Modifiers::COMMAND);
+    settle(&mut h);
+    let after = h.state().layout.side_rect.width();
+    assert!((after - before).abs() < 0.5, "the side panel went from {before} to {after} points wide");
+}
+
 #[test]
 fn the_selected_object_is_outlined_on_both_images() {
     let Some(mut h) = viewer("whitted", (1000.0, 640.0)) else { return };
