@@ -89,9 +89,9 @@ const MAX_SPHERES_PAIRED: usize = 512;
 /// written they are apart (or cut), as both tracers hold them (f32, relative to the storage
 /// `origin`) they touch or cut (or are apart). Its own size hides it (a radius of 899,999,990
 /// at 9e8 over a floor is stored to 32 units, 3e-8 of its radius: no coarse-storage warning),
-/// while the gap it loses is 10 units: it rendered sitting on the floor (a tester). Spheres are
-/// judged as apart or cutting from outside each other (a sphere nested in another is not
-/// judged against its inner wall).
+/// while the gap it loses is 10 units: it rendered sitting on the floor (a tester). A sphere
+/// inside another is judged against its inner wall, and a sphere f32 moves through a plane to
+/// its other side is said to (`Contact`).
 pub(super) fn stored_contacts(scene: &SceneDesc, origin: [f64; 3]) -> Vec<FieldIssue> {
     let origin = DVec3::from(origin);
     let f32s = |v: DVec3| DVec3::new(f64::from(v.x as f32), f64::from(v.y as f32), f64::from(v.z as f32));
@@ -112,23 +112,32 @@ pub(super) fn stored_contacts(scene: &SceneDesc, origin: [f64; 3]) -> Vec<FieldI
         }
         ObjectDesc::Sphere(_) | ObjectDesc::Mesh(_) | ObjectDesc::Model(_) => None,
     });
-    // Each pair's gap as written and as stored (> 0 apart, < 0 cutting), and the size of the
-    // numbers it is the difference of.
-    let mut pairs: Vec<(usize, usize, &str, f64, f64, f64)> = Vec::new();
+    let mut pairs: Vec<Pair> = Vec::new();
     for (j, n, d) in planes {
         for &(k, c, r) in &spheres {
-            let written = (n.dot(c) - d).abs() - r;
-            let stored = (f32s(n).dot(f32s(c)) - f32_of(d)).abs() - f32_of(r);
-            pairs.push((k, j, "the plane", written, stored, c.abs().max_element().max(d.abs()).max(r)));
+            let (written, stored) = (n.dot(c) - d, f32s(n).dot(f32s(c)) - f32_of(d));
+            pairs.push(Pair {
+                object: k,
+                other: (j, "the plane"),
+                written: (written - r, -written - r),
+                stored: (stored - f32_of(r), -stored - f32_of(r)),
+                sides: ["in front of it", "behind it"],
+                size: c.abs().max_element().max(d.abs()).max(r),
+            });
         }
     }
     if spheres.len() <= MAX_SPHERES_PAIRED {
+        let gaps = |d: f64, r: f64, r2: f64| (d - r - r2, (r - r2).abs() - d);
         for (a, &(k, c, r)) in spheres.iter().enumerate() {
             for &(j, c2, r2) in &spheres[a + 1..] {
-                let written = c.distance(c2) - r - r2;
-                let stored = f32s(c).distance(f32s(c2)) - f32_of(r) - f32_of(r2);
-                let size = c.abs().max(c2.abs()).max_element().max(r).max(r2);
-                pairs.push((j, k, "the sphere", written, stored, size));
+                pairs.push(Pair {
+                    object: j,
+                    other: (k, "the sphere"),
+                    written: gaps(c.distance(c2), r, r2),
+                    stored: gaps(f32s(c).distance(f32s(c2)), f32_of(r), f32_of(r2)),
+                    sides: ["outside each other", "one inside the other"],
+                    size: c.abs().max(c2.abs()).max_element().max(r).max(r2),
+                });
             }
         }
     }
@@ -136,29 +145,76 @@ pub(super) fn stored_contacts(scene: &SceneDesc, origin: [f64; 3]) -> Vec<FieldI
     // difference: a sphere set on a floor by hand (centre 1.1, radius 1, floor at 0.1) is a gap
     // of 2e-16 in f64, not a gap, and a sphere 1e-11 into a plane touches it.
     let epsilon = scene.render.epsilon;
-    let state = |gap: f64, size: f64| match gap {
-        g if g > epsilon.max(1e-12 * size) => "apart",
-        g if g < -epsilon.max(1e-12 * size) => "cutting each other",
-        _ => "touching",
-    };
     pairs
         .into_iter()
-        .filter(|&(.., written, stored, size)| {
-            state(written, size) != "touching" && state(written, size) != state(stored, size)
-        })
-        .map(|(k, j, other, written, stored, size)| FieldIssue {
-            field: format!("objects[{k}]"),
-            problem: format!(
-                "with {other} objects[{j}]: {} as written (gap {}), but {} as both tracers store them in f32 (gap \
-                 {}), and so the image shows them; move the scene nearer the world origin, or widen the gap beyond \
-                 f32's step where they lie (docs/numerics.md, Known limits)",
-                state(written, size),
-                format_rounded(written, 4),
-                state(stored, size),
-                format_rounded(stored, 4),
-            ),
+        .filter_map(|p| {
+            let tolerance = epsilon.max(1e-12 * p.size);
+            let (was, is) = (Contact::of(p.written, tolerance), Contact::of(p.stored, tolerance));
+            (was.0 != Contact::Touching && was.0 != is.0).then(|| FieldIssue {
+                field: format!("objects[{}]", p.object),
+                problem: format!(
+                    "with {} objects[{}]: {} as written (gap {}), but {} as both tracers store them in f32 (gap {}), \
+                     and so the image shows them; move the scene nearer the world origin, or widen the gap beyond \
+                     f32's step where they lie (docs/numerics.md, Known limits)",
+                    p.other.1,
+                    p.other.0,
+                    was.0.name(p.sides),
+                    format_rounded(was.1, 4),
+                    is.0.name(p.sides),
+                    format_rounded(is.1, 4),
+                ),
+            })
         })
         .collect()
+}
+
+/// A sphere and a plane or another sphere, as `stored_contacts` judges them: their gaps on
+/// either side (`Contact::of`) as written and as stored, the names of those sides, and the size
+/// of the numbers the gaps are differences of.
+struct Pair {
+    object: usize,
+    other: (usize, &'static str),
+    written: (f64, f64),
+    stored: (f64, f64),
+    sides: [&'static str; 2],
+    size: f64,
+}
+
+/// How two surfaces lie against each other: apart on one side or the other (a sphere in front
+/// of a plane or behind it, two spheres outside each other or one inside the other),
+/// touching, or cutting each other.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Contact {
+    Apart,
+    ApartOtherSide,
+    Touching,
+    Cutting,
+}
+
+impl Contact {
+    /// The contact of a pair whose gaps on its two sides are `front` and `back` (> 0 where
+    /// the surfaces are apart that way; both < 0 where they cut), within `tolerance`, and the
+    /// gap that says it (the lesser depth where they cut).
+    fn of((front, back): (f64, f64), tolerance: f64) -> (Self, f64) {
+        if front > tolerance {
+            (Self::Apart, front)
+        } else if back > tolerance {
+            (Self::ApartOtherSide, back)
+        } else if front.max(back) >= -tolerance {
+            (Self::Touching, front.max(back))
+        } else {
+            (Self::Cutting, front.max(back))
+        }
+    }
+
+    fn name(self, [apart, other_side]: [&'static str; 2]) -> &'static str {
+        match self {
+            Self::Apart => apart,
+            Self::ApartOtherSide => other_side,
+            Self::Touching => "touching",
+            Self::Cutting => "cutting each other",
+        }
+    }
 }
 
 /// A transmissive plane's normal points out of its medium, so a ray crossing it against the
