@@ -108,15 +108,26 @@ fn triangles(
         let polygon = &mesh.indices[start..start + n];
         start += n;
         if n >= 3 && polygon::triangulate(vertices, polygon, &mut out) == polygon::Cut::SelfIntersecting {
-            crossing.push(n);
+            crossing.push((face, n));
         }
         face_of.resize(out.len(), face);
     }
-    if let Some(n) = crossing.first() {
-        let more = if crossing.len() > 1 { format!(" (and {} more faces)", crossing.len() - 1) } else { String::new() };
+    if let Some((face, n)) = crossing.first() {
+        let more = match crossing.len() {
+            1 => String::new(),
+            2 => " (and 1 more face)".to_string(),
+            k => format!(" (and {} more faces)", k - 1),
+        };
+        // Its triangles may overlap where its edges cross: the z-fighting warning that names
+        // them then told the user to "move one apart or remove the duplicate" of triangles the
+        // file never held (a tester's bow-tie quad).
         warnings.push(FieldIssue {
             field: format!("object `{object}`"),
-            problem: format!("a face of {n} vertices crosses itself{more}; cut into the triangles its outline allows"),
+            problem: format!(
+                "face {face} (of {n} vertices) crosses itself{more}; cut into the triangles its outline allows, \
+                 which may overlap where its edges cross (a z-fighting warning naming its triangles is this \
+                 face's): redraw the face in a modelling tool"
+            ),
         });
     }
     (out, face_of)

@@ -657,3 +657,20 @@ fn a_colour_of_more_than_three_numbers_is_read_as_r_g_b_with_a_warning() {
     let said = load_obj(&obj).expect("loads").warnings.iter().map(ToString::to_string).collect::<Vec<_>>().join("; ");
     assert!(!said.contains("a colour is r g b"), "{said}");
 }
+
+#[test]
+fn a_face_that_crosses_itself_is_named_with_what_its_overlap_warning_means() {
+    // A bow-tie quad: its triangles overlap where its edges cross, and the z-fighting warning
+    // that names them told the user to remove a duplicate the file never held.
+    let dir = tempfile::tempdir().unwrap();
+    let obj = write(dir.path(), "bow.obj", "v 0 0 0\nv 1 1 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 3 4\nf 1 2 3 4\n");
+    let said = load_obj(&obj).expect("loads").warnings.iter().map(ToString::to_string).collect::<Vec<_>>().join("; ");
+    assert!(
+        said.contains(
+            "face 1 (of 4 vertices) crosses itself (and 1 more face); cut into the triangles its outline allows, which \
+             may overlap where its edges cross (a z-fighting warning naming its triangles is this face's): redraw the \
+             face in a modelling tool"
+        ),
+        "{said}"
+    );
+}
