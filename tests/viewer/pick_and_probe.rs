@@ -117,6 +117,13 @@ fn the_probe_breakdown_sums_to_the_pixel_radiance_on_both_tracers() {
         h.query_by_label("First difference beyond tolerance: light 0: N·L").is_some(),
         "the differing cosine is not pointed out"
     );
+    // Another lobe evaluated on the GPU is said as such, not only through its cosine.
+    let probe = h.state_mut().renders.probe.as_mut().expect("probe");
+    let GpuProbe::Done(Ok(wrong)) = &mut probe.gpu else { panic!("GPU probe: {:?}", probe.gpu) };
+    wrong.lights[0].angles.lobe_model = glint_scene::SpecularModel::Phong;
+    h.run_steps(2);
+    let said = "Specular lobe differs: light 0: the CPU evaluated (N·H)^n, the GPU (R·V)^n";
+    assert!(h.query_by_label(said).is_some(), "the other lobe is not said");
 }
 
 #[test]

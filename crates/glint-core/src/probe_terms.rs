@@ -146,6 +146,20 @@ pub fn local_terms(cpu: &Breakdown, gpu: Option<&Breakdown>) -> Vec<Term> {
     out
 }
 
+/// The lobe each light's specular term was evaluated with: the tracers dispatch it by the
+/// material's model and the features compiled in, and a GPU that took another branch differs
+/// there first (its cosine and lobe rows would name only the symptom).
+pub fn lobes(b: &Breakdown) -> Vec<SpecularModel> {
+    b.lights.iter().map(|l| l.angles.lobe_model).collect()
+}
+
+/// The first light whose lobe the GPU evaluated otherwise than the CPU, as the probe names it.
+pub fn lobe_difference(cpu: &Breakdown, gpu: &Breakdown) -> Option<String> {
+    let (c, g) = (lobes(cpu), lobes(gpu));
+    let j = c.iter().zip(&g).position(|(a, b)| a != b)?;
+    Some(format!("light {j}: the CPU evaluated {}, the GPU {}", lobe_names(c[j]).1, lobe_names(g[j]).1))
+}
+
 /// What the probe calls a lobe's cosine and the lobe spec_j, in the seed's notation.
 pub fn lobe_names(model: SpecularModel) -> (&'static str, &'static str) {
     match model {
@@ -206,6 +220,7 @@ pub fn first_tree_difference(cpu: &RayTree, gpu: &RayTree, origin: DVec3) -> Opt
             ("light", c.light != g.light),
             ("hit or miss", c.t.is_some() != g.t.is_some()),
             ("object hit", c.terms.as_ref().map(|t| t.object_id) != g.terms.as_ref().map(|t| t.object_id)),
+            ("specular lobe", c.terms.as_ref().map(lobes) != g.terms.as_ref().map(lobes)),
         ];
         if let Some((what, _)) = shape.iter().find(|(_, d)| *d) {
             return differ(what.to_string());
@@ -252,6 +267,16 @@ mod tests {
         assert_eq!(first_difference(&terms(&cpu, Some(&gpu))), Some(3));
         gpu.kd += DVec3::new(0.0, 0.01, 0.0);
         assert_eq!(first_difference(&terms(&cpu, Some(&gpu))), Some(1));
+    }
+
+    #[test]
+    fn another_lobe_on_the_gpu_is_named() {
+        let mut cpu = Breakdown::default();
+        cpu.lights.push(LightTerm::default());
+        let mut gpu = cpu.clone();
+        assert_eq!(lobe_difference(&cpu, &gpu), None);
+        gpu.lights[0].angles.lobe_model = SpecularModel::Phong;
+        assert_eq!(lobe_difference(&cpu, &gpu).as_deref(), Some("light 0: the CPU evaluated (N·H)^n, the GPU (R·V)^n"));
     }
 
     #[test]

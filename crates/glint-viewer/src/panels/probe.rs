@@ -46,6 +46,9 @@ pub fn ui(ui: &mut Ui, probe: Option<&ProbeState>, doc: &Document) {
         GpuProbe::Done(Ok(g)) if g.object_id != p.cpu.object_id => {
             ui.colored_label(ui.visuals().error_fg_color, format!("GPU hit: {}", hit(g.object_id)));
         }
+        GpuProbe::Done(Ok(g)) if let Some(lobe) = glint_core::probe_terms::lobe_difference(&p.cpu, g) => {
+            ui.colored_label(ui.visuals().error_fg_color, format!("Specular lobe differs: {lobe}"));
+        }
         GpuProbe::Done(Ok(_)) => {}
     }
     let rows = terms(&p.cpu, gpu);
