@@ -179,11 +179,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     if args.scene_size.memory_limit.is_some() {
         remedies.push("raise --memory-limit");
     }
-    let remedy = match remedies.split_last() {
-        Some((last, [])) => last.to_string(),
-        Some((last, rest)) => format!("{}, or {last}", rest.join(", ")),
-        None => String::new(),
-    };
+    let remedy = glint_scene::or_list(&remedies);
     memory::check(
         format!("rendering {} at {}x{}", loaded.name, settings.width, settings.height),
         &estimate,

@@ -37,14 +37,16 @@ pub fn breakdown(r: &ProbeRecord) -> Result<Breakdown, UnknownTag> {
         ambient: v(r.ambient),
         ka: v(r.ka),
         kd: v(r.kd),
-        lights: r.lights[..(r.light_count as usize).min(r.lights.len())]
-            .iter()
-            .map(light_term)
-            .collect::<Result<_, _>>()?,
+        lights: light_terms(&r.lights, r.light_count)?,
         reflected,
         transmitted,
         total: v(r.total),
     })
+}
+
+/// The first `count` of `lights` (no more than it holds) as the CPU's terms.
+fn light_terms(lights: &[ProbeLight], count: u32) -> Result<Vec<LightTerm>, UnknownTag> {
+    lights[..(count as usize).min(lights.len())].iter().map(light_term).collect()
 }
 
 fn light_term(l: &ProbeLight) -> Result<LightTerm, UnknownTag> {
@@ -96,8 +98,7 @@ fn ray_node(n: &ProbeNode) -> Result<RayNode, UnknownTag> {
     } else {
         None
     };
-    let lights = n.lights[..(n.light_count as usize).min(n.lights.len())].iter().map(light_term);
-    let terms = hit.then(|| lights.collect::<Result<_, _>>()).transpose()?.map(|lights| Breakdown {
+    let terms = hit.then(|| light_terms(&n.lights, n.light_count)).transpose()?.map(|lights| Breakdown {
         object_id: n.object_id,
         material: n.material,
         t: f64::from(n.t),

@@ -64,11 +64,7 @@ impl StatusContext {
             );
         }
         cures.push("render on the CPU".to_string());
-        match cures.split_last() {
-            Some((last, [])) => last.clone(),
-            Some((last, rest)) => format!("{}, or {last}", rest.join(", ")),
-            None => String::new(),
-        }
+        glint_scene::or_list(&cures)
     }
 }
 

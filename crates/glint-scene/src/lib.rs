@@ -42,7 +42,7 @@ pub use material::{CheckerDesc, DEFAULT_ROUGHNESS, MaterialDesc, material_textur
 pub use mesh::MeshDesc;
 pub use model::{MaterialSource, Model, ModelCamera};
 pub use model_ref::{LoadedModel, ModelDesc, Scale, TransformDesc};
-pub use number::{format_number, format_rounded, serde_words, shorten, shorten_lines, shorten_middle};
+pub use number::{format_number, format_rounded, or_list, serde_words, shorten, shorten_lines, shorten_middle};
 pub use overflow::overflow_causes;
 pub use ray_tree::{WARN_RAYS_PER_SAMPLE, ray_tree_bound, reachable_depth, unbounded_ray_tree};
 pub use rgb::Rgb;

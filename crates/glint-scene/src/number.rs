@@ -24,6 +24,18 @@ pub fn format_rounded(v: f64, digits: usize) -> String {
     format_number(rounded)
 }
 
+/// Choices as a sentence lists them: "a", "a, or b", "a, b, or c" (remedies of one message).
+pub fn or_list(items: &[impl AsRef<str>]) -> String {
+    match items.split_last() {
+        Some((last, [])) => last.as_ref().to_string(),
+        Some((last, rest)) => {
+            let rest: Vec<&str> = rest.iter().map(AsRef::as_ref).collect();
+            format!("{}, or {}", rest.join(", "), last.as_ref())
+        }
+        None => String::new(),
+    }
+}
+
 /// serde's words in a scene author's: Rust's type names (`expected f64`, `expected u32`) as
 /// what a scene file holds, and a float as `tidy_floats` writes it.
 pub fn serde_words(message: &str) -> String {

@@ -13,7 +13,9 @@ use glint_scene::Integrator;
 use plotters::prelude::*;
 
 use super::gi::{Ambient, GiResult, GiRow};
-use super::plot::{FAMILY, FLOOR_COLOUR, HEIGHT, LogLog, WIDTH, draw_legend, log_log_chart, log_range, register_font};
+use super::plot::{
+    FAMILY, FLOOR_COLOUR, HEIGHT, WIDTH, dashed_level, draw_legend, log_log_chart, log_range, register_font,
+};
 use crate::cli::units::ms;
 
 const WHITTED_COLOUR: RGBColor = RGBColor(120, 60, 170);
@@ -28,24 +30,6 @@ fn whitted_colour(ambient: Option<Ambient>) -> RGBColor {
         Some(Ambient::Without) => RGBColor(190, 150, 225),
         Some(Ambient::Fitted) => RGBColor(60, 20, 90),
     }
-}
-
-/// A dashed horizontal line across the chart, dashed in the legend too.
-fn dashed<'a, 'b: 'a>(
-    chart: &mut ChartContext<'a, BitMapBackend<'b>, LogLog>,
-    (x0, x1): (f64, f64),
-    y: f64,
-    colour: RGBColor,
-    label: String,
-) -> anyhow::Result<()> {
-    chart.draw_series(DashedLineSeries::new([(x0, y), (x1, y)], 8, 5, colour.stroke_width(2)))?.label(label).legend(
-        move |(x, y)| {
-            EmptyElement::at((x, y))
-                + PathElement::new([(0, 0), (9, 0)], colour.stroke_width(2))
-                + PathElement::new([(15, 0), (24, 0)], colour.stroke_width(2))
-        },
-    );
-    Ok(())
 }
 
 fn draw(g: &GiResult, runs: usize) -> anyhow::Result<Vec<u8>> {
@@ -69,14 +53,14 @@ fn draw(g: &GiResult, runs: usize) -> anyhow::Result<Vec<u8>> {
         let y_desc = "RMSE against the path-traced reference (linear radiance, log)";
         let mut chart = log_log_chart(&root, title, 20, (x0, x1), (y0, y1), x_desc, y_desc)?;
         if let Some(f) = floor {
-            dashed(&mut chart, (x0, x1), f, FLOOR_COLOUR, format!("the reference's own noise: RMSE {f:.1e}"))?;
+            dashed_level(&mut chart, (x0, x1), f, FLOOR_COLOUR, format!("the reference's own noise: RMSE {f:.1e}"))?;
         }
         if let Some(e) = converged {
             let label = format!(
                 "whitted at depth {}, {} spp (ambient as written): what it leaves out, RMSE {e:.1e}",
                 g.kinds.whitted_depth, g.kinds.whitted_spp
             );
-            dashed(&mut chart, (x0, x1), e, WHITTED_COLOUR, label)?;
+            dashed_level(&mut chart, (x0, x1), e, WHITTED_COLOUR, label)?;
         }
         for backend in [Backend::Cpu, Backend::Gpu] {
             let mut paths: Vec<&&GiRow> =

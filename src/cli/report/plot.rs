@@ -131,6 +131,24 @@ pub(super) fn log_log_chart<'a, 'b>(
     Ok(chart)
 }
 
+/// A dashed horizontal line at `y` across the chart, dashed in the legend too, as drawn.
+pub(super) fn dashed_level<'a, 'b: 'a>(
+    chart: &mut ChartContext<'a, BitMapBackend<'b>, LogLog>,
+    (x0, x1): (f64, f64),
+    y: f64,
+    colour: RGBColor,
+    label: String,
+) -> anyhow::Result<()> {
+    chart.draw_series(DashedLineSeries::new([(x0, y), (x1, y)], 8, 5, colour.stroke_width(2)))?.label(label).legend(
+        move |(x, y)| {
+            EmptyElement::at((x, y))
+                + PathElement::new([(0, 0), (9, 0)], colour.stroke_width(2))
+                + PathElement::new([(15, 0), (24, 0)], colour.stroke_width(2))
+        },
+    );
+    Ok(())
+}
+
 /// The series' legend in the upper right corner, over a nearly opaque white.
 pub(super) fn draw_legend<'a, 'b: 'a>(chart: &mut ChartContext<'a, BitMapBackend<'b>, LogLog>) -> anyhow::Result<()> {
     chart
@@ -182,15 +200,8 @@ fn draw(scene: &SceneResult, runs: usize) -> anyhow::Result<Vec<u8>> {
             "RMSE against the reference (linear radiance, log)",
         )?;
         if let Some(f) = floor.filter(|f| *f > 0.0) {
-            chart
-                .draw_series(DashedLineSeries::new([(x0, f), (x1, f)], 8, 5, FLOOR_COLOUR.stroke_width(2)))?
-                .label(format!("GPU at the reference settings: RMSE {f:.1e} ({floor_label})"))
-                // Dashed in the legend too, as drawn.
-                .legend(|(x, y)| {
-                    EmptyElement::at((x, y))
-                        + PathElement::new([(0, 0), (9, 0)], FLOOR_COLOUR.stroke_width(2))
-                        + PathElement::new([(15, 0), (24, 0)], FLOOR_COLOUR.stroke_width(2))
-                });
+            let label = format!("GPU at the reference settings: RMSE {f:.1e} ({floor_label})");
+            dashed_level(&mut chart, (x0, x1), f, FLOOR_COLOUR, label)?;
         }
         // Min–max of the timed runs: how much to trust a time difference.
         for (backend, colour) in [(Backend::Cpu, CPU_COLOUR), (Backend::Gpu, GPU_COLOUR)] {

@@ -43,14 +43,16 @@ pub fn crossover(result: &GiResult) -> (Option<&GiRow>, Option<&GiRow>) {
     let least = whitted().map(|r| r.rmse).fold(f64::INFINITY, f64::min);
     let best_whitted =
         whitted().filter(|r| r.rmse <= least * (1.0 + SAME_ERROR)).min_by(|a, b| a.median.cmp(&b.median));
-    let first_path = best_whitted.and_then(|w| {
-        result
-            .rows
-            .iter()
-            .filter(|r| r.integrator == Integrator::Path && r.rmse < w.rmse)
-            .min_by(|a, b| a.median.cmp(&b.median))
-    });
-    (first_path, best_whitted)
+    (best_whitted.and_then(|w| first_path_below(result, w.rmse)), best_whitted)
+}
+
+/// The fastest path row whose error is below `rmse`.
+fn first_path_below(result: &GiResult, rmse: f64) -> Option<&GiRow> {
+    result
+        .rows
+        .iter()
+        .filter(|r| r.integrator == Integrator::Path && r.rmse < rmse)
+        .min_by(|a, b| a.median.cmp(&b.median))
 }
 
 pub const HEADER: &[&str] = &[
@@ -185,11 +187,7 @@ pub fn render_markdown(results: &[GiResult]) -> String {
         // Below what Whitted's model leaves out, which no number of its samples removes.
         let k = &g.kinds;
         if k.whitted_rmse > 0.0 {
-            let below = g
-                .rows
-                .iter()
-                .filter(|r| r.integrator == Integrator::Path && r.rmse < k.whitted_rmse)
-                .min_by(|a, b| a.median.cmp(&b.median));
+            let below = first_path_below(g, k.whitted_rmse);
             let converged =
                 format!("Whitted's error at {} spp, depth {} ({:.3e})", k.whitted_spp, k.whitted_depth, k.whitted_rmse);
             let _ = match below {
