@@ -25,6 +25,7 @@ mod lights;
 mod materials;
 mod objects;
 mod placement;
+mod tilted;
 
 pub use crate::limits::*;
 pub use epsilon::{EPSILON_SHARE, EPSILON_WARN_SHARE, epsilon_warning};
@@ -200,6 +201,10 @@ pub fn validate_with_objects(scene: &SceneDesc, objects: &Report) -> Report {
     r.errors.extend_from_slice(&objects.errors);
     r.warnings.extend_from_slice(&objects.warnings);
     r.warnings.extend(placement::placement_warnings(scene));
+    // From the camera, so here and not with the objects' own warnings.
+    if objects.errors.is_empty() {
+        r.warnings.extend(tilted::tilted_triangles(scene));
+    }
     r.warnings.extend(settings_warnings(scene, &scene.render));
     r
 }
