@@ -146,6 +146,10 @@ pub fn load_scene_with(arg: impl AsRef<OsStr>, options: &LoadOptions) -> Result<
         let cap = options.stream_cap.map_or(uri::MAX_RESOURCE_BYTES, |c| c.min(uri::MAX_RESOURCE_BYTES));
         let bytes = read_capped(path, cap).map_err(|error| SceneError::Io { file: path.to_owned(), error })?;
         let text = utf8(&bytes, path)?;
+        if text.trim().is_empty() {
+            let message = "the file is empty: a scene needs at least a [camera] table (docs/scene-format.md)";
+            return Err(SceneError::Parse { file: path.to_owned(), message: message.to_string() });
+        }
         let (desc, mut warnings, scene_warnings) = parse_scene_parts(text, path)?;
         warnings.extend(scene_warnings.iter().cloned());
         return Ok(LoadedScene { desc, source: path.to_owned(), name, warnings, scene_warnings });
@@ -316,5 +320,21 @@ mod tests {
         assert!(image.ends_with("render.PNG: a PNG image, not a scene: glint renders scene files (.toml), model files (.gltf, .glb, .obj) and built-in scenes (glint render --list)"), "{image}");
         let far = said("teapot");
         assert!(far.contains("no such file; built-in scenes: whitted") && !far.contains("did you mean"), "{far}");
+    }
+
+    #[test]
+    fn an_empty_scene_file_is_said_to_be_empty() {
+        let dir = tempfile::tempdir().unwrap();
+        for text in ["", "\n  \n"] {
+            let file = dir.path().join("blank.toml");
+            std::fs::write(&file, text).unwrap();
+            let said = load_scene(&file).err().map(|e| e.to_string()).unwrap_or_default();
+            assert!(
+                said.ends_with(
+                    "blank.toml: the file is empty: a scene needs at least a [camera] table (docs/scene-format.md)"
+                ),
+                "{said}"
+            );
+        }
     }
 }

@@ -24,6 +24,16 @@ pub fn format_rounded(v: f64, digits: usize) -> String {
     format_number(rounded)
 }
 
+/// A computed value beyond a `bound` it is said to exceed: `format_rounded` to the fewest digits,
+/// from 3, that still read beyond it (a reach of 1e9 + 0.5 printed as "1000000000" seemed to
+/// meet the bound 1e9 it was refused by).
+pub fn format_beyond(v: f64, bound: f64) -> String {
+    (3..=17)
+        .map(|digits| format_rounded(v, digits))
+        .find(|text| text.parse::<f64>().is_ok_and(|r| r.abs() > bound.abs()))
+        .unwrap_or_else(|| format_number(v))
+}
+
 /// Choices as a sentence lists them: "a", "a, or b", "a, b, or c" (remedies of one message).
 pub fn or_list(items: &[impl AsRef<str>]) -> String {
     match items.split_last() {
@@ -114,7 +124,16 @@ pub fn shorten_lines(text: &str) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::{LINE_CHARS, format_number, serde_words, shorten, shorten_lines, shorten_middle, tidy_floats};
+    use super::{
+        LINE_CHARS, format_beyond, format_number, serde_words, shorten, shorten_lines, shorten_middle, tidy_floats,
+    };
+
+    #[test]
+    fn a_value_beyond_its_bound_reads_beyond_it() {
+        assert_eq!(format_beyond(1e9 + 0.5, 1e9), "1000000000.5");
+        assert_eq!(format_beyond(1.234e10, 1e9), "12300000000");
+        assert_eq!(format_beyond(-2e9, 1e9), "-2000000000");
+    }
 
     #[test]
     fn rust_type_names_are_said_as_what_a_scene_holds() {

@@ -5,7 +5,7 @@ use super::{
     DVec3, FieldIssue, MeshDesc, ObjectDesc, PlaneDesc, Report, Rgb, SceneDesc, SphereDesc, cross, norm, num, ranges,
     shorten, sub, usable_direction, validate_light,
 };
-use crate::number::format_rounded;
+use crate::number::{format_beyond, format_rounded};
 use glint_types::layout::f32_spacing;
 
 /// `origin`: the scene's storage origin (`storage_origin`), which mesh vertices are stored
@@ -105,7 +105,7 @@ fn beyond_range(model: &crate::LoadedModel, transformed: bool) -> Option<String>
     (!ranges::COORD.contains(reach)).then(|| {
         format!(
             "{with}the model reaches {} from the origin; coordinates must lie in [{:e}, {:e}]",
-            format_rounded(reach, 3),
+            format_beyond(reach, ranges::COORD.max),
             ranges::COORD.min,
             ranges::COORD.max
         )
@@ -242,7 +242,7 @@ fn validate_mesh(path: &str, mesh: &MeshDesc, origin: [f64; 3], r: &mut Report) 
     } else if let Some(size) = mesh_size(vertices)
         && let Some(coarse) = coarsely_stored(vertices, size, "size", origin)
     {
-        r.warn(format!("{path}.vertices"), format!("the mesh (size {}) {coarse}", num(size)));
+        r.warn(format!("{path}.vertices"), format!("the mesh (size {}) {coarse}", format_rounded(size, 3)));
     }
 }
 

@@ -38,6 +38,11 @@ pub(super) fn parse(bytes: &[u8], file: &Path, warnings: &mut Vec<FieldIssue>) -
     // parser refuses ("missing field `nodes`", calling the whole file invalid): such a file is
     // parsed again with `[]` given, on that path alone (a second parse of every file's JSON
     // for a rare case cost each load).
+    // Said as such, not as JSON's "EOF while parsing a value" (of a .glb too; a tester).
+    if bytes.iter().all(u8::is_ascii_whitespace) {
+        let reason = if bytes.is_empty() { "the file is empty (0 bytes)" } else { "the file holds only white space" };
+        return Err(GltfError::Parse { file: file.to_owned(), reason: reason.to_string() });
+    }
     let parsed = ::gltf::Gltf::from_slice_without_validation(bytes).or_else(|e| {
         with_scene_nodes(bytes).map_or(Err(e), |patched| ::gltf::Gltf::from_slice_without_validation(&patched))
     });

@@ -25,6 +25,15 @@ fn a_gltf_1_file_is_refused_naming_its_version() {
 }
 
 #[test]
+fn an_empty_file_is_said_to_be_empty() {
+    for (bytes, expected) in [(&b""[..], "the file is empty (0 bytes)"), (b" \n\t", "the file holds only white space")]
+    {
+        let message = parse(bytes, Path::new("m.glb"), &mut Vec::new()).unwrap_err().to_string();
+        assert_eq!(message, format!("m.glb: not a valid glTF 2.0 file: {expected}"));
+    }
+}
+
+#[test]
 fn strips_keep_the_first_triangles_orientation_and_fans_share_the_first_vertex() {
     assert_eq!(triangulate(Mode::TriangleStrip, &[0, 1, 2, 3, 4]), vec![[0, 1, 2], [2, 1, 3], [2, 3, 4]]);
     assert_eq!(triangulate(Mode::TriangleFan, &[0, 1, 2, 3]), vec![[0, 1, 2], [0, 2, 3]]);
