@@ -72,6 +72,10 @@ pub struct LoadedModel {
     pub warnings: Vec<FieldIssue>,
 }
 
+/// The largest angle `rotate` takes, in degrees: f64 holds it to 1.2e-10° (a thousandth of a
+/// second of arc), and any larger is one written by mistake.
+pub const MAX_ROTATE_DEGREES: f64 = 1e6;
+
 /// Placement of a model: scale, then rotate, then translate (or one matrix instead).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -158,6 +162,17 @@ impl TransformDesc {
         }
         if self.rotate.is_some_and(|r| !finite(&r)) {
             out.push(("rotate".into(), "must be finite (degrees)".into()));
+        } else if let Some(&angle) = self.rotate.iter().flatten().find(|a| a.abs() > MAX_ROTATE_DEGREES) {
+            // f64 holds 1e30 only to 1.4e14 degrees: any rotation at all (accepted silently).
+            out.push((
+                "rotate".into(),
+                format!(
+                    "each angle must lie in [-{MAX_ROTATE_DEGREES:e}, {MAX_ROTATE_DEGREES:e}] degrees; {} is beyond, \
+                     where f64 holds it only to about {} degrees",
+                    crate::number::format_number(angle),
+                    crate::number::format_rounded(angle.abs() * f64::EPSILON, 2)
+                ),
+            ));
         }
         if let Some(len) = self.quaternion.and_then(crate::transform::not_unit_quaternion) {
             out.push(("quaternion".into(), format!("must be a unit quaternion [x, y, z, w]; its length is {len}")));
@@ -306,6 +321,19 @@ impl LoadedModel {
 mod tests {
     use super::*;
     use crate::MeshDesc;
+
+    #[test]
+    fn a_rotation_beyond_a_million_degrees_is_refused_with_what_f64_holds_of_it() {
+        let rotated = |r: [f64; 3]| TransformDesc { rotate: Some(r), ..TransformDesc::default() }.problems();
+        assert!(rotated([720.0, -1e6, 45.5]).is_empty());
+        let problems = rotated([1e30, 0.0, 0.0]);
+        assert_eq!(problems.len(), 1, "{problems:?}");
+        assert_eq!(problems[0].0, "rotate");
+        assert_eq!(
+            problems[0].1,
+            "each angle must lie in [-1e6, 1e6] degrees; 1e30 is beyond, where f64 holds it only to about 220000000000000 degrees"
+        );
+    }
 
     #[test]
     fn a_placed_models_normals_keep_their_length_at_any_scale_and_identity_keeps_them_bit_for_bit() {

@@ -225,6 +225,20 @@ pub fn scene_around(
     options: &ImportOptions,
 ) -> Result<(SceneDesc, Vec<FieldIssue>), FieldIssue> {
     let description = format!("the model {}", path.display());
+    // A model given alone whose every triangle has no area renders only the ground: refused,
+    // as one without triangles is (it rendered, exit 0, with a warning; a tester).
+    let triangles = model.meshes.iter().map(|m| m.triangles.len()).sum::<usize>();
+    if triangles > 0 && !model.meshes.iter().any(has_area) {
+        let all = if triangles == 1 {
+            "its one triangle has".to_string()
+        } else {
+            format!("all {triangles} of its triangles have")
+        };
+        return Err(FieldIssue {
+            field: "triangles".into(),
+            problem: format!("{all} zero area (the corners on one line or at one point): there is nothing to trace"),
+        });
+    }
     let mut lo = [f64::INFINITY; 3];
     let mut hi = [f64::NEG_INFINITY; 3];
     for v in model.meshes.iter().flat_map(|m| &m.vertices) {
@@ -401,10 +415,43 @@ pub fn scene_around(
     Ok((desc, warnings))
 }
 
+/// Whether some triangle of `mesh` has area (in f64, as written).
+fn has_area(mesh: &glint_scene::MeshDesc) -> bool {
+    let corner = |k: u32| mesh.vertices.get(k as usize).copied();
+    let sub = |p: [f64; 3], q: [f64; 3]| [p[0] - q[0], p[1] - q[1], p[2] - q[2]];
+    mesh.triangles.iter().any(|t| match (corner(t[0]), corner(t[1]), corner(t[2])) {
+        (Some(a), Some(b), Some(c)) => {
+            let (e, f) = (sub(b, a), sub(c, a));
+            [e[1] * f[2] - e[2] * f[1], e[2] * f[0] - e[0] * f[2], e[0] * f[1] - e[1] * f[0]] != [0.0; 3]
+        }
+        _ => false,
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use glint_scene::MeshDesc;
+
+    #[test]
+    fn a_model_whose_triangles_all_lack_area_is_refused() {
+        let line = MeshDesc::new(vec![[0.0; 3], [1.0, 0.0, 0.0], [2.0, 0.0, 0.0]], vec![[0, 1, 2]], "m", "line");
+        let point = MeshDesc::new(vec![[1.0; 3]; 3], vec![[0, 1, 2], [2, 1, 0]], "m", "point");
+        let e = scene_around(
+            Model { meshes: vec![line.clone(), point], ..Model::default() },
+            Path::new("m.obj"),
+            &ImportOptions::default(),
+        )
+        .unwrap_err();
+        assert_eq!(e.field, "triangles");
+        assert_eq!(
+            e.problem,
+            "all 3 of its triangles have zero area (the corners on one line or at one point): there is nothing to trace"
+        );
+        // One triangle with area beside them is a model (the rest are warned of as degenerate).
+        let model = Model { meshes: vec![line, quad(1.0)], ..Model::default() };
+        assert!(scene_around(model, Path::new("m.obj"), &ImportOptions::default()).is_ok());
+    }
 
     fn quad(s: f64) -> MeshDesc {
         MeshDesc::new(vec![[-s, -s, 0.0], [s, -s, 0.0], [s, s, 0.0]], vec![[0, 1, 2]], "m", "node0")

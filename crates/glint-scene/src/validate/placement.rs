@@ -233,11 +233,21 @@ fn same_facing_transmissive_planes(scene: &SceneDesc) -> Vec<FieldIssue> {
         })
         .collect();
     let mut out = Vec::new();
-    for (a, &(i, pi, ni)) in planes.iter().enumerate() {
-        // The first partner only: a stack of such planes is one mistake, said once a plane.
-        let partner =
-            planes[a + 1..].iter().find(|&&(_, pj, nj)| ni.dot(nj) > 1.0 - 1e-12 && ni.dot(pj - pi).abs() > 0.0);
-        if let Some(&(j, _, _)) = partner {
+    for &(i, pi, ni) in &planes {
+        // Only the nearest parallel plane on either side is a partner: between a plane and a
+        // farther one facing its way, a plane facing the other way makes two slabs (double
+        // glazing, front and back panes alternating, was warned of).
+        let nearest = |side: f64| {
+            planes
+                .iter()
+                .filter(|&&(_, _, nj)| ni.dot(nj).abs() > 1.0 - 1e-12)
+                .map(|&(j, pj, nj)| (j, side * ni.dot(pj - pi), nj))
+                .filter(|&(_, along, _)| along > 0.0)
+                .min_by(|a, b| a.1.total_cmp(&b.1))
+        };
+        // Said once a pair, at its first plane in the file.
+        let partner = [1.0, -1.0].into_iter().filter_map(nearest).find(|&(j, _, nj)| j > i && ni.dot(nj) > 0.0);
+        if let Some((j, _, _)) = partner {
             out.push(FieldIssue {
                 field: format!("objects[{i}]"),
                 problem: format!(
@@ -249,4 +259,40 @@ fn same_facing_transmissive_planes(scene: &SceneDesc) -> Vec<FieldIssue> {
         }
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::desc::{PlaneDesc, test_scene};
+    use crate::rgb::Rgb;
+
+    /// Glass planes at z with their normals' z sign, front to back.
+    fn panes(planes: &[(f64, f64)]) -> Vec<String> {
+        let objects = planes
+            .iter()
+            .map(|&(z, facing)| {
+                let plane = PlaneDesc {
+                    point: [0.0, 0.0, z],
+                    normal: [0.0, 0.0, facing],
+                    material: "m".into(),
+                    name: String::new(),
+                };
+                ObjectDesc::Plane(plane)
+            })
+            .collect();
+        let mut scene = test_scene(objects);
+        scene.materials.get_mut("m").expect("material").kt = Rgb([0.9; 3]);
+        same_facing_transmissive_planes(&scene).into_iter().map(|w| w.field).collect()
+    }
+
+    #[test]
+    fn same_facing_neighbours_are_warned_of_and_alternating_panes_are_not() {
+        // Two slabs (double glazing): front faces −z, back faces +z, twice.
+        assert!(panes(&[(-1.0, -1.0), (-0.9, 1.0), (0.0, -1.0), (0.1, 1.0)]).is_empty());
+        // A slab whose back plane faces into it: said once, at the pair's first plane.
+        assert_eq!(panes(&[(-1.0, -1.0), (-0.9, -1.0)]), ["objects[0]"]);
+        // Listed back to front, with a farther same-facing plane beyond a correct slab.
+        assert_eq!(panes(&[(1.0, 1.0), (0.0, 1.0), (-0.1, -1.0)]), ["objects[0]"]);
+    }
 }
