@@ -10,7 +10,7 @@ use glint_io::model::ModelError;
 use glint_io::{DEFAULT_RESOLUTION, LoadOptions, LoadedScene, RESOLUTIONS, load_scene_with};
 use glint_io::{ImportOptions, ModelFormat};
 use glint_scene::{
-    EpsilonMode, Integrator, Range, RenderSettings, Report, coplanar_warnings, format_number, ranges,
+    EpsilonMode, Integrator, Range, RenderSettings, Report, epsilon_warnings_of_objects, format_number, ranges,
     settings_warnings, validate_settings,
 };
 
@@ -367,8 +367,8 @@ pub fn tell_warnings(loaded: &LoadedScene, settings: &RenderSettings) {
     // The objects' overlaps are judged at the render's ε too (an `--epsilon` the file's z-fight
     // warning ignored; a tester): only where the flag changed it, as they walk every triangle.
     if settings.epsilon != loaded.desc.render.epsilon {
-        own.extend(coplanar_warnings(&loaded.desc, loaded.desc.render.epsilon));
-        now.extend(coplanar_warnings(&loaded.desc, settings.epsilon));
+        own.extend(epsilon_warnings_of_objects(&loaded.desc, loaded.desc.render.epsilon));
+        now.extend(epsilon_warnings_of_objects(&loaded.desc, settings.epsilon));
     }
     let kept = loaded.warnings.iter().filter(|w| !own.contains(w) || now.contains(w));
     for w in kept.chain(now.iter().filter(|w| !own.contains(w))) {

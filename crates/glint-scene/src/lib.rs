@@ -55,7 +55,7 @@ pub use transform::{Mat4, not_unit_quaternion};
 pub use validate::{
     EPSILON_SHARE, EPSILON_WARN_SHARE, MAX_ATTENUATION_DIP, MAX_COORD, MAX_DEPTH, MAX_EPSILON, MAX_IMAGE_SIDE,
     MAX_INTENSITY, MAX_IOR, MAX_ROUGHNESS, MAX_SHININESS, MAX_SPOT_EXPONENT, MAX_SPP, MIN_ATTENUATION_DENOMINATOR,
-    MIN_DIRECTION_LENGTH, MIN_ROUGHNESS, Range, Report, coplanar_warnings, epsilon_warning, integrator_warnings,
-    path_gain_warning, ranges, settings_warnings, usable_direction, validate, validate_objects, validate_settings,
-    validate_with_objects,
+    MIN_DIRECTION_LENGTH, MIN_ROUGHNESS, Range, Report, epsilon_warning, epsilon_warnings_of_objects,
+    integrator_warnings, path_gain_warning, ranges, settings_warnings, usable_direction, validate, validate_objects,
+    validate_settings, validate_with_objects,
 };

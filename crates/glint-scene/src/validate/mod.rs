@@ -170,16 +170,20 @@ pub fn validate_objects(scene: &SceneDesc) -> Report {
     if r.errors.is_empty() {
         r.warnings.extend(coplanar::coplanar_overlaps(scene, origin, scene.render.epsilon));
         r.warnings.extend(placement::duplicate_spheres(scene, origin));
-        r.warnings.extend(placement::stored_contacts(scene, origin));
+        r.warnings.extend(placement::stored_contacts(scene, origin, scene.render.epsilon));
     }
     r
 }
 
-/// The coplanar-overlap warnings of `scene`'s objects at ε = `epsilon`, the one warning of
-/// `validate_objects` a setting changes: `glint render --epsilon` judges the flag's ε with it
-/// (the file's ε warned of a z-fight the flag had removed; a tester).
-pub fn coplanar_warnings(scene: &SceneDesc, epsilon: f64) -> Vec<FieldIssue> {
-    coplanar::coplanar_overlaps(scene, crate::storage_origin(scene), epsilon)
+/// The warnings of `validate_objects` a setting changes, judged at ε = `epsilon`: coplanar
+/// overlaps and stored contacts. `glint render --epsilon` judges the flag's ε with it (the
+/// file's ε warned of a z-fight the flag had removed, and of a sphere touching a floor 1e-6
+/// below it at --epsilon 1e-9; testers).
+pub fn epsilon_warnings_of_objects(scene: &SceneDesc, epsilon: f64) -> Vec<FieldIssue> {
+    let origin = crate::storage_origin(scene);
+    let mut out = coplanar::coplanar_overlaps(scene, origin, epsilon);
+    out.extend(placement::stored_contacts(scene, origin, epsilon));
+    out
 }
 
 /// `validate`, with the objects' part already done (`validate_objects` of a scene with the

@@ -5,6 +5,7 @@
 use super::{FieldIssue, ObjectDesc, SceneDesc, num};
 use crate::number::format_rounded;
 use glam::DVec3;
+use glint_types::layout::f32_spacing;
 
 /// The placement warnings of `scene`, read from its own objects (a model's are not judged).
 pub(super) fn placement_warnings(scene: &SceneDesc) -> Vec<FieldIssue> {
@@ -92,7 +93,7 @@ const MAX_SPHERES_PAIRED: usize = 512;
 /// while the gap it loses is 10 units: it rendered sitting on the floor (a tester). A sphere
 /// inside another is judged against its inner wall, and a sphere f32 moves through a plane to
 /// its other side is said to (`Contact`).
-pub(super) fn stored_contacts(scene: &SceneDesc, origin: [f64; 3]) -> Vec<FieldIssue> {
+pub(super) fn stored_contacts(scene: &SceneDesc, origin: [f64; 3], epsilon: f64) -> Vec<FieldIssue> {
     let origin = DVec3::from(origin);
     let f32s = |v: DVec3| DVec3::new(f64::from(v.x as f32), f64::from(v.y as f32), f64::from(v.z as f32));
     let f32_of = |x: f64| f64::from(x as f32);
@@ -123,6 +124,7 @@ pub(super) fn stored_contacts(scene: &SceneDesc, origin: [f64; 3]) -> Vec<FieldI
                 stored: (stored - f32_of(r), -stored - f32_of(r)),
                 sides: ["in front of it", "behind it"],
                 size: c.abs().max_element().max(d.abs()).max(r),
+                offset: c.abs().max_element().max(d.abs()) / r,
             });
         }
     }
@@ -137,6 +139,7 @@ pub(super) fn stored_contacts(scene: &SceneDesc, origin: [f64; 3]) -> Vec<FieldI
                     stored: gaps(f32s(c).distance(f32s(c2)), f32_of(r), f32_of(r2)),
                     sides: ["outside each other", "one inside the other"],
                     size: c.abs().max(c2.abs()).max_element().max(r).max(r2),
+                    offset: c.abs().max(c2.abs()).max_element() / r.max(r2),
                 });
             }
         }
@@ -144,18 +147,31 @@ pub(super) fn stored_contacts(scene: &SceneDesc, origin: [f64; 3]) -> Vec<FieldI
     // Touching within the render's ε, which no ray resolves, or f64's rounding of the
     // difference: a sphere set on a floor by hand (centre 1.1, radius 1, floor at 0.1) is a gap
     // of 2e-16 in f64, not a gap, and a sphere 1e-11 into a plane touches it.
-    let epsilon = scene.render.epsilon;
     pairs
         .into_iter()
         .filter_map(|p| {
             let tolerance = epsilon.max(1e-12 * p.size);
             let (was, is) = (Contact::of(p.written, tolerance), Contact::of(p.stored, tolerance));
-            (was.0 != Contact::Touching && was.0 != is.0).then(|| FieldIssue {
+            // Storage must move the gap by half the tolerance at least: a gap written at ε
+            // itself crossed it by f32's rounding of 1e-6 (1e-6 "in front" as written, 1e-6
+            // "touching" as stored; a tester), which says nothing of f32's reach.
+            let moved = (p.stored.0 - p.written.0).abs().max((p.stored.1 - p.written.1).abs());
+            let step = f32_spacing(p.size);
+            // Moving the scene helps only where its position, not the pair's own sizes, sets
+            // f32's step there.
+            let remedy = if p.offset > 100.0 {
+                format!(
+                    "move the scene nearer the world origin, or widen the gap beyond f32's step where they lie ({})",
+                    format_rounded(step, 2)
+                )
+            } else {
+                format!("widen the gap beyond f32's step at their size ({})", format_rounded(step, 2))
+            };
+            (was.0 != Contact::Touching && was.0 != is.0 && moved > 0.5 * tolerance).then(|| FieldIssue {
                 field: format!("objects[{}]", p.object),
                 problem: format!(
                     "with {} objects[{}]: {} as written (gap {}), but {} as both tracers store them in f32 (gap {}), \
-                     and so the image shows them; move the scene nearer the world origin, or widen the gap beyond \
-                     f32's step where they lie (docs/numerics.md, Known limits)",
+                     and so the image shows them; {remedy} (docs/numerics.md, Known limits)",
                     p.other.1,
                     p.other.0,
                     was.0.name(p.sides),
@@ -178,6 +194,8 @@ struct Pair {
     stored: (f64, f64),
     sides: [&'static str; 2],
     size: f64,
+    /// How far from the storage origin the pair lies, in its (larger) sphere's radii.
+    offset: f64,
 }
 
 /// How two surfaces lie against each other: apart on one side or the other (a sphere in front
