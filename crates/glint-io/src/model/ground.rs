@@ -53,6 +53,13 @@ pub const GROUND_GAP: f64 = 1e-5;
 /// details would otherwise round its base and the ground to the same f32.
 const MIN_GAP_ULPS: f64 = 64.0;
 
+/// The least gap in f64 spacings at the model's world coordinates: the ground is a plane
+/// written there, and so is every placed vertex. A model 1e-6 wide at 5e5 had a gap of 1.7e-11,
+/// below f64's step there (5.8e-11): the ground rounded onto its base and was warned of as
+/// z-fighting with it, a plane the user never wrote (a tester). Few: at 9e8 f64's step is 1.2e-7,
+/// and a model 1e-6 wide there stands that many steps above the ground.
+const MIN_GAP_F64_ULPS: f64 = 4.0;
+
 /// The share of the footprint that upward faces at the lowest y must cover to be a floor.
 pub const FLOOR_COVER: f64 = 0.5;
 
@@ -70,7 +77,10 @@ pub fn ground_height(
     let origin = storage_origin_of_box(lo, hi);
     let magnitude = (0..3).fold(0.0_f64, |m, k| m.max((lo[k] - origin[k]).abs()).max((hi[k] - origin[k]).abs()));
     let spacing = f32_spacing(magnitude);
-    let below = lo[1] - (GROUND_GAP * diagonal).max(MIN_GAP_ULPS * spacing);
+    let world = lo.iter().chain(&hi).fold(0.0_f64, |m, c| m.max(c.abs()));
+    let f64_spacing = if world > 0.0 { 2f64.powi(world.log2().floor() as i32 - 52) } else { 0.0 };
+    let gap = (GROUND_GAP * diagonal).max(MIN_GAP_ULPS * spacing).max(MIN_GAP_F64_ULPS * f64_spacing);
+    let below = lo[1] - gap;
     match mode {
         Ground::Off => (None, None),
         Ground::On => (Some(below), None),
@@ -159,6 +169,11 @@ mod tests {
         let h = height.expect("on");
         assert!((h as f32) < (1e6f32) && 1e6 - h >= 64.0 * 0.0625, "ground {h}");
         assert_eq!(ground_height(&[quad(0.0, true)], [0.0; 3], [1.0, 0.0, 1.0], Ground::Off), (None, None));
+        // A model 1e-6 wide at 5e5 (stored beside it): its own gap, 1.7e-11, is below f64's step
+        // at 1e6 (1.2e-10), where the ground and the base are written; 4 of those steps.
+        let (lo, hi) = ([1e6, 5e5 - 5e-7, -1e6], [1e6 + 1e-6, 5e5 + 5e-7, -1e6 + 1e-6]);
+        let h = ground_height(&[], lo, hi, Ground::On).0.expect("on");
+        assert_eq!(lo[1] - h, 4.0 * 2f64.powi(19 - 52), "ground {h} under {}", lo[1]);
     }
 
     #[test]
