@@ -2,7 +2,7 @@
 //! not as a student who built them means (a lamp shut inside an opaque ball, a slab made of two
 //! planes that both face out of it, one sphere written twice).
 
-use super::{FieldIssue, ObjectDesc, SceneDesc, num};
+use super::{Attenuation, FieldIssue, ObjectDesc, SceneDesc, num};
 use crate::number::format_rounded;
 use glam::DVec3;
 use glint_types::layout::f32_spacing;
@@ -11,7 +11,82 @@ use glint_types::layout::f32_spacing;
 pub(super) fn placement_warnings(scene: &SceneDesc) -> Vec<FieldIssue> {
     let mut out = shut_in_lights(scene);
     out.extend(same_facing_transmissive_planes(scene));
+    out.extend(held_falloffs(scene));
     out
+}
+
+/// An inverse-square light with a surface nearer than the distance within which its 1/d² is
+/// held (`MIN_ATTENUATION_DENOMINATOR`: d² ≥ 1e-6, so d = 1e-3): that surface is lit less than
+/// 1/d² says. A model in millimetres scaled to metres with its own glTF light 3e-4 from it came
+/// out 8.6 dB darker than the same model at full size, and nothing said why (a tester).
+fn held_falloffs(scene: &SceneDesc) -> Vec<FieldIssue> {
+    let held = crate::limits::MIN_ATTENUATION_DENOMINATOR.sqrt();
+    let mut out = Vec::new();
+    for (i, light) in scene.lights.iter().enumerate() {
+        let (Attenuation::InverseSquare { .. }, Some(p)) = (light.attenuation, light.position) else { continue };
+        let p = DVec3::from(p);
+        let nearest = scene
+            .objects
+            .iter()
+            .enumerate()
+            .filter_map(|(k, o)| Some((k, surface_distance(o, p, held)?)))
+            .min_by(|a, b| a.1.total_cmp(&b.1));
+        if let Some((k, d)) = nearest.filter(|&(_, d)| d < held) {
+            // By name too: a model file's lab scene has a ground the user never wrote.
+            let object = &scene.objects[k];
+            let named = match object.name() {
+                "" => String::new(),
+                name => format!(" ({} `{}`)", object.kind_name(), crate::number::shorten(name)),
+            };
+            out.push(FieldIssue {
+                field: format!("lights[{i}].position"),
+                problem: format!(
+                    "objects[{k}]{named} comes within {} of this inverse-square light, whose 1/d² is held to 1e6 within \
+                     1e-3 of it (so that the GPU's f32 stays finite): surfaces nearer than that are lit less than \
+                     1/d² says; scale the scene up (a model in millimetres: scale it by 1000 and its lights' \
+                     intensities by 1e6), or move the light away",
+                    format_rounded(d, 2)
+                ),
+            });
+        }
+    }
+    out
+}
+
+/// How near `p` the surface of `object` comes, where that is below `within` (`None` beyond it,
+/// or for an object validation has yet to judge): meshes are read triangle by triangle only
+/// where their box comes that near.
+fn surface_distance(object: &ObjectDesc, p: DVec3, within: f64) -> Option<f64> {
+    let meshes: Vec<&crate::mesh::MeshDesc> = match object {
+        ObjectDesc::Sphere(s) => {
+            return Some((DVec3::from(s.center).distance(p) - s.radius).abs()).filter(|d| *d < within);
+        }
+        ObjectDesc::Plane(pl) => {
+            let n = DVec3::from(pl.normal).try_normalize()?;
+            return Some(n.dot(p - DVec3::from(pl.point)).abs()).filter(|d| *d < within);
+        }
+        ObjectDesc::Mesh(mesh) => vec![mesh],
+        ObjectDesc::Model(model) => model.loaded.iter().flat_map(|l| &l.meshes).collect(),
+    };
+    let box_distance = |lo: DVec3, hi: DVec3| (lo - p).max(p - hi).max(DVec3::ZERO).length();
+    let mut nearest: Option<f64> = None;
+    for mesh in meshes {
+        let corners: Vec<DVec3> = mesh.vertices.iter().map(|&v| DVec3::from(v)).collect();
+        let (lo, hi) =
+            corners.iter().fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), &c| (lo.min(c), hi.max(c)));
+        // An empty mesh's box is inverted, its distance NaN: passed over too.
+        if box_distance(lo, hi).partial_cmp(&within) != Some(std::cmp::Ordering::Less) {
+            continue;
+        }
+        for t in &mesh.triangles {
+            let [Some(&a), Some(&b), Some(&c)] = t.map(|k| corners.get(k as usize)) else { continue };
+            if box_distance(a.min(b).min(c), a.max(b).max(c)) < within {
+                let d = p.distance(super::tilted::closest_on_triangle(p, a, b, c));
+                nearest = Some(nearest.map_or(d, |n| n.min(d)));
+            }
+        }
+    }
+    nearest.filter(|d| *d < within)
 }
 
 fn transmits(scene: &SceneDesc, material: &str) -> Option<bool> {
@@ -302,6 +377,42 @@ mod tests {
         let mut scene = test_scene(objects);
         scene.materials.get_mut("m").expect("material").kt = Rgb([0.9; 3]);
         same_facing_transmissive_planes(&scene).into_iter().map(|w| w.field).collect()
+    }
+
+    #[test]
+    fn an_inverse_square_light_nearer_a_surface_than_its_held_distance_is_warned_of() {
+        use crate::desc::SphereDesc;
+        use crate::light::{Attenuation, LightDesc};
+        use crate::mesh::MeshDesc;
+        use glint_types::LightKind;
+        let warned = |attenuation: Attenuation, gap: f64| {
+            let sphere = SphereDesc { center: [0.0; 3], radius: 1e-4, material: "m".into(), name: "bead".into() };
+            let far_triangle =
+                MeshDesc::new(vec![[1.0, 0.0, 0.0], [2.0, 0.0, 0.0], [1.0, 1.0, 0.0]], vec![[0, 1, 2]], "m", "");
+            let mut scene = test_scene(vec![ObjectDesc::Mesh(far_triangle), ObjectDesc::Sphere(sphere)]);
+            let mut light = LightDesc::new(LightKind::Point, [0.0, 1e-4 + gap, 0.0], [0.0; 3]);
+            light.attenuation = attenuation;
+            scene.lights.push(light);
+            held_falloffs(&scene).into_iter().map(|w| format!("{}: {}", w.field, w.problem)).collect::<Vec<_>>()
+        };
+        let square = Attenuation::InverseSquare { range: None };
+        let near = warned(square, 3e-4);
+        assert_eq!(near.len(), 1, "{near:?}");
+        assert!(
+            near[0].starts_with(
+                "lights[0].position: objects[1] (sphere `bead`) comes within 0.0003 of this inverse-square light"
+            ),
+            "{near:?}"
+        );
+        assert!(warned(square, 2e-3).is_empty());
+        assert!(warned(Attenuation::NONE, 3e-4).is_empty(), "a polynomial falloff is bounded by its own rule");
+        // A triangle's nearest point, not its corners: the light 5e-4 over the middle of an edge.
+        let edge = MeshDesc::new(vec![[-1.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]], vec![[0, 1, 2]], "m", "");
+        let mut scene = test_scene(vec![ObjectDesc::Mesh(edge)]);
+        let mut light = LightDesc::new(LightKind::Point, [0.0, 5e-4, 0.0], [0.0; 3]);
+        light.attenuation = square;
+        scene.lights.push(light);
+        assert_eq!(held_falloffs(&scene).len(), 1);
     }
 
     #[test]

@@ -129,7 +129,7 @@ fn could_be_off(extent: DVec3, eye: DVec3, lo: DVec3, hi: DVec3) -> bool {
 
 /// The point of triangle abc nearest to p (Ericson, Real-Time Collision Detection, 5.1.5): by
 /// the region of the triangle's plane p projects into, a corner, an edge or the face.
-fn closest_on_triangle(p: DVec3, a: DVec3, b: DVec3, c: DVec3) -> DVec3 {
+pub(super) fn closest_on_triangle(p: DVec3, a: DVec3, b: DVec3, c: DVec3) -> DVec3 {
     let (ab, ac, ap) = (b - a, c - a, p - a);
     let (d1, d2) = (ab.dot(ap), ac.dot(ap));
     if d1 <= 0.0 && d2 <= 0.0 {
