@@ -4,7 +4,7 @@
 
 use glint_core::cpu::TraceContext;
 use glint_core::cpu::ray_tree::{Cut, RayTree};
-use glint_core::cpu::trace::render_pixel;
+use glint_core::cpu::trace::{render_pixel, weigh};
 use glint_core::glam::DVec3;
 use glint_core::{FlatScene, probe_tree};
 use glint_io::load_scene;
@@ -99,10 +99,13 @@ fn check_glass_tree(max_depth: u32) -> RayTree {
             assert_eq!(n.weight, parent.weight * parent.attenuation);
             assert!(n.light.is_some() && n.cut.is_none());
         } else {
-            // The path weight is the parent's times the ray's own k.
-            assert_eq!(n.weight, parent.weight * parent.attenuation * n.factor, "node {i}");
             let k = flat.materials[parent.terms.as_ref().expect("parent hit").material as usize];
             let (kr, kt) = (glint_core::cpu::v3(k.kr), glint_core::cpu::v3(k.kt));
+            // The path weight is the parent's times the ray's own k, in f32 as the GPU forms it
+            // (k_r + k_t summed in f32 under total internal reflection).
+            let k32 = if n.tir { (kr.as_vec3() + kt.as_vec3()).as_dvec3() } else { n.factor };
+            let parent_weight = weigh(parent.weight, DVec3::splat(parent.attenuation));
+            assert_eq!(n.weight, weigh(parent_weight, k32), "node {i}");
             let want = match n.kind {
                 RayKind::Reflection if n.tir => kr + kt,
                 RayKind::Reflection => kr,

@@ -65,14 +65,31 @@ pub fn overflow_causes(desc: &SceneDesc, max_depth: u32, integrator: Integrator,
             } else {
                 String::new()
             };
+            // A shadow ray is weighed by k_t at every surface it crosses, however many and
+            // whatever the depth: at depth 0 "0 bounces multiply radiance by up to 1" had been
+            // the whole explanation of four k_t = 1e9 panes (a tester).
+            let kt = m.kt.max_channel();
+            let crossings = if kt > 1.0 {
+                format!(
+                    "; shadow rays multiply a light's term by k_t = {} at every surface of it they cross, however \
+                     many, whatever the depth",
+                    format_number(kt)
+                )
+            } else {
+                String::new()
+            };
+            let bounces = if max_depth > 0 {
+                format!(": up to {max_depth} bounces (the render's max depth) multiply radiance by up to {reach}")
+            } else {
+                String::new()
+            };
             format!(
-                "materials.{name} returns {terms} = {} times the light it receives ({fields}){lifted}: \
-                 up to {} bounces (the render's max depth) multiply radiance by up to {reach}",
+                "materials.{name} returns {terms} = {} times the light it receives ({fields}){lifted}{bounces}{crossings}",
                 format_number(m.gain(integrator)),
-                max_depth
             )
         })
         .collect();
+    let transmits_more = gains.iter().any(|(_, name)| desc.materials[name].kt.max_channel() > 1.0);
     let emission = desc
         .materials
         .iter()
@@ -113,6 +130,8 @@ pub fn overflow_causes(desc: &SceneDesc, max_depth: u32, integrator: Integrator,
             "raise world.global_attenuation's c (and l, q) so that 1 / (c + l·d + q·d²) stays ≤ 1, keep {terms} ≤ 1, \
              or lower the max depth (render.max_depth, --depth) or the brightest sources"
         )
+    } else if max_depth == 0 && transmits_more {
+        "keep k_t ≤ 1 where shadow rays cross, or lower the brightest sources".to_string()
     } else {
         format!("keep {terms} ≤ 1, lower the max depth (render.max_depth, --depth) or the brightest sources")
     };
@@ -168,6 +187,23 @@ mod tests {
             overflow_causes(&desc, 30, Integrator::Whitted, false).contains("by up to 1.0e270, beyond f32's 3.4e38")
         );
         assert!(overflow_causes(&desc, 40, Integrator::Whitted, false).contains("by up to more than f64 holds"));
+    }
+
+    #[test]
+    fn shadow_rays_through_panes_of_gain_are_named_whatever_the_depth() {
+        let desc = scene("[materials.filter]\nkt = 1e9\n[[lights]]\ntype = \"point\"\nposition = [0.0, 1.0, 0.0]\n");
+        let text = overflow_causes(&desc, 0, Integrator::Whitted, false);
+        assert_eq!(
+            text,
+            "materials.filter returns k_r + k_t = 1000000000 times the light it receives (kr = 0, kt = 1000000000); \
+             shadow rays multiply a light's term by k_t = 1000000000 at every surface of it they cross, however many, \
+             whatever the depth; keep k_t ≤ 1 where shadow rays cross, or lower the brightest sources"
+        );
+        let deep = overflow_causes(&desc, 3, Integrator::Whitted, false);
+        assert!(
+            deep.contains("up to 3 bounces (the render's max depth) multiply radiance by up to 1.0e27; shadow rays"),
+            "{deep}"
+        );
     }
 
     #[test]

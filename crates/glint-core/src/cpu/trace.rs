@@ -39,7 +39,7 @@ pub fn trace_ray<R: TreeRecorder>(
     let (radiance, shaded, t, f) = match closest_hit(ctx, ray, t_min, FAR, leaving) {
         Some(hit) if ctx.has(feature::GLOBAL_ATTENUATION) => {
             let f = attenuation_factor(ctx.scene.header.global_attenuation, hit.t);
-            let shaded = shade_hit(ctx, ray, &hit, depth, weight * f, counts, probe, rec, node);
+            let shaded = shade_hit(ctx, ray, &hit, depth, weigh(weight, DVec3::splat(f)), counts, probe, rec, node);
             (f * shaded, shaded, Some(hit.t), f)
         }
         Some(hit) => {
@@ -56,6 +56,16 @@ pub fn trace_ray<R: TreeRecorder>(
         rec.close(node, t, f, t.map(|_| terms), radiance);
     }
     radiance
+}
+
+/// A path weight times v, in f32 as the GPU's twin (`trace.wgsl`'s `weigh`) forms it, a zero
+/// of v staying zero: the weight only decides the bailout, and the two tracers must decide
+/// alike. f64's product of 0.2 and 5/255 (as stored) fell just below f32's 1/255, the GPU's
+/// rounded onto it: the GPU traced a generation the CPU cut, every pixel 3.9e-3 apart (a
+/// tester). f32's product of f32 values is correctly rounded in Rust and in WGSL alike.
+pub fn weigh(weight: DVec3, v: DVec3) -> DVec3 {
+    let product = (weight.as_vec3() * v.as_vec3()).as_dvec3();
+    DVec3::select(v.cmpeq(DVec3::ZERO), DVec3::ZERO, product)
 }
 
 /// Local model plus k_r·I_r + k_t·I_t at a hit. `weight` is the product of k along the path
@@ -116,13 +126,14 @@ pub fn shade_hit<R: TreeRecorder>(
     }
     // A child that is not traced, as the tree records it: from the hit point, flagged cut.
     let cut = |rec: &mut R, kind: RayKind, dir: DVec3, k: DVec3, why: Cut| {
-        let mut child = RayNode::new(kind, Some(node), depth + 1, &Ray { origin: s.p, dir }, k, weight * k);
+        let mut child = RayNode::new(kind, Some(node), depth + 1, &Ray { origin: s.p, dir }, k, weigh(weight, k));
         child.cut = Some(why);
         child.tir = tir && kind == RayKind::Reflection;
         rec.open(child);
     };
     if !all_zero(k_mirror) {
-        let w = weight * k_mirror;
+        // Under total internal reflection the GPU sums k_r + k_t in f32, as its weight is.
+        let w = if tir { weigh(weight, (kr.as_vec3() + kt.as_vec3()).as_dvec3()) } else { weigh(weight, k_mirror) };
         if R::RECORDS && depth_cut {
             cut(rec, RayKind::Reflection, reflect_dir(ray.dir, ns), k_mirror, Cut::MaxDepth);
         } else if ctx.cap_reached(counts) {
@@ -155,7 +166,7 @@ pub fn shade_hit<R: TreeRecorder>(
         }
     }
     if let Some(dir) = refracted {
-        let w = weight * kt;
+        let w = weigh(weight, kt);
         if R::RECORDS && depth_cut {
             cut(rec, RayKind::Refraction, dir, kt, Cut::MaxDepth);
             return radiance;

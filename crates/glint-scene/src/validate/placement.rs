@@ -74,7 +74,7 @@ fn surface_distance(object: &ObjectDesc, p: DVec3, within: f64) -> Option<f64> {
         let corners: Vec<DVec3> = mesh.vertices.iter().map(|&v| DVec3::from(v)).collect();
         let (lo, hi) =
             corners.iter().fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), &c| (lo.min(c), hi.max(c)));
-        // An empty mesh's box is inverted, its distance NaN: passed over too.
+        // An empty mesh's box is inverted, its distance infinite: passed over too.
         if box_distance(lo, hi).partial_cmp(&within) != Some(std::cmp::Ordering::Less) {
             continue;
         }
