@@ -582,6 +582,23 @@ fn report_shards_merge_into_the_one_machine_report_and_missing_ones_are_named() 
         "{}",
         text(&done.stderr)
     );
+    // Every shard found elsewhere, a folder given that supplies none is refused as it is when
+    // given alone (a typo'd, empty or one-machine folder merged in silence; a tester).
+    std::fs::create_dir_all(dir.join("nothing")).expect("folder");
+    for (extra, said) in [
+        ("typo", "typo does not exist: run"),
+        ("nothing", "no shard-I-of-N.toml in nothing"),
+        ("one", "no shard-I-of-N.toml in one"),
+    ] {
+        let done = merge(&format!("s0,s1,s2,{extra}"), "extra");
+        let stderr = text(&done.stderr);
+        assert!(!done.status.success() && stderr.contains(said), "{extra}: {stderr}");
+        assert!(
+            stderr.contains("run `glint report --shard I/N --out DIR` first, or leave it out of --merge"),
+            "{stderr}"
+        );
+        assert!(!dir.join("extra").exists(), "a refused merge wrote its --out");
+    }
     // An empty shard file is said to be empty, not another glint's.
     std::fs::create_dir_all(dir.join("empty")).expect("folder");
     std::fs::write(dir.join("empty/shard-1-of-3.toml"), "").expect("empty shard");
@@ -714,7 +731,35 @@ fn report_shards_merge_into_the_one_machine_report_and_missing_ones_are_named() 
         gi[0].as_table_mut().expect("a table").clone()
     };
     let set_first_gi = |s: &mut toml::Table, gi: toml::Table| s["gi"].as_array_mut().expect("gi")[0] = gi.into();
-    let cases: [(Edit, &str); 17] = [
+    let first_times = |s: &mut toml::Table| -> Vec<toml::Value> {
+        let results = s["results"].as_array_mut().expect("results");
+        let rows = results.iter_mut().find_map(|r| r["rows"].as_array_mut().filter(|rows| !rows.is_empty()));
+        rows.expect("shard 1 has a row")[0]["times"].as_array().expect("times").clone()
+    };
+    let cases: [(Edit, &str); 20] = [
+        // A row of 2 of the sweep's 3 runs merged as timed_runs = 2 (a tester renamed one run's
+        // table); the renamed table was ignored.
+        (
+            &|s| {
+                let times = first_times(s);
+                set_first_row(s, "times", toml::Value::Array(times[..2].to_vec()));
+            },
+            "rows[0].times: 2 timed runs, not the sweep's 3 (runs = 3)",
+        ),
+        (
+            &|s| {
+                let times = first_times(s);
+                set_first_row(s, "times", toml::Value::Array(times[..2].to_vec()));
+                set_first_row(s, "timesX", toml::Value::Array(times[2..].to_vec()));
+            },
+            "unknown field `timesX`",
+        ),
+        (
+            &|s| {
+                s.insert("comment".into(), "added by hand".into());
+            },
+            "unknown field `comment`",
+        ),
         // An rmse edited beside its PSNR merged into a self-contradicting table (a tester).
         (
             &|s| {

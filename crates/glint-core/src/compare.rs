@@ -16,6 +16,7 @@ pub const HEATMAP_LOG10_MAX: f64 = 0.0;
 pub const REL_MSE_EPSILON: f64 = 1e-2;
 
 #[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct ImageErrors {
     pub max_abs: f64,
     pub mean_abs: f64,

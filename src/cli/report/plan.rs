@@ -57,6 +57,7 @@ impl Group {
 
 /// One render configuration. Size, seed and epsilon value are the report's and the scene's.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Config {
     pub backend: Backend,
     pub spp: u32,
@@ -108,6 +109,7 @@ pub struct Planned {
 
 /// What of a scene decides which planned configurations it needs (`Planned::measured_for`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct SceneNeeds {
     pub integrator: Integrator,
     /// Whether Whitted's trees have child rays (`feature::recurses` of the scene at the

@@ -109,6 +109,7 @@ pub const SHARD_FORMAT: u32 = 3;
 
 /// What a shard writes: the sweep it is part of, its machine, and its rows.
 #[derive(Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct ShardFile {
     /// `SHARD_FORMAT` of the glint that wrote it.
     pub format: u32,
@@ -189,6 +190,9 @@ pub fn read_all(dirs: &[PathBuf]) -> anyhow::Result<Vec<ShardFile>> {
     // writes): one folder a shard is the recipe, so an absent one is a missing shard to name
     // with the rest, not the end of the merge.
     let mut absent: Vec<&Path> = Vec::new();
+    // Folders that exist but hold no shard file: a typo'd or wrong folder, which the merge
+    // passed over in silence wherever the other folders held every shard.
+    let mut empty: Vec<&Path> = Vec::new();
     for dir in dirs {
         let entries = match std::fs::read_dir(dir) {
             Ok(entries) => entries,
@@ -205,11 +209,21 @@ pub fn read_all(dirs: &[PathBuf]) -> anyhow::Result<Vec<ShardFile>> {
             .filter(|p| p.extension().is_some_and(|e| e == "toml"))
             .collect();
         names.sort();
+        if names.is_empty() {
+            empty.push(dir);
+        }
         for path in names {
             let text = std::fs::read_to_string(&path).with_context(|| format!("cannot read {}", path.display()))?;
             check_format(&path, &text)?;
-            let mut file: ShardFile = toml::from_str(&text)
-                .with_context(|| format!("{}: not a shard of `glint report --shard`", path.display()))?;
+            // Unknown keys are refused too (`deny_unknown_fields`): a run's table renamed away
+            // was read as a row of fewer runs, the stray table ignored (a tester).
+            let mut file: ShardFile = toml::from_str(&text).with_context(|| {
+                format!(
+                    "{}: not a shard as `glint report --shard` writes it: the file was edited or damaged; run that \
+                     shard again; nothing was written",
+                    path.display()
+                )
+            })?;
             file.path.clone_from(&path);
             file.sort_times();
             if let Err(problem) = file.check() {
@@ -235,11 +249,28 @@ pub fn read_all(dirs: &[PathBuf]) -> anyhow::Result<Vec<ShardFile>> {
         };
         bail!("{none}: run `glint report --shard I/N --out DIR` first");
     }
-    let absent = if absent.is_empty() {
+    let no_shard_in = |folders: &[&Path]| {
+        let list: Vec<String> = folders.iter().map(|d| d.display().to_string()).collect();
+        format!("no shard-I-of-N.toml in {}", list.join(", "))
+    };
+    // Every folder given that supplied no shard, as the merge of that folder alone says it.
+    let folders_without = absent.len() + empty.len();
+    let mut unsupplied = Vec::new();
+    if !absent.is_empty() {
+        unsupplied.push(not_existing(&absent));
+    }
+    if !empty.is_empty() {
+        unsupplied.push(no_shard_in(&empty));
+    }
+    // Beside missing shards, an absent folder is likely theirs.
+    let mut absent = if absent.is_empty() {
         String::new()
     } else {
         format!("; {} (a shard that failed or never ran writes no folder)", not_existing(&absent))
     };
+    if !empty.is_empty() {
+        absent.push_str(&format!("; {}", no_shard_in(&empty)));
+    }
     // Shards are held against the sweep most of them are of (the first's on a tie), so that a
     // stale shard is the one named, whichever file the folders list first (as `glint merge`
     // names a stale tile).
@@ -299,6 +330,17 @@ pub fn read_all(dirs: &[PathBuf]) -> anyhow::Result<Vec<ShardFile>> {
             if missing == 1 { "it" } else { "them" },
             first.count,
             runs.join(",")
+        );
+    }
+    // Every shard was found, but a folder given supplied none: a typo or a wrong folder the
+    // user meant to merge, which is refused as it is when given alone (it was passed over).
+    if !unsupplied.is_empty() {
+        bail!(
+            "{}: run `glint report --shard I/N --out DIR` first, or leave {} out of --merge (all {} shards were found \
+             in the other folders); nothing was written",
+            unsupplied.join("; "),
+            if folders_without == 1 { "it" } else { "them" },
+            first.count
         );
     }
     let mut files: Vec<ShardFile> = found.into_iter().map(|(_, f)| f).collect();

@@ -17,7 +17,7 @@ const MAX_RAYS: u64 = 1 << 60;
 
 impl ShardFile {
     /// What the merge relies on and a shard always writes: a shard index below the count, the
-    /// sweep's scenes only, each row its own shard's, at least one timed run a row, and every
+    /// sweep's scenes only, each row its own shard's, the sweep's timed runs a row, and every
     /// error and figure a finite, non-negative number, a share at most 1 (a PSNR may be
     /// infinite: identical images). The
     /// first field that is not, as `field: problem`.
@@ -91,6 +91,14 @@ impl ShardFile {
                 Some(t) => Err(format!(
                     "{at}.times: a run of {} s, longer than a week ({MAX_RUN_SECS} s), which no render of a sweep takes",
                     t.as_secs()
+                )),
+                // Every row is timed in the sweep's `runs` passes: a row with fewer (a run's table
+                // renamed away) merged a median of two runs as if of three (a tester).
+                None if times.len() != self.runs as usize => Err(format!(
+                    "{at}.times: {} timed runs, not the sweep's {} (runs = {}): every row is timed in each pass",
+                    times.len(),
+                    self.runs,
+                    self.runs
                 )),
                 None => Ok(()),
             }

@@ -37,6 +37,7 @@ pub struct Sample {
 }
 
 #[derive(Clone, Copy, Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct GpuExtra {
     /// Creation time of the row's shader variant (compiled once, then cached).
     pub pipeline: Duration,
@@ -51,6 +52,7 @@ pub const RAY_MISMATCH_PCT: f64 = 0.1;
 
 /// One measured configuration.
 #[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Row {
     pub config: Config,
     pub groups: Vec<Group>,
@@ -108,6 +110,7 @@ impl Row {
 
 /// One specular model on one backend (`specular::measure`).
 #[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct SpecularRow {
     pub model: SpecularModel,
     pub config: Config,
@@ -127,6 +130,7 @@ impl SpecularRow {
 
 /// All rows of one scene.
 #[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct SceneResult {
     pub name: String,
     pub description: String,

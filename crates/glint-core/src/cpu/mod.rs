@@ -52,6 +52,7 @@ pub fn v3(a: [f32; 4]) -> DVec3 {
 
 /// Rays traced, by kind.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct RayCounts {
     pub camera: u64,
     pub shadow: u64,

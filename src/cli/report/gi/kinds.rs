@@ -19,6 +19,7 @@ use super::{Ambient, GiResult};
 /// Whitted's CPU image at the sweep's deepest depth and the reference's samples (its own
 /// sampling error averaged out).
 #[derive(Clone, Debug, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct KindSplit {
     pub spp: u32,
     /// Each kind's share of the split's light (the four kinds' means summed): they add to 1.

@@ -44,6 +44,7 @@ impl Ambient {
 }
 
 #[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct GiRow {
     pub integrator: Integrator,
     pub backend: Backend,
@@ -58,6 +59,7 @@ pub struct GiRow {
 }
 
 #[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct GiResult {
     pub scene: String,
     pub reference_spp: u32,
