@@ -1065,3 +1065,98 @@ fn the_fitted_ambient_is_fitted_at_its_rows_own_depth_and_samples() {
         );
     }
 }
+/// Three parallel glass panes (k_r = 0.1, k_t = 0.9): under the reference's fixed depth 16 and
+/// bailout 0 every camera sample's tree branches at each hit.
+const PANES: &str = r#"
+[camera]
+position = [0.3, 0.2, -5.0]
+look_at = [0.0, 0.0, 0.0]
+[materials.wall]
+kd = 0.8
+[materials.glass]
+kd = 0.0
+kr = 0.1
+kt = 0.9
+ior = 1.5
+[[lights]]
+type = "point"
+position = [-3.0, 5.0, -4.0]
+[[objects]]
+type = "plane"
+point = [0.0, 0.0, 5.0]
+normal = [0.0, 0.0, -1.0]
+material = "wall"
+[[objects]]
+type = "plane"
+point = [0.0, 0.0, -1.0]
+normal = [0.0, 0.0, -1.0]
+material = "glass"
+[[objects]]
+type = "plane"
+point = [0.0, 0.0, -0.9]
+normal = [0.0, 0.0, 1.0]
+material = "glass"
+[[objects]]
+type = "plane"
+point = [0.0, 0.0, 0.0]
+normal = [0.0, 0.0, -1.0]
+material = "glass"
+[[objects]]
+type = "plane"
+point = [0.0, 0.0, 0.1]
+normal = [0.0, 0.0, 1.0]
+material = "glass"
+[[objects]]
+type = "plane"
+point = [0.0, 0.0, 1.0]
+normal = [0.0, 0.0, -1.0]
+material = "glass"
+[[objects]]
+type = "plane"
+point = [0.0, 0.0, 1.1]
+normal = [0.0, 0.0, 1.0]
+material = "glass"
+"#;
+
+#[test]
+fn a_reference_that_cannot_finish_is_refused_and_a_large_one_warned_of() {
+    let dir = TempDir::new("report-panes");
+    std::fs::write(dir.join("panes.toml"), PANES).expect("scene");
+    // `--quick` ran for hours on it without a word (a tester): refused before anything runs.
+    let start = Instant::now();
+    let done = glint(&dir, ["report", "--quick", "--cpu-only", "--scenes", "panes.toml", "-q", "--out", "quick"]);
+    let said = text(&done.stderr);
+    assert!(!done.status.success(), "{said}");
+    assert!(
+        said.contains(
+            "panes: the reference (CPU, 64 spp, depth 16, bailout 0; fixed): materials.glass reflects and refracts"
+        ) && said.contains("up to 2^17 − 1 ≈ 1.3e5 rays per camera sample")
+            && said.contains("more than the 4.3e9 rays a reference may take")
+            && said.contains("or render at most"),
+        "{said}"
+    );
+    assert!(!dir.join("quick").exists(), "a refused report made its --out");
+    assert!(start.elapsed().as_secs() < 120, "the refusal took {:?}", start.elapsed());
+    // Small enough to finish: it runs, and says what its reference may cost.
+    let done = glint(
+        &dir,
+        [
+            "report",
+            "--quick",
+            "--cpu-only",
+            "--scenes",
+            "panes.toml",
+            "--width",
+            "2",
+            "--height",
+            "2",
+            "-q",
+            "--out",
+            "tiny",
+        ],
+    );
+    let said = text(&done.stderr);
+    assert!(done.status.success(), "{said}");
+    assert!(said.contains("warning: panes: the reference (CPU, 64 spp, depth 16, bailout 0; fixed)"), "{said}");
+    assert!(said.contains("within the 4.3e9 a reference may take"), "{said}");
+}

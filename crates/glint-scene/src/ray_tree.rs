@@ -179,6 +179,19 @@ pub fn ray_tree_bound(desc: &SceneDesc, settings: &RenderSettings) -> f64 {
 /// The warning for a scene whose ray tree can grow past `WARN_RAYS_PER_SAMPLE` rays a camera
 /// sample, naming a branching material, the bound and the remedy; `None` for the others.
 pub fn unbounded_ray_tree(desc: &SceneDesc, settings: &RenderSettings) -> Option<String> {
+    let (cause, remedy) = ray_tree_problem(desc, settings)?;
+    Some(format!("{cause}; {remedy}"))
+}
+
+/// `unbounded_ray_tree`'s finding without its remedy (a branching material, what stops it and the
+/// bound), for a caller whose settings are not the user's to change: `glint report`'s fixed
+/// reference, which has no --depth or --bailout.
+pub fn unbounded_ray_tree_cause(desc: &SceneDesc, settings: &RenderSettings) -> Option<String> {
+    ray_tree_problem(desc, settings).map(|(cause, _)| cause)
+}
+
+/// The finding and the remedy of `unbounded_ray_tree`.
+fn ray_tree_problem(desc: &SceneDesc, settings: &RenderSettings) -> Option<(String, String)> {
     // A path follows one lobe a bounce: it never branches.
     if settings.integrator == glint_types::Integrator::Path {
         return None;
@@ -240,12 +253,13 @@ pub fn unbounded_ray_tree(desc: &SceneDesc, settings: &RenderSettings) -> Option
     } else {
         format!("≈ {rays:.1e}")
     };
-    Some(format!(
+    let cause = format!(
         "materials.{name} reflects and refracts (k_r = {}, k_t = {}), so a ray tree can branch at every level, and \
-         {stop}: up to {count} rays per camera sample; {remedy}",
+         {stop}: up to {count} rays per camera sample",
         format_number(m.kr.max_channel()),
         format_number(m.kt.max_channel()),
-    ))
+    );
+    Some((cause, remedy))
 }
 
 /// The least bailout, rounded up to 3 digits, under which the tree stays within

@@ -11,6 +11,7 @@ mod markdown;
 mod pareto;
 mod plan;
 mod plot;
+mod reference_cost;
 mod shard;
 mod shard_check;
 mod specular;
@@ -33,7 +34,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use self::plan::{Plan, Planned, SceneNeeds};
 use self::sweep::Engines;
 use super::backend::open_gpu;
-use super::console::say;
+use super::console::{say, tell};
 use super::settings::{load, parse_integrator, parse_threads};
 use super::units::counted;
 use crate::cli::usage::usage;
@@ -168,6 +169,16 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
             );
         }
     }
+    let threads =
+        if args.threads == 0 { std::thread::available_parallelism().map_or(1, |n| n.get()) } else { args.threads };
+    // Before the GPU opens or --out is made: a reference that cannot finish is refused, one whose
+    // worst case is large but whose probe fits is said (a panes scene ran for hours silently).
+    let reference = plan.reference();
+    for (loaded, base) in scenes.iter().zip(&bases) {
+        if let Some(warning) = reference_cost::judge(&loaded.name, &loaded.desc, base, &reference, threads)? {
+            tell!("{warning}");
+        }
+    }
     let gpu = if args.cpu_only {
         None
     } else {
@@ -184,13 +195,10 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
     let staging = staging::Staging::new(&args.out, &files, args.force)?;
     let out = staging.path();
     let backends: Vec<Backend> = if gpu.is_some() { vec![Backend::Cpu, Backend::Gpu] } else { vec![Backend::Cpu] };
-    let threads =
-        if args.threads == 0 { std::thread::available_parallelism().map_or(1, |n| n.get()) } else { args.threads };
     let cpu_device = format!("{threads} threads");
     let mut engines = Engines { threads, gpu, pipelines: HashMap::new() };
 
     let planned = plan.configs(&backends);
-    let reference = plan.reference();
     // With --shard, which shard times each (scene, configuration); specular models go with the
     // shard of a scene's first configuration.
     let owners =
