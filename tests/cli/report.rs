@@ -941,7 +941,7 @@ fn report_shards_merge_into_the_one_machine_report_and_missing_ones_are_named() 
         );
         let stderr = text(&done.stderr);
         assert!(!done.status.success() && stderr.contains(said), "{stderr}");
-        assert!(stderr.contains("this glint merges shard format 3 only"), "{stderr}");
+        assert!(stderr.contains("this glint merges shard format 4 only"), "{stderr}");
         assert!(!dir.join("old/report.csv").exists(), "a refused merge wrote a report");
     }
     // What a shard writes is its format: a change to it must bump `SHARD_FORMAT` (src/cli/report/
@@ -1065,6 +1065,7 @@ fn the_fitted_ambient_is_fitted_at_its_rows_own_depth_and_samples() {
         );
     }
 }
+
 /// Three parallel glass panes (k_r = 0.1, k_t = 0.9): under the reference's fixed depth 16 and
 /// bailout 0 every camera sample's tree branches at each hit.
 const PANES: &str = r#"
@@ -1159,4 +1160,53 @@ fn a_reference_that_cannot_finish_is_refused_and_a_large_one_warned_of() {
     assert!(done.status.success(), "{said}");
     assert!(said.contains("warning: panes: the reference (CPU, 64 spp, depth 16, bailout 0; fixed)"), "{said}");
     assert!(said.contains("within the 4.3e9 a reference may take"), "{said}");
+}
+
+/// A sphere of `material` over a diffuse floor, lit by one point light.
+fn sphere_over_floor(material: &str) -> String {
+    format!(
+        "[camera]\nposition = [0.0, 1.0, -5.0]\nlook_at = [0.0, 0.5, 0.0]\n[world]\nambient = 0.1\n\
+         [materials.m]\nkd = 0.7\n[materials.ball]\n{material}\n[[lights]]\ntype = \"point\"\n\
+         position = [2.0, 4.0, -3.0]\n[[objects]]\ntype = \"sphere\"\ncenter = [0.0, 0.5, 0.0]\nradius = 0.5\n\
+         material = \"ball\"\n[[objects]]\ntype = \"plane\"\npoint = [0.0, 0.0, 0.0]\nnormal = [0.0, 1.0, 0.0]\n\
+         material = \"m\"\n"
+    )
+}
+
+#[test]
+fn sweeps_a_scene_does_not_need_are_left_out_with_why() {
+    let dir = TempDir::new("report-left-out");
+    // No k_s anywhere: the specular models' table reported a Cook–Torrance / Blinn ratio of noise.
+    std::fs::write(dir.join("diffuse.toml"), sphere_over_floor("kd = 0.7")).expect("scene");
+    // k_r = 0.9 alone (k_s for a highlight): 0.9^8 = 0.43 is above every bailout, whose three
+    // rows had one image.
+    std::fs::write(dir.join("mirror.toml"), sphere_over_floor("kd = 0.0\nka = 0.0\nks = 0.5\nkr = 0.9"))
+        .expect("scene");
+    let args =
+        ["report", "--quick", "--cpu-only", "--scenes", "diffuse.toml,mirror.toml", "--width", "16", "--height", "12"];
+    let done = glint(&dir, args.into_iter().chain(["-q", "--out", "out"]));
+    assert!(done.status.success(), "{}", text(&done.stderr));
+    let read = |p: &str| std::fs::read_to_string(dir.join("out").join(p)).unwrap_or_else(|e| panic!("{p}: {e}"));
+    let (md, csv, specular) = (read("report.md"), read("report.csv"), read("specular.csv"));
+    assert!(
+        md.contains("Left out: diffuse, where no material an object uses has a specular lobe")
+            && md.contains("Left out: the specular models' timings."),
+        "{md}"
+    );
+    assert!(!specular.lines().skip(1).any(|l| l.starts_with("diffuse,")), "{specular}");
+    assert!(specular.lines().skip(1).any(|l| l.starts_with("mirror,")), "{specular}");
+    assert!(
+        md.contains("Left out: the rows that only vary the bailout. Every k_r and k_t an object has")
+            && md.contains("Left out: mirror, where every k_r and k_t an object has keeps a path's weight"),
+        "{md}"
+    );
+    let header = split_csv(csv.lines().next().expect("header"));
+    let col = |name: &str| header.iter().position(|h| h == name).unwrap_or_else(|| panic!("no column {name}"));
+    let mirror: Vec<Vec<String>> = csv.lines().skip(1).map(split_csv).filter(|r| r[col("scene")] == "mirror").collect();
+    assert!(!mirror.is_empty());
+    // Only the reference varies the bailout (to 0); every other row is at the grid's 1/255.
+    for r in &mirror {
+        assert!(!r[col("groups")].split(';').any(|g| g == "bailout"), "{r:?}");
+        assert!(r[col("groups")] == "reference" || r[col("bailout")] == (1.0f64 / 255.0).to_string(), "{r:?}");
+    }
 }

@@ -45,7 +45,8 @@ pub use model_ref::{LoadedModel, ModelDesc, Scale, TransformDesc};
 pub use number::{format_number, format_rounded, or_list, serde_words, shorten, shorten_lines, shorten_middle};
 pub use overflow::overflow_causes;
 pub use ray_tree::{
-    WARN_RAYS_PER_SAMPLE, ray_tree_bound, reachable_depth, unbounded_ray_tree, unbounded_ray_tree_cause,
+    WARN_RAYS_PER_SAMPLE, bailout_can_cut, ray_tree_bound, reachable_depth, unbounded_ray_tree,
+    unbounded_ray_tree_cause,
 };
 pub use rgb::Rgb;
 pub use storage::{bounded_box, far_box_out_of_sight, storage_origin, storage_origin_of_box, storage_origin_within};

@@ -30,6 +30,35 @@ pub fn reachable_depth(desc: &SceneDesc, settings: &RenderSettings) -> u32 {
     settings.max_depth
 }
 
+/// Whether a bailout of `bailout` can cut a child ray within `depth` levels: `false` only where
+/// every child's path weight provably stays at or above it, so that the render is the one
+/// without a bailout, ray for ray (`glint report` then leaves out the rows that vary only the
+/// bailout: a k_r = 0.9 mirror's 0.9^8 = 0.43 is above every bailout of its sweep). Each level
+/// multiplies every channel of the weight by at least the least channel of some nonzero k_r or
+/// k_t (under total internal reflection by k_r + k_t, no less), and a constant global
+/// attenuation by 1/c; one that falls with distance (l or q > 0) can make any weight small.
+pub fn bailout_can_cut(desc: &SceneDesc, bailout: f64, depth: u32) -> bool {
+    if bailout <= 0.0 || depth == 0 {
+        return false;
+    }
+    let g = &desc.world.global_attenuation;
+    if g.l != 0.0 || g.q != 0.0 {
+        return true;
+    }
+    let a = (1.0 / g.c).min(1.0);
+    let factors = used_materials(desc).flat_map(|(_, m)| [m.kr, m.kt]).filter(|k| k.max_channel() > 0.0);
+    let Some(least) = factors.map(|k| k.min_channel()).reduce(f64::min) else {
+        // No child rays at all.
+        return false;
+    };
+    // Level k's weight is at least (least·a)^k, times a for the camera ray's own attenuation: the
+    // least at the deepest level where a level shrinks it, at the first where it grows. The
+    // margin covers the GPU's f32 weights.
+    let f = least * a;
+    let worst = if f < 1.0 { f.powi(depth.min(i32::MAX as u32) as i32) } else { f };
+    worst * a < bailout * (1.0 + 1e-4)
+}
+
 /// g: the largest max-channel k_r + k_t of any material an object uses, times the most the
 /// world's global attenuation can multiply by: the most a level multiplies a path's weight by.
 fn largest_gain(desc: &SceneDesc) -> f64 {
@@ -303,6 +332,27 @@ mod tests {
 
     fn settings(max_depth: u32, bailout: f64) -> RenderSettings {
         RenderSettings { max_depth, bailout, ..RenderSettings::default() }
+    }
+
+    #[test]
+    fn a_bailout_cuts_nothing_where_every_weight_stays_above_it() {
+        // A k_r = 0.9 mirror: 0.9^8 = 0.43 is above 1/32; 0.9^40 = 0.015 is not.
+        let mirror = scene("kr = 0.9");
+        assert!(!bailout_can_cut(&mirror, 1.0 / 32.0, 8));
+        assert!(bailout_can_cut(&mirror, 1.0 / 32.0, 40));
+        // whitted's glass: 0.08^2 = 0.0064 > 1/255, 0.08^3 is not.
+        let glass = scene("kr = 0.08\nkt = 0.9");
+        assert!(!bailout_can_cut(&glass, 1.0 / 255.0, 2));
+        assert!(bailout_can_cut(&glass, 1.0 / 255.0, 3));
+        // A channel of 0 (a red mirror) can zero a weight's every channel.
+        assert!(bailout_can_cut(&scene("kr = [0.9, 0.0, 0.0]"), 1.0 / 255.0, 2));
+        // No child rays, no bailout, no depth: nothing to cut.
+        assert!(!bailout_can_cut(&scene("kd = 0.7"), 1.0 / 32.0, 8));
+        assert!(!bailout_can_cut(&mirror, 0.0, 8) && !bailout_can_cut(&mirror, 1.0, 0));
+        // An attenuation that falls with distance can make any weight small.
+        let mut far = mirror.clone();
+        far.world.global_attenuation.l = 0.1;
+        assert!(bailout_can_cut(&far, 1.0 / 32.0, 1));
     }
 
     #[test]

@@ -151,7 +151,7 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
         })
         .collect();
     let needs: Vec<SceneNeeds> =
-        scenes.iter().zip(&bases).map(|(s, base)| SceneNeeds::of(&s.desc, base, plan.reference_depth)).collect();
+        scenes.iter().zip(&bases).map(|(s, base)| SceneNeeds::of(&s.desc, base, &plan)).collect();
     // Before the GPU opens or --out is made: a family is the same with either backend.
     if let Some(s) = args.shard {
         let families = shard::families(&plan.configs(&[Backend::Cpu]), &needs);
@@ -212,7 +212,7 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
     let renders: usize = (0..scenes.len())
         .map(|si| {
             let configs = (0..planned.len()).filter(|&ci| mine(si, ci) && planned[ci].measured_for(needs[si])).count();
-            let specular = if mine(si, 0) { specular::renders(&backends, args.runs) } else { 0 };
+            let specular = if mine(si, 0) && needs[si].specular { specular::renders(&backends, args.runs) } else { 0 };
             let gi = if mine(si, 0) { gi::renders(&backends, args.runs, args.quick) } else { 0 };
             if configs == 0 { specular + gi } else { 1 + configs * (1 + args.runs as usize) + specular + gi }
         })
@@ -247,7 +247,9 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
             specular: Vec::new(),
         };
         if mine(si, 0) {
-            result.specular = specular::measure(&mut engines, loaded, base, &backends, args.runs, &bar)?;
+            if needs[si].specular {
+                result.specular = specular::measure(&mut engines, loaded, base, &backends, args.runs, &bar)?;
+            }
             // Whitted against a path-traced reference: on the shard that measures the specular models.
             let mut gi = gi::measure(&mut engines, loaded, base, &backends, args.runs, args.quick, &bar)?;
             gi.shard = args.shard.map(|s| s.index);

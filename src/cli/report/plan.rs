@@ -116,29 +116,59 @@ pub struct SceneNeeds {
     /// reference's depth): without, every depth renders the depth-0 image and the bailout
     /// prunes nothing.
     pub recurses: bool,
+    /// Whether a bailout of the sweep can cut a child ray at the bailout sweep's depths
+    /// (`glint_scene::bailout_can_cut`): where none can, every bailout renders one image, ray
+    /// for ray (a k_r = 0.9 mirror's three rows differed only in their times' noise).
+    pub bailout_cuts: bool,
+    /// Whether a specular lobe is evaluated (the scene's `feature::SPECULAR`: some material an
+    /// object uses has k_s, lit by a light with a highlight or traced by paths): without, the
+    /// specular models render one image with one shader, and their timings are noise.
+    pub specular: bool,
 }
 
 impl SceneNeeds {
-    /// The needs of `desc` rendered with `base` (its integrator), judged at `depth`.
-    pub fn of(desc: &SceneDesc, base: &RenderSettings, depth: u32) -> Self {
-        let flat = FlatScene::build(desc, &RenderSettings { max_depth: depth, ..base.clone() });
-        Self { integrator: base.integrator, recurses: feature::recurses(flat.header.features) }
+    /// The needs of `desc` rendered with `base` (its integrator) under `plan`: recursion judged
+    /// at its reference's depth, the bailout at its bailout sweep's.
+    pub fn of(desc: &SceneDesc, base: &RenderSettings, plan: &Plan) -> Self {
+        let flat = FlatScene::build(desc, &RenderSettings { max_depth: plan.reference_depth, ..base.clone() });
+        let depth = plan.bailout_depth.iter().copied().max().unwrap_or(0);
+        let bailout_cuts = plan.bailouts.iter().any(|b| glint_scene::bailout_can_cut(desc, b.value(), depth));
+        Self {
+            integrator: base.integrator,
+            recurses: feature::recurses(flat.header.features),
+            bailout_cuts,
+            specular: flat.header.features & feature::SPECULAR != 0,
+        }
     }
 
-    /// What the sweep leaves out for such a scene, as a sentence for the report.
-    pub fn left_out(&self) -> Option<&'static str> {
+    /// What the sweep leaves out for such a scene, as sentences for the report.
+    pub fn left_out(&self) -> Vec<&'static str> {
+        let mut out = Vec::new();
         match self.integrator {
-            Integrator::Path => Some(
+            Integrator::Path => out.push(
                 "Left out: the rows that only vary the bailout, which the paths do not use (Russian roulette ends \
                  them); each would be the grid's render again.",
             ),
-            Integrator::Whitted if !self.recurses => Some(
+            Integrator::Whitted if !self.recurses => out.push(
                 "Left out: the grid's and the bailout sweep's rows deeper than 0. No material an object uses has k_r \
                  or k_t, so no ray goes past the camera's and every depth renders the depth-0 image; the shader and ε \
                  rows keep their depth.",
             ),
-            Integrator::Whitted => None,
+            Integrator::Whitted if !self.bailout_cuts => out.push(
+                "Left out: the rows that only vary the bailout. Every k_r and k_t an object has keeps a path's weight \
+                 above each bailout of the sweep at its depths, so no bailout cuts a ray and each row would be the \
+                 grid's render again.",
+            ),
+            Integrator::Whitted => {}
         }
+        if !self.specular {
+            out.push(
+                "Left out: the specular models' timings. No material an object uses has a specular lobe here (k_s \
+                 with a light or paths to weigh it), so Blinn, Phong and Cook–Torrance render one image with one \
+                 shader, and their ratio would be noise.",
+            );
+        }
+        out
     }
 }
 
@@ -152,7 +182,16 @@ impl Planned {
         let deep = self.config.depth > 0;
         let applies = |g: &Group| match (needs.integrator, g) {
             (Integrator::Path, Group::Bailout) => false,
-            (Integrator::Whitted, Group::Grid | Group::Bailout) => needs.recurses || !deep,
+            (Integrator::Whitted, Group::Grid) => needs.recurses || !deep,
+            // Without child rays the deep rows render the depth-0 image; where no bailout cuts a
+            // ray, every bailout renders the grid's (at 1/255) again.
+            (Integrator::Whitted, Group::Bailout) => {
+                if needs.recurses {
+                    needs.bailout_cuts
+                } else {
+                    !deep
+                }
+            }
             (Integrator::Path, Group::Reference | Group::Grid | Group::Shader | Group::Epsilon)
             | (Integrator::Whitted, Group::Reference | Group::Shader | Group::Epsilon) => true,
         };
@@ -342,7 +381,7 @@ mod tests {
     fn scenes_leave_out_the_rows_that_would_time_another_rows_render_again() {
         let plan = Plan::full(64);
         let rows = plan.configs(&[Backend::Cpu]);
-        let needs = |integrator, recurses| SceneNeeds { integrator, recurses };
+        let needs = |integrator, recurses| SceneNeeds { integrator, recurses, bailout_cuts: recurses, specular: true };
         let path: Vec<&Planned> = rows.iter().filter(|p| p.measured_for(needs(Integrator::Path, true))).collect();
         assert!(rows.iter().all(|p| p.measured_for(needs(Integrator::Whitted, true))));
         // Without child rays: the reference, the grid's 3 rows at depth 0, the shader rows at
@@ -362,5 +401,11 @@ mod tests {
         assert_eq!(rows.len() - path.len(), 8);
         assert!(path.iter().all(|p| p.config.bailout == Bailout::Per255 || p.groups.contains(&Group::Reference)));
         assert!(path.iter().any(|p| p.groups.contains(&Group::Bailout)), "the grid rows of the bailout sweep stay");
+        // A Whitted scene whose weights no bailout reaches (a k_r = 0.9 mirror) leaves out the
+        // same 8 rows as paths: each would render the grid's image at 1/255 again.
+        let uncut = SceneNeeds { bailout_cuts: false, ..needs(Integrator::Whitted, true) };
+        let kept: Vec<&Planned> = rows.iter().filter(|p| p.measured_for(uncut)).collect();
+        assert_eq!(kept, path, "a scene the bailout cuts nothing in");
+        assert!(kept.iter().all(|p| !p.groups_for(uncut).contains(&Group::Bailout)));
     }
 }

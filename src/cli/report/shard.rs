@@ -105,7 +105,7 @@ pub fn assign(planned: &[Planned], needs: &[SceneNeeds], pixels: u64, runs: u32,
 /// `ShardFile` and every type in it; tests/golden/shard-keys.txt lists the keys of a CPU-only
 /// shard, so a change to the GPU rows' fields alone is not caught there): the merge refuses a
 /// shard of another format instead of reading fields it lacks as empty.
-pub const SHARD_FORMAT: u32 = 3;
+pub const SHARD_FORMAT: u32 = 4;
 
 /// What a shard writes: the sweep it is part of, its machine, and its rows.
 #[derive(Debug, Serialize, Deserialize)]
@@ -553,7 +553,8 @@ pub fn join(files: &mut [ShardFile], planned: &[Planned]) -> anyhow::Result<Vec<
                 ),
             }
         }
-        if measured != expected || j.specular.is_empty() {
+        // A scene without a specular lobe has no specular rows (`SceneNeeds::specular`).
+        if measured != expected || j.specular.is_empty() == j.needs.specular {
             bail!(
                 "scene {} has {} rows in the shards, not the sweep's {} configurations once each with its \
                  specular models ({} rows): a shard's file was edited or cut short; run that shard again; nothing was \
@@ -576,7 +577,8 @@ mod tests {
     #[test]
     fn shards_past_the_families_get_nothing_and_cost_nothing() {
         let planned = Plan::full(64).configs(&[Backend::Cpu, Backend::Gpu]);
-        let needs = [SceneNeeds { integrator: Integrator::Whitted, recurses: true }; 5];
+        let needs =
+            [SceneNeeds { integrator: Integrator::Whitted, recurses: true, bailout_cuts: true, specular: true }; 5];
         let families = families(&planned, &needs);
         assert!(families > 5 && families < 5 * planned.len(), "{families}");
         let fitted = assign(&planned, &needs, 320 * 240, 3, families as u32);
@@ -586,7 +588,7 @@ mod tests {
         // Any more deal the same (no 2^32-long load vector), and leave the rest empty.
         assert_eq!(assign(&planned, &needs, 320 * 240, 3, u32::MAX), fitted);
         // A scene without child rays has fewer families: the deep grid rows it leaves out.
-        let flat = [SceneNeeds { recurses: false, ..needs[0] }];
+        let flat = [SceneNeeds { recurses: false, bailout_cuts: false, ..needs[0] }];
         let fewer = self::families(&planned, &flat);
         assert!(fewer < families / 5, "{fewer} of {}", families / 5);
         let used: std::collections::BTreeSet<u32> =
@@ -597,7 +599,8 @@ mod tests {
     #[test]
     fn every_family_goes_to_one_shard_and_the_loads_balance() {
         let planned = Plan::full(64).configs(&[Backend::Cpu, Backend::Gpu]);
-        let needs = [SceneNeeds { integrator: Integrator::Whitted, recurses: true }; 5];
+        let needs =
+            [SceneNeeds { integrator: Integrator::Whitted, recurses: true, bailout_cuts: true, specular: true }; 5];
         for count in [1, 2, 3, 7] {
             let shards = assign(&planned, &needs, 320 * 240, 3, count);
             let mut load = vec![0.0; count as usize];

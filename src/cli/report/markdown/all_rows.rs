@@ -135,7 +135,12 @@ mod tests {
             description: String::new(),
             settings,
             reference,
-            needs: SceneNeeds { integrator: glint_scene::Integrator::Whitted, recurses: true },
+            needs: SceneNeeds {
+                integrator: glint_scene::Integrator::Whitted,
+                recurses: true,
+                bailout_cuts: true,
+                specular: true,
+            },
             rows,
             specular: Vec::new(),
         };

@@ -19,9 +19,11 @@ pub fn bailout_summary(md: &mut String, scenes: &[SceneResult]) {
         .map(|r| r.config)
         .max_by_key(|c| (c.depth, c.spp));
     // The bailout prunes Whitted's child rays only, so the sweep leaves out the bailout rows of
-    // a path scene and of a scene without child rays (`Planned::groups_for`).
-    let (left_out, whitted): (Vec<&SceneResult>, Vec<&SceneResult>) =
-        scenes.iter().partition(|s| s.needs.integrator == Integrator::Path || !s.needs.recurses);
+    // a path scene, of a scene without child rays and of one whose weights no bailout of the
+    // sweep reaches (`Planned::groups_for`).
+    let (left_out, whitted): (Vec<&SceneResult>, Vec<&SceneResult>) = scenes
+        .iter()
+        .partition(|s| s.needs.integrator == Integrator::Path || !s.needs.recurses || !s.needs.bailout_cuts);
     match base {
         Some(base) => md.push_str(&prose(Block::Bailout, &[("spp", &base.spp), ("depth", &base.depth)])),
         // Every scene left the sweep out: the heading, then why.
@@ -37,7 +39,9 @@ pub fn bailout_summary(md: &mut String, scenes: &[SceneResult]) {
     let names = |path: bool| -> Vec<&str> {
         left_out.iter().filter(|s| (s.needs.integrator == Integrator::Path) == path).map(|s| s.name.as_str()).collect()
     };
-    let (paths, flat) = (names(true), names(false));
+    let (paths, whitted_left_out) = (names(true), names(false));
+    let uncut = |name: &&str| left_out.iter().any(|s| s.name == *name && s.needs.recurses);
+    let (uncut, flat): (Vec<&str>, Vec<&str>) = whitted_left_out.into_iter().partition(uncut);
     if !paths.is_empty() {
         let _ = writeln!(
             md,
@@ -54,6 +58,15 @@ pub fn bailout_summary(md: &mut String, scenes: &[SceneResult]) {
             "Left out: {}, where no material an object uses has k_r or k_t: no ray goes past the camera's, so the \
              bailout has nothing to prune.\n",
             flat.join(", ")
+        );
+    }
+    if !uncut.is_empty() {
+        let _ = writeln!(
+            md,
+            "Left out: {}, where every k_r and k_t an object has keeps a path's weight above each bailout of the \
+             sweep at its depths: no bailout cuts a ray, so each would render the grid's image, at bailout 1/255, \
+             again, and the times would differ only by noise.\n",
+            uncut.join(", ")
         );
     }
 }

@@ -62,7 +62,7 @@ fn scene_section(md: &mut String, s: &SceneResult) {
         s.settings.seed,
         ms_cell(s.reference_ms())
     );
-    if let Some(left_out) = s.needs.left_out() {
+    for left_out in s.needs.left_out() {
         let _ = writeln!(md, "{left_out}\n");
     }
     let _ = writeln!(md, "![{0}: RMSE against render time](error_vs_time_{0}.png)\n", s.name);

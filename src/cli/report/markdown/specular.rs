@@ -13,7 +13,14 @@ use super::prose::{Block, prose};
 use crate::cli::units::{count, ms, ms_cell};
 
 pub fn specular_summary(md: &mut String, scenes: &[SceneResult]) {
+    // A scene without a specular lobe is not measured (`SceneNeeds::specular`): its three models
+    // render one image with one shader, and a Cook–Torrance / Blinn ratio of it was noise.
+    let left_out: Vec<&str> = scenes.iter().filter(|s| !s.needs.specular).map(|s| s.name.as_str()).collect();
     if scenes.iter().all(|s| s.specular.is_empty()) {
+        if !left_out.is_empty() {
+            let _ = writeln!(md, "### The seed's claim: what each specular model costs\n");
+            left_out_sentence(md, &left_out);
+        }
         return;
     }
     md.push_str(&prose(Block::Specular, &[("spp", &SPP), ("depth", &DEPTH)]));
@@ -71,4 +78,17 @@ pub fn specular_summary(md: &mut String, scenes: &[SceneResult]) {
         }
     }
     let _ = writeln!(md);
+    if !left_out.is_empty() {
+        left_out_sentence(md, &left_out);
+    }
+}
+
+fn left_out_sentence(md: &mut String, scenes: &[&str]) {
+    let _ = writeln!(
+        md,
+        "Left out: {}, where no material an object uses has a specular lobe (k_s with a light or paths to weigh \
+         it): Blinn, Phong and Cook–Torrance render one image with one shader there, so a ratio of their times \
+         would be noise.\n",
+        scenes.join(", ")
+    );
 }
