@@ -6,14 +6,16 @@
 //! Nothing is written on any error. At most the output image and one tile are in memory.
 
 use crate::cli::usage::usage;
-use std::collections::{BTreeMap, HashMap};
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, bail};
 use clap::Args;
 use glint_core::TileGrid;
 use glint_core::image::linear_f32_to_srgb8;
-use glint_io::exr_file::{ExrHeader, ExrPixels, PIXELS_SHA256, read_exr, read_exr_header, write_exr_region};
+use glint_io::exr_file::{
+    ExrHeader, ExrPixels, ExrReadError, PIXELS_SHA256, read_exr, read_exr_header, write_exr_region,
+};
 use glint_io::image_file::write_png_rgb8;
 use glint_scene::MAX_IMAGE_SIDE;
 
@@ -104,6 +106,150 @@ fn file_kind(t: std::fs::FileType) -> &'static str {
     if t.is_dir() { "a folder" } else { "not a regular file" }
 }
 
+/// Why a tile file cannot be read, in a message's words: empty, not OpenEXR at all, or cut
+/// short or damaged (a copy that ran out of space, a file truncated), with the EXR reader's
+/// own words last.
+fn unreadable_why(path: &Path, e: &ExrReadError) -> String {
+    let said = e.to_string();
+    let detail = said.strip_prefix(&format!("{}: ", path.display())).unwrap_or(&said).to_string();
+    let mut magic = [0u8; 4];
+    let opened = std::fs::File::open(path).and_then(|mut f| std::io::Read::read_exact(&mut f, &mut magic));
+    let len = std::fs::metadata(path).map(|m| m.len()).ok();
+    match (len, opened) {
+        // glint writes a tile whole or not at all (a temporary renamed): an empty one was made
+        // otherwise, and holds no index to name.
+        (Some(0), _) => "is empty (0 bytes), so which tile it was meant to hold cannot be known".into(),
+        (_, Ok(())) if magic != [0x76, 0x2f, 0x31, 0x01] => format!("is not an OpenEXR file ({detail})"),
+        _ => format!("cannot be read: the file is cut short or damaged ({detail})"),
+    }
+}
+
+/// The tiles as held against the render of `tiles[reference]`: those of its grid by index, and
+/// what is wrong with the rest.
+struct Assessment<'a> {
+    /// The reference tile's path, the grid's tile count and the image's size.
+    first: &'a Path,
+    count: u32,
+    width: u32,
+    height: u32,
+    by_index: BTreeMap<u32, (&'a Path, &'a ExrHeader)>,
+    /// Tiles of another render, with the first attribute that differs.
+    stale: Vec<(&'a Path, String)>,
+    /// Every other tile's problem, a sentence naming the file.
+    problems: Vec<String>,
+    /// Whether a tile of the render was refused for what it holds (its index is to render again).
+    refused: bool,
+}
+
+fn assess<'a>(tiles: &'a [(&'a Path, ExrHeader)], reference: usize) -> anyhow::Result<Assessment<'a>> {
+    let (first, header) = (tiles[reference].0, &tiles[reference].1);
+    let keys = shared_keys(header);
+    let shared = |h: &ExrHeader| keys.iter().map(|k| h.attribute(k).map(str::to_string)).collect::<Vec<_>>();
+    let theirs = shared(header);
+    let (_, count) = tile_index(first, header)?;
+    let (width, height) = header.display;
+    // A forged or damaged header must not size the merged image beyond what a render makes.
+    if !(1..=MAX_IMAGE_SIDE).contains(&width) || !(1..=MAX_IMAGE_SIDE).contains(&height) {
+        bail!(
+            "{}: its image (display window) is {width}x{height}; a render's sides are in [1, {MAX_IMAGE_SIDE}]; \
+             nothing was written",
+            first.display()
+        );
+    }
+    let grid = TileGrid::new(count, width, height).with_context(|| format!("{}", first.display()))?;
+    let mut found = Assessment {
+        first,
+        count,
+        width,
+        height,
+        by_index: BTreeMap::new(),
+        stale: Vec::new(),
+        problems: Vec::new(),
+        refused: false,
+    };
+    // Every problem is named together with the indices to render again (a tester fixed two
+    // stale tiles and a missing one in three rounds, one message each).
+    for (path, header) in tiles {
+        let path = *path;
+        let (index, n) = match tile_index(path, header) {
+            Ok(place) => place,
+            Err(e) => {
+                found.problems.push(e.to_string().trim_end_matches("; nothing was written").to_string());
+                continue;
+            }
+        };
+        let ours = shared(header);
+        if let Some(k) = (0..keys.len()).find(|&k| ours[k] != theirs[k]) {
+            let differs = format!(
+                "{} is {} there and {} here",
+                keys[k],
+                theirs[k].as_deref().unwrap_or("absent"),
+                ours[k].as_deref().unwrap_or("absent")
+            );
+            found.stale.push((path, differs));
+            continue;
+        }
+        let refused = if let Some(missing) = header.attribute("glint:incomplete") {
+            // `glint render --tile` writes no incomplete tile; one marked so was made otherwise.
+            Some(format!(
+                "{}: carries glint:incomplete (\"{missing}\"), which glint writes on a render that lost work, and \
+                 the merge would hide it",
+                path.display()
+            ))
+        } else if let Some(why) = &header.inexact {
+            Some(format!(
+                "{}: {why}, so its pixels need not be the values rendered, and the merge would not be the \
+                 render bit for bit; merge the EXR tiles glint wrote",
+                path.display()
+            ))
+        } else if n != count || header.display != (width, height) {
+            Some(format!(
+                "{} is tile {index} of {n} of a {}x{} image, {} of {count} of {width}x{height}",
+                path.display(),
+                header.display.0,
+                header.display.1,
+                first.display()
+            ))
+        } else {
+            match grid.rect(index) {
+                Err(e) => Some(format!("{}: {e}", path.display())),
+                Ok(rect) => {
+                    let window = (header.origin, (header.width, header.height));
+                    (window != ((rect.x0, rect.y0), (rect.width, rect.height))).then(|| {
+                        format!(
+                            "{}: its data window {}x{} at ({}, {}) is not tile {index}'s block of the {} grid ({rect})",
+                            path.display(),
+                            header.width,
+                            header.height,
+                            header.origin.0,
+                            header.origin.1,
+                            grid.describe()
+                        )
+                    })
+                }
+            }
+        };
+        if let Some(refused) = refused {
+            found.problems.push(refused);
+            found.refused = true;
+            continue;
+        }
+        match found.by_index.get(&index) {
+            // A file named for another tile may hold this one (tile-3.exr holding tile 2): the
+            // tile it was named for is then among the missing, named with it.
+            Some((other, _)) => found.problems.push(format!(
+                "tile {index} is given twice, {} and {}: tiles must not overlap; leave one out",
+                other.display(),
+                path.display()
+            )),
+            None => {
+                found.by_index.insert(index, (path, header));
+            }
+        }
+    }
+    Ok(found)
+}
+
 pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
     let ext = args.output.extension().map(|e| e.to_string_lossy().to_ascii_lowercase());
     let png = match ext.as_deref() {
@@ -124,147 +270,114 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
             );
         }
     }
-    // Headers first: every check before any pixel is read or anything is written.
-    let headers: Vec<ExrHeader> =
-        // A tile that blocks its reader (a file on a hung network mount) ends the merge at the
-        // first signal: it waited for a second, and `timeout` sends one.
-        super::interrupt::while_loading(|| {
-            args.tiles.iter().map(|p| read_exr_header(p).map_err(anyhow::Error::from)).collect::<anyhow::Result<_>>()
-        })?;
+    // Headers first: every check before any pixel is read or anything is written. A file whose
+    // header cannot be read is one more problem, named beside every other (an empty tile-2.exr
+    // had hidden a missing tile 5).
+    let mut unreadable: Vec<String> = Vec::new();
+    let mut tiles: Vec<(&Path, ExrHeader)> = Vec::new();
+    // A tile that blocks its reader (a file on a hung network mount) ends the merge at the
+    // first signal: it waited for a second, and `timeout` sends one.
+    super::interrupt::while_loading(|| {
+        for path in &args.tiles {
+            match read_exr_header(path) {
+                Ok(header) => tiles.push((path, header)),
+                Err(e) => unreadable.push(format!("{}: {}", path.display(), unreadable_why(path, &e))),
+            }
+        }
+    });
+    if tiles.is_empty() {
+        bail!(
+            "{}; no tile could be read, so neither the render nor its grid is known; nothing was written",
+            unreadable.join("; ")
+        );
+    }
     // Tiles are held against the render most of them are of (the first tile's on a tie), so that
     // a stale tile left from another render is the one named, wherever the glob puts it. A
     // render is its attributes (`shared_keys`, which a GPU tile has more of).
     let render_of =
         |h: &ExrHeader| shared_keys(h).into_iter().map(|k| (k, h.attribute(k).map(str::to_string))).collect::<Vec<_>>();
-    // Per render: how many tiles are of it, and the first.
-    let mut renders: HashMap<_, (usize, usize)> = HashMap::new();
-    for (i, h) in headers.iter().enumerate() {
-        renders.entry(render_of(h)).or_insert((0, i)).0 += 1;
-    }
-    let (agreeing, reference) =
-        renders.values().copied().max_by_key(|&(n, first)| (n, std::cmp::Reverse(first))).unwrap_or((1, 0));
-    let first = (&args.tiles[reference], &headers[reference]);
-    let keys = shared_keys(first.1);
-    let shared = |h: &ExrHeader| keys.iter().map(|k| h.attribute(k).map(str::to_string)).collect::<Vec<_>>();
-    let theirs = shared(first.1);
-    let (_, count) = tile_index(first.0, first.1)?;
-    let (width, height) = first.1.display;
-    // A forged or damaged header must not size the merged image beyond what a render makes.
-    if !(1..=MAX_IMAGE_SIDE).contains(&width) || !(1..=MAX_IMAGE_SIDE).contains(&height) {
-        bail!(
-            "{}: its image (display window) is {width}x{height}; a render's sides are in [1, {MAX_IMAGE_SIDE}]; \
-             nothing was written",
-            first.0.display()
-        );
-    }
-    let grid = TileGrid::new(count, width, height).with_context(|| format!("{}", first.0.display()))?;
-    let mut by_index: BTreeMap<u32, (&Path, &ExrHeader)> = BTreeMap::new();
-    // Every tile of another render, named together with the indices to render again (a tester
-    // fixed two stale tiles and a missing one in three rounds, one message each).
-    let mut stale: Vec<(&Path, String)> = Vec::new();
-    for (path, header) in args.tiles.iter().zip(&headers) {
-        let (index, n) = tile_index(path, header)?;
-        let ours = shared(header);
-        if let Some(k) = (0..keys.len()).find(|&k| ours[k] != theirs[k]) {
-            let differs = format!(
-                "{} is {} there and {} here",
-                keys[k],
-                theirs[k].as_deref().unwrap_or("absent"),
-                ours[k].as_deref().unwrap_or("absent")
-            );
-            stale.push((path, differs));
-            continue;
-        }
-        // `glint render --tile` writes no incomplete tile; one marked so was made otherwise.
-        if let Some(missing) = header.attribute("glint:incomplete") {
-            bail!(
-                "{}: carries glint:incomplete (\"{missing}\"), which glint writes on a render that lost work, and \
-                 the merge would hide it; render the tile again; nothing was written",
-                path.display()
-            );
-        }
-        if let Some(why) = &header.inexact {
-            bail!(
-                "{}: {why}, so its pixels need not be the values rendered, and the merge would not be the \
-                 render bit for bit; merge the EXR tiles glint wrote; nothing was written",
-                path.display()
-            );
-        }
-        if n != count || header.display != (width, height) {
-            bail!(
-                "{} is tile {index} of {n} of a {}x{} image, {} of {count} of {width}x{height}; nothing was written",
-                path.display(),
-                header.display.0,
-                header.display.1,
-                first.0.display()
-            );
-        }
-        let rect = grid.rect(index).with_context(|| path.display().to_string())?;
-        if header.origin != (rect.x0, rect.y0) || (header.width, header.height) != (rect.width, rect.height) {
-            bail!(
-                "{}: its data window {}x{} at ({}, {}) is not tile {index}'s block of the {} grid ({rect}); \
-                 nothing was written",
-                path.display(),
-                header.width,
-                header.height,
-                header.origin.0,
-                header.origin.1,
-                grid.describe()
-            );
-        }
-        if let Some((other, _)) = by_index.insert(index, (path, header)) {
-            bail!(
-                "tile {index} is given twice, {} and {}: tiles must not overlap; nothing was written",
-                other.display(),
-                path.display()
-            );
+    // Per render, in the order of its first tile: its first tile and how many are of it.
+    let mut renders: Vec<(Vec<_>, usize, usize)> = Vec::new();
+    for (i, (_, h)) in tiles.iter().enumerate() {
+        let render = render_of(h);
+        match renders.iter_mut().find(|(r, _, _)| *r == render) {
+            Some((_, n, _)) => *n += 1,
+            None => renders.push((render, 1, i)),
         }
     }
-    let (missing, runs) = super::job_array::missing_runs(by_index.keys().copied(), count);
-    if !stale.is_empty() {
-        let others = match agreeing {
-            1 => String::new(),
-            n => format!(" and {} more of the {} tiles", n - 1, headers.len()),
+    let agreeing = renders.iter().map(|&(_, n, _)| n).max().unwrap_or(1);
+    // With as many tiles of two renders (4 at spp 16, 4 at spp 8) either may be the stale one.
+    let tied: Vec<usize> = renders.iter().filter(|&&(_, n, _)| n == agreeing).map(|&(_, _, first)| first).collect();
+    let reference = tied[0];
+    let found = assess(&tiles, reference)?;
+    let (first, count, width, height) = (found.first, found.count, found.width, found.height);
+    let keys = shared_keys(&tiles[reference].1);
+    let missing = super::job_array::missing_runs(found.by_index.keys().copied(), count);
+    let mut said: Vec<String> = unreadable.clone();
+    said.extend(found.problems.iter().cloned());
+    if !found.stale.is_empty() {
+        let others = match (agreeing, tied.len()) {
+            (_, 2) => " (as many tiles are of either render: either may be the stale one)".to_string(),
+            (_, 3..) => " (as many tiles are of each of these renders: any may be the stale one)".to_string(),
+            (1, _) => String::new(),
+            (n, _) => format!(" and {} more of the {} tiles", n - 1, args.tiles.len()),
         };
-        let which = match stale.as_slice() {
-            [(path, differs)] => format!(
-                "{} is not a tile of the same render as {}{others}: {differs}",
-                path.display(),
-                first.0.display()
-            ),
+        said.push(match found.stale.as_slice() {
+            [(path, differs)] => {
+                format!("{} is not a tile of the same render as {}{others}: {differs}", path.display(), first.display())
+            }
             many => format!(
                 "{} of the {} tiles are not of the same render as {}{others}: {}",
                 many.len(),
-                headers.len(),
-                first.0.display(),
+                args.tiles.len(),
+                first.display(),
                 many.iter().map(|(p, d)| format!("{} ({d})", p.display())).collect::<Vec<_>>().join(", ")
             ),
-        };
-        // Good tiles may cover every index (a tile left from an earlier render of more tiles).
-        let again = if missing == 0 {
-            format!(
-                "every tile of the render is there: leave {} out of the tiles given",
-                if stale.len() == 1 { "it" } else { "them" }
-            )
+        });
+    }
+    let again = |m: &super::job_array::Missing| format!("{} (with --tile I/{count}; {})", m.listing(), m.slurm_array());
+    if tied.len() > 1 {
+        // What each render would need, were its tiles the ones to keep.
+        let choices: Vec<String> = tied
+            .iter()
+            .filter_map(|&r| {
+                let found = assess(&tiles, r).ok()?;
+                let m = super::job_array::missing_runs(found.by_index.keys().copied(), found.count);
+                Some(format!("to keep the render of {}, render again {}", found.first.display(), again(&m)))
+            })
+            .collect();
+        said.push(choices.join("; or, "));
+    } else if missing.count == 0 {
+        // Good tiles may cover every index (a tile left from an earlier render of more tiles,
+        // or an empty file beside them).
+        let extra = found.stale.len() + unreadable.len();
+        if extra > 0 && found.problems.is_empty() {
+            let them = if extra == 1 { "it" } else { "them" };
+            said.push(format!("every tile of the render is there: leave {them} out of the tiles given"));
+        }
+    } else if !found.stale.is_empty() || found.refused {
+        said.push(format!("{} of {count} tiles to render again: {}", missing.count, again(&missing)));
+    } else {
+        let among = if unreadable.is_empty() {
+            ""
+        } else if unreadable.len() == 1 {
+            " (the unreadable file's among them)"
         } else {
-            format!(
-                "{missing} of {count} tiles to render again: {} (with --tile I/{count}; as a Slurm array, --array={})",
-                runs.join(", "),
-                runs.join(",")
-            )
+            " (the unreadable files' among them)"
         };
-        bail!("{which}; {again}; nothing was written");
+        said.push(format!(
+            "{} of {count} {} missing{among}: {} (render {} with --tile I/{count}; {})",
+            missing.count,
+            if missing.count == 1 { "tiles is" } else { "tiles are" },
+            missing.listing(),
+            if missing.count == 1 { "it" } else { "them" },
+            missing.slurm_array()
+        ));
     }
-    if missing > 0 {
-        bail!(
-            "{missing} of {count} {} missing: {} (render {} with --tile I/{count}; as a Slurm array, \
-             --array={}); nothing was written",
-            if missing == 1 { "tiles is" } else { "tiles are" },
-            runs.join(", "),
-            if missing == 1 { "it" } else { "them" },
-            runs.join(",")
-        );
+    if !said.is_empty() {
+        bail!("{}; nothing was written", said.join("; "));
     }
+    let by_index = found.by_index;
     let sources: Vec<&Path> = args.tiles.iter().map(PathBuf::as_path).collect();
     // Before `check_outputs`, whose message calls its input a scene.
     if sources.iter().any(|s| is_same_file(s, &args.output)) {
@@ -272,34 +385,53 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
     }
     check_outputs(&[args.output.as_path()], sources[0], args.force)?;
 
+    let grid = TileGrid::new(count, width, height)?;
     let mut image = vec![[0f32; 3]; width as usize * height as usize];
+    // Every tile whose pixels fail is named, not the first alone, with the tiles to render again.
+    let mut failed: Vec<String> = Vec::new();
+    let mut again: Vec<u32> = Vec::new();
     for (&index, &(path, checked)) in &by_index {
-        let tile = super::interrupt::while_loading(|| read_exr(path))?;
-        same_as_checked(path, checked, &tile)?;
-        match tile.digest_holds() {
-            Some(true) => {}
-            Some(false) => bail!(
-                "{}: its pixels are not the ones it was written with (their SHA-256 is not its {PIXELS_SHA256}): \
-                 the file was damaged or changed since; render the tile again; nothing was written",
-                path.display()
-            ),
-            None => bail!(
-                "{}: has no {PIXELS_SHA256} (every tile `glint render --tile` writes has one), so a damaged pixel \
-                 could not be told from a rendered one; render the tile again; nothing was written",
-                path.display()
-            ),
+        let tile = match super::interrupt::while_loading(|| read_exr(path)) {
+            Ok(tile) => tile,
+            Err(e) => {
+                failed.push(format!("{}: tile {index}'s pixels {}", path.display(), unreadable_why(path, &e)));
+                again.push(index);
+                continue;
+            }
+        };
+        if let Err(why) = same_as_checked(path, checked, &tile) {
+            failed.push(why);
+            continue;
         }
+        let bad = match tile.digest_holds() {
+            Some(true) => None,
+            Some(false) => Some(format!(
+                "{}: its pixels are not the ones it was written with (their SHA-256 is not its {PIXELS_SHA256}): \
+                 the file was damaged or changed since",
+                path.display()
+            )),
+            None => Some(format!(
+                "{}: has no {PIXELS_SHA256} (every tile `glint render --tile` writes has one), so a damaged pixel \
+                 could not be told from a rendered one",
+                path.display()
+            )),
+        };
         let rect = grid.rect(index)?;
         // A render writes no such pixel (it refuses an image with one): the tile was made or
         // changed otherwise, and a merge must not pass it on.
-        if let Some(at) = tile.rgb.iter().position(|p| !p.iter().all(|c| c.is_finite() && *c >= 0.0)) {
+        let bad = bad.or_else(|| {
+            let at = tile.rgb.iter().position(|p| !p.iter().all(|c| c.is_finite() && *c >= 0.0))?;
             let (x, y) = (rect.x0 as usize + at % rect.width as usize, rect.y0 as usize + at / rect.width as usize);
-            bail!(
-                "{}: pixel ({x}, {y}) is {:?}, which no render writes (radiance is finite and ≥ 0); \
-                 render the tile again; nothing was written",
+            Some(format!(
+                "{}: pixel ({x}, {y}) is {:?}, which no render writes (radiance is finite and ≥ 0)",
                 path.display(),
                 tile.rgb[at]
-            );
+            ))
+        });
+        if let Some(bad) = bad {
+            failed.push(bad);
+            again.push(index);
+            continue;
         }
         for row in 0..rect.height as usize {
             let src = &tile.rgb[row * rect.width as usize..(row + 1) * rect.width as usize];
@@ -308,13 +440,27 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
         }
         super::interrupt::check()?;
     }
+    if !failed.is_empty() {
+        if !again.is_empty() {
+            // The runs of the tiles to render again are the gaps between the others.
+            let others = (0..count).filter(|i| again.binary_search(i).is_err());
+            let m = super::job_array::missing_runs(others, count);
+            failed.push(format!(
+                "{} of {count} tiles to render again: {} (with --tile I/{count}; {})",
+                m.count,
+                m.listing(),
+                m.slurm_array()
+            ));
+        }
+        bail!("{}; nothing was written", failed.join("; "));
+    }
     // The scene's name, where it came from and the flags that shaped it as the first tile gives
     // them (tiles of copies of one scene file merge): with the shared keys, what renders the
     // image again.
     let mut metadata: Vec<(String, String)> = ["glint:scene", "glint:source", "glint:load_flags"]
         .iter()
         .chain(&keys)
-        .filter_map(|k| Some((k.to_string(), first.1.attribute(k)?.to_string())))
+        .filter_map(|k| Some((k.to_string(), tiles[reference].1.attribute(k)?.to_string())))
         .collect();
     metadata.push(("glint:merged_tiles".into(), count.to_string()));
     if png {
@@ -333,15 +479,15 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
 /// requeued task renaming its fresh tile over the old one) would bring another render's pixels,
 /// or another block's, unchecked: the header read with the pixels must be the one checked, and
 /// the pixels must fill its data window.
-fn same_as_checked(path: &Path, checked: &ExrHeader, tile: &ExrPixels) -> anyhow::Result<()> {
+fn same_as_checked(path: &Path, checked: &ExrHeader, tile: &ExrPixels) -> Result<(), String> {
     // A checked header has no `inexact` (refused before), and a re-read one none either unless
     // its compression changed.
     if tile.header != *checked || tile.rgb.len() != checked.width as usize * checked.height as usize {
-        bail!(
+        return Err(format!(
             "{}: the file changed while the merge read it (its header or size is not the one checked); \
-             merge again once no task writes it; nothing was written",
+             merge again once no task writes it",
             path.display()
-        );
+        ));
     }
     Ok(())
 }

@@ -177,21 +177,24 @@ fn tiles_that_do_not_belong_together_are_refused_by_name_and_nothing_is_written(
     render(&dir, "whitted", &[&size[..], &["--tile", "0/3", "--seed", "7"]].concat(), &stale);
     refused(&[stale.clone(), t[1].clone(), t[2].clone()], "s0.exr is not a tile of the same render as");
     refused(&[stale, t[1].clone(), t[2].clone()], "t1.exr and 1 more of the 3 tiles: glint:seed is 0 there and 7 here");
-    // Every stale tile at once, with what to render again, missing ones included.
+    // Every stale tile at once, with what to render again, missing ones included (of a 3x2
+    // grid: three tiles of the render, two stale, tile 5 missing).
     let five: Vec<PathBuf> = (0..5)
         .map(|i| {
             let seed = if i == 1 || i == 3 { "9" } else { "0" };
             let path = dir.join(format!("f{i}.exr"));
-            render(&dir, "whitted", &[&size[..], &["--tile", &format!("{i}/5"), "--seed", seed]].concat(), &path);
+            render(&dir, "whitted", &[&size[..], &["--tile", &format!("{i}/6"), "--seed", seed]].concat(), &path);
             path
         })
         .collect();
-    refused(&five[..4], "2 of the 4 tiles are not of the same render as ");
-    refused(&five[..4], "f0.exr and 1 more of the 4 tiles: ");
-    refused(&five[..4], "f3.exr (glint:seed is 0 there and 9 here); 3 of 5 tiles to render again: 1, 3-4");
-    refused(&five[..4], "(with --tile I/5; as a Slurm array, --array=1,3-4); nothing was written");
+    refused(&five, "2 of the 5 tiles are not of the same render as ");
+    refused(&five, "f0.exr and 2 more of the 5 tiles: ");
+    refused(&five, "f3.exr (glint:seed is 0 there and 9 here); 3 of 6 tiles to render again: 1, 3, 5");
+    refused(&five, "(with --tile I/6; as a Slurm array, --array=1-5:2); nothing was written");
     // A stale tile whose index a good tile has: nothing to render, the stale one to leave out.
-    refused(&[&t[..], &five[1..2]].concat(), "every tile of the render is there: leave it out of the tiles given");
+    let stale_1 = dir.join("st1.exr");
+    render(&dir, "whitted", &[&size[..], &["--tile", "1/3", "--seed", "9"]].concat(), &stale_1);
+    refused(&[&t[..], &[stale_1]].concat(), "every tile of the render is there: leave it out of the tiles given");
     let whole = dir.join("whole.exr");
     render(&dir, "whitted", &size, &whole);
     refused(&[t[0].clone(), whole, t[2].clone()], "not a tile of `glint render --tile`");
@@ -286,6 +289,104 @@ fn tiles_that_do_not_belong_together_are_refused_by_name_and_nothing_is_written(
         assert!(!done.status.success(), "merged over tile {i}");
         assert!(text(&done.stderr).contains("would replace one of the tiles"), "{}", text(&done.stderr));
     }
+}
+
+#[test]
+fn every_problem_of_the_tiles_is_named_at_once_unreadable_files_and_ties_included() {
+    let dir = TempDir::new("tiles-problems");
+    let size = ["--width", "24", "--height", "16"];
+    let tile = |spec: &str, seed: &str, name: &str| {
+        let path = dir.join(name);
+        render(&dir, "whitted", &[&size[..], &["--tile", spec, "--seed", seed]].concat(), &path);
+        path
+    };
+    let t: Vec<PathBuf> = (0..4).map(|i| tile(&format!("{i}/4"), "0", &format!("t{i}.exr"))).collect();
+    let out = dir.join("out.exr");
+    let refused = |tiles: &[PathBuf], wanted: &[String]| {
+        let done = merge(&dir, tiles, &out);
+        assert!(!done.status.success(), "merged {tiles:?}");
+        let said = text(&done.stderr);
+        for w in wanted {
+            assert!(said.contains(w.as_str()), "wanted {w:?} in {said}");
+        }
+        assert!(said.trim_end().ends_with("; nothing was written"), "{said}");
+        assert!(!out.exists(), "a refused merge wrote {}", out.display());
+    };
+    let at = |p: &Path| p.display().to_string();
+    // An empty tile-2 named the EXR reader's "reference to missing bytes" alone, and hid a
+    // missing tile 3.
+    let empty = dir.join("e2.exr");
+    std::fs::write(&empty, b"").expect("empty file");
+    refused(
+        &[t[0].clone(), t[1].clone(), empty.clone()],
+        &[
+            format!("{}: is empty (0 bytes), so which tile it was meant to hold cannot be known", at(&empty)),
+            "2 of 4 tiles are missing (the unreadable file's among them): 2-3 (render them with --tile I/4; as a \
+             Slurm array, --array=2-3)"
+                .into(),
+        ],
+    );
+    let (head_cut, tail_cut, tail_cut2, not_exr) =
+        (dir.join("h.exr"), dir.join("c2.exr"), dir.join("c3.exr"), dir.join("n.exr"));
+    let bytes = std::fs::read(&t[2]).expect("tile");
+    std::fs::write(&head_cut, &bytes[..40]).expect("cut tile");
+    std::fs::write(&tail_cut, &bytes[..bytes.len() - 10]).expect("cut tile");
+    let bytes3 = std::fs::read(&t[3]).expect("tile");
+    std::fs::write(&tail_cut2, &bytes3[..bytes3.len() - 30]).expect("cut tile");
+    std::fs::write(&not_exr, b"P3 1 1 255 0 0 0").expect("text file");
+    refused(
+        &[t[0].clone(), head_cut.clone(), t[2].clone(), not_exr.clone()],
+        &[
+            format!("{}: cannot be read: the file is cut short or damaged (", at(&head_cut)),
+            format!("{}: is not an OpenEXR file (", at(&not_exr)),
+            "2 of 4 tiles are missing (the unreadable files' among them): 1, 3".into(),
+        ],
+    );
+    // Cut short in its pixels: its header names the tile, which is to render again; every such
+    // tile is named.
+    refused(
+        &[t[0].clone(), t[1].clone(), tail_cut.clone(), tail_cut2.clone()],
+        &[
+            format!("{}: tile 2's pixels cannot be read: the file is cut short or damaged (", at(&tail_cut)),
+            format!("{}: tile 3's pixels cannot be read", at(&tail_cut2)),
+            "2 of 4 tiles to render again: 2-3 (with --tile I/4; as a Slurm array, --array=2-3)".into(),
+        ],
+    );
+    // tile-3.exr holding tile 2: given twice, and tile 3 missing, both said.
+    let misnamed = dir.join("t3-holds-2.exr");
+    std::fs::copy(&t[2], &misnamed).expect("copy");
+    refused(
+        &[t[0].clone(), t[1].clone(), t[2].clone(), misnamed.clone()],
+        &[
+            format!(
+                "tile 2 is given twice, {} and {}: tiles must not overlap; leave one out",
+                at(&t[2]),
+                at(&misnamed)
+            ),
+            "1 of 4 tiles is missing: 3 (render it with --tile I/4; as a Slurm array, --array=3)".into(),
+        ],
+    );
+    // Two tiles of each of two renders: either may be the stale pair (tiles 2-3 were said to be).
+    let (s2, s3) = (tile("2/4", "7", "s2.exr"), tile("3/4", "7", "s3.exr"));
+    refused(
+        &[t[0].clone(), t[1].clone(), s2.clone(), s3],
+        &[
+            format!("are not of the same render as {} (as many tiles are of either render: either may be", at(&t[0])),
+            format!(
+                "to keep the render of {}, render again 2-3 (with --tile I/4; as a Slurm array, --array=2-3); or, \
+                 to keep the render of {}, render again 0-1 (with --tile I/4; as a Slurm array, --array=0-1)",
+                at(&t[0]),
+                at(&s2)
+            ),
+        ],
+    );
+    // Lone missing tiles a step apart are one Slurm range with a step (1,3,5,… was 7 KB for
+    // 1,503 tiles, which sbatch refused).
+    let seven: Vec<PathBuf> = [0, 2, 4, 6].iter().map(|i| tile(&format!("{i}/7"), "0", &format!("v{i}.exr"))).collect();
+    refused(
+        &seven,
+        &["3 of 7 tiles are missing: 1, 3, 5 (render them with --tile I/7; as a Slurm array, --array=1-5:2)".into()],
+    );
 }
 
 #[test]

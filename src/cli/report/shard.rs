@@ -319,17 +319,17 @@ pub fn read_all(dirs: &[PathBuf]) -> anyhow::Result<Vec<ShardFile>> {
             );
         }
     }
-    let (missing, runs) = crate::cli::job_array::missing_runs(by_index.keys().copied(), first.count);
-    if missing > 0 {
+    let missing = crate::cli::job_array::missing_runs(by_index.keys().copied(), first.count);
+    if missing.count > 0 {
         bail!(
-            "{missing} of {} {} missing: {} (run {} with --shard I/{}; as a Slurm array, --array={}){absent}; \
-             nothing was written",
+            "{} of {} {} missing: {} (run {} with --shard I/{}; {}){absent}; nothing was written",
+            missing.count,
             first.count,
-            if missing == 1 { "shards is" } else { "shards are" },
-            runs.join(", "),
-            if missing == 1 { "it" } else { "them" },
+            if missing.count == 1 { "shards is" } else { "shards are" },
+            missing.listing(),
+            if missing.count == 1 { "it" } else { "them" },
             first.count,
-            runs.join(",")
+            missing.slurm_array()
         );
     }
     // Every shard was found, but a folder given supplied none: a typo or a wrong folder the
