@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 
 use glint_io::exr_file::read_exr;
 
-use super::{TempDir, glint, text};
+use super::{TempDir, glint, meta, png_text_chunks, text};
 
 /// `glint render SCENE ARGS… -o OUT`, asserting success.
 fn render(dir: &Path, scene: &str, args: &[&str], out: &Path) {
@@ -88,6 +88,14 @@ fn split_and_merge(dir: &Path, scene: &str, settings: &[&str], backend: &str, co
     }
     assert_eq!(bits(&merged_exr), bits(&whole_exr), "{label}: the merged EXR differs from the single render");
     assert_eq!(png_pixels(&merged_png), png_pixels(&whole_png), "{label}: the merged PNG differs");
+    // The files differ in their time and rays; their pixel digests are what a user compares
+    // (the PNG had none: a merge could not be checked against a single render's PNG).
+    let (whole_text, merged_text) = (png_text_chunks(&whole_png), png_text_chunks(&merged_png));
+    let digest = meta(&merged_text, "glint:pixels_sha256");
+    assert_eq!(digest, meta(&whole_text, "glint:pixels_sha256"), "{label}: PNG digests");
+    assert_eq!(digest, glint_io::image_file::rgb8_digest(&png_pixels(&merged_png)), "{label}: the PNG digest");
+    let exr_digest = |p: &Path| read_exr(p).expect("EXR").header.attribute("glint:pixels_sha256").map(str::to_string);
+    assert_eq!(exr_digest(&merged_exr), exr_digest(&whole_exr), "{label}: EXR digests");
     // The same tiles merged again give the same file, byte for byte (its header attributes
     // were in a new hash order each time).
     let again = dir.join(format!("{label}-merged-again.exr"));
