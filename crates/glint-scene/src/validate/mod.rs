@@ -23,6 +23,7 @@ mod epsilon;
 mod integrator;
 mod lights;
 mod materials;
+mod near;
 mod objects;
 mod placement;
 mod tilted;

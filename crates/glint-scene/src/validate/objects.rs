@@ -239,7 +239,7 @@ fn validate_mesh(path: &str, mesh: &MeshDesc, origin: [f64; 3], r: &mut Report) 
                  in a scene of their own)"
             ),
         );
-    } else if let Some(size) = mesh_size(vertices)
+    } else if let Some(size) = mesh_size(mesh)
         && let Some(coarse) = coarsely_stored(vertices, size, "size", origin)
     {
         r.warn(format!("{path}.vertices"), format!("the mesh (size {}) {coarse}", format_rounded(size, 3)));
@@ -295,10 +295,8 @@ fn coarsely_stored(points: &[[f64; 3]], size: f64, measure: &str, origin: [f64; 
 }
 
 /// The diagonal of a mesh's vertices' box, `None` for a mesh of one point or none.
-fn mesh_size(vertices: &[[f64; 3]]) -> Option<f64> {
-    let (lo, hi) = vertices
-        .iter()
-        .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), v| (lo.min(DVec3::from(*v)), hi.max(DVec3::from(*v))));
+fn mesh_size(mesh: &MeshDesc) -> Option<f64> {
+    let (lo, hi) = super::near::mesh_box(mesh)?;
     let size = (hi - lo).length();
     (size.is_finite() && size > 0.0).then_some(size)
 }

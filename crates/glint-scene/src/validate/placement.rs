@@ -2,6 +2,7 @@
 //! not as a student who built them means (a lamp shut inside an opaque ball, a slab made of two
 //! planes that both face out of it, one sphere written twice).
 
+use super::near::{box_distance, closest_on_triangle, mesh_box, triangle_corners};
 use super::{Attenuation, FieldIssue, ObjectDesc, SceneDesc, num};
 use crate::number::format_rounded;
 use glam::DVec3;
@@ -68,20 +69,16 @@ fn surface_distance(object: &ObjectDesc, p: DVec3, within: f64) -> Option<f64> {
         ObjectDesc::Mesh(mesh) => vec![mesh],
         ObjectDesc::Model(model) => model.loaded.iter().flat_map(|l| &l.meshes).collect(),
     };
-    let box_distance = |lo: DVec3, hi: DVec3| (lo - p).max(p - hi).max(DVec3::ZERO).length();
     let mut nearest: Option<f64> = None;
     for mesh in meshes {
-        let corners: Vec<DVec3> = mesh.vertices.iter().map(|&v| DVec3::from(v)).collect();
-        let (lo, hi) =
-            corners.iter().fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), &c| (lo.min(c), hi.max(c)));
-        // An empty mesh's box is inverted, its distance infinite: passed over too.
-        if box_distance(lo, hi).partial_cmp(&within) != Some(std::cmp::Ordering::Less) {
+        let Some((lo, hi)) = mesh_box(mesh) else { continue };
+        if box_distance(p, lo, hi) >= within {
             continue;
         }
         for t in &mesh.triangles {
-            let [Some(&a), Some(&b), Some(&c)] = t.map(|k| corners.get(k as usize)) else { continue };
-            if box_distance(a.min(b).min(c), a.max(b).max(c)) < within {
-                let d = p.distance(super::tilted::closest_on_triangle(p, a, b, c));
+            let Some([a, b, c]) = triangle_corners(mesh, t) else { continue };
+            if box_distance(p, a.min(b).min(c), a.max(b).max(c)) < within {
+                let d = p.distance(closest_on_triangle(p, a, b, c));
                 nearest = Some(nearest.map_or(d, |n| n.min(d)));
             }
         }

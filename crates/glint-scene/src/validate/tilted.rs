@@ -5,6 +5,7 @@
 //! under a cube 1e-4 above it lost cube pixels to the ground on the GPU alone (33 dB; 17.7 dB at
 //! 1e8), and nothing said why (numerics.md, Known limits).
 
+use super::near::{box_distance, closest_on_triangle, mesh_box, triangle_corners};
 use super::objects::VISIBLE_STORAGE_ERROR;
 use super::{FieldIssue, MeshDesc, ObjectDesc, SceneDesc};
 use crate::number::format_rounded;
@@ -75,23 +76,18 @@ impl Tilted {
 }
 
 fn tilted_near(mesh: &MeshDesc, eye: DVec3) -> Option<Tilted> {
-    let vertices: Vec<DVec3> = mesh.vertices.iter().map(|&v| DVec3::from(v)).collect();
     // Whole meshes first: a triangle's plane can only be off by VISIBLE_STORAGE_ERROR of its
     // distance r where f32's step at r + its size s exceeds that, so a mesh whose size is not
     // some 1,700 times its box's distance from the eye is passed over unread (a camera drag over
     // a million-triangle model validates on every step).
-    let (lo, hi) = bounds(vertices.iter().copied())?;
+    let (lo, hi) = mesh_box(mesh)?;
     if !could_be_off(hi - lo, eye, lo, hi) {
         return None;
     }
     let mut worst: Option<Tilted> = None;
     let mut count = 0;
     for t in &mesh.triangles {
-        let Some(&[a, b, c]) =
-            t.iter().map(|&k| vertices.get(k as usize).copied()).collect::<Option<Vec<_>>>().as_deref()
-        else {
-            continue;
-        };
+        let Some([a, b, c]) = triangle_corners(mesh, t) else { continue };
         let (lo, hi) = (a.min(b).min(c), a.max(b).max(c));
         let n = (b - a).cross(c - a);
         let axis_aligned = n.to_array().iter().filter(|&&x| x == 0.0).count() >= 2;
@@ -114,51 +110,11 @@ fn tilted_near(mesh: &MeshDesc, eye: DVec3) -> Option<Tilted> {
     worst.map(|w| Tilted { count, ..w })
 }
 
-fn bounds(points: impl Iterator<Item = DVec3>) -> Option<(DVec3, DVec3)> {
-    let (lo, hi) = points.fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), p| (lo.min(p), hi.max(p)));
-    (lo.is_finite() && hi.is_finite()).then_some((lo, hi))
-}
-
 /// Whether something of size `extent` in the box [lo, hi] can have its plane off by more than
 /// VISIBLE_STORAGE_ERROR of its distance from `eye`: its corners are at most r + s from the
 /// eye, r at least the box's distance.
 fn could_be_off(extent: DVec3, eye: DVec3, lo: DVec3, hi: DVec3) -> bool {
-    let box_distance = (lo - eye).max(eye - hi).max(DVec3::ZERO).length();
-    F32_HALF_STEP * extent.length() > (VISIBLE_STORAGE_ERROR - F32_HALF_STEP) * box_distance
-}
-
-/// The point of triangle abc nearest to p (Ericson, Real-Time Collision Detection, 5.1.5): by
-/// the region of the triangle's plane p projects into, a corner, an edge or the face.
-pub(super) fn closest_on_triangle(p: DVec3, a: DVec3, b: DVec3, c: DVec3) -> DVec3 {
-    let (ab, ac, ap) = (b - a, c - a, p - a);
-    let (d1, d2) = (ab.dot(ap), ac.dot(ap));
-    if d1 <= 0.0 && d2 <= 0.0 {
-        return a;
-    }
-    let bp = p - b;
-    let (d3, d4) = (ab.dot(bp), ac.dot(bp));
-    if d3 >= 0.0 && d4 <= d3 {
-        return b;
-    }
-    let vc = d1 * d4 - d3 * d2;
-    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
-        return a + ab * (d1 / (d1 - d3));
-    }
-    let cp = p - c;
-    let (d5, d6) = (ab.dot(cp), ac.dot(cp));
-    if d6 >= 0.0 && d5 <= d6 {
-        return c;
-    }
-    let vb = d5 * d2 - d1 * d6;
-    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
-        return a + ac * (d2 / (d2 - d6));
-    }
-    let va = d3 * d6 - d5 * d4;
-    if va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0 {
-        return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
-    }
-    let denom = 1.0 / (va + vb + vc);
-    a + ab * (vb * denom) + ac * (vc * denom)
+    F32_HALF_STEP * extent.length() > (VISIBLE_STORAGE_ERROR - F32_HALF_STEP) * box_distance(eye, lo, hi)
 }
 
 #[cfg(test)]
@@ -212,15 +168,5 @@ mod tests {
         let mut distant = rotated_ground(1e5);
         distant.camera.position = [0.0, 3e5, 0.0];
         assert!(warnings(&distant).is_empty());
-    }
-
-    #[test]
-    fn the_nearest_point_is_a_corner_an_edge_or_the_face() {
-        let (a, b, c) = (DVec3::ZERO, DVec3::X, DVec3::Y);
-        assert_eq!(closest_on_triangle(DVec3::new(-1.0, -1.0, 3.0), a, b, c), a);
-        assert_eq!(closest_on_triangle(DVec3::new(2.0, -0.5, 0.0), a, b, c), b);
-        assert_eq!(closest_on_triangle(DVec3::new(0.5, -2.0, 1.0), a, b, c), DVec3::new(0.5, 0.0, 0.0));
-        assert_eq!(closest_on_triangle(DVec3::new(1.0, 1.0, 0.0), a, b, c), DVec3::new(0.5, 0.5, 0.0));
-        assert_eq!(closest_on_triangle(DVec3::new(0.25, 0.25, -4.0), a, b, c), DVec3::new(0.25, 0.25, 0.0));
     }
 }
