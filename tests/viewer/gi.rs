@@ -5,8 +5,9 @@
 
 use std::time::{Duration, Instant};
 
+use egui::accesskit::Role;
 use egui_kittest::Harness;
-use egui_kittest::kittest::Queryable;
+use egui_kittest::kittest::{NodeT, Queryable};
 use glint_core::glam::DVec3;
 use glint_viewer::ViewerApp;
 
@@ -200,4 +201,58 @@ fn each_kind_of_light_alone_adds_up_to_the_path_image_and_the_probe_splits_a_pix
     assert!(h.query_by_label_contains("by bounce and kind").is_some(), "the probe panel shows the split");
     h.run_steps(2);
     crate::snapshots::snapshot(&mut h, "viewer_probe_paths");
+}
+
+/// The toolbar's integrator switch "Whitted", not the image's caption.
+fn whitted_switch<'a>(h: &'a Harness<'static, ViewerApp>) -> egui_kittest::Node<'a> {
+    let mut found = h.query_all_by_label("Whitted").filter(|n| n.accesskit_node().role() != Role::Label);
+    found.next().expect("the integrator switch's Whitted")
+}
+
+#[test]
+fn whitted_vs_gi_holds_the_paths_and_never_saves_whitted_as_them() {
+    // In Whitted vs GI the toolbar's "Whitted" made the GI side a second Whitted image, Whitted − GI
+    // all white at ±1e-6, "paths of 1 samples", and Save image → the paths wrote that Whitted
+    // image as glint:integrator path (a lecturer).
+    let Some(mut h) = viewer_with("whitted", (1000.0, 640.0), |o| o.paused = true) else { return };
+    h.get_by_label("Whitted vs GI").click();
+    h.run_steps(2);
+    settle(&mut h);
+    let integrator = |h: &Harness<'static, ViewerApp>| h.state().doc.desc.render.integrator;
+    assert_eq!(integrator(&h), glint_scene::Integrator::Path, "the view switches a Whitted scene to paths");
+    assert!(whitted_switch(&h).accesskit_node().is_disabled(), "the switch's Whitted is disabled in the view");
+    whitted_switch(&h).click();
+    h.run_steps(3);
+    assert_eq!(integrator(&h), glint_scene::Integrator::Path, "the GI side stays the paths");
+
+    // Chosen from the View menu (which sets the mode alone) the view switches to paths too.
+    h.get_by_label("GPU").click();
+    h.run_steps(2);
+    assert!(!whitted_switch(&h).accesskit_node().is_disabled(), "outside Whitted vs GI the switch is enabled");
+    whitted_switch(&h).click();
+    h.run_steps(2);
+    assert_eq!(integrator(&h), glint_scene::Integrator::Whitted, "outside the view the switch works");
+    h.state_mut().layout.mode = glint_viewer::ViewMode::WhittedVsGi;
+    h.run_steps(2);
+    assert_eq!(integrator(&h), glint_scene::Integrator::Path, "the View menu's Whitted vs GI renders paths");
+    settle(&mut h);
+
+    // A saved "paths" image is the path render, and says so.
+    let dir = crate::support::temp_dir("gi-paths");
+    let path = dir.join("paths.png");
+    h.state_mut().save_image(&path, glint_viewer::ExportView::Paths).expect("the paths save");
+    let text = glint_io::image_file::read_png_text(&path).expect("tEXt chunks");
+    let get = |k: &str| text.iter().find(|(key, _)| key == k).map(|(_, v)| v.clone()).unwrap_or_default();
+    let samples = h.state().renders.gi_paths(&h.state().doc).map(|p| p.1).expect("the paths shown");
+    assert_eq!((get("glint:integrator"), get("glint:spp")), ("path".to_string(), samples.to_string()));
+    // Whitted's images held as the paths (the scene switched with no render since) are refused
+    // by name, not written as "the paths".
+    h.state_mut().doc.desc.render.integrator = glint_scene::Integrator::Whitted;
+    for view in [glint_viewer::ExportView::Paths, glint_viewer::ExportView::WhittedVsGi] {
+        let refused = dir.join("refused.png");
+        let e = h.state_mut().save_image(&refused, view).expect_err("no paths to save").to_string();
+        assert!(e.contains("no paths to save"), "{e}");
+        assert!(!refused.exists());
+    }
+    let _ = std::fs::remove_dir_all(dir);
 }

@@ -489,6 +489,7 @@ impl eframe::App for ViewerApp {
                     history: &self.history,
                     axis: &mut self.error_axis,
                     fitter: &mut self.fitter,
+                    paths_held: self.layout.mode == ViewMode::WhittedVsGi,
                 };
                 // Scoped by the scene opened: what a field keeps of its last edit (a refused
                 // value's note) is of that scene's field, not the next one's (a viewer tester
@@ -518,6 +519,12 @@ impl eframe::App for ViewerApp {
             ctx.send_viewport_cmd(egui::ViewportCommand::Close);
         }
 
+        // Whitted vs GI needs the paths, however it was chosen (the toolbar, the View menu,
+        // `--view`): a Whitted scene there showed Whitted's image on both sides. As the
+        // toolbar's Paths does.
+        if self.layout.mode == ViewMode::WhittedVsGi && self.doc.desc.render.integrator.is_whitted() {
+            self.apply_view_action(ViewAction::Integrator(glint_scene::Integrator::Path));
+        }
         let gpu_renders = self.renders.gpu_renders();
         let settled = self.is_settled();
         let automated_drag = self.automation.drive(&mut self.doc, gpu_renders, settled);

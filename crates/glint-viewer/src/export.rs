@@ -198,12 +198,18 @@ pub fn export(path: &Path, view: ExportView, s: &Sources) -> Result<(), ViewerEr
 /// The Whitted vs GI views: the difference taken again from the images as they are now (the
 /// view's own follows the paths at each doubling of their samples).
 fn export_gi(path: &Path, view: ExportView, s: &Sources, gi: &GiSources, is_exr: bool) -> Result<(), ViewerError> {
+    // The paths are the scene's own render: under Whitted's integrator that is a second Whitted
+    // image, which was saved as "the paths (GI)" with `glint:integrator` path (a lecturer).
+    if view != ExportView::Whitted && s.settings.integrator.is_whitted() {
+        return Err(ViewerError::NotReady(
+            "the scene renders with Whitted's integrator, so there are no paths to save as GI (switch it to Paths)",
+        ));
+    }
     if (gi.whitted.width, gi.whitted.height) != (gi.paths.width, gi.paths.height) {
         return Err(ViewerError::NotReady("Whitted's image and the paths are of different sizes"));
     }
     let paths_device = if gi.paths_on_gpu { s.adapter.to_string() } else { "cpu".to_string() };
-    let paths_settings =
-        RenderSettings { integrator: glint_scene::Integrator::Path, spp: gi.samples, ..s.settings.clone() };
+    let paths_settings = RenderSettings { spp: gi.samples, ..s.settings.clone() };
     let (settings, backend, device) = match view {
         ExportView::Whitted => (gi.whitted_settings, "cpu", "cpu".to_string()),
         ExportView::Paths => (&paths_settings, if gi.paths_on_gpu { "gpu" } else { "cpu" }, paths_device.clone()),

@@ -86,7 +86,6 @@ impl Layout {
     ) -> Vec<ViewAction> {
         let mut chosen = integrator;
         let mut pause = paused;
-        let before = self.mode;
         // Wrapped: in a narrow window the integrator switch goes to a second row, not off screen.
         // A button moves whole to the next row (`keep_whole`).
         ui.horizontal_wrapped(|ui| {
@@ -96,11 +95,15 @@ impl Layout {
                 ui.add_enabled_ui(enabled, |ui| ui.selectable_value(&mut self.mode, m, m.label()));
             }
             ui.separator();
-            // What both tracers compute, as the Scene panel's Integrator choice.
+            // What both tracers compute, as the Scene panel's Integrator choice. Whitted vs GI
+            // holds the paths: "Whitted" there made both sides Whitted's image (a lecturer).
+            let paths_held = self.mode == ViewMode::WhittedVsGi;
             for (i, label) in [(glint_scene::Integrator::Whitted, "Whitted"), (glint_scene::Integrator::Path, "Paths")]
             {
                 keep_whole(ui, label);
-                crate::help::hint(ui.selectable_value(&mut chosen, i, label), "Integrator");
+                let enabled = !(paths_held && i.is_whitted());
+                let button = ui.add_enabled_ui(enabled, |ui| ui.selectable_value(&mut chosen, i, label)).inner;
+                crate::help::hint(button, "Integrator").on_disabled_hover_text(crate::whitted_vs_gi::PATHS_HELD);
             }
             if integrator == glint_scene::Integrator::Path {
                 let label = if paused { "Continue" } else { "Pause" };
@@ -125,10 +128,6 @@ impl Layout {
                 ui.add(egui::Slider::new(&mut self.wipe, 0.0..=1.0).show_value(false).text("Wipe"));
             }
         });
-        // Whitted against GI needs the paths: choosing it switches a Whitted scene to them.
-        if self.mode == ViewMode::WhittedVsGi && before != ViewMode::WhittedVsGi {
-            chosen = glint_scene::Integrator::Path;
-        }
         let tree = if self.show_ray_tree { tree } else { &[] };
         let (mut actions, rects) = view::show(
             ui,

@@ -8,6 +8,12 @@ use glint_core::{CpuOptions, FlatScene, HdrImage, RenderControl};
 use crate::images::CpuTexture;
 use crate::worker::Worker;
 
+/// Why the integrator cannot be switched to Whitted while the view is shown: its GI side is the
+/// scene's own path render (Whitted there showed Whitted's image on both sides, labelled
+/// "GI (paths)", and a difference of 0; a lecturer).
+pub const PATHS_HELD: &str = "Whitted vs GI holds Whitted's image against the paths, so the integrator stays Paths \
+     while this view is shown. Choose another view to render the scene with Whitted's integrator alone.";
+
 /// The signed difference of a revision's Whitted image from its paths of `samples` a pixel.
 #[derive(Clone, Debug)]
 pub struct GiDifference {

@@ -31,6 +31,8 @@ pub struct SideInputs<'a> {
     pub axis: &'a mut Axis,
     /// The Scene panel's Fit ambient job.
     pub fitter: &'a mut AmbientFitter,
+    /// The Whitted vs GI view is shown: the integrator stays Paths.
+    pub paths_held: bool,
 }
 
 /// The side panel: the tabs, the panel of the current one, and the document's validation
@@ -68,7 +70,7 @@ pub fn side(
         .max_height((total - strip).max(MIN_TAB_HEIGHT))
         .show(ui, |ui| {
             let changed = match tab {
-                Tab::Scene => scene::ui(ui, doc, inputs.fitter),
+                Tab::Scene => scene::ui(ui, doc, inputs.fitter, inputs.paths_held),
                 Tab::Lights => lights::ui(ui, doc, &mut selection.light),
                 Tab::Materials => materials::ui(ui, doc, selection.object, &mut selection.material),
                 Tab::Probe => {

@@ -47,7 +47,8 @@ fn projection_ui(ui: &mut Ui, camera: &mut CameraDesc) -> bool {
     changed
 }
 
-pub fn ui(ui: &mut Ui, doc: &mut Document, fitter: &mut AmbientFitter) -> bool {
+/// `paths_held`: the Whitted vs GI view is shown, which holds the integrator at Paths.
+pub fn ui(ui: &mut Ui, doc: &mut Document, fitter: &mut AmbientFitter, paths_held: bool) -> bool {
     let mut changed = false;
     egui::CollapsingHeader::new("Camera").default_open(true).show(ui, |ui| {
         changed |= projection_ui(ui, &mut doc.desc.camera);
@@ -67,7 +68,15 @@ pub fn ui(ui: &mut Ui, doc: &mut Document, fitter: &mut AmbientFitter) -> bool {
     let mut view_changed = false;
     egui::CollapsingHeader::new("Render").default_open(true).show(ui, |ui| {
         let r = &mut doc.desc.render;
-        changed |= choice(ui, "Integrator", &mut r.integrator, &Integrator::ALL, Integrator::name);
+        // As the toolbar's switch: Whitted vs GI's GI side is the scene's own path render.
+        changed |= ui
+            .add_enabled_ui(!paths_held, |ui| {
+                choice(ui, "Integrator", &mut r.integrator, &Integrator::ALL, Integrator::name)
+            })
+            .inner;
+        if paths_held {
+            ui.weak("Paths while Whitted vs GI is shown").on_hover_text(crate::whitted_vs_gi::PATHS_HELD);
+        }
         if r.integrator == Integrator::Path {
             changed |= crate::help::hint(ui.checkbox(&mut r.indirect, "Indirect light"), "Indirect light").changed();
             // Each kind of light alone: a way of looking, not an edit of the scene.
