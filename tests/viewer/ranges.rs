@@ -297,3 +297,21 @@ fn a_refusal_note_goes_with_the_scene_it_was_of() {
     h.run_steps(3);
     assert!(h.query_by_label(note).is_none(), "the note outlived its scene");
 }
+
+#[test]
+fn a_refused_channel_is_named_under_its_row_which_stays_whole() {
+    // k_t R = −1 put its note inline after the R field, and G and B wrapped onto the next line
+    // (a lecturer): the note goes under the row, as a single value's goes under its field.
+    let Some(mut h) = viewer("whitted", (1000.0, 900.0)) else { return };
+    choose(&mut h, "Materials", "Material", "glass");
+    type_number(&mut h, "k_t R", "-1");
+    let note = h.get_by_label("k_t R: -1 is outside [0, 1e9]; the value was kept").rect();
+    let field = |ch: &str| h.get_by_role_and_label(Role::SpinButton, &format!("k_t {ch}")).rect();
+    let (r, g, b) = (field("R"), field("G"), field("B"));
+    assert!(
+        (g.center().y - r.center().y).abs() < 1.0 && (b.center().y - r.center().y).abs() < 1.0,
+        "R, G and B on one row: {r:?} {g:?} {b:?}"
+    );
+    assert!(note.top() >= r.bottom(), "the note under the row: {note:?}, the row {r:?}");
+    assert!(note.left() < r.left(), "the note starts the line under the row: {note:?}, R at {r:?}");
+}

@@ -69,6 +69,14 @@ fn whole_in_range(text: &str, range: Range<u32>, refused: &Cell<Option<String>>)
 /// Under the editor of `response`, the last typed value it refused (`refused`, this frame's),
 /// until the value next changes: a typed value outside the range is named, not clamped.
 fn refusal_note(ui: &mut Ui, label: &str, response: &Response, refused: Option<String>) {
+    if let Some(note) = refusal(ui, label, response, refused) {
+        show_refusal(ui, &note);
+    }
+}
+
+/// Keeps `refused` (this frame's refusal of the editor of `response`) until the value next
+/// changes, and gives the note to show for it, if any.
+fn refusal(ui: &mut Ui, label: &str, response: &Response, refused: Option<String>) -> Option<String> {
     // Keyed by the row and the label: the editor's own id differs while its text is edited.
     let id = ui.scope_id().with(("refused", label));
     if let Some(why) = refused {
@@ -76,9 +84,11 @@ fn refusal_note(ui: &mut Ui, label: &str, response: &Response, refused: Option<S
     } else if response.changed() {
         ui.data_mut(|d| d.remove::<String>(id));
     }
-    if let Some(why) = ui.data(|d| d.get_temp::<String>(id)) {
-        ui.colored_label(ui.visuals().error_fg_color, format!("{label}: {why}"));
-    }
+    ui.data(|d| d.get_temp::<String>(id)).map(|why| format!("{label}: {why}"))
+}
+
+fn show_refusal(ui: &mut Ui, note: &str) {
+    ui.colored_label(ui.visuals().error_fg_color, note);
 }
 
 /// Values of a logarithmic slider, four digits as a class reads them aloud: 32 and 1.5, not
@@ -191,8 +201,16 @@ pub fn int_slider(ui: &mut Ui, label: &str, value: &mut u32, range: Range<u32>) 
     response.changed()
 }
 
-/// A drag value whose accessible label is `label`.
-fn labelled_drag(ui: &mut Ui, label: String, value: &mut f64, speed: f64, range: Range<f64>) -> Response {
+/// A drag value whose accessible label is `label`, and the note of its last refused value, for
+/// the caller to show under the whole row: shown in the row, it pushed the row's next fields
+/// onto another line (k_t R = −1 split R from G and B; a lecturer).
+fn labelled_drag(
+    ui: &mut Ui,
+    label: String,
+    value: &mut f64,
+    speed: f64,
+    range: Range<f64>,
+) -> (Response, Option<String>) {
     let refused = Cell::new(None);
     let r = ui.add(
         DragValue::new(value)
@@ -205,8 +223,8 @@ fn labelled_drag(ui: &mut Ui, label: String, value: &mut f64, speed: f64, range:
     let v = *value;
     r.widget_info(|| WidgetInfo { label: Some(label.clone()), ..WidgetInfo::drag_value(true, v) });
     let r = hint(r, &label);
-    refusal_note(ui, &label, &r, refused.take());
-    r
+    let note = refusal(ui, &label, &r, refused.take());
+    (r, note)
 }
 
 /// An RGB colour or intensity: a colour picker for values in [0, 1] and one drag value per
@@ -214,6 +232,7 @@ fn labelled_drag(ui: &mut Ui, label: String, value: &mut f64, speed: f64, range:
 /// "LABEL R/G/B".
 pub fn rgb_edit(ui: &mut Ui, label: &str, value: &mut Rgb) -> bool {
     let mut changed = false;
+    let mut notes = Vec::new();
     ui.horizontal_wrapped(|ui| {
         hint(ui.label(label), label);
         let before = value.0.map(|v| v.clamp(0.0, 1.0) as f32);
@@ -222,23 +241,28 @@ pub fn rgb_edit(ui: &mut Ui, label: &str, value: &mut Rgb) -> bool {
             changed = picked_colour(&mut value.0, before, c);
         }
         for (i, ch) in ["R", "G", "B"].iter().enumerate() {
-            let r = labelled_drag(ui, format!("{label} {ch}"), &mut value.0[i], 0.005, ranges::COLOUR);
+            let (r, note) = labelled_drag(ui, format!("{label} {ch}"), &mut value.0[i], 0.005, ranges::COLOUR);
             changed |= r.changed();
+            notes.extend(note);
         }
     });
+    notes.iter().for_each(|n| show_refusal(ui, n));
     changed
 }
 
 /// A 3-vector (position or direction) as three labelled drag values.
 pub fn vec3_edit(ui: &mut Ui, label: &str, value: &mut [f64; 3], speed: f64) -> bool {
     let mut changed = false;
+    let mut notes = Vec::new();
     ui.horizontal_wrapped(|ui| {
         hint(ui.label(label), label);
         for (i, axis) in ["x", "y", "z"].iter().enumerate() {
-            let r = labelled_drag(ui, format!("{label} {axis}"), &mut value[i], speed, ranges::COORD);
+            let (r, note) = labelled_drag(ui, format!("{label} {axis}"), &mut value[i], speed, ranges::COORD);
             changed |= r.changed();
+            notes.extend(note);
         }
     });
+    notes.iter().for_each(|n| show_refusal(ui, n));
     changed
 }
 
