@@ -256,3 +256,46 @@ fn whitted_vs_gi_holds_the_paths_and_never_saves_whitted_as_them() {
     }
     let _ = std::fs::remove_dir_all(dir);
 }
+
+#[test]
+fn applying_the_fitted_ambient_in_whitted_vs_gi_keeps_the_paths_going_and_the_fit_current() {
+    // Apply dropped the GPU's 160 path samples back to 1, rendered the CPU's 64 paths again,
+    // and the fit then read "(fitted to an earlier edit of the scene)" over "I_a is the fitted
+    // value." (a lecturer).
+    // Opened in the view, as from File → Open (that scene had had no edit: Apply was its first).
+    let Some(mut h) = viewer_with("whitted", (1000.0, 900.0), |o| o.view = Some(glint_viewer::ViewMode::WhittedVsGi))
+    else {
+        return;
+    };
+    let dir = crate::support::temp_dir("fit-apply");
+    let scene = dir.join("cornell-gi.toml");
+    let text = include_str!("../../assets/scenes/cornell-gi.toml")
+        .replace("width = 256\nheight = 256", "width = 160\nheight = 120");
+    assert!(text.contains("width = 160"), "the scene's size is where the test looks for it");
+    std::fs::write(&scene, text).expect("writes the scene");
+    h.state_mut().open(scene.to_str().expect("UTF-8 path"));
+    settle(&mut h);
+    let spp = spp_of_scene(&h);
+    step_until(&mut h, 120, "the GPU adds samples", |h| gpu_samples(h) > spp);
+    h.get_by_label("Fit ambient to paths").click();
+    h.run_steps(2);
+    step_until(&mut h, 240, "the fit", |h| h.state().fitter.result.is_some() && !h.state().fitter.is_running());
+    h.run_steps(2);
+    let cpu_of = |h: &Harness<'static, ViewerApp>| {
+        let cpu = &h.state().renders.cpu;
+        cpu.running_revision().or(cpu.finished.as_ref().map(|(r, _)| *r))
+    };
+    let (render, cpu_started, before) = (h.state().doc.render_revision, cpu_of(&h), gpu_samples(&h));
+    h.get_by_label("Apply the fitted I_a").click();
+    h.run_steps(3);
+    assert_eq!(h.state().doc.render_revision, render, "an ambient edit is none of the paths'");
+    assert!(h.state().doc.revision > render, "it is an edit of the scene");
+    step_until(&mut h, 120, "the GPU adds samples after Apply", |h| gpu_samples(h) > before);
+    assert_eq!(cpu_of(&h), cpu_started, "the CPU's paths are not rendered again");
+    assert!(h.query_by_label("I_a is the fitted value.").is_some(), "the applied value is named");
+    assert!(h.query_by_label("(fitted to an earlier edit of the scene)").is_none(), "the fit stays current");
+    // Whitted's side reads I_a: it is rendered again.
+    settle(&mut h);
+    assert!(h.state().renders.gi.whitted_of(h.state().doc.revision).is_some());
+    let _ = std::fs::remove_dir_all(dir);
+}

@@ -96,6 +96,11 @@ impl Document {
         let warnings = loaded.scene_warnings;
         let mut load_warnings = loaded.warnings;
         load_warnings.truncate(load_warnings.len().saturating_sub(warnings.len()));
+        // What the renders and a fit of the scene as loaded read: without them the first edit
+        // of a scene opened from the menu counted as a change of everything, so applying a
+        // fitted I_a started the paths over and called the fit an earlier edit's (a lecturer).
+        let render_inputs = Some(RenderInputs::of(&loaded.desc, 0));
+        let fit_inputs = Some(FitInputs::of(&loaded.desc));
         Self {
             source,
             initial_camera: loaded.desc.camera.clone(),
@@ -108,9 +113,9 @@ impl Document {
             hits_revision: 0,
             hits_of: None,
             render_revision: 0,
-            render_inputs: None,
+            render_inputs,
             fit_revision: 0,
-            fit_inputs: None,
+            fit_inputs,
             issues: Vec::new(),
             warnings,
             load_warnings,
@@ -327,6 +332,19 @@ mod tests {
             doc.edited();
             assert!(doc.render_revision > before && doc.render_revision == doc.revision);
         }
+    }
+
+    #[test]
+    fn the_first_edit_of_a_scene_as_loaded_is_judged_by_what_it_changes() {
+        // Opened from the menu, a scene has had no edit: applying a fitted I_a, its first, was
+        // taken for a change of everything (the paths started over, the fit an earlier edit's).
+        let mut doc = Document::load("cornell-gi").expect("built-in scene");
+        doc.flat(false).expect("valid");
+        let (render, fit) = (doc.render_revision, doc.fit_revision);
+        doc.desc.world.ambient = glint_scene::Rgb([0.2, 0.2, 0.1]);
+        doc.edited();
+        assert!(doc.revision > render);
+        assert_eq!((doc.render_revision, doc.fit_revision), (render, fit), "paths and the fit read no I_a");
     }
 
     #[test]
