@@ -54,11 +54,21 @@ fn ctrl_click_shows_the_probe_tab_and_marks_the_probed_pixel_in_every_image() {
 }
 
 #[test]
-fn the_frame_rate_shows_from_the_first_render() {
-    let Some(h) = viewer("whitted", (1000.0, 640.0)) else { return };
-    // One render since the start, no edit: the figure is there already.
+fn the_gpu_time_shows_from_the_first_render_and_a_shader_compile_is_no_render_rate() {
+    let Some(mut h) = viewer("whitted", (1000.0, 640.0)) else { return };
+    // One render since the start, no edit: its time is there already. It compiled its shader,
+    // which on lavapipe read "GPU 14539.8 ms/frame 0.1 fps" for a 40 ms render (a lecturer).
     assert_eq!(h.state().renders.gpu_renders(), 1);
-    assert!(h.query_by_label_contains(" fps").is_some(), "no frame rate in the status bar");
+    assert!(h.query_by_label_contains(" ms/render, its shader's compile included").is_some(), "no compile said");
+    assert!(h.query_by_label_contains("renders/s").is_none(), "a compile's time given as a rate");
+    // A render of the same shader: its own time, and the rate of GPU renders (not "fps").
+    h.state_mut().doc.desc.lights[0].diffuse.0[0] *= 0.5;
+    h.state_mut().doc.edited();
+    settle(&mut h);
+    assert!(h.query_by_label_contains("compile included").is_none(), "the compile's time persists");
+    assert!(h.query_by_label_contains(" ms/render").is_some(), "no GPU time in the status bar");
+    assert!(h.query_by_label_contains(" renders/s").is_some(), "no render rate in the status bar");
+    assert!(h.query_by_label_contains(" fps").is_none(), "renders called frames");
 }
 
 #[test]

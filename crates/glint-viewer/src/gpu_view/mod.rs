@@ -129,8 +129,10 @@ pub struct GpuView {
     /// What is on screen: (revision, preview, size, texture).
     pub shown: Option<(u64, bool, (u32, u32), egui::TextureId)>,
     pub latest: Option<GpuImage>,
-    /// GPU time of the last render.
-    pub last_ms: Option<f64>,
+    /// GPU time of the last render, and whether it compiled its shader variant (on lavapipe
+    /// at its first dispatch: seconds, which the status bar called "14539.8 ms/frame" of a
+    /// 40 ms render; a lecturer).
+    pub last_ms: Option<(f64, bool)>,
     /// Completion times of recent renders, for renders per second.
     completions: VecDeque<Instant>,
     pub error: Option<String>,
@@ -310,7 +312,8 @@ impl GpuView {
     /// Renders per second over the last two seconds, current during a long render.
     pub fn renders_per_second(&self) -> Option<f64> {
         let running = self.in_flight.as_ref().map(|f| f.started.elapsed());
-        renders_per_second(Instant::now(), self.completions.iter().copied(), self.last_ms, running)
+        let last_ms = self.last_ms.filter(|(_, compiled)| !compiled).map(|(ms, _)| ms);
+        renders_per_second(Instant::now(), self.completions.iter().copied(), last_ms, running)
     }
 
     /// Whether the adapter is a software one (lavapipe, WARP, SwiftShader): the "GPU" tracer
@@ -487,8 +490,12 @@ impl GpuView {
             let Stage::Running(job) = f.stage else { return changed };
             let ms = time.as_secs_f64() * 1e3;
             log::debug!("GPU render {}x{} done in {ms:.1} ms", f.size.0, f.size.1);
-            self.last_ms = Some(ms);
-            self.completions.push_back(Instant::now());
+            let compiled = f.new_variant.is_some();
+            self.last_ms = Some((ms, compiled));
+            // A compile is no render's rate.
+            if !compiled {
+                self.completions.push_back(Instant::now());
+            }
             self.renders += 1;
             while self.completions.len() > 64 {
                 self.completions.pop_front();
