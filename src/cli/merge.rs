@@ -108,8 +108,8 @@ fn file_kind(t: std::fs::FileType) -> &'static str {
 
 /// Why a tile file cannot be read, in a message's words: empty, not OpenEXR at all, or cut
 /// short or damaged (a copy that ran out of space, a file truncated), with the EXR reader's
-/// own words last.
-fn unreadable_why(path: &Path, e: &ExrReadError) -> String {
+/// own words last. `index`: the tile its header said it holds, where that was read before.
+fn unreadable_why(path: &Path, e: &ExrReadError, index: Option<u32>) -> String {
     let said = e.to_string();
     let detail = said.strip_prefix(&format!("{}: ", path.display())).unwrap_or(&said).to_string();
     let mut magic = [0u8; 4];
@@ -118,7 +118,10 @@ fn unreadable_why(path: &Path, e: &ExrReadError) -> String {
     match (len, opened) {
         // glint writes a tile whole or not at all (a temporary renamed): an empty one was made
         // otherwise, and holds no index to name.
-        (Some(0), _) => "is empty (0 bytes), so which tile it was meant to hold cannot be known".into(),
+        (Some(0), _) if index.is_none() => {
+            "is empty (0 bytes), so which tile it was meant to hold cannot be known".into()
+        }
+        (Some(0), _) => "is empty (0 bytes) now: it changed while the merge read it".into(),
         (_, Ok(())) if magic != [0x76, 0x2f, 0x31, 0x01] => format!("is not an OpenEXR file ({detail})"),
         _ => format!("cannot be read: the file is cut short or damaged ({detail})"),
     }
@@ -281,7 +284,7 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
         for path in &args.tiles {
             match read_exr_header(path) {
                 Ok(header) => tiles.push((path, header)),
-                Err(e) => unreadable.push(format!("{}: {}", path.display(), unreadable_why(path, &e))),
+                Err(e) => unreadable.push(format!("{}: {}", path.display(), unreadable_why(path, &e, None))),
             }
         }
     });
@@ -358,12 +361,13 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
     } else if !found.stale.is_empty() || found.refused {
         said.push(format!("{} of {count} tiles to render again: {}", missing.count, again(&missing)));
     } else {
+        // Which tile an unreadable file was meant to hold is not known (its name need not say).
         let among = if unreadable.is_empty() {
             ""
         } else if unreadable.len() == 1 {
-            " (the unreadable file's among them)"
+            " (the unreadable file may have been meant as one of them)"
         } else {
-            " (the unreadable files' among them)"
+            " (the unreadable files may have been meant as some of them)"
         };
         said.push(format!(
             "{} of {count} {} missing{among}: {} (render {} with --tile I/{count}; {})",
@@ -394,7 +398,7 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
         let tile = match super::interrupt::while_loading(|| read_exr(path)) {
             Ok(tile) => tile,
             Err(e) => {
-                failed.push(format!("{}: tile {index}'s pixels {}", path.display(), unreadable_why(path, &e)));
+                failed.push(format!("{} (tile {index}) {}", path.display(), unreadable_why(path, &e, Some(index))));
                 again.push(index);
                 continue;
             }

@@ -329,7 +329,7 @@ fn every_problem_of_the_tiles_is_named_at_once_unreadable_files_and_ties_include
         &[t[0].clone(), t[1].clone(), empty.clone()],
         &[
             format!("{}: is empty (0 bytes), so which tile it was meant to hold cannot be known", at(&empty)),
-            "2 of 4 tiles are missing (the unreadable file's among them): 2-3 (render them with --tile I/4; as a \
+            "2 of 4 tiles are missing (the unreadable file may have been meant as one of them): 2-3 (render them with --tile I/4; as a \
              Slurm array, --array=2-3)"
                 .into(),
         ],
@@ -347,7 +347,7 @@ fn every_problem_of_the_tiles_is_named_at_once_unreadable_files_and_ties_include
         &[
             format!("{}: cannot be read: the file is cut short or damaged (", at(&head_cut)),
             format!("{}: is not an OpenEXR file (", at(&not_exr)),
-            "2 of 4 tiles are missing (the unreadable files' among them): 1, 3".into(),
+            "2 of 4 tiles are missing (the unreadable files may have been meant as some of them): 1, 3".into(),
         ],
     );
     // Cut short in its pixels: its header names the tile, which is to render again; every such
@@ -355,8 +355,8 @@ fn every_problem_of_the_tiles_is_named_at_once_unreadable_files_and_ties_include
     refused(
         &[t[0].clone(), t[1].clone(), tail_cut.clone(), tail_cut2.clone()],
         &[
-            format!("{}: tile 2's pixels cannot be read: the file is cut short or damaged (", at(&tail_cut)),
-            format!("{}: tile 3's pixels cannot be read", at(&tail_cut2)),
+            format!("{} (tile 2) cannot be read: the file is cut short or damaged (", at(&tail_cut)),
+            format!("{} (tile 3) cannot be read", at(&tail_cut2)),
             "2 of 4 tiles to render again: 2-3 (with --tile I/4; as a Slurm array, --array=2-3)".into(),
         ],
     );

@@ -482,6 +482,33 @@ fn total_internal_reflection_inside_a_sphere() {
     assert_eq!((r.counts.reflection, r.counts.refraction), (u64::from(depth), 0));
 }
 
+/// The bailout judges the path weight as both tracers form it, in f32: between facing mirrors
+/// of k_r = 51/255 and 5/255 (1/255 exactly, the default bailout) the f32 product of the stored
+/// k decides whether the second reflection is traced. The CPU's weight in f64 fell just below
+/// f32's 1/255 where the GPU's rounded onto it (a stiff-cases tester); this holds the CPU to
+/// the f32 decision on a machine without a GPU too.
+#[test]
+fn the_bailout_judges_the_path_weight_in_f32() {
+    let mirrors = |front: f64, back: f64| {
+        SceneText::pinhole("max_depth = 4", [0.0; 3], [0.0, 0.0, 1.0], Y)
+            .world([0.0; 3], [0.0; 3])
+            .material("a", &format!("ka = 0.0\nkd = 0.0\nks = 0.0\nkr = {}\nemission = 1.0", num(front)))
+            .material("b", &format!("ka = 0.0\nkd = 0.0\nks = 0.0\nkr = {}\nemission = 1.0", num(back)))
+            .plane([0.0, 0.0, 1.0], [0.0, 0.0, -1.0], "a")
+            .plane([0.0, 0.0, -1.0], Z, "b")
+            .flat()
+    };
+    for (front, back) in [(51.0, 5.0), (3.0, 85.0), (15.0, 17.0)] {
+        let flat = mirrors(front / 255.0, back / 255.0);
+        let pixels = u64::from(flat.header.width) * u64::from(flat.header.height);
+        let r = render(&flat);
+        let k = |v: f64| v as f32;
+        let traced = k(front / 255.0) * k(back / 255.0) >= flat.header.bailout;
+        let want = if traced { 2 * pixels } else { pixels };
+        assert_eq!(r.counts.reflection, want, "k_r = {front}/255 then {back}/255: traced the second? {traced}");
+    }
+}
+
 // ---------------------------------------------------------------------------------------------
 // Filtered shadows.
 // ---------------------------------------------------------------------------------------------

@@ -36,7 +36,8 @@ fn the_probe_panel_lists_the_glass_sphere_tree_on_both_tracers() {
     );
     assert!(cpu.nodes.iter().any(|n| n.cut.is_some()));
     assert_eq!(gpu.nodes.len(), cpu.nodes.len(), "the GPU recorded the same rays");
-    // Each ray's weight is the product of the k along its path.
+    // Each ray's weight is the product of the k along its path, formed in f32 as the bailout
+    // judges it on both tracers: within f32's rounding of a step a level.
     for n in cpu.nodes.iter().filter(|n| n.kind != RayKind::Shadow) {
         let mut product = n.factor;
         let mut at = n.parent;
@@ -44,7 +45,8 @@ fn the_probe_panel_lists_the_glass_sphere_tree_on_both_tracers() {
             product *= cpu.nodes[p].factor * cpu.nodes[p].attenuation;
             at = cpu.nodes[p].parent;
         }
-        assert!((product - n.weight).abs().max_element() < 1e-15, "{n:?}");
+        let steps = f64::from(n.depth + 1);
+        assert!((product - n.weight).abs().max_element() <= steps * 1.2e-7 * product.max_element(), "{n:?}");
     }
     assert!(h.query_by_label("CPU and GPU trees agree node by node within tolerance.").is_some());
     // The root is open: its own rows and its children's titles are listed.

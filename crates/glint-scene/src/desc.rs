@@ -307,15 +307,42 @@ impl ObjectDesc {
     }
 }
 
+/// Where a light the tracers see comes from, named as a user finds it: `lights[i]` in the
+/// scene file, `objects[k].lights[j]` for the j-th light a model object imported.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LightSource {
+    Scene(usize),
+    Model { object: usize, light: usize },
+}
+
+impl std::fmt::Display for LightSource {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::Scene(i) => write!(f, "lights[{i}]"),
+            Self::Model { object, light } => write!(f, "objects[{object}].lights[{light}]"),
+        }
+    }
+}
+
 impl SceneDesc {
     /// Every light that shines on the scene, in the flat layout's order: the scene's
-    /// `[[lights]]`, then the lights of each model object that says `lights = true`.
+    /// `[[lights]]`, then the lights of each model object that says `lights = true` (placed,
+    /// after its exposure).
     pub fn traced_lights(&self) -> impl Iterator<Item = &LightDesc> {
-        let imported = self.objects.iter().flat_map(|o| match o {
-            ObjectDesc::Model(m) if m.lights => m.loaded.as_deref().map_or(&[][..], |l| l.lights.as_slice()),
-            ObjectDesc::Model(_) | ObjectDesc::Sphere(_) | ObjectDesc::Plane(_) | ObjectDesc::Mesh(_) => &[][..],
+        self.sourced_lights().map(|(_, light)| light)
+    }
+
+    /// `traced_lights`, each with where it comes from.
+    pub fn sourced_lights(&self) -> impl Iterator<Item = (LightSource, &LightDesc)> {
+        let own = self.lights.iter().enumerate().map(|(i, l)| (LightSource::Scene(i), l));
+        let imported = self.objects.iter().enumerate().flat_map(|(object, o)| {
+            let lights = match o {
+                ObjectDesc::Model(m) if m.lights => m.loaded.as_deref().map_or(&[][..], |l| l.lights.as_slice()),
+                ObjectDesc::Model(_) | ObjectDesc::Sphere(_) | ObjectDesc::Plane(_) | ObjectDesc::Mesh(_) => &[][..],
+            };
+            lights.iter().enumerate().map(move |(light, l)| (LightSource::Model { object, light }, l))
         });
-        self.lights.iter().chain(imported)
+        own.chain(imported)
     }
 }
 

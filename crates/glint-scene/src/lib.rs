@@ -29,7 +29,7 @@ mod whole;
 
 pub use camera::{CameraDesc, NARROW_TAN_HALF_FOV, Projection};
 pub use desc::{
-    GlobalAttenuation, ObjectDesc, PlaneDesc, RenderSettings, SceneDesc, SphereDesc, WorldDesc,
+    GlobalAttenuation, LightSource, ObjectDesc, PlaneDesc, RenderSettings, SceneDesc, SphereDesc, WorldDesc,
     without_imported_materials,
 };
 pub use error::FieldIssue;
@@ -42,7 +42,9 @@ pub use material::{CheckerDesc, DEFAULT_ROUGHNESS, MaterialDesc, material_textur
 pub use mesh::MeshDesc;
 pub use model::{MaterialSource, Model, ModelCamera};
 pub use model_ref::{LoadedModel, ModelDesc, Scale, TransformDesc};
-pub use number::{format_number, format_rounded, or_list, serde_words, shorten, shorten_lines, shorten_middle};
+pub use number::{
+    f64_spacing, format_number, format_rounded, or_list, serde_words, shorten, shorten_lines, shorten_middle,
+};
 pub use overflow::overflow_causes;
 pub use ray_tree::{
     WARN_RAYS_PER_SAMPLE, bailout_can_cut, ray_tree_bound, reachable_depth, unbounded_ray_tree,

@@ -72,8 +72,8 @@ pub struct LoadedModel {
     pub warnings: Vec<FieldIssue>,
 }
 
-/// The largest angle `rotate` takes, in degrees: f64 holds it to 1.2e-10° (a thousandth of a
-/// second of arc), and any larger is one written by mistake.
+/// The largest angle `rotate` takes, in degrees: f64 holds it to 1.2e-10° (4e-7 of a second of
+/// arc), and any larger is one written by mistake.
 pub const MAX_ROTATE_DEGREES: f64 = 1e6;
 
 /// Placement of a model: scale, then rotate, then translate (or one matrix instead).
@@ -170,7 +170,7 @@ impl TransformDesc {
                     "each angle must lie in [-{MAX_ROTATE_DEGREES:e}, {MAX_ROTATE_DEGREES:e}] degrees; {} is beyond, \
                      where f64 holds it only to about {} degrees",
                     crate::number::format_number(angle),
-                    crate::number::format_rounded(angle.abs() * f64::EPSILON, 2)
+                    crate::number::format_rounded(crate::number::f64_spacing(angle), 2)
                 ),
             ));
         }
@@ -331,7 +331,7 @@ mod tests {
         assert_eq!(problems[0].0, "rotate");
         assert_eq!(
             problems[0].1,
-            "each angle must lie in [-1e6, 1e6] degrees; 1e30 is beyond, where f64 holds it only to about 220000000000000 degrees"
+            "each angle must lie in [-1e6, 1e6] degrees; 1e30 is beyond, where f64 holds it only to about 140000000000000 degrees"
         );
     }
 

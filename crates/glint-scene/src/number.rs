@@ -24,6 +24,14 @@ pub fn format_rounded(v: f64, digits: usize) -> String {
     format_number(rounded)
 }
 
+/// The distance between adjacent f64 values at |x| (at least the smallest normal's): how finely
+/// a scene's own numbers hold a coordinate or an angle of that size (f32's, as the tracers
+/// store them, is `glint_types::layout::f32_spacing`).
+pub fn f64_spacing(x: f64) -> f64 {
+    let exponent = (x.abs().max(f64::MIN_POSITIVE).to_bits() >> 52) as i32 - 1023;
+    2f64.powi(exponent - 52)
+}
+
 /// A computed value beyond a `bound` it is said to exceed: `format_rounded` to the fewest digits,
 /// from 3, that still read beyond it (a reach of 1e9 + 0.5 printed as "1000000000" seemed to
 /// meet the bound 1e9 it was refused by).
@@ -127,6 +135,13 @@ mod tests {
     use super::{
         LINE_CHARS, format_beyond, format_number, serde_words, shorten, shorten_lines, shorten_middle, tidy_floats,
     };
+
+    #[test]
+    fn f64_spacing_is_the_step_to_the_next_f64() {
+        for x in [1.0, 5e5, 1e6, 9e8, 1e30, -3.0] {
+            assert_eq!(super::f64_spacing(x), f64::from_bits(x.abs().to_bits() + 1) - x.abs(), "{x}");
+        }
+    }
 
     #[test]
     fn a_value_beyond_its_bound_reads_beyond_it() {

@@ -6,8 +6,7 @@
 //! bounce, g^depth in all. The message names such materials first, then the brightest sources.
 
 use super::Integrator;
-use super::desc::{ObjectDesc, SceneDesc};
-use super::light::LightDesc;
+use super::desc::SceneDesc;
 use super::number::format_number;
 use super::ray_tree::largest_attenuation;
 
@@ -95,7 +94,8 @@ pub fn overflow_causes(desc: &SceneDesc, max_depth: u32, integrator: Integrator,
         .iter()
         .map(|(name, m)| (m.emission.max_channel(), format!("materials.{name}.emission")))
         .max_by(|a, b| a.0.total_cmp(&b.0));
-    let light = named_traced_lights(desc)
+    let light = desc
+        .sourced_lights()
         .flat_map(|(name, l)| {
             [("diffuse", l.diffuse), ("specular", l.specular), ("ambient", l.ambient)]
                 .map(|(field, v)| (v.max_channel(), format!("{name}.{field}")))
@@ -139,21 +139,6 @@ pub fn overflow_causes(desc: &SceneDesc, max_depth: u32, integrator: Integrator,
         causes.push("no material amplifies light and no source is brighter than 1".into());
     }
     format!("{}; {remedy}", causes.join("; "))
-}
-
-/// Every light the tracers see (`SceneDesc::traced_lights`, in its order) with the name a user
-/// finds it by: `lights[i]` in the scene file, `objects[k].lights[j]` for the j-th light a
-/// model object imported (after its exposure).
-fn named_traced_lights(desc: &SceneDesc) -> impl Iterator<Item = (String, &LightDesc)> {
-    let own = desc.lights.iter().enumerate().map(|(i, l)| (format!("lights[{i}]"), l));
-    let imported = desc.objects.iter().enumerate().flat_map(|(k, o)| {
-        let lights = match o {
-            ObjectDesc::Model(m) if m.lights => m.loaded.as_deref().map_or(&[][..], |l| l.lights.as_slice()),
-            ObjectDesc::Model(_) | ObjectDesc::Sphere(_) | ObjectDesc::Plane(_) | ObjectDesc::Mesh(_) => &[][..],
-        };
-        lights.iter().enumerate().map(move |(j, l)| (format!("objects[{k}].lights[{j}]"), l))
-    });
-    own.chain(imported)
 }
 
 #[cfg(test)]

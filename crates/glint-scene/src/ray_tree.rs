@@ -51,9 +51,10 @@ pub fn bailout_can_cut(desc: &SceneDesc, bailout: f64, depth: u32) -> bool {
         // No child rays at all.
         return false;
     };
-    // Level k's weight is at least (least·a)^k, times a for the camera ray's own attenuation: the
-    // least at the deepest level where a level shrinks it, at the first where it grows. The
-    // margin covers the GPU's f32 weights.
+    // Level k's weight is at least (least·a)^k: the least at the deepest level where a level
+    // shrinks it, at the first where it grows. One more factor a (the camera ray is not
+    // attenuated: a bound, not the weight) and the margin keep it below every weight, the f32
+    // weights the bailout judges included.
     let f = least * a;
     let worst = if f < 1.0 { f.powi(depth.min(i32::MAX as u32) as i32) } else { f };
     worst * a < bailout * (1.0 + 1e-4)
@@ -344,7 +345,8 @@ mod tests {
         let glass = scene("kr = 0.08\nkt = 0.9");
         assert!(!bailout_can_cut(&glass, 1.0 / 255.0, 2));
         assert!(bailout_can_cut(&glass, 1.0 / 255.0, 3));
-        // A channel of 0 (a red mirror) can zero a weight's every channel.
+        // The bound takes the least channel: a red mirror (0.9, 0, 0) is judged by its 0, so the
+        // rows are kept (its red channel alone would stay above the bailout: conservative).
         assert!(bailout_can_cut(&scene("kr = [0.9, 0.0, 0.0]"), 1.0 / 255.0, 2));
         // No child rays, no bailout, no depth: nothing to cut.
         assert!(!bailout_can_cut(&scene("kd = 0.7"), 1.0 / 32.0, 8));

@@ -1,7 +1,7 @@
 //! Whether a scene's reference can finish. The reference is fixed (CPU f64, depth 16, bailout
 //! 0: `Plan::reference`), and under it a material with both k_r and k_t can double a ray tree
 //! at every level, up to 2^17 − 1 rays a camera sample. Whether it does depends on the geometry
-//! (whitted's glass sphere: a handful of rays a sample; three parallel glass panes: 25,000),
+//! (whitted's glass sphere: 9.3 rays a sample; three parallel glass panes: 25,100),
 //! which the bound cannot see, so a scene the bound warns of is probed: its reference settings
 //! rendered at one sample over a few pixels, whose mean tree, times the reference's samples,
 //! estimates the reference's rays. A panes scene ran for hours behind `--quick` without a word.
@@ -74,8 +74,8 @@ pub fn judge(
     anyhow::bail!(
         "{what}, more than the {MAX_REFERENCE_RAYS:.1e} rays a reference may take (about 25 minutes on 2 cores; \
          rays that keep meeting such a material, as between parallel glass panes, branch at every hit). The report's \
-         reference depth and bailout are fixed: lower that material's k_r or k_t{fewer}, or leave the scene out of \
-         --scenes; nothing was run"
+         reference depth and bailout are fixed, and with bailout 0 a smaller k_r or k_t cuts no ray: set one of them \
+         to 0{fewer}, or leave the scene out of --scenes; nothing was run"
     )
 }
 

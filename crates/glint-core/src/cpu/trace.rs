@@ -125,8 +125,9 @@ pub fn shade_hit<R: TreeRecorder>(
         }
     }
     // A child that is not traced, as the tree records it: from the hit point, flagged cut.
-    let cut = |rec: &mut R, kind: RayKind, dir: DVec3, k: DVec3, why: Cut| {
-        let mut child = RayNode::new(kind, Some(node), depth + 1, &Ray { origin: s.p, dir }, k, weigh(weight, k));
+    // `w`: the child's path weight as the bailout judged it.
+    let cut = |rec: &mut R, kind: RayKind, dir: DVec3, k: DVec3, w: DVec3, why: Cut| {
+        let mut child = RayNode::new(kind, Some(node), depth + 1, &Ray { origin: s.p, dir }, k, w);
         child.cut = Some(why);
         child.tir = tir && kind == RayKind::Reflection;
         rec.open(child);
@@ -135,16 +136,16 @@ pub fn shade_hit<R: TreeRecorder>(
         // Under total internal reflection the GPU sums k_r + k_t in f32, as its weight is.
         let w = if tir { weigh(weight, (kr.as_vec3() + kt.as_vec3()).as_dvec3()) } else { weigh(weight, k_mirror) };
         if R::RECORDS && depth_cut {
-            cut(rec, RayKind::Reflection, reflect_dir(ray.dir, ns), k_mirror, Cut::MaxDepth);
+            cut(rec, RayKind::Reflection, reflect_dir(ray.dir, ns), k_mirror, w, Cut::MaxDepth);
         } else if ctx.cap_reached(counts) {
             if R::RECORDS {
-                cut(rec, RayKind::Reflection, reflect_dir(ray.dir, ns), k_mirror, Cut::RayCap);
+                cut(rec, RayKind::Reflection, reflect_dir(ray.dir, ns), k_mirror, w, Cut::RayCap);
             }
             return radiance;
         } else if max_channel(w) < ctx.bailout {
             counts.bailout_saved += 1;
             if R::RECORDS {
-                cut(rec, RayKind::Reflection, reflect_dir(ray.dir, ns), k_mirror, Cut::Bailout);
+                cut(rec, RayKind::Reflection, reflect_dir(ray.dir, ns), k_mirror, w, Cut::Bailout);
             }
         } else {
             counts.reflection += 1;
@@ -168,19 +169,19 @@ pub fn shade_hit<R: TreeRecorder>(
     if let Some(dir) = refracted {
         let w = weigh(weight, kt);
         if R::RECORDS && depth_cut {
-            cut(rec, RayKind::Refraction, dir, kt, Cut::MaxDepth);
+            cut(rec, RayKind::Refraction, dir, kt, w, Cut::MaxDepth);
             return radiance;
         }
         if ctx.cap_reached(counts) {
             if R::RECORDS {
-                cut(rec, RayKind::Refraction, dir, kt, Cut::RayCap);
+                cut(rec, RayKind::Refraction, dir, kt, w, Cut::RayCap);
             }
             return radiance;
         }
         if max_channel(w) < ctx.bailout {
             counts.bailout_saved += 1;
             if R::RECORDS {
-                cut(rec, RayKind::Refraction, dir, kt, Cut::Bailout);
+                cut(rec, RayKind::Refraction, dir, kt, w, Cut::Bailout);
             }
         } else {
             counts.refraction += 1;

@@ -78,8 +78,8 @@ pub fn ground_height(
     let magnitude = (0..3).fold(0.0_f64, |m, k| m.max((lo[k] - origin[k]).abs()).max((hi[k] - origin[k]).abs()));
     let spacing = f32_spacing(magnitude);
     let world = lo.iter().chain(&hi).fold(0.0_f64, |m, c| m.max(c.abs()));
-    let f64_spacing = if world > 0.0 { 2f64.powi(world.log2().floor() as i32 - 52) } else { 0.0 };
-    let gap = (GROUND_GAP * diagonal).max(MIN_GAP_ULPS * spacing).max(MIN_GAP_F64_ULPS * f64_spacing);
+    let gap =
+        (GROUND_GAP * diagonal).max(MIN_GAP_ULPS * spacing).max(MIN_GAP_F64_ULPS * glint_scene::f64_spacing(world));
     let below = lo[1] - gap;
     match mode {
         Ground::Off => (None, None),

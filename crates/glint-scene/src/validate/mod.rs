@@ -47,6 +47,8 @@ fn short(v: f64) -> String {
 pub struct Report {
     pub errors: Vec<FieldIssue>,
     pub warnings: Vec<FieldIssue>,
+    /// The objects' meshes' boxes, made by `validate_objects` for `validate_with_objects`.
+    pub(crate) mesh_boxes: near::MeshBoxes,
 }
 
 impl Report {
@@ -168,6 +170,7 @@ pub fn validate_objects(scene: &SceneDesc) -> Report {
     for (i, object) in scene.objects.iter().enumerate() {
         validate_object(&format!("objects[{i}]"), object, scene, origin, &mut r);
     }
+    r.mesh_boxes = near::MeshBoxes::of(&scene.objects);
     if r.errors.is_empty() {
         r.warnings.extend(coplanar::coplanar_overlaps(scene, origin, scene.render.epsilon));
         r.warnings.extend(placement::duplicate_spheres(scene, origin));
@@ -205,10 +208,10 @@ pub fn validate_with_objects(scene: &SceneDesc, objects: &Report) -> Report {
     }
     r.errors.extend_from_slice(&objects.errors);
     r.warnings.extend_from_slice(&objects.warnings);
-    r.warnings.extend(placement::placement_warnings(scene));
+    r.warnings.extend(placement::placement_warnings(scene, &objects.mesh_boxes));
     // From the camera, so here and not with the objects' own warnings.
     if objects.errors.is_empty() {
-        r.warnings.extend(tilted::tilted_triangles(scene));
+        r.warnings.extend(tilted::tilted_triangles(scene, &objects.mesh_boxes));
     }
     r.warnings.extend(settings_warnings(scene, &scene.render));
     r

@@ -4,7 +4,7 @@
 
 use glam::DVec3;
 
-use super::MeshDesc;
+use super::{MeshDesc, ObjectDesc};
 
 /// The box around a mesh's vertices; `None` for a mesh without vertices or with one that is
 /// not finite (validation's errors say so).
@@ -14,6 +14,33 @@ pub(super) fn mesh_box(mesh: &MeshDesc) -> Option<(DVec3, DVec3)> {
         .iter()
         .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), &v| (lo.min(DVec3::from(v)), hi.max(DVec3::from(v))));
     (lo.is_finite() && hi.is_finite()).then_some((lo, hi))
+}
+
+/// Each object's meshes' boxes (`mesh_box`; none for a sphere or a plane), made with the
+/// objects' part of validation so that what judges the scene from the camera or a light reads
+/// no vertex of a mesh it passes over: a camera drag re-validates on every step, and a model of
+/// a million vertices is not read again for it.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct MeshBoxes(Vec<Vec<Option<(DVec3, DVec3)>>>);
+
+impl MeshBoxes {
+    pub(super) fn of(objects: &[ObjectDesc]) -> Self {
+        Self(objects.iter().map(|o| meshes_of(o).into_iter().map(mesh_box).collect()).collect())
+    }
+
+    /// The box of mesh `mesh` of object `object`.
+    pub(super) fn get(&self, object: usize, mesh: usize) -> Option<(DVec3, DVec3)> {
+        self.0.get(object)?.get(mesh).copied().flatten()
+    }
+}
+
+/// An object's meshes: a mesh's one, a model's in its order, none of a sphere or a plane.
+pub(super) fn meshes_of(object: &ObjectDesc) -> Vec<&MeshDesc> {
+    match object {
+        ObjectDesc::Mesh(mesh) => vec![mesh],
+        ObjectDesc::Model(model) => model.loaded.iter().flat_map(|l| &l.meshes).collect(),
+        ObjectDesc::Sphere(_) | ObjectDesc::Plane(_) => Vec::new(),
+    }
 }
 
 /// The distance from `p` to the box [lo, hi]; 0 inside it.

@@ -246,7 +246,7 @@ fn validate_mesh(path: &str, mesh: &MeshDesc, origin: [f64; 3], r: &mut Report) 
     }
 }
 
-fn storage_origin_named(origin: [f64; 3]) -> String {
+pub(super) fn storage_origin_named(origin: [f64; 3]) -> String {
     if origin == [0.0; 3] {
         "the origin".to_string()
     } else {
@@ -256,7 +256,7 @@ fn storage_origin_named(origin: [f64; 3]) -> String {
 
 /// Storage error, as a share of an object's size, from which it is warned about: an object
 /// 10,000 pixels across moves by a pixel.
-pub(super) const VISIBLE_STORAGE_ERROR: f64 = 1e-4;
+const VISIBLE_STORAGE_ERROR: f64 = 1e-4;
 
 /// Why points stored as f32 relative to `origin` (as both tracers store them) may move an
 /// object of `size` (its `measure`: "radius", "size") visibly: the rest of a warning, or

@@ -2,17 +2,18 @@
 //! not as a student who built them means (a lamp shut inside an opaque ball, a slab made of two
 //! planes that both face out of it, one sphere written twice).
 
-use super::near::{box_distance, closest_on_triangle, mesh_box, triangle_corners};
+use super::near::{MeshBoxes, box_distance, closest_on_triangle, meshes_of, triangle_corners};
+use super::objects::storage_origin_named;
 use super::{Attenuation, FieldIssue, ObjectDesc, SceneDesc, num};
 use crate::number::format_rounded;
 use glam::DVec3;
 use glint_types::layout::f32_spacing;
 
 /// The placement warnings of `scene`, read from its own objects (a model's are not judged).
-pub(super) fn placement_warnings(scene: &SceneDesc) -> Vec<FieldIssue> {
+pub(super) fn placement_warnings(scene: &SceneDesc, boxes: &MeshBoxes) -> Vec<FieldIssue> {
     let mut out = shut_in_lights(scene);
     out.extend(same_facing_transmissive_planes(scene));
-    out.extend(held_falloffs(scene));
+    out.extend(held_falloffs(scene, boxes));
     out
 }
 
@@ -20,17 +21,18 @@ pub(super) fn placement_warnings(scene: &SceneDesc) -> Vec<FieldIssue> {
 /// held (`MIN_ATTENUATION_DENOMINATOR`: d² ≥ 1e-6, so d = 1e-3): that surface is lit less than
 /// 1/d² says. A model in millimetres scaled to metres with its own glTF light 3e-4 from it came
 /// out 8.6 dB darker than the same model at full size, and nothing said why (a tester).
-fn held_falloffs(scene: &SceneDesc) -> Vec<FieldIssue> {
+fn held_falloffs(scene: &SceneDesc, boxes: &MeshBoxes) -> Vec<FieldIssue> {
     let held = crate::limits::MIN_ATTENUATION_DENOMINATOR.sqrt();
     let mut out = Vec::new();
-    for (i, light) in scene.lights.iter().enumerate() {
+    // A model's own lights too: the case that asked for this is a glTF light (a tester).
+    for (source, light) in scene.sourced_lights() {
         let (Attenuation::InverseSquare { .. }, Some(p)) = (light.attenuation, light.position) else { continue };
         let p = DVec3::from(p);
         let nearest = scene
             .objects
             .iter()
             .enumerate()
-            .filter_map(|(k, o)| Some((k, surface_distance(o, p, held)?)))
+            .filter_map(|(k, o)| Some((k, surface_distance(o, boxes, k, p, held)?)))
             .min_by(|a, b| a.1.total_cmp(&b.1));
         if let Some((k, d)) = nearest.filter(|&(_, d)| d < held) {
             // By name too: a model file's lab scene has a ground the user never wrote.
@@ -40,7 +42,7 @@ fn held_falloffs(scene: &SceneDesc) -> Vec<FieldIssue> {
                 name => format!(" ({} `{}`)", object.kind_name(), crate::number::shorten(name)),
             };
             out.push(FieldIssue {
-                field: format!("lights[{i}].position"),
+                field: format!("{source}.position"),
                 problem: format!(
                     "objects[{k}]{named} comes within {} of this inverse-square light, whose 1/d² is held to 1e6 within \
                      1e-3 of it (so that the GPU's f32 stays finite): surfaces nearer than that are lit less than \
@@ -55,10 +57,10 @@ fn held_falloffs(scene: &SceneDesc) -> Vec<FieldIssue> {
 }
 
 /// How near `p` the surface of `object` comes, where that is below `within` (`None` beyond it,
-/// or for an object validation has yet to judge): meshes are read triangle by triangle only
-/// where their box comes that near.
-fn surface_distance(object: &ObjectDesc, p: DVec3, within: f64) -> Option<f64> {
-    let meshes: Vec<&crate::mesh::MeshDesc> = match object {
+/// or for an object validation has yet to judge): meshes, object `k`'s boxes in `boxes`, are read
+/// triangle by triangle only where their box comes that near.
+fn surface_distance(object: &ObjectDesc, boxes: &MeshBoxes, k: usize, p: DVec3, within: f64) -> Option<f64> {
+    match object {
         ObjectDesc::Sphere(s) => {
             return Some((DVec3::from(s.center).distance(p) - s.radius).abs()).filter(|d| *d < within);
         }
@@ -66,12 +68,11 @@ fn surface_distance(object: &ObjectDesc, p: DVec3, within: f64) -> Option<f64> {
             let n = DVec3::from(pl.normal).try_normalize()?;
             return Some(n.dot(p - DVec3::from(pl.point)).abs()).filter(|d| *d < within);
         }
-        ObjectDesc::Mesh(mesh) => vec![mesh],
-        ObjectDesc::Model(model) => model.loaded.iter().flat_map(|l| &l.meshes).collect(),
-    };
+        ObjectDesc::Mesh(_) | ObjectDesc::Model(_) => {}
+    }
     let mut nearest: Option<f64> = None;
-    for mesh in meshes {
-        let Some((lo, hi)) = mesh_box(mesh) else { continue };
+    for (m, mesh) in meshes_of(object).into_iter().enumerate() {
+        let Some((lo, hi)) = boxes.get(k, m) else { continue };
         if box_distance(p, lo, hi) >= within {
             continue;
         }
@@ -229,12 +230,13 @@ pub(super) fn stored_contacts(scene: &SceneDesc, origin: [f64; 3], epsilon: f64)
             // "touching" as stored; a tester), which says nothing of f32's reach.
             let moved = (p.stored.0 - p.written.0).abs().max((p.stored.1 - p.written.1).abs());
             let step = f32_spacing(p.size);
-            // Moving the scene helps only where its position, not the pair's own sizes, sets
-            // f32's step there.
-            let remedy = if p.offset > 100.0 {
+            // Bringing them nearer the storage origin helps only where their distance from it,
+            // not their own size, sets f32's step there: more than twice the size, a binade up.
+            let remedy = if p.offset > 2.0 {
                 format!(
-                    "move the scene nearer the world origin, or widen the gap beyond f32's step where they lie ({})",
-                    format_rounded(step, 2)
+                    "widen the gap beyond f32's step where they lie ({}), or bring them nearer {}",
+                    format_rounded(step, 2),
+                    storage_origin_named(origin.to_array())
                 )
             } else {
                 format!("widen the gap beyond f32's step at their size ({})", format_rounded(step, 2))
@@ -336,8 +338,8 @@ fn same_facing_transmissive_planes(scene: &SceneDesc) -> Vec<FieldIssue> {
                 .min_by(|a, b| a.1.total_cmp(&b.1))
         };
         // Said once a pair, at its first plane in the file.
-        let partner = [1.0, -1.0].into_iter().filter_map(nearest).find(|&(j, _, nj)| j > i && ni.dot(nj) > 0.0);
-        if let Some((j, _, _)) = partner {
+        // Both sides: a plane between two that face its way is one of two such pairs.
+        for (j, _, _) in [1.0, -1.0].into_iter().filter_map(nearest).filter(|&(j, _, nj)| j > i && ni.dot(nj) > 0.0) {
             out.push(FieldIssue {
                 field: format!("objects[{i}]"),
                 problem: format!(
@@ -390,7 +392,10 @@ mod tests {
             let mut light = LightDesc::new(LightKind::Point, [0.0, 1e-4 + gap, 0.0], [0.0; 3]);
             light.attenuation = attenuation;
             scene.lights.push(light);
-            held_falloffs(&scene).into_iter().map(|w| format!("{}: {}", w.field, w.problem)).collect::<Vec<_>>()
+            held_falloffs(&scene, &MeshBoxes::of(&scene.objects))
+                .into_iter()
+                .map(|w| format!("{}: {}", w.field, w.problem))
+                .collect::<Vec<_>>()
         };
         let square = Attenuation::InverseSquare { range: None };
         let near = warned(square, 3e-4);
@@ -409,7 +414,29 @@ mod tests {
         let mut light = LightDesc::new(LightKind::Point, [0.0, 5e-4, 0.0], [0.0; 3]);
         light.attenuation = square;
         scene.lights.push(light);
-        assert_eq!(held_falloffs(&scene).len(), 1);
+        assert_eq!(held_falloffs(&scene, &MeshBoxes::of(&scene.objects)).len(), 1);
+        // A model's own glTF light, placed with it (`lights = true`), is judged as one of the
+        // scene's: the case that asked for the warning (a tester).
+        let mut glb = LightDesc::new(LightKind::Point, [0.0, 2e-4, 0.0], [0.0; 3]);
+        glb.attenuation = square;
+        let bead =
+            MeshDesc::new(vec![[-1e-4, 0.0, 0.0], [1e-4, 0.0, 0.0], [0.0, 0.0, 1e-4]], vec![[0, 1, 2]], "m", "bead");
+        let model = crate::model::Model { meshes: vec![bead], lights: vec![glb], ..Default::default() };
+        let placed = crate::model_ref::LoadedModel::place("bead.glb".into(), model, &Default::default(), "bead");
+        let reference = crate::model_ref::ModelDesc {
+            path: "bead.glb".into(),
+            transform: Default::default(),
+            scene_index: None,
+            name: String::new(),
+            lights: true,
+            exposure: None,
+            loaded: Some(std::sync::Arc::new(placed)),
+        };
+        let scene = test_scene(vec![ObjectDesc::Model(Box::new(reference))]);
+        let said = held_falloffs(&scene, &MeshBoxes::of(&scene.objects));
+        assert_eq!(said.len(), 1, "{said:?}");
+        assert_eq!(said[0].field, "objects[0].lights[0].position");
+        assert!(said[0].problem.starts_with("objects[0] comes within 0.0002 of this inverse-square light"), "{said:?}");
     }
 
     #[test]
@@ -420,5 +447,7 @@ mod tests {
         assert_eq!(panes(&[(-1.0, -1.0), (-0.9, -1.0)]), ["objects[0]"]);
         // Listed back to front, with a farther same-facing plane beyond a correct slab.
         assert_eq!(panes(&[(1.0, 1.0), (0.0, 1.0), (-0.1, -1.0)]), ["objects[0]"]);
+        // Three facing one way, the first listed between the others: both its pairs.
+        assert_eq!(panes(&[(1.0, 1.0), (0.0, 1.0), (2.0, 1.0)]), ["objects[0]", "objects[0]"]);
     }
 }
