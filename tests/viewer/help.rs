@@ -59,6 +59,13 @@ fn the_help_menu_opens_the_first_five_minutes_and_the_bindings() {
     let Some(mut h) = viewer("whitted", (1000.0, 640.0)) else { return };
     menu(&mut h, &["Help", "The first five minutes"]);
     assert!(h.query_by_label_contains("Ctrl+click a pixel").is_some(), "the walkthrough is shown");
+    // The seed's last lesson is in it, and no scene's depth is called 5 (cornell-gi starts at 16;
+    // a lecturer).
+    assert!(
+        h.query_by_label_contains("Whitted vs GI (open cornell-gi)").is_some(),
+        "Whitted vs GI is in the walkthrough"
+    );
+    assert!(h.query_by_label_contains("Set it back to 5").is_none());
     menu(&mut h, &["Help", "Keyboard and mouse"]);
     assert!(h.query_by_label("Ctrl+click").is_some() && h.query_by_label("F9").is_some(), "the bindings are listed");
     h.get_by_label("Help").click();

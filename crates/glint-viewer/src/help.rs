@@ -215,13 +215,15 @@ const FIRST_MINUTES: &str = "\
 1. The left image is the GPU tracer (f32, WGSL), the right one the CPU reference (f64). The status bar \
 compares them: FLIP and the first-hit mismatch near 0 mean the mirror agrees.
 2. Drag in an image to orbit, Shift+drag to pan, the wheel to zoom. Both tracers follow.
-3. Scene tab: set Max depth to 0 — mirrors and glass go black: k_r·I_r and k_t·I_t need traced rays. \
-Set it back to 5.
+3. Scene tab: note Max depth, then set it to 0 — mirrors and glass go black: k_r·I_r and k_t·I_t need \
+traced rays. Set it back to what it was.
 4. Lights tab: drag I_d and I_s, switch the light to spot and move its cone.
 5. Click an object to select its material (Materials tab); change k_d, k_s and the shininess n.
 6. Ctrl+click a pixel: the Probe tab splits its colour into the terms of the equation, CPU beside GPU, \
 and draws its ray tree over the image.
-7. View menu, Difference: shows where the two tracers differ; the Errors tab plots the error over your edits.";
+7. View menu, Difference: shows where the two tracers differ; the Errors tab plots the error over your edits.
+8. View menu, Whitted vs GI (open cornell-gi): Whitted's image beside a path-traced one, the light the model \
+leaves out; Whitted − GI maps it, and the Scene tab's Fit ambient to paths finds the I_a that stands in for it best.";
 
 const BINDINGS: [(&str, &str); 9] = [
     ("Drag", "orbit the camera around its look-at point"),
