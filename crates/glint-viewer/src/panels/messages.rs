@@ -33,8 +33,36 @@ pub fn ui(ui: &mut Ui, renders: RenderMessages<'_>, message: Option<&str>) -> bo
     if let Some(m) = message {
         ui.horizontal_wrapped(|ui| {
             dismissed = ui.small_button("Dismiss").clicked();
-            ui.label(m);
+            // A parse error quotes the file with a caret under the fault, which lines up only
+            // in a fixed-width font (under `shinyness` it pointed at the line's start; a lecturer).
+            if quotes_source(m) {
+                ui.label(egui::RichText::new(m).monospace());
+            } else {
+                ui.label(m);
+            }
         });
     }
     dismissed
+}
+
+/// Whether `message` quotes a source line with a gutter: a numbered line ("9 | shinyness = 20.0")
+/// and a bare one ("  | ^^^^^^^^^"), as the TOML reader's errors write them.
+fn quotes_source(message: &str) -> bool {
+    let gutter = |line: &str| line.split_once('|').map(|(before, _)| before.trim().to_string());
+    let numbered = message.lines().any(|l| gutter(l).is_some_and(|g| !g.is_empty() && g.parse::<u32>().is_ok()));
+    let bare = message.lines().any(|l| gutter(l).is_some_and(|g| g.is_empty()));
+    numbered && bare
+}
+
+#[cfg(test)]
+mod tests {
+    use super::quotes_source;
+
+    #[test]
+    fn a_parse_error_with_a_source_excerpt_is_told_from_a_plain_message() {
+        let toml = "broken.toml: TOML parse error at line 9, column 1\n  |\n9 | shinyness = 20.0\n  | ^^^^^^^^^\nunknown field";
+        assert!(quotes_source(toml));
+        assert!(!quotes_source("saved cpu.png"));
+        assert!(!quotes_source("kr | kt: a table, not a source line"));
+    }
 }
