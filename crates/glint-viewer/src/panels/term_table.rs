@@ -28,6 +28,23 @@ pub fn cell(v: f64) -> String {
     }
 }
 
+/// The width of one character of the table's font (11 px monospace): "-1.2e-7" in 46 px.
+const CHAR_WIDTH: f32 = MIN_CHANNEL_WIDTH / 7.0;
+
+/// `cell(v)`, or where that is wider than `chars` characters its value in fewer digits, then
+/// scientific: a narrow panel cut N's -0.006234 to "-0.006…" (a lecturer), where "-6.2e-3" fits.
+/// The exact value is on hover either way.
+fn cell_within(v: f64, chars: usize) -> String {
+    let full = cell(v);
+    if full.chars().count() <= chars {
+        return full;
+    }
+    [format!("{v:.1e}"), format!("{v:.0e}")]
+        .into_iter()
+        .find(|s| s.chars().count() <= chars)
+        .unwrap_or_else(|| format!("{v:.0e}"))
+}
+
 /// A difference as its table shows it: two significant digits, scientific.
 fn delta(v: f64) -> String {
     if v == 0.0 { "0".into() } else { format!("{v:.1e}") }
@@ -90,7 +107,7 @@ pub fn term_grid(ui: &mut Ui, id: impl std::hash::Hash + std::fmt::Debug + Copy,
                         _ if k >= shown => String::new(),
                         None => "—".to_string(),
                         Some(v) if label == "Δ" => delta(v[k]),
-                        Some(v) => cell(v[k]),
+                        Some(v) => cell_within(v[k], (channel / CHAR_WIDTH).floor() as usize),
                     };
                     let r = sized(ui, channel, colour(font(text)));
                     if let Some(v) = v.filter(|_| k < shown) {
@@ -102,5 +119,19 @@ pub fn term_grid(ui: &mut Ui, id: impl std::hash::Hash + std::fmt::Debug + Copy,
                 ui.end_row();
             }
         });
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{cell, cell_within};
+
+    #[test]
+    fn a_value_too_wide_for_its_column_keeps_its_magnitude_in_fewer_digits() {
+        assert_eq!(cell(-0.006234), "-0.006234");
+        assert_eq!(cell_within(-0.006234, 9), "-0.006234");
+        assert_eq!(cell_within(-0.006234, 7), "-6.2e-3");
+        assert_eq!(cell_within(0.4331, 7), "0.4331");
+        assert_eq!(cell_within(-1.23e-12, 6), "-1e-12");
     }
 }
