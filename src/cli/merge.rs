@@ -130,11 +130,14 @@ fn unreadable_why(path: &Path, e: &ExrReadError, index: Option<u32>) -> String {
 /// The tiles as held against the render of `tiles[reference]`: those of its grid by index, and
 /// what is wrong with the rest.
 struct Assessment<'a> {
-    /// The reference tile's path, the grid's tile count and the image's size.
+    /// The reference tile's path, the grid's tile count, the image's size, the grid, and the
+    /// attributes every tile of its render shares.
     first: &'a Path,
     count: u32,
     width: u32,
     height: u32,
+    grid: TileGrid,
+    keys: Vec<&'static str>,
     by_index: BTreeMap<u32, (&'a Path, &'a ExrHeader)>,
     /// Tiles of another render, with the first attribute that differs.
     stale: Vec<(&'a Path, String)>,
@@ -146,9 +149,6 @@ struct Assessment<'a> {
 
 fn assess<'a>(tiles: &'a [(&'a Path, ExrHeader)], reference: usize) -> anyhow::Result<Assessment<'a>> {
     let (first, header) = (tiles[reference].0, &tiles[reference].1);
-    let keys = shared_keys(header);
-    let shared = |h: &ExrHeader| keys.iter().map(|k| h.attribute(k).map(str::to_string)).collect::<Vec<_>>();
-    let theirs = shared(header);
     let (_, count) = tile_index(first, header)?;
     let (width, height) = header.display;
     // A forged or damaged header must not size the merged image beyond what a render makes.
@@ -165,11 +165,15 @@ fn assess<'a>(tiles: &'a [(&'a Path, ExrHeader)], reference: usize) -> anyhow::R
         count,
         width,
         height,
+        grid,
+        keys: shared_keys(header),
         by_index: BTreeMap::new(),
         stale: Vec::new(),
         problems: Vec::new(),
         refused: false,
     };
+    let shared = |h: &ExrHeader| found.keys.iter().map(|k| h.attribute(k).map(str::to_string)).collect::<Vec<_>>();
+    let theirs = shared(header);
     // Every problem is named together with the indices to render again (a tester fixed two
     // stale tiles and a missing one in three rounds, one message each).
     for (path, header) in tiles {
@@ -182,10 +186,10 @@ fn assess<'a>(tiles: &'a [(&'a Path, ExrHeader)], reference: usize) -> anyhow::R
             }
         };
         let ours = shared(header);
-        if let Some(k) = (0..keys.len()).find(|&k| ours[k] != theirs[k]) {
+        if let Some(k) = (0..found.keys.len()).find(|&k| ours[k] != theirs[k]) {
             let differs = format!(
                 "{} is {} there and {} here",
-                keys[k],
+                found.keys[k],
                 theirs[k].as_deref().unwrap_or("absent"),
                 ours[k].as_deref().unwrap_or("absent")
             );
@@ -214,7 +218,7 @@ fn assess<'a>(tiles: &'a [(&'a Path, ExrHeader)], reference: usize) -> anyhow::R
                 first.display()
             ))
         } else {
-            match grid.rect(index) {
+            match found.grid.rect(index) {
                 Err(e) => Some(format!("{}: {e}", path.display())),
                 Ok(rect) => {
                     let window = (header.origin, (header.width, header.height));
@@ -226,7 +230,7 @@ fn assess<'a>(tiles: &'a [(&'a Path, ExrHeader)], reference: usize) -> anyhow::R
                             header.height,
                             header.origin.0,
                             header.origin.1,
-                            grid.describe()
+                            found.grid.describe()
                         )
                     })
                 }
@@ -314,7 +318,6 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
     let reference = tied[0];
     let found = assess(&tiles, reference)?;
     let (first, count, width, height) = (found.first, found.count, found.width, found.height);
-    let keys = shared_keys(&tiles[reference].1);
     let missing = super::job_array::missing_runs(found.by_index.keys().copied(), count);
     let mut said: Vec<String> = unreadable.clone();
     said.extend(found.problems.iter().cloned());
@@ -381,7 +384,7 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
     if !said.is_empty() {
         bail!("{}; nothing was written", said.join("; "));
     }
-    let by_index = found.by_index;
+    let (by_index, grid, keys) = (found.by_index, found.grid, found.keys);
     let sources: Vec<&Path> = args.tiles.iter().map(PathBuf::as_path).collect();
     // Before `check_outputs`, whose message calls its input a scene.
     if sources.iter().any(|s| is_same_file(s, &args.output)) {
@@ -389,7 +392,6 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
     }
     check_outputs(&[args.output.as_path()], sources[0], args.force)?;
 
-    let grid = TileGrid::new(count, width, height)?;
     let mut image = vec![[0f32; 3]; width as usize * height as usize];
     // Every tile whose pixels fail is named, not the first alone, with the tiles to render again.
     let mut failed: Vec<String> = Vec::new();

@@ -39,7 +39,7 @@ pub use glint_types::tags::{
 };
 pub use light::{Attenuation, DEFAULT_INNER_CONE, DEFAULT_OUTER_CONE, LightDesc, NO_CONE_CUTOFF};
 pub use material::{CheckerDesc, DEFAULT_ROUGHNESS, MaterialDesc, material_textures};
-pub use mesh::MeshDesc;
+pub use mesh::{MeshDesc, has_area};
 pub use model::{MaterialSource, Model, ModelCamera};
 pub use model_ref::{LoadedModel, ModelDesc, Scale, TransformDesc};
 pub use number::{

@@ -31,6 +31,13 @@ pub struct MeshDesc {
     pub name: String,
 }
 
+/// Whether a triangle of these corners has area, in f64 as written: validation's degenerate
+/// triangles and an imported model with nothing to trace are judged alike.
+pub fn has_area([a, b, c]: [[f64; 3]; 3]) -> bool {
+    let (a, b, c) = (glam::DVec3::from(a), glam::DVec3::from(b), glam::DVec3::from(c));
+    (b - a).cross(c - a).length() != 0.0
+}
+
 impl MeshDesc {
     /// A mesh of positions and triangles alone: no normals (its faces' own), no texture
     /// coordinates, no colours.

@@ -415,17 +415,10 @@ pub fn scene_around(
     Ok((desc, warnings))
 }
 
-/// Whether some triangle of `mesh` has area (in f64, as written).
+/// Whether some triangle of `mesh` has area (as validation judges a degenerate one).
 fn has_area(mesh: &glint_scene::MeshDesc) -> bool {
     let corner = |k: u32| mesh.vertices.get(k as usize).copied();
-    let sub = |p: [f64; 3], q: [f64; 3]| [p[0] - q[0], p[1] - q[1], p[2] - q[2]];
-    mesh.triangles.iter().any(|t| match (corner(t[0]), corner(t[1]), corner(t[2])) {
-        (Some(a), Some(b), Some(c)) => {
-            let (e, f) = (sub(b, a), sub(c, a));
-            [e[1] * f[2] - e[2] * f[1], e[2] * f[0] - e[0] * f[2], e[0] * f[1] - e[1] * f[0]] != [0.0; 3]
-        }
-        _ => false,
-    })
+    mesh.triangles.iter().filter_map(|t| Some([corner(t[0])?, corner(t[1])?, corner(t[2])?])).any(glint_scene::has_area)
 }
 
 #[cfg(test)]

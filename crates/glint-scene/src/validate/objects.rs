@@ -2,9 +2,10 @@
 
 // What the parent module declares for its children.
 use super::{
-    DVec3, FieldIssue, MeshDesc, ObjectDesc, PlaneDesc, Report, Rgb, SceneDesc, SphereDesc, cross, norm, num, ranges,
+    DVec3, FieldIssue, MeshDesc, ObjectDesc, PlaneDesc, Report, Rgb, SceneDesc, SphereDesc, cross, num, ranges,
     shorten, sub, usable_direction, validate_light,
 };
+use crate::mesh::has_area;
 use crate::number::{format_beyond, format_rounded};
 use glint_types::layout::f32_spacing;
 
@@ -210,13 +211,12 @@ fn validate_mesh(path: &str, mesh: &MeshDesc, origin: [f64; 3], r: &mut Report) 
     // its smallest details), a triangle with area in the file has none as stored.
     let relative = |p: [f64; 3]| [0, 1, 2].map(|k| p[k] - origin[k]);
     let stored = |p: [f64; 3]| relative(p).map(|c| f64::from(c as f32));
-    let area = |[a, b, c]: [[f64; 3]; 3]| norm(cross(sub(b, a), sub(c, a)));
     let (mut degenerate, mut rounded_flat) = (0, 0);
     for t in triangles.iter().filter(|t| t.iter().all(|&k| (k as usize) < n)) {
         let corners = t.map(|k| vertices[k as usize]);
-        if area(corners) == 0.0 {
+        if !has_area(corners) {
             degenerate += 1;
-        } else if area(corners.map(stored)) == 0.0 {
+        } else if !has_area(corners.map(stored)) {
             rounded_flat += 1;
         }
     }
