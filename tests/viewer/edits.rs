@@ -201,3 +201,50 @@ fn fit_ambient_lowers_whitteds_error_against_the_paths_and_applies_on_click() {
     h.run_steps(2);
     assert!(h.query_by_label_contains("fitted to an earlier edit").is_some(), "an edit left the fit current");
 }
+
+#[test]
+fn ctrl_z_takes_back_each_edit_with_its_image_and_ctrl_shift_z_gives_it_back() {
+    let Some(mut h) = viewer("whitted", (1000.0, 640.0)) else { return };
+    let before = gpu_image(&h);
+    choose(&mut h, "Materials", "Material", "mirror");
+    for channel in ["k_s R", "k_s G", "k_s B"] {
+        h.get_by_label(channel).set_value_accesskit(0.0);
+        h.run_steps(1);
+    }
+    settle(&mut h);
+    let dull = gpu_image(&h);
+    choose(&mut h, "Lights", "Type", "spot");
+    settle(&mut h);
+    assert!(mean_abs_diff(&dull, &gpu_image(&h)) > 1e-3, "a spot light must change the image");
+
+    // The three channels were one step each; the spot light is the last.
+    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::Z);
+    settle(&mut h);
+    assert_eq!(h.state().doc.desc.lights[0].kind, LightKind::Point);
+    assert_eq!(mean_abs_diff(&dull, &gpu_image(&h)), 0.0, "the point light's image again");
+    assert_current_agreement(&h);
+    for _ in 0..3 {
+        h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::Z);
+        h.run_steps(2);
+    }
+    settle(&mut h);
+    assert_eq!(
+        h.state().doc.desc.materials["mirror"],
+        glint_io::load_scene("whitted").unwrap().desc.materials["mirror"]
+    );
+    assert_eq!(mean_abs_diff(&before, &gpu_image(&h)), 0.0, "the scene's image as opened");
+    assert!(!h.state().doc.dirty, "back as opened, nothing is unsaved");
+
+    // The Edit menu names what a redo gives back; Ctrl+Shift+Z and the menu give it.
+    h.get_by_label("Edit").click();
+    h.run_steps(2);
+    h.get_by_label_contains("Redo Materials › mirror").click();
+    h.run_steps(2);
+    for _ in 0..3 {
+        h.key_press_modifiers(egui::Modifiers::COMMAND | egui::Modifiers::SHIFT, egui::Key::Z);
+        h.run_steps(2);
+    }
+    settle(&mut h);
+    assert_eq!((h.state().doc.desc.lights[0].kind, h.state().doc.dirty), (LightKind::Spot, true));
+    assert_eq!(h.state().doc.desc.materials["mirror"].ks.0, [0.0; 3]);
+}

@@ -28,6 +28,7 @@ use crate::ray_tree_view;
 use crate::recent::Recent;
 use crate::renders::Renders;
 use crate::selection::{Hits, Selection};
+use crate::undo::EditHistory;
 use crate::view::{GiView, ViewAction, ViewMode};
 
 mod file_flow;
@@ -88,6 +89,8 @@ pub struct ViewerApp {
     error_axis: Axis,
     /// The Scene panel's Fit ambient job and its last result.
     pub fitter: AmbientFitter,
+    /// The scene's undo and redo steps.
+    pub edits: EditHistory,
     /// The user chose to quit (or had nothing to save): the next close request goes through.
     pub quitting: bool,
     /// Whether the raised stop flag (SIGINT, SIGTERM) was answered already: one quit a signal.
@@ -132,6 +135,7 @@ impl ViewerApp {
             (None, true) => ViewMode::SideBySide,
         };
         Self {
+            edits: EditHistory::new(&doc),
             doc,
             recent: if options.no_recent { Recent::in_memory() } else { Recent::load() },
             message,
@@ -194,6 +198,7 @@ impl ViewerApp {
                 (d.opened, d.hits_revision, d.render_revision, d.fit_revision) =
                     (d.revision, d.revision, d.revision, d.revision);
                 self.doc = d;
+                self.edits = EditHistory::new(&self.doc);
                 self.selection = Selection::default();
                 self.renders.probe = None;
                 self.history.clear();
@@ -341,6 +346,25 @@ impl ViewerApp {
         self.doc.edited();
     }
 
+    /// Ctrl+Z, Ctrl+Shift+Z and Ctrl+Y, unless a field being typed into takes them for its text.
+    fn undo_shortcuts(&mut self, ctx: &egui::Context) {
+        use egui::{Key, KeyboardShortcut, Modifiers};
+        if ctx.egui_wants_keyboard_input() {
+            return;
+        }
+        // Shift+Z before Z: egui's match ignores an extra Shift.
+        let (redo, undo) = ctx.input_mut(|i| {
+            let redo = i.consume_shortcut(&KeyboardShortcut::new(Modifiers::COMMAND | Modifiers::SHIFT, Key::Z))
+                || i.consume_shortcut(&KeyboardShortcut::new(Modifiers::COMMAND, Key::Y));
+            (redo, i.consume_shortcut(&KeyboardShortcut::new(Modifiers::COMMAND, Key::Z)))
+        });
+        if redo {
+            self.edits.redo(&mut self.doc);
+        } else if undo {
+            self.edits.undo(&mut self.doc);
+        }
+    }
+
     fn export_window(&mut self, ctx: &egui::Context) {
         let (chosen, failed) = self.dialogs.export_window(ctx, &self.doc.name);
         if let Some(why) = failed {
@@ -444,7 +468,9 @@ impl eframe::App for ViewerApp {
         }
         self.dialogs.export_shortcut(&ctx, &self.doc.name, self.layout.mode == ViewMode::WhittedVsGi);
 
-        let menu = egui::Panel::top("menu").show(ui, |ui| menu::bar(ui, &self.doc, &self.recent, &mut self.layout));
+        self.undo_shortcuts(&ctx);
+        let menu = egui::Panel::top("menu")
+            .show(ui, |ui| menu::bar(ui, &self.doc, &self.recent, &self.edits, &mut self.layout));
         if let Some(action) = menu.inner {
             self.apply_menu_action(action);
         }
@@ -525,6 +551,9 @@ impl eframe::App for ViewerApp {
         if self.layout.mode == ViewMode::WhittedVsGi && self.doc.desc.render.integrator.is_whitted() {
             self.apply_view_action(ViewAction::Integrator(glint_scene::Integrator::Path));
         }
+        // After every edit of the frame: a drag, or a value being typed, is one step when done.
+        let still = !ctx.input(|i| i.pointer.any_down()) && !ctx.egui_wants_keyboard_input();
+        self.edits.track(&self.doc, ctx.input(|i| i.time), still);
         let gpu_renders = self.renders.gpu_renders();
         let settled = self.is_settled();
         let automated_drag = self.automation.drive(&mut self.doc, gpu_renders, settled);

@@ -225,13 +225,14 @@ and draws its ray tree over the image.
 8. View menu, Whitted vs GI (open cornell-gi): Whitted's image beside a path-traced one, the light the model \
 leaves out; Whitted − GI maps it, and the Scene tab's Fit ambient to paths finds the I_a that stands in for it best.";
 
-const BINDINGS: [(&str, &str); 9] = [
+const BINDINGS: [(&str, &str); 10] = [
     ("Drag", "orbit the camera around its look-at point"),
     ("Shift+drag, middle drag", "pan"),
     ("Wheel", "zoom (move toward the look-at point)"),
     ("Click", "select the object under the pointer (its material opens)"),
     ("Ctrl+click", "probe the pixel: its terms and its ray tree"),
     ("Ctrl+S", "save an image (GPU, CPU, difference or all)"),
+    ("Ctrl+Z, Ctrl+Shift+Z", "undo, redo an edit (a whole drag at once); also Ctrl+Y"),
     ("F9", "show or hide the side panel"),
     ("Escape", "close a dialog, keeping what it would change"),
     ("Drop a file", "open a scene (.toml) or a model (.gltf, .glb, .obj)"),

@@ -34,6 +34,7 @@ mod render_inputs;
 mod renders;
 mod selection;
 mod signal_watch;
+mod undo;
 mod view;
 mod whitted_vs_gi;
 mod widgets;

@@ -1,4 +1,5 @@
-//! The menu bar: files (open, recent, built-in, save, save as, save image, quit), view and help.
+//! The menu bar: files (open, recent, built-in, save, save as, save image, quit), undo and redo,
+//! view and help.
 
 use std::path::PathBuf;
 
@@ -8,6 +9,7 @@ use glint_io::BUILTIN_SCENES;
 use crate::document::Document;
 use crate::layout::Layout;
 use crate::recent::Recent;
+use crate::undo::EditHistory;
 use crate::view::ViewMode;
 
 /// What a menu item asks the app to do (the view settings the menu changes itself).
@@ -23,9 +25,17 @@ pub enum MenuAction {
     SaveImage,
     /// Quit, asking first while the scene has unsaved edits.
     Quit,
+    Undo,
+    Redo,
 }
 
-pub fn bar(ui: &mut Ui, doc: &Document, recent: &Recent, layout: &mut Layout) -> Option<MenuAction> {
+pub fn bar(
+    ui: &mut Ui,
+    doc: &Document,
+    recent: &Recent,
+    edits: &EditHistory,
+    layout: &mut Layout,
+) -> Option<MenuAction> {
     let mut action = None;
     egui::MenuBar::new().ui(ui, |ui| {
         ui.menu_button("File", |ui| {
@@ -64,6 +74,19 @@ pub fn bar(ui: &mut Ui, doc: &Document, recent: &Recent, layout: &mut Layout) ->
             ui.separator();
             if ui.button("Quit").clicked() {
                 action = Some(MenuAction::Quit);
+            }
+        });
+        ui.menu_button("Edit", |ui| {
+            // Named by what they take back, as the side panel names it ("Undo Materials › red").
+            let undo = edits.undo_label(doc);
+            let text = undo.as_ref().map_or("Undo".into(), |what| format!("Undo {what}"));
+            if ui.add_enabled(undo.is_some(), egui::Button::new(text).shortcut_text("Ctrl+Z")).clicked() {
+                action = Some(MenuAction::Undo);
+            }
+            let redo = edits.redo_label(doc);
+            let text = redo.as_ref().map_or("Redo".into(), |what| format!("Redo {what}"));
+            if ui.add_enabled(redo.is_some(), egui::Button::new(text).shortcut_text("Ctrl+Shift+Z")).clicked() {
+                action = Some(MenuAction::Redo);
             }
         });
         ui.menu_button("View", |ui| {
