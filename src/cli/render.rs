@@ -369,7 +369,7 @@ fn bench(
 fn say_bench_line(name: &str, s: &RenderSettings, runs: u32, r: &BenchResult) -> anyhow::Result<()> {
     // The bailout is Whitted's; a path render gives its samples per second instead.
     let mode = match s.integrator {
-        Integrator::Whitted => format!("bailout {}", s.bailout),
+        Integrator::Whitted => format!("bailout {}", glint_scene::format_rounded(s.bailout, 3)),
         Integrator::Path => format!("path tracer, {:.3} Msamples/s", r.msamples_per_s(s)),
     };
     say!(

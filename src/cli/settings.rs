@@ -286,6 +286,14 @@ impl SettingsArgs {
         if let Some(v) = self.indirect {
             s.indirect = v;
         }
+        // A flag typed for the other integrator does nothing: refused, as a model flag on a scene
+        // file is (the same setting from a file is only warned of, `integrator_warnings`).
+        if self.indirect == Some(false) && s.integrator == Integrator::Whitted {
+            usage!(
+                "--indirect off chooses what the path tracer's paths follow (only k_r and k_t), and Whitted's ray tree \
+                 follows nothing else: leave --indirect out, or render with --integrator path"
+            );
+        }
         if self.bailout.is_some() && s.integrator == Integrator::Path {
             usage!(
                 "--bailout prunes Whitted's ray tree, and the path tracer has none to prune (Russian roulette ends \

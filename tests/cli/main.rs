@@ -726,10 +726,30 @@ fn the_path_tracer_renders_on_both_tracers_from_a_flag_or_the_scene() {
         assert_eq!(meta(&png_text_chunks(&png), "glint:indirect"), "off", "{backend}");
     }
 
-    // A path-only setting on a Whitted render is an error naming the field and the flag.
+    // A path-only flag typed for a Whitted render is an error naming the flag (exit 2).
     let out = glint(&dir, ["render", "whitted", "--indirect", "off", "-q"]);
-    assert!(!out.status.success());
-    assert!(text(&out.stderr).contains("render.indirect (--indirect)"), "{}", text(&out.stderr));
+    assert_eq!(out.status.code(), Some(2), "{}", text(&out.stderr));
+    assert!(text(&out.stderr).contains("--indirect off chooses"), "{}", text(&out.stderr));
+    // The same setting kept by a file is warned of under Whitted, and a file that says Whitted
+    // renders with it under --integrator path (a student switching one file between the two).
+    let file = dir.join("whitted-indirect-off.toml");
+    let mut whitted = glint_io::load_scene("whitted").unwrap().desc;
+    whitted.render.indirect = false;
+    std::fs::write(&file, glint_io::to_toml(&whitted).unwrap()).unwrap();
+    let args = |more: &[&str]| -> Vec<OsString> {
+        let mut a: Vec<OsString> = ["render", "--width", "16", "--height", "12", "-q", "-o"].map(OsString::from).into();
+        a.insert(1, file.clone().into_os_string());
+        a.push(dir.join("off.png").into_os_string());
+        a.extend(more.iter().map(OsString::from));
+        a
+    };
+    let out = glint(&dir, args(&[]));
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    assert!(text(&out.stderr).contains("render.indirect: false is a path-tracing setting"), "{}", text(&out.stderr));
+    let out = glint(&dir, args(&["--integrator", "path", "--spp", "1"]));
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    assert!(!text(&out.stderr).contains("render.indirect"), "{}", text(&out.stderr));
+    assert_eq!(meta(&png_text_chunks(&dir.join("off.png")), "glint:indirect"), "off");
 }
 
 #[test]

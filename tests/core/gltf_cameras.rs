@@ -121,6 +121,9 @@ fn cameras_come_from_their_nodes_and_the_scene_uses_the_chosen_one() {
     assert!(message.contains("scenes[3]") && message.contains("has 1"), "{message}");
     let not_a_model = load_scene_with("whitted", &missing).unwrap_err().to_string();
     assert!(not_a_model.contains("not a model file"), "{not_a_model}");
+    // A scene file that is not there is said to be missing, whatever flags came with it.
+    let gone = load_scene_with(dir.join("example.toml"), &missing).unwrap_err().to_string();
+    assert!(gone.contains("no such file") && !gone.contains("not a model"), "{gone}");
     // A camera under a mirroring parent is looked through unmirrored, and said so.
     f.json["nodes"][3] = json!({ "scale": [-1.0, 1.0, 1.0], "children": [4] });
     f.json["nodes"].as_array_mut().unwrap().push(json!({ "translation": [-0.5, 0.5, 2.0], "camera": 2 }));

@@ -117,7 +117,10 @@ pub fn load_scene_with(arg: impl AsRef<OsStr>, options: &LoadOptions) -> Result<
     let is_model = ModelFormat::of(path).is_some();
     // Any readable thing but a folder is a file here: a named pipe (`<(…)`), /dev/stdin.
     let is_file = std::fs::metadata(path).is_ok_and(|m| !m.is_dir());
-    if !(options.import.is_default() || is_model && is_file) {
+    // Said of a scene file or a built-in scene; a name that is neither is "no such file" below
+    // (a missing `example.toml --camera 0` was called "not a model file").
+    let exists = is_file || path.to_str().and_then(builtin).is_some();
+    if !(options.import.is_default() || is_model && is_file) && exists {
         return Err(SceneError::NotAModel { name: arg.to_string() });
     }
     if path.is_dir() {

@@ -6,11 +6,23 @@ use crate::desc::{RenderSettings, SceneDesc, WorldDesc};
 use crate::error::FieldIssue;
 use glint_types::Integrator;
 
-/// The warnings `settings.integrator` gives `desc`; none for Whitted's.
+/// The warnings `settings.integrator` gives `desc`: for Whitted's, a path-tracing setting the
+/// file keeps (one file is rendered under both in the Whitted against GI lesson, so not an
+/// error).
 pub fn integrator_warnings(desc: &SceneDesc, settings: &RenderSettings) -> Vec<FieldIssue> {
     let mut out = Vec::new();
     match settings.integrator {
-        Integrator::Whitted => return out,
+        Integrator::Whitted => {
+            if !settings.indirect {
+                out.push(FieldIssue {
+                    field: "render.indirect".into(),
+                    problem: "false is a path-tracing setting (paths that follow only k_r and k_t), and changes \
+                              nothing under Whitted's model, whose ray tree follows nothing else"
+                        .into(),
+                });
+            }
+            return out;
+        }
         Integrator::Path => {}
     }
     let unused = "is not used by the path tracer: the indirect light it stands in for is computed";

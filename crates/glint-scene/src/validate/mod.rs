@@ -16,7 +16,7 @@ use super::mesh::MeshDesc;
 use super::number::{format_number as num, shorten};
 use super::rgb::Rgb;
 use super::texture::TextureDesc;
-use glint_types::{Integrator, LightKind, SpotFalloff};
+use glint_types::{LightKind, SpotFalloff};
 
 mod coplanar;
 mod epsilon;
@@ -144,14 +144,6 @@ pub fn validate_settings(s: &RenderSettings, report: &mut Report) {
     report.count("render.max_depth", s.max_depth, ranges::DEPTH);
     report.finite_in("render.bailout", s.bailout, ranges::BAILOUT);
     report.finite_in("render.epsilon", s.epsilon, ranges::EPSILON);
-    if !s.indirect && s.integrator == Integrator::Whitted {
-        report.error(
-            "render.indirect",
-            "false (--indirect off) is a path-tracing setting (paths that follow only k_r and k_t), and Whitted's ray tree never \
-             follows anything else: render with the path tracer (render.integrator = \"path\", --integrator path) or \
-             leave it out",
-        );
-    }
 }
 
 /// Validates a whole scene. Errors make the scene unusable; warnings are printed.
