@@ -1,8 +1,9 @@
 //! `glint merge TILE.exr… -o OUT.exr|OUT.png`: the tiles of `glint render --tile` joined into
 //! the whole image. Every tile's header is read first (no pixels): they must be one render's
 //! (the same scene hash, settings, backend, version and grid), each tile's data window must be
-//! its grid block, none may come twice, and every missing one is named; only then are the
-//! pixels read, one tile at a time, into one f32 image, and the output written atomically.
+//! its grid block, none may come twice, and every missing one is named; then the pixels are
+//! read, one tile at a time, into one f32 image (read also where a header held a problem, into
+//! none, so that a tile cut short is named with it), and the output written atomically.
 //! Nothing is written on any error. At most the output image and one tile are in memory.
 
 use crate::cli::usage::usage;
@@ -127,6 +128,15 @@ fn unreadable_why(path: &Path, e: &ExrReadError, index: Option<u32>) -> String {
     }
 }
 
+/// Why `header`'s image is none a render makes (a forged or damaged header), if it is not.
+fn beyond_a_render(header: &ExrHeader) -> Option<String> {
+    let (width, height) = header.display;
+    let side = 1..=MAX_IMAGE_SIDE;
+    (!side.contains(&width) || !side.contains(&height)).then(|| {
+        format!("its image (display window) is {width}x{height}; a render's sides are in [1, {MAX_IMAGE_SIDE}]")
+    })
+}
+
 /// The tiles as held against the render of `tiles[reference]`: those of its grid by index, and
 /// what is wrong with the rest.
 struct Assessment<'a> {
@@ -152,12 +162,8 @@ fn assess<'a>(tiles: &'a [(&'a Path, ExrHeader)], reference: usize) -> anyhow::R
     let (_, count) = tile_index(first, header)?;
     let (width, height) = header.display;
     // A forged or damaged header must not size the merged image beyond what a render makes.
-    if !(1..=MAX_IMAGE_SIDE).contains(&width) || !(1..=MAX_IMAGE_SIDE).contains(&height) {
-        bail!(
-            "{}: its image (display window) is {width}x{height}; a render's sides are in [1, {MAX_IMAGE_SIDE}]; \
-             nothing was written",
-            first.display()
-        );
+    if let Some(sides) = beyond_a_render(header) {
+        bail!("{}: {sides}; nothing was written", first.display());
     }
     let grid = TileGrid::new(count, width, height).with_context(|| format!("{}", first.display()))?;
     let mut found = Assessment {
@@ -209,6 +215,9 @@ fn assess<'a>(tiles: &'a [(&'a Path, ExrHeader)], reference: usize) -> anyhow::R
                  render bit for bit; merge the EXR tiles glint wrote",
                 path.display()
             ))
+        } else if let Some(sides) = beyond_a_render(header) {
+            // Named as it would be were it the reference (a forged header first had hidden the rest).
+            Some(format!("{}: {sides}", path.display()))
         } else if n != count || header.display != (width, height) {
             Some(format!(
                 "{} is tile {index} of {n} of a {}x{} image, {} of {count} of {width}x{height}",
@@ -277,9 +286,9 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
             );
         }
     }
-    // Headers first: every check before any pixel is read or anything is written. A file whose
-    // header cannot be read is one more problem, named beside every other (an empty tile-2.exr
-    // had hidden a missing tile 5).
+    // Headers first: every check of the headers before any pixel is read or anything is written.
+    // A file whose header cannot be read is one more problem, named beside every other (an
+    // empty tile-2.exr had hidden a missing tile 5).
     let mut unreadable: Vec<String> = Vec::new();
     let mut tiles: Vec<(&Path, ExrHeader)> = Vec::new();
     // A tile that blocks its reader (a file on a hung network mount) ends the merge at the
@@ -303,22 +312,42 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
     // render is its attributes (`shared_keys`, which a GPU tile has more of).
     let render_of =
         |h: &ExrHeader| shared_keys(h).into_iter().map(|k| (k, h.attribute(k).map(str::to_string))).collect::<Vec<_>>();
-    // Per render, in the order of its first tile: its first tile and how many are of it.
-    let mut renders: Vec<(Vec<_>, usize, usize)> = Vec::new();
+    // Per render, in the order of its first tile: its tiles, in the order given.
+    let mut renders: Vec<(Vec<_>, Vec<usize>)> = Vec::new();
     for (i, (_, h)) in tiles.iter().enumerate() {
         let render = render_of(h);
-        match renders.iter_mut().find(|(r, _, _)| *r == render) {
-            Some((_, n, _)) => *n += 1,
-            None => renders.push((render, 1, i)),
+        match renders.iter_mut().find(|(r, _)| *r == render) {
+            Some((_, members)) => members.push(i),
+            None => renders.push((render, vec![i])),
         }
     }
-    let agreeing = renders.iter().map(|&(_, n, _)| n).max().unwrap_or(1);
+    // A render's reference is its first tile whose own header can be one (a tile of `glint
+    // render --tile`, of an image and grid a render makes): a first tile with a problem of its
+    // own is named with the others' against the next one, not alone (a forged header's image
+    // size had hidden a missing tile). A render none of whose tiles can be one is no render to
+    // keep; its tiles are named against the reference of another.
+    let serving: Vec<(usize, usize)> = renders
+        .iter()
+        .filter_map(|(_, members)| {
+            let reference = members.iter().copied().find(|&i| assess(&tiles, i).is_ok())?;
+            Some((reference, members.len()))
+        })
+        .collect();
+    let Some(agreeing) = serving.iter().map(|&(_, n)| n).max() else {
+        // No header can be one: each is named, with the files that cannot be read.
+        let each = (0..tiles.len()).filter_map(|i| assess(&tiles, i).err());
+        let each = each.map(|e| e.to_string().trim_end_matches("; nothing was written").to_string());
+        bail!(
+            "{}; no tile given is one whose render and grid the others could be checked against; nothing was \
+             written",
+            unreadable.iter().cloned().chain(each).collect::<Vec<_>>().join("; ")
+        );
+    };
     // With as many tiles of two renders (4 at spp 16, 4 at spp 8) either may be the stale one.
-    let tied: Vec<usize> = renders.iter().filter(|&&(_, n, _)| n == agreeing).map(|&(_, _, first)| first).collect();
+    let tied: Vec<usize> = serving.iter().filter(|&&(_, n)| n == agreeing).map(|&(r, _)| r).collect();
     let reference = tied[0];
     let found = assess(&tiles, reference)?;
     let (first, count, width, height) = (found.first, found.count, found.width, found.height);
-    let missing = super::job_array::missing_runs(found.by_index.keys().copied(), count);
     let mut said: Vec<String> = unreadable.clone();
     said.extend(found.problems.iter().cloned());
     if !found.stale.is_empty() {
@@ -341,7 +370,35 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
             ),
         });
     }
-    let again = |m: &super::job_array::Missing| format!("{} (with --tile I/{count}; {})", m.listing(), m.slurm_array());
+    let (by_index, grid, keys) = (&found.by_index, found.grid, &found.keys);
+    // Where the headers hold no problem, the output is checked before a pixel is read.
+    let mut image = if said.is_empty() {
+        let sources: Vec<&Path> = args.tiles.iter().map(PathBuf::as_path).collect();
+        // Before `check_outputs`, whose message calls its input a scene.
+        if sources.iter().any(|s| is_same_file(s, &args.output)) {
+            bail!("{}: the output would replace one of the tiles", args.output.display());
+        }
+        check_outputs(&[args.output.as_path()], sources[0], args.force)?;
+        Some(vec![[0f32; 3]; width as usize * height as usize])
+    } else {
+        None
+    };
+    // The pixels, one tile at a time: into the image where the headers hold no problem, and
+    // read all the same where they do (but for a tie, where which render is to be kept is not
+    // known), so that a tile whose header reads but whose pixels do not (a copy cut short) is
+    // named with the rest and rendered again with the missing tiles, not in a second round.
+    let (failed, again) = if tied.len() > 1 {
+        (Vec::new(), Vec::new())
+    } else {
+        read_pixels(by_index, &grid, width, image.as_deref_mut())?
+    };
+    let (pixels_failed, again_of_pixels) = (!failed.is_empty(), !again.is_empty());
+    said.extend(failed);
+    // The tiles to render again: the missing ones and those whose pixels failed.
+    let kept = by_index.keys().copied().filter(|i| again.binary_search(i).is_err());
+    let missing = super::job_array::missing_runs(kept, count);
+    let render_again =
+        |m: &super::job_array::Missing| format!("{} (with --tile I/{count}; {})", m.listing(), m.slurm_array());
     if tied.len() > 1 {
         // What each render would need, were its tiles the ones to keep.
         let choices: Vec<String> = tied
@@ -349,7 +406,7 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
             .filter_map(|&r| {
                 let found = assess(&tiles, r).ok()?;
                 let m = super::job_array::missing_runs(found.by_index.keys().copied(), found.count);
-                Some(format!("to keep the render of {}, render again {}", found.first.display(), again(&m)))
+                Some(format!("to keep the render of {}, render again {}", found.first.display(), render_again(&m)))
             })
             .collect();
         said.push(choices.join("; or, "));
@@ -357,12 +414,12 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
         // Good tiles may cover every index (a tile left from an earlier render of more tiles,
         // or an empty file beside them).
         let extra = found.stale.len() + unreadable.len();
-        if extra > 0 && found.problems.is_empty() {
+        if extra > 0 && found.problems.is_empty() && !pixels_failed {
             let them = if extra == 1 { "it" } else { "them" };
             said.push(format!("every tile of the render is there: leave {them} out of the tiles given"));
         }
-    } else if !found.stale.is_empty() || found.refused {
-        said.push(format!("{} of {count} tiles to render again: {}", missing.count, again(&missing)));
+    } else if !found.stale.is_empty() || found.refused || again_of_pixels {
+        said.push(format!("{} of {count} tiles to render again: {}", missing.count, render_again(&missing)));
     } else {
         // Which tile an unreadable file was meant to hold is not known (its name need not say).
         let among = if unreadable.is_empty() {
@@ -381,22 +438,43 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
             missing.slurm_array()
         ));
     }
-    if !said.is_empty() {
+    let Some(image) = image.filter(|_| said.is_empty()) else {
         bail!("{}; nothing was written", said.join("; "));
+    };
+    // The scene's name, where it came from and the flags that shaped it as the first tile gives
+    // them (tiles of copies of one scene file merge): with the shared keys, what renders the
+    // image again.
+    let mut metadata: Vec<(String, String)> = ["glint:scene", "glint:source", "glint:load_flags"]
+        .iter()
+        .chain(keys)
+        .filter_map(|k| Some((k.to_string(), tiles[reference].1.attribute(k)?.to_string())))
+        .collect();
+    metadata.push(("glint:merged_tiles".into(), count.to_string()));
+    if png {
+        let rgb: Vec<u8> = image.iter().flat_map(|p| p.map(linear_f32_to_srgb8)).collect();
+        write_png_rgb8(&args.output, width, height, &rgb, &metadata)?;
+    } else {
+        let pixel = |x: usize, y: usize| image[y * width as usize + x];
+        write_exr_region(&args.output, (width, height), (0, 0), (width, height), pixel, &metadata)?;
     }
-    let (by_index, grid, keys) = (found.by_index, found.grid, found.keys);
-    let sources: Vec<&Path> = args.tiles.iter().map(PathBuf::as_path).collect();
-    // Before `check_outputs`, whose message calls its input a scene.
-    if sources.iter().any(|s| is_same_file(s, &args.output)) {
-        bail!("{}: the output would replace one of the tiles", args.output.display());
-    }
-    check_outputs(&[args.output.as_path()], sources[0], args.force)?;
+    let tiles = if count == 1 { "1 tile".to_string() } else { format!("{count} tiles") };
+    say!("merged {tiles} ({} grid) into {width}x{height}: wrote {}", grid.describe(), args.output.display())?;
+    Ok(())
+}
 
-    let mut image = vec![[0f32; 3]; width as usize * height as usize];
-    // Every tile whose pixels fail is named, not the first alone, with the tiles to render again.
+/// Reads the pixels of the tiles `by_index` holds, one at a time, each checked against its
+/// header and digest, and copies each tile that passes into `image` (of `width` pixels a row)
+/// where one is given. What fails is named, every tile of it; the indices of the tiles to
+/// render again (unreadable, damaged, a pixel no render writes) are returned with it, ascending.
+fn read_pixels(
+    by_index: &BTreeMap<u32, (&Path, &ExrHeader)>,
+    grid: &TileGrid,
+    width: u32,
+    mut image: Option<&mut [[f32; 3]]>,
+) -> anyhow::Result<(Vec<String>, Vec<u32>)> {
     let mut failed: Vec<String> = Vec::new();
     let mut again: Vec<u32> = Vec::new();
-    for (&index, &(path, checked)) in &by_index {
+    for (&index, &(path, checked)) in by_index {
         let tile = match super::interrupt::while_loading(|| read_exr(path)) {
             Ok(tile) => tile,
             Err(e) => {
@@ -439,46 +517,16 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
             again.push(index);
             continue;
         }
-        for row in 0..rect.height as usize {
-            let src = &tile.rgb[row * rect.width as usize..(row + 1) * rect.width as usize];
-            let start = (rect.y0 as usize + row) * width as usize + rect.x0 as usize;
-            image[start..start + rect.width as usize].copy_from_slice(src);
+        if let Some(image) = image.as_deref_mut() {
+            for row in 0..rect.height as usize {
+                let src = &tile.rgb[row * rect.width as usize..(row + 1) * rect.width as usize];
+                let start = (rect.y0 as usize + row) * width as usize + rect.x0 as usize;
+                image[start..start + rect.width as usize].copy_from_slice(src);
+            }
         }
         super::interrupt::check()?;
     }
-    if !failed.is_empty() {
-        if !again.is_empty() {
-            // The runs of the tiles to render again are the gaps between the others.
-            let others = (0..count).filter(|i| again.binary_search(i).is_err());
-            let m = super::job_array::missing_runs(others, count);
-            failed.push(format!(
-                "{} of {count} tiles to render again: {} (with --tile I/{count}; {})",
-                m.count,
-                m.listing(),
-                m.slurm_array()
-            ));
-        }
-        bail!("{}; nothing was written", failed.join("; "));
-    }
-    // The scene's name, where it came from and the flags that shaped it as the first tile gives
-    // them (tiles of copies of one scene file merge): with the shared keys, what renders the
-    // image again.
-    let mut metadata: Vec<(String, String)> = ["glint:scene", "glint:source", "glint:load_flags"]
-        .iter()
-        .chain(&keys)
-        .filter_map(|k| Some((k.to_string(), tiles[reference].1.attribute(k)?.to_string())))
-        .collect();
-    metadata.push(("glint:merged_tiles".into(), count.to_string()));
-    if png {
-        let rgb: Vec<u8> = image.iter().flat_map(|p| p.map(linear_f32_to_srgb8)).collect();
-        write_png_rgb8(&args.output, width, height, &rgb, &metadata)?;
-    } else {
-        let pixel = |x: usize, y: usize| image[y * width as usize + x];
-        write_exr_region(&args.output, (width, height), (0, 0), (width, height), pixel, &metadata)?;
-    }
-    let tiles = if count == 1 { "1 tile".to_string() } else { format!("{count} tiles") };
-    say!("merged {tiles} ({} grid) into {width}x{height}: wrote {}", grid.describe(), args.output.display())?;
-    Ok(())
+    Ok((failed, again))
 }
 
 /// The pixels are read after every header was checked, so a tile replaced in between (a

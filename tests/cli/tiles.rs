@@ -205,7 +205,7 @@ fn tiles_that_do_not_belong_together_are_refused_by_name_and_nothing_is_written(
     refused(&[&t[..], &[stale_1]].concat(), "every tile of the render is there: leave it out of the tiles given");
     let whole = dir.join("whole.exr");
     render(&dir, "whitted", &size, &whole);
-    refused(&[t[0].clone(), whole, t[2].clone()], "not a tile of `glint render --tile`");
+    refused(&[t[0].clone(), whole.clone(), t[2].clone()], "not a tile of `glint render --tile`");
     // A tile re-encoded with loss (half floats, PXR24's 24-bit floats) would merge into no
     // render's bits; a lossless re-encoding merges into the same bits.
     use exr::prelude::{Compression, f16};
@@ -282,7 +282,24 @@ fn tiles_that_do_not_belong_together_are_refused_by_name_and_nothing_is_written(
         refused(&[t[0].clone(), bad, t[2].clone()], &at);
     }
     let huge = forged("huge.exr", (1_000_000, 1_000_000), &|x, y| incomplete.rgb[y * w + x]);
-    refused(&[huge, t[0].clone(), t[2].clone()], "huge.exr: its image (display window) is 1000000x1000000");
+    // First, it is named with the rest (it was named alone, hiding what else was wrong).
+    refused(&[huge.clone(), t[0].clone(), t[2].clone()], "huge.exr: its image (display window) is 1000000x1000000");
+    refused(&[huge, t[0].clone(), t[2].clone()], "; 1 of 3 tiles to render again: 1 (with --tile I/3; ");
+    let whole_first = merge(&dir, &[whole_merge.clone(), t[1].clone()], &out);
+    let said = text(&whole_first.stderr);
+    for wanted in ["merged.exr: the output of an earlier `glint merge`", "2 of 3 tiles are missing: 0, 2 ("] {
+        assert!(said.contains(wanted), "wanted {wanted:?} in {said}");
+    }
+    // No file that the others could be held against: each is named.
+    refused(
+        &[whole_merge.clone(), whole.clone()],
+        "merged.exr: the output of an earlier `glint merge` (of 3 tiles), not a tile; leave it out of the tiles given; ",
+    );
+    refused(
+        &[whole_merge.clone(), whole.clone()],
+        "whole.exr: not a tile of `glint render --tile` (it has no glint:tile attribute); no tile given is one whose \
+         render and grid the others could be checked against; nothing was written",
+    );
     // A named pipe or a folder the glob caught is named at once (the pipe waited for a writer).
     let pipe = dir.join("t9.exr");
     let made = std::process::Command::new("mkfifo").arg(&pipe).status().expect("mkfifo (coreutils)");
@@ -358,6 +375,19 @@ fn every_problem_of_the_tiles_is_named_at_once_unreadable_files_and_ties_include
             format!("{} (tile 2) cannot be read: the file is cut short or damaged (", at(&tail_cut)),
             format!("{} (tile 3) cannot be read", at(&tail_cut2)),
             "2 of 4 tiles to render again: 2-3 (with --tile I/4; as a Slurm array, --array=2-3)".into(),
+        ],
+    );
+    // The first tile (the one the others are held against) cut short in its pixels, and tile 3
+    // missing: both are named, and both are to render again (the missing tile alone was named,
+    // and the cut one only in a second round).
+    let first_cut = dir.join("c0.exr");
+    let bytes0 = std::fs::read(&t[0]).expect("tile");
+    std::fs::write(&first_cut, &bytes0[..bytes0.len() - 10]).expect("cut tile");
+    refused(
+        &[first_cut.clone(), t[1].clone(), t[2].clone()],
+        &[
+            format!("{} (tile 0) cannot be read: the file is cut short or damaged (", at(&first_cut)),
+            "2 of 4 tiles to render again: 0, 3 (with --tile I/4; as a Slurm array, --array=0,3)".into(),
         ],
     );
     // tile-3.exr holding tile 2: given twice, and tile 3 missing, both said.
