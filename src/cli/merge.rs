@@ -107,10 +107,33 @@ fn file_kind(t: std::fs::FileType) -> &'static str {
     if t.is_dir() { "a folder" } else { "not a regular file" }
 }
 
+/// The tile a file's name says it holds, where the name is one `glint render --tile` gives:
+/// `tile-I.exr` (farm.md's `-o tiles/tile-$SLURM_ARRAY_TASK_ID.exr`) or `SCENE-tile-I.exr` (its
+/// default), I in decimal. A file that cannot be read is matched to its tile by this alone.
+fn index_by_name(path: &Path) -> Option<u32> {
+    let name = path.file_name()?.to_str()?;
+    let split = name.len().checked_sub(4)?;
+    let (stem, ext) = (name.get(..split)?, name.get(split..)?);
+    let (before, digits) = stem.rsplit_once('-').filter(|_| ext.eq_ignore_ascii_case(".exr"))?;
+    let named = before == "tile" || before.ends_with("-tile");
+    (named && !digits.is_empty() && digits.bytes().all(|b| b.is_ascii_digit())).then(|| digits.parse().ok())?
+}
+
+/// Where the index of a tile that cannot be read came from.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum IndexFrom {
+    /// Its header, read before (the file changed or is cut short in its pixels).
+    Header,
+    /// Its file name (`index_by_name`).
+    Name,
+    /// Nowhere: which tile it was meant to hold is not known.
+    Nowhere,
+}
+
 /// Why a tile file cannot be read, in a message's words: empty, not OpenEXR at all, or cut
 /// short or damaged (a copy that ran out of space, a file truncated), with the EXR reader's
-/// own words last. `index`: the tile its header said it holds, where that was read before.
-fn unreadable_why(path: &Path, e: &ExrReadError, index: Option<u32>) -> String {
+/// own words last. `from`: where the tile it holds was learnt, if anywhere.
+fn unreadable_why(path: &Path, e: &ExrReadError, from: IndexFrom) -> String {
     let said = e.to_string();
     let detail = said.strip_prefix(&format!("{}: ", path.display())).unwrap_or(&said).to_string();
     let mut magic = [0u8; 4];
@@ -119,10 +142,11 @@ fn unreadable_why(path: &Path, e: &ExrReadError, index: Option<u32>) -> String {
     match (len, opened) {
         // glint writes a tile whole or not at all (a temporary renamed): an empty one was made
         // otherwise, and holds no index to name.
-        (Some(0), _) if index.is_none() => {
-            "is empty (0 bytes), so which tile it was meant to hold cannot be known".into()
-        }
-        (Some(0), _) => "is empty (0 bytes) now: it changed while the merge read it".into(),
+        (Some(0), _) => match from {
+            IndexFrom::Nowhere => "is empty (0 bytes), so which tile it was meant to hold cannot be known".into(),
+            IndexFrom::Name => "is empty (0 bytes)".into(),
+            IndexFrom::Header => "is empty (0 bytes) now: it changed while the merge read it".into(),
+        },
         (_, Ok(())) if magic != [0x76, 0x2f, 0x31, 0x01] => format!("is not an OpenEXR file ({detail})"),
         _ => format!("cannot be read: the file is cut short or damaged ({detail})"),
     }
@@ -135,6 +159,15 @@ fn beyond_a_render(header: &ExrHeader) -> Option<String> {
     (!side.contains(&width) || !side.contains(&height)).then(|| {
         format!("its image (display window) is {width}x{height}; a render's sides are in [1, {MAX_IMAGE_SIDE}]")
     })
+}
+
+/// A file that cannot be read, in a message: its path, the tile its name says it holds (`named`)
+/// where it says one, and why.
+fn unreadable_file(path: &Path, e: &ExrReadError, named: Option<u32>) -> String {
+    match named {
+        Some(i) => format!("{} (tile {i} by its name) {}", path.display(), unreadable_why(path, e, IndexFrom::Name)),
+        None => format!("{}: {}", path.display(), unreadable_why(path, e, IndexFrom::Nowhere)),
+    }
 }
 
 /// The tiles as held against the render of `tiles[reference]`: those of its grid by index, and
@@ -289,7 +322,7 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
     // Headers first: every check of the headers before any pixel is read or anything is written.
     // A file whose header cannot be read is one more problem, named beside every other (an
     // empty tile-2.exr had hidden a missing tile 5).
-    let mut unreadable: Vec<String> = Vec::new();
+    let mut unreadable: Vec<(&Path, ExrReadError)> = Vec::new();
     let mut tiles: Vec<(&Path, ExrHeader)> = Vec::new();
     // A tile that blocks its reader (a file on a hung network mount) ends the merge at the
     // first signal: it waited for a second, and `timeout` sends one.
@@ -297,14 +330,20 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
         for path in &args.tiles {
             match read_exr_header(path) {
                 Ok(header) => tiles.push((path, header)),
-                Err(e) => unreadable.push(format!("{}: {}", path.display(), unreadable_why(path, &e, None))),
+                Err(e) => unreadable.push((path, e)),
             }
         }
     });
+    // A file that cannot be read, named as the tile its name says it holds (`index_by_name`) where
+    // that is one of the grid's (`count`, once known): its index is then to render again.
+    let unreadable_said = |count: Option<u32>| -> Vec<(String, Option<u32>)> {
+        let named = |path: &Path| index_by_name(path).filter(|&i| count.is_none_or(|n| i < n));
+        unreadable.iter().map(|(path, e)| (unreadable_file(path, e, named(path)), named(path))).collect()
+    };
     if tiles.is_empty() {
         bail!(
             "{}; no tile could be read, so neither the render nor its grid is known; nothing was written",
-            unreadable.join("; ")
+            unreadable_said(None).into_iter().map(|(said, _)| said).collect::<Vec<_>>().join("; ")
         );
     }
     // Tiles are held against the render most of them are of (the first tile's on a tie), so that
@@ -340,7 +379,7 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
         bail!(
             "{}; no tile given is one whose render and grid the others could be checked against; nothing was \
              written",
-            unreadable.iter().cloned().chain(each).collect::<Vec<_>>().join("; ")
+            unreadable_said(None).into_iter().map(|(said, _)| said).chain(each).collect::<Vec<_>>().join("; ")
         );
     };
     // With as many tiles of two renders (4 at spp 16, 4 at spp 8) either may be the stale one.
@@ -348,7 +387,8 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
     let reference = tied[0];
     let found = assess(&tiles, reference)?;
     let (first, count, width, height) = (found.first, found.count, found.width, found.height);
-    let mut said: Vec<String> = unreadable.clone();
+    let unreadable = unreadable_said(Some(count));
+    let mut said: Vec<String> = unreadable.iter().map(|(said, _)| said.clone()).collect();
     said.extend(found.problems.iter().cloned());
     if !found.stale.is_empty() {
         let others = match (agreeing, tied.len()) {
@@ -394,8 +434,16 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
     };
     let (pixels_failed, again_of_pixels) = (!failed.is_empty(), !again.is_empty());
     said.extend(failed);
-    // The tiles to render again: the missing ones and those whose pixels failed.
+    // The tiles to render again: the missing ones (among them those of unreadable files named
+    // for them) and those whose pixels failed.
     let kept = by_index.keys().copied().filter(|i| again.binary_search(i).is_err());
+    let named_again = unreadable.iter().filter_map(|&(_, i)| i).any(|i| !by_index.contains_key(&i));
+    // Which tile an unreadable file of no tile's name was meant to hold is not known.
+    let among = match unreadable.iter().filter(|(_, i)| i.is_none()).count() {
+        0 => "",
+        1 => " (the unreadable file may have been meant as one of them)",
+        _ => " (the unreadable files may have been meant as some of them)",
+    };
     let missing = super::job_array::missing_runs(kept, count);
     let render_again =
         |m: &super::job_array::Missing| format!("{} (with --tile I/{count}; {})", m.listing(), m.slurm_array());
@@ -418,17 +466,9 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
             let them = if extra == 1 { "it" } else { "them" };
             said.push(format!("every tile of the render is there: leave {them} out of the tiles given"));
         }
-    } else if !found.stale.is_empty() || found.refused || again_of_pixels {
-        said.push(format!("{} of {count} tiles to render again: {}", missing.count, render_again(&missing)));
+    } else if !found.stale.is_empty() || found.refused || again_of_pixels || named_again {
+        said.push(format!("{} of {count} tiles to render again{among}: {}", missing.count, render_again(&missing)));
     } else {
-        // Which tile an unreadable file was meant to hold is not known (its name need not say).
-        let among = if unreadable.is_empty() {
-            ""
-        } else if unreadable.len() == 1 {
-            " (the unreadable file may have been meant as one of them)"
-        } else {
-            " (the unreadable files may have been meant as some of them)"
-        };
         said.push(format!(
             "{} of {count} {} missing{among}: {} (render {} with --tile I/{count}; {})",
             missing.count,
@@ -478,7 +518,11 @@ fn read_pixels(
         let tile = match super::interrupt::while_loading(|| read_exr(path)) {
             Ok(tile) => tile,
             Err(e) => {
-                failed.push(format!("{} (tile {index}) {}", path.display(), unreadable_why(path, &e, Some(index))));
+                failed.push(format!(
+                    "{} (tile {index}) {}",
+                    path.display(),
+                    unreadable_why(path, &e, IndexFrom::Header)
+                ));
                 again.push(index);
                 continue;
             }
@@ -549,6 +593,34 @@ fn same_as_checked(path: &Path, checked: &ExrHeader, tile: &ExrPixels) -> Result
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn an_unreadable_file_is_matched_to_its_tile_by_the_names_render_tile_gives() {
+        let named = [
+            ("tile-3.exr", Some(3)),
+            ("tiles/tile-12.EXR", Some(12)),
+            ("whitted-tile-0.exr", Some(0)),
+            ("/farm/my scene-tile-4095.exr", Some(4095)),
+            ("tile-007.exr", Some(7)),
+            ("t3.exr", None),
+            ("tile-.exr", None),
+            ("tile-3.png", None),
+            ("tile-3", None),
+            ("mytile-3.exr", None),
+            ("tile-3a.exr", None),
+            ("tile--3.exr", None),
+            ("tile-+3.exr", None),
+            ("tile-4294967296.exr", None),
+            (".glint-0123456789.tmp", None),
+            ("tile-3.exr.tmp", None),
+            ("日本-tile-2.exr", Some(2)),
+            ("é.exr", None),
+            ("exr", None),
+        ];
+        for (name, index) in named {
+            assert_eq!(index_by_name(Path::new(name)), index, "{name}");
+        }
+    }
 
     #[test]
     fn a_tile_that_changed_after_its_check_is_refused() {

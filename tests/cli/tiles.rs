@@ -351,6 +351,19 @@ fn every_problem_of_the_tiles_is_named_at_once_unreadable_files_and_ties_include
                 .into(),
         ],
     );
+    // A file named as `--tile` names its tiles is matched to its tile by its name: the tile is
+    // to render again, in the --array with the missing ones (it was only said that the file
+    // may have been meant as one of them).
+    let empty_named = dir.join("tile-2.exr");
+    std::fs::write(&empty_named, b"").expect("empty file");
+    refused(
+        &[t[0].clone(), t[1].clone(), empty_named.clone()],
+        &[format!(
+            "{} (tile 2 by its name) is empty (0 bytes); 2 of 4 tiles to render again: 2-3 (with --tile I/4; as a \
+             Slurm array, --array=2-3); nothing was written",
+            at(&empty_named)
+        )],
+    );
     let (head_cut, tail_cut, tail_cut2, not_exr) =
         (dir.join("h.exr"), dir.join("c2.exr"), dir.join("c3.exr"), dir.join("n.exr"));
     let bytes = std::fs::read(&t[2]).expect("tile");
@@ -365,6 +378,20 @@ fn every_problem_of_the_tiles_is_named_at_once_unreadable_files_and_ties_include
             format!("{}: cannot be read: the file is cut short or damaged (", at(&head_cut)),
             format!("{}: is not an OpenEXR file (", at(&not_exr)),
             "2 of 4 tiles are missing (the unreadable files may have been meant as some of them): 1, 3".into(),
+        ],
+    );
+    // The same cut header under render's default name for tile 1: tile 1 is to render again,
+    // and the file of no tile's name may still have been meant as tile 3.
+    let head_cut_named = dir.join("whitted-tile-1.exr");
+    std::fs::copy(&head_cut, &head_cut_named).expect("copy");
+    refused(
+        &[t[0].clone(), head_cut_named.clone(), t[2].clone(), not_exr.clone()],
+        &[
+            format!("{} (tile 1 by its name) cannot be read: the file is cut short or damaged (", at(&head_cut_named)),
+            format!("{}: is not an OpenEXR file (", at(&not_exr)),
+            "2 of 4 tiles to render again (the unreadable file may have been meant as one of them): 1, 3 (with --tile \
+             I/4; as a Slurm array, --array=1,3)"
+                .into(),
         ],
     );
     // Cut short in its pixels: its header names the tile, which is to render again; every such
