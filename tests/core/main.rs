@@ -5,6 +5,7 @@
 mod ambient_fit;
 mod architecture;
 mod bit_identity;
+mod builtin_scenes;
 mod bvh;
 mod closed_form;
 mod determinism;
