@@ -17,7 +17,7 @@ mod report;
 mod slurm;
 mod tiles;
 
-const BIN: &str = env!("CARGO_BIN_EXE_glint");
+pub(crate) const BIN: &str = env!("CARGO_BIN_EXE_glint");
 
 /// The built-in scenes the issue asks for, spelled out here rather than read from the crate.
 const BUILTINS: [&str; 6] = ["whitted", "cornell", "cornell-gi", "spotlights", "highlights", "lights"];

@@ -1212,3 +1212,34 @@ fn sweeps_a_scene_does_not_need_are_left_out_with_why() {
         assert!(r[col("groups")] == "reference" || r[col("bailout")] == (1.0f64 / 255.0).to_string(), "{r:?}");
     }
 }
+
+/// A named pipe named like a shard is refused at once: reading it waited for a writer that never
+/// came, and the merge outlived a SIGTERM (a tester, 13 minutes). The run is bounded here so
+/// that a merge that waits fails the test instead of holding it.
+#[test]
+fn a_named_pipe_among_the_shards_is_refused_not_waited_on() {
+    let dir = TempDir::new("report-fifo");
+    let shards = dir.join("s0");
+    std::fs::create_dir(&shards).expect("shard folder");
+    let made = std::process::Command::new("mkfifo").arg(shards.join("shard-1-of-2.toml")).status().expect("mkfifo");
+    assert!(made.success(), "mkfifo (coreutils) failed");
+    let mut child = std::process::Command::new(super::BIN)
+        .args(["report", "--merge", "s0", "--out", "merged"])
+        .current_dir(&dir)
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("run glint");
+    let start = Instant::now();
+    while child.try_wait().expect("wait").is_none() {
+        if start.elapsed().as_secs() > 60 {
+            child.kill().expect("kill");
+            panic!("the merge waited on the named pipe for a minute");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    }
+    let out = child.wait_with_output().expect("output");
+    assert!(!out.status.success());
+    let stderr = text(&out.stderr);
+    assert!(stderr.contains("shard-1-of-2.toml") && stderr.contains("not a regular file"), "{stderr}");
+}

@@ -123,3 +123,34 @@ fn check_glass_tree(max_depth: u32) -> RayTree {
     }
     tree
 }
+
+/// A raised stop flag cuts a sample's tree short, not only the render between pixels: nested
+/// glass shells of k_r = k_t = 1/2 at depth 1024 and bailout 0 double the tree at every level
+/// (a tester's, under a cap raised to 2^40, ran for minutes after a SIGTERM). The cap is 2^25
+/// here, so that a tree the flag does not cut ends in the cap, failing, seconds later.
+#[test]
+fn a_stop_flag_cuts_a_tree_that_would_not_end() {
+    use std::sync::atomic::{AtomicBool, Ordering};
+    let text = "[render]\nwidth = 2\nheight = 2\nmax_depth = 1024\nbailout = 0\n\
+                [camera]\nposition = [0, 0, 0]\nlook_at = [0, 0, 1]\n\
+                [materials.g]\nkd = 0\nkr = 0.5\nkt = 0.5\nior = 1\n\
+                [[objects]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nmaterial = \"g\"\n\
+                [[objects]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 2\nmaterial = \"g\"\n";
+    let (desc, _) = glint_io::parse_scene(text, std::path::Path::new("bomb.toml")).expect("valid scene");
+    let flat = FlatScene::build(&desc, &desc.render);
+    let options = glint_core::CpuOptions { max_rays_per_sample: 1 << 25, threads: 1, ..Default::default() };
+    let cancel = AtomicBool::new(false);
+    let start = std::time::Instant::now();
+    let result = std::thread::scope(|s| {
+        s.spawn(|| {
+            std::thread::sleep(std::time::Duration::from_millis(200));
+            cancel.store(true, Ordering::Relaxed);
+        });
+        let control = glint_core::RenderControl { cancel: Some(&cancel), ..Default::default() };
+        glint_core::render_cpu(&flat, &options, control)
+    });
+    assert!(matches!(result, Err(glint_core::render::CpuRenderError::Cancelled)), "{result:?}");
+    // Stopped within the next child's trace; a minute is a margin for a loaded machine, where
+    // without the flag in the tree it ran for hours.
+    assert!(start.elapsed() < std::time::Duration::from_secs(60), "{:?}", start.elapsed());
+}

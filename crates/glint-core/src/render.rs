@@ -210,7 +210,8 @@ pub fn render_cpu(
     let features = if options.specialise { scene.header.features } else { feature::ALL };
     let ctx = TraceContext::with_features(scene, features)?
         .with_accel(options.accel)
-        .with_ray_cap(options.max_rays_per_sample);
+        .with_ray_cap(options.max_rays_per_sample)
+        .with_cancel(control.cancel);
     // What the scene asks for: its header says which integrator, and its features are that one's.
     let shading = match ctx.integrator {
         Integrator::Whitted => Shading::Whitted,
@@ -245,6 +246,11 @@ pub fn render_cpu(
         Ok(_) | Err(TileStop::Cancelled) => None,
     }) {
         return Err(CpuRenderError::RayCap { x, y, cap: options.max_rays_per_sample });
+    }
+    // A tree cut by the stop flag in a tile's last pixel leaves no tile cancelled: its image is
+    // no render's.
+    if stop.cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
+        return Err(CpuRenderError::Cancelled);
     }
     let image = image.into_inner().unwrap_or_else(|e| e.into_inner());
     let mut counts = RayCounts::default();

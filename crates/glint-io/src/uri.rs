@@ -127,7 +127,7 @@ pub fn uri_file(model: &Path, uri: &str) -> Result<Option<PathBuf>, UriError> {
 /// `path`'s metadata, or an error unless it is a regular file (following links): a file a model
 /// refers to, or a model file, is read whole, and a named pipe, device or folder is not one
 /// (opening a pipe waits for its writer; a device has no end).
-pub(crate) fn regular_file(path: &Path) -> std::io::Result<std::fs::Metadata> {
+pub fn regular_file(path: &Path) -> std::io::Result<std::fs::Metadata> {
     let meta = std::fs::metadata(path)?;
     let kind = meta.file_type();
     let what = if kind.is_file() {

@@ -213,7 +213,11 @@ pub fn read_all(dirs: &[PathBuf]) -> anyhow::Result<Vec<ShardFile>> {
             empty.push(dir);
         }
         for path in names {
-            let text = std::fs::read_to_string(&path).with_context(|| format!("cannot read {}", path.display()))?;
+            // A shard is a file `glint report --shard` wrote: a named pipe named like one would
+            // hold the merge, waiting for a writer, past a SIGTERM (a tester).
+            let text = glint_io::uri::regular_file(&path)
+                .and_then(|_| std::fs::read_to_string(&path))
+                .with_context(|| format!("cannot read {}", path.display()))?;
             check_format(&path, &text)?;
             // Unknown keys are refused too (`deny_unknown_fields`): a run's table renamed away
             // was read as a row of fewer runs, the stray table ignored (a tester).

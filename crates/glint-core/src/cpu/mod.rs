@@ -155,6 +155,10 @@ pub struct TraceContext<'a> {
     pub light_tags: Vec<LightTags>,
     /// The tags of each material, in material order.
     pub material_tags: Vec<MaterialTags>,
+    /// The caller's stop flag, read each time a tree would trace another child: a sample's tree
+    /// of 1e12 rays (under a raised `max_rays_per_sample`) ran for minutes after a SIGTERM,
+    /// which the render loop sees between pixels only. A stopped tree's image is discarded.
+    pub cancel: Option<&'a std::sync::atomic::AtomicBool>,
     /// The wrap modes (u, v) and filter of each texture, in table order.
     pub texture_modes: Vec<([Wrap; 2], Filter)>,
     /// The BVH walk's leaf-order triangle corners, if they were made from this scene's arrays
@@ -186,6 +190,7 @@ impl<'a> TraceContext<'a> {
             epsilon_mode: EpsilonMode::try_from(h.epsilon_mode)?,
             bailout: f64::from(h.bailout),
             max_rays_per_sample: DEFAULT_MAX_RAYS_PER_SAMPLE,
+            cancel: None,
             light_tags: scene.lights.iter().map(LightTags::decode).collect::<Result<_, _>>()?,
             material_tags: scene.materials.iter().map(MaterialTags::decode).collect::<Result<_, _>>()?,
             texture_modes: scene
@@ -207,15 +212,21 @@ impl<'a> TraceContext<'a> {
         Self { max_rays_per_sample: cap, ..self }
     }
 
+    /// The same context, its trees cut short once `cancel` is raised.
+    pub fn with_cancel(self, cancel: Option<&'a std::sync::atomic::AtomicBool>) -> Self {
+        Self { cancel, ..self }
+    }
+
     /// Whether a camera sample's tree, whose own rays are `counts`, has traced its
     /// `max_rays_per_sample`: then no further child is traced and the sample is marked capped.
+    /// A raised stop flag cuts it too, unmarked (the render is then cancelled, not capped).
     #[inline]
     pub fn cap_reached(&self, counts: &mut RayCounts) -> bool {
         let reached = counts.total() >= self.max_rays_per_sample;
         if reached {
             counts.capped_samples = 1;
         }
-        reached
+        reached || self.cancel.is_some_and(|c| c.load(std::sync::atomic::Ordering::Relaxed))
     }
 
     /// Whether any of the `bits` is in the feature set.
