@@ -34,15 +34,45 @@ pub(super) fn likely_next(scene: &FlatScene) -> Vec<FlatScene> {
     ]
 }
 
-/// What `key` compiles in that `last` did not, in words ("spot lights, phong"), or what else
-/// makes it new.
+/// Each feature bit in plain words, in bit order (`feature::NAMES` are shader defs: the status
+/// bar said "compiling the shader for skip left" to students, after `SKIP_LEFT`; a lecturer).
+/// Each reads after "compiling the shader for".
+const PHRASES: [&str; glint_types::layout::feature::NAMES.len()] = [
+    "point lights",
+    "directional lights",
+    "spot lights",
+    "distance falloff of light",
+    "shadows",
+    "shadows through transparent objects",
+    "mirror reflection",
+    "refraction",
+    "spheres",
+    "planes",
+    "triangles",
+    "textures",
+    "Blinn highlights",
+    "Phong highlights",
+    "the lights' own ambient",
+    "emitting materials",
+    "specular highlights",
+    "several samples a pixel",
+    "inverse-square falloff",
+    "soft spot edges",
+    "rays ignoring the surface they leave",
+    "global attenuation",
+    "Cook–Torrance highlights",
+    "vertex colours",
+];
+
+/// What `key` compiles in that `last` did not, in words ("spot lights, Phong highlights"), or
+/// what else makes it new.
 pub(super) fn new_in(key: ShaderKey, last: Option<ShaderKey>) -> String {
     let before = last.map_or(0, |l| l.features);
-    let added: Vec<String> = glint_types::layout::feature::NAMES
+    let added: Vec<&str> = PHRASES
         .iter()
         .enumerate()
         .filter(|(bit, _)| key.features & !before & (1 << bit) != 0)
-        .map(|(_, n)| n.to_lowercase().replace('_', " "))
+        .map(|(_, p)| *p)
         .collect();
     if added.is_empty() { "this scene's features".into() } else { added.join(", ") }
 }
@@ -59,5 +89,40 @@ mod tests {
         let after = key(feature::SPHERES | feature::POINT_LIGHTS | feature::SPOT_LIGHTS);
         assert_eq!(new_in(after, Some(before)), "spot lights");
         assert_eq!(new_in(before, Some(after)), "this scene's features");
+        let more = key(feature::SPHERES | feature::PHONG | feature::SKIP_LEFT);
+        assert_eq!(new_in(more, Some(before)), "Phong highlights, rays ignoring the surface they leave");
+    }
+
+    #[test]
+    fn every_feature_is_named_in_plain_words_not_by_its_shader_def() {
+        use glint_types::layout::feature;
+        // Names whose shader def, lower-cased, is already the plain word.
+        let plain = [
+            "POINT_LIGHTS",
+            "DIRECTIONAL_LIGHTS",
+            "SPOT_LIGHTS",
+            "SHADOWS",
+            "REFLECTION",
+            "SPHERES",
+            "PLANES",
+            "TRIANGLES",
+            "TEXTURES",
+            "BLINN",
+            "PHONG",
+            "SPECULAR",
+            "GLOBAL_ATTENUATION",
+            "VERTEX_COLOURS",
+        ];
+        for (bit, name) in feature::NAMES.iter().enumerate() {
+            let key = ShaderKey { features: 1 << bit, ..ShaderKey::full() };
+            let said = new_in(key, Some(ShaderKey { features: 0, ..ShaderKey::full() }));
+            assert_eq!(said, PHRASES[bit], "bit {bit} ({name})");
+            assert!(!said.is_empty() && !said.contains('_'), "bit {bit} ({name}): {said:?}");
+            assert!(!said.contains(name), "bit {bit} is named by its shader def: {said:?}");
+            if !plain.contains(name) {
+                let raw = name.to_lowercase().replace('_', " ");
+                assert!(!said.to_lowercase().contains(&raw), "bit {bit} ({name}) reads as its shader def: {said:?}");
+            }
+        }
     }
 }
