@@ -44,6 +44,27 @@ fn clicking_an_object_selects_it_and_shows_its_material() {
 }
 
 #[test]
+fn ctrl_clicking_an_object_probes_the_pixel_and_selects_the_object() {
+    // A lecturer's find: Ctrl+click probed but left the selection as it was.
+    let Some(mut h) = viewer("whitted", (1000.0, 640.0)) else { return };
+    let glass = object_named(&h, "glass sphere");
+    let (x, y) = pixel_of(&h, glass);
+    let pos = h.state().screen_pos_of_pixel(x, y).expect("the view is drawn");
+    click(&mut h, pos, Modifiers::COMMAND);
+    h.run_steps(2);
+    assert_eq!(h.state().selection.object, Some(glass as usize), "the object under the probe is selected");
+    assert_eq!(h.state().selection.material.as_deref(), Some("glass"));
+    assert_eq!(h.state().layout.tab, Tab::Probe, "the probe's panel shows, not the material's");
+    let probe = h.state().renders.probe.as_ref().expect("a probe");
+    assert_eq!((probe.x, probe.y), (x, y));
+    // Ctrl+click on the sky probes it and selects nothing, as a plain click there does.
+    let pos = h.state().screen_pos_of_pixel(2, 2).expect("the view is drawn");
+    click(&mut h, pos, Modifiers::COMMAND);
+    assert_eq!(h.state().selection.object, None);
+    assert_eq!(h.state().renders.probe.as_ref().map(|p| (p.x, p.y)), Some((2, 2)));
+}
+
+#[test]
 fn the_probe_breakdown_sums_to_the_pixel_radiance_on_both_tracers() {
     let Some(mut h) = viewer("whitted", (1000.0, 640.0)) else { return };
     let glass = object_named(&h, "glass sphere");

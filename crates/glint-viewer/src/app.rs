@@ -258,14 +258,21 @@ impl ViewerApp {
     /// Selects the object under pixel (x, y) (a CPU camera ray) and shows the material there:
     /// of a model's several, the one of the face clicked.
     pub fn pick(&mut self, x: u32, y: u32) {
-        let Some(flat) = self.doc.flat(false) else { return };
-        let picked = glint_core::pick(&flat, x, y).inspect_err(|e| log::error!("pick ({x}, {y}): {e}")).ok().flatten();
-        self.selection.object = picked.and_then(|p| self.doc.object_index(p.object));
-        if let Some(p) = picked.filter(|_| self.selection.object.is_some()) {
-            self.selection.material = flat.material_names.get(p.material as usize).cloned();
+        if self.select_at(x, y) {
             self.layout.tab = Tab::Materials;
             self.layout.show_side_panel = true;
         }
+    }
+
+    /// `pick` without changing the tab (a Ctrl+click probes and selects); whether an object is
+    /// under the pixel.
+    fn select_at(&mut self, x: u32, y: u32) -> bool {
+        let Some(flat) = self.doc.flat(false) else { return false };
+        let picked = glint_core::pick(&flat, x, y).inspect_err(|e| log::error!("pick ({x}, {y}): {e}")).ok().flatten();
+        self.selection.object = picked.and_then(|p| self.doc.object_index(p.object));
+        let Some(p) = picked.filter(|_| self.selection.object.is_some()) else { return false };
+        self.selection.material = flat.material_names.get(p.material as usize).cloned();
+        true
     }
 
     /// Adds the comparison of the current revision to the error history, once.
@@ -331,7 +338,10 @@ impl ViewerApp {
             ViewAction::Pan(d, h) => camera_control::pan(camera, d.x, d.y, h),
             ViewAction::Zoom(s) => camera_control::zoom(camera, s),
             ViewAction::Pick(x, y) => return self.pick(x, y),
-            ViewAction::Probe(x, y) => return self.probe_at(x, y),
+            ViewAction::Probe(x, y) => {
+                self.select_at(x, y);
+                return self.probe_at(x, y);
+            }
             ViewAction::Pause(p) => {
                 self.renders.paused = p;
                 return;

@@ -112,7 +112,8 @@ pub enum ViewAction {
     Zoom(f32),
     /// A plain click on pixel (x, y).
     Pick(u32, u32),
-    /// A Ctrl/Cmd-click on pixel (x, y).
+    /// A Ctrl/Cmd-click on pixel (x, y): probes it, and selects the object there as a plain
+    /// click does.
     Probe(u32, u32),
     /// The toolbar's integrator switch.
     Integrator(glint_scene::Integrator),
