@@ -135,3 +135,34 @@ fn a_scene_at_a_map_coordinate_is_probed_in_world_coordinates_on_both_tracers() 
         assert!((g.origin - c.origin).abs().max_element() < 1e-3, "GPU node {i}: {} vs {}", g.origin, c.origin);
     }
 }
+
+#[test]
+fn the_delta_row_and_the_radiance_brought_back_say_on_hover_what_they_are() {
+    // A lecturer found neither explained where it stands.
+    for (label, hint) in
+        [("Δ", glint_viewer::DELTA_HINT), ("I brought back (CPU only)", glint_viewer::BROUGHT_BACK_HINT)]
+    {
+        let Some(mut h) = viewer("whitted", (1000.0, 700.0)) else { return };
+        probe_glass(&mut h);
+        assert!(h.query_by_label(hint).is_none(), "{hint:?} shown before hovering");
+        let node = h.query_all_by_label(label).next().unwrap_or_else(|| panic!("no {label:?} in the probe panel"));
+        node.scroll_to_me();
+        // Until the scroll has brought it into the panel.
+        let side = h.state().layout.side_rect;
+        for _ in 0..120 {
+            h.step();
+            if side.contains_rect(h.query_all_by_label(label).next().expect("still listed").rect()) {
+                break;
+            }
+        }
+        h.query_all_by_label(label).next().expect("still listed").hover();
+        // A tooltip shows once the pointer has rested (egui's delay).
+        for _ in 0..120 {
+            h.step();
+            if h.query_by_label(hint).is_some() {
+                break;
+            }
+        }
+        assert!(h.query_by_label(hint).is_some(), "hovering {label:?} does not say what it is");
+    }
+}

@@ -38,6 +38,12 @@ pub fn title(i: usize, n: &RayNode, doc: &Document) -> String {
     format!("#{i} {}{tir}: {}", n.kind.name(), target(n, doc))
 }
 
+/// The row of a node's radiance, and what it is, on hover (a lecturer found it unexplained).
+pub const BROUGHT_BACK: &str = "I brought back (CPU only)";
+pub const BROUGHT_BACK_HINT: &str = "The radiance this ray carries back: its hit's local terms plus k·I of the rays it \
+     spawns (the camera ray's is the pixel's value); only the CPU keeps it, the GPU adding each ray's weighted terms \
+     straight into the pixel.";
+
 /// The rows of node `c` (and its GPU twin `g`): its own factor, path weight, distance and the
 /// local terms at its hit.
 fn rows(c: &RayNode, g: Option<&RayNode>) -> Vec<Term> {
@@ -57,7 +63,7 @@ fn rows(c: &RayNode, g: Option<&RayNode>) -> Vec<Term> {
     if let Some(r) = c.radiance {
         // The GPU sums each node's weighted terms into the pixel instead: it has no such value,
         // and its "–" needs the reason beside it (a lecturer asked).
-        out.push(Term::rgb("I brought back (CPU only)", r, None));
+        out.push(Term::rgb(BROUGHT_BACK, r, None));
     }
     out
 }

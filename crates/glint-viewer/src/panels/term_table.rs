@@ -4,10 +4,15 @@
 use egui::{Color32, RichText, Ui};
 use glint_core::glam::DVec3;
 
+use super::ray_tree::{BROUGHT_BACK, BROUGHT_BACK_HINT};
 use crate::probe::{Channels, Term};
 
 /// The colour of a highlighted (first differing) row or node.
 pub const HIGHLIGHT: Color32 = Color32::from_rgb(255, 120, 90);
+
+/// What the Δ row is, on hover (a lecturer found it unexplained).
+pub const DELTA_HINT: &str = "Δ = GPU − CPU: the GPU's f32 value less the CPU's f64 reference, per channel; the \
+     first term where the two differ beyond the probe's tolerance is highlighted.";
 
 /// The width of a table's row labels ("CPU", "GPU", "Δ").
 const ROW_LABEL_WIDTH: f32 = 30.0;
@@ -92,7 +97,10 @@ pub fn term_grid(ui: &mut Ui, id: impl std::hash::Hash + std::fmt::Debug + Copy,
                 swatch(ui, t.cpu);
             }
             let name = if t.channels == Channels::Xyz { format!("{} (x, y, z)", t.name) } else { t.name.clone() };
-            ui.label(colour(RichText::new(name).strong()));
+            let r = ui.label(colour(RichText::new(name).strong()));
+            if t.name == BROUGHT_BACK {
+                r.on_hover_text(BROUGHT_BACK_HINT);
+            }
         });
         let values: [(&str, Option<[f64; 3]>, &str); 3] = [
             ("CPU", Some(t.cpu.to_array()), "CPU (f64)"),
@@ -101,7 +109,8 @@ pub fn term_grid(ui: &mut Ui, id: impl std::hash::Hash + std::fmt::Debug + Copy,
         ];
         grid(i).show(ui, |ui| {
             for (label, v, what) in values {
-                sized(ui, ROW_LABEL_WIDTH, colour(font(label.into()))).on_hover_text(what);
+                let hint = if label == "Δ" { DELTA_HINT } else { what };
+                sized(ui, ROW_LABEL_WIDTH, colour(font(label.into()))).on_hover_text(hint);
                 for k in 0..3 {
                     let text = match v {
                         _ if k >= shown => String::new(),
