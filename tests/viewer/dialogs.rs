@@ -221,3 +221,30 @@ fn a_signal_quits_as_file_quit_does_and_save_or_cancel_take_over_from_it() {
     h.run_steps(1);
     assert!(h.state().quitting && asked_to_close(&h), "the next signal quits");
 }
+
+#[test]
+fn clicking_a_completion_leaves_the_buttons_where_they_were() {
+    // A lecturer's find: the list of completions took the height of its entries, and a click
+    // on one (which completes the path, and so changes the list) moved Open under the pointer.
+    let Some(mut h) = viewer("whitted", (1000.0, 640.0)) else { return };
+    let dir = temp_dir("typed-stable");
+    std::fs::write(dir.join("model.obj"), OBJ).unwrap();
+    std::fs::write(dir.join("other.obj"), OBJ).unwrap();
+    std::fs::create_dir(dir.join("empty")).unwrap();
+    menu(&mut h, &["File", "Open scene…"]);
+    let sep = std::path::MAIN_SEPARATOR;
+    let folder = format!("{}{sep}", dir.display());
+    let buttons = |h: &Harness<'static, ViewerApp>| {
+        (h.get_by_role_and_label(Role::Button, "Open").rect(), h.get_by_role_and_label(Role::Button, "Cancel").rect())
+    };
+    // Three completions; then one (the file's own), then none (an empty folder).
+    for completion in [format!("{folder}model.obj"), format!("{folder}empty{sep}")] {
+        type_path(&mut h, "Path", &folder);
+        let before = buttons(&h);
+        h.get_by_label(&completion).click();
+        h.run_steps(3);
+        assert_eq!(h.get_by_role_and_label(Role::TextInput, "Path").value().as_deref(), Some(completion.as_str()));
+        assert_eq!(buttons(&h), before, "the buttons moved when {completion:?} was clicked");
+    }
+    let _ = std::fs::remove_dir_all(dir);
+}

@@ -15,6 +15,8 @@ const IMAGE_EXTENSIONS: [&str; 2] = ["png", "exr"];
 
 /// At most this many completions are listed (a folder of thousands would fill the window).
 const MAX_COMPLETIONS: usize = 40;
+/// The height of the list of completions (about eight of them).
+const COMPLETIONS_HEIGHT: f32 = 160.0;
 
 /// A system dialog that gives nothing back sooner than this never showed: rfd returns `None`
 /// both for a cancel and for a portal that is missing (after logging the error), and no person
@@ -101,7 +103,7 @@ impl PathField {
     /// pressed in the field.
     fn ui(&mut self, ui: &mut egui::Ui, label: &str, hint: &str, extensions: &[&str]) -> bool {
         let mut entered = false;
-        ui.horizontal(|ui| {
+        let row = ui.horizontal(|ui| {
             let l = ui.label(label);
             let r = ui.add(egui::TextEdit::singleline(&mut self.text).hint_text(hint).desired_width(320.0));
             let r = r.labelled_by(l.id);
@@ -111,15 +113,24 @@ impl PathField {
             self.completions = completions(&self.text, extensions);
             self.completed_for = Some(self.text.clone());
         }
-        if !self.completions.is_empty() {
-            egui::ScrollArea::vertical().max_height(160.0).id_salt(label).show(ui, |ui| {
+        // The list keeps one size, however many completions it holds (none included): a click
+        // on one completes the text, which changes the list, and the list's height moved the
+        // buttons below it under the pointer (a lecturer).
+        let size = egui::vec2(row.response.rect.width(), COMPLETIONS_HEIGHT);
+        ui.allocate_ui_with_layout(size, egui::Layout::top_down(egui::Align::Min), |ui| {
+            ui.set_min_size(size);
+            ui.set_max_width(size.x);
+            egui::ScrollArea::vertical().max_height(size.y).auto_shrink([false; 2]).id_salt(label).show(ui, |ui| {
+                if self.completions.is_empty() {
+                    ui.weak("No folder or matching file here.");
+                }
                 for c in &self.completions {
                     if ui.selectable_label(false, c).clicked() {
                         self.text = c.clone();
                     }
                 }
             });
-        }
+        });
         entered
     }
 }
