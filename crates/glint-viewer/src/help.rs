@@ -230,7 +230,7 @@ const BINDINGS: [(&str, &str); 10] = [
     ("Shift+drag, middle drag", "pan"),
     ("Wheel", "zoom (move toward the look-at point)"),
     ("Click", "select the object under the pointer (its material opens)"),
-    ("Ctrl+click", "probe the pixel: its terms and its ray tree"),
+    ("Ctrl+click", "probe the pixel (its terms and its ray tree) and select its object"),
     ("Ctrl+S", "save an image (GPU, CPU, difference or all)"),
     ("Ctrl+Z, Ctrl+Shift+Z", "undo, redo an edit (a whole drag at once); also Ctrl+Y"),
     ("F9", "show or hide the side panel"),
