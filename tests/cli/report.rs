@@ -943,7 +943,7 @@ fn report_shards_merge_into_the_one_machine_report_and_missing_ones_are_named() 
         );
         let stderr = text(&done.stderr);
         assert!(!done.status.success() && stderr.contains(said), "{stderr}");
-        assert!(stderr.contains("this glint merges shard format 4 only"), "{stderr}");
+        assert!(stderr.contains("this glint merges shard format 5 only"), "{stderr}");
         assert!(!dir.join("old/report.csv").exists(), "a refused merge wrote a report");
     }
     // What a shard writes is its format: a change to it must bump `SHARD_FORMAT` (src/cli/report/
@@ -1242,4 +1242,49 @@ fn a_named_pipe_among_the_shards_is_refused_not_waited_on() {
     assert!(!out.status.success());
     let stderr = text(&out.stderr);
     assert!(stderr.contains("shard-1-of-2.toml") && stderr.contains("not a regular file"), "{stderr}");
+}
+
+#[test]
+fn a_path_scenes_reference_shares_no_seed_with_its_rows_and_its_noise_and_bias_are_said() {
+    // cornell-gi at 32×32: the reference is eight renders at seeds 1–8, the rows at seed 0.
+    let dir = TempDir::new("report-path-reference");
+    let args = ["report", "--quick", "--cpu-only", "--scenes", "cornell-gi", "--width", "32", "--height", "32", "-q"];
+    let done = glint(&dir, args.into_iter().chain(["--out", "out"]));
+    assert!(done.status.success(), "{}", text(&done.stderr));
+    let read = |p: &str| std::fs::read_to_string(dir.join("out").join(p)).unwrap_or_else(|e| panic!("{p}: {e}"));
+    let (md, csv) = (read("report.md"), read("report.csv"));
+    // The reference settings' CPU row, at the rows' seed, is no longer the reference itself: its
+    // error is that of an independent render (it was 0, PSNR ∞, at the reference's own seed).
+    let header = split_csv(csv.lines().next().expect("header"));
+    let col = |name: &str| header.iter().position(|h| h == name).unwrap_or_else(|| panic!("no column {name}"));
+    let rows: Vec<Vec<String>> = csv.lines().skip(1).map(split_csv).collect();
+    let reference = rows.iter().find(|r| r[col("groups")] == "reference").expect("the reference settings' row");
+    let rmse: f64 = reference[col("rmse")].parse().expect("rmse");
+    assert!(rmse > 0.0 && reference[col("psnr_db")] != "inf", "{reference:?}");
+    // Its own noise is stated, and the CPU row at its settings lies near √2 times it.
+    let at = md.find("The reference is the mean of 8 CPU renders at seeds 1–8").unwrap_or_else(|| panic!("{md}"));
+    let line = md[at..].lines().next().expect("line");
+    assert!(line.contains("none at the rows' seed 0"), "{line}");
+    let noise: f64 = line
+        .split("**RMSE ")
+        .nth(1)
+        .and_then(|s| s.split("**").next())
+        .and_then(|s| s.parse().ok())
+        .unwrap_or_else(|| panic!("no noise in {line}"));
+    assert!(noise > 0.0 && (0.9..2.0).contains(&(rmse / noise)), "row {rmse} against noise {noise}");
+    // Paths use no bailout: no path row is labelled with one.
+    let section = md.find("## cornell-gi").expect("the scene's section");
+    let main = &md[section..md.find("## Whitted against global illumination").expect("the GI section")];
+    let table: Vec<&str> = main.lines().filter(|l| l.starts_with("| ") && l.contains(" | cpu | ")).collect();
+    assert!(!table.is_empty(), "{md}");
+    assert!(table.iter().all(|l| l.contains("| none (paths) |") && !l.contains("1/255")), "{table:#?}");
+    // The bias column: every row shallower than the reference is marked, and the depth-0 rows
+    // (a fifth of the light) are beyond the reference's noise.
+    assert!(md.contains("| bias (mean vs reference) |"), "{md}");
+    for l in &table {
+        let depth = l.split(" | ").nth(3).expect("depth");
+        assert_eq!(l.contains(&format!("(depth {depth} < 16)")), depth != "16", "{l}");
+    }
+    let shallow = table.iter().find(|l| l.contains(" | cpu | 4 | 0 | "));
+    assert!(shallow.expect("the 4-spp depth-0 row").contains(" % ⚠ (depth 0 < 16)"), "{shallow:?}");
 }

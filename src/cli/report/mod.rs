@@ -11,6 +11,7 @@ mod markdown;
 mod pareto;
 mod plan;
 mod plot;
+mod reference;
 mod reference_cost;
 mod shard;
 mod shard_check;
@@ -232,8 +233,8 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
             .filter(|(ci, p)| mine(si, *ci) && p.measured_for(needs[si]))
             .map(|(_, p)| Planned { config: p.config, groups: p.groups_for(needs[si]) })
             .collect();
-        let rows = if ours.is_empty() {
-            Vec::new()
+        let (rows, reference_stats) = if ours.is_empty() {
+            (Vec::new(), None)
         } else {
             sweep::run_scene(&mut engines, loaded, base, &reference, &ours, args.runs, &bar)?
         };
@@ -242,6 +243,7 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
             description: loaded.desc.description.clone(),
             settings: base.clone(),
             reference,
+            reference_stats,
             needs: needs[si],
             rows,
             specular: Vec::new(),

@@ -73,10 +73,11 @@ impl Config {
         Self { backend, ..self }
     }
 
-    /// A short label for plots: "4spp d5", plus whatever differs from the grid's defaults.
-    pub fn short(&self) -> String {
+    /// A short label for plots: "4spp d5", plus whatever differs from the grid's defaults (a
+    /// path row's bailout never does: paths use none).
+    pub fn short(&self, integrator: Integrator) -> String {
         let mut s = format!("{}spp d{}", self.spp, self.depth);
-        if self.bailout != Bailout::Per255 {
+        if self.bailout != Bailout::Per255 && integrator == Integrator::Whitted {
             s.push_str(&format!(" b{}", self.bailout.label()));
         }
         if !self.specialise {
@@ -88,9 +89,22 @@ impl Config {
         s
     }
 
-    /// Everything but the backend, for tables: "4 spp, depth 5, bailout 1/255".
-    pub fn describe(&self) -> String {
-        let mut s = format!("{} spp, depth {}, bailout {}", self.spp, self.depth, self.bailout.label());
+    /// A row's bailout as a table says it: paths use none (Russian roulette ends them, and
+    /// `--integrator path --bailout` is refused), whatever the configuration holds.
+    pub fn bailout_label(&self, integrator: Integrator) -> &'static str {
+        match integrator {
+            Integrator::Path => "none (paths)",
+            Integrator::Whitted => self.bailout.label(),
+        }
+    }
+
+    /// Everything but the backend, for tables: "4 spp, depth 5, bailout 1/255"; a path row's
+    /// "4 spp, depth 5, paths (no bailout)".
+    pub fn describe(&self, integrator: Integrator) -> String {
+        let mut s = match integrator {
+            Integrator::Whitted => format!("{} spp, depth {}, bailout {}", self.spp, self.depth, self.bailout.label()),
+            Integrator::Path => format!("{} spp, depth {}, paths (no bailout)", self.spp, self.depth),
+        };
         if !self.specialise {
             s.push_str(", full shader");
         }
@@ -375,6 +389,19 @@ mod tests {
         let r = rows.iter().find(|p| p.config == plan.reference()).expect("reference row");
         assert_eq!(r.groups, vec![Group::Reference]);
         assert_eq!((r.config.spp, r.config.depth, r.config.bailout), (64, 16, Bailout::Off));
+    }
+
+    #[test]
+    fn a_path_row_is_described_without_a_bailout() {
+        let grid = Plan::quick(64).configs(&[Backend::Cpu]).into_iter().find(|p| p.groups == [Group::Grid]);
+        let c = grid.expect("a grid row").config;
+        assert!(c.describe(Integrator::Whitted).contains("bailout 1/255"), "{}", c.describe(Integrator::Whitted));
+        let paths = c.describe(Integrator::Path);
+        assert!(paths.contains("paths (no bailout)") && !paths.contains("1/255"), "{paths}");
+        assert_eq!(c.bailout_label(Integrator::Path), "none (paths)");
+        let reference = Plan::quick(64).reference();
+        assert!(reference.short(Integrator::Whitted).ends_with(" b0"));
+        assert!(!reference.short(Integrator::Path).contains(" b"), "{}", reference.short(Integrator::Path));
     }
 
     #[test]

@@ -166,15 +166,18 @@ fn draw(scene: &SceneResult, runs: usize) -> anyhow::Result<Vec<u8>> {
     register_font()?;
     let rows = plotted(scene);
     let gpu_reference = scene.rows.iter().find(|r| r.is_reference() && r.config.backend == Backend::Gpu);
-    let floor = gpu_reference.map(|r| r.errors.rmse);
-    // Where the GPU dropped rays at the reference settings its error there is not rounding.
-    let floor_label = if gpu_reference.is_some_and(Row::dropped_work) {
-        "it dropped rays: not an f32 floor"
-    } else if scene.settings.integrator == Integrator::Path {
-        // Paths that part in f32 are other samples: noise falling with spp (a lecturer).
-        "its paths part from the CPU's: noise, not a floor"
-    } else {
-        "its f32 floor"
+    // A path-traced scene's dashed line is its reference's own noise: the GPU at the reference
+    // settings is held against an independent reference there, its error noise like any row's.
+    let (floor, floor_label) = match &scene.reference_stats {
+        Some(stats) => (Some(stats.noise_rmse), "the reference's own noise (its square is in each row's MSE)"),
+        // Where the GPU dropped rays at the reference settings its error there is not rounding.
+        None if gpu_reference.is_some_and(Row::dropped_work) => {
+            (gpu_reference.map(|r| r.errors.rmse), "GPU at the reference settings: it dropped rays, not an f32 floor")
+        }
+        None if scene.settings.integrator == Integrator::Path => {
+            (gpu_reference.map(|r| r.errors.rmse), "GPU at the reference settings: its paths part: noise, not a floor")
+        }
+        None => (gpu_reference.map(|r| r.errors.rmse), "GPU at the reference settings: its f32 floor"),
     };
     let (x0, x1) = log_range(rows.iter().flat_map(|r| [ms(r.times[0]), ms(r.times[r.times.len() - 1])]), 1.3, 1.3);
     let errors = rows.iter().flat_map(|r| [Some(r.errors.rmse), r.twin_rmse]).flatten().chain(floor);
@@ -200,7 +203,7 @@ fn draw(scene: &SceneResult, runs: usize) -> anyhow::Result<Vec<u8>> {
             "RMSE against the reference (linear radiance, log)",
         )?;
         if let Some(f) = floor.filter(|f| *f > 0.0) {
-            let label = format!("GPU at the reference settings: RMSE {f:.1e} ({floor_label})");
+            let label = format!("{floor_label}: RMSE {f:.1e}");
             dashed_level(&mut chart, (x0, x1), f, FLOOR_COLOUR, label)?;
         }
         // Min–max of the timed runs: how much to trust a time difference.
@@ -258,7 +261,7 @@ fn draw(scene: &SceneResult, runs: usize) -> anyhow::Result<Vec<u8>> {
         let mut labels = Vec::new();
         for r in &front {
             let at = (r.median_ms(), r.errors.rmse);
-            let text = format!("{} {}", r.config.backend.name(), r.config.short());
+            let text = format!("{} {}", r.config.backend.name(), r.config.short(scene.settings.integrator));
             let (px, py) = chart.backend_coord(&at);
             let w = 8 * text.chars().count() as i32;
             // Right of the point, where the staircase runs horizontally; left near the edge.

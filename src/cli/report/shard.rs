@@ -105,7 +105,7 @@ pub fn assign(planned: &[Planned], needs: &[SceneNeeds], pixels: u64, runs: u32,
 /// `ShardFile` and every type in it; tests/golden/shard-keys.txt lists the keys of a CPU-only
 /// shard, so a change to the GPU rows' fields alone is not caught there): the merge refuses a
 /// shard of another format instead of reading fields it lacks as empty.
-pub const SHARD_FORMAT: u32 = 4;
+pub const SHARD_FORMAT: u32 = 5;
 
 /// What a shard writes: the sweep it is part of, its machine, and its rows.
 #[derive(Debug, Serialize, Deserialize)]
@@ -521,6 +521,10 @@ pub fn join(files: &mut [ShardFile], planned: &[Planned]) -> anyhow::Result<Vec<
                             first_of[k].display()
                         );
                     }
+                    // A shard without rows in the scene rendered no reference.
+                    if j.reference_stats.is_none() {
+                        j.reference_stats = part.reference_stats;
+                    }
                     j.rows.extend(part.rows);
                     j.specular.extend(part.specular);
                 }
@@ -540,7 +544,8 @@ pub fn join(files: &mut [ShardFile], planned: &[Planned]) -> anyhow::Result<Vec<
         let expected: Vec<usize> = (0..planned.len()).filter(|&i| planned[i].measured_for(j.needs)).collect();
         let short = expected.iter().copied().find(|i| measured.iter().filter(|m| *m == i).count() != 1);
         if let Some(i) = short {
-            let what = format!("{} {}", planned[i].config.backend.name(), planned[i].config.describe());
+            let what =
+                format!("{} {}", planned[i].config.backend.name(), planned[i].config.describe(j.needs.integrator));
             let owner = scene.and_then(|s| owners.get(s)).and_then(|o| o.get(i)).copied();
             match (measured.iter().filter(|m| **m == i).count(), owner) {
                 (0, Some(shard)) => bail!(

@@ -79,7 +79,7 @@ pub fn measure(
     }
     let timed: Vec<(&FlatScene, Config)> = jobs.iter().map(|(_, c, f)| (f, *c)).collect();
     let what = format!("{name}: specular models");
-    for (row, times) in rows.iter_mut().zip(timed_passes(engines, &timed, runs, bar, &what)?) {
+    for (row, times) in rows.iter_mut().zip(timed_passes(engines, &timed, &|_| base.integrator, runs, bar, &what)?) {
         row.times = times;
     }
     Ok(rows)

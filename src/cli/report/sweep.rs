@@ -10,11 +10,12 @@ use glint_core::cpu::RayCounts;
 use glint_core::{Backend, CpuOptions, FlatScene, HdrImage, RenderControl, render_cpu};
 use glint_gpu::{GpuOptions, GpuTracer, ShaderKey};
 use glint_io::LoadedScene;
-use glint_scene::{RenderSettings, SpecularModel, overflow_causes};
+use glint_scene::{Integrator, RenderSettings, SpecularModel, overflow_causes};
 use indicatif::ProgressBar;
 use serde::{Deserialize, Serialize};
 
 use super::plan::{Config, Group, Planned, SceneNeeds};
+use super::reference::{ReferenceStats, render_reference};
 use crate::cli::console::tell;
 use crate::cli::units::{median, mrays_per_s, ms};
 
@@ -61,6 +62,9 @@ pub struct Row {
     pub counts: RayCounts,
     pub gpu: Option<GpuExtra>,
     pub errors: ImageErrors,
+    /// The image's mean over pixels and channels, held against the reference's for its bias
+    /// (`SceneResult::bias`).
+    pub mean: f64,
     /// GPU rows: RMSE against the CPU render of the same configuration (arithmetic alone).
     pub twin_rmse: Option<f64>,
     /// GPU rows: how many more rays (%) the GPU traced than its CPU twin. A few in a million
@@ -137,6 +141,11 @@ pub struct SceneResult {
     /// The scene's own settings with the report's size: epsilon value and seed come from here.
     pub settings: RenderSettings,
     pub reference: Config,
+    /// A path-traced scene's reference: the seeds and samples of its renders, none at the rows'
+    /// seed, and the noise their spread estimates (`reference::render_reference`). `None` for a
+    /// Whitted scene, whose reference is one render at the rows' seed, and where this shard
+    /// rendered no reference (none of the scene's rows are its).
+    pub reference_stats: Option<ReferenceStats>,
     /// What decided which configurations the scene needs (`Planned::measured_for`).
     pub needs: SceneNeeds,
     pub rows: Vec<Row>,
@@ -148,6 +157,24 @@ impl SceneResult {
     /// Median render time of the reference configuration (its CPU row), ms.
     pub fn reference_ms(&self) -> f64 {
         self.rows.iter().find(|r| r.config == self.reference).map_or(f64::NAN, Row::median_ms)
+    }
+
+    /// `row`'s bias: its image mean's relative difference from the reference's, signed (−0.05:
+    /// 5 % darker), and whether it lies beyond the reference's noise (`ReferenceStats::biased`;
+    /// `None` for a reference without a noise estimate, a Whitted scene's).
+    pub fn bias(&self, row: &Row) -> Option<(f64, Option<bool>)> {
+        let reference = match &self.reference_stats {
+            Some(stats) => stats.mean,
+            None => self.rows.iter().find(|r| r.config == self.reference)?.mean,
+        };
+        let relative = if reference == 0.0 { 0.0 } else { (row.mean - reference) / reference };
+        Some((relative, self.reference_stats.as_ref().map(|s| s.biased(row.mean, row.config.spp))))
+    }
+
+    /// Whether `row` converges to another image than the reference's: a path row shallower than
+    /// the reference leaves out the light of the longer paths, however many samples it takes.
+    pub fn shallower_paths(&self, row: &Row) -> bool {
+        self.settings.integrator == Integrator::Path && row.config.depth < self.reference.depth
     }
 
     pub fn pixels(&self) -> u64 {
@@ -200,14 +227,19 @@ pub fn render(engines: &mut Engines, flat: &FlatScene, config: &Config) -> anyho
 pub fn timed_passes(
     engines: &mut Engines,
     jobs: &[(&FlatScene, Config)],
+    integrator: &dyn Fn(usize) -> Integrator,
     runs: u32,
     bar: &ProgressBar,
     what: &str,
 ) -> anyhow::Result<Vec<Vec<Duration>>> {
     let mut times = vec![Vec::with_capacity(runs as usize); jobs.len()];
     for pass in 1..=runs {
-        for ((flat, c), t) in jobs.iter().zip(&mut times) {
-            bar.set_message(format!("{what}: timed pass {pass}/{runs}: {} {}", c.backend.name(), c.describe()));
+        for (i, ((flat, c), t)) in jobs.iter().zip(&mut times).enumerate() {
+            bar.set_message(format!(
+                "{what}: timed pass {pass}/{runs}: {} {}",
+                c.backend.name(),
+                c.describe(integrator(i))
+            ));
             t.push(render(engines, flat, c).with_context(|| format!("{what}: {c:?}"))?.time);
             bar.inc(1);
         }
@@ -222,7 +254,12 @@ pub fn timed_passes(
 /// them (it builds the GPU pipelines and gives the images), then `runs` timed passes. Passes
 /// rather than back-to-back runs of one configuration, so that a load change on a shared
 /// machine spreads over every configuration instead of biasing the few measured during it.
-/// The rows, in `planned`'s order.
+/// A path-traced scene's reference is the mean of CPU renders at seeds no row uses
+/// (`reference::render_reference`, as the Whitted-against-GI section's): at the rows' seed, a
+/// row's k-th path was the reference's k-th, and its error came out below that against an
+/// independent reference (cornell-gi 48×48, 16 spp: 0.1195 against 0.1269). A Whitted scene's is
+/// one render at the rows' seed, its settings' row reproducing it bit for bit.
+/// The rows, in `planned`'s order, and a path-traced reference's noise.
 pub fn run_scene(
     engines: &mut Engines,
     loaded: &LoadedScene,
@@ -231,25 +268,33 @@ pub fn run_scene(
     planned: &[Planned],
     runs: u32,
     bar: &ProgressBar,
-) -> anyhow::Result<Vec<Row>> {
+) -> anyhow::Result<(Vec<Row>, Option<ReferenceStats>)> {
     let name = &loaded.name;
     bar.set_message(format!("{name}: reference ({} spp, depth {})", reference.spp, reference.depth));
     let build = |c: &Config| FlatScene::build(&loaded.desc, &settings_for(base, c));
-    let reference_render = render(engines, &build(reference), reference)?;
-    if let Some(found) = reference_render.image.unrepresentable() {
+    let (ref_image, stats) = if independent_reference(base) {
+        let options =
+            CpuOptions { threads: engines.threads, specialise: reference.specialise, ..CpuOptions::default() };
+        let settings = settings_for(base, reference);
+        let averaged = render_reference(&loaded.desc, &settings, &options, || {})
+            .with_context(|| format!("{name}: the reference"))?;
+        (averaged.image, Some(averaged.stats))
+    } else {
+        (render(engines, &build(reference), reference)?.image, None)
+    };
+    if let Some(found) = ref_image.unrepresentable() {
         anyhow::bail!(
             "{name}: the reference render is not a valid image: {found}. In this scene: {}",
             overflow_causes(&loaded.desc, reference.depth, base.integrator, found.all_nan())
         );
     }
     bar.inc(1);
-    let ref_image = reference_render.image;
     let scenes: Vec<FlatScene> = planned.iter().map(|p| build(&p.config)).collect();
     let mut rows = Vec::with_capacity(planned.len());
     let mut images = Vec::with_capacity(planned.len());
     for (p, flat) in planned.iter().zip(&scenes) {
         let c = &p.config;
-        bar.set_message(format!("{name}: warm-up: {} {}", c.backend.name(), c.describe()));
+        bar.set_message(format!("{name}: warm-up: {} {}", c.backend.name(), c.describe(base.integrator)));
         let warm = render(engines, flat, c).with_context(|| format!("{name}: {c:?}"))?;
         let expected_camera = u64::from(base.width) * u64::from(base.height) * u64::from(c.spp);
         if warm.counts.camera != expected_camera {
@@ -258,7 +303,7 @@ pub fn run_scene(
                     "warning: {name}: the {} render of {} traced {} camera rays, not {expected_camera}: \
                      samples were dropped",
                     c.backend.name(),
-                    c.describe(),
+                    c.describe(base.integrator),
                     warm.counts.camera
                 );
             });
@@ -267,7 +312,7 @@ pub fn run_scene(
             anyhow::bail!(
                 "{name}: the {} render of {} is not a valid image: {found}. In this scene: {}",
                 c.backend.name(),
-                c.describe(),
+                c.describe(base.integrator),
                 overflow_causes(&loaded.desc, c.depth, base.integrator, found.all_nan())
             );
         }
@@ -278,6 +323,7 @@ pub fn run_scene(
             counts: warm.counts,
             gpu: warm.gpu,
             errors: compare_images(&ref_image, &warm.image),
+            mean: warm.image.mean(),
             twin_rmse: None,
             twin_rays_pct: None,
             camera_expected: expected_camera,
@@ -290,7 +336,7 @@ pub fn run_scene(
         bar.inc(1);
     }
     let jobs: Vec<(&FlatScene, Config)> = scenes.iter().zip(&rows).map(|(f, r)| (f, r.config)).collect();
-    for (row, times) in rows.iter_mut().zip(timed_passes(engines, &jobs, runs, bar, name)?) {
+    for (row, times) in rows.iter_mut().zip(timed_passes(engines, &jobs, &|_| base.integrator, runs, bar, name)?) {
         row.times = times;
     }
     let index: HashMap<Config, usize> = rows.iter().enumerate().map(|(i, r)| (r.config, i)).collect();
@@ -309,5 +355,12 @@ pub fn run_scene(
             rows[i].same_as_specialised = Some(images[j] == images[i]);
         }
     }
-    Ok(rows)
+    Ok((rows, stats))
+}
+
+/// Whether the scene's reference is rendered at seeds no row uses: a path-traced scene's,
+/// whose rows draw every bounce from the seed. Whitted's rows draw only the camera's jitter
+/// from it, within cells that differ between the rows' samples and the reference's.
+pub fn independent_reference(base: &RenderSettings) -> bool {
+    base.integrator == Integrator::Path
 }

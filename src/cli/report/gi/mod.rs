@@ -14,7 +14,6 @@ use std::time::Duration;
 use anyhow::Context;
 use glint_core::ambient_fit::fit_ambient;
 use glint_core::compare::compare_images;
-use glint_core::glam::DVec3;
 use glint_core::{Backend, CpuOptions, FlatScene, HdrImage};
 use glint_io::LoadedScene;
 use glint_scene::{Integrator, PathKind, RenderSettings, Rgb, path_gain_warning};
@@ -22,6 +21,7 @@ use indicatif::ProgressBar;
 use serde::{Deserialize, Serialize};
 
 use super::plan::{Bailout, Config};
+use super::reference::{REFERENCE_GROUPS, render_reference};
 use super::sweep::{Engines, render, timed_passes};
 use crate::cli::console::tell;
 
@@ -91,20 +91,6 @@ pub use tables::{render_csv, render_markdown};
 /// The sweep's axes: (reference spp, path depth, Whitted depths, Whitted spp, path spp).
 fn axes(quick: bool) -> (u32, u32, &'static [u32], &'static [u32], &'static [u32]) {
     if quick { (64, 8, &[5], &[1], &[1, 4, 16]) } else { (1024, 16, &[2, 5], &[1, 4], &[1, 4, 16, 64]) }
-}
-
-/// The reference is this many CPU path renders with consecutive seeds, averaged: their spread
-/// estimates its noise. Two (one degree of freedom a pixel) let one firefly set the estimate:
-/// the highlights scene's came out 0.249 where other seeds gave 0.063–0.071, above the error
-/// of a 16-sample row.
-const REFERENCE_GROUPS: u32 = 8;
-
-/// The seed of the reference's render `k`: the rows' seed plus 1 + k, so that none shares its
-/// random numbers with the rows (rendered at the rows' seed). A row whose samples were the
-/// reference's first would correlate with it (0.37 measured on cornell-gi at 16 spp), and its
-/// squared error would hold the reference's noise with the wrong sign.
-fn reference_seed(rows: u32, k: u32) -> u32 {
-    rows.wrapping_add(1).wrapping_add(k)
 }
 
 /// What names a row of the sweep: `measure` renders these, and the merge holds a shard's rows
@@ -190,20 +176,6 @@ pub fn renders(backends: &[Backend], runs: u32, quick: bool) -> usize {
 /// what the split by kind holds the paths against.
 const CONVERGED_WHITTED: usize = 2;
 
-/// The mean of `groups` (images of equal size and samples) and the RMS over pixels and
-/// channels of that mean's standard error, from the groups' sample variance.
-fn mean_and_noise(groups: &[HdrImage]) -> (HdrImage, f64) {
-    let k = groups.len() as f64;
-    let mut mean = groups[0].clone();
-    let mut variance = 0.0;
-    for (i, p) in mean.pixels.iter_mut().enumerate() {
-        *p = groups.iter().map(|g| g.pixels[i]).sum::<DVec3>() / k;
-        variance += groups.iter().map(|g| (g.pixels[i] - *p).length_squared()).sum::<f64>() / (k - 1.0);
-    }
-    let per_value = variance / (3 * mean.pixels.len().max(1)) as f64;
-    (mean, (per_value / k).sqrt())
-}
-
 pub fn measure(
     engines: &mut Engines,
     loaded: &LoadedScene,
@@ -222,20 +194,10 @@ pub fn measure(
     if let Some(problem) = &gain_warning {
         bar.suspend(|| tell!("warning: {name}: the path-traced reference: {problem}"));
     }
-    let group = |k: u32| -> anyhow::Result<HdrImage> {
-        let s = RenderSettings {
-            spp: reference_spp / REFERENCE_GROUPS,
-            seed: reference_seed(base.seed, k),
-            ..paths.clone()
-        };
-        let r = super::sweep::cpu_render(&FlatScene::build(&loaded.desc, &s), &options)
-            .with_context(|| format!("{name}: the path-traced reference"))?;
-        bar.inc(1);
-        Ok(r.image)
-    };
-    let groups = (0..REFERENCE_GROUPS).map(group).collect::<anyhow::Result<Vec<_>>>()?;
-    let (reference, reference_noise) = mean_and_noise(&groups);
-    drop(groups);
+    let s = RenderSettings { spp: reference_spp, ..paths.clone() };
+    let averaged = render_reference(&loaded.desc, &s, &options, || bar.inc(1))
+        .with_context(|| format!("{name}: the path-traced reference"))?;
+    let (reference, reference_noise) = (averaged.image, averaged.stats.noise_rmse);
     let whitted = RenderSettings { integrator: Integrator::Whitted, indirect: true, ..base.clone() };
     // The fitted rows' I_a, each fitted at the row's own depth and samples: the I_a that brings
     // Whitted's image closest to the reference depends on both (fitted once at the scene's own
@@ -323,7 +285,8 @@ pub fn measure(
     let kinds =
         split_by_kind(loaded, &paths, [&written, &without], whitted_at, &reference, reference_spp / 4, &options, bar)?;
     let jobs: Vec<(&FlatScene, Config)> = planned.iter().map(|(row, flat)| (flat, config(row))).collect();
-    let times = timed_passes(engines, &jobs, runs, bar, &format!("{name}: GI"))?;
+    let integrators: Vec<Integrator> = planned.iter().map(|(row, _)| row.integrator).collect();
+    let times = timed_passes(engines, &jobs, &|i| integrators[i], runs, bar, &format!("{name}: GI"))?;
     let rows = planned
         .into_iter()
         .zip(times)
@@ -362,38 +325,5 @@ fn result_for_tests(rows: Vec<GiRow>, kinds: KindSplit) -> GiResult {
         rows,
         shard: None,
         kinds,
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn the_reference_is_its_groups_mean_and_its_noise_their_standard_error() {
-        // One pixel, four groups of 1, 2, 3, 4 in every channel: mean 2.5, sample variance
-        // 5/3 (k − 1 in the divisor), standard error of the mean √(5/3 / 4).
-        let groups: Vec<HdrImage> = (1..=4)
-            .map(|v| {
-                let mut image = HdrImage::new(1, 1);
-                image.pixels[0] = DVec3::splat(f64::from(v));
-                image
-            })
-            .collect();
-        let (mean, noise) = mean_and_noise(&groups);
-        assert_eq!(mean.pixels[0], DVec3::splat(2.5));
-        assert!((noise - (5.0f64 / 3.0 / 4.0).sqrt()).abs() < 1e-15, "{noise}");
-    }
-
-    #[test]
-    fn no_reference_render_shares_the_rows_seed() {
-        for rows in [0, 7, u32::MAX] {
-            let seeds: Vec<u32> = (0..REFERENCE_GROUPS).map(|k| reference_seed(rows, k)).collect();
-            assert!(!seeds.contains(&rows), "{rows}: {seeds:?}");
-            let mut distinct = seeds.clone();
-            distinct.sort_unstable();
-            distinct.dedup();
-            assert_eq!(distinct.len(), seeds.len(), "{rows}: {seeds:?}");
-        }
     }
 }

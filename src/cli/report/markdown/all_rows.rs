@@ -4,7 +4,7 @@
 use std::fmt::Write as _;
 
 use super::super::sweep::{Row, SceneResult};
-use super::cells::{error, pct, psnr, sci};
+use super::cells::{bias, error, pct, psnr, sci};
 use super::prose::{Block, prose};
 use crate::cli::units::{ms, ms_cell};
 
@@ -13,9 +13,10 @@ pub fn all_rows(md: &mut String, s: &SceneResult) {
     let _ = writeln!(
         md,
         "| | backend | spp | depth | bailout | shader | ε mode | render ms (min–max) | pipeline ms | Mrays/s \
-         | rays/px | RMSE | relMSE | PSNR dB | FLIP | max abs | first-hit mismatch % | vs CPU twin | sweeps |"
+         | rays/px | RMSE | bias (mean vs reference) | relMSE | PSNR dB | FLIP | max abs | first-hit mismatch % \
+         | vs CPU twin | sweeps |"
     );
-    let _ = writeln!(md, "|---|---|--:|--:|--:|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|---|");
+    let _ = writeln!(md, "|---|---|--:|--:|--:|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|---|");
     let mut rows: Vec<&Row> = s.rows.iter().collect();
     rows.sort_by_key(|r| r.median());
     for r in rows {
@@ -33,11 +34,11 @@ pub fn all_rows(md: &mut String, s: &SceneResult) {
         };
         let _ = writeln!(
             md,
-            "| {mark} | {} | {} | {} | {} | {} | {} | {} ({}–{}) | {} | {:.2} | {:.2} | {} | {} | {} | {:.4} | {} | {} | {} | {} |",
+            "| {mark} | {} | {} | {} | {} | {} | {} | {} ({}–{}) | {} | {:.2} | {:.2} | {} | {} | {} | {} | {:.4} | {} | {} | {} | {} |",
             c.backend.name(),
             c.spp,
             c.depth,
-            c.bailout.label(),
+            c.bailout_label(s.settings.integrator),
             if c.specialise { "specialised" } else { "full" },
             c.epsilon_mode.name(),
             ms_cell(r.median_ms()),
@@ -47,6 +48,7 @@ pub fn all_rows(md: &mut String, s: &SceneResult) {
             r.mrays(),
             r.counts.total() as f64 / s.pixels() as f64,
             error(r.errors.rmse),
+            bias(s, r),
             error(r.errors.rel_mse),
             psnr(r.errors.psnr),
             r.errors.flip_mean,
@@ -117,6 +119,7 @@ mod tests {
             counts,
             gpu: Some(gpu),
             errors: ImageErrors { rmse, psnr, ..ImageErrors::default() },
+            mean: 0.5,
             twin_rmse: None,
             twin_rays_pct: None,
             camera_expected: 4,
@@ -135,6 +138,7 @@ mod tests {
             description: String::new(),
             settings,
             reference,
+            reference_stats: None,
             needs: SceneNeeds {
                 integrator: glint_scene::Integrator::Whitted,
                 recurses: true,

@@ -1,6 +1,6 @@
 //! How numbers are written in the report's tables (times: `units::ms_cell`).
 
-use super::super::sweep::Row;
+use super::super::sweep::{Row, SceneResult};
 
 /// Errors in three significant digits; an exact 0 as "0".
 pub fn sci(v: f64) -> String {
@@ -37,4 +37,19 @@ pub fn pct(v: f64) -> String {
 /// Three values of one sweep axis in a cell: "a · b · c".
 pub fn triple(rows: &[Option<&Row>], f: impl Fn(&Row) -> String) -> String {
     rows.iter().map(|r| r.map_or("—".into(), &f)).collect::<Vec<_>>().join(" · ")
+}
+
+/// A row's bias as the tables show it: its image mean's signed difference from the reference's,
+/// in %, "⚠" where it lies beyond the reference's noise, and for a path row shallower than the
+/// reference the depth that makes it converge to another image.
+pub fn bias(scene: &SceneResult, r: &Row) -> String {
+    let Some((relative, beyond)) = scene.bias(r) else { return "—".into() };
+    let mut s = format!("{:+.2} %", 100.0 * relative);
+    if beyond == Some(true) {
+        s.push_str(" ⚠");
+    }
+    if scene.shallower_paths(r) {
+        s.push_str(&format!(" (depth {} < {})", r.config.depth, scene.reference.depth));
+    }
+    s
 }

@@ -6,8 +6,8 @@ use std::fmt::Write as _;
 use glint_core::Backend;
 
 use super::super::pareto::{Point, best_within, fastest_reaching, nice_levels, point};
-use super::super::sweep::Row;
-use super::cells::sci;
+use super::super::sweep::{Row, SceneResult};
+use super::cells::{bias, sci};
 use super::prose::{Block, prose};
 use crate::cli::units::ms_cell;
 
@@ -15,7 +15,7 @@ fn points(rows: &[&Row]) -> Vec<Point> {
     rows.iter().map(|r| point(r)).collect()
 }
 
-pub fn equal_time(md: &mut String, ranked: &[&Row], per_backend: &[(Backend, Vec<&Row>)]) {
+pub fn equal_time(md: &mut String, s: &SceneResult, ranked: &[&Row], per_backend: &[(Backend, Vec<&Row>)]) {
     let all = points(ranked);
     let lo = all.iter().map(|p| p.time).fold(f64::INFINITY, f64::min);
     let hi = all.iter().map(|p| p.time).fold(0.0, f64::max);
@@ -33,7 +33,8 @@ pub fn equal_time(md: &mut String, ranked: &[&Row], per_backend: &[(Backend, Vec
             per_backend.iter().map(|(_, rows)| best_within(&points(rows), budget).map(|i| rows[i])).collect();
         let cell = |r: Option<&Row>| {
             r.map_or(("—".into(), "—".into()), |r| {
-                (sci(r.errors.rmse), format!("{} ({} ms)", r.config.describe(), ms_cell(r.median_ms())))
+                let c = r.config.describe(s.settings.integrator);
+                (sci(r.errors.rmse), format!("{c} ({} ms; bias {})", ms_cell(r.median_ms()), bias(s, r)))
             })
         };
         let (ce, cc) = cell(best[0]);
@@ -47,7 +48,7 @@ pub fn equal_time(md: &mut String, ranked: &[&Row], per_backend: &[(Backend, Vec
     let _ = writeln!(md);
 }
 
-pub fn equal_error(md: &mut String, ranked: &[&Row], per_backend: &[(Backend, Vec<&Row>)]) {
+pub fn equal_error(md: &mut String, s: &SceneResult, ranked: &[&Row], per_backend: &[(Backend, Vec<&Row>)]) {
     let errors: Vec<f64> = ranked.iter().map(|r| r.errors.rmse).filter(|e| *e > 0.0).collect();
     let lo = errors.iter().copied().fold(f64::INFINITY, f64::min);
     let hi = errors.iter().copied().fold(0.0, f64::max);
@@ -59,7 +60,8 @@ pub fn equal_error(md: &mut String, ranked: &[&Row], per_backend: &[(Backend, Ve
             per_backend.iter().map(|(_, rows)| fastest_reaching(&points(rows), target).map(|i| rows[i])).collect();
         let cell = |r: Option<&Row>| {
             r.map_or(("—".into(), "—".into()), |r| {
-                (ms_cell(r.median_ms()), format!("{} (RMSE {})", r.config.describe(), sci(r.errors.rmse)))
+                let c = r.config.describe(s.settings.integrator);
+                (ms_cell(r.median_ms()), format!("{c} (RMSE {}; bias {})", sci(r.errors.rmse), bias(s, r)))
             })
         };
         let (ct, cc) = cell(fastest[0]);

@@ -16,6 +16,18 @@ pub fn f32_floor(md: &mut String, scenes: &[SceneResult]) {
     if !backends(scenes).contains(&Backend::Gpu) {
         return;
     }
+    let whitted: Vec<&SceneResult> = scenes
+        .iter()
+        .filter(|s| s.settings.integrator == Integrator::Whitted && find(s, &s.reference.on(Backend::Gpu)).is_some())
+        .collect();
+    if !whitted.is_empty() {
+        floor(md, &whitted);
+    }
+    parity(md, scenes);
+}
+
+/// Whitted scenes: the GPU's error at the reference settings, its f32 floor.
+fn floor(md: &mut String, scenes: &[&SceneResult]) {
     md.push_str(&prose(Block::F32Floor, &[]));
     let _ = writeln!(
         md,
@@ -78,12 +90,39 @@ pub fn f32_floor(md: &mut String, scenes: &[SceneResult]) {
     for n in notes {
         md.push_str(&n);
     }
-    let paths: Vec<&str> = scenes
+}
+
+/// Path-traced scenes: the GPU against its CPU twin at the reference settings and the rows'
+/// seed, which agree sample for sample until f32 and f64 round a bounce apart. A check that the
+/// tracers implement one estimator, not an error against the reference (which is independent).
+fn parity(md: &mut String, scenes: &[SceneResult]) {
+    let paths: Vec<&SceneResult> = scenes
         .iter()
         .filter(|s| s.settings.integrator == Integrator::Path && find(s, &s.reference.on(Backend::Gpu)).is_some())
-        .map(|s| s.name.as_str())
         .collect();
-    if !paths.is_empty() {
-        md.push_str(&prose(Block::F32FloorPaths, &[("scenes", &paths.join(", "))]));
+    if paths.is_empty() {
+        return;
     }
+    let names: Vec<&str> = paths.iter().map(|s| s.name.as_str()).collect();
+    md.push_str(&prose(Block::F32FloorPaths, &[("scenes", &names.join(", "))]));
+    let _ = writeln!(
+        md,
+        "| scene | parity: GPU vs CPU at the reference settings, same seed, RMSE | its rays vs CPU % \
+         | the reference's own noise, RMSE | GPU at the reference settings against the reference, RMSE |"
+    );
+    let _ = writeln!(md, "|---|--:|--:|--:|--:|");
+    for s in paths {
+        let Some(g) = find(s, &s.reference.on(Backend::Gpu)) else { continue };
+        let _ = writeln!(
+            md,
+            "| {} | {}{} | {} | {} | {} |",
+            s.name,
+            g.twin_rmse.map_or("—".into(), sci),
+            if g.dropped_work() { " ⚠ lost work" } else { "" },
+            g.twin_rays_pct.map_or("—".into(), |p| format!("{p:+.3}")),
+            s.reference_stats.as_ref().map_or("—".into(), |r| sci(r.noise_rmse)),
+            sci(g.errors.rmse),
+        );
+    }
+    let _ = writeln!(md);
 }

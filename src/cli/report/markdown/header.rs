@@ -7,6 +7,7 @@ use glint_scene::Integrator;
 
 use super::super::machine::Machine;
 use super::super::plan::Plan;
+use super::super::reference::REFERENCE_GROUPS;
 use super::super::sweep::SceneResult;
 use super::prose::{Block, prose};
 
@@ -67,8 +68,9 @@ pub fn header(md: &mut String, setup: &Setup, scenes: &[SceneResult]) {
     };
     let _ = writeln!(
         md,
-        "Integrator: {integrators}. A path-traced scene's reference is a Monte Carlo estimate itself, with \
-         the noise of its {} samples a pixel.\n",
-        reference.spp
+        "Integrator: {integrators}. A path-traced scene's reference is a Monte Carlo estimate itself: the mean \
+         of {} CPU renders ({} samples a pixel in all) at seeds after the rows', none sharing a row's random \
+         numbers, whose spread estimates its own noise (stated in the scene's section).\n",
+        REFERENCE_GROUPS, reference.spp
     );
 }

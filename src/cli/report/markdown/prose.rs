@@ -17,6 +17,7 @@ pub enum Block {
     SpecialisationNotMeasured,
     Epsilon,
     Specular,
+    ReferenceNoise,
     EqualTime,
     EqualError,
     AllConfigurations,
@@ -24,7 +25,7 @@ pub enum Block {
 
 impl Block {
     #[cfg(test)]
-    const ALL: [Self; 12] = [
+    const ALL: [Self; 13] = [
         Self::Setup,
         Self::F32Floor,
         Self::F32FloorDroppedWork,
@@ -34,6 +35,7 @@ impl Block {
         Self::SpecialisationNotMeasured,
         Self::Epsilon,
         Self::Specular,
+        Self::ReferenceNoise,
         Self::EqualTime,
         Self::EqualError,
         Self::AllConfigurations,
@@ -50,6 +52,7 @@ impl Block {
             Self::SpecialisationNotMeasured => "specialisation-not-measured",
             Self::Epsilon => "epsilon",
             Self::Specular => "specular",
+            Self::ReferenceNoise => "reference-noise",
             Self::EqualTime => "equal-time",
             Self::EqualError => "equal-error",
             Self::AllConfigurations => "all-configurations",
@@ -75,6 +78,9 @@ impl Block {
             ],
             Self::F32FloorDroppedWork => &["scene", "rays", "camera_rays", "camera_expected", "status"],
             Self::F32FloorPaths => &["scenes"],
+            Self::ReferenceNoise => {
+                &["renders", "seeds", "seed", "group_spp", "spp", "noise", "mean", "mean_se", "own", "sigmas"]
+            }
             Self::Bailout | Self::Specular => &["spp", "depth"],
             Self::F32Floor
             | Self::Specialisation
