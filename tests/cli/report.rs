@@ -10,7 +10,7 @@ use super::{TempDir, glint, text};
 const HEADER: &str = "scene,backend,device,groups,width_px,height_px,spp,max_depth,bailout,specialised,\
     epsilon_mode,epsilon,timed_runs,render_ms_median,render_ms_min,render_ms_max,pipeline_ms,shader_statements,\
     rays_total,camera_rays,rays_per_pixel,bailout_saved_rays,mrays_per_s,rmse,rel_mse,psnr_db,flip_mean,max_abs,\
-    first_hit_mismatch_pct,rmse_vs_cpu_twin,rays_vs_cpu_twin_pct,gpu_status,incomplete,pareto_all,pareto_backend,shard";
+    first_hit_mismatch_pct,image_mean,bias_rel,rmse_vs_cpu_twin,rays_vs_cpu_twin_pct,gpu_status,incomplete,pareto_all,pareto_backend,shard";
 
 /// Columns that hold text; every other column holds a number.
 const TEXT: &[&str] = &[
@@ -32,7 +32,7 @@ const GPU_ONLY: &[&str] =
     &["pipeline_ms", "shader_statements", "rmse_vs_cpu_twin", "rays_vs_cpu_twin_pct", "gpu_status"];
 
 /// Columns that may be negative (a GPU row may trace fewer rays than its CPU twin).
-const SIGNED: &[&str] = &["rays_vs_cpu_twin_pct"];
+const SIGNED: &[&str] = &["rays_vs_cpu_twin_pct", "bias_rel"];
 
 /// Splits one RFC 4180 line (quoted fields may hold commas and doubled quotes).
 fn split_csv(line: &str) -> Vec<String> {

@@ -2,7 +2,9 @@
 //!
 //! Numbers are printed in Rust's shortest round-trip form; PSNR is `inf` for an image equal
 //! to the reference. `incomplete` is true for a row whose render lost work (a GPU status flag,
-//! or fewer camera rays than samples): its time and error are not its configuration's. Cells that do not apply (GPU-only figures on CPU rows) are empty.
+//! or fewer camera rays than samples): its time and error are not its configuration's. Cells that do not apply (GPU-only figures on CPU rows, a path row's bailout) are empty.
+//! `bias_rel` is the image mean's signed relative difference from the reference's
+//! (`SceneResult::bias`; report.md marks the rows beyond the reference's noise).
 
 use glint_core::Backend;
 
@@ -39,6 +41,8 @@ pub const HEADER: &[&str] = &[
     "flip_mean",
     "max_abs",
     "first_hit_mismatch_pct",
+    "image_mean",
+    "bias_rel",
     "rmse_vs_cpu_twin",
     "rays_vs_cpu_twin_pct",
     "gpu_status",
@@ -72,7 +76,12 @@ fn row_fields(scene: &SceneResult, row: &Row, device: &str) -> Vec<String> {
         s.height.to_string(),
         c.spp.to_string(),
         c.depth.to_string(),
-        c.bailout.value().to_string(),
+        // Paths have no bailout: the cell does not apply (report.md says "none (paths)").
+        if scene.settings.integrator == glint_scene::Integrator::Path {
+            String::new()
+        } else {
+            c.bailout.value().to_string()
+        },
         c.specialise.to_string(),
         c.epsilon_mode.name().into(),
         s.epsilon.to_string(),
@@ -93,6 +102,8 @@ fn row_fields(scene: &SceneResult, row: &Row, device: &str) -> Vec<String> {
         sci(e.flip_mean),
         sci(e.max_abs),
         (100.0 * e.first_hit_mismatch).to_string(),
+        sci(row.mean),
+        opt(scene.bias(row).map(|(relative, _)| sci(relative))),
         opt(row.twin_rmse.map(sci)),
         opt(row.twin_rays_pct.map(|v| format!("{v:.6}"))),
         opt(row.gpu.map(|g| g.status.to_string())),
