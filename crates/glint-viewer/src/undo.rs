@@ -154,7 +154,8 @@ impl EditHistory {
     }
 
     /// Makes the edits since the last step a step of their own (none when they changed nothing
-    /// an undo gives back: a look through another integrator's eyes is still one).
+    /// an undo gives back: a value dragged away and back, or a view change that left the scene
+    /// as it was).
     fn commit(&mut self, doc: &Document) {
         if doc.revision == self.base_revision {
             return;
