@@ -222,22 +222,28 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     for run in &runs {
         check_writable(run, &loaded.desc, &settings, Incomplete::allowed(args.allow_incomplete))?;
     }
-    let mut outputs = Vec::new();
-    for run in &runs {
-        let path = image_path(run);
-        let tags = metadata(&scene_tags, &settings, run, specialise);
-        write_run(&path, run, &tags)?;
-        outputs.push(path);
-    }
-    let errors = if let [cpu, gpu] = runs.as_slice() {
-        // The CPU's image as its file holds it (f32): identical files compare as identical.
-        let stored = cpu.image.as_stored();
-        write_diff(&diff_path, &stored, &gpu.image, metadata(&scene_tags, &settings, gpu, specialise))?;
-        outputs.push(diff_path);
-        Some(compare_images(&stored, &gpu.image))
-    } else {
-        None
-    };
+    // `--backend both`'s three images appear together or not at all (`all_or_nothing`): a
+    // full disk on the GPU's image left the CPU's in place, and the message did not say so.
+    let written = glint_io::atomic::all_or_nothing(|| -> anyhow::Result<_> {
+        let mut outputs = Vec::new();
+        for run in &runs {
+            let path = image_path(run);
+            let tags = metadata(&scene_tags, &settings, run, specialise);
+            write_run(&path, run, &tags)?;
+            outputs.push(path);
+        }
+        let errors = if let [cpu, gpu] = runs.as_slice() {
+            // The CPU's image as its file holds it (f32): identical files compare as identical.
+            let stored = cpu.image.as_stored();
+            write_diff(&diff_path, &stored, &gpu.image, metadata(&scene_tags, &settings, gpu, specialise))?;
+            outputs.push(diff_path.clone());
+            Some(compare_images(&stored, &gpu.image))
+        } else {
+            None
+        };
+        Ok((outputs, errors))
+    });
+    let (outputs, errors) = written.map_err(|e| not_written(e, &planned))?;
     if args.json {
         print_json(&loaded.name, &settings, &runs, errors.as_ref(), &outputs, load_estimate.as_ref(), &estimate)?;
     } else {
@@ -261,6 +267,24 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         }
     }
     Ok(())
+}
+
+/// The error of a failed `all_or_nothing` write of `planned`, saying which of them changed.
+fn not_written(e: glint_io::atomic::BatchError<anyhow::Error>, planned: &[PathBuf]) -> anyhow::Error {
+    use glint_io::atomic::BatchError;
+    let names = |paths: &[&PathBuf]| paths.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", ");
+    match e {
+        BatchError::Written(e) if planned.len() > 1 => {
+            anyhow!("{e:#}; nothing was written (none of {})", names(&planned.iter().collect::<Vec<_>>()))
+        }
+        BatchError::Written(e) => e,
+        BatchError::Renamed { error, replaced } => {
+            let kept: Vec<&PathBuf> = planned.iter().filter(|p| !replaced.contains(p)).collect();
+            let replaced =
+                if replaced.is_empty() { "none".to_string() } else { names(&replaced.iter().collect::<Vec<_>>()) };
+            anyhow!("{error}; of this run's images {replaced} were written, {} were not", names(&kept))
+        }
+    }
 }
 
 /// Flags of a backend the render does not use would do nothing: errors, as `--runs` without

@@ -180,6 +180,38 @@ fn an_output_that_is_a_folder_is_refused_before_any_output_is_written() {
 }
 
 #[test]
+fn a_failed_write_of_both_backends_images_leaves_none_of_them() {
+    // On a nearly full disk `--backend both` failed on NAME-gpu after NAME-cpu was in place,
+    // and said nothing of it. A file-size limit (prlimit, SIGXFSZ ignored so that the write
+    // fails with EFBIG) just above the CPU's image makes a later image's write fail.
+    if skip_gpu() || Command::new("prlimit").arg("--version").output().is_err() {
+        return;
+    }
+    let args = ["render", "whitted", "--width", "40", "--height", "30", "--backend", "both", "-q", "-o", "g.png"];
+    let ok = TempDir::new("both-sizes");
+    let out = glint(&ok, args);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let size = |name: &str| std::fs::metadata(ok.join(name)).expect(name).len();
+    let cpu = size("g-cpu.png");
+    if size("g-gpu.png").max(size("g-diff.png")) <= cpu {
+        eprintln!("skipped: the CPU's image is the largest of the three");
+        return;
+    }
+    let dir = TempDir::new("both-fails");
+    let out = Command::new("sh")
+        .args(["-c", "trap '' XFSZ; exec prlimit --fsize=\"$0\" -- \"$@\"", &cpu.to_string(), BIN])
+        .args(args)
+        .current_dir(&dir)
+        .output()
+        .expect("run glint");
+    let stderr = text(&out.stderr);
+    assert!(!out.status.success(), "{stderr}");
+    assert!(stderr.contains("File too large"), "{stderr}");
+    assert!(stderr.contains("nothing was written (none of g-cpu.png, g-gpu.png, g-diff.png)"), "{stderr}");
+    assert_eq!(dir.listing(), Vec::<String>::new(), "{stderr}");
+}
+
+#[test]
 fn a_texture_or_model_the_scene_reads_is_never_an_output() {
     // `-o tex.png` on a scene whose material reads tex.png overwrote the texture without a word.
     let dir = TempDir::new("texture-output");

@@ -7,6 +7,7 @@
 //! or follows a symbolic link planted in the folder, and its name fits beside any target name
 //! the file system allows.
 
+use std::cell::RefCell;
 use std::fs::File;
 use std::io::{Read, Seek, SeekFrom, Write};
 use std::path::{Path, PathBuf};
@@ -127,8 +128,72 @@ pub fn write_atomically<E: From<AtomicWriteError>>(
     if interrupt::requested() {
         return Err(io(std::io::Error::other(Interrupted)));
     }
-    tmp.persist(path).map_err(|e| io(e.error))?;
+    // Inside `all_or_nothing`: the synced temporary waits for the batch's other files.
+    if let Some(tmp) = BATCH.with_borrow_mut(|batch| match batch {
+        Some(staged) => {
+            staged.push((tmp.into_temp_path(), path.to_owned()));
+            None
+        }
+        None => Some(tmp),
+    }) {
+        tmp.persist(path).map_err(|e| io(e.error))?;
+    }
     Ok(())
+}
+
+thread_local! {
+    /// The written and synced temporaries of an `all_or_nothing` on this thread, each with its
+    /// target, waiting to be renamed (`None` outside one).
+    static BATCH: RefCell<Option<Vec<(tempfile::TempPath, PathBuf)>>> = const { RefCell::new(None) };
+}
+
+/// Why `all_or_nothing` changed nothing, or (rarely) only some of its targets.
+#[derive(Debug, thiserror::Error)]
+pub enum BatchError<E> {
+    /// A write failed (or a stop was requested): every temporary was removed, no target changed.
+    #[error("{0}")]
+    Written(E),
+    /// Every file was written, and a rename then failed (checked beforehand, so rare): the
+    /// targets in `replaced` hold the new files, the others are as they were.
+    #[error("{error}")]
+    Renamed { error: AtomicWriteError, replaced: Vec<PathBuf> },
+}
+
+/// Runs `write`, whose atomic writes (`write_atomically`, on this thread) then each leave a
+/// synced temporary beside its target instead of replacing it; when `write` has succeeded, all
+/// are renamed over their targets, so that a set of files (`glint render --backend both`'s
+/// three images) appears together or not at all: a full disk on the last one removes the
+/// temporaries of the first ones too. A nested call joins the outer batch.
+pub fn all_or_nothing<T, E: From<AtomicWriteError>>(write: impl FnOnce() -> Result<T, E>) -> Result<T, BatchError<E>> {
+    if BATCH.with_borrow(Option::is_some) {
+        return write().map_err(BatchError::Written);
+    }
+    /// Ends the batch on every way out, a panic included; dropping a `TempPath` removes it.
+    struct Batch;
+    impl Drop for Batch {
+        fn drop(&mut self) {
+            BATCH.with_borrow_mut(Option::take);
+        }
+    }
+    let batch = Batch;
+    BATCH.set(Some(Vec::new()));
+    let written = write();
+    let staged = BATCH.with_borrow_mut(Option::take).unwrap_or_default();
+    drop(batch);
+    let value = written.map_err(BatchError::Written)?;
+    if interrupt::requested() {
+        let path = staged.first().map(|(_, target)| target.clone()).unwrap_or_default();
+        return Err(BatchError::Written(E::from(AtomicWriteError { path, error: std::io::Error::other(Interrupted) })));
+    }
+    let mut replaced = Vec::new();
+    for (tmp, target) in staged {
+        // The temporaries not yet renamed are removed as the rest of `staged` drops.
+        if let Err(e) = tmp.persist(&target) {
+            return Err(BatchError::Renamed { error: AtomicWriteError { path: target, error: e.error }, replaced });
+        }
+        replaced.push(target);
+    }
+    Ok(value)
 }
 
 /// The folder an atomic write of `path` makes its temporary in (`.` for a bare file name).
@@ -276,6 +341,58 @@ mod tests {
         assert_eq!(listing(&dir), [".glint-.tmp"], "the temporary is removed, the planted link kept");
         std::fs::remove_dir_all(dir).unwrap();
         std::fs::remove_file(victim).unwrap();
+    }
+
+    #[test]
+    fn a_batch_whose_last_write_fails_leaves_every_target_as_it_was() {
+        // `--backend both` on a nearly full disk: the -gpu image failed after -cpu was in place.
+        let dir = folder("batch-fails");
+        std::fs::write(dir.join("a.txt"), "old a").unwrap();
+        let result = all_or_nothing(|| {
+            write_file_atomically(&dir.join("a.txt"), b"new a")?;
+            write_file_atomically(&dir.join("b.txt"), b"new b")?;
+            assert_eq!(listing(&dir).len(), 3, "two temporaries beside a.txt: {:?}", listing(&dir));
+            write_atomically(&dir.join("c.txt"), |file| {
+                file.write_all(b"half").expect("the temporary is writable");
+                Err(AtomicWriteError { path: dir.join("c.txt"), error: std::io::ErrorKind::StorageFull.into() })
+            })
+        });
+        let e = result.expect_err("the last write failed");
+        assert!(matches!(e, BatchError::Written(_)), "{e:?}");
+        assert_eq!(listing(&dir), ["a.txt"], "a temporary or a new file is left");
+        assert_eq!(std::fs::read_to_string(dir.join("a.txt")).unwrap(), "old a");
+        // The batch is over: a later write replaces its target at once.
+        write_file_atomically(&dir.join("b.txt"), b"later").expect("write");
+        assert_eq!(listing(&dir), ["a.txt", "b.txt"]);
+        std::fs::remove_dir_all(dir).unwrap();
+    }
+
+    #[test]
+    fn a_batch_that_succeeds_replaces_every_target_and_says_which_a_failed_rename_left() {
+        let dir = folder("batch-ok");
+        std::fs::write(dir.join("a.txt"), "old a").unwrap();
+        let value = all_or_nothing(|| -> Result<u8, AtomicWriteError> {
+            write_file_atomically(&dir.join("a.txt"), b"new a")?;
+            write_file_atomically(&dir.join("b.txt"), b"new b")?;
+            assert_eq!(std::fs::read_to_string(dir.join("a.txt")).unwrap(), "old a", "replaced before the end");
+            Ok(7)
+        });
+        assert_eq!(value.expect("written"), 7);
+        assert_eq!(listing(&dir), ["a.txt", "b.txt"]);
+        assert_eq!(std::fs::read_to_string(dir.join("a.txt")).unwrap(), "new a");
+        // A folder made in c's place after its write: the rename fails and says what was replaced.
+        let e = all_or_nothing(|| -> Result<(), AtomicWriteError> {
+            write_file_atomically(&dir.join("a.txt"), b"newer a")?;
+            write_file_atomically(&dir.join("c"), b"c")?;
+            write_file_atomically(&dir.join("d.txt"), b"d")?;
+            std::fs::create_dir(dir.join("c")).unwrap();
+            Ok(())
+        })
+        .expect_err("c is a folder");
+        let BatchError::Renamed { error, replaced } = e else { panic!("{e:?}") };
+        assert_eq!((error.path, replaced), (dir.join("c"), vec![dir.join("a.txt")]));
+        assert_eq!(listing(&dir), ["a.txt", "b.txt", "c"], "d's temporary is left");
+        std::fs::remove_dir_all(dir).unwrap();
     }
 
     #[test]
