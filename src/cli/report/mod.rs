@@ -301,7 +301,7 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
         };
         let rows: usize = file.results.iter().map(|r| r.rows.len()).sum();
         let path = staging.published(&shard::write(out, spec, &file)?);
-        staging.publish(args.force)?;
+        staging.publish(args.force, false)?;
         say!(
             "report shard {}/{}: {rows} of {} configurations in {:.1} s; wrote {} (merge the shards with --merge)",
             spec.index,
@@ -325,7 +325,7 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
     };
     let devices = [(cpu_device.clone(), gpu_device.clone().unwrap_or_default())];
     write_outputs(out, &setup, &results, &devices, &[], &gi_results)?;
-    staging.publish(args.force)?;
+    staging.publish(args.force, true)?;
     say!(
         "report: {}, {} configurations in all, in {:.1} s; {}",
         counted(results.len(), "scene"),
@@ -392,7 +392,7 @@ fn merge(args: &ReportArgs, started: Instant) -> anyhow::Result<()> {
         integrator,
     };
     write_outputs(out, &setup, &results, &devices, &machines, &gi_results)?;
-    staging.publish(args.force)?;
+    staging.publish(args.force, true)?;
     say!(
         "report: {} merged, {}, {} configurations in all, in {:.1} s; {}",
         counted(devices.len(), "shard"),

@@ -6,6 +6,8 @@
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, bail};
+
+use crate::cli::console::tell;
 use tempfile::TempDir;
 
 pub struct Staging {
@@ -43,8 +45,12 @@ impl Staging {
     }
 
     /// Moves every staged file into `--out`. A read-only file there is refused before anything
-    /// moves, unless `force`, as `glint render` and `glint merge` refuse one.
-    pub fn publish(mut self, force: bool) -> anyhow::Result<()> {
+    /// moves, unless `force`, as `glint render` and `glint merge` refuse one. With `supersede`
+    /// (a whole report, not a shard), the files of an earlier report in `--out` that this one
+    /// does not write (`error_vs_time_OTHER.png` of a scene it leaves out) are removed after
+    /// the move and named on stderr: left, they sat beside the new report.md as if part of it.
+    /// Only names a report writes (`is_report_file`) are removed, never other files.
+    pub fn publish(mut self, force: bool, supersede: bool) -> anyhow::Result<()> {
         let mut names = Vec::new();
         for entry in std::fs::read_dir(self.dir.path()).context("reading the report's staging folder")? {
             names.push(entry.context("reading the report's staging folder")?.file_name());
@@ -53,6 +59,17 @@ impl Staging {
         for name in &names {
             check_destination(&self.out.join(name), force, "nothing was written")?;
         }
+        let stale = if supersede { self.stale(&names)? } else { Vec::new() };
+        for name in &stale {
+            let path = self.out.join(name);
+            if std::fs::metadata(&path).is_ok_and(|m| m.permissions().readonly()) && !force {
+                bail!(
+                    "{}: a file of an earlier report that this one does not write, read-only; pass --force to \
+                     remove it, or move it away; nothing was written",
+                    path.display()
+                );
+            }
+        }
         for name in &names {
             let dest = self.out.join(name);
             std::fs::rename(self.dir.path().join(name), &dest)
@@ -60,8 +77,56 @@ impl Staging {
         }
         // Published, `out` is the run's result even where the run made it.
         self.made.clear();
+        let mut removed = Vec::new();
+        for name in &stale {
+            let path = self.out.join(name);
+            match std::fs::remove_file(&path) {
+                Ok(()) => removed.push(name.to_string_lossy().into_owned()),
+                Err(e) => tell!(
+                    "warning: {}: a file of an earlier report that this one does not write, and it cannot be \
+                     removed ({}); remove it",
+                    path.display(),
+                    e.kind()
+                ),
+            }
+        }
+        if !removed.is_empty() {
+            tell!(
+                "removed {} of an earlier report in {} that this one does not write: {}",
+                if removed.len() == 1 { "1 file".to_string() } else { format!("{} files", removed.len()) },
+                self.out.display(),
+                removed.join(", ")
+            );
+        }
         Ok(())
     }
+
+    /// The files in `--out` that a report writes (`is_report_file`) and this run, which
+    /// staged `staged`, does not: an earlier report's. Sorted.
+    fn stale(&self, staged: &[std::ffi::OsString]) -> anyhow::Result<Vec<std::ffi::OsString>> {
+        let read = || format!("reading {}", self.out.display());
+        let mut stale = Vec::new();
+        for entry in std::fs::read_dir(&self.out).with_context(read)? {
+            let entry = entry.with_context(read)?;
+            let name = entry.file_name();
+            // A folder of such a name is not a report's file (a link is: the report's rename
+            // would replace it).
+            let folder = entry.file_type().is_ok_and(|t| t.is_dir());
+            if !folder && name.to_str().is_some_and(is_report_file) && !staged.contains(&name) {
+                stale.push(name);
+            }
+        }
+        stale.sort();
+        Ok(stale)
+    }
+}
+
+/// Whether `name` is one a whole report writes: its tables, and its plots of any scene.
+pub fn is_report_file(name: &str) -> bool {
+    let plot = |prefix: &str| {
+        name.strip_prefix(prefix).and_then(|rest| rest.strip_suffix(".png")).is_some_and(|scene| !scene.is_empty())
+    };
+    super::TABLES.contains(&name) || plot("error_vs_time_") || plot("gi_vs_time_")
 }
 
 impl Drop for Staging {
@@ -119,7 +184,7 @@ mod tests {
         let staging = Staging::new(&out, &[], false).expect("staging");
         std::fs::write(staging.path().join("report.md"), "new").expect("write");
         assert!(!out.join("report.md").exists(), "a staged file is not in --out yet");
-        staging.publish(false).expect("publish");
+        staging.publish(false, true).expect("publish");
         assert_eq!(std::fs::read_to_string(out.join("report.md")).expect("published"), "new");
         assert_eq!(std::fs::read_dir(&out).expect("out").count(), 1, "the staging folder is gone");
 
@@ -130,14 +195,14 @@ mod tests {
         let staging = Staging::new(&out, &[], false).expect("staging");
         std::fs::write(staging.path().join("a.png"), "plot").expect("write");
         std::fs::write(staging.path().join("report.md"), "newer").expect("write");
-        let e = staging.publish(false).expect_err("read-only").to_string();
+        let e = staging.publish(false, true).expect_err("read-only").to_string();
         assert!(e.contains("report.md: read-only; pass --force"), "{e}");
         assert!(!out.join("a.png").exists(), "a refused run moved a file");
         assert_eq!(std::fs::read_dir(&out).expect("out").count(), 1, "the staging folder is gone");
 
         let staging = Staging::new(&out, &[], false).expect("staging");
         std::fs::write(staging.path().join("report.md"), "forced").expect("write");
-        staging.publish(true).expect("--force");
+        staging.publish(true, true).expect("--force");
         assert_eq!(std::fs::read_to_string(out.join("report.md")).expect("published"), "forced");
 
         // A folder where a file goes: refused when the run starts, and again when it publishes
@@ -148,7 +213,7 @@ mod tests {
         let staging = Staging::new(&out, &[], true).expect("staging");
         std::fs::write(staging.path().join("a.png"), "plot").expect("write");
         std::fs::write(staging.path().join("report.md"), "beside").expect("write");
-        let e = staging.publish(true).expect_err("a folder").to_string();
+        let e = staging.publish(true, true).expect_err("a folder").to_string();
         assert!(e.contains("a.png: is a folder") && e.contains("nothing was written"), "{e}");
         assert_eq!(std::fs::read_to_string(out.join("report.md")).expect("kept"), "forced");
         std::fs::remove_dir(out.join("a.png")).expect("rmdir");
@@ -166,5 +231,57 @@ mod tests {
         drop(staging);
         assert_eq!(std::fs::read_to_string(out.join("report.md")).expect("kept"), "forced");
         assert_eq!(std::fs::read_dir(&out).expect("out").count(), 1);
+    }
+
+    #[test]
+    fn a_report_over_an_earlier_one_removes_its_files_that_the_new_one_does_not_write() {
+        // `report --out rr` over a report of more scenes kept error_vs_time_bumpy.png and
+        // gi_vs_time_bumpy.png beside the new report.md, with no word.
+        let root = tempfile::tempdir().expect("temp folder");
+        let out = root.path().join("rr");
+        std::fs::create_dir(&out).expect("mkdir");
+        let earlier = ["report.md", "report.csv", "error_vs_time_bumpy.png", "gi_vs_time_bumpy.png"];
+        let unrelated = ["notes.md", "error_vs_time_.png", "bumpy.png", "gi_vs_time_x.txt"];
+        for name in earlier.iter().chain(&unrelated) {
+            std::fs::write(out.join(name), "earlier").expect("write");
+        }
+        std::fs::create_dir(out.join("gi_vs_time_dir.png")).expect("mkdir");
+        let publish = |force: bool| {
+            let staging = Staging::new(&out, &[], force).expect("staging");
+            std::fs::write(staging.path().join("report.md"), "new").expect("write");
+            std::fs::write(staging.path().join("error_vs_time_whitted.png"), "new").expect("write");
+            staging.publish(force, true)
+        };
+        // A read-only stale file is refused without --force, before anything moves.
+        let bumpy = out.join("gi_vs_time_bumpy.png");
+        let mut permissions = std::fs::metadata(&bumpy).expect("meta").permissions();
+        permissions.set_readonly(true);
+        std::fs::set_permissions(&bumpy, permissions).expect("chmod");
+        let e = publish(false).expect_err("read-only").to_string();
+        assert!(e.contains("gi_vs_time_bumpy.png: a file of an earlier report") && e.contains("--force"), "{e}");
+        assert_eq!(std::fs::read_to_string(out.join("report.md")).expect("kept"), "earlier");
+        publish(true).expect("--force");
+        let mut listing: Vec<String> = std::fs::read_dir(&out)
+            .expect("out")
+            .map(|e| e.expect("entry").file_name().to_string_lossy().into_owned())
+            .collect();
+        listing.sort();
+        assert_eq!(
+            listing,
+            [
+                "bumpy.png",
+                "error_vs_time_.png",
+                "error_vs_time_whitted.png",
+                "gi_vs_time_dir.png",
+                "gi_vs_time_x.txt",
+                "notes.md",
+                "report.md"
+            ]
+        );
+        // A shard (`supersede` false) removes nothing.
+        let staging = Staging::new(&out, &[], false).expect("staging");
+        std::fs::write(staging.path().join("shard-0-of-2.toml"), "shard").expect("write");
+        staging.publish(false, false).expect("shard");
+        assert!(out.join("report.md").exists());
     }
 }
