@@ -155,11 +155,25 @@ fn check_format_and_folder(path: &Path) -> anyhow::Result<()> {
             Ok(_) => "is a file, not a folder",
             Err(e) if e.kind() == std::io::ErrorKind::NotFound => "does not exist",
             Err(_) if dir.ancestors().skip(1).any(Path::is_file) => "is inside a file, not a folder",
+            // Said only "cannot be read" (a tester's `lp1 -> lp2 -> lp1`).
+            Err(e) if is_link_loop(&e) => {
+                "is a symbolic link loop (too many levels of symbolic links): a link that leads back to itself"
+            }
             Err(_) => "cannot be read",
         };
         bail!("{}: the output folder {} {what}", path.display(), dir.display());
     }
     Ok(())
+}
+
+/// Whether `e` is ELOOP: too many levels of symbolic links (std's `FilesystemLoop` kind is
+/// not stable).
+fn is_link_loop(e: &std::io::Error) -> bool {
+    #[cfg(any(target_os = "linux", target_os = "android"))]
+    const ELOOP: i32 = 40;
+    #[cfg(not(any(target_os = "linux", target_os = "android")))]
+    const ELOOP: i32 = 62;
+    cfg!(unix) && e.raw_os_error() == Some(ELOOP)
 }
 
 /// Whether both paths name one existing file: the same device and inode on Unix (hard links

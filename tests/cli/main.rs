@@ -492,6 +492,18 @@ fn bad_input_fails_cleanly() {
         &["notes/out.png: the output folder", "notes is a file, not a folder"],
         &["notes"],
     );
+    // A link loop was said only to be "cannot be read" (a tester).
+    #[cfg(unix)]
+    expect_failure(
+        "link-loop",
+        |d| {
+            std::os::unix::fs::symlink("lp2", d.join("lp1")).unwrap();
+            std::os::unix::fs::symlink("lp1", d.join("lp2")).unwrap();
+            os(&[&"render", &"whitted", &"-o", &d.join("lp1/x.png"), &"--width", &"8", &"--height", &"8"])
+        },
+        &["lp1/x.png: the output folder", "lp1 is a symbolic link loop (too many levels of symbolic links)"],
+        &["lp1", "lp2"],
+    );
     expect_failure(
         "inside-a-file",
         |d| {
