@@ -184,22 +184,26 @@ fn a_failed_write_of_both_backends_images_leaves_none_of_them() {
     // On a nearly full disk `--backend both` failed on NAME-gpu after NAME-cpu was in place,
     // and said nothing of it. A file-size limit (prlimit, SIGXFSZ ignored so that the write
     // fails with EFBIG) just above the CPU's image makes a later image's write fail.
-    if skip_gpu() || Command::new("prlimit").arg("--version").output().is_err() {
+    if skip_gpu() {
         return;
     }
+    assert!(
+        Command::new("prlimit").arg("--version").output().is_ok(),
+        "prlimit not found: install util-linux (apt-get install util-linux)"
+    );
     let args = ["render", "whitted", "--width", "40", "--height", "30", "--backend", "both", "-q", "-o", "g.png"];
     let ok = TempDir::new("both-sizes");
     let out = glint(&ok, args);
     assert!(out.status.success(), "{}", text(&out.stderr));
     let size = |name: &str| std::fs::metadata(ok.join(name)).expect(name).len();
-    let cpu = size("g-cpu.png");
-    if size("g-gpu.png").max(size("g-diff.png")) <= cpu {
-        eprintln!("skipped: the CPU's image is the largest of the three");
-        return;
-    }
+    // The CPU's image is written first: a limit at its size fails a later, larger one. Where it
+    // is the largest, the limit fails it, the first, and the assertions below still hold.
+    let (cpu, later) = (size("g-cpu.png"), size("g-gpu.png").max(size("g-diff.png")));
+    let limit = if later > cpu { cpu } else { size("g-gpu.png").min(size("g-diff.png")) - 1 };
+    eprintln!("file size limit {limit} (CPU image {cpu}, largest later one {later})");
     let dir = TempDir::new("both-fails");
     let out = Command::new("sh")
-        .args(["-c", "trap '' XFSZ; exec prlimit --fsize=\"$0\" -- \"$@\"", &cpu.to_string(), BIN])
+        .args(["-c", "trap '' XFSZ; exec prlimit --fsize=\"$0\" -- \"$@\"", &limit.to_string(), BIN])
         .args(args)
         .current_dir(&dir)
         .output()

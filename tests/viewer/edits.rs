@@ -217,16 +217,18 @@ fn ctrl_z_takes_back_each_edit_with_its_image_and_ctrl_shift_z_gives_it_back() {
     settle(&mut h);
     assert!(mean_abs_diff(&dull, &gpu_image(&h)) > 1e-3, "a spot light must change the image");
 
-    // The three channels were one step each; the spot light is the last.
+    // The spot light is the last step; the three channels, set a frame (0.25 s) apart, are one
+    // step before it.
     h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::Z);
     settle(&mut h);
     assert_eq!(h.state().doc.desc.lights[0].kind, LightKind::Point);
+    assert_eq!(h.state().doc.desc.materials["mirror"].ks.0, [0.0; 3], "the spot light's step alone");
     assert_eq!(mean_abs_diff(&dull, &gpu_image(&h)), 0.0, "the point light's image again");
     assert_current_agreement(&h);
-    for _ in 0..3 {
-        h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::Z);
-        h.run_steps(2);
-    }
+    assert_eq!(h.state().edits.undo_label(&h.state().doc).as_deref(), Some("Materials › mirror"));
+    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::Z);
+    h.run_steps(2);
+    assert_eq!(h.state().edits.undo_label(&h.state().doc), None, "the drag of three channels was one step");
     settle(&mut h);
     assert_eq!(
         h.state().doc.desc.materials["mirror"],
@@ -240,10 +242,8 @@ fn ctrl_z_takes_back_each_edit_with_its_image_and_ctrl_shift_z_gives_it_back() {
     h.run_steps(2);
     h.get_by_label_contains("Redo Materials › mirror").click();
     h.run_steps(2);
-    for _ in 0..3 {
-        h.key_press_modifiers(egui::Modifiers::COMMAND | egui::Modifiers::SHIFT, egui::Key::Z);
-        h.run_steps(2);
-    }
+    h.key_press_modifiers(egui::Modifiers::COMMAND | egui::Modifiers::SHIFT, egui::Key::Z);
+    h.run_steps(2);
     settle(&mut h);
     assert_eq!((h.state().doc.desc.lights[0].kind, h.state().doc.dirty), (LightKind::Spot, true));
     assert_eq!(h.state().doc.desc.materials["mirror"].ks.0, [0.0; 3]);

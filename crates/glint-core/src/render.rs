@@ -167,6 +167,11 @@ fn render_tile(
                 stop.capped.store(true, Ordering::Relaxed);
                 return Err(TileStop::RayCap { x, y });
             }
+            // A stop may have cut this pixel's tree (`TraceContext::cap_reached`): it is no
+            // pixel of the render, and its tile none to hand on.
+            if stop.requested() {
+                return Err(TileStop::Cancelled);
+            }
             if let Some(rays) = stop.rays {
                 rays.fetch_add(counts.total() - before, Ordering::Relaxed);
             }

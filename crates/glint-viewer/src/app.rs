@@ -211,6 +211,7 @@ impl ViewerApp {
     pub fn save_scene(&mut self, path: &Path) {
         match self.doc.save(path) {
             Ok(()) => {
+                self.edits.saved(&self.doc);
                 self.recent.add(path);
                 self.message = Some(format!("Saved {}", path.display()));
             }
@@ -346,12 +347,9 @@ impl ViewerApp {
                 self.renders.paused = p;
                 return;
             }
-            ViewAction::Integrator(i) => {
-                let r = &mut self.doc.desc.render;
-                r.integrator = i;
-                // Whitted's tree has no indirect-light setting.
-                r.indirect |= i == glint_scene::Integrator::Whitted;
-            }
+            // A file's `indirect = false` stays under Whitted (warned of, changing nothing there),
+            // so that switching back to paths keeps it.
+            ViewAction::Integrator(i) => self.doc.desc.render.integrator = i,
         }
         self.doc.edited();
     }
@@ -359,7 +357,7 @@ impl ViewerApp {
     /// Ctrl+Z, Ctrl+Shift+Z and Ctrl+Y, unless a field being typed into takes them for its text.
     fn undo_shortcuts(&mut self, ctx: &egui::Context) {
         use egui::{Key, KeyboardShortcut, Modifiers};
-        if ctx.egui_wants_keyboard_input() {
+        if ctx.text_edit_focused() {
             return;
         }
         // Shift+Z before Z: egui's match ignores an extra Shift.
@@ -368,10 +366,23 @@ impl ViewerApp {
                 || i.consume_shortcut(&KeyboardShortcut::new(Modifiers::COMMAND, Key::Y));
             (redo, i.consume_shortcut(&KeyboardShortcut::new(Modifiers::COMMAND, Key::Z)))
         });
+        if redo || undo {
+            self.step_history(redo);
+        }
+    }
+
+    /// Undo (or redo) a step, with what the view forces on the scene given back with it.
+    pub(super) fn step_history(&mut self, redo: bool) {
+        let gi = self.layout.mode == ViewMode::WhittedVsGi;
+        let view = |d: &mut Document| {
+            if gi && d.desc.render.integrator.is_whitted() {
+                d.desc.render.integrator = glint_scene::Integrator::Path;
+            }
+        };
         if redo {
-            self.edits.redo(&mut self.doc);
-        } else if undo {
-            self.edits.undo(&mut self.doc);
+            self.edits.redo(&mut self.doc, view);
+        } else {
+            self.edits.undo(&mut self.doc, view);
         }
     }
 
@@ -562,7 +573,7 @@ impl eframe::App for ViewerApp {
             self.apply_view_action(ViewAction::Integrator(glint_scene::Integrator::Path));
         }
         // After every edit of the frame: a drag, or a value being typed, is one step when done.
-        let still = !ctx.input(|i| i.pointer.any_down()) && !ctx.egui_wants_keyboard_input();
+        let still = !ctx.input(|i| i.pointer.any_down()) && !ctx.text_edit_focused();
         self.edits.track(&self.doc, ctx.input(|i| i.time), still);
         let gpu_renders = self.renders.gpu_renders();
         let settled = self.is_settled();

@@ -147,10 +147,15 @@ impl EditHistory {
         if doc.revision != self.base_revision && settled && now - self.moved.1 >= STILL_SECONDS {
             self.commit(doc);
         }
-        // Saved with no edit since its last step: that state is the saved one.
-        if !doc.dirty && doc.revision == self.base_revision && self.saved.as_ref() != Some(&self.base) {
-            self.saved = Some(self.base.clone());
-        }
+    }
+
+    /// The scene was saved as it is now: its edits so far are a step, and that state is the
+    /// one an undo or redo finds nothing unsaved in. Said by the save, not read from
+    /// `doc.dirty` (a save between two quick edits, merged into one step, left the state as
+    /// opened marked saved).
+    pub fn saved(&mut self, doc: &Document) {
+        self.commit(doc);
+        self.saved = Some(self.base.clone());
     }
 
     /// Makes the edits since the last step a step of their own (none when they changed nothing
@@ -168,9 +173,6 @@ impl EditHistory {
         let before = std::mem::replace(&mut self.base, state);
         push_bounded(&mut self.undo, before);
         self.redo.clear();
-        if !doc.dirty {
-            self.saved = Some(self.base.clone());
-        }
     }
 
     /// What an undo would take back ("Camera", "Materials › red"), if anything; an edit not
@@ -193,28 +195,32 @@ impl EditHistory {
         self.redo.last().map(|after| self.base.changed_from(after, light_label))
     }
 
-    /// Takes the last step back; false when there is none.
-    pub fn undo(&mut self, doc: &mut Document) -> bool {
+    /// Takes the last step back; false when there is none. `view` holds what the view
+    /// forces on the scene (Whitted vs GI's paths): applied to the state given back, it is no
+    /// edit of its own, which would end the redo steps and undo the same step again.
+    pub fn undo(&mut self, doc: &mut Document, view: impl Fn(&mut Document)) -> bool {
         self.commit(doc);
         let Some(before) = self.undo.pop() else { return false };
         let after = std::mem::replace(&mut self.base, before);
         push_bounded(&mut self.redo, after);
-        self.restore(doc);
+        self.restore(doc, view);
         true
     }
 
     /// Gives back the last step undone; false when there is none (or an edit since).
-    pub fn redo(&mut self, doc: &mut Document) -> bool {
+    pub fn redo(&mut self, doc: &mut Document, view: impl Fn(&mut Document)) -> bool {
         self.commit(doc);
         let Some(after) = self.redo.pop() else { return false };
         let before = std::mem::replace(&mut self.base, after);
         push_bounded(&mut self.undo, before);
-        self.restore(doc);
+        self.restore(doc, view);
         true
     }
 
-    fn restore(&mut self, doc: &mut Document) {
+    fn restore(&mut self, doc: &mut Document, view: impl Fn(&mut Document)) {
         self.base.apply(doc);
+        view(doc);
+        self.base = SceneState::of(doc);
         doc.edited();
         doc.dirty = self.saved.as_ref() != Some(&self.base);
         self.base_revision = doc.revision;
@@ -266,19 +272,19 @@ mod tests {
         let material = doc.desc.materials.keys().next().unwrap().clone();
         assert_eq!(history.undo_label(&doc).as_deref(), Some("Camera"));
 
-        assert!(history.undo(&mut doc));
+        assert!(history.undo(&mut doc, |_| {}));
         assert_eq!(kd(&doc), 0.3, "the camera step alone goes");
         assert_eq!(history.undo_label(&doc), Some(format!("Materials › {material}")));
         assert_eq!(history.redo_label(&doc).as_deref(), Some("Camera"));
-        assert!(history.undo(&mut doc));
+        assert!(history.undo(&mut doc, |_| {}));
         assert_eq!(kd(&doc), first, "the whole drag goes at once");
         assert!(!doc.dirty, "back as opened: nothing unsaved");
-        assert!(!history.undo(&mut doc), "nothing before the scene as opened");
+        assert!(!history.undo(&mut doc, |_| {}), "nothing before the scene as opened");
 
-        assert!(history.redo(&mut doc));
-        assert!(history.redo(&mut doc));
+        assert!(history.redo(&mut doc, |_| {}));
+        assert!(history.redo(&mut doc, |_| {}));
         assert_eq!((kd(&doc), doc.dirty), (0.3, true));
-        assert!(!history.redo(&mut doc));
+        assert!(!history.redo(&mut doc, |_| {}));
     }
 
     #[test]
@@ -289,11 +295,11 @@ mod tests {
         set_kd(&mut doc, 0.5);
         history.track(&doc, 0.0, true);
         assert!(history.undo_label(&doc).is_some(), "an edit not yet a step can be undone");
-        assert!(history.undo(&mut doc));
+        assert!(history.undo(&mut doc, |_| {}));
         assert_eq!(kd(&doc), first);
         set_kd(&mut doc, 0.7);
         assert_eq!(history.redo_label(&doc), None, "an edit after an undo ends what it undid");
-        assert!(!history.redo(&mut doc));
+        assert!(!history.redo(&mut doc, |_| {}));
         assert_eq!(kd(&doc), 0.7);
     }
 
@@ -305,12 +311,12 @@ mod tests {
         history.track(&doc, 1.0, true);
         // Saved here (as `Document::save` does, without an edit).
         doc.dirty = false;
-        history.track(&doc, 2.0, true);
+        history.saved(&doc);
         set_kd(&mut doc, 0.6);
         history.track(&doc, 3.0, true);
-        assert!(history.undo(&mut doc));
+        assert!(history.undo(&mut doc, |_| {}));
         assert_eq!((kd(&doc), doc.dirty), (0.5, false), "back at the saved scene");
-        assert!(history.undo(&mut doc));
+        assert!(history.undo(&mut doc, |_| {}));
         assert!(doc.dirty, "the scene as opened is not the one saved");
     }
 
@@ -324,7 +330,7 @@ mod tests {
             history.track(&doc, 10.0 * i as f64 + 2.0 * STILL_SECONDS, true);
         }
         let mut undone = 0;
-        while history.undo(&mut doc) {
+        while history.undo(&mut doc, |_| {}) {
             undone += 1;
         }
         assert_eq!(undone, MAX_STEPS);
@@ -338,5 +344,46 @@ mod tests {
         doc.desc.camera.fov_y -= 1.0;
         doc.edited();
         assert_eq!(history.undo_label(&doc), Some(format!("Lights › {}", doc.light_label(0))));
+    }
+
+    #[test]
+    fn what_the_view_forces_is_no_step_and_keeps_the_redo_steps() {
+        use glint_scene::Integrator;
+        let mut doc = whitted();
+        let mut history = EditHistory::new(&doc);
+        // Whitted vs GI switches the scene to paths: a step, as any edit of the integrator.
+        doc.desc.render.integrator = Integrator::Path;
+        doc.edited();
+        history.track(&doc, 1.0, true);
+        history.track(&doc, 1.5, true);
+        set_kd(&mut doc, 0.5);
+        history.track(&doc, 2.0, true);
+        history.track(&doc, 3.0, true);
+        let paths = |d: &mut Document| d.desc.render.integrator = Integrator::Path;
+        assert!(history.undo(&mut doc, paths));
+        assert!(history.undo(&mut doc, paths));
+        assert_eq!(doc.desc.render.integrator, Integrator::Path, "the view's paths stay");
+        history.track(&doc, 4.0, true);
+        history.track(&doc, 5.0, true);
+        assert!(history.undo_label(&doc).is_none(), "nothing before the scene as opened");
+        assert!(history.redo(&mut doc, paths) && history.redo(&mut doc, paths), "both redo steps kept");
+        assert_eq!(kd(&doc), 0.5);
+    }
+
+    #[test]
+    fn a_save_between_two_quick_edits_is_the_saved_state() {
+        let mut doc = whitted();
+        let mut history = EditHistory::new(&doc);
+        set_kd(&mut doc, 0.5);
+        history.track(&doc, 0.0, true);
+        doc.dirty = false;
+        history.saved(&doc);
+        set_kd(&mut doc, 0.6);
+        history.track(&doc, 0.1, true);
+        history.track(&doc, 1.0, true);
+        assert!(history.undo(&mut doc, |_| {}));
+        assert_eq!((kd(&doc), doc.dirty), (0.5, false), "the file on disk holds 0.5");
+        assert!(history.undo(&mut doc, |_| {}));
+        assert!(doc.dirty, "the scene as opened is not the one saved");
     }
 }

@@ -5,7 +5,7 @@ use std::sync::Arc;
 use glam::DVec3;
 
 use crate::bvh::{self, BvhNodes};
-use glint_types::{LightTags, MaterialTags};
+use glint_types::{Integrator, LightTags, MaterialTags};
 
 use crate::texture_table::TextureTable;
 use glint_scene::{
@@ -343,7 +343,9 @@ fn flat_header(desc: &SceneDesc, settings: &RenderSettings, p: &Geometry, materi
         epsilon: settings.epsilon as f32,
         bailout: settings.bailout as f32,
         integrator: settings.integrator.into(),
-        indirect: u32::from(settings.indirect),
+        // Whitted's tree reads no such setting: a file's `indirect = false` (warned of) makes no
+        // other scene of it, and no other scene hash.
+        indirect: u32::from(settings.indirect || settings.integrator == Integrator::Whitted),
         omit_kinds: 0,
         pad_b: 0,
         ambient: rgb4(desc.world.ambient),

@@ -18,12 +18,8 @@ impl ViewerApp {
             MenuAction::SaveAs => self.save_as(None),
             MenuAction::SaveImage => self.dialogs.open_export(self.layout.mode == ViewMode::WhittedVsGi),
             MenuAction::Quit => self.request_quit(),
-            MenuAction::Undo => {
-                self.edits.undo(&mut self.doc);
-            }
-            MenuAction::Redo => {
-                self.edits.redo(&mut self.doc);
-            }
+            MenuAction::Undo => self.step_history(false),
+            MenuAction::Redo => self.step_history(true),
         }
     }
 

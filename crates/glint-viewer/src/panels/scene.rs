@@ -87,10 +87,6 @@ pub fn ui(ui: &mut Ui, doc: &mut Document, fitter: &mut AmbientFitter, paths_hel
                 doc.omit_kinds = shown.map_or(0, PathKind::alone);
                 view_changed = true;
             }
-        } else if !r.indirect {
-            // Whitted's tree has no such setting: a scene switched back is valid again.
-            r.indirect = true;
-            changed = true;
         }
         // The whole valid range: depths past the GPU's ray stack are for checking its report.
         changed |= int_slider(ui, "Max depth", &mut r.max_depth, ranges::DEPTH);
