@@ -44,6 +44,20 @@ fn resolve_index(spec: TileSpec, tiles: u32) -> anyhow::Result<(u32, String)> {
     if let Some(i) = spec.index {
         return Ok((i, "--tile".into()));
     }
+    // Two schedulers' indices that disagree (a Slurm job launched from a Kubernetes pod): which
+    // is this task's is not glint's to guess; taking the first rendered one tile twice.
+    let set: Vec<(&str, String)> =
+        INDEX_VARIABLES.iter().filter_map(|(name, _)| std::env::var(name).ok().map(|v| (*name, v))).collect();
+    if let [(first, a), rest @ ..] = set.as_slice()
+        && let Some((other, b)) = rest.iter().find(|(_, b)| b.trim() != a.trim())
+    {
+        usage!(
+            "--tile {} takes the tile's index from the scheduler, but {first}='{a}' and {other}='{b}' disagree; \
+             unset the one that is not this task's, or give the index as --tile I/{}",
+            spec.count,
+            spec.count
+        );
+    }
     for (name, scheduler) in INDEX_VARIABLES {
         if let Ok(value) = std::env::var(name) {
             // The parser's own words ("invalid digit found in string") add nothing to these.

@@ -104,8 +104,15 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
         if let Some(s) = value
             && !(s.is_finite() && s > 0.0 && s <= 600.0)
         {
-            bail!("{flag} takes a number of seconds in (0, 600], not {s}");
+            bail!("{flag} takes a number of seconds in (0, 600], not {}", glint_scene::format_number(s));
         }
+    }
+    // Before any window: without a display the first word was "no display" for a name that
+    // could never be written.
+    if let Some(path) = &args.screenshot
+        && !path.extension().is_some_and(|e| e.eq_ignore_ascii_case("png"))
+    {
+        bail!("--screenshot {}: a screenshot is written as PNG; name the file .png", path.display());
     }
     check_load_memory(&args.scene, args.scene_size.memory_limit)?;
     let load = args.scene_size.options(Some(&args.settings));

@@ -403,6 +403,20 @@ fn bad_input_fails_cleanly() {
         &["--screenshot", "bad.toml", "objects[0].radius"],
         &["bad.toml"],
     );
+    // A huge value is said as written, not in 309 digits; a screenshot not named .png is
+    // refused before any window (it said "no display" first).
+    expect_failure(
+        "benchmark-drag-huge",
+        |_| os(&[&"view", &"whitted", &"--benchmark-drag", &"1e308"]),
+        &["--benchmark-drag", "(0, 600], not 1e308"],
+        &[],
+    );
+    expect_failure(
+        "screenshot-jpeg",
+        |d| os(&[&"view", &"whitted", &"--screenshot", &d.join("s.jpg")]),
+        &["--screenshot", "s.jpg", "name the file .png"],
+        &[],
+    );
     expect_failure(
         "features-benchmark-missing-model",
         |d| os(&[&"view", &d.join("missing.glb"), &"--benchmark-features"]),

@@ -494,6 +494,19 @@ fn the_tile_index_comes_from_the_flag_or_a_schedulers_variable() {
     for name in ["SLURM_ARRAY_TASK_ID", "JOB_COMPLETION_INDEX", "AWS_BATCH_JOB_ARRAY_INDEX", "--tile I/3"] {
         assert!(stderr.contains(name), "{stderr}");
     }
+    // Two schedulers' indices that disagree are refused, naming both (the first had won).
+    let done = std::process::Command::new(env!("CARGO_BIN_EXE_glint"))
+        .args(["render", "whitted", "--tile", "3", "-q", "-o", "both.exr"])
+        .current_dir(&*dir)
+        .env_remove("AWS_BATCH_JOB_ARRAY_INDEX")
+        .env("SLURM_ARRAY_TASK_ID", "2")
+        .env("JOB_COMPLETION_INDEX", "1")
+        .output()
+        .expect("run glint");
+    assert_eq!(done.status.code(), Some(2), "{}", text(&done.stderr));
+    let stderr = text(&done.stderr);
+    assert!(stderr.contains("SLURM_ARRAY_TASK_ID='2' and JOB_COMPLETION_INDEX='1' disagree"), "{stderr}");
+    assert!(!dir.join("both.exr").exists());
     // An index past the grid from the scheduler (`--array=1-3` for 3 tiles) names where it
     // came from and the array that numbers them.
     let done = std::process::Command::new(env!("CARGO_BIN_EXE_glint"))
