@@ -18,6 +18,11 @@ pub fn parse_message(error: &toml::de::Error, text: &str) -> String {
     // The file parsed again with its spans, once for every lookup (on the error path alone).
     let parsed = toml::de::DeTable::parse(text).ok();
     let root = parsed.as_ref().map(|r| r.get_ref());
+    // The one required table, absent: the parser put the error at the first table of the file
+    // and named it (`world: missing field `camera``, line 1), as if `[world]` lacked a field.
+    if error.message() == "missing field `camera`" && root.is_some_and(|root| !root.contains_key("camera")) {
+        return CAMERA_REQUIRED.to_string();
+    }
     let refined = root.and_then(|root| {
         crate::toml_position::object_error_span(root, error.message()).or_else(|| {
             error.span().and_then(|span| crate::toml_position::inner_error_span(root, span, error.message()))
@@ -36,6 +41,10 @@ pub fn parse_message(error: &toml::de::Error, text: &str) -> String {
         None => clarified,
     })
 }
+
+/// A scene without its `[camera]` table, said of the table, not of the file's first one.
+const CAMERA_REQUIRED: &str =
+    "camera: the [camera] table is required (position, look_at; docs/scene-format.md#camera); the file has none";
 
 /// `located`'s message line led by the path of the field it is about (`lights[2].position:
 /// invalid length 2, …`), unless it names the field already: the parts of the path the message
@@ -348,6 +357,24 @@ mod tests {
         assert_eq!(message_line(&said), "camera: missing field `look_at`", "{said}");
         let said = message("[render]\nmax_depth = -1\n[camera]\nposition = [0, 0, -5]\nlook_at = [0, 0, 0]\n");
         assert!(message_line(&said).starts_with("render.max_depth: invalid value: integer `-1`"), "{said}");
+    }
+
+    #[test]
+    fn a_scene_without_its_camera_table_is_told_the_table_is_required_not_blamed_on_its_first_table() {
+        // A tester: `[world] ambient = 0.1` alone was "world: missing field `camera`" at line 1.
+        for text in ["[world]\nambient = 0.1\n", "[render]\nwidth = 8\n[materials.m]\nkd = 1\n", "", "# nothing\n"] {
+            assert_eq!(
+                message(text),
+                "camera: the [camera] table is required (position, look_at; docs/scene-format.md#camera); the file \
+                 has none",
+                "{text:?}"
+            );
+        }
+        // A camera table lacking a field is still said of that field.
+        assert_eq!(
+            message_line(&message("[world]\nambient = 0.1\n[camera]\nposition = [0, 0, -5]\n")),
+            "camera: missing field `look_at`"
+        );
     }
 
     #[test]
