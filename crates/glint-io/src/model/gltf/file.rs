@@ -43,11 +43,17 @@ pub(super) fn parse(bytes: &[u8], file: &Path, warnings: &mut Vec<FieldIssue>) -
         let reason = if bytes.is_empty() { "the file is empty (0 bytes)" } else { "the file holds only white space" };
         return Err(GltfError::Parse { file: file.to_owned(), reason: reason.to_string() });
     }
+    if let Some(error) = glb_length_short(bytes, file) {
+        return Err(error);
+    }
     let parsed = ::gltf::Gltf::from_slice_without_validation(bytes).or_else(|e| {
         with_scene_nodes(bytes).map_or(Err(e), |patched| ::gltf::Gltf::from_slice_without_validation(&patched))
     });
     let ::gltf::Gltf { document, blob } = parsed.map_err(|e| {
-        other_version(bytes, file).or_else(|| glb_cut_short(bytes, file)).unwrap_or_else(|| parse_error(file, e, None))
+        other_version(bytes, file)
+            .or_else(|| glb_cut_short(bytes, file))
+            .or_else(|| not_glb(bytes, file))
+            .unwrap_or_else(|| parse_error(file, e, None))
     })?;
     let mut json = document.into_json();
     // A 1.0 file with no collection of 1.0's form parses as an empty 2.0 one: refused by its
@@ -236,6 +242,43 @@ fn glb_cut_short(bytes: &[u8], file: &Path) -> Option<GltfError> {
         Some(_) => return None,
     };
     Some(GltfError::Parse { file: file.to_owned(), reason })
+}
+
+/// A GLB whose header gives a length short of the file's: the bytes past it are no part of the
+/// GLB (read without a word, a tester's header said 20 bytes of a 588-byte file). `None` where
+/// the file is not a GLB or its header is whole; a length beyond the file is `glb_cut_short`'s.
+fn glb_length_short(bytes: &[u8], file: &Path) -> Option<GltfError> {
+    let header = bytes.strip_prefix(b"glTF")?;
+    let length = u32::from_le_bytes(header.get(4..8)?.try_into().ok()?);
+    ((length as usize) < bytes.len()).then(|| GltfError::Parse {
+        file: file.to_owned(),
+        reason: format!(
+            "the GLB header gives the file's length as {length} bytes, but it has {}: a GLB's length is its whole \
+             file's (header and chunks), and the bytes past it are no part of it",
+            bytes.len()
+        ),
+    })
+}
+
+/// A file named `.glb` that neither begins with the GLB magic `glTF` nor is glTF JSON: said to
+/// be no GLB, by its first bytes (its JSON parser's "expected value at line 1 column 1" read a
+/// binary header as text; a tester's `glTX`).
+fn not_glb(bytes: &[u8], file: &Path) -> Option<GltfError> {
+    let glb = file.extension().is_some_and(|e| e.eq_ignore_ascii_case("glb"));
+    let json = bytes.iter().find(|b| !b.is_ascii_whitespace()) == Some(&b'{');
+    if !glb || json || bytes.starts_with(b"glTF") {
+        return None;
+    }
+    let magic = &bytes[..bytes.len().min(4)];
+    let hex: Vec<String> = magic.iter().map(|b| format!("{b:02X}")).collect();
+    Some(GltfError::Parse {
+        file: file.to_owned(),
+        reason: format!(
+            "not a GLB: its magic bytes are {:?} ({}), not \"glTF\" (67 6C 54 46), and it is not glTF JSON either",
+            String::from_utf8_lossy(magic),
+            hex.join(" ")
+        ),
+    })
 }
 
 /// Whether an `asset.version` is glTF 2's (`2.0`, a later 2.x, or `2`).

@@ -34,6 +34,36 @@ fn an_empty_file_is_said_to_be_empty() {
 }
 
 #[test]
+fn a_glb_of_another_magic_or_a_header_length_other_than_the_file_s_is_refused_naming_both() {
+    let chunk = br#"{"asset":{"version":"2.0"}} "#;
+    let glb = |magic: &[u8], length: u32| {
+        [magic, &2u32.to_le_bytes(), &length.to_le_bytes(), &(chunk.len() as u32).to_le_bytes(), b"JSON", chunk]
+            .concat()
+    };
+    let whole = (12 + 8 + chunk.len()) as u32;
+    let file = Path::new("m.glb");
+    // A tester's `glTX`: the JSON parser's "expected value at line 1 column 1".
+    let message = parse(&glb(b"glTX", whole), file, &mut Vec::new()).unwrap_err().to_string();
+    assert_eq!(
+        message,
+        "m.glb: not a valid glTF 2.0 file: not a GLB: its magic bytes are \"glTX\" (67 6C 54 58), not \"glTF\" (67 6C \
+         54 46), and it is not glTF JSON either"
+    );
+    // Read without a word: a header of 20 bytes in a longer file.
+    let message = parse(&glb(b"glTF", 20), file, &mut Vec::new()).unwrap_err().to_string();
+    assert!(
+        message.starts_with(&format!(
+            "m.glb: not a valid glTF 2.0 file: the GLB header gives the file's length as 20 bytes, but it has {whole}:"
+        )),
+        "{message}"
+    );
+    let message = parse(&glb(b"glTF", whole + 100), file, &mut Vec::new()).unwrap_err().to_string();
+    assert!(message.contains(&format!("as {} bytes, but it has {whole}: it is cut short", whole + 100)), "{message}");
+    // The header's own length is read.
+    assert!(parse(&glb(b"glTF", whole), file, &mut Vec::new()).is_ok());
+}
+
+#[test]
 fn strips_keep_the_first_triangles_orientation_and_fans_share_the_first_vertex() {
     assert_eq!(triangulate(Mode::TriangleStrip, &[0, 1, 2, 3, 4]), vec![[0, 1, 2], [2, 1, 3], [2, 3, 4]]);
     assert_eq!(triangulate(Mode::TriangleFan, &[0, 1, 2, 3]), vec![[0, 1, 2], [0, 2, 3]]);
