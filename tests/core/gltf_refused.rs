@@ -95,6 +95,27 @@ fn a_punctual_light_out_of_range_is_named_by_the_files_own_fields() {
 }
 
 #[test]
+fn a_punctual_light_beyond_f32_is_said_as_the_file_wrote_it_with_the_range() {
+    // The gltf crate keeps intensities in f32, where 1e300 is infinite: it was said as
+    // "intensity: inf must be a finite number ≥ 0" (a tester).
+    let dir = TempDir::new("gltf-light-f32");
+    let with = |intensity: f64, name: &str| {
+        let mut f = Fixture::quad();
+        f.json["extensionsUsed"] = json!(["KHR_lights_punctual"]);
+        f.json["extensions"] =
+            json!({ "KHR_lights_punctual": { "lights": [{ "type": "point", "intensity": intensity }] } });
+        f.json["scenes"] = json!([{ "nodes": [0, 1] }]);
+        f.json["nodes"] = json!([{ "mesh": 0 }, { "extensions": { "KHR_lights_punctual": { "light": 0 } } }]);
+        load_gltf(&f.write_gltf(&dir, name, BufferAt::DataUri), &ImportOptions::default()).unwrap_err().to_string()
+    };
+    let message = with(1e300, "huge");
+    assert!(message.contains("extensions.KHR_lights_punctual.lights[0].intensity: 1e300 × colour × exposure 1 reaches 1e300, beyond the 1e9 a light may have (intensity × colour × exposure must lie in [0, 1e9])"), "{message}");
+    assert!(!message.contains("inf"), "{message}");
+    let message = with(-1e300, "negative");
+    assert!(message.contains("lights[0].intensity: -1e300 must be a finite number ≥ 0"), "{message}");
+}
+
+#[test]
 fn broken_files_are_errors_naming_the_json_path() {
     let dir = TempDir::new("gltf-broken");
     type Edit = Box<dyn Fn(&mut Fixture)>;

@@ -304,7 +304,7 @@ pub fn load_gltf(path: &Path, options: &ImportOptions) -> Result<Model, GltfErro
         }
         if options.lights
             && let Some(light) = node.light()
-            && let Some(l) = punctual::map_light(&light, &world, options.exposure, i, &mut model.warnings)
+            && let Some(l) = punctual::map_light(&light, &world, options.exposure, i, &bytes, &mut model.warnings)
                 .map_err(|(path, problem)| at(path, problem))?
         {
             model.lights.push(l);

@@ -22,15 +22,16 @@ pub(super) fn node_numbers(bytes: &[u8]) -> Vec<NodeNumbers> {
         #[serde(default)]
         nodes: Vec<NodeNumbers>,
     }
-    let json = if bytes.starts_with(b"glTF") {
-        match ::gltf::Glb::from_slice(bytes) {
-            Ok(glb) => glb.json.into_owned(),
-            Err(_) => return Vec::new(),
-        }
+    json_text(bytes).and_then(|json| serde_json::from_slice::<Nodes>(&json).ok()).map_or_else(Vec::new, |n| n.nodes)
+}
+
+/// The file's JSON: the whole file, or a .glb's JSON chunk (`None` where that does not read).
+pub(super) fn json_text(bytes: &[u8]) -> Option<std::borrow::Cow<'_, [u8]>> {
+    if bytes.starts_with(b"glTF") {
+        ::gltf::Glb::from_slice(bytes).ok().map(|glb| std::borrow::Cow::Owned(glb.json.into_owned()))
     } else {
-        bytes.to_vec()
-    };
-    serde_json::from_slice::<Nodes>(&json).map_or_else(|_| Vec::new(), |n| n.nodes)
+        Some(std::borrow::Cow::Borrowed(bytes))
+    }
 }
 
 /// A node's local transform: its matrix, or T·R·S from translation, rotation (a unit

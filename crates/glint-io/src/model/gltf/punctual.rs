@@ -14,6 +14,13 @@ fn written(v: f32) -> String {
     number(v.to_string().parse().unwrap_or(f64::from(v)))
 }
 
+/// The intensity of light `index` of the file's KHR_lights_punctual as its JSON wrote it, in
+/// f64 (`None` where it does not read so).
+fn written_intensity(bytes: &[u8], index: usize) -> Option<f64> {
+    let json: serde_json::Value = serde_json::from_slice(&super::nodes::json_text(bytes)?).ok()?;
+    json.pointer(&format!("/extensions/KHR_lights_punctual/lights/{index}/intensity"))?.as_f64()
+}
+
 fn normalized(v: [f64; 3]) -> Option<[f64; 3]> {
     let len = v.iter().map(|c| c * c).sum::<f64>().sqrt();
     (len.is_finite() && len > 1e-300).then(|| v.map(|c| c / len))
@@ -23,21 +30,27 @@ fn normalized(v: [f64; 3]) -> Option<[f64; 3]> {
 /// I_s (candela for point and spot lights, lux for directional ones), down the node's −Z. An
 /// intensity the scene cannot hold is an error naming the file's own fields (its path, the
 /// problem), not the `lights[i].diffuse` Glint maps it to.
+///
+/// The gltf crate keeps the intensity in f32, where a number beyond f32's range is infinite:
+/// `bytes` (the file's) give it as the JSON wrote it then, so that 1e300 is said as 1e300.
 pub(super) fn map_light(
     light: &::gltf::khr_lights_punctual::Light<'_>,
     world: &Mat4,
     exposure: f64,
     node: usize,
+    bytes: &[u8],
     warnings: &mut Vec<FieldIssue>,
 ) -> Result<Option<LightDesc>, (String, String)> {
     let field = format!("nodes[{node}].extensions.KHR_lights_punctual (lights[{}])", light.index());
     let own = format!("extensions.KHR_lights_punctual.lights[{}]", light.index());
-    let intensity = f64::from(light.intensity());
+    let intensity = match f64::from(light.intensity()) {
+        i if i.is_infinite() => written_intensity(bytes, light.index()).unwrap_or(i),
+        i => i,
+    };
+    // As written: f32's rounding of 1e300 is infinite, and was said as "inf" (a tester).
+    let said = if intensity == f64::from(light.intensity()) { written(light.intensity()) } else { number(intensity) };
     if !(intensity.is_finite() && intensity >= 0.0) {
-        return Err((
-            format!("{own}.intensity"),
-            format!("{} must be a finite number ≥ 0", written(light.intensity())),
-        ));
+        return Err((format!("{own}.intensity"), format!("{said} must be a finite number ≥ 0")));
     }
     // The file's own fields named, not the lights[i].diffuse Glint maps them to (a colour of
     // −1 was refused as "lights[0].diffuse: channel r = -1", of another light's index).
@@ -62,10 +75,9 @@ pub(super) fn map_light(
         return Err((
             format!("{own}.intensity"),
             format!(
-                "{} × colour × exposure {} reaches {}, beyond the {MAX_INTENSITY:e} a light may have: lower \
-                 the exposure (--exposure, or a model object's exposure) to {} or less (it scales every light of \
-                 the file)",
-                written(light.intensity()),
+                "{said} × colour × exposure {} reaches {}, beyond the {MAX_INTENSITY:e} a light may have \
+                 (intensity × colour × exposure must lie in [0, {MAX_INTENSITY:e}]): lower the exposure \
+                 (--exposure, or a model object's exposure) to {} or less (it scales every light of the file)",
                 number(exposure),
                 format_rounded(brightest, 3),
                 format_rounded(scale, 2)
