@@ -116,6 +116,64 @@ fn a_punctual_light_beyond_f32_is_said_as_the_file_wrote_it_with_the_range() {
 }
 
 #[test]
+fn a_node_transform_beyond_the_scene_s_coordinates_or_flattening_its_meshes_is_named_by_its_field() {
+    // A tester: translation [1e300, 0, 0] and scale [0, 0, 0] were both said to be "triangles:
+    // its one triangle has zero area", the node not named.
+    let dir = TempDir::new("gltf-node-transforms");
+    let load = |nodes: serde_json::Value, roots: serde_json::Value, name: &str| {
+        let mut f = Fixture::quad();
+        f.json["nodes"] = nodes;
+        f.json["scenes"] = json!([{ "nodes": roots }]);
+        load_gltf(&f.write_gltf(&dir, name, BufferAt::DataUri), &ImportOptions::default())
+    };
+    let refused = |nodes, roots, name| load(nodes, roots, name).map(|_| ()).unwrap_err().to_string();
+    let message = refused(json!([{ "mesh": 0, "translation": [1e300, 0.0, 0.0] }]), json!([0]), "far");
+    assert!(
+        message.ends_with(
+            "nodes[0].translation: its translation is [1e300, 0, 0]; a scene's coordinates must lie in [-1e9, 1e9] \
+             (as must each component of a node's translation)"
+        ),
+        "{message}"
+    );
+    // Beyond by its parents' scale: the child's own field, and where it lands.
+    let nodes = json!([{ "scale": [1e6, 1e6, 1e6], "children": [1] }, { "mesh": 0, "translation": [0.0, 1e4, 0.0] }]);
+    let message = refused(nodes, json!([0]), "scaled");
+    assert!(
+        message.contains(
+            "nodes[1].translation: its translation is [0, 10000, 0], which with its parents' transforms places the \
+             node at [0, 10000000000, 0]"
+        ),
+        "{message}"
+    );
+    let matrix = json!([1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, -2e9, 1.0]);
+    let message = refused(json!([{ "mesh": 0, "matrix": matrix }]), json!([0]), "matrix");
+    assert!(message.contains("nodes[0].matrix: its translation is [0, 0, -2000000000]"), "{message}");
+    // A zero scale: a degenerate node scale, named, where it leaves nothing to trace.
+    let message = refused(json!([{ "mesh": 0, "scale": [0.0, 0.0, 0.0] }]), json!([0]), "flat");
+    assert!(
+        message.ends_with(
+            "nodes[0].scale: [0, 0, 0] is a degenerate node scale: each factor must be non-zero (its product too, in \
+             f64), and this flattens the meshes under the node to zero area, and the model has no other triangle to \
+             trace"
+        ),
+        "{message}"
+    );
+    let singular = json!([1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0]);
+    let nodes = json!([{ "matrix": singular, "children": [1] }, { "mesh": 0 }]);
+    let message = refused(nodes, json!([0]), "singular");
+    assert!(message.contains("nodes[0].matrix: is a degenerate (singular) node matrix"), "{message}");
+    // Beside a node with area (a node hidden by a zero scale): read, and warned of.
+    let nodes = json!([{ "mesh": 0 }, { "mesh": 0, "scale": [1.0, 0.0, 1.0] }]);
+    let m = load(nodes, json!([0, 1]), "hidden").expect("the other node is traced");
+    let said = m.warnings.iter().find(|w| w.field == "nodes[1].scale").expect("warned");
+    assert!(
+        said.problem.starts_with("[1, 0, 1] is a degenerate node scale") && said.problem.ends_with("never hit"),
+        "{}",
+        said.problem
+    );
+}
+
+#[test]
 fn broken_files_are_errors_naming_the_json_path() {
     let dir = TempDir::new("gltf-broken");
     type Edit = Box<dyn Fn(&mut Fixture)>;

@@ -24,7 +24,7 @@ use ::gltf::mesh::Mode;
 
 use self::accessor::Buffers;
 use super::ImportOptions;
-use glint_scene::{FieldIssue, MIN_DIRECTION_LENGTH, MeshDesc};
+use glint_scene::{FieldIssue, MAX_COORD, MIN_DIRECTION_LENGTH, MeshDesc};
 use glint_scene::{Mat4, Model};
 
 pub use self::error::{GltfError, SUPPORTED_EXTENSIONS};
@@ -143,14 +143,21 @@ pub fn load_gltf(path: &Path, options: &ImportOptions) -> Result<Model, GltfErro
     // Depth first from the scene's roots; a node reached twice is a cycle or a shared child,
     // both outside glTF's "disjoint strict trees", and refused rather than walked forever.
     let mut reached = vec![false; gltf.nodes().len()];
-    let mut stack: Vec<(::gltf::Node<'_>, Mat4)> = scene.nodes().map(|n| (n, Mat4::IDENTITY)).collect();
+    // Each node with the node whose transform flattens it (its own, or an ancestor's), and the
+    // first on its path whose transform took it beyond the scene's coordinates (its field and
+    // why), if any.
+    type Far = Option<(String, String)>;
+    let mut stack: Vec<(::gltf::Node<'_>, Mat4, Option<usize>, Far)> =
+        scene.nodes().map(|n| (n, Mat4::IDENTITY, None, None)).collect();
     stack.reverse();
+    // The nodes whose degenerate transform flattens meshes, in the order met.
+    let mut flattening: Vec<usize> = Vec::new();
     if stack.is_empty() {
         return Err(at(format!("scenes[{}].nodes", scene.index()), "the scene has no nodes".into()));
     }
     let mut skipped_modes: BTreeMap<String, Vec<String>> = BTreeMap::new();
     let mut instance_budget = instancing::MAX_INSTANCED_TRIANGLES;
-    while let Some((node, parent)) = stack.pop() {
+    while let Some((node, parent, flattened_by, far)) = stack.pop() {
         let i = node.index();
         if std::mem::replace(&mut reached[i], true) {
             return Err(at(
@@ -169,7 +176,23 @@ pub fn load_gltf(path: &Path, options: &ImportOptions) -> Result<Model, GltfErro
             });
         }
         let world = parent.mul(&local);
+        // Named by the node's own field: a translation of 1e300 lost the triangle's size in
+        // f64 and was said to be a triangle of zero area (a tester). Of a node that places
+        // meshes (a camera's and a light's are held to the scene's range as such).
+        let origin = [world.0[3][0], world.0[3][1], world.0[3][2]];
+        let far = far.or_else(|| {
+            (!origin.iter().all(|c| c.abs() <= MAX_COORD)).then(|| {
+                (format!("nodes[{i}].{}", transform_field(&node, "translation")), beyond_coords(&local, origin))
+            })
+        });
+        let flattened_by = flattened_by.or((local.determinant3() == 0.0).then_some(i));
         if let Some(mesh) = node.mesh() {
+            if let Some((field, problem)) = far.clone().filter(|_| node.skin().is_none()) {
+                return Err(at(field, problem));
+            }
+            if let Some(culprit) = flattened_by.filter(|c| node.skin().is_none() && !flattening.contains(c)) {
+                flattening.push(culprit);
+            }
             let instanced = instancing::instances(&node, &gltf, &buffers, &mut instance_budget)
                 .map_err(|(path, problem)| at(path, problem))?;
             let placements: Vec<deform::Placement> = match (node.skin(), instanced) {
@@ -314,7 +337,18 @@ pub fn load_gltf(path: &Path, options: &ImportOptions) -> Result<Model, GltfErro
         {
             model.cameras.push(c);
         }
-        stack.extend(node.children().map(|c| (c, world)).collect::<Vec<_>>().into_iter().rev());
+        stack.extend(
+            node.children().map(|c| (c, world, flattened_by, far.clone())).collect::<Vec<_>>().into_iter().rev(),
+        );
+    }
+    for &k in &flattening {
+        let (field, problem) = degenerate_transform(&gltf, k, &numbers);
+        // With no triangle left to trace, it is the error (it was "its one triangle has zero
+        // area", the node not named; a tester's scale [0, 0, 0]).
+        if !model.meshes.iter().any(super::has_area) {
+            return Err(at(field, format!("{problem}, and the model has no other triangle to trace")));
+        }
+        model.warnings.push(FieldIssue { field, problem: format!("{problem}: they are never hit") });
     }
     for (mesh, modes) in skipped_modes {
         model.warnings.push(FieldIssue {
@@ -333,6 +367,60 @@ pub fn load_gltf(path: &Path, options: &ImportOptions) -> Result<Model, GltfErro
         ));
     }
     Ok(model)
+}
+
+/// The field that holds `node`'s transform: `matrix`, else the `decomposed` part named.
+fn transform_field(node: &::gltf::Node<'_>, decomposed: &'static str) -> &'static str {
+    match node.transform() {
+        ::gltf::scene::Transform::Matrix { .. } => "matrix",
+        ::gltf::scene::Transform::Decomposed { .. } => decomposed,
+    }
+}
+
+/// A node's origin `origin` (in the scene) beyond the coordinates a scene may hold, `local`
+/// its own transform.
+fn beyond_coords(local: &Mat4, origin: [f64; 3]) -> String {
+    let own = [local.0[3][0], local.0[3][1], local.0[3][2]];
+    let parents = if own == origin {
+        String::new()
+    } else {
+        format!(", which with its parents' transforms places the node at {}", listed(&origin))
+    };
+    format!(
+        "its translation is {}{parents}; a scene's coordinates must lie in [-{MAX_COORD:e}, {MAX_COORD:e}] (as must \
+         each component of a node's translation)",
+        listed(&own)
+    )
+}
+
+/// The field and problem of node `index`'s degenerate transform (a determinant of 0), which
+/// flattens the meshes under it.
+fn degenerate_transform(gltf: &::gltf::Gltf, index: usize, numbers: &[nodes::NodeNumbers]) -> (String, String) {
+    let Some(node) = gltf.nodes().nth(index) else { return (format!("nodes[{index}]"), "is degenerate".into()) };
+    let written = numbers.get(index);
+    let under = "flattens the meshes under the node to zero area";
+    match node.transform() {
+        ::gltf::scene::Transform::Matrix { .. } => (
+            format!("nodes[{index}].matrix"),
+            format!("is a degenerate (singular) node matrix: its upper 3×3 has determinant 0, which {under}"),
+        ),
+        ::gltf::scene::Transform::Decomposed { scale, .. } => {
+            let scale = written.and_then(|n| n.scale).unwrap_or(scale.map(f64::from));
+            (
+                format!("nodes[{index}].scale"),
+                format!(
+                    "{} is a degenerate node scale: each factor must be non-zero (its product too, in f64), and this \
+                     {under}",
+                    listed(&scale)
+                ),
+            )
+        }
+    }
+}
+
+/// Numbers as messages write them: `[1e300, 0, 0]`.
+fn listed(v: &[f64]) -> String {
+    format!("[{}]", v.iter().map(|&c| glint_scene::format_number(c)).collect::<Vec<_>>().join(", "))
 }
 
 /// Names as the scene format keeps them: readable characters, never empty.
