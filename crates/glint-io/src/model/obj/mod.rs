@@ -35,8 +35,13 @@ pub enum ObjError {
     Parse { file: std::path::PathBuf, line: Option<usize>, reason: String },
     #[error("{file}:{line}: invalid MTL ({reason})")]
     Mtl { file: std::path::PathBuf, line: usize, reason: String },
-    #[error("{file}: no triangles (points and lines are not traced)")]
-    Empty { file: std::path::PathBuf },
+    /// `short_face`: the line of the first face of fewer than three corners, left out, and
+    /// how many more there are.
+    #[error("{file}: no triangles (points and lines are not traced){}", short_face.map_or_else(String::new, |(line, more)| {
+        let more = if more > 0 { format!(" (and {more} more)") } else { String::new() };
+        format!("; {}:{line}: a face (`f`) of fewer than three corners{more}, left out: a polygon needs three", file.display())
+    }))]
+    Empty { file: std::path::PathBuf, short_face: Option<(usize, usize)> },
     /// `field`: `materials.NAME.texture`; `statement`: the MTL file (as a path from the OBJ's
     /// folder) and line naming the texture.
     #[error("{file}: {field} `{uri}`{}: {reason}", statement.as_ref().map_or_else(String::new, |s| format!(" ({}:{})", s.0.display(), s.1)))]
@@ -97,7 +102,8 @@ pub fn load_obj(path: &Path) -> Result<Model, ObjError> {
     )?;
     meshes::add_meshes(&models, &bytes, &names, &mut out);
     if out.meshes.is_empty() {
-        return Err(ObjError::Empty { file: path.to_owned() });
+        let short_face = prepared.short_faces.first().map(|&line| (line, prepared.short_faces.len() - 1));
+        return Err(ObjError::Empty { file: path.to_owned(), short_face });
     }
     Ok(out)
 }

@@ -10,6 +10,8 @@ pub(super) struct Prepared {
     /// Owned: each step borrows the one before.
     pub bytes: Vec<u8>,
     pub uses: Vec<text::UseMaterial>,
+    /// The lines (1-based) of faces of fewer than three corners, left out.
+    pub short_faces: Vec<usize>,
 }
 
 /// `raw` prepared for tobj, its warnings pushed onto `warnings`; or the line (where known) and
@@ -54,5 +56,5 @@ pub(super) fn prepared(raw: &[u8], warnings: &mut Vec<FieldIssue>) -> Result<Pre
             ),
         });
     }
-    Ok(Prepared { bytes: bytes.into_owned(), uses })
+    Ok(Prepared { bytes: bytes.into_owned(), uses, short_faces })
 }
