@@ -60,6 +60,17 @@ fn a_word_that_is_no_finite_number_is_reported_at_its_line_before_any_transform(
             "v 0 0 0 1 0 0\nv 1 0 0 0 x 0\nv 0 1 0 0 0 1\nf 1 2 3\n",
             ":2: invalid OBJ (`v 1 0 0 0 x 0`: vertex colour component g: `x` is not a number)",
         ),
+        // Named by the mesh's vertex after import (`objects[0] mesh 0 `…`.colours[0]`), not
+        // the file's line (a tester).
+        (
+            "v 0 0 0 -5 0 0\nv 1 0 0 1 1 1\nv 0 1 0 1 1 1\nf 1 2 3\n",
+            ":1: invalid OBJ (`v 0 0 0 -5 0 0`: vertex colour component r: -5 is outside [0, 1e9], a vertex colour's \
+             range)",
+        ),
+        (
+            "v 0 0 0 1 1 1\nv 1 0 0 1 1 1\nv 0 1 0 1 2e9 1\nf 1 2 3\n",
+            ":3: invalid OBJ (`v 0 1 0 1 2e9 1`: vertex colour component g: 2e9 is outside [0, 1e9]",
+        ),
     ] {
         let obj = write(dir.path(), "bad.obj", text);
         let err = load_obj(&obj).expect_err("a bad number is refused").to_string();

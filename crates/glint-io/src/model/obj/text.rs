@@ -214,6 +214,19 @@ pub(super) fn bad_number(bytes: &[u8]) -> Option<(usize, String)> {
                     ),
                 ));
             }
+            // Likewise a vertex colour: it was named `objects[0] mesh 0 `NAME`.colours[0]`,
+            // the index of the mesh's vertex, not the file's line (a tester's -5).
+            let range = glint_scene::ranges::COLOUR;
+            if what == "vertex colour" && !range.contains(f64::from(value)) {
+                return Some((
+                    n + 1,
+                    format!(
+                        "`{}`: {what} component {name}: {word} is outside {}, a vertex colour's range",
+                        line.trim(),
+                        range.bounds()
+                    ),
+                ));
+            }
         }
     }
     None
