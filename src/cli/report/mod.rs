@@ -3,6 +3,7 @@
 //! reference, and writes report.csv, report.md and one log-log plot per scene; and measures
 //! the render time of each specular model (specular.csv).
 
+mod cpu_render;
 mod csv;
 mod gi;
 mod gi_plot;

@@ -85,7 +85,7 @@ pub fn render_reference(
     let mut groups = Vec::with_capacity(seeds.len());
     for (&seed, &n) in seeds.iter().zip(&spp) {
         let s = RenderSettings { spp: n, seed, ..settings.clone() };
-        let r = super::sweep::cpu_render(&FlatScene::build(desc, &s), options)
+        let r = super::cpu_render::cpu_render(&FlatScene::build(desc, &s), options)
             .with_context(|| format!("the reference's render at seed {seed}"))?;
         groups.push(r.image);
         done();

@@ -9,8 +9,9 @@
 use glint_core::{CpuOptions, FlatScene};
 use glint_scene::{RenderSettings, SceneDesc, format_rounded, unbounded_ray_tree_cause};
 
+use super::cpu_render::cpu_render;
 use super::plan::Config;
-use super::sweep::{cpu_render, settings_for};
+use super::sweep::settings_for;
 
 /// The most rays a reference may be expected to trace: 2^32, about 25 minutes at the 2.9 Mrays/s
 /// of the reference on a 2-core machine (three glass panes at 24×18, depth 16), half the full

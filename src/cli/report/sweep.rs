@@ -7,13 +7,14 @@ use std::time::Duration;
 use anyhow::Context;
 use glint_core::compare::{ImageErrors, compare_images};
 use glint_core::cpu::RayCounts;
-use glint_core::{Backend, CpuOptions, FlatScene, HdrImage, RenderControl, render_cpu};
+use glint_core::{Backend, CpuOptions, FlatScene, HdrImage};
 use glint_gpu::{GpuOptions, GpuTracer, ShaderKey};
 use glint_io::LoadedScene;
 use glint_scene::{Integrator, RenderSettings, SpecularModel, overflow_causes};
 use indicatif::ProgressBar;
 use serde::{Deserialize, Serialize};
 
+use super::cpu_render::cpu_render;
 use super::plan::{Config, Group, Planned, SceneNeeds};
 use super::reference::{ReferenceStats, render_reference};
 use crate::cli::console::tell;
@@ -191,12 +192,6 @@ pub fn settings_for(base: &RenderSettings, config: &Config) -> RenderSettings {
         epsilon_mode: config.epsilon_mode,
         ..base.clone()
     }
-}
-
-/// A CPU render of the report, which SIGINT/SIGTERM stop at the next pixel (`cli::interrupt`).
-pub fn cpu_render(flat: &FlatScene, options: &CpuOptions) -> anyhow::Result<glint_core::CpuRender> {
-    let cancel = glint_io::interrupt::flag();
-    Ok(render_cpu(flat, options, RenderControl { cancel: Some(&cancel), ..RenderControl::default() })?)
 }
 
 pub fn render(engines: &mut Engines, flat: &FlatScene, config: &Config) -> anyhow::Result<Sample> {

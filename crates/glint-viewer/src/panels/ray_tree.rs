@@ -10,7 +10,7 @@ use glint_core::probe_terms::{Term, first_difference, local_terms};
 use glint_types::RayKind;
 use glint_types::layout::MAX_PROBE_NODES;
 
-use super::term_table::{HIGHLIGHT, term_grid};
+use super::term_table::{BROUGHT_BACK, HIGHLIGHT, term_grid};
 use crate::document::Document;
 use crate::probe::{GpuProbe, ProbeState};
 
@@ -37,12 +37,6 @@ pub fn title(i: usize, n: &RayNode, doc: &Document) -> String {
     let tir = if n.tir { " (TIR)" } else { "" };
     format!("#{i} {}{tir}: {}", n.kind.name(), target(n, doc))
 }
-
-/// The row of a node's radiance, and what it is, on hover (a lecturer found it unexplained).
-pub const BROUGHT_BACK: &str = "I brought back (CPU only)";
-pub const BROUGHT_BACK_HINT: &str = "The radiance this ray carries back: its hit's local terms plus k·I of the rays it \
-     spawns (the camera ray's is the pixel's value); only the CPU keeps it, the GPU adding each ray's weighted terms \
-     straight into the pixel.";
 
 /// The rows of node `c` (and its GPU twin `g`): its own factor, path weight, distance and the
 /// local terms at its hit.

@@ -4,13 +4,18 @@
 use egui::{Color32, RichText, Ui};
 use glint_core::glam::DVec3;
 
-use super::ray_tree::{BROUGHT_BACK, BROUGHT_BACK_HINT};
 use crate::probe::{Channels, Term};
 
 /// The colour of a highlighted (first differing) row or node.
 pub const HIGHLIGHT: Color32 = Color32::from_rgb(255, 120, 90);
 
 /// What the Δ row is, on hover (a lecturer found it unexplained).
+/// The row of a node's radiance, and what it is, on hover (a lecturer found it unexplained).
+pub const BROUGHT_BACK: &str = "I brought back (CPU only)";
+pub const BROUGHT_BACK_HINT: &str = "The radiance this ray carries back: its hit's local terms plus k·I of the rays it \
+     spawns (the camera ray's is the pixel's value); only the CPU keeps it, the GPU adding each ray's weighted terms \
+     straight into the pixel.";
+
 pub const DELTA_HINT: &str = "Δ = GPU − CPU: the GPU's f32 value less the CPU's f64 reference, per channel; the \
      first term where the two differ beyond the probe's tolerance is highlighted.";
 

@@ -71,7 +71,7 @@ pub(super) fn split_by_kind(
     let name = &loaded.name;
     let cpu = |flat: &FlatScene, what: &str| -> anyhow::Result<HdrImage> {
         bar.set_message(format!("{name}: {what}"));
-        let r = super::super::sweep::cpu_render(flat, options).with_context(|| format!("{name}: {what}"))?;
+        let r = super::super::cpu_render::cpu_render(flat, options).with_context(|| format!("{name}: {what}"))?;
         bar.inc(1);
         Ok(r.image)
     };

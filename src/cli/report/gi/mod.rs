@@ -229,7 +229,7 @@ pub fn measure(
         };
         bar.set_message(format!("{name}: Whitted at {reference_spp} spp, {what}"));
         let s = RenderSettings { spp: whitted_at.1, max_depth: whitted_at.0, ..whitted.clone() };
-        let r = super::sweep::cpu_render(&FlatScene::build(&desc, &s), &options)
+        let r = super::cpu_render::cpu_render(&FlatScene::build(&desc, &s), &options)
             .with_context(|| format!("{name}: Whitted at the reference's {reference_spp} spp, {what}"))?;
         bar.inc(1);
         Ok(r.image)
