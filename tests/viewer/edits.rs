@@ -127,14 +127,18 @@ fn the_integrator_switch_renders_paths_on_both_tracers_and_back() {
     assert!(mean(&direct) < mean(&paths), "without indirect light the box is darker");
     assert_current_agreement(&h);
 
-    // The toolbar's switch does the same, from any panel; back to Whitted resets render.indirect.
+    // The toolbar's switch does the same, from any panel; render.indirect = false stays through
+    // Whitted (warned of, changing nothing there) and is the paths' again on the way back (the
+    // switch had reset it, losing a setting of the lesson's file).
     h.get_by_label("Whitted").click();
     settle(&mut h);
     let r = &h.state().doc.desc.render;
-    assert_eq!((r.integrator, r.indirect), (glint_scene::Integrator::Whitted, true));
+    assert_eq!((r.integrator, r.indirect), (glint_scene::Integrator::Whitted, false));
+    assert!(h.state().doc.warnings.iter().any(|w| w.field == "render.indirect"), "{:?}", h.state().doc.warnings);
     h.get_by_label("Paths").click();
     settle(&mut h);
-    assert_eq!(h.state().doc.desc.render.integrator, glint_scene::Integrator::Path);
+    let r = &h.state().doc.desc.render;
+    assert_eq!((r.integrator, r.indirect), (glint_scene::Integrator::Path, false));
     assert_current_agreement(&h);
 }
 
