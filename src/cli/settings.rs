@@ -342,7 +342,7 @@ pub fn load_with_estimate(
     memory_limit: Option<u64>,
 ) -> anyhow::Result<(LoadedScene, Option<MemoryEstimate>)> {
     let scene = scene.as_ref();
-    let estimate = check_load_memory(scene, memory_limit)?;
+    let estimate = check_load_memory(scene, options.resolution, memory_limit)?;
     let loaded = match super::interrupt::while_loading(|| load_scene_with(scene, options)) {
         Ok(loaded) => loaded,
         // Flags that do nothing for this scene: the command line's error (exit 2), not the file's.
@@ -389,9 +389,24 @@ pub fn tell_warnings(loaded: &LoadedScene, settings: &RenderSettings) {
 /// for a built-in scene).
 pub fn check_load_memory(
     scene: impl AsRef<OsStr>,
+    resolution: Option<u32>,
     memory_limit: Option<u64>,
 ) -> anyhow::Result<Option<MemoryEstimate>> {
     let path = std::path::Path::new(scene.as_ref());
+    // A generated built-in scene is held to its size before it is made: `bumpy --resolution
+    // 1500` under a 100 MiB limit was generated (18 s, 510 MB) before the render refused it.
+    if !path.exists()
+        && let Some(b) = path.to_str().and_then(glint_io::builtin)
+        && let Some((n, vertices, triangles)) = b.generated_size(resolution)
+    {
+        memory::check(
+            format!("generating {} at resolution {n} ({triangles} triangles)", b.name),
+            &memory::generated_estimate(vertices, triangles),
+            memory_limit,
+            "lower --resolution",
+        )?;
+        return Ok(None);
+    }
     if let Ok(meta) = std::fs::metadata(path)
         && meta.is_file()
     {

@@ -114,7 +114,7 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
     {
         bail!("--screenshot {}: a screenshot is written as PNG; name the file .png", path.display());
     }
-    check_load_memory(&args.scene, args.scene_size.memory_limit)?;
+    check_load_memory(&args.scene, args.scene_size.resolution, args.scene_size.memory_limit)?;
     let load = args.scene_size.options(Some(&args.settings));
     // A scene that does not load is reported in the viewer window; flags apply to one that does.
     // A resolution the scene cannot take is a flag error, before any window opens, and so is

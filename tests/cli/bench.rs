@@ -106,11 +106,12 @@ fn bad_resolutions_fail_cleanly() {
         &["whitted", "not a generated scene", "bumpy"],
         &[],
     );
-    // --memory-limit bounds the benchmark's scene as it bounds a render (it was ignored).
+    // --memory-limit bounds the benchmark's scene as it bounds a render (it was ignored), and a
+    // generated scene before it is made.
     expect_failure(
         "bench-memory",
         |_| os(&[&"bench", &"rays", &"bumpy", &"--resolution", &"300", &"--memory-limit", &"50M"]),
-        &["building bumpy for the benchmark", "set by --memory-limit"],
+        &["generating bumpy at resolution 300 (360002 triangles)", "set by --memory-limit"],
         &[],
     );
     expect_failure(

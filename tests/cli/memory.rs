@@ -98,3 +98,25 @@ fn the_estimate_in_json_is_close_to_the_peak_memory_of_the_run() {
         assert!((0.8..=1.6).contains(&ratio), "{args:?}: estimate/peak {ratio:.2}: {memory:#}");
     }
 }
+
+#[test]
+fn a_generated_scene_beyond_the_memory_limit_is_refused_before_it_is_made() {
+    // bumpy at resolution 1500 is 9 million triangles: it was generated (18 s, 510 MB) before
+    // the render's estimate refused it.
+    let dir = TempDir::new("memory-generated");
+    let args = ["bumpy", "--resolution", "1500", "--memory-limit", "100M"];
+    for command in [&["render", "--width", "8", "--height", "6", "-o", "b.png"][..], &["bench", "rays"][..]] {
+        let (verb, rest) = command.split_first().expect("a command");
+        let all: Vec<&str> = [*verb].into_iter().chain(rest.iter().copied()).collect();
+        let (head, tail) = all.split_at(if *verb == "bench" { 2 } else { 1 });
+        let out = glint(&dir, head.iter().chain(args.iter()).chain(tail.iter()).copied());
+        let stderr = text(&out.stderr);
+        assert!(!out.status.success(), "{command:?}");
+        for f in
+            ["generating bumpy at resolution 1500 (9000002 triangles) would need about ", "BVH", "lower --resolution"]
+        {
+            assert!(stderr.contains(f), "{command:?}: no {f:?} in\n{stderr}");
+        }
+    }
+    assert!(dir.listing().is_empty(), "left behind {:?}", dir.listing());
+}

@@ -22,8 +22,9 @@ pub const DEFAULT_RESOLUTION: u32 = 500;
 pub enum BuiltinSource {
     /// Scene file text (`assets/scenes/NAME.toml`).
     Toml(&'static str),
-    /// Made in code at a resolution in `RESOLUTIONS` (default `DEFAULT_RESOLUTION`).
-    Generated(fn(u32) -> SceneDesc),
+    /// Made in code at a resolution in `RESOLUTIONS` (default `DEFAULT_RESOLUTION`), with the
+    /// vertices and triangles its meshes will have, told without making them.
+    Generated { make: fn(u32) -> SceneDesc, mesh_size: fn(u32) -> (u64, u64) },
 }
 
 #[derive(Clone, Copy, Debug)]
@@ -47,8 +48,14 @@ pub const BUILTIN_SCENES: &[BuiltinScene] = &[
     scene!("spotlights"),
     scene!("highlights"),
     scene!("lights"),
-    BuiltinScene { name: "bumpy", source: BuiltinSource::Generated(bumpy::bumpy) },
-    BuiltinScene { name: "bumpy-glass", source: BuiltinSource::Generated(bumpy::bumpy_glass) },
+    BuiltinScene {
+        name: "bumpy",
+        source: BuiltinSource::Generated { make: bumpy::bumpy, mesh_size: bumpy::bumpy_mesh_size },
+    },
+    BuiltinScene {
+        name: "bumpy-glass",
+        source: BuiltinSource::Generated { make: bumpy::bumpy_glass, mesh_size: bumpy::bumpy_mesh_size },
+    },
     // Last: test suites key their recorded images by the order they render the scenes in.
     scene!("cornell-gi"),
 ];
@@ -67,12 +74,28 @@ impl BuiltinScene {
     pub fn toml(&self) -> Option<&'static str> {
         match self.source {
             BuiltinSource::Toml(text) => Some(text),
-            BuiltinSource::Generated(_) => None,
+            BuiltinSource::Generated { .. } => None,
         }
     }
 
     pub fn is_generated(&self) -> bool {
-        matches!(self.source, BuiltinSource::Generated(_))
+        matches!(self.source, BuiltinSource::Generated { .. })
+    }
+
+    /// A generated scene's resolution (`resolution` or the default) and the vertices and
+    /// triangles its meshes will have there, before it is made; `None` for a TOML scene or a
+    /// resolution out of range (which `load` refuses).
+    pub fn generated_size(&self, resolution: Option<u32>) -> Option<(u32, u64, u64)> {
+        match self.source {
+            BuiltinSource::Toml(_) => None,
+            BuiltinSource::Generated { mesh_size, .. } => {
+                let n = resolution.unwrap_or(DEFAULT_RESOLUTION);
+                RESOLUTIONS.contains(&n).then(|| {
+                    let (vertices, triangles) = mesh_size(n);
+                    (n, vertices, triangles)
+                })
+            }
+        }
     }
 
     /// The validated description. `resolution` is for generated scenes only: asking a TOML
@@ -86,7 +109,7 @@ impl BuiltinScene {
                 }
                 None => parse_scene(text, Path::new(&source)),
             },
-            BuiltinSource::Generated(generate) => {
+            BuiltinSource::Generated { make: generate, .. } => {
                 let n = resolution.unwrap_or(DEFAULT_RESOLUTION);
                 if !RESOLUTIONS.contains(&n) {
                     return Err(SceneError::Resolution {
@@ -131,5 +154,24 @@ mod tests {
         }
         let e = builtin("whitted").unwrap().load(Some(20)).expect_err("not generated").to_string();
         assert!(e.contains("whitted") && e.contains("bumpy"), "{e}");
+    }
+
+    #[test]
+    fn a_generated_scenes_size_is_told_before_it_is_made() {
+        for b in BUILTIN_SCENES.iter().filter(|b| b.is_generated()) {
+            for n in [2, 3, 17] {
+                let (desc, _) = b.load(Some(n)).expect("generated");
+                let meshes = desc.objects.iter().filter_map(|o| match o {
+                    glint_scene::ObjectDesc::Mesh(m) => Some((m.vertices.len() as u64, m.triangles.len() as u64)),
+                    _ => None,
+                });
+                let made = meshes.fold((0, 0), |(v, t), (mv, mt)| (v + mv, t + mt));
+                let (_, vertices, triangles) = b.generated_size(Some(n)).expect("a generated scene's size");
+                assert_eq!((vertices, triangles), made, "{} at {n}", b.name);
+            }
+            assert_eq!(b.generated_size(None).map(|s| s.0), Some(DEFAULT_RESOLUTION));
+            assert_eq!(b.generated_size(Some(*RESOLUTIONS.end() + 1)), None);
+        }
+        assert!(builtin("whitted").expect("built-in").generated_size(None).is_none());
     }
 }

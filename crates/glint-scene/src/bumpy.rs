@@ -68,6 +68,13 @@ pub fn bumpy_sphere(n: u32) -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
     (vertices, triangles)
 }
 
+/// The vertices and triangles of the generated scenes' meshes at resolution `n` (the sphere's
+/// and the ground quad's), without making them: what a memory check before generating counts.
+pub fn bumpy_mesh_size(n: u32) -> (u64, u64) {
+    let n = u64::from(n);
+    ((n + 1) * (2 * n + 1) + 4, 4 * n * n + 2)
+}
+
 /// The ground: a quad at y = −1.2 spanning ±10 in x and z, two triangles facing up.
 pub fn ground_quad() -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
     let (y, h) = (GROUND_Y, GROUND_HALF);
