@@ -328,7 +328,10 @@ pub fn check(
 
 /// Parses a size such as `512M`, `2G`, `1.5GiB` or a number of bytes.
 pub fn parse_size(s: &str) -> Result<u64, String> {
+    // A leading '+', as every other number flag takes it (`--spp +3`; `--memory-limit +3G` was
+    // "not a size").
     let t = s.trim();
+    let t = t.strip_prefix('+').unwrap_or(t);
     let split = t.find(|c: char| !(c.is_ascii_digit() || c == '.')).unwrap_or(t.len());
     let (number, unit) = t.split_at(split);
     let value: f64 = number.parse().map_err(|_| format!("'{s}' is not a size (e.g. 512M, 2G, 1.5GiB)"))?;
@@ -394,5 +397,12 @@ mod tests {
         let message = err.to_string();
         assert!(message.contains("more than the 64.0 MiB set by --memory-limit; lower --width"), "{message}");
         assert!(message.contains("CPU image 26.7 MiB"), "{message}");
+    }
+
+    #[test]
+    fn a_size_takes_a_leading_plus_as_the_number_flags_do() {
+        assert_eq!(parse_size("+3G"), parse_size("3G"));
+        assert_eq!(parse_size("+512"), Ok(512));
+        assert!(parse_size("++3G").is_err() && parse_size("-3G").is_err());
     }
 }
