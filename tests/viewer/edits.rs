@@ -43,12 +43,7 @@ fn material_ks_and_light_type_set_through_the_ui_change_the_gpu_image_and_the_st
     let Some(mut h) = viewer("whitted", (1000.0, 640.0)) else { return };
     let before = gpu_image(&h);
 
-    choose(&mut h, "Materials", "Material", "mirror");
-    for channel in ["k_s R", "k_s G", "k_s B"] {
-        h.get_by_label(channel).set_value_accesskit(0.0);
-        h.run_steps(1);
-    }
-    settle(&mut h);
+    dull_the_mirror(&mut h);
     assert_eq!(h.state().doc.desc.materials["mirror"].ks.0, [0.0; 3]);
     let dull = gpu_image(&h);
     // The mirror sphere loses its specular highlight (k_s·I_s·spec).
@@ -66,6 +61,16 @@ fn material_ks_and_light_type_set_through_the_ui_change_the_gpu_image_and_the_st
     assert!(spot_counts.shadow < dull_counts.shadow, "spot {spot_counts:?} vs point {dull_counts:?}");
     assert_eq!(spot_counts.camera, dull_counts.camera);
     assert_current_agreement(&h);
+}
+
+/// Sets the mirror's k_s to 0 through its three fields, a frame apart, and lets it render.
+fn dull_the_mirror(h: &mut egui_kittest::Harness<'static, glint_viewer::ViewerApp>) {
+    choose(h, "Materials", "Material", "mirror");
+    for channel in ["k_s R", "k_s G", "k_s B"] {
+        h.get_by_label(channel).set_value_accesskit(0.0);
+        h.run_steps(1);
+    }
+    settle(h);
 }
 
 fn latest_counts(h: &egui_kittest::Harness<'static, glint_viewer::ViewerApp>) -> glint_core::cpu::RayCounts {
@@ -210,12 +215,7 @@ fn fit_ambient_lowers_whitteds_error_against_the_paths_and_applies_on_click() {
 fn ctrl_z_takes_back_each_edit_with_its_image_and_ctrl_shift_z_gives_it_back() {
     let Some(mut h) = viewer("whitted", (1000.0, 640.0)) else { return };
     let before = gpu_image(&h);
-    choose(&mut h, "Materials", "Material", "mirror");
-    for channel in ["k_s R", "k_s G", "k_s B"] {
-        h.get_by_label(channel).set_value_accesskit(0.0);
-        h.run_steps(1);
-    }
-    settle(&mut h);
+    dull_the_mirror(&mut h);
     let dull = gpu_image(&h);
     choose(&mut h, "Lights", "Type", "spot");
     settle(&mut h);
