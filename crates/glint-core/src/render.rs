@@ -252,11 +252,6 @@ pub fn render_cpu(
     }) {
         return Err(CpuRenderError::RayCap { x, y, cap: options.max_rays_per_sample });
     }
-    // A tree cut by the stop flag in a tile's last pixel leaves no tile cancelled: its image is
-    // no render's.
-    if stop.cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
-        return Err(CpuRenderError::Cancelled);
-    }
     let image = image.into_inner().unwrap_or_else(|e| e.into_inner());
     let mut counts = RayCounts::default();
     for tile_counts in tiles {

@@ -261,11 +261,7 @@ impl Document {
 
     /// A light as the Lights panel lists it: its name, or its type and index.
     pub fn light_label(&self, index: usize) -> String {
-        match self.desc.lights.get(index) {
-            Some(l) if !l.name.is_empty() => l.name.clone(),
-            Some(l) => format!("{} {index}", l.kind.name()),
-            None => format!("light {index}"),
-        }
+        light_label(&self.desc.lights, index)
     }
 
     pub fn object_label(&self, index: usize) -> String {
@@ -274,6 +270,16 @@ impl Document {
             Some(o) => format!("{} #{index}", o.kind_name()),
             None => format!("object #{index}"),
         }
+    }
+}
+
+/// Light `index` of `lights` as the Lights panel lists it: its name, or its type and index
+/// (also of a state an undo would give back, `undo.rs`).
+pub fn light_label(lights: &[glint_scene::LightDesc], index: usize) -> String {
+    match lights.get(index) {
+        Some(l) if !l.name.is_empty() => l.name.clone(),
+        Some(l) => format!("{} {index}", l.kind.name()),
+        None => format!("light {index}"),
     }
 }
 

@@ -10,7 +10,7 @@
 use glint_scene::{CameraDesc, LightDesc, MaterialDesc, RenderSettings, WorldDesc};
 use std::collections::BTreeMap;
 
-use crate::document::Document;
+use crate::document::{Document, light_label};
 use crate::light_kind::SetAside;
 
 /// Seconds a scene stands still before its edit is a step of its own (a scroll of the zoom
@@ -61,7 +61,7 @@ impl SceneState {
     /// What tells `self` from `other`, as the side panel names it with `self` on screen:
     /// "Camera", "Materials › red", "Lights › point 0" (the first that differs, "and N more" for
     /// the rest).
-    fn changed_from(&self, other: &Self, light_label: impl Fn(&Self, usize) -> String) -> String {
+    fn changed_from(&self, other: &Self) -> String {
         let mut parts = Vec::new();
         if self.render != other.render {
             parts.push("Render settings".to_string());
@@ -81,7 +81,7 @@ impl SceneState {
         if self.lights.len() == other.lights.len() {
             for i in 0..self.lights.len() {
                 if self.lights[i] != other.lights[i] {
-                    parts.push(format!("Lights › {}", light_label(self, i)));
+                    parts.push(format!("Lights › {}", light_label(&self.lights, i)));
                 }
             }
         } else {
@@ -92,15 +92,6 @@ impl SceneState {
             1 => parts.remove(0),
             n => format!("{} and {} more", parts[0], n - 1),
         }
-    }
-}
-
-/// A light's label in `state`, as `Document::light_label` gives it.
-fn light_label(state: &SceneState, index: usize) -> String {
-    match state.lights.get(index) {
-        Some(l) if !l.name.is_empty() => l.name.clone(),
-        Some(l) => format!("{} {index}", l.kind.name()),
-        None => format!("light {index}"),
     }
 }
 
@@ -181,10 +172,10 @@ impl EditHistory {
         if doc.revision != self.base_revision {
             let now = SceneState::of(doc);
             if now != self.base {
-                return Some(now.changed_from(&self.base, light_label));
+                return Some(now.changed_from(&self.base));
             }
         }
-        self.undo.last().map(|before| self.base.changed_from(before, light_label))
+        self.undo.last().map(|before| self.base.changed_from(before))
     }
 
     /// What a redo would give back, if anything.
@@ -192,7 +183,7 @@ impl EditHistory {
         if doc.revision != self.base_revision && SceneState::of(doc) != self.base {
             return None;
         }
-        self.redo.last().map(|after| self.base.changed_from(after, light_label))
+        self.redo.last().map(|after| self.base.changed_from(after))
     }
 
     /// Takes the last step back; false when there is none. `view` holds what the view
