@@ -46,10 +46,12 @@ fn resolve_index(spec: TileSpec, tiles: u32) -> anyhow::Result<(u32, String)> {
     }
     // Two schedulers' indices that disagree (a Slurm job launched from a Kubernetes pod): which
     // is this task's is not glint's to guess; taking the first rendered one tile twice.
-    let set: Vec<(&str, String)> =
-        INDEX_VARIABLES.iter().filter_map(|(name, _)| std::env::var(name).ok().map(|v| (*name, v))).collect();
-    if let [(first, a), rest @ ..] = set.as_slice()
-        && let Some((other, b)) = rest.iter().find(|(_, b)| b.trim() != a.trim())
+    let set: Vec<(&str, &str, String)> = INDEX_VARIABLES
+        .iter()
+        .filter_map(|&(name, scheduler)| std::env::var(name).ok().map(|v| (name, scheduler, v)))
+        .collect();
+    if let [(first, _, a), rest @ ..] = set.as_slice()
+        && let Some((other, _, b)) = rest.iter().find(|(_, _, b)| b.trim() != a.trim())
     {
         usage!(
             "--tile {} takes the tile's index from the scheduler, but {first}='{a}' and {other}='{b}' disagree; \
@@ -58,26 +60,24 @@ fn resolve_index(spec: TileSpec, tiles: u32) -> anyhow::Result<(u32, String)> {
             spec.count
         );
     }
-    for (name, scheduler) in INDEX_VARIABLES {
-        if let Ok(value) = std::env::var(name) {
-            // The parser's own words ("invalid digit found in string") add nothing to these.
-            let i = value.trim().parse::<u32>().map_err(|_| {
-                // A whole number too large is said so, not called no number.
-                let what = if value.trim().bytes().all(|b| b.is_ascii_digit()) && !value.trim().is_empty() {
-                    format!("is beyond {}", u32::MAX)
-                } else {
-                    "is not a whole number".into()
-                };
-                let last = tiles.saturating_sub(1);
-                let range = if tiles == 1 {
-                    "the one tile is numbered 0 (Slurm: --array=0)".to_string()
-                } else {
-                    format!("the {tiles} tiles are numbered 0 to {last} (Slurm: --array=0-{last})")
-                };
-                anyhow::anyhow!("{name}='{value}' ({scheduler}) {what}, so it names no tile: {range}")
-            })?;
-            return Ok((i, format!("{name} ({scheduler})")));
-        }
+    if let Some((name, scheduler, value)) = set.first() {
+        // The parser's own words ("invalid digit found in string") add nothing to these.
+        let i = value.trim().parse::<u32>().map_err(|_| {
+            // A whole number too large is said so, not called no number.
+            let what = if value.trim().bytes().all(|b| b.is_ascii_digit()) && !value.trim().is_empty() {
+                format!("is beyond {}", u32::MAX)
+            } else {
+                "is not a whole number".into()
+            };
+            let last = tiles.saturating_sub(1);
+            let range = if tiles == 1 {
+                "the one tile is numbered 0 (Slurm: --array=0)".to_string()
+            } else {
+                format!("the {tiles} tiles are numbered 0 to {last} (Slurm: --array=0-{last})")
+            };
+            anyhow::anyhow!("{name}='{value}' ({scheduler}) {what}, so it names no tile: {range}")
+        })?;
+        return Ok((i, format!("{name} ({scheduler})")));
     }
     let names: Vec<&str> = INDEX_VARIABLES.iter().map(|(n, _)| *n).collect();
     usage!(
