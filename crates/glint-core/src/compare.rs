@@ -167,8 +167,9 @@ impl SignedDifference {
     }
 }
 
-/// The least of 1, 2 and 5 times a power of ten that is at least `v` (> 0).
-fn nice_ceiling(v: f64) -> f64 {
+/// The least of 1, 2 and 5 times a power of ten that is at least `v` (> 0): the difference
+/// view's scale, and the viewer's plot ticks.
+pub fn nice_ceiling(v: f64) -> f64 {
     let p = 10f64.powf(v.log10().floor());
     [1.0, 2.0, 5.0, 10.0].into_iter().map(|m| m * p).find(|c| *c >= v * (1.0 - 1e-12)).unwrap_or(10.0 * p)
 }

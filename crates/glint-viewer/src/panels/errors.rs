@@ -151,12 +151,6 @@ const LABEL_SPACING: (f32, f32) = (40.0, 45.0);
 /// to 5), and so two labels or more on a plot of 225 points.
 const LABEL_GAP: f64 = LABEL_SPACING.1 as f64;
 
-/// The smallest of 1, 2 and 5 times a power of ten that is at least `x`.
-fn nice(x: f64) -> f64 {
-    let power = 10f64.powf(x.log10().floor());
-    [1.0, 2.0, 5.0, 10.0].into_iter().map(|m| m * power).find(|v| *v >= x * (1.0 - 1e-9)).unwrap_or(10.0 * power)
-}
-
 /// The x axis's grid over `bounds` at `unit` plot units a point: labelled ticks at the smallest
 /// step of 1, 2 or 5 × 10^k that leaves `LABEL_GAP` between them, finer lines between; whole
 /// numbers only for samples and depth. egui_plot's default steps by tens only, so that from
@@ -166,7 +160,7 @@ fn ticks(bounds: (f64, f64), unit: f64, integers: bool) -> Vec<GridMark> {
     if !(unit > 0.0 && lo.is_finite() && hi.is_finite() && hi > lo) {
         return Vec::new();
     }
-    let mut step = nice(LABEL_GAP * unit);
+    let mut step = glint_core::compare::nice_ceiling(LABEL_GAP * unit);
     if integers {
         step = step.max(1.0);
     }
